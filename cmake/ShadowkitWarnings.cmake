@@ -1,0 +1,37 @@
+# sk_project_warnings(target): the warning set of DESIGN.md §3, for project code only
+# (third-party headers come in as SYSTEM includes through their imported targets).
+function(sk_project_warnings target)
+  if(CMAKE_CXX_COMPILER_ID MATCHES "GNU|Clang")
+    target_compile_options(${target} PRIVATE -Wall -Wextra -Wshadow -Wconversion -Wno-sign-conversion)
+  elseif(MSVC)
+    target_compile_options(${target} PRIVATE /W4)
+  endif()
+endfunction()
+
+# sk_add_library(name SOURCES ...): one library per module with the shadowkit::<name> alias,
+# public headers in include/, installed and exported.
+function(sk_add_library name)
+  cmake_parse_arguments(ARG "" "" "SOURCES" ${ARGN})
+  add_library(shadowkit_${name} ${ARG_SOURCES})
+  add_library(shadowkit::${name} ALIAS shadowkit_${name})
+  set_target_properties(shadowkit_${name} PROPERTIES EXPORT_NAME ${name} OUTPUT_NAME shadowkit_${name}
+                                                   POSITION_INDEPENDENT_CODE ON)
+  target_include_directories(shadowkit_${name} PUBLIC
+    $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include>
+    $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
+  target_compile_features(shadowkit_${name} PUBLIC cxx_std_20)
+  sk_project_warnings(shadowkit_${name})
+  install(TARGETS shadowkit_${name} EXPORT shadowkitTargets
+          ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+          LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
+  install(DIRECTORY include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+endfunction()
+
+# sk_add_test(name SOURCES ... LIBS ... [LABELS ...]): a GoogleTest executable beside its module.
+function(sk_add_test name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;LIBS;LABELS" ${ARGN})
+  add_executable(${name} ${ARG_SOURCES})
+  target_link_libraries(${name} PRIVATE ${ARG_LIBS} GTest::gtest_main)
+  sk_project_warnings(${name})
+  gtest_discover_tests(${name} PROPERTIES LABELS "${ARG_LABELS}" DISCOVERY_TIMEOUT 60)
+endfunction()

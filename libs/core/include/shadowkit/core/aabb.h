@@ -1,0 +1,51 @@
+// Axis-aligned bounding box.
+#pragma once
+
+#include "shadowkit/core/conventions.h"
+
+#include <array>
+#include <limits>
+
+namespace shadowkit::core {
+
+struct Aabb {
+    // An empty box (min > max); extending it by any point makes it that point.
+    Vec3 min{std::numeric_limits<double>::infinity()};
+    Vec3 max{-std::numeric_limits<double>::infinity()};
+
+    static Aabb fromMinMax(const Vec3& lo, const Vec3& hi) { return {lo, hi}; }
+
+    bool isEmpty() const { return !(min.x <= max.x && min.y <= max.y && min.z <= max.z); } // NaN-safe
+    Vec3 center() const { return 0.5 * (min + max); }
+    Vec3 extent() const { return max - min; }
+    double diagonal() const { return isEmpty() ? 0.0 : glm::length(max - min); }
+
+    void extend(const Vec3& p) {
+        min = glm::min(min, p);
+        max = glm::max(max, p);
+    }
+    void extend(const Aabb& b) {
+        if (!b.isEmpty()) {
+            extend(b.min);
+            extend(b.max);
+        }
+    }
+    bool contains(const Vec3& p, double eps = 0.0) const {
+        return p.x >= min.x - eps && p.y >= min.y - eps && p.z >= min.z - eps &&
+               p.x <= max.x + eps && p.y <= max.y + eps && p.z <= max.z + eps;
+    }
+    // Corner i: bit 0 selects x, bit 1 y, bit 2 z (0 = min, 1 = max).
+    Vec3 corner(int i) const {
+        return {(i & 1) ? max.x : min.x, (i & 2) ? max.y : min.y, (i & 4) ? max.z : min.z};
+    }
+    std::array<Vec3, 8> corners() const {
+        std::array<Vec3, 8> c;
+        for (int i = 0; i < 8; ++i) c[static_cast<size_t>(i)] = corner(i);
+        return c;
+    }
+};
+
+// Bounds of points after a transform (a box of a box is the box of its 8 corners).
+Aabb transformBounds(const Mat4& bFromA, const Aabb& aBox);
+
+} // namespace shadowkit::core

@@ -1,0 +1,51 @@
+// Convex polyhedron as a list of planar polygonal faces, clipped by half-spaces.
+//
+// This is the representation the focus body B of the seeds needs (seed 001 §3.3,
+// seed 000 §4.1): start from a box, clip it by planes, sweep it towards a light.
+// Clipping is exact up to a tolerance scaled to the body's size, so the result is a true
+// intersection of half-spaces rather than the "vertex + exit point" approximation of the
+// 2004 LiSPSM demo (reference-math.md §4, pitfall 6).
+#pragma once
+
+#include "shadowkit/core/aabb.h"
+#include "shadowkit/core/conventions.h"
+#include "shadowkit/core/plane.h"
+
+#include <span>
+#include <vector>
+
+namespace shadowkit::core {
+
+class ConvexBody {
+public:
+    using Polygon = std::vector<Vec3>; // counter-clockwise seen from outside
+
+    ConvexBody() = default; // the empty body
+    static ConvexBody fromAabb(const Aabb& box);
+
+    // Keeps the part of the body with plane.signedDistance(p) <= 0.
+    void clip(const Plane& plane);
+    void clip(std::span<const Plane> planes);
+
+    // Planes whose intersection is the body swept to infinity along `wsDirection`
+    // (the Minkowski sum with the ray {t·dir, t >= 0}): the faces that do not face along
+    // the direction, plus one plane through each silhouette edge containing the
+    // direction. Intersect with a bounded body to use it.
+    std::vector<Plane> sweepHalfSpaces(const Vec3& wsDirection) const;
+
+    bool isEmpty() const { return m_faces.empty(); }
+    const std::vector<Polygon>& faces() const { return m_faces; }
+    // Each distinct vertex once.
+    std::vector<Vec3> vertices() const;
+    Aabb bounds() const;
+    // True if p lies inside every face plane, with a tolerance of eps metres.
+    bool contains(const Vec3& p, double eps) const;
+    double volume() const;
+
+private:
+    double tolerance() const;
+
+    std::vector<Polygon> m_faces;
+};
+
+} // namespace shadowkit::core

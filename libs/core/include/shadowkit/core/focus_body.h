@@ -1,0 +1,24 @@
+// The focus body B: the part of the scene whose depth the shadow map must hold.
+#pragma once
+
+#include "shadowkit/core/aabb.h"
+#include "shadowkit/core/camera.h"
+#include "shadowkit/core/convex_body.h"
+#include "shadowkit/core/light.h"
+
+namespace shadowkit::core {
+
+// B = ((V ∩ S) swept towards the light) ∩ S, with V the view frustum and S the scene
+// box. V ∩ S holds every visible receiver; sweeping it towards the light and clipping by
+// S adds every caster that can shadow one. Empty when the frustum misses the scene box.
+//
+// S is padded to a minimum thickness first (sceneBoxForFocus), so a flat or
+// zero-size scene still gives a body with volume.
+ConvexBody computeFocusBody(const PerspectiveCamera& camera, const DirectionalLight& light,
+                            const Aabb& wsSceneBounds);
+
+// The scene box grown so that no side is thinner than a millionth of its diagonal
+// (or a millimetre for a zero-size box): a plane of terrain has zero height.
+Aabb sceneBoxForFocus(const Aabb& wsSceneBounds);
+
+} // namespace shadowkit::core

@@ -1,0 +1,44 @@
+// Result<T>: a value or a one-line error message (the "bad data" tier of DESIGN.md §3).
+// std::expected is C++23; this is the small subset we need, with the same spelling.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <variant>
+
+namespace shadowkit::core {
+
+struct Error {
+    std::string message; // one line: names the input and what is wrong
+};
+
+template <class T>
+class [[nodiscard]] Result {
+public:
+    Result(T value) : m_state(std::move(value)) {}
+    Result(Error error) : m_state(std::move(error)) {}
+
+    bool hasValue() const { return m_state.index() == 0; }
+    explicit operator bool() const { return hasValue(); }
+
+    T& value() & { return std::get<0>(m_state); }
+    const T& value() const& { return std::get<0>(m_state); }
+    T&& value() && { return std::get<0>(std::move(m_state)); }
+    T* operator->() { return &value(); }
+    const T* operator->() const { return &value(); }
+    T& operator*() & { return value(); }
+    const T& operator*() const& { return value(); }
+
+    const std::string& error() const { return std::get<1>(m_state).message; }
+
+private:
+    std::variant<T, Error> m_state;
+};
+
+// Result<void> equivalent: an empty success or an error.
+struct Ok {};
+using Status = Result<Ok>;
+
+inline Error makeError(std::string message) { return Error{std::move(message)}; }
+
+} // namespace shadowkit::core

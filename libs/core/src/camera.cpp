@@ -1,0 +1,104 @@
+#include "shadowkit/core/camera.h"
+
+#include <cmath>
+#include <string>
+
+namespace shadowkit::core {
+namespace {
+
+bool isFinite(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+} // namespace
+
+Status PerspectiveCamera::validate() const {
+    if (!isFinite(wsEye)) return makeError("camera eye: must be finite");
+    if (!isFinite(wsDirection) || glm::length(wsDirection) < 1e-12)
+        return makeError("camera direction: must be a finite, non-zero vector");
+    if (!isFinite(wsUp) || glm::length(wsUp) < 1e-12)
+        return makeError("camera up: must be a finite, non-zero vector");
+    if (glm::length(glm::cross(glm::normalize(wsDirection), glm::normalize(wsUp))) < 1e-6)
+        return makeError("camera up: must not be parallel to the view direction");
+    if (!(fovYDegrees > 0.0 && fovYDegrees < 180.0)) // NaN-safe
+        return makeError("camera fov: must be in (0, 180) degrees, got " + std::to_string(fovYDegrees));
+    if (!(aspect > 0.0 && std::isfinite(aspect))) return makeError("camera aspect: must be > 0");
+    if (!(zNear > 0.0 && std::isfinite(zNear)))
+        return makeError("camera near: must be > 0, got " + std::to_string(zNear));
+    if (!(zFar > zNear && std::isfinite(zFar)))
+        return makeError("camera near/far: near must be < far (near " + std::to_string(zNear) +
+                         ", far " + std::to_string(zFar) + ")");
+    return Ok{};
+}
+
+Mat4 PerspectiveCamera::viewFromWorld() const {
+    return glm::lookAt(wsEye, wsEye + glm::normalize(wsDirection), glm::normalize(wsUp));
+}
+
+Mat4 PerspectiveCamera::clipFromView() const {
+    return perspectiveZeroToOne(glm::radians(fovYDegrees), aspect, zNear, zFar);
+}
+
+std::array<Vec3, 8> PerspectiveCamera::wsFrustumCorners() const {
+    const Mat4 worldFromView = glm::inverse(viewFromWorld());
+    const double ty = std::tan(0.5 * glm::radians(fovYDegrees));
+    const double tx = ty * aspect;
+    std::array<Vec3, 8> corners;
+    const double depths[2] = {zNear, zFar};
+    const double signs[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+    for (int plane = 0; plane < 2; ++plane) {
+        const double z = depths[plane];
+        for (int i = 0; i < 4; ++i) {
+            const Vec4 vs(signs[i][0] * tx * z, signs[i][1] * ty * z, -z, 1.0);
+            corners[static_cast<size_t>(plane * 4 + i)] = Vec3(worldFromView * vs);
+        }
+    }
+    return corners;
+}
+
+std::array<Plane, 6> PerspectiveCamera::wsFrustumPlanes() const {
+    // Built from the corners rather than from the matrix rows so that huge far/near
+    // ratios do not cancel catastrophically in the row sums.
+    const auto c = wsFrustumCorners();
+    const Vec3 forward = glm::normalize(wsDirection);
+    const Vec3 inside = 0.5 * (c[0] + c[6]);
+    auto planeThrough = [&](const Vec3& a, const Vec3& b, const Vec3& p) {
+        Vec3 n = glm::cross(b - a, p - a);
+        if (glm::dot(n, inside - a) > 0.0) n = -n; // orient outwards
+        return Plane::fromPointNormal(a, n);
+    };
+    return {
+        Plane::fromPointNormal(c[0], -forward),  // near
+        Plane::fromPointNormal(c[4], forward),   // far
+        planeThrough(wsEye, c[4], c[7]),         // left
+        planeThrough(wsEye, c[5], c[6]),         // right
+        planeThrough(wsEye, c[4], c[5]),         // bottom
+        planeThrough(wsEye, c[7], c[6]),         // top
+    };
+}
+
+Mat4 perspectiveZeroToOne(double fovYRadians, double aspect, double zNear, double zFar) {
+    //  | f/a  0   0            0          |   f = cot(fov/2)
+    //  | 0    f   0            0          |   z_clip/w = far(z_view - near)/((far-near)(-z_view))
+    //  | 0    0   far/(n-f)    nf/(n-f)   |   -> 0 at -near, 1 at -far
+    //  | 0    0  -1            0          |
+    const double f = 1.0 / std::tan(0.5 * fovYRadians);
+    Mat4 m(0.0);
+    m[0][0] = f / aspect;
+    m[1][1] = f;
+    m[2][2] = zFar / (zNear - zFar);
+    m[2][3] = -1.0;
+    m[3][2] = zNear * zFar / (zNear - zFar);
+    return m;
+}
+
+Mat4 orthoZeroToOne(double l, double r, double b, double t, double n, double f) {
+    Mat4 m(1.0);
+    m[0][0] = 2.0 / (r - l);
+    m[1][1] = 2.0 / (t - b);
+    m[2][2] = -1.0 / (f - n); // view depth is -z
+    m[3][0] = -(r + l) / (r - l);
+    m[3][1] = -(t + b) / (t - b);
+    m[3][2] = -n / (f - n);
+    return m;
+}
+
+} // namespace shadowkit::core

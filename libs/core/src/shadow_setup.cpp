@@ -1,0 +1,60 @@
+#include "shadowkit/core/shadow_setup.h"
+
+#include "shadowkit/core/uniform_shadow_map.h"
+
+#include <array>
+#include <cmath>
+
+namespace shadowkit::core {
+namespace {
+
+constexpr std::array kTechniques = {
+    TechniqueInfo{Technique::Standard, "standard", "orthographic map of the whole scene box (view independent)"},
+    TechniqueInfo{Technique::Focused, "focused", "uniform map fitted to the focus body B (view frustum ∩ scene, swept to the light)"},
+};
+
+bool isFinite(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+} // namespace
+
+std::span<const TechniqueInfo> allTechniques() { return kTechniques; }
+
+std::string_view techniqueName(Technique technique) {
+    for (const TechniqueInfo& info : kTechniques)
+        if (info.technique == technique) return info.name;
+    SK_ASSERT(false, "techniqueName(): technique missing from kTechniques");
+    return {};
+}
+
+std::optional<Technique> parseTechnique(std::string_view name) {
+    for (const TechniqueInfo& info : kTechniques)
+        if (info.name == name) return info.technique;
+    return std::nullopt;
+}
+
+std::string techniqueNameList() {
+    std::string list;
+    for (const TechniqueInfo& info : kTechniques) {
+        if (!list.empty()) list += ", ";
+        list += info.name;
+    }
+    return list;
+}
+
+Result<ShadowSetup> computeShadowSetup(const ShadowSetupInputs& inputs) {
+    if (Status s = inputs.camera.validate(); !s) return makeError(s.error());
+    const Vec3& l = inputs.light.wsDirection;
+    if (!isFinite(l) || std::abs(glm::length(l) - 1.0) > 1e-6)
+        return makeError("light direction: must be a finite unit vector");
+    const Aabb& s = inputs.wsSceneBounds;
+    if (!isFinite(s.min) || !isFinite(s.max) || s.isEmpty())
+        return makeError("scene bounds: must be finite with min <= max on every axis");
+
+    switch (inputs.technique) {
+    case Technique::Standard: return computeStandardShadowMap(inputs);
+    case Technique::Focused: return computeFocusedShadowMap(inputs);
+    }
+    return makeError("technique: unknown");
+}
+
+} // namespace shadowkit::core
