@@ -1,0 +1,56 @@
+// Scene model: meshes drawn many times through instance transforms.
+//
+// The GPU side draws each MeshBatch as one instanced draw call, so 10,000 trees that
+// share a handful of meshes are a handful of draw calls.
+#pragma once
+
+#include "shadowkit/core/aabb.h"
+#include "shadowkit/scene/heightfield.h"
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace shadowkit::scene {
+
+struct Vertex {
+    glm::vec3 position; // object space, metres
+    glm::vec3 normal;   // object space, unit
+    glm::vec3 albedo;   // linear RGB in [0,1] ("materials-lite")
+};
+
+struct Mesh {
+    std::string name;
+    std::vector<Vertex> vertices;
+    std::vector<uint32_t> indices; // triangle list, counter-clockwise front faces
+    core::Aabb osBounds;           // object-space bounds, kept by computeBounds()
+
+    void computeBounds();
+    size_t triangleCount() const { return indices.size() / 3; }
+};
+
+// One mesh and every placement of it.
+struct MeshBatch {
+    uint32_t mesh = 0;                         // index into Scene::meshes
+    std::vector<glm::mat4> worldFromObject;    // rigid transforms with uniform scale
+    bool dynamic = false;                      // moves over time (animated objects)
+};
+
+struct Scene {
+    std::vector<Mesh> meshes;
+    std::vector<MeshBatch> batches;
+    std::optional<Heightfield> terrain; // set for procedural terrain: ground height lookups
+
+    // World-space bounds of every instance (empty box for an empty scene).
+    core::Aabb wsBounds() const;
+    size_t triangleCount() const;   // over all instances
+    size_t instanceCount() const;
+    // Height of the ground under (x, z): the terrain where there is one, else the bottom
+    // of the scene bounds (0 for an empty scene).
+    double groundHeightAt(double x, double z) const;
+};
+
+} // namespace shadowkit::scene

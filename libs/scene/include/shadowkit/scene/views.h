@@ -1,0 +1,46 @@
+// Standard views (data/views.json, EVALUATION.md §2): camera, screen size and sun.
+#pragma once
+
+#include "shadowkit/core/camera.h"
+#include "shadowkit/core/light.h"
+#include "shadowkit/core/result.h"
+#include "shadowkit/scene/scene.h"
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace shadowkit::scene {
+
+struct ViewSpec {
+    std::string name;
+    std::string probes;        // what the view is for (one line)
+    int width = 1280, height = 720; // pixels
+    double fovYDegrees = 60.0;
+    double zNear = 0.5, zFar = 500.0;
+    double eyeX = 0.0, eyeZ = 0.0;
+    double eyeHeight = 1.8;    // metres above the ground under the eye
+    double azimuthDegrees = 0.0; // compass direction of the view (conventions.h)
+    double pitchDegrees = 0.0;   // positive looks up
+    double sunElevationDegrees = 45.0;
+    double sunAzimuthFromViewDegrees = 90.0;
+};
+
+struct ResolvedView {
+    core::PerspectiveCamera camera;
+    core::DirectionalLight light;
+    int width = 0, height = 0;
+};
+
+// Reads a views file; errors name the file and the offending entry or field.
+core::Result<std::vector<ViewSpec>> loadViews(const std::filesystem::path& file);
+// The view of that name, or an error listing the names there are.
+core::Result<ViewSpec> findView(const std::vector<ViewSpec>& views, const std::string& name);
+// Places the eye over the scene's ground and turns angles into camera and sun.
+ResolvedView resolveView(const ViewSpec& view, const Scene& scene);
+
+// The directory holding views.json and other data: $SHADOWKIT_DATA_DIR, else the
+// source tree's data/ (for builds run in place), else the install prefix's share/shadowkit.
+std::filesystem::path dataDirectory();
+
+} // namespace shadowkit::scene

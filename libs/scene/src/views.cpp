@@ -1,0 +1,110 @@
+#include "shadowkit/scene/views.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+
+namespace shadowkit::scene {
+namespace {
+
+using nlohmann::json;
+
+core::Result<ViewSpec> parseView(const json& j) {
+    ViewSpec v;
+    if (!j.is_object() || !j.contains("name") || !j["name"].is_string())
+        return core::makeError("each view needs a string \"name\"");
+    v.name = j["name"].get<std::string>();
+    try {
+        v.probes = j.value("probes", "");
+        v.width = j.value("width", v.width);
+        v.height = j.value("height", v.height);
+        v.fovYDegrees = j.value("fov", v.fovYDegrees);
+        v.zNear = j.value("near", v.zNear);
+        v.zFar = j.value("far", v.zFar);
+        if (j.contains("eye_xz")) {
+            const auto xz = j["eye_xz"].get<std::vector<double>>();
+            if (xz.size() != 2) return core::makeError("view \"" + v.name + "\": eye_xz must hold 2 numbers");
+            v.eyeX = xz[0];
+            v.eyeZ = xz[1];
+        }
+        v.eyeHeight = j.value("eye_height", v.eyeHeight);
+        v.azimuthDegrees = j.value("azimuth", v.azimuthDegrees);
+        v.pitchDegrees = j.value("pitch", v.pitchDegrees);
+        v.sunElevationDegrees = j.value("sun_elevation", v.sunElevationDegrees);
+        v.sunAzimuthFromViewDegrees = j.value("sun_azimuth_from_view", v.sunAzimuthFromViewDegrees);
+    } catch (const json::exception& e) {
+        return core::makeError("view \"" + v.name + "\": a field has the wrong type (" + e.what() + ")");
+    }
+    if (v.width <= 0 || v.height <= 0 || v.width > 16384 || v.height > 16384)
+        return core::makeError("view \"" + v.name + "\": width and height must be in [1, 16384]");
+    if (!(std::abs(v.pitchDegrees) < 90.0)) return core::makeError("view \"" + v.name + "\": pitch must be in (-90, 90)");
+    if (!(std::abs(v.sunElevationDegrees) <= 90.0))
+        return core::makeError("view \"" + v.name + "\": sun_elevation must be in [-90, 90]");
+    core::PerspectiveCamera probe;
+    probe.fovYDegrees = v.fovYDegrees;
+    probe.zNear = v.zNear;
+    probe.zFar = v.zFar;
+    if (core::Status s = probe.validate(); !s) return core::makeError("view \"" + v.name + "\": " + s.error());
+    return v;
+}
+
+} // namespace
+
+core::Result<std::vector<ViewSpec>> loadViews(const std::filesystem::path& file) {
+    std::ifstream in(file);
+    if (!in) return core::makeError(file.string() + ": cannot open views file");
+    json root;
+    try {
+        root = json::parse(in);
+    } catch (const json::parse_error& e) {
+        return core::makeError(file.string() + ": not valid JSON (" + e.what() + ")");
+    }
+    if (!root.is_object() || !root.contains("views") || !root["views"].is_array())
+        return core::makeError(file.string() + ": expected an object with a \"views\" array");
+    std::vector<ViewSpec> views;
+    for (const json& entry : root["views"]) {
+        auto view = parseView(entry);
+        if (!view) return core::makeError(file.string() + ": " + view.error());
+        views.push_back(std::move(view).value());
+    }
+    return views;
+}
+
+core::Result<ViewSpec> findView(const std::vector<ViewSpec>& views, const std::string& name) {
+    std::string names;
+    for (const ViewSpec& v : views) {
+        if (v.name == name) return v;
+        names += (names.empty() ? "" : ", ") + v.name;
+    }
+    return core::makeError("unknown view \"" + name + "\" (known: " + names + ")");
+}
+
+ResolvedView resolveView(const ViewSpec& view, const Scene& scene) {
+    ResolvedView out;
+    out.width = view.width;
+    out.height = view.height;
+    core::PerspectiveCamera& cam = out.camera;
+    cam.wsEye = core::Vec3(view.eyeX, scene.groundHeightAt(view.eyeX, view.eyeZ) + view.eyeHeight, view.eyeZ);
+    const double az = glm::radians(view.azimuthDegrees), pitch = glm::radians(view.pitchDegrees);
+    cam.wsDirection = core::Vec3(std::sin(az) * std::cos(pitch), std::sin(pitch), -std::cos(az) * std::cos(pitch));
+    cam.wsUp = core::Vec3(0, 1, 0);
+    cam.fovYDegrees = view.fovYDegrees;
+    cam.aspect = double(view.width) / double(view.height);
+    cam.zNear = view.zNear;
+    cam.zFar = view.zFar;
+    // Validated in parseView: the angles are in range, so this cannot fail.
+    out.light = core::DirectionalLight::fromSunAngles(view.sunElevationDegrees,
+                                                     view.azimuthDegrees + view.sunAzimuthFromViewDegrees).value();
+    return out;
+}
+
+std::filesystem::path dataDirectory() {
+    if (const char* env = std::getenv("SHADOWKIT_DATA_DIR")) return env;
+    const std::filesystem::path source = SHADOWKIT_SOURCE_DATA_DIR;
+    if (std::filesystem::exists(source / "views.json")) return source;
+    return SHADOWKIT_INSTALL_DATA_DIR;
+}
+
+} // namespace shadowkit::scene

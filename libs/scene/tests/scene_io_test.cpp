@@ -1,0 +1,87 @@
+#include "shadowkit/scene/forest.h"
+#include "shadowkit/scene/scene_io.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+using namespace shadowkit;
+using namespace shadowkit::scene;
+
+namespace {
+Scene tinyForest() {
+    ForestOptions o;
+    o.trees = 20;
+    o.terrainSize = 100;
+    o.terrainResolution = 8;
+    o.rocks = 2;
+    o.buildings = 1;
+    o.movers = 1;
+    return makeForest(o);
+}
+// Bounds of every transformed vertex (Scene::wsBounds is the looser box of boxes).
+core::Aabb exactBounds(const Scene& s) {
+    core::Aabb b;
+    for (const MeshBatch& batch : s.batches)
+        for (const glm::mat4& m : batch.worldFromObject)
+            for (const Vertex& v : s.meshes[batch.mesh].vertices) b.extend(core::Vec3(m * glm::vec4(v.position, 1.0f)));
+    return b;
+}
+void expectSameBounds(const core::Aabb& a, const core::Aabb& b) {
+    for (int i = 0; i < 3; ++i) {
+        EXPECT_NEAR(a.min[i], b.min[i], 1e-2);
+        EXPECT_NEAR(a.max[i], b.max[i], 1e-2);
+    }
+}
+} // namespace
+
+TEST(SceneIoTest, ExportedGlbAndObjLoadBackWithTheSameTrianglesAndBounds) {
+    const Scene forest = tinyForest();
+    for (const char* name : {"shadowkit_io_test.glb", "shadowkit_io_test.obj"}) {
+        const auto file = std::filesystem::temp_directory_path() / name;
+        ASSERT_TRUE(exportScene(forest, file)) << name;
+        const auto loaded = loadScene(file);
+        ASSERT_TRUE(loaded) << loaded.error();
+        EXPECT_EQ(loaded->triangleCount(), forest.triangleCount()) << name;
+        expectSameBounds(exactBounds(*loaded), exactBounds(forest));
+        const core::Aabb loose = forest.wsBounds();
+        EXPECT_TRUE(loose.contains(exactBounds(*loaded).min, 1e-3) && loose.contains(exactBounds(*loaded).max, 1e-3));
+        std::filesystem::remove(file);
+    }
+}
+
+TEST(SceneIoTest, GltfNodesSharingAMeshBecomeOneInstancedBatch) {
+    // Two nodes referencing mesh 0 (a single triangle in an embedded base64 buffer).
+    const auto file = std::filesystem::temp_directory_path() / "shadowkit_instanced.gltf";
+    std::ofstream(file) << R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0,1]}],
+      "nodes":[{"mesh":0},{"mesh":0,"translation":[10,0,0]}],
+      "meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],
+      "accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]}],
+      "bufferViews":[{"buffer":0,"byteLength":36}],
+      "buffers":[{"byteLength":36,"uri":"data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}]})";
+    const auto scene = loadScene(file);
+    ASSERT_TRUE(scene) << scene.error();
+    ASSERT_EQ(scene->batches.size(), 1u);
+    EXPECT_EQ(scene->batches[0].worldFromObject.size(), 2u);
+    EXPECT_NEAR(scene->wsBounds().max.x, 11.0, 1e-6);
+    std::filesystem::remove(file);
+}
+
+TEST(SceneIoTest, BadFilesGiveOneLineNamingTheFile) {
+    const auto dir = std::filesystem::temp_directory_path();
+    const auto missing = loadScene(dir / "no_such_scene.glb");
+    ASSERT_FALSE(missing);
+    EXPECT_NE(missing.error().find("no_such_scene.glb"), std::string::npos);
+    EXPECT_EQ(missing.error().find('\n'), std::string::npos);
+
+    const auto garbage = dir / "shadowkit_garbage.glb";
+    std::ofstream(garbage) << "this is not a glb";
+    const auto g = loadScene(garbage);
+    ASSERT_FALSE(g);
+    EXPECT_EQ(g.error().find('\n'), std::string::npos);
+    std::filesystem::remove(garbage);
+
+    EXPECT_FALSE(loadScene(dir / "x.fbx"));
+    EXPECT_FALSE(exportScene(tinyForest(), dir / "x.fbx"));
+}

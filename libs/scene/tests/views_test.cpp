@@ -1,0 +1,69 @@
+#include "shadowkit/scene/forest.h"
+#include "shadowkit/scene/views.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+using namespace shadowkit;
+using namespace shadowkit::scene;
+
+namespace {
+std::vector<ViewSpec> standardViews() {
+    auto views = loadViews(dataDirectory() / "views.json");
+    EXPECT_TRUE(views) << views.error();
+    return views ? *views : std::vector<ViewSpec>{};
+}
+core::Vec3 horizontal(core::Vec3 v) { return glm::normalize(core::Vec3(v.x, 0, v.z)); }
+} // namespace
+
+TEST(ViewsTest, StandardViewsFileHoldsTheEvaluationViews) {
+    const auto views = standardViews();
+    for (const char* name : {"paper", "perpendicular", "into-sun", "sun-behind", "noon", "aerial"})
+        EXPECT_TRUE(findView(views, name)) << name;
+}
+
+TEST(ViewsTest, ResolvedViewsPutTheEyeAboveTheGroundAndTheSunWhereTheTableSays) {
+    ForestOptions o;
+    o.trees = 0;
+    o.terrainResolution = 64;
+    const Scene forest = makeForest(o);
+    const auto views = standardViews();
+
+    const ResolvedView paper = resolveView(*findView(views, "paper"), forest);
+    EXPECT_NEAR(paper.camera.wsEye.y, forest.terrain->heightAt(0, 0) + 1.8, 1e-9);
+    EXPECT_EQ(paper.width, 512);
+    // Sun at 90° azimuth from the view: horizontally perpendicular, 45° up.
+    EXPECT_NEAR(glm::dot(horizontal(paper.light.wsDirection), horizontal(paper.camera.wsDirection)), 0.0, 1e-9);
+    EXPECT_NEAR(std::asin(-paper.light.wsDirection.y), glm::radians(45.0), 1e-9);
+
+    const ResolvedView intoSun = resolveView(*findView(views, "into-sun"), forest);
+    EXPECT_NEAR(glm::dot(horizontal(intoSun.light.wsDirection), horizontal(intoSun.camera.wsDirection)), -1.0, 1e-9);
+    const ResolvedView behind = resolveView(*findView(views, "sun-behind"), forest);
+    EXPECT_NEAR(glm::dot(horizontal(behind.light.wsDirection), horizontal(behind.camera.wsDirection)), 1.0, 1e-9);
+    const ResolvedView aerial = resolveView(*findView(views, "aerial"), forest);
+    EXPECT_NEAR(std::asin(aerial.camera.wsDirection.y), glm::radians(-35.0), 1e-9);
+    EXPECT_TRUE(aerial.camera.validate());
+}
+
+TEST(ViewsTest, UnknownViewListsTheKnownOnes) {
+    const auto r = findView(standardViews(), "sideways");
+    ASSERT_FALSE(r);
+    EXPECT_NE(r.error().find("sideways"), std::string::npos);
+    EXPECT_NE(r.error().find("perpendicular"), std::string::npos);
+}
+
+TEST(ViewsTest, MalformedFilesNameTheFileAndTheProblem) {
+    const auto dir = std::filesystem::temp_directory_path();
+    const auto bad = dir / "shadowkit_views_bad.json";
+    std::ofstream(bad) << R"({"views": [{"name": "x", "near": 10, "far": 1}]})";
+    auto r = loadViews(bad);
+    ASSERT_FALSE(r);
+    EXPECT_NE(r.error().find("shadowkit_views_bad.json"), std::string::npos);
+    EXPECT_NE(r.error().find("near"), std::string::npos);
+    std::ofstream(bad) << "{ not json";
+    EXPECT_NE(loadViews(bad).error().find("not valid JSON"), std::string::npos);
+    EXPECT_FALSE(loadViews(dir / "does_not_exist_views.json"));
+    std::filesystem::remove(bad);
+}
