@@ -9,11 +9,13 @@ function(sk_embed_files target)
   foreach(f ${ARG_FILES})
     list(APPEND inputs "${CMAKE_CURRENT_SOURCE_DIR}/${f}")
   endforeach()
+  # A CMake list's ';' would split the command line: pass the files joined by '|'.
+  string(REPLACE ";" "|" joined "${inputs}")
   add_custom_command(OUTPUT "${out}"
-    COMMAND ${CMAKE_COMMAND} -DOUT=${out} -DNAMESPACE=${ARG_NAMESPACE} "-DINPUTS=${inputs}"
+    COMMAND ${CMAKE_COMMAND} -DOUT=${out} -DNAMESPACE=${ARG_NAMESPACE} "-DINPUTS=${joined}"
             -P ${CMAKE_SOURCE_DIR}/cmake/embed_files.cmake
     DEPENDS ${inputs} ${CMAKE_SOURCE_DIR}/cmake/embed_files.cmake
-    COMMENT "Embedding shaders into ${ARG_HEADER}")
+    COMMENT "Embedding shaders into ${ARG_HEADER}" VERBATIM)
   target_sources(${target} PRIVATE "${out}")
   target_include_directories(${target} PRIVATE "${CMAKE_CURRENT_BINARY_DIR}/embedded")
 endfunction()

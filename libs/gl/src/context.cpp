@@ -1,0 +1,107 @@
+// Headless EGL contexts.
+//
+// Order: the EGL device platform with a hardware device first (NVIDIA's driver exposes
+// no Mesa surfaceless platform), then Mesa's surfaceless platform (llvmpipe on CPU-only
+// machines). Both create a 4.5 core context without a config or surface
+// (EGL_KHR_no_config_context, EGL_KHR_surfaceless_context) and render into FBOs.
+#include "shadowkit/gl/context.h"
+
+#include "debug_output.h"
+
+#include <epoxy/egl.h>
+#include <epoxy/gl.h>
+
+#include <cstring>
+#include <vector>
+
+namespace shadowkit::gl {
+namespace {
+
+bool hasExtension(const char* list, const char* name) {
+    if (!list) return false;
+    const size_t len = std::strlen(name);
+    for (const char* p = list; (p = std::strstr(p, name)) != nullptr; p += len)
+        if ((p == list || p[-1] == ' ') && (p[len] == ' ' || p[len] == '\0')) return true;
+    return false;
+}
+
+class EglContext final : public Context {
+public:
+    ~EglContext() override {
+        if (m_display == EGL_NO_DISPLAY) return;
+        eglMakeCurrent(m_display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+        if (m_context != EGL_NO_CONTEXT) eglDestroyContext(m_display, m_context);
+        eglTerminate(m_display);
+    }
+
+    // Tries one display; leaves *this empty on failure.
+    bool tryDisplay(EGLDisplay display, const ContextOptions& options, const char* platform) {
+        if (display == EGL_NO_DISPLAY) return false;
+        EGLint major = 0, minor = 0;
+        if (!eglInitialize(display, &major, &minor)) return false;
+        const char* ext = eglQueryString(display, EGL_EXTENSIONS);
+        if (!hasExtension(ext, "EGL_KHR_no_config_context") || !hasExtension(ext, "EGL_KHR_surfaceless_context") ||
+            !eglBindAPI(EGL_OPENGL_API)) {
+            eglTerminate(display);
+            return false;
+        }
+        const EGLint attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
+                                  EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                                  EGL_CONTEXT_OPENGL_DEBUG, options.debug ? EGL_TRUE : EGL_FALSE, EGL_NONE};
+        const EGLContext context = eglCreateContext(display, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attribs);
+        if (context == EGL_NO_CONTEXT || !eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context)) {
+            if (context != EGL_NO_CONTEXT) eglDestroyContext(display, context);
+            eglTerminate(display);
+            return false;
+        }
+        m_display = display;
+        m_context = context;
+        finishSetup(options, platform);
+        return true;
+    }
+
+private:
+    EGLDisplay m_display = EGL_NO_DISPLAY;
+    EGLContext m_context = EGL_NO_CONTEXT;
+};
+
+} // namespace
+
+core::Result<std::unique_ptr<Context>> Context::createHeadless(const ContextOptions& options) {
+    auto context = std::unique_ptr<EglContext>(new EglContext);
+    const char* clientExt = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
+
+    if (hasExtension(clientExt, "EGL_EXT_device_enumeration") && hasExtension(clientExt, "EGL_EXT_platform_device")) {
+        EGLDeviceEXT devices[16];
+        EGLint count = 0;
+        if (eglQueryDevicesEXT(16, devices, &count)) {
+            for (EGLint i = 0; i < count; ++i) {
+                // Mesa lists llvmpipe as a "software" device; the surfaceless path below is
+                // the tested route for it.
+                if (hasExtension(eglQueryDeviceStringEXT(devices[i], EGL_EXTENSIONS), "EGL_MESA_device_software")) continue;
+                if (context->tryDisplay(eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr), options,
+                                        "EGL device"))
+                    return std::unique_ptr<Context>(std::move(context));
+            }
+        }
+    }
+    if (hasExtension(clientExt, "EGL_MESA_platform_surfaceless") &&
+        context->tryDisplay(eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr),
+                            options, "EGL surfaceless"))
+        return std::unique_ptr<Context>(std::move(context));
+
+    return core::makeError(
+        "OpenGL: no headless OpenGL 4.5 core context (neither an EGL GPU device nor Mesa's surfaceless platform "
+        "worked; on Debian install libegl1 libgl1-mesa-dri, or run where a GPU driver is present)");
+}
+
+void Context::finishSetup(const ContextOptions& options, const std::string& platform) {
+    const auto str = [](GLenum name) {
+        const auto* s = reinterpret_cast<const char*>(glGetString(name));
+        return std::string(s ? s : "?");
+    };
+    m_description = str(GL_VERSION) + ", " + str(GL_RENDERER) + " via " + platform;
+    if (options.debug) installDebugOutput();
+}
+
+} // namespace shadowkit::gl

@@ -1,0 +1,71 @@
+// Move-only RAII owners of GL object names, one type per object kind. Private to
+// shadowkit::gl: raw GLuint names never appear in a public header.
+#pragma once
+
+#include <epoxy/gl.h>
+
+#include <utility>
+
+namespace shadowkit::gl {
+
+template <void (*Destroy)(GLuint)>
+class GlObject {
+public:
+    GlObject() = default;
+    explicit GlObject(GLuint id) : m_id(id) {}
+    GlObject(GlObject&& other) noexcept : m_id(std::exchange(other.m_id, 0)) {}
+    GlObject& operator=(GlObject&& other) noexcept {
+        if (this != &other) {
+            reset();
+            m_id = std::exchange(other.m_id, 0);
+        }
+        return *this;
+    }
+    GlObject(const GlObject&) = delete;
+    GlObject& operator=(const GlObject&) = delete;
+    ~GlObject() { reset(); }
+
+    GLuint id() const { return m_id; }
+    explicit operator bool() const { return m_id != 0; }
+    void reset() {
+        if (m_id) Destroy(m_id);
+        m_id = 0;
+    }
+
+private:
+    GLuint m_id = 0;
+};
+
+namespace detail {
+inline void deleteBuffer(GLuint id) { glDeleteBuffers(1, &id); }
+inline void deleteTexture(GLuint id) { glDeleteTextures(1, &id); }
+inline void deleteFramebuffer(GLuint id) { glDeleteFramebuffers(1, &id); }
+inline void deleteVertexArray(GLuint id) { glDeleteVertexArrays(1, &id); }
+inline void deleteQuery(GLuint id) { glDeleteQueries(1, &id); }
+inline void deleteProgram(GLuint id) { glDeleteProgram(id); }
+inline void deleteShader(GLuint id) { glDeleteShader(id); }
+} // namespace detail
+
+using Buffer = GlObject<detail::deleteBuffer>;
+using Texture = GlObject<detail::deleteTexture>;
+using Framebuffer = GlObject<detail::deleteFramebuffer>;
+using VertexArray = GlObject<detail::deleteVertexArray>;
+using Query = GlObject<detail::deleteQuery>;
+using Program = GlObject<detail::deleteProgram>;
+using Shader = GlObject<detail::deleteShader>;
+
+inline Buffer createBuffer(const void* data, size_t bytes) {
+    GLuint id = 0;
+    glCreateBuffers(1, &id);
+    glNamedBufferStorage(id, static_cast<GLsizeiptr>(bytes), data, data ? 0 : GL_DYNAMIC_STORAGE_BIT);
+    return Buffer(id);
+}
+
+inline Texture createTexture2D(GLenum internalFormat, int width, int height) {
+    GLuint id = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &id);
+    glTextureStorage2D(id, 1, internalFormat, width, height);
+    return Texture(id);
+}
+
+} // namespace shadowkit::gl

@@ -1,0 +1,51 @@
+#include "gpu_scene.h"
+
+#include "uniforms.h"
+
+#include <cstddef>
+
+namespace shadowkit::gl {
+
+GpuScene::GpuScene(const scene::Scene& scene) {
+    for (const scene::Mesh& mesh : scene.meshes) {
+        GpuMesh gpu;
+        gpu.vertices = createBuffer(mesh.vertices.data(), mesh.vertices.size() * sizeof(scene::Vertex));
+        gpu.indices = createBuffer(mesh.indices.data(), mesh.indices.size() * sizeof(uint32_t));
+        gpu.indexCount = static_cast<GLsizei>(mesh.indices.size());
+        GLuint vao = 0;
+        glCreateVertexArrays(1, &vao);
+        gpu.vertexArray = VertexArray(vao);
+        glVertexArrayVertexBuffer(vao, 0, gpu.vertices.id(), 0, sizeof(scene::Vertex));
+        glVertexArrayElementBuffer(vao, gpu.indices.id());
+        const GLuint offsets[3] = {offsetof(scene::Vertex, position), offsetof(scene::Vertex, normal),
+                                   offsetof(scene::Vertex, albedo)};
+        for (GLuint attrib = 0; attrib < 3; ++attrib) {
+            glEnableVertexArrayAttrib(vao, attrib);
+            glVertexArrayAttribFormat(vao, attrib, 3, GL_FLOAT, GL_FALSE, offsets[attrib]);
+            glVertexArrayAttribBinding(vao, attrib, 0);
+        }
+        m_meshes.push_back(std::move(gpu));
+    }
+    for (const scene::MeshBatch& batch : scene.batches) {
+        if (batch.worldFromObject.empty() || scene.meshes[batch.mesh].indices.empty()) continue;
+        m_batches.push_back({batch.mesh,
+                             createBuffer(batch.worldFromObject.data(), batch.worldFromObject.size() * sizeof(glm::mat4)),
+                             static_cast<GLsizei>(batch.worldFromObject.size())});
+    }
+}
+
+DrawStats GpuScene::drawAll() const {
+    DrawStats stats;
+    for (const GpuBatch& batch : m_batches) {
+        const GpuMesh& mesh = m_meshes[batch.mesh];
+        glBindVertexArray(mesh.vertexArray.id());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kInstancesBinding, batch.instances.id());
+        glDrawElementsInstanced(GL_TRIANGLES, mesh.indexCount, GL_UNSIGNED_INT, nullptr, batch.instanceCount);
+        stats.triangles += static_cast<size_t>(mesh.indexCount / 3) * static_cast<size_t>(batch.instanceCount);
+        ++stats.drawCalls;
+    }
+    glBindVertexArray(0);
+    return stats;
+}
+
+} // namespace shadowkit::gl

@@ -1,0 +1,71 @@
+#include "program.h"
+
+#include <algorithm>
+#include <string>
+
+namespace shadowkit::gl {
+namespace {
+
+std::string oneLine(std::string log) {
+    while (!log.empty() && (log.back() == '\n' || log.back() == ' ' || log.back() == '\0')) log.pop_back();
+    std::replace(log.begin(), log.end(), '\n', ' ');
+    return log;
+}
+
+core::Result<Shader> compile(GLenum stage, std::string_view source, std::string_view what) {
+    Shader shader(glCreateShader(stage));
+    const char* text = source.data();
+    const auto length = static_cast<GLint>(source.size());
+    glShaderSource(shader.id(), 1, &text, &length);
+    glCompileShader(shader.id());
+    GLint ok = 0;
+    glGetShaderiv(shader.id(), GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        GLint size = 0;
+        glGetShaderiv(shader.id(), GL_INFO_LOG_LENGTH, &size);
+        std::string log(static_cast<size_t>(std::max(size, 1)), '\0');
+        glGetShaderInfoLog(shader.id(), size, nullptr, log.data());
+        return core::makeError(std::string(what) + ": " + oneLine(log));
+    }
+    return shader;
+}
+
+} // namespace
+
+core::Result<Program> buildProgram(std::string_view name, std::string_view vertexSource, std::string_view fragmentSource) {
+    auto vs = compile(GL_VERTEX_SHADER, vertexSource, std::string(name) + ": vertex shader");
+    if (!vs) return core::makeError(vs.error());
+    auto fs = compile(GL_FRAGMENT_SHADER, fragmentSource, std::string(name) + ": fragment shader");
+    if (!fs) return core::makeError(fs.error());
+    Program program(glCreateProgram());
+    glAttachShader(program.id(), vs->id());
+    glAttachShader(program.id(), fs->id());
+    glLinkProgram(program.id());
+    GLint ok = 0;
+    glGetProgramiv(program.id(), GL_LINK_STATUS, &ok);
+    if (!ok) {
+        GLint size = 0;
+        glGetProgramiv(program.id(), GL_INFO_LOG_LENGTH, &size);
+        std::string log(static_cast<size_t>(std::max(size, 1)), '\0');
+        glGetProgramInfoLog(program.id(), size, nullptr, log.data());
+        return core::makeError(std::string(name) + ": link: " + oneLine(log));
+    }
+    glDetachShader(program.id(), vs->id());
+    glDetachShader(program.id(), fs->id());
+    return program;
+}
+
+core::Status checkUniformBlock(const Program& program, std::string_view programName, const char* blockName,
+                               size_t cppSize) {
+    const GLuint index = glGetUniformBlockIndex(program.id(), blockName);
+    if (index == GL_INVALID_INDEX)
+        return core::makeError(std::string(programName) + ": uniform block " + blockName + " missing from the shader");
+    GLint size = 0;
+    glGetActiveUniformBlockiv(program.id(), index, GL_UNIFORM_BLOCK_DATA_SIZE, &size);
+    if (static_cast<size_t>(size) != cppSize)
+        return core::makeError(std::string(programName) + ": uniform block " + blockName + " is " + std::to_string(size) +
+                               " bytes in GLSL but " + std::to_string(cppSize) + " in C++");
+    return core::Ok{};
+}
+
+} // namespace shadowkit::gl

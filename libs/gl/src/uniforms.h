@@ -1,0 +1,28 @@
+// Uniform block layouts, declared once in C++ (std140: every member 16-byte aligned) and
+// checked against the shaders when the programs are built (checkUniformBlock).
+#pragma once
+
+#include <glm/glm.hpp>
+
+namespace shadowkit::gl {
+
+struct DepthPassUniforms { // GLSL: DepthPass, binding 1
+    glm::mat4 clipFromWorld;
+};
+
+struct FrameUniforms { // GLSL: Frame, binding 0
+    glm::mat4 clipFromWorld;
+    glm::mat4 shadowClipFromWorld;
+    glm::vec4 wsEye;
+    glm::vec4 wsTowardsLight;
+    glm::vec4 sunRadiance;
+    glm::vec4 ambientRadiance;
+    glm::vec4 fogColorDensity;
+};
+
+inline constexpr unsigned kFrameBinding = 0;
+inline constexpr unsigned kDepthPassBinding = 1;
+inline constexpr unsigned kInstancesBinding = 0; // shader storage
+inline constexpr unsigned kShadowMapUnit = 0;
+
+} // namespace shadowkit::gl
