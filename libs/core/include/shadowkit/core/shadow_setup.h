@@ -29,6 +29,8 @@ struct TechniqueInfo {
 std::span<const TechniqueInfo> allTechniques();
 std::string_view techniqueName(Technique technique);
 std::optional<Technique> parseTechnique(std::string_view name);
+// The best technique implemented: what `shadowkit render` uses unless told otherwise.
+constexpr Technique defaultTechnique() { return Technique::Focused; }
 // "standard, focused": for error messages and help.
 std::string techniqueNameList();
 

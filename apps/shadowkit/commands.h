@@ -1,0 +1,23 @@
+// The shadowkit subcommands. Each registers its subcommand and options on the app and
+// returns it with the function that runs it (exit code: 0 success, 1 bad input or failure).
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <functional>
+
+namespace shadowkit::app {
+
+struct Command {
+    CLI::App* subcommand = nullptr;
+    std::function<int()> run;
+};
+
+Command addRenderCommand(CLI::App& app);
+Command addSetupCommand(CLI::App& app);
+Command addExportCommand(CLI::App& app);
+
+// Prints "shadowkit: error: <message>" (one line) to stderr and returns 1.
+int fail(const std::string& message);
+
+} // namespace shadowkit::app

@@ -1,0 +1,142 @@
+#include "options.h"
+
+#include "shadowkit/scene/forest.h"
+#include "shadowkit/scene/scene_io.h"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+namespace shadowkit::app {
+namespace {
+
+bool parseNumbers(const std::string& text, char separator, std::vector<double>& out) {
+    std::stringstream ss(text);
+    std::string item;
+    while (std::getline(ss, item, separator)) {
+        char* end = nullptr;
+        const double v = std::strtod(item.c_str(), &end);
+        if (item.empty() || end == item.c_str() || *end != '\0' || !std::isfinite(v)) return false;
+        out.push_back(v);
+    }
+    return !text.empty() && text.back() != separator;
+}
+
+} // namespace
+
+core::Result<core::Vec3> parseVec3(const std::string& flag, const std::string& text) {
+    std::vector<double> v;
+    if (!parseNumbers(text, ',', v) || v.size() != 3)
+        return core::makeError(fmt::format("{}: expected three comma-separated numbers x,y,z, got '{}'", flag, text));
+    return core::Vec3(v[0], v[1], v[2]);
+}
+
+void SceneOptions::addTo(CLI::App& cmd) {
+    cmd.add_option("--scene", scene, "'forest' (built in) or a .gltf/.glb/.obj file")->capture_default_str();
+    cmd.add_option("--seed", seed, "forest: random seed")->capture_default_str();
+    cmd.add_option("--trees", trees, "forest: number of trees")->capture_default_str();
+    cmd.add_option("--terrain-size", terrainSize, "forest: terrain side in metres")->capture_default_str();
+    cmd.add_option("--terrain-resolution", terrainResolution, "forest: terrain quads per side")->capture_default_str();
+}
+
+core::Result<scene::Scene> SceneOptions::load(bool verbose) const {
+    const auto start = std::chrono::steady_clock::now();
+    core::Result<scene::Scene> result = core::makeError("");
+    if (scene == "forest") {
+        scene::ForestOptions o;
+        o.seed = seed;
+        o.trees = trees;
+        o.terrainSize = terrainSize;
+        o.terrainResolution = terrainResolution;
+        if (core::Status s = scene::validate(o); !s) return core::makeError(s.error());
+        result = scene::makeForest(o);
+    } else {
+        result = scene::loadScene(scene);
+        if (!result) return result;
+    }
+    if (verbose) {
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        fmt::print(stderr, "scene {}: {} instances, {:.2f} M triangles, {} batches ({:.2f} s)\n", scene,
+                   result->instanceCount(), static_cast<double>(result->triangleCount()) * 1e-6, result->batches.size(), seconds);
+    }
+    if (result->batches.empty()) return core::makeError(fmt::format("scene {}: is empty (no triangles)", scene));
+    return result;
+}
+
+void ViewOptions::addTo(CLI::App& cmd) {
+    cmd.add_option("--view", view, "standard view from data/views.json (paper, perpendicular, into-sun, sun-behind, noon, aerial)")
+        ->capture_default_str();
+    cmd.add_option("--eye", eye, "camera position x,y,z in world metres (overrides the view's)");
+    cmd.add_option("--dir", dir, "viewing direction x,y,z");
+    cmd.add_option("--up", up, "camera up vector x,y,z");
+    cmd.add_option("--fov", fov, "vertical field of view in degrees");
+    cmd.add_option("--near", zNear, "near plane distance in metres");
+    cmd.add_option("--far", zFar, "far plane distance in metres");
+    cmd.add_option("--size", size, "image size WxH in pixels (default: the view's)");
+    cmd.add_option("--sun", sun, "direction the sunlight travels x,y,z (sun -> scene)");
+    cmd.add_option("--sun-elevation", sunElevation, "sun elevation in degrees above the horizon");
+    cmd.add_option("--sun-azimuth", sunAzimuth, "sun compass azimuth in degrees (0 = -Z, 90 = +X)");
+}
+
+core::Result<scene::ResolvedView> ViewOptions::resolve(const scene::Scene& sceneData) const {
+    auto views = scene::loadViews(scene::dataDirectory() / "views.json");
+    if (!views) return core::makeError(views.error());
+    auto spec = scene::findView(*views, view);
+    if (!spec) return core::makeError("--view: " + spec.error());
+    scene::ResolvedView out = scene::resolveView(*spec, sceneData);
+
+    if (!size.empty()) {
+        std::vector<double> wh;
+        if (!parseNumbers(size, 'x', wh) || wh.size() != 2 || wh[0] < 1 || wh[1] < 1 || wh[0] > 16384 || wh[1] > 16384 ||
+            wh[0] != std::floor(wh[0]) || wh[1] != std::floor(wh[1]))
+            return core::makeError(fmt::format("--size: expected WxH with whole numbers in [1, 16384], got '{}'", size));
+        out.width = static_cast<int>(wh[0]);
+        out.height = static_cast<int>(wh[1]);
+    }
+    core::PerspectiveCamera& cam = out.camera;
+    cam.aspect = double(out.width) / double(out.height);
+    const std::pair<const char*, const std::string*> vectors[] = {{"--eye", &eye}, {"--dir", &dir}, {"--up", &up}};
+    core::Vec3* targets[] = {&cam.wsEye, &cam.wsDirection, &cam.wsUp};
+    for (size_t i = 0; i < 3; ++i) {
+        if (vectors[i].second->empty()) continue;
+        auto v = parseVec3(vectors[i].first, *vectors[i].second);
+        if (!v) return core::makeError(v.error());
+        *targets[i] = *v;
+    }
+    if (fov) cam.fovYDegrees = *fov;
+    if (zNear) cam.zNear = *zNear;
+    if (zFar) cam.zFar = *zFar;
+    if (core::Status s = cam.validate(); !s) return core::makeError(s.error());
+
+    if (!sun.empty()) {
+        if (sunElevation || sunAzimuth) return core::makeError("--sun: give either --sun or --sun-elevation/--sun-azimuth, not both");
+        auto v = parseVec3("--sun", sun);
+        if (!v) return core::makeError(v.error());
+        auto light = core::DirectionalLight::fromDirection(*v);
+        if (!light) return core::makeError("--sun: " + light.error());
+        out.light = *light;
+    } else if (sunElevation || sunAzimuth) {
+        // Keep whichever angle was not given from the view's sun.
+        const core::Vec3 towards = out.light.wsTowardsLight();
+        const double elevation = sunElevation.value_or(glm::degrees(std::asin(std::clamp(towards.y, -1.0, 1.0))));
+        const double azimuth = sunAzimuth.value_or(core::azimuthDegreesOf(towards));
+        auto light = core::DirectionalLight::fromSunAngles(elevation, azimuth);
+        if (!light) return core::makeError("--sun-elevation/--sun-azimuth: " + light.error());
+        out.light = *light;
+    }
+    return out;
+}
+
+void TechniqueOptions::addTo(CLI::App& cmd) {
+    technique = std::string(core::techniqueName(core::defaultTechnique()));
+    cmd.add_option("--technique", technique, "shadow technique: " + core::techniqueNameList())->capture_default_str();
+}
+
+core::Result<core::Technique> TechniqueOptions::resolve() const {
+    if (auto t = core::parseTechnique(technique)) return *t;
+    return core::makeError(fmt::format("--technique: unknown technique '{}' (known: {})", technique, core::techniqueNameList()));
+}
+
+} // namespace shadowkit::app

@@ -1,0 +1,49 @@
+// Options shared by the shadowkit subcommands: scene, camera / view, sun, technique.
+// Each group registers its flags on a CLI11 subcommand and resolves them into library
+// types, turning bad values into one-line errors that name the flag.
+#pragma once
+
+#include "shadowkit/core/result.h"
+#include "shadowkit/core/shadow_setup.h"
+#include "shadowkit/scene/scene.h"
+#include "shadowkit/scene/views.h"
+
+#include <CLI/CLI.hpp>
+
+#include <optional>
+#include <string>
+
+namespace shadowkit::app {
+
+struct SceneOptions {
+    std::string scene = "forest";
+    uint64_t seed = 1;
+    int trees = 10000;
+    double terrainSize = 1024.0;
+    int terrainResolution = 256;
+
+    void addTo(CLI::App& cmd);
+    // Builds the forest or loads the file, printing what it made and how long it took.
+    core::Result<scene::Scene> load(bool verbose = true) const;
+};
+
+struct ViewOptions {
+    std::string view = "perpendicular";
+    std::string eye, dir, up, size, sun; // raw "x,y,z" / "WxH" text, validated in resolve()
+    std::optional<double> fov, zNear, zFar, sunElevation, sunAzimuth;
+
+    void addTo(CLI::App& cmd);
+    // The named view placed over `scene`, with any explicit flag overriding its field.
+    core::Result<scene::ResolvedView> resolve(const scene::Scene& scene) const;
+};
+
+struct TechniqueOptions {
+    std::string technique;
+    void addTo(CLI::App& cmd);
+    core::Result<core::Technique> resolve() const;
+};
+
+// "x,y,z" -> vector; the error names the flag and shows the text.
+core::Result<core::Vec3> parseVec3(const std::string& flag, const std::string& text);
+
+} // namespace shadowkit::app

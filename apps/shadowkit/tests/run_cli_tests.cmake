@@ -1,0 +1,82 @@
+# CLI contract tests, run by CTest in script mode:
+#   cmake -DSHADOWKIT=<binary> -DWORK=<scratch dir> [-DWITH_GL=ON] -P run_cli_tests.cmake
+# Bad input must give exactly one error line naming the input and a non-zero exit;
+# `setup` must print the documented JSON contract.
+cmake_minimum_required(VERSION 3.22)
+file(MAKE_DIRECTORY "${WORK}")
+set(failures 0)
+set(small --trees 20 --terrain-size 200 --terrain-resolution 16)
+
+function(check_fails name expected)
+  execute_process(COMMAND ${SHADOWKIT} ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  string(REGEX MATCHALL "[^\n]*error[^\n]*" error_lines "${err}")
+  list(LENGTH error_lines n)
+  if(rc EQUAL 0)
+    message(SEND_ERROR "${name}: exit code 0, expected a failure")
+  elseif(NOT n EQUAL 1)
+    message(SEND_ERROR "${name}: expected exactly one error line, got ${n}:\n${err}")
+  else()
+    string(FIND "${error_lines}" "${expected}" pos)
+    if(pos EQUAL -1)
+      message(SEND_ERROR "${name}: error line does not mention '${expected}': ${error_lines}")
+    endif()
+  endif()
+  string(REGEX MATCH "GL (error|warning)|Segmentation|terminate called|Aborted" crash "${err}")
+  if(crash)
+    message(SEND_ERROR "${name}: crashed or printed GL errors:\n${err}")
+  endif()
+endfunction()
+
+file(WRITE "${WORK}/garbage.glb" "this is not a glTF file")
+file(MAKE_DIRECTORY "${WORK}/a_directory.obj")
+
+check_fails(unknown-technique "--technique" setup ${small} --technique nonsense)
+check_fails(unknown-view "unknown view" setup ${small} --view sideways)
+check_fails(malformed-vector "--eye" setup ${small} --eye 1,2)
+check_fails(malformed-number "--dir" setup ${small} --dir 1,x,0)
+check_fails(zero-light "--sun" setup ${small} --sun 0,0,0)
+check_fails(both-sun-forms "--sun" setup ${small} --sun 0,-1,0 --sun-elevation 30)
+check_fails(near-ge-far "near" setup ${small} --near 10 --far 5)
+check_fails(bad-fov "fov" setup ${small} --fov 0)
+check_fails(bad-size "--size" setup ${small} --size 0x100)
+check_fails(bad-bounds "--scene-bounds" setup --scene-bounds 1,2,3)
+check_fails(inverted-bounds "min must not exceed" setup --scene-bounds 1,1,1,0,0,0)
+check_fails(missing-scene "does not exist" setup --scene "${WORK}/missing.glb")
+check_fails(unreadable-scene "garbage.glb" setup --scene "${WORK}/garbage.glb")
+check_fails(directory-scene "directory" export --scene "${WORK}/a_directory.obj" --out "${WORK}/x.glb")
+check_fails(unknown-format "unknown export format" export ${small} --out "${WORK}/x.fbx")
+check_fails(bad-forest-option "trees" export --trees -5 --out "${WORK}/x.glb")
+check_fails(unknown-flag "--frobnicate" render --frobnicate)
+check_fails(no-subcommand "subcommand")
+
+# setup prints the JSON contract.
+execute_process(COMMAND ${SHADOWKIT} setup --scene-bounds -100,0,-100,100,30,100 --view paper --technique focused
+                RESULT_VARIABLE rc OUTPUT_VARIABLE json ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(SEND_ERROR "setup: failed: ${err}")
+else()
+  string(JSON technique GET "${json}" technique)
+  string(JSON clip_depth GET "${json}" clip_depth)
+  string(JSON matrix_len LENGTH "${json}" views 0 clip_from_world)
+  string(JSON body_len LENGTH "${json}" body)
+  if(NOT technique STREQUAL "focused" OR NOT clip_depth STREQUAL "zero_to_one" OR NOT matrix_len EQUAL 16
+     OR body_len LESS 4)
+    message(SEND_ERROR "setup: unexpected JSON: technique=${technique} clip_depth=${clip_depth} "
+                       "matrix=${matrix_len} body=${body_len}")
+  endif()
+endif()
+
+if(WITH_GL)
+  # render and export write their files.
+  execute_process(COMMAND ${SHADOWKIT} render ${small} --size 64x48 --map-size 256 --out "${WORK}/r.png"
+                          --shadow-map-out "${WORK}/sm.png" RESULT_VARIABLE rc ERROR_VARIABLE err OUTPUT_QUIET)
+  if(NOT rc EQUAL 0 OR NOT EXISTS "${WORK}/r.png" OR NOT EXISTS "${WORK}/sm.png")
+    message(SEND_ERROR "render: failed or wrote no image: ${err}")
+  endif()
+  check_fails(unwritable-output "--out" render ${small} --size 16x16 --map-size 64 --out "${WORK}/no/such/dir/r.png")
+  check_fails(map-too-large "map size" render ${small} --size 16x16 --map-size 1000000)
+endif()
+execute_process(COMMAND ${SHADOWKIT} export ${small} --out "${WORK}/forest.glb" RESULT_VARIABLE rc OUTPUT_QUIET ERROR_QUIET)
+if(NOT rc EQUAL 0 OR NOT EXISTS "${WORK}/forest.glb")
+  message(SEND_ERROR "export: failed")
+endif()

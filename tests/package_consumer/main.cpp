@@ -1,0 +1,16 @@
+// Uses only shadowkit::core: camera, light and bounds in, matrices out.
+#include <shadowkit/core/shadow_setup.h>
+
+#include <cmath>
+#include <cstdio>
+
+int main() {
+    using namespace shadowkit::core;
+    ShadowSetupInputs in;
+    in.wsSceneBounds = Aabb::fromMinMax(Vec3(-512, 0, -512), Vec3(512, 30, 512));
+    in.light = DirectionalLight::fromSunAngles(45, 90).value();
+    const auto setup = computeShadowSetup(in);
+    if (!setup || !std::isfinite(setup->views[0].clipFromWorld[0][0])) return 1;
+    std::printf("focused set-up with %zu body points\n", setup->body.vertices().size());
+    return 0;
+}
