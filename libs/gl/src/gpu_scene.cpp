@@ -26,18 +26,22 @@ GpuScene::GpuScene(const scene::Scene& scene) {
         }
         m_meshes.push_back(std::move(gpu));
     }
+    GLuint firstInstance = 0;
     for (const scene::MeshBatch& batch : scene.batches) {
-        if (batch.worldFromObject.empty() || scene.meshes[batch.mesh].indices.empty()) continue;
-        m_batches.push_back({batch.mesh,
-                             createBuffer(batch.worldFromObject.data(), batch.worldFromObject.size() * sizeof(glm::mat4)),
-                             static_cast<GLsizei>(batch.worldFromObject.size())});
+        const auto count = static_cast<GLuint>(batch.worldFromObject.size());
+        if (count > 0 && !scene.meshes[batch.mesh].indices.empty())
+            m_batches.push_back({batch.mesh,
+                                 createBuffer(batch.worldFromObject.data(), batch.worldFromObject.size() * sizeof(glm::mat4)),
+                                 static_cast<GLsizei>(count), firstInstance});
+        firstInstance += count;
     }
 }
 
-DrawStats GpuScene::drawAll() const {
+DrawStats GpuScene::drawAll(bool setInstanceBase) const {
     DrawStats stats;
     for (const GpuBatch& batch : m_batches) {
         const GpuMesh& mesh = m_meshes[batch.mesh];
+        if (setInstanceBase) glUniform1ui(kInstanceBaseLocation, batch.firstInstance);
         glBindVertexArray(mesh.vertexArray.id());
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kInstancesBinding, batch.instances.id());
         glDrawElementsInstanced(GL_TRIANGLES, mesh.indexCount, GL_UNSIGNED_INT, nullptr, batch.instanceCount);

@@ -19,8 +19,10 @@ public:
     explicit GpuScene(const scene::Scene& scene);
 
     // One glDrawElementsInstanced per batch, instance transforms read from the
-    // shader-storage buffer at binding kInstancesBinding by gl_InstanceID.
-    DrawStats drawAll() const;
+    // shader-storage buffer at binding kInstancesBinding by gl_InstanceID. With
+    // setInstanceBase the bound program's `instanceBase` uniform receives the batch's
+    // first global instance index (Scene order), the surface identity of the evaluation.
+    DrawStats drawAll(bool setInstanceBase = false) const;
 
 private:
     struct GpuMesh {
@@ -32,6 +34,7 @@ private:
         size_t mesh = 0;
         Buffer instances;
         GLsizei instanceCount = 0;
+        GLuint firstInstance = 0; // global index over all batches
     };
     std::vector<GpuMesh> m_meshes;
     std::vector<GpuBatch> m_batches;

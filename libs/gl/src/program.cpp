@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <string>
+#include <vector>
 
 namespace shadowkit::gl {
 namespace {
@@ -12,11 +13,15 @@ std::string oneLine(std::string log) {
     return log;
 }
 
-core::Result<Shader> compile(GLenum stage, std::string_view source, std::string_view what) {
+core::Result<Shader> compile(GLenum stage, std::initializer_list<std::string_view> sources, std::string_view what) {
     Shader shader(glCreateShader(stage));
-    const char* text = source.data();
-    const auto length = static_cast<GLint>(source.size());
-    glShaderSource(shader.id(), 1, &text, &length);
+    std::vector<const char*> texts;
+    std::vector<GLint> lengths;
+    for (std::string_view s : sources) {
+        texts.push_back(s.data());
+        lengths.push_back(static_cast<GLint>(s.size()));
+    }
+    glShaderSource(shader.id(), static_cast<GLsizei>(texts.size()), texts.data(), lengths.data());
     glCompileShader(shader.id());
     GLint ok = 0;
     glGetShaderiv(shader.id(), GL_COMPILE_STATUS, &ok);
@@ -32,10 +37,11 @@ core::Result<Shader> compile(GLenum stage, std::string_view source, std::string_
 
 } // namespace
 
-core::Result<Program> buildProgram(std::string_view name, std::string_view vertexSource, std::string_view fragmentSource) {
-    auto vs = compile(GL_VERTEX_SHADER, vertexSource, std::string(name) + ": vertex shader");
+core::Result<Program> buildProgram(std::string_view name, std::initializer_list<std::string_view> vertexSources,
+                                   std::initializer_list<std::string_view> fragmentSources) {
+    auto vs = compile(GL_VERTEX_SHADER, vertexSources, std::string(name) + ": vertex shader");
     if (!vs) return core::makeError(vs.error());
-    auto fs = compile(GL_FRAGMENT_SHADER, fragmentSource, std::string(name) + ": fragment shader");
+    auto fs = compile(GL_FRAGMENT_SHADER, fragmentSources, std::string(name) + ": fragment shader");
     if (!fs) return core::makeError(fs.error());
     Program program(glCreateProgram());
     glAttachShader(program.id(), vs->id());

@@ -6,12 +6,15 @@
 
 #include "shadowkit/core/result.h"
 
+#include <initializer_list>
 #include <string_view>
 
 namespace shadowkit::gl {
 
 // `name` appears in error messages ("depth pass: vertex shader: 0:12(3): error: ...").
-core::Result<Program> buildProgram(std::string_view name, std::string_view vertexSource, std::string_view fragmentSource);
+// Each stage may be several source strings, concatenated in order (shared declarations first).
+core::Result<Program> buildProgram(std::string_view name, std::initializer_list<std::string_view> vertexSources,
+                                   std::initializer_list<std::string_view> fragmentSources);
 
 // Fails unless the block exists and its std140 size equals the C++ struct's size, so a
 // field added on one side only is caught when the program is built, not as garbage.

@@ -4,6 +4,7 @@
 #include "gl_shaders.h"
 #include "gpu_scene.h"
 #include "program.h"
+#include "render_targets.h"
 #include "uniforms.h"
 
 #include <algorithm>
@@ -14,50 +15,6 @@ namespace shadowkit::gl {
 namespace {
 
 glm::mat4 toFloat(const core::Mat4& m) { return glm::mat4(m); }
-
-// Depth texture + framebuffer of the shadow pass, compare mode on for sampler2DShadow.
-struct ShadowTarget {
-    Texture depth;
-    Framebuffer framebuffer;
-    int size = 0;
-
-    explicit ShadowTarget(int texels) : depth(createTexture2D(GL_DEPTH_COMPONENT32F, texels, texels)), size(texels) {
-        // Hard test (GL_NEAREST): what the evaluation compares against ray-traced truth.
-        glTextureParameteri(depth.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-        glTextureParameteri(depth.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-        glTextureParameteri(depth.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-        glTextureParameteri(depth.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-        glTextureParameteri(depth.id(), GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
-        glTextureParameteri(depth.id(), GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
-        GLuint fbo = 0;
-        glCreateFramebuffers(1, &fbo);
-        framebuffer = Framebuffer(fbo);
-        glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, depth.id(), 0);
-        glNamedFramebufferDrawBuffer(fbo, GL_NONE);
-    }
-};
-
-struct ColorTarget {
-    Texture color, depth;
-    Framebuffer framebuffer;
-    int width = 0, height = 0;
-
-    ColorTarget(int w, int h)
-        : color(createTexture2D(GL_RGBA8, w, h)), depth(createTexture2D(GL_DEPTH_COMPONENT32F, w, h)), width(w), height(h) {
-        GLuint fbo = 0;
-        glCreateFramebuffers(1, &fbo);
-        framebuffer = Framebuffer(fbo);
-        glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, color.id(), 0);
-        glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, depth.id(), 0);
-    }
-};
-
-core::Status checkComplete(const Framebuffer& fbo, const char* what) {
-    const GLenum status = glCheckNamedFramebufferStatus(fbo.id(), GL_FRAMEBUFFER);
-    if (status != GL_FRAMEBUFFER_COMPLETE)
-        return core::makeError(std::string(what) + ": framebuffer incomplete (status 0x" + std::to_string(status) + ")");
-    return core::Ok{};
-}
 
 // Measures the GPU time of the commands between begin() and end().
 class PassTimer {
@@ -79,15 +36,23 @@ private:
     Query m_query;
 };
 
+constexpr glm::vec3 kSky(0.62f, 0.72f, 0.85f);
+
 } // namespace
 
 struct Renderer::Impl {
     std::optional<GpuScene> scene;
-    Program depthProgram, mainProgram;
+    Program depthProgram, mainProgram, evalProgram;
     Buffer depthUniforms, frameUniforms;
     std::optional<ShadowTarget> shadow;
-    std::optional<ColorTarget> target;
+    std::optional<ColorTarget> color;
+    std::optional<EvalTarget> eval;
     PassTimer shadowTimer, mainTimer;
+
+    core::Status prepare(const core::ShadowSetup& setup, const RenderSettings& settings);
+    PassStats shadowPass(const core::ShadowSetup& setup, const RenderSettings& settings);
+    void uploadFrame(const core::PerspectiveCamera& camera, const core::DirectionalLight& light,
+                     const core::ShadowSetup& setup, const RenderSettings& settings);
 };
 
 Renderer::Renderer() : m_impl(std::make_unique<Impl>()) {}
@@ -96,15 +61,20 @@ Renderer::~Renderer() = default;
 core::Result<std::unique_ptr<Renderer>> Renderer::create(const scene::Scene& scene) {
     auto renderer = std::unique_ptr<Renderer>(new Renderer);
     Impl& r = *renderer->m_impl;
-    auto depth = buildProgram("depth pass", shaders::kDepthVert, shaders::kDepthFrag);
+    using namespace shaders;
+    auto depth = buildProgram("depth pass", {kDepthVert}, {kDepthFrag});
     if (!depth) return core::makeError(depth.error());
-    auto main = buildProgram("main pass", shaders::kMainVert, shaders::kMainFrag);
+    auto main = buildProgram("main pass", {kFrameGlsl, kMainVert}, {kFrameGlsl, kShadowLookupGlsl, kMainFrag});
     if (!main) return core::makeError(main.error());
+    auto eval = buildProgram("eval pass", {kFrameGlsl, kMainVert}, {kFrameGlsl, kShadowLookupGlsl, kEvalFrag});
+    if (!eval) return core::makeError(eval.error());
     if (auto s = checkUniformBlock(*depth, "depth pass", "DepthPass", sizeof(DepthPassUniforms)); !s)
         return core::makeError(s.error());
-    if (auto s = checkUniformBlock(*main, "main pass", "Frame", sizeof(FrameUniforms)); !s) return core::makeError(s.error());
+    for (const auto* p : {&main, &eval})
+        if (auto s = checkUniformBlock(**p, "camera pass", "Frame", sizeof(FrameUniforms)); !s) return core::makeError(s.error());
     r.depthProgram = std::move(depth).value();
     r.mainProgram = std::move(main).value();
+    r.evalProgram = std::move(eval).value();
     r.depthUniforms = createBuffer(nullptr, sizeof(DepthPassUniforms));
     r.frameUniforms = createBuffer(nullptr, sizeof(FrameUniforms));
     r.scene.emplace(scene);
@@ -113,9 +83,7 @@ core::Result<std::unique_ptr<Renderer>> Renderer::create(const scene::Scene& sce
     return renderer;
 }
 
-core::Result<FrameStats> Renderer::render(const core::PerspectiveCamera& camera, const core::DirectionalLight& light,
-                                          const core::ShadowSetup& setup, const RenderSettings& settings) {
-    Impl& r = *m_impl;
+core::Status Renderer::Impl::prepare(const core::ShadowSetup& setup, const RenderSettings& settings) {
     GLint maxSize = 0;
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
     if (settings.shadowMapSize < 16 || settings.shadowMapSize > maxSize)
@@ -126,106 +94,111 @@ core::Result<FrameStats> Renderer::render(const core::PerspectiveCamera& camera,
     if (setup.views.size() != 1)
         return core::makeError("renderer: set-ups with " + std::to_string(setup.views.size()) +
                                " shadow maps are not supported yet (one map only)");
-
-    if (!r.shadow || r.shadow->size != settings.shadowMapSize) {
-        r.shadow.emplace(settings.shadowMapSize);
-        if (auto s = checkComplete(r.shadow->framebuffer, "shadow map"); !s) return core::makeError(s.error());
+    if (!shadow || shadow->size != settings.shadowMapSize) {
+        shadow.emplace(settings.shadowMapSize);
+        if (auto s = checkComplete(shadow->framebuffer, "shadow map"); !s) return s;
     }
-    if (!r.target || r.target->width != settings.width || r.target->height != settings.height) {
-        r.target.emplace(settings.width, settings.height);
-        if (auto s = checkComplete(r.target->framebuffer, "main pass"); !s) return core::makeError(s.error());
-    }
-    FrameStats stats;
-    const core::ShadowView& view = setup.views[0];
+    return core::Ok{};
+}
 
-    // --- 1. shadow pass: depth only, polygon offset for bias, depth clamp per set-up.
-    const DepthPassUniforms depthUniforms{toFloat(view.clipFromWorld)};
-    glNamedBufferSubData(r.depthUniforms.id(), 0, sizeof depthUniforms, &depthUniforms);
-    glBindBufferBase(GL_UNIFORM_BUFFER, kDepthPassBinding, r.depthUniforms.id());
-    glBindFramebuffer(GL_FRAMEBUFFER, r.shadow->framebuffer.id());
-    glViewport(0, 0, r.shadow->size, r.shadow->size);
+PassStats Renderer::Impl::shadowPass(const core::ShadowSetup& setup, const RenderSettings& settings) {
+    // Depth only, polygon offset for bias, depth clamp when the set-up asks for it.
+    const DepthPassUniforms uniforms{toFloat(setup.views[0].clipFromWorld)};
+    glNamedBufferSubData(depthUniforms.id(), 0, sizeof uniforms, &uniforms);
+    glBindBufferBase(GL_UNIFORM_BUFFER, kDepthPassBinding, depthUniforms.id());
+    glBindFramebuffer(GL_FRAMEBUFFER, shadow->framebuffer.id());
+    glViewport(0, 0, shadow->size, shadow->size);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
     glDisable(GL_CULL_FACE);
     const float clearDepth = 1.0f;
-    glClearNamedFramebufferfv(r.shadow->framebuffer.id(), GL_DEPTH, 0, &clearDepth);
+    glClearNamedFramebufferfv(shadow->framebuffer.id(), GL_DEPTH, 0, &clearDepth);
     if (setup.depthClamp) glEnable(GL_DEPTH_CLAMP);
     glEnable(GL_POLYGON_OFFSET_FILL);
     glPolygonOffset(settings.biasSlope, settings.biasConstant);
-    glUseProgram(r.depthProgram.id());
-    r.shadowTimer.begin();
-    const DrawStats shadowDraws = r.scene->drawAll();
-    r.shadowTimer.end();
+    glUseProgram(depthProgram.id());
+    shadowTimer.begin();
+    const DrawStats draws = scene->drawAll();
+    shadowTimer.end();
     glDisable(GL_POLYGON_OFFSET_FILL);
     glDisable(GL_DEPTH_CLAMP);
+    return {0.0, draws.triangles, draws.drawCalls}; // time read after the frame, not to stall here
+}
 
-    // --- 2. main pass: shaded camera view with the shadow lookup.
+void Renderer::Impl::uploadFrame(const core::PerspectiveCamera& camera, const core::DirectionalLight& light,
+                                 const core::ShadowSetup& setup, const RenderSettings& settings) {
     FrameUniforms frame{};
     frame.clipFromWorld = toFloat(camera.clipFromWorld());
-    frame.shadowClipFromWorld = toFloat(view.clipFromWorld);
+    frame.shadowClipFromWorld = toFloat(setup.views[0].clipFromWorld);
     frame.wsEye = glm::vec4(glm::vec3(camera.wsEye), 1.0f);
+    frame.wsViewForward = glm::vec4(glm::vec3(glm::normalize(camera.wsDirection)), 0.0f);
     frame.wsTowardsLight = glm::vec4(glm::vec3(light.wsTowardsLight()), 0.0f);
     frame.sunRadiance = glm::vec4(1.05f, 1.0f, 0.9f, 0.0f);
     frame.ambientRadiance = glm::vec4(0.28f, 0.32f, 0.40f, 0.0f);
-    const glm::vec3 sky(0.62f, 0.72f, 0.85f);
-    frame.fogColorDensity = glm::vec4(glm::pow(sky, glm::vec3(2.2f)), settings.fogDensity);
-    glNamedBufferSubData(r.frameUniforms.id(), 0, sizeof frame, &frame);
-    glBindBufferBase(GL_UNIFORM_BUFFER, kFrameBinding, r.frameUniforms.id());
-    glBindFramebuffer(GL_FRAMEBUFFER, r.target->framebuffer.id());
-    glViewport(0, 0, r.target->width, r.target->height);
-    const float clearColor[4] = {sky.r, sky.g, sky.b, 1.0f};
-    glClearNamedFramebufferfv(r.target->framebuffer.id(), GL_COLOR, 0, clearColor);
-    glClearNamedFramebufferfv(r.target->framebuffer.id(), GL_DEPTH, 0, &clearDepth);
+    frame.fogColorDensity = glm::vec4(glm::pow(kSky, glm::vec3(2.2f)), settings.fogDensity);
+    frame.shadowMapSize = glm::vec4(static_cast<float>(settings.shadowMapSize));
+    glNamedBufferSubData(frameUniforms.id(), 0, sizeof frame, &frame);
+    glBindBufferBase(GL_UNIFORM_BUFFER, kFrameBinding, frameUniforms.id());
+    glBindTextureUnit(kShadowMapUnit, shadow->depth.id());
     glEnable(GL_CULL_FACE);
     glCullFace(GL_BACK);
-    glBindTextureUnit(kShadowMapUnit, r.shadow->depth.id());
+}
+
+core::Result<FrameStats> Renderer::render(const core::PerspectiveCamera& camera, const core::DirectionalLight& light,
+                                          const core::ShadowSetup& setup, const RenderSettings& settings) {
+    Impl& r = *m_impl;
+    if (auto s = r.prepare(setup, settings); !s) return core::makeError(s.error());
+    if (!r.color || r.color->width != settings.width || r.color->height != settings.height) {
+        r.color.emplace(settings.width, settings.height);
+        if (auto s = checkComplete(r.color->framebuffer, "main pass"); !s) return core::makeError(s.error());
+    }
+    FrameStats stats;
+    stats.shadow = r.shadowPass(setup, settings);
+
+    r.uploadFrame(camera, light, setup, settings);
+    glBindFramebuffer(GL_FRAMEBUFFER, r.color->framebuffer.id());
+    glViewport(0, 0, r.color->width, r.color->height);
+    const float clearColor[4] = {kSky.r, kSky.g, kSky.b, 1.0f};
+    const float clearDepth = 1.0f;
+    glClearNamedFramebufferfv(r.color->framebuffer.id(), GL_COLOR, 0, clearColor);
+    glClearNamedFramebufferfv(r.color->framebuffer.id(), GL_DEPTH, 0, &clearDepth);
     glUseProgram(r.mainProgram.id());
     r.mainTimer.begin();
-    const DrawStats mainDraws = r.scene->drawAll();
+    const DrawStats mainDraws = r.scene->drawAll(true);
     r.mainTimer.end();
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
 
-    stats.shadow = {r.shadowTimer.milliseconds(), shadowDraws.triangles, shadowDraws.drawCalls};
+    stats.shadow.gpuMilliseconds = r.shadowTimer.milliseconds();
     stats.main = {r.mainTimer.milliseconds(), mainDraws.triangles, mainDraws.drawCalls};
     return stats;
 }
 
-scene::Image Renderer::readColor() const {
-    const Impl& r = *m_impl;
-    if (!r.target) return {};
-    scene::Image image(r.target->width, r.target->height);
-    glGetTextureImage(r.target->color.id(), 0, GL_RGBA, GL_UNSIGNED_BYTE, static_cast<GLsizei>(image.rgba.size()),
-                      image.rgba.data());
-    // GL's first row is the bottom one.
-    const size_t row = static_cast<size_t>(image.width) * 4;
-    for (int y = 0; y < image.height / 2; ++y)
-        std::swap_ranges(image.pixel(0, y), image.pixel(0, y) + row, image.pixel(0, image.height - 1 - y));
-    return image;
+core::Result<core::RasterBuffers> Renderer::renderEvalBuffers(const core::PerspectiveCamera& camera,
+                                                              const core::DirectionalLight& light,
+                                                              const core::ShadowSetup& setup,
+                                                              const RenderSettings& settings) {
+    Impl& r = *m_impl;
+    if (auto s = r.prepare(setup, settings); !s) return core::makeError(s.error());
+    if (!r.eval || r.eval->width != settings.width || r.eval->height != settings.height) {
+        r.eval.emplace(settings.width, settings.height);
+        if (auto s = checkComplete(r.eval->framebuffer, "eval pass"); !s) return core::makeError(s.error());
+    }
+    r.shadowPass(setup, settings);
+    r.uploadFrame(camera, light, setup, settings);
+    glBindFramebuffer(GL_FRAMEBUFFER, r.eval->framebuffer.id());
+    glViewport(0, 0, r.eval->width, r.eval->height);
+    r.eval->clear();
+    glUseProgram(r.evalProgram.id());
+    r.scene->drawAll(true);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    core::RasterBuffers buffers = r.eval->read();
+    buffers.mapSize = settings.shadowMapSize;
+    return buffers;
 }
 
-scene::Image Renderer::readShadowMap() const {
-    const Impl& r = *m_impl;
-    if (!r.shadow) return {};
-    const int n = r.shadow->size;
-    std::vector<float> depth(static_cast<size_t>(n) * static_cast<size_t>(n));
-    glGetTextureImage(r.shadow->depth.id(), 0, GL_DEPTH_COMPONENT, GL_FLOAT, static_cast<GLsizei>(depth.size() * sizeof(float)),
-                      depth.data());
-    // Stretch the used depth range to the full grey scale; cleared texels (1.0) stay black.
-    float lo = 1.0f, hi = 0.0f;
-    for (float d : depth)
-        if (d < 1.0f) lo = std::min(lo, d), hi = std::max(hi, d);
-    const float range = hi > lo ? hi - lo : 1.0f;
-    scene::Image image(n, n);
-    for (int y = 0; y < n; ++y)
-        for (int x = 0; x < n; ++x) {
-            const float d = depth[static_cast<size_t>(n - 1 - y) * static_cast<size_t>(n) + static_cast<size_t>(x)];
-            const auto grey = static_cast<uint8_t>(d < 1.0f ? 40.0f + 215.0f * (1.0f - (d - lo) / range) : 0.0f);
-            uint8_t* p = image.pixel(x, y);
-            p[0] = p[1] = p[2] = grey;
-            p[3] = 255;
-        }
-    return image;
-}
+scene::Image Renderer::readColor() const { return m_impl->color ? m_impl->color->read() : scene::Image{}; }
+
+scene::Image Renderer::readShadowMap() const { return m_impl->shadow ? m_impl->shadow->readAsGreys() : scene::Image{}; }
 
 } // namespace shadowkit::gl

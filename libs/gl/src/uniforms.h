@@ -14,15 +14,18 @@ struct FrameUniforms { // GLSL: Frame, binding 0
     glm::mat4 clipFromWorld;
     glm::mat4 shadowClipFromWorld;
     glm::vec4 wsEye;
+    glm::vec4 wsViewForward;
     glm::vec4 wsTowardsLight;
     glm::vec4 sunRadiance;
     glm::vec4 ambientRadiance;
     glm::vec4 fogColorDensity;
+    glm::vec4 shadowMapSize;
 };
 
 inline constexpr unsigned kFrameBinding = 0;
 inline constexpr unsigned kDepthPassBinding = 1;
 inline constexpr unsigned kInstancesBinding = 0; // shader storage
 inline constexpr unsigned kShadowMapUnit = 0;
+inline constexpr int kInstanceBaseLocation = 0; // uniform uint instanceBase (main.vert)
 
 } // namespace shadowkit::gl

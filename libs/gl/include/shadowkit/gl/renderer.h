@@ -4,6 +4,7 @@
 
 #include "shadowkit/core/camera.h"
 #include "shadowkit/core/light.h"
+#include "shadowkit/core/raster_buffers.h"
 #include "shadowkit/core/result.h"
 #include "shadowkit/core/shadow_setup.h"
 #include "shadowkit/scene/image.h"
@@ -44,6 +45,13 @@ public:
     // Validates the settings against the driver's limits, then draws.
     core::Result<FrameStats> render(const core::PerspectiveCamera& camera, const core::DirectionalLight& light,
                                     const core::ShadowSetup& setup, const RenderSettings& settings);
+
+    // The shadow pass, then instead of shading, the per-pixel buffers the evaluation
+    // compares with ray-traced truth (shadow term, surface identity, depth, normal,
+    // shadow texel coordinates and their screen derivatives).
+    core::Result<core::RasterBuffers> renderEvalBuffers(const core::PerspectiveCamera& camera,
+                                                        const core::DirectionalLight& light,
+                                                        const core::ShadowSetup& setup, const RenderSettings& settings);
 
     // The last rendered frame (top row first).
     scene::Image readColor() const;

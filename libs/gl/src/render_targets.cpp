@@ -1,0 +1,121 @@
+#include "render_targets.h"
+
+#include <algorithm>
+#include <cstring>
+#include <string>
+
+namespace shadowkit::gl {
+namespace {
+
+Framebuffer createFramebuffer() {
+    GLuint fbo = 0;
+    glCreateFramebuffers(1, &fbo);
+    return Framebuffer(fbo);
+}
+
+// Reads a whole texture level and flips it so the top row comes first.
+template <class T>
+std::vector<T> readFlipped(const Texture& texture, GLenum format, GLenum type, int width, int height) {
+    std::vector<T> rows(static_cast<size_t>(width) * static_cast<size_t>(height));
+    glGetTextureImage(texture.id(), 0, format, type, static_cast<GLsizei>(rows.size() * sizeof(T)), rows.data());
+    for (int y = 0; y < height / 2; ++y)
+        std::swap_ranges(rows.begin() + static_cast<ptrdiff_t>(y) * width, rows.begin() + static_cast<ptrdiff_t>(y + 1) * width,
+                         rows.begin() + static_cast<ptrdiff_t>(height - 1 - y) * width);
+    return rows;
+}
+
+} // namespace
+
+core::Status checkComplete(const Framebuffer& fbo, const char* what) {
+    const GLenum status = glCheckNamedFramebufferStatus(fbo.id(), GL_FRAMEBUFFER);
+    if (status != GL_FRAMEBUFFER_COMPLETE)
+        return core::makeError(std::string(what) + ": framebuffer incomplete (status " + std::to_string(status) + ")");
+    return core::Ok{};
+}
+
+ShadowTarget::ShadowTarget(int texels)
+    : depth(createTexture2D(GL_DEPTH_COMPONENT32F, texels, texels)), framebuffer(createFramebuffer()), size(texels) {
+    // Hard test (GL_NEAREST): what the evaluation compares against ray-traced truth.
+    glTextureParameteri(depth.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(depth.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTextureParameteri(depth.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(depth.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(depth.id(), GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+    glTextureParameteri(depth.id(), GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+    glNamedFramebufferTexture(framebuffer.id(), GL_DEPTH_ATTACHMENT, depth.id(), 0);
+    glNamedFramebufferDrawBuffer(framebuffer.id(), GL_NONE);
+}
+
+scene::Image ShadowTarget::readAsGreys() const {
+    const std::vector<float> d = readFlipped<float>(depth, GL_DEPTH_COMPONENT, GL_FLOAT, size, size);
+    float lo = 1.0f, hi = 0.0f;
+    for (float v : d)
+        if (v < 1.0f) lo = std::min(lo, v), hi = std::max(hi, v);
+    const float range = hi > lo ? hi - lo : 1.0f;
+    scene::Image image(size, size);
+    for (size_t i = 0; i < d.size(); ++i) {
+        const auto grey = static_cast<uint8_t>(d[i] < 1.0f ? 40.0f + 215.0f * (1.0f - (d[i] - lo) / range) : 0.0f);
+        uint8_t* p = image.rgba.data() + 4 * i;
+        p[0] = p[1] = p[2] = grey;
+        p[3] = 255;
+    }
+    return image;
+}
+
+ColorTarget::ColorTarget(int w, int h)
+    : color(createTexture2D(GL_RGBA8, w, h)), depth(createTexture2D(GL_DEPTH_COMPONENT32F, w, h)),
+      framebuffer(createFramebuffer()), width(w), height(h) {
+    glNamedFramebufferTexture(framebuffer.id(), GL_COLOR_ATTACHMENT0, color.id(), 0);
+    glNamedFramebufferTexture(framebuffer.id(), GL_DEPTH_ATTACHMENT, depth.id(), 0);
+}
+
+scene::Image ColorTarget::read() const {
+    scene::Image image(width, height);
+    const auto pixels = readFlipped<uint32_t>(color, GL_RGBA, GL_UNSIGNED_BYTE, width, height);
+    std::memcpy(image.rgba.data(), pixels.data(), image.rgba.size());
+    return image;
+}
+
+EvalTarget::EvalTarget(int w, int h)
+    : shadowTerm(createTexture2D(GL_R32F, w, h)), surfaceId(createTexture2D(GL_R32UI, w, h)),
+      viewDepth(createTexture2D(GL_R32F, w, h)), normal(createTexture2D(GL_RGBA16F, w, h)),
+      texel(createTexture2D(GL_RG32F, w, h)), texelFromPixel(createTexture2D(GL_RGBA32F, w, h)),
+      depth(createTexture2D(GL_DEPTH_COMPONENT32F, w, h)), framebuffer(createFramebuffer()), width(w), height(h) {
+    const Texture* colors[] = {&shadowTerm, &surfaceId, &viewDepth, &normal, &texel, &texelFromPixel};
+    GLenum drawBuffers[6];
+    for (GLenum i = 0; i < 6; ++i) {
+        glNamedFramebufferTexture(framebuffer.id(), GL_COLOR_ATTACHMENT0 + i, colors[i]->id(), 0);
+        drawBuffers[i] = GL_COLOR_ATTACHMENT0 + i;
+    }
+    glNamedFramebufferDrawBuffers(framebuffer.id(), 6, drawBuffers);
+    glNamedFramebufferTexture(framebuffer.id(), GL_DEPTH_ATTACHMENT, depth.id(), 0);
+}
+
+void EvalTarget::clear() const {
+    const float zero[4] = {0, 0, 0, 0}, one[4] = {1, 0, 0, 0};
+    const GLuint none[4] = {0, 0, 0, 0};
+    glClearNamedFramebufferfv(framebuffer.id(), GL_COLOR, 0, one); // nothing drawn: lit
+    glClearNamedFramebufferuiv(framebuffer.id(), GL_COLOR, 1, none);
+    for (GLint i = 2; i < 6; ++i) glClearNamedFramebufferfv(framebuffer.id(), GL_COLOR, i, zero);
+    const float clearDepth = 1.0f;
+    glClearNamedFramebufferfv(framebuffer.id(), GL_DEPTH, 0, &clearDepth);
+}
+
+core::RasterBuffers EvalTarget::read() const {
+    core::RasterBuffers b;
+    b.width = width;
+    b.height = height;
+    b.shadowTerm = readFlipped<float>(shadowTerm, GL_RED, GL_FLOAT, width, height);
+    b.surfaceId = readFlipped<uint32_t>(surfaceId, GL_RED_INTEGER, GL_UNSIGNED_INT, width, height);
+    b.viewDepth = readFlipped<float>(viewDepth, GL_RED, GL_FLOAT, width, height);
+    const auto normals = readFlipped<glm::vec4>(normal, GL_RGBA, GL_FLOAT, width, height);
+    b.wsNormal.reserve(normals.size());
+    for (const glm::vec4& n : normals) b.wsNormal.emplace_back(n);
+    b.tsTexel = readFlipped<glm::vec2>(texel, GL_RG, GL_FLOAT, width, height);
+    const auto jacobians = readFlipped<glm::vec4>(texelFromPixel, GL_RGBA, GL_FLOAT, width, height);
+    b.texelFromPixel.reserve(jacobians.size());
+    for (const glm::vec4& j : jacobians) b.texelFromPixel.emplace_back(j.x, j.y, j.z, j.w); // columns d/dx, d/dy
+    return b;
+}
+
+} // namespace shadowkit::gl

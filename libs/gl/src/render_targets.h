@@ -1,0 +1,46 @@
+// Off-screen render targets: the shadow map, the shaded colour image and the
+// evaluation buffers, each with its read-back.
+#pragma once
+
+#include "gl_object.h"
+
+#include "shadowkit/core/raster_buffers.h"
+#include "shadowkit/core/result.h"
+#include "shadowkit/scene/image.h"
+
+namespace shadowkit::gl {
+
+core::Status checkComplete(const Framebuffer& fbo, const char* what);
+
+// Depth texture + framebuffer of the shadow pass, compare mode on for sampler2DShadow.
+struct ShadowTarget {
+    Texture depth;
+    Framebuffer framebuffer;
+    int size = 0;
+
+    explicit ShadowTarget(int texels);
+    // Near the light bright, cleared texels black, the used depth range stretched.
+    scene::Image readAsGreys() const;
+};
+
+struct ColorTarget {
+    Texture color, depth;
+    Framebuffer framebuffer;
+    int width = 0, height = 0;
+
+    ColorTarget(int w, int h);
+    scene::Image read() const; // top row first
+};
+
+// Multiple render targets written by eval.frag, read back as core::RasterBuffers.
+struct EvalTarget {
+    Texture shadowTerm, surfaceId, viewDepth, normal, texel, texelFromPixel, depth;
+    Framebuffer framebuffer;
+    int width = 0, height = 0;
+
+    EvalTarget(int w, int h);
+    void clear() const;
+    core::RasterBuffers read() const; // top row first
+};
+
+} // namespace shadowkit::gl

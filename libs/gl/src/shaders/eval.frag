@@ -1,0 +1,25 @@
+// Evaluation pass: the per-pixel buffers the ray-traced comparison needs (core::RasterBuffers).
+in vec3 wsPosition;
+in vec3 wsNormal;
+in vec3 vAlbedo;
+flat in uint vSurfaceId;
+in vec4 csShadow;
+
+layout(location = 0) out float outShadowTerm;
+layout(location = 1) out uint outSurfaceId;
+layout(location = 2) out float outViewDepth;
+layout(location = 3) out vec4 outNormal;
+layout(location = 4) out vec2 outTexel;
+layout(location = 5) out vec4 outTexelFromPixel;
+
+void main() {
+    outShadowTerm = shadowTerm(csShadow); // the map's test alone, without N·L
+    outSurfaceId = vSurfaceId;
+    outViewDepth = dot(wsPosition - wsEye.xyz, wsViewForward.xyz);
+    outNormal = vec4(normalize(wsNormal), 0.0);
+    const vec2 texel = (shadowNdc(csShadow).xy * 0.5 + 0.5) * shadowMapSize.x;
+    outTexel = texel;
+    // Screen derivatives of the texel position (fine: per pixel, not per 2x2 quad).
+    // GL's y runs up; negate so the second column is the derivative along image rows (down).
+    outTexelFromPixel = vec4(dFdxFine(texel), -dFdyFine(texel));
+}
