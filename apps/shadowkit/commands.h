@@ -16,6 +16,7 @@ struct Command {
 Command addRenderCommand(CLI::App& app);
 Command addSetupCommand(CLI::App& app);
 Command addExportCommand(CLI::App& app);
+Command addEvalCommand(CLI::App& app);
 
 // Prints "shadowkit: error: <message>" (one line) to stderr and returns 1.
 int fail(const std::string& message);

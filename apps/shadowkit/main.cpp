@@ -10,6 +10,7 @@ int main(int argc, char** argv) {
     app.require_subcommand(1);
     const std::vector<shadowkit::app::Command> commands = {
         shadowkit::app::addRenderCommand(app),
+        shadowkit::app::addEvalCommand(app),
         shadowkit::app::addSetupCommand(app),
         shadowkit::app::addExportCommand(app),
     };

@@ -48,6 +48,9 @@ check_fails(unknown-format "unknown export format" export ${small} --out "${WORK
 check_fails(bad-forest-option "trees" export --trees -5 --out "${WORK}/x.glb")
 check_fails(unknown-flag "--frobnicate" render --frobnicate)
 check_fails(no-subcommand "subcommand")
+check_fails(eval-unknown-view "unknown view" eval ${small} --views paper,sideways)
+check_fails(eval-unwritable-json "--json" eval ${small} --json "${WORK}/no/such/dir/r.json")
+check_fails(eval-unwritable-map "--error-map" eval ${small} --error-map "${WORK}/no/such/dir/e.png")
 
 # setup prints the JSON contract.
 execute_process(COMMAND ${SHADOWKIT} setup --scene-bounds -100,0,-100,100,30,100 --view paper --technique focused
@@ -75,6 +78,34 @@ if(WITH_GL)
   endif()
   check_fails(unwritable-output "--out" render ${small} --size 16x16 --map-size 64 --out "${WORK}/no/such/dir/r.png")
   check_fails(map-too-large "map size" render ${small} --size 16x16 --map-size 1000000)
+
+  # eval writes its report, maps (one per view) and per-pixel dumps.
+  execute_process(COMMAND ${SHADOWKIT} eval ${small} --views paper,noon --size 48x32 --map-size 256
+                          --json "${WORK}/e.json" --error-map "${WORK}/err.png" --aliasing-map "${WORK}/alias.png"
+                          --dump "${WORK}/dump" RESULT_VARIABLE rc OUTPUT_VARIABLE table ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(SEND_ERROR "eval: failed: ${err}")
+  else()
+    foreach(f e.json err-paper.png err-noon.png alias-paper.png alias-noon.png dump/paper/shadow_term.npy
+              dump/noon/class.npy dump/noon/world_position.npy dump/noon/pixels_per_texel.npy)
+      if(NOT EXISTS "${WORK}/${f}")
+        message(SEND_ERROR "eval: did not write ${f}")
+      endif()
+    endforeach()
+    file(READ "${WORK}/e.json" report)
+    string(JSON nviews LENGTH "${report}" views)
+    string(JSON view GET "${report}" views 1 view)
+    foreach(field valid_px excluded_px wrong_pct false_shadow_pct false_lit_pct undersampled_pct
+                  pixels_per_texel_p50 pixels_per_texel_p99)
+      string(JSON value ERROR_VARIABLE missing GET "${report}" views 0 ${field})
+      if(missing)
+        message(SEND_ERROR "eval: JSON lacks ${field}")
+      endif()
+    endforeach()
+    if(NOT nviews EQUAL 2 OR NOT view STREQUAL "noon")
+      message(SEND_ERROR "eval: unexpected JSON: ${report}")
+    endif()
+  endif()
 endif()
 execute_process(COMMAND ${SHADOWKIT} export ${small} --out "${WORK}/forest.glb" RESULT_VARIABLE rc OUTPUT_QUIET ERROR_QUIET)
 if(NOT rc EQUAL 0 OR NOT EXISTS "${WORK}/forest.glb")

@@ -1,0 +1,184 @@
+// shadowkit eval: rasterized shadows against ray-traced truth, per standard view.
+#include "commands.h"
+#include "options.h"
+
+#include "shadowkit/eval/maps.h"
+#include "shadowkit/eval/ray_scene.h"
+#include "shadowkit/eval/report.h"
+#include "shadowkit/gl/context.h"
+#include "shadowkit/gl/renderer.h"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <filesystem>
+#include <sstream>
+
+namespace shadowkit::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct EvalArgs {
+    SceneOptions scene;
+    ViewOptions view;
+    TechniqueOptions technique;
+    std::string views; // "a,b" or "all"; empty: --view
+    int mapSize = 2048;
+    float biasSlope = gl::RenderSettings{}.biasSlope;
+    float biasConstant = gl::RenderSettings{}.biasConstant;
+    std::string json, errorMap, aliasingMap, dump;
+};
+
+// "maps/err.png" for view "noon" among several -> "maps/err-noon.png".
+fs::path perView(const std::string& file, const std::string& view, bool several) {
+    if (!several) return file;
+    const fs::path p(file);
+    return p.parent_path() / (p.stem().string() + "-" + view + p.extension().string());
+}
+
+// A file we will write later: fail now, before minutes of work, if its directory is missing.
+core::Status checkWritable(const char* flag, const std::string& file) {
+    if (file.empty()) return core::Ok{};
+    const fs::path dir = fs::path(file).parent_path();
+    std::error_code ec;
+    if (!dir.empty() && !fs::is_directory(dir, ec))
+        return core::makeError(fmt::format("{}: directory '{}' does not exist", flag, dir.string()));
+    return core::Ok{};
+}
+
+core::Result<std::vector<std::string>> viewNames(const EvalArgs& args) {
+    if (args.views.empty()) return std::vector<std::string>{args.view.view};
+    auto all = scene::loadViews(scene::dataDirectory() / "views.json");
+    if (!all) return core::makeError(all.error());
+    std::vector<std::string> names;
+    if (args.views == "all") {
+        for (const scene::ViewSpec& v : *all) names.push_back(v.name);
+        return names;
+    }
+    std::stringstream ss(args.views);
+    for (std::string name; std::getline(ss, name, ',');) {
+        if (auto found = scene::findView(*all, name); !found) return core::makeError("--views: " + found.error());
+        names.push_back(name);
+    }
+    if (names.empty()) return core::makeError("--views: no view named");
+    return names;
+}
+
+int runEval(const EvalArgs& args) {
+    auto technique = args.technique.resolve();
+    if (!technique) return fail(technique.error());
+    auto names = viewNames(args);
+    if (!names) return fail(names.error());
+    for (auto [flag, file] : {std::pair{"--json", &args.json}, {"--error-map", &args.errorMap}, {"--aliasing-map", &args.aliasingMap}})
+        if (auto s = checkWritable(flag, *file); !s) return fail(s.error());
+    const bool several = names->size() > 1;
+
+    auto sceneData = args.scene.load();
+    if (!sceneData) return fail(sceneData.error());
+    const auto buildStart = std::chrono::steady_clock::now();
+    auto rays = eval::RayScene::build(*sceneData);
+    if (!rays) return fail(rays.error());
+    fmt::print(stderr, "ray tracer: built in {:.2f} s\n",
+               std::chrono::duration<double>(std::chrono::steady_clock::now() - buildStart).count());
+    auto context = gl::Context::createHeadless();
+    if (!context) return fail(context.error());
+    auto renderer = gl::Renderer::create(*sceneData);
+    if (!renderer) return fail(renderer.error());
+
+    std::vector<eval::ViewReport> reports;
+    fmt::print("{:<14} {:<10} {:>5} {:>9} {:>8} {:>7} {:>8} {:>8} {:>7} {:>7} {:>7} {:>6}\n", "view", "technique", "map",
+               "valid_px", "excl_px", "wrong%", "fshadow%", "flit%", "under%", "ppt50", "ppt99", "sec");
+    for (const std::string& name : *names) {
+        const auto start = std::chrono::steady_clock::now();
+        ViewOptions viewOptions = args.view;
+        viewOptions.view = name;
+        auto view = viewOptions.resolve(*sceneData);
+        if (!view) return fail(view.error());
+        auto setup = core::computeShadowSetup({view->camera, view->light, sceneData->wsBounds(), *technique});
+        if (!setup) return fail(setup.error());
+        gl::RenderSettings settings;
+        settings.width = view->width;
+        settings.height = view->height;
+        settings.shadowMapSize = args.mapSize;
+        settings.biasSlope = args.biasSlope;
+        settings.biasConstant = args.biasConstant;
+        auto raster = (*renderer)->renderEvalBuffers(view->camera, view->light, *setup, settings);
+        if (!raster) return fail(raster.error());
+
+        // Progress only when the truth takes a while (large images, big scenes).
+        eval::TruthOptions truthOptions;
+        truthOptions.progress = [&, shown = false](double done) mutable {
+            const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            if (elapsed < 2.0 && !shown) return;
+            shown = true;
+            fmt::print(stderr, "\r{}: ray tracing {:3.0f} %", name, 100.0 * done);
+            if (done >= 1.0) fmt::print(stderr, "\n");
+        };
+        const eval::TruthBuffers truth = eval::computeTruth(**rays, view->camera, view->light, view->width, view->height,
+                                                            truthOptions);
+        auto comparison = eval::compare(*raster, truth);
+        if (!comparison) return fail(comparison.error());
+
+        eval::ViewReport report;
+        report.view = name;
+        report.technique = std::string(core::techniqueName(*technique));
+        report.scene = args.scene.scene;
+        report.seed = args.scene.seed;
+        report.width = view->width;
+        report.height = view->height;
+        report.mapSize = args.mapSize;
+        report.maps = static_cast<int>(setup->views.size());
+        report.biasSlope = args.biasSlope;
+        report.biasConstant = args.biasConstant;
+        report.fallbacks = setup->fallbacks;
+        report.figures = comparison->figures;
+
+        if (!args.errorMap.empty())
+            if (auto s = scene::writePng(eval::errorMapImage(*comparison, view->width, view->height),
+                                         perView(args.errorMap, name, several));
+                !s)
+                return fail("--error-map: " + s.error());
+        if (!args.aliasingMap.empty())
+            if (auto s = scene::writePng(eval::aliasingMapImage(*comparison, view->width, view->height),
+                                         perView(args.aliasingMap, name, several));
+                !s)
+                return fail("--aliasing-map: " + s.error());
+        if (!args.dump.empty())
+            if (auto s = eval::dumpBuffers(several ? fs::path(args.dump) / name : fs::path(args.dump), *raster, truth, *comparison);
+                !s)
+                return fail("--dump: " + s.error());
+
+        report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        const eval::Figures& f = report.figures;
+        fmt::print("{:<14} {:<10} {:>5} {:>9} {:>8} {:>7.2f} {:>8.2f} {:>8.2f} {:>7.2f} {:>7.3f} {:>7.3f} {:>6.1f}\n", name,
+                   report.technique, args.mapSize, f.validPx, f.excludedPx, f.wrongPct, f.falseShadowPct, f.falseLitPct,
+                   f.undersampledPct, f.pixelsPerTexelP50, f.pixelsPerTexelP99, report.seconds);
+        std::fflush(stdout);
+        reports.push_back(std::move(report));
+    }
+    if (!args.json.empty())
+        if (auto s = eval::writeReportJson(reports, args.json); !s) return fail("--json: " + s.error());
+    return 0;
+}
+
+} // namespace
+
+Command addEvalCommand(CLI::App& app) {
+    auto args = std::make_shared<EvalArgs>();
+    CLI::App* cmd = app.add_subcommand("eval", "Measure a technique against ray-traced shadows on the standard views");
+    args->scene.addTo(*cmd);
+    args->view.addTo(*cmd);
+    args->technique.addTo(*cmd);
+    cmd->add_option("--views", args->views, "views to evaluate: a,b,... or 'all' (default: --view)");
+    cmd->add_option("--map-size", args->mapSize, "shadow map texels per side")->capture_default_str();
+    cmd->add_option("--bias-slope", args->biasSlope, "slope-scaled depth bias (glPolygonOffset factor)")->capture_default_str();
+    cmd->add_option("--bias-constant", args->biasConstant, "constant depth bias (glPolygonOffset units)")->capture_default_str();
+    cmd->add_option("--json", args->json, "write the figures as JSON {\"views\": [...]}");
+    cmd->add_option("--error-map", args->errorMap, "write the error map PNG (one per view: NAME-view.png)");
+    cmd->add_option("--aliasing-map", args->aliasingMap, "write the pixels-per-texel heat map PNG");
+    cmd->add_option("--dump", args->dump, "write per-pixel buffers as .npy files into this directory");
+    return {cmd, [args] { return runEval(*args); }};
+}
+
+} // namespace shadowkit::app

@@ -1,0 +1,55 @@
+// Per-pixel comparison of rasterized shadows with ray-traced truth (EVALUATION.md §3).
+#pragma once
+
+#include "shadowkit/core/raster_buffers.h"
+#include "shadowkit/core/result.h"
+#include "shadowkit/eval/truth.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace shadowkit::eval {
+
+// What each pixel counted as. The numeric values are written to `class.npy` by
+// `shadowkit eval --dump`: keep them stable.
+enum class PixelClass : uint8_t {
+    NotEvaluated = 0, // sky, or a surface facing away from the light
+    LitCorrect = 1,
+    ShadowCorrect = 2,
+    FalseShadow = 3,  // rendered shadowed, truth lit (acne, aliasing that darkens)
+    FalseLit = 4,     // rendered lit, truth shadowed (peter-panning, leaks, missed casters)
+    Excluded = 5,     // faces the light but raster and ray disagree on the surface (silhouettes)
+};
+
+// The figures of EVALUATION.md §3; the JSON report (report.h) uses its snake_case names.
+struct Figures {
+    int64_t validPx = 0;
+    int64_t excludedPx = 0;
+    double wrongPct = 0.0;
+    double falseShadowPct = 0.0;
+    double falseLitPct = 0.0;
+    double undersampledPct = 0.0;
+    double pixelsPerTexelP50 = 0.0;
+    double pixelsPerTexelP99 = 0.0;
+};
+
+struct Comparison {
+    Figures figures;
+    std::vector<PixelClass> classes;    // per pixel, top row first
+    std::vector<float> pixelsPerTexel;  // per pixel; NaN where not valid
+};
+
+struct CompareOptions {
+    double depthTolerance = 0.005; // relative view-depth agreement of raster and ray (0.5 %)
+    double shadowThreshold = 0.5;  // rendered term below this counts as shadowed
+};
+
+// Fails (one line) when the two sets of buffers differ in size.
+core::Result<Comparison> compare(const core::RasterBuffers& raster, const TruthBuffers& truth,
+                                 const CompareOptions& options = {});
+
+// Largest singular value of d(pixel)/d(texel), from the Jacobian d(texel)/d(pixel):
+// 1 / (its smallest singular value). Infinite for a singular Jacobian.
+double pixelsPerTexel(const glm::mat2& texelFromPixel);
+
+} // namespace shadowkit::eval

@@ -1,0 +1,41 @@
+// Exact ray queries against a shadowkit scene (Embree 3): the ground truth.
+#pragma once
+
+#include "shadowkit/core/conventions.h"
+#include "shadowkit/core/result.h"
+#include "shadowkit/scene/scene.h"
+
+#include <memory>
+
+namespace shadowkit::eval {
+
+struct RayHit {
+    double t = 0.0;                 // ray parameter of the hit
+    uint32_t instance = 0;          // global instance index (batches in Scene order)
+    core::Vec3 wsGeometricNormal{}; // unit, world space, facing against the ray
+};
+
+class RayScene {
+public:
+    // One Embree scene per mesh, instanced once per placement (10,000 trees share four
+    // BVHs). Embree errors come back as one line.
+    static core::Result<std::unique_ptr<RayScene>> build(const scene::Scene& scene);
+    ~RayScene();
+    RayScene(const RayScene&) = delete;
+    RayScene& operator=(const RayScene&) = delete;
+
+    // Nearest hit of origin + t·direction for t in [tNear, tFar]; false on a miss.
+    bool intersect(const core::Vec3& origin, const core::Vec3& direction, double tNear, double tFar, RayHit& hit) const;
+    // Anything hit for t in [tNear, tFar]?
+    bool occluded(const core::Vec3& origin, const core::Vec3& direction, double tNear, double tFar) const;
+
+    double sceneDiagonal() const { return m_diagonal; }
+
+private:
+    RayScene() = default;
+    struct Impl;
+    std::unique_ptr<Impl> m_impl;
+    double m_diagonal = 0.0;
+};
+
+} // namespace shadowkit::eval

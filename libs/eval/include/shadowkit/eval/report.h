@@ -1,0 +1,39 @@
+// Reports of an evaluation: the JSON file of `shadowkit eval --json` and the per-pixel
+// dump of `--dump` (README, "shadowkit eval").
+#pragma once
+
+#include "shadowkit/core/raster_buffers.h"
+#include "shadowkit/core/result.h"
+#include "shadowkit/eval/metrics.h"
+#include "shadowkit/eval/truth.h"
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace shadowkit::eval {
+
+struct ViewReport {
+    std::string view;
+    std::string technique;
+    std::string scene;   // "forest" or the file
+    uint64_t seed = 0;
+    int width = 0, height = 0;
+    int mapSize = 0;     // texels per side
+    int maps = 1;        // shadow maps in the set-up
+    float biasSlope = 0.0f, biasConstant = 0.0f;
+    std::vector<std::string> fallbacks;
+    Figures figures;
+    double seconds = 0.0; // wall time of this view's evaluation
+};
+
+// {"views": [{view, technique, ..., valid_px, excluded_px, wrong_pct, ...}, ...]}
+std::string reportJson(const std::vector<ViewReport>& views);
+core::Status writeReportJson(const std::vector<ViewReport>& views, const std::filesystem::path& file);
+
+// Writes shadow_term, truth_lit, class, world_position, normal, truth_normal,
+// pixels_per_texel and surface_id as .npy files into `dir` (created if missing).
+core::Status dumpBuffers(const std::filesystem::path& dir, const core::RasterBuffers& raster, const TruthBuffers& truth,
+                         const Comparison& comparison);
+
+} // namespace shadowkit::eval

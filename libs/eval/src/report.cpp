@@ -1,0 +1,75 @@
+#include "shadowkit/eval/report.h"
+
+#include "shadowkit/eval/npy.h"
+
+#include <nlohmann/json.hpp>
+
+#include <fstream>
+
+namespace shadowkit::eval {
+
+std::string reportJson(const std::vector<ViewReport>& views) {
+    nlohmann::json list = nlohmann::json::array();
+    for (const ViewReport& v : views) {
+        const Figures& f = v.figures;
+        list.push_back({
+            {"view", v.view},
+            {"technique", v.technique},
+            {"scene", v.scene},
+            {"seed", v.seed},
+            {"width", v.width},
+            {"height", v.height},
+            {"map_size", v.mapSize},
+            {"maps", v.maps},
+            {"bias_slope", v.biasSlope},
+            {"bias_constant", v.biasConstant},
+            {"fallbacks", v.fallbacks},
+            {"valid_px", f.validPx},
+            {"excluded_px", f.excludedPx},
+            {"wrong_pct", f.wrongPct},
+            {"false_shadow_pct", f.falseShadowPct},
+            {"false_lit_pct", f.falseLitPct},
+            {"undersampled_pct", f.undersampledPct},
+            {"pixels_per_texel_p50", f.pixelsPerTexelP50},
+            {"pixels_per_texel_p99", f.pixelsPerTexelP99},
+            {"seconds", v.seconds},
+        });
+    }
+    return nlohmann::json{{"views", list}}.dump(2) + "\n";
+}
+
+core::Status writeReportJson(const std::vector<ViewReport>& views, const std::filesystem::path& file) {
+    std::ofstream out(file);
+    if (!out) return core::makeError(file.string() + ": cannot open for writing");
+    out << reportJson(views);
+    if (!out) return core::makeError(file.string() + ": write failed");
+    return core::Ok{};
+}
+
+core::Status dumpBuffers(const std::filesystem::path& dir, const core::RasterBuffers& raster, const TruthBuffers& truth,
+                         const Comparison& comparison) {
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    if (ec) return core::makeError(dir.string() + ": cannot create directory (" + ec.message() + ")");
+    const size_t h = static_cast<size_t>(raster.height), w = static_cast<size_t>(raster.width);
+    auto flat = [](const auto& vectors) {
+        std::vector<float> out;
+        for (const auto& v : vectors)
+            for (int k = 0; k < v.length(); ++k) out.push_back(v[k]);
+        return out;
+    };
+    std::vector<uint8_t> classes(comparison.classes.size());
+    for (size_t i = 0; i < classes.size(); ++i) classes[i] = static_cast<uint8_t>(comparison.classes[i]);
+    for (auto status : {writeNpy(dir / "shadow_term.npy", std::span<const float>(raster.shadowTerm), {h, w}),
+                        writeNpy(dir / "truth_lit.npy", std::span<const uint8_t>(truth.lit), {h, w}),
+                        writeNpy(dir / "class.npy", std::span<const uint8_t>(classes), {h, w}),
+                        writeNpy(dir / "world_position.npy", std::span<const float>(flat(truth.wsPosition)), {h, w, 3}),
+                        writeNpy(dir / "normal.npy", std::span<const float>(flat(raster.wsNormal)), {h, w, 3}),
+                        writeNpy(dir / "truth_normal.npy", std::span<const float>(flat(truth.wsNormal)), {h, w, 3}),
+                        writeNpy(dir / "pixels_per_texel.npy", std::span<const float>(comparison.pixelsPerTexel), {h, w}),
+                        writeNpy(dir / "surface_id.npy", std::span<const uint32_t>(raster.surfaceId), {h, w})})
+        if (!status) return status;
+    return core::Ok{};
+}
+
+} // namespace shadowkit::eval

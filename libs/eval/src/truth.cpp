@@ -1,0 +1,67 @@
+#include "shadowkit/eval/truth.h"
+
+#include <tbb/blocked_range2d.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <limits>
+
+namespace shadowkit::eval {
+
+core::Vec3 primaryRayDirection(const core::PerspectiveCamera& camera, int width, int height, int x, int y) {
+    const double ty = std::tan(0.5 * glm::radians(camera.fovYDegrees));
+    const double ndcX = (x + 0.5) / width * 2.0 - 1.0;
+    const double ndcY = 1.0 - (y + 0.5) / height * 2.0;
+    const core::Vec3 forward = glm::normalize(camera.wsDirection);
+    const core::Vec3 right = glm::normalize(glm::cross(forward, camera.wsUp));
+    const core::Vec3 up = glm::cross(right, forward);
+    // View-space direction (ndcX·tx, ndcY·ty, -1): unit length along the view axis.
+    return forward + ndcX * ty * camera.aspect * right + ndcY * ty * up;
+}
+
+TruthBuffers computeTruth(const RayScene& rays, const core::PerspectiveCamera& camera, const core::DirectionalLight& light,
+                          int width, int height, const TruthOptions& options) {
+    TruthBuffers t;
+    t.width = width;
+    t.height = height;
+    const size_t n = static_cast<size_t>(width) * static_cast<size_t>(height);
+    t.surfaceId.assign(n, 0);
+    t.viewDepth.assign(n, 0.0f);
+    t.wsPosition.assign(n, glm::vec3(0.0f));
+    t.wsNormal.assign(n, glm::vec3(0.0f));
+    t.facesLight.assign(n, 0);
+    t.lit.assign(n, 0);
+    const core::Vec3 towardsLight = light.wsTowardsLight();
+    const double offset = options.normalOffsetFraction * std::max(rays.sceneDiagonal(), 1.0);
+
+    // Rows in chunks so progress can be reported between them from this thread.
+    const int chunk = std::max(1, height / 20);
+    for (int y0 = 0; y0 < height; y0 += chunk) {
+        const int y1 = std::min(height, y0 + chunk);
+        tbb::parallel_for(tbb::blocked_range2d<int>(y0, y1, 0, width), [&](const tbb::blocked_range2d<int>& r) {
+            for (int y = r.rows().begin(); y < r.rows().end(); ++y)
+                for (int x = r.cols().begin(); x < r.cols().end(); ++x) {
+                    const size_t i = static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x);
+                    RayHit hit;
+                    const core::Vec3 dir = primaryRayDirection(camera, width, height, x, y);
+                    if (!rays.intersect(camera.wsEye, dir, camera.zNear, camera.zFar, hit)) continue;
+                    const core::Vec3 p = camera.wsEye + hit.t * dir;
+                    t.surfaceId[i] = hit.instance + 1;
+                    t.viewDepth[i] = static_cast<float>(hit.t);
+                    t.wsPosition[i] = glm::vec3(p);
+                    t.wsNormal[i] = glm::vec3(hit.wsGeometricNormal);
+                    const double nDotL = glm::dot(hit.wsGeometricNormal, towardsLight);
+                    if (!(nDotL > 0.0)) continue;
+                    t.facesLight[i] = 1;
+                    const core::Vec3 origin = p + offset * hit.wsGeometricNormal;
+                    t.lit[i] = !rays.occluded(origin, towardsLight, 0.0, std::numeric_limits<double>::infinity());
+                }
+        });
+        if (options.progress) options.progress(double(y1) / height);
+    }
+    return t;
+}
+
+} // namespace shadowkit::eval

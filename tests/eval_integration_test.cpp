@@ -1,0 +1,108 @@
+// Rasterized shadows measured against ray-traced truth, end to end (GL + eval).
+// CTest label `gl`: runs headless on Mesa llvmpipe.
+#include "shadowkit/eval/metrics.h"
+#include "shadowkit/eval/ray_scene.h"
+#include "shadowkit/eval/truth.h"
+#include "shadowkit/gl/context.h"
+#include "shadowkit/gl/renderer.h"
+#include "shadowkit/scene/forest.h"
+#include "shadowkit/scene/mesh_builder.h"
+#include "shadowkit/scene/views.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+
+using namespace shadowkit;
+
+namespace {
+
+class EvalIntegrationTest : public ::testing::Test {
+protected:
+    static void SetUpTestSuite() {
+        auto context = gl::Context::createHeadless();
+        ASSERT_TRUE(context) << context.error();
+        s_context = std::move(context).value().release();
+    }
+    static void TearDownTestSuite() { delete s_context; }
+
+    // Renders and ray-traces one view and returns the figures.
+    static eval::Figures measure(const scene::Scene& s, const core::PerspectiveCamera& cam, const core::DirectionalLight& sun,
+                                 core::Technique technique, const gl::RenderSettings& settings) {
+        auto setup = core::computeShadowSetup({cam, sun, s.wsBounds(), technique});
+        EXPECT_TRUE(setup);
+        auto renderer = gl::Renderer::create(s);
+        EXPECT_TRUE(renderer);
+        auto raster = (*renderer)->renderEvalBuffers(cam, sun, *setup, settings);
+        EXPECT_TRUE(raster) << raster.error();
+        auto rays = eval::RayScene::build(s);
+        EXPECT_TRUE(rays);
+        const eval::TruthBuffers truth = eval::computeTruth(**rays, cam, sun, settings.width, settings.height);
+        auto comparison = eval::compare(*raster, truth);
+        EXPECT_TRUE(comparison);
+        return comparison->figures;
+    }
+    static gl::Context* s_context;
+};
+gl::Context* EvalIntegrationTest::s_context = nullptr;
+
+} // namespace
+
+TEST_F(EvalIntegrationTest, SmallMapScoresWorseThanLargeMapOnTheSameView) {
+    scene::ForestOptions o;
+    o.trees = 300;
+    o.terrainSize = 200;
+    o.terrainResolution = 32;
+    const scene::Scene forest = scene::makeForest(o);
+    auto views = scene::loadViews(scene::dataDirectory() / "views.json");
+    ASSERT_TRUE(views);
+    scene::ResolvedView view = scene::resolveView(*scene::findView(*views, "aerial"), forest);
+    view.camera.zFar = 400;
+    view.camera.aspect = 4.0 / 3.0;
+    gl::RenderSettings settings;
+    settings.width = 200;
+    settings.height = 150;
+    settings.fogDensity = 0.0f;
+
+    for (core::Technique t : {core::Technique::Standard, core::Technique::Focused}) {
+        settings.shadowMapSize = 256;
+        const eval::Figures small = measure(forest, view.camera, view.light, t, settings);
+        settings.shadowMapSize = 2048;
+        const eval::Figures large = measure(forest, view.camera, view.light, t, settings);
+        EXPECT_GT(small.validPx, 5000);
+        EXPECT_GT(small.wrongPct, large.wrongPct) << core::techniqueName(t);
+        EXPECT_GT(small.undersampledPct, large.undersampledPct) << core::techniqueName(t);
+        EXPECT_GT(small.pixelsPerTexelP50, 4.0 * large.pixelsPerTexelP50) << core::techniqueName(t); // 8x fewer texels per side
+    }
+}
+
+TEST_F(EvalIntegrationTest, UnbiasedMapShowsAcneOnALitTiltedPlaneThatSlopeScaledBiasRemoves) {
+    // A single plane tilted 30° about x, lit from 40° above it: everything is lit in truth,
+    // so every shadowed pixel is self-shadowing acne.
+    scene::Scene s;
+    scene::Mesh plane;
+    scene::addBox(plane, glm::mat4(1.0f), {10, 0.01f, 10}, glm::vec3(0.8f));
+    plane.computeBounds();
+    s.meshes = {plane};
+    s.batches = {{0, {glm::rotate(glm::mat4(1.0f), glm::radians(30.0f), glm::vec3(1, 0, 0))}, false}};
+    core::PerspectiveCamera cam;
+    cam.wsEye = {0, 12, 14};
+    cam.wsDirection = -cam.wsEye;
+    cam.aspect = 1.0;
+    cam.zNear = 1.0;
+    cam.zFar = 60;
+    const core::DirectionalLight sun = core::DirectionalLight::fromSunAngles(40, 20).value();
+    gl::RenderSettings settings;
+    settings.width = settings.height = 128;
+    settings.shadowMapSize = 512;
+
+    settings.biasSlope = 0.0f;
+    settings.biasConstant = 0.0f;
+    const eval::Figures unbiased = measure(s, cam, sun, core::Technique::Focused, settings);
+    settings.biasSlope = 2.0f;
+    settings.biasConstant = 1.0f;
+    const eval::Figures biased = measure(s, cam, sun, core::Technique::Focused, settings);
+    ASSERT_GT(unbiased.validPx, 5000);
+    EXPECT_GT(unbiased.falseShadowPct, 5.0);
+    EXPECT_LT(biased.falseShadowPct, 0.1);
+    EXPECT_EQ(biased.falseLitPct, 0.0); // nothing is shadowed in truth
+}
