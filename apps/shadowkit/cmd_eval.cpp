@@ -23,10 +23,8 @@ struct EvalArgs {
     SceneOptions scene;
     ViewOptions view;
     TechniqueOptions technique;
+    MapOptions map;
     std::string views; // "a,b" or "all"; empty: --view
-    int mapSize = 2048;
-    float biasSlope = gl::RenderSettings{}.biasSlope;
-    float biasConstant = gl::RenderSettings{}.biasConstant;
     std::string json, errorMap, aliasingMap, dump;
 };
 
@@ -97,13 +95,9 @@ int runEval(const EvalArgs& args) {
         if (!view) return fail(view.error());
         auto setup = core::computeShadowSetup({view->camera, view->light, sceneData->wsBounds(), *technique});
         if (!setup) return fail(setup.error());
-        gl::RenderSettings settings;
-        settings.width = view->width;
-        settings.height = view->height;
-        settings.shadowMapSize = args.mapSize;
-        settings.biasSlope = args.biasSlope;
-        settings.biasConstant = args.biasConstant;
-        auto raster = (*renderer)->renderEvalBuffers(view->camera, view->light, *setup, settings);
+        auto settings = args.map.settingsFor(*view);
+        if (!settings) return fail(settings.error());
+        auto raster = (*renderer)->renderEvalBuffers(view->camera, view->light, *setup, *settings);
         if (!raster) return fail(raster.error());
 
         // Progress only when the truth takes a while (large images, big scenes).
@@ -127,10 +121,10 @@ int runEval(const EvalArgs& args) {
         report.seed = args.scene.seed;
         report.width = view->width;
         report.height = view->height;
-        report.mapSize = args.mapSize;
+        report.mapSize = settings->shadowMapSize;
         report.maps = static_cast<int>(setup->views.size());
-        report.biasSlope = args.biasSlope;
-        report.biasConstant = args.biasConstant;
+        report.biasSlope = settings->biasSlope;
+        report.biasConstant = settings->biasConstant;
         report.fallbacks = setup->fallbacks;
         report.figures = comparison->figures;
 
@@ -152,7 +146,7 @@ int runEval(const EvalArgs& args) {
         report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         const eval::Figures& f = report.figures;
         fmt::print("{:<14} {:<10} {:>5} {:>9} {:>8} {:>7.2f} {:>8.2f} {:>8.2f} {:>7.2f} {:>7.3f} {:>7.3f} {:>6.1f}\n", name,
-                   report.technique, args.mapSize, f.validPx, f.excludedPx, f.wrongPct, f.falseShadowPct, f.falseLitPct,
+                   report.technique, report.mapSize, f.validPx, f.excludedPx, f.wrongPct, f.falseShadowPct, f.falseLitPct,
                    f.undersampledPct, f.pixelsPerTexelP50, f.pixelsPerTexelP99, report.seconds);
         std::fflush(stdout);
         reports.push_back(std::move(report));
@@ -171,9 +165,7 @@ Command addEvalCommand(CLI::App& app) {
     args->view.addTo(*cmd);
     args->technique.addTo(*cmd);
     cmd->add_option("--views", args->views, "views to evaluate: a,b,... or 'all' (default: --view)");
-    cmd->add_option("--map-size", args->mapSize, "shadow map texels per side")->capture_default_str();
-    cmd->add_option("--bias-slope", args->biasSlope, "slope-scaled depth bias (glPolygonOffset factor)")->capture_default_str();
-    cmd->add_option("--bias-constant", args->biasConstant, "constant depth bias (glPolygonOffset units)")->capture_default_str();
+    args->map.addTo(*cmd);
     cmd->add_option("--json", args->json, "write the figures as JSON {\"views\": [...]}");
     cmd->add_option("--error-map", args->errorMap, "write the error map PNG (one per view: NAME-view.png)");
     cmd->add_option("--aliasing-map", args->aliasingMap, "write the pixels-per-texel heat map PNG");

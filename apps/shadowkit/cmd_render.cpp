@@ -16,9 +16,7 @@ struct RenderArgs {
     SceneOptions scene;
     ViewOptions view;
     TechniqueOptions technique;
-    int mapSize = 2048;
-    float biasSlope = gl::RenderSettings{}.biasSlope;
-    float biasConstant = gl::RenderSettings{}.biasConstant;
+    MapOptions map;
     std::string out = "shadowkit.png";
     std::string shadowMapOut;
 };
@@ -26,8 +24,6 @@ struct RenderArgs {
 int runRender(const RenderArgs& args) {
     auto technique = args.technique.resolve();
     if (!technique) return fail(technique.error());
-    if (args.biasSlope < 0 || args.biasSlope > 100) return fail("--bias-slope: must be in [0, 100]");
-    if (args.biasConstant < 0 || args.biasConstant > 1e6) return fail("--bias-constant: must be in [0, 1e6]");
     auto sceneData = args.scene.load();
     if (!sceneData) return fail(sceneData.error());
     auto view = args.view.resolve(*sceneData);
@@ -42,12 +38,9 @@ int runRender(const RenderArgs& args) {
     if (!context) return fail(context.error());
     auto renderer = gl::Renderer::create(*sceneData);
     if (!renderer) return fail(renderer.error());
-    gl::RenderSettings settings;
-    settings.width = view->width;
-    settings.height = view->height;
-    settings.shadowMapSize = args.mapSize;
-    settings.biasSlope = args.biasSlope;
-    settings.biasConstant = args.biasConstant;
+    auto settingsOr = args.map.settingsFor(*view);
+    if (!settingsOr) return fail(settingsOr.error());
+    const gl::RenderSettings& settings = *settingsOr;
 
     const auto frameStart = std::chrono::steady_clock::now();
     auto stats = (*renderer)->render(view->camera, view->light, *setup, settings);
@@ -80,9 +73,7 @@ Command addRenderCommand(CLI::App& app) {
     args->scene.addTo(*cmd);
     args->view.addTo(*cmd);
     args->technique.addTo(*cmd);
-    cmd->add_option("--map-size", args->mapSize, "shadow map texels per side")->capture_default_str();
-    cmd->add_option("--bias-slope", args->biasSlope, "slope-scaled depth bias (glPolygonOffset factor)")->capture_default_str();
-    cmd->add_option("--bias-constant", args->biasConstant, "constant depth bias (glPolygonOffset units)")->capture_default_str();
+    args->map.addTo(*cmd);
     cmd->add_option("--out", args->out, "output PNG")->capture_default_str();
     cmd->add_option("--shadow-map-out", args->shadowMapOut, "also write the shadow map itself as a PNG");
     return {cmd, [args] { return runRender(*args); }};

@@ -129,6 +129,24 @@ core::Result<scene::ResolvedView> ViewOptions::resolve(const scene::Scene& scene
     return out;
 }
 
+void MapOptions::addTo(CLI::App& cmd) {
+    cmd.add_option("--map-size", mapSize, "shadow map texels per side")->capture_default_str();
+    cmd.add_option("--bias-slope", biasSlope, "slope-scaled depth bias (glPolygonOffset factor)")->capture_default_str();
+    cmd.add_option("--bias-constant", biasConstant, "constant depth bias (glPolygonOffset units)")->capture_default_str();
+}
+
+core::Result<gl::RenderSettings> MapOptions::settingsFor(const scene::ResolvedView& view) const {
+    if (!(biasSlope >= 0 && biasSlope <= 100)) return core::makeError("--bias-slope: must be in [0, 100]");
+    if (!(biasConstant >= 0 && biasConstant <= 1e6)) return core::makeError("--bias-constant: must be in [0, 1e6]");
+    gl::RenderSettings settings;
+    settings.width = view.width;
+    settings.height = view.height;
+    settings.shadowMapSize = mapSize; // range checked by the renderer against the driver's limit
+    settings.biasSlope = biasSlope;
+    settings.biasConstant = biasConstant;
+    return settings;
+}
+
 void TechniqueOptions::addTo(CLI::App& cmd) {
     technique = std::string(core::techniqueName(core::defaultTechnique()));
     cmd.add_option("--technique", technique, "shadow technique: " + core::techniqueNameList())->capture_default_str();

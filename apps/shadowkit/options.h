@@ -5,6 +5,7 @@
 
 #include "shadowkit/core/result.h"
 #include "shadowkit/core/shadow_setup.h"
+#include "shadowkit/gl/renderer.h"
 #include "shadowkit/scene/scene.h"
 #include "shadowkit/scene/views.h"
 
@@ -41,6 +42,17 @@ struct TechniqueOptions {
     std::string technique;
     void addTo(CLI::App& cmd);
     core::Result<core::Technique> resolve() const;
+};
+
+// Shadow-map size and depth bias, shared by render and eval.
+struct MapOptions {
+    int mapSize = 2048;
+    float biasSlope = gl::RenderSettings{}.biasSlope;
+    float biasConstant = gl::RenderSettings{}.biasConstant;
+
+    void addTo(CLI::App& cmd);
+    // Settings for a view's image size; errors name the flag.
+    core::Result<gl::RenderSettings> settingsFor(const scene::ResolvedView& view) const;
 };
 
 // "x,y,z" -> vector; the error names the flag and shows the text.
