@@ -28,7 +28,7 @@ protected:
     // Renders and ray-traces one view and returns the figures.
     static eval::Figures measure(const scene::Scene& s, const core::PerspectiveCamera& cam, const core::DirectionalLight& sun,
                                  core::Technique technique, const gl::RenderSettings& settings) {
-        auto setup = core::computeShadowSetup({cam, sun, s.wsBounds(), technique});
+        auto setup = core::computeShadowSetup({cam, sun, s.wsBounds(), technique, {}});
         EXPECT_TRUE(setup);
         auto renderer = gl::Renderer::create(s);
         EXPECT_TRUE(renderer);
@@ -105,4 +105,25 @@ TEST_F(EvalIntegrationTest, UnbiasedMapShowsAcneOnALitTiltedPlaneThatSlopeScaled
     EXPECT_GT(unbiased.falseShadowPct, 5.0);
     EXPECT_LT(biased.falseShadowPct, 0.1);
     EXPECT_EQ(biased.falseLitPct, 0.0); // nothing is shadowed in truth
+}
+
+TEST_F(EvalIntegrationTest, LispsmBeatsFocusedOnThePerpendicularView) {
+    // Seed 001's ideal case: view perpendicular to the light. Same map size, same view.
+    scene::ForestOptions o;
+    o.trees = 1500;
+    o.terrainSize = 300;
+    o.terrainResolution = 64;
+    const scene::Scene forest = scene::makeForest(o);
+    auto views = scene::loadViews(scene::dataDirectory() / "views.json");
+    ASSERT_TRUE(views);
+    scene::ResolvedView view = scene::resolveView(*scene::findView(*views, "perpendicular"), forest);
+    gl::RenderSettings settings;
+    settings.width = 320;
+    settings.height = 180;
+    settings.shadowMapSize = 1024;
+    const eval::Figures focused = measure(forest, view.camera, view.light, core::Technique::Focused, settings);
+    const eval::Figures lispsm = measure(forest, view.camera, view.light, core::Technique::Lispsm, settings);
+    EXPECT_LT(lispsm.undersampledPct, focused.undersampledPct);
+    EXPECT_LT(lispsm.wrongPct, focused.wrongPct);
+    EXPECT_LT(lispsm.pixelsPerTexelP50, 0.5 * focused.pixelsPerTexelP50);
 }

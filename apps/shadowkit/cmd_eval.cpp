@@ -93,7 +93,9 @@ int runEval(const EvalArgs& args) {
         viewOptions.view = name;
         auto view = viewOptions.resolve(*sceneData);
         if (!view) return fail(view.error());
-        auto setup = core::computeShadowSetup({view->camera, view->light, sceneData->wsBounds(), *technique});
+        auto inputs = args.technique.inputsFor(*view, sceneData->wsBounds());
+        if (!inputs) return fail(inputs.error());
+        auto setup = core::computeShadowSetup(*inputs);
         if (!setup) return fail(setup.error());
         auto settings = args.map.settingsFor(*view);
         if (!settings) return fail(settings.error());

@@ -30,7 +30,9 @@ int runRender(const RenderArgs& args) {
     if (!view) return fail(view.error());
 
     const auto cpuStart = std::chrono::steady_clock::now();
-    auto setup = core::computeShadowSetup({view->camera, view->light, sceneData->wsBounds(), *technique});
+    auto inputs = args.technique.inputsFor(*view, sceneData->wsBounds());
+    if (!inputs) return fail(inputs.error());
+    auto setup = core::computeShadowSetup(*inputs);
     if (!setup) return fail(setup.error());
     const double setupMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - cpuStart).count();
 

@@ -67,7 +67,9 @@ int runSetup(const SetupArgs& args) {
     if (!args.sceneBounds.empty() && args.view.eye.empty()) // place the view's eye over the given ground
         view->camera.wsEye.y += bounds.min.y;
 
-    auto setup = core::computeShadowSetup({view->camera, view->light, bounds, *technique});
+    auto inputs = args.technique.inputsFor(*view, bounds);
+    if (!inputs) return fail(inputs.error());
+    auto setup = core::computeShadowSetup(*inputs);
     if (!setup) return fail(setup.error());
 
     const core::PerspectiveCamera& cam = view->camera;
@@ -88,6 +90,11 @@ int runSetup(const SetupArgs& args) {
                    {"light_from_world", toJson(v.lightFromWorld)},
                    {"clip_from_light", toJson(v.clipFromLight)}};
         if (v.split) jv["split"] = {v.split->x, v.split->y};
+        if (!v.warp.empty()) {
+            json warp = json::object();
+            for (const auto& [name, value] : v.warp) warp[name] = value;
+            jv["warp"] = warp;
+        }
         views.push_back(jv);
     }
     out["views"] = views;

@@ -150,11 +150,46 @@ core::Result<gl::RenderSettings> MapOptions::settingsFor(const scene::ResolvedVi
 void TechniqueOptions::addTo(CLI::App& cmd) {
     technique = std::string(core::techniqueName(core::defaultTechnique()));
     cmd.add_option("--technique", technique, "shadow technique: " + core::techniqueNameList())->capture_default_str();
+    cmd.add_option("--lispsm-formula", lispsmFormula, "LiSPSM n: 'paper' (seed 001 §4.4) or 'scherzer' (seed 000 eq. 1)")
+        ->capture_default_str();
+    cmd.add_option("--lispsm-direction", lispsmDirection, "LiSPSM warp axis: 'cross' (seed 000 eq. 3) or 'middle' (B's middle vector)")
+        ->capture_default_str();
+    cmd.add_option("--lispsm-weight", lispsmWeight, "LiSPSM: multiplies n (> 1 warps less)")->capture_default_str();
+    cmd.add_option("--lispsm-n", lispsmN, "LiSPSM: fixed n in metres instead of the formula");
+    cmd.add_option("--visible-depth", visibleDepth, "near,far view depth actually visible (LiSPSM n only, seed 000 §4.4)");
 }
 
 core::Result<core::Technique> TechniqueOptions::resolve() const {
-    if (auto t = core::parseTechnique(technique)) return *t;
-    return core::makeError(fmt::format("--technique: unknown technique '{}' (known: {})", technique, core::techniqueNameList()));
+    const auto t = core::parseTechnique(technique);
+    if (!t) return core::makeError(fmt::format("--technique: unknown technique '{}' (known: {})", technique, core::techniqueNameList()));
+    if (lispsmFormula != "paper" && lispsmFormula != "scherzer")
+        return core::makeError(fmt::format("--lispsm-formula: expected 'paper' or 'scherzer', got '{}'", lispsmFormula));
+    if (lispsmDirection != "cross" && lispsmDirection != "middle")
+        return core::makeError(fmt::format("--lispsm-direction: expected 'cross' or 'middle', got '{}'", lispsmDirection));
+    if (!(lispsmWeight > 0.0 && std::isfinite(lispsmWeight))) return core::makeError("--lispsm-weight: must be a number > 0");
+    if (lispsmN && !(*lispsmN > 0.0 && std::isfinite(*lispsmN))) return core::makeError("--lispsm-n: must be a number of metres > 0");
+    if (!visibleDepth.empty()) {
+        std::vector<double> v;
+        if (!parseNumbers(visibleDepth, ',', v) || v.size() != 2 || !(v[0] >= 0.0 && v[1] > v[0]))
+            return core::makeError(fmt::format("--visible-depth: expected near,far with 0 <= near < far, got '{}'", visibleDepth));
+    }
+    return *t;
+}
+
+core::Result<core::ShadowSetupInputs> TechniqueOptions::inputsFor(const scene::ResolvedView& view, const core::Aabb& wsBounds) const {
+    auto t = resolve();
+    if (!t) return core::makeError(t.error());
+    core::ShadowSetupInputs in{view.camera, view.light, wsBounds, *t, {}};
+    in.lispsm.formula = lispsmFormula == "paper" ? core::LispsmFormula::Paper : core::LispsmFormula::Scherzer;
+    in.lispsm.direction = lispsmDirection == "middle" ? core::LispsmDirection::MiddleVector : core::LispsmDirection::CrossProduct;
+    in.lispsm.weight = lispsmWeight;
+    in.lispsm.nOverride = lispsmN;
+    if (!visibleDepth.empty()) {
+        std::vector<double> v;
+        parseNumbers(visibleDepth, ',', v); // validated by resolve()
+        in.lispsm.visibleDepth = core::Vec2(v[0], v[1]);
+    }
+    return in;
 }
 
 } // namespace shadowkit::app

@@ -40,8 +40,15 @@ struct ViewOptions {
 
 struct TechniqueOptions {
     std::string technique;
+    std::string lispsmFormula = "scherzer", lispsmDirection = "cross", visibleDepth;
+    double lispsmWeight = 1.0;
+    std::optional<double> lispsmN;
+
     void addTo(CLI::App& cmd);
+    // Checks the technique's flags (cheap: call before loading a scene).
     core::Result<core::Technique> resolve() const;
+    // Everything computeShadowSetup needs for this view and scene box.
+    core::Result<core::ShadowSetupInputs> inputsFor(const scene::ResolvedView& view, const core::Aabb& wsBounds) const;
 };
 
 // Shadow-map size and depth bias, shared by render and eval.

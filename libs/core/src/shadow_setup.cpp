@@ -1,5 +1,6 @@
 #include "shadowkit/core/shadow_setup.h"
 
+#include "shadowkit/core/lispsm.h"
 #include "shadowkit/core/uniform_shadow_map.h"
 
 #include <array>
@@ -11,6 +12,7 @@ namespace {
 constexpr std::array kTechniques = {
     TechniqueInfo{Technique::Standard, "standard", "orthographic map of the whole scene box (view independent)"},
     TechniqueInfo{Technique::Focused, "focused", "uniform map fitted to the focus body B (view frustum ∩ scene, swept to the light)"},
+    TechniqueInfo{Technique::Lispsm, "lispsm", "light space perspective shadow map: B warped along the view, n from seed 000/001"},
 };
 
 bool isFinite(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
@@ -53,6 +55,15 @@ Result<ShadowSetup> computeShadowSetup(const ShadowSetupInputs& inputs) {
     switch (inputs.technique) {
     case Technique::Standard: return computeStandardShadowMap(inputs);
     case Technique::Focused: return computeFocusedShadowMap(inputs);
+    case Technique::Lispsm: {
+        const LispsmOptions& o = inputs.lispsm;
+        if (!(o.weight > 0.0) || !std::isfinite(o.weight)) return makeError("lispsm weight: must be a finite number > 0");
+        if (o.nOverride && !(*o.nOverride > 0.0 && std::isfinite(*o.nOverride)))
+            return makeError("lispsm n: must be a finite number of metres > 0");
+        if (o.visibleDepth && !(o.visibleDepth->x >= 0.0 && o.visibleDepth->y > o.visibleDepth->x))
+            return makeError("visible depth: must be [near, far] with 0 <= near < far");
+        return computeLispsm(inputs);
+    }
     }
     return makeError("technique: unknown");
 }

@@ -88,10 +88,11 @@ Vec3 pointInFrustum(const PerspectiveCamera& cam, ConfigGenerator& gen) {
 
 TEST(ShadowSetupTest, EveryPointOfBLiesInsideTheClipCubeForTenThousandConfigurations) {
     ConfigGenerator gen(20261122);
-    int emptyBodies = 0, parallelFallbacks = 0;
+    int emptyBodies = 0, parallelFallbacks = 0, warped = 0;
     for (int i = 0; i < 10000; ++i) {
         ShadowSetupInputs in = gen.next();
-        for (Technique t : {Technique::Standard, Technique::Focused}) {
+        for (const TechniqueInfo& info : allTechniques()) {
+            const Technique t = info.technique;
             in.technique = t;
             const Result<ShadowSetup> setup = computeShadowSetup(in);
             ASSERT_TRUE(setup) << "config " << i << ": " << setup.error();
@@ -107,7 +108,12 @@ TEST(ShadowSetupTest, EveryPointOfBLiesInsideTheClipCubeForTenThousandConfigurat
             } else {
                 mustFit = setup->body.vertices();
             }
-            for (const Vec3& p : mustFit) ASSERT_LE(outsideClipCube(view.clipFromWorld, p), 1e-6) << "config " << i;
+            for (const Vec3& p : mustFit) {
+                // No point behind a projection centre (w > 0), none outside the clip cube.
+                ASSERT_GT((view.clipFromWorld * Vec4(p, 1.0)).w, 0.0) << info.name << ", config " << i;
+                ASSERT_LE(outsideClipCube(view.clipFromWorld, p), 1e-6) << info.name << ", config " << i;
+            }
+            warped += t == Technique::Lispsm && view.clipFromWorld[3][3] != 1.0; // perspective, not affine
 
             if (t == Technique::Focused) {
                 emptyBodies += setup->body.isEmpty();
@@ -118,6 +124,7 @@ TEST(ShadowSetupTest, EveryPointOfBLiesInsideTheClipCubeForTenThousandConfigurat
     // The generator must actually exercise both degenerate paths.
     EXPECT_GT(emptyBodies, 0);
     EXPECT_GT(parallelFallbacks, 0);
+    EXPECT_GT(warped, 4000); // LiSPSM set-ups really warp (the others: empty B, near-parallel views)
 }
 
 TEST(ShadowSetupTest, FocusBodyContainsTheVisibleSceneAndEverythingBetweenItAndTheLight) {

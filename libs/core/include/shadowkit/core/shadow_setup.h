@@ -10,6 +10,7 @@
 
 #include <optional>
 #include <span>
+#include <utility>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -19,6 +20,7 @@ namespace shadowkit::core {
 enum class Technique {
     Standard, // orthographic fit of the whole scene box; independent of the view
     Focused,  // uniform (orthographic) fit of the focus body B
+    Lispsm,   // light space perspective shadow map (seed 001) with Scherzer's improvements (seed 000)
 };
 
 struct TechniqueInfo {
@@ -30,17 +32,42 @@ std::span<const TechniqueInfo> allTechniques();
 std::string_view techniqueName(Technique technique);
 std::optional<Technique> parseTechnique(std::string_view name);
 // The best technique implemented: what `shadowkit render` uses unless told otherwise.
-constexpr Technique defaultTechnique() { return Technique::Focused; }
+constexpr Technique defaultTechnique() { return Technique::Lispsm; }
 // "standard, focused": for error messages and help.
 std::string techniqueNameList();
 
 enum class ClipDepth { ZeroToOne, MinusOneToOne };
+
+// LiSPSM's choice of the free parameter n (seed 001 §3.5, §4.4; seed 000 §4.4).
+enum class LispsmFormula {
+    // Seed 001 §4.4: n = (z0 + √(z0 z1)) / sin γ with z0 = z_n, z1 = z_n + d sin γ,
+    // d the extent of B along the warp axis (the Δz = (f − n) sin γ refinement).
+    Paper,
+    // Seed 000 eq. 1: n = (z_n + √(z_n (z_n + Δz))) / sin γ with Δz the depth extent of B
+    // along the warp axis, measured from visible depth bounds when the caller has them.
+    Scherzer,
+};
+enum class LispsmDirection {
+    CrossProduct, // V_P = (l ⊗ v) ⊗ l: the view direction made perpendicular to the light (seed 000 eq. 3)
+    MiddleVector, // V_P = Σ (B_i − eye), made perpendicular to the light (seed 000 §4.4)
+};
+
+struct LispsmOptions {
+    LispsmFormula formula = LispsmFormula::Scherzer;
+    LispsmDirection direction = LispsmDirection::CrossProduct;
+    double weight = 1.0;               // multiplies the chosen n; (0, inf)
+    std::optional<double> nOverride;   // a fixed n in metres (> 0); the formula is then skipped
+    // View-depth bounds of what is actually visible (e.g. a depth-buffer min/max
+    // reduction): narrow z_n and Δz for n only, never B (seed 000 §4.4).
+    std::optional<Vec2> visibleDepth;
+};
 
 struct ShadowSetupInputs {
     PerspectiveCamera camera;
     DirectionalLight light;
     Aabb wsSceneBounds; // every caster and receiver lies inside
     Technique technique = Technique::Focused;
+    LispsmOptions lispsm;
 };
 
 struct ShadowView {
@@ -48,6 +75,8 @@ struct ShadowView {
     Mat4 clipFromLight{1.0};
     Mat4 clipFromWorld{1.0}; // clipFromLight * lightFromWorld
     std::optional<Vec2> split; // [near, far] view depth range, for cascades
+    // Warp parameters of warped techniques, in order (e.g. LiSPSM: n, gamma_degrees, ...).
+    std::vector<std::pair<std::string, double>> warp;
 };
 
 struct ShadowSetup {

@@ -1,0 +1,144 @@
+#include "shadowkit/core/lispsm.h"
+#include "shadowkit/core/perspective_aliasing.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace shadowkit::core;
+
+namespace {
+
+// A level camera in the middle of a large scene; the sun at angle gamma from the view
+// direction, in the vertical plane of the view.
+ShadowSetupInputs levelView(double gammaDegrees, LispsmFormula formula = LispsmFormula::Paper) {
+    ShadowSetupInputs in;
+    in.wsSceneBounds = Aabb::fromMinMax(Vec3(-2000, -50, -2000), Vec3(2000, 50, 2000));
+    in.camera.wsEye = Vec3(0, 0, 0);
+    in.camera.wsDirection = Vec3(0, 0, -1);
+    in.camera.wsUp = Vec3(0, 1, 0);
+    in.camera.zNear = 1;
+    in.camera.zFar = 100;
+    in.camera.fovYDegrees = 40;
+    in.camera.aspect = 1.0;
+    const double g = glm::radians(gammaDegrees);
+    in.light = DirectionalLight{Vec3(0, -std::sin(g), -std::cos(g))}; // angle g from (0,0,-1)
+    in.technique = Technique::Lispsm;
+    in.lispsm.formula = formula;
+    return in;
+}
+
+double warpValue(const ShadowSetup& s, const std::string& name) {
+    for (const auto& [k, v] : s.views[0].warp)
+        if (k == name) return v;
+    return NAN;
+}
+
+} // namespace
+
+TEST(LispsmTest, NEqualsTheClosedFormWhenViewIsPerpendicularToLight) {
+    // B is the frustum swept upwards: its extent along the view is exactly z_f − z_n, so
+    // both formulas give seed 001's n_opt = z_n + √(z_n z_f) = 11.
+    for (LispsmFormula f : {LispsmFormula::Paper, LispsmFormula::Scherzer}) {
+        const auto setup = computeShadowSetup(levelView(90, f));
+        ASSERT_TRUE(setup);
+        EXPECT_NEAR(warpValue(*setup, "d"), 99.0, 1e-6);
+        EXPECT_NEAR(warpValue(*setup, "n"), lispsmOptimalN(1, 100), 1e-6);
+        EXPECT_EQ(warpValue(*setup, "uniform"), 0.0);
+    }
+}
+
+TEST(LispsmTest, NGrowsWithoutBoundAndConvergesToUniformAsGammaGoesToZero) {
+    double previous = 0.0;
+    bool reachedUniform = false;
+    for (double gamma : {90.0, 60.0, 30.0, 10.0, 3.0, 1.0, 0.3, 0.1, 0.03, 0.01, 0.001, 0.0}) {
+        const auto setup = computeShadowSetup(levelView(gamma));
+        ASSERT_TRUE(setup) << gamma;
+        const Mat4& m = setup->views[0].clipFromWorld;
+        for (int c = 0; c < 4; ++c)
+            for (int r = 0; r < 4; ++r) ASSERT_TRUE(std::isfinite(m[c][r])) << "gamma " << gamma;
+        if (warpValue(*setup, "uniform") == 1.0) {
+            reachedUniform = true;
+            // The same matrix as the focused map: LiSPSM's limit is uniform shadow mapping.
+            ShadowSetupInputs focused = levelView(gamma);
+            focused.technique = Technique::Focused;
+            const Mat4 u = computeShadowSetup(focused)->views[0].clipFromWorld;
+            for (int c = 0; c < 4; ++c)
+                for (int r = 0; r < 4; ++r) EXPECT_NEAR(m[c][r], u[c][r], 1e-9) << "gamma " << gamma;
+            continue;
+        }
+        const double n = warpValue(*setup, "n");
+        EXPECT_GT(n, previous) << "gamma " << gamma;
+        previous = n;
+    }
+    EXPECT_TRUE(reachedUniform);
+    EXPECT_GT(previous, 1000.0 * 10.0); // n was already huge before the switch
+}
+
+TEST(LispsmTest, WarpIsContinuousAtTheSwitchToUniform) {
+    // Just below the switch the warped map must already be (nearly) the uniform one: compare
+    // where a point in the middle of the view lands in the map.
+    const Vec3 probe(3, -20, -50);
+    double gamma = 1.0;
+    ShadowSetup setup;
+    for (; gamma > 1e-6; gamma *= 0.8) {
+        auto s = computeShadowSetup(levelView(gamma));
+        if (warpValue(*s, "uniform") == 1.0) break;
+        setup = *s;
+    }
+    ShadowSetupInputs focused = levelView(gamma);
+    focused.technique = Technique::Focused;
+    const Mat4 u = computeShadowSetup(focused)->views[0].clipFromWorld;
+    const Vec4 a = setup.views[0].clipFromWorld * Vec4(probe, 1), b = u * Vec4(probe, 1);
+    EXPECT_NEAR(a.x / a.w, b.x / b.w, 0.01);
+    EXPECT_NEAR(a.y / a.w, b.y / b.w, 0.01);
+}
+
+TEST(LispsmTest, NearTexelsGrowAtTheExpenseOfFarOnes) {
+    // Texel density along the view: the warped map gives the near end more of the map than
+    // the uniform one does.
+    const auto warped = computeShadowSetup(levelView(90));
+    ShadowSetupInputs in = levelView(90);
+    in.technique = Technique::Focused;
+    const auto uniform = computeShadowSetup(in);
+    auto mapY = [](const ShadowSetup& s, double z) {
+        const Vec4 c = s.views[0].clipFromWorld * Vec4(0, -10, -z, 1);
+        return c.y / c.w;
+    };
+    const double warpedNear = std::abs(mapY(*warped, 2) - mapY(*warped, 1));
+    const double uniformNear = std::abs(mapY(*uniform, 2) - mapY(*uniform, 1));
+    EXPECT_GT(warpedNear, 3.0 * uniformNear);
+}
+
+TEST(LispsmTest, WeightOverrideAndVisibleDepthChangeN) {
+    ShadowSetupInputs in = levelView(90, LispsmFormula::Scherzer);
+    const double base = warpValue(*computeShadowSetup(in), "n");
+    in.lispsm.weight = 2.0;
+    EXPECT_NEAR(warpValue(*computeShadowSetup(in), "n"), 2.0 * base, 1e-9);
+    in.lispsm.weight = 1.0;
+    in.lispsm.nOverride = 42.0;
+    EXPECT_EQ(warpValue(*computeShadowSetup(in), "n"), 42.0);
+    in.lispsm.nOverride.reset();
+    // Only the first 20 m are visible: Δz shrinks, so n shrinks; B stays the same.
+    in.lispsm.visibleDepth = Vec2(1, 20);
+    const auto visible = computeShadowSetup(in);
+    EXPECT_NEAR(warpValue(*visible, "n"), 1 + std::sqrt(1.0 * 20.0), 1e-6);
+    EXPECT_NEAR(warpValue(*visible, "d"), 99.0, 1e-6);
+    in.lispsm.weight = 0.0;
+    EXPECT_FALSE(computeShadowSetup(in));
+}
+
+TEST(LispsmTest, MiddleVectorFollowsTheBodyWhenTheViewLooksDown) {
+    // Looking steeply down with the sun overhead-ish: both directions are defined and the
+    // set-up stays valid; the middle vector points where B extends.
+    ShadowSetupInputs in = levelView(60);
+    in.camera.wsDirection = Vec3(0, -1, -0.3);
+    in.lispsm.direction = LispsmDirection::MiddleVector;
+    const auto setup = computeShadowSetup(in);
+    ASSERT_TRUE(setup);
+    for (const Vec3& p : setup->body.vertices()) {
+        const Vec4 c = setup->views[0].clipFromWorld * Vec4(p, 1);
+        EXPECT_GT(c.w, 0.0);
+        EXPECT_LE(std::abs(c.x / c.w), 1.0 + 1e-9);
+    }
+}
