@@ -17,7 +17,7 @@ struct SetupArgs {
     SceneOptions scene;
     ViewOptions view;
     TechniqueOptions technique;
-    std::string sceneBounds;
+    BoundsOptions bounds;
 };
 
 json toJson(const core::Vec3& v) { return json::array({v.x, v.y, v.z}); }
@@ -28,44 +28,13 @@ json toJson(const core::Mat4& m) {
     return a;
 }
 
-core::Result<core::Aabb> parseBounds(const std::string& text) {
-    const auto comma = [&](size_t n) {
-        size_t pos = 0;
-        for (size_t i = 0; i < n && pos != std::string::npos; ++i) pos = text.find(',', pos + (i ? 1 : 0));
-        return pos;
-    };
-    const size_t third = comma(3);
-    if (third == std::string::npos)
-        return core::makeError(fmt::format("--scene-bounds: expected minx,miny,minz,maxx,maxy,maxz, got '{}'", text));
-    auto lo = parseVec3("--scene-bounds", text.substr(0, third));
-    auto hi = parseVec3("--scene-bounds", text.substr(third + 1));
-    if (!lo || !hi) return core::makeError(fmt::format("--scene-bounds: expected minx,miny,minz,maxx,maxy,maxz, got '{}'", text));
-    if (lo->x > hi->x || lo->y > hi->y || lo->z > hi->z)
-        return core::makeError("--scene-bounds: min must not exceed max on any axis");
-    return core::Aabb::fromMinMax(*lo, *hi);
-}
-
 int runSetup(const SetupArgs& args) {
     auto technique = args.technique.resolve();
     if (!technique) return fail(technique.error());
-    // The view needs ground heights: the scene, or for bare bounds an empty scene whose
-    // ground is the bottom of the bounds.
-    scene::Scene sceneData;
-    core::Aabb bounds;
-    if (!args.sceneBounds.empty()) {
-        auto b = parseBounds(args.sceneBounds);
-        if (!b) return fail(b.error());
-        bounds = *b;
-    } else {
-        auto loaded = args.scene.load(false);
-        if (!loaded) return fail(loaded.error());
-        sceneData = std::move(loaded).value();
-        bounds = sceneData.wsBounds();
-    }
-    auto view = args.view.resolve(sceneData);
-    if (!view) return fail(view.error());
-    if (!args.sceneBounds.empty() && args.view.eye.empty()) // place the view's eye over the given ground
-        view->camera.wsEye.y += bounds.min.y;
+    auto bounded = args.bounds.resolve(args.scene, args.view);
+    if (!bounded) return fail(bounded.error());
+    const core::Aabb& bounds = bounded->wsBounds;
+    const scene::ResolvedView* view = &bounded->view;
 
     auto inputs = args.technique.inputsFor(*view, bounds);
     if (!inputs) return fail(inputs.error());
@@ -114,7 +83,7 @@ Command addSetupCommand(CLI::App& app) {
     args->scene.addTo(*cmd);
     args->view.addTo(*cmd);
     args->technique.addTo(*cmd);
-    cmd->add_option("--scene-bounds", args->sceneBounds, "scene box minx,miny,minz,maxx,maxy,maxz instead of a scene");
+    args->bounds.addTo(*cmd);
     return {cmd, [args] { return runSetup(*args); }};
 }
 

@@ -17,6 +17,7 @@ Command addRenderCommand(CLI::App& app);
 Command addSetupCommand(CLI::App& app);
 Command addExportCommand(CLI::App& app);
 Command addEvalCommand(CLI::App& app);
+Command addAnalyzeCommand(CLI::App& app);
 
 // Prints "shadowkit: error: <message>" (one line) to stderr and returns 1.
 int fail(const std::string& message);

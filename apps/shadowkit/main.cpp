@@ -11,6 +11,7 @@ int main(int argc, char** argv) {
     const std::vector<shadowkit::app::Command> commands = {
         shadowkit::app::addRenderCommand(app),
         shadowkit::app::addEvalCommand(app),
+        shadowkit::app::addAnalyzeCommand(app),
         shadowkit::app::addSetupCommand(app),
         shadowkit::app::addExportCommand(app),
     };

@@ -129,6 +129,32 @@ core::Result<scene::ResolvedView> ViewOptions::resolve(const scene::Scene& scene
     return out;
 }
 
+void BoundsOptions::addTo(CLI::App& cmd) {
+    cmd.add_option("--scene-bounds", sceneBounds, "scene box minx,miny,minz,maxx,maxy,maxz instead of a scene");
+}
+
+core::Result<BoundedView> BoundsOptions::resolve(const SceneOptions& scene, const ViewOptions& view) const {
+    BoundedView out;
+    scene::Scene sceneData; // empty with bare bounds: its ground is then y = 0, moved below
+    if (!sceneBounds.empty()) {
+        std::vector<double> v;
+        if (!parseNumbers(sceneBounds, ',', v) || v.size() != 6)
+            return core::makeError(fmt::format("--scene-bounds: expected minx,miny,minz,maxx,maxy,maxz, got '{}'", sceneBounds));
+        if (v[0] > v[3] || v[1] > v[4] || v[2] > v[5]) return core::makeError("--scene-bounds: min must not exceed max on any axis");
+        out.wsBounds = core::Aabb::fromMinMax({v[0], v[1], v[2]}, {v[3], v[4], v[5]});
+    } else {
+        auto loaded = scene.load(false);
+        if (!loaded) return core::makeError(loaded.error());
+        sceneData = std::move(loaded).value();
+        out.wsBounds = sceneData.wsBounds();
+    }
+    auto resolved = view.resolve(sceneData);
+    if (!resolved) return core::makeError(resolved.error());
+    out.view = *resolved;
+    if (!sceneBounds.empty() && view.eye.empty()) out.view.camera.wsEye.y += out.wsBounds.min.y;
+    return out;
+}
+
 void MapOptions::addTo(CLI::App& cmd) {
     cmd.add_option("--map-size", mapSize, "shadow map texels per side")->capture_default_str();
     cmd.add_option("--bias-slope", biasSlope, "slope-scaled depth bias (glPolygonOffset factor)")->capture_default_str();

@@ -51,6 +51,18 @@ struct TechniqueOptions {
     core::Result<core::ShadowSetupInputs> inputsFor(const scene::ResolvedView& view, const core::Aabb& wsBounds) const;
 };
 
+// A view over a scene, or over bare bounds given by --scene-bounds (setup, analyze).
+struct BoundedView {
+    core::Aabb wsBounds;
+    scene::ResolvedView view;
+};
+struct BoundsOptions {
+    std::string sceneBounds; // "minx,miny,minz,maxx,maxy,maxz"
+    void addTo(CLI::App& cmd);
+    // With bare bounds, the ground is their bottom: the view's eye height is above it.
+    core::Result<BoundedView> resolve(const SceneOptions& scene, const ViewOptions& view) const;
+};
+
 // Shadow-map size and depth bias, shared by render and eval.
 struct MapOptions {
     int mapSize = 2048;

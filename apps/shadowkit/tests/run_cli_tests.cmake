@@ -72,6 +72,26 @@ else()
   endif()
 endif()
 
+# analyze reproduces seed 001 Figure 6 and writes its CSV and plot.
+execute_process(COMMAND ${SHADOWKIT} analyze --json --scene-bounds -512,0,-512,512,30,512 --csv "${WORK}/a.csv"
+                        --plot "${WORK}/a.png" RESULT_VARIABLE rc OUTPUT_VARIABLE json ERROR_VARIABLE err)
+if(NOT rc EQUAL 0 OR NOT EXISTS "${WORK}/a.csv" OR NOT EXISTS "${WORK}/a.png")
+  message(SEND_ERROR "analyze: failed or wrote no files: ${err}")
+else()
+  string(JSON umax GET "${json}" uniform max)
+  string(JSON uz GET "${json}" uniform argmax_z)
+  string(JSON pz GET "${json}" psm argmax_z)
+  string(JSON ln GET "${json}" lispsm n)
+  string(JSON lmax GET "${json}" lispsm max)
+  if(NOT umax EQUAL 99 OR NOT uz EQUAL 1 OR NOT pz EQUAL 100 OR NOT ln EQUAL 11)
+    message(SEND_ERROR "analyze: Figure 6 values wrong: ${json}")
+  endif()
+  if(lmax LESS 9.899 OR lmax GREATER 9.901)
+    message(SEND_ERROR "analyze: LiSPSM max ${lmax}, expected 9.9")
+  endif()
+endif()
+check_fails(analyze-bad-range "--zn" analyze --zn 10 --zf 5)
+
 if(WITH_GL)
   # render and export write their files.
   execute_process(COMMAND ${SHADOWKIT} render ${small} --size 64x48 --map-size 256 --out "${WORK}/r.png"

@@ -6,6 +6,7 @@
 
 #include "shadowkit/core/conventions.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace shadowkit::core {
@@ -15,6 +16,15 @@ double perspectiveAliasing(double z, double zNear, double zFar, double n) {
     if (std::isinf(n)) return depth / z; // lim n→∞ of (z − z_n + n)² / (n (n + depth)) = 1
     const double zp = z - zNear + n;     // z' in the paper: distance from the projection centre
     return zp * zp / z * depth / (n * (n + depth));
+}
+
+double predictedMaxAliasing(double zNear, double zFar, double d, double sinGamma, double n) {
+    auto at = [&](double z) {
+        if (std::isinf(n)) return d / (z * sinGamma);
+        const double zp = (z - zNear) * sinGamma + n;
+        return zp * zp * d / (z * n * (n + d) * sinGamma);
+    };
+    return std::max(at(zNear), at(zFar));
 }
 
 double lispsmOptimalN(double zNear, double zFar) { return zNear + std::sqrt(zNear * zFar); }

@@ -37,3 +37,10 @@ TEST(PerspectiveAliasingTest, LispsmOptimumIsElevenWithEqualPeaksOf9Point9) {
 TEST(PerspectiveAliasingTest, LargeNConvergesToUniformWithoutOverflow) {
     EXPECT_NEAR(perspectiveAliasing(3, 1, 100, 1e12), perspectiveAliasing(3, 1, 100, kUniformN), 1e-6);
 }
+
+TEST(PerspectiveAliasingTest, GeneralPredictionReducesToEquationThreeAtNinetyDegrees) {
+    for (double n : {1.0, 11.0, 40.0, kUniformN})
+        EXPECT_NEAR(predictedMaxAliasing(1, 100, 99, 1.0, n), sampleAliasing(1, 100, n).max, 1e-9) << n;
+    // Tilted towards the light, the same n leaves more error than at 90°.
+    EXPECT_GT(predictedMaxAliasing(1, 100, 99, 0.5, 11.0), predictedMaxAliasing(1, 100, 99, 1.0, 11.0));
+}

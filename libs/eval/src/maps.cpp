@@ -1,5 +1,7 @@
 #include "shadowkit/eval/maps.h"
 
+#include "shadowkit/eval/bitmap_font.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -26,31 +28,6 @@ std::array<uint8_t, 3> ramp(double t) {
 
 constexpr double kLog2Min = -6.0, kLog2Max = 6.0; // 1/64 .. 64 pixels per texel
 
-// 3x5 pixel glyphs for the colour-bar labels: each row is 3 bits, top row first.
-int glyphRows(char c, int row) {
-    static constexpr int digits[10][5] = {{7, 5, 5, 5, 7}, {2, 6, 2, 2, 7}, {7, 1, 7, 4, 7}, {7, 1, 7, 1, 7}, {5, 5, 7, 1, 1},
-                                          {7, 4, 7, 1, 7}, {7, 4, 7, 5, 7}, {7, 1, 1, 1, 1}, {7, 5, 7, 5, 7}, {7, 5, 7, 1, 7}};
-    static constexpr int slash[5] = {1, 1, 2, 4, 4};
-    if (c >= '0' && c <= '9') return digits[c - '0'][row];
-    if (c == '/') return slash[row];
-    return 0;
-}
-
-void drawText(scene::Image& image, int x, int y, const std::string& text, int scale) {
-    static constexpr uint8_t white[3] = {235, 235, 235};
-    for (char c : text) {
-        for (int row = 0; row < 5; ++row)
-            for (int col = 0; col < 3; ++col)
-                if (glyphRows(c, row) & (4 >> col))
-                    for (int sy = 0; sy < scale; ++sy)
-                        for (int sx = 0; sx < scale; ++sx) {
-                            const int px = x + col * scale + sx, py = y + row * scale + sy;
-                            if (px >= 0 && py >= 0 && px < image.width && py < image.height) put(image, px, py, white);
-                        }
-        x += 4 * scale;
-    }
-}
-
 } // namespace
 
 scene::Image errorMapImage(const Comparison& comparison, int width, int height) {
@@ -64,8 +41,8 @@ scene::Image errorMapImage(const Comparison& comparison, int width, int height) 
 }
 
 scene::Image aliasingMapImage(const Comparison& comparison, int width, int height) {
-    const int scale = std::max(1, width / 400); // label size
-    const int barHeight = 6 * scale + 6 * scale + 8;
+    const int scale = std::max(1, width / 640); // label size
+    const int barHeight = 6 * scale + (kGlyphHeight + 4) * scale + 6;
     scene::Image image(width, height + barHeight);
     static constexpr uint8_t black[3] = {0, 0, 0};
     for (int y = 0; y < height; ++y)
@@ -93,8 +70,8 @@ scene::Image aliasingMapImage(const Comparison& comparison, int width, int heigh
         static constexpr uint8_t white[3] = {255, 255, 255};
         for (int y = barTop; y < barBottom + 2 * scale; ++y)
             for (int w = 0; w < (k == 2 ? 2 * scale : scale); ++w) put(image, std::min(width - 1, x + w), y, white);
-        const int textWidth = static_cast<int>(std::string(labels[k]).size()) * 4 * scale;
-        drawText(image, std::clamp(x - textWidth / 2, 0, width - textWidth), barBottom + 3 * scale, labels[k], scale);
+        const int labelWidth = textWidth(labels[k], scale);
+        drawText(image, std::clamp(x - labelWidth / 2, 0, width - labelWidth), barBottom + 3 * scale, labels[k], white, scale);
     }
     return image;
 }

@@ -27,6 +27,13 @@ struct AliasingCurve {
 // maximum is taken from the closed form at the ends, where the convex curve peaks.
 AliasingCurve sampleAliasing(double zNear, double zFar, double n, int samples = 200);
 
+// The same along the view axis for a view at angle γ to the light (seed 001 §4.4, Figure 7):
+// a point at view depth z sits u = (z − z_n) sin γ along the warp axis, so
+//   dp/ds = (u + n)² d / (z n (n + d) sin γ),   d = extent of B along the warp axis,
+// which is equation (3) at γ = 90° with d = z_f − z_n. The curve is convex in z (a z + b +
+// c / z), so its maximum over [z_n, z_f] is at an end; this returns that maximum.
+double predictedMaxAliasing(double zNear, double zFar, double d, double sinGamma, double n);
+
 inline constexpr double kUniformN = std::numeric_limits<double>::infinity();
 
 } // namespace shadowkit::core
