@@ -1,6 +1,7 @@
 #include "shadowkit/core/shadow_setup.h"
 
 #include "shadowkit/core/lispsm.h"
+#include "shadowkit/core/psm.h"
 #include "shadowkit/core/uniform_shadow_map.h"
 
 #include <array>
@@ -12,6 +13,7 @@ namespace {
 constexpr std::array kTechniques = {
     TechniqueInfo{Technique::Standard, "standard", "orthographic map of the whole scene box (view independent)"},
     TechniqueInfo{Technique::Focused, "focused", "uniform map fitted to the focus body B (view frustum ∩ scene, swept to the light)"},
+    TechniqueInfo{Technique::Psm, "psm", "perspective shadow map: taken in the camera's post-perspective space"},
     TechniqueInfo{Technique::Lispsm, "lispsm", "light space perspective shadow map: B warped along the view, n from seed 000/001"},
 };
 
@@ -55,6 +57,7 @@ Result<ShadowSetup> computeShadowSetup(const ShadowSetupInputs& inputs) {
     switch (inputs.technique) {
     case Technique::Standard: return computeStandardShadowMap(inputs);
     case Technique::Focused: return computeFocusedShadowMap(inputs);
+    case Technique::Psm: return computePsm(inputs);
     case Technique::Lispsm: {
         const LispsmOptions& o = inputs.lispsm;
         if (!(o.weight > 0.0) || !std::isfinite(o.weight)) return makeError("lispsm weight: must be a finite number > 0");

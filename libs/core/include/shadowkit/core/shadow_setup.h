@@ -21,6 +21,7 @@ enum class Technique {
     Standard, // orthographic fit of the whole scene box; independent of the view
     Focused,  // uniform (orthographic) fit of the focus body B
     Lispsm,   // light space perspective shadow map (seed 001) with Scherzer's improvements (seed 000)
+    Psm,      // perspective shadow map (Stamminger & Drettakis 2002): the map taken in post-perspective space
 };
 
 struct TechniqueInfo {
