@@ -2,7 +2,10 @@
 # (third-party headers come in as SYSTEM includes through their imported targets).
 function(sk_project_warnings target)
   if(CMAKE_CXX_COMPILER_ID MATCHES "GNU|Clang")
-    target_compile_options(${target} PRIVATE -Wall -Wextra -Wshadow -Wconversion -Wno-sign-conversion)
+    # -Wno-missing-field-initializers: options structs have default member initializers,
+    # and leaving fields out of a designated initializer is how callers ask for them.
+    target_compile_options(${target} PRIVATE -Wall -Wextra -Wshadow -Wconversion -Wno-sign-conversion
+                                             -Wno-missing-field-initializers)
   elseif(MSVC)
     target_compile_options(${target} PRIVATE /W4)
   endif()

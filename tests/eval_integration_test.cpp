@@ -28,7 +28,7 @@ protected:
     // Renders and ray-traces one view and returns the figures.
     static eval::Figures measure(const scene::Scene& s, const core::PerspectiveCamera& cam, const core::DirectionalLight& sun,
                                  core::Technique technique, const gl::RenderSettings& settings) {
-        auto setup = core::computeShadowSetup({cam, sun, s.wsBounds(), technique, {}});
+        auto setup = core::computeShadowSetup({.camera = cam, .light = sun, .wsSceneBounds = s.wsBounds(), .technique = technique});
         EXPECT_TRUE(setup);
         auto renderer = gl::Renderer::create(s);
         EXPECT_TRUE(renderer);

@@ -53,11 +53,14 @@ int runSetup(const SetupArgs& args) {
     };
     out["clip_depth"] = setup->clipDepth == core::ClipDepth::ZeroToOne ? "zero_to_one" : "minus_one_to_one";
     out["depth_clamp"] = setup->depthClamp;
+    out["depth_layout"] = setup->depthLayout == core::DepthLayout::Linear ? "linear" : "hyperbolic";
     json views = json::array();
     for (const core::ShadowView& v : setup->views) {
         json jv = {{"clip_from_world", toJson(v.clipFromWorld)},
                    {"light_from_world", toJson(v.lightFromWorld)},
-                   {"clip_from_light", toJson(v.clipFromLight)}};
+                   {"clip_from_light", toJson(v.clipFromLight)},
+                   {"linear_depth_from_world",
+                    {v.linearDepthFromWorld.x, v.linearDepthFromWorld.y, v.linearDepthFromWorld.z, v.linearDepthFromWorld.w}}};
         if (v.split) jv["split"] = {v.split->x, v.split->y};
         if (!v.warp.empty()) {
             json warp = json::object();

@@ -183,6 +183,10 @@ void TechniqueOptions::addTo(CLI::App& cmd) {
     cmd.add_option("--lispsm-weight", lispsmWeight, "LiSPSM: multiplies n (> 1 warps less)")->capture_default_str();
     cmd.add_option("--lispsm-n", lispsmN, "LiSPSM: fixed n in metres instead of the formula");
     cmd.add_option("--visible-depth", visibleDepth, "near,far view depth actually visible (LiSPSM n only, seed 000 §4.4)");
+    cmd.add_option("--tsm-focus", tsmFocus, "TSM: focus point as a fraction of the view depth range (80 % rule)")
+        ->capture_default_str();
+    cmd.add_option("--depth-layout", depthLayout, "shadow depth: 'hyperbolic', 'linear' or 'auto' (linear for TSM)")
+        ->capture_default_str();
 }
 
 core::Result<core::Technique> TechniqueOptions::resolve() const {
@@ -193,6 +197,9 @@ core::Result<core::Technique> TechniqueOptions::resolve() const {
     if (lispsmDirection != "cross" && lispsmDirection != "middle")
         return core::makeError(fmt::format("--lispsm-direction: expected 'cross' or 'middle', got '{}'", lispsmDirection));
     if (!(lispsmWeight > 0.0 && std::isfinite(lispsmWeight))) return core::makeError("--lispsm-weight: must be a number > 0");
+    if (!(tsmFocus > 0.0 && tsmFocus < 1.0)) return core::makeError("--tsm-focus: must be a fraction in (0, 1)");
+    if (depthLayout != "auto" && depthLayout != "hyperbolic" && depthLayout != "linear")
+        return core::makeError(fmt::format("--depth-layout: expected 'auto', 'hyperbolic' or 'linear', got '{}'", depthLayout));
     if (lispsmN && !(*lispsmN > 0.0 && std::isfinite(*lispsmN))) return core::makeError("--lispsm-n: must be a number of metres > 0");
     if (!visibleDepth.empty()) {
         std::vector<double> v;
@@ -205,11 +212,14 @@ core::Result<core::Technique> TechniqueOptions::resolve() const {
 core::Result<core::ShadowSetupInputs> TechniqueOptions::inputsFor(const scene::ResolvedView& view, const core::Aabb& wsBounds) const {
     auto t = resolve();
     if (!t) return core::makeError(t.error());
-    core::ShadowSetupInputs in{view.camera, view.light, wsBounds, *t, {}};
+    core::ShadowSetupInputs in{.camera = view.camera, .light = view.light, .wsSceneBounds = wsBounds, .technique = *t};
     in.lispsm.formula = lispsmFormula == "paper" ? core::LispsmFormula::Paper : core::LispsmFormula::Scherzer;
     in.lispsm.direction = lispsmDirection == "middle" ? core::LispsmDirection::MiddleVector : core::LispsmDirection::CrossProduct;
     in.lispsm.weight = lispsmWeight;
     in.lispsm.nOverride = lispsmN;
+    in.tsm.focusFraction = tsmFocus;
+    if (depthLayout != "auto")
+        in.depthLayout = depthLayout == "linear" ? core::DepthLayout::Linear : core::DepthLayout::Hyperbolic;
     if (!visibleDepth.empty()) {
         std::vector<double> v;
         parseNumbers(visibleDepth, ',', v); // validated by resolve()

@@ -40,8 +40,9 @@ struct ViewOptions {
 
 struct TechniqueOptions {
     std::string technique;
-    std::string lispsmFormula = "scherzer", lispsmDirection = "cross", visibleDepth;
+    std::string lispsmFormula = "scherzer", lispsmDirection = "cross", visibleDepth, depthLayout = "auto";
     double lispsmWeight = 1.0;
+    double tsmFocus = core::TsmOptions{}.focusFraction;
     std::optional<double> lispsmN;
 
     void addTo(CLI::App& cmd);

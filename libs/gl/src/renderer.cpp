@@ -103,7 +103,12 @@ core::Status Renderer::Impl::prepare(const core::ShadowSetup& setup, const Rende
 
 PassStats Renderer::Impl::shadowPass(const core::ShadowSetup& setup, const RenderSettings& settings) {
     // Depth only, polygon offset for bias, depth clamp when the set-up asks for it.
-    const DepthPassUniforms uniforms{toFloat(setup.views[0].clipFromWorld)};
+    const bool linear = setup.depthLayout == core::DepthLayout::Linear;
+    // Linear layout: the same slope / constant bias, applied in depth.frag. One constant unit
+    // is 2^-24 of the depth range, the resolvable step of a 24-bit buffer.
+    const DepthPassUniforms uniforms{toFloat(setup.views[0].clipFromWorld), glm::vec4(setup.views[0].linearDepthFromWorld),
+                                     glm::vec4(linear ? 1.0f : 0.0f),
+                                     glm::vec4(settings.biasSlope, settings.biasConstant * 0x1p-24f, 0.0f, 0.0f)};
     glNamedBufferSubData(depthUniforms.id(), 0, sizeof uniforms, &uniforms);
     glBindBufferBase(GL_UNIFORM_BUFFER, kDepthPassBinding, depthUniforms.id());
     glBindFramebuffer(GL_FRAMEBUFFER, shadow->framebuffer.id());
@@ -138,6 +143,8 @@ void Renderer::Impl::uploadFrame(const core::PerspectiveCamera& camera, const co
     frame.ambientRadiance = glm::vec4(0.28f, 0.32f, 0.40f, 0.0f);
     frame.fogColorDensity = glm::vec4(glm::pow(kSky, glm::vec3(2.2f)), settings.fogDensity);
     frame.shadowMapSize = glm::vec4(static_cast<float>(settings.shadowMapSize));
+    frame.shadowLinearDepthFromWorld = glm::vec4(setup.views[0].linearDepthFromWorld);
+    frame.shadowDepthLayout = glm::vec4(setup.depthLayout == core::DepthLayout::Linear ? 1.0f : 0.0f);
     glNamedBufferSubData(frameUniforms.id(), 0, sizeof frame, &frame);
     glBindBufferBase(GL_UNIFORM_BUFFER, kFrameBinding, frameUniforms.id());
     glBindTextureUnit(kShadowMapUnit, shadow->depth.id());

@@ -8,6 +8,9 @@ namespace shadowkit::gl {
 
 struct DepthPassUniforms { // GLSL: DepthPass, binding 1
     glm::mat4 clipFromWorld;
+    glm::vec4 linearDepthFromWorld; // row: depth = dot(row, (ws, 1))
+    glm::vec4 depthLayout;          // x: 1 linear, 0 hyperbolic
+    glm::vec4 bias;                 // linear layout: x slope factor, y constant in depth units
 };
 
 struct FrameUniforms { // GLSL: Frame, binding 0
@@ -20,6 +23,8 @@ struct FrameUniforms { // GLSL: Frame, binding 0
     glm::vec4 ambientRadiance;
     glm::vec4 fogColorDensity;
     glm::vec4 shadowMapSize;
+    glm::vec4 shadowLinearDepthFromWorld;
+    glm::vec4 shadowDepthLayout;
 };
 
 inline constexpr unsigned kFrameBinding = 0;

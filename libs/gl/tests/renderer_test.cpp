@@ -75,7 +75,7 @@ TEST_F(RendererTest, BoxOverPlaneShadowsThePlaneBelowItForEveryTechnique) {
     settings.fogDensity = 0.0f;
 
     for (const core::TechniqueInfo& technique : core::allTechniques()) {
-        const auto setup = core::computeShadowSetup({cam, sun, s.wsBounds(), technique.technique, {}});
+        const auto setup = core::computeShadowSetup({.camera = cam, .light = sun, .wsSceneBounds = s.wsBounds(), .technique = technique.technique});
         ASSERT_TRUE(setup) << setup.error();
         const auto stats = (*renderer)->render(cam, sun, *setup, settings);
         ASSERT_TRUE(stats) << stats.error();
@@ -95,7 +95,7 @@ TEST_F(RendererTest, ShadowMapImageShowsTheCaster) {
     ASSERT_TRUE(renderer);
     const core::PerspectiveCamera cam = obliqueCamera();
     const core::DirectionalLight sun{{0, -1, 0}};
-    const auto setup = core::computeShadowSetup({cam, sun, s.wsBounds(), core::Technique::Standard, {}});
+    const auto setup = core::computeShadowSetup({.camera = cam, .light = sun, .wsSceneBounds = s.wsBounds(), .technique = core::Technique::Standard});
     gl::RenderSettings settings;
     settings.width = settings.height = 32;
     settings.shadowMapSize = 64;
@@ -112,7 +112,7 @@ TEST_F(RendererTest, OutOfRangeSettingsAreErrorsNotGlErrors) {
     ASSERT_TRUE(renderer);
     const core::PerspectiveCamera cam = obliqueCamera();
     const core::DirectionalLight sun{{0, -1, 0}};
-    const auto setup = core::computeShadowSetup({cam, sun, s.wsBounds(), core::Technique::Focused, {}});
+    const auto setup = core::computeShadowSetup({.camera = cam, .light = sun, .wsSceneBounds = s.wsBounds(), .technique = core::Technique::Focused});
     gl::RenderSettings settings;
     settings.shadowMapSize = 1 << 20;
     const auto r = (*renderer)->render(cam, sun, *setup, settings);

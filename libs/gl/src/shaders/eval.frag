@@ -13,7 +13,7 @@ layout(location = 4) out vec2 outTexel;
 layout(location = 5) out vec4 outTexelFromPixel;
 
 void main() {
-    outShadowTerm = shadowTerm(csShadow); // the map's test alone, without N·L
+    outShadowTerm = shadowTerm(csShadow, wsPosition); // the map's test alone, without N·L
     outSurfaceId = vSurfaceId;
     outViewDepth = dot(wsPosition - wsEye.xyz, wsViewForward.xyz);
     outNormal = vec4(normalize(wsNormal), 0.0);

@@ -13,4 +13,6 @@ layout(std140, binding = 0) uniform Frame {
     vec4 ambientRadiance;     // rgb
     vec4 fogColorDensity;     // rgb, a: density in 1/m
     vec4 shadowMapSize;       // x: texels per side
+    vec4 shadowLinearDepthFromWorld; // row, see DepthPass
+    vec4 shadowDepthLayout;   // x: 1 linear, 0 hyperbolic
 };

@@ -11,7 +11,7 @@ void main() {
     const vec3 n = normalize(wsNormal);
     const vec3 l = wsTowardsLight.xyz;
     const float nDotL = max(dot(n, l), 0.0);
-    const float lit = nDotL > 0.0 ? shadowTerm(csShadow) : 0.0;
+    const float lit = nDotL > 0.0 ? shadowTerm(csShadow, wsPosition) : 0.0;
     vec3 color = vAlbedo * (ambientRadiance.rgb + sunRadiance.rgb * nDotL * lit);
     const float fog = exp(-fogColorDensity.a * distance(wsPosition, wsEye.xyz));
     color = mix(fogColorDensity.rgb, color, fog);

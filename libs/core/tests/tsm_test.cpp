@@ -1,0 +1,80 @@
+#include "shadowkit/core/tsm.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace shadowkit::core;
+
+namespace {
+
+ShadowSetupInputs perpendicularView() {
+    ShadowSetupInputs in;
+    in.wsSceneBounds = Aabb::fromMinMax(Vec3(-500, 0, -500), Vec3(500, 30, 500));
+    in.camera.wsEye = Vec3(0, 2, 0);
+    in.camera.wsDirection = Vec3(0, 0, -1);
+    in.camera.zNear = 0.5;
+    in.camera.zFar = 200;
+    in.light = DirectionalLight{glm::normalize(Vec3(1, -1, 0))};
+    in.technique = Technique::Tsm;
+    return in;
+}
+
+Vec3 ndc(const ShadowSetup& s, const Vec3& p) {
+    const Vec4 c = s.views[0].clipFromWorld * Vec4(p, 1.0);
+    return Vec3(c) / c.w;
+}
+
+} // namespace
+
+TEST(TsmTest, FocusPointLandsOnTheEightyPercentLine) {
+    // ξ = −0.6: the region from the near plane to the focus point fills 80 % of the map,
+    // so the focus point maps to 0.6 on the warp axis (the near end is at −1).
+    const ShadowSetupInputs in = perpendicularView();
+    const auto setup = computeShadowSetup(in);
+    ASSERT_TRUE(setup);
+    const double focusDepth = in.camera.zNear + in.tsm.focusFraction * (in.camera.zFar - in.camera.zNear);
+    const Vec3 focus = in.camera.wsEye + focusDepth * in.camera.wsDirection;
+    EXPECT_NEAR(ndc(*setup, focus).y, 0.6, 1e-6);
+    EXPECT_LT(ndc(*setup, in.camera.wsEye + 1.0 * in.camera.wsDirection).y, -0.9); // near end at the bottom
+}
+
+TEST(TsmTest, NearGroundGetsMoreTexelsThanInTheFocusedMap) {
+    ShadowSetupInputs in = perpendicularView();
+    const auto tsm = computeShadowSetup(in);
+    in.technique = Technique::Focused;
+    const auto focused = computeShadowSetup(in);
+    const Vec3 a(0, 0, -2), b(0, 0, -3);
+    EXPECT_GT(glm::length(Vec2(ndc(*tsm, a) - ndc(*tsm, b))), 5.0 * glm::length(Vec2(ndc(*focused, a) - ndc(*focused, b))));
+}
+
+TEST(TsmTest, ViewAlongTheLightFallsBackToTheFocusedMap) {
+    ShadowSetupInputs in = perpendicularView();
+    in.camera.wsDirection = Vec3(0, -1, 0);
+    in.camera.wsUp = Vec3(0, 0, -1);
+    in.camera.wsEye = Vec3(0, 100, 0);
+    in.light = DirectionalLight{Vec3(0, -1, 0)};
+    const auto setup = computeShadowSetup(in);
+    ASSERT_TRUE(setup);
+    ASSERT_FALSE(setup->fallbacks.empty());
+    EXPECT_NE(setup->fallbacks.back().find("tsm"), std::string::npos);
+}
+
+TEST(TsmTest, UsesTheLinearDepthLayoutByDefaultAndOrdersDepthAlongTheLight) {
+    ShadowSetupInputs in = perpendicularView();
+    auto setup = computeShadowSetup(in);
+    ASSERT_TRUE(setup);
+    EXPECT_EQ(setup->depthLayout, DepthLayout::Linear);
+    const Vec4 row = setup->views[0].linearDepthFromWorld;
+    const Vec3 receiver(3, 0, -20), caster = receiver + 10.0 * in.light.wsTowardsLight();
+    EXPECT_LT(glm::dot(row, Vec4(caster, 1)), glm::dot(row, Vec4(receiver, 1)));
+    for (const Vec3& p : setup->body.vertices()) {
+        const double d = glm::dot(row, Vec4(p, 1));
+        EXPECT_GE(d, -1e-9);
+        EXPECT_LE(d, 1 + 1e-9);
+    }
+    in.depthLayout = DepthLayout::Hyperbolic;
+    EXPECT_EQ(computeShadowSetup(in)->depthLayout, DepthLayout::Hyperbolic);
+    in.tsm.focusFraction = 1.5;
+    EXPECT_FALSE(computeShadowSetup(in));
+}
