@@ -1,6 +1,7 @@
 #include "shadowkit/core/shadow_setup.h"
 
 #include "shadowkit/core/lispsm.h"
+#include "shadowkit/core/cascades.h"
 #include "shadowkit/core/focus_body.h"
 #include "shadowkit/core/psm.h"
 #include "shadowkit/core/tsm.h"
@@ -18,6 +19,7 @@ constexpr std::array kTechniques = {
     TechniqueInfo{Technique::Focused, "focused", "uniform map fitted to the focus body B (view frustum ∩ scene, swept to the light)"},
     TechniqueInfo{Technique::Psm, "psm", "perspective shadow map: taken in the camera's post-perspective space"},
     TechniqueInfo{Technique::Tsm, "tsm", "trapezoidal shadow map: a trapezoid around the view mapped to the square"},
+    TechniqueInfo{Technique::Csm, "csm", "cascaded shadow maps: one map per depth split of the view (--cascades, --lambda)"},
     TechniqueInfo{Technique::Lispsm, "lispsm", "light space perspective shadow map: B warped along the view, n from seed 000/001"},
 };
 
@@ -56,6 +58,10 @@ Result<ShadowSetup> runTechnique(const ShadowSetupInputs& inputs) {
     case Technique::Standard: return computeStandardShadowMap(inputs);
     case Technique::Focused: return computeFocusedShadowMap(inputs);
     case Technique::Psm: return computePsm(inputs);
+    case Technique::Csm: {
+        if (Status s = validateCascades(inputs); !s) return makeError(s.error());
+        return computeCascades(inputs);
+    }
     case Technique::Tsm:
         if (!(inputs.tsm.focusFraction > 0.0 && inputs.tsm.focusFraction < 1.0))
             return makeError("tsm focus: must be a fraction in (0, 1)");

@@ -44,6 +44,14 @@ public:
         else if (r < 0.10) l = -glm::normalize(cam.wsDirection); // looking into the sun
         else if (r < 0.15) l = glm::normalize(cam.wsDirection + 1e-7 * unitVector());
         in.light = DirectionalLight{l};
+
+        CascadeOptions& c = in.cascades; // used by csm only
+        c.count = 1 + static_cast<int>(uniform(0, 8));
+        c.lambda = uniform(0, 1);
+        c.warp = chance(0.5) ? CascadeWarp::Lispsm : CascadeWarp::None;
+        c.stabilize = c.warp == CascadeWarp::None && chance(0.5);
+        c.blendBand = chance(0.5) ? uniform(0, 0.5) : 0.0;
+        c.mapSize = chance(0.5) ? 1024 : 2048;
         return in;
     }
 
@@ -96,17 +104,27 @@ TEST(ShadowSetupTest, EveryPointOfBLiesInsideTheClipCubeForTenThousandConfigurat
             in.technique = t;
             const Result<ShadowSetup> setup = computeShadowSetup(in);
             ASSERT_TRUE(setup) << "config " << i << ": " << setup.error();
-            ASSERT_EQ(setup->views.size(), 1u);
-            const ShadowView& view = setup->views[0];
+            ASSERT_EQ(setup->views.size(), t == Technique::Csm ? size_t(in.cascades.count) : 1u);
+            for (const ShadowView& view : setup->views) {
             ASSERT_TRUE(isFinite(view.clipFromWorld) && isFinite(view.lightFromWorld)) << "config " << i;
 
-            // Standard must hold the whole scene box; focused must hold B.
+            // Standard must hold the whole scene box; the others B, each cascade its split's B.
+            ConvexBody body = setup->body;
+            if (t == Technique::Csm) {
+                PerspectiveCamera slice = in.camera;
+                slice.zNear = view.split->x;
+                slice.zFar = view.split->y;
+                body = computeFocusBody(slice, in.light, in.wsSceneBounds);
+            }
+            // A split that sees none of the scene has nothing to hold (the stabilised fit then
+            // keeps its sphere); every other empty-B case falls back to the scene box.
+            if (t == Technique::Csm && body.isEmpty() && in.cascades.stabilize) continue;
             std::vector<Vec3> mustFit;
-            if (t == Technique::Standard || setup->body.isEmpty()) {
+            if (t == Technique::Standard || body.isEmpty()) {
                 const auto corners = sceneBoxForFocus(in.wsSceneBounds).corners();
                 mustFit.assign(corners.begin(), corners.end());
             } else {
-                mustFit = setup->body.vertices();
+                mustFit = body.vertices();
             }
             for (const Vec3& p : mustFit) {
                 // No point behind a projection centre (w > 0), none outside the clip cube.
@@ -114,6 +132,7 @@ TEST(ShadowSetupTest, EveryPointOfBLiesInsideTheClipCubeForTenThousandConfigurat
                 ASSERT_LE(outsideClipCube(view.clipFromWorld, p), 1e-6) << info.name << ", config " << i;
             }
             warped += t == Technique::Lispsm && view.clipFromWorld[3][3] != 1.0; // perspective, not affine
+            }
 
             if (t == Technique::Focused) {
                 emptyBodies += setup->body.isEmpty();

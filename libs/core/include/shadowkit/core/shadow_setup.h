@@ -23,6 +23,7 @@ enum class Technique {
     Lispsm,   // light space perspective shadow map (seed 001) with Scherzer's improvements (seed 000)
     Psm,      // perspective shadow map (Stamminger & Drettakis 2002): the map taken in post-perspective space
     Tsm,      // trapezoidal shadow map (Martin & Tan 2004): a trapezoid around the view mapped to the square
+    Csm,      // cascaded / parallel-split shadow maps (seed 002): one map per depth range of the view
 };
 
 // What the shadow map stores as depth.
@@ -81,6 +82,29 @@ struct TsmOptions {
     double focusFraction = 0.2;
 };
 
+enum class CascadeWarp {
+    None,   // each split a focused uniform map (seed 002's crop matrix)
+    Lispsm, // each split warped with LiSPSM, its near plane as z_n
+};
+
+struct CascadeOptions {
+    int count = 4;               // splits, [1, 8]
+    // Practical split scheme weight (seed 002): 0 uniform, 1 logarithmic; [0, 1].
+    double lambda = 0.75;
+    // Explicit split distances instead: count + 1 increasing values from the camera's near
+    // to its far plane (metres). Empty: use lambda.
+    std::vector<double> splits;
+    CascadeWarp warp = CascadeWarp::None;
+    // Rotation-invariant extent (the split's bounding sphere) in a view-independent light
+    // frame, snapped to whole texels, so shadow edges do not swim as the camera moves.
+    // Not combinable with a warp, which moves texels with the view by design.
+    bool stabilize = false;
+    // Each split reaches back over this fraction of the previous split's depth range, so
+    // the shader can blend the two across that band; [0, 0.5].
+    double blendBand = 0.0;
+    int mapSize = 2048;          // texels per side of each split's map (for texel snapping)
+};
+
 struct ShadowSetupInputs {
     PerspectiveCamera camera;
     DirectionalLight light;
@@ -88,6 +112,7 @@ struct ShadowSetupInputs {
     Technique technique = Technique::Focused;
     LispsmOptions lispsm;
     TsmOptions tsm;
+    CascadeOptions cascades;
     std::optional<DepthLayout> depthLayout; // unset: the technique's own (linear for TSM)
 };
 
