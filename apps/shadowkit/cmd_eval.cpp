@@ -23,7 +23,7 @@ struct EvalArgs {
     SceneOptions scene;
     ViewOptions view;
     TechniqueOptions technique;
-    MapOptions map;
+    RenderOptions render;
     std::string views; // "a,b" or "all"; empty: --view
     std::string json, errorMap, aliasingMap, dump;
 };
@@ -97,7 +97,7 @@ int runEval(const EvalArgs& args) {
         if (!inputs) return fail(inputs.error());
         auto setup = core::computeShadowSetup(*inputs);
         if (!setup) return fail(setup.error());
-        auto settings = args.map.settingsFor(*view);
+        auto settings = args.render.settingsFor(*view, args.technique.mapSize);
         if (!settings) return fail(settings.error());
         auto raster = (*renderer)->renderEvalBuffers(view->camera, view->light, *setup, *settings);
         if (!raster) return fail(raster.error());
@@ -167,7 +167,7 @@ Command addEvalCommand(CLI::App& app) {
     args->view.addTo(*cmd);
     args->technique.addTo(*cmd);
     cmd->add_option("--views", args->views, "views to evaluate: a,b,... or 'all' (default: --view)");
-    args->map.addTo(*cmd);
+    args->render.addTo(*cmd);
     cmd->add_option("--json", args->json, "write the figures as JSON {\"views\": [...]}");
     cmd->add_option("--error-map", args->errorMap, "write the error map PNG (one per view: NAME-view.png)");
     cmd->add_option("--aliasing-map", args->aliasingMap, "write the pixels-per-texel heat map PNG");

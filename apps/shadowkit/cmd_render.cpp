@@ -16,7 +16,7 @@ struct RenderArgs {
     SceneOptions scene;
     ViewOptions view;
     TechniqueOptions technique;
-    MapOptions map;
+    RenderOptions render;
     std::string out = "shadowkit.png";
     std::string shadowMapOut;
 };
@@ -40,7 +40,7 @@ int runRender(const RenderArgs& args) {
     if (!context) return fail(context.error());
     auto renderer = gl::Renderer::create(*sceneData);
     if (!renderer) return fail(renderer.error());
-    auto settingsOr = args.map.settingsFor(*view);
+    auto settingsOr = args.render.settingsFor(*view, args.technique.mapSize);
     if (!settingsOr) return fail(settingsOr.error());
     const gl::RenderSettings& settings = *settingsOr;
 
@@ -75,7 +75,7 @@ Command addRenderCommand(CLI::App& app) {
     args->scene.addTo(*cmd);
     args->view.addTo(*cmd);
     args->technique.addTo(*cmd);
-    args->map.addTo(*cmd);
+    args->render.addTo(*cmd);
     cmd->add_option("--out", args->out, "output PNG")->capture_default_str();
     cmd->add_option("--shadow-map-out", args->shadowMapOut, "also write the shadow map itself as a PNG");
     return {cmd, [args] { return runRender(*args); }};

@@ -155,21 +155,22 @@ core::Result<BoundedView> BoundsOptions::resolve(const SceneOptions& scene, cons
     return out;
 }
 
-void MapOptions::addTo(CLI::App& cmd) {
-    cmd.add_option("--map-size", mapSize, "shadow map texels per side")->capture_default_str();
+void RenderOptions::addTo(CLI::App& cmd) {
     cmd.add_option("--bias-slope", biasSlope, "slope-scaled depth bias (glPolygonOffset factor)")->capture_default_str();
     cmd.add_option("--bias-constant", biasConstant, "constant depth bias (glPolygonOffset units)")->capture_default_str();
+    cmd.add_flag("--cascade-colors", cascadeColors, "tint each cascade's depth range (seed 002 Figure 3-2)");
 }
 
-core::Result<gl::RenderSettings> MapOptions::settingsFor(const scene::ResolvedView& view) const {
+core::Result<gl::RenderSettings> RenderOptions::settingsFor(const scene::ResolvedView& view, int mapSize) const {
     if (!(biasSlope >= 0 && biasSlope <= 100)) return core::makeError("--bias-slope: must be in [0, 100]");
     if (!(biasConstant >= 0 && biasConstant <= 1e6)) return core::makeError("--bias-constant: must be in [0, 1e6]");
     gl::RenderSettings settings;
     settings.width = view.width;
     settings.height = view.height;
-    settings.shadowMapSize = mapSize; // range checked by the renderer against the driver's limit
+    settings.shadowMapSize = mapSize; // checked by TechniqueOptions and against the driver's limit
     settings.biasSlope = biasSlope;
     settings.biasConstant = biasConstant;
+    settings.cascadeColors = cascadeColors;
     return settings;
 }
 
@@ -187,6 +188,13 @@ void TechniqueOptions::addTo(CLI::App& cmd) {
         ->capture_default_str();
     cmd.add_option("--depth-layout", depthLayout, "shadow depth: 'hyperbolic', 'linear' or 'auto' (linear for TSM)")
         ->capture_default_str();
+    cmd.add_option("--map-size", mapSize, "shadow map texels per side (per cascade for csm)")->capture_default_str();
+    cmd.add_option("--cascades", cascades, "csm: number of splits, 1-8")->capture_default_str();
+    cmd.add_option("--lambda", lambda, "csm: split scheme, 0 uniform ... 1 logarithmic (seed 002)")->capture_default_str();
+    cmd.add_option("--splits", splits, "csm: explicit split distances near,...,far (count + 1 values)");
+    cmd.add_option("--cascade-warp", cascadeWarp, "csm: per-split warp, 'none' or 'lispsm'")->capture_default_str();
+    cmd.add_flag("--stabilize", stabilize, "csm: rotation-invariant, texel-snapped splits (no swimming)");
+    cmd.add_option("--blend-band", blendBand, "csm: fraction of each split blended into the next, 0-0.5")->capture_default_str();
 }
 
 core::Result<core::Technique> TechniqueOptions::resolve() const {
@@ -206,6 +214,15 @@ core::Result<core::Technique> TechniqueOptions::resolve() const {
         if (!parseNumbers(visibleDepth, ',', v) || v.size() != 2 || !(v[0] >= 0.0 && v[1] > v[0]))
             return core::makeError(fmt::format("--visible-depth: expected near,far with 0 <= near < far, got '{}'", visibleDepth));
     }
+    if (mapSize < 16 || mapSize > 16384) return core::makeError("--map-size: must be in [16, 16384] texels");
+    if (cascades < 1 || cascades > 8) return core::makeError("--cascades: must be in [1, 8]");
+    if (!(lambda >= 0.0 && lambda <= 1.0)) return core::makeError("--lambda: must be in [0, 1]");
+    if (!(blendBand >= 0.0 && blendBand <= 0.5)) return core::makeError("--blend-band: must be in [0, 0.5]");
+    if (cascadeWarp != "none" && cascadeWarp != "lispsm")
+        return core::makeError(fmt::format("--cascade-warp: expected 'none' or 'lispsm', got '{}'", cascadeWarp));
+    std::vector<double> v;
+    if (!splits.empty() && !parseNumbers(splits, ',', v))
+        return core::makeError(fmt::format("--splits: expected comma-separated distances, got '{}'", splits));
     return *t;
 }
 
@@ -220,6 +237,14 @@ core::Result<core::ShadowSetupInputs> TechniqueOptions::inputsFor(const scene::R
     in.tsm.focusFraction = tsmFocus;
     if (depthLayout != "auto")
         in.depthLayout = depthLayout == "linear" ? core::DepthLayout::Linear : core::DepthLayout::Hyperbolic;
+    core::CascadeOptions& c = in.cascades;
+    c.count = cascades;
+    c.lambda = lambda;
+    c.warp = cascadeWarp == "lispsm" ? core::CascadeWarp::Lispsm : core::CascadeWarp::None;
+    c.stabilize = stabilize;
+    c.blendBand = blendBand;
+    c.mapSize = mapSize;
+    if (!splits.empty()) parseNumbers(splits, ',', c.splits); // validated by resolve()
     if (!visibleDepth.empty()) {
         std::vector<double> v;
         parseNumbers(visibleDepth, ',', v); // validated by resolve()

@@ -43,6 +43,12 @@ struct TechniqueOptions {
     std::string lispsmFormula = "scherzer", lispsmDirection = "cross", visibleDepth, depthLayout = "auto";
     double lispsmWeight = 1.0;
     double tsmFocus = core::TsmOptions{}.focusFraction;
+    int mapSize = 2048; // texels per side of each map (cascades snap to it)
+    int cascades = core::CascadeOptions{}.count;
+    double lambda = core::CascadeOptions{}.lambda;
+    double blendBand = 0.0;
+    std::string cascadeWarp = "none", splits;
+    bool stabilize = false;
     std::optional<double> lispsmN;
 
     void addTo(CLI::App& cmd);
@@ -64,15 +70,15 @@ struct BoundsOptions {
     core::Result<BoundedView> resolve(const SceneOptions& scene, const ViewOptions& view) const;
 };
 
-// Shadow-map size and depth bias, shared by render and eval.
-struct MapOptions {
-    int mapSize = 2048;
+// Depth bias and debug views of the GL passes, shared by render and eval.
+struct RenderOptions {
     float biasSlope = gl::RenderSettings{}.biasSlope;
     float biasConstant = gl::RenderSettings{}.biasConstant;
+    bool cascadeColors = false;
 
     void addTo(CLI::App& cmd);
-    // Settings for a view's image size; errors name the flag.
-    core::Result<gl::RenderSettings> settingsFor(const scene::ResolvedView& view) const;
+    // Settings for a view's image size and the map size; errors name the flag.
+    core::Result<gl::RenderSettings> settingsFor(const scene::ResolvedView& view, int mapSize) const;
 };
 
 // "x,y,z" -> vector; the error names the flag and shows the text.

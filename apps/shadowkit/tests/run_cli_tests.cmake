@@ -39,6 +39,9 @@ check_fails(both-sun-forms "--sun" setup ${small} --sun 0,-1,0 --sun-elevation 3
 check_fails(bad-lispsm-formula "--lispsm-formula" setup ${small} --lispsm-formula optimal)
 check_fails(bad-visible-depth "--visible-depth" setup ${small} --visible-depth 5,1)
 check_fails(bad-lispsm-weight "--lispsm-weight" setup ${small} --lispsm-weight 0)
+check_fails(bad-cascades "--cascades" setup ${small} --technique csm --cascades 9)
+check_fails(bad-splits "cascades" setup ${small} --technique csm --cascades 2 --near 1 --far 100 --splits 1,50,90)
+check_fails(stabilize-with-warp "stabilisation" setup ${small} --technique csm --stabilize --cascade-warp lispsm)
 check_fails(near-ge-far "near" setup ${small} --near 10 --far 5)
 check_fails(bad-fov "fov" setup ${small} --fov 0)
 check_fails(bad-size "--size" setup ${small} --size 0x100)
@@ -72,6 +75,20 @@ else()
   endif()
 endif()
 
+# csm: one view per split, each with its split range; consecutive, from near to far.
+execute_process(COMMAND ${SHADOWKIT} setup --scene-bounds -512,0,-512,512,30,512 --technique csm --cascades 3 --near 1 --far 300
+                RESULT_VARIABLE rc OUTPUT_VARIABLE json ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(SEND_ERROR "setup csm: failed: ${err}")
+else()
+  string(JSON nviews LENGTH "${json}" views)
+  string(JSON first GET "${json}" views 0 split 0)
+  string(JSON last GET "${json}" views 2 split 1)
+  if(NOT nviews EQUAL 3 OR NOT first EQUAL 1 OR NOT last EQUAL 300)
+    message(SEND_ERROR "setup csm: unexpected splits: ${nviews} views, ${first} .. ${last}")
+  endif()
+endif()
+
 # analyze reproduces seed 001 Figure 6 and writes its CSV and plot.
 execute_process(COMMAND ${SHADOWKIT} analyze --json --scene-bounds -512,0,-512,512,30,512 --csv "${WORK}/a.csv"
                         --plot "${WORK}/a.png" RESULT_VARIABLE rc OUTPUT_VARIABLE json ERROR_VARIABLE err)
@@ -100,7 +117,7 @@ if(WITH_GL)
     message(SEND_ERROR "render: failed or wrote no image: ${err}")
   endif()
   check_fails(unwritable-output "--out" render ${small} --size 16x16 --map-size 64 --out "${WORK}/no/such/dir/r.png")
-  check_fails(map-too-large "map size" render ${small} --size 16x16 --map-size 1000000)
+  check_fails(map-too-large "--map-size" render ${small} --size 16x16 --map-size 1000000)
 
   # eval writes its report, maps (one per view) and per-pixel dumps.
   execute_process(COMMAND ${SHADOWKIT} eval ${small} --views paper,noon --size 48x32 --map-size 256

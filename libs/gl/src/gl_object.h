@@ -68,4 +68,11 @@ inline Texture createTexture2D(GLenum internalFormat, int width, int height) {
     return Texture(id);
 }
 
+inline Texture createTexture2DArray(GLenum internalFormat, int width, int height, int layers) {
+    GLuint id = 0;
+    glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &id);
+    glTextureStorage3D(id, 1, internalFormat, width, height, layers);
+    return Texture(id);
+}
+
 } // namespace shadowkit::gl

@@ -33,8 +33,9 @@ core::Status checkComplete(const Framebuffer& fbo, const char* what) {
     return core::Ok{};
 }
 
-ShadowTarget::ShadowTarget(int texels)
-    : depth(createTexture2D(GL_DEPTH_COMPONENT32F, texels, texels)), framebuffer(createFramebuffer()), size(texels) {
+ShadowTarget::ShadowTarget(int texels, int layerCount)
+    : depth(createTexture2DArray(GL_DEPTH_COMPONENT32F, texels, texels, layerCount)), framebuffer(createFramebuffer()),
+      size(texels), layers(layerCount) {
     // Hard test (GL_NEAREST): what the evaluation compares against ray-traced truth.
     glTextureParameteri(depth.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTextureParameteri(depth.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
@@ -42,22 +43,34 @@ ShadowTarget::ShadowTarget(int texels)
     glTextureParameteri(depth.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     glTextureParameteri(depth.id(), GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
     glTextureParameteri(depth.id(), GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
-    glNamedFramebufferTexture(framebuffer.id(), GL_DEPTH_ATTACHMENT, depth.id(), 0);
     glNamedFramebufferDrawBuffer(framebuffer.id(), GL_NONE);
+    attachLayer(0);
+}
+
+void ShadowTarget::attachLayer(int layer) const {
+    glNamedFramebufferTextureLayer(framebuffer.id(), GL_DEPTH_ATTACHMENT, depth.id(), 0, layer);
 }
 
 scene::Image ShadowTarget::readAsGreys() const {
-    const std::vector<float> d = readFlipped<float>(depth, GL_DEPTH_COMPONENT, GL_FLOAT, size, size);
-    float lo = 1.0f, hi = 0.0f;
-    for (float v : d)
-        if (v < 1.0f) lo = std::min(lo, v), hi = std::max(hi, v);
-    const float range = hi > lo ? hi - lo : 1.0f;
-    scene::Image image(size, size);
-    for (size_t i = 0; i < d.size(); ++i) {
-        const auto grey = static_cast<uint8_t>(d[i] < 1.0f ? 40.0f + 215.0f * (1.0f - (d[i] - lo) / range) : 0.0f);
-        uint8_t* p = image.rgba.data() + 4 * i;
-        p[0] = p[1] = p[2] = grey;
-        p[3] = 255;
+    // All layers come back stacked (layer-major), each bottom row first.
+    const size_t layerTexels = static_cast<size_t>(size) * static_cast<size_t>(size);
+    std::vector<float> d(layerTexels * static_cast<size_t>(layers));
+    glGetTextureImage(depth.id(), 0, GL_DEPTH_COMPONENT, GL_FLOAT, static_cast<GLsizei>(d.size() * sizeof(float)), d.data());
+    scene::Image image(size * layers, size);
+    for (int layer = 0; layer < layers; ++layer) {
+        const float* texels = d.data() + static_cast<size_t>(layer) * layerTexels;
+        float lo = 1.0f, hi = 0.0f;
+        for (size_t i = 0; i < layerTexels; ++i)
+            if (texels[i] < 1.0f) lo = std::min(lo, texels[i]), hi = std::max(hi, texels[i]);
+        const float range = hi > lo ? hi - lo : 1.0f;
+        for (int y = 0; y < size; ++y)
+            for (int x = 0; x < size; ++x) {
+                const float v = texels[static_cast<size_t>(size - 1 - y) * static_cast<size_t>(size) + static_cast<size_t>(x)];
+                const auto grey = static_cast<uint8_t>(v < 1.0f ? 40.0f + 215.0f * (1.0f - (v - lo) / range) : 0.0f);
+                uint8_t* p = image.pixel(layer * size + x, y);
+                p[0] = p[1] = p[2] = grey;
+                p[3] = 255;
+            }
     }
     return image;
 }

@@ -12,14 +12,17 @@ namespace shadowkit::gl {
 
 core::Status checkComplete(const Framebuffer& fbo, const char* what);
 
-// Depth texture + framebuffer of the shadow pass, compare mode on for sampler2DShadow.
+// Depth texture array (one layer per shadow map) + framebuffer of the shadow pass,
+// compare mode on for sampler2DArrayShadow.
 struct ShadowTarget {
     Texture depth;
     Framebuffer framebuffer;
-    int size = 0;
+    int size = 0, layers = 0;
 
-    explicit ShadowTarget(int texels);
-    // Near the light bright, cleared texels black, the used depth range stretched.
+    ShadowTarget(int texels, int layerCount);
+    void attachLayer(int layer) const;
+    // The layers side by side: near the light bright, cleared texels black, each layer's
+    // used depth range stretched.
     scene::Image readAsGreys() const;
 };
 

@@ -91,60 +91,75 @@ core::Status Renderer::Impl::prepare(const core::ShadowSetup& setup, const Rende
                                std::to_string(settings.shadowMapSize));
     if (settings.width < 1 || settings.height < 1 || settings.width > maxSize || settings.height > maxSize)
         return core::makeError("image size: each side must be in [1, " + std::to_string(maxSize) + "] pixels");
-    if (setup.views.size() != 1)
-        return core::makeError("renderer: set-ups with " + std::to_string(setup.views.size()) +
-                               " shadow maps are not supported yet (one map only)");
-    if (!shadow || shadow->size != settings.shadowMapSize) {
-        shadow.emplace(settings.shadowMapSize);
+    const int maps = static_cast<int>(setup.views.size());
+    if (maps < 1 || maps > kMaxCascades)
+        return core::makeError("renderer: set-ups need 1 to " + std::to_string(kMaxCascades) + " shadow maps, got " +
+                               std::to_string(maps));
+    if (!shadow || shadow->size != settings.shadowMapSize || shadow->layers != maps) {
+        shadow.emplace(settings.shadowMapSize, maps);
         if (auto s = checkComplete(shadow->framebuffer, "shadow map"); !s) return s;
     }
     return core::Ok{};
 }
 
 PassStats Renderer::Impl::shadowPass(const core::ShadowSetup& setup, const RenderSettings& settings) {
-    // Depth only, polygon offset for bias, depth clamp when the set-up asks for it.
-    const bool linear = setup.depthLayout == core::DepthLayout::Linear;
-    // Linear layout: the same slope / constant bias, applied in depth.frag. One constant unit
-    // is 2^-24 of the depth range, the resolvable step of a 24-bit buffer.
-    const DepthPassUniforms uniforms{toFloat(setup.views[0].clipFromWorld), glm::vec4(setup.views[0].linearDepthFromWorld),
-                                     glm::vec4(linear ? 1.0f : 0.0f),
-                                     glm::vec4(settings.biasSlope, settings.biasConstant * 0x1p-24f, 0.0f, 0.0f)};
-    glNamedBufferSubData(depthUniforms.id(), 0, sizeof uniforms, &uniforms);
-    glBindBufferBase(GL_UNIFORM_BUFFER, kDepthPassBinding, depthUniforms.id());
+    // Depth only, polygon offset for bias, depth clamp when the set-up asks for it; one
+    // array layer per shadow view.
     glBindFramebuffer(GL_FRAMEBUFFER, shadow->framebuffer.id());
     glViewport(0, 0, shadow->size, shadow->size);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
     glDisable(GL_CULL_FACE);
-    const float clearDepth = 1.0f;
-    glClearNamedFramebufferfv(shadow->framebuffer.id(), GL_DEPTH, 0, &clearDepth);
     if (setup.depthClamp) glEnable(GL_DEPTH_CLAMP);
     glEnable(GL_POLYGON_OFFSET_FILL);
     glPolygonOffset(settings.biasSlope, settings.biasConstant);
     glUseProgram(depthProgram.id());
+    glBindBufferBase(GL_UNIFORM_BUFFER, kDepthPassBinding, depthUniforms.id());
+    const bool linear = setup.depthLayout == core::DepthLayout::Linear;
+    PassStats stats;
     shadowTimer.begin();
-    const DrawStats draws = scene->drawAll();
+    for (size_t layer = 0; layer < setup.views.size(); ++layer) {
+        const core::ShadowView& view = setup.views[layer];
+        // Linear layout: the same slope / constant bias, applied in depth.frag. One constant
+        // unit is 2^-24 of the depth range, the resolvable step of a 24-bit buffer.
+        const DepthPassUniforms uniforms{toFloat(view.clipFromWorld), glm::vec4(view.linearDepthFromWorld),
+                                         glm::vec4(linear ? 1.0f : 0.0f),
+                                         glm::vec4(settings.biasSlope, settings.biasConstant * 0x1p-24f, 0.0f, 0.0f)};
+        glNamedBufferSubData(depthUniforms.id(), 0, sizeof uniforms, &uniforms);
+        shadow->attachLayer(static_cast<int>(layer));
+        const float clearDepth = 1.0f;
+        glClearNamedFramebufferfv(shadow->framebuffer.id(), GL_DEPTH, 0, &clearDepth);
+        const DrawStats draws = scene->drawAll();
+        stats.triangles += draws.triangles;
+        stats.drawCalls += draws.drawCalls;
+    }
     shadowTimer.end();
     glDisable(GL_POLYGON_OFFSET_FILL);
     glDisable(GL_DEPTH_CLAMP);
-    return {0.0, draws.triangles, draws.drawCalls}; // time read after the frame, not to stall here
+    return stats; // time read after the frame, not to stall here
 }
 
 void Renderer::Impl::uploadFrame(const core::PerspectiveCamera& camera, const core::DirectionalLight& light,
                                  const core::ShadowSetup& setup, const RenderSettings& settings) {
     FrameUniforms frame{};
     frame.clipFromWorld = toFloat(camera.clipFromWorld());
-    frame.shadowClipFromWorld = toFloat(setup.views[0].clipFromWorld);
     frame.wsEye = glm::vec4(glm::vec3(camera.wsEye), 1.0f);
     frame.wsViewForward = glm::vec4(glm::vec3(glm::normalize(camera.wsDirection)), 0.0f);
     frame.wsTowardsLight = glm::vec4(glm::vec3(light.wsTowardsLight()), 0.0f);
     frame.sunRadiance = glm::vec4(1.05f, 1.0f, 0.9f, 0.0f);
     frame.ambientRadiance = glm::vec4(0.28f, 0.32f, 0.40f, 0.0f);
     frame.fogColorDensity = glm::vec4(glm::pow(kSky, glm::vec3(2.2f)), settings.fogDensity);
-    frame.shadowMapSize = glm::vec4(static_cast<float>(settings.shadowMapSize));
-    frame.shadowLinearDepthFromWorld = glm::vec4(setup.views[0].linearDepthFromWorld);
-    frame.shadowDepthLayout = glm::vec4(setup.depthLayout == core::DepthLayout::Linear ? 1.0f : 0.0f);
+    frame.shadowParams = glm::vec4(static_cast<float>(settings.shadowMapSize), static_cast<float>(setup.views.size()),
+                                   setup.depthLayout == core::DepthLayout::Linear ? 1.0f : 0.0f,
+                                   settings.cascadeColors ? 1.0f : 0.0f);
+    for (size_t i = 0; i < setup.views.size(); ++i) {
+        const core::ShadowView& view = setup.views[i];
+        frame.shadowClipFromWorld[i] = toFloat(view.clipFromWorld);
+        frame.shadowLinearDepthFromWorld[i] = glm::vec4(view.linearDepthFromWorld);
+        const core::Vec2 range = view.split.value_or(core::Vec2(camera.zNear, camera.zFar));
+        frame.cascadeRange[i] = glm::vec4(static_cast<float>(range.x), static_cast<float>(range.y), 0.0f, 0.0f);
+    }
     glNamedBufferSubData(frameUniforms.id(), 0, sizeof frame, &frame);
     glBindBufferBase(GL_UNIFORM_BUFFER, kFrameBinding, frameUniforms.id());
     glBindTextureUnit(kShadowMapUnit, shadow->depth.id());

@@ -13,18 +13,20 @@ struct DepthPassUniforms { // GLSL: DepthPass, binding 1
     glm::vec4 bias;                 // linear layout: x slope factor, y constant in depth units
 };
 
+inline constexpr int kMaxCascades = 8; // GLSL: SK_MAX_CASCADES
+
 struct FrameUniforms { // GLSL: Frame, binding 0
     glm::mat4 clipFromWorld;
-    glm::mat4 shadowClipFromWorld;
     glm::vec4 wsEye;
     glm::vec4 wsViewForward;
     glm::vec4 wsTowardsLight;
     glm::vec4 sunRadiance;
     glm::vec4 ambientRadiance;
     glm::vec4 fogColorDensity;
-    glm::vec4 shadowMapSize;
-    glm::vec4 shadowLinearDepthFromWorld;
-    glm::vec4 shadowDepthLayout;
+    glm::vec4 shadowParams; // x texels per side, y maps, z linear layout, w colour splits
+    glm::mat4 shadowClipFromWorld[kMaxCascades];
+    glm::vec4 shadowLinearDepthFromWorld[kMaxCascades];
+    glm::vec4 cascadeRange[kMaxCascades];
 };
 
 inline constexpr unsigned kFrameBinding = 0;

@@ -79,7 +79,7 @@ TEST_F(RendererTest, BoxOverPlaneShadowsThePlaneBelowItForEveryTechnique) {
         ASSERT_TRUE(setup) << setup.error();
         const auto stats = (*renderer)->render(cam, sun, *setup, settings);
         ASSERT_TRUE(stats) << stats.error();
-        EXPECT_EQ(stats->shadow.drawCalls, 2u);
+        EXPECT_EQ(stats->shadow.drawCalls, 2u * setup->views.size()); // two batches per map
         const scene::Image image = (*renderer)->readColor();
         const double under = luminanceAt(image, cam, {0.3, 0, 0.3});
         const double away = luminanceAt(image, cam, {6, 0, 2});
@@ -118,4 +118,45 @@ TEST_F(RendererTest, OutOfRangeSettingsAreErrorsNotGlErrors) {
     const auto r = (*renderer)->render(cam, sun, *setup, settings);
     ASSERT_FALSE(r);
     EXPECT_NE(r.error().find("map size"), std::string::npos);
+}
+
+TEST_F(RendererTest, CasterAboveTheFrustumStillShadowsItsCascade) {
+    // The caster floats 40 m up, far above the view frustum (which reaches 19 m at that
+    // depth), but between the ground it shadows and the overhead sun: every cascade
+    // configuration must keep it in the split that serves that ground.
+    scene::Scene s;
+    scene::Mesh ground, box;
+    scene::addBox(ground, glm::translate(glm::mat4(1.0f), {0, -0.5f, -50}), {60, 0.5f, 60}, glm::vec3(0.8f));
+    scene::addBox(box, glm::mat4(1.0f), {3, 0.5f, 3}, glm::vec3(0.8f));
+    ground.computeBounds();
+    box.computeBounds();
+    s.meshes = {ground, box};
+    s.batches = {{0, {glm::mat4(1.0f)}, false}, {1, {glm::translate(glm::mat4(1.0f), {0, 40, -30})}, false}};
+    auto renderer = gl::Renderer::create(s);
+    ASSERT_TRUE(renderer);
+    core::PerspectiveCamera cam;
+    cam.wsEye = {0, 2, 0};
+    cam.wsDirection = {0, -0.05, -1};
+    cam.aspect = 1.0;
+    cam.zNear = 0.5;
+    cam.zFar = 100;
+    const core::DirectionalLight sun{{0, -1, 0}};
+    gl::RenderSettings settings;
+    settings.width = settings.height = 128;
+    settings.shadowMapSize = 512;
+    settings.fogDensity = 0.0f;
+    for (int variant = 0; variant < 3; ++variant) {
+        core::ShadowSetupInputs in{.camera = cam, .light = sun, .wsSceneBounds = s.wsBounds(), .technique = core::Technique::Csm};
+        in.cascades.count = 2;
+        in.cascades.splits = {0.5, 20, 100};
+        in.cascades.warp = variant == 1 ? core::CascadeWarp::Lispsm : core::CascadeWarp::None;
+        in.cascades.stabilize = variant == 2;
+        in.cascades.mapSize = settings.shadowMapSize;
+        const auto setup = core::computeShadowSetup(in);
+        ASSERT_TRUE(setup) << setup.error();
+        ASSERT_TRUE((*renderer)->render(cam, sun, *setup, settings));
+        const scene::Image image = (*renderer)->readColor();
+        const double under = luminanceAt(image, cam, {0, 0, -30}), away = luminanceAt(image, cam, {9, 0, -30});
+        EXPECT_LT(under, 0.7 * away) << "variant " << variant << ": under " << under << ", away " << away;
+    }
 }

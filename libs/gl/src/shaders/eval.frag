@@ -3,7 +3,6 @@ in vec3 wsPosition;
 in vec3 wsNormal;
 in vec3 vAlbedo;
 flat in uint vSurfaceId;
-in vec4 csShadow;
 
 layout(location = 0) out float outShadowTerm;
 layout(location = 1) out uint outSurfaceId;
@@ -13,11 +12,13 @@ layout(location = 4) out vec2 outTexel;
 layout(location = 5) out vec4 outTexelFromPixel;
 
 void main() {
-    outShadowTerm = shadowTerm(csShadow, wsPosition); // the map's test alone, without N·L
+    outShadowTerm = shadowTerm(wsPosition); // the maps' test alone, without N·L
     outSurfaceId = vSurfaceId;
-    outViewDepth = dot(wsPosition - wsEye.xyz, wsViewForward.xyz);
+    outViewDepth = viewDepthOf(wsPosition);
     outNormal = vec4(normalize(wsNormal), 0.0);
-    const vec2 texel = (shadowNdc(csShadow).xy * 0.5 + 0.5) * shadowMapSize.x;
+    // Texel position in the map that serves this pixel.
+    const vec4 cs = shadowClip(cascadeOf(outViewDepth), wsPosition);
+    const vec2 texel = (cs.xy / cs.w * 0.5 + 0.5) * shadowParams.x;
     outTexel = texel;
     // Screen derivatives of the texel position (fine: per pixel, not per 2x2 quad).
     // GL's y runs up; negate so the second column is the derivative along image rows (down).

@@ -3,16 +3,21 @@ in vec3 wsPosition;
 in vec3 wsNormal;
 in vec3 vAlbedo;
 flat in uint vSurfaceId;
-in vec4 csShadow;
 
 layout(location = 0) out vec4 outColor;
+
+// Split colouring (seed 002, Figure 3-2): red, green, blue, yellow, ...
+const vec3 kCascadeTint[SK_MAX_CASCADES] = vec3[](vec3(1.0, 0.35, 0.35), vec3(0.35, 1.0, 0.35), vec3(0.4, 0.5, 1.0),
+    vec3(1.0, 1.0, 0.3), vec3(1.0, 0.4, 1.0), vec3(0.3, 1.0, 1.0), vec3(1.0, 0.7, 0.3), vec3(0.8, 0.8, 0.8));
 
 void main() {
     const vec3 n = normalize(wsNormal);
     const vec3 l = wsTowardsLight.xyz;
     const float nDotL = max(dot(n, l), 0.0);
-    const float lit = nDotL > 0.0 ? shadowTerm(csShadow, wsPosition) : 0.0;
-    vec3 color = vAlbedo * (ambientRadiance.rgb + sunRadiance.rgb * nDotL * lit);
+    const float lit = nDotL > 0.0 ? shadowTerm(wsPosition) : 0.0;
+    vec3 albedo = vAlbedo;
+    if (shadowParams.w > 0.5) albedo *= kCascadeTint[cascadeOf(viewDepthOf(wsPosition))];
+    vec3 color = albedo * (ambientRadiance.rgb + sunRadiance.rgb * nDotL * lit);
     const float fog = exp(-fogColorDensity.a * distance(wsPosition, wsEye.xyz));
     color = mix(fogColorDensity.rgb, color, fog);
     outColor = vec4(pow(clamp(color, 0.0, 1.0), vec3(1.0 / 2.2)), 1.0);

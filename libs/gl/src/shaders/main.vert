@@ -1,4 +1,4 @@
-// Camera passes: positions, normals, surface identity and shadow-map clip coordinates.
+// Camera passes: positions, normals and surface identity.
 layout(location = 0) in vec3 osPosition;
 layout(location = 1) in vec3 osNormal;
 layout(location = 2) in vec3 albedo;
@@ -10,9 +10,6 @@ out vec3 wsPosition;
 out vec3 wsNormal;
 out vec3 vAlbedo;
 flat out uint vSurfaceId;
-// Interpolated in clip space and divided per fragment: correct for perspective warps too,
-// where dividing per vertex would interpolate the wrong way.
-out vec4 csShadow;
 
 void main() {
     const mat4 m = worldFromObject[gl_InstanceID];
@@ -21,6 +18,5 @@ void main() {
     wsNormal = mat3(m) * osNormal; // rigid + uniform scale: renormalised per fragment
     vAlbedo = albedo;
     vSurfaceId = instanceBase + uint(gl_InstanceID) + 1u;
-    csShadow = shadowClipFromWorld * ws;
     gl_Position = clipFromWorld * ws;
 }

@@ -22,6 +22,7 @@ struct RenderSettings {
     float biasSlope = 2.0f;         // factor × max depth slope, [0, 100]
     float biasConstant = 4.0f;      // units of minimum resolvable depth, [0, 1e6]
     float fogDensity = 0.002f;      // 1/m of exponential fog (seed 000 used fog); 0 = none
+    bool cascadeColors = false;     // tint each cascade's range (seed 002, Figure 3-2)
 };
 
 struct PassStats {
@@ -55,7 +56,7 @@ public:
 
     // The last rendered frame (top row first).
     scene::Image readColor() const;
-    // The last shadow map as greys: near the light is bright, empty texels black.
+    // The last shadow maps as greys, side by side: near the light is bright, empty texels black.
     scene::Image readShadowMap() const;
 
 private:
