@@ -11,6 +11,8 @@
 #include <fmt/format.h>
 
 #include <chrono>
+#include <cstdio>
+#include <unistd.h>
 #include <filesystem>
 #include <sstream>
 
@@ -106,7 +108,7 @@ int runEval(const EvalArgs& args) {
         eval::TruthOptions truthOptions;
         truthOptions.progress = [&, shown = false](double done) mutable {
             const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-            if (elapsed < 2.0 && !shown) return;
+            if ((elapsed < 2.0 && !shown) || !isatty(fileno(stderr))) return; // a log gets the table only
             shown = true;
             fmt::print(stderr, "\r{}: ray tracing {:3.0f} %", name, 100.0 * done);
             if (done >= 1.0) fmt::print(stderr, "\n");
