@@ -95,11 +95,11 @@ TEST_F(EvalIntegrationTest, UnbiasedMapShowsAcneOnALitTiltedPlaneThatSlopeScaled
     settings.width = settings.height = 128;
     settings.shadowMapSize = 512;
 
-    settings.biasSlope = 0.0f;
-    settings.biasConstant = 0.0f;
+    settings.bias.slope = 0.0;
+    settings.bias.constant = 0.0;
     const eval::Figures unbiased = measure(s, cam, sun, core::Technique::Focused, settings);
-    settings.biasSlope = 2.0f;
-    settings.biasConstant = 1.0f;
+    settings.bias.slope = 2.0;
+    settings.bias.constant = 1.0;
     const eval::Figures biased = measure(s, cam, sun, core::Technique::Focused, settings);
     ASSERT_GT(unbiased.validPx, 5000);
     EXPECT_GT(unbiased.falseShadowPct, 5.0);

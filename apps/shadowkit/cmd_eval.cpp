@@ -68,6 +68,7 @@ core::Result<std::vector<std::string>> viewNames(const EvalArgs& args) {
 int runEval(const EvalArgs& args) {
     auto technique = args.technique.resolve();
     if (!technique) return fail(technique.error());
+    if (auto s = args.render.check(); !s) return fail(s.error());
     auto names = viewNames(args);
     if (!names) return fail(names.error());
     for (auto [flag, file] : {std::pair{"--json", &args.json}, {"--error-map", &args.errorMap}, {"--aliasing-map", &args.aliasingMap}})
@@ -99,7 +100,7 @@ int runEval(const EvalArgs& args) {
         if (!inputs) return fail(inputs.error());
         auto setup = core::computeShadowSetup(*inputs);
         if (!setup) return fail(setup.error());
-        auto settings = args.render.settingsFor(*view, args.technique.mapSize);
+        auto settings = args.render.settingsFor(*view, args.technique.mapSize, *setup);
         if (!settings) return fail(settings.error());
         auto raster = (*renderer)->renderEvalBuffers(view->camera, view->light, *setup, *settings);
         if (!raster) return fail(raster.error());
@@ -127,8 +128,9 @@ int runEval(const EvalArgs& args) {
         report.height = view->height;
         report.mapSize = settings->shadowMapSize;
         report.maps = static_cast<int>(setup->views.size());
-        report.biasSlope = settings->biasSlope;
-        report.biasConstant = settings->biasConstant;
+        report.bias = settings->bias;
+        report.filter = args.render.filter;
+        report.blurIterations = settings->blur.iterations;
         report.fallbacks = setup->fallbacks;
         report.figures = comparison->figures;
 

@@ -24,6 +24,7 @@ struct RenderArgs {
 int runRender(const RenderArgs& args) {
     auto technique = args.technique.resolve();
     if (!technique) return fail(technique.error());
+    if (auto s = args.render.check(); !s) return fail(s.error());
     auto sceneData = args.scene.load();
     if (!sceneData) return fail(sceneData.error());
     auto view = args.view.resolve(*sceneData);
@@ -40,7 +41,7 @@ int runRender(const RenderArgs& args) {
     if (!context) return fail(context.error());
     auto renderer = gl::Renderer::create(*sceneData);
     if (!renderer) return fail(renderer.error());
-    auto settingsOr = args.render.settingsFor(*view, args.technique.mapSize);
+    auto settingsOr = args.render.settingsFor(*view, args.technique.mapSize, *setup);
     if (!settingsOr) return fail(settingsOr.error());
     const gl::RenderSettings& settings = *settingsOr;
 

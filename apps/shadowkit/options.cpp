@@ -156,20 +156,85 @@ core::Result<BoundedView> BoundsOptions::resolve(const SceneOptions& scene, cons
 }
 
 void RenderOptions::addTo(CLI::App& cmd) {
-    cmd.add_option("--bias-slope", biasSlope, "slope-scaled depth bias (glPolygonOffset factor)")->capture_default_str();
-    cmd.add_option("--bias-constant", biasConstant, "constant depth bias (glPolygonOffset units)")->capture_default_str();
+    cmd.add_option("--bias-slope", biasSlope, "slope-scaled depth bias (glPolygonOffset factor; default: per technique)");
+    cmd.add_option("--bias-constant", biasConstant, "constant depth bias (glPolygonOffset units; default: per technique)");
+    cmd.add_option("--cull", cull, "caster faces left out of the map: back, front (back-side rendering), none, auto")
+        ->capture_default_str();
+    cmd.add_option("--normal-offset", normalOffset, "receiver offset along its normal, in texels' world size");
+    cmd.add_option("--receiver-plane-bias", receiverPlaneBias, "on, off or auto: reference depth on the receiver's plane")
+        ->capture_default_str();
+    cmd.add_option("--filter", filter, "hard, pcf2 (hardware 2x2), pcf:N (N x N), poisson:N (N rotated taps)")
+        ->capture_default_str();
+    cmd.add_option("--blur-iterations", blurIterations, "eye-space blur of the shadow mask: 0, 1, 2, 4, 8, 16 ...")
+        ->capture_default_str();
+    cmd.add_option("--blur-radius", blurRadius, "blur tap distance in pixels at the viewer")->capture_default_str();
+    cmd.add_option("--blur-depth-falloff", blurDepthFalloff, "blur radius / (1 + falloff * depth): 0 = uniform blur")
+        ->capture_default_str();
     cmd.add_flag("--cascade-colors", cascadeColors, "tint each cascade's depth range (seed 002 Figure 3-2)");
 }
 
-core::Result<gl::RenderSettings> RenderOptions::settingsFor(const scene::ResolvedView& view, int mapSize) const {
-    if (!(biasSlope >= 0 && biasSlope <= 100)) return core::makeError("--bias-slope: must be in [0, 100]");
-    if (!(biasConstant >= 0 && biasConstant <= 1e6)) return core::makeError("--bias-constant: must be in [0, 1e6]");
+namespace {
+
+// "pcf:5" -> (PcfGrid, 5); "hard" -> (Hard, 1).
+core::Result<gl::FilterSettings> parseFilter(const std::string& text) {
+    gl::FilterSettings f;
+    const size_t colon = text.find(':');
+    const std::string kind = text.substr(0, colon);
+    int taps = 0;
+    if (colon != std::string::npos) {
+        char* end = nullptr;
+        const long v = std::strtol(text.c_str() + colon + 1, &end, 10);
+        if (*end != '\0' || end == text.c_str() + colon + 1) taps = -1;
+        else taps = static_cast<int>(v);
+    }
+    if (kind == "hard" && colon == std::string::npos) return f;
+    if (kind == "pcf2" && colon == std::string::npos) return gl::FilterSettings{gl::ShadowFilter::Pcf2, 1};
+    if (kind == "pcf" && taps >= 1 && taps <= 9) return gl::FilterSettings{gl::ShadowFilter::PcfGrid, taps};
+    if (kind == "poisson" && taps >= 1 && taps <= 32) return gl::FilterSettings{gl::ShadowFilter::Poisson, taps};
+    return core::makeError(fmt::format("--filter: expected hard, pcf2, pcf:N (N 1-9) or poisson:N (N 1-32), got '{}'", text));
+}
+
+} // namespace
+
+core::Status RenderOptions::check() const {
+    if (auto f = parseFilter(filter); !f) return core::makeError(f.error());
+    if (cull != "auto" && cull != "back" && cull != "front" && cull != "none")
+        return core::makeError(fmt::format("--cull: expected back, front, none or auto, got '{}'", cull));
+    if (receiverPlaneBias != "auto" && receiverPlaneBias != "on" && receiverPlaneBias != "off")
+        return core::makeError(fmt::format("--receiver-plane-bias: expected on, off or auto, got '{}'", receiverPlaneBias));
+    if (blurIterations < 0 || blurIterations > 64) return core::makeError("--blur-iterations: must be in [0, 64]");
+    if (!(blurRadius > 0.0f && blurRadius <= 16.0f)) return core::makeError("--blur-radius: must be in (0, 16] pixels");
+    if (!(blurDepthFalloff >= 0.0f && blurDepthFalloff <= 10.0f)) return core::makeError("--blur-depth-falloff: must be in [0, 10]");
+    core::BiasSettings b;
+    b.slope = biasSlope.value_or(b.slope);
+    b.constant = biasConstant.value_or(b.constant);
+    b.normalOffset = normalOffset.value_or(b.normalOffset);
+    if (auto s = core::validate(b); !s) {
+        const std::string& e = s.error();
+        const char* flag = e.rfind("bias slope", 0) == 0 ? "--bias-slope" : e.rfind("bias constant", 0) == 0 ? "--bias-constant" : "--normal-offset";
+        return core::makeError(std::string(flag) + ": " + e.substr(e.find(':') + 2));
+    }
+    return core::Ok{};
+}
+
+core::Result<gl::RenderSettings> RenderOptions::settingsFor(const scene::ResolvedView& view, int mapSize,
+                                                            const core::ShadowSetup& setup) const {
+    if (auto s = check(); !s) return core::makeError(s.error());
     gl::RenderSettings settings;
     settings.width = view.width;
     settings.height = view.height;
     settings.shadowMapSize = mapSize; // checked by TechniqueOptions and against the driver's limit
-    settings.biasSlope = biasSlope;
-    settings.biasConstant = biasConstant;
+    core::BiasSettings& b = settings.bias;
+    b = core::recommendedBias(setup.technique, setup.depthLayout);
+    if (biasSlope) b.slope = *biasSlope;
+    if (biasConstant) b.constant = *biasConstant;
+    if (normalOffset) b.normalOffset = *normalOffset;
+    if (cull != "auto") b.cull = cull == "back" ? core::CasterCull::Back : cull == "front" ? core::CasterCull::Front : core::CasterCull::None;
+    if (receiverPlaneBias != "auto") b.receiverPlane = receiverPlaneBias == "on";
+    settings.filter = parseFilter(filter).value();
+    settings.blur.iterations = blurIterations;
+    settings.blur.radiusPixels = blurRadius;
+    settings.blur.depthFalloff = blurDepthFalloff;
     settings.cascadeColors = cascadeColors;
     return settings;
 }

@@ -70,15 +70,22 @@ struct BoundsOptions {
     core::Result<BoundedView> resolve(const SceneOptions& scene, const ViewOptions& view) const;
 };
 
-// Depth bias and debug views of the GL passes, shared by render and eval.
+// Bias, filter, blur and debug views of the GL passes, shared by render, eval and compare.
+// Bias values not given fall back to core::recommendedBias for the technique.
 struct RenderOptions {
-    float biasSlope = gl::RenderSettings{}.biasSlope;
-    float biasConstant = gl::RenderSettings{}.biasConstant;
+    std::optional<double> biasSlope, biasConstant, normalOffset;
+    std::string cull = "auto", receiverPlaneBias = "auto", filter = "hard";
+    int blurIterations = 0;
+    float blurRadius = gl::BlurSettings{}.radiusPixels, blurDepthFalloff = gl::BlurSettings{}.depthFalloff;
     bool cascadeColors = false;
 
     void addTo(CLI::App& cmd);
-    // Settings for a view's image size and the map size; errors name the flag.
-    core::Result<gl::RenderSettings> settingsFor(const scene::ResolvedView& view, int mapSize) const;
+    // Checks the flags (cheap: call before loading a scene).
+    core::Status check() const;
+    // Settings for a view's image size, the map size and the set-up's technique and
+    // layout (for the recommended bias); errors name the flag.
+    core::Result<gl::RenderSettings> settingsFor(const scene::ResolvedView& view, int mapSize,
+                                                 const core::ShadowSetup& setup) const;
 };
 
 // "x,y,z" -> vector; the error names the flag and shows the text.

@@ -89,12 +89,35 @@ scene::Image ColorTarget::read() const {
     return image;
 }
 
+MaskPingPong::MaskPingPong(int w, int h)
+    : images{createTexture2D(GL_R32F, w, h), createTexture2D(GL_R32F, w, h)},
+      framebuffers{createFramebuffer(), createFramebuffer()}, width(w), height(h) {
+    for (int i = 0; i < 2; ++i) {
+        // Nearest: a tap never mixes the mask across a depth edge it was meant to skip.
+        glTextureParameteri(images[i].id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTextureParameteri(images[i].id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        glTextureParameteri(images[i].id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        glTextureParameteri(images[i].id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+        glNamedFramebufferTexture(framebuffers[i].id(), GL_COLOR_ATTACHMENT0, images[i].id(), 0);
+    }
+}
+
+std::vector<float> MaskPingPong::read(int index) const {
+    return readFlipped<float>(images[index], GL_RED, GL_FLOAT, width, height);
+}
+
 EvalTarget::EvalTarget(int w, int h)
     : shadowTerm(createTexture2D(GL_R32F, w, h)), surfaceId(createTexture2D(GL_R32UI, w, h)),
       viewDepth(createTexture2D(GL_R32F, w, h)), normal(createTexture2D(GL_RGBA16F, w, h)),
       texel(createTexture2D(GL_RG32F, w, h)), texelFromPixel(createTexture2D(GL_RGBA32F, w, h)),
       depth(createTexture2D(GL_DEPTH_COMPONENT32F, w, h)), framebuffer(createFramebuffer()), width(w), height(h) {
     const Texture* colors[] = {&shadowTerm, &surfaceId, &viewDepth, &normal, &texel, &texelFromPixel};
+    for (const Texture* t : {&shadowTerm, &viewDepth}) { // read by the blur: texel exact
+        glTextureParameteri(t->id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTextureParameteri(t->id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        glTextureParameteri(t->id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        glTextureParameteri(t->id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    }
     GLenum drawBuffers[6];
     for (GLenum i = 0; i < 6; ++i) {
         glNamedFramebufferTexture(framebuffer.id(), GL_COLOR_ATTACHMENT0 + i, colors[i]->id(), 0);

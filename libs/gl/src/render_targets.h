@@ -35,6 +35,16 @@ struct ColorTarget {
     scene::Image read() const; // top row first
 };
 
+// Two single-channel float images for the eye-space blur, used in turn as source and target.
+struct MaskPingPong {
+    Texture images[2];
+    Framebuffer framebuffers[2];
+    int width = 0, height = 0;
+
+    MaskPingPong(int w, int h);
+    std::vector<float> read(int index) const; // top row first
+};
+
 // Multiple render targets written by eval.frag, read back as core::RasterBuffers.
 struct EvalTarget {
     Texture shadowTerm, surfaceId, viewDepth, normal, texel, texelFromPixel, depth;

@@ -42,17 +42,25 @@ constexpr glm::vec3 kSky(0.62f, 0.72f, 0.85f);
 
 struct Renderer::Impl {
     std::optional<GpuScene> scene;
-    Program depthProgram, mainProgram, evalProgram;
-    Buffer depthUniforms, frameUniforms;
+    Program depthProgram, mainProgram, evalProgram, blurProgram;
+    Buffer depthUniforms, frameUniforms, blurUniforms;
+    VertexArray emptyVertexArray; // for the full-screen triangle
     std::optional<ShadowTarget> shadow;
     std::optional<ColorTarget> color;
     std::optional<EvalTarget> eval;
+    std::optional<MaskPingPong> mask;
     PassTimer shadowTimer, mainTimer;
 
     core::Status prepare(const core::ShadowSetup& setup, const RenderSettings& settings);
     PassStats shadowPass(const core::ShadowSetup& setup, const RenderSettings& settings);
     void uploadFrame(const core::PerspectiveCamera& camera, const core::DirectionalLight& light,
-                     const core::ShadowSetup& setup, const RenderSettings& settings);
+                     const core::ShadowSetup& setup, const RenderSettings& settings, bool useMask);
+    // The eval pass into `eval` (shadow term, depth, ...), for the evaluation and as the
+    // mask the blur starts from.
+    core::Status evalPass(const core::PerspectiveCamera& camera, const core::DirectionalLight& light,
+                          const core::ShadowSetup& setup, const RenderSettings& settings);
+    // Blurs eval's shadow term; returns the ping-pong index holding the result.
+    int blurPass(const RenderSettings& settings);
 };
 
 Renderer::Renderer() : m_impl(std::make_unique<Impl>()) {}
@@ -68,6 +76,9 @@ core::Result<std::unique_ptr<Renderer>> Renderer::create(const scene::Scene& sce
     if (!main) return core::makeError(main.error());
     auto eval = buildProgram("eval pass", {kFrameGlsl, kMainVert}, {kFrameGlsl, kShadowLookupGlsl, kEvalFrag});
     if (!eval) return core::makeError(eval.error());
+    auto blur = buildProgram("blur pass", {kFullscreenVert}, {kBlurFrag});
+    if (!blur) return core::makeError(blur.error());
+    if (auto s = checkUniformBlock(*blur, "blur pass", "Blur", sizeof(BlurUniforms)); !s) return core::makeError(s.error());
     if (auto s = checkUniformBlock(*depth, "depth pass", "DepthPass", sizeof(DepthPassUniforms)); !s)
         return core::makeError(s.error());
     for (const auto* p : {&main, &eval})
@@ -75,8 +86,13 @@ core::Result<std::unique_ptr<Renderer>> Renderer::create(const scene::Scene& sce
     r.depthProgram = std::move(depth).value();
     r.mainProgram = std::move(main).value();
     r.evalProgram = std::move(eval).value();
+    r.blurProgram = std::move(blur).value();
     r.depthUniforms = createBuffer(nullptr, sizeof(DepthPassUniforms));
     r.frameUniforms = createBuffer(nullptr, sizeof(FrameUniforms));
+    r.blurUniforms = createBuffer(nullptr, sizeof(BlurUniforms));
+    GLuint vao = 0;
+    glCreateVertexArrays(1, &vao);
+    r.emptyVertexArray = VertexArray(vao);
     r.scene.emplace(scene);
     // Conventions (core/conventions.h): clip depth [0,1].
     glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
@@ -91,6 +107,16 @@ core::Status Renderer::Impl::prepare(const core::ShadowSetup& setup, const Rende
                                std::to_string(settings.shadowMapSize));
     if (settings.width < 1 || settings.height < 1 || settings.width > maxSize || settings.height > maxSize)
         return core::makeError("image size: each side must be in [1, " + std::to_string(maxSize) + "] pixels");
+    if (auto s = core::validate(settings.bias); !s) return s;
+    const FilterSettings& f = settings.filter;
+    if (f.kind == ShadowFilter::PcfGrid && (f.taps < 1 || f.taps > 9)) return core::makeError("filter: pcf grid size must be in [1, 9]");
+    if (f.kind == ShadowFilter::Poisson && (f.taps < 1 || f.taps > 32)) return core::makeError("filter: poisson samples must be in [1, 32]");
+    if (!(f.radiusTexels > 0.0f && f.radiusTexels <= 16.0f)) return core::makeError("filter: poisson radius must be in (0, 16] texels");
+    const BlurSettings& b = settings.blur;
+    if (b.iterations < 0 || b.iterations > 64) return core::makeError("blur: iterations must be in [0, 64]");
+    if (!(b.radiusPixels > 0.0f && b.radiusPixels <= 16.0f)) return core::makeError("blur: radius must be in (0, 16] pixels");
+    if (!(b.depthFalloff >= 0.0f && b.depthFalloff <= 10.0f)) return core::makeError("blur: depth falloff must be in [0, 10] per metre");
+    if (!(b.depthThreshold > 0.0f && b.depthThreshold <= 1.0f)) return core::makeError("blur: depth threshold must be in (0, 1]");
     const int maps = static_cast<int>(setup.views.size());
     if (maps < 1 || maps > kMaxCascades)
         return core::makeError("renderer: set-ups need 1 to " + std::to_string(kMaxCascades) + " shadow maps, got " +
@@ -99,6 +125,10 @@ core::Status Renderer::Impl::prepare(const core::ShadowSetup& setup, const Rende
         shadow.emplace(settings.shadowMapSize, maps);
         if (auto s = checkComplete(shadow->framebuffer, "shadow map"); !s) return s;
     }
+    // Hardware 2x2 PCF is the sampler's linear filter; every other filter takes its own taps.
+    const GLint filter = settings.filter.kind == ShadowFilter::Pcf2 ? GL_LINEAR : GL_NEAREST;
+    glTextureParameteri(shadow->depth.id(), GL_TEXTURE_MIN_FILTER, filter);
+    glTextureParameteri(shadow->depth.id(), GL_TEXTURE_MAG_FILTER, filter);
     return core::Ok{};
 }
 
@@ -110,10 +140,17 @@ PassStats Renderer::Impl::shadowPass(const core::ShadowSetup& setup, const Rende
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
-    glDisable(GL_CULL_FACE);
+    // Caster culling: front-face culling stores the casters' back sides (seed 000 §4.2).
+    if (settings.bias.cull == core::CasterCull::None) {
+        glDisable(GL_CULL_FACE);
+    } else {
+        glEnable(GL_CULL_FACE);
+        glCullFace(settings.bias.cull == core::CasterCull::Back ? GL_BACK : GL_FRONT);
+    }
     if (setup.depthClamp) glEnable(GL_DEPTH_CLAMP);
+    const auto slope = static_cast<float>(settings.bias.slope), constant = static_cast<float>(settings.bias.constant);
     glEnable(GL_POLYGON_OFFSET_FILL);
-    glPolygonOffset(settings.biasSlope, settings.biasConstant);
+    glPolygonOffset(slope, constant);
     glUseProgram(depthProgram.id());
     glBindBufferBase(GL_UNIFORM_BUFFER, kDepthPassBinding, depthUniforms.id());
     const bool linear = setup.depthLayout == core::DepthLayout::Linear;
@@ -125,7 +162,7 @@ PassStats Renderer::Impl::shadowPass(const core::ShadowSetup& setup, const Rende
         // unit is 2^-24 of the depth range, the resolvable step of a 24-bit buffer.
         const DepthPassUniforms uniforms{toFloat(view.clipFromWorld), glm::vec4(view.linearDepthFromWorld),
                                          glm::vec4(linear ? 1.0f : 0.0f),
-                                         glm::vec4(settings.biasSlope, settings.biasConstant * 0x1p-24f, 0.0f, 0.0f)};
+                                         glm::vec4(slope, constant * 0x1p-24f, 0.0f, 0.0f)};
         glNamedBufferSubData(depthUniforms.id(), 0, sizeof uniforms, &uniforms);
         shadow->attachLayer(static_cast<int>(layer));
         const float clearDepth = 1.0f;
@@ -141,7 +178,7 @@ PassStats Renderer::Impl::shadowPass(const core::ShadowSetup& setup, const Rende
 }
 
 void Renderer::Impl::uploadFrame(const core::PerspectiveCamera& camera, const core::DirectionalLight& light,
-                                 const core::ShadowSetup& setup, const RenderSettings& settings) {
+                                 const core::ShadowSetup& setup, const RenderSettings& settings, bool useMask) {
     FrameUniforms frame{};
     frame.clipFromWorld = toFloat(camera.clipFromWorld());
     frame.wsEye = glm::vec4(glm::vec3(camera.wsEye), 1.0f);
@@ -153,6 +190,11 @@ void Renderer::Impl::uploadFrame(const core::PerspectiveCamera& camera, const co
     frame.shadowParams = glm::vec4(static_cast<float>(settings.shadowMapSize), static_cast<float>(setup.views.size()),
                                    setup.depthLayout == core::DepthLayout::Linear ? 1.0f : 0.0f,
                                    settings.cascadeColors ? 1.0f : 0.0f);
+    const FilterSettings& f = settings.filter;
+    const float kinds[] = {0.0f, 1.0f, 2.0f, 3.0f}; // ShadowFilter order
+    frame.filterParams = glm::vec4(kinds[static_cast<int>(f.kind)], static_cast<float>(f.taps), f.radiusTexels,
+                                   settings.bias.receiverPlane ? 1.0f : 0.0f);
+    frame.biasParams = glm::vec4(static_cast<float>(settings.bias.normalOffset), useMask ? 1.0f : 0.0f, 0.0f, 0.0f);
     for (size_t i = 0; i < setup.views.size(); ++i) {
         const core::ShadowView& view = setup.views[i];
         frame.shadowClipFromWorld[i] = toFloat(view.clipFromWorld);
@@ -167,6 +209,46 @@ void Renderer::Impl::uploadFrame(const core::PerspectiveCamera& camera, const co
     glCullFace(GL_BACK);
 }
 
+core::Status Renderer::Impl::evalPass(const core::PerspectiveCamera& camera, const core::DirectionalLight& light,
+                                      const core::ShadowSetup& setup, const RenderSettings& settings) {
+    if (!eval || eval->width != settings.width || eval->height != settings.height) {
+        eval.emplace(settings.width, settings.height);
+        if (auto s = checkComplete(eval->framebuffer, "eval pass"); !s) return s;
+    }
+    uploadFrame(camera, light, setup, settings, false);
+    glBindFramebuffer(GL_FRAMEBUFFER, eval->framebuffer.id());
+    glViewport(0, 0, eval->width, eval->height);
+    eval->clear();
+    glUseProgram(evalProgram.id());
+    scene->drawAll(true);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    return core::Ok{};
+}
+
+int Renderer::Impl::blurPass(const RenderSettings& settings) {
+    if (!mask || mask->width != settings.width || mask->height != settings.height) mask.emplace(settings.width, settings.height);
+    const BlurUniforms uniforms{glm::vec4(settings.blur.radiusPixels, settings.blur.depthFalloff, settings.blur.depthThreshold, 0.0f)};
+    glNamedBufferSubData(blurUniforms.id(), 0, sizeof uniforms, &uniforms);
+    glBindBufferBase(GL_UNIFORM_BUFFER, kBlurBinding, blurUniforms.id());
+    glUseProgram(blurProgram.id());
+    glBindVertexArray(emptyVertexArray.id());
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+    glViewport(0, 0, mask->width, mask->height);
+    glBindTextureUnit(1, eval->viewDepth.id());
+    int target = 0;
+    for (int i = 0; i < settings.blur.iterations; ++i) {
+        glBindTextureUnit(0, i == 0 ? eval->shadowTerm.id() : mask->images[1 - target].id());
+        glBindFramebuffer(GL_FRAMEBUFFER, mask->framebuffers[target].id());
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        target = 1 - target;
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glBindVertexArray(0);
+    glEnable(GL_DEPTH_TEST);
+    return 1 - target; // the last one written
+}
+
 core::Result<FrameStats> Renderer::render(const core::PerspectiveCamera& camera, const core::DirectionalLight& light,
                                           const core::ShadowSetup& setup, const RenderSettings& settings) {
     Impl& r = *m_impl;
@@ -178,7 +260,15 @@ core::Result<FrameStats> Renderer::render(const core::PerspectiveCamera& camera,
     FrameStats stats;
     stats.shadow = r.shadowPass(setup, settings);
 
-    r.uploadFrame(camera, light, setup, settings);
+    // With the eye-space blur, the shadow term comes from the blurred screen-space mask.
+    const bool blurred = settings.blur.iterations > 0;
+    int maskIndex = 0;
+    if (blurred) {
+        if (auto s = r.evalPass(camera, light, setup, settings); !s) return core::makeError(s.error());
+        maskIndex = r.blurPass(settings);
+    }
+    r.uploadFrame(camera, light, setup, settings, blurred);
+    if (blurred) glBindTextureUnit(kShadowMaskUnit, r.mask->images[maskIndex].id());
     glBindFramebuffer(GL_FRAMEBUFFER, r.color->framebuffer.id());
     glViewport(0, 0, r.color->width, r.color->height);
     const float clearColor[4] = {kSky.r, kSky.g, kSky.b, 1.0f};
@@ -202,19 +292,10 @@ core::Result<core::RasterBuffers> Renderer::renderEvalBuffers(const core::Perspe
                                                               const RenderSettings& settings) {
     Impl& r = *m_impl;
     if (auto s = r.prepare(setup, settings); !s) return core::makeError(s.error());
-    if (!r.eval || r.eval->width != settings.width || r.eval->height != settings.height) {
-        r.eval.emplace(settings.width, settings.height);
-        if (auto s = checkComplete(r.eval->framebuffer, "eval pass"); !s) return core::makeError(s.error());
-    }
     r.shadowPass(setup, settings);
-    r.uploadFrame(camera, light, setup, settings);
-    glBindFramebuffer(GL_FRAMEBUFFER, r.eval->framebuffer.id());
-    glViewport(0, 0, r.eval->width, r.eval->height);
-    r.eval->clear();
-    glUseProgram(r.evalProgram.id());
-    r.scene->drawAll(true);
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    if (auto s = r.evalPass(camera, light, setup, settings); !s) return core::makeError(s.error());
     core::RasterBuffers buffers = r.eval->read();
+    if (settings.blur.iterations > 0) buffers.shadowTerm = r.mask->read(r.blurPass(settings));
     buffers.mapSize = settings.shadowMapSize;
     return buffers;
 }

@@ -24,12 +24,20 @@ struct FrameUniforms { // GLSL: Frame, binding 0
     glm::vec4 ambientRadiance;
     glm::vec4 fogColorDensity;
     glm::vec4 shadowParams; // x texels per side, y maps, z linear layout, w colour splits
+    glm::vec4 filterParams; // x kind (0 hard, 1 pcf2, 2 grid, 3 poisson), y taps, z poisson radius, w receiver plane
+    glm::vec4 biasParams;   // x normal offset, y read the blurred mask
     glm::mat4 shadowClipFromWorld[kMaxCascades];
     glm::vec4 shadowLinearDepthFromWorld[kMaxCascades];
     glm::vec4 cascadeRange[kMaxCascades];
 };
 
+struct BlurUniforms { // GLSL: Blur, binding 2
+    glm::vec4 params; // x radius (pixels at depth 0), y depth falloff (1/m), z relative depth threshold
+};
+
 inline constexpr unsigned kFrameBinding = 0;
+inline constexpr unsigned kBlurBinding = 2;
+inline constexpr unsigned kShadowMaskUnit = 1;
 inline constexpr unsigned kDepthPassBinding = 1;
 inline constexpr unsigned kInstancesBinding = 0; // shader storage
 inline constexpr unsigned kShadowMapUnit = 0;

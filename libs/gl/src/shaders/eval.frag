@@ -12,7 +12,9 @@ layout(location = 4) out vec2 outTexel;
 layout(location = 5) out vec4 outTexelFromPixel;
 
 void main() {
-    outShadowTerm = shadowTerm(wsPosition); // the maps' test alone, without N·L
+    const vec3 dwsdx = dFdx(wsPosition), dwsdy = dFdy(wsPosition); // uniform control flow
+    // The maps' test alone, without N·L (also the mask the eye-space blur starts from).
+    outShadowTerm = shadowTerm(wsPosition, normalize(wsNormal), dwsdx, dwsdy);
     outSurfaceId = vSurfaceId;
     outViewDepth = viewDepthOf(wsPosition);
     outNormal = vec4(normalize(wsNormal), 0.0);

@@ -2,6 +2,7 @@
 // dump of `--dump` (README, "shadowkit eval").
 #pragma once
 
+#include "shadowkit/core/bias.h"
 #include "shadowkit/core/raster_buffers.h"
 #include "shadowkit/core/result.h"
 #include "shadowkit/eval/metrics.h"
@@ -21,7 +22,9 @@ struct ViewReport {
     int width = 0, height = 0;
     int mapSize = 0;     // texels per side
     int maps = 1;        // shadow maps in the set-up
-    float biasSlope = 0.0f, biasConstant = 0.0f;
+    core::BiasSettings bias;
+    std::string filter = "hard"; // as given to --filter
+    int blurIterations = 0;
     std::vector<std::string> fallbacks;
     Figures figures;
     double seconds = 0.0; // wall time of this view's evaluation
