@@ -107,6 +107,37 @@ TEST_F(EvalIntegrationTest, UnbiasedMapShowsAcneOnALitTiltedPlaneThatSlopeScaled
     EXPECT_EQ(biased.falseLitPct, 0.0); // nothing is shadowed in truth
 }
 
+TEST_F(EvalIntegrationTest, ExcessiveConstantBiasDetachesShadowsIntoFalseLit) {
+    // Peter-panning: a 20 cm slab 5 cm above a tilted plane. A bias of a few depth steps keeps its
+    // contact shadow; a constant of 10^6 steps (6 % of the map's depth range) pushes the
+    // stored depth behind the receivers near the contact, which then read as lit.
+    scene::Scene s;
+    scene::Mesh plane, box;
+    scene::addBox(plane, glm::mat4(1.0f), {10, 0.01f, 10}, glm::vec3(0.8f));
+    scene::addBox(box, glm::translate(glm::mat4(1.0f), {0, 0.16f, 0}), {1.5f, 0.1f, 1.5f}, glm::vec3(0.8f)); // a slab
+    plane.computeBounds();
+    box.computeBounds();
+    const glm::mat4 tilt = glm::rotate(glm::mat4(1.0f), glm::radians(20.0f), glm::vec3(1, 0, 0));
+    s.meshes = {plane, box};
+    s.batches = {{0, {tilt}, false}, {1, {tilt}, false}};
+    core::PerspectiveCamera cam;
+    cam.wsEye = {0, 9, 10};
+    cam.wsDirection = -cam.wsEye;
+    cam.aspect = 1.0;
+    cam.zNear = 1.0;
+    cam.zFar = 60;
+    const core::DirectionalLight sun = core::DirectionalLight::fromSunAngles(35, 30).value(); // a long shadow in view
+    gl::RenderSettings settings;
+    settings.width = settings.height = 128;
+    settings.shadowMapSize = 1024;
+    const eval::Figures normal = measure(s, cam, sun, core::Technique::Focused, settings);
+    settings.bias.constant = 1e6;
+    const eval::Figures excessive = measure(s, cam, sun, core::Technique::Focused, settings);
+    ASSERT_GT(normal.validPx, 5000);
+    EXPECT_LT(normal.falseLitPct, 0.5);
+    EXPECT_GT(excessive.falseLitPct, 5.0 * normal.falseLitPct + 0.5);
+}
+
 TEST_F(EvalIntegrationTest, LispsmBeatsFocusedOnThePerpendicularView) {
     // Seed 001's ideal case: view perpendicular to the light. Same map size, same view.
     scene::ForestOptions o;

@@ -18,6 +18,7 @@ Command addSetupCommand(CLI::App& app);
 Command addExportCommand(CLI::App& app);
 Command addEvalCommand(CLI::App& app);
 Command addAnalyzeCommand(CLI::App& app);
+Command addCompareCommand(CLI::App& app);
 
 // Prints "shadowkit: error: <message>" (one line) to stderr and returns 1.
 int fail(const std::string& message);

@@ -12,6 +12,7 @@ int main(int argc, char** argv) {
         shadowkit::app::addRenderCommand(app),
         shadowkit::app::addEvalCommand(app),
         shadowkit::app::addAnalyzeCommand(app),
+        shadowkit::app::addCompareCommand(app),
         shadowkit::app::addSetupCommand(app),
         shadowkit::app::addExportCommand(app),
     };

@@ -160,3 +160,189 @@ TEST_F(RendererTest, CasterAboveTheFrustumStillShadowsItsCascade) {
         EXPECT_LT(under, 0.7 * away) << "variant " << variant << ": under " << under << ", away " << away;
     }
 }
+
+TEST_F(RendererTest, EveryBiasModeAndFilterWorksWithEveryTechnique) {
+    // No mode may turn the image all-lit or all-shadowed: the plane under the box stays
+    // darker than the plane beside it, for every technique.
+    const scene::Scene s = boxOverPlane();
+    auto renderer = gl::Renderer::create(s);
+    ASSERT_TRUE(renderer);
+    const core::PerspectiveCamera cam = obliqueCamera();
+    const core::DirectionalLight sun{{0, -1, 0}};
+    std::vector<std::pair<std::string, gl::RenderSettings>> modes;
+    gl::RenderSettings base;
+    base.width = base.height = 96;
+    base.shadowMapSize = 256;
+    base.fogDensity = 0.0f;
+    for (core::CasterCull cull : {core::CasterCull::None, core::CasterCull::Back, core::CasterCull::Front}) {
+        gl::RenderSettings m = base;
+        m.bias.cull = cull;
+        modes.emplace_back("cull " + std::to_string(int(cull)), m);
+    }
+    gl::RenderSettings m = base;
+    m.bias.normalOffset = 1.0;
+    modes.emplace_back("normal offset", m);
+    m = base;
+    m.bias.receiverPlane = true;
+    m.bias.slope = 0.0;
+    modes.emplace_back("receiver plane", m);
+    for (auto [kind, taps] : {std::pair{gl::ShadowFilter::Pcf2, 1}, {gl::ShadowFilter::PcfGrid, 3}, {gl::ShadowFilter::Poisson, 16}}) {
+        m = base;
+        m.filter = {kind, taps};
+        modes.emplace_back("filter " + std::to_string(int(kind)), m);
+    }
+    m = base;
+    m.blur.iterations = 4;
+    modes.emplace_back("blur", m);
+
+    for (const core::TechniqueInfo& technique : core::allTechniques())
+        for (core::DepthLayout layout : {core::DepthLayout::Hyperbolic, core::DepthLayout::Linear})
+            for (const auto& [name, settings] : modes) {
+                const auto setup = core::computeShadowSetup({.camera = cam, .light = sun, .wsSceneBounds = s.wsBounds(),
+                                                             .technique = technique.technique, .depthLayout = layout});
+                ASSERT_TRUE(setup);
+                ASSERT_TRUE((*renderer)->render(cam, sun, *setup, settings)) << name;
+                const scene::Image image = (*renderer)->readColor();
+                const double under = luminanceAt(image, cam, {0.3, 0, 0.3}), away = luminanceAt(image, cam, {6, 0, 2});
+                EXPECT_LT(under, 0.7 * away) << technique.name << ", " << name << ", layout " << int(layout);
+                EXPECT_GT(away, 100.0) << technique.name << ", " << name << ", layout " << int(layout);
+            }
+}
+
+TEST_F(RendererTest, PcfTermsLieInZeroOneAndFallMonotonicallyAcrossAShadowEdge) {
+    // A plate 10 m up casts a square shadow 6 m to its +x side (sun tilted); the camera
+    // looks straight down on that shadow's left edge.
+    scene::Scene s;
+    scene::Mesh ground, plate;
+    scene::addBox(ground, glm::translate(glm::mat4(1.0f), {0, -0.5f, 0}), {20, 0.5f, 20}, glm::vec3(0.8f));
+    scene::addBox(plate, glm::mat4(1.0f), {3, 0.1f, 3}, glm::vec3(0.8f));
+    ground.computeBounds();
+    plate.computeBounds();
+    s.meshes = {ground, plate};
+    s.batches = {{0, {glm::mat4(1.0f)}, false}, {1, {glm::translate(glm::mat4(1.0f), {0, 10, 0})}, false}};
+    auto renderer = gl::Renderer::create(s);
+    ASSERT_TRUE(renderer);
+    core::PerspectiveCamera cam;
+    cam.wsEye = {6, 30, 0};
+    cam.wsDirection = {0, -1, 0};
+    cam.wsUp = {0, 0, -1};
+    cam.aspect = 1.0;
+    cam.zNear = 1;
+    cam.zFar = 40;
+    const core::DirectionalLight sun = core::DirectionalLight::fromDirection({0.6, -1, 0}).value();
+    gl::RenderSettings settings;
+    settings.width = settings.height = 128;
+    settings.shadowMapSize = 256;
+    for (auto [kind, taps] : {std::pair{gl::ShadowFilter::Pcf2, 1}, {gl::ShadowFilter::PcfGrid, 5}}) {
+        settings.filter = {kind, taps};
+        // Wide kernels need the receiver-plane bias: without it the outer taps of a 5x5 grid
+        // compare the centre's depth with texels 2 away on the sloped ground and a fifth of
+        // them fail (0.8 on lit ground), which is why `--receiver-plane-bias auto` turns it on.
+        settings.bias.receiverPlane = kind == gl::ShadowFilter::PcfGrid;
+        const auto setup = core::computeShadowSetup({.camera = cam, .light = sun, .wsSceneBounds = s.wsBounds(),
+                                                     .technique = core::Technique::Standard});
+        const auto raster = (*renderer)->renderEvalBuffers(cam, sun, *setup, settings);
+        ASSERT_TRUE(raster);
+        // Along +x on the ground: lit, the edge at x = 3, shadow.
+
+        std::vector<float> terms;
+        for (double x = 1.6; x <= 6.0; x += 0.05) {
+            const core::Vec4 c = cam.clipFromWorld() * core::Vec4(x, 0, 0, 1);
+            const int px = static_cast<int>((c.x / c.w * 0.5 + 0.5) * raster->width);
+            const int py = static_cast<int>((0.5 - c.y / c.w * 0.5) * raster->height);
+            const size_t i = raster->index(px, py);
+            ASSERT_EQ(raster->surfaceId[i], 1u) << "x " << x; // the ground, not the plate
+            terms.push_back(raster->shadowTerm[i]);
+        }
+        EXPECT_GT(terms.front(), 0.99f);
+        EXPECT_LT(terms.back(), 0.01f);
+        bool partial = false;
+        for (size_t i = 0; i < terms.size(); ++i) {
+            EXPECT_GE(terms[i], 0.0f);
+            EXPECT_LE(terms[i], 1.0f);
+            if (i > 0) {
+                EXPECT_LE(terms[i], terms[i - 1] + 1e-5f) << "filter " << int(kind) << " at " << i;
+            }
+            partial |= terms[i] > 0.05f && terms[i] < 0.95f;
+        }
+        EXPECT_TRUE(partial) << "filter " << int(kind) << ": no intermediate values at the edge";
+    }
+}
+
+namespace {
+// A lit wall 9 m ahead with ground behind it shadowed by a low plate: a depth step
+// between a lit and a shadowed surface along the wall's sides.
+scene::Scene wallBeforeShadowedGround() {
+    scene::Scene s;
+    scene::Mesh ground, plate, wall;
+    scene::addBox(ground, glm::translate(glm::mat4(1.0f), {0, -0.5f, -30}), {40, 0.5f, 40}, glm::vec3(0.8f));
+    scene::addBox(plate, glm::mat4(1.0f), {20, 0.1f, 15}, glm::vec3(0.8f));
+    // Thin enough that its side faces (which self-shadow, at the wall's own depth) stay
+    // under a pixel: the test is about the step to the ground behind, not those.
+    scene::addBox(wall, glm::mat4(1.0f), {1.5f, 2.0f, 0.002f}, glm::vec3(0.8f));
+    for (scene::Mesh* m : {&ground, &plate, &wall}) m->computeBounds();
+    s.meshes = {ground, plate, wall};
+    s.batches = {{0, {glm::mat4(1.0f)}, false},
+                 {1, {glm::translate(glm::mat4(1.0f), {0, 3, -25})}, false},
+                 {2, {glm::translate(glm::mat4(1.0f), {0, 2.0f, -9})}, false}};
+    return s;
+}
+} // namespace
+
+TEST_F(RendererTest, BlurKeepsAUniformMaskAndStopsAtDepthSteps) {
+    const scene::Scene s = wallBeforeShadowedGround();
+    auto renderer = gl::Renderer::create(s);
+    ASSERT_TRUE(renderer);
+    core::PerspectiveCamera cam;
+    cam.wsEye = {0, 2, 0};
+    cam.wsDirection = {0, -0.05, -1};
+    cam.aspect = 1.0;
+    cam.zNear = 0.5;
+    cam.zFar = 90;
+    const core::DirectionalLight sun = core::DirectionalLight::fromDirection({0, -1, -0.1}).value(); // grazes the wall's front
+    const auto setup = core::computeShadowSetup({.camera = cam, .light = sun, .wsSceneBounds = s.wsBounds(),
+                                                 .technique = core::Technique::Focused});
+    gl::RenderSettings settings;
+    settings.width = settings.height = 96;
+    settings.shadowMapSize = 512;
+    const auto sharp = (*renderer)->renderEvalBuffers(cam, sun, *setup, settings);
+    settings.blur = {16, 3.0f, 0.0f, 0.02f}; // strong, uniform in depth
+    const auto blurred = (*renderer)->renderEvalBuffers(cam, sun, *setup, settings);
+    settings.blur.depthThreshold = 1.0f;      // the control: depths within 2x mix (ground at 11-18 m)
+    const auto bleeding = (*renderer)->renderEvalBuffers(cam, sun, *setup, settings);
+    ASSERT_TRUE(sharp && blurred && bleeding);
+
+    int wallEdge = 0, keptLit = 0, bledInto = 0;
+    for (int y = 1; y < sharp->height - 1; ++y)
+        for (int x = 1; x < sharp->width - 1; ++x) {
+            const size_t i = sharp->index(x, y);
+            if (sharp->surfaceId[i] != 3) continue; // the wall
+            bool nearGround = false;                // within 2 pixels of the shadowed ground
+            for (int dy = -2; dy <= 2; ++dy)
+                for (int dx = -2; dx <= 2; ++dx) {
+                    const int xx = std::clamp(x + dx, 0, sharp->width - 1), yy = std::clamp(y + dy, 0, sharp->height - 1);
+                    const size_t j = sharp->index(xx, yy);
+                    nearGround |= sharp->surfaceId[j] == 1 && sharp->shadowTerm[j] < 0.5f;
+                }
+            if (!nearGround || sharp->shadowTerm[i] < 0.99f) continue;
+            ++wallEdge;
+            keptLit += blurred->shadowTerm[i] > 0.99f;
+            bledInto += bleeding->shadowTerm[i] < 0.9f;
+        }
+    ASSERT_GT(wallEdge, 10);
+    EXPECT_EQ(keptLit, wallEdge);       // the depth test stops the blur at the silhouette
+    EXPECT_GT(bledInto, wallEdge / 2);  // and without it, shadow bleeds onto the wall
+    // A uniform region stays uniform: the middle of the shadowed ground stays 0.
+    for (size_t i = 0; i < sharp->shadowTerm.size(); ++i)
+        if (sharp->surfaceId[i] == 1 && sharp->shadowTerm[i] == 0.0f && blurred->shadowTerm[i] > 0.0f) {
+            // only allowed next to a lit region; check the 5x5 neighbourhood had light
+            const int x = int(i % size_t(sharp->width)), y = int(i / size_t(sharp->width));
+            bool litNearby = false;
+            for (int dy = -6; dy <= 6; ++dy)
+                for (int dx = -6; dx <= 6; ++dx) {
+                    const int xx = std::clamp(x + dx, 0, sharp->width - 1), yy = std::clamp(y + dy, 0, sharp->height - 1);
+                    litNearby |= sharp->shadowTerm[sharp->index(xx, yy)] > 0.0f && sharp->surfaceId[sharp->index(xx, yy)] == 1;
+                }
+            EXPECT_TRUE(litNearby) << x << "," << y;
+        }
+}
