@@ -42,8 +42,8 @@ std::span<const TechniqueInfo> allTechniques();
 std::string_view techniqueName(Technique technique);
 std::optional<Technique> parseTechnique(std::string_view name);
 // The best technique implemented, by measurement: what `shadowkit render` uses unless told
-// otherwise. TSM (with its linear depth) has the lowest or equal-lowest wrong_pct on five of the six standard
-// views and the lowest mean (0.48 %, LiSPSM 0.60 %; README technique table).
+// otherwise. TSM (with its linear depth) has the lowest or equal-lowest wrong_pct of the single
+// maps on every standard view and the lowest mean (0.44 %, LiSPSM 0.60 %; README technique table).
 constexpr Technique defaultTechnique() { return Technique::Tsm; }
 // "standard, focused": for error messages and help.
 std::string techniqueNameList();
