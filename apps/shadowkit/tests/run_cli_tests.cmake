@@ -54,6 +54,12 @@ check_fails(unknown-format "unknown export format" export ${small} --out "${WORK
 check_fails(bad-forest-option "trees" export --trees -5 --out "${WORK}/x.glb")
 check_fails(unknown-flag "--frobnicate" render --frobnicate)
 check_fails(no-subcommand "subcommand")
+check_fails(compare-malformed "key=value" compare ${small} --configs "technique=lispsm,bias-slope")
+check_fails(compare-unknown-key "--frobnicate" compare ${small} --configs "technique=lispsm,frobnicate=1")
+check_fails(compare-bad-value "--technique" compare ${small} --configs "technique=nonsense")
+check_fails(bad-filter "--filter" render ${small} --filter pcf:12)
+check_fails(bad-cull "--cull" render ${small} --cull sideways)
+check_fails(bad-normal-offset "--normal-offset" render ${small} --normal-offset 50)
 check_fails(eval-unknown-view "unknown view" eval ${small} --views paper,sideways)
 check_fails(eval-unwritable-json "--json" eval ${small} --json "${WORK}/no/such/dir/r.json")
 check_fails(eval-unwritable-map "--error-map" eval ${small} --error-map "${WORK}/no/such/dir/e.png")
@@ -118,6 +124,14 @@ if(WITH_GL)
   endif()
   check_fails(unwritable-output "--out" render ${small} --size 16x16 --map-size 64 --out "${WORK}/no/such/dir/r.png")
   check_fails(map-too-large "--map-size" render ${small} --size 16x16 --map-size 1000000)
+
+  # compare writes a grid.
+  execute_process(COMMAND ${SHADOWKIT} compare ${small} --view paper --size 48x48 --columns 2
+                          --configs "technique=lispsm,bias-slope=0;technique=csm,cascades=2,filter=pcf:3;technique=tsm,blur-iterations=2"
+                          --out "${WORK}/grid.png" RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0 OR NOT EXISTS "${WORK}/grid.png")
+    message(SEND_ERROR "compare: failed or wrote no grid: ${err}")
+  endif()
 
   # eval writes its report, maps (one per view) and per-pixel dumps.
   execute_process(COMMAND ${SHADOWKIT} eval ${small} --views paper,noon --size 48x32 --map-size 256
