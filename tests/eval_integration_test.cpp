@@ -1,5 +1,7 @@
 // Rasterized shadows measured against ray-traced truth, end to end (GL + eval).
 // CTest label `gl`: runs headless on Mesa llvmpipe.
+#include "headless_gl_test.h"
+
 #include "shadowkit/eval/metrics.h"
 #include "shadowkit/eval/ray_scene.h"
 #include "shadowkit/eval/truth.h"
@@ -16,15 +18,8 @@ using namespace shadowkit;
 
 namespace {
 
-class EvalIntegrationTest : public ::testing::Test {
+class EvalIntegrationTest : public gl::testing::HeadlessGlTest {
 protected:
-    static void SetUpTestSuite() {
-        auto context = gl::Context::createHeadless();
-        ASSERT_TRUE(context) << context.error();
-        s_context = std::move(context).value().release();
-    }
-    static void TearDownTestSuite() { delete s_context; }
-
     // Renders and ray-traces one view and returns the figures.
     static eval::Figures measure(const scene::Scene& s, const core::PerspectiveCamera& cam, const core::DirectionalLight& sun,
                                  core::Technique technique, const gl::RenderSettings& settings) {
@@ -41,9 +36,7 @@ protected:
         EXPECT_TRUE(comparison);
         return comparison->figures;
     }
-    static gl::Context* s_context;
 };
-gl::Context* EvalIntegrationTest::s_context = nullptr;
 
 } // namespace
 

@@ -28,12 +28,6 @@ struct AnalyzeArgs {
     bool json = false;
 };
 
-double warpValue(const core::ShadowView& v, const char* name) {
-    for (const auto& [k, value] : v.warp)
-        if (k == name) return value;
-    return NAN;
-}
-
 int runAnalyze(const AnalyzeArgs& args) {
     if (!(args.zNear > 0.0 && args.zFar > args.zNear && std::isfinite(args.zFar)))
         return fail(fmt::format("--zn/--zf: need 0 < zn < zf, got {} and {}", args.zNear, args.zFar));
@@ -78,9 +72,9 @@ int runAnalyze(const AnalyzeArgs& args) {
     if (!setup) return fail(setup.error());
     const core::ShadowView& sv = setup->views[0];
     const core::PerspectiveCamera& cam = inputs->camera;
-    const double gamma = warpValue(sv, "gamma_degrees"), n = warpValue(sv, "n"), d = warpValue(sv, "d");
+    const double gamma = sv.warpValue("gamma_degrees"), n = sv.warpValue("n"), d = sv.warpValue("d");
     const double sinGamma = std::sin(glm::radians(gamma));
-    const bool warped = warpValue(sv, "uniform") == 0.0;
+    const bool warped = sv.warpValue("uniform") == 0.0;
     auto predict = [&](double nValue) {
         return std::isnan(d) || sinGamma < 1e-12 ? NAN : core::predictedMaxAliasing(cam.zNear, cam.zFar, d, sinGamma, nValue);
     };

@@ -28,12 +28,6 @@ ShadowSetupInputs levelView(double gammaDegrees, LispsmFormula formula = LispsmF
     return in;
 }
 
-double warpValue(const ShadowSetup& s, const std::string& name) {
-    for (const auto& [k, v] : s.views[0].warp)
-        if (k == name) return v;
-    return NAN;
-}
-
 } // namespace
 
 TEST(LispsmTest, NEqualsTheClosedFormWhenViewIsPerpendicularToLight) {
@@ -42,9 +36,9 @@ TEST(LispsmTest, NEqualsTheClosedFormWhenViewIsPerpendicularToLight) {
     for (LispsmFormula f : {LispsmFormula::Paper, LispsmFormula::Scherzer}) {
         const auto setup = computeShadowSetup(levelView(90, f));
         ASSERT_TRUE(setup);
-        EXPECT_NEAR(warpValue(*setup, "d"), 99.0, 1e-6);
-        EXPECT_NEAR(warpValue(*setup, "n"), lispsmOptimalN(1, 100), 1e-6);
-        EXPECT_EQ(warpValue(*setup, "uniform"), 0.0);
+        EXPECT_NEAR(setup->views[0].warpValue("d"), 99.0, 1e-6);
+        EXPECT_NEAR(setup->views[0].warpValue("n"), lispsmOptimalN(1, 100), 1e-6);
+        EXPECT_EQ(setup->views[0].warpValue("uniform"), 0.0);
     }
 }
 
@@ -57,7 +51,7 @@ TEST(LispsmTest, NGrowsWithoutBoundAndConvergesToUniformAsGammaGoesToZero) {
         const Mat4& m = setup->views[0].clipFromWorld;
         for (int c = 0; c < 4; ++c)
             for (int r = 0; r < 4; ++r) ASSERT_TRUE(std::isfinite(m[c][r])) << "gamma " << gamma;
-        if (warpValue(*setup, "uniform") == 1.0) {
+        if (setup->views[0].warpValue("uniform") == 1.0) {
             reachedUniform = true;
             // The same matrix as the focused map: LiSPSM's limit is uniform shadow mapping.
             ShadowSetupInputs focused = levelView(gamma);
@@ -67,7 +61,7 @@ TEST(LispsmTest, NGrowsWithoutBoundAndConvergesToUniformAsGammaGoesToZero) {
                 for (int r = 0; r < 4; ++r) EXPECT_NEAR(m[c][r], u[c][r], 1e-9) << "gamma " << gamma;
             continue;
         }
-        const double n = warpValue(*setup, "n");
+        const double n = setup->views[0].warpValue("n");
         EXPECT_GT(n, previous) << "gamma " << gamma;
         previous = n;
     }
@@ -83,7 +77,7 @@ TEST(LispsmTest, WarpIsContinuousAtTheSwitchToUniform) {
     ShadowSetup setup;
     for (; gamma > 1e-6; gamma *= 0.8) {
         auto s = computeShadowSetup(levelView(gamma));
-        if (warpValue(*s, "uniform") == 1.0) break;
+        if (s->views[0].warpValue("uniform") == 1.0) break;
         setup = *s;
     }
     ShadowSetupInputs focused = levelView(gamma);
@@ -112,18 +106,18 @@ TEST(LispsmTest, NearTexelsGrowAtTheExpenseOfFarOnes) {
 
 TEST(LispsmTest, WeightOverrideAndVisibleDepthChangeN) {
     ShadowSetupInputs in = levelView(90, LispsmFormula::Scherzer);
-    const double base = warpValue(*computeShadowSetup(in), "n");
+    const double base = computeShadowSetup(in)->views[0].warpValue("n");
     in.lispsm.weight = 2.0;
-    EXPECT_NEAR(warpValue(*computeShadowSetup(in), "n"), 2.0 * base, 1e-9);
+    EXPECT_NEAR(computeShadowSetup(in)->views[0].warpValue("n"), 2.0 * base, 1e-9);
     in.lispsm.weight = 1.0;
     in.lispsm.nOverride = 42.0;
-    EXPECT_EQ(warpValue(*computeShadowSetup(in), "n"), 42.0);
+    EXPECT_EQ(computeShadowSetup(in)->views[0].warpValue("n"), 42.0);
     in.lispsm.nOverride.reset();
     // Only the first 20 m are visible: Δz shrinks, so n shrinks; B stays the same.
     in.lispsm.visibleDepth = Vec2(1, 20);
     const auto visible = computeShadowSetup(in);
-    EXPECT_NEAR(warpValue(*visible, "n"), 1 + std::sqrt(1.0 * 20.0), 1e-6);
-    EXPECT_NEAR(warpValue(*visible, "d"), 99.0, 1e-6);
+    EXPECT_NEAR(visible->views[0].warpValue("n"), 1 + std::sqrt(1.0 * 20.0), 1e-6);
+    EXPECT_NEAR(visible->views[0].warpValue("d"), 99.0, 1e-6);
     in.lispsm.weight = 0.0;
     EXPECT_FALSE(computeShadowSetup(in));
 }

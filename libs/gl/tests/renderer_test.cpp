@@ -1,5 +1,7 @@
 // Headless rendering tests (CTest label `gl`): a box floating over a plane under an
 // overhead sun must shadow the plane below it, for every technique.
+#include "headless_gl_test.h"
+
 #include "shadowkit/gl/context.h"
 #include "shadowkit/gl/renderer.h"
 #include "shadowkit/scene/mesh_builder.h"
@@ -11,17 +13,7 @@ using namespace shadowkit;
 
 namespace {
 
-class RendererTest : public ::testing::Test {
-protected:
-    static void SetUpTestSuite() {
-        auto context = gl::Context::createHeadless();
-        ASSERT_TRUE(context) << context.error();
-        s_context = std::move(context).value().release();
-    }
-    static void TearDownTestSuite() { delete s_context; }
-    static gl::Context* s_context;
-};
-gl::Context* RendererTest::s_context = nullptr;
+class RendererTest : public gl::testing::HeadlessGlTest {};
 
 scene::Scene boxOverPlane() {
     scene::Scene s;
@@ -60,7 +52,7 @@ double luminanceAt(const scene::Image& image, const core::PerspectiveCamera& cam
 } // namespace
 
 TEST_F(RendererTest, ContextIsOpenGL45Core) {
-    EXPECT_NE(s_context->description().find("4.5"), std::string::npos) << s_context->description();
+    EXPECT_NE(context().description().find("4.5"), std::string::npos) << context().description();
 }
 
 TEST_F(RendererTest, BoxOverPlaneShadowsThePlaneBelowItForEveryTechnique) {

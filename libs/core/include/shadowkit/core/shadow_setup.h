@@ -8,6 +8,7 @@
 #include "shadowkit/core/light.h"
 #include "shadowkit/core/result.h"
 
+#include <limits>
 #include <optional>
 #include <span>
 #include <utility>
@@ -125,6 +126,12 @@ struct ShadowView {
     std::optional<Vec2> split; // [near, far] view depth range, for cascades
     // Warp parameters of warped techniques, in order (e.g. LiSPSM: n, gamma_degrees, ...).
     std::vector<std::pair<std::string, double>> warp;
+    // The named warp parameter, or NaN when this view has none of that name.
+    double warpValue(std::string_view name) const {
+        for (const auto& [key, value] : warp)
+            if (key == name) return value;
+        return std::numeric_limits<double>::quiet_NaN();
+    }
     // Row r with depth = dot(r, (p, 1)): distance along the light mapped to [0, 1] over
     // what the map must hold (0 nearest the light). Used when the layout is Linear.
     Vec4 linearDepthFromWorld{0.0};
