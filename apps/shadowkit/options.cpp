@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <sstream>
+#include <tuple>
 
 namespace shadowkit::app {
 namespace {
@@ -205,14 +206,16 @@ core::Status RenderOptions::check() const {
     if (blurIterations < 0 || blurIterations > 64) return core::makeError("--blur-iterations: must be in [0, 64]");
     if (!(blurRadius > 0.0f && blurRadius <= 16.0f)) return core::makeError("--blur-radius: must be in (0, 16] pixels");
     if (!(blurDepthFalloff >= 0.0f && blurDepthFalloff <= 10.0f)) return core::makeError("--blur-depth-falloff: must be in [0, 10]");
-    core::BiasSettings b;
-    b.slope = biasSlope.value_or(b.slope);
-    b.constant = biasConstant.value_or(b.constant);
-    b.normalOffset = normalOffset.value_or(b.normalOffset);
-    if (auto s = core::validate(b); !s) {
-        const std::string& e = s.error();
-        const char* flag = e.rfind("bias slope", 0) == 0 ? "--bias-slope" : e.rfind("bias constant", 0) == 0 ? "--bias-constant" : "--normal-offset";
-        return core::makeError(std::string(flag) + ": " + e.substr(e.find(':') + 2));
+    // Each flag checked on its own by core::validate, so the message names the flag.
+    const std::tuple<const char*, const std::optional<double>&, double core::BiasSettings::*> fields[] = {
+        {"--bias-slope", biasSlope, &core::BiasSettings::slope},
+        {"--bias-constant", biasConstant, &core::BiasSettings::constant},
+        {"--normal-offset", normalOffset, &core::BiasSettings::normalOffset}};
+    for (const auto& [flag, value, member] : fields) {
+        if (!value) continue;
+        core::BiasSettings b;
+        b.*member = *value;
+        if (auto s = core::validate(b); !s) return core::makeError(std::string(flag) + ": " + s.error());
     }
     return core::Ok{};
 }
