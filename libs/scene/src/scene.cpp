@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace shadowkit::scene {
 
@@ -33,8 +34,34 @@ size_t Scene::instanceCount() const {
 
 double Scene::groundHeightAt(double x, double z) const {
     if (terrain) return terrain->heightAt(x, z);
-    const core::Aabb b = wsBounds();
-    return b.isEmpty() ? 0.0 : b.min.y;
+    // Loaded scenes: the highest upward-facing surface straight below the sky at (x, z),
+    // found by testing the vertical line against every triangle of the instances whose
+    // bounds contain it. A terrain mesh in a glTF file thus places the eye over the
+    // terrain, not under it. Runs once per view resolution, not per frame.
+    double best = -std::numeric_limits<double>::infinity();
+    for (const MeshBatch& batch : batches) {
+        const Mesh& mesh = meshes[batch.mesh];
+        for (const glm::mat4& m : batch.worldFromObject) {
+            const core::Aabb box = core::transformBounds(core::Mat4(m), mesh.osBounds);
+            if (x < box.min.x || x > box.max.x || z < box.min.z || z > box.max.z || box.max.y <= best) continue;
+            for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
+                const glm::dvec3 a(m * glm::vec4(mesh.vertices[mesh.indices[i]].position, 1.0f));
+                const glm::dvec3 b(m * glm::vec4(mesh.vertices[mesh.indices[i + 1]].position, 1.0f));
+                const glm::dvec3 c(m * glm::vec4(mesh.vertices[mesh.indices[i + 2]].position, 1.0f));
+                // Barycentric coordinates of (x, z) in the triangle's xz projection. The face
+                // normal's y is −det, so up-facing triangles have det < 0 (NaN-safe test).
+                const double det = (b.x - a.x) * (c.z - a.z) - (c.x - a.x) * (b.z - a.z);
+                if (!(det < -1e-12)) continue; // degenerate or facing down
+                const double u = ((x - a.x) * (c.z - a.z) - (c.x - a.x) * (z - a.z)) / det;
+                const double v = ((b.x - a.x) * (z - a.z) - (x - a.x) * (b.z - a.z)) / det;
+                if (u < 0.0 || v < 0.0 || u + v > 1.0) continue;
+                best = std::max(best, a.y + u * (b.y - a.y) + v * (c.y - a.y));
+            }
+        }
+    }
+    if (std::isfinite(best)) return best;
+    const core::Aabb bounds = wsBounds();
+    return bounds.isEmpty() ? 0.0 : bounds.min.y;
 }
 
 double Heightfield::sample(int ix, int iz) const {

@@ -85,3 +85,17 @@ TEST(SceneIoTest, BadFilesGiveOneLineNamingTheFile) {
     EXPECT_FALSE(loadScene(dir / "x.fbx"));
     EXPECT_FALSE(exportScene(tinyForest(), dir / "x.fbx"));
 }
+
+TEST(SceneIoTest, LoadedTerrainPlacesTheEyeOverItNotUnderIt) {
+    // The exported forest has no heightfield once loaded: the ground under a point must
+    // come from its terrain triangles (the clearing at the origin has no trees).
+    const Scene forest = tinyForest();
+    const auto file = std::filesystem::temp_directory_path() / "shadowkit_ground.glb";
+    ASSERT_TRUE(exportScene(forest, file));
+    const auto loaded = loadScene(file);
+    ASSERT_TRUE(loaded);
+    EXPECT_FALSE(loaded->terrain.has_value());
+    for (auto [x, z] : {std::pair{0.0, 0.0}, std::pair{3.0, -2.0}})
+        EXPECT_NEAR(loaded->groundHeightAt(x, z), forest.terrain->heightAt(x, z), 1e-3) << x << "," << z;
+    std::filesystem::remove(file);
+}

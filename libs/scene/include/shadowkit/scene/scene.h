@@ -48,8 +48,9 @@ struct Scene {
     core::Aabb wsBounds() const;
     size_t triangleCount() const;   // over all instances
     size_t instanceCount() const;
-    // Height of the ground under (x, z): the terrain where there is one, else the bottom
-    // of the scene bounds (0 for an empty scene).
+    // Height of the ground under (x, z): the terrain heightfield where there is one, else
+    // the highest upward-facing surface over that point, else the bottom of the scene
+    // bounds (0 for an empty scene).
     double groundHeightAt(double x, double z) const;
 };
 
