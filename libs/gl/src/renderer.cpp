@@ -195,8 +195,8 @@ void Renderer::Impl::uploadFrame(const core::PerspectiveCamera& camera, const co
                                    setup.depthLayout == core::DepthLayout::Linear ? 1.0f : 0.0f,
                                    settings.cascadeColors ? 1.0f : 0.0f);
     const FilterSettings& f = settings.filter;
-    const float kinds[] = {0.0f, 1.0f, 2.0f, 3.0f}; // ShadowFilter order
-    frame.filterParams = glm::vec4(kinds[static_cast<int>(f.kind)], static_cast<float>(f.taps), f.radiusTexels,
+    // The shader's filter codes are ShadowFilter's order: hard 0, pcf2 1, grid 2, Poisson 3.
+    frame.filterParams = glm::vec4(static_cast<float>(static_cast<int>(f.kind)), static_cast<float>(f.taps), f.radiusTexels,
                                    settings.bias.receiverPlane ? 1.0f : 0.0f);
     frame.biasParams = glm::vec4(static_cast<float>(settings.bias.normalOffset), useMask ? 1.0f : 0.0f, 0.0f, 0.0f);
     for (size_t i = 0; i < setup.views.size(); ++i) {
