@@ -1,8 +1,8 @@
 #include "shadowkit/core/shadow_setup.h"
 
-#include "shadowkit/core/lispsm.h"
 #include "shadowkit/core/cascades.h"
 #include "shadowkit/core/focus_body.h"
+#include "shadowkit/core/lispsm.h"
 #include "shadowkit/core/psm.h"
 #include "shadowkit/core/tsm.h"
 #include "shadowkit/core/uniform_shadow_map.h"
@@ -19,7 +19,7 @@ constexpr std::array kTechniques = {
     TechniqueInfo{Technique::Focused, "focused", "uniform map fitted to the focus body B (view frustum ∩ scene, swept to the light)"},
     TechniqueInfo{Technique::Psm, "psm", "perspective shadow map: taken in the camera's post-perspective space"},
     TechniqueInfo{Technique::Tsm, "tsm", "trapezoidal shadow map: a trapezoid around the view mapped to the square"},
-    TechniqueInfo{Technique::Csm, "csm", "cascaded shadow maps: one map per depth split of the view (--cascades, --lambda)"},
+    TechniqueInfo{Technique::Csm, "csm", "cascaded shadow maps: one map per depth split of the view"},
     TechniqueInfo{Technique::Lispsm, "lispsm", "light space perspective shadow map: B warped along the view, n from seed 000/001"},
 };
 
