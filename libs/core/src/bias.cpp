@@ -1,8 +1,9 @@
 // Depth bias settings.
 //
-// Based on: seed 000 §4.2 (constant, slope-scale, linear z, back-side rendering; 2.0/4.0 as
-// the paper's working slope-scale bias), seed 003 (bias basics), normal offset and
-// receiver-plane depth bias as in the modern literature (Isidoro 2006 for the latter).
+// Based on: Scherzer 2005 §4.2 (constant, slope-scale, linear z, back-side rendering; 2.0/4.0
+// as the paper's working slope-scale bias), the shadow-mapping lecture notes (bias basics),
+// normal offset (Holbert 2011) and receiver-plane depth bias (Isidoro 2006); full citations
+// in docs/references.md.
 #include "shadowkit/core/bias.h"
 
 #include <cmath>
@@ -10,13 +11,13 @@
 namespace shadowkit::core {
 
 Status validate(const BiasSettings& b) {
-    if (!(b.slope >= 0.0 && b.slope <= 100.0)) return makeError("bias slope: must be in [0, 100]");
-    if (!(b.constant >= 0.0 && b.constant <= 1e6)) return makeError("bias constant: must be in [0, 1e6]");
-    if (!(b.normalOffset >= 0.0 && b.normalOffset <= 10.0)) return makeError("normal offset: must be in [0, 10] texels");
+    if (!(b.slope >= 0.0 && b.slope <= 100.0)) return fieldError("bias.slope", "must be in [0, 100]"); // NaN-safe
+    if (!(b.constant >= 0.0 && b.constant <= 1e6)) return fieldError("bias.constant", "must be in [0, 1e6]");
+    if (!(b.normalOffset >= 0.0 && b.normalOffset <= 10.0)) return fieldError("bias.normal_offset", "must be in [0, 10] texels");
     return Ok{};
 }
 
-BiasSettings recommendedBias(Technique technique, DepthLayout) {
+BiasSettings recommendedBias(Technique technique, DepthLayout, const FilterSettings& filter) {
     // Chosen by wrong_pct on the `paper` and `perpendicular` views of the default forest at
     // 2048² (README, "Bias and filtering"; `shadowkit compare` over six settings each):
     //   tsm, lispsm, csm: slope 1 / constant 2 with a normal offset of half a texel was
@@ -44,6 +45,10 @@ BiasSettings recommendedBias(Technique technique, DepthLayout) {
     case Technique::Standard:
     case Technique::Focused: break;
     }
+    // Kernels wider than the hardware's 2x2 compare taps texels away from the receiver: on a
+    // surface sloped in light space they self-shadow unless the reference depth follows the
+    // receiver's plane (measured: a 5 x 5 grid gives 0.8 on lit sloped ground; gl tests).
+    b.receiverPlane = isWideKernel(filter);
     return b;
 }
 

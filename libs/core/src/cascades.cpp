@@ -49,7 +49,7 @@ ShadowView stableView(const ShadowSetupInputs& in, const PerspectiveCamera& slic
     // The map spans 2·half with one texel of margin on each side of the sphere; snapping the
     // centre to multiples of that texel puts the map's edges (cx ± half, half = mapSize/2
     // texels) on one fixed world grid, whatever the camera does.
-    const int mapSize = in.cascades.mapSize;
+    const int mapSize = in.mapSize;
     const double half = sphere.radius * mapSize / (mapSize - 2);
     const double texel = 2.0 * half / mapSize;
     const double cx = std::floor(lsCentre.x / texel) * texel, cy = std::floor(lsCentre.y / texel) * texel;
@@ -75,24 +75,30 @@ ShadowView stableView(const ShadowSetupInputs& in, const PerspectiveCamera& slic
 
 } // namespace
 
+Status validate(const CascadeOptions& o) {
+    if (o.count < 1 || o.count > 8) return fieldError("cascades.count", "must be in [1, 8], got " + std::to_string(o.count));
+    if (!(o.lambda >= 0.0 && o.lambda <= 1.0)) return fieldError("cascades.lambda", "must be in [0, 1]");
+    if (!(o.blendBand >= 0.0 && o.blendBand <= 0.5)) return fieldError("cascades.blend_band", "must be in [0, 0.5]");
+    if (o.stabilize && o.warp != CascadeWarp::None)
+        return fieldError("cascades.stabilize",
+                          "stabilisation cannot be combined with a per-split warp (a warp moves texels with the view)");
+    return Ok{};
+}
+
 Status validateCascades(const ShadowSetupInputs& in) {
     const CascadeOptions& o = in.cascades;
-    if (o.count < 1 || o.count > 8) return makeError("cascades: count must be in [1, 8], got " + std::to_string(o.count));
-    if (!(o.lambda >= 0.0 && o.lambda <= 1.0)) return makeError("cascades: lambda must be in [0, 1]");
-    if (!(o.blendBand >= 0.0 && o.blendBand <= 0.5)) return makeError("cascades: blend band must be in [0, 0.5]");
-    if (o.mapSize < 16) return makeError("cascades: map size must be at least 16 texels");
-    if (o.stabilize && o.mapSize % 2 != 0)
-        return makeError("cascades: stabilisation needs an even map size (the map's edges must fall on the texel grid)");
-    if (o.stabilize && o.warp != CascadeWarp::None)
-        return makeError("cascades: stabilisation cannot be combined with a per-split warp (a warp moves texels with the view)");
+    if (Status s = validate(o); !s) return s;
+    if (o.stabilize && in.mapSize % 2 != 0)
+        return fieldError("cascades.stabilize",
+                          "stabilisation needs an even map size (the map's edges must fall on the texel grid)");
     if (!o.splits.empty()) {
         if (o.splits.size() != static_cast<size_t>(o.count) + 1)
-            return makeError("cascades: explicit splits need count + 1 = " + std::to_string(o.count + 1) + " distances");
+            return fieldError("cascades.splits", "explicit splits need count + 1 = " + std::to_string(o.count + 1) + " distances");
         const double tolerance = 1e-9 * in.camera.zFar;
         if (std::abs(o.splits.front() - in.camera.zNear) > tolerance || std::abs(o.splits.back() - in.camera.zFar) > tolerance)
-            return makeError("cascades: explicit splits must start at the near plane and end at the far plane");
+            return fieldError("cascades.splits", "explicit splits must start at the near plane and end at the far plane");
         for (size_t i = 1; i < o.splits.size(); ++i)
-            if (!(o.splits[i] > o.splits[i - 1])) return makeError("cascades: explicit splits must increase");
+            if (!(o.splits[i] > o.splits[i - 1])) return fieldError("cascades.splits", "explicit splits must increase");
     }
     return Ok{};
 }

@@ -75,7 +75,7 @@ ShadowSetup computeLispsm(const ShadowSetupInputs& in) {
     // rounding, so its direction is still exact at 1e-12. Everything above converges to
     // uniform smoothly through the n/d test below.
     if (glm::length(projection) < kLispsmParallelSine) {
-        view.warp = {{"gamma_degrees", gammaDegrees}, {"uniform", 1.0}};
+        view.warp = LispsmWarp{.gammaDegrees = gammaDegrees, .uniform = true, .viewParallel = true};
         setup.fallbacks.emplace_back("lispsm: view parallel to the light, no perspective aliasing to correct: uniform map");
         return setup;
     }
@@ -111,11 +111,11 @@ ShadowSetup computeLispsm(const ShadowSetupInputs& in) {
         }
         n *= o.weight;
     }
-    view.warp = {{"n", n}, {"f", n + d}, {"d", d}, {"gamma_degrees", gammaDegrees}, {"uniform", 0.0}};
+    LispsmWarp& warp = view.warp.emplace<LispsmWarp>(LispsmWarp{.n = n, .f = n + d, .d = d, .gammaDegrees = gammaDegrees});
     view.lightFromWorld = frame.lightFromWorld;
     if (!(d > 0.0) || n > kLispsmUniformRatio * d) {
         // The uniform limit in the same light frame, so the texel grid does not turn at the switch.
-        view.warp.back().second = 1.0;
+        warp.uniform = true;
         view.clipFromLight = fitOrthographic(frame.lightFromWorld, wsPoints);
         view.clipFromWorld = view.clipFromLight * view.lightFromWorld;
         setup.fallbacks.emplace_back("lispsm: n = " + std::to_string(n) + " m exceeds " +

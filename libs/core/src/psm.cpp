@@ -92,8 +92,8 @@ ShadowSetup computePsm(const ShadowSetupInputs& in) {
     view.lightFromWorld = viewFromWorld;
     view.clipFromLight = fitToClipCube(lightFromPp * ppFromView, vsPoints);
     view.clipFromWorld = view.clipFromLight * view.lightFromWorld;
-    view.warp = {{"slide_back", slideBack}, {"near", ppNear}, {"far", ppFar},
-                 {"light_w", light.w / std::max(lightXyz, 1e-300)}, {"inverted", inverted ? 1.0 : 0.0}};
+    view.warp = PsmWarp{.slideBack = slideBack, .ppNear = ppNear, .ppFar = ppFar,
+                        .lightW = light.w / std::max(lightXyz, 1e-300), .inverted = inverted};
     return setup;
 }
 

@@ -15,12 +15,9 @@ namespace shadowkit::core {
 namespace {
 
 constexpr std::array kTechniques = {
-    TechniqueInfo{Technique::Standard, "standard", "orthographic map of the whole scene box (view independent)"},
-    TechniqueInfo{Technique::Focused, "focused", "uniform map fitted to the focus body B (view frustum ∩ scene, swept to the light)"},
-    TechniqueInfo{Technique::Psm, "psm", "perspective shadow map: taken in the camera's post-perspective space"},
-    TechniqueInfo{Technique::Tsm, "tsm", "trapezoidal shadow map: a trapezoid around the view mapped to the square"},
-    TechniqueInfo{Technique::Csm, "csm", "cascaded shadow maps: one map per depth split of the view"},
-    TechniqueInfo{Technique::Lispsm, "lispsm", "light space perspective shadow map: B warped along the view, n from seed 000/001"},
+    TechniqueInfo{Technique::Standard, "standard"}, TechniqueInfo{Technique::Focused, "focused"},
+    TechniqueInfo{Technique::Psm, "psm"},           TechniqueInfo{Technique::Tsm, "tsm"},
+    TechniqueInfo{Technique::Csm, "csm"},           TechniqueInfo{Technique::Lispsm, "lispsm"},
 };
 
 bool isFinite(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
@@ -58,23 +55,9 @@ Result<ShadowSetup> runTechnique(const ShadowSetupInputs& inputs) {
     case Technique::Standard: return computeStandardShadowMap(inputs);
     case Technique::Focused: return computeFocusedShadowMap(inputs);
     case Technique::Psm: return computePsm(inputs);
-    case Technique::Csm: {
-        if (Status s = validateCascades(inputs); !s) return makeError(s.error());
-        return computeCascades(inputs);
-    }
-    case Technique::Tsm:
-        if (!(inputs.tsm.focusFraction > 0.0 && inputs.tsm.focusFraction < 1.0))
-            return makeError("tsm focus: must be a fraction in (0, 1)");
-        return computeTsm(inputs);
-    case Technique::Lispsm: {
-        const LispsmOptions& o = inputs.lispsm;
-        if (!(o.weight > 0.0) || !std::isfinite(o.weight)) return makeError("lispsm weight: must be a finite number > 0");
-        if (o.nOverride && !(*o.nOverride > 0.0 && std::isfinite(*o.nOverride)))
-            return makeError("lispsm n: must be a finite number of metres > 0");
-        if (o.visibleDepth && !(o.visibleDepth->x >= 0.0 && o.visibleDepth->y > o.visibleDepth->x))
-            return makeError("visible depth: must be [near, far] with 0 <= near < far");
-        return computeLispsm(inputs);
-    }
+    case Technique::Csm: return computeCascades(inputs);
+    case Technique::Tsm: return computeTsm(inputs);
+    case Technique::Lispsm: return computeLispsm(inputs);
     }
     return makeError("technique: unknown");
 }
@@ -95,23 +78,59 @@ void addLinearDepth(const ShadowSetupInputs& inputs, ShadowSetup& setup) {
     }
     const double range = std::max(hi - lo, 1e-9 * std::max(std::abs(hi), 1.0));
     for (ShadowView& view : setup.views) view.linearDepthFromWorld = Vec4(-towards / range, hi / range);
-    setup.depthLayout = inputs.depthLayout.value_or(inputs.technique == Technique::Tsm ? DepthLayout::Linear
-                                                                                        : DepthLayout::Hyperbolic);
+    setup.depthLayout = depthLayoutFor(inputs);
 }
 
 } // namespace
 
-Result<ShadowSetup> computeShadowSetup(const ShadowSetupInputs& inputs) {
-    if (Status s = inputs.camera.validate(); !s) return makeError(s.error());
+DepthLayout depthLayoutFor(const ShadowSetupInputs& inputs) {
+    return inputs.depthLayout.value_or(inputs.technique == Technique::Tsm ? DepthLayout::Linear : DepthLayout::Hyperbolic);
+}
+
+Status validate(const LispsmOptions& o) {
+    if (!(o.weight > 0.0) || !std::isfinite(o.weight)) return fieldError("lispsm.weight", "must be a finite number > 0");
+    if (o.nOverride && !(*o.nOverride > 0.0 && std::isfinite(*o.nOverride)))
+        return fieldError("lispsm.n", "must be a finite number of metres > 0");
+    if (o.visibleDepth && !(o.visibleDepth->x >= 0.0 && o.visibleDepth->y > o.visibleDepth->x && std::isfinite(o.visibleDepth->y)))
+        return fieldError("lispsm.visible_depth", "must be [near, far] with 0 <= near < far");
+    return Ok{};
+}
+
+Status validate(const TsmOptions& o) {
+    if (!(o.focusFraction > 0.0 && o.focusFraction < 1.0)) return fieldError("tsm.focus", "must be a fraction in (0, 1)");
+    return Ok{};
+}
+
+Status validateMapSize(int texels) {
+    if (texels < kMinMapSize || texels > kMaxMapSize)
+        return fieldError("map_size", "must be in [" + std::to_string(kMinMapSize) + ", " + std::to_string(kMaxMapSize) +
+                                          "] texels, got " + std::to_string(texels));
+    return Ok{};
+}
+
+Status validate(const ShadowSetupInputs& inputs) {
+    if (Status s = inputs.camera.validate(); !s) return s;
     const Vec3& l = inputs.light.wsDirection;
     if (!isFinite(l) || std::abs(glm::length(l) - 1.0) > 1e-6)
-        return makeError("light direction: must be a finite unit vector");
+        return fieldError("light_direction", "must be a finite unit vector");
     const Aabb& s = inputs.wsSceneBounds;
     if (!isFinite(s.min) || !isFinite(s.max) || s.isEmpty())
-        return makeError("scene bounds: must be finite with min <= max on every axis");
+        return fieldError("scene_bounds", "must be finite with min <= max on every axis");
+    if (Status st = validateMapSize(inputs.mapSize); !st) return st;
+    // Every technique's options are checked, used or not: a bad value is a mistake either way.
+    if (Status st = validate(inputs.lispsm); !st) return st;
+    if (Status st = validate(inputs.tsm); !st) return st;
+    if (inputs.technique == Technique::Csm) return validateCascades(inputs);
+    return validate(inputs.cascades);
+}
 
+Result<ShadowSetup> computeShadowSetup(const ShadowSetupInputs& inputs) {
+    if (Status s = validate(inputs); !s) return s.errorInfo();
     Result<ShadowSetup> setup = runTechnique(inputs);
-    if (setup) addLinearDepth(inputs, *setup);
+    if (setup) {
+        addLinearDepth(inputs, *setup);
+        setup->mapSize = inputs.mapSize;
+    }
     return setup;
 }
 

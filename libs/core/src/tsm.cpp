@@ -48,7 +48,7 @@ ShadowSetup computeTsm(const ShadowSetupInputs& in) {
     const Vec2 nearCentre = toL(cam.wsEye + cam.zNear * v), farCentre = toL(cam.wsEye + cam.zFar * v);
     const Vec2 axis = farCentre - nearCentre;
     if (glm::length(axis) < 1e-6) { // in L units: the map spans 2
-        view.warp = {{"uniform", 1.0}};
+        view.warp = TsmWarp{.uniform = true};
         setup.fallbacks.emplace_back("tsm: view parallel to the light, no trapezoid: uniform map");
         return setup;
     }
@@ -100,7 +100,7 @@ ShadowSetup computeTsm(const ShadowSetupInputs& in) {
     for (const Vec3& p : wsPoints) lsPoints.push_back(Vec3(view.lightFromWorld * Vec4(p, 1.0)));
     view.clipFromLight = fitToClipCube(trapezoid * toAB * view.clipFromLight, lsPoints);
     view.clipFromWorld = view.clipFromLight * view.lightFromWorld;
-    view.warp = {{"lambda", lambda}, {"delta", delta}, {"eta", eta}, {"uniform", 0.0}};
+    view.warp = TsmWarp{.lambda = lambda, .delta = delta, .eta = eta};
     return setup;
 }
 

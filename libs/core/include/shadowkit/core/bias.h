@@ -1,6 +1,7 @@
 // Depth-bias settings against self-shadowing (acne) and their recommended values.
 #pragma once
 
+#include "shadowkit/core/shadow_filter.h"
 #include "shadowkit/core/shadow_setup.h"
 
 namespace shadowkit::core {
@@ -9,7 +10,7 @@ namespace shadowkit::core {
 enum class CasterCull {
     None,  // both sides: the receiver's own front face is in the map (needs bias)
     Back,  // front faces only (the usual choice for closed meshes)
-    Front, // back faces only: "back-side rendering" (seed 000 §4.2): the stored depth is the
+    Front, // back faces only: "back-side rendering" (Scherzer 2005 §4.2): the stored depth is the
            // far side of each caster, so lit front faces are never compared with themselves
 };
 
@@ -27,11 +28,13 @@ struct BiasSettings {
     CasterCull cull = CasterCull::None;
 };
 
-// Checks the ranges above; the message names the field.
+// Checks the ranges above; error fields "bias.slope", "bias.constant", "bias.normal_offset".
 Status validate(const BiasSettings& bias);
 
-// The defaults `shadowkit render` and `eval` use for a technique and depth layout, chosen
-// from measurements (README, "Bias and filtering").
-BiasSettings recommendedBias(Technique technique, DepthLayout layout);
+// The bias every caller gets unless it sets its own (the renderer, `shadowkit render`,
+// `eval`, `compare`): chosen per technique and depth layout from measurements (README,
+// "Bias and filtering"), with receiver-plane depth bias switched on for wide filter
+// kernels, which self-shadow sloped receivers without it.
+BiasSettings recommendedBias(Technique technique, DepthLayout layout, const FilterSettings& filter = {});
 
 } // namespace shadowkit::core

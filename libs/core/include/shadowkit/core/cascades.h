@@ -5,7 +5,8 @@
 
 namespace shadowkit::core {
 
-// Checks CascadeOptions against the camera (explicit splits must run from near to far).
+// Checks CascadeOptions (validate(CascadeOptions)), then against the camera and map size:
+// explicit splits must run from near to far, stabilisation needs an even map size.
 Status validateCascades(const ShadowSetupInputs& inputs);
 
 // One shadow view per split, each with `split` = [start, end] of the view depth it serves

@@ -10,6 +10,10 @@ namespace shadowkit::core {
 
 struct Error {
     std::string message; // one line: names the input and what is wrong
+    // The option the error is about, as a stable dotted name ("lispsm.weight", "blur.radius";
+    // empty when none): front ends map it to their own spelling (a CLI flag, a UI field)
+    // instead of validating the same ranges again.
+    std::string field;
 };
 
 template <class T>
@@ -30,6 +34,7 @@ public:
     const T& operator*() const& { return value(); }
 
     const std::string& error() const { return std::get<1>(m_state).message; }
+    const Error& errorInfo() const { return std::get<1>(m_state); }
 
 private:
     std::variant<T, Error> m_state;
@@ -39,6 +44,11 @@ private:
 struct Ok {};
 using Status = Result<Ok>;
 
-inline Error makeError(std::string message) { return Error{std::move(message)}; }
+inline Error makeError(std::string message) { return Error{std::move(message), {}}; }
+// "field: what" with the field recorded, e.g. fieldError("lispsm.weight", "must be > 0").
+inline Error fieldError(std::string field, const std::string& what) {
+    std::string message = field + ": " + what;
+    return Error{std::move(message), std::move(field)};
+}
 
 } // namespace shadowkit::core

@@ -8,12 +8,11 @@
 #include "shadowkit/core/light.h"
 #include "shadowkit/core/result.h"
 
-#include <limits>
 #include <optional>
 #include <span>
-#include <utility>
 #include <string>
 #include <string_view>
+#include <variant>
 #include <vector>
 
 namespace shadowkit::core {
@@ -21,23 +20,23 @@ namespace shadowkit::core {
 enum class Technique {
     Standard, // orthographic fit of the whole scene box; independent of the view
     Focused,  // uniform (orthographic) fit of the focus body B
-    Lispsm,   // light space perspective shadow map (seed 001) with Scherzer's improvements (seed 000)
+    Lispsm,   // light space perspective shadow map (Wimmer et al. 2004) with Scherzer 2005's improvements
     Psm,      // perspective shadow map (Stamminger & Drettakis 2002): the map taken in post-perspective space
     Tsm,      // trapezoidal shadow map (Martin & Tan 2004): a trapezoid around the view mapped to the square
-    Csm,      // cascaded / parallel-split shadow maps (seed 002): one map per depth range of the view
+    Csm,      // cascaded / parallel-split shadow maps (Dimitrov 2007): one map per depth range of the view
 };
 
 // What the shadow map stores as depth.
 enum class DepthLayout {
     Hyperbolic, // clip z / w of clipFromWorld: what the projection gives (warped maps: hyperbolic)
-    Linear,     // linearDepthFromWorld: distance along the light, written per vertex (TSM paper;
-                // seed 000 §4.2) so depth resolution is even over B whatever the warp
+    Linear,     // linearDepthFromWorld: distance along the light, computed and written per
+                // fragment (Martin & Tan 2004; Scherzer 2005 §4.2) so depth resolution is even
+                // over B whatever the warp
 };
 
 struct TechniqueInfo {
     Technique technique;
-    std::string_view name;    // CLI / JSON name
-    std::string_view summary; // one line for --help
+    std::string_view name; // the name in JSON, the CLI and reports
 };
 std::span<const TechniqueInfo> allTechniques();
 std::string_view techniqueName(Technique technique);
@@ -49,20 +48,18 @@ constexpr Technique defaultTechnique() { return Technique::Tsm; }
 // "standard, focused": for error messages and help.
 std::string techniqueNameList();
 
-enum class ClipDepth { ZeroToOne, MinusOneToOne };
-
-// LiSPSM's choice of the free parameter n (seed 001 §3.5, §4.4; seed 000 §4.4).
+// LiSPSM's choice of the free parameter n (Wimmer et al. 2004 §3.5, §4.4; Scherzer 2005 §4.4).
 enum class LispsmFormula {
-    // Seed 001 §4.4: n = (z0 + √(z0 z1)) / sin γ with z0 = z_n, z1 = z_n + d sin γ,
+    // Wimmer et al. 2004 §4.4: n = (z0 + √(z0 z1)) / sin γ with z0 = z_n, z1 = z_n + d sin γ,
     // d the extent of B along the warp axis (the Δz = (f − n) sin γ refinement).
     Paper,
-    // Seed 000 eq. 1: n = (z_n + √(z_n (z_n + Δz))) / sin γ with Δz the depth extent of B
+    // Scherzer 2005 eq. 1: n = (z_n + √(z_n (z_n + Δz))) / sin γ with Δz the depth extent of B
     // along the warp axis, measured from visible depth bounds when the caller has them.
     Scherzer,
 };
 enum class LispsmDirection {
-    CrossProduct, // V_P = (l ⊗ v) ⊗ l: the view direction made perpendicular to the light (seed 000 eq. 3)
-    MiddleVector, // V_P = Σ (B_i − eye), made perpendicular to the light (seed 000 §4.4)
+    CrossProduct, // V_P = (l ⊗ v) ⊗ l: the view direction made perpendicular to the light (Scherzer 2005 eq. 3)
+    MiddleVector, // V_P = Σ (B_i − eye), made perpendicular to the light (Scherzer 2005 §4.4)
 };
 
 struct LispsmOptions {
@@ -71,9 +68,11 @@ struct LispsmOptions {
     double weight = 1.0;               // multiplies the chosen n; (0, inf)
     std::optional<double> nOverride;   // a fixed n in metres (> 0); the formula is then skipped
     // View-depth bounds of what is actually visible (e.g. a depth-buffer min/max
-    // reduction): narrow z_n and Δz for n only, never B (seed 000 §4.4).
-    std::optional<Vec2> visibleDepth;
+    // reduction): narrow z_n and Δz for n only, never B (Scherzer 2005 §4.4).
+    std::optional<Vec2> visibleDepth; // [near, far], 0 <= near < far
 };
+// Checks the ranges above; error fields "lispsm.weight", "lispsm.n", "lispsm.visible_depth".
+Status validate(const LispsmOptions& options);
 
 struct TsmOptions {
     // View depth of the focus point, as a fraction of [z_n, z_f] from the near plane: the
@@ -83,6 +82,8 @@ struct TsmOptions {
     // shadowkit eval --views all --technique tsm --tsm-focus F).
     double focusFraction = 0.2;
 };
+// Error field "tsm.focus".
+Status validate(const TsmOptions& options);
 
 enum class CascadeWarp {
     None,   // each split a focused uniform map (seed 002's crop matrix)
@@ -91,7 +92,7 @@ enum class CascadeWarp {
 
 struct CascadeOptions {
     int count = 4;               // splits, [1, 8]
-    // Practical split scheme weight (seed 002): 0 uniform, 1 logarithmic; [0, 1].
+    // Practical split scheme weight (Zhang et al. 2006; Dimitrov 2007): 0 uniform, 1 logarithmic; [0, 1].
     // 0.9: lowest mean wrong_pct over the six standard views with 4 × 1024² on the default
     // forest with the recommended bias (0.53; 0.79 at 0.5, 0.58 at 0.75, 0.60 at 0.95, 0.65 at 1;
     // shadowkit eval --views all --technique csm --map-size 1024 --lambda L).
@@ -107,33 +108,65 @@ struct CascadeOptions {
     // Each split reaches back over this fraction of the previous split's depth range, so
     // the shader can blend the two across that band; [0, 0.5].
     double blendBand = 0.0;
-    int mapSize = 2048;          // texels per side of each split's map (for texel snapping)
 };
+// Checks what does not depend on the camera (count, lambda, blend band, combinations);
+// error fields "cascades.count", "cascades.lambda", "cascades.blend_band",
+// "cascades.stabilize". The explicit splits are checked against the camera by
+// computeShadowSetup ("cascades.splits").
+Status validate(const CascadeOptions& options);
+
+inline constexpr int kMinMapSize = 16, kMaxMapSize = 16384; // texels per side
+// Error field "map_size".
+Status validateMapSize(int texelsPerSide);
 
 struct ShadowSetupInputs {
     PerspectiveCamera camera;
     DirectionalLight light;
     Aabb wsSceneBounds; // every caster and receiver lies inside
     Technique technique = Technique::Focused;
+    // Texels per side of each shadow map (every cascade), [kMinMapSize, kMaxMapSize]: the
+    // stabilised cascades snap to it, and the renderer allocates it (ShadowSetup::mapSize).
+    int mapSize = 2048;
     LispsmOptions lispsm;
     TsmOptions tsm;
     CascadeOptions cascades;
     std::optional<DepthLayout> depthLayout; // unset: the technique's own (linear for TSM)
 };
 
+// The layout a set-up with these inputs stores: the explicit one, else the technique's own.
+DepthLayout depthLayoutFor(const ShadowSetupInputs& inputs);
+
+// Warp parameters of the warped techniques, as `shadowkit setup` prints them under "warp"
+// (the JSON names are given per field).
+struct LispsmWarp {
+    double n = 0.0, f = 0.0;   // "n", "f": near and far distance of P along the warp axis (metres)
+    double d = 0.0;            // "d": extent of B along the warp axis (metres)
+    double gammaDegrees = 0.0; // "gamma_degrees": angle between view and light
+    bool uniform = false;      // "uniform": fell back to the uniform limit (n > kLispsmUniformRatio d)
+    // No warp axis at all (view exactly parallel to the light): n, f, d were not computed
+    // and are left out of the JSON.
+    bool viewParallel = false;
+};
+struct PsmWarp {
+    double slideBack = 0.0;        // "slide_back": how far the virtual camera moved back (metres)
+    double ppNear = 0.0, ppFar = 0.0; // "near", "far": the virtual camera's planes
+    double lightW = 0.0;           // "light_w": the light's post-perspective w, scaled (< 0: behind the viewer)
+    bool inverted = false;         // "inverted": the inverted projection for a light behind
+};
+struct TsmWarp {
+    // "lambda", "delta", "eta": trapezoid height, focus distance and top line offset (L units);
+    // left out of the JSON when uniform.
+    double lambda = 0.0, delta = 0.0, eta = 0.0;
+    bool uniform = false; // "uniform": view parallel to the light, no trapezoid
+};
+using WarpParameters = std::variant<std::monostate, LispsmWarp, PsmWarp, TsmWarp>;
+
 struct ShadowView {
     Mat4 lightFromWorld{1.0};
     Mat4 clipFromLight{1.0};
     Mat4 clipFromWorld{1.0}; // clipFromLight * lightFromWorld
     std::optional<Vec2> split; // [near, far] view depth range, for cascades
-    // Warp parameters of warped techniques, in order (e.g. LiSPSM: n, gamma_degrees, ...).
-    std::vector<std::pair<std::string, double>> warp;
-    // The named warp parameter, or NaN when this view has none of that name.
-    double warpValue(std::string_view name) const {
-        for (const auto& [key, value] : warp)
-            if (key == name) return value;
-        return std::numeric_limits<double>::quiet_NaN();
-    }
+    WarpParameters warp; // monostate for the uniform techniques
     // Row r with depth = dot(r, (p, 1)): distance along the light mapped to [0, 1] over
     // what the map must hold (0 nearest the light). Used when the layout is Linear.
     Vec4 linearDepthFromWorld{0.0};
@@ -144,14 +177,19 @@ struct ShadowSetup {
     std::vector<ShadowView> views;   // one per shadow map
     ConvexBody body;                 // B (empty for `standard`, or when the view misses the scene)
     std::vector<std::string> fallbacks; // degenerate cases met and what was done instead
-    ClipDepth clipDepth = ClipDepth::ZeroToOne;
+    int mapSize = 2048;                 // texels per side of every map: what the renderer allocates
+    // Clip depth is always [0, 1] (conventions.h: glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE)).
     DepthLayout depthLayout = DepthLayout::Hyperbolic;
     // True: casters in front of the near plane are clamped to depth 0 rather than clipped,
     // so the depth pass must enable depth clamping (GL_DEPTH_CLAMP).
     bool depthClamp = true;
 };
 
-// Validates the inputs (camera fields, finite non-empty scene bounds) and runs the technique.
+// Checks every input (camera, light, finite non-empty scene bounds, map size, the
+// technique's options) without computing anything; errors carry their field.
+Status validate(const ShadowSetupInputs& inputs);
+
+// Validates the inputs and runs the technique.
 Result<ShadowSetup> computeShadowSetup(const ShadowSetupInputs& inputs);
 
 } // namespace shadowkit::core

@@ -1,0 +1,46 @@
+#include "shadowkit/core/shadow_filter.h"
+
+#include <charconv>
+
+namespace shadowkit::core {
+
+Status validate(const FilterSettings& f) {
+    if (f.kind == ShadowFilter::PcfGrid && (f.taps < 1 || f.taps > 9))
+        return fieldError("filter.taps", "pcf grid size must be in [1, 9], got " + std::to_string(f.taps));
+    if (f.kind == ShadowFilter::Poisson && (f.taps < 1 || f.taps > 32))
+        return fieldError("filter.taps", "poisson samples must be in [1, 32], got " + std::to_string(f.taps));
+    if (!(f.radiusTexels > 0.0f && f.radiusTexels <= 16.0f)) // NaN-safe
+        return fieldError("filter.radius", "poisson radius must be in (0, 16] texels");
+    return Ok{};
+}
+
+std::string filterName(const FilterSettings& f) {
+    switch (f.kind) {
+    case ShadowFilter::Hard: return "hard";
+    case ShadowFilter::Pcf2: return "pcf2";
+    case ShadowFilter::PcfGrid: return "pcf:" + std::to_string(f.taps);
+    case ShadowFilter::Poisson: return "poisson:" + std::to_string(f.taps);
+    }
+    return "unknown";
+}
+
+Result<FilterSettings> parseFilter(std::string_view text) {
+    const Error bad = fieldError("filter", "expected hard, pcf2, pcf:N (N 1-9) or poisson:N (N 1-32), got '" +
+                                               std::string(text) + "'");
+    if (text == "hard") return FilterSettings{ShadowFilter::Hard, 1};
+    if (text == "pcf2") return FilterSettings{ShadowFilter::Pcf2, 1};
+    const size_t colon = text.find(':');
+    if (colon == std::string_view::npos) return bad;
+    const std::string_view kind = text.substr(0, colon), count = text.substr(colon + 1);
+    FilterSettings f;
+    if (kind == "pcf") f.kind = ShadowFilter::PcfGrid;
+    else if (kind == "poisson") f.kind = ShadowFilter::Poisson;
+    else return bad;
+    const auto [end, ec] = std::from_chars(count.data(), count.data() + count.size(), f.taps);
+    if (ec != std::errc{} || end != count.data() + count.size() || !validate(f)) return bad;
+    return f;
+}
+
+bool isWideKernel(const FilterSettings& f) { return f.kind == ShadowFilter::PcfGrid || f.kind == ShadowFilter::Poisson; }
+
+} // namespace shadowkit::core
