@@ -74,7 +74,7 @@ TEST(CascadesTest, OneViewPerSplitCoveringNearToFarWithTheBlendBandOverlapping) 
 TEST(CascadesTest, StabilisedSplitsMoveByWholeTexelsUnderCameraTranslation) {
     ShadowSetupInputs in = cascadedView();
     in.cascades.stabilize = true;
-    in.cascades.mapSize = 1024;
+    in.mapSize = 1024;
     const auto before = computeShadowSetup(in);
     ASSERT_TRUE(before);
     for (const Vec3 step : {Vec3(0.37, 0.0, -0.21), Vec3(-3.3, 0.5, 1.9), Vec3(0.01, 0.0, 0.002)}) {
@@ -132,17 +132,32 @@ TEST(CascadesTest, ExplicitSplitsAndBadOptionsAreChecked) {
     ASSERT_FALSE(both);
     EXPECT_NE(both.error().find("stabilisation"), std::string::npos);
     in.cascades.warp = CascadeWarp::None;
-    in.cascades.mapSize = 1023;
+    in.mapSize = 1023;
     EXPECT_FALSE(computeShadowSetup(in)); // texel snapping needs an even map size
 }
 
-TEST(CascadesTest, PerSplitLispsmWarpsEachSplit) {
+TEST(CascadesTest, PerSplitLispsmWarpsEachSplitWhereFocusedSplitsStayAffine) {
+    // The same splits with and without the per-split warp: with it every split is a real
+    // LiSPSM frustum (no fall-back to its uniform limit, w varying over the split), without
+    // it every split is an orthographic crop (w = 1 everywhere).
     ShadowSetupInputs in = cascadedView();
+    const auto plain = computeShadowSetup(in);
     in.cascades.warp = CascadeWarp::Lispsm;
-    const auto setup = computeShadowSetup(in);
-    ASSERT_TRUE(setup);
-    for (const ShadowView& v : setup->views) {
-        ASSERT_FALSE(v.warp.empty());
-        EXPECT_EQ(v.warp.front().first, "n");
+    const auto warped = computeShadowSetup(in);
+    ASSERT_TRUE(plain);
+    ASSERT_TRUE(warped);
+    ASSERT_EQ(plain->views.size(), warped->views.size());
+    const Vec3 forward = glm::normalize(in.camera.wsDirection);
+    for (size_t i = 0; i < warped->views.size(); ++i) {
+        const ShadowView& w = warped->views[i];
+        const ShadowView& p = plain->views[i];
+        EXPECT_EQ(*w.split, *p.split);
+        ASSERT_TRUE(std::holds_alternative<LispsmWarp>(w.warp)) << "split " << i;
+        EXPECT_FALSE(std::get<LispsmWarp>(w.warp).uniform) << "split " << i << " fell back to uniform";
+        EXPECT_TRUE(std::holds_alternative<std::monostate>(p.warp));
+        // Points at the split's near and far end, on the view axis.
+        const Vec4 nearP(in.camera.wsEye + w.split->x * forward, 1.0), farP(in.camera.wsEye + w.split->y * forward, 1.0);
+        EXPECT_GT(std::abs((w.clipFromWorld * farP).w - (w.clipFromWorld * nearP).w), 1e-3) << "split " << i;
+        EXPECT_NEAR((p.clipFromWorld * farP).w, (p.clipFromWorld * nearP).w, 1e-9) << "split " << i;
     }
 }

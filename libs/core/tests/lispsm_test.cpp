@@ -36,9 +36,9 @@ TEST(LispsmTest, NEqualsTheClosedFormWhenViewIsPerpendicularToLight) {
     for (LispsmFormula f : {LispsmFormula::Paper, LispsmFormula::Scherzer}) {
         const auto setup = computeShadowSetup(levelView(90, f));
         ASSERT_TRUE(setup);
-        EXPECT_NEAR(setup->views[0].warpValue("d"), 99.0, 1e-6);
-        EXPECT_NEAR(setup->views[0].warpValue("n"), lispsmOptimalN(1, 100), 1e-6);
-        EXPECT_EQ(setup->views[0].warpValue("uniform"), 0.0);
+        EXPECT_NEAR(std::get<LispsmWarp>(setup->views[0].warp).d, 99.0, 1e-6);
+        EXPECT_NEAR(std::get<LispsmWarp>(setup->views[0].warp).n, lispsmOptimalN(1, 100), 1e-6);
+        EXPECT_FALSE(std::get<LispsmWarp>(setup->views[0].warp).uniform);
     }
 }
 
@@ -51,7 +51,7 @@ TEST(LispsmTest, NGrowsWithoutBoundAndConvergesToUniformAsGammaGoesToZero) {
         const Mat4& m = setup->views[0].clipFromWorld;
         for (int c = 0; c < 4; ++c)
             for (int r = 0; r < 4; ++r) ASSERT_TRUE(std::isfinite(m[c][r])) << "gamma " << gamma;
-        if (setup->views[0].warpValue("uniform") == 1.0) {
+        if (std::get<LispsmWarp>(setup->views[0].warp).uniform) {
             reachedUniform = true;
             // The same matrix as the focused map: LiSPSM's limit is uniform shadow mapping.
             ShadowSetupInputs focused = levelView(gamma);
@@ -61,7 +61,7 @@ TEST(LispsmTest, NGrowsWithoutBoundAndConvergesToUniformAsGammaGoesToZero) {
                 for (int r = 0; r < 4; ++r) EXPECT_NEAR(m[c][r], u[c][r], 1e-9) << "gamma " << gamma;
             continue;
         }
-        const double n = setup->views[0].warpValue("n");
+        const double n = std::get<LispsmWarp>(setup->views[0].warp).n;
         EXPECT_GT(n, previous) << "gamma " << gamma;
         previous = n;
     }
@@ -77,7 +77,7 @@ TEST(LispsmTest, WarpIsContinuousAtTheSwitchToUniform) {
     ShadowSetup setup;
     for (; gamma > 1e-6; gamma *= 0.8) {
         auto s = computeShadowSetup(levelView(gamma));
-        if (s->views[0].warpValue("uniform") == 1.0) break;
+        if (std::get<LispsmWarp>(s->views[0].warp).uniform) break;
         setup = *s;
     }
     ShadowSetupInputs focused = levelView(gamma);
@@ -106,33 +106,52 @@ TEST(LispsmTest, NearTexelsGrowAtTheExpenseOfFarOnes) {
 
 TEST(LispsmTest, WeightOverrideAndVisibleDepthChangeN) {
     ShadowSetupInputs in = levelView(90, LispsmFormula::Scherzer);
-    const double base = computeShadowSetup(in)->views[0].warpValue("n");
+    const double base = std::get<LispsmWarp>(computeShadowSetup(in)->views[0].warp).n;
     in.lispsm.weight = 2.0;
-    EXPECT_NEAR(computeShadowSetup(in)->views[0].warpValue("n"), 2.0 * base, 1e-9);
+    EXPECT_NEAR(std::get<LispsmWarp>(computeShadowSetup(in)->views[0].warp).n, 2.0 * base, 1e-9);
     in.lispsm.weight = 1.0;
     in.lispsm.nOverride = 42.0;
-    EXPECT_EQ(computeShadowSetup(in)->views[0].warpValue("n"), 42.0);
+    EXPECT_EQ(std::get<LispsmWarp>(computeShadowSetup(in)->views[0].warp).n, 42.0);
     in.lispsm.nOverride.reset();
     // Only the first 20 m are visible: Δz shrinks, so n shrinks; B stays the same.
     in.lispsm.visibleDepth = Vec2(1, 20);
     const auto visible = computeShadowSetup(in);
-    EXPECT_NEAR(visible->views[0].warpValue("n"), 1 + std::sqrt(1.0 * 20.0), 1e-6);
-    EXPECT_NEAR(visible->views[0].warpValue("d"), 99.0, 1e-6);
+    EXPECT_NEAR(std::get<LispsmWarp>(visible->views[0].warp).n, 1 + std::sqrt(1.0 * 20.0), 1e-6);
+    EXPECT_NEAR(std::get<LispsmWarp>(visible->views[0].warp).d, 99.0, 1e-6);
     in.lispsm.weight = 0.0;
     EXPECT_FALSE(computeShadowSetup(in));
 }
 
-TEST(LispsmTest, MiddleVectorFollowsTheBodyWhenTheViewLooksDown) {
-    // Looking steeply down with the sun overhead-ish: both directions are defined and the
-    // set-up stays valid; the middle vector points where B extends.
+TEST(LispsmTest, MiddleVectorWarpsAlongTheBodyWhereTheCrossProductFollowsTheView) {
+    // Looking down and sideways over a floor with the sun from the side: B (the frustum
+    // clipped by the floor, swept to the light) is lopsided, so its middle vector and the
+    // view direction, each made perpendicular to the light, are different warp axes.
     ShadowSetupInputs in = levelView(60);
-    in.camera.wsDirection = Vec3(0, -1, -0.3);
+    in.camera.wsDirection = Vec3(0.4, -1, -0.3);
+    in.light = DirectionalLight{glm::normalize(Vec3(1, -1, 0.2))};
+    const auto cross = computeShadowSetup(in);
     in.lispsm.direction = LispsmDirection::MiddleVector;
-    const auto setup = computeShadowSetup(in);
-    ASSERT_TRUE(setup);
-    for (const Vec3& p : setup->body.vertices()) {
-        const Vec4 c = setup->views[0].clipFromWorld * Vec4(p, 1);
-        EXPECT_GT(c.w, 0.0);
-        EXPECT_LE(std::abs(c.x / c.w), 1.0 + 1e-9);
-    }
+    const auto middle = computeShadowSetup(in);
+    ASSERT_TRUE(cross);
+    ASSERT_TRUE(middle);
+    const Vec3 l = in.light.wsDirection;
+    // Light space +y is the warp axis V_P: row 1 of lightFromWorld's rotation.
+    auto warpAxis = [](const ShadowSetup& s) {
+        const Mat4& m = s.views[0].lightFromWorld;
+        return glm::normalize(Vec3(m[0][1], m[1][1], m[2][1]));
+    };
+    auto perpendicular = [&](const Vec3& v) { return glm::normalize(v - glm::dot(v, l) * l); };
+    Vec3 sum(0.0);
+    for (const Vec3& p : middle->body.vertices()) sum += p - in.camera.wsEye;
+    EXPECT_NEAR(glm::dot(warpAxis(*middle), perpendicular(sum)), 1.0, 1e-9);
+    EXPECT_NEAR(glm::dot(warpAxis(*cross), perpendicular(in.camera.wsDirection)), 1.0, 1e-9);
+    EXPECT_LT(glm::dot(warpAxis(*middle), warpAxis(*cross)), std::cos(glm::radians(5.0))); // really another axis
+    // Either way the whole of B stays in front of the projection centre and inside the map.
+    for (const auto* s : {&cross, &middle})
+        for (const Vec3& p : (*s)->body.vertices()) {
+            const Vec4 c = (*s)->views[0].clipFromWorld * Vec4(p, 1);
+            EXPECT_GT(c.w, 0.0);
+            EXPECT_LE(std::abs(c.x / c.w), 1.0 + 1e-9);
+            EXPECT_LE(std::abs(c.y / c.w), 1.0 + 1e-9);
+        }
 }

@@ -46,9 +46,9 @@ TEST(PsmTest, SunAheadBehindAndOverheadAreTheThreeCasesAndKeepTheDepthOrderOfThe
     }
     // The sun ahead of the viewer (travelling towards +Z, i.e. towards the camera) makes
     // the light's PP w positive; behind makes it negative and inverts the depth order.
-    EXPECT_GT(computeShadowSetup(viewWithSun({0, -1, 1}))->views[0].warpValue("light_w"), 0.0);
-    EXPECT_LT(computeShadowSetup(viewWithSun({0, -1, -1}))->views[0].warpValue("light_w"), 0.0);
-    EXPECT_EQ(computeShadowSetup(viewWithSun({0, -1, -1}))->views[0].warpValue("inverted"), 1.0);
+    EXPECT_GT(std::get<PsmWarp>(computeShadowSetup(viewWithSun({0, -1, 1}))->views[0].warp).lightW, 0.0);
+    EXPECT_LT(std::get<PsmWarp>(computeShadowSetup(viewWithSun({0, -1, -1}))->views[0].warp).lightW, 0.0);
+    EXPECT_TRUE(std::get<PsmWarp>(computeShadowSetup(viewWithSun({0, -1, -1}))->views[0].warp).inverted);
 }
 
 TEST(PsmTest, SlidesBackWhenCastersLieBehindTheViewer) {
@@ -56,10 +56,10 @@ TEST(PsmTest, SlidesBackWhenCastersLieBehindTheViewer) {
     // back until B starts at the near distance.
     const auto setup = computeShadowSetup(viewWithSun({0, -0.3, -1}));
     ASSERT_TRUE(setup);
-    EXPECT_GT(setup->views[0].warpValue("slide_back"), 10.0);
+    EXPECT_GT(std::get<PsmWarp>(setup->views[0].warp).slideBack, 10.0);
     for (const Vec3& p : setup->body.vertices()) EXPECT_GT((setup->views[0].clipFromWorld * Vec4(p, 1)).w, 0.0);
     // Sun ahead: nothing of B lies behind the viewer, no slide-back.
-    EXPECT_NEAR(computeShadowSetup(viewWithSun({0, -0.3, 1}))->views[0].warpValue("slide_back"), 0.0, 1e-9);
+    EXPECT_NEAR(std::get<PsmWarp>(computeShadowSetup(viewWithSun({0, -0.3, 1}))->views[0].warp).slideBack, 0.0, 1e-9);
 }
 
 TEST(PsmTest, GivesNearReceiversMoreTexelsThanTheFocusedMap) {

@@ -51,7 +51,7 @@ public:
         c.warp = chance(0.5) ? CascadeWarp::Lispsm : CascadeWarp::None;
         c.stabilize = c.warp == CascadeWarp::None && chance(0.5);
         c.blendBand = chance(0.5) ? uniform(0, 0.5) : 0.0;
-        c.mapSize = chance(0.5) ? 1024 : 2048;
+        in.mapSize = chance(0.5) ? 1024 : 2048;
         return in;
     }
 
@@ -228,7 +228,7 @@ TEST(ShadowSetupTest, BadInputsAreErrorsNotNaN) {
     in.wsSceneBounds = Aabb{};
     const auto r = computeShadowSetup(in);
     ASSERT_FALSE(r);
-    EXPECT_NE(r.error().find("scene bounds"), std::string::npos);
+    EXPECT_EQ(r.errorInfo().field, "scene_bounds");
     in.wsSceneBounds = Aabb::fromMinMax(Vec3(0), Vec3(1));
     in.light.wsDirection = Vec3(NAN, 0, 0);
     EXPECT_FALSE(computeShadowSetup(in));
