@@ -15,8 +15,8 @@ std::string oneLine(std::string log) {
 
 core::Result<Shader> compile(GLenum stage, std::initializer_list<std::string_view> sources, std::string_view what) {
     Shader shader(glCreateShader(stage));
-    std::vector<const char*> texts;
-    std::vector<GLint> lengths;
+    std::vector<const char*> texts = {shaderPrelude().data()};
+    std::vector<GLint> lengths = {static_cast<GLint>(shaderPrelude().size())};
     for (std::string_view s : sources) {
         texts.push_back(s.data());
         lengths.push_back(static_cast<GLint>(s.size()));
@@ -40,9 +40,9 @@ core::Result<Shader> compile(GLenum stage, std::initializer_list<std::string_vie
 core::Result<Program> buildProgram(std::string_view name, std::initializer_list<std::string_view> vertexSources,
                                    std::initializer_list<std::string_view> fragmentSources) {
     auto vs = compile(GL_VERTEX_SHADER, vertexSources, std::string(name) + ": vertex shader");
-    if (!vs) return core::makeError(vs.error());
+    if (!vs) return vs.errorInfo();
     auto fs = compile(GL_FRAGMENT_SHADER, fragmentSources, std::string(name) + ": fragment shader");
-    if (!fs) return core::makeError(fs.error());
+    if (!fs) return fs.errorInfo();
     Program program(glCreateProgram());
     glAttachShader(program.id(), vs->id());
     glAttachShader(program.id(), fs->id());
@@ -62,7 +62,7 @@ core::Result<Program> buildProgram(std::string_view name, std::initializer_list<
 }
 
 core::Status checkUniformBlock(const Program& program, std::string_view programName, const char* blockName,
-                               size_t cppSize) {
+                               size_t cppSize, std::span<const UniformField> fields) {
     const GLuint index = glGetUniformBlockIndex(program.id(), blockName);
     if (index == GL_INVALID_INDEX)
         return core::makeError(std::string(programName) + ": uniform block " + blockName + " missing from the shader");
@@ -71,6 +71,15 @@ core::Status checkUniformBlock(const Program& program, std::string_view programN
     if (static_cast<size_t>(size) != cppSize)
         return core::makeError(std::string(programName) + ": uniform block " + blockName + " is " + std::to_string(size) +
                                " bytes in GLSL but " + std::to_string(cppSize) + " in C++");
+    for (const UniformField& field : fields) {
+        GLuint member = GL_INVALID_INDEX;
+        glGetUniformIndices(program.id(), 1, &field.name, &member);
+        GLint offset = -1;
+        if (member != GL_INVALID_INDEX) glGetActiveUniformsiv(program.id(), 1, &member, GL_UNIFORM_OFFSET, &offset);
+        if (member == GL_INVALID_INDEX || static_cast<size_t>(offset) != field.offset)
+            return core::makeError(std::string(programName) + ": uniform " + blockName + "." + field.name + " is at offset " +
+                                   std::to_string(offset) + " in GLSL but " + std::to_string(field.offset) + " in C++");
+    }
     return core::Ok{};
 }
 

@@ -44,6 +44,20 @@ constexpr glm::vec3 kSky(0.62f, 0.72f, 0.85f);
 
 } // namespace
 
+core::Status validate(const BlurSettings& b) {
+    if (b.iterations < 0 || b.iterations > 64) return core::fieldError("blur.iterations", "must be in [0, 64]");
+    if (!(b.radiusPixels > 0.0f && b.radiusPixels <= 16.0f)) return core::fieldError("blur.radius", "must be in (0, 16] pixels");
+    if (!(b.depthFalloff >= 0.0f && b.depthFalloff <= 10.0f))
+        return core::fieldError("blur.depth_falloff", "must be in [0, 10] per metre");
+    if (!(b.depthThreshold > 0.0f && b.depthThreshold <= 1.0f))
+        return core::fieldError("blur.depth_threshold", "must be in (0, 1]");
+    return core::Ok{};
+}
+
+core::BiasSettings biasFor(const core::ShadowSetup& setup, const RenderSettings& settings) {
+    return settings.bias.value_or(core::recommendedBias(setup.technique, setup.depthLayout, settings.filter));
+}
+
 struct Renderer::Impl {
     std::optional<GpuScene> scene;
     Program depthProgram, mainProgram, evalProgram, blurProgram;
@@ -55,8 +69,10 @@ struct Renderer::Impl {
     std::optional<MaskPingPong> mask;
     PassTimer shadowTimer, mainTimer;
 
+    core::BiasSettings bias; // of the frame being drawn (biasFor), set by prepare()
+
     core::Status prepare(const core::ShadowSetup& setup, const RenderSettings& settings);
-    PassStats shadowPass(const core::ShadowSetup& setup, const RenderSettings& settings);
+    PassStats shadowPass(const core::ShadowSetup& setup);
     void uploadFrame(const core::PerspectiveCamera& camera, const core::DirectionalLight& light,
                      const core::ShadowSetup& setup, const RenderSettings& settings, bool useMask);
     // The eval pass into `eval` (shadow term, depth, ...), for the evaluation and as the
@@ -74,19 +90,20 @@ core::Result<std::unique_ptr<Renderer>> Renderer::create(const scene::Scene& sce
     auto renderer = std::unique_ptr<Renderer>(new Renderer);
     Impl& r = *renderer->m_impl;
     using namespace shaders;
-    auto depth = buildProgram("depth pass", {kDepthVert}, {kDepthFrag});
-    if (!depth) return core::makeError(depth.error());
+    auto depth = buildProgram("depth pass", {kDepthPassGlsl, kDepthVert}, {kDepthPassGlsl, kDepthFrag});
+    if (!depth) return depth.errorInfo();
     auto main = buildProgram("main pass", {kFrameGlsl, kMainVert}, {kFrameGlsl, kShadowLookupGlsl, kMainFrag});
-    if (!main) return core::makeError(main.error());
+    if (!main) return main.errorInfo();
     auto eval = buildProgram("eval pass", {kFrameGlsl, kMainVert}, {kFrameGlsl, kShadowLookupGlsl, kEvalFrag});
-    if (!eval) return core::makeError(eval.error());
+    if (!eval) return eval.errorInfo();
     auto blur = buildProgram("blur pass", {kFullscreenVert}, {kBlurFrag});
-    if (!blur) return core::makeError(blur.error());
-    if (auto s = checkUniformBlock(*blur, "blur pass", "Blur", sizeof(BlurUniforms)); !s) return core::makeError(s.error());
-    if (auto s = checkUniformBlock(*depth, "depth pass", "DepthPass", sizeof(DepthPassUniforms)); !s)
-        return core::makeError(s.error());
+    if (!blur) return blur.errorInfo();
+    if (auto s = checkUniformBlock(*blur, "blur pass", "Blur", sizeof(BlurUniforms), blurFields()); !s) return s.errorInfo();
+    if (auto s = checkUniformBlock(*depth, "depth pass", "DepthPass", sizeof(DepthPassUniforms), depthPassFields()); !s)
+        return s.errorInfo();
     for (const auto* p : {&main, &eval})
-        if (auto s = checkUniformBlock(**p, "camera pass", "Frame", sizeof(FrameUniforms)); !s) return core::makeError(s.error());
+        if (auto s = checkUniformBlock(**p, "camera pass", "Frame", sizeof(FrameUniforms), frameFields()); !s)
+            return s.errorInfo();
     r.depthProgram = std::move(depth).value();
     r.mainProgram = std::move(main).value();
     r.evalProgram = std::move(eval).value();
@@ -106,37 +123,33 @@ core::Result<std::unique_ptr<Renderer>> Renderer::create(const scene::Scene& sce
 core::Status Renderer::Impl::prepare(const core::ShadowSetup& setup, const RenderSettings& settings) {
     GLint maxSize = 0;
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
-    if (settings.shadowMapSize < 16 || settings.shadowMapSize > maxSize)
-        return core::makeError("map size: must be in [16, " + std::to_string(maxSize) + "] texels, got " +
-                               std::to_string(settings.shadowMapSize));
+    // The set-up's map size is valid for core ([kMinMapSize, kMaxMapSize]); here it must
+    // also fit this driver.
+    if (setup.mapSize < core::kMinMapSize || setup.mapSize > maxSize)
+        return core::fieldError("map_size", "must be in [" + std::to_string(core::kMinMapSize) + ", " + std::to_string(maxSize) +
+                                                "] texels on this GL driver, got " + std::to_string(setup.mapSize));
     if (settings.width < 1 || settings.height < 1 || settings.width > maxSize || settings.height > maxSize)
-        return core::makeError("image size: each side must be in [1, " + std::to_string(maxSize) + "] pixels");
-    if (auto s = core::validate(settings.bias); !s) return s;
-    const FilterSettings& f = settings.filter;
-    if (f.kind == ShadowFilter::PcfGrid && (f.taps < 1 || f.taps > 9)) return core::makeError("filter: pcf grid size must be in [1, 9]");
-    if (f.kind == ShadowFilter::Poisson && (f.taps < 1 || f.taps > 32)) return core::makeError("filter: poisson samples must be in [1, 32]");
-    if (!(f.radiusTexels > 0.0f && f.radiusTexels <= 16.0f)) return core::makeError("filter: poisson radius must be in (0, 16] texels");
-    const BlurSettings& b = settings.blur;
-    if (b.iterations < 0 || b.iterations > 64) return core::makeError("blur: iterations must be in [0, 64]");
-    if (!(b.radiusPixels > 0.0f && b.radiusPixels <= 16.0f)) return core::makeError("blur: radius must be in (0, 16] pixels");
-    if (!(b.depthFalloff >= 0.0f && b.depthFalloff <= 10.0f)) return core::makeError("blur: depth falloff must be in [0, 10] per metre");
-    if (!(b.depthThreshold > 0.0f && b.depthThreshold <= 1.0f)) return core::makeError("blur: depth threshold must be in (0, 1]");
+        return core::fieldError("image_size", "each side must be in [1, " + std::to_string(maxSize) + "] pixels");
+    bias = biasFor(setup, settings);
+    if (auto s = core::validate(bias); !s) return s;
+    if (auto s = core::validate(settings.filter); !s) return s;
+    if (auto s = validate(settings.blur); !s) return s;
     const int maps = static_cast<int>(setup.views.size());
     if (maps < 1 || maps > kMaxCascades)
         return core::makeError("renderer: set-ups need 1 to " + std::to_string(kMaxCascades) + " shadow maps, got " +
                                std::to_string(maps));
-    if (!shadow || shadow->size != settings.shadowMapSize || shadow->layers != maps) {
-        shadow.emplace(settings.shadowMapSize, maps);
+    if (!shadow || shadow->size != setup.mapSize || shadow->layers != maps) {
+        shadow.emplace(setup.mapSize, maps);
         if (auto s = checkComplete(shadow->framebuffer, "shadow map"); !s) return s;
     }
     // Hardware 2x2 PCF is the sampler's linear filter; every other filter takes its own taps.
-    const GLint filter = settings.filter.kind == ShadowFilter::Pcf2 ? GL_LINEAR : GL_NEAREST;
+    const GLint filter = settings.filter.kind == core::ShadowFilter::Pcf2 ? GL_LINEAR : GL_NEAREST;
     glTextureParameteri(shadow->depth.id(), GL_TEXTURE_MIN_FILTER, filter);
     glTextureParameteri(shadow->depth.id(), GL_TEXTURE_MAG_FILTER, filter);
     return core::Ok{};
 }
 
-PassStats Renderer::Impl::shadowPass(const core::ShadowSetup& setup, const RenderSettings& settings) {
+PassStats Renderer::Impl::shadowPass(const core::ShadowSetup& setup) {
     // Depth only, polygon offset for bias, depth clamp when the set-up asks for it; one
     // array layer per shadow view.
     glBindFramebuffer(GL_FRAMEBUFFER, shadow->framebuffer.id());
@@ -144,15 +157,15 @@ PassStats Renderer::Impl::shadowPass(const core::ShadowSetup& setup, const Rende
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
-    // Caster culling: front-face culling stores the casters' back sides (seed 000 §4.2).
-    if (settings.bias.cull == core::CasterCull::None) {
+    // Caster culling: front-face culling stores the casters' back sides (Scherzer 2005 §4.2).
+    if (bias.cull == core::CasterCull::None) {
         glDisable(GL_CULL_FACE);
     } else {
         glEnable(GL_CULL_FACE);
-        glCullFace(settings.bias.cull == core::CasterCull::Back ? GL_BACK : GL_FRONT);
+        glCullFace(bias.cull == core::CasterCull::Back ? GL_BACK : GL_FRONT);
     }
     if (setup.depthClamp) glEnable(GL_DEPTH_CLAMP);
-    const auto slope = static_cast<float>(settings.bias.slope), constant = static_cast<float>(settings.bias.constant);
+    const auto slope = static_cast<float>(bias.slope), constant = static_cast<float>(bias.constant);
     glEnable(GL_POLYGON_OFFSET_FILL);
     glPolygonOffset(slope, constant);
     glUseProgram(depthProgram.id());
@@ -164,9 +177,11 @@ PassStats Renderer::Impl::shadowPass(const core::ShadowSetup& setup, const Rende
         const core::ShadowView& view = setup.views[layer];
         // Linear layout: the same slope / constant bias, applied in depth.frag. One constant
         // unit is 2^-24 of the depth range, the resolvable step of a 24-bit buffer.
-        const DepthPassUniforms uniforms{toFloat(view.clipFromWorld), glm::vec4(view.linearDepthFromWorld),
-                                         glm::vec4(linear ? 1.0f : 0.0f),
-                                         glm::vec4(slope, constant * 0x1p-24f, 0.0f, 0.0f)};
+        const DepthPassUniforms uniforms{.clipFromWorld = toFloat(view.clipFromWorld),
+                                         .linearDepthFromWorld = glm::vec4(view.linearDepthFromWorld),
+                                         .linearLayout = linear ? 1 : 0,
+                                         .slopeBias = slope,
+                                         .constantBias = constant * 0x1p-24f};
         glNamedBufferSubData(depthUniforms.id(), 0, sizeof uniforms, &uniforms);
         shadow->attachLayer(static_cast<int>(layer));
         const float clearDepth = 1.0f;
@@ -191,14 +206,17 @@ void Renderer::Impl::uploadFrame(const core::PerspectiveCamera& camera, const co
     frame.sunRadiance = glm::vec4(1.05f, 1.0f, 0.9f, 0.0f);
     frame.ambientRadiance = glm::vec4(0.28f, 0.32f, 0.40f, 0.0f);
     frame.fogColorDensity = glm::vec4(glm::pow(kSky, glm::vec3(2.2f)), settings.fogDensity);
-    frame.shadowParams = glm::vec4(static_cast<float>(settings.shadowMapSize), static_cast<float>(setup.views.size()),
-                                   setup.depthLayout == core::DepthLayout::Linear ? 1.0f : 0.0f,
-                                   settings.cascadeColors ? 1.0f : 0.0f);
-    const FilterSettings& f = settings.filter;
-    // The shader's filter codes are ShadowFilter's order: hard 0, pcf2 1, grid 2, Poisson 3.
-    frame.filterParams = glm::vec4(static_cast<float>(static_cast<int>(f.kind)), static_cast<float>(f.taps), f.radiusTexels,
-                                   settings.bias.receiverPlane ? 1.0f : 0.0f);
-    frame.biasParams = glm::vec4(static_cast<float>(settings.bias.normalOffset), useMask ? 1.0f : 0.0f, 0.0f, 0.0f);
+    frame.mapTexels = static_cast<float>(setup.mapSize);
+    frame.mapCount = static_cast<int32_t>(setup.views.size());
+    frame.linearLayout = setup.depthLayout == core::DepthLayout::Linear ? 1 : 0;
+    frame.cascadeColors = settings.cascadeColors ? 1 : 0;
+    const core::FilterSettings& f = settings.filter;
+    frame.filterKind = static_cast<int32_t>(f.kind); // SK_FILTER_* in the shaders
+    frame.filterTaps = f.taps;
+    frame.poissonRadiusTexels = f.radiusTexels;
+    frame.receiverPlane = bias.receiverPlane ? 1 : 0;
+    frame.normalOffsetTexels = static_cast<float>(bias.normalOffset);
+    frame.readBlurredMask = useMask ? 1 : 0;
     for (size_t i = 0; i < setup.views.size(); ++i) {
         const core::ShadowView& view = setup.views[i];
         frame.shadowClipFromWorld[i] = toFloat(view.clipFromWorld);
@@ -231,7 +249,9 @@ core::Status Renderer::Impl::evalPass(const core::PerspectiveCamera& camera, con
 
 int Renderer::Impl::blurPass(const RenderSettings& settings) {
     if (!mask || mask->width != settings.width || mask->height != settings.height) mask.emplace(settings.width, settings.height);
-    const BlurUniforms uniforms{glm::vec4(settings.blur.radiusPixels, settings.blur.depthFalloff, settings.blur.depthThreshold, 0.0f)};
+    const BlurUniforms uniforms{.radiusPixels = settings.blur.radiusPixels,
+                                .depthFalloff = settings.blur.depthFalloff,
+                                .depthThreshold = settings.blur.depthThreshold};
     glNamedBufferSubData(blurUniforms.id(), 0, sizeof uniforms, &uniforms);
     glBindBufferBase(GL_UNIFORM_BUFFER, kBlurBinding, blurUniforms.id());
     glUseProgram(blurProgram.id());
@@ -239,10 +259,10 @@ int Renderer::Impl::blurPass(const RenderSettings& settings) {
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_CULL_FACE);
     glViewport(0, 0, mask->width, mask->height);
-    glBindTextureUnit(1, eval->viewDepth.id());
+    glBindTextureUnit(kBlurDepthUnit, eval->viewDepth.id());
     int target = 0;
     for (int i = 0; i < settings.blur.iterations; ++i) {
-        glBindTextureUnit(0, i == 0 ? eval->shadowTerm.id() : mask->images[1 - target].id());
+        glBindTextureUnit(kBlurMaskUnit, i == 0 ? eval->shadowTerm.id() : mask->images[1 - target].id());
         glBindFramebuffer(GL_FRAMEBUFFER, mask->framebuffers[target].id());
         glDrawArrays(GL_TRIANGLES, 0, 3);
         target = 1 - target;
@@ -256,19 +276,19 @@ int Renderer::Impl::blurPass(const RenderSettings& settings) {
 core::Result<FrameStats> Renderer::render(const core::PerspectiveCamera& camera, const core::DirectionalLight& light,
                                           const core::ShadowSetup& setup, const RenderSettings& settings) {
     Impl& r = *m_impl;
-    if (auto s = r.prepare(setup, settings); !s) return core::makeError(s.error());
+    if (auto s = r.prepare(setup, settings); !s) return s.errorInfo();
     if (!r.color || r.color->width != settings.width || r.color->height != settings.height) {
         r.color.emplace(settings.width, settings.height);
-        if (auto s = checkComplete(r.color->framebuffer, "main pass"); !s) return core::makeError(s.error());
+        if (auto s = checkComplete(r.color->framebuffer, "main pass"); !s) return s.errorInfo();
     }
     FrameStats stats;
-    stats.shadow = r.shadowPass(setup, settings);
+    stats.shadow = r.shadowPass(setup);
 
     // With the eye-space blur, the shadow term comes from the blurred screen-space mask.
     const bool blurred = settings.blur.iterations > 0;
     int maskIndex = 0;
     if (blurred) {
-        if (auto s = r.evalPass(camera, light, setup, settings); !s) return core::makeError(s.error());
+        if (auto s = r.evalPass(camera, light, setup, settings); !s) return s.errorInfo();
         maskIndex = r.blurPass(settings);
     }
     r.uploadFrame(camera, light, setup, settings, blurred);
@@ -295,12 +315,12 @@ core::Result<core::RasterBuffers> Renderer::renderEvalBuffers(const core::Perspe
                                                               const core::ShadowSetup& setup,
                                                               const RenderSettings& settings) {
     Impl& r = *m_impl;
-    if (auto s = r.prepare(setup, settings); !s) return core::makeError(s.error());
-    r.shadowPass(setup, settings);
-    if (auto s = r.evalPass(camera, light, setup, settings); !s) return core::makeError(s.error());
+    if (auto s = r.prepare(setup, settings); !s) return s.errorInfo();
+    r.shadowPass(setup);
+    if (auto s = r.evalPass(camera, light, setup, settings); !s) return s.errorInfo();
     core::RasterBuffers buffers = r.eval->read();
     if (settings.blur.iterations > 0) buffers.shadowTerm = r.mask->read(r.blurPass(settings));
-    buffers.mapSize = settings.shadowMapSize;
+    buffers.mapSize = setup.mapSize;
     return buffers;
 }
 

@@ -1,46 +1,94 @@
-// Uniform block layouts, declared once in C++ (std140: every member 16-byte aligned) and
-// checked against the shaders when the programs are built (checkUniformBlock).
+// The interface between the C++ passes and their GLSL: uniform block layouts, binding
+// points, texture units and the filter codes, declared once here. The shaders get the
+// numbers from shaderPrelude() (#defines prepended to every stage), and every block's
+// member offsets are compared with what the driver reports when the programs are built
+// (checkUniformBlock), so a field added, moved or retyped on one side only fails there.
 #pragma once
+
+#include "shadowkit/core/shadow_filter.h"
 
 #include <glm/glm.hpp>
 
-namespace shadowkit::gl {
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <string>
 
-struct DepthPassUniforms { // GLSL: DepthPass, binding 1
-    glm::mat4 clipFromWorld;
-    glm::vec4 linearDepthFromWorld; // row: depth = dot(row, (ws, 1))
-    glm::vec4 depthLayout;          // x: 1 linear, 0 hyperbolic
-    glm::vec4 bias;                 // linear layout: x slope factor, y constant in depth units
-};
+namespace shadowkit::gl {
 
 inline constexpr int kMaxCascades = 8; // GLSL: SK_MAX_CASCADES
 
-struct FrameUniforms { // GLSL: Frame, binding 0
-    glm::mat4 clipFromWorld;
-    glm::vec4 wsEye;
-    glm::vec4 wsViewForward;
-    glm::vec4 wsTowardsLight;
-    glm::vec4 sunRadiance;
-    glm::vec4 ambientRadiance;
-    glm::vec4 fogColorDensity;
-    glm::vec4 shadowParams; // x texels per side, y maps, z linear layout, w colour splits
-    glm::vec4 filterParams; // x kind (0 hard, 1 pcf2, 2 grid, 3 poisson), y taps, z poisson radius, w receiver plane
-    glm::vec4 biasParams;   // x normal offset, y read the blurred mask
-    glm::mat4 shadowClipFromWorld[kMaxCascades];
-    glm::vec4 shadowLinearDepthFromWorld[kMaxCascades];
-    glm::vec4 cascadeRange[kMaxCascades];
-};
-
-struct BlurUniforms { // GLSL: Blur, binding 2
-    glm::vec4 params; // x radius (pixels at depth 0), y depth falloff (1/m), z relative depth threshold
-};
-
+// Uniform block bindings (GLSL: SK_*_BINDING) and the instance storage buffer.
 inline constexpr unsigned kFrameBinding = 0;
-inline constexpr unsigned kBlurBinding = 2;
-inline constexpr unsigned kShadowMaskUnit = 1;
 inline constexpr unsigned kDepthPassBinding = 1;
-inline constexpr unsigned kInstancesBinding = 0; // shader storage
-inline constexpr unsigned kShadowMapUnit = 0;
+inline constexpr unsigned kBlurBinding = 2;
+inline constexpr unsigned kInstancesBinding = 0; // shader storage: mat4 worldFromObject[]
+// Texture units (GLSL: SK_*_UNIT). The camera passes and the blur pass never run together.
+inline constexpr unsigned kShadowMapUnit = 0;  // camera passes: sampler2DArrayShadow, one layer per map
+inline constexpr unsigned kShadowMaskUnit = 1; // main pass: the blurred shadow mask
+inline constexpr unsigned kBlurMaskUnit = 0;   // blur pass: the mask being blurred
+inline constexpr unsigned kBlurDepthUnit = 1;  // blur pass: view depth, to stop at depth steps
 inline constexpr int kInstanceBaseLocation = 0; // uniform uint instanceBase (main.vert)
+
+// std140: scalars pack in fours, vec4 and mat4 start on 16 bytes. Booleans are int32.
+
+struct DepthPassUniforms { // GLSL: DepthPass (depth_pass.glsl)
+    glm::mat4 clipFromWorld;        // the shadow view's light clip space
+    glm::vec4 linearDepthFromWorld; // row: depth = dot(row, (ws, 1)), [0, 1] over B
+    int32_t linearLayout;           // 1: write linear depth per fragment; 0: clip z / w
+    float slopeBias;                // linear layout: × max depth slope (glPolygonOffset's factor)
+    float constantBias;             // linear layout: in depth units (glPolygonOffset's units × 2^-24)
+    float pad0;
+};
+
+struct FrameUniforms { // GLSL: Frame (frame.glsl)
+    glm::mat4 clipFromWorld; // camera
+    glm::vec4 wsEye;          // xyz
+    glm::vec4 wsViewForward;  // xyz, unit: view depth = dot(ws − eye, forward)
+    glm::vec4 wsTowardsLight; // xyz, unit
+    glm::vec4 sunRadiance;    // rgb
+    glm::vec4 ambientRadiance;
+    glm::vec4 fogColorDensity; // rgb, a: density in 1/m
+    float mapTexels;           // texels per side of every map
+    int32_t mapCount;          // layers in use, [1, kMaxCascades]
+    int32_t linearLayout;      // 1: maps store linear depth
+    int32_t cascadeColors;     // 1: tint each split's range
+    int32_t filterKind;        // core::ShadowFilter (SK_FILTER_*)
+    int32_t filterTaps;        // N of N x N, or Poisson samples
+    float poissonRadiusTexels;
+    int32_t receiverPlane;     // 1: receiver-plane depth bias
+    float normalOffsetTexels;  // receiver offset along its normal, in texels' world size
+    int32_t readBlurredMask;   // 1: main pass reads the blurred mask instead of the maps
+    float pad0, pad1;
+    glm::mat4 shadowClipFromWorld[kMaxCascades];       // light clip space of each map
+    glm::vec4 shadowLinearDepthFromWorld[kMaxCascades]; // rows, as in DepthPass
+    glm::vec4 cascadeRange[kMaxCascades];               // x, y: view depth [start, end] each map serves
+};
+
+struct BlurUniforms { // GLSL: Blur (blur.frag)
+    float radiusPixels;   // tap distance at view depth 0
+    float depthFalloff;   // 1/m: radius / (1 + falloff · depth)
+    float depthThreshold; // relative view-depth step that stops the kernel
+    float pad0;
+};
+
+static_assert(offsetof(DepthPassUniforms, linearDepthFromWorld) == 64 && sizeof(DepthPassUniforms) == 96);
+static_assert(offsetof(FrameUniforms, mapTexels) == 160 && offsetof(FrameUniforms, shadowClipFromWorld) == 208,
+              "std140: the scalars must fill whole 16-byte rows before the arrays");
+static_assert(sizeof(FrameUniforms) == 208 + kMaxCascades * (64 + 16 + 16));
+static_assert(sizeof(BlurUniforms) == 16);
+
+// One member of a block: its GLSL name (arrays: "name[0]") and C++ offset.
+struct UniformField {
+    const char* name;
+    size_t offset;
+};
+std::span<const UniformField> depthPassFields();
+std::span<const UniformField> frameFields();
+std::span<const UniformField> blurFields();
+
+// "#version 450 core" and the #defines above (SK_MAX_CASCADES, SK_FILTER_HARD, ...,
+// SK_FRAME_BINDING, ..., SK_SHADOW_MAP_UNIT, ...): the first source of every stage.
+const std::string& shaderPrelude();
 
 } // namespace shadowkit::gl

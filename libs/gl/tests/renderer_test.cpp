@@ -63,11 +63,11 @@ TEST_F(RendererTest, BoxOverPlaneShadowsThePlaneBelowItForEveryTechnique) {
     const core::DirectionalLight sun{{0, -1, 0}};
     gl::RenderSettings settings;
     settings.width = settings.height = 128;
-    settings.shadowMapSize = 256;
     settings.fogDensity = 0.0f;
 
     for (const core::TechniqueInfo& technique : core::allTechniques()) {
-        const auto setup = core::computeShadowSetup({.camera = cam, .light = sun, .wsSceneBounds = s.wsBounds(), .technique = technique.technique});
+        const auto setup = core::computeShadowSetup(
+            {.camera = cam, .light = sun, .wsSceneBounds = s.wsBounds(), .technique = technique.technique, .mapSize = 256});
         ASSERT_TRUE(setup) << setup.error();
         const auto stats = (*renderer)->render(cam, sun, *setup, settings);
         ASSERT_TRUE(stats) << stats.error();
@@ -87,10 +87,10 @@ TEST_F(RendererTest, ShadowMapImageShowsTheCaster) {
     ASSERT_TRUE(renderer);
     const core::PerspectiveCamera cam = obliqueCamera();
     const core::DirectionalLight sun{{0, -1, 0}};
-    const auto setup = core::computeShadowSetup({.camera = cam, .light = sun, .wsSceneBounds = s.wsBounds(), .technique = core::Technique::Standard});
+    const auto setup = core::computeShadowSetup(
+        {.camera = cam, .light = sun, .wsSceneBounds = s.wsBounds(), .technique = core::Technique::Standard, .mapSize = 64});
     gl::RenderSettings settings;
     settings.width = settings.height = 32;
-    settings.shadowMapSize = 64;
     ASSERT_TRUE((*renderer)->render(cam, sun, *setup, settings));
     const scene::Image map = (*renderer)->readShadowMap();
     ASSERT_EQ(map.width, 64);
@@ -104,12 +104,19 @@ TEST_F(RendererTest, OutOfRangeSettingsAreErrorsNotGlErrors) {
     ASSERT_TRUE(renderer);
     const core::PerspectiveCamera cam = obliqueCamera();
     const core::DirectionalLight sun{{0, -1, 0}};
-    const auto setup = core::computeShadowSetup({.camera = cam, .light = sun, .wsSceneBounds = s.wsBounds(), .technique = core::Technique::Focused});
-    gl::RenderSettings settings;
-    settings.shadowMapSize = 1 << 20;
-    const auto r = (*renderer)->render(cam, sun, *setup, settings);
+    auto setup = core::computeShadowSetup({.camera = cam, .light = sun, .wsSceneBounds = s.wsBounds(), .technique = core::Technique::Focused});
+    ASSERT_TRUE(setup);
+    // A set-up edited past any driver's GL_MAX_TEXTURE_SIZE: the renderer checks again.
+    setup->mapSize = 1 << 20;
+    const auto r = (*renderer)->render(cam, sun, *setup, gl::RenderSettings{});
     ASSERT_FALSE(r);
-    EXPECT_NE(r.error().find("map size"), std::string::npos);
+    EXPECT_EQ(r.errorInfo().field, "map_size") << r.error();
+    setup->mapSize = 64;
+    gl::RenderSettings settings;
+    settings.blur.radiusPixels = 0.0f;
+    const auto blur = (*renderer)->render(cam, sun, *setup, settings);
+    ASSERT_FALSE(blur);
+    EXPECT_EQ(blur.errorInfo().field, "blur.radius") << blur.error();
 }
 
 TEST_F(RendererTest, CasterAboveTheFrustumStillShadowsItsCascade) {
@@ -135,15 +142,14 @@ TEST_F(RendererTest, CasterAboveTheFrustumStillShadowsItsCascade) {
     const core::DirectionalLight sun{{0, -1, 0}};
     gl::RenderSettings settings;
     settings.width = settings.height = 128;
-    settings.shadowMapSize = 512;
     settings.fogDensity = 0.0f;
     for (int variant = 0; variant < 3; ++variant) {
-        core::ShadowSetupInputs in{.camera = cam, .light = sun, .wsSceneBounds = s.wsBounds(), .technique = core::Technique::Csm};
+        core::ShadowSetupInputs in{.camera = cam, .light = sun, .wsSceneBounds = s.wsBounds(), .technique = core::Technique::Csm,
+                                   .mapSize = 512};
         in.cascades.count = 2;
         in.cascades.splits = {0.5, 20, 100};
         in.cascades.warp = variant == 1 ? core::CascadeWarp::Lispsm : core::CascadeWarp::None;
         in.cascades.stabilize = variant == 2;
-        in.cascades.mapSize = settings.shadowMapSize;
         const auto setup = core::computeShadowSetup(in);
         ASSERT_TRUE(setup) << setup.error();
         ASSERT_TRUE((*renderer)->render(cam, sun, *setup, settings));
@@ -164,21 +170,21 @@ TEST_F(RendererTest, EveryBiasModeAndFilterWorksWithEveryTechnique) {
     std::vector<std::pair<std::string, gl::RenderSettings>> modes;
     gl::RenderSettings base;
     base.width = base.height = 96;
-    base.shadowMapSize = 256;
     base.fogDensity = 0.0f;
+    base.bias = core::BiasSettings{}; // every mode below changes one thing from the same bias
     for (core::CasterCull cull : {core::CasterCull::None, core::CasterCull::Back, core::CasterCull::Front}) {
         gl::RenderSettings m = base;
-        m.bias.cull = cull;
+        m.bias->cull = cull;
         modes.emplace_back("cull " + std::to_string(int(cull)), m);
     }
     gl::RenderSettings m = base;
-    m.bias.normalOffset = 1.0;
+    m.bias->normalOffset = 1.0;
     modes.emplace_back("normal offset", m);
     m = base;
-    m.bias.receiverPlane = true;
-    m.bias.slope = 0.0;
+    m.bias->receiverPlane = true;
+    m.bias->slope = 0.0;
     modes.emplace_back("receiver plane", m);
-    for (auto [kind, taps] : {std::pair{gl::ShadowFilter::Pcf2, 1}, {gl::ShadowFilter::PcfGrid, 3}, {gl::ShadowFilter::Poisson, 16}}) {
+    for (auto [kind, taps] : {std::pair{core::ShadowFilter::Pcf2, 1}, {core::ShadowFilter::PcfGrid, 3}, {core::ShadowFilter::Poisson, 16}}) {
         m = base;
         m.filter = {kind, taps};
         modes.emplace_back("filter " + std::to_string(int(kind)), m);
@@ -191,7 +197,8 @@ TEST_F(RendererTest, EveryBiasModeAndFilterWorksWithEveryTechnique) {
         for (core::DepthLayout layout : {core::DepthLayout::Hyperbolic, core::DepthLayout::Linear})
             for (const auto& [name, settings] : modes) {
                 const auto setup = core::computeShadowSetup({.camera = cam, .light = sun, .wsSceneBounds = s.wsBounds(),
-                                                             .technique = technique.technique, .depthLayout = layout});
+                                                             .technique = technique.technique, .mapSize = 256,
+                                                             .depthLayout = layout});
                 ASSERT_TRUE(setup);
                 ASSERT_TRUE((*renderer)->render(cam, sun, *setup, settings)) << name;
                 const scene::Image image = (*renderer)->readColor();
@@ -224,15 +231,15 @@ TEST_F(RendererTest, PcfTermsLieInZeroOneAndFallMonotonicallyAcrossAShadowEdge) 
     const core::DirectionalLight sun = core::DirectionalLight::fromDirection({0.6, -1, 0}).value();
     gl::RenderSettings settings;
     settings.width = settings.height = 128;
-    settings.shadowMapSize = 256;
-    for (auto [kind, taps] : {std::pair{gl::ShadowFilter::Pcf2, 1}, {gl::ShadowFilter::PcfGrid, 5}}) {
+    settings.bias = core::BiasSettings{};
+    for (auto [kind, taps] : {std::pair{core::ShadowFilter::Pcf2, 1}, {core::ShadowFilter::PcfGrid, 5}}) {
         settings.filter = {kind, taps};
         // Wide kernels need the receiver-plane bias: without it the outer taps of a 5x5 grid
         // compare the centre's depth with texels 2 away on the sloped ground and a fifth of
         // them fail (0.8 on lit ground), which is why `--receiver-plane-bias auto` turns it on.
-        settings.bias.receiverPlane = kind == gl::ShadowFilter::PcfGrid;
+        settings.bias->receiverPlane = kind == core::ShadowFilter::PcfGrid;
         const auto setup = core::computeShadowSetup({.camera = cam, .light = sun, .wsSceneBounds = s.wsBounds(),
-                                                     .technique = core::Technique::Standard});
+                                                     .technique = core::Technique::Standard, .mapSize = 256});
         const auto raster = (*renderer)->renderEvalBuffers(cam, sun, *setup, settings);
         ASSERT_TRUE(raster);
         // Along +x on the ground: lit, the edge at x = 3, shadow.
@@ -293,10 +300,9 @@ TEST_F(RendererTest, BlurKeepsAUniformMaskAndStopsAtDepthSteps) {
     cam.zFar = 90;
     const core::DirectionalLight sun = core::DirectionalLight::fromDirection({0, -1, -0.1}).value(); // grazes the wall's front
     const auto setup = core::computeShadowSetup({.camera = cam, .light = sun, .wsSceneBounds = s.wsBounds(),
-                                                 .technique = core::Technique::Focused});
+                                                 .technique = core::Technique::Focused, .mapSize = 512});
     gl::RenderSettings settings;
     settings.width = settings.height = 96;
-    settings.shadowMapSize = 512;
     const auto sharp = (*renderer)->renderEvalBuffers(cam, sun, *setup, settings);
     settings.blur = {16, 3.0f, 0.0f, 0.02f}; // strong, uniform in depth
     const auto blurred = (*renderer)->renderEvalBuffers(cam, sun, *setup, settings);
@@ -327,7 +333,7 @@ TEST_F(RendererTest, BlurKeepsAUniformMaskAndStopsAtDepthSteps) {
     // A uniform region stays uniform: the middle of the shadowed ground stays 0.
     for (size_t i = 0; i < sharp->shadowTerm.size(); ++i)
         if (sharp->surfaceId[i] == 1 && sharp->shadowTerm[i] == 0.0f && blurred->shadowTerm[i] > 0.0f) {
-            // only allowed next to a lit region; check the 5x5 neighbourhood had light
+            // only allowed next to a lit region; check the 13x13 neighbourhood had light
             const int x = int(i % size_t(sharp->width)), y = int(i / size_t(sharp->width));
             bool litNearby = false;
             for (int dy = -6; dy <= 6; ++dy)

@@ -20,7 +20,7 @@ void main() {
     outNormal = vec4(normalize(wsNormal), 0.0);
     // Texel position in the map that serves this pixel.
     const vec4 cs = shadowClip(cascadeOf(outViewDepth), wsPosition);
-    const vec2 texel = (cs.xy / cs.w * 0.5 + 0.5) * shadowParams.x;
+    const vec2 texel = (cs.xy / cs.w * 0.5 + 0.5) * mapTexels;
     outTexel = texel;
     // Screen derivatives of the texel position (fine: per pixel, not per 2x2 quad).
     // GL's y runs up; negate so the second column is the derivative along image rows (down).

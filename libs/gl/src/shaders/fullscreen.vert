@@ -1,4 +1,3 @@
-#version 450 core
 // One triangle covering the viewport; no vertex buffer (gl_VertexID only).
 out vec2 uv;
 void main() {

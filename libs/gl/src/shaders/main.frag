@@ -6,10 +6,10 @@ flat in uint vSurfaceId;
 
 layout(location = 0) out vec4 outColor;
 
-// The eye-space blurred shadow mask (seed 000 §4.3), when biasParams.y says so.
-layout(binding = 1) uniform sampler2D shadowMask;
+// The eye-space blurred shadow mask (Scherzer 2005 §4.3), when readBlurredMask says so.
+layout(binding = SK_SHADOW_MASK_UNIT) uniform sampler2D shadowMask;
 
-// Split colouring (seed 002, Figure 3-2): red, green, blue, yellow, ...
+// Split colouring (Dimitrov 2007, Figure 3-2): red, green, blue, yellow, ...
 const vec3 kCascadeTint[SK_MAX_CASCADES] = vec3[](vec3(1.0, 0.35, 0.35), vec3(0.35, 1.0, 0.35), vec3(0.4, 0.5, 1.0),
     vec3(1.0, 1.0, 0.3), vec3(1.0, 0.4, 1.0), vec3(0.3, 1.0, 1.0), vec3(1.0, 0.7, 0.3), vec3(0.8, 0.8, 0.8));
 
@@ -18,11 +18,11 @@ void main() {
     const vec3 l = wsTowardsLight.xyz;
     const float nDotL = max(dot(n, l), 0.0);
     const vec3 dwsdx = dFdx(wsPosition), dwsdy = dFdy(wsPosition); // uniform control flow
-    const float term = biasParams.y > 0.5 ? texelFetch(shadowMask, ivec2(gl_FragCoord.xy), 0).r
-                                          : shadowTerm(wsPosition, n, dwsdx, dwsdy);
+    const float term = readBlurredMask != 0 ? texelFetch(shadowMask, ivec2(gl_FragCoord.xy), 0).r
+                                            : shadowTerm(wsPosition, n, dwsdx, dwsdy);
     const float lit = nDotL > 0.0 ? term : 0.0;
     vec3 albedo = vAlbedo;
-    if (shadowParams.w > 0.5) albedo *= kCascadeTint[cascadeOf(viewDepthOf(wsPosition))];
+    if (cascadeColors != 0) albedo *= kCascadeTint[cascadeOf(viewDepthOf(wsPosition))];
     vec3 color = albedo * (ambientRadiance.rgb + sunRadiance.rgb * nDotL * lit);
     const float fog = exp(-fogColorDensity.a * distance(wsPosition, wsEye.xyz));
     color = mix(fogColorDensity.rgb, color, fog);

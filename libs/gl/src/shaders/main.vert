@@ -4,7 +4,7 @@ layout(location = 1) in vec3 osNormal;
 layout(location = 2) in vec3 albedo;
 
 // Global index of this batch's first instance: surface identity shared with the ray tracer.
-layout(location = 0) uniform uint instanceBase;
+layout(location = SK_INSTANCE_BASE_LOCATION) uniform uint instanceBase;
 
 out vec3 wsPosition;
 out vec3 wsNormal;

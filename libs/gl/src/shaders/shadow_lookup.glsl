@@ -1,17 +1,16 @@
 // The shadow-map lookup: depth comparison through the hardware (sampler2DArrayShadow,
-// GL_LEQUAL), one array layer per map, cascades picked by view depth (seed 002), with the
+// GL_LEQUAL), one array layer per map, cascades picked by view depth (Dimitrov 2007), with the
 // receiver-side biases (normal offset, receiver-plane depth bias) and the filters of
 // RenderSettings (hard, 2x2 hardware PCF, N x N PCF, rotated Poisson disk).
-layout(binding = 0) uniform sampler2DArrayShadow shadowMap;
+layout(binding = SK_SHADOW_MAP_UNIT) uniform sampler2DArrayShadow shadowMap;
 
 float viewDepthOf(vec3 ws) { return dot(ws - wsEye.xyz, wsViewForward.xyz); }
 
 // The map serving this view depth: the first whose range ends beyond it.
 int cascadeOf(float viewDepth) {
-    const int maps = int(shadowParams.y);
-    for (int i = 0; i < maps - 1; ++i)
+    for (int i = 0; i < mapCount - 1; ++i)
         if (viewDepth <= cascadeRange[i].y) return i;
-    return maps - 1;
+    return mapCount - 1;
 }
 
 // Shadow clip coordinates are computed per fragment from the interpolated world position:
@@ -26,7 +25,7 @@ vec3 mapStep(int map, vec4 cs, vec3 wsStep, vec3 ws) {
     const vec4 dP = shadowClipFromWorld[map] * vec4(wsStep, 0.0);
     vec3 d = (dP.xyz - cs.xyz / cs.w * dP.w) / cs.w;
     d.xy *= 0.5; // ndc -> texture coordinates
-    if (shadowParams.z > 0.5) d.z = dot(shadowLinearDepthFromWorld[map].xyz, wsStep);
+    if (linearLayout != 0) d.z = dot(shadowLinearDepthFromWorld[map].xyz, wsStep);
     return d;
 }
 
@@ -45,16 +44,16 @@ const vec2 kPoisson[32] = vec2[](
     vec2(0.736442, -0.189734), vec2(0.843562, 0.357036), vec2(0.865413, -0.795735), vec2(0.872393, 0.750194));
 
 float mapTerm(int map, vec3 ws, vec3 n, vec3 dwsdx, vec3 dwsdy) {
-    const float size = shadowParams.x;
+    const float size = mapTexels;
     vec4 cs = shadowClip(map, ws);
-    if (biasParams.x > 0.0) {
+    if (normalOffsetTexels > 0.0) {
         // Normal offset: move the receiver off its surface by K texels' world size. A texel's
         // world size is 1/size over the gradient of the texture coordinate; take the longer
         // of the two axes so the offset is enough in both.
         const vec3 gx = mapStep(map, cs, vec3(1, 0, 0), ws), gy = mapStep(map, cs, vec3(0, 1, 0), ws);
         const vec3 gz = mapStep(map, cs, vec3(0, 0, 1), ws);
         const float gradU = length(vec3(gx.x, gy.x, gz.x)), gradV = length(vec3(gx.y, gy.y, gz.y));
-        ws += n * (biasParams.x / (size * max(min(gradU, gradV), 1e-12)));
+        ws += n * (normalOffsetTexels / (size * max(min(gradU, gradV), 1e-12)));
         cs = shadowClip(map, ws);
     }
     const vec3 ndc = cs.xyz / cs.w;
@@ -64,38 +63,37 @@ float mapTerm(int map, vec3 ws, vec3 n, vec3 dwsdx, vec3 dwsdy) {
     if (cs.w <= 0.0 || any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) return 1.0;
     // The reference depth in the map's layout. Depth clamp in the shadow pass stores
     // casters in front of the near plane at 0.
-    float depth = shadowParams.z > 0.5 ? dot(shadowLinearDepthFromWorld[map], vec4(ws, 1.0)) : ndc.z;
+    float depth = linearLayout != 0 ? dot(shadowLinearDepthFromWorld[map], vec4(ws, 1.0)) : ndc.z;
 
     // Receiver plane: depth as a function of (u, v) on the receiver's plane, from the screen
     // derivatives of (u, v, depth) (Isidoro 2006): dz/duv = J⁻ᵀ (dz/dx, dz/dy).
     vec2 dDepthDuv = vec2(0.0);
-    if (filterParams.w > 0.5) {
+    if (receiverPlane != 0) {
         const vec3 dx = mapStep(map, cs, dwsdx, ws), dy = mapStep(map, cs, dwsdy, ws);
         const float det = dx.x * dy.y - dx.y * dy.x;
         if (abs(det) > 1e-20) dDepthDuv = vec2(dy.y * dx.z - dx.y * dy.z, dx.x * dy.z - dy.x * dx.z) / det;
     }
-    const int kind = int(filterParams.x);
-    const int taps = int(filterParams.y);
-    if (kind == 2 || kind == 3) {
+    const int taps = filterTaps;
+    if (filterKind == SK_FILTER_GRID || filterKind == SK_FILTER_POISSON) {
         float sum = 0.0;
-        const int count = kind == 2 ? taps * taps : taps;
+        const int count = filterKind == SK_FILTER_GRID ? taps * taps : taps;
         const float angle = pixelAngle();
         const mat2 rotation = mat2(cos(angle), sin(angle), -sin(angle), cos(angle));
         for (int i = 0; i < count; ++i) {
-            const vec2 offsetTexels = kind == 2 ? vec2(i % taps, i / taps) - 0.5 * float(taps - 1)
-                                                : rotation * kPoisson[i] * filterParams.z;
+            const vec2 offsetTexels = filterKind == SK_FILTER_GRID ? vec2(i % taps, i / taps) - 0.5 * float(taps - 1)
+                                                                   : rotation * kPoisson[i] * poissonRadiusTexels;
             const vec2 tapUv = uv + offsetTexels / size;
             const float tapDepth = depth + dot(dDepthDuv, offsetTexels / size);
             sum += texture(shadowMap, vec4(tapUv, float(map), clamp(tapDepth, 0.0, 1.0)));
         }
         return sum / float(count);
     }
-    if (kind == 0 && filterParams.w > 0.5) {
+    if (filterKind == SK_FILTER_HARD && receiverPlane != 0) {
         // Hard test: compare at the texel centre the sample falls in, on the receiver plane.
         const vec2 centre = (floor(uv * size) + 0.5) / size;
         depth += dot(dDepthDuv, centre - uv);
     }
-    // kind 1: the sampler's GL_LINEAR filter does the 2x2 PCF in hardware.
+    // SK_FILTER_PCF2: the sampler's GL_LINEAR filter does the 2x2 PCF in hardware.
     return texture(shadowMap, vec4(uv, float(map), clamp(depth, 0.0, 1.0)));
 }
 
@@ -106,7 +104,7 @@ float shadowTerm(vec3 ws, vec3 n, vec3 dwsdx, vec3 dwsdy) {
     const float viewDepth = viewDepthOf(ws);
     const int map = cascadeOf(viewDepth);
     float term = mapTerm(map, ws, n, dwsdx, dwsdy);
-    if (map + 1 < int(shadowParams.y) && viewDepth > cascadeRange[map + 1].x) {
+    if (map + 1 < mapCount && viewDepth > cascadeRange[map + 1].x) {
         const float t = (viewDepth - cascadeRange[map + 1].x) / max(cascadeRange[map].y - cascadeRange[map + 1].x, 1e-6);
         term = mix(term, mapTerm(map + 1, ws, n, dwsdx, dwsdy), clamp(t, 0.0, 1.0));
     }

@@ -7,51 +7,48 @@
 #include "shadowkit/core/light.h"
 #include "shadowkit/core/raster_buffers.h"
 #include "shadowkit/core/result.h"
+#include "shadowkit/core/shadow_filter.h"
 #include "shadowkit/core/shadow_setup.h"
 #include "shadowkit/scene/image.h"
 #include "shadowkit/scene/scene.h"
 
 #include <memory>
+#include <optional>
 
 namespace shadowkit::gl {
 
-enum class ShadowFilter {
-    Hard,    // one depth comparison (what the evaluation's truth is compared with by default)
-    Pcf2,    // hardware 2x2 percentage-closer filtering (GL_LINEAR compare; seed 000's filter)
-    PcfGrid, // N x N comparisons one texel apart, averaged
-    Poisson, // N comparisons on a Poisson disk, rotated per pixel
-};
-
-struct FilterSettings {
-    ShadowFilter kind = ShadowFilter::Hard;
-    int taps = 1;               // PcfGrid: N of N x N, [1, 9]; Poisson: samples, [1, 32]
-    float radiusTexels = 1.5f;  // Poisson disk radius in texels, (0, 16]
-};
-
-// Eye-space, depth-dependent blur of the shadow mask (seed 000 §4.3).
+// Eye-space, depth-dependent blur of the shadow mask (Scherzer 2005 §4.3).
 struct BlurSettings {
     int iterations = 0;          // passes of a 3x3 kernel: 0 (off), 1, 2, 4, 8, 16 ... [0, 64]
     float radiusPixels = 1.5f;   // tap distance at view depth 0; (0, 16]
     // Radius at view depth z: radiusPixels / (1 + falloff · z): strong near the viewer,
-    // weak far away (seed 000: "near the viewer, the shadow map is blurred more").
+    // weak far away (Scherzer 2005: "near the viewer, the shadow map is blurred more").
     float depthFalloff = 0.05f;  // 1/m, [0, 10]
     // Taps whose view depth differs from the centre's by more than this fraction are
     // ignored: the blur does not bleed across depth discontinuities.
     float depthThreshold = 0.02f; // (0, 1]
 };
+// Checks the ranges above; error fields "blur.iterations", "blur.radius",
+// "blur.depth_falloff", "blur.depth_threshold".
+core::Status validate(const BlurSettings& blur);
 
+// How a frame is drawn. The shadow maps' size comes with the set-up (ShadowSetup::mapSize).
 struct RenderSettings {
     int width = 1280, height = 720; // output pixels, [1, GL_MAX_TEXTURE_SIZE]
-    int shadowMapSize = 2048;       // texels per side, [16, GL_MAX_TEXTURE_SIZE]
-    core::BiasSettings bias;        // depth bias of the shadow pass and lookup
-    FilterSettings filter;
+    // Depth bias of the shadow pass and lookup; unset: core::recommendedBias for the
+    // set-up's technique and depth layout and this filter (biasFor).
+    std::optional<core::BiasSettings> bias;
+    core::FilterSettings filter;
     BlurSettings blur;
-    float fogDensity = 0.002f;      // 1/m of exponential fog (seed 000 used fog); 0 = none
-    bool cascadeColors = false;     // tint each cascade's range (seed 002, Figure 3-2)
+    float fogDensity = 0.002f;      // 1/m of exponential fog (Scherzer 2005 used fog); 0 = none
+    bool cascadeColors = false;     // tint each cascade's range (Dimitrov 2007, Figure 3-2)
 };
 
+// The bias a frame with these settings is drawn with: settings.bias, or the recommended one.
+core::BiasSettings biasFor(const core::ShadowSetup& setup, const RenderSettings& settings);
+
 struct PassStats {
-    double gpuMilliseconds = 0.0; // GL timer query (GL_TIME_ELAPSED)
+    double gpuMilliseconds = 0.0; // between two GL timestamp queries
     size_t triangles = 0;         // submitted
     size_t drawCalls = 0;
 };
@@ -68,7 +65,7 @@ public:
     Renderer(const Renderer&) = delete;
     Renderer& operator=(const Renderer&) = delete;
 
-    // Validates the settings against the driver's limits, then draws.
+    // Validates the settings and the set-up's map size against the driver's limits, then draws.
     core::Result<FrameStats> render(const core::PerspectiveCamera& camera, const core::DirectionalLight& light,
                                     const core::ShadowSetup& setup, const RenderSettings& settings);
 

@@ -1,0 +1,84 @@
+#include "uniforms.h"
+
+#include <array>
+#include <cstddef>
+#include <string_view>
+
+namespace shadowkit::gl {
+
+#define SK_FIELD(type, member) UniformField { #member, offsetof(type, member) }
+#define SK_ARRAY_FIELD(type, member) UniformField { #member "[0]", offsetof(type, member) }
+
+std::span<const UniformField> depthPassFields() {
+    static constexpr std::array kFields = {
+        SK_FIELD(DepthPassUniforms, clipFromWorld), SK_FIELD(DepthPassUniforms, linearDepthFromWorld),
+        SK_FIELD(DepthPassUniforms, linearLayout),  SK_FIELD(DepthPassUniforms, slopeBias),
+        SK_FIELD(DepthPassUniforms, constantBias),
+    };
+    return kFields;
+}
+
+std::span<const UniformField> frameFields() {
+    static constexpr std::array kFields = {
+        SK_FIELD(FrameUniforms, clipFromWorld),
+        SK_FIELD(FrameUniforms, wsEye),
+        SK_FIELD(FrameUniforms, wsViewForward),
+        SK_FIELD(FrameUniforms, wsTowardsLight),
+        SK_FIELD(FrameUniforms, sunRadiance),
+        SK_FIELD(FrameUniforms, ambientRadiance),
+        SK_FIELD(FrameUniforms, fogColorDensity),
+        SK_FIELD(FrameUniforms, mapTexels),
+        SK_FIELD(FrameUniforms, mapCount),
+        SK_FIELD(FrameUniforms, linearLayout),
+        SK_FIELD(FrameUniforms, cascadeColors),
+        SK_FIELD(FrameUniforms, filterKind),
+        SK_FIELD(FrameUniforms, filterTaps),
+        SK_FIELD(FrameUniforms, poissonRadiusTexels),
+        SK_FIELD(FrameUniforms, receiverPlane),
+        SK_FIELD(FrameUniforms, normalOffsetTexels),
+        SK_FIELD(FrameUniforms, readBlurredMask),
+        SK_ARRAY_FIELD(FrameUniforms, shadowClipFromWorld),
+        SK_ARRAY_FIELD(FrameUniforms, shadowLinearDepthFromWorld),
+        SK_ARRAY_FIELD(FrameUniforms, cascadeRange),
+    };
+    return kFields;
+}
+
+std::span<const UniformField> blurFields() {
+    static constexpr std::array kFields = {
+        SK_FIELD(BlurUniforms, radiusPixels), SK_FIELD(BlurUniforms, depthFalloff), SK_FIELD(BlurUniforms, depthThreshold),
+    };
+    return kFields;
+}
+
+#undef SK_FIELD
+#undef SK_ARRAY_FIELD
+
+const std::string& shaderPrelude() {
+    static const std::string kPrelude = [] {
+        std::string s = "#version 450 core\n";
+        auto define = [&s](std::string_view name, long long value) {
+            s.append("#define ").append(name).append(1, ' ').append(std::to_string(value)).append(1, '\n');
+        };
+        using core::ShadowFilter;
+        define("SK_MAX_CASCADES", kMaxCascades);
+        define("SK_FILTER_HARD", static_cast<int>(ShadowFilter::Hard));
+        define("SK_FILTER_PCF2", static_cast<int>(ShadowFilter::Pcf2));
+        define("SK_FILTER_GRID", static_cast<int>(ShadowFilter::PcfGrid));
+        define("SK_FILTER_POISSON", static_cast<int>(ShadowFilter::Poisson));
+        define("SK_FRAME_BINDING", kFrameBinding);
+        define("SK_DEPTH_PASS_BINDING", kDepthPassBinding);
+        define("SK_BLUR_BINDING", kBlurBinding);
+        define("SK_INSTANCES_BINDING", kInstancesBinding);
+        define("SK_SHADOW_MAP_UNIT", kShadowMapUnit);
+        define("SK_SHADOW_MASK_UNIT", kShadowMaskUnit);
+        define("SK_BLUR_MASK_UNIT", kBlurMaskUnit);
+        define("SK_BLUR_DEPTH_UNIT", kBlurDepthUnit);
+        define("SK_INSTANCE_BASE_LOCATION", kInstanceBaseLocation);
+        s += "#line 1\n";
+        return s;
+    }();
+    return kPrelude;
+}
+
+} // namespace shadowkit::gl
