@@ -1,4 +1,4 @@
-// shadowkit analyze: the perspective-aliasing analysis of seed 001 (Figure 6), and what
+// shadowkit analyze: the perspective-aliasing analysis of Wimmer et al. 2004 (Figure 6), and what
 // it predicts for a given camera and sun.
 #include "commands.h"
 #include "options.h"
@@ -31,8 +31,7 @@ struct AnalyzeArgs {
 int runAnalyze(const AnalyzeArgs& args) {
     if (!(args.zNear > 0.0 && args.zFar > args.zNear && std::isfinite(args.zFar)))
         return fail(fmt::format("--zn/--zf: need 0 < zn < zf, got {} and {}", args.zNear, args.zFar));
-    auto technique = args.technique.resolve();
-    if (!technique) return fail(technique.error());
+    if (auto s = args.technique.check(); !s) return fail(s.error());
 
     // 1. Figure 6: view perpendicular to the light, B = the view frustum.
     const double nOpt = core::lispsmOptimalN(args.zNear, args.zFar);
@@ -69,12 +68,16 @@ int runAnalyze(const AnalyzeArgs& args) {
     if (!inputs) return fail(inputs.error());
     inputs->technique = core::Technique::Lispsm;
     auto setup = core::computeShadowSetup(*inputs);
-    if (!setup) return fail(setup.error());
+    if (!setup) return fail(withFlagName(setup.errorInfo()).message);
     const core::ShadowView& sv = setup->views[0];
     const core::PerspectiveCamera& cam = inputs->camera;
-    const double gamma = sv.warpValue("gamma_degrees"), n = sv.warpValue("n"), d = sv.warpValue("d");
+    // No LiSPSM parameters when B is empty (the view misses the scene); no n or d when the
+    // view is parallel to the light.
+    const auto* warp = std::get_if<core::LispsmWarp>(&sv.warp);
+    const double gamma = warp ? warp->gammaDegrees : NAN;
+    const double n = warp && !warp->viewParallel ? warp->n : NAN, d = warp && !warp->viewParallel ? warp->d : NAN;
     const double sinGamma = std::sin(glm::radians(gamma));
-    const bool warped = sv.warpValue("uniform") == 0.0;
+    const bool warped = warp && !warp->uniform;
     auto predict = [&](double nValue) {
         return std::isnan(d) || sinGamma < 1e-12 ? NAN : core::predictedMaxAliasing(cam.zNear, cam.zFar, d, sinGamma, nValue);
     };
@@ -95,7 +98,7 @@ int runAnalyze(const AnalyzeArgs& args) {
         std::cout << out.dump(2) << "\n";
         return 0;
     }
-    fmt::print("Figure 6 of seed 001: perspective aliasing dp/ds, view perpendicular to the light, z_n = {:g}, z_f = {:g}\n",
+    fmt::print("Figure 6 of Wimmer et al. 2004: perspective aliasing dp/ds, view perpendicular to the light, z_n = {:g}, z_f = {:g}\n",
                args.zNear, args.zFar);
     fmt::print("  uniform  max {:8.3f} at z = {:g}\n", uniform.max, uniform.argmaxZ);
     fmt::print("  psm      max {:8.3f} at z = {:g}\n", psm.max, psm.argmaxZ);
@@ -113,7 +116,7 @@ int runAnalyze(const AnalyzeArgs& args) {
 
 Command addAnalyzeCommand(CLI::App& app) {
     auto args = std::make_shared<AnalyzeArgs>();
-    CLI::App* cmd = app.add_subcommand("analyze", "Perspective aliasing of uniform, PSM and LiSPSM (seed 001 Figure 6)");
+    CLI::App* cmd = app.add_subcommand("analyze", "Perspective aliasing of uniform, PSM and LiSPSM (Wimmer et al. 2004, Figure 6)");
     args->scene.addTo(*cmd);
     args->view.addTo(*cmd);
     args->technique.addTo(*cmd);

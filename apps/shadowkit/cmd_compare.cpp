@@ -3,11 +3,8 @@
 #include "commands.h"
 #include "options.h"
 
-#include "shadowkit/eval/bitmap_font.h"
-#include "shadowkit/eval/metrics.h"
-#include "shadowkit/eval/ray_scene.h"
-#include "shadowkit/gl/context.h"
-#include "shadowkit/gl/renderer.h"
+#include "shadowkit/eval/image_grid.h"
+#include "shadowkit/measure/measurer.h"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -88,7 +85,7 @@ core::Result<CellOptions> parseCell(const Cell& cell, const CompareArgs& args) {
     } catch (const CLI::ParseError& e) {
         return core::makeError(fmt::format("--configs: {}", e.what()));
     }
-    if (auto t = o.technique.resolve(); !t) return core::makeError("--configs: " + t.error());
+    if (auto t = o.technique.check(); !t) return core::makeError("--configs: " + t.error());
     if (auto s = o.render.check(); !s) return core::makeError("--configs: " + s.error());
     return o;
 }
@@ -97,18 +94,6 @@ std::string caption(const Cell& cell) {
     std::string text;
     for (const auto& [key, value] : cell) text += (text.empty() ? "" : " ") + key + "=" + value;
     return text.empty() ? "defaults" : text;
-}
-
-// Greedy word wrap to `width` pixels of the 5x7 font at `scale`.
-std::vector<std::string> wrap(const std::string& text, int width, int scale) {
-    std::vector<std::string> lines(1);
-    std::stringstream words(text);
-    for (std::string word; words >> word;) {
-        const std::string candidate = lines.back().empty() ? word : lines.back() + " " + word;
-        if (eval::textWidth(candidate, scale) > width && !lines.back().empty()) lines.push_back(word);
-        else lines.back() = candidate;
-    }
-    return lines;
 }
 
 int runCompare(const CompareArgs& args) {
@@ -123,14 +108,9 @@ int runCompare(const CompareArgs& args) {
     if (args.columns < 0 || args.columns > 16) return fail("--columns: must be in [1, 16] (0: automatic)");
     auto sceneData = args.scene.load();
     if (!sceneData) return fail(sceneData.error());
-    auto rays = eval::RayScene::build(*sceneData);
-    if (!rays) return fail(rays.error());
-    auto context = gl::Context::createHeadless();
-    if (!context) return fail(context.error());
-    auto renderer = gl::Renderer::create(*sceneData);
-    if (!renderer) return fail(renderer.error());
+    auto measurer = measure::Measurer::createHeadless(*sceneData);
+    if (!measurer) return fail(measurer.error());
 
-    std::map<std::string, eval::TruthBuffers> truths; // by camera + sun + size: cells often share them
     std::vector<scene::Image> images;
     std::vector<std::string> captions;
     for (size_t i = 0; i < options.size(); ++i) {
@@ -139,52 +119,21 @@ int runCompare(const CompareArgs& args) {
         if (!view) return fail(view.error());
         auto inputs = o.technique.inputsFor(*view, sceneData->wsBounds());
         if (!inputs) return fail(inputs.error());
-        auto setup = core::computeShadowSetup(*inputs);
-        if (!setup) return fail(setup.error());
-        auto settings = o.render.settingsFor(*view, o.technique.mapSize, *setup);
+        auto settings = o.render.settingsFor(*view, *inputs);
         if (!settings) return fail(settings.error());
-        if (auto stats = (*renderer)->render(view->camera, view->light, *setup, *settings); !stats) return fail(stats.error());
-        images.push_back((*renderer)->readColor());
-        auto raster = (*renderer)->renderEvalBuffers(view->camera, view->light, *setup, *settings);
-        if (!raster) return fail(raster.error());
-        const core::PerspectiveCamera& cam = view->camera;
-        const std::string key = fmt::format("{} {} {} {} {} {} {} {} {}", cam.wsEye.x, cam.wsEye.y, cam.wsEye.z, cam.wsDirection.x,
-                                            cam.wsDirection.y, cam.wsDirection.z, view->light.wsDirection.x,
-                                            view->light.wsDirection.y, view->light.wsDirection.z) +
-                                fmt::format(" {}x{} {} {} {}", view->width, view->height, cam.fovYDegrees, cam.zNear, cam.zFar);
-        if (!truths.count(key)) truths[key] = eval::computeTruth(**rays, cam, view->light, view->width, view->height);
-        auto comparison = eval::compare(*raster, truths[key]);
-        if (!comparison) return fail(comparison.error());
-        const eval::Figures& f = comparison->figures;
+        // Cells that share camera, sun and size share one ray-traced truth (Measurer's cache).
+        auto measured = (*measurer)->measure(*inputs, *settings, {.shadedImage = true});
+        if (!measured) return fail("--configs: " + withFlagName(measured.errorInfo()).message);
+        images.push_back(std::move(measured->image));
+        const eval::Figures& f = measured->figures();
         captions.push_back(fmt::format("{} - wrong {:.2f}% (shadow {:.2f}, lit {:.2f})", caption((*cells)[i]), f.wrongPct,
                                        f.falseShadowPct, f.falseLitPct));
         fmt::print("{:>2}  wrong {:6.2f} %  false shadow {:6.2f} %  false lit {:6.2f} %  {}\n", i + 1, f.wrongPct,
                    f.falseShadowPct, f.falseLitPct, caption((*cells)[i]));
     }
-
-    // Grid: cells left to right, top to bottom, each with its caption underneath.
-    const int n = static_cast<int>(images.size());
-    const int columns = args.columns > 0 ? args.columns : static_cast<int>(std::ceil(std::sqrt(double(n))));
-    const int rows = (n + columns - 1) / columns;
-    const int cellW = images[0].width, cellH = images[0].height, gap = 6, scale = cellW >= 600 ? 2 : 1;
-    size_t captionLines = 1;
-    for (const std::string& c : captions) captionLines = std::max(captionLines, wrap(c, cellW - 8, scale).size());
-    const int captionH = static_cast<int>(captionLines) * (eval::kGlyphHeight + 3) * scale + 8;
-    scene::Image grid(columns * (cellW + gap) + gap, rows * (cellH + captionH + gap) + gap);
-    std::fill(grid.rgba.begin(), grid.rgba.end(), uint8_t{255});
-    static constexpr uint8_t ink[3] = {20, 20, 20};
-    for (int i = 0; i < n; ++i) {
-        const int x0 = gap + (i % columns) * (cellW + gap), y0 = gap + (i / columns) * (cellH + captionH + gap);
-        for (int y = 0; y < std::min(cellH, images[size_t(i)].height); ++y)
-            std::copy_n(images[size_t(i)].pixel(0, y), 4 * std::min(cellW, images[size_t(i)].width), grid.pixel(x0, y0 + y));
-        int lineY = y0 + cellH + 4;
-        for (const std::string& line : wrap(captions[size_t(i)], cellW - 8, scale)) {
-            eval::drawText(grid, x0 + 4, lineY, line, ink, scale);
-            lineY += (eval::kGlyphHeight + 3) * scale;
-        }
-    }
-    if (auto s = scene::writePng(grid, args.out); !s) return fail("--out: " + s.error());
-    fmt::print("wrote {} ({} cells)\n", args.out, n);
+    if (auto s = scene::writePng(eval::captionedGrid(images, captions, args.columns), args.out); !s)
+        return fail("--out: " + s.error());
+    fmt::print("wrote {} ({} cells)\n", args.out, images.size());
     return 0;
 }
 

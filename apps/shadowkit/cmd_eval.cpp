@@ -3,10 +3,8 @@
 #include "options.h"
 
 #include "shadowkit/eval/maps.h"
-#include "shadowkit/eval/ray_scene.h"
 #include "shadowkit/eval/report.h"
-#include "shadowkit/gl/context.h"
-#include "shadowkit/gl/renderer.h"
+#include "shadowkit/measure/measurer.h"
 
 #include <fmt/format.h>
 
@@ -50,7 +48,7 @@ core::Status checkWritable(const char* flag, const std::string& file) {
 core::Result<std::vector<std::string>> viewNames(const EvalArgs& args) {
     if (args.views.empty()) return std::vector<std::string>{args.view.view};
     auto all = scene::loadViews(scene::dataDirectory() / "views.json");
-    if (!all) return core::makeError(all.error());
+    if (!all) return all.errorInfo();
     std::vector<std::string> names;
     if (args.views == "all") {
         for (const scene::ViewSpec& v : *all) names.push_back(v.name);
@@ -66,8 +64,7 @@ core::Result<std::vector<std::string>> viewNames(const EvalArgs& args) {
 }
 
 int runEval(const EvalArgs& args) {
-    auto technique = args.technique.resolve();
-    if (!technique) return fail(technique.error());
+    if (auto s = args.technique.check(); !s) return fail(s.error());
     if (auto s = args.render.check(); !s) return fail(s.error());
     auto names = viewNames(args);
     if (!names) return fail(names.error());
@@ -77,15 +74,9 @@ int runEval(const EvalArgs& args) {
 
     auto sceneData = args.scene.load();
     if (!sceneData) return fail(sceneData.error());
-    const auto buildStart = std::chrono::steady_clock::now();
-    auto rays = eval::RayScene::build(*sceneData);
-    if (!rays) return fail(rays.error());
-    fmt::print(stderr, "ray tracer: built in {:.2f} s\n",
-               std::chrono::duration<double>(std::chrono::steady_clock::now() - buildStart).count());
-    auto context = gl::Context::createHeadless();
-    if (!context) return fail(context.error());
-    auto renderer = gl::Renderer::create(*sceneData);
-    if (!renderer) return fail(renderer.error());
+    auto measurer = measure::Measurer::createHeadless(*sceneData);
+    if (!measurer) return fail(measurer.error());
+    fmt::print(stderr, "ray tracer: built in {:.2f} s\n", (*measurer)->rayTracerBuildSeconds());
 
     std::vector<eval::ViewReport> reports;
     fmt::print("{:<14} {:<10} {:>5} {:>9} {:>8} {:>7} {:>8} {:>8} {:>7} {:>7} {:>7} {:>6}\n", "view", "technique", "map",
@@ -98,57 +89,38 @@ int runEval(const EvalArgs& args) {
         if (!view) return fail(view.error());
         auto inputs = args.technique.inputsFor(*view, sceneData->wsBounds());
         if (!inputs) return fail(inputs.error());
-        auto setup = core::computeShadowSetup(*inputs);
-        if (!setup) return fail(setup.error());
-        auto settings = args.render.settingsFor(*view, args.technique.mapSize, *setup);
+        auto settings = args.render.settingsFor(*view, *inputs);
         if (!settings) return fail(settings.error());
-        auto raster = (*renderer)->renderEvalBuffers(view->camera, view->light, *setup, *settings);
-        if (!raster) return fail(raster.error());
 
         // Progress only when the truth takes a while (large images, big scenes).
-        eval::TruthOptions truthOptions;
-        truthOptions.progress = [&, shown = false](double done) mutable {
+        measure::MeasureOptions options;
+        options.truthProgress = [&, shown = false](double done) mutable {
             const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
             if ((elapsed < 2.0 && !shown) || !isatty(fileno(stderr))) return; // a log gets the table only
             shown = true;
             fmt::print(stderr, "\r{}: ray tracing {:3.0f} %", name, 100.0 * done);
             if (done >= 1.0) fmt::print(stderr, "\n");
         };
-        const eval::TruthBuffers truth = eval::computeTruth(**rays, view->camera, view->light, view->width, view->height,
-                                                            truthOptions);
-        auto comparison = eval::compare(*raster, truth);
-        if (!comparison) return fail(comparison.error());
-
-        eval::ViewReport report;
-        report.view = name;
-        report.technique = std::string(core::techniqueName(*technique));
-        report.scene = args.scene.scene;
-        report.seed = args.scene.seed;
-        report.width = view->width;
-        report.height = view->height;
-        report.mapSize = settings->shadowMapSize;
-        report.maps = static_cast<int>(setup->views.size());
-        report.bias = settings->bias;
-        report.filter = args.render.filter;
-        report.blurIterations = settings->blur.iterations;
-        report.fallbacks = setup->fallbacks;
-        report.figures = comparison->figures;
+        auto measured = (*measurer)->measure(*inputs, *settings, options);
+        if (!measured) return fail(withFlagName(measured.errorInfo()).message);
 
         if (!args.errorMap.empty())
-            if (auto s = scene::writePng(eval::errorMapImage(*comparison, view->width, view->height),
+            if (auto s = scene::writePng(eval::errorMapImage(measured->comparison, view->width, view->height),
                                          perView(args.errorMap, name, several));
                 !s)
                 return fail("--error-map: " + s.error());
         if (!args.aliasingMap.empty())
-            if (auto s = scene::writePng(eval::aliasingMapImage(*comparison, view->width, view->height),
+            if (auto s = scene::writePng(eval::aliasingMapImage(measured->comparison, view->width, view->height),
                                          perView(args.aliasingMap, name, several));
                 !s)
                 return fail("--aliasing-map: " + s.error());
         if (!args.dump.empty())
-            if (auto s = eval::dumpBuffers(several ? fs::path(args.dump) / name : fs::path(args.dump), *raster, truth, *comparison);
+            if (auto s = eval::dumpBuffers(several ? fs::path(args.dump) / name : fs::path(args.dump), measured->raster,
+                                           *measured->truth, measured->comparison);
                 !s)
                 return fail("--dump: " + s.error());
 
+        eval::ViewReport report = measure::viewReport(*measured, *settings, name, args.scene.scene, args.scene.seed);
         report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         const eval::Figures& f = report.figures;
         fmt::print("{:<14} {:<10} {:>5} {:>9} {:>8} {:>7.2f} {:>8.2f} {:>8.2f} {:>7.2f} {:>7.3f} {:>7.3f} {:>6.1f}\n", name,

@@ -22,8 +22,7 @@ struct RenderArgs {
 };
 
 int runRender(const RenderArgs& args) {
-    auto technique = args.technique.resolve();
-    if (!technique) return fail(technique.error());
+    if (auto s = args.technique.check(); !s) return fail(s.error());
     if (auto s = args.render.check(); !s) return fail(s.error());
     auto sceneData = args.scene.load();
     if (!sceneData) return fail(sceneData.error());
@@ -34,20 +33,20 @@ int runRender(const RenderArgs& args) {
     auto inputs = args.technique.inputsFor(*view, sceneData->wsBounds());
     if (!inputs) return fail(inputs.error());
     auto setup = core::computeShadowSetup(*inputs);
-    if (!setup) return fail(setup.error());
+    if (!setup) return fail(withFlagName(setup.errorInfo()).message);
     const double setupMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - cpuStart).count();
 
     auto context = gl::Context::createHeadless();
     if (!context) return fail(context.error());
     auto renderer = gl::Renderer::create(*sceneData);
     if (!renderer) return fail(renderer.error());
-    auto settingsOr = args.render.settingsFor(*view, args.technique.mapSize, *setup);
+    auto settingsOr = args.render.settingsFor(*view, *inputs);
     if (!settingsOr) return fail(settingsOr.error());
     const gl::RenderSettings& settings = *settingsOr;
 
     const auto frameStart = std::chrono::steady_clock::now();
     auto stats = (*renderer)->render(view->camera, view->light, *setup, settings);
-    if (!stats) return fail(stats.error());
+    if (!stats) return fail(withFlagName(stats.errorInfo()).message);
     const scene::Image image = (*renderer)->readColor();
     const double frameMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - frameStart).count();
 
@@ -55,8 +54,8 @@ int runRender(const RenderArgs& args) {
     if (!args.shadowMapOut.empty())
         if (auto s = scene::writePng((*renderer)->readShadowMap(), args.shadowMapOut); !s) return fail("--shadow-map-out: " + s.error());
 
-    fmt::print("{} | {} | {}x{} | map {}² | view {}\n", core::techniqueName(*technique), (*context)->description(),
-               settings.width, settings.height, settings.shadowMapSize, args.view.view);
+    fmt::print("{} | {} | {}x{} | map {}² | view {}\n", core::techniqueName(setup->technique), (*context)->description(),
+               settings.width, settings.height, setup->mapSize, args.view.view);
     fmt::print("  set-up (CPU)   {:8.3f} ms\n", setupMs);
     fmt::print("  shadow pass    {:8.1f} ms GPU  {:6.2f} M triangles  {} draws\n", stats->shadow.gpuMilliseconds,
                static_cast<double>(stats->shadow.triangles) * 1e-6, stats->shadow.drawCalls);

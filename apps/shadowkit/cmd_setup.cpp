@@ -28,9 +28,33 @@ json toJson(const core::Mat4& m) {
     return a;
 }
 
+// The README's names for each technique's parameters; flags as 0 / 1 numbers, as they
+// always were in this contract.
+json warpJson(const core::WarpParameters& warp) {
+    auto flag = [](bool b) { return b ? 1.0 : 0.0; };
+    return std::visit(
+        [&](const auto& w) -> json {
+            using W = std::decay_t<decltype(w)>;
+            if constexpr (std::is_same_v<W, core::LispsmWarp>) {
+                json j = {{"gamma_degrees", w.gammaDegrees}, {"uniform", flag(w.uniform)}};
+                if (!w.viewParallel) j.update({{"n", w.n}, {"f", w.f}, {"d", w.d}});
+                return j;
+            } else if constexpr (std::is_same_v<W, core::PsmWarp>) {
+                return {{"slide_back", w.slideBack}, {"near", w.ppNear}, {"far", w.ppFar}, {"light_w", w.lightW},
+                        {"inverted", flag(w.inverted)}};
+            } else if constexpr (std::is_same_v<W, core::TsmWarp>) {
+                json j = {{"uniform", flag(w.uniform)}};
+                if (!w.uniform) j.update({{"lambda", w.lambda}, {"delta", w.delta}, {"eta", w.eta}});
+                return j;
+            } else {
+                return nullptr; // uniform techniques: no warp
+            }
+        },
+        warp);
+}
+
 int runSetup(const SetupArgs& args) {
-    auto technique = args.technique.resolve();
-    if (!technique) return fail(technique.error());
+    if (auto s = args.technique.check(); !s) return fail(s.error());
     auto bounded = args.bounds.resolve(args.scene, args.view);
     if (!bounded) return fail(bounded.error());
     const core::Aabb& bounds = bounded->wsBounds;
@@ -39,7 +63,7 @@ int runSetup(const SetupArgs& args) {
     auto inputs = args.technique.inputsFor(*view, bounds);
     if (!inputs) return fail(inputs.error());
     auto setup = core::computeShadowSetup(*inputs);
-    if (!setup) return fail(setup.error());
+    if (!setup) return fail(withFlagName(setup.errorInfo()).message);
 
     const core::PerspectiveCamera& cam = view->camera;
     json out;
@@ -51,7 +75,7 @@ int runSetup(const SetupArgs& args) {
         {"light", {{"type", "directional"}, {"direction", toJson(view->light.wsDirection)}}},
         {"scene_bounds", {{"min", toJson(bounds.min)}, {"max", toJson(bounds.max)}}},
     };
-    out["clip_depth"] = setup->clipDepth == core::ClipDepth::ZeroToOne ? "zero_to_one" : "minus_one_to_one";
+    out["clip_depth"] = "zero_to_one"; // every set-up (core/conventions.h)
     out["depth_clamp"] = setup->depthClamp;
     out["depth_layout"] = setup->depthLayout == core::DepthLayout::Linear ? "linear" : "hyperbolic";
     json views = json::array();
@@ -62,11 +86,7 @@ int runSetup(const SetupArgs& args) {
                    {"linear_depth_from_world",
                     {v.linearDepthFromWorld.x, v.linearDepthFromWorld.y, v.linearDepthFromWorld.z, v.linearDepthFromWorld.w}}};
         if (v.split) jv["split"] = {v.split->x, v.split->y};
-        if (!v.warp.empty()) {
-            json warp = json::object();
-            for (const auto& [name, value] : v.warp) warp[name] = value;
-            jv["warp"] = warp;
-        }
+        if (json warp = warpJson(v.warp); !warp.is_null()) jv["warp"] = warp;
         views.push_back(jv);
     }
     out["views"] = views;

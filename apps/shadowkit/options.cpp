@@ -6,9 +6,10 @@
 #include <fmt/format.h>
 
 #include <chrono>
+#include <map>
 #include <cmath>
 #include <sstream>
-#include <tuple>
+#include <string_view>
 
 namespace shadowkit::app {
 namespace {
@@ -51,7 +52,7 @@ core::Result<scene::Scene> SceneOptions::load(bool verbose) const {
         o.trees = trees;
         o.terrainSize = terrainSize;
         o.terrainResolution = terrainResolution;
-        if (core::Status s = scene::validate(o); !s) return core::makeError(s.error());
+        if (core::Status s = scene::validate(o); !s) return s.errorInfo();
         result = scene::makeForest(o);
     } else {
         result = scene::loadScene(scene);
@@ -83,7 +84,7 @@ void ViewOptions::addTo(CLI::App& cmd) {
 
 core::Result<scene::ResolvedView> ViewOptions::resolve(const scene::Scene& sceneData) const {
     auto views = scene::loadViews(scene::dataDirectory() / "views.json");
-    if (!views) return core::makeError(views.error());
+    if (!views) return views.errorInfo();
     auto spec = scene::findView(*views, view);
     if (!spec) return core::makeError("--view: " + spec.error());
     scene::ResolvedView out = scene::resolveView(*spec, sceneData);
@@ -103,18 +104,18 @@ core::Result<scene::ResolvedView> ViewOptions::resolve(const scene::Scene& scene
     for (size_t i = 0; i < 3; ++i) {
         if (vectors[i].second->empty()) continue;
         auto v = parseVec3(vectors[i].first, *vectors[i].second);
-        if (!v) return core::makeError(v.error());
+        if (!v) return v.errorInfo();
         *targets[i] = *v;
     }
     if (fov) cam.fovYDegrees = *fov;
     if (zNear) cam.zNear = *zNear;
     if (zFar) cam.zFar = *zFar;
-    if (core::Status s = cam.validate(); !s) return core::makeError(s.error());
+    if (core::Status s = cam.validate(); !s) return s.errorInfo();
 
     if (!sun.empty()) {
         if (sunElevation || sunAzimuth) return core::makeError("--sun: give either --sun or --sun-elevation/--sun-azimuth, not both");
         auto v = parseVec3("--sun", sun);
-        if (!v) return core::makeError(v.error());
+        if (!v) return v.errorInfo();
         auto light = core::DirectionalLight::fromDirection(*v);
         if (!light) return core::makeError("--sun: " + light.error());
         out.light = *light;
@@ -145,181 +146,202 @@ core::Result<BoundedView> BoundsOptions::resolve(const SceneOptions& scene, cons
         out.wsBounds = core::Aabb::fromMinMax({v[0], v[1], v[2]}, {v[3], v[4], v[5]});
     } else {
         auto loaded = scene.load(false);
-        if (!loaded) return core::makeError(loaded.error());
+        if (!loaded) return loaded.errorInfo();
         sceneData = std::move(loaded).value();
         out.wsBounds = sceneData.wsBounds();
     }
     auto resolved = view.resolve(sceneData);
-    if (!resolved) return core::makeError(resolved.error());
+    if (!resolved) return resolved.errorInfo();
     out.view = *resolved;
     if (!sceneBounds.empty() && view.eye.empty()) out.view.camera.wsEye.y += out.wsBounds.min.y;
     return out;
 }
 
-void RenderOptions::addTo(CLI::App& cmd) {
-    cmd.add_option("--bias-slope", biasSlope, "slope-scaled depth bias (glPolygonOffset factor; default: per technique)");
-    cmd.add_option("--bias-constant", biasConstant, "constant depth bias (glPolygonOffset units; default: per technique)");
-    cmd.add_option("--cull", cull, "caster faces left out of the map: back, front (back-side rendering), none, auto")
-        ->capture_default_str();
-    cmd.add_option("--normal-offset", normalOffset, "receiver offset along its normal, in texels' world size");
-    cmd.add_option("--receiver-plane-bias", receiverPlaneBias, "on, off or auto: reference depth on the receiver's plane")
-        ->capture_default_str();
-    cmd.add_option("--filter", filter, "hard, pcf2 (hardware 2x2), pcf:N (N x N), poisson:N (N rotated taps)")
-        ->capture_default_str();
-    cmd.add_option("--blur-iterations", blurIterations, "eye-space blur of the shadow mask: 0, 1, 2, 4, 8, 16 ...")
-        ->capture_default_str();
-    cmd.add_option("--blur-radius", blurRadius, "blur tap distance in pixels at the viewer")->capture_default_str();
-    cmd.add_option("--blur-depth-falloff", blurDepthFalloff, "blur radius / (1 + falloff * depth): 0 = uniform blur")
-        ->capture_default_str();
-    cmd.add_flag("--cascade-colors", cascadeColors, "tint each cascade's depth range (seed 002 Figure 3-2)");
-}
-
 namespace {
 
-// "pcf:5" -> (PcfGrid, 5); "hard" -> (Hard, 1).
-core::Result<gl::FilterSettings> parseFilter(const std::string& text) {
-    gl::FilterSettings f;
-    const size_t colon = text.find(':');
-    const std::string kind = text.substr(0, colon);
-    int taps = 0;
-    if (colon != std::string::npos) {
-        char* end = nullptr;
-        const long v = std::strtol(text.c_str() + colon + 1, &end, 10);
-        if (*end != '\0' || end == text.c_str() + colon + 1) taps = -1;
-        else taps = static_cast<int>(v);
-    }
-    if (kind == "hard" && colon == std::string::npos) return f;
-    if (kind == "pcf2" && colon == std::string::npos) return gl::FilterSettings{gl::ShadowFilter::Pcf2, 1};
-    if (kind == "pcf" && taps >= 1 && taps <= 9) return gl::FilterSettings{gl::ShadowFilter::PcfGrid, taps};
-    if (kind == "poisson" && taps >= 1 && taps <= 32) return gl::FilterSettings{gl::ShadowFilter::Poisson, taps};
-    return core::makeError(fmt::format("--filter: expected hard, pcf2, pcf:N (N 1-9) or poisson:N (N 1-32), got '{}'", text));
+// Library fields (core::Error::field) and the flags that set them.
+constexpr std::pair<std::string_view, std::string_view> kFlagOfField[] = {
+    {"map_size", "--map-size"},
+    {"image_size", "--size"},
+    {"lispsm.weight", "--lispsm-weight"},
+    {"lispsm.n", "--lispsm-n"},
+    {"lispsm.visible_depth", "--visible-depth"},
+    {"tsm.focus", "--tsm-focus"},
+    {"cascades.count", "--cascades"},
+    {"cascades.lambda", "--lambda"},
+    {"cascades.blend_band", "--blend-band"},
+    {"cascades.stabilize", "--stabilize"},
+    {"cascades.splits", "--splits"},
+    {"bias.slope", "--bias-slope"},
+    {"bias.constant", "--bias-constant"},
+    {"bias.normal_offset", "--normal-offset"},
+    {"filter", "--filter"},
+    {"filter.taps", "--filter"},
+    {"filter.radius", "--filter"},
+    {"blur.iterations", "--blur-iterations"},
+    {"blur.radius", "--blur-radius"},
+    {"blur.depth_falloff", "--blur-depth-falloff"},
+};
+
+// A CLI11 transform from a name to an enum value: the names appear in --help as the
+// option's type ("standard|focused|..."), and anything else is a one-line error naming the
+// flag and the choices.
+template <class T>
+using Choices = std::vector<std::pair<std::string, T>>;
+
+template <class T>
+CLI::Validator choice(Choices<T> choices) {
+    std::string names;
+    for (const auto& [name, value] : choices) names += (names.empty() ? "" : "|") + name;
+    return CLI::Validator(
+        [choices, names](std::string& text) -> std::string {
+            for (const auto& [name, value] : choices)
+                if (text == name) {
+                    text = std::to_string(static_cast<int>(value)); // what CLI11 converts to the enum
+                    return {};
+                }
+            return "expected " + names + ", got '" + text + "'";
+        },
+        names);
+}
+
+Choices<core::Technique> techniqueChoices() {
+    Choices<core::Technique> choices;
+    for (const core::TechniqueInfo& info : core::allTechniques()) choices.emplace_back(info.name, info.technique);
+    return choices;
 }
 
 } // namespace
 
+core::Error withFlagName(const core::Error& error) {
+    for (const auto& [field, flag] : kFlagOfField)
+        if (error.field == field) {
+            const std::string prefix = error.field + ": ";
+            const bool prefixed = error.message.compare(0, prefix.size(), prefix) == 0;
+            return core::Error{std::string(flag) + ": " + (prefixed ? error.message.substr(prefix.size()) : error.message),
+                               error.field};
+        }
+    return error;
+}
+
+void RenderOptions::addTo(CLI::App& cmd) {
+    cmd.add_option("--bias-slope", biasSlope, "slope-scaled depth bias (glPolygonOffset factor; default: per technique)");
+    cmd.add_option("--bias-constant", biasConstant, "constant depth bias (glPolygonOffset units; default: per technique)");
+    cmd.add_option("--cull", cull, "caster faces left out of the map (front: back-side rendering; auto: per technique)")
+        ->transform(choice(Choices<CullChoice>{{"auto", CullChoice::Auto},
+                                                                {"back", CullChoice::Back},
+                                                                {"front", CullChoice::Front},
+                                                                {"none", CullChoice::None}}))
+        ->default_str("auto");
+    cmd.add_option("--normal-offset", normalOffset, "receiver offset along its normal, in texels' world size");
+    cmd.add_option("--receiver-plane-bias", receiverPlaneBias, "reference depth on the receiver's plane (auto: for wide kernels)")
+        ->transform(choice(Choices<Choice>{{"auto", Choice::Auto}, {"on", Choice::On}, {"off", Choice::Off}}))
+        ->capture_default_str();
+    cmd.add_option("--filter", filter, "hard, pcf2 (hardware 2x2), pcf:N (N x N, 1-9), poisson:N (N rotated taps, 1-32)")
+        ->capture_default_str();
+    cmd.add_option("--blur-iterations", blur.iterations, "eye-space blur of the shadow mask: 0, 1, 2, 4, 8, 16 ...")
+        ->capture_default_str();
+    cmd.add_option("--blur-radius", blur.radiusPixels, "blur tap distance in pixels at the viewer")->capture_default_str();
+    cmd.add_option("--blur-depth-falloff", blur.depthFalloff, "blur radius / (1 + falloff * depth): 0 = uniform blur")
+        ->capture_default_str();
+    cmd.add_flag("--cascade-colors", cascadeColors, "tint each cascade's depth range (Dimitrov 2007 Figure 3-2)");
+}
+
 core::Status RenderOptions::check() const {
-    if (auto f = parseFilter(filter); !f) return core::makeError(f.error());
-    if (cull != "auto" && cull != "back" && cull != "front" && cull != "none")
-        return core::makeError(fmt::format("--cull: expected back, front, none or auto, got '{}'", cull));
-    if (receiverPlaneBias != "auto" && receiverPlaneBias != "on" && receiverPlaneBias != "off")
-        return core::makeError(fmt::format("--receiver-plane-bias: expected on, off or auto, got '{}'", receiverPlaneBias));
-    if (blurIterations < 0 || blurIterations > 64) return core::makeError("--blur-iterations: must be in [0, 64]");
-    if (!(blurRadius > 0.0f && blurRadius <= 16.0f)) return core::makeError("--blur-radius: must be in (0, 16] pixels");
-    if (!(blurDepthFalloff >= 0.0f && blurDepthFalloff <= 10.0f)) return core::makeError("--blur-depth-falloff: must be in [0, 10]");
-    // Each flag checked on its own by core::validate, so the message names the flag.
-    const std::tuple<const char*, const std::optional<double>&, double core::BiasSettings::*> fields[] = {
-        {"--bias-slope", biasSlope, &core::BiasSettings::slope},
-        {"--bias-constant", biasConstant, &core::BiasSettings::constant},
-        {"--normal-offset", normalOffset, &core::BiasSettings::normalOffset}};
-    for (const auto& [flag, value, member] : fields) {
-        if (!value) continue;
-        core::BiasSettings b;
-        b.*member = *value;
-        if (auto s = core::validate(b); !s) return core::makeError(std::string(flag) + ": " + s.error());
-    }
+    if (auto f = core::parseFilter(filter); !f) return withFlagName(f.errorInfo());
+    if (auto s = gl::validate(blur); !s) return withFlagName(s.errorInfo());
+    core::BiasSettings b;
+    b.slope = biasSlope.value_or(b.slope);
+    b.constant = biasConstant.value_or(b.constant);
+    b.normalOffset = normalOffset.value_or(b.normalOffset);
+    if (auto s = core::validate(b); !s) return withFlagName(s.errorInfo());
     return core::Ok{};
 }
 
-core::Result<gl::RenderSettings> RenderOptions::settingsFor(const scene::ResolvedView& view, int mapSize,
-                                                            const core::ShadowSetup& setup) const {
-    if (auto s = check(); !s) return core::makeError(s.error());
+core::Result<gl::RenderSettings> RenderOptions::settingsFor(const scene::ResolvedView& view,
+                                                            const core::ShadowSetupInputs& inputs) const {
+    if (auto s = check(); !s) return s.errorInfo();
     gl::RenderSettings settings;
     settings.width = view.width;
     settings.height = view.height;
-    settings.shadowMapSize = mapSize; // checked by TechniqueOptions and against the driver's limit
-    core::BiasSettings& b = settings.bias;
-    b = core::recommendedBias(setup.technique, setup.depthLayout);
-    if (biasSlope) b.slope = *biasSlope;
-    if (biasConstant) b.constant = *biasConstant;
-    if (normalOffset) b.normalOffset = *normalOffset;
-    if (cull != "auto") b.cull = cull == "back" ? core::CasterCull::Back : cull == "front" ? core::CasterCull::Front : core::CasterCull::None;
-    settings.filter = parseFilter(filter).value();
-    // Kernels wider than the hardware's 2x2 compare taps texels away from the receiver: on a
-    // surface sloped in light space they self-shadow unless the reference depth follows the
-    // receiver's plane (measured: 0.8 on lit ground with 5x5 taps; see the gl tests).
-    const bool wideKernel = settings.filter.kind == gl::ShadowFilter::PcfGrid || settings.filter.kind == gl::ShadowFilter::Poisson;
-    b.receiverPlane = receiverPlaneBias == "auto" ? (b.receiverPlane || wideKernel) : receiverPlaneBias == "on";
-    settings.blur.iterations = blurIterations;
-    settings.blur.radiusPixels = blurRadius;
-    settings.blur.depthFalloff = blurDepthFalloff;
+    settings.filter = core::parseFilter(filter).value();
+    settings.blur = blur;
     settings.cascadeColors = cascadeColors;
+    // Only what the flags change is set here; the rest is the recommendation every library
+    // caller gets (gl::biasFor).
+    if (biasSlope || biasConstant || normalOffset || cull != CullChoice::Auto || receiverPlaneBias != Choice::Auto) {
+        core::BiasSettings b = core::recommendedBias(inputs.technique, core::depthLayoutFor(inputs), settings.filter);
+        b.slope = biasSlope.value_or(b.slope);
+        b.constant = biasConstant.value_or(b.constant);
+        b.normalOffset = normalOffset.value_or(b.normalOffset);
+        if (cull != CullChoice::Auto)
+            b.cull = cull == CullChoice::Back ? core::CasterCull::Back : cull == CullChoice::Front ? core::CasterCull::Front : core::CasterCull::None;
+        if (receiverPlaneBias != Choice::Auto) b.receiverPlane = receiverPlaneBias == Choice::On;
+        settings.bias = b;
+    }
     return settings;
 }
 
 void TechniqueOptions::addTo(CLI::App& cmd) {
-    technique = std::string(core::techniqueName(core::defaultTechnique()));
-    cmd.add_option("--technique", technique, "shadow technique: " + core::techniqueNameList())->capture_default_str();
-    cmd.add_option("--lispsm-formula", lispsmFormula, "LiSPSM n: 'paper' (seed 001 §4.4) or 'scherzer' (seed 000 eq. 1)")
-        ->capture_default_str();
-    cmd.add_option("--lispsm-direction", lispsmDirection, "LiSPSM warp axis: 'cross' (seed 000 eq. 3) or 'middle' (B's middle vector)")
-        ->capture_default_str();
+    cmd.add_option("--technique", technique, "shadow technique")
+        ->transform(choice(techniqueChoices()))
+        ->default_str(std::string(core::techniqueName(technique)));
+    cmd.add_option("--lispsm-formula", lispsmFormula, "LiSPSM n: Wimmer et al. 2004 §4.4 (paper) or Scherzer 2005 eq. 1")
+        ->transform(choice(Choices<core::LispsmFormula>{{"paper", core::LispsmFormula::Paper}, {"scherzer", core::LispsmFormula::Scherzer}}))
+        ->default_str("scherzer");
+    cmd.add_option("--lispsm-direction", lispsmDirection, "LiSPSM warp axis: cross (Scherzer 2005 eq. 3) or middle (B's middle vector)")
+        ->transform(choice(Choices<core::LispsmDirection>{{"cross", core::LispsmDirection::CrossProduct},
+                                                                           {"middle", core::LispsmDirection::MiddleVector}}))
+        ->default_str("cross");
     cmd.add_option("--lispsm-weight", lispsmWeight, "LiSPSM: multiplies n (> 1 warps less)")->capture_default_str();
     cmd.add_option("--lispsm-n", lispsmN, "LiSPSM: fixed n in metres instead of the formula");
-    cmd.add_option("--visible-depth", visibleDepth, "near,far view depth actually visible (LiSPSM n only, seed 000 §4.4)");
+    cmd.add_option("--visible-depth", visibleDepth, "near,far view depth actually visible (LiSPSM n only, Scherzer 2005 §4.4)");
     cmd.add_option("--tsm-focus", tsmFocus, "TSM: focus point as a fraction of the view depth range (80 % rule)")
         ->capture_default_str();
-    cmd.add_option("--depth-layout", depthLayout, "shadow depth: 'hyperbolic', 'linear' or 'auto' (linear for TSM)")
-        ->capture_default_str();
+    cmd.add_option("--depth-layout", depthLayout, "shadow depth (auto: linear for TSM, else hyperbolic)")
+        ->transform(choice(Choices<LayoutChoice>{{"auto", LayoutChoice::Auto}, {"hyperbolic", LayoutChoice::Hyperbolic}, {"linear", LayoutChoice::Linear}}))
+        ->default_str("auto");
     cmd.add_option("--map-size", mapSize, "shadow map texels per side (per cascade for csm)")->capture_default_str();
-    cmd.add_option("--cascades", cascades, "csm: number of splits, 1-8")->capture_default_str();
-    cmd.add_option("--lambda", lambda, "csm: split scheme, 0 uniform ... 1 logarithmic (seed 002)")->capture_default_str();
+    cmd.add_option("--cascades", cascades.count, "csm: number of splits, 1-8")->capture_default_str();
+    cmd.add_option("--lambda", cascades.lambda, "csm: split scheme, 0 uniform ... 1 logarithmic (Zhang et al. 2006)")
+        ->capture_default_str();
     cmd.add_option("--splits", splits, "csm: explicit split distances near,...,far (count + 1 values)");
-    cmd.add_option("--cascade-warp", cascadeWarp, "csm: per-split warp, 'none' or 'lispsm'")->capture_default_str();
-    cmd.add_flag("--stabilize", stabilize, "csm: rotation-invariant, texel-snapped splits (no swimming)");
-    cmd.add_option("--blend-band", blendBand, "csm: fraction of each split blended into the next, 0-0.5")->capture_default_str();
+    cmd.add_option("--cascade-warp", cascades.warp, "csm: per-split warp")
+        ->transform(choice(Choices<core::CascadeWarp>{{"none", core::CascadeWarp::None}, {"lispsm", core::CascadeWarp::Lispsm}}))
+        ->default_str("none");
+    cmd.add_flag("--stabilize", cascades.stabilize, "csm: rotation-invariant, texel-snapped splits (no swimming)");
+    cmd.add_option("--blend-band", cascades.blendBand, "csm: fraction of each split blended into the next, 0-0.5")
+        ->capture_default_str();
 }
 
-core::Result<core::Technique> TechniqueOptions::resolve() const {
-    const auto t = core::parseTechnique(technique);
-    if (!t) return core::makeError(fmt::format("--technique: unknown technique '{}' (known: {})", technique, core::techniqueNameList()));
-    if (lispsmFormula != "paper" && lispsmFormula != "scherzer")
-        return core::makeError(fmt::format("--lispsm-formula: expected 'paper' or 'scherzer', got '{}'", lispsmFormula));
-    if (lispsmDirection != "cross" && lispsmDirection != "middle")
-        return core::makeError(fmt::format("--lispsm-direction: expected 'cross' or 'middle', got '{}'", lispsmDirection));
-    if (!(lispsmWeight > 0.0 && std::isfinite(lispsmWeight))) return core::makeError("--lispsm-weight: must be a number > 0");
-    if (!(tsmFocus > 0.0 && tsmFocus < 1.0)) return core::makeError("--tsm-focus: must be a fraction in (0, 1)");
-    if (depthLayout != "auto" && depthLayout != "hyperbolic" && depthLayout != "linear")
-        return core::makeError(fmt::format("--depth-layout: expected 'auto', 'hyperbolic' or 'linear', got '{}'", depthLayout));
-    if (lispsmN && !(*lispsmN > 0.0 && std::isfinite(*lispsmN))) return core::makeError("--lispsm-n: must be a number of metres > 0");
-    if (!visibleDepth.empty()) {
-        std::vector<double> v;
-        if (!parseNumbers(visibleDepth, ',', v) || v.size() != 2 || !(v[0] >= 0.0 && v[1] > v[0]))
-            return core::makeError(fmt::format("--visible-depth: expected near,far with 0 <= near < far, got '{}'", visibleDepth));
-    }
-    if (mapSize < 16 || mapSize > 16384) return core::makeError("--map-size: must be in [16, 16384] texels");
-    if (cascades < 1 || cascades > 8) return core::makeError("--cascades: must be in [1, 8]");
-    if (!(lambda >= 0.0 && lambda <= 1.0)) return core::makeError("--lambda: must be in [0, 1]");
-    if (!(blendBand >= 0.0 && blendBand <= 0.5)) return core::makeError("--blend-band: must be in [0, 0.5]");
-    if (cascadeWarp != "none" && cascadeWarp != "lispsm")
-        return core::makeError(fmt::format("--cascade-warp: expected 'none' or 'lispsm', got '{}'", cascadeWarp));
-    std::vector<double> v;
-    if (!splits.empty() && !parseNumbers(splits, ',', v))
-        return core::makeError(fmt::format("--splits: expected comma-separated distances, got '{}'", splits));
-    return *t;
+core::Status TechniqueOptions::check() const {
+    auto in = inputsFor(scene::ResolvedView{}, core::Aabb::fromMinMax(core::Vec3(0.0), core::Vec3(1.0)));
+    if (!in) return in.errorInfo();
+    // The camera-independent checks only: the view is not resolved yet.
+    if (auto s = core::validateMapSize(in->mapSize); !s) return withFlagName(s.errorInfo());
+    if (auto s = core::validate(in->lispsm); !s) return withFlagName(s.errorInfo());
+    if (auto s = core::validate(in->tsm); !s) return withFlagName(s.errorInfo());
+    if (auto s = core::validate(in->cascades); !s) return withFlagName(s.errorInfo());
+    return core::Ok{};
 }
 
 core::Result<core::ShadowSetupInputs> TechniqueOptions::inputsFor(const scene::ResolvedView& view, const core::Aabb& wsBounds) const {
-    auto t = resolve();
-    if (!t) return core::makeError(t.error());
-    core::ShadowSetupInputs in{.camera = view.camera, .light = view.light, .wsSceneBounds = wsBounds, .technique = *t};
-    in.lispsm.formula = lispsmFormula == "paper" ? core::LispsmFormula::Paper : core::LispsmFormula::Scherzer;
-    in.lispsm.direction = lispsmDirection == "middle" ? core::LispsmDirection::MiddleVector : core::LispsmDirection::CrossProduct;
+    core::ShadowSetupInputs in{.camera = view.camera, .light = view.light, .wsSceneBounds = wsBounds, .technique = technique};
+    in.mapSize = mapSize;
+    in.lispsm.formula = lispsmFormula;
+    in.lispsm.direction = lispsmDirection;
     in.lispsm.weight = lispsmWeight;
     in.lispsm.nOverride = lispsmN;
     in.tsm.focusFraction = tsmFocus;
-    if (depthLayout != "auto")
-        in.depthLayout = depthLayout == "linear" ? core::DepthLayout::Linear : core::DepthLayout::Hyperbolic;
-    core::CascadeOptions& c = in.cascades;
-    c.count = cascades;
-    c.lambda = lambda;
-    c.warp = cascadeWarp == "lispsm" ? core::CascadeWarp::Lispsm : core::CascadeWarp::None;
-    c.stabilize = stabilize;
-    c.blendBand = blendBand;
-    c.mapSize = mapSize;
-    if (!splits.empty()) parseNumbers(splits, ',', c.splits); // validated by resolve()
+    if (depthLayout != LayoutChoice::Auto)
+        in.depthLayout = depthLayout == LayoutChoice::Linear ? core::DepthLayout::Linear : core::DepthLayout::Hyperbolic;
+    in.cascades = cascades;
+    if (!splits.empty() && !parseNumbers(splits, ',', in.cascades.splits))
+        return core::makeError(fmt::format("--splits: expected comma-separated distances, got '{}'", splits));
     if (!visibleDepth.empty()) {
         std::vector<double> v;
-        parseNumbers(visibleDepth, ',', v); // validated by resolve()
+        if (!parseNumbers(visibleDepth, ',', v) || v.size() != 2)
+            return core::makeError(fmt::format("--visible-depth: expected near,far, got '{}'", visibleDepth));
         in.lispsm.visibleDepth = core::Vec2(v[0], v[1]);
     }
     return in;

@@ -39,21 +39,21 @@ struct ViewOptions {
 };
 
 struct TechniqueOptions {
-    std::string technique;
-    std::string lispsmFormula = "scherzer", lispsmDirection = "cross", visibleDepth, depthLayout = "auto";
-    double lispsmWeight = 1.0;
-    double tsmFocus = core::TsmOptions{}.focusFraction;
-    int mapSize = 2048; // texels per side of each map (cascades snap to it)
-    int cascades = core::CascadeOptions{}.count;
-    double lambda = core::CascadeOptions{}.lambda;
-    double blendBand = 0.0;
-    std::string cascadeWarp = "none", splits;
-    bool stabilize = false;
+    core::Technique technique = core::defaultTechnique();
+    core::LispsmFormula lispsmFormula = core::LispsmOptions{}.formula;
+    core::LispsmDirection lispsmDirection = core::LispsmOptions{}.direction;
+    std::string visibleDepth, splits; // raw "near,far" / "a,b,c" text, parsed in resolve()
+    enum class LayoutChoice { Auto, Hyperbolic, Linear }; // Auto: the technique's own
+    LayoutChoice depthLayout = LayoutChoice::Auto;
+    double lispsmWeight = core::LispsmOptions{}.weight;
     std::optional<double> lispsmN;
+    double tsmFocus = core::TsmOptions{}.focusFraction;
+    int mapSize = core::ShadowSetupInputs{}.mapSize;
+    core::CascadeOptions cascades; // count, lambda, warp, stabilize, blend band; splits from `splits`
 
     void addTo(CLI::App& cmd);
-    // Checks the technique's flags (cheap: call before loading a scene).
-    core::Result<core::Technique> resolve() const;
+    // Checks the technique's flags (cheap: call before loading a scene); errors name the flag.
+    core::Status check() const;
     // Everything computeShadowSetup needs for this view and scene box.
     core::Result<core::ShadowSetupInputs> inputsFor(const scene::ResolvedView& view, const core::Aabb& wsBounds) const;
 };
@@ -71,22 +71,28 @@ struct BoundsOptions {
 };
 
 // Bias, filter, blur and debug views of the GL passes, shared by render, eval and compare.
-// Bias values not given fall back to core::recommendedBias for the technique.
+// Bias values not given come from core::recommendedBias for the technique and filter.
 struct RenderOptions {
+    enum class Choice { Auto, On, Off };
+    enum class CullChoice { Auto, Back, Front, None }; // Auto: the recommended culling
     std::optional<double> biasSlope, biasConstant, normalOffset;
-    std::string cull = "auto", receiverPlaneBias = "auto", filter = "hard";
-    int blurIterations = 0;
-    float blurRadius = gl::BlurSettings{}.radiusPixels, blurDepthFalloff = gl::BlurSettings{}.depthFalloff;
+    CullChoice cull = CullChoice::Auto;
+    Choice receiverPlaneBias = Choice::Auto;
+    std::string filter = "hard";
+    gl::BlurSettings blur;
     bool cascadeColors = false;
 
     void addTo(CLI::App& cmd);
-    // Checks the flags (cheap: call before loading a scene).
+    // Checks the flags (cheap: call before loading a scene); errors name the flag.
     core::Status check() const;
-    // Settings for a view's image size, the map size and the set-up's technique and
-    // layout (for the recommended bias); errors name the flag.
-    core::Result<gl::RenderSettings> settingsFor(const scene::ResolvedView& view, int mapSize,
-                                                 const core::ShadowSetup& setup) const;
+    // Settings for a view's image size and the set-up these inputs give (for the
+    // recommended bias); errors name the flag.
+    core::Result<gl::RenderSettings> settingsFor(const scene::ResolvedView& view, const core::ShadowSetupInputs& inputs) const;
 };
+
+// A library error, with its field spelt as the flag that sets it ("lispsm.weight: must be
+// > 0" -> "--lispsm-weight: must be > 0"); errors without a known field are kept as they are.
+core::Error withFlagName(const core::Error& error);
 
 // "x,y,z" -> vector; the error names the flag and shows the text.
 core::Result<core::Vec3> parseVec3(const std::string& flag, const std::string& text);

@@ -1,13 +1,17 @@
-# CLI contract tests, run by CTest in script mode:
-#   cmake -DSHADOWKIT=<binary> -DWORK=<scratch dir> [-DWITH_GL=ON] -P run_cli_tests.cmake
-# Bad input must give exactly one error line naming the input and a non-zero exit;
-# `setup` must print the documented JSON contract.
+# CLI contract tests, one CTest test per case (apps/shadowkit/CMakeLists.txt reads the case
+# names from this file: each check_fails(NAME ...) and each if(CASE STREQUAL "NAME") block):
+#   cmake -DSHADOWKIT=<binary> -DWORK=<scratch dir> -DCASE=<name> -P run_cli_tests.cmake
+# Cases named gl-* need a GL context. Bad input must give exactly one error line naming the
+# input and a non-zero exit; `setup` must print the documented JSON contract.
 cmake_minimum_required(VERSION 3.22)
+set(WORK "${WORK}/${CASE}")
 file(MAKE_DIRECTORY "${WORK}")
-set(failures 0)
 set(small --trees 20 --terrain-size 200 --terrain-resolution 16)
 
 function(check_fails name expected)
+  if(NOT CASE STREQUAL name)
+    return()
+  endif()
   execute_process(COMMAND ${SHADOWKIT} ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   string(REGEX MATCHALL "[^\n]*error[^\n]*" error_lines "${err}")
   list(LENGTH error_lines n)
@@ -40,7 +44,7 @@ check_fails(bad-lispsm-formula "--lispsm-formula" setup ${small} --lispsm-formul
 check_fails(bad-visible-depth "--visible-depth" setup ${small} --visible-depth 5,1)
 check_fails(bad-lispsm-weight "--lispsm-weight" setup ${small} --lispsm-weight 0)
 check_fails(bad-cascades "--cascades" setup ${small} --technique csm --cascades 9)
-check_fails(bad-splits "cascades" setup ${small} --technique csm --cascades 2 --near 1 --far 100 --splits 1,50,90)
+check_fails(bad-splits "--splits" setup ${small} --technique csm --cascades 2 --near 1 --far 100 --splits 1,50,90)
 check_fails(stabilize-with-warp "stabilisation" setup ${small} --technique csm --stabilize --cascade-warp lispsm)
 check_fails(near-ge-far "near" setup ${small} --near 10 --far 5)
 check_fails(bad-fov "fov" setup ${small} --fov 0)
@@ -59,12 +63,16 @@ check_fails(compare-unknown-key "--frobnicate" compare ${small} --configs "techn
 check_fails(compare-bad-value "--technique" compare ${small} --configs "technique=nonsense")
 check_fails(bad-filter "--filter" render ${small} --filter pcf:12)
 check_fails(bad-cull "--cull" render ${small} --cull sideways)
+check_fails(bad-depth-layout "--depth-layout" setup ${small} --depth-layout sideways)
+check_fails(bad-blur-radius "--blur-radius" render ${small} --blur-radius 0)
+check_fails(bad-tsm-focus "--tsm-focus" setup ${small} --tsm-focus 1.5)
 check_fails(bad-normal-offset "--normal-offset" render ${small} --normal-offset 50)
 check_fails(eval-unknown-view "unknown view" eval ${small} --views paper,sideways)
 check_fails(eval-unwritable-json "--json" eval ${small} --json "${WORK}/no/such/dir/r.json")
 check_fails(eval-unwritable-map "--error-map" eval ${small} --error-map "${WORK}/no/such/dir/e.png")
 
 # setup prints the JSON contract.
+if(CASE STREQUAL "setup-json")
 execute_process(COMMAND ${SHADOWKIT} setup --scene-bounds -100,0,-100,100,30,100 --view paper --technique focused
                 RESULT_VARIABLE rc OUTPUT_VARIABLE json ERROR_VARIABLE err)
 if(NOT rc EQUAL 0)
@@ -80,8 +88,10 @@ else()
                        "matrix=${matrix_len} body=${body_len}")
   endif()
 endif()
+endif()
 
 # csm: one view per split, each with its split range; consecutive, from near to far.
+if(CASE STREQUAL "setup-csm")
 execute_process(COMMAND ${SHADOWKIT} setup --scene-bounds -512,0,-512,512,30,512 --technique csm --cascades 3 --near 1 --far 300
                 RESULT_VARIABLE rc OUTPUT_VARIABLE json ERROR_VARIABLE err)
 if(NOT rc EQUAL 0)
@@ -94,8 +104,10 @@ else()
     message(SEND_ERROR "setup csm: unexpected splits: ${nviews} views, ${first} .. ${last}")
   endif()
 endif()
+endif()
 
-# analyze reproduces seed 001 Figure 6 and writes its CSV and plot.
+# analyze reproduces Wimmer et al. 2004, Figure 6 and writes its CSV and plot.
+if(CASE STREQUAL "analyze-figure6")
 execute_process(COMMAND ${SHADOWKIT} analyze --json --scene-bounds -512,0,-512,512,30,512 --csv "${WORK}/a.csv"
                         --plot "${WORK}/a.png" RESULT_VARIABLE rc OUTPUT_VARIABLE json ERROR_VARIABLE err)
 if(NOT rc EQUAL 0 OR NOT EXISTS "${WORK}/a.csv" OR NOT EXISTS "${WORK}/a.png")
@@ -113,27 +125,32 @@ else()
     message(SEND_ERROR "analyze: LiSPSM max ${lmax}, expected 9.9")
   endif()
 endif()
+endif()
 check_fails(analyze-bad-range "--zn" analyze --zn 10 --zf 5)
 
-if(WITH_GL)
-  # render and export write their files.
+# render writes its files.
+if(CASE STREQUAL "gl-render")
   execute_process(COMMAND ${SHADOWKIT} render ${small} --size 64x48 --map-size 256 --out "${WORK}/r.png"
                           --shadow-map-out "${WORK}/sm.png" RESULT_VARIABLE rc ERROR_VARIABLE err OUTPUT_QUIET)
   if(NOT rc EQUAL 0 OR NOT EXISTS "${WORK}/r.png" OR NOT EXISTS "${WORK}/sm.png")
     message(SEND_ERROR "render: failed or wrote no image: ${err}")
   endif()
-  check_fails(unwritable-output "--out" render ${small} --size 16x16 --map-size 64 --out "${WORK}/no/such/dir/r.png")
-  check_fails(map-too-large "--map-size" render ${small} --size 16x16 --map-size 1000000)
+endif()
+check_fails(gl-unwritable-output "--out" render ${small} --size 16x16 --map-size 64 --out "${WORK}/no/such/dir/r.png")
+check_fails(map-too-large "--map-size" render ${small} --size 16x16 --map-size 1000000)
 
-  # compare writes a grid.
+# compare writes a grid.
+if(CASE STREQUAL "gl-compare")
   execute_process(COMMAND ${SHADOWKIT} compare ${small} --view paper --size 48x48 --columns 2
                           --configs "technique=lispsm,bias-slope=0;technique=csm,cascades=2,filter=pcf:3;technique=tsm,blur-iterations=2"
                           --out "${WORK}/grid.png" RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   if(NOT rc EQUAL 0 OR NOT EXISTS "${WORK}/grid.png")
     message(SEND_ERROR "compare: failed or wrote no grid: ${err}")
   endif()
+endif()
 
-  # eval writes its report, maps (one per view) and per-pixel dumps.
+# eval writes its report, maps (one per view) and per-pixel dumps.
+if(CASE STREQUAL "gl-eval")
   execute_process(COMMAND ${SHADOWKIT} eval ${small} --views paper,noon --size 48x32 --map-size 256
                           --json "${WORK}/e.json" --error-map "${WORK}/err.png" --aliasing-map "${WORK}/alias.png"
                           --dump "${WORK}/dump" RESULT_VARIABLE rc OUTPUT_VARIABLE table ERROR_VARIABLE err)
@@ -161,7 +178,19 @@ if(WITH_GL)
     endif()
   endif()
 endif()
-execute_process(COMMAND ${SHADOWKIT} export ${small} --out "${WORK}/forest.glb" RESULT_VARIABLE rc OUTPUT_QUIET ERROR_QUIET)
-if(NOT rc EQUAL 0 OR NOT EXISTS "${WORK}/forest.glb")
-  message(SEND_ERROR "export: failed")
+if(CASE STREQUAL "export-glb")
+  execute_process(COMMAND ${SHADOWKIT} export ${small} --out "${WORK}/forest.glb" RESULT_VARIABLE rc OUTPUT_QUIET ERROR_QUIET)
+  if(NOT rc EQUAL 0 OR NOT EXISTS "${WORK}/forest.glb")
+    message(SEND_ERROR "export: failed")
+  endif()
+endif()
+
+# Exit codes (README): 1 for a bad value, a choice not offered included; 2 for an unknown flag.
+if(CASE STREQUAL "exit-codes")
+  execute_process(COMMAND ${SHADOWKIT} setup ${small} --technique nonsense RESULT_VARIABLE bad_choice OUTPUT_QUIET ERROR_QUIET)
+  execute_process(COMMAND ${SHADOWKIT} setup ${small} --lispsm-weight -1 RESULT_VARIABLE bad_value OUTPUT_QUIET ERROR_QUIET)
+  execute_process(COMMAND ${SHADOWKIT} setup ${small} --frobnicate RESULT_VARIABLE unknown OUTPUT_QUIET ERROR_QUIET)
+  if(NOT bad_choice EQUAL 1 OR NOT bad_value EQUAL 1 OR NOT unknown EQUAL 2)
+    message(SEND_ERROR "exit codes: choice ${bad_choice}, value ${bad_value}, unknown flag ${unknown}; expected 1, 1, 2")
+  endif()
 endif()

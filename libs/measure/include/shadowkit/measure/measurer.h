@@ -1,0 +1,91 @@
+// The measure pipeline, once: shadow set-up → evaluation buffers (GL) → ray-traced truth
+// (Embree) → per-pixel comparison and figures. Every front end that asks "how wrong are
+// these shadows?" calls this: `shadowkit eval` and `compare`, the integration tests, and
+// later the viewer, camera paths and the Python bindings.
+//
+// This library is where GL and the evaluation meet: libs/eval never sees GL, libs/gl
+// never sees Embree; the GL side hands core::RasterBuffers over here.
+#pragma once
+
+#include "shadowkit/core/bias.h"
+#include "shadowkit/core/raster_buffers.h"
+#include "shadowkit/core/result.h"
+#include "shadowkit/core/shadow_setup.h"
+#include "shadowkit/eval/metrics.h"
+#include "shadowkit/eval/report.h"
+#include "shadowkit/eval/truth.h"
+#include "shadowkit/gl/renderer.h"
+#include "shadowkit/scene/image.h"
+#include "shadowkit/scene/scene.h"
+
+#include <functional>
+#include <memory>
+#include <string>
+
+namespace shadowkit::gl {
+class Context;
+}
+namespace shadowkit::eval {
+class RayScene;
+}
+
+namespace shadowkit::measure {
+
+struct MeasureOptions {
+    // Also draw the shaded frame and read it back (Measurement::image).
+    bool shadedImage = false;
+    // Ray-tracing progress, 0..1, from the calling thread; called only when the truth for
+    // this camera is not cached yet.
+    std::function<void(double)> truthProgress;
+    eval::CompareOptions compare;
+};
+
+struct Measurement {
+    core::ShadowSetup setup;          // as computed from the inputs
+    core::BiasSettings bias;          // what the frame was drawn with (gl::biasFor)
+    core::RasterBuffers raster;       // the GL side's per-pixel buffers
+    std::shared_ptr<const eval::TruthBuffers> truth; // shared with the cache
+    eval::Comparison comparison;      // per-pixel classes and the figures
+    scene::Image image;               // the shaded frame, with MeasureOptions::shadedImage
+    const eval::Figures& figures() const { return comparison.figures; }
+};
+
+class Measurer {
+public:
+    // With its own headless GL context (EGL), made current on return.
+    static core::Result<std::unique_ptr<Measurer>> createHeadless(const scene::Scene& scene);
+    // In the caller's current GL context (a viewer's window), which must outlive this.
+    static core::Result<std::unique_ptr<Measurer>> create(const scene::Scene& scene);
+    ~Measurer();
+    Measurer(const Measurer&) = delete;
+    Measurer& operator=(const Measurer&) = delete;
+
+    // Set-up from `inputs` (camera, light, bounds, technique, map size), drawn with
+    // `settings` (width and height are the image's; the camera's aspect should match),
+    // compared with the truth for that camera, light and size.
+    core::Result<Measurement> measure(const core::ShadowSetupInputs& inputs, const gl::RenderSettings& settings,
+                                      const MeasureOptions& options = {});
+
+    // Ray-traced truth, cached per camera, light and image size (the last few kept): cells
+    // of a comparison grid, or frames of a still camera, share it.
+    std::shared_ptr<const eval::TruthBuffers> truth(const core::PerspectiveCamera& camera, const core::DirectionalLight& light,
+                                                    int width, int height,
+                                                    const std::function<void(double)>& progress = {});
+
+    gl::Renderer& renderer();
+    // The GL context's description when this measurer owns one ("4.5 (Core Profile) Mesa ..."), else "".
+    std::string contextDescription() const;
+    double rayTracerBuildSeconds() const; // time to build the Embree scene (BVHs)
+
+private:
+    Measurer();
+    struct Impl;
+    std::unique_ptr<Impl> m_impl;
+};
+
+// The figures of one measurement as a row of `shadowkit eval --json` (eval::ViewReport);
+// `filter` is the filter's text form (core::filterName).
+eval::ViewReport viewReport(const Measurement& measurement, const gl::RenderSettings& settings, const std::string& view,
+                            const std::string& sceneName, uint64_t seed);
+
+} // namespace shadowkit::measure

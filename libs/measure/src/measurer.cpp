@@ -1,0 +1,131 @@
+#include "shadowkit/measure/measurer.h"
+
+#include "shadowkit/eval/ray_scene.h"
+#include "shadowkit/gl/context.h"
+
+#include <chrono>
+#include <deque>
+#include <tuple>
+
+namespace shadowkit::measure {
+namespace {
+
+// Everything the truth depends on; compared exactly (a moved camera is another truth).
+struct TruthKey {
+    core::Vec3 eye, direction, up, light;
+    double fov, aspect, zNear, zFar;
+    int width, height;
+    bool operator==(const TruthKey&) const = default;
+};
+
+TruthKey keyOf(const core::PerspectiveCamera& c, const core::DirectionalLight& l, int width, int height) {
+    return {c.wsEye, c.wsDirection, c.wsUp, l.wsDirection, c.fovYDegrees, c.aspect, c.zNear, c.zFar, width, height};
+}
+
+// A 1280×720 truth holds about 30 MB: enough for a compare grid's few cameras.
+constexpr size_t kTruthCacheSize = 4;
+
+} // namespace
+
+struct Measurer::Impl {
+    std::unique_ptr<gl::Context> context; // null when the caller owns the context
+    std::unique_ptr<gl::Renderer> renderer;
+    std::unique_ptr<eval::RayScene> rays;
+    double rayTracerSeconds = 0.0;
+    std::deque<std::pair<TruthKey, std::shared_ptr<const eval::TruthBuffers>>> truths; // most recent first
+};
+
+Measurer::Measurer() : m_impl(std::make_unique<Impl>()) {}
+Measurer::~Measurer() {
+    m_impl->renderer.reset(); // GL objects go before the context that owns them
+    m_impl->context.reset();
+}
+
+core::Result<std::unique_ptr<Measurer>> Measurer::createHeadless(const scene::Scene& scene) {
+    auto context = gl::Context::createHeadless();
+    if (!context) return context.errorInfo();
+    auto measurer = create(scene);
+    if (measurer) (*measurer)->m_impl->context = std::move(context).value();
+    return measurer;
+}
+
+core::Result<std::unique_ptr<Measurer>> Measurer::create(const scene::Scene& scene) {
+    auto measurer = std::unique_ptr<Measurer>(new Measurer);
+    Impl& m = *measurer->m_impl;
+    const auto start = std::chrono::steady_clock::now();
+    auto rays = eval::RayScene::build(scene);
+    if (!rays) return rays.errorInfo();
+    m.rayTracerSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    m.rays = std::move(rays).value();
+    auto renderer = gl::Renderer::create(scene);
+    if (!renderer) return renderer.errorInfo();
+    m.renderer = std::move(renderer).value();
+    return measurer;
+}
+
+gl::Renderer& Measurer::renderer() { return *m_impl->renderer; }
+std::string Measurer::contextDescription() const { return m_impl->context ? m_impl->context->description() : std::string(); }
+double Measurer::rayTracerBuildSeconds() const { return m_impl->rayTracerSeconds; }
+
+std::shared_ptr<const eval::TruthBuffers> Measurer::truth(const core::PerspectiveCamera& camera,
+                                                          const core::DirectionalLight& light, int width, int height,
+                                                          const std::function<void(double)>& progress) {
+    auto& cache = m_impl->truths;
+    const TruthKey key = keyOf(camera, light, width, height);
+    for (auto it = cache.begin(); it != cache.end(); ++it)
+        if (it->first == key) {
+            auto found = *it;
+            cache.erase(it);
+            cache.push_front(found);
+            return found.second;
+        }
+    eval::TruthOptions options;
+    options.progress = progress;
+    auto truth = std::make_shared<const eval::TruthBuffers>(eval::computeTruth(*m_impl->rays, camera, light, width, height, options));
+    cache.emplace_front(key, truth);
+    if (cache.size() > kTruthCacheSize) cache.pop_back();
+    return truth;
+}
+
+core::Result<Measurement> Measurer::measure(const core::ShadowSetupInputs& inputs, const gl::RenderSettings& settings,
+                                            const MeasureOptions& options) {
+    auto setup = core::computeShadowSetup(inputs);
+    if (!setup) return setup.errorInfo();
+    Measurement m;
+    m.setup = std::move(setup).value();
+    m.bias = gl::biasFor(m.setup, settings);
+    gl::Renderer& renderer = *m_impl->renderer;
+    if (options.shadedImage) {
+        if (auto stats = renderer.render(inputs.camera, inputs.light, m.setup, settings); !stats) return stats.errorInfo();
+        m.image = renderer.readColor();
+    }
+    auto raster = renderer.renderEvalBuffers(inputs.camera, inputs.light, m.setup, settings);
+    if (!raster) return raster.errorInfo();
+    m.raster = std::move(raster).value();
+    m.truth = truth(inputs.camera, inputs.light, settings.width, settings.height, options.truthProgress);
+    auto comparison = eval::compare(m.raster, *m.truth, options.compare);
+    if (!comparison) return comparison.errorInfo();
+    m.comparison = std::move(comparison).value();
+    return m;
+}
+
+eval::ViewReport viewReport(const Measurement& m, const gl::RenderSettings& settings, const std::string& view,
+                            const std::string& sceneName, uint64_t seed) {
+    eval::ViewReport report;
+    report.view = view;
+    report.technique = std::string(core::techniqueName(m.setup.technique));
+    report.scene = sceneName;
+    report.seed = seed;
+    report.width = settings.width;
+    report.height = settings.height;
+    report.mapSize = m.setup.mapSize;
+    report.maps = static_cast<int>(m.setup.views.size());
+    report.bias = m.bias;
+    report.filter = core::filterName(settings.filter);
+    report.blurIterations = settings.blur.iterations;
+    report.fallbacks = m.setup.fallbacks;
+    report.figures = m.comparison.figures;
+    return report;
+}
+
+} // namespace shadowkit::measure
