@@ -1,4 +1,4 @@
-// The procedural forest (EVALUATION.md §1).
+// The procedural forest (docs/references.md, evaluation §1).
 //
 // Randomness comes from SplitMix64 and integer-hash value noise rather than <random>
 // distributions, whose outputs the C++ standard leaves to each library: the forest for a

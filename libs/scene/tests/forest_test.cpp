@@ -35,7 +35,7 @@ TEST(ForestTest, SameSeedGivesTheSameForestAndAnotherSeedAnotherOne) {
 
 TEST(ForestTest, DefaultForestMatchesTheStandardScene) {
     const Scene s = makeForest(ForestOptions{});
-    // EVALUATION.md §1: 1024 m terrain, >= 256x256 quads, hills 0-30 m, 10,000 trees 6-20 m
+    // docs/references.md, evaluation §1: 1024 m terrain, >= 256x256 quads, hills 0-30 m, 10,000 trees 6-20 m
     // of >= 200 triangles, a few dozen large casters, a handful of movers.
     const core::Aabb terrain = s.meshes[batchNamed(s, "terrain")->mesh].osBounds;
     EXPECT_NEAR(terrain.extent().x, 1024.0, 1e-3);

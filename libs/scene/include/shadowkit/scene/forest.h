@@ -1,4 +1,4 @@
-// The standard `forest` scene of EVALUATION.md §1, procedural and deterministic.
+// The standard `forest` scene of docs/references.md, evaluation §1, procedural and deterministic.
 #pragma once
 
 #include "shadowkit/core/result.h"

@@ -1,4 +1,4 @@
-// Standard views (data/views.json, EVALUATION.md §2): camera, screen size and sun.
+// Standard views (data/views.json, docs/references.md, evaluation §2): camera, screen size and sun.
 #pragma once
 
 #include "shadowkit/core/camera.h"

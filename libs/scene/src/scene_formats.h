@@ -1,0 +1,30 @@
+// The scene file formats behind scene_io.h, one file each: gltf_read.cpp, obj_read.cpp,
+// obj_write.cpp, glb_write.cpp; the helpers they share live in scene_io.cpp.
+#pragma once
+
+#include "shadowkit/core/result.h"
+#include "shadowkit/scene/scene.h"
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace shadowkit::scene::formats {
+
+core::Result<Scene> loadGltf(const std::filesystem::path& file); // .gltf and .glb
+core::Result<Scene> loadObj(const std::filesystem::path& file);
+core::Status exportObj(const Scene& scene, const std::filesystem::path& file);
+core::Status exportGlb(const Scene& scene, const std::filesystem::path& file);
+
+// ".GLB" -> ".glb"
+std::string lowerExtension(const std::filesystem::path& file);
+// Smooth normals from triangle areas, for files that carry none.
+void computeNormals(Mesh& mesh);
+// One batch with every instance transformed into world space.
+struct BakedBatch {
+    std::vector<Vertex> vertices;
+    std::vector<uint32_t> indices;
+};
+BakedBatch bake(const Scene& scene, const MeshBatch& batch);
+
+} // namespace shadowkit::scene::formats
