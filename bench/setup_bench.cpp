@@ -1,5 +1,5 @@
 // CPU cost of steps 1-2 of the pipeline (focus body + parameterization) per technique,
-// on the standard views over the default forest's bounds (EVALUATION.md §4).
+// on the standard views over the default forest's bounds (docs/references.md, evaluation §4).
 //   build/bench/shadowkit_setup_bench
 #include "shadowkit/core/shadow_setup.h"
 #include "shadowkit/scene/forest.h"

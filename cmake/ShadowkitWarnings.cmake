@@ -1,4 +1,4 @@
-# sk_project_warnings(target): the warning set of DESIGN.md §3, for project code only
+# sk_project_warnings(target): the warning set of docs/architecture.md, for project code only
 # (third-party headers come in as SYSTEM includes through their imported targets).
 function(sk_project_warnings target)
   if(CMAKE_CXX_COMPILER_ID MATCHES "GNU|Clang")

@@ -120,7 +120,7 @@ TEST_F(EvalIntegrationTest, ExcessiveConstantBiasDetachesShadowsIntoFalseLit) {
 }
 
 TEST_F(EvalIntegrationTest, LispsmBeatsFocusedOnThePerpendicularView) {
-    // Seed 001's ideal case: view perpendicular to the light. Same map size, same view.
+    // Wimmer et al. 2004's ideal case: view perpendicular to the light. Same map size, same view.
     scene::ForestOptions o;
     o.trees = 1500;
     o.terrainSize = 300;

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Installs the Debian 12 packages shadowkit builds against (DESIGN.md §4), only those
+# Installs the Debian 12 packages shadowkit builds against (docs/architecture.md, Dependencies), only those
 # missing, as root or through sudo. Safe to run repeatedly.
 set -euo pipefail
 

@@ -26,7 +26,7 @@ BiasSettings recommendedBias(Technique technique, DepthLayout, const FilterSetti
     //     without visibly detaching shadows.
     //   psm: 1 / 2 without offset (2.78 / 1.56 % against 2.97 / 1.60 %); the offset hurts
     //     where its far texels are huge.
-    //   standard, focused: seed 000's 2 / 4: a normal offset of half a texel is half a
+    //   standard, focused: Scherzer 2005's 2 / 4: a normal offset of half a texel is half a
     //     metre there and detaches shadows (focused perpendicular 2.52 % against 1.85 %).
     // The layout does not change the choice: the linear layout applies the same numbers.
     BiasSettings b;

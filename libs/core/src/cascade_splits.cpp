@@ -1,12 +1,12 @@
 // Split distances for cascaded shadow maps.
 //
-// Based on: Dimitrov, "Cascaded Shadow Maps", NVIDIA 2007 (seed 002), the practical split
+// Based on: Dimitrov, "Cascaded Shadow Maps", NVIDIA 2007, the practical split
 // scheme of Zhang et al., "Parallel-Split Shadow Maps", 2006: a blend of the logarithmic
-// scheme (ideal for perspective aliasing, seed 001 §4.2) and the uniform one (which keeps
+// scheme (ideal for perspective aliasing, Wimmer et al. 2004 §4.2) and the uniform one (which keeps
 // the first split from being uselessly thin).
 // The end points are set exactly (not from the formula) so the first split starts at the
 // near plane and the last ends at the far plane to the bit; the formula's own rounding
-// would leave a sliver uncovered (reference-math.md §4, pitfall 7).
+// would leave a sliver uncovered (docs/references.md, pitfall 7).
 #include "shadowkit/core/cascade_splits.h"
 
 #include "shadowkit/core/conventions.h"

@@ -1,16 +1,17 @@
 // Cascaded shadow maps.
 //
-// Based on: Dimitrov, "Cascaded Shadow Maps", NVIDIA 2007 (seed 002): split the view
+// Based on: Dimitrov, "Cascaded Shadow Maps", NVIDIA 2007: split the view
 // frustum along depth (cascade_splits.cpp), give every split its own map fitted to it by a
 // crop matrix, and pick the split per fragment by view depth.
 // Deviations, each for robustness:
 // - Each split is fitted to its own focus body B_i = (slice ∩ S) swept towards the light ∩ S
 //   (focus_body.cpp), not to the slice's 8 corners: casters outside the slice but between it
 //   and the sun are kept without the "maxZ += 50" patch of public ports
-//   (reference-math.md §2.8, pitfall 5).
+//   (docs/references.md, pitfall 5).
 // - Optional per-split LiSPSM (Zhang et al.'s PSSM + LiSPSM): each split is a LiSPSM set-up
 //   whose z_n is the split's near distance.
-// - Stabilisation (as in bgfx / Filament, reference-math.md §2.6–2.7): a light frame fixed in
+// - Stabilisation (as in bgfx and Filament; docs/references.md, pitfall 8): a light frame
+//   fixed in
 //   the world, an extent from the split's bounding sphere (which depends on the camera's
 //   fov, aspect and split distances only, so it is bit-identical under rotation and
 //   translation), and the centre snapped to whole texels.

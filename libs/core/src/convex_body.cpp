@@ -1,7 +1,7 @@
 // Convex polyhedron clipping (Sutherland–Hodgman per face plus a cap polygon).
 //
 // Based on: the body-clipping used for the focus body B in Wimmer et al., "Light Space
-// Perspective Shadow Maps" (EGSR 2004, seed 001 §3.3), written here from the definition:
+// Perspective Shadow Maps" (EGSR 2004, §3.3), written here from the definition:
 // each face polygon is clipped against the plane, and the points that land on the plane
 // are joined into the new cap face.
 #include "shadowkit/core/convex_body.h"

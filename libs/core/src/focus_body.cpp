@@ -1,13 +1,13 @@
 // The focus body B.
 //
 // Based on: Wimmer, Scherzer, Purgathofer, "Light Space Perspective Shadow Maps",
-// EGSR 2004 (seed 001 §3.3) and Scherzer, Jeschke, Wimmer, "Pixel-Correct Shadow Maps
-// with Temporal Reprojection and Shadow Test Confidence" / "practical LiSPSM" (seed 000
-// §4.1): B is the convex hull of the view frustum and the light position, clipped by the
-// scene box. For a directional light the "light position" is at infinity, so the hull is
-// the frustum swept along the light's reverse direction.
+// EGSR 2004 (§3.3), and Scherzer, "Robust Shadow Maps for Large Environments", CESCG 2005
+// (§4.1; full citations in docs/references.md): B is the convex hull of the view frustum
+// and the light position, clipped by the scene box. For a directional light the "light
+// position" is at infinity, so the hull is the frustum swept along the light's reverse
+// direction.
 // Deviation: we first intersect V with S (so the sweep starts only from visible
-// receivers), then clip the sweep by S. Both papers compute the same set; the seeds' demo
+// receivers), then clip the sweep by S. Both papers compute the same set; the authors' 2004 demo
 // code approximated the sweep by appending one exit point per vertex, which loses volume
 // when rays leave S through different faces — here the sweep is exact (ConvexBody).
 #include "shadowkit/core/focus_body.h"

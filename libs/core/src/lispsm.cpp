@@ -1,8 +1,8 @@
 // Light space perspective shadow maps.
 //
 // Based on: Wimmer, Scherzer, Purgathofer, "Light Space Perspective Shadow Maps",
-// EGSR 2004 (seed 001): light space §3.4, the frustum P and its projection reference
-// point §3.4–3.5, n_opt §4.3–4.4; and Scherzer's practical improvements (seed 000 §4.4):
+// EGSR 2004: light space §3.4, the frustum P and its projection reference
+// point §3.4–3.5, n_opt §4.3–4.4; and Scherzer's practical improvements (Scherzer 2005 §4.4):
 // n_opt from the depth extent Δz of B (eq. 1), Δz from visibility for n only, the
 // projection direction V_P as a cross product (eq. 3) or B's "middle vector".
 //
@@ -10,12 +10,12 @@
 //   light space: looks along the light; +y = V_P (the warp axis), −z = the light direction.
 //   P: perspective along +y; C = (eye.x, y_min(B) − n, middle of B's depth), so every point
 //   of B has r.y = y − C.y >= n > 0 and none lies behind the projection centre
-//   (reference-math.md §4, pitfall 2: C relative to B, not to the eye).
+//   (docs/references.md, pitfall 2: C relative to B, not to the eye).
 //   Fit: B's NDC bounds to the clip cube.
 // Deviations: γ → 0 is handled by the n/d ratio (kLispsmUniformRatio) rather than a fixed
 // angle: the switch happens where the warp has already converged to uniform, so there is
-// no visible jump, and no 1/sin γ is evaluated at sin γ = 0 (pitfall 1). The general-case
-// z0 is the closed form (pitfall 3).
+// no visible jump, and no 1/sin γ is evaluated at sin γ = 0 (docs/references.md, pitfall 1).
+// The general-case z0 is the closed form (pitfall 3).
 #include "shadowkit/core/lispsm.h"
 
 #include "shadowkit/core/focus_body.h"

@@ -1,7 +1,7 @@
 // Perspective aliasing of uniform, perspective and light space perspective shadow maps.
 //
 // Based on: Wimmer, Scherzer, Purgathofer, "Light Space Perspective Shadow Maps",
-// EGSR 2004 (seed 001), §4.3, equation (3), and Figure 6 (z_n = 1, z_f = 100).
+// EGSR 2004, §4.3, equation (3), and Figure 6 (z_n = 1, z_f = 100).
 #include "shadowkit/core/perspective_aliasing.h"
 
 #include "shadowkit/core/conventions.h"

@@ -1,7 +1,7 @@
 // Perspective shadow maps.
 //
-// Based on: Stamminger, Drettakis, "Perspective Shadow Maps", SIGGRAPH 2002, as the seeds
-// describe it (seed 001 §2, §4.3–4.5; seed 000 §4.4) and reference-math.md §2.5:
+// Based on: Stamminger, Drettakis, "Perspective Shadow Maps", SIGGRAPH 2002, as the
+// LiSPSM papers describe it (Wimmer et al. 2004 §2, §4.3–4.5; Scherzer 2005 §4.4):
 //   1. Post-perspective space (PP) of a virtual camera: the real camera slid back along its
 //      view axis until every point of the focus body B lies at least z_n in front of it,
 //      so no caster reaches the camera plane, where PP has its singularity.

@@ -1,7 +1,7 @@
 // Trapezoidal shadow maps.
 //
 // Based on: Martin, Tan, "Anti-aliasing and Continuity with Trapezoidal Shadow Maps",
-// EGSR 2004 (§4–5), as reference-math.md §1.5 summarises it:
+// EGSR 2004 (§4–5):
 //   1. L: the light's post-perspective space. For the sun: the focused orthographic map of
 //      B (x, y in [−1, 1]). B's footprint there is the view's footprint: B is V ∩ S swept
 //      along the light, which projects onto itself, so bounding B bounds every receiver

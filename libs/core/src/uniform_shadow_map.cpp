@@ -1,10 +1,10 @@
 // Standard and focused uniform shadow maps.
 //
 // Based on: Williams, "Casting curved shadows on curved surfaces" (1978) for the map
-// itself; focusing as in Brabec et al. 2002 and seed 001 §3.3 / seed 000 §4.1 (fit the
+// itself; focusing as in Brabec et al. 2002 and Wimmer et al. 2004 §3.3 / Scherzer 2005 §4.1 (fit the
 // light's orthographic frustum to the focus body B instead of the whole scene).
 // The light frame's up vector is the view direction projected perpendicular to the
-// light, so the map's y axis runs along view depth — the frame LiSPSM warps in (seed 001
+// light, so the map's y axis runs along view depth — the frame LiSPSM warps in (Wimmer et al. 2004
 // §3.4). When the view is (anti-)parallel to the light that projection vanishes and the
 // camera's up vector is used; see makeLightFrame.
 #include "shadowkit/core/uniform_shadow_map.h"

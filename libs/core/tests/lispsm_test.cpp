@@ -32,7 +32,7 @@ ShadowSetupInputs levelView(double gammaDegrees, LispsmFormula formula = LispsmF
 
 TEST(LispsmTest, NEqualsTheClosedFormWhenViewIsPerpendicularToLight) {
     // B is the frustum swept upwards: its extent along the view is exactly z_f − z_n, so
-    // both formulas give seed 001's n_opt = z_n + √(z_n z_f) = 11.
+    // both formulas give Wimmer et al. 2004's n_opt = z_n + √(z_n z_f) = 11.
     for (LispsmFormula f : {LispsmFormula::Paper, LispsmFormula::Scherzer}) {
         const auto setup = computeShadowSetup(levelView(90, f));
         ASSERT_TRUE(setup);

@@ -4,7 +4,7 @@
 
 using namespace shadowkit::core;
 
-// Seed 001, Figure 6: z_n = 1, z_f = 100 (values from equation (3); reference-math.md §1.1).
+// Wimmer et al. 2004, Figure 6: z_n = 1, z_f = 100 (values from equation (3)).
 TEST(PerspectiveAliasingTest, UniformPeaksAt99AtTheNearPlane) {
     const AliasingCurve c = sampleAliasing(1, 100, kUniformN);
     EXPECT_NEAR(c.max, 99.0, 1e-9);

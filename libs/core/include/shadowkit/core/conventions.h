@@ -1,4 +1,4 @@
-// shadowkit conventions, written once (DESIGN.md §3).
+// shadowkit conventions, written once (docs/architecture.md, Conventions).
 //
 // Spaces
 //   world  right-handed, +Y up, metres.

@@ -1,10 +1,10 @@
 // Convex polyhedron as a list of planar polygonal faces, clipped by half-spaces.
 //
-// This is the representation the focus body B of the seeds needs (seed 001 §3.3,
-// seed 000 §4.1): start from a box, clip it by planes, sweep it towards a light.
+// This is the representation the focus body B of the LiSPSM papers needs (Wimmer et al. 2004 §3.3,
+// Scherzer 2005 §4.1): start from a box, clip it by planes, sweep it towards a light.
 // Clipping is exact up to a tolerance scaled to the body's size, so the result is a true
 // intersection of half-spaces rather than the "vertex + exit point" approximation of the
-// 2004 LiSPSM demo (reference-math.md §4, pitfall 6).
+// 2004 LiSPSM demo (docs/references.md, pitfall 6).
 #pragma once
 
 #include "shadowkit/core/aabb.h"

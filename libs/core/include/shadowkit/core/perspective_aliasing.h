@@ -1,5 +1,5 @@
 // Perspective aliasing dp/ds of a shadow-map parameterization along view depth, for the
-// ideal case of a view direction perpendicular to the light (seed 001 §4.3, eq. 3).
+// ideal case of a view direction perpendicular to the light (Wimmer et al. 2004 §4.3, eq. 3).
 #pragma once
 
 #include <limits>
@@ -13,7 +13,7 @@ namespace shadowkit::core {
 // Pass n = infinity for the uniform limit (evaluated in closed form, no overflow).
 double perspectiveAliasing(double z, double zNear, double zFar, double n);
 
-// The n that makes dp/ds equal at z_n and z_f, minimising its maximum (seed 001 §4.3):
+// The n that makes dp/ds equal at z_n and z_f, minimising its maximum (Wimmer et al. 2004 §4.3):
 // n_opt = z_n + √(z_n z_f).
 double lispsmOptimalN(double zNear, double zFar);
 
@@ -27,7 +27,7 @@ struct AliasingCurve {
 // maximum is taken from the closed form at the ends, where the convex curve peaks.
 AliasingCurve sampleAliasing(double zNear, double zFar, double n, int samples = 200);
 
-// The same along the view axis for a view at angle γ to the light (seed 001 §4.4, Figure 7):
+// The same along the view axis for a view at angle γ to the light (Wimmer et al. 2004 §4.4, Figure 7):
 // a point at view depth z sits u = (z − z_n) sin γ along the warp axis, so
 //   dp/ds = (u + n)² d / (z n (n + d) sin γ),   d = extent of B along the warp axis,
 // which is equation (3) at γ = 90° with d = z_f − z_n. The curve is convex in z (a z + b +

@@ -1,4 +1,4 @@
-// Result<T>: a value or a one-line error message (the "bad data" tier of DESIGN.md §3).
+// Result<T>: a value or a one-line error message (the "bad data" tier of docs/architecture.md).
 // std::expected is C++23; this is the small subset we need, with the same spelling.
 #pragma once
 

@@ -86,7 +86,7 @@ struct TsmOptions {
 Status validate(const TsmOptions& options);
 
 enum class CascadeWarp {
-    None,   // each split a focused uniform map (seed 002's crop matrix)
+    None,   // each split a focused uniform map (Dimitrov 2007's crop matrix)
     Lispsm, // each split warped with LiSPSM, its near plane as z_n
 };
 

@@ -1,4 +1,4 @@
-// Per-pixel comparison of rasterized shadows with ray-traced truth (EVALUATION.md §3).
+// Per-pixel comparison of rasterized shadows with ray-traced truth (docs/references.md, evaluation §3).
 #pragma once
 
 #include "shadowkit/core/raster_buffers.h"
@@ -21,7 +21,7 @@ enum class PixelClass : uint8_t {
     Excluded = 5,     // faces the light but raster and ray disagree on the surface (silhouettes)
 };
 
-// The figures of EVALUATION.md §3; the JSON report (report.h) uses its snake_case names.
+// The figures of docs/references.md, evaluation §3; the JSON report (report.h) uses its snake_case names.
 struct Figures {
     int64_t validPx = 0;
     int64_t excludedPx = 0;

@@ -1,4 +1,4 @@
-// Ray-traced truth per pixel (EVALUATION.md §3): a primary ray through the pixel centre
+// Ray-traced truth per pixel (docs/references.md, evaluation §3): a primary ray through the pixel centre
 // finds the surface; a shadow ray towards the light decides lit or shadowed.
 #pragma once
 

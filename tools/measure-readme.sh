@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# Measures every figure of the README's technique and cascade tables with `shadowkit eval`
+# on the default forest (about 2 minutes on the project's 2-core CPU machine) and prints
+# the tables, generated from the JSON reports by tools/readme_tables.py. Paste them over
+# the README's tables when a change moves a figure. Reports are kept in out/readme/.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+tools/build.sh
+shadowkit=build/apps/shadowkit/shadowkit
+out=out/readme
+mkdir -p "$out"
+eval_to() { # eval_to NAME ARGS...: one report per technique / set-up, progress on stderr
+    local name=$1; shift
+    echo "== eval $name" >&2
+    "$shadowkit" eval --views all "$@" --json "$out/$name.json" >/dev/null
+}
+for t in standard focused psm tsm lispsm; do eval_to "$t" --technique "$t" --map-size 2048; done
+eval_to csm-1024 --technique csm --cascades 4 --map-size 1024
+eval_to csm-1024-lispsm --technique csm --cascades 4 --map-size 1024 --cascade-warp lispsm
+eval_to csm-2048 --technique csm --cascades 4 --map-size 2048
+eval_to csm-2048-lispsm --technique csm --cascades 4 --map-size 2048 --cascade-warp lispsm
+
+tables=tools/readme_tables.py
+echo "### Techniques (wrong_pct, pixels_per_texel_p50)"
+python3 $tables summary '`standard`='$out/standard.json '`focused`='$out/focused.json '`psm`='$out/psm.json \
+    '`tsm`='$out/tsm.json '`lispsm`='$out/lispsm.json
+echo
+echo "### All figures"
+python3 $tables details '`standard`='$out/standard.json '`focused`='$out/focused.json '`psm`='$out/psm.json \
+    '`tsm`='$out/tsm.json '`lispsm`='$out/lispsm.json
+echo
+echo "### Cascades"
+python3 $tables summary --first-column 'set-up (texel memory)' \
+    '`tsm` 1 × 2048² (4 M texels)='$out/tsm.json '`lispsm` 1 × 2048²='$out/lispsm.json \
+    '`csm` 4 × 1024² (4 M texels)='$out/csm-1024.json '`csm` 4 × 1024², per-split LiSPSM='$out/csm-1024-lispsm.json \
+    '`csm` 4 × 2048² (16 M texels)='$out/csm-2048.json '`csm` 4 × 2048², per-split LiSPSM='$out/csm-2048-lispsm.json

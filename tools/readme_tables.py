@@ -1,0 +1,63 @@
+#!/usr/bin/env python3
+"""The README's figure tables, generated from `shadowkit eval --json` reports so they cannot
+drift from what the program measures.
+
+  tools/readme_tables.py summary [--first-column NAME] LABEL=FILE.json ...
+      wrong_pct (pixels_per_texel_p50) per view, and the mean
+  tools/readme_tables.py details LABEL=FILE.json ...
+      every figure, one row per technique and view
+
+LABEL is the row's name as printed (e.g. '`tsm`' or '`csm` 4 × 1024²'). tools/measure-readme.sh
+runs the evaluations behind every table and prints them.
+"""
+import json
+import sys
+
+VIEWS = ["paper", "perpendicular", "into-sun", "sun-behind", "noon", "aerial"]
+
+
+def load(arg):
+    label, _, path = arg.partition("=")
+    if not path:
+        sys.exit(f"readme_tables: expected LABEL=FILE.json, got '{arg}'")
+    with open(path) as f:
+        rows = {v["view"]: v for v in json.load(f)["views"]}
+    missing = [v for v in VIEWS if v not in rows]
+    if missing:
+        sys.exit(f"readme_tables: {path}: no figures for view(s) {', '.join(missing)}")
+    return label, rows
+
+
+def summary(reports, first_column="technique"):
+    print(f"| {first_column} | " + " | ".join(VIEWS) + " | mean |")
+    print("|---|" + "---:|" * (len(VIEWS) + 1))
+    for label, rows in reports:
+        cells = [f"{rows[v]['wrong_pct']:.2f} ({rows[v]['pixels_per_texel_p50']:.1f})" for v in VIEWS]
+        mean = sum(rows[v]["wrong_pct"] for v in VIEWS) / len(VIEWS)
+        print(f"| {label} | " + " | ".join(cells) + f" | {mean:.2f} |")
+
+
+def details(reports):
+    print("| technique | view | valid_px | excluded_px | wrong_pct | false_shadow_pct | false_lit_pct | "
+          "undersampled_pct | pixels_per_texel_p50 | p99 |")
+    print("|---|---|" + "---:|" * 8)
+    for label, rows in reports:
+        for v in VIEWS:
+            r = rows[v]
+            print(f"| {label} | {v} | {r['valid_px']} | {r['excluded_px']} | {r['wrong_pct']:.2f} | "
+                  f"{r['false_shadow_pct']:.2f} | {r['false_lit_pct']:.2f} | {r['undersampled_pct']:.2f} | "
+                  f"{r['pixels_per_texel_p50']:.2f} | {r['pixels_per_texel_p99']:.0f} |")
+
+
+if __name__ == "__main__":
+    if len(sys.argv) < 3 or sys.argv[1] not in ("summary", "details"):
+        sys.exit(__doc__)
+    args = sys.argv[2:]
+    first_column = "technique"
+    if args[:1] == ["--first-column"] and len(args) > 2:
+        first_column, args = args[1], args[2:]
+    reports = [load(a) for a in args]
+    if sys.argv[1] == "summary":
+        summary(reports, first_column)
+    else:
+        details(reports)
