@@ -6,10 +6,10 @@
 #include <fmt/format.h>
 
 #include <chrono>
-#include <map>
 #include <cmath>
 #include <sstream>
 #include <string_view>
+#include <vector>
 
 namespace shadowkit::app {
 namespace {
@@ -318,10 +318,7 @@ core::Status TechniqueOptions::check() const {
     auto in = inputsFor(scene::ResolvedView{}, core::Aabb::fromMinMax(core::Vec3(0.0), core::Vec3(1.0)));
     if (!in) return in.errorInfo();
     // The camera-independent checks only: the view is not resolved yet.
-    if (auto s = core::validateMapSize(in->mapSize); !s) return withFlagName(s.errorInfo());
-    if (auto s = core::validate(in->lispsm); !s) return withFlagName(s.errorInfo());
-    if (auto s = core::validate(in->tsm); !s) return withFlagName(s.errorInfo());
-    if (auto s = core::validate(in->cascades); !s) return withFlagName(s.errorInfo());
+    if (auto s = core::validateOptions(*in); !s) return withFlagName(s.errorInfo());
     return core::Ok{};
 }
 

@@ -42,7 +42,7 @@ struct TechniqueOptions {
     core::Technique technique = core::defaultTechnique();
     core::LispsmFormula lispsmFormula = core::LispsmOptions{}.formula;
     core::LispsmDirection lispsmDirection = core::LispsmOptions{}.direction;
-    std::string visibleDepth, splits; // raw "near,far" / "a,b,c" text, parsed in resolve()
+    std::string visibleDepth, splits; // raw "near,far" / "a,b,c" text, parsed by inputsFor()
     enum class LayoutChoice { Auto, Hyperbolic, Linear }; // Auto: the technique's own
     LayoutChoice depthLayout = LayoutChoice::Auto;
     double lispsmWeight = core::LispsmOptions{}.weight;

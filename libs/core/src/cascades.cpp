@@ -88,7 +88,6 @@ Status validate(const CascadeOptions& o) {
 
 Status validateCascades(const ShadowSetupInputs& in) {
     const CascadeOptions& o = in.cascades;
-    if (Status s = validate(o); !s) return s;
     if (o.stabilize && in.mapSize % 2 != 0)
         return fieldError("cascades.stabilize",
                           "stabilisation needs an even map size (the map's edges must fall on the texel grid)");

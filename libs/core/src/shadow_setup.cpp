@@ -116,11 +116,15 @@ Status validate(const ShadowSetupInputs& inputs) {
     const Aabb& s = inputs.wsSceneBounds;
     if (!isFinite(s.min) || !isFinite(s.max) || s.isEmpty())
         return fieldError("scene_bounds", "must be finite with min <= max on every axis");
-    if (Status st = validateMapSize(inputs.mapSize); !st) return st;
+    if (Status st = validateOptions(inputs); !st) return st;
+    return inputs.technique == Technique::Csm ? validateCascades(inputs) : Status(Ok{});
+}
+
+Status validateOptions(const ShadowSetupInputs& inputs) {
     // Every technique's options are checked, used or not: a bad value is a mistake either way.
-    if (Status st = validate(inputs.lispsm); !st) return st;
-    if (Status st = validate(inputs.tsm); !st) return st;
-    if (inputs.technique == Technique::Csm) return validateCascades(inputs);
+    if (Status s = validateMapSize(inputs.mapSize); !s) return s;
+    if (Status s = validate(inputs.lispsm); !s) return s;
+    if (Status s = validate(inputs.tsm); !s) return s;
     return validate(inputs.cascades);
 }
 

@@ -5,8 +5,9 @@
 
 namespace shadowkit::core {
 
-// Checks CascadeOptions (validate(CascadeOptions)), then against the camera and map size:
-// explicit splits must run from near to far, stabilisation needs an even map size.
+// Checks CascadeOptions against the camera and the map size (what validate(CascadeOptions)
+// cannot): explicit splits must run from near to far, stabilisation needs an even map size.
+// computeShadowSetup runs both.
 Status validateCascades(const ShadowSetupInputs& inputs);
 
 // One shadow view per split, each with `split` = [start, end] of the view depth it serves

@@ -185,8 +185,11 @@ struct ShadowSetup {
     bool depthClamp = true;
 };
 
-// Checks every input (camera, light, finite non-empty scene bounds, map size, the
-// technique's options) without computing anything; errors carry their field.
+// Checks the options that do not depend on the camera, light or scene (map size, LiSPSM,
+// TSM and cascade options): what a front end can check before it has loaded a scene.
+Status validateOptions(const ShadowSetupInputs& inputs);
+// Checks every input (camera, light, finite non-empty scene bounds, then validateOptions and
+// the cascades against the camera) without computing anything; errors carry their field.
 Status validate(const ShadowSetupInputs& inputs);
 
 // Validates the inputs and runs the technique.
