@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Measures every figure of the README's technique and cascade tables with `shadowkit eval`
-# on the default forest (about 2 minutes on the project's 2-core CPU machine) and prints
+# on the default forest (56 s on the project's 2-core CPU machine once built) and prints
 # the tables, generated from the JSON reports by tools/readme_tables.py. Paste them over
 # the README's tables when a change moves a figure. Reports are kept in out/readme/.
 set -euo pipefail
