@@ -57,10 +57,10 @@ int runRender(const RenderArgs& args) {
     fmt::print("{} | {} | {}x{} | map {}² | view {}\n", core::techniqueName(setup->technique), (*context)->description(),
                settings.width, settings.height, setup->mapSize, args.view.view);
     fmt::print("  set-up (CPU)   {:8.3f} ms\n", setupMs);
-    fmt::print("  shadow pass    {:8.1f} ms GPU  {:6.2f} M triangles  {} draws\n", stats->shadow.gpuMilliseconds,
-               static_cast<double>(stats->shadow.triangles) * 1e-6, stats->shadow.drawCalls);
-    fmt::print("  main pass      {:8.1f} ms GPU  {:6.2f} M triangles  {} draws\n", stats->main.gpuMilliseconds,
-               static_cast<double>(stats->main.triangles) * 1e-6, stats->main.drawCalls);
+    fmt::print("  culling (CPU)  {:8.3f} ms\n", stats->cullMilliseconds);
+    for (const auto& [name, pass] : {std::pair{"shadow pass", &stats->shadow}, {"main pass  ", &stats->main}})
+        fmt::print("  {}    {:8.1f} ms GPU  {:6.2f} M triangles  {} instances  {} draws\n", name, pass->gpuMilliseconds,
+                   static_cast<double>(pass->triangles) * 1e-6, pass->instances, pass->drawCalls);
     fmt::print("  frame (wall)   {:8.1f} ms incl. readback\n", frameMs);
     for (const std::string& f : setup->fallbacks) fmt::print("  fallback: {}\n", f);
     fmt::print("wrote {}{}\n", args.out, args.shadowMapOut.empty() ? "" : " and " + args.shadowMapOut);

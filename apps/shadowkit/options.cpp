@@ -245,6 +245,7 @@ void RenderOptions::addTo(CLI::App& cmd) {
     cmd.add_option("--blur-depth-falloff", blur.depthFalloff, "blur radius / (1 + falloff * depth): 0 = uniform blur")
         ->capture_default_str();
     cmd.add_flag("--cascade-colors", cascadeColors, "tint each cascade's depth range (Dimitrov 2007 Figure 3-2)");
+    cmd.add_flag("--no-cull", noCull, "draw every instance in every pass (no visibility culling; same pixels, more work)");
 }
 
 core::Status RenderOptions::check() const {
@@ -267,6 +268,7 @@ core::Result<gl::RenderSettings> RenderOptions::settingsFor(const scene::Resolve
     settings.filter = core::parseFilter(filter).value();
     settings.blur = blur;
     settings.cascadeColors = cascadeColors;
+    settings.cull = !noCull;
     // Only what the flags change is set here; the rest is the recommendation every library
     // caller gets (gl::biasFor).
     if (biasSlope || biasConstant || normalOffset || cull != CullChoice::Auto || receiverPlaneBias != Choice::Auto) {

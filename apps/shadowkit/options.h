@@ -81,6 +81,7 @@ struct RenderOptions {
     std::string filter = "hard";
     gl::BlurSettings blur;
     bool cascadeColors = false;
+    bool noCull = false; // draw every instance in every pass (what culling saves, measured)
 
     void addTo(CLI::App& cmd);
     // Checks the flags (cheap: call before loading a scene); errors name the flag.

@@ -27,25 +27,30 @@ GpuScene::GpuScene(const scene::Scene& scene) {
         m_meshes.push_back(std::move(gpu));
     }
     GLuint firstInstance = 0;
-    for (const scene::MeshBatch& batch : scene.batches) {
+    for (size_t b = 0; b < scene.batches.size(); ++b) {
+        const scene::MeshBatch& batch = scene.batches[b];
         const auto count = static_cast<GLuint>(batch.worldFromObject.size());
         if (count > 0 && !scene.meshes[batch.mesh].indices.empty())
             m_batches.push_back({batch.mesh,
                                  createBuffer(batch.worldFromObject.data(), batch.worldFromObject.size() * sizeof(glm::mat4)),
-                                 static_cast<GLsizei>(count), firstInstance});
+                                 firstInstance, b});
         firstInstance += count;
     }
 }
 
-DrawStats GpuScene::drawAll(bool setInstanceBase) const {
+DrawStats GpuScene::draw(const PassList& list, bool setInstanceBase) const {
     DrawStats stats;
     for (const GpuBatch& batch : m_batches) {
+        const uint32_t count = list.count[batch.index];
+        if (count == 0) continue;
         const GpuMesh& mesh = m_meshes[batch.mesh];
         if (setInstanceBase) glUniform1ui(kInstanceBaseLocation, batch.firstInstance);
+        glUniform1ui(kInstanceOffsetLocation, list.offset + list.first[batch.index]);
         glBindVertexArray(mesh.vertexArray.id());
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kInstancesBinding, batch.instances.id());
-        glDrawElementsInstanced(GL_TRIANGLES, mesh.indexCount, GL_UNSIGNED_INT, nullptr, batch.instanceCount);
-        stats.triangles += static_cast<size_t>(mesh.indexCount / 3) * static_cast<size_t>(batch.instanceCount);
+        glDrawElementsInstanced(GL_TRIANGLES, mesh.indexCount, GL_UNSIGNED_INT, nullptr, static_cast<GLsizei>(count));
+        stats.instances += count;
+        stats.triangles += static_cast<size_t>(mesh.indexCount / 3) * count;
         ++stats.drawCalls;
     }
     glBindVertexArray(0);

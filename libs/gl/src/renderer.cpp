@@ -6,8 +6,10 @@
 #include "program.h"
 #include "render_targets.h"
 #include "uniforms.h"
+#include "visibility.h"
 
 #include <algorithm>
+#include <chrono>
 #include <optional>
 #include <string>
 
@@ -60,6 +62,10 @@ core::BiasSettings biasFor(const core::ShadowSetup& setup, const RenderSettings&
 
 struct Renderer::Impl {
     std::optional<GpuScene> scene;
+    std::optional<Visibility> visibility;
+    std::vector<PassList> shadowLists; // one per shadow map of the frame
+    PassList cameraList;
+    double cullMilliseconds = 0.0;     // CPU time building this frame's lists
     Program depthProgram, mainProgram, evalProgram, blurProgram;
     Buffer depthUniforms, frameUniforms, blurUniforms;
     VertexArray emptyVertexArray; // for the full-screen triangle
@@ -71,7 +77,9 @@ struct Renderer::Impl {
 
     core::BiasSettings bias; // of the frame being drawn (biasFor), set by prepare()
 
-    core::Status prepare(const core::ShadowSetup& setup, const RenderSettings& settings);
+    core::Status prepare(const core::PerspectiveCamera& camera, const core::ShadowSetup& setup, const RenderSettings& settings);
+    // The instances each pass of the frame draws (visibility.h), uploaded together.
+    void collectVisible(const core::PerspectiveCamera& camera, const core::ShadowSetup& setup, bool cull);
     PassStats shadowPass(const core::ShadowSetup& setup);
     void uploadFrame(const core::PerspectiveCamera& camera, const core::DirectionalLight& light,
                      const core::ShadowSetup& setup, const RenderSettings& settings, bool useMask);
@@ -115,12 +123,30 @@ core::Result<std::unique_ptr<Renderer>> Renderer::create(const scene::Scene& sce
     glCreateVertexArrays(1, &vao);
     r.emptyVertexArray = VertexArray(vao);
     r.scene.emplace(scene);
+    r.visibility.emplace(scene);
     // Conventions (core/conventions.h): clip depth [0,1].
     glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
     return renderer;
 }
 
-core::Status Renderer::Impl::prepare(const core::ShadowSetup& setup, const RenderSettings& settings) {
+void Renderer::Impl::collectVisible(const core::PerspectiveCamera& camera, const core::ShadowSetup& setup, bool cull) {
+    const auto start = std::chrono::steady_clock::now();
+    shadowLists.resize(setup.views.size());
+    std::vector<PassList*> lists;
+    for (size_t i = 0; i < setup.views.size(); ++i) {
+        // No near plane: the pass clamps depth, so casters between the light and the near
+        // plane are drawn at depth 0 and must not be culled.
+        visibility->collect(core::clipVolume(setup.views[i].clipFromWorld, false), cull, shadowLists[i]);
+        lists.push_back(&shadowLists[i]);
+    }
+    visibility->collect(core::clipVolume(camera.clipFromWorld()), cull, cameraList);
+    lists.push_back(&cameraList);
+    visibility->upload(lists);
+    cullMilliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+core::Status Renderer::Impl::prepare(const core::PerspectiveCamera& camera, const core::ShadowSetup& setup,
+                                     const RenderSettings& settings) {
     GLint maxSize = 0;
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
     // The set-up's map size is valid for core ([kMinMapSize, kMaxMapSize]); here it must
@@ -146,6 +172,7 @@ core::Status Renderer::Impl::prepare(const core::ShadowSetup& setup, const Rende
     const GLint filter = settings.filter.kind == core::ShadowFilter::Pcf2 ? GL_LINEAR : GL_NEAREST;
     glTextureParameteri(shadow->depth.id(), GL_TEXTURE_MIN_FILTER, filter);
     glTextureParameteri(shadow->depth.id(), GL_TEXTURE_MAG_FILTER, filter);
+    collectVisible(camera, setup, settings.cull);
     return core::Ok{};
 }
 
@@ -186,7 +213,8 @@ PassStats Renderer::Impl::shadowPass(const core::ShadowSetup& setup) {
         shadow->attachLayer(static_cast<int>(layer));
         const float clearDepth = 1.0f;
         glClearNamedFramebufferfv(shadow->framebuffer.id(), GL_DEPTH, 0, &clearDepth);
-        const DrawStats draws = scene->drawAll();
+        const DrawStats draws = scene->draw(shadowLists[layer]);
+        stats.instances += draws.instances;
         stats.triangles += draws.triangles;
         stats.drawCalls += draws.drawCalls;
     }
@@ -242,7 +270,7 @@ core::Status Renderer::Impl::evalPass(const core::PerspectiveCamera& camera, con
     glViewport(0, 0, eval->width, eval->height);
     eval->clear();
     glUseProgram(evalProgram.id());
-    scene->drawAll(true);
+    scene->draw(cameraList, true);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     return core::Ok{};
 }
@@ -276,7 +304,7 @@ int Renderer::Impl::blurPass(const RenderSettings& settings) {
 core::Result<FrameStats> Renderer::render(const core::PerspectiveCamera& camera, const core::DirectionalLight& light,
                                           const core::ShadowSetup& setup, const RenderSettings& settings) {
     Impl& r = *m_impl;
-    if (auto s = r.prepare(setup, settings); !s) return s.errorInfo();
+    if (auto s = r.prepare(camera, setup, settings); !s) return s.errorInfo();
     if (!r.color || r.color->width != settings.width || r.color->height != settings.height) {
         r.color.emplace(settings.width, settings.height);
         if (auto s = checkComplete(r.color->framebuffer, "main pass"); !s) return s.errorInfo();
@@ -301,12 +329,13 @@ core::Result<FrameStats> Renderer::render(const core::PerspectiveCamera& camera,
     glClearNamedFramebufferfv(r.color->framebuffer.id(), GL_DEPTH, 0, &clearDepth);
     glUseProgram(r.mainProgram.id());
     r.mainTimer.begin();
-    const DrawStats mainDraws = r.scene->drawAll(true);
+    const DrawStats mainDraws = r.scene->draw(r.cameraList, true);
     r.mainTimer.end();
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
 
     stats.shadow.gpuMilliseconds = r.shadowTimer.milliseconds();
-    stats.main = {r.mainTimer.milliseconds(), mainDraws.triangles, mainDraws.drawCalls};
+    stats.main = {r.mainTimer.milliseconds(), mainDraws.instances, mainDraws.triangles, mainDraws.drawCalls};
+    stats.cullMilliseconds = r.cullMilliseconds;
     return stats;
 }
 
@@ -315,7 +344,7 @@ core::Result<core::RasterBuffers> Renderer::renderEvalBuffers(const core::Perspe
                                                               const core::ShadowSetup& setup,
                                                               const RenderSettings& settings) {
     Impl& r = *m_impl;
-    if (auto s = r.prepare(setup, settings); !s) return s.errorInfo();
+    if (auto s = r.prepare(camera, setup, settings); !s) return s.errorInfo();
     r.shadowPass(setup);
     if (auto s = r.evalPass(camera, light, setup, settings); !s) return s.errorInfo();
     core::RasterBuffers buffers = r.eval->read();
@@ -323,6 +352,8 @@ core::Result<core::RasterBuffers> Renderer::renderEvalBuffers(const core::Perspe
     buffers.mapSize = setup.mapSize;
     return buffers;
 }
+
+const core::Aabb& Renderer::wsSceneBounds() const { return m_impl->visibility->wsBounds(); }
 
 scene::Image Renderer::readColor() const { return m_impl->color ? m_impl->color->read() : scene::Image{}; }
 

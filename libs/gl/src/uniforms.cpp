@@ -70,6 +70,8 @@ const std::string& shaderPrelude() {
         define("SK_DEPTH_PASS_BINDING", kDepthPassBinding);
         define("SK_BLUR_BINDING", kBlurBinding);
         define("SK_INSTANCES_BINDING", kInstancesBinding);
+        define("SK_VISIBLE_BINDING", kVisibleBinding);
+        define("SK_INSTANCE_OFFSET_LOCATION", kInstanceOffsetLocation);
         define("SK_SHADOW_MAP_UNIT", kShadowMapUnit);
         define("SK_SHADOW_MASK_UNIT", kShadowMaskUnit);
         define("SK_BLUR_MASK_UNIT", kBlurMaskUnit);

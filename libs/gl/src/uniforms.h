@@ -22,13 +22,15 @@ inline constexpr int kMaxCascades = 8; // GLSL: SK_MAX_CASCADES
 inline constexpr unsigned kFrameBinding = 0;
 inline constexpr unsigned kDepthPassBinding = 1;
 inline constexpr unsigned kBlurBinding = 2;
-inline constexpr unsigned kInstancesBinding = 0; // shader storage: mat4 worldFromObject[]
+inline constexpr unsigned kInstancesBinding = 0; // shader storage: mat4 worldFromObject[] of the batch drawn
+inline constexpr unsigned kVisibleBinding = 1;   // shader storage: uint visibleInstances[] of the frame
 // Texture units (GLSL: SK_*_UNIT). The camera passes and the blur pass never run together.
 inline constexpr unsigned kShadowMapUnit = 0;  // camera passes: sampler2DArrayShadow, one layer per map
 inline constexpr unsigned kShadowMaskUnit = 1; // main pass: the blurred shadow mask
 inline constexpr unsigned kBlurMaskUnit = 0;   // blur pass: the mask being blurred
 inline constexpr unsigned kBlurDepthUnit = 1;  // blur pass: view depth, to stop at depth steps
-inline constexpr int kInstanceBaseLocation = 0; // uniform uint instanceBase (main.vert)
+inline constexpr int kInstanceBaseLocation = 0;   // uniform uint instanceBase (main.vert): surface identity
+inline constexpr int kInstanceOffsetLocation = 1; // uniform uint instanceOffset: the draw's list in visibleInstances
 
 // std140: scalars pack in fours, vec4 and mat4 start on 16 bytes. Booleans are int32.
 

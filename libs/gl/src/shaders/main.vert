@@ -12,11 +12,12 @@ out vec3 vAlbedo;
 flat out uint vSurfaceId;
 
 void main() {
-    const mat4 m = worldFromObject[gl_InstanceID];
+    const uint instance = visibleInstances[instanceOffset + uint(gl_InstanceID)];
+    const mat4 m = worldFromObject[instance];
     const vec4 ws = m * vec4(osPosition, 1.0);
     wsPosition = ws.xyz;
     wsNormal = mat3(m) * osNormal; // rigid + uniform scale: renormalised per fragment
     vAlbedo = albedo;
-    vSurfaceId = instanceBase + uint(gl_InstanceID) + 1u;
+    vSurfaceId = instanceBase + instance + 1u;
     gl_Position = clipFromWorld * ws;
 }

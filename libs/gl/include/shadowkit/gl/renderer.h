@@ -41,6 +41,10 @@ struct RenderSettings {
     core::FilterSettings filter;
     BlurSettings blur;
     float fogDensity = 0.002f;      // 1/m of exponential fog (Scherzer 2005 used fog); 0 = none
+    // Draw only the instances each pass can see: the camera pass those meeting the view
+    // frustum, each shadow map those meeting its clip volume extended towards the light.
+    // Invisible by contract (the same pixels either way); false draws everything.
+    bool cull = true;
     bool cascadeColors = false;     // tint each cascade's range (Dimitrov 2007, Figure 3-2)
 };
 
@@ -49,12 +53,14 @@ core::BiasSettings biasFor(const core::ShadowSetup& setup, const RenderSettings&
 
 struct PassStats {
     double gpuMilliseconds = 0.0; // between two GL timestamp queries
+    size_t instances = 0;         // submitted (over every map, for the shadow pass)
     size_t triangles = 0;         // submitted
     size_t drawCalls = 0;
 };
 
 struct FrameStats {
     PassStats shadow, main;
+    double cullMilliseconds = 0.0; // CPU: choosing every pass's instances and uploading the lists
 };
 
 class Renderer {
@@ -76,6 +82,9 @@ public:
     core::Result<core::RasterBuffers> renderEvalBuffers(const core::PerspectiveCamera& camera,
                                                         const core::DirectionalLight& light,
                                                         const core::ShadowSetup& setup, const RenderSettings& settings);
+
+    // World bounds of every instance, from the instance hierarchy: O(1).
+    const core::Aabb& wsSceneBounds() const;
 
     // The last rendered frame (top row first).
     scene::Image readColor() const;

@@ -1,0 +1,143 @@
+// Culling per pass is invisible by contract: the same pixels with and without it, for every
+// technique; and a caster outside the view frustum still casts into it. CTest label `gl`.
+#include "headless_gl_test.h"
+
+#include "shadowkit/gl/renderer.h"
+#include "shadowkit/scene/forest.h"
+#include "shadowkit/scene/mesh_builder.h"
+#include "shadowkit/scene/views.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+
+using namespace shadowkit;
+
+namespace {
+
+class CullingTest : public gl::testing::HeadlessGlTest {};
+
+struct Variant {
+    std::string name;
+    core::ShadowSetupInputs inputs;
+};
+
+std::vector<Variant> everyTechnique(const scene::ResolvedView& view, const core::Aabb& bounds) {
+    std::vector<Variant> variants;
+    for (const core::TechniqueInfo& t : core::allTechniques()) {
+        core::ShadowSetupInputs in{.camera = view.camera, .light = view.light, .wsSceneBounds = bounds,
+                                   .technique = t.technique, .mapSize = 512};
+        variants.push_back({std::string(t.name), in});
+    }
+    core::ShadowSetupInputs warped = variants.back().inputs;
+    warped.technique = core::Technique::Csm;
+    warped.cascades.warp = core::CascadeWarp::Lispsm;
+    variants.push_back({"csm lispsm", warped});
+    warped.cascades.warp = core::CascadeWarp::None;
+    warped.cascades.stabilize = true;
+    variants.push_back({"csm stabilized", warped});
+    return variants;
+}
+
+} // namespace
+
+TEST_F(CullingTest, CulledFramesMatchFullFramesPixelForPixelForEveryTechnique) {
+    scene::ForestOptions o;
+    o.trees = 400;
+    o.terrainSize = 300;
+    o.terrainResolution = 32;
+    const scene::Scene forest = scene::makeForest(o);
+    auto views = scene::loadViews(scene::dataDirectory() / "views.json");
+    ASSERT_TRUE(views);
+    auto renderer = gl::Renderer::create(forest);
+    ASSERT_TRUE(renderer) << renderer.error();
+    EXPECT_EQ((*renderer)->wsSceneBounds().min, forest.wsBounds().min);
+    EXPECT_EQ((*renderer)->wsSceneBounds().max, forest.wsBounds().max);
+    for (const char* viewName : {"perpendicular", "aerial"}) {
+        scene::ResolvedView view = scene::resolveView(*scene::findView(*views, viewName), forest);
+        view.camera.aspect = 160.0 / 90.0;
+        for (const Variant& v : everyTechnique(view, forest.wsBounds())) {
+            const auto setup = core::computeShadowSetup(v.inputs);
+            ASSERT_TRUE(setup) << v.name << ": " << setup.error();
+            gl::RenderSettings settings;
+            settings.width = 160;
+            settings.height = 90;
+            settings.cull = false;
+            const auto full = (*renderer)->render(view.camera, view.light, *setup, settings);
+            ASSERT_TRUE(full);
+            const scene::Image fullImage = (*renderer)->readColor();
+            const auto fullBuffers = (*renderer)->renderEvalBuffers(view.camera, view.light, *setup, settings);
+            settings.cull = true;
+            const auto culled = (*renderer)->render(view.camera, view.light, *setup, settings);
+            ASSERT_TRUE(culled);
+            const scene::Image culledImage = (*renderer)->readColor();
+            const auto culledBuffers = (*renderer)->renderEvalBuffers(view.camera, view.light, *setup, settings);
+            ASSERT_TRUE(fullBuffers && culledBuffers);
+
+            const std::string what = std::string(viewName) + ", " + v.name;
+            EXPECT_EQ(fullImage.rgba, culledImage.rgba) << what;
+            EXPECT_EQ(fullBuffers->shadowTerm, culledBuffers->shadowTerm) << what;
+            EXPECT_EQ(fullBuffers->surfaceId, culledBuffers->surfaceId) << what;
+            EXPECT_EQ(fullBuffers->viewDepth, culledBuffers->viewDepth) << what;
+            // ... while drawing less: the camera sees part of the forest, each map part of it.
+            EXPECT_LT(culled->main.instances, full->main.instances) << what;
+            EXPECT_LE(culled->shadow.instances, full->shadow.instances) << what;
+            EXPECT_EQ(full->main.instances, forest.instanceCount()) << what;
+        }
+    }
+}
+
+TEST_F(CullingTest, CasterOutsideTheViewFrustumIsDrawnIntoTheMapAndItsShadowAppears) {
+    // A wall 15 m tall stands behind the camera, out of its view; the low sun behind it
+    // throws its shadow forward onto the ground the camera looks at.
+    scene::Scene s;
+    scene::Mesh ground, wall;
+    scene::addBox(ground, glm::translate(glm::mat4(1.0f), {0, -0.05f, -30}), {40, 0.05f, 60}, glm::vec3(0.8f));
+    scene::addBox(wall, glm::mat4(1.0f), {2, 7.5f, 0.5f}, glm::vec3(0.8f));
+    ground.computeBounds();
+    wall.computeBounds();
+    s.meshes = {ground, wall};
+    s.batches = {{0, {glm::mat4(1.0f)}, false}, {1, {glm::translate(glm::mat4(1.0f), {0, 7.5f, 12})}, false}};
+    core::PerspectiveCamera cam;
+    cam.wsEye = {0, 3, 0};
+    cam.wsDirection = {0, -0.35, -1};
+    cam.aspect = 1.0;
+    cam.zNear = 0.5;
+    cam.zFar = 60;
+    const core::DirectionalLight sun = core::DirectionalLight::fromDirection({0, -0.5, -1}).value(); // from behind the wall
+    // The wall is out of the view frustum.
+    const core::Aabb wallBox = core::transformBounds(core::Mat4(s.batches[1].worldFromObject[0]), wall.osBounds);
+    bool anyCornerVisible = false;
+    for (const core::Vec3& c : wallBox.corners()) {
+        const core::Vec4 cs = cam.clipFromWorld() * core::Vec4(c, 1.0);
+        anyCornerVisible |= cs.w > 0 && std::abs(cs.x) <= cs.w && std::abs(cs.y) <= cs.w && cs.z >= 0 && cs.z <= cs.w;
+    }
+    ASSERT_FALSE(anyCornerVisible);
+
+    auto renderer = gl::Renderer::create(s);
+    ASSERT_TRUE(renderer);
+    gl::RenderSettings settings;
+    settings.width = settings.height = 128;
+    settings.fogDensity = 0.0f;
+    for (core::Technique t : {core::Technique::Focused, core::Technique::Lispsm, core::Technique::Tsm, core::Technique::Csm}) {
+        const auto setup = core::computeShadowSetup(
+            {.camera = cam, .light = sun, .wsSceneBounds = s.wsBounds(), .technique = t, .mapSize = 1024});
+        ASSERT_TRUE(setup);
+        const auto stats = (*renderer)->render(cam, sun, *setup, settings);
+        ASSERT_TRUE(stats);
+        EXPECT_EQ(stats->main.instances, 1u) << core::techniqueName(t) << ": the camera pass draws the ground only";
+        EXPECT_GE(stats->shadow.instances, 2u * setup->views.size() - (setup->views.size() - 1))
+            << core::techniqueName(t) << ": the wall must be in the map that serves its shadow";
+        const scene::Image image = (*renderer)->readColor();
+        // The wall's shadow on the ground, 12 m + 15 m / tan(26.6°) ≈ 18 m ahead of it: well in view.
+        const auto shadowAt = [&](double z) { return core::Vec3(0, 0, z); };
+        auto luminance = [&](const core::Vec3& ws) {
+            const core::Vec4 cs = cam.clipFromWorld() * core::Vec4(ws, 1.0);
+            const int x = static_cast<int>((cs.x / cs.w * 0.5 + 0.5) * image.width);
+            const int y = static_cast<int>((0.5 - cs.y / cs.w * 0.5) * image.height);
+            const uint8_t* p = image.pixel(x, y);
+            return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
+        };
+        const double inShadow = luminance(shadowAt(-10)), lit = luminance(core::Vec3(4, 0, -10));
+        EXPECT_LT(inShadow, 0.7 * lit) << core::techniqueName(t) << ": shadow " << inShadow << ", lit " << lit;
+    }
+}
