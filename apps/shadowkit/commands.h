@@ -19,6 +19,7 @@ Command addExportCommand(CLI::App& app);
 Command addEvalCommand(CLI::App& app);
 Command addAnalyzeCommand(CLI::App& app);
 Command addCompareCommand(CLI::App& app);
+Command addBenchCommand(CLI::App& app);
 
 // Prints "shadowkit: error: <message>" (one line) to stderr and returns 1.
 int fail(const std::string& message);

@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
         shadowkit::app::addEvalCommand(app),
         shadowkit::app::addAnalyzeCommand(app),
         shadowkit::app::addCompareCommand(app),
+        shadowkit::app::addBenchCommand(app),
         shadowkit::app::addSetupCommand(app),
         shadowkit::app::addExportCommand(app),
     };

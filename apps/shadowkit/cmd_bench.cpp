@@ -1,0 +1,172 @@
+// shadowkit bench: what a frame costs as the world grows — per pass, the instances,
+// triangles and draw calls submitted and the GPU time, plus the CPU time of the set-up and
+// of culling, with min / median / max over several frames, for several forest sizes.
+#include "commands.h"
+#include "options.h"
+
+#include "shadowkit/gl/context.h"
+#include "shadowkit/gl/renderer.h"
+#include "shadowkit/scene/forest.h"
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+namespace shadowkit::app {
+namespace {
+
+struct BenchArgs {
+    ViewOptions view;
+    TechniqueOptions technique;
+    RenderOptions render;
+    std::string trees = "1000,10000,100000", views = "perpendicular,aerial,paper", json;
+    uint64_t seed = 1;
+    double terrainSize = 1024.0;
+    int terrainResolution = 256;
+    bool sameDensity = false;
+    int frames = 5;
+};
+
+struct Spread {
+    double min = 0, median = 0, max = 0;
+};
+Spread spread(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return {v.front(), v[v.size() / 2], v.back()};
+}
+nlohmann::json toJson(const Spread& s) { return {{"min", s.min}, {"median", s.median}, {"max", s.max}}; }
+
+core::Result<std::vector<int>> parseCounts(const std::string& text) {
+    std::vector<int> counts;
+    std::stringstream ss(text);
+    for (std::string item; std::getline(ss, item, ',');) {
+        char* end = nullptr;
+        const long v = std::strtol(item.c_str(), &end, 10);
+        if (item.empty() || *end != '\0' || v < 0 || v > 1'000'000)
+            return core::makeError(fmt::format("--trees: expected counts in [0, 1000000] separated by commas, got '{}'", text));
+        counts.push_back(static_cast<int>(v));
+    }
+    if (counts.empty()) return core::makeError("--trees: no count given");
+    return counts;
+}
+
+int runBench(const BenchArgs& args) {
+    auto counts = parseCounts(args.trees);
+    if (!counts) return fail(counts.error());
+    if (args.frames < 1 || args.frames > 1000) return fail("--frames: must be in [1, 1000]");
+    if (auto s = args.technique.check(); !s) return fail(s.error());
+    if (auto s = args.render.check(); !s) return fail(s.error());
+    std::vector<std::string> viewNames;
+    std::stringstream ss(args.views);
+    for (std::string name; std::getline(ss, name, ',');) viewNames.push_back(name);
+    if (viewNames.empty()) return fail("--views: no view named");
+
+    auto context = gl::Context::createHeadless();
+    if (!context) return fail(context.error());
+    fmt::print("{} | technique {} | {} frames per row | culling {}\n", (*context)->description(),
+               core::techniqueName(args.technique.technique), args.frames, args.render.noCull ? "off" : "on");
+    fmt::print("{:>7} {:>7} {:<14} {:<7} {:>9} {:>9} {:>6} {:>26} {:>20} {:>20}\n", "trees", "terrain", "view", "pass",
+               "instances", "M tris", "draws", "GPU ms min/med/max", "set-up ms med/max", "cull ms med/max");
+    nlohmann::json runs = nlohmann::json::array();
+    for (const int trees : *counts) {
+        scene::ForestOptions forestOptions;
+        forestOptions.seed = args.seed;
+        forestOptions.trees = trees;
+        // --same-density: the terrain grows with the count so trees stand as densely as
+        // 10,000 on the given size (100,000 trees on 3238 m for the default 1024 m).
+        forestOptions.terrainSize = args.sameDensity ? args.terrainSize * std::sqrt(std::max(trees, 1) / 10000.0) : args.terrainSize;
+        forestOptions.terrainResolution = args.terrainResolution;
+        if (auto s = scene::validate(forestOptions); !s) return fail(s.error());
+        const auto buildStart = std::chrono::steady_clock::now();
+        const scene::Scene forest = scene::makeForest(forestOptions);
+        const double buildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - buildStart).count();
+        fmt::print(stderr, "forest: {} trees on {:.0f} m, {:.2f} M triangles, built in {:.2f} s\n", trees,
+                   forestOptions.terrainSize, static_cast<double>(forest.triangleCount()) * 1e-6, buildSeconds);
+        auto renderer = gl::Renderer::create(forest);
+        if (!renderer) return fail(renderer.error());
+
+        for (const std::string& name : viewNames) {
+            ViewOptions viewOptions = args.view;
+            viewOptions.view = name;
+            auto view = viewOptions.resolve(forest);
+            if (!view) return fail(view.error());
+            std::vector<double> setupMs, cullMs, shadowMs, mainMs;
+            gl::FrameStats last;
+            for (int frame = 0; frame < args.frames; ++frame) {
+                const auto start = std::chrono::steady_clock::now();
+                auto inputs = args.technique.inputsFor(*view, (*renderer)->wsSceneBounds());
+                if (!inputs) return fail(inputs.error());
+                auto setup = core::computeShadowSetup(*inputs);
+                if (!setup) return fail(withFlagName(setup.errorInfo()).message);
+                setupMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+                auto settings = args.render.settingsFor(*view, *inputs);
+                if (!settings) return fail(settings.error());
+                auto stats = (*renderer)->render(view->camera, view->light, *setup, *settings);
+                if (!stats) return fail(withFlagName(stats.errorInfo()).message);
+                cullMs.push_back(stats->cullMilliseconds);
+                shadowMs.push_back(stats->shadow.gpuMilliseconds);
+                mainMs.push_back(stats->main.gpuMilliseconds);
+                last = *stats;
+            }
+            const Spread setupSpread = spread(setupMs), cullSpread = spread(cullMs);
+            nlohmann::json run = {{"trees", trees},
+                                  {"terrain_size", forestOptions.terrainSize},
+                                  {"forest_seconds", buildSeconds},
+                                  {"view", name},
+                                  {"technique", core::techniqueName(args.technique.technique)},
+                                  {"cull", !args.render.noCull},
+                                  {"frames", args.frames},
+                                  {"width", view->width},
+                                  {"height", view->height},
+                                  {"setup_ms", toJson(setupSpread)},
+                                  {"cull_ms", toJson(cullSpread)}};
+            for (const auto& [pass, stats, gpu] : {std::tuple{"shadow", &last.shadow, &shadowMs}, {"main", &last.main, &mainMs}}) {
+                const Spread g = spread(*gpu);
+                fmt::print("{:>7} {:>7.0f} {:<14} {:<7} {:>9} {:>9.3f} {:>6} {:>8.1f} {:>8.1f} {:>8.1f} {:>10.3f} {:>9.3f} {:>10.3f} {:>9.3f}\n",
+                           trees, forestOptions.terrainSize, name, pass, stats->instances,
+                           static_cast<double>(stats->triangles) * 1e-6, stats->drawCalls, g.min, g.median, g.max,
+                           setupSpread.median, setupSpread.max, cullSpread.median, cullSpread.max);
+                run[pass] = {{"instances", stats->instances},
+                             {"triangles", stats->triangles},
+                             {"draw_calls", stats->drawCalls},
+                             {"gpu_ms", toJson(g)}};
+            }
+            std::fflush(stdout);
+            runs.push_back(run);
+        }
+    }
+    if (!args.json.empty()) {
+        std::ofstream out(args.json);
+        out << nlohmann::json{{"runs", runs}}.dump(2) << "\n";
+        if (!out) return fail("--json: " + args.json + ": cannot write");
+    }
+    return 0;
+}
+
+} // namespace
+
+Command addBenchCommand(CLI::App& app) {
+    auto args = std::make_shared<BenchArgs>();
+    CLI::App* cmd = app.add_subcommand("bench", "Frame cost per pass as the forest grows: instances, triangles, draws, GPU and CPU ms");
+    cmd->add_option("--trees", args->trees, "forest sizes to measure, comma-separated")->capture_default_str();
+    cmd->add_option("--views", args->views, "standard views, comma-separated")->capture_default_str();
+    cmd->add_option("--frames", args->frames, "frames per view: min / median / max over them")->capture_default_str();
+    cmd->add_option("--seed", args->seed, "forest: random seed")->capture_default_str();
+    cmd->add_option("--terrain-size", args->terrainSize, "forest: terrain side in metres")->capture_default_str();
+    cmd->add_option("--terrain-resolution", args->terrainResolution, "forest: terrain quads per side")->capture_default_str();
+    cmd->add_flag("--same-density", args->sameDensity,
+                  "scale the terrain with the tree count (as dense as 10,000 trees on --terrain-size)");
+    args->view.addTo(*cmd);
+    cmd->remove_option(cmd->get_option("--view"));
+    args->technique.addTo(*cmd);
+    args->render.addTo(*cmd);
+    cmd->add_option("--json", args->json, "write every row as JSON {\"runs\": [...]}");
+    return {cmd, [args] { return runBench(*args); }};
+}
+
+} // namespace shadowkit::app
