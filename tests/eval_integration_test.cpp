@@ -173,3 +173,36 @@ TEST_F(EvalIntegrationTest, RecommendedBiasBeatsNoBiasAndTheSeedsBiasWhereItWasC
         EXPECT_LT(recommended.wrongPct, seed.wrongPct) << core::techniqueName(t);
     }
 }
+
+TEST_F(EvalIntegrationTest, CullingAndLevelsOfDetailLeaveTheFiguresWhereTheyWere) {
+    // The contract of culling and LOD: invisible against ray-traced truth. An aerial view of
+    // a forest whose far trees take coarse levels, for a uniform, a warped and a cascaded map.
+    scene::ForestOptions o;
+    o.trees = 3000;
+    o.terrainSize = 700;
+    o.terrainResolution = 64;
+    const scene::Scene forest = scene::makeForest(o);
+    auto views = scene::loadViews(scene::dataDirectory() / "views.json");
+    ASSERT_TRUE(views);
+    const scene::ResolvedView view = scene::resolveView(*scene::findView(*views, "aerial"), forest);
+    auto measurer = measure::Measurer::create(forest);
+    ASSERT_TRUE(measurer) << measurer.error();
+    for (core::Technique t : {core::Technique::Focused, core::Technique::Tsm, core::Technique::Csm}) {
+        const core::ShadowSetupInputs in{.camera = view.camera, .light = view.light, .wsSceneBounds = forest.wsBounds(),
+                                         .technique = t, .mapSize = 2048};
+        gl::RenderSettings settings;
+        settings.width = view.width / 2;
+        settings.height = view.height / 2;
+        auto figures = [&](bool reduce) {
+            settings.cull = settings.lod = reduce;
+            auto m = (*measurer)->measure(in, settings);
+            EXPECT_TRUE(m) << m.error();
+            return m->figures();
+        };
+        const eval::Figures full = figures(false), reduced = figures(true);
+        ASSERT_GT(full.validPx, 50000);
+        EXPECT_NEAR(reduced.wrongPct, full.wrongPct, 0.02) << core::techniqueName(t);
+        EXPECT_NEAR(reduced.falseShadowPct, full.falseShadowPct, 0.02) << core::techniqueName(t);
+        EXPECT_NEAR(double(reduced.validPx), double(full.validPx), 0.002 * double(full.validPx)) << core::techniqueName(t);
+    }
+}

@@ -246,6 +246,7 @@ void RenderOptions::addTo(CLI::App& cmd) {
         ->capture_default_str();
     cmd.add_flag("--cascade-colors", cascadeColors, "tint each cascade's depth range (Dimitrov 2007 Figure 3-2)");
     cmd.add_flag("--no-cull", noCull, "draw every instance in every pass (no visibility culling; same pixels, more work)");
+    cmd.add_flag("--no-lod", noLod, "draw full meshes in every pass (no levels of detail)");
 }
 
 core::Status RenderOptions::check() const {
@@ -269,6 +270,7 @@ core::Result<gl::RenderSettings> RenderOptions::settingsFor(const scene::Resolve
     settings.blur = blur;
     settings.cascadeColors = cascadeColors;
     settings.cull = !noCull;
+    settings.lod = !noLod;
     // Only what the flags change is set here; the rest is the recommendation every library
     // caller gets (gl::biasFor).
     if (biasSlope || biasConstant || normalOffset || cull != CullChoice::Auto || receiverPlaneBias != Choice::Auto) {

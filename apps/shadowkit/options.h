@@ -82,6 +82,7 @@ struct RenderOptions {
     gl::BlurSettings blur;
     bool cascadeColors = false;
     bool noCull = false; // draw every instance in every pass (what culling saves, measured)
+    bool noLod = false;  // full meshes everywhere (what levels of detail save, measured)
 
     void addTo(CLI::App& cmd);
     // Checks the flags (cheap: call before loading a scene); errors name the flag.

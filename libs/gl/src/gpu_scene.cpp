@@ -2,16 +2,31 @@
 
 #include "uniforms.h"
 
+#include <algorithm>
 #include <cstddef>
 
 namespace shadowkit::gl {
 
-GpuScene::GpuScene(const scene::Scene& scene) {
-    for (const scene::Mesh& mesh : scene.meshes) {
+namespace {
+
+std::vector<GpuScene::Range> rangesOf(const std::vector<scene::LodLevel>& chain) {
+    std::vector<GpuScene::Range> ranges;
+    for (size_t l = 0; l < std::min(chain.size(), kMaxLodLevels); ++l)
+        ranges.push_back({static_cast<GLsizei>(chain[l].indexCount), chain[l].firstIndex * sizeof(uint32_t)});
+    return ranges;
+}
+
+} // namespace
+
+GpuScene::GpuScene(const scene::Scene& scene, std::span<const scene::MeshLods> lods) {
+    for (size_t m = 0; m < scene.meshes.size(); ++m) {
+        const scene::Mesh& mesh = scene.meshes[m];
+        const scene::MeshLods& lod = lods[m];
         GpuMesh gpu;
         gpu.vertices = createBuffer(mesh.vertices.data(), mesh.vertices.size() * sizeof(scene::Vertex));
-        gpu.indices = createBuffer(mesh.indices.data(), mesh.indices.size() * sizeof(uint32_t));
-        gpu.indexCount = static_cast<GLsizei>(mesh.indices.size());
+        gpu.indices = createBuffer(lod.indices.data(), std::max<size_t>(lod.indices.size(), 1) * sizeof(uint32_t));
+        gpu.camera = rangesOf(lod.camera);
+        gpu.shadow = rangesOf(lod.shadow);
         GLuint vao = 0;
         glCreateVertexArrays(1, &vao);
         gpu.vertexArray = VertexArray(vao);
@@ -41,17 +56,27 @@ GpuScene::GpuScene(const scene::Scene& scene) {
 DrawStats GpuScene::draw(const PassList& list, bool setInstanceBase) const {
     DrawStats stats;
     for (const GpuBatch& batch : m_batches) {
-        const uint32_t count = list.count[batch.index];
-        if (count == 0) continue;
         const GpuMesh& mesh = m_meshes[batch.mesh];
-        if (setInstanceBase) glUniform1ui(kInstanceBaseLocation, batch.firstInstance);
-        glUniform1ui(kInstanceOffsetLocation, list.offset + list.first[batch.index]);
-        glBindVertexArray(mesh.vertexArray.id());
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kInstancesBinding, batch.instances.id());
-        glDrawElementsInstanced(GL_TRIANGLES, mesh.indexCount, GL_UNSIGNED_INT, nullptr, static_cast<GLsizei>(count));
-        stats.instances += count;
-        stats.triangles += static_cast<size_t>(mesh.indexCount / 3) * count;
-        ++stats.drawCalls;
+        const std::vector<Range>& levels = list.shadow ? mesh.shadow : mesh.camera;
+        bool bound = false;
+        for (size_t level = 0; level < levels.size(); ++level) {
+            const size_t slot = batch.index * kMaxLodLevels + level;
+            const uint32_t count = list.count[slot];
+            if (count == 0) continue;
+            if (!bound) {
+                if (setInstanceBase) glUniform1ui(kInstanceBaseLocation, batch.firstInstance);
+                glBindVertexArray(mesh.vertexArray.id());
+                glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kInstancesBinding, batch.instances.id());
+                bound = true;
+            }
+            glUniform1ui(kInstanceOffsetLocation, list.offset + list.first[slot]);
+            const Range& range = levels[level];
+            glDrawElementsInstanced(GL_TRIANGLES, range.indexCount, GL_UNSIGNED_INT,
+                                    reinterpret_cast<const void*>(range.byteOffset), static_cast<GLsizei>(count));
+            stats.instances += count;
+            stats.triangles += static_cast<size_t>(range.indexCount / 3) * count;
+            ++stats.drawCalls;
+        }
     }
     glBindVertexArray(0);
     return stats;

@@ -18,9 +18,10 @@ struct DrawStats {
 
 class GpuScene {
 public:
-    explicit GpuScene(const scene::Scene& scene);
+    // `lods[m]` holds mesh m's index buffer with every level of detail (scene::buildLods).
+    GpuScene(const scene::Scene& scene, std::span<const scene::MeshLods> lods);
 
-    // One glDrawElementsInstanced per batch with instances in `list` (uploaded by
+    // One glDrawElementsInstanced per batch and level with instances in `list` (uploaded by
     // Visibility::upload); the vertex shaders read the transform of
     // visibleInstances[instanceOffset + gl_InstanceID] from the batch's buffer at
     // kInstancesBinding. With setInstanceBase the bound program's `instanceBase` uniform
@@ -28,11 +29,17 @@ public:
     // of the evaluation.
     DrawStats draw(const PassList& list, bool setInstanceBase = false) const;
 
+    // One level of detail in a mesh's index buffer.
+    struct Range {
+        GLsizei indexCount = 0;
+        size_t byteOffset = 0;
+    };
+
 private:
     struct GpuMesh {
-        Buffer vertices, indices;
+        Buffer vertices, indices; // indices: every level of both chains
         VertexArray vertexArray;
-        GLsizei indexCount = 0;
+        std::vector<Range> camera, shadow; // per level, at most kMaxLodLevels
     };
     struct GpuBatch {
         size_t mesh = 0;

@@ -3,6 +3,7 @@
 #include "uniforms.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace shadowkit::gl {
 namespace {
@@ -17,18 +18,47 @@ std::vector<core::Aabb> instanceBoxes(const scene::Scene& scene) {
     return boxes;
 }
 
+// NDC units per world metre at `ws` through a projective map: the largest column of
+// d(ndc.xy)/d(ws) = (M_i.xy − ndc.xy · M_i.w) / w over the world axes i (the map may
+// stretch one axis more than another). Infinite at or behind the projection centre.
+double ndcPerMetre(const core::Mat4& clipFromWorld, const core::Vec3& ws) {
+    const core::Vec4 c = clipFromWorld * core::Vec4(ws, 1.0);
+    if (!(c.w > 1e-9)) return INFINITY;
+    const core::Vec2 ndc = core::Vec2(c) / c.w;
+    double largest = 0.0;
+    for (int i = 0; i < 3; ++i) {
+        const core::Vec4 column = clipFromWorld[i];
+        largest = std::max(largest, glm::length((core::Vec2(column) - ndc * column.w) / c.w));
+    }
+    return largest;
+}
+
+std::vector<float> levelErrors(const std::vector<scene::LodLevel>& chain) {
+    std::vector<float> errors;
+    for (size_t l = 0; l < std::min(chain.size(), kMaxLodLevels); ++l) errors.push_back(chain[l].objectError);
+    return errors;
+}
+
 } // namespace
 
-Visibility::Visibility(const scene::Scene& scene) : m_hierarchy(instanceBoxes(scene)) {
+Visibility::Visibility(const scene::Scene& scene, std::span<const scene::MeshLods> lods) : m_hierarchy(instanceBoxes(scene)) {
     uint32_t first = 0;
     for (const scene::MeshBatch& batch : scene.batches) {
         m_batchFirst.push_back(first);
         first += static_cast<uint32_t>(batch.worldFromObject.size());
+        for (const glm::mat4& m : batch.worldFromObject) {
+            m_instanceScale.push_back(glm::length(glm::vec3(m[0]))); // rigid + uniform scale
+            m_instanceMesh.push_back(batch.mesh);
+        }
     }
     m_batchFirst.push_back(first); // end of the last batch
+    for (const scene::MeshLods& mesh : lods) {
+        m_cameraErrors.push_back(levelErrors(mesh.camera));
+        m_shadowErrors.push_back(levelErrors(mesh.shadow));
+    }
 }
 
-void Visibility::collect(std::span<const core::HalfSpace> volume, bool cull, PassList& out) {
+void Visibility::collect(std::span<const core::HalfSpace> volume, bool cull, const LodChoice* lod, PassList& out) {
     m_scratch.clear();
     if (cull) {
         m_hierarchy.query(volume, m_scratch);
@@ -37,18 +67,52 @@ void Visibility::collect(std::span<const core::HalfSpace> volume, bool cull, Pas
         m_scratch.resize(m_hierarchy.size());
         for (uint32_t i = 0; i < m_scratch.size(); ++i) m_scratch[i] = i;
     }
-    // Global indices are sorted, and batches are consecutive global ranges: one pass splits
-    // them into batch-local lists.
+    // The level of each instance: the coarsest whose world error (object error × scale),
+    // in the pass's units, stays within the bound.
+    m_levels.assign(m_scratch.size(), 0);
+    if (lod) {
+        const auto& errors = lod->shadow ? m_shadowErrors : m_cameraErrors;
+        for (size_t k = 0; k < m_scratch.size(); ++k) {
+            const uint32_t global = m_scratch[k];
+            const std::vector<float>& levels = errors[m_instanceMesh[global]];
+            if (levels.size() < 2) continue;
+            const core::Vec3 centre = m_hierarchy.itemBounds(global).center();
+            auto allowedBy = [&](const LodProjection& p) { // in object metres
+                return p.maxError / (p.unitsPerNdc * ndcPerMetre(p.clipFromWorld, centre) * m_instanceScale[global]);
+            };
+            double allowed = allowedBy(lod->pass);
+            if (lod->camera) allowed = std::min(allowed, allowedBy(*lod->camera));
+            uint8_t level = 0;
+            while (level + 1u < levels.size() && levels[level + 1u] <= allowed) ++level;
+            m_levels[k] = level;
+        }
+    }
+    // Global indices are sorted and batches are consecutive global ranges: a counting sort
+    // by (batch, level) keeps each list in increasing instance order.
     const size_t batches = m_batchFirst.size() - 1;
-    out.indices.clear();
-    out.first.assign(batches, 0);
-    out.count.assign(batches, 0);
+    out.shadow = lod && lod->shadow;
+    out.first.assign(batches * kMaxLodLevels, 0);
+    out.count.assign(batches * kMaxLodLevels, 0);
+    std::vector<uint32_t>& slotOf = m_slots;
+    slotOf.resize(m_scratch.size());
     size_t batch = 0;
-    for (const uint32_t global : m_scratch) {
-        while (global >= m_batchFirst[batch + 1]) ++batch;
-        if (out.count[batch] == 0) out.first[batch] = static_cast<uint32_t>(out.indices.size());
-        ++out.count[batch];
-        out.indices.push_back(global - m_batchFirst[batch]);
+    for (size_t k = 0; k < m_scratch.size(); ++k) {
+        while (m_scratch[k] >= m_batchFirst[batch + 1]) ++batch;
+        slotOf[k] = static_cast<uint32_t>(batch * kMaxLodLevels + m_levels[k]);
+        ++out.count[slotOf[k]];
+    }
+    uint32_t running = 0;
+    for (size_t slot = 0; slot < out.count.size(); ++slot) {
+        out.first[slot] = running;
+        running += out.count[slot];
+    }
+    out.indices.resize(m_scratch.size());
+    std::vector<uint32_t>& cursor = m_cursor;
+    cursor.assign(out.first.begin(), out.first.end());
+    batch = 0;
+    for (size_t k = 0; k < m_scratch.size(); ++k) {
+        while (m_scratch[k] >= m_batchFirst[batch + 1]) ++batch;
+        out.indices[cursor[slotOf[k]]++] = m_scratch[k] - m_batchFirst[batch];
     }
 }
 

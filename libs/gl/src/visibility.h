@@ -9,31 +9,53 @@
 #include "gl_object.h"
 
 #include "shadowkit/core/instance_hierarchy.h"
+#include "shadowkit/scene/mesh_lod.h"
 #include "shadowkit/scene/scene.h"
 
+#include <optional>
 #include <span>
 #include <vector>
 
 namespace shadowkit::gl {
 
-// One pass's instances: for each batch, a range of `indices` holding batch-local instance
-// indices in increasing order (the order a full draw would use, so culling changes no
-// pixel). `offset` is where `indices` starts in the frame's buffer.
+inline constexpr size_t kMaxLodLevels = 4; // levels drawn per mesh (scene::LodOptions::maxLevels)
+
+// One pass's instances: for each batch and level of detail, a range of `indices` holding
+// batch-local instance indices in increasing order (the order a full draw would use, so
+// culling changes no pixel). `offset` is where `indices` starts in the frame's buffer.
 struct PassList {
     std::vector<uint32_t> indices;
-    std::vector<uint32_t> first, count; // per batch, into `indices`
+    std::vector<uint32_t> first, count; // [batch * kMaxLodLevels + level], into `indices`
     uint32_t offset = 0;
+    bool shadow = false;                // levels from the shadow chains (MeshLods::shadow)
     size_t instances() const { return indices.size(); }
+};
+
+// How a pass picks levels of detail: the coarsest level whose geometric error, projected at
+// the instance's centre, stays within every bound: `maxError` units of the pass's own map
+// (pixels for the camera, texels for a shadow map; one NDC unit is `unitsPerNdc`), and
+// for shadow maps also `cameraMaxError` pixels of the camera, since a caster's shadow lies
+// near it and a texel of a uniform map can cover dozens of pixels there.
+struct LodProjection {
+    core::Mat4 clipFromWorld{1.0};
+    double unitsPerNdc = 1.0;
+    double maxError = 0.5;
+};
+struct LodChoice {
+    LodProjection pass;
+    std::optional<LodProjection> camera; // shadow passes
+    bool shadow = false;
 };
 
 class Visibility {
 public:
-    explicit Visibility(const scene::Scene& scene);
+    Visibility(const scene::Scene& scene, std::span<const scene::MeshLods> lods);
 
     const core::Aabb& wsBounds() const { return m_hierarchy.bounds(); }
 
-    // The instances the half-spaces may see (every instance when `cull` is false).
-    void collect(std::span<const core::HalfSpace> volume, bool cull, PassList& out);
+    // The instances the half-spaces may see (every instance when `cull` is false), each at
+    // the level `lod` picks (the full mesh without one).
+    void collect(std::span<const core::HalfSpace> volume, bool cull, const LodChoice* lod, PassList& out);
     // Assigns offsets and uploads every list of the frame into one buffer, bound at
     // SK_VISIBLE_BINDING.
     void upload(std::span<PassList* const> lists);
@@ -41,6 +63,13 @@ public:
 private:
     core::InstanceHierarchy m_hierarchy;    // items in global instance order (Scene order)
     std::vector<uint32_t> m_batchFirst;     // global index of each batch's first instance
+    // Per global instance: its uniform scale and mesh; a level's world error is the mesh's
+    // object error for that level times the scale.
+    std::vector<float> m_instanceScale;
+    std::vector<uint32_t> m_instanceMesh;
+    std::vector<std::vector<float>> m_cameraErrors, m_shadowErrors; // per mesh, per level (object metres)
+    std::vector<uint8_t> m_levels;           // level per visible instance, reused every pass
+    std::vector<uint32_t> m_slots, m_cursor; // counting-sort scratch, reused every pass
     std::vector<uint32_t> m_scratch;        // query result, reused every pass
     std::vector<uint32_t> m_staging;        // the frame's concatenated lists
     Buffer m_buffer;

@@ -141,3 +141,49 @@ TEST_F(CullingTest, CasterOutsideTheViewFrustumIsDrawnIntoTheMapAndItsShadowAppe
         EXPECT_LT(inShadow, 0.7 * lit) << core::techniqueName(t) << ": shadow " << inShadow << ", lit " << lit;
     }
 }
+
+TEST_F(CullingTest, LevelsOfDetailDrawFewerTrianglesForDistantTreesWithinTheirErrorBound) {
+    scene::ForestOptions o;
+    o.trees = 1500;
+    o.terrainSize = 600;
+    o.terrainResolution = 32;
+    const scene::Scene forest = scene::makeForest(o);
+    auto views = scene::loadViews(scene::dataDirectory() / "views.json");
+    ASSERT_TRUE(views);
+    scene::ResolvedView view = scene::resolveView(*scene::findView(*views, "aerial"), forest);
+    view.camera.aspect = 320.0 / 180.0;
+    auto renderer = gl::Renderer::create(forest);
+    ASSERT_TRUE(renderer);
+    for (core::Technique t : {core::Technique::Focused, core::Technique::Tsm, core::Technique::Csm}) {
+        const auto setup = core::computeShadowSetup(
+            {.camera = view.camera, .light = view.light, .wsSceneBounds = forest.wsBounds(), .technique = t, .mapSize = 512});
+        ASSERT_TRUE(setup);
+        gl::RenderSettings settings;
+        settings.width = 320;
+        settings.height = 180;
+        auto frame = [&](bool lod, float bound) {
+            settings.lod = lod;
+            settings.lodPixelError = settings.lodTexelError = bound;
+            auto stats = (*renderer)->render(view.camera, view.light, *setup, settings);
+            auto buffers = (*renderer)->renderEvalBuffers(view.camera, view.light, *setup, settings);
+            EXPECT_TRUE(stats && buffers);
+            return std::pair{*stats, *buffers};
+        };
+        const auto [fullStats, full] = frame(false, 0.5f);
+        const auto [lodStats, lod] = frame(true, 0.5f);
+        const auto [strictStats, strict] = frame(true, 1e-4f);
+        const std::string name(core::techniqueName(t));
+        // Coarser casters for the distant trees of the aerial view; the camera pass draws the
+        // same full meshes either way.
+        EXPECT_LT(lodStats.shadow.triangles, fullStats.shadow.triangles) << name;
+        EXPECT_EQ(lodStats.shadow.instances, fullStats.shadow.instances) << name;
+        EXPECT_EQ(lodStats.main.triangles, fullStats.main.triangles) << name;
+        EXPECT_EQ(lod.surfaceId, full.surfaceId) << name;
+        // (Their effect on correctness is measured against ray-traced truth in
+        // tests/eval_integration_test.cpp.) A bound no level meets draws the full meshes:
+        // the same frame exactly.
+        EXPECT_EQ(strictStats.main.triangles, fullStats.main.triangles) << name;
+        EXPECT_EQ(strictStats.shadow.triangles, fullStats.shadow.triangles) << name;
+        EXPECT_EQ(strict.shadowTerm, full.shadowTerm) << name;
+    }
+}

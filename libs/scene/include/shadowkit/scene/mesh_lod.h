@@ -1,0 +1,43 @@
+// Levels of detail of a mesh: simplified index buffers over the mesh's own vertices, each
+// with the geometric error it introduces, for the camera pass (attributes respected) and
+// for shadow passes (positions only: normals and colours do not reach a depth map).
+#pragma once
+
+#include "shadowkit/scene/scene.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace shadowkit::scene {
+
+struct LodLevel {
+    uint32_t firstIndex = 0; // into MeshLods::indices
+    uint32_t indexCount = 0;
+    // Largest distance, in object-space metres, between the simplified surface and the
+    // original (meshoptimizer's error bound times the mesh's extent). 0 for the full mesh.
+    float objectError = 0.0f;
+};
+
+struct MeshLods {
+    std::vector<uint32_t> indices;    // every level's triangles, back to back; level 0 first
+    std::vector<LodLevel> camera;     // camera[0] is the full mesh
+    std::vector<LodLevel> shadow;     // shadow[0] is the full mesh
+};
+
+struct LodOptions {
+    // Each level aims at this fraction of the previous one's triangles...
+    float reduction = 0.5f;      // (0, 1)
+    // ... without exceeding this error, relative to the mesh's extent (meshoptimizer's
+    // target_error); a level that saves less than 20 % of its predecessor ends the chain.
+    // Coarse levels are safe to offer: a pass only picks a level whose error projects to
+    // under its bound (a fraction of a pixel or texel), i.e. for tiny instances.
+    float maxRelativeError = 0.5f;
+    int maxLevels = 4;           // including the full mesh, [1, 8]
+    // Meshes above this size keep one level: the terrain is one instance, near everything.
+    size_t maxTriangles = 65536;
+};
+
+// Deterministic for a given mesh and options.
+MeshLods buildLods(const Mesh& mesh, const LodOptions& options = {});
+
+} // namespace shadowkit::scene
