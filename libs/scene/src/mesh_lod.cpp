@@ -1,7 +1,7 @@
 // Levels of detail with meshoptimizer.
 //
-// Based on: Garland & Heckbert's quadric error metric as meshoptimizer implements it
-// (meshopt_simplify; Kapoulkine, meshoptimizer, docs/references.md). The camera chain
+// Based on: Garland & Heckbert 1997's quadric error metric as meshoptimizer implements it
+// (meshopt_simplify; full citations in docs/references.md). The camera chain
 // simplifies the mesh as it is, so seams between vertices that share a position but not a
 // normal or colour stay closed and shading stays right. The shadow chain welds vertices by
 // position (meshopt_generateShadowIndexBuffer) and takes, per level, whichever of the

@@ -16,8 +16,9 @@ namespace shadowkit::core {
 // clip matrix: (row3 + row0) · (p, 1) >= 0 is x >= −w. Need not be normalised.
 using HalfSpace = Vec4;
 
-// The half-spaces of the clip volume of `clipFromWorld` (clip depth [0, 1]): left, right,
-// bottom, top, far, and the near plane unless `withNear` is false. Exact for projective
+// The half-spaces of the clip volume of `clipFromWorld` (clip depth [0, 1]; rows combined
+// as in Gribb & Hartmann 2001): left, right, bottom, top, far, and the near plane unless
+// `withNear` is false. Exact for projective
 // matrices: it is the set GL keeps before the divide. Without the near plane the volume is
 // extended towards the light — what a depth-clamped shadow pass still draws.
 std::vector<HalfSpace> clipVolume(const Mat4& clipFromWorld, bool withNear = true);
