@@ -15,15 +15,15 @@
 
 namespace shadowkit::core {
 
-std::vector<double> practicalSplits(double zNear, double zFar, int count, double lambda) {
+SplitDistances practicalSplits(double zNear, double zFar, int count, double lambda) {
     SK_ASSERT(zNear > 0.0 && zFar > zNear && count >= 1 && lambda >= 0.0 && lambda <= 1.0,
               "practicalSplits(): needs 0 < near < far, count >= 1, lambda in [0, 1]");
-    std::vector<double> z(static_cast<size_t>(count) + 1);
+    SplitDistances z;
     for (int i = 0; i <= count; ++i) {
         const double s = double(i) / count;
         const double logarithmic = zNear * std::pow(zFar / zNear, s);
         const double uniform = zNear + s * (zFar - zNear);
-        z[static_cast<size_t>(i)] = lambda * logarithmic + (1.0 - lambda) * uniform;
+        z.push_back(lambda * logarithmic + (1.0 - lambda) * uniform);
     }
     z.front() = zNear;
     z.back() = zFar;

@@ -108,7 +108,10 @@ ShadowSetup computeCascades(const ShadowSetupInputs& in) {
     ShadowSetup setup;
     setup.technique = Technique::Csm;
     setup.body = computeFocusBody(in.camera, in.light, in.wsSceneBounds);
-    std::vector<double> z = o.splits.empty() ? practicalSplits(in.camera.zNear, in.camera.zFar, o.count, o.lambda) : o.splits;
+    SplitDistances z;
+    if (o.splits.empty()) z = practicalSplits(in.camera.zNear, in.camera.zFar, o.count, o.lambda);
+    else
+        for (const double d : o.splits) z.push_back(d);
     z.front() = in.camera.zNear; // exact ends, whatever rounding the caller's list carries
     z.back() = in.camera.zFar;
 

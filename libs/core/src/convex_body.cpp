@@ -25,25 +25,36 @@ Vec3 newellNormal(const ConvexBody::Polygon& poly) {
     return n;
 }
 
-void appendUnique(std::vector<Vec3>& points, const Vec3& p, double eps) {
+template <class Points>
+void appendUnique(Points& points, const Vec3& p, double eps) {
     for (const Vec3& q : points)
         if (glm::length(q - p) <= eps) return;
     points.push_back(p);
 }
 
 // Orders points lying on `plane` counter-clockwise around its normal.
-ConvexBody::Polygon orderOnPlane(std::vector<Vec3> points, const Vec3& normal) {
+ConvexBody::Polygon orderOnPlane(ConvexBody::Polygon points, const Vec3& normal) {
     Vec3 centroid(0.0);
     for (const Vec3& p : points) centroid += p;
     centroid /= static_cast<double>(points.size());
     const Vec3 helper = std::abs(normal.x) < 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0);
     const Vec3 u = glm::normalize(glm::cross(helper, normal));
     const Vec3 v = glm::cross(normal, u); // u × v = normal: CCW about the normal
-    std::sort(points.begin(), points.end(), [&](const Vec3& a, const Vec3& b) {
-        const Vec3 da = a - centroid, db = b - centroid;
-        return std::atan2(glm::dot(da, v), glm::dot(da, u)) < std::atan2(glm::dot(db, v), glm::dot(db, u));
-    });
-    return points;
+    // Sort by angle, each angle computed once (the comparisons, and so the order, are the
+    // same as comparing freshly computed angles).
+    struct Keyed {
+        double angle;
+        Vec3 point;
+    };
+    SmallVector<Keyed, 16> keyed;
+    for (const Vec3& p : points) {
+        const Vec3 d = p - centroid;
+        keyed.push_back({std::atan2(glm::dot(d, v), glm::dot(d, u)), p});
+    }
+    std::sort(keyed.begin(), keyed.end(), [](const Keyed& a, const Keyed& b) { return a.angle < b.angle; });
+    ConvexBody::Polygon ordered;
+    for (const Keyed& k : keyed) ordered.push_back(k.point);
+    return ordered;
 }
 
 } // namespace
@@ -62,8 +73,8 @@ ConvexBody ConvexBody::fromAabb(const Aabb& box) {
         {4, 5, 7, 6}, // +z
     };
     for (const auto& f : faces)
-        body.m_faces.push_back({c[static_cast<size_t>(f[0])], c[static_cast<size_t>(f[1])],
-                                c[static_cast<size_t>(f[2])], c[static_cast<size_t>(f[3])]});
+        body.m_faces.push_back(Polygon{c[static_cast<size_t>(f[0])], c[static_cast<size_t>(f[1])],
+                                       c[static_cast<size_t>(f[2])], c[static_cast<size_t>(f[3])]});
     return body;
 }
 
@@ -90,8 +101,8 @@ void ConvexBody::clip(const Plane& plane) {
     if (!anyOutside) return;                // entirely kept
     if (!anyInside) { m_faces.clear(); return; } // at most a flat sliver remains
 
-    std::vector<Polygon> kept;
-    std::vector<Vec3> capPoints;
+    Faces kept;
+    Polygon capPoints;
     for (const Polygon& face : m_faces) {
         Polygon out;
         for (size_t i = 0; i < face.size(); ++i) {
@@ -116,19 +127,20 @@ void ConvexBody::clip(const Plane& plane) {
         Polygon cap = orderOnPlane(std::move(capPoints), plane.normal);
         if (glm::length(newellNormal(cap)) > eps * eps) kept.push_back(std::move(cap));
     }
-    m_faces = kept.size() >= 4 ? std::move(kept) : std::vector<Polygon>{}; // < 4 faces: no volume
+    if (kept.size() >= 4) m_faces = std::move(kept);
+    else m_faces.clear(); // < 4 faces: no volume
 }
 
 void ConvexBody::clip(std::span<const Plane> planes) {
     for (const Plane& p : planes) clip(p);
 }
 
-std::vector<Plane> ConvexBody::sweepHalfSpaces(const Vec3& wsDirection) const {
-    std::vector<Plane> planes;
+ConvexBody::Planes ConvexBody::sweepHalfSpaces(const Vec3& wsDirection) const {
+    Planes planes;
     if (isEmpty()) return planes;
     const Vec3 dir = glm::normalize(wsDirection);
     const double eps = tolerance();
-    const std::vector<Vec3> verts = vertices();
+    const Points verts = vertices();
 
     for (const Polygon& face : m_faces) {
         const Vec3 n = glm::normalize(newellNormal(face));
@@ -158,8 +170,8 @@ std::vector<Plane> ConvexBody::sweepHalfSpaces(const Vec3& wsDirection) const {
     return planes;
 }
 
-std::vector<Vec3> ConvexBody::vertices() const {
-    std::vector<Vec3> out;
+ConvexBody::Points ConvexBody::vertices() const {
+    Points out;
     const double eps = tolerance();
     for (const Polygon& face : m_faces)
         for (const Vec3& p : face) appendUnique(out, p, eps);

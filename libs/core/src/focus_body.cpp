@@ -36,8 +36,8 @@ ConvexBody computeFocusBody(const PerspectiveCamera& camera, const DirectionalLi
     if (visible.isEmpty()) return visible;
 
     ConvexBody body = ConvexBody::fromAabb(sceneBox); // (V ∩ S swept) ∩ S
-    const std::vector<Plane> sweep = visible.sweepHalfSpaces(light.wsTowardsLight());
-    body.clip(sweep);
+    const ConvexBody::Planes sweep = visible.sweepHalfSpaces(light.wsTowardsLight());
+    body.clip(std::span<const Plane>(sweep.data(), sweep.size()));
     return body;
 }
 

@@ -3,17 +3,19 @@
 #include "shadowkit/core/aabb.h"
 #include "shadowkit/core/camera.h"
 
+#include "shadowkit/core/small_vector.h"
+
 #include <algorithm>
-#include <vector>
 
 namespace shadowkit::core {
 
 LightFrame makeLightFrame(const Vec3& wsLightDirection, const Vec3& wsOrigin,
                           std::initializer_list<Vec3> wsUpCandidates) {
     const Vec3 l = glm::normalize(wsLightDirection);
-    std::vector<Vec3> candidates(wsUpCandidates);
+    SmallVector<Vec3, 8> candidates;
+    for (const Vec3& c : wsUpCandidates) candidates.push_back(c);
     // Every direction has a world axis at least 54.7° away from it: the frame never fails.
-    candidates.insert(candidates.end(), {Vec3(0, 0, -1), Vec3(1, 0, 0), Vec3(0, 1, 0)});
+    for (const Vec3& c : {Vec3(0, 0, -1), Vec3(1, 0, 0), Vec3(0, 1, 0)}) candidates.push_back(c);
 
     for (size_t i = 0; i < candidates.size(); ++i) {
         const double len = glm::length(candidates[i]);

@@ -61,7 +61,7 @@ ShadowSetup computeLispsm(const ShadowSetupInputs& in) {
     const Vec3 v = glm::normalize(cam.wsDirection);
     const double sinGamma = glm::length(glm::cross(v, l));
     const double gammaDegrees = glm::degrees(std::atan2(sinGamma, glm::dot(v, l)));
-    const std::vector<Vec3> wsPoints = setup.body.vertices();
+    const ConvexBody::Points wsPoints = setup.body.vertices();
 
     Vec3 projection = perpendicularTo(v, l); // (l ⊗ v) ⊗ l, unnormalized
     if (o.direction == LispsmDirection::MiddleVector) {
@@ -81,7 +81,7 @@ ShadowSetup computeLispsm(const ShadowSetupInputs& in) {
     }
 
     const LightFrame frame = makeLightFrame(l, cam.wsEye, {projection});
-    std::vector<Vec3> lsPoints;
+    ConvexBody::Points lsPoints;
     Aabb lsBounds;
     for (const Vec3& p : wsPoints) {
         lsPoints.push_back(Vec3(frame.lightFromWorld * Vec4(p, 1.0)));

@@ -42,7 +42,7 @@ ShadowSetup computePsm(const ShadowSetupInputs& in) {
 
     const PerspectiveCamera& cam = in.camera;
     const Vec3 v = glm::normalize(cam.wsDirection);
-    const std::vector<Vec3> wsPoints = setup.body.vertices();
+    const ConvexBody::Points wsPoints = setup.body.vertices();
     double minDepth = INFINITY, maxDepth = -INFINITY;
     for (const Vec3& p : wsPoints) {
         const double depth = glm::dot(p - cam.wsEye, v);
@@ -58,7 +58,7 @@ ShadowSetup computePsm(const ShadowSetupInputs& in) {
     const Mat4 viewFromWorld = virtualCam.viewFromWorld();
     const Mat4 ppFromView = perspectiveZeroToOne(glm::radians(90.0), 1.0, ppNear, ppFar);
 
-    std::vector<Vec3> vsPoints;
+    ConvexBody::Points vsPoints;
     for (const Vec3& p : wsPoints) vsPoints.push_back(Vec3(viewFromWorld * Vec4(p, 1.0)));
 
     // 2. The light in PP space.

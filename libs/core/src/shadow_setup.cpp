@@ -66,11 +66,9 @@ Result<ShadowSetup> runTechnique(const ShadowSetupInputs& inputs) {
 // same for every technique since it does not depend on the warp.
 void addLinearDepth(const ShadowSetupInputs& inputs, ShadowSetup& setup) {
     const Vec3 towards = inputs.light.wsTowardsLight();
-    std::vector<Vec3> points = setup.body.vertices();
-    if (points.empty()) {
-        const auto corners = sceneBoxForFocus(inputs.wsSceneBounds).corners();
-        points.assign(corners.begin(), corners.end());
-    }
+    ConvexBody::Points points = setup.body.vertices();
+    if (points.empty())
+        for (const Vec3& corner : sceneBoxForFocus(inputs.wsSceneBounds).corners()) points.push_back(corner);
     double lo = INFINITY, hi = -INFINITY;
     for (const Vec3& p : points) {
         lo = std::min(lo, glm::dot(p, towards));

@@ -54,7 +54,7 @@ ShadowSetup computeTsm(const ShadowSetupInputs& in) {
     }
     // 2. Centre line frame: u along the line (towards the far plane), w across it.
     const Vec2 u = glm::normalize(axis), w(-u.y, u.x);
-    const std::vector<Vec3> wsPoints = setup.body.vertices();
+    const ConvexBody::Points wsPoints = setup.body.vertices();
     double top = INFINITY, base = -INFINITY;
     for (const Vec3& p : wsPoints) {
         const double along = glm::dot(toL(p) - nearCentre, u);
@@ -96,7 +96,7 @@ ShadowSetup computeTsm(const ShadowSetupInputs& in) {
     trapezoid[2][2] = 1.0;
     trapezoid[0][3] = 1.0;
 
-    std::vector<Vec3> lsPoints; // light space = the focused map's light frame
+    ConvexBody::Points lsPoints; // light space = the focused map's light frame
     for (const Vec3& p : wsPoints) lsPoints.push_back(Vec3(view.lightFromWorld * Vec4(p, 1.0)));
     view.clipFromLight = fitToClipCube(trapezoid * toAB * view.clipFromLight, lsPoints);
     view.clipFromWorld = view.clipFromLight * view.lightFromWorld;

@@ -53,7 +53,7 @@ ShadowSetup computeFocusedShadowMap(const ShadowSetupInputs& inputs) {
     const LightFrame frame = makeLightFrame(inputs.light.wsDirection, cam.wsEye, {cam.wsDirection, cam.wsUp});
     if (frame.upCandidateUsed != 0)
         setup.fallbacks.emplace_back("view parallel to the light: light frame oriented by the camera's up vector");
-    const std::vector<Vec3> points = setup.body.vertices();
+    const ConvexBody::Points points = setup.body.vertices();
     setup.views.push_back(orthographicView(frame, points));
     return setup;
 }

@@ -124,7 +124,8 @@ TEST(ShadowSetupTest, EveryPointOfBLiesInsideTheClipCubeForTenThousandConfigurat
                 const auto corners = sceneBoxForFocus(in.wsSceneBounds).corners();
                 mustFit.assign(corners.begin(), corners.end());
             } else {
-                mustFit = body.vertices();
+                const ConvexBody::Points points = body.vertices();
+                mustFit.assign(points.begin(), points.end());
             }
             for (const Vec3& p : mustFit) {
                 // No point behind a projection centre (w > 0), none outside the clip cube.

@@ -10,6 +10,7 @@
 #include "shadowkit/core/aabb.h"
 #include "shadowkit/core/conventions.h"
 #include "shadowkit/core/plane.h"
+#include "shadowkit/core/small_vector.h"
 
 #include <span>
 #include <vector>
@@ -18,7 +19,13 @@ namespace shadowkit::core {
 
 class ConvexBody {
 public:
-    using Polygon = std::vector<Vec3>; // counter-clockwise seen from outside
+    // Inline capacities: a box clipped by a frustum, its sweep and the scene box has about
+    // a dozen faces of up to eight points; beyond these sizes the containers spill to the
+    // heap (still correct, no longer allocation-free).
+    using Polygon = SmallVector<Vec3, 12>; // counter-clockwise seen from outside
+    using Faces = SmallVector<Polygon, 20>;
+    using Points = SmallVector<Vec3, 48>;
+    using Planes = SmallVector<Plane, 48>;
 
     ConvexBody() = default; // the empty body
     static ConvexBody fromAabb(const Aabb& box);
@@ -31,12 +38,12 @@ public:
     // (the Minkowski sum with the ray {t·dir, t >= 0}): the faces that do not face along
     // the direction, plus one plane through each silhouette edge containing the
     // direction. Intersect with a bounded body to use it.
-    std::vector<Plane> sweepHalfSpaces(const Vec3& wsDirection) const;
+    Planes sweepHalfSpaces(const Vec3& wsDirection) const;
 
     bool isEmpty() const { return m_faces.empty(); }
-    const std::vector<Polygon>& faces() const { return m_faces; }
+    const Faces& faces() const { return m_faces; }
     // Each distinct vertex once.
-    std::vector<Vec3> vertices() const;
+    Points vertices() const;
     Aabb bounds() const;
     // True if p lies inside every face plane, with a tolerance of eps metres.
     bool contains(const Vec3& p, double eps) const;
@@ -45,7 +52,7 @@ public:
 private:
     double tolerance() const;
 
-    std::vector<Polygon> m_faces;
+    Faces m_faces;
 };
 
 } // namespace shadowkit::core

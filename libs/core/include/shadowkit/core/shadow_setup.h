@@ -7,6 +7,7 @@
 #include "shadowkit/core/convex_body.h"
 #include "shadowkit/core/light.h"
 #include "shadowkit/core/result.h"
+#include "shadowkit/core/small_vector.h"
 
 #include <optional>
 #include <span>
@@ -116,6 +117,7 @@ struct CascadeOptions {
 Status validate(const CascadeOptions& options);
 
 inline constexpr int kMinMapSize = 16, kMaxMapSize = 16384; // texels per side
+inline constexpr size_t kMaxShadowViews = 8;                  // maps in one set-up (cascades.count <= 8)
 // Error field "map_size".
 Status validateMapSize(int texelsPerSide);
 
@@ -174,7 +176,9 @@ struct ShadowView {
 
 struct ShadowSetup {
     Technique technique = Technique::Focused;
-    std::vector<ShadowView> views;   // one per shadow map
+    // One per shadow map, held inline (up to kMaxShadowViews: eight cascades) so that
+    // computing a set-up does not allocate.
+    SmallVector<ShadowView, kMaxShadowViews> views;
     ConvexBody body;                 // B (empty for `standard`, or when the view misses the scene)
     std::vector<std::string> fallbacks; // degenerate cases met and what was done instead
     int mapSize = 2048;                 // texels per side of every map: what the renderer allocates
