@@ -3,6 +3,7 @@
 #include "uniforms.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 namespace shadowkit::gl {
@@ -61,8 +62,15 @@ Visibility::Visibility(const scene::Scene& scene, std::span<const scene::MeshLod
 void Visibility::collect(std::span<const core::HalfSpace> volume, bool cull, const LodChoice* lod, PassList& out) {
     m_scratch.clear();
     if (cull) {
+        // The hierarchy answers in tree order; a bitmap over every instance puts the answer
+        // back in instance order in O(n / 64 + visible), cheaper than sorting it.
         m_hierarchy.query(volume, m_scratch);
-        std::sort(m_scratch.begin(), m_scratch.end());
+        m_visibleBits.assign((m_hierarchy.size() + 63) / 64, 0);
+        for (const uint32_t i : m_scratch) m_visibleBits[i / 64] |= uint64_t{1} << (i % 64);
+        m_scratch.clear();
+        for (size_t word = 0; word < m_visibleBits.size(); ++word)
+            for (uint64_t bits = m_visibleBits[word]; bits != 0; bits &= bits - 1)
+                m_scratch.push_back(static_cast<uint32_t>(64 * word + static_cast<size_t>(std::countr_zero(bits))));
     } else {
         m_scratch.resize(m_hierarchy.size());
         for (uint32_t i = 0; i < m_scratch.size(); ++i) m_scratch[i] = i;

@@ -70,6 +70,7 @@ private:
     std::vector<std::vector<float>> m_cameraErrors, m_shadowErrors; // per mesh, per level (object metres)
     std::vector<uint8_t> m_levels;           // level per visible instance, reused every pass
     std::vector<uint32_t> m_slots, m_cursor; // counting-sort scratch, reused every pass
+    std::vector<uint64_t> m_visibleBits;     // one bit per instance, reused every pass
     std::vector<uint32_t> m_scratch;        // query result, reused every pass
     std::vector<uint32_t> m_staging;        // the frame's concatenated lists
     Buffer m_buffer;
