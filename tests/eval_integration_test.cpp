@@ -1,6 +1,7 @@
 // Rasterized shadows measured against ray-traced truth, end to end (GL + eval).
 // CTest label `gl`: runs headless on Mesa llvmpipe.
 #include "headless_gl_test.h"
+#include "test_scenes.h"
 
 #include "shadowkit/core/bias.h"
 #include "shadowkit/measure/measurer.h"
@@ -34,14 +35,8 @@ protected:
 } // namespace
 
 TEST_F(EvalIntegrationTest, SmallMapScoresWorseThanLargeMapOnTheSameView) {
-    scene::ForestOptions o;
-    o.trees = 300;
-    o.terrainSize = 200;
-    o.terrainResolution = 32;
-    const scene::Scene forest = scene::makeForest(o);
-    auto views = scene::loadViews(scene::dataDirectory() / "views.json");
-    ASSERT_TRUE(views);
-    scene::ResolvedView view = scene::resolveView(*scene::findView(*views, "aerial"), forest);
+    const scene::Scene forest = gl::testing::smallForest(300, 200, 32);
+    scene::ResolvedView view = gl::testing::standardView(forest, "aerial");
     view.camera.zFar = 400;
     view.camera.aspect = 4.0 / 3.0;
     gl::RenderSettings settings;
@@ -121,14 +116,8 @@ TEST_F(EvalIntegrationTest, ExcessiveConstantBiasDetachesShadowsIntoFalseLit) {
 
 TEST_F(EvalIntegrationTest, LispsmBeatsFocusedOnThePerpendicularView) {
     // Wimmer et al. 2004's ideal case: view perpendicular to the light. Same map size, same view.
-    scene::ForestOptions o;
-    o.trees = 1500;
-    o.terrainSize = 300;
-    o.terrainResolution = 64;
-    const scene::Scene forest = scene::makeForest(o);
-    auto views = scene::loadViews(scene::dataDirectory() / "views.json");
-    ASSERT_TRUE(views);
-    scene::ResolvedView view = scene::resolveView(*scene::findView(*views, "perpendicular"), forest);
+    const scene::Scene forest = gl::testing::smallForest(1500, 300, 64);
+    scene::ResolvedView view = gl::testing::standardView(forest, "perpendicular");
     gl::RenderSettings settings;
     settings.width = 320;
     settings.height = 180;
@@ -148,9 +137,7 @@ TEST_F(EvalIntegrationTest, RecommendedBiasBeatsNoBiasAndTheSeedsBiasWhereItWasC
     // constant 4 does better for TSM, LiSPSM and CSM: the half-texel normal offset is then
     // a large step. The recommendation is a measured default, not a universal optimum.)
     const scene::Scene forest = scene::makeForest(scene::ForestOptions{});
-    auto views = scene::loadViews(scene::dataDirectory() / "views.json");
-    ASSERT_TRUE(views);
-    const scene::ResolvedView view = scene::resolveView(*scene::findView(*views, "paper"), forest);
+    const scene::ResolvedView view = gl::testing::standardView(forest, "paper");
     auto measurer = measure::Measurer::create(forest);
     ASSERT_TRUE(measurer) << measurer.error();
     gl::RenderSettings settings;
@@ -177,14 +164,8 @@ TEST_F(EvalIntegrationTest, RecommendedBiasBeatsNoBiasAndTheSeedsBiasWhereItWasC
 TEST_F(EvalIntegrationTest, CullingAndLevelsOfDetailLeaveTheFiguresWhereTheyWere) {
     // The contract of culling and LOD: invisible against ray-traced truth. An aerial view of
     // a forest whose far trees take coarse levels, for a uniform, a warped and a cascaded map.
-    scene::ForestOptions o;
-    o.trees = 3000;
-    o.terrainSize = 700;
-    o.terrainResolution = 64;
-    const scene::Scene forest = scene::makeForest(o);
-    auto views = scene::loadViews(scene::dataDirectory() / "views.json");
-    ASSERT_TRUE(views);
-    const scene::ResolvedView view = scene::resolveView(*scene::findView(*views, "aerial"), forest);
+    const scene::Scene forest = gl::testing::smallForest(3000, 700, 64);
+    const scene::ResolvedView view = gl::testing::standardView(forest, "aerial");
     auto measurer = measure::Measurer::create(forest);
     ASSERT_TRUE(measurer) << measurer.error();
     for (core::Technique t : {core::Technique::Focused, core::Technique::Tsm, core::Technique::Csm}) {

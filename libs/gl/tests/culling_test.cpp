@@ -1,6 +1,7 @@
 // Culling per pass is invisible by contract: the same pixels with and without it, for every
 // technique; and a caster outside the view frustum still casts into it. CTest label `gl`.
 #include "headless_gl_test.h"
+#include "test_scenes.h"
 
 #include "shadowkit/gl/renderer.h"
 #include "shadowkit/scene/forest.h"
@@ -41,19 +42,13 @@ std::vector<Variant> everyTechnique(const scene::ResolvedView& view, const core:
 } // namespace
 
 TEST_F(CullingTest, CulledFramesMatchFullFramesPixelForPixelForEveryTechnique) {
-    scene::ForestOptions o;
-    o.trees = 400;
-    o.terrainSize = 300;
-    o.terrainResolution = 32;
-    const scene::Scene forest = scene::makeForest(o);
-    auto views = scene::loadViews(scene::dataDirectory() / "views.json");
-    ASSERT_TRUE(views);
+    const scene::Scene forest = gl::testing::smallForest(400, 300, 32);
     auto renderer = gl::Renderer::create(forest);
     ASSERT_TRUE(renderer) << renderer.error();
     EXPECT_EQ((*renderer)->wsSceneBounds().min, forest.wsBounds().min);
     EXPECT_EQ((*renderer)->wsSceneBounds().max, forest.wsBounds().max);
     for (const char* viewName : {"perpendicular", "aerial"}) {
-        scene::ResolvedView view = scene::resolveView(*scene::findView(*views, viewName), forest);
+        scene::ResolvedView view = gl::testing::standardView(forest, viewName);
         view.camera.aspect = 160.0 / 90.0;
         for (const Variant& v : everyTechnique(view, forest.wsBounds())) {
             const auto setup = core::computeShadowSetup(v.inputs);
@@ -143,14 +138,8 @@ TEST_F(CullingTest, CasterOutsideTheViewFrustumIsDrawnIntoTheMapAndItsShadowAppe
 }
 
 TEST_F(CullingTest, LevelsOfDetailDrawFewerTrianglesForDistantTreesWithinTheirErrorBound) {
-    scene::ForestOptions o;
-    o.trees = 1500;
-    o.terrainSize = 600;
-    o.terrainResolution = 32;
-    const scene::Scene forest = scene::makeForest(o);
-    auto views = scene::loadViews(scene::dataDirectory() / "views.json");
-    ASSERT_TRUE(views);
-    scene::ResolvedView view = scene::resolveView(*scene::findView(*views, "aerial"), forest);
+    const scene::Scene forest = gl::testing::smallForest(1500, 600, 32);
+    scene::ResolvedView view = gl::testing::standardView(forest, "aerial");
     view.camera.aspect = 320.0 / 180.0;
     auto renderer = gl::Renderer::create(forest);
     ASSERT_TRUE(renderer);

@@ -1,0 +1,38 @@
+// Scenes and views the rendering tests share: a small procedural forest and a standard
+// view placed over it.
+#pragma once
+
+#include "shadowkit/scene/forest.h"
+#include "shadowkit/scene/views.h"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+namespace shadowkit::gl::testing {
+
+inline scene::Scene smallForest(int trees, double terrainSize, int terrainResolution) {
+    scene::ForestOptions o;
+    o.trees = trees;
+    o.terrainSize = terrainSize;
+    o.terrainResolution = terrainResolution;
+    return scene::makeForest(o);
+}
+
+// The named view of data/views.json over `scene`; a failed test and a default view when
+// the file or the view is missing.
+inline scene::ResolvedView standardView(const scene::Scene& scene, const std::string& name) {
+    auto views = scene::loadViews(scene::dataDirectory() / "views.json");
+    if (!views) {
+        ADD_FAILURE() << views.error();
+        return {};
+    }
+    auto spec = scene::findView(*views, name);
+    if (!spec) {
+        ADD_FAILURE() << spec.error();
+        return {};
+    }
+    return scene::resolveView(*spec, scene);
+}
+
+} // namespace shadowkit::gl::testing
