@@ -12,7 +12,8 @@ namespace {
 std::vector<GpuScene::Range> rangesOf(const std::vector<scene::LodLevel>& chain) {
     std::vector<GpuScene::Range> ranges;
     for (size_t l = 0; l < std::min(chain.size(), kMaxLodLevels); ++l)
-        ranges.push_back({static_cast<GLsizei>(chain[l].indexCount), chain[l].firstIndex * sizeof(uint32_t)});
+        ranges.push_back(
+            {static_cast<GLsizei>(chain[l].indexCount), chain[l].firstIndex * sizeof(uint32_t), chain[l].objectError});
     return ranges;
 }
 
@@ -71,6 +72,8 @@ DrawStats GpuScene::draw(const PassList& list, bool setInstanceBase) const {
             }
             glUniform1ui(kInstanceOffsetLocation, list.offset + list.first[slot]);
             const Range& range = levels[level];
+            // Camera passes move simplified receivers' shadow lookups by their error (main.vert).
+            if (setInstanceBase) glUniform1f(kLodErrorLocation, range.objectError);
             glDrawElementsInstanced(GL_TRIANGLES, range.indexCount, GL_UNSIGNED_INT,
                                     reinterpret_cast<const void*>(range.byteOffset), static_cast<GLsizei>(count));
             stats.instances += count;

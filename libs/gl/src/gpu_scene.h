@@ -33,6 +33,7 @@ public:
     struct Range {
         GLsizei indexCount = 0;
         size_t byteOffset = 0;
+        float objectError = 0.0f; // scene::LodLevel::objectError
     };
 
 private:

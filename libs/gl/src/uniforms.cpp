@@ -72,6 +72,7 @@ const std::string& shaderPrelude() {
         define("SK_INSTANCES_BINDING", kInstancesBinding);
         define("SK_VISIBLE_BINDING", kVisibleBinding);
         define("SK_INSTANCE_OFFSET_LOCATION", kInstanceOffsetLocation);
+        define("SK_LOD_ERROR_LOCATION", kLodErrorLocation);
         define("SK_SHADOW_MAP_UNIT", kShadowMapUnit);
         define("SK_SHADOW_MASK_UNIT", kShadowMaskUnit);
         define("SK_BLUR_MASK_UNIT", kBlurMaskUnit);

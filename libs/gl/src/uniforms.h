@@ -31,6 +31,7 @@ inline constexpr unsigned kBlurMaskUnit = 0;   // blur pass: the mask being blur
 inline constexpr unsigned kBlurDepthUnit = 1;  // blur pass: view depth, to stop at depth steps
 inline constexpr int kInstanceBaseLocation = 0;   // uniform uint instanceBase (main.vert): surface identity
 inline constexpr int kInstanceOffsetLocation = 1; // uniform uint instanceOffset: the draw's list in visibleInstances
+inline constexpr int kLodErrorLocation = 2;       // uniform float lodObjectError (main.vert): the level's error
 
 // std140: scalars pack in fours, vec4 and mat4 start on 16 bytes. Booleans are int32.
 

@@ -3,6 +3,7 @@ in vec3 wsPosition;
 in vec3 wsNormal;
 in vec3 vAlbedo;
 flat in uint vSurfaceId;
+flat in float vLodError;
 
 layout(location = 0) out float outShadowTerm;
 layout(location = 1) out uint outSurfaceId;
@@ -14,7 +15,7 @@ layout(location = 5) out vec4 outTexelFromPixel;
 void main() {
     const vec3 dwsdx = dFdx(wsPosition), dwsdy = dFdy(wsPosition); // uniform control flow
     // The maps' test alone, without N·L (also the mask the eye-space blur starts from).
-    outShadowTerm = shadowTerm(wsPosition, normalize(wsNormal), dwsdx, dwsdy);
+    outShadowTerm = shadowTerm(receiverLookup(wsPosition, vLodError), normalize(wsNormal), dwsdx, dwsdy);
     outSurfaceId = vSurfaceId;
     outViewDepth = viewDepthOf(wsPosition);
     outNormal = vec4(normalize(wsNormal), 0.0);

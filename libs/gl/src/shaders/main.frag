@@ -3,6 +3,7 @@ in vec3 wsPosition;
 in vec3 wsNormal;
 in vec3 vAlbedo;
 flat in uint vSurfaceId;
+flat in float vLodError;
 
 layout(location = 0) out vec4 outColor;
 
@@ -19,7 +20,7 @@ void main() {
     const float nDotL = max(dot(n, l), 0.0);
     const vec3 dwsdx = dFdx(wsPosition), dwsdy = dFdy(wsPosition); // uniform control flow
     const float term = readBlurredMask != 0 ? texelFetch(shadowMask, ivec2(gl_FragCoord.xy), 0).r
-                                            : shadowTerm(wsPosition, n, dwsdx, dwsdy);
+                                            : shadowTerm(receiverLookup(wsPosition, vLodError), n, dwsdx, dwsdy);
     const float lit = nDotL > 0.0 ? term : 0.0;
     vec3 albedo = vAlbedo;
     if (cascadeColors != 0) albedo *= kCascadeTint[cascadeOf(viewDepthOf(wsPosition))];

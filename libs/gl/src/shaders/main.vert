@@ -6,10 +6,14 @@ layout(location = 2) in vec3 albedo;
 // Global index of this batch's first instance: surface identity shared with the ray tracer.
 layout(location = SK_INSTANCE_BASE_LOCATION) uniform uint instanceBase;
 
+// The geometric error of the level of detail drawn, in object metres (0: the full mesh).
+layout(location = SK_LOD_ERROR_LOCATION) uniform float lodObjectError;
+
 out vec3 wsPosition;
 out vec3 wsNormal;
 out vec3 vAlbedo;
 flat out uint vSurfaceId;
+flat out float vLodError; // in world metres
 
 void main() {
     const uint instance = visibleInstances[instanceOffset + uint(gl_InstanceID)];
@@ -19,5 +23,6 @@ void main() {
     wsNormal = mat3(m) * osNormal; // rigid + uniform scale: renormalised per fragment
     vAlbedo = albedo;
     vSurfaceId = instanceBase + instance + 1u;
+    vLodError = lodObjectError * length(m[0].xyz); // rigid + uniform scale
     gl_Position = clipFromWorld * ws;
 }

@@ -6,6 +6,12 @@ layout(binding = SK_SHADOW_MAP_UNIT) uniform sampler2DArrayShadow shadowMap;
 
 float viewDepthOf(vec3 ws) { return dot(ws - wsEye.xyz, wsViewForward.xyz); }
 
+// Where a receiver looks itself up: a simplified surface lies up to `lodError` metres off
+// the true one, which the map holds, so it is moved that far towards the light — never
+// behind its own surface (no self-shadowing), at most a fraction of a pixel from it (the
+// level was chosen so). Exactly `ws` for full meshes (lodError 0).
+vec3 receiverLookup(vec3 ws, float lodError) { return ws + wsTowardsLight.xyz * lodError; }
+
 // The map serving this view depth: the first whose range ends beyond it.
 int cascadeOf(float viewDepth) {
     for (int i = 0; i < mapCount - 1; ++i)

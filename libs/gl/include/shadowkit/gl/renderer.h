@@ -45,11 +45,11 @@ struct RenderSettings {
     // frustum, each shadow map those meeting its clip volume extended towards the light.
     // Invisible by contract (the same pixels either way); false draws everything.
     bool cull = true;
-    // Levels of detail for shadow casters (scene::buildLods): in each shadow pass every
-    // instance is drawn at the coarsest level whose geometric error, projected at its
-    // centre, stays within lodTexelError texels of that map and lodPixelError pixels of the
-    // camera (its shadow lies near it). The camera pass always draws full meshes.
-    // false: full meshes everywhere.
+    // Levels of detail (scene::buildLods): every instance is drawn at the coarsest level
+    // whose geometric error, projected at its centre, stays within lodPixelError pixels of
+    // the camera, and in a shadow pass also within lodTexelError texels of that map (a
+    // caster's shadow lies near it). Simplified receivers look themselves up moved towards
+    // the light by their error, so they do not self-shadow. false: full meshes everywhere.
     bool lod = true;
     float lodPixelError = 0.25f; // (0, 16]
     float lodTexelError = 0.25f; // (0, 16]
