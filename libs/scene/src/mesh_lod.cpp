@@ -62,6 +62,10 @@ MeshLods buildLods(const Mesh& mesh, const LodOptions& o) {
     }
     const float scale = meshopt_simplifyScale(&mesh.vertices[0].position.x, mesh.vertices.size(), sizeof(Vertex));
     appendChain(mesh, mesh.indices, o, scale, false, out, out.camera);
+    if (mesh.triangleCount() > o.maxTriangles) { // one level: both passes draw the same triangles
+        out.shadow = out.camera;
+        return out;
+    }
     std::vector<uint32_t> welded(mesh.indices.size());
     meshopt_generateShadowIndexBuffer(welded.data(), mesh.indices.data(), mesh.indices.size(), &mesh.vertices[0].position,
                                       mesh.vertices.size(), sizeof(glm::vec3), sizeof(Vertex));
