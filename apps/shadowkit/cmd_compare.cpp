@@ -117,7 +117,7 @@ int runCompare(const CompareArgs& args) {
         const CellOptions& o = options[i];
         auto view = o.view.resolve(*sceneData);
         if (!view) return fail(view.error());
-        auto inputs = o.technique.inputsFor(*view, sceneData->wsBounds());
+        auto inputs = o.technique.inputsFor(*view, (*measurer)->renderer().wsSceneBounds());
         if (!inputs) return fail(inputs.error());
         auto settings = o.render.settingsFor(*view, *inputs);
         if (!settings) return fail(settings.error());

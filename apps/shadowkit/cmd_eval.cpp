@@ -87,7 +87,7 @@ int runEval(const EvalArgs& args) {
         viewOptions.view = name;
         auto view = viewOptions.resolve(*sceneData);
         if (!view) return fail(view.error());
-        auto inputs = args.technique.inputsFor(*view, sceneData->wsBounds());
+        auto inputs = args.technique.inputsFor(*view, (*measurer)->renderer().wsSceneBounds()); // O(1)
         if (!inputs) return fail(inputs.error());
         auto settings = args.render.settingsFor(*view, *inputs);
         if (!settings) return fail(settings.error());
