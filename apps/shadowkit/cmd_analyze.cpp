@@ -31,7 +31,7 @@ struct AnalyzeArgs {
 int runAnalyze(const AnalyzeArgs& args) {
     if (!(args.zNear > 0.0 && args.zFar > args.zNear && std::isfinite(args.zFar)))
         return fail(fmt::format("--zn/--zf: need 0 < zn < zf, got {} and {}", args.zNear, args.zFar));
-    if (auto s = args.technique.check(); !s) return fail(s.error());
+    if (auto s = args.technique.check(/*measuresFrames=*/false); !s) return fail(s.error());
 
     // 1. Figure 6: view perpendicular to the light, B = the view frustum.
     const double nOpt = core::lispsmOptimalN(args.zNear, args.zFar);

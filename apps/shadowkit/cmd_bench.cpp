@@ -59,7 +59,7 @@ int runBench(const BenchArgs& args) {
     auto counts = parseCounts(args.trees);
     if (!counts) return fail(counts.error());
     if (args.frames < 1 || args.frames > 1000) return fail("--frames: must be in [1, 1000]");
-    if (auto s = args.technique.check(); !s) return fail(s.error());
+    if (auto s = args.technique.check(/*measuresFrames=*/false); !s) return fail(s.error());
     if (auto s = args.render.check(); !s) return fail(s.error());
     std::vector<std::string> viewNames;
     std::stringstream ss(args.views);

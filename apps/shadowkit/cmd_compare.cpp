@@ -122,7 +122,8 @@ int runCompare(const CompareArgs& args) {
         auto settings = o.render.settingsFor(*view, *inputs);
         if (!settings) return fail(settings.error());
         // Cells that share camera, sun and size share one ray-traced truth (Measurer's cache).
-        auto measured = (*measurer)->measure(*inputs, *settings, {.shadedImage = true});
+        auto measured = (*measurer)->measure(
+            *inputs, *settings, {.shadedImage = true, .visibleDepthFromFrame = o.technique.visibleDepthFromFrame()});
         if (!measured) return fail("--configs: " + withFlagName(measured.errorInfo()).message);
         images.push_back(std::move(measured->image));
         const eval::Figures& f = measured->figures();

@@ -94,6 +94,7 @@ int runEval(const EvalArgs& args) {
 
         // Progress only when the truth takes a while (large images, big scenes).
         measure::MeasureOptions options;
+        options.visibleDepthFromFrame = args.technique.visibleDepthFromFrame();
         options.truthProgress = [&, shown = false](double done) mutable {
             const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
             if ((elapsed < 2.0 && !shown) || !isatty(fileno(stderr))) return; // a log gets the table only

@@ -34,17 +34,22 @@ int runRender(const RenderArgs& args) {
     auto renderer = gl::Renderer::create(*sceneData);
     if (!renderer) return fail(renderer.error());
 
-    // What a frame costs on the CPU before drawing: the scene bounds come from the
-    // renderer's instance hierarchy (O(1)), then the set-up.
-    const auto cpuStart = std::chrono::steady_clock::now();
-    auto inputs = args.technique.inputsFor(*view, (*renderer)->wsSceneBounds());
+    auto inputs = args.technique.inputsFor(*view, (*renderer)->wsSceneBounds()); // bounds O(1): the hierarchy's
     if (!inputs) return fail(inputs.error());
-    auto setup = core::computeShadowSetup(*inputs);
-    if (!setup) return fail(withFlagName(setup.errorInfo()).message);
-    const double setupMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - cpuStart).count();
     auto settingsOr = args.render.settingsFor(*view, *inputs);
     if (!settingsOr) return fail(settingsOr.error());
     const gl::RenderSettings& settings = *settingsOr;
+    if (args.technique.visibleDepthFromFrame()) {
+        auto refined = gl::withVisibleDepth(**renderer, *inputs, settings);
+        if (!refined) return fail(withFlagName(refined.errorInfo()).message);
+        inputs = std::move(refined).value();
+    }
+
+    // What a frame costs on the CPU before drawing: the set-up.
+    const auto cpuStart = std::chrono::steady_clock::now();
+    auto setup = core::computeShadowSetup(*inputs);
+    if (!setup) return fail(withFlagName(setup.errorInfo()).message);
+    const double setupMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - cpuStart).count();
 
     const auto frameStart = std::chrono::steady_clock::now();
     auto stats = (*renderer)->render(view->camera, view->light, *setup, settings);
@@ -64,6 +69,7 @@ int runRender(const RenderArgs& args) {
         fmt::print("  {}    {:8.1f} ms GPU  {:6.2f} M triangles  {} instances  {} draws\n", name, pass->gpuMilliseconds,
                    static_cast<double>(pass->triangles) * 1e-6, pass->instances, pass->drawCalls);
     fmt::print("  frame (wall)   {:8.1f} ms incl. readback\n", frameMs);
+    if (const auto& v = inputs->lispsm.visibleDepth) fmt::print("  visible depth  {:.2f} .. {:.2f} m (LiSPSM n)\n", v->x, v->y);
     for (const std::string& f : setup->fallbacks) fmt::print("  fallback: {}\n", f);
     fmt::print("wrote {}{}\n", args.out, args.shadowMapOut.empty() ? "" : " and " + args.shadowMapOut);
     return 0;

@@ -54,7 +54,7 @@ json warpJson(const core::WarpParameters& warp) {
 }
 
 int runSetup(const SetupArgs& args) {
-    if (auto s = args.technique.check(); !s) return fail(s.error());
+    if (auto s = args.technique.check(/*measuresFrames=*/false); !s) return fail(s.error());
     auto bounded = args.bounds.resolve(args.scene, args.view);
     if (!bounded) return fail(bounded.error());
     const core::Aabb& bounds = bounded->wsBounds;

@@ -299,7 +299,9 @@ void TechniqueOptions::addTo(CLI::App& cmd) {
         ->default_str("cross");
     cmd.add_option("--lispsm-weight", lispsmWeight, "LiSPSM: multiplies n (> 1 warps less)")->capture_default_str();
     cmd.add_option("--lispsm-n", lispsmN, "LiSPSM: fixed n in metres instead of the formula");
-    cmd.add_option("--visible-depth", visibleDepth, "near,far view depth actually visible (LiSPSM n only, Scherzer 2005 §4.4)");
+    cmd.add_option("--visible-depth", visibleDepth,
+                   "near,far view depth actually visible, or 'auto' to measure it from the frame (LiSPSM n only, "
+                   "Scherzer 2005 §4.4)");
     cmd.add_option("--tsm-focus", tsmFocus, "TSM: focus point as a fraction of the view depth range (80 % rule)")
         ->capture_default_str();
     cmd.add_option("--depth-layout", depthLayout, "shadow depth (auto: linear for TSM, else hyperbolic)")
@@ -318,7 +320,10 @@ void TechniqueOptions::addTo(CLI::App& cmd) {
         ->capture_default_str();
 }
 
-core::Status TechniqueOptions::check() const {
+core::Status TechniqueOptions::check(bool measuresFrames) const {
+    if (!measuresFrames && visibleDepthFromFrame())
+        return core::makeError("--visible-depth: 'auto' measures a rendered frame, so give near,far here "
+                               "(render, eval and compare take auto)");
     auto in = inputsFor(scene::ResolvedView{}, core::Aabb::fromMinMax(core::Vec3(0.0), core::Vec3(1.0)));
     if (!in) return in.errorInfo();
     // The camera-independent checks only: the view is not resolved yet.
@@ -339,10 +344,10 @@ core::Result<core::ShadowSetupInputs> TechniqueOptions::inputsFor(const scene::R
     in.cascades = cascades;
     if (!splits.empty() && !parseNumbers(splits, ',', in.cascades.splits))
         return core::makeError(fmt::format("--splits: expected comma-separated distances, got '{}'", splits));
-    if (!visibleDepth.empty()) {
+    if (!visibleDepth.empty() && !visibleDepthFromFrame()) {
         std::vector<double> v;
         if (!parseNumbers(visibleDepth, ',', v) || v.size() != 2)
-            return core::makeError(fmt::format("--visible-depth: expected near,far, got '{}'", visibleDepth));
+            return core::makeError(fmt::format("--visible-depth: expected near,far or auto, got '{}'", visibleDepth));
         in.lispsm.visibleDepth = core::Vec2(v[0], v[1]);
     }
     return in;

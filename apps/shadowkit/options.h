@@ -42,7 +42,9 @@ struct TechniqueOptions {
     core::Technique technique = core::defaultTechnique();
     core::LispsmFormula lispsmFormula = core::LispsmOptions{}.formula;
     core::LispsmDirection lispsmDirection = core::LispsmOptions{}.direction;
-    std::string visibleDepth, splits; // raw "near,far" / "a,b,c" text, parsed by inputsFor()
+    std::string visibleDepth, splits; // raw "near,far" (or "auto") / "a,b,c" text, parsed by inputsFor()
+    // --visible-depth auto: measure the visible range from the frame (gl::withVisibleDepth).
+    bool visibleDepthFromFrame() const { return visibleDepth == "auto"; }
     enum class LayoutChoice { Auto, Hyperbolic, Linear }; // Auto: the technique's own
     LayoutChoice depthLayout = LayoutChoice::Auto;
     double lispsmWeight = core::LispsmOptions{}.weight;
@@ -53,7 +55,8 @@ struct TechniqueOptions {
 
     void addTo(CLI::App& cmd);
     // Checks the technique's flags (cheap: call before loading a scene); errors name the flag.
-    core::Status check() const;
+    // Commands that do not render and measure a frame refuse --visible-depth auto.
+    core::Status check(bool measuresFrames = true) const;
     // Everything computeShadowSetup needs for this view and scene box.
     core::Result<core::ShadowSetupInputs> inputsFor(const scene::ResolvedView& view, const core::Aabb& wsBounds) const;
 };

@@ -1,4 +1,5 @@
 #include "shadowkit/core/lispsm.h"
+#include "shadowkit/core/visible_depth.h"
 #include "shadowkit/core/perspective_aliasing.h"
 
 #include <gtest/gtest.h>
@@ -154,4 +155,18 @@ TEST(LispsmTest, MiddleVectorWarpsAlongTheBodyWhereTheCrossProductFollowsTheView
             EXPECT_LE(std::abs(c.x / c.w), 1.0 + 1e-9);
             EXPECT_LE(std::abs(c.y / c.w), 1.0 + 1e-9);
         }
+}
+
+TEST(VisibleDepthTest, RangeOfDrawnPixelsOnlyAndNothingWithoutThem) {
+    const std::vector<float> depths = {0.0f, 12.5f, 3.25f, 0.0f, NAN, 40.0f, -1.0f, INFINITY};
+    const auto range = visibleDepthRange(depths);
+    ASSERT_TRUE(range);
+    EXPECT_EQ(range->x, 3.25);
+    EXPECT_EQ(range->y, 40.0);
+    EXPECT_FALSE(visibleDepthRange(std::vector<float>{0.0f, 0.0f}));
+    EXPECT_FALSE(visibleDepthRange(std::vector<float>{}));
+    const auto single = visibleDepthRange(std::vector<float>{7.0f});
+    ASSERT_TRUE(single);
+    EXPECT_GT(single->y, single->x); // a valid [near, far] for LispsmOptions
+    EXPECT_TRUE(validate(LispsmOptions{.visibleDepth = *single}));
 }

@@ -39,6 +39,7 @@ std::string reportJson(const std::vector<ViewReport>& views) {
             {"pixels_per_texel_p99", f.pixelsPerTexelP99},
             {"seconds", v.seconds},
         });
+        if (v.visibleDepth) list.back()["visible_depth"] = {v.visibleDepth->x, v.visibleDepth->y};
     }
     return nlohmann::json{{"views", list}}.dump(2) + "\n";
 }

@@ -137,6 +137,11 @@ void EvalTarget::clear() const {
     glClearNamedFramebufferfv(framebuffer.id(), GL_DEPTH, 0, &clearDepth);
 }
 
+std::vector<float> EvalTarget::readViewDepth() const {
+    // Row order does not matter to a min/max; the same read keeps one code path.
+    return readFlipped<float>(viewDepth, GL_RED, GL_FLOAT, width, height);
+}
+
 core::RasterBuffers EvalTarget::read() const {
     core::RasterBuffers b;
     b.width = width;

@@ -8,6 +8,8 @@
 #include "uniforms.h"
 #include "visibility.h"
 
+#include "shadowkit/core/visible_depth.h"
+
 #include <algorithm>
 #include <chrono>
 #include <optional>
@@ -365,6 +367,27 @@ core::Result<core::RasterBuffers> Renderer::renderEvalBuffers(const core::Perspe
     if (settings.blur.iterations > 0) buffers.shadowTerm = r.mask->read(r.blurPass(settings));
     buffers.mapSize = setup.mapSize;
     return buffers;
+}
+
+core::Result<std::optional<core::Vec2>> Renderer::visibleDepth(const core::PerspectiveCamera& camera,
+                                                               const core::DirectionalLight& light,
+                                                               const core::ShadowSetup& setup, const RenderSettings& settings) {
+    Impl& r = *m_impl;
+    if (auto s = r.prepare(camera, setup, settings); !s) return s.errorInfo();
+    // No shadow pass: only the depths of the camera pass are read.
+    if (auto s = r.evalPass(camera, light, setup, settings); !s) return s.errorInfo();
+    return core::visibleDepthRange(r.eval->readViewDepth());
+}
+
+core::Result<core::ShadowSetupInputs> withVisibleDepth(Renderer& renderer, const core::ShadowSetupInputs& inputs,
+                                                       const RenderSettings& settings) {
+    auto first = core::computeShadowSetup(inputs);
+    if (!first) return first.errorInfo();
+    auto range = renderer.visibleDepth(inputs.camera, inputs.light, *first, settings);
+    if (!range) return range.errorInfo();
+    core::ShadowSetupInputs refined = inputs;
+    if (*range) refined.lispsm.visibleDepth = **range;
+    return refined;
 }
 
 const core::Aabb& Renderer::wsSceneBounds() const { return m_impl->visibility->wsBounds(); }

@@ -344,3 +344,45 @@ TEST_F(RendererTest, BlurKeepsAUniformMaskAndStopsAtDepthSteps) {
             EXPECT_TRUE(litNearby) << x << "," << y;
         }
 }
+
+TEST_F(RendererTest, VisibleDepthIsTheDepthRangeOfWhatTheCameraSees) {
+    const scene::Scene s = boxOverPlane();
+    auto renderer = gl::Renderer::create(s);
+    ASSERT_TRUE(renderer);
+    const core::PerspectiveCamera cam = obliqueCamera();
+    const core::DirectionalLight sun{{0, -1, 0}};
+    core::ShadowSetupInputs in{.camera = cam, .light = sun, .wsSceneBounds = s.wsBounds(), .technique = core::Technique::Lispsm};
+    gl::RenderSettings settings;
+    settings.width = settings.height = 64;
+    const auto setup = core::computeShadowSetup(in);
+    ASSERT_TRUE(setup);
+    const auto range = (*renderer)->visibleDepth(cam, sun, *setup, settings);
+    ASSERT_TRUE(range);
+    ASSERT_TRUE(*range);
+    // Every drawn point lies within the scene box: its view depth between the box's nearest
+    // and farthest corners, and well past the camera's 0.5 m near plane.
+    const core::Vec3 forward = glm::normalize(cam.wsDirection);
+    double lo = INFINITY, hi = -INFINITY;
+    for (const core::Vec3& c : s.wsBounds().corners()) {
+        lo = std::min(lo, glm::dot(c - cam.wsEye, forward));
+        hi = std::max(hi, glm::dot(c - cam.wsEye, forward));
+    }
+    EXPECT_GE((*range)->x, lo - 1e-3);
+    EXPECT_LE((*range)->y, hi + 1e-3);
+    EXPECT_GT((*range)->x, 5.0 * cam.zNear);
+    // withVisibleDepth hands the range to LiSPSM's n.
+    const auto refined = gl::withVisibleDepth(**renderer, in, settings);
+    ASSERT_TRUE(refined);
+    ASSERT_TRUE(refined->lispsm.visibleDepth);
+    EXPECT_EQ(*refined->lispsm.visibleDepth, **range);
+    // Looking at the sky: nothing drawn, no range, inputs unchanged.
+    core::PerspectiveCamera up = cam;
+    up.wsDirection = {0, 1, 0};
+    up.wsUp = {0, 0, -1};
+    in.camera = up;
+    const auto sky = core::computeShadowSetup(in);
+    ASSERT_TRUE(sky);
+    const auto none = (*renderer)->visibleDepth(up, sun, *sky, settings);
+    ASSERT_TRUE(none);
+    EXPECT_FALSE(*none);
+}

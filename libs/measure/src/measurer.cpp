@@ -89,9 +89,16 @@ std::shared_ptr<const eval::TruthBuffers> Measurer::truth(const core::Perspectiv
 
 core::Result<Measurement> Measurer::measure(const core::ShadowSetupInputs& inputs, const gl::RenderSettings& settings,
                                             const MeasureOptions& options) {
-    auto setup = core::computeShadowSetup(inputs);
+    core::ShadowSetupInputs used = inputs;
+    if (options.visibleDepthFromFrame) {
+        auto refined = gl::withVisibleDepth(*m_impl->renderer, inputs, settings);
+        if (!refined) return refined.errorInfo();
+        used = std::move(refined).value();
+    }
+    auto setup = core::computeShadowSetup(used);
     if (!setup) return setup.errorInfo();
     Measurement m;
+    m.visibleDepth = used.lispsm.visibleDepth;
     m.setup = std::move(setup).value();
     m.bias = gl::biasFor(m.setup, settings);
     gl::Renderer& renderer = *m_impl->renderer;
@@ -124,6 +131,7 @@ eval::ViewReport viewReport(const Measurement& m, const gl::RenderSettings& sett
     report.filter = core::filterName(settings.filter);
     report.blurIterations = settings.blur.iterations;
     report.fallbacks = m.setup.fallbacks;
+    report.visibleDepth = m.visibleDepth;
     report.figures = m.comparison.figures;
     return report;
 }

@@ -91,6 +91,14 @@ public:
                                                         const core::DirectionalLight& light,
                                                         const core::ShadowSetup& setup, const RenderSettings& settings);
 
+    // The view-depth range of what this camera sees ([nearest, farthest] drawn; nullopt for
+    // an empty frame), from a depth-only look at the frame: the camera pass's view depths
+    // read back and reduced on the CPU (core::visibleDepthRange). For LispsmOptions::
+    // visibleDepth (Scherzer 2005 §4.4). Costs a camera pass and a read-back.
+    core::Result<std::optional<core::Vec2>> visibleDepth(const core::PerspectiveCamera& camera,
+                                                         const core::DirectionalLight& light,
+                                                         const core::ShadowSetup& setup, const RenderSettings& settings);
+
     // World bounds of every instance, from the instance hierarchy: O(1).
     const core::Aabb& wsSceneBounds() const;
 
@@ -104,5 +112,10 @@ private:
     struct Impl;
     std::unique_ptr<Impl> m_impl;
 };
+
+// `inputs` with LispsmOptions::visibleDepth measured from this frame (Renderer::visibleDepth
+// of the set-up the inputs give as they are); unchanged when nothing is visible.
+core::Result<core::ShadowSetupInputs> withVisibleDepth(Renderer& renderer, const core::ShadowSetupInputs& inputs,
+                                                       const RenderSettings& settings);
 
 } // namespace shadowkit::gl

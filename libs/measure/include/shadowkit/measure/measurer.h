@@ -20,6 +20,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 
 namespace shadowkit::gl {
@@ -38,11 +39,15 @@ struct MeasureOptions {
     // this camera is not cached yet.
     std::function<void(double)> truthProgress;
     eval::CompareOptions compare;
+    // Measure the visible view-depth range first and give it to LiSPSM's n
+    // (gl::withVisibleDepth; Scherzer 2005 §4.4). Only LiSPSM (and per-split LiSPSM) use it.
+    bool visibleDepthFromFrame = false;
 };
 
 struct Measurement {
     core::ShadowSetup setup;          // as computed from the inputs
     core::BiasSettings bias;          // what the frame was drawn with (gl::biasFor)
+    std::optional<core::Vec2> visibleDepth; // the measured range, with visibleDepthFromFrame
     core::RasterBuffers raster;       // the GL side's per-pixel buffers
     std::shared_ptr<const eval::TruthBuffers> truth; // shared with the cache
     eval::Comparison comparison;      // per-pixel classes and the figures
