@@ -175,7 +175,8 @@ TEST_F(EvalIntegrationTest, CullingAndLevelsOfDetailLeaveTheFiguresWhereTheyWere
         settings.width = view.width / 2;
         settings.height = view.height / 2;
         auto figures = [&](bool reduce) {
-            settings.cull = settings.lod = reduce;
+            settings.culling = reduce ? gl::Culling::Frustum : gl::Culling::Off;
+            settings.lod = reduce;
             auto m = (*measurer)->measure(in, settings);
             EXPECT_TRUE(m) << m.error();
             return m->figures();

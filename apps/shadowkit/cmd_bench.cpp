@@ -69,7 +69,7 @@ int runBench(const BenchArgs& args) {
     auto context = gl::Context::createHeadless();
     if (!context) return fail(context.error());
     fmt::print("{} | technique {} | {} frames per row | culling {}\n", (*context)->description(),
-               core::techniqueName(args.technique.technique), args.frames, args.render.noCull ? "off" : "on");
+               core::techniqueName(args.technique.technique), args.frames, gl::cullingName(args.render.noCull ? gl::Culling::Off : args.render.visibility));
     fmt::print("{:>7} {:>7} {:<14} {:<7} {:>9} {:>9} {:>6} {:>26} {:>20} {:>20}\n", "trees", "terrain", "view", "pass",
                "instances", "M tris", "draws", "GPU ms min/med/max", "set-up ms med/max", "cull ms med/max");
     nlohmann::json runs = nlohmann::json::array();
@@ -119,7 +119,7 @@ int runBench(const BenchArgs& args) {
                                   {"forest_seconds", buildSeconds},
                                   {"view", name},
                                   {"technique", core::techniqueName(args.technique.technique)},
-                                  {"cull", !args.render.noCull},
+                                  {"visibility", gl::cullingName(args.render.noCull ? gl::Culling::Off : args.render.visibility)},
                                   {"frames", args.frames},
                                   {"width", view->width},
                                   {"height", view->height},

@@ -65,6 +65,11 @@ int runRender(const RenderArgs& args) {
                settings.width, settings.height, setup->mapSize, args.view.view);
     fmt::print("  set-up (CPU)   {:8.3f} ms\n", setupMs);
     fmt::print("  culling (CPU)  {:8.3f} ms\n", stats->cullMilliseconds);
+    if (settings.culling == gl::Culling::Occlusion) {
+        const core::CoherentCullingStats& o = stats->occlusion;
+        fmt::print("  occlusion      {:8.3f} ms pre-pass (CPU)  {} nodes visited  {} queries over {} nodes  {} waits\n",
+                   stats->occlusionMilliseconds, o.nodesVisited, o.queriesIssued, o.nodesQueried, o.waits);
+    }
     for (const auto& [name, pass] : {std::pair{"shadow pass", &stats->shadow}, {"main pass  ", &stats->main}})
         fmt::print("  {}    {:8.1f} ms GPU  {:6.2f} M triangles  {} instances  {} draws\n", name, pass->gpuMilliseconds,
                    static_cast<double>(pass->triangles) * 1e-6, pass->instances, pass->drawCalls);

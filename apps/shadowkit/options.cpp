@@ -245,7 +245,11 @@ void RenderOptions::addTo(CLI::App& cmd) {
     cmd.add_option("--blur-depth-falloff", blur.depthFalloff, "blur radius / (1 + falloff * depth): 0 = uniform blur")
         ->capture_default_str();
     cmd.add_flag("--cascade-colors", cascadeColors, "tint each cascade's depth range (Dimitrov 2007 Figure 3-2)");
-    cmd.add_flag("--no-cull", noCull, "draw every instance in every pass (no visibility culling; same pixels, more work)");
+    cmd.add_option("--visibility", visibility,
+                   "instances the camera pass draws: off (all, every pass), frustum, chc (CHC++ occlusion queries)")
+        ->transform(choice(Choices<gl::Culling>{{"off", gl::Culling::Off}, {"frustum", gl::Culling::Frustum}, {"chc", gl::Culling::Occlusion}}))
+        ->default_str("frustum");
+    cmd.add_flag("--no-cull", noCull, "same as --visibility off: every instance in every pass (same pixels, more work)");
     cmd.add_flag("--no-lod", noLod, "draw full meshes in every pass (no levels of detail)");
 }
 
@@ -269,7 +273,7 @@ core::Result<gl::RenderSettings> RenderOptions::settingsFor(const scene::Resolve
     settings.filter = core::parseFilter(filter).value();
     settings.blur = blur;
     settings.cascadeColors = cascadeColors;
-    settings.cull = !noCull;
+    settings.culling = noCull ? gl::Culling::Off : visibility;
     settings.lod = !noLod;
     // Only what the flags change is set here; the rest is the recommendation every library
     // caller gets (gl::biasFor).

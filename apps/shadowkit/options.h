@@ -84,7 +84,8 @@ struct RenderOptions {
     std::string filter = "hard";
     gl::BlurSettings blur;
     bool cascadeColors = false;
-    bool noCull = false; // draw every instance in every pass (what culling saves, measured)
+    gl::Culling visibility = gl::Culling::Frustum; // --visibility
+    bool noCull = false; // --no-cull: --visibility off (what culling saves, measured)
     bool noLod = false;  // full meshes everywhere (what levels of detail save, measured)
 
     void addTo(CLI::App& cmd);

@@ -165,7 +165,13 @@ void InstanceHierarchy::collect(uint32_t node, std::vector<uint32_t>& out) const
 }
 
 void InstanceHierarchy::query(std::span<const HalfSpace> volume, std::vector<uint32_t>& out) const {
+    queryAccepting(volume, nullptr, nullptr, out);
+}
+
+void InstanceHierarchy::queryAccepting(std::span<const HalfSpace> volume, const void* accept,
+                                       bool (*call)(const void*, const Aabb&), std::vector<uint32_t>& out) const {
     if (m_nodes.empty()) return;
+    auto accepted = [&](const Aabb& box) { return call == nullptr || call(accept, box); };
     uint32_t stack[kStackSize];
     int top = 0;
     stack[top++] = 0;
@@ -173,14 +179,16 @@ void InstanceHierarchy::query(std::span<const HalfSpace> volume, std::vector<uin
         const uint32_t index = stack[--top];
         const Node& node = m_nodes[index];
         const Overlap overlap = classify(volume, node.box);
-        if (overlap == Overlap::Outside) continue;
-        if (overlap == Overlap::Inside) {
+        if (overlap == Overlap::Outside || !accepted(node.box)) continue;
+        if (overlap == Overlap::Inside && call == nullptr) {
             collect(index, out);
             continue;
         }
         if (node.count > 0) {
-            for (uint32_t i = node.first; i < node.first + node.count; ++i)
-                if (classify(volume, m_itemBoxes[m_items[i]]) != Overlap::Outside) out.push_back(m_items[i]);
+            for (uint32_t i = node.first; i < node.first + node.count; ++i) {
+                const Aabb& box = m_itemBoxes[m_items[i]];
+                if (classify(volume, box) != Overlap::Outside && accepted(box)) out.push_back(m_items[i]);
+            }
             continue;
         }
         SK_ASSERT(top + 2 <= kStackSize, "InstanceHierarchy::query(): tree deeper than its traversal stack");

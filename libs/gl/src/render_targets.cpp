@@ -106,6 +106,22 @@ std::vector<float> MaskPingPong::read(int index) const {
     return readFlipped<float>(images[index], GL_RED, GL_FLOAT, width, height);
 }
 
+CameraDepthTarget::CameraDepthTarget(int w, int h)
+    : viewDepth(createTexture2D(GL_R32F, w, h)), depth(createTexture2D(GL_DEPTH_COMPONENT32F, w, h)),
+      framebuffer(createFramebuffer()), width(w), height(h) {
+    glTextureParameteri(viewDepth.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(viewDepth.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glNamedFramebufferTexture(framebuffer.id(), GL_COLOR_ATTACHMENT0, viewDepth.id(), 0);
+    glNamedFramebufferDrawBuffer(framebuffer.id(), GL_COLOR_ATTACHMENT0);
+    glNamedFramebufferTexture(framebuffer.id(), GL_DEPTH_ATTACHMENT, depth.id(), 0);
+}
+
+void CameraDepthTarget::clear() const {
+    const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f}, far = 1.0f;
+    glClearNamedFramebufferfv(framebuffer.id(), GL_COLOR, 0, zero);
+    glClearNamedFramebufferfv(framebuffer.id(), GL_DEPTH, 0, &far);
+}
+
 EvalTarget::EvalTarget(int w, int h)
     : shadowTerm(createTexture2D(GL_R32F, w, h)), surfaceId(createTexture2D(GL_R32UI, w, h)),
       viewDepth(createTexture2D(GL_R32F, w, h)), normal(createTexture2D(GL_RGBA16F, w, h)),

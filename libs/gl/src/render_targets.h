@@ -35,6 +35,17 @@ struct ColorTarget {
     scene::Image read() const; // top row first
 };
 
+// The camera depth pre-pass of occlusion culling: depth for the queries, view depth (metres,
+// 0 where nothing was drawn) for the receiver mask.
+struct CameraDepthTarget {
+    Texture viewDepth, depth;
+    Framebuffer framebuffer;
+    int width = 0, height = 0;
+
+    CameraDepthTarget(int w, int h);
+    void clear() const;
+};
+
 // Two single-channel float images for the eye-space blur, used in turn as source and target.
 struct MaskPingPong {
     Texture images[2];

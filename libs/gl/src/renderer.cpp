@@ -3,6 +3,7 @@
 #include "gl_object.h"
 #include "gl_shaders.h"
 #include "gpu_scene.h"
+#include "occlusion_culling.h"
 #include "program.h"
 #include "render_targets.h"
 #include "uniforms.h"
@@ -48,6 +49,15 @@ constexpr glm::vec3 kSky(0.62f, 0.72f, 0.85f);
 
 } // namespace
 
+const char* cullingName(Culling culling) {
+    switch (culling) {
+    case Culling::Off: return "off";
+    case Culling::Frustum: return "frustum";
+    case Culling::Occlusion: return "chc";
+    }
+    return "?";
+}
+
 core::Status validate(const BlurSettings& b) {
     if (b.iterations < 0 || b.iterations > 64) return core::fieldError("blur.iterations", "must be in [0, 64]");
     if (!(b.radiusPixels > 0.0f && b.radiusPixels <= 16.0f)) return core::fieldError("blur.radius", "must be in (0, 16] pixels");
@@ -68,6 +78,11 @@ struct Renderer::Impl {
     std::vector<PassList> shadowLists; // one per shadow map of the frame
     PassList cameraList;
     double cullMilliseconds = 0.0;     // CPU time building this frame's lists
+    std::unique_ptr<OcclusionCuller> occlusion;
+    std::optional<CameraDepthTarget> cameraDepth; // the occlusion pre-pass's target
+    std::vector<uint32_t> occlusionDrawn;
+    core::CoherentCullingStats occlusionStats;
+    double occlusionMilliseconds = 0.0;
     Program depthProgram, mainProgram, evalProgram, blurProgram;
     Buffer depthUniforms, frameUniforms, blurUniforms;
     VertexArray emptyVertexArray; // for the full-screen triangle
@@ -79,9 +94,12 @@ struct Renderer::Impl {
 
     core::BiasSettings bias; // of the frame being drawn (biasFor), set by prepare()
 
-    core::Status prepare(const core::PerspectiveCamera& camera, const core::ShadowSetup& setup, const RenderSettings& settings);
-    // The instances each pass of the frame draws (visibility.h), uploaded together.
-    void collectVisible(const core::PerspectiveCamera& camera, const core::ShadowSetup& setup, const RenderSettings& settings);
+    core::Status prepare(const core::PerspectiveCamera& camera, const core::DirectionalLight& light,
+                         const core::ShadowSetup& setup, const RenderSettings& settings);
+    // The instances each pass of the frame draws (visibility.h), uploaded together; with
+    // occlusion culling, after the camera's depth pre-pass.
+    void collectVisible(const core::PerspectiveCamera& camera, const core::DirectionalLight& light,
+                        const core::ShadowSetup& setup, const RenderSettings& settings);
     PassStats shadowPass(const core::ShadowSetup& setup);
     void uploadFrame(const core::PerspectiveCamera& camera, const core::DirectionalLight& light,
                      const core::ShadowSetup& setup, const RenderSettings& settings, bool useMask);
@@ -129,14 +147,18 @@ core::Result<std::unique_ptr<Renderer>> Renderer::create(const scene::Scene& sce
     for (const scene::Mesh& mesh : scene.meshes) lods.push_back(scene::buildLods(mesh));
     r.scene.emplace(scene, lods);
     r.visibility.emplace(scene, lods);
+    auto occlusion = OcclusionCuller::create(*r.visibility, *r.scene);
+    if (!occlusion) return occlusion.errorInfo();
+    r.occlusion = std::move(occlusion).value();
     // Conventions (core/conventions.h): clip depth [0,1].
     glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
     return renderer;
 }
 
-void Renderer::Impl::collectVisible(const core::PerspectiveCamera& camera, const core::ShadowSetup& setup,
-                                    const RenderSettings& settings) {
+void Renderer::Impl::collectVisible(const core::PerspectiveCamera& camera, const core::DirectionalLight& light,
+                                    const core::ShadowSetup& setup, const RenderSettings& settings) {
     const auto start = std::chrono::steady_clock::now();
+    const bool cull = settings.culling != Culling::Off;
     shadowLists.resize(setup.views.size());
     std::vector<PassList*> lists;
     const LodProjection cameraProjection{camera.clipFromWorld(), 0.5 * std::max(settings.width, settings.height),
@@ -146,7 +168,7 @@ void Renderer::Impl::collectVisible(const core::PerspectiveCamera& camera, const
         // plane are drawn at depth 0 and must not be culled. Levels by texels of this map.
         const core::Mat4& clipFromWorld = setup.views[i].clipFromWorld;
         const LodChoice lod{{clipFromWorld, 0.5 * setup.mapSize, settings.lodTexelError}, cameraProjection, true};
-        visibility->collect(core::clipVolume(clipFromWorld, false), settings.cull, settings.lod ? &lod : nullptr, shadowLists[i]);
+        visibility->collect(core::clipVolume(clipFromWorld, false), cull, settings.lod ? &lod : nullptr, shadowLists[i]);
         lists.push_back(&shadowLists[i]);
     }
     // Camera pass: levels by pixels. A simplified receiver lies up to its error off the true
@@ -154,15 +176,27 @@ void Renderer::Impl::collectVisible(const core::PerspectiveCamera& camera, const
     // to +0.12 points of false shadow on an aerial view), so its lookup moves that far
     // towards the light (receiverLookup in shadow_lookup.glsl).
     const LodChoice cameraLod{cameraProjection, std::nullopt, false};
-    visibility->collect(core::clipVolume(camera.clipFromWorld()), settings.cull, settings.lod ? &cameraLod : nullptr,
-                        cameraList);
+    occlusionStats = {};
+    occlusionMilliseconds = 0.0;
+    if (settings.culling == Culling::Occlusion) {
+        const auto occlusionStart = std::chrono::steady_clock::now();
+        if (!cameraDepth || cameraDepth->width != settings.width || cameraDepth->height != settings.height)
+            cameraDepth.emplace(settings.width, settings.height);
+        uploadFrame(camera, light, setup, settings, false); // the pre-pass reads the camera's Frame
+        occlusionStats = occlusion->frame(camera, settings.lod ? &cameraLod : nullptr, *cameraDepth, occlusionDrawn);
+        visibility->fromItems(occlusionDrawn, settings.lod ? &cameraLod : nullptr, cameraList);
+        occlusionMilliseconds =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - occlusionStart).count();
+    } else {
+        visibility->collect(core::clipVolume(camera.clipFromWorld()), cull, settings.lod ? &cameraLod : nullptr, cameraList);
+    }
     lists.push_back(&cameraList);
     visibility->upload(lists);
     cullMilliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
-core::Status Renderer::Impl::prepare(const core::PerspectiveCamera& camera, const core::ShadowSetup& setup,
-                                     const RenderSettings& settings) {
+core::Status Renderer::Impl::prepare(const core::PerspectiveCamera& camera, const core::DirectionalLight& light,
+                                     const core::ShadowSetup& setup, const RenderSettings& settings) {
     GLint maxSize = 0;
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
     // The set-up's map size is valid for core ([kMinMapSize, kMaxMapSize]); here it must
@@ -188,7 +222,7 @@ core::Status Renderer::Impl::prepare(const core::PerspectiveCamera& camera, cons
     const GLint filter = settings.filter.kind == core::ShadowFilter::Pcf2 ? GL_LINEAR : GL_NEAREST;
     glTextureParameteri(shadow->depth.id(), GL_TEXTURE_MIN_FILTER, filter);
     glTextureParameteri(shadow->depth.id(), GL_TEXTURE_MAG_FILTER, filter);
-    collectVisible(camera, setup, settings);
+    collectVisible(camera, light, setup, settings);
     return core::Ok{};
 }
 
@@ -320,7 +354,7 @@ int Renderer::Impl::blurPass(const RenderSettings& settings) {
 core::Result<FrameStats> Renderer::render(const core::PerspectiveCamera& camera, const core::DirectionalLight& light,
                                           const core::ShadowSetup& setup, const RenderSettings& settings) {
     Impl& r = *m_impl;
-    if (auto s = r.prepare(camera, setup, settings); !s) return s.errorInfo();
+    if (auto s = r.prepare(camera, light, setup, settings); !s) return s.errorInfo();
     if (!r.color || r.color->width != settings.width || r.color->height != settings.height) {
         r.color.emplace(settings.width, settings.height);
         if (auto s = checkComplete(r.color->framebuffer, "main pass"); !s) return s.errorInfo();
@@ -352,6 +386,8 @@ core::Result<FrameStats> Renderer::render(const core::PerspectiveCamera& camera,
     stats.shadow.gpuMilliseconds = r.shadowTimer.milliseconds();
     stats.main = {r.mainTimer.milliseconds(), mainDraws.instances, mainDraws.triangles, mainDraws.drawCalls};
     stats.cullMilliseconds = r.cullMilliseconds;
+    stats.occlusion = r.occlusionStats;
+    stats.occlusionMilliseconds = r.occlusionMilliseconds;
     return stats;
 }
 
@@ -360,7 +396,7 @@ core::Result<core::RasterBuffers> Renderer::renderEvalBuffers(const core::Perspe
                                                               const core::ShadowSetup& setup,
                                                               const RenderSettings& settings) {
     Impl& r = *m_impl;
-    if (auto s = r.prepare(camera, setup, settings); !s) return s.errorInfo();
+    if (auto s = r.prepare(camera, light, setup, settings); !s) return s.errorInfo();
     r.shadowPass(setup);
     if (auto s = r.evalPass(camera, light, setup, settings); !s) return s.errorInfo();
     core::RasterBuffers buffers = r.eval->read();
@@ -373,7 +409,7 @@ core::Result<std::optional<core::Vec2>> Renderer::visibleDepth(const core::Persp
                                                                const core::DirectionalLight& light,
                                                                const core::ShadowSetup& setup, const RenderSettings& settings) {
     Impl& r = *m_impl;
-    if (auto s = r.prepare(camera, setup, settings); !s) return s.errorInfo();
+    if (auto s = r.prepare(camera, light, setup, settings); !s) return s.errorInfo();
     // No shadow pass: only the depths of the camera pass are read.
     if (auto s = r.evalPass(camera, light, setup, settings); !s) return s.errorInfo();
     return core::visibleDepthRange(r.eval->readViewDepth());

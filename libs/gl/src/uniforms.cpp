@@ -71,6 +71,8 @@ const std::string& shaderPrelude() {
         define("SK_BLUR_BINDING", kBlurBinding);
         define("SK_INSTANCES_BINDING", kInstancesBinding);
         define("SK_VISIBLE_BINDING", kVisibleBinding);
+        define("SK_BOXES_BINDING", kBoxesBinding);
+        define("SK_BOX_OFFSET_LOCATION", kBoxOffsetLocation);
         define("SK_INSTANCE_OFFSET_LOCATION", kInstanceOffsetLocation);
         define("SK_LOD_ERROR_LOCATION", kLodErrorLocation);
         define("SK_SHADOW_MAP_UNIT", kShadowMapUnit);

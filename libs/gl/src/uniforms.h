@@ -24,6 +24,7 @@ inline constexpr unsigned kDepthPassBinding = 1;
 inline constexpr unsigned kBlurBinding = 2;
 inline constexpr unsigned kInstancesBinding = 0; // shader storage: mat4 worldFromObject[] of the batch drawn
 inline constexpr unsigned kVisibleBinding = 1;   // shader storage: uint visibleInstances[] of the frame
+inline constexpr unsigned kBoxesBinding = 2;     // shader storage: vec4 boxCorners[] (min, max) of occlusion queries
 // Texture units (GLSL: SK_*_UNIT). The camera passes and the blur pass never run together.
 inline constexpr unsigned kShadowMapUnit = 0;  // camera passes: sampler2DArrayShadow, one layer per map
 inline constexpr unsigned kShadowMaskUnit = 1; // main pass: the blurred shadow mask
@@ -32,6 +33,7 @@ inline constexpr unsigned kBlurDepthUnit = 1;  // blur pass: view depth, to stop
 inline constexpr int kInstanceBaseLocation = 0;   // uniform uint instanceBase (main.vert): surface identity
 inline constexpr int kInstanceOffsetLocation = 1; // uniform uint instanceOffset: the draw's list in visibleInstances
 inline constexpr int kLodErrorLocation = 2;       // uniform float lodObjectError (main.vert): the level's error
+inline constexpr int kBoxOffsetLocation = 3;      // uniform uint boxOffset (occlusion_box.vert): first box of the draw
 
 // std140: scalars pack in fours, vec4 and mat4 start on 16 bytes. Booleans are int32.
 

@@ -59,6 +59,20 @@ Visibility::Visibility(const scene::Scene& scene, std::span<const scene::MeshLod
     }
 }
 
+void Visibility::scratchFromBits() {
+    m_scratch.clear();
+    for (size_t word = 0; word < m_visibleBits.size(); ++word)
+        for (uint64_t bits = m_visibleBits[word]; bits != 0; bits &= bits - 1)
+            m_scratch.push_back(static_cast<uint32_t>(64 * word + static_cast<size_t>(std::countr_zero(bits))));
+}
+
+void Visibility::fromItems(std::span<const uint32_t> items, const LodChoice* lod, PassList& out) {
+    m_visibleBits.assign((m_hierarchy.size() + 63) / 64, 0);
+    for (const uint32_t i : items) m_visibleBits[i / 64] |= uint64_t{1} << (i % 64);
+    scratchFromBits();
+    build(lod, out);
+}
+
 void Visibility::collect(std::span<const core::HalfSpace> volume, bool cull, const LodChoice* lod, PassList& out) {
     m_scratch.clear();
     if (cull) {
@@ -67,14 +81,15 @@ void Visibility::collect(std::span<const core::HalfSpace> volume, bool cull, con
         m_hierarchy.query(volume, m_scratch);
         m_visibleBits.assign((m_hierarchy.size() + 63) / 64, 0);
         for (const uint32_t i : m_scratch) m_visibleBits[i / 64] |= uint64_t{1} << (i % 64);
-        m_scratch.clear();
-        for (size_t word = 0; word < m_visibleBits.size(); ++word)
-            for (uint64_t bits = m_visibleBits[word]; bits != 0; bits &= bits - 1)
-                m_scratch.push_back(static_cast<uint32_t>(64 * word + static_cast<size_t>(std::countr_zero(bits))));
+        scratchFromBits();
     } else {
         m_scratch.resize(m_hierarchy.size());
         for (uint32_t i = 0; i < m_scratch.size(); ++i) m_scratch[i] = i;
     }
+    build(lod, out);
+}
+
+void Visibility::build(const LodChoice* lod, PassList& out) {
     // The level of each instance: the coarsest whose world error (object error × scale),
     // in the pass's units, stays within the bound.
     m_levels.assign(m_scratch.size(), 0);

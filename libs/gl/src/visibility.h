@@ -52,15 +52,24 @@ public:
     Visibility(const scene::Scene& scene, std::span<const scene::MeshLods> lods);
 
     const core::Aabb& wsBounds() const { return m_hierarchy.bounds(); }
+    const core::InstanceHierarchy& hierarchy() const { return m_hierarchy; }
 
     // The instances the half-spaces may see (every instance when `cull` is false), each at
     // the level `lod` picks (the full mesh without one).
     void collect(std::span<const core::HalfSpace> volume, bool cull, const LodChoice* lod, PassList& out);
+    // The same for a given set of global instance indices (any order, no repeats), e.g. what
+    // occlusion culling drew: the list comes out in instance order like collect()'s.
+    void fromItems(std::span<const uint32_t> items, const LodChoice* lod, PassList& out);
     // Assigns offsets and uploads every list of the frame into one buffer, bound at
     // SK_VISIBLE_BINDING.
     void upload(std::span<PassList* const> lists);
 
 private:
+    // m_scratch (increasing global indices) → `out`, by batch and level.
+    void build(const LodChoice* lod, PassList& out);
+    // m_scratch = the set bits of m_visibleBits, in increasing order.
+    void scratchFromBits();
+
     core::InstanceHierarchy m_hierarchy;    // items in global instance order (Scene order)
     std::vector<uint32_t> m_batchFirst;     // global index of each batch's first instance
     // Per global instance: its uniform scale and mesh; a level's world error is the mesh's

@@ -56,12 +56,12 @@ TEST_F(CullingTest, CulledFramesMatchFullFramesPixelForPixelForEveryTechnique) {
             gl::RenderSettings settings;
             settings.width = 160;
             settings.height = 90;
-            settings.cull = false;
+            settings.culling = gl::Culling::Off;
             const auto full = (*renderer)->render(view.camera, view.light, *setup, settings);
             ASSERT_TRUE(full);
             const scene::Image fullImage = (*renderer)->readColor();
             const auto fullBuffers = (*renderer)->renderEvalBuffers(view.camera, view.light, *setup, settings);
-            settings.cull = true;
+            settings.culling = gl::Culling::Frustum;
             const auto culled = (*renderer)->render(view.camera, view.light, *setup, settings);
             ASSERT_TRUE(culled);
             const scene::Image culledImage = (*renderer)->readColor();
@@ -177,4 +177,38 @@ TEST_F(CullingTest, LevelsOfDetailDrawFewerTrianglesForDistantTreesWithinTheirEr
         EXPECT_EQ(strict.shadowTerm, full.shadowTerm) << name;
         EXPECT_EQ(strict.surfaceId, full.surfaceId) << name;
     }
+}
+
+TEST_F(CullingTest, OcclusionCulledFramesMatchFrustumCulledFramesAfterTheFirst) {
+    // CHC++ leaves out only what its queries prove hidden, so a static view looks exactly as
+    // it does with frustum culling alone, while drawing fewer instances in a forest.
+    const scene::Scene forest = gl::testing::smallForest(600, 200, 32);
+    auto renderer = gl::Renderer::create(forest);
+    ASSERT_TRUE(renderer) << renderer.error();
+    scene::ResolvedView view = gl::testing::standardView(forest, "perpendicular");
+    view.camera.aspect = 160.0 / 90.0;
+    core::ShadowSetupInputs in{.camera = view.camera, .light = view.light, .wsSceneBounds = forest.wsBounds(),
+                               .technique = core::Technique::Lispsm, .mapSize = 512};
+    const auto setup = core::computeShadowSetup(in);
+    ASSERT_TRUE(setup) << setup.error();
+    gl::RenderSettings settings;
+    settings.width = 160;
+    settings.height = 90;
+    settings.culling = gl::Culling::Frustum;
+    const auto frustum = (*renderer)->render(view.camera, view.light, *setup, settings);
+    ASSERT_TRUE(frustum);
+    const scene::Image frustumImage = (*renderer)->readColor();
+    const auto frustumBuffers = (*renderer)->renderEvalBuffers(view.camera, view.light, *setup, settings);
+    settings.culling = gl::Culling::Occlusion;
+    for (int frame = 0; frame < 3; ++frame) {
+        const auto occluded = (*renderer)->render(view.camera, view.light, *setup, settings);
+        ASSERT_TRUE(occluded) << occluded.error();
+        EXPECT_EQ(frustumImage.rgba, (*renderer)->readColor().rgba) << "frame " << frame;
+        EXPECT_LT(occluded->main.instances, frustum->main.instances) << "frame " << frame;
+        EXPECT_GT(occluded->occlusion.queriesIssued, 0u);
+    }
+    const auto occludedBuffers = (*renderer)->renderEvalBuffers(view.camera, view.light, *setup, settings);
+    ASSERT_TRUE(frustumBuffers && occludedBuffers);
+    EXPECT_EQ(frustumBuffers->surfaceId, occludedBuffers->surfaceId);
+    EXPECT_EQ(frustumBuffers->shadowTerm, occludedBuffers->shadowTerm);
 }

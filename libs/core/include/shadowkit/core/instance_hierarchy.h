@@ -40,6 +40,24 @@ public:
     // intersects is ever lost. The order is the tree's, not the items'. Subtrees wholly
     // inside every half-space emit their items without further tests.
     void query(std::span<const HalfSpace> volume, std::vector<uint32_t>& out) const;
+    // The same, keeping also only boxes `accept(box)` says may matter (a receiver mask,
+    // an occlusion test): asked of nodes before their children, so a subtree it rejects
+    // costs one call. It must be conservative for every box that contains a smaller one.
+    template <class Accept>
+    void query(std::span<const HalfSpace> volume, const Accept& accept, std::vector<uint32_t>& out) const {
+        queryAccepting(volume, &accept, [](const void* f, const Aabb& b) { return (*static_cast<const Accept*>(f))(b); }, out);
+    }
+
+    // The nodes, for traversals of their own (occlusion culling): node 0 is the root, an
+    // inner node's children are leftChild and leftChild + 1, a leaf holds items.
+    static constexpr uint32_t kRoot = 0;
+    bool isLeaf(uint32_t node) const { return m_nodes[node].count > 0 || m_nodes.size() == 1; }
+    uint32_t leftChild(uint32_t node) const { return m_nodes[node].first; }
+    uint32_t parent(uint32_t node) const { return m_nodes[node].parent; } // UINT32_MAX for the root
+    const Aabb& nodeBounds(uint32_t node) const { return m_nodes[node].box; }
+    std::span<const uint32_t> leafItems(uint32_t node) const {
+        return {m_items.data() + m_nodes[node].first, m_nodes[node].count};
+    }
 
     // Moves item i to newBox and refits its ancestors: O(changed × depth). The tree's
     // topology stays: many large moves degrade query cost (rebuild then).
@@ -57,6 +75,8 @@ private:
     };
     void build(uint32_t node, uint32_t begin, uint32_t end, int depth, std::vector<Vec3>& centres);
     void collect(uint32_t node, std::vector<uint32_t>& out) const;
+    void queryAccepting(std::span<const HalfSpace> volume, const void* accept, bool (*call)(const void*, const Aabb&),
+                        std::vector<uint32_t>& out) const;
 
     std::vector<Node> m_nodes;        // m_nodes[0] is the root
     std::vector<uint32_t> m_items;    // leaf ranges index this

@@ -4,6 +4,7 @@
 
 #include "shadowkit/core/bias.h"
 #include "shadowkit/core/camera.h"
+#include "shadowkit/core/coherent_culling.h"
 #include "shadowkit/core/light.h"
 #include "shadowkit/core/raster_buffers.h"
 #include "shadowkit/core/result.h"
@@ -32,6 +33,14 @@ struct BlurSettings {
 // "blur.depth_falloff", "blur.depth_threshold".
 core::Status validate(const BlurSettings& blur);
 
+// Which instances the camera pass draws (shadow passes cull by their volume unless Off).
+enum class Culling {
+    Off,       // every instance, every pass
+    Frustum,   // those whose box meets the view frustum
+    Occlusion, // of those, the ones CHC++ occlusion queries find visible (a depth pre-pass)
+};
+const char* cullingName(Culling culling); // "off", "frustum", "chc"
+
 // How a frame is drawn. The shadow maps' size comes with the set-up (ShadowSetup::mapSize).
 struct RenderSettings {
     int width = 1280, height = 720; // output pixels, [1, GL_MAX_TEXTURE_SIZE]
@@ -42,9 +51,10 @@ struct RenderSettings {
     BlurSettings blur;
     float fogDensity = 0.002f;      // 1/m of exponential fog (Scherzer 2005 used fog); 0 = none
     // Draw only the instances each pass can see: the camera pass those meeting the view
-    // frustum, each shadow map those meeting its clip volume extended towards the light.
-    // Invisible by contract (the same pixels either way); false draws everything.
-    bool cull = true;
+    // frustum (and, with Occlusion, not hidden behind others), each shadow map those meeting
+    // its clip volume extended towards the light. Invisible by contract (the same pixels
+    // either way); Off draws everything.
+    Culling culling = Culling::Frustum;
     // Levels of detail (scene::buildLods): every instance is drawn at the coarsest level
     // whose geometric error, projected at its centre, stays within lodPixelError pixels of
     // the camera, and in a shadow pass also within lodTexelError texels of that map (a
@@ -69,6 +79,9 @@ struct PassStats {
 struct FrameStats {
     PassStats shadow, main;
     double cullMilliseconds = 0.0; // CPU: choosing every pass's instances and uploading the lists
+    // Culling::Occlusion: the CHC++ pre-pass (counted in cullMilliseconds, with its waits).
+    core::CoherentCullingStats occlusion;
+    double occlusionMilliseconds = 0.0;
 };
 
 class Renderer {

@@ -1,0 +1,173 @@
+#include "occlusion_culling.h"
+
+#include "gl_shaders.h"
+#include "program.h"
+#include "uniforms.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace shadowkit::gl {
+namespace {
+
+// Eye moves and turns beyond which the last frame's visibility is a poor guess; below them
+// CHC++'s coherence holds (a camera path moves centimetres to a metre a frame). A cut is a
+// cost decision only: the traversal is conservative with any history.
+constexpr double kCutDistance = 10.0;      // metres
+constexpr double kCutCosine = 0.94;        // about 20 degrees
+
+// Grows a query box: a node's own bound is tangent to its geometry (a tree's box sits on
+// the terrain), and depth is resolved only to ~1e-4 of the distance at the far end of a
+// 32-bit float depth buffer, so a box touching an occluder must not lose to it.
+glm::vec4 grown(const core::Vec3& p, double margin, double sign) { return glm::vec4(glm::vec3(p + sign * margin), 1.0f); }
+
+} // namespace
+
+OcclusionCuller::OcclusionCuller(Visibility& visibility, const GpuScene& scene)
+    : m_visibility(visibility), m_scene(scene), m_chc(visibility.hierarchy()) {}
+
+OcclusionCuller::~OcclusionCuller() {
+    if (!m_queries.empty()) glDeleteQueries(static_cast<GLsizei>(m_queries.size()), m_queries.data());
+}
+
+core::Result<std::unique_ptr<OcclusionCuller>> OcclusionCuller::create(Visibility& visibility, const GpuScene& scene) {
+    auto culler = std::unique_ptr<OcclusionCuller>(new OcclusionCuller(visibility, scene));
+    using namespace shaders;
+    auto depth = buildProgram("camera depth pre-pass", {kFrameGlsl, kMainVert}, {kFrameGlsl, kCameraDepthFrag});
+    if (!depth) return depth.errorInfo();
+    auto box = buildProgram("occlusion query boxes", {kFrameGlsl, kOcclusionBoxVert}, {kEmptyFrag});
+    if (!box) return box.errorInfo();
+    for (const Program* p : {&*depth, &*box})
+        if (auto s = checkUniformBlock(*p, "occlusion culling", "Frame", sizeof(FrameUniforms), frameFields()); !s)
+            return s.errorInfo();
+    culler->m_depthProgram = std::move(depth).value();
+    culler->m_boxProgram = std::move(box).value();
+    GLuint vao = 0;
+    glCreateVertexArrays(1, &vao);
+    culler->m_emptyVertexArray = VertexArray(vao);
+    return culler;
+}
+
+bool OcclusionCuller::isCut(const core::PerspectiveCamera& c, int width, int height) const {
+    if (!m_last) return true;
+    const core::PerspectiveCamera& l = m_last->camera;
+    return width != m_last->width || height != m_last->height || c.fovYDegrees != l.fovYDegrees || c.aspect != l.aspect ||
+           c.zNear != l.zNear || c.zFar != l.zFar || glm::distance(c.wsEye, l.wsEye) > kCutDistance ||
+           glm::dot(glm::normalize(c.wsDirection), glm::normalize(l.wsDirection)) < kCutCosine;
+}
+
+core::CoherentCullingStats OcclusionCuller::frame(const core::PerspectiveCamera& camera, const LodChoice* lod,
+                                                  CameraDepthTarget& target, std::vector<uint32_t>& drawn) {
+    const bool cut = isCut(camera, target.width, target.height);
+    if (cut) m_chc.reset();
+    m_last = CameraKey{camera, target.width, target.height};
+    m_lod = lod;
+    glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer.id());
+    glViewport(0, 0, target.width, target.height);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    const std::vector<core::HalfSpace> frustum = core::clipVolume(camera.clipFromWorld());
+    // The eye's distance to the near plane's corners: a box closer than that may be clipped.
+    const double tanY = std::tan(glm::radians(camera.fovYDegrees) * 0.5), tanX = tanY * camera.aspect;
+    const double nearMargin = 1.01 * camera.zNear * std::sqrt(1.0 + tanX * tanX + tanY * tanY);
+    auto once = [&] {
+        target.clear();
+        m_boxCursor = m_listCursor = 0;
+        return m_chc.frame(frustum, camera.wsEye, nearMargin, *this, drawn);
+    };
+    core::CoherentCullingStats stats = once();
+    std::vector<uint32_t> previous;
+    for (int settle = 1; cut && settle < kMaxSettleFrames; ++settle) {
+        glFinish(); // the last frame's checks must be back for the next to learn from them
+        previous.assign(drawn.begin(), drawn.end());
+        std::sort(previous.begin(), previous.end());
+        stats = once();
+        std::vector<uint32_t> now(drawn.begin(), drawn.end());
+        std::sort(now.begin(), now.end());
+        if (now == previous) break;
+    }
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glDepthMask(GL_TRUE);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    return stats;
+}
+
+void OcclusionCuller::draw(std::span<const uint32_t> items) {
+    m_visibility.fromItems(items, m_lod, m_drawList);
+    const size_t n = m_drawList.indices.size();
+    if (m_listCursor + n > m_listCapacity) {
+        m_listCapacity = std::max({m_listCursor + n, 2 * m_listCapacity, size_t(4096)});
+        m_lists = createBuffer(nullptr, m_listCapacity * sizeof(uint32_t)); // the old one lives while in use
+        m_listCursor = 0;
+    }
+    glNamedBufferSubData(m_lists.id(), static_cast<GLintptr>(m_listCursor * sizeof(uint32_t)),
+                         static_cast<GLsizeiptr>(n * sizeof(uint32_t)), m_drawList.indices.data());
+    m_drawList.offset = static_cast<uint32_t>(m_listCursor);
+    m_listCursor += n;
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kVisibleBinding, m_lists.id());
+    glUseProgram(m_depthProgram.id());
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glDepthMask(GL_TRUE);
+    glEnable(GL_CULL_FACE);
+    glCullFace(GL_BACK);
+    m_scene.draw(m_drawList);
+}
+
+uint32_t OcclusionCuller::issue(std::span<const uint32_t> nodes) {
+    const core::InstanceHierarchy& hierarchy = m_visibility.hierarchy();
+    const core::Vec3 eye = m_last->camera.wsEye;
+    m_boxStaging.clear();
+    for (const uint32_t node : nodes) {
+        const core::Aabb& box = hierarchy.nodeBounds(node);
+        const double distance = glm::length(glm::max(glm::max(box.min - eye, eye - box.max), core::Vec3(0.0)));
+        const double margin = 0.01 + 1e-3 * distance;
+        m_boxStaging.push_back(grown(box.min, margin, -1.0));
+        m_boxStaging.push_back(grown(box.max, margin, +1.0));
+    }
+    const size_t n = nodes.size();
+    if (m_boxCursor + n > m_boxCapacity) {
+        m_boxCapacity = std::max({m_boxCursor + n, 2 * m_boxCapacity, size_t(1024)});
+        m_boxes = createBuffer(nullptr, m_boxCapacity * 2 * sizeof(glm::vec4));
+        m_boxCursor = 0;
+    }
+    glNamedBufferSubData(m_boxes.id(), static_cast<GLintptr>(m_boxCursor * 2 * sizeof(glm::vec4)),
+                         static_cast<GLsizeiptr>(m_boxStaging.size() * sizeof(glm::vec4)), m_boxStaging.data());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBoxesBinding, m_boxes.id());
+    glUseProgram(m_boxProgram.id());
+    glUniform1ui(kBoxOffsetLocation, static_cast<GLuint>(m_boxCursor));
+    m_boxCursor += n;
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    glDepthMask(GL_FALSE);
+    glDisable(GL_CULL_FACE); // the eye is outside every queried box: back faces lie behind front faces
+    glBindVertexArray(m_emptyVertexArray.id());
+
+    if (m_freeQueries.empty()) {
+        GLuint id = 0;
+        glCreateQueries(GL_ANY_SAMPLES_PASSED_CONSERVATIVE, 1, &id);
+        m_freeQueries.push_back(static_cast<uint32_t>(m_queries.size()));
+        m_queries.push_back(id);
+    }
+    const uint32_t handle = m_freeQueries.back();
+    m_freeQueries.pop_back();
+    glBeginQuery(GL_ANY_SAMPLES_PASSED_CONSERVATIVE, m_queries[handle]);
+    glDrawArraysInstanced(GL_TRIANGLES, 0, 36, static_cast<GLsizei>(n));
+    glEndQuery(GL_ANY_SAMPLES_PASSED_CONSERVATIVE);
+    glBindVertexArray(0);
+    return handle;
+}
+
+bool OcclusionCuller::available(uint32_t query) {
+    GLuint ready = 0;
+    glGetQueryObjectuiv(m_queries[query], GL_QUERY_RESULT_AVAILABLE, &ready);
+    if (!ready) glFlush(); // let the driver start on what is queued while the traversal goes on
+    return ready != 0;
+}
+
+bool OcclusionCuller::visible(uint32_t query) {
+    GLuint samples = 0;
+    glGetQueryObjectuiv(m_queries[query], GL_QUERY_RESULT, &samples);
+    m_freeQueries.push_back(query);
+    return samples != 0;
+}
+
+} // namespace shadowkit::gl

@@ -1,0 +1,68 @@
+// Occlusion culling of the camera pass: CHC++ (core/coherent_culling.h) on hardware
+// occlusion queries. Runs as a depth pre-pass into a CameraDepthTarget: the instances it
+// finds visible are drawn there as it goes (depth and view depth), the queries draw node
+// boxes against that depth with GL_ANY_SAMPLES_PASSED_CONSERVATIVE. The camera pass then
+// draws exactly the instances drawn here.
+#pragma once
+
+#include "gl_object.h"
+#include "gpu_scene.h"
+#include "render_targets.h"
+#include "visibility.h"
+
+#include "shadowkit/core/camera.h"
+#include "shadowkit/core/coherent_culling.h"
+#include "shadowkit/core/result.h"
+
+#include <optional>
+#include <vector>
+
+namespace shadowkit::gl {
+
+class OcclusionCuller final : public core::OcclusionQueries {
+public:
+    // `visibility` and `scene` must outlive the culler.
+    static core::Result<std::unique_ptr<OcclusionCuller>> create(Visibility& visibility, const GpuScene& scene);
+    ~OcclusionCuller() override;
+
+    // One frame into `target` (cleared here); the camera's Frame uniforms must be bound.
+    // After a camera cut — the first frame, a jump of the eye, a turn, a new projection — the
+    // history is dropped and the pre-pass repeats until the drawn set stops changing (at most
+    // kMaxSettleFrames), so the frame returned is the steady state a running application
+    // reaches. `drawn`: the global instance indices drawn.
+    core::CoherentCullingStats frame(const core::PerspectiveCamera& camera, const LodChoice* lod, CameraDepthTarget& target,
+                                     std::vector<uint32_t>& drawn);
+    static constexpr int kMaxSettleFrames = 4;
+
+    // core::OcclusionQueries
+    void draw(std::span<const uint32_t> items) override;
+    uint32_t issue(std::span<const uint32_t> nodes) override;
+    bool available(uint32_t query) override;
+    bool visible(uint32_t query) override;
+
+private:
+    OcclusionCuller(Visibility& visibility, const GpuScene& scene);
+    bool isCut(const core::PerspectiveCamera& camera, int width, int height) const;
+
+    Visibility& m_visibility;
+    const GpuScene& m_scene;
+    core::CoherentCulling m_chc;
+    Program m_depthProgram, m_boxProgram;
+    VertexArray m_emptyVertexArray;
+    std::vector<GLuint> m_queries;       // pool; a handle is an index
+    std::vector<uint32_t> m_freeQueries;
+    // Streaming buffers, written front to back through a frame, restarted at each frame.
+    Buffer m_boxes, m_lists;
+    size_t m_boxCapacity = 0, m_boxCursor = 0;   // in boxes
+    size_t m_listCapacity = 0, m_listCursor = 0; // in indices
+    std::vector<glm::vec4> m_boxStaging;
+    PassList m_drawList;
+    const LodChoice* m_lod = nullptr;
+    struct CameraKey {
+        core::PerspectiveCamera camera;
+        int width = 0, height = 0;
+    };
+    std::optional<CameraKey> m_last;
+};
+
+} // namespace shadowkit::gl

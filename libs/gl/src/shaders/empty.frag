@@ -1,0 +1,2 @@
+// Depth only (occlusion queries count the samples that pass the depth test).
+void main() {}
