@@ -249,6 +249,11 @@ void RenderOptions::addTo(CLI::App& cmd) {
                    "instances the camera pass draws: off (all, every pass), frustum, chc (CHC++ occlusion queries)")
         ->transform(choice(Choices<gl::Culling>{{"off", gl::Culling::Off}, {"frustum", gl::Culling::Frustum}, {"chc", gl::Culling::Occlusion}}))
         ->default_str("frustum");
+    cmd.add_option("--caster-culling", receiverMask,
+                   "casters each shadow map draws: volume (its clip volume), receivers (also only those that can "
+                   "shadow a pixel the camera sees; a camera depth pre-pass)")
+        ->transform(choice(Choices<bool>{{"volume", false}, {"receivers", true}}))
+        ->default_str("volume");
     cmd.add_flag("--no-cull", noCull, "same as --visibility off: every instance in every pass (same pixels, more work)");
     cmd.add_flag("--no-lod", noLod, "draw full meshes in every pass (no levels of detail)");
 }
@@ -274,6 +279,7 @@ core::Result<gl::RenderSettings> RenderOptions::settingsFor(const scene::Resolve
     settings.blur = blur;
     settings.cascadeColors = cascadeColors;
     settings.culling = noCull ? gl::Culling::Off : visibility;
+    settings.receiverMask = receiverMask;
     settings.lod = !noLod;
     // Only what the flags change is set here; the rest is the recommendation every library
     // caller gets (gl::biasFor).

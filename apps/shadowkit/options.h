@@ -85,6 +85,7 @@ struct RenderOptions {
     gl::BlurSettings blur;
     bool cascadeColors = false;
     gl::Culling visibility = gl::Culling::Frustum; // --visibility
+    bool receiverMask = false;  // --caster-culling receivers
     bool noCull = false; // --no-cull: --visibility off (what culling saves, measured)
     bool noLod = false;  // full meshes everywhere (what levels of detail save, measured)
 

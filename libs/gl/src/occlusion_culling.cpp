@@ -92,6 +92,18 @@ core::CoherentCullingStats OcclusionCuller::frame(const core::PerspectiveCamera&
     return stats;
 }
 
+void OcclusionCuller::prepass(const LodChoice* lod, CameraDepthTarget& target, std::span<const uint32_t> items) {
+    m_lod = lod;
+    m_listCursor = 0;
+    glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer.id());
+    glViewport(0, 0, target.width, target.height);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    target.clear();
+    draw(items);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
 void OcclusionCuller::draw(std::span<const uint32_t> items) {
     m_visibility.fromItems(items, m_lod, m_drawList);
     const size_t n = m_drawList.indices.size();

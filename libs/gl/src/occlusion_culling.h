@@ -34,6 +34,10 @@ public:
                                      std::vector<uint32_t>& drawn);
     static constexpr int kMaxSettleFrames = 4;
 
+    // A plain depth pre-pass of these instances into `target` (cleared here): the camera's
+    // depth for receiver masks when occlusion culling is off.
+    void prepass(const LodChoice* lod, CameraDepthTarget& target, std::span<const uint32_t> items);
+
     // core::OcclusionQueries
     void draw(std::span<const uint32_t> items) override;
     uint32_t issue(std::span<const uint32_t> nodes) override;

@@ -37,15 +37,11 @@ core::Result<Shader> compile(GLenum stage, std::initializer_list<std::string_vie
 
 } // namespace
 
-core::Result<Program> buildProgram(std::string_view name, std::initializer_list<std::string_view> vertexSources,
-                                   std::initializer_list<std::string_view> fragmentSources) {
-    auto vs = compile(GL_VERTEX_SHADER, vertexSources, std::string(name) + ": vertex shader");
-    if (!vs) return vs.errorInfo();
-    auto fs = compile(GL_FRAGMENT_SHADER, fragmentSources, std::string(name) + ": fragment shader");
-    if (!fs) return fs.errorInfo();
+namespace {
+
+core::Result<Program> link(std::string_view name, std::initializer_list<const Shader*> shaders) {
     Program program(glCreateProgram());
-    glAttachShader(program.id(), vs->id());
-    glAttachShader(program.id(), fs->id());
+    for (const Shader* shader : shaders) glAttachShader(program.id(), shader->id());
     glLinkProgram(program.id());
     GLint ok = 0;
     glGetProgramiv(program.id(), GL_LINK_STATUS, &ok);
@@ -56,9 +52,25 @@ core::Result<Program> buildProgram(std::string_view name, std::initializer_list<
         glGetProgramInfoLog(program.id(), size, nullptr, log.data());
         return core::makeError(std::string(name) + ": link: " + oneLine(log));
     }
-    glDetachShader(program.id(), vs->id());
-    glDetachShader(program.id(), fs->id());
+    for (const Shader* shader : shaders) glDetachShader(program.id(), shader->id());
     return program;
+}
+
+} // namespace
+
+core::Result<Program> buildComputeProgram(std::string_view name, std::initializer_list<std::string_view> sources) {
+    auto cs = compile(GL_COMPUTE_SHADER, sources, std::string(name) + ": compute shader");
+    if (!cs) return cs.errorInfo();
+    return link(name, {&*cs});
+}
+
+core::Result<Program> buildProgram(std::string_view name, std::initializer_list<std::string_view> vertexSources,
+                                   std::initializer_list<std::string_view> fragmentSources) {
+    auto vs = compile(GL_VERTEX_SHADER, vertexSources, std::string(name) + ": vertex shader");
+    if (!vs) return vs.errorInfo();
+    auto fs = compile(GL_FRAGMENT_SHADER, fragmentSources, std::string(name) + ": fragment shader");
+    if (!fs) return fs.errorInfo();
+    return link(name, {&*vs, &*fs});
 }
 
 core::Status checkUniformBlock(const Program& program, std::string_view programName, const char* blockName,

@@ -18,6 +18,9 @@ namespace shadowkit::gl {
 core::Result<Program> buildProgram(std::string_view name, std::initializer_list<std::string_view> vertexSources,
                                    std::initializer_list<std::string_view> fragmentSources);
 
+// A compute program, likewise.
+core::Result<Program> buildComputeProgram(std::string_view name, std::initializer_list<std::string_view> sources);
+
 // Fails unless the block exists, its std140 size equals the C++ struct's size and every
 // listed member sits at the C++ offset (GL_UNIFORM_OFFSET), so a field added, moved or
 // retyped on one side only is caught when the program is built, not read as garbage.

@@ -5,6 +5,7 @@
 #include "gpu_scene.h"
 #include "occlusion_culling.h"
 #include "program.h"
+#include "receiver_masks.h"
 #include "render_targets.h"
 #include "uniforms.h"
 #include "visibility.h"
@@ -83,6 +84,8 @@ struct Renderer::Impl {
     std::vector<uint32_t> occlusionDrawn;
     core::CoherentCullingStats occlusionStats;
     double occlusionMilliseconds = 0.0;
+    std::unique_ptr<ReceiverMasks> receiverMasks;
+    double receiverMaskMilliseconds = 0.0;
     Program depthProgram, mainProgram, evalProgram, blurProgram;
     Buffer depthUniforms, frameUniforms, blurUniforms;
     VertexArray emptyVertexArray; // for the full-screen triangle
@@ -150,49 +153,91 @@ core::Result<std::unique_ptr<Renderer>> Renderer::create(const scene::Scene& sce
     auto occlusion = OcclusionCuller::create(*r.visibility, *r.scene);
     if (!occlusion) return occlusion.errorInfo();
     r.occlusion = std::move(occlusion).value();
+    auto masks = ReceiverMasks::create();
+    if (!masks) return masks.errorInfo();
+    r.receiverMasks = std::move(masks).value();
     // Conventions (core/conventions.h): clip depth [0,1].
     glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
     return renderer;
 }
 
+namespace {
+
+// How far from its own texel a receiver's lookup reads, in map texels: the filter's
+// footprint, the normal offset (in texels' world size), and two for rounding and for the
+// shift of simplified receivers' lookups.
+double lookupReachTexels(const core::FilterSettings& filter, const core::BiasSettings& bias) {
+    double reach = 0.0;
+    switch (filter.kind) {
+    case core::ShadowFilter::Hard: reach = 0.0; break;
+    case core::ShadowFilter::Pcf2: reach = 1.0; break;
+    case core::ShadowFilter::PcfGrid: reach = 0.5 * (filter.taps - 1) + 1.0; break;
+    case core::ShadowFilter::Poisson: reach = filter.radiusTexels + 1.0; break;
+    }
+    return reach + std::abs(bias.normalOffset) + 2.0;
+}
+
+double millisecondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+} // namespace
+
 void Renderer::Impl::collectVisible(const core::PerspectiveCamera& camera, const core::DirectionalLight& light,
                                     const core::ShadowSetup& setup, const RenderSettings& settings) {
     const auto start = std::chrono::steady_clock::now();
     const bool cull = settings.culling != Culling::Off;
-    shadowLists.resize(setup.views.size());
-    std::vector<PassList*> lists;
+    const bool masked = cull && settings.receiverMask;
+    // Camera pass first: with occlusion culling or receiver masks the shadow passes' lists
+    // depend on what it sees. Levels by pixels. A simplified receiver lies up to its error
+    // off the true surface and would self-shadow against the map (measured without
+    // compensation: +0.05 to +0.12 points of false shadow on an aerial view), so its lookup
+    // moves that far towards the light (receiverLookup in shadow_lookup.glsl).
     const LodProjection cameraProjection{camera.clipFromWorld(), 0.5 * std::max(settings.width, settings.height),
                                          settings.lodPixelError};
+    const LodChoice cameraLod{cameraProjection, std::nullopt, false};
+    const LodChoice* cameraLodOrNone = settings.lod ? &cameraLod : nullptr;
+    const std::vector<core::HalfSpace> cameraVolume = core::clipVolume(camera.clipFromWorld());
+    occlusionStats = {};
+    occlusionMilliseconds = receiverMaskMilliseconds = 0.0;
+    if (settings.culling == Culling::Occlusion || masked) {
+        if (!cameraDepth || cameraDepth->width != settings.width || cameraDepth->height != settings.height)
+            cameraDepth.emplace(settings.width, settings.height);
+        uploadFrame(camera, light, setup, settings, false); // the pre-pass reads the camera's Frame
+    }
+    if (settings.culling == Culling::Occlusion) {
+        const auto occlusionStart = std::chrono::steady_clock::now();
+        occlusionStats = occlusion->frame(camera, cameraLodOrNone, *cameraDepth, occlusionDrawn);
+        visibility->fromItems(occlusionDrawn, cameraLodOrNone, cameraList);
+        occlusionMilliseconds = millisecondsSince(occlusionStart);
+    } else {
+        visibility->collect(cameraVolume, cull, cameraLodOrNone, cameraList);
+        if (masked) {
+            occlusionDrawn.clear();
+            visibility->hierarchy().query(cameraVolume, occlusionDrawn);
+            occlusion->prepass(cameraLodOrNone, *cameraDepth, occlusionDrawn);
+        }
+    }
+    const std::vector<core::ReceiverMask>* masks = nullptr;
+    if (masked) {
+        const auto maskStart = std::chrono::steady_clock::now();
+        masks = &receiverMasks->build(*cameraDepth, camera, setup, lookupReachTexels(settings.filter, bias));
+        receiverMaskMilliseconds = millisecondsSince(maskStart);
+    }
+    shadowLists.resize(setup.views.size());
+    std::vector<PassList*> lists;
     for (size_t i = 0; i < setup.views.size(); ++i) {
         // No near plane: the pass clamps depth, so casters between the light and the near
         // plane are drawn at depth 0 and must not be culled. Levels by texels of this map.
         const core::Mat4& clipFromWorld = setup.views[i].clipFromWorld;
         const LodChoice lod{{clipFromWorld, 0.5 * setup.mapSize, settings.lodTexelError}, cameraProjection, true};
-        visibility->collect(core::clipVolume(clipFromWorld, false), cull, settings.lod ? &lod : nullptr, shadowLists[i]);
+        visibility->collect(core::clipVolume(clipFromWorld, false), cull, settings.lod ? &lod : nullptr, shadowLists[i],
+                            masks ? &(*masks)[i] : nullptr);
         lists.push_back(&shadowLists[i]);
-    }
-    // Camera pass: levels by pixels. A simplified receiver lies up to its error off the true
-    // surface and would self-shadow against the map (measured without compensation: +0.05
-    // to +0.12 points of false shadow on an aerial view), so its lookup moves that far
-    // towards the light (receiverLookup in shadow_lookup.glsl).
-    const LodChoice cameraLod{cameraProjection, std::nullopt, false};
-    occlusionStats = {};
-    occlusionMilliseconds = 0.0;
-    if (settings.culling == Culling::Occlusion) {
-        const auto occlusionStart = std::chrono::steady_clock::now();
-        if (!cameraDepth || cameraDepth->width != settings.width || cameraDepth->height != settings.height)
-            cameraDepth.emplace(settings.width, settings.height);
-        uploadFrame(camera, light, setup, settings, false); // the pre-pass reads the camera's Frame
-        occlusionStats = occlusion->frame(camera, settings.lod ? &cameraLod : nullptr, *cameraDepth, occlusionDrawn);
-        visibility->fromItems(occlusionDrawn, settings.lod ? &cameraLod : nullptr, cameraList);
-        occlusionMilliseconds =
-            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - occlusionStart).count();
-    } else {
-        visibility->collect(core::clipVolume(camera.clipFromWorld()), cull, settings.lod ? &cameraLod : nullptr, cameraList);
     }
     lists.push_back(&cameraList);
     visibility->upload(lists);
-    cullMilliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    cullMilliseconds = millisecondsSince(start);
 }
 
 core::Status Renderer::Impl::prepare(const core::PerspectiveCamera& camera, const core::DirectionalLight& light,
@@ -388,6 +433,7 @@ core::Result<FrameStats> Renderer::render(const core::PerspectiveCamera& camera,
     stats.cullMilliseconds = r.cullMilliseconds;
     stats.occlusion = r.occlusionStats;
     stats.occlusionMilliseconds = r.occlusionMilliseconds;
+    stats.receiverMaskMilliseconds = r.receiverMaskMilliseconds;
     return stats;
 }
 

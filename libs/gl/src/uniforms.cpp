@@ -51,6 +51,16 @@ std::span<const UniformField> blurFields() {
     return kFields;
 }
 
+std::span<const UniformField> receiverMaskFields() {
+    static constexpr std::array kFields = {
+        SK_FIELD(ReceiverMaskUniforms, worldFromClip),       SK_FIELD(ReceiverMaskUniforms, wsEye),
+        SK_FIELD(ReceiverMaskUniforms, wsViewForward),       SK_ARRAY_FIELD(ReceiverMaskUniforms, mapClipFromWorld),
+        SK_ARRAY_FIELD(ReceiverMaskUniforms, mapLinearDepthFromWorld), SK_FIELD(ReceiverMaskUniforms, mapCount),
+        SK_FIELD(ReceiverMaskUniforms, linearLayout),        SK_FIELD(ReceiverMaskUniforms, maskSize),
+    };
+    return kFields;
+}
+
 #undef SK_FIELD
 #undef SK_ARRAY_FIELD
 
@@ -72,6 +82,9 @@ const std::string& shaderPrelude() {
         define("SK_INSTANCES_BINDING", kInstancesBinding);
         define("SK_VISIBLE_BINDING", kVisibleBinding);
         define("SK_BOXES_BINDING", kBoxesBinding);
+        define("SK_MASK_BINDING", kMaskBinding);
+        define("SK_RECEIVER_MASK_BINDING", kReceiverMaskBinding);
+        define("SK_RECEIVER_DEPTH_UNIT", kReceiverDepthUnit);
         define("SK_BOX_OFFSET_LOCATION", kBoxOffsetLocation);
         define("SK_INSTANCE_OFFSET_LOCATION", kInstanceOffsetLocation);
         define("SK_LOD_ERROR_LOCATION", kLodErrorLocation);

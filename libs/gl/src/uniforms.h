@@ -24,6 +24,9 @@ inline constexpr unsigned kDepthPassBinding = 1;
 inline constexpr unsigned kBlurBinding = 2;
 inline constexpr unsigned kInstancesBinding = 0; // shader storage: mat4 worldFromObject[] of the batch drawn
 inline constexpr unsigned kVisibleBinding = 1;   // shader storage: uint visibleInstances[] of the frame
+inline constexpr unsigned kMaskBinding = 3;      // shader storage: uint maskTexels[] of the receiver masks
+inline constexpr unsigned kReceiverMaskBinding = 3; // uniform block ReceiverMask (receiver_mask.comp)
+inline constexpr unsigned kReceiverDepthUnit = 0;   // receiver mask pass: the pre-pass's view depth
 inline constexpr unsigned kBoxesBinding = 2;     // shader storage: vec4 boxCorners[] (min, max) of occlusion queries
 // Texture units (GLSL: SK_*_UNIT). The camera passes and the blur pass never run together.
 inline constexpr unsigned kShadowMapUnit = 0;  // camera passes: sampler2DArrayShadow, one layer per map
@@ -70,6 +73,18 @@ struct FrameUniforms { // GLSL: Frame (frame.glsl)
     glm::vec4 cascadeRange[kMaxCascades];               // x, y: view depth [start, end] each map serves
 };
 
+struct ReceiverMaskUniforms { // GLSL: ReceiverMask (receiver_mask.comp)
+    glm::mat4 worldFromClip; // camera
+    glm::vec4 wsEye;
+    glm::vec4 wsViewForward;
+    glm::mat4 mapClipFromWorld[kMaxCascades];
+    glm::vec4 mapLinearDepthFromWorld[kMaxCascades];
+    int32_t mapCount;
+    int32_t linearLayout;
+    int32_t maskSize;
+    int32_t pad0;
+};
+
 struct BlurUniforms { // GLSL: Blur (blur.frag)
     float radiusPixels;   // tap distance at view depth 0
     float depthFalloff;   // 1/m: radius / (1 + falloff · depth)
@@ -91,6 +106,7 @@ struct UniformField {
 std::span<const UniformField> depthPassFields();
 std::span<const UniformField> frameFields();
 std::span<const UniformField> blurFields();
+std::span<const UniformField> receiverMaskFields();
 
 // "#version 450 core" and the #defines above (SK_MAX_CASCADES, SK_FILTER_HARD, ...,
 // SK_FRAME_BINDING, ..., SK_SHADOW_MAP_UNIT, ...): the first source of every stage.

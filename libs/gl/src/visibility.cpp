@@ -73,12 +73,16 @@ void Visibility::fromItems(std::span<const uint32_t> items, const LodChoice* lod
     build(lod, out);
 }
 
-void Visibility::collect(std::span<const core::HalfSpace> volume, bool cull, const LodChoice* lod, PassList& out) {
+void Visibility::collect(std::span<const core::HalfSpace> volume, bool cull, const LodChoice* lod, PassList& out,
+                         const core::ReceiverMask* receivers) {
     m_scratch.clear();
     if (cull) {
         // The hierarchy answers in tree order; a bitmap over every instance puts the answer
         // back in instance order in O(n / 64 + visible), cheaper than sorting it.
-        m_hierarchy.query(volume, m_scratch);
+        if (receivers)
+            m_hierarchy.query(volume, [receivers](const core::Aabb& box) { return receivers->mayShadow(box); }, m_scratch);
+        else
+            m_hierarchy.query(volume, m_scratch);
         m_visibleBits.assign((m_hierarchy.size() + 63) / 64, 0);
         for (const uint32_t i : m_scratch) m_visibleBits[i / 64] |= uint64_t{1} << (i % 64);
         scratchFromBits();

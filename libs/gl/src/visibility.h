@@ -9,6 +9,7 @@
 #include "gl_object.h"
 
 #include "shadowkit/core/instance_hierarchy.h"
+#include "shadowkit/core/receiver_mask.h"
 #include "shadowkit/scene/mesh_lod.h"
 #include "shadowkit/scene/scene.h"
 
@@ -56,7 +57,9 @@ public:
 
     // The instances the half-spaces may see (every instance when `cull` is false), each at
     // the level `lod` picks (the full mesh without one).
-    void collect(std::span<const core::HalfSpace> volume, bool cull, const LodChoice* lod, PassList& out);
+    // With a receiver mask, only the instances it says may shadow a visible receiver.
+    void collect(std::span<const core::HalfSpace> volume, bool cull, const LodChoice* lod, PassList& out,
+                 const core::ReceiverMask* receivers = nullptr);
     // The same for a given set of global instance indices (any order, no repeats), e.g. what
     // occlusion culling drew: the list comes out in instance order like collect()'s.
     void fromItems(std::span<const uint32_t> items, const LodChoice* lod, PassList& out);

@@ -55,6 +55,10 @@ struct RenderSettings {
     // its clip volume extended towards the light. Invisible by contract (the same pixels
     // either way); Off draws everything.
     Culling culling = Culling::Frustum;
+    // Shadow caster culling by visible receivers (Bittner et al. 2011): each shadow map
+    // draws only casters that can shadow a pixel the camera sees, found from the camera's
+    // depth (a pre-pass; CHC++'s own with Occlusion). Same pixels; ignored when culling is Off.
+    bool receiverMask = false;
     // Levels of detail (scene::buildLods): every instance is drawn at the coarsest level
     // whose geometric error, projected at its centre, stays within lodPixelError pixels of
     // the camera, and in a shadow pass also within lodTexelError texels of that map (a
@@ -82,6 +86,7 @@ struct FrameStats {
     // Culling::Occlusion: the CHC++ pre-pass (counted in cullMilliseconds, with its waits).
     core::CoherentCullingStats occlusion;
     double occlusionMilliseconds = 0.0;
+    double receiverMaskMilliseconds = 0.0; // CPU, incl. the read-back (counted in cullMilliseconds)
 };
 
 class Renderer {

@@ -1,0 +1,41 @@
+// Shadow caster culling by visible receivers (core/receiver_mask.h) on the GPU side: a
+// compute pass over the camera's depth pre-pass marks every visible pixel in a small mask
+// per shadow map; the masks come back to the CPU (a few KB), where the shadow passes' culling
+// asks them which casters can shadow anything seen.
+#pragma once
+
+#include "gl_object.h"
+#include "render_targets.h"
+
+#include "shadowkit/core/camera.h"
+#include "shadowkit/core/receiver_mask.h"
+#include "shadowkit/core/result.h"
+#include "shadowkit/core/shadow_setup.h"
+
+#include <memory>
+#include <vector>
+
+namespace shadowkit::gl {
+
+inline constexpr int kReceiverMaskSize = 128; // texels per side of every mask
+
+class ReceiverMasks {
+public:
+    static core::Result<std::unique_ptr<ReceiverMasks>> create();
+
+    // One mask per shadow view of `setup`, from the view depths in `camera`'s pre-pass.
+    // `dilationTexels`: how far from its own texel a receiver's lookup reads, in map texels
+    // (filter footprint, normal offset).
+    const std::vector<core::ReceiverMask>& build(const CameraDepthTarget& target, const core::PerspectiveCamera& camera,
+                                                 const core::ShadowSetup& setup, double dilationTexels);
+
+private:
+    ReceiverMasks() = default;
+    Program m_program;
+    Buffer m_uniforms, m_texels;
+    size_t m_texelCapacity = 0;
+    std::vector<uint32_t> m_readBack;
+    std::vector<core::ReceiverMask> m_masks;
+};
+
+} // namespace shadowkit::gl
