@@ -7,6 +7,10 @@ drift from what the program measures.
   tools/readme_tables.py details LABEL=FILE.json ...
       every figure, one row per technique and view
 
+  tools/readme_tables.py visibility BENCH.json ...
+      per `shadowkit bench --json` file: triangles and instances per pass, queries, waits,
+      GPU ms and the CPU cost of the pre-pass and masks (tools/measure-visibility.sh)
+
 LABEL is the row's name as printed (e.g. '`tsm`' or '`csm` 4 × 1024²'). tools/measure-readme.sh
 runs the evaluations behind every table and prints them.
 """
@@ -49,7 +53,27 @@ def details(reports):
                   f"{r['pixels_per_texel_p50']:.2f} | {r['pixels_per_texel_p99']:.0f} |")
 
 
+def visibility(paths):
+    print("| trees | visibility | casters | shadow pass: M triangles (instances) | main pass: M triangles (instances) | "
+          "queries (waits) | shadow GPU ms | main GPU ms | CPU culling ms (pre-pass, masks) |")
+    print("|---:|---|---|---:|---:|---:|---:|---:|---:|")
+    for path in paths:
+        with open(path) as f:
+            for r in json.load(f)["runs"]:
+                o = r["occlusion"]
+                chc = r["visibility"] == "chc"
+                queries = f"{o['queries']} ({o['waits']})" if chc else "–"
+                print(f"| {r['trees']:,} | {r['visibility']} | {'receivers' if r['receiver_mask'] else 'volume'} | "
+                      f"{r['shadow']['triangles'] / 1e6:.2f} ({r['shadow']['instances']}) | "
+                      f"{r['main']['triangles'] / 1e6:.2f} ({r['main']['instances']}) | {queries} | "
+                      f"{r['shadow']['gpu_ms']['median']:.0f} | {r['main']['gpu_ms']['median']:.0f} | "
+                      f"{r['cull_ms']['median']:.1f} ({o['prepass_ms']['median']:.1f}, {r['receiver_mask_ms']['median']:.1f}) |")
+
+
 if __name__ == "__main__":
+    if len(sys.argv) >= 3 and sys.argv[1] == "visibility":
+        visibility(sys.argv[2:])
+        sys.exit(0)
     if len(sys.argv) < 3 or sys.argv[1] not in ("summary", "details"):
         sys.exit(__doc__)
     args = sys.argv[2:]

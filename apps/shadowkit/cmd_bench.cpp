@@ -70,6 +70,7 @@ int runBench(const BenchArgs& args) {
     if (!context) return fail(context.error());
     fmt::print("{} | technique {} | {} frames per row | culling {}\n", (*context)->description(),
                core::techniqueName(args.technique.technique), args.frames, gl::cullingName(args.render.noCull ? gl::Culling::Off : args.render.visibility));
+    fmt::print("caster culling {}\n", args.render.receiverMask ? "by visible receivers" : "by volume");
     fmt::print("{:>7} {:>7} {:<14} {:<7} {:>9} {:>9} {:>6} {:>26} {:>20} {:>20}\n", "trees", "terrain", "view", "pass",
                "instances", "M tris", "draws", "GPU ms min/med/max", "set-up ms med/max", "cull ms med/max");
     nlohmann::json runs = nlohmann::json::array();
@@ -95,7 +96,7 @@ int runBench(const BenchArgs& args) {
             viewOptions.view = name;
             auto view = viewOptions.resolve(forest);
             if (!view) return fail(view.error());
-            std::vector<double> setupMs, cullMs, shadowMs, mainMs;
+            std::vector<double> setupMs, cullMs, shadowMs, mainMs, occlusionMs, maskMs;
             gl::FrameStats last;
             for (int frame = 0; frame < args.frames; ++frame) {
                 const auto start = std::chrono::steady_clock::now();
@@ -109,6 +110,8 @@ int runBench(const BenchArgs& args) {
                 auto stats = (*renderer)->render(view->camera, view->light, *setup, *settings);
                 if (!stats) return fail(withFlagName(stats.errorInfo()).message);
                 cullMs.push_back(stats->cullMilliseconds);
+                occlusionMs.push_back(stats->occlusionMilliseconds);
+                maskMs.push_back(stats->receiverMaskMilliseconds);
                 shadowMs.push_back(stats->shadow.gpuMilliseconds);
                 mainMs.push_back(stats->main.gpuMilliseconds);
                 last = *stats;
@@ -136,6 +139,21 @@ int runBench(const BenchArgs& args) {
                              {"draw_calls", stats->drawCalls},
                              {"gpu_ms", toJson(g)}};
             }
+            const core::CoherentCullingStats& o = last.occlusion;
+            const Spread occlusionSpread = spread(occlusionMs), maskSpread = spread(maskMs);
+            if (args.render.visibility == gl::Culling::Occlusion && !args.render.noCull)
+                fmt::print("{:>7} {:>7} {:<14} chc     {} nodes visited, {} queries over {} nodes ({} multi-queries failed), "
+                           "{} waits; pre-pass CPU ms med {:.2f} max {:.2f} (incl. its draws and waits)\n",
+                           "", "", "", o.nodesVisited, o.queriesIssued, o.nodesQueried, o.multiQueryFailures, o.waits,
+                           occlusionSpread.median, occlusionSpread.max);
+            if (args.render.receiverMask)
+                fmt::print("{:>7} {:>7} {:<14} masks   receiver masks CPU ms med {:.2f} max {:.2f} (compute + read-back + mask)\n", "", "",
+                           "", maskSpread.median, maskSpread.max);
+            run["receiver_mask"] = args.render.receiverMask;
+            run["receiver_mask_ms"] = toJson(maskSpread);
+            run["occlusion"] = {{"nodes_visited", o.nodesVisited}, {"queries", o.queriesIssued}, {"nodes_queried", o.nodesQueried},
+                                {"multi_query_failures", o.multiQueryFailures}, {"waits", o.waits},
+                                {"prepass_ms", toJson(occlusionSpread)}};
             std::fflush(stdout);
             runs.push_back(run);
         }

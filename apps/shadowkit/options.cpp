@@ -248,12 +248,12 @@ void RenderOptions::addTo(CLI::App& cmd) {
     cmd.add_option("--visibility", visibility,
                    "instances the camera pass draws: off (all, every pass), frustum, chc (CHC++ occlusion queries)")
         ->transform(choice(Choices<gl::Culling>{{"off", gl::Culling::Off}, {"frustum", gl::Culling::Frustum}, {"chc", gl::Culling::Occlusion}}))
-        ->default_str("frustum");
+        ->default_str("chc");
     cmd.add_option("--caster-culling", receiverMask,
                    "casters each shadow map draws: volume (its clip volume), receivers (also only those that can "
                    "shadow a pixel the camera sees; a camera depth pre-pass)")
         ->transform(choice(Choices<bool>{{"volume", false}, {"receivers", true}}))
-        ->default_str("volume");
+        ->default_str("receivers");
     cmd.add_flag("--no-cull", noCull, "same as --visibility off: every instance in every pass (same pixels, more work)");
     cmd.add_flag("--no-lod", noLod, "draw full meshes in every pass (no levels of detail)");
 }

@@ -84,8 +84,8 @@ struct RenderOptions {
     std::string filter = "hard";
     gl::BlurSettings blur;
     bool cascadeColors = false;
-    gl::Culling visibility = gl::Culling::Frustum; // --visibility
-    bool receiverMask = false;  // --caster-culling receivers
+    gl::Culling visibility = gl::Culling::Occlusion; // --visibility (README "Visibility": the best measured)
+    bool receiverMask = true;   // --caster-culling receivers (likewise)
     bool noCull = false; // --no-cull: --visibility off (what culling saves, measured)
     bool noLod = false;  // full meshes everywhere (what levels of detail save, measured)
 

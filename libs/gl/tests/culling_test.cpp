@@ -68,7 +68,20 @@ TEST_F(CullingTest, CulledFramesMatchFullFramesPixelForPixelForEveryTechnique) {
             const auto culledBuffers = (*renderer)->renderEvalBuffers(view.camera, view.light, *setup, settings);
             ASSERT_TRUE(fullBuffers && culledBuffers);
 
+            // Everything on: occlusion-culled camera pass, casters culled by visible receivers.
+            settings.culling = gl::Culling::Occlusion;
+            settings.receiverMask = true;
+            const auto fewest = (*renderer)->render(view.camera, view.light, *setup, settings);
+            ASSERT_TRUE(fewest) << fewest.error();
+            const scene::Image fewestImage = (*renderer)->readColor();
+            const auto fewestBuffers = (*renderer)->renderEvalBuffers(view.camera, view.light, *setup, settings);
+            ASSERT_TRUE(fewestBuffers);
+
             const std::string what = std::string(viewName) + ", " + v.name;
+            EXPECT_EQ(fullImage.rgba, fewestImage.rgba) << what << ", chc + receiver masks";
+            EXPECT_EQ(fullBuffers->shadowTerm, fewestBuffers->shadowTerm) << what << ", chc + receiver masks";
+            EXPECT_LE(fewest->shadow.instances, culled->shadow.instances) << what;
+            EXPECT_LE(fewest->main.instances, culled->main.instances) << what;
             EXPECT_EQ(fullImage.rgba, culledImage.rgba) << what;
             EXPECT_EQ(fullBuffers->shadowTerm, culledBuffers->shadowTerm) << what;
             EXPECT_EQ(fullBuffers->surfaceId, culledBuffers->surfaceId) << what;
@@ -113,7 +126,11 @@ TEST_F(CullingTest, CasterOutsideTheViewFrustumIsDrawnIntoTheMapAndItsShadowAppe
     gl::RenderSettings settings;
     settings.width = settings.height = 128;
     settings.fogDensity = 0.0f;
+    // Also with casters culled by visible receivers: the wall is out of view, but the
+    // ground it shadows is in view, so the receiver mask must keep it.
+    for (const bool receiverMask : {false, true})
     for (core::Technique t : {core::Technique::Focused, core::Technique::Lispsm, core::Technique::Tsm, core::Technique::Csm}) {
+        settings.receiverMask = receiverMask;
         const auto setup = core::computeShadowSetup(
             {.camera = cam, .light = sun, .wsSceneBounds = s.wsBounds(), .technique = t, .mapSize = 1024});
         ASSERT_TRUE(setup);
