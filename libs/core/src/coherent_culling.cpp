@@ -38,20 +38,10 @@
 namespace shadowkit::core {
 namespace {
 
-bool outside(std::span<const HalfSpace> volume, const Aabb& b) {
-    if (b.isEmpty()) return true;
-    for (const HalfSpace& h : volume) {
-        const double furthest = h.x * (h.x >= 0.0 ? b.max.x : b.min.x) + h.y * (h.y >= 0.0 ? b.max.y : b.min.y) +
-                                h.z * (h.z >= 0.0 ? b.max.z : b.min.z) + h.w;
-        if (!(furthest >= 0.0)) return true;
-    }
-    return false;
-}
-
-double squaredDistance(const Aabb& b, const Vec3& p) {
-    const Vec3 d = glm::max(glm::max(b.min - p, p - b.max), Vec3(0.0));
-    return glm::dot(d, d);
-}
+// The distance queue is a min-heap on the distance from the eye.
+constexpr auto kFarther = [](const std::pair<double, uint32_t>& a, const std::pair<double, uint32_t>& b) {
+    return a.first > b.first;
+};
 
 // A leaf's phase in its re-query cycle: a fixed hash, so the checks spread over frames.
 uint32_t phaseOf(uint32_t node) {
@@ -110,7 +100,6 @@ CoherentCullingStats CoherentCulling::frame(std::span<const HalfSpace> frustum, 
     m_queryNodes.clear();
     readLateChecks();
 
-    auto farther = [](const auto& a, const auto& b) { return a.first > b.first; };
     m_distanceQueue.clear();
     m_distanceQueue.emplace_back(0.0, InstanceHierarchy::kRoot);
     while (!m_distanceQueue.empty() || !m_invisibleQueue.empty() || !m_queryQueue.empty()) {
@@ -130,7 +119,7 @@ CoherentCullingStats CoherentCulling::frame(std::span<const HalfSpace> frustum, 
             handle(query, queries.visible(query.handle));
         }
         if (!m_distanceQueue.empty()) {
-            std::pop_heap(m_distanceQueue.begin(), m_distanceQueue.end(), farther);
+            std::pop_heap(m_distanceQueue.begin(), m_distanceQueue.end(), kFarther);
             const uint32_t node = m_distanceQueue.back().second;
             m_distanceQueue.pop_back();
             visit(node);
@@ -158,11 +147,11 @@ void CoherentCulling::visit(uint32_t node) {
     NodeState& s = m_nodes[node];
     const bool previouslyVisible = s.visible && s.lastVisited + 1 == m_frame;
     s.lastVisited = m_frame;
-    if (outside(m_frustum, box)) {
+    if (isOutside(m_frustum, box)) {
         s.visible = false;
         return;
     }
-    const bool holdsEye = squaredDistance(box, m_wsEye) <= m_nearMargin * m_nearMargin;
+    const bool holdsEye = box.distanceSquared(m_wsEye) <= m_nearMargin * m_nearMargin;
     if (!(m_assumeVisible || holdsEye || previouslyVisible)) {
         m_invisibleQueue.push_back(node);
         if (m_invisibleQueue.size() >= size_t(m_options.batchSize)) issueBatch();
@@ -178,17 +167,20 @@ void CoherentCulling::visit(uint32_t node) {
         return;
     }
     s.visible = false; // until a descendant turns out visible (pullUpVisibility)
+    pushChildren(node);
+}
+
+void CoherentCulling::pushChildren(uint32_t node) {
     const uint32_t left = m_hierarchy->leftChild(node);
-    auto farther = [](const auto& a, const auto& b) { return a.first > b.first; };
     for (const uint32_t child : {left, left + 1}) {
-        m_distanceQueue.emplace_back(squaredDistance(m_hierarchy->nodeBounds(child), m_wsEye), child);
-        std::push_heap(m_distanceQueue.begin(), m_distanceQueue.end(), farther);
+        m_distanceQueue.emplace_back(m_hierarchy->nodeBounds(child).distanceSquared(m_wsEye), child);
+        std::push_heap(m_distanceQueue.begin(), m_distanceQueue.end(), kFarther);
     }
 }
 
 void CoherentCulling::drawLeaf(uint32_t node) {
     for (const uint32_t item : m_hierarchy->leafItems(node)) {
-        if (outside(m_frustum, m_hierarchy->itemBounds(item))) continue;
+        if (isOutside(m_frustum, m_hierarchy->itemBounds(item))) continue;
         m_pendingDraw.push_back(item);
         m_drawn->push_back(item);
         ++m_stats.itemsDrawn;
@@ -271,13 +263,7 @@ void CoherentCulling::handle(const Query& query, bool visible) {
             drawLeaf(node);
             continue;
         }
-        // Opened now: its children were not visited last frame, so each is queried.
-        const uint32_t left = m_hierarchy->leftChild(node);
-        auto farther = [](const auto& a, const auto& b) { return a.first > b.first; };
-        for (const uint32_t child : {left, left + 1}) {
-            m_distanceQueue.emplace_back(squaredDistance(m_hierarchy->nodeBounds(child), m_wsEye), child);
-            std::push_heap(m_distanceQueue.begin(), m_distanceQueue.end(), farther);
-        }
+        pushChildren(node); // opened now: its children were not visited last frame, so each is queried
     }
 }
 

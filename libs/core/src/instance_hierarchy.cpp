@@ -50,6 +50,8 @@ Overlap classify(std::span<const HalfSpace> volume, const Aabb& b) {
 
 } // namespace
 
+bool isOutside(std::span<const HalfSpace> volume, const Aabb& box) { return classify(volume, box) == Overlap::Outside; }
+
 std::vector<HalfSpace> clipVolume(const Mat4& m, bool withNear) {
     // Rows of the matrix (glm is column-major: m[c][r]).
     auto row = [&m](int r) { return HalfSpace(m[0][r], m[1][r], m[2][r], m[3][r]); };

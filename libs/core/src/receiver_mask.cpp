@@ -29,12 +29,13 @@ ReceiverMask::ReceiverMask(int size, const Mat4& clipFromWorld, std::optional<Ve
     m_levels.emplace_back(size_t(m_size) * size_t(m_size), -INFINITY);
 }
 
+int ReceiverMask::texelOf(double ndc) const {
+    return std::clamp(static_cast<int>(std::floor((0.5 * ndc + 0.5) * m_size)), 0, m_size - 1);
+}
+
 std::optional<ReceiverMask::Sample> ReceiverMask::sample(const Vec3& ws) const {
     const Vec4 clip = m_clipFromWorld * Vec4(ws, 1.0);
     if (!(clip.w > 1e-12)) return std::nullopt;
-    auto texelOf = [this](double ndc) {
-        return std::clamp(static_cast<int>(std::floor((0.5 * ndc + 0.5) * m_size)), 0, m_size - 1);
-    };
     const double depth = m_linearDepthFromWorld ? glm::dot(*m_linearDepthFromWorld, Vec4(ws, 1.0)) : clip.z / clip.w;
     return Sample{texelOf(clip.y / clip.w) * m_size + texelOf(clip.x / clip.w), static_cast<float>(depth)};
 }
@@ -89,7 +90,7 @@ bool ReceiverMask::mayShadow(const Aabb& box) const {
     if (box.isEmpty()) return false;
     double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY, nearest = INFINITY;
     for (int c = 0; c < 8; ++c) {
-        const Vec3 ws((c & 1) ? box.max.x : box.min.x, (c & 2) ? box.max.y : box.min.y, (c & 4) ? box.max.z : box.min.z);
+        const Vec3 ws = box.corner(c);
         const Vec4 clip = m_clipFromWorld * Vec4(ws, 1.0);
         if (!(clip.w > 1e-12)) return true;
         x0 = std::min(x0, clip.x / clip.w), x1 = std::max(x1, clip.x / clip.w);
@@ -97,9 +98,6 @@ bool ReceiverMask::mayShadow(const Aabb& box) const {
         nearest = std::min(nearest, m_linearDepthFromWorld ? glm::dot(*m_linearDepthFromWorld, Vec4(ws, 1.0)) : clip.z / clip.w);
     }
     if (x1 < -1.0 || x0 > 1.0 || y1 < -1.0 || y0 > 1.0) return false; // draws nothing into the map
-    auto texelOf = [this](double ndc) {
-        return std::clamp(static_cast<int>(std::floor((0.5 * ndc + 0.5) * m_size)), 0, m_size - 1);
-    };
     int tx0 = texelOf(x0), tx1 = texelOf(x1), ty0 = texelOf(y0), ty1 = texelOf(y1);
     // The finest level at which the rectangle spans at most 4 texels a side; a conservative
     // "no" there is final, a "maybe" on a wide rectangle is kept (rare for a tree).

@@ -131,8 +131,7 @@ uint32_t OcclusionCuller::issue(std::span<const uint32_t> nodes) {
     m_boxStaging.clear();
     for (const uint32_t node : nodes) {
         const core::Aabb& box = hierarchy.nodeBounds(node);
-        const double distance = glm::length(glm::max(glm::max(box.min - eye, eye - box.max), core::Vec3(0.0)));
-        const double margin = 0.01 + 1e-3 * distance;
+        const double margin = 0.01 + 1e-3 * std::sqrt(box.distanceSquared(eye));
         m_boxStaging.push_back(grown(box.min, margin, -1.0));
         m_boxStaging.push_back(grown(box.max, margin, +1.0));
     }

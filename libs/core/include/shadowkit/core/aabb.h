@@ -34,6 +34,11 @@ struct Aabb {
         return p.x >= min.x - eps && p.y >= min.y - eps && p.z >= min.z - eps &&
                p.x <= max.x + eps && p.y <= max.y + eps && p.z <= max.z + eps;
     }
+    // Squared distance from p to the box: 0 inside.
+    double distanceSquared(const Vec3& p) const {
+        const Vec3 d = glm::max(glm::max(min - p, p - max), Vec3(0.0));
+        return glm::dot(d, d);
+    }
     // Corner i: bit 0 selects x, bit 1 y, bit 2 z (0 = min, 1 = max).
     Vec3 corner(int i) const {
         return {(i & 1) ? max.x : min.x, (i & 2) ? max.y : min.y, (i & 4) ? max.z : min.z};

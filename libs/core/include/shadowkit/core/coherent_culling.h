@@ -81,6 +81,7 @@ private:
 
     void readLateChecks();
     void visit(uint32_t node);
+    void pushChildren(uint32_t node);
     void drawLeaf(uint32_t node);
     void pullUpVisibility(uint32_t node);
     void issueBatch();

@@ -23,6 +23,10 @@ using HalfSpace = Vec4;
 // extended towards the light — what a depth-clamped shadow pass still draws.
 std::vector<HalfSpace> clipVolume(const Mat4& clipFromWorld, bool withNear = true);
 
+// Whether one half-space has all of the box outside (or the box is empty): the test the
+// hierarchy's queries cull with. NaN-safe: NaN culls.
+bool isOutside(std::span<const HalfSpace> volume, const Aabb& box);
+
 class InstanceHierarchy {
 public:
     InstanceHierarchy() = default;

@@ -46,6 +46,8 @@ public:
     bool everything() const { return m_everything; }
 
 private:
+    int texelOf(double ndc) const; // of one NDC coordinate, clamped to the mask
+
     int m_size;
     Mat4 m_clipFromWorld;
     std::optional<Vec4> m_linearDepthFromWorld;
