@@ -19,6 +19,10 @@ eval_to csm-1024 --technique csm --cascades 4 --map-size 1024
 eval_to csm-1024-lispsm --technique csm --cascades 4 --map-size 1024 --cascade-warp lispsm
 eval_to csm-2048 --technique csm --cascades 4 --map-size 2048
 eval_to csm-2048-lispsm --technique csm --cascades 4 --map-size 2048 --cascade-warp lispsm
+# Visible depth (a GPU min/max reduction of the camera's depth pre-pass) for n and splits.
+eval_to lispsm-visible --technique lispsm --map-size 2048 --visible-depth auto
+eval_to lispsm-visible-near --technique lispsm --map-size 2048 --visible-depth auto --lispsm-visible-near
+eval_to csm-1024-visible --technique csm --cascades 4 --map-size 1024 --visible-depth auto
 
 tables=tools/readme_tables.py
 echo "### Techniques (wrong_pct, pixels_per_texel_p50)"
@@ -34,3 +38,9 @@ python3 $tables summary --first-column 'set-up (texel memory)' \
     '`tsm` 1 × 2048² (4 M texels)='$out/tsm.json '`lispsm` 1 × 2048²='$out/lispsm.json \
     '`csm` 4 × 1024² (4 M texels)='$out/csm-1024.json '`csm` 4 × 1024², per-split LiSPSM='$out/csm-1024-lispsm.json \
     '`csm` 4 × 2048² (16 M texels)='$out/csm-2048.json '`csm` 4 × 2048², per-split LiSPSM='$out/csm-2048-lispsm.json
+echo
+echo "### Visible depth"
+python3 $tables summary --first-column 'set-up' \
+    '`lispsm`='$out/lispsm.json '`lispsm --visible-depth auto`='$out/lispsm-visible.json \
+    '`lispsm --visible-depth auto --lispsm-visible-near`='$out/lispsm-visible-near.json \
+    '`csm` 4 × 1024²='$out/csm-1024.json '`csm` 4 × 1024² `--visible-depth auto`='$out/csm-1024-visible.json

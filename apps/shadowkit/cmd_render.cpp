@@ -74,7 +74,7 @@ int runRender(const RenderArgs& args) {
         fmt::print("  {}    {:8.1f} ms GPU  {:6.2f} M triangles  {} instances  {} draws\n", name, pass->gpuMilliseconds,
                    static_cast<double>(pass->triangles) * 1e-6, pass->instances, pass->drawCalls);
     fmt::print("  frame (wall)   {:8.1f} ms incl. readback\n", frameMs);
-    if (const auto& v = inputs->lispsm.visibleDepth) fmt::print("  visible depth  {:.2f} .. {:.2f} m (LiSPSM n)\n", v->x, v->y);
+    if (const auto& v = inputs->visibleDepth) fmt::print("  visible depth  {:.2f} .. {:.2f} m (LiSPSM n, csm splits)\n", v->x, v->y);
     for (const std::string& f : setup->fallbacks) fmt::print("  fallback: {}\n", f);
     fmt::print("wrote {}{}\n", args.out, args.shadowMapOut.empty() ? "" : " and " + args.shadowMapOut);
     return 0;

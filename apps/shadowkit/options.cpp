@@ -165,7 +165,7 @@ constexpr std::pair<std::string_view, std::string_view> kFlagOfField[] = {
     {"image_size", "--size"},
     {"lispsm.weight", "--lispsm-weight"},
     {"lispsm.n", "--lispsm-n"},
-    {"lispsm.visible_depth", "--visible-depth"},
+    {"visible_depth", "--visible-depth"},
     {"tsm.focus", "--tsm-focus"},
     {"cascades.count", "--cascades"},
     {"cascades.lambda", "--lambda"},
@@ -310,8 +310,10 @@ void TechniqueOptions::addTo(CLI::App& cmd) {
     cmd.add_option("--lispsm-weight", lispsmWeight, "LiSPSM: multiplies n (> 1 warps less)")->capture_default_str();
     cmd.add_option("--lispsm-n", lispsmN, "LiSPSM: fixed n in metres instead of the formula");
     cmd.add_option("--visible-depth", visibleDepth,
-                   "near,far view depth actually visible, or 'auto' to measure it from the frame (LiSPSM n only, "
-                   "Scherzer 2005 §4.4)");
+                   "near,far view depth actually visible, or 'auto' to measure it from the frame: LiSPSM's n "
+                   "(Scherzer 2005 §4.4) and csm's split distances, never the focus body");
+    cmd.add_flag("--lispsm-visible-near", lispsmVisibleNear,
+                 "LiSPSM with --visible-depth: take z_n from the visible near distance too, not only Δz from the far");
     cmd.add_option("--tsm-focus", tsmFocus, "TSM: focus point as a fraction of the view depth range (80 % rule)")
         ->capture_default_str();
     cmd.add_option("--depth-layout", depthLayout, "shadow depth (auto: linear for TSM, else hyperbolic)")
@@ -348,6 +350,7 @@ core::Result<core::ShadowSetupInputs> TechniqueOptions::inputsFor(const scene::R
     in.lispsm.direction = lispsmDirection;
     in.lispsm.weight = lispsmWeight;
     in.lispsm.nOverride = lispsmN;
+    in.lispsm.visibleNear = lispsmVisibleNear;
     in.tsm.focusFraction = tsmFocus;
     if (depthLayout != LayoutChoice::Auto)
         in.depthLayout = depthLayout == LayoutChoice::Linear ? core::DepthLayout::Linear : core::DepthLayout::Hyperbolic;
@@ -358,7 +361,7 @@ core::Result<core::ShadowSetupInputs> TechniqueOptions::inputsFor(const scene::R
         std::vector<double> v;
         if (!parseNumbers(visibleDepth, ',', v) || v.size() != 2)
             return core::makeError(fmt::format("--visible-depth: expected near,far or auto, got '{}'", visibleDepth));
-        in.lispsm.visibleDepth = core::Vec2(v[0], v[1]);
+        in.visibleDepth = core::Vec2(v[0], v[1]);
     }
     return in;
 }

@@ -49,6 +49,7 @@ struct TechniqueOptions {
     LayoutChoice depthLayout = LayoutChoice::Auto;
     double lispsmWeight = core::LispsmOptions{}.weight;
     std::optional<double> lispsmN;
+    bool lispsmVisibleNear = core::LispsmOptions{}.visibleNear;
     double tsmFocus = core::TsmOptions{}.focusFraction;
     int mapSize = core::ShadowSetupInputs{}.mapSize;
     core::CascadeOptions cascades; // count, lambda, warp, stabilize, blend band; splits from `splits`

@@ -8,6 +8,12 @@
 //   (focus_body.cpp), not to the slice's 8 corners: casters outside the slice but between it
 //   and the sun are kept without the "maxZ += 50" patch of public ports
 //   (docs/references.md, pitfall 5).
+// - With a visible depth range (ShadowSetupInputs::visibleDepth), the split distances are
+//   placed over [visible near, visible far] instead of [near, far], as sample-distribution
+//   shadow maps do (Lauritzen, Salvi, Lefohn 2011): a forest seen from 3 m on does not
+//   spend a split on the first metres. The first split still starts at the near plane and
+//   the last ends at the far plane, so every fragment keeps a map that covers it even when
+//   the range comes from an older frame; only where the splits fall moves.
 // - Optional per-split LiSPSM (Zhang et al.'s PSSM + LiSPSM): each split is a LiSPSM set-up
 //   whose z_n is the split's near distance.
 // - Stabilisation (as in bgfx and Filament; docs/references.md, pitfall 8): a light frame
@@ -21,6 +27,7 @@
 #include "shadowkit/core/focus_body.h"
 #include "shadowkit/core/light_frame.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -109,8 +116,14 @@ ShadowSetup computeCascades(const ShadowSetupInputs& in) {
     setup.technique = Technique::Csm;
     setup.body = computeFocusBody(in.camera, in.light, in.wsSceneBounds);
     SplitDistances z;
-    if (o.splits.empty()) z = practicalSplits(in.camera.zNear, in.camera.zFar, o.count, o.lambda);
-    else
+    if (o.splits.empty()) {
+        double zNear = in.camera.zNear, zFar = in.camera.zFar;
+        if (in.visibleDepth) {
+            const double visibleNear = std::max(zNear, in.visibleDepth->x), visibleFar = std::min(zFar, in.visibleDepth->y);
+            if (visibleFar > visibleNear) zNear = visibleNear, zFar = visibleFar;
+        }
+        z = practicalSplits(zNear, zFar, o.count, o.lambda);
+    } else
         for (const double d : o.splits) z.push_back(d);
     z.front() = in.camera.zNear; // exact ends, whatever rounding the caller's list carries
     z.back() = in.camera.zFar;

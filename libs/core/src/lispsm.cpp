@@ -3,7 +3,8 @@
 // Based on: Wimmer, Scherzer, Purgathofer, "Light Space Perspective Shadow Maps",
 // EGSR 2004: light space §3.4, the frustum P and its projection reference
 // point §3.4–3.5, n_opt §4.3–4.4; and Scherzer's practical improvements (Scherzer 2005 §4.4):
-// n_opt from the depth extent Δz of B (eq. 1), Δz from visibility for n only, the
+// n_opt from the depth extent Δz of B (eq. 1), Δz from the visible far distance for n only
+// (and, as an option of ours, z_n from the visible near distance: LispsmOptions), the
 // projection direction V_P as a cross product (eq. 3) or B's "middle vector".
 //
 // Construction (column vectors): clipFromWorld = Fit · P(n, n + d) · T(−C) · lightFromWorld.
@@ -91,9 +92,10 @@ ShadowSetup computeLispsm(const ShadowSetupInputs& in) {
 
     double zNear = cam.zNear;
     double deltaZ = d;
-    if (o.visibleDepth) {
-        zNear = std::max(zNear, o.visibleDepth->x);
-        const double visible = visibleExtent(setup.body, cam, *o.visibleDepth, frame.lightFromWorld);
+    if (in.visibleDepth) {
+        // Δz: B cut to the visible slab, measured along the warp axis. B itself stays whole.
+        if (o.visibleNear && in.visibleDepth->x < cam.zFar) zNear = std::max(zNear, in.visibleDepth->x);
+        const double visible = visibleExtent(setup.body, cam, Vec2(zNear, in.visibleDepth->y), frame.lightFromWorld);
         if (visible > 0.0) deltaZ = std::min(d, visible);
     }
     double n = 0.0;

@@ -89,8 +89,6 @@ Status validate(const LispsmOptions& o) {
     if (!(o.weight > 0.0) || !std::isfinite(o.weight)) return fieldError("lispsm.weight", "must be a finite number > 0");
     if (o.nOverride && !(*o.nOverride > 0.0 && std::isfinite(*o.nOverride)))
         return fieldError("lispsm.n", "must be a finite number of metres > 0");
-    if (o.visibleDepth && !(o.visibleDepth->x >= 0.0 && o.visibleDepth->y > o.visibleDepth->x && std::isfinite(o.visibleDepth->y)))
-        return fieldError("lispsm.visible_depth", "must be [near, far] with 0 <= near < far");
     return Ok{};
 }
 
@@ -123,6 +121,8 @@ Status validateOptions(const ShadowSetupInputs& inputs) {
     if (Status s = validateMapSize(inputs.mapSize); !s) return s;
     if (Status s = validate(inputs.lispsm); !s) return s;
     if (Status s = validate(inputs.tsm); !s) return s;
+    if (const auto& v = inputs.visibleDepth; v && !(v->x >= 0.0 && v->y > v->x && std::isfinite(v->y)))
+        return fieldError("visible_depth", "must be [near, far] with 0 <= near < far");
     return validate(inputs.cascades);
 }
 

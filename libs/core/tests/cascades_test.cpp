@@ -71,6 +71,34 @@ TEST(CascadesTest, OneViewPerSplitCoveringNearToFarWithTheBlendBandOverlapping) 
     }
 }
 
+TEST(CascadesTest, VisibleDepthPlacesTheSplitsOverWhatIsSeenAndKeepsNearToFarCovered) {
+    ShadowSetupInputs in = cascadedView();
+    in.visibleDepth = Vec2(6.0, 120.0);
+    const auto setup = computeShadowSetup(in);
+    ASSERT_TRUE(setup);
+    ASSERT_EQ(setup->views.size(), 4u);
+    // The ends stay at the planes, so every fragment still has a map; the inner splits are
+    // the practical scheme over [6, 120] m (Lauritzen et al. 2011), not over [0.5, 400] m.
+    EXPECT_EQ(setup->views.front().split->x, 0.5);
+    EXPECT_EQ(setup->views.back().split->y, 400.0);
+    const SplitDistances visible = practicalSplits(6.0, 120.0, 4, in.cascades.lambda);
+    for (size_t i = 1; i < 4; ++i) {
+        EXPECT_NEAR(setup->views[i].split->x, visible[i], 1e-9);
+        EXPECT_NEAR(setup->views[i - 1].split->y, visible[i], 1e-9);
+        EXPECT_GT(visible[i], 6.0);
+        EXPECT_LT(visible[i], 120.0);
+    }
+    // The focus body is never narrowed: B is the one without a visible range.
+    in.visibleDepth.reset();
+    EXPECT_EQ(computeShadowSetup(in)->body.vertices().size(), setup->body.vertices().size());
+    // Explicit splits win over the visible range.
+    in.visibleDepth = Vec2(6.0, 120.0);
+    in.cascades.splits = {0.5, 10, 50, 150, 400};
+    const auto explicitSplits = computeShadowSetup(in);
+    ASSERT_TRUE(explicitSplits);
+    EXPECT_EQ(explicitSplits->views[1].split->x, 10.0);
+}
+
 TEST(CascadesTest, StabilisedSplitsMoveByWholeTexelsUnderCameraTranslation) {
     ShadowSetupInputs in = cascadedView();
     in.cascades.stabilize = true;

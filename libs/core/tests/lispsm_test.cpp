@@ -114,11 +114,30 @@ TEST(LispsmTest, WeightOverrideAndVisibleDepthChangeN) {
     in.lispsm.nOverride = 42.0;
     EXPECT_EQ(std::get<LispsmWarp>(computeShadowSetup(in)->views[0].warp).n, 42.0);
     in.lispsm.nOverride.reset();
-    // Only the first 20 m are visible: Δz shrinks, so n shrinks; B stays the same.
-    in.lispsm.visibleDepth = Vec2(1, 20);
+    // Nothing visible before 5 m nor beyond 20 m. Scherzer 2005 §4.4: Δz from the visible far
+    // distance only (1 -> 20 m), so n shrinks (a stronger warp near the viewer); B stays the same.
+    in.visibleDepth = Vec2(5, 20);
     const auto visible = computeShadowSetup(in);
     EXPECT_NEAR(std::get<LispsmWarp>(visible->views[0].warp).n, 1 + std::sqrt(1.0 * 20.0), 1e-6);
     EXPECT_NEAR(std::get<LispsmWarp>(visible->views[0].warp).d, 99.0, 1e-6);
+    EXPECT_LT(std::get<LispsmWarp>(visible->views[0].warp).n, base);
+    // visibleNear: z_n = 5 and Δz = 15 (5 -> 20 m): n balances the error over what is seen.
+    in.lispsm.visibleNear = true;
+    const auto nearToo = computeShadowSetup(in);
+    EXPECT_NEAR(std::get<LispsmWarp>(nearToo->views[0].warp).n, 5 + std::sqrt(5.0 * 20.0), 1e-6);
+    EXPECT_NEAR(std::get<LispsmWarp>(nearToo->views[0].warp).d, 99.0, 1e-6);
+    // A range beyond the far plane (a stale or foreign measurement) cuts nothing: n as without.
+    for (const bool nearToo : {false, true}) {
+        in.lispsm.visibleNear = nearToo;
+        in.visibleDepth = Vec2(150, 160);
+        EXPECT_NEAR(std::get<LispsmWarp>(computeShadowSetup(in)->views[0].warp).n, base, 1e-9);
+    }
+    in.lispsm.visibleNear = false;
+    in.visibleDepth = Vec2(20, 5);
+    const auto reversed = computeShadowSetup(in);
+    ASSERT_FALSE(reversed);
+    EXPECT_EQ(reversed.errorInfo().field, "visible_depth");
+    in.visibleDepth.reset();
     in.lispsm.weight = 0.0;
     EXPECT_FALSE(computeShadowSetup(in));
 }
@@ -168,5 +187,5 @@ TEST(VisibleDepthTest, RangeOfDrawnPixelsOnlyAndNothingWithoutThem) {
     const auto single = visibleDepthRange(std::vector<float>{7.0f});
     ASSERT_TRUE(single);
     EXPECT_GT(single->y, single->x); // a valid [near, far] for LispsmOptions
-    EXPECT_TRUE(validate(LispsmOptions{.visibleDepth = *single}));
+    EXPECT_TRUE(validateOptions(ShadowSetupInputs{.visibleDepth = *single}));
 }

@@ -1,5 +1,6 @@
 #include "shadowkit/gl/renderer.h"
 
+#include "depth_range.h"
 #include "gl_object.h"
 #include "gl_shaders.h"
 #include "gpu_scene.h"
@@ -9,8 +10,6 @@
 #include "render_targets.h"
 #include "uniforms.h"
 #include "visibility.h"
-
-#include "shadowkit/core/visible_depth.h"
 
 #include <algorithm>
 #include <chrono>
@@ -86,6 +85,8 @@ struct Renderer::Impl {
     double occlusionMilliseconds = 0.0;
     std::unique_ptr<ReceiverMasks> receiverMasks;
     double receiverMaskMilliseconds = 0.0;
+    std::unique_ptr<DepthRangeReduction> depthRange; // of every pre-pass: Renderer::lastVisibleDepth
+    bool prepassForDepthRange = false; // Renderer::visibleDepth: a pre-pass even if culling needs none
     Program depthProgram, mainProgram, evalProgram, blurProgram;
     Buffer depthUniforms, frameUniforms, blurUniforms;
     VertexArray emptyVertexArray; // for the full-screen triangle
@@ -156,6 +157,9 @@ core::Result<std::unique_ptr<Renderer>> Renderer::create(const scene::Scene& sce
     auto masks = ReceiverMasks::create();
     if (!masks) return masks.errorInfo();
     r.receiverMasks = std::move(masks).value();
+    auto depthRange = DepthRangeReduction::create();
+    if (!depthRange) return depthRange.errorInfo();
+    r.depthRange = std::move(depthRange).value();
     // Conventions (core/conventions.h): clip depth [0,1].
     glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
     return renderer;
@@ -188,6 +192,7 @@ void Renderer::Impl::collectVisible(const core::PerspectiveCamera& camera, const
     const auto start = std::chrono::steady_clock::now();
     const bool cull = settings.culling != Culling::Off;
     const bool masked = cull && settings.receiverMask;
+    const bool prepass = settings.culling == Culling::Occlusion || masked || prepassForDepthRange;
     // Camera pass first: with occlusion culling or receiver masks the shadow passes' lists
     // depend on what it sees. Levels by pixels. A simplified receiver lies up to its error
     // off the true surface and would self-shadow against the map (measured without
@@ -200,7 +205,7 @@ void Renderer::Impl::collectVisible(const core::PerspectiveCamera& camera, const
     const std::vector<core::HalfSpace> cameraVolume = core::clipVolume(camera.clipFromWorld());
     occlusionStats = {};
     occlusionMilliseconds = receiverMaskMilliseconds = 0.0;
-    if (settings.culling == Culling::Occlusion || masked) {
+    if (prepass) {
         if (!cameraDepth || cameraDepth->width != settings.width || cameraDepth->height != settings.height)
             cameraDepth.emplace(settings.width, settings.height);
         uploadFrame(camera, light, setup, settings, false); // the pre-pass reads the camera's Frame
@@ -212,12 +217,13 @@ void Renderer::Impl::collectVisible(const core::PerspectiveCamera& camera, const
         occlusionMilliseconds = millisecondsSince(occlusionStart);
     } else {
         visibility->collect(cameraVolume, cull, cameraLodOrNone, cameraList);
-        if (masked) {
+        if (prepass) {
             occlusionDrawn.clear();
             visibility->hierarchy().query(cameraVolume, occlusionDrawn);
             occlusion->prepass(cameraLodOrNone, *cameraDepth, occlusionDrawn);
         }
     }
+    if (prepass) depthRange->reduce(*cameraDepth); // read when asked: Renderer::lastVisibleDepth
     const std::vector<core::ReceiverMask>* masks = nullptr;
     if (masked) {
         const auto maskStart = std::chrono::steady_clock::now();
@@ -455,11 +461,15 @@ core::Result<std::optional<core::Vec2>> Renderer::visibleDepth(const core::Persp
                                                                const core::DirectionalLight& light,
                                                                const core::ShadowSetup& setup, const RenderSettings& settings) {
     Impl& r = *m_impl;
-    if (auto s = r.prepare(camera, light, setup, settings); !s) return s.errorInfo();
-    // No shadow pass: only the depths of the camera pass are read.
-    if (auto s = r.evalPass(camera, light, setup, settings); !s) return s.errorInfo();
-    return core::visibleDepthRange(r.eval->readViewDepth());
+    // The culling's own pre-pass, or one made for the purpose; no shadow pass.
+    r.prepassForDepthRange = true;
+    const core::Status prepared = r.prepare(camera, light, setup, settings);
+    r.prepassForDepthRange = false;
+    if (!prepared) return prepared.errorInfo();
+    return r.depthRange->read();
 }
+
+std::optional<core::Vec2> Renderer::lastVisibleDepth() { return m_impl->depthRange->read(); }
 
 core::Result<core::ShadowSetupInputs> withVisibleDepth(Renderer& renderer, const core::ShadowSetupInputs& inputs,
                                                        const RenderSettings& settings) {
@@ -468,7 +478,7 @@ core::Result<core::ShadowSetupInputs> withVisibleDepth(Renderer& renderer, const
     auto range = renderer.visibleDepth(inputs.camera, inputs.light, *first, settings);
     if (!range) return range.errorInfo();
     core::ShadowSetupInputs refined = inputs;
-    if (*range) refined.lispsm.visibleDepth = **range;
+    if (*range) refined.visibleDepth = **range;
     return refined;
 }
 

@@ -85,6 +85,8 @@ const std::string& shaderPrelude() {
         define("SK_MASK_BINDING", kMaskBinding);
         define("SK_RECEIVER_MASK_BINDING", kReceiverMaskBinding);
         define("SK_RECEIVER_DEPTH_UNIT", kReceiverDepthUnit);
+        define("SK_RANGE_BINDING", kRangeBinding);
+        define("SK_RANGE_DEPTH_UNIT", kRangeDepthUnit);
         define("SK_BOX_OFFSET_LOCATION", kBoxOffsetLocation);
         define("SK_INSTANCE_OFFSET_LOCATION", kInstanceOffsetLocation);
         define("SK_LOD_ERROR_LOCATION", kLodErrorLocation);

@@ -27,6 +27,8 @@ inline constexpr unsigned kVisibleBinding = 1;   // shader storage: uint visible
 inline constexpr unsigned kMaskBinding = 3;      // shader storage: uint maskTexels[] of the receiver masks
 inline constexpr unsigned kReceiverMaskBinding = 3; // uniform block ReceiverMask (receiver_mask.comp)
 inline constexpr unsigned kReceiverDepthUnit = 0;   // receiver mask pass: the pre-pass's view depth
+inline constexpr unsigned kRangeBinding = 4;     // shader storage: uint nearBits, farBits (depth_range.comp)
+inline constexpr unsigned kRangeDepthUnit = 0;   // depth range pass: the pre-pass's view depth
 inline constexpr unsigned kBoxesBinding = 2;     // shader storage: vec4 boxCorners[] (min, max) of occlusion queries
 // Texture units (GLSL: SK_*_UNIT). The camera passes and the blur pass never run together.
 inline constexpr unsigned kShadowMapUnit = 0;  // camera passes: sampler2DArrayShadow, one layer per map

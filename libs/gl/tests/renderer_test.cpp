@@ -2,6 +2,7 @@
 // overhead sun must shadow the plane below it, for every technique.
 #include "headless_gl_test.h"
 
+#include "shadowkit/core/visible_depth.h"
 #include "shadowkit/gl/context.h"
 #include "shadowkit/gl/renderer.h"
 #include "shadowkit/scene/mesh_builder.h"
@@ -370,11 +371,31 @@ TEST_F(RendererTest, VisibleDepthIsTheDepthRangeOfWhatTheCameraSees) {
     EXPECT_GE((*range)->x, lo - 1e-3);
     EXPECT_LE((*range)->y, hi + 1e-3);
     EXPECT_GT((*range)->x, 5.0 * cam.zNear);
-    // withVisibleDepth hands the range to LiSPSM's n.
+    // The GPU reduction is exact: the min / max of the camera pass's own view depths, for
+    // every culling mode (each makes or reuses a depth pre-pass).
+    const auto buffers = (*renderer)->renderEvalBuffers(cam, sun, *setup, settings);
+    ASSERT_TRUE(buffers);
+    const auto cpu = core::visibleDepthRange(buffers->viewDepth);
+    ASSERT_TRUE(cpu);
+    for (const gl::Culling culling : {gl::Culling::Off, gl::Culling::Frustum, gl::Culling::Occlusion}) {
+        gl::RenderSettings s2 = settings;
+        s2.culling = culling;
+        const auto reduced = (*renderer)->visibleDepth(cam, sun, *setup, s2);
+        ASSERT_TRUE(reduced && *reduced) << gl::cullingName(culling);
+        EXPECT_EQ(**reduced, *cpu) << gl::cullingName(culling);
+        // A frame drawn with a pre-pass leaves the same range for the next frame's set-up.
+        s2.receiverMask = culling == gl::Culling::Frustum;
+        ASSERT_TRUE((*renderer)->render(cam, sun, *setup, s2));
+        const auto last = (*renderer)->lastVisibleDepth();
+        if (culling == gl::Culling::Off) continue; // no pre-pass: nothing new measured
+        ASSERT_TRUE(last) << gl::cullingName(culling);
+        EXPECT_EQ(*last, *cpu) << gl::cullingName(culling);
+    }
+    // withVisibleDepth hands the range to the set-up's inputs.
     const auto refined = gl::withVisibleDepth(**renderer, in, settings);
     ASSERT_TRUE(refined);
-    ASSERT_TRUE(refined->lispsm.visibleDepth);
-    EXPECT_EQ(*refined->lispsm.visibleDepth, **range);
+    ASSERT_TRUE(refined->visibleDepth);
+    EXPECT_EQ(*refined->visibleDepth, **range);
     // Looking at the sky: nothing drawn, no range, inputs unchanged.
     core::PerspectiveCamera up = cam;
     up.wsDirection = {0, 1, 0};

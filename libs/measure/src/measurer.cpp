@@ -98,7 +98,7 @@ core::Result<Measurement> Measurer::measure(const core::ShadowSetupInputs& input
     auto setup = core::computeShadowSetup(used);
     if (!setup) return setup.errorInfo();
     Measurement m;
-    m.visibleDepth = used.lispsm.visibleDepth;
+    m.visibleDepth = used.visibleDepth;
     m.setup = std::move(setup).value();
     m.bias = gl::biasFor(m.setup, settings);
     gl::Renderer& renderer = *m_impl->renderer;

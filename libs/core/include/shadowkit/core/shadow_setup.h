@@ -68,11 +68,14 @@ struct LispsmOptions {
     LispsmDirection direction = LispsmDirection::CrossProduct;
     double weight = 1.0;               // multiplies the chosen n; (0, inf)
     std::optional<double> nOverride;   // a fixed n in metres (> 0); the formula is then skipped
-    // View-depth bounds of what is actually visible (e.g. a depth-buffer min/max
-    // reduction): narrow z_n and Δz for n only, never B (Scherzer 2005 §4.4).
-    std::optional<Vec2> visibleDepth; // [near, far], 0 <= near < far
+    // With ShadowSetupInputs::visibleDepth: also take z_n in n's formula from the nearest
+    // visible depth, not the camera's near plane. Scherzer 2005 §4.4 narrows only Δz (from
+    // the visible far distance); n_opt balances the error between z_n and z_n + Δz (Wimmer
+    // et al. 2004 §4.3), so when nothing is visible before z_n' > z_n the balance belongs to
+    // [z_n', far]: a weaker warp, a lower worst case and a coarser median (README).
+    bool visibleNear = false;
 };
-// Checks the ranges above; error fields "lispsm.weight", "lispsm.n", "lispsm.visible_depth".
+// Checks the ranges above; error fields "lispsm.weight", "lispsm.n".
 Status validate(const LispsmOptions& options);
 
 struct TsmOptions {
@@ -133,6 +136,13 @@ struct ShadowSetupInputs {
     TsmOptions tsm;
     CascadeOptions cascades;
     std::optional<DepthLayout> depthLayout; // unset: the technique's own (linear for TSM)
+    // View-depth range [near, far] of what the camera actually sees, 0 <= near < far: a
+    // min/max reduction of its depth buffer (visible_depth.h). It never narrows a focus
+    // body — hidden casters may shadow visible receivers (Scherzer 2005 §4.4) — only the
+    // parameters: LiSPSM's Δz for n (and z_n with LispsmOptions::visibleNear), and the
+    // cascades' split distances, placed over the visible range as sample-distribution
+    // shadow maps do (Lauritzen et al. 2011). Error field "visible_depth".
+    std::optional<Vec2> visibleDepth;
 };
 
 // The layout a set-up with these inputs stores: the explicit one, else the technique's own.

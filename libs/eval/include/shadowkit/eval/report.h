@@ -27,7 +27,7 @@ struct ViewReport {
     std::string filter = "hard"; // as given to --filter
     int blurIterations = 0;
     std::vector<std::string> fallbacks;
-    std::optional<core::Vec2> visibleDepth; // LiSPSM's visible view-depth range, when one was given
+    std::optional<core::Vec2> visibleDepth; // the visible view-depth range the set-up used, when one was given
     Figures figures;
     double seconds = 0.0; // wall time of this view's evaluation
 };

@@ -110,12 +110,17 @@ public:
                                                         const core::ShadowSetup& setup, const RenderSettings& settings);
 
     // The view-depth range of what this camera sees ([nearest, farthest] drawn; nullopt for
-    // an empty frame), from a depth-only look at the frame: the camera pass's view depths
-    // read back and reduced on the CPU (core::visibleDepthRange). For LispsmOptions::
-    // visibleDepth (Scherzer 2005 §4.4). Costs a camera pass and a read-back.
+    // an empty frame), for ShadowSetupInputs::visibleDepth: a camera depth pre-pass (the
+    // culling's own, CHC++ included) reduced to min / max on the GPU, 8 bytes read back.
+    // For a single frame; it waits for the GPU.
     core::Result<std::optional<core::Vec2>> visibleDepth(const core::PerspectiveCamera& camera,
                                                          const core::DirectionalLight& light,
                                                          const core::ShadowSetup& setup, const RenderSettings& settings);
+    // The same range from the last frame render() drew, when it made a camera pre-pass
+    // (Culling::Occlusion or receiverMask): what a running application feeds to its next
+    // frame's set-up, by then long computed, so nothing waits (Scherzer 2005 took Δz "from
+    // the visibility algorithm" the same way). nullopt without a pre-pass or visible pixels.
+    std::optional<core::Vec2> lastVisibleDepth();
 
     // World bounds of every instance, from the instance hierarchy: O(1).
     const core::Aabb& wsSceneBounds() const;
@@ -131,7 +136,7 @@ private:
     std::unique_ptr<Impl> m_impl;
 };
 
-// `inputs` with LispsmOptions::visibleDepth measured from this frame (Renderer::visibleDepth
+// `inputs` with ShadowSetupInputs::visibleDepth measured from this frame (Renderer::visibleDepth
 // of the set-up the inputs give as they are); unchanged when nothing is visible.
 core::Result<core::ShadowSetupInputs> withVisibleDepth(Renderer& renderer, const core::ShadowSetupInputs& inputs,
                                                        const RenderSettings& settings);

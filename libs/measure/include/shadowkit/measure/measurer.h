@@ -39,8 +39,8 @@ struct MeasureOptions {
     // this camera is not cached yet.
     std::function<void(double)> truthProgress;
     eval::CompareOptions compare;
-    // Measure the visible view-depth range first and give it to LiSPSM's n
-    // (gl::withVisibleDepth; Scherzer 2005 §4.4). Only LiSPSM (and per-split LiSPSM) use it.
+    // Measure the visible view-depth range first and give it to the set-up
+    // (gl::withVisibleDepth; ShadowSetupInputs::visibleDepth): LiSPSM's n, the cascades' splits.
     bool visibleDepthFromFrame = false;
 };
 
