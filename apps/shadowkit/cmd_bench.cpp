@@ -96,7 +96,7 @@ int runBench(const BenchArgs& args) {
             viewOptions.view = name;
             auto view = viewOptions.resolve(forest);
             if (!view) return fail(view.error());
-            std::vector<double> setupMs, cullMs, shadowMs, mainMs, occlusionMs, maskMs;
+            std::vector<double> setupMs, cullMs, cullOwnMs, cullGlMs, shadowMs, mainMs, occlusionMs, maskMs;
             gl::FrameStats last;
             for (int frame = 0; frame < args.frames; ++frame) {
                 const auto start = std::chrono::steady_clock::now();
@@ -110,6 +110,8 @@ int runBench(const BenchArgs& args) {
                 auto stats = (*renderer)->render(view->camera, view->light, *setup, *settings);
                 if (!stats) return fail(withFlagName(stats.errorInfo()).message);
                 cullMs.push_back(stats->cullMilliseconds);
+                cullGlMs.push_back(stats->cullGlMilliseconds);
+                cullOwnMs.push_back(stats->cullOwnCpuMilliseconds);
                 occlusionMs.push_back(stats->occlusionMilliseconds);
                 maskMs.push_back(stats->receiverMaskMilliseconds);
                 shadowMs.push_back(stats->shadow.gpuMilliseconds);
@@ -127,7 +129,9 @@ int runBench(const BenchArgs& args) {
                                   {"width", view->width},
                                   {"height", view->height},
                                   {"setup_ms", toJson(setupSpread)},
-                                  {"cull_ms", toJson(cullSpread)}};
+                                  {"cull_ms", toJson(cullSpread)},
+                                  {"cull_own_ms", toJson(spread(cullOwnMs))},
+                                  {"cull_gl_ms", toJson(spread(cullGlMs))}};
             for (const auto& [pass, stats, gpu] : {std::tuple{"shadow", &last.shadow, &shadowMs}, {"main", &last.main, &mainMs}}) {
                 const Spread g = spread(*gpu);
                 fmt::print("{:>7} {:>7.0f} {:<14} {:<7} {:>9} {:>9.3f} {:>6} {:>8.1f} {:>8.1f} {:>8.1f} {:>10.3f} {:>9.3f} {:>10.3f} {:>9.3f}\n",
@@ -146,6 +150,12 @@ int runBench(const BenchArgs& args) {
                            "{} waits; pre-pass CPU ms med {:.2f} max {:.2f} (incl. its draws and waits)\n",
                            "", "", "", o.nodesVisited, o.queriesIssued, o.nodesQueried, o.multiQueryFailures, o.waits,
                            occlusionSpread.median, occlusionSpread.max);
+            if (!args.render.noCull) {
+                const Spread own = spread(cullOwnMs), gl = spread(cullGlMs);
+                fmt::print("{:>7} {:>7} {:<14} cull    CPU ms med {:.2f} max {:.2f}: in GL (pre-pass, queries, masks, waits) "
+                           "med {:.2f} max {:.2f}; culling's own (thread CPU: traversal, LOD, lists) med {:.3f} max {:.3f}\n",
+                           "", "", "", cullSpread.median, cullSpread.max, gl.median, gl.max, own.median, own.max);
+            }
             if (args.render.receiverMask)
                 fmt::print("{:>7} {:>7} {:<14} masks   receiver masks CPU ms med {:.2f} max {:.2f} (compute + read-back + mask)\n", "", "",
                            "", maskSpread.median, maskSpread.max);

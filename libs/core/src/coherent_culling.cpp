@@ -26,7 +26,12 @@
 // hidden and 1 + n if not, so the expected cost is C(n) = 1 + (1 − ∏p)·n; a group grows
 // while n / C(n), the queries saved per query spent, improves. A group that comes back
 // visible has its nodes queried one by one.
-// Choices of ours: the first frame after reset() (and so after a camera cut) assumes every
+// Choices of ours: an inner node opened last frame stays open (its children are visited
+// without asking it again) until its due frame, though no visible leaf pulled it up: its
+// box holds empty space between its children's and can pass while every child fails, and
+// asking it each frame would open it each frame, one GPU round trip per level at the end of
+// the frame (measured on the 100,000-tree forest: 1032 -> 168 queries, 7 -> 1 waits a frame).
+// The first frame after reset() (and so after a camera cut) assumes every
 // node visible — it draws exactly the frustum's contents and queries every leaf, so it is
 // correct and the next frame is already coherent; nodes whose box holds the eye (grown by
 // the near-plane margin) are drawn unqueried, as their boxes would be clipped.
@@ -145,28 +150,35 @@ void CoherentCulling::visit(uint32_t node) {
     ++m_stats.nodesVisited;
     const Aabb& box = m_hierarchy->nodeBounds(node);
     NodeState& s = m_nodes[node];
-    const bool previouslyVisible = s.visible && s.lastVisited + 1 == m_frame;
+    const bool coherent = s.lastVisited + 1 == m_frame;
+    const bool previouslyVisible = s.visible && coherent;
+    const bool due = (m_frame + phaseOf(node)) % uint32_t(m_options.visibleInterval) == 0;
+    // An inner node opened last frame stays open, though pull-up left it hidden (its box can
+    // pass a query while every child's fails): asking it again would only open it again, a
+    // round trip to the GPU per level at the end of every frame. It is asked again at its
+    // due frame, and closes if hidden then.
+    const bool keptOpen = s.open && coherent && !due;
     s.lastVisited = m_frame;
     if (isOutside(m_frustum, box)) {
-        s.visible = false;
+        s.visible = s.open = false;
         return;
     }
     const bool holdsEye = box.distanceSquared(m_wsEye) <= m_nearMargin * m_nearMargin;
-    if (!(m_assumeVisible || holdsEye || previouslyVisible)) {
+    if (!(m_assumeVisible || holdsEye || previouslyVisible || keptOpen)) {
         m_invisibleQueue.push_back(node);
         if (m_invisibleQueue.size() >= size_t(m_options.batchSize)) issueBatch();
         return;
     }
     if (m_hierarchy->isLeaf(node)) {
         drawLeaf(node);
-        const bool due = m_assumeVisible || (m_frame + phaseOf(node)) % uint32_t(m_options.visibleInterval) == 0;
-        if (!holdsEye && !s.checkPending && due) {
+        if (!holdsEye && !s.checkPending && (m_assumeVisible || due)) {
             m_visibleQueue.push_back(node);
             s.checkPending = true;
         }
         return;
     }
     s.visible = false; // until a descendant turns out visible (pullUpVisibility)
+    s.open = true;
     pushChildren(node);
 }
 
@@ -254,7 +266,7 @@ void CoherentCulling::handle(const Query& query, bool visible) {
         const uint32_t node = m_queryNodes[query.firstNode + k];
         NodeState& s = m_nodes[node];
         if (!visible) {
-            s.visible = false;
+            s.visible = s.open = false;
             s.invisibleFrames = static_cast<uint16_t>(std::min<int>(s.invisibleFrames + 1, 1000));
             continue;
         }
@@ -263,6 +275,7 @@ void CoherentCulling::handle(const Query& query, bool visible) {
             drawLeaf(node);
             continue;
         }
+        s.open = true;
         pushChildren(node); // opened now: its children were not visited last frame, so each is queried
     }
 }

@@ -2,6 +2,7 @@
 
 #include "gl_shaders.h"
 #include "program.h"
+#include "stopwatch.h"
 #include "uniforms.h"
 
 #include <algorithm>
@@ -62,6 +63,7 @@ core::CoherentCullingStats OcclusionCuller::frame(const core::PerspectiveCamera&
     if (cut) m_chc.reset();
     m_last = CameraKey{camera, target.width, target.height};
     m_lod = lod;
+    m_gl = {};
     glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer.id());
     glViewport(0, 0, target.width, target.height);
     glEnable(GL_DEPTH_TEST);
@@ -78,7 +80,9 @@ core::CoherentCullingStats OcclusionCuller::frame(const core::PerspectiveCamera&
     core::CoherentCullingStats stats = once();
     std::vector<uint32_t> previous;
     for (int settle = 1; cut && settle < kMaxSettleFrames; ++settle) {
+        const Stopwatch finish;
         glFinish(); // the last frame's checks must be back for the next to learn from them
+        m_gl += finish.elapsed();
         previous.assign(drawn.begin(), drawn.end());
         std::sort(previous.begin(), previous.end());
         stats = once();
@@ -94,6 +98,7 @@ core::CoherentCullingStats OcclusionCuller::frame(const core::PerspectiveCamera&
 
 void OcclusionCuller::prepass(const LodChoice* lod, CameraDepthTarget& target, std::span<const uint32_t> items) {
     m_lod = lod;
+    m_gl = {};
     m_listCursor = 0;
     glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer.id());
     glViewport(0, 0, target.width, target.height);
@@ -106,6 +111,7 @@ void OcclusionCuller::prepass(const LodChoice* lod, CameraDepthTarget& target, s
 
 void OcclusionCuller::draw(std::span<const uint32_t> items) {
     m_visibility.fromItems(items, m_lod, m_drawList);
+    const Stopwatch inGl;
     const size_t n = m_drawList.indices.size();
     if (m_listCursor + n > m_listCapacity) {
         m_listCapacity = std::max({m_listCursor + n, 2 * m_listCapacity, size_t(4096)});
@@ -123,6 +129,8 @@ void OcclusionCuller::draw(std::span<const uint32_t> items) {
     glEnable(GL_CULL_FACE);
     glCullFace(GL_BACK);
     m_scene.draw(m_drawList);
+    m_unflushed = true;
+    m_gl += inGl.elapsed();
 }
 
 uint32_t OcclusionCuller::issue(std::span<const uint32_t> nodes) {
@@ -136,6 +144,7 @@ uint32_t OcclusionCuller::issue(std::span<const uint32_t> nodes) {
         m_boxStaging.push_back(grown(box.max, margin, +1.0));
     }
     const size_t n = nodes.size();
+    const Stopwatch inGl;
     if (m_boxCursor + n > m_boxCapacity) {
         m_boxCapacity = std::max({m_boxCursor + n, 2 * m_boxCapacity, size_t(1024)});
         m_boxes = createBuffer(nullptr, m_boxCapacity * 2 * sizeof(glm::vec4));
@@ -164,19 +173,28 @@ uint32_t OcclusionCuller::issue(std::span<const uint32_t> nodes) {
     glDrawArraysInstanced(GL_TRIANGLES, 0, 36, static_cast<GLsizei>(n));
     glEndQuery(GL_ANY_SAMPLES_PASSED_CONSERVATIVE);
     glBindVertexArray(0);
+    m_unflushed = true;
+    m_gl += inGl.elapsed();
     return handle;
 }
 
 bool OcclusionCuller::available(uint32_t query) {
+    // Not timed as GL work: a poll, called thousands of times a frame, whose cost is the
+    // culling's own (and timing each call would cost more than the call).
     GLuint ready = 0;
     glGetQueryObjectuiv(m_queries[query], GL_QUERY_RESULT_AVAILABLE, &ready);
-    if (!ready) glFlush(); // let the driver start on what is queued while the traversal goes on
+    if (!ready && m_unflushed) {
+        glFlush(); // let the driver start on what is queued while the traversal goes on
+        m_unflushed = false;
+    }
     return ready != 0;
 }
 
 bool OcclusionCuller::visible(uint32_t query) {
     GLuint samples = 0;
-    glGetQueryObjectuiv(m_queries[query], GL_QUERY_RESULT, &samples);
+    const Stopwatch inGl;
+    glGetQueryObjectuiv(m_queries[query], GL_QUERY_RESULT, &samples); // blocks if not back yet
+    m_gl += inGl.elapsed();
     m_freeQueries.push_back(query);
     return samples != 0;
 }

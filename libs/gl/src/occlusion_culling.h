@@ -8,6 +8,7 @@
 #include "gl_object.h"
 #include "gpu_scene.h"
 #include "render_targets.h"
+#include "stopwatch.h"
 #include "visibility.h"
 
 #include "shadowkit/core/camera.h"
@@ -33,6 +34,12 @@ public:
     core::CoherentCullingStats frame(const core::PerspectiveCamera& camera, const LodChoice* lod, CameraDepthTarget& target,
                                      std::vector<uint32_t>& drawn);
     static constexpr int kMaxSettleFrames = 4;
+    // Time of the last frame() (or prepass()) inside GL calls that do or await the GPU's
+    // work: drawing the pre-pass, the query boxes, reading results (blocking when one is not
+    // back), the settle loop's glFinish; polling for results is the culling's own. On llvmpipe that is the rasteriser itself, on a GPU
+    // mostly the driver; the rest of frame() is the culling's own CPU cost (traversal, LOD
+    // choice, draw lists).
+    const CpuTimes& glTimes() const { return m_gl; }
 
     // A plain depth pre-pass of these instances into `target` (cleared here): the camera's
     // depth for receiver masks when occlusion culling is off.
@@ -67,6 +74,8 @@ private:
         int width = 0, height = 0;
     };
     std::optional<CameraKey> m_last;
+    CpuTimes m_gl;
+    bool m_unflushed = false; // commands issued since the last glFlush
 };
 
 } // namespace shadowkit::gl

@@ -2,6 +2,7 @@
 
 #include "gl_shaders.h"
 #include "program.h"
+#include "stopwatch.h"
 #include "uniforms.h"
 
 #include <cmath>
@@ -38,6 +39,7 @@ core::Result<std::unique_ptr<ReceiverMasks>> ReceiverMasks::create() {
 const std::vector<core::ReceiverMask>& ReceiverMasks::build(const CameraDepthTarget& target,
                                                             const core::PerspectiveCamera& camera,
                                                             const core::ShadowSetup& setup, double dilationTexels) {
+    const Stopwatch inGl;
     const int maps = static_cast<int>(setup.views.size());
     const bool linear = setup.depthLayout == core::DepthLayout::Linear;
     ReceiverMaskUniforms u{};
@@ -69,6 +71,7 @@ const std::vector<core::ReceiverMask>& ReceiverMasks::build(const CameraDepthTar
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     m_readBack.resize(texels);
     glGetNamedBufferSubData(m_texels.id(), 0, GLsizeiptr(texels * sizeof(uint32_t)), m_readBack.data());
+    m_gl = inGl.elapsed();
 
     // Map texels -> mask texels, plus one for the texel a receiver lands in at the edge.
     const int dilation = static_cast<int>(std::ceil(dilationTexels * kReceiverMaskSize / setup.mapSize)) + 1;

@@ -6,6 +6,7 @@
 
 #include "gl_object.h"
 #include "render_targets.h"
+#include "stopwatch.h"
 
 #include "shadowkit/core/camera.h"
 #include "shadowkit/core/receiver_mask.h"
@@ -28,6 +29,9 @@ public:
     // (filter footprint, normal offset).
     const std::vector<core::ReceiverMask>& build(const CameraDepthTarget& target, const core::PerspectiveCamera& camera,
                                                  const core::ShadowSetup& setup, double dilationTexels);
+    // Time the last build() spent in GL: the compute pass and its read-back (which
+    // waits for it). The rest is the masks' own CPU cost (decoding, dilation, pyramid).
+    const CpuTimes& glTimes() const { return m_gl; }
 
 private:
     ReceiverMasks() = default;
@@ -36,6 +40,7 @@ private:
     size_t m_texelCapacity = 0;
     std::vector<uint32_t> m_readBack;
     std::vector<core::ReceiverMask> m_masks;
+    CpuTimes m_gl;
 };
 
 } // namespace shadowkit::gl

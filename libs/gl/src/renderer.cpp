@@ -8,11 +8,11 @@
 #include "program.h"
 #include "receiver_masks.h"
 #include "render_targets.h"
+#include "stopwatch.h"
 #include "uniforms.h"
 #include "visibility.h"
 
 #include <algorithm>
-#include <chrono>
 #include <optional>
 #include <string>
 
@@ -77,7 +77,8 @@ struct Renderer::Impl {
     std::optional<Visibility> visibility;
     std::vector<PassList> shadowLists; // one per shadow map of the frame
     PassList cameraList;
-    double cullMilliseconds = 0.0;     // CPU time building this frame's lists
+    CpuTimes cullTimes;   // building this frame's lists
+    CpuTimes cullGlTimes; // of which inside GL doing or awaiting GPU work (FrameStats)
     std::unique_ptr<OcclusionCuller> occlusion;
     std::optional<CameraDepthTarget> cameraDepth; // the occlusion pre-pass's target
     std::vector<uint32_t> occlusionDrawn;
@@ -181,15 +182,11 @@ double lookupReachTexels(const core::FilterSettings& filter, const core::BiasSet
     return reach + std::abs(bias.normalOffset) + 2.0;
 }
 
-double millisecondsSince(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
-
 } // namespace
 
 void Renderer::Impl::collectVisible(const core::PerspectiveCamera& camera, const core::DirectionalLight& light,
                                     const core::ShadowSetup& setup, const RenderSettings& settings) {
-    const auto start = std::chrono::steady_clock::now();
+    const Stopwatch total;
     const bool cull = settings.culling != Culling::Off;
     const bool masked = cull && settings.receiverMask;
     const bool prepass = settings.culling == Culling::Occlusion || masked || prepassForDepthRange;
@@ -205,30 +202,40 @@ void Renderer::Impl::collectVisible(const core::PerspectiveCamera& camera, const
     const std::vector<core::HalfSpace> cameraVolume = core::clipVolume(camera.clipFromWorld());
     occlusionStats = {};
     occlusionMilliseconds = receiverMaskMilliseconds = 0.0;
+    cullGlTimes = {};
     if (prepass) {
         if (!cameraDepth || cameraDepth->width != settings.width || cameraDepth->height != settings.height)
             cameraDepth.emplace(settings.width, settings.height);
         uploadFrame(camera, light, setup, settings, false); // the pre-pass reads the camera's Frame
     }
     if (settings.culling == Culling::Occlusion) {
-        const auto occlusionStart = std::chrono::steady_clock::now();
+        const Stopwatch occlusionTime;
         occlusionStats = occlusion->frame(camera, cameraLodOrNone, *cameraDepth, occlusionDrawn);
         visibility->fromItems(occlusionDrawn, cameraLodOrNone, cameraList);
-        occlusionMilliseconds = millisecondsSince(occlusionStart);
+        occlusionMilliseconds = occlusionTime.elapsed().wallMilliseconds;
+        cullGlTimes += occlusion->glTimes();
     } else {
         visibility->collect(cameraVolume, cull, cameraLodOrNone, cameraList);
         if (prepass) {
             occlusionDrawn.clear();
             visibility->hierarchy().query(cameraVolume, occlusionDrawn);
             occlusion->prepass(cameraLodOrNone, *cameraDepth, occlusionDrawn);
+            cullGlTimes += occlusion->glTimes();
         }
     }
-    if (prepass) depthRange->reduce(*cameraDepth); // read when asked: Renderer::lastVisibleDepth
+    if (prepass) {
+        // Read when asked (Renderer::lastVisibleDepth). On llvmpipe the dispatch runs at
+        // once, after the pre-pass's rasterisation it reads: GL time, not culling's own.
+        const Stopwatch reduceTime;
+        depthRange->reduce(*cameraDepth);
+        cullGlTimes += reduceTime.elapsed();
+    }
     const std::vector<core::ReceiverMask>* masks = nullptr;
     if (masked) {
-        const auto maskStart = std::chrono::steady_clock::now();
+        const Stopwatch maskTime;
         masks = &receiverMasks->build(*cameraDepth, camera, setup, lookupReachTexels(settings.filter, bias));
-        receiverMaskMilliseconds = millisecondsSince(maskStart);
+        receiverMaskMilliseconds = maskTime.elapsed().wallMilliseconds;
+        cullGlTimes += receiverMasks->glTimes();
     }
     shadowLists.resize(setup.views.size());
     std::vector<PassList*> lists;
@@ -243,7 +250,7 @@ void Renderer::Impl::collectVisible(const core::PerspectiveCamera& camera, const
     }
     lists.push_back(&cameraList);
     visibility->upload(lists);
-    cullMilliseconds = millisecondsSince(start);
+    cullTimes = total.elapsed();
 }
 
 core::Status Renderer::Impl::prepare(const core::PerspectiveCamera& camera, const core::DirectionalLight& light,
@@ -436,7 +443,9 @@ core::Result<FrameStats> Renderer::render(const core::PerspectiveCamera& camera,
 
     stats.shadow.gpuMilliseconds = r.shadowTimer.milliseconds();
     stats.main = {r.mainTimer.milliseconds(), mainDraws.instances, mainDraws.triangles, mainDraws.drawCalls};
-    stats.cullMilliseconds = r.cullMilliseconds;
+    stats.cullMilliseconds = r.cullTimes.wallMilliseconds;
+    stats.cullGlMilliseconds = r.cullGlTimes.wallMilliseconds;
+    stats.cullOwnCpuMilliseconds = r.cullTimes.threadMilliseconds - r.cullGlTimes.threadMilliseconds;
     stats.occlusion = r.occlusionStats;
     stats.occlusionMilliseconds = r.occlusionMilliseconds;
     stats.receiverMaskMilliseconds = r.receiverMaskMilliseconds;

@@ -70,6 +70,7 @@ private:
         uint16_t invisibleFrames = 0; // consecutive frames found invisible (multi-query odds)
         bool visible = false;
         bool checkPending = false; // a visible leaf's query is in flight
+        bool open = false; // an inner node opened last frame: its children are visited unqueried
     };
     struct Query {
         uint32_t handle = 0;

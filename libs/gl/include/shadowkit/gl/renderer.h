@@ -83,6 +83,15 @@ struct PassStats {
 struct FrameStats {
     PassStats shadow, main;
     double cullMilliseconds = 0.0; // CPU: choosing every pass's instances and uploading the lists
+    // Of cullMilliseconds, the time inside GL calls that do or await the GPU's work: the
+    // camera depth pre-pass's draws, the occlusion queries and their results (blocking when
+    // not back), the settle loop after a camera cut, the receiver masks' compute pass and
+    // read-back. On llvmpipe that is the rasteriser itself.
+    double cullGlMilliseconds = 0.0;
+    // Culling's own CPU cost: the CPU time of the calling thread in culling outside those GL
+    // calls — traversal, LOD choice, mask dilation, the passes' lists and their upload.
+    // Thread time, not wall-clock: on llvmpipe the rasteriser's threads share the cores.
+    double cullOwnCpuMilliseconds = 0.0;
     // Culling::Occlusion: the CHC++ pre-pass (counted in cullMilliseconds, with its waits).
     core::CoherentCullingStats occlusion;
     double occlusionMilliseconds = 0.0;
