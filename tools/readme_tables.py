@@ -9,7 +9,8 @@ drift from what the program measures.
 
   tools/readme_tables.py visibility BENCH.json ...
       per `shadowkit bench --json` file: triangles and instances per pass, queries, waits,
-      GPU ms and the CPU cost of the pre-pass and masks (tools/measure-visibility.sh)
+      GPU ms, the culling's time in GL (pre-pass, masks) and its own thread CPU time
+      (tools/measure-visibility.sh)
 
 LABEL is the row's name as printed (e.g. '`tsm`' or '`csm` 4 × 1024²'). tools/measure-readme.sh
 runs the evaluations behind every table and prints them.
@@ -55,8 +56,8 @@ def details(reports):
 
 def visibility(paths):
     print("| trees | visibility | casters | shadow pass: M triangles (instances) | main pass: M triangles (instances) | "
-          "queries (waits) | shadow GPU ms | main GPU ms | CPU culling ms (pre-pass, masks) |")
-    print("|---:|---|---|---:|---:|---:|---:|---:|---:|")
+          "queries (waits) | shadow GPU ms | main GPU ms | culling ms: in GL (pre-pass, masks) | culling's own CPU ms |")
+    print("|---:|---|---|---:|---:|---:|---:|---:|---:|---:|")
     for path in paths:
         with open(path) as f:
             for r in json.load(f)["runs"]:
@@ -67,7 +68,8 @@ def visibility(paths):
                       f"{r['shadow']['triangles'] / 1e6:.2f} ({r['shadow']['instances']}) | "
                       f"{r['main']['triangles'] / 1e6:.2f} ({r['main']['instances']}) | {queries} | "
                       f"{r['shadow']['gpu_ms']['median']:.0f} | {r['main']['gpu_ms']['median']:.0f} | "
-                      f"{r['cull_ms']['median']:.1f} ({o['prepass_ms']['median']:.1f}, {r['receiver_mask_ms']['median']:.1f}) |")
+                      f"{r['cull_gl_ms']['median']:.1f} ({o['prepass_ms']['median']:.1f}, {r['receiver_mask_ms']['median']:.1f}) | "
+                      f"{r['cull_own_ms']['median']:.2f} |")
 
 
 if __name__ == "__main__":
