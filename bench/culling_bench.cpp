@@ -38,11 +38,7 @@ const World& world(int trees) {
         o.trees = trees;
         w = std::make_unique<World>();
         w->scene = scene::makeForest(o);
-        std::vector<core::Aabb> boxes;
-        for (const scene::MeshBatch& batch : w->scene.batches)
-            for (const glm::mat4& m : batch.worldFromObject)
-                boxes.push_back(core::transformBounds(core::Mat4(m), w->scene.meshes[batch.mesh].osBounds));
-        w->hierarchy = core::InstanceHierarchy(boxes);
+        w->hierarchy = core::InstanceHierarchy(w->scene.instanceBounds());
         const auto views = scene::loadViews(scene::dataDirectory() / "views.json").value();
         w->view = scene::resolveView(*scene::findView(views, "perpendicular"), w->scene);
     }

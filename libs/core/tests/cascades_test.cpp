@@ -90,7 +90,9 @@ TEST(CascadesTest, VisibleDepthPlacesTheSplitsOverWhatIsSeenAndKeepsNearToFarCov
     }
     // The focus body is never narrowed: B is the one without a visible range.
     in.visibleDepth.reset();
-    EXPECT_EQ(computeShadowSetup(in)->body.vertices().size(), setup->body.vertices().size());
+    const ConvexBody::Points without = computeShadowSetup(in)->body.vertices(), with = setup->body.vertices();
+    ASSERT_EQ(without.size(), with.size());
+    for (size_t i = 0; i < with.size(); ++i) EXPECT_EQ(without[i], with[i]);
     // Explicit splits win over the visible range.
     in.visibleDepth = Vec2(6.0, 120.0);
     in.cascades.splits = {0.5, 10, 50, 150, 400};

@@ -26,6 +26,11 @@ public:
     // [nearest, farthest] of the last reduce(); nullopt when nothing was drawn or nothing
     // was reduced. Reads 8 bytes back (waits for the GPU if it has not finished them).
     std::optional<core::Vec2> read();
+    // No range for this frame (it made no pre-pass): read() answers nullopt.
+    void forget() {
+        m_pending = false;
+        m_last.reset();
+    }
 
 private:
     DepthRangeReduction() = default;

@@ -214,14 +214,16 @@ void Renderer::Impl::collectVisible(const core::PerspectiveCamera& camera, const
         visibility->fromItems(occlusionDrawn, cameraLodOrNone, cameraList);
         occlusionMilliseconds = occlusionTime.elapsed().wallMilliseconds;
         cullGlTimes += occlusion->glTimes();
+    } else if (prepass) {
+        // The frustum's instances, asked once, for the depth pre-pass and the camera pass.
+        occlusionDrawn.clear();
+        visibility->hierarchy().query(cameraVolume, occlusionDrawn);
+        if (cull) visibility->fromItems(occlusionDrawn, cameraLodOrNone, cameraList);
+        else visibility->collect(cameraVolume, false, cameraLodOrNone, cameraList);
+        occlusion->prepass(cameraLodOrNone, *cameraDepth, occlusionDrawn);
+        cullGlTimes += occlusion->glTimes();
     } else {
         visibility->collect(cameraVolume, cull, cameraLodOrNone, cameraList);
-        if (prepass) {
-            occlusionDrawn.clear();
-            visibility->hierarchy().query(cameraVolume, occlusionDrawn);
-            occlusion->prepass(cameraLodOrNone, *cameraDepth, occlusionDrawn);
-            cullGlTimes += occlusion->glTimes();
-        }
     }
     if (prepass) {
         // Read when asked (Renderer::lastVisibleDepth). On llvmpipe the dispatch runs at
@@ -229,6 +231,8 @@ void Renderer::Impl::collectVisible(const core::PerspectiveCamera& camera, const
         const Stopwatch reduceTime;
         depthRange->reduce(*cameraDepth);
         cullGlTimes += reduceTime.elapsed();
+    } else {
+        depthRange->forget();
     }
     const std::vector<core::ReceiverMask>* masks = nullptr;
     if (masked) {

@@ -9,16 +9,6 @@
 namespace shadowkit::gl {
 namespace {
 
-std::vector<core::Aabb> instanceBoxes(const scene::Scene& scene) {
-    std::vector<core::Aabb> boxes;
-    boxes.reserve(scene.instanceCount());
-    for (const scene::MeshBatch& batch : scene.batches) {
-        const core::Aabb& os = scene.meshes[batch.mesh].osBounds;
-        for (const glm::mat4& m : batch.worldFromObject) boxes.push_back(core::transformBounds(core::Mat4(m), os));
-    }
-    return boxes;
-}
-
 // NDC units per world metre at `ws` through a projective map: the largest column of
 // d(ndc.xy)/d(ws) = (M_i.xy − ndc.xy · M_i.w) / w over the world axes i (the map may
 // stretch one axis more than another). Infinite at or behind the projection centre.
@@ -42,7 +32,7 @@ std::vector<float> levelErrors(const std::vector<scene::LodLevel>& chain) {
 
 } // namespace
 
-Visibility::Visibility(const scene::Scene& scene, std::span<const scene::MeshLods> lods) : m_hierarchy(instanceBoxes(scene)) {
+Visibility::Visibility(const scene::Scene& scene, std::span<const scene::MeshLods> lods) : m_hierarchy(scene.instanceBounds()) {
     uint32_t first = 0;
     for (const scene::MeshBatch& batch : scene.batches) {
         m_batchFirst.push_back(first);
@@ -59,7 +49,10 @@ Visibility::Visibility(const scene::Scene& scene, std::span<const scene::MeshLod
     }
 }
 
-void Visibility::scratchFromBits() {
+void Visibility::sortIntoScratch(std::span<const uint32_t> items) {
+    // All bits are set before m_scratch is rewritten, so `items` may be m_scratch itself.
+    m_visibleBits.assign((m_hierarchy.size() + 63) / 64, 0);
+    for (const uint32_t i : items) m_visibleBits[i / 64] |= uint64_t{1} << (i % 64);
     m_scratch.clear();
     for (size_t word = 0; word < m_visibleBits.size(); ++word)
         for (uint64_t bits = m_visibleBits[word]; bits != 0; bits &= bits - 1)
@@ -67,9 +60,7 @@ void Visibility::scratchFromBits() {
 }
 
 void Visibility::fromItems(std::span<const uint32_t> items, const LodChoice* lod, PassList& out) {
-    m_visibleBits.assign((m_hierarchy.size() + 63) / 64, 0);
-    for (const uint32_t i : items) m_visibleBits[i / 64] |= uint64_t{1} << (i % 64);
-    scratchFromBits();
+    sortIntoScratch(items);
     build(lod, out);
 }
 
@@ -83,9 +74,7 @@ void Visibility::collect(std::span<const core::HalfSpace> volume, bool cull, con
             m_hierarchy.query(volume, [receivers](const core::Aabb& box) { return receivers->mayShadow(box); }, m_scratch);
         else
             m_hierarchy.query(volume, m_scratch);
-        m_visibleBits.assign((m_hierarchy.size() + 63) / 64, 0);
-        for (const uint32_t i : m_scratch) m_visibleBits[i / 64] |= uint64_t{1} << (i % 64);
-        scratchFromBits();
+        sortIntoScratch(m_scratch);
     } else {
         m_scratch.resize(m_hierarchy.size());
         for (uint32_t i = 0; i < m_scratch.size(); ++i) m_scratch[i] = i;

@@ -70,8 +70,9 @@ public:
 private:
     // m_scratch (increasing global indices) → `out`, by batch and level.
     void build(const LodChoice* lod, PassList& out);
-    // m_scratch = the set bits of m_visibleBits, in increasing order.
-    void scratchFromBits();
+    // m_scratch = `items` (distinct global indices) in increasing order, through a bitmap
+    // over every instance: O(n / 64 + items), cheaper than sorting.
+    void sortIntoScratch(std::span<const uint32_t> items);
 
     core::InstanceHierarchy m_hierarchy;    // items in global instance order (Scene order)
     std::vector<uint32_t> m_batchFirst;     // global index of each batch's first instance

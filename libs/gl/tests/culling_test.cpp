@@ -39,6 +39,20 @@ std::vector<Variant> everyTechnique(const scene::ResolvedView& view, const core:
     return variants;
 }
 
+// A standard view and the settings of a small frame (width x height pixels) of it.
+scene::ResolvedView smallView(const scene::Scene& forest, const char* name, int width, int height) {
+    scene::ResolvedView view = gl::testing::standardView(forest, name);
+    view.camera.aspect = double(width) / height;
+    return view;
+}
+gl::RenderSettings smallFrame(int width, int height, gl::Culling culling) {
+    gl::RenderSettings settings;
+    settings.width = width;
+    settings.height = height;
+    settings.culling = culling;
+    return settings;
+}
+
 } // namespace
 
 TEST_F(CullingTest, CulledFramesMatchFullFramesPixelForPixelForEveryTechnique) {
@@ -48,15 +62,11 @@ TEST_F(CullingTest, CulledFramesMatchFullFramesPixelForPixelForEveryTechnique) {
     EXPECT_EQ((*renderer)->wsSceneBounds().min, forest.wsBounds().min);
     EXPECT_EQ((*renderer)->wsSceneBounds().max, forest.wsBounds().max);
     for (const char* viewName : {"perpendicular", "aerial"}) {
-        scene::ResolvedView view = gl::testing::standardView(forest, viewName);
-        view.camera.aspect = 160.0 / 90.0;
+        const scene::ResolvedView view = smallView(forest, viewName, 160, 90);
         for (const Variant& v : everyTechnique(view, forest.wsBounds())) {
             const auto setup = core::computeShadowSetup(v.inputs);
             ASSERT_TRUE(setup) << v.name << ": " << setup.error();
-            gl::RenderSettings settings;
-            settings.width = 160;
-            settings.height = 90;
-            settings.culling = gl::Culling::Off;
+            gl::RenderSettings settings = smallFrame(160, 90, gl::Culling::Off);
             const auto full = (*renderer)->render(view.camera, view.light, *setup, settings);
             ASSERT_TRUE(full);
             const scene::Image fullImage = (*renderer)->readColor();
@@ -156,17 +166,14 @@ TEST_F(CullingTest, CasterOutsideTheViewFrustumIsDrawnIntoTheMapAndItsShadowAppe
 
 TEST_F(CullingTest, LevelsOfDetailDrawFewerTrianglesForDistantTreesWithinTheirErrorBound) {
     const scene::Scene forest = gl::testing::smallForest(1500, 600, 32);
-    scene::ResolvedView view = gl::testing::standardView(forest, "aerial");
-    view.camera.aspect = 320.0 / 180.0;
+    const scene::ResolvedView view = smallView(forest, "aerial", 320, 180);
     auto renderer = gl::Renderer::create(forest);
     ASSERT_TRUE(renderer);
     for (core::Technique t : {core::Technique::Focused, core::Technique::Tsm, core::Technique::Csm}) {
         const auto setup = core::computeShadowSetup(
             {.camera = view.camera, .light = view.light, .wsSceneBounds = forest.wsBounds(), .technique = t, .mapSize = 512});
         ASSERT_TRUE(setup);
-        gl::RenderSettings settings;
-        settings.width = 320;
-        settings.height = 180;
+        gl::RenderSettings settings = smallFrame(320, 180, gl::Culling::Frustum);
         auto frame = [&](bool lod, float bound) {
             settings.lod = lod;
             settings.lodPixelError = settings.lodTexelError = bound;
@@ -202,16 +209,12 @@ TEST_F(CullingTest, OcclusionCulledFramesMatchFrustumCulledFramesAfterTheFirst) 
     const scene::Scene forest = gl::testing::smallForest(600, 200, 32);
     auto renderer = gl::Renderer::create(forest);
     ASSERT_TRUE(renderer) << renderer.error();
-    scene::ResolvedView view = gl::testing::standardView(forest, "perpendicular");
-    view.camera.aspect = 160.0 / 90.0;
+    const scene::ResolvedView view = smallView(forest, "perpendicular", 160, 90);
     core::ShadowSetupInputs in{.camera = view.camera, .light = view.light, .wsSceneBounds = forest.wsBounds(),
                                .technique = core::Technique::Lispsm, .mapSize = 512};
     const auto setup = core::computeShadowSetup(in);
     ASSERT_TRUE(setup) << setup.error();
-    gl::RenderSettings settings;
-    settings.width = 160;
-    settings.height = 90;
-    settings.culling = gl::Culling::Frustum;
+    gl::RenderSettings settings = smallFrame(160, 90, gl::Culling::Frustum);
     const auto frustum = (*renderer)->render(view.camera, view.light, *setup, settings);
     ASSERT_TRUE(frustum);
     const scene::Image frustumImage = (*renderer)->readColor();

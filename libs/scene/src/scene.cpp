@@ -20,6 +20,16 @@ core::Aabb Scene::wsBounds() const {
     return bounds;
 }
 
+std::vector<core::Aabb> Scene::instanceBounds() const {
+    std::vector<core::Aabb> boxes;
+    boxes.reserve(instanceCount());
+    for (const MeshBatch& batch : batches) {
+        const core::Aabb& os = meshes[batch.mesh].osBounds;
+        for (const glm::mat4& m : batch.worldFromObject) boxes.push_back(core::transformBounds(core::Mat4(m), os));
+    }
+    return boxes;
+}
+
 size_t Scene::triangleCount() const {
     size_t n = 0;
     for (const MeshBatch& batch : batches) n += meshes[batch.mesh].triangleCount() * batch.worldFromObject.size();

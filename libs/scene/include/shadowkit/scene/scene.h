@@ -46,6 +46,8 @@ struct Scene {
 
     // World-space bounds of every instance (empty box for an empty scene).
     core::Aabb wsBounds() const;
+    // Each instance's world-space box, batch after batch (the global instance order).
+    std::vector<core::Aabb> instanceBounds() const;
     size_t triangleCount() const;   // over all instances
     size_t instanceCount() const;
     // Height of the ground under (x, z): the terrain heightfield where there is one, else
