@@ -56,20 +56,21 @@ def details(reports):
 
 def visibility(paths):
     print("| trees | visibility | casters | shadow pass: M triangles (instances) | main pass: M triangles (instances) | "
-          "queries (waits) | shadow GPU ms | main GPU ms | culling ms: in GL (pre-pass, masks) | culling's own CPU ms |")
-    print("|---:|---|---|---:|---:|---:|---:|---:|---:|---:|")
+          "queries (waits: median; range) | shadow GPU ms | main GPU ms | culling ms: in GL (pre-pass, masks) | culling's own CPU ms | levels and lists CPU ms |")
+    print("|---:|---|---|---:|---:|---:|---:|---:|---:|---:|---:|")
     for path in paths:
         with open(path) as f:
             for r in json.load(f)["runs"]:
                 o = r["occlusion"]
                 chc = r["visibility"] == "chc"
-                queries = f"{o['queries']} ({o['waits']})" if chc else "–"
+                waits = o['waits']
+                queries = f"{o['queries']['median']:.0f} ({waits['median']:.0f}; {waits['min']:.0f}–{waits['max']:.0f})" if chc else "–"
                 print(f"| {r['trees']:,} | {r['visibility']} | {'receivers' if r['receiver_mask'] else 'volume'} | "
                       f"{r['shadow']['triangles'] / 1e6:.2f} ({r['shadow']['instances']}) | "
                       f"{r['main']['triangles'] / 1e6:.2f} ({r['main']['instances']}) | {queries} | "
                       f"{r['shadow']['gpu_ms']['median']:.0f} | {r['main']['gpu_ms']['median']:.0f} | "
                       f"{r['cull_gl_ms']['median']:.1f} ({o['prepass_ms']['median']:.1f}, {r['receiver_mask_ms']['median']:.1f}) | "
-                      f"{r['cull_own_ms']['median']:.2f} |")
+                      f"{r['cull_own_ms']['median']:.2f} | {r['list_ms']['median']:.2f} |")
 
 
 if __name__ == "__main__":

@@ -64,8 +64,9 @@ int runRender(const RenderArgs& args) {
     fmt::print("{} | {} | {}x{} | map {}² | view {}\n", core::techniqueName(setup->technique), (*context)->description(),
                settings.width, settings.height, setup->mapSize, args.view.view);
     fmt::print("  set-up (CPU)   {:8.3f} ms\n", setupMs);
-    fmt::print("  culling (CPU)  {:8.3f} ms  ({:.3f} ms in GL: pre-pass, queries, masks; {:.3f} ms its own thread CPU)\n",
-               stats->cullMilliseconds, stats->cullGlMilliseconds, stats->cullOwnCpuMilliseconds);
+    fmt::print("  culling (CPU)  {:8.3f} ms  ({:.3f} ms in GL: pre-pass, queries, masks; {:.3f} ms its own thread CPU; "
+               "{:.3f} ms levels and lists)\n",
+               stats->cullMilliseconds, stats->cullGlMilliseconds, stats->cullOwnCpuMilliseconds, stats->listCpuMilliseconds);
     if (settings.culling == gl::Culling::Occlusion) {
         const core::CoherentCullingStats& o = stats->occlusion;
         fmt::print("  occlusion      {:8.3f} ms pre-pass (CPU)  {} nodes visited  {} queries over {} nodes  {} waits\n",

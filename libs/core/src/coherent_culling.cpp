@@ -20,7 +20,12 @@
 // so far, and its results are read when they have arrived, while the traversal goes on.
 // The frame waits for a result only when there is nothing else to do: a hidden node that
 // has become visible must be drawn in this frame, so the frame is never missing an object
-// (unlike one-frame-late schemes, which pop). Those waits are counted.
+// (unlike one-frame-late schemes, which pop). Those waits are counted. A wait is for the
+// newest query, not the oldest: results arrive in issue order, so one wait brings them all,
+// and a frame waits once per round trip (what a result opens must be asked again), not once
+// per submission the driver made (measured on llvmpipe, 10,000 trees, the frames after a
+// camera cut: 23-27 waits -> 5). While nodes remain to visit, results are polled every few
+// visits (kVisitsPerPoll) rather than at each.
 // Multi-queries (CHC++ §4.3): nodes hidden for i frames stay hidden with probability
 // p(i) = 0.99 − 0.7 e^(−i) (the paper's fit). A group of n nodes costs one query if it stays
 // hidden and 1 + n if not, so the expected cost is C(n) = 1 + (1 − ∏p)·n; a group grows
@@ -54,6 +59,9 @@ uint32_t phaseOf(uint32_t node) {
     x ^= x >> 15;
     return x * 0x85EBCA77u;
 }
+
+// Visits between polls of the oldest query while the traversal has nodes to visit.
+constexpr uint32_t kVisitsPerPoll = 4;
 
 double stayHiddenOdds(uint16_t invisibleFrames) { return 0.99 - 0.7 * std::exp(-double(invisibleFrames)); }
 
@@ -107,21 +115,32 @@ CoherentCullingStats CoherentCulling::frame(std::span<const HalfSpace> frustum, 
 
     m_distanceQueue.clear();
     m_distanceQueue.emplace_back(0.0, InstanceHierarchy::kRoot);
+    uint32_t visitsSincePoll = 0;
     while (!m_distanceQueue.empty() || !m_invisibleQueue.empty() || !m_queryQueue.empty()) {
         // Results first, in issue order, as far as they have arrived; wait only when the
-        // traversal has nothing left to do.
-        while (!m_queryQueue.empty()) {
-            if (!queries.available(m_queryQueue.front().handle)) {
+        // traversal has nothing left to do. While there is, results are polled every few
+        // visits: a poll is a driver call, and a result a few nodes late costs nothing.
+        const bool poll = m_distanceQueue.empty() || ++visitsSincePoll >= kVisitsPerPoll;
+        if (poll) visitsSincePoll = 0;
+        while (poll && !m_queryQueue.empty()) {
+            if (!m_queryQueue.front().read && !queries.available(m_queryQueue.front().handle)) {
                 if (!m_distanceQueue.empty()) break;
                 if (!m_invisibleQueue.empty()) {
                     issueBatch();
                     continue;
                 }
+                // Results arrive in issue order: one wait, for the newest, brings every
+                // older one with it (waiting for the oldest would wait once per submission).
                 ++m_stats.waits;
+                Query& newest = m_queryQueue.back();
+                if (!newest.read) {
+                    newest.visible = queries.visible(newest.handle);
+                    newest.read = true;
+                }
             }
             const Query query = m_queryQueue.front();
             m_queryQueue.pop_front();
-            handle(query, queries.visible(query.handle));
+            handle(query, query.read ? query.visible : queries.visible(query.handle));
         }
         if (!m_distanceQueue.empty()) {
             std::pop_heap(m_distanceQueue.begin(), m_distanceQueue.end(), kFarther);

@@ -1,8 +1,8 @@
 // CHC++ traversal against a stand-in for the GPU: a query says "visible" when a node holds
 // an item of a known visible set, and its result arrives only once `latency` more queries
 // have been issued after it (the GPU works through them in order), so the tests see the
-// latency a real driver has. Reading a result that has not arrived blocks: the GPU is
-// drained, and the read is counted. `leakyNodes` are inner nodes whose box passes though
+// latency a real driver has. Reading a result that has not arrived blocks until the GPU has
+// worked through that query (and every earlier one, in order); the read is counted. `leakyNodes` are inner nodes whose box passes though
 // nothing under it is visible (a box holds empty space between its children's boxes).
 #include "shadowkit/core/coherent_culling.h"
 
@@ -38,7 +38,7 @@ public:
     bool visible(uint32_t q) override {
         if (!available(q)) {
             ++(m_queries[q].frame == frame ? blockingReadsThisFrame : blockingReadsOfEarlierFrames);
-            for (Q& each : m_queries) each.readyAt = 0; // drained
+            for (uint32_t earlier = 0; earlier <= q; ++earlier) m_queries[earlier].readyAt = 0; // worked through q
         }
         return m_queries[q].result;
     }
@@ -150,6 +150,39 @@ TEST(CoherentCulling, NeverMissesAnObjectThatBecameVisible) {
         EXPECT_EQ(waits, gpu.blockingReadsThisFrame); // every wait is counted
         EXPECT_EQ(gpu.blockingReadsOfEarlierFrames, 0u);
     }
+}
+
+TEST(CoherentCulling, AFrameWaitsOncePerRoundTripNotOncePerQuery) {
+    // A GPU so slow that no result arrives by itself within the frame: every result must be
+    // waited for. After a static view has converged, a new set becomes visible: the hidden
+    // nodes' results are all needed at the end of the frame. Results arrive in order, so a
+    // wait for the newest brings every older one; more waits are needed only for what those
+    // results open (children, a failed multi-query's nodes): at most two per tree level.
+    const InstanceHierarchy h = grid();
+    int depth = 0;
+    for (uint32_t node = 0; node < h.nodeCount(); ++node) {
+        int d = 0;
+        for (uint32_t n = node; n != InstanceHierarchy::kRoot; n = h.parent(n)) ++d;
+        depth = std::max(depth, d);
+    }
+    std::mt19937 rng(17);
+    CoherentCulling chc(h);
+    FakeQueries gpu(h, 1 << 20);
+    gpu.visibleItems = randomSubset(rng, h.size(), 0.05);
+    std::vector<uint32_t> drawn;
+    for (int f = 0; f < 20; ++f) {
+        gpu.frame = f;
+        chc.frame({}, kEye, 0.5, gpu, drawn);
+    }
+    gpu.frame = 20;
+    gpu.visibleItems = randomSubset(rng, h.size(), 0.05);
+    const size_t readsBefore = gpu.blockingReadsThisFrame;
+    const CoherentCullingStats stats = chc.frame({}, kEye, 0.5, gpu, drawn);
+    const std::set<uint32_t> got(drawn.begin(), drawn.end());
+    for (const uint32_t item : gpu.visibleItems) ASSERT_TRUE(got.count(item)) << item;
+    EXPECT_GT(stats.queriesIssued, size_t(4 * depth)); // many results were needed...
+    EXPECT_LE(stats.waits, size_t(2 * depth + 1));     // ...in few round trips
+    EXPECT_EQ(stats.waits, gpu.blockingReadsThisFrame - readsBefore);
 }
 
 TEST(CoherentCulling, InnerBoxesThatPassOverHiddenChildrenStayOpenInsteadOfBeingAskedEveryFrame) {

@@ -179,13 +179,20 @@ uint32_t OcclusionCuller::issue(std::span<const uint32_t> nodes) {
 }
 
 bool OcclusionCuller::available(uint32_t query) {
-    // Not timed as GL work: a poll, called thousands of times a frame, whose cost is the
-    // culling's own (and timing each call would cost more than the call).
+    // The first poll after new draws or queries hands them to the driver (Mesa submits its
+    // queued work when a result is asked for; we flush explicitly so that every driver starts
+    // on it while the traversal goes on): GL work, timed as such. Later polls only read a
+    // fence and count as the culling's own cost, untimed: timing each would cost more
+    // than the call.
     GLuint ready = 0;
-    glGetQueryObjectuiv(m_queries[query], GL_QUERY_RESULT_AVAILABLE, &ready);
-    if (!ready && m_unflushed) {
-        glFlush(); // let the driver start on what is queued while the traversal goes on
+    if (m_unflushed) {
+        const Stopwatch inGl;
+        glGetQueryObjectuiv(m_queries[query], GL_QUERY_RESULT_AVAILABLE, &ready);
+        glFlush();
         m_unflushed = false;
+        m_gl += inGl.elapsed();
+    } else {
+        glGetQueryObjectuiv(m_queries[query], GL_QUERY_RESULT_AVAILABLE, &ready);
     }
     return ready != 0;
 }

@@ -79,6 +79,7 @@ struct Renderer::Impl {
     PassList cameraList;
     CpuTimes cullTimes;   // building this frame's lists
     CpuTimes cullGlTimes; // of which inside GL doing or awaiting GPU work (FrameStats)
+    CpuTimes listTimes;   // of which choosing levels and building lists (FrameStats)
     std::unique_ptr<OcclusionCuller> occlusion;
     std::optional<CameraDepthTarget> cameraDepth; // the occlusion pre-pass's target
     std::vector<uint32_t> occlusionDrawn;
@@ -187,6 +188,7 @@ double lookupReachTexels(const core::FilterSettings& filter, const core::BiasSet
 void Renderer::Impl::collectVisible(const core::PerspectiveCamera& camera, const core::DirectionalLight& light,
                                     const core::ShadowSetup& setup, const RenderSettings& settings) {
     const Stopwatch total;
+    visibility->takeListTimes();
     const bool cull = settings.culling != Culling::Off;
     const bool masked = cull && settings.receiverMask;
     const bool prepass = settings.culling == Culling::Occlusion || masked || prepassForDepthRange;
@@ -255,6 +257,7 @@ void Renderer::Impl::collectVisible(const core::PerspectiveCamera& camera, const
     lists.push_back(&cameraList);
     visibility->upload(lists);
     cullTimes = total.elapsed();
+    listTimes = visibility->takeListTimes();
 }
 
 core::Status Renderer::Impl::prepare(const core::PerspectiveCamera& camera, const core::DirectionalLight& light,
@@ -449,7 +452,8 @@ core::Result<FrameStats> Renderer::render(const core::PerspectiveCamera& camera,
     stats.main = {r.mainTimer.milliseconds(), mainDraws.instances, mainDraws.triangles, mainDraws.drawCalls};
     stats.cullMilliseconds = r.cullTimes.wallMilliseconds;
     stats.cullGlMilliseconds = r.cullGlTimes.wallMilliseconds;
-    stats.cullOwnCpuMilliseconds = r.cullTimes.threadMilliseconds - r.cullGlTimes.threadMilliseconds;
+    stats.listCpuMilliseconds = r.listTimes.threadMilliseconds;
+    stats.cullOwnCpuMilliseconds = r.cullTimes.threadMilliseconds - r.cullGlTimes.threadMilliseconds - stats.listCpuMilliseconds;
     stats.occlusion = r.occlusionStats;
     stats.occlusionMilliseconds = r.occlusionMilliseconds;
     stats.receiverMaskMilliseconds = r.receiverMaskMilliseconds;

@@ -83,6 +83,7 @@ void Visibility::collect(std::span<const core::HalfSpace> volume, bool cull, con
 }
 
 void Visibility::build(const LodChoice* lod, PassList& out) {
+    const Stopwatch time;
     // The level of each instance: the coarsest whose world error (object error × scale),
     // in the pass's units, stays within the bound.
     m_levels.assign(m_scratch.size(), 0);
@@ -130,9 +131,11 @@ void Visibility::build(const LodChoice* lod, PassList& out) {
         while (m_scratch[k] >= m_batchFirst[batch + 1]) ++batch;
         out.indices[cursor[slotOf[k]]++] = m_scratch[k] - m_batchFirst[batch];
     }
+    m_listTimes += time.elapsed();
 }
 
 void Visibility::upload(std::span<PassList* const> lists) {
+    const Stopwatch time;
     m_staging.clear();
     for (PassList* list : lists) {
         list->offset = static_cast<uint32_t>(m_staging.size());
@@ -145,6 +148,7 @@ void Visibility::upload(std::span<PassList* const> lists) {
     }
     glNamedBufferSubData(m_buffer.id(), 0, static_cast<GLsizeiptr>(m_staging.size() * sizeof(uint32_t)), m_staging.data());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kVisibleBinding, m_buffer.id());
+    m_listTimes += time.elapsed();
 }
 
 } // namespace shadowkit::gl

@@ -7,6 +7,7 @@
 #pragma once
 
 #include "gl_object.h"
+#include "stopwatch.h"
 
 #include "shadowkit/core/instance_hierarchy.h"
 #include "shadowkit/core/receiver_mask.h"
@@ -15,6 +16,7 @@
 
 #include <optional>
 #include <span>
+#include <utility>
 #include <vector>
 
 namespace shadowkit::gl {
@@ -66,6 +68,9 @@ public:
     // Assigns offsets and uploads every list of the frame into one buffer, bound at
     // SK_VISIBLE_BINDING.
     void upload(std::span<PassList* const> lists);
+    // Time spent choosing levels, building lists and uploading them (every pass's work,
+    // culled or not) since the last call; resets it.
+    CpuTimes takeListTimes() { return std::exchange(m_listTimes, {}); }
 
 private:
     // m_scratch (increasing global indices) → `out`, by batch and level.
@@ -88,6 +93,7 @@ private:
     std::vector<uint32_t> m_staging;        // the frame's concatenated lists
     Buffer m_buffer;
     size_t m_capacity = 0; // in indices
+    CpuTimes m_listTimes;
 };
 
 } // namespace shadowkit::gl

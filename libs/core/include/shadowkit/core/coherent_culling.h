@@ -75,6 +75,7 @@ private:
     struct Query {
         uint32_t handle = 0;
         uint32_t firstNode = 0, nodeCount = 0; // into m_queryNodes
+        bool read = false, visible = false;    // read ahead of its turn (the newest, waited for)
     };
     struct LateCheck { // a visible leaf's query, read in a later frame
         uint32_t handle = 0, node = 0;

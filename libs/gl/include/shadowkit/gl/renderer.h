@@ -89,9 +89,13 @@ struct FrameStats {
     // read-back. On llvmpipe that is the rasteriser itself.
     double cullGlMilliseconds = 0.0;
     // Culling's own CPU cost: the CPU time of the calling thread in culling outside those GL
-    // calls — traversal, LOD choice, mask dilation, the passes' lists and their upload.
-    // Thread time, not wall-clock: on llvmpipe the rasteriser's threads share the cores.
+    // calls and outside list building — the hierarchy queries, the CHC++ traversal and its
+    // polls, the masks' decoding, dilation and caster tests. Thread time, not wall-clock: on
+    // llvmpipe the rasteriser's threads share the cores.
     double cullOwnCpuMilliseconds = 0.0;
+    // Of cullMilliseconds, thread CPU time choosing every drawn instance's level of detail and
+    // building the passes' lists: per instance drawn, culled or not (so not culling's cost).
+    double listCpuMilliseconds = 0.0;
     // Culling::Occlusion: the CHC++ pre-pass (counted in cullMilliseconds, with its waits).
     core::CoherentCullingStats occlusion;
     double occlusionMilliseconds = 0.0;
