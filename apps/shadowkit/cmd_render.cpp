@@ -1,13 +1,17 @@
 // shadowkit render: one shaded image of a scene with a shadow technique.
 #include "commands.h"
 #include "options.h"
+#include "timeline.h"
 
 #include "shadowkit/gl/context.h"
 #include "shadowkit/gl/renderer.h"
+#include "shadowkit/scene/animation.h"
 
 #include <fmt/format.h>
 
 #include <chrono>
+#include <cstdlib>
+#include <filesystem>
 
 namespace shadowkit::app {
 namespace {
@@ -17,68 +21,139 @@ struct RenderArgs {
     ViewOptions view;
     TechniqueOptions technique;
     RenderOptions render;
+    TimelineOptions timeline;
     std::string out = "shadowkit.png";
-    std::string shadowMapOut;
+    std::string shadowMapOut, video;
 };
+
+// The report of a single frame: where the time went.
+void printFrameReport(const RenderArgs& args, const gl::Context& context, const core::ShadowSetup& setup,
+                      const core::ShadowSetupInputs& inputs, const gl::RenderSettings& settings, const gl::FrameStats& stats,
+                      double setupMs, double frameMs) {
+    fmt::print("{} | {} | {}x{} | map {}² | view {}\n", core::techniqueName(setup.technique), context.description(), settings.width,
+               settings.height, setup.mapSize, args.timeline.path.empty() ? args.view.view : "path " + args.timeline.path);
+    fmt::print("  set-up (CPU)   {:8.3f} ms\n", setupMs);
+    fmt::print("  culling (CPU)  {:8.3f} ms  ({:.3f} ms in GL: pre-pass, queries, masks; {:.3f} ms its own thread CPU; "
+               "{:.3f} ms levels and lists)\n",
+               stats.cullMilliseconds, stats.cullGlMilliseconds, stats.cullOwnCpuMilliseconds, stats.listCpuMilliseconds);
+    if (settings.culling == gl::Culling::Occlusion) {
+        const core::CoherentCullingStats& o = stats.occlusion;
+        fmt::print("  occlusion      {:8.3f} ms pre-pass (CPU)  {} nodes visited  {} queries over {} nodes  {} waits\n",
+                   stats.occlusionMilliseconds, o.nodesVisited, o.queriesIssued, o.nodesQueried, o.waits);
+    }
+    for (const auto& [name, pass] : {std::pair{"shadow pass", &stats.shadow}, {"main pass  ", &stats.main}})
+        fmt::print("  {}    {:8.1f} ms GPU  {:6.2f} M triangles  {} instances  {} draws\n", name, pass->gpuMilliseconds,
+                   static_cast<double>(pass->triangles) * 1e-6, pass->instances, pass->drawCalls);
+    fmt::print("  frame (wall)   {:8.1f} ms incl. readback\n", frameMs);
+    if (const auto& v = inputs.visibleDepth) fmt::print("  visible depth  {:.2f} .. {:.2f} m (LiSPSM n, csm splits)\n", v->x, v->y);
+    for (const std::string& f : setup.fallbacks) fmt::print("  fallback: {}\n", f);
+}
+
+bool ffmpegInstalled() { return std::system("command -v ffmpeg >/dev/null 2>&1") == 0; }
+
+// Encodes the written frames with ffmpeg (installed: checked before drawing).
+core::Status encodeVideo(const std::string& pattern, int firstFrame, double framesPerSecond, const std::string& video) {
+    const std::string command = fmt::format(
+        "ffmpeg -y -loglevel error -framerate {:.6g} -start_number {} -i '{}' -c:v libx264 -pix_fmt yuv420p '{}'", framesPerSecond,
+        firstFrame, pattern, video);
+    if (pattern.find('\'') != std::string::npos || video.find('\'') != std::string::npos)
+        return core::makeError("--video: file names must not contain a single quote");
+    if (std::system(command.c_str()) != 0) return core::makeError("--video: ffmpeg failed to write " + video);
+    return core::Ok{};
+}
 
 int runRender(const RenderArgs& args) {
     if (auto s = args.technique.check(); !s) return fail(s.error());
     if (auto s = args.render.check(); !s) return fail(s.error());
+    auto timeline = args.timeline.resolve();
+    if (!timeline) return fail(timeline.error());
+    const bool sequence = timeline->isSequence();
+    if (sequence || !args.video.empty())
+        if (auto name = frameFileName(args.out, 0); !name) return fail(name.error());
+    if (!args.video.empty() && !timeline->path) return fail("--video: needs --path (a sequence of frames)");
+    if (!args.video.empty() && !ffmpegInstalled())
+        return fail("--video: ffmpeg is not installed (apt install ffmpeg); write the frames with --out alone");
     auto sceneData = args.scene.load();
     if (!sceneData) return fail(sceneData.error());
-    auto view = args.view.resolve(*sceneData);
-    if (!view) return fail(view.error());
+    scene::Scene& world = *sceneData;
+    auto still = args.view.resolve(world);
+    if (!still) return fail(still.error());
 
     auto context = gl::Context::createHeadless();
     if (!context) return fail(context.error());
-    auto renderer = gl::Renderer::create(*sceneData);
+    auto renderer = gl::Renderer::create(world);
     if (!renderer) return fail(renderer.error());
 
-    auto inputs = args.technique.inputsFor(*view, (*renderer)->wsSceneBounds()); // bounds O(1): the hierarchy's
-    if (!inputs) return fail(inputs.error());
-    auto settingsOr = args.render.settingsFor(*view, *inputs);
-    if (!settingsOr) return fail(settingsOr.error());
-    const gl::RenderSettings& settings = *settingsOr;
-    if (args.technique.visibleDepthFromFrame()) {
-        auto refined = gl::withVisibleDepth(**renderer, *inputs, settings);
-        if (!refined) return fail(withFlagName(refined.errorInfo()).message);
-        inputs = std::move(refined).value();
+    std::vector<uint32_t> moved;
+    const auto sequenceStart = std::chrono::steady_clock::now();
+    for (size_t i = 0; i < timeline->frames.size(); ++i) {
+        const TimedFrame& frame = timeline->frames[i];
+        // Everything from this frame's time alone: movers, sun, camera, set-up, every map.
+        const auto cpuStart = std::chrono::steady_clock::now();
+        moved.clear();
+        scene::animate(world, frame.time, &moved);
+        if (auto s = (*renderer)->moveInstances(world, moved); !s) return fail(s.error());
+        const double animateMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - cpuStart).count();
+        auto view = timeline->viewAt(*still, world, frame.time);
+        if (!view) return fail(view.error());
+        if (timeline->path && !args.view.size.empty()) {
+            if (auto sized = args.view.resolve(world); sized) view->width = sized->width, view->height = sized->height;
+            view->camera.aspect = double(view->width) / double(view->height);
+        }
+        auto inputs = args.technique.inputsFor(*view, (*renderer)->wsSceneBounds()); // bounds O(1): the hierarchy's
+        if (!inputs) return fail(inputs.error());
+        auto settings = args.render.settingsFor(*view, *inputs);
+        if (!settings) return fail(settings.error());
+        if (args.technique.visibleDepthFromFrame()) {
+            auto refined = gl::withVisibleDepth(**renderer, *inputs, *settings);
+            if (!refined) return fail(withFlagName(refined.errorInfo()).message);
+            inputs = std::move(refined).value();
+        }
+        // What a frame costs on the CPU before drawing: the set-up.
+        const auto setupStart = std::chrono::steady_clock::now();
+        auto setup = core::computeShadowSetup(*inputs);
+        if (!setup) return fail(withFlagName(setup.errorInfo()).message);
+        const double setupMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - setupStart).count();
+
+        const auto frameStart = std::chrono::steady_clock::now();
+        auto stats = (*renderer)->render(view->camera, view->light, *setup, *settings);
+        if (!stats) return fail(withFlagName(stats.errorInfo()).message);
+        const scene::Image image = (*renderer)->readColor();
+        const double frameMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - frameStart).count();
+
+        std::string out = args.out;
+        if (sequence || !args.video.empty()) {
+            // A sequence's folder is made for it (frames/%04d.png); a single image's must exist.
+            out = frameFileName(args.out, frame.number).value();
+            if (const auto dir = std::filesystem::path(out).parent_path(); !dir.empty()) {
+                std::error_code ec;
+                std::filesystem::create_directories(dir, ec);
+            }
+        }
+        if (auto s = scene::writePng(image, out); !s) return fail("--out: " + s.error());
+        if (!sequence) {
+            if (!args.shadowMapOut.empty())
+                if (auto s = scene::writePng((*renderer)->readShadowMap(), args.shadowMapOut); !s)
+                    return fail("--shadow-map-out: " + s.error());
+            printFrameReport(args, **context, *setup, *inputs, *settings, *stats, setupMs, frameMs);
+            fmt::print("wrote {}{}\n", out, args.shadowMapOut.empty() ? "" : " and " + args.shadowMapOut);
+            continue;
+        }
+        fmt::print("frame {:4} ({}/{})  t {:7.3f} s  animate {:.3f} ms  set-up {:.3f} ms  shadow {:.2f} M / main {:.2f} M tris  "
+                   "{:.0f} ms  -> {}\n",
+                   frame.number, i + 1, timeline->frames.size(), frame.time, animateMs, setupMs,
+                   static_cast<double>(stats->shadow.triangles) * 1e-6, static_cast<double>(stats->main.triangles) * 1e-6, frameMs,
+                   out);
+        std::fflush(stdout);
     }
-
-    // What a frame costs on the CPU before drawing: the set-up.
-    const auto cpuStart = std::chrono::steady_clock::now();
-    auto setup = core::computeShadowSetup(*inputs);
-    if (!setup) return fail(withFlagName(setup.errorInfo()).message);
-    const double setupMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - cpuStart).count();
-
-    const auto frameStart = std::chrono::steady_clock::now();
-    auto stats = (*renderer)->render(view->camera, view->light, *setup, settings);
-    if (!stats) return fail(withFlagName(stats.errorInfo()).message);
-    const scene::Image image = (*renderer)->readColor();
-    const double frameMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - frameStart).count();
-
-    if (auto s = scene::writePng(image, args.out); !s) return fail("--out: " + s.error());
-    if (!args.shadowMapOut.empty())
-        if (auto s = scene::writePng((*renderer)->readShadowMap(), args.shadowMapOut); !s) return fail("--shadow-map-out: " + s.error());
-
-    fmt::print("{} | {} | {}x{} | map {}² | view {}\n", core::techniqueName(setup->technique), (*context)->description(),
-               settings.width, settings.height, setup->mapSize, args.view.view);
-    fmt::print("  set-up (CPU)   {:8.3f} ms\n", setupMs);
-    fmt::print("  culling (CPU)  {:8.3f} ms  ({:.3f} ms in GL: pre-pass, queries, masks; {:.3f} ms its own thread CPU; "
-               "{:.3f} ms levels and lists)\n",
-               stats->cullMilliseconds, stats->cullGlMilliseconds, stats->cullOwnCpuMilliseconds, stats->listCpuMilliseconds);
-    if (settings.culling == gl::Culling::Occlusion) {
-        const core::CoherentCullingStats& o = stats->occlusion;
-        fmt::print("  occlusion      {:8.3f} ms pre-pass (CPU)  {} nodes visited  {} queries over {} nodes  {} waits\n",
-                   stats->occlusionMilliseconds, o.nodesVisited, o.queriesIssued, o.nodesQueried, o.waits);
+    if (sequence)
+        fmt::print("wrote {} frames in {:.1f} s\n", timeline->frames.size(),
+                   std::chrono::duration<double>(std::chrono::steady_clock::now() - sequenceStart).count());
+    if (!args.video.empty()) {
+        if (auto s = encodeVideo(args.out, timeline->frames.front().number, timeline->framesPerSecond, args.video); !s)
+            return fail(s.error());
+        fmt::print("wrote {}\n", args.video);
     }
-    for (const auto& [name, pass] : {std::pair{"shadow pass", &stats->shadow}, {"main pass  ", &stats->main}})
-        fmt::print("  {}    {:8.1f} ms GPU  {:6.2f} M triangles  {} instances  {} draws\n", name, pass->gpuMilliseconds,
-                   static_cast<double>(pass->triangles) * 1e-6, pass->instances, pass->drawCalls);
-    fmt::print("  frame (wall)   {:8.1f} ms incl. readback\n", frameMs);
-    if (const auto& v = inputs->visibleDepth) fmt::print("  visible depth  {:.2f} .. {:.2f} m (LiSPSM n, csm splits)\n", v->x, v->y);
-    for (const std::string& f : setup->fallbacks) fmt::print("  fallback: {}\n", f);
-    fmt::print("wrote {}{}\n", args.out, args.shadowMapOut.empty() ? "" : " and " + args.shadowMapOut);
     return 0;
 }
 
@@ -91,8 +166,11 @@ Command addRenderCommand(CLI::App& app) {
     args->view.addTo(*cmd);
     args->technique.addTo(*cmd);
     args->render.addTo(*cmd);
-    cmd->add_option("--out", args->out, "output PNG")->capture_default_str();
-    cmd->add_option("--shadow-map-out", args->shadowMapOut, "also write the shadow map itself as a PNG");
+    args->timeline.addTo(*cmd);
+    cmd->add_option("--out", args->out, "output PNG; for a sequence (--path) a pattern with the frame number, e.g. frames/%04d.png")
+        ->capture_default_str();
+    cmd->add_option("--shadow-map-out", args->shadowMapOut, "also write the shadow map itself as a PNG (single frames)");
+    cmd->add_option("--video", args->video, "with --path: also encode the frames into this video (needs ffmpeg)");
     return {cmd, [args] { return runRender(*args); }};
 }
 

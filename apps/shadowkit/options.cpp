@@ -41,6 +41,7 @@ void SceneOptions::addTo(CLI::App& cmd) {
     cmd.add_option("--trees", trees, "forest: number of trees")->capture_default_str();
     cmd.add_option("--terrain-size", terrainSize, "forest: terrain side in metres")->capture_default_str();
     cmd.add_option("--terrain-resolution", terrainResolution, "forest: terrain quads per side")->capture_default_str();
+    cmd.add_option("--movers", movers, "forest: moving objects on circles round the clearing, [0, 1000]")->capture_default_str();
 }
 
 core::Result<scene::Scene> SceneOptions::load(bool verbose) const {
@@ -52,6 +53,7 @@ core::Result<scene::Scene> SceneOptions::load(bool verbose) const {
         o.trees = trees;
         o.terrainSize = terrainSize;
         o.terrainResolution = terrainResolution;
+        o.movers = movers;
         if (core::Status s = scene::validate(o); !s) return s.errorInfo();
         result = scene::makeForest(o);
     } else {

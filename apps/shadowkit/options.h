@@ -6,6 +6,7 @@
 #include "shadowkit/core/result.h"
 #include "shadowkit/core/shadow_setup.h"
 #include "shadowkit/gl/renderer.h"
+#include "shadowkit/scene/forest.h"
 #include "shadowkit/scene/scene.h"
 #include "shadowkit/scene/views.h"
 
@@ -22,6 +23,7 @@ struct SceneOptions {
     int trees = 10000;
     double terrainSize = 1024.0;
     int terrainResolution = 256;
+    int movers = scene::ForestOptions{}.movers;
 
     void addTo(CLI::App& cmd);
     // Builds the forest or loads the file, printing what it made and how long it took.

@@ -139,6 +139,29 @@ endif()
 check_fails(gl-unwritable-output "--out" render ${small} --size 16x16 --map-size 64 --out "${WORK}/no/such/dir/r.png")
 check_fails(map-too-large "--map-size" render ${small} --size 16x16 --map-size 1000000)
 
+# Time: camera paths, frames, moments, sun paths, movers.
+file(WRITE "${WORK}/no_sun.json" [=[{"camera": [{"time": 0, "eye_xz": [0, 0], "target_xz": [0, -5]}]}]=])
+check_fails(path-unknown "--path" render ${small} --path nowhere)
+check_fails(path-bad-file "no_sun.json" render ${small} --path "${WORK}/no_sun.json" --sun-path "${WORK}/no_sun.json")
+check_fails(frames-without-path "--frames" render ${small} --frames 1:3)
+check_fails(frames-out-of-range "--frames" render ${small} --path flythrough --frames 300:)
+check_fails(frames-malformed "--frames" render ${small} --path flythrough --frames a:b)
+check_fails(frames-with-time "--frames" render ${small} --path flythrough --time 1 --frames 0:2)
+check_fails(time-not-finite "--time" render ${small} --time nan)
+check_fails(sequence-needs-pattern "--out" render ${small} --path flythrough --frames 0:2 --out "${WORK}/x.png")
+check_fails(movers-out-of-range "movers" render ${small} --movers 5000)
+if(CASE STREQUAL "gl-render-sequence")
+  execute_process(COMMAND ${SHADOWKIT} render ${small} --movers 12 --path flythrough --frames 10:13 --size 32x18 --map-size 64
+                          --out "${WORK}/frames/%03d.png" RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0 OR NOT EXISTS "${WORK}/frames/010.png" OR NOT EXISTS "${WORK}/frames/012.png" OR EXISTS "${WORK}/frames/013.png")
+    message(SEND_ERROR "render --path: failed or wrote the wrong frames: ${out} ${err}")
+  endif()
+  string(FIND "${out}" "wrote 3 frames" pos)
+  if(pos EQUAL -1)
+    message(SEND_ERROR "render --path: no summary line: ${out}")
+  endif()
+endif()
+
 # compare writes a grid.
 if(CASE STREQUAL "gl-compare")
   execute_process(COMMAND ${SHADOWKIT} compare ${small} --view paper --size 48x48 --columns 2

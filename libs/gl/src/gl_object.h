@@ -54,10 +54,11 @@ using Query = GlObject<detail::deleteQuery>;
 using Program = GlObject<detail::deleteProgram>;
 using Shader = GlObject<detail::deleteShader>;
 
-inline Buffer createBuffer(const void* data, size_t bytes) {
+// Immutable storage; buffers created without data, or `updatable`, take glNamedBufferSubData.
+inline Buffer createBuffer(const void* data, size_t bytes, bool updatable = false) {
     GLuint id = 0;
     glCreateBuffers(1, &id);
-    glNamedBufferStorage(id, static_cast<GLsizeiptr>(bytes), data, data ? 0 : GL_DYNAMIC_STORAGE_BIT);
+    glNamedBufferStorage(id, static_cast<GLsizeiptr>(bytes), data, data && !updatable ? 0 : GL_DYNAMIC_STORAGE_BIT);
     return Buffer(id);
 }
 

@@ -48,9 +48,19 @@ GpuScene::GpuScene(const scene::Scene& scene, std::span<const scene::MeshLods> l
         const auto count = static_cast<GLuint>(batch.worldFromObject.size());
         if (count > 0 && !scene.meshes[batch.mesh].indices.empty())
             m_batches.push_back({batch.mesh,
-                                 createBuffer(batch.worldFromObject.data(), batch.worldFromObject.size() * sizeof(glm::mat4)),
+                                 createBuffer(batch.worldFromObject.data(), batch.worldFromObject.size() * sizeof(glm::mat4),
+                                              batch.dynamic),
                                  firstInstance, b});
         firstInstance += count;
+    }
+}
+
+void GpuScene::updateBatch(const scene::Scene& scene, size_t sceneBatch) {
+    for (const GpuBatch& batch : m_batches) {
+        if (batch.index != sceneBatch) continue;
+        const std::vector<glm::mat4>& transforms = scene.batches[sceneBatch].worldFromObject;
+        glNamedBufferSubData(batch.instances.id(), 0, static_cast<GLsizeiptr>(transforms.size() * sizeof(glm::mat4)),
+                             transforms.data());
     }
 }
 

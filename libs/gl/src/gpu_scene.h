@@ -28,6 +28,9 @@ public:
     // receives the batch's first global instance index (Scene order), the surface identity
     // of the evaluation.
     DrawStats draw(const PassList& list, bool setInstanceBase = false) const;
+    // Uploads the transforms of Scene::batches[sceneBatch] again (a dynamic batch, whose
+    // instances moved; other batches' buffers are immutable).
+    void updateBatch(const scene::Scene& scene, size_t sceneBatch);
 
     // One level of detail in a mesh's index buffer.
     struct Range {

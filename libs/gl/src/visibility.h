@@ -65,6 +65,8 @@ public:
     // The same for a given set of global instance indices (any order, no repeats), e.g. what
     // occlusion culling drew: the list comes out in instance order like collect()'s.
     void fromItems(std::span<const uint32_t> items, const LodChoice* lod, PassList& out);
+    // An instance moved: its new world box, refitted into the hierarchy up to the root.
+    void move(uint32_t globalInstance, const core::Aabb& wsBox) { m_hierarchy.update(globalInstance, wsBox); }
     // Assigns offsets and uploads every list of the frame into one buffer, bound at
     // SK_VISIBLE_BINDING.
     void upload(std::span<PassList* const> lists);

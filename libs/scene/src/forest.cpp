@@ -5,6 +5,8 @@
 // seed must be the same on every machine, so figures from different weeks compare.
 #include "shadowkit/scene/forest.h"
 
+#include "shadowkit/scene/animation.h"
+
 #include "shadowkit/scene/mesh_builder.h"
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -234,17 +236,30 @@ Scene makeForest(const ForestOptions& o) {
         const glm::vec3 size(rng.uniform(8, 16), rng.uniform(6, 12), rng.uniform(8, 20));
         scene.batches[buildings].worldFromObject.push_back(placement(field, randomSpot(rng, o), size, 1.0));
     }
-    // Movers float 2-4 m above the ground in a ring around the viewer's clearing, where the
-    // standard views see them; their animation arrives with the dynamic-scene work.
+    // Movers float 2-4 m above the ground on circles round the viewer's clearing, where the
+    // standard views see them (up to 20 radii, 5 m apart, as many as fit the terrain), at
+    // four speeds from a walk to a run, every other one the other way round. At t = 0 each
+    // stands where the still views have always seen it.
     const size_t movers = addMesh(makeMover(), true);
+    const double innermost = o.clearingRadius + 10.0, outermost = 0.45 * o.terrainSize;
+    const int rings = std::clamp(static_cast<int>(std::floor((outermost - innermost) / 5.0)) + 1, 1, 20);
     for (int i = 0; i < o.movers; ++i) {
-        const double angle = 2.0 * std::numbers::pi * i / std::max(o.movers, 1);
-        const double radius = o.clearingRadius + 10.0 + 5.0 * i;
-        const Spot s{radius * std::sin(angle), -radius * std::cos(angle), 0.0};
-        const double lift = -rng.uniform(2.0, 4.0);
-        scene.batches[movers].worldFromObject.push_back(placement(field, s, glm::vec3(1.0f), lift));
+        Track track;
+        track.batch = static_cast<uint32_t>(movers);
+        track.instance = static_cast<uint32_t>(i);
+        track.phase = 2.0 * std::numbers::pi * i / std::max(o.movers, 1);
+        track.radius = std::min(innermost + 5.0 * (i % rings), std::max(outermost, 1.0));
+        track.speed = (1.0 + 1.5 * (i % 4)) * (i % 2 == 0 ? 1.0 : -1.0);
+        track.lift = rng.uniform(2.0, 4.0);
+        scene.tracks.push_back(track);
+        scene.batches[movers].worldFromObject.push_back(trackTransform(track, scene, 0.0));
     }
-    // Drop empty batches so renderers never issue zero-instance draws.
+    // Drop empty batches so renderers never issue zero-instance draws (tracks follow their
+    // batch's new index).
+    std::vector<uint32_t> newIndex(scene.batches.size(), UINT32_MAX);
+    for (uint32_t b = 0, kept = 0; b < scene.batches.size(); ++b)
+        if (!scene.batches[b].worldFromObject.empty()) newIndex[b] = kept++;
+    for (Track& track : scene.tracks) track.batch = newIndex[track.batch];
     std::erase_if(scene.batches, [](const MeshBatch& b) { return b.worldFromObject.empty(); });
     return scene;
 }

@@ -50,6 +50,7 @@ double Scene::groundHeightAt(double x, double z) const {
     // terrain, not under it. Runs once per view resolution, not per frame.
     double best = -std::numeric_limits<double>::infinity();
     for (const MeshBatch& batch : batches) {
+        if (batch.dynamic) continue; // moving objects are not ground (a mover would climb itself)
         const Mesh& mesh = meshes[batch.mesh];
         for (const glm::mat4& m : batch.worldFromObject) {
             const core::Aabb box = core::transformBounds(core::Mat4(m), mesh.osBounds);

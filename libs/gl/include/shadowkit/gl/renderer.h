@@ -15,6 +15,7 @@
 
 #include <memory>
 #include <optional>
+#include <span>
 
 namespace shadowkit::gl {
 
@@ -134,6 +135,12 @@ public:
     // frame's set-up, by then long computed, so nothing waits (Scherzer 2005 took Δz "from
     // the visibility algorithm" the same way). nullopt without a pre-pass or visible pixels.
     std::optional<core::Vec2> lastVisibleDepth();
+
+    // Instances that moved since the last frame (scene::animate's list of global indices),
+    // all of dynamic batches of the scene the renderer was created with: their transforms
+    // go to the GPU, their boxes into the instance hierarchy (refitted to the root). Fails,
+    // changing nothing, for an index out of range or of a static batch.
+    core::Status moveInstances(const scene::Scene& scene, std::span<const uint32_t> moved);
 
     // World bounds of every instance, from the instance hierarchy: O(1).
     const core::Aabb& wsSceneBounds() const;

@@ -39,10 +39,23 @@ struct MeshBatch {
     bool dynamic = false;                      // moves over time (animated objects)
 };
 
+// A dynamic instance's motion (scene/animation.h): round a circle over the ground at a
+// constant speed, `lift` metres above it, turning with the circle. Deterministic in time.
+struct Track {
+    uint32_t batch = 0, instance = 0; // the instance it moves: batches[batch].worldFromObject[instance]
+    double centreX = 0.0, centreZ = 0.0; // metres
+    double radius = 10.0;             // metres, > 0
+    double speed = 2.0;               // metres per second along the circle; negative: anticlockwise seen from above
+    double phase = 0.0;               // compass angle (conventions.h) of the position at t = 0, radians
+    double lift = 3.0;                // metres above the ground
+    float scale = 1.0f;               // uniform
+};
+
 struct Scene {
     std::vector<Mesh> meshes;
     std::vector<MeshBatch> batches;
     std::optional<Heightfield> terrain; // set for procedural terrain: ground height lookups
+    std::vector<Track> tracks;          // animated instances (a batch's `dynamic` instances)
 
     // World-space bounds of every instance (empty box for an empty scene).
     core::Aabb wsBounds() const;
@@ -51,8 +64,8 @@ struct Scene {
     size_t triangleCount() const;   // over all instances
     size_t instanceCount() const;
     // Height of the ground under (x, z): the terrain heightfield where there is one, else
-    // the highest upward-facing surface over that point, else the bottom of the scene
-    // bounds (0 for an empty scene).
+    // the highest upward-facing surface of a static batch over that point, else the bottom
+    // of the scene bounds (0 for an empty scene).
     double groundHeightAt(double x, double z) const;
 };
 

@@ -1,0 +1,51 @@
+// Time in the command line: --path (a camera path), --frames a:b (which of its frames),
+// --time T (one moment), --sun-path NAME|FILE|off; and --out patterns for sequences.
+// Resolves them into the frames to draw and the view at each frame's time.
+#pragma once
+
+#include "shadowkit/core/result.h"
+#include "shadowkit/scene/camera_path.h"
+#include "shadowkit/scene/scene.h"
+#include "shadowkit/scene/views.h"
+
+#include <CLI/CLI.hpp>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace shadowkit::app {
+
+struct TimedFrame {
+    int number = 0;  // frame of the path (0 without one)
+    double time = 0.0; // seconds
+};
+
+struct Timeline {
+    std::optional<scene::CameraPath> path;    // its camera keys (its sun keys moved to sunKeys)
+    std::vector<scene::SunKey> sunKeys;       // --sun-path's, else the path's own; empty: the view's sun
+    bool holdSun = false;                     // --sun-path off
+    std::vector<TimedFrame> frames;           // what to draw, in order
+    double framesPerSecond = 30.0;            // of the path (for videos)
+
+    bool isSequence() const { return path.has_value() && frames.size() > 1; }
+    // The view at time t: the path's camera (else `still`, the --view), the sun from
+    // --sun-path, else the path's own sun keys, else `still`'s; `off` holds the sun where it
+    // is at the path's start.
+    core::Result<scene::ResolvedView> viewAt(const scene::ResolvedView& still, const scene::Scene& scene, double t) const;
+};
+
+struct TimelineOptions {
+    std::string path, frames, sunPath;
+    std::optional<double> time;
+
+    void addTo(CLI::App& cmd);
+    // Loads the paths and lists the frames; errors name the flag.
+    core::Result<Timeline> resolve() const;
+};
+
+// `pattern` with its one printf-style frame number (%d, %4d, %04d) replaced by `frame`;
+// fails, naming --out, when there is not exactly one.
+core::Result<std::string> frameFileName(const std::string& pattern, int frame);
+
+} // namespace shadowkit::app

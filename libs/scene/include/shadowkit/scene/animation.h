@@ -1,0 +1,26 @@
+// Animation of a scene's dynamic instances. Every tracked instance (Scene::tracks) is placed
+// as a function of the time t alone, so any frame of a sequence can be rendered, evaluated or
+// tested by itself, and a renderer that moves instances by the list animate() returns never
+// keeps a stale transform.
+#pragma once
+
+#include "shadowkit/scene/scene.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace shadowkit::scene {
+
+// The instance's transform at time t (seconds): on the circle at compass angle
+// phase + speed / radius · t, `lift` metres above the ground there (Scene::groundHeightAt),
+// turned about +Y by the angle travelled since t = 0 (so t = 0 is the unturned placement).
+glm::mat4 trackTransform(const Track& track, const Scene& scene, double t);
+
+// Places every tracked instance at time t. `moved`, when given, receives the global instance
+// index (batch after batch, Scene::instanceBounds order) of each instance it placed.
+void animate(Scene& scene, double t, std::vector<uint32_t>* moved = nullptr);
+
+// Global instance index of batches[batch].worldFromObject[instance].
+uint32_t globalInstanceIndex(const Scene& scene, uint32_t batch, uint32_t instance);
+
+} // namespace shadowkit::scene

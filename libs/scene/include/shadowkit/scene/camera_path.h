@@ -1,0 +1,62 @@
+// Camera paths (data/paths/*.json): keyframes of eye and target over time, and optionally of
+// the sun, interpolated smoothly so that a sequence of frames can be rendered, and any one of
+// them by itself. The format is documented in the README ("Camera paths").
+#pragma once
+
+#include "shadowkit/core/light.h"
+#include "shadowkit/core/result.h"
+#include "shadowkit/scene/scene.h"
+#include "shadowkit/scene/views.h"
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace shadowkit::scene {
+
+// Positions are (x, height above the ground, z): a path follows the terrain.
+struct CameraKey {
+    double time = 0.0; // seconds
+    core::Vec3 eye{0.0, 1.8, 0.0};
+    core::Vec3 target{0.0, 1.8, -10.0};
+};
+struct SunKey {
+    double time = 0.0;             // seconds
+    double elevationDegrees = 45.0; // [-90, 90]
+    double azimuthDegrees = 90.0;   // compass (conventions.h)
+};
+
+struct CameraPath {
+    std::string name;
+    int width = 1280, height = 720;
+    double fovYDegrees = 60.0, zNear = 0.5, zFar = 500.0;
+    int frames = 240;              // spread evenly from the first camera key's time to the last's
+    std::vector<CameraKey> camera; // at least one, times increasing
+    std::vector<SunKey> sun;       // may be empty (the sun then comes from elsewhere); times increasing
+
+    double startTime() const { return camera.front().time; }
+    double endTime() const { return camera.back().time; }
+    // Time of frame i in [0, frames): the first frame at startTime(), the last at endTime().
+    double timeOfFrame(int frame) const;
+};
+
+// Reads a path file; errors name the file and the offending key or field.
+core::Result<CameraPath> loadCameraPath(const std::filesystem::path& file);
+// A path by name (dataDirectory()/paths/NAME.json) or by file name (anything ending in .json
+// or holding a '/'); an unknown name lists the paths there are.
+core::Result<CameraPath> findCameraPath(const std::string& nameOrFile);
+
+// Interpolation through every key at its time, continuous in position and velocity, each
+// coordinate within its two neighbouring keys' range (a monotone piecewise cubic; a single
+// key holds still). Before the first key and after the last the path holds its end key.
+CameraKey cameraAt(const std::vector<CameraKey>& keys, double t);
+// Likewise for the sun's angles; precondition: keys not empty.
+SunKey sunAt(const std::vector<SunKey>& keys, double t);
+
+// The camera at time t placed over the scene's ground, with the path's sun when it has one
+// (else `fallbackSun`). Fails when eye and target meet.
+core::Result<ResolvedView> viewAt(const CameraPath& path, const Scene& scene, double t,
+                                  const core::DirectionalLight& fallbackSun = {});
+
+} // namespace shadowkit::scene

@@ -1,0 +1,210 @@
+// Camera paths. Every coordinate (x, height, z of eye and target; the sun's elevation and
+// azimuth) is interpolated over the key times by a monotone piecewise cubic (Fritsch and
+// Carlson, "Monotone piecewise cubic interpolation", SIAM J. Numer. Anal. 17(2), 1980): it
+// passes through every key at its time, its velocity is continuous (no jump between frames
+// a camera would show), and between two keys a coordinate never leaves their range. A
+// Catmull-Rom spline is as smooth but swings beyond the keys: a camera kept 1.8 m above
+// the ground by two keys would dip towards it between them. Tangents: the weighted
+// harmonic mean of the neighbouring slopes with non-uniform spacing (zero where the slope
+// changes sign, so a key that is a turning point is an extremum); the end tangents are the
+// end segments' slopes.
+#include "shadowkit/scene/camera_path.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+
+namespace shadowkit::scene {
+namespace {
+
+using nlohmann::json;
+
+// The monotone cubic through (times[k], values[k]) at t; holds the ends outside them.
+double monotoneCubic(const std::vector<double>& times, const std::vector<double>& values, double t) {
+    const size_t n = times.size();
+    if (n == 1 || t <= times.front()) return values.front();
+    if (t >= times.back()) return values.back();
+    size_t k = 0; // segment [k, k + 1] holds t
+    while (k + 2 < n && t >= times[k + 1]) ++k;
+    auto slope = [&](size_t i) { return (values[i + 1] - values[i]) / (times[i + 1] - times[i]); };
+    auto tangent = [&](size_t i) {
+        if (i == 0) return slope(0);
+        if (i == n - 1) return slope(n - 2);
+        const double before = slope(i - 1), after = slope(i);
+        if (before * after <= 0.0) return 0.0;
+        const double h0 = times[i] - times[i - 1], h1 = times[i + 1] - times[i];
+        return 3.0 * (h0 + h1) / ((2.0 * h1 + h0) / before + (h1 + 2.0 * h0) / after);
+    };
+    const double h = times[k + 1] - times[k], s = (t - times[k]) / h;
+    const double s2 = s * s, s3 = s2 * s;
+    return (2.0 * s3 - 3.0 * s2 + 1.0) * values[k] + (s3 - 2.0 * s2 + s) * h * tangent(k) + (-2.0 * s3 + 3.0 * s2) * values[k + 1] +
+           (s3 - s2) * h * tangent(k + 1);
+}
+
+// Interpolates each of the `Components` coordinates valueOf(key)[c] over the keys' times.
+template <int Components, typename Key, typename ValueOf>
+glm::vec<Components, double> interpolate(const std::vector<Key>& keys, double t, ValueOf valueOf) {
+    std::vector<double> times, values;
+    for (const Key& key : keys) times.push_back(key.time);
+    glm::vec<Components, double> out;
+    for (int c = 0; c < Components; ++c) {
+        values.clear();
+        for (const Key& key : keys) values.push_back(valueOf(key)[c]);
+        out[c] = monotoneCubic(times, values, t);
+    }
+    return out;
+}
+
+bool finite(const core::Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+core::Result<core::Vec3> groundPoint(const json& key, const char* xzField, const char* heightField, const std::string& where) {
+    if (!key.contains(xzField)) return core::makeError(where + ": needs \"" + xzField + "\"");
+    const auto xz = key[xzField].get<std::vector<double>>();
+    if (xz.size() != 2) return core::makeError(where + ": " + xzField + " must hold 2 numbers");
+    const core::Vec3 p(xz[0], key.value(heightField, 1.8), xz[1]);
+    if (!finite(p)) return core::makeError(where + ": " + xzField + " and " + heightField + " must be finite");
+    if (p.y < 0.0) return core::makeError(where + ": " + heightField + " must be >= 0 metres above the ground");
+    return p;
+}
+
+core::Result<CameraPath> parsePath(const json& root) {
+    CameraPath path;
+    if (!root.is_object() || !root.contains("camera") || !root["camera"].is_array() || root["camera"].empty())
+        return core::makeError("expected an object with a non-empty \"camera\" array of keys");
+    path.name = root.value("name", "");
+    path.width = root.value("width", path.width);
+    path.height = root.value("height", path.height);
+    path.fovYDegrees = root.value("fov", path.fovYDegrees);
+    path.zNear = root.value("near", path.zNear);
+    path.zFar = root.value("far", path.zFar);
+    path.frames = root.value("frames", path.frames);
+    if (path.width <= 0 || path.height <= 0 || path.width > 16384 || path.height > 16384)
+        return core::makeError("width and height must be in [1, 16384]");
+    if (path.frames < 1 || path.frames > 100000) return core::makeError("frames must be in [1, 100000]");
+    core::PerspectiveCamera probe;
+    probe.fovYDegrees = path.fovYDegrees;
+    probe.zNear = path.zNear;
+    probe.zFar = path.zFar;
+    if (core::Status s = probe.validate(); !s) return core::makeError(s.error());
+    for (size_t k = 0; k < root["camera"].size(); ++k) {
+        const json& j = root["camera"][k];
+        const std::string where = "camera key " + std::to_string(k);
+        if (!j.is_object() || !j.contains("time") || !j["time"].is_number()) return core::makeError(where + ": needs a number \"time\"");
+        CameraKey key;
+        key.time = j["time"].get<double>();
+        auto eye = groundPoint(j, "eye_xz", "eye_height", where);
+        if (!eye) return eye.errorInfo();
+        auto target = groundPoint(j, "target_xz", "target_height", where);
+        if (!target) return target.errorInfo();
+        key.eye = *eye;
+        key.target = *target;
+        if (!std::isfinite(key.time)) return core::makeError(where + ": time must be finite");
+        if (!path.camera.empty() && !(key.time > path.camera.back().time))
+            return core::makeError(where + ": times must increase from key to key");
+        path.camera.push_back(key);
+    }
+    if (root.contains("sun")) {
+        if (!root["sun"].is_array()) return core::makeError("\"sun\" must be an array of keys");
+        for (size_t k = 0; k < root["sun"].size(); ++k) {
+            const json& j = root["sun"][k];
+            const std::string where = "sun key " + std::to_string(k);
+            if (!j.is_object() || !j.contains("time") || !j.contains("elevation") || !j.contains("azimuth"))
+                return core::makeError(where + ": needs \"time\", \"elevation\" and \"azimuth\"");
+            const SunKey key{j["time"].get<double>(), j["elevation"].get<double>(), j["azimuth"].get<double>()};
+            if (!std::isfinite(key.time) || !std::isfinite(key.azimuthDegrees) || !(std::abs(key.elevationDegrees) <= 90.0))
+                return core::makeError(where + ": time and azimuth must be finite, elevation in [-90, 90] degrees");
+            if (!path.sun.empty() && !(key.time > path.sun.back().time))
+                return core::makeError(where + ": times must increase from key to key");
+            path.sun.push_back(key);
+        }
+    }
+    return path;
+}
+
+} // namespace
+
+double CameraPath::timeOfFrame(int frame) const {
+    if (frames <= 1) return startTime();
+    return startTime() + (endTime() - startTime()) * double(frame) / double(frames - 1);
+}
+
+core::Result<CameraPath> loadCameraPath(const std::filesystem::path& file) {
+    std::ifstream in(file);
+    if (!in) return core::makeError(file.string() + ": cannot open path file");
+    json root;
+    try {
+        root = json::parse(in);
+    } catch (const json::parse_error& e) {
+        return core::makeError(file.string() + ": not valid JSON (" + e.what() + ")");
+    }
+    core::Result<CameraPath> path = core::makeError("");
+    try {
+        path = parsePath(root);
+    } catch (const json::exception& e) {
+        return core::makeError(file.string() + ": a field has the wrong type (" + e.what() + ")");
+    }
+    if (!path) return core::makeError(file.string() + ": " + path.error());
+    if (path->name.empty()) path->name = file.stem().string();
+    return path;
+}
+
+core::Result<CameraPath> findCameraPath(const std::string& nameOrFile) {
+    if (nameOrFile.find('/') != std::string::npos || nameOrFile.ends_with(".json")) return loadCameraPath(nameOrFile);
+    const std::filesystem::path dir = dataDirectory() / "paths";
+    const std::filesystem::path file = dir / (nameOrFile + ".json");
+    if (std::filesystem::exists(file)) return loadCameraPath(file);
+    std::vector<std::string> names;
+    std::error_code ec;
+    for (const auto& entry : std::filesystem::directory_iterator(dir, ec))
+        if (entry.path().extension() == ".json") names.push_back(entry.path().stem().string());
+    std::sort(names.begin(), names.end());
+    std::string known;
+    for (const std::string& n : names) known += (known.empty() ? "" : ", ") + n;
+    return core::makeError("unknown path \"" + nameOrFile + "\" (known: " + (known.empty() ? "none" : known) + ", or a .json file)");
+}
+
+CameraKey cameraAt(const std::vector<CameraKey>& keys, double t) {
+    SK_ASSERT(!keys.empty(), "cameraAt(): a path needs keys");
+    CameraKey out;
+    out.time = t;
+    out.eye = interpolate<3>(keys, t, [](const CameraKey& k) { return k.eye; });
+    out.target = interpolate<3>(keys, t, [](const CameraKey& k) { return k.target; });
+    return out;
+}
+
+SunKey sunAt(const std::vector<SunKey>& keys, double t) {
+    SK_ASSERT(!keys.empty(), "sunAt(): a sun path needs keys");
+    const core::Vec2 angles = interpolate<2>(keys, t, [](const SunKey& k) { return core::Vec2(k.elevationDegrees, k.azimuthDegrees); });
+    return {t, angles.x, angles.y};
+}
+
+core::Result<ResolvedView> viewAt(const CameraPath& path, const Scene& scene, double t, const core::DirectionalLight& fallbackSun) {
+    const CameraKey key = cameraAt(path.camera, t);
+    const core::Vec3 eye(key.eye.x, scene.groundHeightAt(key.eye.x, key.eye.z) + key.eye.y, key.eye.z);
+    const core::Vec3 target(key.target.x, scene.groundHeightAt(key.target.x, key.target.z) + key.target.y, key.target.z);
+    if (!(glm::length(target - eye) > 1e-6))
+        return core::makeError("path \"" + path.name + "\" at t = " + std::to_string(t) + " s: eye and target meet");
+    ResolvedView view;
+    view.width = path.width;
+    view.height = path.height;
+    view.camera.wsEye = eye;
+    view.camera.wsDirection = glm::normalize(target - eye);
+    view.camera.wsUp = core::Vec3(0, 1, 0);
+    view.camera.fovYDegrees = path.fovYDegrees;
+    view.camera.aspect = double(path.width) / double(path.height);
+    view.camera.zNear = path.zNear;
+    view.camera.zFar = path.zFar;
+    view.light = fallbackSun;
+    if (!path.sun.empty()) {
+        const SunKey sun = sunAt(path.sun, t);
+        auto light = core::DirectionalLight::fromSunAngles(sun.elevationDegrees, sun.azimuthDegrees);
+        if (!light) return light.errorInfo();
+        view.light = *light;
+    }
+    if (core::Status s = view.camera.validate(); !s) return core::makeError("path \"" + path.name + "\": " + s.error());
+    return view;
+}
+
+} // namespace shadowkit::scene
