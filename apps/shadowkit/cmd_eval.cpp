@@ -1,10 +1,12 @@
 // shadowkit eval: rasterized shadows against ray-traced truth, per standard view.
 #include "commands.h"
+#include "eval_path.h"
 #include "options.h"
 
 #include "shadowkit/eval/maps.h"
 #include "shadowkit/eval/report.h"
 #include "shadowkit/measure/measurer.h"
+#include "shadowkit/scene/animation.h"
 
 #include <fmt/format.h>
 
@@ -24,8 +26,9 @@ struct EvalArgs {
     ViewOptions view;
     TechniqueOptions technique;
     RenderOptions render;
+    TimelineOptions timeline;
     std::string views; // "a,b" or "all"; empty: --view
-    std::string json, errorMap, aliasingMap, dump;
+    std::string json, errorMap, aliasingMap, dump, csv, plot;
 };
 
 // "maps/err.png" for view "noon" among several -> "maps/err-noon.png".
@@ -66,6 +69,16 @@ core::Result<std::vector<std::string>> viewNames(const EvalArgs& args) {
 int runEval(const EvalArgs& args) {
     if (auto s = args.technique.check(); !s) return fail(s.error());
     if (auto s = args.render.check(); !s) return fail(s.error());
+    for (auto [flag, file] : {std::pair{"--json", &args.json}, {"--csv", &args.csv}, {"--plot", &args.plot}})
+        if (auto s = checkWritable(flag, *file); !s) return fail(s.error());
+    if (!args.timeline.path.empty()) {
+        if (!args.views.empty() || !args.errorMap.empty() || !args.aliasingMap.empty() || !args.dump.empty())
+            return fail("--path: evaluates a path's frames, so --views, --error-map, --aliasing-map and --dump (still views) do not apply");
+        return runEvalPath({args.scene, args.view, args.technique, args.render, args.timeline, args.csv, args.plot, args.json});
+    }
+    if (!args.csv.empty() || !args.plot.empty()) return fail("--csv and --plot need --path (figures per frame)");
+    auto timeline = args.timeline.resolve(); // still views: --time and --sun-path
+    if (!timeline) return fail(timeline.error());
     auto names = viewNames(args);
     if (!names) return fail(names.error());
     for (auto [flag, file] : {std::pair{"--json", &args.json}, {"--error-map", &args.errorMap}, {"--aliasing-map", &args.aliasingMap}})
@@ -74,6 +87,8 @@ int runEval(const EvalArgs& args) {
 
     auto sceneData = args.scene.load();
     if (!sceneData) return fail(sceneData.error());
+    const double time = timeline->frames.front().time;
+    scene::animate(*sceneData, time); // movers where they are at --time (t = 0: where they stand)
     auto measurer = measure::Measurer::createHeadless(*sceneData);
     if (!measurer) return fail(measurer.error());
     fmt::print(stderr, "ray tracer: built in {:.2f} s\n", (*measurer)->rayTracerBuildSeconds());
@@ -86,6 +101,8 @@ int runEval(const EvalArgs& args) {
         ViewOptions viewOptions = args.view;
         viewOptions.view = name;
         auto view = viewOptions.resolve(*sceneData);
+        if (!view) return fail(view.error());
+        view = timeline->viewAt(*view, *sceneData, time); // the sun of --sun-path at --time
         if (!view) return fail(view.error());
         auto inputs = args.technique.inputsFor(*view, (*measurer)->renderer().wsSceneBounds()); // O(1)
         if (!inputs) return fail(inputs.error());
@@ -149,6 +166,9 @@ Command addEvalCommand(CLI::App& app) {
     cmd->add_option("--error-map", args->errorMap, "write the error map PNG (one per view: NAME-view.png)");
     cmd->add_option("--aliasing-map", args->aliasingMap, "write the pixels-per-texel heat map PNG");
     cmd->add_option("--dump", args->dump, "write per-pixel buffers as .npy files into this directory");
+    args->timeline.addTo(*cmd);
+    cmd->add_option("--csv", args->csv, "with --path: the figures of every frame as CSV, flicker_pct and truth_change_pct included");
+    cmd->add_option("--plot", args->plot, "with --path: a PNG plot of flicker_pct and truth_change_pct per frame");
     return {cmd, [args] { return runEval(*args); }};
 }
 

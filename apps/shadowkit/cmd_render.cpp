@@ -72,7 +72,7 @@ int runRender(const RenderArgs& args) {
         if (auto name = frameFileName(args.out, 0); !name) return fail(name.error());
     if (!args.video.empty() && !timeline->path) return fail("--video: needs --path (a sequence of frames)");
     if (!args.video.empty() && !ffmpegInstalled())
-        return fail("--video: ffmpeg is not installed (apt install ffmpeg); write the frames with --out alone");
+        return fail("--video: ffmpeg is not installed (apt install ffmpeg), write the frames with --out alone");
     auto sceneData = args.scene.load();
     if (!sceneData) return fail(sceneData.error());
     scene::Scene& world = *sceneData;
@@ -94,12 +94,8 @@ int runRender(const RenderArgs& args) {
         scene::animate(world, frame.time, &moved);
         if (auto s = (*renderer)->moveInstances(world, moved); !s) return fail(s.error());
         const double animateMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - cpuStart).count();
-        auto view = timeline->viewAt(*still, world, frame.time);
+        auto view = timeline->viewAt(*still, world, frame.time, !args.view.size.empty());
         if (!view) return fail(view.error());
-        if (timeline->path && !args.view.size.empty()) {
-            if (auto sized = args.view.resolve(world); sized) view->width = sized->width, view->height = sized->height;
-            view->camera.aspect = double(view->width) / double(view->height);
-        }
         auto inputs = args.technique.inputsFor(*view, (*renderer)->wsSceneBounds()); // bounds O(1): the hierarchy's
         if (!inputs) return fail(inputs.error());
         auto settings = args.render.settingsFor(*view, *inputs);

@@ -84,7 +84,8 @@ core::Result<Timeline> TimelineOptions::resolve() const {
     return timeline;
 }
 
-core::Result<scene::ResolvedView> Timeline::viewAt(const scene::ResolvedView& still, const scene::Scene& scene, double t) const {
+core::Result<scene::ResolvedView> Timeline::viewAt(const scene::ResolvedView& still, const scene::Scene& scene, double t,
+                                                   bool stillSize) const {
     // Where the sun comes from, and when: held where it is at the path's start with `off`.
     const double sunTime = holdSun ? (path ? path->startTime() : 0.0) : t;
     core::DirectionalLight sun = still.light;
@@ -101,6 +102,11 @@ core::Result<scene::ResolvedView> Timeline::viewAt(const scene::ResolvedView& st
     }
     auto view = scene::viewAt(*path, scene, t, sun);
     if (!view) return core::makeError("--path: " + view.error());
+    if (stillSize) {
+        view->width = still.width;
+        view->height = still.height;
+        view->camera.aspect = double(still.width) / double(still.height);
+    }
     return view;
 }
 

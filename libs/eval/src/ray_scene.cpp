@@ -5,6 +5,7 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -89,6 +90,29 @@ core::Result<std::unique_ptr<RayScene>> RayScene::build(const scene::Scene& scen
     if (!impl.lastError.empty()) return core::makeError("ray tracer: " + impl.lastError);
     rs->m_diagonal = scene.wsBounds().diagonal();
     return rs;
+}
+
+core::Status RayScene::moveInstances(const scene::Scene& scene, std::span<const uint32_t> moved) {
+    std::vector<size_t> batchEnd;
+    size_t total = 0;
+    for (const scene::MeshBatch& batch : scene.batches) batchEnd.push_back(total += batch.worldFromObject.size());
+    if (total != m_impl->normalFromObject.size())
+        return core::makeError("ray tracer: moveInstances() needs the scene it was built from");
+    for (const uint32_t global : moved)
+        if (global >= total) return core::makeError("ray tracer: moved instance " + std::to_string(global) + " is out of range");
+    for (const uint32_t global : moved) {
+        const auto batch = static_cast<size_t>(std::upper_bound(batchEnd.begin(), batchEnd.end(), size_t(global)) - batchEnd.begin());
+        const glm::mat4& worldFromObject =
+            scene.batches[batch].worldFromObject[global - (batchEnd[batch] - scene.batches[batch].worldFromObject.size())];
+        RTCGeometry geom = rtcGetGeometry(m_impl->top, global);
+        rtcSetGeometryTransform(geom, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, glm::value_ptr(worldFromObject));
+        rtcCommitGeometry(geom);
+        m_impl->normalFromObject[global] = glm::transpose(glm::inverse(glm::mat3(worldFromObject)));
+    }
+    if (!moved.empty()) rtcCommitScene(m_impl->top);
+    if (!m_impl->lastError.empty()) return core::makeError("ray tracer: " + m_impl->lastError);
+    m_diagonal = scene.wsBounds().diagonal();
+    return core::Ok{};
 }
 
 bool RayScene::intersect(const core::Vec3& origin, const core::Vec3& direction, double tNear, double tFar,

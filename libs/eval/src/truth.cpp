@@ -1,5 +1,6 @@
 #include "shadowkit/eval/truth.h"
 
+#include <tbb/blocked_range.h>
 #include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>
 
@@ -9,6 +10,15 @@
 #include <limits>
 
 namespace shadowkit::eval {
+namespace {
+
+// The shadow ray of a surface point: towards the light from just off the surface.
+bool reachesLight(const RayScene& rays, const core::Vec3& wsPoint, const core::Vec3& wsNormal, const core::Vec3& towardsLight,
+                  double offset) {
+    return !rays.occluded(wsPoint + offset * wsNormal, towardsLight, 0.0, std::numeric_limits<double>::infinity());
+}
+
+} // namespace
 
 core::Vec3 primaryRayDirection(const core::PerspectiveCamera& camera, int width, int height, int x, int y) {
     const double ty = std::tan(0.5 * glm::radians(camera.fovYDegrees));
@@ -55,13 +65,28 @@ TruthBuffers computeTruth(const RayScene& rays, const core::PerspectiveCamera& c
                     const double nDotL = glm::dot(hit.wsGeometricNormal, towardsLight);
                     if (!(nDotL > 0.0)) continue;
                     t.facesLight[i] = 1;
-                    const core::Vec3 origin = p + offset * hit.wsGeometricNormal;
-                    t.lit[i] = !rays.occluded(origin, towardsLight, 0.0, std::numeric_limits<double>::infinity());
+                    t.lit[i] = reachesLight(rays, p, hit.wsGeometricNormal, towardsLight, offset);
                 }
         });
         if (options.progress) options.progress(double(y1) / height);
     }
     return t;
+}
+
+std::vector<uint8_t> litAt(const RayScene& rays, const TruthBuffers& hits, const core::DirectionalLight& light,
+                           const TruthOptions& options) {
+    std::vector<uint8_t> lit(hits.surfaceId.size(), 0);
+    const core::Vec3 towardsLight = light.wsTowardsLight();
+    const double offset = options.normalOffsetFraction * std::max(rays.sceneDiagonal(), 1.0);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, lit.size()), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t i = r.begin(); i < r.end(); ++i) {
+            if (hits.surfaceId[i] == 0) continue;
+            const core::Vec3 n(hits.wsNormal[i]);
+            if (!(glm::dot(n, towardsLight) > 0.0)) continue;
+            lit[i] = reachesLight(rays, core::Vec3(hits.wsPosition[i]), n, towardsLight, offset);
+        }
+    });
+    return lit;
 }
 
 } // namespace shadowkit::eval

@@ -36,6 +36,26 @@ struct Measurer::Impl {
 };
 
 Measurer::Measurer() : m_impl(std::make_unique<Impl>()) {}
+
+core::Result<eval::PreviousShadowsHere> Measurer::shadowsAt(const Measurement& current, const core::PerspectiveCamera& camera,
+                                                            const core::ShadowSetup& otherSetup,
+                                                            const core::DirectionalLight& otherLight,
+                                                            const gl::RenderSettings& settings, bool sameTruth) {
+    auto raster = m_impl->renderer->renderEvalBuffers(camera, otherLight, otherSetup, settings);
+    if (!raster) return raster.errorInfo();
+    eval::PreviousShadowsHere out;
+    out.raster = std::move(raster).value();
+    out.truthLit = sameTruth ? current.truth->lit : eval::litAt(*m_impl->rays, *current.truth, otherLight);
+    return out;
+}
+
+core::Status Measurer::moveInstances(const scene::Scene& scene, std::span<const uint32_t> moved) {
+    if (moved.empty()) return core::Ok{};
+    if (auto s = m_impl->renderer->moveInstances(scene, moved); !s) return s;
+    if (auto s = m_impl->rays->moveInstances(scene, moved); !s) return s;
+    m_impl->truths.clear(); // every cached truth saw the old places
+    return core::Ok{};
+}
 Measurer::~Measurer() {
     m_impl->renderer.reset(); // GL objects go before the context that owns them
     m_impl->context.reset();

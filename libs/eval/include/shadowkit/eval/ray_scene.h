@@ -6,6 +6,7 @@
 #include "shadowkit/scene/scene.h"
 
 #include <memory>
+#include <span>
 
 namespace shadowkit::eval {
 
@@ -28,6 +29,11 @@ public:
     bool intersect(const core::Vec3& origin, const core::Vec3& direction, double tNear, double tFar, RayHit& hit) const;
     // Anything hit for t in [tNear, tFar]?
     bool occluded(const core::Vec3& origin, const core::Vec3& direction, double tNear, double tFar) const;
+
+    // Instances that moved (scene::animate's list of global indices) take their new
+    // transforms from `scene`, the scene this was built from; the top-level BVH is rebuilt.
+    // Fails, changing nothing, for an index out of range.
+    core::Status moveInstances(const scene::Scene& scene, std::span<const uint32_t> moved);
 
     double sceneDiagonal() const { return m_diagonal; }
 

@@ -35,6 +35,12 @@ struct TruthOptions {
 TruthBuffers computeTruth(const RayScene& rays, const core::PerspectiveCamera& camera, const core::DirectionalLight& light,
                           int width, int height, const TruthOptions& options = {});
 
+// The truth at given surface points (`hits`, e.g. another frame's) under another light or
+// with casters moved: per pixel, 1 where the point faces the light and its shadow ray reaches
+// it, else 0 (also where `hits` has no surface).
+std::vector<uint8_t> litAt(const RayScene& rays, const TruthBuffers& hits, const core::DirectionalLight& light,
+                           const TruthOptions& options = {});
+
 // A primary ray through the centre of pixel (x, y), top row first, scaled so that its
 // parameter t is the view depth (t = near on the near plane).
 core::Vec3 primaryRayDirection(const core::PerspectiveCamera& camera, int width, int height, int x, int y);

@@ -13,6 +13,7 @@
 #include "shadowkit/core/shadow_setup.h"
 #include "shadowkit/eval/metrics.h"
 #include "shadowkit/eval/report.h"
+#include "shadowkit/eval/temporal.h"
 #include "shadowkit/eval/truth.h"
 #include "shadowkit/gl/renderer.h"
 #include "shadowkit/scene/image.h"
@@ -21,6 +22,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 
 namespace shadowkit::gl {
@@ -76,6 +78,19 @@ public:
     std::shared_ptr<const eval::TruthBuffers> truth(const core::PerspectiveCamera& camera, const core::DirectionalLight& light,
                                                     int width, int height,
                                                     const std::function<void(double)>& progress = {});
+
+    // This frame's surface points (`current`, measured from `camera`) under another frame's
+    // shadows (eval::compareFrames): that frame's set-up and light drawn and looked up from
+    // this camera, with the casters where the renderer and ray tracer now hold them (move
+    // them there first), and the truth at this frame's hit points. `sameTruth`: the light and
+    // casters are those of `current`, whose truth is then reused exactly.
+    core::Result<eval::PreviousShadowsHere> shadowsAt(const Measurement& current, const core::PerspectiveCamera& camera,
+                                                      const core::ShadowSetup& otherSetup, const core::DirectionalLight& otherLight,
+                                                      const gl::RenderSettings& settings, bool sameTruth);
+
+    // Instances that moved (scene::animate's list) in `scene`, the scene this was created
+    // with: the renderer and the ray tracer take their new places, and cached truths go.
+    core::Status moveInstances(const scene::Scene& scene, std::span<const uint32_t> moved);
 
     gl::Renderer& renderer();
     // The GL context's description when this measurer owns one ("4.5 (Core Profile) Mesa ..."), else "".

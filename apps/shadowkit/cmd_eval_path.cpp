@@ -1,0 +1,182 @@
+#include "eval_path.h"
+
+#include "commands.h"
+
+#include "shadowkit/eval/plot.h"
+#include "shadowkit/eval/temporal.h"
+#include "shadowkit/measure/measurer.h"
+#include "shadowkit/scene/animation.h"
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <optional>
+
+namespace shadowkit::app {
+namespace {
+
+struct FrameRow {
+    int frame = 0;
+    double time = 0.0;
+    eval::Figures figures;
+    std::optional<eval::TemporalFigures> temporal; // none for the first frame
+    double seconds = 0.0;
+};
+
+// What a frame leaves for the next one's temporal figures.
+struct PreviousFrame {
+    double time = 0.0;
+    eval::ShadowStates states;
+    core::ShadowSetup setup;
+    core::DirectionalLight light;
+    gl::RenderSettings settings;
+};
+
+struct Summary {
+    double mean = 0.0, p95 = 0.0, max = 0.0;
+};
+Summary summarise(std::vector<double> v) {
+    if (v.empty()) return {};
+    std::sort(v.begin(), v.end());
+    Summary s;
+    for (const double x : v) s.mean += x / double(v.size());
+    s.p95 = v[std::min(v.size() - 1, static_cast<size_t>(std::ceil(0.95 * double(v.size()))) - 1)];
+    s.max = v.back();
+    return s;
+}
+
+core::Status writeCsv(const std::string& file, const std::vector<FrameRow>& rows) {
+    std::ofstream out(file);
+    out << "frame,time_s,valid_px,wrong_pct,false_shadow_pct,false_lit_pct,pixels_per_texel_p50,compared_px,flicker_pct,"
+           "truth_change_pct\n";
+    for (const FrameRow& r : rows) {
+        out << fmt::format("{},{:.6g},{},{:.6g},{:.6g},{:.6g},{:.6g}", r.frame, r.time, r.figures.validPx, r.figures.wrongPct,
+                           r.figures.falseShadowPct, r.figures.falseLitPct, r.figures.pixelsPerTexelP50);
+        if (r.temporal)
+            out << fmt::format(",{},{:.6g},{:.6g}\n", r.temporal->comparedPx, r.temporal->flickerPct, r.temporal->truthChangePct);
+        else
+            out << ",,,\n";
+    }
+    if (!out) return core::makeError(file + ": cannot write");
+    return core::Ok{};
+}
+
+} // namespace
+
+int runEvalPath(const EvalPathArgs& args) {
+    auto timeline = args.timeline.resolve();
+    if (!timeline) return fail(timeline.error());
+    if (timeline->frames.size() < 2)
+        return fail("--path: eval compares consecutive frames: give a path with at least two frames (or drop --time)");
+    auto sceneData = args.scene.load();
+    if (!sceneData) return fail(sceneData.error());
+    scene::Scene& world = *sceneData;
+    auto still = args.view.resolve(world);
+    if (!still) return fail(still.error());
+    auto measurer = measure::Measurer::createHeadless(world);
+    if (!measurer) return fail(measurer.error());
+    fmt::print(stderr, "ray tracer: built in {:.2f} s\n", (*measurer)->rayTracerBuildSeconds());
+
+    std::vector<FrameRow> rows;
+    std::optional<PreviousFrame> previous;
+    std::vector<uint32_t> moved;
+    std::string technique;
+    fmt::print("{:>5} {:>7} {:>9} {:>7} {:>8} {:>7} {:>9} {:>9} {:>6}\n", "frame", "t_s", "valid_px", "wrong%", "flicker%", "truth%",
+               "ppt50", "compared", "sec");
+    for (const TimedFrame& frame : timeline->frames) {
+        const auto start = std::chrono::steady_clock::now();
+        moved.clear();
+        scene::animate(world, frame.time, &moved);
+        if (auto s = (*measurer)->moveInstances(world, moved); !s) return fail(s.error());
+        auto view = timeline->viewAt(*still, world, frame.time, !args.view.size.empty());
+        if (!view) return fail(view.error());
+        auto inputs = args.technique.inputsFor(*view, (*measurer)->renderer().wsSceneBounds());
+        if (!inputs) return fail(inputs.error());
+        auto settings = args.render.settingsFor(*view, *inputs);
+        if (!settings) return fail(settings.error());
+        measure::MeasureOptions options;
+        options.visibleDepthFromFrame = args.technique.visibleDepthFromFrame();
+        auto measured = (*measurer)->measure(*inputs, *settings, options);
+        if (!measured) return fail(withFlagName(measured.errorInfo()).message);
+        technique = core::techniqueName(measured->setup.technique);
+        eval::ShadowStates states = eval::shadowStates(view->camera, *measured->truth, measured->comparison);
+        FrameRow row{frame.number, frame.time, measured->figures(), std::nullopt, 0.0};
+        if (previous) {
+            // The previous frame's shadows at this frame's points: its casters, light and set-up.
+            const bool castersMoved = !world.tracks.empty() && previous->time != frame.time;
+            if (castersMoved) {
+                moved.clear();
+                scene::animate(world, previous->time, &moved);
+                if (auto s = (*measurer)->moveInstances(world, moved); !s) return fail(s.error());
+            }
+            const bool sameLight = previous->light.wsDirection == view->light.wsDirection;
+            auto before = (*measurer)->shadowsAt(*measured, view->camera, previous->setup, previous->light, previous->settings,
+                                                 !castersMoved && sameLight);
+            if (!before) return fail(before.error());
+            row.temporal = eval::compareFrames(previous->states, states, *before);
+        }
+        previous = PreviousFrame{frame.time, std::move(states), measured->setup, view->light, *settings};
+        row.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        const eval::Figures& f = row.figures;
+        if (row.temporal)
+            fmt::print("{:>5} {:>7.3f} {:>9} {:>7.2f} {:>8.3f} {:>7.3f} {:>9.3f} {:>9} {:>6.1f}\n", row.frame, row.time, f.validPx,
+                       f.wrongPct, row.temporal->flickerPct, row.temporal->truthChangePct, f.pixelsPerTexelP50,
+                       row.temporal->comparedPx, row.seconds);
+        else
+            fmt::print("{:>5} {:>7.3f} {:>9} {:>7.2f} {:>8} {:>7} {:>9.3f} {:>9} {:>6.1f}\n", row.frame, row.time, f.validPx, f.wrongPct,
+                       "-", "-", f.pixelsPerTexelP50, "-", row.seconds);
+        std::fflush(stdout);
+        rows.push_back(row);
+    }
+
+    std::vector<double> flicker, truthChange, wrong;
+    for (const FrameRow& r : rows) {
+        wrong.push_back(r.figures.wrongPct);
+        if (r.temporal) flicker.push_back(r.temporal->flickerPct), truthChange.push_back(r.temporal->truthChangePct);
+    }
+    const Summary fl = summarise(flicker), tc = summarise(truthChange), wr = summarise(wrong);
+    fmt::print("{} along {} ({} frames): flicker_pct mean {:.3f} p95 {:.3f} max {:.3f} | truth_change_pct mean {:.3f} p95 {:.3f} "
+               "max {:.3f} | wrong_pct mean {:.3f}\n",
+               technique, timeline->path->name, rows.size(), fl.mean, fl.p95, fl.max, tc.mean, tc.p95, tc.max, wr.mean);
+
+    if (!args.csv.empty())
+        if (auto s = writeCsv(args.csv, rows); !s) return fail("--csv: " + s.error());
+    if (!args.plot.empty()) {
+        eval::PlotSeries flickerSeries{"flicker_pct", {200, 40, 40}, {}, {}}, truthSeries{"truth_change_pct", {60, 60, 200}, {}, {}};
+        for (const FrameRow& r : rows)
+            if (r.temporal) {
+                flickerSeries.x.push_back(r.frame), flickerSeries.y.push_back(r.temporal->flickerPct);
+                truthSeries.x.push_back(r.frame), truthSeries.y.push_back(r.temporal->truthChangePct);
+            }
+        eval::PlotOptions po;
+        po.title = fmt::format("{} along {}: flicker and truth change per frame", technique, timeline->path->name);
+        po.xLabel = "frame";
+        po.yLabel = "% of compared pixels";
+        if (auto s = scene::writePng(eval::plotLines({flickerSeries, truthSeries}, po), args.plot); !s) return fail("--plot: " + s.error());
+    }
+    if (!args.json.empty()) {
+        nlohmann::json frames = nlohmann::json::array();
+        for (const FrameRow& r : rows) {
+            nlohmann::json j = {{"frame", r.frame}, {"time_s", r.time}, {"valid_px", r.figures.validPx}, {"wrong_pct", r.figures.wrongPct},
+                                {"pixels_per_texel_p50", r.figures.pixelsPerTexelP50}};
+            if (r.temporal)
+                j.update({{"compared_px", r.temporal->comparedPx}, {"flicker_pct", r.temporal->flickerPct},
+                          {"truth_change_pct", r.temporal->truthChangePct}});
+            frames.push_back(j);
+        }
+        auto summary = [](const Summary& s) { return nlohmann::json{{"mean", s.mean}, {"p95", s.p95}, {"max", s.max}}; };
+        const nlohmann::json root = {{"path", timeline->path->name}, {"technique", technique},
+                                     {"summary", {{"flicker_pct", summary(fl)}, {"truth_change_pct", summary(tc)}, {"wrong_pct", summary(wr)}}},
+                                     {"frames", frames}};
+        std::ofstream out(args.json);
+        out << root.dump(2) << "\n";
+        if (!out) return fail("--json: " + args.json + ": cannot write");
+    }
+    return 0;
+}
+
+} // namespace shadowkit::app

@@ -1,0 +1,23 @@
+// shadowkit eval --path: the usual figures frame by frame along a camera path, with the
+// temporal ones (flicker against truth, truth change), a CSV per frame and a plot.
+#pragma once
+
+#include "options.h"
+#include "timeline.h"
+
+#include <string>
+
+namespace shadowkit::app {
+
+struct EvalPathArgs {
+    const SceneOptions& scene;
+    const ViewOptions& view;
+    const TechniqueOptions& technique;
+    const RenderOptions& render;
+    const TimelineOptions& timeline;
+    std::string csv, plot, json;
+};
+
+int runEvalPath(const EvalPathArgs& args);
+
+} // namespace shadowkit::app

@@ -1,0 +1,61 @@
+// Temporal stability of shadows along a sequence (docs/references.md, the evaluation
+// protocol): flicker is a pixel whose rendered lit/shadowed state changes from one frame to
+// the next at the same world point while the truth there does not.
+#pragma once
+
+#include "shadowkit/core/camera.h"
+#include "shadowkit/eval/metrics.h"
+#include "shadowkit/eval/truth.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace shadowkit::eval {
+
+// What a frame leaves for the next one's comparison.
+struct ShadowStates {
+    core::PerspectiveCamera camera;
+    int width = 0, height = 0;
+    // Per pixel, top row first: 0 not evaluated (sky, facing away from the light, excluded),
+    // else bit 0 rendered lit and bit 1 truth lit, plus 4 to mark the pixel as evaluated.
+    std::vector<uint8_t> state;
+    std::vector<uint32_t> surfaceId;   // the truth's surface
+    std::vector<float> viewDepth;      // the truth's view depth
+    std::vector<glm::vec3> wsPosition; // the truth's hit point
+};
+
+// A frame's states from its camera, truth and comparison (sizes must agree).
+ShadowStates shadowStates(const core::PerspectiveCamera& camera, const TruthBuffers& truth, const Comparison& comparison);
+
+struct TemporalFigures {
+    int64_t comparedPx = 0;
+    double flickerPct = 0.0;     // of comparedPx: rendered state changed, truth did not
+    double truthChangePct = 0.0; // of comparedPx: the truth changed (moving sun, movers)
+};
+
+// This frame's surface points under the previous frame's shadows: the previous frame's
+// set-up, light and casters, drawn and looked up from this frame's camera
+// (gl::Renderer::renderEvalBuffers), and the truth there under the previous light and
+// casters (litAt). So both frames' states are known at exactly the same world points.
+struct PreviousShadowsHere {
+    core::RasterBuffers raster;    // this frame's camera, the previous frame's maps
+    std::vector<uint8_t> truthLit; // per pixel, at this frame's truth hit points
+};
+
+struct TemporalOptions {
+    // Relative view-depth agreement: of a point reprojected into the previous camera with the
+    // surface seen there, and of the two renderings of this frame's camera.
+    double depthTolerance = 0.02;
+    double shadowThreshold = 0.5; // as CompareOptions::shadowThreshold
+};
+
+// A pixel of `current` is compared when it is evaluated, its truth hit point was in view in
+// `previous` (reprojected, one of the four pixels around it shows the same surface at a
+// consistent depth) and the rendering with the previous casters shows the same surface (no
+// mover passed in front). Its rendered state "changed" when the previous maps' term there
+// is on the other side of the threshold; the truth likewise. Flicker: rendered changed,
+// truth did not. Identical frames give zero; so does a camera moving over still shadows.
+TemporalFigures compareFrames(const ShadowStates& previous, const ShadowStates& current, const PreviousShadowsHere& before,
+                              const TemporalOptions& options = {});
+
+} // namespace shadowkit::eval
