@@ -12,6 +12,10 @@ drift from what the program measures.
       GPU ms, the culling's time in GL (pre-pass, masks) and its own thread CPU time
       (tools/measure-visibility.sh)
 
+  tools/readme_tables.py dynamics LABEL=PATH.json ...
+      per `shadowkit eval --path --json` file: flicker_pct and truth_change_pct (mean / p95 /
+      max over the frames), mean wrong_pct and pixels_per_texel_p50 (tools/measure-dynamics.sh)
+
 LABEL is the row's name as printed (e.g. '`tsm`' or '`csm` 4 × 1024²'). tools/measure-readme.sh
 runs the evaluations behind every table and prints them.
 """
@@ -73,9 +77,31 @@ def visibility(paths):
                       f"{r['cull_own_ms']['median']:.2f} | {r['list_ms']['median']:.2f} |")
 
 
+def dynamics(args):
+    print("| technique | sun | flicker_pct mean / p95 / max | truth_change_pct mean / p95 / max | wrong_pct mean | "
+          "pixels_per_texel_p50 mean |")
+    print("|---|---|---:|---:|---:|---:|")
+    for arg in args:
+        label, _, path = arg.partition("=")
+        if not path:
+            sys.exit(f"readme_tables: expected LABEL=FILE.json, got '{arg}'")
+        with open(path) as f:
+            run = json.load(f)
+        s = run["summary"]
+        fl, tc = s["flicker_pct"], s["truth_change_pct"]
+        ppt = [r["pixels_per_texel_p50"] for r in run["frames"]]
+        sun = "held" if "sun-held" in path else "moving"
+        print(f"| {label} | {sun} | {fl['mean']:.3f} / {fl['p95']:.3f} / {fl['max']:.3f} | "
+              f"{tc['mean']:.3f} / {tc['p95']:.3f} / {tc['max']:.3f} | {s['wrong_pct']['mean']:.2f} | "
+              f"{sum(ppt) / len(ppt):.2f} |")
+
+
 if __name__ == "__main__":
     if len(sys.argv) >= 3 and sys.argv[1] == "visibility":
         visibility(sys.argv[2:])
+        sys.exit(0)
+    if len(sys.argv) >= 3 and sys.argv[1] == "dynamics":
+        dynamics(sys.argv[2:])
         sys.exit(0)
     if len(sys.argv) < 3 or sys.argv[1] not in ("summary", "details"):
         sys.exit(__doc__)

@@ -38,16 +38,6 @@ fs::path perView(const std::string& file, const std::string& view, bool several)
     return p.parent_path() / (p.stem().string() + "-" + view + p.extension().string());
 }
 
-// A file we will write later: fail now, before minutes of work, if its directory is missing.
-core::Status checkWritable(const char* flag, const std::string& file) {
-    if (file.empty()) return core::Ok{};
-    const fs::path dir = fs::path(file).parent_path();
-    std::error_code ec;
-    if (!dir.empty() && !fs::is_directory(dir, ec))
-        return core::makeError(fmt::format("{}: directory '{}' does not exist", flag, dir.string()));
-    return core::Ok{};
-}
-
 core::Result<std::vector<std::string>> viewNames(const EvalArgs& args) {
     if (args.views.empty()) return std::vector<std::string>{args.view.view};
     auto all = scene::loadViews(scene::dataDirectory() / "views.json");

@@ -3,6 +3,7 @@
 #include "options.h"
 #include "timeline.h"
 
+#include "shadowkit/eval/image_grid.h"
 #include "shadowkit/gl/context.h"
 #include "shadowkit/gl/renderer.h"
 #include "shadowkit/scene/animation.h"
@@ -23,7 +24,7 @@ struct RenderArgs {
     RenderOptions render;
     TimelineOptions timeline;
     std::string out = "shadowkit.png";
-    std::string shadowMapOut, video;
+    std::string shadowMapOut, video, strip;
 };
 
 // The report of a single frame: where the time went.
@@ -71,6 +72,11 @@ int runRender(const RenderArgs& args) {
     if (sequence || !args.video.empty())
         if (auto name = frameFileName(args.out, 0); !name) return fail(name.error());
     if (!args.video.empty() && !timeline->path) return fail("--video: needs --path (a sequence of frames)");
+    if (!args.strip.empty() && !sequence) return fail("--strip: needs --path (a sequence of frames)");
+    for (auto [flag, file] : {std::pair{"--strip", &args.strip}, {"--video", &args.video}, {"--shadow-map-out", &args.shadowMapOut}})
+        if (auto s = checkWritable(flag, *file); !s) return fail(s.error());
+    if (!sequence)
+        if (auto s = checkWritable("--out", args.out); !s) return fail(s.error());
     if (!args.video.empty() && !ffmpegInstalled())
         return fail("--video: ffmpeg is not installed (apt install ffmpeg), write the frames with --out alone");
     auto sceneData = args.scene.load();
@@ -85,6 +91,16 @@ int runRender(const RenderArgs& args) {
     if (!renderer) return fail(renderer.error());
 
     std::vector<uint32_t> moved;
+    // --strip: six frames spread evenly over those drawn, first and last included.
+    constexpr size_t kStripFrames = 6;
+    std::vector<scene::Image> stripImages;
+    std::vector<std::string> stripCaptions;
+    auto inStrip = [&](size_t i) {
+        const size_t n = timeline->frames.size();
+        for (size_t k = 0; k < kStripFrames; ++k)
+            if (i == k * (n - 1) / (kStripFrames - 1)) return true;
+        return false;
+    };
     const auto sequenceStart = std::chrono::steady_clock::now();
     for (size_t i = 0; i < timeline->frames.size(); ++i) {
         const TimedFrame& frame = timeline->frames[i];
@@ -127,6 +143,10 @@ int runRender(const RenderArgs& args) {
             }
         }
         if (auto s = scene::writePng(image, out); !s) return fail("--out: " + s.error());
+        if (!args.strip.empty() && inStrip(i)) {
+            stripImages.push_back(image);
+            stripCaptions.push_back(fmt::format("frame {}, t = {:.2f} s", frame.number, frame.time));
+        }
         if (!sequence) {
             if (!args.shadowMapOut.empty())
                 if (auto s = scene::writePng((*renderer)->readShadowMap(), args.shadowMapOut); !s)
@@ -145,6 +165,10 @@ int runRender(const RenderArgs& args) {
     if (sequence)
         fmt::print("wrote {} frames in {:.1f} s\n", timeline->frames.size(),
                    std::chrono::duration<double>(std::chrono::steady_clock::now() - sequenceStart).count());
+    if (!args.strip.empty()) {
+        if (auto s = scene::writePng(eval::captionedGrid(stripImages, stripCaptions, 3), args.strip); !s) return fail("--strip: " + s.error());
+        fmt::print("wrote {}\n", args.strip);
+    }
     if (!args.video.empty()) {
         if (auto s = encodeVideo(args.out, timeline->frames.front().number, timeline->framesPerSecond, args.video); !s)
             return fail(s.error());
@@ -167,6 +191,7 @@ Command addRenderCommand(CLI::App& app) {
         ->capture_default_str();
     cmd->add_option("--shadow-map-out", args->shadowMapOut, "also write the shadow map itself as a PNG (single frames)");
     cmd->add_option("--video", args->video, "with --path: also encode the frames into this video (needs ffmpeg)");
+    cmd->add_option("--strip", args->strip, "with --path: also write six of the frames, evenly spread, as one captioned PNG");
     return {cmd, [args] { return runRender(*args); }};
 }
 

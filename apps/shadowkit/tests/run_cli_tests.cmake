@@ -150,6 +150,8 @@ check_fails(frames-with-time "--frames" render ${small} --path flythrough --time
 check_fails(time-not-finite "--time" render ${small} --time nan)
 check_fails(sequence-needs-pattern "--out" render ${small} --path flythrough --frames 0:2 --out "${WORK}/x.png")
 check_fails(movers-out-of-range "movers" render ${small} --movers 5000)
+check_fails(strip-without-path "--strip" render ${small} --strip "${WORK}/strip.png")
+check_fails(strip-unwritable "--strip" render ${small} --path flythrough --frames 0:2 --out "${WORK}/f%d.png" --strip "${WORK}/no/dir/s.png")
 check_fails(eval-path-one-frame "--path" eval ${small} --path flythrough --frames 5)
 check_fails(eval-csv-without-path "--csv" eval ${small} --csv "${WORK}/f.csv")
 check_fails(eval-path-with-views "--path" eval ${small} --path flythrough --views all)
