@@ -100,11 +100,12 @@ int runBench(const BenchArgs& args) {
             std::vector<double> nodesVisited, queries, nodesQueried, multiQueryFailures, waits;
             std::vector<double> setupMs, cullMs, cullOwnMs, cullGlMs, listMs, shadowMs, mainMs, occlusionMs, maskMs;
             gl::FrameStats last;
+            std::optional<core::SetupHysteresis> hysteresis; // --stabilize without csm: kept over the frames
             for (int frame = 0; frame < args.frames; ++frame) {
                 const auto start = std::chrono::steady_clock::now();
                 auto inputs = args.technique.inputsFor(*view, (*renderer)->wsSceneBounds());
                 if (!inputs) return fail(inputs.error());
-                auto setup = core::computeShadowSetup(*inputs);
+                auto setup = args.technique.setupFor(*inputs, hysteresis);
                 if (!setup) return fail(withFlagName(setup.errorInfo()).message);
                 setupMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
                 auto settings = args.render.settingsFor(*view, *inputs);

@@ -122,8 +122,12 @@ int runCompare(const CompareArgs& args) {
         auto settings = o.render.settingsFor(*view, *inputs);
         if (!settings) return fail(settings.error());
         // Cells that share camera, sun and size share one ray-traced truth (Measurer's cache).
-        auto measured = (*measurer)->measure(
-            *inputs, *settings, {.shadedImage = true, .visibleDepthFromFrame = o.technique.visibleDepthFromFrame()});
+        std::optional<core::SetupHysteresis> hysteresis; // --stabilize without csm: the margin of a fresh fit
+        if (auto h = o.technique.hysteresisFor()) hysteresis.emplace(*h);
+        auto measured = (*measurer)->measure(*inputs, *settings,
+                                             {.shadedImage = true,
+                                              .visibleDepthFromFrame = o.technique.visibleDepthFromFrame(),
+                                              .hysteresis = hysteresis ? &*hysteresis : nullptr});
         if (!measured) return fail("--configs: " + withFlagName(measured.errorInfo()).message);
         images.push_back(std::move(measured->image));
         const eval::Figures& f = measured->figures();

@@ -102,6 +102,10 @@ int runEval(const EvalArgs& args) {
         // Progress only when the truth takes a while (large images, big scenes).
         measure::MeasureOptions options;
         options.visibleDepthFromFrame = args.technique.visibleDepthFromFrame();
+        // --stabilize without csm: a still view pays the hysteresis's margin (a fresh fit).
+        std::optional<core::SetupHysteresis> hysteresis;
+        if (auto o = args.technique.hysteresisFor()) hysteresis.emplace(*o);
+        options.hysteresis = hysteresis ? &*hysteresis : nullptr;
         options.truthProgress = [&, shown = false](double done) mutable {
             const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
             if ((elapsed < 2.0 && !shown) || !isatty(fileno(stderr))) return; // a log gets the table only

@@ -85,6 +85,10 @@ int runEvalPath(const EvalPathArgs& args) {
     std::optional<PreviousFrame> previous;
     std::vector<uint32_t> moved;
     std::string technique;
+    // --stabilize without csm: one hysteresis for the whole sequence.
+    std::optional<core::SetupHysteresis> hysteresis;
+    if (auto o = args.technique.hysteresisFor()) hysteresis.emplace(*o);
+    int refits = 0;
     fmt::print("{:>5} {:>7} {:>9} {:>7} {:>8} {:>7} {:>9} {:>9} {:>6}\n", "frame", "t_s", "valid_px", "wrong%", "flicker%", "truth%",
                "ppt50", "compared", "sec");
     for (const TimedFrame& frame : timeline->frames) {
@@ -100,8 +104,10 @@ int runEvalPath(const EvalPathArgs& args) {
         if (!settings) return fail(settings.error());
         measure::MeasureOptions options;
         options.visibleDepthFromFrame = args.technique.visibleDepthFromFrame();
+        options.hysteresis = hysteresis ? &*hysteresis : nullptr;
         auto measured = (*measurer)->measure(*inputs, *settings, options);
         if (!measured) return fail(withFlagName(measured.errorInfo()).message);
+        refits += hysteresis && hysteresis->refitted();
         technique = core::techniqueName(measured->setup.technique);
         eval::ShadowStates states = eval::shadowStates(view->camera, *measured->truth, measured->comparison);
         FrameRow row{frame.number, frame.time, measured->figures(), std::nullopt, 0.0};
@@ -139,6 +145,7 @@ int runEvalPath(const EvalPathArgs& args) {
         if (r.temporal) flicker.push_back(r.temporal->flickerPct), truthChange.push_back(r.temporal->truthChangePct);
     }
     const Summary fl = summarise(flicker), tc = summarise(truthChange), wr = summarise(wrong);
+    if (hysteresis) fmt::print("--stabilize: the set-up was refitted in {} of {} frames\n", refits, rows.size());
     fmt::print("{} along {} ({} frames): flicker_pct mean {:.3f} p95 {:.3f} max {:.3f} | truth_change_pct mean {:.3f} p95 {:.3f} "
                "max {:.3f} | wrong_pct mean {:.3f}\n",
                technique, timeline->path->name, rows.size(), fl.mean, fl.p95, fl.max, tc.mean, tc.p95, tc.max, wr.mean);
@@ -170,6 +177,7 @@ int runEvalPath(const EvalPathArgs& args) {
         }
         auto summary = [](const Summary& s) { return nlohmann::json{{"mean", s.mean}, {"p95", s.p95}, {"max", s.max}}; };
         const nlohmann::json root = {{"path", timeline->path->name}, {"technique", technique},
+                                     {"refits", hysteresis ? nlohmann::json(refits) : nlohmann::json(nullptr)},
                                      {"summary", {{"flicker_pct", summary(fl)}, {"truth_change_pct", summary(tc)}, {"wrong_pct", summary(wr)}}},
                                      {"frames", frames}};
         std::ofstream out(args.json);

@@ -91,6 +91,8 @@ int runRender(const RenderArgs& args) {
     if (!renderer) return fail(renderer.error());
 
     std::vector<uint32_t> moved;
+    // --stabilize without csm: one hysteresis for the whole sequence.
+    std::optional<core::SetupHysteresis> hysteresis;
     // --strip: six frames spread evenly over those drawn, first and last included.
     constexpr size_t kStripFrames = 6;
     std::vector<scene::Image> stripImages;
@@ -123,7 +125,7 @@ int runRender(const RenderArgs& args) {
         }
         // What a frame costs on the CPU before drawing: the set-up.
         const auto setupStart = std::chrono::steady_clock::now();
-        auto setup = core::computeShadowSetup(*inputs);
+        auto setup = args.technique.setupFor(*inputs, hysteresis);
         if (!setup) return fail(withFlagName(setup.errorInfo()).message);
         const double setupMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - setupStart).count();
 

@@ -62,7 +62,8 @@ int runSetup(const SetupArgs& args) {
 
     auto inputs = args.technique.inputsFor(*view, bounds);
     if (!inputs) return fail(inputs.error());
-    auto setup = core::computeShadowSetup(*inputs);
+    std::optional<core::SetupHysteresis> hysteresis;
+    auto setup = args.technique.setupFor(*inputs, hysteresis);
     if (!setup) return fail(withFlagName(setup.errorInfo()).message);
 
     const core::PerspectiveCamera& cam = view->camera;

@@ -173,6 +173,8 @@ constexpr std::pair<std::string_view, std::string_view> kFlagOfField[] = {
     {"cascades.lambda", "--lambda"},
     {"cascades.blend_band", "--blend-band"},
     {"cascades.stabilize", "--stabilize"},
+    {"hysteresis.radius", "--stabilize-radius"},
+    {"hysteresis.turn", "--stabilize-turn"},
     {"cascades.splits", "--splits"},
     {"bias.slope", "--bias-slope"},
     {"bias.constant", "--bias-constant"},
@@ -329,7 +331,13 @@ void TechniqueOptions::addTo(CLI::App& cmd) {
     cmd.add_option("--cascade-warp", cascades.warp, "csm: per-split warp")
         ->transform(choice(Choices<core::CascadeWarp>{{"none", core::CascadeWarp::None}, {"lispsm", core::CascadeWarp::Lispsm}}))
         ->default_str("none");
-    cmd.add_flag("--stabilize", cascades.stabilize, "csm: rotation-invariant, texel-snapped splits (no swimming)");
+    cmd.add_flag("--stabilize", cascades.stabilize,
+                 "csm: rotation-invariant, texel-snapped splits (no swimming); other techniques: set-up hysteresis (a set-up "
+                 "fitted with a margin is kept while the camera stays within --stabilize-radius and --stabilize-turn)");
+    cmd.add_option("--stabilize-radius", hysteresis.radiusMetres, "--stabilize without csm: metres the eye may move before a refit")
+        ->capture_default_str();
+    cmd.add_option("--stabilize-turn", hysteresis.turnDegrees, "--stabilize without csm: degrees the view may turn before a refit")
+        ->capture_default_str();
     cmd.add_option("--blend-band", cascades.blendBand, "csm: fraction of each split blended into the next, 0-0.5")
         ->capture_default_str();
 }
@@ -342,7 +350,15 @@ core::Status TechniqueOptions::check(bool measuresFrames) const {
     if (!in) return in.errorInfo();
     // The camera-independent checks only: the view is not resolved yet.
     if (auto s = core::validateOptions(*in); !s) return withFlagName(s.errorInfo());
+    if (auto s = core::validate(hysteresis); !s) return withFlagName(s.errorInfo());
     return core::Ok{};
+}
+
+core::Result<core::ShadowSetup> TechniqueOptions::setupFor(const core::ShadowSetupInputs& inputs,
+                                                          std::optional<core::SetupHysteresis>& hysteresis) const {
+    if (!hysteresis)
+        if (auto o = hysteresisFor()) hysteresis.emplace(*o);
+    return hysteresis ? hysteresis->next(inputs) : core::computeShadowSetup(inputs);
 }
 
 core::Result<core::ShadowSetupInputs> TechniqueOptions::inputsFor(const scene::ResolvedView& view, const core::Aabb& wsBounds) const {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "shadowkit/core/result.h"
+#include "shadowkit/core/setup_hysteresis.h"
 #include "shadowkit/core/shadow_setup.h"
 #include "shadowkit/gl/renderer.h"
 #include "shadowkit/scene/forest.h"
@@ -55,11 +56,24 @@ struct TechniqueOptions {
     double tsmFocus = core::TsmOptions{}.focusFraction;
     int mapSize = core::ShadowSetupInputs{}.mapSize;
     core::CascadeOptions cascades; // count, lambda, warp, stabilize, blend band; splits from `splits`
+    core::HysteresisOptions hysteresis; // --stabilize-radius, --stabilize-turn
+
+    // --stabilize for a technique other than csm: its set-ups go through a
+    // core::SetupHysteresis with these options (csm snaps its own texels).
+    std::optional<core::HysteresisOptions> hysteresisFor() const {
+        if (cascades.stabilize && technique != core::Technique::Csm) return hysteresis;
+        return std::nullopt;
+    }
 
     void addTo(CLI::App& cmd);
     // Checks the technique's flags (cheap: call before loading a scene); errors name the flag.
     // Commands that do not render and measure a frame refuse --visible-depth auto.
     core::Status check(bool measuresFrames = true) const;
+    // The set-up of a frame: through `hysteresis` when --stabilize asks for one (created on
+    // first use; a sequence keeps it across its frames, a still frame gets a fresh one and
+    // pays its margin), else core::computeShadowSetup.
+    core::Result<core::ShadowSetup> setupFor(const core::ShadowSetupInputs& inputs,
+                                             std::optional<core::SetupHysteresis>& hysteresis) const;
     // Everything computeShadowSetup needs for this view and scene box.
     core::Result<core::ShadowSetupInputs> inputsFor(const scene::ResolvedView& view, const core::Aabb& wsBounds) const;
 };

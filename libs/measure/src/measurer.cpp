@@ -115,7 +115,7 @@ core::Result<Measurement> Measurer::measure(const core::ShadowSetupInputs& input
         if (!refined) return refined.errorInfo();
         used = std::move(refined).value();
     }
-    auto setup = core::computeShadowSetup(used);
+    auto setup = options.hysteresis ? options.hysteresis->next(used) : core::computeShadowSetup(used);
     if (!setup) return setup.errorInfo();
     Measurement m;
     m.visibleDepth = used.visibleDepth;

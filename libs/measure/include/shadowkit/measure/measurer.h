@@ -10,6 +10,7 @@
 #include "shadowkit/core/bias.h"
 #include "shadowkit/core/raster_buffers.h"
 #include "shadowkit/core/result.h"
+#include "shadowkit/core/setup_hysteresis.h"
 #include "shadowkit/core/shadow_setup.h"
 #include "shadowkit/eval/metrics.h"
 #include "shadowkit/eval/report.h"
@@ -44,6 +45,9 @@ struct MeasureOptions {
     // Measure the visible view-depth range first and give it to the set-up
     // (gl::withVisibleDepth; ShadowSetupInputs::visibleDepth): LiSPSM's n, the cascades' splits.
     bool visibleDepthFromFrame = false;
+    // Set-ups through this hysteresis (a sequence's, kept across frames) instead of computed
+    // afresh: `--stabilize` for warped techniques (core/setup_hysteresis.h).
+    core::SetupHysteresis* hysteresis = nullptr;
 };
 
 struct Measurement {
