@@ -16,6 +16,11 @@ drift from what the program measures.
       per `shadowkit eval --path --json` file: flicker_pct and truth_change_pct (mean / p95 /
       max over the frames), mean wrong_pct and pixels_per_texel_p50 (tools/measure-dynamics.sh)
 
+  tools/readme_tables.py segment FIRST LAST LABEL=RUN.csv ...
+      per `shadowkit eval --path --csv` file, over frames FIRST..LAST: flicker_pct mean / p95 /
+      max, mean wrong_pct and pixels_per_texel_p50 (runs over different frame ranges compared
+      on the frames they share)
+
 LABEL is the row's name as printed (e.g. '`tsm`' or '`csm` 4 × 1024²'). tools/measure-readme.sh
 runs the evaluations behind every table and prints them.
 """
@@ -96,7 +101,32 @@ def dynamics(args):
               f"{sum(ppt) / len(ppt):.2f} |")
 
 
+def segment(first, last, args):
+    import csv
+    import math
+    print(f"| technique (frames {first}–{last}) | flicker_pct mean / p95 / max | wrong_pct mean | pixels_per_texel_p50 mean |")
+    print("|---|---:|---:|---:|")
+    for arg in args:
+        label, _, path = arg.rpartition("=")  # labels may hold '=', paths do not
+        flicker, wrong, ppt = [], [], []
+        with open(path) as f:
+            for r in csv.DictReader(f):
+                if first <= int(r["frame"]) <= last and r["flicker_pct"]:
+                    flicker.append(float(r["flicker_pct"]))
+                    wrong.append(float(r["wrong_pct"]))
+                    ppt.append(float(r["pixels_per_texel_p50"]))
+        if not flicker:
+            sys.exit(f"readme_tables: {path}: no frames in {first}..{last}")
+        ordered = sorted(flicker)
+        p95 = ordered[min(len(ordered) - 1, math.ceil(0.95 * len(ordered)) - 1)]
+        print(f"| {label} | {sum(flicker) / len(flicker):.3f} / {p95:.3f} / {max(flicker):.3f} | "
+              f"{sum(wrong) / len(wrong):.2f} | {sum(ppt) / len(ppt):.2f} |")
+
+
 if __name__ == "__main__":
+    if len(sys.argv) >= 5 and sys.argv[1] == "segment":
+        segment(int(sys.argv[2]), int(sys.argv[3]), sys.argv[4:])
+        sys.exit(0)
     if len(sys.argv) >= 3 and sys.argv[1] == "visibility":
         visibility(sys.argv[2:])
         sys.exit(0)
