@@ -122,8 +122,7 @@ int runCompare(const CompareArgs& args) {
         auto settings = o.render.settingsFor(*view, *inputs);
         if (!settings) return fail(settings.error());
         // Cells that share camera, sun and size share one ray-traced truth (Measurer's cache).
-        std::optional<core::SetupHysteresis> hysteresis; // --stabilize without csm: the margin of a fresh fit
-        if (auto h = o.technique.hysteresisFor()) hysteresis.emplace(*h);
+        std::optional<core::SetupHysteresis> hysteresis = o.technique.newHysteresis(); // the margin of a fresh fit
         auto measured = (*measurer)->measure(*inputs, *settings,
                                              {.shadedImage = true,
                                               .visibleDepthFromFrame = o.technique.visibleDepthFromFrame(),

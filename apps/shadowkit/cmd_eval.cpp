@@ -103,8 +103,7 @@ int runEval(const EvalArgs& args) {
         measure::MeasureOptions options;
         options.visibleDepthFromFrame = args.technique.visibleDepthFromFrame();
         // --stabilize without csm: a still view pays the hysteresis's margin (a fresh fit).
-        std::optional<core::SetupHysteresis> hysteresis;
-        if (auto o = args.technique.hysteresisFor()) hysteresis.emplace(*o);
+        std::optional<core::SetupHysteresis> hysteresis = args.technique.newHysteresis();
         options.hysteresis = hysteresis ? &*hysteresis : nullptr;
         options.truthProgress = [&, shown = false](double done) mutable {
             const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

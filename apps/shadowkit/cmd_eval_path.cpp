@@ -86,8 +86,7 @@ int runEvalPath(const EvalPathArgs& args) {
     std::vector<uint32_t> moved;
     std::string technique;
     // --stabilize without csm: one hysteresis for the whole sequence.
-    std::optional<core::SetupHysteresis> hysteresis;
-    if (auto o = args.technique.hysteresisFor()) hysteresis.emplace(*o);
+    std::optional<core::SetupHysteresis> hysteresis = args.technique.newHysteresis();
     int refits = 0;
     fmt::print("{:>5} {:>7} {:>9} {:>7} {:>8} {:>7} {:>9} {:>9} {:>6}\n", "frame", "t_s", "valid_px", "wrong%", "flicker%", "truth%",
                "ppt50", "compared", "sec");

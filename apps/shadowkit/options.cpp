@@ -355,10 +355,9 @@ core::Status TechniqueOptions::check(bool measuresFrames) const {
 }
 
 core::Result<core::ShadowSetup> TechniqueOptions::setupFor(const core::ShadowSetupInputs& inputs,
-                                                          std::optional<core::SetupHysteresis>& hysteresis) const {
-    if (!hysteresis)
-        if (auto o = hysteresisFor()) hysteresis.emplace(*o);
-    return hysteresis ? hysteresis->next(inputs) : core::computeShadowSetup(inputs);
+                                                          std::optional<core::SetupHysteresis>& sequence) const {
+    if (!sequence) sequence = newHysteresis();
+    return sequence ? sequence->next(inputs) : core::computeShadowSetup(inputs);
 }
 
 core::Result<core::ShadowSetupInputs> TechniqueOptions::inputsFor(const scene::ResolvedView& view, const core::Aabb& wsBounds) const {

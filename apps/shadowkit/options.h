@@ -58,10 +58,10 @@ struct TechniqueOptions {
     core::CascadeOptions cascades; // count, lambda, warp, stabilize, blend band; splits from `splits`
     core::HysteresisOptions hysteresis; // --stabilize-radius, --stabilize-turn
 
-    // --stabilize for a technique other than csm: its set-ups go through a
-    // core::SetupHysteresis with these options (csm snaps its own texels).
-    std::optional<core::HysteresisOptions> hysteresisFor() const {
-        if (cascades.stabilize && technique != core::Technique::Csm) return hysteresis;
+    // --stabilize for a technique other than csm: its set-ups go through a fresh
+    // core::SetupHysteresis with these options (csm snaps its own texels); else none.
+    std::optional<core::SetupHysteresis> newHysteresis() const {
+        if (cascades.stabilize && technique != core::Technique::Csm) return core::SetupHysteresis(hysteresis);
         return std::nullopt;
     }
 
@@ -69,11 +69,11 @@ struct TechniqueOptions {
     // Checks the technique's flags (cheap: call before loading a scene); errors name the flag.
     // Commands that do not render and measure a frame refuse --visible-depth auto.
     core::Status check(bool measuresFrames = true) const;
-    // The set-up of a frame: through `hysteresis` when --stabilize asks for one (created on
-    // first use; a sequence keeps it across its frames, a still frame gets a fresh one and
-    // pays its margin), else core::computeShadowSetup.
+    // The set-up of a frame: through `sequence`'s hysteresis when --stabilize asks for one
+    // (created on first use; a sequence keeps it across its frames, a still frame gets a
+    // fresh one and pays its margin), else core::computeShadowSetup.
     core::Result<core::ShadowSetup> setupFor(const core::ShadowSetupInputs& inputs,
-                                             std::optional<core::SetupHysteresis>& hysteresis) const;
+                                             std::optional<core::SetupHysteresis>& sequence) const;
     // Everything computeShadowSetup needs for this view and scene box.
     core::Result<core::ShadowSetupInputs> inputsFor(const scene::ResolvedView& view, const core::Aabb& wsBounds) const;
 };

@@ -127,8 +127,8 @@ TEST(LispsmTest, WeightOverrideAndVisibleDepthChangeN) {
     EXPECT_NEAR(std::get<LispsmWarp>(nearToo->views[0].warp).n, 5 + std::sqrt(5.0 * 20.0), 1e-6);
     EXPECT_NEAR(std::get<LispsmWarp>(nearToo->views[0].warp).d, 99.0, 1e-6);
     // A range beyond the far plane (a stale or foreign measurement) cuts nothing: n as without.
-    for (const bool nearToo : {false, true}) {
-        in.lispsm.visibleNear = nearToo;
+    for (const bool visibleNear : {false, true}) {
+        in.lispsm.visibleNear = visibleNear;
         in.visibleDepth = Vec2(150, 160);
         EXPECT_NEAR(std::get<LispsmWarp>(computeShadowSetup(in)->views[0].warp).n, base, 1e-9);
     }

@@ -5,7 +5,6 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
-#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -93,17 +92,14 @@ core::Result<std::unique_ptr<RayScene>> RayScene::build(const scene::Scene& scen
 }
 
 core::Status RayScene::moveInstances(const scene::Scene& scene, std::span<const uint32_t> moved) {
-    std::vector<size_t> batchEnd;
-    size_t total = 0;
-    for (const scene::MeshBatch& batch : scene.batches) batchEnd.push_back(total += batch.worldFromObject.size());
-    if (total != m_impl->normalFromObject.size())
+    if (scene.instanceCount() != m_impl->normalFromObject.size())
         return core::makeError("ray tracer: moveInstances() needs the scene it was built from");
     for (const uint32_t global : moved)
-        if (global >= total) return core::makeError("ray tracer: moved instance " + std::to_string(global) + " is out of range");
+        if (!scene.locate(global))
+            return core::makeError("ray tracer: moved instance " + std::to_string(global) + " is out of range");
     for (const uint32_t global : moved) {
-        const auto batch = static_cast<size_t>(std::upper_bound(batchEnd.begin(), batchEnd.end(), size_t(global)) - batchEnd.begin());
-        const glm::mat4& worldFromObject =
-            scene.batches[batch].worldFromObject[global - (batchEnd[batch] - scene.batches[batch].worldFromObject.size())];
+        const scene::InstanceRef ref = *scene.locate(global);
+        const glm::mat4& worldFromObject = scene.batches[ref.batch].worldFromObject[ref.instance];
         RTCGeometry geom = rtcGetGeometry(m_impl->top, global);
         rtcSetGeometryTransform(geom, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, glm::value_ptr(worldFromObject));
         rtcCommitGeometry(geom);

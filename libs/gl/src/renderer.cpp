@@ -501,27 +501,23 @@ core::Result<core::ShadowSetupInputs> withVisibleDepth(Renderer& renderer, const
 
 core::Status Renderer::moveInstances(const scene::Scene& scene, std::span<const uint32_t> moved) {
     Impl& r = *m_impl;
-    // Global index -> batch, over the scene's batches (the order the renderer was built in).
-    std::vector<size_t> batchEnd;
-    size_t total = 0;
-    for (const scene::MeshBatch& batch : scene.batches) batchEnd.push_back(total += batch.worldFromObject.size());
-    if (total != r.visibility->hierarchy().size())
+    if (scene.instanceCount() != r.visibility->hierarchy().size())
         return core::makeError("renderer: moveInstances() needs the scene it was created with (" +
-                               std::to_string(r.visibility->hierarchy().size()) + " instances, got " + std::to_string(total) + ")");
+                               std::to_string(r.visibility->hierarchy().size()) + " instances, got " +
+                               std::to_string(scene.instanceCount()) + ")");
+    // Every index checked before anything moves.
     std::vector<bool> batchMoved(scene.batches.size(), false);
     for (const uint32_t global : moved) {
-        const auto batch = static_cast<size_t>(std::upper_bound(batchEnd.begin(), batchEnd.end(), size_t(global)) - batchEnd.begin());
-        if (batch >= scene.batches.size())
-            return core::makeError("renderer: moved instance " + std::to_string(global) + " is out of range");
-        if (!scene.batches[batch].dynamic)
+        const auto ref = scene.locate(global);
+        if (!ref) return core::makeError("renderer: moved instance " + std::to_string(global) + " is out of range");
+        if (!scene.batches[ref->batch].dynamic)
             return core::makeError("renderer: moved instance " + std::to_string(global) + " belongs to a static batch");
-        batchMoved[batch] = true;
+        batchMoved[ref->batch] = true;
     }
     for (const uint32_t global : moved) {
-        const auto batch = static_cast<size_t>(std::upper_bound(batchEnd.begin(), batchEnd.end(), size_t(global)) - batchEnd.begin());
-        const size_t local = global - (batchEnd[batch] - scene.batches[batch].worldFromObject.size());
-        const scene::MeshBatch& b = scene.batches[batch];
-        r.visibility->move(global, core::transformBounds(core::Mat4(b.worldFromObject[local]), scene.meshes[b.mesh].osBounds));
+        const scene::InstanceRef ref = *scene.locate(global);
+        const scene::MeshBatch& b = scene.batches[ref.batch];
+        r.visibility->move(global, core::transformBounds(core::Mat4(b.worldFromObject[ref.instance]), scene.meshes[b.mesh].osBounds));
     }
     for (size_t batch = 0; batch < scene.batches.size(); ++batch)
         if (batchMoved[batch]) r.scene->updateBatch(scene, batch);

@@ -21,22 +21,11 @@ glm::mat4 trackTransform(const Track& track, const Scene& scene, double t) {
     return glm::scale(m, glm::vec3(track.scale));
 }
 
-uint32_t globalInstanceIndex(const Scene& scene, uint32_t batch, uint32_t instance) {
-    SK_ASSERT(batch < scene.batches.size() && instance < scene.batches[batch].worldFromObject.size(),
-              "globalInstanceIndex(): no such instance");
-    size_t first = 0;
-    for (uint32_t b = 0; b < batch; ++b) first += scene.batches[b].worldFromObject.size();
-    return static_cast<uint32_t>(first + instance);
-}
-
 void animate(Scene& scene, double t, std::vector<uint32_t>* moved) {
-    std::vector<size_t> batchFirst(scene.batches.size(), 0);
-    for (size_t b = 1; b < scene.batches.size(); ++b) batchFirst[b] = batchFirst[b - 1] + scene.batches[b - 1].worldFromObject.size();
     for (const Track& track : scene.tracks) {
-        SK_ASSERT(track.batch < scene.batches.size() && track.instance < scene.batches[track.batch].worldFromObject.size(),
-                  "animate(): a track names no instance");
+        const uint32_t global = scene.globalIndex({track.batch, track.instance}); // asserts the instance exists
         scene.batches[track.batch].worldFromObject[track.instance] = trackTransform(track, scene, t);
-        if (moved) moved->push_back(static_cast<uint32_t>(batchFirst[track.batch] + track.instance));
+        if (moved) moved->push_back(global);
     }
 }
 

@@ -36,6 +36,24 @@ size_t Scene::triangleCount() const {
     return n;
 }
 
+uint32_t Scene::globalIndex(InstanceRef ref) const {
+    SK_ASSERT(ref.batch < batches.size() && ref.instance < batches[ref.batch].worldFromObject.size(),
+              "Scene::globalIndex(): no such instance");
+    size_t first = 0;
+    for (uint32_t b = 0; b < ref.batch; ++b) first += batches[b].worldFromObject.size();
+    return static_cast<uint32_t>(first + ref.instance);
+}
+
+std::optional<InstanceRef> Scene::locate(uint32_t global) const {
+    size_t first = 0;
+    for (uint32_t b = 0; b < batches.size(); ++b) {
+        const size_t count = batches[b].worldFromObject.size();
+        if (global < first + count) return InstanceRef{b, static_cast<uint32_t>(global - first)};
+        first += count;
+    }
+    return std::nullopt;
+}
+
 size_t Scene::instanceCount() const {
     size_t n = 0;
     for (const MeshBatch& batch : batches) n += batch.worldFromObject.size();

@@ -39,7 +39,9 @@ TEST(Animation, EveryMoverHasATrackAndTimeZeroChangesNothing) {
     for (size_t k = 0; k < moved.size(); ++k) {
         const scene::Track& t = s.tracks[k];
         EXPECT_TRUE(s.batches[t.batch].dynamic);
-        EXPECT_EQ(moved[k], scene::globalInstanceIndex(s, t.batch, t.instance));
+        EXPECT_EQ(moved[k], s.globalIndex({t.batch, t.instance}));
+        EXPECT_EQ(s.locate(moved[k])->batch, t.batch);
+        EXPECT_EQ(s.locate(moved[k])->instance, t.instance);
     }
 }
 

@@ -57,7 +57,9 @@ TEST(CameraPath, IsSmoothNoJumpBetweenFramesBeyondTheKeySpacing) {
             const core::Vec3 step = at.eye - lastEye;
             EXPECT_LE(glm::length(step), 3.0 * fastest * dt) << "frame " << f;
             // Velocity is continuous: consecutive steps differ by far less than a step.
-            if (f > 1) EXPECT_LE(glm::length(step - lastStep), 0.1 * fastest * dt) << "frame " << f;
+            if (f > 1) {
+                EXPECT_LE(glm::length(step - lastStep), 0.1 * fastest * dt) << "frame " << f;
+            }
             lastStep = step;
         }
         lastEye = at.eye;

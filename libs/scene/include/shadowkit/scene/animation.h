@@ -17,10 +17,7 @@ namespace shadowkit::scene {
 glm::mat4 trackTransform(const Track& track, const Scene& scene, double t);
 
 // Places every tracked instance at time t. `moved`, when given, receives the global instance
-// index (batch after batch, Scene::instanceBounds order) of each instance it placed.
+// index (Scene::globalIndex) of each instance it placed.
 void animate(Scene& scene, double t, std::vector<uint32_t>* moved = nullptr);
-
-// Global instance index of batches[batch].worldFromObject[instance].
-uint32_t globalInstanceIndex(const Scene& scene, uint32_t batch, uint32_t instance);
 
 } // namespace shadowkit::scene

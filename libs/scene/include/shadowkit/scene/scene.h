@@ -51,6 +51,11 @@ struct Track {
     float scale = 1.0f;               // uniform
 };
 
+// One instance: batches[batch].worldFromObject[instance].
+struct InstanceRef {
+    uint32_t batch = 0, instance = 0;
+};
+
 struct Scene {
     std::vector<Mesh> meshes;
     std::vector<MeshBatch> batches;
@@ -63,6 +68,10 @@ struct Scene {
     std::vector<core::Aabb> instanceBounds() const;
     size_t triangleCount() const;   // over all instances
     size_t instanceCount() const;
+    // Global instance indices count batch after batch (the order of instanceBounds(), of
+    // the renderer's surface ids and of the ray tracer's instances).
+    uint32_t globalIndex(InstanceRef ref) const;              // precondition: ref exists
+    std::optional<InstanceRef> locate(uint32_t global) const; // nullopt beyond the last instance
     // Height of the ground under (x, z): the terrain heightfield where there is one, else
     // the highest upward-facing surface of a static batch over that point, else the bottom
     // of the scene bounds (0 for an empty scene).
