@@ -4,7 +4,7 @@
 # or 4 cascades of 2048²), with the sun moving as the path says and, for cascades, held
 # still (--sun-path off) so that only the camera moves. Rows go to build/dynamics/NAME.json
 # and .csv; tools/readme_tables.py dynamics prints the table, tools/plot_flicker.py the plot.
-# About 6 minutes a row on this project's 2-core machine.
+# About 7 minutes a row on this project's 2-core machine.
 set -eu
 B=${SHADOWKIT:-build/apps/shadowkit/shadowkit}
 OUT=${OUT:-build/dynamics}
@@ -22,6 +22,11 @@ run csm-stabilize-sun-held --technique csm --cascades 4 --map-size 2048 --stabil
 run csm-sun-held           --technique csm --cascades 4 --map-size 2048 --sun-path off
 run tsm-sun-held           --technique tsm --map-size 4096 --sun-path off
 run lispsm-sun-held        --technique lispsm --map-size 4096 --sun-path off
+run csm-lispsm-sun-held    --technique csm --cascades 4 --map-size 2048 --cascade-warp lispsm --sun-path off
+# Held texel lattices (core::SetupHysteresis): the stable warped maps.
+run lispsm-stabilize-sun-held     --technique lispsm --map-size 4096 --stabilize --sun-path off
+run tsm-stabilize-sun-held        --technique tsm --map-size 4096 --stabilize --sun-path off
+run csm-lispsm-stabilize-sun-held --technique csm --cascades 4 --map-size 2048 --cascade-warp lispsm --stabilize --sun-path off
 run standard               --technique standard --map-size 4096
 run focused                --technique focused --map-size 4096
 run psm                    --technique psm --map-size 4096

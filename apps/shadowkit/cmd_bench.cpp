@@ -100,7 +100,7 @@ int runBench(const BenchArgs& args) {
             std::vector<double> nodesVisited, queries, nodesQueried, multiQueryFailures, waits;
             std::vector<double> setupMs, cullMs, cullOwnMs, cullGlMs, listMs, shadowMs, mainMs, occlusionMs, maskMs;
             gl::FrameStats last;
-            std::optional<core::SetupHysteresis> hysteresis; // --stabilize without csm: kept over the frames
+            std::optional<core::SetupHysteresis> hysteresis; // --stabilize with held lattices: kept over the frames
             for (int frame = 0; frame < args.frames; ++frame) {
                 const auto start = std::chrono::steady_clock::now();
                 auto inputs = args.technique.inputsFor(*view, (*renderer)->wsSceneBounds());

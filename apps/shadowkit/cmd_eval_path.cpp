@@ -24,6 +24,7 @@ struct FrameRow {
     double time = 0.0;
     eval::Figures figures;
     std::optional<eval::TemporalFigures> temporal; // none for the first frame
+    std::optional<int> refittedViews;               // --stabilize with held lattices: maps refitted (pops)
     double seconds = 0.0;
 };
 
@@ -52,14 +53,15 @@ Summary summarise(std::vector<double> v) {
 core::Status writeCsv(const std::string& file, const std::vector<FrameRow>& rows) {
     std::ofstream out(file);
     out << "frame,time_s,valid_px,wrong_pct,false_shadow_pct,false_lit_pct,pixels_per_texel_p50,compared_px,flicker_pct,"
-           "truth_change_pct\n";
+           "truth_change_pct,refitted_views\n";
     for (const FrameRow& r : rows) {
         out << fmt::format("{},{:.6g},{},{:.6g},{:.6g},{:.6g},{:.6g}", r.frame, r.time, r.figures.validPx, r.figures.wrongPct,
                            r.figures.falseShadowPct, r.figures.falseLitPct, r.figures.pixelsPerTexelP50);
         if (r.temporal)
-            out << fmt::format(",{},{:.6g},{:.6g}\n", r.temporal->comparedPx, r.temporal->flickerPct, r.temporal->truthChangePct);
+            out << fmt::format(",{},{:.6g},{:.6g}", r.temporal->comparedPx, r.temporal->flickerPct, r.temporal->truthChangePct);
         else
-            out << ",,,\n";
+            out << ",,,";
+        out << (r.refittedViews ? fmt::format(",{}\n", *r.refittedViews) : std::string(",\n"));
     }
     if (!out) return core::makeError(file + ": cannot write");
     return core::Ok{};
@@ -85,7 +87,7 @@ int runEvalPath(const EvalPathArgs& args) {
     std::optional<PreviousFrame> previous;
     std::vector<uint32_t> moved;
     std::string technique;
-    // --stabilize without csm: one hysteresis for the whole sequence.
+    // --stabilize with held lattices: one hysteresis for the whole sequence.
     std::optional<core::SetupHysteresis> hysteresis = args.technique.newHysteresis();
     int refits = 0;
     fmt::print("{:>5} {:>7} {:>9} {:>7} {:>8} {:>7} {:>9} {:>9} {:>6}\n", "frame", "t_s", "valid_px", "wrong%", "flicker%", "truth%",
@@ -109,7 +111,8 @@ int runEvalPath(const EvalPathArgs& args) {
         refits += hysteresis && hysteresis->refitted();
         technique = core::techniqueName(measured->setup.technique);
         eval::ShadowStates states = eval::shadowStates(view->camera, *measured->truth, measured->comparison);
-        FrameRow row{frame.number, frame.time, measured->figures(), std::nullopt, 0.0};
+        FrameRow row{frame.number, frame.time, measured->figures()};
+        if (hysteresis) row.refittedViews = hysteresis->refittedViews();
         if (previous) {
             // The previous frame's shadows at this frame's points: its casters, light and set-up.
             const bool castersMoved = !world.tracks.empty() && previous->time != frame.time;
@@ -172,6 +175,7 @@ int runEvalPath(const EvalPathArgs& args) {
             if (r.temporal)
                 j.update({{"compared_px", r.temporal->comparedPx}, {"flicker_pct", r.temporal->flickerPct},
                           {"truth_change_pct", r.temporal->truthChangePct}});
+            if (r.refittedViews) j["refitted_views"] = *r.refittedViews;
             frames.push_back(j);
         }
         auto summary = [](const Summary& s) { return nlohmann::json{{"mean", s.mean}, {"p95", s.p95}, {"max", s.max}}; };

@@ -91,7 +91,7 @@ int runRender(const RenderArgs& args) {
     if (!renderer) return fail(renderer.error());
 
     std::vector<uint32_t> moved;
-    // --stabilize without csm: one hysteresis for the whole sequence.
+    // --stabilize with held lattices: one hysteresis for the whole sequence.
     std::optional<core::SetupHysteresis> hysteresis;
     // --strip: six frames spread evenly over those drawn, first and last included.
     constexpr size_t kStripFrames = 6;

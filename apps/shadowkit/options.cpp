@@ -173,8 +173,8 @@ constexpr std::pair<std::string_view, std::string_view> kFlagOfField[] = {
     {"cascades.lambda", "--lambda"},
     {"cascades.blend_band", "--blend-band"},
     {"cascades.stabilize", "--stabilize"},
-    {"hysteresis.radius", "--stabilize-radius"},
-    {"hysteresis.turn", "--stabilize-turn"},
+    {"hysteresis.margin", "--stabilize-margin"},
+    {"hysteresis.growth", "--stabilize-growth"},
     {"cascades.splits", "--splits"},
     {"bias.slope", "--bias-slope"},
     {"bias.constant", "--bias-constant"},
@@ -332,11 +332,14 @@ void TechniqueOptions::addTo(CLI::App& cmd) {
         ->transform(choice(Choices<core::CascadeWarp>{{"none", core::CascadeWarp::None}, {"lispsm", core::CascadeWarp::Lispsm}}))
         ->default_str("none");
     cmd.add_flag("--stabilize", cascades.stabilize,
-                 "csm: rotation-invariant, texel-snapped splits (no swimming); other techniques: set-up hysteresis (a set-up "
-                 "fitted with a margin is kept while the camera stays within --stabilize-radius and --stabilize-turn)");
-    cmd.add_option("--stabilize-radius", hysteresis.radiusMetres, "--stabilize without csm: metres the eye may move before a refit")
+                 "csm: rotation-invariant, texel-snapped splits (no swimming); other techniques and warped cascades: held "
+                 "texel lattices (each map's warp kept fixed in the world and shifted by whole texels until it no longer "
+                 "covers the view or its texels have grown by --stabilize-growth)");
+    cmd.add_option("--stabilize-margin", hysteresis.margin,
+                   "--stabilize with held lattices: spare room round the view at a refit, a fraction of the map")
         ->capture_default_str();
-    cmd.add_option("--stabilize-turn", hysteresis.turnDegrees, "--stabilize without csm: degrees the view may turn before a refit")
+    cmd.add_option("--stabilize-growth", hysteresis.maxTexelGrowth,
+                   "--stabilize with held lattices: refit when a texel on the central ray is this many times a fresh fit's")
         ->capture_default_str();
     cmd.add_option("--blend-band", cascades.blendBand, "csm: fraction of each split blended into the next, 0-0.5")
         ->capture_default_str();
@@ -372,6 +375,7 @@ core::Result<core::ShadowSetupInputs> TechniqueOptions::inputsFor(const scene::R
     if (depthLayout != LayoutChoice::Auto)
         in.depthLayout = depthLayout == LayoutChoice::Linear ? core::DepthLayout::Linear : core::DepthLayout::Hyperbolic;
     in.cascades = cascades;
+    if (holdsLattices()) in.cascades.stabilize = false; // held by core::SetupHysteresis, not snapped
     if (!splits.empty() && !parseNumbers(splits, ',', in.cascades.splits))
         return core::makeError(fmt::format("--splits: expected comma-separated distances, got '{}'", splits));
     if (!visibleDepth.empty() && !visibleDepthFromFrame()) {

@@ -56,12 +56,16 @@ struct TechniqueOptions {
     double tsmFocus = core::TsmOptions{}.focusFraction;
     int mapSize = core::ShadowSetupInputs{}.mapSize;
     core::CascadeOptions cascades; // count, lambda, warp, stabilize, blend band; splits from `splits`
-    core::HysteresisOptions hysteresis; // --stabilize-radius, --stabilize-turn
+    core::HysteresisOptions hysteresis; // --stabilize-margin, --stabilize-growth
 
-    // --stabilize for a technique other than csm: its set-ups go through a fresh
-    // core::SetupHysteresis with these options (csm snaps its own texels); else none.
+    // --stabilize holds texel lattices (core::SetupHysteresis) for every technique but
+    // unwarped cascades, which snap their own texels (CascadeOptions::stabilize).
+    bool holdsLattices() const {
+        return cascades.stabilize && (technique != core::Technique::Csm || cascades.warp != core::CascadeWarp::None);
+    }
+    // A fresh core::SetupHysteresis with these options when holdsLattices(), else none.
     std::optional<core::SetupHysteresis> newHysteresis() const {
-        if (cascades.stabilize && technique != core::Technique::Csm) return core::SetupHysteresis(hysteresis);
+        if (holdsLattices()) return core::SetupHysteresis(hysteresis);
         return std::nullopt;
     }
 

@@ -89,7 +89,8 @@ Status validate(const CascadeOptions& o) {
     if (!(o.blendBand >= 0.0 && o.blendBand <= 0.5)) return fieldError("cascades.blend_band", "must be in [0, 0.5]");
     if (o.stabilize && o.warp != CascadeWarp::None)
         return fieldError("cascades.stabilize",
-                          "stabilisation cannot be combined with a per-split warp (a warp moves texels with the view)");
+                          "stabilisation by snapping cannot take a per-split warp (a warp's texels differ in "
+                          "size, no shift resamples them): hold its lattices with SetupHysteresis instead");
     return Ok{};
 }
 

@@ -1,84 +1,187 @@
+// Held texel lattices (setup_hysteresis.h).
+//
+// Why a whole-texel shift in clip space is exact for any projective map: the map's texel
+// centres lie at x_ndc = −1 + (i + ½)·2/N. Adding t·w to clip x (a row operation on the
+// matrix) adds t to x_ndc = x / w for every point, so with t a multiple of 2/N every texel
+// centre lands on a former texel centre: the same world points are sampled, whatever the
+// warp. The pops left are the refits, so the design question is only when to refit:
+// - coverage: the view's focus body must fit inside the held map after the shift;
+// - staleness: LiSPSM and TSM put their densest texels where the viewer was at the refit; a
+//   camera that moves on leaves them behind. The texel footprint along the central ray,
+//   held against fresh, says when that has cost more than `maxTexelGrowth`: a bound on the
+//   price of holding in the quantity the error depends on (seed 000 §4: dp/ds), not in metres
+//   or degrees, which mean different things 1.8 m and 40 m above the ground.
 #include "shadowkit/core/setup_hysteresis.h"
+
+#include "shadowkit/core/focus_body.h"
 
 #include <algorithm>
 #include <cmath>
 
 namespace shadowkit::core {
+namespace {
 
-Status validate(const HysteresisOptions& o) {
-    if (!(o.radiusMetres > 0.0 && std::isfinite(o.radiusMetres))) return fieldError("hysteresis.radius", "must be > 0 metres");
-    if (!(o.turnDegrees >= 0.0 && o.turnDegrees <= 45.0)) return fieldError("hysteresis.turn", "must be in [0, 45] degrees");
-    return Ok{};
+// Adds (tx, ty, 0) · w to clip coordinates: NDC shifted by (tx, ty).
+void shiftClip(ShadowView& view, double tx, double ty) {
+    for (int c = 0; c < 4; ++c) {
+        view.clipFromLight[c][0] += tx * view.clipFromLight[c][3];
+        view.clipFromLight[c][1] += ty * view.clipFromLight[c][3];
+    }
+    view.clipFromWorld = view.clipFromLight * view.lightFromWorld;
 }
 
-PerspectiveCamera enclosingCamera(const PerspectiveCamera& camera, const HysteresisOptions& options) {
-    const double tanY = std::tan(0.5 * glm::radians(camera.fovYDegrees)), tanX = camera.aspect * tanY;
-    const Vec3 forward = glm::normalize(camera.wsDirection);
-    const Vec3 right = glm::normalize(glm::cross(forward, camera.wsUp));
-    const Vec3 up = glm::cross(right, forward);
-    // How wide must the view be to hold every turned camera? Turning a pyramid widens it by
-    // more than the turn at its corners (pitching it down swings a corner sideways too), so
-    // the corner rays of cameras turned by α (and α/2) all round are measured in this frame,
-    // with their own right and up vectors, and the widest taken (0.1 % spare for the sampling).
-    const double turn = glm::radians(options.turnDegrees);
-    double wideX = tanX, wideY = tanY;
-    for (const double angle : {0.5 * turn, turn})
-        for (int k = 0; k < 72; ++k) {
-            const double phi = 2.0 * 3.14159265358979323846 * k / 72.0;
-            const Vec3 axis = std::cos(phi) * right + std::sin(phi) * up; // ⟂ forward
-            const Vec3 d = forward * std::cos(angle) + glm::cross(axis, forward) * std::sin(angle);
-            const Vec3 r = glm::cross(d, camera.wsUp);
-            if (!(glm::length(r) > 1e-9)) continue;
-            const Vec3 rn = glm::normalize(r), un = glm::cross(rn, d);
-            for (const double sx : {-1.0, 1.0})
-                for (const double sy : {-1.0, 1.0}) {
-                    const Vec3 corner = d + sx * tanX * rn + sy * tanY * un;
-                    const double along = glm::dot(corner, forward);
-                    if (!(along > 1e-9)) continue;
-                    wideX = std::max(wideX, std::abs(glm::dot(corner, right)) / along);
-                    wideY = std::max(wideY, std::abs(glm::dot(corner, up)) / along);
-                }
-        }
-    wideX *= 1.001, wideY *= 1.001;
-    // Back far enough that the ball of radius r round the eye is inside: every face plane
-    // (half-angle atan(wide)) is b · sin(half-angle) from the axis point b behind the eye.
-    const double back = options.radiusMetres / std::sin(std::atan(std::min(wideX, wideY)));
-    PerspectiveCamera out = camera;
-    out.wsEye = camera.wsEye - back * forward;
-    out.fovYDegrees = std::min(glm::degrees(2.0 * std::atan(wideY)), 179.0);
-    out.aspect = wideX / std::tan(0.5 * glm::radians(out.fovYDegrees));
-    // The far plane beyond every other frustum's farthest corner; the near plane no farther
-    // than the nearest a real eye can be.
-    out.zFar = back + options.radiusMetres + camera.zFar * std::sqrt(1.0 + tanX * tanX + tanY * tanY);
-    out.zNear = std::min(camera.zNear, std::max(back - options.radiusMetres, 1e-3 * camera.zNear));
+// Scales NDC x and y by s about the centre of the map.
+void scaleClip(ShadowView& view, double s) {
+    for (int c = 0; c < 4; ++c) {
+        view.clipFromLight[c][0] *= s;
+        view.clipFromLight[c][1] *= s;
+    }
+    view.clipFromWorld = view.clipFromLight * view.lightFromWorld;
+}
+
+// A range [lo, hi] grown by the margin about its middle, never to zero width.
+Vec2 widened(double lo, double hi, double margin) {
+    const double middle = 0.5 * (lo + hi);
+    const double half = std::max(0.5 * (hi - lo) * (1.0 + margin), 1e-9 * std::max(std::abs(middle), 1.0));
+    return {middle - half, middle + half};
+}
+
+// The depth rows. Depth does not move texels, so it is refitted on its own — at a refit, or
+// when the body leaves [0, 1] — and must keep every caster of the body:
+// clip z' = (z − lo·w) / (hi − lo), and the linear row likewise.
+void fitDepth(ShadowView& view, const ConvexBody::Points& body, double margin, bool refit) {
+    double lo = INFINITY, hi = -INFINITY, linearLo = INFINITY, linearHi = -INFINITY;
+    for (const Vec3& p : body) {
+        const Vec4 c = view.clipFromWorld * Vec4(p, 1.0);
+        lo = std::min(lo, c.z / c.w), hi = std::max(hi, c.z / c.w);
+        const double linear = glm::dot(view.linearDepthFromWorld, Vec4(p, 1.0));
+        linearLo = std::min(linearLo, linear), linearHi = std::max(linearHi, linear);
+    }
+    if (refit || lo < 0.0 || hi > 1.0) {
+        const Vec2 range = widened(lo, hi, margin);
+        for (int c = 0; c < 4; ++c)
+            view.clipFromLight[c][2] = (view.clipFromLight[c][2] - range.x * view.clipFromLight[c][3]) / (range.y - range.x);
+        view.clipFromWorld = view.clipFromLight * view.lightFromWorld;
+    }
+    if (refit || linearLo < 0.0 || linearHi > 1.0) {
+        const Vec2 range = widened(linearLo, linearHi, margin);
+        view.linearDepthFromWorld.w -= range.x;
+        view.linearDepthFromWorld /= range.y - range.x;
+    }
+}
+
+// The held view shifted by whole texels so that it covers the body, or nothing when no shift
+// can (the body is wider than the map, or reaches behind the warp's projection centre).
+std::optional<ShadowView> shiftedToCover(const ShadowView& held, const ConvexBody::Points& body, int mapSize) {
+    Vec2 lo(INFINITY), hi(-INFINITY);
+    for (const Vec3& p : body) {
+        const Vec4 c = held.clipFromWorld * Vec4(p, 1.0);
+        if (!(c.w > 0.0)) return std::nullopt;
+        lo = glm::min(lo, Vec2(c) / c.w);
+        hi = glm::max(hi, Vec2(c) / c.w);
+    }
+    const double texel = 2.0 / mapSize;
+    Vec2 shift(0.0); // unchanged matrices while the body fits: bit-identical frames
+    for (int axis = 0; axis < 2; ++axis) {
+        if (lo[axis] >= -1.0 && hi[axis] <= 1.0) continue;
+        const double k = std::round(-0.5 * (lo[axis] + hi[axis]) / texel);
+        shift[axis] = k * texel;
+        if (lo[axis] + shift[axis] < -1.0 || hi[axis] + shift[axis] > 1.0) return std::nullopt;
+    }
+    ShadowView out = held;
+    if (shift != Vec2(0.0)) shiftClip(out, shift.x, shift.y);
     return out;
 }
 
-bool SetupHysteresis::holds(const ShadowSetupInputs& in) const {
-    if (!m_fit) return false;
-    const ShadowSetupInputs& was = m_fit->inputs;
-    const PerspectiveCamera &c = in.camera, &f = was.camera;
-    if (in.light.wsDirection != was.light.wsDirection || in.technique != was.technique || in.mapSize != was.mapSize ||
-        c.fovYDegrees != f.fovYDegrees || c.aspect != f.aspect || c.zNear != f.zNear || c.zFar != f.zFar)
-        return false;
-    // The scene may only have shrunk: a caster beyond the fitted bounds could be missed.
-    const Aabb& b = in.wsSceneBounds;
-    if (!b.isEmpty() && !(was.wsSceneBounds.contains(b.min) && was.wsSceneBounds.contains(b.max))) return false;
-    if (glm::distance(c.wsEye, f.wsEye) > m_options.radiusMetres) return false;
-    const double cosTurn = glm::dot(glm::normalize(c.wsDirection), glm::normalize(f.wsDirection));
-    return cosTurn >= std::cos(glm::radians(m_options.turnDegrees));
+// The view's focus body: B of the camera limited to the view's split.
+ConvexBody::Points viewBody(const ShadowSetupInputs& in, const ShadowView& view) {
+    PerspectiveCamera slice = in.camera;
+    if (view.split) slice.zNear = view.split->x, slice.zFar = view.split->y;
+    return computeFocusBody(slice, in.light, in.wsSceneBounds).vertices();
+}
+
+// The largest ratio of held to fresh texel footprint at points of the central ray inside the
+// scene, from the view's near end (where a warp puts its densest texels) out, doubling.
+double texelGrowth(const ShadowSetupInputs& in, const ShadowView& held, const ShadowView& fresh) {
+    const PerspectiveCamera& cam = in.camera;
+    double lo = fresh.split ? fresh.split->x : cam.zNear, hi = fresh.split ? fresh.split->y : cam.zFar;
+    if (in.visibleDepth && std::min(hi, in.visibleDepth->y) > std::max(lo, in.visibleDepth->x))
+        lo = std::max(lo, in.visibleDepth->x), hi = std::min(hi, in.visibleDepth->y);
+    const Vec3 forward = glm::normalize(cam.wsDirection);
+    double worst = 0.0;
+    for (double depth = lo;; depth *= 2.0) {
+        const Vec3 p = cam.wsEye + std::min(depth, hi) * forward;
+        if (in.wsSceneBounds.contains(p)) {
+            const double now = texelFootprint(fresh, in.mapSize, in.light.wsDirection, p);
+            if (std::isfinite(now)) worst = std::max(worst, texelFootprint(held, in.mapSize, in.light.wsDirection, p) / now);
+        }
+        if (depth >= hi) break;
+    }
+    return worst;
+}
+
+// Whether a held set-up can go on: the same light, technique, map and layout, view for view.
+bool compatible(const ShadowSetupInputs& was, const ShadowSetup& held, const ShadowSetupInputs& now, const ShadowSetup& fresh) {
+    return was.light.wsDirection == now.light.wsDirection && was.technique == now.technique && was.mapSize == now.mapSize &&
+           held.depthLayout == fresh.depthLayout && held.views.size() == fresh.views.size();
+}
+
+} // namespace
+
+Status validate(const HysteresisOptions& o) {
+    if (!(o.margin >= 0.0 && o.margin <= 1.0)) return fieldError("hysteresis.margin", "must be a fraction in [0, 1]");
+    if (!(o.maxTexelGrowth > 1.0 + o.margin) || !std::isfinite(o.maxTexelGrowth))
+        return fieldError("hysteresis.growth", "must be finite and > 1 + margin (a fresh refit's texels are 1 + margin times a fresh fit's)");
+    return Ok{};
+}
+
+double texelFootprint(const ShadowView& view, int mapSize, const Vec3& wsLight, const Vec3& wsPoint) {
+    const Mat4& m = view.clipFromWorld;
+    const Vec4 c = m * Vec4(wsPoint, 1.0);
+    if (!(c.w > 0.0)) return INFINITY;
+    const Vec3 l = glm::normalize(wsLight);
+    const Vec3 e1 = glm::normalize(std::abs(l.y) < 0.9 ? glm::cross(l, Vec3(0, 1, 0)) : glm::cross(l, Vec3(1, 0, 0)));
+    const Vec3 e2 = glm::cross(l, e1);
+    // ∂(x/w)/∂e = (dx·w − x·dw) / w² for the clip-space change d = M (e, 0).
+    auto derivative = [&](const Vec3& e) {
+        const Vec4 d = m * Vec4(e, 0.0);
+        return Vec2((d.x * c.w - c.x * d.w) / (c.w * c.w), (d.y * c.w - c.y * d.w) / (c.w * c.w));
+    };
+    const Vec2 j1 = derivative(e1), j2 = derivative(e2);
+    const double det = std::abs(j1.x * j2.y - j1.y * j2.x);
+    if (!(det > 0.0)) return INFINITY;
+    return (2.0 / mapSize) / std::sqrt(det);
 }
 
 Result<ShadowSetup> SetupHysteresis::next(const ShadowSetupInputs& inputs) {
     if (auto s = validate(m_options); !s) return s.errorInfo();
-    m_refitted = !holds(inputs);
-    if (!m_refitted) return m_fit->setup;
-    ShadowSetupInputs enclosing = inputs;
-    enclosing.camera = enclosingCamera(inputs.camera, m_options);
-    auto setup = computeShadowSetup(enclosing);
-    if (!setup) return setup;
-    m_fit = Fit{inputs, *setup};
-    return setup;
+    Result<ShadowSetup> fresh = computeShadowSetup(inputs);
+    if (!fresh) return fresh;
+    const bool refitAll = !m_held || !compatible(m_held->inputs, m_held->setup, inputs, *fresh);
+    ShadowSetup out = *fresh; // body, fallbacks and splits of this frame
+    m_refittedViews = 0;
+    for (size_t i = 0; i < out.views.size(); ++i) {
+        const ShadowView& now = fresh->views[i];
+        const ConvexBody::Points body = viewBody(inputs, now);
+        if (body.empty()) { // nothing of the scene to cover: nothing to hold either
+            ++m_refittedViews;
+            continue;
+        }
+        std::optional<ShadowView> kept;
+        if (!refitAll) kept = shiftedToCover(m_held->setup.views[i], body, inputs.mapSize);
+        if (kept && texelGrowth(inputs, *kept, now) > m_options.maxTexelGrowth) kept.reset();
+        const bool refit = !kept;
+        if (refit) {
+            kept = now;
+            scaleClip(*kept, 1.0 / (1.0 + m_options.margin));
+            ++m_refittedViews;
+        }
+        fitDepth(*kept, body, m_options.margin, refit);
+        kept->split = now.split; // the shader picks the split by this frame's distances
+        out.views[i] = *kept;
+    }
+    m_held = Held{inputs, out};
+    return out;
 }
 
 } // namespace shadowkit::core

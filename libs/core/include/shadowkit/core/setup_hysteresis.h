@@ -1,13 +1,22 @@
-// Temporal hysteresis for shadow set-ups: a set-up fitted for a camera a little larger than
-// the real one is kept, matrices unchanged, for as long as the real camera stays inside what
-// it was fitted for. While it is kept, every shadow lies on the same texels from frame to
-// frame — no flicker at all on still receivers, for any technique, warped or not — and when
-// the camera leaves, one refit. This is how `--stabilize` makes LiSPSM and TSM stable: their
-// texel grids cannot be snapped as a uniform map's can (a texel's size varies over a warped
-// map, so no shift of it resamples the same world points), but they can be held.
+// Temporal hysteresis for shadow set-ups: stable texels for every technique, warped or not.
+//
+// A uniform map is stabilised by snapping: shifted by whole texels it samples the same world
+// points again (cascades.h). A warped map cannot be snapped — its texels differ in size over
+// the map, and a perspective warp that follows the camera changes every texel every frame —
+// but it can be *held*: its warp kept fixed in the world while the camera moves, and only
+// shifted by whole texels of its own post-warp space, which is the same world lattice again,
+// exactly, since x_ndc + t is still a whole-texel shift after the perspective divide.
+//
+// SetupHysteresis does that per shadow view: each frame it computes the set-up a fresh fit
+// would give, and keeps the last refit's matrix (its texel lattice), shifted by whole texels
+// so that it covers this frame's focus body of the view. It refits the view — one pop — only
+// when the held lattice cannot cover that body any more, or when it has gone stale: when
+// its texels along the camera's central ray have grown more than `maxTexelGrowth` times the
+// fresh fit's there (a warp concentrates texels at the viewer's position of its refit; the
+// camera leaving that position is what makes a held warp worse than a fresh one). Depth is
+// refitted on its own when the body leaves the held depth range: it does not move texels.
 #pragma once
 
-#include "shadowkit/core/camera.h"
 #include "shadowkit/core/result.h"
 #include "shadowkit/core/shadow_setup.h"
 
@@ -16,44 +25,46 @@
 namespace shadowkit::core {
 
 struct HysteresisOptions {
-    double radiusMetres = 4.0; // the eye may move this far from where the set-up was fitted, > 0
-    double turnDegrees = 5.0;  // and the view direction turn this much, [0, 45]
+    // Spare room round the focus body at a refit, as a fraction of the map's extent: the
+    // body may move or grow this much before it forces a refit, and every texel is this much
+    // larger than a fresh fit's while it is held. [0, 1].
+    double margin = 0.05;
+    // Refit when a held texel on the camera's central ray is this many times the size of a
+    // fresh fit's there (linear size, on a plane facing the light). > 1 + margin.
+    double maxTexelGrowth = 1.25;
 };
 
-// Fails naming the field ("hysteresis.radius", "hysteresis.turn").
+// Fails naming the field ("hysteresis.margin", "hysteresis.growth").
 Status validate(const HysteresisOptions& options);
 
-// A camera whose frustum holds the frustum of every camera with the same projection and up
-// vector, its eye within `radiusMetres` of `camera`'s and its direction within `turnDegrees`
-// of it: both fields of view widened to hold every turned camera's corner rays, the eye moved
-// back along the view until the ball of radius r round it is inside (r / sin of the narrower
-// widened half-angle; a frustum from any eye in the ball whose rays lie within the widened
-// angles stays inside, the pyramid being convex), the far plane beyond the farthest frustum
-// corner of any of them, the near plane no farther than the nearest real eye can be.
-// Precondition: camera.validate(), validate(options).
-PerspectiveCamera enclosingCamera(const PerspectiveCamera& camera, const HysteresisOptions& options);
+// The size, on a plane facing the light, of the texel of `view` at `wsPoint` relative to the
+// map's whole extent in texels: (2 / mapSize) / sqrt|det ∂ndc.xy/∂(e1, e2)| with e1, e2 unit
+// vectors perpendicular to the light. +inf where the map's projection degenerates there
+// (w <= 0 or a zero determinant).
+double texelFootprint(const ShadowView& view, int mapSize, const Vec3& wsLightDirection, const Vec3& wsPoint);
 
 class SetupHysteresis {
 public:
     explicit SetupHysteresis(HysteresisOptions options = {}) : m_options(options) {}
 
-    // This frame's set-up: the kept one while the camera is within reach of the one it was
-    // fitted for and nothing else changed (light, scene bounds grown, technique, map size,
-    // projection), else a new one fitted for enclosingCamera(inputs.camera).
+    // This frame's set-up: every view held (whole-texel shifted) while it covers its focus
+    // body and has not gone stale, else refitted with the margin. Everything is refitted when
+    // the light, technique, map size, depth layout or view count changed. (A grown scene or
+    // a new projection needs no rule of its own: the body to cover is this frame's.)
     Result<ShadowSetup> next(const ShadowSetupInputs& inputs);
-    bool refitted() const { return m_refitted; } // by the last next()
-    void reset() { m_fit.reset(); }
+    // Views refitted by the last next() (all of them on the first call).
+    int refittedViews() const { return m_refittedViews; }
+    bool refitted() const { return m_refittedViews > 0; }
+    void reset() { m_held.reset(); }
 
 private:
-    bool holds(const ShadowSetupInputs& inputs) const;
-
     HysteresisOptions m_options;
-    struct Fit {
-        ShadowSetupInputs inputs; // as given (the real camera)
-        ShadowSetup setup;
+    struct Held {
+        ShadowSetupInputs inputs; // of the last frame
+        ShadowSetup setup;        // this frame's views: held lattices, shifted
     };
-    std::optional<Fit> m_fit;
-    bool m_refitted = false;
+    std::optional<Held> m_held;
+    int m_refittedViews = 0;
 };
 
 } // namespace shadowkit::core
