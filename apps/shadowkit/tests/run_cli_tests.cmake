@@ -203,6 +203,17 @@ if(CASE STREQUAL "gl-render-sequence")
   if(pos EQUAL -1)
     message(SEND_ERROR "render --path: no summary line: ${out}")
   endif()
+  # --video: encoded where ffmpeg is installed, refused up front (one line, nothing drawn) where not.
+  find_program(FFMPEG ffmpeg)
+  execute_process(COMMAND ${SHADOWKIT} render ${small} --path flythrough --frames 0:3 --size 32x18 --map-size 64
+                          --out "${WORK}/v/%03d.png" --video "${WORK}/v.mp4" RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(FFMPEG)
+    if(NOT rc EQUAL 0 OR NOT EXISTS "${WORK}/v.mp4")
+      message(SEND_ERROR "render --video: ffmpeg is installed but no video was written: ${out} ${err}")
+    endif()
+  elseif(rc EQUAL 0 OR EXISTS "${WORK}/v/000.png" OR NOT err MATCHES "--video: ffmpeg is not installed")
+    message(SEND_ERROR "render --video without ffmpeg: expected one clear refusal before drawing: ${err}")
+  endif()
 endif()
 
 # compare writes a grid.
