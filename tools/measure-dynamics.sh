@@ -35,3 +35,4 @@ run lispsm                 --technique lispsm --map-size 4096
 run csm                    --technique csm --cascades 4 --map-size 2048
 run csm-stabilize          --technique csm --cascades 4 --map-size 2048 --stabilize
 run csm-lispsm             --technique csm --cascades 4 --map-size 2048 --cascade-warp lispsm
+run lispsm-stabilize       --technique lispsm --map-size 4096 --stabilize

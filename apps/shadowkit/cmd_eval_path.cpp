@@ -89,7 +89,7 @@ int runEvalPath(const EvalPathArgs& args) {
     std::string technique;
     // --stabilize with held lattices: one hysteresis for the whole sequence.
     std::optional<core::SetupHysteresis> hysteresis = args.technique.newHysteresis();
-    int refits = 0;
+    int refits = 0, toCover = 0, stale = 0; // frames with a refit; views refitted for each reason
     fmt::print("{:>5} {:>7} {:>9} {:>7} {:>8} {:>7} {:>9} {:>9} {:>6}\n", "frame", "t_s", "valid_px", "wrong%", "flicker%", "truth%",
                "ppt50", "compared", "sec");
     for (const TimedFrame& frame : timeline->frames) {
@@ -108,7 +108,10 @@ int runEvalPath(const EvalPathArgs& args) {
         options.hysteresis = hysteresis ? &*hysteresis : nullptr;
         auto measured = (*measurer)->measure(*inputs, *settings, options);
         if (!measured) return fail(withFlagName(measured.errorInfo()).message);
-        refits += hysteresis && hysteresis->refitted();
+        if (hysteresis) {
+            refits += hysteresis->refitted();
+            toCover += hysteresis->lastRefits().toCover, stale += hysteresis->lastRefits().stale;
+        }
         technique = core::techniqueName(measured->setup.technique);
         eval::ShadowStates states = eval::shadowStates(view->camera, *measured->truth, measured->comparison);
         FrameRow row{frame.number, frame.time, measured->figures()};
@@ -147,7 +150,9 @@ int runEvalPath(const EvalPathArgs& args) {
         if (r.temporal) flicker.push_back(r.temporal->flickerPct), truthChange.push_back(r.temporal->truthChangePct);
     }
     const Summary fl = summarise(flicker), tc = summarise(truthChange), wr = summarise(wrong);
-    if (hysteresis) fmt::print("--stabilize: the set-up was refitted in {} of {} frames\n", refits, rows.size());
+    if (hysteresis)
+        fmt::print("--stabilize: the set-up was refitted in {} of {} frames ({} maps to cover the view, {} grown stale)\n", refits,
+                   rows.size(), toCover, stale);
     fmt::print("{} along {} ({} frames): flicker_pct mean {:.3f} p95 {:.3f} max {:.3f} | truth_change_pct mean {:.3f} p95 {:.3f} "
                "max {:.3f} | wrong_pct mean {:.3f}\n",
                technique, timeline->path->name, rows.size(), fl.mean, fl.p95, fl.max, tc.mean, tc.p95, tc.max, wr.mean);

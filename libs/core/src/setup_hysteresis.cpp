@@ -7,16 +7,20 @@
 // warp. The pops left are the refits, so the design question is only when to refit:
 // - coverage: the view's focus body must fit inside the held map after the shift;
 // - staleness: LiSPSM and TSM put their densest texels where the viewer was at the refit; a
-//   camera that moves on leaves them behind. The texel footprint along the central ray,
-//   held against fresh, says when that has cost more than `maxTexelGrowth`: a bound on the
-//   price of holding in the quantity the error depends on (seed 000 §4: dp/ds), not in metres
-//   or degrees, which mean different things 1.8 m and 40 m above the ground.
+//   camera that moves on leaves them behind. The texel footprint along the central ray, held
+//   against what a refit would give now, says when a refit would pay `maxTexelGrowth`: a bound
+//   in the quantity the error depends on (seed 000 §4: dp/ds), not in metres or degrees,
+//   which mean different things 1.8 m and 40 m above the ground.
+// - motion: a refit that covers only this frame's body is outgrown within frames by a moving
+//   camera; covering also the body `lookaheadFrames` on (the camera extrapolated from its last
+//   step) makes room for the motion, paid for in texels only while the camera moves.
 #include "shadowkit/core/setup_hysteresis.h"
 
 #include "shadowkit/core/focus_body.h"
 
 #include <algorithm>
 #include <cmath>
+#include <span>
 
 namespace shadowkit::core {
 namespace {
@@ -30,11 +34,19 @@ void shiftClip(ShadowView& view, double tx, double ty) {
     view.clipFromWorld = view.clipFromLight * view.lightFromWorld;
 }
 
-// Scales NDC x and y by s about the centre of the map.
-void scaleClip(ShadowView& view, double s) {
-    for (int c = 0; c < 4; ++c) {
-        view.clipFromLight[c][0] *= s;
-        view.clipFromLight[c][1] *= s;
+// Fits NDC x and y of the points to [−1, 1] shrunk by 1 + margin: x' = (x − c·w) · s per axis.
+// Points with w <= 0 cannot be held by this projection and must not be passed.
+void fitClip(ShadowView& view, std::span<const Vec3> wsPoints, double margin) {
+    Vec2 lo(INFINITY), hi(-INFINITY);
+    for (const Vec3& p : wsPoints) {
+        const Vec4 c = view.clipFromWorld * Vec4(p, 1.0);
+        lo = glm::min(lo, Vec2(c) / c.w), hi = glm::max(hi, Vec2(c) / c.w);
+    }
+    for (int axis = 0; axis < 2; ++axis) {
+        const double centre = 0.5 * (lo[axis] + hi[axis]);
+        const double scale = 2.0 / (std::max(hi[axis] - lo[axis], 1e-12) * (1.0 + margin));
+        for (int c = 0; c < 4; ++c)
+            view.clipFromLight[c][axis] = scale * (view.clipFromLight[c][axis] - centre * view.clipFromLight[c][3]);
     }
     view.clipFromWorld = view.clipFromLight * view.lightFromWorld;
 }
@@ -93,6 +105,22 @@ std::optional<ShadowView> shiftedToCover(const ShadowView& held, const ConvexBod
     return out;
 }
 
+// The camera `frames` frames on, moving and turning as it did from `before` to `now`.
+PerspectiveCamera extrapolated(const PerspectiveCamera& before, const PerspectiveCamera& now, double frames) {
+    PerspectiveCamera out = now;
+    out.wsEye = now.wsEye + frames * (now.wsEye - before.wsEye);
+    const Vec3 d0 = glm::normalize(before.wsDirection), d1 = glm::normalize(now.wsDirection);
+    out.wsDirection = d1 + frames * (d1 - d0);
+    return out;
+}
+
+// Whether every point lies in front of the view's projection centre.
+bool inFront(const ShadowView& view, const ConvexBody::Points& points) {
+    for (const Vec3& p : points)
+        if (!((view.clipFromWorld * Vec4(p, 1.0)).w > 0.0)) return false;
+    return true;
+}
+
 // The view's focus body: B of the camera limited to the view's split.
 ConvexBody::Points viewBody(const ShadowSetupInputs& in, const ShadowView& view) {
     PerspectiveCamera slice = in.camera;
@@ -100,7 +128,7 @@ ConvexBody::Points viewBody(const ShadowSetupInputs& in, const ShadowView& view)
     return computeFocusBody(slice, in.light, in.wsSceneBounds).vertices();
 }
 
-// The largest ratio of held to fresh texel footprint at points of the central ray inside the
+// The largest ratio of held to candidate texel footprint at points of the central ray inside the
 // scene, from the view's near end (where a warp puts its densest texels) out, doubling.
 double texelGrowth(const ShadowSetupInputs& in, const ShadowView& held, const ShadowView& fresh) {
     const PerspectiveCamera& cam = in.camera;
@@ -130,8 +158,9 @@ bool compatible(const ShadowSetupInputs& was, const ShadowSetup& held, const Sha
 
 Status validate(const HysteresisOptions& o) {
     if (!(o.margin >= 0.0 && o.margin <= 1.0)) return fieldError("hysteresis.margin", "must be a fraction in [0, 1]");
-    if (!(o.maxTexelGrowth > 1.0 + o.margin) || !std::isfinite(o.maxTexelGrowth))
-        return fieldError("hysteresis.growth", "must be finite and > 1 + margin (a fresh refit's texels are 1 + margin times a fresh fit's)");
+    if (!(o.lookaheadFrames >= 0.0 && o.lookaheadFrames <= 1000.0))
+        return fieldError("hysteresis.lookahead", "must be in [0, 1000] frames");
+    if (!(o.maxTexelGrowth > 1.0) || !std::isfinite(o.maxTexelGrowth)) return fieldError("hysteresis.growth", "must be finite and > 1");
     return Ok{};
 }
 
@@ -158,29 +187,54 @@ Result<ShadowSetup> SetupHysteresis::next(const ShadowSetupInputs& inputs) {
     Result<ShadowSetup> fresh = computeShadowSetup(inputs);
     if (!fresh) return fresh;
     const bool refitAll = !m_held || !compatible(m_held->inputs, m_held->setup, inputs, *fresh);
+    // Where the camera will be `lookaheadFrames` on if it keeps this frame's motion.
+    std::optional<ShadowSetupInputs> ahead;
+    if (m_previousCamera && m_options.lookaheadFrames > 0) {
+        ahead = inputs;
+        ahead->camera = extrapolated(*m_previousCamera, inputs.camera, m_options.lookaheadFrames);
+        const bool still = m_previousCamera->wsEye == inputs.camera.wsEye &&
+                           glm::normalize(m_previousCamera->wsDirection) == glm::normalize(inputs.camera.wsDirection);
+        if (still || !ahead->camera.validate()) ahead.reset();
+    }
     ShadowSetup out = *fresh; // body, fallbacks and splits of this frame
-    m_refittedViews = 0;
+    m_refits = {};
     for (size_t i = 0; i < out.views.size(); ++i) {
         const ShadowView& now = fresh->views[i];
         const ConvexBody::Points body = viewBody(inputs, now);
         if (body.empty()) { // nothing of the scene to cover: nothing to hold either
-            ++m_refittedViews;
+            ++m_refits.views;
             continue;
         }
+        // What a refit would give now: the fresh warp, fitted to this body and, where the warp
+        // can hold it, to the body the camera will have if it goes on as it went.
+        ShadowView refit = now;
+        ConvexBody::Points cover = body;
+        if (ahead)
+            if (const ConvexBody::Points later = viewBody(*ahead, now); inFront(now, later))
+                for (const Vec3& p : later) cover.push_back(p);
+        fitClip(refit, cover, m_options.margin);
+
         std::optional<ShadowView> kept;
-        if (!refitAll) kept = shiftedToCover(m_held->setup.views[i], body, inputs.mapSize);
-        if (kept && texelGrowth(inputs, *kept, now) > m_options.maxTexelGrowth) kept.reset();
-        const bool refit = !kept;
-        if (refit) {
-            kept = now;
-            scaleClip(*kept, 1.0 / (1.0 + m_options.margin));
-            ++m_refittedViews;
+        if (!refitAll) {
+            kept = shiftedToCover(m_held->setup.views[i], body, inputs.mapSize);
+            if (!kept) {
+                ++m_refits.toCover;
+            } else if (texelGrowth(inputs, *kept, refit) > m_options.maxTexelGrowth) {
+                kept.reset();
+                ++m_refits.stale;
+            }
         }
-        fitDepth(*kept, body, m_options.margin, refit);
+        const bool refitted = !kept;
+        if (refitted) {
+            kept = refit;
+            ++m_refits.views;
+        }
+        fitDepth(*kept, body, m_options.margin, refitted);
         kept->split = now.split; // the shader picks the split by this frame's distances
         out.views[i] = *kept;
     }
     m_held = Held{inputs, out};
+    m_previousCamera = inputs.camera;
     return out;
 }
 

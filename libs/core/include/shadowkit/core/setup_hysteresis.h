@@ -11,10 +11,12 @@
 // would give, and keeps the last refit's matrix (its texel lattice), shifted by whole texels
 // so that it covers this frame's focus body of the view. It refits the view — one pop — only
 // when the held lattice cannot cover that body any more, or when it has gone stale: when
-// its texels along the camera's central ray have grown more than `maxTexelGrowth` times the
-// fresh fit's there (a warp concentrates texels at the viewer's position of its refit; the
-// camera leaving that position is what makes a held warp worse than a fresh one). Depth is
-// refitted on its own when the body leaves the held depth range: it does not move texels.
+// its texels along the camera's central ray are more than `maxTexelGrowth` times what a
+// refit would give there now (a warp concentrates texels at the viewer's position of its
+// refit; the camera leaving that position is what makes a held warp worse than a new one).
+// A refit covers the body with `margin` to spare and, for a moving camera, the body it will
+// have `lookaheadFrames` on. Depth is refitted on its own when the body leaves the held
+// depth range: it does not move texels.
 #pragma once
 
 #include "shadowkit/core/result.h"
@@ -29,12 +31,16 @@ struct HysteresisOptions {
     // body may move or grow this much before it forces a refit, and every texel is this much
     // larger than a fresh fit's while it is held. [0, 1].
     double margin = 0.05;
-    // Refit when a held texel on the camera's central ray is this many times the size of a
-    // fresh fit's there (linear size, on a plane facing the light). > 1 + margin.
+    // Refit when a held texel on the camera's central ray is this many times the size of
+    // what a refit would give there now (linear size, on a plane facing the light). > 1.
     double maxTexelGrowth = 1.25;
+    // At a refit, also cover the focus body of the camera this many frames on, extrapolated
+    // from its last motion (0: this frame's body only). A still camera pays nothing for it;
+    // a moving one trades texels for fewer refits. [0, 1000].
+    double lookaheadFrames = 10.0;
 };
 
-// Fails naming the field ("hysteresis.margin", "hysteresis.growth").
+// Fails naming the field ("hysteresis.margin", "hysteresis.growth", "hysteresis.lookahead").
 Status validate(const HysteresisOptions& options);
 
 // The size, on a plane facing the light, of the texel of `view` at `wsPoint` relative to the
@@ -52,10 +58,16 @@ public:
     // the light, technique, map size, depth layout or view count changed. (A grown scene or
     // a new projection needs no rule of its own: the body to cover is this frame's.)
     Result<ShadowSetup> next(const ShadowSetupInputs& inputs);
-    // Views refitted by the last next() (all of them on the first call).
-    int refittedViews() const { return m_refittedViews; }
-    bool refitted() const { return m_refittedViews > 0; }
-    void reset() { m_held.reset(); }
+    // Views refitted by the last next() (all of them on the first call), and why.
+    struct Refits {
+        int views = 0;   // all refitted views
+        int toCover = 0; // the held lattice could not cover the view's focus body any more
+        int stale = 0;   // its texels had grown past maxTexelGrowth
+    };
+    const Refits& lastRefits() const { return m_refits; }
+    int refittedViews() const { return m_refits.views; }
+    bool refitted() const { return m_refits.views > 0; }
+    void reset() { m_held.reset(), m_previousCamera.reset(); }
 
 private:
     HysteresisOptions m_options;
@@ -64,7 +76,8 @@ private:
         ShadowSetup setup;        // this frame's views: held lattices, shifted
     };
     std::optional<Held> m_held;
-    int m_refittedViews = 0;
+    std::optional<PerspectiveCamera> m_previousCamera;
+    Refits m_refits;
 };
 
 } // namespace shadowkit::core
