@@ -1,6 +1,7 @@
 // shadowkit setup: the shadow matrices as JSON, without any GL. The output is a
 // contract for engines and tests (README, "shadowkit setup"): keep the names stable.
 #include "commands.h"
+#include "local_light_options.h"
 #include "options.h"
 
 #include <fmt/format.h>
@@ -18,6 +19,7 @@ struct SetupArgs {
     ViewOptions view;
     TechniqueOptions technique;
     BoundsOptions bounds;
+    LocalLightOptions lights;
 };
 
 json toJson(const core::Vec3& v) { return json::array({v.x, v.y, v.z}); }
@@ -53,8 +55,39 @@ json warpJson(const core::WarpParameters& warp) {
         warp);
 }
 
+// A local light's set-up: its maps (one per cube face for a point light, `face` the OpenGL
+// face index), each storing the distance to the light over its `light_distance` range.
+json localLightJson(const LocalLight& light, const core::ShadowSetup& setup) {
+    json j = std::visit(
+        [](const auto& l) -> json {
+            if constexpr (std::is_same_v<std::decay_t<decltype(l)>, core::SpotLight>)
+                return {{"type", "spot"}, {"position", toJson(l.wsPosition)}, {"direction", toJson(glm::normalize(l.wsDirection))},
+                        {"cone_degrees", l.coneDegrees}, {"range", l.range}};
+            else
+                return {{"type", "point"}, {"position", toJson(l.wsPosition)}, {"range", l.range}};
+        },
+        light);
+    j["depth_layout"] = "light_distance";
+    j["depth_clamp"] = setup.depthClamp;
+    if (setup.lightType == core::LightType::Point) j["skipped_faces"] = setup.skippedFaces;
+    json views = json::array();
+    for (const core::ShadowView& v : setup.views) {
+        json jv = {{"clip_from_world", toJson(v.clipFromWorld)},
+                   {"light_from_world", toJson(v.lightFromWorld)},
+                   {"clip_from_light", toJson(v.clipFromLight)},
+                   {"light_distance", {v.lightDistance.x, v.lightDistance.y}}};
+        if (v.face) jv["face"] = *v.face;
+        views.push_back(jv);
+    }
+    j["views"] = views;
+    j["fallbacks"] = setup.fallbacks;
+    return j;
+}
+
 int runSetup(const SetupArgs& args) {
     if (auto s = args.technique.check(/*measuresFrames=*/false); !s) return fail(s.error());
+    auto lights = args.lights.lights();
+    if (!lights) return fail(lights.error());
     auto bounded = args.bounds.resolve(args.scene, args.view);
     if (!bounded) return fail(bounded.error());
     const core::Aabb& bounds = bounded->wsBounds;
@@ -95,6 +128,23 @@ int runSetup(const SetupArgs& args) {
     for (const core::Vec3& p : setup->body.vertices()) body.push_back(toJson(p));
     out["body"] = body;
     out["fallbacks"] = setup->fallbacks;
+    if (!lights->empty()) {
+        const core::LocalShadowInputs local{.camera = cam, .wsSceneBounds = bounds, .mapSize = inputs->mapSize};
+        json locals = json::array();
+        for (const LocalLight& light : *lights) {
+            auto localSetup = std::visit(
+                [&](const auto& l) {
+                    if constexpr (std::is_same_v<std::decay_t<decltype(l)>, core::SpotLight>)
+                        return core::computeSpotShadowSetup(local, l);
+                    else
+                        return core::computePointShadowSetup(local, l);
+                },
+                light);
+            if (!localSetup) return fail(withFlagName(localSetup.errorInfo()).message);
+            locals.push_back(localLightJson(light, *localSetup));
+        }
+        out["local_lights"] = locals;
+    }
     std::cout << out.dump(2) << "\n";
     return 0;
 }
@@ -108,6 +158,7 @@ Command addSetupCommand(CLI::App& app) {
     args->view.addTo(*cmd);
     args->technique.addTo(*cmd);
     args->bounds.addTo(*cmd);
+    args->lights.addTo(*cmd);
     return {cmd, [args] { return runSetup(*args); }};
 }
 

@@ -12,7 +12,6 @@
 #include <vector>
 
 namespace shadowkit::app {
-namespace {
 
 bool parseNumbers(const std::string& text, char separator, std::vector<double>& out) {
     std::stringstream ss(text);
@@ -25,8 +24,6 @@ bool parseNumbers(const std::string& text, char separator, std::vector<double>& 
     }
     return !text.empty() && text.back() != separator;
 }
-
-} // namespace
 
 core::Result<core::Vec3> parseVec3(const std::string& flag, const std::string& text) {
     std::vector<double> v;
@@ -175,6 +172,13 @@ constexpr std::pair<std::string_view, std::string_view> kFlagOfField[] = {
     {"cascades.stabilize", "--stabilize"},
     {"hysteresis.margin", "--stabilize-margin"},
     {"hysteresis.growth", "--stabilize-growth"},
+    {"hysteresis.lookahead", "--stabilize-lookahead"},
+    {"spot.position", "--light"},
+    {"spot.direction", "--light"},
+    {"spot.cone", "--light"},
+    {"spot.range", "--light"},
+    {"point.position", "--light"},
+    {"point.range", "--light"},
     {"cascades.splits", "--splits"},
     {"bias.slope", "--bias-slope"},
     {"bias.constant", "--bias-constant"},
@@ -340,6 +344,9 @@ void TechniqueOptions::addTo(CLI::App& cmd) {
         ->capture_default_str();
     cmd.add_option("--stabilize-growth", hysteresis.maxTexelGrowth,
                    "--stabilize with held lattices: refit when a texel on the central ray is this many times a fresh fit's")
+        ->capture_default_str();
+    cmd.add_option("--stabilize-lookahead", hysteresis.lookaheadFrames,
+                   "--stabilize with held lattices: a refit also covers where the camera will be this many frames on")
         ->capture_default_str();
     cmd.add_option("--blend-band", cascades.blendBand, "csm: fraction of each split blended into the next, 0-0.5")
         ->capture_default_str();

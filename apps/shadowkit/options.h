@@ -122,6 +122,10 @@ struct RenderOptions {
 // > 0" -> "--lispsm-weight: must be > 0"); errors without a known field are kept as they are.
 core::Error withFlagName(const core::Error& error);
 
+// "a<sep>b<sep>c" -> numbers, appended to `out`; false on an empty, non-numeric or
+// non-finite item.
+bool parseNumbers(const std::string& text, char separator, std::vector<double>& out);
+
 // "x,y,z" -> vector; the error names the flag and shows the text.
 core::Result<core::Vec3> parseVec3(const std::string& flag, const std::string& text);
 

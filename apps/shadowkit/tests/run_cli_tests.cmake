@@ -118,6 +118,29 @@ else()
 endif()
 endif()
 
+# Local lights: a point light's cube faces (left-out ones counted) and a spot's map, each
+# with its distance range.
+if(CASE STREQUAL "setup-local-lights")
+execute_process(COMMAND ${SHADOWKIT} setup ${small} --light point:0,5,-30,25 --light spot:0,19,-2,0,-0.5,-1,40
+                RESULT_VARIABLE rc OUTPUT_VARIABLE json ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(SEND_ERROR "setup --light: failed: ${err}")
+else()
+  string(JSON type GET "${json}" local_lights 0 type)
+  string(JSON faces LENGTH "${json}" local_lights 0 views)
+  string(JSON skipped GET "${json}" local_lights 0 skipped_faces)
+  math(EXPR total "${faces} + ${skipped}")
+  string(JSON face GET "${json}" local_lights 0 views 0 face)
+  string(JSON spotType GET "${json}" local_lights 1 type)
+  string(JSON near GET "${json}" local_lights 1 views 0 light_distance 0)
+  string(JSON far GET "${json}" local_lights 1 views 0 light_distance 1)
+  if(NOT type STREQUAL "point" OR NOT total EQUAL 6 OR face LESS 0 OR face GREATER 5 OR NOT spotType STREQUAL "spot"
+     OR NOT far GREATER near)
+    message(SEND_ERROR "setup --light: unexpected local lights: ${json}")
+  endif()
+endif()
+endif()
+
 # analyze reproduces Wimmer et al. 2004, Figure 6 and writes its CSV and plot.
 if(CASE STREQUAL "analyze-figure6")
 execute_process(COMMAND ${SHADOWKIT} analyze --json --scene-bounds -512,0,-512,512,30,512 --csv "${WORK}/a.csv"
@@ -163,8 +186,12 @@ check_fails(time-not-finite "--time" render ${small} --time nan)
 check_fails(sequence-needs-pattern "--out" render ${small} --path flythrough --frames 0:2 --out "${WORK}/x.png")
 check_fails(movers-out-of-range "movers" render ${small} --movers 5000)
 check_fails(strip-without-path "--strip" render ${small} --strip "${WORK}/strip.png")
+check_fails(light-malformed "--light" setup ${small} --light spot:1,2)
+check_fails(light-unknown-kind "--light" setup ${small} --light lamp:1,2,3)
+check_fails(light-cone-too-wide "spot.cone" setup ${small} --light spot:0,3,0,0,-1,0,190)
 check_fails(stabilize-margin-negative "--stabilize-margin" setup ${small} --technique lispsm --stabilize --stabilize-margin -0.1)
-check_fails(stabilize-growth-below-margin "--stabilize-growth" setup ${small} --technique tsm --stabilize --stabilize-margin 0.2 --stabilize-growth 1.1)
+check_fails(stabilize-growth-not-above-one "--stabilize-growth" setup ${small} --technique tsm --stabilize --stabilize-growth 1)
+check_fails(stabilize-lookahead-negative "--stabilize-lookahead" setup ${small} --technique tsm --stabilize --stabilize-lookahead -2)
 check_fails(strip-unwritable "--strip" render ${small} --path flythrough --frames 0:2 --out "${WORK}/f%d.png" --strip "${WORK}/no/dir/s.png")
 check_fails(eval-path-one-frame "--path" eval ${small} --path flythrough --frames 5)
 check_fails(eval-csv-without-path "--csv" eval ${small} --csv "${WORK}/f.csv")

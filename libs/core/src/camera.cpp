@@ -4,11 +4,6 @@
 #include <string>
 
 namespace shadowkit::core {
-namespace {
-
-bool isFinite(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
-
-} // namespace
 
 Status PerspectiveCamera::validate() const {
     if (!isFinite(wsEye)) return makeError("camera eye: must be finite");

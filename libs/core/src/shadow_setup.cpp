@@ -20,7 +20,6 @@ constexpr std::array kTechniques = {
     TechniqueInfo{Technique::Csm, "csm"},           TechniqueInfo{Technique::Lispsm, "lispsm"},
 };
 
-bool isFinite(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 } // namespace
 

@@ -69,13 +69,6 @@ private:
     std::mt19937 m_rng;
 };
 
-bool isFinite(const Mat4& m) {
-    for (int c = 0; c < 4; ++c)
-        for (int r = 0; r < 4; ++r)
-            if (!std::isfinite(m[c][r])) return false;
-    return true;
-}
-
 // Max distance (in clip units) by which a point lies outside the clip cube x,y in [-1,1], z in [0,1].
 double outsideClipCube(const Mat4& clipFromWorld, const Vec3& ws) {
     const Vec4 cs = clipFromWorld * Vec4(ws, 1.0);

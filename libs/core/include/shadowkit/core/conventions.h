@@ -27,6 +27,7 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 
@@ -37,6 +38,15 @@ using Vec3 = glm::dvec3;
 using Vec4 = glm::dvec4;
 using Mat3 = glm::dmat3;
 using Mat4 = glm::dmat4;
+
+// True when no component is NaN or infinite.
+template <glm::length_t N>
+bool isFinite(const glm::vec<N, double>& v) {
+    for (glm::length_t i = 0; i < N; ++i)
+        if (!std::isfinite(v[i])) return false;
+    return true;
+}
+inline bool isFinite(const Mat4& m) { return isFinite(m[0]) && isFinite(m[1]) && isFinite(m[2]) && isFinite(m[3]); }
 
 // SK_ASSERT: programmer mistakes only (a broken precondition of a library function).
 // Bad data from users, files or the environment is reported as a value instead

@@ -33,7 +33,12 @@ enum class DepthLayout {
     Linear,     // linearDepthFromWorld: distance along the light, computed and written per
                 // fragment (Martin & Tan 2004; Scherzer 2005 §4.2) so depth resolution is even
                 // over B whatever the warp
+    LightDistance, // local lights: distance to ShadowSetup::wsLightPosition, mapped from the
+                   // view's lightDistance [near, far] to [0, 1], written per fragment (seed 003)
 };
+
+// The light a set-up is for: the sun (ShadowSetupInputs) or a local light (local_lights.h).
+enum class LightType { Directional, Spot, Point };
 
 struct TechniqueInfo {
     Technique technique;
@@ -182,6 +187,10 @@ struct ShadowView {
     // Row r with depth = dot(r, (p, 1)): distance along the light mapped to [0, 1] over
     // what the map must hold (0 nearest the light). Used when the layout is Linear.
     Vec4 linearDepthFromWorld{0.0};
+    // Local lights: [near, far] distance from the light that the stored depth spans
+    // (LightDistance layout), and for a point light the cube face, 0-5 (local_lights.h).
+    Vec2 lightDistance{0.0};
+    std::optional<int> face;
 };
 
 struct ShadowSetup {
@@ -197,6 +206,9 @@ struct ShadowSetup {
     // True: casters in front of the near plane are clamped to depth 0 rather than clipped,
     // so the depth pass must enable depth clamping (GL_DEPTH_CLAMP).
     bool depthClamp = true;
+    LightType lightType = LightType::Directional;
+    Vec3 wsLightPosition{0.0}; // local lights
+    int skippedFaces = 0;      // point lights: cube faces left out, seeing nothing the camera sees
 };
 
 // Checks the options that do not depend on the camera, light or scene (map size, LiSPSM,

@@ -1,0 +1,72 @@
+// Local lights — spot and point — and their shadow set-ups.
+//
+// A local light sees the scene in perspective from its position, so its maps are
+// perspective views from there: one for a spot light, six 90° faces of a cube for a point
+// light (seed 003). Their stored depth is the distance to the light, mapped from each view's
+// [near, far] to [0, 1] (DepthLayout::LightDistance), which is what the seed recommends for
+// cube maps and what makes a bias in metres mean the same everywhere in the map.
+#pragma once
+
+#include "shadowkit/core/aabb.h"
+#include "shadowkit/core/camera.h"
+#include "shadowkit/core/result.h"
+#include "shadowkit/core/shadow_setup.h"
+
+#include <array>
+
+namespace shadowkit::core {
+
+struct SpotLight {
+    Vec3 wsPosition{0.0, 3.0, 0.0};
+    Vec3 wsDirection{0.0, -1.0, 0.0}; // axis of the cone, any length > 0
+    double coneDegrees = 40.0;        // full opening angle of the cone, (0, 170]
+    double range = 30.0;              // metres: nothing farther is lit, > 0
+
+    // Fields "spot.position", "spot.direction", "spot.cone", "spot.range".
+    Status validate() const;
+};
+
+struct PointLight {
+    Vec3 wsPosition{0.0, 3.0, 0.0};
+    double range = 30.0; // metres, > 0
+
+    // Fields "point.position", "point.range".
+    Status validate() const;
+};
+
+// The cube faces in OpenGL's order (GL_TEXTURE_CUBE_MAP_POSITIVE_X + face): +X, −X, +Y, −Y,
+// +Z, −Z, each a look-at along its axis with the up vector the cube map's (s, t) axes need,
+// so a face's NDC (x, y) is the cube texture's (s, t) for that face (OpenGL 4.5 §8.13).
+struct CubeFace {
+    Vec3 wsAxis, wsUp;
+};
+const std::array<CubeFace, 6>& cubeFaces();
+// The face a direction from the light selects: the axis of largest magnitude (ties to the
+// lower index), as the cube sampler does.
+int cubeFaceOf(const Vec3& wsDirection);
+
+struct LocalShadowInputs {
+    PerspectiveCamera camera;
+    Aabb wsSceneBounds; // every caster and receiver lies inside
+    int mapSize = 1024; // texels per side of the spot map or of each cube face
+};
+
+// The spot light's map: a perspective view from the light, fitted to its receivers R =
+// cone ∩ range ∩ view frustum ∩ scene box: the field of view narrowed to R's angular
+// extent (an off-centre frustum inside the cone), the distance range to R's. Every caster
+// that can shadow a point of R lies on the segment from it to the light, so inside the
+// same angular extent, and nearer: at worst clamped to depth 0, still in front of its
+// receiver (the depth pass clamps rather than clips: setup.depthClamp). No view when R is
+// empty (the light cannot light anything the camera sees).
+Result<ShadowSetup> computeSpotShadowSetup(const LocalShadowInputs& inputs, const SpotLight& light);
+
+// The point light's cube: one view per face whose pyramid meets R = range ∩ view frustum ∩
+// scene box, each a full 90° face (the cube sampler needs whole faces) with its own distance
+// range and `face` index; faces that see nothing of R are left out (setup.skippedFaces).
+Result<ShadowSetup> computePointShadowSetup(const LocalShadowInputs& inputs, const PointLight& light);
+
+// The depth a local light's view stores for a world point (LightDistance layout), before
+// clamping to [0, 1].
+double lightDistanceDepth(const ShadowSetup& setup, const ShadowView& view, const Vec3& wsPoint);
+
+} // namespace shadowkit::core

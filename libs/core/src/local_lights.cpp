@@ -1,0 +1,219 @@
+// Shadow set-ups for spot and point lights.
+//
+// Based on: seed 003 (the point light's map as a cube of six 90° views around the light,
+// depth stored as the distance to the light; near and far chosen so that no occluder is
+// clipped) and the focusing idea of the directional techniques (Wimmer et al. 2004 §3.3:
+// spend the map only on what can matter to the viewer), applied to a light at a point.
+//
+// What can matter: the receivers R = light volume ∩ view frustum ∩ scene box. A caster that
+// shadows a point p of R lies on the segment from p to the light, so
+//   - it is seen from the light in the same direction as p: any view from the light whose
+//     angular extent holds R's holds its casters too (that is why no sweep is needed, unlike
+//     the directional focus body, whose light is at infinity);
+//   - it is nearer the light than p: its stored distance is below p's, or clamped to 0 when
+//     it is nearer than the view's near distance, and still in front. So near and far come
+//     from R alone, and the depth pass clamps instead of clipping (depthClamp).
+// Distances: R is a convex polytope. The largest distance to the light is at a vertex; the
+// smallest may lie inside a face, so the near distance is the smallest *axial* depth over
+// the vertices, a lower bound of every distance in the view (depth along the axis <= distance).
+#include "shadowkit/core/local_lights.h"
+
+#include "shadowkit/core/convex_body.h"
+#include "shadowkit/core/focus_body.h"
+#include "shadowkit/core/light_frame.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+namespace shadowkit::core {
+namespace {
+
+Status checkInputs(const LocalShadowInputs& in) {
+    if (Status s = in.camera.validate(); !s) return s;
+    const Aabb& b = in.wsSceneBounds;
+    if (!isFinite(b.min) || !isFinite(b.max) || b.isEmpty()) return fieldError("scene_bounds", "must be finite with min <= max on every axis");
+    return validateMapSize(in.mapSize);
+}
+
+// The part of the scene within the light's range that the camera sees: the scene box and the
+// range's bounding cube, clipped by the view frustum. (The range ball itself is not convex-
+// polyhedral; its cube is the tightest axis-aligned stand-in, and the light volumes below
+// cut it further.)
+ConvexBody visibleInRange(const LocalShadowInputs& in, const Vec3& wsLight, double range) {
+    Aabb box = sceneBoxForFocus(in.wsSceneBounds);
+    box.min = glm::max(box.min, wsLight - Vec3(range));
+    box.max = glm::min(box.max, wsLight + Vec3(range));
+    if (box.isEmpty()) return {};
+    ConvexBody body = ConvexBody::fromAabb(box);
+    const auto frustum = in.camera.wsFrustumPlanes();
+    body.clip(frustum);
+    return body;
+}
+
+// The four side planes of a pyramid with its apex at the light, looking along the frame's −z,
+// with half-extents tan(x) = tanX and tan(y) = tanY; outward normals in world space.
+std::array<Plane, 4> pyramidPlanes(const Mat4& lightFromWorld, const Vec3& wsApex, double tanX, double tanY) {
+    const Mat4 worldFromLight = glm::inverse(lightFromWorld);
+    auto toWorld = [&](const Vec3& lsNormal) { return glm::normalize(Vec3(worldFromLight * Vec4(lsNormal, 0.0))); };
+    // In light space a point is inside when |x| <= tanX·(−z) and |y| <= tanY·(−z).
+    return {Plane::fromPointNormal(wsApex, toWorld(Vec3(1.0, 0.0, tanX))), Plane::fromPointNormal(wsApex, toWorld(Vec3(-1.0, 0.0, tanX))),
+            Plane::fromPointNormal(wsApex, toWorld(Vec3(0.0, 1.0, tanY))), Plane::fromPointNormal(wsApex, toWorld(Vec3(0.0, -1.0, tanY)))};
+}
+
+// x in [l, r], y in [b, t] at unit distance in front of the light; clip depth [0, 1] over
+// [near, far] (what GL clips is irrelevant with depth clamping: the stored depth is the
+// distance, written per fragment). Frustum with clip w = −z.
+Mat4 frustumZeroToOne(double l, double r, double b, double t, double zNear, double zFar) {
+    Mat4 m(0.0);
+    m[0][0] = 2.0 / (r - l);
+    m[2][0] = (r + l) / (r - l);
+    m[1][1] = 2.0 / (t - b);
+    m[2][1] = (t + b) / (t - b);
+    m[2][2] = zFar / (zNear - zFar);
+    m[3][2] = zNear * zFar / (zNear - zFar);
+    m[2][3] = -1.0;
+    return m;
+}
+
+struct Extent {
+    double l = INFINITY, r = -INFINITY, b = INFINITY, t = -INFINITY; // tangents at unit depth
+    double axialNear = INFINITY, axialFar = 0.0, farthest = 0.0;    // metres
+    bool apexInside = false; // a vertex at the light: every direction of the volume is present
+};
+
+Extent extentOf(const ConvexBody& body, const Mat4& lightFromWorld, const Vec3& wsLight, double range) {
+    Extent e;
+    for (const Vec3& p : body.vertices()) {
+        const Vec3 ls(lightFromWorld * Vec4(p, 1.0));
+        const double depth = -ls.z;
+        e.axialNear = std::min(e.axialNear, depth > 0.0 ? depth : 0.0);
+        e.axialFar = std::max(e.axialFar, depth);
+        e.farthest = std::max(e.farthest, glm::distance(p, wsLight));
+        if (depth <= 1e-9 * range) {
+            e.apexInside = true;
+            continue;
+        }
+        e.l = std::min(e.l, ls.x / depth), e.r = std::max(e.r, ls.x / depth);
+        e.b = std::min(e.b, ls.y / depth), e.t = std::max(e.t, ls.y / depth);
+    }
+    return e;
+}
+
+// A perspective view from the light over tangents [l, r] × [b, t], distances fitted to R.
+ShadowView localView(const Mat4& lightFromWorld, const Extent& e, double range, double l, double r, double b, double t) {
+    ShadowView view;
+    view.lightFromWorld = lightFromWorld;
+    // Clip planes for GL's sake only (the depth pass clamps): near a little in front of R,
+    // never at the apex, far beyond R's farthest axial depth.
+    const double clipNear = std::max(std::min(e.axialNear, range) * 0.5, 1e-4 * range);
+    const double clipFar = std::max(e.axialFar, 2.0 * clipNear) * 1.01;
+    view.clipFromLight = frustumZeroToOne(l, r, b, t, clipNear, clipFar);
+    view.clipFromWorld = view.clipFromLight * view.lightFromWorld;
+    const double farDistance = std::min(e.farthest, range);
+    view.lightDistance = Vec2(std::min(e.axialNear, farDistance), farDistance);
+    if (!(view.lightDistance.y > view.lightDistance.x)) view.lightDistance.y = view.lightDistance.x + 1e-6 * range;
+    return view;
+}
+
+ShadowSetup localSetup(LightType type, const Vec3& wsLight, int mapSize) {
+    ShadowSetup setup;
+    setup.technique = Technique::Focused;
+    setup.lightType = type;
+    setup.wsLightPosition = wsLight;
+    setup.mapSize = mapSize;
+    setup.depthLayout = DepthLayout::LightDistance;
+    setup.depthClamp = true;
+    return setup;
+}
+
+} // namespace
+
+Status SpotLight::validate() const {
+    if (!isFinite(wsPosition)) return fieldError("spot.position", "must be finite");
+    if (!isFinite(wsDirection) || !(glm::length(wsDirection) > 0.0)) return fieldError("spot.direction", "must be a finite, non-zero vector");
+    if (!(coneDegrees > 0.0 && coneDegrees <= 170.0)) return fieldError("spot.cone", "must be in (0, 170] degrees");
+    if (!(range > 0.0 && std::isfinite(range))) return fieldError("spot.range", "must be a finite number of metres > 0");
+    return Ok{};
+}
+
+Status PointLight::validate() const {
+    if (!isFinite(wsPosition)) return fieldError("point.position", "must be finite");
+    if (!(range > 0.0 && std::isfinite(range))) return fieldError("point.range", "must be a finite number of metres > 0");
+    return Ok{};
+}
+
+const std::array<CubeFace, 6>& cubeFaces() {
+    static const std::array<CubeFace, 6> faces = {{{{1, 0, 0}, {0, -1, 0}},
+                                                   {{-1, 0, 0}, {0, -1, 0}},
+                                                   {{0, 1, 0}, {0, 0, 1}},
+                                                   {{0, -1, 0}, {0, 0, -1}},
+                                                   {{0, 0, 1}, {0, -1, 0}},
+                                                   {{0, 0, -1}, {0, -1, 0}}}};
+    return faces;
+}
+
+int cubeFaceOf(const Vec3& d) {
+    const Vec3 a = glm::abs(d);
+    if (a.x >= a.y && a.x >= a.z) return d.x >= 0.0 ? 0 : 1;
+    if (a.y >= a.z) return d.y >= 0.0 ? 2 : 3;
+    return d.z >= 0.0 ? 4 : 5;
+}
+
+double lightDistanceDepth(const ShadowSetup& setup, const ShadowView& view, const Vec3& wsPoint) {
+    return (glm::distance(wsPoint, setup.wsLightPosition) - view.lightDistance.x) / (view.lightDistance.y - view.lightDistance.x);
+}
+
+Result<ShadowSetup> computeSpotShadowSetup(const LocalShadowInputs& in, const SpotLight& light) {
+    if (Status s = checkInputs(in); !s) return s.errorInfo();
+    if (Status s = light.validate(); !s) return s.errorInfo();
+    ShadowSetup setup = localSetup(LightType::Spot, light.wsPosition, in.mapSize);
+    const Mat4 lightFromWorld = makeLightFrame(glm::normalize(light.wsDirection), light.wsPosition, {Vec3(0, 1, 0), Vec3(0, 0, -1)}).lightFromWorld;
+    // The cone inside its square pyramid (half-angle θ on both axes), cut at the range.
+    const double tanHalf = std::tan(0.5 * glm::radians(light.coneDegrees));
+    ConvexBody receivers = visibleInRange(in, light.wsPosition, light.range);
+    const auto sides = pyramidPlanes(lightFromWorld, light.wsPosition, tanHalf, tanHalf);
+    receivers.clip(sides);
+    const Vec3 axis = glm::normalize(light.wsDirection);
+    receivers.clip(Plane::fromPointNormal(light.wsPosition + light.range * axis, axis));
+    if (receivers.isEmpty()) {
+        setup.fallbacks.emplace_back("spot: its cone misses what the camera sees of the scene: no map");
+        return setup;
+    }
+    const Extent e = extentOf(receivers, lightFromWorld, light.wsPosition, light.range);
+    // The field of view narrowed to R's angular extent; the whole cone when R reaches the light.
+    auto clampTan = [&](double v) { return std::clamp(v, -tanHalf, tanHalf); };
+    double l = -tanHalf, r = tanHalf, b = -tanHalf, t = tanHalf;
+    if (!e.apexInside) l = clampTan(e.l), r = clampTan(e.r), b = clampTan(e.b), t = clampTan(e.t);
+    // A sliver (R seen edge-on) still needs a finite, invertible frustum.
+    const double minWidth = 1e-6 * tanHalf;
+    if (r - l < minWidth) l -= 0.5 * minWidth, r += 0.5 * minWidth;
+    if (t - b < minWidth) b -= 0.5 * minWidth, t += 0.5 * minWidth;
+    setup.views.push_back(localView(lightFromWorld, e, light.range, l, r, b, t));
+    return setup;
+}
+
+Result<ShadowSetup> computePointShadowSetup(const LocalShadowInputs& in, const PointLight& light) {
+    if (Status s = checkInputs(in); !s) return s.errorInfo();
+    if (Status s = light.validate(); !s) return s.errorInfo();
+    ShadowSetup setup = localSetup(LightType::Point, light.wsPosition, in.mapSize);
+    const ConvexBody visible = visibleInRange(in, light.wsPosition, light.range);
+    for (int f = 0; f < 6; ++f) {
+        const CubeFace& face = cubeFaces()[static_cast<size_t>(f)];
+        const Mat4 lightFromWorld = glm::lookAt(light.wsPosition, light.wsPosition + face.wsAxis, face.wsUp);
+        ConvexBody receivers = visible;
+        if (!receivers.isEmpty()) receivers.clip(pyramidPlanes(lightFromWorld, light.wsPosition, 1.0, 1.0));
+        if (receivers.isEmpty()) {
+            ++setup.skippedFaces;
+            continue;
+        }
+        ShadowView view = localView(lightFromWorld, extentOf(receivers, lightFromWorld, light.wsPosition, light.range), light.range,
+                                    -1.0, 1.0, -1.0, 1.0);
+        view.face = f;
+        setup.views.push_back(view);
+    }
+    if (setup.views.empty()) setup.fallbacks.emplace_back("point: its range misses what the camera sees of the scene: no map");
+    return setup;
+}
+
+} // namespace shadowkit::core

@@ -1,0 +1,202 @@
+// Spot and point light set-ups: every receiver the camera can see inside the light's volume
+// lands in a map that is not skipped, inside its frustum, with its distance in the stored
+// range, and its casters in front of it; faces follow OpenGL's cube-map table; degenerate
+// placements have defined answers; bad lights are refused naming the field.
+#include "shadowkit/core/local_lights.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+using namespace shadowkit::core;
+
+namespace {
+
+const Aabb kScene = Aabb::fromMinMax(Vec3(-100, 0, -100), Vec3(100, 30, 100));
+
+Vec3 randomUnit(std::mt19937& rng) {
+    std::normal_distribution<double> g;
+    return glm::normalize(Vec3(g(rng), g(rng), g(rng)));
+}
+
+PerspectiveCamera randomCamera(std::mt19937& rng) {
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    PerspectiveCamera c;
+    c.wsEye = Vec3(-90 + 180 * u(rng), 1 + 40 * u(rng), -90 + 180 * u(rng));
+    c.wsDirection = randomUnit(rng);
+    c.fovYDegrees = 30 + 70 * u(rng);
+    c.aspect = 0.8 + u(rng);
+    c.zNear = 0.1 + 2 * u(rng);
+    c.zFar = 50 + 450 * u(rng);
+    return c;
+}
+
+// A point of the view frustum (trilinear in its corners), not uniformly spread but reaching
+// every part of it.
+Vec3 pointInFrustum(const PerspectiveCamera& c, std::mt19937& rng) {
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    const auto k = c.wsFrustumCorners();
+    const double a = u(rng), b = u(rng), depth = std::pow(u(rng), 2.0);
+    auto on = [&](int base) { return glm::mix(glm::mix(k[base], k[base + 1], a), glm::mix(k[base + 3], k[base + 2], a), b); };
+    return glm::mix(on(0), on(4), depth);
+}
+
+// p lands inside the view: in front of it, inside its x/y extent, its distance in range.
+void expectHolds(const ShadowSetup& setup, const ShadowView& view, const Vec3& p, const char* what) {
+    const Vec4 c = view.clipFromWorld * Vec4(p, 1.0);
+    ASSERT_GT(c.w, 0.0) << what;
+    EXPECT_LE(std::abs(c.x / c.w), 1.0 + 1e-7) << what;
+    EXPECT_LE(std::abs(c.y / c.w), 1.0 + 1e-7) << what;
+    const double depth = lightDistanceDepth(setup, view, p);
+    EXPECT_GE(depth, -1e-7) << what;
+    EXPECT_LE(depth, 1.0 + 1e-7) << what;
+    // Its casters: every point between it and the light is in the same view, nearer.
+    for (const double s : {0.001, 0.3, 0.9}) {
+        const Vec3 q = setup.wsLightPosition + s * (p - setup.wsLightPosition);
+        const Vec4 cq = view.clipFromWorld * Vec4(q, 1.0);
+        ASSERT_GT(cq.w, 0.0) << what << " caster";
+        EXPECT_LE(std::abs(cq.x / cq.w), 1.0 + 1e-7) << what << " caster";
+        EXPECT_LE(std::abs(cq.y / cq.w), 1.0 + 1e-7) << what << " caster";
+        EXPECT_LE(std::clamp(lightDistanceDepth(setup, view, q), 0.0, 1.0), depth + 1e-9) << what << " caster";
+    }
+}
+
+const ShadowView* faceView(const ShadowSetup& setup, int face) {
+    for (const ShadowView& v : setup.views)
+        if (v.face == face) return &v;
+    return nullptr;
+}
+
+} // namespace
+
+TEST(LocalLights, EveryVisibleReceiverInRangeIsHeldWithItsCastersOverRandomConfigurations) {
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    long checked = 0, skipped = 0;
+    for (int config = 0; config < 10000; ++config) {
+        const LocalShadowInputs in{.camera = randomCamera(rng), .wsSceneBounds = kScene, .mapSize = 512};
+        // Mostly near the camera (where lights matter), sometimes anywhere, outside the scene too.
+        const Vec3 position = config % 4 == 0 ? Vec3(-120 + 240 * u(rng), -5 + 45 * u(rng), -120 + 240 * u(rng))
+                                              : in.camera.wsEye + 40.0 * u(rng) * randomUnit(rng);
+        const double range = 1 + 79 * u(rng);
+        const PointLight point{.wsPosition = position, .range = range};
+        const SpotLight spot{.wsPosition = position, .wsDirection = randomUnit(rng), .coneDegrees = 5 + 165 * u(rng), .range = range};
+        auto cube = computePointShadowSetup(in, point);
+        auto cone = computeSpotShadowSetup(in, spot);
+        ASSERT_TRUE(cube && cone) << config;
+        EXPECT_EQ(int(cube->views.size()) + cube->skippedFaces, 6);
+        skipped += cube->skippedFaces;
+        for (const ShadowSetup* s : {&*cube, &*cone})
+            for (const ShadowView& v : s->views) {
+                ASSERT_TRUE(isFinite(v.clipFromWorld)) << config;
+                ASSERT_TRUE(isFinite(v.lightDistance) && v.lightDistance.y > v.lightDistance.x && v.lightDistance.x >= 0.0) << config;
+            }
+        const double cosHalf = std::cos(0.5 * glm::radians(spot.coneDegrees));
+        const auto frustum = in.camera.wsFrustumPlanes();
+        for (int k = 0; k < 20; ++k) {
+            // Half from the view frustum, half from the light's ball: visible, in the scene, in range.
+            const Vec3 p = k % 2 ? pointInFrustum(in.camera, rng) : position + range * std::cbrt(u(rng)) * randomUnit(rng);
+            bool visible = true;
+            for (const Plane& plane : frustum) visible = visible && plane.signedDistance(p) <= 0.0;
+            if (!visible || !kScene.contains(p) || glm::distance(p, position) > range || glm::distance(p, position) < 1e-6) continue;
+            ++checked;
+            const ShadowView* face = faceView(*cube, cubeFaceOf(p - position));
+            ASSERT_NE(face, nullptr) << "config " << config << ": a visible receiver's face was skipped";
+            expectHolds(*cube, *face, p, "point");
+            if (glm::dot(glm::normalize(p - position), glm::normalize(spot.wsDirection)) >= cosHalf) {
+                ASSERT_EQ(cone->views.size(), 1u) << "config " << config << ": a lit receiver but no spot map";
+                expectHolds(*cone, cone->views[0], p, "spot");
+            }
+        }
+    }
+    EXPECT_GT(checked, 10000); // the configurations are not all vacuous
+    std::printf("%ld receivers checked; %.2f of 6 faces skipped on average\n", checked, double(skipped) / 10000.0);
+}
+
+TEST(LocalLights, CubeFacesFollowTheOpenGlTable) {
+    // OpenGL 4.5 §8.13, Table 8.19: for the major axis, (sc, tc) and ma; s = sc / |ma|.
+    std::mt19937 rng(9);
+    for (int k = 0; k < 1000; ++k) {
+        const Vec3 r = randomUnit(rng);
+        const int face = cubeFaceOf(r);
+        double sc = 0, tc = 0, ma = 0;
+        switch (face) {
+        case 0: sc = -r.z, tc = -r.y, ma = r.x; break;
+        case 1: sc = r.z, tc = -r.y, ma = r.x; break;
+        case 2: sc = r.x, tc = r.z, ma = r.y; break;
+        case 3: sc = r.x, tc = -r.z, ma = r.y; break;
+        case 4: sc = r.x, tc = -r.y, ma = r.z; break;
+        case 5: sc = -r.x, tc = -r.y, ma = r.z; break;
+        }
+        const CubeFace& f = cubeFaces()[size_t(face)];
+        EXPECT_GT(glm::dot(r, f.wsAxis), 0.0);
+        const Mat4 view = glm::lookAt(Vec3(0.0), f.wsAxis, f.wsUp);
+        const Vec3 v(view * Vec4(r, 0.0));
+        EXPECT_NEAR(v.x / -v.z, sc / std::abs(ma), 1e-12) << "face " << face;
+        EXPECT_NEAR(v.y / -v.z, tc / std::abs(ma), 1e-12) << "face " << face;
+    }
+}
+
+TEST(LocalLights, DegeneratePlacementsHaveDefinedAnswers) {
+    PerspectiveCamera c;
+    c.wsEye = {0, 2, 0};
+    c.wsDirection = {0, 0, -1};
+    c.zFar = 200;
+    const LocalShadowInputs in{.camera = c, .wsSceneBounds = kScene};
+    // A light inside what the camera sees: every cube face sees some of it; the spot keeps its whole cone.
+    auto inside = computePointShadowSetup(in, PointLight{.wsPosition = {0, 3, -20}, .range = 10});
+    ASSERT_TRUE(inside);
+    EXPECT_EQ(inside->views.size(), 6u);
+    const SpotLight torch{.wsPosition = {0, 3, -20}, .wsDirection = {0, -1, -1}, .coneDegrees = 60, .range = 10};
+    auto full = computeSpotShadowSetup(in, torch);
+    ASSERT_TRUE(full);
+    ASSERT_EQ(full->views.size(), 1u);
+    EXPECT_NEAR(full->views[0].clipFromLight[0][0], 1.0 / std::tan(glm::radians(30.0)), 1e-9);
+    // Behind the camera and out of reach: nothing to draw, said so.
+    auto behind = computePointShadowSetup(in, PointLight{.wsPosition = {0, 3, 40}, .range = 10});
+    ASSERT_TRUE(behind);
+    EXPECT_TRUE(behind->views.empty());
+    EXPECT_EQ(behind->skippedFaces, 6);
+    EXPECT_FALSE(behind->fallbacks.empty());
+    // A spot above the scene pointing at the sky lights nothing: no map, said so.
+    auto sky = computeSpotShadowSetup(in, SpotLight{.wsPosition = {0, 50, -20}, .wsDirection = {0, 1, 0}, .coneDegrees = 30, .range = 10});
+    ASSERT_TRUE(sky);
+    EXPECT_TRUE(sky->views.empty());
+    EXPECT_FALSE(sky->fallbacks.empty());
+    // A light on one side of the view: the faces looking away from the frustum are skipped.
+    auto side = computePointShadowSetup(in, PointLight{.wsPosition = {0, 3, 5}, .range = 60});
+    ASSERT_TRUE(side);
+    EXPECT_EQ(faceView(*side, 4), nullptr); // +Z: behind the camera, outside the frustum
+    EXPECT_GT(side->skippedFaces, 0);
+}
+
+TEST(LocalLights, TheSpotMapNarrowsToWhatTheCameraSeesOfTheCone) {
+    PerspectiveCamera c;
+    c.wsEye = {0, 2, 0};
+    c.wsDirection = {0, -0.2, -1};
+    c.fovYDegrees = 30;
+    c.zFar = 40;
+    const LocalShadowInputs in{.camera = c, .wsSceneBounds = kScene};
+    // A wide lamp high above, looking down over an area much larger than the view.
+    const SpotLight lamp{.wsPosition = {0, 25, -20}, .wsDirection = {0, -1, 0}, .coneDegrees = 150, .range = 60};
+    auto setup = computeSpotShadowSetup(in, lamp);
+    ASSERT_TRUE(setup);
+    ASSERT_EQ(setup->views.size(), 1u);
+    const double tanHalf = std::tan(glm::radians(75.0));
+    const double width = 2.0 / setup->views[0].clipFromLight[0][0], height = 2.0 / setup->views[0].clipFromLight[1][1];
+    EXPECT_LT(width * height, 0.25 * (2 * tanHalf) * (2 * tanHalf)); // a quarter of the cone's area or less
+}
+
+TEST(LocalLights, BadLightsAreRefusedNamingTheField) {
+    const LocalShadowInputs in{.camera = PerspectiveCamera{}, .wsSceneBounds = kScene};
+    auto field = [](const auto& result) { return result ? std::string() : result.errorInfo().field; };
+    EXPECT_EQ(field(computePointShadowSetup(in, PointLight{.range = 0})), "point.range");
+    EXPECT_EQ(field(computePointShadowSetup(in, PointLight{.wsPosition = {NAN, 0, 0}})), "point.position");
+    EXPECT_EQ(field(computeSpotShadowSetup(in, SpotLight{.wsDirection = {0, 0, 0}})), "spot.direction");
+    EXPECT_EQ(field(computeSpotShadowSetup(in, SpotLight{.coneDegrees = 180})), "spot.cone");
+    EXPECT_EQ(field(computeSpotShadowSetup(in, SpotLight{.range = INFINITY})), "spot.range");
+    LocalShadowInputs flat = in;
+    flat.mapSize = 4;
+    EXPECT_EQ(field(computeSpotShadowSetup(flat, SpotLight{})), "map_size");
+}
