@@ -18,6 +18,28 @@ bool reachesLight(const RayScene& rays, const core::Vec3& wsPoint, const core::V
     return !rays.occluded(wsPoint + offset * wsNormal, towardsLight, 0.0, std::numeric_limits<double>::infinity());
 }
 
+// A local light's truth: the finite shadow ray from just off the surface to the light, for
+// the points `reaches` admits (range, cone).
+template <class Admits>
+std::vector<uint8_t> litByLocalLight(const RayScene& rays, const TruthBuffers& hits, const core::Vec3& wsLight,
+                                     const TruthOptions& options, Admits admits) {
+    std::vector<uint8_t> lit(hits.surfaceId.size(), 0);
+    const double offset = options.normalOffsetFraction * std::max(rays.sceneDiagonal(), 1.0);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, lit.size()), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t i = r.begin(); i < r.end(); ++i) {
+            if (hits.surfaceId[i] == 0) continue;
+            const core::Vec3 p(hits.wsPosition[i]), n(hits.wsNormal[i]);
+            const core::Vec3 toLight = wsLight - p;
+            const double distance = glm::length(toLight);
+            if (!(distance > 0.0) || !admits(p, distance) || !(glm::dot(n, toLight) > 0.0)) continue;
+            const core::Vec3 origin = p + offset * n;
+            const core::Vec3 towards = wsLight - origin;
+            lit[i] = !rays.occluded(origin, glm::normalize(towards), 0.0, glm::length(towards));
+        }
+    });
+    return lit;
+}
+
 } // namespace
 
 core::Vec3 primaryRayDirection(const core::PerspectiveCamera& camera, int width, int height, int x, int y) {
@@ -87,6 +109,18 @@ std::vector<uint8_t> litAt(const RayScene& rays, const TruthBuffers& hits, const
         }
     });
     return lit;
+}
+
+std::vector<uint8_t> litAt(const RayScene& rays, const TruthBuffers& hits, const core::PointLight& light, const TruthOptions& options) {
+    return litByLocalLight(rays, hits, light.wsPosition, options, [&](const core::Vec3&, double d) { return d <= light.range; });
+}
+
+std::vector<uint8_t> litAt(const RayScene& rays, const TruthBuffers& hits, const core::SpotLight& light, const TruthOptions& options) {
+    const core::Vec3 axis = glm::normalize(light.wsDirection);
+    const double cosHalf = std::cos(0.5 * glm::radians(light.coneDegrees));
+    return litByLocalLight(rays, hits, light.wsPosition, options, [&](const core::Vec3& p, double d) {
+        return d <= light.range && glm::dot(p - light.wsPosition, axis) >= cosHalf * d;
+    });
 }
 
 } // namespace shadowkit::eval

@@ -112,3 +112,59 @@ TEST(TruthTest, PrimaryRaysPutTheirParameterOnTheViewAxis) {
     for (auto [x, y] : {std::pair{0, 0}, std::pair{159, 119}, std::pair{80, 60}})
         EXPECT_NEAR(glm::dot(eval::primaryRayDirection(cam, 160, 120, x, y), forward), 1.0, 1e-12);
 }
+
+// Local lights: the finite shadow ray to a point light, its range, and a spot light's cone,
+// against the analytic answer for a box over the ground.
+TEST(TruthTest, PointAndSpotLightsMatchTheAnalyticShadowRangeAndCone) {
+    scene::Mesh box;
+    scene::addBox(box, glm::mat4(1.0f), {1, 0.5f, 1.5f}, glm::vec3(0.8f));
+    const core::Vec3 centre(0, 2.5, 0), half(1, 0.5, 1.5);
+    const scene::Scene s = groundAnd(box, glm::translate(glm::mat4(1.0f), glm::vec3(centre)));
+    auto rays = eval::RayScene::build(s);
+    ASSERT_TRUE(rays) << rays.error();
+    const eval::TruthBuffers hits =
+        eval::computeTruth(**rays, cameraLookingAtOrigin(), core::DirectionalLight::fromSunAngles(50, 120).value(), 160, 120);
+    // Does the segment p → light cross the box (grown by `grow`)?
+    auto blocked = [&](const core::Vec3& p, const core::Vec3& light, double grow) {
+        const core::Vec3 d = light - p;
+        double t0 = 0.0, t1 = 1.0;
+        for (int a = 0; a < 3; ++a) {
+            const double ta = (centre[a] - half[a] - grow - p[a]) / d[a], tb = (centre[a] + half[a] + grow - p[a]) / d[a];
+            t0 = std::max(t0, std::min(ta, tb));
+            t1 = std::min(t1, std::max(ta, tb));
+        }
+        return t0 <= t1;
+    };
+    const core::PointLight lamp{.wsPosition = {0.5, 6.0, 0.3}, .range = 12.0};
+    const core::SpotLight torch{.wsPosition = {-6.0, 6.0, 0.0}, .wsDirection = {1.0, -0.8, 0.0}, .coneDegrees = 50.0, .range = 20.0};
+    const std::vector<uint8_t> byLamp = eval::litAt(**rays, hits, lamp), byTorch = eval::litAt(**rays, hits, torch);
+    int compared = 0, shadowed = 0, outOfRange = 0, outsideCone = 0, mismatches = 0;
+    for (size_t i = 0; i < hits.surfaceId.size(); ++i) {
+        if (hits.surfaceId[i] != kGroundId) continue;
+        const core::Vec3 p(hits.wsPosition[i]);
+        // The lamp: unlit beyond its range, else lit unless the box is in the way.
+        const double d = glm::distance(p, lamp.wsPosition);
+        if (d > lamp.range + 1e-3) {
+            ++outOfRange;
+            mismatches += byLamp[i] != 0;
+        } else if (d < lamp.range - 1e-3 && blocked(p, lamp.wsPosition, -1e-3) == blocked(p, lamp.wsPosition, 1e-3)) {
+            ++compared;
+            shadowed += blocked(p, lamp.wsPosition, 0.0);
+            mismatches += (byLamp[i] == 0) != blocked(p, lamp.wsPosition, 0.0);
+        }
+        // The torch: nothing outside its cone is lit by it.
+        const core::Vec3 toP = glm::normalize(p - torch.wsPosition);
+        const double cosAngle = glm::dot(toP, glm::normalize(torch.wsDirection)), cosHalf = std::cos(glm::radians(25.0));
+        if (cosAngle < cosHalf - 1e-4) {
+            ++outsideCone;
+            mismatches += byTorch[i] != 0;
+        } else if (cosAngle > cosHalf + 1e-4 && blocked(p, torch.wsPosition, -1e-3) == blocked(p, torch.wsPosition, 1e-3)) {
+            mismatches += (byTorch[i] == 0) != blocked(p, torch.wsPosition, 0.0);
+        }
+    }
+    EXPECT_GT(compared, 5000);
+    EXPECT_GT(shadowed, 100);    // the box's shadow is in view
+    EXPECT_GT(outOfRange, 100);  // so is ground beyond the lamp's range
+    EXPECT_GT(outsideCone, 100); // and ground outside the torch's cone
+    EXPECT_EQ(mismatches, 0);
+}

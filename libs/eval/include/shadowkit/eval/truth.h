@@ -4,6 +4,7 @@
 
 #include "shadowkit/core/camera.h"
 #include "shadowkit/core/light.h"
+#include "shadowkit/core/local_lights.h"
 #include "shadowkit/eval/ray_scene.h"
 
 #include <functional>
@@ -39,6 +40,14 @@ TruthBuffers computeTruth(const RayScene& rays, const core::PerspectiveCamera& c
 // with casters moved: per pixel, 1 where the point faces the light and its shadow ray reaches
 // it, else 0 (also where `hits` has no surface).
 std::vector<uint8_t> litAt(const RayScene& rays, const TruthBuffers& hits, const core::DirectionalLight& light,
+                           const TruthOptions& options = {});
+
+// The truth for a local light at the surface points of `hits`: per pixel, 1 where the point
+// lies within the light's range (and, for a spot light, inside its cone), faces the light,
+// and the segment from it to the light is free; else 0 (also where `hits` has no surface).
+std::vector<uint8_t> litAt(const RayScene& rays, const TruthBuffers& hits, const core::PointLight& light,
+                           const TruthOptions& options = {});
+std::vector<uint8_t> litAt(const RayScene& rays, const TruthBuffers& hits, const core::SpotLight& light,
                            const TruthOptions& options = {});
 
 // A primary ray through the centre of pixel (x, y), top row first, scaled so that its
