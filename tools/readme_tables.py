@@ -16,10 +16,9 @@ drift from what the program measures.
       per `shadowkit eval --path --json` file: flicker_pct and truth_change_pct (mean / p95 /
       max over the frames), mean wrong_pct and pixels_per_texel_p50 (tools/measure-dynamics.sh)
 
-  tools/readme_tables.py segment FIRST LAST LABEL=RUN.csv ...
-      per `shadowkit eval --path --csv` file, over frames FIRST..LAST: flicker_pct mean / p95 /
-      max, mean wrong_pct and pixels_per_texel_p50 (runs over different frame ranges compared
-      on the frames they share)
+  tools/readme_tables.py stable LABEL=PATH.json ...
+      per `shadowkit eval --path --json` file: flicker_pct (mean / p95 / max), mean wrong_pct
+      and pixels_per_texel_p50, and how many frames --stabilize refitted a map in
 
 LABEL is the row's name as printed (e.g. '`tsm`' or '`csm` 4 × 1024²'). tools/measure-readme.sh
 runs the evaluations behind every table and prints them.
@@ -101,31 +100,27 @@ def dynamics(args):
               f"{sum(ppt) / len(ppt):.2f} |")
 
 
-def segment(first, last, args):
-    import csv
-    import math
-    print(f"| technique (frames {first}–{last}) | flicker_pct mean / p95 / max | wrong_pct mean | pixels_per_texel_p50 mean |")
-    print("|---|---:|---:|---:|")
+def stable(args):
+    """Flicker, error, texel density and refits along a path, one row per eval --path JSON."""
+    print("| technique (sun held) | flicker_pct mean / p95 / max | wrong_pct mean | pixels_per_texel_p50 mean | frames refitted |")
+    print("|---|---:|---:|---:|---:|")
     for arg in args:
-        label, _, path = arg.rpartition("=")  # labels may hold '=', paths do not
-        flicker, wrong, ppt = [], [], []
+        label, _, path = arg.partition("=")
+        if not path:
+            sys.exit(f"readme_tables: expected LABEL=FILE.json, got '{arg}'")
         with open(path) as f:
-            for r in csv.DictReader(f):
-                if first <= int(r["frame"]) <= last and r["flicker_pct"]:
-                    flicker.append(float(r["flicker_pct"]))
-                    wrong.append(float(r["wrong_pct"]))
-                    ppt.append(float(r["pixels_per_texel_p50"]))
-        if not flicker:
-            sys.exit(f"readme_tables: {path}: no frames in {first}..{last}")
-        ordered = sorted(flicker)
-        p95 = ordered[min(len(ordered) - 1, math.ceil(0.95 * len(ordered)) - 1)]
-        print(f"| {label} | {sum(flicker) / len(flicker):.3f} / {p95:.3f} / {max(flicker):.3f} | "
-              f"{sum(wrong) / len(wrong):.2f} | {sum(ppt) / len(ppt):.2f} |")
+            run = json.load(f)
+        s = run["summary"]
+        fl = s["flicker_pct"]
+        ppt = [r["pixels_per_texel_p50"] for r in run["frames"]]
+        refits = "—" if run.get("refits") is None else f"{run['refits']} of {len(run['frames'])}"
+        print(f"| {label} | {fl['mean']:.3f} / {fl['p95']:.3f} / {fl['max']:.3f} | {s['wrong_pct']['mean']:.2f} | "
+              f"{sum(ppt) / len(ppt):.2f} | {refits} |")
 
 
 if __name__ == "__main__":
-    if len(sys.argv) >= 5 and sys.argv[1] == "segment":
-        segment(int(sys.argv[2]), int(sys.argv[3]), sys.argv[4:])
+    if len(sys.argv) >= 3 and sys.argv[1] == "stable":
+        stable(sys.argv[2:])
         sys.exit(0)
     if len(sys.argv) >= 3 and sys.argv[1] == "visibility":
         visibility(sys.argv[2:])

@@ -122,7 +122,7 @@ int runCompare(const CompareArgs& args) {
         auto settings = o.render.settingsFor(*view, *inputs);
         if (!settings) return fail(settings.error());
         // Cells that share camera, sun and size share one ray-traced truth (Measurer's cache).
-        std::optional<core::SetupHysteresis> hysteresis = o.technique.newHysteresis(); // the margin of a fresh fit
+        std::optional<core::SetupHysteresis> hysteresis = o.technique.newHysteresis(); // a still frame: the fresh fit
         auto measured = (*measurer)->measure(*inputs, *settings,
                                              {.shadedImage = true,
                                               .visibleDepthFromFrame = o.technique.visibleDepthFromFrame(),

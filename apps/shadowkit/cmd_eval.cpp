@@ -102,7 +102,7 @@ int runEval(const EvalArgs& args) {
         // Progress only when the truth takes a while (large images, big scenes).
         measure::MeasureOptions options;
         options.visibleDepthFromFrame = args.technique.visibleDepthFromFrame();
-        // --stabilize with held lattices: a still view is a refit and pays the margin.
+        // --stabilize with held lattices: a still view is a first frame, the fresh fit itself.
         std::optional<core::SetupHysteresis> hysteresis = args.technique.newHysteresis();
         options.hysteresis = hysteresis ? &*hysteresis : nullptr;
         options.truthProgress = [&, shown = false](double done) mutable {

@@ -75,7 +75,7 @@ struct TechniqueOptions {
     core::Status check(bool measuresFrames = true) const;
     // The set-up of a frame: through `sequence`'s hysteresis when --stabilize asks for one
     // (created on first use; a sequence keeps it across its frames, a still frame gets a
-    // fresh one and pays its margin), else core::computeShadowSetup.
+    // fresh one: the fresh fit itself), else core::computeShadowSetup.
     core::Result<core::ShadowSetup> setupFor(const core::ShadowSetupInputs& inputs,
                                              std::optional<core::SetupHysteresis>& sequence) const;
     // Everything computeShadowSetup needs for this view and scene box.

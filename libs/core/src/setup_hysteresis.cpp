@@ -13,7 +13,9 @@
 //   which mean different things 1.8 m and 40 m above the ground.
 // - motion: a refit that covers only this frame's body is outgrown within frames by a moving
 //   camera; covering also the body `lookaheadFrames` on (the camera extrapolated from its last
-//   step) makes room for the motion, paid for in texels only while the camera moves.
+//   step) and `margin` round both makes room for the motion. Both are paid for in texels only
+//   while the camera moves: a refit for a still camera (a first frame, a still view) is the
+//   fresh fit itself.
 #include "shadowkit/core/setup_hysteresis.h"
 
 #include "shadowkit/core/focus_body.h"
@@ -92,13 +94,13 @@ std::optional<ShadowView> shiftedToCover(const ShadowView& held, const ConvexBod
         lo = glm::min(lo, Vec2(c) / c.w);
         hi = glm::max(hi, Vec2(c) / c.w);
     }
-    const double texel = 2.0 / mapSize;
+    const double texel = 2.0 / mapSize, edge = 1.0 + 1e-9; // a fit's own rounding still fits
     Vec2 shift(0.0); // unchanged matrices while the body fits: bit-identical frames
     for (int axis = 0; axis < 2; ++axis) {
-        if (lo[axis] >= -1.0 && hi[axis] <= 1.0) continue;
+        if (lo[axis] >= -edge && hi[axis] <= edge) continue;
         const double k = std::round(-0.5 * (lo[axis] + hi[axis]) / texel);
         shift[axis] = k * texel;
-        if (lo[axis] + shift[axis] < -1.0 || hi[axis] + shift[axis] > 1.0) return std::nullopt;
+        if (lo[axis] + shift[axis] < -edge || hi[axis] + shift[axis] > edge) return std::nullopt;
     }
     ShadowView out = held;
     if (shift != Vec2(0.0)) shiftClip(out, shift.x, shift.y);
@@ -188,13 +190,13 @@ Result<ShadowSetup> SetupHysteresis::next(const ShadowSetupInputs& inputs) {
     if (!fresh) return fresh;
     const bool refitAll = !m_held || !compatible(m_held->inputs, m_held->setup, inputs, *fresh);
     // Where the camera will be `lookaheadFrames` on if it keeps this frame's motion.
+    const bool moving = m_previousCamera && (m_previousCamera->wsEye != inputs.camera.wsEye ||
+                                             glm::normalize(m_previousCamera->wsDirection) != glm::normalize(inputs.camera.wsDirection));
     std::optional<ShadowSetupInputs> ahead;
-    if (m_previousCamera && m_options.lookaheadFrames > 0) {
+    if (moving && m_options.lookaheadFrames > 0) {
         ahead = inputs;
         ahead->camera = extrapolated(*m_previousCamera, inputs.camera, m_options.lookaheadFrames);
-        const bool still = m_previousCamera->wsEye == inputs.camera.wsEye &&
-                           glm::normalize(m_previousCamera->wsDirection) == glm::normalize(inputs.camera.wsDirection);
-        if (still || !ahead->camera.validate()) ahead.reset();
+        if (!ahead->camera.validate()) ahead.reset();
     }
     ShadowSetup out = *fresh; // body, fallbacks and splits of this frame
     m_refits = {};
@@ -212,7 +214,7 @@ Result<ShadowSetup> SetupHysteresis::next(const ShadowSetupInputs& inputs) {
         if (ahead)
             if (const ConvexBody::Points later = viewBody(*ahead, now); inFront(now, later))
                 for (const Vec3& p : later) cover.push_back(p);
-        fitClip(refit, cover, m_options.margin);
+        fitClip(refit, cover, moving ? m_options.margin : 0.0); // a still camera needs no room to move
 
         std::optional<ShadowView> kept;
         if (!refitAll) {
