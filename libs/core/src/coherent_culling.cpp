@@ -74,7 +74,7 @@ CoherentCulling::CoherentCulling(const InstanceHierarchy& hierarchy, CoherentCul
 }
 
 void CoherentCulling::reset() {
-    std::fill(m_nodes.begin(), m_nodes.end(), NodeState{});
+    m_nodes.assign(m_hierarchy ? m_hierarchy->nodeCount() : 0, NodeState{}); // a rebuilt tree may have more or fewer
     m_assumeVisible = true;
     m_discardLate = true;
 }

@@ -73,6 +73,27 @@ InstanceHierarchy::InstanceHierarchy(std::span<const Aabb> boxes) : m_itemBoxes(
     m_nodes.reserve(n > 0 ? 2 * n / kLeafSize + 1 : 1);
     m_nodes.push_back({});
     build(0, 0, n, 0, centres);
+    m_builtCost = surfaceAreaCost();
+}
+
+double InstanceHierarchy::surfaceAreaCost() const {
+    if (m_nodes.empty() || m_nodes[0].box.isEmpty()) return 0.0;
+    auto area = [](const Aabb& b) {
+        if (b.isEmpty()) return 0.0;
+        const Vec3 e = b.extent();
+        return 2.0 * (e.x * e.y + e.y * e.z + e.z * e.x);
+    };
+    const double root = std::max(area(m_nodes[0].box), 1e-300);
+    double cost = 0.0;
+    for (const Node& n : m_nodes) cost += area(n.box) / root * (n.count > 0 ? double(n.count) : 1.0);
+    return cost;
+}
+
+double InstanceHierarchy::degradation() const { return m_builtCost > 0.0 ? surfaceAreaCost() / m_builtCost : 1.0; }
+
+void InstanceHierarchy::rebuild() {
+    const std::vector<Aabb> boxes = std::move(m_itemBoxes);
+    *this = InstanceHierarchy(boxes);
 }
 
 void InstanceHierarchy::build(uint32_t index, uint32_t begin, uint32_t end, int depth, std::vector<Vec3>& centres) {

@@ -154,3 +154,27 @@ TEST(ClipVolumeTest, HalfSpacesAgreeWithTheClipTestForPerspectiveAndOrthographic
         }
     }
 }
+
+// Items that wander stretch the leaves they were built into: the surface-area cost says how
+// much, and a rebuild over the current boxes brings it back while queries stay exact.
+TEST(InstanceHierarchyTest, WanderingItemsDegradeTheTreeAndARebuildRestoresIt) {
+    std::mt19937 rng(21);
+    std::vector<Aabb> boxes = randomBoxes(rng, 4000, 500);
+    InstanceHierarchy tree(boxes);
+    EXPECT_DOUBLE_EQ(tree.degradation(), 1.0);
+    // A tenth of the items jump somewhere else in the world.
+    const std::vector<Aabb> elsewhere = randomBoxes(rng, 400, 500);
+    for (uint32_t k = 0; k < 400; ++k) tree.update(10 * k, boxes[10 * k] = elsewhere[k]);
+    EXPECT_GT(tree.degradation(), 1.25);
+    tree.rebuild();
+    EXPECT_LT(tree.degradation(), 1.0 + 1e-12);
+    EXPECT_EQ(tree.size(), boxes.size());
+    for (int trial = 0; trial < 50; ++trial) {
+        const auto volume = clipVolume(randomCamera(rng).clipFromWorld());
+        std::vector<uint32_t> expected, got;
+        for (uint32_t i = 0; i < boxes.size(); ++i)
+            if (!outsideSome(volume, boxes[i])) expected.push_back(i);
+        tree.query(volume, got);
+        ASSERT_EQ(sorted(got), expected) << "trial " << trial;
+    }
+}

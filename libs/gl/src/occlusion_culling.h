@@ -41,6 +41,10 @@ public:
     // choice, draw lists).
     const CpuTimes& glTimes() const { return m_gl; }
 
+    // The hierarchy was rebuilt (Visibility::rebuildIfDegraded): its nodes are new, so the
+    // next frame starts as after a camera cut.
+    void hierarchyRebuilt() { m_last.reset(); }
+
     // A plain depth pre-pass of these instances into `target` (cleared here): the camera's
     // depth for receiver masks when occlusion culling is off.
     void prepass(const LodChoice* lod, CameraDepthTarget& target, std::span<const uint32_t> items);

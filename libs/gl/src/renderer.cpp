@@ -519,6 +519,7 @@ core::Status Renderer::moveInstances(const scene::Scene& scene, std::span<const 
         const scene::MeshBatch& b = scene.batches[ref.batch];
         r.visibility->move(global, core::transformBounds(core::Mat4(b.worldFromObject[ref.instance]), scene.meshes[b.mesh].osBounds));
     }
+    if (r.visibility->rebuildIfDegraded() && r.occlusion) r.occlusion->hierarchyRebuilt();
     for (size_t batch = 0; batch < scene.batches.size(); ++batch)
         if (batchMoved[batch]) r.scene->updateBatch(scene, batch);
     return core::Ok{};

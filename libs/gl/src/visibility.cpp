@@ -151,4 +151,10 @@ void Visibility::upload(std::span<PassList* const> lists) {
     m_listTimes += time.elapsed();
 }
 
+bool Visibility::rebuildIfDegraded() {
+    if (m_hierarchy.degradation() <= kRebuildDegradation) return false;
+    m_hierarchy.rebuild();
+    return true;
+}
+
 } // namespace shadowkit::gl

@@ -67,6 +67,11 @@ public:
     void fromItems(std::span<const uint32_t> items, const LodChoice* lod, PassList& out);
     // An instance moved: its new world box, refitted into the hierarchy up to the root.
     void move(uint32_t globalInstance, const core::Aabb& wsBox) { m_hierarchy.update(globalInstance, wsBox); }
+    // After a frame's moves: rebuilds the hierarchy when the refits have made it
+    // kRebuildDegradation times as costly to query as built (movers stretch their leaves
+    // across the world). True when it did: node indices changed.
+    bool rebuildIfDegraded();
+    static constexpr double kRebuildDegradation = 1.25;
     // Assigns offsets and uploads every list of the frame into one buffer, bound at
     // SK_VISIBLE_BINDING.
     void upload(std::span<PassList* const> lists);

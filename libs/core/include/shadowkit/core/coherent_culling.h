@@ -51,7 +51,8 @@ public:
     explicit CoherentCulling(const InstanceHierarchy& hierarchy, CoherentCullingOptions options = {});
 
     // Forget every node's history: the next frame draws everything in the frustum and
-    // queries it (the conservative start after a camera cut).
+    // queries it (the conservative start after a camera cut, and after the hierarchy was
+    // rebuilt: its nodes are new).
     void reset();
 
     // One frame. `frustum`: the camera's clip volume; `wsEye`: its centre; nodes whose box,

@@ -67,6 +67,17 @@ public:
     // topology stays: many large moves degrade query cost (rebuild then).
     void update(uint32_t item, const Aabb& newBox);
 
+    // The surface-area cost of the tree (Wald 2007): Σ over nodes of area(node) / area(root),
+    // an inner node counting one traversal step and a leaf its items — the expected work of
+    // a query for a random ray or small volume. O(nodes).
+    double surfaceAreaCost() const;
+    // surfaceAreaCost() now over what it was when the tree was built: how much the refits
+    // have degraded it (1 when built; items that wander stretch their leaves).
+    double degradation() const;
+    // Builds the tree again over the items' current boxes (item indices stay; node indices
+    // do not: anything keyed by node must be reset).
+    void rebuild();
+
     // Number of nodes, for tests and reports.
     size_t nodeCount() const { return m_nodes.size(); }
 
@@ -86,6 +97,7 @@ private:
     std::vector<uint32_t> m_items;    // leaf ranges index this
     std::vector<uint32_t> m_leafOf;   // item -> its leaf node
     std::vector<Aabb> m_itemBoxes;
+    double m_builtCost = 0.0; // surfaceAreaCost() when built
 };
 
 } // namespace shadowkit::core
