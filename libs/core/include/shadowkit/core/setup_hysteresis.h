@@ -31,7 +31,7 @@ struct HysteresisOptions {
     // map's extent: the body may move or grow this much before it forces a refit, and every
     // texel is this much larger than a fresh fit's while it is held. A still camera's refit
     // has none: it is the fresh fit. [0, 1].
-    double margin = 0.15;
+    double margin = 0.05;
     // Refit when a held texel on the camera's central ray is this many times the size of
     // what a refit would give there now (linear size, on a plane facing the light). > 1.
     double maxTexelGrowth = 1.25;
