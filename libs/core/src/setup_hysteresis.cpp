@@ -13,9 +13,9 @@
 //   which mean different things 1.8 m and 40 m above the ground.
 // - motion: a refit that covers only this frame's body is outgrown within frames by a moving
 //   camera; covering also the body `lookaheadFrames` on (the camera extrapolated from its last
-//   step) and `margin` round both makes room for the motion. Both are paid for in texels only
-//   while the camera moves: a refit for a still camera (a first frame, a still view) is the
-//   fresh fit itself.
+//   step) makes room for the motion, paid for in texels only while the camera moves. The
+//   margin is paid always: a refit without it for a still camera (measured) only moves the
+//   pop to the first frame the camera moves, and shifts every later refit with it.
 #include "shadowkit/core/setup_hysteresis.h"
 
 #include "shadowkit/core/focus_body.h"
@@ -214,7 +214,7 @@ Result<ShadowSetup> SetupHysteresis::next(const ShadowSetupInputs& inputs) {
         if (ahead)
             if (const ConvexBody::Points later = viewBody(*ahead, now); inFront(now, later))
                 for (const Vec3& p : later) cover.push_back(p);
-        fitClip(refit, cover, moving ? m_options.margin : 0.0); // a still camera needs no room to move
+        fitClip(refit, cover, m_options.margin);
 
         std::optional<ShadowView> kept;
         if (!refitAll) {

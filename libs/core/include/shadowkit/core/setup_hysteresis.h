@@ -14,8 +14,8 @@
 // its texels along the camera's central ray are more than `maxTexelGrowth` times what a
 // refit would give there now (a warp concentrates texels at the viewer's position of its
 // refit; the camera leaving that position is what makes a held warp worse than a new one).
-// A refit for a moving camera covers the body with `margin` to spare and the body it will
-// have `lookaheadFrames` on; for a still one it is the fresh fit. Depth is refitted on its own when the body leaves the held
+// A refit covers the body with `margin` to spare and, for a moving camera, also the body it
+// will have `lookaheadFrames` on. Depth is refitted on its own when the body leaves the held
 // depth range: it does not move texels.
 #pragma once
 
@@ -27,10 +27,9 @@
 namespace shadowkit::core {
 
 struct HysteresisOptions {
-    // Spare room round the focus body at a refit of a moving camera, as a fraction of the
-    // map's extent: the body may move or grow this much before it forces a refit, and every
-    // texel is this much larger than a fresh fit's while it is held. A still camera's refit
-    // has none: it is the fresh fit. [0, 1].
+    // Spare room round the focus body at a refit, as a fraction of the map's extent: the body
+    // may move or grow this much before it forces a refit, and every texel is this much
+    // larger than a fresh fit's while it is held (a still view included). [0, 1].
     double margin = 0.05;
     // Refit when a held texel on the camera's central ray is this many times the size of
     // what a refit would give there now (linear size, on a plane facing the light). > 1.
