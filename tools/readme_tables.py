@@ -81,23 +81,28 @@ def visibility(paths):
                       f"{r['cull_own_ms']['median']:.2f} | {r['list_ms']['median']:.2f} |")
 
 
+def load_path_run(arg):
+    """LABEL=FILE.json of `shadowkit eval --path --json` -> (label, path, run, mean pixels_per_texel_p50)."""
+    label, _, path = arg.partition("=")
+    if not path:
+        sys.exit(f"readme_tables: expected LABEL=FILE.json, got '{arg}'")
+    with open(path) as f:
+        run = json.load(f)
+    ppt = [r["pixels_per_texel_p50"] for r in run["frames"]]
+    return label, path, run, sum(ppt) / len(ppt)
+
+
 def dynamics(args):
     print("| technique | sun | flicker_pct mean / p95 / max | truth_change_pct mean / p95 / max | wrong_pct mean | "
           "pixels_per_texel_p50 mean |")
     print("|---|---|---:|---:|---:|---:|")
     for arg in args:
-        label, _, path = arg.partition("=")
-        if not path:
-            sys.exit(f"readme_tables: expected LABEL=FILE.json, got '{arg}'")
-        with open(path) as f:
-            run = json.load(f)
+        label, path, run, ppt = load_path_run(arg)
         s = run["summary"]
         fl, tc = s["flicker_pct"], s["truth_change_pct"]
-        ppt = [r["pixels_per_texel_p50"] for r in run["frames"]]
         sun = "held" if "sun-held" in path else "moving"
         print(f"| {label} | {sun} | {fl['mean']:.3f} / {fl['p95']:.3f} / {fl['max']:.3f} | "
-              f"{tc['mean']:.3f} / {tc['p95']:.3f} / {tc['max']:.3f} | {s['wrong_pct']['mean']:.2f} | "
-              f"{sum(ppt) / len(ppt):.2f} |")
+              f"{tc['mean']:.3f} / {tc['p95']:.3f} / {tc['max']:.3f} | {s['wrong_pct']['mean']:.2f} | {ppt:.2f} |")
 
 
 def stable(args):
@@ -105,17 +110,12 @@ def stable(args):
     print("| technique (sun held) | flicker_pct mean / p95 / max | wrong_pct mean | pixels_per_texel_p50 mean | frames refitted |")
     print("|---|---:|---:|---:|---:|")
     for arg in args:
-        label, _, path = arg.partition("=")
-        if not path:
-            sys.exit(f"readme_tables: expected LABEL=FILE.json, got '{arg}'")
-        with open(path) as f:
-            run = json.load(f)
+        label, _, run, ppt = load_path_run(arg)
         s = run["summary"]
         fl = s["flicker_pct"]
-        ppt = [r["pixels_per_texel_p50"] for r in run["frames"]]
         refits = "—" if run.get("refits") is None else f"{run['refits']} of {len(run['frames'])}"
         print(f"| {label} | {fl['mean']:.3f} / {fl['p95']:.3f} / {fl['max']:.3f} | {s['wrong_pct']['mean']:.2f} | "
-              f"{sum(ppt) / len(ppt):.2f} | {refits} |")
+              f"{ppt:.2f} | {refits} |")
 
 
 if __name__ == "__main__":

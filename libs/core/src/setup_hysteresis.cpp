@@ -202,7 +202,8 @@ Result<ShadowSetup> SetupHysteresis::next(const ShadowSetupInputs& inputs) {
     m_refits = {};
     for (size_t i = 0; i < out.views.size(); ++i) {
         const ShadowView& now = fresh->views[i];
-        const ConvexBody::Points body = viewBody(inputs, now);
+        // A single map's body is the set-up's own B, computed already; a split's is not kept.
+        const ConvexBody::Points body = !now.split && !fresh->body.isEmpty() ? fresh->body.vertices() : viewBody(inputs, now);
         if (body.empty()) { // nothing of the scene to cover: nothing to hold either
             ++m_refits.views;
             continue;
