@@ -1,5 +1,6 @@
 // shadowkit eval: rasterized shadows against ray-traced truth, per standard view.
 #include "commands.h"
+#include "local_light_options.h"
 #include "eval_path.h"
 #include "options.h"
 
@@ -27,6 +28,7 @@ struct EvalArgs {
     TechniqueOptions technique;
     RenderOptions render;
     TimelineOptions timeline;
+    LocalLightOptions lights;
     std::string views; // "a,b" or "all"; empty: --view
     std::string json, errorMap, aliasingMap, dump, csv, plot;
 };
@@ -43,8 +45,11 @@ core::Result<std::vector<std::string>> viewNames(const EvalArgs& args) {
     auto all = scene::loadViews(scene::dataDirectory() / "views.json");
     if (!all) return all.errorInfo();
     std::vector<std::string> names;
-    if (args.views == "all") {
-        for (const scene::ViewSpec& v : *all) names.push_back(v.name);
+    // "all": the six sunlit standard views (README technique table); "local": those with
+    // spot and point lights (README "Spot and point lights").
+    if (args.views == "all" || args.views == "local") {
+        for (const scene::ViewSpec& v : *all)
+            if (v.lights.empty() == (args.views == "all")) names.push_back(v.name);
         return names;
     }
     std::stringstream ss(args.views);
@@ -98,6 +103,11 @@ int runEval(const EvalArgs& args) {
         if (!inputs) return fail(inputs.error());
         auto settings = args.render.settingsFor(*view, *inputs);
         if (!settings) return fail(settings.error());
+        args.lights.apply(*view, *settings);
+        auto lighting = args.lights.lightingFor(*view, (*measurer)->renderer().wsSceneBounds());
+        if (!lighting) return fail(withFlagName(lighting.errorInfo()).message);
+        if (auto s = (*measurer)->renderer().setLocalLights(std::move(lighting).value()); !s)
+            return fail(withFlagName(s.errorInfo()).message);
 
         // Progress only when the truth takes a while (large images, big scenes).
         measure::MeasureOptions options;
@@ -137,6 +147,12 @@ int runEval(const EvalArgs& args) {
         fmt::print("{:<14} {:<10} {:>5} {:>9} {:>8} {:>7.2f} {:>8.2f} {:>8.2f} {:>7.2f} {:>7.3f} {:>7.3f} {:>6.1f}\n", name,
                    report.technique, report.mapSize, f.validPx, f.excludedPx, f.wrongPct, f.falseShadowPct, f.falseLitPct,
                    f.undersampledPct, f.pixelsPerTexelP50, f.pixelsPerTexelP99, report.seconds);
+        // With spot and point lights the row above is every light together; each follows.
+        for (const eval::LightReport& l : report.lights)
+            fmt::print("  {:<12} {:<10} {:>5} {:>9} {:>8} {:>7.2f} {:>8.2f} {:>8.2f} {:>7.2f} {:>7.3f} {:>7.3f}   {} maps{}\n", l.light, "",
+                       "", l.figures.validPx, "", l.figures.wrongPct, l.figures.falseShadowPct, l.figures.falseLitPct,
+                       l.figures.undersampledPct, l.figures.pixelsPerTexelP50, l.figures.pixelsPerTexelP99, l.maps,
+                       l.skippedFaces ? fmt::format(", {} faces skipped", l.skippedFaces) : "");
         std::fflush(stdout);
         reports.push_back(std::move(report));
     }
@@ -153,8 +169,9 @@ Command addEvalCommand(CLI::App& app) {
     args->scene.addTo(*cmd);
     args->view.addTo(*cmd);
     args->technique.addTo(*cmd);
-    cmd->add_option("--views", args->views, "views to evaluate: a,b,... or 'all' (default: --view)");
+    cmd->add_option("--views", args->views, "views to evaluate: a,b,... 'all' (the six sunlit views) or 'local' (those with spot and point lights; default: --view)");
     args->render.addTo(*cmd);
+    args->lights.addTo(*cmd);
     cmd->add_option("--json", args->json, "write the figures as JSON {\"views\": [...]}");
     cmd->add_option("--error-map", args->errorMap, "write the error map PNG (one per view: NAME-view.png)");
     cmd->add_option("--aliasing-map", args->aliasingMap, "write the pixels-per-texel heat map PNG");

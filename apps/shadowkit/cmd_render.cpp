@@ -1,5 +1,6 @@
 // shadowkit render: one shaded image of a scene with a shadow technique.
 #include "commands.h"
+#include "local_light_options.h"
 #include "options.h"
 #include "timeline.h"
 
@@ -23,8 +24,9 @@ struct RenderArgs {
     TechniqueOptions technique;
     RenderOptions render;
     TimelineOptions timeline;
+    LocalLightOptions lights;
     std::string out = "shadowkit.png";
-    std::string shadowMapOut, video, strip;
+    std::string shadowMapOut, localMapOut, video, strip;
 };
 
 // The report of a single frame: where the time went.
@@ -42,7 +44,12 @@ void printFrameReport(const RenderArgs& args, const gl::Context& context, const 
         fmt::print("  occlusion      {:8.3f} ms pre-pass (CPU)  {} nodes visited  {} queries over {} nodes  {} waits\n",
                    stats.occlusionMilliseconds, o.nodesVisited, o.queriesIssued, o.nodesQueried, o.waits);
     }
-    for (const auto& [name, pass] : {std::pair{"shadow pass", &stats.shadow}, {"main pass  ", &stats.main}})
+    if (!settings.sun) fmt::print("  sun            off (night)\n");
+    if (stats.localMaps > 0 || stats.skippedFaces > 0)
+        fmt::print("  local lights   {} maps drawn ({} cube faces skipped: they see nothing of the view), {} pass\n", stats.localMaps,
+                   stats.skippedFaces, gl::localPassName(settings.localPass));
+    for (const auto& [name, pass] :
+         {std::pair{"shadow pass", &stats.shadow}, {"local pass ", &stats.local}, {"main pass  ", &stats.main}})
         fmt::print("  {}    {:8.1f} ms GPU  {:6.2f} M triangles  {} instances  {} draws\n", name, pass->gpuMilliseconds,
                    static_cast<double>(pass->triangles) * 1e-6, pass->instances, pass->drawCalls);
     fmt::print("  frame (wall)   {:8.1f} ms incl. readback\n", frameMs);
@@ -73,7 +80,8 @@ int runRender(const RenderArgs& args) {
         if (auto name = frameFileName(args.out, 0); !name) return fail(name.error());
     if (!args.video.empty() && !timeline->path) return fail("--video: needs --path (a sequence of frames)");
     if (!args.strip.empty() && !sequence) return fail("--strip: needs --path (a sequence of frames)");
-    for (auto [flag, file] : {std::pair{"--strip", &args.strip}, {"--video", &args.video}, {"--shadow-map-out", &args.shadowMapOut}})
+    for (auto [flag, file] : {std::pair{"--strip", &args.strip}, {"--video", &args.video}, {"--shadow-map-out", &args.shadowMapOut},
+                              {"--local-map-out", &args.localMapOut}})
         if (auto s = checkWritable(flag, *file); !s) return fail(s.error());
     if (!sequence)
         if (auto s = checkWritable("--out", args.out); !s) return fail(s.error());
@@ -118,6 +126,10 @@ int runRender(const RenderArgs& args) {
         if (!inputs) return fail(inputs.error());
         auto settings = args.render.settingsFor(*view, *inputs);
         if (!settings) return fail(settings.error());
+        args.lights.apply(*view, *settings);
+        auto lighting = args.lights.lightingFor(*view, (*renderer)->wsSceneBounds());
+        if (!lighting) return fail(withFlagName(lighting.errorInfo()).message);
+        if (auto s = (*renderer)->setLocalLights(std::move(lighting).value()); !s) return fail(withFlagName(s.errorInfo()).message);
         if (args.technique.visibleDepthFromFrame()) {
             auto refined = gl::withVisibleDepth(**renderer, *inputs, *settings);
             if (!refined) return fail(withFlagName(refined.errorInfo()).message);
@@ -153,6 +165,11 @@ int runRender(const RenderArgs& args) {
             if (!args.shadowMapOut.empty())
                 if (auto s = scene::writePng((*renderer)->readShadowMap(), args.shadowMapOut); !s)
                     return fail("--shadow-map-out: " + s.error());
+            if (!args.localMapOut.empty()) {
+                const scene::Image maps = (*renderer)->readLocalShadowMaps();
+                if (maps.width == 0) return fail("--local-map-out: the view has no local light with a map");
+                if (auto s = scene::writePng(maps, args.localMapOut); !s) return fail("--local-map-out: " + s.error());
+            }
             printFrameReport(args, **context, *setup, *inputs, *settings, *stats, setupMs, frameMs);
             fmt::print("wrote {}{}\n", out, args.shadowMapOut.empty() ? "" : " and " + args.shadowMapOut);
             continue;
@@ -189,9 +206,12 @@ Command addRenderCommand(CLI::App& app) {
     args->technique.addTo(*cmd);
     args->render.addTo(*cmd);
     args->timeline.addTo(*cmd);
+    args->lights.addTo(*cmd);
     cmd->add_option("--out", args->out, "output PNG; for a sequence (--path) a pattern with the frame number, e.g. frames/%04d.png")
         ->capture_default_str();
     cmd->add_option("--shadow-map-out", args->shadowMapOut, "also write the shadow map itself as a PNG (single frames)");
+    cmd->add_option("--local-map-out", args->localMapOut,
+                    "also write the local lights' maps as a PNG: spot maps, then each cube unfolded (single frames)");
     cmd->add_option("--video", args->video, "with --path: also encode the frames into this video (needs ffmpeg)");
     cmd->add_option("--strip", args->strip, "with --path: also write six of the frames, evenly spread, as one captioned PNG");
     return {cmd, [args] { return runRender(*args); }};

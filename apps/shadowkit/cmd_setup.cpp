@@ -158,7 +158,7 @@ Command addSetupCommand(CLI::App& app) {
     args->view.addTo(*cmd);
     args->technique.addTo(*cmd);
     args->bounds.addTo(*cmd);
-    args->lights.addTo(*cmd);
+    args->lights.addTo(*cmd, false);
     return {cmd, [args] { return runSetup(*args); }};
 }
 

@@ -4,6 +4,8 @@
 
 #include <fmt/format.h>
 
+#include <map>
+
 namespace shadowkit::app {
 namespace {
 
@@ -37,10 +39,54 @@ core::Result<LocalLight> parseLight(const std::string& spec) {
 
 } // namespace
 
-void LocalLightOptions::addTo(CLI::App& cmd) {
+void LocalLightOptions::addTo(CLI::App& cmd, bool withMaps) {
     cmd.add_option("--light", specs, fmt::format("a local light with shadows, repeatable: {} (degrees, metres; range 30 m "
                                                  "unless given)",
                                                  kForms));
+    if (!withMaps) return;
+    cmd.add_option("--local-map-size", mapSize, "texels per side of each spot map and cube face")
+        ->check(CLI::Range(core::kMinMapSize, core::kMaxMapSize))
+        ->capture_default_str();
+    cmd.add_option("--local-pass", pass, "how a point light's cube faces are drawn: layered (one pass: vertex-layer where "
+                                         "the driver has it, else geometry), vertex-layer, geometry, per-face (six passes)")
+        ->transform(CLI::CheckedTransformer(std::map<std::string, gl::LocalPass>{{"layered", gl::LocalPass::Layered},
+                                                                                  {"vertex-layer", gl::LocalPass::VertexLayer},
+                                                                                  {"geometry", gl::LocalPass::Geometry},
+                                                                                  {"per-face", gl::LocalPass::PerFace}}))
+        ->default_str("layered");
+    cmd.add_option("--local-bias-slope", bias.slopeTexels, "local lights: slope-scaled bias in texels at the receiver's distance")
+        ->check(CLI::Range(0.0, 16.0))
+        ->capture_default_str();
+    cmd.add_option("--local-normal-offset", bias.normalOffsetTexels, "local lights: normal offset in texels at the receiver's distance")
+        ->check(CLI::Range(0.0, 16.0))
+        ->capture_default_str();
+    cmd.add_option("--local-bias-constant", bias.constantMetres, "local lights: constant bias in metres")
+        ->check(CLI::Range(0.0, 1.0))
+        ->capture_default_str();
+}
+
+core::Result<core::LocalLighting> LocalLightOptions::lightingFor(const scene::ResolvedView& view, const core::Aabb& wsSceneBounds) const {
+    auto extra = lights();
+    if (!extra) return extra.errorInfo();
+    std::vector<core::PointLight> points = view.points;
+    std::vector<core::SpotLight> spots = view.spots;
+    for (const LocalLight& l : *extra) {
+        if (const auto* p = std::get_if<core::PointLight>(&l)) points.push_back(*p);
+        else spots.push_back(std::get<core::SpotLight>(l));
+    }
+    if (points.size() > static_cast<size_t>(gl::kMaxLocalLightsPerKind) || spots.size() > static_cast<size_t>(gl::kMaxLocalLightsPerKind))
+        return core::makeError(fmt::format("--light: at most {} point and {} spot lights, got {} and {} (with the view's)",
+                                           gl::kMaxLocalLightsPerKind, gl::kMaxLocalLightsPerKind, points.size(), spots.size()));
+    const core::LocalShadowInputs inputs{.camera = view.camera, .wsSceneBounds = wsSceneBounds, .mapSize = mapSize};
+    auto lighting = core::computeLocalLighting(inputs, points, spots);
+    if (!lighting) return core::makeError("--light: " + lighting.error());
+    return lighting;
+}
+
+void LocalLightOptions::apply(const scene::ResolvedView& view, gl::RenderSettings& settings) const {
+    settings.sun = view.sun;
+    settings.localPass = pass;
+    settings.localBias = bias;
 }
 
 core::Result<std::vector<LocalLight>> LocalLightOptions::lights() const {

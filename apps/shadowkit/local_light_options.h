@@ -2,6 +2,8 @@
 #pragma once
 
 #include "shadowkit/core/local_lights.h"
+#include "shadowkit/gl/renderer.h"
+#include "shadowkit/scene/views.h"
 
 #include <CLI/CLI.hpp>
 
@@ -16,10 +18,19 @@ using LocalLight = std::variant<core::PointLight, core::SpotLight>;
 struct LocalLightOptions {
     // "point:x,y,z[,range]" or "spot:x,y,z,dx,dy,dz,angle[,range]", as given (repeatable).
     std::vector<std::string> specs;
+    int mapSize = 1024; // --local-map-size: each spot map and cube face
+    gl::LocalPass pass = gl::LocalPass::Layered;
+    gl::LocalBiasSettings bias;
 
-    void addTo(CLI::App& cmd);
+    // withMaps: also the flags of drawing them (render, eval, compare), not only placing them (setup).
+    void addTo(CLI::App& cmd, bool withMaps = true);
     // The lights, each validated; an error names --light and shows the text.
     core::Result<std::vector<LocalLight>> lights() const;
+    // The frame's local lights: the view's (views.json), then --light's, set up for its camera
+    // over these scene bounds.
+    core::Result<core::LocalLighting> lightingFor(const scene::ResolvedView& view, const core::Aabb& wsSceneBounds) const;
+    // The settings' local pass and bias from the flags, and the sun from the view (--sun off).
+    void apply(const scene::ResolvedView& view, gl::RenderSettings& settings) const;
 };
 
 } // namespace shadowkit::app

@@ -76,7 +76,7 @@ void ViewOptions::addTo(CLI::App& cmd) {
     cmd.add_option("--near", zNear, "near plane distance in metres");
     cmd.add_option("--far", zFar, "far plane distance in metres");
     cmd.add_option("--size", size, "image size WxH in pixels (default: the view's)");
-    cmd.add_option("--sun", sun, "direction the sunlight travels x,y,z (sun -> scene)");
+    cmd.add_option("--sun", sun, "direction the sunlight travels x,y,z (sun -> scene), or off (night: local lights only) or on");
     cmd.add_option("--sun-elevation", sunElevation, "sun elevation in degrees above the horizon");
     cmd.add_option("--sun-azimuth", sunAzimuth, "sun compass azimuth in degrees (0 = -Z, 90 = +X)");
 }
@@ -111,7 +111,9 @@ core::Result<scene::ResolvedView> ViewOptions::resolve(const scene::Scene& scene
     if (zFar) cam.zFar = *zFar;
     if (core::Status s = cam.validate(); !s) return s.errorInfo();
 
-    if (!sun.empty()) {
+    if (sun == "off" || sun == "on") {
+        out.sun = sun == "on";
+    } else if (!sun.empty()) {
         if (sunElevation || sunAzimuth) return core::makeError("--sun: give either --sun or --sun-elevation/--sun-azimuth, not both");
         auto v = parseVec3("--sun", sun);
         if (!v) return v.errorInfo();

@@ -160,6 +160,34 @@ int cubeFaceOf(const Vec3& d) {
     return d.z >= 0.0 ? 4 : 5;
 }
 
+double texelSizePerMetre(const ShadowView& view, int mapSize) {
+    // clipFromLight is frustumZeroToOne: m[0][0] = 2 / (r − l), m[1][1] = 2 / (t − b).
+    const double span = std::max(2.0 / view.clipFromLight[0][0], 2.0 / view.clipFromLight[1][1]);
+    return span / static_cast<double>(std::max(mapSize, 1));
+}
+
+Result<LocalLighting> computeLocalLighting(const LocalShadowInputs& inputs, std::span<const PointLight> points,
+                                           std::span<const SpotLight> spots) {
+    LocalLighting out;
+    out.mapSize = inputs.mapSize;
+    auto named = [](const char* kind, size_t i, const Error& e) {
+        return Error{std::string(kind) + "[" + std::to_string(i) + "]: " + e.message, e.field};
+    };
+    for (size_t i = 0; i < points.size(); ++i) {
+        auto setup = computePointShadowSetup(inputs, points[i]);
+        if (!setup) return named("point", i, setup.errorInfo());
+        out.points.push_back(points[i]);
+        out.pointSetups.push_back(std::move(setup).value());
+    }
+    for (size_t i = 0; i < spots.size(); ++i) {
+        auto setup = computeSpotShadowSetup(inputs, spots[i]);
+        if (!setup) return named("spot", i, setup.errorInfo());
+        out.spots.push_back(spots[i]);
+        out.spotSetups.push_back(std::move(setup).value());
+    }
+    return out;
+}
+
 double lightDistanceDepth(const ShadowSetup& setup, const ShadowView& view, const Vec3& wsPoint) {
     return (glm::distance(wsPoint, setup.wsLightPosition) - view.lightDistance.x) / (view.lightDistance.y - view.lightDistance.x);
 }

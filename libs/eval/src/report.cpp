@@ -40,6 +40,21 @@ std::string reportJson(const std::vector<ViewReport>& views) {
             {"seconds", v.seconds},
         });
         if (v.visibleDepth) list.back()["visible_depth"] = {v.visibleDepth->x, v.visibleDepth->y};
+        if (!v.lights.empty()) {
+            nlohmann::json lights = nlohmann::json::array();
+            for (const LightReport& l : v.lights)
+                lights.push_back({{"light", l.light},
+                                  {"maps", l.maps},
+                                  {"skipped_faces", l.skippedFaces},
+                                  {"valid_px", l.figures.validPx},
+                                  {"wrong_pct", l.figures.wrongPct},
+                                  {"false_shadow_pct", l.figures.falseShadowPct},
+                                  {"false_lit_pct", l.figures.falseLitPct},
+                                  {"undersampled_pct", l.figures.undersampledPct},
+                                  {"pixels_per_texel_p50", l.figures.pixelsPerTexelP50},
+                                  {"pixels_per_texel_p99", l.figures.pixelsPerTexelP99}});
+            list.back()["lights"] = lights;
+        }
     }
     return nlohmann::json{{"views", list}}.dump(2) + "\n";
 }

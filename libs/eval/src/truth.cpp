@@ -18,12 +18,13 @@ bool reachesLight(const RayScene& rays, const core::Vec3& wsPoint, const core::V
     return !rays.occluded(wsPoint + offset * wsNormal, towardsLight, 0.0, std::numeric_limits<double>::infinity());
 }
 
-// A local light's truth: the finite shadow ray from just off the surface to the light, for
-// the points `reaches` admits (range, cone).
+// A local light's truth at `hits`' surfaces: which face it within what it admits (range,
+// cone), and of those which reach it along the finite shadow ray from just off the surface.
 template <class Admits>
-std::vector<uint8_t> litByLocalLight(const RayScene& rays, const TruthBuffers& hits, const core::Vec3& wsLight,
-                                     const TruthOptions& options, Admits admits) {
-    std::vector<uint8_t> lit(hits.surfaceId.size(), 0);
+void localLightTruth(const RayScene& rays, const TruthBuffers& hits, const core::Vec3& wsLight, const TruthOptions& options,
+                     Admits admits, std::vector<uint8_t>& reached, std::vector<uint8_t>& lit) {
+    reached.assign(hits.surfaceId.size(), 0);
+    lit.assign(hits.surfaceId.size(), 0);
     const double offset = options.normalOffsetFraction * std::max(rays.sceneDiagonal(), 1.0);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, lit.size()), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t i = r.begin(); i < r.end(); ++i) {
@@ -32,12 +33,20 @@ std::vector<uint8_t> litByLocalLight(const RayScene& rays, const TruthBuffers& h
             const core::Vec3 toLight = wsLight - p;
             const double distance = glm::length(toLight);
             if (!(distance > 0.0) || !admits(p, distance) || !(glm::dot(n, toLight) > 0.0)) continue;
+            reached[i] = 1;
             const core::Vec3 origin = p + offset * n;
             const core::Vec3 towards = wsLight - origin;
             lit[i] = !rays.occluded(origin, glm::normalize(towards), 0.0, glm::length(towards));
         }
     });
-    return lit;
+}
+
+auto admitsPoint(const core::PointLight& light) {
+    return [range = light.range](const core::Vec3&, double d) { return d <= range; };
+}
+auto admitsSpot(const core::SpotLight& light) {
+    return [&light, axis = glm::normalize(light.wsDirection), cosHalf = std::cos(0.5 * glm::radians(light.coneDegrees))](
+               const core::Vec3& p, double d) { return d <= light.range && glm::dot(p - light.wsPosition, axis) >= cosHalf * d; };
 }
 
 } // namespace
@@ -112,15 +121,27 @@ std::vector<uint8_t> litAt(const RayScene& rays, const TruthBuffers& hits, const
 }
 
 std::vector<uint8_t> litAt(const RayScene& rays, const TruthBuffers& hits, const core::PointLight& light, const TruthOptions& options) {
-    return litByLocalLight(rays, hits, light.wsPosition, options, [&](const core::Vec3&, double d) { return d <= light.range; });
+    std::vector<uint8_t> reached, lit;
+    localLightTruth(rays, hits, light.wsPosition, options, admitsPoint(light), reached, lit);
+    return lit;
 }
 
 std::vector<uint8_t> litAt(const RayScene& rays, const TruthBuffers& hits, const core::SpotLight& light, const TruthOptions& options) {
-    const core::Vec3 axis = glm::normalize(light.wsDirection);
-    const double cosHalf = std::cos(0.5 * glm::radians(light.coneDegrees));
-    return litByLocalLight(rays, hits, light.wsPosition, options, [&](const core::Vec3& p, double d) {
-        return d <= light.range && glm::dot(p - light.wsPosition, axis) >= cosHalf * d;
-    });
+    std::vector<uint8_t> reached, lit;
+    localLightTruth(rays, hits, light.wsPosition, options, admitsSpot(light), reached, lit);
+    return lit;
+}
+
+TruthBuffers underLight(const RayScene& rays, const TruthBuffers& hits, const core::PointLight& light, const TruthOptions& options) {
+    TruthBuffers t = hits;
+    localLightTruth(rays, hits, light.wsPosition, options, admitsPoint(light), t.facesLight, t.lit);
+    return t;
+}
+
+TruthBuffers underLight(const RayScene& rays, const TruthBuffers& hits, const core::SpotLight& light, const TruthOptions& options) {
+    TruthBuffers t = hits;
+    localLightTruth(rays, hits, light.wsPosition, options, admitsSpot(light), t.facesLight, t.lit);
+    return t;
 }
 
 } // namespace shadowkit::eval

@@ -64,7 +64,7 @@ void GpuScene::updateBatch(const scene::Scene& scene, size_t sceneBatch) {
     }
 }
 
-DrawStats GpuScene::draw(const PassList& list, bool setInstanceBase) const {
+DrawStats GpuScene::draw(const PassList& list, bool setInstanceBase, int replicas) const {
     DrawStats stats;
     for (const GpuBatch& batch : m_batches) {
         const GpuMesh& mesh = m_meshes[batch.mesh];
@@ -85,9 +85,9 @@ DrawStats GpuScene::draw(const PassList& list, bool setInstanceBase) const {
             // Camera passes move simplified receivers' shadow lookups by their error (main.vert).
             if (setInstanceBase) glUniform1f(kLodErrorLocation, range.objectError);
             glDrawElementsInstanced(GL_TRIANGLES, range.indexCount, GL_UNSIGNED_INT,
-                                    reinterpret_cast<const void*>(range.byteOffset), static_cast<GLsizei>(count));
-            stats.instances += count;
-            stats.triangles += static_cast<size_t>(range.indexCount / 3) * count;
+                                    reinterpret_cast<const void*>(range.byteOffset), static_cast<GLsizei>(count) * replicas);
+            stats.instances += static_cast<size_t>(count) * static_cast<size_t>(replicas);
+            stats.triangles += static_cast<size_t>(range.indexCount / 3) * count * static_cast<size_t>(replicas);
             ++stats.drawCalls;
         }
     }

@@ -26,8 +26,9 @@ public:
     // visibleInstances[instanceOffset + gl_InstanceID] from the batch's buffer at
     // kInstancesBinding. With setInstanceBase the bound program's `instanceBase` uniform
     // receives the batch's first global instance index (Scene order), the surface identity
-    // of the evaluation.
-    DrawStats draw(const PassList& list, bool setInstanceBase = false) const;
+    // of the evaluation. `replicas` > 1 draws every instance that many times in a row
+    // (gl_InstanceID / replicas is the list entry): the layered cube pass's faces.
+    DrawStats draw(const PassList& list, bool setInstanceBase = false, int replicas = 1) const;
     // Uploads the transforms of Scene::batches[sceneBatch] again (a dynamic batch, whose
     // instances moved; other batches' buffers are immutable).
     void updateBatch(const scene::Scene& scene, size_t sceneBatch);

@@ -73,6 +73,18 @@ core::Result<Program> buildProgram(std::string_view name, std::initializer_list<
     return link(name, {&*vs, &*fs});
 }
 
+core::Result<Program> buildProgram(std::string_view name, std::initializer_list<std::string_view> vertexSources,
+                                   std::initializer_list<std::string_view> geometrySources,
+                                   std::initializer_list<std::string_view> fragmentSources) {
+    auto vs = compile(GL_VERTEX_SHADER, vertexSources, std::string(name) + ": vertex shader");
+    if (!vs) return vs.errorInfo();
+    auto gs = compile(GL_GEOMETRY_SHADER, geometrySources, std::string(name) + ": geometry shader");
+    if (!gs) return gs.errorInfo();
+    auto fs = compile(GL_FRAGMENT_SHADER, fragmentSources, std::string(name) + ": fragment shader");
+    if (!fs) return fs.errorInfo();
+    return link(name, {&*vs, &*gs, &*fs});
+}
+
 core::Status checkUniformBlock(const Program& program, std::string_view programName, const char* blockName,
                                size_t cppSize, std::span<const UniformField> fields) {
     const GLuint index = glGetUniformBlockIndex(program.id(), blockName);

@@ -18,6 +18,11 @@ namespace shadowkit::gl {
 core::Result<Program> buildProgram(std::string_view name, std::initializer_list<std::string_view> vertexSources,
                                    std::initializer_list<std::string_view> fragmentSources);
 
+// With a geometry stage between them, likewise.
+core::Result<Program> buildProgram(std::string_view name, std::initializer_list<std::string_view> vertexSources,
+                                   std::initializer_list<std::string_view> geometrySources,
+                                   std::initializer_list<std::string_view> fragmentSources);
+
 // A compute program, likewise.
 core::Result<Program> buildComputeProgram(std::string_view name, std::initializer_list<std::string_view> sources);
 

@@ -4,6 +4,7 @@
 #include "gl_object.h"
 #include "gl_shaders.h"
 #include "gpu_scene.h"
+#include "local_shadows.h"
 #include "occlusion_culling.h"
 #include "program.h"
 #include "receiver_masks.h"
@@ -46,8 +47,42 @@ private:
 };
 
 constexpr glm::vec3 kSky(0.62f, 0.72f, 0.85f);
+constexpr glm::vec3 kNightSky(0.015f, 0.02f, 0.04f);
+
+glm::vec3 skyOf(const RenderSettings& settings) { return settings.sun ? kSky : kNightSky; }
+
+// The instances a point light's cube may draw: those meeting the cube around its range.
+std::vector<core::HalfSpace> rangeBox(const core::Vec3& wsLight, double range) {
+    std::vector<core::HalfSpace> box;
+    for (int axis = 0; axis < 3; ++axis)
+        for (const double side : {1.0, -1.0}) {
+            core::Vec4 h(0.0);
+            h[axis] = side; // side · x + (range − side · light) >= 0
+            h.w = range - side * wsLight[axis];
+            box.push_back(h);
+        }
+    return box;
+}
 
 } // namespace
+
+const char* localPassName(LocalPass pass) {
+    switch (pass) {
+    case LocalPass::Layered: return "layered";
+    case LocalPass::VertexLayer: return "vertex-layer";
+    case LocalPass::Geometry: return "geometry";
+    case LocalPass::PerFace: return "per-face";
+    }
+    return "?";
+}
+
+core::Status validate(const LocalBiasSettings& b) {
+    if (!(b.slopeTexels >= 0.0 && b.slopeTexels <= 16.0)) return core::fieldError("local_bias.slope", "must be in [0, 16] texels");
+    if (!(b.normalOffsetTexels >= 0.0 && b.normalOffsetTexels <= 16.0))
+        return core::fieldError("local_bias.normal_offset", "must be in [0, 16] texels");
+    if (!(b.constantMetres >= 0.0 && b.constantMetres <= 1.0)) return core::fieldError("local_bias.constant", "must be in [0, 1] metres");
+    return core::Ok{};
+}
 
 const char* cullingName(Culling culling) {
     switch (culling) {
@@ -96,7 +131,11 @@ struct Renderer::Impl {
     std::optional<ColorTarget> color;
     std::optional<EvalTarget> eval;
     std::optional<MaskPingPong> mask;
-    PassTimer shadowTimer, mainTimer;
+    PassTimer shadowTimer, mainTimer, localTimer;
+    std::unique_ptr<LocalShadowMaps> localMaps;
+    core::LocalLighting localLights; // Renderer::setLocalLights
+    std::vector<PassList> localLists; // LocalShadowMaps::listCount of them
+    int evalLight = -1;               // the eval pass's light (renderEvalBuffers)
 
     core::BiasSettings bias; // of the frame being drawn (biasFor), set by prepare()
 
@@ -106,7 +145,9 @@ struct Renderer::Impl {
     // occlusion culling, after the camera's depth pre-pass.
     void collectVisible(const core::PerspectiveCamera& camera, const core::DirectionalLight& light,
                         const core::ShadowSetup& setup, const RenderSettings& settings);
-    PassStats shadowPass(const core::ShadowSetup& setup);
+    PassStats shadowPass(const core::ShadowSetup& setup, const RenderSettings& settings);
+    // Every local light's maps, timed.
+    core::Result<PassStats> localPass(const RenderSettings& settings);
     void uploadFrame(const core::PerspectiveCamera& camera, const core::DirectionalLight& light,
                      const core::ShadowSetup& setup, const RenderSettings& settings, bool useMask);
     // The eval pass into `eval` (shadow term, depth, ...), for the evaluation and as the
@@ -126,18 +167,24 @@ core::Result<std::unique_ptr<Renderer>> Renderer::create(const scene::Scene& sce
     using namespace shaders;
     auto depth = buildProgram("depth pass", {kDepthPassGlsl, kDepthVert}, {kDepthPassGlsl, kDepthFrag});
     if (!depth) return depth.errorInfo();
-    auto main = buildProgram("main pass", {kFrameGlsl, kMainVert}, {kFrameGlsl, kShadowLookupGlsl, kMainFrag});
+    auto main = buildProgram("main pass", {kFrameGlsl, kMainVert}, {kFrameGlsl, kShadowLookupGlsl, kLocalLightsGlsl, kMainFrag});
     if (!main) return main.errorInfo();
-    auto eval = buildProgram("eval pass", {kFrameGlsl, kMainVert}, {kFrameGlsl, kShadowLookupGlsl, kEvalFrag});
+    auto eval = buildProgram("eval pass", {kFrameGlsl, kMainVert}, {kFrameGlsl, kShadowLookupGlsl, kLocalLightsGlsl, kEvalFrag});
     if (!eval) return eval.errorInfo();
     auto blur = buildProgram("blur pass", {kFullscreenVert}, {kBlurFrag});
     if (!blur) return blur.errorInfo();
     if (auto s = checkUniformBlock(*blur, "blur pass", "Blur", sizeof(BlurUniforms), blurFields()); !s) return s.errorInfo();
     if (auto s = checkUniformBlock(*depth, "depth pass", "DepthPass", sizeof(DepthPassUniforms), depthPassFields()); !s)
         return s.errorInfo();
-    for (const auto* p : {&main, &eval})
+    for (const auto* p : {&main, &eval}) {
         if (auto s = checkUniformBlock(**p, "camera pass", "Frame", sizeof(FrameUniforms), frameFields()); !s)
             return s.errorInfo();
+        if (auto s = checkUniformBlock(**p, "camera pass", "LocalLights", sizeof(LocalLightsUniforms), localLightsFields()); !s)
+            return s.errorInfo();
+    }
+    auto localMaps = LocalShadowMaps::create();
+    if (!localMaps) return localMaps.errorInfo();
+    r.localMaps = std::move(localMaps).value();
     r.depthProgram = std::move(depth).value();
     r.mainProgram = std::move(main).value();
     r.evalProgram = std::move(eval).value();
@@ -254,6 +301,28 @@ void Renderer::Impl::collectVisible(const core::PerspectiveCamera& camera, const
                             masks ? &(*masks)[i] : nullptr);
         lists.push_back(&shadowLists[i]);
     }
+    // Local lights: full meshes (levels are chosen for the sun's maps and the camera), culled
+    // to each pass's volume; a point light's layered pass to the cube around its range.
+    const LocalPass localPass = localMaps->resolve(settings.localPass);
+    localLists.resize(LocalShadowMaps::listCount(localLights, localPass));
+    size_t next = 0;
+    for (size_t p = 0; p < localLights.points.size(); ++p) {
+        const core::ShadowSetup& cube = localLights.pointSetups[p];
+        if (localPass == LocalPass::PerFace) {
+            for (const core::ShadowView& view : cube.views)
+                visibility->collect(core::clipVolume(view.clipFromWorld, false), cull, nullptr, localLists[next++]);
+        } else {
+            PassList& list = localLists[next++];
+            if (cube.views.empty()) list = {};
+            else visibility->collect(rangeBox(localLights.points[p].wsPosition, localLights.points[p].range), cull, nullptr, list);
+        }
+    }
+    for (const core::ShadowSetup& spot : localLights.spotSetups) {
+        PassList& list = localLists[next++];
+        if (spot.views.empty()) list = {};
+        else visibility->collect(core::clipVolume(spot.views[0].clipFromWorld, false), cull, nullptr, list);
+    }
+    for (PassList& list : localLists) lists.push_back(&list);
     lists.push_back(&cameraList);
     visibility->upload(lists);
     cullTimes = total.elapsed();
@@ -275,6 +344,7 @@ core::Status Renderer::Impl::prepare(const core::PerspectiveCamera& camera, cons
     if (auto s = core::validate(bias); !s) return s;
     if (auto s = core::validate(settings.filter); !s) return s;
     if (auto s = validate(settings.blur); !s) return s;
+    if (auto s = validate(settings.localBias); !s) return s;
     const int maps = static_cast<int>(setup.views.size());
     if (maps < 1 || maps > kMaxCascades)
         return core::makeError("renderer: set-ups need 1 to " + std::to_string(kMaxCascades) + " shadow maps, got " +
@@ -291,7 +361,21 @@ core::Status Renderer::Impl::prepare(const core::PerspectiveCamera& camera, cons
     return core::Ok{};
 }
 
-PassStats Renderer::Impl::shadowPass(const core::ShadowSetup& setup) {
+core::Result<PassStats> Renderer::Impl::localPass(const RenderSettings& settings) {
+    localTimer.begin();
+    auto stats = localMaps->draw(*scene, localLights, localLists, settings.localPass,
+                                 settings.filter.kind == core::ShadowFilter::Pcf2);
+    localTimer.end();
+    return stats;
+}
+
+PassStats Renderer::Impl::shadowPass(const core::ShadowSetup& setup, const RenderSettings& settings) {
+    // Night: no sun, no sun maps (the camera passes do not read them).
+    if (!settings.sun) {
+        shadowTimer.begin();
+        shadowTimer.end();
+        return {};
+    }
     // Depth only, polygon offset for bias, depth clamp when the set-up asks for it; one
     // array layer per shadow view.
     glBindFramebuffer(GL_FRAMEBUFFER, shadow->framebuffer.id());
@@ -346,9 +430,9 @@ void Renderer::Impl::uploadFrame(const core::PerspectiveCamera& camera, const co
     frame.wsEye = glm::vec4(glm::vec3(camera.wsEye), 1.0f);
     frame.wsViewForward = glm::vec4(glm::vec3(glm::normalize(camera.wsDirection)), 0.0f);
     frame.wsTowardsLight = glm::vec4(glm::vec3(light.wsTowardsLight()), 0.0f);
-    frame.sunRadiance = glm::vec4(1.05f, 1.0f, 0.9f, 0.0f);
-    frame.ambientRadiance = glm::vec4(0.28f, 0.32f, 0.40f, 0.0f);
-    frame.fogColorDensity = glm::vec4(glm::pow(kSky, glm::vec3(2.2f)), settings.fogDensity);
+    frame.sunRadiance = settings.sun ? glm::vec4(1.05f, 1.0f, 0.9f, 0.0f) : glm::vec4(0.0f);
+    frame.ambientRadiance = settings.sun ? glm::vec4(0.28f, 0.32f, 0.40f, 0.0f) : glm::vec4(0.02f, 0.025f, 0.04f, 0.0f);
+    frame.fogColorDensity = glm::vec4(glm::pow(skyOf(settings), glm::vec3(2.2f)), settings.fogDensity);
     frame.mapTexels = static_cast<float>(setup.mapSize);
     frame.mapCount = static_cast<int32_t>(setup.views.size());
     frame.linearLayout = setup.depthLayout == core::DepthLayout::Linear ? 1 : 0;
@@ -370,6 +454,7 @@ void Renderer::Impl::uploadFrame(const core::PerspectiveCamera& camera, const co
     glNamedBufferSubData(frameUniforms.id(), 0, sizeof frame, &frame);
     glBindBufferBase(GL_UNIFORM_BUFFER, kFrameBinding, frameUniforms.id());
     glBindTextureUnit(kShadowMapUnit, shadow->depth.id());
+    localMaps->bind(localLights, settings.localBias, evalLight, settings.sun);
     glEnable(GL_CULL_FACE);
     glCullFace(GL_BACK);
 }
@@ -425,7 +510,12 @@ core::Result<FrameStats> Renderer::render(const core::PerspectiveCamera& camera,
         if (auto s = checkComplete(r.color->framebuffer, "main pass"); !s) return s.errorInfo();
     }
     FrameStats stats;
-    stats.shadow = r.shadowPass(setup);
+    stats.shadow = r.shadowPass(setup, settings);
+    auto local = r.localPass(settings);
+    if (!local) return local.errorInfo();
+    stats.local = *local;
+    for (const core::ShadowSetup& s : r.localLights.pointSetups) stats.localMaps += static_cast<int>(s.views.size()), stats.skippedFaces += s.skippedFaces;
+    for (const core::ShadowSetup& s : r.localLights.spotSetups) stats.localMaps += static_cast<int>(s.views.size());
 
     // With the eye-space blur, the shadow term comes from the blurred screen-space mask.
     const bool blurred = settings.blur.iterations > 0;
@@ -438,7 +528,8 @@ core::Result<FrameStats> Renderer::render(const core::PerspectiveCamera& camera,
     if (blurred) glBindTextureUnit(kShadowMaskUnit, r.mask->images[maskIndex].id());
     glBindFramebuffer(GL_FRAMEBUFFER, r.color->framebuffer.id());
     glViewport(0, 0, r.color->width, r.color->height);
-    const float clearColor[4] = {kSky.r, kSky.g, kSky.b, 1.0f};
+    const glm::vec3 sky = skyOf(settings);
+    const float clearColor[4] = {sky.r, sky.g, sky.b, 1.0f};
     const float clearDepth = 1.0f;
     glClearNamedFramebufferfv(r.color->framebuffer.id(), GL_COLOR, 0, clearColor);
     glClearNamedFramebufferfv(r.color->framebuffer.id(), GL_DEPTH, 0, &clearDepth);
@@ -449,6 +540,7 @@ core::Result<FrameStats> Renderer::render(const core::PerspectiveCamera& camera,
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
 
     stats.shadow.gpuMilliseconds = r.shadowTimer.milliseconds();
+    stats.local.gpuMilliseconds = r.localTimer.milliseconds();
     stats.main = {r.mainTimer.milliseconds(), mainDraws.instances, mainDraws.triangles, mainDraws.drawCalls};
     stats.cullMilliseconds = r.cullTimes.wallMilliseconds;
     stats.cullGlMilliseconds = r.cullGlTimes.wallMilliseconds;
@@ -463,12 +555,21 @@ core::Result<FrameStats> Renderer::render(const core::PerspectiveCamera& camera,
 core::Result<core::RasterBuffers> Renderer::renderEvalBuffers(const core::PerspectiveCamera& camera,
                                                               const core::DirectionalLight& light,
                                                               const core::ShadowSetup& setup,
-                                                              const RenderSettings& settings) {
+                                                              const RenderSettings& settings, int localLight) {
     Impl& r = *m_impl;
+    if (localLight < -1 || localLight >= static_cast<int>(r.localLights.size()))
+        return core::makeError("renderer: local light " + std::to_string(localLight) + " does not exist (" +
+                               std::to_string(r.localLights.size()) + " set)");
     if (auto s = r.prepare(camera, light, setup, settings); !s) return s.errorInfo();
-    r.shadowPass(setup);
-    if (auto s = r.evalPass(camera, light, setup, settings); !s) return s.errorInfo();
+    r.shadowPass(setup, settings);
+    if (auto s = r.localPass(settings); !s) return s.errorInfo();
+    r.evalLight = localLight;
+    const core::Status evaluated = r.evalPass(camera, light, setup, settings);
+    r.evalLight = -1;
+    if (!evaluated) return evaluated.errorInfo();
     core::RasterBuffers buffers = r.eval->read();
+    if (localLight >= 0) buffers.mapSize = r.localLights.mapSize;
+    if (localLight >= 0) return buffers; // the eye-space blur is the sun's
     if (settings.blur.iterations > 0) buffers.shadowTerm = r.mask->read(r.blurPass(settings));
     buffers.mapSize = setup.mapSize;
     return buffers;
@@ -524,6 +625,25 @@ core::Status Renderer::moveInstances(const scene::Scene& scene, std::span<const 
         if (batchMoved[batch]) r.scene->updateBatch(scene, batch);
     return core::Ok{};
 }
+
+core::Status Renderer::setLocalLights(core::LocalLighting lights) {
+    if (lights.points.size() > static_cast<size_t>(kMaxLocalLights) || lights.spots.size() > static_cast<size_t>(kMaxLocalLights))
+        return core::makeError("renderer: at most " + std::to_string(kMaxLocalLights) + " point and " + std::to_string(kMaxLocalLights) +
+                               " spot lights, got " + std::to_string(lights.points.size()) + " and " + std::to_string(lights.spots.size()));
+    if (lights.pointSetups.size() != lights.points.size() || lights.spotSetups.size() != lights.spots.size())
+        return core::makeError("renderer: every local light needs its set-up (core::computeLocalLighting)");
+    GLint maxSize = 0;
+    glGetIntegerv(GL_MAX_CUBE_MAP_TEXTURE_SIZE, &maxSize);
+    if (!lights.empty() && (lights.mapSize < core::kMinMapSize || lights.mapSize > maxSize))
+        return core::fieldError("local_map_size", "must be in [" + std::to_string(core::kMinMapSize) + ", " + std::to_string(maxSize) +
+                                                      "] texels on this GL driver, got " + std::to_string(lights.mapSize));
+    m_impl->localLights = std::move(lights);
+    return core::Ok{};
+}
+
+const core::LocalLighting& Renderer::localLights() const { return m_impl->localLights; }
+
+scene::Image Renderer::readLocalShadowMaps() const { return m_impl->localMaps->readAsGreys(m_impl->localLights); }
 
 const core::Aabb& Renderer::wsSceneBounds() const { return m_impl->visibility->wsBounds(); }
 

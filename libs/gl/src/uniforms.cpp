@@ -61,6 +61,28 @@ std::span<const UniformField> receiverMaskFields() {
     return kFields;
 }
 
+std::span<const UniformField> localDepthFields() {
+    static constexpr std::array kFields = {
+        SK_ARRAY_FIELD(LocalDepthUniforms, faceClipFromWorld), SK_FIELD(LocalDepthUniforms, wsLightInvRange),
+        SK_ARRAY_FIELD(LocalDepthUniforms, faceOfReplica),     SK_FIELD(LocalDepthUniforms, layerBase),
+        SK_FIELD(LocalDepthUniforms, replicas),
+    };
+    return kFields;
+}
+
+std::span<const UniformField> localLightsFields() {
+    static constexpr std::array kFields = {
+        SK_ARRAY_FIELD(LocalLightsUniforms, pointPositionRange), SK_ARRAY_FIELD(LocalLightsUniforms, pointRadianceTexel),
+        SK_ARRAY_FIELD(LocalLightsUniforms, spotPositionRange),  SK_ARRAY_FIELD(LocalLightsUniforms, spotAxisCosHalf),
+        SK_ARRAY_FIELD(LocalLightsUniforms, spotRadianceTexel),  SK_ARRAY_FIELD(LocalLightsUniforms, spotClipFromWorld),
+        SK_FIELD(LocalLightsUniforms, pointCount),               SK_FIELD(LocalLightsUniforms, spotCount),
+        SK_FIELD(LocalLightsUniforms, evalLight),                SK_FIELD(LocalLightsUniforms, sunLights),
+        SK_FIELD(LocalLightsUniforms, localSlopeBiasTexels),          SK_FIELD(LocalLightsUniforms, localNormalOffsetTexels),
+        SK_FIELD(LocalLightsUniforms, localConstantBiasMetres),       SK_FIELD(LocalLightsUniforms, localMapTexels),
+    };
+    return kFields;
+}
+
 #undef SK_FIELD
 #undef SK_ARRAY_FIELD
 
@@ -95,6 +117,11 @@ const std::string& shaderPrelude() {
         define("SK_BLUR_MASK_UNIT", kBlurMaskUnit);
         define("SK_BLUR_DEPTH_UNIT", kBlurDepthUnit);
         define("SK_INSTANCE_BASE_LOCATION", kInstanceBaseLocation);
+        define("SK_SPOT_MAP_UNIT", kSpotMapUnit);
+        define("SK_POINT_MAP_UNIT", kPointMapUnit);
+        define("SK_LOCAL_DEPTH_BINDING", kLocalDepthBinding);
+        define("SK_LOCAL_LIGHTS_BINDING", kLocalLightsBinding);
+        define("SK_MAX_LOCAL_LIGHTS", kMaxLocalLights);
         s += "#line 1\n";
         return s;
     }();

@@ -6,6 +6,7 @@
 #pragma once
 
 #include "shadowkit/core/shadow_filter.h"
+#include "shadowkit/gl/renderer.h"
 
 #include <glm/glm.hpp>
 
@@ -35,6 +36,12 @@ inline constexpr unsigned kShadowMapUnit = 0;  // camera passes: sampler2DArrayS
 inline constexpr unsigned kShadowMaskUnit = 1; // main pass: the blurred shadow mask
 inline constexpr unsigned kBlurMaskUnit = 0;   // blur pass: the mask being blurred
 inline constexpr unsigned kBlurDepthUnit = 1;  // blur pass: view depth, to stop at depth steps
+// Local lights (local_shadows.h): their maps beside the sun's in the camera passes.
+inline constexpr unsigned kSpotMapUnit = 2;  // sampler2DArrayShadow, one layer per spot light
+inline constexpr unsigned kPointMapUnit = 3; // samplerCubeArrayShadow, one cube per point light
+inline constexpr unsigned kLocalDepthBinding = 5;  // uniform block LocalDepth (local_depth.glsl)
+inline constexpr unsigned kLocalLightsBinding = 6; // uniform block LocalLights (local_lights.glsl)
+inline constexpr int kMaxLocalLights = kMaxLocalLightsPerKind; // GLSL: SK_MAX_LOCAL_LIGHTS
 inline constexpr int kInstanceBaseLocation = 0;   // uniform uint instanceBase (main.vert): surface identity
 inline constexpr int kInstanceOffsetLocation = 1; // uniform uint instanceOffset: the draw's list in visibleInstances
 inline constexpr int kLodErrorLocation = 2;       // uniform float lodObjectError (main.vert): the level's error
@@ -75,6 +82,31 @@ struct FrameUniforms { // GLSL: Frame (frame.glsl)
     glm::vec4 cascadeRange[kMaxCascades];               // x, y: view depth [start, end] each map serves
 };
 
+struct LocalDepthUniforms { // GLSL: LocalDepth (local_depth.glsl)
+    glm::mat4 faceClipFromWorld[6]; // a point light's cube faces, or a spot light's view in [0]
+    glm::vec4 wsLightInvRange;      // xyz: the light; w: 1 / range (stored depth = distance / range)
+    glm::ivec4 faceOfReplica[2];    // the face replica r of a draw writes: [r / 4][r % 4]
+    int32_t layerBase;              // the light's first array layer (6 × index for a cube array)
+    int32_t replicas;               // faces one draw writes, [1, 6]
+    float pad0, pad1;
+};
+
+struct LocalLightsUniforms { // GLSL: LocalLights (local_lights.glsl)
+    glm::vec4 pointPositionRange[kMaxLocalLights];  // xyz, w: range in metres
+    glm::vec4 pointRadianceTexel[kMaxLocalLights];  // rgb, w: texel size per metre (core::texelSizePerMetre)
+    glm::vec4 spotPositionRange[kMaxLocalLights];
+    glm::vec4 spotAxisCosHalf[kMaxLocalLights];     // xyz: unit axis, w: cos(cone / 2)
+    glm::vec4 spotRadianceTexel[kMaxLocalLights];
+    glm::mat4 spotClipFromWorld[kMaxLocalLights];
+    int32_t pointCount, spotCount;
+    int32_t evalLight;         // eval pass: −1 the sun, else a local light (points first, then spots)
+    int32_t sunLights;         // 0: night, the sun neither lights nor is evaluated
+    float localSlopeBiasTexels;     // receiver distance reduced by this × texel size × tan(angle to the light)
+    float localNormalOffsetTexels; // receiver moved along its normal by this × texel size
+    float localConstantBiasMetres; // and its distance reduced by this
+    float localMapTexels;      // texels per side of every spot map and cube face
+};
+
 struct ReceiverMaskUniforms { // GLSL: ReceiverMask (receiver_mask.comp)
     glm::mat4 worldFromClip; // camera
     glm::vec4 wsEye;
@@ -99,6 +131,8 @@ static_assert(offsetof(FrameUniforms, mapTexels) == 160 && offsetof(FrameUniform
               "std140: the scalars must fill whole 16-byte rows before the arrays");
 static_assert(sizeof(FrameUniforms) == 208 + kMaxCascades * (64 + 16 + 16));
 static_assert(sizeof(BlurUniforms) == 16);
+static_assert(sizeof(LocalDepthUniforms) == 6 * 64 + 16 + 32 + 16);
+static_assert(sizeof(LocalLightsUniforms) == kMaxLocalLights * (5 * 16 + 64) + 32);
 
 // One member of a block: its GLSL name (arrays: "name[0]") and C++ offset.
 struct UniformField {
@@ -109,6 +143,8 @@ std::span<const UniformField> depthPassFields();
 std::span<const UniformField> frameFields();
 std::span<const UniformField> blurFields();
 std::span<const UniformField> receiverMaskFields();
+std::span<const UniformField> localDepthFields();
+std::span<const UniformField> localLightsFields();
 
 // "#version 450 core" and the #defines above (SK_MAX_CASCADES, SK_FILTER_HARD, ...,
 // SK_FRAME_BINDING, ..., SK_SHADOW_MAP_UNIT, ...): the first source of every stage.

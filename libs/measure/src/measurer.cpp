@@ -133,6 +133,27 @@ core::Result<Measurement> Measurer::measure(const core::ShadowSetupInputs& input
     auto comparison = eval::compare(m.raster, *m.truth, options.compare);
     if (!comparison) return comparison.errorInfo();
     m.comparison = std::move(comparison).value();
+    const core::LocalLighting& local = renderer.localLights();
+    if (local.empty()) return m;
+    if (settings.sun) m.lights.push_back({"sun", static_cast<int>(m.setup.views.size()), 0, m.comparison});
+    for (size_t i = 0; i < local.size(); ++i) {
+        auto lightRaster = renderer.renderEvalBuffers(inputs.camera, inputs.light, m.setup, settings, static_cast<int>(i));
+        if (!lightRaster) return lightRaster.errorInfo();
+        const bool point = i < local.points.size();
+        const size_t k = point ? i : i - local.points.size();
+        const core::ShadowSetup& lightSetup = point ? local.pointSetups[k] : local.spotSetups[k];
+        const eval::TruthBuffers lightTruth = point ? eval::underLight(*m_impl->rays, *m.truth, local.points[k])
+                                                    : eval::underLight(*m_impl->rays, *m.truth, local.spots[k]);
+        auto lightComparison = eval::compare(*lightRaster, lightTruth, options.compare);
+        if (!lightComparison) return lightComparison.errorInfo();
+        m.lights.push_back({std::string(point ? "point[" : "spot[") + std::to_string(k) + "]", static_cast<int>(lightSetup.views.size()),
+                            lightSetup.skippedFaces, std::move(lightComparison).value()});
+    }
+    std::vector<const eval::Comparison*> parts;
+    for (const LightMeasurement& l : m.lights) parts.push_back(&l.comparison);
+    auto combined = eval::combine(parts);
+    if (!combined) return combined.errorInfo();
+    m.comparison = std::move(combined).value();
     return m;
 }
 
@@ -153,6 +174,7 @@ eval::ViewReport viewReport(const Measurement& m, const gl::RenderSettings& sett
     report.fallbacks = m.setup.fallbacks;
     report.visibleDepth = m.visibleDepth;
     report.figures = m.comparison.figures;
+    for (const LightMeasurement& l : m.lights) report.lights.push_back({l.light, l.maps, l.skippedFaces, l.comparison.figures});
     return report;
 }
 

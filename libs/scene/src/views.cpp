@@ -11,6 +11,31 @@ namespace {
 
 using nlohmann::json;
 
+core::Result<ViewLight> parseLight(const json& j, const std::string& view) {
+    const std::string where = "view \"" + view + "\": lights: ";
+    if (!j.is_object()) return core::makeError(where + "each light must be an object");
+    ViewLight l;
+    const std::string type = j.value("type", "");
+    if (type != "point" && type != "spot") return core::makeError(where + "type must be \"point\" or \"spot\"");
+    l.spot = type == "spot";
+    auto vec3 = [&](const char* key, core::Vec3& out) -> core::Status {
+        if (!j.contains(key)) return core::Ok{};
+        const auto v = j[key].get<std::vector<double>>();
+        if (v.size() != 3) return core::makeError(where + key + " must hold 3 numbers");
+        out = core::Vec3(v[0], v[1], v[2]);
+        return core::Ok{};
+    };
+    if (auto s = vec3("at", l.at); !s) return s.errorInfo();
+    if (auto s = vec3("aim", l.aim); !s) return s.errorInfo();
+    l.coneDegrees = j.value("cone", l.coneDegrees);
+    l.range = j.value("range", l.range);
+    const core::Status valid = l.spot ? core::SpotLight{.wsDirection = l.aim, .coneDegrees = l.coneDegrees, .range = l.range}.validate()
+                                      : core::PointLight{.range = l.range}.validate();
+    if (!valid) return core::makeError(where + valid.error());
+    if (!core::isFinite(l.at)) return core::makeError(where + "at must be finite");
+    return l;
+}
+
 core::Result<ViewSpec> parseView(const json& j) {
     ViewSpec v;
     if (!j.is_object() || !j.contains("name") || !j["name"].is_string())
@@ -34,6 +59,15 @@ core::Result<ViewSpec> parseView(const json& j) {
         v.pitchDegrees = j.value("pitch", v.pitchDegrees);
         v.sunElevationDegrees = j.value("sun_elevation", v.sunElevationDegrees);
         v.sunAzimuthFromViewDegrees = j.value("sun_azimuth_from_view", v.sunAzimuthFromViewDegrees);
+        v.sun = j.value("sun", v.sun);
+        if (j.contains("lights")) {
+            if (!j["lights"].is_array()) return core::makeError("view \"" + v.name + "\": lights must be an array");
+            for (const json& entry : j["lights"]) {
+                auto light = parseLight(entry, v.name);
+                if (!light) return light.errorInfo();
+                v.lights.push_back(*light);
+            }
+        }
     } catch (const json::exception& e) {
         return core::makeError("view \"" + v.name + "\": a field has the wrong type (" + e.what() + ")");
     }
@@ -97,6 +131,18 @@ ResolvedView resolveView(const ViewSpec& view, const Scene& scene) {
     // Validated in parseView: the angles are in range, so this cannot fail.
     out.light = core::DirectionalLight::fromSunAngles(view.sunElevationDegrees,
                                                      view.azimuthDegrees + view.sunAzimuthFromViewDegrees).value();
+    out.sun = view.sun;
+    // The view's frame on the ground: right and forward by its azimuth alone (not its pitch).
+    const core::Vec3 forward(std::sin(az), 0.0, -std::cos(az)), right(std::cos(az), 0.0, std::sin(az)), up(0.0, 1.0, 0.0);
+    for (const ViewLight& l : view.lights) {
+        core::Vec3 ws = core::Vec3(view.eyeX, 0.0, view.eyeZ) + l.at.x * right + l.at.z * forward;
+        ws.y = scene.groundHeightAt(ws.x, ws.z) + l.at.y;
+        if (l.spot)
+            out.spots.push_back({.wsPosition = ws, .wsDirection = l.aim.x * right + l.aim.y * up + l.aim.z * forward,
+                                 .coneDegrees = l.coneDegrees, .range = l.range});
+        else
+            out.points.push_back({.wsPosition = ws, .range = l.range});
+    }
     return out;
 }
 

@@ -14,14 +14,25 @@ layout(location = 5) out vec4 outTexelFromPixel;
 
 void main() {
     const vec3 dwsdx = dFdx(wsPosition), dwsdy = dFdy(wsPosition); // uniform control flow
-    // The maps' test alone, without N·L (also the mask the eye-space blur starts from).
-    outShadowTerm = shadowTerm(receiverLookup(wsPosition, vLodError), normalize(wsNormal), dwsdx, dwsdy);
+    const vec3 n = normalize(wsNormal);
     outSurfaceId = vSurfaceId;
     outViewDepth = viewDepthOf(wsPosition);
-    outNormal = vec4(normalize(wsNormal), 0.0);
-    // Texel position in the map that serves this pixel.
-    const vec4 cs = shadowClip(cascadeOf(outViewDepth), wsPosition);
-    const vec2 texel = (cs.xy / cs.w * 0.5 + 0.5) * mapTexels;
+    outNormal = vec4(n, 0.0);
+    vec2 texel;
+    if (evalLight >= 0) {
+        // A local light's map test, and the texel of its map with the analytic Jacobian.
+        outShadowTerm = localShadowTerm(evalLight, wsPosition, n);
+        vec4 texelFromPixel;
+        outTexel = localTexel(evalLight, wsPosition, localMapTexels, dFdxFine(wsPosition), dFdyFine(wsPosition), texelFromPixel);
+        outTexelFromPixel = vec4(texelFromPixel.xy, -texelFromPixel.zw); // rows run down, as below
+        return;
+    } else {
+        // The maps' test alone, without N·L (also the mask the eye-space blur starts from).
+        outShadowTerm = shadowTerm(receiverLookup(wsPosition, vLodError), n, dwsdx, dwsdy);
+        // Texel position in the map that serves this pixel.
+        const vec4 cs = shadowClip(cascadeOf(outViewDepth), wsPosition);
+        texel = (cs.xy / cs.w * 0.5 + 0.5) * mapTexels;
+    }
     outTexel = texel;
     // Screen derivatives of the texel position (fine: per pixel, not per 2x2 quad).
     // GL's y runs up; negate so the second column is the derivative along image rows (down).

@@ -1,4 +1,5 @@
-// Diffuse sun + ambient + exponential distance fog; the sun term masked by the shadow test.
+// Diffuse sun + local lights + ambient + exponential distance fog; each light masked by its
+// shadow test.
 in vec3 wsPosition;
 in vec3 wsNormal;
 in vec3 vAlbedo;
@@ -19,12 +20,13 @@ void main() {
     const vec3 l = wsTowardsLight.xyz;
     const float nDotL = max(dot(n, l), 0.0);
     const vec3 dwsdx = dFdx(wsPosition), dwsdy = dFdy(wsPosition); // uniform control flow
-    const float term = readBlurredMask != 0 ? texelFetch(shadowMask, ivec2(gl_FragCoord.xy), 0).r
-                                            : shadowTerm(receiverLookup(wsPosition, vLodError), n, dwsdx, dwsdy);
-    const float lit = nDotL > 0.0 ? term : 0.0;
+    float lit = 0.0;
+    if (sunLights != 0 && nDotL > 0.0)
+        lit = readBlurredMask != 0 ? texelFetch(shadowMask, ivec2(gl_FragCoord.xy), 0).r
+                                   : shadowTerm(receiverLookup(wsPosition, vLodError), n, dwsdx, dwsdy);
     vec3 albedo = vAlbedo;
     if (cascadeColors != 0) albedo *= kCascadeTint[cascadeOf(viewDepthOf(wsPosition))];
-    vec3 color = albedo * (ambientRadiance.rgb + sunRadiance.rgb * nDotL * lit);
+    vec3 color = albedo * (ambientRadiance.rgb + sunRadiance.rgb * nDotL * lit + localLighting(wsPosition, n));
     const float fog = exp(-fogColorDensity.a * distance(wsPosition, wsEye.xyz));
     color = mix(fogColorDensity.rgb, color, fog);
     outColor = vec4(pow(clamp(color, 0.0, 1.0), vec3(1.0 / 2.2)), 1.0);

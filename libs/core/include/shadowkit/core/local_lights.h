@@ -13,6 +13,8 @@
 #include "shadowkit/core/shadow_setup.h"
 
 #include <array>
+#include <span>
+#include <vector>
 
 namespace shadowkit::core {
 
@@ -64,6 +66,25 @@ Result<ShadowSetup> computeSpotShadowSetup(const LocalShadowInputs& inputs, cons
 // scene box, each a full 90° face (the cube sampler needs whole faces) with its own distance
 // range and `face` index; faces that see nothing of R are left out (setup.skippedFaces).
 Result<ShadowSetup> computePointShadowSetup(const LocalShadowInputs& inputs, const PointLight& light);
+
+// A frame's local lights with their set-ups, in the order given: what a renderer draws.
+struct LocalLighting {
+    std::vector<PointLight> points;
+    std::vector<ShadowSetup> pointSetups; // one per point light
+    std::vector<SpotLight> spots;
+    std::vector<ShadowSetup> spotSetups; // one per spot light
+    int mapSize = 1024;                  // of every spot map and cube face
+    size_t size() const { return points.size() + spots.size(); }
+    bool empty() const { return size() == 0; }
+};
+// Every light's set-up for this camera (errors name the light: "point[2]: ...").
+Result<LocalLighting> computeLocalLighting(const LocalShadowInputs& inputs, std::span<const PointLight> points,
+                                           std::span<const SpotLight> spots);
+
+// World size of one texel of a local light's view per metre of distance from the light:
+// a texel at distance d covers about d × this (the view's widest tangent span over the map's
+// texels; 2 / mapSize for a 90° cube face). Biases in texels become metres with it.
+double texelSizePerMetre(const ShadowView& view, int mapSize);
 
 // The depth a local light's view stores for a world point (LightDistance layout), before
 // clamping to [0, 1].

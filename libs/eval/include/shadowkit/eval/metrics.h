@@ -6,6 +6,7 @@
 #include "shadowkit/eval/truth.h"
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace shadowkit::eval {
@@ -47,6 +48,13 @@ struct CompareOptions {
 // Fails (one line) when the two sets of buffers differ in size.
 core::Result<Comparison> compare(const core::RasterBuffers& raster, const TruthBuffers& truth,
                                  const CompareOptions& options = {});
+
+// Several lights' comparisons of the same pixels as one: the figures over every (pixel, light)
+// pair each light reaches (its valid pixels summed, percentiles over all of them), and per
+// pixel the class that matters most — wrong under any light, then shadowed by any, then lit,
+// then excluded — with the worst sampling (largest pixels per texel) of the lights. One part
+// is returned as it is. Fails for no parts or parts of different sizes.
+core::Result<Comparison> combine(std::span<const Comparison* const> parts);
 
 // Largest singular value of d(pixel)/d(texel), from the Jacobian d(texel)/d(pixel):
 // 1 / (its smallest singular value). Infinite for a singular Jacobian.

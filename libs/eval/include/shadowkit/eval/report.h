@@ -15,6 +15,14 @@
 
 namespace shadowkit::eval {
 
+// One light's figures in a view with several (the sun, "point[0]", "spot[1]", ...).
+struct LightReport {
+    std::string light;
+    int maps = 1;          // maps drawn: cube faces kept for a point light
+    int skippedFaces = 0;  // point lights: faces that saw nothing of the view
+    Figures figures;
+};
+
 struct ViewReport {
     std::string view;
     std::string technique;
@@ -28,7 +36,8 @@ struct ViewReport {
     int blurIterations = 0;
     std::vector<std::string> fallbacks;
     std::optional<core::Vec2> visibleDepth; // the visible view-depth range the set-up used, when one was given
-    Figures figures;
+    Figures figures;      // every light together (eval::combine); the sun's alone in a sunlit view
+    std::vector<LightReport> lights; // per light, when the view has spot or point lights
     double seconds = 0.0; // wall time of this view's evaluation
 };
 

@@ -50,6 +50,11 @@ std::vector<uint8_t> litAt(const RayScene& rays, const TruthBuffers& hits, const
 std::vector<uint8_t> litAt(const RayScene& rays, const TruthBuffers& hits, const core::SpotLight& light,
                            const TruthOptions& options = {});
 
+// `hits`' surfaces under a local light, for eval::compare: facesLight marks the points the light
+// reaches (facing it, in its range and cone), lit those whose segment to it is free.
+TruthBuffers underLight(const RayScene& rays, const TruthBuffers& hits, const core::PointLight& light, const TruthOptions& options = {});
+TruthBuffers underLight(const RayScene& rays, const TruthBuffers& hits, const core::SpotLight& light, const TruthOptions& options = {});
+
 // A primary ray through the centre of pixel (x, y), top row first, scaled so that its
 // parameter t is the view depth (t = near on the near plane).
 core::Vec3 primaryRayDirection(const core::PerspectiveCamera& camera, int width, int height, int x, int y);

@@ -6,6 +6,7 @@
 #include "shadowkit/core/camera.h"
 #include "shadowkit/core/coherent_culling.h"
 #include "shadowkit/core/light.h"
+#include "shadowkit/core/local_lights.h"
 #include "shadowkit/core/raster_buffers.h"
 #include "shadowkit/core/result.h"
 #include "shadowkit/core/shadow_filter.h"
@@ -42,6 +43,28 @@ enum class Culling {
 };
 const char* cullingName(Culling culling); // "off", "frustum", "chc"
 
+inline constexpr int kMaxLocalLightsPerKind = 16; // spot and point lights a frame can shadow, each
+
+// How a point light's cube faces are written (local_shadows.h; seed 003: all faces in one pass).
+enum class LocalPass {
+    Layered,     // one pass per light: VertexLayer where the driver has it, else Geometry
+    VertexLayer, // gl_Layer from the vertex shader, each instance drawn once per face
+    Geometry,    // gl_Layer from a geometry shader, one invocation per face
+    PerFace,     // six passes, one per kept face, each culled to its face
+};
+const char* localPassName(LocalPass pass); // "layered", "vertex-layer", "geometry", "per-face"
+
+// Bias of the local lights' lookups, in distance units (their maps store the distance to the
+// light): sizes in texels become metres through the texel's world size at the receiver's
+// distance (core::texelSizePerMetre), so one setting holds near and far from the light.
+struct LocalBiasSettings {
+    double slopeTexels = 1.5;        // distance reduced by this × texel size × tan(angle to the light), [0, 16]
+    double normalOffsetTexels = 1.0; // receiver moved along its normal by this × texel size, [0, 16]
+    double constantMetres = 0.005;   // and its distance reduced by this, [0, 1]
+};
+// Fields "local_bias.slope", "local_bias.normal_offset", "local_bias.constant".
+core::Status validate(const LocalBiasSettings& bias);
+
 // How a frame is drawn. The shadow maps' size comes with the set-up (ShadowSetup::mapSize).
 struct RenderSettings {
     int width = 1280, height = 720; // output pixels, [1, GL_MAX_TEXTURE_SIZE]
@@ -69,6 +92,11 @@ struct RenderSettings {
     float lodPixelError = 0.25f; // (0, 16]
     float lodTexelError = 0.25f; // (0, 16]
     bool cascadeColors = false;     // tint each cascade's range (Dimitrov 2007, Figure 3-2)
+    // false: night. The sun neither lights the frame nor has its maps drawn; the local lights
+    // (Renderer::setLocalLights) and a dim ambient remain.
+    bool sun = true;
+    LocalPass localPass = LocalPass::Layered;
+    LocalBiasSettings localBias;
 };
 
 // The bias a frame with these settings is drawn with: settings.bias, or the recommended one.
@@ -83,6 +111,9 @@ struct PassStats {
 
 struct FrameStats {
     PassStats shadow, main;
+    PassStats local; // every local light's maps (Renderer::setLocalLights), faces written counted
+    int localMaps = 0;     // spot maps and cube faces drawn
+    int skippedFaces = 0;  // cube faces left out: they see nothing of the view
     double cullMilliseconds = 0.0; // CPU: choosing every pass's instances and uploading the lists
     // Of cullMilliseconds, the time inside GL calls that do or await the GPU's work: the
     // camera depth pre-pass's draws, the occlusion queries and their results (blocking when
@@ -119,9 +150,18 @@ public:
     // compares with ray-traced truth (shadow term — filtered and blurred as the settings
     // say —, surface identity, depth, normal, shadow texel coordinates and their screen
     // derivatives).
+    // With `localLight` ≥ 0 the shadow term, texel coordinates and their derivatives are those
+    // of that local light's map (points first, then spots), without its range and cone.
     core::Result<core::RasterBuffers> renderEvalBuffers(const core::PerspectiveCamera& camera,
                                                         const core::DirectionalLight& light,
-                                                        const core::ShadowSetup& setup, const RenderSettings& settings);
+                                                        const core::ShadowSetup& setup, const RenderSettings& settings,
+                                                        int localLight = -1);
+
+    // The spot and point lights of the frames to come, with their set-ups (core::computeLocalLighting
+    // for the frame's camera), drawn beside the sun until set again. At most
+    // kMaxLocalLightsPerKind of each kind.
+    core::Status setLocalLights(core::LocalLighting lights);
+    const core::LocalLighting& localLights() const;
 
     // The view-depth range of what this camera sees ([nearest, farthest] drawn; nullopt for
     // an empty frame), for ShadowSetupInputs::visibleDepth: a camera depth pre-pass (the
@@ -149,6 +189,8 @@ public:
     scene::Image readColor() const;
     // The last shadow maps as greys, side by side: near the light is bright, empty texels black.
     scene::Image readShadowMap() const;
+    // The local lights' last maps likewise: spot maps, then each cube unfolded as a cross.
+    scene::Image readLocalShadowMaps() const;
 
 private:
     Renderer();

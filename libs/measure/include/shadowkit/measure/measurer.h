@@ -50,13 +50,24 @@ struct MeasureOptions {
     core::SetupHysteresis* hysteresis = nullptr;
 };
 
+// One light of a frame with several: its name ("sun", "point[0]", "spot[1]"), maps and figures.
+struct LightMeasurement {
+    std::string light;
+    int maps = 1;
+    int skippedFaces = 0;
+    eval::Comparison comparison;
+};
+
 struct Measurement {
     core::ShadowSetup setup;          // as computed from the inputs
     core::BiasSettings bias;          // what the frame was drawn with (gl::biasFor)
     std::optional<core::Vec2> visibleDepth; // the measured range, with visibleDepthFromFrame
     core::RasterBuffers raster;       // the GL side's per-pixel buffers
     std::shared_ptr<const eval::TruthBuffers> truth; // shared with the cache
-    eval::Comparison comparison;      // per-pixel classes and the figures
+    // Per-pixel classes and the figures: of the sun, or with spot and point lights of every
+    // light together (eval::combine; `lights` holds each).
+    eval::Comparison comparison;
+    std::vector<LightMeasurement> lights; // when the renderer has local lights: the sun (if on), then each
     scene::Image image;               // the shaded frame, with MeasureOptions::shadedImage
     const eval::Figures& figures() const { return comparison.figures; }
 };
@@ -73,7 +84,9 @@ public:
 
     // Set-up from `inputs` (camera, light, bounds, technique, map size), drawn with
     // `settings` (width and height are the image's; the camera's aspect should match),
-    // compared with the truth for that camera, light and size.
+    // compared with the truth for that camera, light and size. The renderer's local lights
+    // (gl::Renderer::setLocalLights, set for this camera) are measured too, each against its
+    // own truth; with settings.sun false the sun is not.
     core::Result<Measurement> measure(const core::ShadowSetupInputs& inputs, const gl::RenderSettings& settings,
                                       const MeasureOptions& options = {});
 

@@ -3,6 +3,7 @@
 
 #include "shadowkit/core/camera.h"
 #include "shadowkit/core/light.h"
+#include "shadowkit/core/local_lights.h"
 #include "shadowkit/core/result.h"
 #include "shadowkit/scene/scene.h"
 
@@ -11,6 +12,17 @@
 #include <vector>
 
 namespace shadowkit::scene {
+
+// A spot or point light of a view, placed in the view's own frame so it follows the eye over
+// any ground: `at` is (right, height above the ground under the light, forward) in metres from
+// the ground point under the eye, `aim` a spot light's axis as (right, up, forward).
+struct ViewLight {
+    bool spot = false;
+    core::Vec3 at{0.0, 3.0, 10.0};
+    core::Vec3 aim{0.0, 0.0, 1.0};
+    double coneDegrees = 40.0;
+    double range = 30.0;
+};
 
 struct ViewSpec {
     std::string name;
@@ -24,12 +36,17 @@ struct ViewSpec {
     double pitchDegrees = 0.0;   // positive looks up
     double sunElevationDegrees = 45.0;
     double sunAzimuthFromViewDegrees = 90.0;
+    bool sun = true; // false: night, lit by `lights` alone ("sun": false)
+    std::vector<ViewLight> lights;
 };
 
 struct ResolvedView {
     core::PerspectiveCamera camera;
     core::DirectionalLight light;
     int width = 0, height = 0;
+    bool sun = true;
+    std::vector<core::PointLight> points; // the view's local lights in the world
+    std::vector<core::SpotLight> spots;
 };
 
 // Reads a views file; errors name the file and the offending entry or field.

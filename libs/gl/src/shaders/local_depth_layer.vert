@@ -1,0 +1,20 @@
+// Local lights' depth pass, layered from the vertex shader (GL_ARB_shader_viewport_layer_array):
+// every instance is drawn `replicas` times, each copy to its own cube face, so all the faces
+// of a light are written by one instanced draw per batch, with no geometry shader.
+layout(location = 0) in vec3 osPosition;
+
+layout(std430, binding = SK_INSTANCES_BINDING) readonly buffer Instances { mat4 worldFromObject[]; };
+layout(std430, binding = SK_VISIBLE_BINDING) readonly buffer Visible { uint visibleInstances[]; };
+layout(location = SK_INSTANCE_OFFSET_LOCATION) uniform uint instanceOffset;
+
+out vec3 wsPosition;
+
+void main() {
+    const uint copies = uint(replicas);
+    const uint instance = visibleInstances[instanceOffset + uint(gl_InstanceID) / copies];
+    const int face = faceOf(int(uint(gl_InstanceID) % copies));
+    const vec4 ws = worldFromObject[instance] * vec4(osPosition, 1.0);
+    wsPosition = ws.xyz;
+    gl_Position = faceClipFromWorld[face] * ws;
+    gl_Layer = layerBase + face;
+}

@@ -1,0 +1,15 @@
+// Local lights' depth pass with a geometry shader: the vertex stage only places the vertex in
+// the world; local_depth.geom projects each triangle into every face.
+layout(location = 0) in vec3 osPosition;
+
+layout(std430, binding = SK_INSTANCES_BINDING) readonly buffer Instances { mat4 worldFromObject[]; };
+layout(std430, binding = SK_VISIBLE_BINDING) readonly buffer Visible { uint visibleInstances[]; };
+layout(location = SK_INSTANCE_OFFSET_LOCATION) uniform uint instanceOffset;
+
+out vec3 vsWorld;
+
+void main() {
+    const vec4 ws = worldFromObject[visibleInstances[instanceOffset + uint(gl_InstanceID)]] * vec4(osPosition, 1.0);
+    vsWorld = ws.xyz;
+    gl_Position = ws;
+}
