@@ -1,0 +1,186 @@
+// Spot and point lights on the GPU (local_shadows.h): a caster's shadow lands where it must on
+// every cube face, a spot light lights nothing outside its cone, the three ways of writing a
+// cube give the same maps, and faces that see nothing of the view are not drawn. CTest label `gl`.
+#include "headless_gl_test.h"
+
+#include "shadowkit/gl/renderer.h"
+#include "shadowkit/scene/mesh_builder.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+
+using namespace shadowkit;
+
+namespace {
+
+class LocalLightsTest : public gl::testing::HeadlessGlTest {};
+
+constexpr int kImage = 160;
+
+// A scene of boxes (centre, half extents), each its own static mesh.
+scene::Scene boxes(std::initializer_list<std::pair<core::Vec3, core::Vec3>> list) {
+    scene::Scene s;
+    for (const auto& [centre, half] : list) {
+        scene::Mesh mesh;
+        scene::addBox(mesh, glm::translate(glm::mat4(1.0f), glm::vec3(centre)), glm::vec3(half), glm::vec3(0.8f));
+        mesh.computeBounds();
+        s.batches.push_back({static_cast<uint32_t>(s.meshes.size()), {glm::mat4(1.0f)}, false});
+        s.meshes.push_back(std::move(mesh));
+    }
+    return s;
+}
+
+core::PerspectiveCamera looking(const core::Vec3& eye, const core::Vec3& at, const core::Vec3& up) {
+    core::PerspectiveCamera cam;
+    cam.wsEye = eye;
+    cam.wsDirection = glm::normalize(at - eye);
+    cam.wsUp = up;
+    cam.aspect = 1.0;
+    cam.zNear = 0.1;
+    cam.zFar = 100.0;
+    return cam;
+}
+
+// The pixel (top row first) showing world point ws.
+std::pair<int, int> pixelOf(const core::PerspectiveCamera& cam, const core::Vec3& ws) {
+    const core::Vec4 cs = cam.clipFromWorld() * core::Vec4(ws, 1.0);
+    return {static_cast<int>((cs.x / cs.w * 0.5 + 0.5) * kImage), static_cast<int>((0.5 - cs.y / cs.w * 0.5) * kImage)};
+}
+
+gl::RenderSettings nightSettings(gl::LocalPass pass = gl::LocalPass::Layered) {
+    gl::RenderSettings settings;
+    settings.width = settings.height = kImage;
+    settings.fogDensity = 0.0f;
+    settings.sun = false;
+    settings.localPass = pass;
+    return settings;
+}
+
+// The sun's set-up is still required by the renderer's interface; at night it is not drawn.
+core::ShadowSetup sunSetup(const core::PerspectiveCamera& cam, const core::Aabb& bounds) {
+    return core::computeShadowSetup({.camera = cam, .light = {}, .wsSceneBounds = bounds, .mapSize = 64}).value();
+}
+
+core::LocalLighting lighting(const core::PerspectiveCamera& cam, const core::Aabb& bounds, std::vector<core::PointLight> points,
+                             std::vector<core::SpotLight> spots, int mapSize = 256) {
+    auto l = core::computeLocalLighting({.camera = cam, .wsSceneBounds = bounds, .mapSize = mapSize}, points, spots);
+    EXPECT_TRUE(l) << l.error();
+    return *l;
+}
+
+} // namespace
+
+TEST_F(LocalLightsTest, ABoxBesideAPointLightShadowsTheWallBehindItOnEveryCubeFace) {
+    // Light at the origin; for each axis a, a wall across a at 8 m and a 1 m cube at 3 m along
+    // a, 0.8 m off the axis along v: its shadow's centre lies on the wall 8/3 × 0.8 m off the
+    // axis on the same side. Off-axis, so a face mirrored or turned would put it elsewhere.
+    const core::Vec3 light(0.0);
+    for (int face = 0; face < 6; ++face) {
+        const core::Vec3 a = core::cubeFaces()[static_cast<size_t>(face)].wsAxis;
+        const core::Vec3 u = std::abs(a.y) > 0.5 ? core::Vec3(1, 0, 0) : core::Vec3(0, 1, 0);
+        const core::Vec3 v = glm::cross(a, u);
+        const core::Vec3 wallHalf = 10.0 * (core::Vec3(1.0) - glm::abs(a)) + 0.1 * glm::abs(a);
+        scene::Scene s = boxes({{8.1 * a, wallHalf}, {3.0 * a + 0.8 * v, core::Vec3(0.5)}});
+        auto renderer = gl::Renderer::create(s);
+        ASSERT_TRUE(renderer) << renderer.error();
+        const core::Vec3 shadowCentre = 8.0 * a + (8.0 / 3.0) * 0.8 * v, mirrored = 8.0 * a - (8.0 / 3.0) * 0.8 * v;
+        // Seen from beside the light, clear of the cube.
+        const core::PerspectiveCamera cam = looking(6.0 * u + 1.0 * a, 8.0 * a, std::abs(a.y) > 0.5 ? core::Vec3(0, 0, 1) : core::Vec3(0, 1, 0));
+        ASSERT_TRUE((*renderer)->setLocalLights(lighting(cam, (*renderer)->wsSceneBounds(), {{.wsPosition = light, .range = 30.0}}, {})));
+        const gl::RenderSettings settings = nightSettings();
+        auto raster = (*renderer)->renderEvalBuffers(cam, {}, sunSetup(cam, (*renderer)->wsSceneBounds()), settings, 0);
+        ASSERT_TRUE(raster) << raster.error();
+        auto termAt = [&](const core::Vec3& ws) {
+            const auto [x, y] = pixelOf(cam, ws);
+            const size_t i = static_cast<size_t>(y) * kImage + static_cast<size_t>(x);
+            EXPECT_EQ(raster->surfaceId[i], 1u) << "face " << face << ": the wall must be seen there";
+            return raster->shadowTerm[i];
+        };
+        EXPECT_LT(termAt(shadowCentre), 0.5f) << "face " << face << ": the cube's shadow is missing";
+        EXPECT_GT(termAt(mirrored), 0.5f) << "face " << face << ": shadow on the mirrored side";
+        EXPECT_GT(termAt(8.0 * a + 3.0 * u), 0.5f) << "face " << face << ": shadow beside it";
+    }
+}
+
+TEST_F(LocalLightsTest, ASpotLightsNothingOutsideItsConeAndShadowsInsideIt) {
+    // A 40° spot 5 m above the ground pointing down lights a disc of radius 5 tan 20° = 1.82 m;
+    // a cube at 2.5 m, 0.8 m off the axis, shadows the ground 1.6 m off it.
+    scene::Scene s = boxes({{core::Vec3(0, -0.1, 0), core::Vec3(20, 0.1, 20)}, {core::Vec3(0.8, 2.5, 0), core::Vec3(0.3)}});
+    auto renderer = gl::Renderer::create(s);
+    ASSERT_TRUE(renderer) << renderer.error();
+    const core::PerspectiveCamera cam = looking({0, 12, 9}, {0, 0, 0}, {0, 1, 0});
+    const core::SpotLight spot{.wsPosition = {0, 5, 0}, .wsDirection = {0, -1, 0}, .coneDegrees = 40.0, .range = 30.0};
+    ASSERT_TRUE((*renderer)->setLocalLights(lighting(cam, (*renderer)->wsSceneBounds(), {}, {spot})));
+    ASSERT_TRUE((*renderer)->render(cam, {}, sunSetup(cam, (*renderer)->wsSceneBounds()), nightSettings()));
+    const scene::Image image = (*renderer)->readColor();
+    auto luminance = [&](const core::Vec3& ws) {
+        const auto [x, y] = pixelOf(cam, ws);
+        const uint8_t* p = image.pixel(x, y);
+        return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
+    };
+    const double dark = luminance({8, 0, 0}); // far outside: ambient alone
+    EXPECT_GT(luminance({-1.2, 0, 0}), dark + 40.0) << "inside the cone, in the open: lit";
+    EXPECT_NEAR(luminance({1.6, 0, 0}), dark, 3.0) << "inside the cone, behind the cube: shadowed";
+    for (const core::Vec3& outside : {core::Vec3(2.3, 0, 0), core::Vec3(0, 0, -2.3), core::Vec3(-1.7, 0, 1.7)})
+        EXPECT_NEAR(luminance(outside), dark, 3.0) << "outside the cone: not lit at " << outside.x << ", " << outside.z;
+}
+
+TEST_F(LocalLightsTest, VertexLayerGeometryShaderAndSixPassesWriteTheSameCube) {
+    scene::Scene s = boxes({{core::Vec3(0, -0.1, 0), core::Vec3(20, 0.1, 20)},
+                            {core::Vec3(2, 1, 0), core::Vec3(0.5)},
+                            {core::Vec3(-1, 2, 2), core::Vec3(0.4)},
+                            {core::Vec3(0, 5, -2), core::Vec3(0.6)}});
+    auto renderer = gl::Renderer::create(s);
+    ASSERT_TRUE(renderer) << renderer.error();
+    const core::PerspectiveCamera cam = looking({0, 6, 10}, {0, 1, 0}, {0, 1, 0});
+    ASSERT_TRUE((*renderer)->setLocalLights(lighting(cam, (*renderer)->wsSceneBounds(), {{.wsPosition = {0, 3, 0}, .range = 20.0}}, {})));
+    const core::ShadowSetup sun = sunSetup(cam, (*renderer)->wsSceneBounds());
+    std::vector<scene::Image> maps;
+    for (const gl::LocalPass pass : {gl::LocalPass::VertexLayer, gl::LocalPass::Geometry, gl::LocalPass::PerFace}) {
+        auto stats = (*renderer)->render(cam, {}, sun, nightSettings(pass));
+        ASSERT_TRUE(stats) << stats.error();
+        EXPECT_GT(stats->local.triangles, 0u) << gl::localPassName(pass);
+        maps.push_back((*renderer)->readLocalShadowMaps());
+    }
+    ASSERT_GT(maps[0].width, 0);
+    EXPECT_TRUE(maps[0].rgba == maps[1].rgba) << "geometry shader differs from the vertex layer";
+    EXPECT_TRUE(maps[0].rgba == maps[2].rgba) << "six passes differ from one layered pass";
+}
+
+TEST_F(LocalLightsTest, FacesThatSeeNothingOfTheViewAreNotDrawnAndLightsOutOfRangeDrawNothing) {
+    scene::Scene s = boxes({{core::Vec3(0, -0.1, 0), core::Vec3(50, 0.1, 50)}, {core::Vec3(0, 1, -10), core::Vec3(1)}});
+    auto renderer = gl::Renderer::create(s);
+    ASSERT_TRUE(renderer) << renderer.error();
+    // Looking along −Z from z = 0: a lamp 3 m behind the eye sees the view only through its
+    // −Z side (and down, up and sideways into the frustum); +Z looks away from everything.
+    const core::PerspectiveCamera cam = looking({0, 1.8, 0}, {0, 1.8, -10}, {0, 1, 0});
+    const core::PointLight behind{.wsPosition = {0, 3, 3}, .range = 30.0}, far{.wsPosition = {0, 3, 200}, .range = 10.0};
+    ASSERT_TRUE((*renderer)->setLocalLights(lighting(cam, (*renderer)->wsSceneBounds(), {behind, far}, {})));
+    auto stats = (*renderer)->render(cam, {}, sunSetup(cam, (*renderer)->wsSceneBounds()), nightSettings());
+    ASSERT_TRUE(stats) << stats.error();
+    const core::LocalLighting& lights = (*renderer)->localLights();
+    EXPECT_GE(lights.pointSetups[0].skippedFaces, 1);
+    for (const core::ShadowView& view : lights.pointSetups[0].views) EXPECT_NE(view.face, 4) << "+Z sees nothing of the view";
+    EXPECT_EQ(lights.pointSetups[1].skippedFaces, 6) << "a light whose range misses the view draws no face";
+    EXPECT_EQ(stats->localMaps, static_cast<int>(lights.pointSetups[0].views.size()));
+    EXPECT_EQ(stats->skippedFaces, lights.pointSetups[0].skippedFaces + 6);
+}
+
+TEST_F(LocalLightsTest, TooManyLightsOrAMissingSetUpIsAnError) {
+    scene::Scene s = boxes({{core::Vec3(0), core::Vec3(1)}});
+    auto renderer = gl::Renderer::create(s);
+    ASSERT_TRUE(renderer) << renderer.error();
+    core::LocalLighting many;
+    many.points.assign(gl::kMaxLocalLightsPerKind + 1, core::PointLight{});
+    many.pointSetups.assign(many.points.size(), core::ShadowSetup{});
+    auto tooMany = (*renderer)->setLocalLights(many);
+    ASSERT_FALSE(tooMany);
+    EXPECT_NE(tooMany.error().find("at most"), std::string::npos) << tooMany.error();
+    core::LocalLighting missing;
+    missing.spots.push_back({});
+    EXPECT_FALSE((*renderer)->setLocalLights(missing));
+    const core::PerspectiveCamera cam = looking({0, 0, 5}, {0, 0, 0}, {0, 1, 0});
+    auto bad = (*renderer)->renderEvalBuffers(cam, {}, sunSetup(cam, (*renderer)->wsSceneBounds()), nightSettings(), 3);
+    ASSERT_FALSE(bad);
+    EXPECT_NE(bad.error().find("local light 3"), std::string::npos) << bad.error();
+}
