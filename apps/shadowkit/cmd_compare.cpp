@@ -1,6 +1,7 @@
 // shadowkit compare: a labelled grid of one view rendered with several configurations,
 // each captioned with its settings and its wrong_pct against ray-traced truth.
 #include "commands.h"
+#include "local_light_options.h"
 #include "options.h"
 
 #include "shadowkit/eval/image_grid.h"
@@ -68,6 +69,7 @@ struct CellOptions {
     ViewOptions view;
     TechniqueOptions technique;
     RenderOptions render;
+    LocalLightOptions lights; // light=point:..., local-map-size=..., sun=off
 };
 
 core::Result<CellOptions> parseCell(const Cell& cell, const CompareArgs& args) {
@@ -76,6 +78,7 @@ core::Result<CellOptions> parseCell(const Cell& cell, const CompareArgs& args) {
     o.view.addTo(app);
     o.technique.addTo(app);
     o.render.addTo(app);
+    o.lights.addTo(app);
     std::vector<std::string> argv = {"--view=" + args.view};
     if (!args.size.empty()) argv.push_back("--size=" + args.size);
     for (const auto& [key, value] : cell) argv.push_back("--" + key + "=" + value);
@@ -121,6 +124,11 @@ int runCompare(const CompareArgs& args) {
         if (!inputs) return fail(inputs.error());
         auto settings = o.render.settingsFor(*view, *inputs);
         if (!settings) return fail(settings.error());
+        o.lights.apply(*view, *settings);
+        auto lighting = o.lights.lightingFor(*view, (*measurer)->renderer().wsSceneBounds());
+        if (!lighting) return fail("--configs: " + withFlagName(lighting.errorInfo()).message);
+        if (auto s = (*measurer)->renderer().setLocalLights(std::move(lighting).value()); !s)
+            return fail("--configs: " + withFlagName(s.errorInfo()).message);
         // Cells that share camera, sun and size share one ray-traced truth (Measurer's cache).
         std::optional<core::SetupHysteresis> hysteresis = o.technique.newHysteresis(); // a still frame: the fresh fit
         auto measured = (*measurer)->measure(*inputs, *settings,

@@ -86,8 +86,7 @@ json localLightJson(const LocalLight& light, const core::ShadowSetup& setup) {
 
 int runSetup(const SetupArgs& args) {
     if (auto s = args.technique.check(/*measuresFrames=*/false); !s) return fail(s.error());
-    auto lights = args.lights.lights();
-    if (!lights) return fail(lights.error());
+    if (auto lights = args.lights.lights(); !lights) return fail(lights.error()); // before loading a scene
     auto bounded = args.bounds.resolve(args.scene, args.view);
     if (!bounded) return fail(bounded.error());
     const core::Aabb& bounds = bounded->wsBounds;
@@ -128,21 +127,13 @@ int runSetup(const SetupArgs& args) {
     for (const core::Vec3& p : setup->body.vertices()) body.push_back(toJson(p));
     out["body"] = body;
     out["fallbacks"] = setup->fallbacks;
-    if (!lights->empty()) {
-        const core::LocalShadowInputs local{.camera = cam, .wsSceneBounds = bounds, .mapSize = inputs->mapSize};
+    // The view's spot and point lights (views.json), then --light's.
+    auto lighting = args.lights.lightingFor(*view, bounds);
+    if (!lighting) return fail(withFlagName(lighting.errorInfo()).message);
+    if (!lighting->empty()) {
         json locals = json::array();
-        for (const LocalLight& light : *lights) {
-            auto localSetup = std::visit(
-                [&](const auto& l) {
-                    if constexpr (std::is_same_v<std::decay_t<decltype(l)>, core::SpotLight>)
-                        return core::computeSpotShadowSetup(local, l);
-                    else
-                        return core::computePointShadowSetup(local, l);
-                },
-                light);
-            if (!localSetup) return fail(withFlagName(localSetup.errorInfo()).message);
-            locals.push_back(localLightJson(light, *localSetup));
-        }
+        for (size_t i = 0; i < lighting->points.size(); ++i) locals.push_back(localLightJson(lighting->points[i], lighting->pointSetups[i]));
+        for (size_t i = 0; i < lighting->spots.size(); ++i) locals.push_back(localLightJson(lighting->spots[i], lighting->spotSetups[i]));
         out["local_lights"] = locals;
     }
     std::cout << out.dump(2) << "\n";

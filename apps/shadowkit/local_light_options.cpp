@@ -43,10 +43,10 @@ void LocalLightOptions::addTo(CLI::App& cmd, bool withMaps) {
     cmd.add_option("--light", specs, fmt::format("a local light with shadows, repeatable: {} (degrees, metres; range 30 m "
                                                  "unless given)",
                                                  kForms));
-    if (!withMaps) return;
     cmd.add_option("--local-map-size", mapSize, "texels per side of each spot map and cube face")
         ->check(CLI::Range(core::kMinMapSize, core::kMaxMapSize))
         ->capture_default_str();
+    if (!withMaps) return;
     cmd.add_option("--local-pass", pass, "how a point light's cube faces are drawn: layered (one pass: vertex-layer where "
                                          "the driver has it, else geometry), vertex-layer, geometry, per-face (six passes)")
         ->transform(CLI::CheckedTransformer(std::map<std::string, gl::LocalPass>{{"layered", gl::LocalPass::Layered},

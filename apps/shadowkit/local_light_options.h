@@ -22,7 +22,8 @@ struct LocalLightOptions {
     gl::LocalPass pass = gl::LocalPass::Layered;
     gl::LocalBiasSettings bias;
 
-    // withMaps: also the flags of drawing them (render, eval, compare), not only placing them (setup).
+    // withMaps: also the flags of drawing them (pass, bias: render, eval, compare), not only
+    // of setting them up (setup).
     void addTo(CLI::App& cmd, bool withMaps = true);
     // The lights, each validated; an error names --light and shows the text.
     core::Result<std::vector<LocalLight>> lights() const;

@@ -189,6 +189,32 @@ check_fails(strip-without-path "--strip" render ${small} --strip "${WORK}/strip.
 check_fails(light-malformed "--light" setup ${small} --light spot:1,2)
 check_fails(light-unknown-kind "--light" setup ${small} --light lamp:1,2,3)
 check_fails(light-cone-too-wide "spot.cone" setup ${small} --light spot:0,3,0,0,-1,0,190)
+check_fails(local-pass-unknown "--local-pass" render ${small} --local-pass sideways)
+check_fails(local-map-size-too-small "--local-map-size" render ${small} --local-map-size 4)
+check_fails(local-bias-negative "--local-bias-slope" eval ${small} --local-bias-slope -1)
+check_fails(gl-too-many-lights "at most 16 point" render ${small} --size 16x16 --light point:0,3,0 --light point:0,3,1
+            --light point:0,3,2 --light point:0,3,3 --light point:0,3,4 --light point:0,3,5 --light point:0,3,6 --light point:0,3,7
+            --light point:0,3,8 --light point:0,3,9 --light point:0,3,10 --light point:0,3,11 --light point:0,3,12
+            --light point:0,3,13 --light point:0,3,14 --light point:0,3,15 --light point:0,3,16)
+# A night view's local lights: render writes the unfolded cube, eval reports each light.
+if(CASE STREQUAL "gl-local-lights")
+  execute_process(COMMAND ${SHADOWKIT} render ${small} --view lamp --size 64x36 --local-map-size 64 --out "${WORK}/lamp.png"
+                          --local-map-out "${WORK}/cube.png" RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0 OR NOT EXISTS "${WORK}/cube.png" OR NOT out MATCHES "sun            off" OR NOT out MATCHES "local pass")
+    message(SEND_ERROR "render --view lamp: failed or wrote no cube: ${out} ${err}")
+  endif()
+  execute_process(COMMAND ${SHADOWKIT} eval ${small} --views local --size 64x36 --local-map-size 64 --json "${WORK}/l.json"
+                  RESULT_VARIABLE rc OUTPUT_QUIET ERROR_VARIABLE err)
+  file(READ "${WORK}/l.json" json)
+  string(JSON views LENGTH "${json}" views)
+  string(JSON lampLight GET "${json}" views 0 lights 0 light)
+  string(JSON villageLights LENGTH "${json}" views 2 lights)
+  string(JSON villageFirst GET "${json}" views 2 lights 0 light)
+  if(NOT rc EQUAL 0 OR NOT views EQUAL 3 OR NOT lampLight STREQUAL "point[0]" OR NOT villageLights EQUAL 9
+     OR NOT villageFirst STREQUAL "sun")
+    message(SEND_ERROR "eval --views local: unexpected report: ${err} ${json}")
+  endif()
+endif()
 check_fails(stabilize-margin-negative "--stabilize-margin" setup ${small} --technique lispsm --stabilize --stabilize-margin -0.1)
 check_fails(stabilize-growth-not-above-one "--stabilize-growth" setup ${small} --technique tsm --stabilize --stabilize-growth 1)
 check_fails(stabilize-lookahead-negative "--stabilize-lookahead" setup ${small} --technique tsm --stabilize --stabilize-lookahead -2)
