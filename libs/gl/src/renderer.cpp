@@ -49,7 +49,12 @@ private:
 constexpr glm::vec3 kSky(0.62f, 0.72f, 0.85f);
 constexpr glm::vec3 kNightSky(0.015f, 0.02f, 0.04f);
 
-glm::vec3 skyOf(const RenderSettings& settings) { return settings.sun ? kSky : kNightSky; }
+// Daylight, 1 to 0: full with the sun at 20° or higher, fading to night's at the horizon
+// (dusk in the `village` view); 0 with the sun off. A look only: the shadow terms the
+// evaluation compares do not depend on it.
+float daylight(const core::DirectionalLight& light, const RenderSettings& settings) {
+    return settings.sun ? glm::smoothstep(0.0f, 0.342f, static_cast<float>(light.wsTowardsLight().y)) : 0.0f; // sin 20°
+}
 
 // The instances a point light's cube may draw: those meeting the cube around its range.
 std::vector<core::HalfSpace> rangeBox(const core::Vec3& wsLight, double range) {
@@ -430,9 +435,10 @@ void Renderer::Impl::uploadFrame(const core::PerspectiveCamera& camera, const co
     frame.wsEye = glm::vec4(glm::vec3(camera.wsEye), 1.0f);
     frame.wsViewForward = glm::vec4(glm::vec3(glm::normalize(camera.wsDirection)), 0.0f);
     frame.wsTowardsLight = glm::vec4(glm::vec3(light.wsTowardsLight()), 0.0f);
-    frame.sunRadiance = settings.sun ? glm::vec4(1.05f, 1.0f, 0.9f, 0.0f) : glm::vec4(0.0f);
-    frame.ambientRadiance = settings.sun ? glm::vec4(0.28f, 0.32f, 0.40f, 0.0f) : glm::vec4(0.02f, 0.025f, 0.04f, 0.0f);
-    frame.fogColorDensity = glm::vec4(glm::pow(skyOf(settings), glm::vec3(2.2f)), settings.fogDensity);
+    const float day = daylight(light, settings);
+    frame.sunRadiance = day * glm::vec4(1.05f, 1.0f, 0.9f, 0.0f);
+    frame.ambientRadiance = glm::mix(glm::vec4(0.02f, 0.025f, 0.04f, 0.0f), glm::vec4(0.28f, 0.32f, 0.40f, 0.0f), day);
+    frame.fogColorDensity = glm::vec4(glm::pow(glm::mix(kNightSky, kSky, day), glm::vec3(2.2f)), settings.fogDensity);
     frame.mapTexels = static_cast<float>(setup.mapSize);
     frame.mapCount = static_cast<int32_t>(setup.views.size());
     frame.linearLayout = setup.depthLayout == core::DepthLayout::Linear ? 1 : 0;
@@ -528,7 +534,8 @@ core::Result<FrameStats> Renderer::render(const core::PerspectiveCamera& camera,
     if (blurred) glBindTextureUnit(kShadowMaskUnit, r.mask->images[maskIndex].id());
     glBindFramebuffer(GL_FRAMEBUFFER, r.color->framebuffer.id());
     glViewport(0, 0, r.color->width, r.color->height);
-    const glm::vec3 sky = skyOf(settings);
+    const float day = daylight(light, settings);
+    const glm::vec3 sky = glm::mix(kNightSky, kSky, day);
     const float clearColor[4] = {sky.r, sky.g, sky.b, 1.0f};
     const float clearDepth = 1.0f;
     glClearNamedFramebufferfv(r.color->framebuffer.id(), GL_COLOR, 0, clearColor);
