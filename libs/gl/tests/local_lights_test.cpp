@@ -9,6 +9,8 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 using namespace shadowkit;
 
 namespace {
@@ -183,4 +185,50 @@ TEST_F(LocalLightsTest, TooManyLightsOrAMissingSetUpIsAnError) {
     auto bad = (*renderer)->renderEvalBuffers(cam, {}, sunSetup(cam, (*renderer)->wsSceneBounds()), nightSettings(), 3);
     ASSERT_FALSE(bad);
     EXPECT_NE(bad.error().find("local light 3"), std::string::npos) << bad.error();
+}
+
+TEST_F(LocalLightsTest, EightPointAndEightSpotLightsEachShadowInOneFrame) {
+    // Sixteen lights along a row of posts, each 1 m up and 1.5 m in front of its own post:
+    // every light's own post must shadow the ground behind it, in the same frame as all the
+    // others (range 4 m: a light reaches no other post's shadow spot).
+    constexpr double kSpacing = 2.2;
+    std::vector<std::pair<core::Vec3, core::Vec3>> parts = {{core::Vec3(0, -0.1, 0), core::Vec3(30, 0.1, 20)}};
+    std::vector<core::PointLight> points;
+    std::vector<core::SpotLight> spots;
+    for (int i = 0; i < 16; ++i) {
+        const double x = kSpacing * (i - 7.5);
+        parts.push_back({core::Vec3(x, 0.75, 0), core::Vec3(0.3, 0.75, 0.3)}); // 1.5 m: taller than the light
+        const core::Vec3 light(x, 1.0, 1.5);
+        if (i % 2 == 0) points.push_back({.wsPosition = light, .range = 4.0});
+        else spots.push_back({.wsPosition = light, .wsDirection = {0, -0.4, -1}, .coneDegrees = 90.0, .range = 4.0});
+    }
+    scene::Scene s;
+    for (const auto& [centre, half] : parts) {
+        scene::Mesh mesh;
+        scene::addBox(mesh, glm::translate(glm::mat4(1.0f), glm::vec3(centre)), glm::vec3(half), glm::vec3(0.8f));
+        mesh.computeBounds();
+        s.batches.push_back({static_cast<uint32_t>(s.meshes.size()), {glm::mat4(1.0f)}, false});
+        s.meshes.push_back(std::move(mesh));
+    }
+    auto renderer = gl::Renderer::create(s);
+    ASSERT_TRUE(renderer) << renderer.error();
+    const core::PerspectiveCamera cam = looking({0, 30, 10}, {0, 0, 0}, {0, 1, 0}); // steep: the ground behind each post shows
+    ASSERT_TRUE((*renderer)->setLocalLights(lighting(cam, (*renderer)->wsSceneBounds(), points, spots, 128)));
+    const core::ShadowSetup sun = sunSetup(cam, (*renderer)->wsSceneBounds());
+    auto stats = (*renderer)->render(cam, {}, sun, nightSettings());
+    ASSERT_TRUE(stats) << stats.error();
+    EXPECT_GE(stats->localMaps, 8 + 8) << "every light drew its map";
+    for (int light = 0; light < 16; ++light) {
+        const int post = light < 8 ? 2 * light : 2 * (light - 8) + 1; // points first, then spots
+        const double x = kSpacing * (post - 7.5);
+        auto raster = (*renderer)->renderEvalBuffers(cam, {}, sun, nightSettings(), light);
+        ASSERT_TRUE(raster) << raster.error();
+        auto termAt = [&](const core::Vec3& ws) {
+            const auto [px, py] = pixelOf(cam, ws);
+            EXPECT_TRUE(px >= 0 && px < kImage && py >= 0 && py < kImage) << "light " << light << ": out of the image";
+            return raster->shadowTerm[static_cast<size_t>(std::clamp(py, 0, kImage - 1)) * kImage + static_cast<size_t>(std::clamp(px, 0, kImage - 1))];
+        };
+        EXPECT_LT(termAt({x, 0, -1.6}), 0.5f) << "light " << light << ": no shadow behind its post";
+        EXPECT_GT(termAt({x + 1.2, 0, -0.3}), 0.5f) << "light " << light << ": shadow beside its post";
+    }
 }
