@@ -8,6 +8,7 @@ packages=(
   libglm-dev libepoxy-dev libegl1-mesa-dev libgl1-mesa-dri libglfw3-dev
   libembree-dev libtbb-dev libtinygltf-dev libstb-dev nlohmann-json3-dev
   libcli11-dev libfmt-dev libmeshoptimizer-dev libgtest-dev libbenchmark-dev
+  libimgui-dev xvfb xauth
 )
 
 missing=()

@@ -2,7 +2,7 @@
 // returns it with the function that runs it (exit code: 0 success, 1 bad input or failure).
 #pragma once
 
-#include "shadowkit/core/result.h"
+#include "common.h"
 
 #include <CLI/CLI.hpp>
 
@@ -23,11 +23,5 @@ Command addAnalyzeCommand(CLI::App& app);
 Command addCompareCommand(CLI::App& app);
 Command addBenchCommand(CLI::App& app);
 
-// Prints "shadowkit: error: <message>" (one line) to stderr and returns 1.
-int fail(const std::string& message);
-
-// A file a command will write later: fails now, before minutes of work, naming the flag, if
-// its directory is missing.
-core::Status checkWritable(const char* flag, const std::string& file);
 
 } // namespace shadowkit::app

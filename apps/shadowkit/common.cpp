@@ -1,4 +1,4 @@
-#include "commands.h"
+#include "common.h"
 
 #include <fmt/format.h>
 

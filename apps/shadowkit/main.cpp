@@ -1,8 +1,10 @@
 // shadowkit: render, measure and export shadow set-ups from the command line.
 #include "commands.h"
+#include "state.h"
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <vector>
 
 int main(int argc, char** argv) {
@@ -18,8 +20,16 @@ int main(int argc, char** argv) {
         shadowkit::app::addExportCommand(app),
     };
 
+    // --state FILE: the saved options of a viewer session, as if typed before the others.
+    auto args = shadowkit::app::expandState(std::vector<std::string>(argv + 1, argv + argc));
+    if (!args) return shadowkit::app::fail(args.error());
+    for (const shadowkit::app::Command& command : commands)
+        if (command.subcommand->get_name() == "render" || command.subcommand->get_name() == "eval")
+            command.subcommand->add_option("--state", "options saved by shadowkit-viewer (JSON): given flags win");
+    std::reverse(args->begin(), args->end()); // CLI11 takes the vector last argument first
+
     try {
-        app.parse(argc, argv);
+        app.parse(*args);
     } catch (const CLI::CallForHelp& e) {
         return app.exit(e);
     } catch (const CLI::CallForAllHelp& e) {

@@ -654,6 +654,13 @@ scene::Image Renderer::readLocalShadowMaps() const { return m_impl->localMaps->r
 
 const core::Aabb& Renderer::wsSceneBounds() const { return m_impl->visibility->wsBounds(); }
 
+void Renderer::present(int width, int height) const {
+    const auto& color = m_impl->color;
+    if (!color) return;
+    glBlitNamedFramebuffer(color->framebuffer.id(), 0, 0, 0, color->width, color->height, 0, 0, width, height, GL_COLOR_BUFFER_BIT,
+                           GL_LINEAR);
+}
+
 scene::Image Renderer::readColor() const { return m_impl->color ? m_impl->color->read() : scene::Image{}; }
 
 scene::Image Renderer::readShadowMap() const { return m_impl->shadow ? m_impl->shadow->readAsGreys() : scene::Image{}; }

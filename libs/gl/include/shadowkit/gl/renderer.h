@@ -187,6 +187,9 @@ public:
 
     // The last rendered frame (top row first).
     scene::Image readColor() const;
+    // Copies the last rendered frame into the current context's default framebuffer (a
+    // window's), scaled to width × height pixels; nothing before the first frame.
+    void present(int width, int height) const;
     // The last shadow maps as greys, side by side: near the light is bright, empty texels black.
     scene::Image readShadowMap() const;
     // The local lights' last maps likewise: spot maps, then each cube unfolded as a cross.

@@ -1,0 +1,92 @@
+#include "state.h"
+
+#include <nlohmann/json.hpp>
+
+#include <fstream>
+#include <set>
+
+namespace shadowkit::app {
+namespace {
+
+constexpr int kStateVersion = 1;
+
+// The long option a command-line word names ("--map-size=64" and "--map-size" → "map-size").
+std::string optionName(const std::string& word) {
+    if (word.size() < 3 || word.compare(0, 2, "--") != 0) return {};
+    return word.substr(2, word.find('=') - 2);
+}
+
+} // namespace
+
+core::Result<StateOptions> loadState(const std::string& file) {
+    std::ifstream in(file);
+    if (!in) return core::makeError("--state: " + file + ": cannot open");
+    nlohmann::json root;
+    try {
+        root = nlohmann::json::parse(in);
+    } catch (const nlohmann::json::parse_error&) {
+        return core::makeError("--state: " + file + ": not valid JSON");
+    }
+    if (!root.is_object() || root.value("shadowkit_state", 0) != kStateVersion || !root.contains("options") ||
+        !root["options"].is_object())
+        return core::makeError("--state: " + file + ": expected {\"shadowkit_state\": 1, \"options\": {...}}");
+    StateOptions options;
+    for (const auto& [name, value] : root["options"].items()) {
+        if (name.empty() || name == "state" || name.find('=') != std::string::npos)
+            return core::makeError("--state: " + file + ": bad option name '" + name + "'");
+        auto text = [&](const nlohmann::json& v) -> core::Result<std::string> {
+            if (v.is_string()) return v.get<std::string>();
+            if (v.is_number() || v.is_boolean()) return v.dump();
+            return core::makeError("--state: " + file + ": option '" + name + "' must be a string, number or list of them");
+        };
+        std::vector<std::string>& values = options[name];
+        for (const nlohmann::json& v : value.is_array() ? value : nlohmann::json::array({value})) {
+            auto t = text(v);
+            if (!t) return t.errorInfo();
+            values.push_back(*t);
+        }
+    }
+    return options;
+}
+
+core::Status saveState(const StateOptions& options, const std::string& file) {
+    nlohmann::json list = nlohmann::json::object();
+    for (const auto& [name, values] : options)
+        list[name] = values.size() == 1 ? nlohmann::json(values.front()) : nlohmann::json(values);
+    std::ofstream out(file);
+    if (!out) return core::makeError(file + ": cannot open for writing");
+    out << nlohmann::json{{"shadowkit_state", kStateVersion}, {"options", list}}.dump(2) << "\n";
+    if (!out) return core::makeError(file + ": write failed");
+    return core::Ok{};
+}
+
+core::Result<std::vector<std::string>> expandState(const std::vector<std::string>& args) {
+    std::vector<std::string> out;
+    std::string file;
+    size_t at = 0;
+    for (size_t i = 0; i < args.size(); ++i) {
+        if (args[i] == "--state") {
+            if (i + 1 >= args.size()) return core::makeError("--state: needs a file");
+            file = args[++i];
+            at = out.size();
+        } else if (args[i].rfind("--state=", 0) == 0) {
+            file = args[i].substr(8);
+            at = out.size();
+        } else {
+            out.push_back(args[i]);
+        }
+    }
+    if (file.empty()) return out;
+    auto options = loadState(file);
+    if (!options) return options.errorInfo();
+    std::set<std::string> given;
+    for (const std::string& word : out) given.insert(optionName(word));
+    std::vector<std::string> expanded;
+    for (const auto& [name, values] : *options)
+        if (!given.count(name))
+            for (const std::string& v : values) expanded.push_back("--" + name + "=" + v);
+    out.insert(out.begin() + static_cast<std::ptrdiff_t>(at), expanded.begin(), expanded.end());
+    return out;
+}
+
+} // namespace shadowkit::app

@@ -1,0 +1,332 @@
+// shadowkit-viewer: the scene in a window, every option of `render` live in a panel, the
+// shadow map beside it, the frame's cost, and the error against ray-traced truth on demand.
+// Thin: the libraries draw and measure; this file handles the window, input and the panel.
+//
+// Keys: W A S D move, Q E down / up, right mouse button + drag looks, wheel sets the speed,
+// F frames the whole scene, T evaluates the frame against truth (in the background), P writes
+// a screenshot, Ctrl+S saves the options as a --state file, Space plays / pauses the movers,
+// H hides the panel, Esc quits.
+#include "common.h"
+#include "fly_camera.h"
+#include "frame_options.h"
+#include "panel.h"
+#include "truth_job.h"
+
+#include "shadowkit/eval/maps.h"
+#include "shadowkit/gl/window_context.h"
+#include "shadowkit/measure/measurer.h"
+#include "shadowkit/scene/animation.h"
+
+#include <epoxy/gl.h>
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+#include <fmt/format.h>
+#include <imgui.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <thread>
+
+namespace shadowkit::viewer {
+namespace {
+
+int fail(const std::string& message) {
+    fmt::print(stderr, "shadowkit-viewer: error: {}\n", message);
+    return 1;
+}
+
+std::string vec3Text(const core::Vec3& v) { return fmt::format("{:.6g},{:.6g},{:.6g}", v.x, v.y, v.z); }
+
+// An RGBA image shown by ImGui (the shadow map inset, the error map). The viewer's own GL:
+// ImGui takes a texture name.
+class ImageTexture {
+public:
+    ~ImageTexture() {
+        if (m_id) glDeleteTextures(1, &m_id);
+    }
+    void upload(const scene::Image& image) {
+        if (image.width == 0) return;
+        if (m_id) glDeleteTextures(1, &m_id);
+        glCreateTextures(GL_TEXTURE_2D, 1, &m_id);
+        glTextureStorage2D(m_id, 1, GL_RGBA8, image.width, image.height);
+        glTextureSubImage2D(m_id, 0, 0, 0, image.width, image.height, GL_RGBA, GL_UNSIGNED_BYTE, image.rgba.data());
+        glTextureParameteri(m_id, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+        m_width = image.width;
+        m_height = image.height;
+    }
+    void draw(float width) const {
+        if (!m_id) return;
+        ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<intptr_t>(m_id)), ImVec2(width, width * static_cast<float>(m_height) / static_cast<float>(m_width)));
+    }
+
+private:
+    GLuint m_id = 0;
+    int m_width = 1, m_height = 1;
+};
+
+// The window as drawn so far (panel included), top row first.
+scene::Image readWindow(int width, int height) {
+    scene::Image image(width, height);
+    std::vector<uint8_t> rows(image.rgba.size());
+    glReadBuffer(GL_BACK);
+    glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, rows.data());
+    const size_t row = static_cast<size_t>(width) * 4;
+    for (int y = 0; y < height; ++y)
+        std::copy_n(rows.data() + static_cast<size_t>(height - 1 - y) * row, row, image.rgba.data() + static_cast<size_t>(y) * row);
+    for (size_t i = 3; i < image.rgba.size(); i += 4) image.rgba[i] = 255;
+    return image;
+}
+
+struct ViewerArgs {
+    FrameOptions options;
+    int frames = 0; // 0: until closed
+    std::string screenshot, windowShot, saveState = "shadowkit-state.json";
+    bool truthAtStart = false; // --truth: T on the first frame (with --frames, awaited before the last)
+};
+
+// What one frame drew, for the panel and for the truth.
+struct DrawnFrame {
+    core::PerspectiveCamera camera;
+    core::DirectionalLight light;
+    core::ShadowSetup setup;
+    gl::RenderSettings settings;
+    gl::FrameStats stats;
+    double setupMs = 0.0;
+};
+
+int run(const ViewerArgs& args, app::StateOptions state) {
+    auto sceneData = args.options.scene.load();
+    if (!sceneData) return fail(sceneData.error());
+    scene::Scene& world = *sceneData;
+    auto first = args.options.view.resolve(world);
+    if (!first) return fail(first.error());
+    auto window = gl::WindowContext::create(first->width, first->height, "shadowkit-viewer");
+    if (!window) return fail(window.error());
+    auto measurer = measure::Measurer::create(world);
+    if (!measurer) return fail(measurer.error());
+    gl::Renderer& renderer = (*measurer)->renderer();
+    GLFWwindow* glfw = (*window)->window();
+
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    ImGui::GetIO().IniFilename = nullptr; // no imgui.ini beside the user's files
+    ImGui_ImplGlfw_InitForOpenGL(glfw, true);
+    ImGui_ImplOpenGL3_Init("#version 450 core");
+
+    FlyCamera camera = FlyCamera::looking(first->camera.wsEye, first->camera.wsDirection);
+    std::unique_ptr<FrameOptions> options;
+    std::string optionsError;
+    bool dirty = true, showPanel = true, playing = false;
+    double sceneTime = 0.0;
+    std::array<float, 120> frameMs{};
+    size_t frameIndex = 0;
+    int drawnFrames = 0;
+    ImageTexture shadowMapImage, errorImage, aliasingImage;
+    TruthJob truth;
+    std::optional<eval::Figures> truthFigures;
+    int64_t shadowedRight = 0; // of the last evaluation: pixels drawn in shadow where truth has shadow
+    std::optional<DrawnFrame> drawn;
+    std::string message;
+    auto previous = std::chrono::steady_clock::now();
+    const auto loopStart = previous;
+
+    for (int frame = 0; !glfwWindowShouldClose(glfw) && (args.frames == 0 || frame < args.frames); ++frame) {
+        glfwPollEvents();
+        const auto now = std::chrono::steady_clock::now();
+        const double seconds = std::chrono::duration<double>(now - previous).count();
+        previous = now;
+        frameMs[frameIndex++ % frameMs.size()] = static_cast<float>(seconds * 1e3);
+
+        ImGui_ImplOpenGL3_NewFrame();
+        ImGui_ImplGlfw_NewFrame();
+        ImGui::NewFrame();
+        const ImGuiIO& io = ImGui::GetIO();
+
+        // Input: the camera unless ImGui has the keyboard / mouse.
+        if (!io.WantCaptureKeyboard) {
+            const auto key = [&](int k) { return glfwGetKey(glfw, k) == GLFW_PRESS ? 1.0 : 0.0; };
+            const core::Vec3 motion(key(GLFW_KEY_D) - key(GLFW_KEY_A), key(GLFW_KEY_E) - key(GLFW_KEY_Q), key(GLFW_KEY_W) - key(GLFW_KEY_S));
+            if (motion != core::Vec3(0.0)) camera.move(motion, seconds), dirty = true;
+            if (ImGui::IsKeyPressed(GLFW_KEY_F, false)) camera.frame(renderer.wsSceneBounds(), first->camera.fovYDegrees), dirty = true;
+            if (ImGui::IsKeyPressed(GLFW_KEY_H, false)) showPanel = !showPanel;
+            if (ImGui::IsKeyPressed(GLFW_KEY_SPACE, false)) playing = !playing;
+            if (ImGui::IsKeyPressed(GLFW_KEY_ESCAPE, false)) glfwSetWindowShouldClose(glfw, GLFW_TRUE);
+            if (ImGui::IsKeyPressed(GLFW_KEY_P, false) && drawn) {
+                const std::string file = args.screenshot.empty() ? "shadowkit-viewer.png" : args.screenshot;
+                const core::Status s = scene::writePng(renderer.readColor(), file);
+                message = s ? "wrote " + file : s.error();
+            }
+            if (io.KeyCtrl && ImGui::IsKeyPressed(GLFW_KEY_S, false)) {
+                const core::Status s = app::saveState(state, args.saveState);
+                message = s ? "saved " + args.saveState + " (shadowkit render --state " + args.saveState + ")" : s.error();
+            }
+            if ((ImGui::IsKeyPressed(GLFW_KEY_T, false) || (args.truthAtStart && frame == 1)) && drawn) {
+                const core::Status s = truth.start(**measurer, drawn->camera, drawn->light, drawn->setup, drawn->settings);
+                message = s ? "evaluating against truth ..." : s.error();
+            }
+        }
+        if (!io.WantCaptureMouse) {
+            if (glfwGetMouseButton(glfw, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS && (io.MouseDelta.x != 0.0f || io.MouseDelta.y != 0.0f))
+                camera.turn(io.MouseDelta.x, io.MouseDelta.y), dirty = true;
+            if (io.MouseWheel != 0.0f) camera.metresPerSecond *= std::pow(1.25, static_cast<double>(io.MouseWheel));
+        }
+        if (playing) {
+            sceneTime += seconds;
+            std::vector<uint32_t> moved;
+            scene::animate(world, sceneTime, &moved);
+            if (auto s = (*measurer)->moveInstances(world, moved); !s) message = s.error();
+        }
+
+        // The options as `render` would take them: camera, window size, then the panel's.
+        int width = 0, height = 0;
+        glfwGetFramebufferSize(glfw, &width, &height);
+        if (width > 0 && height > 0) {
+            state["eye"] = {vec3Text(camera.wsEye)};
+            state["dir"] = {vec3Text(camera.wsDirection())};
+            state["size"] = {fmt::format("{}x{}", width, height)};
+        }
+        if (dirty) {
+            auto parsed = parseFrameOptions(state);
+            if (parsed) options = std::move(parsed).value(), optionsError.clear();
+            else optionsError = app::withFlagName(parsed.errorInfo()).message;
+            dirty = false;
+        }
+
+        // Draw the frame with the libraries, as `render` does.
+        if (options && width > 0 && height > 0) {
+            const auto setupStart = std::chrono::steady_clock::now();
+            auto view = options->view.resolve(world);
+            auto inputs = view ? options->technique.inputsFor(*view, renderer.wsSceneBounds()) : decltype(options->technique.inputsFor(*view, {})){view.errorInfo()};
+            auto settings = inputs ? options->render.settingsFor(*view, *inputs) : core::Result<gl::RenderSettings>(inputs.errorInfo());
+            std::optional<core::SetupHysteresis> noHysteresis;
+            auto setup = settings ? options->technique.setupFor(*inputs, noHysteresis) : core::Result<core::ShadowSetup>(settings.errorInfo());
+            const double setupMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - setupStart).count();
+            if (setup) {
+                options->lights.apply(*view, *settings);
+                auto lighting = options->lights.lightingFor(*view, renderer.wsSceneBounds());
+                core::Status ok = lighting ? renderer.setLocalLights(std::move(lighting).value()) : core::Status(lighting.errorInfo());
+                auto stats = ok ? renderer.render(view->camera, view->light, *setup, *settings) : core::Result<gl::FrameStats>(ok.errorInfo());
+                if (stats) {
+                    ++drawnFrames;
+                    drawn = DrawnFrame{view->camera, view->light, *setup, *settings, *stats, setupMs};
+                    if (frame % 30 == 0) shadowMapImage.upload(renderer.readShadowMap());
+                    optionsError.clear();
+                } else {
+                    optionsError = app::withFlagName(stats.errorInfo()).message;
+                }
+            } else {
+                optionsError = app::withFlagName(setup.errorInfo()).message;
+            }
+        }
+        // --frames with --truth: the last frame waits for the evaluation.
+        if (args.frames > 0 && frame == args.frames - 1)
+            while (truth.running() && !truth.ready()) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        if (auto comparison = truth.poll()) {
+            truthFigures = comparison->figures;
+            shadowedRight = std::count(comparison->classes.begin(), comparison->classes.end(), eval::PixelClass::ShadowCorrect);
+            errorImage.upload(eval::errorMapImage(*comparison, truth.width(), truth.height()));
+            aliasingImage.upload(eval::aliasingMapImage(*comparison, truth.width(), truth.height()));
+            message = "evaluated against truth";
+        }
+
+        if (showPanel) {
+            ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
+            ImGui::SetNextWindowSize(ImVec2(340, static_cast<float>(height) - 20.0f), ImGuiCond_FirstUseEver);
+            ImGui::Begin("shadowkit");
+            if (drawn) {
+                const gl::FrameStats& st = drawn->stats;
+                ImGui::Text("%s  %dx%d  map %d", core::techniqueName(drawn->setup.technique).data(), drawn->settings.width,
+                            drawn->settings.height, drawn->setup.mapSize);
+                ImGui::Text("set-up %.3f ms CPU   culling %.1f ms", drawn->setupMs, st.cullMilliseconds);
+                for (const auto& [name, pass] : {std::pair{"shadow", &st.shadow}, {"local ", &st.local}, {"main  ", &st.main}})
+                    ImGui::Text("%s %7.2f ms GPU  %6.3f M tris  %zu draws", name, pass->gpuMilliseconds,
+                                static_cast<double>(pass->triangles) * 1e-6, pass->drawCalls);
+                ImGui::PlotLines("frame ms", frameMs.data(), static_cast<int>(frameMs.size()), static_cast<int>(frameIndex % frameMs.size()),
+                                 nullptr, 0.0f, FLT_MAX, ImVec2(0, 40));
+            }
+            if (truth.running()) ImGui::ProgressBar(static_cast<float>(truth.progress()), ImVec2(-1, 0), "truth");
+            if (truthFigures)
+                ImGui::Text("truth: wrong %.2f %% (shadow %.2f, lit %.2f)  ppt50 %.2f", truthFigures->wrongPct,
+                            truthFigures->falseShadowPct, truthFigures->falseLitPct, truthFigures->pixelsPerTexelP50);
+            if (!optionsError.empty()) ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", optionsError.c_str());
+            if (!message.empty()) ImGui::TextWrapped("%s", message.c_str());
+            dirty |= drawOptionsPanel(state);
+            ImGui::End();
+            // The insets, on the right: the shadow map(s) and, after T, the error and
+            // pixels-per-texel maps of the evaluated frame.
+            ImGui::SetNextWindowPos(ImVec2(static_cast<float>(width) - 290.0f, 10.0f), ImGuiCond_FirstUseEver);
+            ImGui::Begin("maps", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+            ImGui::TextUnformatted("shadow map (near the light bright)");
+            shadowMapImage.draw(260.0f);
+            if (truthFigures) {
+                ImGui::TextUnformatted("error: red false shadow, blue false lit");
+                errorImage.draw(260.0f);
+                ImGui::TextUnformatted("pixels per texel");
+                aliasingImage.draw(260.0f);
+            }
+            ImGui::End();
+        }
+        ImGui::Render();
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        glViewport(0, 0, width, height);
+        glClearColor(0, 0, 0, 1);
+        glClear(GL_COLOR_BUFFER_BIT);
+        renderer.present(width, height);
+        ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+        if (!args.windowShot.empty() && args.frames > 0 && frame == args.frames - 1)
+            if (auto s = scene::writePng(readWindow(width, height), args.windowShot); !s) message = s.error();
+        glfwSwapBuffers(glfw);
+    }
+    // --frames: the last frame as `render --state` draws it (no panel), and the options.
+    int rc = 0;
+    if (!args.screenshot.empty() && args.frames > 0) {
+        if (!drawn) rc = fail("--screenshot: no frame was drawn" + (optionsError.empty() ? "" : ": " + optionsError));
+        else if (auto s = scene::writePng(renderer.readColor(), args.screenshot); !s) rc = fail("--screenshot: " + s.error());
+        if (auto s = app::saveState(state, args.saveState); !s) rc = fail("--save-state: " + s.error());
+    }
+    if (truthFigures)
+        fmt::print("truth: wrong {:.2f} % of {} valid pixels, {} drawn in shadow where truth has shadow\n", truthFigures->wrongPct,
+                   truthFigures->validPx, shadowedRight);
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - loopStart).count();
+    fmt::print("drew {} frames in {:.2f} s: {:.1f} frames/s\n", drawnFrames, wall, drawnFrames / std::max(wall, 1e-9));
+    ImGui_ImplOpenGL3_Shutdown();
+    ImGui_ImplGlfw_Shutdown();
+    ImGui::DestroyContext();
+    return rc;
+}
+
+} // namespace
+} // namespace shadowkit::viewer
+
+int main(int argc, char** argv) {
+    using namespace shadowkit;
+    viewer::ViewerArgs args;
+    CLI::App app{"shadowkit-viewer: the scene in a window with every option of `render` live"};
+    args.options.addTo(app);
+    app.add_option("--frames", args.frames, "draw this many frames, then exit (0: until the window closes)")->check(CLI::NonNegativeNumber);
+    app.add_option("--screenshot", args.screenshot, "P writes the frame here; with --frames, the last frame is written on exit");
+    app.add_option("--window-shot", args.windowShot, "with --frames: the window, panel included, written on exit");
+    app.add_flag("--truth", args.truthAtStart, "evaluate the first frame against truth at once (T); --frames waits for it");
+    app.add_option("--save-state", args.saveState, "where Ctrl+S saves the options (with --frames: on exit too)")->capture_default_str();
+    auto expanded = app::expandState(std::vector<std::string>(argv + 1, argv + argc));
+    if (!expanded) return viewer::fail(expanded.error());
+    app.add_option("--state", "options saved by Ctrl+S (JSON): given flags win");
+    const std::vector<std::string> given = *expanded;
+    std::reverse(expanded->begin(), expanded->end());
+    try {
+        app.parse(*expanded);
+    } catch (const CLI::CallForHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        fmt::print(stderr, "shadowkit-viewer: error: {} (see shadowkit-viewer --help)\n", e.what());
+        return 1;
+    }
+    if (auto s = args.options.technique.check(); !s) return viewer::fail(s.error());
+    if (auto s = args.options.render.check(); !s) return viewer::fail(s.error());
+    for (const std::string* file : {&args.screenshot, &args.saveState})
+        if (auto s = app::checkWritable("--screenshot/--save-state", *file); !s) return viewer::fail(s.error());
+    return viewer::run(args, viewer::givenOptions(app, given, {"frames", "screenshot", "save-state", "state", "window-shot", "truth"}));
+}

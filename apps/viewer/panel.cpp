@@ -1,0 +1,142 @@
+#include "panel.h"
+
+#include <imgui.h>
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdlib>
+#include <span>
+#include <string>
+
+namespace shadowkit::viewer {
+namespace {
+
+using app::StateOptions;
+
+std::string valueOf(const StateOptions& s, const std::string& name, const std::string& fallback) {
+    const auto it = s.find(name);
+    return it == s.end() || it->second.empty() ? fallback : it->second.back();
+}
+
+void set(StateOptions& s, const std::string& name, const std::string& value) { s[name] = {value}; }
+
+bool combo(StateOptions& s, const char* label, const char* name, std::span<const char* const> choices, const char* fallback) {
+    const std::string current = valueOf(s, name, fallback);
+    bool changed = false;
+    if (ImGui::BeginCombo(label, current.c_str())) {
+        for (const char* choice : choices)
+            if (ImGui::Selectable(choice, current == choice)) {
+                set(s, name, choice);
+                changed = true;
+            }
+        ImGui::EndCombo();
+    }
+    return changed;
+}
+
+bool sliderFloat(StateOptions& s, const char* label, const char* name, float lo, float hi, float fallback, bool logarithmic = false) {
+    float v = static_cast<float>(std::atof(valueOf(s, name, fmt::format("{}", fallback)).c_str()));
+    if (!ImGui::SliderFloat(label, &v, lo, hi, "%.3g", logarithmic ? ImGuiSliderFlags_Logarithmic : 0)) return false;
+    set(s, name, fmt::format("{}", v));
+    return true;
+}
+
+bool sliderInt(StateOptions& s, const char* label, const char* name, int lo, int hi, int fallback) {
+    int v = std::atoi(valueOf(s, name, std::to_string(fallback)).c_str());
+    if (!ImGui::SliderInt(label, &v, lo, hi)) return false;
+    set(s, name, std::to_string(v));
+    return true;
+}
+
+// A bare flag (--stabilize): present or absent.
+bool checkbox(StateOptions& s, const char* label, const char* name) {
+    bool on = s.count(name) > 0 && valueOf(s, name, "true") != "false";
+    if (!ImGui::Checkbox(label, &on)) return false;
+    if (on) set(s, name, "true");
+    else s.erase(name);
+    return true;
+}
+
+constexpr std::array kTechniques = {"standard", "focused", "psm", "tsm", "lispsm", "csm"};
+constexpr std::array kMapSizes = {"256", "512", "1024", "2048", "4096", "8192"};
+constexpr std::array kFilters = {"hard", "pcf2", "pcf:3", "pcf:5", "poisson:16", "poisson:32"};
+constexpr std::array kAutoOnOff = {"auto", "on", "off"};
+constexpr std::array kCull = {"auto", "back", "front", "none"};
+constexpr std::array kLayouts = {"auto", "hyperbolic", "linear"};
+constexpr std::array kWarps = {"none", "lispsm"};
+constexpr std::array kFormulas = {"scherzer", "paper"};
+constexpr std::array kDirections = {"cross", "middle"};
+constexpr std::array kVisibility = {"off", "frustum", "chc"};
+constexpr std::array kCasterCulling = {"volume", "receivers"};
+constexpr std::array kLocalPasses = {"layered", "vertex-layer", "geometry", "per-face"};
+
+} // namespace
+
+bool drawOptionsPanel(StateOptions& s) {
+    bool changed = false;
+    if (ImGui::CollapsingHeader("Sun", ImGuiTreeNodeFlags_DefaultOpen)) {
+        bool night = valueOf(s, "sun", "") == "off";
+        if (ImGui::Checkbox("night (--sun off)", &night)) {
+            if (night) set(s, "sun", "off");
+            else s.erase("sun");
+            changed = true;
+        }
+        if (!night) {
+            // Angles replace a direction given as a vector.
+            if (sliderFloat(s, "elevation", "sun-elevation", 1.0f, 89.0f, 30.0f) |
+                sliderFloat(s, "azimuth", "sun-azimuth", 0.0f, 360.0f, 90.0f)) {
+                s.erase("sun");
+                changed = true;
+            }
+        }
+    }
+    if (ImGui::CollapsingHeader("Technique", ImGuiTreeNodeFlags_DefaultOpen)) {
+        changed |= combo(s, "technique", "technique", kTechniques, "tsm");
+        changed |= combo(s, "map size", "map-size", kMapSizes, "2048");
+        const std::string t = valueOf(s, "technique", "tsm");
+        if (t == "lispsm") {
+            changed |= combo(s, "n formula", "lispsm-formula", kFormulas, "scherzer");
+            changed |= combo(s, "warp axis", "lispsm-direction", kDirections, "cross");
+            changed |= sliderFloat(s, "n weight", "lispsm-weight", 0.1f, 10.0f, 1.0f, true);
+        }
+        if (t == "tsm") changed |= sliderFloat(s, "focus", "tsm-focus", 0.0f, 0.9f, 0.2f);
+        if (t == "csm") {
+            changed |= sliderInt(s, "cascades", "cascades", 1, 8, 4);
+            changed |= sliderFloat(s, "lambda", "lambda", 0.0f, 1.0f, 0.9f);
+            changed |= combo(s, "warp", "cascade-warp", kWarps, "none");
+            changed |= sliderFloat(s, "blend band", "blend-band", 0.0f, 0.5f, 0.0f);
+            changed |= checkbox(s, "split colours", "cascade-colors");
+        }
+        changed |= checkbox(s, "stabilize", "stabilize");
+    }
+    if (ImGui::CollapsingHeader("Bias and filter")) {
+        changed |= sliderFloat(s, "slope", "bias-slope", 0.0f, 8.0f, 1.0f);
+        changed |= sliderFloat(s, "constant", "bias-constant", 0.0f, 100000.0f, 100.0f, true);
+        changed |= sliderFloat(s, "normal offset", "normal-offset", 0.0f, 4.0f, 0.0f);
+        changed |= combo(s, "receiver plane", "receiver-plane-bias", kAutoOnOff, "auto");
+        changed |= combo(s, "cull", "cull", kCull, "auto");
+        changed |= combo(s, "depth layout", "depth-layout", kLayouts, "auto");
+        if (ImGui::Button("reset to recommended")) {
+            for (const char* name : {"bias-slope", "bias-constant", "normal-offset", "receiver-plane-bias", "cull", "depth-layout"})
+                s.erase(name);
+            changed = true;
+        }
+        changed |= combo(s, "filter", "filter", kFilters, "hard");
+        changed |= sliderInt(s, "blur iterations", "blur-iterations", 0, 16, 0);
+    }
+    if (ImGui::CollapsingHeader("Visibility")) {
+        changed |= combo(s, "visibility", "visibility", kVisibility, "chc");
+        changed |= combo(s, "caster culling", "caster-culling", kCasterCulling, "receivers");
+    }
+    if (ImGui::CollapsingHeader("Spot and point lights")) {
+        changed |= combo(s, "local map size", "local-map-size", kMapSizes, "1024");
+        changed |= combo(s, "cube pass", "local-pass", kLocalPasses, "layered");
+        changed |= sliderFloat(s, "slope (texels)", "local-bias-slope", 0.0f, 8.0f, 1.5f);
+        changed |= sliderFloat(s, "normal offset (texels)", "local-normal-offset", 0.0f, 8.0f, 1.0f);
+    }
+    return changed;
+}
+
+} // namespace shadowkit::viewer
