@@ -189,6 +189,23 @@ check_fails(strip-without-path "--strip" render ${small} --strip "${WORK}/strip.
 check_fails(light-malformed "--light" setup ${small} --light spot:1,2)
 check_fails(light-unknown-kind "--light" setup ${small} --light lamp:1,2,3)
 check_fails(light-cone-too-wide "spot.cone" setup ${small} --light spot:0,3,0,0,-1,0,190)
+file(WRITE "${WORK}/state-old.json" [=[{"options": {"technique": "lispsm"}}]=])
+file(WRITE "${WORK}/state-bad-value.json" [=[{"shadowkit_state": 1, "options": {"technique": "sideways"}}]=])
+check_fails(state-missing "--state" render ${small} --state "${WORK}/no_such_state.json")
+check_fails(state-not-a-state "--state" render ${small} --state "${WORK}/state-old.json")
+check_fails(state-bad-value "--technique" render ${small} --state "${WORK}/state-bad-value.json")
+# A state's options apply, and a flag given as well wins over the file's.
+if(CASE STREQUAL "state-applies")
+  file(WRITE "${WORK}/state.json" [=[{"shadowkit_state": 1, "options": {"technique": "lispsm", "map-size": 512, "trees": 20,
+    "terrain-size": 200, "terrain-resolution": 16}}]=])
+  execute_process(COMMAND ${SHADOWKIT} render --state "${WORK}/state.json" --map-size 256 --size 16x16 --out "${WORK}/s.png"
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0 AND NOT err MATCHES "no headless OpenGL")
+    message(SEND_ERROR "render --state: ${err}")
+  elseif(rc EQUAL 0 AND (NOT out MATCHES "^lispsm" OR NOT out MATCHES "map 256"))
+    message(SEND_ERROR "render --state: the state's technique or the flag's map size was not used: ${out}")
+  endif()
+endif()
 check_fails(local-pass-unknown "--local-pass" render ${small} --local-pass sideways)
 check_fails(local-map-size-too-small "--local-map-size" render ${small} --local-map-size 4)
 check_fails(local-bias-negative "--local-bias-slope" eval ${small} --local-bias-slope -1)
