@@ -255,6 +255,8 @@ void RenderOptions::addTo(CLI::App& cmd) {
     cmd.add_option("--blur-depth-falloff", blur.depthFalloff, "blur radius / (1 + falloff * depth): 0 = uniform blur")
         ->capture_default_str();
     cmd.add_flag("--cascade-colors", cascadeColors, "tint each cascade's depth range (Dimitrov 2007 Figure 3-2)");
+    cmd.add_flag("--aliasing-overlay", aliasingOverlay,
+                 "show pixels per texel of the sun's map instead of shading, computed per pixel in the shader (eval's colours)");
     cmd.add_option("--visibility", visibility,
                    "instances the camera pass draws: off (all, every pass), frustum, chc (CHC++ occlusion queries)")
         ->transform(choice(Choices<gl::Culling>{{"off", gl::Culling::Off}, {"frustum", gl::Culling::Frustum}, {"chc", gl::Culling::Occlusion}}))
@@ -288,6 +290,7 @@ core::Result<gl::RenderSettings> RenderOptions::settingsFor(const scene::Resolve
     settings.filter = core::parseFilter(filter).value();
     settings.blur = blur;
     settings.cascadeColors = cascadeColors;
+    settings.aliasingOverlay = aliasingOverlay;
     settings.culling = noCull ? gl::Culling::Off : visibility;
     settings.receiverMask = receiverMask;
     settings.lod = !noLod;

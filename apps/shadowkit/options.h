@@ -105,6 +105,7 @@ struct RenderOptions {
     std::string filter = "hard";
     gl::BlurSettings blur;
     bool cascadeColors = false;
+    bool aliasingOverlay = false; // --aliasing-overlay: pixels per texel instead of shading (live)
     gl::Culling visibility = gl::Culling::Occlusion; // --visibility (README "Visibility": the best measured)
     bool receiverMask = true;   // --caster-culling receivers (likewise)
     bool noCull = false; // --no-cull: --visibility off (what culling saves, measured)

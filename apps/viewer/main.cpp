@@ -124,7 +124,8 @@ int run(const ViewerArgs& args, app::StateOptions state) {
     std::array<float, 120> frameMs{};
     size_t frameIndex = 0;
     int drawnFrames = 0;
-    ImageTexture shadowMapImage, errorImage, aliasingImage;
+    ImageTexture shadowMapImage, localMapsImage, errorImage, aliasingImage;
+    bool hasLocalMaps = false;
     TruthJob truth;
     std::optional<eval::Figures> truthFigures;
     int64_t shadowedRight = 0; // of the last evaluation: pixels drawn in shadow where truth has shadow
@@ -212,7 +213,12 @@ int run(const ViewerArgs& args, app::StateOptions state) {
                 if (stats) {
                     ++drawnFrames;
                     drawn = DrawnFrame{view->camera, view->light, *setup, *settings, *stats, setupMs};
-                    if (frame % 30 == 0) shadowMapImage.upload(renderer.readShadowMap());
+                    if (frame % 30 == 0) {
+                        shadowMapImage.upload(renderer.readShadowMap());
+                        const scene::Image local = renderer.readLocalShadowMaps();
+                        hasLocalMaps = local.width > 0;
+                        localMapsImage.upload(local);
+                    }
                     optionsError.clear();
                 } else {
                     optionsError = app::withFlagName(stats.errorInfo()).message;
@@ -242,8 +248,13 @@ int run(const ViewerArgs& args, app::StateOptions state) {
                             drawn->settings.height, drawn->setup.mapSize);
                 ImGui::Text("set-up %.3f ms CPU   culling %.1f ms", drawn->setupMs, st.cullMilliseconds);
                 for (const auto& [name, pass] : {std::pair{"shadow", &st.shadow}, {"local ", &st.local}, {"main  ", &st.main}})
-                    ImGui::Text("%s %7.2f ms GPU  %6.3f M tris  %zu draws", name, pass->gpuMilliseconds,
-                                static_cast<double>(pass->triangles) * 1e-6, pass->drawCalls);
+                    ImGui::Text("%s %7.2f ms GPU  %6.3f M tris  %zu inst  %zu draws", name, pass->gpuMilliseconds,
+                                static_cast<double>(pass->triangles) * 1e-6, pass->instances, pass->drawCalls);
+                if (drawn->settings.culling == gl::Culling::Occlusion)
+                    ImGui::Text("CHC++  %zu nodes visited, %zu queries, %zu waits", static_cast<size_t>(st.occlusion.nodesVisited),
+                                static_cast<size_t>(st.occlusion.queriesIssued), static_cast<size_t>(st.occlusion.waits));
+                if (st.localMaps + st.skippedFaces > 0)
+                    ImGui::Text("local lights  %d maps, %d cube faces skipped", st.localMaps, st.skippedFaces);
                 ImGui::PlotLines("frame ms", frameMs.data(), static_cast<int>(frameMs.size()), static_cast<int>(frameIndex % frameMs.size()),
                                  nullptr, 0.0f, FLT_MAX, ImVec2(0, 40));
             }
@@ -253,7 +264,15 @@ int run(const ViewerArgs& args, app::StateOptions state) {
                             truthFigures->falseShadowPct, truthFigures->falseLitPct, truthFigures->pixelsPerTexelP50);
             if (!optionsError.empty()) ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", optionsError.c_str());
             if (!message.empty()) ImGui::TextWrapped("%s", message.c_str());
-            dirty |= drawOptionsPanel(state);
+            PanelDefaults defaults;
+            if (drawn) {
+                const core::Vec3 towards = drawn->light.wsTowardsLight();
+                defaults.sunElevationDegrees = glm::degrees(std::asin(std::clamp(towards.y, -1.0, 1.0)));
+                defaults.sunAzimuthDegrees = core::azimuthDegreesOf(towards);
+                const core::BiasSettings bias = gl::biasFor(drawn->setup, drawn->settings);
+                defaults.biasSlope = bias.slope, defaults.biasConstant = bias.constant, defaults.normalOffset = bias.normalOffset;
+            }
+            dirty |= drawOptionsPanel(state, defaults);
             ImGui::End();
             // The insets, on the right: the shadow map(s) and, after T, the error and
             // pixels-per-texel maps of the evaluated frame.
@@ -261,6 +280,10 @@ int run(const ViewerArgs& args, app::StateOptions state) {
             ImGui::Begin("maps", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
             ImGui::TextUnformatted("shadow map (near the light bright)");
             shadowMapImage.draw(260.0f);
+            if (hasLocalMaps) {
+                ImGui::TextUnformatted("spot maps, cubes unfolded");
+                localMapsImage.draw(260.0f);
+            }
             if (truthFigures) {
                 ImGui::TextUnformatted("error: red false shadow, blue false lit");
                 errorImage.draw(260.0f);

@@ -74,7 +74,8 @@ constexpr std::array kLocalPasses = {"layered", "vertex-layer", "geometry", "per
 
 } // namespace
 
-bool drawOptionsPanel(StateOptions& s) {
+bool drawOptionsPanel(StateOptions& s, const PanelDefaults& d) {
+    const auto f = [](double v) { return static_cast<float>(v); };
     bool changed = false;
     if (ImGui::CollapsingHeader("Sun", ImGuiTreeNodeFlags_DefaultOpen)) {
         bool night = valueOf(s, "sun", "") == "off";
@@ -85,8 +86,8 @@ bool drawOptionsPanel(StateOptions& s) {
         }
         if (!night) {
             // Angles replace a direction given as a vector.
-            if (sliderFloat(s, "elevation", "sun-elevation", 1.0f, 89.0f, 30.0f) |
-                sliderFloat(s, "azimuth", "sun-azimuth", 0.0f, 360.0f, 90.0f)) {
+            if (sliderFloat(s, "elevation", "sun-elevation", 1.0f, 89.0f, f(d.sunElevationDegrees)) |
+                sliderFloat(s, "azimuth", "sun-azimuth", 0.0f, 360.0f, f(d.sunAzimuthDegrees))) {
                 s.erase("sun");
                 changed = true;
             }
@@ -107,14 +108,13 @@ bool drawOptionsPanel(StateOptions& s) {
             changed |= sliderFloat(s, "lambda", "lambda", 0.0f, 1.0f, 0.9f);
             changed |= combo(s, "warp", "cascade-warp", kWarps, "none");
             changed |= sliderFloat(s, "blend band", "blend-band", 0.0f, 0.5f, 0.0f);
-            changed |= checkbox(s, "split colours", "cascade-colors");
         }
         changed |= checkbox(s, "stabilize", "stabilize");
     }
     if (ImGui::CollapsingHeader("Bias and filter")) {
-        changed |= sliderFloat(s, "slope", "bias-slope", 0.0f, 8.0f, 1.0f);
-        changed |= sliderFloat(s, "constant", "bias-constant", 0.0f, 100000.0f, 100.0f, true);
-        changed |= sliderFloat(s, "normal offset", "normal-offset", 0.0f, 4.0f, 0.0f);
+        changed |= sliderFloat(s, "slope", "bias-slope", 0.0f, 8.0f, f(d.biasSlope));
+        changed |= sliderFloat(s, "constant", "bias-constant", 0.0f, 100000.0f, f(d.biasConstant), true);
+        changed |= sliderFloat(s, "normal offset", "normal-offset", 0.0f, 4.0f, f(d.normalOffset));
         changed |= combo(s, "receiver plane", "receiver-plane-bias", kAutoOnOff, "auto");
         changed |= combo(s, "cull", "cull", kCull, "auto");
         changed |= combo(s, "depth layout", "depth-layout", kLayouts, "auto");
@@ -125,6 +125,10 @@ bool drawOptionsPanel(StateOptions& s) {
         }
         changed |= combo(s, "filter", "filter", kFilters, "hard");
         changed |= sliderInt(s, "blur iterations", "blur-iterations", 0, 16, 0);
+    }
+    if (ImGui::CollapsingHeader("Insight", ImGuiTreeNodeFlags_DefaultOpen)) {
+        changed |= checkbox(s, "aliasing heat map (pixels per texel)", "aliasing-overlay");
+        changed |= checkbox(s, "split colours", "cascade-colors");
     }
     if (ImGui::CollapsingHeader("Visibility")) {
         changed |= combo(s, "visibility", "visibility", kVisibility, "chc");

@@ -7,7 +7,14 @@
 
 namespace shadowkit::viewer {
 
+// What the widgets show for options the state does not set: the values the last frame was
+// drawn with (the view's sun, the technique's recommended bias).
+struct PanelDefaults {
+    double sunElevationDegrees = 30.0, sunAzimuthDegrees = 90.0;
+    double biasSlope = 1.0, biasConstant = 2.0, normalOffset = 0.0;
+};
+
 // Draws the panel's sections; true when any option changed.
-bool drawOptionsPanel(app::StateOptions& state);
+bool drawOptionsPanel(app::StateOptions& state, const PanelDefaults& defaults);
 
 } // namespace shadowkit::viewer

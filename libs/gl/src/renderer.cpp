@@ -450,6 +450,7 @@ void Renderer::Impl::uploadFrame(const core::PerspectiveCamera& camera, const co
     frame.receiverPlane = bias.receiverPlane ? 1 : 0;
     frame.normalOffsetTexels = static_cast<float>(bias.normalOffset);
     frame.readBlurredMask = useMask ? 1 : 0;
+    frame.aliasingOverlay = settings.aliasingOverlay ? 1 : 0;
     for (size_t i = 0; i < setup.views.size(); ++i) {
         const core::ShadowView& view = setup.views[i];
         frame.shadowClipFromWorld[i] = toFloat(view.clipFromWorld);

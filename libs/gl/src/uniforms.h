@@ -76,7 +76,8 @@ struct FrameUniforms { // GLSL: Frame (frame.glsl)
     int32_t receiverPlane;     // 1: receiver-plane depth bias
     float normalOffsetTexels;  // receiver offset along its normal, in texels' world size
     int32_t readBlurredMask;   // 1: main pass reads the blurred mask instead of the maps
-    float pad0, pad1;
+    int32_t aliasingOverlay;   // 1: main pass shows pixels per texel instead of shading
+    float pad1;
     glm::mat4 shadowClipFromWorld[kMaxCascades];       // light clip space of each map
     glm::vec4 shadowLinearDepthFromWorld[kMaxCascades]; // rows, as in DepthPass
     glm::vec4 cascadeRange[kMaxCascades];               // x, y: view depth [start, end] each map serves

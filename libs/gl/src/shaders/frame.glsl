@@ -24,6 +24,7 @@ layout(std140, binding = SK_FRAME_BINDING) uniform Frame {
     int receiverPlane;        // 1: receiver-plane depth bias
     float normalOffsetTexels; // receiver offset along its normal, in texels' world size
     int readBlurredMask;      // 1: the main pass reads the blurred mask instead of the maps
+    int aliasingOverlay;      // 1: the main pass shows pixels per texel instead of shading
     mat4 shadowClipFromWorld[SK_MAX_CASCADES];        // light clip space of each map
     vec4 shadowLinearDepthFromWorld[SK_MAX_CASCADES]; // rows, see DepthPass
     vec4 cascadeRange[SK_MAX_CASCADES];               // x, y: view depth [start, end] each map serves

@@ -92,6 +92,10 @@ struct RenderSettings {
     float lodPixelError = 0.25f; // (0, 16]
     float lodTexelError = 0.25f; // (0, 16]
     bool cascadeColors = false;     // tint each cascade's range (Dimitrov 2007, Figure 3-2)
+    // Show, instead of the shaded colour, each pixel's pixels per texel of the sun's map that
+    // serves it — eval's `pixels_per_texel` (largest singular value of d(pixel)/d(texel)) with
+    // eval::aliasingMapImage's colours (log2 from 1/64 to 64) — computed in the shader, live.
+    bool aliasingOverlay = false;
     // false: night. The sun neither lights the frame nor has its maps drawn; the local lights
     // (Renderer::setLocalLights) and a dim ambient remain.
     bool sun = true;
