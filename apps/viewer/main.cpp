@@ -12,6 +12,7 @@
 #include "panel.h"
 #include "truth_job.h"
 
+#include "shadowkit/core/wireframe.h"
 #include "shadowkit/eval/maps.h"
 #include "shadowkit/gl/window_context.h"
 #include "shadowkit/measure/measurer.h"
@@ -85,7 +86,31 @@ struct ViewerArgs {
     int frames = 0; // 0: until closed
     std::string screenshot, windowShot, saveState = "shadowkit-state.json";
     bool truthAtStart = false; // --truth: T on the first frame (with --frames, awaited before the last)
+    bool wireframes = false;   // --wireframes: the view frustum, B and the shadow maps' volumes
+    bool debugCamera = false;  // --debug-camera: start looking at them from outside (C)
 };
+
+// Wireframes for insight: the camera's frustum (white), the focus body B (green) and each
+// shadow map's clip volume (orange; warped maps show their warped volume).
+std::vector<gl::LineSegment> insightLines(const core::PerspectiveCamera& camera, const core::ShadowSetup& setup) {
+    std::vector<gl::LineSegment> lines;
+    auto add = [&](const std::vector<core::Edge>& edges, glm::vec3 color) {
+        for (const core::Edge& e : edges) lines.push_back({e.first, e.second, color});
+    };
+    add(core::clipVolumeEdges(camera.clipFromWorld()), glm::vec3(1.0f));
+    add(core::bodyEdges(setup.body), glm::vec3(0.2f, 1.0f, 0.3f));
+    for (const core::ShadowView& view : setup.views) add(core::clipVolumeEdges(view.clipFromWorld), glm::vec3(1.0f, 0.55f, 0.1f));
+    return lines;
+}
+
+// A place to see the camera's frustum and B from: framing both.
+FlyCamera debugCameraFor(const core::PerspectiveCamera& camera, const core::ShadowSetup& setup) {
+    core::Aabb box = setup.body.isEmpty() ? core::Aabb{} : setup.body.bounds();
+    for (const core::Edge& e : core::clipVolumeEdges(camera.clipFromWorld())) box.extend(e.first), box.extend(e.second);
+    FlyCamera debug;
+    debug.frame(box, camera.fovYDegrees);
+    return debug;
+}
 
 // What one frame drew, for the panel and for the truth.
 struct DrawnFrame {
@@ -117,6 +142,9 @@ int run(const ViewerArgs& args, app::StateOptions state) {
     ImGui_ImplOpenGL3_Init("#version 450 core");
 
     FlyCamera camera = FlyCamera::looking(first->camera.wsEye, first->camera.wsDirection);
+    // C: the fly controls move this one instead; the set-up stays the frozen camera's.
+    FlyCamera debug;
+    bool debugView = false, debugPlaced = false, wireframes = args.wireframes;
     std::unique_ptr<FrameOptions> options;
     std::string optionsError;
     bool dirty = true, showPanel = true, playing = false;
@@ -150,9 +178,17 @@ int run(const ViewerArgs& args, app::StateOptions state) {
         if (!io.WantCaptureKeyboard) {
             const auto key = [&](int k) { return glfwGetKey(glfw, k) == GLFW_PRESS ? 1.0 : 0.0; };
             const core::Vec3 motion(key(GLFW_KEY_D) - key(GLFW_KEY_A), key(GLFW_KEY_E) - key(GLFW_KEY_Q), key(GLFW_KEY_W) - key(GLFW_KEY_S));
-            if (motion != core::Vec3(0.0)) camera.move(motion, seconds), dirty = true;
+            if (motion != core::Vec3(0.0)) {
+                if (debugView) debug.move(motion, seconds);
+                else camera.move(motion, seconds), dirty = true;
+            }
             if (ImGui::IsKeyPressed(GLFW_KEY_F, false)) camera.frame(renderer.wsSceneBounds(), first->camera.fovYDegrees), dirty = true;
             if (ImGui::IsKeyPressed(GLFW_KEY_H, false)) showPanel = !showPanel;
+            if (ImGui::IsKeyPressed(GLFW_KEY_C, false) || (args.debugCamera && frame == 1)) {
+                debugView = !debugView;
+                wireframes = wireframes || debugView;
+                debugPlaced = false;
+            }
             if (ImGui::IsKeyPressed(GLFW_KEY_SPACE, false)) playing = !playing;
             if (ImGui::IsKeyPressed(GLFW_KEY_ESCAPE, false)) glfwSetWindowShouldClose(glfw, GLFW_TRUE);
             if (ImGui::IsKeyPressed(GLFW_KEY_P, false) && drawn) {
@@ -171,7 +207,10 @@ int run(const ViewerArgs& args, app::StateOptions state) {
         }
         if (!io.WantCaptureMouse) {
             if (glfwGetMouseButton(glfw, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS && (io.MouseDelta.x != 0.0f || io.MouseDelta.y != 0.0f))
-                camera.turn(io.MouseDelta.x, io.MouseDelta.y), dirty = true;
+            {
+                if (debugView) debug.turn(io.MouseDelta.x, io.MouseDelta.y);
+                else camera.turn(io.MouseDelta.x, io.MouseDelta.y), dirty = true;
+            }
             if (io.MouseWheel != 0.0f) camera.metresPerSecond *= std::pow(1.25, static_cast<double>(io.MouseWheel));
         }
         if (playing) {
@@ -209,7 +248,17 @@ int run(const ViewerArgs& args, app::StateOptions state) {
                 options->lights.apply(*view, *settings);
                 auto lighting = options->lights.lightingFor(*view, renderer.wsSceneBounds());
                 core::Status ok = lighting ? renderer.setLocalLights(std::move(lighting).value()) : core::Status(lighting.errorInfo());
-                auto stats = ok ? renderer.render(view->camera, view->light, *setup, *settings) : core::Result<gl::FrameStats>(ok.errorInfo());
+                // The debug camera sees the frozen camera's set-up from outside, farther.
+                if (debugView && !debugPlaced) debug = debugCameraFor(view->camera, *setup), debugPlaced = true;
+                core::PerspectiveCamera seenFrom = view->camera;
+                if (debugView) {
+                    seenFrom.wsEye = debug.wsEye;
+                    seenFrom.wsDirection = debug.wsDirection();
+                    seenFrom.zFar = 4.0 * view->camera.zFar;
+                    seenFrom.zNear = std::max(view->camera.zNear, 0.5);
+                }
+                auto stats = ok ? renderer.render(seenFrom, view->light, *setup, *settings) : core::Result<gl::FrameStats>(ok.errorInfo());
+                if (stats && wireframes) renderer.drawLines(seenFrom, insightLines(view->camera, *setup));
                 if (stats) {
                     ++drawnFrames;
                     drawn = DrawnFrame{view->camera, view->light, *setup, *settings, *stats, setupMs};
@@ -273,6 +322,10 @@ int run(const ViewerArgs& args, app::StateOptions state) {
                 defaults.biasSlope = bias.slope, defaults.biasConstant = bias.constant, defaults.normalOffset = bias.normalOffset;
             }
             dirty |= drawOptionsPanel(state, defaults);
+            if (ImGui::CollapsingHeader("Wireframes", ImGuiTreeNodeFlags_DefaultOpen)) {
+                ImGui::Checkbox("frustum (white), B (green), maps (orange)", &wireframes);
+                if (ImGui::Checkbox("debug camera (C)", &debugView)) debugPlaced = false, wireframes = wireframes || debugView;
+            }
             ImGui::End();
             // The insets, on the right: the shadow map(s) and, after T, the error and
             // pixels-per-texel maps of the evaluated frame.
@@ -332,6 +385,8 @@ int main(int argc, char** argv) {
     app.add_option("--frames", args.frames, "draw this many frames, then exit (0: until the window closes)")->check(CLI::NonNegativeNumber);
     app.add_option("--screenshot", args.screenshot, "P writes the frame here; with --frames, the last frame is written on exit");
     app.add_option("--window-shot", args.windowShot, "with --frames: the window, panel included, written on exit");
+    app.add_flag("--wireframes", args.wireframes, "draw the view frustum, the focus body B and the shadow maps' volumes");
+    app.add_flag("--debug-camera", args.debugCamera, "start with the debug camera (C): the set-up seen from outside");
     app.add_flag("--truth", args.truthAtStart, "evaluate the first frame against truth at once (T); --frames waits for it");
     app.add_option("--save-state", args.saveState, "where Ctrl+S saves the options (with --frames: on exit too)")->capture_default_str();
     auto expanded = app::expandState(std::vector<std::string>(argv + 1, argv + argc));
@@ -351,5 +406,6 @@ int main(int argc, char** argv) {
     if (auto s = args.options.render.check(); !s) return viewer::fail(s.error());
     for (const std::string* file : {&args.screenshot, &args.saveState})
         if (auto s = app::checkWritable("--screenshot/--save-state", *file); !s) return viewer::fail(s.error());
-    return viewer::run(args, viewer::givenOptions(app, given, {"frames", "screenshot", "save-state", "state", "window-shot", "truth"}));
+    return viewer::run(args, viewer::givenOptions(app, given, {"frames", "screenshot", "save-state", "state", "window-shot", "truth", "wireframes",
+                                                            "debug-camera"}));
 }

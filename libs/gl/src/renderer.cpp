@@ -4,6 +4,7 @@
 #include "gl_object.h"
 #include "gl_shaders.h"
 #include "gpu_scene.h"
+#include "line_pass.h"
 #include "local_shadows.h"
 #include "occlusion_culling.h"
 #include "program.h"
@@ -138,6 +139,7 @@ struct Renderer::Impl {
     std::optional<MaskPingPong> mask;
     PassTimer shadowTimer, mainTimer, localTimer;
     std::unique_ptr<LocalShadowMaps> localMaps;
+    std::unique_ptr<LinePass> lines;
     core::LocalLighting localLights; // Renderer::setLocalLights
     std::vector<PassList> localLists; // LocalShadowMaps::listCount of them
     int evalLight = -1;               // the eval pass's light (renderEvalBuffers)
@@ -187,6 +189,9 @@ core::Result<std::unique_ptr<Renderer>> Renderer::create(const scene::Scene& sce
         if (auto s = checkUniformBlock(**p, "camera pass", "LocalLights", sizeof(LocalLightsUniforms), localLightsFields()); !s)
             return s.errorInfo();
     }
+    auto lines = LinePass::create();
+    if (!lines) return lines.errorInfo();
+    r.lines = std::move(lines).value();
     auto localMaps = LocalShadowMaps::create();
     if (!localMaps) return localMaps.errorInfo();
     r.localMaps = std::move(localMaps).value();
@@ -654,6 +659,15 @@ const core::LocalLighting& Renderer::localLights() const { return m_impl->localL
 scene::Image Renderer::readLocalShadowMaps() const { return m_impl->localMaps->readAsGreys(m_impl->localLights); }
 
 const core::Aabb& Renderer::wsSceneBounds() const { return m_impl->visibility->wsBounds(); }
+
+void Renderer::drawLines(const core::PerspectiveCamera& camera, std::span<const LineSegment> lines) {
+    Impl& r = *m_impl;
+    if (!r.color) return;
+    glBindFramebuffer(GL_FRAMEBUFFER, r.color->framebuffer.id());
+    glViewport(0, 0, r.color->width, r.color->height);
+    r.lines->draw(camera.clipFromWorld(), lines);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
 
 void Renderer::present(int width, int height) const {
     const auto& color = m_impl->color;

@@ -106,6 +106,12 @@ struct RenderSettings {
 // The bias a frame with these settings is drawn with: settings.bias, or the recommended one.
 core::BiasSettings biasFor(const core::ShadowSetup& setup, const RenderSettings& settings);
 
+// A coloured world-space segment drawn over a frame (Renderer::drawLines): wireframes for insight.
+struct LineSegment {
+    core::Vec3 wsFrom{0.0}, wsTo{0.0};
+    glm::vec3 color{1.0f};
+};
+
 struct PassStats {
     double gpuMilliseconds = 0.0; // between two GL timestamp queries
     size_t instances = 0;         // submitted (over every map, for the shadow pass)
@@ -191,6 +197,9 @@ public:
 
     // The last rendered frame (top row first).
     scene::Image readColor() const;
+    // Draws segments over the last rendered frame as `camera` sees them (always on top: no
+    // depth test); readColor() and present() then include them.
+    void drawLines(const core::PerspectiveCamera& camera, std::span<const LineSegment> lines);
     // Copies the last rendered frame into the current context's default framebuffer (a
     // window's), scaled to width × height pixels; nothing before the first frame.
     void present(int width, int height) const;
