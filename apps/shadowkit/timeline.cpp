@@ -38,9 +38,9 @@ core::Result<std::pair<int, int>> parseFrameRange(const std::string& text, int c
 
 } // namespace
 
-void TimelineOptions::addTo(CLI::App& cmd) {
+void TimelineOptions::addTo(CLI::App& cmd, bool withFrames) {
     cmd.add_option("--path", path, "camera path: a name from data/paths (flythrough, day) or a .json file");
-    cmd.add_option("--frames", frames, "frames of the path to draw: a:b (a to b-1), a:, :b or a (default: all)");
+    if (withFrames) cmd.add_option("--frames", frames, "frames of the path to draw: a:b (a to b-1), a:, :b or a (default: all)");
     cmd.add_option("--time", time, "draw one moment, in seconds (movers, sun path and camera path at that time)");
     cmd.add_option("--sun-path", sunPath,
                    "the sun's motion: a path name or .json file with sun keys, or 'off' to hold the sun where it starts "

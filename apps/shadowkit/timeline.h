@@ -40,7 +40,8 @@ struct TimelineOptions {
     std::string path, frames, sunPath;
     std::optional<double> time;
 
-    void addTo(CLI::App& cmd);
+    // withFrames false: without --frames (the viewer plays the path instead).
+    void addTo(CLI::App& cmd, bool withFrames = true);
     // Loads the paths and lists the frames; errors name the flag.
     core::Result<Timeline> resolve() const;
 };

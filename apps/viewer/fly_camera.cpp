@@ -31,6 +31,12 @@ void FlyCamera::turn(double dxPixels, double dyPixels) {
     pitchDegrees = std::clamp(pitchDegrees - 0.2 * dyPixels, -89.0, 89.0);
 }
 
+void FlyCamera::orbit(double dxPixels, double dyPixels, const core::Vec3& wsTarget) {
+    const double distance = glm::length(wsTarget - wsEye);
+    turn(dxPixels, dyPixels);
+    wsEye = wsTarget - distance * wsDirection();
+}
+
 void FlyCamera::frame(const core::Aabb& wsBounds, double fovYDegrees) {
     if (wsBounds.isEmpty()) return; // nothing to frame: stay
     const core::Vec3 centre = 0.5 * (wsBounds.min + wsBounds.max);

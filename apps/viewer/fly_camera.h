@@ -20,6 +20,8 @@ struct FlyCamera {
     void move(const core::Vec3& rightUpForward, double seconds);
     // Turns by mouse motion in pixels (0.2° per pixel; pitch clamped short of the poles).
     void turn(double dxPixels, double dyPixels);
+    // Orbits `wsTarget` by mouse motion (0.2° per pixel), keeping the distance and looking at it.
+    void orbit(double dxPixels, double dyPixels, const core::Vec3& wsTarget);
     // Looks at the box's centre from above and in front of it, far enough to see it whole.
     void frame(const core::Aabb& wsBounds, double fovYDegrees);
 };

@@ -12,6 +12,7 @@ void FrameOptions::addTo(CLI::App& cmd) {
     technique.addTo(cmd);
     render.addTo(cmd);
     lights.addTo(cmd);
+    timeline.addTo(cmd, false);
 }
 
 core::Result<std::unique_ptr<FrameOptions>> parseFrameOptions(const app::StateOptions& state) {

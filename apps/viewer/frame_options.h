@@ -6,6 +6,7 @@
 #include "local_light_options.h"
 #include "options.h"
 #include "state.h"
+#include "timeline.h"
 
 #include <memory>
 
@@ -17,6 +18,7 @@ struct FrameOptions {
     app::TechniqueOptions technique;
     app::RenderOptions render;
     app::LocalLightOptions lights;
+    app::TimelineOptions timeline; // --path, --time, --sun-path (--frames is the viewer's own)
 
     // Registers every group on `cmd`.
     void addTo(CLI::App& cmd);

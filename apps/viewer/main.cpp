@@ -2,7 +2,8 @@
 // shadow map beside it, the frame's cost, and the error against ray-traced truth on demand.
 // Thin: the libraries draw and measure; this file handles the window, input and the panel.
 //
-// Keys: W A S D move, Q E down / up, right mouse button + drag looks, wheel sets the speed,
+// Keys: W A S D move, Q E down / up, right mouse button + drag looks (orbits with O), wheel
+// sets the speed (zooms when orbiting), Shift + left drag moves the sun, C the debug camera,
 // F frames the whole scene, T evaluates the frame against truth (in the background), P writes
 // a screenshot, Ctrl+S saves the options as a --state file, Space plays / pauses the movers,
 // H hides the panel, Esc quits.
@@ -122,6 +123,36 @@ struct DrawnFrame {
     double setupMs = 0.0;
 };
 
+struct FrameResult {
+    DrawnFrame frame;
+};
+
+// One frame as `render` draws it: the view (through the timeline at time t), set-up (held
+// lattices through `hysteresis` with --stabilize), settings and local lights, then the passes.
+core::Result<FrameResult> drawFrame(measure::Measurer& measurer, const scene::Scene& world, const FrameOptions& options,
+                                    const app::Timeline& timeline, double t, std::optional<core::SetupHysteresis>& hysteresis) {
+    gl::Renderer& renderer = measurer.renderer();
+    auto still = options.view.resolve(world);
+    if (!still) return still.errorInfo();
+    auto view = timeline.viewAt(*still, world, t, true);
+    if (!view) return view.errorInfo();
+    const auto setupStart = std::chrono::steady_clock::now();
+    auto inputs = options.technique.inputsFor(*view, renderer.wsSceneBounds());
+    if (!inputs) return inputs.errorInfo();
+    auto settings = options.render.settingsFor(*view, *inputs);
+    if (!settings) return settings.errorInfo();
+    auto setup = options.technique.setupFor(*inputs, hysteresis);
+    if (!setup) return setup.errorInfo();
+    const double setupMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - setupStart).count();
+    options.lights.apply(*view, *settings);
+    auto lighting = options.lights.lightingFor(*view, renderer.wsSceneBounds());
+    if (!lighting) return lighting.errorInfo();
+    if (auto s = renderer.setLocalLights(std::move(lighting).value()); !s) return s.errorInfo();
+    auto stats = renderer.render(view->camera, view->light, *setup, *settings);
+    if (!stats) return stats.errorInfo();
+    return FrameResult{DrawnFrame{view->camera, view->light, std::move(setup).value(), *settings, *stats, setupMs}};
+}
+
 int run(const ViewerArgs& args, app::StateOptions state) {
     auto sceneData = args.options.scene.load();
     if (!sceneData) return fail(sceneData.error());
@@ -145,10 +176,16 @@ int run(const ViewerArgs& args, app::StateOptions state) {
     // C: the fly controls move this one instead; the set-up stays the frozen camera's.
     FlyCamera debug;
     bool debugView = false, debugPlaced = false, wireframes = args.wireframes;
+    // O: orbit a point in front of the camera instead of flying; the wheel zooms.
+    bool orbiting = false;
+    double orbitDistance = 20.0;
+    core::Vec3 orbitTarget(0.0);
     std::unique_ptr<FrameOptions> options;
     std::string optionsError;
     bool dirty = true, showPanel = true, playing = false;
-    double sceneTime = 0.0;
+    double sceneTime = args.options.timeline.time.value_or(0.0), animatedTime = -1.0;
+    std::optional<app::Timeline> timeline;
+    std::optional<core::SetupHysteresis> hysteresis; // --stabilize: lattices held across frames
     std::array<float, 120> frameMs{};
     size_t frameIndex = 0;
     int drawnFrames = 0;
@@ -184,6 +221,10 @@ int run(const ViewerArgs& args, app::StateOptions state) {
             }
             if (ImGui::IsKeyPressed(GLFW_KEY_F, false)) camera.frame(renderer.wsSceneBounds(), first->camera.fovYDegrees), dirty = true;
             if (ImGui::IsKeyPressed(GLFW_KEY_H, false)) showPanel = !showPanel;
+            if (ImGui::IsKeyPressed(GLFW_KEY_O, false)) {
+                orbiting = !orbiting;
+                orbitTarget = camera.wsEye + orbitDistance * camera.wsDirection();
+            }
             if (ImGui::IsKeyPressed(GLFW_KEY_C, false) || (args.debugCamera && frame == 1)) {
                 debugView = !debugView;
                 wireframes = wireframes || debugView;
@@ -209,71 +250,97 @@ int run(const ViewerArgs& args, app::StateOptions state) {
             if (glfwGetMouseButton(glfw, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS && (io.MouseDelta.x != 0.0f || io.MouseDelta.y != 0.0f))
             {
                 if (debugView) debug.turn(io.MouseDelta.x, io.MouseDelta.y);
+                else if (orbiting) camera.orbit(io.MouseDelta.x, io.MouseDelta.y, orbitTarget), dirty = true;
                 else camera.turn(io.MouseDelta.x, io.MouseDelta.y), dirty = true;
             }
-            if (io.MouseWheel != 0.0f) camera.metresPerSecond *= std::pow(1.25, static_cast<double>(io.MouseWheel));
+            if (io.MouseWheel != 0.0f) {
+                const double factor = std::pow(1.25, static_cast<double>(io.MouseWheel));
+                if (orbiting) {
+                    // Orbit: the wheel moves in and out.
+                    orbitDistance = std::max(0.5, orbitDistance / factor);
+                    camera.wsEye = orbitTarget - orbitDistance * camera.wsDirection();
+                    dirty = true;
+                } else {
+                    camera.metresPerSecond *= factor;
+                }
+            }
+            // Shift + left drag: the sun (0.25° per pixel), as the panel's angles.
+            if (io.KeyShift && glfwGetMouseButton(glfw, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS && drawn &&
+                (io.MouseDelta.x != 0.0f || io.MouseDelta.y != 0.0f)) {
+                const core::Vec3 towards = drawn->light.wsTowardsLight();
+                const double elevation = glm::degrees(std::asin(std::clamp(towards.y, -1.0, 1.0))) - 0.25 * io.MouseDelta.y;
+                const double azimuth = core::azimuthDegreesOf(towards) + 0.25 * io.MouseDelta.x;
+                state["sun-elevation"] = {fmt::format("{:.4g}", std::clamp(elevation, 1.0, 89.0))};
+                state["sun-azimuth"] = {fmt::format("{:.4g}", std::fmod(azimuth + 360.0, 360.0))};
+                state.erase("sun");
+                dirty = true;
+            }
         }
-        if (playing) {
-            sceneTime += seconds;
+        // Time: movers, the sun path and the camera path at sceneTime (as `render --time`).
+        if (playing) sceneTime += seconds;
+        if (timeline && timeline->path && timeline->frames.size() > 1 && sceneTime > timeline->frames.back().time) sceneTime = 0.0;
+        if (sceneTime != animatedTime) {
             std::vector<uint32_t> moved;
             scene::animate(world, sceneTime, &moved);
             if (auto s = (*measurer)->moveInstances(world, moved); !s) message = s.error();
+            animatedTime = sceneTime;
         }
 
-        // The options as `render` would take them: camera, window size, then the panel's.
+        // The options as `render` would take them: camera, window size, time, then the panel's.
         int width = 0, height = 0;
         glfwGetFramebufferSize(glfw, &width, &height);
         if (width > 0 && height > 0) {
             state["eye"] = {vec3Text(camera.wsEye)};
             state["dir"] = {vec3Text(camera.wsDirection())};
             state["size"] = {fmt::format("{}x{}", width, height)};
+            if (sceneTime != 0.0) state["time"] = {fmt::format("{:.6g}", sceneTime)};
+            else state.erase("time");
         }
         if (dirty) {
             auto parsed = parseFrameOptions(state);
             if (parsed) options = std::move(parsed).value(), optionsError.clear();
             else optionsError = app::withFlagName(parsed.errorInfo()).message;
+            auto resolved = options ? options->timeline.resolve() : core::Result<app::Timeline>(core::makeError(optionsError));
+            timeline = resolved ? std::optional<app::Timeline>(std::move(resolved).value()) : std::nullopt;
+            if (!resolved && options) optionsError = resolved.error();
+            hysteresis.reset(); // --stabilize holds lattices from here on
             dirty = false;
         }
 
         // Draw the frame with the libraries, as `render` does.
-        if (options && width > 0 && height > 0) {
-            const auto setupStart = std::chrono::steady_clock::now();
-            auto view = options->view.resolve(world);
-            auto inputs = view ? options->technique.inputsFor(*view, renderer.wsSceneBounds()) : decltype(options->technique.inputsFor(*view, {})){view.errorInfo()};
-            auto settings = inputs ? options->render.settingsFor(*view, *inputs) : core::Result<gl::RenderSettings>(inputs.errorInfo());
-            std::optional<core::SetupHysteresis> noHysteresis;
-            auto setup = settings ? options->technique.setupFor(*inputs, noHysteresis) : core::Result<core::ShadowSetup>(settings.errorInfo());
-            const double setupMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - setupStart).count();
-            if (setup) {
-                options->lights.apply(*view, *settings);
-                auto lighting = options->lights.lightingFor(*view, renderer.wsSceneBounds());
-                core::Status ok = lighting ? renderer.setLocalLights(std::move(lighting).value()) : core::Status(lighting.errorInfo());
+        if (options && timeline && width > 0 && height > 0) {
+            auto frameDrawn = drawFrame(**measurer, world, *options, *timeline, sceneTime, hysteresis);
+            if (frameDrawn) {
+                drawn = std::move(frameDrawn->frame);
+                ++drawnFrames;
+                // A camera path leads: the fly camera follows it.
+                if (timeline->path) {
+                    const double speed = camera.metresPerSecond;
+                    camera = FlyCamera::looking(drawn->camera.wsEye, drawn->camera.wsDirection);
+                    camera.metresPerSecond = speed;
+                }
                 // The debug camera sees the frozen camera's set-up from outside, farther.
-                if (debugView && !debugPlaced) debug = debugCameraFor(view->camera, *setup), debugPlaced = true;
-                core::PerspectiveCamera seenFrom = view->camera;
                 if (debugView) {
+                    if (!debugPlaced) debug = debugCameraFor(drawn->camera, drawn->setup), debugPlaced = true;
+                    core::PerspectiveCamera seenFrom = drawn->camera;
                     seenFrom.wsEye = debug.wsEye;
                     seenFrom.wsDirection = debug.wsDirection();
-                    seenFrom.zFar = 4.0 * view->camera.zFar;
-                    seenFrom.zNear = std::max(view->camera.zNear, 0.5);
+                    seenFrom.zFar = 4.0 * drawn->camera.zFar;
+                    seenFrom.zNear = std::max(drawn->camera.zNear, 0.5);
+                    if (auto s = renderer.render(seenFrom, drawn->light, drawn->setup, drawn->settings); !s) message = s.error();
+                    if (wireframes) renderer.drawLines(seenFrom, insightLines(drawn->camera, drawn->setup));
+                } else if (wireframes) {
+                    renderer.drawLines(drawn->camera, insightLines(drawn->camera, drawn->setup));
                 }
-                auto stats = ok ? renderer.render(seenFrom, view->light, *setup, *settings) : core::Result<gl::FrameStats>(ok.errorInfo());
-                if (stats && wireframes) renderer.drawLines(seenFrom, insightLines(view->camera, *setup));
-                if (stats) {
-                    ++drawnFrames;
-                    drawn = DrawnFrame{view->camera, view->light, *setup, *settings, *stats, setupMs};
-                    if (frame % 30 == 0) {
-                        shadowMapImage.upload(renderer.readShadowMap());
-                        const scene::Image local = renderer.readLocalShadowMaps();
-                        hasLocalMaps = local.width > 0;
-                        localMapsImage.upload(local);
-                    }
-                    optionsError.clear();
-                } else {
-                    optionsError = app::withFlagName(stats.errorInfo()).message;
+                if (frame % 30 == 0) {
+                    shadowMapImage.upload(renderer.readShadowMap());
+                    const scene::Image local = renderer.readLocalShadowMaps();
+                    hasLocalMaps = local.width > 0;
+                    localMapsImage.upload(local);
                 }
+                optionsError.clear();
             } else {
-                optionsError = app::withFlagName(setup.errorInfo()).message;
+                optionsError = app::withFlagName(frameDrawn.errorInfo()).message;
             }
         }
         // --frames with --truth: the last frame waits for the evaluation.
@@ -322,6 +389,13 @@ int run(const ViewerArgs& args, app::StateOptions state) {
                 defaults.biasSlope = bias.slope, defaults.biasConstant = bias.constant, defaults.normalOffset = bias.normalOffset;
             }
             dirty |= drawOptionsPanel(state, defaults);
+            if (ImGui::CollapsingHeader("Time", ImGuiTreeNodeFlags_DefaultOpen)) {
+                ImGui::Checkbox("play (Space)", &playing);
+                const double end = timeline && timeline->path && timeline->frames.size() > 1 ? timeline->frames.back().time : 120.0;
+                float t = static_cast<float>(sceneTime);
+                if (ImGui::SliderFloat("time (s)", &t, 0.0f, static_cast<float>(end), "%.2f")) sceneTime = t;
+                if (timeline && timeline->path) ImGui::TextUnformatted("camera path: the camera follows it");
+            }
             if (ImGui::CollapsingHeader("Wireframes", ImGuiTreeNodeFlags_DefaultOpen)) {
                 ImGui::Checkbox("frustum (white), B (green), maps (orange)", &wireframes);
                 if (ImGui::Checkbox("debug camera (C)", &debugView)) debugPlaced = false, wireframes = wireframes || debugView;
