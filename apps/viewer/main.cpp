@@ -141,6 +141,11 @@ core::Result<FrameResult> drawFrame(measure::Measurer& measurer, const scene::Sc
     if (!inputs) return inputs.errorInfo();
     auto settings = options.render.settingsFor(*view, *inputs);
     if (!settings) return settings.errorInfo();
+    if (options.technique.visibleDepthFromFrame()) { // --visible-depth auto, measured as render does
+        auto refined = gl::withVisibleDepth(renderer, *inputs, *settings);
+        if (!refined) return refined.errorInfo();
+        inputs = std::move(refined).value();
+    }
     auto setup = options.technique.setupFor(*inputs, hysteresis);
     if (!setup) return setup.errorInfo();
     const double setupMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - setupStart).count();

@@ -101,6 +101,23 @@ bool drawOptionsPanel(StateOptions& s, const PanelDefaults& d) {
             changed |= combo(s, "n formula", "lispsm-formula", kFormulas, "scherzer");
             changed |= combo(s, "warp axis", "lispsm-direction", kDirections, "cross");
             changed |= sliderFloat(s, "n weight", "lispsm-weight", 0.1f, 10.0f, 1.0f, true);
+            // A fixed n replaces the formula while it is set.
+            bool fixedN = s.count("lispsm-n") > 0;
+            if (ImGui::Checkbox("fixed n", &fixedN)) {
+                if (fixedN) set(s, "lispsm-n", "10");
+                else s.erase("lispsm-n");
+                changed = true;
+            }
+            if (fixedN) changed |= sliderFloat(s, "n (m)", "lispsm-n", 0.1f, 1000.0f, 10.0f, true);
+            changed |= checkbox(s, "z_n from the visible near", "lispsm-visible-near");
+        }
+        if (t == "lispsm" || t == "csm") {
+            bool measured = valueOf(s, "visible-depth", "") == "auto";
+            if (ImGui::Checkbox("visible depth from the frame", &measured)) {
+                if (measured) set(s, "visible-depth", "auto");
+                else s.erase("visible-depth");
+                changed = true;
+            }
         }
         if (t == "tsm") changed |= sliderFloat(s, "focus", "tsm-focus", 0.0f, 0.9f, 0.2f);
         if (t == "csm") {
@@ -110,6 +127,11 @@ bool drawOptionsPanel(StateOptions& s, const PanelDefaults& d) {
             changed |= sliderFloat(s, "blend band", "blend-band", 0.0f, 0.5f, 0.0f);
         }
         changed |= checkbox(s, "stabilize", "stabilize");
+        if (s.count("stabilize") && !(t == "csm" && valueOf(s, "cascade-warp", "none") == "none")) {
+            changed |= sliderFloat(s, "refit margin", "stabilize-margin", 0.0f, 1.0f, 0.05f);
+            changed |= sliderFloat(s, "texel growth", "stabilize-growth", 1.01f, 4.0f, 1.25f);
+            changed |= sliderInt(s, "look-ahead frames", "stabilize-lookahead", 0, 60, 10);
+        }
     }
     if (ImGui::CollapsingHeader("Bias and filter")) {
         changed |= sliderFloat(s, "slope", "bias-slope", 0.0f, 8.0f, f(d.biasSlope));
@@ -125,6 +147,10 @@ bool drawOptionsPanel(StateOptions& s, const PanelDefaults& d) {
         }
         changed |= combo(s, "filter", "filter", kFilters, "hard");
         changed |= sliderInt(s, "blur iterations", "blur-iterations", 0, 16, 0);
+        if (valueOf(s, "blur-iterations", "0") != "0") {
+            changed |= sliderFloat(s, "blur radius (px)", "blur-radius", 0.1f, 16.0f, 1.5f);
+            changed |= sliderFloat(s, "blur depth falloff", "blur-depth-falloff", 0.0f, 1.0f, 0.05f);
+        }
     }
     if (ImGui::CollapsingHeader("Insight", ImGuiTreeNodeFlags_DefaultOpen)) {
         changed |= checkbox(s, "aliasing heat map (pixels per texel)", "aliasing-overlay");
