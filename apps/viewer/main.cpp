@@ -198,6 +198,7 @@ int run(const ViewerArgs& args, app::StateOptions state) {
     bool hasLocalMaps = false;
     TruthJob truth;
     std::optional<eval::Figures> truthFigures;
+    std::vector<std::pair<std::string, eval::Figures>> truthPerLight; // with local lights
     int64_t shadowedRight = 0; // of the last evaluation: pixels drawn in shadow where truth has shadow
     std::optional<DrawnFrame> drawn;
     std::string message;
@@ -351,12 +352,21 @@ int run(const ViewerArgs& args, app::StateOptions state) {
         // --frames with --truth: the last frame waits for the evaluation.
         if (args.frames > 0 && frame == args.frames - 1)
             while (truth.running() && !truth.ready()) std::this_thread::sleep_for(std::chrono::milliseconds(20));
-        if (auto comparison = truth.poll()) {
-            truthFigures = comparison->figures;
-            shadowedRight = std::count(comparison->classes.begin(), comparison->classes.end(), eval::PixelClass::ShadowCorrect);
-            errorImage.upload(eval::errorMapImage(*comparison, truth.width(), truth.height()));
-            aliasingImage.upload(eval::aliasingMapImage(*comparison, truth.width(), truth.height()));
-            message = "evaluated against truth";
+        if (auto result = truth.poll()) {
+            if (*result) {
+                const TruthResult& r = **result;
+                const eval::Comparison& all = r.combined;
+                truthFigures = all.figures;
+                truthPerLight.clear();
+                if (r.lights.size() > 1)
+                    for (const auto& [name, comparison] : r.lights) truthPerLight.emplace_back(name, comparison.figures);
+                shadowedRight = std::count(all.classes.begin(), all.classes.end(), eval::PixelClass::ShadowCorrect);
+                errorImage.upload(eval::errorMapImage(all, r.width, r.height));
+                aliasingImage.upload(eval::aliasingMapImage(all, r.width, r.height));
+                message = "evaluated against truth";
+            } else {
+                message = result->error();
+            }
         }
 
         if (showPanel) {
@@ -383,6 +393,8 @@ int run(const ViewerArgs& args, app::StateOptions state) {
             if (truthFigures)
                 ImGui::Text("truth: wrong %.2f %% (shadow %.2f, lit %.2f)  ppt50 %.2f", truthFigures->wrongPct,
                             truthFigures->falseShadowPct, truthFigures->falseLitPct, truthFigures->pixelsPerTexelP50);
+            for (const auto& [name, f] : truthPerLight)
+                ImGui::Text("  %-9s wrong %.2f %%  ppt50 %.2f", name.c_str(), f.wrongPct, f.pixelsPerTexelP50);
             if (!optionsError.empty()) ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", optionsError.c_str());
             if (!message.empty()) ImGui::TextWrapped("%s", message.c_str());
             PanelDefaults defaults;

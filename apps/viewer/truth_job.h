@@ -1,8 +1,8 @@
 // "Truth on demand": the evaluation of one frame with the ray tracer in a background thread,
-// so the window keeps drawing while Embree works. The frame's GL evaluation buffers are taken
-// at once on the calling (GL) thread; the ray-traced truth follows on another thread
-// (measure::Measurer::truth, which touches no GL); the comparison runs back on the GL
-// thread when it is done (poll()).
+// so the window keeps drawing while Embree works. The frame's GL evaluation buffers — the
+// sun's and each local light's — are taken at once on the calling (GL) thread; the ray-traced
+// truth, each light's reach and the comparisons follow on another thread (Measurer::truth and
+// eval::underLight touch no GL); poll() hands the result back on the GL thread.
 #pragma once
 
 #include "shadowkit/measure/measurer.h"
@@ -10,27 +10,32 @@
 #include <atomic>
 #include <chrono>
 #include <future>
-#include <memory>
 #include <optional>
+#include <string>
+#include <vector>
 
 namespace shadowkit::viewer {
 
+struct TruthResult {
+    std::vector<std::pair<std::string, eval::Comparison>> lights; // "sun", "point[0]", ...
+    eval::Comparison combined;                                    // every light together (eval::combine)
+    int width = 0, height = 0;
+};
+
 class TruthJob {
 public:
-    // Starts evaluating this frame (the renderer's frame: same camera, light, set-up, settings).
+    // Starts evaluating this frame (the renderer's frame: same camera, light, set-up,
+    // settings, and the renderer's local lights).
     core::Status start(measure::Measurer& measurer, const core::PerspectiveCamera& camera, const core::DirectionalLight& light,
                        const core::ShadowSetup& setup, const gl::RenderSettings& settings);
-    bool running() const { return m_truth.valid(); }
+    bool running() const { return m_result.valid(); }
+    bool ready() const { return running() && m_result.wait_for(std::chrono::seconds(0)) == std::future_status::ready; }
     double progress() const { return m_progress.load(); }
-    bool ready() const { return running() && m_truth.wait_for(std::chrono::seconds(0)) == std::future_status::ready; }
-    int width() const { return m_raster.width; } // of the frame evaluated last
-    int height() const { return m_raster.height; }
-    // The comparison, once the truth is back (then the job is idle again).
-    std::optional<eval::Comparison> poll();
+    // The result once it is back (then the job is idle again); an error string if it failed.
+    std::optional<core::Result<TruthResult>> poll();
 
 private:
-    core::RasterBuffers m_raster;
-    std::future<std::shared_ptr<const eval::TruthBuffers>> m_truth;
+    std::future<core::Result<TruthResult>> m_result;
     std::atomic<double> m_progress{0.0};
 };
 

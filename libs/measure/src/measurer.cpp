@@ -84,6 +84,7 @@ core::Result<std::unique_ptr<Measurer>> Measurer::create(const scene::Scene& sce
 }
 
 gl::Renderer& Measurer::renderer() { return *m_impl->renderer; }
+const eval::RayScene& Measurer::rays() const { return *m_impl->rays; }
 std::string Measurer::contextDescription() const { return m_impl->context ? m_impl->context->description() : std::string(); }
 double Measurer::rayTracerBuildSeconds() const { return m_impl->rayTracerSeconds; }
 

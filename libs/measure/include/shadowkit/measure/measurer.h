@@ -110,6 +110,8 @@ public:
     core::Status moveInstances(const scene::Scene& scene, std::span<const uint32_t> moved);
 
     gl::Renderer& renderer();
+    // The ray tracer's scene (Embree): thread-safe to query, e.g. eval::underLight off the GL thread.
+    const eval::RayScene& rays() const;
     // The GL context's description when this measurer owns one ("4.5 (Core Profile) Mesa ..."), else "".
     std::string contextDescription() const;
     double rayTracerBuildSeconds() const; // time to build the Embree scene (BVHs)
