@@ -123,6 +123,15 @@ bool drawOptionsPanel(StateOptions& s, const PanelDefaults& d) {
         if (t == "csm") {
             changed |= sliderInt(s, "cascades", "cascades", 1, 8, 4);
             changed |= sliderFloat(s, "lambda", "lambda", 0.0f, 1.0f, 0.9f);
+            // Explicit split distances replace λ while given (Enter applies, empty clears).
+            std::array<char, 256> splits{};
+            const std::string current = valueOf(s, "splits", "");
+            current.copy(splits.data(), splits.size() - 1);
+            if (ImGui::InputText("splits near,...,far", splits.data(), splits.size(), ImGuiInputTextFlags_EnterReturnsTrue)) {
+                if (splits[0] == '\0') s.erase("splits");
+                else set(s, "splits", splits.data());
+                changed = true;
+            }
             changed |= combo(s, "warp", "cascade-warp", kWarps, "none");
             changed |= sliderFloat(s, "blend band", "blend-band", 0.0f, 0.5f, 0.0f);
         }
