@@ -24,10 +24,18 @@ function(sk_add_library name)
     $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
   target_compile_features(shadowkit_${name} PUBLIC cxx_std_20)
   sk_project_warnings(shadowkit_${name})
-  install(TARGETS shadowkit_${name} EXPORT shadowkitTargets
-          ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
-          LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
-  install(DIRECTORY include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+  set_target_properties(shadowkit_${name} PROPERTIES VERSION ${PROJECT_VERSION} SOVERSION ${PROJECT_VERSION_MAJOR}.${PROJECT_VERSION_MINOR})
+  # One export set per component, so find_package(shadowkit COMPONENTS core) loads the core's
+  # targets and dependencies alone (cmake/shadowkitConfig.cmake.in).
+  if(SHADOWKIT_INSTALL)
+    install(TARGETS shadowkit_${name} EXPORT shadowkit_${name}Targets
+            ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+            LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
+            RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+    install(EXPORT shadowkit_${name}Targets NAMESPACE shadowkit:: DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/shadowkit)
+    install(DIRECTORY include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+  endif()
+  set_property(GLOBAL APPEND PROPERTY SHADOWKIT_COMPONENTS ${name})
 endfunction()
 
 # sk_add_test(name SOURCES ... LIBS ... [LABELS ...]): a GoogleTest executable beside its module.

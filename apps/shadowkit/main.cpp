@@ -2,6 +2,8 @@
 #include "commands.h"
 #include "state.h"
 
+#include "shadowkit/core/version.h"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -10,6 +12,7 @@
 int main(int argc, char** argv) {
     CLI::App app{"shadowkit: robust real-time shadows for large outdoor worlds"};
     app.require_subcommand(1);
+    app.set_version_flag("--version", "shadowkit " SHADOWKIT_VERSION_STRING);
     const std::vector<shadowkit::app::Command> commands = {
         shadowkit::app::addRenderCommand(app),
         shadowkit::app::addEvalCommand(app),
@@ -33,6 +36,8 @@ int main(int argc, char** argv) {
     } catch (const CLI::CallForHelp& e) {
         return app.exit(e);
     } catch (const CLI::CallForAllHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForVersion& e) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
         // One line, not CLI11's two: what is wrong and where to look. A value that does not

@@ -1,5 +1,6 @@
 // Uses only shadowkit::core: camera, light and bounds in, matrices out.
 #include <shadowkit/core/shadow_setup.h>
+#include <shadowkit/core/version.h>
 
 #include <cmath>
 #include <cstdio>
@@ -11,6 +12,7 @@ int main() {
     in.light = DirectionalLight::fromSunAngles(45, 90).value();
     const auto setup = computeShadowSetup(in);
     if (!setup || !std::isfinite(setup->views[0].clipFromWorld[0][0])) return 1;
-    std::printf("focused set-up with %zu body points\n", setup->body.vertices().size());
+    std::printf("shadowkit %s: %s set-up with %zu body points\n", SHADOWKIT_VERSION_STRING, techniqueName(setup->technique).data(),
+                setup->body.vertices().size());
     return 0;
 }

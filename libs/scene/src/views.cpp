@@ -150,6 +150,13 @@ std::filesystem::path dataDirectory() {
     if (const char* env = std::getenv("SHADOWKIT_DATA_DIR")) return env;
     const std::filesystem::path source = SHADOWKIT_SOURCE_DATA_DIR;
     if (std::filesystem::exists(source / "views.json")) return source;
+    // A relocated install: share/shadowkit relative to the running program's bin/.
+    std::error_code ec;
+    const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+    if (!ec) {
+        const std::filesystem::path beside = (exe.parent_path() / SHADOWKIT_DATA_FROM_BIN).lexically_normal();
+        if (std::filesystem::exists(beside / "views.json", ec)) return beside;
+    }
     return SHADOWKIT_INSTALL_DATA_DIR;
 }
 

@@ -133,7 +133,7 @@ struct ShadowSetupInputs {
     PerspectiveCamera camera;
     DirectionalLight light;
     Aabb wsSceneBounds; // every caster and receiver lies inside
-    Technique technique = Technique::Focused;
+    Technique technique = defaultTechnique(); // the recommended one (the CLI's default too)
     // Texels per side of each shadow map (every cascade), [kMinMapSize, kMaxMapSize]: the
     // stabilised cascades snap to it, and the renderer allocates it (ShadowSetup::mapSize).
     int mapSize = 2048;

@@ -57,7 +57,8 @@ core::Result<ViewSpec> findView(const std::vector<ViewSpec>& views, const std::s
 ResolvedView resolveView(const ViewSpec& view, const Scene& scene);
 
 // The directory holding views.json and other data: $SHADOWKIT_DATA_DIR, else the
-// source tree's data/ (for builds run in place), else the install prefix's share/shadowkit.
+// source tree's data/ (for builds run in place), else share/shadowkit beside the running
+// program's bin/ (an installed tree, wherever it was moved), else the install prefix's.
 std::filesystem::path dataDirectory();
 
 } // namespace shadowkit::scene
