@@ -19,6 +19,7 @@
 #include "shadowkit/core/setup_hysteresis.h"
 
 #include "shadowkit/core/focus_body.h"
+#include "shadowkit/core/output_conventions.h"
 
 #include <algorithm>
 #include <cmath>
@@ -167,21 +168,7 @@ Status validate(const HysteresisOptions& o) {
 }
 
 double texelFootprint(const ShadowView& view, int mapSize, const Vec3& wsLight, const Vec3& wsPoint) {
-    const Mat4& m = view.clipFromWorld;
-    const Vec4 c = m * Vec4(wsPoint, 1.0);
-    if (!(c.w > 0.0)) return INFINITY;
-    const Vec3 l = glm::normalize(wsLight);
-    const Vec3 e1 = glm::normalize(std::abs(l.y) < 0.9 ? glm::cross(l, Vec3(0, 1, 0)) : glm::cross(l, Vec3(1, 0, 0)));
-    const Vec3 e2 = glm::cross(l, e1);
-    // ∂(x/w)/∂e = (dx·w − x·dw) / w² for the clip-space change d = M (e, 0).
-    auto derivative = [&](const Vec3& e) {
-        const Vec4 d = m * Vec4(e, 0.0);
-        return Vec2((d.x * c.w - c.x * d.w) / (c.w * c.w), (d.y * c.w - c.y * d.w) / (c.w * c.w));
-    };
-    const Vec2 j1 = derivative(e1), j2 = derivative(e2);
-    const double det = std::abs(j1.x * j2.y - j1.y * j2.x);
-    if (!(det > 0.0)) return INFINITY;
-    return (2.0 / mapSize) / std::sqrt(det);
+    return wsTexelSize(view.clipFromWorld, mapSize, wsLight, wsPoint);
 }
 
 Result<ShadowSetup> SetupHysteresis::next(const ShadowSetupInputs& inputs) {

@@ -43,9 +43,8 @@ struct HysteresisOptions {
 // Fails naming the field ("hysteresis.margin", "hysteresis.growth", "hysteresis.lookahead").
 Status validate(const HysteresisOptions& options);
 
-// The size, on a plane facing the light, of the texel of `view` at `wsPoint` relative to the
-// map's whole extent in texels: (2 / mapSize) / sqrt|det ∂ndc.xy/∂(e1, e2)| with e1, e2 unit
-// vectors perpendicular to the light. +inf where the map's projection degenerates there
+// The size, on a plane facing the light, of the texel of `view` at `wsPoint`: wsTexelSize
+// (output_conventions.h) of its clip matrix. +inf where the map's projection degenerates there
 // (w <= 0 or a zero determinant).
 double texelFootprint(const ShadowView& view, int mapSize, const Vec3& wsLightDirection, const Vec3& wsPoint);
 
