@@ -18,7 +18,7 @@ function(sk_add_library name)
   add_library(shadowkit_${name} ${ARG_SOURCES})
   add_library(shadowkit::${name} ALIAS shadowkit_${name})
   set_target_properties(shadowkit_${name} PROPERTIES EXPORT_NAME ${name} OUTPUT_NAME shadowkit_${name}
-                                                   POSITION_INDEPENDENT_CODE ON)
+                                                   POSITION_INDEPENDENT_CODE ON WINDOWS_EXPORT_ALL_SYMBOLS ON)
   target_include_directories(shadowkit_${name} PUBLIC
     $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include>
     $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)

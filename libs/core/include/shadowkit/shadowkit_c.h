@@ -1,0 +1,135 @@
+/* shadowkit's C API: the core's shadow set-up (shadow_setup.h, engine_camera.h,
+ * output_conventions.h) over plain structs of doubles and ints, for engines in C, Rust, C#,
+ * Zig or anything with a C FFI. No allocation crosses the boundary: the caller owns every
+ * struct, and a set-up holds at most SHADOWKIT_MAX_VIEWS maps.
+ *
+ * Matrices are 16 doubles, column-major (element [column * 4 + row]), acting on column
+ * vectors: the layout of glm, GLSL, and of HLSL with column_major packing.
+ *
+ *     shadowkit_inputs in;
+ *     shadowkit_default_inputs(&in);            // technique TSM, 2048², the recommended bias
+ *     in.camera.use_matrices = 1;               // the engine's own camera
+ *     memcpy(in.camera.view_from_world, view, sizeof view);
+ *     memcpy(in.camera.clip_from_view, proj, sizeof proj);
+ *     in.camera.shadow_distance = 150.0;
+ *     ... light_direction, scene_min, scene_max, output conventions ...
+ *     shadowkit_setup out;
+ *     char error[256];
+ *     if (shadowkit_compute_setup(&in, &out, error, sizeof error) != 0) puts(error);
+ */
+#ifndef SHADOWKIT_C_H
+#define SHADOWKIT_C_H
+
+#include <stddef.h>
+
+#include "shadowkit/core/export.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define SHADOWKIT_MAX_VIEWS 8
+
+typedef enum shadowkit_technique {
+    SHADOWKIT_TECHNIQUE_STANDARD = 0,
+    SHADOWKIT_TECHNIQUE_FOCUSED = 1,
+    SHADOWKIT_TECHNIQUE_LISPSM = 2,
+    SHADOWKIT_TECHNIQUE_PSM = 3,
+    SHADOWKIT_TECHNIQUE_TSM = 4,
+    SHADOWKIT_TECHNIQUE_CSM = 5
+} shadowkit_technique;
+
+typedef enum shadowkit_clip_depth {
+    SHADOWKIT_CLIP_DEPTH_ZERO_TO_ONE = 0,    /* Vulkan, Direct3D, Metal, GL with glClipControl */
+    SHADOWKIT_CLIP_DEPTH_MINUS_ONE_TO_ONE = 1 /* OpenGL's default */
+} shadowkit_clip_depth;
+
+typedef enum shadowkit_texture_origin {
+    SHADOWKIT_TEXTURE_ORIGIN_BOTTOM_LEFT = 0, /* OpenGL, Vulkan */
+    SHADOWKIT_TEXTURE_ORIGIN_TOP_LEFT = 1     /* Direct3D, Metal */
+} shadowkit_texture_origin;
+
+typedef enum shadowkit_depth_layout {
+    SHADOWKIT_DEPTH_HYPERBOLIC = 0, /* the rasteriser's depth: reference depth = texture z / w */
+    SHADOWKIT_DEPTH_LINEAR = 1      /* written per fragment: dot(linear_depth_from_world, (p, 1)) */
+} shadowkit_depth_layout;
+
+typedef struct shadowkit_camera {
+    /* 1: the engine's matrices below; 0: eye, direction, up, fov, aspect, near, far. */
+    int use_matrices;
+    double view_from_world[16]; /* rigid */
+    double clip_from_view[16];  /* perspective or orthographic; reversed-Z and infinite far recognised */
+    int clip_depth;             /* shadowkit_clip_depth of clip_from_view */
+    int left_handed;            /* orthographic projections only: 1 if the view looks down +Z */
+    /* Shadows end at this view depth (metres), whatever the far plane; <= 0: at the far plane.
+       Required with an infinite far plane. */
+    double shadow_distance;
+    double eye[3], direction[3], up[3];
+    double fov_y_degrees, aspect, z_near, z_far;
+} shadowkit_camera;
+
+typedef struct shadowkit_inputs {
+    shadowkit_camera camera;
+    double light_direction[3];            /* the direction sunlight travels (sun -> scene), any length > 0 */
+    double scene_min[3], scene_max[3];    /* every caster and receiver lies inside */
+    int technique;                        /* shadowkit_technique */
+    int map_size;                         /* texels per side of each map */
+    int cascade_count;                    /* csm: splits, 1 .. SHADOWKIT_MAX_VIEWS */
+    double cascade_lambda;                /* csm: 0 uniform .. 1 logarithmic splits */
+    int cascade_lispsm;                   /* csm: 1 warps each split with LiSPSM */
+    double cascade_blend_band;            /* csm: [0, 0.5] of the previous split, for blending */
+    /* Output conventions of the matrices in shadowkit_view. */
+    int clip_depth;                       /* shadowkit_clip_depth */
+    int reversed_z;                       /* 1: the light's near side stored as 1 */
+    int texture_origin;                   /* shadowkit_texture_origin */
+} shadowkit_inputs;
+
+typedef struct shadowkit_view {
+    double clip_from_world[16];    /* draw the map with this */
+    double texture_from_world[16]; /* (u, v, d, 1) * w: look the map up with this */
+    double linear_depth_from_world[4];
+    double culling_planes[6][4];   /* (nx, ny, nz, d): a point p is outside when n.p + d > 0 */
+    int culling_plane_count;
+    double split_near, split_far;  /* cascades: the view depths this map serves; else 0, 0 */
+} shadowkit_view;
+
+typedef struct shadowkit_bias {
+    double slope;         /* glPolygonOffset factor (per fragment for linear depth) */
+    double constant;      /* glPolygonOffset units: 2^-24 of the depth range each */
+    double normal_offset; /* texels of world size (shadowkit_texel_size) along the normal */
+    int receiver_plane;   /* 1: receiver-plane depth bias in the lookup */
+} shadowkit_bias;
+
+typedef struct shadowkit_setup {
+    int technique;
+    int map_size;
+    int depth_layout; /* shadowkit_depth_layout */
+    int depth_clamp;  /* 1: draw the map with depth clamping (GL_DEPTH_CLAMP, depthClampEnable) */
+    int view_count;
+    shadowkit_view views[SHADOWKIT_MAX_VIEWS];
+    shadowkit_bias bias; /* the recommended bias for this technique and layout */
+    int fallback_count;  /* degenerate cases met (view along the light, a view missing the scene) */
+} shadowkit_setup;
+
+/* The defaults of the C++ API: technique TSM, 2048², cascades 4 / 0.9, a camera 1.8 m up
+   looking north, OpenGL-with-glClipControl conventions. */
+SHADOWKIT_CORE_EXPORT void shadowkit_default_inputs(shadowkit_inputs* inputs);
+
+/* 0 on success. Otherwise non-zero, `out` untouched, and a one-line message naming the input
+   in `error` (truncated to error_size, always terminated when error_size > 0). */
+SHADOWKIT_CORE_EXPORT int shadowkit_compute_setup(const shadowkit_inputs* inputs, shadowkit_setup* out, char* error,
+                                                  size_t error_size);
+
+/* World size (metres) of one texel of `view` at `point` on a plane facing the light;
+   +inf where the map's projection degenerates. */
+SHADOWKIT_CORE_EXPORT double shadowkit_texel_size(const shadowkit_view* view, int map_size, const double light_direction[3],
+                                                  const double point[3]);
+
+/* "major.minor.patch" of the library linked. */
+SHADOWKIT_CORE_EXPORT const char* shadowkit_version_string(void);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* SHADOWKIT_C_H */

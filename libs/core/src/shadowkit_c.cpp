@@ -1,0 +1,150 @@
+// The C API (shadowkit_c.h): converts plain structs to the C++ inputs and back, nothing more.
+#include "shadowkit/shadowkit_c.h"
+
+#include "shadowkit/core/bias.h"
+#include "shadowkit/core/engine_camera.h"
+#include "shadowkit/core/output_conventions.h"
+#include "shadowkit/core/version.h"
+
+#include <algorithm>
+#include <cstring>
+
+using namespace shadowkit::core;
+
+namespace {
+
+Vec3 toVec3(const double v[3]) { return {v[0], v[1], v[2]}; }
+void store(const Vec3& v, double out[3]) { out[0] = v.x, out[1] = v.y, out[2] = v.z; }
+Mat4 toMat4(const double m[16]) {
+    Mat4 r;
+    for (int c = 0; c < 4; ++c)
+        for (int row = 0; row < 4; ++row) r[c][row] = m[c * 4 + row];
+    return r;
+}
+void store(const Mat4& m, double out[16]) {
+    for (int c = 0; c < 4; ++c)
+        for (int row = 0; row < 4; ++row) out[c * 4 + row] = m[c][row];
+}
+
+void writeError(const std::string& message, char* error, size_t size) {
+    if (!error || size == 0) return;
+    const size_t n = std::min(message.size(), size - 1);
+    std::memcpy(error, message.data(), n);
+    error[n] = '\0';
+}
+
+Result<PerspectiveCamera> toCamera(const shadowkit_camera& c) {
+    if (!c.use_matrices) {
+        PerspectiveCamera camera;
+        camera.wsEye = toVec3(c.eye);
+        camera.wsDirection = toVec3(c.direction);
+        camera.wsUp = toVec3(c.up);
+        camera.fovYDegrees = c.fov_y_degrees;
+        camera.aspect = c.aspect;
+        camera.zNear = c.z_near;
+        camera.zFar = c.shadow_distance > 0.0 ? std::min(c.z_far, c.shadow_distance) : c.z_far;
+        return camera;
+    }
+    EngineCamera engine;
+    engine.viewFromWorld = toMat4(c.view_from_world);
+    engine.clipFromView = toMat4(c.clip_from_view);
+    engine.clipDepth = c.clip_depth == SHADOWKIT_CLIP_DEPTH_MINUS_ONE_TO_ONE ? ClipDepthRange::MinusOneToOne : ClipDepthRange::ZeroToOne;
+    engine.handedness = c.left_handed ? ViewHandedness::LeftHanded : ViewHandedness::RightHanded;
+    if (c.shadow_distance > 0.0) engine.shadowDistance = c.shadow_distance;
+    return cameraFromMatrices(engine);
+}
+
+} // namespace
+
+extern "C" {
+
+void shadowkit_default_inputs(shadowkit_inputs* in) {
+    *in = shadowkit_inputs{};
+    const ShadowSetupInputs defaults;
+    const PerspectiveCamera& camera = defaults.camera;
+    store(camera.wsEye, in->camera.eye);
+    store(camera.wsDirection, in->camera.direction);
+    store(camera.wsUp, in->camera.up);
+    in->camera.fov_y_degrees = camera.fovYDegrees;
+    in->camera.aspect = camera.aspect;
+    in->camera.z_near = camera.zNear;
+    in->camera.z_far = camera.zFar;
+    store(camera.viewFromWorld(), in->camera.view_from_world);
+    store(camera.clipFromView(), in->camera.clip_from_view);
+    store(defaults.light.wsDirection, in->light_direction);
+    in->technique = static_cast<int>(defaults.technique);
+    in->map_size = defaults.mapSize;
+    in->cascade_count = defaults.cascades.count;
+    in->cascade_lambda = defaults.cascades.lambda;
+    in->cascade_blend_band = defaults.cascades.blendBand;
+}
+
+int shadowkit_compute_setup(const shadowkit_inputs* in, shadowkit_setup* out, char* error, size_t errorSize) {
+    if (!in || !out) {
+        writeError("shadowkit_compute_setup: inputs and out must not be null", error, errorSize);
+        return 1;
+    }
+    Result<PerspectiveCamera> camera = toCamera(in->camera);
+    if (!camera) {
+        writeError(camera.error(), error, errorSize);
+        return 1;
+    }
+    if (in->technique < SHADOWKIT_TECHNIQUE_STANDARD || in->technique > SHADOWKIT_TECHNIQUE_CSM) {
+        writeError("technique: must be one of the shadowkit_technique values (0 to 5)", error, errorSize);
+        return 1;
+    }
+    ShadowSetupInputs inputs;
+    inputs.camera = *camera;
+    // Any non-zero length (the C++ struct wants a unit vector); a zero or NaN one stays so and is
+    // refused by validation, naming light_direction.
+    const Vec3 light = toVec3(in->light_direction);
+    inputs.light = DirectionalLight{glm::length(light) > 0.0 ? glm::normalize(light) : light};
+    inputs.wsSceneBounds = Aabb::fromMinMax(toVec3(in->scene_min), toVec3(in->scene_max));
+    inputs.technique = static_cast<Technique>(in->technique);
+    inputs.mapSize = in->map_size;
+    inputs.cascades.count = in->cascade_count;
+    inputs.cascades.lambda = in->cascade_lambda;
+    inputs.cascades.warp = in->cascade_lispsm ? CascadeWarp::Lispsm : CascadeWarp::None;
+    inputs.cascades.blendBand = in->cascade_blend_band;
+    const Result<ShadowSetup> setup = computeShadowSetup(inputs);
+    if (!setup) {
+        writeError(setup.error(), error, errorSize);
+        return 1;
+    }
+
+    const OutputConventions conventions{
+        in->clip_depth == SHADOWKIT_CLIP_DEPTH_MINUS_ONE_TO_ONE ? ClipDepthRange::MinusOneToOne : ClipDepthRange::ZeroToOne,
+        in->reversed_z != 0,
+        in->texture_origin == SHADOWKIT_TEXTURE_ORIGIN_TOP_LEFT ? TextureOrigin::TopLeft : TextureOrigin::BottomLeft};
+    *out = shadowkit_setup{};
+    out->technique = static_cast<int>(setup->technique);
+    out->map_size = setup->mapSize;
+    out->depth_layout = setup->depthLayout == DepthLayout::Linear ? SHADOWKIT_DEPTH_LINEAR : SHADOWKIT_DEPTH_HYPERBOLIC;
+    out->depth_clamp = setup->depthClamp;
+    out->view_count = static_cast<int>(setup->views.size());
+    for (size_t i = 0; i < setup->views.size(); ++i) {
+        const EngineShadowView view = toEngineView(setup->views[i], *setup, conventions);
+        shadowkit_view& o = out->views[i];
+        store(view.clipFromWorld, o.clip_from_world);
+        store(view.textureFromWorld, o.texture_from_world);
+        for (int k = 0; k < 4; ++k) o.linear_depth_from_world[k] = view.linearDepthFromWorld[k];
+        o.culling_plane_count = static_cast<int>(view.wsCullingPlanes.size());
+        for (size_t p = 0; p < view.wsCullingPlanes.size(); ++p) {
+            store(view.wsCullingPlanes[p].normal, o.culling_planes[p]);
+            o.culling_planes[p][3] = view.wsCullingPlanes[p].d;
+        }
+        if (view.split) o.split_near = view.split->x, o.split_far = view.split->y;
+    }
+    const BiasSettings bias = recommendedBias(setup->technique, setup->depthLayout);
+    out->bias = {bias.slope, bias.constant, bias.normalOffset, bias.receiverPlane};
+    out->fallback_count = static_cast<int>(setup->fallbacks.size());
+    return 0;
+}
+
+double shadowkit_texel_size(const shadowkit_view* view, int mapSize, const double lightDirection[3], const double point[3]) {
+    return wsTexelSize(toMat4(view->clip_from_world), mapSize, toVec3(lightDirection), toVec3(point));
+}
+
+const char* shadowkit_version_string(void) { return SHADOWKIT_VERSION_STRING; }
+
+} // extern "C"

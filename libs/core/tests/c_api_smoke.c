@@ -1,0 +1,31 @@
+/* The C API from C: default inputs, one set-up, a bad input named, the version. */
+#include "shadowkit/shadowkit_c.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+int main(void) {
+    shadowkit_inputs in;
+    shadowkit_setup out;
+    char error[256];
+    int i;
+    shadowkit_default_inputs(&in);
+    in.scene_min[0] = -100, in.scene_min[1] = 0, in.scene_min[2] = -100;
+    in.scene_max[0] = 100, in.scene_max[1] = 20, in.scene_max[2] = 100;
+    in.light_direction[0] = 0.3, in.light_direction[1] = -0.8, in.light_direction[2] = 0.2;
+    in.technique = SHADOWKIT_TECHNIQUE_CSM;
+    in.cascade_lispsm = 1;
+    if (shadowkit_compute_setup(&in, &out, error, sizeof error) != 0) {
+        fprintf(stderr, "c_api_smoke: %s\n", error);
+        return 1;
+    }
+    if (out.view_count != in.cascade_count) return 2;
+    for (i = 0; i < out.view_count; ++i)
+        if (!isfinite(out.views[i].texture_from_world[0]) || !(out.views[i].split_far > out.views[i].split_near)) return 3;
+
+    in.map_size = 3; /* below the smallest map: refused, with the input named */
+    if (shadowkit_compute_setup(&in, &out, error, sizeof error) == 0 || strstr(error, "map_size") == NULL) return 4;
+    printf("shadowkit %s from C: %d cascades, refused map_size 3 with \"%s\"\n", shadowkit_version_string(), in.cascade_count, error);
+    return 0;
+}

@@ -1,0 +1,123 @@
+// The C API gives what the C++ API gives for the same inputs, value for value.
+#include "shadowkit/shadowkit_c.h"
+
+#include "shadowkit/core/bias.h"
+#include "shadowkit/core/engine_camera.h"
+#include "shadowkit/core/output_conventions.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <random>
+
+using namespace shadowkit::core;
+
+namespace {
+
+void copy(const Mat4& m, double out[16]) { std::memcpy(out, &m[0][0], 16 * sizeof(double)); }
+void copy(const Vec3& v, double out[3]) { out[0] = v.x, out[1] = v.y, out[2] = v.z; }
+void expectEqual(const Mat4& m, const double c[16], const char* what) {
+    for (int i = 0; i < 16; ++i) ASSERT_EQ((&m[0][0])[i], c[i]) << what << " element " << i;
+}
+
+} // namespace
+
+TEST(CApiTest, GivesTheCppResultsForTheSameInputs) {
+    std::mt19937 rng(2026);
+    auto uniform = [&](double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); };
+    for (int i = 0; i < 400; ++i) {
+        shadowkit_inputs c;
+        shadowkit_default_inputs(&c);
+        ShadowSetupInputs cpp;
+        EXPECT_EQ(c.technique, static_cast<int>(cpp.technique));
+
+        cpp.wsSceneBounds = Aabb::fromMinMax(Vec3(-uniform(50, 500), 0, -uniform(50, 500)), Vec3(uniform(50, 500), uniform(5, 40), uniform(50, 500)));
+        copy(cpp.wsSceneBounds.min, c.scene_min);
+        copy(cpp.wsSceneBounds.max, c.scene_max);
+        const Vec3 light(uniform(-1, 1), uniform(-1, -0.1), uniform(-1, 1)); // not unit: the C API normalises
+        copy(light, c.light_direction);
+        cpp.light = DirectionalLight{glm::normalize(light)};
+        c.technique = static_cast<int>(rng() % 6);
+        cpp.technique = static_cast<Technique>(c.technique);
+        c.cascade_count = cpp.cascades.count = 1 + static_cast<int>(rng() % 8);
+        c.cascade_lispsm = static_cast<int>(rng() % 2);
+        cpp.cascades.warp = c.cascade_lispsm ? CascadeWarp::Lispsm : CascadeWarp::None;
+        c.map_size = cpp.mapSize = 1024;
+
+        PerspectiveCamera camera;
+        camera.wsEye = Vec3(uniform(-40, 40), uniform(1, 30), uniform(-40, 40));
+        camera.wsDirection = glm::normalize(Vec3(uniform(-1, 1), uniform(-0.6, 0.2), uniform(-1, 1)));
+        camera.fovYDegrees = uniform(30, 90);
+        camera.zFar = uniform(80, 400);
+        if (i % 2 == 0) { // the engine's matrices, reversed infinite [0, 1] with a shadow distance
+            c.camera.use_matrices = 1;
+            // Reversed infinite: clip z = near, w = -z, so depth = near / distance.
+            Mat4 projection = glm::infinitePerspectiveRH(glm::radians(camera.fovYDegrees), camera.aspect, camera.zNear);
+            projection[2][2] = 0.0, projection[3][2] = camera.zNear;
+            copy(camera.viewFromWorld(), c.camera.view_from_world);
+            copy(projection, c.camera.clip_from_view);
+            c.camera.shadow_distance = camera.zFar;
+            cpp.camera = cameraFromMatrices({camera.viewFromWorld(), projection, ClipDepthRange::ZeroToOne,
+                                             ViewHandedness::RightHanded, camera.zFar})
+                             .value();
+        } else {
+            c.camera.use_matrices = 0;
+            copy(camera.wsEye, c.camera.eye);
+            copy(camera.wsDirection, c.camera.direction);
+            c.camera.fov_y_degrees = camera.fovYDegrees;
+            c.camera.z_far = camera.zFar;
+            cpp.camera = camera;
+        }
+        c.clip_depth = static_cast<int>(rng() % 2);
+        c.reversed_z = static_cast<int>(rng() % 2);
+        c.texture_origin = static_cast<int>(rng() % 2);
+        const OutputConventions conventions{c.clip_depth ? ClipDepthRange::MinusOneToOne : ClipDepthRange::ZeroToOne, c.reversed_z != 0,
+                                            c.texture_origin ? TextureOrigin::TopLeft : TextureOrigin::BottomLeft};
+
+        shadowkit_setup out;
+        char error[256];
+        ASSERT_EQ(shadowkit_compute_setup(&c, &out, error, sizeof error), 0) << error;
+        const ShadowSetup setup = computeShadowSetup(cpp).value();
+        ASSERT_EQ(out.view_count, static_cast<int>(setup.views.size()));
+        EXPECT_EQ(out.depth_layout, setup.depthLayout == DepthLayout::Linear ? SHADOWKIT_DEPTH_LINEAR : SHADOWKIT_DEPTH_HYPERBOLIC);
+        const BiasSettings bias = recommendedBias(setup.technique, setup.depthLayout);
+        EXPECT_EQ(out.bias.slope, bias.slope);
+        EXPECT_EQ(out.bias.normal_offset, bias.normalOffset);
+        for (size_t v = 0; v < setup.views.size(); ++v) {
+            const EngineShadowView view = toEngineView(setup.views[v], setup, conventions);
+            expectEqual(view.clipFromWorld, out.views[v].clip_from_world, "clip_from_world");
+            expectEqual(view.textureFromWorld, out.views[v].texture_from_world, "texture_from_world");
+            ASSERT_EQ(out.views[v].culling_plane_count, static_cast<int>(view.wsCullingPlanes.size()));
+            ASSERT_EQ(out.views[v].culling_planes[2][3], view.wsCullingPlanes[2].d);
+            const double point[3] = {camera.wsEye.x, 0.0, camera.wsEye.z};
+            ASSERT_EQ(shadowkit_texel_size(&out.views[v], 1024, c.light_direction, point),
+                      wsTexelSize(view.clipFromWorld, 1024, light, Vec3(point[0], point[1], point[2])));
+        }
+    }
+}
+
+TEST(CApiTest, BadInputGivesTheCppMessageAndLeavesTheOutputAlone) {
+    shadowkit_inputs in;
+    shadowkit_default_inputs(&in);
+    in.scene_max[0] = in.scene_max[1] = in.scene_max[2] = 10.0;
+    in.camera.use_matrices = 1;
+    in.camera.clip_from_view[3] = 0.5; // w depends on x
+    shadowkit_setup out;
+    out.view_count = -7;
+    char error[256];
+    ASSERT_NE(shadowkit_compute_setup(&in, &out, error, sizeof error), 0);
+    EXPECT_EQ(out.view_count, -7);
+    EngineCamera engine;
+    std::memcpy(&engine.clipFromView[0][0], in.camera.clip_from_view, sizeof in.camera.clip_from_view);
+    std::memcpy(&engine.viewFromWorld[0][0], in.camera.view_from_world, sizeof in.camera.view_from_world);
+    EXPECT_EQ(std::string(error), cameraFromMatrices(engine).error());
+
+    char tiny[8]; // truncated, terminated
+    ASSERT_NE(shadowkit_compute_setup(&in, &out, tiny, sizeof tiny), 0);
+    EXPECT_EQ(std::strlen(tiny), 7u);
+    in.camera.use_matrices = 0;
+    in.technique = 42;
+    ASSERT_NE(shadowkit_compute_setup(&in, &out, error, sizeof error), 0);
+    EXPECT_NE(std::string(error).find("technique"), std::string::npos);
+}
