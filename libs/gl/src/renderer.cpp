@@ -14,6 +14,8 @@
 #include "uniforms.h"
 #include "visibility.h"
 
+#include "shadowkit/core/output_conventions.h"
+
 #include <algorithm>
 #include <optional>
 #include <string>
@@ -174,9 +176,9 @@ core::Result<std::unique_ptr<Renderer>> Renderer::create(const scene::Scene& sce
     using namespace shaders;
     auto depth = buildProgram("depth pass", {kDepthPassGlsl, kDepthVert}, {kDepthPassGlsl, kDepthFrag});
     if (!depth) return depth.errorInfo();
-    auto main = buildProgram("main pass", {kFrameGlsl, kMainVert}, {kFrameGlsl, kShadowLookupGlsl, kLocalLightsGlsl, kMainFrag});
+    auto main = buildProgram("main pass", {kFrameGlsl, kMainVert}, {kFrameGlsl, kShadowkitShadowsGlsl, kShadowLookupGlsl, kLocalLightsGlsl, kMainFrag});
     if (!main) return main.errorInfo();
-    auto eval = buildProgram("eval pass", {kFrameGlsl, kMainVert}, {kFrameGlsl, kShadowLookupGlsl, kLocalLightsGlsl, kEvalFrag});
+    auto eval = buildProgram("eval pass", {kFrameGlsl, kMainVert}, {kFrameGlsl, kShadowkitShadowsGlsl, kShadowLookupGlsl, kLocalLightsGlsl, kEvalFrag});
     if (!eval) return eval.errorInfo();
     auto blur = buildProgram("blur pass", {kFullscreenVert}, {kBlurFrag});
     if (!blur) return blur.errorInfo();
@@ -458,7 +460,7 @@ void Renderer::Impl::uploadFrame(const core::PerspectiveCamera& camera, const co
     frame.aliasingOverlay = settings.aliasingOverlay ? 1 : 0;
     for (size_t i = 0; i < setup.views.size(); ++i) {
         const core::ShadowView& view = setup.views[i];
-        frame.shadowClipFromWorld[i] = toFloat(view.clipFromWorld);
+        frame.shadowTextureFromWorld[i] = toFloat(core::toEngineView(view, setup, {}).textureFromWorld);
         frame.shadowLinearDepthFromWorld[i] = glm::vec4(view.linearDepthFromWorld);
         const core::Vec2 range = view.split.value_or(core::Vec2(camera.zNear, camera.zFar));
         frame.cascadeRange[i] = glm::vec4(static_cast<float>(range.x), static_cast<float>(range.y), 0.0f, 0.0f);

@@ -38,7 +38,7 @@ std::span<const UniformField> frameFields() {
         SK_FIELD(FrameUniforms, normalOffsetTexels),
         SK_FIELD(FrameUniforms, readBlurredMask),
         SK_FIELD(FrameUniforms, aliasingOverlay),
-        SK_ARRAY_FIELD(FrameUniforms, shadowClipFromWorld),
+        SK_ARRAY_FIELD(FrameUniforms, shadowTextureFromWorld),
         SK_ARRAY_FIELD(FrameUniforms, shadowLinearDepthFromWorld),
         SK_ARRAY_FIELD(FrameUniforms, cascadeRange),
     };

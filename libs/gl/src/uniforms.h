@@ -78,7 +78,7 @@ struct FrameUniforms { // GLSL: Frame (frame.glsl)
     int32_t readBlurredMask;   // 1: main pass reads the blurred mask instead of the maps
     int32_t aliasingOverlay;   // 1: main pass shows pixels per texel instead of shading
     float pad1;
-    glm::mat4 shadowClipFromWorld[kMaxCascades];       // light clip space of each map
+    glm::mat4 shadowTextureFromWorld[kMaxCascades];    // (u, v, depth, 1) · w of each map (core::toEngineView)
     glm::vec4 shadowLinearDepthFromWorld[kMaxCascades]; // rows, as in DepthPass
     glm::vec4 cascadeRange[kMaxCascades];               // x, y: view depth [start, end] each map serves
 };
@@ -128,7 +128,7 @@ struct BlurUniforms { // GLSL: Blur (blur.frag)
 };
 
 static_assert(offsetof(DepthPassUniforms, linearDepthFromWorld) == 64 && sizeof(DepthPassUniforms) == 96);
-static_assert(offsetof(FrameUniforms, mapTexels) == 160 && offsetof(FrameUniforms, shadowClipFromWorld) == 208,
+static_assert(offsetof(FrameUniforms, mapTexels) == 160 && offsetof(FrameUniforms, shadowTextureFromWorld) == 208,
               "std140: the scalars must fill whole 16-byte rows before the arrays");
 static_assert(sizeof(FrameUniforms) == 208 + kMaxCascades * (64 + 16 + 16));
 static_assert(sizeof(BlurUniforms) == 16);

@@ -30,8 +30,8 @@ void main() {
         // The maps' test alone, without N·L (also the mask the eye-space blur starts from).
         outShadowTerm = shadowTerm(receiverLookup(wsPosition, vLodError), n, dwsdx, dwsdy);
         // Texel position in the map that serves this pixel.
-        const vec4 cs = shadowClip(cascadeOf(outViewDepth), wsPosition);
-        texel = (cs.xy / cs.w * 0.5 + 0.5) * mapTexels;
+        const vec4 t = shadowTexture(cascadeOf(outViewDepth), wsPosition);
+        texel = t.xy / t.w * mapTexels;
     }
     outTexel = texel;
     // Screen derivatives of the texel position (fine: per pixel, not per 2x2 quad).

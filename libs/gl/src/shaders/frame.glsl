@@ -25,7 +25,11 @@ layout(std140, binding = SK_FRAME_BINDING) uniform Frame {
     float normalOffsetTexels; // receiver offset along its normal, in texels' world size
     int readBlurredMask;      // 1: the main pass reads the blurred mask instead of the maps
     int aliasingOverlay;      // 1: the main pass shows pixels per texel instead of shading
-    mat4 shadowClipFromWorld[SK_MAX_CASCADES];        // light clip space of each map
+    mat4 shadowTextureFromWorld[SK_MAX_CASCADES];     // (u, v, depth, 1) · w of each map
     vec4 shadowLinearDepthFromWorld[SK_MAX_CASCADES]; // rows, see DepthPass
     vec4 cascadeRange[SK_MAX_CASCADES];               // x, y: view depth [start, end] each map serves
 };
+// The block's arrays as glsl/shadowkit_shadows.glsl's accessors.
+#define SK_SHADOW_TEXTURE_FROM_WORLD(i) shadowTextureFromWorld[i]
+#define SK_SHADOW_LINEAR_DEPTH_FROM_WORLD(i) shadowLinearDepthFromWorld[i]
+#define SK_SHADOW_SPLIT(i) cascadeRange[i].xy

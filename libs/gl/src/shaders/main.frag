@@ -36,8 +36,8 @@ float pixelsPerTexel(vec2 dTexelDx, vec2 dTexelDy) {
 void main() {
     if (aliasingOverlay != 0) {
         // The texel of the map serving this pixel, differentiated per pixel (uniform flow).
-        const vec4 cs = shadowClip(cascadeOf(viewDepthOf(wsPosition)), wsPosition);
-        const vec2 texel = (cs.xy / cs.w * 0.5 + 0.5) * mapTexels;
+        const vec4 t = shadowTexture(cascadeOf(viewDepthOf(wsPosition)), wsPosition);
+        const vec2 texel = t.xy / t.w * mapTexels;
         outColor = vec4(aliasingColor(pixelsPerTexel(dFdxFine(texel), dFdyFine(texel))), 1.0);
         return;
     }

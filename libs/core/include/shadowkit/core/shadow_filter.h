@@ -10,6 +10,7 @@ namespace shadowkit::core {
 
 // The numeric values are the codes the GL shaders switch on (gl's shader prelude defines
 // them from this enum): keep them stable.
+// The values are fixed: glsl/shadowkit_shadows.glsl's SK_FILTER_* repeat them for engines.
 enum class ShadowFilter {
     Hard = 0,    // one depth comparison (what the evaluation's truth is compared with by default)
     Pcf2 = 1,    // hardware 2x2 percentage-closer filtering (GL_LINEAR compare; Scherzer 2005's filter)

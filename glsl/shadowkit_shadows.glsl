@@ -1,0 +1,162 @@
+// shadowkit_shadows.glsl: the receiver half of shadowkit's shadow maps, for GLSL 4.50 (and
+// 4.30 with sampler2DArrayShadow). The project's own renderer uses exactly this file; an
+// engine appends it to its fragment shader source after `#version` and its own declarations
+// (GLSL has no #include of its own; concatenate, or use your engine's include mechanism).
+// It declares no uniforms: everything comes in through the arguments and the accessors below.
+//
+// What it does, per fragment (see the README's "Using shadowkit in your engine"):
+//   - the lookup of one map in a sampler2DArrayShadow layer (a lone 2-D map is layer 0 of a
+//     one-layer array), with the comparison in the sampler (GL_TEXTURE_COMPARE_MODE
+//     GL_COMPARE_REF_TO_TEXTURE; GL_LEQUAL, or GL_GEQUAL for reversed-Z maps);
+//   - the reference depth in the map's layout: z / w of textureFromWorld (hyperbolic) or the
+//     linear row linearDepthFromWorld (TSM's linear depth, Martin & Tan 2004, and LiSPSM's
+//     per-fragment linear depth, Scherzer 2005 §4.2);
+//   - the receiver-side biases: normal offset by a number of texels' world size, and
+//     receiver-plane depth bias (Isidoro 2006) from the screen derivatives of the position;
+//   - the filters: hard, 2 × 2 hardware PCF, N × N PCF, rotated Poisson disk;
+//   - cascades: split selection by view depth (Dimitrov 2007) and blending across a band.
+//
+// Inputs, all from the core (output_conventions.h, shadowkit_c.h):
+//   textureFromWorld       EngineShadowView::textureFromWorld / shadowkit_view.texture_from_world
+//   linearDepthFromWorld   EngineShadowView::linearDepthFromWorld (linear layout only)
+//   SkShadowOptions        map size, layout, BiasSettings (recommendedBias), FilterSettings
+//   splits                 ShadowView::split, for cascades (view depth [start, end] per map)
+// The screen derivatives dwsdx / dwsdy = dFdx / dFdy of the world position must be taken by
+// the caller in uniform control flow (before any branch on shadowing).
+//
+// For cascades the caller names its own storage with three accessors, defined before this
+// file (the arrays stay where they are: no copies of uniform arrays into locals):
+//   #define SK_SHADOW_TEXTURE_FROM_WORLD(i)        myTextureFromWorld[i]
+//   #define SK_SHADOW_LINEAR_DEPTH_FROM_WORLD(i)   myLinearDepthFromWorld[i]
+//   #define SK_SHADOW_SPLIT(i)                     mySplits[i].xy
+// skCascadedShadow is compiled only when SK_SHADOW_SPLIT is defined.
+
+#ifndef SK_FILTER_HARD
+// Filter kinds: the values of shadowkit::core::ShadowFilter.
+#define SK_FILTER_HARD 0    // one comparison (GL_NEAREST)
+#define SK_FILTER_PCF2 1    // the sampler's GL_LINEAR: 2 × 2 PCF in hardware
+#define SK_FILTER_GRID 2    // N × N comparisons one texel apart
+#define SK_FILTER_POISSON 3 // N comparisons on a Poisson disk rotated per pixel
+#endif
+
+struct SkShadowOptions {
+    float mapTexels;          // texels per side of the map(s)
+    bool linearDepth;         // the maps store dot(linearDepthFromWorld, (p, 1))
+    float normalOffsetTexels; // BiasSettings::normalOffset: receiver moved along its normal
+    bool receiverPlane;       // BiasSettings::receiverPlane
+    int filterKind;           // SK_FILTER_*
+    int filterTaps;           // N of the grid and Poisson filters
+    float poissonRadiusTexels;
+};
+
+// (u, v, depth) of a world point: textureFromWorld's xy / w and the reference depth.
+vec3 skShadowCoordinates(mat4 textureFromWorld, vec4 linearDepthFromWorld, bool linearDepth, vec3 ws, out vec4 t) {
+    t = textureFromWorld * vec4(ws, 1.0);
+    return vec3(t.xy / t.w, linearDepth ? dot(linearDepthFromWorld, vec4(ws, 1.0)) : t.z / t.w);
+}
+
+// d(u, v, depth)/d(world) along a world-space step, by the chain rule through the projective
+// divide: d(T.xyz / T.w) = (dT.xyz − (T.xyz / T.w) dT.w) / T.w with dT = M (step, 0). Takes the
+// caller's derivatives, so it works inside the per-map branches where dFdx would be undefined.
+vec3 skShadowStep(mat4 textureFromWorld, vec4 linearDepthFromWorld, bool linearDepth, vec4 t, vec3 wsStep) {
+    const vec4 dT = textureFromWorld * vec4(wsStep, 0.0);
+    vec3 d = (dT.xyz - t.xyz / t.w * dT.w) / t.w;
+    if (linearDepth) d.z = dot(linearDepthFromWorld.xyz, wsStep);
+    return d;
+}
+
+// A rotation angle per pixel for the Poisson disk: it only has to break up the fixed pattern.
+float skPixelAngle() { return 6.2831853 * fract(sin(dot(gl_FragCoord.xy, vec2(12.9898, 78.233))) * 43758.5453); }
+
+const vec2 kSkPoisson[32] = vec2[](
+    vec2(-0.975402, -0.0711386), vec2(-0.920347, -0.41142), vec2(-0.883908, 0.217872), vec2(-0.884518, 0.568041),
+    vec2(-0.811945, 0.90521), vec2(-0.792474, -0.779962), vec2(-0.614856, 0.386578), vec2(-0.580859, -0.208777),
+    vec2(-0.53795, 0.716666), vec2(-0.515427, 0.0899991), vec2(-0.454634, -0.707938), vec2(-0.420942, 0.991272),
+    vec2(-0.261147, 0.588488), vec2(-0.211219, 0.114841), vec2(-0.146336, -0.259194), vec2(-0.139439, -0.888668),
+    vec2(0.0116886, 0.326395), vec2(0.0380566, 0.625477), vec2(0.0625935, -0.50853), vec2(0.125584, 0.0469069),
+    vec2(0.169469, -0.997253), vec2(0.320597, 0.291055), vec2(0.359172, -0.633717), vec2(0.435713, -0.250832),
+    vec2(0.507797, -0.916562), vec2(0.545763, 0.730216), vec2(0.56859, 0.11655), vec2(0.743156, -0.505173),
+    vec2(0.736442, -0.189734), vec2(0.843562, 0.357036), vec2(0.865413, -0.795735), vec2(0.872393, 0.750194));
+
+// The lit fraction (0 shadowed .. 1 lit) of a receiver at `ws` with unit normal `n` in one map:
+// layer `layer` of `maps`.
+float skShadowMap(sampler2DArrayShadow maps, int layer, mat4 textureFromWorld, vec4 linearDepthFromWorld, SkShadowOptions o,
+                  vec3 ws, vec3 n, vec3 dwsdx, vec3 dwsdy) {
+    vec4 t;
+    vec3 uvz = skShadowCoordinates(textureFromWorld, linearDepthFromWorld, o.linearDepth, ws, t);
+    if (o.normalOffsetTexels > 0.0) {
+        // Normal offset: move the receiver off its surface by K texels' world size. A texel's
+        // world size is 1 / mapTexels over the gradient of the texture coordinate; the shorter
+        // gradient (the longer texel axis) makes the offset enough along both.
+        const vec3 gx = skShadowStep(textureFromWorld, linearDepthFromWorld, o.linearDepth, t, vec3(1, 0, 0));
+        const vec3 gy = skShadowStep(textureFromWorld, linearDepthFromWorld, o.linearDepth, t, vec3(0, 1, 0));
+        const vec3 gz = skShadowStep(textureFromWorld, linearDepthFromWorld, o.linearDepth, t, vec3(0, 0, 1));
+        const float gradU = length(vec3(gx.x, gy.x, gz.x)), gradV = length(vec3(gx.y, gy.y, gz.y));
+        ws += n * (o.normalOffsetTexels / (o.mapTexels * max(min(gradU, gradV), 1e-12)));
+        uvz = skShadowCoordinates(textureFromWorld, linearDepthFromWorld, o.linearDepth, ws, t);
+    }
+    // Outside the map nothing is known to occlude: lit. (Focused maps cover every visible
+    // receiver, so this only happens off the focus body.)
+    if (t.w <= 0.0 || any(lessThan(uvz.xy, vec2(0.0))) || any(greaterThan(uvz.xy, vec2(1.0)))) return 1.0;
+    const vec2 uv = uvz.xy;
+    float depth = uvz.z;
+
+    // Receiver plane: depth as a function of (u, v) on the receiver's plane, from the screen
+    // derivatives of (u, v, depth): dz/duv = J⁻ᵀ (dz/dx, dz/dy).
+    vec2 dDepthDuv = vec2(0.0);
+    if (o.receiverPlane) {
+        const vec3 dx = skShadowStep(textureFromWorld, linearDepthFromWorld, o.linearDepth, t, dwsdx);
+        const vec3 dy = skShadowStep(textureFromWorld, linearDepthFromWorld, o.linearDepth, t, dwsdy);
+        const float det = dx.x * dy.y - dx.y * dy.x;
+        if (abs(det) > 1e-20) dDepthDuv = vec2(dy.y * dx.z - dx.y * dy.z, dx.x * dy.z - dy.x * dx.z) / det;
+    }
+    const float size = o.mapTexels;
+    const int taps = o.filterTaps;
+    if (o.filterKind == SK_FILTER_GRID || o.filterKind == SK_FILTER_POISSON) {
+        float sum = 0.0;
+        const int count = o.filterKind == SK_FILTER_GRID ? taps * taps : taps;
+        const float angle = skPixelAngle();
+        const mat2 rotation = mat2(cos(angle), sin(angle), -sin(angle), cos(angle));
+        for (int i = 0; i < count; ++i) {
+            const vec2 offsetTexels = o.filterKind == SK_FILTER_GRID ? vec2(i % taps, i / taps) - 0.5 * float(taps - 1)
+                                                                     : rotation * kSkPoisson[i] * o.poissonRadiusTexels;
+            const vec2 tapUv = uv + offsetTexels / size;
+            const float tapDepth = depth + dot(dDepthDuv, offsetTexels / size);
+            sum += texture(maps, vec4(tapUv, float(layer), clamp(tapDepth, 0.0, 1.0)));
+        }
+        return sum / float(count);
+    }
+    if (o.filterKind == SK_FILTER_HARD && o.receiverPlane) {
+        // Hard test: compare at the centre of the texel the sample falls in, on the receiver plane.
+        const vec2 centre = (floor(uv * size) + 0.5) / size;
+        depth += dot(dDepthDuv, centre - uv);
+    }
+    // SK_FILTER_PCF2: the sampler's GL_LINEAR filter does the 2 × 2 PCF in hardware. Depth clamp
+    // in the shadow pass stores casters in front of the near plane at 0: clamp the reference too.
+    return texture(maps, vec4(uv, float(layer), clamp(depth, 0.0, 1.0)));
+}
+
+#ifdef SK_SHADOW_SPLIT
+// The map serving this view depth: the first whose range ends beyond it.
+int skCascadeOf(float viewDepth, int mapCount) {
+    for (int i = 0; i < mapCount - 1; ++i)
+        if (viewDepth <= SK_SHADOW_SPLIT(i).y) return i;
+    return mapCount - 1;
+}
+
+// Cascades in the layers 0 .. mapCount − 1 of `maps`. With a blend band (CascadeOptions::blendBand)
+// each split reaches back into the previous one: there the two maps' terms are mixed linearly in
+// view depth, hiding the seam. viewDepth = dot(ws − eye, unit view direction).
+float skCascadedShadow(sampler2DArrayShadow maps, int mapCount, SkShadowOptions o, float viewDepth, vec3 ws, vec3 n, vec3 dwsdx,
+                       vec3 dwsdy) {
+    const int map = skCascadeOf(viewDepth, mapCount);
+    float term = skShadowMap(maps, map, SK_SHADOW_TEXTURE_FROM_WORLD(map), SK_SHADOW_LINEAR_DEPTH_FROM_WORLD(map), o, ws, n, dwsdx, dwsdy);
+    if (map + 1 < mapCount && viewDepth > SK_SHADOW_SPLIT(map + 1).x) {
+        const float t = (viewDepth - SK_SHADOW_SPLIT(map + 1).x) / max(SK_SHADOW_SPLIT(map).y - SK_SHADOW_SPLIT(map + 1).x, 1e-6);
+        const float next = skShadowMap(maps, map + 1, SK_SHADOW_TEXTURE_FROM_WORLD(map + 1), SK_SHADOW_LINEAR_DEPTH_FROM_WORLD(map + 1),
+                                       o, ws, n, dwsdx, dwsdy);
+        term = mix(term, next, clamp(t, 0.0, 1.0));
+    }
+    return term;
+}
+#endif
