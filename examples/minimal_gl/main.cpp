@@ -1,0 +1,274 @@
+// minimal_gl: shadowkit in an OpenGL program of its own, in one file.
+//
+// The program has its own camera (glm::lookAt, glm::perspective with OpenGL's default clip
+// depth [-1, 1]), its own meshes (a ground plane and a field of pillars) and its own shaders.
+// shadowkit gives it two things:
+//   - shadowkit::core: four cascades with per-split LiSPSM fitted to the camera each frame,
+//     as matrices in OpenGL's conventions (shadowkit/core/engine_camera.h,
+//     output_conventions.h), with the recommended bias (bias.h);
+//   - shadowkit_shadows.glsl, installed with the package: the lookup in the fragment shader.
+//
+//   minimal_gl OUT.png [--no-shadows]   draws one 640 × 360 frame off screen and writes it.
+#include <shadowkit/core/bias.h>
+#include <shadowkit/core/engine_camera.h>
+#include <shadowkit/core/output_conventions.h>
+
+#include <epoxy/gl.h>
+#include <GLFW/glfw3.h>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#define STB_IMAGE_WRITE_IMPLEMENTATION
+#include <stb/stb_image_write.h>
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace sk = shadowkit::core;
+
+namespace {
+
+constexpr int kWidth = 640, kHeight = 360, kMapSize = 1024, kCascades = 4;
+
+// ---- the program's own meshes: position and normal per vertex, triangles ----
+struct Vertex {
+    glm::vec3 position, normal;
+};
+
+void addQuad(std::vector<Vertex>& out, glm::vec3 corner, glm::vec3 edgeA, glm::vec3 edgeB) {
+    const glm::vec3 n = glm::normalize(glm::cross(edgeA, edgeB));
+    const glm::vec3 p[4] = {corner, corner + edgeA, corner + edgeA + edgeB, corner + edgeB};
+    for (int i : {0, 1, 2, 0, 2, 3}) out.push_back({p[i], n});
+}
+
+void addBox(std::vector<Vertex>& out, glm::vec3 lo, glm::vec3 hi) {
+    const glm::vec3 d = hi - lo, x(d.x, 0, 0), y(0, d.y, 0), z(0, 0, d.z);
+    addQuad(out, lo, y, x);          // -z
+    addQuad(out, lo + z, x, y);      // +z
+    addQuad(out, lo, z, y);          // -x
+    addQuad(out, lo + x, y, z);      // +x
+    addQuad(out, lo + y, z, x);      // +y
+    addQuad(out, lo, x, z);          // -y
+}
+
+std::vector<Vertex> makeScene() {
+    std::vector<Vertex> v;
+    addQuad(v, {-150, 0, -150}, {0, 0, 300}, {300, 0, 0}); // ground, normal +y
+    for (int i = -6; i <= 6; ++i)
+        for (int k = -12; k <= 1; ++k) {
+            const float h = 2.0f + float((i * 7 + k * 13 + 100) % 9); // 2 .. 10 m
+            const glm::vec3 c(float(i) * 9.0f, 0.0f, float(k) * 9.0f);
+            addBox(v, c - glm::vec3(0.6f, 0.0f, 0.6f), c + glm::vec3(0.6f, h, 0.6f));
+        }
+    return v;
+}
+
+// ---- shaders ----
+GLuint compile(GLenum stage, const std::string& source) {
+    const GLuint s = glCreateShader(stage);
+    const char* text = source.c_str();
+    glShaderSource(s, 1, &text, nullptr);
+    glCompileShader(s);
+    GLint ok = 0;
+    glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        char log[4096];
+        glGetShaderInfoLog(s, sizeof log, nullptr, log);
+        std::fprintf(stderr, "minimal_gl: shader: %s\n", log);
+        std::exit(1);
+    }
+    return s;
+}
+
+GLuint link(const std::string& vertex, const std::string& fragment) {
+    const GLuint p = glCreateProgram();
+    glAttachShader(p, compile(GL_VERTEX_SHADER, vertex));
+    glAttachShader(p, compile(GL_FRAGMENT_SHADER, fragment));
+    glLinkProgram(p);
+    return p;
+}
+
+const char* kDepthVert = R"(#version 450 core
+layout(location = 0) in vec3 position;
+uniform mat4 clipFromWorld;
+void main() { gl_Position = clipFromWorld * vec4(position, 1.0); })";
+
+const char* kMainVert = R"(#version 450 core
+layout(location = 0) in vec3 position;
+layout(location = 1) in vec3 normal;
+uniform mat4 clipFromWorld;
+out vec3 wsPosition, wsNormal;
+void main() { wsPosition = position; wsNormal = normal; gl_Position = clipFromWorld * vec4(position, 1.0); })";
+
+// Declarations, then shadowkit_shadows.glsl, then this program's shading.
+const char* kMainFragHead = R"(#version 450 core
+uniform mat4 textureFromWorld[4];
+uniform vec4 linearDepthFromWorld[4];
+uniform vec4 splits[4];
+#define SK_SHADOW_TEXTURE_FROM_WORLD(i) textureFromWorld[i]
+#define SK_SHADOW_LINEAR_DEPTH_FROM_WORLD(i) linearDepthFromWorld[i]
+#define SK_SHADOW_SPLIT(i) splits[i].xy
+)";
+const char* kMainFragBody = R"(
+layout(binding = 0) uniform sampler2DArrayShadow shadowMaps;
+uniform int mapCount, linearDepth, shadows;
+uniform float mapTexels, normalOffsetTexels;
+uniform vec3 wsEye, wsViewForward, wsTowardsSun;
+in vec3 wsPosition, wsNormal;
+out vec4 color;
+void main() {
+    const vec3 n = normalize(wsNormal);
+    const vec3 dx = dFdx(wsPosition), dy = dFdy(wsPosition); // uniform control flow
+    const SkShadowOptions o = SkShadowOptions(mapTexels, linearDepth != 0, normalOffsetTexels, false, SK_FILTER_PCF2, 0, 0.0);
+    const float viewDepth = dot(wsPosition - wsEye, wsViewForward);
+    const float nDotL = max(dot(n, wsTowardsSun), 0.0);
+    const float lit = shadows != 0 && nDotL > 0.0 ? skCascadedShadow(shadowMaps, mapCount, o, viewDepth, wsPosition, n, dx, dy) : 1.0;
+    const vec3 albedo = n.y > 0.9 && wsPosition.y < 0.01 ? vec3(0.55, 0.6, 0.45) : vec3(0.7, 0.55, 0.45);
+    color = vec4(pow(albedo * (0.25 + 0.9 * nDotL * lit), vec3(1.0 / 2.2)), 1.0);
+})";
+
+std::string readFile(const char* path) {
+    std::ifstream in(path);
+    if (!in) {
+        std::fprintf(stderr, "minimal_gl: cannot read %s\n", path);
+        std::exit(1);
+    }
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    if (argc < 2) {
+        std::fprintf(stderr, "usage: minimal_gl OUT.png [--no-shadows]\n");
+        return 1;
+    }
+    const bool shadows = !(argc > 2 && std::string(argv[2]) == "--no-shadows");
+    if (!glfwInit()) return std::fprintf(stderr, "minimal_gl: no display for GLFW\n"), 1;
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
+    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+    glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
+    GLFWwindow* window = glfwCreateWindow(kWidth, kHeight, "minimal_gl", nullptr, nullptr);
+    if (!window) return std::fprintf(stderr, "minimal_gl: no OpenGL 4.5 context\n"), 1;
+    glfwMakeContextCurrent(window);
+
+    // ---- the program's camera and sun: OpenGL conventions, clip depth [-1, 1] ----
+    const glm::dvec3 eye(3.0, 6.0, 14.0), target(0.0, 0.0, -30.0);
+    const glm::dmat4 viewFromWorld = glm::lookAt(eye, target, glm::dvec3(0, 1, 0));
+    const glm::dmat4 clipFromView = glm::perspective(glm::radians(60.0), double(kWidth) / kHeight, 0.3, 1000.0);
+    const glm::dvec3 sunTravel = glm::normalize(glm::dvec3(0.8, -0.55, -0.35)); // sun -> scene
+
+    // ---- shadowkit: camera from the matrices, cascades with per-split LiSPSM ----
+    sk::ShadowSetupInputs in;
+    sk::EngineCamera camera{viewFromWorld, clipFromView, sk::ClipDepthRange::MinusOneToOne};
+    camera.shadowDistance = 150.0; // shadows end here; the camera sees 1 km
+    const sk::Result<sk::PerspectiveCamera> fitted = sk::cameraFromMatrices(camera);
+    if (!fitted) return std::fprintf(stderr, "minimal_gl: %s\n", fitted.error().c_str()), 1;
+    in.camera = *fitted;
+    in.light = sk::DirectionalLight{sunTravel};
+    in.wsSceneBounds = sk::Aabb::fromMinMax({-150, 0, -150}, {150, 12, 150});
+    in.technique = sk::Technique::Csm;
+    in.cascades.count = kCascades;
+    in.cascades.warp = sk::CascadeWarp::Lispsm;
+    in.cascades.blendBand = 0.1;
+    in.mapSize = kMapSize;
+    const sk::Result<sk::ShadowSetup> setup = sk::computeShadowSetup(in);
+    if (!setup) return std::fprintf(stderr, "minimal_gl: %s\n", setup.error().c_str()), 1;
+    const sk::BiasSettings bias = sk::recommendedBias(setup->technique, setup->depthLayout);
+    std::vector<sk::EngineShadowView> views;
+    for (const sk::ShadowView& v : setup->views) views.push_back(sk::toEngineView(v, *setup, sk::OutputConventions::openGL()));
+
+    // ---- GPU objects ----
+    const std::vector<Vertex> scene = makeScene();
+    GLuint vbo, vao;
+    glCreateBuffers(1, &vbo);
+    glNamedBufferStorage(vbo, GLsizeiptr(scene.size() * sizeof(Vertex)), scene.data(), 0);
+    glCreateVertexArrays(1, &vao);
+    glVertexArrayVertexBuffer(vao, 0, vbo, 0, sizeof(Vertex));
+    for (GLuint a : {0u, 1u}) {
+        glEnableVertexArrayAttrib(vao, a);
+        glVertexArrayAttribFormat(vao, a, 3, GL_FLOAT, GL_FALSE, a == 0 ? offsetof(Vertex, position) : offsetof(Vertex, normal));
+        glVertexArrayAttribBinding(vao, a, 0);
+    }
+    GLuint maps, mapTarget;
+    glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &maps);
+    glTextureStorage3D(maps, 1, GL_DEPTH_COMPONENT32F, kMapSize, kMapSize, kCascades);
+    glTextureParameteri(maps, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+    glTextureParameteri(maps, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+    glTextureParameteri(maps, GL_TEXTURE_MIN_FILTER, GL_LINEAR); // 2 × 2 PCF in hardware
+    glTextureParameteri(maps, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(maps, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(maps, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glCreateFramebuffers(1, &mapTarget);
+    GLuint colorTarget, colorTexture, depthTexture;
+    glCreateTextures(GL_TEXTURE_2D, 1, &colorTexture);
+    glTextureStorage2D(colorTexture, 1, GL_RGBA8, kWidth, kHeight);
+    glCreateTextures(GL_TEXTURE_2D, 1, &depthTexture);
+    glTextureStorage2D(depthTexture, 1, GL_DEPTH_COMPONENT32F, kWidth, kHeight);
+    glCreateFramebuffers(1, &colorTarget);
+    glNamedFramebufferTexture(colorTarget, GL_COLOR_ATTACHMENT0, colorTexture, 0);
+    glNamedFramebufferTexture(colorTarget, GL_DEPTH_ATTACHMENT, depthTexture, 0);
+
+    const GLuint depthProgram = link(kDepthVert, "#version 450 core\nvoid main() {}\n");
+    const GLuint mainProgram = link(kMainVert, kMainFragHead + readFile(SHADOWKIT_GLSL_FILE) + kMainFragBody);
+    glBindVertexArray(vao);
+    glEnable(GL_DEPTH_TEST);
+
+    // ---- shadow pass: one layer per cascade, depth clamped, slope-scaled bias ----
+    glUseProgram(depthProgram);
+    glViewport(0, 0, kMapSize, kMapSize);
+    if (setup->depthClamp) glEnable(GL_DEPTH_CLAMP); // casters before a map's near plane still cast
+    glEnable(GL_POLYGON_OFFSET_FILL);
+    glPolygonOffset(float(bias.slope), float(bias.constant));
+    for (size_t i = 0; i < views.size(); ++i) {
+        glNamedFramebufferTextureLayer(mapTarget, GL_DEPTH_ATTACHMENT, maps, 0, GLint(i));
+        glBindFramebuffer(GL_FRAMEBUFFER, mapTarget);
+        glClear(GL_DEPTH_BUFFER_BIT);
+        glUniformMatrix4fv(glGetUniformLocation(depthProgram, "clipFromWorld"), 1, GL_FALSE,
+                           glm::value_ptr(glm::mat4(views[i].clipFromWorld)));
+        glDrawArrays(GL_TRIANGLES, 0, GLsizei(scene.size()));
+    }
+    glDisable(GL_POLYGON_OFFSET_FILL);
+    glDisable(GL_DEPTH_CLAMP);
+
+    // ---- camera pass ----
+    glBindFramebuffer(GL_FRAMEBUFFER, colorTarget);
+    glViewport(0, 0, kWidth, kHeight);
+    glClearColor(0.6f, 0.75f, 0.9f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glUseProgram(mainProgram);
+    auto uniform = [&](const char* name) { return glGetUniformLocation(mainProgram, name); };
+    glUniformMatrix4fv(uniform("clipFromWorld"), 1, GL_FALSE, glm::value_ptr(glm::mat4(clipFromView * viewFromWorld)));
+    for (size_t i = 0; i < views.size(); ++i) {
+        const std::string at = "[" + std::to_string(i) + "]";
+        glUniformMatrix4fv(uniform(("textureFromWorld" + at).c_str()), 1, GL_FALSE, glm::value_ptr(glm::mat4(views[i].textureFromWorld)));
+        glUniform4fv(uniform(("linearDepthFromWorld" + at).c_str()), 1, glm::value_ptr(glm::vec4(views[i].linearDepthFromWorld)));
+        glUniform4f(uniform(("splits" + at).c_str()), float(views[i].split->x), float(views[i].split->y), 0.0f, 0.0f);
+    }
+    glUniform1i(uniform("mapCount"), GLint(views.size()));
+    glUniform1i(uniform("linearDepth"), setup->depthLayout == sk::DepthLayout::Linear);
+    glUniform1i(uniform("shadows"), shadows);
+    glUniform1f(uniform("mapTexels"), float(kMapSize));
+    glUniform1f(uniform("normalOffsetTexels"), float(bias.normalOffset));
+    glUniform3fv(uniform("wsEye"), 1, glm::value_ptr(glm::vec3(eye)));
+    glUniform3fv(uniform("wsViewForward"), 1, glm::value_ptr(glm::vec3(glm::normalize(target - eye))));
+    glUniform3fv(uniform("wsTowardsSun"), 1, glm::value_ptr(glm::vec3(-sunTravel)));
+    glBindTextureUnit(0, maps);
+    glDrawArrays(GL_TRIANGLES, 0, GLsizei(scene.size()));
+
+    // ---- read back and write the picture (rows bottom-up in GL) ----
+    std::vector<unsigned char> pixels(size_t(kWidth) * kHeight * 4);
+    glReadPixels(0, 0, kWidth, kHeight, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
+    stbi_flip_vertically_on_write(1);
+    if (!stbi_write_png(argv[1], kWidth, kHeight, 4, pixels.data(), kWidth * 4))
+        return std::fprintf(stderr, "minimal_gl: cannot write %s\n", argv[1]), 1;
+    std::printf("minimal_gl: %zu cascades (%s, per-split LiSPSM), %zu triangles, wrote %s\n", views.size(),
+                std::string(sk::techniqueName(setup->technique)).c_str(), scene.size() / 3, argv[1]);
+    glfwTerminate();
+    return 0;
+}

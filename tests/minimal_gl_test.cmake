@@ -1,0 +1,47 @@
+# examples/minimal_gl as a consumer builds it: install shadowkit into a scratch prefix, configure
+# and build the example against the installed package, draw its frame with and without shadows
+# under Xvfb (or the display there is), and check that the shadows darken the ground.
+#   cmake -DBUILD_DIR=... -DSOURCE_DIR=... -DWORK=... -P minimal_gl_test.cmake
+file(REMOVE_RECURSE "${WORK}")
+execute_process(COMMAND ${CMAKE_COMMAND} --install "${BUILD_DIR}" --prefix "${WORK}/prefix" RESULT_VARIABLE rc OUTPUT_QUIET)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "install failed")
+endif()
+execute_process(COMMAND ${CMAKE_COMMAND} -S "${SOURCE_DIR}/examples/minimal_gl" -B "${WORK}/build" "-DCMAKE_PREFIX_PATH=${WORK}/prefix"
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "minimal_gl: configure against the installed package failed: ${out} ${err}")
+endif()
+execute_process(COMMAND ${CMAKE_COMMAND} --build "${WORK}/build" RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "minimal_gl: build failed: ${out} ${err}")
+endif()
+
+find_program(XVFB_RUN xvfb-run)
+if(XVFB_RUN)
+  set(launcher ${XVFB_RUN} -a -s "-screen 0 1024x768x24")
+elseif(DEFINED ENV{DISPLAY})
+  set(launcher "")
+else()
+  message("SKIP: built, but no Xvfb (apt install xvfb) and no display to draw in: GLFW needs one")
+  return()
+endif()
+foreach(mode shadows no-shadows)
+  set(flag "")
+  if(mode STREQUAL "no-shadows")
+    set(flag --no-shadows)
+  endif()
+  execute_process(COMMAND ${launcher} "${WORK}/build/minimal_gl" "${WORK}/${mode}.png" ${flag}
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0 OR NOT EXISTS "${WORK}/${mode}.png")
+    message(FATAL_ERROR "minimal_gl ${flag}: exit ${rc}: ${out} ${err}")
+  endif()
+  message("${out}")
+endforeach()
+find_program(PYTHON NAMES python3 REQUIRED)
+execute_process(COMMAND ${PYTHON} "${SOURCE_DIR}/tests/shadow_png_check.py" "${WORK}/shadows.png" "${WORK}/no-shadows.png"
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+message("${out}")
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "minimal_gl: ${out} ${err}")
+endif()
