@@ -9,6 +9,7 @@ packages=(
   libembree-dev libtbb-dev libtinygltf-dev libstb-dev nlohmann-json3-dev
   libcli11-dev libfmt-dev libmeshoptimizer-dev libgtest-dev libbenchmark-dev
   libimgui-dev xvfb xauth
+  pybind11-dev python3-dev python3-numpy
 )
 
 missing=()

@@ -1,0 +1,54 @@
+// `import shadowkit`: the core's set-ups (setup) and the measure pipeline (Evaluator,
+// evaluate) for scripted studies. Matrices are NumPy arrays indexed [row, column].
+#include "bindings.h"
+
+#include "shadowkit/core/version.h"
+
+#include <pybind11/stl.h>
+
+namespace py = pybind11;
+using shadowkit::python::SetupArguments;
+
+PYBIND11_MODULE(shadowkit, m) {
+    m.doc() = "shadowkit: shadow-map set-ups and their error against ray-traced truth";
+    m.attr("__version__") = SHADOWKIT_VERSION_STRING;
+
+    const SetupArguments d;
+    m.def(
+        "setup",
+        [](std::vector<double> eye, std::vector<double> direction, std::vector<double> up, double fov, double aspect, double zNear,
+           double zFar, std::optional<py::array_t<double, py::array::c_style | py::array::forcecast>> viewFromWorld,
+           std::optional<py::array_t<double, py::array::c_style | py::array::forcecast>> clipFromView, std::string clipDepth,
+           bool leftHanded, std::optional<double> shadowDistance, std::optional<std::vector<double>> light, std::pair<double, double> sun,
+           std::vector<double> sceneMin, std::vector<double> sceneMax, std::string technique, int mapSize, int cascades, double lambda,
+           std::string cascadeWarp, std::string conventions, bool reversedZ) {
+            return shadowkit::python::setup({eye, direction, up, fov, aspect, zNear, zFar, viewFromWorld, clipFromView, clipDepth,
+                                             leftHanded, shadowDistance, light, sun, sceneMin, sceneMax, technique, mapSize, cascades,
+                                             lambda, cascadeWarp, conventions, reversedZ});
+        },
+        R"(The shadow set-up for a camera, the sun and the scene's bounds.
+
+Camera: eye, direction, up, fov (vertical, degrees), aspect, near, far -- or the engine's own
+view_from_world and clip_from_view (4 x 4, [row, column]) with clip_depth ('zero_to_one' or
+'minus_one_to_one'), left_handed (orthographic only), reversed-Z and infinite far recognised.
+shadow_distance ends shadows before the far plane (required with an infinite far plane).
+Sun: light (the direction sunlight travels) or sun=(elevation, azimuth) in degrees.
+technique: standard, focused, lispsm, psm, tsm, csm; cascades, lambda, cascade_warp ('none',
+'lispsm') for csm. conventions: 'default' (= 'vulkan': clip depth [0, 1], v up), 'opengl',
+'direct3d'/'metal'; reversed_z.
+
+Returns a dict: technique, depth_layout, map_size, depth_clamp, bias (the recommended one),
+fallbacks, body (the focus body's points) and views, each with clip_from_world,
+texture_from_world, light_from_world, clip_from_light, linear_depth_from_world,
+culling_planes (k x 4: n, d; outside where n.p + d > 0) and split. Raises ValueError with the
+core's message for bad input.)",
+        py::kw_only(), py::arg("eye") = d.eye, py::arg("direction") = d.direction, py::arg("up") = d.up, py::arg("fov") = d.fovYDegrees,
+        py::arg("aspect") = d.aspect, py::arg("near") = d.zNear, py::arg("far") = d.zFar, py::arg("view_from_world") = py::none(),
+        py::arg("clip_from_view") = py::none(), py::arg("clip_depth") = d.clipDepth, py::arg("left_handed") = d.leftHanded,
+        py::arg("shadow_distance") = py::none(), py::arg("light") = py::none(), py::arg("sun") = d.sun, py::arg("scene_min") = d.sceneMin,
+        py::arg("scene_max") = d.sceneMax, py::arg("technique") = d.technique, py::arg("map_size") = d.mapSize,
+        py::arg("cascades") = d.cascades, py::arg("lambda_") = d.lambda, py::arg("cascade_warp") = d.cascadeWarp,
+        py::arg("conventions") = d.conventions, py::arg("reversed_z") = d.reversedZ);
+
+    shadowkit::python::bindEvaluation(m);
+}

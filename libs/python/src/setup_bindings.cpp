@@ -1,0 +1,131 @@
+// shadowkit.setup(...): the core's set-up from Python, matrices as NumPy arrays.
+//
+// NumPy arrays are indexed [row, column] as in the maths (M @ p transforms a column vector p);
+// glm stores [column][row], so every matrix is transposed on the way out and in.
+#include "bindings.h"
+
+#include "shadowkit/core/bias.h"
+#include "shadowkit/core/engine_camera.h"
+#include "shadowkit/core/output_conventions.h"
+
+#include <pybind11/stl.h>
+
+namespace shadowkit::python {
+
+using namespace core;
+
+py::array_t<double> toNumpy(const Mat4& m) {
+    py::array_t<double> out({4, 4});
+    auto a = out.mutable_unchecked<2>();
+    for (py::ssize_t r = 0; r < 4; ++r)
+        for (py::ssize_t c = 0; c < 4; ++c) a(r, c) = m[static_cast<int>(c)][static_cast<int>(r)];
+    return out;
+}
+
+Mat4 toMat4(const py::array_t<double, py::array::c_style | py::array::forcecast>& a, const char* name) {
+    if (a.ndim() != 2 || a.shape(0) != 4 || a.shape(1) != 4) throw py::value_error(std::string(name) + ": must be a 4 x 4 array");
+    auto v = a.unchecked<2>();
+    Mat4 m;
+    for (py::ssize_t r = 0; r < 4; ++r)
+        for (py::ssize_t c = 0; c < 4; ++c) m[static_cast<int>(c)][static_cast<int>(r)] = v(r, c);
+    return m;
+}
+
+Vec3 toVec3(const std::vector<double>& v, const char* name) {
+    if (v.size() != 3) throw py::value_error(std::string(name) + ": must have 3 components");
+    return {v[0], v[1], v[2]};
+}
+
+namespace {
+
+// Parses a name of the core's; raises ValueError listing the accepted ones.
+template <class Parse>
+auto parseOrRaise(const std::string& text, const char* name, const std::string& accepted, Parse parse) {
+    const auto value = parse(text);
+    if (!value) throw py::value_error(std::string(name) + ": '" + text + "' is not one of " + accepted);
+    return *value;
+}
+
+OutputConventions conventionsFor(const std::string& name, bool reversedZ) {
+    OutputConventions c;
+    if (name == "opengl") c = OutputConventions::openGL();
+    else if (name == "vulkan" || name == "default") c = OutputConventions::vulkan();
+    else if (name == "direct3d" || name == "metal") c = OutputConventions::direct3D();
+    else throw py::value_error("conventions: '" + name + "' is not one of default, opengl, vulkan, direct3d, metal");
+    c.reversedZ = reversedZ;
+    return c;
+}
+
+py::dict viewDict(const ShadowView& core, const EngineShadowView& view) {
+    py::dict d;
+    d["clip_from_world"] = toNumpy(view.clipFromWorld);
+    d["texture_from_world"] = toNumpy(view.textureFromWorld);
+    d["light_from_world"] = toNumpy(core.lightFromWorld);
+    d["clip_from_light"] = toNumpy(core.clipFromLight);
+    py::array_t<double> row(4);
+    for (py::ssize_t i = 0; i < 4; ++i) row.mutable_at(i) = view.linearDepthFromWorld[static_cast<int>(i)];
+    d["linear_depth_from_world"] = row;
+    py::array_t<double> planes({static_cast<py::ssize_t>(view.wsCullingPlanes.size()), py::ssize_t(4)});
+    for (size_t p = 0; p < view.wsCullingPlanes.size(); ++p) {
+        const Plane& plane = view.wsCullingPlanes[p];
+        const auto i = static_cast<py::ssize_t>(p);
+        planes.mutable_at(i, 0) = plane.normal.x, planes.mutable_at(i, 1) = plane.normal.y;
+        planes.mutable_at(i, 2) = plane.normal.z, planes.mutable_at(i, 3) = plane.d;
+    }
+    d["culling_planes"] = planes;
+    d["split"] = core.split ? py::object(py::make_tuple(core.split->x, core.split->y)) : py::object(py::none());
+    return d;
+}
+
+} // namespace
+
+py::dict setup(const SetupArguments& a) {
+    ShadowSetupInputs in;
+    if (a.viewFromWorld || a.clipFromView) {
+        if (!a.viewFromWorld || !a.clipFromView) throw py::value_error("view_from_world and clip_from_view: give both or neither");
+        EngineCamera engine{toMat4(*a.viewFromWorld, "view_from_world"), toMat4(*a.clipFromView, "clip_from_view")};
+        if (a.clipDepth == "minus_one_to_one") engine.clipDepth = ClipDepthRange::MinusOneToOne;
+        else if (a.clipDepth != "zero_to_one") throw py::value_error("clip_depth: must be zero_to_one or minus_one_to_one");
+        engine.handedness = a.leftHanded ? ViewHandedness::LeftHanded : ViewHandedness::RightHanded;
+        if (a.shadowDistance) engine.shadowDistance = *a.shadowDistance;
+        in.camera = check(cameraFromMatrices(engine));
+    } else {
+        in.camera.wsEye = toVec3(a.eye, "eye");
+        in.camera.wsDirection = toVec3(a.direction, "direction");
+        in.camera.wsUp = toVec3(a.up, "up");
+        in.camera.fovYDegrees = a.fovYDegrees;
+        in.camera.aspect = a.aspect;
+        in.camera.zNear = a.zNear;
+        in.camera.zFar = a.shadowDistance ? std::min(a.zFar, *a.shadowDistance) : a.zFar;
+    }
+    if (a.light) in.light = DirectionalLight{toVec3(*a.light, "light")};
+    else in.light = check(DirectionalLight::fromSunAngles(a.sun.first, a.sun.second));
+    in.wsSceneBounds = Aabb::fromMinMax(toVec3(a.sceneMin, "scene_min"), toVec3(a.sceneMax, "scene_max"));
+    in.technique = parseOrRaise(a.technique, "technique", techniqueNameList(), parseTechnique);
+    in.mapSize = a.mapSize;
+    in.cascades.count = a.cascades;
+    in.cascades.lambda = a.lambda;
+    if (a.cascadeWarp == "lispsm") in.cascades.warp = CascadeWarp::Lispsm;
+    else if (a.cascadeWarp != "none") throw py::value_error("cascade_warp: must be none or lispsm");
+    const ShadowSetup s = check(computeShadowSetup(in));
+    const OutputConventions conventions = conventionsFor(a.conventions, a.reversedZ);
+
+    py::dict out;
+    out["technique"] = std::string(techniqueName(s.technique));
+    out["depth_layout"] = s.depthLayout == DepthLayout::Linear ? "linear" : "hyperbolic";
+    out["map_size"] = s.mapSize;
+    out["depth_clamp"] = s.depthClamp;
+    py::list views;
+    for (const ShadowView& v : s.views) views.append(viewDict(v, toEngineView(v, s, conventions)));
+    out["views"] = views;
+    const BiasSettings b = recommendedBias(s.technique, s.depthLayout);
+    out["bias"] = py::dict(py::arg("slope") = b.slope, py::arg("constant") = b.constant, py::arg("normal_offset") = b.normalOffset,
+                           py::arg("receiver_plane") = b.receiverPlane);
+    out["fallbacks"] = s.fallbacks;
+    py::list body;
+    for (const Vec3& p : s.body.vertices()) body.append(py::make_tuple(p.x, p.y, p.z));
+    out["body"] = body;
+    return out;
+}
+
+} // namespace shadowkit::python

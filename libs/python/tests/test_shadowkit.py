@@ -1,0 +1,116 @@
+#!/usr/bin/env python3
+"""The Python module against the C++ results for the same inputs: `shadowkit setup` and
+`shadowkit eval` (the command line's JSON, written with round-trip precision) give the
+numbers; the module must give the same. Run by CTest with PYTHONPATH at the module and
+SHADOWKIT at the command line."""
+import json
+import os
+import subprocess
+import tempfile
+import unittest
+
+import numpy as np
+
+import shadowkit
+
+CLI = os.environ["SHADOWKIT"]
+SMALL = ["--trees", "300", "--terrain-size", "200", "--terrain-resolution", "32"]
+
+
+def cli_json(*args):
+    out = subprocess.run([CLI, *args], check=True, capture_output=True, text=True).stdout
+    return json.loads(out)
+
+
+def column_major(flat):
+    """A matrix as the CLI prints it (16 values, column after column) as [row, column]."""
+    return np.array(flat, dtype=float).reshape(4, 4).T
+
+
+class SetupTest(unittest.TestCase):
+    def test_equals_the_command_line_for_every_technique(self):
+        for technique in ["standard", "focused", "lispsm", "psm", "tsm", "csm"]:
+            expected = cli_json("setup", "--view", "perpendicular", "--technique", technique, *SMALL)
+            inputs = expected["inputs"]
+            cam = inputs["camera"]
+            got = shadowkit.setup(eye=cam["eye"], direction=cam["direction"], up=cam["up"], fov=cam["fov_y_degrees"],
+                                  aspect=cam["aspect"], near=cam["near"], far=cam["far"],
+                                  light=inputs["light"]["direction"], scene_min=inputs["scene_bounds"]["min"],
+                                  scene_max=inputs["scene_bounds"]["max"], technique=technique)
+            self.assertEqual(got["technique"], expected["technique"])
+            self.assertEqual(got["depth_layout"], expected["depth_layout"])
+            self.assertEqual(len(got["views"]), len(expected["views"]))
+            for view, cli_view in zip(got["views"], expected["views"]):
+                # The default conventions are the core's own: the very same doubles.
+                np.testing.assert_array_equal(view["clip_from_world"], column_major(cli_view["clip_from_world"]))
+                np.testing.assert_array_equal(view["light_from_world"], column_major(cli_view["light_from_world"]))
+
+    def test_engine_matrices_give_the_eye_direction_set_up(self):
+        eye, target = np.array([3.0, 6.0, 14.0]), np.array([0.0, 0.0, -30.0])
+        f = target - eye
+        f /= np.linalg.norm(f)
+        s = np.cross(f, [0.0, 1.0, 0.0])
+        s /= np.linalg.norm(s)
+        u = np.cross(s, f)
+        view = np.identity(4)
+        view[0, :3], view[1, :3], view[2, :3] = s, u, -f
+        view[:3, 3] = -view[:3, :3] @ eye
+        t, aspect, near, far = 1.0 / np.tan(np.radians(30.0)), 1.5, 0.3, 200.0
+        gl_projection = np.array([[t / aspect, 0, 0, 0], [0, t, 0, 0],
+                                  [0, 0, -(far + near) / (far - near), -2 * far * near / (far - near)], [0, 0, -1, 0]])
+        common = dict(sun=(35.0, 120.0), scene_min=[-100, 0, -100], scene_max=[100, 12, 100], technique="lispsm")
+        by_matrices = shadowkit.setup(view_from_world=view, clip_from_view=gl_projection, clip_depth="minus_one_to_one", **common)
+        by_eye = shadowkit.setup(eye=list(eye), direction=list(f), fov=60.0, aspect=aspect, near=near, far=far, **common)
+        a, b = by_matrices["views"][0]["clip_from_world"], by_eye["views"][0]["clip_from_world"]
+        np.testing.assert_allclose(a, b, rtol=0, atol=1e-9 * np.abs(b).max())
+
+    def test_conventions_flip_as_documented(self):
+        common = dict(sun=(40.0, 70.0), technique="focused")
+        gl = shadowkit.setup(conventions="opengl", **common)["views"][0]
+        d3d = shadowkit.setup(conventions="direct3d", reversed_z=True, **common)["views"][0]
+        point = np.array([10.0, 2.0, -30.0, 1.0])
+        t_gl, t_d3d = gl["texture_from_world"] @ point, d3d["texture_from_world"] @ point
+        u_gl, v_gl, d_gl = t_gl[:3] / t_gl[3]
+        u_d3d, v_d3d, d_d3d = t_d3d[:3] / t_d3d[3]
+        self.assertAlmostEqual(u_gl, u_d3d, places=12)
+        self.assertAlmostEqual(v_gl, 1.0 - v_d3d, places=12)
+        self.assertAlmostEqual(d_gl, 1.0 - d_d3d, places=12)
+
+    def test_bad_input_raises_with_the_core_message(self):
+        with self.assertRaisesRegex(ValueError, "map_size"):
+            shadowkit.setup(map_size=3)
+        with self.assertRaisesRegex(ValueError, "technique"):
+            shadowkit.setup(technique="nope")
+        with self.assertRaisesRegex(ValueError, "camera.clip_from_view"):
+            shadowkit.setup(view_from_world=np.identity(4), clip_from_view=np.zeros((4, 4)))
+
+
+class EvaluateTest(unittest.TestCase):
+    def test_equals_shadowkit_eval_and_its_buffers_agree_with_its_figures(self):
+        evaluator = shadowkit.Evaluator(trees=300, terrain_size=200, terrain_resolution=32)
+        for technique in ["tsm", "lispsm"]:
+            args = ["--view", "perpendicular", "--technique", technique, "--size", "160x90", "--map-size", "512"]
+            with tempfile.TemporaryDirectory() as folder:
+                report = os.path.join(folder, "eval.json")
+                subprocess.run([CLI, "eval", *args, *SMALL, "--json", report], check=True, capture_output=True)
+                with open(report) as f:
+                    expected = json.load(f)["views"][0]
+            got = evaluator.evaluate(view="perpendicular", technique=technique, size=(160, 90), map_size=512)
+            for key, value in got["figures"].items():
+                self.assertEqual(value, expected[key], f"{technique} {key}")
+            classes = got["pixel_class"]
+            self.assertEqual(classes.shape, (90, 160))
+            valid = np.isin(classes, [1, 2, 3, 4])
+            self.assertEqual(int(valid.sum()), expected["valid_px"])
+            wrong = np.isin(classes, [3, 4]).sum() / valid.sum() * 100
+            self.assertAlmostEqual(wrong, expected["wrong_pct"], places=9)
+            # A correct shadow is shadowed in the map's test and in truth.
+            correct_shadow = classes == 2
+            self.assertGreater(int(correct_shadow.sum()), 100)
+            self.assertTrue(np.all(got["shadow_term"][correct_shadow] < 0.5))
+            self.assertTrue(np.all(got["truth_lit"][correct_shadow] == 0))
+            self.assertTrue(np.all(np.isnan(got["pixels_per_texel"][~valid])))
+
+
+if __name__ == "__main__":
+    unittest.main(verbosity=2)
