@@ -32,6 +32,24 @@ foreach(ask OFF ON)
   endif()
 endforeach()
 
+# A relocated install reads the data beside its bin/: move the tree, give the moved copy's
+# views.json a view no other data directory has, and ask the moved command line for it.
+if(EXISTS "${WORK}/prefix/bin/shadowkit")
+  file(REMOVE_RECURSE "${WORK}/moved")
+  file(RENAME "${WORK}/prefix" "${WORK}/moved")
+  set(views "${WORK}/moved/share/shadowkit/views.json")
+  file(READ "${views}" text)
+  string(JSON text SET "${text}" views 0 name "\"relocated\"")
+  file(WRITE "${views}" "${text}")
+  execute_process(COMMAND ${CMAKE_COMMAND} -E env --unset=SHADOWKIT_DATA_DIR "${WORK}/moved/bin/shadowkit" setup --view relocated --trees 10
+                          --terrain-size 64 --terrain-resolution 8
+                  RESULT_VARIABLE rc OUTPUT_QUIET ERROR_VARIABLE err)
+  file(RENAME "${WORK}/moved" "${WORK}/prefix")
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "a moved install does not find its data: ${err}")
+  endif()
+endif()
+
 # pkg-config: the same program from the .pc file alone.
 find_program(PKG_CONFIG pkg-config)
 find_program(CXX NAMES c++ g++)

@@ -56,9 +56,9 @@ core::Result<ViewSpec> findView(const std::vector<ViewSpec>& views, const std::s
 // Places the eye over the scene's ground and turns angles into camera and sun.
 ResolvedView resolveView(const ViewSpec& view, const Scene& scene);
 
-// The directory holding views.json and other data: $SHADOWKIT_DATA_DIR, else the
-// source tree's data/ (for builds run in place), else share/shadowkit beside the running
-// program's bin/ (an installed tree, wherever it was moved), else the install prefix's.
+// The directory holding views.json and other data: $SHADOWKIT_DATA_DIR, else share/shadowkit
+// beside the running program's bin/ (an installed tree, wherever it was moved), else the
+// source tree's data/ (for builds run in place), else the configured install prefix's.
 std::filesystem::path dataDirectory();
 
 } // namespace shadowkit::scene
