@@ -1,4 +1,13 @@
 // glTF 2.0 import (.gltf, .glb) through tinygltf: nodes become instances of their mesh.
+//
+// tinygltf parses the file; everything it leaves to the caller is read here with the rules of
+// the glTF 2.0 specification (§3.6 accessors, §3.7.2.1 primitive modes), checked against the
+// buffers so that no file can make us read outside them:
+//   - component types of every size, normalized signed integers as max(c / (2^(n−1) − 1), −1)
+//     and unsigned as c / (2^n − 1) (KHR_mesh_quantization's positions, normals and colours);
+//   - sparse accessors: the base values (zeros without a buffer view), then the listed ones;
+//   - triangle lists, strips and fans (strips and fans unrolled into lists);
+//   - what cannot be read is named: glTF 1.0, Draco-compressed meshes, non-finite positions.
 #include "scene_formats.h"
 
 #include <tiny_gltf.h>
@@ -8,8 +17,12 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
+#include <fstream>
 #include <map>
+#include <optional>
+#include <unordered_map>
 
 namespace shadowkit::scene::formats {
 
@@ -17,39 +30,103 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Reads accessor element i as up to 4 floats (float, normalized integer or integer data).
+// Elements an accessor may hold before it is refused: 2^28 (a 4 GiB float4 array), so a
+// hostile count cannot make us allocate without bound.
+constexpr size_t kMaxAccessorCount = size_t(1) << 28;
+
+double component(int type, bool normalized, const unsigned char* p) {
+    switch (type) {
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: { float f; std::memcpy(&f, p, 4); return f; }
+    case TINYGLTF_COMPONENT_TYPE_BYTE: { int8_t v; std::memcpy(&v, p, 1); return normalized ? std::max(v / 127.0, -1.0) : v; }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return normalized ? *p / 255.0 : *p;
+    case TINYGLTF_COMPONENT_TYPE_SHORT: { int16_t v; std::memcpy(&v, p, 2); return normalized ? std::max(v / 32767.0, -1.0) : v; }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { uint16_t v; std::memcpy(&v, p, 2); return normalized ? v / 65535.0 : v; }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: { uint32_t v; std::memcpy(&v, p, 4); return v; }
+    default: return 0.0;
+    }
+}
+
+// `count` elements of `elementSize` bytes every `stride` bytes from `offset` in view `viewIndex`:
+// the first byte, or an error when any of it lies outside the view or its buffer.
+core::Result<const unsigned char*> bytesOf(const tinygltf::Model& model, int viewIndex, size_t offset, size_t count, size_t elementSize,
+                                           size_t stride, const std::string& what) {
+    if (viewIndex < 0 || size_t(viewIndex) >= model.bufferViews.size()) return core::makeError(what + ": no such buffer view");
+    const tinygltf::BufferView& view = model.bufferViews[size_t(viewIndex)];
+    if (view.buffer < 0 || size_t(view.buffer) >= model.buffers.size()) return core::makeError(what + ": no such buffer");
+    const std::vector<unsigned char>& buffer = model.buffers[size_t(view.buffer)].data;
+    const size_t span = count == 0 ? 0 : (count - 1) * stride + elementSize;
+    if (offset > view.byteLength || span > view.byteLength - offset || view.byteOffset > buffer.size() ||
+        view.byteLength > buffer.size() - view.byteOffset)
+        return core::makeError(what + ": reaches past its buffer");
+    return buffer.data() + view.byteOffset + offset;
+}
+
+// One accessor, checked, read element by element with sparse values substituted.
 class AccessorReader {
 public:
-    AccessorReader(const tinygltf::Model& model, int index) : m_accessor(model.accessors.at(size_t(index))) {
-        const auto& view = model.bufferViews.at(size_t(m_accessor.bufferView));
-        m_data = model.buffers.at(size_t(view.buffer)).data.data() + view.byteOffset + m_accessor.byteOffset;
-        m_components = tinygltf::GetNumComponentsInType(uint32_t(m_accessor.type));
-        m_componentSize = tinygltf::GetComponentSizeInBytes(uint32_t(m_accessor.componentType));
-        m_stride = m_accessor.ByteStride(view);
+    static core::Result<AccessorReader> open(const tinygltf::Model& model, int index, const std::string& where) {
+        const std::string what = where + ": accessor " + std::to_string(index);
+        if (index < 0 || size_t(index) >= model.accessors.size()) return core::makeError(what + ": no such accessor");
+        AccessorReader r;
+        const tinygltf::Accessor& a = model.accessors[size_t(index)];
+        r.m_type = a.componentType;
+        r.m_normalized = a.normalized;
+        r.m_count = a.count;
+        r.m_components = tinygltf::GetNumComponentsInType(uint32_t(a.type));
+        r.m_componentSize = tinygltf::GetComponentSizeInBytes(uint32_t(a.componentType));
+        if (r.m_components <= 0 || r.m_componentSize <= 0) return core::makeError(what + ": unknown type or component type");
+        if (a.count > kMaxAccessorCount) return core::makeError(what + ": more elements than shadowkit reads (2^28)");
+        const size_t elementSize = size_t(r.m_components) * size_t(r.m_componentSize);
+        if (a.bufferView >= 0) {
+            if (size_t(a.bufferView) >= model.bufferViews.size()) return core::makeError(what + ": no such buffer view");
+            const int stride = a.ByteStride(model.bufferViews[size_t(a.bufferView)]);
+            if (stride <= 0) return core::makeError(what + ": bad byte stride");
+            r.m_stride = size_t(stride);
+            auto base = bytesOf(model, a.bufferView, a.byteOffset, a.count, elementSize, r.m_stride, what);
+            if (!base) return base.errorInfo();
+            r.m_base = *base;
+        }
+        if (a.sparse.isSparse) {
+            const auto& s = a.sparse;
+            const size_t n = size_t(s.count);
+            const int indexSize = tinygltf::GetComponentSizeInBytes(uint32_t(s.indices.componentType));
+            if (s.count < 0 || n > a.count || indexSize <= 0) return core::makeError(what + ": bad sparse count or index type");
+            auto indices = bytesOf(model, s.indices.bufferView, size_t(s.indices.byteOffset), n, size_t(indexSize), size_t(indexSize), what);
+            auto values = bytesOf(model, s.values.bufferView, size_t(s.values.byteOffset), n, elementSize, elementSize, what);
+            if (!indices) return indices.errorInfo();
+            if (!values) return values.errorInfo();
+            r.m_sparseValues = *values;
+            for (size_t k = 0; k < n; ++k) {
+                const size_t i = size_t(component(s.indices.componentType, false, *indices + k * size_t(indexSize)));
+                if (i >= a.count) return core::makeError(what + ": a sparse index lies past the accessor's count");
+                r.m_sparse[i] = k;
+            }
+        }
+        return r;
     }
-    size_t count() const { return m_accessor.count; }
+
+    size_t count() const { return m_count; }
+    double get(size_t i, int c) const {
+        if (c >= m_components) return 0.0;
+        const size_t offset = size_t(c) * size_t(m_componentSize);
+        if (!m_sparse.empty())
+            if (const auto it = m_sparse.find(i); it != m_sparse.end())
+                return component(m_type, m_normalized, m_sparseValues + it->second * size_t(m_components * m_componentSize) + offset);
+        return m_base ? component(m_type, m_normalized, m_base + i * m_stride + offset) : 0.0;
+    }
     glm::vec4 read(size_t i, glm::vec4 fallback = glm::vec4(0, 0, 0, 1)) const {
-        glm::vec4 out = fallback;
-        const unsigned char* p = m_data + i * size_t(m_stride);
-        for (int c = 0; c < std::min(m_components, 4); ++c) out[c] = component(p + c * m_componentSize);
-        return out;
+        for (int c = 0; c < std::min(m_components, 4); ++c) fallback[c] = float(get(i, c));
+        return fallback;
     }
-    uint32_t readIndex(size_t i) const { return static_cast<uint32_t>(component(m_data + i * size_t(m_stride))); }
 
 private:
-    float component(const unsigned char* p) const {
-        const bool norm = m_accessor.normalized;
-        switch (m_accessor.componentType) {
-        case TINYGLTF_COMPONENT_TYPE_FLOAT: { float f; std::memcpy(&f, p, 4); return f; }
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return norm ? float(*p) / 255.0f : float(*p);
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { uint16_t v; std::memcpy(&v, p, 2); return norm ? float(v) / 65535.0f : float(v); }
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: { uint32_t v; std::memcpy(&v, p, 4); return float(v); }
-        default: return 0.0f;
-        }
-    }
-    const tinygltf::Accessor& m_accessor;
-    const unsigned char* m_data = nullptr;
-    int m_components = 0, m_componentSize = 0, m_stride = 0;
+    int m_type = 0;
+    bool m_normalized = false;
+    size_t m_count = 0, m_stride = 0;
+    int m_components = 0, m_componentSize = 0;
+    const unsigned char* m_base = nullptr; // null: a sparse accessor over zeros
+    const unsigned char* m_sparseValues = nullptr;
+    std::unordered_map<size_t, size_t> m_sparse; // element -> position among the sparse values
 };
 
 glm::mat4 nodeLocalMatrix(const tinygltf::Node& node) {
@@ -66,52 +143,123 @@ glm::mat4 nodeLocalMatrix(const tinygltf::Node& node) {
     return glm::mat4(m);
 }
 
-// Converts one triangle primitive; returns false if it is not a triangle list with positions.
-bool convertPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& prim, Mesh& mesh) {
-    if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != -1) return false;
+// The triangle list of a primitive's vertex sequence (indices or 0, 1, 2, ...) in its mode.
+std::vector<uint32_t> triangleList(int mode, const std::vector<uint32_t>& sequence) {
+    if (mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+        std::vector<uint32_t> list = sequence;
+        list.resize(list.size() / 3 * 3);
+        return list;
+    }
+    std::vector<uint32_t> list;
+    for (size_t i = 0; i + 2 < sequence.size(); ++i) {
+        if (mode == TINYGLTF_MODE_TRIANGLE_FAN) list.insert(list.end(), {sequence[i + 1], sequence[i + 2], sequence[0]});
+        else if (i % 2 == 0) list.insert(list.end(), {sequence[i], sequence[i + 1], sequence[i + 2]});
+        else list.insert(list.end(), {sequence[i], sequence[i + 2], sequence[i + 1]}); // keeps the winding
+    }
+    return list;
+}
+
+// Converts one primitive: an empty mesh for primitives that are not triangles (points,
+// lines) or have no positions, an error for what is wrong or cannot be read.
+core::Result<Mesh> convertPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& prim, const std::string& where) {
+    Mesh mesh;
+    if (prim.extensions.count("KHR_draco_mesh_compression"))
+        return core::makeError(where + " is Draco-compressed (KHR_draco_mesh_compression), which shadowkit cannot read: export it uncompressed");
+    const int mode = prim.mode == -1 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
+    if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN) return mesh;
     const auto pos = prim.attributes.find("POSITION");
-    if (pos == prim.attributes.end()) return false;
-    const AccessorReader positions(model, pos->second);
+    if (pos == prim.attributes.end()) return mesh;
+    auto positions = AccessorReader::open(model, pos->second, where + " POSITION");
+    if (!positions) return positions.errorInfo();
     glm::vec3 albedo(0.7f);
-    if (prim.material >= 0) {
+    if (prim.material >= 0 && size_t(prim.material) < model.materials.size()) {
         const auto& f = model.materials[size_t(prim.material)].pbrMetallicRoughness.baseColorFactor;
         if (f.size() >= 3) albedo = glm::vec3(float(f[0]), float(f[1]), float(f[2]));
     }
-    mesh.vertices.resize(positions.count());
-    for (size_t i = 0; i < positions.count(); ++i) mesh.vertices[i] = {glm::vec3(positions.read(i)), glm::vec3(0, 1, 0), albedo};
+    mesh.vertices.resize(positions->count());
+    for (size_t i = 0; i < positions->count(); ++i) {
+        const glm::vec3 p(positions->read(i));
+        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+            return core::makeError(where + ": position " + std::to_string(i) + " is not finite");
+        mesh.vertices[i] = {p, glm::vec3(0, 1, 0), albedo};
+    }
     if (const auto c = prim.attributes.find("COLOR_0"); c != prim.attributes.end()) {
-        const AccessorReader colors(model, c->second);
-        for (size_t i = 0; i < std::min(colors.count(), mesh.vertices.size()); ++i)
-            mesh.vertices[i].albedo = albedo * glm::vec3(colors.read(i, glm::vec4(1.0f)));
+        auto colors = AccessorReader::open(model, c->second, where + " COLOR_0");
+        if (!colors) return colors.errorInfo();
+        for (size_t i = 0; i < std::min(colors->count(), mesh.vertices.size()); ++i)
+            mesh.vertices[i].albedo = albedo * glm::vec3(colors->read(i, glm::vec4(1.0f)));
     }
+    std::vector<uint32_t> sequence;
     if (prim.indices >= 0) {
-        const AccessorReader indices(model, prim.indices);
-        for (size_t i = 0; i < indices.count(); ++i) mesh.indices.push_back(indices.readIndex(i));
+        auto indices = AccessorReader::open(model, prim.indices, where + " indices");
+        if (!indices) return indices.errorInfo();
+        sequence.resize(indices->count());
+        for (size_t i = 0; i < indices->count(); ++i) {
+            const double index = indices->get(i, 0);
+            if (!(index >= 0.0 && index < double(mesh.vertices.size())))
+                return core::makeError(where + ": index " + std::to_string(i) + " names no vertex");
+            sequence[i] = uint32_t(index);
+        }
     } else {
-        for (size_t i = 0; i < mesh.vertices.size(); ++i) mesh.indices.push_back(static_cast<uint32_t>(i));
+        sequence.resize(mesh.vertices.size());
+        for (size_t i = 0; i < sequence.size(); ++i) sequence[i] = uint32_t(i);
     }
-    mesh.indices.resize(mesh.indices.size() / 3 * 3);
-    for (uint32_t idx : mesh.indices)
-        if (idx >= mesh.vertices.size()) return false;
+    mesh.indices = triangleList(mode, sequence);
     if (const auto n = prim.attributes.find("NORMAL"); n != prim.attributes.end()) {
-        const AccessorReader normals(model, n->second);
-        for (size_t i = 0; i < std::min(normals.count(), mesh.vertices.size()); ++i)
-            mesh.vertices[i].normal = glm::normalize(glm::vec3(normals.read(i)));
+        auto normals = AccessorReader::open(model, n->second, where + " NORMAL");
+        if (!normals) return normals.errorInfo();
+        for (size_t i = 0; i < std::min(normals->count(), mesh.vertices.size()); ++i) {
+            const glm::vec3 normal(normals->read(i));
+            const float length = glm::length(normal);
+            mesh.vertices[i].normal = length > 0.0f && std::isfinite(length) ? normal / length : glm::vec3(0, 1, 0);
+        }
     } else {
         computeNormals(mesh);
     }
     mesh.computeBounds();
-    return !mesh.indices.empty();
+    return mesh;
+}
+
+// The next character after `key` and its colon that is not white space, or 0.
+char valueStart(const std::string& text, size_t key) {
+    const size_t colon = text.find(':', key);
+    const size_t value = colon == std::string::npos ? colon : text.find_first_not_of(" \t\r\n", colon + 1);
+    return value == std::string::npos ? '\0' : text[value];
+}
+
+// Whether a file is glTF 1.0, checked before tinygltf (which takes a 1.0 file for a 2.0 one with
+// nothing in it): the glb header's version; in JSON, asset.version "1..." or, since 1.0 made the
+// asset optional, "meshes" as an object (2.0 has arrays). Reads the first MiB of JSON at most.
+bool isGltf1(const fs::path& file, bool binary) {
+    std::ifstream in(file, std::ios::binary);
+    if (binary) {
+        char header[8] = {};
+        in.read(header, 8);
+        uint32_t version = 0;
+        std::memcpy(&version, header + 4, 4);
+        return in && std::memcmp(header, "glTF", 4) == 0 && version == 1;
+    }
+    std::string text(size_t(1) << 20, '\0');
+    in.read(text.data(), std::streamsize(text.size()));
+    text.resize(size_t(in.gcount()));
+    if (const size_t meshes = text.find("\"meshes\""); meshes != std::string::npos && valueStart(text, meshes) == '{') return true;
+    const size_t asset = text.find("\"asset\"");
+    const size_t version = asset == std::string::npos ? asset : text.find("\"version\"", asset);
+    if (version == std::string::npos || valueStart(text, version) != '"') return false;
+    const size_t quote = text.find('"', text.find(':', version));
+    return text.compare(quote + 1, 1, "1") == 0;
 }
 
 } // namespace
 
 core::Result<Scene> loadGltf(const fs::path& file) {
+    const bool binary = lowerExtension(file) == ".glb";
+    if (isGltf1(file, binary)) return core::makeError(file.string() + ": glTF 1.0 is not supported; glTF 2.0 is");
     tinygltf::TinyGLTF loader;
     tinygltf::Model model;
     std::string err, warn;
-    const bool ok = lowerExtension(file) == ".glb" ? loader.LoadBinaryFromFile(&model, &err, &warn, file.string())
-                                                   : loader.LoadASCIIFromFile(&model, &err, &warn, file.string());
+    const bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, file.string())
+                           : loader.LoadASCIIFromFile(&model, &err, &warn, file.string());
     if (!ok) {
         std::replace(err.begin(), err.end(), '\n', ' ');
         return core::makeError(file.string() + ": not a readable glTF file (" + err + ")");
@@ -119,19 +267,33 @@ core::Result<Scene> loadGltf(const fs::path& file) {
     Scene scene;
     // (mesh, primitive) -> batch index: a mesh placed by many nodes becomes one instanced batch.
     std::map<std::pair<int, size_t>, size_t> batchOf;
+    std::optional<core::Error> failure;
     auto visit = [&](auto&& self, int nodeIndex, const glm::mat4& parent, int depth) -> void {
-        if (depth > 64 || nodeIndex < 0 || size_t(nodeIndex) >= model.nodes.size()) return; // cycles / bad refs
+        if (failure || depth > 64 || nodeIndex < 0 || size_t(nodeIndex) >= model.nodes.size()) return; // cycles / bad refs
         const tinygltf::Node& node = model.nodes[size_t(nodeIndex)];
         const glm::mat4 world = parent * nodeLocalMatrix(node);
+        if (!core::isFinite(glm::dmat4(world))) {
+            failure = core::makeError(file.string() + ": node " + std::to_string(nodeIndex) + " '" + node.name + "' has a non-finite transform");
+            return;
+        }
         if (node.mesh >= 0 && size_t(node.mesh) < model.meshes.size()) {
-            const auto& prims = model.meshes[size_t(node.mesh)].primitives;
-            for (size_t p = 0; p < prims.size(); ++p) {
+            const tinygltf::Mesh& gltfMesh = model.meshes[size_t(node.mesh)];
+            for (size_t p = 0; p < gltfMesh.primitives.size(); ++p) {
                 auto [it, inserted] = batchOf.try_emplace({node.mesh, p}, scene.batches.size());
                 if (inserted) {
-                    Mesh mesh;
-                    mesh.name = model.meshes[size_t(node.mesh)].name;
-                    if (!convertPrimitive(model, prims[p], mesh)) { batchOf.erase(it); continue; }
-                    scene.meshes.push_back(std::move(mesh));
+                    const std::string where = file.string() + ": mesh " + std::to_string(node.mesh) + " '" + gltfMesh.name + "' primitive " +
+                                              std::to_string(p);
+                    core::Result<Mesh> mesh = convertPrimitive(model, gltfMesh.primitives[p], where);
+                    if (!mesh) {
+                        failure = mesh.errorInfo();
+                        return;
+                    }
+                    if (mesh->indices.empty()) { // not triangles: nothing to draw or cast
+                        batchOf.erase(it);
+                        continue;
+                    }
+                    mesh->name = gltfMesh.name;
+                    scene.meshes.push_back(std::move(*mesh));
                     scene.batches.push_back({uint32_t(scene.meshes.size() - 1), {}, false});
                 }
                 scene.batches[it->second].worldFromObject.push_back(world);
@@ -140,8 +302,9 @@ core::Result<Scene> loadGltf(const fs::path& file) {
         for (int child : node.children) self(self, child, world, depth + 1);
     };
     const int sceneIndex = model.defaultScene >= 0 ? model.defaultScene : 0;
-    if (!model.scenes.empty())
+    if (!model.scenes.empty() && size_t(sceneIndex) < model.scenes.size())
         for (int root : model.scenes[size_t(sceneIndex)].nodes) visit(visit, root, glm::mat4(1.0f), 0);
+    if (failure) return *failure;
     if (scene.triangleCount() == 0) return core::makeError(file.string() + ": glTF file holds no triangle meshes");
     return scene;
 }
