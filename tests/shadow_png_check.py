@@ -63,4 +63,5 @@ def main():
         sys.exit("shadows missing, everywhere, or brightening the image")
 
 
-main()
+if __name__ == "__main__":
+    main()

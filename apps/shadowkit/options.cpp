@@ -244,6 +244,7 @@ void RenderOptions::addTo(CLI::App& cmd) {
                                                                 {"none", CullChoice::None}}))
         ->default_str("auto");
     cmd.add_option("--normal-offset", normalOffset, "receiver offset along its normal, in texels' world size");
+    cmd.add_option("--fog", fog, "fog density in 1/m, 0 for none (default: the scene's, 0.002 for the forest, scaled to a loaded scene's size)");
     cmd.add_option("--receiver-plane-bias", receiverPlaneBias, "reference depth on the receiver's plane (auto: for wide kernels)")
         ->transform(choice(Choices<Choice>{{"auto", Choice::Auto}, {"on", Choice::On}, {"off", Choice::Off}}))
         ->capture_default_str();
@@ -273,6 +274,7 @@ void RenderOptions::addTo(CLI::App& cmd) {
 core::Status RenderOptions::check() const {
     if (auto f = core::parseFilter(filter); !f) return withFlagName(f.errorInfo());
     if (auto s = gl::validate(blur); !s) return withFlagName(s.errorInfo());
+    if (fog && !(*fog >= 0.0 && std::isfinite(*fog))) return core::makeError("--fog: must be a density >= 0 (1/m)");
     core::BiasSettings b;
     b.slope = biasSlope.value_or(b.slope);
     b.constant = biasConstant.value_or(b.constant);
@@ -294,6 +296,7 @@ core::Result<gl::RenderSettings> RenderOptions::settingsFor(const scene::Resolve
     settings.culling = noCull ? gl::Culling::Off : visibility;
     settings.receiverMask = receiverMask;
     settings.lod = !noLod;
+    settings.fogDensity = static_cast<float>(fog.value_or(view.fogDensity));
     // Only what the flags change is set here; the rest is the recommendation every library
     // caller gets (gl::biasFor).
     if (biasSlope || biasConstant || normalOffset || cull != CullChoice::Auto || receiverPlaneBias != Choice::Auto) {

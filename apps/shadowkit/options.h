@@ -110,6 +110,7 @@ struct RenderOptions {
     bool receiverMask = true;   // --caster-culling receivers (likewise)
     bool noCull = false; // --no-cull: --visibility off (what culling saves, measured)
     bool noLod = false;  // full meshes everywhere (what levels of detail save, measured)
+    std::optional<double> fog; // --fog: density in 1/m; unset: the scene's (scene::ResolvedView::fogDensity)
 
     void addTo(CLI::App& cmd);
     // Checks the flags (cheap: call before loading a scene); errors name the flag.

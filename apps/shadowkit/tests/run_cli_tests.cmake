@@ -363,3 +363,36 @@ endif()
 check_fails(bench-bad-trees "--trees" bench --trees 10,-5)
 check_fails(bench-bad-frames "--frames" bench --trees 10 --frames 0)
 check_fails(visible-depth-auto-without-frame "--visible-depth" setup ${small} --visible-depth auto)
+
+# A user's own scene file drawn with no flag but the file: framed, shadowed, few errors
+# (tests/real_scene_check.py). Files made by `shadowkit export` in both formats, and a small
+# hand-made glTF 2 km from the origin (tests/data/pillar_on_plate.gltf), which the forest's
+# eye-level camera at the origin would never see.
+if(CASE STREQUAL "gl-real-scenes")
+  find_program(PYTHON NAMES python3 REQUIRED)
+  get_filename_component(source_dir "${CMAKE_CURRENT_LIST_DIR}/../../.." ABSOLUTE)
+  foreach(format glb obj gltf)
+    set(file "${WORK}/user_scene.${format}")
+    if(format STREQUAL "gltf")
+      set(file "${source_dir}/tests/data/pillar_on_plate.gltf")
+      set(rc 0)
+    else()
+      execute_process(COMMAND ${SHADOWKIT} export --trees 150 --terrain-size 100 --terrain-resolution 12 --seed 7 --out "${file}"
+                      RESULT_VARIABLE rc OUTPUT_QUIET ERROR_QUIET)
+    endif()
+    execute_process(COMMAND ${SHADOWKIT} render --scene "${file}" --out "${WORK}/user_scene_${format}.png"
+                    RESULT_VARIABLE rc2 OUTPUT_QUIET ERROR_VARIABLE err)
+    execute_process(COMMAND ${SHADOWKIT} eval --scene "${file}" --size 320x180 --dump "${WORK}/user_scene_${format}"
+                    RESULT_VARIABLE rc3 OUTPUT_QUIET ERROR_QUIET)
+    if(NOT rc EQUAL 0 OR NOT rc2 EQUAL 0 OR NOT rc3 EQUAL 0)
+      message(SEND_ERROR "${format}: export ${rc}, render ${rc2}, eval ${rc3}: ${err}")
+      continue()
+    endif()
+    execute_process(COMMAND ${PYTHON} "${source_dir}/tests/real_scene_check.py" "${WORK}/user_scene_${format}.png"
+                            "${WORK}/user_scene_${format}" RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+    message("${format}: ${out}")
+    if(NOT rc EQUAL 0)
+      message(SEND_ERROR "${format}: ${out} ${err}")
+    endif()
+  endforeach()
+endif()

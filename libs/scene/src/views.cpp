@@ -2,6 +2,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -120,14 +121,47 @@ ResolvedView resolveView(const ViewSpec& view, const Scene& scene) {
     out.width = view.width;
     out.height = view.height;
     core::PerspectiveCamera& cam = out.camera;
-    cam.wsEye = core::Vec3(view.eyeX, scene.groundHeightAt(view.eyeX, view.eyeZ) + view.eyeHeight, view.eyeZ);
-    const double az = glm::radians(view.azimuthDegrees), pitch = glm::radians(view.pitchDegrees);
-    cam.wsDirection = core::Vec3(std::sin(az) * std::cos(pitch), std::sin(pitch), -std::cos(az) * std::cos(pitch));
+    const double az = glm::radians(view.azimuthDegrees);
+    double pitch = glm::radians(view.pitchDegrees);
     cam.wsUp = core::Vec3(0, 1, 0);
     cam.fovYDegrees = view.fovYDegrees;
     cam.aspect = double(view.width) / double(view.height);
-    cam.zNear = view.zNear;
-    cam.zFar = view.zFar;
+    // Where the view's local lights are placed from: the ground under the eye, or the framed centre.
+    core::Vec3 wsOrigin(view.eyeX, 0.0, view.eyeZ);
+    const core::Aabb bounds = scene.wsBounds();
+    out.framed = !scene.terrain && !bounds.isEmpty();
+    if (!out.framed) {
+        cam.wsEye = core::Vec3(view.eyeX, scene.groundHeightAt(view.eyeX, view.eyeZ) + view.eyeHeight, view.eyeZ);
+        cam.zNear = view.zNear;
+        cam.zFar = view.zFar;
+    } else {
+        pitch = std::min(pitch, glm::radians(-30.0));
+        const core::Vec3 centre = bounds.center();
+        const core::Vec3 forward(std::sin(az) * std::cos(pitch), std::sin(pitch), -std::cos(az) * std::cos(pitch));
+        const core::Vec3 right = glm::normalize(glm::cross(forward, core::Vec3(0, 1, 0))), up = glm::cross(right, forward);
+        // The eye at `distance` back from the centre sees a corner c (x right, y up, z forward of the
+        // centre) when |x| <= tanX (distance + z) and |y| <= tanY (distance + z): the least distance
+        // for every corner frames the box tightly.
+        const double tanY = std::tan(0.5 * glm::radians(view.fovYDegrees)), tanX = tanY * cam.aspect;
+        double distance = 0.0, nearest = INFINITY, farthest = 0.0;
+        for (const core::Vec3& corner : bounds.corners()) {
+            const core::Vec3 c = corner - centre;
+            const double x = glm::dot(c, right), y = glm::dot(c, up), z = glm::dot(c, forward);
+            distance = std::max({distance, std::abs(x) / tanX - z, std::abs(y) / tanY - z});
+        }
+        distance = std::max(distance * 1.05, 1e-3); // a margin round the picture
+        for (const core::Vec3& corner : bounds.corners()) {
+            const double depth = distance + glm::dot(corner - centre, forward);
+            nearest = std::min(nearest, depth), farthest = std::max(farthest, depth);
+        }
+        cam.wsEye = centre - distance * forward;
+        cam.zNear = std::max(0.9 * nearest, 1e-3 * farthest);
+        cam.zFar = 1.1 * farthest;
+        wsOrigin = core::Vec3(centre.x, 0.0, centre.z);
+        // e^-0.3 of the light left at the far plane: depth for the eye, hardly a veil.
+        out.fogDensity = 0.3 / cam.zFar;
+    }
+    cam.wsDirection = core::Vec3(std::sin(az) * std::cos(pitch), std::sin(pitch), -std::cos(az) * std::cos(pitch));
     // Validated in parseView: the angles are in range, so this cannot fail.
     out.light = core::DirectionalLight::fromSunAngles(view.sunElevationDegrees,
                                                      view.azimuthDegrees + view.sunAzimuthFromViewDegrees).value();
@@ -135,7 +169,7 @@ ResolvedView resolveView(const ViewSpec& view, const Scene& scene) {
     // The view's frame on the ground: right and forward by its azimuth alone (not its pitch).
     const core::Vec3 forward(std::sin(az), 0.0, -std::cos(az)), right(std::cos(az), 0.0, std::sin(az)), up(0.0, 1.0, 0.0);
     for (const ViewLight& l : view.lights) {
-        core::Vec3 ws = core::Vec3(view.eyeX, 0.0, view.eyeZ) + l.at.x * right + l.at.z * forward;
+        core::Vec3 ws = wsOrigin + l.at.x * right + l.at.z * forward;
         ws.y = scene.groundHeightAt(ws.x, ws.z) + l.at.y;
         if (l.spot)
             out.spots.push_back({.wsPosition = ws, .wsDirection = l.aim.x * right + l.aim.y * up + l.aim.z * forward,

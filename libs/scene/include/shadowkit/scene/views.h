@@ -47,6 +47,11 @@ struct ResolvedView {
     bool sun = true;
     std::vector<core::PointLight> points; // the view's local lights in the world
     std::vector<core::SpotLight> spots;
+    // Exponential fog for this scene, 1/m: the forest's 0.002 (e^-1 at its views' 500 m far
+    // plane), or for a framed scene e^-0.3 at its far plane, whatever its size: a model metres
+    // wide is not fogged away, a county-sized one keeps its depth cue.
+    double fogDensity = 0.002;
+    bool framed = false; // the camera frames the scene's bounds (a scene without a heightfield)
 };
 
 // Reads a views file; errors name the file and the offending entry or field.
@@ -54,6 +59,13 @@ core::Result<std::vector<ViewSpec>> loadViews(const std::filesystem::path& file)
 // The view of that name, or an error listing the names there are.
 core::Result<ViewSpec> findView(const std::vector<ViewSpec>& views, const std::string& name);
 // Places the eye over the scene's ground and turns angles into camera and sun.
+// The view in this scene. A scene with a heightfield (the forest) stands the eye at the view's
+// place above the ground. A scene without one (a loaded file: no ground to stand on, any size)
+// is framed instead: the camera looks at the centre of the scene's bounds along the view's
+// compass direction, from above at the view's pitch or 30° down if that is steeper, back just
+// far enough for every corner of the bounds to be in the picture (5 % margin), with near and
+// far planes around the box; the sun keeps its angles to the view, local lights stand around
+// the centre as they stood around the eye, and the fog scales with the scene.
 ResolvedView resolveView(const ViewSpec& view, const Scene& scene);
 
 // The directory holding views.json and other data: $SHADOWKIT_DATA_DIR, else share/shadowkit
