@@ -10,7 +10,7 @@ if(NOT rc EQUAL 0)
   message(FATAL_ERROR "install failed")
 endif()
 set(hidden)
-foreach(p nlohmann_json TinyGLTF meshoptimizer PkgConfig glfw3 embree TBB GTest benchmark)
+foreach(p nlohmann_json TinyGLTF meshoptimizer tinyobjloader PkgConfig glfw3 embree TBB GTest benchmark)
   list(APPEND hidden "-DCMAKE_DISABLE_FIND_PACKAGE_${p}=ON")
 endforeach()
 

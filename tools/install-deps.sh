@@ -7,7 +7,7 @@ packages=(
   build-essential cmake ninja-build pkg-config
   libglm-dev libepoxy-dev libegl1-mesa-dev libgl1-mesa-dri libglfw3-dev
   libembree-dev libtbb-dev libtinygltf-dev libstb-dev nlohmann-json3-dev
-  libcli11-dev libfmt-dev libmeshoptimizer-dev libgtest-dev libbenchmark-dev
+  libcli11-dev libfmt-dev libmeshoptimizer-dev libtinyobjloader-dev libgtest-dev libbenchmark-dev
   libimgui-dev xvfb xauth
   pybind11-dev python3-dev python3-numpy
 )

@@ -1,50 +1,94 @@
-// Wavefront OBJ import: one mesh, one instance.
+// Wavefront OBJ import through tinyobjloader: one mesh per object or group, one instance each.
+// Polygons are triangulated; normals come from the file when every corner has one, else from
+// the faces; albedo is the material's diffuse colour (Kd, from the .mtl beside the file) times
+// the vertex colour of the widely read `v x y z r g b` extension, which shadowkit's own export
+// writes. Files without either are light grey.
 #include "scene_formats.h"
 
-#include <fstream>
-#include <sstream>
+#include <tiny_obj_loader.h>
+
+#include <algorithm>
+#include <cmath>
+#include <unordered_map>
+#include <vector>
 
 namespace shadowkit::scene::formats {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+std::string oneLine(std::string text) {
+    std::replace(text.begin(), text.end(), '\n', ' ');
+    while (!text.empty() && text.back() == ' ') text.pop_back();
+    return text;
+}
+
+} // namespace
+
 core::Result<Scene> loadObj(const fs::path& file) {
-    std::ifstream in(file);
-    if (!in) return core::makeError(file.string() + ": cannot open scene file");
-    Mesh mesh;
-    mesh.name = file.stem().string();
-    std::vector<glm::vec3> positions;
-    std::string line;
-    size_t lineNo = 0;
-    while (std::getline(in, line)) {
-        ++lineNo;
-        std::istringstream ss(line);
-        std::string tag;
-        ss >> tag;
-        if (tag == "v") {
-            glm::vec3 p;
-            if (!(ss >> p.x >> p.y >> p.z)) return core::makeError(file.string() + ":" + std::to_string(lineNo) + ": malformed vertex");
-            positions.push_back(p);
-        } else if (tag == "f") {
-            std::vector<uint32_t> face;
-            std::string corner;
-            while (ss >> corner) {
-                long idx = std::strtol(corner.c_str(), nullptr, 10); // "i", "i/t", "i//n", "i/t/n"
-                if (idx < 0) idx += long(positions.size()) + 1;      // relative indices
-                if (idx < 1 || size_t(idx) > positions.size())
-                    return core::makeError(file.string() + ":" + std::to_string(lineNo) + ": face index out of range");
-                face.push_back(uint32_t(idx - 1));
-            }
-            for (size_t i = 1; i + 1 < face.size(); ++i) mesh.indices.insert(mesh.indices.end(), {face[0], face[i], face[i + 1]});
-        }
-    }
-    if (mesh.indices.empty()) return core::makeError(file.string() + ": OBJ file holds no faces");
-    for (const glm::vec3& p : positions) mesh.vertices.push_back({p, glm::vec3(0, 1, 0), glm::vec3(0.7f)});
-    computeNormals(mesh);
-    mesh.computeBounds();
+    tinyobj::ObjReaderConfig config;
+    config.triangulate = true;
+    config.vertex_color = false; // colours only when every vertex has one (no white fallback)
+    tinyobj::ObjReader reader;
+    if (!reader.ParseFromFile(file.string(), config))
+        return core::makeError(file.string() + ": not a readable OBJ file (" + oneLine(reader.Error()) + ")");
+    const tinyobj::attrib_t& attrib = reader.GetAttrib();
+    const auto& materials = reader.GetMaterials();
+    const bool colours = !attrib.colors.empty();
+    const size_t vertexCount = attrib.vertices.size() / 3, normalCount = attrib.normals.size() / 3;
+
     Scene scene;
-    scene.meshes.push_back(std::move(mesh));
-    scene.batches.push_back({0, {glm::mat4(1.0f)}, false});
+    for (const tinyobj::shape_t& shape : reader.GetShapes()) {
+        const tinyobj::mesh_t& faces = shape.mesh;
+        Mesh mesh;
+        mesh.name = shape.name.empty() ? file.stem().string() : shape.name;
+        // One vertex per distinct (position, normal) corner of each material: material + 1 picks
+        // the map, the key packs the two indices (normal + 1, so "none" is 0).
+        std::vector<std::unordered_map<uint64_t, uint32_t>> vertexOf(materials.size() + 1);
+        bool everyNormal = true;
+        for (size_t corner = 0; corner < faces.indices.size(); ++corner) {
+            const tinyobj::index_t& index = faces.indices[corner];
+            const size_t face = corner / 3;
+            const int material = face < faces.material_ids.size() ? faces.material_ids[face] : -1;
+            if (index.vertex_index < 0 || size_t(index.vertex_index) >= vertexCount)
+                return core::makeError(file.string() + ": object '" + mesh.name + "': a face names vertex " +
+                                       std::to_string(index.vertex_index + 1) + " of " + std::to_string(vertexCount));
+            const bool hasNormal = index.normal_index >= 0 && size_t(index.normal_index) < normalCount;
+            everyNormal = everyNormal && hasNormal;
+            const uint64_t key = uint64_t(uint32_t(index.vertex_index)) << 32 | uint32_t(hasNormal ? index.normal_index + 1 : 0);
+            const size_t slot = material >= 0 && size_t(material) < materials.size() ? size_t(material) + 1 : 0;
+            auto [it, inserted] = vertexOf[slot].try_emplace(key, uint32_t(mesh.vertices.size()));
+            if (inserted) {
+                const size_t v = size_t(index.vertex_index);
+                Vertex vertex;
+                vertex.position = glm::vec3(attrib.vertices[3 * v], attrib.vertices[3 * v + 1], attrib.vertices[3 * v + 2]);
+                if (!std::isfinite(vertex.position.x) || !std::isfinite(vertex.position.y) || !std::isfinite(vertex.position.z))
+                    return core::makeError(file.string() + ": object '" + mesh.name + "': vertex " + std::to_string(v + 1) + " is not finite");
+                vertex.normal = glm::vec3(0, 1, 0);
+                if (hasNormal) {
+                    const size_t n = size_t(index.normal_index);
+                    const glm::vec3 normal(attrib.normals[3 * n], attrib.normals[3 * n + 1], attrib.normals[3 * n + 2]);
+                    const float length = glm::length(normal);
+                    if (length > 0.0f && std::isfinite(length)) vertex.normal = normal / length;
+                }
+                glm::vec3 albedo = material >= 0 && size_t(material) < materials.size()
+                                       ? glm::vec3(materials[size_t(material)].diffuse[0], materials[size_t(material)].diffuse[1],
+                                                   materials[size_t(material)].diffuse[2])
+                                       : glm::vec3(colours ? 1.0f : 0.7f);
+                if (colours) albedo *= glm::vec3(attrib.colors[3 * v], attrib.colors[3 * v + 1], attrib.colors[3 * v + 2]);
+                vertex.albedo = glm::clamp(albedo, 0.0f, 1.0f);
+                mesh.vertices.push_back(vertex);
+            }
+            mesh.indices.push_back(it->second);
+        }
+        if (mesh.indices.empty()) continue; // points and lines only
+        if (!everyNormal) computeNormals(mesh);
+        mesh.computeBounds();
+        scene.meshes.push_back(std::move(mesh));
+        scene.batches.push_back({uint32_t(scene.meshes.size() - 1), {glm::mat4(1.0f)}, false});
+    }
+    if (scene.meshes.empty()) return core::makeError(file.string() + ": OBJ file holds no faces");
     return scene;
 }
 

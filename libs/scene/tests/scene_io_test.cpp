@@ -99,3 +99,37 @@ TEST(SceneIoTest, LoadedTerrainPlacesTheEyeOverItNotUnderIt) {
         EXPECT_NEAR(loaded->groundHeightAt(x, z), forest.terrain->heightAt(x, z), 1e-3) << x << "," << z;
     std::filesystem::remove(file);
 }
+
+TEST(SceneIoTest, ObjKeepsVertexColoursNormalsAndObjects) {
+    // shadowkit's own OBJ carries `v x y z r g b` and normals: both come back, and each exported
+    // object is a mesh of its own. A file with neither is light grey with normals from its faces.
+    const Scene forest = tinyForest();
+    const auto file = std::filesystem::temp_directory_path() / "shadowkit_colours.obj";
+    ASSERT_TRUE(exportScene(forest, file));
+    const auto loaded = loadScene(file);
+    ASSERT_TRUE(loaded) << loaded.error();
+    EXPECT_EQ(loaded->meshes.size(), forest.batches.size());
+    int green = 0;
+    for (const Mesh& mesh : loaded->meshes)
+        for (const Vertex& v : mesh.vertices) green += v.albedo.g > v.albedo.r + 0.05f && v.albedo.g > v.albedo.b; // foliage
+    EXPECT_GT(green, 100);
+    std::filesystem::remove(file);
+
+    const auto plain = std::filesystem::temp_directory_path() / "shadowkit_plain.obj";
+    std::ofstream(plain) << "o quad\nv 0 0 0\nv 1 0 0\nv 1 0 -1\nv 0 0 -1\nf 1 2 3 4\n";
+    const auto quad = loadScene(plain);
+    ASSERT_TRUE(quad) << quad.error();
+    ASSERT_EQ(quad->meshes.size(), 1u);
+    EXPECT_EQ(quad->meshes[0].name, "quad");
+    EXPECT_EQ(quad->meshes[0].indices.size(), 6u); // the quad triangulated
+    for (const Vertex& v : quad->meshes[0].vertices) {
+        EXPECT_EQ(v.albedo, glm::vec3(0.7f));
+        EXPECT_NEAR(v.normal.y, 1.0f, 1e-6f); // counter-clockwise from above: up
+    }
+    std::ofstream(plain) << "v 0 0 0\nv 1 0 0\nf 1 2 9\n";
+    const auto bad = loadScene(plain);
+    ASSERT_FALSE(bad);
+    EXPECT_NE(bad.error().find("shadowkit_plain.obj"), std::string::npos) << bad.error();
+    EXPECT_EQ(bad.error().find('\n'), std::string::npos) << bad.error();
+    std::filesystem::remove(plain);
+}
