@@ -6,9 +6,11 @@
 #   tools/test.sh --sanitize [CTEST ARGS]  AddressSanitizer + UndefinedBehaviorSanitizer build in
 #                                          build-sanitize/, the whole suite but the two tests that
 #                                          install the package and build consumers without the
-#                                          sanitizer runtime (shadowkit_package, shadowkit_minimal_gl)
-#                                          and the Python module (python3 would need libasan
-#                                          preloaded). Leaks inside the GL driver are suppressed
+#                                          sanitizer runtime (shadowkit_package, shadowkit_minimal_gl),
+#                                          the case that limits the address space to make the driver
+#                                          run out of memory (shadowkit_cli.gl-environment: ASan's
+#                                          shadow memory needs more) and the Python module (python3
+#                                          would need libasan preloaded). Leaks inside the GL driver are suppressed
 #                                          (tools/lsan.supp), ours are not.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -24,7 +26,7 @@ if [ "${1:-}" = "--sanitize" ]; then
   export ASAN_OPTIONS="detect_leaks=1:abort_on_error=0:halt_on_error=1"
   export LSAN_OPTIONS="suppressions=$PWD/../tools/lsan.supp:print_suppressions=0"
   export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
-  exec ctest --output-on-failure --parallel "$(nproc)" -E "^(shadowkit_package|shadowkit_minimal_gl)$" "$@"
+  exec ctest --output-on-failure --parallel "$(nproc)" -E "^(shadowkit_package|shadowkit_minimal_gl|shadowkit_cli.gl-environment)$" "$@"
 fi
 tools/build.sh
 cd build

@@ -31,7 +31,7 @@ struct AnalyzeArgs {
 int runAnalyze(const AnalyzeArgs& args) {
     if (!(args.zNear > 0.0 && args.zFar > args.zNear && std::isfinite(args.zFar)))
         return fail(fmt::format("--zn/--zf: need 0 < zn < zf, got {} and {}", args.zNear, args.zFar));
-    if (auto s = args.technique.check(/*measuresFrames=*/false); !s) return fail(s.error());
+    if (auto s = args.technique.check(/*measuresFrames=*/false); !s) return fail(s.errorInfo());
 
     // 1. Figure 6: view perpendicular to the light, B = the view frustum.
     const double nOpt = core::lispsmOptimalN(args.zNear, args.zFar);
@@ -63,12 +63,12 @@ int runAnalyze(const AnalyzeArgs& args) {
 
     // 2. The given camera and sun: γ, the n LiSPSM chooses, predicted maximum errors.
     auto bounded = args.bounds.resolve(args.scene, args.view);
-    if (!bounded) return fail(bounded.error());
+    if (!bounded) return fail(bounded.errorInfo());
     auto inputs = args.technique.inputsFor(bounded->view, bounded->wsBounds);
-    if (!inputs) return fail(inputs.error());
+    if (!inputs) return fail(inputs.errorInfo());
     inputs->technique = core::Technique::Lispsm;
     auto setup = core::computeShadowSetup(*inputs);
-    if (!setup) return fail(withFlagName(setup.errorInfo()).message);
+    if (!setup) return fail(withFlagName(setup.errorInfo()));
     const core::ShadowView& sv = setup->views[0];
     const core::PerspectiveCamera& cam = inputs->camera;
     // No LiSPSM parameters when B is empty (the view misses the scene); no n or d when the

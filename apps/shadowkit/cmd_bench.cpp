@@ -57,17 +57,17 @@ core::Result<std::vector<int>> parseCounts(const std::string& text) {
 
 int runBench(const BenchArgs& args) {
     auto counts = parseCounts(args.trees);
-    if (!counts) return fail(counts.error());
+    if (!counts) return fail(counts.errorInfo());
     if (args.frames < 1 || args.frames > 1000) return fail("--frames: must be in [1, 1000]");
-    if (auto s = args.technique.check(/*measuresFrames=*/false); !s) return fail(s.error());
-    if (auto s = args.render.check(); !s) return fail(s.error());
+    if (auto s = args.technique.check(/*measuresFrames=*/false); !s) return fail(s.errorInfo());
+    if (auto s = args.render.check(); !s) return fail(s.errorInfo());
     std::vector<std::string> viewNames;
     std::stringstream ss(args.views);
     for (std::string name; std::getline(ss, name, ',');) viewNames.push_back(name);
     if (viewNames.empty()) return fail("--views: no view named");
 
     auto context = gl::Context::createHeadless();
-    if (!context) return fail(context.error());
+    if (!context) return fail(context.errorInfo());
     fmt::print("{} | technique {} | {} frames per row | culling {}\n", (*context)->description(),
                core::techniqueName(args.technique.technique), args.frames, gl::cullingName(args.render.noCull ? gl::Culling::Off : args.render.visibility));
     fmt::print("caster culling {}\n", args.render.receiverMask ? "by visible receivers" : "by volume");
@@ -82,20 +82,20 @@ int runBench(const BenchArgs& args) {
         // 10,000 on the given size (100,000 trees on 3238 m for the default 1024 m).
         forestOptions.terrainSize = args.sameDensity ? args.terrainSize * std::sqrt(std::max(trees, 1) / 10000.0) : args.terrainSize;
         forestOptions.terrainResolution = args.terrainResolution;
-        if (auto s = scene::validate(forestOptions); !s) return fail(s.error());
+        if (auto s = scene::validate(forestOptions); !s) return fail(s.errorInfo());
         const auto buildStart = std::chrono::steady_clock::now();
         const scene::Scene forest = scene::makeForest(forestOptions);
         const double buildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - buildStart).count();
         fmt::print(stderr, "forest: {} trees on {:.0f} m, {:.2f} M triangles, built in {:.2f} s\n", trees,
                    forestOptions.terrainSize, static_cast<double>(forest.triangleCount()) * 1e-6, buildSeconds);
         auto renderer = gl::Renderer::create(forest);
-        if (!renderer) return fail(renderer.error());
+        if (!renderer) return fail(renderer.errorInfo());
 
         for (const std::string& name : viewNames) {
             ViewOptions viewOptions = args.view;
             viewOptions.view = name;
             auto view = viewOptions.resolve(forest);
-            if (!view) return fail(view.error());
+            if (!view) return fail(view.errorInfo());
             // CHC++'s counts over the steady frames (after the first, a camera cut).
             std::vector<double> nodesVisited, queries, nodesQueried, multiQueryFailures, waits;
             std::vector<double> setupMs, cullMs, cullOwnMs, cullGlMs, listMs, shadowMs, mainMs, occlusionMs, maskMs;
@@ -104,14 +104,14 @@ int runBench(const BenchArgs& args) {
             for (int frame = 0; frame < args.frames; ++frame) {
                 const auto start = std::chrono::steady_clock::now();
                 auto inputs = args.technique.inputsFor(*view, (*renderer)->wsSceneBounds());
-                if (!inputs) return fail(inputs.error());
+                if (!inputs) return fail(inputs.errorInfo());
                 auto setup = args.technique.setupFor(*inputs, hysteresis);
-                if (!setup) return fail(withFlagName(setup.errorInfo()).message);
+                if (!setup) return fail(withFlagName(setup.errorInfo()));
                 setupMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
                 auto settings = args.render.settingsFor(*view, *inputs);
-                if (!settings) return fail(settings.error());
+                if (!settings) return fail(settings.errorInfo());
                 auto stats = (*renderer)->render(view->camera, view->light, *setup, *settings);
-                if (!stats) return fail(withFlagName(stats.errorInfo()).message);
+                if (!stats) return fail(withFlagName(stats.errorInfo()));
                 cullMs.push_back(stats->cullMilliseconds);
                 cullGlMs.push_back(stats->cullGlMilliseconds);
                 cullOwnMs.push_back(stats->cullOwnCpuMilliseconds);

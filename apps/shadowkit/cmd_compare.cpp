@@ -101,29 +101,29 @@ std::string caption(const Cell& cell) {
 
 int runCompare(const CompareArgs& args) {
     auto cells = parseConfigs(args.configs);
-    if (!cells) return fail(cells.error());
+    if (!cells) return fail(cells.errorInfo());
     std::vector<CellOptions> options;
     for (const Cell& cell : *cells) {
         auto o = parseCell(cell, args);
-        if (!o) return fail(o.error());
+        if (!o) return fail(o.errorInfo());
         options.push_back(std::move(o).value());
     }
     if (args.columns < 0 || args.columns > 16) return fail("--columns: must be in [1, 16] (0: automatic)");
     auto sceneData = args.scene.load();
-    if (!sceneData) return fail(sceneData.error());
+    if (!sceneData) return fail(sceneData.errorInfo());
     auto measurer = measure::Measurer::createHeadless(*sceneData);
-    if (!measurer) return fail(measurer.error());
+    if (!measurer) return fail(measurer.errorInfo());
 
     std::vector<scene::Image> images;
     std::vector<std::string> captions;
     for (size_t i = 0; i < options.size(); ++i) {
         const CellOptions& o = options[i];
         auto view = o.view.resolve(*sceneData);
-        if (!view) return fail(view.error());
+        if (!view) return fail(view.errorInfo());
         auto inputs = o.technique.inputsFor(*view, (*measurer)->renderer().wsSceneBounds());
-        if (!inputs) return fail(inputs.error());
+        if (!inputs) return fail(inputs.errorInfo());
         auto settings = o.render.settingsFor(*view, *inputs);
-        if (!settings) return fail(settings.error());
+        if (!settings) return fail(settings.errorInfo());
         o.lights.apply(*view, *settings);
         auto lighting = o.lights.lightingFor(*view, (*measurer)->renderer().wsSceneBounds());
         if (!lighting) return fail("--configs: " + withFlagName(lighting.errorInfo()).message);
@@ -135,7 +135,11 @@ int runCompare(const CompareArgs& args) {
                                              {.shadedImage = true,
                                               .visibleDepthFromFrame = o.technique.visibleDepthFromFrame(),
                                               .hysteresis = hysteresis ? &*hysteresis : nullptr});
-        if (!measured) return fail("--configs: " + withFlagName(measured.errorInfo()).message);
+        if (!measured) {
+            core::Error error = withFlagName(measured.errorInfo()); // keeps its kind: a driver limit exits 3
+            error.message = "--configs: " + error.message;
+            return fail(error);
+        }
         images.push_back(std::move(measured->image));
         const eval::Figures& f = measured->figures();
         captions.push_back(fmt::format("{} - wrong {:.2f}% (shadow {:.2f}, lit {:.2f})", caption((*cells)[i]), f.wrongPct,

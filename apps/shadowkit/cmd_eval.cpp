@@ -62,10 +62,10 @@ core::Result<std::vector<std::string>> viewNames(const EvalArgs& args) {
 }
 
 int runEval(const EvalArgs& args) {
-    if (auto s = args.technique.check(); !s) return fail(s.error());
-    if (auto s = args.render.check(); !s) return fail(s.error());
+    if (auto s = args.technique.check(); !s) return fail(s.errorInfo());
+    if (auto s = args.render.check(); !s) return fail(s.errorInfo());
     for (auto [flag, file] : {std::pair{"--json", &args.json}, {"--csv", &args.csv}, {"--plot", &args.plot}})
-        if (auto s = checkWritable(flag, *file); !s) return fail(s.error());
+        if (auto s = checkWritable(flag, *file); !s) return fail(s.errorInfo());
     if (!args.timeline.path.empty()) {
         if (!args.views.empty() || !args.errorMap.empty() || !args.aliasingMap.empty() || !args.dump.empty())
             return fail("--path: evaluates a path's frames, so --views, --error-map, --aliasing-map and --dump (still views) do not apply");
@@ -73,19 +73,19 @@ int runEval(const EvalArgs& args) {
     }
     if (!args.csv.empty() || !args.plot.empty()) return fail("--csv and --plot need --path (figures per frame)");
     auto timeline = args.timeline.resolve(); // still views: --time and --sun-path
-    if (!timeline) return fail(timeline.error());
+    if (!timeline) return fail(timeline.errorInfo());
     auto names = viewNames(args);
-    if (!names) return fail(names.error());
+    if (!names) return fail(names.errorInfo());
     for (auto [flag, file] : {std::pair{"--json", &args.json}, {"--error-map", &args.errorMap}, {"--aliasing-map", &args.aliasingMap}})
-        if (auto s = checkWritable(flag, *file); !s) return fail(s.error());
+        if (auto s = checkWritable(flag, *file); !s) return fail(s.errorInfo());
     const bool several = names->size() > 1;
 
     auto sceneData = args.scene.load();
-    if (!sceneData) return fail(sceneData.error());
+    if (!sceneData) return fail(sceneData.errorInfo());
     const double time = timeline->frames.front().time;
     scene::animate(*sceneData, time); // movers where they are at --time (t = 0: where they stand)
     auto measurer = measure::Measurer::createHeadless(*sceneData);
-    if (!measurer) return fail(measurer.error());
+    if (!measurer) return fail(measurer.errorInfo());
     fmt::print(stderr, "ray tracer: built in {:.2f} s\n", (*measurer)->rayTracerBuildSeconds());
 
     std::vector<eval::ViewReport> reports;
@@ -96,18 +96,18 @@ int runEval(const EvalArgs& args) {
         ViewOptions viewOptions = args.view;
         viewOptions.view = name;
         auto view = viewOptions.resolve(*sceneData);
-        if (!view) return fail(view.error());
+        if (!view) return fail(view.errorInfo());
         view = timeline->viewAt(*view, *sceneData, time); // the sun of --sun-path at --time
-        if (!view) return fail(view.error());
+        if (!view) return fail(view.errorInfo());
         auto inputs = args.technique.inputsFor(*view, (*measurer)->renderer().wsSceneBounds()); // O(1)
-        if (!inputs) return fail(inputs.error());
+        if (!inputs) return fail(inputs.errorInfo());
         auto settings = args.render.settingsFor(*view, *inputs);
-        if (!settings) return fail(settings.error());
+        if (!settings) return fail(settings.errorInfo());
         args.lights.apply(*view, *settings);
         auto lighting = args.lights.lightingFor(*view, (*measurer)->renderer().wsSceneBounds());
-        if (!lighting) return fail(withFlagName(lighting.errorInfo()).message);
+        if (!lighting) return fail(withFlagName(lighting.errorInfo()));
         if (auto s = (*measurer)->renderer().setLocalLights(std::move(lighting).value()); !s)
-            return fail(withFlagName(s.errorInfo()).message);
+            return fail(withFlagName(s.errorInfo()));
 
         // Progress only when the truth takes a while (large images, big scenes).
         measure::MeasureOptions options;
@@ -123,7 +123,7 @@ int runEval(const EvalArgs& args) {
             if (done >= 1.0) fmt::print(stderr, "\n");
         };
         auto measured = (*measurer)->measure(*inputs, *settings, options);
-        if (!measured) return fail(withFlagName(measured.errorInfo()).message);
+        if (!measured) return fail(withFlagName(measured.errorInfo()));
 
         if (!args.errorMap.empty())
             if (auto s = scene::writePng(eval::errorMapImage(measured->comparison, view->width, view->height),

@@ -71,16 +71,16 @@ core::Status writeCsv(const std::string& file, const std::vector<FrameRow>& rows
 
 int runEvalPath(const EvalPathArgs& args) {
     auto timeline = args.timeline.resolve();
-    if (!timeline) return fail(timeline.error());
+    if (!timeline) return fail(timeline.errorInfo());
     if (timeline->frames.size() < 2)
         return fail("--path: eval compares consecutive frames: give a path with at least two frames (or drop --time)");
     auto sceneData = args.scene.load();
-    if (!sceneData) return fail(sceneData.error());
+    if (!sceneData) return fail(sceneData.errorInfo());
     scene::Scene& world = *sceneData;
     auto still = args.view.resolve(world);
-    if (!still) return fail(still.error());
+    if (!still) return fail(still.errorInfo());
     auto measurer = measure::Measurer::createHeadless(world);
-    if (!measurer) return fail(measurer.error());
+    if (!measurer) return fail(measurer.errorInfo());
     fmt::print(stderr, "ray tracer: built in {:.2f} s\n", (*measurer)->rayTracerBuildSeconds());
 
     std::vector<FrameRow> rows;
@@ -96,18 +96,18 @@ int runEvalPath(const EvalPathArgs& args) {
         const auto start = std::chrono::steady_clock::now();
         moved.clear();
         scene::animate(world, frame.time, &moved);
-        if (auto s = (*measurer)->moveInstances(world, moved); !s) return fail(s.error());
+        if (auto s = (*measurer)->moveInstances(world, moved); !s) return fail(s.errorInfo());
         auto view = timeline->viewAt(*still, world, frame.time, !args.view.size.empty());
-        if (!view) return fail(view.error());
+        if (!view) return fail(view.errorInfo());
         auto inputs = args.technique.inputsFor(*view, (*measurer)->renderer().wsSceneBounds());
-        if (!inputs) return fail(inputs.error());
+        if (!inputs) return fail(inputs.errorInfo());
         auto settings = args.render.settingsFor(*view, *inputs);
-        if (!settings) return fail(settings.error());
+        if (!settings) return fail(settings.errorInfo());
         measure::MeasureOptions options;
         options.visibleDepthFromFrame = args.technique.visibleDepthFromFrame();
         options.hysteresis = hysteresis ? &*hysteresis : nullptr;
         auto measured = (*measurer)->measure(*inputs, *settings, options);
-        if (!measured) return fail(withFlagName(measured.errorInfo()).message);
+        if (!measured) return fail(withFlagName(measured.errorInfo()));
         if (hysteresis) {
             refits += hysteresis->refitted();
             toCover += hysteresis->lastRefits().toCover, stale += hysteresis->lastRefits().stale;
@@ -122,12 +122,12 @@ int runEvalPath(const EvalPathArgs& args) {
             if (castersMoved) {
                 moved.clear();
                 scene::animate(world, previous->time, &moved);
-                if (auto s = (*measurer)->moveInstances(world, moved); !s) return fail(s.error());
+                if (auto s = (*measurer)->moveInstances(world, moved); !s) return fail(s.errorInfo());
             }
             const bool sameLight = previous->light.wsDirection == view->light.wsDirection;
             auto before = (*measurer)->shadowsAt(*measured, view->camera, previous->setup, previous->light, previous->settings,
                                                  !castersMoved && sameLight);
-            if (!before) return fail(before.error());
+            if (!before) return fail(before.errorInfo());
             row.temporal = eval::compareFrames(previous->states, states, *before);
         }
         previous = PreviousFrame{frame.time, std::move(states), measured->setup, view->light, *settings};

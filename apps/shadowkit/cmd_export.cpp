@@ -16,7 +16,7 @@ struct ExportArgs {
 
 int runExport(const ExportArgs& args) {
     auto sceneData = args.scene.load();
-    if (!sceneData) return fail(sceneData.error());
+    if (!sceneData) return fail(sceneData.errorInfo());
     if (auto s = scene::exportScene(*sceneData, args.out); !s) return fail("--out: " + s.error());
     fmt::print("wrote {} ({:.2f} M triangles)\n", args.out, static_cast<double>(sceneData->triangleCount()) * 1e-6);
     return 0;

@@ -71,32 +71,32 @@ core::Status encodeVideo(const std::string& pattern, int firstFrame, double fram
 }
 
 int runRender(const RenderArgs& args) {
-    if (auto s = args.technique.check(); !s) return fail(s.error());
-    if (auto s = args.render.check(); !s) return fail(s.error());
+    if (auto s = args.technique.check(); !s) return fail(s.errorInfo());
+    if (auto s = args.render.check(); !s) return fail(s.errorInfo());
     auto timeline = args.timeline.resolve();
-    if (!timeline) return fail(timeline.error());
+    if (!timeline) return fail(timeline.errorInfo());
     const bool sequence = timeline->isSequence();
     if (sequence || !args.video.empty())
-        if (auto name = frameFileName(args.out, 0); !name) return fail(name.error());
+        if (auto name = frameFileName(args.out, 0); !name) return fail(name.errorInfo());
     if (!args.video.empty() && !timeline->path) return fail("--video: needs --path (a sequence of frames)");
     if (!args.strip.empty() && !sequence) return fail("--strip: needs --path (a sequence of frames)");
     for (auto [flag, file] : {std::pair{"--strip", &args.strip}, {"--video", &args.video}, {"--shadow-map-out", &args.shadowMapOut},
                               {"--local-map-out", &args.localMapOut}})
-        if (auto s = checkWritable(flag, *file); !s) return fail(s.error());
+        if (auto s = checkWritable(flag, *file); !s) return fail(s.errorInfo());
     if (!sequence)
-        if (auto s = checkWritable("--out", args.out); !s) return fail(s.error());
+        if (auto s = checkWritable("--out", args.out); !s) return fail(s.errorInfo());
     if (!args.video.empty() && !ffmpegInstalled())
         return fail("--video: ffmpeg is not installed (apt install ffmpeg), write the frames with --out alone");
     auto sceneData = args.scene.load();
-    if (!sceneData) return fail(sceneData.error());
+    if (!sceneData) return fail(sceneData.errorInfo());
     scene::Scene& world = *sceneData;
     auto still = args.view.resolve(world);
-    if (!still) return fail(still.error());
+    if (!still) return fail(still.errorInfo());
 
     auto context = gl::Context::createHeadless();
-    if (!context) return fail(context.error());
+    if (!context) return fail(context.errorInfo());
     auto renderer = gl::Renderer::create(world);
-    if (!renderer) return fail(renderer.error());
+    if (!renderer) return fail(renderer.errorInfo());
 
     std::vector<uint32_t> moved;
     // --stabilize with held lattices: one hysteresis for the whole sequence.
@@ -118,32 +118,32 @@ int runRender(const RenderArgs& args) {
         const auto cpuStart = std::chrono::steady_clock::now();
         moved.clear();
         scene::animate(world, frame.time, &moved);
-        if (auto s = (*renderer)->moveInstances(world, moved); !s) return fail(s.error());
+        if (auto s = (*renderer)->moveInstances(world, moved); !s) return fail(s.errorInfo());
         const double animateMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - cpuStart).count();
         auto view = timeline->viewAt(*still, world, frame.time, !args.view.size.empty());
-        if (!view) return fail(view.error());
+        if (!view) return fail(view.errorInfo());
         auto inputs = args.technique.inputsFor(*view, (*renderer)->wsSceneBounds()); // bounds O(1): the hierarchy's
-        if (!inputs) return fail(inputs.error());
+        if (!inputs) return fail(inputs.errorInfo());
         auto settings = args.render.settingsFor(*view, *inputs);
-        if (!settings) return fail(settings.error());
+        if (!settings) return fail(settings.errorInfo());
         args.lights.apply(*view, *settings);
         auto lighting = args.lights.lightingFor(*view, (*renderer)->wsSceneBounds());
-        if (!lighting) return fail(withFlagName(lighting.errorInfo()).message);
-        if (auto s = (*renderer)->setLocalLights(std::move(lighting).value()); !s) return fail(withFlagName(s.errorInfo()).message);
+        if (!lighting) return fail(withFlagName(lighting.errorInfo()));
+        if (auto s = (*renderer)->setLocalLights(std::move(lighting).value()); !s) return fail(withFlagName(s.errorInfo()));
         if (args.technique.visibleDepthFromFrame()) {
             auto refined = gl::withVisibleDepth(**renderer, *inputs, *settings);
-            if (!refined) return fail(withFlagName(refined.errorInfo()).message);
+            if (!refined) return fail(withFlagName(refined.errorInfo()));
             inputs = std::move(refined).value();
         }
         // What a frame costs on the CPU before drawing: the set-up.
         const auto setupStart = std::chrono::steady_clock::now();
         auto setup = args.technique.setupFor(*inputs, hysteresis);
-        if (!setup) return fail(withFlagName(setup.errorInfo()).message);
+        if (!setup) return fail(withFlagName(setup.errorInfo()));
         const double setupMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - setupStart).count();
 
         const auto frameStart = std::chrono::steady_clock::now();
         auto stats = (*renderer)->render(view->camera, view->light, *setup, *settings);
-        if (!stats) return fail(withFlagName(stats.errorInfo()).message);
+        if (!stats) return fail(withFlagName(stats.errorInfo()));
         const scene::Image image = (*renderer)->readColor();
         const double frameMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - frameStart).count();
 
@@ -190,7 +190,7 @@ int runRender(const RenderArgs& args) {
     }
     if (!args.video.empty()) {
         if (auto s = encodeVideo(args.out, timeline->frames.front().number, timeline->framesPerSecond, args.video); !s)
-            return fail(s.error());
+            return fail(s.errorInfo());
         fmt::print("wrote {}\n", args.video);
     }
     return 0;

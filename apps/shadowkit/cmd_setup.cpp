@@ -85,18 +85,18 @@ json localLightJson(const LocalLight& light, const core::ShadowSetup& setup) {
 }
 
 int runSetup(const SetupArgs& args) {
-    if (auto s = args.technique.check(/*measuresFrames=*/false); !s) return fail(s.error());
-    if (auto lights = args.lights.lights(); !lights) return fail(lights.error()); // before loading a scene
+    if (auto s = args.technique.check(/*measuresFrames=*/false); !s) return fail(s.errorInfo());
+    if (auto lights = args.lights.lights(); !lights) return fail(lights.errorInfo()); // before loading a scene
     auto bounded = args.bounds.resolve(args.scene, args.view);
-    if (!bounded) return fail(bounded.error());
+    if (!bounded) return fail(bounded.errorInfo());
     const core::Aabb& bounds = bounded->wsBounds;
     const scene::ResolvedView* view = &bounded->view;
 
     auto inputs = args.technique.inputsFor(*view, bounds);
-    if (!inputs) return fail(inputs.error());
+    if (!inputs) return fail(inputs.errorInfo());
     std::optional<core::SetupHysteresis> hysteresis;
     auto setup = args.technique.setupFor(*inputs, hysteresis);
-    if (!setup) return fail(withFlagName(setup.errorInfo()).message);
+    if (!setup) return fail(withFlagName(setup.errorInfo()));
 
     const core::PerspectiveCamera& cam = view->camera;
     json out;
@@ -129,7 +129,7 @@ int runSetup(const SetupArgs& args) {
     out["fallbacks"] = setup->fallbacks;
     // The view's spot and point lights (views.json), then --light's.
     auto lighting = args.lights.lightingFor(*view, bounds);
-    if (!lighting) return fail(withFlagName(lighting.errorInfo()).message);
+    if (!lighting) return fail(withFlagName(lighting.errorInfo()));
     if (!lighting->empty()) {
         json locals = json::array();
         for (size_t i = 0; i < lighting->points.size(); ++i) locals.push_back(localLightJson(lighting->points[i], lighting->pointSetups[i]));

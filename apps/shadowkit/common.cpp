@@ -8,7 +8,12 @@ namespace shadowkit::app {
 
 int fail(const std::string& message) {
     fmt::print(stderr, "shadowkit: error: {}\n", message);
-    return 1;
+    return kExitBadInput;
+}
+
+int fail(const core::Error& error) {
+    fail(error.message);
+    return error.kind == core::ErrorKind::Environment ? kExitEnvironment : kExitBadInput;
 }
 
 core::Status checkWritable(const char* flag, const std::string& file) {

@@ -7,8 +7,15 @@
 
 namespace shadowkit::app {
 
-// Prints "shadowkit: error: <message>" (one line) to stderr and returns 1.
+// Exit codes (README, "Commands"): 1 a bad value, 2 a usage error (unknown flag, missing
+// argument), 3 an environment that cannot do what was asked (no OpenGL 4.5, a driver limit or
+// an allocation the driver refused, a shader the driver rejected).
+inline constexpr int kExitBadInput = 1, kExitUsage = 2, kExitEnvironment = 3;
+
+// Prints "shadowkit: error: <message>" (one line) to stderr and returns kExitBadInput.
 int fail(const std::string& message);
+// The same for a library error, returning kExitEnvironment for ErrorKind::Environment.
+int fail(const core::Error& error);
 
 // A file a command will write later: fails now, before minutes of work, naming the flag, if
 // its directory is missing.

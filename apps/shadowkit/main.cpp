@@ -25,7 +25,7 @@ int main(int argc, char** argv) {
 
     // --state FILE: the saved options of a viewer session, as if typed before the others.
     auto args = shadowkit::app::expandState(std::vector<std::string>(argv + 1, argv + argc));
-    if (!args) return shadowkit::app::fail(args.error());
+    if (!args) return shadowkit::app::fail(args.errorInfo());
     for (const shadowkit::app::Command& command : commands)
         if (command.subcommand->get_name() == "render" || command.subcommand->get_name() == "eval")
             command.subcommand->add_option("--state", "options saved by shadowkit-viewer (JSON): given flags win");

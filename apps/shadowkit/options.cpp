@@ -229,7 +229,7 @@ core::Error withFlagName(const core::Error& error) {
             const std::string prefix = error.field + ": ";
             const bool prefixed = error.message.compare(0, prefix.size(), prefix) == 0;
             return core::Error{std::string(flag) + ": " + (prefixed ? error.message.substr(prefix.size()) : error.message),
-                               error.field};
+                               error.field, error.kind};
         }
     return error;
 }

@@ -37,7 +37,12 @@ namespace {
 
 int fail(const std::string& message) {
     fmt::print(stderr, "shadowkit-viewer: error: {}\n", message);
-    return 1;
+    return app::kExitBadInput;
+}
+// The command line's exit codes: 3 where this machine cannot do it (no display, no GL 4.5).
+int fail(const core::Error& error) {
+    fail(error.message);
+    return error.kind == core::ErrorKind::Environment ? app::kExitEnvironment : app::kExitBadInput;
 }
 
 std::string vec3Text(const core::Vec3& v) { return fmt::format("{:.6g},{:.6g},{:.6g}", v.x, v.y, v.z); }
@@ -160,14 +165,14 @@ core::Result<FrameResult> drawFrame(measure::Measurer& measurer, const scene::Sc
 
 int run(const ViewerArgs& args, app::StateOptions state) {
     auto sceneData = args.options.scene.load();
-    if (!sceneData) return fail(sceneData.error());
+    if (!sceneData) return fail(sceneData.errorInfo());
     scene::Scene& world = *sceneData;
     auto first = args.options.view.resolve(world);
-    if (!first) return fail(first.error());
+    if (!first) return fail(first.errorInfo());
     auto window = gl::WindowContext::create(first->width, first->height, "shadowkit-viewer");
-    if (!window) return fail(window.error());
+    if (!window) return fail(window.errorInfo());
     auto measurer = measure::Measurer::create(world);
-    if (!measurer) return fail(measurer.error());
+    if (!measurer) return fail(measurer.errorInfo());
     gl::Renderer& renderer = (*measurer)->renderer();
     GLFWwindow* glfw = (*window)->window();
 
@@ -481,7 +486,7 @@ int main(int argc, char** argv) {
     app.add_flag("--truth", args.truthAtStart, "evaluate the first frame against truth at once (T); --frames waits for it");
     app.add_option("--save-state", args.saveState, "where Ctrl+S saves the options (with --frames: on exit too)")->capture_default_str();
     auto expanded = app::expandState(std::vector<std::string>(argv + 1, argv + argc));
-    if (!expanded) return viewer::fail(expanded.error());
+    if (!expanded) return viewer::fail(expanded.errorInfo());
     app.add_option("--state", "options saved by Ctrl+S (JSON): given flags win");
     const std::vector<std::string> given = *expanded;
     std::reverse(expanded->begin(), expanded->end());
@@ -493,10 +498,10 @@ int main(int argc, char** argv) {
         fmt::print(stderr, "shadowkit-viewer: error: {} (see shadowkit-viewer --help)\n", e.what());
         return 1;
     }
-    if (auto s = args.options.technique.check(); !s) return viewer::fail(s.error());
-    if (auto s = args.options.render.check(); !s) return viewer::fail(s.error());
+    if (auto s = args.options.technique.check(); !s) return viewer::fail(s.errorInfo());
+    if (auto s = args.options.render.check(); !s) return viewer::fail(s.errorInfo());
     for (const std::string* file : {&args.screenshot, &args.saveState})
-        if (auto s = app::checkWritable("--screenshot/--save-state", *file); !s) return viewer::fail(s.error());
+        if (auto s = app::checkWritable("--screenshot/--save-state", *file); !s) return viewer::fail(s.errorInfo());
     return viewer::run(args, viewer::givenOptions(app, given, {"frames", "screenshot", "save-state", "state", "window-shot", "truth", "wireframes",
                                                             "debug-camera"}));
 }

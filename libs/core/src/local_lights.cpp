@@ -171,7 +171,7 @@ Result<LocalLighting> computeLocalLighting(const LocalShadowInputs& inputs, std:
     LocalLighting out;
     out.mapSize = inputs.mapSize;
     auto named = [](const char* kind, size_t i, const Error& e) {
-        return Error{std::string(kind) + "[" + std::to_string(i) + "]: " + e.message, e.field};
+        return Error{std::string(kind) + "[" + std::to_string(i) + "]: " + e.message, e.field, e.kind};
     };
     for (size_t i = 0; i < points.size(); ++i) {
         auto setup = computePointShadowSetup(inputs, points[i]);

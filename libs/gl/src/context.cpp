@@ -12,6 +12,7 @@
 #include <epoxy/gl.h>
 
 #include <cstring>
+#include <string>
 #include <vector>
 
 namespace shadowkit::gl {
@@ -34,31 +35,40 @@ public:
         eglTerminate(m_display);
     }
 
-    // Tries one display; leaves *this empty on failure.
+    // Tries one display; leaves *this empty on failure and says why in `failures`.
     bool tryDisplay(EGLDisplay display, const ContextOptions& options, const char* platform) {
-        if (display == EGL_NO_DISPLAY) return false;
+        auto failed = [&](const std::string& why) {
+            failures += std::string(failures.empty() ? "" : "; ") + platform + ": " + why;
+            return false;
+        };
+        if (display == EGL_NO_DISPLAY) return failed("no display");
         EGLint major = 0, minor = 0;
-        if (!eglInitialize(display, &major, &minor)) return false;
+        if (!eglInitialize(display, &major, &minor)) return failed("the display does not initialise");
         const char* ext = eglQueryString(display, EGL_EXTENSIONS);
         if (!hasExtension(ext, "EGL_KHR_no_config_context") || !hasExtension(ext, "EGL_KHR_surfaceless_context") ||
             !eglBindAPI(EGL_OPENGL_API)) {
             eglTerminate(display);
-            return false;
+            return failed("no desktop OpenGL without a surface (EGL_KHR_no_config_context, EGL_KHR_surfaceless_context)");
         }
         const EGLint attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
                                   EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
                                   EGL_CONTEXT_OPENGL_DEBUG, options.debug ? EGL_TRUE : EGL_FALSE, EGL_NONE};
         const EGLContext context = eglCreateContext(display, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attribs);
         if (context == EGL_NO_CONTEXT || !eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context)) {
-            if (context != EGL_NO_CONTEXT) eglDestroyContext(display, context);
+            const bool created = context != EGL_NO_CONTEXT;
+            if (created) eglDestroyContext(display, context);
             eglTerminate(display);
-            return false;
+            return failed(created ? "the OpenGL 4.5 context cannot be made current" : "the driver offers no OpenGL 4.5 core context");
         }
         m_display = display;
         m_context = context;
         finishSetup(options, platform);
         return true;
     }
+
+private:
+public:
+    std::string failures; // why each display tried did not give a context
 
 private:
     EGLDisplay m_display = EGL_NO_DISPLAY;
@@ -90,9 +100,10 @@ core::Result<std::unique_ptr<Context>> Context::createHeadless(const ContextOpti
                             options, "EGL surfaceless"))
         return std::unique_ptr<Context>(std::move(context));
 
-    return core::makeError(
-        "OpenGL: no headless OpenGL 4.5 core context (neither an EGL GPU device nor Mesa's surfaceless platform "
-        "worked; on Debian install libegl1 libgl1-mesa-dri, or run where a GPU driver is present)");
+    if (context->failures.empty()) context->failures = clientExt ? "neither a GPU device nor Mesa's surfaceless platform is offered"
+                                                                 : "no EGL implementation answers (libEGL found no vendor library)";
+    return core::environmentError("OpenGL: no headless OpenGL 4.5 core context (" + context->failures +
+                                  "); on Debian install libegl1 libgl1-mesa-dri, or run where a GPU driver is present");
 }
 
 void Context::finishSetup(const ContextOptions& options, const std::string& platform) {

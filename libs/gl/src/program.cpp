@@ -30,7 +30,7 @@ core::Result<Shader> compile(GLenum stage, std::initializer_list<std::string_vie
         glGetShaderiv(shader.id(), GL_INFO_LOG_LENGTH, &size);
         std::string log(static_cast<size_t>(std::max(size, 1)), '\0');
         glGetShaderInfoLog(shader.id(), size, nullptr, log.data());
-        return core::makeError(std::string(what) + ": " + oneLine(log));
+        return core::environmentError(std::string(what) + ": the GL driver rejected it: " + oneLine(log));
     }
     return shader;
 }
@@ -50,7 +50,7 @@ core::Result<Program> link(std::string_view name, std::initializer_list<const Sh
         glGetProgramiv(program.id(), GL_INFO_LOG_LENGTH, &size);
         std::string log(static_cast<size_t>(std::max(size, 1)), '\0');
         glGetProgramInfoLog(program.id(), size, nullptr, log.data());
-        return core::makeError(std::string(name) + ": link: " + oneLine(log));
+        return core::environmentError(std::string(name) + ": the GL driver could not link it: " + oneLine(log));
     }
     for (const Shader* shader : shaders) glDetachShader(program.id(), shader->id());
     return program;
@@ -89,11 +89,11 @@ core::Status checkUniformBlock(const Program& program, std::string_view programN
                                size_t cppSize, std::span<const UniformField> fields) {
     const GLuint index = glGetUniformBlockIndex(program.id(), blockName);
     if (index == GL_INVALID_INDEX)
-        return core::makeError(std::string(programName) + ": uniform block " + blockName + " missing from the shader");
+        return core::environmentError(std::string(programName) + ": uniform block " + blockName + " missing from the shader");
     GLint size = 0;
     glGetActiveUniformBlockiv(program.id(), index, GL_UNIFORM_BLOCK_DATA_SIZE, &size);
     if (static_cast<size_t>(size) != cppSize)
-        return core::makeError(std::string(programName) + ": uniform block " + blockName + " is " + std::to_string(size) +
+        return core::environmentError(std::string(programName) + ": uniform block " + blockName + " is " + std::to_string(size) +
                                " bytes in GLSL but " + std::to_string(cppSize) + " in C++");
     for (const UniformField& field : fields) {
         GLuint member = GL_INVALID_INDEX;
@@ -101,7 +101,7 @@ core::Status checkUniformBlock(const Program& program, std::string_view programN
         GLint offset = -1;
         if (member != GL_INVALID_INDEX) glGetActiveUniformsiv(program.id(), 1, &member, GL_UNIFORM_OFFSET, &offset);
         if (member == GL_INVALID_INDEX || static_cast<size_t>(offset) != field.offset)
-            return core::makeError(std::string(programName) + ": uniform " + blockName + "." + field.name + " is at offset " +
+            return core::environmentError(std::string(programName) + ": uniform " + blockName + "." + field.name + " is at offset " +
                                    std::to_string(offset) + " in GLSL but " + std::to_string(field.offset) + " in C++");
     }
     return core::Ok{};

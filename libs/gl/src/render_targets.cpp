@@ -29,7 +29,7 @@ std::vector<T> readFlipped(const Texture& texture, GLenum format, GLenum type, i
 core::Status checkComplete(const Framebuffer& fbo, const char* what) {
     const GLenum status = glCheckNamedFramebufferStatus(fbo.id(), GL_FRAMEBUFFER);
     if (status != GL_FRAMEBUFFER_COMPLETE)
-        return core::makeError(std::string(what) + ": framebuffer incomplete (status " + std::to_string(status) + ")");
+        return core::environmentError(std::string(what) + ": the GL driver could not complete the framebuffer (status " + std::to_string(status) + ")");
     return core::Ok{};
 }
 

@@ -347,11 +347,15 @@ core::Status Renderer::Impl::prepare(const core::PerspectiveCamera& camera, cons
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
     // The set-up's map size is valid for core ([kMinMapSize, kMaxMapSize]); here it must
     // also fit this driver.
+    // Within core's range but beyond this driver's: the machine's limit, not a wrong value.
     if (setup.mapSize < core::kMinMapSize || setup.mapSize > maxSize)
-        return core::fieldError("map_size", "must be in [" + std::to_string(core::kMinMapSize) + ", " + std::to_string(maxSize) +
-                                                "] texels on this GL driver, got " + std::to_string(setup.mapSize));
+        return core::environmentError("map_size: must be in [" + std::to_string(core::kMinMapSize) + ", " + std::to_string(maxSize) +
+                                          "] texels on this GL driver (GL_MAX_TEXTURE_SIZE), got " + std::to_string(setup.mapSize),
+                                      "map_size");
     if (settings.width < 1 || settings.height < 1 || settings.width > maxSize || settings.height > maxSize)
-        return core::fieldError("image_size", "each side must be in [1, " + std::to_string(maxSize) + "] pixels");
+        return core::environmentError("image_size: each side must be in [1, " + std::to_string(maxSize) +
+                                          "] pixels on this GL driver (GL_MAX_TEXTURE_SIZE)",
+                                      "image_size");
     bias = biasFor(setup, settings);
     if (auto s = core::validate(bias); !s) return s;
     if (auto s = core::validate(settings.filter); !s) return s;
@@ -362,8 +366,19 @@ core::Status Renderer::Impl::prepare(const core::PerspectiveCamera& camera, cons
         return core::makeError("renderer: set-ups need 1 to " + std::to_string(kMaxCascades) + " shadow maps, got " +
                                std::to_string(maps));
     if (!shadow || shadow->size != setup.mapSize || shadow->layers != maps) {
+        while (glGetError() != GL_NO_ERROR) {} // earlier errors are not this allocation's
         shadow.emplace(setup.mapSize, maps);
-        if (auto s = checkComplete(shadow->framebuffer, "shadow map"); !s) return s;
+        if (glGetError() == GL_OUT_OF_MEMORY) {
+            const double gib = double(setup.mapSize) * setup.mapSize * maps * 4.0 / double(1u << 30);
+            shadow.reset();
+            return core::environmentError("map_size: the GL driver is out of memory for " + std::to_string(maps) + " depth layers of " +
+                                              std::to_string(setup.mapSize) + "² (" + std::to_string(gib).substr(0, 4) + " GiB)",
+                                          "map_size");
+        }
+        if (auto s = checkComplete(shadow->framebuffer, "shadow map"); !s) {
+            shadow.reset();
+            return s;
+        }
     }
     // Hardware 2x2 PCF is the sampler's linear filter; every other filter takes its own taps.
     const GLint filter = settings.filter.kind == core::ShadowFilter::Pcf2 ? GL_LINEAR : GL_NEAREST;
@@ -650,8 +665,9 @@ core::Status Renderer::setLocalLights(core::LocalLighting lights) {
     GLint maxSize = 0;
     glGetIntegerv(GL_MAX_CUBE_MAP_TEXTURE_SIZE, &maxSize);
     if (!lights.empty() && (lights.mapSize < core::kMinMapSize || lights.mapSize > maxSize))
-        return core::fieldError("local_map_size", "must be in [" + std::to_string(core::kMinMapSize) + ", " + std::to_string(maxSize) +
-                                                      "] texels on this GL driver, got " + std::to_string(lights.mapSize));
+        return core::environmentError("local_map_size: must be in [" + std::to_string(core::kMinMapSize) + ", " + std::to_string(maxSize) +
+                                          "] texels on this GL driver (GL_MAX_CUBE_MAP_TEXTURE_SIZE), got " + std::to_string(lights.mapSize),
+                                      "local_map_size");
     m_impl->localLights = std::move(lights);
     return core::Ok{};
 }

@@ -8,7 +8,7 @@ namespace shadowkit::gl {
 
 core::Result<std::unique_ptr<WindowContext>> WindowContext::create(int width, int height, const std::string& title,
                                                                    const ContextOptions& options) {
-    if (!glfwInit()) return core::makeError("window: GLFW could not initialise (no display? use the headless commands)");
+    if (!glfwInit()) return core::environmentError("window: GLFW could not initialise (no display? use the headless commands)");
     glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
     glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
     glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
@@ -16,7 +16,7 @@ core::Result<std::unique_ptr<WindowContext>> WindowContext::create(int width, in
     GLFWwindow* window = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
     if (!window) {
         glfwTerminate();
-        return core::makeError("window: no OpenGL 4.5 core context for a window on this display");
+        return core::environmentError("window: no OpenGL 4.5 core context for a window on this display");
     }
     glfwMakeContextCurrent(window);
     auto context = std::unique_ptr<WindowContext>(new WindowContext);

@@ -112,12 +112,14 @@ TEST_F(RendererTest, OutOfRangeSettingsAreErrorsNotGlErrors) {
     const auto r = (*renderer)->render(cam, sun, *setup, gl::RenderSettings{});
     ASSERT_FALSE(r);
     EXPECT_EQ(r.errorInfo().field, "map_size") << r.error();
+    EXPECT_EQ(r.errorInfo().kind, core::ErrorKind::Environment) << "a driver's limit is the machine's, not the input's";
     setup->mapSize = 64;
     gl::RenderSettings settings;
     settings.blur.radiusPixels = 0.0f;
     const auto blur = (*renderer)->render(cam, sun, *setup, settings);
     ASSERT_FALSE(blur);
     EXPECT_EQ(blur.errorInfo().field, "blur.radius") << blur.error();
+    EXPECT_EQ(blur.errorInfo().kind, core::ErrorKind::BadInput);
 }
 
 TEST_F(RendererTest, CasterAboveTheFrustumStillShadowsItsCascade) {
