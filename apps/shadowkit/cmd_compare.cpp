@@ -1,6 +1,7 @@
 // shadowkit compare: a labelled grid of one view rendered with several configurations,
 // each captioned with its settings and its wrong_pct against ray-traced truth.
 #include "commands.h"
+#include "configs.h"
 #include "local_light_options.h"
 #include "options.h"
 
@@ -8,90 +9,17 @@
 #include "shadowkit/measure/measurer.h"
 
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 
 #include <algorithm>
-#include <fstream>
-#include <map>
-#include <sstream>
 
 namespace shadowkit::app {
 namespace {
-
-using Cell = std::vector<std::pair<std::string, std::string>>; // render long options, without "--"
 
 struct CompareArgs {
     SceneOptions scene;
     std::string view = "paper", configs, out = "compare.png", size;
     int columns = 0;
 };
-
-// "a=1,b=2;c=3" or a JSON file holding [{"a": 1, "b": 2}, {"c": 3}].
-core::Result<std::vector<Cell>> parseConfigs(const std::string& text) {
-    std::vector<Cell> cells;
-    if (text.size() > 5 && text.substr(text.size() - 5) == ".json") {
-        std::ifstream in(text);
-        if (!in) return core::makeError("--configs: " + text + ": cannot open");
-        try {
-            const nlohmann::json list = nlohmann::json::parse(in);
-            if (!list.is_array()) return core::makeError("--configs: " + text + ": expected a list of objects");
-            for (const auto& object : list) {
-                if (!object.is_object()) return core::makeError("--configs: " + text + ": expected a list of objects");
-                Cell cell;
-                for (const auto& [key, value] : object.items())
-                    cell.emplace_back(key, value.is_string() ? value.get<std::string>() : value.dump());
-                cells.push_back(cell);
-            }
-        } catch (const nlohmann::json::exception& e) {
-            return core::makeError("--configs: " + text + ": not valid JSON (" + e.what() + ")");
-        }
-    } else {
-        std::stringstream cellsText(text);
-        for (std::string cellText; std::getline(cellsText, cellText, ';');) {
-            Cell cell;
-            std::stringstream pairs(cellText);
-            for (std::string pair; std::getline(pairs, pair, ',');) {
-                const size_t eq = pair.find('=');
-                if (eq == std::string::npos || eq == 0)
-                    return core::makeError(fmt::format("--configs: expected key=value, got '{}'", pair));
-                cell.emplace_back(pair.substr(0, eq), pair.substr(eq + 1));
-            }
-            cells.push_back(cell);
-        }
-    }
-    if (cells.empty()) return core::makeError("--configs: no configuration given");
-    if (cells.size() > 64) return core::makeError("--configs: at most 64 cells");
-    return cells;
-}
-
-// One cell's options, parsed by the same option groups as `render`.
-struct CellOptions {
-    ViewOptions view;
-    TechniqueOptions technique;
-    RenderOptions render;
-    LocalLightOptions lights; // light=point:..., local-map-size=..., sun=off
-};
-
-core::Result<CellOptions> parseCell(const Cell& cell, const CompareArgs& args) {
-    CellOptions o;
-    CLI::App app{"cell"};
-    o.view.addTo(app);
-    o.technique.addTo(app);
-    o.render.addTo(app);
-    o.lights.addTo(app);
-    std::vector<std::string> argv = {"--view=" + args.view};
-    if (!args.size.empty()) argv.push_back("--size=" + args.size);
-    for (const auto& [key, value] : cell) argv.push_back("--" + key + "=" + value);
-    std::reverse(argv.begin(), argv.end()); // CLI11 takes the vector last argument first
-    try {
-        app.parse(argv);
-    } catch (const CLI::ParseError& e) {
-        return core::makeError(fmt::format("--configs: {}", e.what()));
-    }
-    if (auto t = o.technique.check(); !t) return core::makeError("--configs: " + t.error());
-    if (auto s = o.render.check(); !s) return core::makeError("--configs: " + s.error());
-    return o;
-}
 
 std::string caption(const Cell& cell) {
     std::string text;
@@ -104,7 +32,7 @@ int runCompare(const CompareArgs& args) {
     if (!cells) return fail(cells.errorInfo());
     std::vector<CellOptions> options;
     for (const Cell& cell : *cells) {
-        auto o = parseCell(cell, args);
+        auto o = parseCell(cell, args.view, args.size);
         if (!o) return fail(o.errorInfo());
         options.push_back(std::move(o).value());
     }
