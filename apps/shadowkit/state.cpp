@@ -24,14 +24,18 @@ core::Result<StateOptions> loadState(const std::string& file) {
     nlohmann::json root;
     try {
         root = nlohmann::json::parse(in);
-    } catch (const nlohmann::json::parse_error&) {
+    } catch (const nlohmann::json::exception&) { // parse errors, and numbers out of range
         return core::makeError("--state: " + file + ": not valid JSON");
     }
-    if (!root.is_object() || root.value("shadowkit_state", 0) != kStateVersion || !root.contains("options") ||
+    const bool versioned = root.is_object() && root.contains("shadowkit_state") && root["shadowkit_state"].is_number_integer() &&
+                           root["shadowkit_state"].get<int64_t>() == kStateVersion; // value() would throw on a string
+    if (!versioned || !root.contains("options") ||
         !root["options"].is_object())
         return core::makeError("--state: " + file + ": expected {\"shadowkit_state\": 1, \"options\": {...}}");
     StateOptions options;
-    for (const auto& [name, value] : root["options"].items()) {
+    for (const auto& item : root["options"].items()) {
+        const std::string name = item.key(); // a plain variable: clang 14 lambdas cannot capture structured bindings
+        const nlohmann::json& value = item.value();
         if (name.empty() || name == "state" || name.find('=') != std::string::npos)
             return core::makeError("--state: " + file + ": bad option name '" + name + "'");
         auto text = [&](const nlohmann::json& v) -> core::Result<std::string> {

@@ -195,7 +195,7 @@ check_fails(state-missing "--state" render ${small} --state "${WORK}/no_such_sta
 check_fails(state-not-a-state "--state" render ${small} --state "${WORK}/state-old.json")
 check_fails(state-bad-value "--technique" render ${small} --state "${WORK}/state-bad-value.json")
 # A state's options apply, and a flag given as well wins over the file's.
-if(CASE STREQUAL "state-applies")
+if(CASE STREQUAL "gl-state-applies")
   file(WRITE "${WORK}/state.json" [=[{"shadowkit_state": 1, "options": {"technique": "lispsm", "map-size": 512, "trees": 20,
     "terrain-size": 200, "terrain-resolution": 16}}]=])
   execute_process(COMMAND ${SHADOWKIT} render --state "${WORK}/state.json" --map-size 256 --size 16x16 --out "${WORK}/s.png"

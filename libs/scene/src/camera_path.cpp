@@ -74,15 +74,16 @@ core::Result<CameraPath> parsePath(const json& root) {
     if (!root.is_object() || !root.contains("camera") || !root["camera"].is_array() || root["camera"].empty())
         return core::makeError("expected an object with a non-empty \"camera\" array of keys");
     path.name = root.value("name", "");
-    path.width = root.value("width", path.width);
-    path.height = root.value("height", path.height);
+    // Whole numbers read as numbers first: converting 3.6e20 to int is undefined.
+    const double width = root.value("width", double(path.width)), height = root.value("height", double(path.height));
+    const double frames = root.value("frames", double(path.frames));
     path.fovYDegrees = root.value("fov", path.fovYDegrees);
     path.zNear = root.value("near", path.zNear);
     path.zFar = root.value("far", path.zFar);
-    path.frames = root.value("frames", path.frames);
-    if (path.width <= 0 || path.height <= 0 || path.width > 16384 || path.height > 16384)
-        return core::makeError("width and height must be in [1, 16384]");
-    if (path.frames < 1 || path.frames > 100000) return core::makeError("frames must be in [1, 100000]");
+    if (!(width >= 1 && width <= 16384 && height >= 1 && height <= 16384) || width != std::floor(width) || height != std::floor(height))
+        return core::makeError("width and height must be whole numbers in [1, 16384]");
+    if (!(frames >= 1 && frames <= 100000) || frames != std::floor(frames)) return core::makeError("frames must be a whole number in [1, 100000]");
+    path.width = int(width), path.height = int(height), path.frames = int(frames);
     core::PerspectiveCamera probe;
     probe.fovYDegrees = path.fovYDegrees;
     probe.zNear = path.zNear;
@@ -136,7 +137,7 @@ core::Result<CameraPath> loadCameraPath(const std::filesystem::path& file) {
     json root;
     try {
         root = json::parse(in);
-    } catch (const json::parse_error& e) {
+    } catch (const json::exception& e) { // parse errors, and numbers out of range (out_of_range.406)
         return core::makeError(file.string() + ": not valid JSON (" + e.what() + ")");
     }
     core::Result<CameraPath> path = core::makeError("");

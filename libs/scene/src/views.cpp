@@ -44,8 +44,11 @@ core::Result<ViewSpec> parseView(const json& j) {
     v.name = j["name"].get<std::string>();
     try {
         v.probes = j.value("probes", "");
-        v.width = j.value("width", v.width);
-        v.height = j.value("height", v.height);
+        // Sizes read as numbers first: nlohmann's conversion of 3.6e20 to int is undefined.
+        const double width = j.value("width", double(v.width)), height = j.value("height", double(v.height));
+        if (!(width >= 1 && width <= 16384 && height >= 1 && height <= 16384) || width != std::floor(width) || height != std::floor(height))
+            return core::makeError("view \"" + v.name + "\": width and height must be whole numbers in [1, 16384]");
+        v.width = int(width), v.height = int(height);
         v.fovYDegrees = j.value("fov", v.fovYDegrees);
         v.zNear = j.value("near", v.zNear);
         v.zFar = j.value("far", v.zFar);
@@ -93,7 +96,7 @@ core::Result<std::vector<ViewSpec>> loadViews(const std::filesystem::path& file)
     json root;
     try {
         root = json::parse(in);
-    } catch (const json::parse_error& e) {
+    } catch (const json::exception& e) { // parse errors, and numbers out of range (out_of_range.406)
         return core::makeError(file.string() + ": not valid JSON (" + e.what() + ")");
     }
     if (!root.is_object() || !root.contains("views") || !root["views"].is_array())

@@ -65,5 +65,11 @@ TEST(ViewsTest, MalformedFilesNameTheFileAndTheProblem) {
     std::ofstream(bad) << "{ not json";
     EXPECT_NE(loadViews(bad).error().find("not valid JSON"), std::string::npos);
     EXPECT_FALSE(loadViews(dir / "does_not_exist_views.json"));
+    // Found by fuzz_views (tools/fuzz.sh): a number JSON cannot hold ended the program through an
+    // uncaught out_of_range, and a height of 3.6e20 was converted to int (undefined behaviour).
+    std::ofstream(bad) << R"({"views": [{"name": "x", "fov": 8888811e488888}]})";
+    EXPECT_NE(loadViews(bad).error().find("not valid JSON"), std::string::npos);
+    std::ofstream(bad) << R"({"views": [{"name": "x", "height": 360000000000000000000}]})";
+    EXPECT_NE(loadViews(bad).error().find("whole numbers in [1, 16384]"), std::string::npos) << loadViews(bad).error();
     std::filesystem::remove(bad);
 }

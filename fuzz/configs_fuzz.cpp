@@ -1,0 +1,60 @@
+// `compare --configs`: the text form ("a=1,b=2;c=3", first byte even) or a JSON file (odd), each
+// cell through the option groups of `render` exactly as the command parses them, then resolved
+// over a small forest into a set-up and local lights: every option parser (vectors, sizes,
+// splits, lights, techniques, filters) and the core behind it, with no GL.
+#include "configs.h"
+#include "fuzz_file.h"
+
+#include "shadowkit/scene/forest.h"
+
+#include <cstdlib>
+
+namespace {
+const shadowkit::scene::Scene& forest() {
+    static const shadowkit::scene::Scene scene = [] {
+        shadowkit::scene::ForestOptions o;
+        o.trees = 20, o.terrainSize = 100, o.terrainResolution = 8, o.rocks = 1, o.buildings = 1, o.movers = 1;
+        return shadowkit::scene::makeForest(o);
+    }();
+    return scene;
+}
+// Errors echo the user's text as typed (a newline in --configs included); the command line's
+// fail() prints them on one line. What must hold here: an error has a message.
+void oneLine(const shadowkit::core::Error& e) {
+    if (e.message.empty()) std::abort();
+}
+} // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+    using namespace shadowkit;
+    if (size == 0 || size > 4096) return 0;
+    const std::string text(reinterpret_cast<const char*>(data + 1), size - 1);
+    const auto cells = app::parseConfigs(data[0] % 2 ? fuzz::writeInput(data + 1, size - 1, ".json").string() : text);
+    if (!cells) return oneLine(cells.errorInfo()), 0;
+    for (const app::Cell& cell : *cells) {
+        const auto o = app::parseCell(cell, "paper", "64x36");
+        if (!o) {
+            oneLine(o.errorInfo());
+            continue;
+        }
+        const auto view = o->view.resolve(forest());
+        if (!view) {
+            oneLine(view.errorInfo());
+            continue;
+        }
+        const auto inputs = o->technique.inputsFor(*view, forest().wsBounds());
+        if (!inputs) {
+            oneLine(inputs.errorInfo());
+            continue;
+        }
+        const auto setup = core::computeShadowSetup(*inputs);
+        if (setup)
+            for (const core::ShadowView& v : setup->views)
+                if (!core::isFinite(v.clipFromWorld)) std::abort(); // never a NaN matrix
+        const auto settings = o->render.settingsFor(*view, *inputs);
+        if (!settings) oneLine(settings.errorInfo());
+        const auto lighting = o->lights.lightingFor(*view, forest().wsBounds());
+        if (!lighting) oneLine(lighting.errorInfo());
+    }
+    return 0;
+}

@@ -1,0 +1,22 @@
+// The fuzz targets' one helper: the input as a file with the extension the loader dispatches on,
+// in memory-backed /dev/shm where there is one, one file per process.
+#pragma once
+
+#include <unistd.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+namespace shadowkit::fuzz {
+
+inline std::filesystem::path writeInput(const uint8_t* data, size_t size, const std::string& extension) {
+    static const std::filesystem::path folder = std::filesystem::exists("/dev/shm") ? "/dev/shm" : std::filesystem::temp_directory_path();
+    const std::filesystem::path file = folder / ("shadowkit_fuzz_" + std::to_string(getpid()) + extension);
+    std::ofstream(file, std::ios::binary).write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
+    return file;
+}
+
+} // namespace shadowkit::fuzz

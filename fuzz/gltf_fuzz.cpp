@@ -1,0 +1,16 @@
+// glTF and glb through the project's reader (libs/scene/src/gltf_read.cpp): any bytes give a
+// scene or a one-line error, never a crash, a hang or a read outside a buffer. The first byte
+// picks the container (even: JSON .gltf, odd: binary .glb).
+#include "fuzz_file.h"
+
+#include "shadowkit/scene/scene_io.h"
+
+#include <cstdlib>
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+    if (size == 0) return 0;
+    const auto file = shadowkit::fuzz::writeInput(data + 1, size - 1, data[0] % 2 ? ".glb" : ".gltf");
+    const auto scene = shadowkit::scene::loadScene(file);
+    if (!scene && scene.error().find('\n') != std::string::npos) std::abort(); // errors are one line
+    return 0;
+}

@@ -1,0 +1,34 @@
+// View files (data/views.json's format): parsed views resolve over a small forest to finite
+// cameras and lights, bad files give a one-line error naming the file.
+#include "fuzz_file.h"
+
+#include "shadowkit/scene/forest.h"
+#include "shadowkit/scene/views.h"
+
+#include <cstdlib>
+
+namespace {
+const shadowkit::scene::Scene& forest() {
+    static const shadowkit::scene::Scene scene = [] {
+        shadowkit::scene::ForestOptions o;
+        o.trees = 20, o.terrainSize = 100, o.terrainResolution = 8, o.rocks = 1, o.buildings = 1, o.movers = 1;
+        return shadowkit::scene::makeForest(o);
+    }();
+    return scene;
+}
+} // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+    using namespace shadowkit;
+    const auto file = fuzz::writeInput(data, size, ".json");
+    const auto views = scene::loadViews(file);
+    if (!views) {
+        if (views.error().find('\n') != std::string::npos || views.error().find(file.string()) == std::string::npos) std::abort();
+        return 0;
+    }
+    for (const scene::ViewSpec& spec : *views) {
+        const scene::ResolvedView view = scene::resolveView(spec, forest());
+        if (!view.camera.validate() || !core::isFinite(view.light.wsDirection)) std::abort(); // a parsed view is a usable one
+    }
+    return 0;
+}
