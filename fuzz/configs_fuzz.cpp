@@ -3,21 +3,12 @@
 // over a small forest into a set-up and local lights: every option parser (vectors, sizes,
 // splits, lights, techniques, filters) and the core behind it, with no GL.
 #include "configs.h"
-#include "fuzz_file.h"
+#include "fuzz_support.h"
 
-#include "shadowkit/scene/forest.h"
 
 #include <cstdlib>
 
 namespace {
-const shadowkit::scene::Scene& forest() {
-    static const shadowkit::scene::Scene scene = [] {
-        shadowkit::scene::ForestOptions o;
-        o.trees = 20, o.terrainSize = 100, o.terrainResolution = 8, o.rocks = 1, o.buildings = 1, o.movers = 1;
-        return shadowkit::scene::makeForest(o);
-    }();
-    return scene;
-}
 // Errors echo the user's text as typed (a newline in --configs included); the command line's
 // fail() prints them on one line. What must hold here: an error has a message.
 void oneLine(const shadowkit::core::Error& e) {
@@ -37,12 +28,12 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
             oneLine(o.errorInfo());
             continue;
         }
-        const auto view = o->view.resolve(forest());
+        const auto view = o->view.resolve(fuzz::smallForest());
         if (!view) {
             oneLine(view.errorInfo());
             continue;
         }
-        const auto inputs = o->technique.inputsFor(*view, forest().wsBounds());
+        const auto inputs = o->technique.inputsFor(*view, fuzz::smallForest().wsBounds());
         if (!inputs) {
             oneLine(inputs.errorInfo());
             continue;
@@ -53,7 +44,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
                 if (!core::isFinite(v.clipFromWorld)) std::abort(); // never a NaN matrix
         const auto settings = o->render.settingsFor(*view, *inputs);
         if (!settings) oneLine(settings.errorInfo());
-        const auto lighting = o->lights.lightingFor(*view, forest().wsBounds());
+        const auto lighting = o->lights.lightingFor(*view, fuzz::smallForest().wsBounds());
         if (!lighting) oneLine(lighting.errorInfo());
     }
     return 0;

@@ -1,7 +1,7 @@
 // glTF and glb through the project's reader (libs/scene/src/gltf_read.cpp): any bytes give a
 // scene or a one-line error, never a crash, a hang or a read outside a buffer. The first byte
 // picks the container (even: JSON .gltf, odd: binary .glb).
-#include "fuzz_file.h"
+#include "fuzz_support.h"
 
 #include "shadowkit/scene/scene_io.h"
 

@@ -1,6 +1,6 @@
 // OBJ through the project's reader (tinyobjloader and libs/scene/src/obj_read.cpp): any bytes
 // give a scene or a one-line error.
-#include "fuzz_file.h"
+#include "fuzz_support.h"
 
 #include "shadowkit/scene/scene_io.h"
 

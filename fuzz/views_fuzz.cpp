@@ -1,22 +1,11 @@
 // View files (data/views.json's format): parsed views resolve over a small forest to finite
 // cameras and lights, bad files give a one-line error naming the file.
-#include "fuzz_file.h"
+#include "fuzz_support.h"
 
-#include "shadowkit/scene/forest.h"
 #include "shadowkit/scene/views.h"
 
 #include <cstdlib>
 
-namespace {
-const shadowkit::scene::Scene& forest() {
-    static const shadowkit::scene::Scene scene = [] {
-        shadowkit::scene::ForestOptions o;
-        o.trees = 20, o.terrainSize = 100, o.terrainResolution = 8, o.rocks = 1, o.buildings = 1, o.movers = 1;
-        return shadowkit::scene::makeForest(o);
-    }();
-    return scene;
-}
-} // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     using namespace shadowkit;
@@ -27,7 +16,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         return 0;
     }
     for (const scene::ViewSpec& spec : *views) {
-        const scene::ResolvedView view = scene::resolveView(spec, forest());
+        const scene::ResolvedView view = scene::resolveView(spec, fuzz::smallForest());
         if (!view.camera.validate() || !core::isFinite(view.light.wsDirection)) std::abort(); // a parsed view is a usable one
     }
     return 0;

@@ -1,6 +1,9 @@
-// The fuzz targets' one helper: the input as a file with the extension the loader dispatches on,
-// in memory-backed /dev/shm where there is one, one file per process.
+// What the fuzz targets share: the input as a file with the extension the loader dispatches on
+// (in memory-backed /dev/shm where there is one, one file per process), and a small forest to
+// resolve views over.
 #pragma once
+
+#include "shadowkit/scene/forest.h"
 
 #include <unistd.h>
 
@@ -17,6 +20,15 @@ inline std::filesystem::path writeInput(const uint8_t* data, size_t size, const 
     const std::filesystem::path file = folder / ("shadowkit_fuzz_" + std::to_string(getpid()) + extension);
     std::ofstream(file, std::ios::binary).write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
     return file;
+}
+
+inline const scene::Scene& smallForest() {
+    static const scene::Scene forest = [] {
+        scene::ForestOptions o;
+        o.trees = 20, o.terrainSize = 100, o.terrainResolution = 8, o.rocks = 1, o.buildings = 1, o.movers = 1;
+        return scene::makeForest(o);
+    }();
+    return forest;
 }
 
 } // namespace shadowkit::fuzz
