@@ -281,8 +281,8 @@ core::Result<Scene> loadGltf(const fs::path& file) {
             for (size_t p = 0; p < gltfMesh.primitives.size(); ++p) {
                 auto [it, inserted] = batchOf.try_emplace({node.mesh, p}, scene.batches.size());
                 if (inserted) {
-                    const std::string where = file.string() + ": mesh " + std::to_string(node.mesh) + " '" + gltfMesh.name + "' primitive " +
-                                              std::to_string(p);
+                    const std::string named = gltfMesh.name.empty() ? "" : " '" + gltfMesh.name + "'";
+                    const std::string where = file.string() + ": mesh " + std::to_string(node.mesh) + named + " primitive " + std::to_string(p);
                     core::Result<Mesh> mesh = convertPrimitive(model, gltfMesh.primitives[p], where);
                     if (!mesh) {
                         failure = mesh.errorInfo();
