@@ -87,6 +87,9 @@ core::Result<scene::ResolvedView> ViewOptions::resolve(const scene::Scene& scene
     auto spec = scene::findView(*views, view);
     if (!spec) return core::makeError("--view: " + spec.error());
     scene::ResolvedView out = scene::resolveView(*spec, sceneData);
+    if (out.framed && eye.empty())
+        fmt::print(stderr, "view {}: framing the loaded scene (no terrain to stand on): eye {:.1f},{:.1f},{:.1f}, near {:.3g} m, far {:.3g} m\n",
+                   view, out.camera.wsEye.x, out.camera.wsEye.y, out.camera.wsEye.z, out.camera.zNear, out.camera.zFar);
 
     if (!size.empty()) {
         std::vector<double> wh;

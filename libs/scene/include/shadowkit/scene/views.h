@@ -51,7 +51,7 @@ struct ResolvedView {
     // plane), or for a framed scene e^-0.3 at its far plane, whatever its size: a model metres
     // wide is not fogged away, a county-sized one keeps its depth cue.
     double fogDensity = 0.002;
-    bool framed = false; // the camera frames the scene's bounds (a scene without a heightfield)
+    bool framed = false; // the camera frames the scene's bounds (a scene without a heightfield); front ends say so
 };
 
 // Reads a views file; errors name the file and the offending entry or field.
