@@ -268,8 +268,17 @@ core::Result<Scene> loadGltf(const fs::path& file) {
     // (mesh, primitive) -> batch index: a mesh placed by many nodes becomes one instanced batch.
     std::map<std::pair<int, size_t>, size_t> batchOf;
     std::optional<core::Error> failure;
+    // glTF's nodes form trees, but a file may list a node as a child many times over: a chain of
+    // nodes each naming the next twice places 2^depth instances (fuzz_gltf hung on one). Placing
+    // more than kMaxNodeVisits nodes is refused.
+    constexpr size_t kMaxNodeVisits = size_t(1) << 20;
+    size_t visits = 0;
     auto visit = [&](auto&& self, int nodeIndex, const glm::mat4& parent, int depth) -> void {
         if (failure || depth > 64 || nodeIndex < 0 || size_t(nodeIndex) >= model.nodes.size()) return; // cycles / bad refs
+        if (++visits > kMaxNodeVisits) {
+            failure = core::makeError(file.string() + ": the node hierarchy places more than 1048576 nodes (a node listed as a child repeatedly?)");
+            return;
+        }
         const tinygltf::Node& node = model.nodes[size_t(nodeIndex)];
         const glm::mat4 world = parent * nodeLocalMatrix(node);
         if (!core::isFinite(glm::dmat4(world))) {

@@ -158,6 +158,15 @@ TEST(GltfReadTest, WhatCannotBeReadIsNamedInOneLine) {
     expectError(loadGltfText("sk_short.gltf", R"("meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],
         "accessors":[{"bufferView":0,"componentType":5126,"count":300,"type":"VEC3"}],)" + views, triangle),
                 "reaches past its buffer");
+    // Found by fuzz_gltf: each node naming the next one twice placed 2^40 instances (a hang).
+    std::string chain = R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[)";
+    for (int i = 0; i < 40; ++i) chain += "{\"children\":[" + std::to_string(i + 1) + "," + std::to_string(i + 1) + "]},";
+    chain += R"({"mesh":0}],"meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],)" + accessor + views +
+             R"(,"buffers":[{"byteLength":36,"uri":"data:application/octet-stream;base64,)" + base64(triangle) + "\"}]}";
+    const auto chainFile = std::filesystem::temp_directory_path() / "sk_chain.gltf";
+    std::ofstream(chainFile) << chain;
+    expectError(scene::loadScene(chainFile), "places more than 1048576 nodes");
+    std::filesystem::remove(chainFile);
     expectError(loadGltfText("sk_badindex.gltf", R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1}]}],
         "accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3"},{"bufferView":1,"componentType":5125,"count":3,"type":"SCALAR"}],
         "bufferViews":[{"buffer":0,"byteLength":36},{"buffer":0,"byteOffset":36,"byteLength":12}])",
