@@ -72,6 +72,16 @@ void expectContained(const ShadowSetup& setup, const std::string& what) {
     }
 }
 
+// Every technique's set-up for these inputs is computed and contained.
+void expectEveryTechniqueContained(ShadowSetupInputs in, const std::string& what) {
+    for (const TechniqueInfo& info : allTechniques()) {
+        in.technique = info.technique;
+        const Result<ShadowSetup> setup = computeShadowSetup(in);
+        ASSERT_TRUE(setup) << setup.error();
+        expectContained(*setup, std::string(info.name) + what);
+    }
+}
+
 // The engine frustum's eight corners: NDC cube corners through the inverse of clip ∘ view.
 std::vector<Vec3> engineCorners(const EngineCamera& e, double nearNdc, double farNdc) {
     const Mat4 worldFromClip = glm::inverse(e.clipFromView * e.viewFromWorld);
@@ -182,12 +192,7 @@ TEST(EngineCameraTest, ReversedZAndInfiniteFarAreRecognisedAndGiveContainedSetup
 
         ShadowSetupInputs in = random.inputs();
         in.camera = *c;
-        for (const TechniqueInfo& info : allTechniques()) {
-            in.technique = info.technique;
-            const Result<ShadowSetup> setup = computeShadowSetup(in);
-            ASSERT_TRUE(setup) << setup.error();
-            expectContained(*setup, std::string(info.name) + " config " + std::to_string(i));
-        }
+        expectEveryTechniqueContained(in, " config " + std::to_string(i));
     }
 }
 
@@ -250,12 +255,7 @@ TEST(EngineCameraTest, OrthographicViewsAreEnclosedWithTheStatedOverscan) {
 
         ShadowSetupInputs in = random.inputs();
         in.camera = *c;
-        for (const TechniqueInfo& info : allTechniques()) {
-            in.technique = info.technique;
-            const Result<ShadowSetup> setup = computeShadowSetup(in);
-            ASSERT_TRUE(setup) << setup.error();
-            expectContained(*setup, std::string(info.name) + " ortho config " + std::to_string(i));
-        }
+        expectEveryTechniqueContained(in, " ortho config " + std::to_string(i));
     }
 }
 

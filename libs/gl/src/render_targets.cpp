@@ -33,6 +33,19 @@ core::Status checkComplete(const Framebuffer& fbo, const char* what) {
     return core::Ok{};
 }
 
+core::Result<ShadowTarget> ShadowTarget::create(int texels, int layerCount) {
+    while (glGetError() != GL_NO_ERROR) {} // earlier errors are not this allocation's
+    ShadowTarget target(texels, layerCount);
+    if (glGetError() == GL_OUT_OF_MEMORY) {
+        const double gib = double(texels) * texels * layerCount * 4.0 / double(1u << 30);
+        return core::environmentError("map_size: the GL driver is out of memory for " + std::to_string(layerCount) + " depth layers of " +
+                                          std::to_string(texels) + "² (" + std::to_string(gib).substr(0, 4) + " GiB)",
+                                      "map_size");
+    }
+    if (auto s = checkComplete(target.framebuffer, "shadow map"); !s) return s.errorInfo();
+    return target;
+}
+
 ShadowTarget::ShadowTarget(int texels, int layerCount)
     : depth(createTexture2DArray(GL_DEPTH_COMPONENT32F, texels, texels, layerCount)), framebuffer(createFramebuffer()),
       size(texels), layers(layerCount) {

@@ -20,6 +20,9 @@ struct ShadowTarget {
     int size = 0, layers = 0;
 
     ShadowTarget(int texels, int layerCount);
+    // Allocates one, or says why the driver could not: out of memory (an environment error
+    // naming map_size), or a framebuffer it cannot complete.
+    static core::Result<ShadowTarget> create(int texels, int layerCount);
     void attachLayer(int layer) const;
     // The layers side by side: near the light bright, cleared texels black, each layer's
     // used depth range stretched.

@@ -366,19 +366,10 @@ core::Status Renderer::Impl::prepare(const core::PerspectiveCamera& camera, cons
         return core::makeError("renderer: set-ups need 1 to " + std::to_string(kMaxCascades) + " shadow maps, got " +
                                std::to_string(maps));
     if (!shadow || shadow->size != setup.mapSize || shadow->layers != maps) {
-        while (glGetError() != GL_NO_ERROR) {} // earlier errors are not this allocation's
-        shadow.emplace(setup.mapSize, maps);
-        if (glGetError() == GL_OUT_OF_MEMORY) {
-            const double gib = double(setup.mapSize) * setup.mapSize * maps * 4.0 / double(1u << 30);
-            shadow.reset();
-            return core::environmentError("map_size: the GL driver is out of memory for " + std::to_string(maps) + " depth layers of " +
-                                              std::to_string(setup.mapSize) + "² (" + std::to_string(gib).substr(0, 4) + " GiB)",
-                                          "map_size");
-        }
-        if (auto s = checkComplete(shadow->framebuffer, "shadow map"); !s) {
-            shadow.reset();
-            return s;
-        }
+        shadow.reset(); // the old maps go before the new ones are allocated
+        auto target = ShadowTarget::create(setup.mapSize, maps);
+        if (!target) return target.errorInfo();
+        shadow.emplace(std::move(target).value());
     }
     // Hardware 2x2 PCF is the sampler's linear filter; every other filter takes its own taps.
     const GLint filter = settings.filter.kind == core::ShadowFilter::Pcf2 ? GL_LINEAR : GL_NEAREST;
