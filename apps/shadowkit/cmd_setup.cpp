@@ -111,13 +111,19 @@ int runSetup(const SetupArgs& args) {
     out["clip_depth"] = "zero_to_one"; // every set-up (core/conventions.h)
     out["depth_clamp"] = setup->depthClamp;
     out["depth_layout"] = setup->depthLayout == core::DepthLayout::Linear ? "linear" : "hyperbolic";
+    out["eye_relative_origin"] = toJson(setup->wsEye);
     json views = json::array();
     for (const core::ShadowView& v : setup->views) {
         json jv = {{"clip_from_world", toJson(v.clipFromWorld)},
                    {"light_from_world", toJson(v.lightFromWorld)},
                    {"clip_from_light", toJson(v.clipFromLight)},
                    {"linear_depth_from_world",
-                    {v.linearDepthFromWorld.x, v.linearDepthFromWorld.y, v.linearDepthFromWorld.z, v.linearDepthFromWorld.w}}};
+                    {v.linearDepthFromWorld.x, v.linearDepthFromWorld.y, v.linearDepthFromWorld.z, v.linearDepthFromWorld.w}},
+                   // Camera-relative rendering: the same map for p − eye_relative_origin.
+                   {"clip_from_eye_relative", toJson(v.clipFromEyeRelative)},
+                   {"linear_depth_from_eye_relative",
+                    {v.linearDepthFromEyeRelative.x, v.linearDepthFromEyeRelative.y, v.linearDepthFromEyeRelative.z,
+                     v.linearDepthFromEyeRelative.w}}};
         if (v.split) jv["split"] = {v.split->x, v.split->y};
         if (json warp = warpJson(v.warp); !warp.is_null()) jv["warp"] = warp;
         views.push_back(jv);

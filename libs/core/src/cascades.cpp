@@ -49,8 +49,9 @@ SliceSphere boundingSphere(const PerspectiveCamera& cam, double n, double f) {
 }
 
 ShadowView stableView(const ShadowSetupInputs& in, const PerspectiveCamera& slice, const ConvexBody& body) {
-    // World-fixed frame (origin at the world origin, north up): independent of the view.
-    const LightFrame frame = makeLightFrame(in.light.wsDirection, Vec3(0.0), {Vec3(0, 0, -1)});
+    // World-fixed frame (origin at the grid origin, by default the world's; north up):
+    // independent of the view, so the texel lattice stays where it is as the camera moves.
+    const LightFrame frame = makeLightFrame(in.light.wsDirection, in.wsGridOrigin, {Vec3(0, 0, -1)});
     const SliceSphere sphere = boundingSphere(slice, slice.zNear, slice.zFar);
     const Vec3 wsCentre = slice.wsEye + sphere.centreDepth * glm::normalize(slice.wsDirection);
     const Vec3 lsCentre(frame.lightFromWorld * Vec4(wsCentre, 1.0));

@@ -170,6 +170,11 @@ ConvexBody::Planes ConvexBody::sweepHalfSpaces(const Vec3& wsDirection) const {
     return planes;
 }
 
+void ConvexBody::translate(const Vec3& offset) {
+    for (Polygon& face : m_faces)
+        for (Vec3& p : face) p += offset;
+}
+
 ConvexBody::Points ConvexBody::vertices() const {
     Points out;
     const double eps = tolerance();

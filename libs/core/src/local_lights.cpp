@@ -188,6 +188,15 @@ Result<LocalLighting> computeLocalLighting(const LocalShadowInputs& inputs, std:
     return out;
 }
 
+LocalLighting rebased(const LocalLighting& lighting, const Vec3& wsOrigin) {
+    LocalLighting out = lighting;
+    for (PointLight& p : out.points) p.wsPosition -= wsOrigin;
+    for (SpotLight& s : out.spots) s.wsPosition -= wsOrigin;
+    for (ShadowSetup& s : out.pointSetups) s = rebased(s, wsOrigin);
+    for (ShadowSetup& s : out.spotSetups) s = rebased(s, wsOrigin);
+    return out;
+}
+
 double lightDistanceDepth(const ShadowSetup& setup, const ShadowView& view, const Vec3& wsPoint) {
     return (glm::distance(wsPoint, setup.wsLightPosition) - view.lightDistance.x) / (view.lightDistance.y - view.lightDistance.x);
 }
@@ -206,6 +215,7 @@ Result<ShadowSetup> computeSpotShadowSetup(const LocalShadowInputs& in, const Sp
     receivers.clip(Plane::fromPointNormal(light.wsPosition + light.range * axis, axis));
     if (receivers.isEmpty()) {
         setup.fallbacks.emplace_back("spot: its cone misses what the camera sees of the scene: no map");
+        setEyeRelativeFromWorld(setup, light.wsPosition);
         return setup;
     }
     const Extent e = extentOf(receivers, lightFromWorld, light.wsPosition, light.range);
@@ -218,6 +228,8 @@ Result<ShadowSetup> computeSpotShadowSetup(const LocalShadowInputs& in, const Sp
     if (r - l < minWidth) l -= 0.5 * minWidth, r += 0.5 * minWidth;
     if (t - b < minWidth) b -= 0.5 * minWidth, t += 0.5 * minWidth;
     setup.views.push_back(localView(lightFromWorld, e, light.range, l, r, b, t));
+    // Relative to the light: a local light's map is of the size of its range around it.
+    setEyeRelativeFromWorld(setup, light.wsPosition);
     return setup;
 }
 
@@ -241,6 +253,7 @@ Result<ShadowSetup> computePointShadowSetup(const LocalShadowInputs& in, const P
         setup.views.push_back(view);
     }
     if (setup.views.empty()) setup.fallbacks.emplace_back("point: its range misses what the camera sees of the scene: no map");
+    setEyeRelativeFromWorld(setup, light.wsPosition);
     return setup;
 }
 

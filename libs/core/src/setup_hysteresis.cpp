@@ -21,6 +21,8 @@
 #include "shadowkit/core/focus_body.h"
 #include "shadowkit/core/output_conventions.h"
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <span>
@@ -34,7 +36,7 @@ void shiftClip(ShadowView& view, double tx, double ty) {
         view.clipFromLight[c][0] += tx * view.clipFromLight[c][3];
         view.clipFromLight[c][1] += ty * view.clipFromLight[c][3];
     }
-    view.clipFromWorld = view.clipFromLight * view.lightFromWorld;
+    view.recomposeClip();
 }
 
 // Fits NDC x and y of the points to [−1, 1] shrunk by 1 + margin: x' = (x − c·w) · s per axis.
@@ -51,7 +53,7 @@ void fitClip(ShadowView& view, std::span<const Vec3> wsPoints, double margin) {
         for (int c = 0; c < 4; ++c)
             view.clipFromLight[c][axis] = scale * (view.clipFromLight[c][axis] - centre * view.clipFromLight[c][3]);
     }
-    view.clipFromWorld = view.clipFromLight * view.lightFromWorld;
+    view.recomposeClip();
 }
 
 // A range [lo, hi] grown by the margin about its middle, never to zero width.
@@ -76,13 +78,26 @@ void fitDepth(ShadowView& view, const ConvexBody::Points& body, double margin, b
         const Vec2 range = widened(lo, hi, margin);
         for (int c = 0; c < 4; ++c)
             view.clipFromLight[c][2] = (view.clipFromLight[c][2] - range.x * view.clipFromLight[c][3]) / (range.y - range.x);
-        view.clipFromWorld = view.clipFromLight * view.lightFromWorld;
+        view.recomposeClip();
     }
     if (refit || linearLo < 0.0 || linearHi > 1.0) {
         const Vec2 range = widened(linearLo, linearHi, margin);
-        view.linearDepthFromWorld.w -= range.x;
-        view.linearDepthFromWorld /= range.y - range.x;
+        for (Vec4* row : {&view.linearDepthFromWorld, &view.linearDepthFromEyeRelative}) {
+            row->w -= range.x;
+            *row /= range.y - range.x;
+        }
     }
+}
+
+// A view held since an earlier frame, its eye-relative members made relative to this frame's
+// eye: composed with the camera's step since then, small wherever the world is.
+ShadowView reanchored(ShadowView view, const Vec3& wsHeldEye, const Vec3& wsEye) {
+    const Mat4 heldFromNow = glm::translate(Mat4(1.0), wsEye - wsHeldEye);
+    view.lightFromEyeRelative = view.lightFromEyeRelative * heldFromNow;
+    view.clipFromEyeRelative = view.clipFromEyeRelative * heldFromNow;
+    const Vec4& row = view.linearDepthFromEyeRelative;
+    view.linearDepthFromEyeRelative = Vec4(Vec3(row), row.w + glm::dot(Vec3(row), wsEye - wsHeldEye));
+    return view;
 }
 
 // The held view shifted by whole texels so that it covers the body, or nothing when no shift
@@ -206,7 +221,7 @@ Result<ShadowSetup> SetupHysteresis::next(const ShadowSetupInputs& inputs) {
 
         std::optional<ShadowView> kept;
         if (!refitAll) {
-            kept = shiftedToCover(m_held->setup.views[i], body, inputs.mapSize);
+            kept = shiftedToCover(reanchored(m_held->setup.views[i], m_held->setup.wsEye, out.wsEye), body, inputs.mapSize);
             if (!kept) {
                 ++m_refits.toCover;
             } else if (texelGrowth(inputs, *kept, refit) > m_options.maxTexelGrowth) {

@@ -7,6 +7,8 @@
 #include "shadowkit/core/tsm.h"
 #include "shadowkit/core/uniform_shadow_map.h"
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -127,12 +129,56 @@ Status validateOptions(const ShadowSetupInputs& inputs) {
 
 Result<ShadowSetup> computeShadowSetup(const ShadowSetupInputs& inputs) {
     if (Status s = validate(inputs); !s) return s.errorInfo();
-    Result<ShadowSetup> setup = runTechnique(inputs);
-    if (setup) {
-        addLinearDepth(inputs, *setup);
-        setup->mapSize = inputs.mapSize;
+    // Large worlds: the technique runs on coordinates relative to the eye. Every technique
+    // commutes with a translation, but its arithmetic does not: 90 km from the origin a
+    // 1.6 cm-deep frustum's matrices, built in world coordinates, put receivers 1e-9 outside
+    // the clip cube in double, and the depth of the whole light volume is a difference of
+    // numbers of 1e5. Relative to the eye the inputs are of the size of the view; the world
+    // matrices are then the eye-relative ones times T(−eye), composed once.
+    const Vec3 wsEye = inputs.camera.wsEye;
+    ShadowSetupInputs centred = inputs;
+    centred.camera.wsEye = Vec3(0.0);
+    centred.wsSceneBounds = Aabb::fromMinMax(inputs.wsSceneBounds.min - wsEye, inputs.wsSceneBounds.max - wsEye);
+    centred.wsGridOrigin = inputs.wsGridOrigin - wsEye;
+    Result<ShadowSetup> setup = runTechnique(centred);
+    if (!setup) return setup;
+    addLinearDepth(centred, *setup);
+    setup->mapSize = inputs.mapSize;
+    for (ShadowView& view : setup->views) {
+        view.lightFromEyeRelative = view.lightFromWorld;
+        view.clipFromEyeRelative = view.clipFromWorld;
+        view.linearDepthFromEyeRelative = view.linearDepthFromWorld;
     }
-    return setup;
+    setup->wsEye = Vec3(0.0);
+    return rebased(*setup, -wsEye);
+}
+
+void setEyeRelativeFromWorld(ShadowSetup& setup, const Vec3& wsEye) {
+    const Mat4 worldFromEyeRelative = glm::translate(Mat4(1.0), wsEye);
+    for (ShadowView& view : setup.views) {
+        view.lightFromEyeRelative = view.lightFromWorld * worldFromEyeRelative;
+        view.clipFromEyeRelative = view.clipFromWorld * worldFromEyeRelative;
+        const Vec4& row = view.linearDepthFromWorld;
+        view.linearDepthFromEyeRelative = Vec4(Vec3(row), row.w + glm::dot(Vec3(row), wsEye));
+    }
+    setup.wsEye = wsEye;
+}
+
+ShadowSetup rebased(const ShadowSetup& setup, const Vec3& wsOrigin) {
+    ShadowSetup out = setup;
+    // q = p − wsOrigin, and p − wsEye = q − (wsEye − wsOrigin): the eye in the new coordinates.
+    const Vec3 qsEye = setup.wsEye - wsOrigin;
+    const Mat4 eyeRelativeFromQ = glm::translate(Mat4(1.0), -qsEye);
+    for (ShadowView& view : out.views) {
+        view.lightFromWorld = view.lightFromEyeRelative * eyeRelativeFromQ;
+        view.clipFromWorld = view.clipFromEyeRelative * eyeRelativeFromQ;
+        const Vec4& row = view.linearDepthFromEyeRelative;
+        view.linearDepthFromWorld = Vec4(Vec3(row), row.w - glm::dot(Vec3(row), qsEye));
+    }
+    out.body.translate(-wsOrigin);
+    out.wsLightPosition -= wsOrigin;
+    out.wsEye = qsEye;
+    return out;
 }
 
 } // namespace shadowkit::core

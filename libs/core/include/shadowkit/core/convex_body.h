@@ -30,6 +30,9 @@ public:
     ConvexBody() = default; // the empty body
     static ConvexBody fromAabb(const Aabb& box);
 
+    // Moves every vertex by `offset` (exact up to the rounding of each sum).
+    void translate(const Vec3& offset);
+
     // Keeps the part of the body with plane.signedDistance(p) <= 0.
     void clip(const Plane& plane);
     void clip(std::span<const Plane> planes);

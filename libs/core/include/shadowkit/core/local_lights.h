@@ -77,6 +77,8 @@ struct LocalLighting {
     size_t size() const { return points.size() + spots.size(); }
     bool empty() const { return size() == 0; }
 };
+// The same lights and set-ups for coordinates measured from `wsOrigin` (core::rebased).
+LocalLighting rebased(const LocalLighting& lighting, const Vec3& wsOrigin);
 // Every light's set-up for this camera (errors name the light: "point[2]: ...").
 Result<LocalLighting> computeLocalLighting(const LocalShadowInputs& inputs, std::span<const PointLight> points,
                                            std::span<const SpotLight> spots);

@@ -148,6 +148,10 @@ struct ShadowSetupInputs {
     // cascades' split distances, placed over the visible range as sample-distribution
     // shadow maps do (Lauritzen et al. 2011). Error field "visible_depth".
     std::optional<Vec2> visibleDepth;
+    // The world point the stabilised cascades' texel lattice passes through
+    // (CascadeOptions::stabilize): fixed in the world, so the lattice does not move with the
+    // camera. computeShadowSetup works relative to the eye and moves it there with the rest.
+    Vec3 wsGridOrigin{0.0};
 };
 
 // The layout a set-up with these inputs stores: the explicit one, else the technique's own.
@@ -191,6 +195,21 @@ struct ShadowView {
     // (LightDistance layout), and for a point light the cube face, 0-5 (local_lights.h).
     Vec2 lightDistance{0.0};
     std::optional<int> face;
+
+    // Large worlds: the same maps for eye-relative coordinates p − ShadowSetup::wsEye. An
+    // engine that renders camera-relative (positions minus the eye in double, then float)
+    // uploads these: their entries are of the size of the scene around the eye, where the
+    // world matrices' translations carry the eye's distance from the origin, which float
+    // cannot (a 6 cm step at 1,000 km). computeShadowSetup builds the set-up here and derives
+    // the world matrices from these, not the other way round.
+    Mat4 lightFromEyeRelative{1.0};
+    Mat4 clipFromEyeRelative{1.0};        // clipFromLight * lightFromEyeRelative
+    Vec4 linearDepthFromEyeRelative{0.0};
+    // After clipFromLight changed: clipFromWorld and clipFromEyeRelative again.
+    void recomposeClip() {
+        clipFromWorld = clipFromLight * lightFromWorld;
+        clipFromEyeRelative = clipFromLight * lightFromEyeRelative;
+    }
 };
 
 struct ShadowSetup {
@@ -209,7 +228,22 @@ struct ShadowSetup {
     LightType lightType = LightType::Directional;
     Vec3 wsLightPosition{0.0}; // local lights
     int skippedFaces = 0;      // point lights: cube faces left out, seeing nothing the camera sees
+    // The world point the views' eye-relative members are relative to: the camera's eye for
+    // a set-up computeShadowSetup made (or, held by SetupHysteresis, the eye of its refit);
+    // a local light's position for its set-up.
+    Vec3 wsEye{0.0};
 };
+
+// For a set-up computed in world coordinates (local lights): the eye-relative members from
+// the world ones, relative to `wsEye`.
+void setEyeRelativeFromWorld(ShadowSetup& setup, const Vec3& wsEye);
+
+// A floating origin: the same set-up for coordinates measured from `wsOrigin` (q = p −
+// wsOrigin): its world members take q, its points and wsEye are moved by −wsOrigin, its
+// eye-relative members are unchanged. Composed in double from the eye-relative matrices, so
+// an origin near the eye (a renderer's scene origin, a tile's centre) loses nothing however
+// far both are from the world's origin.
+ShadowSetup rebased(const ShadowSetup& setup, const Vec3& wsOrigin);
 
 // Checks the options that do not depend on the camera, light or scene (map size, LiSPSM,
 // TSM and cascade options): what a front end can check before it has loaded a scene.
