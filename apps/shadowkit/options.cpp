@@ -39,9 +39,22 @@ void SceneOptions::addTo(CLI::App& cmd) {
     cmd.add_option("--terrain-size", terrainSize, "forest: terrain side in metres")->capture_default_str();
     cmd.add_option("--terrain-resolution", terrainResolution, "forest: terrain quads per side")->capture_default_str();
     cmd.add_option("--movers", movers, "forest: moving objects on circles round the clearing, [0, 1000]")->capture_default_str();
+    cmd.add_option("--world-offset", worldOffset,
+                   "x,y,z metres: stand the scene and its views this far from the world's origin (large-world precision)");
+}
+
+core::Result<core::Vec3> SceneOptions::offset() const {
+    if (worldOffset.empty()) return core::Vec3(0.0);
+    auto v = parseVec3("--world-offset", worldOffset);
+    if (!v) return v;
+    // Beyond 1e12 m even double's step (0.1 mm) is coarser than a millimetre frustum.
+    if (glm::length(*v) > 1e12) return core::makeError(fmt::format("--world-offset: at most 1e12 m from the origin, got '{}'", worldOffset));
+    return v;
 }
 
 core::Result<scene::Scene> SceneOptions::load(bool verbose) const {
+    auto origin = offset();
+    if (!origin) return origin.errorInfo();
     const auto start = std::chrono::steady_clock::now();
     core::Result<scene::Scene> result = core::makeError("");
     if (scene == "forest") {
@@ -63,6 +76,7 @@ core::Result<scene::Scene> SceneOptions::load(bool verbose) const {
                    result->instanceCount(), static_cast<double>(result->triangleCount()) * 1e-6, result->batches.size(), seconds);
     }
     if (result->batches.empty()) return core::makeError(fmt::format("scene {}: is empty (no triangles)", scene));
+    result->wsOrigin = *origin;
     return result;
 }
 
@@ -147,7 +161,10 @@ core::Result<BoundedView> BoundsOptions::resolve(const SceneOptions& scene, cons
         if (!parseNumbers(sceneBounds, ',', v) || v.size() != 6)
             return core::makeError(fmt::format("--scene-bounds: expected minx,miny,minz,maxx,maxy,maxz, got '{}'", sceneBounds));
         if (v[0] > v[3] || v[1] > v[4] || v[2] > v[5]) return core::makeError("--scene-bounds: min must not exceed max on any axis");
-        out.wsBounds = core::Aabb::fromMinMax({v[0], v[1], v[2]}, {v[3], v[4], v[5]});
+        auto origin = scene.offset();
+        if (!origin) return origin.errorInfo();
+        sceneData.wsOrigin = *origin; // the views move with the box
+        out.wsBounds = core::Aabb::fromMinMax(core::Vec3(v[0], v[1], v[2]) + *origin, core::Vec3(v[3], v[4], v[5]) + *origin);
     } else {
         auto loaded = scene.load(false);
         if (!loaded) return loaded.errorInfo();
@@ -157,7 +174,7 @@ core::Result<BoundedView> BoundsOptions::resolve(const SceneOptions& scene, cons
     auto resolved = view.resolve(sceneData);
     if (!resolved) return resolved.errorInfo();
     out.view = *resolved;
-    if (!sceneBounds.empty() && view.eye.empty()) out.view.camera.wsEye.y += out.wsBounds.min.y;
+    if (!sceneBounds.empty() && view.eye.empty()) out.view.camera.wsEye.y += out.wsBounds.min.y - sceneData.wsOrigin.y;
     return out;
 }
 

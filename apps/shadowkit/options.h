@@ -25,8 +25,11 @@ struct SceneOptions {
     double terrainSize = 1024.0;
     int terrainResolution = 256;
     int movers = scene::ForestOptions{}.movers;
+    std::string worldOffset; // "x,y,z": where the scene stands in the world (Scene::wsOrigin)
 
     void addTo(CLI::App& cmd);
+    // --world-offset parsed (0 when not given).
+    core::Result<core::Vec3> offset() const;
     // Builds the forest or loads the file, printing what it made and how long it took.
     core::Result<scene::Scene> load(bool verbose = true) const;
 };

@@ -42,8 +42,13 @@ EngineShadowView toEngineView(const ShadowView& view, const ShadowSetup& setup, 
     textureFromClip[2][2] = conventions.reversedZ ? -1.0 : 1.0;
     textureFromClip[3] = Vec4(0.5, 0.5, conventions.reversedZ ? 1.0 : 0.0, 1.0);
     out.textureFromWorld = textureFromClip * view.clipFromWorld;
+    auto linear = [&](const Vec4& row) { return conventions.reversedZ ? Vec4(0, 0, 0, 1) - row : row; };
+    out.linearDepthFromWorld = linear(view.linearDepthFromWorld);
 
-    out.linearDepthFromWorld = conventions.reversedZ ? Vec4(0, 0, 0, 1) - view.linearDepthFromWorld : view.linearDepthFromWorld;
+    out.clipFromEyeRelative = clipConversion(conventions) * view.clipFromEyeRelative;
+    out.textureFromEyeRelative = textureFromClip * view.clipFromEyeRelative;
+    out.linearDepthFromEyeRelative = linear(view.linearDepthFromEyeRelative);
+    out.wsEye = setup.wsEye;
 
     // Gribb and Hartmann's planes from the core clip matrix's rows: -w <= x <= w, -w <= y <= w,
     // z <= w, and 0 <= z only without depth clamping.

@@ -128,6 +128,9 @@ int shadowkit_compute_setup(const shadowkit_inputs* in, shadowkit_setup* out, ch
         store(view.clipFromWorld, o.clip_from_world);
         store(view.textureFromWorld, o.texture_from_world);
         for (int k = 0; k < 4; ++k) o.linear_depth_from_world[k] = view.linearDepthFromWorld[k];
+        store(view.clipFromEyeRelative, o.clip_from_eye_relative);
+        store(view.textureFromEyeRelative, o.texture_from_eye_relative);
+        for (int k = 0; k < 4; ++k) o.linear_depth_from_eye_relative[k] = view.linearDepthFromEyeRelative[k];
         o.culling_plane_count = static_cast<int>(view.wsCullingPlanes.size());
         for (size_t p = 0; p < view.wsCullingPlanes.size(); ++p) {
             store(view.wsCullingPlanes[p].normal, o.culling_planes[p]);
@@ -137,6 +140,7 @@ int shadowkit_compute_setup(const shadowkit_inputs* in, shadowkit_setup* out, ch
     }
     const BiasSettings bias = recommendedBias(setup->technique, setup->depthLayout);
     out->bias = {bias.slope, bias.constant, bias.normalOffset, bias.receiverPlane};
+    store(setup->wsEye, out->eye_relative_origin);
     out->fallback_count = static_cast<int>(setup->fallbacks.size());
     return 0;
 }

@@ -88,6 +88,9 @@ TEST(CApiTest, GivesTheCppResultsForTheSameInputs) {
             const EngineShadowView view = toEngineView(setup.views[v], setup, conventions);
             expectEqual(view.clipFromWorld, out.views[v].clip_from_world, "clip_from_world");
             expectEqual(view.textureFromWorld, out.views[v].texture_from_world, "texture_from_world");
+            expectEqual(view.textureFromEyeRelative, out.views[v].texture_from_eye_relative, "texture_from_eye_relative");
+            expectEqual(view.clipFromEyeRelative, out.views[v].clip_from_eye_relative, "clip_from_eye_relative");
+            for (int k = 0; k < 3; ++k) ASSERT_EQ(out.eye_relative_origin[k], setup.wsEye[k]);
             ASSERT_EQ(out.views[v].culling_plane_count, static_cast<int>(view.wsCullingPlanes.size()));
             ASSERT_EQ(out.views[v].culling_planes[2][3], view.wsCullingPlanes[2].d);
             const double point[3] = {camera.wsEye.x, 0.0, camera.wsEye.z};

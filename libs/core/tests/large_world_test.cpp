@@ -3,6 +3,7 @@
 // translation invariance, and check what a GPU's floats make of the eye-relative matrices
 // against the world ones.
 #include "shadowkit/core/local_lights.h"
+#include "shadowkit/core/output_conventions.h"
 #include "shadowkit/core/setup_hysteresis.h"
 #include "shadowkit/core/shadow_setup.h"
 #include "setup_configs.h"
@@ -226,5 +227,30 @@ TEST(LargeWorldTest, HeldViewsAndLocalLightsKeepTheirEyeRelativeMatricesConsiste
         const Vec4 there = moved.pointSetups[0].views[v].clipFromWorld * Vec4(p - far, 1.0);
         EXPECT_NEAR(world.x / world.w, there.x / there.w, 1e-6);
         EXPECT_NEAR(world.y / world.w, there.y / there.w, 1e-6);
+    }
+}
+
+TEST(LargeWorldTest, EngineViewsGiveTheSameLookupEyeRelativeInEveryConvention) {
+    ConfigGenerator gen(99);
+    const OutputConventions conventions[] = {OutputConventions::openGL(), OutputConventions::vulkan(), OutputConventions::direct3D()};
+    for (int i = 0; i < 200; ++i) {
+        ShadowSetupInputs in = moved(gen.next(), Vec3(-4e5, 10, 9e5));
+        in.technique = allTechniques()[static_cast<size_t>(i) % allTechniques().size()].technique;
+        auto setup = computeShadowSetup(in);
+        ASSERT_TRUE(setup);
+        for (OutputConventions c : conventions) {
+            c.reversedZ = i % 2 == 0;
+            for (size_t v = 0; v < setup->views.size(); ++v) {
+                const EngineShadowView view = toEngineView(setup->views[v], *setup, c);
+                ASSERT_EQ(view.wsEye, in.camera.wsEye);
+                for (const Vec3& eyeRelative : eyeRelativePointsToHold(in, *setup, v)) {
+                    const Vec3 p = eyeRelative + in.camera.wsEye;
+                    const Vec3 d = ndcOf(view.textureFromEyeRelative, eyeRelative) - ndcOf(view.textureFromWorld, p);
+                    ASSERT_LE(std::max({std::abs(d.x), std::abs(d.y), std::abs(d.z)}), 1e-6);
+                    ASSERT_NEAR(glm::dot(view.linearDepthFromEyeRelative, Vec4(eyeRelative, 1.0)),
+                                glm::dot(view.linearDepthFromWorld, Vec4(p, 1.0)), 1e-6);
+                }
+            }
+        }
     }
 }

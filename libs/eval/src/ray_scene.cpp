@@ -88,6 +88,7 @@ core::Result<std::unique_ptr<RayScene>> RayScene::build(const scene::Scene& scen
     rtcCommitScene(impl.top);
     if (!impl.lastError.empty()) return core::makeError("ray tracer: " + impl.lastError);
     rs->m_diagonal = scene.wsBounds().diagonal();
+    rs->m_wsOrigin = scene.wsOrigin;
     return rs;
 }
 
@@ -116,9 +117,10 @@ bool RayScene::intersect(const core::Vec3& origin, const core::Vec3& direction, 
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRayHit rh{};
-    rh.ray.org_x = static_cast<float>(origin.x);
-    rh.ray.org_y = static_cast<float>(origin.y);
-    rh.ray.org_z = static_cast<float>(origin.z);
+    const core::Vec3 local = origin - m_wsOrigin;
+    rh.ray.org_x = static_cast<float>(local.x);
+    rh.ray.org_y = static_cast<float>(local.y);
+    rh.ray.org_z = static_cast<float>(local.z);
     rh.ray.dir_x = static_cast<float>(direction.x);
     rh.ray.dir_y = static_cast<float>(direction.y);
     rh.ray.dir_z = static_cast<float>(direction.z);
@@ -143,9 +145,10 @@ bool RayScene::occluded(const core::Vec3& origin, const core::Vec3& direction, d
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRay ray{};
-    ray.org_x = static_cast<float>(origin.x);
-    ray.org_y = static_cast<float>(origin.y);
-    ray.org_z = static_cast<float>(origin.z);
+    const core::Vec3 local = origin - m_wsOrigin;
+    ray.org_x = static_cast<float>(local.x);
+    ray.org_y = static_cast<float>(local.y);
+    ray.org_z = static_cast<float>(local.z);
     ray.dir_x = static_cast<float>(direction.x);
     ray.dir_y = static_cast<float>(direction.y);
     ray.dir_z = static_cast<float>(direction.z);

@@ -76,7 +76,7 @@ core::Status dumpBuffers(const std::filesystem::path& dir, const core::RasterBuf
     auto flat = [](const auto& vectors) {
         std::vector<float> out;
         for (const auto& v : vectors)
-            for (int k = 0; k < v.length(); ++k) out.push_back(v[k]);
+            for (int k = 0; k < v.length(); ++k) out.push_back(static_cast<float>(v[k]));
         return out;
     };
     std::vector<uint8_t> classes(comparison.classes.size());

@@ -72,7 +72,7 @@ TemporalFigures compareFrames(const ShadowStates& previous, const ShadowStates& 
         const uint8_t now = current.state[i];
         if (!(now & kEvaluated)) continue;
         if (before.raster.surfaceId[i] != current.surfaceId[i] || !sameDepth(before.raster.viewDepth[i], current.viewDepth[i])) continue;
-        if (!seenBefore(core::Vec3(current.wsPosition[i]), current.surfaceId[i])) continue;
+        if (!seenBefore(current.wsPosition[i], current.surfaceId[i])) continue;
         ++out.comparedPx;
         const bool renderedLitBefore = before.raster.shadowTerm[i] >= options.shadowThreshold;
         const bool truthLitBefore = before.truthLit[i] != 0;

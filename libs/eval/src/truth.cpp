@@ -29,7 +29,7 @@ void localLightTruth(const RayScene& rays, const TruthBuffers& hits, const core:
     tbb::parallel_for(tbb::blocked_range<size_t>(0, lit.size()), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t i = r.begin(); i < r.end(); ++i) {
             if (hits.surfaceId[i] == 0) continue;
-            const core::Vec3 p(hits.wsPosition[i]), n(hits.wsNormal[i]);
+            const core::Vec3 p = hits.wsPosition[i], n(hits.wsNormal[i]);
             const core::Vec3 toLight = wsLight - p;
             const double distance = glm::length(toLight);
             if (!(distance > 0.0) || !admits(p, distance) || !(glm::dot(n, toLight) > 0.0)) continue;
@@ -70,7 +70,7 @@ TruthBuffers computeTruth(const RayScene& rays, const core::PerspectiveCamera& c
     const size_t n = static_cast<size_t>(width) * static_cast<size_t>(height);
     t.surfaceId.assign(n, 0);
     t.viewDepth.assign(n, 0.0f);
-    t.wsPosition.assign(n, glm::vec3(0.0f));
+    t.wsPosition.assign(n, core::Vec3(0.0));
     t.wsNormal.assign(n, glm::vec3(0.0f));
     t.facesLight.assign(n, 0);
     t.lit.assign(n, 0);
@@ -91,7 +91,7 @@ TruthBuffers computeTruth(const RayScene& rays, const core::PerspectiveCamera& c
                     const core::Vec3 p = camera.wsEye + hit.t * dir;
                     t.surfaceId[i] = hit.instance + 1;
                     t.viewDepth[i] = static_cast<float>(hit.t);
-                    t.wsPosition[i] = glm::vec3(p);
+                    t.wsPosition[i] = p;
                     t.wsNormal[i] = glm::vec3(hit.wsGeometricNormal);
                     const double nDotL = glm::dot(hit.wsGeometricNormal, towardsLight);
                     if (!(nDotL > 0.0)) continue;
@@ -114,7 +114,7 @@ std::vector<uint8_t> litAt(const RayScene& rays, const TruthBuffers& hits, const
             if (hits.surfaceId[i] == 0) continue;
             const core::Vec3 n(hits.wsNormal[i]);
             if (!(glm::dot(n, towardsLight) > 0.0)) continue;
-            lit[i] = reachesLight(rays, core::Vec3(hits.wsPosition[i]), n, towardsLight, offset);
+            lit[i] = reachesLight(rays, hits.wsPosition[i], n, towardsLight, offset);
         }
     });
     return lit;

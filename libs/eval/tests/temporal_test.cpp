@@ -42,7 +42,7 @@ GroundFrame ground(const core::PerspectiveCamera& cam, double renderedEdge, doub
     const size_t n = size_t(kSize) * size_t(kSize);
     truth.surfaceId.assign(n, 0);
     truth.viewDepth.assign(n, 0.0f);
-    truth.wsPosition.assign(n, glm::vec3(0.0f));
+    truth.wsPosition.assign(n, core::Vec3(0.0));
     comparison.classes.assign(n, eval::PixelClass::NotEvaluated);
     raster.shadowTerm.assign(n, 1.0f);
     raster.surfaceId.assign(n, 0);
@@ -57,7 +57,7 @@ GroundFrame ground(const core::PerspectiveCamera& cam, double renderedEdge, doub
             const size_t i = size_t(y) * size_t(kSize) + size_t(x);
             truth.surfaceId[i] = raster.surfaceId[i] = 1;
             truth.viewDepth[i] = raster.viewDepth[i] = static_cast<float>(t);
-            truth.wsPosition[i] = glm::vec3(p);
+            truth.wsPosition[i] = p;
             const bool renderedLit = p.x >= renderedEdge, truthLit = p.x >= truthEdge;
             comparison.classes[i] = renderedLit ? (truthLit ? eval::PixelClass::LitCorrect : eval::PixelClass::FalseLit)
                                                 : (truthLit ? eval::PixelClass::FalseShadow : eval::PixelClass::ShadowCorrect);

@@ -47,7 +47,7 @@ void expectTruthMatches(const scene::Scene& s, const core::DirectionalLight& sun
     int compared = 0, shadowed = 0, mismatches = 0;
     for (size_t i = 0; i < truth.surfaceId.size(); ++i) {
         if (truth.surfaceId[i] != kGroundId || !truth.facesLight[i]) continue;
-        const std::optional<bool> expected = analyticShadow(core::Vec3(truth.wsPosition[i]));
+        const std::optional<bool> expected = analyticShadow(truth.wsPosition[i]);
         if (!expected) continue;
         ++compared;
         shadowed += *expected;
@@ -141,7 +141,7 @@ TEST(TruthTest, PointAndSpotLightsMatchTheAnalyticShadowRangeAndCone) {
     int compared = 0, shadowed = 0, outOfRange = 0, outsideCone = 0, mismatches = 0;
     for (size_t i = 0; i < hits.surfaceId.size(); ++i) {
         if (hits.surfaceId[i] != kGroundId) continue;
-        const core::Vec3 p(hits.wsPosition[i]);
+        const core::Vec3 p = hits.wsPosition[i];
         // The lamp: unlit beyond its range, else lit unless the box is in the way.
         const double d = glm::distance(p, lamp.wsPosition);
         if (d > lamp.range + 1e-3) {

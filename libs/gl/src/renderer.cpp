@@ -142,7 +142,28 @@ struct Renderer::Impl {
     PassTimer shadowTimer, mainTimer, localTimer;
     std::unique_ptr<LocalShadowMaps> localMaps;
     std::unique_ptr<LinePass> lines;
-    core::LocalLighting localLights; // Renderer::setLocalLights
+    core::LocalLighting localLights; // Renderer::setLocalLights, in the scene's coordinates
+    core::LocalLighting wsLocalLights; // the same as given: Renderer::localLights()
+    core::Vec3 wsOrigin{0.0};          // Scene::wsOrigin: where the GPU's coordinates start
+
+    // A frame in the scene's coordinates, where everything on the GPU lives (scene.h): the
+    // camera moved by −wsOrigin, the set-up rebased there in double from its eye-relative
+    // matrices (core::rebased), so float sees numbers of the scene's size however far from
+    // the world's origin it stands. A scene at the origin is drawn with the set-up as given.
+    struct SceneFrame {
+        core::PerspectiveCamera camera;
+        std::optional<core::ShadowSetup> rebasedSetup;
+        const core::ShadowSetup* givenSetup = nullptr;
+        const core::ShadowSetup& setup() const { return rebasedSetup ? *rebasedSetup : *givenSetup; }
+    };
+    SceneFrame inScene(const core::PerspectiveCamera& wsCamera, const core::ShadowSetup& wsSetup) const {
+        SceneFrame frame{wsCamera, std::nullopt, &wsSetup};
+        if (wsOrigin == core::Vec3(0.0)) return frame;
+        frame.camera.wsEye -= wsOrigin;
+        frame.rebasedSetup = core::rebased(wsSetup, wsOrigin);
+        return frame;
+    }
+
     std::vector<PassList> localLists; // LocalShadowMaps::listCount of them
     int evalLight = -1;               // the eval pass's light (renderEvalBuffers)
 
@@ -173,6 +194,7 @@ Renderer::~Renderer() = default;
 core::Result<std::unique_ptr<Renderer>> Renderer::create(const scene::Scene& scene) {
     auto renderer = std::unique_ptr<Renderer>(new Renderer);
     Impl& r = *renderer->m_impl;
+    r.wsOrigin = scene.wsOrigin;
     using namespace shaders;
     auto depth = buildProgram("depth pass", {kDepthPassGlsl, kDepthVert}, {kDepthPassGlsl, kDepthFrag});
     if (!depth) return depth.errorInfo();
@@ -521,9 +543,12 @@ int Renderer::Impl::blurPass(const RenderSettings& settings) {
     return 1 - target; // the last one written
 }
 
-core::Result<FrameStats> Renderer::render(const core::PerspectiveCamera& camera, const core::DirectionalLight& light,
-                                          const core::ShadowSetup& setup, const RenderSettings& settings) {
+core::Result<FrameStats> Renderer::render(const core::PerspectiveCamera& wsCamera, const core::DirectionalLight& light,
+                                          const core::ShadowSetup& wsSetup, const RenderSettings& settings) {
     Impl& r = *m_impl;
+    const Impl::SceneFrame frame = r.inScene(wsCamera, wsSetup);
+    const core::PerspectiveCamera& camera = frame.camera;
+    const core::ShadowSetup& setup = frame.setup();
     if (auto s = r.prepare(camera, light, setup, settings); !s) return s.errorInfo();
     if (!r.color || r.color->width != settings.width || r.color->height != settings.height) {
         r.color.emplace(settings.width, settings.height);
@@ -573,11 +598,14 @@ core::Result<FrameStats> Renderer::render(const core::PerspectiveCamera& camera,
     return stats;
 }
 
-core::Result<core::RasterBuffers> Renderer::renderEvalBuffers(const core::PerspectiveCamera& camera,
+core::Result<core::RasterBuffers> Renderer::renderEvalBuffers(const core::PerspectiveCamera& wsCamera,
                                                               const core::DirectionalLight& light,
-                                                              const core::ShadowSetup& setup,
+                                                              const core::ShadowSetup& wsSetup,
                                                               const RenderSettings& settings, int localLight) {
     Impl& r = *m_impl;
+    const Impl::SceneFrame frame = r.inScene(wsCamera, wsSetup);
+    const core::PerspectiveCamera& camera = frame.camera;
+    const core::ShadowSetup& setup = frame.setup();
     if (localLight < -1 || localLight >= static_cast<int>(r.localLights.size()))
         return core::makeError("renderer: local light " + std::to_string(localLight) + " does not exist (" +
                                std::to_string(r.localLights.size()) + " set)");
@@ -596,10 +624,13 @@ core::Result<core::RasterBuffers> Renderer::renderEvalBuffers(const core::Perspe
     return buffers;
 }
 
-core::Result<std::optional<core::Vec2>> Renderer::visibleDepth(const core::PerspectiveCamera& camera,
+core::Result<std::optional<core::Vec2>> Renderer::visibleDepth(const core::PerspectiveCamera& wsCamera,
                                                                const core::DirectionalLight& light,
-                                                               const core::ShadowSetup& setup, const RenderSettings& settings) {
+                                                               const core::ShadowSetup& wsSetup, const RenderSettings& settings) {
     Impl& r = *m_impl;
+    const Impl::SceneFrame frame = r.inScene(wsCamera, wsSetup);
+    const core::PerspectiveCamera& camera = frame.camera;
+    const core::ShadowSetup& setup = frame.setup();
     // The culling's own pre-pass, or one made for the purpose; no shadow pass.
     r.prepassForDepthRange = true;
     const core::Status prepared = r.prepare(camera, light, setup, settings);
@@ -659,22 +690,30 @@ core::Status Renderer::setLocalLights(core::LocalLighting lights) {
         return core::environmentError("local_map_size: must be in [" + std::to_string(core::kMinMapSize) + ", " + std::to_string(maxSize) +
                                           "] texels on this GL driver (GL_MAX_CUBE_MAP_TEXTURE_SIZE), got " + std::to_string(lights.mapSize),
                                       "local_map_size");
-    m_impl->localLights = std::move(lights);
+    m_impl->localLights = m_impl->wsOrigin == core::Vec3(0.0) ? lights : core::rebased(lights, m_impl->wsOrigin);
+    m_impl->wsLocalLights = std::move(lights);
     return core::Ok{};
 }
 
-const core::LocalLighting& Renderer::localLights() const { return m_impl->localLights; }
+const core::LocalLighting& Renderer::localLights() const { return m_impl->wsLocalLights; }
 
 scene::Image Renderer::readLocalShadowMaps() const { return m_impl->localMaps->readAsGreys(m_impl->localLights); }
 
-const core::Aabb& Renderer::wsSceneBounds() const { return m_impl->visibility->wsBounds(); }
+core::Aabb Renderer::wsSceneBounds() const {
+    const core::Aabb& local = m_impl->visibility->bounds();
+    return local.isEmpty() ? local : core::Aabb::fromMinMax(local.min + m_impl->wsOrigin, local.max + m_impl->wsOrigin);
+}
 
 void Renderer::drawLines(const core::PerspectiveCamera& camera, std::span<const LineSegment> lines) {
     Impl& r = *m_impl;
     if (!r.color) return;
     glBindFramebuffer(GL_FRAMEBUFFER, r.color->framebuffer.id());
     glViewport(0, 0, r.color->width, r.color->height);
-    r.lines->draw(camera.clipFromWorld(), lines);
+    core::PerspectiveCamera local = camera; // in the scene's coordinates, as Impl::inScene
+    local.wsEye -= r.wsOrigin;
+    std::vector<LineSegment> segments(lines.begin(), lines.end());
+    for (LineSegment& line : segments) line.wsFrom -= r.wsOrigin, line.wsTo -= r.wsOrigin;
+    r.lines->draw(local.clipFromWorld(), segments);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 

@@ -54,7 +54,7 @@ class Visibility {
 public:
     Visibility(const scene::Scene& scene, std::span<const scene::MeshLods> lods);
 
-    const core::Aabb& wsBounds() const { return m_hierarchy.bounds(); }
+    const core::Aabb& bounds() const { return m_hierarchy.bounds(); } // in the scene's coordinates
     const core::InstanceHierarchy& hierarchy() const { return m_hierarchy; }
 
     // The instances the half-spaces may see (every instance when `cull` is false), each at

@@ -40,7 +40,9 @@ technique: standard, focused, lispsm, psm, tsm, csm; cascades, lambda, cascade_w
 Returns a dict: technique, depth_layout, map_size, depth_clamp, bias (the recommended one),
 fallbacks, body (the focus body's points) and views, each with clip_from_world,
 texture_from_world, light_from_world, clip_from_light, linear_depth_from_world,
-culling_planes (k x 4: n, d; outside where n.p + d > 0) and split. Raises ValueError with the
+culling_planes (k x 4: n, d; outside where n.p + d > 0), split, and for camera-relative
+rendering clip_from_eye_relative, texture_from_eye_relative and linear_depth_from_eye_relative
+(taking p - eye_relative_origin, the camera's eye). Raises ValueError with the
 core's message for bad input.)",
         py::kw_only(), py::arg("eye") = d.eye, py::arg("direction") = d.direction, py::arg("up") = d.up, py::arg("fov") = d.fovYDegrees,
         py::arg("aspect") = d.aspect, py::arg("near") = d.zNear, py::arg("far") = d.zFar, py::arg("view_from_world") = py::none(),

@@ -65,6 +65,11 @@ py::dict viewDict(const ShadowView& core, const EngineShadowView& view) {
     py::array_t<double> row(4);
     for (py::ssize_t i = 0; i < 4; ++i) row.mutable_at(i) = view.linearDepthFromWorld[static_cast<int>(i)];
     d["linear_depth_from_world"] = row;
+    d["clip_from_eye_relative"] = toNumpy(view.clipFromEyeRelative);
+    d["texture_from_eye_relative"] = toNumpy(view.textureFromEyeRelative);
+    py::array_t<double> relativeRow(4);
+    for (py::ssize_t i = 0; i < 4; ++i) relativeRow.mutable_at(i) = view.linearDepthFromEyeRelative[static_cast<int>(i)];
+    d["linear_depth_from_eye_relative"] = relativeRow;
     py::array_t<double> planes({static_cast<py::ssize_t>(view.wsCullingPlanes.size()), py::ssize_t(4)});
     for (size_t p = 0; p < view.wsCullingPlanes.size(); ++p) {
         const Plane& plane = view.wsCullingPlanes[p];
@@ -125,6 +130,7 @@ py::dict setup(const SetupArguments& a) {
     py::list body;
     for (const Vec3& p : s.body.vertices()) body.append(py::make_tuple(p.x, p.y, p.z));
     out["body"] = body;
+    out["eye_relative_origin"] = py::make_tuple(s.wsEye.x, s.wsEye.y, s.wsEye.z);
     return out;
 }
 

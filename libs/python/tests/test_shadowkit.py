@@ -44,6 +44,8 @@ class SetupTest(unittest.TestCase):
                 # The default conventions are the core's own: the very same doubles.
                 np.testing.assert_array_equal(view["clip_from_world"], column_major(cli_view["clip_from_world"]))
                 np.testing.assert_array_equal(view["light_from_world"], column_major(cli_view["light_from_world"]))
+                np.testing.assert_array_equal(view["clip_from_eye_relative"], column_major(cli_view["clip_from_eye_relative"]))
+            self.assertEqual(list(got["eye_relative_origin"]), expected["eye_relative_origin"])
 
     def test_engine_matrices_give_the_eye_direction_set_up(self):
         eye, target = np.array([3.0, 6.0, 14.0]), np.array([0.0, 0.0, -30.0])

@@ -190,7 +190,7 @@ core::Result<ResolvedView> viewAt(const CameraPath& path, const Scene& scene, do
     ResolvedView view;
     view.width = path.width;
     view.height = path.height;
-    view.camera.wsEye = eye;
+    view.camera.wsEye = scene.wsOrigin + eye; // the keys are in the scene's coordinates
     view.camera.wsDirection = glm::normalize(target - eye);
     view.camera.wsUp = core::Vec3(0, 1, 0);
     view.camera.fovYDegrees = path.fovYDegrees;

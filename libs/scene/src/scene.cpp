@@ -12,6 +12,11 @@ void Mesh::computeBounds() {
 }
 
 core::Aabb Scene::wsBounds() const {
+    const core::Aabb local = localBounds();
+    return local.isEmpty() ? local : core::Aabb::fromMinMax(local.min + wsOrigin, local.max + wsOrigin);
+}
+
+core::Aabb Scene::localBounds() const {
     core::Aabb bounds;
     for (const MeshBatch& batch : batches) {
         const core::Aabb& os = meshes[batch.mesh].osBounds;
@@ -89,7 +94,7 @@ double Scene::groundHeightAt(double x, double z) const {
         }
     }
     if (std::isfinite(best)) return best;
-    const core::Aabb bounds = wsBounds();
+    const core::Aabb bounds = localBounds();
     return bounds.isEmpty() ? 0.0 : bounds.min.y;
 }
 

@@ -130,8 +130,8 @@ ResolvedView resolveView(const ViewSpec& view, const Scene& scene) {
     cam.fovYDegrees = view.fovYDegrees;
     cam.aspect = double(view.width) / double(view.height);
     // Where the view's local lights are placed from: the ground under the eye, or the framed centre.
-    core::Vec3 wsOrigin(view.eyeX, 0.0, view.eyeZ);
-    const core::Aabb bounds = scene.wsBounds();
+    core::Vec3 lightsFrom(view.eyeX, 0.0, view.eyeZ);
+    const core::Aabb bounds = scene.localBounds(); // placed in the scene's coordinates, moved to the world's at the end
     out.framed = !scene.terrain && !bounds.isEmpty();
     if (!out.framed) {
         cam.wsEye = core::Vec3(view.eyeX, scene.groundHeightAt(view.eyeX, view.eyeZ) + view.eyeHeight, view.eyeZ);
@@ -160,7 +160,7 @@ ResolvedView resolveView(const ViewSpec& view, const Scene& scene) {
         cam.wsEye = centre - distance * forward;
         cam.zNear = std::max(0.9 * nearest, 1e-3 * farthest);
         cam.zFar = 1.1 * farthest;
-        wsOrigin = core::Vec3(centre.x, 0.0, centre.z);
+        lightsFrom = core::Vec3(centre.x, 0.0, centre.z);
         // e^-0.3 of the light left at the far plane: depth for the eye, hardly a veil.
         out.fogDensity = 0.3 / cam.zFar;
     }
@@ -172,14 +172,17 @@ ResolvedView resolveView(const ViewSpec& view, const Scene& scene) {
     // The view's frame on the ground: right and forward by its azimuth alone (not its pitch).
     const core::Vec3 forward(std::sin(az), 0.0, -std::cos(az)), right(std::cos(az), 0.0, std::sin(az)), up(0.0, 1.0, 0.0);
     for (const ViewLight& l : view.lights) {
-        core::Vec3 ws = wsOrigin + l.at.x * right + l.at.z * forward;
-        ws.y = scene.groundHeightAt(ws.x, ws.z) + l.at.y;
+        core::Vec3 position = lightsFrom + l.at.x * right + l.at.z * forward;
+        position.y = scene.groundHeightAt(position.x, position.z) + l.at.y;
         if (l.spot)
-            out.spots.push_back({.wsPosition = ws, .wsDirection = l.aim.x * right + l.aim.y * up + l.aim.z * forward,
+            out.spots.push_back({.wsPosition = position, .wsDirection = l.aim.x * right + l.aim.y * up + l.aim.z * forward,
                                  .coneDegrees = l.coneDegrees, .range = l.range});
         else
-            out.points.push_back({.wsPosition = ws, .range = l.range});
+            out.points.push_back({.wsPosition = position, .range = l.range});
     }
+    cam.wsEye += scene.wsOrigin;
+    for (core::SpotLight& s : out.spots) s.wsPosition += scene.wsOrigin;
+    for (core::PointLight& p : out.points) p.wsPosition += scene.wsOrigin;
     return out;
 }
 

@@ -91,6 +91,10 @@ typedef struct shadowkit_view {
     double culling_planes[6][4];   /* (nx, ny, nz, d): a point p is outside when n.p + d > 0 */
     int culling_plane_count;
     double split_near, split_far;  /* cascades: the view depths this map serves; else 0, 0 */
+    /* Camera-relative rendering: the same for p - eye_relative_origin (shadowkit_setup). */
+    double clip_from_eye_relative[16];
+    double texture_from_eye_relative[16];
+    double linear_depth_from_eye_relative[4];
 } shadowkit_view;
 
 typedef struct shadowkit_bias {
@@ -108,6 +112,7 @@ typedef struct shadowkit_setup {
     int view_count;
     shadowkit_view views[SHADOWKIT_MAX_VIEWS];
     shadowkit_bias bias; /* the recommended bias for this technique and layout */
+    double eye_relative_origin[3]; /* the camera's eye: what the views' *_eye_relative take p minus */
     int fallback_count;  /* degenerate cases met (view along the light, a view missing the scene) */
 } shadowkit_setup;
 

@@ -58,6 +58,12 @@ struct EngineShadowView {
     // (with clamping, casters between the map's near plane and the light still cast).
     SmallVector<Plane, 6> wsCullingPlanes;
     std::optional<Vec2> split; // cascades: the view-depth range this map serves
+    // Camera-relative rendering (large worlds): the same three for p − wsEye, the eye the set-up
+    // was computed around (ShadowView's eye-relative members).
+    Mat4 clipFromEyeRelative{1.0};
+    Mat4 textureFromEyeRelative{1.0};
+    Vec4 linearDepthFromEyeRelative{0.0};
+    Vec3 wsEye{0.0};
     // What referenceDepth needs: the set-up's layout, the convention, and for local lights the
     // light and the distance range the stored depth spans.
     DepthLayout depthLayout = DepthLayout::Hyperbolic;

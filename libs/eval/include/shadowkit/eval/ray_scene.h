@@ -16,6 +16,9 @@ struct RayHit {
     core::Vec3 wsGeometricNormal{}; // unit, world space, facing against the ray
 };
 
+// Rays come in world coordinates (double); the BVHs hold the scene in its own coordinates
+// (scene::Scene::wsOrigin at 0), where Embree's floats keep their precision, and each ray's
+// origin is moved there in double before it becomes float.
 class RayScene {
 public:
     // One Embree scene per mesh, instanced once per placement (10,000 trees share four
@@ -36,12 +39,14 @@ public:
     core::Status moveInstances(const scene::Scene& scene, std::span<const uint32_t> moved);
 
     double sceneDiagonal() const { return m_diagonal; }
+    const core::Vec3& wsOrigin() const { return m_wsOrigin; } // the scene's (Scene::wsOrigin)
 
 private:
     RayScene() = default;
     struct Impl;
     std::unique_ptr<Impl> m_impl;
     double m_diagonal = 0.0;
+    core::Vec3 m_wsOrigin{0.0};
 };
 
 } // namespace shadowkit::eval

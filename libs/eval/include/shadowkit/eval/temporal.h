@@ -21,7 +21,7 @@ struct ShadowStates {
     std::vector<uint8_t> state;
     std::vector<uint32_t> surfaceId;   // the truth's surface
     std::vector<float> viewDepth;      // the truth's view depth
-    std::vector<glm::vec3> wsPosition; // the truth's hit point
+    std::vector<core::Vec3> wsPosition; // the truth's hit point
 };
 
 // A frame's states from its camera, truth and comparison (sizes must agree).

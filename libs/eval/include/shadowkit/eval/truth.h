@@ -17,7 +17,7 @@ struct TruthBuffers {
     // Row-major, top row first.
     std::vector<uint32_t> surfaceId;   // global instance index + 1; 0 where the ray missed
     std::vector<float> viewDepth;      // metres along the view direction (0 on a miss)
-    std::vector<glm::vec3> wsPosition; // hit point
+    std::vector<core::Vec3> wsPosition; // hit point (double: float has a 6 cm step 1,000 km out)
     std::vector<glm::vec3> wsNormal;   // geometric normal facing the viewer
     std::vector<uint8_t> facesLight;   // N·L > 0
     std::vector<uint8_t> lit;          // the shadow ray reached the light (only where facesLight)

@@ -144,6 +144,10 @@ struct FrameStats {
     double receiverMaskMilliseconds = 0.0; // CPU, incl. the read-back (counted in cullMilliseconds)
 };
 
+// Cameras, lights, set-ups and lines come in world coordinates; the renderer draws in the
+// scene's (scene::Scene::wsOrigin at 0), rebasing every frame's set-up in double from its
+// eye-relative matrices, so a scene 1,000 km from the origin is drawn as precisely as at it.
+// Inside libs/gl, `ws` names that space.
 class Renderer {
 public:
     // Uploads the scene and builds the programs; needs a current Context.
@@ -193,7 +197,7 @@ public:
     core::Status moveInstances(const scene::Scene& scene, std::span<const uint32_t> moved);
 
     // World bounds of every instance, from the instance hierarchy: O(1).
-    const core::Aabb& wsSceneBounds() const;
+    core::Aabb wsSceneBounds() const;
 
     // The last rendered frame (top row first).
     scene::Image readColor() const;

@@ -56,15 +56,24 @@ struct InstanceRef {
     uint32_t batch = 0, instance = 0;
 };
 
+// Coordinates: a scene stands at `wsOrigin` in the world, and everything it holds —
+// transforms, terrain, tracks, the heights groundHeightAt gives — is in its own coordinates,
+// relative to that origin (world point = wsOrigin + scene point). Float keeps its precision
+// near the scene wherever the scene is: 1,000 km out a float world coordinate has a 6 cm
+// step, a float scene coordinate a few micrometres. Cameras, lights and set-ups are in world
+// coordinates (double); the renderer and the ray tracer meet them in the scene's
+// (gl::Renderer, eval::RayScene). `worldFromObject` below takes object space to the scene's.
 struct Scene {
+    core::Vec3 wsOrigin{0.0}; // `--world-offset`; 0: scene and world coordinates agree
     std::vector<Mesh> meshes;
     std::vector<MeshBatch> batches;
     std::optional<Heightfield> terrain; // set for procedural terrain: ground height lookups
     std::vector<Track> tracks;          // animated instances (a batch's `dynamic` instances)
 
-    // World-space bounds of every instance (empty box for an empty scene).
+    // Bounds of every instance (empty box for an empty scene): in the world, and in the scene's own coordinates.
     core::Aabb wsBounds() const;
-    // Each instance's world-space box, batch after batch (the global instance order).
+    core::Aabb localBounds() const;
+    // Each instance's box in the scene's coordinates, batch after batch (the global instance order).
     std::vector<core::Aabb> instanceBounds() const;
     size_t triangleCount() const;   // over all instances
     size_t instanceCount() const;
@@ -72,7 +81,7 @@ struct Scene {
     // the renderer's surface ids and of the ray tracer's instances).
     uint32_t globalIndex(InstanceRef ref) const;              // precondition: ref exists
     std::optional<InstanceRef> locate(uint32_t global) const; // nullopt beyond the last instance
-    // Height of the ground under (x, z): the terrain heightfield where there is one, else
+    // Height of the ground under (x, z), both in the scene's coordinates: the terrain heightfield where there is one, else
     // the highest upward-facing surface of a static batch over that point, else the bottom
     // of the scene bounds (0 for an empty scene).
     double groundHeightAt(double x, double z) const;
