@@ -1,5 +1,6 @@
 // A camera from an engine's matrices: the same set-ups as eye/direction/fov for the same
 // frustum, every recognised projection contained, bad matrices named.
+#include "setup_configs.h"
 #include "shadowkit/core/engine_camera.h"
 #include "shadowkit/core/shadow_setup.h"
 
@@ -12,16 +13,8 @@ using namespace shadowkit::core;
 
 namespace {
 
-struct Random {
-    std::mt19937 rng{20261123};
-    double uniform(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); }
-    Vec3 unit() {
-        std::normal_distribution<double> n;
-        for (;;) {
-            const Vec3 v(n(rng), n(rng), n(rng));
-            if (glm::length(v) > 1e-3) return glm::normalize(v);
-        }
-    }
+struct Random : shadowkit::core::testing::RandomSource {
+    Random() : RandomSource(20261123) {}
     PerspectiveCamera camera() {
         PerspectiveCamera c;
         c.wsEye = Vec3(uniform(-200, 200), uniform(1, 40), uniform(-200, 200));

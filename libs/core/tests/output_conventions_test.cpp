@@ -1,6 +1,7 @@
 // Output conventions: every combination of clip depth range, reversed-Z and texture origin
 // gives the default convention's lookup transformed by the documented flip, what the engine
 // draws is what it looks up, and the culling planes keep every receiver and caster.
+#include "setup_configs.h"
 #include "shadowkit/core/output_conventions.h"
 
 #include <gtest/gtest.h>
@@ -11,16 +12,8 @@ using namespace shadowkit::core;
 
 namespace {
 
-struct Random {
-    std::mt19937 rng{1123};
-    double uniform(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); }
-    Vec3 unit() {
-        std::normal_distribution<double> n;
-        for (;;) {
-            const Vec3 v(n(rng), n(rng), n(rng));
-            if (glm::length(v) > 1e-3) return glm::normalize(v);
-        }
-    }
+struct Random : shadowkit::core::testing::RandomSource {
+    Random() : RandomSource(1123) {}
     ShadowSetupInputs inputs() {
         ShadowSetupInputs in;
         in.wsSceneBounds = Aabb::fromMinMax(Vec3(-400, 0, -400), Vec3(400, 40, 400));

@@ -12,6 +12,20 @@
 
 namespace shadowkit::core::testing {
 
+// Uniform numbers and directions from one seeded generator: what the tests' own generators add to.
+struct RandomSource {
+    explicit RandomSource(unsigned seed) : rng(seed) {}
+    std::mt19937 rng;
+    double uniform(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); }
+    Vec3 unit() {
+        std::normal_distribution<double> n;
+        for (;;) {
+            const Vec3 v(n(rng), n(rng), n(rng));
+            if (glm::length(v) > 1e-3) return glm::normalize(v);
+        }
+    }
+};
+
 // Random camera / light / scene-box configurations, including the degenerate ones
 // the issue names: view parallel and anti-parallel to the light, tiny and huge
 // near/far ratios, flat and zero-size scene boxes.

@@ -10,6 +10,7 @@
 #include "program.h"
 #include "receiver_masks.h"
 #include "render_targets.h"
+#include "scene_frame.h"
 #include "stopwatch.h"
 #include "uniforms.h"
 #include "visibility.h"
@@ -74,47 +75,6 @@ std::vector<core::HalfSpace> rangeBox(const core::Vec3& wsLight, double range) {
 
 } // namespace
 
-const char* localPassName(LocalPass pass) {
-    switch (pass) {
-    case LocalPass::Layered: return "layered";
-    case LocalPass::VertexLayer: return "vertex-layer";
-    case LocalPass::Geometry: return "geometry";
-    case LocalPass::PerFace: return "per-face";
-    }
-    return "?";
-}
-
-core::Status validate(const LocalBiasSettings& b) {
-    if (!(b.slopeTexels >= 0.0 && b.slopeTexels <= 16.0)) return core::fieldError("local_bias.slope", "must be in [0, 16] texels");
-    if (!(b.normalOffsetTexels >= 0.0 && b.normalOffsetTexels <= 16.0))
-        return core::fieldError("local_bias.normal_offset", "must be in [0, 16] texels");
-    if (!(b.constantMetres >= 0.0 && b.constantMetres <= 1.0)) return core::fieldError("local_bias.constant", "must be in [0, 1] metres");
-    return core::Ok{};
-}
-
-const char* cullingName(Culling culling) {
-    switch (culling) {
-    case Culling::Off: return "off";
-    case Culling::Frustum: return "frustum";
-    case Culling::Occlusion: return "chc";
-    }
-    return "?";
-}
-
-core::Status validate(const BlurSettings& b) {
-    if (b.iterations < 0 || b.iterations > 64) return core::fieldError("blur.iterations", "must be in [0, 64]");
-    if (!(b.radiusPixels > 0.0f && b.radiusPixels <= 16.0f)) return core::fieldError("blur.radius", "must be in (0, 16] pixels");
-    if (!(b.depthFalloff >= 0.0f && b.depthFalloff <= 10.0f))
-        return core::fieldError("blur.depth_falloff", "must be in [0, 10] per metre");
-    if (!(b.depthThreshold > 0.0f && b.depthThreshold <= 1.0f))
-        return core::fieldError("blur.depth_threshold", "must be in (0, 1]");
-    return core::Ok{};
-}
-
-core::BiasSettings biasFor(const core::ShadowSetup& setup, const RenderSettings& settings) {
-    return settings.bias.value_or(core::recommendedBias(setup.technique, setup.depthLayout, settings.filter));
-}
-
 struct Renderer::Impl {
     std::optional<GpuScene> scene;
     std::optional<Visibility> visibility;
@@ -145,24 +105,6 @@ struct Renderer::Impl {
     core::LocalLighting localLights; // Renderer::setLocalLights, in the scene's coordinates
     core::LocalLighting wsLocalLights; // the same as given: Renderer::localLights()
     core::Vec3 wsOrigin{0.0};          // Scene::wsOrigin: where the GPU's coordinates start
-
-    // A frame in the scene's coordinates, where everything on the GPU lives (scene.h): the
-    // camera moved by −wsOrigin, the set-up rebased there in double from its eye-relative
-    // matrices (core::rebased), so float sees numbers of the scene's size however far from
-    // the world's origin it stands. A scene at the origin is drawn with the set-up as given.
-    struct SceneFrame {
-        core::PerspectiveCamera camera;
-        std::optional<core::ShadowSetup> rebasedSetup;
-        const core::ShadowSetup* givenSetup = nullptr;
-        const core::ShadowSetup& setup() const { return rebasedSetup ? *rebasedSetup : *givenSetup; }
-    };
-    SceneFrame inScene(const core::PerspectiveCamera& wsCamera, const core::ShadowSetup& wsSetup) const {
-        SceneFrame frame{wsCamera, std::nullopt, &wsSetup};
-        if (wsOrigin == core::Vec3(0.0)) return frame;
-        frame.camera.wsEye -= wsOrigin;
-        frame.rebasedSetup = core::rebased(wsSetup, wsOrigin);
-        return frame;
-    }
 
     std::vector<PassList> localLists; // LocalShadowMaps::listCount of them
     int evalLight = -1;               // the eval pass's light (renderEvalBuffers)
@@ -546,7 +488,7 @@ int Renderer::Impl::blurPass(const RenderSettings& settings) {
 core::Result<FrameStats> Renderer::render(const core::PerspectiveCamera& wsCamera, const core::DirectionalLight& light,
                                           const core::ShadowSetup& wsSetup, const RenderSettings& settings) {
     Impl& r = *m_impl;
-    const Impl::SceneFrame frame = r.inScene(wsCamera, wsSetup);
+    const SceneFrame frame = inScene(r.wsOrigin, wsCamera, wsSetup);
     const core::PerspectiveCamera& camera = frame.camera;
     const core::ShadowSetup& setup = frame.setup();
     if (auto s = r.prepare(camera, light, setup, settings); !s) return s.errorInfo();
@@ -603,7 +545,7 @@ core::Result<core::RasterBuffers> Renderer::renderEvalBuffers(const core::Perspe
                                                               const core::ShadowSetup& wsSetup,
                                                               const RenderSettings& settings, int localLight) {
     Impl& r = *m_impl;
-    const Impl::SceneFrame frame = r.inScene(wsCamera, wsSetup);
+    const SceneFrame frame = inScene(r.wsOrigin, wsCamera, wsSetup);
     const core::PerspectiveCamera& camera = frame.camera;
     const core::ShadowSetup& setup = frame.setup();
     if (localLight < -1 || localLight >= static_cast<int>(r.localLights.size()))
@@ -628,7 +570,7 @@ core::Result<std::optional<core::Vec2>> Renderer::visibleDepth(const core::Persp
                                                                const core::DirectionalLight& light,
                                                                const core::ShadowSetup& wsSetup, const RenderSettings& settings) {
     Impl& r = *m_impl;
-    const Impl::SceneFrame frame = r.inScene(wsCamera, wsSetup);
+    const SceneFrame frame = inScene(r.wsOrigin, wsCamera, wsSetup);
     const core::PerspectiveCamera& camera = frame.camera;
     const core::ShadowSetup& setup = frame.setup();
     // The culling's own pre-pass, or one made for the purpose; no shadow pass.
@@ -709,7 +651,7 @@ void Renderer::drawLines(const core::PerspectiveCamera& camera, std::span<const 
     if (!r.color) return;
     glBindFramebuffer(GL_FRAMEBUFFER, r.color->framebuffer.id());
     glViewport(0, 0, r.color->width, r.color->height);
-    core::PerspectiveCamera local = camera; // in the scene's coordinates, as Impl::inScene
+    core::PerspectiveCamera local = camera; // in the scene's coordinates, as inScene (scene_frame.h)
     local.wsEye -= r.wsOrigin;
     std::vector<LineSegment> segments(lines.begin(), lines.end());
     for (LineSegment& line : segments) line.wsFrom -= r.wsOrigin, line.wsTo -= r.wsOrigin;
