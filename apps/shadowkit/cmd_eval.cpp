@@ -89,8 +89,8 @@ int runEval(const EvalArgs& args) {
     fmt::print(stderr, "ray tracer: built in {:.2f} s\n", (*measurer)->rayTracerBuildSeconds());
 
     std::vector<eval::ViewReport> reports;
-    fmt::print("{:<14} {:<10} {:>5} {:>9} {:>8} {:>7} {:>8} {:>8} {:>7} {:>7} {:>7} {:>6}\n", "view", "technique", "map",
-               "valid_px", "excl_px", "wrong%", "fshadow%", "flit%", "under%", "ppt50", "ppt99", "sec");
+    fmt::print("{:<14} {:<10} {:>5} {:>9} {:>8} {:>7} {:>8} {:>8} {:>7} {:>7} {:>7} {:>7} {:>6}\n", "view", "technique",
+               "map", "valid_px", "excl_px", "wrong%", "fshadow%", "flit%", "under%", "ppt50", "ppt95", "ppt99", "sec");
     for (const std::string& name : *names) {
         const auto start = std::chrono::steady_clock::now();
         ViewOptions viewOptions = args.view;
@@ -144,14 +144,14 @@ int runEval(const EvalArgs& args) {
         eval::ViewReport report = measure::viewReport(*measured, *settings, name, args.scene.scene, args.scene.seed);
         report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         const eval::Figures& f = report.figures;
-        fmt::print("{:<14} {:<10} {:>5} {:>9} {:>8} {:>7.2f} {:>8.2f} {:>8.2f} {:>7.2f} {:>7.3f} {:>7.3f} {:>6.1f}\n", name,
-                   report.technique, report.mapSize, f.validPx, f.excludedPx, f.wrongPct, f.falseShadowPct, f.falseLitPct,
-                   f.undersampledPct, f.pixelsPerTexelP50, f.pixelsPerTexelP99, report.seconds);
+        fmt::print("{:<14} {:<10} {:>5} {:>9} {:>8} {:>7.2f} {:>8.2f} {:>8.2f} {:>7.2f} {:>7.3f} {:>7.3f} {:>7.3f} {:>6.1f}\n",
+                   name, report.technique, report.mapSize, f.validPx, f.excludedPx, f.wrongPct, f.falseShadowPct, f.falseLitPct,
+                   f.undersampledPct, f.pixelsPerTexelP50, f.pixelsPerTexelP95, f.pixelsPerTexelP99, report.seconds);
         // With spot and point lights the row above is every light together; each follows.
         for (const eval::LightReport& l : report.lights)
-            fmt::print("  {:<12} {:<10} {:>5} {:>9} {:>8} {:>7.2f} {:>8.2f} {:>8.2f} {:>7.2f} {:>7.3f} {:>7.3f}   {} maps{}\n", l.light, "",
-                       "", l.figures.validPx, "", l.figures.wrongPct, l.figures.falseShadowPct, l.figures.falseLitPct,
-                       l.figures.undersampledPct, l.figures.pixelsPerTexelP50, l.figures.pixelsPerTexelP99, l.maps,
+            fmt::print("  {:<12} {:<10} {:>5} {:>9} {:>8} {:>7.2f} {:>8.2f} {:>8.2f} {:>7.2f} {:>7.3f} {:>7.3f} {:>7.3f}   {} maps{}\n",
+                       l.light, "", "", l.figures.validPx, "", l.figures.wrongPct, l.figures.falseShadowPct, l.figures.falseLitPct,
+                       l.figures.undersampledPct, l.figures.pixelsPerTexelP50, l.figures.pixelsPerTexelP95, l.figures.pixelsPerTexelP99, l.maps,
                        l.skippedFaces ? fmt::format(", {} faces skipped", l.skippedFaces) : "");
         std::fflush(stdout);
         reports.push_back(std::move(report));

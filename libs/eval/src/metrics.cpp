@@ -1,21 +1,13 @@
 #include "shadowkit/eval/metrics.h"
 
+#include "shadowkit/core/sampling_error.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
 
 namespace shadowkit::eval {
-
-double pixelsPerTexel(const glm::mat2& j) {
-    // Singular values of a 2x2 matrix: s² = (S ± √(S² − 4 det²)) / 2, S = Σ entries².
-    const double a = j[0][0], b = j[1][0], c = j[0][1], d = j[1][1];
-    const double s = a * a + b * b + c * c + d * d;
-    const double det = a * d - b * c;
-    const double root = std::sqrt(std::max(0.0, s * s - 4.0 * det * det));
-    const double smallest = std::sqrt(std::max(0.0, 0.5 * (s - root)));
-    return smallest > 0.0 ? 1.0 / smallest : std::numeric_limits<double>::infinity();
-}
 
 namespace {
 
@@ -27,13 +19,10 @@ void finishFigures(Figures& f, int64_t falseShadow, int64_t falseLit, int64_t un
     f.falseLitPct = scale * static_cast<double>(falseLit);
     f.wrongPct = f.falseShadowPct + f.falseLitPct;
     f.undersampledPct = scale * static_cast<double>(undersampled);
-    auto percentile = [&](double q) {
-        const auto k = static_cast<size_t>(std::min(q * static_cast<double>(ppt.size()), double(ppt.size() - 1)));
-        std::nth_element(ppt.begin(), ppt.begin() + static_cast<ptrdiff_t>(k), ppt.end());
-        return ppt[k];
-    };
-    f.pixelsPerTexelP50 = percentile(0.50);
-    f.pixelsPerTexelP99 = percentile(0.99);
+    // The same percentiles as the sampling model predicts (core/sampling_error.h).
+    f.pixelsPerTexelP50 = core::percentileInPlace(ppt, 0.50);
+    f.pixelsPerTexelP95 = core::percentileInPlace(ppt, 0.95);
+    f.pixelsPerTexelP99 = core::percentileInPlace(ppt, 0.99);
 }
 
 // Higher matters more when several lights' classes meet in one pixel.
@@ -106,7 +95,7 @@ core::Result<Comparison> compare(const core::RasterBuffers& raster, const TruthB
         if (renderedLit == truthLit) out.classes[i] = truthLit ? PixelClass::LitCorrect : PixelClass::ShadowCorrect;
         else if (truthLit) out.classes[i] = PixelClass::FalseShadow, ++falseShadow;
         else out.classes[i] = PixelClass::FalseLit, ++falseLit;
-        const double p = pixelsPerTexel(raster.texelFromPixel[i]);
+        const double p = core::pixelsPerTexel(glm::dmat2(raster.texelFromPixel[i]));
         out.pixelsPerTexel[i] = static_cast<float>(p);
         ppt.push_back(p);
         undersampled += p > 1.0;

@@ -36,6 +36,7 @@ std::string reportJson(const std::vector<ViewReport>& views) {
             {"false_lit_pct", f.falseLitPct},
             {"undersampled_pct", f.undersampledPct},
             {"pixels_per_texel_p50", f.pixelsPerTexelP50},
+            {"pixels_per_texel_p95", f.pixelsPerTexelP95},
             {"pixels_per_texel_p99", f.pixelsPerTexelP99},
             {"seconds", v.seconds},
         });
@@ -52,6 +53,7 @@ std::string reportJson(const std::vector<ViewReport>& views) {
                                   {"false_lit_pct", l.figures.falseLitPct},
                                   {"undersampled_pct", l.figures.undersampledPct},
                                   {"pixels_per_texel_p50", l.figures.pixelsPerTexelP50},
+                                  {"pixels_per_texel_p95", l.figures.pixelsPerTexelP95},
                                   {"pixels_per_texel_p99", l.figures.pixelsPerTexelP99}});
             list.back()["lights"] = lights;
         }

@@ -9,14 +9,6 @@
 
 using namespace shadowkit;
 
-TEST(MetricsTest, PixelsPerTexelIsTheLargestSingularValueOfTheInverseJacobian) {
-    EXPECT_NEAR(eval::pixelsPerTexel(glm::mat2(1.0f)), 1.0, 1e-9);
-    EXPECT_NEAR(eval::pixelsPerTexel(glm::mat2(2.0f)), 0.5, 1e-9);                  // 2 texels per pixel
-    EXPECT_NEAR(eval::pixelsPerTexel(glm::mat2(1, 0, 0, 0.25f)), 4.0, 1e-6);        // stretched along y
-    const float c = std::cos(0.7f), s = std::sin(0.7f);
-    EXPECT_NEAR(eval::pixelsPerTexel(glm::mat2(c, s, -s, c) * glm::mat2(0.5f, 0, 0, 3)), 2.0, 1e-5); // rotation-invariant
-    EXPECT_TRUE(std::isinf(eval::pixelsPerTexel(glm::mat2(1, 1, 1, 1))));
-}
 
 namespace {
 // One pixel per case: lit-correct, shadow-correct, false shadow, false lit, excluded

@@ -28,7 +28,7 @@ py::dict figuresDict(const eval::Figures& f) {
     return py::dict(py::arg("valid_px") = f.validPx, py::arg("excluded_px") = f.excludedPx, py::arg("wrong_pct") = f.wrongPct,
                     py::arg("false_shadow_pct") = f.falseShadowPct, py::arg("false_lit_pct") = f.falseLitPct,
                     py::arg("undersampled_pct") = f.undersampledPct, py::arg("pixels_per_texel_p50") = f.pixelsPerTexelP50,
-                    py::arg("pixels_per_texel_p99") = f.pixelsPerTexelP99);
+                    py::arg("pixels_per_texel_p95") = f.pixelsPerTexelP95, py::arg("pixels_per_texel_p99") = f.pixelsPerTexelP99);
 }
 
 // One forest and one headless GL context, kept across evaluations (building the forest and
@@ -95,7 +95,7 @@ constexpr const char* kEvaluateDoc = R"(Render `view` (a standard view of data/v
 and compare per pixel, as `shadowkit eval` does. size=(width, height) overrides the view's;
 filter: hard, pcf2, pcf:N, poisson:N. Returns a dict: figures (valid_px, excluded_px,
 wrong_pct, false_shadow_pct, false_lit_pct, undersampled_pct, pixels_per_texel_p50,
-pixels_per_texel_p99), technique, maps, and per-pixel arrays (height x width, top row first):
+pixels_per_texel_p95, pixels_per_texel_p99), technique, maps, and per-pixel arrays (height x width, top row first):
 shadow_term, view_depth, surface_id, truth_lit, truth_faces_light, pixel_class (0 not
 evaluated, 1 lit correct, 2 shadow correct, 3 false shadow, 4 false lit, 5 excluded),
 pixels_per_texel.)";

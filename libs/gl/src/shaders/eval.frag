@@ -17,7 +17,12 @@ void main() {
     const vec3 n = normalize(wsNormal);
     outSurfaceId = vSurfaceId;
     outViewDepth = viewDepthOf(wsPosition);
-    outNormal = vec4(n, 0.0);
+    // The drawn triangle's own plane (the truth's geometric normal, on the shading normal's
+    // side): the plane the texel derivatives below follow, so a sampling prediction from
+    // this read-back (core::receiverSamples) looks at the same surface eval measures.
+    vec3 face = normalize(cross(dwsdx, dwsdy));
+    if (dot(face, n) < 0.0) face = -face;
+    outNormal = vec4(face, 0.0);
     vec2 texel;
     if (evalLight >= 0) {
         // A local light's map test, and the texel of its map with the analytic Jacobian.

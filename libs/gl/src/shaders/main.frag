@@ -25,7 +25,7 @@ vec3 aliasingColor(float pixelsPerTexel) {
 }
 
 // Largest singular value of d(pixel)/d(texel) = 1 / smallest singular value of the
-// Jacobian d(texel)/d(pixel) (eval::pixelsPerTexel).
+// Jacobian d(texel)/d(pixel) (core::pixelsPerTexel).
 float pixelsPerTexel(vec2 dTexelDx, vec2 dTexelDy) {
     const float s = dot(dTexelDx, dTexelDx) + dot(dTexelDy, dTexelDy);
     const float det = dTexelDx.x * dTexelDy.y - dTexelDx.y * dTexelDy.x;

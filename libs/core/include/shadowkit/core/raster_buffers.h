@@ -15,7 +15,7 @@ struct RasterBuffers {
     std::vector<float> shadowTerm;    // 1 lit … 0 shadowed, the map's test alone (no N·L)
     std::vector<uint32_t> surfaceId;  // global instance index + 1; 0 where nothing was drawn
     std::vector<float> viewDepth;     // metres along the view direction; 0 where nothing was drawn
-    std::vector<glm::vec3> wsNormal;  // interpolated shading normal, unit
+    std::vector<glm::vec3> wsNormal;  // geometric normal of the drawn triangle, unit, on the shading normal's side
     std::vector<glm::vec2> tsTexel;   // shadow-map texel coordinates (ts × map size)
     // d(texel)/d(pixel): columns are the screen x and y derivatives of tsTexel
     // (right and down), the Jacobian whose smallest singular value gives texels per pixel.

@@ -31,6 +31,7 @@ struct Figures {
     double falseLitPct = 0.0;
     double undersampledPct = 0.0;
     double pixelsPerTexelP50 = 0.0;
+    double pixelsPerTexelP95 = 0.0;
     double pixelsPerTexelP99 = 0.0;
 };
 
@@ -55,9 +56,5 @@ core::Result<Comparison> compare(const core::RasterBuffers& raster, const TruthB
 // then excluded — with the worst sampling (largest pixels per texel) of the lights. One part
 // is returned as it is. Fails for no parts or parts of different sizes.
 core::Result<Comparison> combine(std::span<const Comparison* const> parts);
-
-// Largest singular value of d(pixel)/d(texel), from the Jacobian d(texel)/d(pixel):
-// 1 / (its smallest singular value). Infinite for a singular Jacobian.
-double pixelsPerTexel(const glm::mat2& texelFromPixel);
 
 } // namespace shadowkit::eval

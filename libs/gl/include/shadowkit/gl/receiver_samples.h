@@ -1,0 +1,27 @@
+// Visible receivers for the sampling model (core/sampling_error.h), read back from the GPU:
+// what an engine has anyway in its depth and normal buffers, here drawn at a low resolution.
+#pragma once
+
+#include "shadowkit/core/result.h"
+#include "shadowkit/core/sampling_error.h"
+#include "shadowkit/core/shadow_setup.h"
+#include "shadowkit/gl/renderer.h"
+
+#include <vector>
+
+namespace shadowkit::gl {
+
+struct ReceiverSampling {
+    int width = 160;          // pixels across of the read-back; its height keeps the frame's aspect
+    size_t maxSamples = 4096; // receivers kept, spread evenly over those facing the light
+};
+
+// The camera's view of `inputs` drawn at ReceiverSampling::width with `settings` (its culling
+// and level of detail; filters, blur and receiver masks off), its depth and normals read
+// back, and core::receiverSamples taken from them. The shadow pass it needs to draw is the
+// cheapest there is (a `standard` map of 64² texels): nothing of it is read.
+core::Result<std::vector<core::ReceiverSample>> sampleReceivers(Renderer& renderer, const core::ShadowSetupInputs& inputs,
+                                                                const RenderSettings& settings,
+                                                                const ReceiverSampling& sampling = {});
+
+} // namespace shadowkit::gl

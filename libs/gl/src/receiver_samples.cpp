@@ -1,0 +1,34 @@
+#include "shadowkit/gl/receiver_samples.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+namespace shadowkit::gl {
+
+core::Result<std::vector<core::ReceiverSample>> sampleReceivers(Renderer& renderer, const core::ShadowSetupInputs& inputs,
+                                                                const RenderSettings& settings,
+                                                                const ReceiverSampling& sampling) {
+    if (sampling.width < 1 || sampling.width > settings.width)
+        return core::fieldError("sampling.width", "must be in [1, " + std::to_string(settings.width) + "] (the frame's width), got " +
+                                                      std::to_string(sampling.width));
+    core::ShadowSetupInputs cheapest = inputs;
+    cheapest.technique = core::Technique::Standard;
+    cheapest.mapSize = 64;
+    auto setup = core::computeShadowSetup(cheapest);
+    if (!setup) return setup.errorInfo();
+    RenderSettings small = settings;
+    small.width = sampling.width;
+    small.height = std::max(1, static_cast<int>(std::lround(double(sampling.width) * settings.height / settings.width)));
+    small.blur.iterations = 0;
+    small.receiverMask = false;
+    small.filter = core::FilterSettings{};
+    // The same levels of detail as the frame: a geometric error is fewer pixels of the
+    // smaller image, so the bound shrinks with it (else coarser meshes, other normals).
+    small.lodPixelError = settings.lodPixelError * float(small.width) / float(settings.width);
+    auto raster = renderer.renderEvalBuffers(inputs.camera, inputs.light, *setup, small);
+    if (!raster) return raster.errorInfo();
+    return core::receiverSamples(*raster, inputs.camera, inputs.light, sampling.maxSamples);
+}
+
+} // namespace shadowkit::gl
