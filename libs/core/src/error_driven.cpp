@@ -1,0 +1,198 @@
+// Error-driven shadow parameters (error_driven.h): bounded searches over each family's free
+// parameter, judged by the sampling model (Wimmer et al. 2004 §4.1's error at the receivers).
+#include "shadowkit/core/error_driven.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <functional>
+#include <string>
+
+namespace shadowkit::core {
+
+namespace {
+
+constexpr int kGridPoints = 9;     // over the parameter's range
+constexpr int kGoldenSteps = 6;    // between the best grid point's neighbours: (0.618)^6 ≈ 1/18 of two grid steps
+constexpr int64_t kMaxBudget = int64_t(kMaxShadowViews) * kMaxMapSize * kMaxMapSize;
+
+// The objective of one candidate; infinite when it cannot be computed.
+struct Evaluator {
+    const SamplingErrorModel& model;
+    int setups = 0;
+    std::pair<double, SamplingFigures> operator()(const ShadowSetupInputs& inputs) {
+        ++setups;
+        auto setup = computeShadowSetup(inputs);
+        if (!setup) return {std::numeric_limits<double>::infinity(), {}};
+        const SamplingFigures f = model.figures(*setup);
+        return {samplingObjective(f), f};
+    }
+};
+
+// Minimises the objective over x in [lo, hi], `apply` writing x into a copy of `start`: a grid
+// of kGridPoints, then golden section between the best grid point's neighbours. `best` keeps
+// the best candidate seen anywhere (only a strictly better one replaces it).
+void search1D(ParameterChoice& best, Evaluator& evaluate, const ShadowSetupInputs& start, double lo, double hi,
+              const std::function<void(ShadowSetupInputs&, double)>& apply) {
+    auto at = [&](double x) {
+        ShadowSetupInputs candidate = start;
+        apply(candidate, x);
+        const auto [objective, figures] = evaluate(candidate);
+        if (objective < best.objective) best = {candidate, figures, objective, 0};
+        return objective;
+    };
+    const double step = (hi - lo) / (kGridPoints - 1);
+    int bestIndex = 0;
+    double bestValue = std::numeric_limits<double>::infinity();
+    for (int i = 0; i < kGridPoints; ++i)
+        if (const double v = at(lo + step * i); v < bestValue) bestValue = v, bestIndex = i;
+    double a = lo + step * std::max(bestIndex - 1, 0), b = lo + step * std::min(bestIndex + 1, kGridPoints - 1);
+    const double ratio = (std::sqrt(5.0) - 1.0) * 0.5;
+    double c = b - ratio * (b - a), d = a + ratio * (b - a);
+    double fc = at(c), fd = at(d);
+    for (int i = 0; i < kGoldenSteps; ++i) {
+        if (fc < fd) b = d, d = c, fd = fc, c = b - ratio * (b - a), fc = at(c);
+        else a = c, c = d, fc = fd, d = a + ratio * (b - a), fd = at(d);
+    }
+}
+
+int mapSizeFor(int64_t budget, int maps) {
+    const double side = std::sqrt(double(budget) / maps);
+    return std::min(kMaxMapSize, static_cast<int>(side / 16.0) * 16);
+}
+
+} // namespace
+
+std::string describe(const ParameterChoice& choice) {
+    const ShadowSetupInputs& in = choice.inputs;
+    const std::string size = std::to_string(in.mapSize) + "²";
+    auto fixed = [](double v, int digits) {
+        std::string s = std::to_string(v);
+        return s.substr(0, s.find('.') + 1 + size_t(digits));
+    };
+    switch (in.technique) {
+    case Technique::Lispsm:
+        return "lispsm " + size + " (n x " + fixed(in.lispsm.weight, 2) + ", " +
+               (in.lispsm.direction == LispsmDirection::MiddleVector ? "middle vector" : "cross product") + ")";
+    case Technique::Tsm: return "tsm " + size + " (focus " + fixed(in.tsm.focusFraction, 3) + ")";
+    case Technique::Csm:
+        return "csm " + std::to_string(in.cascades.count) + " x " + size + " (lambda " + fixed(in.cascades.lambda, 2) +
+               (in.cascades.warp == CascadeWarp::Lispsm ? ", per-split lispsm" : "") + ")";
+    default: return std::string(techniqueName(in.technique)) + " " + size;
+    }
+}
+
+Result<ParameterChoice> optimiseParameters(const ShadowSetupInputs& inputs, const SamplingErrorModel& model) {
+    if (auto s = validate(inputs); !s) return s.errorInfo();
+    Evaluator evaluate{model};
+    ParameterChoice best{inputs, {}, std::numeric_limits<double>::infinity(), 0};
+    const auto [objective, figures] = evaluate(inputs);
+    best.predicted = figures;
+    best.objective = objective;
+    switch (inputs.technique) {
+    case Technique::Lispsm:
+        for (const LispsmDirection direction : {LispsmDirection::CrossProduct, LispsmDirection::MiddleVector}) {
+            ShadowSetupInputs start = inputs;
+            start.lispsm.direction = direction;
+            start.lispsm.nOverride.reset();
+            search1D(best, evaluate, start, -4.0, 4.0, [](ShadowSetupInputs& in, double x) { in.lispsm.weight = std::exp2(x); });
+        }
+        break;
+    case Technique::Tsm:
+        search1D(best, evaluate, inputs, 0.02, 0.9, [](ShadowSetupInputs& in, double x) { in.tsm.focusFraction = x; });
+        break;
+    case Technique::Csm: {
+        ShadowSetupInputs start = inputs;
+        start.cascades.splits.clear();
+        // Splits over what is visible: the samples' view depths, within the camera's range.
+        if (const auto range = model.viewDepthRange(); range && !start.visibleDepth) {
+            const double nearest = std::clamp(range->x, 0.0, inputs.camera.zFar);
+            const double farthest = std::min(range->y * 1.02, inputs.camera.zFar);
+            if (farthest > nearest) start.visibleDepth = Vec2(nearest, farthest);
+        }
+        search1D(best, evaluate, start, 0.0, 1.0, [](ShadowSetupInputs& in, double x) { in.cascades.lambda = x; });
+        break;
+    }
+    default: break;
+    }
+    best.setupsTried = evaluate.setups;
+    return best;
+}
+
+Status validate(const AutoOptions& options) {
+    if (!(options.cascades >= 0 && options.cascades <= int(kMaxShadowViews)))
+        return fieldError("auto.cascades", "must be in [0, " + std::to_string(kMaxShadowViews) + "], got " + std::to_string(options.cascades));
+    const int maps = std::max(options.cascades, 1);
+    if (options.texelBudget < int64_t(kMinMapSize) * kMinMapSize * maps || options.texelBudget > kMaxBudget)
+        return fieldError("auto.texel_budget", "must hold " + std::to_string(maps) + " map(s) of at least " +
+                                                   std::to_string(kMinMapSize) + "² and at most " + std::to_string(kMaxBudget) +
+                                                   " texels, got " + std::to_string(options.texelBudget));
+    if (!(options.hysteresis >= 0.0 && options.hysteresis < 1.0))
+        return fieldError("auto.hysteresis", "must be in [0, 1), got " + std::to_string(options.hysteresis));
+    return Ok{};
+}
+
+Result<std::vector<ParameterChoice>> rankCandidates(const ShadowSetupInputs& base, const AutoOptions& options,
+                                                    const SamplingErrorModel& model) {
+    if (auto s = validate(options); !s) return s.errorInfo();
+    std::vector<ShadowSetupInputs> candidates;
+    auto add = [&](Technique technique, int maps, CascadeWarp warp) {
+        const int size = mapSizeFor(options.texelBudget, maps);
+        if (size < kMinMapSize) return;
+        ShadowSetupInputs in = base;
+        in.technique = technique;
+        in.mapSize = size;
+        in.cascades.count = maps;
+        in.cascades.warp = warp;
+        in.cascades.stabilize = false;
+        candidates.push_back(in);
+    };
+    if (options.cascades <= 1)
+        for (const Technique t : {Technique::Focused, Technique::Psm, Technique::Tsm, Technique::Lispsm}) add(t, 1, CascadeWarp::None);
+    const int fewest = options.cascades > 1 ? options.cascades : 2, most = options.cascades > 1 ? options.cascades : 4;
+    if (options.cascades != 1)
+        for (int count = fewest; count <= most; ++count)
+            for (const CascadeWarp warp : {CascadeWarp::None, CascadeWarp::Lispsm}) add(Technique::Csm, count, warp);
+    std::vector<ParameterChoice> ranked;
+    for (const ShadowSetupInputs& in : candidates) {
+        auto choice = optimiseParameters(in, model);
+        if (!choice) return choice.errorInfo();
+        ranked.push_back(std::move(*choice));
+    }
+    // Stable: equal objectives keep the listed order (single maps first, fewer cascades first).
+    std::stable_sort(ranked.begin(), ranked.end(), [](const ParameterChoice& a, const ParameterChoice& b) { return a.objective < b.objective; });
+    return ranked;
+}
+
+Result<ParameterChoice> chooseAuto(const ShadowSetupInputs& base, const AutoOptions& options, const SamplingErrorModel& model,
+                                   const ParameterChoice* previous) {
+    if (auto s = validate(options); !s) return s.errorInfo();
+    if (model.size() == 0) {
+        // Nothing seen, nothing to judge by: the recommended technique, as a fixed one would be.
+        ParameterChoice fallback{base, {}, 0.0, 0};
+        fallback.inputs.technique = options.cascades > 1 ? Technique::Csm : defaultTechnique();
+        fallback.inputs.cascades.count = std::max(options.cascades, 1);
+        fallback.inputs.mapSize = mapSizeFor(options.texelBudget, fallback.inputs.cascades.count);
+        return fallback;
+    }
+    auto ranked = rankCandidates(base, options, model);
+    if (!ranked) return ranked.errorInfo();
+    ParameterChoice best = ranked->front();
+    if (previous) {
+        // The last choice for this frame's camera, light and scene.
+        ShadowSetupInputs again = previous->inputs;
+        again.camera = base.camera;
+        again.light = base.light;
+        again.wsSceneBounds = base.wsSceneBounds;
+        again.wsGridOrigin = base.wsGridOrigin;
+        if (again.technique != Technique::Csm) again.visibleDepth = base.visibleDepth;
+        if (auto setup = computeShadowSetup(again)) {
+            const SamplingFigures f = model.figures(*setup);
+            const double objective = samplingObjective(f);
+            if (!(best.objective < (1.0 - options.hysteresis) * objective)) best = {again, f, objective, best.setupsTried};
+        }
+    }
+    return best;
+}
+
+} // namespace shadowkit::core

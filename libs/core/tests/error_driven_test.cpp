@@ -1,0 +1,202 @@
+// Error-driven parameters (core/error_driven.h): the search never loses a caster, never does
+// worse than the defaults on its samples, finds the better warp where the seeds say one
+// exists, and `auto` is deterministic and holds its choice across frames.
+#include "setup_configs.h"
+
+#include "shadowkit/core/error_driven.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace shadowkit;
+using namespace shadowkit::core;
+using core::testing::ConfigGenerator;
+
+namespace {
+
+constexpr int kWidth = 640, kHeight = 360;
+
+// Receivers the camera could see: points of its frustum with normals facing the light and
+// not edge-on to the eye.
+std::vector<ReceiverSample> randomReceivers(const ShadowSetupInputs& in, ConfigGenerator& gen, int count) {
+    std::vector<ReceiverSample> samples;
+    for (int k = 0; k < count; ++k) {
+        const Vec3 p = core::testing::pointInFrustum(in.camera, gen);
+        Vec3 n = gen.unitVector();
+        if (glm::dot(n, in.light.wsTowardsLight()) < 0.0) n = -n;
+        samples.push_back({p, n});
+    }
+    return samples;
+}
+
+// A ground plane receiving everywhere the camera looks: a grid of points at y = 0.
+std::vector<ReceiverSample> groundReceivers(const PerspectiveCamera& camera, double extent, int perSide) {
+    std::vector<ReceiverSample> samples;
+    for (int i = 0; i < perSide; ++i)
+        for (int j = 0; j < perSide; ++j) {
+            const Vec3 p(camera.wsEye.x + extent * ((i + 0.5) / perSide - 0.5), 0.0, camera.wsEye.z - extent * (j + 0.5) / perSide);
+            samples.push_back({p, Vec3(0.0, 1.0, 0.0)});
+        }
+    return samples;
+}
+
+ShadowSetupInputs groundView(double sunElevation, double sunAzimuth) {
+    ShadowSetupInputs in;
+    in.camera.wsEye = Vec3(0.0, 1.8, 0.0);
+    in.camera.wsDirection = Vec3(0.0, -0.05, -1.0);
+    in.camera.aspect = double(kWidth) / kHeight;
+    in.camera.zNear = 0.5;
+    in.camera.zFar = 300.0;
+    in.light = *DirectionalLight::fromSunAngles(sunElevation, sunAzimuth);
+    in.wsSceneBounds = Aabb::fromMinMax(Vec3(-300.0, -1.0, -300.0), Vec3(300.0, 20.0, 300.0));
+    in.mapSize = 1024;
+    return in;
+}
+
+} // namespace
+
+// Ten thousand random configurations, every family: the chosen parameters still hold every
+// point their technique must hold (the containment the techniques' own tests check), and the
+// chosen objective is never above the inputs' own on the same samples.
+TEST(ErrorDrivenTest, OptimisedParametersLoseNoCasterAndNeverLoseToTheDefaults) {
+    ConfigGenerator gen(16);
+    int optimised = 0, improved = 0;
+    for (int i = 0; i < 10000; ++i) {
+        ShadowSetupInputs in = gen.next();
+        const Technique families[] = {Technique::Lispsm, Technique::Tsm, Technique::Csm};
+        in.technique = families[i % 3];
+        in.cascades.stabilize = false;
+        in.camera.aspect = double(kWidth) / kHeight;
+        if (!validate(in)) continue;
+        auto model = SamplingErrorModel::create(in.camera, kWidth, kHeight, randomReceivers(in, gen, 24));
+        ASSERT_TRUE(model);
+        auto choice = optimiseParameters(in, *model);
+        ASSERT_TRUE(choice) << choice.error();
+        auto defaults = computeShadowSetup(in);
+        ASSERT_TRUE(defaults);
+        const double defaultObjective = samplingObjective(model->figures(*defaults));
+        ASSERT_LE(choice->objective, defaultObjective) << "config " << i;
+        improved += choice->objective < defaultObjective;
+        auto setup = computeShadowSetup(choice->inputs);
+        ASSERT_TRUE(setup) << setup.error();
+        EXPECT_EQ(samplingObjective(model->figures(*setup)), choice->objective) << "config " << i;
+        for (const ShadowView& view : setup->views)
+            for (const Vec3& p : core::testing::pointsToHold(choice->inputs, *setup, view)) {
+                ASSERT_GT((view.clipFromWorld * Vec4(p, 1.0)).w, 0.0) << describe(*choice) << ", config " << i;
+                ASSERT_LE(core::testing::outsideClipCube(view.clipFromWorld, p), 1e-6) << describe(*choice) << ", config " << i;
+            }
+        ++optimised;
+    }
+    EXPECT_GT(optimised, 9000);
+    EXPECT_GT(improved, optimised / 3); // the search does find better parameters, often
+}
+
+// A view low over a ground plane lit from the side (LiSPSM's case, Wimmer et al. 2004 §4.3):
+// the search lowers the p95 below both the default n and the uniform limit, and below
+// TSM's 80 % rule, with parameters inside the searched ranges.
+TEST(ErrorDrivenTest, FindsABetterWarpThanTheDefaultsOnAGroundView) {
+    ShadowSetupInputs in = groundView(30.0, 90.0);
+    auto model = SamplingErrorModel::create(in.camera, kWidth, kHeight, groundReceivers(in.camera, 300.0, 60));
+    ASSERT_TRUE(model);
+    for (const Technique t : {Technique::Lispsm, Technique::Tsm}) {
+        in.technique = t;
+        const SamplingFigures defaults = model->figures(*computeShadowSetup(in));
+        auto choice = optimiseParameters(in, *model);
+        ASSERT_TRUE(choice);
+        EXPECT_LT(choice->predicted.p95, defaults.p95 * 0.99) << describe(*choice);
+        EXPECT_GE(choice->inputs.lispsm.weight, 1.0 / 16.0);
+        EXPECT_LE(choice->inputs.lispsm.weight, 16.0);
+        EXPECT_GT(choice->setupsTried, 10);
+    }
+    in.technique = Technique::Focused;
+    const double uniform = model->figures(*computeShadowSetup(in)).p95;
+    in.technique = Technique::Lispsm;
+    EXPECT_LT(optimiseParameters(in, *model)->predicted.p95, uniform / 2.0); // the warp's whole point
+}
+
+TEST(ErrorDrivenTest, AutoRanksEveryCandidateOfTheBudgetAndIsDeterministic) {
+    const ShadowSetupInputs in = groundView(40.0, 60.0);
+    auto model = SamplingErrorModel::create(in.camera, kWidth, kHeight, groundReceivers(in.camera, 300.0, 40));
+    ASSERT_TRUE(model);
+    AutoOptions options;
+    options.texelBudget = int64_t(4) << 20; // 4 M: 1 x 2048² or 4 x 1024²
+    auto ranked = rankCandidates(in, options, *model);
+    ASSERT_TRUE(ranked);
+    ASSERT_EQ(ranked->size(), 4u + 3u * 2u); // four single maps; 2, 3, 4 cascades, each unwarped and warped
+    for (size_t i = 1; i < ranked->size(); ++i) EXPECT_LE((*ranked)[i - 1].objective, (*ranked)[i].objective);
+    for (const ParameterChoice& c : *ranked) {
+        const int maps = c.inputs.technique == Technique::Csm ? c.inputs.cascades.count : 1;
+        EXPECT_LE(int64_t(maps) * c.inputs.mapSize * c.inputs.mapSize, options.texelBudget) << describe(c);
+        EXPECT_EQ(c.inputs.mapSize, maps == 1 ? 2048 : maps == 4 ? 1024 : c.inputs.mapSize);
+    }
+    auto first = chooseAuto(in, options, *model), second = chooseAuto(in, options, *model);
+    ASSERT_TRUE(first && second);
+    EXPECT_EQ(describe(*first), describe(*second));
+    EXPECT_EQ(first->objective, second->objective);
+    EXPECT_EQ(first->objective, ranked->front().objective);
+
+    options.cascades = 1; // single maps only
+    auto single = chooseAuto(in, options, *model);
+    ASSERT_TRUE(single);
+    EXPECT_NE(single->inputs.technique, Technique::Csm);
+    options.cascades = 3;
+    auto three = rankCandidates(in, options, *model);
+    ASSERT_TRUE(three);
+    ASSERT_EQ(three->size(), 2u);
+    for (const ParameterChoice& c : *three) EXPECT_EQ(c.inputs.cascades.count, 3);
+}
+
+// Hysteresis: a previous choice nearly as good as the best is kept (the camera moved a
+// little); one much worse is replaced; with none the best is taken.
+TEST(ErrorDrivenTest, AutoKeepsThePreviousChoiceUnlessClearlyBeaten) {
+    ShadowSetupInputs in = groundView(35.0, 80.0);
+    auto model = SamplingErrorModel::create(in.camera, kWidth, kHeight, groundReceivers(in.camera, 300.0, 40));
+    ASSERT_TRUE(model);
+    AutoOptions options;
+    options.cascades = 1;
+    auto ranked = rankCandidates(in, options, *model);
+    ASSERT_TRUE(ranked);
+    ASSERT_GE(ranked->size(), 2u);
+    const ParameterChoice& best = ranked->front();
+    // The runner-up within the band is kept, one outside it is not.
+    for (const ParameterChoice& other : *ranked) {
+        if (other.objective == best.objective) continue;
+        options.hysteresis = 0.999 * (1.0 - best.objective / other.objective) ; // just short of other's distance
+        auto replaced = chooseAuto(in, options, *model, &other);
+        ASSERT_TRUE(replaced);
+        EXPECT_EQ(replaced->objective, best.objective) << describe(other);
+        options.hysteresis = std::min(0.999, 1.001 * (1.0 - best.objective / other.objective));
+        auto kept = chooseAuto(in, options, *model, &other);
+        ASSERT_TRUE(kept);
+        EXPECT_EQ(describe(*kept), describe(other));
+        break;
+    }
+}
+
+TEST(ErrorDrivenTest, BadOptionsAreErrorsNamingTheField) {
+    AutoOptions options;
+    options.texelBudget = 100;
+    auto s = validate(options);
+    ASSERT_FALSE(s);
+    EXPECT_EQ(s.errorInfo().field, "auto.texel_budget");
+    options = AutoOptions{};
+    options.cascades = 9;
+    EXPECT_EQ(validate(options).errorInfo().field, "auto.cascades");
+    options = AutoOptions{};
+    options.cascades = 8;
+    options.texelBudget = 8 * 15 * 15; // eight maps of 15² are below the smallest map
+    EXPECT_EQ(validate(options).errorInfo().field, "auto.texel_budget");
+    options = AutoOptions{};
+    options.hysteresis = 1.0;
+    EXPECT_EQ(validate(options).errorInfo().field, "auto.hysteresis");
+    // No samples: nothing to judge by, so the default technique as it is, not an error.
+    const ShadowSetupInputs in = groundView(40.0, 60.0);
+    auto empty = SamplingErrorModel::create(in.camera, kWidth, kHeight, {});
+    ASSERT_TRUE(empty);
+    auto choice = chooseAuto(in, AutoOptions{}, *empty);
+    ASSERT_TRUE(choice);
+    EXPECT_EQ(choice->inputs.technique, defaultTechnique());
+    EXPECT_EQ(choice->inputs.tsm.focusFraction, in.tsm.focusFraction);
+    EXPECT_EQ(choice->inputs.mapSize, 2048);
+}
