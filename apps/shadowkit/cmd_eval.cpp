@@ -1,4 +1,5 @@
 // shadowkit eval: rasterized shadows against ray-traced truth, per standard view.
+#include "auto_technique.h"
 #include "commands.h"
 #include "local_light_options.h"
 #include "eval_path.h"
@@ -108,6 +109,18 @@ int runEval(const EvalArgs& args) {
         if (!lighting) return fail(withFlagName(lighting.errorInfo()));
         if (auto s = (*measurer)->renderer().setLocalLights(std::move(lighting).value()); !s)
             return fail(withFlagName(s.errorInfo()));
+        std::optional<AutoTechnique> automatic; // a still view: no earlier frame's choice to hold
+        if (args.technique.automatic) {
+            automatic.emplace(*args.technique.autoOptions());
+            auto chosen = automatic->choose((*measurer)->renderer(), *inputs, *settings);
+            if (!chosen) return fail(withFlagName(chosen.errorInfo()));
+            inputs = std::move(chosen).value();
+            settings = args.render.settingsFor(*view, *inputs); // a bias given by flags starts from the chosen technique's
+            if (!settings) return fail(settings.errorInfo());
+            args.lights.apply(*view, *settings);
+            fmt::print(stderr, "{}: auto chose {}, predicted p95 {:.3g} ({} set-ups, {:.2f} ms)\n", name, core::describe(*automatic->last()),
+                       automatic->last()->predicted.p95, automatic->last()->setupsTried, automatic->lastMilliseconds());
+        }
 
         // Progress only when the truth takes a while (large images, big scenes).
         measure::MeasureOptions options;
@@ -143,6 +156,7 @@ int runEval(const EvalArgs& args) {
 
         eval::ViewReport report = measure::viewReport(*measured, *settings, name, args.scene.scene, args.scene.seed);
         report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        if (automatic) report.autoChoice = core::describe(*automatic->last());
         const eval::Figures& f = report.figures;
         fmt::print("{:<14} {:<10} {:>5} {:>9} {:>8} {:>7.2f} {:>8.2f} {:>8.2f} {:>7.2f} {:>7.3f} {:>7.3f} {:>7.3f} {:>6.1f}\n",
                    name, report.technique, report.mapSize, f.validPx, f.excludedPx, f.wrongPct, f.falseShadowPct, f.falseLitPct,

@@ -211,6 +211,8 @@ constexpr std::pair<std::string_view, std::string_view> kFlagOfField[] = {
     {"blur.iterations", "--blur-iterations"},
     {"blur.radius", "--blur-radius"},
     {"blur.depth_falloff", "--blur-depth-falloff"},
+    {"auto.texel_budget", "--texel-budget"},
+    {"auto.cascades", "--cascades"},
 };
 
 // A CLI11 transform from a name to an enum value: the names appear in --help as the
@@ -333,9 +335,23 @@ core::Result<gl::RenderSettings> RenderOptions::settingsFor(const scene::Resolve
 }
 
 void TechniqueOptions::addTo(CLI::App& cmd) {
-    cmd.add_option("--technique", technique, "shadow technique")
-        ->transform(choice(techniqueChoices()))
+    // "auto" stands for the default technique until a frame is resolved (the raw text is seen first).
+    Choices<core::Technique> techniques = techniqueChoices();
+    techniques.emplace_back("auto", core::defaultTechnique());
+    cmd.add_option("--technique", technique,
+                   "shadow technique; auto: the family and its parameters chosen per frame from the predicted "
+                   "sampling error at the receivers in view, within --texel-budget")
+        ->transform(choice(techniques))
+        // CLI11 runs a transform added later first: this one sees the text as given.
+        ->transform(CLI::Validator(
+            [this](std::string& text) {
+                automatic = text == "auto";
+                return std::string();
+            },
+            ""))
         ->default_str(std::string(core::techniqueName(technique)));
+    cmd.add_option("--texel-budget", texelBudget,
+                   "--technique auto: texels of all maps together, e.g. 4M = 1 x 2048² or 4 x 1024² (default: one --map-size map)");
     cmd.add_option("--lispsm-formula", lispsmFormula, "LiSPSM n: Wimmer et al. 2004 §4.4 (paper) or Scherzer 2005 eq. 1")
         ->transform(choice(Choices<core::LispsmFormula>{{"paper", core::LispsmFormula::Paper}, {"scherzer", core::LispsmFormula::Scherzer}}))
         ->default_str("scherzer");
@@ -356,7 +372,9 @@ void TechniqueOptions::addTo(CLI::App& cmd) {
         ->transform(choice(Choices<LayoutChoice>{{"auto", LayoutChoice::Auto}, {"hyperbolic", LayoutChoice::Hyperbolic}, {"linear", LayoutChoice::Linear}}))
         ->default_str("auto");
     cmd.add_option("--map-size", mapSize, "shadow map texels per side (per cascade for csm)")->capture_default_str();
-    cmd.add_option("--cascades", cascades.count, "csm: number of splits, 1-8")->capture_default_str();
+    cmd.add_option("--cascades", cascades.count, "csm: number of splits, 1-8; with --technique auto: that many maps (1: a single map)")
+        ->each([this](const std::string&) { cascadesGiven = true; })
+        ->capture_default_str();
     cmd.add_option("--lambda", cascades.lambda, "csm: split scheme, 0 uniform ... 1 logarithmic (Zhang et al. 2006)")
         ->capture_default_str();
     cmd.add_option("--splits", splits, "csm: explicit split distances near,...,far (count + 1 values)");
@@ -386,6 +404,11 @@ core::Status TechniqueOptions::check(bool measuresFrames) const {
                                "(render, eval and compare take auto)");
     auto in = inputsFor(scene::ResolvedView{}, core::Aabb::fromMinMax(core::Vec3(0.0), core::Vec3(1.0)));
     if (!in) return in.errorInfo();
+    if (!automatic && !texelBudget.empty()) return core::makeError("--texel-budget: only with --technique auto");
+    if (automatic) {
+        if (cascades.stabilize) return core::makeError("--technique auto: --stabilize is not supported with auto yet");
+        if (auto a = autoOptions(); !a) return a.errorInfo();
+    }
     // The camera-independent checks only: the view is not resolved yet.
     if (auto s = core::validateOptions(*in); !s) return withFlagName(s.errorInfo());
     if (auto s = core::validate(hysteresis); !s) return withFlagName(s.errorInfo());
@@ -396,6 +419,29 @@ core::Result<core::ShadowSetup> TechniqueOptions::setupFor(const core::ShadowSet
                                                           std::optional<core::SetupHysteresis>& sequence) const {
     if (!sequence) sequence = newHysteresis();
     return sequence ? sequence->next(inputs) : core::computeShadowSetup(inputs);
+}
+
+core::Result<core::AutoOptions> TechniqueOptions::autoOptions() const {
+    core::AutoOptions options;
+    options.cascades = cascadesGiven ? cascades.count : 0;
+    options.texelBudget = int64_t(mapSize) * mapSize;
+    if (!texelBudget.empty()) {
+        const char suffix = texelBudget.back();
+        const int64_t unit = suffix == 'K' || suffix == 'k' ? int64_t(1) << 10 : suffix == 'M' || suffix == 'm' ? int64_t(1) << 20 : 1;
+        const std::string digits = unit == 1 ? texelBudget : texelBudget.substr(0, texelBudget.size() - 1);
+        double value = 0.0;
+        size_t used = 0;
+        try {
+            value = std::stod(digits, &used);
+        } catch (const std::exception&) {
+            used = 0;
+        }
+        if (used != digits.size() || digits.empty() || !(value > 0.0 && value * double(unit) < 1e15))
+            return core::makeError(fmt::format("--texel-budget: expected a number of texels such as 4M or 16777216, got '{}'", texelBudget));
+        options.texelBudget = static_cast<int64_t>(value * double(unit));
+    }
+    if (auto s = core::validate(options); !s) return withFlagName(s.errorInfo());
+    return options;
 }
 
 core::Result<core::ShadowSetupInputs> TechniqueOptions::inputsFor(const scene::ResolvedView& view, const core::Aabb& wsBounds) const {

@@ -3,6 +3,7 @@
 // types, turning bad values into one-line errors that name the flag.
 #pragma once
 
+#include "shadowkit/core/error_driven.h"
 #include "shadowkit/core/result.h"
 #include "shadowkit/core/setup_hysteresis.h"
 #include "shadowkit/core/shadow_setup.h"
@@ -46,6 +47,11 @@ struct ViewOptions {
 
 struct TechniqueOptions {
     core::Technique technique = core::defaultTechnique();
+    // --technique auto: the family and its parameters chosen per frame by the sampling model
+    // (auto_technique.h); `technique` then stays the default until a frame is resolved.
+    bool automatic = false;
+    std::string texelBudget;   // --texel-budget text ("4M", "16777216"); empty: one --map-size map
+    bool cascadesGiven = false; // --cascades was given: auto keeps to that count
     core::LispsmFormula lispsmFormula = core::LispsmOptions{}.formula;
     core::LispsmDirection lispsmDirection = core::LispsmOptions{}.direction;
     std::string visibleDepth, splits; // raw "near,far" (or "auto") / "a,b,c" text, parsed by inputsFor()
@@ -81,6 +87,9 @@ struct TechniqueOptions {
     // fresh one: the fresh fit itself), else core::computeShadowSetup.
     core::Result<core::ShadowSetup> setupFor(const core::ShadowSetupInputs& inputs,
                                              std::optional<core::SetupHysteresis>& sequence) const;
+    // --technique auto's options: the budget (K and M are 2^10 and 2^20 texels) and, with
+    // --cascades given, that count. Errors name the flag.
+    core::Result<core::AutoOptions> autoOptions() const;
     // Everything computeShadowSetup needs for this view and scene box.
     core::Result<core::ShadowSetupInputs> inputsFor(const scene::ResolvedView& view, const core::Aabb& wsBounds) const;
 };

@@ -41,6 +41,7 @@ std::string reportJson(const std::vector<ViewReport>& views) {
             {"seconds", v.seconds},
         });
         if (v.visibleDepth) list.back()["visible_depth"] = {v.visibleDepth->x, v.visibleDepth->y};
+        if (!v.autoChoice.empty()) list.back()["auto_choice"] = v.autoChoice;
         if (!v.lights.empty()) {
             nlohmann::json lights = nlohmann::json::array();
             for (const LightReport& l : v.lights)

@@ -35,6 +35,7 @@ struct ViewReport {
     std::string filter = "hard"; // as given to --filter
     int blurIterations = 0;
     std::vector<std::string> fallbacks;
+    std::string autoChoice; // "auto_choice": what --technique auto chose, with its parameters (else left out)
     std::optional<core::Vec2> visibleDepth; // the visible view-depth range the set-up used, when one was given
     Figures figures;      // every light together (eval::combine); the sun's alone in a sunlit view
     std::vector<LightReport> lights; // per light, when the view has spot or point lights
