@@ -1,14 +1,16 @@
 #include "auto_technique.h"
 
+#include "shadowkit/gl/context.h"
+
+#include <fmt/format.h>
+
 #include <chrono>
 
 namespace shadowkit::app {
 
 core::Result<core::ShadowSetupInputs> AutoTechnique::choose(gl::Renderer& renderer, const core::ShadowSetupInputs& inputs,
                                                             const gl::RenderSettings& settings) {
-    gl::ReceiverSampling sampling;
-    sampling.width = std::min(sampling.width, settings.width);
-    auto samples = gl::sampleReceivers(renderer, inputs, settings, sampling);
+    auto samples = gl::sampleReceivers(renderer, inputs, settings);
     if (!samples) return samples.errorInfo();
     const auto start = std::chrono::steady_clock::now();
     auto model = core::SamplingErrorModel::create(inputs.camera, settings.width, settings.height, *samples);
@@ -19,6 +21,65 @@ core::Result<core::ShadowSetupInputs> AutoTechnique::choose(gl::Renderer& render
     m_model = std::move(model).value();
     m_last = std::move(choice).value();
     return m_last->inputs;
+}
+
+core::Status chooseForFrame(AutoTechnique& automatic, gl::Renderer& renderer, const RenderOptions& render,
+                            const scene::ResolvedView& view, core::ShadowSetupInputs& inputs, gl::RenderSettings& settings,
+                            std::string_view label) {
+    auto chosen = automatic.choose(renderer, inputs, settings);
+    if (!chosen) return withFlagName(chosen.errorInfo());
+    inputs = std::move(chosen).value();
+    auto again = render.settingsFor(view, inputs);
+    if (!again) return again.errorInfo();
+    settings.bias = again->bias;
+    if (!label.empty()) {
+        const core::ParameterChoice& c = *automatic.last();
+        fmt::print(stderr, "{}: auto chose {}, predicted p95 {:.3g} ({} samples, {:.2f} ms)\n", label, core::describe(c), c.predicted.p95,
+                   c.predicted.samples, automatic.lastMilliseconds());
+    }
+    return core::Ok{};
+}
+
+core::Status printAutoCandidates(const SceneOptions& sceneOptions, const ViewOptions& viewOptions, const TechniqueOptions& technique) {
+    auto options = technique.autoOptions();
+    if (!options) return options.errorInfo();
+    auto sceneData = sceneOptions.load();
+    if (!sceneData) return sceneData.errorInfo();
+    auto view = viewOptions.resolve(*sceneData);
+    if (!view) return view.errorInfo();
+    auto context = gl::Context::createHeadless();
+    if (!context) return context.errorInfo();
+    auto renderer = gl::Renderer::create(*sceneData);
+    if (!renderer) return renderer.errorInfo();
+    auto base = technique.inputsFor(*view, (*renderer)->wsSceneBounds());
+    if (!base) return base.errorInfo();
+    gl::RenderSettings settings;
+    settings.width = view->width;
+    settings.height = view->height;
+    auto samples = gl::sampleReceivers(**renderer, *base, settings);
+    if (!samples) return samples.errorInfo();
+    auto model = core::SamplingErrorModel::create(base->camera, settings.width, settings.height, *samples);
+    if (!model) return model.errorInfo();
+    const auto start = std::chrono::steady_clock::now();
+    auto ranked = core::rankCandidates(*base, *options, *model);
+    if (!ranked) return withFlagName(ranked.errorInfo());
+    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    fmt::print("Candidates of --technique auto for view '{}' at {}x{}, {} texels, predicted at {} receivers ({:.1f} ms):\n",
+               viewOptions.view, settings.width, settings.height, options->texelBudget, model->size(), ms);
+    fmt::print("  {:<54} {:>9} {:>9}   {:>9} {:>9}\n", "candidate (optimised parameters)", "def p50", "def p95", "p50", "p95");
+    for (const core::ParameterChoice& c : *ranked) {
+        // The same family, maps and size with its default parameters.
+        core::ShadowSetupInputs defaults = *base;
+        defaults.technique = c.inputs.technique;
+        defaults.mapSize = c.inputs.mapSize;
+        defaults.cascades.count = c.inputs.cascades.count;
+        defaults.cascades.warp = c.inputs.cascades.warp;
+        auto setup = core::computeShadowSetup(defaults);
+        if (!setup) return withFlagName(setup.errorInfo());
+        const core::SamplingFigures d = model->figures(*setup);
+        fmt::print("  {:<54} {:>9.3f} {:>9.3f}   {:>9.3f} {:>9.3f}\n", core::describe(c), d.p50, d.p95, c.predicted.p50, c.predicted.p95);
+    }
+    return core::Ok{};
 }
 
 } // namespace shadowkit::app

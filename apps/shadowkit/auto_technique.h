@@ -4,11 +4,14 @@
 // holding the last frame's choice unless clearly beaten.
 #pragma once
 
+#include "options.h"
+
 #include "shadowkit/core/error_driven.h"
 #include "shadowkit/gl/receiver_samples.h"
 #include "shadowkit/gl/renderer.h"
 
 #include <optional>
+#include <string_view>
 #include <vector>
 
 namespace shadowkit::app {
@@ -35,5 +38,17 @@ private:
     std::optional<core::SamplingErrorModel> m_model;
     double m_milliseconds = 0.0;
 };
+
+// A command's frame under --technique auto: `inputs` become this frame's choice and `settings`
+// take the bias flags from the chosen technique's recommendation. With a `label`, the choice
+// is printed to stderr ("paper: auto chose ...").
+core::Status chooseForFrame(AutoTechnique& automatic, gl::Renderer& renderer, const RenderOptions& render,
+                            const scene::ResolvedView& view, core::ShadowSetupInputs& inputs, gl::RenderSettings& settings,
+                            std::string_view label);
+
+// `shadowkit analyze --candidates`: every candidate of --technique auto for the view, with
+// its family's default parameters and the optimised ones, predicted from the view's
+// receivers, best first (what auto would choose comes first).
+core::Status printAutoCandidates(const SceneOptions& sceneOptions, const ViewOptions& viewOptions, const TechniqueOptions& technique);
 
 } // namespace shadowkit::app

@@ -1,5 +1,6 @@
 // shadowkit analyze: the perspective-aliasing analysis of Wimmer et al. 2004 (Figure 6), and what
 // it predicts for a given camera and sun.
+#include "auto_technique.h"
 #include "commands.h"
 #include "options.h"
 
@@ -26,9 +27,14 @@ struct AnalyzeArgs {
     double zNear = 1.0, zFar = 100.0;
     std::string csv = "analyze.csv", plot = "analyze.png";
     bool json = false;
+    bool candidates = false;
 };
 
 int runAnalyze(const AnalyzeArgs& args) {
+    if (args.candidates) {
+        if (auto s = printAutoCandidates(args.scene, args.view, args.technique); !s) return fail(s.errorInfo());
+        return 0;
+    }
     if (!(args.zNear > 0.0 && args.zFar > args.zNear && std::isfinite(args.zFar)))
         return fail(fmt::format("--zn/--zf: need 0 < zn < zf, got {} and {}", args.zNear, args.zFar));
     if (auto s = args.technique.check(/*measuresFrames=*/false); !s) return fail(s.errorInfo());
@@ -126,6 +132,9 @@ Command addAnalyzeCommand(CLI::App& app) {
     cmd->add_option("--csv", args->csv, "curves as CSV (z, uniform, psm, lispsm); empty: none")->capture_default_str();
     cmd->add_option("--plot", args->plot, "curves as a PNG plot; empty: none")->capture_default_str();
     cmd->add_flag("--json", args->json, "print the figures as JSON instead of text");
+    cmd->add_flag("--candidates", args->candidates,
+                  "instead: the predicted p50 / p95 of every --technique auto candidate for --view, default and optimised "
+                  "parameters (--texel-budget, --cascades as for auto; renders a read-back)");
     return {cmd, [args] { return runAnalyze(*args); }};
 }
 

@@ -63,7 +63,7 @@ core::Result<std::vector<std::string>> viewNames(const EvalArgs& args) {
 }
 
 int runEval(const EvalArgs& args) {
-    if (auto s = args.technique.check(); !s) return fail(s.errorInfo());
+    if (auto s = args.technique.check(/*measuresFrames=*/true, /*takesAuto=*/true); !s) return fail(s.errorInfo());
     if (auto s = args.render.check(); !s) return fail(s.errorInfo());
     for (auto [flag, file] : {std::pair{"--json", &args.json}, {"--csv", &args.csv}, {"--plot", &args.plot}})
         if (auto s = checkWritable(flag, *file); !s) return fail(s.errorInfo());
@@ -112,14 +112,8 @@ int runEval(const EvalArgs& args) {
         std::optional<AutoTechnique> automatic; // a still view: no earlier frame's choice to hold
         if (args.technique.automatic) {
             automatic.emplace(*args.technique.autoOptions());
-            auto chosen = automatic->choose((*measurer)->renderer(), *inputs, *settings);
-            if (!chosen) return fail(withFlagName(chosen.errorInfo()));
-            inputs = std::move(chosen).value();
-            settings = args.render.settingsFor(*view, *inputs); // a bias given by flags starts from the chosen technique's
-            if (!settings) return fail(settings.errorInfo());
-            args.lights.apply(*view, *settings);
-            fmt::print(stderr, "{}: auto chose {}, predicted p95 {:.3g} ({} set-ups, {:.2f} ms)\n", name, core::describe(*automatic->last()),
-                       automatic->last()->predicted.p95, automatic->last()->setupsTried, automatic->lastMilliseconds());
+            if (auto s = chooseForFrame(*automatic, (*measurer)->renderer(), args.render, *view, *inputs, *settings, name); !s)
+                return fail(s.errorInfo());
         }
 
         // Progress only when the truth takes a while (large images, big scenes).

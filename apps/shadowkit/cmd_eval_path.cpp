@@ -1,3 +1,4 @@
+#include "auto_technique.h"
 #include "eval_path.h"
 
 #include "commands.h"
@@ -89,6 +90,8 @@ int runEvalPath(const EvalPathArgs& args) {
     std::string technique;
     // --stabilize with held lattices: one hysteresis for the whole sequence.
     std::optional<core::SetupHysteresis> hysteresis = args.technique.newHysteresis();
+    std::optional<AutoTechnique> automatic;
+    if (args.technique.automatic) automatic.emplace(*args.technique.autoOptions());
     int refits = 0, toCover = 0, stale = 0; // frames with a refit; views refitted for each reason
     fmt::print("{:>5} {:>7} {:>9} {:>7} {:>8} {:>7} {:>9} {:>9} {:>6}\n", "frame", "t_s", "valid_px", "wrong%", "flicker%", "truth%",
                "ppt50", "compared", "sec");
@@ -103,6 +106,9 @@ int runEvalPath(const EvalPathArgs& args) {
         if (!inputs) return fail(inputs.errorInfo());
         auto settings = args.render.settingsFor(*view, *inputs);
         if (!settings) return fail(settings.errorInfo());
+        if (automatic) // the last frame's choice is held unless clearly beaten (AutoOptions::hysteresis)
+            if (auto s = chooseForFrame(*automatic, (*measurer)->renderer(), args.render, *view, *inputs, *settings, {}); !s)
+                return fail(s.errorInfo());
         measure::MeasureOptions options;
         options.visibleDepthFromFrame = args.technique.visibleDepthFromFrame();
         options.hysteresis = hysteresis ? &*hysteresis : nullptr;

@@ -1,4 +1,5 @@
 // shadowkit render: one shaded image of a scene with a shadow technique.
+#include "auto_technique.h"
 #include "commands.h"
 #include "local_light_options.h"
 #include "options.h"
@@ -71,7 +72,7 @@ core::Status encodeVideo(const std::string& pattern, int firstFrame, double fram
 }
 
 int runRender(const RenderArgs& args) {
-    if (auto s = args.technique.check(); !s) return fail(s.errorInfo());
+    if (auto s = args.technique.check(/*measuresFrames=*/true, /*takesAuto=*/true); !s) return fail(s.errorInfo());
     if (auto s = args.render.check(); !s) return fail(s.errorInfo());
     auto timeline = args.timeline.resolve();
     if (!timeline) return fail(timeline.errorInfo());
@@ -101,6 +102,8 @@ int runRender(const RenderArgs& args) {
     std::vector<uint32_t> moved;
     // --stabilize with held lattices: one hysteresis for the whole sequence.
     std::optional<core::SetupHysteresis> hysteresis;
+    std::optional<AutoTechnique> automatic; // across frames: the last choice held unless clearly beaten
+    if (args.technique.automatic) automatic.emplace(*args.technique.autoOptions());
     // --strip: six frames spread evenly over those drawn, first and last included.
     constexpr size_t kStripFrames = 6;
     std::vector<scene::Image> stripImages;
@@ -135,6 +138,11 @@ int runRender(const RenderArgs& args) {
             if (!refined) return fail(withFlagName(refined.errorInfo()));
             inputs = std::move(refined).value();
         }
+        if (automatic)
+            if (auto s = chooseForFrame(*automatic, **renderer, args.render, *view, *inputs, *settings,
+                                        timeline->frames.size() == 1 ? "auto" : "");
+                !s)
+                return fail(s.errorInfo());
         // What a frame costs on the CPU before drawing: the set-up.
         const auto setupStart = std::chrono::steady_clock::now();
         auto setup = args.technique.setupFor(*inputs, hysteresis);

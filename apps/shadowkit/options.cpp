@@ -398,7 +398,7 @@ void TechniqueOptions::addTo(CLI::App& cmd) {
         ->capture_default_str();
 }
 
-core::Status TechniqueOptions::check(bool measuresFrames) const {
+core::Status TechniqueOptions::check(bool measuresFrames, bool takesAuto) const {
     if (!measuresFrames && visibleDepthFromFrame())
         return core::makeError("--visible-depth: 'auto' measures a rendered frame, so give near,far here "
                                "(render, eval and compare take auto)");
@@ -406,6 +406,9 @@ core::Status TechniqueOptions::check(bool measuresFrames) const {
     if (!in) return in.errorInfo();
     if (!automatic && !texelBudget.empty()) return core::makeError("--texel-budget: only with --technique auto");
     if (automatic) {
+        if (!takesAuto)
+            return core::makeError("--technique auto: chooses from a rendered frame's receivers, so render and eval take it "
+                                   "(analyze --candidates lists what it weighs)");
         if (cascades.stabilize) return core::makeError("--technique auto: --stabilize is not supported with auto yet");
         if (auto a = autoOptions(); !a) return a.errorInfo();
     }

@@ -81,7 +81,8 @@ struct TechniqueOptions {
     void addTo(CLI::App& cmd);
     // Checks the technique's flags (cheap: call before loading a scene); errors name the flag.
     // Commands that do not render and measure a frame refuse --visible-depth auto.
-    core::Status check(bool measuresFrames = true) const;
+    // Only commands that resolve it per frame (render, eval) take --technique auto.
+    core::Status check(bool measuresFrames = true, bool takesAuto = false) const;
     // The set-up of a frame: through `sequence`'s hysteresis when --stabilize asks for one
     // (created on first use; a sequence keeps it across its frames, a still frame gets a
     // fresh one: the fresh fit itself), else core::computeShadowSetup.

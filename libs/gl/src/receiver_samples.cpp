@@ -9,17 +9,15 @@ namespace shadowkit::gl {
 core::Result<std::vector<core::ReceiverSample>> sampleReceivers(Renderer& renderer, const core::ShadowSetupInputs& inputs,
                                                                 const RenderSettings& settings,
                                                                 const ReceiverSampling& sampling) {
-    if (sampling.width < 1 || sampling.width > settings.width)
-        return core::fieldError("sampling.width", "must be in [1, " + std::to_string(settings.width) + "] (the frame's width), got " +
-                                                      std::to_string(sampling.width));
+    if (sampling.width < 1) return core::fieldError("sampling.width", "must be >= 1, got " + std::to_string(sampling.width));
     core::ShadowSetupInputs cheapest = inputs;
     cheapest.technique = core::Technique::Standard;
     cheapest.mapSize = 64;
     auto setup = core::computeShadowSetup(cheapest);
     if (!setup) return setup.errorInfo();
     RenderSettings small = settings;
-    small.width = sampling.width;
-    small.height = std::max(1, static_cast<int>(std::lround(double(sampling.width) * settings.height / settings.width)));
+    small.width = std::min(sampling.width, settings.width);
+    small.height = std::max(1, static_cast<int>(std::lround(double(small.width) * settings.height / settings.width)));
     small.blur.iterations = 0;
     small.receiverMask = false;
     small.filter = core::FilterSettings{};

@@ -12,7 +12,7 @@
 namespace shadowkit::gl {
 
 struct ReceiverSampling {
-    int width = 160;          // pixels across of the read-back; its height keeps the frame's aspect
+    int width = 160;          // pixels across of the read-back (at most the frame's); its height keeps the frame's aspect
     size_t maxSamples = 4096; // receivers kept, spread evenly over those facing the light
 };
 
