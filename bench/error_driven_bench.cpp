@@ -1,0 +1,85 @@
+// CPU cost of --technique auto's choice per frame (issue 16): the sampling model over the
+// receivers and the parameter search (core/error_driven.h), on standard views. The receivers
+// are the ground the camera sees (rays through a grid of pixels meeting the terrain's mean
+// height), as many as a read-back gives.
+//   build/bench/shadowkit_error_driven_bench
+#include "shadowkit/core/error_driven.h"
+#include "shadowkit/scene/forest.h"
+#include "shadowkit/scene/views.h"
+
+#include <benchmark/benchmark.h>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <cmath>
+#include <string>
+
+namespace {
+
+using namespace shadowkit;
+
+const scene::Scene& forest() {
+    static const scene::Scene s = [] {
+        scene::ForestOptions o;
+        o.trees = 10000;
+        return scene::makeForest(o);
+    }();
+    return s;
+}
+
+std::vector<core::ReceiverSample> groundSamples(const core::PerspectiveCamera& camera, double groundY, int count) {
+    std::vector<core::ReceiverSample> out;
+    const core::Mat4 worldFromView = glm::inverse(camera.viewFromWorld());
+    const double tanY = std::tan(glm::radians(camera.fovYDegrees) * 0.5);
+    const int columns = static_cast<int>(std::sqrt(count * camera.aspect)) + 1, rows = count / columns + 1;
+    for (int y = 0; y < rows; ++y)
+        for (int x = 0; x < columns; ++x) {
+            const double ndcX = 2.0 * (x + 0.5) / columns - 1.0, ndcY = 1.0 - 2.0 * (y + 0.5) / rows;
+            const core::Vec3 d(worldFromView * core::Vec4(ndcX * tanY * camera.aspect, ndcY * tanY, -1.0, 0.0));
+            if (d.y >= 0.0) continue;
+            const double t = (groundY - camera.wsEye.y) / d.y;
+            if (t * glm::length(d) < camera.zFar) out.push_back({camera.wsEye + t * d, core::Vec3(0.0, 1.0, 0.0)});
+        }
+    return out;
+}
+
+void chooseForView(benchmark::State& state, const std::string& viewName, int samples, int cascades) {
+    const auto views = scene::loadViews(scene::dataDirectory() / "views.json");
+    if (!views) {
+        state.SkipWithError(views.error().c_str());
+        return;
+    }
+    const scene::ResolvedView view = scene::resolveView(*scene::findView(*views, viewName), forest());
+    const core::Aabb bounds = forest().wsBounds();
+    const core::ShadowSetupInputs inputs{.camera = view.camera, .light = view.light, .wsSceneBounds = bounds};
+    const auto receivers = groundSamples(view.camera, 0.5 * (bounds.min.y + bounds.max.y) - 0.25 * (bounds.max.y - bounds.min.y), samples);
+    core::AutoOptions options;
+    options.texelBudget = int64_t(4) << 20;
+    options.cascades = cascades;
+    for (auto _ : state) {
+        auto model = core::SamplingErrorModel::create(view.camera, 1280, 720, receivers);
+        auto choice = core::chooseAuto(inputs, options, *model);
+        benchmark::DoNotOptimize(choice);
+    }
+    state.counters["samples"] = double(receivers.size());
+}
+
+void registerAll() {
+    for (const char* view : {"perpendicular", "aerial"})
+        for (const int samples : {4096, 512})
+            for (const int cascades : {1, 0})
+                benchmark::RegisterBenchmark(("auto/" + std::string(cascades == 1 ? "single" : "any-count") + "/" +
+                                              std::to_string(samples) + "/" + view)
+                                                 .c_str(),
+                                             chooseForView, std::string(view), samples, cascades)
+                    ->Unit(benchmark::kMillisecond);
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    registerAll();
+    benchmark::Initialize(&argc, argv);
+    benchmark::RunSpecifiedBenchmarks();
+    return 0;
+}
