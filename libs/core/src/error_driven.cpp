@@ -56,6 +56,18 @@ void search1D(ParameterChoice& best, Evaluator& evaluate, const ShadowSetupInput
     }
 }
 
+// Cascades: the split distances over what is visible — the samples' view depths, within the
+// camera's range — unless the caller measured the range itself.
+ShadowSetupInputs withVisibleSplits(ShadowSetupInputs in, const SamplingErrorModel& model) {
+    in.cascades.splits.clear();
+    if (const auto range = model.viewDepthRange(); range && !in.visibleDepth) {
+        const double nearest = std::clamp(range->x, 0.0, in.camera.zFar);
+        const double farthest = std::min(range->y * 1.02, in.camera.zFar);
+        if (farthest > nearest) in.visibleDepth = Vec2(nearest, farthest);
+    }
+    return in;
+}
+
 int mapSizeFor(int64_t budget, int maps) {
     const double side = std::sqrt(double(budget) / maps);
     return std::min(kMaxMapSize, static_cast<int>(side / 16.0) * 16);
@@ -101,18 +113,10 @@ Result<ParameterChoice> optimiseParameters(const ShadowSetupInputs& inputs, cons
     case Technique::Tsm:
         search1D(best, evaluate, inputs, 0.02, 0.9, [](ShadowSetupInputs& in, double x) { in.tsm.focusFraction = x; });
         break;
-    case Technique::Csm: {
-        ShadowSetupInputs start = inputs;
-        start.cascades.splits.clear();
-        // Splits over what is visible: the samples' view depths, within the camera's range.
-        if (const auto range = model.viewDepthRange(); range && !start.visibleDepth) {
-            const double nearest = std::clamp(range->x, 0.0, inputs.camera.zFar);
-            const double farthest = std::min(range->y * 1.02, inputs.camera.zFar);
-            if (farthest > nearest) start.visibleDepth = Vec2(nearest, farthest);
-        }
-        search1D(best, evaluate, start, 0.0, 1.0, [](ShadowSetupInputs& in, double x) { in.cascades.lambda = x; });
+    case Technique::Csm:
+        search1D(best, evaluate, withVisibleSplits(inputs, model), 0.0, 1.0,
+                 [](ShadowSetupInputs& in, double x) { in.cascades.lambda = x; });
         break;
-    }
     default: break;
     }
     best.setupsTried = evaluate.setups;
@@ -185,7 +189,8 @@ Result<ParameterChoice> chooseAuto(const ShadowSetupInputs& base, const AutoOpti
         again.light = base.light;
         again.wsSceneBounds = base.wsSceneBounds;
         again.wsGridOrigin = base.wsGridOrigin;
-        if (again.technique != Technique::Csm) again.visibleDepth = base.visibleDepth;
+        again.visibleDepth = base.visibleDepth;
+        if (again.technique == Technique::Csm) again = withVisibleSplits(again, model); // this frame's visible depths
         if (auto setup = computeShadowSetup(again)) {
             const SamplingFigures f = model.figures(*setup);
             const double objective = samplingObjective(f);
