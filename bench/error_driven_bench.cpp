@@ -4,8 +4,7 @@
 // height), as many as a read-back gives.
 //   build/bench/shadowkit_error_driven_bench
 #include "shadowkit/core/error_driven.h"
-#include "shadowkit/scene/forest.h"
-#include "shadowkit/scene/views.h"
+#include "bench_scenes.h"
 
 #include <benchmark/benchmark.h>
 
@@ -18,14 +17,6 @@ namespace {
 
 using namespace shadowkit;
 
-const scene::Scene& forest() {
-    static const scene::Scene s = [] {
-        scene::ForestOptions o;
-        o.trees = 10000;
-        return scene::makeForest(o);
-    }();
-    return s;
-}
 
 std::vector<core::ReceiverSample> groundSamples(const core::PerspectiveCamera& camera, double groundY, int count) {
     std::vector<core::ReceiverSample> out;
@@ -44,13 +35,13 @@ std::vector<core::ReceiverSample> groundSamples(const core::PerspectiveCamera& c
 }
 
 void chooseForView(benchmark::State& state, const std::string& viewName, int samples, int cascades) {
-    const auto views = scene::loadViews(scene::dataDirectory() / "views.json");
-    if (!views) {
-        state.SkipWithError(views.error().c_str());
+    const auto resolved = bench::standardView(viewName);
+    if (!resolved) {
+        state.SkipWithError(resolved.error().c_str());
         return;
     }
-    const scene::ResolvedView view = scene::resolveView(*scene::findView(*views, viewName), forest());
-    const core::Aabb bounds = forest().wsBounds();
+    const scene::ResolvedView& view = *resolved;
+    const core::Aabb bounds = bench::defaultForest().wsBounds();
     const core::ShadowSetupInputs inputs{.camera = view.camera, .light = view.light, .wsSceneBounds = bounds};
     const auto receivers = groundSamples(view.camera, 0.5 * (bounds.min.y + bounds.max.y) - 0.25 * (bounds.max.y - bounds.min.y), samples);
     core::AutoOptions options;

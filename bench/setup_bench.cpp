@@ -2,8 +2,7 @@
 // on the standard views over the default forest's bounds (docs/references.md, evaluation §4).
 //   build/bench/shadowkit_setup_bench
 #include "shadowkit/core/shadow_setup.h"
-#include "shadowkit/scene/forest.h"
-#include "shadowkit/scene/views.h"
+#include "bench_scenes.h"
 
 #include <benchmark/benchmark.h>
 
@@ -13,25 +12,16 @@ namespace {
 
 using namespace shadowkit;
 
-// The default forest is built once: only its bounds and ground height matter here.
-const scene::Scene& forest() {
-    static const scene::Scene s = [] {
-        scene::ForestOptions o;
-        o.trees = 10000;
-        return scene::makeForest(o);
-    }();
-    return s;
-}
 
 void setupForView(benchmark::State& state, core::Technique technique, const std::string& viewName) {
-    const auto views = scene::loadViews(scene::dataDirectory() / "views.json");
-    if (!views) {
-        state.SkipWithError(views.error().c_str());
+    const auto resolved = bench::standardView(viewName);
+    if (!resolved) {
+        state.SkipWithError(resolved.error().c_str());
         return;
     }
-    const scene::ResolvedView view = scene::resolveView(*scene::findView(*views, viewName), forest());
+    const scene::ResolvedView& view = *resolved;
     const core::ShadowSetupInputs inputs{.camera = view.camera, .light = view.light,
-                                         .wsSceneBounds = forest().wsBounds(), .technique = technique};
+                                         .wsSceneBounds = bench::defaultForest().wsBounds(), .technique = technique};
     for (auto _ : state) {
         auto setup = core::computeShadowSetup(inputs);
         benchmark::DoNotOptimize(setup);
