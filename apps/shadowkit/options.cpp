@@ -389,10 +389,10 @@ void TechniqueOptions::addTo(CLI::App& cmd) {
                    "--stabilize with held lattices: spare room round the view at a refit, a fraction of the map")
         ->capture_default_str();
     cmd.add_option("--stabilize-growth", hysteresis.maxTexelGrowth,
-                   "--stabilize with held lattices: refit when a texel on the central ray is this many times a fresh fit's")
+                   "--stabilize with held lattices: refit when a texel on the central ray has grown this many times against a fresh fit's since the refit")
         ->capture_default_str();
     cmd.add_option("--stabilize-lookahead", hysteresis.lookaheadFrames,
-                   "--stabilize with held lattices: a refit also covers where the camera will be this many frames on")
+                   "--stabilize with held lattices: a refit also covers where the camera will be on its way this many frames on (as far as that costs at most 3x a fresh fit's texels)")
         ->capture_default_str();
     cmd.add_option("--blend-band", cascades.blendBand, "csm: fraction of each split blended into the next, 0-0.5")
         ->capture_default_str();

@@ -139,7 +139,7 @@ bool drawOptionsPanel(StateOptions& s, const PanelDefaults& d) {
         if (s.count("stabilize") && !(t == "csm" && valueOf(s, "cascade-warp", "none") == "none")) {
             changed |= sliderFloat(s, "refit margin", "stabilize-margin", 0.0f, 1.0f, 0.05f);
             changed |= sliderFloat(s, "texel growth", "stabilize-growth", 1.01f, 4.0f, 1.25f);
-            changed |= sliderInt(s, "look-ahead frames", "stabilize-lookahead", 0, 60, 10);
+            changed |= sliderInt(s, "look-ahead frames", "stabilize-lookahead", 0, 120, 60);
         }
     }
     if (ImGui::CollapsingHeader("Bias and filter")) {

@@ -158,7 +158,7 @@ TEST(SetupHysteresis, BitIdenticalWhileStillAndRefitsWhenTheLightMoves) {
     EXPECT_TRUE(hysteresis.refitted());
 }
 
-TEST(SetupHysteresis, AStillCameraPaysOnlyTheMarginAMovingOneAlsoItsLookahead) {
+TEST(SetupHysteresis, AStillCameraOrAMovingLightPaysOnlyTheMargin) {
     auto ratioOnCentralRay = [](const ShadowSetupInputs& in, const ShadowSetup& held, const ShadowSetup& fresh, double depth) {
         const Vec3 p = in.camera.wsEye + depth * glm::normalize(in.camera.wsDirection);
         return texelFootprint(held.views[0], in.mapSize, in.light.wsDirection, p) /
@@ -171,15 +171,93 @@ TEST(SetupHysteresis, AStillCameraPaysOnlyTheMarginAMovingOneAlsoItsLookahead) {
     auto fresh = computeShadowSetup(in);
     ASSERT_TRUE(held && fresh);
     for (const double depth : {1.0, 10.0, 100.0}) EXPECT_NEAR(ratioOnCentralRay(in, *held, *fresh, depth), 1.1, 1e-6);
-    // A camera moving sideways whose map must be refitted (the sun moved) covers where it
-    // will be 10 frames on too: coarser than the margin alone.
+    // A camera moving sideways whose map must be refitted because the sun moved: a moving
+    // light refits every frame, so the refit is the margin's alone, with no room for motion.
     in.camera.wsEye.x += 3.0;
     in.light = DirectionalLight::fromSunAngles(36.0, 110.0).value();
     held = hysteresis.next(in);
     fresh = computeShadowSetup(in);
     ASSERT_TRUE(held && fresh);
     EXPECT_TRUE(hysteresis.refitted());
-    EXPECT_GT(ratioOnCentralRay(in, *held, *fresh, 10.0), 1.15);
+    for (const double depth : {1.0, 10.0, 100.0}) EXPECT_NEAR(ratioOnCentralRay(in, *held, *fresh, depth), 1.1, 1e-6);
+    // Under a held sun a moving camera's refit also covers where it is going: the turning
+    // climb below (TheLookaheadsRoomCosts...).
+}
+
+namespace {
+
+// The largest ratio of `held`'s texel footprint to `fresh`'s at the points where the hysteresis
+// weighs texels: the central ray from the near plane out, doubling, inside the scene.
+double worstOnCentralRay(const ShadowSetupInputs& in, const ShadowView& held, const ShadowView& fresh) {
+    double worst = 0.0;
+    const Vec3 forward = glm::normalize(in.camera.wsDirection);
+    for (double depth = in.camera.zNear;; depth *= 2.0) {
+        const Vec3 p = in.camera.wsEye + std::min(depth, in.camera.zFar) * forward;
+        if (in.wsSceneBounds.contains(p))
+            worst = std::max(worst, texelFootprint(held, in.mapSize, in.light.wsDirection, p) /
+                                        texelFootprint(fresh, in.mapSize, in.light.wsDirection, p));
+        if (depth >= in.camera.zFar) break;
+    }
+    return worst;
+}
+
+// A climb that turns: up and forward, the view swinging 1.5° a frame — extrapolated far, the
+// camera sees most of the terrain, and turns behind a warp's projection centre.
+PerspectiveCamera climb(const PerspectiveCamera& c, int) {
+    PerspectiveCamera out = c;
+    out.wsEye += Vec3(0.1, 0.4, -0.3);
+    const double turn = glm::radians(1.5);
+    const Vec3 d = glm::normalize(c.wsDirection);
+    out.wsDirection = Vec3(d.x * std::cos(turn) - d.z * std::sin(turn), d.y, d.x * std::sin(turn) + d.z * std::cos(turn));
+    return out;
+}
+
+} // namespace
+
+TEST(SetupHysteresis, TheLookaheadsRoomCostsAtMostThreeFreshTexelsAndHeldTexelsGrowAtMostTheBoundBeyondIt) {
+    // However far the lookahead reaches, a refit's texels on the central ray stay within 3x a
+    // fresh fit's (the cap on the lookahead's room), and a held view within maxTexelGrowth of
+    // what a refit would give now: so never beyond 3 · maxTexelGrowth.
+    for (const double lookahead : {10.0, 60.0, 240.0}) {
+        const HysteresisOptions o{.margin = 0.05, .maxTexelGrowth = 1.25, .lookaheadFrames = lookahead};
+        SetupHysteresis hysteresis(o);
+        PerspectiveCamera c = groundCamera();
+        double worstRefit = 0.0;
+        for (int k = 0; k < 60; ++k, c = climb(c, k)) {
+            const ShadowSetupInputs in = inputs(c, Technique::Lispsm);
+            auto setup = hysteresis.next(in);
+            auto fresh = computeShadowSetup(in);
+            ASSERT_TRUE(setup && fresh);
+            const double ratio = worstOnCentralRay(in, setup->views[0], fresh->views[0]);
+            if (hysteresis.refitted()) {
+                ASSERT_LE(ratio, 3.0 + 1e-9) << "lookahead " << lookahead << " frame " << k;
+                worstRefit = std::max(worstRefit, ratio);
+            }
+            ASSERT_LE(ratio, 3.0 * o.maxTexelGrowth + 1e-9) << "lookahead " << lookahead << " frame " << k;
+        }
+        // The room is taken in quarters of the lookahead, as far as each costs at most the cap:
+        // 60 frames take some (here 15 frames' worth at least); 240 frames' first quarter alone
+        // may already cost more than the cap, and then the refit is the margin's alone.
+        if (lookahead == 60.0) {
+            EXPECT_GT(worstRefit, 1.5) << "the lookahead's room was taken";
+        }
+    }
+}
+
+TEST(SetupHysteresis, ALookaheadHoldsATurningClimbWithFewerRefits) {
+    auto refitsAlong = [](double lookahead, auto motion, int frames) {
+        SetupHysteresis hysteresis(HysteresisOptions{.lookaheadFrames = lookahead});
+        PerspectiveCamera c = groundCamera();
+        int refits = -1; // the first frame always fits
+        for (int k = 0; k < frames; ++k, c = motion(c, k)) {
+            EXPECT_TRUE(hysteresis.next(inputs(c, Technique::Tsm)));
+            refits += hysteresis.refitted();
+        }
+        return refits;
+    };
+    const int without = refitsAlong(0.0, climb, 60), with = refitsAlong(60.0, climb, 60);
+    std::printf("turning climb, 60 frames: %d refits without lookahead, %d with 60 frames\n", without, with);
+    EXPECT_LT(with, without);
 }
 
 TEST(TexelFootprint, UniformMapsAreEvenWarpedMapsGrowAwayFromTheViewer) {

@@ -14,9 +14,11 @@
 // its texels along the camera's central ray are more than `maxTexelGrowth` times what a
 // refit would give there now (a warp concentrates texels at the viewer's position of its
 // refit; the camera leaving that position is what makes a held warp worse than a new one).
-// A refit covers the body with `margin` to spare and, for a moving camera, also the body it
-// will have `lookaheadFrames` on. Depth is refitted on its own when the body leaves the held
-// depth range: it does not move texels.
+// A refit covers the body with `margin` to spare and, for a moving camera, also the
+// bodies it will have on its way `lookaheadFrames` on, as far as that room costs at most 3×
+// a fresh fit's texel size, unless the light has just moved (a moving light refits every
+// frame, and room for the motion would only coarsen each refit). Depth is refitted on its
+// own when the body leaves the held depth range: it does not move texels.
 #pragma once
 
 #include "shadowkit/core/result.h"
@@ -34,10 +36,10 @@ struct HysteresisOptions {
     // Refit when a held texel on the camera's central ray is this many times the size of
     // what a refit would give there now (linear size, on a plane facing the light). > 1.
     double maxTexelGrowth = 1.25;
-    // At a refit, also cover the focus body of the camera this many frames on, extrapolated
-    // from its last motion (0: this frame's body only). A still camera pays nothing for it;
-    // a moving one trades texels for fewer refits. [0, 1000].
-    double lookaheadFrames = 10.0;
+    // At a refit, also cover the focus bodies of the camera on its way this many frames on,
+    // extrapolated from its last motion (0: this frame's body only). A still camera pays
+    // nothing for it; a moving one trades texels for fewer refits. [0, 1000].
+    double lookaheadFrames = 60.0;
 };
 
 // Fails naming the field ("hysteresis.margin", "hysteresis.growth", "hysteresis.lookahead").
