@@ -389,7 +389,7 @@ void TechniqueOptions::addTo(CLI::App& cmd) {
                    "--stabilize with held lattices: spare room round the view at a refit, a fraction of the map")
         ->capture_default_str();
     cmd.add_option("--stabilize-growth", hysteresis.maxTexelGrowth,
-                   "--stabilize with held lattices: refit when a texel on the central ray has grown this many times against a fresh fit's since the refit")
+                   "--stabilize with held lattices: refit when a texel on the central ray is this many times a fresh fit's")
         ->capture_default_str();
     cmd.add_option("--stabilize-lookahead", hysteresis.lookaheadFrames,
                    "--stabilize with held lattices: a refit also covers where the camera will be on its way this many frames on (as far as that costs at most 3x a fresh fit's texels)")
