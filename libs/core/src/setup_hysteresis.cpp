@@ -186,7 +186,7 @@ double texelGrowth(const ShadowSetupInputs& in, const ShadowView& held, const Sh
 // them, to the bodies the camera will have on its way if it goes on as it went — as many of
 // them, nearest first, as cost at most kMaxLookaheadPrice in texel size on the central ray.
 ShadowView withRoomForMotion(const ShadowSetupInputs& in, const ShadowView& fresh, const ConvexBody::Points& body,
-                     std::span<const ShadowSetupInputs> ahead, double margin) {
+                             std::span<const ShadowSetupInputs> ahead, double margin) {
     ShadowView refit = fresh;
     fitClip(refit, body, margin);
     ConvexBody::Points cover = body;
@@ -251,20 +251,24 @@ Result<ShadowSetup> SetupHysteresis::next(const ShadowSetupInputs& inputs) {
             ++m_refits.views;
             continue;
         }
+        std::optional<ShadowView> refit; // what a refit would give now, once asked for
+        auto refitNow = [&]() -> const ShadowView& {
+            if (!refit) refit = withRoomForMotion(inputs, now, body, ahead, m_options.margin);
+            return *refit;
+        };
         std::optional<ShadowView> kept;
         if (!refitAll) {
             kept = shiftedToCover(reanchored(m_held->setup.views[i], m_held->setup.wsEye, out.wsEye), body, inputs.mapSize);
             if (!kept) {
                 ++m_refits.toCover;
-            } else if (texelGrowth(inputs, *kept, withRoomForMotion(inputs, now, body, ahead, m_options.margin)) >
-                       m_options.maxTexelGrowth) {
+            } else if (texelGrowth(inputs, *kept, refitNow()) > m_options.maxTexelGrowth) {
                 kept.reset();
                 ++m_refits.stale;
             }
         }
         const bool refitted = !kept;
         if (refitted) {
-            kept = withRoomForMotion(inputs, now, body, ahead, m_options.margin);
+            kept = refitNow();
             ++m_refits.views;
         }
         fitDepth(*kept, body, m_options.margin, refitted);
