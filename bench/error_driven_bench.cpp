@@ -1,9 +1,12 @@
 // CPU cost of --technique auto's choice per frame (issue 16): the sampling model over the
-// receivers and the parameter search (core/error_driven.h), on standard views. The receivers
+// receivers and the parameter search. auto/full: the full search (core::chooseAuto, what the
+// first frame of a path and every still view costs) on standard views; auto/path: a frame
+// along the flythrough path once its candidates are tracked (core::AutoChooser). The receivers
 // are the ground the camera sees (rays through a grid of pixels meeting the terrain's mean
 // height), as many as a read-back gives.
 //   build/bench/shadowkit_error_driven_bench
-#include "shadowkit/core/error_driven.h"
+#include "shadowkit/core/auto_chooser.h"
+#include "shadowkit/scene/camera_path.h"
 #include "bench_scenes.h"
 
 #include <benchmark/benchmark.h>
@@ -55,11 +58,56 @@ void chooseForView(benchmark::State& state, const std::string& viewName, int sam
     state.counters["samples"] = double(receivers.size());
 }
 
+// Every frame of the flythrough after the first, in order, round and round: the per-frame cost
+// of tracking. The first frame's full search (and the one after each wrap) is not timed.
+void trackAlongPath(benchmark::State& state, int cascades) {
+    const auto path = scene::findCameraPath("flythrough");
+    if (!path) {
+        state.SkipWithError(path.error().c_str());
+        return;
+    }
+    const core::Aabb bounds = bench::defaultForest().wsBounds();
+    const double groundY = 0.5 * (bounds.min.y + bounds.max.y) - 0.25 * (bounds.max.y - bounds.min.y);
+    std::vector<core::ShadowSetupInputs> frames;
+    std::vector<std::vector<core::ReceiverSample>> receivers;
+    for (int i = 0; i < path->frames; ++i) {
+        auto view = scene::viewAt(*path, bench::defaultForest(), path->timeOfFrame(i));
+        if (!view) {
+            state.SkipWithError(view.error().c_str());
+            return;
+        }
+        frames.push_back({.camera = view->camera, .light = view->light, .wsSceneBounds = bounds});
+        receivers.push_back(groundSamples(view->camera, groundY, 4096));
+    }
+    core::AutoOptions options;
+    options.texelBudget = int64_t(4) << 20;
+    options.cascades = cascades;
+    core::AutoChooser chooser(options);
+    size_t frame = 0;
+    for (auto _ : state) {
+        if (frame == 0) {
+            state.PauseTiming();
+            chooser.reset();
+            benchmark::DoNotOptimize(chooser.choose(frames[0], path->width, path->height, receivers[0]));
+            frame = 1;
+            state.ResumeTiming();
+        }
+        auto choice = chooser.choose(frames[frame], path->width, path->height, receivers[frame]);
+        benchmark::DoNotOptimize(choice);
+        frame = (frame + 1) % frames.size();
+    }
+    state.counters["receivers"] = double(receivers[1].size());
+}
+
 void registerAll() {
+    for (const int cascades : {1, 0})
+        benchmark::RegisterBenchmark(("auto/path/" + std::string(cascades == 1 ? "single" : "any-count") + "/flythrough").c_str(),
+                                     trackAlongPath, cascades)
+            ->Unit(benchmark::kMillisecond);
     for (const char* view : {"perpendicular", "aerial"})
         for (const int samples : {4096, 512})
             for (const int cascades : {1, 0})
-                benchmark::RegisterBenchmark(("auto/" + std::string(cascades == 1 ? "single" : "any-count") + "/" +
+                benchmark::RegisterBenchmark(("auto/full/" + std::string(cascades == 1 ? "single" : "any-count") + "/" +
                                               std::to_string(samples) + "/" + view)
                                                  .c_str(),
                                              chooseForView, std::string(view), samples, cascades)

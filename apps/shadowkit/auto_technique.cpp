@@ -13,12 +13,9 @@ core::Result<core::ShadowSetupInputs> AutoTechnique::choose(gl::Renderer& render
     auto samples = gl::sampleReceivers(renderer, inputs, settings);
     if (!samples) return samples.errorInfo();
     const auto start = std::chrono::steady_clock::now();
-    auto model = core::SamplingErrorModel::create(inputs.camera, settings.width, settings.height, *samples);
-    if (!model) return model.errorInfo();
-    auto choice = core::chooseAuto(inputs, m_options, *model, m_last ? &*m_last : nullptr);
+    auto choice = m_chooser.choose(inputs, settings.width, settings.height, *samples);
     if (!choice) return choice.errorInfo();
     m_milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    m_model = std::move(model).value();
     m_last = std::move(choice).value();
     return m_last->inputs;
 }

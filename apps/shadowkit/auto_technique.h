@@ -1,12 +1,12 @@
 // --technique auto (issue 16): each frame, receivers read back from the renderer at a low
 // resolution (gl::sampleReceivers), the sampling model over them (core/sampling_error.h) and
-// the family and parameters it predicts best within the texel budget (core::chooseAuto),
-// holding the last frame's choice unless clearly beaten.
+// the family and parameters it predicts best within the texel budget: the full search on the
+// first frame, then each candidate's optimum tracked a step a frame (core::AutoChooser).
 #pragma once
 
 #include "options.h"
 
-#include "shadowkit/core/error_driven.h"
+#include "shadowkit/core/auto_chooser.h"
 #include "shadowkit/gl/receiver_samples.h"
 #include "shadowkit/gl/renderer.h"
 
@@ -18,7 +18,7 @@ namespace shadowkit::app {
 
 class AutoTechnique {
 public:
-    explicit AutoTechnique(core::AutoOptions options) : m_options(options) {}
+    explicit AutoTechnique(core::AutoOptions options) : m_chooser(options) {}
 
     // `inputs` with this frame's family, map size and parameters (camera, light and scene box
     // as given), drawn with `settings`' image size, culling and levels of detail.
@@ -26,16 +26,12 @@ public:
                                                  const gl::RenderSettings& settings);
 
     const std::optional<core::ParameterChoice>& last() const { return m_last; }
-    // The model built for the last frame (its samples), for listing candidates.
-    const std::optional<core::SamplingErrorModel>& model() const { return m_model; }
     // CPU time of the last choice: the model and the search, not the read-back.
     double lastMilliseconds() const { return m_milliseconds; }
-    const core::AutoOptions& options() const { return m_options; }
 
 private:
-    core::AutoOptions m_options;
+    core::AutoChooser m_chooser; // the full search on the first frame, tracking after it
     std::optional<core::ParameterChoice> m_last;
-    std::optional<core::SamplingErrorModel> m_model;
     double m_milliseconds = 0.0;
 };
 

@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <functional>
+#include <optional>
 #include <string>
 
 namespace shadowkit::core {
@@ -20,25 +20,23 @@ constexpr int64_t kMaxBudget = int64_t(kMaxShadowViews) * kMaxMapSize * kMaxMapS
 struct Evaluator {
     const SamplingErrorModel& model;
     int setups = 0;
-    std::pair<double, SamplingFigures> operator()(const ShadowSetupInputs& inputs) {
+    double operator()(const ShadowSetupInputs& inputs) {
         ++setups;
         auto setup = computeShadowSetup(inputs);
-        if (!setup) return {std::numeric_limits<double>::infinity(), {}};
-        const SamplingFigures f = model.figures(*setup);
-        return {samplingObjective(f), f};
+        return setup ? model.objective(*setup) : std::numeric_limits<double>::infinity();
     }
 };
 
 // Minimises the objective over x in [lo, hi], `apply` writing x into a copy of `start`: a grid
 // of kGridPoints, then golden section between the best grid point's neighbours. `best` keeps
 // the best candidate seen anywhere (only a strictly better one replaces it).
-void search1D(ParameterChoice& best, Evaluator& evaluate, const ShadowSetupInputs& start, double lo, double hi,
-              const std::function<void(ShadowSetupInputs&, double)>& apply) {
+void search1D(ParameterChoice& best, Evaluator& evaluate, const ShadowSetupInputs& start, const ParameterAxis& axis) {
+    const double lo = axis.lo, hi = axis.hi;
     auto at = [&](double x) {
         ShadowSetupInputs candidate = start;
-        apply(candidate, x);
-        const auto [objective, figures] = evaluate(candidate);
-        if (objective < best.objective) best = {candidate, figures, objective, 0};
+        axis.set(candidate, x);
+        const double objective = evaluate(candidate);
+        if (objective < best.objective) best = {candidate, {}, objective, 0};
         return objective;
     };
     const double step = (hi - lo) / (kGridPoints - 1);
@@ -56,6 +54,8 @@ void search1D(ParameterChoice& best, Evaluator& evaluate, const ShadowSetupInput
     }
 }
 
+} // namespace
+
 // Cascades: the split distances over what is visible — the samples' view depths, within the
 // camera's range — unless the caller measured the range itself.
 ShadowSetupInputs withVisibleSplits(ShadowSetupInputs in, const SamplingErrorModel& model) {
@@ -67,6 +67,8 @@ ShadowSetupInputs withVisibleSplits(ShadowSetupInputs in, const SamplingErrorMod
     }
     return in;
 }
+
+namespace {
 
 int mapSizeFor(int64_t budget, int maps) {
     const double side = std::sqrt(double(budget) / maps);
@@ -94,31 +96,50 @@ std::string describe(const ParameterChoice& choice) {
     }
 }
 
+std::optional<ParameterAxis> parameterAxis(Technique technique) {
+    switch (technique) {
+    case Technique::Lispsm:
+        return ParameterAxis{-4.0, 4.0, [](const ShadowSetupInputs& in) { return std::log2(in.lispsm.weight); },
+                             [](ShadowSetupInputs& in, double x) {
+                                 in.lispsm.weight = std::exp2(x);
+                                 in.lispsm.nOverride.reset();
+                             }};
+    case Technique::Tsm:
+        return ParameterAxis{0.02, 0.9, [](const ShadowSetupInputs& in) { return in.tsm.focusFraction; },
+                             [](ShadowSetupInputs& in, double x) { in.tsm.focusFraction = x; }};
+    case Technique::Csm:
+        return ParameterAxis{0.0, 1.0, [](const ShadowSetupInputs& in) { return in.cascades.lambda; },
+                             [](ShadowSetupInputs& in, double x) { in.cascades.lambda = x; }};
+    default: return std::nullopt;
+    }
+}
+
+ShadowSetupInputs forThisFrame(const ShadowSetupInputs& chosen, const ShadowSetupInputs& base, const SamplingErrorModel& model) {
+    ShadowSetupInputs in = chosen;
+    in.camera = base.camera;
+    in.light = base.light;
+    in.wsSceneBounds = base.wsSceneBounds;
+    in.wsGridOrigin = base.wsGridOrigin;
+    in.visibleDepth = base.visibleDepth;
+    return in.technique == Technique::Csm ? withVisibleSplits(in, model) : in; // this frame's visible depths
+}
+
 Result<ParameterChoice> optimiseParameters(const ShadowSetupInputs& inputs, const SamplingErrorModel& model) {
     if (auto s = validate(inputs); !s) return s.errorInfo();
     Evaluator evaluate{model};
-    ParameterChoice best{inputs, {}, std::numeric_limits<double>::infinity(), 0};
-    const auto [objective, figures] = evaluate(inputs);
-    best.predicted = figures;
-    best.objective = objective;
-    switch (inputs.technique) {
-    case Technique::Lispsm:
-        for (const LispsmDirection direction : {LispsmDirection::CrossProduct, LispsmDirection::MiddleVector}) {
-            ShadowSetupInputs start = inputs;
-            start.lispsm.direction = direction;
-            start.lispsm.nOverride.reset();
-            search1D(best, evaluate, start, -4.0, 4.0, [](ShadowSetupInputs& in, double x) { in.lispsm.weight = std::exp2(x); });
-        }
-        break;
-    case Technique::Tsm:
-        search1D(best, evaluate, inputs, 0.02, 0.9, [](ShadowSetupInputs& in, double x) { in.tsm.focusFraction = x; });
-        break;
-    case Technique::Csm:
-        search1D(best, evaluate, withVisibleSplits(inputs, model), 0.0, 1.0,
-                 [](ShadowSetupInputs& in, double x) { in.cascades.lambda = x; });
-        break;
-    default: break;
+    ParameterChoice best{inputs, {}, evaluate(inputs), 0};
+    if (const auto axis = parameterAxis(inputs.technique)) {
+        if (inputs.technique == Technique::Lispsm)
+            for (const LispsmDirection direction : {LispsmDirection::CrossProduct, LispsmDirection::MiddleVector}) {
+                ShadowSetupInputs start = inputs;
+                start.lispsm.direction = direction;
+                search1D(best, evaluate, start, *axis);
+            }
+        else
+            search1D(best, evaluate, inputs.technique == Technique::Csm ? withVisibleSplits(inputs, model) : inputs, *axis);
     }
+    // The figures of the one kept (its set-up again: the focus body is remembered).
+    if (auto setup = computeShadowSetup(best.inputs)) best.predicted = model.figures(*setup);
     best.setupsTried = evaluate.setups;
     return best;
 }
@@ -133,6 +154,9 @@ Status validate(const AutoOptions& options) {
                                                    " texels, got " + std::to_string(options.texelBudget));
     if (!(options.hysteresis >= 0.0 && options.hysteresis < 1.0))
         return fieldError("auto.hysteresis", "must be in [0, 1), got " + std::to_string(options.hysteresis));
+    // At least 20, so the p95 is not the largest sample.
+    if (options.searchSamples < 20 || options.searchSamples > 1'000'000)
+        return fieldError("auto.search_samples", "must be in [20, 1000000], got " + std::to_string(options.searchSamples));
     return Ok{};
 }
 
@@ -183,14 +207,7 @@ Result<ParameterChoice> chooseAuto(const ShadowSetupInputs& base, const AutoOpti
     if (!ranked) return ranked.errorInfo();
     ParameterChoice best = ranked->front();
     if (previous) {
-        // The last choice for this frame's camera, light and scene.
-        ShadowSetupInputs again = previous->inputs;
-        again.camera = base.camera;
-        again.light = base.light;
-        again.wsSceneBounds = base.wsSceneBounds;
-        again.wsGridOrigin = base.wsGridOrigin;
-        again.visibleDepth = base.visibleDepth;
-        if (again.technique == Technique::Csm) again = withVisibleSplits(again, model); // this frame's visible depths
+        const ShadowSetupInputs again = forThisFrame(previous->inputs, base, model);
         if (auto setup = computeShadowSetup(again)) {
             const SamplingFigures f = model.figures(*setup);
             const double objective = samplingObjective(f);

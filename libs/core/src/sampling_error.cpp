@@ -138,20 +138,41 @@ void SamplingErrorModel::predict(const ShadowSetup& setup, std::span<double> out
     }
 }
 
-SamplingFigures SamplingErrorModel::figures(const ShadowSetup& setup) const {
-    SamplingFigures f;
-    f.samples = m_samples.size();
-    if (m_samples.empty()) return f;
+double SamplingErrorModel::predictUndersampled(const ShadowSetup& setup) const {
     m_scratch.resize(m_samples.size());
     predict(setup, m_scratch);
     size_t undersampled = 0;
     for (const double p : m_scratch) undersampled += p > 1.0;
-    f.undersampledFraction = double(undersampled) / double(m_scratch.size());
+    return m_scratch.empty() ? 0.0 : double(undersampled) / double(m_scratch.size());
+}
+
+SamplingFigures SamplingErrorModel::figures(const ShadowSetup& setup) const {
+    SamplingFigures f;
+    f.samples = m_samples.size();
+    if (m_samples.empty()) return f;
+    f.undersampledFraction = predictUndersampled(setup);
     // Ascending quantiles: each nth_element leaves the larger values above its index.
     f.p50 = percentileInPlace(m_scratch, 0.50);
     f.p95 = percentileInPlace(m_scratch, 0.95);
     f.p99 = percentileInPlace(m_scratch, 0.99);
     return f;
+}
+
+double SamplingErrorModel::objective(const ShadowSetup& setup) const {
+    if (m_samples.empty()) return samplingObjective({});
+    SamplingFigures f;
+    f.undersampledFraction = predictUndersampled(setup);
+    f.p95 = percentileInPlace(m_scratch, 0.95);
+    return samplingObjective(f);
+}
+
+SamplingErrorModel SamplingErrorModel::subsampled(size_t maxSamples) const {
+    SamplingErrorModel out;
+    out.m_camera = m_camera;
+    const size_t count = std::min(maxSamples, m_samples.size());
+    out.m_samples.reserve(count);
+    for (size_t k = 0; k < count; ++k) out.m_samples.push_back(m_samples[k * m_samples.size() / count]);
+    return out;
 }
 
 } // namespace shadowkit::core

@@ -1,6 +1,7 @@
 // Error-driven parameters (core/error_driven.h): the search never loses a caster, never does
 // worse than the defaults on its samples, finds the better warp where the seeds say one
 // exists, and `auto` is deterministic and holds its choice across frames.
+#include "ground_receivers.h"
 #include "setup_configs.h"
 
 #include "shadowkit/core/error_driven.h"
@@ -15,7 +16,9 @@ using core::testing::ConfigGenerator;
 
 namespace {
 
-constexpr int kWidth = 640, kHeight = 360;
+constexpr int kWidth = core::testing::kGroundWidth, kHeight = core::testing::kGroundHeight;
+using core::testing::groundReceivers;
+using core::testing::groundView;
 
 // Receivers the camera could see: points of its frustum with normals facing the light and
 // not edge-on to the eye.
@@ -28,30 +31,6 @@ std::vector<ReceiverSample> randomReceivers(const ShadowSetupInputs& in, ConfigG
         samples.push_back({p, n});
     }
     return samples;
-}
-
-// A ground plane receiving everywhere the camera looks: a grid of points at y = 0.
-std::vector<ReceiverSample> groundReceivers(const PerspectiveCamera& camera, double extent, int perSide) {
-    std::vector<ReceiverSample> samples;
-    for (int i = 0; i < perSide; ++i)
-        for (int j = 0; j < perSide; ++j) {
-            const Vec3 p(camera.wsEye.x + extent * ((i + 0.5) / perSide - 0.5), 0.0, camera.wsEye.z - extent * (j + 0.5) / perSide);
-            samples.push_back({p, Vec3(0.0, 1.0, 0.0)});
-        }
-    return samples;
-}
-
-ShadowSetupInputs groundView(double sunElevation, double sunAzimuth) {
-    ShadowSetupInputs in;
-    in.camera.wsEye = Vec3(0.0, 1.8, 0.0);
-    in.camera.wsDirection = Vec3(0.0, -0.05, -1.0);
-    in.camera.aspect = double(kWidth) / kHeight;
-    in.camera.zNear = 0.5;
-    in.camera.zFar = 300.0;
-    in.light = *DirectionalLight::fromSunAngles(sunElevation, sunAzimuth);
-    in.wsSceneBounds = Aabb::fromMinMax(Vec3(-300.0, -1.0, -300.0), Vec3(300.0, 20.0, 300.0));
-    in.mapSize = 1024;
-    return in;
 }
 
 } // namespace
@@ -190,6 +169,9 @@ TEST(ErrorDrivenTest, BadOptionsAreErrorsNamingTheField) {
     options = AutoOptions{};
     options.hysteresis = 1.0;
     EXPECT_EQ(validate(options).errorInfo().field, "auto.hysteresis");
+    options = AutoOptions{};
+    options.searchSamples = 19; // the p95 of 19 samples is their largest
+    EXPECT_EQ(validate(options).errorInfo().field, "auto.search_samples");
     // No samples: nothing to judge by, so the default technique as it is, not an error.
     const ShadowSetupInputs in = groundView(40.0, 60.0);
     auto empty = SamplingErrorModel::create(in.camera, kWidth, kHeight, {});

@@ -186,6 +186,36 @@ TEST(SamplingErrorTest, EachSampleIsServedByItsCascade) {
     EXPECT_GT(ppt[1] / ppt[0], 5.0); // ten times the metres per texel, against a little more footprint behind
 }
 
+// The search's shortcuts: objective() is samplingObjective(figures()) exactly, and a subsample
+// keeps every k-th sample with the prediction it had in the whole model.
+TEST(SamplingErrorTest, TheObjectiveAndASubsampleAgreeWithTheWholeModel) {
+    core::testing::ConfigGenerator gen(7);
+    int checked = 0;
+    for (int config = 0; config < 60; ++config) {
+        ShadowSetupInputs in = gen.next();
+        in.technique = allTechniques()[size_t(config) % allTechniques().size()].technique;
+        auto setup = computeShadowSetup(in);
+        if (!setup) continue;
+        std::vector<ReceiverSample> samples;
+        for (int k = 0; k < 97; ++k) samples.push_back({core::testing::pointInFrustum(in.camera, gen), gen.unitVector()});
+        auto model = SamplingErrorModel::create(in.camera, kWidth, kHeight, samples);
+        ASSERT_TRUE(model);
+        if (model->size() < 20) continue;
+        EXPECT_EQ(model->objective(*setup), samplingObjective(model->figures(*setup))) << "config " << config;
+        std::vector<double> whole(model->size());
+        model->predict(*setup, whole);
+        for (const size_t count : {size_t(1), size_t(10), model->size() - 1, model->size(), model->size() + 5}) {
+            const SamplingErrorModel sub = model->subsampled(count);
+            ASSERT_EQ(sub.size(), std::min(count, model->size()));
+            std::vector<double> part(sub.size());
+            sub.predict(*setup, part);
+            for (size_t k = 0; k < sub.size(); ++k) ASSERT_EQ(part[k], whole[k * model->size() / sub.size()]) << "config " << config;
+        }
+        ++checked;
+    }
+    EXPECT_GT(checked, 30);
+}
+
 // The samples a depth and normal read-back gives lie on the surface it saw, face the light,
 // and are spread evenly up to the number asked for.
 TEST(SamplingErrorTest, ReceiverSamplesFromADepthReadBackLieOnTheSurface) {

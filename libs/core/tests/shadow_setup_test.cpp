@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <random>
 
 using namespace shadowkit::core;
@@ -67,6 +68,40 @@ TEST(ShadowSetupTest, FocusBodyContainsTheVisibleSceneAndEverythingBetweenItAndT
         }
     }
     EXPECT_GT(checked, 5000);
+}
+
+TEST(ShadowSetupTest, TheRememberedFocusBodyIsReturnedOnlyForExactlyTheSameInputs) {
+    // computeFocusBody keeps its last result per thread: a change to any input it depends on
+    // must compute B afresh, whatever was computed just before.
+    const Aabb box = Aabb::fromMinMax(Vec3(-100, 0, -100), Vec3(100, 20, 100));
+    const PerspectiveCamera base{.wsEye = Vec3(0, 5, 40), .wsDirection = Vec3(0.2, -0.3, -1), .zNear = 0.5, .zFar = 80};
+    const DirectionalLight sun = *DirectionalLight::fromSunAngles(40, 30);
+    using Change = std::function<void(PerspectiveCamera&, DirectionalLight&, Aabb&)>;
+    const std::vector<std::pair<const char*, Change>> changes = {
+        {"eye", [](auto& c, auto&, auto&) { c.wsEye.x += 3.0; }},
+        {"direction", [](auto& c, auto&, auto&) { c.wsDirection.x += 0.3; }},
+        {"up", [](auto& c, auto&, auto&) { c.wsUp = Vec3(0.5, 1, 0); }},
+        {"fov", [](auto& c, auto&, auto&) { c.fovYDegrees = 40.0; }},
+        {"aspect", [](auto& c, auto&, auto&) { c.aspect = 1.0; }},
+        {"near", [](auto& c, auto&, auto&) { c.zNear = 5.0; }},
+        {"far", [](auto& c, auto&, auto&) { c.zFar = 40.0; }},
+        {"light", [](auto&, auto& l, auto&) { l = *DirectionalLight::fromSunAngles(70, 30); }},
+        {"bounds", [](auto&, auto&, auto& b) { b.max.y = 10.0; }},
+    };
+    const double baseVolume = computeFocusBody(base, sun, box).volume();
+    for (const auto& [name, change] : changes) {
+        PerspectiveCamera camera = base;
+        DirectionalLight light = sun;
+        Aabb bounds = box;
+        change(camera, light, bounds);
+        computeFocusBody(camera, light, bounds);
+        computeFocusBody(camera, light, Aabb::fromMinMax(Vec3(-1), Vec3(1))); // something else in between
+        const double fresh = computeFocusBody(camera, light, bounds).volume();
+        ASSERT_GT(std::abs(fresh - baseVolume), 1e-6 * baseVolume) << name << " does not change B: the test would not see a stale body";
+        computeFocusBody(base, sun, box);
+        EXPECT_EQ(computeFocusBody(camera, light, bounds).volume(), fresh) << name << " changed, B was not";
+        EXPECT_EQ(computeFocusBody(base, sun, box).volume(), baseVolume) << name;
+    }
 }
 
 TEST(ShadowSetupTest, FocusedIsTighterThanStandardForAViewInsideALargeScene) {

@@ -19,6 +19,7 @@
 
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -45,6 +46,25 @@ std::string describe(const ParameterChoice& choice);
 // result is never worse than them on these samples. Fails only when the inputs are invalid.
 Result<ParameterChoice> optimiseParameters(const ShadowSetupInputs& inputs, const SamplingErrorModel& model);
 
+// A family's free parameter as the search sees it: x over [lo, hi], read from and written into
+// a set-up's inputs (LiSPSM: x = log2 of the weight on n; TSM: the focus fraction; cascades: λ).
+struct ParameterAxis {
+    double lo = 0.0, hi = 1.0;
+    double (*get)(const ShadowSetupInputs&) = nullptr;
+    void (*set)(ShadowSetupInputs&, double) = nullptr;
+};
+// nullopt for the families without one here (standard, focused, psm).
+std::optional<ParameterAxis> parameterAxis(Technique technique);
+
+// Cascades: `in` with its split distances placed over the model's samples' view depths (as
+// ShadowSetupInputs::visibleDepth, unless `in` has one already) and no explicit splits.
+ShadowSetupInputs withVisibleSplits(ShadowSetupInputs in, const SamplingErrorModel& model);
+
+// A candidate chosen on an earlier frame, for this one: `chosen`'s technique, map size and
+// parameters with `base`'s camera, light, scene box, grid origin and visible depth (cascades:
+// splits over this frame's samples).
+ShadowSetupInputs forThisFrame(const ShadowSetupInputs& chosen, const ShadowSetupInputs& base, const SamplingErrorModel& model);
+
 struct AutoOptions {
     // Texels of all maps together: one map of √budget² or N cascades of √(budget / N)² (sides
     // rounded down to a multiple of 16), e.g. 4 M: 1 × 2048² or 4 × 1024².
@@ -54,9 +74,14 @@ struct AutoOptions {
     // Keep the previous frame's choice unless the best is better by this fraction of its
     // objective: a choice does not flip between frames over a difference the model cannot see.
     double hysteresis = 0.05;
+    // AutoChooser (auto_chooser.h): receivers its per-frame steps are predicted at, spread
+    // evenly over the read-back; the first frame's full search uses them all. 512: the p95 is
+    // then the 26th largest, within a few per cent of 4,096 samples' on the standard views
+    // (README), for an eighth of the cost.
+    size_t searchSamples = 512;
 };
 // Error fields "auto.texel_budget" ([16², 8 × 16384²], and enough for the maps asked for),
-// "auto.cascades" ([0, 8]), "auto.hysteresis" ([0, 1)).
+// "auto.cascades" ([0, 8]), "auto.hysteresis" ([0, 1)), "auto.search_samples" ([20, 1,000,000]).
 Status validate(const AutoOptions& options);
 
 // Every candidate the options allow — focused, psm, tsm and lispsm as one map, cascades of each

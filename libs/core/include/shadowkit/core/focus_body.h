@@ -14,6 +14,9 @@ namespace shadowkit::core {
 //
 // S is padded to a minimum thickness first (sceneBoxForFocus), so a flat or
 // zero-size scene still gives a body with volume.
+//
+// Each thread keeps its last result and returns it again for exactly the same camera, light
+// and box: a set-up search tries many warps of one frame's body (error_driven.h).
 ConvexBody computeFocusBody(const PerspectiveCamera& camera, const DirectionalLight& light,
                             const Aabb& wsSceneBounds);
 

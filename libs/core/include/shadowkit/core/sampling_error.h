@@ -83,6 +83,13 @@ public:
     void predict(const ShadowSetup& setup, std::span<double> out) const;
     // The figures over every sample. Uses an internal buffer: one thread per model.
     SamplingFigures figures(const ShadowSetup& setup) const;
+    // samplingObjective(figures(setup)), exactly, for a third of the cost: the search needs
+    // only the p95 and the undersampled share, not the other two quantiles.
+    double objective(const ShadowSetup& setup) const;
+
+    // The same camera with at most `maxSamples` of these samples, spread evenly over them in
+    // their order (every k-th): a cheaper model for a search that runs every frame.
+    SamplingErrorModel subsampled(size_t maxSamples) const;
 
 private:
     struct Sample {
@@ -91,6 +98,9 @@ private:
         Vec3 tangentU, tangentV;       // orthonormal basis of the receiver's plane
         glm::dmat2 tangentFromPixel;   // d(u, v)/d(pixel x, y)
     };
+    // Predicts every sample into m_scratch; returns the share above 1 pixel per texel.
+    double predictUndersampled(const ShadowSetup& setup) const;
+
     PerspectiveCamera m_camera;
     std::vector<Sample> m_samples;
     mutable std::vector<double> m_scratch;
