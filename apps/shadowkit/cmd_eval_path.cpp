@@ -26,8 +26,21 @@ struct FrameRow {
     eval::Figures figures;
     std::optional<eval::TemporalFigures> temporal; // none for the first frame
     std::optional<int> refittedViews;               // --stabilize with held lattices: maps refitted (pops)
+    std::optional<std::string> autoChoice;          // --technique auto: what it chose (core::describe)
+    double autoMilliseconds = 0.0;                  // and the CPU time of the choice (model + search)
     double seconds = 0.0;
 };
+
+// --technique auto: frames whose family (technique, maps, per-split warp) differs from the last's.
+int familySwitches(const std::vector<core::ShadowSetupInputs>& chosen) {
+    int switches = 0;
+    for (size_t i = 1; i < chosen.size(); ++i) {
+        const core::ShadowSetupInputs &a = chosen[i - 1], &b = chosen[i];
+        const bool csm = b.technique == core::Technique::Csm;
+        switches += a.technique != b.technique || (csm && (a.cascades.count != b.cascades.count || a.cascades.warp != b.cascades.warp));
+    }
+    return switches;
+}
 
 // What a frame leaves for the next one's temporal figures.
 struct PreviousFrame {
@@ -93,6 +106,7 @@ int runEvalPath(const EvalPathArgs& args) {
     std::optional<AutoTechnique> automatic;
     if (args.technique.automatic) automatic.emplace(*args.technique.autoOptions());
     int refits = 0, toCover = 0, stale = 0; // frames with a refit; views refitted for each reason
+    std::vector<core::ShadowSetupInputs> autoChosen;
     fmt::print("{:>5} {:>7} {:>9} {:>7} {:>8} {:>7} {:>9} {:>9} {:>6}\n", "frame", "t_s", "valid_px", "wrong%", "flicker%", "truth%",
                "ppt50", "compared", "sec");
     for (const TimedFrame& frame : timeline->frames) {
@@ -122,6 +136,11 @@ int runEvalPath(const EvalPathArgs& args) {
         eval::ShadowStates states = eval::shadowStates(view->camera, *measured->truth, measured->comparison);
         FrameRow row{frame.number, frame.time, measured->figures()};
         if (hysteresis) row.refittedViews = hysteresis->refittedViews();
+        if (automatic) {
+            row.autoChoice = core::describe(*automatic->last());
+            row.autoMilliseconds = automatic->lastMilliseconds();
+            autoChosen.push_back(*inputs);
+        }
         if (previous) {
             // The previous frame's shadows at this frame's points: its casters, light and set-up.
             const bool castersMoved = !world.tracks.empty() && previous->time != frame.time;
@@ -150,12 +169,19 @@ int runEvalPath(const EvalPathArgs& args) {
         rows.push_back(row);
     }
 
-    std::vector<double> flicker, truthChange, wrong;
+    std::vector<double> flicker, truthChange, wrong, autoMs;
     for (const FrameRow& r : rows) {
         wrong.push_back(r.figures.wrongPct);
         if (r.temporal) flicker.push_back(r.temporal->flickerPct), truthChange.push_back(r.temporal->truthChangePct);
+        if (automatic && &r != &rows.front()) autoMs.push_back(r.autoMilliseconds); // the first frame searches in full
     }
-    const Summary fl = summarise(flicker), tc = summarise(truthChange), wr = summarise(wrong);
+    const Summary fl = summarise(flicker), tc = summarise(truthChange), wr = summarise(wrong), ms = summarise(autoMs);
+    if (automatic) {
+        technique = "auto";
+        fmt::print("--technique auto: the family changed in {} of {} frames; the choice took {:.2f} ms on the first frame (the full "
+                   "search), then mean {:.3f} p95 {:.3f} max {:.3f} ms (CPU: model + search, not the read-back)\n",
+                   familySwitches(autoChosen), rows.size(), rows.front().autoMilliseconds, ms.mean, ms.p95, ms.max);
+    }
     if (hysteresis)
         fmt::print("--stabilize: the set-up was refitted in {} of {} frames ({} maps to cover the view, {} grown stale)\n", refits,
                    rows.size(), toCover, stale);
@@ -187,13 +213,18 @@ int runEvalPath(const EvalPathArgs& args) {
                 j.update({{"compared_px", r.temporal->comparedPx}, {"flicker_pct", r.temporal->flickerPct},
                           {"truth_change_pct", r.temporal->truthChangePct}});
             if (r.refittedViews) j["refitted_views"] = *r.refittedViews;
+            if (r.autoChoice) j.update({{"auto_choice", *r.autoChoice}, {"auto_ms", r.autoMilliseconds}});
             frames.push_back(j);
         }
         auto summary = [](const Summary& s) { return nlohmann::json{{"mean", s.mean}, {"p95", s.p95}, {"max", s.max}}; };
-        const nlohmann::json root = {{"path", timeline->path->name}, {"technique", technique},
+        nlohmann::json root = {{"path", timeline->path->name}, {"technique", technique},
                                      {"refits", hysteresis ? nlohmann::json(refits) : nlohmann::json(nullptr)},
                                      {"summary", {{"flicker_pct", summary(fl)}, {"truth_change_pct", summary(tc)}, {"wrong_pct", summary(wr)}}},
                                      {"frames", frames}};
+        if (automatic)
+            root["auto"] = {{"family_switches", familySwitches(autoChosen)},
+                            {"first_frame_ms", rows.front().autoMilliseconds},
+                            {"ms", summary(ms)}};
         std::ofstream out(args.json);
         out << root.dump(2) << "\n";
         if (!out) return fail("--json: " + args.json + ": cannot write");

@@ -373,6 +373,24 @@ if(CASE STREQUAL "gl-eval-auto")
   if(NOT rc EQUAL 0 OR NOT n EQUAL 10)
     message(SEND_ERROR "analyze --candidates: expected 10 candidates, got ${n}: ${table}${err}")
   endif()
+  # Along a path: every frame's choice in the JSON, the family switches and the choice's CPU time.
+  execute_process(COMMAND ${SHADOWKIT} eval ${small} --path flythrough --frames 0:4 --size 64x36 --technique auto
+                          --texel-budget 64K --json "${WORK}/auto-path.json"
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE table ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(SEND_ERROR "eval --path --technique auto: failed: ${err}")
+  else()
+    file(READ "${WORK}/auto-path.json" report)
+    string(JSON technique GET "${report}" technique)
+    string(JSON switches GET "${report}" auto family_switches)
+    string(JSON last GET "${report}" frames 3 auto_choice)
+    string(JSON ms GET "${report}" auto ms max)
+    string(FIND "${table}" "--technique auto: the family changed in" printed)
+    if(NOT technique STREQUAL "auto" OR switches GREATER 3 OR NOT last MATCHES "^(focused|psm|tsm|lispsm|csm) "
+       OR NOT ms GREATER 0 OR printed EQUAL -1)
+      message(SEND_ERROR "eval --path --technique auto: unexpected report: ${table}${report}")
+    endif()
+  endif()
 endif()
 
 if(CASE STREQUAL "export-glb")
