@@ -20,6 +20,10 @@ drift from what the program measures.
       per `shadowkit eval --path --json` file: flicker_pct (mean / p95 / max), mean wrong_pct
       and pixels_per_texel_p50, and how many frames --stabilize refitted a map in
 
+  tools/readme_tables.py oracle FILE.json ...
+      per view, the lowest wrong_pct of the `shadowkit eval --views all --json` reports and which
+      one it was, and the mean of those (tools/measure-auto-oracle.sh)
+
 LABEL is the row's name as printed (e.g. '`tsm`' or '`csm` 4 × 1024²'). tools/measure-readme.sh
 runs the evaluations behind every table and prints them.
 """
@@ -118,7 +122,24 @@ def stable(args):
               f"{ppt:.2f} | {refits} |")
 
 
+def oracle(paths):
+    """Per view the best wrong_pct of many fixed configurations: what choosing with the truth gives."""
+    import os
+    reports = [(os.path.basename(p).removesuffix(".json"), load("x=" + p)[1]) for p in paths]
+    print("| view | lowest wrong_pct | configuration | its pixels_per_texel_p95 |")
+    print("|---|---:|---|---:|")
+    best = []
+    for v in VIEWS:
+        wrong, name, rows = min((rows[v]["wrong_pct"], name, rows) for name, rows in reports)
+        best.append(wrong)
+        print(f"| {v} | {wrong:.2f} | {name} | {rows[v]['pixels_per_texel_p95']:.2f} |")
+    print(f"| mean | {sum(best) / len(best):.3f} | over {len(reports)} configurations | |")
+
+
 if __name__ == "__main__":
+    if len(sys.argv) >= 3 and sys.argv[1] == "oracle":
+        oracle(sys.argv[2:])
+        sys.exit(0)
     if len(sys.argv) >= 3 and sys.argv[1] == "stable":
         stable(sys.argv[2:])
         sys.exit(0)
