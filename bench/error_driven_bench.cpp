@@ -100,10 +100,11 @@ void trackAlongPath(benchmark::State& state, int cascades) {
 }
 
 void registerAll() {
-    for (const int cascades : {1, 0})
-        benchmark::RegisterBenchmark(("auto/path/" + std::string(cascades == 1 ? "single" : "any-count") + "/flythrough").c_str(),
-                                     trackAlongPath, cascades)
+    for (const int cascades : {1, 0, 4}) {
+        const std::string maps = cascades == 1 ? "single" : cascades == 0 ? "any-count" : std::to_string(cascades) + "-cascades";
+        benchmark::RegisterBenchmark(("auto/path/" + maps + "/flythrough").c_str(), trackAlongPath, cascades)
             ->Unit(benchmark::kMillisecond);
+    }
     for (const char* view : {"perpendicular", "aerial"})
         for (const int samples : {4096, 512})
             for (const int cascades : {1, 0})
