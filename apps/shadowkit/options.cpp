@@ -409,7 +409,6 @@ core::Status TechniqueOptions::check(bool measuresFrames, bool takesAuto) const 
         if (!takesAuto)
             return core::makeError("--technique auto: chooses from a rendered frame's receivers, so render and eval take it "
                                    "(analyze --candidates lists what it weighs)");
-        if (cascades.stabilize) return core::makeError("--technique auto: --stabilize is not supported with auto yet");
         if (auto a = autoOptions(); !a) return a.errorInfo();
     }
     // The camera-independent checks only: the view is not resolved yet.
@@ -443,6 +442,10 @@ core::Result<core::AutoOptions> TechniqueOptions::autoOptions() const {
             return core::makeError(fmt::format("--texel-budget: expected a number of texels such as 4M or 16777216, got '{}'", texelBudget));
         options.texelBudget = static_cast<int64_t>(value * double(unit));
     }
+    // With held lattices a change of family is a refit, a pop on screen like any other: it is
+    // made only for a candidate as much better as a refit must be (texels grown past
+    // --stabilize-growth G): an objective below 1 / G of the held choice's.
+    if (holdsLattices()) options.hysteresis = 1.0 - 1.0 / hysteresis.maxTexelGrowth;
     if (auto s = core::validate(options); !s) return withFlagName(s.errorInfo());
     return options;
 }

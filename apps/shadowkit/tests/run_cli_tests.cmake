@@ -391,6 +391,14 @@ if(CASE STREQUAL "gl-eval-auto")
       message(SEND_ERROR "eval --path --technique auto: unexpected report: ${table}${report}")
     endif()
   endif()
+  # With held lattices: the chosen set-up is held, so under a held sun few frames refit.
+  execute_process(COMMAND ${SHADOWKIT} eval ${small} --path flythrough --frames 0:4 --size 64x36 --technique auto
+                          --cascades 1 --texel-budget 64K --stabilize --sun-path off --json "${WORK}/auto-held.json"
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE table ERROR_VARIABLE err)
+  string(REGEX MATCH "refitted in ([0-9]+) of 4 frames" refits "${table}")
+  if(NOT rc EQUAL 0 OR NOT refits OR CMAKE_MATCH_1 GREATER 3)
+    message(SEND_ERROR "eval --path --technique auto --stabilize: expected fewer refits than frames: ${table}${err}")
+  endif()
 endif()
 
 if(CASE STREQUAL "export-glb")
