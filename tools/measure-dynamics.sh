@@ -27,6 +27,9 @@ run csm-lispsm-sun-held    --technique csm --cascades 4 --map-size 2048 --cascad
 run lispsm-stabilize-sun-held     --technique lispsm --map-size 4096 --stabilize --sun-path off
 run tsm-stabilize-sun-held        --technique tsm --map-size 4096 --stabilize --sun-path off
 run csm-lispsm-stabilize-sun-held --technique csm --cascades 4 --map-size 2048 --cascade-warp lispsm --stabilize --sun-path off
+# Error-driven parameters at the same memory (core::AutoChooser): one map, and any split count.
+run auto-single-sun-held --technique auto --cascades 1 --texel-budget 16M --sun-path off
+run auto-any-sun-held    --technique auto --texel-budget 16M --sun-path off
 run standard               --technique standard --map-size 4096
 run focused                --technique focused --map-size 4096
 run psm                    --technique psm --map-size 4096

@@ -76,8 +76,8 @@ struct AutoOptions {
     double hysteresis = 0.05;
     // AutoChooser (auto_chooser.h): receivers its per-frame steps are predicted at, spread
     // evenly over the read-back; the first frame's full search uses them all. 512: the p95 is
-    // then the 26th largest, within a few per cent of 4,096 samples' on the standard views
-    // (README), for an eighth of the cost.
+    // then the 26th largest sample, and a step costs an eighth of what 4,096 samples cost (the
+    // README's flythrough figures are with it).
     size_t searchSamples = 512;
 };
 // Error fields "auto.texel_budget" ([16², 8 × 16384²], and enough for the maps asked for),
