@@ -30,6 +30,7 @@ run csm-lispsm-stabilize-sun-held --technique csm --cascades 4 --map-size 2048 -
 # Error-driven parameters at the same memory (core::AutoChooser): one map, and any split count.
 run auto-single-sun-held --technique auto --cascades 1 --texel-budget 16M --sun-path off
 run auto-any-sun-held    --technique auto --texel-budget 16M --sun-path off
+run auto-single-stabilize-sun-held --technique auto --cascades 1 --texel-budget 16M --stabilize --sun-path off
 run standard               --technique standard --map-size 4096
 run focused                --technique focused --map-size 4096
 run psm                    --technique psm --map-size 4096
