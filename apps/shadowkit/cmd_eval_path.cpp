@@ -218,9 +218,9 @@ int runEvalPath(const EvalPathArgs& args) {
         }
         auto summary = [](const Summary& s) { return nlohmann::json{{"mean", s.mean}, {"p95", s.p95}, {"max", s.max}}; };
         nlohmann::json root = {{"path", timeline->path->name}, {"technique", technique},
-                                     {"refits", hysteresis ? nlohmann::json(refits) : nlohmann::json(nullptr)},
-                                     {"summary", {{"flicker_pct", summary(fl)}, {"truth_change_pct", summary(tc)}, {"wrong_pct", summary(wr)}}},
-                                     {"frames", frames}};
+                               {"refits", hysteresis ? nlohmann::json(refits) : nlohmann::json(nullptr)},
+                               {"summary", {{"flicker_pct", summary(fl)}, {"truth_change_pct", summary(tc)}, {"wrong_pct", summary(wr)}}},
+                               {"frames", frames}};
         if (automatic)
             root["auto"] = {{"family_switches", familySwitches(autoChosen)},
                             {"first_frame_ms", rows.front().autoMilliseconds},

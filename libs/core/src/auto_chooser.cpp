@@ -31,7 +31,8 @@ std::vector<ReceiverSample> spreadEvenly(std::span<const ReceiverSample> receive
 
 } // namespace
 
-AutoChooser::Step AutoChooser::step(Track& track, const ShadowSetupInputs& base, const SamplingErrorModel& model, int& setups) const {
+AutoChooser::Step AutoChooser::step(Track& track, const ShadowSetupInputs& base, const SamplingErrorModel& model,
+                                    int& setups) const {
     auto predicted = [&](const ShadowSetupInputs& in) {
         ++setups;
         Step s{std::numeric_limits<double>::infinity(), in, std::nullopt};
@@ -98,7 +99,8 @@ Result<ParameterChoice> AutoChooser::choose(const ShadowSetupInputs& base, int w
         best.setupsTried = setups;
         return best;
     }
-    auto model = SamplingErrorModel::create(base.camera, width, height, spreadEvenly(receivers, m_options.searchSamples));
+    auto model =
+        SamplingErrorModel::create(base.camera, width, height, spreadEvenly(receivers, m_options.searchSamples));
     if (!model) return model.errorInfo();
     int setups = 0;
     Step chosen = step(m_tracks[m_chosen], base, *model, setups);

@@ -27,8 +27,8 @@ struct Evaluator {
     }
 };
 
-// Minimises the objective over x in [lo, hi], `apply` writing x into a copy of `start`: a grid
-// of kGridPoints, then golden section between the best grid point's neighbours. `best` keeps
+// Minimises the objective over the axis' [lo, hi], its `set` writing x into a copy of `start`: a
+// grid of kGridPoints, then golden section between the best grid point's neighbours. `best` keeps
 // the best candidate seen anywhere (only a strictly better one replaces it).
 void search1D(ParameterChoice& best, Evaluator& evaluate, const ShadowSetupInputs& start, const ParameterAxis& axis) {
     const double lo = axis.lo, hi = axis.hi;

@@ -115,8 +115,9 @@ TEST(AutoChooserTest, FindsTheBetterFamilyAfterACut) {
     const auto receivers = visibleGround(aerial.camera, 4.0);
     auto model = SamplingErrorModel::create(aerial.camera, kGroundWidth, kGroundHeight, receivers);
     auto best = chooseAuto(aerial, options, *model);
-    auto before = chooseAuto(ground, options, *SamplingErrorModel::create(ground.camera, kGroundWidth, kGroundHeight,
-                                                                          visibleGround(ground.camera, 4.0)));
+    auto before = chooseAuto(
+        ground, options,
+        *SamplingErrorModel::create(ground.camera, kGroundWidth, kGroundHeight, visibleGround(ground.camera, 4.0)));
     ASSERT_TRUE(best && before);
     ASSERT_NE(best->inputs.technique, before->inputs.technique) << "the cut must change the family";
     double objective = 0.0;
@@ -139,7 +140,8 @@ TEST(AutoChooserTest, IsDeterministicAndKeepsItsChoiceWhenNothingIsSeen) {
     for (int f = 0; f < 30; ++f) {
         const ShadowSetupInputs in = pathFrame(f);
         const auto receivers = visibleGround(in.camera, 4.0);
-        auto ca = a.choose(in, kGroundWidth, kGroundHeight, receivers), cb = b.choose(in, kGroundWidth, kGroundHeight, receivers);
+        auto ca = a.choose(in, kGroundWidth, kGroundHeight, receivers),
+             cb = b.choose(in, kGroundWidth, kGroundHeight, receivers);
         ASSERT_TRUE(ca && cb);
         EXPECT_EQ(describe(*ca), describe(*cb));
         EXPECT_EQ(ca->objective, cb->objective);

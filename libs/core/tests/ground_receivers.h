@@ -16,7 +16,8 @@ inline std::vector<ReceiverSample> groundReceivers(const PerspectiveCamera& came
     std::vector<ReceiverSample> samples;
     for (int i = 0; i < perSide; ++i)
         for (int j = 0; j < perSide; ++j) {
-            const Vec3 p(camera.wsEye.x + extent * ((i + 0.5) / perSide - 0.5), 0.0, camera.wsEye.z - extent * (j + 0.5) / perSide);
+            const Vec3 p(camera.wsEye.x + extent * ((i + 0.5) / perSide - 0.5), 0.0,
+                         camera.wsEye.z - extent * (j + 0.5) / perSide);
             samples.push_back({p, Vec3(0.0, 1.0, 0.0)});
         }
     return samples;

@@ -37,7 +37,8 @@ public:
     // camera sees as a width × height image (receiverSamples). Without receivers: the last
     // choice for this frame, or on the first frame what chooseAuto gives for none. Fails for
     // invalid options, inputs or image size. Deterministic for the same sequence of calls.
-    Result<ParameterChoice> choose(const ShadowSetupInputs& base, int width, int height, std::span<const ReceiverSample> receivers);
+    Result<ParameterChoice> choose(const ShadowSetupInputs& base, int width, int height,
+                                   std::span<const ReceiverSample> receivers);
 
     // Forget the tracked parameters: the next call searches in full (a cut in the camera path).
     void reset() { m_tracks.clear(); }
