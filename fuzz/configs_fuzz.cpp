@@ -3,8 +3,8 @@
 // over a small forest into a set-up and local lights: every option parser (vectors, sizes,
 // splits, lights, techniques, filters) and the core behind it, with no GL.
 #include "configs.h"
+#include "frame_config_options.h"
 #include "fuzz_support.h"
-
 
 #include <cstdlib>
 
@@ -42,10 +42,13 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         if (setup)
             for (const core::ShadowView& v : setup->views)
                 if (!core::isFinite(v.clipFromWorld)) std::abort(); // never a NaN matrix
-        const auto settings = o->render.settingsFor(*view, *inputs);
-        if (!settings) oneLine(settings.errorInfo());
-        const auto lighting = o->lights.lightingFor(*view, fuzz::smallForest().wsBounds());
-        if (!lighting) oneLine(lighting.errorInfo());
+        const auto config = app::frameConfigOf(o->technique, o->render, o->lights);
+        if (!config) {
+            oneLine(config.errorInfo());
+            continue;
+        }
+        const auto lighting = frame::localLightingFor(*config, *view, fuzz::smallForest().wsBounds());
+        if (!lighting) oneLine(app::withFlagName(lighting.errorInfo()));
     }
     return 0;
 }

@@ -1,4 +1,4 @@
-// Flicker measured end to end (GL + Embree through measure::Measurer): none for a still
+// Flicker measured end to end (GL + Embree through measure::PathMeasurer): none for a still
 // camera and scene, some when the map's grid slides within a texel (none when by whole
 // texels), and stabilised cascades
 // flickering less than unstabilised ones as the camera slides sideways. CTest label `gl`.
@@ -7,6 +7,7 @@
 
 #include "shadowkit/eval/temporal.h"
 #include "shadowkit/measure/measurer.h"
+#include "shadowkit/measure/path_measurer.h"
 
 #include <gtest/gtest.h>
 
@@ -37,15 +38,29 @@ protected:
         return in;
     }
 
-    // Flicker of frame `b` against frame `a` (nothing moves but the camera).
+    // Flicker of frame `b` against frame `a` (nothing moves but the camera), measured by the
+    // temporal protocol every front end uses (measure::PathMeasurer).
     eval::TemporalFigures flicker(const core::ShadowSetupInputs& a, const core::ShadowSetupInputs& b) {
-        auto first = measurer->measure(a, settings);
-        auto second = measurer->measure(b, settings);
-        EXPECT_TRUE(first && second);
-        auto before = measurer->shadowsAt(*second, b.camera, first->setup, a.light, settings, true);
-        EXPECT_TRUE(before) << before.error();
-        return eval::compareFrames(eval::shadowStates(a.camera, *first->truth, first->comparison),
-                                   eval::shadowStates(b.camera, *second->truth, second->comparison), *before);
+        EXPECT_EQ(a.technique, b.technique);
+        frame::FrameConfig config;
+        config.technique = a;
+        config.render = settings;
+        config.fogDensity = settings.fogDensity;
+        auto driver = frame::FrameDriver::create(config);
+        EXPECT_TRUE(driver) << driver.error();
+        measure::PathMeasurer path(*measurer, forest, *driver);
+        auto frameAt = [&](const core::ShadowSetupInputs& in) {
+            scene::ResolvedView v = view;
+            v.camera = in.camera;
+            v.width = settings.width, v.height = settings.height;
+            return v;
+        };
+        auto first = path.next(0.0, frameAt(a));
+        EXPECT_TRUE(first) << first.error();
+        EXPECT_FALSE(first->temporal);
+        auto second = path.next(0.0, frameAt(b));
+        EXPECT_TRUE(second && second->temporal);
+        return *second->temporal;
     }
 
     scene::Scene forest;

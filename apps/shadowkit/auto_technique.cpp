@@ -1,6 +1,7 @@
 #include "auto_technique.h"
 
 #include "shadowkit/gl/context.h"
+#include "shadowkit/gl/receiver_samples.h"
 
 #include <fmt/format.h>
 
@@ -8,33 +9,11 @@
 
 namespace shadowkit::app {
 
-core::Result<core::ShadowSetupInputs> AutoTechnique::choose(gl::Renderer& renderer, const core::ShadowSetupInputs& inputs,
-                                                            const gl::RenderSettings& settings) {
-    auto samples = gl::sampleReceivers(renderer, inputs, settings);
-    if (!samples) return samples.errorInfo();
-    const auto start = std::chrono::steady_clock::now();
-    auto choice = m_chooser.choose(inputs, settings.width, settings.height, *samples);
-    if (!choice) return choice.errorInfo();
-    m_milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    m_last = std::move(choice).value();
-    return m_last->inputs;
-}
-
-core::Status chooseForFrame(AutoTechnique& automatic, gl::Renderer& renderer, const RenderOptions& render,
-                            const scene::ResolvedView& view, core::ShadowSetupInputs& inputs, gl::RenderSettings& settings,
-                            std::string_view label) {
-    auto chosen = automatic.choose(renderer, inputs, settings);
-    if (!chosen) return withFlagName(chosen.errorInfo());
-    inputs = std::move(chosen).value();
-    auto again = render.settingsFor(view, inputs);
-    if (!again) return again.errorInfo();
-    settings.bias = again->bias;
-    if (!label.empty()) {
-        const core::ParameterChoice& c = *automatic.last();
-        fmt::print(stderr, "{}: auto chose {}, predicted p95 {:.3g} ({} samples, {:.2f} ms)\n", label, core::describe(c), c.predicted.p95,
-                   c.predicted.samples, automatic.lastMilliseconds());
-    }
-    return core::Ok{};
+void printAutoChoice(std::string_view label, const frame::PreparedFrame& frame) {
+    if (!frame.autoChoice) return;
+    const core::ParameterChoice& c = *frame.autoChoice;
+    fmt::print(stderr, "{}: auto chose {}, predicted p95 {:.3g} ({} samples, {:.2f} ms)\n", label, core::describe(c), c.predicted.p95,
+               c.predicted.samples, frame.autoMilliseconds);
 }
 
 core::Status printAutoCandidates(const SceneOptions& sceneOptions, const ViewOptions& viewOptions, const TechniqueOptions& technique) {

@@ -2,8 +2,9 @@
 // triangles and draw calls submitted and the GPU time, plus the CPU time of the set-up and
 // of culling, with min / median / max over several frames, for several forest sizes.
 #include "commands.h"
-#include "options.h"
+#include "frame_config_options.h"
 
+#include "shadowkit/frame/frame_driver.h"
 #include "shadowkit/gl/context.h"
 #include "shadowkit/gl/renderer.h"
 #include "shadowkit/scene/forest.h"
@@ -66,6 +67,10 @@ int runBench(const BenchArgs& args) {
     for (std::string name; std::getline(ss, name, ',');) viewNames.push_back(name);
     if (viewNames.empty()) return fail("--views: no view named");
 
+    auto config = frameConfigOf(args.technique, args.render, LocalLightOptions{});
+    if (!config) return fail(config.errorInfo());
+    auto driver = frame::FrameDriver::create(std::move(config).value());
+    if (!driver) return fail(withFlagName(driver.errorInfo()));
     auto context = gl::Context::createHeadless();
     if (!context) return fail(context.errorInfo());
     fmt::print("{} | technique {} | {} frames per row | culling {}\n", (*context)->description(),
@@ -100,18 +105,12 @@ int runBench(const BenchArgs& args) {
             std::vector<double> nodesVisited, queries, nodesQueried, multiQueryFailures, waits;
             std::vector<double> setupMs, cullMs, cullOwnMs, cullGlMs, listMs, shadowMs, mainMs, occlusionMs, maskMs;
             gl::FrameStats last;
-            std::optional<core::SetupHysteresis> hysteresis; // --stabilize with held lattices: kept over the frames
+            driver->reset(); // --stabilize with held lattices: kept over the view's frames
             for (int frame = 0; frame < args.frames; ++frame) {
-                const auto start = std::chrono::steady_clock::now();
-                auto inputs = args.technique.inputsFor(*view, (*renderer)->wsSceneBounds());
-                if (!inputs) return fail(inputs.errorInfo());
-                auto setup = args.technique.setupFor(*inputs, hysteresis);
-                if (!setup) return fail(withFlagName(setup.errorInfo()));
-                setupMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
-                auto settings = args.render.settingsFor(*view, *inputs);
-                if (!settings) return fail(settings.errorInfo());
-                auto stats = (*renderer)->render(view->camera, view->light, *setup, *settings);
-                if (!stats) return fail(withFlagName(stats.errorInfo()));
+                auto drawn = driver->draw(**renderer, *view);
+                if (!drawn) return fail(withFlagName(drawn.errorInfo()));
+                setupMs.push_back(drawn->frame.setupMilliseconds);
+                const gl::FrameStats* stats = &drawn->stats;
                 cullMs.push_back(stats->cullMilliseconds);
                 cullGlMs.push_back(stats->cullGlMilliseconds);
                 cullOwnMs.push_back(stats->cullOwnCpuMilliseconds);

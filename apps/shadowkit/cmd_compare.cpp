@@ -2,9 +2,9 @@
 // each captioned with its settings and its wrong_pct against ray-traced truth.
 #include "commands.h"
 #include "configs.h"
-#include "local_light_options.h"
-#include "options.h"
+#include "frame_config_options.h"
 
+#include "shadowkit/frame/frame_driver.h"
 #include "shadowkit/eval/image_grid.h"
 #include "shadowkit/measure/measurer.h"
 
@@ -48,21 +48,18 @@ int runCompare(const CompareArgs& args) {
         const CellOptions& o = options[i];
         auto view = o.view.resolve(*sceneData);
         if (!view) return fail(view.errorInfo());
-        auto inputs = o.technique.inputsFor(*view, (*measurer)->renderer().wsSceneBounds());
-        if (!inputs) return fail(inputs.errorInfo());
-        auto settings = o.render.settingsFor(*view, *inputs);
-        if (!settings) return fail(settings.errorInfo());
-        o.lights.apply(*view, *settings);
-        auto lighting = o.lights.lightingFor(*view, (*measurer)->renderer().wsSceneBounds());
-        if (!lighting) return fail("--configs: " + withFlagName(lighting.errorInfo()).message);
-        if (auto s = (*measurer)->renderer().setLocalLights(std::move(lighting).value()); !s)
-            return fail("--configs: " + withFlagName(s.errorInfo()).message);
+        auto config = frameConfigOf(o.technique, o.render, o.lights);
+        if (!config) return fail("--configs: " + config.error());
+        auto driver = frame::FrameDriver::create(std::move(config).value()); // a still frame: the fresh fit
+        if (!driver) return fail("--configs: " + withFlagName(driver.errorInfo()).message);
+        auto prepared = driver->prepare((*measurer)->renderer(), *view);
+        if (!prepared) {
+            core::Error error = withFlagName(prepared.errorInfo()); // keeps its kind: a driver limit exits 3
+            error.message = "--configs: " + error.message;
+            return fail(error);
+        }
         // Cells that share camera, sun and size share one ray-traced truth (Measurer's cache).
-        std::optional<core::SetupHysteresis> hysteresis = o.technique.newHysteresis(); // a still frame: the fresh fit
-        auto measured = (*measurer)->measure(*inputs, *settings,
-                                             {.shadedImage = true,
-                                              .visibleDepthFromFrame = o.technique.visibleDepthFromFrame(),
-                                              .hysteresis = hysteresis ? &*hysteresis : nullptr});
+        auto measured = (*measurer)->measure(*prepared, {.shadedImage = true});
         if (!measured) {
             core::Error error = withFlagName(measured.errorInfo()); // keeps its kind: a driver limit exits 3
             error.message = "--configs: " + error.message;

@@ -1,10 +1,11 @@
 // shadowkit eval: rasterized shadows against ray-traced truth, per standard view.
 #include "auto_technique.h"
 #include "commands.h"
-#include "local_light_options.h"
 #include "eval_path.h"
+#include "frame_config_options.h"
 #include "options.h"
 
+#include "shadowkit/frame/frame_driver.h"
 #include "shadowkit/eval/maps.h"
 #include "shadowkit/eval/report.h"
 #include "shadowkit/measure/measurer.h"
@@ -70,7 +71,7 @@ int runEval(const EvalArgs& args) {
     if (!args.timeline.path.empty()) {
         if (!args.views.empty() || !args.errorMap.empty() || !args.aliasingMap.empty() || !args.dump.empty())
             return fail("--path: evaluates a path's frames, so --views, --error-map, --aliasing-map and --dump (still views) do not apply");
-        return runEvalPath({args.scene, args.view, args.technique, args.render, args.timeline, args.csv, args.plot, args.json});
+        return runEvalPath({args.scene, args.view, args.technique, args.render, args.timeline, args.lights, args.csv, args.plot, args.json});
     }
     if (!args.csv.empty() || !args.plot.empty()) return fail("--csv and --plot need --path (figures per frame)");
     auto timeline = args.timeline.resolve(); // still views: --time and --sun-path
@@ -81,6 +82,10 @@ int runEval(const EvalArgs& args) {
         if (auto s = checkWritable(flag, *file); !s) return fail(s.errorInfo());
     const bool several = names->size() > 1;
 
+    auto config = frameConfigOf(args.technique, args.render, args.lights);
+    if (!config) return fail(config.errorInfo());
+    auto driver = frame::FrameDriver::create(std::move(config).value());
+    if (!driver) return fail(withFlagName(driver.errorInfo()));
     auto sceneData = args.scene.load();
     if (!sceneData) return fail(sceneData.errorInfo());
     const double time = timeline->frames.front().time;
@@ -100,28 +105,13 @@ int runEval(const EvalArgs& args) {
         if (!view) return fail(view.errorInfo());
         view = timeline->viewAt(*view, *sceneData, time); // the sun of --sun-path at --time
         if (!view) return fail(view.errorInfo());
-        auto inputs = args.technique.inputsFor(*view, (*measurer)->renderer().wsSceneBounds()); // O(1)
-        if (!inputs) return fail(inputs.errorInfo());
-        auto settings = args.render.settingsFor(*view, *inputs);
-        if (!settings) return fail(settings.errorInfo());
-        args.lights.apply(*view, *settings);
-        auto lighting = args.lights.lightingFor(*view, (*measurer)->renderer().wsSceneBounds());
-        if (!lighting) return fail(withFlagName(lighting.errorInfo()));
-        if (auto s = (*measurer)->renderer().setLocalLights(std::move(lighting).value()); !s)
-            return fail(withFlagName(s.errorInfo()));
-        std::optional<AutoTechnique> automatic; // a still view: no earlier frame's choice to hold
-        if (args.technique.automatic) {
-            automatic.emplace(*args.technique.autoOptions());
-            if (auto s = chooseForFrame(*automatic, (*measurer)->renderer(), args.render, *view, *inputs, *settings, name); !s)
-                return fail(s.errorInfo());
-        }
+        driver->reset(); // a still view is a first frame: the fresh fit, auto's full search
+        auto prepared = driver->prepare((*measurer)->renderer(), *view);
+        if (!prepared) return fail(withFlagName(prepared.errorInfo()));
+        printAutoChoice(name, *prepared);
 
         // Progress only when the truth takes a while (large images, big scenes).
         measure::MeasureOptions options;
-        options.visibleDepthFromFrame = args.technique.visibleDepthFromFrame();
-        // --stabilize with held lattices: a still view is a first frame, the fresh fit itself.
-        std::optional<core::SetupHysteresis> hysteresis = args.technique.newHysteresis();
-        options.hysteresis = hysteresis ? &*hysteresis : nullptr;
         options.truthProgress = [&, shown = false](double done) mutable {
             const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
             if ((elapsed < 2.0 && !shown) || !isatty(fileno(stderr))) return; // a log gets the table only
@@ -129,7 +119,7 @@ int runEval(const EvalArgs& args) {
             fmt::print(stderr, "\r{}: ray tracing {:3.0f} %", name, 100.0 * done);
             if (done >= 1.0) fmt::print(stderr, "\n");
         };
-        auto measured = (*measurer)->measure(*inputs, *settings, options);
+        auto measured = (*measurer)->measure(*prepared, options);
         if (!measured) return fail(withFlagName(measured.errorInfo()));
 
         if (!args.errorMap.empty())
@@ -148,9 +138,9 @@ int runEval(const EvalArgs& args) {
                 !s)
                 return fail("--dump: " + s.error());
 
-        eval::ViewReport report = measure::viewReport(*measured, *settings, name, args.scene.scene, args.scene.seed);
+        eval::ViewReport report = measure::viewReport(*measured, prepared->settings, name, args.scene.scene, args.scene.seed);
         report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        if (automatic) report.autoChoice = core::describe(*automatic->last());
+        if (prepared->autoChoice) report.autoChoice = core::describe(*prepared->autoChoice);
         const eval::Figures& f = report.figures;
         fmt::print("{:<14} {:<10} {:>5} {:>9} {:>8} {:>7.2f} {:>8.2f} {:>8.2f} {:>7.2f} {:>7.3f} {:>7.3f} {:>7.3f} {:>6.1f}\n",
                    name, report.technique, report.mapSize, f.validPx, f.excludedPx, f.wrongPct, f.falseShadowPct, f.falseLitPct,

@@ -1,12 +1,11 @@
-#include "auto_technique.h"
 #include "eval_path.h"
+#include "frame_config_options.h"
 
 #include "commands.h"
 
 #include "shadowkit/eval/plot.h"
 #include "shadowkit/eval/temporal.h"
-#include "shadowkit/measure/measurer.h"
-#include "shadowkit/scene/animation.h"
+#include "shadowkit/measure/path_measurer.h"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -41,15 +40,6 @@ int familySwitches(const std::vector<core::ShadowSetupInputs>& chosen) {
     }
     return switches;
 }
-
-// What a frame leaves for the next one's temporal figures.
-struct PreviousFrame {
-    double time = 0.0;
-    eval::ShadowStates states;
-    core::ShadowSetup setup;
-    core::DirectionalLight light;
-    gl::RenderSettings settings;
-};
 
 struct Summary {
     double mean = 0.0, p95 = 0.0, max = 0.0;
@@ -88,6 +78,12 @@ int runEvalPath(const EvalPathArgs& args) {
     if (!timeline) return fail(timeline.errorInfo());
     if (timeline->frames.size() < 2)
         return fail("--path: eval compares consecutive frames: give a path with at least two frames (or drop --time)");
+    auto config = frameConfigOf(args.technique, args.render, args.lights);
+    if (!config) return fail(config.errorInfo());
+    // Across the path: held lattices (--stabilize), auto's tracked choice.
+    auto driver = frame::FrameDriver::create(std::move(config).value());
+    if (!driver) return fail(withFlagName(driver.errorInfo()));
+    const bool held = driver->config().heldLattices.has_value(), automatic = driver->config().automatic.has_value();
     auto sceneData = args.scene.load();
     if (!sceneData) return fail(sceneData.errorInfo());
     scene::Scene& world = *sceneData;
@@ -97,65 +93,33 @@ int runEvalPath(const EvalPathArgs& args) {
     if (!measurer) return fail(measurer.errorInfo());
     fmt::print(stderr, "ray tracer: built in {:.2f} s\n", (*measurer)->rayTracerBuildSeconds());
 
+    measure::PathMeasurer path(**measurer, world, *driver);
     std::vector<FrameRow> rows;
-    std::optional<PreviousFrame> previous;
-    std::vector<uint32_t> moved;
     std::string technique;
-    // --stabilize with held lattices: one hysteresis for the whole sequence.
-    std::optional<core::SetupHysteresis> hysteresis = args.technique.newHysteresis();
-    std::optional<AutoTechnique> automatic;
-    if (args.technique.automatic) automatic.emplace(*args.technique.autoOptions());
     int refits = 0, toCover = 0, stale = 0; // frames with a refit; views refitted for each reason
     std::vector<core::ShadowSetupInputs> autoChosen;
     fmt::print("{:>5} {:>7} {:>9} {:>7} {:>8} {:>7} {:>9} {:>9} {:>6}\n", "frame", "t_s", "valid_px", "wrong%", "flicker%", "truth%",
                "ppt50", "compared", "sec");
     for (const TimedFrame& frame : timeline->frames) {
         const auto start = std::chrono::steady_clock::now();
-        moved.clear();
-        scene::animate(world, frame.time, &moved);
-        if (auto s = (*measurer)->moveInstances(world, moved); !s) return fail(s.errorInfo());
         auto view = timeline->viewAt(*still, world, frame.time, !args.view.size.empty());
         if (!view) return fail(view.errorInfo());
-        auto inputs = args.technique.inputsFor(*view, (*measurer)->renderer().wsSceneBounds());
-        if (!inputs) return fail(inputs.errorInfo());
-        auto settings = args.render.settingsFor(*view, *inputs);
-        if (!settings) return fail(settings.errorInfo());
-        if (automatic) // the last frame's choice is held unless clearly beaten (AutoOptions::hysteresis)
-            if (auto s = chooseForFrame(*automatic, (*measurer)->renderer(), args.render, *view, *inputs, *settings, {}); !s)
-                return fail(s.errorInfo());
-        measure::MeasureOptions options;
-        options.visibleDepthFromFrame = args.technique.visibleDepthFromFrame();
-        options.hysteresis = hysteresis ? &*hysteresis : nullptr;
-        auto measured = (*measurer)->measure(*inputs, *settings, options);
+        auto measured = path.next(frame.time, *view);
         if (!measured) return fail(withFlagName(measured.errorInfo()));
-        if (hysteresis) {
-            refits += hysteresis->refitted();
-            toCover += hysteresis->lastRefits().toCover, stale += hysteresis->lastRefits().stale;
+        const frame::PreparedFrame& prepared = measured->frame;
+        technique = core::techniqueName(prepared.setup.technique);
+        FrameRow row{frame.number, frame.time, measured->measurement.figures()};
+        row.temporal = measured->temporal;
+        if (prepared.refits) {
+            refits += prepared.refits->views > 0;
+            toCover += prepared.refits->toCover, stale += prepared.refits->stale;
+            row.refittedViews = prepared.refits->views;
         }
-        technique = core::techniqueName(measured->setup.technique);
-        eval::ShadowStates states = eval::shadowStates(view->camera, *measured->truth, measured->comparison);
-        FrameRow row{frame.number, frame.time, measured->figures()};
-        if (hysteresis) row.refittedViews = hysteresis->refittedViews();
-        if (automatic) {
-            row.autoChoice = core::describe(*automatic->last());
-            row.autoMilliseconds = automatic->lastMilliseconds();
-            autoChosen.push_back(*inputs);
+        if (prepared.autoChoice) {
+            row.autoChoice = core::describe(*prepared.autoChoice);
+            row.autoMilliseconds = prepared.autoMilliseconds;
+            autoChosen.push_back(prepared.inputs);
         }
-        if (previous) {
-            // The previous frame's shadows at this frame's points: its casters, light and set-up.
-            const bool castersMoved = !world.tracks.empty() && previous->time != frame.time;
-            if (castersMoved) {
-                moved.clear();
-                scene::animate(world, previous->time, &moved);
-                if (auto s = (*measurer)->moveInstances(world, moved); !s) return fail(s.errorInfo());
-            }
-            const bool sameLight = previous->light.wsDirection == view->light.wsDirection;
-            auto before = (*measurer)->shadowsAt(*measured, view->camera, previous->setup, previous->light, previous->settings,
-                                                 !castersMoved && sameLight);
-            if (!before) return fail(before.errorInfo());
-            row.temporal = eval::compareFrames(previous->states, states, *before);
-        }
-        previous = PreviousFrame{frame.time, std::move(states), measured->setup, view->light, *settings};
         row.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         const eval::Figures& f = row.figures;
         if (row.temporal)
@@ -182,7 +146,7 @@ int runEvalPath(const EvalPathArgs& args) {
                    "search), then mean {:.3f} p95 {:.3f} max {:.3f} ms (CPU: model + search, not the read-back)\n",
                    familySwitches(autoChosen), rows.size(), rows.front().autoMilliseconds, ms.mean, ms.p95, ms.max);
     }
-    if (hysteresis)
+    if (held)
         fmt::print("--stabilize: the set-up was refitted in {} of {} frames ({} maps to cover the view, {} grown stale)\n", refits,
                    rows.size(), toCover, stale);
     fmt::print("{} along {} ({} frames): flicker_pct mean {:.3f} p95 {:.3f} max {:.3f} | truth_change_pct mean {:.3f} p95 {:.3f} "
@@ -218,7 +182,7 @@ int runEvalPath(const EvalPathArgs& args) {
         }
         auto summary = [](const Summary& s) { return nlohmann::json{{"mean", s.mean}, {"p95", s.p95}, {"max", s.max}}; };
         nlohmann::json root = {{"path", timeline->path->name}, {"technique", technique},
-                               {"refits", hysteresis ? nlohmann::json(refits) : nlohmann::json(nullptr)},
+                               {"refits", held ? nlohmann::json(refits) : nlohmann::json(nullptr)},
                                {"summary", {{"flicker_pct", summary(fl)}, {"truth_change_pct", summary(tc)}, {"wrong_pct", summary(wr)}}},
                                {"frames", frames}};
         if (automatic)

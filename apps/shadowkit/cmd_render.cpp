@@ -1,11 +1,12 @@
 // shadowkit render: one shaded image of a scene with a shadow technique.
 #include "auto_technique.h"
 #include "commands.h"
-#include "local_light_options.h"
+#include "frame_config_options.h"
 #include "options.h"
 #include "timeline.h"
 
 #include "shadowkit/eval/image_grid.h"
+#include "shadowkit/frame/frame_driver.h"
 #include "shadowkit/gl/context.h"
 #include "shadowkit/gl/renderer.h"
 #include "shadowkit/scene/animation.h"
@@ -31,12 +32,16 @@ struct RenderArgs {
 };
 
 // The report of a single frame: where the time went.
-void printFrameReport(const RenderArgs& args, const gl::Context& context, const core::ShadowSetup& setup,
-                      const core::ShadowSetupInputs& inputs, const gl::RenderSettings& settings, const gl::FrameStats& stats,
-                      double setupMs, double frameMs) {
+void printFrameReport(const RenderArgs& args, const gl::Context& context, const frame::PreparedFrame& frame,
+                      const gl::FrameStats& stats, double frameMs) {
+    const core::ShadowSetup& setup = frame.setup;
+    const gl::RenderSettings& settings = frame.settings;
     fmt::print("{} | {} | {}x{} | map {}² | view {}\n", core::techniqueName(setup.technique), context.description(), settings.width,
                settings.height, setup.mapSize, args.timeline.path.empty() ? args.view.view : "path " + args.timeline.path);
-    fmt::print("  set-up (CPU)   {:8.3f} ms\n", setupMs);
+    fmt::print("  set-up (CPU)   {:8.3f} ms\n", frame.setupMilliseconds);
+    if (frame.prePasses.submissions > 0)
+        fmt::print("  before it      {} GPU submissions, {} read-backs (--visible-depth auto, --technique auto)\n",
+                   frame.prePasses.submissions, frame.prePasses.readBacks);
     fmt::print("  culling (CPU)  {:8.3f} ms  ({:.3f} ms in GL: pre-pass, queries, masks; {:.3f} ms its own thread CPU; "
                "{:.3f} ms levels and lists)\n",
                stats.cullMilliseconds, stats.cullGlMilliseconds, stats.cullOwnCpuMilliseconds, stats.listCpuMilliseconds);
@@ -54,7 +59,7 @@ void printFrameReport(const RenderArgs& args, const gl::Context& context, const 
         fmt::print("  {}    {:8.1f} ms GPU  {:6.2f} M triangles  {} instances  {} draws\n", name, pass->gpuMilliseconds,
                    static_cast<double>(pass->triangles) * 1e-6, pass->instances, pass->drawCalls);
     fmt::print("  frame (wall)   {:8.1f} ms incl. readback\n", frameMs);
-    if (const auto& v = inputs.visibleDepth) fmt::print("  visible depth  {:.2f} .. {:.2f} m (LiSPSM n, csm splits)\n", v->x, v->y);
+    if (const auto& v = frame.inputs.visibleDepth) fmt::print("  visible depth  {:.2f} .. {:.2f} m (LiSPSM n, csm splits)\n", v->x, v->y);
     for (const std::string& f : setup.fallbacks) fmt::print("  fallback: {}\n", f);
 }
 
@@ -99,11 +104,12 @@ int runRender(const RenderArgs& args) {
     auto renderer = gl::Renderer::create(world);
     if (!renderer) return fail(renderer.errorInfo());
 
+    auto config = frameConfigOf(args.technique, args.render, args.lights);
+    if (!config) return fail(config.errorInfo());
+    // Across the frames: held lattices (--stabilize), auto's tracked choice.
+    auto driver = frame::FrameDriver::create(std::move(config).value());
+    if (!driver) return fail(withFlagName(driver.errorInfo()));
     std::vector<uint32_t> moved;
-    // --stabilize with held lattices: one hysteresis for the whole sequence.
-    std::optional<core::SetupHysteresis> hysteresis;
-    std::optional<AutoTechnique> automatic; // across frames: the last choice held unless clearly beaten
-    if (args.technique.automatic) automatic.emplace(*args.technique.autoOptions());
     // --strip: six frames spread evenly over those drawn, first and last included.
     constexpr size_t kStripFrames = 6;
     std::vector<scene::Image> stripImages;
@@ -125,35 +131,13 @@ int runRender(const RenderArgs& args) {
         const double animateMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - cpuStart).count();
         auto view = timeline->viewAt(*still, world, frame.time, !args.view.size.empty());
         if (!view) return fail(view.errorInfo());
-        auto inputs = args.technique.inputsFor(*view, (*renderer)->wsSceneBounds()); // bounds O(1): the hierarchy's
-        if (!inputs) return fail(inputs.errorInfo());
-        auto settings = args.render.settingsFor(*view, *inputs);
-        if (!settings) return fail(settings.errorInfo());
-        args.lights.apply(*view, *settings);
-        auto lighting = args.lights.lightingFor(*view, (*renderer)->wsSceneBounds());
-        if (!lighting) return fail(withFlagName(lighting.errorInfo()));
-        if (auto s = (*renderer)->setLocalLights(std::move(lighting).value()); !s) return fail(withFlagName(s.errorInfo()));
-        if (args.technique.visibleDepthFromFrame()) {
-            auto refined = gl::withVisibleDepth(**renderer, *inputs, *settings);
-            if (!refined) return fail(withFlagName(refined.errorInfo()));
-            inputs = std::move(refined).value();
-        }
-        if (automatic)
-            if (auto s = chooseForFrame(*automatic, **renderer, args.render, *view, *inputs, *settings,
-                                        timeline->frames.size() == 1 ? "auto" : "");
-                !s)
-                return fail(s.errorInfo());
-        // What a frame costs on the CPU before drawing: the set-up.
-        const auto setupStart = std::chrono::steady_clock::now();
-        auto setup = args.technique.setupFor(*inputs, hysteresis);
-        if (!setup) return fail(withFlagName(setup.errorInfo()));
-        const double setupMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - setupStart).count();
-
         const auto frameStart = std::chrono::steady_clock::now();
-        auto stats = (*renderer)->render(view->camera, view->light, *setup, *settings);
-        if (!stats) return fail(withFlagName(stats.errorInfo()));
+        auto drawn = driver->draw(**renderer, *view);
+        if (!drawn) return fail(withFlagName(drawn.errorInfo()));
         const scene::Image image = (*renderer)->readColor();
         const double frameMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - frameStart).count();
+        const frame::PreparedFrame& f = drawn->frame;
+        if (timeline->frames.size() == 1) printAutoChoice("auto", f);
 
         std::string out = args.out;
         if (sequence || !args.video.empty()) {
@@ -178,14 +162,15 @@ int runRender(const RenderArgs& args) {
                 if (maps.width == 0) return fail("--local-map-out: the view has no local light with a map");
                 if (auto s = scene::writePng(maps, args.localMapOut); !s) return fail("--local-map-out: " + s.error());
             }
-            printFrameReport(args, **context, *setup, *inputs, *settings, *stats, setupMs, frameMs);
+            printFrameReport(args, **context, f, drawn->stats, frameMs);
             fmt::print("wrote {}{}\n", out, args.shadowMapOut.empty() ? "" : " and " + args.shadowMapOut);
             continue;
         }
         fmt::print("frame {:4} ({}/{})  t {:7.3f} s  animate {:.3f} ms  set-up {:.3f} ms  shadow {:.2f} M / main {:.2f} M tris  "
                    "{:.0f} ms  -> {}\n",
-                   frame.number, i + 1, timeline->frames.size(), frame.time, animateMs, setupMs,
-                   static_cast<double>(stats->shadow.triangles) * 1e-6, static_cast<double>(stats->main.triangles) * 1e-6, frameMs,
+                   frame.number, i + 1, timeline->frames.size(), frame.time, animateMs, f.setupMilliseconds,
+                   static_cast<double>(drawn->stats.shadow.triangles) * 1e-6, static_cast<double>(drawn->stats.main.triangles) * 1e-6,
+                   frameMs,
                    out);
         std::fflush(stdout);
     }

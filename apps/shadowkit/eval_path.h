@@ -2,6 +2,7 @@
 // temporal ones (flicker against truth, truth change), a CSV per frame and a plot.
 #pragma once
 
+#include "local_light_options.h"
 #include "options.h"
 #include "timeline.h"
 
@@ -15,6 +16,7 @@ struct EvalPathArgs {
     const TechniqueOptions& technique;
     const RenderOptions& render;
     const TimelineOptions& timeline;
+    const LocalLightOptions& lights;
     std::string csv, plot, json;
 };
 

@@ -68,25 +68,12 @@ void LocalLightOptions::addTo(CLI::App& cmd, bool withMaps) {
 core::Result<core::LocalLighting> LocalLightOptions::lightingFor(const scene::ResolvedView& view, const core::Aabb& wsSceneBounds) const {
     auto extra = lights();
     if (!extra) return extra.errorInfo();
-    std::vector<core::PointLight> points = view.points;
-    std::vector<core::SpotLight> spots = view.spots;
-    for (const LocalLight& l : *extra) {
-        if (const auto* p = std::get_if<core::PointLight>(&l)) points.push_back(*p);
-        else spots.push_back(std::get<core::SpotLight>(l));
-    }
-    if (points.size() > static_cast<size_t>(gl::kMaxLocalLightsPerKind) || spots.size() > static_cast<size_t>(gl::kMaxLocalLightsPerKind))
-        return core::makeError(fmt::format("--light: at most {} point and {} spot lights, got {} and {} (with the view's)",
-                                           gl::kMaxLocalLightsPerKind, gl::kMaxLocalLightsPerKind, points.size(), spots.size()));
-    const core::LocalShadowInputs inputs{.camera = view.camera, .wsSceneBounds = wsSceneBounds, .mapSize = mapSize};
-    auto lighting = core::computeLocalLighting(inputs, points, spots);
-    if (!lighting) return core::makeError("--light: " + lighting.error());
+    frame::FrameConfig config; // what a frame with these lights sets up (frame::FrameDriver)
+    config.lights.assign(extra->begin(), extra->end());
+    config.localMapSize = mapSize;
+    auto lighting = frame::localLightingFor(config, view, wsSceneBounds);
+    if (!lighting) return withFlagName(lighting.errorInfo());
     return lighting;
-}
-
-void LocalLightOptions::apply(const scene::ResolvedView& view, gl::RenderSettings& settings) const {
-    settings.sun = view.sun;
-    settings.localPass = pass;
-    settings.localBias = bias;
 }
 
 core::Result<std::vector<LocalLight>> LocalLightOptions::lights() const {

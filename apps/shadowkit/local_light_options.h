@@ -2,6 +2,7 @@
 #pragma once
 
 #include "shadowkit/core/local_lights.h"
+#include "shadowkit/frame/frame_config.h"
 #include "shadowkit/gl/renderer.h"
 #include "shadowkit/scene/views.h"
 
@@ -13,7 +14,7 @@
 
 namespace shadowkit::app {
 
-using LocalLight = std::variant<core::PointLight, core::SpotLight>;
+using LocalLight = frame::LocalLight;
 
 struct LocalLightOptions {
     // "point:x,y,z[,range]" or "spot:x,y,z,dx,dy,dz,angle[,range]", as given (repeatable).
@@ -30,8 +31,6 @@ struct LocalLightOptions {
     // The frame's local lights: the view's (views.json), then --light's, set up for its camera
     // over these scene bounds.
     core::Result<core::LocalLighting> lightingFor(const scene::ResolvedView& view, const core::Aabb& wsSceneBounds) const;
-    // The settings' local pass and bias from the flags, and the sun from the view (--sun off).
-    void apply(const scene::ResolvedView& view, gl::RenderSettings& settings) const;
 };
 
 } // namespace shadowkit::app

@@ -213,6 +213,12 @@ constexpr std::pair<std::string_view, std::string_view> kFlagOfField[] = {
     {"blur.depth_falloff", "--blur-depth-falloff"},
     {"auto.texel_budget", "--texel-budget"},
     {"auto.cascades", "--cascades"},
+    {"fog", "--fog"},
+    {"lights", "--light"},
+    {"local_map_size", "--local-map-size"},
+    {"local_bias.slope", "--local-bias-slope"},
+    {"local_bias.normal_offset", "--local-normal-offset"},
+    {"local_bias.constant", "--local-bias-constant"},
 };
 
 // A CLI11 transform from a name to an enum value: the names appear in --help as the
@@ -303,35 +309,6 @@ core::Status RenderOptions::check() const {
     b.normalOffset = normalOffset.value_or(b.normalOffset);
     if (auto s = core::validate(b); !s) return withFlagName(s.errorInfo());
     return core::Ok{};
-}
-
-core::Result<gl::RenderSettings> RenderOptions::settingsFor(const scene::ResolvedView& view,
-                                                            const core::ShadowSetupInputs& inputs) const {
-    if (auto s = check(); !s) return s.errorInfo();
-    gl::RenderSettings settings;
-    settings.width = view.width;
-    settings.height = view.height;
-    settings.filter = core::parseFilter(filter).value();
-    settings.blur = blur;
-    settings.cascadeColors = cascadeColors;
-    settings.aliasingOverlay = aliasingOverlay;
-    settings.culling = noCull ? gl::Culling::Off : visibility;
-    settings.receiverMask = receiverMask;
-    settings.lod = !noLod;
-    settings.fogDensity = static_cast<float>(fog.value_or(view.fogDensity));
-    // Only what the flags change is set here; the rest is the recommendation every library
-    // caller gets (gl::biasFor).
-    if (biasSlope || biasConstant || normalOffset || cull != CullChoice::Auto || receiverPlaneBias != Choice::Auto) {
-        core::BiasSettings b = core::recommendedBias(inputs.technique, core::depthLayoutFor(inputs), settings.filter);
-        b.slope = biasSlope.value_or(b.slope);
-        b.constant = biasConstant.value_or(b.constant);
-        b.normalOffset = normalOffset.value_or(b.normalOffset);
-        if (cull != CullChoice::Auto)
-            b.cull = cull == CullChoice::Back ? core::CasterCull::Back : cull == CullChoice::Front ? core::CasterCull::Front : core::CasterCull::None;
-        if (receiverPlaneBias != Choice::Auto) b.receiverPlane = receiverPlaneBias == Choice::On;
-        settings.bias = b;
-    }
-    return settings;
 }
 
 void TechniqueOptions::addTo(CLI::App& cmd) {

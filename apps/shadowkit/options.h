@@ -55,7 +55,7 @@ struct TechniqueOptions {
     core::LispsmFormula lispsmFormula = core::LispsmOptions{}.formula;
     core::LispsmDirection lispsmDirection = core::LispsmOptions{}.direction;
     std::string visibleDepth, splits; // raw "near,far" (or "auto") / "a,b,c" text, parsed by inputsFor()
-    // --visible-depth auto: measure the visible range from the frame (gl::withVisibleDepth).
+    // --visible-depth auto: measure the visible range from the frame (frame::FrameDriver).
     bool visibleDepthFromFrame() const { return visibleDepth == "auto"; }
     enum class LayoutChoice { Auto, Hyperbolic, Linear }; // Auto: the technique's own
     LayoutChoice depthLayout = LayoutChoice::Auto;
@@ -128,9 +128,6 @@ struct RenderOptions {
     void addTo(CLI::App& cmd);
     // Checks the flags (cheap: call before loading a scene); errors name the flag.
     core::Status check() const;
-    // Settings for a view's image size and the set-up these inputs give (for the
-    // recommended bias); errors name the flag.
-    core::Result<gl::RenderSettings> settingsFor(const scene::ResolvedView& view, const core::ShadowSetupInputs& inputs) const;
 };
 
 // A library error, with its field spelt as the flag that sets it ("lispsm.weight: must be

@@ -28,7 +28,7 @@ core::Result<std::unique_ptr<FrameOptions>> parseFrameOptions(const app::StateOp
     } catch (const CLI::ParseError& e) {
         return core::makeError(e.what());
     }
-    if (auto s = options->technique.check(); !s) return s.errorInfo();
+    if (auto s = options->technique.check(/*measuresFrames=*/true, /*takesAuto=*/true); !s) return s.errorInfo();
     if (auto s = options->render.check(); !s) return s.errorInfo();
     return options;
 }

@@ -12,6 +12,7 @@
 #include "frame_options.h"
 #include "panel.h"
 #include "truth_job.h"
+#include "viewer_frames.h"
 
 #include "shadowkit/core/wireframe.h"
 #include "shadowkit/eval/maps.h"
@@ -44,8 +45,6 @@ int fail(const core::Error& error) {
     fail(error.message);
     return error.kind == core::ErrorKind::Environment ? app::kExitEnvironment : app::kExitBadInput;
 }
-
-std::string vec3Text(const core::Vec3& v) { return fmt::format("{:.6g},{:.6g},{:.6g}", v.x, v.y, v.z); }
 
 // An RGBA image shown by ImGui (the shadow map inset, the error map). The viewer's own GL:
 // ImGui takes a texture name.
@@ -128,41 +127,6 @@ struct DrawnFrame {
     double setupMs = 0.0;
 };
 
-struct FrameResult {
-    DrawnFrame frame;
-};
-
-// One frame as `render` draws it: the view (through the timeline at time t), set-up (held
-// lattices through `hysteresis` with --stabilize), settings and local lights, then the passes.
-core::Result<FrameResult> drawFrame(measure::Measurer& measurer, const scene::Scene& world, const FrameOptions& options,
-                                    const app::Timeline& timeline, double t, std::optional<core::SetupHysteresis>& hysteresis) {
-    gl::Renderer& renderer = measurer.renderer();
-    auto still = options.view.resolve(world);
-    if (!still) return still.errorInfo();
-    auto view = timeline.viewAt(*still, world, t, true);
-    if (!view) return view.errorInfo();
-    const auto setupStart = std::chrono::steady_clock::now();
-    auto inputs = options.technique.inputsFor(*view, renderer.wsSceneBounds());
-    if (!inputs) return inputs.errorInfo();
-    auto settings = options.render.settingsFor(*view, *inputs);
-    if (!settings) return settings.errorInfo();
-    if (options.technique.visibleDepthFromFrame()) { // --visible-depth auto, measured as render does
-        auto refined = gl::withVisibleDepth(renderer, *inputs, *settings);
-        if (!refined) return refined.errorInfo();
-        inputs = std::move(refined).value();
-    }
-    auto setup = options.technique.setupFor(*inputs, hysteresis);
-    if (!setup) return setup.errorInfo();
-    const double setupMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - setupStart).count();
-    options.lights.apply(*view, *settings);
-    auto lighting = options.lights.lightingFor(*view, renderer.wsSceneBounds());
-    if (!lighting) return lighting.errorInfo();
-    if (auto s = renderer.setLocalLights(std::move(lighting).value()); !s) return s.errorInfo();
-    auto stats = renderer.render(view->camera, view->light, *setup, *settings);
-    if (!stats) return stats.errorInfo();
-    return FrameResult{DrawnFrame{view->camera, view->light, std::move(setup).value(), *settings, *stats, setupMs}};
-}
-
 int run(const ViewerArgs& args, app::StateOptions state) {
     auto sceneData = args.options.scene.load();
     if (!sceneData) return fail(sceneData.errorInfo());
@@ -190,12 +154,10 @@ int run(const ViewerArgs& args, app::StateOptions state) {
     bool orbiting = false;
     double orbitDistance = 20.0;
     core::Vec3 orbitTarget(0.0);
-    std::unique_ptr<FrameOptions> options;
+    ViewerFrames frames; // options parsed when they change; lattices held across camera moves
     std::string optionsError;
     bool dirty = true, showPanel = true, playing = false;
     double sceneTime = args.options.timeline.time.value_or(0.0), animatedTime = -1.0;
-    std::optional<app::Timeline> timeline;
-    std::optional<core::SetupHysteresis> hysteresis; // --stabilize: lattices held across frames
     std::array<float, 120> frameMs{};
     size_t frameIndex = 0;
     int drawnFrames = 0;
@@ -228,9 +190,9 @@ int run(const ViewerArgs& args, app::StateOptions state) {
             const core::Vec3 motion(key(GLFW_KEY_D) - key(GLFW_KEY_A), key(GLFW_KEY_E) - key(GLFW_KEY_Q), key(GLFW_KEY_W) - key(GLFW_KEY_S));
             if (motion != core::Vec3(0.0)) {
                 if (debugView) debug.move(motion, seconds);
-                else camera.move(motion, seconds), dirty = true;
+                else camera.move(motion, seconds);
             }
-            if (ImGui::IsKeyPressed(GLFW_KEY_F, false)) camera.frame(renderer.wsSceneBounds(), first->camera.fovYDegrees), dirty = true;
+            if (ImGui::IsKeyPressed(GLFW_KEY_F, false)) camera.frame(renderer.wsSceneBounds(), first->camera.fovYDegrees), frames.cut();
             if (ImGui::IsKeyPressed(GLFW_KEY_H, false)) showPanel = !showPanel;
             if (ImGui::IsKeyPressed(GLFW_KEY_O, false)) {
                 orbiting = !orbiting;
@@ -261,8 +223,8 @@ int run(const ViewerArgs& args, app::StateOptions state) {
             if (glfwGetMouseButton(glfw, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS && (io.MouseDelta.x != 0.0f || io.MouseDelta.y != 0.0f))
             {
                 if (debugView) debug.turn(io.MouseDelta.x, io.MouseDelta.y);
-                else if (orbiting) camera.orbit(io.MouseDelta.x, io.MouseDelta.y, orbitTarget), dirty = true;
-                else camera.turn(io.MouseDelta.x, io.MouseDelta.y), dirty = true;
+                else if (orbiting) camera.orbit(io.MouseDelta.x, io.MouseDelta.y, orbitTarget);
+                else camera.turn(io.MouseDelta.x, io.MouseDelta.y);
             }
             if (io.MouseWheel != 0.0f) {
                 const double factor = std::pow(1.25, static_cast<double>(io.MouseWheel));
@@ -270,7 +232,6 @@ int run(const ViewerArgs& args, app::StateOptions state) {
                     // Orbit: the wheel moves in and out.
                     orbitDistance = std::max(0.5, orbitDistance / factor);
                     camera.wsEye = orbitTarget - orbitDistance * camera.wsDirection();
-                    dirty = true;
                 } else {
                     camera.metresPerSecond *= factor;
                 }
@@ -289,6 +250,7 @@ int run(const ViewerArgs& args, app::StateOptions state) {
         }
         // Time: movers, the sun path and the camera path at sceneTime (as `render --time`).
         if (playing) sceneTime += seconds;
+        const app::Timeline* timeline = frames.timeline();
         if (timeline && timeline->path && timeline->frames.size() > 1 && sceneTime > timeline->frames.back().time) sceneTime = 0.0;
         if (sceneTime != animatedTime) {
             std::vector<uint32_t> moved;
@@ -297,7 +259,8 @@ int run(const ViewerArgs& args, app::StateOptions state) {
             animatedTime = sceneTime;
         }
 
-        // The options as `render` would take them: camera, window size, time, then the panel's.
+        // What the state file saves of the frame (Ctrl+S; render --state draws it): camera, window
+        // size, time. Typed into the frame below, not parsed: only the panel's options are.
         int width = 0, height = 0;
         glfwGetFramebufferSize(glfw, &width, &height);
         if (width > 0 && height > 0) {
@@ -307,25 +270,21 @@ int run(const ViewerArgs& args, app::StateOptions state) {
             if (sceneTime != 0.0) state["time"] = {fmt::format("{:.6g}", sceneTime)};
             else state.erase("time");
         }
-        if (dirty) {
-            auto parsed = parseFrameOptions(state);
-            if (parsed) options = std::move(parsed).value(), optionsError.clear();
-            else optionsError = app::withFlagName(parsed.errorInfo()).message;
-            auto resolved = options ? options->timeline.resolve() : core::Result<app::Timeline>(core::makeError(optionsError));
-            timeline = resolved ? std::optional<app::Timeline>(std::move(resolved).value()) : std::nullopt;
-            if (!resolved && options) optionsError = resolved.error();
-            hysteresis.reset(); // --stabilize holds lattices from here on
+        if (dirty) { // an option changed: a cut (held lattices refitted, auto searches afresh)
+            const core::Status s = frames.setOptions(state, world);
+            optionsError = s ? std::string() : s.error();
             dirty = false;
         }
 
         // Draw the frame with the libraries, as `render` does.
-        if (options && timeline && width > 0 && height > 0) {
-            auto frameDrawn = drawFrame(**measurer, world, *options, *timeline, sceneTime, hysteresis);
+        if (frames.ready() && width > 0 && height > 0) {
+            auto frameDrawn = frames.draw(renderer, world, camera.wsEye, camera.wsDirection(), width, height, sceneTime);
             if (frameDrawn) {
-                drawn = std::move(frameDrawn->frame);
+                const frame::PreparedFrame& f = frameDrawn->frame;
+                drawn = DrawnFrame{f.view.camera, f.view.light, f.setup, f.settings, frameDrawn->stats, f.setupMilliseconds};
                 ++drawnFrames;
                 // A camera path leads: the fly camera follows it.
-                if (timeline->path) {
+                if (frames.timeline()->path) {
                     const double speed = camera.metresPerSecond;
                     camera = FlyCamera::looking(drawn->camera.wsEye, drawn->camera.wsDirection);
                     camera.metresPerSecond = speed;
@@ -413,10 +372,10 @@ int run(const ViewerArgs& args, app::StateOptions state) {
             dirty |= drawOptionsPanel(state, defaults);
             if (ImGui::CollapsingHeader("Time", ImGuiTreeNodeFlags_DefaultOpen)) {
                 ImGui::Checkbox("play (Space)", &playing);
-                const double end = timeline && timeline->path && timeline->frames.size() > 1 ? timeline->frames.back().time : 120.0;
+                const double end = frames.timeline() && frames.timeline()->path && frames.timeline()->frames.size() > 1 ? frames.timeline()->frames.back().time : 120.0;
                 float t = static_cast<float>(sceneTime);
                 if (ImGui::SliderFloat("time (s)", &t, 0.0f, static_cast<float>(end), "%.2f")) sceneTime = t;
-                if (timeline && timeline->path) ImGui::TextUnformatted("camera path: the camera follows it");
+                if (frames.timeline() && frames.timeline()->path) ImGui::TextUnformatted("camera path: the camera follows it");
             }
             if (ImGui::CollapsingHeader("Wireframes", ImGuiTreeNodeFlags_DefaultOpen)) {
                 ImGui::Checkbox("frustum (white), B (green), maps (orange)", &wireframes);
@@ -498,7 +457,7 @@ int main(int argc, char** argv) {
         fmt::print(stderr, "shadowkit-viewer: error: {} (see shadowkit-viewer --help)\n", e.what());
         return 1;
     }
-    if (auto s = args.options.technique.check(); !s) return viewer::fail(s.errorInfo());
+    if (auto s = args.options.technique.check(/*measuresFrames=*/true, /*takesAuto=*/true); !s) return viewer::fail(s.errorInfo());
     if (auto s = args.options.render.check(); !s) return viewer::fail(s.errorInfo());
     for (const std::string* file : {&args.screenshot, &args.saveState})
         if (auto s = app::checkWritable("--screenshot/--save-state", *file); !s) return viewer::fail(s.errorInfo());

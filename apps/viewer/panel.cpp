@@ -1,5 +1,7 @@
 #include "panel.h"
 
+#include "shadowkit/core/shadow_setup.h"
+
 #include <imgui.h>
 
 #include <fmt/format.h>
@@ -9,6 +11,7 @@
 #include <cstdlib>
 #include <span>
 #include <string>
+#include <vector>
 
 namespace shadowkit::viewer {
 namespace {
@@ -59,7 +62,20 @@ bool checkbox(StateOptions& s, const char* label, const char* name) {
     return true;
 }
 
-constexpr std::array kTechniques = {"standard", "focused", "psm", "tsm", "lispsm", "csm"};
+// Every technique core has, then auto (the family chosen per frame); names and defaults come
+// from core, so a technique added there appears here.
+const std::vector<const char*>& techniqueChoices() {
+    static const std::vector<const char*> names = [] {
+        std::vector<const char*> out;
+        for (const core::TechniqueInfo& t : core::allTechniques()) out.push_back(t.name.data());
+        out.push_back("auto");
+        return out;
+    }();
+    return names;
+}
+const std::string kDefaultTechnique(core::techniqueName(core::defaultTechnique()));
+const std::string kDefaultMapSize = std::to_string(core::ShadowSetupInputs{}.mapSize);
+constexpr std::array kTexelBudgets = {"1M", "4M", "16M", "32M"};
 constexpr std::array kMapSizes = {"256", "512", "1024", "2048", "4096", "8192"};
 constexpr std::array kFilters = {"hard", "pcf2", "pcf:3", "pcf:5", "poisson:16", "poisson:32"};
 constexpr std::array kAutoOnOff = {"auto", "on", "off"};
@@ -94,9 +110,10 @@ bool drawOptionsPanel(StateOptions& s, const PanelDefaults& d) {
         }
     }
     if (ImGui::CollapsingHeader("Technique", ImGuiTreeNodeFlags_DefaultOpen)) {
-        changed |= combo(s, "technique", "technique", kTechniques, "tsm");
-        changed |= combo(s, "map size", "map-size", kMapSizes, "2048");
-        const std::string t = valueOf(s, "technique", "tsm");
+        changed |= combo(s, "technique", "technique", techniqueChoices(), kDefaultTechnique.c_str());
+        changed |= combo(s, "map size", "map-size", kMapSizes, kDefaultMapSize.c_str());
+        const std::string t = valueOf(s, "technique", kDefaultTechnique);
+        if (t == "auto") changed |= combo(s, "texel budget", "texel-budget", kTexelBudgets, "4M");
         if (t == "lispsm") {
             changed |= combo(s, "n formula", "lispsm-formula", kFormulas, "scherzer");
             changed |= combo(s, "warp axis", "lispsm-direction", kDirections, "cross");
@@ -119,7 +136,8 @@ bool drawOptionsPanel(StateOptions& s, const PanelDefaults& d) {
                 changed = true;
             }
         }
-        if (t == "tsm") changed |= sliderFloat(s, "focus", "tsm-focus", 0.0f, 0.9f, 0.2f);
+        if (t == "tsm")
+            changed |= sliderFloat(s, "focus", "tsm-focus", 0.0f, 0.9f, static_cast<float>(core::TsmOptions{}.focusFraction));
         if (t == "csm") {
             changed |= sliderInt(s, "cascades", "cascades", 1, 8, 4);
             changed |= sliderFloat(s, "lambda", "lambda", 0.0f, 1.0f, 0.9f);

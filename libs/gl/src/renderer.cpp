@@ -583,17 +583,6 @@ core::Result<std::optional<core::Vec2>> Renderer::visibleDepth(const core::Persp
 
 std::optional<core::Vec2> Renderer::lastVisibleDepth() { return m_impl->depthRange->read(); }
 
-core::Result<core::ShadowSetupInputs> withVisibleDepth(Renderer& renderer, const core::ShadowSetupInputs& inputs,
-                                                       const RenderSettings& settings) {
-    auto first = core::computeShadowSetup(inputs);
-    if (!first) return first.errorInfo();
-    auto range = renderer.visibleDepth(inputs.camera, inputs.light, *first, settings);
-    if (!range) return range.errorInfo();
-    core::ShadowSetupInputs refined = inputs;
-    if (*range) refined.visibleDepth = **range;
-    return refined;
-}
-
 core::Status Renderer::moveInstances(const scene::Scene& scene, std::span<const uint32_t> moved) {
     Impl& r = *m_impl;
     if (scene.instanceCount() != r.visibility->hierarchy().size())

@@ -110,17 +110,23 @@ std::shared_ptr<const eval::TruthBuffers> Measurer::truth(const core::Perspectiv
 
 core::Result<Measurement> Measurer::measure(const core::ShadowSetupInputs& inputs, const gl::RenderSettings& settings,
                                             const MeasureOptions& options) {
-    core::ShadowSetupInputs used = inputs;
-    if (options.visibleDepthFromFrame) {
-        auto refined = gl::withVisibleDepth(*m_impl->renderer, inputs, settings);
-        if (!refined) return refined.errorInfo();
-        used = std::move(refined).value();
-    }
-    auto setup = options.hysteresis ? options.hysteresis->next(used) : core::computeShadowSetup(used);
+    frame::PreparedFrame f;
+    f.view.camera = inputs.camera;
+    f.view.light = inputs.light;
+    f.inputs = inputs;
+    auto setup = core::computeShadowSetup(inputs);
     if (!setup) return setup.errorInfo();
+    f.setup = std::move(setup).value();
+    f.settings = settings;
+    return measure(f, options);
+}
+
+core::Result<Measurement> Measurer::measure(const frame::PreparedFrame& frame, const MeasureOptions& options) {
+    const core::ShadowSetupInputs& inputs = frame.inputs;
+    const gl::RenderSettings& settings = frame.settings;
     Measurement m;
-    m.visibleDepth = used.visibleDepth;
-    m.setup = std::move(setup).value();
+    m.visibleDepth = inputs.visibleDepth;
+    m.setup = frame.setup;
     m.bias = gl::biasFor(m.setup, settings);
     gl::Renderer& renderer = *m_impl->renderer;
     if (options.shadedImage) {

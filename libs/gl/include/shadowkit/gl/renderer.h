@@ -218,9 +218,4 @@ private:
     std::unique_ptr<Impl> m_impl;
 };
 
-// `inputs` with ShadowSetupInputs::visibleDepth measured from this frame (Renderer::visibleDepth
-// of the set-up the inputs give as they are); unchanged when nothing is visible.
-core::Result<core::ShadowSetupInputs> withVisibleDepth(Renderer& renderer, const core::ShadowSetupInputs& inputs,
-                                                       const RenderSettings& settings);
-
 } // namespace shadowkit::gl

@@ -16,6 +16,7 @@
 #include "shadowkit/eval/report.h"
 #include "shadowkit/eval/temporal.h"
 #include "shadowkit/eval/truth.h"
+#include "shadowkit/frame/frame_driver.h"
 #include "shadowkit/gl/renderer.h"
 #include "shadowkit/scene/image.h"
 #include "shadowkit/scene/scene.h"
@@ -42,12 +43,6 @@ struct MeasureOptions {
     // this camera is not cached yet.
     std::function<void(double)> truthProgress;
     eval::CompareOptions compare;
-    // Measure the visible view-depth range first and give it to the set-up
-    // (gl::withVisibleDepth; ShadowSetupInputs::visibleDepth): LiSPSM's n, the cascades' splits.
-    bool visibleDepthFromFrame = false;
-    // Set-ups through this hysteresis (a sequence's, kept across frames) instead of computed
-    // afresh: `--stabilize` for warped techniques (core/setup_hysteresis.h).
-    core::SetupHysteresis* hysteresis = nullptr;
 };
 
 // One light of a frame with several: its name ("sun", "point[0]", "spot[1]"), maps and figures.
@@ -59,9 +54,9 @@ struct LightMeasurement {
 };
 
 struct Measurement {
-    core::ShadowSetup setup;          // as computed from the inputs
-    core::BiasSettings bias;          // what the frame was drawn with (gl::biasFor)
-    std::optional<core::Vec2> visibleDepth; // the measured range, with visibleDepthFromFrame
+    core::ShadowSetup setup;          // what the frame was drawn with
+    core::BiasSettings bias;          // and its bias (gl::biasFor)
+    std::optional<core::Vec2> visibleDepth; // the set-up's visible range (measured with FrameConfig::visibleDepthFromFrame)
     core::RasterBuffers raster;       // the GL side's per-pixel buffers
     std::shared_ptr<const eval::TruthBuffers> truth; // shared with the cache
     // Per-pixel classes and the figures: of the sun, or with spot and point lights of every
@@ -82,11 +77,14 @@ public:
     Measurer(const Measurer&) = delete;
     Measurer& operator=(const Measurer&) = delete;
 
-    // Set-up from `inputs` (camera, light, bounds, technique, map size), drawn with
-    // `settings` (width and height are the image's; the camera's aspect should match),
-    // compared with the truth for that camera, light and size. The renderer's local lights
-    // (gl::Renderer::setLocalLights, set for this camera) are measured too, each against its
-    // own truth; with settings.sun false the sun is not.
+    // A prepared frame (frame::FrameDriver::prepare with this measurer's renderer: its set-up
+    // and settings, the renderer's local lights set for its camera) drawn into the evaluation
+    // buffers and compared with the truth for its camera, sun and size. The local lights are
+    // measured too, each against its own truth; with settings.sun false the sun is not.
+    core::Result<Measurement> measure(const frame::PreparedFrame& frame, const MeasureOptions& options = {});
+    // The same for a set-up computed afresh from `inputs` (camera, light, bounds, technique,
+    // map size), drawn with `settings` (width and height are the image's; the camera's aspect
+    // should match) and whatever local lights the renderer holds: a test's single frame.
     core::Result<Measurement> measure(const core::ShadowSetupInputs& inputs, const gl::RenderSettings& settings,
                                       const MeasureOptions& options = {});
 

@@ -1,0 +1,51 @@
+#include "frame_config_options.h"
+
+namespace shadowkit::app {
+
+core::Result<frame::FrameConfig> frameConfigOf(const TechniqueOptions& technique, const RenderOptions& render,
+                                               const LocalLightOptions& lights) {
+    if (auto s = render.check(); !s) return s.errorInfo();
+    frame::FrameConfig config;
+    // The technique's inputs without a frame: camera, light and scene box come with each.
+    auto inputs = technique.inputsFor(scene::ResolvedView{}, core::Aabb{});
+    if (!inputs) return inputs.errorInfo();
+    config.technique = std::move(inputs).value();
+    config.visibleDepthFromFrame = technique.visibleDepthFromFrame();
+    if (technique.automatic) {
+        auto options = technique.autoOptions();
+        if (!options) return options.errorInfo();
+        config.automatic = *options;
+    }
+    if (technique.holdsLattices()) config.heldLattices = technique.hysteresis;
+
+    gl::RenderSettings& s = config.render;
+    s.filter = core::parseFilter(render.filter).value(); // checked above
+    s.blur = render.blur;
+    s.cascadeColors = render.cascadeColors;
+    s.aliasingOverlay = render.aliasingOverlay;
+    s.culling = render.noCull ? gl::Culling::Off : render.visibility;
+    s.receiverMask = render.receiverMask;
+    s.lod = !render.noLod;
+    s.localPass = lights.pass;
+    s.localBias = lights.bias;
+    config.fogDensity = render.fog;
+    config.bias.slope = render.biasSlope;
+    config.bias.constant = render.biasConstant;
+    config.bias.normalOffset = render.normalOffset;
+    using Cull = RenderOptions::CullChoice;
+    if (render.cull != Cull::Auto)
+        config.bias.cull = render.cull == Cull::Back    ? core::CasterCull::Back
+                           : render.cull == Cull::Front ? core::CasterCull::Front
+                                                        : core::CasterCull::None;
+    if (render.receiverPlaneBias != RenderOptions::Choice::Auto)
+        config.bias.receiverPlane = render.receiverPlaneBias == RenderOptions::Choice::On;
+
+    auto local = lights.lights();
+    if (!local) return local.errorInfo();
+    config.lights.assign(local->begin(), local->end());
+    config.localMapSize = lights.mapSize;
+    if (auto c = config.check(); !c) return withFlagName(c.errorInfo());
+    return config;
+}
+
+} // namespace shadowkit::app

@@ -1,0 +1,16 @@
+// The option groups of `render` (technique, render, local lights) as the typed
+// frame::FrameConfig every front end draws with.
+#pragma once
+
+#include "local_light_options.h"
+#include "options.h"
+
+#include "shadowkit/frame/frame_config.h"
+
+namespace shadowkit::app {
+
+// Errors name the flag.
+core::Result<frame::FrameConfig> frameConfigOf(const TechniqueOptions& technique, const RenderOptions& render,
+                                               const LocalLightOptions& lights);
+
+} // namespace shadowkit::app

@@ -1,0 +1,71 @@
+// The viewer's frame loop without its window: camera moves keep held lattices (--stabilize)
+// and auto's tracking; an option change starts afresh. CTest label `gl` (headless Mesa).
+#include "headless_gl_test.h"
+#include "test_scenes.h"
+#include "viewer_frames.h"
+
+#include <gtest/gtest.h>
+
+using namespace shadowkit;
+
+namespace {
+
+class ViewerFramesTest : public gl::testing::HeadlessGlTest {
+protected:
+    void SetUp() override {
+        HeadlessGlTest::SetUp();
+        if (IsSkipped()) return;
+        forest = gl::testing::smallForest(300, 200, 32);
+        auto r = gl::Renderer::create(forest);
+        ASSERT_TRUE(r) << r.error();
+        renderer = std::move(r).value();
+        start = gl::testing::standardView(forest, "perpendicular").camera;
+    }
+
+    // Frame i of a slow walk sideways (3 cm a frame), drawn at 192 × 108.
+    core::Result<frame::DrawnFrame> walk(viewer::ViewerFrames& frames, int i) {
+        const core::Vec3 side = glm::normalize(glm::cross(start.wsDirection, start.wsUp));
+        return frames.draw(*renderer, forest, start.wsEye + 0.03 * i * side, start.wsDirection, 192, 108, 0.0);
+    }
+
+    scene::Scene forest;
+    std::unique_ptr<gl::Renderer> renderer;
+    core::PerspectiveCamera start;
+};
+
+TEST_F(ViewerFramesTest, CameraMovesKeepHeldLatticesAndAnOptionChangeRefits) {
+    viewer::ViewerFrames frames;
+    app::StateOptions state{{"technique", {"lispsm"}}, {"map-size", {"512"}}, {"stabilize", {"true"}}};
+    ASSERT_TRUE(frames.setOptions(state, forest));
+    int laterRefits = 0;
+    for (int i = 0; i < 10; ++i) {
+        auto f = walk(frames, i);
+        ASSERT_TRUE(f) << f.error();
+        ASSERT_TRUE(f->frame.refits);
+        if (i == 0) EXPECT_EQ(f->frame.refits->views, 1);
+        else laterRefits += f->frame.refits->views;
+    }
+    EXPECT_LE(laterRefits, 1) << "held lattices were dropped on camera moves";
+    // The panel changed an option: a cut.
+    state["lispsm-weight"] = {"1.5"};
+    ASSERT_TRUE(frames.setOptions(state, forest));
+    auto f = walk(frames, 10);
+    ASSERT_TRUE(f);
+    EXPECT_EQ(f->frame.refits->views, 1);
+}
+
+TEST_F(ViewerFramesTest, OffersAutoAndKeepsTheLastGoodOptionsOnABadOne) {
+    viewer::ViewerFrames frames;
+    ASSERT_TRUE(frames.setOptions({{"technique", {"auto"}}, {"texel-budget", {"1M"}}}, forest));
+    auto first = walk(frames, 0);
+    ASSERT_TRUE(first) << first.error();
+    ASSERT_TRUE(first->frame.autoChoice);
+    const core::Status bad = frames.setOptions({{"technique", {"auto"}}, {"texel-budget", {"lots"}}}, forest);
+    ASSERT_FALSE(bad);
+    EXPECT_NE(bad.error().find("--texel-budget"), std::string::npos) << bad.error();
+    auto still = walk(frames, 1); // drawn with the last good options
+    ASSERT_TRUE(still);
+    EXPECT_TRUE(still->frame.autoChoice);
+}
+
+} // namespace

@@ -1,0 +1,101 @@
+#include "shadowkit/frame/frame_driver.h"
+
+#include "shadowkit/gl/receiver_samples.h"
+
+#include <chrono>
+#include <utility>
+
+namespace shadowkit::frame {
+namespace {
+
+double millisecondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+} // namespace
+
+FrameDriver::FrameDriver(FrameConfig config) : m_config(std::move(config)) { reset(); }
+
+core::Result<FrameDriver> FrameDriver::create(FrameConfig config) {
+    if (auto s = config.check(); !s) return s.errorInfo();
+    return FrameDriver(std::move(config));
+}
+
+void FrameDriver::reset() {
+    m_hysteresis.reset();
+    m_chooser.reset();
+    if (m_config.heldLattices) m_hysteresis.emplace(*m_config.heldLattices);
+    if (m_config.automatic) m_chooser.emplace(*m_config.automatic);
+}
+
+core::Status FrameDriver::setConfig(FrameConfig config) {
+    if (auto s = config.check(); !s) return s;
+    m_config = std::move(config);
+    reset();
+    return core::Ok{};
+}
+
+core::Result<PreparedFrame> FrameDriver::prepare(gl::Renderer& renderer, const scene::ResolvedView& view) {
+    PreparedFrame f;
+    f.view = view;
+    f.inputs = m_config.technique;
+    f.inputs.camera = view.camera;
+    f.inputs.light = view.light;
+    f.inputs.wsSceneBounds = renderer.wsSceneBounds(); // O(1): the instance hierarchy's root
+    f.settings = m_config.render;
+    f.settings.width = view.width;
+    f.settings.height = view.height;
+    f.settings.sun = view.sun;
+    f.settings.fogDensity = static_cast<float>(m_config.fogDensity.value_or(view.fogDensity));
+    f.settings.bias = m_config.bias.resolve(f.inputs, f.settings.filter);
+
+    // 1. Local lights: independent of the sun's set-up, needed by every pass after this.
+    auto lighting = localLightingFor(m_config, view, f.inputs.wsSceneBounds);
+    if (!lighting) return lighting.errorInfo();
+    if (auto s = renderer.setLocalLights(std::move(lighting).value()); !s) return s.errorInfo();
+
+    // 2. The visible depth range, from a camera pre-pass culled as this frame's set-up before
+    // refinement would cull it (the range does not depend on the shadow maps).
+    if (m_config.visibleDepthFromFrame) {
+        auto unrefined = core::computeShadowSetup(f.inputs);
+        if (!unrefined) return unrefined.errorInfo();
+        auto range = renderer.visibleDepth(f.inputs.camera, f.inputs.light, *unrefined, f.settings);
+        if (!range) return range.errorInfo();
+        if (*range) f.inputs.visibleDepth = **range;
+        ++f.prePasses.submissions, ++f.prePasses.readBacks;
+    }
+
+    // 3. Auto: receivers, then the choice; the bias follows the chosen technique.
+    if (m_chooser) {
+        auto samples = gl::sampleReceivers(renderer, f.inputs, f.settings);
+        if (!samples) return samples.errorInfo();
+        ++f.prePasses.submissions, ++f.prePasses.readBacks;
+        const auto start = std::chrono::steady_clock::now();
+        auto choice = m_chooser->choose(f.inputs, f.settings.width, f.settings.height, *samples);
+        if (!choice) return choice.errorInfo();
+        f.autoMilliseconds = millisecondsSince(start);
+        f.autoChoice = std::move(choice).value();
+        f.inputs = f.autoChoice->inputs;
+        f.settings.bias = m_config.bias.resolve(f.inputs, f.settings.filter);
+    }
+
+    // 4. The set-up: held or fresh.
+    const auto start = std::chrono::steady_clock::now();
+    auto setup = m_hysteresis ? m_hysteresis->next(f.inputs) : core::computeShadowSetup(f.inputs);
+    if (!setup) return setup.errorInfo();
+    f.setupMilliseconds = millisecondsSince(start);
+    f.setup = std::move(setup).value();
+    if (m_hysteresis) f.refits = m_hysteresis->lastRefits();
+    return f;
+}
+
+core::Result<DrawnFrame> FrameDriver::draw(gl::Renderer& renderer, const scene::ResolvedView& view) {
+    auto prepared = prepare(renderer, view);
+    if (!prepared) return prepared.errorInfo();
+    const PreparedFrame& f = *prepared;
+    auto stats = renderer.render(f.view.camera, f.view.light, f.setup, f.settings);
+    if (!stats) return stats.errorInfo();
+    return DrawnFrame{std::move(prepared).value(), *stats};
+}
+
+} // namespace shadowkit::frame
