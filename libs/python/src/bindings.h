@@ -3,6 +3,7 @@
 
 #include "shadowkit/core/conventions.h"
 #include "shadowkit/core/result.h"
+#include "shadowkit/core/shadow_setup.h"
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -38,10 +39,11 @@ struct SetupArguments {
     std::optional<std::vector<double>> light;
     std::pair<double, double> sun{45.0, 90.0};
     std::vector<double> sceneMin{-512.0, 0.0, -512.0}, sceneMax{512.0, 30.0, 512.0};
-    std::string technique = "tsm";
-    int mapSize = 2048;
-    int cascades = 4;
-    double lambda = 0.9;
+    // The libraries' defaults, as the command line's.
+    std::string technique = std::string(core::techniqueName(core::defaultTechnique()));
+    int mapSize = core::ShadowSetupInputs{}.mapSize;
+    int cascades = core::CascadeOptions{}.count;
+    double lambda = core::CascadeOptions{}.lambda;
     std::string cascadeWarp = "none";
     std::string conventions = "default";
     bool reversedZ = false;

@@ -4,6 +4,7 @@
 #include "bindings.h"
 
 #include "shadowkit/core/shadow_filter.h"
+#include "shadowkit/frame/frame_driver.h"
 #include "shadowkit/measure/measurer.h"
 #include "shadowkit/scene/forest.h"
 #include "shadowkit/scene/views.h"
@@ -53,10 +54,9 @@ public:
             view.width = size->first, view.height = size->second;
         }
         view.camera.aspect = double(view.width) / double(view.height);
-        core::ShadowSetupInputs in;
-        in.camera = view.camera;
-        in.light = view.light;
-        in.wsSceneBounds = m_measurer->renderer().wsSceneBounds();
+        // The frame as `shadowkit eval` draws it: through the frame driver (the view's lamps too).
+        frame::FrameConfig config;
+        core::ShadowSetupInputs& in = config.technique;
         const auto parsed = core::parseTechnique(technique);
         if (!parsed) throw py::value_error("technique: '" + technique + "' is not one of " + core::techniqueNameList());
         in.technique = *parsed;
@@ -64,11 +64,10 @@ public:
         in.cascades.count = cascades;
         if (cascadeWarp == "lispsm") in.cascades.warp = core::CascadeWarp::Lispsm;
         else if (cascadeWarp != "none") throw py::value_error("cascade_warp: must be none or lispsm");
-        gl::RenderSettings settings;
-        settings.width = view.width, settings.height = view.height;
-        settings.filter = check(core::parseFilter(filter));
-
-        const measure::Measurement m = check(m_measurer->measure(in, settings));
+        config.render.filter = check(core::parseFilter(filter));
+        auto driver = check(frame::FrameDriver::create(config));
+        const frame::PreparedFrame prepared = check(driver.prepare(m_measurer->renderer(), view));
+        const measure::Measurement m = check(m_measurer->measure(prepared));
         const int w = view.width, h = view.height;
         py::dict out;
         out["figures"] = figuresDict(m.figures());
@@ -103,13 +102,16 @@ pixels_per_texel.)";
 } // namespace
 
 void bindEvaluation(py::module_& m) {
+    // Defaults from the libraries' own option structs, as the command line's.
     const scene::ForestOptions d;
+    const core::ShadowSetupInputs kDefaults;
+    const std::string kDefaultTechnique(core::techniqueName(core::defaultTechnique()));
     py::class_<Evaluator>(m, "Evaluator", "A forest and a headless GL context (EGL) for repeated evaluations.")
         .def(py::init<uint64_t, int, double, int, int>(), py::kw_only(), py::arg("seed") = d.seed, py::arg("trees") = d.trees,
              py::arg("terrain_size") = d.terrainSize, py::arg("terrain_resolution") = d.terrainResolution, py::arg("movers") = d.movers)
-        .def("evaluate", &Evaluator::evaluate, kEvaluateDoc, py::kw_only(), py::arg("view") = "perpendicular", py::arg("technique") = "tsm",
-             py::arg("map_size") = 2048, py::arg("size") = py::none(), py::arg("filter") = "hard", py::arg("cascades") = 4,
-             py::arg("cascade_warp") = "none");
+        .def("evaluate", &Evaluator::evaluate, kEvaluateDoc, py::kw_only(), py::arg("view") = "perpendicular",
+             py::arg("technique") = kDefaultTechnique, py::arg("map_size") = kDefaults.mapSize, py::arg("size") = py::none(),
+             py::arg("filter") = "hard", py::arg("cascades") = kDefaults.cascades.count, py::arg("cascade_warp") = "none");
     m.def(
         "evaluate",
         [](const std::string& view, const std::string& technique, int mapSize, std::optional<std::pair<int, int>> size,
@@ -119,8 +121,9 @@ void bindEvaluation(py::module_& m) {
             return evaluator.evaluate(view, technique, mapSize, size, filter, cascades, cascadeWarp);
         },
         "One evaluation with a forest of its own (see Evaluator.evaluate; seed, trees, terrain_size, terrain_resolution make the forest).",
-        py::kw_only(), py::arg("view") = "perpendicular", py::arg("technique") = "tsm", py::arg("map_size") = 2048, py::arg("size") = py::none(),
-        py::arg("filter") = "hard", py::arg("cascades") = 4, py::arg("cascade_warp") = "none", py::arg("seed") = d.seed,
+        py::kw_only(), py::arg("view") = "perpendicular", py::arg("technique") = kDefaultTechnique, py::arg("map_size") = kDefaults.mapSize,
+        py::arg("size") = py::none(), py::arg("filter") = "hard", py::arg("cascades") = kDefaults.cascades.count,
+        py::arg("cascade_warp") = "none", py::arg("seed") = d.seed,
         py::arg("trees") = d.trees, py::arg("terrain_size") = d.terrainSize, py::arg("terrain_resolution") = d.terrainResolution);
 }
 
