@@ -10,7 +10,7 @@ packages=(
   libcli11-dev libfmt-dev libmeshoptimizer-dev libtinyobjloader-dev libgtest-dev libbenchmark-dev
   libimgui-dev xvfb xauth
   pybind11-dev python3-dev python3-numpy
-  clang libclang-rt-14-dev
+  clang libclang-rt-14-dev clang-format-14
 )
 
 missing=()
