@@ -72,7 +72,8 @@ void coherentCulling(benchmark::State& state) {
     core::CoherentCulling chc(w.hierarchy);
     HorizonQueries queries(w.hierarchy, camera.wsEye);
     std::vector<uint32_t> drawn;
-    for (int warm = 0; warm < 10; ++warm) chc.frame(frustum, camera.wsEye, camera.zNear * 2.0, queries, drawn); // steady state
+    for (int warm = 0; warm < 10; ++warm)
+        chc.frame(frustum, camera.wsEye, camera.zNear * 2.0, queries, drawn); // steady state
     core::CoherentCullingStats stats;
     for (auto _ : state) stats = chc.frame(frustum, camera.wsEye, camera.zNear * 2.0, queries, drawn);
     state.counters["nodes_visited"] = double(stats.nodesVisited);
@@ -83,7 +84,9 @@ void coherentCulling(benchmark::State& state) {
 void receiverMaskQuery(benchmark::State& state) {
     const World& w = world(static_cast<int>(state.range(0)));
     const core::PerspectiveCamera& camera = w.view.camera;
-    const core::ShadowSetupInputs inputs{.camera = camera, .light = w.view.light, .wsSceneBounds = w.scene.wsBounds(),
+    const core::ShadowSetupInputs inputs{.camera = camera,
+                                         .light = w.view.light,
+                                         .wsSceneBounds = w.scene.wsBounds(),
                                          .technique = core::Technique::Tsm};
     const core::ShadowSetup setup = core::computeShadowSetup(inputs).value();
     const core::ShadowView& view = setup.views[0];
@@ -101,7 +104,8 @@ void receiverMaskQuery(benchmark::State& state) {
     std::vector<uint32_t> casters;
     for (auto _ : state) {
         casters.clear();
-        w.hierarchy.query(volume, [&mask](const core::Aabb& box) { return mask.mayShadow(box); }, casters);
+        w.hierarchy.query(
+            volume, [&mask](const core::Aabb& box) { return mask.mayShadow(box); }, casters);
         benchmark::DoNotOptimize(casters.data());
     }
     state.counters["casters"] = double(casters.size());

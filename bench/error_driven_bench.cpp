@@ -5,9 +5,9 @@
 // are the ground the camera sees (rays through a grid of pixels meeting the terrain's mean
 // height), as many as a read-back gives.
 //   build/bench/shadowkit_error_driven_bench
+#include "bench_scenes.h"
 #include "shadowkit/core/auto_chooser.h"
 #include "shadowkit/scene/camera_path.h"
-#include "bench_scenes.h"
 
 #include <benchmark/benchmark.h>
 
@@ -19,7 +19,6 @@
 namespace {
 
 using namespace shadowkit;
-
 
 std::vector<core::ReceiverSample> groundSamples(const core::PerspectiveCamera& camera, double groundY, int count) {
     std::vector<core::ReceiverSample> out;
@@ -46,7 +45,8 @@ void chooseForView(benchmark::State& state, const std::string& viewName, int sam
     const scene::ResolvedView& view = *resolved;
     const core::Aabb bounds = bench::defaultForest().wsBounds();
     const core::ShadowSetupInputs inputs{.camera = view.camera, .light = view.light, .wsSceneBounds = bounds};
-    const auto receivers = groundSamples(view.camera, 0.5 * (bounds.min.y + bounds.max.y) - 0.25 * (bounds.max.y - bounds.min.y), samples);
+    const auto receivers =
+        groundSamples(view.camera, 0.5 * (bounds.min.y + bounds.max.y) - 0.25 * (bounds.max.y - bounds.min.y), samples);
     core::AutoOptions options;
     options.texelBudget = int64_t(4) << 20;
     options.cascades = cascades;
@@ -101,7 +101,9 @@ void trackAlongPath(benchmark::State& state, int cascades) {
 
 void registerAll() {
     for (const int cascades : {1, 0, 4}) {
-        const std::string maps = cascades == 1 ? "single" : cascades == 0 ? "any-count" : std::to_string(cascades) + "-cascades";
+        const std::string maps = cascades == 1   ? "single"
+                                 : cascades == 0 ? "any-count"
+                                                 : std::to_string(cascades) + "-cascades";
         benchmark::RegisterBenchmark(("auto/path/" + maps + "/flythrough").c_str(), trackAlongPath, cascades)
             ->Unit(benchmark::kMillisecond);
     }

@@ -1,8 +1,8 @@
 // CPU cost of steps 1-2 of the pipeline (focus body + parameterization) per technique,
 // on the standard views over the default forest's bounds (docs/references.md, evaluation §4).
 //   build/bench/shadowkit_setup_bench
-#include "shadowkit/core/shadow_setup.h"
 #include "bench_scenes.h"
+#include "shadowkit/core/shadow_setup.h"
 
 #include <benchmark/benchmark.h>
 
@@ -12,7 +12,6 @@ namespace {
 
 using namespace shadowkit;
 
-
 void setupForView(benchmark::State& state, core::Technique technique, const std::string& viewName) {
     const auto resolved = bench::standardView(viewName);
     if (!resolved) {
@@ -20,8 +19,10 @@ void setupForView(benchmark::State& state, core::Technique technique, const std:
         return;
     }
     const scene::ResolvedView& view = *resolved;
-    const core::ShadowSetupInputs inputs{.camera = view.camera, .light = view.light,
-                                         .wsSceneBounds = bench::defaultForest().wsBounds(), .technique = technique};
+    const core::ShadowSetupInputs inputs{.camera = view.camera,
+                                         .light = view.light,
+                                         .wsSceneBounds = bench::defaultForest().wsBounds(),
+                                         .technique = technique};
     for (auto _ : state) {
         auto setup = core::computeShadowSetup(inputs);
         benchmark::DoNotOptimize(setup);
@@ -31,8 +32,8 @@ void setupForView(benchmark::State& state, core::Technique technique, const std:
 void registerAll() {
     for (const core::TechniqueInfo& t : core::allTechniques())
         for (const char* view : {"perpendicular", "sun-behind", "aerial"})
-            benchmark::RegisterBenchmark(("setup/" + std::string(t.name) + "/" + view).c_str(), setupForView, t.technique,
-                                         std::string(view))
+            benchmark::RegisterBenchmark(("setup/" + std::string(t.name) + "/" + view).c_str(), setupForView,
+                                         t.technique, std::string(view))
                 ->Unit(benchmark::kMicrosecond);
 }
 

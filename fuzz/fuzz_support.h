@@ -16,9 +16,11 @@
 namespace shadowkit::fuzz {
 
 inline std::filesystem::path writeInput(const uint8_t* data, size_t size, const std::string& extension) {
-    static const std::filesystem::path folder = std::filesystem::exists("/dev/shm") ? "/dev/shm" : std::filesystem::temp_directory_path();
+    static const std::filesystem::path folder =
+        std::filesystem::exists("/dev/shm") ? "/dev/shm" : std::filesystem::temp_directory_path();
     const std::filesystem::path file = folder / ("shadowkit_fuzz_" + std::to_string(getpid()) + extension);
-    std::ofstream(file, std::ios::binary).write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
+    std::ofstream(file, std::ios::binary)
+        .write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
     return file;
 }
 

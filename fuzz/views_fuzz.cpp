@@ -6,18 +6,19 @@
 
 #include <cstdlib>
 
-
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     using namespace shadowkit;
     const auto file = fuzz::writeInput(data, size, ".json");
     const auto views = scene::loadViews(file);
     if (!views) {
-        if (views.error().find('\n') != std::string::npos || views.error().find(file.string()) == std::string::npos) std::abort();
+        if (views.error().find('\n') != std::string::npos || views.error().find(file.string()) == std::string::npos)
+            std::abort();
         return 0;
     }
     for (const scene::ViewSpec& spec : *views) {
         const scene::ResolvedView view = scene::resolveView(spec, fuzz::smallForest());
-        if (!view.camera.validate() || !core::isFinite(view.light.wsDirection)) std::abort(); // a parsed view is a usable one
+        if (!view.camera.validate() || !core::isFinite(view.light.wsDirection))
+            std::abort(); // a parsed view is a usable one
     }
     return 0;
 }

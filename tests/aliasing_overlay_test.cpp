@@ -27,8 +27,11 @@ TEST_F(AliasingOverlayTest, TheShaderHeatMapMatchesTheEvaluationsOnEveryValidPix
         gl::RenderSettings settings;
         settings.width = 256;
         settings.height = 144;
-        const core::ShadowSetupInputs inputs{.camera = view.camera, .light = view.light, .wsSceneBounds = forest.wsBounds(),
-                                             .technique = core::Technique::Lispsm, .mapSize = 1024};
+        const core::ShadowSetupInputs inputs{.camera = view.camera,
+                                             .light = view.light,
+                                             .wsSceneBounds = forest.wsBounds(),
+                                             .technique = core::Technique::Lispsm,
+                                             .mapSize = 1024};
         auto m = (*measurer)->measure(inputs, settings);
         ASSERT_TRUE(m) << m.error();
         const scene::Image expected = eval::aliasingMapImage(m->comparison, settings.width, settings.height);

@@ -21,12 +21,14 @@ namespace {
 class EvalIntegrationTest : public gl::testing::HeadlessGlTest {
 protected:
     // Renders and ray-traces one view through the measure library and returns the figures.
-    static eval::Figures measure(const scene::Scene& s, const core::PerspectiveCamera& cam, const core::DirectionalLight& sun,
-                                 core::Technique technique, int mapSize, const gl::RenderSettings& settings) {
+    static eval::Figures measure(const scene::Scene& s, const core::PerspectiveCamera& cam,
+                                 const core::DirectionalLight& sun, core::Technique technique, int mapSize,
+                                 const gl::RenderSettings& settings) {
         auto measurer = measure::Measurer::create(s);
         EXPECT_TRUE(measurer) << measurer.error();
         auto m = (*measurer)->measure(
-            {.camera = cam, .light = sun, .wsSceneBounds = s.wsBounds(), .technique = technique, .mapSize = mapSize}, settings);
+            {.camera = cam, .light = sun, .wsSceneBounds = s.wsBounds(), .technique = technique, .mapSize = mapSize},
+            settings);
         EXPECT_TRUE(m) << m.error();
         return m->figures();
     }
@@ -50,7 +52,8 @@ TEST_F(EvalIntegrationTest, SmallMapScoresWorseThanLargeMapOnTheSameView) {
         EXPECT_GT(small.validPx, 5000);
         EXPECT_GT(small.wrongPct, large.wrongPct) << core::techniqueName(t);
         EXPECT_GT(small.undersampledPct, large.undersampledPct) << core::techniqueName(t);
-        EXPECT_GT(small.pixelsPerTexelP50, 4.0 * large.pixelsPerTexelP50) << core::techniqueName(t); // 8x fewer texels per side
+        EXPECT_GT(small.pixelsPerTexelP50, 4.0 * large.pixelsPerTexelP50)
+            << core::techniqueName(t); // 8x fewer texels per side
     }
 }
 
@@ -143,9 +146,13 @@ TEST_F(EvalIntegrationTest, RecommendedBiasBeatsNoBiasAndTheSeedsBiasWhereItWasC
     gl::RenderSettings settings;
     settings.width = view.width;
     settings.height = view.height;
-    for (core::Technique t : {core::Technique::Tsm, core::Technique::Lispsm, core::Technique::Csm, core::Technique::Psm}) {
-        const core::ShadowSetupInputs in{.camera = view.camera, .light = view.light, .wsSceneBounds = forest.wsBounds(),
-                                         .technique = t, .mapSize = 2048};
+    for (core::Technique t :
+         {core::Technique::Tsm, core::Technique::Lispsm, core::Technique::Csm, core::Technique::Psm}) {
+        const core::ShadowSetupInputs in{.camera = view.camera,
+                                         .light = view.light,
+                                         .wsSceneBounds = forest.wsBounds(),
+                                         .technique = t,
+                                         .mapSize = 2048};
         auto figures = [&](std::optional<core::BiasSettings> bias) {
             settings.bias = bias;
             auto m = (*measurer)->measure(in, settings);
@@ -169,8 +176,11 @@ TEST_F(EvalIntegrationTest, CullingAndLevelsOfDetailLeaveTheFiguresWhereTheyWere
     auto measurer = measure::Measurer::create(forest);
     ASSERT_TRUE(measurer) << measurer.error();
     for (core::Technique t : {core::Technique::Focused, core::Technique::Tsm, core::Technique::Csm}) {
-        const core::ShadowSetupInputs in{.camera = view.camera, .light = view.light, .wsSceneBounds = forest.wsBounds(),
-                                         .technique = t, .mapSize = 2048};
+        const core::ShadowSetupInputs in{.camera = view.camera,
+                                         .light = view.light,
+                                         .wsSceneBounds = forest.wsBounds(),
+                                         .technique = t,
+                                         .mapSize = 2048};
         gl::RenderSettings settings;
         settings.width = view.width / 2;
         settings.height = view.height / 2;
@@ -185,6 +195,7 @@ TEST_F(EvalIntegrationTest, CullingAndLevelsOfDetailLeaveTheFiguresWhereTheyWere
         ASSERT_GT(full.validPx, 50000);
         EXPECT_NEAR(reduced.wrongPct, full.wrongPct, 0.02) << core::techniqueName(t);
         EXPECT_NEAR(reduced.falseShadowPct, full.falseShadowPct, 0.02) << core::techniqueName(t);
-        EXPECT_NEAR(double(reduced.validPx), double(full.validPx), 0.002 * double(full.validPx)) << core::techniqueName(t);
+        EXPECT_NEAR(double(reduced.validPx), double(full.validPx), 0.002 * double(full.validPx))
+            << core::techniqueName(t);
     }
 }

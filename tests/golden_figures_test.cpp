@@ -82,8 +82,10 @@ TEST_F(GoldenFiguresTest, EveryTechniqueMatchesItsRecordedFiguresOnEveryStandard
             gl::RenderSettings settings; // every default: the recommended bias, hard test
             settings.width = view.width / divisor;
             settings.height = view.height / divisor;
-            const core::ShadowSetupInputs inputs{.camera = view.camera, .light = view.light,
-                                                 .wsSceneBounds = forest.wsBounds(), .technique = technique.technique,
+            const core::ShadowSetupInputs inputs{.camera = view.camera,
+                                                 .light = view.light,
+                                                 .wsSceneBounds = forest.wsBounds(),
+                                                 .technique = technique.technique,
                                                  .mapSize = config.at("map_size")};
             auto m = (*measurer)->measure(inputs, settings);
             ASSERT_TRUE(m) << technique.name << " " << spec.name << ": " << m.error();

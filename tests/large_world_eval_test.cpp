@@ -39,19 +39,23 @@ Figures measureAt(const core::Vec3& wsOrigin, core::Technique technique, gl::Cul
     camera.aspect = 16.0 / 9.0;
     const core::Aabb bounds = (*measurer)->renderer().wsSceneBounds();
     Figures out;
-    auto sun = (*measurer)->measure({.camera = camera, .light = view.light, .wsSceneBounds = bounds, .technique = technique, .mapSize = 1024},
-                                    settings);
+    auto sun = (*measurer)->measure(
+        {.camera = camera, .light = view.light, .wsSceneBounds = bounds, .technique = technique, .mapSize = 1024},
+        settings);
     EXPECT_TRUE(sun) << sun.error();
     out.sun = sun->figures();
-    out.sunShadowedPx = std::count(sun->comparison.classes.begin(), sun->comparison.classes.end(), eval::PixelClass::ShadowCorrect);
+    out.sunShadowedPx =
+        std::count(sun->comparison.classes.begin(), sun->comparison.classes.end(), eval::PixelClass::ShadowCorrect);
 
     const core::PointLight lamp{.wsPosition = camera.wsEye + core::Vec3(2, 2, -8), .range = 25};
-    auto lighting = core::computeLocalLighting({.camera = camera, .wsSceneBounds = bounds, .mapSize = 512}, std::span(&lamp, 1), {});
+    auto lighting = core::computeLocalLighting({.camera = camera, .wsSceneBounds = bounds, .mapSize = 512},
+                                               std::span(&lamp, 1), {});
     EXPECT_TRUE(lighting) << lighting.error();
     EXPECT_TRUE((*measurer)->renderer().setLocalLights(*lighting));
     settings.sun = false;
-    auto night = (*measurer)->measure({.camera = camera, .light = view.light, .wsSceneBounds = bounds, .technique = technique, .mapSize = 1024},
-                                      settings);
+    auto night = (*measurer)->measure(
+        {.camera = camera, .light = view.light, .wsSceneBounds = bounds, .technique = technique, .mapSize = 1024},
+        settings);
     EXPECT_TRUE(night) << night.error();
     out.lamp = night->figures();
     return out;
@@ -78,8 +82,10 @@ TEST_F(LargeWorldEvalTest, AForestAMillionAndTenMillionMetresOutScoresAsAtTheOri
             EXPECT_NEAR(far.sun.wrongPct, origin.sun.wrongPct, 0.05) << where;
             EXPECT_NEAR(far.lamp.wrongPct, origin.lamp.wrongPct, 0.05) << where;
             // The same surfaces seen: primary rays and rasterised pixels agree as at the origin.
-            EXPECT_NEAR(double(far.sun.validPx), double(origin.sun.validPx), 0.002 * double(origin.sun.validPx)) << where;
-            EXPECT_NEAR(far.sun.pixelsPerTexelP50, origin.sun.pixelsPerTexelP50, 0.01 * origin.sun.pixelsPerTexelP50) << where;
+            EXPECT_NEAR(double(far.sun.validPx), double(origin.sun.validPx), 0.002 * double(origin.sun.validPx))
+                << where;
+            EXPECT_NEAR(far.sun.pixelsPerTexelP50, origin.sun.pixelsPerTexelP50, 0.01 * origin.sun.pixelsPerTexelP50)
+                << where;
         }
     }
 }

@@ -17,7 +17,8 @@ class LocalLightsEvalTest : public gl::testing::HeadlessGlTest {};
 
 // The view's local lights measured with maps of `mapSize` texels per side (figures of every
 // light together; these views have one light each).
-eval::Figures measureView(measure::Measurer& measurer, const scene::Scene& forest, const std::string& name, int mapSize) {
+eval::Figures measureView(measure::Measurer& measurer, const scene::Scene& forest, const std::string& name,
+                          int mapSize) {
     auto views = scene::loadViews(scene::dataDirectory() / "views.json");
     EXPECT_TRUE(views) << views.error();
     const scene::ResolvedView view = scene::resolveView(*scene::findView(*views, name), forest);
@@ -26,7 +27,8 @@ eval::Figures measureView(measure::Measurer& measurer, const scene::Scene& fores
     settings.height = view.height;
     settings.sun = view.sun;
     const core::Aabb bounds = measurer.renderer().wsSceneBounds();
-    auto lighting = core::computeLocalLighting({.camera = view.camera, .wsSceneBounds = bounds, .mapSize = mapSize}, view.points, view.spots);
+    auto lighting = core::computeLocalLighting({.camera = view.camera, .wsSceneBounds = bounds, .mapSize = mapSize},
+                                               view.points, view.spots);
     EXPECT_TRUE(lighting) << lighting.error();
     EXPECT_TRUE(measurer.renderer().setLocalLights(*lighting));
     auto m = measurer.measure({.camera = view.camera, .light = view.light, .wsSceneBounds = bounds}, settings);

@@ -35,9 +35,11 @@ TEST_F(SamplingModelEvalTest, PredictedPercentilesAgreeWithEvalWithinTenPercent)
     double worst50 = 0.0, worst95 = 0.0, worst99 = 0.0;
     for (const std::string name : {"paper", "perpendicular", "into-sun", "sun-behind", "noon", "aerial"}) {
         const scene::ResolvedView view = gl::testing::standardView(forest, name);
-        core::ShadowSetupInputs inputs{.camera = view.camera, .light = view.light, .wsSceneBounds = bounds, .mapSize = 1024};
+        core::ShadowSetupInputs inputs{
+            .camera = view.camera, .light = view.light, .wsSceneBounds = bounds, .mapSize = 1024};
         inputs.camera.aspect = 16.0 / 9.0;
-        auto samples = gl::sampleReceivers((*measurer)->renderer(), inputs, settings, {.width = 160, .maxSamples = 4096});
+        auto samples =
+            gl::sampleReceivers((*measurer)->renderer(), inputs, settings, {.width = 160, .maxSamples = 4096});
         ASSERT_TRUE(samples) << samples.error();
         ASSERT_GT(samples->size(), 500u) << name;
         auto model = core::SamplingErrorModel::create(inputs.camera, settings.width, settings.height, *samples);
@@ -50,13 +52,17 @@ TEST_F(SamplingModelEvalTest, PredictedPercentilesAgreeWithEvalWithinTenPercent)
             ASSERT_GT(f.validPx, 5000) << name;
             const core::SamplingFigures predicted = model->figures(measured->setup);
             const std::string where = name + " " + std::string(technique.name);
-            const double e50 = relativeError(predicted.p50, f.pixelsPerTexelP50), e95 = relativeError(predicted.p95, f.pixelsPerTexelP95),
+            const double e50 = relativeError(predicted.p50, f.pixelsPerTexelP50),
+                         e95 = relativeError(predicted.p95, f.pixelsPerTexelP95),
                          e99 = relativeError(predicted.p99, f.pixelsPerTexelP99);
-            EXPECT_LT(e50, 0.10) << where << " p50: " << predicted.p50 << " predicted, " << f.pixelsPerTexelP50 << " measured";
-            EXPECT_LT(e95, 0.10) << where << " p95: " << predicted.p95 << " predicted, " << f.pixelsPerTexelP95 << " measured";
+            EXPECT_LT(e50, 0.10) << where << " p50: " << predicted.p50 << " predicted, " << f.pixelsPerTexelP50
+                                 << " measured";
+            EXPECT_LT(e95, 0.10) << where << " p95: " << predicted.p95 << " predicted, " << f.pixelsPerTexelP95
+                                 << " measured";
             // The 1 % tail of 4,096 samples is 41 receivers, mostly edge-on to the light, where
             // the figure changes fastest: a looser bound (README, "Error-driven parameters").
-            EXPECT_LT(e99, 0.35) << where << " p99: " << predicted.p99 << " predicted, " << f.pixelsPerTexelP99 << " measured";
+            EXPECT_LT(e99, 0.35) << where << " p99: " << predicted.p99 << " predicted, " << f.pixelsPerTexelP99
+                                 << " measured";
             worst50 = std::max(worst50, e50), worst95 = std::max(worst95, e95), worst99 = std::max(worst99, e99);
         }
     }

@@ -32,7 +32,10 @@ protected:
     }
 
     core::ShadowSetupInputs inputs(const core::PerspectiveCamera& camera, core::Technique technique) const {
-        core::ShadowSetupInputs in{.camera = camera, .light = view.light, .wsSceneBounds = forest.wsBounds(), .technique = technique,
+        core::ShadowSetupInputs in{.camera = camera,
+                                   .light = view.light,
+                                   .wsSceneBounds = forest.wsBounds(),
+                                   .technique = technique,
                                    .mapSize = 512};
         in.cascades.count = 3;
         return in;
@@ -122,6 +125,6 @@ TEST_F(TemporalIntegrationTest, StabilisedCascadesFlickerLessThanUnstabilisedOnA
             EXPECT_EQ(f.truthChangePct, 0.0);
             sum[stabilize] += f.flickerPct;
         }
-    EXPECT_GT(sum[0], 0.0);       // a grid that follows the camera slides under the shadows
+    EXPECT_GT(sum[0], 0.0);          // a grid that follows the camera slides under the shadows
     EXPECT_LT(sum[1], 0.5 * sum[0]); // a snapped one far less
 }

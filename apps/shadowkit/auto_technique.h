@@ -17,6 +17,7 @@ void printAutoChoice(std::string_view label, const frame::PreparedFrame& frame);
 // `shadowkit analyze --candidates`: every candidate of --technique auto for the view, with
 // its family's default parameters and the optimised ones, predicted from the view's
 // receivers, best first (what auto would choose comes first).
-core::Status printAutoCandidates(const SceneOptions& sceneOptions, const ViewOptions& viewOptions, const TechniqueOptions& technique);
+core::Status printAutoCandidates(const SceneOptions& sceneOptions, const ViewOptions& viewOptions,
+                                 const TechniqueOptions& technique);
 
 } // namespace shadowkit::app

@@ -85,7 +85,8 @@ int runAnalyze(const AnalyzeArgs& args) {
     const double sinGamma = std::sin(glm::radians(gamma));
     const bool warped = warp && !warp->uniform;
     auto predict = [&](double nValue) {
-        return std::isnan(d) || sinGamma < 1e-12 ? NAN : core::predictedMaxAliasing(cam.zNear, cam.zFar, d, sinGamma, nValue);
+        return std::isnan(d) || sinGamma < 1e-12 ? NAN
+                                                 : core::predictedMaxAliasing(cam.zNear, cam.zFar, d, sinGamma, nValue);
     };
     const double predictedUniform = predict(core::kUniformN), predictedPsm = predict(cam.zNear);
     const double predictedLispsm = predict(warped ? n : core::kUniformN);
@@ -96,19 +97,25 @@ int runAnalyze(const AnalyzeArgs& args) {
             {"uniform", {{"max", uniform.max}, {"argmax_z", uniform.argmaxZ}}},
             {"psm", {{"max", psm.max}, {"argmax_z", psm.argmaxZ}}},
             {"lispsm", {{"n", nOpt}, {"max", lispsm.max}, {"argmax_z", lispsm.argmaxZ}}},
-            {"camera", {{"view", args.view.view}, {"gamma_degrees", nan(gamma)}, {"n", nan(n)}, {"d", nan(d)},
-                        {"warped", warped},
-                        {"predicted_max", {{"uniform", nan(predictedUniform)}, {"psm", nan(predictedPsm)},
-                                           {"lispsm", nan(predictedLispsm)}}}}},
+            {"camera",
+             {{"view", args.view.view},
+              {"gamma_degrees", nan(gamma)},
+              {"n", nan(n)},
+              {"d", nan(d)},
+              {"warped", warped},
+              {"predicted_max",
+               {{"uniform", nan(predictedUniform)}, {"psm", nan(predictedPsm)}, {"lispsm", nan(predictedLispsm)}}}}},
         };
         std::cout << out.dump(2) << "\n";
         return 0;
     }
-    fmt::print("Figure 6 of Wimmer et al. 2004: perspective aliasing dp/ds, view perpendicular to the light, z_n = {:g}, z_f = {:g}\n",
+    fmt::print("Figure 6 of Wimmer et al. 2004: perspective aliasing dp/ds, view perpendicular to the light, z_n = "
+               "{:g}, z_f = {:g}\n",
                args.zNear, args.zFar);
     fmt::print("  uniform  max {:8.3f} at z = {:g}\n", uniform.max, uniform.argmaxZ);
     fmt::print("  psm      max {:8.3f} at z = {:g}\n", psm.max, psm.argmaxZ);
-    fmt::print("  lispsm   max {:8.3f} at z = {:g} and {:g} (n_opt = {:.4g})\n", lispsm.max, args.zNear, args.zFar, nOpt);
+    fmt::print("  lispsm   max {:8.3f} at z = {:g} and {:g} (n_opt = {:.4g})\n", lispsm.max, args.zNear, args.zFar,
+               nOpt);
     if (!args.csv.empty() || !args.plot.empty()) fmt::print("  wrote {} {}\n", args.csv, args.plot);
     fmt::print("View '{}' (z_n = {:g}, z_f = {:g}): gamma = {:.2f} deg, LiSPSM n = {:.4g} m over d = {:.4g} m{}\n",
                args.view.view, cam.zNear, cam.zFar, gamma, n, d, warped ? "" : " (uniform: no warp)");
@@ -122,7 +129,8 @@ int runAnalyze(const AnalyzeArgs& args) {
 
 Command addAnalyzeCommand(CLI::App& app) {
     auto args = std::make_shared<AnalyzeArgs>();
-    CLI::App* cmd = app.add_subcommand("analyze", "Perspective aliasing of uniform, PSM and LiSPSM (Wimmer et al. 2004, Figure 6)");
+    CLI::App* cmd =
+        app.add_subcommand("analyze", "Perspective aliasing of uniform, PSM and LiSPSM (Wimmer et al. 2004, Figure 6)");
     args->scene.addTo(*cmd);
     args->view.addTo(*cmd);
     args->technique.addTo(*cmd);
@@ -132,9 +140,10 @@ Command addAnalyzeCommand(CLI::App& app) {
     cmd->add_option("--csv", args->csv, "curves as CSV (z, uniform, psm, lispsm); empty: none")->capture_default_str();
     cmd->add_option("--plot", args->plot, "curves as a PNG plot; empty: none")->capture_default_str();
     cmd->add_flag("--json", args->json, "print the figures as JSON instead of text");
-    cmd->add_flag("--candidates", args->candidates,
-                  "instead: the predicted p50 / p95 of every --technique auto candidate for --view, default and optimised "
-                  "parameters (--texel-budget, --cascades as for auto; renders a read-back)");
+    cmd->add_flag(
+        "--candidates", args->candidates,
+        "instead: the predicted p50 / p95 of every --technique auto candidate for --view, default and optimised "
+        "parameters (--texel-budget, --cascades as for auto; renders a read-back)");
     return {cmd, [args] { return runAnalyze(*args); }};
 }
 

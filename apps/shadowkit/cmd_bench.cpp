@@ -49,7 +49,8 @@ core::Result<std::vector<int>> parseCounts(const std::string& text) {
         char* end = nullptr;
         const long v = std::strtol(item.c_str(), &end, 10);
         if (item.empty() || *end != '\0' || v < 0 || v > 1'000'000)
-            return core::makeError(fmt::format("--trees: expected counts in [0, 1000000] separated by commas, got '{}'", text));
+            return core::makeError(
+                fmt::format("--trees: expected counts in [0, 1000000] separated by commas, got '{}'", text));
         counts.push_back(static_cast<int>(v));
     }
     if (counts.empty()) return core::makeError("--trees: no count given");
@@ -74,7 +75,8 @@ int runBench(const BenchArgs& args) {
     auto context = gl::Context::createHeadless();
     if (!context) return fail(context.errorInfo());
     fmt::print("{} | technique {} | {} frames per row | culling {}\n", (*context)->description(),
-               core::techniqueName(args.technique.technique), args.frames, gl::cullingName(args.render.noCull ? gl::Culling::Off : args.render.visibility));
+               core::techniqueName(args.technique.technique), args.frames,
+               gl::cullingName(args.render.noCull ? gl::Culling::Off : args.render.visibility));
     fmt::print("caster culling {}\n", args.render.receiverMask ? "by visible receivers" : "by volume");
     fmt::print("{:>7} {:>7} {:<14} {:<7} {:>9} {:>9} {:>6} {:>26} {:>20} {:>20}\n", "trees", "terrain", "view", "pass",
                "instances", "M tris", "draws", "GPU ms min/med/max", "set-up ms med/max", "cull ms med/max");
@@ -85,12 +87,14 @@ int runBench(const BenchArgs& args) {
         forestOptions.trees = trees;
         // --same-density: the terrain grows with the count so trees stand as densely as
         // 10,000 on the given size (100,000 trees on 3238 m for the default 1024 m).
-        forestOptions.terrainSize = args.sameDensity ? args.terrainSize * std::sqrt(std::max(trees, 1) / 10000.0) : args.terrainSize;
+        forestOptions.terrainSize =
+            args.sameDensity ? args.terrainSize * std::sqrt(std::max(trees, 1) / 10000.0) : args.terrainSize;
         forestOptions.terrainResolution = args.terrainResolution;
         if (auto s = scene::validate(forestOptions); !s) return fail(s.errorInfo());
         const auto buildStart = std::chrono::steady_clock::now();
         const scene::Scene forest = scene::makeForest(forestOptions);
-        const double buildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - buildStart).count();
+        const double buildSeconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - buildStart).count();
         fmt::print(stderr, "forest: {} trees on {:.0f} m, {:.2f} M triangles, built in {:.2f} s\n", trees,
                    forestOptions.terrainSize, static_cast<double>(forest.triangleCount()) * 1e-6, buildSeconds);
         auto renderer = gl::Renderer::create(forest);
@@ -130,23 +134,26 @@ int runBench(const BenchArgs& args) {
                 }
             }
             const Spread setupSpread = spread(setupMs), cullSpread = spread(cullMs);
-            nlohmann::json run = {{"trees", trees},
-                                  {"terrain_size", forestOptions.terrainSize},
-                                  {"forest_seconds", buildSeconds},
-                                  {"view", name},
-                                  {"technique", core::techniqueName(args.technique.technique)},
-                                  {"visibility", gl::cullingName(args.render.noCull ? gl::Culling::Off : args.render.visibility)},
-                                  {"frames", args.frames},
-                                  {"width", view->width},
-                                  {"height", view->height},
-                                  {"setup_ms", toJson(setupSpread)},
-                                  {"cull_ms", toJson(cullSpread)},
-                                  {"cull_own_ms", toJson(spread(cullOwnMs))},
-                                  {"cull_gl_ms", toJson(spread(cullGlMs))},
-                                  {"list_ms", toJson(spread(listMs))}};
-            for (const auto& [pass, stats, gpu] : {std::tuple{"shadow", &last.shadow, &shadowMs}, {"main", &last.main, &mainMs}}) {
+            nlohmann::json run = {
+                {"trees", trees},
+                {"terrain_size", forestOptions.terrainSize},
+                {"forest_seconds", buildSeconds},
+                {"view", name},
+                {"technique", core::techniqueName(args.technique.technique)},
+                {"visibility", gl::cullingName(args.render.noCull ? gl::Culling::Off : args.render.visibility)},
+                {"frames", args.frames},
+                {"width", view->width},
+                {"height", view->height},
+                {"setup_ms", toJson(setupSpread)},
+                {"cull_ms", toJson(cullSpread)},
+                {"cull_own_ms", toJson(spread(cullOwnMs))},
+                {"cull_gl_ms", toJson(spread(cullGlMs))},
+                {"list_ms", toJson(spread(listMs))}};
+            for (const auto& [pass, stats, gpu] :
+                 {std::tuple{"shadow", &last.shadow, &shadowMs}, {"main", &last.main, &mainMs}}) {
                 const Spread g = spread(*gpu);
-                fmt::print("{:>7} {:>7.0f} {:<14} {:<7} {:>9} {:>9.3f} {:>6} {:>8.1f} {:>8.1f} {:>8.1f} {:>10.3f} {:>9.3f} {:>10.3f} {:>9.3f}\n",
+                fmt::print("{:>7} {:>7.0f} {:<14} {:<7} {:>9} {:>9.3f} {:>6} {:>8.1f} {:>8.1f} {:>8.1f} {:>10.3f} "
+                           "{:>9.3f} {:>10.3f} {:>9.3f}\n",
                            trees, forestOptions.terrainSize, name, pass, stats->instances,
                            static_cast<double>(stats->triangles) * 1e-6, stats->drawCalls, g.min, g.median, g.max,
                            setupSpread.median, setupSpread.max, cullSpread.median, cullSpread.max);
@@ -159,27 +166,34 @@ int runBench(const BenchArgs& args) {
             const Spread visited = spread(nodesVisited), issued = spread(queries), inQueries = spread(nodesQueried),
                          failed = spread(multiQueryFailures), waited = spread(waits);
             if (args.render.visibility == gl::Culling::Occlusion && !args.render.noCull)
-                fmt::print("{:>7} {:>7} {:<14} chc     medians of the frames after the first: {} nodes visited, {} queries over "
-                           "{} nodes ({} multi-queries failed), {} waits (max {}); pre-pass CPU ms med {:.2f} max {:.2f} "
-                           "(incl. its draws and waits)\n",
-                           "", "", "", visited.median, issued.median, inQueries.median, failed.median, waited.median, waited.max,
-                           occlusionSpread.median, occlusionSpread.max);
+                fmt::print(
+                    "{:>7} {:>7} {:<14} chc     medians of the frames after the first: {} nodes visited, {} queries "
+                    "over "
+                    "{} nodes ({} multi-queries failed), {} waits (max {}); pre-pass CPU ms med {:.2f} max {:.2f} "
+                    "(incl. its draws and waits)\n",
+                    "", "", "", visited.median, issued.median, inQueries.median, failed.median, waited.median,
+                    waited.max, occlusionSpread.median, occlusionSpread.max);
             if (!args.render.noCull) {
                 const Spread own = spread(cullOwnMs), gl = spread(cullGlMs), lists = spread(listMs);
-                fmt::print("{:>7} {:>7} {:<14} cull    CPU ms med {:.2f} max {:.2f}: in GL (pre-pass, queries, masks, waits) "
-                           "med {:.2f} max {:.2f}; culling's own (thread CPU: queries of the hierarchy and masks, traversal) "
-                           "med {:.3f} max {:.3f}; levels and lists med {:.3f} max {:.3f}\n",
-                           "", "", "", cullSpread.median, cullSpread.max, gl.median, gl.max, own.median, own.max, lists.median,
-                           lists.max);
+                fmt::print(
+                    "{:>7} {:>7} {:<14} cull    CPU ms med {:.2f} max {:.2f}: in GL (pre-pass, queries, masks, waits) "
+                    "med {:.2f} max {:.2f}; culling's own (thread CPU: queries of the hierarchy and masks, traversal) "
+                    "med {:.3f} max {:.3f}; levels and lists med {:.3f} max {:.3f}\n",
+                    "", "", "", cullSpread.median, cullSpread.max, gl.median, gl.max, own.median, own.max, lists.median,
+                    lists.max);
             }
             if (args.render.receiverMask)
-                fmt::print("{:>7} {:>7} {:<14} masks   receiver masks CPU ms med {:.2f} max {:.2f} (compute + read-back + mask)\n", "", "",
-                           "", maskSpread.median, maskSpread.max);
+                fmt::print("{:>7} {:>7} {:<14} masks   receiver masks CPU ms med {:.2f} max {:.2f} (compute + "
+                           "read-back + mask)\n",
+                           "", "", "", maskSpread.median, maskSpread.max);
             run["receiver_mask"] = args.render.receiverMask;
             run["receiver_mask_ms"] = toJson(maskSpread);
-            run["occlusion"] = {{"nodes_visited", toJson(visited)}, {"queries", toJson(issued)},
-                                {"nodes_queried", toJson(inQueries)}, {"multi_query_failures", toJson(failed)},
-                                {"waits", toJson(waited)}, {"prepass_ms", toJson(occlusionSpread)}};
+            run["occlusion"] = {{"nodes_visited", toJson(visited)},
+                                {"queries", toJson(issued)},
+                                {"nodes_queried", toJson(inQueries)},
+                                {"multi_query_failures", toJson(failed)},
+                                {"waits", toJson(waited)},
+                                {"prepass_ms", toJson(occlusionSpread)}};
             std::fflush(stdout);
             runs.push_back(run);
         }
@@ -196,13 +210,15 @@ int runBench(const BenchArgs& args) {
 
 Command addBenchCommand(CLI::App& app) {
     auto args = std::make_shared<BenchArgs>();
-    CLI::App* cmd = app.add_subcommand("bench", "Frame cost per pass as the forest grows: instances, triangles, draws, GPU and CPU ms");
+    CLI::App* cmd = app.add_subcommand(
+        "bench", "Frame cost per pass as the forest grows: instances, triangles, draws, GPU and CPU ms");
     cmd->add_option("--trees", args->trees, "forest sizes to measure, comma-separated")->capture_default_str();
     cmd->add_option("--views", args->views, "standard views, comma-separated")->capture_default_str();
     cmd->add_option("--frames", args->frames, "frames per view: min / median / max over them")->capture_default_str();
     cmd->add_option("--seed", args->seed, "forest: random seed")->capture_default_str();
     cmd->add_option("--terrain-size", args->terrainSize, "forest: terrain side in metres")->capture_default_str();
-    cmd->add_option("--terrain-resolution", args->terrainResolution, "forest: terrain quads per side")->capture_default_str();
+    cmd->add_option("--terrain-resolution", args->terrainResolution, "forest: terrain quads per side")
+        ->capture_default_str();
     cmd->add_flag("--same-density", args->sameDensity,
                   "scale the terrain with the tree count (as dense as 10,000 trees on --terrain-size)");
     args->view.addTo(*cmd);

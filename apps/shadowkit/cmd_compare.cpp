@@ -4,8 +4,8 @@
 #include "configs.h"
 #include "frame_config_options.h"
 
-#include "shadowkit/frame/frame_driver.h"
 #include "shadowkit/eval/image_grid.h"
+#include "shadowkit/frame/frame_driver.h"
 #include "shadowkit/measure/measurer.h"
 
 #include <fmt/format.h>
@@ -67,8 +67,8 @@ int runCompare(const CompareArgs& args) {
         }
         images.push_back(std::move(measured->image));
         const eval::Figures& f = measured->figures();
-        captions.push_back(fmt::format("{} - wrong {:.2f}% (shadow {:.2f}, lit {:.2f})", caption((*cells)[i]), f.wrongPct,
-                                       f.falseShadowPct, f.falseLitPct));
+        captions.push_back(fmt::format("{} - wrong {:.2f}% (shadow {:.2f}, lit {:.2f})", caption((*cells)[i]),
+                                       f.wrongPct, f.falseShadowPct, f.falseLitPct));
         fmt::print("{:>2}  wrong {:6.2f} %  false shadow {:6.2f} %  false lit {:6.2f} %  {}\n", i + 1, f.wrongPct,
                    f.falseShadowPct, f.falseLitPct, caption((*cells)[i]));
     }

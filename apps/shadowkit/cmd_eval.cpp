@@ -5,9 +5,9 @@
 #include "frame_config_options.h"
 #include "options.h"
 
-#include "shadowkit/frame/frame_driver.h"
 #include "shadowkit/eval/maps.h"
 #include "shadowkit/eval/report.h"
+#include "shadowkit/frame/frame_driver.h"
 #include "shadowkit/measure/measurer.h"
 #include "shadowkit/scene/animation.h"
 
@@ -15,9 +15,9 @@
 
 #include <chrono>
 #include <cstdio>
-#include <unistd.h>
 #include <filesystem>
 #include <sstream>
+#include <unistd.h>
 
 namespace shadowkit::app {
 namespace {
@@ -70,15 +70,18 @@ int runEval(const EvalArgs& args) {
         if (auto s = checkWritable(flag, *file); !s) return fail(s.errorInfo());
     if (!args.timeline.path.empty()) {
         if (!args.views.empty() || !args.errorMap.empty() || !args.aliasingMap.empty() || !args.dump.empty())
-            return fail("--path: evaluates a path's frames, so --views, --error-map, --aliasing-map and --dump (still views) do not apply");
-        return runEvalPath({args.scene, args.view, args.technique, args.render, args.timeline, args.lights, args.csv, args.plot, args.json});
+            return fail("--path: evaluates a path's frames, so --views, --error-map, --aliasing-map and --dump (still "
+                        "views) do not apply");
+        return runEvalPath({args.scene, args.view, args.technique, args.render, args.timeline, args.lights, args.csv,
+                            args.plot, args.json});
     }
     if (!args.csv.empty() || !args.plot.empty()) return fail("--csv and --plot need --path (figures per frame)");
     auto timeline = args.timeline.resolve(); // still views: --time and --sun-path
     if (!timeline) return fail(timeline.errorInfo());
     auto names = viewNames(args);
     if (!names) return fail(names.errorInfo());
-    for (auto [flag, file] : {std::pair{"--json", &args.json}, {"--error-map", &args.errorMap}, {"--aliasing-map", &args.aliasingMap}})
+    for (auto [flag, file] :
+         {std::pair{"--json", &args.json}, {"--error-map", &args.errorMap}, {"--aliasing-map", &args.aliasingMap}})
         if (auto s = checkWritable(flag, *file); !s) return fail(s.errorInfo());
     const bool several = names->size() > 1;
 
@@ -138,18 +141,23 @@ int runEval(const EvalArgs& args) {
                 !s)
                 return fail("--dump: " + s.error());
 
-        eval::ViewReport report = measure::viewReport(*measured, prepared->settings, name, args.scene.scene, args.scene.seed);
+        eval::ViewReport report =
+            measure::viewReport(*measured, prepared->settings, name, args.scene.scene, args.scene.seed);
         report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         if (prepared->autoChoice) report.autoChoice = core::describe(*prepared->autoChoice);
         const eval::Figures& f = report.figures;
-        fmt::print("{:<14} {:<10} {:>5} {:>9} {:>8} {:>7.2f} {:>8.2f} {:>8.2f} {:>7.2f} {:>7.3f} {:>7.3f} {:>7.3f} {:>6.1f}\n",
-                   name, report.technique, report.mapSize, f.validPx, f.excludedPx, f.wrongPct, f.falseShadowPct, f.falseLitPct,
-                   f.undersampledPct, f.pixelsPerTexelP50, f.pixelsPerTexelP95, f.pixelsPerTexelP99, report.seconds);
+        fmt::print(
+            "{:<14} {:<10} {:>5} {:>9} {:>8} {:>7.2f} {:>8.2f} {:>8.2f} {:>7.2f} {:>7.3f} {:>7.3f} {:>7.3f} {:>6.1f}\n",
+            name, report.technique, report.mapSize, f.validPx, f.excludedPx, f.wrongPct, f.falseShadowPct,
+            f.falseLitPct, f.undersampledPct, f.pixelsPerTexelP50, f.pixelsPerTexelP95, f.pixelsPerTexelP99,
+            report.seconds);
         // With spot and point lights the row above is every light together; each follows.
         for (const eval::LightReport& l : report.lights)
-            fmt::print("  {:<12} {:<10} {:>5} {:>9} {:>8} {:>7.2f} {:>8.2f} {:>8.2f} {:>7.2f} {:>7.3f} {:>7.3f} {:>7.3f}   {} maps{}\n",
-                       l.light, "", "", l.figures.validPx, "", l.figures.wrongPct, l.figures.falseShadowPct, l.figures.falseLitPct,
-                       l.figures.undersampledPct, l.figures.pixelsPerTexelP50, l.figures.pixelsPerTexelP95, l.figures.pixelsPerTexelP99, l.maps,
+            fmt::print("  {:<12} {:<10} {:>5} {:>9} {:>8} {:>7.2f} {:>8.2f} {:>8.2f} {:>7.2f} {:>7.3f} {:>7.3f} "
+                       "{:>7.3f}   {} maps{}\n",
+                       l.light, "", "", l.figures.validPx, "", l.figures.wrongPct, l.figures.falseShadowPct,
+                       l.figures.falseLitPct, l.figures.undersampledPct, l.figures.pixelsPerTexelP50,
+                       l.figures.pixelsPerTexelP95, l.figures.pixelsPerTexelP99, l.maps,
                        l.skippedFaces ? fmt::format(", {} faces skipped", l.skippedFaces) : "");
         std::fflush(stdout);
         reports.push_back(std::move(report));
@@ -167,7 +175,9 @@ Command addEvalCommand(CLI::App& app) {
     args->scene.addTo(*cmd);
     args->view.addTo(*cmd);
     args->technique.addTo(*cmd);
-    cmd->add_option("--views", args->views, "views to evaluate: a,b,... 'all' (the six sunlit views) or 'local' (those with spot and point lights; default: --view)");
+    cmd->add_option("--views", args->views,
+                    "views to evaluate: a,b,... 'all' (the six sunlit views) or 'local' (those with spot and point "
+                    "lights; default: --view)");
     args->render.addTo(*cmd);
     args->lights.addTo(*cmd);
     cmd->add_option("--json", args->json, "write the figures as JSON {\"views\": [...]}");
@@ -175,7 +185,8 @@ Command addEvalCommand(CLI::App& app) {
     cmd->add_option("--aliasing-map", args->aliasingMap, "write the pixels-per-texel heat map PNG");
     cmd->add_option("--dump", args->dump, "write per-pixel buffers as .npy files into this directory");
     args->timeline.addTo(*cmd);
-    cmd->add_option("--csv", args->csv, "with --path: the figures of every frame as CSV, flicker_pct and truth_change_pct included");
+    cmd->add_option("--csv", args->csv,
+                    "with --path: the figures of every frame as CSV, flicker_pct and truth_change_pct included");
     cmd->add_option("--plot", args->plot, "with --path: a PNG plot of flicker_pct and truth_change_pct per frame");
     return {cmd, [args] { return runEval(*args); }};
 }

@@ -24,9 +24,9 @@ struct FrameRow {
     double time = 0.0;
     eval::Figures figures;
     std::optional<eval::TemporalFigures> temporal; // none for the first frame
-    std::optional<int> refittedViews;               // --stabilize with held lattices: maps refitted (pops)
-    std::optional<std::string> autoChoice;          // --technique auto: what it chose (core::describe)
-    double autoMilliseconds = 0.0;                  // and the CPU time of the choice (model + search)
+    std::optional<int> refittedViews;              // --stabilize with held lattices: maps refitted (pops)
+    std::optional<std::string> autoChoice;         // --technique auto: what it chose (core::describe)
+    double autoMilliseconds = 0.0;                 // and the CPU time of the choice (model + search)
     double seconds = 0.0;
 };
 
@@ -36,7 +36,8 @@ int familySwitches(const std::vector<core::ShadowSetupInputs>& chosen) {
     for (size_t i = 1; i < chosen.size(); ++i) {
         const core::ShadowSetupInputs &a = chosen[i - 1], &b = chosen[i];
         const bool csm = b.technique == core::Technique::Csm;
-        switches += a.technique != b.technique || (csm && (a.cascades.count != b.cascades.count || a.cascades.warp != b.cascades.warp));
+        switches += a.technique != b.technique ||
+                    (csm && (a.cascades.count != b.cascades.count || a.cascades.warp != b.cascades.warp));
     }
     return switches;
 }
@@ -56,13 +57,16 @@ Summary summarise(std::vector<double> v) {
 
 core::Status writeCsv(const std::string& file, const std::vector<FrameRow>& rows) {
     std::ofstream out(file);
-    out << "frame,time_s,valid_px,wrong_pct,false_shadow_pct,false_lit_pct,pixels_per_texel_p50,compared_px,flicker_pct,"
+    out << "frame,time_s,valid_px,wrong_pct,false_shadow_pct,false_lit_pct,pixels_per_texel_p50,compared_px,flicker_"
+           "pct,"
            "truth_change_pct,refitted_views\n";
     for (const FrameRow& r : rows) {
-        out << fmt::format("{},{:.6g},{},{:.6g},{:.6g},{:.6g},{:.6g}", r.frame, r.time, r.figures.validPx, r.figures.wrongPct,
-                           r.figures.falseShadowPct, r.figures.falseLitPct, r.figures.pixelsPerTexelP50);
+        out << fmt::format("{},{:.6g},{},{:.6g},{:.6g},{:.6g},{:.6g}", r.frame, r.time, r.figures.validPx,
+                           r.figures.wrongPct, r.figures.falseShadowPct, r.figures.falseLitPct,
+                           r.figures.pixelsPerTexelP50);
         if (r.temporal)
-            out << fmt::format(",{},{:.6g},{:.6g}", r.temporal->comparedPx, r.temporal->flickerPct, r.temporal->truthChangePct);
+            out << fmt::format(",{},{:.6g},{:.6g}", r.temporal->comparedPx, r.temporal->flickerPct,
+                               r.temporal->truthChangePct);
         else
             out << ",,,";
         out << (r.refittedViews ? fmt::format(",{}\n", *r.refittedViews) : std::string(",\n"));
@@ -98,8 +102,8 @@ int runEvalPath(const EvalPathArgs& args) {
     std::string technique;
     int refits = 0, toCover = 0, stale = 0; // frames with a refit; views refitted for each reason
     std::vector<core::ShadowSetupInputs> autoChosen;
-    fmt::print("{:>5} {:>7} {:>9} {:>7} {:>8} {:>7} {:>9} {:>9} {:>6}\n", "frame", "t_s", "valid_px", "wrong%", "flicker%", "truth%",
-               "ppt50", "compared", "sec");
+    fmt::print("{:>5} {:>7} {:>9} {:>7} {:>8} {:>7} {:>9} {:>9} {:>6}\n", "frame", "t_s", "valid_px", "wrong%",
+               "flicker%", "truth%", "ppt50", "compared", "sec");
     for (const TimedFrame& frame : timeline->frames) {
         const auto start = std::chrono::steady_clock::now();
         auto view = timeline->viewAt(*still, world, frame.time, !args.view.size.empty());
@@ -123,12 +127,12 @@ int runEvalPath(const EvalPathArgs& args) {
         row.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         const eval::Figures& f = row.figures;
         if (row.temporal)
-            fmt::print("{:>5} {:>7.3f} {:>9} {:>7.2f} {:>8.3f} {:>7.3f} {:>9.3f} {:>9} {:>6.1f}\n", row.frame, row.time, f.validPx,
-                       f.wrongPct, row.temporal->flickerPct, row.temporal->truthChangePct, f.pixelsPerTexelP50,
-                       row.temporal->comparedPx, row.seconds);
+            fmt::print("{:>5} {:>7.3f} {:>9} {:>7.2f} {:>8.3f} {:>7.3f} {:>9.3f} {:>9} {:>6.1f}\n", row.frame, row.time,
+                       f.validPx, f.wrongPct, row.temporal->flickerPct, row.temporal->truthChangePct,
+                       f.pixelsPerTexelP50, row.temporal->comparedPx, row.seconds);
         else
-            fmt::print("{:>5} {:>7.3f} {:>9} {:>7.2f} {:>8} {:>7} {:>9.3f} {:>9} {:>6.1f}\n", row.frame, row.time, f.validPx, f.wrongPct,
-                       "-", "-", f.pixelsPerTexelP50, "-", row.seconds);
+            fmt::print("{:>5} {:>7.3f} {:>9} {:>7.2f} {:>8} {:>7} {:>9.3f} {:>9} {:>6.1f}\n", row.frame, row.time,
+                       f.validPx, f.wrongPct, "-", "-", f.pixelsPerTexelP50, "-", row.seconds);
         std::fflush(stdout);
         rows.push_back(row);
     }
@@ -142,21 +146,25 @@ int runEvalPath(const EvalPathArgs& args) {
     const Summary fl = summarise(flicker), tc = summarise(truthChange), wr = summarise(wrong), ms = summarise(autoMs);
     if (automatic) {
         technique = "auto";
-        fmt::print("--technique auto: the family changed in {} of {} frames; the choice took {:.2f} ms on the first frame (the full "
+        fmt::print("--technique auto: the family changed in {} of {} frames; the choice took {:.2f} ms on the first "
+                   "frame (the full "
                    "search), then mean {:.3f} p95 {:.3f} max {:.3f} ms (CPU: model + search, not the read-back)\n",
                    familySwitches(autoChosen), rows.size(), rows.front().autoMilliseconds, ms.mean, ms.p95, ms.max);
     }
     if (held)
-        fmt::print("--stabilize: the set-up was refitted in {} of {} frames ({} maps to cover the view, {} grown stale)\n", refits,
-                   rows.size(), toCover, stale);
-    fmt::print("{} along {} ({} frames): flicker_pct mean {:.3f} p95 {:.3f} max {:.3f} | truth_change_pct mean {:.3f} p95 {:.3f} "
+        fmt::print(
+            "--stabilize: the set-up was refitted in {} of {} frames ({} maps to cover the view, {} grown stale)\n",
+            refits, rows.size(), toCover, stale);
+    fmt::print("{} along {} ({} frames): flicker_pct mean {:.3f} p95 {:.3f} max {:.3f} | truth_change_pct mean {:.3f} "
+               "p95 {:.3f} "
                "max {:.3f} | wrong_pct mean {:.3f}\n",
                technique, timeline->path->name, rows.size(), fl.mean, fl.p95, fl.max, tc.mean, tc.p95, tc.max, wr.mean);
 
     if (!args.csv.empty())
         if (auto s = writeCsv(args.csv, rows); !s) return fail("--csv: " + s.error());
     if (!args.plot.empty()) {
-        eval::PlotSeries flickerSeries{"flicker_pct", {200, 40, 40}, {}, {}}, truthSeries{"truth_change_pct", {60, 60, 200}, {}, {}};
+        eval::PlotSeries flickerSeries{"flicker_pct", {200, 40, 40}, {}, {}},
+            truthSeries{"truth_change_pct", {60, 60, 200}, {}, {}};
         for (const FrameRow& r : rows)
             if (r.temporal) {
                 flickerSeries.x.push_back(r.frame), flickerSeries.y.push_back(r.temporal->flickerPct);
@@ -166,25 +174,34 @@ int runEvalPath(const EvalPathArgs& args) {
         po.title = fmt::format("{} along {}: flicker and truth change per frame", technique, timeline->path->name);
         po.xLabel = "frame";
         po.yLabel = "% of compared pixels";
-        if (auto s = scene::writePng(eval::plotLines({flickerSeries, truthSeries}, po), args.plot); !s) return fail("--plot: " + s.error());
+        if (auto s = scene::writePng(eval::plotLines({flickerSeries, truthSeries}, po), args.plot); !s)
+            return fail("--plot: " + s.error());
     }
     if (!args.json.empty()) {
         nlohmann::json frames = nlohmann::json::array();
         for (const FrameRow& r : rows) {
-            nlohmann::json j = {{"frame", r.frame}, {"time_s", r.time}, {"valid_px", r.figures.validPx}, {"wrong_pct", r.figures.wrongPct},
+            nlohmann::json j = {{"frame", r.frame},
+                                {"time_s", r.time},
+                                {"valid_px", r.figures.validPx},
+                                {"wrong_pct", r.figures.wrongPct},
                                 {"pixels_per_texel_p50", r.figures.pixelsPerTexelP50}};
             if (r.temporal)
-                j.update({{"compared_px", r.temporal->comparedPx}, {"flicker_pct", r.temporal->flickerPct},
+                j.update({{"compared_px", r.temporal->comparedPx},
+                          {"flicker_pct", r.temporal->flickerPct},
                           {"truth_change_pct", r.temporal->truthChangePct}});
             if (r.refittedViews) j["refitted_views"] = *r.refittedViews;
             if (r.autoChoice) j.update({{"auto_choice", *r.autoChoice}, {"auto_ms", r.autoMilliseconds}});
             frames.push_back(j);
         }
-        auto summary = [](const Summary& s) { return nlohmann::json{{"mean", s.mean}, {"p95", s.p95}, {"max", s.max}}; };
-        nlohmann::json root = {{"path", timeline->path->name}, {"technique", technique},
-                               {"refits", held ? nlohmann::json(refits) : nlohmann::json(nullptr)},
-                               {"summary", {{"flicker_pct", summary(fl)}, {"truth_change_pct", summary(tc)}, {"wrong_pct", summary(wr)}}},
-                               {"frames", frames}};
+        auto summary = [](const Summary& s) {
+            return nlohmann::json{{"mean", s.mean}, {"p95", s.p95}, {"max", s.max}};
+        };
+        nlohmann::json root = {
+            {"path", timeline->path->name},
+            {"technique", technique},
+            {"refits", held ? nlohmann::json(refits) : nlohmann::json(nullptr)},
+            {"summary", {{"flicker_pct", summary(fl)}, {"truth_change_pct", summary(tc)}, {"wrong_pct", summary(wr)}}},
+            {"frames", frames}};
         if (automatic)
             root["auto"] = {{"family_switches", familySwitches(autoChosen)},
                             {"first_frame_ms", rows.front().autoMilliseconds},

@@ -36,15 +36,17 @@ void printFrameReport(const RenderArgs& args, const gl::Context& context, const 
                       const gl::FrameStats& stats, double frameMs) {
     const core::ShadowSetup& setup = frame.setup;
     const gl::RenderSettings& settings = frame.settings;
-    fmt::print("{} | {} | {}x{} | map {}² | view {}\n", core::techniqueName(setup.technique), context.description(), settings.width,
-               settings.height, setup.mapSize, args.timeline.path.empty() ? args.view.view : "path " + args.timeline.path);
+    fmt::print("{} | {} | {}x{} | map {}² | view {}\n", core::techniqueName(setup.technique), context.description(),
+               settings.width, settings.height, setup.mapSize,
+               args.timeline.path.empty() ? args.view.view : "path " + args.timeline.path);
     fmt::print("  set-up (CPU)   {:8.3f} ms\n", frame.setupMilliseconds);
     if (frame.prePasses.submissions > 0)
         fmt::print("  before it      {} GPU submissions, {} read-backs (--visible-depth auto, --technique auto)\n",
                    frame.prePasses.submissions, frame.prePasses.readBacks);
     fmt::print("  culling (CPU)  {:8.3f} ms  ({:.3f} ms in GL: pre-pass, queries, masks; {:.3f} ms its own thread CPU; "
                "{:.3f} ms levels and lists)\n",
-               stats.cullMilliseconds, stats.cullGlMilliseconds, stats.cullOwnCpuMilliseconds, stats.listCpuMilliseconds);
+               stats.cullMilliseconds, stats.cullGlMilliseconds, stats.cullOwnCpuMilliseconds,
+               stats.listCpuMilliseconds);
     if (settings.culling == gl::Culling::Occlusion) {
         const core::CoherentCullingStats& o = stats.occlusion;
         fmt::print("  occlusion      {:8.3f} ms pre-pass (CPU)  {} nodes visited  {} queries over {} nodes  {} waits\n",
@@ -52,14 +54,15 @@ void printFrameReport(const RenderArgs& args, const gl::Context& context, const 
     }
     if (!settings.sun) fmt::print("  sun            off (night)\n");
     if (stats.localMaps > 0 || stats.skippedFaces > 0)
-        fmt::print("  local lights   {} maps drawn ({} cube faces skipped: they see nothing of the view), {} pass\n", stats.localMaps,
-                   stats.skippedFaces, gl::localPassName(settings.localPass));
+        fmt::print("  local lights   {} maps drawn ({} cube faces skipped: they see nothing of the view), {} pass\n",
+                   stats.localMaps, stats.skippedFaces, gl::localPassName(settings.localPass));
     for (const auto& [name, pass] :
          {std::pair{"shadow pass", &stats.shadow}, {"local pass ", &stats.local}, {"main pass  ", &stats.main}})
         fmt::print("  {}    {:8.1f} ms GPU  {:6.2f} M triangles  {} instances  {} draws\n", name, pass->gpuMilliseconds,
                    static_cast<double>(pass->triangles) * 1e-6, pass->instances, pass->drawCalls);
     fmt::print("  frame (wall)   {:8.1f} ms incl. readback\n", frameMs);
-    if (const auto& v = frame.inputs.visibleDepth) fmt::print("  visible depth  {:.2f} .. {:.2f} m (LiSPSM n, csm splits)\n", v->x, v->y);
+    if (const auto& v = frame.inputs.visibleDepth)
+        fmt::print("  visible depth  {:.2f} .. {:.2f} m (LiSPSM n, csm splits)\n", v->x, v->y);
     for (const std::string& f : setup.fallbacks) fmt::print("  fallback: {}\n", f);
 }
 
@@ -68,8 +71,8 @@ bool ffmpegInstalled() { return std::system("command -v ffmpeg >/dev/null 2>&1")
 // Encodes the written frames with ffmpeg (installed: checked before drawing).
 core::Status encodeVideo(const std::string& pattern, int firstFrame, double framesPerSecond, const std::string& video) {
     const std::string command = fmt::format(
-        "ffmpeg -y -loglevel error -framerate {:.6g} -start_number {} -i '{}' -c:v libx264 -pix_fmt yuv420p '{}'", framesPerSecond,
-        firstFrame, pattern, video);
+        "ffmpeg -y -loglevel error -framerate {:.6g} -start_number {} -i '{}' -c:v libx264 -pix_fmt yuv420p '{}'",
+        framesPerSecond, firstFrame, pattern, video);
     if (pattern.find('\'') != std::string::npos || video.find('\'') != std::string::npos)
         return core::makeError("--video: file names must not contain a single quote");
     if (std::system(command.c_str()) != 0) return core::makeError("--video: ffmpeg failed to write " + video);
@@ -86,7 +89,9 @@ int runRender(const RenderArgs& args) {
         if (auto name = frameFileName(args.out, 0); !name) return fail(name.errorInfo());
     if (!args.video.empty() && !timeline->path) return fail("--video: needs --path (a sequence of frames)");
     if (!args.strip.empty() && !sequence) return fail("--strip: needs --path (a sequence of frames)");
-    for (auto [flag, file] : {std::pair{"--strip", &args.strip}, {"--video", &args.video}, {"--shadow-map-out", &args.shadowMapOut},
+    for (auto [flag, file] : {std::pair{"--strip", &args.strip},
+                              {"--video", &args.video},
+                              {"--shadow-map-out", &args.shadowMapOut},
                               {"--local-map-out", &args.localMapOut}})
         if (auto s = checkWritable(flag, *file); !s) return fail(s.errorInfo());
     if (!sequence)
@@ -128,14 +133,16 @@ int runRender(const RenderArgs& args) {
         moved.clear();
         scene::animate(world, frame.time, &moved);
         if (auto s = (*renderer)->moveInstances(world, moved); !s) return fail(s.errorInfo());
-        const double animateMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - cpuStart).count();
+        const double animateMs =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - cpuStart).count();
         auto view = timeline->viewAt(*still, world, frame.time, !args.view.size.empty());
         if (!view) return fail(view.errorInfo());
         const auto frameStart = std::chrono::steady_clock::now();
         auto drawn = driver->draw(**renderer, *view);
         if (!drawn) return fail(withFlagName(drawn.errorInfo()));
         const scene::Image image = (*renderer)->readColor();
-        const double frameMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - frameStart).count();
+        const double frameMs =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - frameStart).count();
         const frame::PreparedFrame& f = drawn->frame;
         if (timeline->frames.size() == 1) printAutoChoice("auto", f);
 
@@ -166,19 +173,20 @@ int runRender(const RenderArgs& args) {
             fmt::print("wrote {}{}\n", out, args.shadowMapOut.empty() ? "" : " and " + args.shadowMapOut);
             continue;
         }
-        fmt::print("frame {:4} ({}/{})  t {:7.3f} s  animate {:.3f} ms  set-up {:.3f} ms  shadow {:.2f} M / main {:.2f} M tris  "
+        fmt::print("frame {:4} ({}/{})  t {:7.3f} s  animate {:.3f} ms  set-up {:.3f} ms  shadow {:.2f} M / main "
+                   "{:.2f} M tris  "
                    "{:.0f} ms  -> {}\n",
                    frame.number, i + 1, timeline->frames.size(), frame.time, animateMs, f.setupMilliseconds,
-                   static_cast<double>(drawn->stats.shadow.triangles) * 1e-6, static_cast<double>(drawn->stats.main.triangles) * 1e-6,
-                   frameMs,
-                   out);
+                   static_cast<double>(drawn->stats.shadow.triangles) * 1e-6,
+                   static_cast<double>(drawn->stats.main.triangles) * 1e-6, frameMs, out);
         std::fflush(stdout);
     }
     if (sequence)
         fmt::print("wrote {} frames in {:.1f} s\n", timeline->frames.size(),
                    std::chrono::duration<double>(std::chrono::steady_clock::now() - sequenceStart).count());
     if (!args.strip.empty()) {
-        if (auto s = scene::writePng(eval::captionedGrid(stripImages, stripCaptions, 3), args.strip); !s) return fail("--strip: " + s.error());
+        if (auto s = scene::writePng(eval::captionedGrid(stripImages, stripCaptions, 3), args.strip); !s)
+            return fail("--strip: " + s.error());
         fmt::print("wrote {}\n", args.strip);
     }
     if (!args.video.empty()) {
@@ -200,13 +208,16 @@ Command addRenderCommand(CLI::App& app) {
     args->render.addTo(*cmd);
     args->timeline.addTo(*cmd);
     args->lights.addTo(*cmd);
-    cmd->add_option("--out", args->out, "output PNG; for a sequence (--path) a pattern with the frame number, e.g. frames/%04d.png")
+    cmd->add_option("--out", args->out,
+                    "output PNG; for a sequence (--path) a pattern with the frame number, e.g. frames/%04d.png")
         ->capture_default_str();
-    cmd->add_option("--shadow-map-out", args->shadowMapOut, "also write the shadow map itself as a PNG (single frames)");
+    cmd->add_option("--shadow-map-out", args->shadowMapOut,
+                    "also write the shadow map itself as a PNG (single frames)");
     cmd->add_option("--local-map-out", args->localMapOut,
                     "also write the local lights' maps as a PNG: spot maps, then each cube unfolded (single frames)");
     cmd->add_option("--video", args->video, "with --path: also encode the frames into this video (needs ffmpeg)");
-    cmd->add_option("--strip", args->strip, "with --path: also write six of the frames, evenly spread, as one captioned PNG");
+    cmd->add_option("--strip", args->strip,
+                    "with --path: also write six of the frames, evenly spread, as one captioned PNG");
     return {cmd, [args] { return runRender(*args); }};
 }
 

@@ -42,7 +42,10 @@ json warpJson(const core::WarpParameters& warp) {
                 if (!w.viewParallel) j.update({{"n", w.n}, {"f", w.f}, {"d", w.d}});
                 return j;
             } else if constexpr (std::is_same_v<W, core::PsmWarp>) {
-                return {{"slide_back", w.slideBack}, {"near", w.ppNear}, {"far", w.ppFar}, {"light_w", w.lightW},
+                return {{"slide_back", w.slideBack},
+                        {"near", w.ppNear},
+                        {"far", w.ppFar},
+                        {"light_w", w.lightW},
                         {"inverted", flag(w.inverted)}};
             } else if constexpr (std::is_same_v<W, core::TsmWarp>) {
                 json j = {{"uniform", flag(w.uniform)}};
@@ -61,8 +64,11 @@ json localLightJson(const LocalLight& light, const core::ShadowSetup& setup) {
     json j = std::visit(
         [](const auto& l) -> json {
             if constexpr (std::is_same_v<std::decay_t<decltype(l)>, core::SpotLight>)
-                return {{"type", "spot"}, {"position", toJson(l.wsPosition)}, {"direction", toJson(glm::normalize(l.wsDirection))},
-                        {"cone_degrees", l.coneDegrees}, {"range", l.range}};
+                return {{"type", "spot"},
+                        {"position", toJson(l.wsPosition)},
+                        {"direction", toJson(glm::normalize(l.wsDirection))},
+                        {"cone_degrees", l.coneDegrees},
+                        {"range", l.range}};
             else
                 return {{"type", "point"}, {"position", toJson(l.wsPosition)}, {"range", l.range}};
         },
@@ -102,9 +108,14 @@ int runSetup(const SetupArgs& args) {
     json out;
     out["technique"] = core::techniqueName(setup->technique);
     out["inputs"] = {
-        {"camera", {{"eye", toJson(cam.wsEye)}, {"direction", toJson(glm::normalize(cam.wsDirection))},
-                    {"up", toJson(cam.wsUp)}, {"fov_y_degrees", cam.fovYDegrees}, {"aspect", cam.aspect},
-                    {"near", cam.zNear}, {"far", cam.zFar}}},
+        {"camera",
+         {{"eye", toJson(cam.wsEye)},
+          {"direction", toJson(glm::normalize(cam.wsDirection))},
+          {"up", toJson(cam.wsUp)},
+          {"fov_y_degrees", cam.fovYDegrees},
+          {"aspect", cam.aspect},
+          {"near", cam.zNear},
+          {"far", cam.zFar}}},
         {"light", {{"type", "directional"}, {"direction", toJson(view->light.wsDirection)}}},
         {"scene_bounds", {{"min", toJson(bounds.min)}, {"max", toJson(bounds.max)}}},
     };
@@ -114,16 +125,17 @@ int runSetup(const SetupArgs& args) {
     out["eye_relative_origin"] = toJson(setup->wsEye);
     json views = json::array();
     for (const core::ShadowView& v : setup->views) {
-        json jv = {{"clip_from_world", toJson(v.clipFromWorld)},
-                   {"light_from_world", toJson(v.lightFromWorld)},
-                   {"clip_from_light", toJson(v.clipFromLight)},
-                   {"linear_depth_from_world",
-                    {v.linearDepthFromWorld.x, v.linearDepthFromWorld.y, v.linearDepthFromWorld.z, v.linearDepthFromWorld.w}},
-                   // Camera-relative rendering: the same map for p − eye_relative_origin.
-                   {"clip_from_eye_relative", toJson(v.clipFromEyeRelative)},
-                   {"linear_depth_from_eye_relative",
-                    {v.linearDepthFromEyeRelative.x, v.linearDepthFromEyeRelative.y, v.linearDepthFromEyeRelative.z,
-                     v.linearDepthFromEyeRelative.w}}};
+        json jv = {
+            {"clip_from_world", toJson(v.clipFromWorld)},
+            {"light_from_world", toJson(v.lightFromWorld)},
+            {"clip_from_light", toJson(v.clipFromLight)},
+            {"linear_depth_from_world",
+             {v.linearDepthFromWorld.x, v.linearDepthFromWorld.y, v.linearDepthFromWorld.z, v.linearDepthFromWorld.w}},
+            // Camera-relative rendering: the same map for p − eye_relative_origin.
+            {"clip_from_eye_relative", toJson(v.clipFromEyeRelative)},
+            {"linear_depth_from_eye_relative",
+             {v.linearDepthFromEyeRelative.x, v.linearDepthFromEyeRelative.y, v.linearDepthFromEyeRelative.z,
+              v.linearDepthFromEyeRelative.w}}};
         if (v.split) jv["split"] = {v.split->x, v.split->y};
         if (json warp = warpJson(v.warp); !warp.is_null()) jv["warp"] = warp;
         views.push_back(jv);
@@ -138,8 +150,10 @@ int runSetup(const SetupArgs& args) {
     if (!lighting) return fail(withFlagName(lighting.errorInfo()));
     if (!lighting->empty()) {
         json locals = json::array();
-        for (size_t i = 0; i < lighting->points.size(); ++i) locals.push_back(localLightJson(lighting->points[i], lighting->pointSetups[i]));
-        for (size_t i = 0; i < lighting->spots.size(); ++i) locals.push_back(localLightJson(lighting->spots[i], lighting->spotSetups[i]));
+        for (size_t i = 0; i < lighting->points.size(); ++i)
+            locals.push_back(localLightJson(lighting->points[i], lighting->pointSetups[i]));
+        for (size_t i = 0; i < lighting->spots.size(); ++i)
+            locals.push_back(localLightJson(lighting->spots[i], lighting->spotSetups[i]));
         out["local_lights"] = locals;
     }
     std::cout << out.dump(2) << "\n";

@@ -23,5 +23,4 @@ Command addAnalyzeCommand(CLI::App& app);
 Command addCompareCommand(CLI::App& app);
 Command addBenchCommand(CLI::App& app);
 
-
 } // namespace shadowkit::app

@@ -10,7 +10,8 @@ namespace shadowkit::app {
 int fail(const std::string& message) {
     // One line whatever the message echoes of the input (a newline typed into --configs).
     std::string line = message;
-    std::replace_if(line.begin(), line.end(), [](unsigned char c) { return c < 0x20; }, ' ');
+    std::replace_if(
+        line.begin(), line.end(), [](unsigned char c) { return c < 0x20; }, ' ');
     fmt::print(stderr, "shadowkit: error: {}\n", line);
     return kExitBadInput;
 }

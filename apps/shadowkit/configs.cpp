@@ -48,7 +48,6 @@ core::Result<std::vector<Cell>> parseConfigs(const std::string& text) {
     return cells;
 }
 
-
 core::Result<CellOptions> parseCell(const Cell& cell, const std::string& view, const std::string& size) {
     CellOptions o;
     CLI::App app{"cell"};

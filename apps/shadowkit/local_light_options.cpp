@@ -40,24 +40,29 @@ core::Result<LocalLight> parseLight(const std::string& spec) {
 } // namespace
 
 void LocalLightOptions::addTo(CLI::App& cmd, bool withMaps) {
-    cmd.add_option("--light", specs, fmt::format("a local light with shadows, repeatable: {} (degrees, metres; range 30 m "
-                                                 "unless given)",
-                                                 kForms));
+    cmd.add_option("--light", specs,
+                   fmt::format("a local light with shadows, repeatable: {} (degrees, metres; range 30 m "
+                               "unless given)",
+                               kForms));
     cmd.add_option("--local-map-size", mapSize, "texels per side of each spot map and cube face")
         ->check(CLI::Range(core::kMinMapSize, core::kMaxMapSize))
         ->capture_default_str();
     if (!withMaps) return;
-    cmd.add_option("--local-pass", pass, "how a point light's cube faces are drawn: layered (one pass: vertex-layer where "
-                                         "the driver has it, else geometry), vertex-layer, geometry, per-face (six passes)")
-        ->transform(CLI::CheckedTransformer(std::map<std::string, gl::LocalPass>{{"layered", gl::LocalPass::Layered},
-                                                                                  {"vertex-layer", gl::LocalPass::VertexLayer},
-                                                                                  {"geometry", gl::LocalPass::Geometry},
-                                                                                  {"per-face", gl::LocalPass::PerFace}}))
+    cmd.add_option("--local-pass", pass,
+                   "how a point light's cube faces are drawn: layered (one pass: vertex-layer where "
+                   "the driver has it, else geometry), vertex-layer, geometry, per-face (six passes)")
+        ->transform(
+            CLI::CheckedTransformer(std::map<std::string, gl::LocalPass>{{"layered", gl::LocalPass::Layered},
+                                                                         {"vertex-layer", gl::LocalPass::VertexLayer},
+                                                                         {"geometry", gl::LocalPass::Geometry},
+                                                                         {"per-face", gl::LocalPass::PerFace}}))
         ->default_str("layered");
-    cmd.add_option("--local-bias-slope", bias.slopeTexels, "local lights: slope-scaled bias in texels at the receiver's distance")
+    cmd.add_option("--local-bias-slope", bias.slopeTexels,
+                   "local lights: slope-scaled bias in texels at the receiver's distance")
         ->check(CLI::Range(0.0, 16.0))
         ->capture_default_str();
-    cmd.add_option("--local-normal-offset", bias.normalOffsetTexels, "local lights: normal offset in texels at the receiver's distance")
+    cmd.add_option("--local-normal-offset", bias.normalOffsetTexels,
+                   "local lights: normal offset in texels at the receiver's distance")
         ->check(CLI::Range(0.0, 16.0))
         ->capture_default_str();
     cmd.add_option("--local-bias-constant", bias.constantMetres, "local lights: constant bias in metres")
@@ -65,7 +70,8 @@ void LocalLightOptions::addTo(CLI::App& cmd, bool withMaps) {
         ->capture_default_str();
 }
 
-core::Result<core::LocalLighting> LocalLightOptions::lightingFor(const scene::ResolvedView& view, const core::Aabb& wsSceneBounds) const {
+core::Result<core::LocalLighting> LocalLightOptions::lightingFor(const scene::ResolvedView& view,
+                                                                 const core::Aabb& wsSceneBounds) const {
     auto extra = lights();
     if (!extra) return extra.errorInfo();
     frame::FrameConfig config; // what a frame with these lights sets up (frame::FrameDriver)

@@ -30,7 +30,8 @@ struct LocalLightOptions {
     core::Result<std::vector<LocalLight>> lights() const;
     // The frame's local lights: the view's (views.json), then --light's, set up for its camera
     // over these scene bounds.
-    core::Result<core::LocalLighting> lightingFor(const scene::ResolvedView& view, const core::Aabb& wsSceneBounds) const;
+    core::Result<core::LocalLighting> lightingFor(const scene::ResolvedView& view,
+                                                  const core::Aabb& wsSceneBounds) const;
 };
 
 } // namespace shadowkit::app

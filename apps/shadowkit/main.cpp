@@ -14,12 +14,9 @@ int main(int argc, char** argv) {
     app.require_subcommand(1);
     app.set_version_flag("--version", "shadowkit " SHADOWKIT_VERSION_STRING);
     const std::vector<shadowkit::app::Command> commands = {
-        shadowkit::app::addRenderCommand(app),
-        shadowkit::app::addEvalCommand(app),
-        shadowkit::app::addAnalyzeCommand(app),
-        shadowkit::app::addCompareCommand(app),
-        shadowkit::app::addBenchCommand(app),
-        shadowkit::app::addSetupCommand(app),
+        shadowkit::app::addRenderCommand(app),  shadowkit::app::addEvalCommand(app),
+        shadowkit::app::addAnalyzeCommand(app), shadowkit::app::addCompareCommand(app),
+        shadowkit::app::addBenchCommand(app),   shadowkit::app::addSetupCommand(app),
         shadowkit::app::addExportCommand(app),
     };
 
@@ -44,7 +41,8 @@ int main(int argc, char** argv) {
         // convert or is not one of the choices is bad input (exit 1, like every other bad
         // value); an unknown flag or a missing argument is a usage error (exit 2).
         fmt::print(stderr, "shadowkit: error: {} (see shadowkit --help)\n", e.what());
-        const bool badValue = dynamic_cast<const CLI::ValidationError*>(&e) || dynamic_cast<const CLI::ConversionError*>(&e);
+        const bool badValue =
+            dynamic_cast<const CLI::ValidationError*>(&e) || dynamic_cast<const CLI::ConversionError*>(&e);
         return badValue ? 1 : 2;
     }
     for (const shadowkit::app::Command& command : commands)

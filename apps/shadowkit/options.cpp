@@ -38,9 +38,11 @@ void SceneOptions::addTo(CLI::App& cmd) {
     cmd.add_option("--trees", trees, "forest: number of trees")->capture_default_str();
     cmd.add_option("--terrain-size", terrainSize, "forest: terrain side in metres")->capture_default_str();
     cmd.add_option("--terrain-resolution", terrainResolution, "forest: terrain quads per side")->capture_default_str();
-    cmd.add_option("--movers", movers, "forest: moving objects on circles round the clearing, [0, 1000]")->capture_default_str();
-    cmd.add_option("--world-offset", worldOffset,
-                   "x,y,z metres: stand the scene and its views this far from the world's origin (large-world precision)");
+    cmd.add_option("--movers", movers, "forest: moving objects on circles round the clearing, [0, 1000]")
+        ->capture_default_str();
+    cmd.add_option(
+        "--world-offset", worldOffset,
+        "x,y,z metres: stand the scene and its views this far from the world's origin (large-world precision)");
 }
 
 core::Result<core::Vec3> SceneOptions::offset() const {
@@ -48,7 +50,8 @@ core::Result<core::Vec3> SceneOptions::offset() const {
     auto v = parseVec3("--world-offset", worldOffset);
     if (!v) return v;
     // Beyond 1e12 m even double's step (0.1 mm) is coarser than a millimetre frustum.
-    if (glm::length(*v) > 1e12) return core::makeError(fmt::format("--world-offset: at most 1e12 m from the origin, got '{}'", worldOffset));
+    if (glm::length(*v) > 1e12)
+        return core::makeError(fmt::format("--world-offset: at most 1e12 m from the origin, got '{}'", worldOffset));
     return v;
 }
 
@@ -73,7 +76,8 @@ core::Result<scene::Scene> SceneOptions::load(bool verbose) const {
     if (verbose) {
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         fmt::print(stderr, "scene {}: {} instances, {:.2f} M triangles, {} batches ({:.2f} s)\n", scene,
-                   result->instanceCount(), static_cast<double>(result->triangleCount()) * 1e-6, result->batches.size(), seconds);
+                   result->instanceCount(), static_cast<double>(result->triangleCount()) * 1e-6, result->batches.size(),
+                   seconds);
     }
     if (result->batches.empty()) return core::makeError(fmt::format("scene {}: is empty (no triangles)", scene));
     result->wsOrigin = *origin;
@@ -81,7 +85,8 @@ core::Result<scene::Scene> SceneOptions::load(bool verbose) const {
 }
 
 void ViewOptions::addTo(CLI::App& cmd) {
-    cmd.add_option("--view", view, "standard view from data/views.json (paper, perpendicular, into-sun, sun-behind, noon, aerial)")
+    cmd.add_option("--view", view,
+                   "standard view from data/views.json (paper, perpendicular, into-sun, sun-behind, noon, aerial)")
         ->capture_default_str();
     cmd.add_option("--eye", eye, "camera position x,y,z in world metres (overrides the view's)");
     cmd.add_option("--dir", dir, "viewing direction x,y,z");
@@ -90,7 +95,8 @@ void ViewOptions::addTo(CLI::App& cmd) {
     cmd.add_option("--near", zNear, "near plane distance in metres");
     cmd.add_option("--far", zFar, "far plane distance in metres");
     cmd.add_option("--size", size, "image size WxH in pixels (default: the view's)");
-    cmd.add_option("--sun", sun, "direction the sunlight travels x,y,z (sun -> scene), or off (night: local lights only) or on");
+    cmd.add_option("--sun", sun,
+                   "direction the sunlight travels x,y,z (sun -> scene), or off (night: local lights only) or on");
     cmd.add_option("--sun-elevation", sunElevation, "sun elevation in degrees above the horizon");
     cmd.add_option("--sun-azimuth", sunAzimuth, "sun compass azimuth in degrees (0 = -Z, 90 = +X)");
 }
@@ -102,14 +108,17 @@ core::Result<scene::ResolvedView> ViewOptions::resolve(const scene::Scene& scene
     if (!spec) return core::makeError("--view: " + spec.error());
     scene::ResolvedView out = scene::resolveView(*spec, sceneData);
     if (out.framed && eye.empty())
-        fmt::print(stderr, "view {}: framing the loaded scene (no terrain to stand on): eye {:.1f},{:.1f},{:.1f}, near {:.3g} m, far {:.3g} m\n",
+        fmt::print(stderr,
+                   "view {}: framing the loaded scene (no terrain to stand on): eye {:.1f},{:.1f},{:.1f}, near {:.3g} "
+                   "m, far {:.3g} m\n",
                    view, out.camera.wsEye.x, out.camera.wsEye.y, out.camera.wsEye.z, out.camera.zNear, out.camera.zFar);
 
     if (!size.empty()) {
         std::vector<double> wh;
-        if (!parseNumbers(size, 'x', wh) || wh.size() != 2 || wh[0] < 1 || wh[1] < 1 || wh[0] > 16384 || wh[1] > 16384 ||
-            wh[0] != std::floor(wh[0]) || wh[1] != std::floor(wh[1]))
-            return core::makeError(fmt::format("--size: expected WxH with whole numbers in [1, 16384], got '{}'", size));
+        if (!parseNumbers(size, 'x', wh) || wh.size() != 2 || wh[0] < 1 || wh[1] < 1 || wh[0] > 16384 ||
+            wh[1] > 16384 || wh[0] != std::floor(wh[0]) || wh[1] != std::floor(wh[1]))
+            return core::makeError(
+                fmt::format("--size: expected WxH with whole numbers in [1, 16384], got '{}'", size));
         out.width = static_cast<int>(wh[0]);
         out.height = static_cast<int>(wh[1]);
     }
@@ -131,7 +140,8 @@ core::Result<scene::ResolvedView> ViewOptions::resolve(const scene::Scene& scene
     if (sun == "off" || sun == "on") {
         out.sun = sun == "on";
     } else if (!sun.empty()) {
-        if (sunElevation || sunAzimuth) return core::makeError("--sun: give either --sun or --sun-elevation/--sun-azimuth, not both");
+        if (sunElevation || sunAzimuth)
+            return core::makeError("--sun: give either --sun or --sun-elevation/--sun-azimuth, not both");
         auto v = parseVec3("--sun", sun);
         if (!v) return v.errorInfo();
         auto light = core::DirectionalLight::fromDirection(*v);
@@ -159,12 +169,15 @@ core::Result<BoundedView> BoundsOptions::resolve(const SceneOptions& scene, cons
     if (!sceneBounds.empty()) {
         std::vector<double> v;
         if (!parseNumbers(sceneBounds, ',', v) || v.size() != 6)
-            return core::makeError(fmt::format("--scene-bounds: expected minx,miny,minz,maxx,maxy,maxz, got '{}'", sceneBounds));
-        if (v[0] > v[3] || v[1] > v[4] || v[2] > v[5]) return core::makeError("--scene-bounds: min must not exceed max on any axis");
+            return core::makeError(
+                fmt::format("--scene-bounds: expected minx,miny,minz,maxx,maxy,maxz, got '{}'", sceneBounds));
+        if (v[0] > v[3] || v[1] > v[4] || v[2] > v[5])
+            return core::makeError("--scene-bounds: min must not exceed max on any axis");
         auto origin = scene.offset();
         if (!origin) return origin.errorInfo();
         sceneData.wsOrigin = *origin; // the views move with the box
-        out.wsBounds = core::Aabb::fromMinMax(core::Vec3(v[0], v[1], v[2]) + *origin, core::Vec3(v[3], v[4], v[5]) + *origin);
+        out.wsBounds =
+            core::Aabb::fromMinMax(core::Vec3(v[0], v[1], v[2]) + *origin, core::Vec3(v[3], v[4], v[5]) + *origin);
     } else {
         auto loaded = scene.load(false);
         if (!loaded) return loaded.errorInfo();
@@ -256,46 +269,57 @@ core::Error withFlagName(const core::Error& error) {
         if (error.field == field) {
             const std::string prefix = error.field + ": ";
             const bool prefixed = error.message.compare(0, prefix.size(), prefix) == 0;
-            return core::Error{std::string(flag) + ": " + (prefixed ? error.message.substr(prefix.size()) : error.message),
+            return core::Error{std::string(flag) + ": " +
+                                   (prefixed ? error.message.substr(prefix.size()) : error.message),
                                error.field, error.kind};
         }
     return error;
 }
 
 void RenderOptions::addTo(CLI::App& cmd) {
-    cmd.add_option("--bias-slope", biasSlope, "slope-scaled depth bias (glPolygonOffset factor; default: per technique)");
-    cmd.add_option("--bias-constant", biasConstant, "constant depth bias (glPolygonOffset units; default: per technique)");
+    cmd.add_option("--bias-slope", biasSlope,
+                   "slope-scaled depth bias (glPolygonOffset factor; default: per technique)");
+    cmd.add_option("--bias-constant", biasConstant,
+                   "constant depth bias (glPolygonOffset units; default: per technique)");
     cmd.add_option("--cull", cull, "caster faces left out of the map (front: back-side rendering; auto: per technique)")
         ->transform(choice(Choices<CullChoice>{{"auto", CullChoice::Auto},
-                                                                {"back", CullChoice::Back},
-                                                                {"front", CullChoice::Front},
-                                                                {"none", CullChoice::None}}))
+                                               {"back", CullChoice::Back},
+                                               {"front", CullChoice::Front},
+                                               {"none", CullChoice::None}}))
         ->default_str("auto");
     cmd.add_option("--normal-offset", normalOffset, "receiver offset along its normal, in texels' world size");
-    cmd.add_option("--fog", fog, "fog density in 1/m, 0 for none (default: the scene's, 0.002 for the forest, scaled to a loaded scene's size)");
-    cmd.add_option("--receiver-plane-bias", receiverPlaneBias, "reference depth on the receiver's plane (auto: for wide kernels)")
+    cmd.add_option(
+        "--fog", fog,
+        "fog density in 1/m, 0 for none (default: the scene's, 0.002 for the forest, scaled to a loaded scene's size)");
+    cmd.add_option("--receiver-plane-bias", receiverPlaneBias,
+                   "reference depth on the receiver's plane (auto: for wide kernels)")
         ->transform(choice(Choices<Choice>{{"auto", Choice::Auto}, {"on", Choice::On}, {"off", Choice::Off}}))
         ->capture_default_str();
-    cmd.add_option("--filter", filter, "hard, pcf2 (hardware 2x2), pcf:N (N x N, 1-9), poisson:N (N rotated taps, 1-32)")
+    cmd.add_option("--filter", filter,
+                   "hard, pcf2 (hardware 2x2), pcf:N (N x N, 1-9), poisson:N (N rotated taps, 1-32)")
         ->capture_default_str();
     cmd.add_option("--blur-iterations", blur.iterations, "eye-space blur of the shadow mask: 0, 1, 2, 4, 8, 16 ...")
         ->capture_default_str();
-    cmd.add_option("--blur-radius", blur.radiusPixels, "blur tap distance in pixels at the viewer")->capture_default_str();
+    cmd.add_option("--blur-radius", blur.radiusPixels, "blur tap distance in pixels at the viewer")
+        ->capture_default_str();
     cmd.add_option("--blur-depth-falloff", blur.depthFalloff, "blur radius / (1 + falloff * depth): 0 = uniform blur")
         ->capture_default_str();
     cmd.add_flag("--cascade-colors", cascadeColors, "tint each cascade's depth range (Dimitrov 2007 Figure 3-2)");
-    cmd.add_flag("--aliasing-overlay", aliasingOverlay,
-                 "show pixels per texel of the sun's map instead of shading, computed per pixel in the shader (eval's colours)");
+    cmd.add_flag(
+        "--aliasing-overlay", aliasingOverlay,
+        "show pixels per texel of the sun's map instead of shading, computed per pixel in the shader (eval's colours)");
     cmd.add_option("--visibility", visibility,
                    "instances the camera pass draws: off (all, every pass), frustum, chc (CHC++ occlusion queries)")
-        ->transform(choice(Choices<gl::Culling>{{"off", gl::Culling::Off}, {"frustum", gl::Culling::Frustum}, {"chc", gl::Culling::Occlusion}}))
+        ->transform(choice(Choices<gl::Culling>{
+            {"off", gl::Culling::Off}, {"frustum", gl::Culling::Frustum}, {"chc", gl::Culling::Occlusion}}))
         ->default_str("chc");
     cmd.add_option("--caster-culling", receiverMask,
                    "casters each shadow map draws: volume (its clip volume), receivers (also only those that can "
                    "shadow a pixel the camera sees; a camera depth pre-pass)")
         ->transform(choice(Choices<bool>{{"volume", false}, {"receivers", true}}))
         ->default_str("receivers");
-    cmd.add_flag("--no-cull", noCull, "same as --visibility off: every instance in every pass (same pixels, more work)");
+    cmd.add_flag("--no-cull", noCull,
+                 "same as --visibility off: every instance in every pass (same pixels, more work)");
     cmd.add_flag("--no-lod", noLod, "draw full meshes in every pass (no levels of detail)");
 }
 
@@ -328,13 +352,17 @@ void TechniqueOptions::addTo(CLI::App& cmd) {
             ""))
         ->default_str(std::string(core::techniqueName(technique)));
     cmd.add_option("--texel-budget", texelBudget,
-                   "--technique auto: texels of all maps together, e.g. 4M = 1 x 2048² or 4 x 1024² (default: one --map-size map)");
-    cmd.add_option("--lispsm-formula", lispsmFormula, "LiSPSM n: Wimmer et al. 2004 §4.4 (paper) or Scherzer 2005 eq. 1")
-        ->transform(choice(Choices<core::LispsmFormula>{{"paper", core::LispsmFormula::Paper}, {"scherzer", core::LispsmFormula::Scherzer}}))
+                   "--technique auto: texels of all maps together, e.g. 4M = 1 x 2048² or 4 x 1024² (default: one "
+                   "--map-size map)");
+    cmd.add_option("--lispsm-formula", lispsmFormula,
+                   "LiSPSM n: Wimmer et al. 2004 §4.4 (paper) or Scherzer 2005 eq. 1")
+        ->transform(choice(Choices<core::LispsmFormula>{{"paper", core::LispsmFormula::Paper},
+                                                        {"scherzer", core::LispsmFormula::Scherzer}}))
         ->default_str("scherzer");
-    cmd.add_option("--lispsm-direction", lispsmDirection, "LiSPSM warp axis: cross (Scherzer 2005 eq. 3) or middle (B's middle vector)")
+    cmd.add_option("--lispsm-direction", lispsmDirection,
+                   "LiSPSM warp axis: cross (Scherzer 2005 eq. 3) or middle (B's middle vector)")
         ->transform(choice(Choices<core::LispsmDirection>{{"cross", core::LispsmDirection::CrossProduct},
-                                                                           {"middle", core::LispsmDirection::MiddleVector}}))
+                                                          {"middle", core::LispsmDirection::MiddleVector}}))
         ->default_str("cross");
     cmd.add_option("--lispsm-weight", lispsmWeight, "LiSPSM: multiplies n (> 1 warps less)")->capture_default_str();
     cmd.add_option("--lispsm-n", lispsmN, "LiSPSM: fixed n in metres instead of the formula");
@@ -346,30 +374,36 @@ void TechniqueOptions::addTo(CLI::App& cmd) {
     cmd.add_option("--tsm-focus", tsmFocus, "TSM: focus point as a fraction of the view depth range (80 % rule)")
         ->capture_default_str();
     cmd.add_option("--depth-layout", depthLayout, "shadow depth (auto: linear for TSM, else hyperbolic)")
-        ->transform(choice(Choices<LayoutChoice>{{"auto", LayoutChoice::Auto}, {"hyperbolic", LayoutChoice::Hyperbolic}, {"linear", LayoutChoice::Linear}}))
+        ->transform(choice(Choices<LayoutChoice>{
+            {"auto", LayoutChoice::Auto}, {"hyperbolic", LayoutChoice::Hyperbolic}, {"linear", LayoutChoice::Linear}}))
         ->default_str("auto");
     cmd.add_option("--map-size", mapSize, "shadow map texels per side (per cascade for csm)")->capture_default_str();
-    cmd.add_option("--cascades", cascades.count, "csm: number of splits, 1-8; with --technique auto: that many maps (1: a single map)")
+    cmd.add_option("--cascades", cascades.count,
+                   "csm: number of splits, 1-8; with --technique auto: that many maps (1: a single map)")
         ->each([this](const std::string&) { cascadesGiven = true; })
         ->capture_default_str();
     cmd.add_option("--lambda", cascades.lambda, "csm: split scheme, 0 uniform ... 1 logarithmic (Zhang et al. 2006)")
         ->capture_default_str();
     cmd.add_option("--splits", splits, "csm: explicit split distances near,...,far (count + 1 values)");
     cmd.add_option("--cascade-warp", cascades.warp, "csm: per-split warp")
-        ->transform(choice(Choices<core::CascadeWarp>{{"none", core::CascadeWarp::None}, {"lispsm", core::CascadeWarp::Lispsm}}))
+        ->transform(choice(
+            Choices<core::CascadeWarp>{{"none", core::CascadeWarp::None}, {"lispsm", core::CascadeWarp::Lispsm}}))
         ->default_str("none");
-    cmd.add_flag("--stabilize", cascades.stabilize,
-                 "csm: rotation-invariant, texel-snapped splits (no swimming); other techniques and warped cascades: held "
-                 "texel lattices (each map's warp kept fixed in the world and shifted by whole texels until it no longer "
-                 "covers the view or its texels have grown by --stabilize-growth)");
+    cmd.add_flag(
+        "--stabilize", cascades.stabilize,
+        "csm: rotation-invariant, texel-snapped splits (no swimming); other techniques and warped cascades: held "
+        "texel lattices (each map's warp kept fixed in the world and shifted by whole texels until it no longer "
+        "covers the view or its texels have grown by --stabilize-growth)");
     cmd.add_option("--stabilize-margin", hysteresis.margin,
                    "--stabilize with held lattices: spare room round the view at a refit, a fraction of the map")
         ->capture_default_str();
-    cmd.add_option("--stabilize-growth", hysteresis.maxTexelGrowth,
-                   "--stabilize with held lattices: refit when a texel on the central ray is this many times a fresh fit's")
+    cmd.add_option(
+           "--stabilize-growth", hysteresis.maxTexelGrowth,
+           "--stabilize with held lattices: refit when a texel on the central ray is this many times a fresh fit's")
         ->capture_default_str();
     cmd.add_option("--stabilize-lookahead", hysteresis.lookaheadFrames,
-                   "--stabilize with held lattices: a refit also covers where the camera will be on its way this many frames on (as far as that costs at most 3x a fresh fit's texels)")
+                   "--stabilize with held lattices: a refit also covers where the camera will be on its way this many "
+                   "frames on (as far as that costs at most 3x a fresh fit's texels)")
         ->capture_default_str();
     cmd.add_option("--blend-band", cascades.blendBand, "csm: fraction of each split blended into the next, 0-0.5")
         ->capture_default_str();
@@ -384,8 +418,9 @@ core::Status TechniqueOptions::check(bool measuresFrames, bool takesAuto) const 
     if (!automatic && !texelBudget.empty()) return core::makeError("--texel-budget: only with --technique auto");
     if (automatic) {
         if (!takesAuto)
-            return core::makeError("--technique auto: chooses from a rendered frame's receivers, so render and eval take it "
-                                   "(analyze --candidates lists what it weighs)");
+            return core::makeError(
+                "--technique auto: chooses from a rendered frame's receivers, so render and eval take it "
+                "(analyze --candidates lists what it weighs)");
         if (auto a = autoOptions(); !a) return a.errorInfo();
     }
     // The camera-independent checks only: the view is not resolved yet.
@@ -395,7 +430,7 @@ core::Status TechniqueOptions::check(bool measuresFrames, bool takesAuto) const 
 }
 
 core::Result<core::ShadowSetup> TechniqueOptions::setupFor(const core::ShadowSetupInputs& inputs,
-                                                          std::optional<core::SetupHysteresis>& sequence) const {
+                                                           std::optional<core::SetupHysteresis>& sequence) const {
     if (!sequence) sequence = newHysteresis();
     return sequence ? sequence->next(inputs) : core::computeShadowSetup(inputs);
 }
@@ -406,7 +441,9 @@ core::Result<core::AutoOptions> TechniqueOptions::autoOptions() const {
     options.texelBudget = int64_t(mapSize) * mapSize;
     if (!texelBudget.empty()) {
         const char suffix = texelBudget.back();
-        const int64_t unit = suffix == 'K' || suffix == 'k' ? int64_t(1) << 10 : suffix == 'M' || suffix == 'm' ? int64_t(1) << 20 : 1;
+        const int64_t unit = suffix == 'K' || suffix == 'k'   ? int64_t(1) << 10
+                             : suffix == 'M' || suffix == 'm' ? int64_t(1) << 20
+                                                              : 1;
         const std::string digits = unit == 1 ? texelBudget : texelBudget.substr(0, texelBudget.size() - 1);
         double value = 0.0;
         size_t used = 0;
@@ -416,7 +453,8 @@ core::Result<core::AutoOptions> TechniqueOptions::autoOptions() const {
             used = 0;
         }
         if (used != digits.size() || digits.empty() || !(value > 0.0 && value * double(unit) < 1e15))
-            return core::makeError(fmt::format("--texel-budget: expected a number of texels such as 4M or 16777216, got '{}'", texelBudget));
+            return core::makeError(fmt::format(
+                "--texel-budget: expected a number of texels such as 4M or 16777216, got '{}'", texelBudget));
         options.texelBudget = static_cast<int64_t>(value * double(unit));
     }
     // With held lattices a change of family is a refit, a pop on screen like any other: it is
@@ -427,8 +465,10 @@ core::Result<core::AutoOptions> TechniqueOptions::autoOptions() const {
     return options;
 }
 
-core::Result<core::ShadowSetupInputs> TechniqueOptions::inputsFor(const scene::ResolvedView& view, const core::Aabb& wsBounds) const {
-    core::ShadowSetupInputs in{.camera = view.camera, .light = view.light, .wsSceneBounds = wsBounds, .technique = technique};
+core::Result<core::ShadowSetupInputs> TechniqueOptions::inputsFor(const scene::ResolvedView& view,
+                                                                  const core::Aabb& wsBounds) const {
+    core::ShadowSetupInputs in{
+        .camera = view.camera, .light = view.light, .wsSceneBounds = wsBounds, .technique = technique};
     in.mapSize = mapSize;
     in.lispsm.formula = lispsmFormula;
     in.lispsm.direction = lispsmDirection;
@@ -437,7 +477,8 @@ core::Result<core::ShadowSetupInputs> TechniqueOptions::inputsFor(const scene::R
     in.lispsm.visibleNear = lispsmVisibleNear;
     in.tsm.focusFraction = tsmFocus;
     if (depthLayout != LayoutChoice::Auto)
-        in.depthLayout = depthLayout == LayoutChoice::Linear ? core::DepthLayout::Linear : core::DepthLayout::Hyperbolic;
+        in.depthLayout =
+            depthLayout == LayoutChoice::Linear ? core::DepthLayout::Linear : core::DepthLayout::Hyperbolic;
     in.cascades = cascades;
     if (holdsLattices()) in.cascades.stabilize = false; // held by core::SetupHysteresis, not snapped
     if (!splits.empty() && !parseNumbers(splits, ',', in.cascades.splits))

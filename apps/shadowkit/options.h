@@ -50,7 +50,7 @@ struct TechniqueOptions {
     // --technique auto: the family and its parameters chosen per frame by the sampling model
     // (auto_technique.h); `technique` then stays the default until a frame is resolved.
     bool automatic = false;
-    std::string texelBudget;   // --texel-budget text ("4M", "16777216"); empty: one --map-size map
+    std::string texelBudget;    // --texel-budget text ("4M", "16777216"); empty: one --map-size map
     bool cascadesGiven = false; // --cascades was given: auto keeps to that count
     core::LispsmFormula lispsmFormula = core::LispsmOptions{}.formula;
     core::LispsmDirection lispsmDirection = core::LispsmOptions{}.direction;
@@ -64,7 +64,7 @@ struct TechniqueOptions {
     bool lispsmVisibleNear = core::LispsmOptions{}.visibleNear;
     double tsmFocus = core::TsmOptions{}.focusFraction;
     int mapSize = core::ShadowSetupInputs{}.mapSize;
-    core::CascadeOptions cascades; // count, lambda, warp, stabilize, blend band; splits from `splits`
+    core::CascadeOptions cascades;      // count, lambda, warp, stabilize, blend band; splits from `splits`
     core::HysteresisOptions hysteresis; // --stabilize-margin, --stabilize-growth
 
     // --stabilize holds texel lattices (core::SetupHysteresis) for every technique but
@@ -118,11 +118,11 @@ struct RenderOptions {
     std::string filter = "hard";
     gl::BlurSettings blur;
     bool cascadeColors = false;
-    bool aliasingOverlay = false; // --aliasing-overlay: pixels per texel instead of shading (live)
+    bool aliasingOverlay = false;                    // --aliasing-overlay: pixels per texel instead of shading (live)
     gl::Culling visibility = gl::Culling::Occlusion; // --visibility (README "Visibility": the best measured)
-    bool receiverMask = true;   // --caster-culling receivers (likewise)
-    bool noCull = false; // --no-cull: --visibility off (what culling saves, measured)
-    bool noLod = false;  // full meshes everywhere (what levels of detail save, measured)
+    bool receiverMask = true;                        // --caster-culling receivers (likewise)
+    bool noCull = false;                             // --no-cull: --visibility off (what culling saves, measured)
+    bool noLod = false;                              // full meshes everywhere (what levels of detail save, measured)
     std::optional<double> fog; // --fog: density in 1/m; unset: the scene's (scene::ResolvedView::fogDensity)
 
     void addTo(CLI::App& cmd);

@@ -27,10 +27,10 @@ core::Result<StateOptions> loadState(const std::string& file) {
     } catch (const nlohmann::json::exception&) { // parse errors, and numbers out of range
         return core::makeError("--state: " + file + ": not valid JSON");
     }
-    const bool versioned = root.is_object() && root.contains("shadowkit_state") && root["shadowkit_state"].is_number_integer() &&
+    const bool versioned = root.is_object() && root.contains("shadowkit_state") &&
+                           root["shadowkit_state"].is_number_integer() &&
                            root["shadowkit_state"].get<int64_t>() == kStateVersion; // value() would throw on a string
-    if (!versioned || !root.contains("options") ||
-        !root["options"].is_object())
+    if (!versioned || !root.contains("options") || !root["options"].is_object())
         return core::makeError("--state: " + file + ": expected {\"shadowkit_state\": 1, \"options\": {...}}");
     StateOptions options;
     for (const auto& item : root["options"].items()) {
@@ -41,7 +41,8 @@ core::Result<StateOptions> loadState(const std::string& file) {
         auto text = [&](const nlohmann::json& v) -> core::Result<std::string> {
             if (v.is_string()) return v.get<std::string>();
             if (v.is_number() || v.is_boolean()) return v.dump();
-            return core::makeError("--state: " + file + ": option '" + name + "' must be a string, number or list of them");
+            return core::makeError("--state: " + file + ": option '" + name +
+                                   "' must be a string, number or list of them");
         };
         std::vector<std::string>& values = options[name];
         for (const nlohmann::json& v : value.is_array() ? value : nlohmann::json::array({value})) {

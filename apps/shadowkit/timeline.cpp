@@ -13,11 +13,12 @@ namespace {
 // "a:b", "a:", ":b" or "a" -> [first, end) within [0, count).
 core::Result<std::pair<int, int>> parseFrameRange(const std::string& text, int count) {
     auto bad = [&] {
-        return core::makeError(fmt::format("--frames: expected a:b, a:, :b or a (frame numbers of the path, 0 to {}), got '{}'",
-                                           count - 1, text));
+        return core::makeError(fmt::format(
+            "--frames: expected a:b, a:, :b or a (frame numbers of the path, 0 to {}), got '{}'", count - 1, text));
     };
     auto number = [](const std::string& s, int& out) {
-        if (s.empty() || s.size() > 9 || !std::all_of(s.begin(), s.end(), [](char c) { return std::isdigit(static_cast<unsigned char>(c)); }))
+        if (s.empty() || s.size() > 9 ||
+            !std::all_of(s.begin(), s.end(), [](char c) { return std::isdigit(static_cast<unsigned char>(c)); }))
             return false;
         out = std::stoi(s);
         return true;
@@ -29,10 +30,12 @@ core::Result<std::pair<int, int>> parseFrameRange(const std::string& text, int c
         end = first + 1;
     } else {
         const std::string a = text.substr(0, colon), b = text.substr(colon + 1);
-        if ((!a.empty() && !number(a, first)) || (!b.empty() && !number(b, end)) || (a.empty() && b.empty())) return bad();
+        if ((!a.empty() && !number(a, first)) || (!b.empty() && !number(b, end)) || (a.empty() && b.empty()))
+            return bad();
     }
     if (first >= count || end > count || first >= end)
-        return core::makeError(fmt::format("--frames: '{}' selects no frame of the path's {} (0 to {})", text, count, count - 1));
+        return core::makeError(
+            fmt::format("--frames: '{}' selects no frame of the path's {} (0 to {})", text, count, count - 1));
     return std::pair{first, end};
 }
 
@@ -40,11 +43,13 @@ core::Result<std::pair<int, int>> parseFrameRange(const std::string& text, int c
 
 void TimelineOptions::addTo(CLI::App& cmd, bool withFrames) {
     cmd.add_option("--path", path, "camera path: a name from data/paths (flythrough, day) or a .json file");
-    if (withFrames) cmd.add_option("--frames", frames, "frames of the path to draw: a:b (a to b-1), a:, :b or a (default: all)");
+    if (withFrames)
+        cmd.add_option("--frames", frames, "frames of the path to draw: a:b (a to b-1), a:, :b or a (default: all)");
     cmd.add_option("--time", time, "draw one moment, in seconds (movers, sun path and camera path at that time)");
-    cmd.add_option("--sun-path", sunPath,
-                   "the sun's motion: a path name or .json file with sun keys, or 'off' to hold the sun where it starts "
-                   "(default: the camera path's own sun keys, else the view's fixed sun)");
+    cmd.add_option(
+        "--sun-path", sunPath,
+        "the sun's motion: a path name or .json file with sun keys, or 'off' to hold the sun where it starts "
+        "(default: the camera path's own sun keys, else the view's fixed sun)");
 }
 
 core::Result<Timeline> TimelineOptions::resolve() const {
@@ -84,8 +89,8 @@ core::Result<Timeline> TimelineOptions::resolve() const {
     return timeline;
 }
 
-core::Result<scene::ResolvedView> Timeline::viewAt(const scene::ResolvedView& still, const scene::Scene& scene, double t,
-                                                   bool stillSize) const {
+core::Result<scene::ResolvedView> Timeline::viewAt(const scene::ResolvedView& still, const scene::Scene& scene,
+                                                   double t, bool stillSize) const {
     // Where the sun comes from, and when: held where it is at the path's start with `off`.
     const double sunTime = holdSun ? (path ? path->startTime() : 0.0) : t;
     core::DirectionalLight sun = still.light;
@@ -113,14 +118,16 @@ core::Result<scene::ResolvedView> Timeline::viewAt(const scene::ResolvedView& st
 core::Result<std::string> frameFileName(const std::string& pattern, int frame) {
     const size_t percent = pattern.find('%');
     auto bad = [&] {
-        return core::makeError("--out: a sequence needs one frame-number pattern such as frames/%04d.png, got '" + pattern + "'");
+        return core::makeError("--out: a sequence needs one frame-number pattern such as frames/%04d.png, got '" +
+                               pattern + "'");
     };
     if (percent == std::string::npos) return bad();
     size_t i = percent + 1;
     const bool zeros = i < pattern.size() && pattern[i] == '0';
     if (zeros) ++i;
     int width = 0;
-    while (i < pattern.size() && std::isdigit(static_cast<unsigned char>(pattern[i])) && width < 100) width = width * 10 + (pattern[i++] - '0');
+    while (i < pattern.size() && std::isdigit(static_cast<unsigned char>(pattern[i])) && width < 100)
+        width = width * 10 + (pattern[i++] - '0');
     if (i >= pattern.size() || pattern[i] != 'd' || pattern.find('%', i) != std::string::npos) return bad();
     std::string number = std::to_string(frame);
     if (int(number.size()) < width) number.insert(0, size_t(width) - number.size(), zeros ? '0' : ' ');

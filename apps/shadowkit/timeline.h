@@ -17,16 +17,16 @@
 namespace shadowkit::app {
 
 struct TimedFrame {
-    int number = 0;  // frame of the path (0 without one)
+    int number = 0;    // frame of the path (0 without one)
     double time = 0.0; // seconds
 };
 
 struct Timeline {
-    std::optional<scene::CameraPath> path;    // its camera keys (its sun keys moved to sunKeys)
-    std::vector<scene::SunKey> sunKeys;       // --sun-path's, else the path's own; empty: the view's sun
-    bool holdSun = false;                     // --sun-path off
-    std::vector<TimedFrame> frames;           // what to draw, in order
-    double framesPerSecond = 30.0;            // of the path (for videos)
+    std::optional<scene::CameraPath> path; // its camera keys (its sun keys moved to sunKeys)
+    std::vector<scene::SunKey> sunKeys;    // --sun-path's, else the path's own; empty: the view's sun
+    bool holdSun = false;                  // --sun-path off
+    std::vector<TimedFrame> frames;        // what to draw, in order
+    double framesPerSecond = 30.0;         // of the path (for videos)
 
     bool isSequence() const { return path.has_value() && frames.size() > 1; }
     // The view at time t: the path's camera (else `still`, the --view), the sun from

@@ -33,7 +33,8 @@ core::Result<std::unique_ptr<FrameOptions>> parseFrameOptions(const app::StateOp
     return options;
 }
 
-app::StateOptions givenOptions(const CLI::App& cmd, const std::vector<std::string>& args, std::initializer_list<const char*> skip) {
+app::StateOptions givenOptions(const CLI::App& cmd, const std::vector<std::string>& args,
+                               std::initializer_list<const char*> skip) {
     app::StateOptions out;
     for (size_t i = 0; i < args.size(); ++i) {
         const std::string& word = args[i];
@@ -43,8 +44,10 @@ app::StateOptions givenOptions(const CLI::App& cmd, const std::vector<std::strin
         const CLI::Option* option = cmd.get_option_no_throw("--" + name);
         if (!option) continue;
         std::string value = "true"; // a bare flag
-        if (eq != std::string::npos) value = word.substr(eq + 1);
-        else if (option->get_expected_min() > 0 && i + 1 < args.size() && args[i + 1].rfind("--", 0) != 0) value = args[++i];
+        if (eq != std::string::npos)
+            value = word.substr(eq + 1);
+        else if (option->get_expected_min() > 0 && i + 1 < args.size() && args[i + 1].rfind("--", 0) != 0)
+            value = args[++i];
         if (std::find_if(skip.begin(), skip.end(), [&](const char* s) { return name == s; }) != skip.end()) continue;
         out[name].push_back(value);
     }

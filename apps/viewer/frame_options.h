@@ -30,6 +30,7 @@ core::Result<std::unique_ptr<FrameOptions>> parseFrameOptions(const app::StateOp
 // The long options of `cmd` that a command line gives, as typed (before CLI11 turns a choice
 // into its number): each with its values, "true" for a bare flag. Skips those in `skip`;
 // the command line must already parse.
-app::StateOptions givenOptions(const CLI::App& cmd, const std::vector<std::string>& args, std::initializer_list<const char*> skip);
+app::StateOptions givenOptions(const CLI::App& cmd, const std::vector<std::string>& args,
+                               std::initializer_list<const char*> skip);
 
 } // namespace shadowkit::viewer

@@ -65,7 +65,8 @@ public:
     }
     void draw(float width) const {
         if (!m_id) return;
-        ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<intptr_t>(m_id)), ImVec2(width, width * static_cast<float>(m_height) / static_cast<float>(m_width)));
+        ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<intptr_t>(m_id)),
+                     ImVec2(width, width * static_cast<float>(m_height) / static_cast<float>(m_width)));
     }
 
 private:
@@ -81,7 +82,8 @@ scene::Image readWindow(int width, int height) {
     glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, rows.data());
     const size_t row = static_cast<size_t>(width) * 4;
     for (int y = 0; y < height; ++y)
-        std::copy_n(rows.data() + static_cast<size_t>(height - 1 - y) * row, row, image.rgba.data() + static_cast<size_t>(y) * row);
+        std::copy_n(rows.data() + static_cast<size_t>(height - 1 - y) * row, row,
+                    image.rgba.data() + static_cast<size_t>(y) * row);
     for (size_t i = 3; i < image.rgba.size(); i += 4) image.rgba[i] = 255;
     return image;
 }
@@ -104,7 +106,8 @@ std::vector<gl::LineSegment> insightLines(const core::PerspectiveCamera& camera,
     };
     add(core::clipVolumeEdges(camera.clipFromWorld()), glm::vec3(1.0f));
     add(core::bodyEdges(setup.body), glm::vec3(0.2f, 1.0f, 0.3f));
-    for (const core::ShadowView& view : setup.views) add(core::clipVolumeEdges(view.clipFromWorld), glm::vec3(1.0f, 0.55f, 0.1f));
+    for (const core::ShadowView& view : setup.views)
+        add(core::clipVolumeEdges(view.clipFromWorld), glm::vec3(1.0f, 0.55f, 0.1f));
     return lines;
 }
 
@@ -187,12 +190,16 @@ int run(const ViewerArgs& args, app::StateOptions state) {
         // Input: the camera unless ImGui has the keyboard / mouse.
         if (!io.WantCaptureKeyboard) {
             const auto key = [&](int k) { return glfwGetKey(glfw, k) == GLFW_PRESS ? 1.0 : 0.0; };
-            const core::Vec3 motion(key(GLFW_KEY_D) - key(GLFW_KEY_A), key(GLFW_KEY_E) - key(GLFW_KEY_Q), key(GLFW_KEY_W) - key(GLFW_KEY_S));
+            const core::Vec3 motion(key(GLFW_KEY_D) - key(GLFW_KEY_A), key(GLFW_KEY_E) - key(GLFW_KEY_Q),
+                                    key(GLFW_KEY_W) - key(GLFW_KEY_S));
             if (motion != core::Vec3(0.0)) {
-                if (debugView) debug.move(motion, seconds);
-                else camera.move(motion, seconds);
+                if (debugView)
+                    debug.move(motion, seconds);
+                else
+                    camera.move(motion, seconds);
             }
-            if (ImGui::IsKeyPressed(GLFW_KEY_F, false)) camera.frame(renderer.wsSceneBounds(), first->camera.fovYDegrees), frames.cut();
+            if (ImGui::IsKeyPressed(GLFW_KEY_F, false))
+                camera.frame(renderer.wsSceneBounds(), first->camera.fovYDegrees), frames.cut();
             if (ImGui::IsKeyPressed(GLFW_KEY_H, false)) showPanel = !showPanel;
             if (ImGui::IsKeyPressed(GLFW_KEY_O, false)) {
                 orbiting = !orbiting;
@@ -212,19 +219,24 @@ int run(const ViewerArgs& args, app::StateOptions state) {
             }
             if (io.KeyCtrl && ImGui::IsKeyPressed(GLFW_KEY_S, false)) {
                 const core::Status s = app::saveState(state, args.saveState);
-                message = s ? "saved " + args.saveState + " (shadowkit render --state " + args.saveState + ")" : s.error();
+                message =
+                    s ? "saved " + args.saveState + " (shadowkit render --state " + args.saveState + ")" : s.error();
             }
             if ((ImGui::IsKeyPressed(GLFW_KEY_T, false) || (args.truthAtStart && frame == 1)) && drawn) {
-                const core::Status s = truth.start(**measurer, drawn->camera, drawn->light, drawn->setup, drawn->settings);
+                const core::Status s =
+                    truth.start(**measurer, drawn->camera, drawn->light, drawn->setup, drawn->settings);
                 message = s ? "evaluating against truth ..." : s.error();
             }
         }
         if (!io.WantCaptureMouse) {
-            if (glfwGetMouseButton(glfw, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS && (io.MouseDelta.x != 0.0f || io.MouseDelta.y != 0.0f))
-            {
-                if (debugView) debug.turn(io.MouseDelta.x, io.MouseDelta.y);
-                else if (orbiting) camera.orbit(io.MouseDelta.x, io.MouseDelta.y, orbitTarget);
-                else camera.turn(io.MouseDelta.x, io.MouseDelta.y);
+            if (glfwGetMouseButton(glfw, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS &&
+                (io.MouseDelta.x != 0.0f || io.MouseDelta.y != 0.0f)) {
+                if (debugView)
+                    debug.turn(io.MouseDelta.x, io.MouseDelta.y);
+                else if (orbiting)
+                    camera.orbit(io.MouseDelta.x, io.MouseDelta.y, orbitTarget);
+                else
+                    camera.turn(io.MouseDelta.x, io.MouseDelta.y);
             }
             if (io.MouseWheel != 0.0f) {
                 const double factor = std::pow(1.25, static_cast<double>(io.MouseWheel));
@@ -240,7 +252,8 @@ int run(const ViewerArgs& args, app::StateOptions state) {
             if (io.KeyShift && glfwGetMouseButton(glfw, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS && drawn &&
                 (io.MouseDelta.x != 0.0f || io.MouseDelta.y != 0.0f)) {
                 const core::Vec3 towards = drawn->light.wsTowardsLight();
-                const double elevation = glm::degrees(std::asin(std::clamp(towards.y, -1.0, 1.0))) - 0.25 * io.MouseDelta.y;
+                const double elevation =
+                    glm::degrees(std::asin(std::clamp(towards.y, -1.0, 1.0))) - 0.25 * io.MouseDelta.y;
                 const double azimuth = core::azimuthDegreesOf(towards) + 0.25 * io.MouseDelta.x;
                 state["sun-elevation"] = {fmt::format("{:.4g}", std::clamp(elevation, 1.0, 89.0))};
                 state["sun-azimuth"] = {fmt::format("{:.4g}", std::fmod(azimuth + 360.0, 360.0))};
@@ -251,7 +264,8 @@ int run(const ViewerArgs& args, app::StateOptions state) {
         // Time: movers, the sun path and the camera path at sceneTime (as `render --time`).
         if (playing) sceneTime += seconds;
         const app::Timeline* timeline = frames.timeline();
-        if (timeline && timeline->path && timeline->frames.size() > 1 && sceneTime > timeline->frames.back().time) sceneTime = 0.0;
+        if (timeline && timeline->path && timeline->frames.size() > 1 && sceneTime > timeline->frames.back().time)
+            sceneTime = 0.0;
         if (sceneTime != animatedTime) {
             std::vector<uint32_t> moved;
             scene::animate(world, sceneTime, &moved);
@@ -267,8 +281,10 @@ int run(const ViewerArgs& args, app::StateOptions state) {
             state["eye"] = {vec3Text(camera.wsEye)};
             state["dir"] = {vec3Text(camera.wsDirection())};
             state["size"] = {fmt::format("{}x{}", width, height)};
-            if (sceneTime != 0.0) state["time"] = {fmt::format("{:.6g}", sceneTime)};
-            else state.erase("time");
+            if (sceneTime != 0.0)
+                state["time"] = {fmt::format("{:.6g}", sceneTime)};
+            else
+                state.erase("time");
         }
         if (dirty) { // an option changed: a cut (held lattices refitted, auto searches afresh)
             const core::Status s = frames.setOptions(state, world);
@@ -278,10 +294,12 @@ int run(const ViewerArgs& args, app::StateOptions state) {
 
         // Draw the frame with the libraries, as `render` does.
         if (frames.ready() && width > 0 && height > 0) {
-            auto frameDrawn = frames.draw(renderer, world, camera.wsEye, camera.wsDirection(), width, height, sceneTime);
+            auto frameDrawn =
+                frames.draw(renderer, world, camera.wsEye, camera.wsDirection(), width, height, sceneTime);
             if (frameDrawn) {
                 const frame::PreparedFrame& f = frameDrawn->frame;
-                drawn = DrawnFrame{f.view.camera, f.view.light, f.setup, f.settings, frameDrawn->stats, f.setupMilliseconds};
+                drawn = DrawnFrame{f.view.camera, f.view.light,      f.setup,
+                                   f.settings,    frameDrawn->stats, f.setupMilliseconds};
                 ++drawnFrames;
                 // A camera path leads: the fly camera follows it.
                 if (frames.timeline()->path) {
@@ -297,7 +315,8 @@ int run(const ViewerArgs& args, app::StateOptions state) {
                     seenFrom.wsDirection = debug.wsDirection();
                     seenFrom.zFar = 4.0 * drawn->camera.zFar;
                     seenFrom.zNear = std::max(drawn->camera.zNear, 0.5);
-                    if (auto s = renderer.render(seenFrom, drawn->light, drawn->setup, drawn->settings); !s) message = s.error();
+                    if (auto s = renderer.render(seenFrom, drawn->light, drawn->setup, drawn->settings); !s)
+                        message = s.error();
                     if (wireframes) renderer.drawLines(seenFrom, insightLines(drawn->camera, drawn->setup));
                 } else if (wireframes) {
                     renderer.drawLines(drawn->camera, insightLines(drawn->camera, drawn->setup));
@@ -323,7 +342,8 @@ int run(const ViewerArgs& args, app::StateOptions state) {
                 truthFigures = all.figures;
                 truthPerLight.clear();
                 if (r.lights.size() > 1)
-                    for (const auto& [name, comparison] : r.lights) truthPerLight.emplace_back(name, comparison.figures);
+                    for (const auto& [name, comparison] : r.lights)
+                        truthPerLight.emplace_back(name, comparison.figures);
                 shadowedRight = std::count(all.classes.begin(), all.classes.end(), eval::PixelClass::ShadowCorrect);
                 errorImage.upload(eval::errorMapImage(all, r.width, r.height));
                 aliasingImage.upload(eval::aliasingMapImage(all, r.width, r.height));
@@ -339,19 +359,22 @@ int run(const ViewerArgs& args, app::StateOptions state) {
             ImGui::Begin("shadowkit");
             if (drawn) {
                 const gl::FrameStats& st = drawn->stats;
-                ImGui::Text("%s  %dx%d  map %d", core::techniqueName(drawn->setup.technique).data(), drawn->settings.width,
-                            drawn->settings.height, drawn->setup.mapSize);
+                ImGui::Text("%s  %dx%d  map %d", core::techniqueName(drawn->setup.technique).data(),
+                            drawn->settings.width, drawn->settings.height, drawn->setup.mapSize);
                 ImGui::Text("set-up %.3f ms CPU   culling %.1f ms", drawn->setupMs, st.cullMilliseconds);
-                for (const auto& [name, pass] : {std::pair{"shadow", &st.shadow}, {"local ", &st.local}, {"main  ", &st.main}})
+                for (const auto& [name, pass] :
+                     {std::pair{"shadow", &st.shadow}, {"local ", &st.local}, {"main  ", &st.main}})
                     ImGui::Text("%s %7.2f ms GPU  %6.3f M tris  %zu inst  %zu draws", name, pass->gpuMilliseconds,
                                 static_cast<double>(pass->triangles) * 1e-6, pass->instances, pass->drawCalls);
                 if (drawn->settings.culling == gl::Culling::Occlusion)
-                    ImGui::Text("CHC++  %zu nodes visited, %zu queries, %zu waits", static_cast<size_t>(st.occlusion.nodesVisited),
-                                static_cast<size_t>(st.occlusion.queriesIssued), static_cast<size_t>(st.occlusion.waits));
+                    ImGui::Text("CHC++  %zu nodes visited, %zu queries, %zu waits",
+                                static_cast<size_t>(st.occlusion.nodesVisited),
+                                static_cast<size_t>(st.occlusion.queriesIssued),
+                                static_cast<size_t>(st.occlusion.waits));
                 if (st.localMaps + st.skippedFaces > 0)
                     ImGui::Text("local lights  %d maps, %d cube faces skipped", st.localMaps, st.skippedFaces);
-                ImGui::PlotLines("frame ms", frameMs.data(), static_cast<int>(frameMs.size()), static_cast<int>(frameIndex % frameMs.size()),
-                                 nullptr, 0.0f, FLT_MAX, ImVec2(0, 40));
+                ImGui::PlotLines("frame ms", frameMs.data(), static_cast<int>(frameMs.size()),
+                                 static_cast<int>(frameIndex % frameMs.size()), nullptr, 0.0f, FLT_MAX, ImVec2(0, 40));
             }
             if (truth.running()) ImGui::ProgressBar(static_cast<float>(truth.progress()), ImVec2(-1, 0), "truth");
             if (truthFigures)
@@ -367,19 +390,24 @@ int run(const ViewerArgs& args, app::StateOptions state) {
                 defaults.sunElevationDegrees = glm::degrees(std::asin(std::clamp(towards.y, -1.0, 1.0)));
                 defaults.sunAzimuthDegrees = core::azimuthDegreesOf(towards);
                 const core::BiasSettings bias = gl::biasFor(drawn->setup, drawn->settings);
-                defaults.biasSlope = bias.slope, defaults.biasConstant = bias.constant, defaults.normalOffset = bias.normalOffset;
+                defaults.biasSlope = bias.slope, defaults.biasConstant = bias.constant,
+                defaults.normalOffset = bias.normalOffset;
             }
             dirty |= drawOptionsPanel(state, defaults);
             if (ImGui::CollapsingHeader("Time", ImGuiTreeNodeFlags_DefaultOpen)) {
                 ImGui::Checkbox("play (Space)", &playing);
-                const double end = frames.timeline() && frames.timeline()->path && frames.timeline()->frames.size() > 1 ? frames.timeline()->frames.back().time : 120.0;
+                const double end = frames.timeline() && frames.timeline()->path && frames.timeline()->frames.size() > 1
+                                       ? frames.timeline()->frames.back().time
+                                       : 120.0;
                 float t = static_cast<float>(sceneTime);
                 if (ImGui::SliderFloat("time (s)", &t, 0.0f, static_cast<float>(end), "%.2f")) sceneTime = t;
-                if (frames.timeline() && frames.timeline()->path) ImGui::TextUnformatted("camera path: the camera follows it");
+                if (frames.timeline() && frames.timeline()->path)
+                    ImGui::TextUnformatted("camera path: the camera follows it");
             }
             if (ImGui::CollapsingHeader("Wireframes", ImGuiTreeNodeFlags_DefaultOpen)) {
                 ImGui::Checkbox("frustum (white), B (green), maps (orange)", &wireframes);
-                if (ImGui::Checkbox("debug camera (C)", &debugView)) debugPlaced = false, wireframes = wireframes || debugView;
+                if (ImGui::Checkbox("debug camera (C)", &debugView))
+                    debugPlaced = false, wireframes = wireframes || debugView;
             }
             ImGui::End();
             // The insets, on the right: the shadow map(s) and, after T, the error and
@@ -414,13 +442,15 @@ int run(const ViewerArgs& args, app::StateOptions state) {
     // --frames: the last frame as `render --state` draws it (no panel), and the options.
     int rc = 0;
     if (!args.screenshot.empty() && args.frames > 0) {
-        if (!drawn) rc = fail("--screenshot: no frame was drawn" + (optionsError.empty() ? "" : ": " + optionsError));
-        else if (auto s = scene::writePng(renderer.readColor(), args.screenshot); !s) rc = fail("--screenshot: " + s.error());
+        if (!drawn)
+            rc = fail("--screenshot: no frame was drawn" + (optionsError.empty() ? "" : ": " + optionsError));
+        else if (auto s = scene::writePng(renderer.readColor(), args.screenshot); !s)
+            rc = fail("--screenshot: " + s.error());
         if (auto s = app::saveState(state, args.saveState); !s) rc = fail("--save-state: " + s.error());
     }
     if (truthFigures)
-        fmt::print("truth: wrong {:.2f} % of {} valid pixels, {} drawn in shadow where truth has shadow\n", truthFigures->wrongPct,
-                   truthFigures->validPx, shadowedRight);
+        fmt::print("truth: wrong {:.2f} % of {} valid pixels, {} drawn in shadow where truth has shadow\n",
+                   truthFigures->wrongPct, truthFigures->validPx, shadowedRight);
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - loopStart).count();
     fmt::print("drew {} frames in {:.2f} s: {:.1f} frames/s\n", drawnFrames, wall, drawnFrames / std::max(wall, 1e-9));
     ImGui_ImplOpenGL3_Shutdown();
@@ -437,13 +467,18 @@ int main(int argc, char** argv) {
     viewer::ViewerArgs args;
     CLI::App app{"shadowkit-viewer: the scene in a window with every option of `render` live"};
     args.options.addTo(app);
-    app.add_option("--frames", args.frames, "draw this many frames, then exit (0: until the window closes)")->check(CLI::NonNegativeNumber);
-    app.add_option("--screenshot", args.screenshot, "P writes the frame here; with --frames, the last frame is written on exit");
+    app.add_option("--frames", args.frames, "draw this many frames, then exit (0: until the window closes)")
+        ->check(CLI::NonNegativeNumber);
+    app.add_option("--screenshot", args.screenshot,
+                   "P writes the frame here; with --frames, the last frame is written on exit");
     app.add_option("--window-shot", args.windowShot, "with --frames: the window, panel included, written on exit");
-    app.add_flag("--wireframes", args.wireframes, "draw the view frustum, the focus body B and the shadow maps' volumes");
+    app.add_flag("--wireframes", args.wireframes,
+                 "draw the view frustum, the focus body B and the shadow maps' volumes");
     app.add_flag("--debug-camera", args.debugCamera, "start with the debug camera (C): the set-up seen from outside");
-    app.add_flag("--truth", args.truthAtStart, "evaluate the first frame against truth at once (T); --frames waits for it");
-    app.add_option("--save-state", args.saveState, "where Ctrl+S saves the options (with --frames: on exit too)")->capture_default_str();
+    app.add_flag("--truth", args.truthAtStart,
+                 "evaluate the first frame against truth at once (T); --frames waits for it");
+    app.add_option("--save-state", args.saveState, "where Ctrl+S saves the options (with --frames: on exit too)")
+        ->capture_default_str();
     auto expanded = app::expandState(std::vector<std::string>(argv + 1, argv + argc));
     if (!expanded) return viewer::fail(expanded.errorInfo());
     app.add_option("--state", "options saved by Ctrl+S (JSON): given flags win");
@@ -457,10 +492,12 @@ int main(int argc, char** argv) {
         fmt::print(stderr, "shadowkit-viewer: error: {} (see shadowkit-viewer --help)\n", e.what());
         return 1;
     }
-    if (auto s = args.options.technique.check(/*measuresFrames=*/true, /*takesAuto=*/true); !s) return viewer::fail(s.errorInfo());
+    if (auto s = args.options.technique.check(/*measuresFrames=*/true, /*takesAuto=*/true); !s)
+        return viewer::fail(s.errorInfo());
     if (auto s = args.options.render.check(); !s) return viewer::fail(s.errorInfo());
     for (const std::string* file : {&args.screenshot, &args.saveState})
         if (auto s = app::checkWritable("--screenshot/--save-state", *file); !s) return viewer::fail(s.errorInfo());
-    return viewer::run(args, viewer::givenOptions(app, given, {"frames", "screenshot", "save-state", "state", "window-shot", "truth", "wireframes",
-                                                            "debug-camera"}));
+    return viewer::run(args, viewer::givenOptions(app, given,
+                                                  {"frames", "screenshot", "save-state", "state", "window-shot",
+                                                   "truth", "wireframes", "debug-camera"}));
 }

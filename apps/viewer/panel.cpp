@@ -25,7 +25,8 @@ std::string valueOf(const StateOptions& s, const std::string& name, const std::s
 
 void set(StateOptions& s, const std::string& name, const std::string& value) { s[name] = {value}; }
 
-bool combo(StateOptions& s, const char* label, const char* name, std::span<const char* const> choices, const char* fallback) {
+bool combo(StateOptions& s, const char* label, const char* name, std::span<const char* const> choices,
+           const char* fallback) {
     const std::string current = valueOf(s, name, fallback);
     bool changed = false;
     if (ImGui::BeginCombo(label, current.c_str())) {
@@ -39,7 +40,8 @@ bool combo(StateOptions& s, const char* label, const char* name, std::span<const
     return changed;
 }
 
-bool sliderFloat(StateOptions& s, const char* label, const char* name, float lo, float hi, float fallback, bool logarithmic = false) {
+bool sliderFloat(StateOptions& s, const char* label, const char* name, float lo, float hi, float fallback,
+                 bool logarithmic = false) {
     float v = static_cast<float>(std::atof(valueOf(s, name, fmt::format("{}", fallback)).c_str()));
     if (!ImGui::SliderFloat(label, &v, lo, hi, "%.3g", logarithmic ? ImGuiSliderFlags_Logarithmic : 0)) return false;
     set(s, name, fmt::format("{}", v));
@@ -57,8 +59,10 @@ bool sliderInt(StateOptions& s, const char* label, const char* name, int lo, int
 bool checkbox(StateOptions& s, const char* label, const char* name) {
     bool on = s.count(name) > 0 && valueOf(s, name, "true") != "false";
     if (!ImGui::Checkbox(label, &on)) return false;
-    if (on) set(s, name, "true");
-    else s.erase(name);
+    if (on)
+        set(s, name, "true");
+    else
+        s.erase(name);
     return true;
 }
 
@@ -96,8 +100,10 @@ bool drawOptionsPanel(StateOptions& s, const PanelDefaults& d) {
     if (ImGui::CollapsingHeader("Sun", ImGuiTreeNodeFlags_DefaultOpen)) {
         bool night = valueOf(s, "sun", "") == "off";
         if (ImGui::Checkbox("night (--sun off)", &night)) {
-            if (night) set(s, "sun", "off");
-            else s.erase("sun");
+            if (night)
+                set(s, "sun", "off");
+            else
+                s.erase("sun");
             changed = true;
         }
         if (!night) {
@@ -121,8 +127,10 @@ bool drawOptionsPanel(StateOptions& s, const PanelDefaults& d) {
             // A fixed n replaces the formula while it is set.
             bool fixedN = s.count("lispsm-n") > 0;
             if (ImGui::Checkbox("fixed n", &fixedN)) {
-                if (fixedN) set(s, "lispsm-n", "10");
-                else s.erase("lispsm-n");
+                if (fixedN)
+                    set(s, "lispsm-n", "10");
+                else
+                    s.erase("lispsm-n");
                 changed = true;
             }
             if (fixedN) changed |= sliderFloat(s, "n (m)", "lispsm-n", 0.1f, 1000.0f, 10.0f, true);
@@ -131,13 +139,16 @@ bool drawOptionsPanel(StateOptions& s, const PanelDefaults& d) {
         if (t == "lispsm" || t == "csm") {
             bool measured = valueOf(s, "visible-depth", "") == "auto";
             if (ImGui::Checkbox("visible depth from the frame", &measured)) {
-                if (measured) set(s, "visible-depth", "auto");
-                else s.erase("visible-depth");
+                if (measured)
+                    set(s, "visible-depth", "auto");
+                else
+                    s.erase("visible-depth");
                 changed = true;
             }
         }
         if (t == "tsm")
-            changed |= sliderFloat(s, "focus", "tsm-focus", 0.0f, 0.9f, static_cast<float>(core::TsmOptions{}.focusFraction));
+            changed |=
+                sliderFloat(s, "focus", "tsm-focus", 0.0f, 0.9f, static_cast<float>(core::TsmOptions{}.focusFraction));
         if (t == "csm") {
             changed |= sliderInt(s, "cascades", "cascades", 1, 8, 4);
             changed |= sliderFloat(s, "lambda", "lambda", 0.0f, 1.0f, 0.9f);
@@ -145,9 +156,12 @@ bool drawOptionsPanel(StateOptions& s, const PanelDefaults& d) {
             std::array<char, 256> splits{};
             const std::string current = valueOf(s, "splits", "");
             current.copy(splits.data(), splits.size() - 1);
-            if (ImGui::InputText("splits near,...,far", splits.data(), splits.size(), ImGuiInputTextFlags_EnterReturnsTrue)) {
-                if (splits[0] == '\0') s.erase("splits");
-                else set(s, "splits", splits.data());
+            if (ImGui::InputText("splits near,...,far", splits.data(), splits.size(),
+                                 ImGuiInputTextFlags_EnterReturnsTrue)) {
+                if (splits[0] == '\0')
+                    s.erase("splits");
+                else
+                    set(s, "splits", splits.data());
                 changed = true;
             }
             changed |= combo(s, "warp", "cascade-warp", kWarps, "none");
@@ -168,7 +182,8 @@ bool drawOptionsPanel(StateOptions& s, const PanelDefaults& d) {
         changed |= combo(s, "cull", "cull", kCull, "auto");
         changed |= combo(s, "depth layout", "depth-layout", kLayouts, "auto");
         if (ImGui::Button("reset to recommended")) {
-            for (const char* name : {"bias-slope", "bias-constant", "normal-offset", "receiver-plane-bias", "cull", "depth-layout"})
+            for (const char* name :
+                 {"bias-slope", "bias-constant", "normal-offset", "receiver-plane-bias", "cull", "depth-layout"})
                 s.erase(name);
             changed = true;
         }

@@ -26,8 +26,9 @@ class TruthJob {
 public:
     // Starts evaluating this frame (the renderer's frame: same camera, light, set-up,
     // settings, and the renderer's local lights).
-    core::Status start(measure::Measurer& measurer, const core::PerspectiveCamera& camera, const core::DirectionalLight& light,
-                       const core::ShadowSetup& setup, const gl::RenderSettings& settings);
+    core::Status start(measure::Measurer& measurer, const core::PerspectiveCamera& camera,
+                       const core::DirectionalLight& light, const core::ShadowSetup& setup,
+                       const gl::RenderSettings& settings);
     bool running() const { return m_result.valid(); }
     bool ready() const { return running() && m_result.wait_for(std::chrono::seconds(0)) == std::future_status::ready; }
     double progress() const { return m_progress.load(); }

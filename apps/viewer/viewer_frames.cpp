@@ -30,8 +30,9 @@ void ViewerFrames::cut() {
     if (m_driver) m_driver->reset();
 }
 
-core::Result<frame::DrawnFrame> ViewerFrames::draw(gl::Renderer& renderer, const scene::Scene& world, const core::Vec3& wsEye,
-                                                   const core::Vec3& wsDirection, int width, int height, double t) {
+core::Result<frame::DrawnFrame> ViewerFrames::draw(gl::Renderer& renderer, const scene::Scene& world,
+                                                   const core::Vec3& wsEye, const core::Vec3& wsDirection, int width,
+                                                   int height, double t) {
     if (!ready()) return core::makeError("viewer: no valid options to draw with");
     scene::ResolvedView view = *m_still;
     // What the state file will say: render --state reads these texts back.

@@ -13,7 +13,9 @@
 #include <shadowkit/core/engine_camera.h>
 #include <shadowkit/core/output_conventions.h>
 
+// epoxy before GLFW, which would otherwise include the system GL header first.
 #include <epoxy/gl.h>
+
 #include <GLFW/glfw3.h>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
@@ -45,12 +47,12 @@ void addQuad(std::vector<Vertex>& out, glm::vec3 corner, glm::vec3 edgeA, glm::v
 
 void addBox(std::vector<Vertex>& out, glm::vec3 lo, glm::vec3 hi) {
     const glm::vec3 d = hi - lo, x(d.x, 0, 0), y(0, d.y, 0), z(0, 0, d.z);
-    addQuad(out, lo, y, x);          // -z
-    addQuad(out, lo + z, x, y);      // +z
-    addQuad(out, lo, z, y);          // -x
-    addQuad(out, lo + x, y, z);      // +x
-    addQuad(out, lo + y, z, x);      // +y
-    addQuad(out, lo, x, z);          // -y
+    addQuad(out, lo, y, x);     // -z
+    addQuad(out, lo + z, x, y); // +z
+    addQuad(out, lo, z, y);     // -x
+    addQuad(out, lo + x, y, z); // +x
+    addQuad(out, lo + y, z, x); // +y
+    addQuad(out, lo, x, z);     // -y
 }
 
 std::vector<Vertex> makeScene() {
@@ -181,7 +183,8 @@ int main(int argc, char** argv) {
     if (!setup) return std::fprintf(stderr, "minimal_gl: %s\n", setup.error().c_str()), 1;
     const sk::BiasSettings bias = sk::recommendedBias(setup->technique, setup->depthLayout);
     std::vector<sk::EngineShadowView> views;
-    for (const sk::ShadowView& v : setup->views) views.push_back(sk::toEngineView(v, *setup, sk::OutputConventions::openGL()));
+    for (const sk::ShadowView& v : setup->views)
+        views.push_back(sk::toEngineView(v, *setup, sk::OutputConventions::openGL()));
 
     // ---- GPU objects ----
     const std::vector<Vertex> scene = makeScene();
@@ -192,7 +195,8 @@ int main(int argc, char** argv) {
     glVertexArrayVertexBuffer(vao, 0, vbo, 0, sizeof(Vertex));
     for (GLuint a : {0u, 1u}) {
         glEnableVertexArrayAttrib(vao, a);
-        glVertexArrayAttribFormat(vao, a, 3, GL_FLOAT, GL_FALSE, a == 0 ? offsetof(Vertex, position) : offsetof(Vertex, normal));
+        glVertexArrayAttribFormat(vao, a, 3, GL_FLOAT, GL_FALSE,
+                                  a == 0 ? offsetof(Vertex, position) : offsetof(Vertex, normal));
         glVertexArrayAttribBinding(vao, a, 0);
     }
     GLuint maps, mapTarget;
@@ -246,8 +250,10 @@ int main(int argc, char** argv) {
     glUniformMatrix4fv(uniform("clipFromWorld"), 1, GL_FALSE, glm::value_ptr(glm::mat4(clipFromView * viewFromWorld)));
     for (size_t i = 0; i < views.size(); ++i) {
         const std::string at = "[" + std::to_string(i) + "]";
-        glUniformMatrix4fv(uniform(("textureFromWorld" + at).c_str()), 1, GL_FALSE, glm::value_ptr(glm::mat4(views[i].textureFromWorld)));
-        glUniform4fv(uniform(("linearDepthFromWorld" + at).c_str()), 1, glm::value_ptr(glm::vec4(views[i].linearDepthFromWorld)));
+        glUniformMatrix4fv(uniform(("textureFromWorld" + at).c_str()), 1, GL_FALSE,
+                           glm::value_ptr(glm::mat4(views[i].textureFromWorld)));
+        glUniform4fv(uniform(("linearDepthFromWorld" + at).c_str()), 1,
+                     glm::value_ptr(glm::vec4(views[i].linearDepthFromWorld)));
         glUniform4f(uniform(("splits" + at).c_str()), float(views[i].split->x), float(views[i].split->y), 0.0f, 0.0f);
     }
     glUniform1i(uniform("mapCount"), GLint(views.size()));

@@ -20,7 +20,7 @@ int main() {
     shadowkit_setup out;
     char error[200];
     if (shadowkit_compute_setup(&c, &out, error, sizeof error) != 0) return 2;
-    std::printf("shadowkit %s: %s set-up with %zu body points\n", SHADOWKIT_VERSION_STRING, techniqueName(setup->technique).data(),
-                setup->body.vertices().size());
+    std::printf("shadowkit %s: %s set-up with %zu body points\n", SHADOWKIT_VERSION_STRING,
+                techniqueName(setup->technique).data(), setup->body.vertices().size());
     return 0;
 }

@@ -42,8 +42,10 @@ TEST_F(ViewerFramesTest, CameraMovesKeepHeldLatticesAndAnOptionChangeRefits) {
         auto f = walk(frames, i);
         ASSERT_TRUE(f) << f.error();
         ASSERT_TRUE(f->frame.refits);
-        if (i == 0) EXPECT_EQ(f->frame.refits->views, 1);
-        else laterRefits += f->frame.refits->views;
+        if (i == 0)
+            EXPECT_EQ(f->frame.refits->views, 1);
+        else
+            laterRefits += f->frame.refits->views;
     }
     EXPECT_LE(laterRefits, 1) << "held lattices were dropped on camera moves";
     // The panel changed an option: a cut.

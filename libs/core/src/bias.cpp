@@ -13,7 +13,8 @@ namespace shadowkit::core {
 Status validate(const BiasSettings& b) {
     if (!(b.slope >= 0.0 && b.slope <= 100.0)) return fieldError("bias.slope", "must be in [0, 100]"); // NaN-safe
     if (!(b.constant >= 0.0 && b.constant <= 1e6)) return fieldError("bias.constant", "must be in [0, 1e6]");
-    if (!(b.normalOffset >= 0.0 && b.normalOffset <= 10.0)) return fieldError("bias.normal_offset", "must be in [0, 10] texels");
+    if (!(b.normalOffset >= 0.0 && b.normalOffset <= 10.0))
+        return fieldError("bias.normal_offset", "must be in [0, 10] texels");
     return Ok{};
 }
 
@@ -43,7 +44,8 @@ BiasSettings recommendedBias(Technique technique, DepthLayout, const FilterSetti
         b.constant = 2.0;
         break;
     case Technique::Standard:
-    case Technique::Focused: break;
+    case Technique::Focused:
+        break;
     }
     // Kernels wider than the hardware's 2x2 compare taps texels away from the receiver: on a
     // surface sloped in light space they self-shadow unless the reference depth follows the

@@ -9,8 +9,7 @@ Status PerspectiveCamera::validate() const {
     if (!isFinite(wsEye)) return makeError("camera eye: must be finite");
     if (!isFinite(wsDirection) || glm::length(wsDirection) < 1e-12)
         return makeError("camera direction: must be a finite, non-zero vector");
-    if (!isFinite(wsUp) || glm::length(wsUp) < 1e-12)
-        return makeError("camera up: must be a finite, non-zero vector");
+    if (!isFinite(wsUp) || glm::length(wsUp) < 1e-12) return makeError("camera up: must be a finite, non-zero vector");
     if (glm::length(glm::cross(glm::normalize(wsDirection), glm::normalize(wsUp))) < 1e-6)
         return makeError("camera up: must not be parallel to the view direction");
     if (!(fovYDegrees > 0.0 && fovYDegrees < 180.0)) // NaN-safe
@@ -19,8 +18,8 @@ Status PerspectiveCamera::validate() const {
     if (!(zNear > 0.0 && std::isfinite(zNear)))
         return makeError("camera near: must be > 0, got " + std::to_string(zNear));
     if (!(zFar > zNear && std::isfinite(zFar)))
-        return makeError("camera near/far: near must be < far (near " + std::to_string(zNear) +
-                         ", far " + std::to_string(zFar) + ")");
+        return makeError("camera near/far: near must be < far (near " + std::to_string(zNear) + ", far " +
+                         std::to_string(zFar) + ")");
     return Ok{};
 }
 
@@ -61,12 +60,12 @@ std::array<Plane, 6> PerspectiveCamera::wsFrustumPlanes() const {
         return Plane::fromPointNormal(a, n);
     };
     return {
-        Plane::fromPointNormal(c[0], -forward),  // near
-        Plane::fromPointNormal(c[4], forward),   // far
-        planeThrough(wsEye, c[4], c[7]),         // left
-        planeThrough(wsEye, c[5], c[6]),         // right
-        planeThrough(wsEye, c[4], c[5]),         // bottom
-        planeThrough(wsEye, c[7], c[6]),         // top
+        Plane::fromPointNormal(c[0], -forward), // near
+        Plane::fromPointNormal(c[4], forward),  // far
+        planeThrough(wsEye, c[4], c[7]),        // left
+        planeThrough(wsEye, c[5], c[6]),        // right
+        planeThrough(wsEye, c[4], c[5]),        // bottom
+        planeThrough(wsEye, c[7], c[6]),        // top
     };
 }
 

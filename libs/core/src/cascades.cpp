@@ -85,7 +85,8 @@ ShadowView stableView(const ShadowSetupInputs& in, const PerspectiveCamera& slic
 } // namespace
 
 Status validate(const CascadeOptions& o) {
-    if (o.count < 1 || o.count > 8) return fieldError("cascades.count", "must be in [1, 8], got " + std::to_string(o.count));
+    if (o.count < 1 || o.count > 8)
+        return fieldError("cascades.count", "must be in [1, 8], got " + std::to_string(o.count));
     if (!(o.lambda >= 0.0 && o.lambda <= 1.0)) return fieldError("cascades.lambda", "must be in [0, 1]");
     if (!(o.blendBand >= 0.0 && o.blendBand <= 0.5)) return fieldError("cascades.blend_band", "must be in [0, 0.5]");
     if (o.stabilize && o.warp != CascadeWarp::None)
@@ -102,10 +103,13 @@ Status validateCascades(const ShadowSetupInputs& in) {
                           "stabilisation needs an even map size (the map's edges must fall on the texel grid)");
     if (!o.splits.empty()) {
         if (o.splits.size() != static_cast<size_t>(o.count) + 1)
-            return fieldError("cascades.splits", "explicit splits need count + 1 = " + std::to_string(o.count + 1) + " distances");
+            return fieldError("cascades.splits",
+                              "explicit splits need count + 1 = " + std::to_string(o.count + 1) + " distances");
         const double tolerance = 1e-9 * in.camera.zFar;
-        if (std::abs(o.splits.front() - in.camera.zNear) > tolerance || std::abs(o.splits.back() - in.camera.zFar) > tolerance)
-            return fieldError("cascades.splits", "explicit splits must start at the near plane and end at the far plane");
+        if (std::abs(o.splits.front() - in.camera.zNear) > tolerance ||
+            std::abs(o.splits.back() - in.camera.zFar) > tolerance)
+            return fieldError("cascades.splits",
+                              "explicit splits must start at the near plane and end at the far plane");
         for (size_t i = 1; i < o.splits.size(); ++i)
             if (!(o.splits[i] > o.splits[i - 1])) return fieldError("cascades.splits", "explicit splits must increase");
     }
@@ -121,7 +125,8 @@ ShadowSetup computeCascades(const ShadowSetupInputs& in) {
     if (o.splits.empty()) {
         double zNear = in.camera.zNear, zFar = in.camera.zFar;
         if (in.visibleDepth) {
-            const double visibleNear = std::max(zNear, in.visibleDepth->x), visibleFar = std::min(zFar, in.visibleDepth->y);
+            const double visibleNear = std::max(zNear, in.visibleDepth->x),
+                         visibleFar = std::min(zFar, in.visibleDepth->y);
             if (visibleFar > visibleNear) zNear = visibleNear, zFar = visibleFar;
         }
         z = practicalSplits(zNear, zFar, o.count, o.lambda);
@@ -145,7 +150,8 @@ ShadowSetup computeCascades(const ShadowSetupInputs& in) {
             // The slice's validated inputs cannot fail: same light and bounds, near < far.
             ShadowSetup sub = computeShadowSetup(slice).value();
             view = sub.views[0];
-            for (const std::string& f : sub.fallbacks) setup.fallbacks.push_back("cascade " + std::to_string(i) + ": " + f);
+            for (const std::string& f : sub.fallbacks)
+                setup.fallbacks.push_back("cascade " + std::to_string(i) + ": " + f);
         }
         view.split = Vec2(start, z[k + 1]);
         setup.views.push_back(view);

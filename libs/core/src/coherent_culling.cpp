@@ -238,8 +238,9 @@ void CoherentCulling::issueBatch() {
     std::vector<uint32_t>& batch = m_invisibleQueue;
     // Long-hidden nodes together: they are the ones worth grouping.
     if (m_options.multiQueries)
-        std::stable_sort(batch.begin(), batch.end(),
-                         [this](uint32_t a, uint32_t b) { return m_nodes[a].invisibleFrames > m_nodes[b].invisibleFrames; });
+        std::stable_sort(batch.begin(), batch.end(), [this](uint32_t a, uint32_t b) {
+            return m_nodes[a].invisibleFrames > m_nodes[b].invisibleFrames;
+        });
     size_t i = 0;
     while (i < batch.size()) {
         size_t n = 1;
@@ -256,7 +257,8 @@ void CoherentCulling::issueBatch() {
             }
         }
         const auto first = static_cast<uint32_t>(m_queryNodes.size());
-        m_queryNodes.insert(m_queryNodes.end(), batch.begin() + std::ptrdiff_t(i), batch.begin() + std::ptrdiff_t(i + n));
+        m_queryNodes.insert(m_queryNodes.end(), batch.begin() + std::ptrdiff_t(i),
+                            batch.begin() + std::ptrdiff_t(i + n));
         const uint32_t handle = m_queries->issue({m_queryNodes.data() + first, n});
         m_queryQueue.push_back({handle, first, static_cast<uint32_t>(n)});
         ++m_stats.queriesIssued;

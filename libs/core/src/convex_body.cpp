@@ -98,8 +98,11 @@ void ConvexBody::clip(const Plane& plane) {
             anyOutside |= dist > eps;
             anyInside |= dist < -eps;
         }
-    if (!anyOutside) return;                // entirely kept
-    if (!anyInside) { m_faces.clear(); return; } // at most a flat sliver remains
+    if (!anyOutside) return; // entirely kept
+    if (!anyInside) {
+        m_faces.clear();
+        return;
+    } // at most a flat sliver remains
 
     Faces kept;
     Polygon capPoints;
@@ -127,8 +130,10 @@ void ConvexBody::clip(const Plane& plane) {
         Polygon cap = orderOnPlane(std::move(capPoints), plane.normal);
         if (glm::length(newellNormal(cap)) > eps * eps) kept.push_back(std::move(cap));
     }
-    if (kept.size() >= 4) m_faces = std::move(kept);
-    else m_faces.clear(); // < 4 faces: no volume
+    if (kept.size() >= 4)
+        m_faces = std::move(kept);
+    else
+        m_faces.clear(); // < 4 faces: no volume
 }
 
 void ConvexBody::clip(std::span<const Plane> planes) {
@@ -163,8 +168,10 @@ ConvexBody::Planes ConvexBody::sweepHalfSpaces(const Vec3& wsDirection) const {
                 lo = std::min(lo, dist);
                 hi = std::max(hi, dist);
             }
-            if (hi <= eps) planes.push_back(plane);
-            else if (lo >= -eps) planes.push_back({-plane.normal, -plane.d});
+            if (hi <= eps)
+                planes.push_back(plane);
+            else if (lo >= -eps)
+                planes.push_back({-plane.normal, -plane.d});
         }
     }
     return planes;

@@ -34,7 +34,8 @@ Result<RecognisedProjection> recogniseProjection(const Mat4& m, ClipDepthRange c
     const Vec4 wRow(m[0][3], m[1][3], m[2][3], m[3][3]);
     const Vec4 zRow(m[0][2], m[1][2], m[2][2], m[3][2]);
     if (std::abs(wRow.x) > eps || std::abs(wRow.y) > eps)
-        return fieldError(kProjectionField, "clip w depends on view x or y: not a perspective or orthographic projection");
+        return fieldError(kProjectionField,
+                          "clip w depends on view x or y: not a perspective or orthographic projection");
     if (std::abs(zRow.x) > eps || std::abs(zRow.y) > eps)
         return fieldError(kProjectionField, "clip depth depends on view x or y (an oblique near plane): not supported");
     if (std::abs(m[0][0] * m[1][1] - m[1][0] * m[0][1]) <= eps * eps)
@@ -53,7 +54,8 @@ Result<RecognisedProjection> recogniseProjection(const Mat4& m, ClipDepthRange c
         const double nearValue = p.reversedZ ? hi : lo, farValue = p.reversedZ ? lo : hi;
         p.zNear = k / (nearValue - a);
         if (!(p.zNear > 0.0) || !std::isfinite(p.zNear))
-            return fieldError(kProjectionField, "its near plane is not in front of the eye (is the clip depth range right?)");
+            return fieldError(kProjectionField,
+                              "its near plane is not in front of the eye (is the clip depth range right?)");
         // ndc(d) tends to a: the far value is reached only if a lies beyond it.
         const double beyond = p.reversedZ ? farValue - a : a - farValue;
         p.infiniteFar = !(beyond > 1e-9 * std::max(1.0, std::abs(a)));
@@ -93,7 +95,8 @@ Result<RecognisedProjection> recogniseProjection(const Mat4& m, ClipDepthRange c
             }
         }
     } else {
-        return fieldError(kProjectionField, "not a perspective (clip w = ±z) or orthographic (clip w constant > 0) projection");
+        return fieldError(kProjectionField,
+                          "not a perspective (clip w = ±z) or orthographic (clip w constant > 0) projection");
     }
     const double width = p.right - p.left, height = p.top - p.bottom;
     p.offCentre = std::abs(p.left + p.right) > 1e-9 * width || std::abs(p.bottom + p.top) > 1e-9 * height;
@@ -108,7 +111,9 @@ Result<PerspectiveCamera> cameraFromMatrices(const EngineCamera& in) {
     bool rigid = std::abs(view[0][3]) + std::abs(view[1][3]) + std::abs(view[2][3]) + std::abs(view[3][3] - 1.0) < 1e-9;
     for (int c = 0; c < 3; ++c)
         for (int r = 0; r < 3; ++r) rigid = rigid && std::abs(gram[c][r] - (c == r ? 1.0 : 0.0)) < 1e-6;
-    if (!rigid) return fieldError("camera.view_from_world", "must be rigid (a rotation and a translation, no scale or projection)");
+    if (!rigid)
+        return fieldError("camera.view_from_world",
+                          "must be rigid (a rotation and a translation, no scale or projection)");
 
     Result<RecognisedProjection> recognised = recogniseProjection(in.clipFromView, in.clipDepth, in.handedness);
     if (!recognised) return recognised.errorInfo();
@@ -119,7 +124,8 @@ Result<PerspectiveCamera> cameraFromMatrices(const EngineCamera& in) {
     if (!std::isfinite(zFar))
         return fieldError("camera.shadow_distance", "must be finite when the projection's far plane is infinite");
     if (!(zFar > p.zNear))
-        return fieldError("camera.shadow_distance", "must lie beyond the near plane (" + std::to_string(p.zNear) + " m)");
+        return fieldError("camera.shadow_distance",
+                          "must lie beyond the near plane (" + std::to_string(p.zNear) + " m)");
 
     // worldFromView of a rigid transform: the transposed rotation and the eye.
     const Mat3 worldFromViewRotation = glm::transpose(rotation);
@@ -149,7 +155,8 @@ Result<PerspectiveCamera> cameraFromMatrices(const EngineCamera& in) {
     }
     camera.fovYDegrees = glm::degrees(2.0 * std::atan(halfHeight));
     camera.aspect = halfWidth / halfHeight;
-    if (Status s = camera.validate(); !s) return fieldError(kProjectionField, "gives no usable frustum (" + s.error() + ")");
+    if (Status s = camera.validate(); !s)
+        return fieldError(kProjectionField, "gives no usable frustum (" + s.error() + ")");
     return camera;
 }
 

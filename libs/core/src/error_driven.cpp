@@ -12,8 +12,8 @@ namespace shadowkit::core {
 
 namespace {
 
-constexpr int kGridPoints = 9;     // over the parameter's range
-constexpr int kGoldenSteps = 6;    // between the best grid point's neighbours: (0.618)^6 ≈ 1/18 of two grid steps
+constexpr int kGridPoints = 9;  // over the parameter's range
+constexpr int kGoldenSteps = 6; // between the best grid point's neighbours: (0.618)^6 ≈ 1/18 of two grid steps
 constexpr int64_t kMaxBudget = int64_t(kMaxShadowViews) * kMaxMapSize * kMaxMapSize;
 
 // The objective of one candidate; infinite when it cannot be computed.
@@ -49,8 +49,10 @@ void search1D(ParameterChoice& best, Evaluator& evaluate, const ShadowSetupInput
     double c = b - ratio * (b - a), d = a + ratio * (b - a);
     double fc = at(c), fd = at(d);
     for (int i = 0; i < kGoldenSteps; ++i) {
-        if (fc < fd) b = d, d = c, fd = fc, c = b - ratio * (b - a), fc = at(c);
-        else a = c, c = d, fc = fd, d = a + ratio * (b - a), fd = at(d);
+        if (fc < fd)
+            b = d, d = c, fd = fc, c = b - ratio * (b - a), fc = at(c);
+        else
+            a = c, c = d, fc = fd, d = a + ratio * (b - a), fd = at(d);
     }
 }
 
@@ -88,11 +90,13 @@ std::string describe(const ParameterChoice& choice) {
     case Technique::Lispsm:
         return "lispsm " + size + " (n x " + fixed(in.lispsm.weight, 2) + ", " +
                (in.lispsm.direction == LispsmDirection::MiddleVector ? "middle vector" : "cross product") + ")";
-    case Technique::Tsm: return "tsm " + size + " (focus " + fixed(in.tsm.focusFraction, 3) + ")";
+    case Technique::Tsm:
+        return "tsm " + size + " (focus " + fixed(in.tsm.focusFraction, 3) + ")";
     case Technique::Csm:
         return "csm " + std::to_string(in.cascades.count) + " x " + size + " (lambda " + fixed(in.cascades.lambda, 2) +
                (in.cascades.warp == CascadeWarp::Lispsm ? ", per-split lispsm" : "") + ")";
-    default: return std::string(techniqueName(in.technique)) + " " + size;
+    default:
+        return std::string(techniqueName(in.technique)) + " " + size;
     }
 }
 
@@ -110,11 +114,13 @@ std::optional<ParameterAxis> parameterAxis(Technique technique) {
     case Technique::Csm:
         return ParameterAxis{0.0, 1.0, [](const ShadowSetupInputs& in) { return in.cascades.lambda; },
                              [](ShadowSetupInputs& in, double x) { in.cascades.lambda = x; }};
-    default: return std::nullopt;
+    default:
+        return std::nullopt;
     }
 }
 
-ShadowSetupInputs forThisFrame(const ShadowSetupInputs& chosen, const ShadowSetupInputs& base, const SamplingErrorModel& model) {
+ShadowSetupInputs forThisFrame(const ShadowSetupInputs& chosen, const ShadowSetupInputs& base,
+                               const SamplingErrorModel& model) {
     ShadowSetupInputs in = chosen;
     in.camera = base.camera;
     in.light = base.light;
@@ -136,7 +142,8 @@ Result<ParameterChoice> optimiseParameters(const ShadowSetupInputs& inputs, cons
                 search1D(best, evaluate, start, *axis);
             }
         else
-            search1D(best, evaluate, inputs.technique == Technique::Csm ? withVisibleSplits(inputs, model) : inputs, *axis);
+            search1D(best, evaluate, inputs.technique == Technique::Csm ? withVisibleSplits(inputs, model) : inputs,
+                     *axis);
     }
     // The figures of the one kept (its set-up again: the focus body is remembered).
     if (auto setup = computeShadowSetup(best.inputs)) best.predicted = model.figures(*setup);
@@ -146,17 +153,20 @@ Result<ParameterChoice> optimiseParameters(const ShadowSetupInputs& inputs, cons
 
 Status validate(const AutoOptions& options) {
     if (!(options.cascades >= 0 && options.cascades <= int(kMaxShadowViews)))
-        return fieldError("auto.cascades", "must be in [0, " + std::to_string(kMaxShadowViews) + "], got " + std::to_string(options.cascades));
+        return fieldError("auto.cascades", "must be in [0, " + std::to_string(kMaxShadowViews) + "], got " +
+                                               std::to_string(options.cascades));
     const int maps = std::max(options.cascades, 1);
     if (options.texelBudget < int64_t(kMinMapSize) * kMinMapSize * maps || options.texelBudget > kMaxBudget)
         return fieldError("auto.texel_budget", "must hold " + std::to_string(maps) + " map(s) of at least " +
-                                                   std::to_string(kMinMapSize) + "² and at most " + std::to_string(kMaxBudget) +
-                                                   " texels, got " + std::to_string(options.texelBudget));
+                                                   std::to_string(kMinMapSize) + "² and at most " +
+                                                   std::to_string(kMaxBudget) + " texels, got " +
+                                                   std::to_string(options.texelBudget));
     if (!(options.hysteresis >= 0.0 && options.hysteresis < 1.0))
         return fieldError("auto.hysteresis", "must be in [0, 1), got " + std::to_string(options.hysteresis));
     // At least 20, so the p95 is not the largest sample.
     if (options.searchSamples < 20 || options.searchSamples > 1'000'000)
-        return fieldError("auto.search_samples", "must be in [20, 1000000], got " + std::to_string(options.searchSamples));
+        return fieldError("auto.search_samples",
+                          "must be in [20, 1000000], got " + std::to_string(options.searchSamples));
     return Ok{};
 }
 
@@ -176,7 +186,8 @@ Result<std::vector<ParameterChoice>> rankCandidates(const ShadowSetupInputs& bas
         candidates.push_back(in);
     };
     if (options.cascades <= 1)
-        for (const Technique t : {Technique::Focused, Technique::Psm, Technique::Tsm, Technique::Lispsm}) add(t, 1, CascadeWarp::None);
+        for (const Technique t : {Technique::Focused, Technique::Psm, Technique::Tsm, Technique::Lispsm})
+            add(t, 1, CascadeWarp::None);
     const int fewest = options.cascades > 1 ? options.cascades : 2, most = options.cascades > 1 ? options.cascades : 4;
     if (options.cascades != 1)
         for (int count = fewest; count <= most; ++count)
@@ -188,12 +199,13 @@ Result<std::vector<ParameterChoice>> rankCandidates(const ShadowSetupInputs& bas
         ranked.push_back(std::move(*choice));
     }
     // Stable: equal objectives keep the listed order (single maps first, fewer cascades first).
-    std::stable_sort(ranked.begin(), ranked.end(), [](const ParameterChoice& a, const ParameterChoice& b) { return a.objective < b.objective; });
+    std::stable_sort(ranked.begin(), ranked.end(),
+                     [](const ParameterChoice& a, const ParameterChoice& b) { return a.objective < b.objective; });
     return ranked;
 }
 
-Result<ParameterChoice> chooseAuto(const ShadowSetupInputs& base, const AutoOptions& options, const SamplingErrorModel& model,
-                                   const ParameterChoice* previous) {
+Result<ParameterChoice> chooseAuto(const ShadowSetupInputs& base, const AutoOptions& options,
+                                   const SamplingErrorModel& model, const ParameterChoice* previous) {
     if (auto s = validate(options); !s) return s.errorInfo();
     if (model.size() == 0) {
         // Nothing seen, nothing to judge by: the recommended technique, as a fixed one would be.
@@ -211,7 +223,8 @@ Result<ParameterChoice> chooseAuto(const ShadowSetupInputs& base, const AutoOpti
         if (auto setup = computeShadowSetup(again)) {
             const SamplingFigures f = model.figures(*setup);
             const double objective = samplingObjective(f);
-            if (!(best.objective < (1.0 - options.hysteresis) * objective)) best = {again, f, objective, best.setupsTried};
+            if (!(best.objective < (1.0 - options.hysteresis) * objective))
+                best = {again, f, objective, best.setupsTried};
         }
     }
     return best;

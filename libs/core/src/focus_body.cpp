@@ -52,16 +52,16 @@ struct FocusBodyKey {
     Aabb wsSceneBounds;
     bool operator==(const FocusBodyKey& o) const {
         const PerspectiveCamera &a = camera, &b = o.camera;
-        return a.wsEye == b.wsEye && a.wsDirection == b.wsDirection && a.wsUp == b.wsUp && a.fovYDegrees == b.fovYDegrees &&
-               a.aspect == b.aspect && a.zNear == b.zNear && a.zFar == b.zFar && wsTowardsLight == o.wsTowardsLight &&
-               wsSceneBounds.min == o.wsSceneBounds.min && wsSceneBounds.max == o.wsSceneBounds.max;
+        return a.wsEye == b.wsEye && a.wsDirection == b.wsDirection && a.wsUp == b.wsUp &&
+               a.fovYDegrees == b.fovYDegrees && a.aspect == b.aspect && a.zNear == b.zNear && a.zFar == b.zFar &&
+               wsTowardsLight == o.wsTowardsLight && wsSceneBounds.min == o.wsSceneBounds.min &&
+               wsSceneBounds.max == o.wsSceneBounds.max;
     }
 };
 
 } // namespace
 
-ConvexBody computeFocusBody(const PerspectiveCamera& camera, const DirectionalLight& light,
-                            const Aabb& wsSceneBounds) {
+ConvexBody computeFocusBody(const PerspectiveCamera& camera, const DirectionalLight& light, const Aabb& wsSceneBounds) {
     // The last body per thread, returned again for the same inputs: B is about 90 % of a
     // single map's set-up (shadowkit_setup_bench: focused 9-15 µs, the warps 5 % more), and the
     // error-driven search (error_driven.h) computes dozens of set-ups of one camera, light and

@@ -57,7 +57,7 @@ std::vector<HalfSpace> clipVolume(const Mat4& m, bool withNear) {
     auto row = [&m](int r) { return HalfSpace(m[0][r], m[1][r], m[2][r], m[3][r]); };
     const HalfSpace x = row(0), y = row(1), z = row(2), w = row(3);
     std::vector<HalfSpace> planes = {w + x, w - x, w + y, w - y, w - z}; // -w<=x<=w, -w<=y<=w, z<=w
-    if (withNear) planes.push_back(z);                                     // z >= 0
+    if (withNear) planes.push_back(z);                                   // z >= 0
     return planes;
 }
 

@@ -6,8 +6,7 @@ namespace shadowkit::core {
 
 Result<DirectionalLight> DirectionalLight::fromDirection(const Vec3& wsTravel) {
     const double len = glm::length(wsTravel);
-    if (!std::isfinite(len) || len < 1e-12)
-        return makeError("light direction: must be a finite, non-zero vector");
+    if (!std::isfinite(len) || len < 1e-12) return makeError("light direction: must be a finite, non-zero vector");
     return DirectionalLight{wsTravel / len};
 }
 
@@ -21,8 +20,6 @@ Result<DirectionalLight> DirectionalLight::fromSunAngles(double elevationDegrees
     return DirectionalLight{-towardsSun};
 }
 
-double azimuthDegreesOf(const Vec3& wsDirection) {
-    return glm::degrees(std::atan2(wsDirection.x, -wsDirection.z));
-}
+double azimuthDegreesOf(const Vec3& wsDirection) { return glm::degrees(std::atan2(wsDirection.x, -wsDirection.z)); }
 
 } // namespace shadowkit::core

@@ -33,7 +33,8 @@ namespace {
 Vec3 perpendicularTo(const Vec3& v, const Vec3& unitAxis) { return v - glm::dot(v, unitAxis) * unitAxis; }
 
 // Extent along light-space y of B cut to the visible view-depth slab (for n only).
-double visibleExtent(const ConvexBody& body, const PerspectiveCamera& cam, const Vec2& visible, const Mat4& lightFromWorld) {
+double visibleExtent(const ConvexBody& body, const PerspectiveCamera& cam, const Vec2& visible,
+                     const Mat4& lightFromWorld) {
     ConvexBody cut = body;
     const Vec3 forward = glm::normalize(cam.wsDirection);
     cut.clip(Plane::fromPointNormal(cam.wsEye + visible.x * forward, -forward));
@@ -77,7 +78,8 @@ ShadowSetup computeLispsm(const ShadowSetupInputs& in) {
     // uniform smoothly through the n/d test below.
     if (glm::length(projection) < kLispsmParallelSine) {
         view.warp = LispsmWarp{.gammaDegrees = gammaDegrees, .uniform = true, .viewParallel = true};
-        setup.fallbacks.emplace_back("lispsm: view parallel to the light, no perspective aliasing to correct: uniform map");
+        setup.fallbacks.emplace_back(
+            "lispsm: view parallel to the light, no perspective aliasing to correct: uniform map");
         return setup;
     }
 
@@ -109,11 +111,14 @@ ShadowSetup computeLispsm(const ShadowSetupInputs& in) {
             n = (z0 + std::sqrt(z0 * z1)) / sinG;
             break;
         }
-        case LispsmFormula::Scherzer: n = (zNear + std::sqrt(zNear * (zNear + deltaZ))) / sinG; break;
+        case LispsmFormula::Scherzer:
+            n = (zNear + std::sqrt(zNear * (zNear + deltaZ))) / sinG;
+            break;
         }
         n *= o.weight;
     }
-    LispsmWarp& warp = view.warp.emplace<LispsmWarp>(LispsmWarp{.n = n, .f = n + d, .d = d, .gammaDegrees = gammaDegrees});
+    LispsmWarp& warp =
+        view.warp.emplace<LispsmWarp>(LispsmWarp{.n = n, .f = n + d, .d = d, .gammaDegrees = gammaDegrees});
     view.lightFromWorld = frame.lightFromWorld;
     if (!(d > 0.0) || n > kLispsmUniformRatio * d) {
         // The uniform limit in the same light frame, so the texel grid does not turn at the switch.
@@ -121,7 +126,8 @@ ShadowSetup computeLispsm(const ShadowSetupInputs& in) {
         view.clipFromLight = fitOrthographic(frame.lightFromWorld, wsPoints);
         view.clipFromWorld = view.clipFromLight * view.lightFromWorld;
         setup.fallbacks.emplace_back("lispsm: n = " + std::to_string(n) + " m exceeds " +
-                                     std::to_string(int(kLispsmUniformRatio)) + " d (view nearly parallel to the light): uniform map");
+                                     std::to_string(int(kLispsmUniformRatio)) +
+                                     " d (view nearly parallel to the light): uniform map");
         return setup;
     }
 
@@ -130,8 +136,8 @@ ShadowSetup computeLispsm(const ShadowSetupInputs& in) {
     const double a = (f + n) / (f - n), b = -2.0 * f * n / (f - n);
     const Vec3 c(0.0 /* the eye is the frame's origin */, lsBounds.min.y - n, 0.5 * (lsBounds.min.z + lsBounds.max.z));
     Mat4 perspective(0.0);
-    perspective[0][0] = 1.0;  // X = r.x
-    perspective[1][1] = a;    // Y = a r.y + b
+    perspective[0][0] = 1.0; // X = r.x
+    perspective[1][1] = a;   // Y = a r.y + b
     perspective[3][1] = b;
     perspective[2][2] = -1.0; // Z = -r.z: depth grows away from the light
     perspective[1][3] = 1.0;  // W = r.y

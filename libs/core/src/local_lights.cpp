@@ -32,7 +32,8 @@ namespace {
 Status checkInputs(const LocalShadowInputs& in) {
     if (Status s = in.camera.validate(); !s) return s;
     const Aabb& b = in.wsSceneBounds;
-    if (!isFinite(b.min) || !isFinite(b.max) || b.isEmpty()) return fieldError("scene_bounds", "must be finite with min <= max on every axis");
+    if (!isFinite(b.min) || !isFinite(b.max) || b.isEmpty())
+        return fieldError("scene_bounds", "must be finite with min <= max on every axis");
     return validateMapSize(in.mapSize);
 }
 
@@ -57,8 +58,10 @@ std::array<Plane, 4> pyramidPlanes(const Mat4& lightFromWorld, const Vec3& wsApe
     const Mat4 worldFromLight = glm::inverse(lightFromWorld);
     auto toWorld = [&](const Vec3& lsNormal) { return glm::normalize(Vec3(worldFromLight * Vec4(lsNormal, 0.0))); };
     // In light space a point is inside when |x| <= tanX·(−z) and |y| <= tanY·(−z).
-    return {Plane::fromPointNormal(wsApex, toWorld(Vec3(1.0, 0.0, tanX))), Plane::fromPointNormal(wsApex, toWorld(Vec3(-1.0, 0.0, tanX))),
-            Plane::fromPointNormal(wsApex, toWorld(Vec3(0.0, 1.0, tanY))), Plane::fromPointNormal(wsApex, toWorld(Vec3(0.0, -1.0, tanY)))};
+    return {Plane::fromPointNormal(wsApex, toWorld(Vec3(1.0, 0.0, tanX))),
+            Plane::fromPointNormal(wsApex, toWorld(Vec3(-1.0, 0.0, tanX))),
+            Plane::fromPointNormal(wsApex, toWorld(Vec3(0.0, 1.0, tanY))),
+            Plane::fromPointNormal(wsApex, toWorld(Vec3(0.0, -1.0, tanY)))};
 }
 
 // x in [l, r], y in [b, t] at unit distance in front of the light; clip depth [0, 1] over
@@ -78,7 +81,7 @@ Mat4 frustumZeroToOne(double l, double r, double b, double t, double zNear, doub
 
 struct Extent {
     double l = INFINITY, r = -INFINITY, b = INFINITY, t = -INFINITY; // tangents at unit depth
-    double axialNear = INFINITY, axialFar = 0.0, farthest = 0.0;    // metres
+    double axialNear = INFINITY, axialFar = 0.0, farthest = 0.0;     // metres
     bool apexInside = false; // a vertex at the light: every direction of the volume is present
 };
 
@@ -101,7 +104,8 @@ Extent extentOf(const ConvexBody& body, const Mat4& lightFromWorld, const Vec3& 
 }
 
 // A perspective view from the light over tangents [l, r] × [b, t], distances fitted to R.
-ShadowView localView(const Mat4& lightFromWorld, const Extent& e, double range, double l, double r, double b, double t) {
+ShadowView localView(const Mat4& lightFromWorld, const Extent& e, double range, double l, double r, double b,
+                     double t) {
     ShadowView view;
     view.lightFromWorld = lightFromWorld;
     // Clip planes for GL's sake only (the depth pass clamps): near a little in front of R,
@@ -131,15 +135,18 @@ ShadowSetup localSetup(LightType type, const Vec3& wsLight, int mapSize) {
 
 Status SpotLight::validate() const {
     if (!isFinite(wsPosition)) return fieldError("spot.position", "must be finite");
-    if (!isFinite(wsDirection) || !(glm::length(wsDirection) > 0.0)) return fieldError("spot.direction", "must be a finite, non-zero vector");
+    if (!isFinite(wsDirection) || !(glm::length(wsDirection) > 0.0))
+        return fieldError("spot.direction", "must be a finite, non-zero vector");
     if (!(coneDegrees > 0.0 && coneDegrees <= 170.0)) return fieldError("spot.cone", "must be in (0, 170] degrees");
-    if (!(range > 0.0 && std::isfinite(range))) return fieldError("spot.range", "must be a finite number of metres > 0");
+    if (!(range > 0.0 && std::isfinite(range)))
+        return fieldError("spot.range", "must be a finite number of metres > 0");
     return Ok{};
 }
 
 Status PointLight::validate() const {
     if (!isFinite(wsPosition)) return fieldError("point.position", "must be finite");
-    if (!(range > 0.0 && std::isfinite(range))) return fieldError("point.range", "must be a finite number of metres > 0");
+    if (!(range > 0.0 && std::isfinite(range)))
+        return fieldError("point.range", "must be a finite number of metres > 0");
     return Ok{};
 }
 
@@ -198,14 +205,17 @@ LocalLighting rebased(const LocalLighting& lighting, const Vec3& wsOrigin) {
 }
 
 double lightDistanceDepth(const ShadowSetup& setup, const ShadowView& view, const Vec3& wsPoint) {
-    return (glm::distance(wsPoint, setup.wsLightPosition) - view.lightDistance.x) / (view.lightDistance.y - view.lightDistance.x);
+    return (glm::distance(wsPoint, setup.wsLightPosition) - view.lightDistance.x) /
+           (view.lightDistance.y - view.lightDistance.x);
 }
 
 Result<ShadowSetup> computeSpotShadowSetup(const LocalShadowInputs& in, const SpotLight& light) {
     if (Status s = checkInputs(in); !s) return s.errorInfo();
     if (Status s = light.validate(); !s) return s.errorInfo();
     ShadowSetup setup = localSetup(LightType::Spot, light.wsPosition, in.mapSize);
-    const Mat4 lightFromWorld = makeLightFrame(glm::normalize(light.wsDirection), light.wsPosition, {Vec3(0, 1, 0), Vec3(0, 0, -1)}).lightFromWorld;
+    const Mat4 lightFromWorld =
+        makeLightFrame(glm::normalize(light.wsDirection), light.wsPosition, {Vec3(0, 1, 0), Vec3(0, 0, -1)})
+            .lightFromWorld;
     // The cone inside its square pyramid (half-angle θ on both axes), cut at the range.
     const double tanHalf = std::tan(0.5 * glm::radians(light.coneDegrees));
     ConvexBody receivers = visibleInRange(in, light.wsPosition, light.range);
@@ -247,12 +257,13 @@ Result<ShadowSetup> computePointShadowSetup(const LocalShadowInputs& in, const P
             ++setup.skippedFaces;
             continue;
         }
-        ShadowView view = localView(lightFromWorld, extentOf(receivers, lightFromWorld, light.wsPosition, light.range), light.range,
-                                    -1.0, 1.0, -1.0, 1.0);
+        ShadowView view = localView(lightFromWorld, extentOf(receivers, lightFromWorld, light.wsPosition, light.range),
+                                    light.range, -1.0, 1.0, -1.0, 1.0);
         view.face = f;
         setup.views.push_back(view);
     }
-    if (setup.views.empty()) setup.fallbacks.emplace_back("point: its range misses what the camera sees of the scene: no map");
+    if (setup.views.empty())
+        setup.fallbacks.emplace_back("point: its range misses what the camera sees of the scene: no map");
     setEyeRelativeFromWorld(setup, light.wsPosition);
     return setup;
 }

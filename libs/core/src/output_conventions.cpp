@@ -54,7 +54,8 @@ EngineShadowView toEngineView(const ShadowView& view, const ShadowSetup& setup, 
     // z <= w, and 0 <= z only without depth clamping.
     const Mat4& m = view.clipFromWorld;
     const Vec4 x = matrixRow(m, 0), y = matrixRow(m, 1), z = matrixRow(m, 2), w = matrixRow(m, 3);
-    for (const Vec4& row : {w + x, w - x, w + y, w - y, w - z}) out.wsCullingPlanes.push_back(insideWhereNonNegative(row));
+    for (const Vec4& row : {w + x, w - x, w + y, w - y, w - z})
+        out.wsCullingPlanes.push_back(insideWhereNonNegative(row));
     if (!setup.depthClamp) out.wsCullingPlanes.push_back(insideWhereNonNegative(z));
 
     out.split = view.split;
@@ -71,7 +72,8 @@ double referenceDepth(const EngineShadowView& view, const Vec3& wsPoint) {
         const Vec4 t = view.textureFromWorld * Vec4(wsPoint, 1.0);
         return t.z / t.w;
     }
-    case DepthLayout::Linear: return glm::dot(view.linearDepthFromWorld, Vec4(wsPoint, 1.0));
+    case DepthLayout::Linear:
+        return glm::dot(view.linearDepthFromWorld, Vec4(wsPoint, 1.0));
     case DepthLayout::LightDistance: {
         const double d = (glm::distance(wsPoint, view.wsLightPosition) - view.lightDistance.x) /
                          (view.lightDistance.y - view.lightDistance.x);

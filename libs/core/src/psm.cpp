@@ -92,8 +92,11 @@ ShadowSetup computePsm(const ShadowSetupInputs& in) {
     view.lightFromWorld = viewFromWorld;
     view.clipFromLight = fitToClipCube(lightFromPp * ppFromView, vsPoints);
     view.clipFromWorld = view.clipFromLight * view.lightFromWorld;
-    view.warp = PsmWarp{.slideBack = slideBack, .ppNear = ppNear, .ppFar = ppFar,
-                        .lightW = light.w / std::max(lightXyz, 1e-300), .inverted = inverted};
+    view.warp = PsmWarp{.slideBack = slideBack,
+                        .ppNear = ppNear,
+                        .ppFar = ppFar,
+                        .lightW = light.w / std::max(lightXyz, 1e-300),
+                        .inverted = inverted};
     return setup;
 }
 

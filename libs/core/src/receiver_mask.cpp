@@ -63,7 +63,8 @@ void ReceiverMask::finish(int dilation) {
                     float best = -INFINITY;
                     for (int k = -dilation; k <= dilation; ++k) {
                         const int u = pass == 0 ? x + k : x, v = pass == 0 ? y : y + k;
-                        if (u >= 0 && u < m_size && v >= 0 && v < m_size) best = std::max(best, base[size_t(v * m_size + u)]);
+                        if (u >= 0 && u < m_size && v >= 0 && v < m_size)
+                            best = std::max(best, base[size_t(v * m_size + u)]);
                     }
                     tmp[size_t(y * m_size + x)] = best;
                 }
@@ -95,7 +96,8 @@ bool ReceiverMask::mayShadow(const Aabb& box) const {
         if (!(clip.w > 1e-12)) return true;
         x0 = std::min(x0, clip.x / clip.w), x1 = std::max(x1, clip.x / clip.w);
         y0 = std::min(y0, clip.y / clip.w), y1 = std::max(y1, clip.y / clip.w);
-        nearest = std::min(nearest, m_linearDepthFromWorld ? glm::dot(*m_linearDepthFromWorld, Vec4(ws, 1.0)) : clip.z / clip.w);
+        nearest = std::min(nearest,
+                           m_linearDepthFromWorld ? glm::dot(*m_linearDepthFromWorld, Vec4(ws, 1.0)) : clip.z / clip.w);
     }
     if (x1 < -1.0 || x0 > 1.0 || y1 < -1.0 || y0 > 1.0) return false; // draws nothing into the map
     int tx0 = texelOf(x0), tx1 = texelOf(x1), ty0 = texelOf(y0), ty1 = texelOf(y1);
@@ -117,7 +119,8 @@ bool ReceiverMask::mayShadow(const Aabb& box) const {
 }
 
 size_t ReceiverMask::markedTexels() const {
-    return static_cast<size_t>(std::count_if(m_levels[0].begin(), m_levels[0].end(), [](float d) { return d > -INFINITY; }));
+    return static_cast<size_t>(
+        std::count_if(m_levels[0].begin(), m_levels[0].end(), [](float d) { return d > -INFINITY; }));
 }
 
 } // namespace shadowkit::core

@@ -93,7 +93,8 @@ void fitDepth(ShadowView& view, const ConvexBody::Points& body, double margin, b
     if (refit || lo < 0.0 || hi > 1.0) {
         const Vec2 range = widened(lo, hi, margin);
         for (int c = 0; c < 4; ++c)
-            view.clipFromLight[c][2] = (view.clipFromLight[c][2] - range.x * view.clipFromLight[c][3]) / (range.y - range.x);
+            view.clipFromLight[c][2] =
+                (view.clipFromLight[c][2] - range.x * view.clipFromLight[c][3]) / (range.y - range.x);
         view.recomposeClip();
     }
     if (refit || linearLo < 0.0 || linearHi > 1.0) {
@@ -175,7 +176,8 @@ double texelGrowth(const ShadowSetupInputs& in, const ShadowView& held, const Sh
         const Vec3 p = cam.wsEye + std::min(depth, hi) * forward;
         if (in.wsSceneBounds.contains(p)) {
             const double now = texelFootprint(fresh, in.mapSize, in.light.wsDirection, p);
-            if (std::isfinite(now)) worst = std::max(worst, texelFootprint(held, in.mapSize, in.light.wsDirection, p) / now);
+            if (std::isfinite(now))
+                worst = std::max(worst, texelFootprint(held, in.mapSize, in.light.wsDirection, p) / now);
         }
         if (depth >= hi) break;
     }
@@ -204,9 +206,11 @@ ShadowView withRoomForMotion(const ShadowSetupInputs& in, const ShadowView& fres
 }
 
 // Whether a held set-up can go on: the same light, technique, map and layout, view for view.
-bool compatible(const ShadowSetupInputs& was, const ShadowSetup& held, const ShadowSetupInputs& now, const ShadowSetup& fresh) {
-    return was.light.wsDirection == now.light.wsDirection && was.technique == now.technique && was.mapSize == now.mapSize &&
-           held.depthLayout == fresh.depthLayout && held.views.size() == fresh.views.size();
+bool compatible(const ShadowSetupInputs& was, const ShadowSetup& held, const ShadowSetupInputs& now,
+                const ShadowSetup& fresh) {
+    return was.light.wsDirection == now.light.wsDirection && was.technique == now.technique &&
+           was.mapSize == now.mapSize && held.depthLayout == fresh.depthLayout &&
+           held.views.size() == fresh.views.size();
 }
 
 } // namespace
@@ -215,7 +219,8 @@ Status validate(const HysteresisOptions& o) {
     if (!(o.margin >= 0.0 && o.margin <= 1.0)) return fieldError("hysteresis.margin", "must be a fraction in [0, 1]");
     if (!(o.lookaheadFrames >= 0.0 && o.lookaheadFrames <= 1000.0))
         return fieldError("hysteresis.lookahead", "must be in [0, 1000] frames");
-    if (!(o.maxTexelGrowth > 1.0) || !std::isfinite(o.maxTexelGrowth)) return fieldError("hysteresis.growth", "must be finite and > 1");
+    if (!(o.maxTexelGrowth > 1.0) || !std::isfinite(o.maxTexelGrowth))
+        return fieldError("hysteresis.growth", "must be finite and > 1");
     return Ok{};
 }
 
@@ -229,8 +234,9 @@ Result<ShadowSetup> SetupHysteresis::next(const ShadowSetupInputs& inputs) {
     if (!fresh) return fresh;
     const bool refitAll = !m_held || !compatible(m_held->inputs, m_held->setup, inputs, *fresh);
     // Where the camera will be `lookaheadFrames` on if it keeps this frame's motion.
-    const bool moving = m_previousCamera && (m_previousCamera->wsEye != inputs.camera.wsEye ||
-                                             glm::normalize(m_previousCamera->wsDirection) != glm::normalize(inputs.camera.wsDirection));
+    const bool moving = m_previousCamera &&
+                        (m_previousCamera->wsEye != inputs.camera.wsEye ||
+                         glm::normalize(m_previousCamera->wsDirection) != glm::normalize(inputs.camera.wsDirection));
     // A light that moved since the last frame will likely move again, and then every frame
     // refits anyway: room for the camera's motion would only coarsen each of them.
     const bool lightHeld = m_held && m_held->inputs.light.wsDirection == inputs.light.wsDirection;
@@ -238,7 +244,8 @@ Result<ShadowSetup> SetupHysteresis::next(const ShadowSetupInputs& inputs) {
     if (moving && lightHeld && m_options.lookaheadFrames > 0)
         for (int step = 1; step <= kLookaheadSteps; ++step) {
             ShadowSetupInputs later = inputs;
-            later.camera = extrapolated(*m_previousCamera, inputs.camera, m_options.lookaheadFrames * step / kLookaheadSteps);
+            later.camera =
+                extrapolated(*m_previousCamera, inputs.camera, m_options.lookaheadFrames * step / kLookaheadSteps);
             if (later.camera.validate()) ahead.push_back(later);
         }
     ShadowSetup out = *fresh; // body, fallbacks and splits of this frame
@@ -246,7 +253,8 @@ Result<ShadowSetup> SetupHysteresis::next(const ShadowSetupInputs& inputs) {
     for (size_t i = 0; i < out.views.size(); ++i) {
         const ShadowView& now = fresh->views[i];
         // A single map's body is the set-up's own B, computed already; a split's is not kept.
-        const ConvexBody::Points body = !now.split && !fresh->body.isEmpty() ? fresh->body.vertices() : viewBody(inputs, now);
+        const ConvexBody::Points body =
+            !now.split && !fresh->body.isEmpty() ? fresh->body.vertices() : viewBody(inputs, now);
         if (body.empty()) { // nothing of the scene to cover: nothing to hold either
             ++m_refits.views;
             continue;
@@ -258,7 +266,8 @@ Result<ShadowSetup> SetupHysteresis::next(const ShadowSetupInputs& inputs) {
         };
         std::optional<ShadowView> kept;
         if (!refitAll) {
-            kept = shiftedToCover(reanchored(m_held->setup.views[i], m_held->setup.wsEye, out.wsEye), body, inputs.mapSize);
+            kept = shiftedToCover(reanchored(m_held->setup.views[i], m_held->setup.wsEye, out.wsEye), body,
+                                  inputs.mapSize);
             if (!kept) {
                 ++m_refits.toCover;
             } else if (texelGrowth(inputs, *kept, refitNow()) > m_options.maxTexelGrowth) {

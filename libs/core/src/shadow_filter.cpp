@@ -16,10 +16,14 @@ Status validate(const FilterSettings& f) {
 
 std::string filterName(const FilterSettings& f) {
     switch (f.kind) {
-    case ShadowFilter::Hard: return "hard";
-    case ShadowFilter::Pcf2: return "pcf2";
-    case ShadowFilter::PcfGrid: return "pcf:" + std::to_string(f.taps);
-    case ShadowFilter::Poisson: return "poisson:" + std::to_string(f.taps);
+    case ShadowFilter::Hard:
+        return "hard";
+    case ShadowFilter::Pcf2:
+        return "pcf2";
+    case ShadowFilter::PcfGrid:
+        return "pcf:" + std::to_string(f.taps);
+    case ShadowFilter::Poisson:
+        return "poisson:" + std::to_string(f.taps);
     }
     return "unknown";
 }
@@ -33,14 +37,19 @@ Result<FilterSettings> parseFilter(std::string_view text) {
     if (colon == std::string_view::npos) return bad;
     const std::string_view kind = text.substr(0, colon), count = text.substr(colon + 1);
     FilterSettings f;
-    if (kind == "pcf") f.kind = ShadowFilter::PcfGrid;
-    else if (kind == "poisson") f.kind = ShadowFilter::Poisson;
-    else return bad;
+    if (kind == "pcf")
+        f.kind = ShadowFilter::PcfGrid;
+    else if (kind == "poisson")
+        f.kind = ShadowFilter::Poisson;
+    else
+        return bad;
     const auto [end, ec] = std::from_chars(count.data(), count.data() + count.size(), f.taps);
     if (ec != std::errc{} || end != count.data() + count.size() || !validate(f)) return bad;
     return f;
 }
 
-bool isWideKernel(const FilterSettings& f) { return f.kind == ShadowFilter::PcfGrid || f.kind == ShadowFilter::Poisson; }
+bool isWideKernel(const FilterSettings& f) {
+    return f.kind == ShadowFilter::PcfGrid || f.kind == ShadowFilter::Poisson;
+}
 
 } // namespace shadowkit::core

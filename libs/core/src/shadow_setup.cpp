@@ -22,7 +22,6 @@ constexpr std::array kTechniques = {
     TechniqueInfo{Technique::Csm, "csm"},           TechniqueInfo{Technique::Lispsm, "lispsm"},
 };
 
-
 } // namespace
 
 std::span<const TechniqueInfo> allTechniques() { return kTechniques; }
@@ -53,12 +52,18 @@ namespace {
 
 Result<ShadowSetup> runTechnique(const ShadowSetupInputs& inputs) {
     switch (inputs.technique) {
-    case Technique::Standard: return computeStandardShadowMap(inputs);
-    case Technique::Focused: return computeFocusedShadowMap(inputs);
-    case Technique::Psm: return computePsm(inputs);
-    case Technique::Csm: return computeCascades(inputs);
-    case Technique::Tsm: return computeTsm(inputs);
-    case Technique::Lispsm: return computeLispsm(inputs);
+    case Technique::Standard:
+        return computeStandardShadowMap(inputs);
+    case Technique::Focused:
+        return computeFocusedShadowMap(inputs);
+    case Technique::Psm:
+        return computePsm(inputs);
+    case Technique::Csm:
+        return computeCascades(inputs);
+    case Technique::Tsm:
+        return computeTsm(inputs);
+    case Technique::Lispsm:
+        return computeLispsm(inputs);
     }
     return makeError("technique: unknown");
 }
@@ -83,25 +88,28 @@ void addLinearDepth(const ShadowSetupInputs& inputs, ShadowSetup& setup) {
 } // namespace
 
 DepthLayout depthLayoutFor(const ShadowSetupInputs& inputs) {
-    return inputs.depthLayout.value_or(inputs.technique == Technique::Tsm ? DepthLayout::Linear : DepthLayout::Hyperbolic);
+    return inputs.depthLayout.value_or(inputs.technique == Technique::Tsm ? DepthLayout::Linear
+                                                                          : DepthLayout::Hyperbolic);
 }
 
 Status validate(const LispsmOptions& o) {
-    if (!(o.weight > 0.0) || !std::isfinite(o.weight)) return fieldError("lispsm.weight", "must be a finite number > 0");
+    if (!(o.weight > 0.0) || !std::isfinite(o.weight))
+        return fieldError("lispsm.weight", "must be a finite number > 0");
     if (o.nOverride && !(*o.nOverride > 0.0 && std::isfinite(*o.nOverride)))
         return fieldError("lispsm.n", "must be a finite number of metres > 0");
     return Ok{};
 }
 
 Status validate(const TsmOptions& o) {
-    if (!(o.focusFraction > 0.0 && o.focusFraction < 1.0)) return fieldError("tsm.focus", "must be a fraction in (0, 1)");
+    if (!(o.focusFraction > 0.0 && o.focusFraction < 1.0))
+        return fieldError("tsm.focus", "must be a fraction in (0, 1)");
     return Ok{};
 }
 
 Status validateMapSize(int texels) {
     if (texels < kMinMapSize || texels > kMaxMapSize)
-        return fieldError("map_size", "must be in [" + std::to_string(kMinMapSize) + ", " + std::to_string(kMaxMapSize) +
-                                          "] texels, got " + std::to_string(texels));
+        return fieldError("map_size", "must be in [" + std::to_string(kMinMapSize) + ", " +
+                                          std::to_string(kMaxMapSize) + "] texels, got " + std::to_string(texels));
     return Ok{};
 }
 

@@ -48,7 +48,8 @@ Result<PerspectiveCamera> toCamera(const shadowkit_camera& c) {
     EngineCamera engine;
     engine.viewFromWorld = toMat4(c.view_from_world);
     engine.clipFromView = toMat4(c.clip_from_view);
-    engine.clipDepth = c.clip_depth == SHADOWKIT_CLIP_DEPTH_MINUS_ONE_TO_ONE ? ClipDepthRange::MinusOneToOne : ClipDepthRange::ZeroToOne;
+    engine.clipDepth = c.clip_depth == SHADOWKIT_CLIP_DEPTH_MINUS_ONE_TO_ONE ? ClipDepthRange::MinusOneToOne
+                                                                             : ClipDepthRange::ZeroToOne;
     engine.handedness = c.left_handed ? ViewHandedness::LeftHanded : ViewHandedness::RightHanded;
     if (c.shadow_distance > 0.0) engine.shadowDistance = c.shadow_distance;
     return cameraFromMatrices(engine);
@@ -113,7 +114,8 @@ int shadowkit_compute_setup(const shadowkit_inputs* in, shadowkit_setup* out, ch
     }
 
     const OutputConventions conventions{
-        in->clip_depth == SHADOWKIT_CLIP_DEPTH_MINUS_ONE_TO_ONE ? ClipDepthRange::MinusOneToOne : ClipDepthRange::ZeroToOne,
+        in->clip_depth == SHADOWKIT_CLIP_DEPTH_MINUS_ONE_TO_ONE ? ClipDepthRange::MinusOneToOne
+                                                                : ClipDepthRange::ZeroToOne,
         in->reversed_z != 0,
         in->texture_origin == SHADOWKIT_TEXTURE_ORIGIN_TOP_LEFT ? TextureOrigin::TopLeft : TextureOrigin::BottomLeft};
     *out = shadowkit_setup{};
@@ -145,7 +147,8 @@ int shadowkit_compute_setup(const shadowkit_inputs* in, shadowkit_setup* out, ch
     return 0;
 }
 
-double shadowkit_texel_size(const shadowkit_view* view, int mapSize, const double lightDirection[3], const double point[3]) {
+double shadowkit_texel_size(const shadowkit_view* view, int mapSize, const double lightDirection[3],
+                            const double point[3]) {
     return wsTexelSize(toMat4(view->clip_from_world), mapSize, toVec3(lightDirection), toVec3(point));
 }
 

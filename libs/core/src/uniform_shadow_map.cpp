@@ -45,7 +45,8 @@ ShadowSetup computeFocusedShadowMap(const ShadowSetupInputs& inputs) {
     setup.technique = Technique::Focused;
     setup.body = computeFocusBody(inputs.camera, inputs.light, inputs.wsSceneBounds);
     if (setup.body.isEmpty()) {
-        setup.fallbacks.emplace_back("empty focus body (the view frustum misses the scene box): fitted the whole scene box");
+        setup.fallbacks.emplace_back(
+            "empty focus body (the view frustum misses the scene box): fitted the whole scene box");
         setup.views.push_back(sceneBoxView(inputs));
         return setup;
     }

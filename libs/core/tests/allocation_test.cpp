@@ -35,8 +35,10 @@ TEST(AllocationTest, ComputingASetupAllocatesNothingForEveryTechniqueAndView) {
     for (const PerspectiveCamera& camera : {level, aerial})
         for (const double elevation : {30.0, 85.0})
             for (const TechniqueInfo& t : allTechniques()) {
-                ShadowSetupInputs in{.camera = camera, .light = DirectionalLight::fromSunAngles(elevation, 120).value(),
-                                     .wsSceneBounds = scene, .technique = t.technique};
+                ShadowSetupInputs in{.camera = camera,
+                                     .light = DirectionalLight::fromSunAngles(elevation, 120).value(),
+                                     .wsSceneBounds = scene,
+                                     .technique = t.technique};
                 in.cascades.count = 8;
                 g_allocations = 0;
                 g_counting = true;

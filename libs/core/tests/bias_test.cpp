@@ -9,12 +9,14 @@ TEST(BiasTest, RecommendedBiasTurnsReceiverPlaneBiasOnForWideKernelsOnly) {
     // truth (tests/eval_integration_test.cpp); here: the rule every caller inherits.
     for (const TechniqueInfo& t : allTechniques())
         for (DepthLayout layout : {DepthLayout::Hyperbolic, DepthLayout::Linear}) {
-            for (const FilterSettings f : {FilterSettings{ShadowFilter::Hard, 1}, FilterSettings{ShadowFilter::Pcf2, 1}}) {
+            for (const FilterSettings f :
+                 {FilterSettings{ShadowFilter::Hard, 1}, FilterSettings{ShadowFilter::Pcf2, 1}}) {
                 const BiasSettings b = recommendedBias(t.technique, layout, f);
                 EXPECT_TRUE(validate(b)) << t.name;
                 EXPECT_FALSE(b.receiverPlane) << t.name;
             }
-            for (const FilterSettings f : {FilterSettings{ShadowFilter::PcfGrid, 3}, FilterSettings{ShadowFilter::Poisson, 16}}) {
+            for (const FilterSettings f :
+                 {FilterSettings{ShadowFilter::PcfGrid, 3}, FilterSettings{ShadowFilter::Poisson, 16}}) {
                 const BiasSettings b = recommendedBias(t.technique, layout, f);
                 EXPECT_TRUE(b.receiverPlane) << t.name;
                 // The filter changes the receiver side only: the caster-side bias stays.

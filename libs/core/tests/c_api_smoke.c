@@ -22,10 +22,12 @@ int main(void) {
     }
     if (out.view_count != in.cascade_count) return 2;
     for (i = 0; i < out.view_count; ++i)
-        if (!isfinite(out.views[i].texture_from_world[0]) || !(out.views[i].split_far > out.views[i].split_near)) return 3;
+        if (!isfinite(out.views[i].texture_from_world[0]) || !(out.views[i].split_far > out.views[i].split_near))
+            return 3;
 
     in.map_size = 3; /* below the smallest map: refused, with the input named */
     if (shadowkit_compute_setup(&in, &out, error, sizeof error) == 0 || strstr(error, "map_size") == NULL) return 4;
-    printf("shadowkit %s from C: %d cascades, refused map_size 3 with \"%s\"\n", shadowkit_version_string(), in.cascade_count, error);
+    printf("shadowkit %s from C: %d cascades, refused map_size 3 with \"%s\"\n", shadowkit_version_string(),
+           in.cascade_count, error);
     return 0;
 }

@@ -32,7 +32,8 @@ TEST(CApiTest, GivesTheCppResultsForTheSameInputs) {
         ShadowSetupInputs cpp;
         EXPECT_EQ(c.technique, static_cast<int>(cpp.technique));
 
-        cpp.wsSceneBounds = Aabb::fromMinMax(Vec3(-uniform(50, 500), 0, -uniform(50, 500)), Vec3(uniform(50, 500), uniform(5, 40), uniform(50, 500)));
+        cpp.wsSceneBounds = Aabb::fromMinMax(Vec3(-uniform(50, 500), 0, -uniform(50, 500)),
+                                             Vec3(uniform(50, 500), uniform(5, 40), uniform(50, 500)));
         copy(cpp.wsSceneBounds.min, c.scene_min);
         copy(cpp.wsSceneBounds.max, c.scene_max);
         const Vec3 light(uniform(-1, 1), uniform(-1, -0.1), uniform(-1, 1)); // not unit: the C API normalises
@@ -72,7 +73,8 @@ TEST(CApiTest, GivesTheCppResultsForTheSameInputs) {
         c.clip_depth = static_cast<int>(rng() % 2);
         c.reversed_z = static_cast<int>(rng() % 2);
         c.texture_origin = static_cast<int>(rng() % 2);
-        const OutputConventions conventions{c.clip_depth ? ClipDepthRange::MinusOneToOne : ClipDepthRange::ZeroToOne, c.reversed_z != 0,
+        const OutputConventions conventions{c.clip_depth ? ClipDepthRange::MinusOneToOne : ClipDepthRange::ZeroToOne,
+                                            c.reversed_z != 0,
                                             c.texture_origin ? TextureOrigin::TopLeft : TextureOrigin::BottomLeft};
 
         shadowkit_setup out;
@@ -80,7 +82,8 @@ TEST(CApiTest, GivesTheCppResultsForTheSameInputs) {
         ASSERT_EQ(shadowkit_compute_setup(&c, &out, error, sizeof error), 0) << error;
         const ShadowSetup setup = computeShadowSetup(cpp).value();
         ASSERT_EQ(out.view_count, static_cast<int>(setup.views.size()));
-        EXPECT_EQ(out.depth_layout, setup.depthLayout == DepthLayout::Linear ? SHADOWKIT_DEPTH_LINEAR : SHADOWKIT_DEPTH_HYPERBOLIC);
+        EXPECT_EQ(out.depth_layout,
+                  setup.depthLayout == DepthLayout::Linear ? SHADOWKIT_DEPTH_LINEAR : SHADOWKIT_DEPTH_HYPERBOLIC);
         const BiasSettings bias = recommendedBias(setup.technique, setup.depthLayout);
         EXPECT_EQ(out.bias.slope, bias.slope);
         EXPECT_EQ(out.bias.normal_offset, bias.normalOffset);
@@ -88,7 +91,8 @@ TEST(CApiTest, GivesTheCppResultsForTheSameInputs) {
             const EngineShadowView view = toEngineView(setup.views[v], setup, conventions);
             expectEqual(view.clipFromWorld, out.views[v].clip_from_world, "clip_from_world");
             expectEqual(view.textureFromWorld, out.views[v].texture_from_world, "texture_from_world");
-            expectEqual(view.textureFromEyeRelative, out.views[v].texture_from_eye_relative, "texture_from_eye_relative");
+            expectEqual(view.textureFromEyeRelative, out.views[v].texture_from_eye_relative,
+                        "texture_from_eye_relative");
             expectEqual(view.clipFromEyeRelative, out.views[v].clip_from_eye_relative, "clip_from_eye_relative");
             for (int k = 0; k < 3; ++k) ASSERT_EQ(out.eye_relative_origin[k], setup.wsEye[k]);
             ASSERT_EQ(out.views[v].culling_plane_count, static_cast<int>(view.wsCullingPlanes.size()));

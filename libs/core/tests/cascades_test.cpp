@@ -115,7 +115,8 @@ TEST(CascadesTest, StabilisedSplitsMoveByWholeTexelsUnderCameraTranslation) {
         for (size_t i = 0; i < before->views.size(); ++i) {
             // Same texel size, and a fixed world point's texel position changes by an integer.
             EXPECT_DOUBLE_EQ(before->views[i].clipFromWorld[0][0], after->views[i].clipFromWorld[0][0]);
-            const Vec3 probe = in.camera.wsEye + 0.5 * (before->views[i].split->x + before->views[i].split->y) * glm::normalize(in.camera.wsDirection);
+            const Vec3 probe = in.camera.wsEye + 0.5 * (before->views[i].split->x + before->views[i].split->y) *
+                                                     glm::normalize(in.camera.wsDirection);
             const Vec2 d = texelOf(after->views[i], probe, 1024) - texelOf(before->views[i], probe, 1024);
             EXPECT_NEAR(d.x, std::round(d.x), 1e-6) << "split " << i;
             EXPECT_NEAR(d.y, std::round(d.y), 1e-6) << "split " << i;
@@ -186,7 +187,8 @@ TEST(CascadesTest, PerSplitLispsmWarpsEachSplitWhereFocusedSplitsStayAffine) {
         EXPECT_FALSE(std::get<LispsmWarp>(w.warp).uniform) << "split " << i << " fell back to uniform";
         EXPECT_TRUE(std::holds_alternative<std::monostate>(p.warp));
         // Points at the split's near and far end, on the view axis.
-        const Vec4 nearP(in.camera.wsEye + w.split->x * forward, 1.0), farP(in.camera.wsEye + w.split->y * forward, 1.0);
+        const Vec4 nearP(in.camera.wsEye + w.split->x * forward, 1.0),
+            farP(in.camera.wsEye + w.split->y * forward, 1.0);
         EXPECT_GT(std::abs((w.clipFromWorld * farP).w - (w.clipFromWorld * nearP).w), 1e-3) << "split " << i;
         EXPECT_NEAR((p.clipFromWorld * farP).w, (p.clipFromWorld * nearP).w, 1e-9) << "split " << i;
     }

@@ -2,8 +2,8 @@
 // an item of a known visible set, and its result arrives only once `latency` more queries
 // have been issued after it (the GPU works through them in order), so the tests see the
 // latency a real driver has. Reading a result that has not arrived blocks until the GPU has
-// worked through that query (and every earlier one, in order); the read is counted. `leakyNodes` are inner nodes whose box passes though
-// nothing under it is visible (a box holds empty space between its children's boxes).
+// worked through that query (and every earlier one, in order); the read is counted. `leakyNodes` are inner nodes whose
+// box passes though nothing under it is visible (a box holds empty space between its children's boxes).
 #include "shadowkit/core/coherent_culling.h"
 
 #include <gtest/gtest.h>
@@ -25,7 +25,9 @@ public:
     size_t blockingReadsThisFrame = 0, blockingReadsOfEarlierFrames = 0, queries = 0, leakyQueries = 0;
     std::vector<uint32_t> drawnItems; // in the order draw() received them
 
-    void draw(std::span<const uint32_t> items) override { drawnItems.insert(drawnItems.end(), items.begin(), items.end()); }
+    void draw(std::span<const uint32_t> items) override {
+        drawnItems.insert(drawnItems.end(), items.begin(), items.end());
+    }
     uint32_t issue(std::span<const uint32_t> nodes) override {
         bool any = false;
         for (const uint32_t n : nodes) any = any || holdsVisible(n) || leakyNodes.count(n);
@@ -66,7 +68,8 @@ private:
 InstanceHierarchy grid() {
     std::vector<Aabb> boxes;
     for (int z = 0; z < 40; ++z)
-        for (int x = 0; x < 40; ++x) boxes.push_back(Aabb::fromMinMax(Vec3(3 * x, 0, 3 * z), Vec3(3 * x + 1, 1, 3 * z + 1)));
+        for (int x = 0; x < 40; ++x)
+            boxes.push_back(Aabb::fromMinMax(Vec3(3 * x, 0, 3 * z), Vec3(3 * x + 1, 1, 3 * z + 1)));
     return InstanceHierarchy(boxes);
 }
 
@@ -145,7 +148,8 @@ TEST(CoherentCulling, NeverMissesAnObjectThatBecameVisible) {
             gpu.visibleItems = randomSubset(rng, h.size(), 0.03); // the view changes every frame
             waits += chc.frame({}, kEye, 0.5, gpu, drawn).waits;
             const std::set<uint32_t> got(drawn.begin(), drawn.end());
-            for (const uint32_t item : gpu.visibleItems) ASSERT_TRUE(got.count(item)) << "frame " << f << " item " << item;
+            for (const uint32_t item : gpu.visibleItems)
+                ASSERT_TRUE(got.count(item)) << "frame " << f << " item " << item;
         }
         EXPECT_EQ(waits, gpu.blockingReadsThisFrame); // every wait is counted
         EXPECT_EQ(gpu.blockingReadsOfEarlierFrames, 0u);

@@ -44,7 +44,8 @@ void expectNear(const Mat4& a, const Mat4& b, double relative, const std::string
     for (int c = 0; c < 4; ++c)
         for (int r = 0; r < 4; ++r) largest = std::max(largest, std::abs(a[c][r]));
     for (int c = 0; c < 4; ++c)
-        for (int r = 0; r < 4; ++r) ASSERT_NEAR(a[c][r], b[c][r], relative * largest) << what << " [" << c << "][" << r << "]";
+        for (int r = 0; r < 4; ++r)
+            ASSERT_NEAR(a[c][r], b[c][r], relative * largest) << what << " [" << c << "][" << r << "]";
 }
 
 // Every point of the set-up's focus body inside each view's clip volume (x, y in [-1, 1],
@@ -109,9 +110,10 @@ TEST(EngineCameraTest, SymmetricPerspectiveGivesTheSameSetupsAsEyeDirectionAndFo
             EngineCamera engine;
             engine.viewFromWorld = camera.viewFromWorld();
             engine.clipDepth = range;
-            engine.clipFromView = range == ClipDepthRange::ZeroToOne
-                                      ? camera.clipFromView()
-                                      : glm::perspectiveRH_NO(glm::radians(camera.fovYDegrees), camera.aspect, camera.zNear, camera.zFar);
+            engine.clipFromView =
+                range == ClipDepthRange::ZeroToOne
+                    ? camera.clipFromView()
+                    : glm::perspectiveRH_NO(glm::radians(camera.fovYDegrees), camera.aspect, camera.zNear, camera.zFar);
             const Result<PerspectiveCamera> fromMatrices = cameraFromMatrices(engine);
             ASSERT_TRUE(fromMatrices) << fromMatrices.error();
             EXPECT_NEAR(fromMatrices->fovYDegrees, camera.fovYDegrees, 1e-9 * camera.fovYDegrees);
@@ -139,7 +141,8 @@ TEST(EngineCameraTest, LeftHandedDirect3DMatricesGiveTheSameCamera) {
         const PerspectiveCamera camera = random.camera();
         EngineCamera engine;
         engine.viewFromWorld = glm::lookAtLH(camera.wsEye, camera.wsEye + camera.wsDirection, camera.wsUp);
-        engine.clipFromView = glm::perspectiveLH_ZO(glm::radians(camera.fovYDegrees), camera.aspect, camera.zNear, camera.zFar);
+        engine.clipFromView =
+            glm::perspectiveLH_ZO(glm::radians(camera.fovYDegrees), camera.aspect, camera.zNear, camera.zFar);
         const Result<PerspectiveCamera> c = cameraFromMatrices(engine);
         ASSERT_TRUE(c) << c.error();
         EXPECT_LT(glm::distance(c->wsEye, camera.wsEye), 1e-9 * glm::length(camera.wsEye) + 1e-12);
@@ -176,7 +179,8 @@ TEST(EngineCameraTest, ReversedZAndInfiniteFarAreRecognisedAndGiveContainedSetup
         EXPECT_DOUBLE_EQ(c->zFar, camera.zFar);
 
         // Reversed with a finite far plane, [-1, 1]: far recognised.
-        Mat4 reversedFinite = glm::perspectiveRH_NO(glm::radians(camera.fovYDegrees), camera.aspect, camera.zFar, camera.zNear);
+        Mat4 reversedFinite =
+            glm::perspectiveRH_NO(glm::radians(camera.fovYDegrees), camera.aspect, camera.zFar, camera.zNear);
         const Result<RecognisedProjection> q = recogniseProjection(reversedFinite, ClipDepthRange::MinusOneToOne);
         ASSERT_TRUE(q) << q.error();
         EXPECT_TRUE(q->reversedZ && !q->infiniteFar);
@@ -209,8 +213,8 @@ TEST(EngineCameraTest, OffCentreAndJitteredFrustumsAreEnclosedTightly) {
             // Off-centre (a tile of a larger image, a stereo eye): glm::frustum with [0, 1] depth.
             const double l = random.uniform(-1, 0.2), r = l + random.uniform(0.2, 1.5);
             const double b = random.uniform(-1, 0.2), t = b + random.uniform(0.2, 1.5);
-            engine.clipFromView = glm::frustumRH_ZO(l * camera.zNear, r * camera.zNear, b * camera.zNear, t * camera.zNear,
-                                                    camera.zNear, camera.zFar);
+            engine.clipFromView = glm::frustumRH_ZO(l * camera.zNear, r * camera.zNear, b * camera.zNear,
+                                                    t * camera.zNear, camera.zNear, camera.zFar);
         } else {
             // A TAA jitter of up to a pixel of a 1280 × 720 image.
             engine.clipFromView = camera.clipFromView();
@@ -223,8 +227,9 @@ TEST(EngineCameraTest, OffCentreAndJitteredFrustumsAreEnclosedTightly) {
         const Result<PerspectiveCamera> c = cameraFromMatrices(engine);
         ASSERT_TRUE(c) << c.error();
         const std::vector<Vec3> corners = engineCorners(engine, 0.0, 1.0);
-        EXPECT_LE(outsideFrustum(*c, corners), 1e-9) << "config " << i;                 // every corner inside ...
-        EXPECT_GE(outsideFrustum(*c, corners, true), -1e-9) << "config " << i; // ... one on a side: no wider than needed
+        EXPECT_LE(outsideFrustum(*c, corners), 1e-9) << "config " << i; // every corner inside ...
+        EXPECT_GE(outsideFrustum(*c, corners, true), -1e-9)
+            << "config " << i; // ... one on a side: no wider than needed
     }
 }
 
@@ -237,7 +242,8 @@ TEST(EngineCameraTest, OrthographicViewsAreEnclosedWithTheStatedOverscan) {
         const double l = random.uniform(-80, 0), r = l + random.uniform(5, 100);
         const double b = random.uniform(-80, 0), t = b + random.uniform(5, 100);
         const double n = random.uniform(-10, 5), f = n + random.uniform(20, 400);
-        engine.viewFromWorld = leftHanded ? glm::lookAtLH(look.wsEye, look.wsEye + look.wsDirection, look.wsUp) : look.viewFromWorld();
+        engine.viewFromWorld =
+            leftHanded ? glm::lookAtLH(look.wsEye, look.wsEye + look.wsDirection, look.wsUp) : look.viewFromWorld();
         engine.clipFromView = leftHanded ? glm::orthoLH_ZO(l, r, b, t, n, f) : glm::orthoRH_ZO(l, r, b, t, n, f);
         engine.handedness = leftHanded ? ViewHandedness::LeftHanded : ViewHandedness::RightHanded;
         const Result<PerspectiveCamera> c = cameraFromMatrices(engine);

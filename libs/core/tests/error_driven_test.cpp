@@ -63,7 +63,8 @@ TEST(ErrorDrivenTest, OptimisedParametersLoseNoCasterAndNeverLoseToTheDefaults) 
         for (const ShadowView& view : setup->views)
             for (const Vec3& p : core::testing::pointsToHold(choice->inputs, *setup, view)) {
                 ASSERT_GT((view.clipFromWorld * Vec4(p, 1.0)).w, 0.0) << describe(*choice) << ", config " << i;
-                ASSERT_LE(core::testing::outsideClipCube(view.clipFromWorld, p), 1e-6) << describe(*choice) << ", config " << i;
+                ASSERT_LE(core::testing::outsideClipCube(view.clipFromWorld, p), 1e-6)
+                    << describe(*choice) << ", config " << i;
             }
         ++optimised;
     }
@@ -141,7 +142,7 @@ TEST(ErrorDrivenTest, AutoKeepsThePreviousChoiceUnlessClearlyBeaten) {
     // The runner-up within the band is kept, one outside it is not.
     for (const ParameterChoice& other : *ranked) {
         if (other.objective == best.objective) continue;
-        options.hysteresis = 0.999 * (1.0 - best.objective / other.objective) ; // just short of other's distance
+        options.hysteresis = 0.999 * (1.0 - best.objective / other.objective); // just short of other's distance
         auto replaced = chooseAuto(in, options, *model, &other);
         ASSERT_TRUE(replaced);
         EXPECT_EQ(replaced->objective, best.objective) << describe(other);

@@ -63,7 +63,7 @@ TEST(InstanceHierarchyTest, QueryEqualsTheBruteForceCornerTestForRandomFrusta) {
         ASSERT_EQ(sorted(got), expected) << "trial " << trial;
         total += got.size();
     }
-    EXPECT_GT(total, 0u);                 // the frusta do see something
+    EXPECT_GT(total, 0u);                  // the frusta do see something
     EXPECT_LT(total, 200u * boxes.size()); // and not everything
 }
 

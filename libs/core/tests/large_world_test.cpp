@@ -2,11 +2,11 @@
 // relative to the eye; these tests hold it to the matrix contract at 10^5–10^7 m, to
 // translation invariance, and check what a GPU's floats make of the eye-relative matrices
 // against the world ones.
+#include "setup_configs.h"
 #include "shadowkit/core/local_lights.h"
 #include "shadowkit/core/output_conventions.h"
 #include "shadowkit/core/setup_hysteresis.h"
 #include "shadowkit/core/shadow_setup.h"
-#include "setup_configs.h"
 
 #include <gtest/gtest.h>
 
@@ -120,7 +120,8 @@ TEST(LargeWorldTest, SetUpsAreContainedAndTranslationInvariantAtTenToTheFiveSixA
                     const ShadowView& view = there->views[v];
                     for (const Vec3& eyeRelative : eyeRelativePointsToHold(far, *there, v)) {
                         ASSERT_GT((view.clipFromEyeRelative * Vec4(eyeRelative, 1.0)).w, 0.0) << info.name;
-                        ASSERT_LE(outsideClipCube(view.clipFromEyeRelative, eyeRelative), 1e-6) << info.name << " at " << distance;
+                        ASSERT_LE(outsideClipCube(view.clipFromEyeRelative, eyeRelative), 1e-6)
+                            << info.name << " at " << distance;
                         // The same map as at the origin: the points land where they land there.
                         const Vec3 d = ndcOf(view.clipFromEyeRelative, eyeRelative) -
                                        ndcOf(near->views[v].clipFromEyeRelative, eyeRelative);
@@ -179,10 +180,12 @@ TEST(LargeWorldTest, ARebasedSetUpIsTheSameMapInItsOwnCoordinates) {
         EXPECT_EQ(local.wsEye, setup->wsEye - origin);
         for (size_t v = 0; v < local.views.size(); ++v)
             for (const Vec3& p : pointsToHold(in, *setup, setup->views[v])) {
-                const Vec3 d = ndcOf(local.views[v].clipFromWorld, p - origin) - ndcOf(setup->views[v].clipFromEyeRelative, p - in.camera.wsEye);
+                const Vec3 d = ndcOf(local.views[v].clipFromWorld, p - origin) -
+                               ndcOf(setup->views[v].clipFromEyeRelative, p - in.camera.wsEye);
                 ASSERT_LE(std::max({std::abs(d.x), std::abs(d.y), std::abs(d.z)}), 1e-6);
                 const double linear = glm::dot(local.views[v].linearDepthFromWorld, Vec4(p - origin, 1.0));
-                ASSERT_NEAR(linear, glm::dot(setup->views[v].linearDepthFromEyeRelative, Vec4(p - in.camera.wsEye, 1.0)), 1e-6);
+                ASSERT_NEAR(linear,
+                            glm::dot(setup->views[v].linearDepthFromEyeRelative, Vec4(p - in.camera.wsEye, 1.0)), 1e-6);
             }
         ASSERT_EQ(local.body.vertices().size(), setup->body.vertices().size());
     }
@@ -233,7 +236,8 @@ TEST(LargeWorldTest, HeldViewsAndLocalLightsKeepTheirEyeRelativeMatricesConsiste
 
 TEST(LargeWorldTest, EngineViewsGiveTheSameLookupEyeRelativeInEveryConvention) {
     ConfigGenerator gen(99);
-    const OutputConventions conventions[] = {OutputConventions::openGL(), OutputConventions::vulkan(), OutputConventions::direct3D()};
+    const OutputConventions conventions[] = {OutputConventions::openGL(), OutputConventions::vulkan(),
+                                             OutputConventions::direct3D()};
     for (int i = 0; i < 200; ++i) {
         ShadowSetupInputs in = moved(gen.next(), Vec3(-4e5, 10, 9e5));
         in.technique = allTechniques()[static_cast<size_t>(i) % allTechniques().size()].technique;

@@ -1,6 +1,6 @@
 #include "shadowkit/core/lispsm.h"
-#include "shadowkit/core/visible_depth.h"
 #include "shadowkit/core/perspective_aliasing.h"
+#include "shadowkit/core/visible_depth.h"
 
 #include <gtest/gtest.h>
 

@@ -38,7 +38,9 @@ Vec3 pointInFrustum(const PerspectiveCamera& c, std::mt19937& rng) {
     std::uniform_real_distribution<double> u(0.0, 1.0);
     const auto k = c.wsFrustumCorners();
     const double a = u(rng), b = u(rng), depth = std::pow(u(rng), 2.0);
-    auto on = [&](int base) { return glm::mix(glm::mix(k[base], k[base + 1], a), glm::mix(k[base + 3], k[base + 2], a), b); };
+    auto on = [&](int base) {
+        return glm::mix(glm::mix(k[base], k[base + 1], a), glm::mix(k[base + 3], k[base + 2], a), b);
+    };
     return glm::mix(on(0), on(4), depth);
 }
 
@@ -81,7 +83,8 @@ TEST(LocalLights, EveryVisibleReceiverInRangeIsHeldWithItsCastersOverRandomConfi
                                               : in.camera.wsEye + 40.0 * u(rng) * randomUnit(rng);
         const double range = 1 + 79 * u(rng);
         const PointLight point{.wsPosition = position, .range = range};
-        const SpotLight spot{.wsPosition = position, .wsDirection = randomUnit(rng), .coneDegrees = 5 + 165 * u(rng), .range = range};
+        const SpotLight spot{
+            .wsPosition = position, .wsDirection = randomUnit(rng), .coneDegrees = 5 + 165 * u(rng), .range = range};
         auto cube = computePointShadowSetup(in, point);
         auto cone = computeSpotShadowSetup(in, spot);
         ASSERT_TRUE(cube && cone) << config;
@@ -90,16 +93,21 @@ TEST(LocalLights, EveryVisibleReceiverInRangeIsHeldWithItsCastersOverRandomConfi
         for (const ShadowSetup* s : {&*cube, &*cone})
             for (const ShadowView& v : s->views) {
                 ASSERT_TRUE(isFinite(v.clipFromWorld)) << config;
-                ASSERT_TRUE(isFinite(v.lightDistance) && v.lightDistance.y > v.lightDistance.x && v.lightDistance.x >= 0.0) << config;
+                ASSERT_TRUE(isFinite(v.lightDistance) && v.lightDistance.y > v.lightDistance.x &&
+                            v.lightDistance.x >= 0.0)
+                    << config;
             }
         const double cosHalf = std::cos(0.5 * glm::radians(spot.coneDegrees));
         const auto frustum = in.camera.wsFrustumPlanes();
         for (int k = 0; k < 20; ++k) {
             // Half from the view frustum, half from the light's ball: visible, in the scene, in range.
-            const Vec3 p = k % 2 ? pointInFrustum(in.camera, rng) : position + range * std::cbrt(u(rng)) * randomUnit(rng);
+            const Vec3 p =
+                k % 2 ? pointInFrustum(in.camera, rng) : position + range * std::cbrt(u(rng)) * randomUnit(rng);
             bool visible = true;
             for (const Plane& plane : frustum) visible = visible && plane.signedDistance(p) <= 0.0;
-            if (!visible || !kScene.contains(p) || glm::distance(p, position) > range || glm::distance(p, position) < 1e-6) continue;
+            if (!visible || !kScene.contains(p) || glm::distance(p, position) > range ||
+                glm::distance(p, position) < 1e-6)
+                continue;
             ++checked;
             const ShadowView* face = faceView(*cube, cubeFaceOf(p - position));
             ASSERT_NE(face, nullptr) << "config " << config << ": a visible receiver's face was skipped";
@@ -122,12 +130,24 @@ TEST(LocalLights, CubeFacesFollowTheOpenGlTable) {
         const int face = cubeFaceOf(r);
         double sc = 0, tc = 0, ma = 0;
         switch (face) {
-        case 0: sc = -r.z, tc = -r.y, ma = r.x; break;
-        case 1: sc = r.z, tc = -r.y, ma = r.x; break;
-        case 2: sc = r.x, tc = r.z, ma = r.y; break;
-        case 3: sc = r.x, tc = -r.z, ma = r.y; break;
-        case 4: sc = r.x, tc = -r.y, ma = r.z; break;
-        case 5: sc = -r.x, tc = -r.y, ma = r.z; break;
+        case 0:
+            sc = -r.z, tc = -r.y, ma = r.x;
+            break;
+        case 1:
+            sc = r.z, tc = -r.y, ma = r.x;
+            break;
+        case 2:
+            sc = r.x, tc = r.z, ma = r.y;
+            break;
+        case 3:
+            sc = r.x, tc = -r.z, ma = r.y;
+            break;
+        case 4:
+            sc = r.x, tc = -r.y, ma = r.z;
+            break;
+        case 5:
+            sc = -r.x, tc = -r.y, ma = r.z;
+            break;
         }
         const CubeFace& f = cubeFaces()[size_t(face)];
         EXPECT_GT(glm::dot(r, f.wsAxis), 0.0);
@@ -160,7 +180,8 @@ TEST(LocalLights, DegeneratePlacementsHaveDefinedAnswers) {
     EXPECT_EQ(behind->skippedFaces, 6);
     EXPECT_FALSE(behind->fallbacks.empty());
     // A spot above the scene pointing at the sky lights nothing: no map, said so.
-    auto sky = computeSpotShadowSetup(in, SpotLight{.wsPosition = {0, 50, -20}, .wsDirection = {0, 1, 0}, .coneDegrees = 30, .range = 10});
+    auto sky = computeSpotShadowSetup(
+        in, SpotLight{.wsPosition = {0, 50, -20}, .wsDirection = {0, 1, 0}, .coneDegrees = 30, .range = 10});
     ASSERT_TRUE(sky);
     EXPECT_TRUE(sky->views.empty());
     EXPECT_FALSE(sky->fallbacks.empty());

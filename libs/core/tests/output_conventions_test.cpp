@@ -63,7 +63,8 @@ TEST(OutputConventionsTest, EveryConventionIsTheDefaultLookupUnderTheDocumentedF
             in.technique = info.technique;
             const Result<ShadowSetup> setup = computeShadowSetup(in);
             ASSERT_TRUE(setup) << setup.error();
-            if (info.technique == Technique::Standard || info.technique == Technique::Csm || setup->body.isEmpty()) continue;
+            if (info.technique == Technique::Standard || info.technique == Technique::Csm || setup->body.isEmpty())
+                continue;
             const ShadowView& core = setup->views[0];
             const EngineShadowView reference = toEngineView(core, *setup, OutputConventions{});
             const std::vector<Vec3> points = receiversAndCasters(*setup, in, random);
@@ -123,7 +124,8 @@ TEST(OutputConventionsTest, CullingPlanesKeepReceiversAndCastersAndDropWhatIsBes
             EXPECT_EQ(view.wsCullingPlanes.size(), setup->depthClamp ? 5u : 6u);
             const double size = glm::length(in.wsSceneBounds.max - in.wsSceneBounds.min);
             for (const Vec3& p : receiversAndCasters(*setup, in, random))
-                for (const Plane& plane : view.wsCullingPlanes) ASSERT_LE(plane.signedDistance(p), 1e-6 * size) << info.name;
+                for (const Plane& plane : view.wsCullingPlanes)
+                    ASSERT_LE(plane.signedDistance(p), 1e-6 * size) << info.name;
             // Far beside the map, perpendicular to the light: culled by a side plane.
             const Vec3 l = glm::normalize(in.light.wsDirection);
             const Vec3 side = glm::normalize(glm::cross(l, std::abs(l.y) < 0.9 ? Vec3(0, 1, 0) : Vec3(1, 0, 0)));
@@ -147,7 +149,8 @@ TEST(OutputConventionsTest, TexelSizeIsTheMapExtentOverItsTexelsForAUniformMap) 
     // the plane facing the light is the geometric mean of the two.
     const double expected = std::sqrt((2.0 / clipFromLight[0][0]) * (2.0 / clipFromLight[1][1])) / in.mapSize;
     for (const Vec3& p : setup.body.vertices())
-        EXPECT_NEAR(wsTexelSize(setup.views[0].clipFromWorld, in.mapSize, in.light.wsDirection, p), expected, 1e-9 * expected);
+        EXPECT_NEAR(wsTexelSize(setup.views[0].clipFromWorld, in.mapSize, in.light.wsDirection, p), expected,
+                    1e-9 * expected);
 
     // A warped map spends its texels near the viewer: smaller texels at the near plane than at the far.
     in.technique = Technique::Lispsm;

@@ -40,7 +40,8 @@ TEST(PsmTest, SunAheadBehindAndOverheadAreTheThreeCasesAndKeepTheDepthOrderOfThe
         const Vec3 caster = receiver + 8.0 * towards;
         EXPECT_LT(mapDepth(*setup, caster), mapDepth(*setup, receiver)) << travel.x << "," << travel.z;
         // ...and both land on the same texel (they are on one light ray).
-        const Vec4 a = setup->views[0].clipFromWorld * Vec4(receiver, 1), b = setup->views[0].clipFromWorld * Vec4(caster, 1);
+        const Vec4 a = setup->views[0].clipFromWorld * Vec4(receiver, 1),
+                   b = setup->views[0].clipFromWorld * Vec4(caster, 1);
         EXPECT_NEAR(a.x / a.w, b.x / b.w, 1e-9);
         EXPECT_NEAR(a.y / a.w, b.y / b.w, 1e-9);
     }

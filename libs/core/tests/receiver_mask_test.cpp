@@ -25,11 +25,11 @@ TEST(ReceiverMask, KeepsACasterAboveAVisibleReceiverOnly) {
         ReceiverMask mask(64, overheadMap(), row);
         mask.mark(Vec3(10, 0, 10)); // a visible point on the ground
         mask.finish(1);
-        EXPECT_TRUE(mask.mayShadow(box(Vec3(9, 5, 9), Vec3(11, 8, 11))));     // straight above it
-        EXPECT_FALSE(mask.mayShadow(box(Vec3(9, -8, 9), Vec3(11, -5, 11))));  // below it: farther from the sun
+        EXPECT_TRUE(mask.mayShadow(box(Vec3(9, 5, 9), Vec3(11, 8, 11))));        // straight above it
+        EXPECT_FALSE(mask.mayShadow(box(Vec3(9, -8, 9), Vec3(11, -5, 11))));     // below it: farther from the sun
         EXPECT_FALSE(mask.mayShadow(box(Vec3(-30, 5, -30), Vec3(-28, 8, -28)))); // over unseen ground
-        EXPECT_TRUE(mask.mayShadow(box(Vec3(11.6, 5, 10), Vec3(12, 8, 10.5)))); // one mask texel aside: the dilation
-        EXPECT_FALSE(mask.mayShadow(box(Vec3(200, 5, 10), Vec3(210, 8, 11)))); // outside the map
+        EXPECT_TRUE(mask.mayShadow(box(Vec3(11.6, 5, 10), Vec3(12, 8, 10.5))));  // one mask texel aside: the dilation
+        EXPECT_FALSE(mask.mayShadow(box(Vec3(200, 5, 10), Vec3(210, 8, 11))));   // outside the map
     }
 }
 
@@ -62,7 +62,8 @@ TEST(ReceiverMask, NoCasterThatCouldShadowAMarkedTexelIsCulled) {
 }
 
 TEST(ReceiverMask, AReceiverBehindAWarpCentreKeepsEverything) {
-    const Mat4 perspective = glm::perspectiveRH_ZO(1.0, 1.0, 1.0, 100.0) * glm::lookAt(Vec3(0, 50, 0), Vec3(0, 0, 0), Vec3(0, 0, -1));
+    const Mat4 perspective =
+        glm::perspectiveRH_ZO(1.0, 1.0, 1.0, 100.0) * glm::lookAt(Vec3(0, 50, 0), Vec3(0, 0, 0), Vec3(0, 0, -1));
     ReceiverMask mask(16, perspective, std::nullopt);
     mask.mark(Vec3(0, 80, 0)); // above the centre: behind it
     mask.finish(0);

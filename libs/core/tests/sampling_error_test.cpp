@@ -34,12 +34,14 @@ Vec2 project(const Mat4& clipFromWorld, const Vec3& ws) {
 
 // Pixels per texel by central differences: step a pixel's width, find the surface point, see
 // where the map puts it. Independent of the model's analytic derivatives.
-double finiteDifferencePixelsPerTexel(const PerspectiveCamera& camera, const ShadowView& view, int mapSize, const Vec3& p,
-                                      const Vec3& n) {
+double finiteDifferencePixelsPerTexel(const PerspectiveCamera& camera, const ShadowView& view, int mapSize,
+                                      const Vec3& p, const Vec3& n) {
     const Vec2 ndc = project(camera.clipFromWorld(), p);
     const Vec2 pixel((ndc.x + 1.0) * 0.5 * kWidth, (1.0 - ndc.y) * 0.5 * kHeight);
     const double h = 1e-3;
-    auto texelAt = [&](Vec2 px) { return (project(view.clipFromWorld, planePointAtPixel(camera, px, p, n)) * 0.5 + 0.5) * double(mapSize); };
+    auto texelAt = [&](Vec2 px) {
+        return (project(view.clipFromWorld, planePointAtPixel(camera, px, p, n)) * 0.5 + 0.5) * double(mapSize);
+    };
     const Vec2 dx = (texelAt(pixel + Vec2(h, 0)) - texelAt(pixel - Vec2(h, 0))) / (2 * h);
     const Vec2 dy = (texelAt(pixel + Vec2(0, h)) - texelAt(pixel - Vec2(0, h))) / (2 * h);
     return pixelsPerTexel(glm::dmat2(dx, dy));
@@ -58,7 +60,7 @@ TEST(SamplingErrorTest, PixelsPerTexelIsTheLargestSingularValueOfTheInverseJacob
 
 TEST(SamplingErrorTest, PercentileIsTheElementAtTheFlooredIndex) {
     std::vector<double> v = {5, 1, 4, 2, 3, 10, 9, 8, 7, 6};
-    EXPECT_EQ(percentileInPlace(v, 0.5), 6.0);  // index 5 of 1..10
+    EXPECT_EQ(percentileInPlace(v, 0.5), 6.0);   // index 5 of 1..10
     EXPECT_EQ(percentileInPlace(v, 0.95), 10.0); // index 9
     EXPECT_EQ(percentileInPlace(v, 1.0), 10.0);  // clamped
     EXPECT_EQ(percentileInPlace({}, 0.5), 0.0);
@@ -98,8 +100,8 @@ TEST(SamplingErrorTest, PredictionMatchesFiniteDifferencesForEveryTechnique) {
             const ShadowView& view = setup->views[map];
             const Vec4 c = view.clipFromWorld * Vec4(samples[i].wsPosition, 1.0);
             if (!(std::abs(c.w) > 1e-6)) continue;
-            const double reference = finiteDifferencePixelsPerTexel(in.camera, view, setup->mapSize, samples[i].wsPosition,
-                                                                    samples[i].wsNormal);
+            const double reference = finiteDifferencePixelsPerTexel(in.camera, view, setup->mapSize,
+                                                                    samples[i].wsPosition, samples[i].wsNormal);
             if (!std::isfinite(reference) || reference > 1e6 || reference < 1e-6) continue;
             EXPECT_NEAR(predicted[i], reference, 1e-3 * reference) // central differences in world units of 1e3 m
                 << techniqueName(in.technique) << " config " << config << " sample " << i;
@@ -197,7 +199,8 @@ TEST(SamplingErrorTest, TheObjectiveAndASubsampleAgreeWithTheWholeModel) {
         auto setup = computeShadowSetup(in);
         if (!setup) continue;
         std::vector<ReceiverSample> samples;
-        for (int k = 0; k < 97; ++k) samples.push_back({core::testing::pointInFrustum(in.camera, gen), gen.unitVector()});
+        for (int k = 0; k < 97; ++k)
+            samples.push_back({core::testing::pointInFrustum(in.camera, gen), gen.unitVector()});
         auto model = SamplingErrorModel::create(in.camera, kWidth, kHeight, samples);
         ASSERT_TRUE(model);
         if (model->size() < 20) continue;
@@ -209,7 +212,8 @@ TEST(SamplingErrorTest, TheObjectiveAndASubsampleAgreeWithTheWholeModel) {
             ASSERT_EQ(sub.size(), std::min(count, model->size()));
             std::vector<double> part(sub.size());
             sub.predict(*setup, part);
-            for (size_t k = 0; k < sub.size(); ++k) ASSERT_EQ(part[k], whole[k * model->size() / sub.size()]) << "config " << config;
+            for (size_t k = 0; k < sub.size(); ++k)
+                ASSERT_EQ(part[k], whole[k * model->size() / sub.size()]) << "config " << config;
         }
         ++checked;
     }
@@ -240,8 +244,10 @@ TEST(SamplingErrorTest, ReceiverSamplesFromADepthReadBackLieOnTheSurface) {
             if (d.y >= 0.0) continue; // sky
             const double t = -camera.wsEye.y / d.y;
             raster.viewDepth[raster.index(x, y)] = float(t * glm::dot(d, forward));
-            if (x % 2) raster.wsNormal[raster.index(x, y)] = glm::vec3(0.0f, -1.0f, 0.0f); // faces away from the sun
-            else ++ground;
+            if (x % 2)
+                raster.wsNormal[raster.index(x, y)] = glm::vec3(0.0f, -1.0f, 0.0f); // faces away from the sun
+            else
+                ++ground;
         }
     const auto sun = DirectionalLight::fromSunAngles(40.0, 10.0);
     ASSERT_TRUE(sun);
@@ -270,7 +276,8 @@ TEST(SamplingErrorTest, BadInputsAreErrorsAndEmptySetsAreDefined) {
     EXPECT_FALSE(SamplingErrorModel::create(camera, 100, 100, {}));
     camera = PerspectiveCamera{};
     // A sample behind the eye and one with a zero normal are dropped; no samples, zero figures.
-    const std::vector<ReceiverSample> samples = {{camera.wsEye + Vec3(0, 0, 5), Vec3(0, 1, 0)}, {Vec3(0, 0, -5), Vec3(0.0)}};
+    const std::vector<ReceiverSample> samples = {{camera.wsEye + Vec3(0, 0, 5), Vec3(0, 1, 0)},
+                                                 {Vec3(0, 0, -5), Vec3(0.0)}};
     auto model = SamplingErrorModel::create(camera, 100, 100, samples);
     ASSERT_TRUE(model);
     EXPECT_EQ(model->size(), 0u);

@@ -37,7 +37,7 @@ public:
         ShadowSetupInputs in;
         const Vec3 center(uniform(-2000, 2000), uniform(-100, 100), uniform(-2000, 2000));
         Vec3 half(uniform(0, 1500), uniform(0, 60), uniform(0, 1500));
-        if (chance(0.03)) half.y = 0.0; // flat scene (a terrain plane)
+        if (chance(0.03)) half.y = 0.0;     // flat scene (a terrain plane)
         if (chance(0.01)) half = Vec3(0.0); // zero-size scene
         in.wsSceneBounds = Aabb::fromMinMax(center - half, center + half);
 
@@ -56,9 +56,12 @@ public:
 
         Vec3 l = unitVector();
         const double r = uniform(0, 1);
-        if (r < 0.05) l = glm::normalize(cam.wsDirection);       // view along the light
-        else if (r < 0.10) l = -glm::normalize(cam.wsDirection); // looking into the sun
-        else if (r < 0.15) l = glm::normalize(cam.wsDirection + 1e-7 * unitVector());
+        if (r < 0.05)
+            l = glm::normalize(cam.wsDirection); // view along the light
+        else if (r < 0.10)
+            l = -glm::normalize(cam.wsDirection); // looking into the sun
+        else if (r < 0.15)
+            l = glm::normalize(cam.wsDirection + 1e-7 * unitVector());
         in.light = DirectionalLight{l};
 
         CascadeOptions& c = in.cascades; // used by csm only

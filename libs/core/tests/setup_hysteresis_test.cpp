@@ -42,7 +42,8 @@ PerspectiveCamera step(const PerspectiveCamera& c, int k) {
     out.wsEye += Vec3(0.05, 0.02, -0.25);
     const double turn = glm::radians(0.2 * std::sin(0.1 * k));
     const Vec3 d = glm::normalize(c.wsDirection);
-    out.wsDirection = Vec3(d.x * std::cos(turn) - d.z * std::sin(turn), d.y, d.x * std::sin(turn) + d.z * std::cos(turn));
+    out.wsDirection =
+        Vec3(d.x * std::cos(turn) - d.z * std::sin(turn), d.y, d.x * std::sin(turn) + d.z * std::cos(turn));
     return out;
 }
 
@@ -112,7 +113,8 @@ TEST(SetupHysteresis, HeldViewsAreWholeTexelShiftsOfTheirRefitAndCoverTheirBody)
             EXPECT_GT(refits, 0) << techniqueName(t);
         }
         EXPECT_GT(held, 3 * refits) << techniqueName(t);
-        std::printf("%s: %d held, %d refitted views over 80 frames\n", std::string(techniqueName(t)).c_str(), held, refits);
+        std::printf("%s: %d held, %d refitted views over 80 frames\n", std::string(techniqueName(t)).c_str(), held,
+                    refits);
     }
 }
 
@@ -159,7 +161,8 @@ TEST(SetupHysteresis, BitIdenticalWhileStillAndRefitsWhenTheLightMoves) {
 }
 
 TEST(SetupHysteresis, AStillCameraOrAMovingLightPaysOnlyTheMargin) {
-    auto ratioOnCentralRay = [](const ShadowSetupInputs& in, const ShadowSetup& held, const ShadowSetup& fresh, double depth) {
+    auto ratioOnCentralRay = [](const ShadowSetupInputs& in, const ShadowSetup& held, const ShadowSetup& fresh,
+                                double depth) {
         const Vec3 p = in.camera.wsEye + depth * glm::normalize(in.camera.wsDirection);
         return texelFootprint(held.views[0], in.mapSize, in.light.wsDirection, p) /
                texelFootprint(fresh.views[0], in.mapSize, in.light.wsDirection, p);
@@ -208,7 +211,8 @@ PerspectiveCamera climb(const PerspectiveCamera& c, int) {
     out.wsEye += Vec3(0.1, 0.4, -0.3);
     const double turn = glm::radians(1.5);
     const Vec3 d = glm::normalize(c.wsDirection);
-    out.wsDirection = Vec3(d.x * std::cos(turn) - d.z * std::sin(turn), d.y, d.x * std::sin(turn) + d.z * std::cos(turn));
+    out.wsDirection =
+        Vec3(d.x * std::cos(turn) - d.z * std::sin(turn), d.y, d.x * std::sin(turn) + d.z * std::cos(turn));
     return out;
 }
 

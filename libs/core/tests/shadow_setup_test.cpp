@@ -1,6 +1,6 @@
+#include "setup_configs.h"
 #include "shadowkit/core/focus_body.h"
 #include "shadowkit/core/shadow_setup.h"
-#include "setup_configs.h"
 
 #include <gtest/gtest.h>
 
@@ -23,14 +23,14 @@ TEST(ShadowSetupTest, EveryPointOfBLiesInsideTheClipCubeForTenThousandConfigurat
             ASSERT_TRUE(setup) << "config " << i << ": " << setup.error();
             ASSERT_EQ(setup->views.size(), t == Technique::Csm ? size_t(in.cascades.count) : 1u);
             for (const ShadowView& view : setup->views) {
-            ASSERT_TRUE(isFinite(view.clipFromWorld) && isFinite(view.lightFromWorld)) << "config " << i;
+                ASSERT_TRUE(isFinite(view.clipFromWorld) && isFinite(view.lightFromWorld)) << "config " << i;
 
-            for (const Vec3& p : pointsToHold(in, *setup, view)) {
-                // No point behind a projection centre (w > 0), none outside the clip cube.
-                ASSERT_GT((view.clipFromWorld * Vec4(p, 1.0)).w, 0.0) << info.name << ", config " << i;
-                ASSERT_LE(outsideClipCube(view.clipFromWorld, p), 1e-6) << info.name << ", config " << i;
-            }
-            warped += t == Technique::Lispsm && view.clipFromWorld[3][3] != 1.0; // perspective, not affine
+                for (const Vec3& p : pointsToHold(in, *setup, view)) {
+                    // No point behind a projection centre (w > 0), none outside the clip cube.
+                    ASSERT_GT((view.clipFromWorld * Vec4(p, 1.0)).w, 0.0) << info.name << ", config " << i;
+                    ASSERT_LE(outsideClipCube(view.clipFromWorld, p), 1e-6) << info.name << ", config " << i;
+                }
+                warped += t == Technique::Lispsm && view.clipFromWorld[3][3] != 1.0; // perspective, not affine
             }
 
             if (t == Technique::Focused) {
@@ -54,7 +54,8 @@ TEST(ShadowSetupTest, FocusBodyContainsTheVisibleSceneAndEverythingBetweenItAndT
         const Aabb box = sceneBoxForFocus(in.wsSceneBounds);
         const double eps = 1e-7 * (box.diagonal() + glm::length(box.center()) + 1.0);
 
-        for (const Vec3& v : body.vertices()) ASSERT_TRUE(box.contains(v, eps)) << "B leaves the scene box, config " << i;
+        for (const Vec3& v : body.vertices())
+            ASSERT_TRUE(box.contains(v, eps)) << "B leaves the scene box, config " << i;
         for (int s = 0; s < 50; ++s) {
             const Vec3 receiver = pointInFrustum(in.camera, gen);
             if (!box.contains(receiver)) continue;
@@ -97,7 +98,8 @@ TEST(ShadowSetupTest, TheRememberedFocusBodyIsReturnedOnlyForExactlyTheSameInput
         computeFocusBody(camera, light, bounds);
         computeFocusBody(camera, light, Aabb::fromMinMax(Vec3(-1), Vec3(1))); // something else in between
         const double fresh = computeFocusBody(camera, light, bounds).volume();
-        ASSERT_GT(std::abs(fresh - baseVolume), 1e-6 * baseVolume) << name << " does not change B: the test would not see a stale body";
+        ASSERT_GT(std::abs(fresh - baseVolume), 1e-6 * baseVolume)
+            << name << " does not change B: the test would not see a stale body";
         computeFocusBody(base, sun, box);
         EXPECT_EQ(computeFocusBody(camera, light, bounds).volume(), fresh) << name << " changed, B was not";
         EXPECT_EQ(computeFocusBody(base, sun, box).volume(), baseVolume) << name;

@@ -45,7 +45,8 @@ TEST(TsmTest, NearGroundGetsMoreTexelsThanInTheFocusedMap) {
     in.technique = Technique::Focused;
     const auto focused = computeShadowSetup(in);
     const Vec3 a(0, 0, -2), b(0, 0, -3);
-    EXPECT_GT(glm::length(Vec2(ndc(*tsm, a) - ndc(*tsm, b))), 5.0 * glm::length(Vec2(ndc(*focused, a) - ndc(*focused, b))));
+    EXPECT_GT(glm::length(Vec2(ndc(*tsm, a) - ndc(*tsm, b))),
+              5.0 * glm::length(Vec2(ndc(*focused, a) - ndc(*focused, b))));
 }
 
 TEST(TsmTest, ViewAlongTheLightFallsBackToTheFocusedMap) {

@@ -13,13 +13,16 @@ std::vector<std::string> wrapText(const std::string& text, int width, int scale)
     std::stringstream words(text);
     for (std::string word; words >> word;) {
         const std::string candidate = lines.back().empty() ? word : lines.back() + " " + word;
-        if (textWidth(candidate, scale) > width && !lines.back().empty()) lines.push_back(word);
-        else lines.back() = candidate;
+        if (textWidth(candidate, scale) > width && !lines.back().empty())
+            lines.push_back(word);
+        else
+            lines.back() = candidate;
     }
     return lines;
 }
 
-scene::Image captionedGrid(const std::vector<scene::Image>& cells, const std::vector<std::string>& captions, int columns) {
+scene::Image captionedGrid(const std::vector<scene::Image>& cells, const std::vector<std::string>& captions,
+                           int columns) {
     const int n = static_cast<int>(cells.size());
     if (n == 0) return {};
     if (columns <= 0) columns = static_cast<int>(std::ceil(std::sqrt(double(n))));

@@ -22,7 +22,8 @@ std::array<uint8_t, 3> ramp(double t) {
     const int i = std::min(3, static_cast<int>(t));
     const double f = t - i;
     std::array<uint8_t, 3> c;
-    for (int k = 0; k < 3; ++k) c[size_t(k)] = static_cast<uint8_t>(std::lround(stops[i][k] + f * (stops[i + 1][k] - stops[i][k])));
+    for (int k = 0; k < 3; ++k)
+        c[size_t(k)] = static_cast<uint8_t>(std::lround(stops[i][k] + f * (stops[i + 1][k] - stops[i][k])));
     return c;
 }
 
@@ -33,10 +34,12 @@ constexpr double kLog2Min = -6.0, kLog2Max = 6.0; // 1/64 .. 64 pixels per texel
 scene::Image errorMapImage(const Comparison& comparison, int width, int height) {
     scene::Image image(width, height);
     using C = ErrorMapColors;
-    const uint8_t* colors[] = {C::notEvaluated, C::litCorrect, C::shadowCorrect, C::falseShadow, C::falseLit, C::excluded};
+    const uint8_t* colors[] = {C::notEvaluated, C::litCorrect, C::shadowCorrect,
+                               C::falseShadow,  C::falseLit,   C::excluded};
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x)
-            put(image, x, y, colors[static_cast<int>(comparison.classes[static_cast<size_t>(y) * size_t(width) + size_t(x)])]);
+            put(image, x, y,
+                colors[static_cast<int>(comparison.classes[static_cast<size_t>(y) * size_t(width) + size_t(x)])]);
     return image;
 }
 
@@ -71,7 +74,8 @@ scene::Image aliasingMapImage(const Comparison& comparison, int width, int heigh
         for (int y = barTop; y < barBottom + 2 * scale; ++y)
             for (int w = 0; w < (k == 2 ? 2 * scale : scale); ++w) put(image, std::min(width - 1, x + w), y, white);
         const int labelWidth = textWidth(labels[k], scale);
-        drawText(image, std::clamp(x - labelWidth / 2, 0, width - labelWidth), barBottom + 3 * scale, labels[k], white, scale);
+        drawText(image, std::clamp(x - labelWidth / 2, 0, width - labelWidth), barBottom + 3 * scale, labels[k], white,
+                 scale);
     }
     return image;
 }

@@ -28,12 +28,18 @@ void finishFigures(Figures& f, int64_t falseShadow, int64_t falseLit, int64_t un
 // Higher matters more when several lights' classes meet in one pixel.
 int weight(PixelClass c) {
     switch (c) {
-    case PixelClass::NotEvaluated: return 0;
-    case PixelClass::Excluded: return 1;
-    case PixelClass::LitCorrect: return 2;
-    case PixelClass::ShadowCorrect: return 3;
-    case PixelClass::FalseLit: return 4;
-    case PixelClass::FalseShadow: return 5;
+    case PixelClass::NotEvaluated:
+        return 0;
+    case PixelClass::Excluded:
+        return 1;
+    case PixelClass::LitCorrect:
+        return 2;
+    case PixelClass::ShadowCorrect:
+        return 3;
+    case PixelClass::FalseLit:
+        return 4;
+    case PixelClass::FalseShadow:
+        return 5;
     }
     return 0;
 }
@@ -50,7 +56,8 @@ core::Result<Comparison> combine(std::span<const Comparison* const> parts) {
     int64_t falseShadow = 0, falseLit = 0, undersampled = 0;
     std::vector<double> ppt;
     for (const Comparison* part : parts) {
-        if (part->classes.size() != n || part->pixelsPerTexel.size() != n) return core::makeError("combine: comparisons of different sizes");
+        if (part->classes.size() != n || part->pixelsPerTexel.size() != n)
+            return core::makeError("combine: comparisons of different sizes");
         out.figures.validPx += part->figures.validPx;
         out.figures.excludedPx += part->figures.excludedPx;
         for (size_t i = 0; i < n; ++i) {
@@ -69,10 +76,12 @@ core::Result<Comparison> combine(std::span<const Comparison* const> parts) {
     return out;
 }
 
-core::Result<Comparison> compare(const core::RasterBuffers& raster, const TruthBuffers& truth, const CompareOptions& options) {
+core::Result<Comparison> compare(const core::RasterBuffers& raster, const TruthBuffers& truth,
+                                 const CompareOptions& options) {
     if (raster.width != truth.width || raster.height != truth.height)
         return core::makeError("compare: raster " + std::to_string(raster.width) + "x" + std::to_string(raster.height) +
-                               " and truth " + std::to_string(truth.width) + "x" + std::to_string(truth.height) + " differ");
+                               " and truth " + std::to_string(truth.width) + "x" + std::to_string(truth.height) +
+                               " differ");
     const size_t n = static_cast<size_t>(raster.width) * static_cast<size_t>(raster.height);
     Comparison out;
     out.classes.assign(n, PixelClass::NotEvaluated);
@@ -92,9 +101,12 @@ core::Result<Comparison> compare(const core::RasterBuffers& raster, const TruthB
         ++out.figures.validPx;
         const bool renderedLit = raster.shadowTerm[i] >= options.shadowThreshold;
         const bool truthLit = truth.lit[i] != 0;
-        if (renderedLit == truthLit) out.classes[i] = truthLit ? PixelClass::LitCorrect : PixelClass::ShadowCorrect;
-        else if (truthLit) out.classes[i] = PixelClass::FalseShadow, ++falseShadow;
-        else out.classes[i] = PixelClass::FalseLit, ++falseLit;
+        if (renderedLit == truthLit)
+            out.classes[i] = truthLit ? PixelClass::LitCorrect : PixelClass::ShadowCorrect;
+        else if (truthLit)
+            out.classes[i] = PixelClass::FalseShadow, ++falseShadow;
+        else
+            out.classes[i] = PixelClass::FalseLit, ++falseLit;
         const double p = core::pixelsPerTexel(glm::dmat2(raster.texelFromPixel[i]));
         out.pixelsPerTexel[i] = static_cast<float>(p);
         ppt.push_back(p);

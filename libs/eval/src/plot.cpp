@@ -25,7 +25,8 @@ void line(scene::Image& image, double x0, double y0, double x1, double y1, const
     const int steps = static_cast<int>(std::ceil(std::max(std::abs(x1 - x0), std::abs(y1 - y0)))) + 1;
     for (int i = 0; i <= steps; ++i) {
         const double t = double(i) / steps;
-        const int x = static_cast<int>(std::lround(x0 + t * (x1 - x0))), y = static_cast<int>(std::lround(y0 + t * (y1 - y0)));
+        const int x = static_cast<int>(std::lround(x0 + t * (x1 - x0))),
+                  y = static_cast<int>(std::lround(y0 + t * (y1 - y0)));
         fill(image, x, y, x + 2, y + 2, rgb);
     }
 }
@@ -85,7 +86,7 @@ scene::Image plotLines(const std::vector<PlotSeries>& series, const PlotOptions&
         const std::string label = number(y);
         drawText(image, left - 9 - textWidth(label), Y - kGlyphHeight / 2, label, kInk);
     }
-    fill(image, left, top, left + 1, bottom + 1, kInk);  // y axis
+    fill(image, left, top, left + 1, bottom + 1, kInk); // y axis
     fill(image, left, bottom, right, bottom + 1, kInk); // x axis
 
     // Curves, clipped to the plot area by clamping (the axes bound what is shown).

@@ -31,7 +31,8 @@ struct RayScene::Impl {
 namespace {
 
 void onEmbreeError(void* user, RTCError code, const char* message) {
-    *static_cast<std::string*>(user) = "Embree error " + std::to_string(static_cast<int>(code)) + ": " + (message ? message : "?");
+    *static_cast<std::string*>(user) =
+        "Embree error " + std::to_string(static_cast<int>(code)) + ": " + (message ? message : "?");
 }
 
 } // namespace

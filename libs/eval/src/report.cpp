@@ -25,7 +25,9 @@ std::string reportJson(const std::vector<ViewReport>& views) {
             {"bias_constant", v.bias.constant},
             {"normal_offset", v.bias.normalOffset},
             {"receiver_plane_bias", v.bias.receiverPlane},
-            {"cull", v.bias.cull == core::CasterCull::None ? "none" : v.bias.cull == core::CasterCull::Back ? "back" : "front"},
+            {"cull", v.bias.cull == core::CasterCull::None   ? "none"
+                     : v.bias.cull == core::CasterCull::Back ? "back"
+                                                             : "front"},
             {"filter", v.filter},
             {"blur_iterations", v.blurIterations},
             {"fallbacks", v.fallbacks},
@@ -84,14 +86,15 @@ core::Status dumpBuffers(const std::filesystem::path& dir, const core::RasterBuf
     };
     std::vector<uint8_t> classes(comparison.classes.size());
     for (size_t i = 0; i < classes.size(); ++i) classes[i] = static_cast<uint8_t>(comparison.classes[i]);
-    for (auto status : {writeNpy(dir / "shadow_term.npy", std::span<const float>(raster.shadowTerm), {h, w}),
-                        writeNpy(dir / "truth_lit.npy", std::span<const uint8_t>(truth.lit), {h, w}),
-                        writeNpy(dir / "class.npy", std::span<const uint8_t>(classes), {h, w}),
-                        writeNpy(dir / "world_position.npy", std::span<const float>(flat(truth.wsPosition)), {h, w, 3}),
-                        writeNpy(dir / "normal.npy", std::span<const float>(flat(raster.wsNormal)), {h, w, 3}),
-                        writeNpy(dir / "truth_normal.npy", std::span<const float>(flat(truth.wsNormal)), {h, w, 3}),
-                        writeNpy(dir / "pixels_per_texel.npy", std::span<const float>(comparison.pixelsPerTexel), {h, w}),
-                        writeNpy(dir / "surface_id.npy", std::span<const uint32_t>(raster.surfaceId), {h, w})})
+    for (auto status :
+         {writeNpy(dir / "shadow_term.npy", std::span<const float>(raster.shadowTerm), {h, w}),
+          writeNpy(dir / "truth_lit.npy", std::span<const uint8_t>(truth.lit), {h, w}),
+          writeNpy(dir / "class.npy", std::span<const uint8_t>(classes), {h, w}),
+          writeNpy(dir / "world_position.npy", std::span<const float>(flat(truth.wsPosition)), {h, w, 3}),
+          writeNpy(dir / "normal.npy", std::span<const float>(flat(raster.wsNormal)), {h, w, 3}),
+          writeNpy(dir / "truth_normal.npy", std::span<const float>(flat(truth.wsNormal)), {h, w, 3}),
+          writeNpy(dir / "pixels_per_texel.npy", std::span<const float>(comparison.pixelsPerTexel), {h, w}),
+          writeNpy(dir / "surface_id.npy", std::span<const uint32_t>(raster.surfaceId), {h, w})})
         if (!status) return status;
     return core::Ok{};
 }

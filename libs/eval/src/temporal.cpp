@@ -18,7 +18,8 @@ constexpr uint8_t kEvaluated = 4, kRenderedLit = 1, kTruthLit = 2;
 
 } // namespace
 
-ShadowStates shadowStates(const core::PerspectiveCamera& camera, const TruthBuffers& truth, const Comparison& comparison) {
+ShadowStates shadowStates(const core::PerspectiveCamera& camera, const TruthBuffers& truth,
+                          const Comparison& comparison) {
     SK_ASSERT(comparison.classes.size() == truth.surfaceId.size(), "shadowStates(): truth and comparison sizes differ");
     ShadowStates s;
     s.camera = camera;
@@ -30,19 +31,28 @@ ShadowStates shadowStates(const core::PerspectiveCamera& camera, const TruthBuff
     s.state.assign(comparison.classes.size(), 0);
     for (size_t i = 0; i < comparison.classes.size(); ++i) {
         switch (comparison.classes[i]) {
-        case PixelClass::LitCorrect: s.state[i] = kEvaluated | kRenderedLit | kTruthLit; break;
-        case PixelClass::ShadowCorrect: s.state[i] = kEvaluated; break;
-        case PixelClass::FalseShadow: s.state[i] = kEvaluated | kTruthLit; break;
-        case PixelClass::FalseLit: s.state[i] = kEvaluated | kRenderedLit; break;
+        case PixelClass::LitCorrect:
+            s.state[i] = kEvaluated | kRenderedLit | kTruthLit;
+            break;
+        case PixelClass::ShadowCorrect:
+            s.state[i] = kEvaluated;
+            break;
+        case PixelClass::FalseShadow:
+            s.state[i] = kEvaluated | kTruthLit;
+            break;
+        case PixelClass::FalseLit:
+            s.state[i] = kEvaluated | kRenderedLit;
+            break;
         case PixelClass::NotEvaluated:
-        case PixelClass::Excluded: break;
+        case PixelClass::Excluded:
+            break;
         }
     }
     return s;
 }
 
-TemporalFigures compareFrames(const ShadowStates& previous, const ShadowStates& current, const PreviousShadowsHere& before,
-                              const TemporalOptions& options) {
+TemporalFigures compareFrames(const ShadowStates& previous, const ShadowStates& current,
+                              const PreviousShadowsHere& before, const TemporalOptions& options) {
     SK_ASSERT(before.raster.shadowTerm.size() == current.state.size() && before.truthLit.size() == current.state.size(),
               "compareFrames(): the previous shadows must be of this frame's pixels");
     TemporalFigures out;
@@ -62,7 +72,8 @@ TemporalFigures compareFrames(const ShadowStates& previous, const ShadowStates& 
             const int x = x0 + k % 2, y = y0 + k / 2;
             if (x < 0 || y < 0 || x >= previous.width || y >= previous.height) continue;
             const size_t j = static_cast<size_t>(y) * static_cast<size_t>(previous.width) + static_cast<size_t>(x);
-            if ((previous.state[j] & kEvaluated) && previous.surfaceId[j] == surface && sameDepth(previous.viewDepth[j], depth))
+            if ((previous.state[j] & kEvaluated) && previous.surfaceId[j] == surface &&
+                sameDepth(previous.viewDepth[j], depth))
                 return true;
         }
         return false;
@@ -71,13 +82,17 @@ TemporalFigures compareFrames(const ShadowStates& previous, const ShadowStates& 
     for (size_t i = 0; i < current.state.size(); ++i) {
         const uint8_t now = current.state[i];
         if (!(now & kEvaluated)) continue;
-        if (before.raster.surfaceId[i] != current.surfaceId[i] || !sameDepth(before.raster.viewDepth[i], current.viewDepth[i])) continue;
+        if (before.raster.surfaceId[i] != current.surfaceId[i] ||
+            !sameDepth(before.raster.viewDepth[i], current.viewDepth[i]))
+            continue;
         if (!seenBefore(current.wsPosition[i], current.surfaceId[i])) continue;
         ++out.comparedPx;
         const bool renderedLitBefore = before.raster.shadowTerm[i] >= options.shadowThreshold;
         const bool truthLitBefore = before.truthLit[i] != 0;
-        if (truthLitBefore != ((now & kTruthLit) != 0)) ++truthChanged;
-        else if (renderedLitBefore != ((now & kRenderedLit) != 0)) ++flicker;
+        if (truthLitBefore != ((now & kTruthLit) != 0))
+            ++truthChanged;
+        else if (renderedLitBefore != ((now & kRenderedLit) != 0))
+            ++flicker;
     }
     if (out.comparedPx > 0) {
         out.flickerPct = 100.0 * double(flicker) / double(out.comparedPx);

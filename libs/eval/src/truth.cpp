@@ -13,16 +13,17 @@ namespace shadowkit::eval {
 namespace {
 
 // The shadow ray of a surface point: towards the light from just off the surface.
-bool reachesLight(const RayScene& rays, const core::Vec3& wsPoint, const core::Vec3& wsNormal, const core::Vec3& towardsLight,
-                  double offset) {
+bool reachesLight(const RayScene& rays, const core::Vec3& wsPoint, const core::Vec3& wsNormal,
+                  const core::Vec3& towardsLight, double offset) {
     return !rays.occluded(wsPoint + offset * wsNormal, towardsLight, 0.0, std::numeric_limits<double>::infinity());
 }
 
 // A local light's truth at `hits`' surfaces: which face it within what it admits (range,
 // cone), and of those which reach it along the finite shadow ray from just off the surface.
 template <class Admits>
-void localLightTruth(const RayScene& rays, const TruthBuffers& hits, const core::Vec3& wsLight, const TruthOptions& options,
-                     Admits admits, std::vector<uint8_t>& reached, std::vector<uint8_t>& lit) {
+void localLightTruth(const RayScene& rays, const TruthBuffers& hits, const core::Vec3& wsLight,
+                     const TruthOptions& options, Admits admits, std::vector<uint8_t>& reached,
+                     std::vector<uint8_t>& lit) {
     reached.assign(hits.surfaceId.size(), 0);
     lit.assign(hits.surfaceId.size(), 0);
     const double offset = options.normalOffsetFraction * std::max(rays.sceneDiagonal(), 1.0);
@@ -45,8 +46,10 @@ auto admitsPoint(const core::PointLight& light) {
     return [range = light.range](const core::Vec3&, double d) { return d <= range; };
 }
 auto admitsSpot(const core::SpotLight& light) {
-    return [&light, axis = glm::normalize(light.wsDirection), cosHalf = std::cos(0.5 * glm::radians(light.coneDegrees))](
-               const core::Vec3& p, double d) { return d <= light.range && glm::dot(p - light.wsPosition, axis) >= cosHalf * d; };
+    return [&light, axis = glm::normalize(light.wsDirection),
+            cosHalf = std::cos(0.5 * glm::radians(light.coneDegrees))](const core::Vec3& p, double d) {
+        return d <= light.range && glm::dot(p - light.wsPosition, axis) >= cosHalf * d;
+    };
 }
 
 } // namespace
@@ -62,8 +65,8 @@ core::Vec3 primaryRayDirection(const core::PerspectiveCamera& camera, int width,
     return forward + ndcX * ty * camera.aspect * right + ndcY * ty * up;
 }
 
-TruthBuffers computeTruth(const RayScene& rays, const core::PerspectiveCamera& camera, const core::DirectionalLight& light,
-                          int width, int height, const TruthOptions& options) {
+TruthBuffers computeTruth(const RayScene& rays, const core::PerspectiveCamera& camera,
+                          const core::DirectionalLight& light, int width, int height, const TruthOptions& options) {
     TruthBuffers t;
     t.width = width;
     t.height = height;
@@ -120,25 +123,29 @@ std::vector<uint8_t> litAt(const RayScene& rays, const TruthBuffers& hits, const
     return lit;
 }
 
-std::vector<uint8_t> litAt(const RayScene& rays, const TruthBuffers& hits, const core::PointLight& light, const TruthOptions& options) {
+std::vector<uint8_t> litAt(const RayScene& rays, const TruthBuffers& hits, const core::PointLight& light,
+                           const TruthOptions& options) {
     std::vector<uint8_t> reached, lit;
     localLightTruth(rays, hits, light.wsPosition, options, admitsPoint(light), reached, lit);
     return lit;
 }
 
-std::vector<uint8_t> litAt(const RayScene& rays, const TruthBuffers& hits, const core::SpotLight& light, const TruthOptions& options) {
+std::vector<uint8_t> litAt(const RayScene& rays, const TruthBuffers& hits, const core::SpotLight& light,
+                           const TruthOptions& options) {
     std::vector<uint8_t> reached, lit;
     localLightTruth(rays, hits, light.wsPosition, options, admitsSpot(light), reached, lit);
     return lit;
 }
 
-TruthBuffers underLight(const RayScene& rays, const TruthBuffers& hits, const core::PointLight& light, const TruthOptions& options) {
+TruthBuffers underLight(const RayScene& rays, const TruthBuffers& hits, const core::PointLight& light,
+                        const TruthOptions& options) {
     TruthBuffers t = hits;
     localLightTruth(rays, hits, light.wsPosition, options, admitsPoint(light), t.facesLight, t.lit);
     return t;
 }
 
-TruthBuffers underLight(const RayScene& rays, const TruthBuffers& hits, const core::SpotLight& light, const TruthOptions& options) {
+TruthBuffers underLight(const RayScene& rays, const TruthBuffers& hits, const core::SpotLight& light,
+                        const TruthOptions& options) {
     TruthBuffers t = hits;
     localLightTruth(rays, hits, light.wsPosition, options, admitsSpot(light), t.facesLight, t.lit);
     return t;

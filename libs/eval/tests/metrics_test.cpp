@@ -9,7 +9,6 @@
 
 using namespace shadowkit;
 
-
 namespace {
 // One pixel per case: lit-correct, shadow-correct, false shadow, false lit, excluded
 // (different surface), excluded (depth off by 1 %), sky, facing away.
@@ -38,7 +37,7 @@ TEST(MetricsTest, CompareCountsEachClassOnce) {
     const auto c = eval::compare(f.raster, f.truth);
     ASSERT_TRUE(c) << c.error();
     using P = eval::PixelClass;
-    const std::vector<P> expected = {P::LitCorrect, P::ShadowCorrect, P::FalseShadow, P::FalseLit,
+    const std::vector<P> expected = {P::LitCorrect, P::ShadowCorrect, P::FalseShadow,  P::FalseLit,
                                      P::Excluded,   P::Excluded,      P::NotEvaluated, P::NotEvaluated};
     EXPECT_EQ(c->classes, expected);
     EXPECT_EQ(c->figures.validPx, 4);

@@ -59,8 +59,9 @@ GroundFrame ground(const core::PerspectiveCamera& cam, double renderedEdge, doub
             truth.viewDepth[i] = raster.viewDepth[i] = static_cast<float>(t);
             truth.wsPosition[i] = p;
             const bool renderedLit = p.x >= renderedEdge, truthLit = p.x >= truthEdge;
-            comparison.classes[i] = renderedLit ? (truthLit ? eval::PixelClass::LitCorrect : eval::PixelClass::FalseLit)
-                                                : (truthLit ? eval::PixelClass::FalseShadow : eval::PixelClass::ShadowCorrect);
+            comparison.classes[i] = renderedLit
+                                        ? (truthLit ? eval::PixelClass::LitCorrect : eval::PixelClass::FalseLit)
+                                        : (truthLit ? eval::PixelClass::FalseShadow : eval::PixelClass::ShadowCorrect);
             raster.shadowTerm[i] = p.x >= renderedEdgeBefore ? 1.0f : 0.0f;
             f.before.truthLit[i] = p.x >= truthEdgeBefore;
         }

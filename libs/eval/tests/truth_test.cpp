@@ -66,7 +66,8 @@ TEST(TruthTest, BoxOverPlaneUnderAnObliqueSunMatchesTheAnalyticShadow) {
     const glm::vec3 centre(0, 2.5f, 0);
     const scene::Scene s = groundAnd(box, glm::translate(glm::mat4(1.0f), centre));
     const core::DirectionalLight sun = core::DirectionalLight::fromSunAngles(50, 120).value();
-    const core::Vec3 lo = core::Vec3(centre) - core::Vec3(1, 0.5, 1.5), hi = core::Vec3(centre) + core::Vec3(1, 0.5, 1.5);
+    const core::Vec3 lo = core::Vec3(centre) - core::Vec3(1, 0.5, 1.5),
+                     hi = core::Vec3(centre) + core::Vec3(1, 0.5, 1.5);
     // Slab test of the ray p + t·towardsLight against the box, with a margin band where
     // pixel-centre rounding could go either way.
     expectTruthMatches(s, sun, [&](const core::Vec3& p) -> std::optional<bool> {
@@ -122,21 +123,23 @@ TEST(TruthTest, PointAndSpotLightsMatchTheAnalyticShadowRangeAndCone) {
     const scene::Scene s = groundAnd(box, glm::translate(glm::mat4(1.0f), glm::vec3(centre)));
     auto rays = eval::RayScene::build(s);
     ASSERT_TRUE(rays) << rays.error();
-    const eval::TruthBuffers hits =
-        eval::computeTruth(**rays, cameraLookingAtOrigin(), core::DirectionalLight::fromSunAngles(50, 120).value(), 160, 120);
+    const eval::TruthBuffers hits = eval::computeTruth(
+        **rays, cameraLookingAtOrigin(), core::DirectionalLight::fromSunAngles(50, 120).value(), 160, 120);
     // Does the segment p → light cross the box (grown by `grow`)?
     auto blocked = [&](const core::Vec3& p, const core::Vec3& light, double grow) {
         const core::Vec3 d = light - p;
         double t0 = 0.0, t1 = 1.0;
         for (int a = 0; a < 3; ++a) {
-            const double ta = (centre[a] - half[a] - grow - p[a]) / d[a], tb = (centre[a] + half[a] + grow - p[a]) / d[a];
+            const double ta = (centre[a] - half[a] - grow - p[a]) / d[a],
+                         tb = (centre[a] + half[a] + grow - p[a]) / d[a];
             t0 = std::max(t0, std::min(ta, tb));
             t1 = std::min(t1, std::max(ta, tb));
         }
         return t0 <= t1;
     };
     const core::PointLight lamp{.wsPosition = {0.5, 6.0, 0.3}, .range = 12.0};
-    const core::SpotLight torch{.wsPosition = {-6.0, 6.0, 0.0}, .wsDirection = {1.0, -0.8, 0.0}, .coneDegrees = 50.0, .range = 20.0};
+    const core::SpotLight torch{
+        .wsPosition = {-6.0, 6.0, 0.0}, .wsDirection = {1.0, -0.8, 0.0}, .coneDegrees = 50.0, .range = 20.0};
     const std::vector<uint8_t> byLamp = eval::litAt(**rays, hits, lamp), byTorch = eval::litAt(**rays, hits, torch);
     int compared = 0, shadowed = 0, outOfRange = 0, outsideCone = 0, mismatches = 0;
     for (size_t i = 0; i < hits.surfaceId.size(); ++i) {
@@ -154,11 +157,13 @@ TEST(TruthTest, PointAndSpotLightsMatchTheAnalyticShadowRangeAndCone) {
         }
         // The torch: nothing outside its cone is lit by it.
         const core::Vec3 toP = glm::normalize(p - torch.wsPosition);
-        const double cosAngle = glm::dot(toP, glm::normalize(torch.wsDirection)), cosHalf = std::cos(glm::radians(25.0));
+        const double cosAngle = glm::dot(toP, glm::normalize(torch.wsDirection)),
+                     cosHalf = std::cos(glm::radians(25.0));
         if (cosAngle < cosHalf - 1e-4) {
             ++outsideCone;
             mismatches += byTorch[i] != 0;
-        } else if (cosAngle > cosHalf + 1e-4 && blocked(p, torch.wsPosition, -1e-3) == blocked(p, torch.wsPosition, 1e-3)) {
+        } else if (cosAngle > cosHalf + 1e-4 &&
+                   blocked(p, torch.wsPosition, -1e-3) == blocked(p, torch.wsPosition, 1e-3)) {
             mismatches += (byTorch[i] == 0) != blocked(p, torch.wsPosition, 0.0);
         }
     }

@@ -45,15 +45,18 @@ core::Result<core::LocalLighting> localLightingFor(const FrameConfig& config, co
     std::vector<core::PointLight> points = view.points;
     std::vector<core::SpotLight> spots = view.spots;
     for (const LocalLight& l : config.lights) {
-        if (const auto* p = std::get_if<core::PointLight>(&l)) points.push_back(*p);
-        else spots.push_back(std::get<core::SpotLight>(l));
+        if (const auto* p = std::get_if<core::PointLight>(&l))
+            points.push_back(*p);
+        else
+            spots.push_back(std::get<core::SpotLight>(l));
     }
     constexpr size_t kMax = static_cast<size_t>(gl::kMaxLocalLightsPerKind);
     if (points.size() > kMax || spots.size() > kMax)
         return core::fieldError("lights", "at most " + std::to_string(kMax) + " point and " + std::to_string(kMax) +
                                               " spot lights, got " + std::to_string(points.size()) + " and " +
                                               std::to_string(spots.size()) + " (with the view's)");
-    const core::LocalShadowInputs inputs{.camera = view.camera, .wsSceneBounds = wsSceneBounds, .mapSize = config.localMapSize};
+    const core::LocalShadowInputs inputs{
+        .camera = view.camera, .wsSceneBounds = wsSceneBounds, .mapSize = config.localMapSize};
     auto lighting = core::computeLocalLighting(inputs, points, spots);
     if (!lighting) return core::fieldError("lights", lighting.error());
     return lighting;

@@ -40,7 +40,8 @@ protected:
         v.camera.wsEye += metres * side;
         const double a = glm::radians(degrees);
         const core::Vec3 d = v.camera.wsDirection;
-        v.camera.wsDirection = glm::normalize(core::Vec3(d.x * std::cos(a) - d.z * std::sin(a), d.y, d.x * std::sin(a) + d.z * std::cos(a)));
+        v.camera.wsDirection = glm::normalize(
+            core::Vec3(d.x * std::cos(a) - d.z * std::sin(a), d.y, d.x * std::sin(a) + d.z * std::cos(a)));
         return v;
     }
 
@@ -59,8 +60,10 @@ TEST_F(FrameDriverTest, HeldLatticesAreKeptAcrossCameraMovesAndRefittedAfterACut
         auto f = driver->prepare(*renderer, moved(0.03 * i, 0.05 * i));
         ASSERT_TRUE(f) << f.error();
         ASSERT_TRUE(f->refits);
-        if (i == 0) EXPECT_EQ(f->refits->views, 1) << "the first frame is the fresh fit";
-        else laterRefits += f->refits->views;
+        if (i == 0)
+            EXPECT_EQ(f->refits->views, 1) << "the first frame is the fresh fit";
+        else
+            laterRefits += f->refits->views;
     }
     // A driver dropped on every camera move (the viewer before the frame driver) refits 11 times.
     EXPECT_LE(laterRefits, 1);
@@ -115,7 +118,8 @@ TEST_F(FrameDriverTest, BiasOverridesAreResolvedForTheTechniqueAutoChose) {
     EXPECT_EQ(f->prePasses.submissions, 1); // the receivers' read-back
     EXPECT_EQ(f->setup.technique, f->autoChoice->inputs.technique);
     ASSERT_TRUE(f->settings.bias);
-    core::BiasSettings expected = core::recommendedBias(f->inputs.technique, core::depthLayoutFor(f->inputs), f->settings.filter);
+    core::BiasSettings expected =
+        core::recommendedBias(f->inputs.technique, core::depthLayoutFor(f->inputs), f->settings.filter);
     expected.slope = 0.75;
     EXPECT_EQ(f->settings.bias->slope, expected.slope);
     EXPECT_EQ(f->settings.bias->constant, expected.constant);

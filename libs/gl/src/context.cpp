@@ -48,17 +48,25 @@ public:
         if (!hasExtension(ext, "EGL_KHR_no_config_context") || !hasExtension(ext, "EGL_KHR_surfaceless_context") ||
             !eglBindAPI(EGL_OPENGL_API)) {
             eglTerminate(display);
-            return failed("no desktop OpenGL without a surface (EGL_KHR_no_config_context, EGL_KHR_surfaceless_context)");
+            return failed(
+                "no desktop OpenGL without a surface (EGL_KHR_no_config_context, EGL_KHR_surfaceless_context)");
         }
-        const EGLint attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
-                                  EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
-                                  EGL_CONTEXT_OPENGL_DEBUG, options.debug ? EGL_TRUE : EGL_FALSE, EGL_NONE};
+        const EGLint attribs[] = {EGL_CONTEXT_MAJOR_VERSION,
+                                  4,
+                                  EGL_CONTEXT_MINOR_VERSION,
+                                  5,
+                                  EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                                  EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                                  EGL_CONTEXT_OPENGL_DEBUG,
+                                  options.debug ? EGL_TRUE : EGL_FALSE,
+                                  EGL_NONE};
         const EGLContext context = eglCreateContext(display, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attribs);
         if (context == EGL_NO_CONTEXT || !eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context)) {
             const bool created = context != EGL_NO_CONTEXT;
             if (created) eglDestroyContext(display, context);
             eglTerminate(display);
-            return failed(created ? "the OpenGL 4.5 context cannot be made current" : "the driver offers no OpenGL 4.5 core context");
+            return failed(created ? "the OpenGL 4.5 context cannot be made current"
+                                  : "the driver offers no OpenGL 4.5 core context");
         }
         m_display = display;
         m_context = context;
@@ -88,7 +96,8 @@ core::Result<std::unique_ptr<Context>> Context::createHeadless(const ContextOpti
             for (EGLint i = 0; i < count; ++i) {
                 // Mesa lists llvmpipe as a "software" device; the surfaceless path below is
                 // the tested route for it.
-                if (hasExtension(eglQueryDeviceStringEXT(devices[i], EGL_EXTENSIONS), "EGL_MESA_device_software")) continue;
+                if (hasExtension(eglQueryDeviceStringEXT(devices[i], EGL_EXTENSIONS), "EGL_MESA_device_software"))
+                    continue;
                 if (context->tryDisplay(eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr), options,
                                         "EGL device"))
                     return std::unique_ptr<Context>(std::move(context));
@@ -100,8 +109,9 @@ core::Result<std::unique_ptr<Context>> Context::createHeadless(const ContextOpti
                             options, "EGL surfaceless"))
         return std::unique_ptr<Context>(std::move(context));
 
-    if (context->failures.empty()) context->failures = clientExt ? "neither a GPU device nor Mesa's surfaceless platform is offered"
-                                                                 : "no EGL implementation answers (libEGL found no vendor library)";
+    if (context->failures.empty())
+        context->failures = clientExt ? "neither a GPU device nor Mesa's surfaceless platform is offered"
+                                      : "no EGL implementation answers (libEGL found no vendor library)";
     return core::environmentError("OpenGL: no headless OpenGL 4.5 core context (" + context->failures +
                                   "); on Debian install libegl1 libgl1-mesa-dri, or run where a GPU driver is present");
 }

@@ -7,7 +7,8 @@
 namespace shadowkit::gl {
 namespace {
 
-void GLAPIENTRY onMessage(GLenum, GLenum type, GLuint id, GLenum severity, GLsizei, const GLchar* message, const void*) {
+void GLAPIENTRY onMessage(GLenum, GLenum type, GLuint id, GLenum severity, GLsizei, const GLchar* message,
+                          const void*) {
     if (severity == GL_DEBUG_SEVERITY_NOTIFICATION) return;
     // A broken state repeats the same message every draw; print each id a few times only
     // so a bug shows up as a line, not a wall.

@@ -48,8 +48,8 @@ GpuScene::GpuScene(const scene::Scene& scene, std::span<const scene::MeshLods> l
         const auto count = static_cast<GLuint>(batch.worldFromObject.size());
         if (count > 0 && !scene.meshes[batch.mesh].indices.empty())
             m_batches.push_back({batch.mesh,
-                                 createBuffer(batch.worldFromObject.data(), batch.worldFromObject.size() * sizeof(glm::mat4),
-                                              batch.dynamic),
+                                 createBuffer(batch.worldFromObject.data(),
+                                              batch.worldFromObject.size() * sizeof(glm::mat4), batch.dynamic),
                                  firstInstance, b});
         firstInstance += count;
     }
@@ -85,7 +85,8 @@ DrawStats GpuScene::draw(const PassList& list, bool setInstanceBase, int replica
             // Camera passes move simplified receivers' shadow lookups by their error (main.vert).
             if (setInstanceBase) glUniform1f(kLodErrorLocation, range.objectError);
             glDrawElementsInstanced(GL_TRIANGLES, range.indexCount, GL_UNSIGNED_INT,
-                                    reinterpret_cast<const void*>(range.byteOffset), static_cast<GLsizei>(count) * replicas);
+                                    reinterpret_cast<const void*>(range.byteOffset),
+                                    static_cast<GLsizei>(count) * replicas);
             stats.instances += static_cast<size_t>(count) * static_cast<size_t>(replicas);
             stats.triangles += static_cast<size_t>(range.indexCount / 3) * count * static_cast<size_t>(replicas);
             ++stats.drawCalls;

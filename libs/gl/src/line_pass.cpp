@@ -31,8 +31,8 @@ void LinePass::draw(const core::Mat4& clipFromWorld, std::span<const LineSegment
     vertices.reserve(lines.size() * 12);
     for (const LineSegment& l : lines)
         for (const core::Vec3& p : {l.wsFrom, l.wsTo})
-            vertices.insert(vertices.end(), {static_cast<float>(p.x), static_cast<float>(p.y), static_cast<float>(p.z), l.color.r,
-                                             l.color.g, l.color.b});
+            vertices.insert(vertices.end(), {static_cast<float>(p.x), static_cast<float>(p.y), static_cast<float>(p.z),
+                                             l.color.r, l.color.g, l.color.b});
     if (lines.size() > m_capacity) {
         m_capacity = std::max(lines.size(), 2 * m_capacity);
         m_vertices = createBuffer(nullptr, m_capacity * 12 * sizeof(float));

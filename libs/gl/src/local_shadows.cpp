@@ -39,19 +39,23 @@ core::Result<std::unique_ptr<LocalShadowMaps>> LocalShadowMaps::create() {
                                  {kLocalDepthGlsl, kLocalDepthGeom}, {kLocalDepthGlsl, kLocalDepthFrag});
     if (!geometry) return geometry.errorInfo();
     maps->m_geometryProgram = std::move(geometry).value();
-    const char* extension = epoxy_has_gl_extension("GL_ARB_shader_viewport_layer_array") ? "GL_ARB_shader_viewport_layer_array"
-                            : epoxy_has_gl_extension("GL_AMD_vertex_shader_layer")       ? "GL_AMD_vertex_shader_layer"
-                                                                                          : nullptr;
+    const char* extension = epoxy_has_gl_extension("GL_ARB_shader_viewport_layer_array")
+                                ? "GL_ARB_shader_viewport_layer_array"
+                            : epoxy_has_gl_extension("GL_AMD_vertex_shader_layer") ? "GL_AMD_vertex_shader_layer"
+                                                                                   : nullptr;
     if (extension) {
         const std::string enable = std::string("#extension ") + extension + " : require\n";
-        auto layered = buildProgram("local lights' depth pass (vertex layer)", {enable, kLocalDepthGlsl, kLocalDepthLayerVert},
-                                    {kLocalDepthGlsl, kLocalDepthFrag});
+        auto layered =
+            buildProgram("local lights' depth pass (vertex layer)", {enable, kLocalDepthGlsl, kLocalDepthLayerVert},
+                         {kLocalDepthGlsl, kLocalDepthFrag});
         if (!layered) return layered.errorInfo();
         maps->m_vertexLayerProgram = std::move(layered).value();
     }
     for (const Program* p : {&maps->m_geometryProgram, &maps->m_vertexLayerProgram})
         if (*p)
-            if (auto s = checkUniformBlock(*p, "local lights' depth pass", "LocalDepth", sizeof(LocalDepthUniforms), localDepthFields()); !s)
+            if (auto s = checkUniformBlock(*p, "local lights' depth pass", "LocalDepth", sizeof(LocalDepthUniforms),
+                                           localDepthFields());
+                !s)
                 return s.errorInfo();
     maps->m_depthUniforms = createBuffer(nullptr, sizeof(LocalDepthUniforms));
     maps->m_lightUniforms = createBuffer(nullptr, sizeof(LocalLightsUniforms));
@@ -159,7 +163,8 @@ core::Result<PassStats> LocalShadowMaps::draw(const GpuScene& scene, const core:
     return stats;
 }
 
-void LocalShadowMaps::bind(const core::LocalLighting& lights, const LocalBiasSettings& bias, int evalLight, bool sunLights) const {
+void LocalShadowMaps::bind(const core::LocalLighting& lights, const LocalBiasSettings& bias, int evalLight,
+                           bool sunLights) const {
     LocalLightsUniforms u{};
     u.pointCount = static_cast<int32_t>(lights.points.size());
     u.spotCount = static_cast<int32_t>(lights.spots.size());
@@ -199,7 +204,8 @@ scene::Image LocalShadowMaps::readAsGreys(const core::LocalLighting& lights) con
     const size_t layerTexels = static_cast<size_t>(n) * static_cast<size_t>(n);
     auto readAll = [&](const Texture& t, int layers) {
         std::vector<float> d(layerTexels * static_cast<size_t>(layers));
-        glGetTextureImage(t.id(), 0, GL_DEPTH_COMPONENT, GL_FLOAT, static_cast<GLsizei>(d.size() * sizeof(float)), d.data());
+        glGetTextureImage(t.id(), 0, GL_DEPTH_COMPONENT, GL_FLOAT, static_cast<GLsizei>(d.size() * sizeof(float)),
+                          d.data());
         return d;
     };
     const std::vector<float> spotTexels = spots ? readAll(m_spotMaps, m_spots) : std::vector<float>{};
@@ -215,8 +221,8 @@ scene::Image LocalShadowMaps::readAsGreys(const core::LocalLighting& lights) con
         for (int layer = 0; layer < layers; ++layer)
             for (int t = 0; t < n; ++t)
                 for (int s = 0; s < n; ++s) {
-                    const float v = first[static_cast<size_t>(layer) * layerTexels + static_cast<size_t>(t) * static_cast<size_t>(n) +
-                                          static_cast<size_t>(s)];
+                    const float v = first[static_cast<size_t>(layer) * layerTexels +
+                                          static_cast<size_t>(t) * static_cast<size_t>(n) + static_cast<size_t>(s)];
                     const auto grey = static_cast<uint8_t>(v < 1.0f ? 40.0f + 215.0f * (1.0f - (v - lo) / span) : 0.0f);
                     uint8_t* p = place(layer, s, t);
                     p[0] = p[1] = p[2] = grey;

@@ -40,8 +40,8 @@ public:
 
     // Allocates the maps for these lights (kept while counts and size stay), then writes
     // every light's map; lists from the renderer's culling, listCount() of them.
-    core::Result<PassStats> draw(const GpuScene& scene, const core::LocalLighting& lights, std::span<const PassList> lists,
-                                 LocalPass pass, bool hardwarePcf);
+    core::Result<PassStats> draw(const GpuScene& scene, const core::LocalLighting& lights,
+                                 std::span<const PassList> lists, LocalPass pass, bool hardwarePcf);
 
     // The camera passes' uniforms (LocalLights) and textures; evalLight: −1 for the sun, else
     // the local light the eval pass writes the shadow term of.

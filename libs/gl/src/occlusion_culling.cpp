@@ -14,13 +14,15 @@ namespace {
 // Eye moves and turns beyond which the last frame's visibility is a poor guess; below them
 // CHC++'s coherence holds (a camera path moves centimetres to a metre a frame). A cut is a
 // cost decision only: the traversal is conservative with any history.
-constexpr double kCutDistance = 10.0;      // metres
-constexpr double kCutCosine = 0.94;        // about 20 degrees
+constexpr double kCutDistance = 10.0; // metres
+constexpr double kCutCosine = 0.94;   // about 20 degrees
 
 // Grows a query box: a node's own bound is tangent to its geometry (a tree's box sits on
 // the terrain), and depth is resolved only to ~1e-4 of the distance at the far end of a
 // 32-bit float depth buffer, so a box touching an occluder must not lose to it.
-glm::vec4 grown(const core::Vec3& p, double margin, double sign) { return glm::vec4(glm::vec3(p + sign * margin), 1.0f); }
+glm::vec4 grown(const core::Vec3& p, double margin, double sign) {
+    return glm::vec4(glm::vec3(p + sign * margin), 1.0f);
+}
 
 } // namespace
 
@@ -52,8 +54,9 @@ core::Result<std::unique_ptr<OcclusionCuller>> OcclusionCuller::create(Visibilit
 bool OcclusionCuller::isCut(const core::PerspectiveCamera& c, int width, int height) const {
     if (!m_last) return true;
     const core::PerspectiveCamera& l = m_last->camera;
-    return width != m_last->width || height != m_last->height || c.fovYDegrees != l.fovYDegrees || c.aspect != l.aspect ||
-           c.zNear != l.zNear || c.zFar != l.zFar || glm::distance(c.wsEye, l.wsEye) > kCutDistance ||
+    return width != m_last->width || height != m_last->height || c.fovYDegrees != l.fovYDegrees ||
+           c.aspect != l.aspect || c.zNear != l.zNear || c.zFar != l.zFar ||
+           glm::distance(c.wsEye, l.wsEye) > kCutDistance ||
            glm::dot(glm::normalize(c.wsDirection), glm::normalize(l.wsDirection)) < kCutCosine;
 }
 

@@ -31,14 +31,14 @@ public:
     // history is dropped and the pre-pass repeats until the drawn set stops changing (at most
     // kMaxSettleFrames), so the frame returned is the steady state a running application
     // reaches. `drawn`: the global instance indices drawn.
-    core::CoherentCullingStats frame(const core::PerspectiveCamera& camera, const LodChoice* lod, CameraDepthTarget& target,
-                                     std::vector<uint32_t>& drawn);
+    core::CoherentCullingStats frame(const core::PerspectiveCamera& camera, const LodChoice* lod,
+                                     CameraDepthTarget& target, std::vector<uint32_t>& drawn);
     static constexpr int kMaxSettleFrames = 4;
     // Time of the last frame() (or prepass()) inside GL calls that do or await the GPU's
     // work: drawing the pre-pass, the query boxes, reading results (blocking when one is not
-    // back), the settle loop's glFinish; polling for results is the culling's own. On llvmpipe that is the rasteriser itself, on a GPU
-    // mostly the driver; the rest of frame() is the culling's own CPU cost (traversal, LOD
-    // choice, draw lists).
+    // back), the settle loop's glFinish; polling for results is the culling's own. On llvmpipe that is the rasteriser
+    // itself, on a GPU mostly the driver; the rest of frame() is the culling's own CPU cost (traversal, LOD choice,
+    // draw lists).
     const CpuTimes& glTimes() const { return m_gl; }
 
     // The hierarchy was rebuilt (Visibility::rebuildIfDegraded): its nodes are new, so the
@@ -64,7 +64,7 @@ private:
     core::CoherentCulling m_chc;
     Program m_depthProgram, m_boxProgram;
     VertexArray m_emptyVertexArray;
-    std::vector<GLuint> m_queries;       // pool; a handle is an index
+    std::vector<GLuint> m_queries; // pool; a handle is an index
     std::vector<uint32_t> m_freeQueries;
     // Streaming buffers, written front to back through a frame, restarted at each frame.
     Buffer m_boxes, m_lists;

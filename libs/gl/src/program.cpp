@@ -89,20 +89,23 @@ core::Status checkUniformBlock(const Program& program, std::string_view programN
                                size_t cppSize, std::span<const UniformField> fields) {
     const GLuint index = glGetUniformBlockIndex(program.id(), blockName);
     if (index == GL_INVALID_INDEX)
-        return core::environmentError(std::string(programName) + ": uniform block " + blockName + " missing from the shader");
+        return core::environmentError(std::string(programName) + ": uniform block " + blockName +
+                                      " missing from the shader");
     GLint size = 0;
     glGetActiveUniformBlockiv(program.id(), index, GL_UNIFORM_BLOCK_DATA_SIZE, &size);
     if (static_cast<size_t>(size) != cppSize)
-        return core::environmentError(std::string(programName) + ": uniform block " + blockName + " is " + std::to_string(size) +
-                               " bytes in GLSL but " + std::to_string(cppSize) + " in C++");
+        return core::environmentError(std::string(programName) + ": uniform block " + blockName + " is " +
+                                      std::to_string(size) + " bytes in GLSL but " + std::to_string(cppSize) +
+                                      " in C++");
     for (const UniformField& field : fields) {
         GLuint member = GL_INVALID_INDEX;
         glGetUniformIndices(program.id(), 1, &field.name, &member);
         GLint offset = -1;
         if (member != GL_INVALID_INDEX) glGetActiveUniformsiv(program.id(), 1, &member, GL_UNIFORM_OFFSET, &offset);
         if (member == GL_INVALID_INDEX || static_cast<size_t>(offset) != field.offset)
-            return core::environmentError(std::string(programName) + ": uniform " + blockName + "." + field.name + " is at offset " +
-                                   std::to_string(offset) + " in GLSL but " + std::to_string(field.offset) + " in C++");
+            return core::environmentError(std::string(programName) + ": uniform " + blockName + "." + field.name +
+                                          " is at offset " + std::to_string(offset) + " in GLSL but " +
+                                          std::to_string(field.offset) + " in C++");
     }
     return core::Ok{};
 }

@@ -13,8 +13,8 @@ namespace {
 
 // Inverse of encodeDepth in receiver_mask.comp.
 float decodeDepth(uint32_t u) {
-    if (u == 0u) return -INFINITY;     // nothing marked
-    if (u == 0xFFFFFFFFu) return NAN;  // behind the centre: ReceiverMask::finish keeps everything
+    if (u == 0u) return -INFINITY;    // nothing marked
+    if (u == 0xFFFFFFFFu) return NAN; // behind the centre: ReceiverMask::finish keeps everything
     const uint32_t bits = (u & 0x80000000u) != 0u ? u & 0x7FFFFFFFu : ~u;
     float d;
     std::memcpy(&d, &bits, sizeof d);
@@ -78,8 +78,8 @@ const std::vector<core::ReceiverMask>& ReceiverMasks::build(const CameraDepthTar
     m_masks.clear();
     for (int m = 0; m < maps; ++m) {
         const core::ShadowView& view = setup.views[size_t(m)];
-        core::ReceiverMask& mask = m_masks.emplace_back(kReceiverMaskSize, view.clipFromWorld,
-                                                        linear ? std::optional(view.linearDepthFromWorld) : std::nullopt);
+        core::ReceiverMask& mask = m_masks.emplace_back(
+            kReceiverMaskSize, view.clipFromWorld, linear ? std::optional(view.linearDepthFromWorld) : std::nullopt);
         std::span<float> out = mask.texels();
         const uint32_t* in = m_readBack.data() + size_t(m) * kReceiverMaskSize * kReceiverMaskSize;
         for (size_t t = 0; t < out.size(); ++t) out[t] = decodeDepth(in[t]);

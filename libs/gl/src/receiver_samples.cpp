@@ -6,10 +6,12 @@
 
 namespace shadowkit::gl {
 
-core::Result<std::vector<core::ReceiverSample>> sampleReceivers(Renderer& renderer, const core::ShadowSetupInputs& inputs,
+core::Result<std::vector<core::ReceiverSample>> sampleReceivers(Renderer& renderer,
+                                                                const core::ShadowSetupInputs& inputs,
                                                                 const RenderSettings& settings,
                                                                 const ReceiverSampling& sampling) {
-    if (sampling.width < 1) return core::fieldError("sampling.width", "must be >= 1, got " + std::to_string(sampling.width));
+    if (sampling.width < 1)
+        return core::fieldError("sampling.width", "must be >= 1, got " + std::to_string(sampling.width));
     core::ShadowSetupInputs cheapest = inputs;
     cheapest.technique = core::Technique::Standard;
     cheapest.mapSize = 64;

@@ -5,34 +5,44 @@ namespace shadowkit::gl {
 
 const char* localPassName(LocalPass pass) {
     switch (pass) {
-    case LocalPass::Layered: return "layered";
-    case LocalPass::VertexLayer: return "vertex-layer";
-    case LocalPass::Geometry: return "geometry";
-    case LocalPass::PerFace: return "per-face";
+    case LocalPass::Layered:
+        return "layered";
+    case LocalPass::VertexLayer:
+        return "vertex-layer";
+    case LocalPass::Geometry:
+        return "geometry";
+    case LocalPass::PerFace:
+        return "per-face";
     }
     return "?";
 }
 
 core::Status validate(const LocalBiasSettings& b) {
-    if (!(b.slopeTexels >= 0.0 && b.slopeTexels <= 16.0)) return core::fieldError("local_bias.slope", "must be in [0, 16] texels");
+    if (!(b.slopeTexels >= 0.0 && b.slopeTexels <= 16.0))
+        return core::fieldError("local_bias.slope", "must be in [0, 16] texels");
     if (!(b.normalOffsetTexels >= 0.0 && b.normalOffsetTexels <= 16.0))
         return core::fieldError("local_bias.normal_offset", "must be in [0, 16] texels");
-    if (!(b.constantMetres >= 0.0 && b.constantMetres <= 1.0)) return core::fieldError("local_bias.constant", "must be in [0, 1] metres");
+    if (!(b.constantMetres >= 0.0 && b.constantMetres <= 1.0))
+        return core::fieldError("local_bias.constant", "must be in [0, 1] metres");
     return core::Ok{};
 }
 
 const char* cullingName(Culling culling) {
     switch (culling) {
-    case Culling::Off: return "off";
-    case Culling::Frustum: return "frustum";
-    case Culling::Occlusion: return "chc";
+    case Culling::Off:
+        return "off";
+    case Culling::Frustum:
+        return "frustum";
+    case Culling::Occlusion:
+        return "chc";
     }
     return "?";
 }
 
 core::Status validate(const BlurSettings& b) {
     if (b.iterations < 0 || b.iterations > 64) return core::fieldError("blur.iterations", "must be in [0, 64]");
-    if (!(b.radiusPixels > 0.0f && b.radiusPixels <= 16.0f)) return core::fieldError("blur.radius", "must be in (0, 16] pixels");
+    if (!(b.radiusPixels > 0.0f && b.radiusPixels <= 16.0f))
+        return core::fieldError("blur.radius", "must be in (0, 16] pixels");
     if (!(b.depthFalloff >= 0.0f && b.depthFalloff <= 10.0f))
         return core::fieldError("blur.depth_falloff", "must be in [0, 10] per metre");
     if (!(b.depthThreshold > 0.0f && b.depthThreshold <= 1.0f))

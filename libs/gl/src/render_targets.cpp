@@ -19,7 +19,8 @@ std::vector<T> readFlipped(const Texture& texture, GLenum format, GLenum type, i
     std::vector<T> rows(static_cast<size_t>(width) * static_cast<size_t>(height));
     glGetTextureImage(texture.id(), 0, format, type, static_cast<GLsizei>(rows.size() * sizeof(T)), rows.data());
     for (int y = 0; y < height / 2; ++y)
-        std::swap_ranges(rows.begin() + static_cast<ptrdiff_t>(y) * width, rows.begin() + static_cast<ptrdiff_t>(y + 1) * width,
+        std::swap_ranges(rows.begin() + static_cast<ptrdiff_t>(y) * width,
+                         rows.begin() + static_cast<ptrdiff_t>(y + 1) * width,
                          rows.begin() + static_cast<ptrdiff_t>(height - 1 - y) * width);
     return rows;
 }
@@ -29,17 +30,21 @@ std::vector<T> readFlipped(const Texture& texture, GLenum format, GLenum type, i
 core::Status checkComplete(const Framebuffer& fbo, const char* what) {
     const GLenum status = glCheckNamedFramebufferStatus(fbo.id(), GL_FRAMEBUFFER);
     if (status != GL_FRAMEBUFFER_COMPLETE)
-        return core::environmentError(std::string(what) + ": the GL driver could not complete the framebuffer (status " + std::to_string(status) + ")");
+        return core::environmentError(std::string(what) +
+                                      ": the GL driver could not complete the framebuffer (status " +
+                                      std::to_string(status) + ")");
     return core::Ok{};
 }
 
 core::Result<ShadowTarget> ShadowTarget::create(int texels, int layerCount) {
-    while (glGetError() != GL_NO_ERROR) {} // earlier errors are not this allocation's
+    while (glGetError() != GL_NO_ERROR) {
+    } // earlier errors are not this allocation's
     ShadowTarget target(texels, layerCount);
     if (glGetError() == GL_OUT_OF_MEMORY) {
         const double gib = double(texels) * texels * layerCount * 4.0 / double(1u << 30);
-        return core::environmentError("map_size: the GL driver is out of memory for " + std::to_string(layerCount) + " depth layers of " +
-                                          std::to_string(texels) + "² (" + std::to_string(gib).substr(0, 4) + " GiB)",
+        return core::environmentError("map_size: the GL driver is out of memory for " + std::to_string(layerCount) +
+                                          " depth layers of " + std::to_string(texels) + "² (" +
+                                          std::to_string(gib).substr(0, 4) + " GiB)",
                                       "map_size");
     }
     if (auto s = checkComplete(target.framebuffer, "shadow map"); !s) return s.errorInfo();
@@ -68,7 +73,8 @@ scene::Image ShadowTarget::readAsGreys() const {
     // All layers come back stacked (layer-major), each bottom row first.
     const size_t layerTexels = static_cast<size_t>(size) * static_cast<size_t>(size);
     std::vector<float> d(layerTexels * static_cast<size_t>(layers));
-    glGetTextureImage(depth.id(), 0, GL_DEPTH_COMPONENT, GL_FLOAT, static_cast<GLsizei>(d.size() * sizeof(float)), d.data());
+    glGetTextureImage(depth.id(), 0, GL_DEPTH_COMPONENT, GL_FLOAT, static_cast<GLsizei>(d.size() * sizeof(float)),
+                      d.data());
     scene::Image image(size * layers, size);
     for (int layer = 0; layer < layers; ++layer) {
         const float* texels = d.data() + static_cast<size_t>(layer) * layerTexels;
@@ -78,7 +84,8 @@ scene::Image ShadowTarget::readAsGreys() const {
         const float range = hi > lo ? hi - lo : 1.0f;
         for (int y = 0; y < size; ++y)
             for (int x = 0; x < size; ++x) {
-                const float v = texels[static_cast<size_t>(size - 1 - y) * static_cast<size_t>(size) + static_cast<size_t>(x)];
+                const float v =
+                    texels[static_cast<size_t>(size - 1 - y) * static_cast<size_t>(size) + static_cast<size_t>(x)];
                 const auto grey = static_cast<uint8_t>(v < 1.0f ? 40.0f + 215.0f * (1.0f - (v - lo) / range) : 0.0f);
                 uint8_t* p = image.pixel(layer * size + x, y);
                 p[0] = p[1] = p[2] = grey;
@@ -103,8 +110,9 @@ scene::Image ColorTarget::read() const {
 }
 
 MaskPingPong::MaskPingPong(int w, int h)
-    : images{createTexture2D(GL_R32F, w, h), createTexture2D(GL_R32F, w, h)},
-      framebuffers{createFramebuffer(), createFramebuffer()}, width(w), height(h) {
+    : images{createTexture2D(GL_R32F, w, h), createTexture2D(GL_R32F, w, h)}, framebuffers{createFramebuffer(),
+                                                                                           createFramebuffer()},
+      width(w), height(h) {
     for (int i = 0; i < 2; ++i) {
         // Nearest: a tap never mixes the mask across a depth edge it was meant to skip.
         glTextureParameteri(images[i].id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);

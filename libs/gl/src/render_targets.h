@@ -67,7 +67,7 @@ struct EvalTarget {
 
     EvalTarget(int w, int h);
     void clear() const;
-    core::RasterBuffers read() const; // top row first
+    core::RasterBuffers read() const;         // top row first
     std::vector<float> readViewDepth() const; // metres, 0 where nothing was drawn
 };
 

@@ -91,7 +91,7 @@ struct Renderer::Impl {
     std::unique_ptr<ReceiverMasks> receiverMasks;
     double receiverMaskMilliseconds = 0.0;
     std::unique_ptr<DepthRangeReduction> depthRange; // of every pre-pass: Renderer::lastVisibleDepth
-    bool prepassForDepthRange = false; // Renderer::visibleDepth: a pre-pass even if culling needs none
+    bool prepassForDepthRange = false;               // Renderer::visibleDepth: a pre-pass even if culling needs none
     Program depthProgram, mainProgram, evalProgram, blurProgram;
     Buffer depthUniforms, frameUniforms, blurUniforms;
     VertexArray emptyVertexArray; // for the full-screen triangle
@@ -102,7 +102,7 @@ struct Renderer::Impl {
     PassTimer shadowTimer, mainTimer, localTimer;
     std::unique_ptr<LocalShadowMaps> localMaps;
     std::unique_ptr<LinePass> lines;
-    core::LocalLighting localLights; // Renderer::setLocalLights, in the scene's coordinates
+    core::LocalLighting localLights;   // Renderer::setLocalLights, in the scene's coordinates
     core::LocalLighting wsLocalLights; // the same as given: Renderer::localLights()
     core::Vec3 wsOrigin{0.0};          // Scene::wsOrigin: where the GPU's coordinates start
 
@@ -140,19 +140,24 @@ core::Result<std::unique_ptr<Renderer>> Renderer::create(const scene::Scene& sce
     using namespace shaders;
     auto depth = buildProgram("depth pass", {kDepthPassGlsl, kDepthVert}, {kDepthPassGlsl, kDepthFrag});
     if (!depth) return depth.errorInfo();
-    auto main = buildProgram("main pass", {kFrameGlsl, kMainVert}, {kFrameGlsl, kShadowkitShadowsGlsl, kShadowLookupGlsl, kLocalLightsGlsl, kMainFrag});
+    auto main = buildProgram("main pass", {kFrameGlsl, kMainVert},
+                             {kFrameGlsl, kShadowkitShadowsGlsl, kShadowLookupGlsl, kLocalLightsGlsl, kMainFrag});
     if (!main) return main.errorInfo();
-    auto eval = buildProgram("eval pass", {kFrameGlsl, kMainVert}, {kFrameGlsl, kShadowkitShadowsGlsl, kShadowLookupGlsl, kLocalLightsGlsl, kEvalFrag});
+    auto eval = buildProgram("eval pass", {kFrameGlsl, kMainVert},
+                             {kFrameGlsl, kShadowkitShadowsGlsl, kShadowLookupGlsl, kLocalLightsGlsl, kEvalFrag});
     if (!eval) return eval.errorInfo();
     auto blur = buildProgram("blur pass", {kFullscreenVert}, {kBlurFrag});
     if (!blur) return blur.errorInfo();
-    if (auto s = checkUniformBlock(*blur, "blur pass", "Blur", sizeof(BlurUniforms), blurFields()); !s) return s.errorInfo();
+    if (auto s = checkUniformBlock(*blur, "blur pass", "Blur", sizeof(BlurUniforms), blurFields()); !s)
+        return s.errorInfo();
     if (auto s = checkUniformBlock(*depth, "depth pass", "DepthPass", sizeof(DepthPassUniforms), depthPassFields()); !s)
         return s.errorInfo();
     for (const auto* p : {&main, &eval}) {
         if (auto s = checkUniformBlock(**p, "camera pass", "Frame", sizeof(FrameUniforms), frameFields()); !s)
             return s.errorInfo();
-        if (auto s = checkUniformBlock(**p, "camera pass", "LocalLights", sizeof(LocalLightsUniforms), localLightsFields()); !s)
+        if (auto s =
+                checkUniformBlock(**p, "camera pass", "LocalLights", sizeof(LocalLightsUniforms), localLightsFields());
+            !s)
             return s.errorInfo();
     }
     auto lines = LinePass::create();
@@ -198,10 +203,18 @@ namespace {
 double lookupReachTexels(const core::FilterSettings& filter, const core::BiasSettings& bias) {
     double reach = 0.0;
     switch (filter.kind) {
-    case core::ShadowFilter::Hard: reach = 0.0; break;
-    case core::ShadowFilter::Pcf2: reach = 1.0; break;
-    case core::ShadowFilter::PcfGrid: reach = 0.5 * (filter.taps - 1) + 1.0; break;
-    case core::ShadowFilter::Poisson: reach = filter.radiusTexels + 1.0; break;
+    case core::ShadowFilter::Hard:
+        reach = 0.0;
+        break;
+    case core::ShadowFilter::Pcf2:
+        reach = 1.0;
+        break;
+    case core::ShadowFilter::PcfGrid:
+        reach = 0.5 * (filter.taps - 1) + 1.0;
+        break;
+    case core::ShadowFilter::Poisson:
+        reach = filter.radiusTexels + 1.0;
+        break;
     }
     return reach + std::abs(bias.normalOffset) + 2.0;
 }
@@ -243,8 +256,10 @@ void Renderer::Impl::collectVisible(const core::PerspectiveCamera& camera, const
         // The frustum's instances, asked once, for the depth pre-pass and the camera pass.
         occlusionDrawn.clear();
         visibility->hierarchy().query(cameraVolume, occlusionDrawn);
-        if (cull) visibility->fromItems(occlusionDrawn, cameraLodOrNone, cameraList);
-        else visibility->collect(cameraVolume, false, cameraLodOrNone, cameraList);
+        if (cull)
+            visibility->fromItems(occlusionDrawn, cameraLodOrNone, cameraList);
+        else
+            visibility->collect(cameraVolume, false, cameraLodOrNone, cameraList);
         occlusion->prepass(cameraLodOrNone, *cameraDepth, occlusionDrawn);
         cullGlTimes += occlusion->glTimes();
     } else {
@@ -289,14 +304,19 @@ void Renderer::Impl::collectVisible(const core::PerspectiveCamera& camera, const
                 visibility->collect(core::clipVolume(view.clipFromWorld, false), cull, nullptr, localLists[next++]);
         } else {
             PassList& list = localLists[next++];
-            if (cube.views.empty()) list = {};
-            else visibility->collect(rangeBox(localLights.points[p].wsPosition, localLights.points[p].range), cull, nullptr, list);
+            if (cube.views.empty())
+                list = {};
+            else
+                visibility->collect(rangeBox(localLights.points[p].wsPosition, localLights.points[p].range), cull,
+                                    nullptr, list);
         }
     }
     for (const core::ShadowSetup& spot : localLights.spotSetups) {
         PassList& list = localLists[next++];
-        if (spot.views.empty()) list = {};
-        else visibility->collect(core::clipVolume(spot.views[0].clipFromWorld, false), cull, nullptr, list);
+        if (spot.views.empty())
+            list = {};
+        else
+            visibility->collect(core::clipVolume(spot.views[0].clipFromWorld, false), cull, nullptr, list);
     }
     for (PassList& list : localLists) lists.push_back(&list);
     lists.push_back(&cameraList);
@@ -313,9 +333,10 @@ core::Status Renderer::Impl::prepare(const core::PerspectiveCamera& camera, cons
     // also fit this driver.
     // Within core's range but beyond this driver's: the machine's limit, not a wrong value.
     if (setup.mapSize < core::kMinMapSize || setup.mapSize > maxSize)
-        return core::environmentError("map_size: must be in [" + std::to_string(core::kMinMapSize) + ", " + std::to_string(maxSize) +
-                                          "] texels on this GL driver (GL_MAX_TEXTURE_SIZE), got " + std::to_string(setup.mapSize),
-                                      "map_size");
+        return core::environmentError(
+            "map_size: must be in [" + std::to_string(core::kMinMapSize) + ", " + std::to_string(maxSize) +
+                "] texels on this GL driver (GL_MAX_TEXTURE_SIZE), got " + std::to_string(setup.mapSize),
+            "map_size");
     if (settings.width < 1 || settings.height < 1 || settings.width > maxSize || settings.height > maxSize)
         return core::environmentError("image_size: each side must be in [1, " + std::to_string(maxSize) +
                                           "] pixels on this GL driver (GL_MAX_TEXTURE_SIZE)",
@@ -460,7 +481,8 @@ core::Status Renderer::Impl::evalPass(const core::PerspectiveCamera& camera, con
 }
 
 int Renderer::Impl::blurPass(const RenderSettings& settings) {
-    if (!mask || mask->width != settings.width || mask->height != settings.height) mask.emplace(settings.width, settings.height);
+    if (!mask || mask->width != settings.width || mask->height != settings.height)
+        mask.emplace(settings.width, settings.height);
     const BlurUniforms uniforms{.radiusPixels = settings.blur.radiusPixels,
                                 .depthFalloff = settings.blur.depthFalloff,
                                 .depthThreshold = settings.blur.depthThreshold};
@@ -501,7 +523,8 @@ core::Result<FrameStats> Renderer::render(const core::PerspectiveCamera& wsCamer
     auto local = r.localPass(settings);
     if (!local) return local.errorInfo();
     stats.local = *local;
-    for (const core::ShadowSetup& s : r.localLights.pointSetups) stats.localMaps += static_cast<int>(s.views.size()), stats.skippedFaces += s.skippedFaces;
+    for (const core::ShadowSetup& s : r.localLights.pointSetups)
+        stats.localMaps += static_cast<int>(s.views.size()), stats.skippedFaces += s.skippedFaces;
     for (const core::ShadowSetup& s : r.localLights.spotSetups) stats.localMaps += static_cast<int>(s.views.size());
 
     // With the eye-space blur, the shadow term comes from the blurred screen-space mask.
@@ -533,7 +556,8 @@ core::Result<FrameStats> Renderer::render(const core::PerspectiveCamera& wsCamer
     stats.cullMilliseconds = r.cullTimes.wallMilliseconds;
     stats.cullGlMilliseconds = r.cullGlTimes.wallMilliseconds;
     stats.listCpuMilliseconds = r.listTimes.threadMilliseconds;
-    stats.cullOwnCpuMilliseconds = r.cullTimes.threadMilliseconds - r.cullGlTimes.threadMilliseconds - stats.listCpuMilliseconds;
+    stats.cullOwnCpuMilliseconds =
+        r.cullTimes.threadMilliseconds - r.cullGlTimes.threadMilliseconds - stats.listCpuMilliseconds;
     stats.occlusion = r.occlusionStats;
     stats.occlusionMilliseconds = r.occlusionMilliseconds;
     stats.receiverMaskMilliseconds = r.receiverMaskMilliseconds;
@@ -568,7 +592,8 @@ core::Result<core::RasterBuffers> Renderer::renderEvalBuffers(const core::Perspe
 
 core::Result<std::optional<core::Vec2>> Renderer::visibleDepth(const core::PerspectiveCamera& wsCamera,
                                                                const core::DirectionalLight& light,
-                                                               const core::ShadowSetup& wsSetup, const RenderSettings& settings) {
+                                                               const core::ShadowSetup& wsSetup,
+                                                               const RenderSettings& settings) {
     Impl& r = *m_impl;
     const SceneFrame frame = inScene(r.wsOrigin, wsCamera, wsSetup);
     const core::PerspectiveCamera& camera = frame.camera;
@@ -601,7 +626,8 @@ core::Status Renderer::moveInstances(const scene::Scene& scene, std::span<const 
     for (const uint32_t global : moved) {
         const scene::InstanceRef ref = *scene.locate(global);
         const scene::MeshBatch& b = scene.batches[ref.batch];
-        r.visibility->move(global, core::transformBounds(core::Mat4(b.worldFromObject[ref.instance]), scene.meshes[b.mesh].osBounds));
+        r.visibility->move(
+            global, core::transformBounds(core::Mat4(b.worldFromObject[ref.instance]), scene.meshes[b.mesh].osBounds));
     }
     if (r.visibility->rebuildIfDegraded() && r.occlusion) r.occlusion->hierarchyRebuilt();
     for (size_t batch = 0; batch < scene.batches.size(); ++batch)
@@ -610,17 +636,20 @@ core::Status Renderer::moveInstances(const scene::Scene& scene, std::span<const 
 }
 
 core::Status Renderer::setLocalLights(core::LocalLighting lights) {
-    if (lights.points.size() > static_cast<size_t>(kMaxLocalLights) || lights.spots.size() > static_cast<size_t>(kMaxLocalLights))
-        return core::makeError("renderer: at most " + std::to_string(kMaxLocalLights) + " point and " + std::to_string(kMaxLocalLights) +
-                               " spot lights, got " + std::to_string(lights.points.size()) + " and " + std::to_string(lights.spots.size()));
+    if (lights.points.size() > static_cast<size_t>(kMaxLocalLights) ||
+        lights.spots.size() > static_cast<size_t>(kMaxLocalLights))
+        return core::makeError("renderer: at most " + std::to_string(kMaxLocalLights) + " point and " +
+                               std::to_string(kMaxLocalLights) + " spot lights, got " +
+                               std::to_string(lights.points.size()) + " and " + std::to_string(lights.spots.size()));
     if (lights.pointSetups.size() != lights.points.size() || lights.spotSetups.size() != lights.spots.size())
         return core::makeError("renderer: every local light needs its set-up (core::computeLocalLighting)");
     GLint maxSize = 0;
     glGetIntegerv(GL_MAX_CUBE_MAP_TEXTURE_SIZE, &maxSize);
     if (!lights.empty() && (lights.mapSize < core::kMinMapSize || lights.mapSize > maxSize))
-        return core::environmentError("local_map_size: must be in [" + std::to_string(core::kMinMapSize) + ", " + std::to_string(maxSize) +
-                                          "] texels on this GL driver (GL_MAX_CUBE_MAP_TEXTURE_SIZE), got " + std::to_string(lights.mapSize),
-                                      "local_map_size");
+        return core::environmentError(
+            "local_map_size: must be in [" + std::to_string(core::kMinMapSize) + ", " + std::to_string(maxSize) +
+                "] texels on this GL driver (GL_MAX_CUBE_MAP_TEXTURE_SIZE), got " + std::to_string(lights.mapSize),
+            "local_map_size");
     m_impl->localLights = m_impl->wsOrigin == core::Vec3(0.0) ? lights : core::rebased(lights, m_impl->wsOrigin);
     m_impl->wsLocalLights = std::move(lights);
     return core::Ok{};
@@ -651,8 +680,8 @@ void Renderer::drawLines(const core::PerspectiveCamera& camera, std::span<const 
 void Renderer::present(int width, int height) const {
     const auto& color = m_impl->color;
     if (!color) return;
-    glBlitNamedFramebuffer(color->framebuffer.id(), 0, 0, 0, color->width, color->height, 0, 0, width, height, GL_COLOR_BUFFER_BIT,
-                           GL_LINEAR);
+    glBlitNamedFramebuffer(color->framebuffer.id(), 0, 0, 0, color->width, color->height, 0, 0, width, height,
+                           GL_COLOR_BUFFER_BIT, GL_LINEAR);
 }
 
 scene::Image Renderer::readColor() const { return m_impl->color ? m_impl->color->read() : scene::Image{}; }

@@ -20,7 +20,8 @@ struct SceneFrame {
 };
 
 // A scene at the world's origin is drawn with the set-up as given (no copy, the same bits).
-inline SceneFrame inScene(const core::Vec3& wsOrigin, const core::PerspectiveCamera& wsCamera, const core::ShadowSetup& wsSetup) {
+inline SceneFrame inScene(const core::Vec3& wsOrigin, const core::PerspectiveCamera& wsCamera,
+                          const core::ShadowSetup& wsSetup) {
     SceneFrame frame{wsCamera, std::nullopt, &wsSetup};
     if (wsOrigin == core::Vec3(0.0)) return frame;
     frame.camera.wsEye -= wsOrigin;

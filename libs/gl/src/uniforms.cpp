@@ -6,8 +6,10 @@
 
 namespace shadowkit::gl {
 
-#define SK_FIELD(type, member) UniformField { #member, offsetof(type, member) }
-#define SK_ARRAY_FIELD(type, member) UniformField { #member "[0]", offsetof(type, member) }
+#define SK_FIELD(type, member)                                                                                         \
+    UniformField { #member, offsetof(type, member) }
+#define SK_ARRAY_FIELD(type, member)                                                                                   \
+    UniformField { #member "[0]", offsetof(type, member) }
 
 std::span<const UniformField> depthPassFields() {
     static constexpr std::array kFields = {
@@ -47,25 +49,33 @@ std::span<const UniformField> frameFields() {
 
 std::span<const UniformField> blurFields() {
     static constexpr std::array kFields = {
-        SK_FIELD(BlurUniforms, radiusPixels), SK_FIELD(BlurUniforms, depthFalloff), SK_FIELD(BlurUniforms, depthThreshold),
+        SK_FIELD(BlurUniforms, radiusPixels),
+        SK_FIELD(BlurUniforms, depthFalloff),
+        SK_FIELD(BlurUniforms, depthThreshold),
     };
     return kFields;
 }
 
 std::span<const UniformField> receiverMaskFields() {
     static constexpr std::array kFields = {
-        SK_FIELD(ReceiverMaskUniforms, worldFromClip),       SK_FIELD(ReceiverMaskUniforms, wsEye),
-        SK_FIELD(ReceiverMaskUniforms, wsViewForward),       SK_ARRAY_FIELD(ReceiverMaskUniforms, mapClipFromWorld),
-        SK_ARRAY_FIELD(ReceiverMaskUniforms, mapLinearDepthFromWorld), SK_FIELD(ReceiverMaskUniforms, mapCount),
-        SK_FIELD(ReceiverMaskUniforms, linearLayout),        SK_FIELD(ReceiverMaskUniforms, maskSize),
+        SK_FIELD(ReceiverMaskUniforms, worldFromClip),
+        SK_FIELD(ReceiverMaskUniforms, wsEye),
+        SK_FIELD(ReceiverMaskUniforms, wsViewForward),
+        SK_ARRAY_FIELD(ReceiverMaskUniforms, mapClipFromWorld),
+        SK_ARRAY_FIELD(ReceiverMaskUniforms, mapLinearDepthFromWorld),
+        SK_FIELD(ReceiverMaskUniforms, mapCount),
+        SK_FIELD(ReceiverMaskUniforms, linearLayout),
+        SK_FIELD(ReceiverMaskUniforms, maskSize),
     };
     return kFields;
 }
 
 std::span<const UniformField> localDepthFields() {
     static constexpr std::array kFields = {
-        SK_ARRAY_FIELD(LocalDepthUniforms, faceClipFromWorld), SK_FIELD(LocalDepthUniforms, wsLightInvRange),
-        SK_ARRAY_FIELD(LocalDepthUniforms, faceOfReplica),     SK_FIELD(LocalDepthUniforms, layerBase),
+        SK_ARRAY_FIELD(LocalDepthUniforms, faceClipFromWorld),
+        SK_FIELD(LocalDepthUniforms, wsLightInvRange),
+        SK_ARRAY_FIELD(LocalDepthUniforms, faceOfReplica),
+        SK_FIELD(LocalDepthUniforms, layerBase),
         SK_FIELD(LocalDepthUniforms, replicas),
     };
     return kFields;
@@ -73,13 +83,20 @@ std::span<const UniformField> localDepthFields() {
 
 std::span<const UniformField> localLightsFields() {
     static constexpr std::array kFields = {
-        SK_ARRAY_FIELD(LocalLightsUniforms, pointPositionRange), SK_ARRAY_FIELD(LocalLightsUniforms, pointRadianceTexel),
-        SK_ARRAY_FIELD(LocalLightsUniforms, spotPositionRange),  SK_ARRAY_FIELD(LocalLightsUniforms, spotAxisCosHalf),
-        SK_ARRAY_FIELD(LocalLightsUniforms, spotRadianceTexel),  SK_ARRAY_FIELD(LocalLightsUniforms, spotClipFromWorld),
-        SK_FIELD(LocalLightsUniforms, pointCount),               SK_FIELD(LocalLightsUniforms, spotCount),
-        SK_FIELD(LocalLightsUniforms, evalLight),                SK_FIELD(LocalLightsUniforms, sunLights),
-        SK_FIELD(LocalLightsUniforms, localSlopeBiasTexels),          SK_FIELD(LocalLightsUniforms, localNormalOffsetTexels),
-        SK_FIELD(LocalLightsUniforms, localConstantBiasMetres),       SK_FIELD(LocalLightsUniforms, localMapTexels),
+        SK_ARRAY_FIELD(LocalLightsUniforms, pointPositionRange),
+        SK_ARRAY_FIELD(LocalLightsUniforms, pointRadianceTexel),
+        SK_ARRAY_FIELD(LocalLightsUniforms, spotPositionRange),
+        SK_ARRAY_FIELD(LocalLightsUniforms, spotAxisCosHalf),
+        SK_ARRAY_FIELD(LocalLightsUniforms, spotRadianceTexel),
+        SK_ARRAY_FIELD(LocalLightsUniforms, spotClipFromWorld),
+        SK_FIELD(LocalLightsUniforms, pointCount),
+        SK_FIELD(LocalLightsUniforms, spotCount),
+        SK_FIELD(LocalLightsUniforms, evalLight),
+        SK_FIELD(LocalLightsUniforms, sunLights),
+        SK_FIELD(LocalLightsUniforms, localSlopeBiasTexels),
+        SK_FIELD(LocalLightsUniforms, localNormalOffsetTexels),
+        SK_FIELD(LocalLightsUniforms, localConstantBiasMetres),
+        SK_FIELD(LocalLightsUniforms, localMapTexels),
     };
     return kFields;
 }

@@ -23,24 +23,24 @@ inline constexpr int kMaxCascades = 8; // GLSL: SK_MAX_CASCADES
 inline constexpr unsigned kFrameBinding = 0;
 inline constexpr unsigned kDepthPassBinding = 1;
 inline constexpr unsigned kBlurBinding = 2;
-inline constexpr unsigned kInstancesBinding = 0; // shader storage: mat4 worldFromObject[] of the batch drawn
-inline constexpr unsigned kVisibleBinding = 1;   // shader storage: uint visibleInstances[] of the frame
-inline constexpr unsigned kMaskBinding = 3;      // shader storage: uint maskTexels[] of the receiver masks
+inline constexpr unsigned kInstancesBinding = 0;    // shader storage: mat4 worldFromObject[] of the batch drawn
+inline constexpr unsigned kVisibleBinding = 1;      // shader storage: uint visibleInstances[] of the frame
+inline constexpr unsigned kMaskBinding = 3;         // shader storage: uint maskTexels[] of the receiver masks
 inline constexpr unsigned kReceiverMaskBinding = 3; // uniform block ReceiverMask (receiver_mask.comp)
 inline constexpr unsigned kReceiverDepthUnit = 0;   // receiver mask pass: the pre-pass's view depth
-inline constexpr unsigned kRangeBinding = 4;     // shader storage: uint nearBits, farBits (depth_range.comp)
-inline constexpr unsigned kRangeDepthUnit = 0;   // depth range pass: the pre-pass's view depth
-inline constexpr unsigned kBoxesBinding = 2;     // shader storage: vec4 boxCorners[] (min, max) of occlusion queries
+inline constexpr unsigned kRangeBinding = 4;        // shader storage: uint nearBits, farBits (depth_range.comp)
+inline constexpr unsigned kRangeDepthUnit = 0;      // depth range pass: the pre-pass's view depth
+inline constexpr unsigned kBoxesBinding = 2;        // shader storage: vec4 boxCorners[] (min, max) of occlusion queries
 // Texture units (GLSL: SK_*_UNIT). The camera passes and the blur pass never run together.
 inline constexpr unsigned kShadowMapUnit = 0;  // camera passes: sampler2DArrayShadow, one layer per map
 inline constexpr unsigned kShadowMaskUnit = 1; // main pass: the blurred shadow mask
 inline constexpr unsigned kBlurMaskUnit = 0;   // blur pass: the mask being blurred
 inline constexpr unsigned kBlurDepthUnit = 1;  // blur pass: view depth, to stop at depth steps
 // Local lights (local_shadows.h): their maps beside the sun's in the camera passes.
-inline constexpr unsigned kSpotMapUnit = 2;  // sampler2DArrayShadow, one layer per spot light
-inline constexpr unsigned kPointMapUnit = 3; // samplerCubeArrayShadow, one cube per point light
-inline constexpr unsigned kLocalDepthBinding = 5;  // uniform block LocalDepth (local_depth.glsl)
-inline constexpr unsigned kLocalLightsBinding = 6; // uniform block LocalLights (local_lights.glsl)
+inline constexpr unsigned kSpotMapUnit = 2;                    // sampler2DArrayShadow, one layer per spot light
+inline constexpr unsigned kPointMapUnit = 3;                   // samplerCubeArrayShadow, one cube per point light
+inline constexpr unsigned kLocalDepthBinding = 5;              // uniform block LocalDepth (local_depth.glsl)
+inline constexpr unsigned kLocalLightsBinding = 6;             // uniform block LocalLights (local_lights.glsl)
 inline constexpr int kMaxLocalLights = kMaxLocalLightsPerKind; // GLSL: SK_MAX_LOCAL_LIGHTS
 inline constexpr int kInstanceBaseLocation = 0;   // uniform uint instanceBase (main.vert): surface identity
 inline constexpr int kInstanceOffsetLocation = 1; // uniform uint instanceOffset: the draw's list in visibleInstances
@@ -49,7 +49,7 @@ inline constexpr int kBoxOffsetLocation = 3;      // uniform uint boxOffset (occ
 
 // std140: scalars pack in fours, vec4 and mat4 start on 16 bytes. Booleans are int32.
 
-struct DepthPassUniforms { // GLSL: DepthPass (depth_pass.glsl)
+struct DepthPassUniforms {          // GLSL: DepthPass (depth_pass.glsl)
     glm::mat4 clipFromWorld;        // the shadow view's light clip space
     glm::vec4 linearDepthFromWorld; // row: depth = dot(row, (ws, 1)), [0, 1] over B
     int32_t linearLayout;           // 1: write linear depth per fragment; 0: clip z / w
@@ -58,8 +58,8 @@ struct DepthPassUniforms { // GLSL: DepthPass (depth_pass.glsl)
     float pad0;
 };
 
-struct FrameUniforms { // GLSL: Frame (frame.glsl)
-    glm::mat4 clipFromWorld; // camera
+struct FrameUniforms {        // GLSL: Frame (frame.glsl)
+    glm::mat4 clipFromWorld;  // camera
     glm::vec4 wsEye;          // xyz
     glm::vec4 wsViewForward;  // xyz, unit: view depth = dot(ws − eye, forward)
     glm::vec4 wsTowardsLight; // xyz, unit
@@ -73,17 +73,17 @@ struct FrameUniforms { // GLSL: Frame (frame.glsl)
     int32_t filterKind;        // core::ShadowFilter (SK_FILTER_*)
     int32_t filterTaps;        // N of N x N, or Poisson samples
     float poissonRadiusTexels;
-    int32_t receiverPlane;     // 1: receiver-plane depth bias
-    float normalOffsetTexels;  // receiver offset along its normal, in texels' world size
-    int32_t readBlurredMask;   // 1: main pass reads the blurred mask instead of the maps
-    int32_t aliasingOverlay;   // 1: main pass shows pixels per texel instead of shading
+    int32_t receiverPlane;    // 1: receiver-plane depth bias
+    float normalOffsetTexels; // receiver offset along its normal, in texels' world size
+    int32_t readBlurredMask;  // 1: main pass reads the blurred mask instead of the maps
+    int32_t aliasingOverlay;  // 1: main pass shows pixels per texel instead of shading
     float pad1;
-    glm::mat4 shadowTextureFromWorld[kMaxCascades];    // (u, v, depth, 1) · w of each map (core::toEngineView)
+    glm::mat4 shadowTextureFromWorld[kMaxCascades];     // (u, v, depth, 1) · w of each map (core::toEngineView)
     glm::vec4 shadowLinearDepthFromWorld[kMaxCascades]; // rows, as in DepthPass
     glm::vec4 cascadeRange[kMaxCascades];               // x, y: view depth [start, end] each map serves
 };
 
-struct LocalDepthUniforms { // GLSL: LocalDepth (local_depth.glsl)
+struct LocalDepthUniforms {         // GLSL: LocalDepth (local_depth.glsl)
     glm::mat4 faceClipFromWorld[6]; // a point light's cube faces, or a spot light's view in [0]
     glm::vec4 wsLightInvRange;      // xyz: the light; w: 1 / range (stored depth = distance / range)
     glm::ivec4 faceOfReplica[2];    // the face replica r of a draw writes: [r / 4][r % 4]
@@ -92,24 +92,24 @@ struct LocalDepthUniforms { // GLSL: LocalDepth (local_depth.glsl)
     float pad0, pad1;
 };
 
-struct LocalLightsUniforms { // GLSL: LocalLights (local_lights.glsl)
-    glm::vec4 pointPositionRange[kMaxLocalLights];  // xyz, w: range in metres
-    glm::vec4 pointRadianceTexel[kMaxLocalLights];  // rgb, w: texel size per metre (core::texelSizePerMetre)
+struct LocalLightsUniforms {                       // GLSL: LocalLights (local_lights.glsl)
+    glm::vec4 pointPositionRange[kMaxLocalLights]; // xyz, w: range in metres
+    glm::vec4 pointRadianceTexel[kMaxLocalLights]; // rgb, w: texel size per metre (core::texelSizePerMetre)
     glm::vec4 spotPositionRange[kMaxLocalLights];
-    glm::vec4 spotAxisCosHalf[kMaxLocalLights];     // xyz: unit axis, w: cos(cone / 2)
+    glm::vec4 spotAxisCosHalf[kMaxLocalLights]; // xyz: unit axis, w: cos(cone / 2)
     glm::vec4 spotRadianceTexel[kMaxLocalLights];
     glm::mat4 spotClipFromWorld[kMaxLocalLights];
     int32_t pointCount, spotCount;
-    int32_t evalLight;         // eval pass: −1 the sun, else a local light (points first, then spots)
-    int32_t sunLights;         // 0: night, the sun neither lights nor is evaluated
-    float localSlopeBiasTexels;     // receiver distance reduced by this × texel size × tan(angle to the light)
+    int32_t evalLight;             // eval pass: −1 the sun, else a local light (points first, then spots)
+    int32_t sunLights;             // 0: night, the sun neither lights nor is evaluated
+    float localSlopeBiasTexels;    // receiver distance reduced by this × texel size × tan(angle to the light)
     float localNormalOffsetTexels; // receiver moved along its normal by this × texel size
     float localConstantBiasMetres; // and its distance reduced by this
-    float localMapTexels;      // texels per side of every spot map and cube face
+    float localMapTexels;          // texels per side of every spot map and cube face
 };
 
 struct ReceiverMaskUniforms { // GLSL: ReceiverMask (receiver_mask.comp)
-    glm::mat4 worldFromClip; // camera
+    glm::mat4 worldFromClip;  // camera
     glm::vec4 wsEye;
     glm::vec4 wsViewForward;
     glm::mat4 mapClipFromWorld[kMaxCascades];
@@ -120,7 +120,7 @@ struct ReceiverMaskUniforms { // GLSL: ReceiverMask (receiver_mask.comp)
     int32_t pad0;
 };
 
-struct BlurUniforms { // GLSL: Blur (blur.frag)
+struct BlurUniforms {     // GLSL: Blur (blur.frag)
     float radiusPixels;   // tap distance at view depth 0
     float depthFalloff;   // 1/m: radius / (1 + falloff · depth)
     float depthThreshold; // relative view-depth step that stops the kernel

@@ -32,7 +32,8 @@ std::vector<float> levelErrors(const std::vector<scene::LodLevel>& chain) {
 
 } // namespace
 
-Visibility::Visibility(const scene::Scene& scene, std::span<const scene::MeshLods> lods) : m_hierarchy(scene.instanceBounds()) {
+Visibility::Visibility(const scene::Scene& scene, std::span<const scene::MeshLods> lods)
+    : m_hierarchy(scene.instanceBounds()) {
     uint32_t first = 0;
     for (const scene::MeshBatch& batch : scene.batches) {
         m_batchFirst.push_back(first);
@@ -71,7 +72,8 @@ void Visibility::collect(std::span<const core::HalfSpace> volume, bool cull, con
         // The hierarchy answers in tree order; a bitmap over every instance puts the answer
         // back in instance order in O(n / 64 + visible), cheaper than sorting it.
         if (receivers)
-            m_hierarchy.query(volume, [receivers](const core::Aabb& box) { return receivers->mayShadow(box); }, m_scratch);
+            m_hierarchy.query(
+                volume, [receivers](const core::Aabb& box) { return receivers->mayShadow(box); }, m_scratch);
         else
             m_hierarchy.query(volume, m_scratch);
         sortIntoScratch(m_scratch);
@@ -146,7 +148,8 @@ void Visibility::upload(std::span<PassList* const> lists) {
         m_capacity = std::max(m_staging.size(), 2 * m_capacity);
         m_buffer = createBuffer(nullptr, m_capacity * sizeof(uint32_t));
     }
-    glNamedBufferSubData(m_buffer.id(), 0, static_cast<GLsizeiptr>(m_staging.size() * sizeof(uint32_t)), m_staging.data());
+    glNamedBufferSubData(m_buffer.id(), 0, static_cast<GLsizeiptr>(m_staging.size() * sizeof(uint32_t)),
+                         m_staging.data());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kVisibleBinding, m_buffer.id());
     m_listTimes += time.elapsed();
 }

@@ -30,7 +30,7 @@ struct PassList {
     std::vector<uint32_t> indices;
     std::vector<uint32_t> first, count; // [batch * kMaxLodLevels + level], into `indices`
     uint32_t offset = 0;
-    bool shadow = false;                // levels from the shadow chains (MeshLods::shadow)
+    bool shadow = false; // levels from the shadow chains (MeshLods::shadow)
     size_t instances() const { return indices.size(); }
 };
 
@@ -86,18 +86,18 @@ private:
     // over every instance: O(n / 64 + items), cheaper than sorting.
     void sortIntoScratch(std::span<const uint32_t> items);
 
-    core::InstanceHierarchy m_hierarchy;    // items in global instance order (Scene order)
-    std::vector<uint32_t> m_batchFirst;     // global index of each batch's first instance
+    core::InstanceHierarchy m_hierarchy; // items in global instance order (Scene order)
+    std::vector<uint32_t> m_batchFirst;  // global index of each batch's first instance
     // Per global instance: its uniform scale and mesh; a level's world error is the mesh's
     // object error for that level times the scale.
     std::vector<float> m_instanceScale;
     std::vector<uint32_t> m_instanceMesh;
     std::vector<std::vector<float>> m_cameraErrors, m_shadowErrors; // per mesh, per level (object metres)
-    std::vector<uint8_t> m_levels;           // level per visible instance, reused every pass
-    std::vector<uint32_t> m_slots, m_cursor; // counting-sort scratch, reused every pass
-    std::vector<uint64_t> m_visibleBits;     // one bit per instance, reused every pass
-    std::vector<uint32_t> m_scratch;        // query result, reused every pass
-    std::vector<uint32_t> m_staging;        // the frame's concatenated lists
+    std::vector<uint8_t> m_levels;                                  // level per visible instance, reused every pass
+    std::vector<uint32_t> m_slots, m_cursor;                        // counting-sort scratch, reused every pass
+    std::vector<uint64_t> m_visibleBits;                            // one bit per instance, reused every pass
+    std::vector<uint32_t> m_scratch;                                // query result, reused every pass
+    std::vector<uint32_t> m_staging;                                // the frame's concatenated lists
     Buffer m_buffer;
     size_t m_capacity = 0; // in indices
     CpuTimes m_listTimes;

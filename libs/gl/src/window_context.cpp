@@ -8,7 +8,8 @@ namespace shadowkit::gl {
 
 core::Result<std::unique_ptr<WindowContext>> WindowContext::create(int width, int height, const std::string& title,
                                                                    const ContextOptions& options) {
-    if (!glfwInit()) return core::environmentError("window: GLFW could not initialise (no display? use the headless commands)");
+    if (!glfwInit())
+        return core::environmentError("window: GLFW could not initialise (no display? use the headless commands)");
     glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
     glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
     glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);

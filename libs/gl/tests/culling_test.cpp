@@ -25,8 +25,11 @@ struct Variant {
 std::vector<Variant> everyTechnique(const scene::ResolvedView& view, const core::Aabb& bounds) {
     std::vector<Variant> variants;
     for (const core::TechniqueInfo& t : core::allTechniques()) {
-        core::ShadowSetupInputs in{.camera = view.camera, .light = view.light, .wsSceneBounds = bounds,
-                                   .technique = t.technique, .mapSize = 512};
+        core::ShadowSetupInputs in{.camera = view.camera,
+                                   .light = view.light,
+                                   .wsSceneBounds = bounds,
+                                   .technique = t.technique,
+                                   .mapSize = 512};
         variants.push_back({std::string(t.name), in});
     }
     core::ShadowSetupInputs warped = variants.back().inputs;
@@ -121,7 +124,8 @@ TEST_F(CullingTest, CasterOutsideTheViewFrustumIsDrawnIntoTheMapAndItsShadowAppe
     cam.aspect = 1.0;
     cam.zNear = 0.5;
     cam.zFar = 60;
-    const core::DirectionalLight sun = core::DirectionalLight::fromDirection({0, -0.5, -1}).value(); // from behind the wall
+    const core::DirectionalLight sun =
+        core::DirectionalLight::fromDirection({0, -0.5, -1}).value(); // from behind the wall
     // The wall is out of the view frustum.
     const core::Aabb wallBox = core::transformBounds(core::Mat4(s.batches[1].worldFromObject[0]), wall.osBounds);
     bool anyCornerVisible = false;
@@ -139,29 +143,30 @@ TEST_F(CullingTest, CasterOutsideTheViewFrustumIsDrawnIntoTheMapAndItsShadowAppe
     // Also with casters culled by visible receivers: the wall is out of view, but the
     // ground it shadows is in view, so the receiver mask must keep it.
     for (const bool receiverMask : {false, true})
-    for (core::Technique t : {core::Technique::Focused, core::Technique::Lispsm, core::Technique::Tsm, core::Technique::Csm}) {
-        settings.receiverMask = receiverMask;
-        const auto setup = core::computeShadowSetup(
-            {.camera = cam, .light = sun, .wsSceneBounds = s.wsBounds(), .technique = t, .mapSize = 1024});
-        ASSERT_TRUE(setup);
-        const auto stats = (*renderer)->render(cam, sun, *setup, settings);
-        ASSERT_TRUE(stats);
-        EXPECT_EQ(stats->main.instances, 1u) << core::techniqueName(t) << ": the camera pass draws the ground only";
-        EXPECT_GE(stats->shadow.instances, 2u * setup->views.size() - (setup->views.size() - 1))
-            << core::techniqueName(t) << ": the wall must be in the map that serves its shadow";
-        const scene::Image image = (*renderer)->readColor();
-        // The wall's shadow on the ground, 12 m + 15 m / tan(26.6°) ≈ 18 m ahead of it: well in view.
-        const auto shadowAt = [&](double z) { return core::Vec3(0, 0, z); };
-        auto luminance = [&](const core::Vec3& ws) {
-            const core::Vec4 cs = cam.clipFromWorld() * core::Vec4(ws, 1.0);
-            const int x = static_cast<int>((cs.x / cs.w * 0.5 + 0.5) * image.width);
-            const int y = static_cast<int>((0.5 - cs.y / cs.w * 0.5) * image.height);
-            const uint8_t* p = image.pixel(x, y);
-            return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
-        };
-        const double inShadow = luminance(shadowAt(-10)), lit = luminance(core::Vec3(4, 0, -10));
-        EXPECT_LT(inShadow, 0.7 * lit) << core::techniqueName(t) << ": shadow " << inShadow << ", lit " << lit;
-    }
+        for (core::Technique t :
+             {core::Technique::Focused, core::Technique::Lispsm, core::Technique::Tsm, core::Technique::Csm}) {
+            settings.receiverMask = receiverMask;
+            const auto setup = core::computeShadowSetup(
+                {.camera = cam, .light = sun, .wsSceneBounds = s.wsBounds(), .technique = t, .mapSize = 1024});
+            ASSERT_TRUE(setup);
+            const auto stats = (*renderer)->render(cam, sun, *setup, settings);
+            ASSERT_TRUE(stats);
+            EXPECT_EQ(stats->main.instances, 1u) << core::techniqueName(t) << ": the camera pass draws the ground only";
+            EXPECT_GE(stats->shadow.instances, 2u * setup->views.size() - (setup->views.size() - 1))
+                << core::techniqueName(t) << ": the wall must be in the map that serves its shadow";
+            const scene::Image image = (*renderer)->readColor();
+            // The wall's shadow on the ground, 12 m + 15 m / tan(26.6°) ≈ 18 m ahead of it: well in view.
+            const auto shadowAt = [&](double z) { return core::Vec3(0, 0, z); };
+            auto luminance = [&](const core::Vec3& ws) {
+                const core::Vec4 cs = cam.clipFromWorld() * core::Vec4(ws, 1.0);
+                const int x = static_cast<int>((cs.x / cs.w * 0.5 + 0.5) * image.width);
+                const int y = static_cast<int>((0.5 - cs.y / cs.w * 0.5) * image.height);
+                const uint8_t* p = image.pixel(x, y);
+                return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
+            };
+            const double inShadow = luminance(shadowAt(-10)), lit = luminance(core::Vec3(4, 0, -10));
+            EXPECT_LT(inShadow, 0.7 * lit) << core::techniqueName(t) << ": shadow " << inShadow << ", lit " << lit;
+        }
 }
 
 TEST_F(CullingTest, LevelsOfDetailDrawFewerTrianglesForDistantTreesWithinTheirErrorBound) {
@@ -170,8 +175,11 @@ TEST_F(CullingTest, LevelsOfDetailDrawFewerTrianglesForDistantTreesWithinTheirEr
     auto renderer = gl::Renderer::create(forest);
     ASSERT_TRUE(renderer);
     for (core::Technique t : {core::Technique::Focused, core::Technique::Tsm, core::Technique::Csm}) {
-        const auto setup = core::computeShadowSetup(
-            {.camera = view.camera, .light = view.light, .wsSceneBounds = forest.wsBounds(), .technique = t, .mapSize = 512});
+        const auto setup = core::computeShadowSetup({.camera = view.camera,
+                                                     .light = view.light,
+                                                     .wsSceneBounds = forest.wsBounds(),
+                                                     .technique = t,
+                                                     .mapSize = 512});
         ASSERT_TRUE(setup);
         gl::RenderSettings settings = smallFrame(320, 180, gl::Culling::Frustum);
         auto frame = [&](bool lod, float bound) {
@@ -210,8 +218,11 @@ TEST_F(CullingTest, OcclusionCulledFramesMatchFrustumCulledFramesAfterTheFirst) 
     auto renderer = gl::Renderer::create(forest);
     ASSERT_TRUE(renderer) << renderer.error();
     const scene::ResolvedView view = smallView(forest, "perpendicular", 160, 90);
-    core::ShadowSetupInputs in{.camera = view.camera, .light = view.light, .wsSceneBounds = forest.wsBounds(),
-                               .technique = core::Technique::Lispsm, .mapSize = 512};
+    core::ShadowSetupInputs in{.camera = view.camera,
+                               .light = view.light,
+                               .wsSceneBounds = forest.wsBounds(),
+                               .technique = core::Technique::Lispsm,
+                               .mapSize = 512};
     const auto setup = core::computeShadowSetup(in);
     ASSERT_TRUE(setup) << setup.error();
     gl::RenderSettings settings = smallFrame(160, 90, gl::Culling::Frustum);

@@ -63,8 +63,11 @@ Frame renderAt(gl::Renderer& renderer, scene::Scene& s, double t, const core::Di
     scene::animate(s, t, &moved);
     EXPECT_TRUE(renderer.moveInstances(s, moved));
     const core::PerspectiveCamera cam = overhead();
-    const auto setup = core::computeShadowSetup(
-        {.camera = cam, .light = sun, .wsSceneBounds = renderer.wsSceneBounds(), .technique = core::Technique::Lispsm, .mapSize = 1024});
+    const auto setup = core::computeShadowSetup({.camera = cam,
+                                                 .light = sun,
+                                                 .wsSceneBounds = renderer.wsSceneBounds(),
+                                                 .technique = core::Technique::Lispsm,
+                                                 .mapSize = 1024});
     EXPECT_TRUE(setup);
     gl::RenderSettings settings;
     settings.width = settings.height = 200;
@@ -88,15 +91,15 @@ bool rayHitsBox(const core::Vec3& origin, const core::Vec3& direction, const cor
 // holds 0.6 m round it (clear of the shadow's edge by more than a pixel) and that the
 // camera sees past the cube there must be dark (< 0.75 of a lit ground pixel) exactly
 // when shadowed. Returns the points found shadowed.
-std::vector<core::Vec3> expectShadowsAsTruth(const Frame& frame, const scene::Scene& s, const core::DirectionalLight& sun,
-                                             const char* what) {
+std::vector<core::Vec3> expectShadowsAsTruth(const Frame& frame, const scene::Scene& s,
+                                             const core::DirectionalLight& sun, const char* what) {
     // The cube turns as it goes round: rays are tested in its object space.
     const core::Mat4 worldFromCube(s.batches[1].worldFromObject[0]);
     const core::Mat4 cubeFromWorld = glm::inverse(worldFromCube);
     const core::Aabb& cube = s.meshes[1].osBounds;
     auto hitsCube = [&](const core::Vec3& wsOrigin, const core::Vec3& wsDirection) {
-        return rayHitsBox(core::Vec3(cubeFromWorld * core::Vec4(wsOrigin, 1.0)), core::Vec3(cubeFromWorld * core::Vec4(wsDirection, 0.0)),
-                          cube);
+        return rayHitsBox(core::Vec3(cubeFromWorld * core::Vec4(wsOrigin, 1.0)),
+                          core::Vec3(cubeFromWorld * core::Vec4(wsDirection, 0.0)), cube);
     };
     const core::Vec3 centre(worldFromCube[3]);
     auto shadowed = [&](const core::Vec3& p) { return hitsCube(p, sun.wsTowardsLight()); };
@@ -108,13 +111,15 @@ std::vector<core::Vec3> expectShadowsAsTruth(const Frame& frame, const scene::Sc
             const core::Vec3 p(centre.x + 0.5 * i, 0.0, centre.z + 0.5 * j);
             const bool truth = shadowed(p);
             bool clear = !hitsCube(p, frame.camera.wsEye - p);
-            for (const core::Vec3 d : {core::Vec3(0.6, 0, 0), core::Vec3(-0.6, 0, 0), core::Vec3(0, 0, 0.6), core::Vec3(0, 0, -0.6)})
+            for (const core::Vec3 d :
+                 {core::Vec3(0.6, 0, 0), core::Vec3(-0.6, 0, 0), core::Vec3(0, 0, 0.6), core::Vec3(0, 0, -0.6)})
                 clear = clear && shadowed(p + d) == truth && !hitsCube(p + d, frame.camera.wsEye - p - d);
             if (!clear) continue;
             ++checked;
             if (truth) dark.push_back(p);
             EXPECT_EQ(frame.luminanceAt(p) < 0.75 * lit, truth)
-                << what << ": ground at " << p.x << ", " << p.z << " (luminance " << frame.luminanceAt(p) << ", lit " << lit << ")";
+                << what << ": ground at " << p.x << ", " << p.z << " (luminance " << frame.luminanceAt(p) << ", lit "
+                << lit << ")";
         }
     EXPECT_GT(checked, 2000) << what;
     return dark;
@@ -164,8 +169,10 @@ TEST_F(DynamicsTest, ASunMovingTenDegreesMovesTheShadows) {
     ASSERT_TRUE(renderer);
     const core::DirectionalLight low = core::DirectionalLight::fromSunAngles(30.0, 90.0).value();
     const core::DirectionalLight high = core::DirectionalLight::fromSunAngles(40.0, 90.0).value();
-    const std::vector<core::Vec3> darkLow = expectShadowsAsTruth(renderAt(**renderer, s, 0.0, low), s, low, "sun at 30 degrees");
-    const std::vector<core::Vec3> darkHigh = expectShadowsAsTruth(renderAt(**renderer, s, 0.0, high), s, high, "sun at 40 degrees");
+    const std::vector<core::Vec3> darkLow =
+        expectShadowsAsTruth(renderAt(**renderer, s, 0.0, low), s, low, "sun at 30 degrees");
+    const std::vector<core::Vec3> darkHigh =
+        expectShadowsAsTruth(renderAt(**renderer, s, 0.0, high), s, high, "sun at 40 degrees");
     // Both ends of the shadow moved: ground shadowed under one sun and not the other, both ways.
     EXPECT_GT(countNotIn(darkLow, darkHigh), 20u);
     EXPECT_GT(countNotIn(darkHigh, darkLow), 5u);

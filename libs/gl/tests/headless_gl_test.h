@@ -15,8 +15,10 @@ class HeadlessGlTest : public ::testing::Test {
 protected:
     static void SetUpTestSuite() {
         auto context = Context::createHeadless();
-        if (context) s_context = std::move(context).value();
-        else s_unavailable = context.error();
+        if (context)
+            s_context = std::move(context).value();
+        else
+            s_unavailable = context.error();
     }
     static void TearDownTestSuite() { s_context.reset(); }
     void SetUp() override {

@@ -63,8 +63,9 @@ core::ShadowSetup sunSetup(const core::PerspectiveCamera& cam, const core::Aabb&
     return core::computeShadowSetup({.camera = cam, .light = {}, .wsSceneBounds = bounds, .mapSize = 64}).value();
 }
 
-core::LocalLighting lighting(const core::PerspectiveCamera& cam, const core::Aabb& bounds, std::vector<core::PointLight> points,
-                             std::vector<core::SpotLight> spots, int mapSize = 256) {
+core::LocalLighting lighting(const core::PerspectiveCamera& cam, const core::Aabb& bounds,
+                             std::vector<core::PointLight> points, std::vector<core::SpotLight> spots,
+                             int mapSize = 256) {
     auto l = core::computeLocalLighting({.camera = cam, .wsSceneBounds = bounds, .mapSize = mapSize}, points, spots);
     EXPECT_TRUE(l) << l.error();
     return *l;
@@ -87,8 +88,10 @@ TEST_F(LocalLightsTest, ABoxBesideAPointLightShadowsTheWallBehindItOnEveryCubeFa
         ASSERT_TRUE(renderer) << renderer.error();
         const core::Vec3 shadowCentre = 8.0 * a + (8.0 / 3.0) * 0.8 * v, mirrored = 8.0 * a - (8.0 / 3.0) * 0.8 * v;
         // Seen from beside the light, clear of the cube.
-        const core::PerspectiveCamera cam = looking(6.0 * u + 1.0 * a, 8.0 * a, std::abs(a.y) > 0.5 ? core::Vec3(0, 0, 1) : core::Vec3(0, 1, 0));
-        ASSERT_TRUE((*renderer)->setLocalLights(lighting(cam, (*renderer)->wsSceneBounds(), {{.wsPosition = light, .range = 30.0}}, {})));
+        const core::PerspectiveCamera cam =
+            looking(6.0 * u + 1.0 * a, 8.0 * a, std::abs(a.y) > 0.5 ? core::Vec3(0, 0, 1) : core::Vec3(0, 1, 0));
+        ASSERT_TRUE((*renderer)->setLocalLights(
+            lighting(cam, (*renderer)->wsSceneBounds(), {{.wsPosition = light, .range = 30.0}}, {})));
         const gl::RenderSettings settings = nightSettings();
         auto raster = (*renderer)->renderEvalBuffers(cam, {}, sunSetup(cam, (*renderer)->wsSceneBounds()), settings, 0);
         ASSERT_TRUE(raster) << raster.error();
@@ -107,7 +110,8 @@ TEST_F(LocalLightsTest, ABoxBesideAPointLightShadowsTheWallBehindItOnEveryCubeFa
 TEST_F(LocalLightsTest, ASpotLightsNothingOutsideItsConeAndShadowsInsideIt) {
     // A 40° spot 5 m above the ground pointing down lights a disc of radius 5 tan 20° = 1.82 m;
     // a cube at 2.5 m, 0.8 m off the axis, shadows the ground 1.6 m off it.
-    scene::Scene s = boxes({{core::Vec3(0, -0.1, 0), core::Vec3(20, 0.1, 20)}, {core::Vec3(0.8, 2.5, 0), core::Vec3(0.3)}});
+    scene::Scene s =
+        boxes({{core::Vec3(0, -0.1, 0), core::Vec3(20, 0.1, 20)}, {core::Vec3(0.8, 2.5, 0), core::Vec3(0.3)}});
     auto renderer = gl::Renderer::create(s);
     ASSERT_TRUE(renderer) << renderer.error();
     const core::PerspectiveCamera cam = looking({0, 12, 9}, {0, 0, 0}, {0, 1, 0});
@@ -135,7 +139,8 @@ TEST_F(LocalLightsTest, VertexLayerGeometryShaderAndSixPassesWriteTheSameCube) {
     auto renderer = gl::Renderer::create(s);
     ASSERT_TRUE(renderer) << renderer.error();
     const core::PerspectiveCamera cam = looking({0, 6, 10}, {0, 1, 0}, {0, 1, 0});
-    ASSERT_TRUE((*renderer)->setLocalLights(lighting(cam, (*renderer)->wsSceneBounds(), {{.wsPosition = {0, 3, 0}, .range = 20.0}}, {})));
+    ASSERT_TRUE((*renderer)->setLocalLights(
+        lighting(cam, (*renderer)->wsSceneBounds(), {{.wsPosition = {0, 3, 0}, .range = 20.0}}, {})));
     const core::ShadowSetup sun = sunSetup(cam, (*renderer)->wsSceneBounds());
     std::vector<scene::Image> maps;
     for (const gl::LocalPass pass : {gl::LocalPass::VertexLayer, gl::LocalPass::Geometry, gl::LocalPass::PerFace}) {
@@ -156,13 +161,15 @@ TEST_F(LocalLightsTest, FacesThatSeeNothingOfTheViewAreNotDrawnAndLightsOutOfRan
     // Looking along −Z from z = 0: a lamp 3 m behind the eye sees the view only through its
     // −Z side (and down, up and sideways into the frustum); +Z looks away from everything.
     const core::PerspectiveCamera cam = looking({0, 1.8, 0}, {0, 1.8, -10}, {0, 1, 0});
-    const core::PointLight behind{.wsPosition = {0, 3, 3}, .range = 30.0}, far{.wsPosition = {0, 3, 200}, .range = 10.0};
+    const core::PointLight behind{.wsPosition = {0, 3, 3}, .range = 30.0},
+        far{.wsPosition = {0, 3, 200}, .range = 10.0};
     ASSERT_TRUE((*renderer)->setLocalLights(lighting(cam, (*renderer)->wsSceneBounds(), {behind, far}, {})));
     auto stats = (*renderer)->render(cam, {}, sunSetup(cam, (*renderer)->wsSceneBounds()), nightSettings());
     ASSERT_TRUE(stats) << stats.error();
     const core::LocalLighting& lights = (*renderer)->localLights();
     EXPECT_GE(lights.pointSetups[0].skippedFaces, 1);
-    for (const core::ShadowView& view : lights.pointSetups[0].views) EXPECT_NE(view.face, 4) << "+Z sees nothing of the view";
+    for (const core::ShadowView& view : lights.pointSetups[0].views)
+        EXPECT_NE(view.face, 4) << "+Z sees nothing of the view";
     EXPECT_EQ(lights.pointSetups[1].skippedFaces, 6) << "a light whose range misses the view draws no face";
     EXPECT_EQ(stats->localMaps, static_cast<int>(lights.pointSetups[0].views.size()));
     EXPECT_EQ(stats->skippedFaces, lights.pointSetups[0].skippedFaces + 6);
@@ -199,8 +206,10 @@ TEST_F(LocalLightsTest, EightPointAndEightSpotLightsEachShadowInOneFrame) {
         const double x = kSpacing * (i - 7.5);
         parts.push_back({core::Vec3(x, 0.75, 0), core::Vec3(0.3, 0.75, 0.3)}); // 1.5 m: taller than the light
         const core::Vec3 light(x, 1.0, 1.5);
-        if (i % 2 == 0) points.push_back({.wsPosition = light, .range = 4.0});
-        else spots.push_back({.wsPosition = light, .wsDirection = {0, -0.4, -1}, .coneDegrees = 90.0, .range = 4.0});
+        if (i % 2 == 0)
+            points.push_back({.wsPosition = light, .range = 4.0});
+        else
+            spots.push_back({.wsPosition = light, .wsDirection = {0, -0.4, -1}, .coneDegrees = 90.0, .range = 4.0});
     }
     scene::Scene s;
     for (const auto& [centre, half] : parts) {
@@ -212,7 +221,8 @@ TEST_F(LocalLightsTest, EightPointAndEightSpotLightsEachShadowInOneFrame) {
     }
     auto renderer = gl::Renderer::create(s);
     ASSERT_TRUE(renderer) << renderer.error();
-    const core::PerspectiveCamera cam = looking({0, 30, 10}, {0, 0, 0}, {0, 1, 0}); // steep: the ground behind each post shows
+    const core::PerspectiveCamera cam =
+        looking({0, 30, 10}, {0, 0, 0}, {0, 1, 0}); // steep: the ground behind each post shows
     ASSERT_TRUE((*renderer)->setLocalLights(lighting(cam, (*renderer)->wsSceneBounds(), points, spots, 128)));
     const core::ShadowSetup sun = sunSetup(cam, (*renderer)->wsSceneBounds());
     auto stats = (*renderer)->render(cam, {}, sun, nightSettings());
@@ -226,7 +236,8 @@ TEST_F(LocalLightsTest, EightPointAndEightSpotLightsEachShadowInOneFrame) {
         auto termAt = [&](const core::Vec3& ws) {
             const auto [px, py] = pixelOf(cam, ws);
             EXPECT_TRUE(px >= 0 && px < kImage && py >= 0 && py < kImage) << "light " << light << ": out of the image";
-            return raster->shadowTerm[static_cast<size_t>(std::clamp(py, 0, kImage - 1)) * kImage + static_cast<size_t>(std::clamp(px, 0, kImage - 1))];
+            return raster->shadowTerm[static_cast<size_t>(std::clamp(py, 0, kImage - 1)) * kImage +
+                                      static_cast<size_t>(std::clamp(px, 0, kImage - 1))];
         };
         EXPECT_LT(termAt({x, 0, -1.6}), 0.5f) << "light " << light << ": no shadow behind its post";
         EXPECT_GT(termAt({x + 1.2, 0, -0.3}), 0.5f) << "light " << light << ": shadow beside its post";

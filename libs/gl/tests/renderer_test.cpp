@@ -67,8 +67,11 @@ TEST_F(RendererTest, BoxOverPlaneShadowsThePlaneBelowItForEveryTechnique) {
     settings.fogDensity = 0.0f;
 
     for (const core::TechniqueInfo& technique : core::allTechniques()) {
-        const auto setup = core::computeShadowSetup(
-            {.camera = cam, .light = sun, .wsSceneBounds = s.wsBounds(), .technique = technique.technique, .mapSize = 256});
+        const auto setup = core::computeShadowSetup({.camera = cam,
+                                                     .light = sun,
+                                                     .wsSceneBounds = s.wsBounds(),
+                                                     .technique = technique.technique,
+                                                     .mapSize = 256});
         ASSERT_TRUE(setup) << setup.error();
         const auto stats = (*renderer)->render(cam, sun, *setup, settings);
         ASSERT_TRUE(stats) << stats.error();
@@ -88,8 +91,11 @@ TEST_F(RendererTest, ShadowMapImageShowsTheCaster) {
     ASSERT_TRUE(renderer);
     const core::PerspectiveCamera cam = obliqueCamera();
     const core::DirectionalLight sun{{0, -1, 0}};
-    const auto setup = core::computeShadowSetup(
-        {.camera = cam, .light = sun, .wsSceneBounds = s.wsBounds(), .technique = core::Technique::Standard, .mapSize = 64});
+    const auto setup = core::computeShadowSetup({.camera = cam,
+                                                 .light = sun,
+                                                 .wsSceneBounds = s.wsBounds(),
+                                                 .technique = core::Technique::Standard,
+                                                 .mapSize = 64});
     gl::RenderSettings settings;
     settings.width = settings.height = 32;
     ASSERT_TRUE((*renderer)->render(cam, sun, *setup, settings));
@@ -105,7 +111,8 @@ TEST_F(RendererTest, OutOfRangeSettingsAreErrorsNotGlErrors) {
     ASSERT_TRUE(renderer);
     const core::PerspectiveCamera cam = obliqueCamera();
     const core::DirectionalLight sun{{0, -1, 0}};
-    auto setup = core::computeShadowSetup({.camera = cam, .light = sun, .wsSceneBounds = s.wsBounds(), .technique = core::Technique::Focused});
+    auto setup = core::computeShadowSetup(
+        {.camera = cam, .light = sun, .wsSceneBounds = s.wsBounds(), .technique = core::Technique::Focused});
     ASSERT_TRUE(setup);
     // A set-up edited past any driver's GL_MAX_TEXTURE_SIZE: the renderer checks again.
     setup->mapSize = 1 << 20;
@@ -147,7 +154,10 @@ TEST_F(RendererTest, CasterAboveTheFrustumStillShadowsItsCascade) {
     settings.width = settings.height = 128;
     settings.fogDensity = 0.0f;
     for (int variant = 0; variant < 3; ++variant) {
-        core::ShadowSetupInputs in{.camera = cam, .light = sun, .wsSceneBounds = s.wsBounds(), .technique = core::Technique::Csm,
+        core::ShadowSetupInputs in{.camera = cam,
+                                   .light = sun,
+                                   .wsSceneBounds = s.wsBounds(),
+                                   .technique = core::Technique::Csm,
                                    .mapSize = 512};
         in.cascades.count = 2;
         in.cascades.splits = {0.5, 20, 100};
@@ -187,7 +197,9 @@ TEST_F(RendererTest, EveryBiasModeAndFilterWorksWithEveryTechnique) {
     m.bias->receiverPlane = true;
     m.bias->slope = 0.0;
     modes.emplace_back("receiver plane", m);
-    for (auto [kind, taps] : {std::pair{core::ShadowFilter::Pcf2, 1}, {core::ShadowFilter::PcfGrid, 3}, {core::ShadowFilter::Poisson, 16}}) {
+    for (auto [kind, taps] : {std::pair{core::ShadowFilter::Pcf2, 1},
+                              {core::ShadowFilter::PcfGrid, 3},
+                              {core::ShadowFilter::Poisson, 16}}) {
         m = base;
         m.filter = {kind, taps};
         modes.emplace_back("filter " + std::to_string(int(kind)), m);
@@ -199,8 +211,11 @@ TEST_F(RendererTest, EveryBiasModeAndFilterWorksWithEveryTechnique) {
     for (const core::TechniqueInfo& technique : core::allTechniques())
         for (core::DepthLayout layout : {core::DepthLayout::Hyperbolic, core::DepthLayout::Linear})
             for (const auto& [name, settings] : modes) {
-                const auto setup = core::computeShadowSetup({.camera = cam, .light = sun, .wsSceneBounds = s.wsBounds(),
-                                                             .technique = technique.technique, .mapSize = 256,
+                const auto setup = core::computeShadowSetup({.camera = cam,
+                                                             .light = sun,
+                                                             .wsSceneBounds = s.wsBounds(),
+                                                             .technique = technique.technique,
+                                                             .mapSize = 256,
                                                              .depthLayout = layout});
                 ASSERT_TRUE(setup);
                 ASSERT_TRUE((*renderer)->render(cam, sun, *setup, settings)) << name;
@@ -241,8 +256,11 @@ TEST_F(RendererTest, PcfTermsLieInZeroOneAndFallMonotonicallyAcrossAShadowEdge) 
         // compare the centre's depth with texels 2 away on the sloped ground and a fifth of
         // them fail (0.8 on lit ground), which is why `--receiver-plane-bias auto` turns it on.
         settings.bias->receiverPlane = kind == core::ShadowFilter::PcfGrid;
-        const auto setup = core::computeShadowSetup({.camera = cam, .light = sun, .wsSceneBounds = s.wsBounds(),
-                                                     .technique = core::Technique::Standard, .mapSize = 256});
+        const auto setup = core::computeShadowSetup({.camera = cam,
+                                                     .light = sun,
+                                                     .wsSceneBounds = s.wsBounds(),
+                                                     .technique = core::Technique::Standard,
+                                                     .mapSize = 256});
         const auto raster = (*renderer)->renderEvalBuffers(cam, sun, *setup, settings);
         ASSERT_TRUE(raster);
         // Along +x on the ground: lit, the edge at x = 3, shadow.
@@ -301,15 +319,19 @@ TEST_F(RendererTest, BlurKeepsAUniformMaskAndStopsAtDepthSteps) {
     cam.aspect = 1.0;
     cam.zNear = 0.5;
     cam.zFar = 90;
-    const core::DirectionalLight sun = core::DirectionalLight::fromDirection({0, -1, -0.1}).value(); // grazes the wall's front
-    const auto setup = core::computeShadowSetup({.camera = cam, .light = sun, .wsSceneBounds = s.wsBounds(),
-                                                 .technique = core::Technique::Focused, .mapSize = 512});
+    const core::DirectionalLight sun =
+        core::DirectionalLight::fromDirection({0, -1, -0.1}).value(); // grazes the wall's front
+    const auto setup = core::computeShadowSetup({.camera = cam,
+                                                 .light = sun,
+                                                 .wsSceneBounds = s.wsBounds(),
+                                                 .technique = core::Technique::Focused,
+                                                 .mapSize = 512});
     gl::RenderSettings settings;
     settings.width = settings.height = 96;
     const auto sharp = (*renderer)->renderEvalBuffers(cam, sun, *setup, settings);
     settings.blur = {16, 3.0f, 0.0f, 0.02f}; // strong, uniform in depth
     const auto blurred = (*renderer)->renderEvalBuffers(cam, sun, *setup, settings);
-    settings.blur.depthThreshold = 1.0f;      // the control: depths within 2x mix (ground at 11-18 m)
+    settings.blur.depthThreshold = 1.0f; // the control: depths within 2x mix (ground at 11-18 m)
     const auto bleeding = (*renderer)->renderEvalBuffers(cam, sun, *setup, settings);
     ASSERT_TRUE(sharp && blurred && bleeding);
 
@@ -321,7 +343,8 @@ TEST_F(RendererTest, BlurKeepsAUniformMaskAndStopsAtDepthSteps) {
             bool nearGround = false;                // within 2 pixels of the shadowed ground
             for (int dy = -2; dy <= 2; ++dy)
                 for (int dx = -2; dx <= 2; ++dx) {
-                    const int xx = std::clamp(x + dx, 0, sharp->width - 1), yy = std::clamp(y + dy, 0, sharp->height - 1);
+                    const int xx = std::clamp(x + dx, 0, sharp->width - 1),
+                              yy = std::clamp(y + dy, 0, sharp->height - 1);
                     const size_t j = sharp->index(xx, yy);
                     nearGround |= sharp->surfaceId[j] == 1 && sharp->shadowTerm[j] < 0.5f;
                 }
@@ -331,8 +354,8 @@ TEST_F(RendererTest, BlurKeepsAUniformMaskAndStopsAtDepthSteps) {
             bledInto += bleeding->shadowTerm[i] < 0.9f;
         }
     ASSERT_GT(wallEdge, 10);
-    EXPECT_EQ(keptLit, wallEdge);       // the depth test stops the blur at the silhouette
-    EXPECT_GT(bledInto, wallEdge / 2);  // and without it, shadow bleeds onto the wall
+    EXPECT_EQ(keptLit, wallEdge);      // the depth test stops the blur at the silhouette
+    EXPECT_GT(bledInto, wallEdge / 2); // and without it, shadow bleeds onto the wall
     // A uniform region stays uniform: the middle of the shadowed ground stays 0.
     for (size_t i = 0; i < sharp->shadowTerm.size(); ++i)
         if (sharp->surfaceId[i] == 1 && sharp->shadowTerm[i] == 0.0f && blurred->shadowTerm[i] > 0.0f) {
@@ -341,8 +364,10 @@ TEST_F(RendererTest, BlurKeepsAUniformMaskAndStopsAtDepthSteps) {
             bool litNearby = false;
             for (int dy = -6; dy <= 6; ++dy)
                 for (int dx = -6; dx <= 6; ++dx) {
-                    const int xx = std::clamp(x + dx, 0, sharp->width - 1), yy = std::clamp(y + dy, 0, sharp->height - 1);
-                    litNearby |= sharp->shadowTerm[sharp->index(xx, yy)] > 0.0f && sharp->surfaceId[sharp->index(xx, yy)] == 1;
+                    const int xx = std::clamp(x + dx, 0, sharp->width - 1),
+                              yy = std::clamp(y + dy, 0, sharp->height - 1);
+                    litNearby |=
+                        sharp->shadowTerm[sharp->index(xx, yy)] > 0.0f && sharp->surfaceId[sharp->index(xx, yy)] == 1;
                 }
             EXPECT_TRUE(litNearby) << x << "," << y;
         }
@@ -354,7 +379,8 @@ TEST_F(RendererTest, VisibleDepthIsTheDepthRangeOfWhatTheCameraSees) {
     ASSERT_TRUE(renderer);
     const core::PerspectiveCamera cam = obliqueCamera();
     const core::DirectionalLight sun{{0, -1, 0}};
-    core::ShadowSetupInputs in{.camera = cam, .light = sun, .wsSceneBounds = s.wsBounds(), .technique = core::Technique::Lispsm};
+    core::ShadowSetupInputs in{
+        .camera = cam, .light = sun, .wsSceneBounds = s.wsBounds(), .technique = core::Technique::Lispsm};
     gl::RenderSettings settings;
     settings.width = settings.height = 64;
     const auto setup = core::computeShadowSetup(in);

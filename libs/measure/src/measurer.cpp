@@ -37,7 +37,8 @@ struct Measurer::Impl {
 
 Measurer::Measurer() : m_impl(std::make_unique<Impl>()) {}
 
-core::Result<eval::PreviousShadowsHere> Measurer::shadowsAt(const Measurement& current, const core::PerspectiveCamera& camera,
+core::Result<eval::PreviousShadowsHere> Measurer::shadowsAt(const Measurement& current,
+                                                            const core::PerspectiveCamera& camera,
                                                             const core::ShadowSetup& otherSetup,
                                                             const core::DirectionalLight& otherLight,
                                                             const gl::RenderSettings& settings, bool sameTruth) {
@@ -85,7 +86,9 @@ core::Result<std::unique_ptr<Measurer>> Measurer::create(const scene::Scene& sce
 
 gl::Renderer& Measurer::renderer() { return *m_impl->renderer; }
 const eval::RayScene& Measurer::rays() const { return *m_impl->rays; }
-std::string Measurer::contextDescription() const { return m_impl->context ? m_impl->context->description() : std::string(); }
+std::string Measurer::contextDescription() const {
+    return m_impl->context ? m_impl->context->description() : std::string();
+}
 double Measurer::rayTracerBuildSeconds() const { return m_impl->rayTracerSeconds; }
 
 std::shared_ptr<const eval::TruthBuffers> Measurer::truth(const core::PerspectiveCamera& camera,
@@ -102,7 +105,8 @@ std::shared_ptr<const eval::TruthBuffers> Measurer::truth(const core::Perspectiv
         }
     eval::TruthOptions options;
     options.progress = progress;
-    auto truth = std::make_shared<const eval::TruthBuffers>(eval::computeTruth(*m_impl->rays, camera, light, width, height, options));
+    auto truth = std::make_shared<const eval::TruthBuffers>(
+        eval::computeTruth(*m_impl->rays, camera, light, width, height, options));
     cache.emplace_front(key, truth);
     if (cache.size() > kTruthCacheSize) cache.pop_back();
     return truth;
@@ -130,7 +134,8 @@ core::Result<Measurement> Measurer::measure(const frame::PreparedFrame& frame, c
     m.bias = gl::biasFor(m.setup, settings);
     gl::Renderer& renderer = *m_impl->renderer;
     if (options.shadedImage) {
-        if (auto stats = renderer.render(inputs.camera, inputs.light, m.setup, settings); !stats) return stats.errorInfo();
+        if (auto stats = renderer.render(inputs.camera, inputs.light, m.setup, settings); !stats)
+            return stats.errorInfo();
         m.image = renderer.readColor();
     }
     auto raster = renderer.renderEvalBuffers(inputs.camera, inputs.light, m.setup, settings);
@@ -144,7 +149,8 @@ core::Result<Measurement> Measurer::measure(const frame::PreparedFrame& frame, c
     if (local.empty()) return m;
     if (settings.sun) m.lights.push_back({"sun", static_cast<int>(m.setup.views.size()), 0, m.comparison});
     for (size_t i = 0; i < local.size(); ++i) {
-        auto lightRaster = renderer.renderEvalBuffers(inputs.camera, inputs.light, m.setup, settings, static_cast<int>(i));
+        auto lightRaster =
+            renderer.renderEvalBuffers(inputs.camera, inputs.light, m.setup, settings, static_cast<int>(i));
         if (!lightRaster) return lightRaster.errorInfo();
         const bool point = i < local.points.size();
         const size_t k = point ? i : i - local.points.size();
@@ -153,8 +159,9 @@ core::Result<Measurement> Measurer::measure(const frame::PreparedFrame& frame, c
                                                     : eval::underLight(*m_impl->rays, *m.truth, local.spots[k]);
         auto lightComparison = eval::compare(*lightRaster, lightTruth, options.compare);
         if (!lightComparison) return lightComparison.errorInfo();
-        m.lights.push_back({std::string(point ? "point[" : "spot[") + std::to_string(k) + "]", static_cast<int>(lightSetup.views.size()),
-                            lightSetup.skippedFaces, std::move(lightComparison).value()});
+        m.lights.push_back({std::string(point ? "point[" : "spot[") + std::to_string(k) + "]",
+                            static_cast<int>(lightSetup.views.size()), lightSetup.skippedFaces,
+                            std::move(lightComparison).value()});
     }
     std::vector<const eval::Comparison*> parts;
     for (const LightMeasurement& l : m.lights) parts.push_back(&l.comparison);
@@ -181,7 +188,8 @@ eval::ViewReport viewReport(const Measurement& m, const gl::RenderSettings& sett
     report.fallbacks = m.setup.fallbacks;
     report.visibleDepth = m.visibleDepth;
     report.figures = m.comparison.figures;
-    for (const LightMeasurement& l : m.lights) report.lights.push_back({l.light, l.maps, l.skippedFaces, l.comparison.figures});
+    for (const LightMeasurement& l : m.lights)
+        report.lights.push_back({l.light, l.maps, l.skippedFaces, l.comparison.figures});
     return report;
 }
 

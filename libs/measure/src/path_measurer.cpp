@@ -10,7 +10,8 @@ core::Status PathMeasurer::animateTo(double time) {
     return m_measurer.moveInstances(m_world, m_moved);
 }
 
-core::Result<PathFrame> PathMeasurer::next(double time, const scene::ResolvedView& view, const MeasureOptions& options) {
+core::Result<PathFrame> PathMeasurer::next(double time, const scene::ResolvedView& view,
+                                           const MeasureOptions& options) {
     if (auto s = animateTo(time); !s) return s.errorInfo();
     auto prepared = m_driver.prepare(m_measurer.renderer(), view);
     if (!prepared) return prepared.errorInfo();

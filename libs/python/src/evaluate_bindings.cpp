@@ -26,10 +26,11 @@ py::array_t<T> image(const std::vector<Source>& values, int width, int height) {
 }
 
 py::dict figuresDict(const eval::Figures& f) {
-    return py::dict(py::arg("valid_px") = f.validPx, py::arg("excluded_px") = f.excludedPx, py::arg("wrong_pct") = f.wrongPct,
-                    py::arg("false_shadow_pct") = f.falseShadowPct, py::arg("false_lit_pct") = f.falseLitPct,
-                    py::arg("undersampled_pct") = f.undersampledPct, py::arg("pixels_per_texel_p50") = f.pixelsPerTexelP50,
-                    py::arg("pixels_per_texel_p95") = f.pixelsPerTexelP95, py::arg("pixels_per_texel_p99") = f.pixelsPerTexelP99);
+    return py::dict(
+        py::arg("valid_px") = f.validPx, py::arg("excluded_px") = f.excludedPx, py::arg("wrong_pct") = f.wrongPct,
+        py::arg("false_shadow_pct") = f.falseShadowPct, py::arg("false_lit_pct") = f.falseLitPct,
+        py::arg("undersampled_pct") = f.undersampledPct, py::arg("pixels_per_texel_p50") = f.pixelsPerTexelP50,
+        py::arg("pixels_per_texel_p95") = f.pixelsPerTexelP95, py::arg("pixels_per_texel_p99") = f.pixelsPerTexelP99);
 }
 
 // One forest and one headless GL context, kept across evaluations (building the forest and
@@ -38,14 +39,16 @@ class Evaluator {
 public:
     Evaluator(uint64_t seed, int trees, double terrainSize, int terrainResolution, int movers) {
         scene::ForestOptions o;
-        o.seed = seed, o.trees = trees, o.terrainSize = terrainSize, o.terrainResolution = terrainResolution, o.movers = movers;
+        o.seed = seed, o.trees = trees, o.terrainSize = terrainSize, o.terrainResolution = terrainResolution,
+        o.movers = movers;
         if (core::Status s = scene::validate(o); !s) throw py::value_error(s.error());
         m_scene = scene::makeForest(o);
         m_measurer = check(measure::Measurer::createHeadless(m_scene));
     }
 
-    py::dict evaluate(const std::string& viewName, const std::string& technique, int mapSize, std::optional<std::pair<int, int>> size,
-                      const std::string& filter, int cascades, const std::string& cascadeWarp) {
+    py::dict evaluate(const std::string& viewName, const std::string& technique, int mapSize,
+                      std::optional<std::pair<int, int>> size, const std::string& filter, int cascades,
+                      const std::string& cascadeWarp) {
         const auto views = check(scene::loadViews(scene::dataDirectory() / "views.json"));
         scene::ResolvedView view = scene::resolveView(check(scene::findView(views, viewName)), m_scene);
         if (size) {
@@ -62,8 +65,10 @@ public:
         in.technique = *parsed;
         in.mapSize = mapSize;
         in.cascades.count = cascades;
-        if (cascadeWarp == "lispsm") in.cascades.warp = core::CascadeWarp::Lispsm;
-        else if (cascadeWarp != "none") throw py::value_error("cascade_warp: must be none or lispsm");
+        if (cascadeWarp == "lispsm")
+            in.cascades.warp = core::CascadeWarp::Lispsm;
+        else if (cascadeWarp != "none")
+            throw py::value_error("cascade_warp: must be none or lispsm");
         config.render.filter = check(core::parseFilter(filter));
         auto driver = check(frame::FrameDriver::create(config));
         const frame::PreparedFrame prepared = check(driver.prepare(m_measurer->renderer(), view));
@@ -73,10 +78,10 @@ public:
         out["figures"] = figuresDict(m.figures());
         out["technique"] = std::string(core::techniqueName(m.setup.technique));
         out["maps"] = m.setup.views.size();
-        out["shadow_term"] = image<float>(m.raster.shadowTerm, w, h);      // 1 lit .. 0 shadowed, the map's test
-        out["view_depth"] = image<float>(m.raster.viewDepth, w, h);        // metres; 0 where nothing was drawn
-        out["surface_id"] = image<uint32_t>(m.raster.surfaceId, w, h);     // instance + 1; 0 sky
-        out["truth_lit"] = image<uint8_t>(m.truth->lit, w, h);             // the shadow ray reached the sun
+        out["shadow_term"] = image<float>(m.raster.shadowTerm, w, h);  // 1 lit .. 0 shadowed, the map's test
+        out["view_depth"] = image<float>(m.raster.viewDepth, w, h);    // metres; 0 where nothing was drawn
+        out["surface_id"] = image<uint32_t>(m.raster.surfaceId, w, h); // instance + 1; 0 sky
+        out["truth_lit"] = image<uint8_t>(m.truth->lit, w, h);         // the shadow ray reached the sun
         out["truth_faces_light"] = image<uint8_t>(m.truth->facesLight, w, h);
         std::vector<uint8_t> classes(m.comparison.classes.size());
         for (size_t i = 0; i < classes.size(); ++i) classes[i] = static_cast<uint8_t>(m.comparison.classes[i]);
@@ -90,7 +95,8 @@ private:
     std::unique_ptr<measure::Measurer> m_measurer;
 };
 
-constexpr const char* kEvaluateDoc = R"(Render `view` (a standard view of data/views.json) with a technique, ray-trace the truth
+constexpr const char* kEvaluateDoc =
+    R"(Render `view` (a standard view of data/views.json) with a technique, ray-trace the truth
 and compare per pixel, as `shadowkit eval` does. size=(width, height) overrides the view's;
 filter: hard, pcf2, pcf:N, poisson:N. Returns a dict: figures (valid_px, excluded_px,
 wrong_pct, false_shadow_pct, false_lit_pct, undersampled_pct, pixels_per_texel_p50,
@@ -107,24 +113,28 @@ void bindEvaluation(py::module_& m) {
     const core::ShadowSetupInputs kDefaults;
     const std::string kDefaultTechnique(core::techniqueName(core::defaultTechnique()));
     py::class_<Evaluator>(m, "Evaluator", "A forest and a headless GL context (EGL) for repeated evaluations.")
-        .def(py::init<uint64_t, int, double, int, int>(), py::kw_only(), py::arg("seed") = d.seed, py::arg("trees") = d.trees,
-             py::arg("terrain_size") = d.terrainSize, py::arg("terrain_resolution") = d.terrainResolution, py::arg("movers") = d.movers)
+        .def(py::init<uint64_t, int, double, int, int>(), py::kw_only(), py::arg("seed") = d.seed,
+             py::arg("trees") = d.trees, py::arg("terrain_size") = d.terrainSize,
+             py::arg("terrain_resolution") = d.terrainResolution, py::arg("movers") = d.movers)
         .def("evaluate", &Evaluator::evaluate, kEvaluateDoc, py::kw_only(), py::arg("view") = "perpendicular",
-             py::arg("technique") = kDefaultTechnique, py::arg("map_size") = kDefaults.mapSize, py::arg("size") = py::none(),
-             py::arg("filter") = "hard", py::arg("cascades") = kDefaults.cascades.count, py::arg("cascade_warp") = "none");
+             py::arg("technique") = kDefaultTechnique, py::arg("map_size") = kDefaults.mapSize,
+             py::arg("size") = py::none(), py::arg("filter") = "hard", py::arg("cascades") = kDefaults.cascades.count,
+             py::arg("cascade_warp") = "none");
     m.def(
         "evaluate",
         [](const std::string& view, const std::string& technique, int mapSize, std::optional<std::pair<int, int>> size,
-           const std::string& filter, int cascades, const std::string& cascadeWarp, uint64_t seed, int trees, double terrainSize,
-           int terrainResolution) {
+           const std::string& filter, int cascades, const std::string& cascadeWarp, uint64_t seed, int trees,
+           double terrainSize, int terrainResolution) {
             Evaluator evaluator(seed, trees, terrainSize, terrainResolution, scene::ForestOptions{}.movers);
             return evaluator.evaluate(view, technique, mapSize, size, filter, cascades, cascadeWarp);
         },
-        "One evaluation with a forest of its own (see Evaluator.evaluate; seed, trees, terrain_size, terrain_resolution make the forest).",
-        py::kw_only(), py::arg("view") = "perpendicular", py::arg("technique") = kDefaultTechnique, py::arg("map_size") = kDefaults.mapSize,
-        py::arg("size") = py::none(), py::arg("filter") = "hard", py::arg("cascades") = kDefaults.cascades.count,
-        py::arg("cascade_warp") = "none", py::arg("seed") = d.seed,
-        py::arg("trees") = d.trees, py::arg("terrain_size") = d.terrainSize, py::arg("terrain_resolution") = d.terrainResolution);
+        "One evaluation with a forest of its own (see Evaluator.evaluate; seed, trees, terrain_size, "
+        "terrain_resolution make the forest).",
+        py::kw_only(), py::arg("view") = "perpendicular", py::arg("technique") = kDefaultTechnique,
+        py::arg("map_size") = kDefaults.mapSize, py::arg("size") = py::none(), py::arg("filter") = "hard",
+        py::arg("cascades") = kDefaults.cascades.count, py::arg("cascade_warp") = "none", py::arg("seed") = d.seed,
+        py::arg("trees") = d.trees, py::arg("terrain_size") = d.terrainSize,
+        py::arg("terrain_resolution") = d.terrainResolution);
 }
 
 } // namespace shadowkit::python

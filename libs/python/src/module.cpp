@@ -16,15 +16,19 @@ PYBIND11_MODULE(shadowkit, m) {
     const SetupArguments d;
     m.def(
         "setup",
-        [](std::vector<double> eye, std::vector<double> direction, std::vector<double> up, double fov, double aspect, double zNear,
-           double zFar, std::optional<py::array_t<double, py::array::c_style | py::array::forcecast>> viewFromWorld,
-           std::optional<py::array_t<double, py::array::c_style | py::array::forcecast>> clipFromView, std::string clipDepth,
-           bool leftHanded, std::optional<double> shadowDistance, std::optional<std::vector<double>> light, std::pair<double, double> sun,
-           std::vector<double> sceneMin, std::vector<double> sceneMax, std::string technique, int mapSize, int cascades, double lambda,
+        [](std::vector<double> eye, std::vector<double> direction, std::vector<double> up, double fov, double aspect,
+           double zNear, double zFar,
+           std::optional<py::array_t<double, py::array::c_style | py::array::forcecast>> viewFromWorld,
+           std::optional<py::array_t<double, py::array::c_style | py::array::forcecast>> clipFromView,
+           std::string clipDepth, bool leftHanded, std::optional<double> shadowDistance,
+           std::optional<std::vector<double>> light, std::pair<double, double> sun, std::vector<double> sceneMin,
+           std::vector<double> sceneMax, std::string technique, int mapSize, int cascades, double lambda,
            std::string cascadeWarp, std::string conventions, bool reversedZ) {
-            return shadowkit::python::setup({eye, direction, up, fov, aspect, zNear, zFar, viewFromWorld, clipFromView, clipDepth,
-                                             leftHanded, shadowDistance, light, sun, sceneMin, sceneMax, technique, mapSize, cascades,
-                                             lambda, cascadeWarp, conventions, reversedZ});
+            return shadowkit::python::setup(
+                {eye,      direction,     up,           fov,         aspect,     zNear,
+                 zFar,     viewFromWorld, clipFromView, clipDepth,   leftHanded, shadowDistance,
+                 light,    sun,           sceneMin,     sceneMax,    technique,  mapSize,
+                 cascades, lambda,        cascadeWarp,  conventions, reversedZ});
         },
         R"(The shadow set-up for a camera, the sun and the scene's bounds.
 
@@ -44,13 +48,15 @@ culling_planes (k x 4: n, d; outside where n.p + d > 0), split, and for camera-r
 rendering clip_from_eye_relative, texture_from_eye_relative and linear_depth_from_eye_relative
 (taking p - eye_relative_origin, the camera's eye). Raises ValueError with the
 core's message for bad input.)",
-        py::kw_only(), py::arg("eye") = d.eye, py::arg("direction") = d.direction, py::arg("up") = d.up, py::arg("fov") = d.fovYDegrees,
-        py::arg("aspect") = d.aspect, py::arg("near") = d.zNear, py::arg("far") = d.zFar, py::arg("view_from_world") = py::none(),
-        py::arg("clip_from_view") = py::none(), py::arg("clip_depth") = d.clipDepth, py::arg("left_handed") = d.leftHanded,
-        py::arg("shadow_distance") = py::none(), py::arg("light") = py::none(), py::arg("sun") = d.sun, py::arg("scene_min") = d.sceneMin,
-        py::arg("scene_max") = d.sceneMax, py::arg("technique") = d.technique, py::arg("map_size") = d.mapSize,
-        py::arg("cascades") = d.cascades, py::arg("lambda_") = d.lambda, py::arg("cascade_warp") = d.cascadeWarp,
-        py::arg("conventions") = d.conventions, py::arg("reversed_z") = d.reversedZ);
+        py::kw_only(), py::arg("eye") = d.eye, py::arg("direction") = d.direction, py::arg("up") = d.up,
+        py::arg("fov") = d.fovYDegrees, py::arg("aspect") = d.aspect, py::arg("near") = d.zNear,
+        py::arg("far") = d.zFar, py::arg("view_from_world") = py::none(), py::arg("clip_from_view") = py::none(),
+        py::arg("clip_depth") = d.clipDepth, py::arg("left_handed") = d.leftHanded,
+        py::arg("shadow_distance") = py::none(), py::arg("light") = py::none(), py::arg("sun") = d.sun,
+        py::arg("scene_min") = d.sceneMin, py::arg("scene_max") = d.sceneMax, py::arg("technique") = d.technique,
+        py::arg("map_size") = d.mapSize, py::arg("cascades") = d.cascades, py::arg("lambda_") = d.lambda,
+        py::arg("cascade_warp") = d.cascadeWarp, py::arg("conventions") = d.conventions,
+        py::arg("reversed_z") = d.reversedZ);
 
     shadowkit::python::bindEvaluation(m);
 }

@@ -23,7 +23,8 @@ py::array_t<double> toNumpy(const Mat4& m) {
 }
 
 Mat4 toMat4(const py::array_t<double, py::array::c_style | py::array::forcecast>& a, const char* name) {
-    if (a.ndim() != 2 || a.shape(0) != 4 || a.shape(1) != 4) throw py::value_error(std::string(name) + ": must be a 4 x 4 array");
+    if (a.ndim() != 2 || a.shape(0) != 4 || a.shape(1) != 4)
+        throw py::value_error(std::string(name) + ": must be a 4 x 4 array");
     auto v = a.unchecked<2>();
     Mat4 m;
     for (py::ssize_t r = 0; r < 4; ++r)
@@ -48,10 +49,14 @@ auto parseOrRaise(const std::string& text, const char* name, const std::string& 
 
 OutputConventions conventionsFor(const std::string& name, bool reversedZ) {
     OutputConventions c;
-    if (name == "opengl") c = OutputConventions::openGL();
-    else if (name == "vulkan" || name == "default") c = OutputConventions::vulkan();
-    else if (name == "direct3d" || name == "metal") c = OutputConventions::direct3D();
-    else throw py::value_error("conventions: '" + name + "' is not one of default, opengl, vulkan, direct3d, metal");
+    if (name == "opengl")
+        c = OutputConventions::openGL();
+    else if (name == "vulkan" || name == "default")
+        c = OutputConventions::vulkan();
+    else if (name == "direct3d" || name == "metal")
+        c = OutputConventions::direct3D();
+    else
+        throw py::value_error("conventions: '" + name + "' is not one of default, opengl, vulkan, direct3d, metal");
     c.reversedZ = reversedZ;
     return c;
 }
@@ -68,7 +73,8 @@ py::dict viewDict(const ShadowView& core, const EngineShadowView& view) {
     d["clip_from_eye_relative"] = toNumpy(view.clipFromEyeRelative);
     d["texture_from_eye_relative"] = toNumpy(view.textureFromEyeRelative);
     py::array_t<double> relativeRow(4);
-    for (py::ssize_t i = 0; i < 4; ++i) relativeRow.mutable_at(i) = view.linearDepthFromEyeRelative[static_cast<int>(i)];
+    for (py::ssize_t i = 0; i < 4; ++i)
+        relativeRow.mutable_at(i) = view.linearDepthFromEyeRelative[static_cast<int>(i)];
     d["linear_depth_from_eye_relative"] = relativeRow;
     py::array_t<double> planes({static_cast<py::ssize_t>(view.wsCullingPlanes.size()), py::ssize_t(4)});
     for (size_t p = 0; p < view.wsCullingPlanes.size(); ++p) {
@@ -87,10 +93,13 @@ py::dict viewDict(const ShadowView& core, const EngineShadowView& view) {
 py::dict setup(const SetupArguments& a) {
     ShadowSetupInputs in;
     if (a.viewFromWorld || a.clipFromView) {
-        if (!a.viewFromWorld || !a.clipFromView) throw py::value_error("view_from_world and clip_from_view: give both or neither");
+        if (!a.viewFromWorld || !a.clipFromView)
+            throw py::value_error("view_from_world and clip_from_view: give both or neither");
         EngineCamera engine{toMat4(*a.viewFromWorld, "view_from_world"), toMat4(*a.clipFromView, "clip_from_view")};
-        if (a.clipDepth == "minus_one_to_one") engine.clipDepth = ClipDepthRange::MinusOneToOne;
-        else if (a.clipDepth != "zero_to_one") throw py::value_error("clip_depth: must be zero_to_one or minus_one_to_one");
+        if (a.clipDepth == "minus_one_to_one")
+            engine.clipDepth = ClipDepthRange::MinusOneToOne;
+        else if (a.clipDepth != "zero_to_one")
+            throw py::value_error("clip_depth: must be zero_to_one or minus_one_to_one");
         engine.handedness = a.leftHanded ? ViewHandedness::LeftHanded : ViewHandedness::RightHanded;
         if (a.shadowDistance) engine.shadowDistance = *a.shadowDistance;
         in.camera = check(cameraFromMatrices(engine));
@@ -103,15 +112,19 @@ py::dict setup(const SetupArguments& a) {
         in.camera.zNear = a.zNear;
         in.camera.zFar = a.shadowDistance ? std::min(a.zFar, *a.shadowDistance) : a.zFar;
     }
-    if (a.light) in.light = DirectionalLight{toVec3(*a.light, "light")};
-    else in.light = check(DirectionalLight::fromSunAngles(a.sun.first, a.sun.second));
+    if (a.light)
+        in.light = DirectionalLight{toVec3(*a.light, "light")};
+    else
+        in.light = check(DirectionalLight::fromSunAngles(a.sun.first, a.sun.second));
     in.wsSceneBounds = Aabb::fromMinMax(toVec3(a.sceneMin, "scene_min"), toVec3(a.sceneMax, "scene_max"));
     in.technique = parseOrRaise(a.technique, "technique", techniqueNameList(), parseTechnique);
     in.mapSize = a.mapSize;
     in.cascades.count = a.cascades;
     in.cascades.lambda = a.lambda;
-    if (a.cascadeWarp == "lispsm") in.cascades.warp = CascadeWarp::Lispsm;
-    else if (a.cascadeWarp != "none") throw py::value_error("cascade_warp: must be none or lispsm");
+    if (a.cascadeWarp == "lispsm")
+        in.cascades.warp = CascadeWarp::Lispsm;
+    else if (a.cascadeWarp != "none")
+        throw py::value_error("cascade_warp: must be none or lispsm");
     const ShadowSetup s = check(computeShadowSetup(in));
     const OutputConventions conventions = conventionsFor(a.conventions, a.reversedZ);
 
@@ -124,8 +137,8 @@ py::dict setup(const SetupArguments& a) {
     for (const ShadowView& v : s.views) views.append(viewDict(v, toEngineView(v, s, conventions)));
     out["views"] = views;
     const BiasSettings b = recommendedBias(s.technique, s.depthLayout);
-    out["bias"] = py::dict(py::arg("slope") = b.slope, py::arg("constant") = b.constant, py::arg("normal_offset") = b.normalOffset,
-                           py::arg("receiver_plane") = b.receiverPlane);
+    out["bias"] = py::dict(py::arg("slope") = b.slope, py::arg("constant") = b.constant,
+                           py::arg("normal_offset") = b.normalOffset, py::arg("receiver_plane") = b.receiverPlane);
     out["fallbacks"] = s.fallbacks;
     py::list body;
     for (const Vec3& p : s.body.vertices()) body.append(py::make_tuple(p.x, p.y, p.z));

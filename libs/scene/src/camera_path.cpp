@@ -39,8 +39,8 @@ double monotoneCubic(const std::vector<double>& times, const std::vector<double>
     };
     const double h = times[k + 1] - times[k], s = (t - times[k]) / h;
     const double s2 = s * s, s3 = s2 * s;
-    return (2.0 * s3 - 3.0 * s2 + 1.0) * values[k] + (s3 - 2.0 * s2 + s) * h * tangent(k) + (-2.0 * s3 + 3.0 * s2) * values[k + 1] +
-           (s3 - s2) * h * tangent(k + 1);
+    return (2.0 * s3 - 3.0 * s2 + 1.0) * values[k] + (s3 - 2.0 * s2 + s) * h * tangent(k) +
+           (-2.0 * s3 + 3.0 * s2) * values[k + 1] + (s3 - s2) * h * tangent(k + 1);
 }
 
 // Interpolates each of the `Components` coordinates valueOf(key)[c] over the keys' times.
@@ -59,7 +59,8 @@ glm::vec<Components, double> interpolate(const std::vector<Key>& keys, double t,
 
 bool finite(const core::Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
-core::Result<core::Vec3> groundPoint(const json& key, const char* xzField, const char* heightField, const std::string& where) {
+core::Result<core::Vec3> groundPoint(const json& key, const char* xzField, const char* heightField,
+                                     const std::string& where) {
     if (!key.contains(xzField)) return core::makeError(where + ": needs \"" + xzField + "\"");
     const auto xz = key[xzField].get<std::vector<double>>();
     if (xz.size() != 2) return core::makeError(where + ": " + xzField + " must hold 2 numbers");
@@ -80,9 +81,11 @@ core::Result<CameraPath> parsePath(const json& root) {
     path.fovYDegrees = root.value("fov", path.fovYDegrees);
     path.zNear = root.value("near", path.zNear);
     path.zFar = root.value("far", path.zFar);
-    if (!(width >= 1 && width <= 16384 && height >= 1 && height <= 16384) || width != std::floor(width) || height != std::floor(height))
+    if (!(width >= 1 && width <= 16384 && height >= 1 && height <= 16384) || width != std::floor(width) ||
+        height != std::floor(height))
         return core::makeError("width and height must be whole numbers in [1, 16384]");
-    if (!(frames >= 1 && frames <= 100000) || frames != std::floor(frames)) return core::makeError("frames must be a whole number in [1, 100000]");
+    if (!(frames >= 1 && frames <= 100000) || frames != std::floor(frames))
+        return core::makeError("frames must be a whole number in [1, 100000]");
     path.width = int(width), path.height = int(height), path.frames = int(frames);
     core::PerspectiveCamera probe;
     probe.fovYDegrees = path.fovYDegrees;
@@ -92,7 +95,8 @@ core::Result<CameraPath> parsePath(const json& root) {
     for (size_t k = 0; k < root["camera"].size(); ++k) {
         const json& j = root["camera"][k];
         const std::string where = "camera key " + std::to_string(k);
-        if (!j.is_object() || !j.contains("time") || !j["time"].is_number()) return core::makeError(where + ": needs a number \"time\"");
+        if (!j.is_object() || !j.contains("time") || !j["time"].is_number())
+            return core::makeError(where + ": needs a number \"time\"");
         CameraKey key;
         key.time = j["time"].get<double>();
         auto eye = groundPoint(j, "eye_xz", "eye_height", where);
@@ -114,7 +118,8 @@ core::Result<CameraPath> parsePath(const json& root) {
             if (!j.is_object() || !j.contains("time") || !j.contains("elevation") || !j.contains("azimuth"))
                 return core::makeError(where + ": needs \"time\", \"elevation\" and \"azimuth\"");
             const SunKey key{j["time"].get<double>(), j["elevation"].get<double>(), j["azimuth"].get<double>()};
-            if (!std::isfinite(key.time) || !std::isfinite(key.azimuthDegrees) || !(std::abs(key.elevationDegrees) <= 90.0))
+            if (!std::isfinite(key.time) || !std::isfinite(key.azimuthDegrees) ||
+                !(std::abs(key.elevationDegrees) <= 90.0))
                 return core::makeError(where + ": time and azimuth must be finite, elevation in [-90, 90] degrees");
             if (!path.sun.empty() && !(key.time > path.sun.back().time))
                 return core::makeError(where + ": times must increase from key to key");
@@ -163,7 +168,8 @@ core::Result<CameraPath> findCameraPath(const std::string& nameOrFile) {
     std::sort(names.begin(), names.end());
     std::string known;
     for (const std::string& n : names) known += (known.empty() ? "" : ", ") + n;
-    return core::makeError("unknown path \"" + nameOrFile + "\" (known: " + (known.empty() ? "none" : known) + ", or a .json file)");
+    return core::makeError("unknown path \"" + nameOrFile + "\" (known: " + (known.empty() ? "none" : known) +
+                           ", or a .json file)");
 }
 
 CameraKey cameraAt(const std::vector<CameraKey>& keys, double t) {
@@ -177,14 +183,17 @@ CameraKey cameraAt(const std::vector<CameraKey>& keys, double t) {
 
 SunKey sunAt(const std::vector<SunKey>& keys, double t) {
     SK_ASSERT(!keys.empty(), "sunAt(): a sun path needs keys");
-    const core::Vec2 angles = interpolate<2>(keys, t, [](const SunKey& k) { return core::Vec2(k.elevationDegrees, k.azimuthDegrees); });
+    const core::Vec2 angles =
+        interpolate<2>(keys, t, [](const SunKey& k) { return core::Vec2(k.elevationDegrees, k.azimuthDegrees); });
     return {t, angles.x, angles.y};
 }
 
-core::Result<ResolvedView> viewAt(const CameraPath& path, const Scene& scene, double t, const core::DirectionalLight& fallbackSun) {
+core::Result<ResolvedView> viewAt(const CameraPath& path, const Scene& scene, double t,
+                                  const core::DirectionalLight& fallbackSun) {
     const CameraKey key = cameraAt(path.camera, t);
     const core::Vec3 eye(key.eye.x, scene.groundHeightAt(key.eye.x, key.eye.z) + key.eye.y, key.eye.z);
-    const core::Vec3 target(key.target.x, scene.groundHeightAt(key.target.x, key.target.z) + key.target.y, key.target.z);
+    const core::Vec3 target(key.target.x, scene.groundHeightAt(key.target.x, key.target.z) + key.target.y,
+                            key.target.z);
     if (!(glm::length(target - eye) > 1e-6))
         return core::makeError("path \"" + path.name + "\" at t = " + std::to_string(t) + " s: eye and target meet");
     ResolvedView view;

@@ -36,7 +36,8 @@ private:
 
 // Value noise: a hashed random value per integer lattice point, smoothly interpolated.
 double latticeValue(uint64_t seed, int64_t x, int64_t z) {
-    SplitMix64 h(seed ^ (static_cast<uint64_t>(x) * 0x9e3779b97f4a7c15ull) ^ (static_cast<uint64_t>(z) * 0xc2b2ae3d27d4eb4full));
+    SplitMix64 h(seed ^ (static_cast<uint64_t>(x) * 0x9e3779b97f4a7c15ull) ^
+                 (static_cast<uint64_t>(z) * 0xc2b2ae3d27d4eb4full));
     return h.uniform();
 }
 
@@ -94,9 +95,10 @@ Mesh makeTerrainMesh(const Heightfield& field) {
             const double dz = (field.sample(ix, iz + 1) - field.sample(ix, iz - 1)) / (2.0 * h);
             const glm::vec3 normal = glm::normalize(glm::vec3(-dx, 1.0, -dz));
             const float t = static_cast<float>(y / 30.0);
-            const glm::vec3 albedo = glm::mix(glm::vec3(0.30f, 0.42f, 0.18f), glm::vec3(0.45f, 0.42f, 0.30f),
-                                              std::clamp(t, 0.0f, 1.0f));
-            mesh.vertices.push_back({glm::vec3(-0.5 * field.size + ix * h, y, -0.5 * field.size + iz * h), normal, albedo});
+            const glm::vec3 albedo =
+                glm::mix(glm::vec3(0.30f, 0.42f, 0.18f), glm::vec3(0.45f, 0.42f, 0.30f), std::clamp(t, 0.0f, 1.0f));
+            mesh.vertices.push_back(
+                {glm::vec3(-0.5 * field.size + ix * h, y, -0.5 * field.size + iz * h), normal, albedo});
         }
     for (int iz = 0; iz < field.resolution; ++iz)
         for (int ix = 0; ix < field.resolution; ++ix) {
@@ -216,7 +218,8 @@ Scene makeForest(const ForestOptions& o) {
 
     // Two species, two foliage tints each: 4 meshes, 4 instanced draws for all trees.
     const size_t species[4] = {addMesh(makeConifer({0.13f, 0.27f, 0.12f})), addMesh(makeConifer({0.17f, 0.32f, 0.14f})),
-                               addMesh(makeBroadleaf({0.22f, 0.38f, 0.13f})), addMesh(makeBroadleaf({0.28f, 0.42f, 0.16f}))};
+                               addMesh(makeBroadleaf({0.22f, 0.38f, 0.13f})),
+                               addMesh(makeBroadleaf({0.28f, 0.42f, 0.16f}))};
     for (int i = 0; i < o.trees; ++i) {
         const Spot s = randomSpot(rng, o);
         const size_t kind = static_cast<size_t>(rng.next() % 4);

@@ -54,15 +54,19 @@ core::Status exportGlb(const Scene& scene, const fs::path& file) {
         }
         tinygltf::Primitive prim;
         prim.mode = TINYGLTF_MODE_TRIANGLES;
-        prim.attributes["POSITION"] = appendAccessor(model, appendBufferView(model, positions, TINYGLTF_TARGET_ARRAY_BUFFER),
-                                                     TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, positions.size(),
-                                                     {bounds.min.x, bounds.min.y, bounds.min.z}, {bounds.max.x, bounds.max.y, bounds.max.z});
-        prim.attributes["NORMAL"] = appendAccessor(model, appendBufferView(model, normals, TINYGLTF_TARGET_ARRAY_BUFFER),
-                                                   TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, normals.size());
-        prim.attributes["COLOR_0"] = appendAccessor(model, appendBufferView(model, colors, TINYGLTF_TARGET_ARRAY_BUFFER),
-                                                    TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, colors.size());
-        prim.indices = appendAccessor(model, appendBufferView(model, baked.indices, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
-                                      TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, baked.indices.size());
+        prim.attributes["POSITION"] =
+            appendAccessor(model, appendBufferView(model, positions, TINYGLTF_TARGET_ARRAY_BUFFER),
+                           TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, positions.size(),
+                           {bounds.min.x, bounds.min.y, bounds.min.z}, {bounds.max.x, bounds.max.y, bounds.max.z});
+        prim.attributes["NORMAL"] =
+            appendAccessor(model, appendBufferView(model, normals, TINYGLTF_TARGET_ARRAY_BUFFER),
+                           TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, normals.size());
+        prim.attributes["COLOR_0"] =
+            appendAccessor(model, appendBufferView(model, colors, TINYGLTF_TARGET_ARRAY_BUFFER),
+                           TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, colors.size());
+        prim.indices =
+            appendAccessor(model, appendBufferView(model, baked.indices, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
+                           TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, baked.indices.size());
         tinygltf::Mesh mesh;
         mesh.name = scene.meshes[scene.batches[b].mesh].name;
         mesh.primitives.push_back(prim);

@@ -36,23 +36,47 @@ constexpr size_t kMaxAccessorCount = size_t(1) << 28;
 
 double component(int type, bool normalized, const unsigned char* p) {
     switch (type) {
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: { float f; std::memcpy(&f, p, 4); return f; }
-    case TINYGLTF_COMPONENT_TYPE_BYTE: { int8_t v; std::memcpy(&v, p, 1); return normalized ? std::max(v / 127.0, -1.0) : v; }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return normalized ? *p / 255.0 : *p;
-    case TINYGLTF_COMPONENT_TYPE_SHORT: { int16_t v; std::memcpy(&v, p, 2); return normalized ? std::max(v / 32767.0, -1.0) : v; }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { uint16_t v; std::memcpy(&v, p, 2); return normalized ? v / 65535.0 : v; }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: { uint32_t v; std::memcpy(&v, p, 4); return v; }
-    default: return 0.0;
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: {
+        float f;
+        std::memcpy(&f, p, 4);
+        return f;
+    }
+    case TINYGLTF_COMPONENT_TYPE_BYTE: {
+        int8_t v;
+        std::memcpy(&v, p, 1);
+        return normalized ? std::max(v / 127.0, -1.0) : v;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+        return normalized ? *p / 255.0 : *p;
+    case TINYGLTF_COMPONENT_TYPE_SHORT: {
+        int16_t v;
+        std::memcpy(&v, p, 2);
+        return normalized ? std::max(v / 32767.0, -1.0) : v;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+        uint16_t v;
+        std::memcpy(&v, p, 2);
+        return normalized ? v / 65535.0 : v;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
+        uint32_t v;
+        std::memcpy(&v, p, 4);
+        return v;
+    }
+    default:
+        return 0.0;
     }
 }
 
 // `count` elements of `elementSize` bytes every `stride` bytes from `offset` in view `viewIndex`:
 // the first byte, or an error when any of it lies outside the view or its buffer.
-core::Result<const unsigned char*> bytesOf(const tinygltf::Model& model, int viewIndex, size_t offset, size_t count, size_t elementSize,
-                                           size_t stride, const std::string& what) {
-    if (viewIndex < 0 || size_t(viewIndex) >= model.bufferViews.size()) return core::makeError(what + ": no such buffer view");
+core::Result<const unsigned char*> bytesOf(const tinygltf::Model& model, int viewIndex, size_t offset, size_t count,
+                                           size_t elementSize, size_t stride, const std::string& what) {
+    if (viewIndex < 0 || size_t(viewIndex) >= model.bufferViews.size())
+        return core::makeError(what + ": no such buffer view");
     const tinygltf::BufferView& view = model.bufferViews[size_t(viewIndex)];
-    if (view.buffer < 0 || size_t(view.buffer) >= model.buffers.size()) return core::makeError(what + ": no such buffer");
+    if (view.buffer < 0 || size_t(view.buffer) >= model.buffers.size())
+        return core::makeError(what + ": no such buffer");
     const std::vector<unsigned char>& buffer = model.buffers[size_t(view.buffer)].data;
     const size_t span = count == 0 ? 0 : (count - 1) * stride + elementSize;
     if (offset > view.byteLength || span > view.byteLength - offset || view.byteOffset > buffer.size() ||
@@ -74,11 +98,13 @@ public:
         r.m_count = a.count;
         r.m_components = tinygltf::GetNumComponentsInType(uint32_t(a.type));
         r.m_componentSize = tinygltf::GetComponentSizeInBytes(uint32_t(a.componentType));
-        if (r.m_components <= 0 || r.m_componentSize <= 0) return core::makeError(what + ": unknown type or component type");
+        if (r.m_components <= 0 || r.m_componentSize <= 0)
+            return core::makeError(what + ": unknown type or component type");
         if (a.count > kMaxAccessorCount) return core::makeError(what + ": more elements than shadowkit reads (2^28)");
         const size_t elementSize = size_t(r.m_components) * size_t(r.m_componentSize);
         if (a.bufferView >= 0) {
-            if (size_t(a.bufferView) >= model.bufferViews.size()) return core::makeError(what + ": no such buffer view");
+            if (size_t(a.bufferView) >= model.bufferViews.size())
+                return core::makeError(what + ": no such buffer view");
             const int stride = a.ByteStride(model.bufferViews[size_t(a.bufferView)]);
             if (stride <= 0) return core::makeError(what + ": bad byte stride");
             r.m_stride = size_t(stride);
@@ -90,9 +116,12 @@ public:
             const auto& s = a.sparse;
             const size_t n = size_t(s.count);
             const int indexSize = tinygltf::GetComponentSizeInBytes(uint32_t(s.indices.componentType));
-            if (s.count < 0 || n > a.count || indexSize <= 0) return core::makeError(what + ": bad sparse count or index type");
-            auto indices = bytesOf(model, s.indices.bufferView, size_t(s.indices.byteOffset), n, size_t(indexSize), size_t(indexSize), what);
-            auto values = bytesOf(model, s.values.bufferView, size_t(s.values.byteOffset), n, elementSize, elementSize, what);
+            if (s.count < 0 || n > a.count || indexSize <= 0)
+                return core::makeError(what + ": bad sparse count or index type");
+            auto indices = bytesOf(model, s.indices.bufferView, size_t(s.indices.byteOffset), n, size_t(indexSize),
+                                   size_t(indexSize), what);
+            auto values =
+                bytesOf(model, s.values.bufferView, size_t(s.values.byteOffset), n, elementSize, elementSize, what);
             if (!indices) return indices.errorInfo();
             if (!values) return values.errorInfo();
             r.m_sparseValues = *values;
@@ -111,7 +140,8 @@ public:
         const size_t offset = size_t(c) * size_t(m_componentSize);
         if (!m_sparse.empty())
             if (const auto it = m_sparse.find(i); it != m_sparse.end())
-                return component(m_type, m_normalized, m_sparseValues + it->second * size_t(m_components * m_componentSize) + offset);
+                return component(m_type, m_normalized,
+                                 m_sparseValues + it->second * size_t(m_components * m_componentSize) + offset);
         return m_base ? component(m_type, m_normalized, m_base + i * m_stride + offset) : 0.0;
     }
     glm::vec4 read(size_t i, glm::vec4 fallback = glm::vec4(0, 0, 0, 1)) const {
@@ -136,7 +166,8 @@ glm::mat4 nodeLocalMatrix(const tinygltf::Node& node) {
         return glm::mat4(m);
     }
     glm::dmat4 m(1.0);
-    if (node.translation.size() == 3) m = glm::translate(m, glm::dvec3(node.translation[0], node.translation[1], node.translation[2]));
+    if (node.translation.size() == 3)
+        m = glm::translate(m, glm::dvec3(node.translation[0], node.translation[1], node.translation[2]));
     if (node.rotation.size() == 4)
         m *= glm::mat4_cast(glm::dquat(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]));
     if (node.scale.size() == 3) m = glm::scale(m, glm::dvec3(node.scale[0], node.scale[1], node.scale[2]));
@@ -152,21 +183,28 @@ std::vector<uint32_t> triangleList(int mode, const std::vector<uint32_t>& sequen
     }
     std::vector<uint32_t> list;
     for (size_t i = 0; i + 2 < sequence.size(); ++i) {
-        if (mode == TINYGLTF_MODE_TRIANGLE_FAN) list.insert(list.end(), {sequence[i + 1], sequence[i + 2], sequence[0]});
-        else if (i % 2 == 0) list.insert(list.end(), {sequence[i], sequence[i + 1], sequence[i + 2]});
-        else list.insert(list.end(), {sequence[i], sequence[i + 2], sequence[i + 1]}); // keeps the winding
+        if (mode == TINYGLTF_MODE_TRIANGLE_FAN)
+            list.insert(list.end(), {sequence[i + 1], sequence[i + 2], sequence[0]});
+        else if (i % 2 == 0)
+            list.insert(list.end(), {sequence[i], sequence[i + 1], sequence[i + 2]});
+        else
+            list.insert(list.end(), {sequence[i], sequence[i + 2], sequence[i + 1]}); // keeps the winding
     }
     return list;
 }
 
 // Converts one primitive: an empty mesh for primitives that are not triangles (points,
 // lines) or have no positions, an error for what is wrong or cannot be read.
-core::Result<Mesh> convertPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& prim, const std::string& where) {
+core::Result<Mesh> convertPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& prim,
+                                    const std::string& where) {
     Mesh mesh;
     if (prim.extensions.count("KHR_draco_mesh_compression"))
-        return core::makeError(where + " is Draco-compressed (KHR_draco_mesh_compression), which shadowkit cannot read: export it uncompressed");
+        return core::makeError(
+            where +
+            " is Draco-compressed (KHR_draco_mesh_compression), which shadowkit cannot read: export it uncompressed");
     const int mode = prim.mode == -1 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
-    if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN) return mesh;
+    if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN)
+        return mesh;
     const auto pos = prim.attributes.find("POSITION");
     if (pos == prim.attributes.end()) return mesh;
     auto positions = AccessorReader::open(model, pos->second, where + " POSITION");
@@ -242,7 +280,8 @@ bool isGltf1(const fs::path& file, bool binary) {
     std::string text(size_t(1) << 20, '\0');
     in.read(text.data(), std::streamsize(text.size()));
     text.resize(size_t(in.gcount()));
-    if (const size_t meshes = text.find("\"meshes\""); meshes != std::string::npos && valueStart(text, meshes) == '{') return true;
+    if (const size_t meshes = text.find("\"meshes\""); meshes != std::string::npos && valueStart(text, meshes) == '{')
+        return true;
     const size_t asset = text.find("\"asset\"");
     const size_t version = asset == std::string::npos ? asset : text.find("\"version\"", asset);
     if (version == std::string::npos || valueStart(text, version) != '"') return false;
@@ -274,15 +313,19 @@ core::Result<Scene> loadGltf(const fs::path& file) {
     constexpr size_t kMaxNodeVisits = size_t(1) << 20;
     size_t visits = 0;
     auto visit = [&](auto&& self, int nodeIndex, const glm::mat4& parent, int depth) -> void {
-        if (failure || depth > 64 || nodeIndex < 0 || size_t(nodeIndex) >= model.nodes.size()) return; // cycles / bad refs
+        if (failure || depth > 64 || nodeIndex < 0 || size_t(nodeIndex) >= model.nodes.size())
+            return; // cycles / bad refs
         if (++visits > kMaxNodeVisits) {
-            failure = core::makeError(file.string() + ": the node hierarchy places more than 1048576 nodes (a node listed as a child repeatedly?)");
+            failure = core::makeError(
+                file.string() +
+                ": the node hierarchy places more than 1048576 nodes (a node listed as a child repeatedly?)");
             return;
         }
         const tinygltf::Node& node = model.nodes[size_t(nodeIndex)];
         const glm::mat4 world = parent * nodeLocalMatrix(node);
         if (!core::isFinite(glm::dmat4(world))) {
-            failure = core::makeError(file.string() + ": node " + std::to_string(nodeIndex) + " '" + node.name + "' has a non-finite transform");
+            failure = core::makeError(file.string() + ": node " + std::to_string(nodeIndex) + " '" + node.name +
+                                      "' has a non-finite transform");
             return;
         }
         if (node.mesh >= 0 && size_t(node.mesh) < model.meshes.size()) {
@@ -291,7 +334,8 @@ core::Result<Scene> loadGltf(const fs::path& file) {
                 auto [it, inserted] = batchOf.try_emplace({node.mesh, p}, scene.batches.size());
                 if (inserted) {
                     const std::string named = gltfMesh.name.empty() ? "" : " '" + gltfMesh.name + "'";
-                    const std::string where = file.string() + ": mesh " + std::to_string(node.mesh) + named + " primitive " + std::to_string(p);
+                    const std::string where = file.string() + ": mesh " + std::to_string(node.mesh) + named +
+                                              " primitive " + std::to_string(p);
                     core::Result<Mesh> mesh = convertPrimitive(model, gltfMesh.primitives[p], where);
                     if (!mesh) {
                         failure = mesh.errorInfo();

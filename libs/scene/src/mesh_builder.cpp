@@ -36,8 +36,10 @@ void addDisc(Appender& out, int segments, float radius, float y, float up, const
     for (int i = 0; i < segments; ++i) out.vertex(ring(i, segments, radius, y), {0, up, 0}, albedo);
     for (int i = 0; i < segments; ++i) {
         const uint32_t a = first + static_cast<uint32_t>(i), b = first + static_cast<uint32_t>((i + 1) % segments);
-        if (up > 0) out.triangle(centre, a, b);
-        else out.triangle(centre, b, a);
+        if (up > 0)
+            out.triangle(centre, a, b);
+        else
+            out.triangle(centre, b, a);
     }
 }
 
@@ -83,12 +85,12 @@ void addCone(Mesh& mesh, const glm::mat4& objectFromPart, int segments, float ra
 void addIcosphere(Mesh& mesh, const glm::mat4& objectFromPart, int subdivisions, float radius,
                   const glm::vec3& albedo) {
     const float t = (1.0f + std::sqrt(5.0f)) / 2.0f;
-    std::vector<glm::vec3> points = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
-                                     {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
-    std::vector<std::array<uint32_t, 3>> tris = {
-        {0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
-        {11, 10, 2}, {10, 7, 6}, {7, 1, 8}, {3, 9, 4}, {3, 4, 2}, {3, 2, 6}, {3, 6, 8},
-        {3, 8, 9}, {4, 9, 5}, {2, 4, 11}, {6, 2, 10}, {8, 6, 7}, {9, 8, 1}};
+    std::vector<glm::vec3> points = {{-1, t, 0},  {1, t, 0},  {-1, -t, 0}, {1, -t, 0}, {0, -1, t},  {0, 1, t},
+                                     {0, -1, -t}, {0, 1, -t}, {t, 0, -1},  {t, 0, 1},  {-t, 0, -1}, {-t, 0, 1}};
+    std::vector<std::array<uint32_t, 3>> tris = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
+                                                 {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
+                                                 {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
+                                                 {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
     for (glm::vec3& p : points) p = glm::normalize(p);
     for (int s = 0; s < subdivisions; ++s) {
         std::map<std::pair<uint32_t, uint32_t>, uint32_t> midpoints;

@@ -30,14 +30,14 @@ void appendChain(const Mesh& mesh, const std::vector<uint32_t>& base, const LodO
         // Each level simplifies the original (not the previous level), so errors do not
         // accumulate and the error reported is against the real surface.
         const float* positions = &mesh.vertices[0].position.x;
-        size_t count = meshopt_simplify(next.data(), base.data(), base.size(), positions, mesh.vertices.size(), sizeof(Vertex),
-                                        target, o.maxRelativeError, 0, &error);
+        size_t count = meshopt_simplify(next.data(), base.data(), base.size(), positions, mesh.vertices.size(),
+                                        sizeof(Vertex), target, o.maxRelativeError, 0, &error);
         if (sloppy) { // whichever of the two gets closer to the target within the bound
             std::vector<uint32_t> clustered(base.size());
             float clusteredError = 0.0f;
-            const size_t clusteredCount = meshopt_simplifySloppy(clustered.data(), base.data(), base.size(), positions,
-                                                                 mesh.vertices.size(), sizeof(Vertex), target,
-                                                                 o.maxRelativeError, &clusteredError);
+            const size_t clusteredCount =
+                meshopt_simplifySloppy(clustered.data(), base.data(), base.size(), positions, mesh.vertices.size(),
+                                       sizeof(Vertex), target, o.maxRelativeError, &clusteredError);
             if (clusteredCount > 0 && clusteredCount < count && clusteredError <= o.maxRelativeError) {
                 next.swap(clustered);
                 count = clusteredCount;
@@ -67,8 +67,9 @@ MeshLods buildLods(const Mesh& mesh, const LodOptions& o) {
         return out;
     }
     std::vector<uint32_t> welded(mesh.indices.size());
-    meshopt_generateShadowIndexBuffer(welded.data(), mesh.indices.data(), mesh.indices.size(), &mesh.vertices[0].position,
-                                      mesh.vertices.size(), sizeof(glm::vec3), sizeof(Vertex));
+    meshopt_generateShadowIndexBuffer(welded.data(), mesh.indices.data(), mesh.indices.size(),
+                                      &mesh.vertices[0].position, mesh.vertices.size(), sizeof(glm::vec3),
+                                      sizeof(Vertex));
     appendChain(mesh, welded, o, scale, true, out, out.shadow);
     return out;
 }

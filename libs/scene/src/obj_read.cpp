@@ -56,15 +56,19 @@ core::Result<Scene> loadObj(const fs::path& file) {
                                        std::to_string(index.vertex_index + 1) + " of " + std::to_string(vertexCount));
             const bool hasNormal = index.normal_index >= 0 && size_t(index.normal_index) < normalCount;
             everyNormal = everyNormal && hasNormal;
-            const uint64_t key = uint64_t(uint32_t(index.vertex_index)) << 32 | uint32_t(hasNormal ? index.normal_index + 1 : 0);
+            const uint64_t key =
+                uint64_t(uint32_t(index.vertex_index)) << 32 | uint32_t(hasNormal ? index.normal_index + 1 : 0);
             const size_t slot = material >= 0 && size_t(material) < materials.size() ? size_t(material) + 1 : 0;
             auto [it, inserted] = vertexOf[slot].try_emplace(key, uint32_t(mesh.vertices.size()));
             if (inserted) {
                 const size_t v = size_t(index.vertex_index);
                 Vertex vertex;
-                vertex.position = glm::vec3(attrib.vertices[3 * v], attrib.vertices[3 * v + 1], attrib.vertices[3 * v + 2]);
-                if (!std::isfinite(vertex.position.x) || !std::isfinite(vertex.position.y) || !std::isfinite(vertex.position.z))
-                    return core::makeError(file.string() + ": object '" + mesh.name + "': vertex " + std::to_string(v + 1) + " is not finite");
+                vertex.position =
+                    glm::vec3(attrib.vertices[3 * v], attrib.vertices[3 * v + 1], attrib.vertices[3 * v + 2]);
+                if (!std::isfinite(vertex.position.x) || !std::isfinite(vertex.position.y) ||
+                    !std::isfinite(vertex.position.z))
+                    return core::makeError(file.string() + ": object '" + mesh.name + "': vertex " +
+                                           std::to_string(v + 1) + " is not finite");
                 vertex.normal = glm::vec3(0, 1, 0);
                 if (hasNormal) {
                     const size_t n = size_t(index.normal_index);
@@ -72,11 +76,13 @@ core::Result<Scene> loadObj(const fs::path& file) {
                     const float length = glm::length(normal);
                     if (length > 0.0f && std::isfinite(length)) vertex.normal = normal / length;
                 }
-                glm::vec3 albedo = material >= 0 && size_t(material) < materials.size()
-                                       ? glm::vec3(materials[size_t(material)].diffuse[0], materials[size_t(material)].diffuse[1],
-                                                   materials[size_t(material)].diffuse[2])
-                                       : glm::vec3(colours ? 1.0f : 0.7f);
-                if (colours) albedo *= glm::vec3(attrib.colors[3 * v], attrib.colors[3 * v + 1], attrib.colors[3 * v + 2]);
+                glm::vec3 albedo =
+                    material >= 0 && size_t(material) < materials.size()
+                        ? glm::vec3(materials[size_t(material)].diffuse[0], materials[size_t(material)].diffuse[1],
+                                    materials[size_t(material)].diffuse[2])
+                        : glm::vec3(colours ? 1.0f : 0.7f);
+                if (colours)
+                    albedo *= glm::vec3(attrib.colors[3 * v], attrib.colors[3 * v + 1], attrib.colors[3 * v + 2]);
                 vertex.albedo = glm::clamp(albedo, 0.0f, 1.0f);
                 mesh.vertices.push_back(vertex);
             }

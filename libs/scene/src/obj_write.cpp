@@ -18,8 +18,8 @@ core::Status exportObj(const Scene& scene, const fs::path& file) {
         out << "o " << scene.meshes[scene.batches[b].mesh].name << "_" << b << "\n";
         for (const Vertex& v : baked.vertices) {
             // "v x y z r g b": the widely read vertex-colour extension of OBJ.
-            std::snprintf(buf, sizeof buf, "v %.4f %.4f %.4f %.3f %.3f %.3f\n", v.position.x, v.position.y, v.position.z,
-                          v.albedo.r, v.albedo.g, v.albedo.b);
+            std::snprintf(buf, sizeof buf, "v %.4f %.4f %.4f %.3f %.3f %.3f\n", v.position.x, v.position.y,
+                          v.position.z, v.albedo.r, v.albedo.g, v.albedo.b);
             out << buf;
         }
         for (const Vertex& v : baked.vertices) {

@@ -41,7 +41,8 @@ BakedBatch bake(const Scene& scene, const MeshBatch& batch) {
         const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(m)));
         const auto base = static_cast<uint32_t>(out.vertices.size());
         for (const Vertex& v : mesh.vertices)
-            out.vertices.push_back({glm::vec3(m * glm::vec4(v.position, 1.0f)), glm::normalize(normalMatrix * v.normal), v.albedo});
+            out.vertices.push_back(
+                {glm::vec3(m * glm::vec4(v.position, 1.0f)), glm::normalize(normalMatrix * v.normal), v.albedo});
         for (uint32_t i : mesh.indices) out.indices.push_back(base + i);
     }
     return out;

@@ -30,8 +30,9 @@ core::Result<ViewLight> parseLight(const json& j, const std::string& view) {
     if (auto s = vec3("aim", l.aim); !s) return s.errorInfo();
     l.coneDegrees = j.value("cone", l.coneDegrees);
     l.range = j.value("range", l.range);
-    const core::Status valid = l.spot ? core::SpotLight{.wsDirection = l.aim, .coneDegrees = l.coneDegrees, .range = l.range}.validate()
-                                      : core::PointLight{.range = l.range}.validate();
+    const core::Status valid =
+        l.spot ? core::SpotLight{.wsDirection = l.aim, .coneDegrees = l.coneDegrees, .range = l.range}.validate()
+               : core::PointLight{.range = l.range}.validate();
     if (!valid) return core::makeError(where + valid.error());
     if (!core::isFinite(l.at)) return core::makeError(where + "at must be finite");
     return l;
@@ -46,7 +47,8 @@ core::Result<ViewSpec> parseView(const json& j) {
         v.probes = j.value("probes", "");
         // Sizes read as numbers first: nlohmann's conversion of 3.6e20 to int is undefined.
         const double width = j.value("width", double(v.width)), height = j.value("height", double(v.height));
-        if (!(width >= 1 && width <= 16384 && height >= 1 && height <= 16384) || width != std::floor(width) || height != std::floor(height))
+        if (!(width >= 1 && width <= 16384 && height >= 1 && height <= 16384) || width != std::floor(width) ||
+            height != std::floor(height))
             return core::makeError("view \"" + v.name + "\": width and height must be whole numbers in [1, 16384]");
         v.width = int(width), v.height = int(height);
         v.fovYDegrees = j.value("fov", v.fovYDegrees);
@@ -77,7 +79,8 @@ core::Result<ViewSpec> parseView(const json& j) {
     }
     if (v.width <= 0 || v.height <= 0 || v.width > 16384 || v.height > 16384)
         return core::makeError("view \"" + v.name + "\": width and height must be in [1, 16384]");
-    if (!(std::abs(v.pitchDegrees) < 90.0)) return core::makeError("view \"" + v.name + "\": pitch must be in (-90, 90)");
+    if (!(std::abs(v.pitchDegrees) < 90.0))
+        return core::makeError("view \"" + v.name + "\": pitch must be in (-90, 90)");
     if (!(std::abs(v.sunElevationDegrees) <= 90.0))
         return core::makeError("view \"" + v.name + "\": sun_elevation must be in [-90, 90]");
     core::PerspectiveCamera probe;
@@ -141,7 +144,8 @@ ResolvedView resolveView(const ViewSpec& view, const Scene& scene) {
         pitch = std::min(pitch, glm::radians(-30.0));
         const core::Vec3 centre = bounds.center();
         const core::Vec3 forward(std::sin(az) * std::cos(pitch), std::sin(pitch), -std::cos(az) * std::cos(pitch));
-        const core::Vec3 right = glm::normalize(glm::cross(forward, core::Vec3(0, 1, 0))), up = glm::cross(right, forward);
+        const core::Vec3 right = glm::normalize(glm::cross(forward, core::Vec3(0, 1, 0))),
+                         up = glm::cross(right, forward);
         // The eye at `distance` back from the centre sees a corner c (x right, y up, z forward of the
         // centre) when |x| <= tanX (distance + z) and |y| <= tanY (distance + z): the least distance
         // for every corner frames the box tightly.
@@ -167,16 +171,20 @@ ResolvedView resolveView(const ViewSpec& view, const Scene& scene) {
     cam.wsDirection = core::Vec3(std::sin(az) * std::cos(pitch), std::sin(pitch), -std::cos(az) * std::cos(pitch));
     // Validated in parseView: the angles are in range, so this cannot fail.
     out.light = core::DirectionalLight::fromSunAngles(view.sunElevationDegrees,
-                                                     view.azimuthDegrees + view.sunAzimuthFromViewDegrees).value();
+                                                      view.azimuthDegrees + view.sunAzimuthFromViewDegrees)
+                    .value();
     out.sun = view.sun;
     // The view's frame on the ground: right and forward by its azimuth alone (not its pitch).
-    const core::Vec3 forward(std::sin(az), 0.0, -std::cos(az)), right(std::cos(az), 0.0, std::sin(az)), up(0.0, 1.0, 0.0);
+    const core::Vec3 forward(std::sin(az), 0.0, -std::cos(az)), right(std::cos(az), 0.0, std::sin(az)),
+        up(0.0, 1.0, 0.0);
     for (const ViewLight& l : view.lights) {
         core::Vec3 position = lightsFrom + l.at.x * right + l.at.z * forward;
         position.y = scene.groundHeightAt(position.x, position.z) + l.at.y;
         if (l.spot)
-            out.spots.push_back({.wsPosition = position, .wsDirection = l.aim.x * right + l.aim.y * up + l.aim.z * forward,
-                                 .coneDegrees = l.coneDegrees, .range = l.range});
+            out.spots.push_back({.wsPosition = position,
+                                 .wsDirection = l.aim.x * right + l.aim.y * up + l.aim.z * forward,
+                                 .coneDegrees = l.coneDegrees,
+                                 .range = l.range});
         else
             out.points.push_back({.wsPosition = position, .range = l.range});
     }

@@ -35,7 +35,8 @@ TEST(Animation, EveryMoverHasATrackAndTimeZeroChangesNothing) {
     std::vector<uint32_t> moved;
     scene::animate(s, 0.0, &moved);
     ASSERT_EQ(moved.size(), 6u);
-    for (size_t b = 0; b < s.batches.size(); ++b) EXPECT_EQ(s.batches[b].worldFromObject, before.batches[b].worldFromObject);
+    for (size_t b = 0; b < s.batches.size(); ++b)
+        EXPECT_EQ(s.batches[b].worldFromObject, before.batches[b].worldFromObject);
     for (size_t k = 0; k < moved.size(); ++k) {
         const scene::Track& t = s.tracks[k];
         EXPECT_TRUE(s.batches[t.batch].dynamic);
@@ -52,7 +53,8 @@ TEST(Animation, MoversFollowTheGroundAtTheirSpeedAndTheSameTimeGivesTheSamePlace
         const scene::Scene first = s;
         scene::animate(s, 100.0);
         scene::animate(s, t);
-        for (size_t b = 0; b < s.batches.size(); ++b) EXPECT_EQ(s.batches[b].worldFromObject, first.batches[b].worldFromObject) << t;
+        for (size_t b = 0; b < s.batches.size(); ++b)
+            EXPECT_EQ(s.batches[b].worldFromObject, first.batches[b].worldFromObject) << t;
         for (const scene::Track& track : s.tracks) {
             const core::Vec3 p = positionOf(s, track);
             EXPECT_NEAR(std::hypot(p.x - track.centreX, p.z - track.centreZ), track.radius, 1e-3);

@@ -82,7 +82,8 @@ TEST(CameraPath, TheFlythroughHas240FramesBetween1Point8And40MetresAndATenDegree
     EXPECT_NEAR(low, 1.8, 1e-9);
     EXPECT_NEAR(high, 40.0, 1e-9);
     ASSERT_FALSE(path->sun.empty());
-    const scene::SunKey first = scene::sunAt(path->sun, path->startTime()), last = scene::sunAt(path->sun, path->endTime());
+    const scene::SunKey first = scene::sunAt(path->sun, path->startTime()),
+                        last = scene::sunAt(path->sun, path->endTime());
     const auto a = core::DirectionalLight::fromSunAngles(first.elevationDegrees, first.azimuthDegrees).value();
     const auto b = core::DirectionalLight::fromSunAngles(last.elevationDegrees, last.azimuthDegrees).value();
     EXPECT_NEAR(glm::degrees(std::acos(glm::dot(a.wsDirection, b.wsDirection))), 10.0, 1e-6);
@@ -105,12 +106,14 @@ TEST(CameraPath, BadFilesGiveErrorsNamingTheFileAndTheKey) {
     p = scene::loadCameraPath(noTarget);
     ASSERT_FALSE(p);
     EXPECT_NE(p.error().find("target_xz"), std::string::npos) << p.error();
-    const auto badSun = writeFile("sk_path_bad_sun.json", R"({"camera": [{"time": 0, "eye_xz": [0, 0], "target_xz": [0, -5]}],
+    const auto badSun =
+        writeFile("sk_path_bad_sun.json", R"({"camera": [{"time": 0, "eye_xz": [0, 0], "target_xz": [0, -5]}],
         "sun": [{"time": 0, "elevation": 95, "azimuth": 0}]})");
     p = scene::loadCameraPath(badSun);
     ASSERT_FALSE(p);
     EXPECT_NE(p.error().find("sun key 0"), std::string::npos) << p.error();
-    const auto wrongType = writeFile("sk_path_wrong_type.json", R"({"camera": [{"time": 0, "eye_xz": "here", "target_xz": [0, -5]}]})");
+    const auto wrongType =
+        writeFile("sk_path_wrong_type.json", R"({"camera": [{"time": 0, "eye_xz": "here", "target_xz": [0, -5]}]})");
     p = scene::loadCameraPath(wrongType);
     ASSERT_FALSE(p);
     EXPECT_NE(p.error().find("wrong type"), std::string::npos) << p.error();

@@ -39,12 +39,13 @@ std::string base64(const std::vector<unsigned char>& data) {
 
 // A .gltf with one mesh node; `rest` holds "meshes", "accessors" and "bufferViews" (JSON text
 // after the opening brace), the buffer is embedded.
-core::Result<scene::Scene> loadGltfText(const std::string& name, const std::string& rest, const std::vector<unsigned char>& buffer,
+core::Result<scene::Scene> loadGltfText(const std::string& name, const std::string& rest,
+                                        const std::vector<unsigned char>& buffer,
                                         const std::string& asset = R"({"version":"2.0"})") {
     const auto file = std::filesystem::temp_directory_path() / name;
-    std::ofstream(file) << R"({"asset":)" << asset << R"(,"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)" << rest
-                        << R"(,"buffers":[{"byteLength":)" << buffer.size() << R"(,"uri":"data:application/octet-stream;base64,)"
-                        << base64(buffer) << "\"}]}";
+    std::ofstream(file) << R"({"asset":)" << asset << R"(,"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"
+                        << rest << R"(,"buffers":[{"byteLength":)" << buffer.size()
+                        << R"(,"uri":"data:application/octet-stream;base64,)" << base64(buffer) << "\"}]}";
     auto scene = scene::loadScene(file);
     std::filesystem::remove(file);
     return scene;
@@ -52,12 +53,14 @@ core::Result<scene::Scene> loadGltfText(const std::string& name, const std::stri
 
 // Signed area of a triangle seen from +y, for winding checks.
 float windingFromAbove(const scene::Mesh& mesh, size_t triangle) {
-    const glm::vec3 a = mesh.vertices[mesh.indices[3 * triangle]].position, b = mesh.vertices[mesh.indices[3 * triangle + 1]].position,
+    const glm::vec3 a = mesh.vertices[mesh.indices[3 * triangle]].position,
+                    b = mesh.vertices[mesh.indices[3 * triangle + 1]].position,
                     c = mesh.vertices[mesh.indices[3 * triangle + 2]].position;
     return glm::cross(b - a, c - a).y;
 }
 
-std::vector<unsigned char> flatFan(int points) { // a disc in the xz plane: centre then the rim, counter-clockwise from above
+std::vector<unsigned char>
+flatFan(int points) { // a disc in the xz plane: centre then the rim, counter-clockwise from above
     std::vector<unsigned char> b;
     append<float>(b, {0, 0, 0});
     for (int i = 0; i < points - 1; ++i) append<float>(b, {std::cos(-0.5f * float(i)), 0, std::sin(-0.5f * float(i))});
@@ -71,8 +74,11 @@ TEST(GltfReadTest, StripsAndFansBecomeTriangleListsWithOneWinding) {
     std::vector<unsigned char> strip;
     append<float>(strip, {0, 0, 0, 0, 0, -1, 1, 0, 0, 1, 0, -1, 2, 0, 0, 2, 0, -1});
     const std::string views = R"("bufferViews":[{"buffer":0,"byteLength":72}])";
-    auto s = loadGltfText("sk_strip.gltf", R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"mode":5}]}],
-        "accessors":[{"bufferView":0,"componentType":5126,"count":6,"type":"VEC3","min":[0,0,-1],"max":[2,0,0]}],)" + views, strip);
+    auto s = loadGltfText("sk_strip.gltf",
+                          R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"mode":5}]}],
+        "accessors":[{"bufferView":0,"componentType":5126,"count":6,"type":"VEC3","min":[0,0,-1],"max":[2,0,0]}],)" +
+                              views,
+                          strip);
     ASSERT_TRUE(s) << s.error();
     const scene::Mesh& stripMesh = s->meshes.at(0);
     ASSERT_EQ(stripMesh.indices.size(), 12u);
@@ -83,7 +89,8 @@ TEST(GltfReadTest, StripsAndFansBecomeTriangleListsWithOneWinding) {
 
     auto f = loadGltfText("sk_fan.gltf", R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"mode":6}]}],
         "accessors":[{"bufferView":0,"componentType":5126,"count":5,"type":"VEC3","min":[-1,0,-1],"max":[1,0,1]}],
-        "bufferViews":[{"buffer":0,"byteLength":60}])", flatFan(5));
+        "bufferViews":[{"buffer":0,"byteLength":60}])",
+                          flatFan(5));
     ASSERT_TRUE(f) << f.error();
     ASSERT_EQ(f->meshes.at(0).indices.size(), 9u); // 5 fan vertices: 3 triangles
     for (size_t t = 0; t < 3; ++t) EXPECT_GT(windingFromAbove(f->meshes[0], t), 0.0f) << "fan triangle " << t;
@@ -92,13 +99,15 @@ TEST(GltfReadTest, StripsAndFansBecomeTriangleListsWithOneWinding) {
 TEST(GltfReadTest, QuantizedPositionsAndNormalizedSignedNormalsAreRead) {
     // KHR_mesh_quantization: positions as SHORT (not normalized), normals as normalized BYTE.
     std::vector<unsigned char> b;
-    append<int16_t>(b, {0, 0, 0, 0, 0, 100, 0, 0, 0, 0, -200, 0}); // VEC3 padded to 8 bytes: stride 8
+    append<int16_t>(b, {0, 0, 0, 0, 0, 100, 0, 0, 0, 0, -200, 0});  // VEC3 padded to 8 bytes: stride 8
     append<int8_t>(b, {0, 127, 0, 0, 0, 0, -128, 0, 127, 0, 0, 0}); // VEC3 padded to 4 bytes: stride 4
-    auto s = loadGltfText("sk_quantized.gltf", R"("extensionsUsed":["KHR_mesh_quantization"],"extensionsRequired":["KHR_mesh_quantization"],
+    auto s = loadGltfText("sk_quantized.gltf",
+                          R"("extensionsUsed":["KHR_mesh_quantization"],"extensionsRequired":["KHR_mesh_quantization"],
         "meshes":[{"primitives":[{"attributes":{"POSITION":0,"NORMAL":1}}]}],
         "accessors":[{"bufferView":0,"componentType":5122,"count":3,"type":"VEC3","min":[0,0,-200],"max":[0,100,0]},
                      {"bufferView":1,"componentType":5120,"normalized":true,"count":3,"type":"VEC3"}],
-        "bufferViews":[{"buffer":0,"byteLength":24,"byteStride":8},{"buffer":0,"byteOffset":24,"byteLength":12,"byteStride":4}])", b);
+        "bufferViews":[{"buffer":0,"byteLength":24,"byteStride":8},{"buffer":0,"byteOffset":24,"byteLength":12,"byteStride":4}])",
+                          b);
     ASSERT_TRUE(s) << s.error();
     const auto& v = s->meshes.at(0).vertices;
     ASSERT_EQ(v.size(), 3u);
@@ -113,18 +122,21 @@ TEST(GltfReadTest, SparseAccessorsSubstituteTheirValues) {
     // A triangle whose second vertex is moved by a sparse accessor, and a triangle built of
     // sparse values over zeros (no buffer view).
     std::vector<unsigned char> b;
-    append<float>(b, {0, 0, 0, 1, 0, 0, 0, 0, -1});  // base positions (36 bytes)
-    append<uint16_t>(b, {1, 0});                       // sparse index 1, padded (4 bytes)
-    append<float>(b, {5, 0, 0});                       // its value (12 bytes)
-    append<uint16_t>(b, {1, 2});                       // second accessor: indices 1 and 2 (4 bytes)
-    append<float>(b, {3, 0, 0, 0, 0, -3});             // their values (24 bytes)
-    auto s = loadGltfText("sk_sparse.gltf", R"("meshes":[{"primitives":[{"attributes":{"POSITION":0}}]},{"primitives":[{"attributes":{"POSITION":1}}]}],
+    append<float>(b, {0, 0, 0, 1, 0, 0, 0, 0, -1}); // base positions (36 bytes)
+    append<uint16_t>(b, {1, 0});                    // sparse index 1, padded (4 bytes)
+    append<float>(b, {5, 0, 0});                    // its value (12 bytes)
+    append<uint16_t>(b, {1, 2});                    // second accessor: indices 1 and 2 (4 bytes)
+    append<float>(b, {3, 0, 0, 0, 0, -3});          // their values (24 bytes)
+    auto s = loadGltfText(
+        "sk_sparse.gltf",
+        R"("meshes":[{"primitives":[{"attributes":{"POSITION":0}}]},{"primitives":[{"attributes":{"POSITION":1}}]}],
         "accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,-1],"max":[5,0,0],
                       "sparse":{"count":1,"indices":{"bufferView":1,"componentType":5123},"values":{"bufferView":2}}},
                      {"componentType":5126,"count":3,"type":"VEC3","min":[0,0,-3],"max":[3,0,0],
                       "sparse":{"count":2,"indices":{"bufferView":3,"componentType":5123},"values":{"bufferView":4}}}],
         "bufferViews":[{"buffer":0,"byteLength":36},{"buffer":0,"byteOffset":36,"byteLength":2},{"buffer":0,"byteOffset":40,"byteLength":12},
-                       {"buffer":0,"byteOffset":52,"byteLength":4},{"buffer":0,"byteOffset":56,"byteLength":24}])", b);
+                       {"buffer":0,"byteOffset":52,"byteLength":4},{"buffer":0,"byteOffset":56,"byteLength":24}])",
+        b);
     ASSERT_TRUE(s) << s.error();
     EXPECT_EQ(s->meshes.at(0).vertices.at(1).position, glm::vec3(5, 0, 0));
     EXPECT_EQ(s->meshes.at(0).vertices.at(2).position, glm::vec3(0, 0, -1));
@@ -142,34 +154,48 @@ TEST(GltfReadTest, WhatCannotBeReadIsNamedInOneLine) {
         EXPECT_NE(s.error().find(part), std::string::npos) << s.error();
         EXPECT_EQ(s.error().find('\n'), std::string::npos) << s.error();
     };
-    expectError(loadGltfText("sk_v1.gltf", R"("meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],)" + accessor + views, triangle,
-                             R"({"version":"1.0"})"),
+    expectError(loadGltfText("sk_v1.gltf",
+                             R"("meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],)" + accessor + views,
+                             triangle, R"({"version":"1.0"})"),
                 "glTF 1.0 is not supported; glTF 2.0 is");
     expectError(loadGltfText("sk_draco.gltf",
                              R"("meshes":[{"name":"packed","primitives":[{"attributes":{"POSITION":0},
                                 "extensions":{"KHR_draco_mesh_compression":{"bufferView":0,"attributes":{"POSITION":0}}}}]}],)" +
-                                 accessor + views, triangle),
+                                 accessor + views,
+                             triangle),
                 "mesh 0 'packed' primitive 0 is Draco-compressed");
     std::vector<unsigned char> infinite = triangle;
     append<uint32_t>(infinite, {0x7f800000u, 0, 0}); // a fourth vertex at +inf
-    expectError(loadGltfText("sk_inf.gltf", R"("meshes":[{"name":"broken","primitives":[{"attributes":{"POSITION":0}}]}],
-        "accessors":[{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3"}],"bufferViews":[{"buffer":0,"byteLength":48}])", infinite),
+    expectError(loadGltfText("sk_inf.gltf",
+                             R"("meshes":[{"name":"broken","primitives":[{"attributes":{"POSITION":0}}]}],
+        "accessors":[{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3"}],"bufferViews":[{"buffer":0,"byteLength":48}])",
+                             infinite),
                 "sk_inf.gltf: mesh 0 'broken' primitive 0: position 3 is not finite");
-    expectError(loadGltfText("sk_short.gltf", R"("meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],
-        "accessors":[{"bufferView":0,"componentType":5126,"count":300,"type":"VEC3"}],)" + views, triangle),
+    expectError(loadGltfText("sk_short.gltf",
+                             R"("meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],
+        "accessors":[{"bufferView":0,"componentType":5126,"count":300,"type":"VEC3"}],)" +
+                                 views,
+                             triangle),
                 "reaches past its buffer");
     // Found by fuzz_gltf: each node naming the next one twice placed 2^40 instances (a hang).
     std::string chain = R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[)";
-    for (int i = 0; i < 40; ++i) chain += "{\"children\":[" + std::to_string(i + 1) + "," + std::to_string(i + 1) + "]},";
+    for (int i = 0; i < 40; ++i)
+        chain += "{\"children\":[" + std::to_string(i + 1) + "," + std::to_string(i + 1) + "]},";
     chain += R"({"mesh":0}],"meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],)" + accessor + views +
-             R"(,"buffers":[{"byteLength":36,"uri":"data:application/octet-stream;base64,)" + base64(triangle) + "\"}]}";
+             R"(,"buffers":[{"byteLength":36,"uri":"data:application/octet-stream;base64,)" + base64(triangle) +
+             "\"}]}";
     const auto chainFile = std::filesystem::temp_directory_path() / "sk_chain.gltf";
     std::ofstream(chainFile) << chain;
     expectError(scene::loadScene(chainFile), "places more than 1048576 nodes");
     std::filesystem::remove(chainFile);
-    expectError(loadGltfText("sk_badindex.gltf", R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1}]}],
+    expectError(loadGltfText("sk_badindex.gltf",
+                             R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1}]}],
         "accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3"},{"bufferView":1,"componentType":5125,"count":3,"type":"SCALAR"}],
         "bufferViews":[{"buffer":0,"byteLength":36},{"buffer":0,"byteOffset":36,"byteLength":12}])",
-                             [&] { auto b = triangle; append<uint32_t>(b, {0, 1, 7}); return b; }()),
+                             [&] {
+                                 auto b = triangle;
+                                 append<uint32_t>(b, {0, 1, 7});
+                                 return b;
+                             }()),
                 "index 2 names no vertex");
 }

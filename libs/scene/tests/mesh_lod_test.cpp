@@ -13,7 +13,8 @@ const Mesh& meshNamed(const Scene& s, const std::string& name) {
     throw std::runtime_error("no mesh " + name);
 }
 
-void expectValidChain(const Mesh& mesh, const MeshLods& lods, const std::vector<LodLevel>& chain, const std::string& what) {
+void expectValidChain(const Mesh& mesh, const MeshLods& lods, const std::vector<LodLevel>& chain,
+                      const std::string& what) {
     ASSERT_FALSE(chain.empty()) << what;
     EXPECT_EQ(chain[0].indexCount, mesh.indices.size()) << what << ": level 0 is the full mesh";
     EXPECT_EQ(chain[0].objectError, 0.0f) << what;

@@ -111,7 +111,8 @@ TEST(SceneIoTest, ObjKeepsVertexColoursNormalsAndObjects) {
     EXPECT_EQ(loaded->meshes.size(), forest.batches.size());
     int green = 0;
     for (const Mesh& mesh : loaded->meshes)
-        for (const Vertex& v : mesh.vertices) green += v.albedo.g > v.albedo.r + 0.05f && v.albedo.g > v.albedo.b; // foliage
+        for (const Vertex& v : mesh.vertices)
+            green += v.albedo.g > v.albedo.r + 0.05f && v.albedo.g > v.albedo.b; // foliage
     EXPECT_GT(green, 100);
     std::filesystem::remove(file);
 

@@ -40,7 +40,7 @@ typedef enum shadowkit_technique {
 } shadowkit_technique;
 
 typedef enum shadowkit_clip_depth {
-    SHADOWKIT_CLIP_DEPTH_ZERO_TO_ONE = 0,    /* Vulkan, Direct3D, Metal, GL with glClipControl */
+    SHADOWKIT_CLIP_DEPTH_ZERO_TO_ONE = 0,     /* Vulkan, Direct3D, Metal, GL with glClipControl */
     SHADOWKIT_CLIP_DEPTH_MINUS_ONE_TO_ONE = 1 /* OpenGL's default */
 } shadowkit_clip_depth;
 
@@ -70,27 +70,27 @@ typedef struct shadowkit_camera {
 
 typedef struct shadowkit_inputs {
     shadowkit_camera camera;
-    double light_direction[3];            /* the direction sunlight travels (sun -> scene), any length > 0 */
-    double scene_min[3], scene_max[3];    /* every caster and receiver lies inside */
-    int technique;                        /* shadowkit_technique */
-    int map_size;                         /* texels per side of each map */
-    int cascade_count;                    /* csm: splits, 1 .. SHADOWKIT_MAX_VIEWS */
-    double cascade_lambda;                /* csm: 0 uniform .. 1 logarithmic splits */
-    int cascade_lispsm;                   /* csm: 1 warps each split with LiSPSM */
-    double cascade_blend_band;            /* csm: [0, 0.5] of the previous split, for blending */
+    double light_direction[3];         /* the direction sunlight travels (sun -> scene), any length > 0 */
+    double scene_min[3], scene_max[3]; /* every caster and receiver lies inside */
+    int technique;                     /* shadowkit_technique */
+    int map_size;                      /* texels per side of each map */
+    int cascade_count;                 /* csm: splits, 1 .. SHADOWKIT_MAX_VIEWS */
+    double cascade_lambda;             /* csm: 0 uniform .. 1 logarithmic splits */
+    int cascade_lispsm;                /* csm: 1 warps each split with LiSPSM */
+    double cascade_blend_band;         /* csm: [0, 0.5] of the previous split, for blending */
     /* Output conventions of the matrices in shadowkit_view. */
-    int clip_depth;                       /* shadowkit_clip_depth */
-    int reversed_z;                       /* 1: the light's near side stored as 1 */
-    int texture_origin;                   /* shadowkit_texture_origin */
+    int clip_depth;     /* shadowkit_clip_depth */
+    int reversed_z;     /* 1: the light's near side stored as 1 */
+    int texture_origin; /* shadowkit_texture_origin */
 } shadowkit_inputs;
 
 typedef struct shadowkit_view {
     double clip_from_world[16];    /* draw the map with this */
     double texture_from_world[16]; /* (u, v, d, 1) * w: look the map up with this */
     double linear_depth_from_world[4];
-    double culling_planes[6][4];   /* (nx, ny, nz, d): a point p is outside when n.p + d > 0 */
+    double culling_planes[6][4]; /* (nx, ny, nz, d): a point p is outside when n.p + d > 0 */
     int culling_plane_count;
-    double split_near, split_far;  /* cascades: the view depths this map serves; else 0, 0 */
+    double split_near, split_far; /* cascades: the view depths this map serves; else 0, 0 */
     /* Camera-relative rendering: the same for p - eye_relative_origin (shadowkit_setup). */
     double clip_from_eye_relative[16];
     double texture_from_eye_relative[16];
@@ -111,9 +111,9 @@ typedef struct shadowkit_setup {
     int depth_clamp;  /* 1: draw the map with depth clamping (GL_DEPTH_CLAMP, depthClampEnable) */
     int view_count;
     shadowkit_view views[SHADOWKIT_MAX_VIEWS];
-    shadowkit_bias bias; /* the recommended bias for this technique and layout */
+    shadowkit_bias bias;           /* the recommended bias for this technique and layout */
     double eye_relative_origin[3]; /* the camera's eye: what the views' *_eye_relative take p minus */
-    int fallback_count;  /* degenerate cases met (view along the light, a view missing the scene) */
+    int fallback_count;            /* degenerate cases met (view along the light, a view missing the scene) */
 } shadowkit_setup;
 
 /* The defaults of the C++ API: technique TSM, 2048², cascades 4 / 0.9, a camera 1.8 m up
@@ -127,8 +127,8 @@ SHADOWKIT_CORE_EXPORT int shadowkit_compute_setup(const shadowkit_inputs* inputs
 
 /* World size (metres) of one texel of `view` at `point` on a plane facing the light;
    +inf where the map's projection degenerates. */
-SHADOWKIT_CORE_EXPORT double shadowkit_texel_size(const shadowkit_view* view, int map_size, const double light_direction[3],
-                                                  const double point[3]);
+SHADOWKIT_CORE_EXPORT double shadowkit_texel_size(const shadowkit_view* view, int map_size,
+                                                  const double light_direction[3], const double point[3]);
 
 /* "major.minor.patch" of the library linked. */
 SHADOWKIT_CORE_EXPORT const char* shadowkit_version_string(void);

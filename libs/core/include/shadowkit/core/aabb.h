@@ -31,8 +31,8 @@ struct Aabb {
         }
     }
     bool contains(const Vec3& p, double eps = 0.0) const {
-        return p.x >= min.x - eps && p.y >= min.y - eps && p.z >= min.z - eps &&
-               p.x <= max.x + eps && p.y <= max.y + eps && p.z <= max.z + eps;
+        return p.x >= min.x - eps && p.y >= min.y - eps && p.z >= min.z - eps && p.x <= max.x + eps &&
+               p.y <= max.y + eps && p.z <= max.z + eps;
     }
     // Squared distance from p to the box: 0 inside.
     double distanceSquared(const Vec3& p) const {
@@ -40,9 +40,7 @@ struct Aabb {
         return glm::dot(d, d);
     }
     // Corner i: bit 0 selects x, bit 1 y, bit 2 z (0 = min, 1 = max).
-    Vec3 corner(int i) const {
-        return {(i & 1) ? max.x : min.x, (i & 2) ? max.y : min.y, (i & 4) ? max.z : min.z};
-    }
+    Vec3 corner(int i) const { return {(i & 1) ? max.x : min.x, (i & 2) ? max.y : min.y, (i & 4) ? max.z : min.z}; }
     std::array<Vec3, 8> corners() const {
         std::array<Vec3, 8> c;
         for (int i = 0; i < 8; ++i) c[static_cast<size_t>(i)] = corner(i);

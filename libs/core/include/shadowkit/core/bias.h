@@ -17,8 +17,8 @@ enum class CasterCull {
 struct BiasSettings {
     // glPolygonOffset(slope, constant) for hyperbolic depth; for linear depth the same
     // applied per fragment, a constant unit being 2^-24 of the depth range.
-    double slope = 2.0;        // × max depth slope; [0, 100]
-    double constant = 4.0;     // minimum resolvable depth steps; [0, 1e6]
+    double slope = 2.0;    // × max depth slope; [0, 100]
+    double constant = 4.0; // minimum resolvable depth steps; [0, 1e6]
     // Receiver moved along its normal by this many texels' world size before the lookup
     // (normal offset); [0, 10].
     double normalOffset = 0.0;

@@ -32,16 +32,16 @@ struct CoherentCullingOptions {
     // (CHC++ §4.2, n_av), each leaf at its own random phase so the queries spread evenly.
     int visibleInterval = 8; // [1, 1000]
     // Previously invisible nodes are queried in batches of this size (CHC++ §4.1, b).
-    int batchSize = 32;      // [1, 4096]
+    int batchSize = 32;       // [1, 4096]
     bool multiQueries = true; // CHC++ §4.3: one query for several nodes expected to stay hidden
 };
 
 struct CoherentCullingStats {
     size_t nodesVisited = 0;
-    size_t queriesIssued = 0;  // occlusion queries started (a multi-query counts once)
-    size_t nodesQueried = 0;   // nodes inside those queries
+    size_t queriesIssued = 0;      // occlusion queries started (a multi-query counts once)
+    size_t nodesQueried = 0;       // nodes inside those queries
     size_t multiQueryFailures = 0; // multi-queries that came back visible (nodes re-queried)
-    size_t waits = 0;          // results read in this frame that had not arrived: the CPU waited
+    size_t waits = 0;              // results read in this frame that had not arrived: the CPU waited
     size_t itemsDrawn = 0;
 };
 
@@ -67,11 +67,11 @@ public:
 
 private:
     struct NodeState {
-        uint32_t lastVisited = 0; // frame number; 0: never
+        uint32_t lastVisited = 0;     // frame number; 0: never
         uint16_t invisibleFrames = 0; // consecutive frames found invisible (multi-query odds)
         bool visible = false;
         bool checkPending = false; // a visible leaf's query is in flight
-        bool open = false; // an inner node opened last frame: its children are visited unqueried
+        bool open = false;         // an inner node opened last frame: its children are visited unqueried
     };
     struct Query {
         uint32_t handle = 0;

@@ -57,13 +57,12 @@ inline bool isFinite(const Mat4& m) { return isFinite(m[0]) && isFinite(m[1]) &&
 // Bad data from users, files or the environment is reported as a value instead
 // (see result.h). Kept on in release builds: the checks are cheap and a silent NaN
 // matrix is far more expensive to debug.
-#define SK_ASSERT(cond, msg)                                                              \
-    do {                                                                                  \
-        if (!(cond)) {                                                                    \
-            std::fprintf(stderr, "shadowkit: assertion failed: %s (%s:%d)\n", msg,        \
-                         __FILE__, __LINE__);                                             \
-            std::abort();                                                                 \
-        }                                                                                 \
+#define SK_ASSERT(cond, msg)                                                                                           \
+    do {                                                                                                               \
+        if (!(cond)) {                                                                                                 \
+            std::fprintf(stderr, "shadowkit: assertion failed: %s (%s:%d)\n", msg, __FILE__, __LINE__);                \
+            std::abort();                                                                                              \
+        }                                                                                                              \
     } while (false)
 
 } // namespace shadowkit::core

@@ -50,9 +50,9 @@ struct EngineCamera {
 // What recognising a projection found, in the view's own units (metres).
 struct RecognisedProjection {
     bool orthographic = false;
-    bool reversedZ = false;   // near maps to clip depth 1
-    bool infiniteFar = false; // the depth row never reaches the far value
-    bool offCentre = false;   // asymmetric about the view axis (off-centre, jittered)
+    bool reversedZ = false;         // near maps to clip depth 1
+    bool infiniteFar = false;       // the depth row never reaches the far value
+    bool offCentre = false;         // asymmetric about the view axis (off-centre, jittered)
     double zNear = 0.0, zFar = 0.0; // distances along the view axis; zFar = +inf when infinite
     // View-space x and y extents of the near plane; for a perspective projection as slopes
     // (x / depth), for an orthographic one in metres.

@@ -26,10 +26,10 @@
 namespace shadowkit::core {
 
 struct ParameterChoice {
-    ShadowSetupInputs inputs;  // the technique, map size and parameters chosen
-    SamplingFigures predicted; // at the model's samples
+    ShadowSetupInputs inputs;                                   // the technique, map size and parameters chosen
+    SamplingFigures predicted;                                  // at the model's samples
     double objective = std::numeric_limits<double>::infinity(); // samplingObjective(predicted)
-    int setupsTried = 0;       // set-ups computed to find it
+    int setupsTried = 0;                                        // set-ups computed to find it
 };
 
 // "lispsm (n x 0.42, middle vector)", "csm 4 x 1024² (lambda 0.71, per-split lispsm)": the
@@ -63,7 +63,8 @@ ShadowSetupInputs withVisibleSplits(ShadowSetupInputs in, const SamplingErrorMod
 // A candidate chosen on an earlier frame, for this one: `chosen`'s technique, map size and
 // parameters with `base`'s camera, light, scene box, grid origin and visible depth (cascades:
 // splits over this frame's samples).
-ShadowSetupInputs forThisFrame(const ShadowSetupInputs& chosen, const ShadowSetupInputs& base, const SamplingErrorModel& model);
+ShadowSetupInputs forThisFrame(const ShadowSetupInputs& chosen, const ShadowSetupInputs& base,
+                               const SamplingErrorModel& model);
 
 struct AutoOptions {
     // Texels of all maps together: one map of √budget² or N cascades of √(budget / N)² (sides
@@ -95,7 +96,7 @@ Result<std::vector<ParameterChoice>> rankCandidates(const ShadowSetupInputs& bas
 // AutoOptions::hysteresis. Without samples (nothing visible): the default technique with its
 // default parameters (N cascades when AutoOptions::cascades asks for them). Deterministic for
 // the same inputs and samples.
-Result<ParameterChoice> chooseAuto(const ShadowSetupInputs& base, const AutoOptions& options, const SamplingErrorModel& model,
-                                   const ParameterChoice* previous = nullptr);
+Result<ParameterChoice> chooseAuto(const ShadowSetupInputs& base, const AutoOptions& options,
+                                   const SamplingErrorModel& model, const ParameterChoice* previous = nullptr);
 
 } // namespace shadowkit::core

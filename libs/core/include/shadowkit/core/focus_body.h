@@ -17,8 +17,7 @@ namespace shadowkit::core {
 //
 // Each thread keeps its last result and returns it again for exactly the same camera, light
 // and box: a set-up search tries many warps of one frame's body (error_driven.h).
-ConvexBody computeFocusBody(const PerspectiveCamera& camera, const DirectionalLight& light,
-                            const Aabb& wsSceneBounds);
+ConvexBody computeFocusBody(const PerspectiveCamera& camera, const DirectionalLight& light, const Aabb& wsSceneBounds);
 
 // The scene box grown so that no side is thinner than a millionth of its diagonal
 // (or a millimetre for a zero-size box): a plane of terrain has zero height.

@@ -49,7 +49,8 @@ public:
     // costs one call. It must be conservative for every box that contains a smaller one.
     template <class Accept>
     void query(std::span<const HalfSpace> volume, const Accept& accept, std::vector<uint32_t>& out) const {
-        queryAccepting(volume, &accept, [](const void* f, const Aabb& b) { return (*static_cast<const Accept*>(f))(b); }, out);
+        queryAccepting(
+            volume, &accept, [](const void* f, const Aabb& b) { return (*static_cast<const Accept*>(f))(b); }, out);
     }
 
     // The nodes, for traversals of their own (occlusion culling): node 0 is the root, an
@@ -93,9 +94,9 @@ private:
     void queryAccepting(std::span<const HalfSpace> volume, const void* accept, bool (*call)(const void*, const Aabb&),
                         std::vector<uint32_t>& out) const;
 
-    std::vector<Node> m_nodes;        // m_nodes[0] is the root
-    std::vector<uint32_t> m_items;    // leaf ranges index this
-    std::vector<uint32_t> m_leafOf;   // item -> its leaf node
+    std::vector<Node> m_nodes;      // m_nodes[0] is the root
+    std::vector<uint32_t> m_items;  // leaf ranges index this
+    std::vector<uint32_t> m_leafOf; // item -> its leaf node
     std::vector<Aabb> m_itemBoxes;
     double m_builtCost = 0.0; // surfaceAreaCost() when built
 };

@@ -38,8 +38,12 @@ struct OutputConventions {
     bool reversedZ = false;
     TextureOrigin textureOrigin = TextureOrigin::BottomLeft;
 
-    static constexpr OutputConventions openGL() { return {ClipDepthRange::MinusOneToOne, false, TextureOrigin::BottomLeft}; }
-    static constexpr OutputConventions vulkan() { return {ClipDepthRange::ZeroToOne, false, TextureOrigin::BottomLeft}; }
+    static constexpr OutputConventions openGL() {
+        return {ClipDepthRange::MinusOneToOne, false, TextureOrigin::BottomLeft};
+    }
+    static constexpr OutputConventions vulkan() {
+        return {ClipDepthRange::ZeroToOne, false, TextureOrigin::BottomLeft};
+    }
     static constexpr OutputConventions direct3D() { return {ClipDepthRange::ZeroToOne, false, TextureOrigin::TopLeft}; }
 };
 

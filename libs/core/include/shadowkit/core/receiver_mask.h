@@ -51,7 +51,7 @@ private:
     int m_size;
     Mat4 m_clipFromWorld;
     std::optional<Vec4> m_linearDepthFromWorld;
-    bool m_everything = false;           // a receiver behind the centre: keep every caster
+    bool m_everything = false;                // a receiver behind the centre: keep every caster
     std::vector<std::vector<float>> m_levels; // [0] full size, then halves (max of 2x2)
 };
 

@@ -51,9 +51,9 @@ std::vector<ReceiverSample> receiverSamples(const RasterBuffers& raster, const P
                                             const DirectionalLight& light, size_t maxSamples);
 
 struct SamplingFigures {
-    size_t samples = 0;                // receivers the figures are over
+    size_t samples = 0;                     // receivers the figures are over
     double p50 = 0.0, p95 = 0.0, p99 = 0.0; // pixels per texel
-    double undersampledFraction = 0.0; // share above 1 pixel per texel, [0, 1]
+    double undersampledFraction = 0.0;      // share above 1 pixel per texel, [0, 1]
 };
 
 // What the parameter search minimises (error_driven.h): p95 pixels per texel, plus the
@@ -93,10 +93,10 @@ public:
 
 private:
     struct Sample {
-        Vec3 esPosition;               // relative to the camera's eye
-        double viewDepth;              // along the unit view direction
-        Vec3 tangentU, tangentV;       // orthonormal basis of the receiver's plane
-        glm::dmat2 tangentFromPixel;   // d(u, v)/d(pixel x, y)
+        Vec3 esPosition;             // relative to the camera's eye
+        double viewDepth;            // along the unit view direction
+        Vec3 tangentU, tangentV;     // orthonormal basis of the receiver's plane
+        glm::dmat2 tangentFromPixel; // d(u, v)/d(pixel x, y)
     };
     // Predicts every sample into m_scratch; returns the share above 1 pixel per texel.
     double predictUndersampled(const ShadowSetup& setup) const;

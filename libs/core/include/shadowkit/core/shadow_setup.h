@@ -29,10 +29,10 @@ enum class Technique {
 
 // What the shadow map stores as depth.
 enum class DepthLayout {
-    Hyperbolic, // clip z / w of clipFromWorld: what the projection gives (warped maps: hyperbolic)
-    Linear,     // linearDepthFromWorld: distance along the light, computed and written per
-                // fragment (Martin & Tan 2004; Scherzer 2005 §4.2) so depth resolution is even
-                // over B whatever the warp
+    Hyperbolic,    // clip z / w of clipFromWorld: what the projection gives (warped maps: hyperbolic)
+    Linear,        // linearDepthFromWorld: distance along the light, computed and written per
+                   // fragment (Martin & Tan 2004; Scherzer 2005 §4.2) so depth resolution is even
+                   // over B whatever the warp
     LightDistance, // local lights: distance to ShadowSetup::wsLightPosition, mapped from the
                    // view's lightDistance [near, far] to [0, 1], written per fragment (seed 003)
 };
@@ -71,8 +71,8 @@ enum class LispsmDirection {
 struct LispsmOptions {
     LispsmFormula formula = LispsmFormula::Scherzer;
     LispsmDirection direction = LispsmDirection::CrossProduct;
-    double weight = 1.0;               // multiplies the chosen n; (0, inf)
-    std::optional<double> nOverride;   // a fixed n in metres (> 0); the formula is then skipped
+    double weight = 1.0;             // multiplies the chosen n; (0, inf)
+    std::optional<double> nOverride; // a fixed n in metres (> 0); the formula is then skipped
     // With ShadowSetupInputs::visibleDepth: also take z_n in n's formula from the nearest
     // visible depth, not the camera's near plane. Scherzer 2005 §4.4 narrows only Δz (from
     // the visible far distance); n_opt balances the error between z_n and z_n + Δz (Wimmer
@@ -100,7 +100,7 @@ enum class CascadeWarp {
 };
 
 struct CascadeOptions {
-    int count = 4;               // splits, [1, 8]
+    int count = 4; // splits, [1, 8]
     // Practical split scheme weight (Zhang et al. 2006; Dimitrov 2007): 0 uniform, 1 logarithmic; [0, 1].
     // 0.9: lowest mean wrong_pct over the six standard views with 4 × 1024² on the default
     // forest with the recommended bias (0.53; 0.79 at 0.5, 0.58 at 0.75, 0.60 at 0.95, 0.65 at 1;
@@ -125,14 +125,14 @@ struct CascadeOptions {
 Status validate(const CascadeOptions& options);
 
 inline constexpr int kMinMapSize = 16, kMaxMapSize = 16384; // texels per side
-inline constexpr size_t kMaxShadowViews = 8;                  // maps in one set-up (cascades.count <= 8)
+inline constexpr size_t kMaxShadowViews = 8;                // maps in one set-up (cascades.count <= 8)
 // Error field "map_size".
 Status validateMapSize(int texelsPerSide);
 
 struct ShadowSetupInputs {
     PerspectiveCamera camera;
     DirectionalLight light;
-    Aabb wsSceneBounds; // every caster and receiver lies inside
+    Aabb wsSceneBounds;                       // every caster and receiver lies inside
     Technique technique = defaultTechnique(); // the recommended one (the CLI's default too)
     // Texels per side of each shadow map (every cascade), [kMinMapSize, kMaxMapSize]: the
     // stabilised cascades snap to it, and the renderer allocates it (ShadowSetup::mapSize).
@@ -169,10 +169,10 @@ struct LispsmWarp {
     bool viewParallel = false;
 };
 struct PsmWarp {
-    double slideBack = 0.0;        // "slide_back": how far the virtual camera moved back (metres)
+    double slideBack = 0.0;           // "slide_back": how far the virtual camera moved back (metres)
     double ppNear = 0.0, ppFar = 0.0; // "near", "far": the virtual camera's planes
-    double lightW = 0.0;           // "light_w": the light's post-perspective w, scaled (< 0: behind the viewer)
-    bool inverted = false;         // "inverted": the inverted projection for a light behind
+    double lightW = 0.0;              // "light_w": the light's post-perspective w, scaled (< 0: behind the viewer)
+    bool inverted = false;            // "inverted": the inverted projection for a light behind
 };
 struct TsmWarp {
     // "lambda", "delta", "eta": trapezoid height, focus distance and top line offset (L units);
@@ -185,9 +185,9 @@ using WarpParameters = std::variant<std::monostate, LispsmWarp, PsmWarp, TsmWarp
 struct ShadowView {
     Mat4 lightFromWorld{1.0};
     Mat4 clipFromLight{1.0};
-    Mat4 clipFromWorld{1.0}; // clipFromLight * lightFromWorld
+    Mat4 clipFromWorld{1.0};   // clipFromLight * lightFromWorld
     std::optional<Vec2> split; // [near, far] view depth range, for cascades
-    WarpParameters warp; // monostate for the uniform techniques
+    WarpParameters warp;       // monostate for the uniform techniques
     // Row r with depth = dot(r, (p, 1)): distance along the light mapped to [0, 1] over
     // what the map must hold (0 nearest the light). Used when the layout is Linear.
     Vec4 linearDepthFromWorld{0.0};
@@ -203,7 +203,7 @@ struct ShadowView {
     // cannot (a 6 cm step at 1,000 km). computeShadowSetup builds the set-up here and derives
     // the world matrices from these, not the other way round.
     Mat4 lightFromEyeRelative{1.0};
-    Mat4 clipFromEyeRelative{1.0};        // clipFromLight * lightFromEyeRelative
+    Mat4 clipFromEyeRelative{1.0}; // clipFromLight * lightFromEyeRelative
     Vec4 linearDepthFromEyeRelative{0.0};
     // After clipFromLight changed: clipFromWorld and clipFromEyeRelative again.
     void recomposeClip() {
@@ -217,7 +217,7 @@ struct ShadowSetup {
     // One per shadow map, held inline (up to kMaxShadowViews: eight cascades) so that
     // computing a set-up does not allocate.
     SmallVector<ShadowView, kMaxShadowViews> views;
-    ConvexBody body;                 // B (empty for `standard`, or when the view misses the scene)
+    ConvexBody body;                    // B (empty for `standard`, or when the view misses the scene)
     std::vector<std::string> fallbacks; // degenerate cases met and what was done instead
     int mapSize = 2048;                 // texels per side of every map: what the renderer allocates
     // Clip depth is always [0, 1] (conventions.h: glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE)).

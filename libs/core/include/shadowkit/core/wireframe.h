@@ -2,8 +2,8 @@
 // frustum, a shadow map's volume, warped or not — and a convex body such as the focus body B.
 #pragma once
 
-#include "shadowkit/core/convex_body.h"
 #include "shadowkit/core/conventions.h"
+#include "shadowkit/core/convex_body.h"
 
 #include <utility>
 #include <vector>

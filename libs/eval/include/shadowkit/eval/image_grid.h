@@ -10,7 +10,8 @@
 namespace shadowkit::eval {
 
 // `columns` <= 0: about square. Cells take the first image's size (larger ones are cropped).
-scene::Image captionedGrid(const std::vector<scene::Image>& cells, const std::vector<std::string>& captions, int columns = 0);
+scene::Image captionedGrid(const std::vector<scene::Image>& cells, const std::vector<std::string>& captions,
+                           int columns = 0);
 
 // Greedy word wrap to `width` pixels of the bitmap font at `scale`.
 std::vector<std::string> wrapText(const std::string& text, int width, int scale);

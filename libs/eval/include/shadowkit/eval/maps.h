@@ -11,9 +11,9 @@ struct ErrorMapColors {
     static constexpr uint8_t notEvaluated[3] = {24, 24, 28};
     static constexpr uint8_t litCorrect[3] = {205, 205, 205};
     static constexpr uint8_t shadowCorrect[3] = {105, 105, 105};
-    static constexpr uint8_t falseShadow[3] = {230, 50, 30};  // red
-    static constexpr uint8_t falseLit[3] = {40, 120, 255};    // blue
-    static constexpr uint8_t excluded[3] = {250, 205, 40};    // yellow
+    static constexpr uint8_t falseShadow[3] = {230, 50, 30}; // red
+    static constexpr uint8_t falseLit[3] = {40, 120, 255};   // blue
+    static constexpr uint8_t excluded[3] = {250, 205, 40};   // yellow
 };
 
 scene::Image errorMapImage(const Comparison& comparison, int width, int height);

@@ -17,9 +17,9 @@ enum class PixelClass : uint8_t {
     NotEvaluated = 0, // sky, or a surface facing away from the light
     LitCorrect = 1,
     ShadowCorrect = 2,
-    FalseShadow = 3,  // rendered shadowed, truth lit (acne, aliasing that darkens)
-    FalseLit = 4,     // rendered lit, truth shadowed (peter-panning, leaks, missed casters)
-    Excluded = 5,     // faces the light but raster and ray disagree on the surface (silhouettes)
+    FalseShadow = 3, // rendered shadowed, truth lit (acne, aliasing that darkens)
+    FalseLit = 4,    // rendered lit, truth shadowed (peter-panning, leaks, missed casters)
+    Excluded = 5,    // faces the light but raster and ray disagree on the surface (silhouettes)
 };
 
 // The figures of docs/references.md, evaluation §3; the JSON report (report.h) uses its snake_case names.
@@ -37,8 +37,8 @@ struct Figures {
 
 struct Comparison {
     Figures figures;
-    std::vector<PixelClass> classes;    // per pixel, top row first
-    std::vector<float> pixelsPerTexel;  // per pixel; NaN where not valid
+    std::vector<PixelClass> classes;   // per pixel, top row first
+    std::vector<float> pixelsPerTexel; // per pixel; NaN where not valid
 };
 
 struct CompareOptions {

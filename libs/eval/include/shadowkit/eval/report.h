@@ -18,28 +18,28 @@ namespace shadowkit::eval {
 // One light's figures in a view with several (the sun, "point[0]", "spot[1]", ...).
 struct LightReport {
     std::string light;
-    int maps = 1;          // maps drawn: cube faces kept for a point light
-    int skippedFaces = 0;  // point lights: faces that saw nothing of the view
+    int maps = 1;         // maps drawn: cube faces kept for a point light
+    int skippedFaces = 0; // point lights: faces that saw nothing of the view
     Figures figures;
 };
 
 struct ViewReport {
     std::string view;
     std::string technique;
-    std::string scene;   // "forest" or the file
+    std::string scene; // "forest" or the file
     uint64_t seed = 0;
     int width = 0, height = 0;
-    int mapSize = 0;     // texels per side
-    int maps = 1;        // shadow maps in the set-up
+    int mapSize = 0; // texels per side
+    int maps = 1;    // shadow maps in the set-up
     core::BiasSettings bias;
     std::string filter = "hard"; // as given to --filter
     int blurIterations = 0;
     std::vector<std::string> fallbacks;
     std::string autoChoice; // "auto_choice": what --technique auto chose, with its parameters (else left out)
     std::optional<core::Vec2> visibleDepth; // the visible view-depth range the set-up used, when one was given
-    Figures figures;      // every light together (eval::combine); the sun's alone in a sunlit view
-    std::vector<LightReport> lights; // per light, when the view has spot or point lights
-    double seconds = 0.0; // wall time of this view's evaluation
+    Figures figures;                        // every light together (eval::combine); the sun's alone in a sunlit view
+    std::vector<LightReport> lights;        // per light, when the view has spot or point lights
+    double seconds = 0.0;                   // wall time of this view's evaluation
 };
 
 // {"views": [{view, technique, ..., valid_px, excluded_px, wrong_pct, ...}, ...]}

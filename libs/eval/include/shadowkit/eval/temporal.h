@@ -19,13 +19,14 @@ struct ShadowStates {
     // Per pixel, top row first: 0 not evaluated (sky, facing away from the light, excluded),
     // else bit 0 rendered lit and bit 1 truth lit, plus 4 to mark the pixel as evaluated.
     std::vector<uint8_t> state;
-    std::vector<uint32_t> surfaceId;   // the truth's surface
-    std::vector<float> viewDepth;      // the truth's view depth
+    std::vector<uint32_t> surfaceId;    // the truth's surface
+    std::vector<float> viewDepth;       // the truth's view depth
     std::vector<core::Vec3> wsPosition; // the truth's hit point
 };
 
 // A frame's states from its camera, truth and comparison (sizes must agree).
-ShadowStates shadowStates(const core::PerspectiveCamera& camera, const TruthBuffers& truth, const Comparison& comparison);
+ShadowStates shadowStates(const core::PerspectiveCamera& camera, const TruthBuffers& truth,
+                          const Comparison& comparison);
 
 struct TemporalFigures {
     int64_t comparedPx = 0;
@@ -55,7 +56,7 @@ struct TemporalOptions {
 // mover passed in front). Its rendered state "changed" when the previous maps' term there
 // is on the other side of the threshold; the truth likewise. Flicker: rendered changed,
 // truth did not. Identical frames give zero; so does a camera moving over still shadows.
-TemporalFigures compareFrames(const ShadowStates& previous, const ShadowStates& current, const PreviousShadowsHere& before,
-                              const TemporalOptions& options = {});
+TemporalFigures compareFrames(const ShadowStates& previous, const ShadowStates& current,
+                              const PreviousShadowsHere& before, const TemporalOptions& options = {});
 
 } // namespace shadowkit::eval

@@ -15,12 +15,12 @@ namespace shadowkit::eval {
 struct TruthBuffers {
     int width = 0, height = 0;
     // Row-major, top row first.
-    std::vector<uint32_t> surfaceId;   // global instance index + 1; 0 where the ray missed
-    std::vector<float> viewDepth;      // metres along the view direction (0 on a miss)
+    std::vector<uint32_t> surfaceId;    // global instance index + 1; 0 where the ray missed
+    std::vector<float> viewDepth;       // metres along the view direction (0 on a miss)
     std::vector<core::Vec3> wsPosition; // hit point (double: float has a 6 cm step 1,000 km out)
-    std::vector<glm::vec3> wsNormal;   // geometric normal facing the viewer
-    std::vector<uint8_t> facesLight;   // N·L > 0
-    std::vector<uint8_t> lit;          // the shadow ray reached the light (only where facesLight)
+    std::vector<glm::vec3> wsNormal;    // geometric normal facing the viewer
+    std::vector<uint8_t> facesLight;    // N·L > 0
+    std::vector<uint8_t> lit;           // the shadow ray reached the light (only where facesLight)
 };
 
 struct TruthOptions {
@@ -33,8 +33,8 @@ struct TruthOptions {
 };
 
 // Uses every core (TBB) for the rays.
-TruthBuffers computeTruth(const RayScene& rays, const core::PerspectiveCamera& camera, const core::DirectionalLight& light,
-                          int width, int height, const TruthOptions& options = {});
+TruthBuffers computeTruth(const RayScene& rays, const core::PerspectiveCamera& camera,
+                          const core::DirectionalLight& light, int width, int height, const TruthOptions& options = {});
 
 // The truth at given surface points (`hits`, e.g. another frame's) under another light or
 // with casters moved: per pixel, 1 where the point faces the light and its shadow ray reaches
@@ -52,8 +52,10 @@ std::vector<uint8_t> litAt(const RayScene& rays, const TruthBuffers& hits, const
 
 // `hits`' surfaces under a local light, for eval::compare: facesLight marks the points the light
 // reaches (facing it, in its range and cone), lit those whose segment to it is free.
-TruthBuffers underLight(const RayScene& rays, const TruthBuffers& hits, const core::PointLight& light, const TruthOptions& options = {});
-TruthBuffers underLight(const RayScene& rays, const TruthBuffers& hits, const core::SpotLight& light, const TruthOptions& options = {});
+TruthBuffers underLight(const RayScene& rays, const TruthBuffers& hits, const core::PointLight& light,
+                        const TruthOptions& options = {});
+TruthBuffers underLight(const RayScene& rays, const TruthBuffers& hits, const core::SpotLight& light,
+                        const TruthOptions& options = {});
 
 // A primary ray through the centre of pixel (x, y), top row first, scaled so that its
 // parameter t is the view depth (t = near on the near plane).

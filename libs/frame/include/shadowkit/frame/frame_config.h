@@ -30,7 +30,8 @@ struct BiasOverrides {
     bool any() const { return slope || constant || normalOffset || cull || receiverPlane; }
     // The bias of a frame of `inputs` drawn with `filter`: nullopt with nothing overridden
     // (the renderer then takes the recommendation itself: gl::biasFor).
-    std::optional<core::BiasSettings> resolve(const core::ShadowSetupInputs& inputs, const core::FilterSettings& filter) const;
+    std::optional<core::BiasSettings> resolve(const core::ShadowSetupInputs& inputs,
+                                              const core::FilterSettings& filter) const;
 };
 
 using LocalLight = std::variant<core::PointLight, core::SpotLight>;

@@ -38,9 +38,9 @@ struct PreparedFrame {
     core::ShadowSetupInputs inputs; // as the set-up took them: visible depth measured, auto's choice
     core::ShadowSetup setup;
     gl::RenderSettings settings; // the view's size, fog and sun; the bias resolved for the technique
-    std::optional<core::ParameterChoice> autoChoice; // --technique auto: what it chose
-    double autoMilliseconds = 0.0;  // CPU: auto's model and search (not the read-back)
-    double setupMilliseconds = 0.0; // CPU: step 4
+    std::optional<core::ParameterChoice> autoChoice;     // --technique auto: what it chose
+    double autoMilliseconds = 0.0;                       // CPU: auto's model and search (not the read-back)
+    double setupMilliseconds = 0.0;                      // CPU: step 4
     std::optional<core::SetupHysteresis::Refits> refits; // held lattices: views refitted this frame
     PrePasses prePasses;
 };

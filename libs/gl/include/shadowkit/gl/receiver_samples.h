@@ -12,7 +12,7 @@
 namespace shadowkit::gl {
 
 struct ReceiverSampling {
-    int width = 160;          // pixels across of the read-back (at most the frame's); its height keeps the frame's aspect
+    int width = 160; // pixels across of the read-back (at most the frame's); its height keeps the frame's aspect
     size_t maxSamples = 4096; // receivers kept, spread evenly over those facing the light
 };
 
@@ -20,7 +20,8 @@ struct ReceiverSampling {
 // and level of detail; filters, blur and receiver masks off), its depth and normals read
 // back, and core::receiverSamples taken from them. The shadow pass it needs to draw is the
 // cheapest there is (a `standard` map of 64² texels): nothing of it is read.
-core::Result<std::vector<core::ReceiverSample>> sampleReceivers(Renderer& renderer, const core::ShadowSetupInputs& inputs,
+core::Result<std::vector<core::ReceiverSample>> sampleReceivers(Renderer& renderer,
+                                                                const core::ShadowSetupInputs& inputs,
                                                                 const RenderSettings& settings,
                                                                 const ReceiverSampling& sampling = {});
 

@@ -22,11 +22,11 @@ namespace shadowkit::gl {
 
 // Eye-space, depth-dependent blur of the shadow mask (Scherzer 2005 §4.3).
 struct BlurSettings {
-    int iterations = 0;          // passes of a 3x3 kernel: 0 (off), 1, 2, 4, 8, 16 ... [0, 64]
-    float radiusPixels = 1.5f;   // tap distance at view depth 0; (0, 16]
+    int iterations = 0;        // passes of a 3x3 kernel: 0 (off), 1, 2, 4, 8, 16 ... [0, 64]
+    float radiusPixels = 1.5f; // tap distance at view depth 0; (0, 16]
     // Radius at view depth z: radiusPixels / (1 + falloff · z): strong near the viewer,
     // weak far away (Scherzer 2005: "near the viewer, the shadow map is blurred more").
-    float depthFalloff = 0.05f;  // 1/m, [0, 10]
+    float depthFalloff = 0.05f; // 1/m, [0, 10]
     // Taps whose view depth differs from the centre's by more than this fraction are
     // ignored: the blur does not bleed across depth discontinuities.
     float depthThreshold = 0.02f; // (0, 1]
@@ -73,7 +73,7 @@ struct RenderSettings {
     std::optional<core::BiasSettings> bias;
     core::FilterSettings filter;
     BlurSettings blur;
-    float fogDensity = 0.002f;      // 1/m of exponential fog (Scherzer 2005 used fog); 0 = none
+    float fogDensity = 0.002f; // 1/m of exponential fog (Scherzer 2005 used fog); 0 = none
     // Draw only the instances each pass can see: the camera pass those meeting the view
     // frustum (and, with Occlusion, not hidden behind others), each shadow map those meeting
     // its clip volume extended towards the light. Invisible by contract (the same pixels
@@ -91,7 +91,7 @@ struct RenderSettings {
     bool lod = true;
     float lodPixelError = 0.25f; // (0, 16]
     float lodTexelError = 0.25f; // (0, 16]
-    bool cascadeColors = false;     // tint each cascade's range (Dimitrov 2007, Figure 3-2)
+    bool cascadeColors = false;  // tint each cascade's range (Dimitrov 2007, Figure 3-2)
     // Show, instead of the shaded colour, each pixel's pixels per texel of the sun's map that
     // serves it — eval's `pixels_per_texel` (largest singular value of d(pixel)/d(texel)) with
     // eval::aliasingMapImage's colours (log2 from 1/64 to 64) — computed in the shader, live.
@@ -121,9 +121,9 @@ struct PassStats {
 
 struct FrameStats {
     PassStats shadow, main;
-    PassStats local; // every local light's maps (Renderer::setLocalLights), faces written counted
-    int localMaps = 0;     // spot maps and cube faces drawn
-    int skippedFaces = 0;  // cube faces left out: they see nothing of the view
+    PassStats local;               // every local light's maps (Renderer::setLocalLights), faces written counted
+    int localMaps = 0;             // spot maps and cube faces drawn
+    int skippedFaces = 0;          // cube faces left out: they see nothing of the view
     double cullMilliseconds = 0.0; // CPU: choosing every pass's instances and uploading the lists
     // Of cullMilliseconds, the time inside GL calls that do or await the GPU's work: the
     // camera depth pre-pass's draws, the occlusion queries and their results (blocking when
@@ -183,7 +183,8 @@ public:
     // For a single frame; it waits for the GPU.
     core::Result<std::optional<core::Vec2>> visibleDepth(const core::PerspectiveCamera& camera,
                                                          const core::DirectionalLight& light,
-                                                         const core::ShadowSetup& setup, const RenderSettings& settings);
+                                                         const core::ShadowSetup& setup,
+                                                         const RenderSettings& settings);
     // The same range from the last frame render() drew, when it made a camera pre-pass
     // (Culling::Occlusion or receiverMask): what a running application feeds to its next
     // frame's set-up, by then long computed, so nothing waits (Scherzer 2005 took Δz "from

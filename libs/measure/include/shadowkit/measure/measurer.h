@@ -54,16 +54,17 @@ struct LightMeasurement {
 };
 
 struct Measurement {
-    core::ShadowSetup setup;          // what the frame was drawn with
-    core::BiasSettings bias;          // and its bias (gl::biasFor)
-    std::optional<core::Vec2> visibleDepth; // the set-up's visible range (measured with FrameConfig::visibleDepthFromFrame)
-    core::RasterBuffers raster;       // the GL side's per-pixel buffers
+    core::ShadowSetup setup; // what the frame was drawn with
+    core::BiasSettings bias; // and its bias (gl::biasFor)
+    std::optional<core::Vec2>
+        visibleDepth;           // the set-up's visible range (measured with FrameConfig::visibleDepthFromFrame)
+    core::RasterBuffers raster; // the GL side's per-pixel buffers
     std::shared_ptr<const eval::TruthBuffers> truth; // shared with the cache
     // Per-pixel classes and the figures: of the sun, or with spot and point lights of every
     // light together (eval::combine; `lights` holds each).
     eval::Comparison comparison;
     std::vector<LightMeasurement> lights; // when the renderer has local lights: the sun (if on), then each
-    scene::Image image;               // the shaded frame, with MeasureOptions::shadedImage
+    scene::Image image;                   // the shaded frame, with MeasureOptions::shadedImage
     const eval::Figures& figures() const { return comparison.figures; }
 };
 
@@ -90,8 +91,8 @@ public:
 
     // Ray-traced truth, cached per camera, light and image size (the last few kept): cells
     // of a comparison grid, or frames of a still camera, share it.
-    std::shared_ptr<const eval::TruthBuffers> truth(const core::PerspectiveCamera& camera, const core::DirectionalLight& light,
-                                                    int width, int height,
+    std::shared_ptr<const eval::TruthBuffers> truth(const core::PerspectiveCamera& camera,
+                                                    const core::DirectionalLight& light, int width, int height,
                                                     const std::function<void(double)>& progress = {});
 
     // This frame's surface points (`current`, measured from `camera`) under another frame's
@@ -100,7 +101,8 @@ public:
     // them there first), and the truth at this frame's hit points. `sameTruth`: the light and
     // casters are those of `current`, whose truth is then reused exactly.
     core::Result<eval::PreviousShadowsHere> shadowsAt(const Measurement& current, const core::PerspectiveCamera& camera,
-                                                      const core::ShadowSetup& otherSetup, const core::DirectionalLight& otherLight,
+                                                      const core::ShadowSetup& otherSetup,
+                                                      const core::DirectionalLight& otherLight,
                                                       const gl::RenderSettings& settings, bool sameTruth);
 
     // Instances that moved (scene::animate's list) in `scene`, the scene this was created

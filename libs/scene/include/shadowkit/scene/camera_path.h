@@ -22,7 +22,7 @@ struct CameraKey {
     core::Vec3 target{0.0, 1.8, -10.0};
 };
 struct SunKey {
-    double time = 0.0;             // seconds
+    double time = 0.0;              // seconds
     double elevationDegrees = 45.0; // [-90, 90]
     double azimuthDegrees = 90.0;   // compass (conventions.h)
 };

@@ -9,15 +9,15 @@
 namespace shadowkit::scene {
 
 struct ForestOptions {
-    uint64_t seed = 1;             // any value; same seed, same forest on every platform
-    int trees = 10000;             // [0, 1,000,000]
-    double terrainSize = 1024.0;   // metres per side, (0, 100,000]
-    int terrainResolution = 256;   // quads per side, [1, 4096]
-    double hillHeight = 30.0;      // metres from lowest to highest terrain point, [0, 1000]
-    int rocks = 24;                // large casters, [0, 100,000]
-    int buildings = 12;            // [0, 100,000]
-    int movers = 6;                // dynamic objects near the origin, [0, 1000]
-    double clearingRadius = 8.0;   // metres around the origin kept free of trees, rocks and buildings
+    uint64_t seed = 1;           // any value; same seed, same forest on every platform
+    int trees = 10000;           // [0, 1,000,000]
+    double terrainSize = 1024.0; // metres per side, (0, 100,000]
+    int terrainResolution = 256; // quads per side, [1, 4096]
+    double hillHeight = 30.0;    // metres from lowest to highest terrain point, [0, 1000]
+    int rocks = 24;              // large casters, [0, 100,000]
+    int buildings = 12;          // [0, 100,000]
+    int movers = 6;              // dynamic objects near the origin, [0, 1000]
+    double clearingRadius = 8.0; // metres around the origin kept free of trees, rocks and buildings
 };
 
 // Checks the ranges above; the message names the option.

@@ -6,8 +6,8 @@
 namespace shadowkit::scene {
 
 struct Heightfield {
-    double size = 1024.0;   // metres along x and z
-    int resolution = 256;   // quads per side; (resolution+1)^2 samples
+    double size = 1024.0;       // metres along x and z
+    int resolution = 256;       // quads per side; (resolution+1)^2 samples
     std::vector<float> heights; // row-major, z rows of x samples
 
     // Height of the terrain mesh surface at world (x, z), linear over its triangles;

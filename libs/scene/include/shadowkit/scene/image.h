@@ -15,7 +15,9 @@ struct Image {
 
     Image() = default;
     Image(int w, int h) : width(w), height(h), rgba(static_cast<size_t>(w) * static_cast<size_t>(h) * 4, 0) {}
-    uint8_t* pixel(int x, int y) { return rgba.data() + (static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x)) * 4; }
+    uint8_t* pixel(int x, int y) {
+        return rgba.data() + (static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x)) * 4;
+    }
     const uint8_t* pixel(int x, int y) const {
         return rgba.data() + (static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x)) * 4;
     }

@@ -13,8 +13,7 @@ void addCylinder(Mesh& mesh, const glm::mat4& objectFromPart, int segments, floa
 void addCone(Mesh& mesh, const glm::mat4& objectFromPart, int segments, float radius, float height,
              const glm::vec3& albedo);
 // Geodesic sphere: an icosahedron subdivided `subdivisions` times (20·4^s triangles).
-void addIcosphere(Mesh& mesh, const glm::mat4& objectFromPart, int subdivisions, float radius,
-                  const glm::vec3& albedo);
+void addIcosphere(Mesh& mesh, const glm::mat4& objectFromPart, int subdivisions, float radius, const glm::vec3& albedo);
 // Axis-aligned box with flat faces.
 void addBox(Mesh& mesh, const glm::mat4& objectFromPart, const glm::vec3& halfExtent, const glm::vec3& albedo);
 

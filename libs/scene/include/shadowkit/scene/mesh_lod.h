@@ -19,20 +19,20 @@ struct LodLevel {
 };
 
 struct MeshLods {
-    std::vector<uint32_t> indices;    // every level's triangles, back to back; level 0 first
-    std::vector<LodLevel> camera;     // camera[0] is the full mesh
-    std::vector<LodLevel> shadow;     // shadow[0] is the full mesh
+    std::vector<uint32_t> indices; // every level's triangles, back to back; level 0 first
+    std::vector<LodLevel> camera;  // camera[0] is the full mesh
+    std::vector<LodLevel> shadow;  // shadow[0] is the full mesh
 };
 
 struct LodOptions {
     // Each level aims at this fraction of the previous one's triangles...
-    float reduction = 0.5f;      // (0, 1)
+    float reduction = 0.5f; // (0, 1)
     // ... without exceeding this error, relative to the mesh's extent (meshoptimizer's
     // target_error); a level that saves less than 20 % of its predecessor ends the chain.
     // Coarse levels are safe to offer: a pass only picks a level whose error projects to
     // under its bound (a fraction of a pixel or texel), i.e. for tiny instances.
     float maxRelativeError = 0.5f;
-    int maxLevels = 4;           // including the full mesh, [1, 8]
+    int maxLevels = 4; // including the full mesh, [1, 8]
     // Meshes above this size keep one level: the terrain is one instance, near everything.
     size_t maxTriangles = 65536;
 };

@@ -34,21 +34,21 @@ struct Mesh {
 
 // One mesh and every placement of it.
 struct MeshBatch {
-    uint32_t mesh = 0;                         // index into Scene::meshes
-    std::vector<glm::mat4> worldFromObject;    // rigid transforms with uniform scale
-    bool dynamic = false;                      // moves over time (animated objects)
+    uint32_t mesh = 0;                      // index into Scene::meshes
+    std::vector<glm::mat4> worldFromObject; // rigid transforms with uniform scale
+    bool dynamic = false;                   // moves over time (animated objects)
 };
 
 // A dynamic instance's motion (scene/animation.h): round a circle over the ground at a
 // constant speed, `lift` metres above it, turning with the circle. Deterministic in time.
 struct Track {
-    uint32_t batch = 0, instance = 0; // the instance it moves: batches[batch].worldFromObject[instance]
+    uint32_t batch = 0, instance = 0;    // the instance it moves: batches[batch].worldFromObject[instance]
     double centreX = 0.0, centreZ = 0.0; // metres
-    double radius = 10.0;             // metres, > 0
-    double speed = 2.0;               // metres per second along the circle; negative: anticlockwise seen from above
-    double phase = 0.0;               // compass angle (conventions.h) of the position at t = 0, radians
-    double lift = 3.0;                // metres above the ground
-    float scale = 1.0f;               // uniform
+    double radius = 10.0;                // metres, > 0
+    double speed = 2.0;                  // metres per second along the circle; negative: anticlockwise seen from above
+    double phase = 0.0;                  // compass angle (conventions.h) of the position at t = 0, radians
+    double lift = 3.0;                   // metres above the ground
+    float scale = 1.0f;                  // uniform
 };
 
 // One instance: batches[batch].worldFromObject[instance].
@@ -75,15 +75,15 @@ struct Scene {
     core::Aabb localBounds() const;
     // Each instance's box in the scene's coordinates, batch after batch (the global instance order).
     std::vector<core::Aabb> instanceBounds() const;
-    size_t triangleCount() const;   // over all instances
+    size_t triangleCount() const; // over all instances
     size_t instanceCount() const;
     // Global instance indices count batch after batch (the order of instanceBounds(), of
     // the renderer's surface ids and of the ray tracer's instances).
     uint32_t globalIndex(InstanceRef ref) const;              // precondition: ref exists
     std::optional<InstanceRef> locate(uint32_t global) const; // nullopt beyond the last instance
-    // Height of the ground under (x, z), both in the scene's coordinates: the terrain heightfield where there is one, else
-    // the highest upward-facing surface of a static batch over that point, else the bottom
-    // of the scene bounds (0 for an empty scene).
+    // Height of the ground under (x, z), both in the scene's coordinates: the terrain heightfield where there is one,
+    // else the highest upward-facing surface of a static batch over that point, else the bottom of the scene bounds (0
+    // for an empty scene).
     double groundHeightAt(double x, double z) const;
 };
 

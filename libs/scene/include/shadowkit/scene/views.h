@@ -26,12 +26,12 @@ struct ViewLight {
 
 struct ViewSpec {
     std::string name;
-    std::string probes;        // what the view is for (one line)
+    std::string probes;             // what the view is for (one line)
     int width = 1280, height = 720; // pixels
     double fovYDegrees = 60.0;
     double zNear = 0.5, zFar = 500.0;
     double eyeX = 0.0, eyeZ = 0.0;
-    double eyeHeight = 1.8;    // metres above the ground under the eye
+    double eyeHeight = 1.8;      // metres above the ground under the eye
     double azimuthDegrees = 0.0; // compass direction of the view (conventions.h)
     double pitchDegrees = 0.0;   // positive looks up
     double sunElevationDegrees = 45.0;
