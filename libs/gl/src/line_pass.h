@@ -6,7 +6,7 @@
 #include "program.h"
 
 #include "shadowkit/core/result.h"
-#include "shadowkit/gl/renderer.h"
+#include "shadowkit/gl/render_settings.h"
 
 #include <memory>
 #include <span>

@@ -17,7 +17,9 @@
 #include "program.h"
 
 #include "shadowkit/core/local_lights.h"
-#include "shadowkit/gl/renderer.h"
+#include "shadowkit/gl/frame_stats.h"
+#include "shadowkit/gl/render_settings.h"
+#include "shadowkit/scene/image.h"
 
 #include <memory>
 #include <span>

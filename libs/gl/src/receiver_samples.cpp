@@ -1,5 +1,7 @@
 #include "shadowkit/gl/receiver_samples.h"
 
+#include "shadowkit/gl/renderer.h"
+
 #include <algorithm>
 #include <cmath>
 #include <string>

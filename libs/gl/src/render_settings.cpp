@@ -1,5 +1,5 @@
-// RenderSettings' names and checks (renderer.h): what a front end validates before it draws.
-#include "shadowkit/gl/renderer.h"
+// RenderSettings' names and checks (render_settings.h): what a front end validates before it draws.
+#include "shadowkit/gl/render_settings.h"
 
 namespace shadowkit::gl {
 

@@ -6,7 +6,7 @@
 #pragma once
 
 #include "shadowkit/core/shadow_filter.h"
-#include "shadowkit/gl/renderer.h"
+#include "shadowkit/gl/render_settings.h"
 
 #include <glm/glm.hpp>
 

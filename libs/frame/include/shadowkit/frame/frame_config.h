@@ -10,7 +10,7 @@
 #include "shadowkit/core/result.h"
 #include "shadowkit/core/setup_hysteresis.h"
 #include "shadowkit/core/shadow_setup.h"
-#include "shadowkit/gl/renderer.h"
+#include "shadowkit/gl/render_settings.h"
 #include "shadowkit/scene/views.h"
 
 #include <optional>

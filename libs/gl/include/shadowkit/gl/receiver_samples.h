@@ -5,11 +5,13 @@
 #include "shadowkit/core/result.h"
 #include "shadowkit/core/sampling_error.h"
 #include "shadowkit/core/shadow_setup.h"
-#include "shadowkit/gl/renderer.h"
+#include "shadowkit/gl/render_settings.h"
 
 #include <vector>
 
 namespace shadowkit::gl {
+
+class Renderer;
 
 struct ReceiverSampling {
     int width = 160; // pixels across of the read-back (at most the frame's); its height keeps the frame's aspect

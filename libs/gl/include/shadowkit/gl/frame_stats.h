@@ -1,0 +1,43 @@
+// What a frame cost, per pass: GPU time, what was submitted, and where culling's CPU time
+// went (Renderer::render's result).
+#pragma once
+
+#include "shadowkit/core/coherent_culling.h"
+
+#include <cstddef>
+
+namespace shadowkit::gl {
+
+struct PassStats {
+    double gpuMilliseconds = 0.0; // between two GL timestamp queries
+    size_t instances = 0;         // submitted (over every map, for the shadow pass)
+    size_t triangles = 0;         // submitted
+    size_t drawCalls = 0;
+};
+
+struct FrameStats {
+    PassStats shadow, main;
+    PassStats local;               // every local light's maps (Renderer::setLocalLights), faces written counted
+    int localMaps = 0;             // spot maps and cube faces drawn
+    int skippedFaces = 0;          // cube faces left out: they see nothing of the view
+    double cullMilliseconds = 0.0; // CPU: choosing every pass's instances and uploading the lists
+    // Of cullMilliseconds, the time inside GL calls that do or await the GPU's work: the
+    // camera depth pre-pass's draws, the occlusion queries and their results (blocking when
+    // not back), the settle loop after a camera cut, the receiver masks' compute pass and
+    // read-back. On llvmpipe that is the rasteriser itself.
+    double cullGlMilliseconds = 0.0;
+    // Culling's own CPU cost: the CPU time of the calling thread in culling outside those GL
+    // calls and outside list building — the hierarchy queries, the CHC++ traversal and its
+    // polls, the masks' decoding, dilation and caster tests. Thread time, not wall-clock: on
+    // llvmpipe the rasteriser's threads share the cores.
+    double cullOwnCpuMilliseconds = 0.0;
+    // Of cullMilliseconds, thread CPU time choosing every drawn instance's level of detail and
+    // building the passes' lists: per instance drawn, culled or not (so not culling's cost).
+    double listCpuMilliseconds = 0.0;
+    // Culling::Occlusion: the CHC++ pre-pass (counted in cullMilliseconds, with its waits).
+    core::CoherentCullingStats occlusion;
+    double occlusionMilliseconds = 0.0;
+    double receiverMaskMilliseconds = 0.0; // CPU, incl. the read-back (counted in cullMilliseconds)
+};
+
+} // namespace shadowkit::gl
