@@ -41,8 +41,9 @@ void printFrameReport(const RenderArgs& args, const gl::Context& context, const 
                args.timeline.path.empty() ? args.view.view : "path " + args.timeline.path);
     fmt::print("  set-up (CPU)   {:8.3f} ms\n", frame.setupMilliseconds);
     if (frame.prePasses.submissions > 0)
-        fmt::print("  before it      {} GPU submissions, {} read-backs (--visible-depth auto, --technique auto)\n",
-                   frame.prePasses.submissions, frame.prePasses.readBacks);
+        fmt::print(
+            "  before it      {:8.1f} ms  {} GPU submissions, {} read-backs (--visible-depth auto, --technique auto)\n",
+            frame.prePasses.milliseconds, frame.prePasses.submissions, frame.prePasses.readBacks);
     fmt::print("  culling (CPU)  {:8.3f} ms  ({:.3f} ms in GL: pre-pass, queries, masks; {:.3f} ms its own thread CPU; "
                "{:.3f} ms levels and lists)\n",
                stats.cullMilliseconds, stats.cullGlMilliseconds, stats.cullOwnCpuMilliseconds,
@@ -137,12 +138,14 @@ int runRender(const RenderArgs& args) {
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - cpuStart).count();
         auto view = timeline->viewAt(*still, world, frame.time, !args.view.size.empty());
         if (!view) return fail(view.errorInfo());
-        const auto frameStart = std::chrono::steady_clock::now();
         auto drawn = driver->draw(**renderer, *view);
         if (!drawn) return fail(withFlagName(drawn.errorInfo()));
+        const auto readStart = std::chrono::steady_clock::now();
         const scene::Image image = (*renderer)->readColor();
+        // The passes and the read-back; the phases before them are reported on their own.
         const double frameMs =
-            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - frameStart).count();
+            drawn->milliseconds +
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - readStart).count();
         const frame::PreparedFrame& f = drawn->frame;
         if (timeline->frames.size() == 1) printAutoChoice("auto", f);
 

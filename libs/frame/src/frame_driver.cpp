@@ -56,6 +56,7 @@ core::Result<PreparedFrame> FrameDriver::prepare(gl::Renderer& renderer, const s
 
     // 2. The visible depth range, from a camera pre-pass culled as this frame's set-up before
     // refinement would cull it (the range does not depend on the shadow maps).
+    const auto prePassStart = std::chrono::steady_clock::now();
     if (m_config.visibleDepthFromFrame) {
         auto unrefined = core::computeShadowSetup(f.inputs);
         if (!unrefined) return unrefined.errorInfo();
@@ -78,6 +79,7 @@ core::Result<PreparedFrame> FrameDriver::prepare(gl::Renderer& renderer, const s
         f.inputs = f.autoChoice->inputs;
         f.settings.bias = m_config.bias.resolve(f.inputs, f.settings.filter);
     }
+    f.prePasses.milliseconds = millisecondsSince(prePassStart);
 
     // 4. The set-up: held or fresh.
     const auto start = std::chrono::steady_clock::now();
@@ -93,9 +95,10 @@ core::Result<DrawnFrame> FrameDriver::draw(gl::Renderer& renderer, const scene::
     auto prepared = prepare(renderer, view);
     if (!prepared) return prepared.errorInfo();
     const PreparedFrame& f = *prepared;
+    const auto start = std::chrono::steady_clock::now();
     auto stats = renderer.render(f.view.camera, f.view.light, f.setup, f.settings);
     if (!stats) return stats.errorInfo();
-    return DrawnFrame{std::move(prepared).value(), *stats};
+    return DrawnFrame{std::move(prepared).value(), *stats, millisecondsSince(start)};
 }
 
 } // namespace shadowkit::frame

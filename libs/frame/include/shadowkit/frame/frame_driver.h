@@ -28,8 +28,9 @@ namespace shadowkit::frame {
 // GPU work a frame asked for before its own passes, and what it read back (the cost of
 // steps 2 and 3 above; the frame's own culling pre-pass is counted in gl::FrameStats).
 struct PrePasses {
-    int submissions = 0; // camera pre-passes and receiver read-back renders
-    int readBacks = 0;   // GPU → CPU transfers waited for
+    int submissions = 0;       // camera pre-passes and receiver read-back renders
+    int readBacks = 0;         // GPU → CPU transfers waited for
+    double milliseconds = 0.0; // wall-clock, the GPU's work and the waits included
 };
 
 // A frame ready for its shadow passes: what it is drawn with, after steps 1–4.
@@ -48,6 +49,7 @@ struct PreparedFrame {
 struct DrawnFrame {
     PreparedFrame frame;
     gl::FrameStats stats;
+    double milliseconds = 0.0; // wall-clock of step 5 (Renderer::render), its culling included
 };
 
 class FrameDriver {
