@@ -130,37 +130,31 @@ struct DrawnFrame {
     double setupMs = 0.0;
 };
 
-int run(const ViewerArgs& args, app::StateOptions state) {
-    auto sceneData = args.options.scene.load();
-    if (!sceneData) return fail(sceneData.errorInfo());
-    scene::Scene& world = *sceneData;
-    auto first = args.options.view.resolve(world);
-    if (!first) return fail(first.errorInfo());
-    auto window = gl::WindowContext::create(first->width, first->height, "shadowkit-viewer");
-    if (!window) return fail(window.errorInfo());
-    auto measurer = measure::Measurer::create(world);
-    if (!measurer) return fail(measurer.errorInfo());
-    gl::Renderer& renderer = (*measurer)->renderer();
-    GLFWwindow* glfw = (*window)->window();
+// The viewer's state from one frame to the next, and each concern of a frame in a method of
+// its own: input, time, the frame itself, the truth job, the panels.
+struct Viewer {
+    const ViewerArgs& args;
+    app::StateOptions state; // the options as the panel edits them (and Ctrl+S saves them)
+    scene::Scene& world;
+    measure::Measurer& measurer;
+    gl::Renderer& renderer;
+    GLFWwindow* glfw;
+    double fovYDegrees; // F frames the scene with the first view's field of view
 
-    IMGUI_CHECKVERSION();
-    ImGui::CreateContext();
-    ImGui::GetIO().IniFilename = nullptr; // no imgui.ini beside the user's files
-    ImGui_ImplGlfw_InitForOpenGL(glfw, true);
-    ImGui_ImplOpenGL3_Init("#version 450 core");
-
-    FlyCamera camera = FlyCamera::looking(first->camera.wsEye, first->camera.wsDirection);
+    FlyCamera camera;
     // C: the fly controls move this one instead; the set-up stays the frozen camera's.
     FlyCamera debug;
-    bool debugView = false, debugPlaced = false, wireframes = args.wireframes;
+    bool debugView = false, debugPlaced = false, wireframes = false;
     // O: orbit a point in front of the camera instead of flying; the wheel zooms.
     bool orbiting = false;
     double orbitDistance = 20.0;
-    core::Vec3 orbitTarget(0.0);
+    core::Vec3 orbitTarget{0.0};
     ViewerFrames frames; // options parsed when they change; lattices held across camera moves
-    std::string optionsError;
+    // The last option change refused (the last good options stay in use) and the last frame's
+    // error: each shown until it no longer holds.
+    std::string optionsError, frameError;
     bool dirty = true, showPanel = true, playing = false;
-    double sceneTime = args.options.timeline.time.value_or(0.0), animatedTime = -1.0;
+    double sceneTime = 0.0, animatedTime = -1.0;
     std::array<float, 120> frameMs{};
     size_t frameIndex = 0;
     int drawnFrames = 0;
@@ -172,95 +166,82 @@ int run(const ViewerArgs& args, app::StateOptions state) {
     int64_t shadowedRight = 0; // of the last evaluation: pixels drawn in shadow where truth has shadow
     std::optional<DrawnFrame> drawn;
     std::string message;
-    auto previous = std::chrono::steady_clock::now();
-    const auto loopStart = previous;
 
-    for (int frame = 0; !glfwWindowShouldClose(glfw) && (args.frames == 0 || frame < args.frames); ++frame) {
-        glfwPollEvents();
-        const auto now = std::chrono::steady_clock::now();
-        const double seconds = std::chrono::duration<double>(now - previous).count();
-        previous = now;
-        frameMs[frameIndex++ % frameMs.size()] = static_cast<float>(seconds * 1e3);
+    // Keys (the camera unless ImGui has the keyboard): moving, framing, toggles, screenshot,
+    // state, truth.
+    void keyboard(const ImGuiIO& io, int frame, double seconds) {
+        const auto key = [&](int k) { return glfwGetKey(glfw, k) == GLFW_PRESS ? 1.0 : 0.0; };
+        const core::Vec3 motion(key(GLFW_KEY_D) - key(GLFW_KEY_A), key(GLFW_KEY_E) - key(GLFW_KEY_Q),
+                                key(GLFW_KEY_W) - key(GLFW_KEY_S));
+        if (motion != core::Vec3(0.0)) {
+            if (debugView)
+                debug.move(motion, seconds);
+            else
+                camera.move(motion, seconds);
+        }
+        if (ImGui::IsKeyPressed(GLFW_KEY_F, false)) camera.frame(renderer.wsSceneBounds(), fovYDegrees), frames.cut();
+        if (ImGui::IsKeyPressed(GLFW_KEY_H, false)) showPanel = !showPanel;
+        if (ImGui::IsKeyPressed(GLFW_KEY_O, false)) {
+            orbiting = !orbiting;
+            orbitTarget = camera.wsEye + orbitDistance * camera.wsDirection();
+        }
+        if (ImGui::IsKeyPressed(GLFW_KEY_C, false) || (args.debugCamera && frame == 1)) {
+            debugView = !debugView;
+            wireframes = wireframes || debugView;
+            debugPlaced = false;
+        }
+        if (ImGui::IsKeyPressed(GLFW_KEY_SPACE, false)) playing = !playing;
+        if (ImGui::IsKeyPressed(GLFW_KEY_ESCAPE, false)) glfwSetWindowShouldClose(glfw, GLFW_TRUE);
+        if (ImGui::IsKeyPressed(GLFW_KEY_P, false) && drawn) {
+            const std::string file = args.screenshot.empty() ? "shadowkit-viewer.png" : args.screenshot;
+            const core::Status s = scene::writePng(renderer.readColor(), file);
+            message = s ? "wrote " + file : s.error();
+        }
+        if (io.KeyCtrl && ImGui::IsKeyPressed(GLFW_KEY_S, false)) {
+            const core::Status s = app::saveState(state, args.saveState);
+            message = s ? "saved " + args.saveState + " (shadowkit render --state " + args.saveState + ")" : s.error();
+        }
+        if ((ImGui::IsKeyPressed(GLFW_KEY_T, false) || (args.truthAtStart && frame == 1)) && drawn) {
+            const core::Status s = truth.start(measurer, drawn->camera, drawn->light, drawn->setup, drawn->settings);
+            message = s ? "evaluating against truth ..." : s.error();
+        }
+    }
 
-        ImGui_ImplOpenGL3_NewFrame();
-        ImGui_ImplGlfw_NewFrame();
-        ImGui::NewFrame();
-        const ImGuiIO& io = ImGui::GetIO();
-
-        // Input: the camera unless ImGui has the keyboard / mouse.
-        if (!io.WantCaptureKeyboard) {
-            const auto key = [&](int k) { return glfwGetKey(glfw, k) == GLFW_PRESS ? 1.0 : 0.0; };
-            const core::Vec3 motion(key(GLFW_KEY_D) - key(GLFW_KEY_A), key(GLFW_KEY_E) - key(GLFW_KEY_Q),
-                                    key(GLFW_KEY_W) - key(GLFW_KEY_S));
-            if (motion != core::Vec3(0.0)) {
-                if (debugView)
-                    debug.move(motion, seconds);
-                else
-                    camera.move(motion, seconds);
-            }
-            if (ImGui::IsKeyPressed(GLFW_KEY_F, false))
-                camera.frame(renderer.wsSceneBounds(), first->camera.fovYDegrees), frames.cut();
-            if (ImGui::IsKeyPressed(GLFW_KEY_H, false)) showPanel = !showPanel;
-            if (ImGui::IsKeyPressed(GLFW_KEY_O, false)) {
-                orbiting = !orbiting;
-                orbitTarget = camera.wsEye + orbitDistance * camera.wsDirection();
-            }
-            if (ImGui::IsKeyPressed(GLFW_KEY_C, false) || (args.debugCamera && frame == 1)) {
-                debugView = !debugView;
-                wireframes = wireframes || debugView;
-                debugPlaced = false;
-            }
-            if (ImGui::IsKeyPressed(GLFW_KEY_SPACE, false)) playing = !playing;
-            if (ImGui::IsKeyPressed(GLFW_KEY_ESCAPE, false)) glfwSetWindowShouldClose(glfw, GLFW_TRUE);
-            if (ImGui::IsKeyPressed(GLFW_KEY_P, false) && drawn) {
-                const std::string file = args.screenshot.empty() ? "shadowkit-viewer.png" : args.screenshot;
-                const core::Status s = scene::writePng(renderer.readColor(), file);
-                message = s ? "wrote " + file : s.error();
-            }
-            if (io.KeyCtrl && ImGui::IsKeyPressed(GLFW_KEY_S, false)) {
-                const core::Status s = app::saveState(state, args.saveState);
-                message =
-                    s ? "saved " + args.saveState + " (shadowkit render --state " + args.saveState + ")" : s.error();
-            }
-            if ((ImGui::IsKeyPressed(GLFW_KEY_T, false) || (args.truthAtStart && frame == 1)) && drawn) {
-                const core::Status s =
-                    truth.start(**measurer, drawn->camera, drawn->light, drawn->setup, drawn->settings);
-                message = s ? "evaluating against truth ..." : s.error();
+    // Mouse (unless ImGui has it): looking, orbiting, the wheel, Shift + drag moves the sun.
+    void mouse(const ImGuiIO& io) {
+        if (glfwGetMouseButton(glfw, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS &&
+            (io.MouseDelta.x != 0.0f || io.MouseDelta.y != 0.0f)) {
+            if (debugView)
+                debug.turn(io.MouseDelta.x, io.MouseDelta.y);
+            else if (orbiting)
+                camera.orbit(io.MouseDelta.x, io.MouseDelta.y, orbitTarget);
+            else
+                camera.turn(io.MouseDelta.x, io.MouseDelta.y);
+        }
+        if (io.MouseWheel != 0.0f) {
+            const double factor = std::pow(1.25, static_cast<double>(io.MouseWheel));
+            if (orbiting) {
+                // Orbit: the wheel moves in and out.
+                orbitDistance = std::max(0.5, orbitDistance / factor);
+                camera.wsEye = orbitTarget - orbitDistance * camera.wsDirection();
+            } else {
+                camera.metresPerSecond *= factor;
             }
         }
-        if (!io.WantCaptureMouse) {
-            if (glfwGetMouseButton(glfw, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS &&
-                (io.MouseDelta.x != 0.0f || io.MouseDelta.y != 0.0f)) {
-                if (debugView)
-                    debug.turn(io.MouseDelta.x, io.MouseDelta.y);
-                else if (orbiting)
-                    camera.orbit(io.MouseDelta.x, io.MouseDelta.y, orbitTarget);
-                else
-                    camera.turn(io.MouseDelta.x, io.MouseDelta.y);
-            }
-            if (io.MouseWheel != 0.0f) {
-                const double factor = std::pow(1.25, static_cast<double>(io.MouseWheel));
-                if (orbiting) {
-                    // Orbit: the wheel moves in and out.
-                    orbitDistance = std::max(0.5, orbitDistance / factor);
-                    camera.wsEye = orbitTarget - orbitDistance * camera.wsDirection();
-                } else {
-                    camera.metresPerSecond *= factor;
-                }
-            }
-            // Shift + left drag: the sun (0.25° per pixel), as the panel's angles.
-            if (io.KeyShift && glfwGetMouseButton(glfw, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS && drawn &&
-                (io.MouseDelta.x != 0.0f || io.MouseDelta.y != 0.0f)) {
-                const core::Vec3 towards = drawn->light.wsTowardsLight();
-                const double elevation =
-                    glm::degrees(std::asin(std::clamp(towards.y, -1.0, 1.0))) - 0.25 * io.MouseDelta.y;
-                const double azimuth = core::azimuthDegreesOf(towards) + 0.25 * io.MouseDelta.x;
-                state["sun-elevation"] = {fmt::format("{:.4g}", std::clamp(elevation, 1.0, 89.0))};
-                state["sun-azimuth"] = {fmt::format("{:.4g}", std::fmod(azimuth + 360.0, 360.0))};
-                state.erase("sun");
-                dirty = true;
-            }
+        // Shift + left drag: the sun (0.25° per pixel), as the panel's angles.
+        if (io.KeyShift && glfwGetMouseButton(glfw, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS && drawn &&
+            (io.MouseDelta.x != 0.0f || io.MouseDelta.y != 0.0f)) {
+            const core::Vec3 towards = drawn->light.wsTowardsLight();
+            const double elevation = glm::degrees(std::asin(std::clamp(towards.y, -1.0, 1.0))) - 0.25 * io.MouseDelta.y;
+            const double azimuth = core::azimuthDegreesOf(towards) + 0.25 * io.MouseDelta.x;
+            state["sun-elevation"] = {fmt::format("{:.4g}", std::clamp(elevation, 1.0, 89.0))};
+            state["sun-azimuth"] = {fmt::format("{:.4g}", std::fmod(azimuth + 360.0, 360.0))};
+            state.erase("sun");
+            dirty = true;
         }
+    }
+
+    void advanceTime(double seconds) {
         // Time: movers, the sun path and the camera path at sceneTime (as `render --time`).
         if (playing) sceneTime += seconds;
         const app::Timeline* timeline = frames.timeline();
@@ -269,14 +250,16 @@ int run(const ViewerArgs& args, app::StateOptions state) {
         if (sceneTime != animatedTime) {
             std::vector<uint32_t> moved;
             scene::animate(world, sceneTime, &moved);
-            if (auto s = (*measurer)->moveInstances(world, moved); !s) message = s.error();
+            if (auto s = measurer.moveInstances(world, moved); !s) message = s.error();
             animatedTime = sceneTime;
         }
+    }
 
+    // The frame itself: the state file's camera, size and time, the options when they changed,
+    // then the frame driver; the debug camera and wireframes over it.
+    void drawFrame(int frame, int width, int height) {
         // What the state file saves of the frame (Ctrl+S; render --state draws it): camera, window
         // size, time. Typed into the frame below, not parsed: only the panel's options are.
-        int width = 0, height = 0;
-        glfwGetFramebufferSize(glfw, &width, &height);
         if (width > 0 && height > 0) {
             state["eye"] = {vec3Text(camera.wsEye)};
             state["dir"] = {vec3Text(camera.wsDirection())};
@@ -327,11 +310,15 @@ int run(const ViewerArgs& args, app::StateOptions state) {
                     hasLocalMaps = local.width > 0;
                     localMapsImage.upload(local);
                 }
-                optionsError.clear();
+                frameError.clear();
             } else {
-                optionsError = app::withFlagName(frameDrawn.errorInfo()).message;
+                frameError = app::withFlagName(frameDrawn.errorInfo()).message;
             }
         }
+    }
+
+    // The truth job's result, when one arrives.
+    void pollTruth(int frame) {
         // --frames with --truth: the last frame waits for the evaluation.
         if (args.frames > 0 && frame == args.frames - 1)
             while (truth.running() && !truth.ready()) std::this_thread::sleep_for(std::chrono::milliseconds(20));
@@ -352,107 +339,157 @@ int run(const ViewerArgs& args, app::StateOptions state) {
                 message = result->error();
             }
         }
+    }
 
-        if (showPanel) {
-            ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
-            ImGui::SetNextWindowSize(ImVec2(340, static_cast<float>(height) - 20.0f), ImGuiCond_FirstUseEver);
-            ImGui::Begin("shadowkit");
-            if (drawn) {
-                const gl::FrameStats& st = drawn->stats;
-                ImGui::Text("%s  %dx%d  map %d", core::techniqueName(drawn->setup.technique).data(),
-                            drawn->settings.width, drawn->settings.height, drawn->setup.mapSize);
-                ImGui::Text("set-up %.3f ms CPU   culling %.1f ms", drawn->setupMs, st.cullMilliseconds);
-                for (const auto& [name, pass] :
-                     {std::pair{"shadow", &st.shadow}, {"local ", &st.local}, {"main  ", &st.main}})
-                    ImGui::Text("%s %7.2f ms GPU  %6.3f M tris  %zu inst  %zu draws", name, pass->gpuMilliseconds,
-                                static_cast<double>(pass->triangles) * 1e-6, pass->instances, pass->drawCalls);
-                if (drawn->settings.culling == gl::Culling::Occlusion)
-                    ImGui::Text("CHC++  %zu nodes visited, %zu queries, %zu waits",
-                                static_cast<size_t>(st.occlusion.nodesVisited),
-                                static_cast<size_t>(st.occlusion.queriesIssued),
-                                static_cast<size_t>(st.occlusion.waits));
-                if (st.localMaps + st.skippedFaces > 0)
-                    ImGui::Text("local lights  %d maps, %d cube faces skipped", st.localMaps, st.skippedFaces);
-                ImGui::PlotLines("frame ms", frameMs.data(), static_cast<int>(frameMs.size()),
-                                 static_cast<int>(frameIndex % frameMs.size()), nullptr, 0.0f, FLT_MAX, ImVec2(0, 40));
-            }
-            if (truth.running()) ImGui::ProgressBar(static_cast<float>(truth.progress()), ImVec2(-1, 0), "truth");
-            if (truthFigures)
-                ImGui::Text("truth: wrong %.2f %% (shadow %.2f, lit %.2f)  ppt50 %.2f", truthFigures->wrongPct,
-                            truthFigures->falseShadowPct, truthFigures->falseLitPct, truthFigures->pixelsPerTexelP50);
-            for (const auto& [name, f] : truthPerLight)
-                ImGui::Text("  %-9s wrong %.2f %%  ppt50 %.2f", name.c_str(), f.wrongPct, f.pixelsPerTexelP50);
-            if (!optionsError.empty()) ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", optionsError.c_str());
-            if (!message.empty()) ImGui::TextWrapped("%s", message.c_str());
-            PanelDefaults defaults;
-            if (drawn) {
-                const core::Vec3 towards = drawn->light.wsTowardsLight();
-                defaults.sunElevationDegrees = glm::degrees(std::asin(std::clamp(towards.y, -1.0, 1.0)));
-                defaults.sunAzimuthDegrees = core::azimuthDegreesOf(towards);
-                const core::BiasSettings bias = gl::biasFor(drawn->setup, drawn->settings);
-                defaults.biasSlope = bias.slope, defaults.biasConstant = bias.constant,
-                defaults.normalOffset = bias.normalOffset;
-            }
-            dirty |= drawOptionsPanel(state, defaults);
-            if (ImGui::CollapsingHeader("Time", ImGuiTreeNodeFlags_DefaultOpen)) {
-                ImGui::Checkbox("play (Space)", &playing);
-                const double end = frames.timeline() && frames.timeline()->path && frames.timeline()->frames.size() > 1
-                                       ? frames.timeline()->frames.back().time
-                                       : 120.0;
-                float t = static_cast<float>(sceneTime);
-                if (ImGui::SliderFloat("time (s)", &t, 0.0f, static_cast<float>(end), "%.2f")) sceneTime = t;
-                if (frames.timeline() && frames.timeline()->path)
-                    ImGui::TextUnformatted("camera path: the camera follows it");
-            }
-            if (ImGui::CollapsingHeader("Wireframes", ImGuiTreeNodeFlags_DefaultOpen)) {
-                ImGui::Checkbox("frustum (white), B (green), maps (orange)", &wireframes);
-                if (ImGui::Checkbox("debug camera (C)", &debugView))
-                    debugPlaced = false, wireframes = wireframes || debugView;
-            }
-            ImGui::End();
-            // The insets, on the right: the shadow map(s) and, after T, the error and
-            // pixels-per-texel maps of the evaluated frame.
-            ImGui::SetNextWindowPos(ImVec2(static_cast<float>(width) - 290.0f, 10.0f), ImGuiCond_FirstUseEver);
-            ImGui::Begin("maps", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
-            ImGui::TextUnformatted("shadow map (near the light bright)");
-            shadowMapImage.draw(260.0f);
-            if (hasLocalMaps) {
-                ImGui::TextUnformatted("spot maps, cubes unfolded");
-                localMapsImage.draw(260.0f);
-            }
-            if (truthFigures) {
-                ImGui::TextUnformatted("error: red false shadow, blue false lit");
-                errorImage.draw(260.0f);
-                ImGui::TextUnformatted("pixels per texel");
-                aliasingImage.draw(260.0f);
-            }
-            ImGui::End();
+    // The options panel with the frame's figures, and the map insets.
+    void panels(int width, int height) {
+        ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
+        ImGui::SetNextWindowSize(ImVec2(340, static_cast<float>(height) - 20.0f), ImGuiCond_FirstUseEver);
+        ImGui::Begin("shadowkit");
+        if (drawn) {
+            const gl::FrameStats& st = drawn->stats;
+            ImGui::Text("%s  %dx%d  map %d", core::techniqueName(drawn->setup.technique).data(), drawn->settings.width,
+                        drawn->settings.height, drawn->setup.mapSize);
+            ImGui::Text("set-up %.3f ms CPU   culling %.1f ms", drawn->setupMs, st.cullMilliseconds);
+            for (const auto& [name, pass] :
+                 {std::pair{"shadow", &st.shadow}, {"local ", &st.local}, {"main  ", &st.main}})
+                ImGui::Text("%s %7.2f ms GPU  %6.3f M tris  %zu inst  %zu draws", name, pass->gpuMilliseconds,
+                            static_cast<double>(pass->triangles) * 1e-6, pass->instances, pass->drawCalls);
+            if (drawn->settings.culling == gl::Culling::Occlusion)
+                ImGui::Text("CHC++  %zu nodes visited, %zu queries, %zu waits",
+                            static_cast<size_t>(st.occlusion.nodesVisited),
+                            static_cast<size_t>(st.occlusion.queriesIssued), static_cast<size_t>(st.occlusion.waits));
+            if (st.localMaps + st.skippedFaces > 0)
+                ImGui::Text("local lights  %d maps, %d cube faces skipped", st.localMaps, st.skippedFaces);
+            ImGui::PlotLines("frame ms", frameMs.data(), static_cast<int>(frameMs.size()),
+                             static_cast<int>(frameIndex % frameMs.size()), nullptr, 0.0f, FLT_MAX, ImVec2(0, 40));
         }
+        if (truth.running()) ImGui::ProgressBar(static_cast<float>(truth.progress()), ImVec2(-1, 0), "truth");
+        if (truthFigures)
+            ImGui::Text("truth: wrong %.2f %% (shadow %.2f, lit %.2f)  ppt50 %.2f", truthFigures->wrongPct,
+                        truthFigures->falseShadowPct, truthFigures->falseLitPct, truthFigures->pixelsPerTexelP50);
+        for (const auto& [name, f] : truthPerLight)
+            ImGui::Text("  %-9s wrong %.2f %%  ppt50 %.2f", name.c_str(), f.wrongPct, f.pixelsPerTexelP50);
+        for (const std::string* error : {&optionsError, &frameError})
+            if (!error->empty()) ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", error->c_str());
+        if (!message.empty()) ImGui::TextWrapped("%s", message.c_str());
+        PanelDefaults defaults;
+        if (drawn) {
+            const core::Vec3 towards = drawn->light.wsTowardsLight();
+            defaults.sunElevationDegrees = glm::degrees(std::asin(std::clamp(towards.y, -1.0, 1.0)));
+            defaults.sunAzimuthDegrees = core::azimuthDegreesOf(towards);
+            const core::BiasSettings bias = gl::biasFor(drawn->setup, drawn->settings);
+            defaults.biasSlope = bias.slope, defaults.biasConstant = bias.constant,
+            defaults.normalOffset = bias.normalOffset;
+        }
+        dirty |= drawOptionsPanel(state, defaults);
+        if (ImGui::CollapsingHeader("Time", ImGuiTreeNodeFlags_DefaultOpen)) {
+            ImGui::Checkbox("play (Space)", &playing);
+            const double end = frames.timeline() && frames.timeline()->path && frames.timeline()->frames.size() > 1
+                                   ? frames.timeline()->frames.back().time
+                                   : 120.0;
+            float t = static_cast<float>(sceneTime);
+            if (ImGui::SliderFloat("time (s)", &t, 0.0f, static_cast<float>(end), "%.2f")) sceneTime = t;
+            if (frames.timeline() && frames.timeline()->path)
+                ImGui::TextUnformatted("camera path: the camera follows it");
+        }
+        if (ImGui::CollapsingHeader("Wireframes", ImGuiTreeNodeFlags_DefaultOpen)) {
+            ImGui::Checkbox("frustum (white), B (green), maps (orange)", &wireframes);
+            if (ImGui::Checkbox("debug camera (C)", &debugView))
+                debugPlaced = false, wireframes = wireframes || debugView;
+        }
+        ImGui::End();
+        // The insets, on the right: the shadow map(s) and, after T, the error and
+        // pixels-per-texel maps of the evaluated frame.
+        ImGui::SetNextWindowPos(ImVec2(static_cast<float>(width) - 290.0f, 10.0f), ImGuiCond_FirstUseEver);
+        ImGui::Begin("maps", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+        ImGui::TextUnformatted("shadow map (near the light bright)");
+        shadowMapImage.draw(260.0f);
+        if (hasLocalMaps) {
+            ImGui::TextUnformatted("spot maps, cubes unfolded");
+            localMapsImage.draw(260.0f);
+        }
+        if (truthFigures) {
+            ImGui::TextUnformatted("error: red false shadow, blue false lit");
+            errorImage.draw(260.0f);
+            ImGui::TextUnformatted("pixels per texel");
+            aliasingImage.draw(260.0f);
+        }
+        ImGui::End();
+    }
+};
+
+int run(const ViewerArgs& args, app::StateOptions state) {
+    auto sceneData = args.options.scene.load();
+    if (!sceneData) return fail(sceneData.errorInfo());
+    scene::Scene& world = *sceneData;
+    auto first = args.options.view.resolve(world);
+    if (!first) return fail(first.errorInfo());
+    auto window = gl::WindowContext::create(first->width, first->height, "shadowkit-viewer");
+    if (!window) return fail(window.errorInfo());
+    auto measurer = measure::Measurer::create(world);
+    if (!measurer) return fail(measurer.errorInfo());
+    GLFWwindow* glfw = (*window)->window();
+
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    ImGui::GetIO().IniFilename = nullptr; // no imgui.ini beside the user's files
+    ImGui_ImplGlfw_InitForOpenGL(glfw, true);
+    ImGui_ImplOpenGL3_Init("#version 450 core");
+
+    Viewer v{args, std::move(state), world, **measurer, (*measurer)->renderer(), glfw, first->camera.fovYDegrees};
+    v.camera = FlyCamera::looking(first->camera.wsEye, first->camera.wsDirection);
+    v.wireframes = args.wireframes;
+    v.sceneTime = args.options.timeline.time.value_or(0.0);
+    auto previous = std::chrono::steady_clock::now();
+    const auto loopStart = previous;
+    for (int frame = 0; !glfwWindowShouldClose(glfw) && (args.frames == 0 || frame < args.frames); ++frame) {
+        glfwPollEvents();
+        const auto now = std::chrono::steady_clock::now();
+        const double seconds = std::chrono::duration<double>(now - previous).count();
+        previous = now;
+        v.frameMs[v.frameIndex++ % v.frameMs.size()] = static_cast<float>(seconds * 1e3);
+
+        ImGui_ImplOpenGL3_NewFrame();
+        ImGui_ImplGlfw_NewFrame();
+        ImGui::NewFrame();
+        const ImGuiIO& io = ImGui::GetIO();
+        if (!io.WantCaptureKeyboard) v.keyboard(io, frame, seconds);
+        if (!io.WantCaptureMouse) v.mouse(io);
+        v.advanceTime(seconds);
+        int width = 0, height = 0;
+        glfwGetFramebufferSize(glfw, &width, &height);
+        v.drawFrame(frame, width, height);
+        v.pollTruth(frame);
+        if (v.showPanel) v.panels(width, height);
+
         ImGui::Render();
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
         glViewport(0, 0, width, height);
         glClearColor(0, 0, 0, 1);
         glClear(GL_COLOR_BUFFER_BIT);
-        renderer.present(width, height);
+        v.renderer.present(width, height);
         ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
         if (!args.windowShot.empty() && args.frames > 0 && frame == args.frames - 1)
-            if (auto s = scene::writePng(readWindow(width, height), args.windowShot); !s) message = s.error();
+            if (auto s = scene::writePng(readWindow(width, height), args.windowShot); !s) v.message = s.error();
         glfwSwapBuffers(glfw);
     }
     // --frames: the last frame as `render --state` draws it (no panel), and the options.
     int rc = 0;
     if (!args.screenshot.empty() && args.frames > 0) {
-        if (!drawn)
-            rc = fail("--screenshot: no frame was drawn" + (optionsError.empty() ? "" : ": " + optionsError));
-        else if (auto s = scene::writePng(renderer.readColor(), args.screenshot); !s)
+        if (!v.drawn)
+            rc = fail("--screenshot: no frame was drawn" + (v.frameError.empty() ? "" : ": " + v.frameError) +
+                      (v.optionsError.empty() ? "" : ": " + v.optionsError));
+        else if (auto s = scene::writePng(v.renderer.readColor(), args.screenshot); !s)
             rc = fail("--screenshot: " + s.error());
-        if (auto s = app::saveState(state, args.saveState); !s) rc = fail("--save-state: " + s.error());
+        if (auto s = app::saveState(v.state, args.saveState); !s) rc = fail("--save-state: " + s.error());
     }
-    if (truthFigures)
+    if (v.truthFigures)
         fmt::print("truth: wrong {:.2f} % of {} valid pixels, {} drawn in shadow where truth has shadow\n",
-                   truthFigures->wrongPct, truthFigures->validPx, shadowedRight);
+                   v.truthFigures->wrongPct, v.truthFigures->validPx, v.shadowedRight);
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - loopStart).count();
-    fmt::print("drew {} frames in {:.2f} s: {:.1f} frames/s\n", drawnFrames, wall, drawnFrames / std::max(wall, 1e-9));
+    fmt::print("drew {} frames in {:.2f} s: {:.1f} frames/s\n", v.drawnFrames, wall,
+               v.drawnFrames / std::max(wall, 1e-9));
     ImGui_ImplOpenGL3_Shutdown();
     ImGui_ImplGlfw_Shutdown();
     ImGui::DestroyContext();
