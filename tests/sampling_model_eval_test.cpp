@@ -6,7 +6,7 @@
 #include "test_scenes.h"
 
 #include "shadowkit/core/sampling_error.h"
-#include "shadowkit/gl/receiver_samples.h"
+#include "shadowkit/frame/frame_driver.h"
 #include "shadowkit/measure/measurer.h"
 #include "shadowkit/scene/views.h"
 
@@ -39,7 +39,7 @@ TEST_F(SamplingModelEvalTest, PredictedPercentilesAgreeWithEvalWithinTenPercent)
             .camera = view.camera, .light = view.light, .wsSceneBounds = bounds, .mapSize = 1024};
         inputs.camera.aspect = 16.0 / 9.0;
         auto samples =
-            gl::sampleReceivers((*measurer)->renderer(), inputs, settings, {.width = 160, .maxSamples = 4096});
+            frame::sampleReceivers((*measurer)->renderer(), inputs, settings, {.width = 160, .maxSamples = 4096});
         ASSERT_TRUE(samples) << samples.error();
         ASSERT_GT(samples->size(), 500u) << name;
         auto model = core::SamplingErrorModel::create(inputs.camera, settings.width, settings.height, *samples);

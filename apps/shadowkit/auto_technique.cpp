@@ -1,7 +1,6 @@
 #include "auto_technique.h"
 
 #include "shadowkit/gl/context.h"
-#include "shadowkit/gl/receiver_samples.h"
 
 #include <fmt/format.h>
 
@@ -33,7 +32,7 @@ core::Status printAutoCandidates(const SceneOptions& sceneOptions, const ViewOpt
     gl::RenderSettings settings;
     settings.width = view->width;
     settings.height = view->height;
-    auto samples = gl::sampleReceivers(**renderer, *base, settings);
+    auto samples = frame::sampleReceivers(**renderer, *base, settings);
     if (!samples) return samples.errorInfo();
     auto model = core::SamplingErrorModel::create(base->camera, settings.width, settings.height, *samples);
     if (!model) return model.errorInfo();

@@ -1,7 +1,5 @@
 #include "shadowkit/frame/frame_driver.h"
 
-#include "shadowkit/gl/receiver_samples.h"
-
 #include <chrono>
 #include <utility>
 
@@ -68,7 +66,7 @@ core::Result<PreparedFrame> FrameDriver::prepare(gl::Renderer& renderer, const s
 
     // 3. Auto: receivers, then the choice; the bias follows the chosen technique.
     if (m_chooser) {
-        auto samples = gl::sampleReceivers(renderer, f.inputs, f.settings);
+        auto samples = sampleReceivers(renderer, f.inputs, f.settings);
         if (!samples) return samples.errorInfo();
         ++f.prePasses.submissions, ++f.prePasses.readBacks;
         const auto start = std::chrono::steady_clock::now();
@@ -89,6 +87,18 @@ core::Result<PreparedFrame> FrameDriver::prepare(gl::Renderer& renderer, const s
     f.setup = std::move(setup).value();
     if (m_hysteresis) f.refits = m_hysteresis->lastRefits();
     return f;
+}
+
+core::Result<std::vector<core::ReceiverSample>> sampleReceivers(gl::Renderer& renderer,
+                                                                const core::ShadowSetupInputs& inputs,
+                                                                const gl::RenderSettings& settings,
+                                                                const gl::ReceiverSampling& sampling) {
+    core::ShadowSetupInputs cheapest = inputs;
+    cheapest.technique = core::Technique::Standard;
+    cheapest.mapSize = 64;
+    auto setup = core::computeShadowSetup(cheapest);
+    if (!setup) return setup.errorInfo();
+    return gl::sampleReceivers(renderer, inputs.camera, inputs.light, *setup, settings, sampling);
 }
 
 core::Result<DrawnFrame> FrameDriver::draw(gl::Renderer& renderer, const scene::ResolvedView& view) {

@@ -8,17 +8,12 @@
 
 namespace shadowkit::gl {
 
-core::Result<std::vector<core::ReceiverSample>> sampleReceivers(Renderer& renderer,
-                                                                const core::ShadowSetupInputs& inputs,
-                                                                const RenderSettings& settings,
-                                                                const ReceiverSampling& sampling) {
+core::Result<std::vector<core::ReceiverSample>>
+sampleReceivers(Renderer& renderer, const core::PerspectiveCamera& camera, const core::DirectionalLight& light,
+                const core::ShadowSetup& shadowSetup, const RenderSettings& settings,
+                const ReceiverSampling& sampling) {
     if (sampling.width < 1)
         return core::fieldError("sampling.width", "must be >= 1, got " + std::to_string(sampling.width));
-    core::ShadowSetupInputs cheapest = inputs;
-    cheapest.technique = core::Technique::Standard;
-    cheapest.mapSize = 64;
-    auto setup = core::computeShadowSetup(cheapest);
-    if (!setup) return setup.errorInfo();
     RenderSettings small = settings;
     small.width = std::min(sampling.width, settings.width);
     small.height = std::max(1, static_cast<int>(std::lround(double(small.width) * settings.height / settings.width)));
@@ -28,9 +23,9 @@ core::Result<std::vector<core::ReceiverSample>> sampleReceivers(Renderer& render
     // The same levels of detail as the frame: a geometric error is fewer pixels of the
     // smaller image, so the bound shrinks with it (else coarser meshes, other normals).
     small.lodPixelError = settings.lodPixelError * float(small.width) / float(settings.width);
-    auto raster = renderer.renderEvalBuffers(inputs.camera, inputs.light, *setup, small);
+    auto raster = renderer.renderEvalBuffers(camera, light, shadowSetup, small);
     if (!raster) return raster.errorInfo();
-    return core::receiverSamples(*raster, inputs.camera, inputs.light, sampling.maxSamples);
+    return core::receiverSamples(*raster, camera, light, sampling.maxSamples);
 }
 
 } // namespace shadowkit::gl

@@ -18,10 +18,12 @@
 #include "shadowkit/core/result.h"
 #include "shadowkit/core/setup_hysteresis.h"
 #include "shadowkit/frame/frame_config.h"
+#include "shadowkit/gl/receiver_samples.h"
 #include "shadowkit/gl/renderer.h"
 #include "shadowkit/scene/views.h"
 
 #include <optional>
+#include <vector>
 
 namespace shadowkit::frame {
 
@@ -76,5 +78,13 @@ private:
     std::optional<core::SetupHysteresis> m_hysteresis;
     std::optional<core::AutoChooser> m_chooser;
 };
+
+// The receivers `inputs`' camera sees (gl::sampleReceivers), drawn with the cheapest shadow
+// pass there is — a `standard` map of 64² texels, of which nothing is read — at the sampling's
+// low resolution: what auto's choice is made from (step 3), and `analyze --candidates`.
+core::Result<std::vector<core::ReceiverSample>> sampleReceivers(gl::Renderer& renderer,
+                                                                const core::ShadowSetupInputs& inputs,
+                                                                const gl::RenderSettings& settings,
+                                                                const gl::ReceiverSampling& sampling = {});
 
 } // namespace shadowkit::frame

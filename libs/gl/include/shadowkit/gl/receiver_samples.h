@@ -18,13 +18,14 @@ struct ReceiverSampling {
     size_t maxSamples = 4096; // receivers kept, spread evenly over those facing the light
 };
 
-// The camera's view of `inputs` drawn at ReceiverSampling::width with `settings` (its culling
-// and level of detail; filters, blur and receiver masks off), its depth and normals read
-// back, and core::receiverSamples taken from them. The shadow pass it needs to draw is the
-// cheapest there is (a `standard` map of 64² texels): nothing of it is read.
-core::Result<std::vector<core::ReceiverSample>> sampleReceivers(Renderer& renderer,
-                                                                const core::ShadowSetupInputs& inputs,
-                                                                const RenderSettings& settings,
-                                                                const ReceiverSampling& sampling = {});
+// `camera`'s view drawn at ReceiverSampling::width with `settings` (its culling and level of
+// detail; filters, blur and receiver masks off), its depth and normals read back, and
+// core::receiverSamples taken from them. The eval pass draws `shadowSetup`'s shadow pass, of
+// which nothing is read: the caller picks the cheapest it has (frame::FrameDriver draws a
+// `standard` map of 64² texels).
+core::Result<std::vector<core::ReceiverSample>>
+sampleReceivers(Renderer& renderer, const core::PerspectiveCamera& camera, const core::DirectionalLight& light,
+                const core::ShadowSetup& shadowSetup, const RenderSettings& settings,
+                const ReceiverSampling& sampling = {});
 
 } // namespace shadowkit::gl
