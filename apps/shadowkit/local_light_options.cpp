@@ -51,11 +51,10 @@ void LocalLightOptions::addTo(CLI::App& cmd, bool withMaps) {
     cmd.add_option("--local-pass", pass,
                    "how a point light's cube faces are drawn: layered (one pass: vertex-layer where "
                    "the driver has it, else geometry), vertex-layer, geometry, per-face (six passes)")
-        ->transform(
-            CLI::CheckedTransformer(std::map<std::string, gl::LocalPass>{{"layered", gl::LocalPass::Layered},
-                                                                         {"vertex-layer", gl::LocalPass::VertexLayer},
-                                                                         {"geometry", gl::LocalPass::Geometry},
-                                                                         {"per-face", gl::LocalPass::PerFace}}))
+        ->transform(choice(Choices<gl::LocalPass>{{"layered", gl::LocalPass::Layered},
+                                                  {"vertex-layer", gl::LocalPass::VertexLayer},
+                                                  {"geometry", gl::LocalPass::Geometry},
+                                                  {"per-face", gl::LocalPass::PerFace}}))
         ->default_str("layered");
     cmd.add_option("--local-bias-slope", bias.slopeTexels,
                    "local lights: slope-scaled bias in texels at the receiver's distance")

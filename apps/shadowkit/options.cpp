@@ -234,28 +234,6 @@ constexpr std::pair<std::string_view, std::string_view> kFlagOfField[] = {
     {"local_bias.constant", "--local-bias-constant"},
 };
 
-// A CLI11 transform from a name to an enum value: the names appear in --help as the
-// option's type ("standard|focused|..."), and anything else is a one-line error naming the
-// flag and the choices.
-template <class T>
-using Choices = std::vector<std::pair<std::string, T>>;
-
-template <class T>
-CLI::Validator choice(Choices<T> choices) {
-    std::string names;
-    for (const auto& [name, value] : choices) names += (names.empty() ? "" : "|") + name;
-    return CLI::Validator(
-        [choices, names](std::string& text) -> std::string {
-            for (const auto& [name, value] : choices)
-                if (text == name) {
-                    text = std::to_string(static_cast<int>(value)); // what CLI11 converts to the enum
-                    return {};
-                }
-            return "expected " + names + ", got '" + text + "'";
-        },
-        names);
-}
-
 Choices<core::Technique> techniqueChoices() {
     Choices<core::Technique> choices;
     for (const core::TechniqueInfo& info : core::allTechniques()) choices.emplace_back(info.name, info.technique);
@@ -263,6 +241,24 @@ Choices<core::Technique> techniqueChoices() {
 }
 
 } // namespace
+
+std::vector<std::string> choicesOf(CLI::App& cmd, const std::string& flag) {
+    CLI::Option* option = cmd.get_option_no_throw(flag);
+    if (!option) return {};
+    try {
+        std::vector<std::string> names;
+        std::stringstream list(option->get_validator(kChoicesValidator)->get_description());
+        for (std::string name; std::getline(list, name, '|');) names.push_back(name);
+        return names;
+    } catch (const CLI::OptionNotFound&) {
+        return {}; // not an enumerated option
+    }
+}
+
+std::string defaultOf(CLI::App& cmd, const std::string& flag) {
+    const CLI::Option* option = cmd.get_option_no_throw(flag);
+    return option ? option->get_default_str() : std::string();
+}
 
 core::Error withFlagName(const core::Error& error) {
     for (const auto& [field, flag] : kFlagOfField)

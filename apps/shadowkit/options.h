@@ -130,6 +130,36 @@ struct RenderOptions {
     core::Status check() const;
 };
 
+// A CLI11 transform from a name to an enum value: the names appear in --help as the
+// option's type ("standard|focused|..."), and anything else is a one-line error naming the
+// flag and the choices.
+template <class T>
+using Choices = std::vector<std::pair<std::string, T>>;
+
+inline constexpr const char* kChoicesValidator = "choices"; // the name choicesOf() finds them by
+
+template <class T>
+CLI::Validator choice(Choices<T> choices) {
+    std::string names;
+    for (const auto& [name, value] : choices) names += (names.empty() ? "" : "|") + name;
+    return CLI::Validator(
+        [choices, names](std::string& text) -> std::string {
+            for (const auto& [name, value] : choices)
+                if (text == name) {
+                    text = std::to_string(static_cast<int>(value)); // what CLI11 converts to the enum
+                    return {};
+                }
+            return "expected " + names + ", got '" + text + "'";
+        },
+        names, kChoicesValidator);
+}
+
+// The names an enumerated option registered on `cmd` takes ("--cull" -> auto, back, front, none),
+// as its registration lists them for parsing and --help; empty for other options. With
+// defaultOf (the default --help shows), the one table the viewer's panel builds its lists from.
+std::vector<std::string> choicesOf(CLI::App& cmd, const std::string& flag);
+std::string defaultOf(CLI::App& cmd, const std::string& flag);
+
 // A library error, with its field spelt as the flag that sets it ("lispsm.weight: must be
 // > 0" -> "--lispsm-weight: must be > 0"); errors without a known field are kept as they are.
 core::Error withFlagName(const core::Error& error);

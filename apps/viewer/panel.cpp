@@ -1,5 +1,7 @@
 #include "panel.h"
 
+#include "frame_options.h"
+
 #include "shadowkit/core/shadow_setup.h"
 
 #include <imgui.h>
@@ -9,7 +11,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdlib>
-#include <span>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -25,13 +27,13 @@ std::string valueOf(const StateOptions& s, const std::string& name, const std::s
 
 void set(StateOptions& s, const std::string& name, const std::string& value) { s[name] = {value}; }
 
-bool combo(StateOptions& s, const char* label, const char* name, std::span<const char* const> choices,
-           const char* fallback) {
+template <class Choices>
+bool combo(StateOptions& s, const char* label, const char* name, const Choices& choices, const std::string& fallback) {
     const std::string current = valueOf(s, name, fallback);
     bool changed = false;
     if (ImGui::BeginCombo(label, current.c_str())) {
-        for (const char* choice : choices)
-            if (ImGui::Selectable(choice, current == choice)) {
+        for (const std::string choice : choices)
+            if (ImGui::Selectable(choice.c_str(), current == choice)) {
                 set(s, name, choice);
                 changed = true;
             }
@@ -66,31 +68,31 @@ bool checkbox(StateOptions& s, const char* label, const char* name) {
     return true;
 }
 
-// Every technique core has, then auto (the family chosen per frame); names and defaults come
-// from core, so a technique added there appears here.
-const std::vector<const char*>& techniqueChoices() {
-    static const std::vector<const char*> names = [] {
-        std::vector<const char*> out;
-        for (const core::TechniqueInfo& t : core::allTechniques()) out.push_back(t.name.data());
-        out.push_back("auto");
-        return out;
+// The options' own registration — FrameOptions::addTo, the groups `render` parses — from which
+// every enumerated option's list and default come (app::choicesOf, app::defaultOf): a technique
+// core adds, or a choice a flag gains, appears here without an edit.
+CLI::App& registry() {
+    static FrameOptions options;
+    static const std::unique_ptr<CLI::App> app = [] {
+        auto cmd = std::make_unique<CLI::App>("viewer panel");
+        options.addTo(*cmd);
+        return cmd;
     }();
-    return names;
+    return *app;
 }
-const std::string kDefaultTechnique(core::techniqueName(core::defaultTechnique()));
-const std::string kDefaultMapSize = std::to_string(core::ShadowSetupInputs{}.mapSize);
+
+// A combo box for an enumerated option, its list and default as the command line has them.
+bool choiceCombo(StateOptions& s, const char* label, const char* name) {
+    const std::string flag = std::string("--") + name;
+    return combo(s, label, name, app::choicesOf(registry(), flag), app::defaultOf(registry(), flag));
+}
+std::string defaultOf(const char* name) { return app::defaultOf(registry(), std::string("--") + name); }
+// The default of a numeric option, as the slider's value while the state does not set it.
+float numberOf(const char* name) { return std::stof(defaultOf(name)); }
+
 constexpr std::array kTexelBudgets = {"1M", "4M", "16M", "32M"};
 constexpr std::array kMapSizes = {"256", "512", "1024", "2048", "4096", "8192"};
 constexpr std::array kFilters = {"hard", "pcf2", "pcf:3", "pcf:5", "poisson:16", "poisson:32"};
-constexpr std::array kAutoOnOff = {"auto", "on", "off"};
-constexpr std::array kCull = {"auto", "back", "front", "none"};
-constexpr std::array kLayouts = {"auto", "hyperbolic", "linear"};
-constexpr std::array kWarps = {"none", "lispsm"};
-constexpr std::array kFormulas = {"scherzer", "paper"};
-constexpr std::array kDirections = {"cross", "middle"};
-constexpr std::array kVisibility = {"off", "frustum", "chc"};
-constexpr std::array kCasterCulling = {"volume", "receivers"};
-constexpr std::array kLocalPasses = {"layered", "vertex-layer", "geometry", "per-face"};
 
 } // namespace
 
@@ -116,14 +118,14 @@ bool drawOptionsPanel(StateOptions& s, const PanelDefaults& d) {
         }
     }
     if (ImGui::CollapsingHeader("Technique", ImGuiTreeNodeFlags_DefaultOpen)) {
-        changed |= combo(s, "technique", "technique", techniqueChoices(), kDefaultTechnique.c_str());
-        changed |= combo(s, "map size", "map-size", kMapSizes, kDefaultMapSize.c_str());
-        const std::string t = valueOf(s, "technique", kDefaultTechnique);
+        changed |= choiceCombo(s, "technique", "technique");
+        changed |= combo(s, "map size", "map-size", kMapSizes, defaultOf("map-size"));
+        const std::string t = valueOf(s, "technique", defaultOf("technique"));
         if (t == "auto") changed |= combo(s, "texel budget", "texel-budget", kTexelBudgets, "4M");
         if (t == "lispsm") {
-            changed |= combo(s, "n formula", "lispsm-formula", kFormulas, "scherzer");
-            changed |= combo(s, "warp axis", "lispsm-direction", kDirections, "cross");
-            changed |= sliderFloat(s, "n weight", "lispsm-weight", 0.1f, 10.0f, 1.0f, true);
+            changed |= choiceCombo(s, "n formula", "lispsm-formula");
+            changed |= choiceCombo(s, "warp axis", "lispsm-direction");
+            changed |= sliderFloat(s, "n weight", "lispsm-weight", 0.1f, 10.0f, numberOf("lispsm-weight"), true);
             // A fixed n replaces the formula while it is set.
             bool fixedN = s.count("lispsm-n") > 0;
             if (ImGui::Checkbox("fixed n", &fixedN)) {
@@ -146,12 +148,10 @@ bool drawOptionsPanel(StateOptions& s, const PanelDefaults& d) {
                 changed = true;
             }
         }
-        if (t == "tsm")
-            changed |=
-                sliderFloat(s, "focus", "tsm-focus", 0.0f, 0.9f, static_cast<float>(core::TsmOptions{}.focusFraction));
+        if (t == "tsm") changed |= sliderFloat(s, "focus", "tsm-focus", 0.0f, 0.9f, numberOf("tsm-focus"));
         if (t == "csm") {
-            changed |= sliderInt(s, "cascades", "cascades", 1, 8, 4);
-            changed |= sliderFloat(s, "lambda", "lambda", 0.0f, 1.0f, 0.9f);
+            changed |= sliderInt(s, "cascades", "cascades", 1, 8, static_cast<int>(numberOf("cascades")));
+            changed |= sliderFloat(s, "lambda", "lambda", 0.0f, 1.0f, numberOf("lambda"));
             // Explicit split distances replace λ while given (Enter applies, empty clears).
             std::array<char, 256> splits{};
             const std::string current = valueOf(s, "splits", "");
@@ -164,34 +164,37 @@ bool drawOptionsPanel(StateOptions& s, const PanelDefaults& d) {
                     set(s, "splits", splits.data());
                 changed = true;
             }
-            changed |= combo(s, "warp", "cascade-warp", kWarps, "none");
-            changed |= sliderFloat(s, "blend band", "blend-band", 0.0f, 0.5f, 0.0f);
+            changed |= choiceCombo(s, "warp", "cascade-warp");
+            changed |= sliderFloat(s, "blend band", "blend-band", 0.0f, 0.5f, numberOf("blend-band"));
         }
         changed |= checkbox(s, "stabilize", "stabilize");
         if (s.count("stabilize") && !(t == "csm" && valueOf(s, "cascade-warp", "none") == "none")) {
-            changed |= sliderFloat(s, "refit margin", "stabilize-margin", 0.0f, 1.0f, 0.05f);
-            changed |= sliderFloat(s, "texel growth", "stabilize-growth", 1.01f, 4.0f, 1.25f);
-            changed |= sliderInt(s, "look-ahead frames", "stabilize-lookahead", 0, 120, 60);
+            changed |= sliderFloat(s, "refit margin", "stabilize-margin", 0.0f, 1.0f, numberOf("stabilize-margin"));
+            changed |= sliderFloat(s, "texel growth", "stabilize-growth", 1.01f, 4.0f, numberOf("stabilize-growth"));
+            changed |= sliderInt(s, "look-ahead frames", "stabilize-lookahead", 0, 120,
+                                 static_cast<int>(numberOf("stabilize-lookahead")));
         }
     }
     if (ImGui::CollapsingHeader("Bias and filter")) {
         changed |= sliderFloat(s, "slope", "bias-slope", 0.0f, 8.0f, f(d.biasSlope));
         changed |= sliderFloat(s, "constant", "bias-constant", 0.0f, 100000.0f, f(d.biasConstant), true);
         changed |= sliderFloat(s, "normal offset", "normal-offset", 0.0f, 4.0f, f(d.normalOffset));
-        changed |= combo(s, "receiver plane", "receiver-plane-bias", kAutoOnOff, "auto");
-        changed |= combo(s, "cull", "cull", kCull, "auto");
-        changed |= combo(s, "depth layout", "depth-layout", kLayouts, "auto");
+        changed |= choiceCombo(s, "receiver plane", "receiver-plane-bias");
+        changed |= choiceCombo(s, "cull", "cull");
+        changed |= choiceCombo(s, "depth layout", "depth-layout");
         if (ImGui::Button("reset to recommended")) {
             for (const char* name :
                  {"bias-slope", "bias-constant", "normal-offset", "receiver-plane-bias", "cull", "depth-layout"})
                 s.erase(name);
             changed = true;
         }
-        changed |= combo(s, "filter", "filter", kFilters, "hard");
-        changed |= sliderInt(s, "blur iterations", "blur-iterations", 0, 16, 0);
+        changed |= combo(s, "filter", "filter", kFilters, defaultOf("filter"));
+        changed |=
+            sliderInt(s, "blur iterations", "blur-iterations", 0, 16, static_cast<int>(numberOf("blur-iterations")));
         if (valueOf(s, "blur-iterations", "0") != "0") {
-            changed |= sliderFloat(s, "blur radius (px)", "blur-radius", 0.1f, 16.0f, 1.5f);
-            changed |= sliderFloat(s, "blur depth falloff", "blur-depth-falloff", 0.0f, 1.0f, 0.05f);
+            changed |= sliderFloat(s, "blur radius (px)", "blur-radius", 0.1f, 16.0f, numberOf("blur-radius"));
+            changed |=
+                sliderFloat(s, "blur depth falloff", "blur-depth-falloff", 0.0f, 1.0f, numberOf("blur-depth-falloff"));
         }
     }
     if (ImGui::CollapsingHeader("Insight", ImGuiTreeNodeFlags_DefaultOpen)) {
@@ -199,14 +202,15 @@ bool drawOptionsPanel(StateOptions& s, const PanelDefaults& d) {
         changed |= checkbox(s, "split colours", "cascade-colors");
     }
     if (ImGui::CollapsingHeader("Visibility")) {
-        changed |= combo(s, "visibility", "visibility", kVisibility, "chc");
-        changed |= combo(s, "caster culling", "caster-culling", kCasterCulling, "receivers");
+        changed |= choiceCombo(s, "visibility", "visibility");
+        changed |= choiceCombo(s, "caster culling", "caster-culling");
     }
     if (ImGui::CollapsingHeader("Spot and point lights")) {
-        changed |= combo(s, "local map size", "local-map-size", kMapSizes, "1024");
-        changed |= combo(s, "cube pass", "local-pass", kLocalPasses, "layered");
-        changed |= sliderFloat(s, "slope (texels)", "local-bias-slope", 0.0f, 8.0f, 1.5f);
-        changed |= sliderFloat(s, "normal offset (texels)", "local-normal-offset", 0.0f, 8.0f, 1.0f);
+        changed |= combo(s, "local map size", "local-map-size", kMapSizes, defaultOf("local-map-size"));
+        changed |= choiceCombo(s, "cube pass", "local-pass");
+        changed |= sliderFloat(s, "slope (texels)", "local-bias-slope", 0.0f, 8.0f, numberOf("local-bias-slope"));
+        changed |= sliderFloat(s, "normal offset (texels)", "local-normal-offset", 0.0f, 8.0f,
+                               numberOf("local-normal-offset"));
     }
     return changed;
 }

@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 using namespace shadowkit;
 
 namespace {
@@ -68,6 +70,38 @@ TEST_F(ViewerFramesTest, OffersAutoAndKeepsTheLastGoodOptionsOnABadOne) {
     auto still = walk(frames, 1); // drawn with the last good options
     ASSERT_TRUE(still);
     EXPECT_TRUE(still->frame.autoChoice);
+}
+
+} // namespace
+
+namespace {
+
+// The panel's lists and defaults come from the options' registration (app::choicesOf,
+// app::defaultOf): the same table `render` parses.
+TEST(OptionTableTest, EnumeratedOptionsListEveryChoiceAndTheLibrariesDefaults) {
+    viewer::FrameOptions options;
+    CLI::App app{"table"};
+    options.addTo(app);
+    const std::vector<std::string> techniques = app::choicesOf(app, "--technique");
+    for (const core::TechniqueInfo& t : core::allTechniques())
+        EXPECT_NE(std::find(techniques.begin(), techniques.end(), std::string(t.name)), techniques.end()) << t.name;
+    EXPECT_EQ(techniques.back(), "auto");
+    EXPECT_EQ(app::defaultOf(app, "--technique"), core::techniqueName(core::defaultTechnique()));
+    EXPECT_EQ(app::choicesOf(app, "--visibility"), (std::vector<std::string>{"off", "frustum", "chc"}));
+    EXPECT_EQ(app::choicesOf(app, "--local-pass"),
+              (std::vector<std::string>{"layered", "vertex-layer", "geometry", "per-face"}));
+    EXPECT_EQ(app::defaultOf(app, "--map-size"), std::to_string(core::ShadowSetupInputs{}.mapSize));
+    EXPECT_EQ(std::stod(app::defaultOf(app, "--tsm-focus")), core::TsmOptions{}.focusFraction);
+    EXPECT_EQ(std::stod(app::defaultOf(app, "--lambda")), core::CascadeOptions{}.lambda);
+    // Every choice listed parses; a number option lists none; an unknown flag is nothing.
+    for (const std::string& c : app::choicesOf(app, "--cull")) {
+        viewer::FrameOptions parsed;
+        CLI::App one{"one"};
+        parsed.addTo(one);
+        EXPECT_NO_THROW(one.parse(std::vector<std::string>{"--cull=" + c})) << c;
+    }
+    EXPECT_TRUE(app::choicesOf(app, "--lambda").empty());
+    EXPECT_TRUE(app::choicesOf(app, "--no-such-flag").empty());
 }
 
 } // namespace

@@ -8,11 +8,19 @@
 //   clip   after a projection; depth in [0,1] (glClipControl(GL_LOWER_LEFT,
 //          GL_ZERO_TO_ONE)): 0 is nearest the eye / the light.
 //   texture (ts) shadow-map coordinates in [0,1]^2, ts = cs.xy * 0.5 + 0.5.
+//   scene  (qs) world translated to a floating origin: q = p - origin, the origin a scene's
+//          scene::Scene::wsOrigin (or a tile's centre). core::rebased re-expresses a set-up
+//          there; libs/gl draws everything in it (float sees numbers of the scene's size).
+//   eye-relative  world translated by -eye (ShadowSetup::wsEye): q = p - eye, what a
+//          camera-relative renderer feeds the *FromEyeRelative matrices.
 //
 // Matrices are glm, column-major, acting on column vectors, and named bFromA:
 //   clipFromWorld = clipFromLight * lightFromWorld.
 // Positions and vectors carry their space as a prefix where it is not obvious:
-//   ws (world), vs (view), ls (light), cs (clip), ts (shadow texture).
+//   ws (world), qs (scene), vs (view), ls (light), cs (clip), ts (shadow texture).
+// Members of core's types are named for world space (PerspectiveCamera::wsEye); once a value
+// is rebased, those members hold scene coordinates, and the variable holding it says so
+// (a rebased camera or set-up is the scene's: gl/src/scene_frame.h).
 //
 // A directional light's `direction` is the direction the light travels (sun -> scene).
 // Sun angles: elevation above the horizon; azimuth clockwise seen from above, 0 = -Z

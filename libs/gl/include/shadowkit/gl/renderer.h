@@ -22,7 +22,8 @@ namespace shadowkit::gl {
 // Cameras, lights, set-ups and lines come in world coordinates; the renderer draws in the
 // scene's (scene::Scene::wsOrigin at 0), rebasing every frame's set-up in double from its
 // eye-relative matrices, so a scene 1,000 km from the origin is drawn as precisely as at it.
-// Inside libs/gl, `ws` names that space.
+// Inside libs/gl every GPU-side position is in that scene space (`qs` in core/conventions.h);
+// the shaders' `ws` names predate it and mean the scene's coordinates.
 class Renderer {
 public:
     // Uploads the scene and builds the programs; needs a current Context.
