@@ -1,5 +1,7 @@
 #include "shadowkit/frame/frame_driver.h"
 
+#include "shadowkit/core/visible_depth.h"
+
 #include <chrono>
 #include <utility>
 
@@ -52,25 +54,37 @@ core::Result<PreparedFrame> FrameDriver::prepare(gl::Renderer& renderer, const s
     if (!lighting) return lighting.errorInfo();
     if (auto s = renderer.setLocalLights(std::move(lighting).value()); !s) return s.errorInfo();
 
-    // 2. The visible depth range, from a camera pre-pass culled as this frame's set-up before
-    // refinement would cull it (the range does not depend on the shadow maps).
+    // 2–3. One read-back before the passes where both want one. Auto reads the receivers back
+    // (a low-resolution eval pass: depth and normals), and the visible depth range is taken from
+    // that same read-back; without auto, a camera pre-pass at the frame's resolution (culled as
+    // the unrefined set-up would cull: the range does not depend on the shadow maps) gives it.
     const auto prePassStart = std::chrono::steady_clock::now();
-    if (m_config.visibleDepthFromFrame) {
-        auto unrefined = core::computeShadowSetup(f.inputs);
-        if (!unrefined) return unrefined.errorInfo();
-        auto range = renderer.visibleDepth(f.inputs.camera, f.inputs.light, *unrefined, f.settings);
-        if (!range) return range.errorInfo();
-        if (*range) f.inputs.visibleDepth = **range;
+    std::optional<core::RasterBuffers> receivers;
+    if (m_chooser) {
+        auto readBack = readReceivers(renderer, f.inputs, f.settings);
+        if (!readBack) return readBack.errorInfo();
+        receivers = std::move(readBack).value();
         ++f.prePasses.submissions, ++f.prePasses.readBacks;
     }
+    if (m_config.visibleDepthFromFrame) {
+        if (receivers) {
+            if (const auto range = core::visibleDepthRange(receivers->viewDepth)) f.inputs.visibleDepth = *range;
+        } else {
+            auto unrefined = core::computeShadowSetup(f.inputs);
+            if (!unrefined) return unrefined.errorInfo();
+            auto range = renderer.visibleDepth(f.inputs.camera, f.inputs.light, *unrefined, f.settings);
+            if (!range) return range.errorInfo();
+            if (*range) f.inputs.visibleDepth = **range;
+            ++f.prePasses.submissions, ++f.prePasses.readBacks;
+        }
+    }
 
-    // 3. Auto: receivers, then the choice; the bias follows the chosen technique.
+    // 3. Auto: the receivers' samples, then the choice; the bias follows the chosen technique.
     if (m_chooser) {
-        auto samples = sampleReceivers(renderer, f.inputs, f.settings);
-        if (!samples) return samples.errorInfo();
-        ++f.prePasses.submissions, ++f.prePasses.readBacks;
+        const std::vector<core::ReceiverSample> samples =
+            core::receiverSamples(*receivers, f.inputs.camera, f.inputs.light, gl::ReceiverSampling{}.maxSamples);
         const auto start = std::chrono::steady_clock::now();
-        auto choice = m_chooser->choose(f.inputs, f.settings.width, f.settings.height, *samples);
+        auto choice = m_chooser->choose(f.inputs, f.settings.width, f.settings.height, samples);
         if (!choice) return choice.errorInfo();
         f.autoMilliseconds = millisecondsSince(start);
         f.autoChoice = std::move(choice).value();
@@ -89,16 +103,33 @@ core::Result<PreparedFrame> FrameDriver::prepare(gl::Renderer& renderer, const s
     return f;
 }
 
+namespace {
+
+// The cheapest shadow set-up there is, for a pass whose shadow term nothing reads.
+core::Result<core::ShadowSetup> cheapestSetup(const core::ShadowSetupInputs& inputs) {
+    core::ShadowSetupInputs cheapest = inputs;
+    cheapest.technique = core::Technique::Standard;
+    cheapest.mapSize = 64;
+    return core::computeShadowSetup(cheapest);
+}
+
+} // namespace
+
+core::Result<core::RasterBuffers> readReceivers(gl::Renderer& renderer, const core::ShadowSetupInputs& inputs,
+                                                const gl::RenderSettings& settings,
+                                                const gl::ReceiverSampling& sampling) {
+    auto setup = cheapestSetup(inputs);
+    if (!setup) return setup.errorInfo();
+    return gl::readReceivers(renderer, inputs.camera, inputs.light, *setup, settings, sampling);
+}
+
 core::Result<std::vector<core::ReceiverSample>> sampleReceivers(gl::Renderer& renderer,
                                                                 const core::ShadowSetupInputs& inputs,
                                                                 const gl::RenderSettings& settings,
                                                                 const gl::ReceiverSampling& sampling) {
-    core::ShadowSetupInputs cheapest = inputs;
-    cheapest.technique = core::Technique::Standard;
-    cheapest.mapSize = 64;
-    auto setup = core::computeShadowSetup(cheapest);
-    if (!setup) return setup.errorInfo();
-    return gl::sampleReceivers(renderer, inputs.camera, inputs.light, *setup, settings, sampling);
+    auto raster = readReceivers(renderer, inputs, settings, sampling);
+    if (!raster) return raster.errorInfo();
+    return core::receiverSamples(*raster, inputs.camera, inputs.light, sampling.maxSamples);
 }
 
 core::Result<DrawnFrame> FrameDriver::draw(gl::Renderer& renderer, const scene::ResolvedView& view) {

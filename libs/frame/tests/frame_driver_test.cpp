@@ -105,6 +105,32 @@ TEST_F(FrameDriverTest, TheVisibleDepthIsMeasuredFromThisFrameBeforeTheSetUp) {
     EXPECT_NE(with->setup.views[0].clipFromWorld, without->setup.views[0].clipFromWorld);
 }
 
+TEST_F(FrameDriverTest, WithAutoTheVisibleDepthComesFromTheReceiversReadBack) {
+    frame::FrameConfig c = config(core::Technique::Tsm);
+    c.automatic = core::AutoOptions{};
+    c.automatic->texelBudget = 512 * 512;
+    c.visibleDepthFromFrame = true;
+    auto driver = frame::FrameDriver::create(c);
+    ASSERT_TRUE(driver);
+    auto f = driver->prepare(*renderer, view);
+    ASSERT_TRUE(f) << f.error();
+    // One read-back serves both: not a pre-pass for the range and another for the receivers.
+    EXPECT_EQ(f->prePasses.submissions, 1);
+    EXPECT_EQ(f->prePasses.readBacks, 1);
+    ASSERT_TRUE(f->inputs.visibleDepth);
+    // The low-resolution range against the frame's own (a full-resolution camera pre-pass):
+    // it lies within it (up to where a coarser pixel's centre falls), short of it by little.
+    frame::FrameConfig plain = config(core::Technique::Tsm);
+    plain.visibleDepthFromFrame = true;
+    auto full = frame::FrameDriver::create(plain)->prepare(*renderer, view);
+    ASSERT_TRUE(full && full->inputs.visibleDepth);
+    const core::Vec2 lo = *f->inputs.visibleDepth, hi = *full->inputs.visibleDepth;
+    EXPECT_GE(lo.x, 0.99 * hi.x);
+    EXPECT_LE(lo.y, 1.01 * hi.y);
+    EXPECT_LT(lo.x - hi.x, 0.05 * hi.x + 0.1);
+    EXPECT_GT(lo.y, 0.95 * hi.y);
+}
+
 TEST_F(FrameDriverTest, BiasOverridesAreResolvedForTheTechniqueAutoChose) {
     frame::FrameConfig c = config(core::Technique::Tsm);
     c.automatic = core::AutoOptions{};

@@ -8,10 +8,10 @@
 
 namespace shadowkit::gl {
 
-core::Result<std::vector<core::ReceiverSample>>
-sampleReceivers(Renderer& renderer, const core::PerspectiveCamera& camera, const core::DirectionalLight& light,
-                const core::ShadowSetup& shadowSetup, const RenderSettings& settings,
-                const ReceiverSampling& sampling) {
+core::Result<core::RasterBuffers> readReceivers(Renderer& renderer, const core::PerspectiveCamera& camera,
+                                                const core::DirectionalLight& light,
+                                                const core::ShadowSetup& shadowSetup, const RenderSettings& settings,
+                                                const ReceiverSampling& sampling) {
     if (sampling.width < 1)
         return core::fieldError("sampling.width", "must be >= 1, got " + std::to_string(sampling.width));
     RenderSettings small = settings;
@@ -23,7 +23,14 @@ sampleReceivers(Renderer& renderer, const core::PerspectiveCamera& camera, const
     // The same levels of detail as the frame: a geometric error is fewer pixels of the
     // smaller image, so the bound shrinks with it (else coarser meshes, other normals).
     small.lodPixelError = settings.lodPixelError * float(small.width) / float(settings.width);
-    auto raster = renderer.renderEvalBuffers(camera, light, shadowSetup, small);
+    return renderer.renderEvalBuffers(camera, light, shadowSetup, small);
+}
+
+core::Result<std::vector<core::ReceiverSample>>
+sampleReceivers(Renderer& renderer, const core::PerspectiveCamera& camera, const core::DirectionalLight& light,
+                const core::ShadowSetup& shadowSetup, const RenderSettings& settings,
+                const ReceiverSampling& sampling) {
+    auto raster = readReceivers(renderer, camera, light, shadowSetup, settings, sampling);
     if (!raster) return raster.errorInfo();
     return core::receiverSamples(*raster, camera, light, sampling.maxSamples);
 }

@@ -2,7 +2,8 @@
 // shadow passes, in GPU order, and FrameDriver::draw draws it:
 //
 //   1. the view's spot and point lights set up for its camera (Renderer::setLocalLights)
-//   2. --visible-depth auto: a camera depth pre-pass, its depth range read back (8 bytes)
+//   2. --visible-depth auto: the visible view-depth range — from auto's read-back when auto is
+//      on (one submission for both), else a camera depth pre-pass (8 bytes read back)
 //   3. --technique auto: receivers read back at a low resolution, the family and parameters
 //      chosen or tracked (core::AutoChooser), the bias re-resolved for the choice
 //   4. the set-up: held lattices (core::SetupHysteresis) or computed afresh
@@ -79,9 +80,13 @@ private:
     std::optional<core::AutoChooser> m_chooser;
 };
 
-// The receivers `inputs`' camera sees (gl::sampleReceivers), drawn with the cheapest shadow
-// pass there is — a `standard` map of 64² texels, of which nothing is read — at the sampling's
-// low resolution: what auto's choice is made from (step 3), and `analyze --candidates`.
+// What `inputs`' camera sees, read back at the sampling's low resolution (gl::readReceivers)
+// with the cheapest shadow pass there is — a `standard` map of 64² texels, of which nothing is
+// read: auto's receivers and, with it, the visible depth range (steps 2–3).
+core::Result<core::RasterBuffers> readReceivers(gl::Renderer& renderer, const core::ShadowSetupInputs& inputs,
+                                                const gl::RenderSettings& settings,
+                                                const gl::ReceiverSampling& sampling = {});
+// core::receiverSamples of those: what auto's choice is made from, and `analyze --candidates`.
 core::Result<std::vector<core::ReceiverSample>> sampleReceivers(gl::Renderer& renderer,
                                                                 const core::ShadowSetupInputs& inputs,
                                                                 const gl::RenderSettings& settings,

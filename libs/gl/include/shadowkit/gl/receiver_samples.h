@@ -2,6 +2,7 @@
 // what an engine has anyway in its depth and normal buffers, here drawn at a low resolution.
 #pragma once
 
+#include "shadowkit/core/raster_buffers.h"
 #include "shadowkit/core/result.h"
 #include "shadowkit/core/sampling_error.h"
 #include "shadowkit/core/shadow_setup.h"
@@ -19,10 +20,16 @@ struct ReceiverSampling {
 };
 
 // `camera`'s view drawn at ReceiverSampling::width with `settings` (its culling and level of
-// detail; filters, blur and receiver masks off), its depth and normals read back, and
-// core::receiverSamples taken from them. The eval pass draws `shadowSetup`'s shadow pass, of
-// which nothing is read: the caller picks the cheapest it has (frame::FrameDriver draws a
-// `standard` map of 64² texels).
+// detail; filters, blur and receiver masks off) and its per-pixel buffers read back: depth and
+// normals for the receivers, and the drawn view-depth range. The eval pass draws
+// `shadowSetup`'s shadow pass, of which nothing is read: the caller picks the cheapest it has
+// (frame::FrameDriver draws a `standard` map of 64² texels).
+core::Result<core::RasterBuffers> readReceivers(Renderer& renderer, const core::PerspectiveCamera& camera,
+                                                const core::DirectionalLight& light,
+                                                const core::ShadowSetup& shadowSetup, const RenderSettings& settings,
+                                                const ReceiverSampling& sampling = {});
+
+// core::receiverSamples of readReceivers' buffers.
 core::Result<std::vector<core::ReceiverSample>>
 sampleReceivers(Renderer& renderer, const core::PerspectiveCamera& camera, const core::DirectionalLight& light,
                 const core::ShadowSetup& shadowSetup, const RenderSettings& settings,
