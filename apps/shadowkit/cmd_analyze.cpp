@@ -5,7 +5,7 @@
 #include "options.h"
 
 #include "shadowkit/core/perspective_aliasing.h"
-#include "shadowkit/eval/plot.h"
+#include "shadowkit/imaging/plot.h"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -54,17 +54,18 @@ int runAnalyze(const AnalyzeArgs& args) {
         if (!out) return fail("--csv: " + args.csv + ": write failed");
     }
     if (!args.plot.empty()) {
-        eval::PlotOptions po;
+        imaging::PlotOptions po;
         po.title = fmt::format("perspective aliasing, zn = {:g}, zf = {:g}", args.zNear, args.zFar);
         po.xLabel = "view depth z";
         po.yLabel = "dp/ds";
         po.yMax = std::max(uniform.max, psm.max) * 1.02;
-        const std::vector<eval::PlotSeries> series = {
+        const std::vector<imaging::PlotSeries> series = {
             {"uniform", {40, 90, 200}, uniform.z, uniform.dpds},
             {"PSM", {220, 60, 40}, psm.z, psm.dpds},
             {fmt::format("LiSPSM (n = {:.3g})", nOpt), {30, 150, 60}, lispsm.z, lispsm.dpds},
         };
-        if (auto s = scene::writePng(eval::plotLines(series, po), args.plot); !s) return fail("--plot: " + s.error());
+        if (auto s = scene::writePng(imaging::plotLines(series, po), args.plot); !s)
+            return fail("--plot: " + s.error());
     }
 
     // 2. The given camera and sun: γ, the n LiSPSM chooses, predicted maximum errors.

@@ -4,8 +4,8 @@
 #include "configs.h"
 #include "frame_config_options.h"
 
-#include "shadowkit/eval/image_grid.h"
 #include "shadowkit/frame/frame_driver.h"
+#include "shadowkit/imaging/image_grid.h"
 #include "shadowkit/measure/measurer.h"
 
 #include <fmt/format.h>
@@ -72,7 +72,7 @@ int runCompare(const CompareArgs& args) {
         fmt::print("{:>2}  wrong {:6.2f} %  false shadow {:6.2f} %  false lit {:6.2f} %  {}\n", i + 1, f.wrongPct,
                    f.falseShadowPct, f.falseLitPct, caption((*cells)[i]));
     }
-    if (auto s = scene::writePng(eval::captionedGrid(images, captions, args.columns), args.out); !s)
+    if (auto s = scene::writePng(imaging::captionedGrid(images, captions, args.columns), args.out); !s)
         return fail("--out: " + s.error());
     fmt::print("wrote {} ({} cells)\n", args.out, images.size());
     return 0;

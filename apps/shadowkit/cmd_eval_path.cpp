@@ -3,8 +3,8 @@
 
 #include "commands.h"
 
-#include "shadowkit/eval/plot.h"
 #include "shadowkit/eval/temporal.h"
+#include "shadowkit/imaging/plot.h"
 #include "shadowkit/measure/path_measurer.h"
 
 #include <fmt/format.h>
@@ -163,18 +163,18 @@ int runEvalPath(const EvalPathArgs& args) {
     if (!args.csv.empty())
         if (auto s = writeCsv(args.csv, rows); !s) return fail("--csv: " + s.error());
     if (!args.plot.empty()) {
-        eval::PlotSeries flickerSeries{"flicker_pct", {200, 40, 40}, {}, {}},
+        imaging::PlotSeries flickerSeries{"flicker_pct", {200, 40, 40}, {}, {}},
             truthSeries{"truth_change_pct", {60, 60, 200}, {}, {}};
         for (const FrameRow& r : rows)
             if (r.temporal) {
                 flickerSeries.x.push_back(r.frame), flickerSeries.y.push_back(r.temporal->flickerPct);
                 truthSeries.x.push_back(r.frame), truthSeries.y.push_back(r.temporal->truthChangePct);
             }
-        eval::PlotOptions po;
+        imaging::PlotOptions po;
         po.title = fmt::format("{} along {}: flicker and truth change per frame", technique, timeline->path->name);
         po.xLabel = "frame";
         po.yLabel = "% of compared pixels";
-        if (auto s = scene::writePng(eval::plotLines({flickerSeries, truthSeries}, po), args.plot); !s)
+        if (auto s = scene::writePng(imaging::plotLines({flickerSeries, truthSeries}, po), args.plot); !s)
             return fail("--plot: " + s.error());
     }
     if (!args.json.empty()) {

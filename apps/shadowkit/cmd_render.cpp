@@ -5,10 +5,10 @@
 #include "options.h"
 #include "timeline.h"
 
-#include "shadowkit/eval/image_grid.h"
 #include "shadowkit/frame/frame_driver.h"
 #include "shadowkit/gl/context.h"
 #include "shadowkit/gl/renderer.h"
+#include "shadowkit/imaging/image_grid.h"
 #include "shadowkit/scene/animation.h"
 
 #include <fmt/format.h>
@@ -188,7 +188,7 @@ int runRender(const RenderArgs& args) {
         fmt::print("wrote {} frames in {:.1f} s\n", timeline->frames.size(),
                    std::chrono::duration<double>(std::chrono::steady_clock::now() - sequenceStart).count());
     if (!args.strip.empty()) {
-        if (auto s = scene::writePng(eval::captionedGrid(stripImages, stripCaptions, 3), args.strip); !s)
+        if (auto s = scene::writePng(imaging::captionedGrid(stripImages, stripCaptions, 3), args.strip); !s)
             return fail("--strip: " + s.error());
         fmt::print("wrote {}\n", args.strip);
     }

@@ -1,6 +1,6 @@
 #include "shadowkit/eval/maps.h"
 
-#include "shadowkit/eval/bitmap_font.h"
+#include "shadowkit/imaging/bitmap_font.h"
 
 #include <algorithm>
 #include <array>
@@ -45,7 +45,7 @@ scene::Image errorMapImage(const Comparison& comparison, int width, int height) 
 
 scene::Image aliasingMapImage(const Comparison& comparison, int width, int height) {
     const int scale = std::max(1, width / 640); // label size
-    const int barHeight = 6 * scale + (kGlyphHeight + 4) * scale + 6;
+    const int barHeight = 6 * scale + (imaging::kGlyphHeight + 4) * scale + 6;
     scene::Image image(width, height + barHeight);
     static constexpr uint8_t black[3] = {0, 0, 0};
     for (int y = 0; y < height; ++y)
@@ -73,9 +73,9 @@ scene::Image aliasingMapImage(const Comparison& comparison, int width, int heigh
         static constexpr uint8_t white[3] = {255, 255, 255};
         for (int y = barTop; y < barBottom + 2 * scale; ++y)
             for (int w = 0; w < (k == 2 ? 2 * scale : scale); ++w) put(image, std::min(width - 1, x + w), y, white);
-        const int labelWidth = textWidth(labels[k], scale);
-        drawText(image, std::clamp(x - labelWidth / 2, 0, width - labelWidth), barBottom + 3 * scale, labels[k], white,
-                 scale);
+        const int labelWidth = imaging::textWidth(labels[k], scale);
+        imaging::drawText(image, std::clamp(x - labelWidth / 2, 0, width - labelWidth), barBottom + 3 * scale,
+                          labels[k], white, scale);
     }
     return image;
 }

@@ -1,12 +1,12 @@
-#include "shadowkit/eval/image_grid.h"
+#include "shadowkit/imaging/image_grid.h"
 
-#include "shadowkit/eval/bitmap_font.h"
+#include "shadowkit/imaging/bitmap_font.h"
 
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 
-namespace shadowkit::eval {
+namespace shadowkit::imaging {
 
 std::vector<std::string> wrapText(const std::string& text, int width, int scale) {
     std::vector<std::string> lines(1);
@@ -50,4 +50,4 @@ scene::Image captionedGrid(const std::vector<scene::Image>& cells, const std::ve
     return grid;
 }
 
-} // namespace shadowkit::eval
+} // namespace shadowkit::imaging

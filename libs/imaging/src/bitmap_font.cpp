@@ -1,9 +1,9 @@
-#include "shadowkit/eval/bitmap_font.h"
+#include "shadowkit/imaging/bitmap_font.h"
 
 #include <array>
 #include <cctype>
 
-namespace shadowkit::eval {
+namespace shadowkit::imaging {
 namespace {
 
 using Glyph = std::array<uint8_t, 7>; // rows top to bottom, bit 4 = leftmost column
@@ -81,4 +81,4 @@ void drawText(scene::Image& image, int x, int y, std::string_view text, const ui
     }
 }
 
-} // namespace shadowkit::eval
+} // namespace shadowkit::imaging

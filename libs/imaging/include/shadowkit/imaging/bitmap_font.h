@@ -7,7 +7,7 @@
 
 #include <string_view>
 
-namespace shadowkit::eval {
+namespace shadowkit::imaging {
 
 inline constexpr int kGlyphWidth = 5, kGlyphHeight = 7, kGlyphAdvance = 6; // pixels at scale 1
 
@@ -15,4 +15,4 @@ inline constexpr int kGlyphWidth = 5, kGlyphHeight = 7, kGlyphAdvance = 6; // pi
 void drawText(scene::Image& image, int x, int y, std::string_view text, const uint8_t rgb[3], int scale = 1);
 int textWidth(std::string_view text, int scale = 1);
 
-} // namespace shadowkit::eval
+} // namespace shadowkit::imaging

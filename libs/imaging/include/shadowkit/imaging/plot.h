@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-namespace shadowkit::eval {
+namespace shadowkit::imaging {
 
 struct PlotSeries {
     std::string name;
@@ -25,4 +25,4 @@ struct PlotOptions {
 
 scene::Image plotLines(const std::vector<PlotSeries>& series, const PlotOptions& options);
 
-} // namespace shadowkit::eval
+} // namespace shadowkit::imaging

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-namespace shadowkit::eval {
+namespace shadowkit::imaging {
 
 // `columns` <= 0: about square. Cells take the first image's size (larger ones are cropped).
 scene::Image captionedGrid(const std::vector<scene::Image>& cells, const std::vector<std::string>& captions,
@@ -16,4 +16,4 @@ scene::Image captionedGrid(const std::vector<scene::Image>& cells, const std::ve
 // Greedy word wrap to `width` pixels of the bitmap font at `scale`.
 std::vector<std::string> wrapText(const std::string& text, int width, int scale);
 
-} // namespace shadowkit::eval
+} // namespace shadowkit::imaging

@@ -1,12 +1,12 @@
-#include "shadowkit/eval/plot.h"
+#include "shadowkit/imaging/plot.h"
 
-#include "shadowkit/eval/bitmap_font.h"
+#include "shadowkit/imaging/bitmap_font.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 
-namespace shadowkit::eval {
+namespace shadowkit::imaging {
 namespace {
 
 constexpr uint8_t kInk[3] = {30, 30, 30};
@@ -111,4 +111,4 @@ scene::Image plotLines(const std::vector<PlotSeries>& series, const PlotOptions&
     return image;
 }
 
-} // namespace shadowkit::eval
+} // namespace shadowkit::imaging
