@@ -21,7 +21,7 @@ inline const scene::Scene& defaultForest() {
 
 // The standard view of that name over the default forest; an error names what is missing.
 inline core::Result<scene::ResolvedView> standardView(const std::string& name) {
-    const auto views = scene::loadViews(scene::dataDirectory() / "views.json");
+    const auto views = scene::loadViews(std::filesystem::path(SHADOWKIT_SOURCE_DATA_DIR) / "views.json");
     if (!views) return views.errorInfo();
     const auto spec = scene::findView(*views, name);
     if (!spec) return spec.errorInfo();

@@ -39,7 +39,7 @@ const World& world(int trees) {
         w = std::make_unique<World>();
         w->scene = scene::makeForest(o);
         w->hierarchy = core::InstanceHierarchy(w->scene.instanceBounds());
-        const auto views = scene::loadViews(scene::dataDirectory() / "views.json").value();
+        const auto views = scene::loadViews(std::filesystem::path(SHADOWKIT_SOURCE_DATA_DIR) / "views.json").value();
         w->view = scene::resolveView(*scene::findView(views, "perpendicular"), w->scene);
     }
     return *w;

@@ -61,7 +61,7 @@ void chooseForView(benchmark::State& state, const std::string& viewName, int sam
 // Every frame of the flythrough after the first, in order, round and round: the per-frame cost
 // of tracking. The first frame's full search (and the one after each wrap) is not timed.
 void trackAlongPath(benchmark::State& state, int cascades) {
-    const auto path = scene::findCameraPath("flythrough");
+    const auto path = scene::findCameraPath("flythrough", std::filesystem::path(SHADOWKIT_SOURCE_DATA_DIR) / "paths");
     if (!path) {
         state.SkipWithError(path.error().c_str());
         return;

@@ -43,6 +43,8 @@ function(sk_add_test name)
   cmake_parse_arguments(ARG "" "" "SOURCES;LIBS;LABELS" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})
   target_link_libraries(${name} PRIVATE ${ARG_LIBS} GTest::gtest_main)
+  # The libraries take data paths; tests read the source tree's data/.
+  target_compile_definitions(${name} PRIVATE SHADOWKIT_SOURCE_DATA_DIR="${PROJECT_SOURCE_DIR}/data")
   sk_project_warnings(${name})
   gtest_discover_tests(${name} PROPERTIES LABELS "${ARG_LABELS}" DISCOVERY_TIMEOUT 60)
 endfunction()

@@ -24,7 +24,8 @@ using nlohmann::json;
 
 namespace {
 
-const std::filesystem::path kGoldenFile = scene::dataDirectory() / "golden" / "small-forest.json";
+const std::filesystem::path kGoldenFile =
+    std::filesystem::path(SHADOWKIT_SOURCE_DATA_DIR) / "golden" / "small-forest.json";
 
 // The figures compared, with how far each may move: absolute for percentages of pixels,
 // relative for pixel counts and pixels-per-texel quantiles.
@@ -67,7 +68,7 @@ TEST_F(GoldenFiguresTest, EveryTechniqueMatchesItsRecordedFiguresOnEveryStandard
     forestOptions.terrainSize = config.at("terrain_size");
     forestOptions.terrainResolution = config.at("terrain_resolution");
     const scene::Scene forest = scene::makeForest(forestOptions);
-    auto views = scene::loadViews(scene::dataDirectory() / "views.json");
+    auto views = scene::loadViews(std::filesystem::path(SHADOWKIT_SOURCE_DATA_DIR) / "views.json");
     ASSERT_TRUE(views) << views.error();
     auto measurer = measure::Measurer::create(forest);
     ASSERT_TRUE(measurer) << measurer.error();

@@ -19,7 +19,7 @@ class LocalLightsEvalTest : public gl::testing::HeadlessGlTest {};
 // light together; these views have one light each).
 eval::Figures measureView(measure::Measurer& measurer, const scene::Scene& forest, const std::string& name,
                           int mapSize) {
-    auto views = scene::loadViews(scene::dataDirectory() / "views.json");
+    auto views = scene::loadViews(std::filesystem::path(SHADOWKIT_SOURCE_DATA_DIR) / "views.json");
     EXPECT_TRUE(views) << views.error();
     const scene::ResolvedView view = scene::resolveView(*scene::findView(*views, name), forest);
     gl::RenderSettings settings; // defaults: the recommended local bias, hard test

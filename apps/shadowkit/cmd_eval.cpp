@@ -44,7 +44,7 @@ fs::path perView(const std::string& file, const std::string& view, bool several)
 
 core::Result<std::vector<std::string>> viewNames(const EvalArgs& args) {
     if (args.views.empty()) return std::vector<std::string>{args.view.view};
-    auto all = scene::loadViews(scene::dataDirectory() / "views.json");
+    auto all = scene::loadViews(dataDirectory() / "views.json");
     if (!all) return all.errorInfo();
     std::vector<std::string> names;
     // "all": the six sunlit standard views (README technique table); "local": those with

@@ -3,6 +3,7 @@
 
 #include "shadowkit/core/result.h"
 
+#include <filesystem>
 #include <string>
 
 namespace shadowkit::app {
@@ -16,6 +17,11 @@ inline constexpr int kExitBadInput = 1, kExitUsage = 2, kExitEnvironment = 3;
 int fail(const std::string& message);
 // The same for a library error, returning kExitEnvironment for ErrorKind::Environment.
 int fail(const core::Error& error);
+
+// The directory holding views.json, camera paths and golden figures: $SHADOWKIT_DATA_DIR, else
+// share/shadowkit beside the running program's bin/ (an installed tree, wherever it was moved),
+// else the source tree's data/ (builds run in place), else the configured install prefix's.
+std::filesystem::path dataDirectory();
 
 // A file a command will write later: fails now, before minutes of work, naming the flag, if
 // its directory is missing.

@@ -1,5 +1,7 @@
 #include "options.h"
 
+#include "common.h"
+
 #include "shadowkit/scene/forest.h"
 #include "shadowkit/scene/scene_io.h"
 
@@ -102,7 +104,7 @@ void ViewOptions::addTo(CLI::App& cmd) {
 }
 
 core::Result<scene::ResolvedView> ViewOptions::resolve(const scene::Scene& sceneData) const {
-    auto views = scene::loadViews(scene::dataDirectory() / "views.json");
+    auto views = scene::loadViews(dataDirectory() / "views.json");
     if (!views) return views.errorInfo();
     auto spec = scene::findView(*views, view);
     if (!spec) return core::makeError("--view: " + spec.error());

@@ -1,5 +1,7 @@
 #include "timeline.h"
 
+#include "common.h"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -55,13 +57,13 @@ void TimelineOptions::addTo(CLI::App& cmd, bool withFrames) {
 core::Result<Timeline> TimelineOptions::resolve() const {
     Timeline timeline;
     if (!path.empty()) {
-        auto p = scene::findCameraPath(path);
+        auto p = scene::findCameraPath(path, dataDirectory() / "paths");
         if (!p) return core::makeError("--path: " + p.error());
         timeline.path = std::move(p).value();
     }
     if (timeline.path) timeline.sunKeys = std::exchange(timeline.path->sun, {});
     if (!sunPath.empty() && sunPath != "off") {
-        auto p = scene::findCameraPath(sunPath);
+        auto p = scene::findCameraPath(sunPath, dataDirectory() / "paths");
         if (!p) return core::makeError("--sun-path: " + p.error());
         if (p->sun.empty()) return core::makeError("--sun-path: " + sunPath + " has no \"sun\" keys");
         timeline.sunKeys = p->sun;

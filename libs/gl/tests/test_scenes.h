@@ -22,7 +22,7 @@ inline scene::Scene smallForest(int trees, double terrainSize, int terrainResolu
 // The named view of data/views.json over `scene`; a failed test and a default view when
 // the file or the view is missing.
 inline scene::ResolvedView standardView(const scene::Scene& scene, const std::string& name) {
-    auto views = scene::loadViews(scene::dataDirectory() / "views.json");
+    auto views = scene::loadViews(std::filesystem::path(SHADOWKIT_SOURCE_DATA_DIR) / "views.json");
     if (!views) {
         ADD_FAILURE() << views.error();
         return {};

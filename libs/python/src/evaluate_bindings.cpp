@@ -11,11 +11,25 @@
 
 #include <pybind11/stl.h>
 
+#include <cstdlib>
+#include <filesystem>
 #include <memory>
+#include <system_error>
 
 namespace shadowkit::python {
 
 namespace {
+
+// The project's data (views.json): $SHADOWKIT_DATA_DIR, else the source tree's data/ (a module
+// run from the build tree), else the configured install prefix's. Not the running program's
+// place, which is Python's.
+std::filesystem::path dataDirectory() {
+    if (const char* env = std::getenv("SHADOWKIT_DATA_DIR")) return env;
+    std::error_code ec;
+    const std::filesystem::path source = SHADOWKIT_SOURCE_DATA_DIR;
+    if (std::filesystem::exists(source / "views.json", ec)) return source;
+    return SHADOWKIT_INSTALL_DATA_DIR;
+}
 
 template <class T, class Source>
 py::array_t<T> image(const std::vector<Source>& values, int width, int height) {
@@ -49,7 +63,7 @@ public:
     py::dict evaluate(const std::string& viewName, const std::string& technique, int mapSize,
                       std::optional<std::pair<int, int>> size, const std::string& filter, int cascades,
                       const std::string& cascadeWarp) {
-        const auto views = check(scene::loadViews(scene::dataDirectory() / "views.json"));
+        const auto views = check(scene::loadViews(dataDirectory() / "views.json"));
         scene::ResolvedView view = scene::resolveView(check(scene::findView(views, viewName)), m_scene);
         if (size) {
             if (size->first < 1 || size->second < 1 || size->first > 16384 || size->second > 16384)

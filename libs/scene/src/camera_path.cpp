@@ -156,9 +156,8 @@ core::Result<CameraPath> loadCameraPath(const std::filesystem::path& file) {
     return path;
 }
 
-core::Result<CameraPath> findCameraPath(const std::string& nameOrFile) {
+core::Result<CameraPath> findCameraPath(const std::string& nameOrFile, const std::filesystem::path& dir) {
     if (nameOrFile.find('/') != std::string::npos || nameOrFile.ends_with(".json")) return loadCameraPath(nameOrFile);
-    const std::filesystem::path dir = dataDirectory() / "paths";
     const std::filesystem::path file = dir / (nameOrFile + ".json");
     if (std::filesystem::exists(file)) return loadCameraPath(file);
     std::vector<std::string> names;

@@ -69,7 +69,7 @@ TEST(CameraPath, IsSmoothNoJumpBetweenFramesBeyondTheKeySpacing) {
 }
 
 TEST(CameraPath, TheFlythroughHas240FramesBetween1Point8And40MetresAndATenDegreeSun) {
-    auto path = scene::findCameraPath("flythrough");
+    auto path = scene::findCameraPath("flythrough", std::filesystem::path(SHADOWKIT_SOURCE_DATA_DIR) / "paths");
     ASSERT_TRUE(path) << path.error();
     EXPECT_EQ(path->frames, 240);
     EXPECT_EQ(path->width, 1280);
@@ -117,7 +117,7 @@ TEST(CameraPath, BadFilesGiveErrorsNamingTheFileAndTheKey) {
     p = scene::loadCameraPath(wrongType);
     ASSERT_FALSE(p);
     EXPECT_NE(p.error().find("wrong type"), std::string::npos) << p.error();
-    p = scene::findCameraPath("no-such-path");
+    p = scene::findCameraPath("no-such-path", std::filesystem::path(SHADOWKIT_SOURCE_DATA_DIR) / "paths");
     ASSERT_FALSE(p);
     EXPECT_NE(p.error().find("flythrough"), std::string::npos) << p.error(); // lists the known ones
 }

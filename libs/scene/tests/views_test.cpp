@@ -11,7 +11,7 @@ using namespace shadowkit::scene;
 
 namespace {
 std::vector<ViewSpec> standardViews() {
-    auto views = loadViews(dataDirectory() / "views.json");
+    auto views = loadViews(std::filesystem::path(SHADOWKIT_SOURCE_DATA_DIR) / "views.json");
     EXPECT_TRUE(views) << views.error();
     return views ? *views : std::vector<ViewSpec>{};
 }

@@ -43,9 +43,10 @@ struct CameraPath {
 
 // Reads a path file; errors name the file and the offending key or field.
 core::Result<CameraPath> loadCameraPath(const std::filesystem::path& file);
-// A path by name (dataDirectory()/paths/NAME.json) or by file name (anything ending in .json
-// or holding a '/'); an unknown name lists the paths there are.
-core::Result<CameraPath> findCameraPath(const std::string& nameOrFile);
+// A path by name (pathsDirectory/NAME.json: the front end says where its data lives, e.g. the
+// project's data/paths) or by file name (anything ending in .json or holding a '/'); an unknown
+// name lists the paths there are.
+core::Result<CameraPath> findCameraPath(const std::string& nameOrFile, const std::filesystem::path& pathsDirectory);
 
 // Interpolation through every key at its time, continuous in position and velocity, each
 // coordinate within its two neighbouring keys' range (a monotone piecewise cubic; a single

@@ -68,9 +68,4 @@ core::Result<ViewSpec> findView(const std::vector<ViewSpec>& views, const std::s
 // the centre as they stood around the eye, and the fog scales with the scene.
 ResolvedView resolveView(const ViewSpec& view, const Scene& scene);
 
-// The directory holding views.json and other data: $SHADOWKIT_DATA_DIR, else share/shadowkit
-// beside the running program's bin/ (an installed tree, wherever it was moved), else the
-// source tree's data/ (for builds run in place), else the configured install prefix's.
-std::filesystem::path dataDirectory();
-
 } // namespace shadowkit::scene
