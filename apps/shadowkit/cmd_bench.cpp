@@ -125,7 +125,7 @@ int runBench(const BenchArgs& args) {
                 mainMs.push_back(stats->main.gpuMilliseconds);
                 last = *stats;
                 if (frame > 0 || args.frames == 1) {
-                    const core::CoherentCullingStats& o = stats->occlusion;
+                    const visibility::CoherentCullingStats& o = stats->occlusion;
                     nodesVisited.push_back(double(o.nodesVisited));
                     queries.push_back(double(o.queriesIssued));
                     nodesQueried.push_back(double(o.nodesQueried));

@@ -49,7 +49,7 @@ void printFrameReport(const RenderArgs& args, const gl::Context& context, const 
                stats.cullMilliseconds, stats.cullGlMilliseconds, stats.cullOwnCpuMilliseconds,
                stats.listCpuMilliseconds);
     if (settings.culling == gl::Culling::Occlusion) {
-        const core::CoherentCullingStats& o = stats.occlusion;
+        const visibility::CoherentCullingStats& o = stats.occlusion;
         fmt::print("  occlusion      {:8.3f} ms pre-pass (CPU)  {} nodes visited  {} queries over {} nodes  {} waits\n",
                    stats.occlusionMilliseconds, o.nodesVisited, o.queriesIssued, o.nodesQueried, o.waits);
     }

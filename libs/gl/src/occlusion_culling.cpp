@@ -60,8 +60,8 @@ bool OcclusionCuller::isCut(const core::PerspectiveCamera& c, int width, int hei
            glm::dot(glm::normalize(c.wsDirection), glm::normalize(l.wsDirection)) < kCutCosine;
 }
 
-core::CoherentCullingStats OcclusionCuller::frame(const core::PerspectiveCamera& camera, const LodChoice* lod,
-                                                  CameraDepthTarget& target, std::vector<uint32_t>& drawn) {
+visibility::CoherentCullingStats OcclusionCuller::frame(const core::PerspectiveCamera& camera, const LodChoice* lod,
+                                                        CameraDepthTarget& target, std::vector<uint32_t>& drawn) {
     const bool cut = isCut(camera, target.width, target.height);
     if (cut) m_chc.reset();
     m_last = CameraKey{camera, target.width, target.height};
@@ -71,7 +71,7 @@ core::CoherentCullingStats OcclusionCuller::frame(const core::PerspectiveCamera&
     glViewport(0, 0, target.width, target.height);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
-    const std::vector<core::HalfSpace> frustum = core::clipVolume(camera.clipFromWorld());
+    const std::vector<visibility::HalfSpace> frustum = visibility::clipVolume(camera.clipFromWorld());
     // The eye's distance to the near plane's corners: a box closer than that may be clipped.
     const double tanY = std::tan(glm::radians(camera.fovYDegrees) * 0.5), tanX = tanY * camera.aspect;
     const double nearMargin = 1.01 * camera.zNear * std::sqrt(1.0 + tanX * tanX + tanY * tanY);
@@ -80,7 +80,7 @@ core::CoherentCullingStats OcclusionCuller::frame(const core::PerspectiveCamera&
         m_boxCursor = m_listCursor = 0;
         return m_chc.frame(frustum, camera.wsEye, nearMargin, *this, drawn);
     };
-    core::CoherentCullingStats stats = once();
+    visibility::CoherentCullingStats stats = once();
     std::vector<uint32_t> previous;
     for (int settle = 1; cut && settle < kMaxSettleFrames; ++settle) {
         const Stopwatch finish;
@@ -137,7 +137,7 @@ void OcclusionCuller::draw(std::span<const uint32_t> items) {
 }
 
 uint32_t OcclusionCuller::issue(std::span<const uint32_t> nodes) {
-    const core::InstanceHierarchy& hierarchy = m_visibility.hierarchy();
+    const visibility::InstanceHierarchy& hierarchy = m_visibility.hierarchy();
     const core::Vec3 eye = m_last->camera.wsEye;
     m_boxStaging.clear();
     for (const uint32_t node : nodes) {

@@ -12,15 +12,15 @@
 #include "visibility.h"
 
 #include "shadowkit/core/camera.h"
-#include "shadowkit/core/coherent_culling.h"
 #include "shadowkit/core/result.h"
+#include "shadowkit/visibility/coherent_culling.h"
 
 #include <optional>
 #include <vector>
 
 namespace shadowkit::gl {
 
-class OcclusionCuller final : public core::OcclusionQueries {
+class OcclusionCuller final : public visibility::OcclusionQueries {
 public:
     // `visibility` and `scene` must outlive the culler.
     static core::Result<std::unique_ptr<OcclusionCuller>> create(Visibility& visibility, const GpuScene& scene);
@@ -31,8 +31,8 @@ public:
     // history is dropped and the pre-pass repeats until the drawn set stops changing (at most
     // kMaxSettleFrames), so the frame returned is the steady state a running application
     // reaches. `drawn`: the global instance indices drawn.
-    core::CoherentCullingStats frame(const core::PerspectiveCamera& camera, const LodChoice* lod,
-                                     CameraDepthTarget& target, std::vector<uint32_t>& drawn);
+    visibility::CoherentCullingStats frame(const core::PerspectiveCamera& camera, const LodChoice* lod,
+                                           CameraDepthTarget& target, std::vector<uint32_t>& drawn);
     static constexpr int kMaxSettleFrames = 4;
     // Time of the last frame() (or prepass()) inside GL calls that do or await the GPU's
     // work: drawing the pre-pass, the query boxes, reading results (blocking when one is not
@@ -49,7 +49,7 @@ public:
     // depth for receiver masks when occlusion culling is off.
     void prepass(const LodChoice* lod, CameraDepthTarget& target, std::span<const uint32_t> items);
 
-    // core::OcclusionQueries
+    // visibility::OcclusionQueries
     void draw(std::span<const uint32_t> items) override;
     uint32_t issue(std::span<const uint32_t> nodes) override;
     bool available(uint32_t query) override;
@@ -61,7 +61,7 @@ private:
 
     Visibility& m_visibility;
     const GpuScene& m_scene;
-    core::CoherentCulling m_chc;
+    visibility::CoherentCulling m_chc;
     Program m_depthProgram, m_boxProgram;
     VertexArray m_emptyVertexArray;
     std::vector<GLuint> m_queries; // pool; a handle is an index

@@ -36,9 +36,10 @@ core::Result<std::unique_ptr<ReceiverMasks>> ReceiverMasks::create() {
     return masks;
 }
 
-const std::vector<core::ReceiverMask>& ReceiverMasks::build(const CameraDepthTarget& target,
-                                                            const core::PerspectiveCamera& camera,
-                                                            const core::ShadowSetup& setup, double dilationTexels) {
+const std::vector<visibility::ReceiverMask>& ReceiverMasks::build(const CameraDepthTarget& target,
+                                                                  const core::PerspectiveCamera& camera,
+                                                                  const core::ShadowSetup& setup,
+                                                                  double dilationTexels) {
     const Stopwatch inGl;
     const int maps = static_cast<int>(setup.views.size());
     const bool linear = setup.depthLayout == core::DepthLayout::Linear;
@@ -78,7 +79,7 @@ const std::vector<core::ReceiverMask>& ReceiverMasks::build(const CameraDepthTar
     m_masks.clear();
     for (int m = 0; m < maps; ++m) {
         const core::ShadowView& view = setup.views[size_t(m)];
-        core::ReceiverMask& mask = m_masks.emplace_back(
+        visibility::ReceiverMask& mask = m_masks.emplace_back(
             kReceiverMaskSize, view.clipFromWorld, linear ? std::optional(view.linearDepthFromWorld) : std::nullopt);
         std::span<float> out = mask.texels();
         const uint32_t* in = m_readBack.data() + size_t(m) * kReceiverMaskSize * kReceiverMaskSize;

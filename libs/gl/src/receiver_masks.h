@@ -9,9 +9,9 @@
 #include "stopwatch.h"
 
 #include "shadowkit/core/camera.h"
-#include "shadowkit/core/receiver_mask.h"
 #include "shadowkit/core/result.h"
 #include "shadowkit/core/shadow_setup.h"
+#include "shadowkit/visibility/receiver_mask.h"
 
 #include <memory>
 #include <vector>
@@ -27,8 +27,9 @@ public:
     // One mask per shadow view of `setup`, from the view depths in `camera`'s pre-pass.
     // `dilationTexels`: how far from its own texel a receiver's lookup reads, in map texels
     // (filter footprint, normal offset).
-    const std::vector<core::ReceiverMask>& build(const CameraDepthTarget& target, const core::PerspectiveCamera& camera,
-                                                 const core::ShadowSetup& setup, double dilationTexels);
+    const std::vector<visibility::ReceiverMask>& build(const CameraDepthTarget& target,
+                                                       const core::PerspectiveCamera& camera,
+                                                       const core::ShadowSetup& setup, double dilationTexels);
     // Time the last build() spent in GL: the compute pass and its read-back (which
     // waits for it). The rest is the masks' own CPU cost (decoding, dilation, pyramid).
     const CpuTimes& glTimes() const { return m_gl; }
@@ -39,7 +40,7 @@ private:
     Buffer m_uniforms, m_texels;
     size_t m_texelCapacity = 0;
     std::vector<uint32_t> m_readBack;
-    std::vector<core::ReceiverMask> m_masks;
+    std::vector<visibility::ReceiverMask> m_masks;
     CpuTimes m_gl;
 };
 

@@ -61,8 +61,8 @@ float daylight(const core::DirectionalLight& light, const RenderSettings& settin
 }
 
 // The instances a point light's cube may draw: those meeting the cube around its range.
-std::vector<core::HalfSpace> rangeBox(const core::Vec3& wsLight, double range) {
-    std::vector<core::HalfSpace> box;
+std::vector<visibility::HalfSpace> rangeBox(const core::Vec3& wsLight, double range) {
+    std::vector<visibility::HalfSpace> box;
     for (int axis = 0; axis < 3; ++axis)
         for (const double side : {1.0, -1.0}) {
             core::Vec4 h(0.0);
@@ -86,7 +86,7 @@ struct Renderer::Impl {
     std::unique_ptr<OcclusionCuller> occlusion;
     std::optional<CameraDepthTarget> cameraDepth; // the occlusion pre-pass's target
     std::vector<uint32_t> occlusionDrawn;
-    core::CoherentCullingStats occlusionStats;
+    visibility::CoherentCullingStats occlusionStats;
     double occlusionMilliseconds = 0.0;
     std::unique_ptr<ReceiverMasks> receiverMasks;
     double receiverMaskMilliseconds = 0.0;
@@ -237,7 +237,7 @@ void Renderer::Impl::collectVisible(const core::PerspectiveCamera& camera, const
                                          settings.lodPixelError};
     const LodChoice cameraLod{cameraProjection, std::nullopt, false};
     const LodChoice* cameraLodOrNone = settings.lod ? &cameraLod : nullptr;
-    const std::vector<core::HalfSpace> cameraVolume = core::clipVolume(camera.clipFromWorld());
+    const std::vector<visibility::HalfSpace> cameraVolume = visibility::clipVolume(camera.clipFromWorld());
     occlusionStats = {};
     occlusionMilliseconds = receiverMaskMilliseconds = 0.0;
     cullGlTimes = {};
@@ -274,7 +274,7 @@ void Renderer::Impl::collectVisible(const core::PerspectiveCamera& camera, const
     } else {
         depthRange->forget();
     }
-    const std::vector<core::ReceiverMask>* masks = nullptr;
+    const std::vector<visibility::ReceiverMask>* masks = nullptr;
     if (masked) {
         const Stopwatch maskTime;
         masks = &receiverMasks->build(*cameraDepth, camera, setup, lookupReachTexels(settings.filter, bias));
@@ -288,8 +288,8 @@ void Renderer::Impl::collectVisible(const core::PerspectiveCamera& camera, const
         // plane are drawn at depth 0 and must not be culled. Levels by texels of this map.
         const core::Mat4& clipFromWorld = setup.views[i].clipFromWorld;
         const LodChoice lod{{clipFromWorld, 0.5 * setup.mapSize, settings.lodTexelError}, cameraProjection, true};
-        visibility->collect(core::clipVolume(clipFromWorld, false), cull, settings.lod ? &lod : nullptr, shadowLists[i],
-                            masks ? &(*masks)[i] : nullptr);
+        visibility->collect(visibility::clipVolume(clipFromWorld, false), cull, settings.lod ? &lod : nullptr,
+                            shadowLists[i], masks ? &(*masks)[i] : nullptr);
         lists.push_back(&shadowLists[i]);
     }
     // Local lights: full meshes (levels are chosen for the sun's maps and the camera), culled
@@ -301,7 +301,8 @@ void Renderer::Impl::collectVisible(const core::PerspectiveCamera& camera, const
         const core::ShadowSetup& cube = localLights.pointSetups[p];
         if (localPass == LocalPass::PerFace) {
             for (const core::ShadowView& view : cube.views)
-                visibility->collect(core::clipVolume(view.clipFromWorld, false), cull, nullptr, localLists[next++]);
+                visibility->collect(visibility::clipVolume(view.clipFromWorld, false), cull, nullptr,
+                                    localLists[next++]);
         } else {
             PassList& list = localLists[next++];
             if (cube.views.empty())
@@ -316,7 +317,7 @@ void Renderer::Impl::collectVisible(const core::PerspectiveCamera& camera, const
         if (spot.views.empty())
             list = {};
         else
-            visibility->collect(core::clipVolume(spot.views[0].clipFromWorld, false), cull, nullptr, list);
+            visibility->collect(visibility::clipVolume(spot.views[0].clipFromWorld, false), cull, nullptr, list);
     }
     for (PassList& list : localLists) lists.push_back(&list);
     lists.push_back(&cameraList);

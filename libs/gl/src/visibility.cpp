@@ -65,8 +65,8 @@ void Visibility::fromItems(std::span<const uint32_t> items, const LodChoice* lod
     build(lod, out);
 }
 
-void Visibility::collect(std::span<const core::HalfSpace> volume, bool cull, const LodChoice* lod, PassList& out,
-                         const core::ReceiverMask* receivers) {
+void Visibility::collect(std::span<const visibility::HalfSpace> volume, bool cull, const LodChoice* lod, PassList& out,
+                         const visibility::ReceiverMask* receivers) {
     m_scratch.clear();
     if (cull) {
         // The hierarchy answers in tree order; a bitmap over every instance puts the answer

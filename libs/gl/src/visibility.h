@@ -9,10 +9,10 @@
 #include "gl_object.h"
 #include "stopwatch.h"
 
-#include "shadowkit/core/instance_hierarchy.h"
-#include "shadowkit/core/receiver_mask.h"
 #include "shadowkit/scene/mesh_lod.h"
 #include "shadowkit/scene/scene.h"
+#include "shadowkit/visibility/instance_hierarchy.h"
+#include "shadowkit/visibility/receiver_mask.h"
 
 #include <optional>
 #include <span>
@@ -55,13 +55,13 @@ public:
     Visibility(const scene::Scene& scene, std::span<const scene::MeshLods> lods);
 
     const core::Aabb& bounds() const { return m_hierarchy.bounds(); } // in the scene's coordinates
-    const core::InstanceHierarchy& hierarchy() const { return m_hierarchy; }
+    const visibility::InstanceHierarchy& hierarchy() const { return m_hierarchy; }
 
     // The instances the half-spaces may see (every instance when `cull` is false), each at
     // the level `lod` picks (the full mesh without one).
     // With a receiver mask, only the instances it says may shadow a visible receiver.
-    void collect(std::span<const core::HalfSpace> volume, bool cull, const LodChoice* lod, PassList& out,
-                 const core::ReceiverMask* receivers = nullptr);
+    void collect(std::span<const visibility::HalfSpace> volume, bool cull, const LodChoice* lod, PassList& out,
+                 const visibility::ReceiverMask* receivers = nullptr);
     // The same for a given set of global instance indices (any order, no repeats), e.g. what
     // occlusion culling drew: the list comes out in instance order like collect()'s.
     void fromItems(std::span<const uint32_t> items, const LodChoice* lod, PassList& out);
@@ -86,8 +86,8 @@ private:
     // over every instance: O(n / 64 + items), cheaper than sorting.
     void sortIntoScratch(std::span<const uint32_t> items);
 
-    core::InstanceHierarchy m_hierarchy; // items in global instance order (Scene order)
-    std::vector<uint32_t> m_batchFirst;  // global index of each batch's first instance
+    visibility::InstanceHierarchy m_hierarchy; // items in global instance order (Scene order)
+    std::vector<uint32_t> m_batchFirst;        // global index of each batch's first instance
     // Per global instance: its uniform scale and mesh; a level's world error is the mesh's
     // object error for that level times the scale.
     std::vector<float> m_instanceScale;

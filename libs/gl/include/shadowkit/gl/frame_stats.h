@@ -2,7 +2,7 @@
 // went (Renderer::render's result).
 #pragma once
 
-#include "shadowkit/core/coherent_culling.h"
+#include "shadowkit/visibility/coherent_culling.h"
 
 #include <cstddef>
 
@@ -35,7 +35,7 @@ struct FrameStats {
     // building the passes' lists: per instance drawn, culled or not (so not culling's cost).
     double listCpuMilliseconds = 0.0;
     // Culling::Occlusion: the CHC++ pre-pass (counted in cullMilliseconds, with its waits).
-    core::CoherentCullingStats occlusion;
+    visibility::CoherentCullingStats occlusion;
     double occlusionMilliseconds = 0.0;
     double receiverMaskMilliseconds = 0.0; // CPU, incl. the read-back (counted in cullMilliseconds)
 };

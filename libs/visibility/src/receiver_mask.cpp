@@ -17,12 +17,12 @@
 // projective map, both extreme at corners). Polygon offset and bias push caster depths
 // farther, never nearer. So if every texel of the rectangle holds d_r <= the box's nearest
 // depth, nothing in the box can darken a visible pixel.
-#include "shadowkit/core/receiver_mask.h"
+#include "shadowkit/visibility/receiver_mask.h"
 
 #include <algorithm>
 #include <cmath>
 
-namespace shadowkit::core {
+namespace shadowkit::visibility {
 
 ReceiverMask::ReceiverMask(int size, const Mat4& clipFromWorld, std::optional<Vec4> linearDepthFromWorld)
     : m_size(std::max(size, 1)), m_clipFromWorld(clipFromWorld), m_linearDepthFromWorld(linearDepthFromWorld) {
@@ -123,4 +123,4 @@ size_t ReceiverMask::markedTexels() const {
         std::count_if(m_levels[0].begin(), m_levels[0].end(), [](float d) { return d > -INFINITY; }));
 }
 
-} // namespace shadowkit::core
+} // namespace shadowkit::visibility

@@ -1,4 +1,4 @@
-#include "shadowkit/core/receiver_mask.h"
+#include "shadowkit/visibility/receiver_mask.h"
 
 #include <gtest/gtest.h>
 
@@ -7,6 +7,7 @@
 #include <random>
 
 using namespace shadowkit::core;
+using namespace shadowkit::visibility;
 
 namespace {
 

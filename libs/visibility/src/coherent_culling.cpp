@@ -40,12 +40,12 @@
 // node visible — it draws exactly the frustum's contents and queries every leaf, so it is
 // correct and the next frame is already coherent; nodes whose box holds the eye (grown by
 // the near-plane margin) are drawn unqueried, as their boxes would be clipped.
-#include "shadowkit/core/coherent_culling.h"
+#include "shadowkit/visibility/coherent_culling.h"
 
 #include <algorithm>
 #include <cmath>
 
-namespace shadowkit::core {
+namespace shadowkit::visibility {
 namespace {
 
 // The distance queue is a min-heap on the distance from the eye.
@@ -301,4 +301,4 @@ void CoherentCulling::handle(const Query& query, bool visible) {
     }
 }
 
-} // namespace shadowkit::core
+} // namespace shadowkit::visibility

@@ -4,7 +4,7 @@
 // latency a real driver has. Reading a result that has not arrived blocks until the GPU has
 // worked through that query (and every earlier one, in order); the read is counted. `leakyNodes` are inner nodes whose
 // box passes though nothing under it is visible (a box holds empty space between its children's boxes).
-#include "shadowkit/core/coherent_culling.h"
+#include "shadowkit/visibility/coherent_culling.h"
 
 #include <gtest/gtest.h>
 
@@ -13,6 +13,7 @@
 #include <set>
 
 using namespace shadowkit::core;
+using namespace shadowkit::visibility;
 
 namespace {
 

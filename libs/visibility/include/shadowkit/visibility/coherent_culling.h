@@ -3,14 +3,21 @@
 // frame. The traversal is pure logic; a renderer supplies the queries (OcclusionQueries).
 #pragma once
 
-#include "shadowkit/core/instance_hierarchy.h"
+#include "shadowkit/visibility/instance_hierarchy.h"
 
 #include <cstdint>
 #include <deque>
 #include <span>
 #include <vector>
 
-namespace shadowkit::core {
+namespace shadowkit::visibility {
+
+// Core's maths types, here as in core.
+using core::Aabb;
+using core::Mat4;
+using core::Vec2;
+using core::Vec3;
+using core::Vec4;
 
 // What the traversal asks of a renderer. Query handles are the renderer's; each is read
 // exactly once (visible()) and may be recycled after that.
@@ -112,4 +119,4 @@ private:
     CoherentCullingStats m_stats;
 };
 
-} // namespace shadowkit::core
+} // namespace shadowkit::visibility

@@ -8,12 +8,12 @@
 // Culling tests a box against half-spaces with its "positive vertex" (the corner furthest
 // along the plane's normal): outside when even that corner is outside; wholly inside when
 // the "negative vertex" is inside every half-space.
-#include "shadowkit/core/instance_hierarchy.h"
+#include "shadowkit/visibility/instance_hierarchy.h"
 
 #include <algorithm>
 #include <array>
 
-namespace shadowkit::core {
+namespace shadowkit::visibility {
 namespace {
 
 constexpr uint32_t kLeafSize = 4;
@@ -236,4 +236,4 @@ void InstanceHierarchy::update(uint32_t item, const Aabb& newBox) {
     }
 }
 
-} // namespace shadowkit::core
+} // namespace shadowkit::visibility

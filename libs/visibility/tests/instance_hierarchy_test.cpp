@@ -1,5 +1,5 @@
 #include "shadowkit/core/camera.h"
-#include "shadowkit/core/instance_hierarchy.h"
+#include "shadowkit/visibility/instance_hierarchy.h"
 
 #include <gtest/gtest.h>
 
@@ -7,6 +7,7 @@
 #include <random>
 
 using namespace shadowkit::core;
+using namespace shadowkit::visibility;
 
 namespace {
 

@@ -10,7 +10,14 @@
 #include <span>
 #include <vector>
 
-namespace shadowkit::core {
+namespace shadowkit::visibility {
+
+// Core's maths types, here as in core.
+using core::Aabb;
+using core::Mat4;
+using core::Vec2;
+using core::Vec3;
+using core::Vec4;
 
 // A half-space a·x + b·y + c·z + d >= 0 (kept side positive), e.g. a row combination of a
 // clip matrix: (row3 + row0) · (p, 1) >= 0 is x >= −w. Need not be normalised.
@@ -101,4 +108,4 @@ private:
     double m_builtCost = 0.0; // surfaceAreaCost() when built
 };
 
-} // namespace shadowkit::core
+} // namespace shadowkit::visibility

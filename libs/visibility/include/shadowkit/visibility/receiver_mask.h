@@ -11,7 +11,14 @@
 #include <span>
 #include <vector>
 
-namespace shadowkit::core {
+namespace shadowkit::visibility {
+
+// Core's maths types, here as in core.
+using core::Aabb;
+using core::Mat4;
+using core::Vec2;
+using core::Vec3;
+using core::Vec4;
 
 class ReceiverMask {
 public:
@@ -55,4 +62,4 @@ private:
     std::vector<std::vector<float>> m_levels; // [0] full size, then halves (max of 2x2)
 };
 
-} // namespace shadowkit::core
+} // namespace shadowkit::visibility
