@@ -18,9 +18,10 @@
 //   clipFromWorld = clipFromLight * lightFromWorld.
 // Positions and vectors carry their space as a prefix where it is not obvious:
 //   ws (world), qs (scene), vs (view), ls (light), cs (clip), ts (shadow texture).
-// Members of core's types are named for world space (PerspectiveCamera::wsEye); once a value
-// is rebased, those members hold scene coordinates, and the variable holding it says so
-// (a rebased camera or set-up is the scene's: gl/src/scene_frame.h).
+// The scene's space is the world with its origin moved, so code that holds only one of the two
+// (libs/gl, whose every GPU-side position is the scene's; an engine rendering camera-relative)
+// keeps the world names, ws and *FromWorld. qs is written where both meet: the conversion
+// itself (core::rebased, gl/src/scene_frame.h's SceneFrame::rebasedSetup).
 //
 // A directional light's `direction` is the direction the light travels (sun -> scene).
 // Sun angles: elevation above the horizon; azimuth clockwise seen from above, 0 = -Z

@@ -22,8 +22,9 @@ namespace shadowkit::gl {
 // Cameras, lights, set-ups and lines come in world coordinates; the renderer draws in the
 // scene's (scene::Scene::wsOrigin at 0), rebasing every frame's set-up in double from its
 // eye-relative matrices, so a scene 1,000 km from the origin is drawn as precisely as at it.
-// Inside libs/gl every GPU-side position is in that scene space (`qs` in core/conventions.h);
-// the shaders' `ws` names predate it and mean the scene's coordinates.
+// Inside libs/gl every GPU-side position is in that scene space and keeps the world names
+// (`ws`, `*FromWorld`), as core/conventions.h has code that holds one space do; `qs` is
+// written only where world and scene meet (scene_frame.h).
 class Renderer {
 public:
     // Uploads the scene and builds the programs; needs a current Context.
