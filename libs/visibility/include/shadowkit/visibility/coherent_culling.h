@@ -12,13 +12,6 @@
 
 namespace shadowkit::visibility {
 
-// Core's maths types, here as in core.
-using core::Aabb;
-using core::Mat4;
-using core::Vec2;
-using core::Vec3;
-using core::Vec4;
-
 // What the traversal asks of a renderer. Query handles are the renderer's; each is read
 // exactly once (visible()) and may be recycled after that.
 class OcclusionQueries {

@@ -3,21 +3,13 @@
 // moved, not what exists.
 #pragma once
 
-#include "shadowkit/core/aabb.h"
-#include "shadowkit/core/conventions.h"
+#include "shadowkit/visibility/core_types.h"
 
 #include <cstdint>
 #include <span>
 #include <vector>
 
 namespace shadowkit::visibility {
-
-// Core's maths types, here as in core.
-using core::Aabb;
-using core::Mat4;
-using core::Vec2;
-using core::Vec3;
-using core::Vec4;
 
 // A half-space a·x + b·y + c·z + d >= 0 (kept side positive), e.g. a row combination of a
 // clip matrix: (row3 + row0) · (p, 1) >= 0 is x >= −w. Need not be normalised.

@@ -4,21 +4,13 @@
 // lies farther from the light than the caster's nearest point.
 #pragma once
 
-#include "shadowkit/core/aabb.h"
-#include "shadowkit/core/conventions.h"
+#include "shadowkit/visibility/core_types.h"
 
 #include <optional>
 #include <span>
 #include <vector>
 
 namespace shadowkit::visibility {
-
-// Core's maths types, here as in core.
-using core::Aabb;
-using core::Mat4;
-using core::Vec2;
-using core::Vec3;
-using core::Vec4;
 
 class ReceiverMask {
 public:
