@@ -120,16 +120,6 @@ FlyCamera debugCameraFor(const core::PerspectiveCamera& camera, const core::Shad
     return debug;
 }
 
-// What one frame drew, for the panel and for the truth.
-struct DrawnFrame {
-    core::PerspectiveCamera camera;
-    core::DirectionalLight light;
-    core::ShadowSetup setup;
-    gl::RenderSettings settings;
-    gl::FrameStats stats;
-    double setupMs = 0.0;
-};
-
 // The viewer's state from one frame to the next, and each concern of a frame in a method of
 // its own: input, time, the frame itself, the truth job, the panels.
 struct Viewer {
@@ -163,8 +153,8 @@ struct Viewer {
     TruthJob truth;
     std::optional<eval::Figures> truthFigures;
     std::vector<std::pair<std::string, eval::Figures>> truthPerLight; // with local lights
-    int64_t shadowedRight = 0; // of the last evaluation: pixels drawn in shadow where truth has shadow
-    std::optional<DrawnFrame> drawn;
+    int64_t shadowedRight = 0;              // of the last evaluation: pixels drawn in shadow where truth has shadow
+    std::optional<frame::DrawnFrame> drawn; // the last frame, for the panel, the truth and the debug camera
     std::string message;
 
     // Keys (the camera unless ImGui has the keyboard): moving, framing, toggles, screenshot,
@@ -202,7 +192,8 @@ struct Viewer {
             message = s ? "saved " + args.saveState + " (shadowkit render --state " + args.saveState + ")" : s.error();
         }
         if ((ImGui::IsKeyPressed(GLFW_KEY_T, false) || (args.truthAtStart && frame == 1)) && drawn) {
-            const core::Status s = truth.start(measurer, drawn->camera, drawn->light, drawn->setup, drawn->settings);
+            const core::Status s = truth.start(measurer, drawn->frame.view.camera, drawn->frame.view.light,
+                                               drawn->frame.setup, drawn->frame.settings);
             message = s ? "evaluating against truth ..." : s.error();
         }
     }
@@ -231,7 +222,7 @@ struct Viewer {
         // Shift + left drag: the sun (0.25° per pixel), as the panel's angles.
         if (io.KeyShift && glfwGetMouseButton(glfw, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS && drawn &&
             (io.MouseDelta.x != 0.0f || io.MouseDelta.y != 0.0f)) {
-            const core::Vec3 towards = drawn->light.wsTowardsLight();
+            const core::Vec3 towards = drawn->frame.view.light.wsTowardsLight();
             const double elevation = glm::degrees(std::asin(std::clamp(towards.y, -1.0, 1.0))) - 0.25 * io.MouseDelta.y;
             const double azimuth = core::azimuthDegreesOf(towards) + 0.25 * io.MouseDelta.x;
             state["sun-elevation"] = {fmt::format("{:.4g}", std::clamp(elevation, 1.0, 89.0))};
@@ -280,29 +271,32 @@ struct Viewer {
             auto frameDrawn =
                 frames.draw(renderer, world, camera.wsEye, camera.wsDirection(), width, height, sceneTime);
             if (frameDrawn) {
-                const frame::PreparedFrame& f = frameDrawn->frame;
-                drawn = DrawnFrame{f.view.camera, f.view.light,      f.setup,
-                                   f.settings,    frameDrawn->stats, f.setupMilliseconds};
+                drawn = std::move(frameDrawn).value();
                 ++drawnFrames;
                 // A camera path leads: the fly camera follows it.
                 if (frames.timeline()->path) {
                     const double speed = camera.metresPerSecond;
-                    camera = FlyCamera::looking(drawn->camera.wsEye, drawn->camera.wsDirection);
+                    camera = FlyCamera::looking(drawn->frame.view.camera.wsEye, drawn->frame.view.camera.wsDirection);
                     camera.metresPerSecond = speed;
                 }
                 // The debug camera sees the frozen camera's set-up from outside, farther.
                 if (debugView) {
-                    if (!debugPlaced) debug = debugCameraFor(drawn->camera, drawn->setup), debugPlaced = true;
-                    core::PerspectiveCamera seenFrom = drawn->camera;
+                    if (!debugPlaced)
+                        debug = debugCameraFor(drawn->frame.view.camera, drawn->frame.setup), debugPlaced = true;
+                    core::PerspectiveCamera seenFrom = drawn->frame.view.camera;
                     seenFrom.wsEye = debug.wsEye;
                     seenFrom.wsDirection = debug.wsDirection();
-                    seenFrom.zFar = 4.0 * drawn->camera.zFar;
-                    seenFrom.zNear = std::max(drawn->camera.zNear, 0.5);
-                    if (auto s = renderer.render(seenFrom, drawn->light, drawn->setup, drawn->settings); !s)
+                    seenFrom.zFar = 4.0 * drawn->frame.view.camera.zFar;
+                    seenFrom.zNear = std::max(drawn->frame.view.camera.zNear, 0.5);
+                    if (auto s = renderer.render(seenFrom, drawn->frame.view.light, drawn->frame.setup,
+                                                 drawn->frame.settings);
+                        !s)
                         message = s.error();
-                    if (wireframes) renderer.drawLines(seenFrom, insightLines(drawn->camera, drawn->setup));
+                    if (wireframes)
+                        renderer.drawLines(seenFrom, insightLines(drawn->frame.view.camera, drawn->frame.setup));
                 } else if (wireframes) {
-                    renderer.drawLines(drawn->camera, insightLines(drawn->camera, drawn->setup));
+                    renderer.drawLines(drawn->frame.view.camera,
+                                       insightLines(drawn->frame.view.camera, drawn->frame.setup));
                 }
                 if (frame % 30 == 0) {
                     shadowMapImage.upload(renderer.readShadowMap());
@@ -348,14 +342,14 @@ struct Viewer {
         ImGui::Begin("shadowkit");
         if (drawn) {
             const gl::FrameStats& st = drawn->stats;
-            ImGui::Text("%s  %dx%d  map %d", core::techniqueName(drawn->setup.technique).data(), drawn->settings.width,
-                        drawn->settings.height, drawn->setup.mapSize);
-            ImGui::Text("set-up %.3f ms CPU   culling %.1f ms", drawn->setupMs, st.cullMilliseconds);
+            ImGui::Text("%s  %dx%d  map %d", core::techniqueName(drawn->frame.setup.technique).data(),
+                        drawn->frame.settings.width, drawn->frame.settings.height, drawn->frame.setup.mapSize);
+            ImGui::Text("set-up %.3f ms CPU   culling %.1f ms", drawn->frame.setupMilliseconds, st.cullMilliseconds);
             for (const auto& [name, pass] :
                  {std::pair{"shadow", &st.shadow}, {"local ", &st.local}, {"main  ", &st.main}})
                 ImGui::Text("%s %7.2f ms GPU  %6.3f M tris  %zu inst  %zu draws", name, pass->gpuMilliseconds,
                             static_cast<double>(pass->triangles) * 1e-6, pass->instances, pass->drawCalls);
-            if (drawn->settings.culling == gl::Culling::Occlusion)
+            if (drawn->frame.settings.culling == gl::Culling::Occlusion)
                 ImGui::Text("CHC++  %zu nodes visited, %zu queries, %zu waits",
                             static_cast<size_t>(st.occlusion.nodesVisited),
                             static_cast<size_t>(st.occlusion.queriesIssued), static_cast<size_t>(st.occlusion.waits));
@@ -375,10 +369,10 @@ struct Viewer {
         if (!message.empty()) ImGui::TextWrapped("%s", message.c_str());
         PanelDefaults defaults;
         if (drawn) {
-            const core::Vec3 towards = drawn->light.wsTowardsLight();
+            const core::Vec3 towards = drawn->frame.view.light.wsTowardsLight();
             defaults.sunElevationDegrees = glm::degrees(std::asin(std::clamp(towards.y, -1.0, 1.0)));
             defaults.sunAzimuthDegrees = core::azimuthDegreesOf(towards);
-            const core::BiasSettings bias = gl::biasFor(drawn->setup, drawn->settings);
+            const core::BiasSettings bias = gl::biasFor(drawn->frame.setup, drawn->frame.settings);
             defaults.biasSlope = bias.slope, defaults.biasConstant = bias.constant,
             defaults.normalOffset = bias.normalOffset;
         }

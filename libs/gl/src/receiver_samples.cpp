@@ -26,13 +26,4 @@ core::Result<core::RasterBuffers> readReceivers(Renderer& renderer, const core::
     return renderer.renderEvalBuffers(camera, light, shadowSetup, small);
 }
 
-core::Result<std::vector<core::ReceiverSample>>
-sampleReceivers(Renderer& renderer, const core::PerspectiveCamera& camera, const core::DirectionalLight& light,
-                const core::ShadowSetup& shadowSetup, const RenderSettings& settings,
-                const ReceiverSampling& sampling) {
-    auto raster = readReceivers(renderer, camera, light, shadowSetup, settings, sampling);
-    if (!raster) return raster.errorInfo();
-    return core::receiverSamples(*raster, camera, light, sampling.maxSamples);
-}
-
 } // namespace shadowkit::gl

@@ -4,11 +4,10 @@
 
 #include "shadowkit/core/raster_buffers.h"
 #include "shadowkit/core/result.h"
-#include "shadowkit/core/sampling_error.h"
 #include "shadowkit/core/shadow_setup.h"
 #include "shadowkit/gl/render_settings.h"
 
-#include <vector>
+#include <cstddef>
 
 namespace shadowkit::gl {
 
@@ -28,11 +27,5 @@ core::Result<core::RasterBuffers> readReceivers(Renderer& renderer, const core::
                                                 const core::DirectionalLight& light,
                                                 const core::ShadowSetup& shadowSetup, const RenderSettings& settings,
                                                 const ReceiverSampling& sampling = {});
-
-// core::receiverSamples of readReceivers' buffers.
-core::Result<std::vector<core::ReceiverSample>>
-sampleReceivers(Renderer& renderer, const core::PerspectiveCamera& camera, const core::DirectionalLight& light,
-                const core::ShadowSetup& shadowSetup, const RenderSettings& settings,
-                const ReceiverSampling& sampling = {});
 
 } // namespace shadowkit::gl
