@@ -3,6 +3,7 @@
 #include "commands.h"
 #include "configs.h"
 #include "frame_config_options.h"
+#include "html_reports.h"
 
 #include "shadowkit/frame/frame_driver.h"
 #include "shadowkit/imaging/image_grid.h"
@@ -17,7 +18,7 @@ namespace {
 
 struct CompareArgs {
     SceneOptions scene;
-    std::string view = "paper", configs, out = "compare.png", size;
+    std::string view = "paper", configs, out = "compare.png", size, report;
     int columns = 0;
 };
 
@@ -37,6 +38,7 @@ int runCompare(const CompareArgs& args) {
         options.push_back(std::move(o).value());
     }
     if (args.columns < 0 || args.columns > 16) return fail("--columns: must be in [1, 16] (0: automatic)");
+    if (auto s = checkWritable("--report", args.report); !s) return fail(s.errorInfo());
     auto sceneData = args.scene.load();
     if (!sceneData) return fail(sceneData.errorInfo());
     auto measurer = measure::Measurer::createHeadless(*sceneData);
@@ -44,6 +46,8 @@ int runCompare(const CompareArgs& args) {
 
     std::vector<scene::Image> images;
     std::vector<std::string> captions;
+    eval::HtmlReport page{
+        .title = "shadowkit compare: " + args.view, .command = invocation(), .machine = machineDescription(**measurer)};
     for (size_t i = 0; i < options.size(); ++i) {
         const CellOptions& o = options[i];
         auto view = o.view.resolve(*sceneData);
@@ -65,6 +69,19 @@ int runCompare(const CompareArgs& args) {
             error.message = "--configs: " + error.message;
             return fail(error);
         }
+        if (!args.report.empty()) {
+            // The cell alone is an eval of the view with the cell's settings as flags.
+            std::vector<std::string> flags = {"--view", args.view};
+            for (const auto& [key, value] : (*cells)[i]) flags.insert(flags.end(), {"--" + key, value});
+            std::string command = invocationWithout({"--configs", "--out", "--report", "--columns", "--view"}, flags);
+            if (const size_t at = command.find(" compare"); at != std::string::npos) command.replace(at, 8, " eval");
+            eval::ViewReport report =
+                measure::viewReport(*measured, prepared->settings, args.view, args.scene.scene, args.scene.seed);
+            auto entry = reportEntry(*measured, report, prepared->inputs.light, prepared->settings.sun, args.report,
+                                     fmt::format("{}-cell{}", args.view, i + 1), caption((*cells)[i]), command);
+            if (!entry) return fail(entry.errorInfo());
+            page.entries.push_back(std::move(entry).value());
+        }
         images.push_back(std::move(measured->image));
         const eval::Figures& f = measured->figures();
         captions.push_back(fmt::format("{} - wrong {:.2f}% (shadow {:.2f}, lit {:.2f})", caption((*cells)[i]),
@@ -75,6 +92,10 @@ int runCompare(const CompareArgs& args) {
     if (auto s = scene::writePng(imaging::captionedGrid(images, captions, args.columns), args.out); !s)
         return fail("--out: " + s.error());
     fmt::print("wrote {} ({} cells)\n", args.out, images.size());
+    if (!args.report.empty()) {
+        if (auto s = eval::writeHtmlReport(page, args.report); !s) return fail("--report: " + s.error());
+        fmt::print("report: {}\n", args.report);
+    }
     return 0;
 }
 
@@ -92,6 +113,9 @@ Command addCompareCommand(CLI::App& app) {
         ->required();
     cmd->add_option("--columns", args->columns, "cells per row (default: about square)");
     cmd->add_option("--out", args->out, "output PNG")->capture_default_str();
+    cmd->add_option("--report", args->report,
+                    "also write an HTML page comparing the cells side by side: pictures, figures explained, and the "
+                    "eval command of each cell");
     return {cmd, [args] { return runCompare(*args); }};
 }
 

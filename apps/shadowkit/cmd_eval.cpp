@@ -3,6 +3,7 @@
 #include "commands.h"
 #include "eval_path.h"
 #include "frame_config_options.h"
+#include "html_reports.h"
 #include "options.h"
 
 #include "shadowkit/eval/maps.h"
@@ -32,7 +33,7 @@ struct EvalArgs {
     TimelineOptions timeline;
     LocalLightOptions lights;
     std::string views; // "a,b" or "all"; empty: --view
-    std::string json, errorMap, aliasingMap, dump, csv, plot;
+    std::string json, errorMap, aliasingMap, dump, csv, plot, report;
 };
 
 // "maps/err.png" for view "noon" among several -> "maps/err-noon.png".
@@ -66,14 +67,15 @@ core::Result<std::vector<std::string>> viewNames(const EvalArgs& args) {
 int runEval(const EvalArgs& args) {
     if (auto s = args.technique.check(/*measuresFrames=*/true, /*takesAuto=*/true); !s) return fail(s.errorInfo());
     if (auto s = args.render.check(); !s) return fail(s.errorInfo());
-    for (auto [flag, file] : {std::pair{"--json", &args.json}, {"--csv", &args.csv}, {"--plot", &args.plot}})
+    for (auto [flag, file] :
+         {std::pair{"--json", &args.json}, {"--csv", &args.csv}, {"--plot", &args.plot}, {"--report", &args.report}})
         if (auto s = checkWritable(flag, *file); !s) return fail(s.errorInfo());
     if (!args.timeline.path.empty()) {
         if (!args.views.empty() || !args.errorMap.empty() || !args.aliasingMap.empty() || !args.dump.empty())
             return fail("--path: evaluates a path's frames, so --views, --error-map, --aliasing-map and --dump (still "
                         "views) do not apply");
         return runEvalPath({args.scene, args.view, args.technique, args.render, args.timeline, args.lights, args.csv,
-                            args.plot, args.json});
+                            args.plot, args.json, args.report});
     }
     if (!args.csv.empty() || !args.plot.empty()) return fail("--csv and --plot need --path (figures per frame)");
     auto timeline = args.timeline.resolve(); // still views: --time and --sun-path
@@ -98,6 +100,8 @@ int runEval(const EvalArgs& args) {
     fmt::print(stderr, "ray tracer: built in {:.2f} s\n", (*measurer)->rayTracerBuildSeconds());
 
     std::vector<eval::ViewReport> reports;
+    eval::HtmlReport page{
+        .title = "shadowkit eval", .command = invocation(), .machine = machineDescription(**measurer)};
     fmt::print("{:<14} {:<10} {:>5} {:>9} {:>8} {:>7} {:>8} {:>8} {:>7} {:>7} {:>7} {:>7} {:>6}\n", "view", "technique",
                "map", "valid_px", "excl_px", "wrong%", "fshadow%", "flit%", "under%", "ppt50", "ppt95", "ppt99", "sec");
     for (const std::string& name : *names) {
@@ -115,6 +119,7 @@ int runEval(const EvalArgs& args) {
 
         // Progress only when the truth takes a while (large images, big scenes).
         measure::MeasureOptions options;
+        options.shadedImage = !args.report.empty();
         options.truthProgress = [&, shown = false](double done) mutable {
             const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
             if ((elapsed < 2.0 && !shown) || !isatty(fileno(stderr))) return; // a log gets the table only
@@ -160,10 +165,25 @@ int runEval(const EvalArgs& args) {
                        l.figures.pixelsPerTexelP95, l.figures.pixelsPerTexelP99, l.maps,
                        l.skippedFaces ? fmt::format(", {} faces skipped", l.skippedFaces) : "");
         std::fflush(stdout);
+        if (!args.report.empty()) {
+            const std::string label = fmt::format(
+                "{} {}{}²", report.technique, report.maps > 1 ? fmt::format("{} × ", report.maps) : "", report.mapSize);
+            auto entry =
+                reportEntry(*measured, report, prepared->inputs.light, prepared->settings.sun, args.report, name, label,
+                            invocationWithout(
+                                {"--views", "--view", "--report", "--json", "--error-map", "--aliasing-map", "--dump"},
+                                {"--view", name}));
+            if (!entry) return fail(entry.errorInfo());
+            page.entries.push_back(std::move(entry).value());
+        }
         reports.push_back(std::move(report));
     }
     if (!args.json.empty())
         if (auto s = eval::writeReportJson(reports, args.json); !s) return fail("--json: " + s.error());
+    if (!args.report.empty()) {
+        if (auto s = eval::writeHtmlReport(page, args.report); !s) return fail("--report: " + s.error());
+        fmt::print(stderr, "report: {}\n", args.report);
+    }
     return 0;
 }
 
@@ -183,6 +203,9 @@ Command addEvalCommand(CLI::App& app) {
     cmd->add_option("--json", args->json, "write the figures as JSON {\"views\": [...]}");
     cmd->add_option("--error-map", args->errorMap, "write the error map PNG (one per view: NAME-view.png)");
     cmd->add_option("--aliasing-map", args->aliasingMap, "write the pixels-per-texel heat map PNG");
+    cmd->add_option("--report", args->report,
+                    "write an HTML page (pictures beside it): per view the frame, rendered and ray-traced shadows, "
+                    "error and aliasing maps, the figures explained and the command that reproduces them");
     cmd->add_option("--dump", args->dump, "write per-pixel buffers as .npy files into this directory");
     args->timeline.addTo(*cmd);
     cmd->add_option("--csv", args->csv,

@@ -1,9 +1,12 @@
 #include "eval_path.h"
 #include "frame_config_options.h"
+#include "html_reports.h"
 
 #include "commands.h"
 
+#include "shadowkit/eval/maps.h"
 #include "shadowkit/eval/temporal.h"
+#include "shadowkit/imaging/image_grid.h"
 #include "shadowkit/imaging/plot.h"
 #include "shadowkit/measure/path_measurer.h"
 
@@ -102,6 +105,10 @@ int runEvalPath(const EvalPathArgs& args) {
     std::string technique;
     int refits = 0, toCover = 0, stale = 0; // frames with a refit; views refitted for each reason
     std::vector<core::ShadowSetupInputs> autoChosen;
+    // --report: the error maps of four frames spread over the path, for the strip.
+    std::vector<scene::Image> stripFrames;
+    std::vector<std::string> stripCaptions;
+    const size_t frameCount = timeline->frames.size();
     fmt::print("{:>5} {:>7} {:>9} {:>7} {:>8} {:>7} {:>9} {:>9} {:>6}\n", "frame", "t_s", "valid_px", "wrong%",
                "flicker%", "truth%", "ppt50", "compared", "sec");
     for (const TimedFrame& frame : timeline->frames) {
@@ -134,6 +141,12 @@ int runEvalPath(const EvalPathArgs& args) {
             fmt::print("{:>5} {:>7.3f} {:>9} {:>7.2f} {:>8} {:>7} {:>9.3f} {:>9} {:>6.1f}\n", row.frame, row.time,
                        f.validPx, f.wrongPct, "-", "-", f.pixelsPerTexelP50, "-", row.seconds);
         std::fflush(stdout);
+        const size_t index = rows.size();
+        if (!args.report.empty() && index % std::max<size_t>(1, frameCount / 4) == frameCount / 8 &&
+            stripFrames.size() < 4) {
+            stripFrames.push_back(eval::errorMapImage(measured->measurement.comparison, view->width, view->height));
+            stripCaptions.push_back(fmt::format("frame {}: wrong {:.2f} %", row.frame, f.wrongPct));
+        }
         rows.push_back(row);
     }
 
@@ -162,7 +175,7 @@ int runEvalPath(const EvalPathArgs& args) {
 
     if (!args.csv.empty())
         if (auto s = writeCsv(args.csv, rows); !s) return fail("--csv: " + s.error());
-    if (!args.plot.empty()) {
+    auto writePlot = [&](const std::string& file) -> core::Status {
         imaging::PlotSeries flickerSeries{"flicker_pct", {200, 40, 40}, {}, {}},
             truthSeries{"truth_change_pct", {60, 60, 200}, {}, {}};
         for (const FrameRow& r : rows)
@@ -174,8 +187,37 @@ int runEvalPath(const EvalPathArgs& args) {
         po.title = fmt::format("{} along {}: flicker and truth change per frame", technique, timeline->path->name);
         po.xLabel = "frame";
         po.yLabel = "% of compared pixels";
-        if (auto s = scene::writePng(imaging::plotLines({flickerSeries, truthSeries}, po), args.plot); !s)
-            return fail("--plot: " + s.error());
+        return scene::writePng(imaging::plotLines({flickerSeries, truthSeries}, po), file);
+    };
+    if (!args.plot.empty())
+        if (auto s = writePlot(args.plot); !s) return fail("--plot: " + s.error());
+    if (!args.report.empty()) {
+        const std::filesystem::path page(args.report);
+        const std::string stem = page.stem().string() + "-" + timeline->path->name;
+        eval::HtmlPath section{timeline->path->name,
+                               fmt::format("{}, {} frames: flicker_pct mean {:.3f} / p95 {:.3f} / max {:.3f}; "
+                                           "truth_change_pct mean {:.3f} / p95 {:.3f} / max {:.3f}; wrong_pct mean "
+                                           "{:.3f}",
+                                           technique, rows.size(), fl.mean, fl.p95, fl.max, tc.mean, tc.p95, tc.max,
+                                           wr.mean),
+                               {stem + "-flicker.png", "flicker_pct and truth_change_pct per frame"},
+                               {},
+                               invocationWithout({"--report"}, {})};
+        if (auto s = writePlot((page.parent_path() / section.plot.file).string()); !s)
+            return fail("--report: " + s.error());
+        if (!stripFrames.empty()) {
+            section.strip = {stem + "-frames.png", "error maps of frames along the path"};
+            if (auto s = scene::writePng(imaging::captionedGrid(stripFrames, stripCaptions, int(stripFrames.size())),
+                                         page.parent_path() / section.strip.file);
+                !s)
+                return fail("--report: " + s.error());
+        }
+        eval::HtmlReport html{.title = "shadowkit eval --path " + timeline->path->name,
+                              .command = invocation(),
+                              .machine = machineDescription(**measurer)};
+        html.paths.push_back(std::move(section));
+        if (auto s = eval::writeHtmlReport(html, page); !s) return fail("--report: " + s.error());
+        fmt::print(stderr, "report: {}\n", args.report);
     }
     if (!args.json.empty()) {
         nlohmann::json frames = nlohmann::json::array();

@@ -17,7 +17,7 @@ struct EvalPathArgs {
     const RenderOptions& render;
     const TimelineOptions& timeline;
     const LocalLightOptions& lights;
-    std::string csv, plot, json;
+    std::string csv, plot, json, report;
 };
 
 int runEvalPath(const EvalPathArgs& args);

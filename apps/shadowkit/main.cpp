@@ -1,5 +1,6 @@
 // shadowkit: render, measure and export shadow set-ups from the command line.
 #include "commands.h"
+#include "html_reports.h"
 #include "state.h"
 
 #include "shadowkit/core/version.h"
@@ -20,6 +21,7 @@ int main(int argc, char** argv) {
         shadowkit::app::addExportCommand(app),
     };
 
+    shadowkit::app::setInvocation(std::vector<std::string>(argv + 1, argv + argc)); // reports print it
     // --state FILE: the saved options of a viewer session, as if typed before the others.
     auto args = shadowkit::app::expandState(std::vector<std::string>(argv + 1, argv + argc));
     if (!args) return shadowkit::app::fail(args.errorInfo());

@@ -29,6 +29,22 @@ std::array<uint8_t, 3> ramp(double t) {
 
 constexpr double kLog2Min = -6.0, kLog2Max = 6.0; // 1/64 .. 64 pixels per texel
 
+// One pixel of a sun-shaded picture; `visibility` in [0, 1], NaN where the picture has none.
+void shade(scene::Image& image, const TruthBuffers& truth, const core::DirectionalLight& light, size_t i,
+           float visibility) {
+    static constexpr uint8_t sky[3] = {150, 180, 215};
+    static constexpr uint8_t missing[3] = {230, 0, 230};
+    static constexpr double ambient = 0.25;
+    const int x = static_cast<int>(i % size_t(truth.width)), y = static_cast<int>(i / size_t(truth.width));
+    if (truth.surfaceId[i] == 0) return put(image, x, y, sky);
+    if (std::isnan(visibility)) return put(image, x, y, missing);
+    const double nDotL = std::max(0.0, glm::dot(core::Vec3(truth.wsNormal[i]), light.wsTowardsLight()));
+    const double v = truth.facesLight[i] ? std::clamp(double(visibility), 0.0, 1.0) : 0.0;
+    const auto grey = static_cast<uint8_t>(std::lround(255.0 * (ambient + (1.0 - ambient) * nDotL * v)));
+    const uint8_t rgb[3] = {grey, grey, grey};
+    put(image, x, y, rgb);
+}
+
 } // namespace
 
 scene::Image errorMapImage(const Comparison& comparison, int width, int height) {
@@ -77,6 +93,20 @@ scene::Image aliasingMapImage(const Comparison& comparison, int width, int heigh
         imaging::drawText(image, std::clamp(x - labelWidth / 2, 0, width - labelWidth), barBottom + 3 * scale,
                           labels[k], white, scale);
     }
+    return image;
+}
+
+scene::Image truthShadowImage(const TruthBuffers& truth, const core::DirectionalLight& light) {
+    scene::Image image(truth.width, truth.height);
+    for (size_t i = 0; i < truth.surfaceId.size(); ++i) shade(image, truth, light, i, truth.lit[i] ? 1.0f : 0.0f);
+    return image;
+}
+
+scene::Image renderedShadowImage(const TruthBuffers& truth, const core::RasterBuffers& raster,
+                                 const core::DirectionalLight& light) {
+    scene::Image image(truth.width, truth.height);
+    for (size_t i = 0; i < truth.surfaceId.size(); ++i)
+        shade(image, truth, light, i, i < raster.surfaceId.size() && raster.surfaceId[i] ? raster.shadowTerm[i] : NAN);
     return image;
 }
 

@@ -1,12 +1,16 @@
-// Pictures of a comparison: the error map and the aliasing heat map.
+// Pictures of a comparison: the error map, the aliasing heat map, and the same pixels shaded
+// by the sun under the ray-traced and the rendered visibility, to be set side by side.
 #pragma once
 
+#include "shadowkit/core/light.h"
+#include "shadowkit/core/raster_buffers.h"
 #include "shadowkit/eval/metrics.h"
+#include "shadowkit/eval/truth.h"
 #include "shadowkit/scene/image.h"
 
 namespace shadowkit::eval {
 
-// Colours of the error map (README, "Error maps").
+// Colours of the error map (docs/evaluation.md, "Error maps").
 struct ErrorMapColors {
     static constexpr uint8_t notEvaluated[3] = {24, 24, 28};
     static constexpr uint8_t litCorrect[3] = {205, 205, 205};
@@ -22,5 +26,14 @@ scene::Image errorMapImage(const Comparison& comparison, int width, int height);
 // colour bar and labels under the image; 1 pixel per texel is the white tick. Pixels
 // that are not valid are black.
 scene::Image aliasingMapImage(const Comparison& comparison, int width, int height);
+
+// The truth's surfaces in grey, lit by the sun alone: ambient + (1 − ambient) · N·L · v, with
+// v the visibility — `truth.lit` for the ray-traced picture, the rendered shadow term
+// (`raster.shadowTerm`, filtered as drawn) for the rendered one. Both use the truth's
+// surfaces and normals, so the two pictures differ exactly where the shadows do. The sky is
+// flat blue; a pixel with no rendered surface in the rendered picture is magenta.
+scene::Image truthShadowImage(const TruthBuffers& truth, const core::DirectionalLight& light);
+scene::Image renderedShadowImage(const TruthBuffers& truth, const core::RasterBuffers& raster,
+                                 const core::DirectionalLight& light);
 
 } // namespace shadowkit::eval

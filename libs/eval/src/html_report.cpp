@@ -1,0 +1,248 @@
+#include "shadowkit/eval/html_report.h"
+
+#include "shadowkit/eval/maps.h"
+
+#include <algorithm>
+#include <array>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+namespace shadowkit::eval {
+namespace {
+
+constexpr std::array<FigureMeaning, 9> kMeanings = {{
+    {"valid_px", "pixels evaluated: the surface faces the sun and raster and ray tracer agree on it"},
+    {"excluded_px", "pixels facing the sun where raster and ray tracer see different surfaces (silhouettes)"},
+    {"wrong_pct", "% of valid pixels whose rendered lit/shadowed state differs from the ray-traced truth"},
+    {"false_shadow_pct", "% rendered shadowed where the truth is lit: acne, aliasing that darkens (red)"},
+    {"false_lit_pct", "% rendered lit where the truth is shadowed: peter-panning, leaks, missed casters (blue)"},
+    {"undersampled_pct", "% of valid pixels where one shadow texel covers more than one pixel"},
+    {"pixels_per_texel_p50", "median pixels one texel covers along its worst direction; above 1 shows stair steps"},
+    {"pixels_per_texel_p95", "95th percentile of the same: the coarsest texels most of the screen sees"},
+    {"pixels_per_texel_p99", "99th percentile of the same: mostly surfaces edge-on to the sun"},
+}};
+
+std::string fixed(double value, int digits) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%.*f", digits, value);
+    return text;
+}
+
+// The figure named `name` of `f`, printed as the command line's table prints it.
+std::string figureText(const Figures& f, std::string_view name) {
+    if (name == "valid_px") return std::to_string(f.validPx);
+    if (name == "excluded_px") return std::to_string(f.excludedPx);
+    if (name == "wrong_pct") return fixed(f.wrongPct, 2);
+    if (name == "false_shadow_pct") return fixed(f.falseShadowPct, 2);
+    if (name == "false_lit_pct") return fixed(f.falseLitPct, 2);
+    if (name == "undersampled_pct") return fixed(f.undersampledPct, 2);
+    if (name == "pixels_per_texel_p50") return fixed(f.pixelsPerTexelP50, 2);
+    if (name == "pixels_per_texel_p95") return fixed(f.pixelsPerTexelP95, 2);
+    return fixed(f.pixelsPerTexelP99, 1);
+}
+
+constexpr std::string_view kStyle = R"(
+body { font: 15px/1.45 system-ui, sans-serif; margin: 2em auto; max-width: 1500px; padding: 0 1em; color: #222; }
+h1 { font-size: 1.6em; } h2 { margin-top: 2em; border-bottom: 1px solid #ccc; }
+table { border-collapse: collapse; margin: 0.6em 0; }
+th, td { border: 1px solid #ddd; padding: 0.25em 0.6em; text-align: right; }
+th:first-child, td:first-child, td.meaning { text-align: left; }
+td.meaning { color: #555; font-size: 0.92em; }
+.row { display: flex; gap: 0.5em; overflow-x: auto; }
+figure { margin: 0; flex: 1 1 0; min-width: 220px; }
+figure img { width: 100%; image-rendering: pixelated; border: 1px solid #ccc; }
+figcaption { font-size: 0.9em; color: #444; }
+code, pre { background: #f4f4f4; } pre { padding: 0.5em; white-space: pre-wrap; word-break: break-all; }
+.swatch { display: inline-block; width: 0.9em; height: 0.9em; vertical-align: middle; border: 1px solid #999; }
+#broken { color: #b00; }
+)";
+
+// Counts the images that did not load, for readers and for the browser test.
+constexpr std::string_view kScript = R"(
+window.addEventListener('load', () => {
+  const images = Array.from(document.images);
+  const broken = images.filter(i => !(i.complete && i.naturalWidth > 0)).map(i => i.getAttribute('src'));
+  document.body.dataset.images = images.length;
+  document.body.dataset.brokenImages = broken.length;
+  if (broken.length) document.getElementById('broken').textContent = 'Missing pictures: ' + broken.join(', ');
+});
+)";
+
+std::string swatch(const uint8_t rgb[3]) {
+    return "<span class=\"swatch\" style=\"background: rgb(" + std::to_string(rgb[0]) + "," + std::to_string(rgb[1]) +
+           "," + std::to_string(rgb[2]) + ")\"></span>";
+}
+
+void writeLegend(std::ostringstream& out) {
+    using C = ErrorMapColors;
+    out << "<p><b>Error map:</b> " << swatch(C::litCorrect) << " lit and correct, " << swatch(C::shadowCorrect)
+        << " shadowed and correct, " << swatch(C::falseShadow) << " false shadow, " << swatch(C::falseLit)
+        << " false lit, " << swatch(C::excluded) << " excluded (raster and ray disagree on the surface), "
+        << swatch(C::notEvaluated) << " not evaluated (sky, or facing away from the sun). "
+        << "<b>Aliasing map:</b> pixels per texel on a log scale from 1/64 (dark violet) to 64 (yellow); the white "
+           "tick marks 1. <b>Shadows</b> pictures shade the ray tracer's surfaces by the sun alone, with the "
+           "rendered or the ray-traced visibility, so they differ exactly where the shadows do.</p>\n";
+}
+
+void writeFiguresTable(std::ostringstream& out, const std::vector<const HtmlEntry*>& entries) {
+    out << "<table class=\"figures\"><tr><th>figure</th>";
+    for (const HtmlEntry* e : entries) out << "<th>" << htmlEscape(e->label) << "</th>";
+    out << "<th>what it means</th></tr>\n";
+    for (const FigureMeaning& m : kMeanings) {
+        out << "<tr><td><code>" << m.name << "</code></td>";
+        for (const HtmlEntry* e : entries) out << "<td>" << figureText(e->report.figures, m.name) << "</td>";
+        out << "<td class=\"meaning\">" << htmlEscape(m.meaning) << "</td></tr>\n";
+    }
+    out << "</table>\n";
+    for (const HtmlEntry* e : entries) {
+        if (e->report.lights.empty()) continue;
+        out << "<table class=\"lights\"><tr><th>" << htmlEscape(e->label)
+            << ": light</th><th>maps</th><th>valid_px</th><th>wrong_pct</th><th>false_shadow_pct</th>"
+               "<th>false_lit_pct</th><th>pixels_per_texel_p50</th></tr>\n";
+        for (const LightReport& l : e->report.lights)
+            out << "<tr><td>" << htmlEscape(l.light) << "</td><td>" << l.maps << "</td><td>" << l.figures.validPx
+                << "</td><td>" << fixed(l.figures.wrongPct, 2) << "</td><td>" << fixed(l.figures.falseShadowPct, 2)
+                << "</td><td>" << fixed(l.figures.falseLitPct, 2) << "</td><td>"
+                << fixed(l.figures.pixelsPerTexelP50, 2) << "</td></tr>\n";
+        out << "</table>\n";
+    }
+}
+
+void writePicture(std::ostringstream& out, const HtmlPicture& p, const std::string& alt) {
+    out << "<figure><a href=\"" << htmlEscape(p.file) << "\"><img src=\"" << htmlEscape(p.file) << "\" alt=\""
+        << htmlEscape(alt + ", " + p.caption) << "\" loading=\"eager\"></a><figcaption>" << htmlEscape(p.caption)
+        << "</figcaption></figure>";
+}
+
+std::string settingsText(const ViewReport& r) {
+    std::string text = r.technique + ", " + std::to_string(r.maps) + " × " + std::to_string(r.mapSize) +
+                       "², bias slope " + fixed(r.bias.slope, 2) + " / constant " + fixed(r.bias.constant, 2) +
+                       " / normal offset " + fixed(r.bias.normalOffset, 2) + ", filter " + r.filter + ", " +
+                       std::to_string(r.width) + " × " + std::to_string(r.height) + ", scene " + r.scene + " (seed " +
+                       std::to_string(r.seed) + ")";
+    if (!r.autoChoice.empty()) text += "; auto chose " + r.autoChoice;
+    for (const std::string& f : r.fallbacks) text += "; fallback: " + f;
+    return text;
+}
+
+} // namespace
+
+std::span<const FigureMeaning> figureMeanings() { return kMeanings; }
+
+std::string htmlEscape(std::string_view text) {
+    std::string out;
+    out.reserve(text.size());
+    for (char c : text) {
+        switch (c) {
+        case '&':
+            out += "&amp;";
+            break;
+        case '<':
+            out += "&lt;";
+            break;
+        case '>':
+            out += "&gt;";
+            break;
+        case '"':
+            out += "&quot;";
+            break;
+        case '\'':
+            out += "&#39;";
+            break;
+        default:
+            out += c;
+        }
+    }
+    return out;
+}
+
+std::string htmlReport(const HtmlReport& report) {
+    // Entries grouped by view, views in their first appearance's order.
+    std::vector<std::string> views;
+    std::map<std::string, std::vector<const HtmlEntry*>> byView;
+    for (const HtmlEntry& e : report.entries) {
+        auto& list = byView[e.report.view];
+        if (list.empty()) views.push_back(e.report.view);
+        list.push_back(&e);
+    }
+
+    std::ostringstream out;
+    out << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n<meta name=\"viewport\" "
+           "content=\"width=device-width, initial-scale=1\">\n<title>"
+        << htmlEscape(report.title) << "</title>\n<style>" << kStyle << "</style>\n<script>" << kScript
+        << "</script>\n</head><body>\n<h1>" << htmlEscape(report.title) << "</h1>\n<p id=\"broken\"></p>\n";
+    if (!report.command.empty()) out << "<p>Written by</p><pre>" << htmlEscape(report.command) << "</pre>\n";
+    if (!report.machine.empty()) out << "<p>Measured on " << htmlEscape(report.machine) << ".</p>\n";
+
+    if (!views.empty()) {
+        // The summary: wrong_pct (median pixels per texel) per view and entry label.
+        std::vector<std::string> labels;
+        for (const HtmlEntry& e : report.entries)
+            if (std::find(labels.begin(), labels.end(), e.label) == labels.end()) labels.push_back(e.label);
+        out << "<h2>Summary</h2>\n<p><code>wrong_pct</code> (<code>pixels_per_texel_p50</code>) against ray-traced "
+               "truth; lower is better for both.</p>\n<table class=\"summary\"><tr><th>view</th>";
+        for (const std::string& l : labels) out << "<th>" << htmlEscape(l) << "</th>";
+        out << "</tr>\n";
+        for (const std::string& v : views) {
+            out << "<tr><td><a href=\"#view-" << htmlEscape(v) << "\">" << htmlEscape(v) << "</a></td>";
+            for (const std::string& l : labels) {
+                const auto& list = byView[v];
+                auto it = std::find_if(list.begin(), list.end(), [&](const HtmlEntry* e) { return e->label == l; });
+                out << "<td>"
+                    << (it == list.end() ? std::string("–")
+                                         : fixed((*it)->report.figures.wrongPct, 2) + " (" +
+                                               fixed((*it)->report.figures.pixelsPerTexelP50, 1) + ")")
+                    << "</td>";
+            }
+            out << "</tr>\n";
+        }
+        out << "</table>\n";
+        writeLegend(out);
+    }
+
+    for (const std::string& v : views) {
+        const auto& list = byView[v];
+        out << "<section class=\"view\" id=\"view-" << htmlEscape(v) << "\">\n<h2>" << htmlEscape(v) << "</h2>\n";
+        for (const HtmlEntry* e : list) {
+            out << "<h3>" << htmlEscape(e->label) << "</h3>\n<p>" << htmlEscape(settingsText(e->report)) << "</p>\n";
+            out << "<div class=\"row\">";
+            for (const HtmlPicture& p : e->pictures) writePicture(out, p, v + ", " + e->label);
+            out << "</div>\n";
+            if (!e->command.empty()) out << "<pre>" << htmlEscape(e->command) << "</pre>\n";
+        }
+        writeFiguresTable(out, list);
+        out << "</section>\n";
+    }
+
+    for (const HtmlPath& p : report.paths) {
+        out << "<section class=\"path\" id=\"path-" << htmlEscape(p.name) << "\">\n<h2>Path <code>"
+            << htmlEscape(p.name) << "</code></h2>\n<p>" << htmlEscape(p.summary) << "</p>\n<div class=\"row\">";
+        writePicture(out, p.plot, p.name);
+        out << "</div>\n";
+        if (!p.strip.file.empty()) {
+            out << "<div class=\"row\">";
+            writePicture(out, p.strip, p.name);
+            out << "</div>\n";
+        }
+        out << "<p><code>flicker_pct</code>: % of the pixels seen in two consecutive frames at the same world point "
+               "whose rendered lit/shadowed state changed while the truth's did not. "
+               "<code>truth_change_pct</code>: % whose truth changed (a moving sun or moving casters).</p>\n";
+        if (!p.command.empty()) out << "<pre>" << htmlEscape(p.command) << "</pre>\n";
+        out << "</section>\n";
+    }
+    out << "<p>The evaluation protocol is explained in shadowkit's <code>docs/evaluation.md</code>; every figure "
+           "here is reproduced by the command shown with it.</p>\n</body></html>\n";
+    return out.str();
+}
+
+core::Status writeHtmlReport(const HtmlReport& report, const std::filesystem::path& file) {
+    std::ofstream out(file);
+    if (!out) return core::makeError(file.string() + ": cannot open for writing");
+    out << htmlReport(report);
+    if (!out) return core::makeError(file.string() + ": write failed");
+    return core::Ok{};
+}
+
+} // namespace shadowkit::eval
