@@ -4,7 +4,7 @@
 // (GLSL has no #include of its own; concatenate, or use your engine's include mechanism).
 // It declares no uniforms: everything comes in through the arguments and the accessors below.
 //
-// What it does, per fragment (see the README's "Using shadowkit in your engine"):
+// What it does, per fragment (see docs/engine-integration.md):
 //   - the lookup of one map in a sampler2DArrayShadow layer (a lone 2-D map is layer 0 of a
 //     one-layer array), with the comparison in the sampler (GL_TEXTURE_COMPARE_MODE
 //     GL_COMPARE_REF_TO_TEXTURE; GL_LEQUAL, or GL_GEQUAL for reversed-Z maps);

@@ -1,7 +1,7 @@
 // Evaluation as a regression suite: every technique, with its defaults, on every standard
 // view of a small forest, measured against ray-traced truth and compared with the figures
 // recorded in data/golden/small-forest.json within that file's tolerances. A change that
-// moves a figure past its tolerance fails here, before it reaches the README's tables.
+// moves a figure past its tolerance fails here, before it reaches the tables of README and docs/.
 //
 // After a change that is meant to move figures, re-record them (and say why in the commit):
 //   SHADOWKIT_UPDATE_GOLDEN=1 build/tests/shadowkit_golden_tests

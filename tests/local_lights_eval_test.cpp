@@ -1,5 +1,5 @@
 // Spot and point lights measured against ray-traced truth on the standard night views `lamp`
-// and `torch` (README "Spot and point lights"), at their sizes and the default local map and
+// and `torch` (docs/local-lights.md), at their sizes and the default local map and
 // bias, on the full default forest. CTest label `gl`.
 #include "headless_gl_test.h"
 

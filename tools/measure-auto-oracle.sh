@@ -1,6 +1,6 @@
 #!/bin/sh
 # How low --technique auto's mean wrong_pct could go at 4 M texels by choosing parameters at all
-# (README, "Error-driven parameters"): 40 fixed configurations within the budget - TSM's focus
+# (docs/error-driven.md): 40 fixed configurations within the budget - TSM's focus
 # fraction, LiSPSM's weight on n on both warp axes, 2, 3 and 4 cascades over the visible depth
 # at four values of lambda, unwarped and warped per split, and focused - each measured against
 # the ray-traced truth on the six standard views; tools/readme_tables.py oracle then keeps the

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Cube faces a point light skips (they see nothing of the view) on the `lamp` view, for the
 # lamp 10 m from the eye, 3 m up, at eight bearings round the view direction (0 = straight
-# ahead, the view's own lamp). README "Spot and point lights". No GL needed: `shadowkit setup`.
+# ahead, the view's own lamp). docs/local-lights.md. No GL needed: `shadowkit setup`.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 SK=${SK:-build/apps/shadowkit/shadowkit}

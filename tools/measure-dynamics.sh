@@ -1,5 +1,5 @@
 #!/bin/sh
-# The README's "Dynamic scenes and stability" figures: shadowkit eval along the flythrough
+# The figures of docs/dynamics.md: shadowkit eval along the flythrough
 # path (240 frames, 1280x720, movers on) for every technique at equal memory (one 4096² map,
 # or 4 cascades of 2048²), with the sun moving as the path says and, for cascades, held
 # still (--sun-path off) so that only the camera moves. Rows go to build/dynamics/NAME.json

@@ -1,5 +1,5 @@
 #!/bin/sh
-# The README's trade of held texel lattices (--stabilize for warped maps): LiSPSM at one
+# docs/dynamics.md's trade of held texel lattices (--stabilize for warped maps): LiSPSM at one
 # 4096² map along the whole flythrough, sun held, without the lookahead (the defaults' row,
 # margin 0.05 and lookahead 60, is tools/measure-dynamics.sh's),
 # then the still views on perpendicular (a still camera's refit is the fresh fit itself).

@@ -1,5 +1,5 @@
 #!/bin/sh
-# The README's visibility table: shadowkit bench on the perpendicular view at 10,000 and
+# docs/scale-and-visibility.md's visibility table: shadowkit bench on the perpendicular view at 10,000 and
 # 100,000 trees for every visibility mode, with caster culling by volume and by visible
 # receivers, 10 frames each (CHC++'s counts are medians of the 9 after the camera cut).
 # Rows go to build/visibility/*.json; tools/readme_tables.py visibility prints the table. (100,000 trees without any culling is 29 M triangles a pass: left out.)

@@ -24,10 +24,17 @@ drift from what the program measures.
       per view, the lowest wrong_pct of the `shadowkit eval --views all --json` reports and which
       one it was, and the mean of those (tools/measure-auto-oracle.sh)
 
+  tools/readme_tables.py --into PAGE.md:NAME SUBCOMMAND ...
+      any of the above, written into PAGE.md between its lines `<!-- table NAME: how it is measured -->` and
+      `<!-- /table -->` (indented as the first marker is) instead of printed
+
 LABEL is the row's name as printed (e.g. '`tsm`' or '`csm` 4 × 1024²'). tools/measure-readme.sh
 runs the evaluations behind every table and prints them.
 """
+import contextlib
+import io
 import json
+import re
 import sys
 
 VIEWS = ["paper", "perpendicular", "into-sun", "sun-behind", "noon", "aerial"]
@@ -136,27 +143,50 @@ def oracle(paths):
     print(f"| mean | {sum(best) / len(best):.3f} | over {len(reports)} configurations | |")
 
 
-if __name__ == "__main__":
-    if len(sys.argv) >= 3 and sys.argv[1] == "oracle":
-        oracle(sys.argv[2:])
-        sys.exit(0)
-    if len(sys.argv) >= 3 and sys.argv[1] == "stable":
-        stable(sys.argv[2:])
-        sys.exit(0)
-    if len(sys.argv) >= 3 and sys.argv[1] == "visibility":
-        visibility(sys.argv[2:])
-        sys.exit(0)
-    if len(sys.argv) >= 3 and sys.argv[1] == "dynamics":
-        dynamics(sys.argv[2:])
-        sys.exit(0)
-    if len(sys.argv) < 3 or sys.argv[1] not in ("summary", "details"):
+def write_into(target, text):
+    """Replaces the body of the table block NAME in PAGE (target 'PAGE:NAME') with `text`."""
+    page, _, name = target.rpartition(":")
+    if not page or not name:
+        sys.exit(f"readme_tables: --into: expected PAGE.md:NAME, got '{target}'")
+    lines = open(page, encoding="utf-8").read().split("\n")
+    start = next((i for i, l in enumerate(lines) if re.match(rf"<!-- table {re.escape(name)}[: ]", l.strip())), None)
+    if start is None:
+        sys.exit(f"readme_tables: {page}: no line '<!-- table {name}: ... -->'")
+    end = next((i for i in range(start + 1, len(lines)) if lines[i].strip() == "<!-- /table -->"), None)
+    if end is None:
+        sys.exit(f"readme_tables: {page}: table '{name}' has no closing '<!-- /table -->'")
+    indent = lines[start][: len(lines[start]) - len(lines[start].lstrip())]
+    # Blank lines around the table: Markdown readers differ on a table that touches an HTML comment.
+    body = [""] + [indent + l if l else l for l in text.rstrip("\n").split("\n")] + [""]
+    open(page, "w", encoding="utf-8").write("\n".join(lines[: start + 1] + body + lines[end:]))
+    print(f"readme_tables: wrote table '{name}' into {page}", file=sys.stderr)
+
+
+def run(argv):
+    """Prints the table the arguments (argv[1:], as on the command line) ask for."""
+    if len(argv) >= 3 and argv[1] in ("oracle", "stable", "visibility", "dynamics"):
+        {"oracle": oracle, "stable": stable, "visibility": visibility, "dynamics": dynamics}[argv[1]](argv[2:])
+        return
+    if len(argv) < 3 or argv[1] not in ("summary", "details"):
         sys.exit(__doc__)
-    args = sys.argv[2:]
+    args = argv[2:]
     first_column = "technique"
     if args[:1] == ["--first-column"] and len(args) > 2:
         first_column, args = args[1], args[2:]
     reports = [load(a) for a in args]
-    if sys.argv[1] == "summary":
+    if argv[1] == "summary":
         summary(reports, first_column)
     else:
         details(reports)
+
+
+if __name__ == "__main__":
+    if len(sys.argv) >= 2 and sys.argv[1] == "--into":
+        if len(sys.argv) < 5:
+            sys.exit(__doc__)
+        captured = io.StringIO()
+        with contextlib.redirect_stdout(captured):
+            run([sys.argv[0]] + sys.argv[3:])
+        write_into(sys.argv[2], captured.getvalue())
+    else:
+        run(sys.argv)

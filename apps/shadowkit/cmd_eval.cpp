@@ -48,8 +48,8 @@ core::Result<std::vector<std::string>> viewNames(const EvalArgs& args) {
     auto all = scene::loadViews(dataDirectory() / "views.json");
     if (!all) return all.errorInfo();
     std::vector<std::string> names;
-    // "all": the six sunlit standard views (README technique table); "local": those with
-    // spot and point lights (README "Spot and point lights").
+    // "all": the six sunlit standard views (docs/techniques.md); "local": those with
+    // spot and point lights (docs/local-lights.md).
     if (args.views == "all" || args.views == "local") {
         for (const scene::ViewSpec& v : *all)
             if (v.lights.empty() == (args.views == "all")) names.push_back(v.name);

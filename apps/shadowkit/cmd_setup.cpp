@@ -1,5 +1,5 @@
 // shadowkit setup: the shadow matrices as JSON, without any GL. The output is a
-// contract for engines and tests (README, "shadowkit setup"): keep the names stable.
+// contract for engines and tests (docs/commands.md, "shadowkit setup"): keep the names stable.
 #include "commands.h"
 #include "local_light_options.h"
 #include "options.h"
@@ -30,7 +30,7 @@ json toJson(const core::Mat4& m) {
     return a;
 }
 
-// The README's names for each technique's parameters; flags as 0 / 1 numbers, as they
+// docs/commands.md's names for each technique's parameters; flags as 0 / 1 numbers, as they
 // always were in this contract.
 json warpJson(const core::WarpParameters& warp) {
     auto flag = [](bool b) { return b ? 1.0 : 0.0; };

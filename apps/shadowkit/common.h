@@ -8,7 +8,7 @@
 
 namespace shadowkit::app {
 
-// Exit codes (README, "Commands"): 1 a bad value, 2 a usage error (unknown flag, missing
+// Exit codes (docs/commands.md): 1 a bad value, 2 a usage error (unknown flag, missing
 // argument), 3 an environment that cannot do what was asked (no OpenGL 4.5, a driver limit or
 // an allocation the driver refused, a shader the driver rejected).
 inline constexpr int kExitBadInput = 1, kExitUsage = 2, kExitEnvironment = 3;

@@ -119,7 +119,7 @@ struct RenderOptions {
     gl::BlurSettings blur;
     bool cascadeColors = false;
     bool aliasingOverlay = false;                    // --aliasing-overlay: pixels per texel instead of shading (live)
-    gl::Culling visibility = gl::Culling::Occlusion; // --visibility (README "Visibility": the best measured)
+    gl::Culling visibility = gl::Culling::Occlusion; // --visibility (docs/scale-and-visibility.md: the best measured)
     bool receiverMask = true;                        // --caster-culling receivers (likewise)
     bool noCull = false;                             // --no-cull: --visibility off (what culling saves, measured)
     bool noLod = false;                              // full meshes everywhere (what levels of detail save, measured)

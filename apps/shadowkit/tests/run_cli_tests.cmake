@@ -66,6 +66,8 @@ check_fails(no-subcommand "subcommand")
 check_fails(compare-malformed "key=value" compare ${small} --configs "technique=lispsm,bias-slope")
 check_fails(compare-unknown-key "--frobnicate" compare ${small} --configs "technique=lispsm,frobnicate=1")
 check_fails(compare-bad-value "--technique" compare ${small} --configs "technique=nonsense")
+check_fails(report-missing-directory "--report" eval ${small} --report "${WORK}/no/such/dir/index.html")
+check_fails(compare-report-missing-directory "--report" compare ${small} --configs "technique=tsm" --report "${WORK}/no/dir/c.html")
 check_fails(bad-filter "--filter" render ${small} --filter pcf:12)
 check_fails(bad-cull "--cull" render ${small} --cull sideways)
 check_fails(bad-depth-layout "--depth-layout" setup ${small} --depth-layout sideways)
@@ -408,7 +410,7 @@ if(CASE STREQUAL "export-glb")
   endif()
 endif()
 
-# Exit codes (README): 1 for a bad value, a choice not offered included; 2 for an unknown flag.
+# Exit codes (docs/commands.md): 1 for a bad value, a choice not offered included; 2 for an unknown flag.
 if(CASE STREQUAL "exit-codes")
   execute_process(COMMAND ${SHADOWKIT} setup ${small} --technique nonsense RESULT_VARIABLE bad_choice OUTPUT_QUIET ERROR_QUIET)
   execute_process(COMMAND ${SHADOWKIT} setup ${small} --lispsm-weight -1 RESULT_VARIABLE bad_value OUTPUT_QUIET ERROR_QUIET)

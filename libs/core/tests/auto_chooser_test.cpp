@@ -94,7 +94,7 @@ TEST(AutoChooserTest, TracksTheFullSearchAlongAPath) {
         std::sort(ratios.begin(), ratios.end());
         double mean = 0.0;
         for (const double r : ratios) mean += r / double(ratios.size());
-        // The README's figures. Parameters frozen at the first frame's (the step's probe never
+        // The figures of docs/error-driven.md. Parameters frozen at the first frame's (the step's probe never
         // kept, families still switching) gave a mean of 1.06, a p90 of 1.12-1.15 and a worst
         // frame of 1.34 on this path.
         std::printf("tracked / full search objective, %s: mean %.4f p90 %.4f max %.4f\n",

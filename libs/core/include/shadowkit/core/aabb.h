@@ -9,7 +9,7 @@
 namespace shadowkit::core {
 
 struct Aabb {
-    // An empty box (min > max); extending it by any point makes it that point.
+    /// An empty box (min > max); extending it by any point makes it that point.
     Vec3 min{std::numeric_limits<double>::infinity()};
     Vec3 max{-std::numeric_limits<double>::infinity()};
 
@@ -34,12 +34,12 @@ struct Aabb {
         return p.x >= min.x - eps && p.y >= min.y - eps && p.z >= min.z - eps && p.x <= max.x + eps &&
                p.y <= max.y + eps && p.z <= max.z + eps;
     }
-    // Squared distance from p to the box: 0 inside.
+    /// Squared distance from p to the box: 0 inside.
     double distanceSquared(const Vec3& p) const {
         const Vec3 d = glm::max(glm::max(min - p, p - max), Vec3(0.0));
         return glm::dot(d, d);
     }
-    // Corner i: bit 0 selects x, bit 1 y, bit 2 z (0 = min, 1 = max).
+    /// Corner i: bit 0 selects x, bit 1 y, bit 2 z (0 = min, 1 = max).
     Vec3 corner(int i) const { return {(i & 1) ? max.x : min.x, (i & 2) ? max.y : min.y, (i & 4) ? max.z : min.z}; }
     std::array<Vec3, 8> corners() const {
         std::array<Vec3, 8> c;
@@ -48,7 +48,7 @@ struct Aabb {
     }
 };
 
-// Bounds of points after a transform (a box of a box is the box of its 8 corners).
+/// Bounds of points after a transform (a box of a box is the box of its 8 corners).
 Aabb transformBounds(const Mat4& bFromA, const Aabb& aBox);
 
 } // namespace shadowkit::core

@@ -33,24 +33,24 @@ class AutoChooser {
 public:
     explicit AutoChooser(AutoOptions options) : m_options(options) {}
 
-    // This frame's choice for `base`'s camera, light and scene box, from the receivers the
-    // camera sees as a width × height image (receiverSamples). Without receivers: the last
-    // choice for this frame, or on the first frame what chooseAuto gives for none. Fails for
-    // invalid options, inputs or image size. Deterministic for the same sequence of calls.
+    /// This frame's choice for `base`'s camera, light and scene box, from the receivers the
+    /// camera sees as a width × height image (receiverSamples). Without receivers: the last
+    /// choice for this frame, or on the first frame what chooseAuto gives for none. Fails for
+    /// invalid options, inputs or image size. Deterministic for the same sequence of calls.
     Result<ParameterChoice> choose(const ShadowSetupInputs& base, int width, int height,
                                    std::span<const ReceiverSample> receivers);
 
-    // Forget the tracked parameters: the next call searches in full (a cut in the camera path).
+    /// Forget the tracked parameters: the next call searches in full (a cut in the camera path).
     void reset() { m_tracks.clear(); }
-    // The number of candidates tracked (0 before the first search).
+    /// The number of candidates tracked (0 before the first search).
     size_t candidates() const { return m_tracks.size(); }
     const AutoOptions& options() const { return m_options; }
 
 private:
     struct Track {
         ShadowSetupInputs inputs;
-        double step = 0.0; // along the parameter axis
-        double side = 1.0; // +1 or -1: where the next probe goes
+        double step = 0.0; ///< along the parameter axis
+        double side = 1.0; ///< +1 or -1: where the next probe goes
         int steps = 0;
     };
     struct Step {

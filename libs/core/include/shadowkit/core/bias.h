@@ -6,35 +6,35 @@
 
 namespace shadowkit::core {
 
-// Which caster faces are left out of the shadow map.
+/// Which caster faces are left out of the shadow map.
 enum class CasterCull {
-    None,  // both sides: the receiver's own front face is in the map (needs bias)
-    Back,  // front faces only (the usual choice for closed meshes)
-    Front, // back faces only: "back-side rendering" (Scherzer 2005 §4.2): the stored depth is the
+    None,  ///< both sides: the receiver's own front face is in the map (needs bias)
+    Back,  ///< front faces only (the usual choice for closed meshes)
+    Front, ///< back faces only: "back-side rendering" (Scherzer 2005 §4.2): the stored depth is the
            // far side of each caster, so lit front faces are never compared with themselves
 };
 
 struct BiasSettings {
-    // glPolygonOffset(slope, constant) for hyperbolic depth; for linear depth the same
-    // applied per fragment, a constant unit being 2^-24 of the depth range.
-    double slope = 2.0;    // × max depth slope; [0, 100]
-    double constant = 4.0; // minimum resolvable depth steps; [0, 1e6]
-    // Receiver moved along its normal by this many texels' world size before the lookup
-    // (normal offset); [0, 10].
+    /// glPolygonOffset(slope, constant) for hyperbolic depth; for linear depth the same
+    /// applied per fragment, a constant unit being 2^-24 of the depth range.
+    double slope = 2.0;    ///< × max depth slope; [0, 100]
+    double constant = 4.0; ///< minimum resolvable depth steps; [0, 1e6]
+    /// Receiver moved along its normal by this many texels' world size before the lookup
+    /// (normal offset); [0, 10].
     double normalOffset = 0.0;
-    // Receiver-plane depth bias: the reference depth follows the receiver's plane to each
-    // texel (tap) centre, using the screen derivatives of the shadow coordinates.
+    /// Receiver-plane depth bias: the reference depth follows the receiver's plane to each
+    /// texel (tap) centre, using the screen derivatives of the shadow coordinates.
     bool receiverPlane = false;
     CasterCull cull = CasterCull::None;
 };
 
-// Checks the ranges above; error fields "bias.slope", "bias.constant", "bias.normal_offset".
+/// Checks the ranges above; error fields "bias.slope", "bias.constant", "bias.normal_offset".
 Status validate(const BiasSettings& bias);
 
-// The bias every caller gets unless it sets its own (the renderer, `shadowkit render`,
-// `eval`, `compare`): chosen per technique and depth layout from measurements (README,
-// "Bias and filtering"), with receiver-plane depth bias switched on for wide filter
-// kernels, which self-shadow sloped receivers without it.
+/// The bias every caller gets unless it sets its own (the renderer, `shadowkit render`,
+/// `eval`, `compare`): chosen per technique and depth layout from measurements (docs/bias-and-filtering.md,
+/// "Bias and filtering"), with receiver-plane depth bias switched on for wide filter
+/// kernels, which self-shadow sloped receivers without it.
 BiasSettings recommendedBias(Technique technique, DepthLayout layout, const FilterSettings& filter = {});
 
 } // namespace shadowkit::core

@@ -11,33 +11,33 @@ namespace shadowkit::core {
 
 struct PerspectiveCamera {
     Vec3 wsEye{0.0, 1.8, 0.0};
-    Vec3 wsDirection{0.0, 0.0, -1.0}; // viewing direction; any length > 0
-    Vec3 wsUp{0.0, 1.0, 0.0};         // need not be orthogonal to the direction
-    double fovYDegrees = 60.0;        // vertical field of view, (0, 180)
-    double aspect = 16.0 / 9.0;       // width / height, > 0
-    double zNear = 0.5;               // metres, > 0
-    double zFar = 500.0;              // metres, > zNear
+    Vec3 wsDirection{0.0, 0.0, -1.0}; ///< viewing direction; any length > 0
+    Vec3 wsUp{0.0, 1.0, 0.0};         ///< need not be orthogonal to the direction
+    double fovYDegrees = 60.0;        ///< vertical field of view, (0, 180)
+    double aspect = 16.0 / 9.0;       ///< width / height, > 0
+    double zNear = 0.5;               ///< metres, > 0
+    double zFar = 500.0;              ///< metres, > zNear
 
-    // Checks every field; the message names the field and what is wrong.
+    /// Checks every field; the message names the field and what is wrong.
     Status validate() const;
 
-    // GL look-at: the camera looks down -Z in view space.
+    /// GL look-at: the camera looks down -Z in view space.
     Mat4 viewFromWorld() const;
-    // Perspective projection with clip depth in [0,1] (near -> 0, far -> 1).
+    /// Perspective projection with clip depth in [0,1] (near -> 0, far -> 1).
     Mat4 clipFromView() const;
     Mat4 clipFromWorld() const { return clipFromView() * viewFromWorld(); }
 
-    // World-space corners: 0-3 on the near plane, 4-7 on the far plane, each quad in the
-    // order (-x,-y), (+x,-y), (+x,+y), (-x,+y) of the image.
+    /// World-space corners: 0-3 on the near plane, 4-7 on the far plane, each quad in the
+    /// order (-x,-y), (+x,-y), (+x,+y), (-x,+y) of the image.
     std::array<Vec3, 8> wsFrustumCorners() const;
-    // World-space planes with outward normals, in the order near, far, left, right,
-    // bottom, top. A point is inside the frustum when every signedDistance is <= 0.
+    /// World-space planes with outward normals, in the order near, far, left, right,
+    /// bottom, top. A point is inside the frustum when every signedDistance is <= 0.
     std::array<Plane, 6> wsFrustumPlanes() const;
 };
 
-// Perspective matrix for clip depth [0,1], looking down -Z (right-handed view space).
+/// Perspective matrix for clip depth [0,1], looking down -Z (right-handed view space).
 Mat4 perspectiveZeroToOne(double fovYRadians, double aspect, double zNear, double zFar);
-// Orthographic matrix for clip depth [0,1]: x in [l,r], y in [b,t], view depth -z in [n,f].
+/// Orthographic matrix for clip depth [0,1]: x in [l,r], y in [b,t], view depth -z in [n,f].
 Mat4 orthoZeroToOne(double l, double r, double b, double t, double n, double f);
 
 } // namespace shadowkit::core

@@ -48,12 +48,12 @@ using Vec4 = glm::dvec4;
 using Mat3 = glm::dmat3;
 using Mat4 = glm::dmat4;
 
-// How a projection maps depth to clip depth: [0, 1] (shadowkit's own, Vulkan, Direct3D, Metal,
-// OpenGL with glClipControl(..., GL_ZERO_TO_ONE)) or OpenGL's default [-1, 1]. Engines choose
-// theirs for their camera (engine_camera.h) and for the maps (output_conventions.h).
+/// How a projection maps depth to clip depth: [0, 1] (shadowkit's own, Vulkan, Direct3D, Metal,
+/// OpenGL with glClipControl(..., GL_ZERO_TO_ONE)) or OpenGL's default [-1, 1]. Engines choose
+/// theirs for their camera (engine_camera.h) and for the maps (output_conventions.h).
 enum class ClipDepthRange { ZeroToOne, MinusOneToOne };
 
-// True when no component is NaN or infinite.
+/// True when no component is NaN or infinite.
 template <glm::length_t N>
 bool isFinite(const glm::vec<N, double>& v) {
     for (glm::length_t i = 0; i < N; ++i)

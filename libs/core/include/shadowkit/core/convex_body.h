@@ -19,36 +19,36 @@ namespace shadowkit::core {
 
 class ConvexBody {
 public:
-    // Inline capacities: a box clipped by a frustum, its sweep and the scene box has about
-    // a dozen faces of up to eight points; beyond these sizes the containers spill to the
-    // heap (still correct, no longer allocation-free).
-    using Polygon = SmallVector<Vec3, 12>; // counter-clockwise seen from outside
+    /// Inline capacities: a box clipped by a frustum, its sweep and the scene box has about
+    /// a dozen faces of up to eight points; beyond these sizes the containers spill to the
+    /// heap (still correct, no longer allocation-free).
+    using Polygon = SmallVector<Vec3, 12>; ///< counter-clockwise seen from outside
     using Faces = SmallVector<Polygon, 20>;
     using Points = SmallVector<Vec3, 48>;
     using Planes = SmallVector<Plane, 48>;
 
-    ConvexBody() = default; // the empty body
+    ConvexBody() = default; ///< the empty body
     static ConvexBody fromAabb(const Aabb& box);
 
-    // Moves every vertex by `offset` (exact up to the rounding of each sum).
+    /// Moves every vertex by `offset` (exact up to the rounding of each sum).
     void translate(const Vec3& offset);
 
-    // Keeps the part of the body with plane.signedDistance(p) <= 0.
+    /// Keeps the part of the body with plane.signedDistance(p) <= 0.
     void clip(const Plane& plane);
     void clip(std::span<const Plane> planes);
 
-    // Planes whose intersection is the body swept to infinity along `wsDirection`
-    // (the Minkowski sum with the ray {t·dir, t >= 0}): the faces that do not face along
-    // the direction, plus one plane through each silhouette edge containing the
-    // direction. Intersect with a bounded body to use it.
+    /// Planes whose intersection is the body swept to infinity along `wsDirection`
+    /// (the Minkowski sum with the ray {t·dir, t >= 0}): the faces that do not face along
+    /// the direction, plus one plane through each silhouette edge containing the
+    /// direction. Intersect with a bounded body to use it.
     Planes sweepHalfSpaces(const Vec3& wsDirection) const;
 
     bool isEmpty() const { return m_faces.empty(); }
     const Faces& faces() const { return m_faces; }
-    // Each distinct vertex once.
+    /// Each distinct vertex once.
     Points vertices() const;
     Aabb bounds() const;
-    // True if p lies inside every face plane, with a tolerance of eps metres.
+    /// True if p lies inside every face plane, with a tolerance of eps metres.
     bool contains(const Vec3& p, double eps) const;
     double volume() const;
 

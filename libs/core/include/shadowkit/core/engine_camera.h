@@ -27,47 +27,47 @@
 
 namespace shadowkit::core {
 
-// Which way the view space looks. A perspective matrix says it itself (clip w = -z or +z);
-// an orthographic one cannot, so it is taken from here: right-handed views look down -Z
-// (glm::lookAt, OpenGL, Vulkan with glm), left-handed down +Z (Direct3D's LookAtLH).
+/// Which way the view space looks. A perspective matrix says it itself (clip w = -z or +z);
+/// an orthographic one cannot, so it is taken from here: right-handed views look down -Z
+/// (glm::lookAt, OpenGL, Vulkan with glm), left-handed down +Z (Direct3D's LookAtLH).
 enum class ViewHandedness { RightHanded, LeftHanded };
 
-// An orthographic camera is enclosed by a far-away perspective one whose far plane is at
-// most this much wider than its near plane (1 %).
+/// An orthographic camera is enclosed by a far-away perspective one whose far plane is at
+/// most this much wider than its near plane (1 %).
 inline constexpr double kOrthographicOverscan = 0.01;
 
 struct EngineCamera {
-    Mat4 viewFromWorld{1.0}; // rigid: a rotation (or a mirror) and a translation
-    Mat4 clipFromView{1.0};  // perspective or orthographic, any depth convention
+    Mat4 viewFromWorld{1.0}; ///< rigid: a rotation (or a mirror) and a translation
+    Mat4 clipFromView{1.0};  ///< perspective or orthographic, any depth convention
     ClipDepthRange clipDepth = ClipDepthRange::ZeroToOne;
-    ViewHandedness handedness = ViewHandedness::RightHanded; // orthographic projections only
-    // Shadows end at this view depth (metres along the view axis) even when the camera's far
-    // plane lies beyond: engines draw kilometres but shadow hundreds of metres. Required
-    // (finite) with an infinite far plane; +inf: up to the far plane.
+    ViewHandedness handedness = ViewHandedness::RightHanded; ///< orthographic projections only
+    /// Shadows end at this view depth (metres along the view axis) even when the camera's far
+    /// plane lies beyond: engines draw kilometres but shadow hundreds of metres. Required
+    /// (finite) with an infinite far plane; +inf: up to the far plane.
     double shadowDistance = std::numeric_limits<double>::infinity();
 };
 
-// What recognising a projection found, in the view's own units (metres).
+/// What recognising a projection found, in the view's own units (metres).
 struct RecognisedProjection {
     bool orthographic = false;
-    bool reversedZ = false;         // near maps to clip depth 1
-    bool infiniteFar = false;       // the depth row never reaches the far value
-    bool offCentre = false;         // asymmetric about the view axis (off-centre, jittered)
-    double zNear = 0.0, zFar = 0.0; // distances along the view axis; zFar = +inf when infinite
-    // View-space x and y extents of the near plane; for a perspective projection as slopes
-    // (x / depth), for an orthographic one in metres.
+    bool reversedZ = false;         ///< near maps to clip depth 1
+    bool infiniteFar = false;       ///< the depth row never reaches the far value
+    bool offCentre = false;         ///< asymmetric about the view axis (off-centre, jittered)
+    double zNear = 0.0, zFar = 0.0; ///< distances along the view axis; zFar = +inf when infinite
+    /// View-space x and y extents of the near plane; for a perspective projection as slopes
+    /// (x / depth), for an orthographic one in metres.
     double left = 0.0, right = 0.0, bottom = 0.0, top = 0.0;
-    double forwardZ = -1.0; // the view-space z of the view axis: -1 (looks down -Z) or +1
+    double forwardZ = -1.0; ///< the view-space z of the view axis: -1 (looks down -Z) or +1
 };
 
-// Error field "camera.clip_from_view": non-finite, not projective in depth, depth that
-// depends on x or y, near/far not in front of the eye, a degenerate x/y mapping.
+/// Error field "camera.clip_from_view": non-finite, not projective in depth, depth that
+/// depends on x or y, near/far not in front of the eye, a degenerate x/y mapping.
 Result<RecognisedProjection> recogniseProjection(const Mat4& clipFromView, ClipDepthRange clipDepth,
                                                  ViewHandedness handedness = ViewHandedness::RightHanded);
 
-// The camera the set-ups use for the engine's (see the top of this file). Error fields
-// "camera.view_from_world" (not finite or not rigid), "camera.clip_from_view",
-// "camera.shadow_distance" (not > near, or infinite with an infinite far plane).
+/// The camera the set-ups use for the engine's (see the top of this file). Error fields
+/// "camera.view_from_world" (not finite or not rigid), "camera.clip_from_view",
+/// "camera.shadow_distance" (not > near, or infinite with an infinite far plane).
 Result<PerspectiveCamera> cameraFromMatrices(const EngineCamera& camera);
 
 } // namespace shadowkit::core

@@ -8,19 +8,19 @@
 
 namespace shadowkit::core {
 
-// B = ((V ∩ S) swept towards the light) ∩ S, with V the view frustum and S the scene
-// box. V ∩ S holds every visible receiver; sweeping it towards the light and clipping by
-// S adds every caster that can shadow one. Empty when the frustum misses the scene box.
-//
-// S is padded to a minimum thickness first (sceneBoxForFocus), so a flat or
-// zero-size scene still gives a body with volume.
-//
-// Each thread keeps its last result and returns it again for exactly the same camera, light
-// and box: a set-up search tries many warps of one frame's body (error_driven.h).
+/// B = ((V ∩ S) swept towards the light) ∩ S, with V the view frustum and S the scene
+/// box. V ∩ S holds every visible receiver; sweeping it towards the light and clipping by
+/// S adds every caster that can shadow one. Empty when the frustum misses the scene box.
+///
+/// S is padded to a minimum thickness first (sceneBoxForFocus), so a flat or
+/// zero-size scene still gives a body with volume.
+///
+/// Each thread keeps its last result and returns it again for exactly the same camera, light
+/// and box: a set-up search tries many warps of one frame's body (error_driven.h).
 ConvexBody computeFocusBody(const PerspectiveCamera& camera, const DirectionalLight& light, const Aabb& wsSceneBounds);
 
-// The scene box grown so that no side is thinner than a millionth of its diagonal
-// (or a millimetre for a zero-size box): a plane of terrain has zero height.
+/// The scene box grown so that no side is thinner than a millionth of its diagonal
+/// (or a millimetre for a zero-size box): a plane of terrain has zero height.
 Aabb sceneBoxForFocus(const Aabb& wsSceneBounds);
 
 } // namespace shadowkit::core

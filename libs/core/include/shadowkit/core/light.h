@@ -7,17 +7,17 @@
 namespace shadowkit::core {
 
 struct DirectionalLight {
-    Vec3 wsDirection{0.0, -1.0, 0.0}; // unit vector, direction the light travels (sun -> scene)
+    Vec3 wsDirection{0.0, -1.0, 0.0}; ///< unit vector, direction the light travels (sun -> scene)
 
-    // Fails (naming the input) for a zero-length or non-finite direction.
+    /// Fails (naming the input) for a zero-length or non-finite direction.
     static Result<DirectionalLight> fromDirection(const Vec3& wsTravel);
-    // From sun angles in degrees (conventions.h): elevation in [-90, 90], any azimuth.
+    /// From sun angles in degrees (conventions.h): elevation in [-90, 90], any azimuth.
     static Result<DirectionalLight> fromSunAngles(double elevationDegrees, double azimuthDegrees);
 
     Vec3 wsTowardsLight() const { return -wsDirection; }
 };
 
-// Compass azimuth of a horizontal direction (conventions.h): 0 = -Z, 90 = +X, in degrees.
+/// Compass azimuth of a horizontal direction (conventions.h): 0 = -Z, 90 = +X, in degrees.
 double azimuthDegreesOf(const Vec3& wsDirection);
 
 } // namespace shadowkit::core

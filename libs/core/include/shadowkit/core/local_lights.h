@@ -20,76 +20,76 @@ namespace shadowkit::core {
 
 struct SpotLight {
     Vec3 wsPosition{0.0, 3.0, 0.0};
-    Vec3 wsDirection{0.0, -1.0, 0.0}; // axis of the cone, any length > 0
-    double coneDegrees = 40.0;        // full opening angle of the cone, (0, 170]
-    double range = 30.0;              // metres: nothing farther is lit, > 0
+    Vec3 wsDirection{0.0, -1.0, 0.0}; ///< axis of the cone, any length > 0
+    double coneDegrees = 40.0;        ///< full opening angle of the cone, (0, 170]
+    double range = 30.0;              ///< metres: nothing farther is lit, > 0
 
-    // Fields "spot.position", "spot.direction", "spot.cone", "spot.range".
+    /// Fields "spot.position", "spot.direction", "spot.cone", "spot.range".
     Status validate() const;
 };
 
 struct PointLight {
     Vec3 wsPosition{0.0, 3.0, 0.0};
-    double range = 30.0; // metres, > 0
+    double range = 30.0; ///< metres, > 0
 
-    // Fields "point.position", "point.range".
+    /// Fields "point.position", "point.range".
     Status validate() const;
 };
 
-// The cube faces in OpenGL's order (GL_TEXTURE_CUBE_MAP_POSITIVE_X + face): +X, −X, +Y, −Y,
-// +Z, −Z, each a look-at along its axis with the up vector the cube map's (s, t) axes need,
-// so a face's NDC (x, y) is the cube texture's (s, t) for that face (OpenGL 4.5 §8.13).
+/// The cube faces in OpenGL's order (GL_TEXTURE_CUBE_MAP_POSITIVE_X + face): +X, −X, +Y, −Y,
+/// +Z, −Z, each a look-at along its axis with the up vector the cube map's (s, t) axes need,
+/// so a face's NDC (x, y) is the cube texture's (s, t) for that face (OpenGL 4.5 §8.13).
 struct CubeFace {
     Vec3 wsAxis, wsUp;
 };
 const std::array<CubeFace, 6>& cubeFaces();
-// The face a direction from the light selects: the axis of largest magnitude (ties to the
-// lower index), as the cube sampler does.
+/// The face a direction from the light selects: the axis of largest magnitude (ties to the
+/// lower index), as the cube sampler does.
 int cubeFaceOf(const Vec3& wsDirection);
 
 struct LocalShadowInputs {
     PerspectiveCamera camera;
-    Aabb wsSceneBounds; // every caster and receiver lies inside
-    int mapSize = 1024; // texels per side of the spot map or of each cube face
+    Aabb wsSceneBounds; ///< every caster and receiver lies inside
+    int mapSize = 1024; ///< texels per side of the spot map or of each cube face
 };
 
-// The spot light's map: a perspective view from the light, fitted to its receivers R =
-// cone ∩ range ∩ view frustum ∩ scene box: the field of view narrowed to R's angular
-// extent (an off-centre frustum inside the cone), the distance range to R's. Every caster
-// that can shadow a point of R lies on the segment from it to the light, so inside the
-// same angular extent, and nearer: at worst clamped to depth 0, still in front of its
-// receiver (the depth pass clamps rather than clips: setup.depthClamp). No view when R is
-// empty (the light cannot light anything the camera sees).
+/// The spot light's map: a perspective view from the light, fitted to its receivers R =
+/// cone ∩ range ∩ view frustum ∩ scene box: the field of view narrowed to R's angular
+/// extent (an off-centre frustum inside the cone), the distance range to R's. Every caster
+/// that can shadow a point of R lies on the segment from it to the light, so inside the
+/// same angular extent, and nearer: at worst clamped to depth 0, still in front of its
+/// receiver (the depth pass clamps rather than clips: setup.depthClamp). No view when R is
+/// empty (the light cannot light anything the camera sees).
 Result<ShadowSetup> computeSpotShadowSetup(const LocalShadowInputs& inputs, const SpotLight& light);
 
-// The point light's cube: one view per face whose pyramid meets R = range ∩ view frustum ∩
-// scene box, each a full 90° face (the cube sampler needs whole faces) with its own distance
-// range and `face` index; faces that see nothing of R are left out (setup.skippedFaces).
+/// The point light's cube: one view per face whose pyramid meets R = range ∩ view frustum ∩
+/// scene box, each a full 90° face (the cube sampler needs whole faces) with its own distance
+/// range and `face` index; faces that see nothing of R are left out (setup.skippedFaces).
 Result<ShadowSetup> computePointShadowSetup(const LocalShadowInputs& inputs, const PointLight& light);
 
-// A frame's local lights with their set-ups, in the order given: what a renderer draws.
+/// A frame's local lights with their set-ups, in the order given: what a renderer draws.
 struct LocalLighting {
     std::vector<PointLight> points;
-    std::vector<ShadowSetup> pointSetups; // one per point light
+    std::vector<ShadowSetup> pointSetups; ///< one per point light
     std::vector<SpotLight> spots;
-    std::vector<ShadowSetup> spotSetups; // one per spot light
-    int mapSize = 1024;                  // of every spot map and cube face
+    std::vector<ShadowSetup> spotSetups; ///< one per spot light
+    int mapSize = 1024;                  ///< of every spot map and cube face
     size_t size() const { return points.size() + spots.size(); }
     bool empty() const { return size() == 0; }
 };
-// The same lights and set-ups for coordinates measured from `wsOrigin` (core::rebased).
+/// The same lights and set-ups for coordinates measured from `wsOrigin` (core::rebased).
 LocalLighting rebased(const LocalLighting& lighting, const Vec3& wsOrigin);
-// Every light's set-up for this camera (errors name the light: "point[2]: ...").
+/// Every light's set-up for this camera (errors name the light: "point[2]: ...").
 Result<LocalLighting> computeLocalLighting(const LocalShadowInputs& inputs, std::span<const PointLight> points,
                                            std::span<const SpotLight> spots);
 
-// World size of one texel of a local light's view per metre of distance from the light:
-// a texel at distance d covers about d × this (the view's widest tangent span over the map's
-// texels; 2 / mapSize for a 90° cube face). Biases in texels become metres with it.
+/// World size of one texel of a local light's view per metre of distance from the light:
+/// a texel at distance d covers about d × this (the view's widest tangent span over the map's
+/// texels; 2 / mapSize for a 90° cube face). Biases in texels become metres with it.
 double texelSizePerMetre(const ShadowView& view, int mapSize);
 
-// The depth a local light's view stores for a world point (LightDistance layout), before
-// clamping to [0, 1].
+/// The depth a local light's view stores for a world point (LightDistance layout), before
+/// clamping to [0, 1].
 double lightDistanceDepth(const ShadowSetup& setup, const ShadowView& view, const Vec3& wsPoint);
 
 } // namespace shadowkit::core

@@ -29,8 +29,8 @@
 namespace shadowkit::core {
 
 enum class TextureOrigin {
-    BottomLeft, // v = 0 at the first row written by ndc y = -1: OpenGL, Vulkan
-    TopLeft,    // v = 0 at ndc y = +1: Direct3D, Metal
+    BottomLeft, ///< v = 0 at the first row written by ndc y = -1: OpenGL, Vulkan
+    TopLeft,    ///< v = 0 at ndc y = +1: Direct3D, Metal
 };
 
 struct OutputConventions {
@@ -47,47 +47,47 @@ struct OutputConventions {
     static constexpr OutputConventions direct3D() { return {ClipDepthRange::ZeroToOne, false, TextureOrigin::TopLeft}; }
 };
 
-// One shadow view as an engine uses it.
+/// One shadow view as an engine uses it.
 struct EngineShadowView {
-    // Draw the map with this: the core's clipFromWorld with its depth row rewritten.
+    /// Draw the map with this: the core's clipFromWorld with its depth row rewritten.
     Mat4 clipFromWorld{1.0};
-    // Look the map up with this: (u, v, d, 1) · w for a world point, so (u, v) = xy / w and, for
-    // the Hyperbolic layout, the reference depth d = z / w in the stored depth's convention.
+    /// Look the map up with this: (u, v, d, 1) · w for a world point, so (u, v) = xy / w and, for
+    /// the Hyperbolic layout, the reference depth d = z / w in the stored depth's convention.
     Mat4 textureFromWorld{1.0};
-    // Linear layout: the stored depth is dot(linearDepthFromWorld, (p, 1)), reversed when asked,
-    // written per fragment and compared the same way (the reference depth is not z / w then).
+    /// Linear layout: the stored depth is dot(linearDepthFromWorld, (p, 1)), reversed when asked,
+    /// written per fragment and compared the same way (the reference depth is not z / w then).
     Vec4 linearDepthFromWorld{0.0};
-    // Outward planes a caster's bounds must not lie wholly outside of to be drawn: the four
-    // sides and the far plane, and the near plane only when the set-up has no depth clamp
-    // (with clamping, casters between the map's near plane and the light still cast).
+    /// Outward planes a caster's bounds must not lie wholly outside of to be drawn: the four
+    /// sides and the far plane, and the near plane only when the set-up has no depth clamp
+    /// (with clamping, casters between the map's near plane and the light still cast).
     SmallVector<Plane, 6> wsCullingPlanes;
-    std::optional<Vec2> split; // cascades: the view-depth range this map serves
-    // Camera-relative rendering (large worlds): the same three for p − wsEye, the eye the set-up
-    // was computed around (ShadowView's eye-relative members).
+    std::optional<Vec2> split; ///< cascades: the view-depth range this map serves
+    /// Camera-relative rendering (large worlds): the same three for p − wsEye, the eye the set-up
+    /// was computed around (ShadowView's eye-relative members).
     Mat4 clipFromEyeRelative{1.0};
     Mat4 textureFromEyeRelative{1.0};
     Vec4 linearDepthFromEyeRelative{0.0};
     Vec3 wsEye{0.0};
-    // What referenceDepth needs: the set-up's layout, the convention, and for local lights the
-    // light and the distance range the stored depth spans.
+    /// What referenceDepth needs: the set-up's layout, the convention, and for local lights the
+    /// light and the distance range the stored depth spans.
     DepthLayout depthLayout = DepthLayout::Hyperbolic;
     bool reversedZ = false;
     Vec3 wsLightPosition{0.0};
     Vec2 lightDistance{0.0};
 };
 
-// The matrix that takes the core's clip space to the chosen one (applied on the left).
+/// The matrix that takes the core's clip space to the chosen one (applied on the left).
 Mat4 clipConversion(const OutputConventions& conventions);
 EngineShadowView toEngineView(const ShadowView& view, const ShadowSetup& setup, const OutputConventions& conventions);
 
-// The reference depth of a world point for the map, in the stored depth's convention: z / w of
-// textureFromWorld for Hyperbolic maps, the linear row for Linear maps, the distance to the
-// light over lightDistance for LightDistance maps.
+/// The reference depth of a world point for the map, in the stored depth's convention: z / w of
+/// textureFromWorld for Hyperbolic maps, the linear row for Linear maps, the distance to the
+/// light over lightDistance for LightDistance maps.
 double referenceDepth(const EngineShadowView& view, const Vec3& wsPoint);
 
-// The world size (metres) of one texel of the map drawn with clipFromWorld at wsPoint, on a
-// plane facing the light: the distance to move a receiver along its normal for a normal
-// offset of one texel. +inf where the projection degenerates there (behind its centre).
+/// The world size (metres) of one texel of the map drawn with clipFromWorld at wsPoint, on a
+/// plane facing the light: the distance to move a receiver along its normal for a normal
+/// offset of one texel. +inf where the projection degenerates there (behind its centre).
 double wsTexelSize(const Mat4& clipFromWorld, int mapSize, const Vec3& wsLightDirection, const Vec3& wsPoint);
 
 } // namespace shadowkit::core

@@ -11,12 +11,12 @@ struct Plane {
     Vec3 normal{0.0, 1.0, 0.0};
     double d = 0.0;
 
-    // Plane through `point` with outward normal `n` (need not be unit length).
+    /// Plane through `point` with outward normal `n` (need not be unit length).
     static Plane fromPointNormal(const Vec3& point, const Vec3& n) {
         const Vec3 unit = glm::normalize(n);
         return {unit, -glm::dot(unit, point)};
     }
-    // Signed distance: negative inside the kept half-space, positive outside.
+    /// Signed distance: negative inside the kept half-space, positive outside.
     double signedDistance(const Vec3& p) const { return glm::dot(normal, p) + d; }
 };
 

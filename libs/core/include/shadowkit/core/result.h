@@ -8,16 +8,16 @@
 
 namespace shadowkit::core {
 
-// Whose the fix is: the input's (a value that is wrong anywhere) or the environment's (a
-// machine that cannot do what was asked: no GL 4.5, a driver limit, memory, a driver that
-// rejects a shader). Front ends report them differently (`shadowkit` exits 1 or 3).
+/// Whose the fix is: the input's (a value that is wrong anywhere) or the environment's (a
+/// machine that cannot do what was asked: no GL 4.5, a driver limit, memory, a driver that
+/// rejects a shader). Front ends report them differently (`shadowkit` exits 1 or 3).
 enum class ErrorKind { BadInput, Environment };
 
 struct Error {
-    std::string message; // one line: names the input and what is wrong
-    // The option the error is about, as a stable dotted name ("lispsm.weight", "blur.radius";
-    // empty when none): front ends map it to their own spelling (a CLI flag, a UI field)
-    // instead of validating the same ranges again.
+    std::string message; ///< one line: names the input and what is wrong
+    /// The option the error is about, as a stable dotted name ("lispsm.weight", "blur.radius";
+    /// empty when none): front ends map it to their own spelling (a CLI flag, a UI field)
+    /// instead of validating the same ranges again.
     std::string field;
     ErrorKind kind = ErrorKind::BadInput;
 };
@@ -46,17 +46,17 @@ private:
     std::variant<T, Error> m_state;
 };
 
-// Result<void> equivalent: an empty success or an error.
+/// Result<void> equivalent: an empty success or an error.
 struct Ok {};
 using Status = Result<Ok>;
 
 inline Error makeError(std::string message) { return Error{std::move(message), {}}; }
-// An error of the machine, not the input (ErrorKind::Environment), optionally about a field
-// whose value this machine cannot honour (a map size beyond the driver's limit).
+/// An error of the machine, not the input (ErrorKind::Environment), optionally about a field
+/// whose value this machine cannot honour (a map size beyond the driver's limit).
 inline Error environmentError(std::string message, std::string field = {}) {
     return Error{std::move(message), std::move(field), ErrorKind::Environment};
 }
-// "field: what" with the field recorded, e.g. fieldError("lispsm.weight", "must be > 0").
+/// "field: what" with the field recorded, e.g. fieldError("lispsm.weight", "must be > 0").
 inline Error fieldError(std::string field, const std::string& what) {
     std::string message = field + ": " + what;
     return Error{std::move(message), std::move(field)};

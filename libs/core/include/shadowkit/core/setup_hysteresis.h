@@ -29,41 +29,41 @@
 namespace shadowkit::core {
 
 struct HysteresisOptions {
-    // Spare room round the focus body at a refit, as a fraction of the map's extent: the body
-    // may move or grow this much before it forces a refit, and every texel is this much
-    // larger than a fresh fit's while it is held (a still view included). [0, 1].
+    /// Spare room round the focus body at a refit, as a fraction of the map's extent: the body
+    /// may move or grow this much before it forces a refit, and every texel is this much
+    /// larger than a fresh fit's while it is held (a still view included). [0, 1].
     double margin = 0.05;
-    // Refit when a held texel on the camera's central ray is this many times the size of
-    // what a refit would give there now (linear size, on a plane facing the light). > 1.
+    /// Refit when a held texel on the camera's central ray is this many times the size of
+    /// what a refit would give there now (linear size, on a plane facing the light). > 1.
     double maxTexelGrowth = 1.25;
-    // At a refit, also cover the focus bodies of the camera on its way this many frames on,
-    // extrapolated from its last motion (0: this frame's body only). A still camera pays
-    // nothing for it; a moving one trades texels for fewer refits. [0, 1000].
+    /// At a refit, also cover the focus bodies of the camera on its way this many frames on,
+    /// extrapolated from its last motion (0: this frame's body only). A still camera pays
+    /// nothing for it; a moving one trades texels for fewer refits. [0, 1000].
     double lookaheadFrames = 60.0;
 };
 
-// Fails naming the field ("hysteresis.margin", "hysteresis.growth", "hysteresis.lookahead").
+/// Fails naming the field ("hysteresis.margin", "hysteresis.growth", "hysteresis.lookahead").
 Status validate(const HysteresisOptions& options);
 
-// The size, on a plane facing the light, of the texel of `view` at `wsPoint`: wsTexelSize
-// (output_conventions.h) of its clip matrix. +inf where the map's projection degenerates there
-// (w <= 0 or a zero determinant).
+/// The size, on a plane facing the light, of the texel of `view` at `wsPoint`: wsTexelSize
+/// (output_conventions.h) of its clip matrix. +inf where the map's projection degenerates there
+/// (w <= 0 or a zero determinant).
 double texelFootprint(const ShadowView& view, int mapSize, const Vec3& wsLightDirection, const Vec3& wsPoint);
 
 class SetupHysteresis {
 public:
     explicit SetupHysteresis(HysteresisOptions options = {}) : m_options(options) {}
 
-    // This frame's set-up: every view held (whole-texel shifted) while it covers its focus
-    // body and has not gone stale, else refitted with the margin. Everything is refitted when
-    // the light, technique, map size, depth layout or view count changed. (A grown scene or
-    // a new projection needs no rule of its own: the body to cover is this frame's.)
+    /// This frame's set-up: every view held (whole-texel shifted) while it covers its focus
+    /// body and has not gone stale, else refitted with the margin. Everything is refitted when
+    /// the light, technique, map size, depth layout or view count changed. (A grown scene or
+    /// a new projection needs no rule of its own: the body to cover is this frame's.)
     Result<ShadowSetup> next(const ShadowSetupInputs& inputs);
-    // Views refitted by the last next() (all of them on the first call), and why.
+    /// Views refitted by the last next() (all of them on the first call), and why.
     struct Refits {
-        int views = 0;   // all refitted views
-        int toCover = 0; // the held lattice could not cover the view's focus body any more
-        int stale = 0;   // its texels had grown past maxTexelGrowth
+        int views = 0;   ///< all refitted views
+        int toCover = 0; ///< the held lattice could not cover the view's focus body any more
+        int stale = 0;   ///< its texels had grown past maxTexelGrowth
     };
     const Refits& lastRefits() const { return m_refits; }
     int refittedViews() const { return m_refits.views; }
@@ -73,8 +73,8 @@ public:
 private:
     HysteresisOptions m_options;
     struct Held {
-        ShadowSetupInputs inputs; // of the last frame
-        ShadowSetup setup;        // this frame's views: held lattices, shifted
+        ShadowSetupInputs inputs; ///< of the last frame
+        ShadowSetup setup;        ///< this frame's views: held lattices, shifted
     };
     std::optional<Held> m_held;
     std::optional<PerspectiveCamera> m_previousCamera;

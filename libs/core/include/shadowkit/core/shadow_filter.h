@@ -8,33 +8,33 @@
 
 namespace shadowkit::core {
 
-// The numeric values are the codes the GL shaders switch on (gl's shader prelude defines
-// them from this enum): keep them stable.
-// The values are fixed: glsl/shadowkit_shadows.glsl's SK_FILTER_* repeat them for engines.
+/// The numeric values are the codes the GL shaders switch on (gl's shader prelude defines
+/// them from this enum): keep them stable.
+/// The values are fixed: glsl/shadowkit_shadows.glsl's SK_FILTER_* repeat them for engines.
 enum class ShadowFilter {
-    Hard = 0,    // one depth comparison (what the evaluation's truth is compared with by default)
-    Pcf2 = 1,    // hardware 2x2 percentage-closer filtering (GL_LINEAR compare; Scherzer 2005's filter)
-    PcfGrid = 2, // N x N comparisons one texel apart, averaged
-    Poisson = 3, // N comparisons on a Poisson disk, rotated per pixel
+    Hard = 0,    ///< one depth comparison (what the evaluation's truth is compared with by default)
+    Pcf2 = 1,    ///< hardware 2x2 percentage-closer filtering (GL_LINEAR compare; Scherzer 2005's filter)
+    PcfGrid = 2, ///< N x N comparisons one texel apart, averaged
+    Poisson = 3, ///< N comparisons on a Poisson disk, rotated per pixel
 };
 
 struct FilterSettings {
     ShadowFilter kind = ShadowFilter::Hard;
-    int taps = 1;              // PcfGrid: N of N x N, [1, 9]; Poisson: samples, [1, 32]; else unused
-    float radiusTexels = 1.5f; // Poisson disk radius in texels, (0, 16]
+    int taps = 1;              ///< PcfGrid: N of N x N, [1, 9]; Poisson: samples, [1, 32]; else unused
+    float radiusTexels = 1.5f; ///< Poisson disk radius in texels, (0, 16]
 };
 
-// Checks the ranges above; the error's field is "filter.taps" or "filter.radius".
+/// Checks the ranges above; the error's field is "filter.taps" or "filter.radius".
 Status validate(const FilterSettings& filter);
 
-// The text form used by the CLI, configuration files and reports: "hard", "pcf2",
-// "pcf:N" (N x N grid), "poisson:N" (N samples).
+/// The text form used by the CLI, configuration files and reports: "hard", "pcf2",
+/// "pcf:N" (N x N grid), "poisson:N" (N samples).
 std::string filterName(const FilterSettings& filter);
-// Parses the text form and validates it; the error's field is "filter".
+/// Parses the text form and validates it; the error's field is "filter".
 Result<FilterSettings> parseFilter(std::string_view text);
 
-// Kernels that take taps texels away from the receiver (N x N, Poisson), unlike the
-// hardware's 2x2: on a receiver sloped in light space they need receiver-plane depth bias.
+/// Kernels that take taps texels away from the receiver (N x N, Poisson), unlike the
+/// hardware's 2x2: on a receiver sloped in light space they need receiver-plane depth bias.
 bool isWideKernel(const FilterSettings& filter);
 
 } // namespace shadowkit::core

@@ -23,7 +23,7 @@ public:
     SmallVector(std::initializer_list<T> values) {
         for (const T& v : values) push_back(v);
     }
-    // Copies and moves touch the elements in use only, not the whole inline capacity.
+    /// Copies and moves touch the elements in use only, not the whole inline capacity.
     SmallVector(const SmallVector& other) { *this = other; }
     SmallVector(SmallVector&& other) noexcept { *this = std::move(other); }
     SmallVector& operator=(const SmallVector& other) {
@@ -80,7 +80,7 @@ public:
 private:
     std::array<T, N> m_inline;
     size_t m_size = 0;
-    std::vector<T> m_heap; // holds every element once the inline storage has overflowed
+    std::vector<T> m_heap; ///< holds every element once the inline storage has overflowed
 };
 
 } // namespace shadowkit::core

@@ -9,9 +9,9 @@
 
 namespace shadowkit::core {
 
-// [nearest, farthest] of the positive, finite depths (0 marks a pixel where nothing was
-// drawn); nullopt when there is none. Feed it to LispsmOptions::visibleDepth: it narrows
-// n only, never the focus body B.
+/// [nearest, farthest] of the positive, finite depths (0 marks a pixel where nothing was
+/// drawn); nullopt when there is none. Feed it to LispsmOptions::visibleDepth: it narrows
+/// n only, never the focus body B.
 std::optional<Vec2> visibleDepthRange(std::span<const float> viewDepth);
 
 } // namespace shadowkit::core

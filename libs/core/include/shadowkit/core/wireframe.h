@@ -12,12 +12,12 @@ namespace shadowkit::core {
 
 using Edge = std::pair<Vec3, Vec3>;
 
-// The 12 edges of the clip volume of `clipFromWorld` (x, y in [−1, 1], depth in [0, 1]),
-// mapped back to the world through its inverse; empty when the matrix is singular or a
-// corner lies at infinity (w = 0: an infinite far plane).
+/// The 12 edges of the clip volume of `clipFromWorld` (x, y in [−1, 1], depth in [0, 1]),
+/// mapped back to the world through its inverse; empty when the matrix is singular or a
+/// corner lies at infinity (w = 0: an infinite far plane).
 std::vector<Edge> clipVolumeEdges(const Mat4& clipFromWorld);
 
-// Every face's boundary of the body, each shared edge once.
+/// Every face's boundary of the body, each shared edge once.
 std::vector<Edge> bodyEdges(const ConvexBody& body);
 
 } // namespace shadowkit::core

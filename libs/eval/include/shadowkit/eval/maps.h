@@ -10,7 +10,7 @@
 
 namespace shadowkit::eval {
 
-// Colours of the error map (docs/evaluation.md, "Error maps").
+// Colours of the error map (docs/evaluation.md, "Error and aliasing maps").
 struct ErrorMapColors {
     static constexpr uint8_t notEvaluated[3] = {24, 24, 28};
     static constexpr uint8_t litCorrect[3] = {205, 205, 205};

@@ -1,5 +1,5 @@
 // Reports of an evaluation: the JSON file of `shadowkit eval --json` and the per-pixel
-// dump of `--dump` (README, "shadowkit eval").
+// dump of `--dump` (docs/commands.md, "shadowkit eval").
 #pragma once
 
 #include "shadowkit/core/bias.h"

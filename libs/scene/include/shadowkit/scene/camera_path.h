@@ -1,6 +1,6 @@
 // Camera paths (data/paths/*.json): keyframes of eye and target over time, and optionally of
 // the sun, interpolated smoothly so that a sequence of frames can be rendered, and any one of
-// them by itself. The format is documented in the README ("Camera paths").
+// them by itself. The format is documented in docs/dynamics.md ("Camera paths").
 #pragma once
 
 #include "shadowkit/core/light.h"
