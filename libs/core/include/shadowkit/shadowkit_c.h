@@ -28,109 +28,126 @@
 extern "C" {
 #endif
 
+/** The most maps a set-up holds (cascades, 1 .. 8). */
 #define SHADOWKIT_MAX_VIEWS 8
 
+/** The techniques of the seed papers (shadowkit_inputs::technique). */
 typedef enum shadowkit_technique {
-    SHADOWKIT_TECHNIQUE_STANDARD = 0,
-    SHADOWKIT_TECHNIQUE_FOCUSED = 1,
-    SHADOWKIT_TECHNIQUE_LISPSM = 2,
-    SHADOWKIT_TECHNIQUE_PSM = 3,
-    SHADOWKIT_TECHNIQUE_TSM = 4,
-    SHADOWKIT_TECHNIQUE_CSM = 5
+    SHADOWKIT_TECHNIQUE_STANDARD = 0, /**< the whole scene box, orthographic (Williams 1978) */
+    SHADOWKIT_TECHNIQUE_FOCUSED = 1,  /**< uniform, fitted to the focus body */
+    SHADOWKIT_TECHNIQUE_LISPSM = 2,   /**< light space perspective (Wimmer et al. 2004) */
+    SHADOWKIT_TECHNIQUE_PSM = 3,      /**< post-perspective space (Stamminger & Drettakis 2002) */
+    SHADOWKIT_TECHNIQUE_TSM = 4,      /**< trapezoidal (Martin & Tan 2004), linear depth */
+    SHADOWKIT_TECHNIQUE_CSM = 5       /**< cascades (Dimitrov 2007), optionally LiSPSM per split */
 } shadowkit_technique;
 
+/** The clip-space depth range of a projection. */
 typedef enum shadowkit_clip_depth {
-    SHADOWKIT_CLIP_DEPTH_ZERO_TO_ONE = 0,     /* Vulkan, Direct3D, Metal, GL with glClipControl */
-    SHADOWKIT_CLIP_DEPTH_MINUS_ONE_TO_ONE = 1 /* OpenGL's default */
+    SHADOWKIT_CLIP_DEPTH_ZERO_TO_ONE = 0,     /**< Vulkan, Direct3D, Metal, GL with glClipControl */
+    SHADOWKIT_CLIP_DEPTH_MINUS_ONE_TO_ONE = 1 /**< OpenGL's default */
 } shadowkit_clip_depth;
 
+/** Where texture coordinate v = 0 lies in the map. */
 typedef enum shadowkit_texture_origin {
-    SHADOWKIT_TEXTURE_ORIGIN_BOTTOM_LEFT = 0, /* OpenGL, Vulkan */
-    SHADOWKIT_TEXTURE_ORIGIN_TOP_LEFT = 1     /* Direct3D, Metal */
+    SHADOWKIT_TEXTURE_ORIGIN_BOTTOM_LEFT = 0, /**< OpenGL, Vulkan */
+    SHADOWKIT_TEXTURE_ORIGIN_TOP_LEFT = 1     /**< Direct3D, Metal */
 } shadowkit_texture_origin;
 
+/** What a map stores as depth. */
 typedef enum shadowkit_depth_layout {
-    SHADOWKIT_DEPTH_HYPERBOLIC = 0, /* the rasteriser's depth: reference depth = texture z / w */
-    SHADOWKIT_DEPTH_LINEAR = 1      /* written per fragment: dot(linear_depth_from_world, (p, 1)) */
+    SHADOWKIT_DEPTH_HYPERBOLIC = 0, /**< the rasteriser's depth: reference depth = texture z / w */
+    SHADOWKIT_DEPTH_LINEAR = 1      /**< written per fragment: dot(linear_depth_from_world, (p, 1)) */
 } shadowkit_depth_layout;
 
+/** The engine's camera: its matrices, or eye, direction and a symmetric frustum. */
 typedef struct shadowkit_camera {
-    /* 1: the engine's matrices below; 0: eye, direction, up, fov, aspect, near, far. */
+    /** 1: the engine's matrices below; 0: eye, direction, up, fov, aspect, near, far. */
     int use_matrices;
-    double view_from_world[16]; /* rigid */
-    double clip_from_view[16];  /* perspective or orthographic; reversed-Z and infinite far recognised */
-    int clip_depth;             /* shadowkit_clip_depth of clip_from_view */
-    int left_handed;            /* orthographic projections only: 1 if the view looks down +Z */
-    /* Shadows end at this view depth (metres), whatever the far plane; <= 0: at the far plane.
+    double view_from_world[16]; /**< rigid */
+    double clip_from_view[16];  /**< perspective or orthographic; reversed-Z and infinite far recognised */
+    int clip_depth;             /**< shadowkit_clip_depth of clip_from_view */
+    int left_handed;            /**< orthographic projections only: 1 if the view looks down +Z */
+    /** Shadows end at this view depth (metres), whatever the far plane; <= 0: at the far plane.
        Required with an infinite far plane. */
     double shadow_distance;
-    double eye[3], direction[3], up[3];
-    double fov_y_degrees, aspect, z_near, z_far;
+    double eye[3];        /**< without matrices: the eye, world space */
+    double direction[3];  /**< without matrices: the view direction, any length > 0 */
+    double up[3];         /**< without matrices: up, not parallel to the direction */
+    double fov_y_degrees; /**< without matrices: vertical field of view */
+    double aspect;        /**< without matrices: width / height */
+    double z_near;        /**< without matrices: near plane distance, > 0 */
+    double z_far;         /**< without matrices: far plane distance, > z_near */
 } shadowkit_camera;
 
+/** Everything a set-up is computed from (start from shadowkit_default_inputs). */
 typedef struct shadowkit_inputs {
-    shadowkit_camera camera;
-    double light_direction[3];         /* the direction sunlight travels (sun -> scene), any length > 0 */
-    double scene_min[3], scene_max[3]; /* every caster and receiver lies inside */
-    int technique;                     /* shadowkit_technique */
-    int map_size;                      /* texels per side of each map */
-    int cascade_count;                 /* csm: splits, 1 .. SHADOWKIT_MAX_VIEWS */
-    double cascade_lambda;             /* csm: 0 uniform .. 1 logarithmic splits */
-    int cascade_lispsm;                /* csm: 1 warps each split with LiSPSM */
-    double cascade_blend_band;         /* csm: [0, 0.5] of the previous split, for blending */
-    /* Output conventions of the matrices in shadowkit_view. */
-    int clip_depth;     /* shadowkit_clip_depth */
-    int reversed_z;     /* 1: the light's near side stored as 1 */
-    int texture_origin; /* shadowkit_texture_origin */
+    shadowkit_camera camera;   /**< the view the shadows are for */
+    double light_direction[3]; /**< the direction sunlight travels (sun -> scene), any length > 0 */
+    double scene_min[3];       /**< the scene box's lower corner: every caster and receiver lies inside */
+    double scene_max[3];       /**< its upper corner */
+    int technique;             /**< shadowkit_technique */
+    int map_size;              /**< texels per side of each map */
+    int cascade_count;         /**< csm: splits, 1 .. SHADOWKIT_MAX_VIEWS */
+    double cascade_lambda;     /**< csm: 0 uniform .. 1 logarithmic splits */
+    int cascade_lispsm;        /**< csm: 1 warps each split with LiSPSM */
+    double cascade_blend_band; /**< csm: [0, 0.5] of the previous split, for blending */
+    /** Output conventions of the matrices in shadowkit_view. */
+    int clip_depth;     /**< shadowkit_clip_depth */
+    int reversed_z;     /**< 1: the light's near side stored as 1 */
+    int texture_origin; /**< shadowkit_texture_origin */
 } shadowkit_inputs;
 
+/** One shadow map of a set-up, in the requested output conventions. */
 typedef struct shadowkit_view {
-    double clip_from_world[16];    /* draw the map with this */
-    double texture_from_world[16]; /* (u, v, d, 1) * w: look the map up with this */
-    double linear_depth_from_world[4];
-    double culling_planes[6][4]; /* (nx, ny, nz, d): a point p is outside when n.p + d > 0 */
-    int culling_plane_count;
-    double split_near, split_far; /* cascades: the view depths this map serves; else 0, 0 */
-    /* Camera-relative rendering: the same for p - eye_relative_origin (shadowkit_setup). */
-    double clip_from_eye_relative[16];
-    double texture_from_eye_relative[16];
-    double linear_depth_from_eye_relative[4];
+    double clip_from_world[16];        /**< draw the map with this */
+    double texture_from_world[16];     /**< (u, v, d, 1) * w: look the map up with this */
+    double linear_depth_from_world[4]; /**< linear layout: the depth to write and compare, dot(this, (p, 1)) */
+    double culling_planes[6][4];       /**< (nx, ny, nz, d): a point p is outside when n.p + d > 0 */
+    int culling_plane_count;           /**< planes in use in culling_planes */
+    double split_near;                 /**< cascades: the nearest view depth this map serves; else 0 */
+    double split_far;                  /**< cascades: the farthest; else 0 */
+    /** Camera-relative rendering: the same for p - eye_relative_origin (shadowkit_setup). */
+    double clip_from_eye_relative[16];        /**< clip_from_world for p - eye_relative_origin */
+    double texture_from_eye_relative[16];     /**< texture_from_world for p - eye_relative_origin */
+    double linear_depth_from_eye_relative[4]; /**< linear_depth_from_world for p - eye_relative_origin */
 } shadowkit_view;
 
+/** The recommended bias of a set-up (core::recommendedBias). */
 typedef struct shadowkit_bias {
-    double slope;         /* glPolygonOffset factor (per fragment for linear depth) */
-    double constant;      /* glPolygonOffset units: 2^-24 of the depth range each */
-    double normal_offset; /* texels of world size (shadowkit_texel_size) along the normal */
-    int receiver_plane;   /* 1: receiver-plane depth bias in the lookup */
+    double slope;         /**< glPolygonOffset factor (per fragment for linear depth) */
+    double constant;      /**< glPolygonOffset units: 2^-24 of the depth range each */
+    double normal_offset; /**< texels of world size (shadowkit_texel_size) along the normal */
+    int receiver_plane;   /**< 1: receiver-plane depth bias in the lookup */
 } shadowkit_bias;
 
+/** The result: one view per map, the depth layout, the bias. */
 typedef struct shadowkit_setup {
-    int technique;
-    int map_size;
-    int depth_layout; /* shadowkit_depth_layout */
-    int depth_clamp;  /* 1: draw the map with depth clamping (GL_DEPTH_CLAMP, depthClampEnable) */
-    int view_count;
-    shadowkit_view views[SHADOWKIT_MAX_VIEWS];
-    shadowkit_bias bias;           /* the recommended bias for this technique and layout */
-    double eye_relative_origin[3]; /* the camera's eye: what the views' *_eye_relative take p minus */
-    int fallback_count;            /* degenerate cases met (view along the light, a view missing the scene) */
+    int technique;    /**< shadowkit_technique actually used */
+    int map_size;     /**< texels per side of every map */
+    int depth_layout; /**< shadowkit_depth_layout */
+    int depth_clamp;  /**< 1: draw the map with depth clamping (GL_DEPTH_CLAMP, depthClampEnable) */
+    int view_count;   /**< maps in use in views */
+    shadowkit_view views[SHADOWKIT_MAX_VIEWS]; /**< the maps, nearest split first */
+    shadowkit_bias bias;                       /**< the recommended bias for this technique and layout */
+    double eye_relative_origin[3];             /**< the camera's eye: what the views' *_eye_relative take p minus */
+    int fallback_count; /**< degenerate cases met (view along the light, a view missing the scene) */
 } shadowkit_setup;
 
-/* The defaults of the C++ API: technique TSM, 2048², cascades 4 / 0.9, a camera 1.8 m up
+/** The defaults of the C++ API: technique TSM, 2048², cascades 4 / 0.9, a camera 1.8 m up
    looking north, OpenGL-with-glClipControl conventions. */
 SHADOWKIT_CORE_EXPORT void shadowkit_default_inputs(shadowkit_inputs* inputs);
 
-/* 0 on success. Otherwise non-zero, `out` untouched, and a one-line message naming the input
+/** 0 on success. Otherwise non-zero, `out` untouched, and a one-line message naming the input
    in `error` (truncated to error_size, always terminated when error_size > 0). */
 SHADOWKIT_CORE_EXPORT int shadowkit_compute_setup(const shadowkit_inputs* inputs, shadowkit_setup* out, char* error,
                                                   size_t error_size);
 
-/* World size (metres) of one texel of `view` at `point` on a plane facing the light;
+/** World size (metres) of one texel of `view` at `point` on a plane facing the light;
    +inf where the map's projection degenerates. */
 SHADOWKIT_CORE_EXPORT double shadowkit_texel_size(const shadowkit_view* view, int map_size,
                                                   const double light_direction[3], const double point[3]);
 
-/* "major.minor.patch" of the library linked. */
+/** "major.minor.patch" of the library linked. */
 SHADOWKIT_CORE_EXPORT const char* shadowkit_version_string(void);
 
 #ifdef __cplusplus

@@ -8,6 +8,7 @@
 
 namespace shadowkit::core {
 
+/// An axis-aligned box in world space, empty when min > max (the default).
 struct Aabb {
     /// An empty box (min > max); extending it by any point makes it that point.
     Vec3 min{std::numeric_limits<double>::infinity()};

@@ -29,6 +29,7 @@
 
 namespace shadowkit::core {
 
+/// `--technique auto` along a path: the full search on the first frame, then one tracked step a frame, with hysteresis.
 class AutoChooser {
 public:
     explicit AutoChooser(AutoOptions options) : m_options(options) {}

@@ -14,6 +14,7 @@ enum class CasterCull {
            // far side of each caster, so lit front faces are never compared with themselves
 };
 
+/// Caster-side and receiver-side bias of a shadow map: slope, constant, normal offset, receiver plane, culled faces.
 struct BiasSettings {
     /// glPolygonOffset(slope, constant) for hyperbolic depth; for linear depth the same
     /// applied per fragment, a constant unit being 2^-24 of the depth range.

@@ -9,6 +9,7 @@
 
 namespace shadowkit::core {
 
+/// A symmetric perspective camera: eye, direction, up, vertical field of view, aspect, near and far.
 struct PerspectiveCamera {
     Vec3 wsEye{0.0, 1.8, 0.0};
     Vec3 wsDirection{0.0, 0.0, -1.0}; ///< viewing direction; any length > 0

@@ -17,6 +17,7 @@
 
 namespace shadowkit::core {
 
+/// A convex polyhedron as a list of faces (point loops), clipped by planes: the focus body B and its pieces.
 class ConvexBody {
 public:
     /// Inline capacities: a box clipped by a frustum, its sweep and the scene box has about

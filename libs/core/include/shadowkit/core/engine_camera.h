@@ -36,6 +36,7 @@ enum class ViewHandedness { RightHanded, LeftHanded };
 /// most this much wider than its near plane (1 %).
 inline constexpr double kOrthographicOverscan = 0.01;
 
+/// An engine's camera as the matrices it renders with, in its own conventions.
 struct EngineCamera {
     Mat4 viewFromWorld{1.0}; ///< rigid: a rotation (or a mirror) and a translation
     Mat4 clipFromView{1.0};  ///< perspective or orthographic, any depth convention

@@ -25,6 +25,7 @@
 
 namespace shadowkit::core {
 
+/// A technique's inputs with optimised parameters, and their predicted figures.
 struct ParameterChoice {
     ShadowSetupInputs inputs;                                   ///< the technique, map size and parameters chosen
     SamplingFigures predicted;                                  ///< at the model's samples
@@ -66,6 +67,7 @@ ShadowSetupInputs withVisibleSplits(ShadowSetupInputs in, const SamplingErrorMod
 ShadowSetupInputs forThisFrame(const ShadowSetupInputs& chosen, const ShadowSetupInputs& base,
                                const SamplingErrorModel& model);
 
+/// What `--technique auto` may choose from: the texel budget, the split counts, the search and hysteresis settings.
 struct AutoOptions {
     /// Texels of all maps together: one map of √budget² or N cascades of √(budget / N)² (sides
     /// rounded down to a multiple of 16), e.g. 4 M: 1 × 2048² or 4 × 1024².

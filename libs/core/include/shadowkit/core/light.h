@@ -6,6 +6,7 @@
 
 namespace shadowkit::core {
 
+/// The sun: a direction only, world space.
 struct DirectionalLight {
     Vec3 wsDirection{0.0, -1.0, 0.0}; ///< unit vector, direction the light travels (sun -> scene)
 

@@ -18,6 +18,7 @@
 
 namespace shadowkit::core {
 
+/// A spot light: one perspective map over its cone, focused on what the camera sees of it.
 struct SpotLight {
     Vec3 wsPosition{0.0, 3.0, 0.0};
     Vec3 wsDirection{0.0, -1.0, 0.0}; ///< axis of the cone, any length > 0
@@ -28,6 +29,7 @@ struct SpotLight {
     Status validate() const;
 };
 
+/// A point light: six 90° cube faces, each focused on what the camera sees of the light.
 struct PointLight {
     Vec3 wsPosition{0.0, 3.0, 0.0};
     double range = 30.0; ///< metres, > 0
@@ -47,6 +49,7 @@ const std::array<CubeFace, 6>& cubeFaces();
 /// lower index), as the cube sampler does.
 int cubeFaceOf(const Vec3& wsDirection);
 
+/// What the local lights' set-ups need: the camera, the scene box and the map size.
 struct LocalShadowInputs {
     PerspectiveCamera camera;
     Aabb wsSceneBounds; ///< every caster and receiver lies inside

@@ -33,6 +33,7 @@ enum class TextureOrigin {
     TopLeft,    ///< v = 0 at ndc y = +1: Direct3D, Metal
 };
 
+/// The target API's clip depth range, depth direction and texture origin, for EngineShadowView.
 struct OutputConventions {
     ClipDepthRange clipDepth = ClipDepthRange::ZeroToOne;
     bool reversedZ = false;

@@ -17,6 +17,7 @@ double perspectiveAliasing(double z, double zNear, double zFar, double n);
 /// n_opt = z_n + √(z_n z_f).
 double lispsmOptimalN(double zNear, double zFar);
 
+/// A curve of Wimmer et al. 2004's Figure 6: perspective aliasing dp/ds over view depth z.
 struct AliasingCurve {
     std::vector<double> z, dpds; ///< samples, z ascending
     double max = 0.0;            ///< max dp/ds over [z_n, z_f]

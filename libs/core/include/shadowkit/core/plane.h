@@ -7,6 +7,7 @@
 
 namespace shadowkit::core {
 
+/// A plane n·p + d = 0, the normal pointing out of the half space it bounds.
 struct Plane {
     Vec3 normal{0.0, 1.0, 0.0};
     double d = 0.0;

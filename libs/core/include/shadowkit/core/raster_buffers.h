@@ -9,6 +9,7 @@
 
 namespace shadowkit::core {
 
+/// Per-pixel buffers a renderer hands to the evaluation: shadow term, surface, depth, normal, texel coordinates.
 struct RasterBuffers {
     int width = 0, height = 0;
     /// All arrays are row-major with the top row first, width × height entries.

@@ -13,6 +13,7 @@ namespace shadowkit::core {
 /// rejects a shader). Front ends report them differently (`shadowkit` exits 1 or 3).
 enum class ErrorKind { BadInput, Environment };
 
+/// A one-line message naming the input, and whether the input or the environment is at fault.
 struct Error {
     std::string message; ///< one line: names the input and what is wrong
     /// The option the error is about, as a stable dotted name ("lispsm.weight", "blur.radius";

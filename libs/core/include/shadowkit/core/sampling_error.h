@@ -50,6 +50,7 @@ struct ReceiverSample {
 std::vector<ReceiverSample> receiverSamples(const RasterBuffers& raster, const PerspectiveCamera& camera,
                                             const DirectionalLight& light, size_t maxSamples);
 
+/// Predicted pixels per texel over the receiver samples: p50, p95, the undersampled fraction.
 struct SamplingFigures {
     size_t samples = 0;                     ///< receivers the figures are over
     double p50 = 0.0, p95 = 0.0, p99 = 0.0; ///< pixels per texel

@@ -28,6 +28,8 @@
 
 namespace shadowkit::core {
 
+/// When held texel lattices are refitted: the margin round the focus body, the texel growth allowed, the motion covered
+/// ahead.
 struct HysteresisOptions {
     /// Spare room round the focus body at a refit, as a fraction of the map's extent: the body
     /// may move or grow this much before it forces a refit, and every texel is this much
@@ -50,6 +52,7 @@ Status validate(const HysteresisOptions& options);
 /// (w <= 0 or a zero determinant).
 double texelFootprint(const ShadowView& view, int mapSize, const Vec3& wsLightDirection, const Vec3& wsPoint);
 
+/// Held texel lattices: a set-up kept fixed in the world across frames and refitted only when it must be.
 class SetupHysteresis {
 public:
     explicit SetupHysteresis(HysteresisOptions options = {}) : m_options(options) {}

@@ -18,6 +18,7 @@ enum class ShadowFilter {
     Poisson = 3, ///< N comparisons on a Poisson disk, rotated per pixel
 };
 
+/// The shadow lookup filter: hard, 2×2 hardware PCF, N×N PCF or a rotated Poisson disk, and its kernel size.
 struct FilterSettings {
     ShadowFilter kind = ShadowFilter::Hard;
     int taps = 1;              ///< PcfGrid: N of N x N, [1, 9]; Poisson: samples, [1, 32]; else unused

@@ -40,6 +40,7 @@ enum class DepthLayout {
 /// The light a set-up is for: the sun (ShadowSetupInputs) or a local light (local_lights.h).
 enum class LightType { Directional, Spot, Point };
 
+/// A technique and its name in JSON, the CLI and reports.
 struct TechniqueInfo {
     Technique technique;
     std::string_view name; ///< the name in JSON, the CLI and reports
@@ -68,6 +69,7 @@ enum class LispsmDirection {
     MiddleVector, ///< V_P = Σ (B_i − eye), made perpendicular to the light (Scherzer 2005 §4.4)
 };
 
+/// LiSPSM's free parameter n: formula, weight, warp axis, visible near distance.
 struct LispsmOptions {
     LispsmFormula formula = LispsmFormula::Scherzer;
     LispsmDirection direction = LispsmDirection::CrossProduct;
@@ -83,6 +85,7 @@ struct LispsmOptions {
 /// Checks the ranges above; error fields "lispsm.weight", "lispsm.n".
 Status validate(const LispsmOptions& options);
 
+/// TSM's parameters: the focus fraction of the 80 % rule.
 struct TsmOptions {
     /// View depth of the focus point, as a fraction of [z_n, z_f] from the near plane: the
     /// region up to it is mapped to the "80 % line" of the map (Martin & Tan). (0, 1).
@@ -99,6 +102,7 @@ enum class CascadeWarp {
     Lispsm, ///< each split warped with LiSPSM, its near plane as z_n
 };
 
+/// Cascaded shadow maps (Dimitrov 2007): split count and scheme, per-split warp, stabilisation, blend band.
 struct CascadeOptions {
     int count = 4; ///< splits, [1, 8]
     /// Practical split scheme weight (Zhang et al. 2006; Dimitrov 2007): 0 uniform, 1 logarithmic; [0, 1].
@@ -129,6 +133,7 @@ inline constexpr size_t kMaxShadowViews = 8;                ///< maps in one set
 /// Error field "map_size".
 Status validateMapSize(int texelsPerSide);
 
+/// Everything a set-up is computed from: camera, light, scene box, technique and its options, map size.
 struct ShadowSetupInputs {
     PerspectiveCamera camera;
     DirectionalLight light;
@@ -168,12 +173,15 @@ struct LispsmWarp {
     /// and are left out of the JSON.
     bool viewParallel = false;
 };
+/// PSM's parameters as the set-up chose them: slide-back, the virtual camera's planes, the light's w, the inverted
+/// case.
 struct PsmWarp {
     double slideBack = 0.0;           ///< "slide_back": how far the virtual camera moved back (metres)
     double ppNear = 0.0, ppFar = 0.0; ///< "near", "far": the virtual camera's planes
     double lightW = 0.0;              ///< "light_w": the light's post-perspective w, scaled (< 0: behind the viewer)
     bool inverted = false;            ///< "inverted": the inverted projection for a light behind
 };
+/// TSM's parameters as the set-up chose them: the trapezoid's height, focus distance and top line.
 struct TsmWarp {
     /// "lambda", "delta", "eta": trapezoid height, focus distance and top line offset (L units);
     /// left out of the JSON when uniform.
@@ -182,6 +190,7 @@ struct TsmWarp {
 };
 using WarpParameters = std::variant<std::monostate, LispsmWarp, PsmWarp, TsmWarp>;
 
+/// One shadow map: lightFromWorld, clipFromLight and their product, its split, its warp parameters.
 struct ShadowView {
     Mat4 lightFromWorld{1.0};
     Mat4 clipFromLight{1.0};
@@ -212,6 +221,7 @@ struct ShadowView {
     }
 };
 
+/// The result of a set-up: one ShadowView per map, depth layout, diagnostics and fallbacks.
 struct ShadowSetup {
     Technique technique = Technique::Focused;
     /// One per shadow map, held inline (up to kMaxShadowViews: eight cascades) so that

@@ -12,6 +12,7 @@
 
 namespace shadowkit::core {
 
+/// A vector holding up to N elements inline, so a set-up allocates no memory (spills to the heap beyond).
 template <class T, size_t N>
 class SmallVector {
 public:
