@@ -32,11 +32,13 @@ bool combo(StateOptions& s, const char* label, const char* name, const Choices& 
     const std::string current = valueOf(s, name, fallback);
     bool changed = false;
     if (ImGui::BeginCombo(label, current.c_str())) {
-        for (const std::string choice : choices)
+        for (const auto& entry : choices) {
+            const std::string choice(entry); // the lists hold strings or string_views
             if (ImGui::Selectable(choice.c_str(), current == choice)) {
                 set(s, name, choice);
                 changed = true;
             }
+        }
         ImGui::EndCombo();
     }
     return changed;
