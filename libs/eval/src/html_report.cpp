@@ -173,7 +173,8 @@ std::string htmlReport(const HtmlReport& report) {
            "content=\"width=device-width, initial-scale=1\">\n<title>"
         << htmlEscape(report.title) << "</title>\n<style>" << kStyle << "</style>\n<script>" << kScript
         << "</script>\n</head><body>\n<h1>" << htmlEscape(report.title) << "</h1>\n<p id=\"broken\"></p>\n";
-    if (!report.command.empty()) out << "<p>Written by</p><pre>" << htmlEscape(report.command) << "</pre>\n";
+    if (!report.command.empty())
+        out << "<p>The command that wrote this page:</p><pre>" << htmlEscape(report.command) << "</pre>\n";
     if (!report.machine.empty()) out << "<p>Measured on " << htmlEscape(report.machine) << ".</p>\n";
 
     if (!views.empty()) {
