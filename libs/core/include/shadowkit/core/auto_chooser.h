@@ -32,6 +32,7 @@ namespace shadowkit::core {
 /// `--technique auto` along a path: the full search on the first frame, then one tracked step a frame, with hysteresis.
 class AutoChooser {
 public:
+    /// A chooser with these options; the first choose() runs the full search.
     explicit AutoChooser(AutoOptions options) : m_options(options) {}
 
     /// This frame's choice for `base`'s camera, light and scene box, from the receivers the
@@ -45,6 +46,7 @@ public:
     void reset() { m_tracks.clear(); }
     /// The number of candidates tracked (0 before the first search).
     size_t candidates() const { return m_tracks.size(); }
+    /// The options it was made with.
     const AutoOptions& options() const { return m_options; }
 
 private:

@@ -26,7 +26,7 @@ struct BiasSettings {
     /// Receiver-plane depth bias: the reference depth follows the receiver's plane to each
     /// texel (tap) centre, using the screen derivatives of the shadow coordinates.
     bool receiverPlane = false;
-    CasterCull cull = CasterCull::None;
+    CasterCull cull = CasterCull::None; ///< caster faces culled when drawing the map (front: back sides only)
 };
 
 /// Checks the ranges above; error fields "bias.slope", "bias.constant", "bias.normal_offset".

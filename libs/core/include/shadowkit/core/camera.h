@@ -11,7 +11,7 @@ namespace shadowkit::core {
 
 /// A symmetric perspective camera: eye, direction, up, vertical field of view, aspect, near and far.
 struct PerspectiveCamera {
-    Vec3 wsEye{0.0, 1.8, 0.0};
+    Vec3 wsEye{0.0, 1.8, 0.0};        ///< the eye, world space
     Vec3 wsDirection{0.0, 0.0, -1.0}; ///< viewing direction; any length > 0
     Vec3 wsUp{0.0, 1.0, 0.0};         ///< need not be orthogonal to the direction
     double fovYDegrees = 60.0;        ///< vertical field of view, (0, 180)
@@ -26,6 +26,7 @@ struct PerspectiveCamera {
     Mat4 viewFromWorld() const;
     /// Perspective projection with clip depth in [0,1] (near -> 0, far -> 1).
     Mat4 clipFromView() const;
+    /// clipFromView() · viewFromWorld().
     Mat4 clipFromWorld() const { return clipFromView() * viewFromWorld(); }
 
     /// World-space corners: 0-3 on the near plane, 4-7 on the far plane, each quad in the

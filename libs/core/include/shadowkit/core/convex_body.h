@@ -23,12 +23,13 @@ public:
     /// Inline capacities: a box clipped by a frustum, its sweep and the scene box has about
     /// a dozen faces of up to eight points; beyond these sizes the containers spill to the
     /// heap (still correct, no longer allocation-free).
-    using Polygon = SmallVector<Vec3, 12>; ///< counter-clockwise seen from outside
-    using Faces = SmallVector<Polygon, 20>;
-    using Points = SmallVector<Vec3, 48>;
-    using Planes = SmallVector<Plane, 48>;
+    using Polygon = SmallVector<Vec3, 12>;  ///< counter-clockwise seen from outside
+    using Faces = SmallVector<Polygon, 20>; ///< the faces, each a convex polygon
+    using Points = SmallVector<Vec3, 48>;   ///< a set of vertices
+    using Planes = SmallVector<Plane, 48>;  ///< a set of planes, outward
 
     ConvexBody() = default; ///< the empty body
+    /// The box as a body of six faces (an empty box gives the empty body).
     static ConvexBody fromAabb(const Aabb& box);
 
     /// Moves every vertex by `offset` (exact up to the rounding of each sum).
@@ -36,6 +37,7 @@ public:
 
     /// Keeps the part of the body with plane.signedDistance(p) <= 0.
     void clip(const Plane& plane);
+    /// Clips by every plane in turn: the intersection with their half-spaces.
     void clip(std::span<const Plane> planes);
 
     /// Planes whose intersection is the body swept to infinity along `wsDirection`
@@ -44,14 +46,14 @@ public:
     /// direction. Intersect with a bounded body to use it.
     Planes sweepHalfSpaces(const Vec3& wsDirection) const;
 
-    bool isEmpty() const { return m_faces.empty(); }
-    const Faces& faces() const { return m_faces; }
+    bool isEmpty() const { return m_faces.empty(); } ///< no volume left
+    const Faces& faces() const { return m_faces; }   ///< the boundary, one polygon per face
     /// Each distinct vertex once.
     Points vertices() const;
-    Aabb bounds() const;
+    Aabb bounds() const; ///< the smallest box holding every vertex
     /// True if p lies inside every face plane, with a tolerance of eps metres.
     bool contains(const Vec3& p, double eps) const;
-    double volume() const;
+    double volume() const; ///< cubic metres (the divergence theorem over the faces)
 
 private:
     double tolerance() const;

@@ -38,9 +38,9 @@ inline constexpr double kOrthographicOverscan = 0.01;
 
 /// An engine's camera as the matrices it renders with, in its own conventions.
 struct EngineCamera {
-    Mat4 viewFromWorld{1.0}; ///< rigid: a rotation (or a mirror) and a translation
-    Mat4 clipFromView{1.0};  ///< perspective or orthographic, any depth convention
-    ClipDepthRange clipDepth = ClipDepthRange::ZeroToOne;
+    Mat4 viewFromWorld{1.0};                                 ///< rigid: a rotation (or a mirror) and a translation
+    Mat4 clipFromView{1.0};                                  ///< perspective or orthographic, any depth convention
+    ClipDepthRange clipDepth = ClipDepthRange::ZeroToOne;    ///< the clip depth range clipFromView maps to
     ViewHandedness handedness = ViewHandedness::RightHanded; ///< orthographic projections only
     /// Shadows end at this view depth (metres along the view axis) even when the camera's far
     /// plane lies beyond: engines draw kilometres but shadow hundreds of metres. Required
@@ -50,14 +50,18 @@ struct EngineCamera {
 
 /// What recognising a projection found, in the view's own units (metres).
 struct RecognisedProjection {
-    bool orthographic = false;
-    bool reversedZ = false;         ///< near maps to clip depth 1
-    bool infiniteFar = false;       ///< the depth row never reaches the far value
-    bool offCentre = false;         ///< asymmetric about the view axis (off-centre, jittered)
-    double zNear = 0.0, zFar = 0.0; ///< distances along the view axis; zFar = +inf when infinite
+    bool orthographic = false; ///< else perspective
+    bool reversedZ = false;    ///< near maps to clip depth 1
+    bool infiniteFar = false;  ///< the depth row never reaches the far value
+    bool offCentre = false;    ///< asymmetric about the view axis (off-centre, jittered)
+    double zNear = 0.0;        ///< distance of the near plane along the view axis
+    double zFar = 0.0;         ///< of the far plane; +inf when infinite
     /// View-space x and y extents of the near plane; for a perspective projection as slopes
     /// (x / depth), for an orthographic one in metres.
-    double left = 0.0, right = 0.0, bottom = 0.0, top = 0.0;
+    double left = 0.0;      ///< near-plane extent: −x
+    double right = 0.0;     ///< +x
+    double bottom = 0.0;    ///< −y
+    double top = 0.0;       ///< +y
     double forwardZ = -1.0; ///< the view-space z of the view axis: -1 (looks down -Z) or +1
 };
 

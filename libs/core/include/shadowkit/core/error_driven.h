@@ -50,9 +50,10 @@ Result<ParameterChoice> optimiseParameters(const ShadowSetupInputs& inputs, cons
 /// A family's free parameter as the search sees it: x over [lo, hi], read from and written into
 /// a set-up's inputs (LiSPSM: x = log2 of the weight on n; TSM: the focus fraction; cascades: λ).
 struct ParameterAxis {
-    double lo = 0.0, hi = 1.0;
-    double (*get)(const ShadowSetupInputs&) = nullptr;
-    void (*set)(ShadowSetupInputs&, double) = nullptr;
+    double lo = 0.0;                                   ///< the lowest x searched
+    double hi = 1.0;                                   ///< the highest
+    double (*get)(const ShadowSetupInputs&) = nullptr; ///< x of these inputs
+    void (*set)(ShadowSetupInputs&, double) = nullptr; ///< writes x into these inputs
 };
 /// nullopt for the families without one here (standard, focused, psm).
 std::optional<ParameterAxis> parameterAxis(Technique technique);

@@ -15,6 +15,7 @@ struct DirectionalLight {
     /// From sun angles in degrees (conventions.h): elevation in [-90, 90], any azimuth.
     static Result<DirectionalLight> fromSunAngles(double elevationDegrees, double azimuthDegrees);
 
+    /// The direction from the scene towards the sun.
     Vec3 wsTowardsLight() const { return -wsDirection; }
 };
 

@@ -10,7 +10,7 @@ namespace shadowkit::core {
 
 /// An orthonormal frame looking along the light: light space's axes and origin.
 struct LightFrame {
-    Mat4 lightFromWorld{1.0};
+    Mat4 lightFromWorld{1.0}; ///< rigid: world to light space, looking down −Z along the light
     /// Index into the candidate list of the "up" actually used (0 = the preferred one).
     int upCandidateUsed = 0;
 };

@@ -20,7 +20,7 @@ namespace shadowkit::core {
 
 /// A spot light: one perspective map over its cone, focused on what the camera sees of it.
 struct SpotLight {
-    Vec3 wsPosition{0.0, 3.0, 0.0};
+    Vec3 wsPosition{0.0, 3.0, 0.0};   ///< apex of the cone, world space
     Vec3 wsDirection{0.0, -1.0, 0.0}; ///< axis of the cone, any length > 0
     double coneDegrees = 40.0;        ///< full opening angle of the cone, (0, 170]
     double range = 30.0;              ///< metres: nothing farther is lit, > 0
@@ -31,8 +31,8 @@ struct SpotLight {
 
 /// A point light: six 90° cube faces, each focused on what the camera sees of the light.
 struct PointLight {
-    Vec3 wsPosition{0.0, 3.0, 0.0};
-    double range = 30.0; ///< metres, > 0
+    Vec3 wsPosition{0.0, 3.0, 0.0}; ///< world space
+    double range = 30.0;            ///< metres, > 0
 
     /// Fields "point.position", "point.range".
     Status validate() const;
@@ -42,7 +42,8 @@ struct PointLight {
 /// +Z, −Z, each a look-at along its axis with the up vector the cube map's (s, t) axes need,
 /// so a face's NDC (x, y) is the cube texture's (s, t) for that face (OpenGL 4.5 §8.13).
 struct CubeFace {
-    Vec3 wsAxis, wsUp;
+    Vec3 wsAxis; ///< the face looks along this axis
+    Vec3 wsUp;   ///< and has this up vector
 };
 const std::array<CubeFace, 6>& cubeFaces();
 /// The face a direction from the light selects: the axis of largest magnitude (ties to the
@@ -51,9 +52,9 @@ int cubeFaceOf(const Vec3& wsDirection);
 
 /// What the local lights' set-ups need: the camera, the scene box and the map size.
 struct LocalShadowInputs {
-    PerspectiveCamera camera;
-    Aabb wsSceneBounds; ///< every caster and receiver lies inside
-    int mapSize = 1024; ///< texels per side of the spot map or of each cube face
+    PerspectiveCamera camera; ///< whose view the maps are focused on
+    Aabb wsSceneBounds;       ///< every caster and receiver lies inside
+    int mapSize = 1024;       ///< texels per side of the spot map or of each cube face
 };
 
 /// The spot light's map: a perspective view from the light, fitted to its receivers R =
@@ -72,13 +73,13 @@ Result<ShadowSetup> computePointShadowSetup(const LocalShadowInputs& inputs, con
 
 /// A frame's local lights with their set-ups, in the order given: what a renderer draws.
 struct LocalLighting {
-    std::vector<PointLight> points;
-    std::vector<ShadowSetup> pointSetups; ///< one per point light
-    std::vector<SpotLight> spots;
-    std::vector<ShadowSetup> spotSetups; ///< one per spot light
-    int mapSize = 1024;                  ///< of every spot map and cube face
-    size_t size() const { return points.size() + spots.size(); }
-    bool empty() const { return size() == 0; }
+    std::vector<PointLight> points;                              ///< the point lights
+    std::vector<ShadowSetup> pointSetups;                        ///< one per point light
+    std::vector<SpotLight> spots;                                ///< the spot lights
+    std::vector<ShadowSetup> spotSetups;                         ///< one per spot light
+    int mapSize = 1024;                                          ///< of every spot map and cube face
+    size_t size() const { return points.size() + spots.size(); } ///< lights of both kinds
+    bool empty() const { return size() == 0; }                   ///< no local light
 };
 /// The same lights and set-ups for coordinates measured from `wsOrigin` (core::rebased).
 LocalLighting rebased(const LocalLighting& lighting, const Vec3& wsOrigin);

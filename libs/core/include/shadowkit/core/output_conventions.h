@@ -35,16 +35,19 @@ enum class TextureOrigin {
 
 /// The target API's clip depth range, depth direction and texture origin, for EngineShadowView.
 struct OutputConventions {
-    ClipDepthRange clipDepth = ClipDepthRange::ZeroToOne;
-    bool reversedZ = false;
-    TextureOrigin textureOrigin = TextureOrigin::BottomLeft;
+    ClipDepthRange clipDepth = ClipDepthRange::ZeroToOne;    ///< of the matrices handed out
+    bool reversedZ = false;                                  ///< the light's near side stored as 1
+    TextureOrigin textureOrigin = TextureOrigin::BottomLeft; ///< where v = 0 lies
 
+    /// OpenGL's default: clip depth [−1, 1], v = 0 at the bottom row.
     static constexpr OutputConventions openGL() {
         return {ClipDepthRange::MinusOneToOne, false, TextureOrigin::BottomLeft};
     }
+    /// Vulkan: clip depth [0, 1], v = 0 at row 0 (its flipped NDC y and texture rows cancel).
     static constexpr OutputConventions vulkan() {
         return {ClipDepthRange::ZeroToOne, false, TextureOrigin::BottomLeft};
     }
+    /// Direct3D 11/12 and Metal: clip depth [0, 1], v = 0 at the top row.
     static constexpr OutputConventions direct3D() { return {ClipDepthRange::ZeroToOne, false, TextureOrigin::TopLeft}; }
 };
 
@@ -66,15 +69,15 @@ struct EngineShadowView {
     /// Camera-relative rendering (large worlds): the same three for p − wsEye, the eye the set-up
     /// was computed around (ShadowView's eye-relative members).
     Mat4 clipFromEyeRelative{1.0};
-    Mat4 textureFromEyeRelative{1.0};
-    Vec4 linearDepthFromEyeRelative{0.0};
-    Vec3 wsEye{0.0};
+    Mat4 textureFromEyeRelative{1.0};     ///< textureFromWorld for p − wsEye
+    Vec4 linearDepthFromEyeRelative{0.0}; ///< linearDepthFromWorld for p − wsEye
+    Vec3 wsEye{0.0};                      ///< the origin of the eye-relative members
     /// What referenceDepth needs: the set-up's layout, the convention, and for local lights the
     /// light and the distance range the stored depth spans.
     DepthLayout depthLayout = DepthLayout::Hyperbolic;
-    bool reversedZ = false;
-    Vec3 wsLightPosition{0.0};
-    Vec2 lightDistance{0.0};
+    bool reversedZ = false;    ///< the convention's depth direction
+    Vec3 wsLightPosition{0.0}; ///< local lights: the light
+    Vec2 lightDistance{0.0};   ///< local lights: [near, far] distance the stored depth spans
 };
 
 /// The matrix that takes the core's clip space to the chosen one (applied on the left).

@@ -19,9 +19,10 @@ double lispsmOptimalN(double zNear, double zFar);
 
 /// A curve of Wimmer et al. 2004's Figure 6: perspective aliasing dp/ds over view depth z.
 struct AliasingCurve {
-    std::vector<double> z, dpds; ///< samples, z ascending
-    double max = 0.0;            ///< max dp/ds over [z_n, z_f]
-    double argmaxZ = 0.0;        ///< where it is reached (the lower z on a tie)
+    std::vector<double> z;    ///< sample depths, ascending
+    std::vector<double> dpds; ///< dp/ds at each
+    double max = 0.0;         ///< max dp/ds over [z_n, z_f]
+    double argmaxZ = 0.0;     ///< where it is reached (the lower z on a tie)
 };
 
 /// `samples` points spaced logarithmically over [z_n, z_f] (both ends included); the

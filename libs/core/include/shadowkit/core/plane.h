@@ -9,8 +9,8 @@ namespace shadowkit::core {
 
 /// A plane n·p + d = 0, the normal pointing out of the half space it bounds.
 struct Plane {
-    Vec3 normal{0.0, 1.0, 0.0};
-    double d = 0.0;
+    Vec3 normal{0.0, 1.0, 0.0}; ///< unit, pointing out of the kept half-space
+    double d = 0.0;             ///< offset: n·p + d = 0 on the plane
 
     /// Plane through `point` with outward normal `n` (need not be unit length).
     static Plane fromPointNormal(const Vec3& point, const Vec3& n) {

@@ -11,7 +11,8 @@ namespace shadowkit::core {
 
 /// Per-pixel buffers a renderer hands to the evaluation: shadow term, surface, depth, normal, texel coordinates.
 struct RasterBuffers {
-    int width = 0, height = 0;
+    int width = 0;  ///< pixels per row
+    int height = 0; ///< rows
     /// All arrays are row-major with the top row first, width × height entries.
     std::vector<float> shadowTerm;   ///< 1 lit … 0 shadowed, the map's test alone (no N·L)
     std::vector<uint32_t> surfaceId; ///< global instance index + 1; 0 where nothing was drawn
@@ -23,6 +24,7 @@ struct RasterBuffers {
     std::vector<glm::mat2> texelFromPixel;
     int mapSize = 0; ///< texels per side of the map sampled
 
+    /// The array index of pixel (x, y), y = 0 the top row.
     size_t index(int x, int y) const {
         return static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x);
     }

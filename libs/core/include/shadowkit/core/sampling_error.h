@@ -39,8 +39,8 @@ double percentileInPlace(std::span<double> values, double q);
 
 /// A visible receiver: a surface point the camera sees, with its unit normal.
 struct ReceiverSample {
-    Vec3 wsPosition{0.0};
-    Vec3 wsNormal{0.0, 1.0, 0.0};
+    Vec3 wsPosition{0.0};         ///< the surface point
+    Vec3 wsNormal{0.0, 1.0, 0.0}; ///< its unit normal
 };
 
 /// Up to `maxSamples` receivers from a read-back of what the camera sees (RasterBuffers'
@@ -52,9 +52,11 @@ std::vector<ReceiverSample> receiverSamples(const RasterBuffers& raster, const P
 
 /// Predicted pixels per texel over the receiver samples: p50, p95, the undersampled fraction.
 struct SamplingFigures {
-    size_t samples = 0;                     ///< receivers the figures are over
-    double p50 = 0.0, p95 = 0.0, p99 = 0.0; ///< pixels per texel
-    double undersampledFraction = 0.0;      ///< share above 1 pixel per texel, [0, 1]
+    size_t samples = 0;                ///< receivers the figures are over
+    double p50 = 0.0;                  ///< median pixels per texel
+    double p95 = 0.0;                  ///< 95th percentile
+    double p99 = 0.0;                  ///< 99th percentile
+    double undersampledFraction = 0.0; ///< share above 1 pixel per texel, [0, 1]
 };
 
 /// What the parameter search minimises (error_driven.h): p95 pixels per texel, plus the
@@ -74,8 +76,8 @@ public:
     static Result<SamplingErrorModel> create(const PerspectiveCamera& camera, int width, int height,
                                              std::span<const ReceiverSample> samples);
 
-    size_t size() const { return m_samples.size(); }
-    const PerspectiveCamera& camera() const { return m_camera; }
+    size_t size() const { return m_samples.size(); }             ///< samples kept
+    const PerspectiveCamera& camera() const { return m_camera; } ///< the camera it models
     /// [nearest, farthest] view depth of the samples; nullopt without samples.
     std::optional<Vec2> viewDepthRange() const;
 

@@ -55,6 +55,7 @@ double texelFootprint(const ShadowView& view, int mapSize, const Vec3& wsLightDi
 /// Held texel lattices: a set-up kept fixed in the world across frames and refitted only when it must be.
 class SetupHysteresis {
 public:
+    /// Holds nothing yet: the first next() fits afresh.
     explicit SetupHysteresis(HysteresisOptions options = {}) : m_options(options) {}
 
     /// This frame's set-up: every view held (whole-texel shifted) while it covers its focus
@@ -68,10 +69,10 @@ public:
         int toCover = 0; ///< the held lattice could not cover the view's focus body any more
         int stale = 0;   ///< its texels had grown past maxTexelGrowth
     };
-    const Refits& lastRefits() const { return m_refits; }
-    int refittedViews() const { return m_refits.views; }
-    bool refitted() const { return m_refits.views > 0; }
-    void reset() { m_held.reset(), m_previousCamera.reset(); }
+    const Refits& lastRefits() const { return m_refits; }      ///< what the last next() refitted
+    int refittedViews() const { return m_refits.views; }       ///< lastRefits().views
+    bool refitted() const { return m_refits.views > 0; }       ///< any view refitted by the last next()
+    void reset() { m_held.reset(), m_previousCamera.reset(); } ///< a camera cut: the next frame fits afresh
 
 private:
     HysteresisOptions m_options;

@@ -20,9 +20,9 @@ enum class ShadowFilter {
 
 /// The shadow lookup filter: hard, 2×2 hardware PCF, N×N PCF or a rotated Poisson disk, and its kernel size.
 struct FilterSettings {
-    ShadowFilter kind = ShadowFilter::Hard;
-    int taps = 1;              ///< PcfGrid: N of N x N, [1, 9]; Poisson: samples, [1, 32]; else unused
-    float radiusTexels = 1.5f; ///< Poisson disk radius in texels, (0, 16]
+    ShadowFilter kind = ShadowFilter::Hard; ///< which filter
+    int taps = 1;                           ///< PcfGrid: N of N x N, [1, 9]; Poisson: samples, [1, 32]; else unused
+    float radiusTexels = 1.5f;              ///< Poisson disk radius in texels, (0, 16]
 };
 
 /// Checks the ranges above; the error's field is "filter.taps" or "filter.radius".

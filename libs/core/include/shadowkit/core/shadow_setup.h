@@ -42,7 +42,7 @@ enum class LightType { Directional, Spot, Point };
 
 /// A technique and its name in JSON, the CLI and reports.
 struct TechniqueInfo {
-    Technique technique;
+    Technique technique;   ///< the technique
     std::string_view name; ///< the name in JSON, the CLI and reports
 };
 std::span<const TechniqueInfo> allTechniques();
@@ -71,9 +71,9 @@ enum class LispsmDirection {
 
 /// LiSPSM's free parameter n: formula, weight, warp axis, visible near distance.
 struct LispsmOptions {
-    LispsmFormula formula = LispsmFormula::Scherzer;
-    LispsmDirection direction = LispsmDirection::CrossProduct;
-    double weight = 1.0;             ///< multiplies the chosen n; (0, inf)
+    LispsmFormula formula = LispsmFormula::Scherzer;           ///< how n is chosen
+    LispsmDirection direction = LispsmDirection::CrossProduct; ///< the warp axis
+    double weight = 1.0;                                       ///< multiplies the chosen n; (0, inf)
     std::optional<double> nOverride; ///< a fixed n in metres (> 0); the formula is then skipped
     /// With ShadowSetupInputs::visibleDepth: also take z_n in n's formula from the nearest
     /// visible depth, not the camera's near plane. Scherzer 2005 §4.4 narrows only Δz (from
@@ -113,7 +113,7 @@ struct CascadeOptions {
     /// Explicit split distances instead: count + 1 increasing values from the camera's near
     /// to its far plane (metres). Empty: use lambda.
     std::vector<double> splits;
-    CascadeWarp warp = CascadeWarp::None;
+    CascadeWarp warp = CascadeWarp::None; ///< each split uniform, or warped with LiSPSM
     /// Rotation-invariant extent (the split's bounding sphere) in a view-independent light
     /// frame, snapped to whole texels, so shadow edges do not swim as the camera moves.
     /// Not combinable with a warp, which moves texels with the view by design.
@@ -135,16 +135,16 @@ Status validateMapSize(int texelsPerSide);
 
 /// Everything a set-up is computed from: camera, light, scene box, technique and its options, map size.
 struct ShadowSetupInputs {
-    PerspectiveCamera camera;
-    DirectionalLight light;
+    PerspectiveCamera camera;                 ///< the view the shadows are for
+    DirectionalLight light;                   ///< the sun
     Aabb wsSceneBounds;                       ///< every caster and receiver lies inside
     Technique technique = defaultTechnique(); ///< the recommended one (the CLI's default too)
     /// Texels per side of each shadow map (every cascade), [kMinMapSize, kMaxMapSize]: the
     /// stabilised cascades snap to it, and the renderer allocates it (ShadowSetup::mapSize).
     int mapSize = 2048;
-    LispsmOptions lispsm;
-    TsmOptions tsm;
-    CascadeOptions cascades;
+    LispsmOptions lispsm;                   ///< technique Lispsm, and cascades warped per split
+    TsmOptions tsm;                         ///< technique Tsm
+    CascadeOptions cascades;                ///< technique Csm
     std::optional<DepthLayout> depthLayout; ///< unset: the technique's own (linear for TSM)
     /// View-depth range [near, far] of what the camera actually sees, 0 <= near < far: a
     /// min/max reduction of its depth buffer (visible_depth.h). It never narrows a focus
@@ -165,7 +165,8 @@ DepthLayout depthLayoutFor(const ShadowSetupInputs& inputs);
 /// Warp parameters of the warped techniques, as `shadowkit setup` prints them under "warp"
 /// (the JSON names are given per field).
 struct LispsmWarp {
-    double n = 0.0, f = 0.0;   ///< "n", "f": near and far distance of P along the warp axis (metres)
+    double n = 0.0;            ///< "n": near distance of P along the warp axis (metres)
+    double f = 0.0;            ///< "f": its far distance
     double d = 0.0;            ///< "d": extent of B along the warp axis (metres)
     double gammaDegrees = 0.0; ///< "gamma_degrees": angle between view and light
     bool uniform = false;      ///< "uniform": fell back to the uniform limit (n > kLispsmUniformRatio d)
@@ -176,24 +177,27 @@ struct LispsmWarp {
 /// PSM's parameters as the set-up chose them: slide-back, the virtual camera's planes, the light's w, the inverted
 /// case.
 struct PsmWarp {
-    double slideBack = 0.0;           ///< "slide_back": how far the virtual camera moved back (metres)
-    double ppNear = 0.0, ppFar = 0.0; ///< "near", "far": the virtual camera's planes
-    double lightW = 0.0;              ///< "light_w": the light's post-perspective w, scaled (< 0: behind the viewer)
-    bool inverted = false;            ///< "inverted": the inverted projection for a light behind
+    double slideBack = 0.0; ///< "slide_back": how far the virtual camera moved back (metres)
+    double ppNear = 0.0;    ///< "near": the virtual camera's near plane
+    double ppFar = 0.0;     ///< "far": its far plane
+    double lightW = 0.0;    ///< "light_w": the light's post-perspective w, scaled (< 0: behind the viewer)
+    bool inverted = false;  ///< "inverted": the inverted projection for a light behind
 };
 /// TSM's parameters as the set-up chose them: the trapezoid's height, focus distance and top line.
 struct TsmWarp {
     /// "lambda", "delta", "eta": trapezoid height, focus distance and top line offset (L units);
     /// left out of the JSON when uniform.
-    double lambda = 0.0, delta = 0.0, eta = 0.0;
+    double lambda = 0.0;  ///< "lambda": trapezoid height
+    double delta = 0.0;   ///< "delta": focus distance
+    double eta = 0.0;     ///< "eta": top line offset
     bool uniform = false; ///< "uniform": view parallel to the light, no trapezoid
 };
 using WarpParameters = std::variant<std::monostate, LispsmWarp, PsmWarp, TsmWarp>;
 
 /// One shadow map: lightFromWorld, clipFromLight and their product, its split, its warp parameters.
 struct ShadowView {
-    Mat4 lightFromWorld{1.0};
-    Mat4 clipFromLight{1.0};
+    Mat4 lightFromWorld{1.0};  ///< rigid: world to light space (the light looks down −Z)
+    Mat4 clipFromLight{1.0};   ///< the map's projection (and warp), clip depth [0, 1]
     Mat4 clipFromWorld{1.0};   ///< clipFromLight * lightFromWorld
     std::optional<Vec2> split; ///< [near, far] view depth range, for cascades
     WarpParameters warp;       ///< monostate for the uniform techniques
@@ -203,7 +207,7 @@ struct ShadowView {
     /// Local lights: [near, far] distance from the light that the stored depth spans
     /// (LightDistance layout), and for a point light the cube face, 0-5 (local_lights.h).
     Vec2 lightDistance{0.0};
-    std::optional<int> face;
+    std::optional<int> face; ///< point lights: the cube face, 0–5 in OpenGL's order
 
     /// Large worlds: the same maps for eye-relative coordinates p − ShadowSetup::wsEye. An
     /// engine that renders camera-relative (positions minus the eye in double, then float)
@@ -212,8 +216,8 @@ struct ShadowView {
     /// cannot (a 6 cm step at 1,000 km). computeShadowSetup builds the set-up here and derives
     /// the world matrices from these, not the other way round.
     Mat4 lightFromEyeRelative{1.0};
-    Mat4 clipFromEyeRelative{1.0}; ///< clipFromLight * lightFromEyeRelative
-    Vec4 linearDepthFromEyeRelative{0.0};
+    Mat4 clipFromEyeRelative{1.0};        ///< clipFromLight * lightFromEyeRelative
+    Vec4 linearDepthFromEyeRelative{0.0}; ///< linearDepthFromWorld for p − ShadowSetup::wsEye
     /// After clipFromLight changed: clipFromWorld and clipFromEyeRelative again.
     void recomposeClip() {
         clipFromWorld = clipFromLight * lightFromWorld;
@@ -223,7 +227,7 @@ struct ShadowView {
 
 /// The result of a set-up: one ShadowView per map, depth layout, diagnostics and fallbacks.
 struct ShadowSetup {
-    Technique technique = Technique::Focused;
+    Technique technique = Technique::Focused; ///< the technique that computed it
     /// One per shadow map, held inline (up to kMaxShadowViews: eight cascades) so that
     /// computing a set-up does not allocate.
     SmallVector<ShadowView, kMaxShadowViews> views;
@@ -235,9 +239,9 @@ struct ShadowSetup {
     /// True: casters in front of the near plane are clamped to depth 0 rather than clipped,
     /// so the depth pass must enable depth clamping (GL_DEPTH_CLAMP).
     bool depthClamp = true;
-    LightType lightType = LightType::Directional;
-    Vec3 wsLightPosition{0.0}; ///< local lights
-    int skippedFaces = 0;      ///< point lights: cube faces left out, seeing nothing the camera sees
+    LightType lightType = LightType::Directional; ///< the sun, a spot or a point light
+    Vec3 wsLightPosition{0.0};                    ///< local lights
+    int skippedFaces = 0;                         ///< point lights: cube faces left out, seeing nothing the camera sees
     /// The world point the views' eye-relative members are relative to: the camera's eye for
     /// a set-up computeShadowSetup made (or, held by SetupHysteresis, the eye of its refit);
     /// a local light's position for its set-up.

@@ -16,6 +16,8 @@ namespace shadowkit::core {
 template <class T, size_t N>
 class SmallVector {
 public:
+    /// @name The part of std::vector's interface set-ups use
+    ///@{
     using value_type = T;
     using iterator = T*;
     using const_iterator = const T*;
@@ -78,6 +80,7 @@ public:
         m_heap.clear();
     }
 
+    ///@}
 private:
     std::array<T, N> m_inline;
     size_t m_size = 0;
