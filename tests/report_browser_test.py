@@ -4,8 +4,8 @@ view and path is on the page, and the screenshot shows the pictures, not a blank
 
   report_browser_test.py SHADOWKIT_BINARY
 
-Writes `eval --report` (two views), `compare --report` (two configurations) and
-`eval --path --report` (three frames) of a small forest into a scratch directory. Exits 77
+Writes `eval --report` (two views), `compare --report` (two configurations),
+`eval --path --report` (three frames) and `bench --report` (two views) of a small forest into a scratch directory. Exits 77
 (skipped, with the reason) where Chromium is not installed: tools/install-deps.sh installs it.
 """
 import os
@@ -94,6 +94,9 @@ def main():
         run([shadowkit, "eval", *small, "--path", "flythrough", "--frames", "0:3", "--size", "160x90",
              "--report", os.path.join(scratch, "path.html")])
         check_page(browser, os.path.join(scratch, "path.html"), profile, ["path-flythrough"], 0)
+        run([shadowkit, "bench", "--trees", "200", "--terrain-size", "256", "--views", "paper,noon", "--frames", "2",
+             "--size", "240x136", "--report", os.path.join(scratch, "bench.html")])
+        check_page(browser, os.path.join(scratch, "bench.html"), profile, ["table-1"], 0)
 
 
 if __name__ == "__main__":

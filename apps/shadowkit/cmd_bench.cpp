@@ -3,6 +3,7 @@
 // of culling, with min / median / max over several frames, for several forest sizes.
 #include "commands.h"
 #include "frame_config_options.h"
+#include "html_reports.h"
 
 #include "shadowkit/frame/frame_driver.h"
 #include "shadowkit/gl/context.h"
@@ -15,6 +16,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -25,7 +27,7 @@ struct BenchArgs {
     ViewOptions view;
     TechniqueOptions technique;
     RenderOptions render;
-    std::string trees = "1000,10000,100000", views = "perpendicular,aerial,paper", json;
+    std::string trees = "1000,10000,100000", views = "perpendicular,aerial,paper", json, report;
     uint64_t seed = 1;
     double terrainSize = 1024.0;
     int terrainResolution = 256;
@@ -68,6 +70,7 @@ int runBench(const BenchArgs& args) {
     for (std::string name; std::getline(ss, name, ',');) viewNames.push_back(name);
     if (viewNames.empty()) return fail("--views: no view named");
 
+    if (auto s = checkWritable("--report", args.report); !s) return fail(s.errorInfo());
     auto config = frameConfigOf(args.technique, args.render, LocalLightOptions{});
     if (!config) return fail(config.errorInfo());
     auto driver = frame::FrameDriver::create(std::move(config).value());
@@ -81,6 +84,19 @@ int runBench(const BenchArgs& args) {
     fmt::print("{:>7} {:>7} {:<14} {:<7} {:>9} {:>9} {:>6} {:>26} {:>20} {:>20}\n", "trees", "terrain", "view", "pass",
                "instances", "M tris", "draws", "GPU ms min/med/max", "set-up ms med/max", "cull ms med/max");
     nlohmann::json runs = nlohmann::json::array();
+    // --report: the rows as printed, and each row's last frame.
+    eval::HtmlTable table{
+        .title = "Frame cost per pass",
+        .note = fmt::format("{} | technique {} | {} frames per row. GPU ms: timer queries around each pass (min / "
+                            "median / max over the frames; on a CPU rasteriser only ratios within one run compare). "
+                            "Set-up and culling: CPU ms per frame (median / max). Triangles and instances: what the "
+                            "pass submitted in the last frame, after culling and levels of detail.",
+                            (*context)->description(), core::techniqueName(args.technique.technique), args.frames),
+        .header = {"trees", "terrain m", "view", "pass", "instances", "M triangles", "draws", "GPU ms min / med / max",
+                   "set-up ms med / max", "cull ms med / max"},
+        .rows = {},
+        .pictures = {},
+        .command = invocationWithout({"--report"}, {})};
     for (const int trees : *counts) {
         scene::ForestOptions forestOptions;
         forestOptions.seed = args.seed;
@@ -157,6 +173,13 @@ int runBench(const BenchArgs& args) {
                            trees, forestOptions.terrainSize, name, pass, stats->instances,
                            static_cast<double>(stats->triangles) * 1e-6, stats->drawCalls, g.min, g.median, g.max,
                            setupSpread.median, setupSpread.max, cullSpread.median, cullSpread.max);
+                table.rows.push_back({std::to_string(trees), fmt::format("{:.0f}", forestOptions.terrainSize), name,
+                                      pass, std::to_string(stats->instances),
+                                      fmt::format("{:.3f}", static_cast<double>(stats->triangles) * 1e-6),
+                                      std::to_string(stats->drawCalls),
+                                      fmt::format("{:.1f} / {:.1f} / {:.1f}", g.min, g.median, g.max),
+                                      fmt::format("{:.3f} / {:.3f}", setupSpread.median, setupSpread.max),
+                                      fmt::format("{:.2f} / {:.2f}", cullSpread.median, cullSpread.max)});
                 run[pass] = {{"instances", stats->instances},
                              {"triangles", stats->triangles},
                              {"draw_calls", stats->drawCalls},
@@ -194,6 +217,13 @@ int runBench(const BenchArgs& args) {
                                 {"multi_query_failures", toJson(failed)},
                                 {"waits", toJson(waited)},
                                 {"prepass_ms", toJson(occlusionSpread)}};
+            if (!args.report.empty()) {
+                const std::filesystem::path page(args.report);
+                const std::string file = fmt::format("{}-{}-{}.png", page.stem().string(), trees, name);
+                if (auto s = scene::writePng((*renderer)->readColor(), page.parent_path() / file); !s)
+                    return fail("--report: " + s.error());
+                table.pictures.push_back({file, fmt::format("{} trees, {}", trees, name)});
+            }
             std::fflush(stdout);
             runs.push_back(run);
         }
@@ -202,6 +232,13 @@ int runBench(const BenchArgs& args) {
         std::ofstream out(args.json);
         out << nlohmann::json{{"runs", runs}}.dump(2) << "\n";
         if (!out) return fail("--json: " + args.json + ": cannot write");
+    }
+    if (!args.report.empty()) {
+        eval::HtmlReport page{
+            .title = "shadowkit bench", .command = invocation(), .machine = (*context)->description()};
+        page.tables.push_back(std::move(table));
+        if (auto s = eval::writeHtmlReport(page, args.report); !s) return fail("--report: " + s.error());
+        fmt::print(stderr, "report: {}\n", args.report);
     }
     return 0;
 }
@@ -226,6 +263,7 @@ Command addBenchCommand(CLI::App& app) {
     args->technique.addTo(*cmd);
     args->render.addTo(*cmd);
     cmd->add_option("--json", args->json, "write every row as JSON {\"runs\": [...]}");
+    cmd->add_option("--report", args->report, "also write an HTML page: the rows, what they mean, each view's frame");
     return {cmd, [args] { return runBench(*args); }};
 }
 

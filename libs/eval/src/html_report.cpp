@@ -233,6 +233,26 @@ std::string htmlReport(const HtmlReport& report) {
         if (!p.command.empty()) out << "<pre>" << htmlEscape(p.command) << "</pre>\n";
         out << "</section>\n";
     }
+    for (size_t i = 0; i < report.tables.size(); ++i) {
+        const HtmlTable& table = report.tables[i];
+        out << "<section class=\"table\" id=\"table-" << i + 1 << "\">\n<h2>" << htmlEscape(table.title) << "</h2>\n<p>"
+            << htmlEscape(table.note) << "</p>\n<table class=\"measurements\"><tr>";
+        for (const std::string& h : table.header) out << "<th>" << htmlEscape(h) << "</th>";
+        out << "</tr>\n";
+        for (const auto& row : table.rows) {
+            out << "<tr>";
+            for (const std::string& cell : row) out << "<td>" << htmlEscape(cell) << "</td>";
+            out << "</tr>\n";
+        }
+        out << "</table>\n";
+        if (!table.pictures.empty()) {
+            out << "<div class=\"row\">";
+            for (const HtmlPicture& p : table.pictures) writePicture(out, p, table.title);
+            out << "</div>\n";
+        }
+        if (!table.command.empty()) out << "<pre>" << htmlEscape(table.command) << "</pre>\n";
+        out << "</section>\n";
+    }
     out << "<p>The evaluation protocol is explained in shadowkit's <code>docs/evaluation.md</code>; every figure "
            "here is reproduced by the command shown with it.</p>\n</body></html>\n";
     return out.str();

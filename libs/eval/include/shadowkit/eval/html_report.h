@@ -1,5 +1,5 @@
 // One HTML page for an evaluation (`shadowkit eval --report`, `compare --report`, `eval --path
-// --report`): per view the rendered frame, the rendered and the ray-traced shadows, the error
+// --report`, `bench --report`): per view the rendered frame, the rendered and the ray-traced shadows, the error
 // and aliasing maps side by side; the figures with what each means; the command line that
 // reproduces the view. Several entries of one view (techniques or configurations) share its
 // section, one row of pictures and one column of figures each, so they compare at a glance.
@@ -43,12 +43,24 @@ struct HtmlPath {
     std::string command; // reproduces the path's evaluation
 };
 
+// A table of measurements that are not figures against truth (`bench --report`: triangles and
+// times per pass), with what its columns mean and pictures of what was measured.
+struct HtmlTable {
+    std::string title;
+    std::string note; // what the columns mean, where the times were taken
+    std::vector<std::string> header;
+    std::vector<std::vector<std::string>> rows;
+    std::vector<HtmlPicture> pictures;
+    std::string command; // reproduces the table
+};
+
 struct HtmlReport {
     std::string title = "shadowkit evaluation";
     std::string command; // the command that wrote the report
     std::string machine; // the GL renderer and the date, where the figures were taken
     std::vector<HtmlEntry> entries;
     std::vector<HtmlPath> paths;
+    std::vector<HtmlTable> tables;
 };
 
 // What each figure of the evaluation means, one sentence each (docs/references.md, evaluation
