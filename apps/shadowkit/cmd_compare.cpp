@@ -73,8 +73,8 @@ int runCompare(const CompareArgs& args) {
             // The cell alone is an eval of the view with the cell's settings as flags.
             std::vector<std::string> flags = {"--view", args.view};
             for (const auto& [key, value] : (*cells)[i]) flags.insert(flags.end(), {"--" + key, value});
-            std::string command = invocationWithout({"--configs", "--out", "--report", "--columns", "--view"}, flags);
-            if (const size_t at = command.find(" compare"); at != std::string::npos) command.replace(at, 8, " eval");
+            const std::string command =
+                invocationWithout({"--configs", "--out", "--report", "--columns", "--view"}, flags, "eval");
             eval::ViewReport report =
                 measure::viewReport(*measured, prepared->settings, args.view, args.scene.scene, args.scene.seed);
             auto entry = reportEntry(*measured, report, prepared->inputs.light, prepared->settings.sun, args.report,

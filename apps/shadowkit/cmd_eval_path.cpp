@@ -105,10 +105,15 @@ int runEvalPath(const EvalPathArgs& args) {
     std::string technique;
     int refits = 0, toCover = 0, stale = 0; // frames with a refit; views refitted for each reason
     std::vector<core::ShadowSetupInputs> autoChosen;
-    // --report: the error maps of four frames spread over the path, for the strip.
+    // --report: the error maps of four frames spread over the path (the middles of its quarters), for the strip.
     std::vector<scene::Image> stripFrames;
     std::vector<std::string> stripCaptions;
-    const size_t frameCount = timeline->frames.size();
+    std::vector<size_t> stripIndices;
+    if (!args.report.empty())
+        for (size_t quarter = 0; quarter < 4; ++quarter)
+            if (const size_t i = timeline->frames.size() * (2 * quarter + 1) / 8;
+                stripIndices.empty() || stripIndices.back() != i)
+                stripIndices.push_back(i);
     fmt::print("{:>5} {:>7} {:>9} {:>7} {:>8} {:>7} {:>9} {:>9} {:>6}\n", "frame", "t_s", "valid_px", "wrong%",
                "flicker%", "truth%", "ppt50", "compared", "sec");
     for (const TimedFrame& frame : timeline->frames) {
@@ -141,9 +146,7 @@ int runEvalPath(const EvalPathArgs& args) {
             fmt::print("{:>5} {:>7.3f} {:>9} {:>7.2f} {:>8} {:>7} {:>9.3f} {:>9} {:>6.1f}\n", row.frame, row.time,
                        f.validPx, f.wrongPct, "-", "-", f.pixelsPerTexelP50, "-", row.seconds);
         std::fflush(stdout);
-        const size_t index = rows.size();
-        if (!args.report.empty() && index % std::max<size_t>(1, frameCount / 4) == frameCount / 8 &&
-            stripFrames.size() < 4) {
+        if (std::find(stripIndices.begin(), stripIndices.end(), rows.size()) != stripIndices.end()) {
             stripFrames.push_back(eval::errorMapImage(measured->measurement.comparison, view->width, view->height));
             stripCaptions.push_back(fmt::format("frame {}: wrong {:.2f} %", row.frame, f.wrongPct));
         }

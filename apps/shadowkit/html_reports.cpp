@@ -43,10 +43,15 @@ std::string commandLine(const std::vector<std::string>& args) {
 
 std::string invocation() { return commandLine(startArguments()); }
 
-std::string invocationWithout(std::initializer_list<std::string_view> drop, const std::vector<std::string>& add) {
+std::string invocationWithout(std::initializer_list<std::string_view> drop, const std::vector<std::string>& add,
+                              std::string_view subcommand) {
     const std::vector<std::string>& args = startArguments();
     std::vector<std::string> kept;
     for (size_t i = 0; i < args.size(); ++i) {
+        if (i == 0 && !subcommand.empty()) { // the subcommand comes first (main's argv[1])
+            kept.emplace_back(subcommand);
+            continue;
+        }
         const std::string& a = args[i];
         const std::string_view name = std::string_view(a).substr(0, a.find('='));
         if (std::find(drop.begin(), drop.end(), name) == drop.end()) {

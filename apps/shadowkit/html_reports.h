@@ -19,8 +19,10 @@ void setInvocation(std::vector<std::string> args);
 // "shadowkit ARGS..." with each argument quoted for a POSIX shell where it needs it.
 std::string commandLine(const std::vector<std::string>& args);
 // The invocation without the options named in `drop` (and their values, given as "--x v" or
-// "--x=v"), with `add` appended: the command that redoes one part of a report.
-std::string invocationWithout(std::initializer_list<std::string_view> drop, const std::vector<std::string>& add);
+// "--x=v"), with `add` appended and, when `subcommand` is given, that subcommand instead of the
+// one run: the command that redoes one part of a report.
+std::string invocationWithout(std::initializer_list<std::string_view> drop, const std::vector<std::string>& add,
+                              std::string_view subcommand = {});
 std::string invocation();
 
 // Writes the pictures of one measured view beside `page` — the frame (when measured with
