@@ -14,7 +14,9 @@
 //   - the receiver-side biases: normal offset by a number of texels' world size, and
 //     receiver-plane depth bias (Isidoro 2006) from the screen derivatives of the position;
 //   - the filters: hard, 2 × 2 hardware PCF, N × N PCF, rotated Poisson disk;
-//   - cascades: split selection by view depth (Dimitrov 2007) and blending across a band.
+//   - cascades: split selection by view depth (Dimitrov 2007) and blending across a band;
+//   - virtual shadow maps: the clipmap level by the pixel's footprint, the page table's
+//     indirection into the physical page atlas, every filter inside the page's guard band.
 //
 // Inputs, all from the core (output_conventions.h, shadowkit_c.h):
 //   textureFromWorld       EngineShadowView::textureFromWorld / shadowkit_view.texture_from_world
@@ -30,6 +32,10 @@
 //   #define SK_SHADOW_LINEAR_DEPTH_FROM_WORLD(i)   myLinearDepthFromWorld[i]
 //   #define SK_SHADOW_SPLIT(i)                     mySplits[i].xy
 // skCascadedShadow is compiled only when SK_SHADOW_SPLIT is defined.
+//
+// For virtual shadow maps (core/virtual_clipmap.h, docs/virtual-shadow-maps.md) the levels'
+// textureFromWorld come through one accessor, and skVirtualShadow is compiled when it is defined:
+//   #define SK_VIRTUAL_LEVEL_FROM_WORLD(i)         myLevelTextureFromWorld[i]
 
 #ifndef SK_FILTER_HARD
 // Filter kinds: the values of shadowkit::core::ShadowFilter.
@@ -78,10 +84,11 @@ const vec2 kSkPoisson[32] = vec2[](
     vec2(0.507797, -0.916562), vec2(0.545763, 0.730216), vec2(0.56859, 0.11655), vec2(0.743156, -0.505173),
     vec2(0.736442, -0.189734), vec2(0.843562, 0.357036), vec2(0.865413, -0.795735), vec2(0.872393, 0.750194));
 
-// The lit fraction (0 shadowed .. 1 lit) of a receiver at `ws` with unit normal `n` in one map:
-// layer `layer` of `maps`.
-float skShadowMap(sampler2DArrayShadow maps, int layer, mat4 textureFromWorld, vec4 linearDepthFromWorld, SkShadowOptions o,
-                  vec3 ws, vec3 n, vec3 dwsdx, vec3 dwsdy) {
+// The lit fraction (0 shadowed .. 1 lit) of a receiver at `ws` with unit normal `n` in one map
+// stored in layer `layer` of `maps` at (u, v) · atlasFromMap.xy + atlasFromMap.zw: the whole layer
+// (1, 1, 0, 0), or a virtual map's page in the page atlas, whose guard band holds every tap.
+float skShadowMapIn(sampler2DArrayShadow maps, int layer, mat4 textureFromWorld, vec4 linearDepthFromWorld,
+                    SkShadowOptions o, vec4 atlasFromMap, vec3 ws, vec3 n, vec3 dwsdx, vec3 dwsdy) {
     vec4 t;
     vec3 uvz = skShadowCoordinates(textureFromWorld, linearDepthFromWorld, o.linearDepth, ws, t);
     if (o.normalOffsetTexels > 0.0) {
@@ -122,7 +129,7 @@ float skShadowMap(sampler2DArrayShadow maps, int layer, mat4 textureFromWorld, v
                                                                      : rotation * kSkPoisson[i] * o.poissonRadiusTexels;
             const vec2 tapUv = uv + offsetTexels / size;
             const float tapDepth = depth + dot(dDepthDuv, offsetTexels / size);
-            sum += texture(maps, vec4(tapUv, float(layer), clamp(tapDepth, 0.0, 1.0)));
+            sum += texture(maps, vec4(tapUv * atlasFromMap.xy + atlasFromMap.zw, float(layer), clamp(tapDepth, 0.0, 1.0)));
         }
         return sum / float(count);
     }
@@ -133,7 +140,13 @@ float skShadowMap(sampler2DArrayShadow maps, int layer, mat4 textureFromWorld, v
     }
     // SK_FILTER_PCF2: the sampler's GL_LINEAR filter does the 2 × 2 PCF in hardware. Depth clamp
     // in the shadow pass stores casters in front of the near plane at 0: clamp the reference too.
-    return texture(maps, vec4(uv, float(layer), clamp(depth, 0.0, 1.0)));
+    return texture(maps, vec4(uv * atlasFromMap.xy + atlasFromMap.zw, float(layer), clamp(depth, 0.0, 1.0)));
+}
+
+// One map filling layer `layer` of `maps`.
+float skShadowMap(sampler2DArrayShadow maps, int layer, mat4 textureFromWorld, vec4 linearDepthFromWorld, SkShadowOptions o,
+                  vec3 ws, vec3 n, vec3 dwsdx, vec3 dwsdy) {
+    return skShadowMapIn(maps, layer, textureFromWorld, linearDepthFromWorld, o, vec4(1.0, 1.0, 0.0, 0.0), ws, n, dwsdx, dwsdy);
 }
 
 #ifdef SK_SHADOW_SPLIT
@@ -158,5 +171,61 @@ float skCascadedShadow(sampler2DArrayShadow maps, int mapCount, SkShadowOptions 
         term = mix(term, next, clamp(t, 0.0, 1.0));
     }
     return term;
+}
+#endif
+
+// Virtual shadow maps: a clipmap of virtualTexels² maps whose resident pages live in one atlas
+// (layer 0 of a sampler2DArrayShadow), each page with a guard band of guardTexels around it, and
+// a page table (usampler2D, pagesPerSide wide, pagesPerSide rows per level) holding slot + 1 of
+// each resident page of the level's window, 0 for none. core::VirtualClipmap has the rest.
+struct SkVirtualMaps {
+    int levels;              // clipmap levels, finest first
+    int firstExponent;       // level 0's texel is 2^firstExponent metres
+    float footprintPerMetre; // a pixel's size at view depth 1 m
+    float lodBias;           // added to log2 of the footprint
+    int pagesPerSide;        // pages per side of a level's window
+    int pageTexels;          // texels per side of a page
+    int guardTexels;         // texels of guard band around each page in the atlas
+    int slotsPerRow;         // atlas slots per row
+    vec2 atlasTexels;        // the atlas's width and height
+    float virtualTexels;     // texels per side of a level (pagesPerSide · pageTexels)
+};
+
+// The level rule of core::clipmapLevelFor: the largest texel no larger than the pixel's footprint.
+int skVirtualLevelRule(SkVirtualMaps v, float viewDepth) {
+    const int e = int(floor(log2(max(viewDepth * v.footprintPerMetre, 1e-30)) + v.lodBias));
+    return clamp(e - v.firstExponent, 0, v.levels - 1);
+}
+
+#ifdef SK_VIRTUAL_LEVEL_FROM_WORLD
+// The level serving a receiver and where its page lies in the atlas: the rule's level, or the
+// first coarser one with the receiver's page resident (a page not resident — the pool full, or
+// the rule's level not reaching as far as a narrow view — falls back to the coarser level, which
+// the marking always requests too). False when no level has it: lit, as outside any map.
+bool skVirtualPage(usampler2D pageTable, SkVirtualMaps v, float viewDepth, vec3 ws, out int level, out vec4 atlasFromMap) {
+    for (level = skVirtualLevelRule(v, viewDepth); level < v.levels; ++level) {
+        const vec4 t = SK_VIRTUAL_LEVEL_FROM_WORLD(level) * vec4(ws, 1.0);
+        const vec2 uv = t.xy / t.w;
+        if (any(lessThan(uv, vec2(0.0))) || any(greaterThanEqual(uv, vec2(1.0)))) continue;
+        const ivec2 page = min(ivec2(uv * float(v.pagesPerSide)), ivec2(v.pagesPerSide - 1));
+        const uint entry = texelFetch(pageTable, ivec2(page.x, page.y + level * v.pagesPerSide), 0).r;
+        if (entry == 0u) continue;
+        const int slot = int(entry) - 1;
+        // Atlas texel of map texel m: slot corner + guard + (m − page · pageTexels).
+        const vec2 corner = vec2(slot % v.slotsPerRow, slot / v.slotsPerRow) * float(v.pageTexels + 2 * v.guardTexels);
+        const vec2 offsetTexels = corner + float(v.guardTexels) - vec2(page) * float(v.pageTexels);
+        atlasFromMap = vec4(vec2(v.virtualTexels) / v.atlasTexels, offsetTexels / v.atlasTexels);
+        return true;
+    }
+    return false;
+}
+
+// The lit fraction of a receiver in a virtual clipmap; o.mapTexels is virtualTexels.
+float skVirtualShadow(sampler2DArrayShadow atlas, usampler2D pageTable, SkVirtualMaps v, SkShadowOptions o, float viewDepth,
+                      vec3 ws, vec3 n, vec3 dwsdx, vec3 dwsdy) {
+    int level;
+    vec4 atlasFromMap;
+    if (!skVirtualPage(pageTable, v, viewDepth, ws, level, atlasFromMap)) return 1.0;
+    return skShadowMapIn(atlas, 0, SK_VIRTUAL_LEVEL_FROM_WORLD(level), vec4(0.0), o, atlasFromMap, ws, n, dwsdx, dwsdy);
 }
 #endif

@@ -14,6 +14,7 @@
 #include <fmt/format.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 
@@ -61,6 +62,12 @@ void printFrameReport(const RenderArgs& args, const gl::Context& context, const 
          {std::pair{"shadow pass", &stats.shadow}, {"local pass ", &stats.local}, {"main pass  ", &stats.main}})
         fmt::print("  {}    {:8.1f} ms GPU  {:6.2f} M triangles  {} instances  {} draws\n", name, pass->gpuMilliseconds,
                    static_cast<double>(pass->triangles) * 1e-6, pass->instances, pass->drawCalls);
+    if (const auto& v = stats.virtualPages)
+        fmt::print("  virtual pages  {} requested  {} rendered  {} resident  {} fell back  pool {} pages, {:.1f} MiB, "
+                   "{} levels from {} m texels\n",
+                   v->pagesRequested, v->pagesRendered, v->pagesResident, v->pagesFellBack, v->poolPages,
+                   static_cast<double>(v->poolBytes) / (1024.0 * 1024.0), setup.views.size(),
+                   setup.clipmap ? std::ldexp(1.0, setup.clipmap->firstExponent) : 0.0);
     fmt::print("  frame (wall)   {:8.1f} ms incl. readback\n", frameMs);
     if (const auto& v = frame.inputs.visibleDepth)
         fmt::print("  visible depth  {:.2f} .. {:.2f} m (LiSPSM n, csm splits)\n", v->x, v->y);

@@ -51,6 +51,11 @@ json warpJson(const core::WarpParameters& warp) {
                 json j = {{"uniform", flag(w.uniform)}};
                 if (!w.uniform) j.update({{"lambda", w.lambda}, {"delta", w.delta}, {"eta", w.eta}});
                 return j;
+            } else if constexpr (std::is_same_v<W, core::ClipmapLevel>) {
+                // A clipmap level: texels of 2^exponent metres, its window's first page.
+                return {{"exponent", w.exponent},
+                        {"texel_metres", std::ldexp(1.0, w.exponent)},
+                        {"first_page", {w.firstPageX, w.firstPageY}}};
             } else {
                 return nullptr; // uniform techniques: no warp
             }

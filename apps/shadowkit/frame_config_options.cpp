@@ -26,6 +26,7 @@ core::Result<frame::FrameConfig> frameConfigOf(const TechniqueOptions& technique
     s.culling = render.noCull ? gl::Culling::Off : render.visibility;
     s.receiverMask = render.receiverMask;
     s.lod = !render.noLod;
+    s.virtualPoolPages = technique.virtualPoolPages;
     s.localPass = lights.pass;
     s.localBias = lights.bias;
     config.fogDensity = render.fog;

@@ -217,6 +217,11 @@ constexpr std::pair<std::string_view, std::string_view> kFlagOfField[] = {
     {"point.position", "--light"},
     {"point.range", "--light"},
     {"cascades.splits", "--splits"},
+    {"virtual.texels", "--virtual-texels"},
+    {"virtual.page_texels", "--virtual-page-texels"},
+    {"virtual.first_level", "--virtual-first-level"},
+    {"virtual.lod_bias", "--virtual-lod-bias"},
+    {"virtual.pool_pages", "--virtual-pool-pages"},
     {"bias.slope", "--bias-slope"},
     {"bias.constant", "--bias-constant"},
     {"bias.normal_offset", "--normal-offset"},
@@ -392,6 +397,20 @@ void TechniqueOptions::addTo(CLI::App& cmd) {
         "csm: rotation-invariant, texel-snapped splits (no swimming); other techniques and warped cascades: held "
         "texel lattices (each map's warp kept fixed in the world and shifted by whole texels until it no longer "
         "covers the view or its texels have grown by --stabilize-growth)");
+    cmd.add_option("--virtual-texels", virtualMaps.virtualTexels,
+                   "virtual: texels per side of each clipmap level's virtual map")
+        ->capture_default_str();
+    cmd.add_option("--virtual-page-texels", virtualMaps.pageTexels, "virtual: texels per side of a page")
+        ->capture_default_str();
+    cmd.add_option("--virtual-first-level", virtualMaps.firstLevel,
+                   "virtual: exponent e of the finest level, whose texels are 2^e metres (default: a pixel's "
+                   "footprint at the nearest visible depth)");
+    cmd.add_option("--virtual-lod-bias", virtualMaps.lodBias,
+                   "virtual: levels added to the level rule (+1 halves the resolution everywhere)")
+        ->capture_default_str();
+    cmd.add_option("--virtual-pool-pages", virtualPoolPages,
+                   "virtual: pages in the physical pool (0: as many as fit 64 MiB of depth)")
+        ->capture_default_str();
     cmd.add_option("--stabilize-margin", hysteresis.margin,
                    "--stabilize with held lattices: spare room round the view at a refit, a fraction of the map")
         ->capture_default_str();
@@ -424,6 +443,9 @@ core::Status TechniqueOptions::check(bool measuresFrames, bool takesAuto) const 
     // The camera-independent checks only: the view is not resolved yet.
     if (auto s = core::validateOptions(*in); !s) return withFlagName(s.errorInfo());
     if (auto s = core::validate(hysteresis); !s) return withFlagName(s.errorInfo());
+    if (virtualPoolPages < 0)
+        return core::makeError("--virtual-pool-pages: must be >= 0 (0: as many as fit 64 MiB), got " +
+                               std::to_string(virtualPoolPages));
     return core::Ok{};
 }
 
@@ -478,6 +500,7 @@ core::Result<core::ShadowSetupInputs> TechniqueOptions::inputsFor(const scene::R
         in.depthLayout =
             depthLayout == LayoutChoice::Linear ? core::DepthLayout::Linear : core::DepthLayout::Hyperbolic;
     in.cascades = cascades;
+    in.virtualMaps = virtualMaps;
     if (holdsLattices()) in.cascades.stabilize = false; // held by core::SetupHysteresis, not snapped
     if (!splits.empty() && !parseNumbers(splits, ',', in.cascades.splits))
         return core::makeError(fmt::format("--splits: expected comma-separated distances, got '{}'", splits));

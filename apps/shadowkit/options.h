@@ -66,6 +66,8 @@ struct TechniqueOptions {
     int mapSize = core::ShadowSetupInputs{}.mapSize;
     core::CascadeOptions cascades;      // count, lambda, warp, stabilize, blend band; splits from `splits`
     core::HysteresisOptions hysteresis; // --stabilize-margin, --stabilize-growth
+    core::VirtualOptions virtualMaps;   // --virtual-*: the clipmap (its image height is each frame's)
+    int virtualPoolPages = 0;           // --virtual-pool-pages (gl::RenderSettings::virtualPoolPages)
 
     // --stabilize holds texel lattices (core::SetupHysteresis) for every technique but
     // unwarped cascades, which snap their own texels (CascadeOptions::stabilize).

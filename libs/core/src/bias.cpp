@@ -21,7 +21,8 @@ Status validate(const BiasSettings& b) {
 BiasSettings recommendedBias(Technique technique, DepthLayout, const FilterSettings& filter) {
     // Chosen by wrong_pct on the `paper` and `perpendicular` views of the default forest at
     // 2048² (docs/bias-and-filtering.md; `shadowkit compare` over six settings each):
-    //   tsm, lispsm, csm: slope 1 / constant 2 with a normal offset of half a texel was
+    //   tsm, lispsm, csm (and virtual, whose texels are the smallest): slope 1 / constant 2 with a normal offset of
+    //   half a texel was
     //     best on both views (e.g. lispsm 0.35 / 0.23 % against 0.39 / 0.33 % for 2 / 4):
     //     their texels are small, so half a texel moves receivers off their own surface
     //     without visibly detaching shadows.
@@ -35,6 +36,7 @@ BiasSettings recommendedBias(Technique technique, DepthLayout, const FilterSetti
     case Technique::Tsm:
     case Technique::Lispsm:
     case Technique::Csm:
+    case Technique::Virtual:
         b.slope = 1.0;
         b.constant = 2.0;
         b.normalOffset = 0.5;

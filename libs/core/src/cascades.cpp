@@ -85,8 +85,9 @@ ShadowView stableView(const ShadowSetupInputs& in, const PerspectiveCamera& slic
 } // namespace
 
 Status validate(const CascadeOptions& o) {
-    if (o.count < 1 || o.count > 8)
-        return fieldError("cascades.count", "must be in [1, 8], got " + std::to_string(o.count));
+    if (o.count < 1 || o.count > kMaxCascadeCount)
+        return fieldError("cascades.count",
+                          "must be in [1, " + std::to_string(kMaxCascadeCount) + "], got " + std::to_string(o.count));
     if (!(o.lambda >= 0.0 && o.lambda <= 1.0)) return fieldError("cascades.lambda", "must be in [0, 1]");
     if (!(o.blendBand >= 0.0 && o.blendBand <= 0.5)) return fieldError("cascades.blend_band", "must be in [0, 0.5]");
     if (o.stabilize && o.warp != CascadeWarp::None)

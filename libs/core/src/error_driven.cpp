@@ -14,7 +14,7 @@ namespace {
 
 constexpr int kGridPoints = 9;  // over the parameter's range
 constexpr int kGoldenSteps = 6; // between the best grid point's neighbours: (0.618)^6 ≈ 1/18 of two grid steps
-constexpr int64_t kMaxBudget = int64_t(kMaxShadowViews) * kMaxMapSize * kMaxMapSize;
+constexpr int64_t kMaxBudget = int64_t(kMaxCascadeCount) * kMaxMapSize * kMaxMapSize;
 
 // The objective of one candidate; infinite when it cannot be computed.
 struct Evaluator {
@@ -152,8 +152,8 @@ Result<ParameterChoice> optimiseParameters(const ShadowSetupInputs& inputs, cons
 }
 
 Status validate(const AutoOptions& options) {
-    if (!(options.cascades >= 0 && options.cascades <= int(kMaxShadowViews)))
-        return fieldError("auto.cascades", "must be in [0, " + std::to_string(kMaxShadowViews) + "], got " +
+    if (!(options.cascades >= 0 && options.cascades <= kMaxCascadeCount))
+        return fieldError("auto.cascades", "must be in [0, " + std::to_string(kMaxCascadeCount) + "], got " +
                                                std::to_string(options.cascades));
     const int maps = std::max(options.cascades, 1);
     if (options.texelBudget < int64_t(kMinMapSize) * kMinMapSize * maps || options.texelBudget > kMaxBudget)

@@ -128,6 +128,9 @@ void SamplingErrorModel::predict(const ShadowSetup& setup, std::span<double> out
     for (size_t i = 0; i < m_samples.size() && i < out.size(); ++i) {
         const Sample& s = m_samples[i];
         size_t map = 0;
+        if (setup.clipmap) // a virtual clipmap: the level the marking and the lookup pick
+            map =
+                size_t(clipmapLevelHolding(setup, s.viewDepth, s.esPosition + m_camera.wsEye).value_or(int(maps) - 1));
         while (map + 1 < maps && setup.views[map].split && s.viewDepth > setup.views[map].split->y) ++map;
         const Mat4& clipFrom = setup.views[map].clipFromEyeRelative;
         const Vec4 clip = clipFrom * Vec4(s.esPosition + toSetupEye, 1.0);

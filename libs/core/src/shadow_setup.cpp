@@ -6,6 +6,7 @@
 #include "shadowkit/core/psm.h"
 #include "shadowkit/core/tsm.h"
 #include "shadowkit/core/uniform_shadow_map.h"
+#include "shadowkit/core/virtual_clipmap.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -20,6 +21,7 @@ constexpr std::array kTechniques = {
     TechniqueInfo{Technique::Standard, "standard"}, TechniqueInfo{Technique::Focused, "focused"},
     TechniqueInfo{Technique::Psm, "psm"},           TechniqueInfo{Technique::Tsm, "tsm"},
     TechniqueInfo{Technique::Csm, "csm"},           TechniqueInfo{Technique::Lispsm, "lispsm"},
+    TechniqueInfo{Technique::Virtual, "virtual"},
 };
 
 } // namespace
@@ -64,6 +66,8 @@ Result<ShadowSetup> runTechnique(const ShadowSetupInputs& inputs) {
         return computeTsm(inputs);
     case Technique::Lispsm:
         return computeLispsm(inputs);
+    case Technique::Virtual:
+        return computeVirtualClipmap(inputs);
     }
     return makeError("technique: unknown");
 }
@@ -130,6 +134,7 @@ Status validateOptions(const ShadowSetupInputs& inputs) {
     if (Status s = validateMapSize(inputs.mapSize); !s) return s;
     if (Status s = validate(inputs.lispsm); !s) return s;
     if (Status s = validate(inputs.tsm); !s) return s;
+    if (Status s = validate(inputs.virtualMaps); !s) return s;
     if (const auto& v = inputs.visibleDepth; v && !(v->x >= 0.0 && v->y > v->x && std::isfinite(v->y)))
         return fieldError("visible_depth", "must be [near, far] with 0 <= near < far");
     return validate(inputs.cascades);
@@ -151,7 +156,10 @@ Result<ShadowSetup> computeShadowSetup(const ShadowSetupInputs& inputs) {
     Result<ShadowSetup> setup = runTechnique(centred);
     if (!setup) return setup;
     addLinearDepth(centred, *setup);
-    setup->mapSize = inputs.mapSize;
+    if (setup->clipmap)
+        setup->clipmap->wsGridOrigin = centred.wsGridOrigin; // relative to the eye, as the views
+    else
+        setup->mapSize = inputs.mapSize;
     for (ShadowView& view : setup->views) {
         view.lightFromEyeRelative = view.lightFromWorld;
         view.clipFromEyeRelative = view.clipFromWorld;
@@ -184,6 +192,7 @@ ShadowSetup rebased(const ShadowSetup& setup, const Vec3& wsOrigin) {
         view.linearDepthFromWorld = Vec4(Vec3(row), row.w - glm::dot(Vec3(row), qsEye));
     }
     out.body.translate(-wsOrigin);
+    if (out.clipmap) out.clipmap->wsGridOrigin -= wsOrigin;
     out.wsLightPosition -= wsOrigin;
     out.wsEye = qsEye;
     return out;

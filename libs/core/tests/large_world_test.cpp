@@ -79,6 +79,7 @@ std::vector<Vec3> eyeRelativePointsToHold(const ShadowSetupInputs& in, const Sha
 
 TEST(LargeWorldTest, TheIssuesConfigurationNinetyKilometresOutIsContainedByEveryTechnique) {
     for (const TechniqueInfo& info : allTechniques()) {
+        if (!holdsFocusBody(info.technique)) continue; // its levels: virtual_clipmap_test.cpp, at 1e6 m too
         const ShadowSetupInputs in = ninetyKilometresOut(info.technique);
         auto setup = computeShadowSetup(in);
         ASSERT_TRUE(setup) << info.name << ": " << setup.error();
@@ -120,8 +121,9 @@ TEST(LargeWorldTest, SetUpsAreContainedAndTranslationInvariantAtTenToTheFiveSixA
                     const ShadowView& view = there->views[v];
                     for (const Vec3& eyeRelative : eyeRelativePointsToHold(far, *there, v)) {
                         ASSERT_GT((view.clipFromEyeRelative * Vec4(eyeRelative, 1.0)).w, 0.0) << info.name;
-                        ASSERT_LE(outsideClipCube(view.clipFromEyeRelative, eyeRelative), 1e-6)
-                            << info.name << " at " << distance;
+                        if (holdsFocusBody(info.technique)) // a clipmap level holds what its rule gives it
+                            ASSERT_LE(outsideClipCube(view.clipFromEyeRelative, eyeRelative), 1e-6)
+                                << info.name << " at " << distance;
                         // The same map as at the origin: the points land where they land there.
                         const Vec3 d = ndcOf(view.clipFromEyeRelative, eyeRelative) -
                                        ndcOf(near->views[v].clipFromEyeRelative, eyeRelative);
@@ -153,7 +155,7 @@ TEST(LargeWorldTest, OnAGpusFloatsEyeRelativeMatricesKeepTheReceiversWhereTheWor
         std::vector<Vec3> receivers;
         for (int i = 0; i < 500; ++i) receivers.push_back(pointInFrustum(in.camera, gen));
         for (const ShadowView& view : setup->views) {
-            const double texel = 2.0 / in.mapSize;
+            const double texel = 2.0 / setup->mapSize;
             // Camera-relative: positions minus the eye in double, then float.
             const double eyeRelative = floatError(view.clipFromEyeRelative, minus(receivers, in.camera.wsEye));
             EXPECT_LE(eyeRelative, 0.05 * texel) << info.name;
@@ -161,7 +163,8 @@ TEST(LargeWorldTest, OnAGpusFloatsEyeRelativeMatricesKeepTheReceiversWhereTheWor
             // focused maps, a fraction of one of the standard map's 0.5 m.
             const double world = floatError(view.clipFromWorld, receivers);
             EXPECT_GE(world, 10.0 * eyeRelative) << info.name;
-            if (info.technique != Technique::Standard) {
+            // (A clipmap's finest level only: its coarser texels are as large as the standard map's.)
+            if (info.technique != Technique::Standard && (!setup->clipmap || &view == &setup->views[0])) {
                 EXPECT_GE(world, texel) << info.name;
             }
         }

@@ -95,8 +95,12 @@ TEST(SamplingErrorTest, PredictionMatchesFiniteDifferencesForEveryTechnique) {
         const Vec3 forward = glm::normalize(in.camera.wsDirection);
         for (size_t i = 0; i < samples.size(); ++i) {
             const double depth = glm::dot(samples[i].wsPosition - in.camera.wsEye, forward);
-            size_t map = 0; // the cascade serving this depth: the first whose range ends beyond it
-            while (map + 1 < setup->views.size() && depth > setup->views[map].split->y) ++map;
+            size_t map = 0;     // the cascade serving this depth: the first whose range ends beyond it
+            if (setup->clipmap) // or the clipmap level that holds it
+                map = size_t(
+                    clipmapLevelHolding(*setup, depth, samples[i].wsPosition).value_or(int(setup->views.size()) - 1));
+            while (map + 1 < setup->views.size() && setup->views[map].split && depth > setup->views[map].split->y)
+                ++map;
             const ShadowView& view = setup->views[map];
             const Vec4 c = view.clipFromWorld * Vec4(samples[i].wsPosition, 1.0);
             if (!(std::abs(c.w) > 1e-6)) continue;

@@ -104,6 +104,10 @@ inline Vec3 pointInFrustum(const PerspectiveCamera& cam, ConfigGenerator& gen) {
     return glm::mix(nearPoint, farPoint, t);
 }
 
+// Whether each view of a set-up holds B (or the scene box): every technique but the virtual
+// clipmap, whose levels hold what the level rule gives them (virtual_clipmap_test.cpp).
+inline bool holdsFocusBody(Technique t) { return t != Technique::Virtual; }
+
 // What a view of a set-up for `in` must hold: the whole scene box for `standard`, B for the
 // others, each cascade its split's B. A split that sees none of the scene has nothing to hold
 // (the stabilised fit then keeps its sphere); every other empty-B case falls back to the

@@ -42,6 +42,7 @@ core::Result<PreparedFrame> FrameDriver::prepare(gl::Renderer& renderer, const s
     f.inputs.camera = view.camera;
     f.inputs.light = view.light;
     f.inputs.wsSceneBounds = renderer.wsSceneBounds(); // O(1): the instance hierarchy's root
+    f.inputs.virtualMaps.imageHeight = view.height;    // a pixel's footprint: the clipmap's level rule
     f.settings = m_config.render;
     f.settings.width = view.width;
     f.settings.height = view.height;

@@ -62,6 +62,12 @@ inline Buffer createBuffer(const void* data, size_t bytes, bool updatable = fals
     return Buffer(id);
 }
 
+inline Framebuffer createFramebuffer() {
+    GLuint fbo = 0;
+    glCreateFramebuffers(1, &fbo);
+    return Framebuffer(fbo);
+}
+
 inline Texture createTexture2D(GLenum internalFormat, int width, int height) {
     GLuint id = 0;
     glCreateTextures(GL_TEXTURE_2D, 1, &id);

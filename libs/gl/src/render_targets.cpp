@@ -7,12 +7,6 @@
 namespace shadowkit::gl {
 namespace {
 
-Framebuffer createFramebuffer() {
-    GLuint fbo = 0;
-    glCreateFramebuffers(1, &fbo);
-    return Framebuffer(fbo);
-}
-
 // Reads a whole texture level and flips it so the top row comes first.
 template <class T>
 std::vector<T> readFlipped(const Texture& texture, GLenum format, GLenum type, int width, int height) {
@@ -69,25 +63,27 @@ void ShadowTarget::attachLayer(int layer) const {
     glNamedFramebufferTextureLayer(framebuffer.id(), GL_DEPTH_ATTACHMENT, depth.id(), 0, layer);
 }
 
-scene::Image ShadowTarget::readAsGreys() const {
+scene::Image ShadowTarget::readAsGreys() const { return readDepthAsGreys(depth, size, size, layers); }
+
+scene::Image readDepthAsGreys(const Texture& depth, int width, int height, int layers) {
     // All layers come back stacked (layer-major), each bottom row first.
-    const size_t layerTexels = static_cast<size_t>(size) * static_cast<size_t>(size);
+    const size_t layerTexels = static_cast<size_t>(width) * static_cast<size_t>(height);
     std::vector<float> d(layerTexels * static_cast<size_t>(layers));
     glGetTextureImage(depth.id(), 0, GL_DEPTH_COMPONENT, GL_FLOAT, static_cast<GLsizei>(d.size() * sizeof(float)),
                       d.data());
-    scene::Image image(size * layers, size);
+    scene::Image image(width * layers, height);
     for (int layer = 0; layer < layers; ++layer) {
         const float* texels = d.data() + static_cast<size_t>(layer) * layerTexels;
         float lo = 1.0f, hi = 0.0f;
         for (size_t i = 0; i < layerTexels; ++i)
             if (texels[i] < 1.0f) lo = std::min(lo, texels[i]), hi = std::max(hi, texels[i]);
         const float range = hi > lo ? hi - lo : 1.0f;
-        for (int y = 0; y < size; ++y)
-            for (int x = 0; x < size; ++x) {
+        for (int y = 0; y < height; ++y)
+            for (int x = 0; x < width; ++x) {
                 const float v =
-                    texels[static_cast<size_t>(size - 1 - y) * static_cast<size_t>(size) + static_cast<size_t>(x)];
+                    texels[static_cast<size_t>(height - 1 - y) * static_cast<size_t>(width) + static_cast<size_t>(x)];
                 const auto grey = static_cast<uint8_t>(v < 1.0f ? 40.0f + 215.0f * (1.0f - (v - lo) / range) : 0.0f);
-                uint8_t* p = image.pixel(layer * size + x, y);
+                uint8_t* p = image.pixel(layer * width + x, y);
                 p[0] = p[1] = p[2] = grey;
                 p[3] = 255;
             }

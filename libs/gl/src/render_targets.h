@@ -29,6 +29,9 @@ struct ShadowTarget {
     scene::Image readAsGreys() const;
 };
 
+// A depth texture array's layers side by side as greys (ShadowTarget::readAsGreys).
+scene::Image readDepthAsGreys(const Texture& depth, int width, int height, int layers);
+
 struct ColorTarget {
     Texture color, depth;
     Framebuffer framebuffer;

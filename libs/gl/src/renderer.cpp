@@ -13,6 +13,7 @@
 #include "scene_frame.h"
 #include "stopwatch.h"
 #include "uniforms.h"
+#include "virtual_pages.h"
 #include "visibility.h"
 
 #include "shadowkit/core/output_conventions.h"
@@ -106,6 +107,10 @@ struct Renderer::Impl {
     core::LocalLighting wsLocalLights; // the same as given: Renderer::localLights()
     core::Vec3 wsOrigin{0.0};          // Scene::wsOrigin: where the GPU's coordinates start
 
+    std::unique_ptr<VirtualPages> virtualPages; // technique virtual: the page pool
+    std::vector<PassList> pageLists;            // this frame's pages to render, one list each
+    std::vector<core::Aabb> movedBoxes;         // old and new boxes of instances moved since the last frame
+
     std::vector<PassList> localLists; // LocalShadowMaps::listCount of them
     int evalLight = -1;               // the eval pass's light (renderEvalBuffers)
 
@@ -118,6 +123,8 @@ struct Renderer::Impl {
     void collectVisible(const core::PerspectiveCamera& camera, const core::DirectionalLight& light,
                         const core::ShadowSetup& setup, const RenderSettings& settings);
     PassStats shadowPass(const core::ShadowSetup& setup, const RenderSettings& settings);
+    // Technique virtual: the pages this frame must draw, each into its slot of the atlas.
+    PassStats pagePass(const core::ShadowSetup& setup);
     // Every local light's maps, timed.
     core::Result<PassStats> localPass(const RenderSettings& settings);
     void uploadFrame(const core::PerspectiveCamera& camera, const core::DirectionalLight& light,
@@ -159,6 +166,10 @@ core::Result<std::unique_ptr<Renderer>> Renderer::create(const scene::Scene& sce
                 checkUniformBlock(**p, "camera pass", "LocalLights", sizeof(LocalLightsUniforms), localLightsFields());
             !s)
             return s.errorInfo();
+        if (auto s =
+                checkUniformBlock(**p, "camera pass", "VirtualMaps", sizeof(VirtualMapsUniforms), virtualMapsFields());
+            !s)
+            return s.errorInfo();
     }
     auto lines = LinePass::create();
     if (!lines) return lines.errorInfo();
@@ -187,6 +198,9 @@ core::Result<std::unique_ptr<Renderer>> Renderer::create(const scene::Scene& sce
     auto masks = ReceiverMasks::create();
     if (!masks) return masks.errorInfo();
     r.receiverMasks = std::move(masks).value();
+    auto virtualPages = VirtualPages::create();
+    if (!virtualPages) return virtualPages.errorInfo();
+    r.virtualPages = std::move(virtualPages).value();
     auto depthRange = DepthRangeReduction::create();
     if (!depthRange) return depthRange.errorInfo();
     r.depthRange = std::move(depthRange).value();
@@ -219,6 +233,11 @@ double lookupReachTexels(const core::FilterSettings& filter, const core::BiasSet
     return reach + std::abs(bias.normalOffset) + 2.0;
 }
 
+// A virtual page's guard band: the texels around it that a lookup in the page may read.
+int guardTexelsFor(const core::FilterSettings& filter, const core::BiasSettings& bias) {
+    return static_cast<int>(std::ceil(lookupReachTexels(filter, bias)));
+}
+
 } // namespace
 
 void Renderer::Impl::collectVisible(const core::PerspectiveCamera& camera, const core::DirectionalLight& light,
@@ -226,8 +245,10 @@ void Renderer::Impl::collectVisible(const core::PerspectiveCamera& camera, const
     const Stopwatch total;
     visibility->takeListTimes();
     const bool cull = settings.culling != Culling::Off;
-    const bool masked = cull && settings.receiverMask;
-    const bool prepass = settings.culling == Culling::Occlusion || masked || prepassForDepthRange;
+    const bool virtualMaps = setup.clipmap.has_value();
+    // Virtual maps cull per page, finer than any receiver mask; their pages come from the pre-pass.
+    const bool masked = cull && settings.receiverMask && !virtualMaps;
+    const bool prepass = settings.culling == Culling::Occlusion || masked || prepassForDepthRange || virtualMaps;
     // Camera pass first: with occlusion culling or receiver masks the shadow passes' lists
     // depend on what it sees. Levels by pixels. A simplified receiver lies up to its error
     // off the true surface and would self-shadow against the map (measured without
@@ -281,9 +302,43 @@ void Renderer::Impl::collectVisible(const core::PerspectiveCamera& camera, const
         receiverMaskMilliseconds = maskTime.elapsed().wallMilliseconds;
         cullGlTimes += receiverMasks->glTimes();
     }
-    shadowLists.resize(setup.views.size());
     std::vector<PassList*> lists;
-    for (size_t i = 0; i < setup.views.size(); ++i) {
+    shadowLists.resize(virtualMaps ? 0 : setup.views.size());
+    pageLists.clear();
+    if (virtualMaps && settings.sun) {
+        // The pages the visible receivers request; each draws the casters in its own volume
+        // (extended towards the light), at levels of detail for its own texels.
+        const PageContent content{.lightFromWorldRotation = setup.clipmap->lightFromWorldRotation,
+                                  .wsGridOrigin = setup.clipmap->wsGridOrigin,
+                                  .zNear = setup.clipmap->zNear,
+                                  .zFar = setup.clipmap->zFar,
+                                  .pageTexels = setup.clipmap->pageTexels,
+                                  .guardTexels = guardTexelsFor(settings.filter, bias),
+                                  .slopeBias = static_cast<float>(bias.slope),
+                                  .constantBias = static_cast<float>(bias.constant),
+                                  .cull = static_cast<int>(bias.cull),
+                                  .lod = settings.lod,
+                                  .lodTexelError = settings.lodTexelError};
+        virtualPages->request(*cameraDepth, camera, setup, content, movedBoxes,
+                              lookupReachTexels(settings.filter, bias));
+        movedBoxes.clear();
+        cullGlTimes += virtualPages->glTimes();
+        const auto pages = virtualPages->pagesToRender();
+        pageLists.resize(pages.size());
+        const double slotTexels = setup.clipmap->pageTexels + 2.0 * guardTexelsFor(settings.filter, bias);
+        for (size_t i = 0; i < pages.size(); ++i) {
+            const LodChoice lod{
+                {pages[i].clipFromWorld, 0.5 * slotTexels, settings.lodTexelError}, cameraProjection, true};
+            visibility->collect(visibility::clipVolume(pages[i].clipFromWorld, false), cull,
+                                settings.lod ? &lod : nullptr, pageLists[i]);
+            lists.push_back(&pageLists[i]);
+        }
+    }
+    if (!virtualMaps && !movedBoxes.empty()) {
+        virtualPages->forget(); // the pages under those movers were not redrawn
+        movedBoxes.clear();
+    }
+    for (size_t i = 0; i < shadowLists.size(); ++i) {
         // No near plane: the pass clamps depth, so casters between the light and the near
         // plane are drawn at depth 0 and must not be culled. Levels by texels of this map.
         const core::Mat4& clipFromWorld = setup.views[i].clipFromWorld;
@@ -333,7 +388,8 @@ core::Status Renderer::Impl::prepare(const core::PerspectiveCamera& camera, cons
     // The set-up's map size is valid for core ([kMinMapSize, kMaxMapSize]); here it must
     // also fit this driver.
     // Within core's range but beyond this driver's: the machine's limit, not a wrong value.
-    if (setup.mapSize < core::kMinMapSize || setup.mapSize > maxSize)
+    const bool virtualMaps = setup.clipmap.has_value();
+    if (!virtualMaps && (setup.mapSize < core::kMinMapSize || setup.mapSize > maxSize))
         return core::environmentError(
             "map_size: must be in [" + std::to_string(core::kMinMapSize) + ", " + std::to_string(maxSize) +
                 "] texels on this GL driver (GL_MAX_TEXTURE_SIZE), got " + std::to_string(setup.mapSize),
@@ -351,16 +407,29 @@ core::Status Renderer::Impl::prepare(const core::PerspectiveCamera& camera, cons
     if (maps < 1 || maps > kMaxCascades)
         return core::makeError("renderer: set-ups need 1 to " + std::to_string(kMaxCascades) + " shadow maps, got " +
                                std::to_string(maps));
-    if (!shadow || shadow->size != setup.mapSize || shadow->layers != maps) {
+    const bool linearFilter = settings.filter.kind == core::ShadowFilter::Pcf2;
+    if (virtualMaps) {
+        if (settings.virtualPoolPages < 0)
+            return core::fieldError("virtual.pool_pages", "must be >= 0 (0: as many as fit 64 MiB), got " +
+                                                              std::to_string(settings.virtualPoolPages));
+        if (auto s = virtualPages->configure(settings.virtualPoolPages, setup.clipmap->pageTexels,
+                                             guardTexelsFor(settings.filter, bias));
+            !s)
+            return s;
+        virtualPages->setLinearFilter(linearFilter);
+        shadow.reset(); // no fixed maps: their memory is the pool's
+    } else if (!shadow || shadow->size != setup.mapSize || shadow->layers != maps) {
         shadow.reset(); // the old maps go before the new ones are allocated
         auto target = ShadowTarget::create(setup.mapSize, maps);
         if (!target) return target.errorInfo();
         shadow.emplace(std::move(target).value());
     }
-    // Hardware 2x2 PCF is the sampler's linear filter; every other filter takes its own taps.
-    const GLint filter = settings.filter.kind == core::ShadowFilter::Pcf2 ? GL_LINEAR : GL_NEAREST;
-    glTextureParameteri(shadow->depth.id(), GL_TEXTURE_MIN_FILTER, filter);
-    glTextureParameteri(shadow->depth.id(), GL_TEXTURE_MAG_FILTER, filter);
+    if (shadow) {
+        // Hardware 2x2 PCF is the sampler's linear filter; every other filter takes its own taps.
+        const GLint filter = linearFilter ? GL_LINEAR : GL_NEAREST;
+        glTextureParameteri(shadow->depth.id(), GL_TEXTURE_MIN_FILTER, filter);
+        glTextureParameteri(shadow->depth.id(), GL_TEXTURE_MAG_FILTER, filter);
+    }
     collectVisible(camera, light, setup, settings);
     return core::Ok{};
 }
@@ -380,6 +449,7 @@ PassStats Renderer::Impl::shadowPass(const core::ShadowSetup& setup, const Rende
         shadowTimer.end();
         return {};
     }
+    if (setup.clipmap) return pagePass(setup);
     // Depth only, polygon offset for bias, depth clamp when the set-up asks for it; one
     // array layer per shadow view.
     glBindFramebuffer(GL_FRAMEBUFFER, shadow->framebuffer.id());
@@ -427,6 +497,49 @@ PassStats Renderer::Impl::shadowPass(const core::ShadowSetup& setup, const Rende
     return stats; // time read after the frame, not to stall here
 }
 
+PassStats Renderer::Impl::pagePass(const core::ShadowSetup& setup) {
+    // As the fixed maps' pass (depth only, polygon offset, clamp), one viewport per page: the
+    // slot of the atlas, scissored so its clear touches no other page.
+    glBindFramebuffer(GL_FRAMEBUFFER, virtualPages->framebuffer().id());
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    if (bias.cull == core::CasterCull::None) {
+        glDisable(GL_CULL_FACE);
+    } else {
+        glEnable(GL_CULL_FACE);
+        glCullFace(bias.cull == core::CasterCull::Back ? GL_BACK : GL_FRONT);
+    }
+    glEnable(GL_DEPTH_CLAMP);
+    glEnable(GL_POLYGON_OFFSET_FILL);
+    glPolygonOffset(static_cast<float>(bias.slope), static_cast<float>(bias.constant));
+    glEnable(GL_SCISSOR_TEST);
+    glUseProgram(depthProgram.id());
+    glBindBufferBase(GL_UNIFORM_BUFFER, kDepthPassBinding, depthUniforms.id());
+    PassStats stats;
+    shadowTimer.begin();
+    const auto pages = virtualPages->pagesToRender();
+    for (size_t i = 0; i < pages.size(); ++i) {
+        const glm::ivec3 v = virtualPages->slotViewport(pages[i].slot);
+        glViewport(v.x, v.y, v.z, v.z);
+        glScissor(v.x, v.y, v.z, v.z);
+        const float clearDepth = 1.0f;
+        glClearNamedFramebufferfv(virtualPages->framebuffer().id(), GL_DEPTH, 0, &clearDepth);
+        const DepthPassUniforms uniforms{.clipFromWorld = toFloat(pages[i].clipFromWorld)};
+        glNamedBufferSubData(depthUniforms.id(), 0, sizeof uniforms, &uniforms);
+        const DrawStats draws = scene->draw(pageLists[i]);
+        stats.instances += draws.instances;
+        stats.triangles += draws.triangles;
+        stats.drawCalls += draws.drawCalls;
+    }
+    shadowTimer.end();
+    glDisable(GL_SCISSOR_TEST);
+    glDisable(GL_POLYGON_OFFSET_FILL);
+    glDisable(GL_DEPTH_CLAMP);
+    virtualPages->rendered(setup);
+    return stats;
+}
+
 void Renderer::Impl::uploadFrame(const core::PerspectiveCamera& camera, const core::DirectionalLight& light,
                                  const core::ShadowSetup& setup, const RenderSettings& settings, bool useMask) {
     FrameUniforms frame{};
@@ -459,7 +572,12 @@ void Renderer::Impl::uploadFrame(const core::PerspectiveCamera& camera, const co
     }
     glNamedBufferSubData(frameUniforms.id(), 0, sizeof frame, &frame);
     glBindBufferBase(GL_UNIFORM_BUFFER, kFrameBinding, frameUniforms.id());
-    glBindTextureUnit(kShadowMapUnit, shadow->depth.id());
+    if (setup.clipmap)
+        virtualPages->bind(setup);
+    else {
+        virtualPages->bindDisabled();
+        if (shadow) glBindTextureUnit(kShadowMapUnit, shadow->depth.id());
+    }
     localMaps->bind(localLights, settings.localBias, evalLight, settings.sun);
     glEnable(GL_CULL_FACE);
     glCullFace(GL_BACK);
@@ -562,6 +680,7 @@ core::Result<FrameStats> Renderer::render(const core::PerspectiveCamera& wsCamer
     stats.occlusion = r.occlusionStats;
     stats.occlusionMilliseconds = r.occlusionMilliseconds;
     stats.receiverMaskMilliseconds = r.receiverMaskMilliseconds;
+    if (setup.clipmap) stats.virtualPages = r.virtualPages->stats();
     return stats;
 }
 
@@ -627,8 +746,12 @@ core::Status Renderer::moveInstances(const scene::Scene& scene, std::span<const 
     for (const uint32_t global : moved) {
         const scene::InstanceRef ref = *scene.locate(global);
         const scene::MeshBatch& b = scene.batches[ref.batch];
-        r.visibility->move(
-            global, core::transformBounds(core::Mat4(b.worldFromObject[ref.instance]), scene.meshes[b.mesh].osBounds));
+        const core::Aabb box =
+            core::transformBounds(core::Mat4(b.worldFromObject[ref.instance]), scene.meshes[b.mesh].osBounds);
+        // Virtual maps redraw the pages under where it was and where it is.
+        r.movedBoxes.push_back(r.visibility->hierarchy().itemBounds(global));
+        r.movedBoxes.push_back(box);
+        r.visibility->move(global, box);
     }
     if (r.visibility->rebuildIfDegraded() && r.occlusion) r.occlusion->hierarchyRebuilt();
     for (size_t batch = 0; batch < scene.batches.size(); ++batch)
@@ -687,6 +810,9 @@ void Renderer::present(int width, int height) const {
 
 scene::Image Renderer::readColor() const { return m_impl->color ? m_impl->color->read() : scene::Image{}; }
 
-scene::Image Renderer::readShadowMap() const { return m_impl->shadow ? m_impl->shadow->readAsGreys() : scene::Image{}; }
+scene::Image Renderer::readShadowMap() const {
+    if (m_impl->shadow) return m_impl->shadow->readAsGreys();
+    return m_impl->virtualPages->readAtlas(); // virtual maps: the page pool
+}
 
 } // namespace shadowkit::gl

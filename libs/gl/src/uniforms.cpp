@@ -47,6 +47,40 @@ std::span<const UniformField> frameFields() {
     return kFields;
 }
 
+std::span<const UniformField> virtualMapsFields() {
+    static constexpr std::array kFields = {
+        UniformField{"virtualEnabled", offsetof(VirtualMapsUniforms, enabled)},
+        UniformField{"virtualLevels", offsetof(VirtualMapsUniforms, levels)},
+        UniformField{"virtualFirstExponent", offsetof(VirtualMapsUniforms, firstExponent)},
+        UniformField{"virtualFootprintPerMetre", offsetof(VirtualMapsUniforms, footprintPerMetre)},
+        UniformField{"virtualLodBias", offsetof(VirtualMapsUniforms, lodBias)},
+        UniformField{"virtualPagesPerSide", offsetof(VirtualMapsUniforms, pagesPerSide)},
+        UniformField{"virtualPageTexels", offsetof(VirtualMapsUniforms, pageTexels)},
+        UniformField{"virtualGuardTexels", offsetof(VirtualMapsUniforms, guardTexels)},
+        UniformField{"virtualSlotsPerRow", offsetof(VirtualMapsUniforms, slotsPerRow)},
+        UniformField{"virtualTexels", offsetof(VirtualMapsUniforms, virtualTexels)},
+        UniformField{"virtualAtlasTexels", offsetof(VirtualMapsUniforms, atlasTexels)},
+    };
+    return kFields;
+}
+
+std::span<const UniformField> virtualMarkFields() {
+    static constexpr std::array kFields = {
+        SK_FIELD(VirtualMarkUniforms, worldFromClip),
+        SK_FIELD(VirtualMarkUniforms, wsEye),
+        SK_FIELD(VirtualMarkUniforms, wsViewForward),
+        SK_ARRAY_FIELD(VirtualMarkUniforms, levelClipFromWorld),
+        SK_FIELD(VirtualMarkUniforms, levels),
+        SK_FIELD(VirtualMarkUniforms, firstExponent),
+        SK_FIELD(VirtualMarkUniforms, footprintPerMetre),
+        SK_FIELD(VirtualMarkUniforms, lodBias),
+        SK_FIELD(VirtualMarkUniforms, pagesPerSide),
+        SK_FIELD(VirtualMarkUniforms, pageTexels),
+        SK_FIELD(VirtualMarkUniforms, reachTexels),
+    };
+    return kFields;
+}
+
 std::span<const UniformField> blurFields() {
     static constexpr std::array kFields = {
         SK_FIELD(BlurUniforms, radiusPixels),
@@ -126,6 +160,10 @@ const std::string& shaderPrelude() {
         define("SK_RECEIVER_MASK_BINDING", kReceiverMaskBinding);
         define("SK_RECEIVER_DEPTH_UNIT", kReceiverDepthUnit);
         define("SK_RANGE_BINDING", kRangeBinding);
+        define("SK_PAGE_REQUEST_BINDING", kPageRequestBinding);
+        define("SK_VIRTUAL_BINDING", kVirtualBinding);
+        define("SK_VIRTUAL_MARK_BINDING", kVirtualMarkBinding);
+        define("SK_PAGE_TABLE_UNIT", kPageTableUnit);
         define("SK_RANGE_DEPTH_UNIT", kRangeDepthUnit);
         define("SK_BOX_OFFSET_LOCATION", kBoxOffsetLocation);
         define("SK_INSTANCE_OFFSET_LOCATION", kInstanceOffsetLocation);

@@ -6,6 +6,7 @@
 #pragma once
 
 #include "shadowkit/core/shadow_filter.h"
+#include "shadowkit/core/shadow_setup.h"
 #include "shadowkit/gl/render_settings.h"
 
 #include <glm/glm.hpp>
@@ -17,7 +18,9 @@
 
 namespace shadowkit::gl {
 
-inline constexpr int kMaxCascades = 8; // GLSL: SK_MAX_CASCADES
+// Maps of the sun in one frame: cascades, or the levels of a virtual clipmap. GLSL: SK_MAX_CASCADES
+inline constexpr int kMaxCascades = 16;
+static_assert(kMaxCascades == int(core::kMaxShadowViews));
 
 // Uniform block bindings (GLSL: SK_*_BINDING) and the instance storage buffer.
 inline constexpr unsigned kFrameBinding = 0;
@@ -31,6 +34,9 @@ inline constexpr unsigned kReceiverDepthUnit = 0;   // receiver mask pass: the p
 inline constexpr unsigned kRangeBinding = 4;        // shader storage: uint nearBits, farBits (depth_range.comp)
 inline constexpr unsigned kRangeDepthUnit = 0;      // depth range pass: the pre-pass's view depth
 inline constexpr unsigned kBoxesBinding = 2;        // shader storage: vec4 boxCorners[] (min, max) of occlusion queries
+inline constexpr unsigned kPageRequestBinding = 5;  // shader storage: uint requestBits[] (virtual_mark.comp)
+inline constexpr unsigned kVirtualBinding = 7;      // uniform block VirtualMaps (frame.glsl)
+inline constexpr unsigned kVirtualMarkBinding = 8;  // uniform block VirtualMark (virtual_mark.comp)
 // Texture units (GLSL: SK_*_UNIT). The camera passes and the blur pass never run together.
 inline constexpr unsigned kShadowMapUnit = 0;  // camera passes: sampler2DArrayShadow, one layer per map
 inline constexpr unsigned kShadowMaskUnit = 1; // main pass: the blurred shadow mask
@@ -39,6 +45,7 @@ inline constexpr unsigned kBlurDepthUnit = 1;  // blur pass: view depth, to stop
 // Local lights (local_shadows.h): their maps beside the sun's in the camera passes.
 inline constexpr unsigned kSpotMapUnit = 2;                    // sampler2DArrayShadow, one layer per spot light
 inline constexpr unsigned kPointMapUnit = 3;                   // samplerCubeArrayShadow, one cube per point light
+inline constexpr unsigned kPageTableUnit = 4;                  // usampler2D: virtual maps' page table
 inline constexpr unsigned kLocalDepthBinding = 5;              // uniform block LocalDepth (local_depth.glsl)
 inline constexpr unsigned kLocalLightsBinding = 6;             // uniform block LocalLights (local_lights.glsl)
 inline constexpr int kMaxLocalLights = kMaxLocalLightsPerKind; // GLSL: SK_MAX_LOCAL_LIGHTS
@@ -120,6 +127,35 @@ struct ReceiverMaskUniforms { // GLSL: ReceiverMask (receiver_mask.comp)
     int32_t pad0;
 };
 
+struct VirtualMapsUniforms { // GLSL: VirtualMaps (frame.glsl); SkVirtualMaps in shadowkit_shadows.glsl
+    int32_t enabled;         // 1: the sun's maps are a virtual clipmap
+    int32_t levels;
+    int32_t firstExponent;   // level 0's texel is 2^firstExponent metres
+    float footprintPerMetre; // a pixel's size at view depth 1 m
+    float lodBias;
+    int32_t pagesPerSide;
+    int32_t pageTexels;
+    int32_t guardTexels;
+    int32_t slotsPerRow;
+    float virtualTexels;
+    glm::vec2 atlasTexels; // width, height
+};
+
+struct VirtualMarkUniforms { // GLSL: VirtualMark (virtual_mark.comp)
+    glm::mat4 worldFromClip; // camera
+    glm::vec4 wsEye;
+    glm::vec4 wsViewForward;
+    glm::mat4 levelClipFromWorld[kMaxCascades];
+    int32_t levels;
+    int32_t firstExponent;
+    float footprintPerMetre;
+    float lodBias;
+    int32_t pagesPerSide;
+    int32_t pageTexels;
+    float reachTexels;
+    int32_t pad0;
+};
+
 struct BlurUniforms {     // GLSL: Blur (blur.frag)
     float radiusPixels;   // tap distance at view depth 0
     float depthFalloff;   // 1/m: radius / (1 + falloff · depth)
@@ -143,6 +179,8 @@ struct UniformField {
 std::span<const UniformField> depthPassFields();
 std::span<const UniformField> frameFields();
 std::span<const UniformField> blurFields();
+std::span<const UniformField> virtualMapsFields();
+std::span<const UniformField> virtualMarkFields();
 std::span<const UniformField> receiverMaskFields();
 std::span<const UniformField> localDepthFields();
 std::span<const UniformField> localLightsFields();

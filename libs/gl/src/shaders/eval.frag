@@ -35,7 +35,7 @@ void main() {
         // The maps' test alone, without N·L (also the mask the eye-space blur starts from).
         outShadowTerm = shadowTerm(receiverLookup(wsPosition, vLodError), n, dwsdx, dwsdy);
         // Texel position in the map that serves this pixel.
-        const vec4 t = shadowTexture(cascadeOf(outViewDepth), wsPosition);
+        const vec4 t = shadowTexture(sunMapOf(wsPosition), wsPosition);
         texel = t.xy / t.w * mapTexels;
     }
     outTexel = texel;

@@ -33,3 +33,20 @@ layout(std140, binding = SK_FRAME_BINDING) uniform Frame {
 #define SK_SHADOW_TEXTURE_FROM_WORLD(i) shadowTextureFromWorld[i]
 #define SK_SHADOW_LINEAR_DEPTH_FROM_WORLD(i) shadowLinearDepthFromWorld[i]
 #define SK_SHADOW_SPLIT(i) cascadeRange[i].xy
+
+// Virtual shadow maps (virtual_pages.h): the C++ side is VirtualMapsUniforms. The levels'
+// textureFromWorld are Frame's shadowTextureFromWorld.
+layout(std140, binding = SK_VIRTUAL_BINDING) uniform VirtualMaps {
+    int virtualEnabled; // 1: the sun's maps are a virtual clipmap
+    int virtualLevels;
+    int virtualFirstExponent;
+    float virtualFootprintPerMetre;
+    float virtualLodBias;
+    int virtualPagesPerSide;
+    int virtualPageTexels;
+    int virtualGuardTexels;
+    int virtualSlotsPerRow;
+    float virtualTexels;
+    vec2 virtualAtlasTexels;
+};
+#define SK_VIRTUAL_LEVEL_FROM_WORLD(i) shadowTextureFromWorld[i]

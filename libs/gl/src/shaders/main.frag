@@ -12,7 +12,7 @@ layout(location = 0) out vec4 outColor;
 layout(binding = SK_SHADOW_MASK_UNIT) uniform sampler2D shadowMask;
 
 // Split colouring (Dimitrov 2007, Figure 3-2): red, green, blue, yellow, ...
-const vec3 kCascadeTint[SK_MAX_CASCADES] = vec3[](vec3(1.0, 0.35, 0.35), vec3(0.35, 1.0, 0.35), vec3(0.4, 0.5, 1.0),
+const vec3 kCascadeTint[8] = vec3[](vec3(1.0, 0.35, 0.35), vec3(0.35, 1.0, 0.35), vec3(0.4, 0.5, 1.0),
     vec3(1.0, 1.0, 0.3), vec3(1.0, 0.4, 1.0), vec3(0.3, 1.0, 1.0), vec3(1.0, 0.7, 0.3), vec3(0.8, 0.8, 0.8));
 
 // eval::aliasingMapImage's ramp (dark blue → green → yellow) over log2 pixels per texel in
@@ -36,7 +36,7 @@ float pixelsPerTexel(vec2 dTexelDx, vec2 dTexelDy) {
 void main() {
     if (aliasingOverlay != 0) {
         // The texel of the map serving this pixel, differentiated per pixel (uniform flow).
-        const vec4 t = shadowTexture(cascadeOf(viewDepthOf(wsPosition)), wsPosition);
+        const vec4 t = shadowTexture(sunMapOf(wsPosition), wsPosition);
         const vec2 texel = t.xy / t.w * mapTexels;
         outColor = vec4(aliasingColor(pixelsPerTexel(dFdxFine(texel), dFdyFine(texel))), 1.0);
         return;
@@ -50,7 +50,7 @@ void main() {
         lit = readBlurredMask != 0 ? texelFetch(shadowMask, ivec2(gl_FragCoord.xy), 0).r
                                    : shadowTerm(receiverLookup(wsPosition, vLodError), n, dwsdx, dwsdy);
     vec3 albedo = vAlbedo;
-    if (cascadeColors != 0) albedo *= kCascadeTint[cascadeOf(viewDepthOf(wsPosition))];
+    if (cascadeColors != 0) albedo *= kCascadeTint[sunMapOf(wsPosition) % 8];
     vec3 color = albedo * (ambientRadiance.rgb + sunRadiance.rgb * nDotL * lit + localLighting(wsPosition, n));
     const float fog = exp(-fogColorDensity.a * distance(wsPosition, wsEye.xyz));
     color = mix(fogColorDensity.rgb, color, fog);

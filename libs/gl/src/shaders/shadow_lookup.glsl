@@ -2,7 +2,8 @@
 // glsl/shadowkit_shadows.glsl (before this file), which holds the lookup itself — hardware
 // comparison, linear depth, normal offset, receiver-plane bias, filters, cascade selection
 // and blending — so that the renderer and engines share one implementation.
-layout(binding = SK_SHADOW_MAP_UNIT) uniform sampler2DArrayShadow shadowMap;
+layout(binding = SK_SHADOW_MAP_UNIT) uniform sampler2DArrayShadow shadowMap; // or the virtual page atlas
+layout(binding = SK_PAGE_TABLE_UNIT) uniform usampler2D pageTable;             // virtual maps' page table
 
 float viewDepthOf(vec3 ws) { return dot(ws - wsEye.xyz, wsViewForward.xyz); }
 
@@ -13,6 +14,20 @@ float viewDepthOf(vec3 ws) { return dot(ws - wsEye.xyz, wsViewForward.xyz); }
 vec3 receiverLookup(vec3 ws, float lodError) { return ws + wsTowardsLight.xyz * lodError; }
 
 int cascadeOf(float viewDepth) { return skCascadeOf(viewDepth, mapCount); }
+
+SkVirtualMaps virtualMaps() {
+    return SkVirtualMaps(virtualLevels, virtualFirstExponent, virtualFootprintPerMetre, virtualLodBias, virtualPagesPerSide,
+                         virtualPageTexels, virtualGuardTexels, virtualSlotsPerRow, virtualAtlasTexels, virtualTexels);
+}
+
+// The sun's map serving `ws`: its cascade, or the clipmap level its lookup reads.
+int sunMapOf(vec3 ws) {
+    const float viewDepth = viewDepthOf(ws);
+    if (virtualEnabled == 0) return cascadeOf(viewDepth);
+    int level;
+    vec4 atlasFromMap;
+    return skVirtualPage(pageTable, virtualMaps(), viewDepth, ws, level, atlasFromMap) ? level : virtualLevels - 1;
+}
 
 // Texture coordinates of the map serving `ws`, times w (textureFromWorld of the core's
 // output conventions: u, v = ndc · 0.5 + 0.5, depth [0, 1]).
@@ -25,5 +40,7 @@ SkShadowOptions shadowOptions() {
 
 // `dwsdx`, `dwsdy`: screen derivatives of ws, taken by the caller in uniform control flow.
 float shadowTerm(vec3 ws, vec3 n, vec3 dwsdx, vec3 dwsdy) {
+    if (virtualEnabled != 0)
+        return skVirtualShadow(shadowMap, pageTable, virtualMaps(), shadowOptions(), viewDepthOf(ws), ws, n, dwsdx, dwsdy);
     return skCascadedShadow(shadowMap, mapCount, shadowOptions(), viewDepthOf(ws), ws, n, dwsdx, dwsdy);
 }

@@ -8,6 +8,7 @@
 #include "shadowkit/core/light.h"
 #include "shadowkit/core/result.h"
 #include "shadowkit/core/small_vector.h"
+#include "shadowkit/core/virtual_clipmap.h"
 
 #include <optional>
 #include <span>
@@ -25,6 +26,7 @@ enum class Technique {
     Psm,      ///< perspective shadow map (Stamminger & Drettakis 2002): the map taken in post-perspective space
     Tsm,      ///< trapezoidal shadow map (Martin & Tan 2004): a trapezoid around the view mapped to the square
     Csm,      ///< cascaded / parallel-split shadow maps (Dimitrov 2007): one map per depth range of the view
+    Virtual,  ///< virtual shadow maps: a clipmap of paged maps, pages where receivers are (virtual_clipmap.h)
 };
 
 /// What the shadow map stores as depth.
@@ -129,7 +131,9 @@ struct CascadeOptions {
 Status validate(const CascadeOptions& options);
 
 inline constexpr int kMinMapSize = 16, kMaxMapSize = 16384; ///< texels per side
-inline constexpr size_t kMaxShadowViews = 8;                ///< maps in one set-up (cascades.count <= 8)
+inline constexpr int kMaxCascadeCount = 8;                  ///< cascades.count <= 8
+/// Maps in one set-up: cascades, or the levels of a virtual clipmap.
+inline constexpr size_t kMaxShadowViews = kMaxClipmapLevels;
 /// Error field "map_size".
 Status validateMapSize(int texelsPerSide);
 
@@ -145,6 +149,7 @@ struct ShadowSetupInputs {
     LispsmOptions lispsm;                   ///< technique Lispsm, and cascades warped per split
     TsmOptions tsm;                         ///< technique Tsm
     CascadeOptions cascades;                ///< technique Csm
+    VirtualOptions virtualMaps;             ///< technique Virtual
     std::optional<DepthLayout> depthLayout; ///< unset: the technique's own (linear for TSM)
     /// View-depth range [near, far] of what the camera actually sees, 0 <= near < far: a
     /// min/max reduction of its depth buffer (visible_depth.h). It never narrows a focus
@@ -192,7 +197,7 @@ struct TsmWarp {
     double eta = 0.0;     ///< "eta": top line offset
     bool uniform = false; ///< "uniform": view parallel to the light, no trapezoid
 };
-using WarpParameters = std::variant<std::monostate, LispsmWarp, PsmWarp, TsmWarp>;
+using WarpParameters = std::variant<std::monostate, LispsmWarp, PsmWarp, TsmWarp, ClipmapLevel>;
 
 /// One shadow map: lightFromWorld, clipFromLight and their product, its split, its warp parameters.
 struct ShadowView {
@@ -228,8 +233,8 @@ struct ShadowView {
 /// The result of a set-up: one ShadowView per map, depth layout, diagnostics and fallbacks.
 struct ShadowSetup {
     Technique technique = Technique::Focused; ///< the technique that computed it
-    /// One per shadow map, held inline (up to kMaxShadowViews: eight cascades) so that
-    /// computing a set-up does not allocate.
+    /// One per shadow map, held inline (up to kMaxShadowViews: eight cascades or sixteen
+    /// clipmap levels) so that computing a set-up does not allocate.
     SmallVector<ShadowView, kMaxShadowViews> views;
     ConvexBody body;                    ///< B (empty for `standard`, or when the view misses the scene)
     std::vector<std::string> fallbacks; ///< degenerate cases met and what was done instead
@@ -246,6 +251,8 @@ struct ShadowSetup {
     /// a set-up computeShadowSetup made (or, held by SetupHysteresis, the eye of its refit);
     /// a local light's position for its set-up.
     Vec3 wsEye{0.0};
+    /// Technique::Virtual: what its levels share (the views are the levels, finest first).
+    std::optional<VirtualClipmap> clipmap;
 };
 
 /// For a set-up computed in world coordinates (local lights): the eye-relative members from

@@ -5,6 +5,8 @@
 #include "shadowkit/visibility/coherent_culling.h"
 
 #include <cstddef>
+#include <cstdint>
+#include <optional>
 
 namespace shadowkit::gl {
 
@@ -13,6 +15,16 @@ struct PassStats {
     size_t instances = 0;         // submitted (over every map, for the shadow pass)
     size_t triangles = 0;         // submitted
     size_t drawCalls = 0;
+};
+
+// Virtual shadow maps' pages in one frame (docs/virtual-shadow-maps.md).
+struct VirtualPageStats {
+    int pagesRequested = 0; // marked by the visible receivers (each with its coarser fallback)
+    int pagesResident = 0;  // in the pool after the frame, requested or kept from earlier frames
+    int pagesRendered = 0;  // drawn this frame: newly allocated or invalidated
+    int pagesFellBack = 0;  // requested but not allocated (pool full): served by a coarser level
+    int poolPages = 0;      // slots in the pool
+    int64_t poolBytes = 0;  // the atlas's depth, 4 bytes a texel (guard bands included)
 };
 
 struct FrameStats {
@@ -37,7 +49,8 @@ struct FrameStats {
     // Culling::Occlusion: the CHC++ pre-pass (counted in cullMilliseconds, with its waits).
     visibility::CoherentCullingStats occlusion;
     double occlusionMilliseconds = 0.0;
-    double receiverMaskMilliseconds = 0.0; // CPU, incl. the read-back (counted in cullMilliseconds)
+    double receiverMaskMilliseconds = 0.0;        // CPU, incl. the read-back (counted in cullMilliseconds)
+    std::optional<VirtualPageStats> virtualPages; // technique virtual
 };
 
 } // namespace shadowkit::gl

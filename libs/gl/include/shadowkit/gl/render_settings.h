@@ -96,6 +96,10 @@ struct RenderSettings {
     bool sun = true;
     LocalPass localPass = LocalPass::Layered;
     LocalBiasSettings localBias;
+    // Technique virtual: pages in the physical pool; 0 as many as fit 2^24 texels (64 MiB of
+    // depth, guard bands included). When a frame requests more, the least recently requested
+    // pages are evicted, and what still does not fit is served by coarser levels.
+    int virtualPoolPages = 0;
 };
 
 // The bias a frame with these settings is drawn with: settings.bias, or the recommended one.

@@ -1,0 +1,174 @@
+// Virtual shadow maps on the GPU (CTest label `gl`): a frame drawn from cached pages looks up
+// exactly what a frame with every page fresh looks up; a mover redraws only the pages under it
+// and its shadow moves; a pool too small for the view falls back to coarser levels, says so,
+// and still shadows where the caster is.
+#include "headless_gl_test.h"
+
+#include "shadowkit/core/shadow_setup.h"
+#include "shadowkit/gl/renderer.h"
+#include "shadowkit/scene/mesh_builder.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+
+using namespace shadowkit;
+
+namespace {
+
+class VirtualPagesTest : public gl::testing::HeadlessGlTest {};
+
+// A plane, a floating box that may move (dynamic batch) and a post, under a low sun.
+scene::Scene boxesOverPlane() {
+    scene::Scene s;
+    scene::Mesh ground, box;
+    ground.name = "ground";
+    scene::addBox(ground, glm::translate(glm::mat4(1.0f), {0, -0.05f, 0}), {30, 0.05f, 30}, glm::vec3(0.8f));
+    box.name = "box";
+    scene::addBox(box, glm::mat4(1.0f), {1, 0.5f, 1}, glm::vec3(0.8f));
+    ground.computeBounds();
+    box.computeBounds();
+    s.meshes = {ground, box};
+    s.batches = {{0, {glm::mat4(1.0f)}, false},
+                 {1, {glm::translate(glm::mat4(1.0f), {-4, 1.0f, -6})}, false},
+                 {1, {glm::translate(glm::mat4(1.0f), {0, 2.5f, 0})}, true}};
+    return s;
+}
+
+core::PerspectiveCamera camera(double x) {
+    core::PerspectiveCamera cam;
+    cam.wsEye = {x, 6, 14};
+    cam.wsDirection = core::Vec3(0, 0, 0) - core::Vec3(0, 6, 14);
+    cam.fovYDegrees = 50;
+    cam.aspect = 1.0;
+    cam.zNear = 0.5;
+    cam.zFar = 80;
+    return cam;
+}
+
+const core::DirectionalLight kSun{glm::normalize(core::Vec3(0.3, -1.0, 0.2))};
+
+core::ShadowSetup virtualSetup(const scene::Scene& s, const core::PerspectiveCamera& cam, int imageHeight) {
+    core::ShadowSetupInputs in{.camera = cam, .light = kSun, .wsSceneBounds = s.wsBounds()};
+    in.technique = core::Technique::Virtual;
+    in.virtualMaps.imageHeight = imageHeight;
+    in.virtualMaps.virtualTexels = 4096; // 32 × 32 pages: small windows, many pages at 128 px
+    return core::computeShadowSetup(in).value();
+}
+
+gl::RenderSettings smallFrame() {
+    gl::RenderSettings settings;
+    settings.width = settings.height = 128;
+    settings.fogDensity = 0.0f;
+    return settings;
+}
+
+// The shadow term where the camera sees world point `ws`.
+float shadowAt(const core::RasterBuffers& b, const core::PerspectiveCamera& cam, const core::Vec3& ws) {
+    const core::Vec4 cs = cam.clipFromWorld() * core::Vec4(ws, 1.0);
+    const int x = static_cast<int>((cs.x / cs.w * 0.5 + 0.5) * b.width);
+    const int y = static_cast<int>((0.5 - cs.y / cs.w * 0.5) * b.height); // top row first
+    return b.shadowTerm[size_t(y) * b.width + x];
+}
+
+// Where the sun's ray through `ws` meets the ground (y = 0).
+core::Vec3 groundUnder(const core::Vec3& ws) { return ws + kSun.wsDirection * (ws.y / -kSun.wsDirection.y); }
+
+} // namespace
+
+TEST_F(VirtualPagesTest, FramesFromCachedPagesLookUpExactlyWhatFreshPagesGive) {
+    const scene::Scene s = boxesOverPlane();
+    auto cached = gl::Renderer::create(s);
+    ASSERT_TRUE(cached) << cached.error();
+    for (const core::ShadowFilter filter : {core::ShadowFilter::Pcf2, core::ShadowFilter::Poisson}) {
+        gl::RenderSettings settings = smallFrame();
+        settings.filter.kind = filter;
+        int reused = 0;
+        for (int frame = 0; frame < 6; ++frame) {
+            const core::PerspectiveCamera cam = camera(0.37 * frame); // the sun held, the camera moving
+            const core::ShadowSetup setup = virtualSetup(s, cam, settings.height);
+            auto fresh = gl::Renderer::create(s);
+            ASSERT_TRUE(fresh);
+            const auto stats = (*cached)->render(cam, kSun, setup, settings);
+            ASSERT_TRUE(stats && stats->virtualPages) << (stats ? "no page stats" : stats.error());
+            reused += stats->virtualPages->pagesRequested - stats->virtualPages->pagesRendered;
+            const auto a = (*cached)->renderEvalBuffers(cam, kSun, setup, settings);
+            const auto b = (*fresh)->renderEvalBuffers(cam, kSun, setup, settings);
+            ASSERT_TRUE(a && b);
+            ASSERT_EQ(a->shadowTerm.size(), b->shadowTerm.size());
+            int differ = 0, shadowed = 0;
+            for (size_t i = 0; i < a->shadowTerm.size(); ++i) {
+                differ += a->shadowTerm[i] != b->shadowTerm[i];
+                shadowed += b->shadowTerm[i] < 0.5f;
+            }
+            EXPECT_EQ(differ, 0) << "frame " << frame << ", filter " << int(filter);
+            EXPECT_GT(shadowed, 100) << "frame " << frame; // the boxes' shadows are in view
+        }
+        EXPECT_GT(reused, 0) << "no page was kept across frames";
+    }
+}
+
+TEST_F(VirtualPagesTest, AMoverRedrawsOnlyThePagesUnderItAndItsShadowMoves) {
+    scene::Scene s = boxesOverPlane();
+    auto renderer = gl::Renderer::create(s);
+    ASSERT_TRUE(renderer);
+    const gl::RenderSettings settings = smallFrame();
+    const core::PerspectiveCamera cam = camera(0.0);
+    const core::ShadowSetup setup = virtualSetup(s, cam, settings.height);
+    ASSERT_TRUE((*renderer)->render(cam, kSun, setup, settings));
+    const auto still = (*renderer)->render(cam, kSun, setup, settings);
+    ASSERT_TRUE(still);
+    EXPECT_EQ(still->virtualPages->pagesRendered, 0); // nothing moved: every page cached
+
+    // The floating box (global instance 2) moves 3 m along x.
+    s.batches[2].worldFromObject[0] = glm::translate(glm::mat4(1.0f), {3, 2.5f, 0});
+    const uint32_t mover = 2;
+    ASSERT_TRUE((*renderer)->moveInstances(s, {&mover, 1}));
+    const auto moved = (*renderer)->render(cam, kSun, setup, settings);
+    ASSERT_TRUE(moved);
+    EXPECT_GT(moved->virtualPages->pagesRendered, 0);
+    EXPECT_LT(moved->virtualPages->pagesRendered, moved->virtualPages->pagesRequested);
+
+    const auto buffers = (*renderer)->renderEvalBuffers(cam, kSun, setup, settings);
+    ASSERT_TRUE(buffers);
+    EXPECT_LT(shadowAt(*buffers, cam, groundUnder({3, 2.5, 0})), 0.5f) << "no shadow under the box's new place";
+    EXPECT_GT(shadowAt(*buffers, cam, groundUnder({0, 2.5, 0})), 0.5f) << "the old shadow stayed";
+    // And the moved frame equals a fresh renderer's.
+    auto fresh = gl::Renderer::create(s);
+    ASSERT_TRUE(fresh);
+    const auto reference = (*fresh)->renderEvalBuffers(cam, kSun, setup, settings);
+    ASSERT_TRUE(reference);
+    EXPECT_EQ(buffers->shadowTerm, reference->shadowTerm);
+}
+
+TEST_F(VirtualPagesTest, ATinyPoolFallsBackToCoarserLevelsSaysSoAndNeverShowsAnotherPagesDepth) {
+    const scene::Scene s = boxesOverPlane();
+    gl::RenderSettings settings = smallFrame();
+    const core::PerspectiveCamera cam = camera(0.0);
+    const core::ShadowSetup setup = virtualSetup(s, cam, settings.height);
+    auto full = gl::Renderer::create(s);
+    ASSERT_TRUE(full);
+    const auto reference = (*full)->renderEvalBuffers(cam, kSun, setup, settings);
+    ASSERT_TRUE(reference);
+    for (const int pool : {6, 24}) {
+        auto renderer = gl::Renderer::create(s);
+        ASSERT_TRUE(renderer);
+        settings.virtualPoolPages = pool;
+        const auto stats = (*renderer)->render(cam, kSun, setup, settings);
+        ASSERT_TRUE(stats);
+        EXPECT_EQ(stats->virtualPages->poolPages, pool);
+        EXPECT_GT(stats->virtualPages->pagesFellBack, 0);
+        EXPECT_LE(stats->virtualPages->pagesResident, pool);
+        // Coarser or absent pages blur or lose shadow; a wrong page would put shadow on ground
+        // that every full frame has lit. At most a pixel row's worth of edge pixels differ so.
+        const auto buffers = (*renderer)->renderEvalBuffers(cam, kSun, setup, settings);
+        ASSERT_TRUE(buffers);
+        int falseShadow = 0;
+        for (size_t i = 0; i < buffers->shadowTerm.size(); ++i)
+            falseShadow += buffers->shadowTerm[i] < 0.5f && reference->shadowTerm[i] > 0.99f;
+        EXPECT_LT(falseShadow, settings.width) << "pool of " << pool;
+    }
+    settings.virtualPoolPages = -1;
+    auto renderer = gl::Renderer::create(s);
+    ASSERT_TRUE(renderer);
+    EXPECT_FALSE((*renderer)->render(cam, kSun, setup, settings));
+}
