@@ -118,7 +118,8 @@ core::Result<Measurement> Measurer::measure(const core::ShadowSetupInputs& input
     f.view.camera = inputs.camera;
     f.view.light = inputs.light;
     f.inputs = inputs;
-    auto setup = core::computeShadowSetup(inputs);
+    f.inputs.virtualMaps.imageHeight = settings.height; // a pixel's footprint: the clipmap's level rule
+    auto setup = core::computeShadowSetup(f.inputs);
     if (!setup) return setup.errorInfo();
     f.setup = std::move(setup).value();
     f.settings = settings;
