@@ -51,9 +51,10 @@ inline constexpr int kMaxClipmapLevels = 16;
 /// One level of the clipmap: ShadowView::warp of a virtual set-up's views.
 struct ClipmapLevel {
     int exponent = 0; ///< the level's texel is 2^exponent metres on a side
-    /// Page-grid indices of the level's first page (its corner nearest −x, −y in light space),
+    /// Page-grid index along light-space x of the level's first page (its corner nearest −x, −y),
     /// counted from the grid origin (ShadowSetupInputs::wsGridOrigin): the level's window.
-    int64_t firstPageX = 0, firstPageY = 0;
+    int64_t firstPageX = 0;
+    int64_t firstPageY = 0; ///< the same along light-space y
 };
 
 /// What every level shares, in world space: the light's orientation, the grid the pages are
@@ -65,22 +66,24 @@ struct VirtualClipmap {
     /// Light-space depth range of the scene box, relative to the grid origin and snapped
     /// outwards (so a mover that grows the box a little does not change it): zNear is the
     /// highest z (nearest the light), mapped to depth 0.
-    double zNear = 0.0, zFar = 1.0;
+    double zNear = 0.0;
+    double zFar = 1.0;              ///< the lowest z (farthest from the light), mapped to depth 1
     int virtualTexels = 16384;      ///< VirtualOptions::virtualTexels
     int pageTexels = 128;           ///< VirtualOptions::pageTexels
     int firstExponent = 0;          ///< exponent of level 0 (the finest)
     double lodBias = 0.0;           ///< VirtualOptions::lodBias
     double footprintPerMetre = 0.0; ///< a pixel's size at view depth 1 m (pixelFootprintPerMetre)
 
-    int pagesPerSide() const { return virtualTexels / pageTexels; }
+    int pagesPerSide() const { return virtualTexels / pageTexels; } ///< pages per side of a level's window
 };
 
 /// A page of one level, anchored to the world: the same key while the sun is still, whatever
 /// the camera does (a level's window slides over the grid; its pages keep their keys).
 struct PageKey {
-    int exponent = 0;     ///< the level's (ClipmapLevel::exponent)
-    int64_t x = 0, y = 0; ///< page-grid indices from the grid origin
-    bool operator==(const PageKey&) const = default;
+    int exponent = 0;                                ///< the level's (ClipmapLevel::exponent)
+    int64_t x = 0;                                   ///< page-grid index along light-space x from the grid origin
+    int64_t y = 0;                                   ///< along light-space y
+    bool operator==(const PageKey&) const = default; ///< the same page
 };
 
 /// A pixel's size in metres at view depth 1 m: 2 tan(fovY / 2) / image rows. Times the view
@@ -114,7 +117,10 @@ Mat4 clipmapPageClipFromWorld(const VirtualClipmap& clipmap, const PageKey& page
 /// The light-space square [min, max] (x, y, relative to the grid origin) of a world box,
 /// for invalidation: the pages of a level whose squares meet it.
 struct LightRect {
-    double minX = 0.0, minY = 0.0, maxX = 0.0, maxY = 0.0;
+    double minX = 0.0; ///< light-space x from the grid origin, lowest
+    double minY = 0.0; ///< light-space y, lowest
+    double maxX = 0.0; ///< light-space x, highest
+    double maxY = 0.0; ///< light-space y, highest
 };
 LightRect clipmapRectOf(const VirtualClipmap& clipmap, const Vec3& wsMin, const Vec3& wsMax);
 
