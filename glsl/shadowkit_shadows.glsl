@@ -220,9 +220,11 @@ bool skVirtualPage(usampler2D pageTable, SkVirtualMaps v, float viewDepth, vec3 
     return false;
 }
 
-// The lit fraction of a receiver in a virtual clipmap; o.mapTexels is virtualTexels.
+// The lit fraction of a receiver in a virtual clipmap; o.mapTexels is virtualTexels. The pages
+// store clip depth, linear in an orthographic map: o.linearDepth is ignored.
 float skVirtualShadow(sampler2DArrayShadow atlas, usampler2D pageTable, SkVirtualMaps v, SkShadowOptions o, float viewDepth,
                       vec3 ws, vec3 n, vec3 dwsdx, vec3 dwsdy) {
+    o.linearDepth = false;
     int level;
     vec4 atlasFromMap;
     if (!skVirtualPage(pageTable, v, viewDepth, ws, level, atlasFromMap)) return 1.0;

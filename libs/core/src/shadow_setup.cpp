@@ -92,6 +92,9 @@ void addLinearDepth(const ShadowSetupInputs& inputs, ShadowSetup& setup) {
 } // namespace
 
 DepthLayout depthLayoutFor(const ShadowSetupInputs& inputs) {
+    // A clipmap's pages are orthographic: their clip depth is linear already, and a page drawn
+    // in one frame must hold what the next frame's layout expects, so it has only the one.
+    if (inputs.technique == Technique::Virtual) return DepthLayout::Hyperbolic;
     return inputs.depthLayout.value_or(inputs.technique == Technique::Tsm ? DepthLayout::Linear
                                                                           : DepthLayout::Hyperbolic);
 }

@@ -164,7 +164,8 @@ struct ShadowSetupInputs {
     Vec3 wsGridOrigin{0.0};
 };
 
-/// The layout a set-up with these inputs stores: the explicit one, else the technique's own.
+/// The layout a set-up with these inputs stores: the explicit one, else the technique's own
+/// (`virtual` always stores clip depth, linear in its orthographic pages).
 DepthLayout depthLayoutFor(const ShadowSetupInputs& inputs);
 
 /// Warp parameters of the warped techniques, as `shadowkit setup` prints them under "warp"
