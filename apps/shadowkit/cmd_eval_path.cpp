@@ -5,6 +5,7 @@
 #include "commands.h"
 
 #include "shadowkit/eval/maps.h"
+#include "shadowkit/eval/report.h"
 #include "shadowkit/eval/temporal.h"
 #include "shadowkit/imaging/image_grid.h"
 #include "shadowkit/imaging/plot.h"
@@ -30,6 +31,7 @@ struct FrameRow {
     std::optional<int> refittedViews;              // --stabilize with held lattices: maps refitted (pops)
     std::optional<std::string> autoChoice;         // --technique auto: what it chose (core::describe)
     double autoMilliseconds = 0.0;                 // and the CPU time of the choice (model + search)
+    std::optional<gl::VirtualPageStats> virtualPages; // --technique virtual: the frame's pages
     double seconds = 0.0;
 };
 
@@ -126,6 +128,7 @@ int runEvalPath(const EvalPathArgs& args) {
         technique = core::techniqueName(prepared.setup.technique);
         FrameRow row{frame.number, frame.time, measured->measurement.figures()};
         row.temporal = measured->temporal;
+        row.virtualPages = measured->measurement.virtualPages;
         if (prepared.refits) {
             refits += prepared.refits->views > 0;
             toCover += prepared.refits->toCover, stale += prepared.refits->stale;
@@ -236,6 +239,9 @@ int runEvalPath(const EvalPathArgs& args) {
                           {"truth_change_pct", r.temporal->truthChangePct}});
             if (r.refittedViews) j["refitted_views"] = *r.refittedViews;
             if (r.autoChoice) j.update({{"auto_choice", *r.autoChoice}, {"auto_ms", r.autoMilliseconds}});
+            if (const auto& v = r.virtualPages)
+                j["virtual"] = eval::virtualPagesJson({v->pagesRequested, v->pagesRendered, v->pagesResident,
+                                                       v->pagesFellBack, v->poolPages, v->poolBytes, v->triangles});
             frames.push_back(j);
         }
         auto summary = [](const Summary& s) {

@@ -8,6 +8,13 @@
 
 namespace shadowkit::eval {
 
+nlohmann::json virtualPagesJson(const VirtualPagesReport& v) {
+    return {{"pages_requested", v.pagesRequested}, {"pages_rendered", v.pagesRendered},
+            {"pages_resident", v.pagesResident},   {"pages_fell_back", v.pagesFellBack},
+            {"pool_pages", v.poolPages},           {"pool_bytes", v.poolBytes},
+            {"shadow_triangles", v.shadowTriangles}};
+}
+
 std::string reportJson(const std::vector<ViewReport>& views) {
     nlohmann::json list = nlohmann::json::array();
     for (const ViewReport& v : views) {
@@ -44,6 +51,7 @@ std::string reportJson(const std::vector<ViewReport>& views) {
         });
         if (v.visibleDepth) list.back()["visible_depth"] = {v.visibleDepth->x, v.visibleDepth->y};
         if (!v.autoChoice.empty()) list.back()["auto_choice"] = v.autoChoice;
+        if (v.virtualPages) list.back()["virtual"] = virtualPagesJson(*v.virtualPages);
         if (!v.lights.empty()) {
             nlohmann::json lights = nlohmann::json::array();
             for (const LightReport& l : v.lights)

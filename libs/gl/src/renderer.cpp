@@ -110,6 +110,7 @@ struct Renderer::Impl {
     std::unique_ptr<VirtualPages> virtualPages; // technique virtual: the page pool
     std::vector<PassList> pageLists;            // this frame's pages to render, one list each
     std::vector<core::Aabb> movedBoxes;         // old and new boxes of instances moved since the last frame
+    std::optional<VirtualPageStats> lastVirtual; // of the last frame's page pass
 
     std::vector<PassList> localLists; // LocalShadowMaps::listCount of them
     int evalLight = -1;               // the eval pass's light (renderEvalBuffers)
@@ -449,7 +450,13 @@ PassStats Renderer::Impl::shadowPass(const core::ShadowSetup& setup, const Rende
         shadowTimer.end();
         return {};
     }
-    if (setup.clipmap) return pagePass(setup);
+    lastVirtual.reset();
+    if (setup.clipmap) {
+        const PassStats stats = pagePass(setup);
+        lastVirtual = virtualPages->stats();
+        lastVirtual->triangles = stats.triangles;
+        return stats;
+    }
     // Depth only, polygon offset for bias, depth clamp when the set-up asks for it; one
     // array layer per shadow view.
     glBindFramebuffer(GL_FRAMEBUFFER, shadow->framebuffer.id());
@@ -680,7 +687,7 @@ core::Result<FrameStats> Renderer::render(const core::PerspectiveCamera& wsCamer
     stats.occlusion = r.occlusionStats;
     stats.occlusionMilliseconds = r.occlusionMilliseconds;
     stats.receiverMaskMilliseconds = r.receiverMaskMilliseconds;
-    if (setup.clipmap) stats.virtualPages = r.virtualPages->stats();
+    stats.virtualPages = r.lastVirtual;
     return stats;
 }
 
@@ -727,6 +734,8 @@ core::Result<std::optional<core::Vec2>> Renderer::visibleDepth(const core::Persp
 }
 
 std::optional<core::Vec2> Renderer::lastVisibleDepth() { return m_impl->depthRange->read(); }
+
+std::optional<VirtualPageStats> Renderer::lastVirtualPages() const { return m_impl->lastVirtual; }
 
 core::Status Renderer::moveInstances(const scene::Scene& scene, std::span<const uint32_t> moved) {
     Impl& r = *m_impl;

@@ -138,9 +138,11 @@ core::Result<Measurement> Measurer::measure(const frame::PreparedFrame& frame, c
         if (auto stats = renderer.render(inputs.camera, inputs.light, m.setup, settings); !stats)
             return stats.errorInfo();
         m.image = renderer.readColor();
+        m.virtualPages = renderer.lastVirtualPages(); // the frame's own pages, before the eval pass reuses them
     }
     auto raster = renderer.renderEvalBuffers(inputs.camera, inputs.light, m.setup, settings);
     if (!raster) return raster.errorInfo();
+    if (!options.shadedImage) m.virtualPages = renderer.lastVirtualPages();
     m.raster = std::move(raster).value();
     m.truth = truth(inputs.camera, inputs.light, settings.width, settings.height, options.truthProgress);
     auto comparison = eval::compare(m.raster, *m.truth, options.compare);
@@ -189,6 +191,10 @@ eval::ViewReport viewReport(const Measurement& m, const gl::RenderSettings& sett
     report.fallbacks = m.setup.fallbacks;
     report.visibleDepth = m.visibleDepth;
     report.figures = m.comparison.figures;
+    if (const auto& v = m.virtualPages)
+        report.virtualPages = eval::VirtualPagesReport{v->pagesRequested, v->pagesRendered, v->pagesResident,
+                                                       v->pagesFellBack,  v->poolPages,     v->poolBytes,
+                                                       v->triangles};
     for (const LightMeasurement& l : m.lights)
         report.lights.push_back({l.light, l.maps, l.skippedFaces, l.comparison.figures});
     return report;

@@ -8,6 +8,8 @@
 #include "shadowkit/eval/metrics.h"
 #include "shadowkit/eval/truth.h"
 
+#include <nlohmann/json_fwd.hpp>
+
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -21,6 +23,13 @@ struct LightReport {
     int maps = 1;         // maps drawn: cube faces kept for a point light
     int skippedFaces = 0; // point lights: faces that saw nothing of the view
     Figures figures;
+};
+
+// Technique virtual: a frame's pages (gl::VirtualPageStats, which eval does not see).
+struct VirtualPagesReport {
+    int pagesRequested = 0, pagesRendered = 0, pagesResident = 0, pagesFellBack = 0, poolPages = 0;
+    int64_t poolBytes = 0;
+    size_t shadowTriangles = 0; // drawn into the pages rendered
 };
 
 struct ViewReport {
@@ -40,7 +49,11 @@ struct ViewReport {
     Figures figures;                        // every light together (eval::combine); the sun's alone in a sunlit view
     std::vector<LightReport> lights;        // per light, when the view has spot or point lights
     double seconds = 0.0;                   // wall time of this view's evaluation
+    std::optional<VirtualPagesReport> virtualPages; // "virtual": technique virtual's pages
 };
+
+// {"pages_requested", ..., "shadow_triangles"}: the "virtual" object of a view or a path's frame.
+nlohmann::json virtualPagesJson(const VirtualPagesReport& pages);
 
 // {"views": [{view, technique, ..., valid_px, excluded_px, wrong_pct, ...}, ...]}
 std::string reportJson(const std::vector<ViewReport>& views);

@@ -25,6 +25,7 @@ struct VirtualPageStats {
     int pagesFellBack = 0;  // requested but not allocated (pool full): served by a coarser level
     int poolPages = 0;      // slots in the pool
     int64_t poolBytes = 0;  // the atlas's depth, 4 bytes a texel (guard bands included)
+    size_t triangles = 0;   // drawn into the pages rendered this frame
 };
 
 struct FrameStats {

@@ -74,6 +74,10 @@ public:
     // changing nothing, for an index out of range or of a static batch.
     core::Status moveInstances(const scene::Scene& scene, std::span<const uint32_t> moved);
 
+    // Technique virtual: the pages of the last frame drawn (render or renderEvalBuffers); nullopt
+    // when that frame had no virtual maps.
+    std::optional<VirtualPageStats> lastVirtualPages() const;
+
     // World bounds of every instance, from the instance hierarchy: O(1).
     core::Aabb wsSceneBounds() const;
 

@@ -65,6 +65,7 @@ struct Measurement {
     eval::Comparison comparison;
     std::vector<LightMeasurement> lights; // when the renderer has local lights: the sun (if on), then each
     scene::Image image;                   // the shaded frame, with MeasureOptions::shadedImage
+    std::optional<gl::VirtualPageStats> virtualPages; // technique virtual: the frame's pages
     const eval::Figures& figures() const { return comparison.figures; }
 };
 
