@@ -27,10 +27,10 @@ struct FrameRow {
     int frame = 0;
     double time = 0.0;
     eval::Figures figures;
-    std::optional<eval::TemporalFigures> temporal; // none for the first frame
-    std::optional<int> refittedViews;              // --stabilize with held lattices: maps refitted (pops)
-    std::optional<std::string> autoChoice;         // --technique auto: what it chose (core::describe)
-    double autoMilliseconds = 0.0;                 // and the CPU time of the choice (model + search)
+    std::optional<eval::TemporalFigures> temporal;    // none for the first frame
+    std::optional<int> refittedViews;                 // --stabilize with held lattices: maps refitted (pops)
+    std::optional<std::string> autoChoice;            // --technique auto: what it chose (core::describe)
+    double autoMilliseconds = 0.0;                    // and the CPU time of the choice (model + search)
     std::optional<gl::VirtualPageStats> virtualPages; // --technique virtual: the frame's pages
     double seconds = 0.0;
 };

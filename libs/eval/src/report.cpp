@@ -9,9 +9,12 @@
 namespace shadowkit::eval {
 
 nlohmann::json virtualPagesJson(const VirtualPagesReport& v) {
-    return {{"pages_requested", v.pagesRequested}, {"pages_rendered", v.pagesRendered},
-            {"pages_resident", v.pagesResident},   {"pages_fell_back", v.pagesFellBack},
-            {"pool_pages", v.poolPages},           {"pool_bytes", v.poolBytes},
+    return {{"pages_requested", v.pagesRequested},
+            {"pages_rendered", v.pagesRendered},
+            {"pages_resident", v.pagesResident},
+            {"pages_fell_back", v.pagesFellBack},
+            {"pool_pages", v.poolPages},
+            {"pool_bytes", v.poolBytes},
             {"shadow_triangles", v.shadowTriangles}};
 }
 

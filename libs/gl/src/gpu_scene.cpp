@@ -25,7 +25,33 @@ GpuScene::GpuScene(const scene::Scene& scene, std::span<const scene::MeshLods> l
         const scene::MeshLods& lod = lods[m];
         GpuMesh gpu;
         gpu.vertices = createBuffer(mesh.vertices.data(), mesh.vertices.size() * sizeof(scene::Vertex));
-        gpu.indices = createBuffer(lod.indices.data(), std::max<size_t>(lod.indices.size(), 1) * sizeof(uint32_t));
+        // Large levels reordered into spatial clusters (a range shared by both chains once).
+        std::vector<uint32_t> indices = lod.indices;
+        std::vector<std::pair<uint32_t, std::vector<scene::TriangleCluster>>> done;
+        auto clustersOf = [&](const std::vector<scene::LodLevel>& chain) {
+            std::vector<std::vector<scene::TriangleCluster>> out;
+            for (size_t l = 0; l < std::min(chain.size(), kMaxLodLevels); ++l) {
+                const scene::LodLevel& level = chain[l];
+                if (level.indexCount / 3 < kClusterMinTriangles) {
+                    out.emplace_back();
+                    continue;
+                }
+                const auto same =
+                    std::find_if(done.begin(), done.end(), [&](const auto& d) { return d.first == level.firstIndex; });
+                if (same != done.end()) {
+                    out.push_back(same->second);
+                    continue;
+                }
+                out.push_back(scene::clusterTriangles(mesh,
+                                                      std::span(indices).subspan(level.firstIndex, level.indexCount),
+                                                      level.firstIndex, static_cast<uint32_t>(kClusterTriangles)));
+                done.emplace_back(level.firstIndex, out.back());
+            }
+            return out;
+        };
+        gpu.cameraClusters = clustersOf(lod.camera);
+        gpu.shadowClusters = clustersOf(lod.shadow);
+        gpu.indices = createBuffer(indices.data(), std::max<size_t>(indices.size(), 1) * sizeof(uint32_t));
         gpu.camera = rangesOf(lod.camera);
         gpu.shadow = rangesOf(lod.shadow);
         GLuint vao = 0;
@@ -46,25 +72,44 @@ GpuScene::GpuScene(const scene::Scene& scene, std::span<const scene::MeshLods> l
     for (size_t b = 0; b < scene.batches.size(); ++b) {
         const scene::MeshBatch& batch = scene.batches[b];
         const auto count = static_cast<GLuint>(batch.worldFromObject.size());
-        if (count > 0 && !scene.meshes[batch.mesh].indices.empty())
+        if (count > 0 && !scene.meshes[batch.mesh].indices.empty()) {
             m_batches.push_back({batch.mesh,
                                  createBuffer(batch.worldFromObject.data(),
                                               batch.worldFromObject.size() * sizeof(glm::mat4), batch.dynamic),
-                                 firstInstance, b});
+                                 firstInstance,
+                                 b,
+                                 {}});
+            const GpuMesh& mesh = m_meshes[batch.mesh];
+            const auto clustered = [](const auto& levels) {
+                return std::any_of(levels.begin(), levels.end(), [](const auto& c) { return !c.empty(); });
+            };
+            if (clustered(mesh.cameraClusters) || clustered(mesh.shadowClusters))
+                m_batches.back().worldFromObject = batch.worldFromObject;
+        }
         firstInstance += count;
     }
 }
 
 void GpuScene::updateBatch(const scene::Scene& scene, size_t sceneBatch) {
-    for (const GpuBatch& batch : m_batches) {
+    for (GpuBatch& batch : m_batches) {
         if (batch.index != sceneBatch) continue;
         const std::vector<glm::mat4>& transforms = scene.batches[sceneBatch].worldFromObject;
+        if (!batch.worldFromObject.empty()) batch.worldFromObject = transforms;
         glNamedBufferSubData(batch.instances.id(), 0, static_cast<GLsizeiptr>(transforms.size() * sizeof(glm::mat4)),
                              transforms.data());
     }
 }
 
 DrawStats GpuScene::draw(const PassList& list, bool setInstanceBase, int replicas) const {
+    return drawBatches(list, setInstanceBase, replicas, nullptr);
+}
+
+DrawStats GpuScene::draw(const PassList& list, std::span<const visibility::HalfSpace> volume) const {
+    return drawBatches(list, false, 1, &volume);
+}
+
+DrawStats GpuScene::drawBatches(const PassList& list, bool setInstanceBase, int replicas,
+                                const std::span<const visibility::HalfSpace>* volume) const {
     DrawStats stats;
     for (const GpuBatch& batch : m_batches) {
         const GpuMesh& mesh = m_meshes[batch.mesh];
@@ -80,8 +125,40 @@ DrawStats GpuScene::draw(const PassList& list, bool setInstanceBase, int replica
                 glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kInstancesBinding, batch.instances.id());
                 bound = true;
             }
-            glUniform1ui(kInstanceOffsetLocation, list.offset + list.first[slot]);
             const Range& range = levels[level];
+            const auto& clusterLevels = list.shadow ? mesh.shadowClusters : mesh.cameraClusters;
+            if (volume && level < clusterLevels.size() && !clusterLevels[level].empty()) {
+                // Each instance alone, each run of clusters meeting the volume in one draw.
+                const std::vector<scene::TriangleCluster>& clusters = clusterLevels[level];
+                for (uint32_t k = 0; k < count; ++k) {
+                    const core::Mat4 worldFromObject(batch.worldFromObject[list.indices[list.first[slot] + k]]);
+                    glUniform1ui(kInstanceOffsetLocation, list.offset + list.first[slot] + k);
+                    size_t run = 0, runIndices = 0;
+                    auto flush = [&](size_t end) {
+                        if (runIndices == 0) return;
+                        glDrawElementsInstanced(
+                            GL_TRIANGLES, static_cast<GLsizei>(runIndices), GL_UNSIGNED_INT,
+                            reinterpret_cast<const void*>(clusters[run].firstIndex * sizeof(uint32_t)), 1);
+                        stats.triangles += runIndices / 3;
+                        ++stats.drawCalls;
+                        runIndices = 0;
+                        run = end;
+                    };
+                    for (size_t c = 0; c < clusters.size(); ++c) {
+                        if (visibility::isOutside(*volume,
+                                                  core::transformBounds(worldFromObject, clusters[c].osBounds))) {
+                            flush(c + 1);
+                            continue;
+                        }
+                        if (runIndices == 0) run = c;
+                        runIndices += clusters[c].indexCount;
+                    }
+                    flush(clusters.size());
+                    ++stats.instances;
+                }
+                continue;
+            }
+            glUniform1ui(kInstanceOffsetLocation, list.offset + list.first[slot]);
             // Camera passes move simplified receivers' shadow lookups by their error (main.vert).
             if (setInstanceBase) glUniform1f(kLodErrorLocation, range.objectError);
             glDrawElementsInstanced(GL_TRIANGLES, range.indexCount, GL_UNSIGNED_INT,

@@ -4,7 +4,9 @@
 #include "gl_object.h"
 #include "visibility.h"
 
+#include "shadowkit/scene/mesh_clusters.h"
 #include "shadowkit/scene/scene.h"
+#include "shadowkit/visibility/instance_hierarchy.h"
 
 #include <vector>
 
@@ -29,6 +31,12 @@ public:
     // of the evaluation. `replicas` > 1 draws every instance that many times in a row
     // (gl_InstanceID / replicas is the list entry): the layered cube pass's faces.
     DrawStats draw(const PassList& list, bool setInstanceBase = false, int replicas = 1) const;
+    // The same, where a large mesh's instance (kClusterMinTriangles or more at its level) draws
+    // only its triangle clusters whose boxes meet `volume`: a pass that sees a small part of a
+    // kilometre of terrain (a virtual map's page) draws that part. The same pixels as draw():
+    // the clusters left out lie wholly outside the pass's volume.
+    DrawStats draw(const PassList& list, std::span<const visibility::HalfSpace> volume) const;
+    static constexpr size_t kClusterMinTriangles = 16384, kClusterTriangles = 2048;
     // Uploads the transforms of Scene::batches[sceneBatch] again (a dynamic batch, whose
     // instances moved; other batches' buffers are immutable).
     void updateBatch(const scene::Scene& scene, size_t sceneBatch);
@@ -45,13 +53,18 @@ private:
         Buffer vertices, indices; // indices: every level of both chains
         VertexArray vertexArray;
         std::vector<Range> camera, shadow; // per level, at most kMaxLodLevels
+        // Per level of each chain: its triangles' spatial clusters (empty below kClusterMinTriangles).
+        std::vector<std::vector<scene::TriangleCluster>> cameraClusters, shadowClusters;
     };
     struct GpuBatch {
         size_t mesh = 0;
         Buffer instances;
-        GLuint firstInstance = 0; // global index over all batches
-        size_t index = 0;         // in Scene::batches (PassList's per-batch ranges)
+        GLuint firstInstance = 0;               // global index over all batches
+        size_t index = 0;                       // in Scene::batches (PassList's per-batch ranges)
+        std::vector<glm::mat4> worldFromObject; // kept on the CPU for clustered meshes only
     };
+    DrawStats drawBatches(const PassList& list, bool setInstanceBase, int replicas,
+                          const std::span<const visibility::HalfSpace>* volume) const;
     std::vector<GpuMesh> m_meshes;
     std::vector<GpuBatch> m_batches;
 };

@@ -107,9 +107,9 @@ struct Renderer::Impl {
     core::LocalLighting wsLocalLights; // the same as given: Renderer::localLights()
     core::Vec3 wsOrigin{0.0};          // Scene::wsOrigin: where the GPU's coordinates start
 
-    std::unique_ptr<VirtualPages> virtualPages; // technique virtual: the page pool
-    std::vector<PassList> pageLists;            // this frame's pages to render, one list each
-    std::vector<core::Aabb> movedBoxes;         // old and new boxes of instances moved since the last frame
+    std::unique_ptr<VirtualPages> virtualPages;  // technique virtual: the page pool
+    std::vector<PassList> pageLists;             // this frame's pages to render, one list each
+    std::vector<core::Aabb> movedBoxes;          // old and new boxes of instances moved since the last frame
     std::optional<VirtualPageStats> lastVirtual; // of the last frame's page pass
 
     std::vector<PassList> localLists; // LocalShadowMaps::listCount of them
@@ -534,7 +534,7 @@ PassStats Renderer::Impl::pagePass(const core::ShadowSetup& setup) {
         glClearNamedFramebufferfv(virtualPages->framebuffer().id(), GL_DEPTH, 0, &clearDepth);
         const DepthPassUniforms uniforms{.clipFromWorld = toFloat(pages[i].clipFromWorld)};
         glNamedBufferSubData(depthUniforms.id(), 0, sizeof uniforms, &uniforms);
-        const DrawStats draws = scene->draw(pageLists[i]);
+        const DrawStats draws = scene->draw(pageLists[i], visibility::clipVolume(pages[i].clipFromWorld, false));
         stats.instances += draws.instances;
         stats.triangles += draws.triangles;
         stats.drawCalls += draws.drawCalls;

@@ -192,9 +192,9 @@ eval::ViewReport viewReport(const Measurement& m, const gl::RenderSettings& sett
     report.visibleDepth = m.visibleDepth;
     report.figures = m.comparison.figures;
     if (const auto& v = m.virtualPages)
-        report.virtualPages = eval::VirtualPagesReport{v->pagesRequested, v->pagesRendered, v->pagesResident,
-                                                       v->pagesFellBack,  v->poolPages,     v->poolBytes,
-                                                       v->triangles};
+        report.virtualPages =
+            eval::VirtualPagesReport{v->pagesRequested, v->pagesRendered, v->pagesResident, v->pagesFellBack,
+                                     v->poolPages,      v->poolBytes,     v->triangles};
     for (const LightMeasurement& l : m.lights)
         report.lights.push_back({l.light, l.maps, l.skippedFaces, l.comparison.figures});
     return report;

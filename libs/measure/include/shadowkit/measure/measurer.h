@@ -63,8 +63,8 @@ struct Measurement {
     // Per-pixel classes and the figures: of the sun, or with spot and point lights of every
     // light together (eval::combine; `lights` holds each).
     eval::Comparison comparison;
-    std::vector<LightMeasurement> lights; // when the renderer has local lights: the sun (if on), then each
-    scene::Image image;                   // the shaded frame, with MeasureOptions::shadedImage
+    std::vector<LightMeasurement> lights;             // when the renderer has local lights: the sun (if on), then each
+    scene::Image image;                               // the shaded frame, with MeasureOptions::shadedImage
     std::optional<gl::VirtualPageStats> virtualPages; // technique virtual: the frame's pages
     const eval::Figures& figures() const { return comparison.figures; }
 };
