@@ -328,8 +328,11 @@ void Renderer::Impl::collectVisible(const core::PerspectiveCamera& camera, const
         pageLists.resize(pages.size());
         const double slotTexels = setup.clipmap->pageTexels + 2.0 * guardTexelsFor(settings.filter, bias);
         for (size_t i = 0; i < pages.size(); ++i) {
+            // Levels by the page's own texels only, not by the camera: a page must hold the same
+            // depths whenever it is drawn, or a page redrawn after a mover would differ from its
+            // cached neighbours (and its texels already match the pixels it serves).
             const LodChoice lod{
-                {pages[i].clipFromWorld, 0.5 * slotTexels, settings.lodTexelError}, cameraProjection, true};
+                {pages[i].clipFromWorld, 0.5 * slotTexels, settings.lodTexelError}, std::nullopt, true};
             visibility->collect(visibility::clipVolume(pages[i].clipFromWorld, false), cull,
                                 settings.lod ? &lod : nullptr, pageLists[i]);
             lists.push_back(&pageLists[i]);
