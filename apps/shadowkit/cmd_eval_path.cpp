@@ -32,6 +32,7 @@ struct FrameRow {
     std::optional<std::string> autoChoice;            // --technique auto: what it chose (core::describe)
     double autoMilliseconds = 0.0;                    // and the CPU time of the choice (model + search)
     std::optional<gl::VirtualPageStats> virtualPages; // --technique virtual: the frame's pages
+    size_t shadowTriangles = 0;                       // drawn by the frame's sun shadow pass
     double seconds = 0.0;
 };
 
@@ -129,6 +130,7 @@ int runEvalPath(const EvalPathArgs& args) {
         FrameRow row{frame.number, frame.time, measured->measurement.figures()};
         row.temporal = measured->temporal;
         row.virtualPages = measured->measurement.virtualPages;
+        row.shadowTriangles = measured->measurement.shadowPass.triangles;
         if (prepared.refits) {
             refits += prepared.refits->views > 0;
             toCover += prepared.refits->toCover, stale += prepared.refits->stale;
@@ -232,7 +234,8 @@ int runEvalPath(const EvalPathArgs& args) {
                                 {"time_s", r.time},
                                 {"valid_px", r.figures.validPx},
                                 {"wrong_pct", r.figures.wrongPct},
-                                {"pixels_per_texel_p50", r.figures.pixelsPerTexelP50}};
+                                {"pixels_per_texel_p50", r.figures.pixelsPerTexelP50},
+                                {"shadow_triangles", r.shadowTriangles}};
             if (r.temporal)
                 j.update({{"compared_px", r.temporal->comparedPx},
                           {"flicker_pct", r.temporal->flickerPct},

@@ -111,6 +111,7 @@ struct Renderer::Impl {
     std::vector<PassList> pageLists;             // this frame's pages to render, one list each
     std::vector<core::Aabb> movedBoxes;          // old and new boxes of instances moved since the last frame
     std::optional<VirtualPageStats> lastVirtual; // of the last frame's page pass
+    PassStats lastShadow;                        // the last sun shadow pass (its GPU time not read)
 
     std::vector<PassList> localLists; // LocalShadowMaps::listCount of them
     int evalLight = -1;               // the eval pass's light (renderEvalBuffers)
@@ -331,8 +332,7 @@ void Renderer::Impl::collectVisible(const core::PerspectiveCamera& camera, const
             // Levels by the page's own texels only, not by the camera: a page must hold the same
             // depths whenever it is drawn, or a page redrawn after a mover would differ from its
             // cached neighbours (and its texels already match the pixels it serves).
-            const LodChoice lod{
-                {pages[i].clipFromWorld, 0.5 * slotTexels, settings.lodTexelError}, std::nullopt, true};
+            const LodChoice lod{{pages[i].clipFromWorld, 0.5 * slotTexels, settings.lodTexelError}, std::nullopt, true};
             visibility->collect(visibility::clipVolume(pages[i].clipFromWorld, false), cull,
                                 settings.lod ? &lod : nullptr, pageLists[i]);
             lists.push_back(&pageLists[i]);
@@ -447,13 +447,13 @@ core::Result<PassStats> Renderer::Impl::localPass(const RenderSettings& settings
 }
 
 PassStats Renderer::Impl::shadowPass(const core::ShadowSetup& setup, const RenderSettings& settings) {
+    lastVirtual.reset();
     // Night: no sun, no sun maps (the camera passes do not read them).
     if (!settings.sun) {
         shadowTimer.begin();
         shadowTimer.end();
         return {};
     }
-    lastVirtual.reset();
     if (setup.clipmap) {
         const PassStats stats = pagePass(setup);
         lastVirtual = virtualPages->stats();
@@ -648,7 +648,7 @@ core::Result<FrameStats> Renderer::render(const core::PerspectiveCamera& wsCamer
         if (auto s = checkComplete(r.color->framebuffer, "main pass"); !s) return s.errorInfo();
     }
     FrameStats stats;
-    stats.shadow = r.shadowPass(setup, settings);
+    stats.shadow = r.lastShadow = r.shadowPass(setup, settings);
     auto local = r.localPass(settings);
     if (!local) return local.errorInfo();
     stats.local = *local;
@@ -706,7 +706,7 @@ core::Result<core::RasterBuffers> Renderer::renderEvalBuffers(const core::Perspe
         return core::makeError("renderer: local light " + std::to_string(localLight) + " does not exist (" +
                                std::to_string(r.localLights.size()) + " set)");
     if (auto s = r.prepare(camera, light, setup, settings); !s) return s.errorInfo();
-    r.shadowPass(setup, settings);
+    r.lastShadow = r.shadowPass(setup, settings);
     if (auto s = r.localPass(settings); !s) return s.errorInfo();
     r.evalLight = localLight;
     const core::Status evaluated = r.evalPass(camera, light, setup, settings);
@@ -739,6 +739,8 @@ core::Result<std::optional<core::Vec2>> Renderer::visibleDepth(const core::Persp
 std::optional<core::Vec2> Renderer::lastVisibleDepth() { return m_impl->depthRange->read(); }
 
 std::optional<VirtualPageStats> Renderer::lastVirtualPages() const { return m_impl->lastVirtual; }
+
+PassStats Renderer::lastShadowPass() const { return m_impl->lastShadow; }
 
 core::Status Renderer::moveInstances(const scene::Scene& scene, std::span<const uint32_t> moved) {
     Impl& r = *m_impl;

@@ -139,10 +139,11 @@ core::Result<Measurement> Measurer::measure(const frame::PreparedFrame& frame, c
             return stats.errorInfo();
         m.image = renderer.readColor();
         m.virtualPages = renderer.lastVirtualPages(); // the frame's own pages, before the eval pass reuses them
+        m.shadowPass = renderer.lastShadowPass();
     }
     auto raster = renderer.renderEvalBuffers(inputs.camera, inputs.light, m.setup, settings);
     if (!raster) return raster.errorInfo();
-    if (!options.shadedImage) m.virtualPages = renderer.lastVirtualPages();
+    if (!options.shadedImage) m.virtualPages = renderer.lastVirtualPages(), m.shadowPass = renderer.lastShadowPass();
     m.raster = std::move(raster).value();
     m.truth = truth(inputs.camera, inputs.light, settings.width, settings.height, options.truthProgress);
     auto comparison = eval::compare(m.raster, *m.truth, options.compare);

@@ -77,6 +77,9 @@ public:
     // Technique virtual: the pages of the last frame drawn (render or renderEvalBuffers); nullopt
     // when that frame had no virtual maps.
     std::optional<VirtualPageStats> lastVirtualPages() const;
+    // What the last frame's sun shadow pass drew (render or renderEvalBuffers); its GPU time is
+    // left 0 here (render's FrameStats has it).
+    PassStats lastShadowPass() const;
 
     // World bounds of every instance, from the instance hierarchy: O(1).
     core::Aabb wsSceneBounds() const;

@@ -66,6 +66,7 @@ struct Measurement {
     std::vector<LightMeasurement> lights;             // when the renderer has local lights: the sun (if on), then each
     scene::Image image;                               // the shaded frame, with MeasureOptions::shadedImage
     std::optional<gl::VirtualPageStats> virtualPages; // technique virtual: the frame's pages
+    gl::PassStats shadowPass;                         // what the frame's sun shadow pass drew
     const eval::Figures& figures() const { return comparison.figures; }
 };
 
