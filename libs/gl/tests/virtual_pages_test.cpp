@@ -172,3 +172,44 @@ TEST_F(VirtualPagesTest, ATinyPoolFallsBackToCoarserLevelsSaysSoAndNeverShowsAno
     ASSERT_TRUE(renderer);
     EXPECT_FALSE((*renderer)->render(cam, kSun, setup, settings));
 }
+
+TEST_F(VirtualPagesTest, MovingThePageBordersChangesNoShadowForAnyFilter) {
+    // The page grid shifted by 1/8 m along both light-space axes: a whole number of texels at
+    // every level here (texels of 2^-9 .. 2^-5 m), so the texel lattices stay put, but every
+    // page border moves. A lookup that read across a border without its guard band would now
+    // differ along the old or the new borders.
+    const scene::Scene s = boxesOverPlane();
+    const core::PerspectiveCamera cam = camera(0.0);
+    gl::RenderSettings settings = smallFrame();
+    settings.width = settings.height = 192;
+    core::ShadowSetupInputs in{.camera = cam, .light = kSun, .wsSceneBounds = s.wsBounds()};
+    in.technique = core::Technique::Virtual;
+    in.virtualMaps.imageHeight = settings.height;
+    in.virtualMaps.virtualTexels = 4096;
+    in.virtualMaps.firstLevel = -9;
+    const core::ShadowSetup a = core::computeShadowSetup(in).value();
+    ASSERT_LE(a.views.size(), 5u); // 1/8 m is a whole number of texels up to 2^-5 m
+    const core::Mat4& r = a.clipmap->lightFromWorldRotation;
+    const core::Vec3 lightX(r[0][0], r[1][0], r[2][0]), lightY(r[0][1], r[1][1], r[2][1]); // rows of R
+    in.wsGridOrigin = 0.125 * (lightX + lightY);
+    const core::ShadowSetup b = core::computeShadowSetup(in).value();
+    ASSERT_EQ(a.views.size(), b.views.size());
+    for (const auto& [kind, taps] : {std::pair{core::ShadowFilter::Hard, 1},
+                                     {core::ShadowFilter::Pcf2, 1},
+                                     {core::ShadowFilter::PcfGrid, 3},
+                                     {core::ShadowFilter::Poisson, 16}}) {
+        settings.filter = {kind, taps, 2.0f};
+        auto ra = gl::Renderer::create(s), rb = gl::Renderer::create(s);
+        ASSERT_TRUE(ra && rb);
+        const auto ba = (*ra)->renderEvalBuffers(cam, kSun, a, settings);
+        const auto bb = (*rb)->renderEvalBuffers(cam, kSun, b, settings);
+        ASSERT_TRUE(ba && bb);
+        int differ = 0, shadowed = 0;
+        for (size_t i = 0; i < ba->shadowTerm.size(); ++i) {
+            differ += std::abs(ba->shadowTerm[i] - bb->shadowTerm[i]) > 0.02f;
+            shadowed += ba->shadowTerm[i] < 0.5f;
+        }
+        EXPECT_GT(shadowed, 200);
+        EXPECT_LE(differ, 2) << "filter " << int(kind) << ": " << differ << " pixels changed with the page borders";
+    }
+}
