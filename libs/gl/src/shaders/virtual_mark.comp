@@ -1,8 +1,8 @@
 // Virtual shadow maps' page marking (virtual_pages.h): every pixel of the camera's depth
 // pre-pass is a visible receiver; it requests the page of the level its footprint picks
 // (skVirtualLevelRule in glsl/shadowkit_shadows.glsl, core::clipmapLevelFor) — or of the first
-// coarser level whose window holds it — and the same page of the next coarser level, the
-// fallback a full pool serves it from. Pages within the lookup's reach of the receiver's texel
+// coarser level whose window holds it —, the same page of the next coarser level, the fallback
+// a full pool serves it from, and its page of the coarsest level, the fallback of last resort. Pages within the lookup's reach of the receiver's texel
 // are requested too (a corner touches four), so a filter or a float rounding that lands the
 // lookup in a neighbouring page finds it resident. One bit per page of each level's window.
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -62,6 +62,10 @@ void main() {
     for (int level = levelRule(z); level < levels; ++level) {
         if (!request(level, ws)) continue;
         if (level + 1 < levels) request(level + 1, ws);
+        // And the coarsest level's, which holds the whole scene box: a few dozen pages for a
+        // view, allocated first, so a pool too small for the finer ones still shadows every
+        // receiver, coarsely, instead of leaving it lit.
+        if (level + 2 < levels) request(levels - 1, ws);
         return;
     }
 }
