@@ -20,6 +20,7 @@ eval_to csm-1024 --technique csm --cascades 4 --map-size 1024
 eval_to csm-1024-lispsm --technique csm --cascades 4 --map-size 1024 --cascade-warp lispsm
 eval_to csm-2048 --technique csm --cascades 4 --map-size 2048
 eval_to csm-2048-lispsm --technique csm --cascades 4 --map-size 2048 --cascade-warp lispsm
+eval_to virtual --technique virtual
 # Visible depth (a GPU min/max reduction of the camera's depth pre-pass) for n and splits.
 eval_to lispsm-visible --technique lispsm --map-size 2048 --visible-depth auto
 eval_to lispsm-visible-near --technique lispsm --map-size 2048 --visible-depth auto --lispsm-visible-near
@@ -29,7 +30,8 @@ tables="python3 tools/readme_tables.py --into"
 $tables README.md:readme-summary summary --first-column 'set-up (texel memory)' \
     '`standard` 2048² (4 M texels)='$out/standard.json '`focused` 2048²='$out/focused.json '`psm` 2048²='$out/psm.json \
     '`tsm` 2048²='$out/tsm.json '`lispsm` 2048²='$out/lispsm.json '`csm` 4 × 1024² (4 M texels)='$out/csm-1024.json \
-    '`csm` 4 × 2048², per-split LiSPSM (16 M texels)='$out/csm-2048-lispsm.json
+    '`csm` 4 × 2048², per-split LiSPSM (16 M texels)='$out/csm-2048-lispsm.json \
+    '`virtual` 16k² clipmap (pool of 16 M texels)='$out/virtual.json
 $tables docs/techniques.md:techniques summary '`standard`='$out/standard.json '`focused`='$out/focused.json \
     '`psm`='$out/psm.json '`tsm`='$out/tsm.json '`lispsm`='$out/lispsm.json
 $tables docs/techniques.md:details details '`standard`='$out/standard.json '`focused`='$out/focused.json \
@@ -37,7 +39,8 @@ $tables docs/techniques.md:details details '`standard`='$out/standard.json '`foc
 $tables docs/cascades.md:cascades summary --first-column 'set-up (texel memory)' \
     '`tsm` 1 × 2048² (4 M texels)='$out/tsm.json '`lispsm` 1 × 2048²='$out/lispsm.json \
     '`csm` 4 × 1024² (4 M texels)='$out/csm-1024.json '`csm` 4 × 1024², per-split LiSPSM='$out/csm-1024-lispsm.json \
-    '`csm` 4 × 2048² (16 M texels)='$out/csm-2048.json '`csm` 4 × 2048², per-split LiSPSM='$out/csm-2048-lispsm.json
+    '`csm` 4 × 2048² (16 M texels)='$out/csm-2048.json '`csm` 4 × 2048², per-split LiSPSM='$out/csm-2048-lispsm.json \
+    '`virtual` (pool of 16 M texels)='$out/virtual.json
 $tables docs/techniques.md:visible-depth summary --first-column 'set-up' \
     '`lispsm`='$out/lispsm.json '`lispsm --visible-depth auto`='$out/lispsm-visible.json \
     '`lispsm --visible-depth auto --lispsm-visible-near`='$out/lispsm-visible-near.json \
