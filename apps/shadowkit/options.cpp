@@ -501,6 +501,7 @@ core::Result<core::ShadowSetupInputs> TechniqueOptions::inputsFor(const scene::R
             depthLayout == LayoutChoice::Linear ? core::DepthLayout::Linear : core::DepthLayout::Hyperbolic;
     in.cascades = cascades;
     in.virtualMaps = virtualMaps;
+    if (view.height > 0) in.virtualMaps.imageHeight = view.height; // a pixel's footprint: the level rule
     if (holdsLattices()) in.cascades.stabilize = false; // held by core::SetupHysteresis, not snapped
     if (!splits.empty() && !parseNumbers(splits, ',', in.cascades.splits))
         return core::makeError(fmt::format("--splits: expected comma-separated distances, got '{}'", splits));
