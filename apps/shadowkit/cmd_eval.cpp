@@ -166,8 +166,11 @@ int runEval(const EvalArgs& args) {
                        l.skippedFaces ? fmt::format(", {} faces skipped", l.skippedFaces) : "");
         std::fflush(stdout);
         if (!args.report.empty()) {
-            const std::string label = fmt::format(
-                "{} {}{}²", report.technique, report.maps > 1 ? fmt::format("{} × ", report.maps) : "", report.mapSize);
+            const std::string label =
+                report.virtualPages
+                    ? fmt::format("{}, {} pages", report.technique, report.virtualPages->pagesResident)
+                    : fmt::format("{} {}{}²", report.technique, report.maps > 1 ? fmt::format("{} × ", report.maps) : "",
+                                  report.mapSize);
             auto entry =
                 reportEntry(*measured, report, prepared->inputs.light, prepared->settings.sun, args.report, name, label,
                             invocationWithout(

@@ -117,8 +117,12 @@ void writePicture(std::ostringstream& out, const HtmlPicture& p, const std::stri
 }
 
 std::string settingsText(const ViewReport& r) {
-    std::string text = r.technique + ", " + std::to_string(r.maps) + " × " + std::to_string(r.mapSize) +
-                       "², bias slope " + fixed(r.bias.slope, 2) + " / constant " + fixed(r.bias.constant, 2) +
+    // A virtual clipmap's levels are not maps of their own: say how many pages it kept.
+    const std::string maps = r.virtualPages ? std::to_string(r.maps) + " levels of " + std::to_string(r.mapSize) +
+                                                  "² virtual texels, " + std::to_string(r.virtualPages->pagesResident) +
+                                                  " pages resident"
+                                            : std::to_string(r.maps) + " × " + std::to_string(r.mapSize) + "²";
+    std::string text = r.technique + ", " + maps + ", bias slope " + fixed(r.bias.slope, 2) + " / constant " + fixed(r.bias.constant, 2) +
                        " / normal offset " + fixed(r.bias.normalOffset, 2) + ", filter " + r.filter + ", " +
                        std::to_string(r.width) + " × " + std::to_string(r.height) + ", scene " + r.scene + " (seed " +
                        std::to_string(r.seed) + ")";
