@@ -169,8 +169,8 @@ int runEval(const EvalArgs& args) {
             const std::string label =
                 report.virtualPages
                     ? fmt::format("{}, {} pages", report.technique, report.virtualPages->pagesResident)
-                    : fmt::format("{} {}{}²", report.technique, report.maps > 1 ? fmt::format("{} × ", report.maps) : "",
-                                  report.mapSize);
+                    : fmt::format("{} {}{}²", report.technique,
+                                  report.maps > 1 ? fmt::format("{} × ", report.maps) : "", report.mapSize);
             auto entry =
                 reportEntry(*measured, report, prepared->inputs.light, prepared->settings.sun, args.report, name, label,
                             invocationWithout(

@@ -502,7 +502,7 @@ core::Result<core::ShadowSetupInputs> TechniqueOptions::inputsFor(const scene::R
     in.cascades = cascades;
     in.virtualMaps = virtualMaps;
     if (view.height > 0) in.virtualMaps.imageHeight = view.height; // a pixel's footprint: the level rule
-    if (holdsLattices()) in.cascades.stabilize = false; // held by core::SetupHysteresis, not snapped
+    if (holdsLattices()) in.cascades.stabilize = false;            // held by core::SetupHysteresis, not snapped
     if (!splits.empty() && !parseNumbers(splits, ',', in.cascades.splits))
         return core::makeError(fmt::format("--splits: expected comma-separated distances, got '{}'", splits));
     if (!visibleDepth.empty() && !visibleDepthFromFrame()) {
