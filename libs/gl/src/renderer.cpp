@@ -310,24 +310,14 @@ void Renderer::Impl::collectVisible(const core::PerspectiveCamera& camera, const
     if (virtualMaps && settings.sun) {
         // The pages the visible receivers request; each draws the casters in its own volume
         // (extended towards the light), at levels of detail for its own texels.
-        const PageContent content{.lightFromWorldRotation = setup.clipmap->lightFromWorldRotation,
-                                  .wsGridOrigin = setup.clipmap->wsGridOrigin,
-                                  .zNear = setup.clipmap->zNear,
-                                  .zFar = setup.clipmap->zFar,
-                                  .pageTexels = setup.clipmap->pageTexels,
-                                  .guardTexels = guardTexelsFor(settings.filter, bias),
-                                  .slopeBias = static_cast<float>(bias.slope),
-                                  .constantBias = static_cast<float>(bias.constant),
-                                  .cull = static_cast<int>(bias.cull),
-                                  .lod = settings.lod,
-                                  .lodTexelError = settings.lodTexelError};
-        virtualPages->request(*cameraDepth, camera, setup, content, movedBoxes,
-                              lookupReachTexels(settings.filter, bias));
+        const int guard = guardTexelsFor(settings.filter, bias);
+        virtualPages->request(*cameraDepth, camera, setup, pageContentOf(*setup.clipmap, guard, bias, settings),
+                              movedBoxes, lookupReachTexels(settings.filter, bias));
         movedBoxes.clear();
         cullGlTimes += virtualPages->glTimes();
         const auto pages = virtualPages->pagesToRender();
         pageLists.resize(pages.size());
-        const double slotTexels = setup.clipmap->pageTexels + 2.0 * guardTexelsFor(settings.filter, bias);
+        const double slotTexels = setup.clipmap->pageTexels + 2.0 * guard;
         for (size_t i = 0; i < pages.size(); ++i) {
             // Levels by the page's own texels only, not by the camera: a page must hold the same
             // depths whenever it is drawn, or a page redrawn after a mover would differ from its

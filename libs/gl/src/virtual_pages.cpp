@@ -16,6 +16,21 @@ const core::ClipmapLevel& levelOf(const core::ShadowView& view) { return std::ge
 
 } // namespace
 
+PageContent pageContentOf(const core::VirtualClipmap& clipmap, int guardTexels, const core::BiasSettings& bias,
+                          const RenderSettings& settings) {
+    return {.lightFromWorldRotation = clipmap.lightFromWorldRotation,
+            .wsGridOrigin = clipmap.wsGridOrigin,
+            .zNear = clipmap.zNear,
+            .zFar = clipmap.zFar,
+            .pageTexels = clipmap.pageTexels,
+            .guardTexels = guardTexels,
+            .slopeBias = static_cast<float>(bias.slope),
+            .constantBias = static_cast<float>(bias.constant),
+            .cull = static_cast<int>(bias.cull),
+            .lod = settings.lod,
+            .lodTexelError = settings.lodTexelError};
+}
+
 core::Result<std::unique_ptr<VirtualPages>> VirtualPages::create() {
     auto pages = std::unique_ptr<VirtualPages>(new VirtualPages);
     auto program = buildComputeProgram("virtual page marking", {shaders::kVirtualMarkComp});

@@ -18,6 +18,7 @@
 #include "shadowkit/core/shadow_setup.h"
 #include "shadowkit/core/virtual_clipmap.h"
 #include "shadowkit/gl/frame_stats.h"
+#include "shadowkit/gl/render_settings.h"
 
 #include <cstdint>
 #include <memory>
@@ -39,6 +40,10 @@ struct PageContent {
     double lodTexelError = 0.0;
     bool operator==(const PageContent&) const = default;
 };
+// What pages drawn for `clipmap` with a guard band of `guardTexels` hold under this bias and
+// these levels of detail.
+PageContent pageContentOf(const core::VirtualClipmap& clipmap, int guardTexels, const core::BiasSettings& bias,
+                          const RenderSettings& settings);
 
 class VirtualPages {
 public:
