@@ -189,6 +189,7 @@ struct SkVirtualMaps {
     int slotsPerRow;         // atlas slots per row
     vec2 atlasTexels;        // the atlas's width and height
     float virtualTexels;     // texels per side of a level (pagesPerSide · pageTexels)
+    float blendBand;         // [0, 1): the last fraction of each level's footprints fades into the next
 };
 
 // The level rule of core::clipmapLevelFor: the largest texel no larger than the pixel's footprint.
@@ -202,8 +203,8 @@ int skVirtualLevelRule(SkVirtualMaps v, float viewDepth) {
 // first coarser one with the receiver's page resident (a page not resident — the pool full, or
 // the rule's level not reaching as far as a narrow view — falls back to the coarser level, which
 // the marking always requests too). False when no level has it: lit, as outside any map.
-bool skVirtualPage(usampler2D pageTable, SkVirtualMaps v, float viewDepth, vec3 ws, out int level, out vec4 atlasFromMap) {
-    for (level = skVirtualLevelRule(v, viewDepth); level < v.levels; ++level) {
+bool skVirtualPageFrom(usampler2D pageTable, SkVirtualMaps v, int first, vec3 ws, out int level, out vec4 atlasFromMap) {
+    for (level = first; level < v.levels; ++level) {
         const vec4 t = SK_VIRTUAL_LEVEL_FROM_WORLD(level) * vec4(ws, 1.0);
         const vec2 uv = t.xy / t.w;
         if (any(lessThan(uv, vec2(0.0))) || any(greaterThanEqual(uv, vec2(1.0)))) continue;
@@ -219,6 +220,9 @@ bool skVirtualPage(usampler2D pageTable, SkVirtualMaps v, float viewDepth, vec3 
     }
     return false;
 }
+bool skVirtualPage(usampler2D pageTable, SkVirtualMaps v, float viewDepth, vec3 ws, out int level, out vec4 atlasFromMap) {
+    return skVirtualPageFrom(pageTable, v, skVirtualLevelRule(v, viewDepth), ws, level, atlasFromMap);
+}
 
 // The lit fraction of a receiver in a virtual clipmap; o.mapTexels is virtualTexels. The pages
 // store clip depth, linear in an orthographic map: o.linearDepth is ignored.
@@ -228,6 +232,16 @@ float skVirtualShadow(sampler2DArrayShadow atlas, usampler2D pageTable, SkVirtua
     int level;
     vec4 atlasFromMap;
     if (!skVirtualPage(pageTable, v, viewDepth, ws, level, atlasFromMap)) return 1.0;
-    return skShadowMapIn(atlas, 0, SK_VIRTUAL_LEVEL_FROM_WORLD(level), vec4(0.0), o, atlasFromMap, ws, n, dwsdx, dwsdy);
+    float term = skShadowMapIn(atlas, 0, SK_VIRTUAL_LEVEL_FROM_WORLD(level), vec4(0.0), o, atlasFromMap, ws, n, dwsdx, dwsdy);
+    // Blend band (as cascades'): where the footprint nears the next level's texel, fade into that
+    // level, so resolution changes smoothly with view depth instead of at a line that moves with
+    // the camera. Only from the rule's own level (a fallback is already coarser).
+    const float e = log2(max(viewDepth * v.footprintPerMetre, 1e-30)) + v.lodBias - float(v.firstExponent + level);
+    const float w = v.blendBand > 0.0 ? clamp((e - (1.0 - v.blendBand)) / v.blendBand, 0.0, 1.0) : 0.0;
+    int next;
+    vec4 nextFromMap;
+    if (w > 0.0 && e < 1.0 && skVirtualPageFrom(pageTable, v, level + 1, ws, next, nextFromMap))
+        term = mix(term, skShadowMapIn(atlas, 0, SK_VIRTUAL_LEVEL_FROM_WORLD(next), vec4(0.0), o, nextFromMap, ws, n, dwsdx, dwsdy), w);
+    return term;
 }
 #endif

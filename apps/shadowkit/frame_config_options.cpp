@@ -27,6 +27,7 @@ core::Result<frame::FrameConfig> frameConfigOf(const TechniqueOptions& technique
     s.receiverMask = render.receiverMask;
     s.lod = !render.noLod;
     s.virtualPoolPages = technique.virtualPoolPages;
+    s.virtualBlendBand = technique.virtualBlendBand;
     s.localPass = lights.pass;
     s.localBias = lights.bias;
     config.fogDensity = render.fog;

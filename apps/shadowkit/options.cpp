@@ -222,6 +222,7 @@ constexpr std::pair<std::string_view, std::string_view> kFlagOfField[] = {
     {"virtual.first_level", "--virtual-first-level"},
     {"virtual.lod_bias", "--virtual-lod-bias"},
     {"virtual.pool_pages", "--virtual-pool-pages"},
+    {"virtual.blend_band", "--virtual-blend-band"},
     {"bias.slope", "--bias-slope"},
     {"bias.constant", "--bias-constant"},
     {"bias.normal_offset", "--normal-offset"},
@@ -408,6 +409,9 @@ void TechniqueOptions::addTo(CLI::App& cmd) {
     cmd.add_option("--virtual-lod-bias", virtualMaps.lodBias,
                    "virtual: levels added to the level rule (+1 halves the resolution everywhere)")
         ->capture_default_str();
+    cmd.add_option("--virtual-blend-band", virtualBlendBand,
+                   "virtual: the last fraction of each level's footprints faded into the next coarser level, [0, 1)")
+        ->capture_default_str();
     cmd.add_option("--virtual-pool-pages", virtualPoolPages,
                    "virtual: pages in the physical pool (0: as many as fit 64 MiB of depth)")
         ->capture_default_str();
@@ -443,6 +447,9 @@ core::Status TechniqueOptions::check(bool measuresFrames, bool takesAuto) const 
     // The camera-independent checks only: the view is not resolved yet.
     if (auto s = core::validateOptions(*in); !s) return withFlagName(s.errorInfo());
     if (auto s = core::validate(hysteresis); !s) return withFlagName(s.errorInfo());
+    if (!(virtualBlendBand >= 0.0f && virtualBlendBand < 1.0f))
+        return core::makeError("--virtual-blend-band: must be a fraction in [0, 1), got " +
+                               std::to_string(virtualBlendBand));
     if (virtualPoolPages < 0)
         return core::makeError("--virtual-pool-pages: must be >= 0 (0: as many as fit 64 MiB), got " +
                                std::to_string(virtualPoolPages));

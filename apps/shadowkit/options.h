@@ -68,6 +68,7 @@ struct TechniqueOptions {
     core::HysteresisOptions hysteresis; // --stabilize-margin, --stabilize-growth
     core::VirtualOptions virtualMaps;   // --virtual-*: the clipmap (its image height is each frame's)
     int virtualPoolPages = 0;           // --virtual-pool-pages (gl::RenderSettings::virtualPoolPages)
+    float virtualBlendBand = 0.0f;      // --virtual-blend-band (gl::RenderSettings::virtualBlendBand)
 
     // --stabilize holds texel lattices (core::SetupHysteresis) for every technique but
     // unwarped cascades, which snap their own texels (CascadeOptions::stabilize).

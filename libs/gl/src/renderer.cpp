@@ -406,6 +406,8 @@ core::Status Renderer::Impl::prepare(const core::PerspectiveCamera& camera, cons
         if (settings.virtualPoolPages < 0)
             return core::fieldError("virtual.pool_pages", "must be >= 0 (0: as many as fit 64 MiB), got " +
                                                               std::to_string(settings.virtualPoolPages));
+        if (!(settings.virtualBlendBand >= 0.0f && settings.virtualBlendBand < 1.0f))
+            return core::fieldError("virtual.blend_band", "must be a fraction in [0, 1)");
         if (auto s = virtualPages->configure(settings.virtualPoolPages, setup.clipmap->pageTexels,
                                              guardTexelsFor(settings.filter, bias));
             !s)
@@ -573,7 +575,7 @@ void Renderer::Impl::uploadFrame(const core::PerspectiveCamera& camera, const co
     glNamedBufferSubData(frameUniforms.id(), 0, sizeof frame, &frame);
     glBindBufferBase(GL_UNIFORM_BUFFER, kFrameBinding, frameUniforms.id());
     if (setup.clipmap)
-        virtualPages->bind(setup);
+        virtualPages->bind(setup, settings.virtualBlendBand);
     else {
         virtualPages->bindDisabled();
         if (shadow) glBindTextureUnit(kShadowMapUnit, shadow->depth.id());

@@ -60,6 +60,7 @@ std::span<const UniformField> virtualMapsFields() {
         UniformField{"virtualSlotsPerRow", offsetof(VirtualMapsUniforms, slotsPerRow)},
         UniformField{"virtualTexels", offsetof(VirtualMapsUniforms, virtualTexels)},
         UniformField{"virtualAtlasTexels", offsetof(VirtualMapsUniforms, atlasTexels)},
+        UniformField{"virtualBlendBand", offsetof(VirtualMapsUniforms, blendBand)},
     };
     return kFields;
 }

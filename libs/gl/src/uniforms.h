@@ -139,6 +139,8 @@ struct VirtualMapsUniforms { // GLSL: VirtualMaps (frame.glsl); SkVirtualMaps in
     int32_t slotsPerRow;
     float virtualTexels;
     glm::vec2 atlasTexels; // width, height
+    float blendBand;       // RenderSettings::virtualBlendBand
+    float pad0, pad1, pad2;
 };
 
 struct VirtualMarkUniforms { // GLSL: VirtualMark (virtual_mark.comp)

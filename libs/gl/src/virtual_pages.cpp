@@ -246,7 +246,7 @@ void VirtualPages::rendered(const core::ShadowSetup& setup) {
                         m_table.data());
 }
 
-void VirtualPages::bind(const core::ShadowSetup& setup) const {
+void VirtualPages::bind(const core::ShadowSetup& setup, float blendBand) const {
     const core::VirtualClipmap& c = *setup.clipmap;
     VirtualMapsUniforms u{};
     u.enabled = 1;
@@ -260,6 +260,7 @@ void VirtualPages::bind(const core::ShadowSetup& setup) const {
     u.slotsPerRow = m_slotsPerRow;
     u.virtualTexels = static_cast<float>(c.virtualTexels);
     u.atlasTexels = glm::vec2(m_atlasTexels);
+    u.blendBand = blendBand;
     glNamedBufferSubData(m_mapsUniforms.id(), 0, sizeof u, &u);
     glBindBufferBase(GL_UNIFORM_BUFFER, kVirtualBinding, m_mapsUniforms.id());
     glBindTextureUnit(kShadowMapUnit, m_atlas.id());

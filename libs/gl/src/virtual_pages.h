@@ -74,7 +74,7 @@ public:
     // uploaded.
     void rendered(const core::ShadowSetup& setup);
     // The atlas at kShadowMapUnit, the page table at kPageTableUnit, the VirtualMaps block.
-    void bind(const core::ShadowSetup& setup) const;
+    void bind(const core::ShadowSetup& setup, float blendBand) const;
     // For frames without virtual maps: the VirtualMaps block with enabled 0.
     void bindDisabled() const;
     void setLinearFilter(bool linear) const;

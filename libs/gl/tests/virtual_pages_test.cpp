@@ -79,9 +79,12 @@ TEST_F(VirtualPagesTest, FramesFromCachedPagesLookUpExactlyWhatFreshPagesGive) {
     const scene::Scene s = boxesOverPlane();
     auto cached = gl::Renderer::create(s);
     ASSERT_TRUE(cached) << cached.error();
-    for (const core::ShadowFilter filter : {core::ShadowFilter::Pcf2, core::ShadowFilter::Poisson}) {
+    // Hardware PCF, and a Poisson disk across a blend band (two levels read near each boundary).
+    for (const auto& [filter, band] :
+         {std::pair{core::ShadowFilter::Pcf2, 0.0f}, {core::ShadowFilter::Poisson, 0.3f}}) {
         gl::RenderSettings settings = smallFrame();
         settings.filter.kind = filter;
+        settings.virtualBlendBand = band;
         int reused = 0;
         for (int frame = 0; frame < 6; ++frame) {
             const core::PerspectiveCamera cam = camera(0.37 * frame); // the sun held, the camera moving
@@ -174,7 +177,10 @@ TEST_F(VirtualPagesTest, ATinyPoolFallsBackToCoarserLevelsSaysSoAndNeverShowsAno
     settings.virtualPoolPages = -1;
     auto renderer = gl::Renderer::create(s);
     ASSERT_TRUE(renderer);
-    EXPECT_FALSE((*renderer)->render(cam, kSun, setup, settings));
+    EXPECT_EQ((*renderer)->render(cam, kSun, setup, settings).errorInfo().field, "virtual.pool_pages");
+    settings.virtualPoolPages = 0;
+    settings.virtualBlendBand = 1.0f;
+    EXPECT_EQ((*renderer)->render(cam, kSun, setup, settings).errorInfo().field, "virtual.blend_band");
 }
 
 TEST_F(VirtualPagesTest, MovingThePageBordersChangesNoShadowForAnyFilter) {

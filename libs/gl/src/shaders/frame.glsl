@@ -48,5 +48,6 @@ layout(std140, binding = SK_VIRTUAL_BINDING) uniform VirtualMaps {
     int virtualSlotsPerRow;
     float virtualTexels;
     vec2 virtualAtlasTexels;
+    float virtualBlendBand;
 };
 #define SK_VIRTUAL_LEVEL_FROM_WORLD(i) shadowTextureFromWorld[i]

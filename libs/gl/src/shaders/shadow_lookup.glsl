@@ -17,7 +17,8 @@ int cascadeOf(float viewDepth) { return skCascadeOf(viewDepth, mapCount); }
 
 SkVirtualMaps virtualMaps() {
     return SkVirtualMaps(virtualLevels, virtualFirstExponent, virtualFootprintPerMetre, virtualLodBias, virtualPagesPerSide,
-                         virtualPageTexels, virtualGuardTexels, virtualSlotsPerRow, virtualAtlasTexels, virtualTexels);
+                         virtualPageTexels, virtualGuardTexels, virtualSlotsPerRow, virtualAtlasTexels, virtualTexels,
+                         virtualBlendBand);
 }
 
 // The sun's map serving `ws`: its cascade, or the clipmap level its lookup reads.

@@ -100,6 +100,9 @@ struct RenderSettings {
     // depth, guard bands included). When a frame requests more, the least recently requested
     // pages are evicted, and what still does not fit is served by coarser levels.
     int virtualPoolPages = 0;
+    // Technique virtual: the last fraction of each level's range of pixel footprints, [0, 1),
+    // over which the lookup fades into the next coarser level (two lookups there); 0: none.
+    float virtualBlendBand = 0.0f;
 };
 
 // The bias a frame with these settings is drawn with: settings.bias, or the recommended one.
