@@ -7,7 +7,8 @@
 //   3. --technique auto: receivers read back at a low resolution, the family and parameters
 //      chosen or tracked (core::AutoChooser), the bias re-resolved for the choice
 //   4. the set-up: held lattices (core::SetupHysteresis) or computed afresh
-//   5. draw: culling (CHC++'s pre-pass, receiver masks), shadow passes, main pass
+//   5. draw: culling (CHC++'s pre-pass, receiver masks), shadow passes, main pass — for
+//      virtual maps: pre-pass, page marking and allocation, the new pages, main pass
 //      — or, in libs/measure, the evaluation buffers and the truth instead of step 5.
 //
 // What persists between frames lives here: the hysteresis and auto's tracked candidates
