@@ -22,7 +22,7 @@ struct Variant {
     core::ShadowSetupInputs inputs;
 };
 
-std::vector<Variant> everyTechnique(const scene::ResolvedView& view, const core::Aabb& bounds) {
+std::vector<Variant> everyTechnique(const scene::ResolvedView& view, const core::Aabb& bounds, int imageHeight) {
     std::vector<Variant> variants;
     for (const core::TechniqueInfo& t : core::allTechniques()) {
         core::ShadowSetupInputs in{.camera = view.camera,
@@ -30,6 +30,7 @@ std::vector<Variant> everyTechnique(const scene::ResolvedView& view, const core:
                                    .wsSceneBounds = bounds,
                                    .technique = t.technique,
                                    .mapSize = 512};
+        in.virtualMaps.imageHeight = imageHeight; // the frame's rows: the clipmap's pixel footprint
         variants.push_back({std::string(t.name), in});
     }
     core::ShadowSetupInputs warped = variants.back().inputs;
@@ -66,7 +67,7 @@ TEST_F(CullingTest, CulledFramesMatchFullFramesPixelForPixelForEveryTechnique) {
     EXPECT_EQ((*renderer)->wsSceneBounds().max, forest.wsBounds().max);
     for (const char* viewName : {"perpendicular", "aerial"}) {
         const scene::ResolvedView view = smallView(forest, viewName, 160, 90);
-        for (const Variant& v : everyTechnique(view, forest.wsBounds())) {
+        for (const Variant& v : everyTechnique(view, forest.wsBounds(), 90)) {
             const auto setup = core::computeShadowSetup(v.inputs);
             ASSERT_TRUE(setup) << v.name << ": " << setup.error();
             gl::RenderSettings settings = smallFrame(160, 90, gl::Culling::Off);

@@ -217,6 +217,7 @@ TEST_F(RendererTest, EveryBiasModeAndFilterWorksWithEveryTechnique) {
                                                              .wsSceneBounds = s.wsBounds(),
                                                              .technique = technique.technique,
                                                              .mapSize = 256,
+                                                             .virtualMaps = {.imageHeight = 96}, // the frame's rows
                                                              .depthLayout = layout});
                 ASSERT_TRUE(setup);
                 ASSERT_TRUE((*renderer)->render(cam, sun, *setup, settings)) << name;
