@@ -159,10 +159,7 @@ Result<ShadowSetup> computeShadowSetup(const ShadowSetupInputs& inputs) {
     Result<ShadowSetup> setup = runTechnique(centred);
     if (!setup) return setup;
     addLinearDepth(centred, *setup);
-    if (setup->clipmap)
-        setup->clipmap->wsGridOrigin = centred.wsGridOrigin; // relative to the eye, as the views
-    else
-        setup->mapSize = inputs.mapSize;
+    if (!setup->clipmap) setup->mapSize = inputs.mapSize; // a clipmap has its own virtual size
     for (ShadowView& view : setup->views) {
         view.lightFromEyeRelative = view.lightFromWorld;
         view.clipFromEyeRelative = view.clipFromWorld;

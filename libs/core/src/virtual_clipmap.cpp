@@ -41,6 +41,10 @@ bool isPowerOfTwo(int v) { return v > 0 && (v & (v - 1)) == 0; }
 
 double texelMetres(int exponent) { return std::ldexp(1.0, exponent); }
 
+// Page indices stay exact in double and far inside int64: an eye further from the grid origin
+// than this many pages of the finest level moves the grid origin to itself (and says so).
+constexpr double kMaxPageIndex = 0x1p50;
+
 // The grid origin in light space (rotation only): ls(p) = R p − gridLs.
 Vec3 gridInLight(const VirtualClipmap& c) { return Vec3(c.lightFromWorldRotation * Vec4(c.wsGridOrigin, 1.0)); }
 
@@ -95,8 +99,9 @@ std::optional<PageKey> clipmapPageOf(const ShadowSetup& setup, int level, const 
     if (!info) return std::nullopt;
     const Vec3 ls = Vec3(c.lightFromWorldRotation * Vec4(wsPoint, 1.0)) - gridInLight(c);
     const double pageMetres = c.pageTexels * texelMetres(info->exponent);
-    const auto x = static_cast<int64_t>(std::floor(ls.x / pageMetres));
-    const auto y = static_cast<int64_t>(std::floor(ls.y / pageMetres));
+    const double px = std::floor(ls.x / pageMetres), py = std::floor(ls.y / pageMetres);
+    if (!(std::abs(px) < kMaxPageIndex && std::abs(py) < kMaxPageIndex)) return std::nullopt; // no level reaches
+    const auto x = static_cast<int64_t>(px), y = static_cast<int64_t>(py);
     const int64_t pages = c.pagesPerSide();
     if (x < info->firstPageX || x >= info->firstPageX + pages || y < info->firstPageY || y >= info->firstPageY + pages)
         return std::nullopt;
@@ -141,22 +146,15 @@ ShadowSetup computeVirtualClipmap(const ShadowSetupInputs& in) {
     c.pageTexels = o.pageTexels;
     c.lodBias = o.lodBias;
     c.footprintPerMetre = pixelFootprintPerMetre(in.camera, o.imageHeight);
-    const Vec3 grid = gridInLight(c);
+    Vec3 grid = gridInLight(c);
     const Vec3 eye = Vec3(c.lightFromWorldRotation * Vec4(in.camera.wsEye, 1.0));
 
-    // Depth and reach: the scene box in light space (relative to the grid origin for depth,
-    // to the eye for how far a level must reach).
-    double zLo = INFINITY, zHi = -INFINITY, reach = 0.0;
+    // How far a level must reach: the scene box around the eye, in light space.
+    double reach = 0.0;
     for (const Vec3& corner : in.wsSceneBounds.corners()) {
         const Vec3 ls = Vec3(c.lightFromWorldRotation * Vec4(corner, 1.0));
-        zLo = std::min(zLo, ls.z - grid.z), zHi = std::max(zHi, ls.z - grid.z);
         reach = std::max({reach, std::abs(ls.x - eye.x), std::abs(ls.y - eye.y)});
     }
-    // Snapped outwards to an eighth of the extent's power of two (at least 1 m): a box that
-    // grows a little keeps its depth range, so cached pages stay valid.
-    const double step = std::ldexp(1.0, static_cast<int>(std::ceil(std::log2(std::max(zHi - zLo, 1.0))))) / 8.0;
-    c.zNear = (std::floor(zHi / step) + 1.0) * step; // one step of margin towards the light
-    c.zFar = (std::ceil(zLo / step) - 1.0) * step;
 
     // Levels: from the footprint at the nearest visible depth to one past the farthest's.
     double dNear = in.camera.zNear, dFar = in.camera.zFar;
@@ -175,6 +173,30 @@ ShadowSetup computeVirtualClipmap(const ShadowSetupInputs& in) {
         first = last - kMaxClipmapLevels + 1;
     }
     c.firstExponent = first;
+
+    // An eye beyond any page index: the grid passes through the eye instead. Pages are then not
+    // anchored to the world, but the grid origin is part of what a page's depth depends on
+    // (gl's PageContent), so every frame redraws its pages rather than reuse wrong ones.
+    const double finestPage = o.pageTexels * texelMetres(first);
+    if (!(std::max(std::abs(eye.x - grid.x), std::abs(eye.y - grid.y)) / finestPage <= kMaxPageIndex)) {
+        c.wsGridOrigin = in.camera.wsEye;
+        grid = gridInLight(c);
+        setup.fallbacks.emplace_back("the eye lies more than 2^50 pages from the grid origin: the grid passes "
+                                     "through the eye instead, and pages are redrawn every frame (set "
+                                     "ShadowSetupInputs::wsGridOrigin near the scene)");
+    }
+
+    // Depth: the scene box along the light, relative to the grid origin, snapped outwards to an
+    // eighth of the extent's power of two (at least 1 m): a box that grows a little keeps its
+    // depth range, so cached pages stay valid.
+    double zLo = INFINITY, zHi = -INFINITY;
+    for (const Vec3& corner : in.wsSceneBounds.corners()) {
+        const double z = Vec3(c.lightFromWorldRotation * Vec4(corner, 1.0)).z - grid.z;
+        zLo = std::min(zLo, z), zHi = std::max(zHi, z);
+    }
+    const double step = std::ldexp(1.0, static_cast<int>(std::ceil(std::log2(std::max(zHi - zLo, 1.0))))) / 8.0;
+    c.zNear = (std::floor(zHi / step) + 1.0) * step; // one step of margin towards the light
+    c.zFar = (std::ceil(zLo / step) - 1.0) * step;
 
     const int pages = c.pagesPerSide();
     for (int e = first; e <= last; ++e) {

@@ -187,3 +187,18 @@ TEST(VirtualClipmapTest, BadOptionsAreRefusedByName) {
     in.virtualMaps.firstLevel = 40;
     EXPECT_EQ(computeShadowSetup(in).errorInfo().field, "virtual.first_level");
 }
+
+TEST(VirtualClipmapTest, AnEyeBeyondAnyPageIndexMovesTheGridToItselfAndSaysSo) {
+    // 1e30 m from the grid origin is far more than 2^50 pages: page indices would overflow and
+    // the levels' squares vanish in double. The grid passes through the eye instead: finite
+    // levels that hold the view, and a note saying why.
+    ShadowSetupInputs in = forestView(Vec3(1e30, 1.8, 0.0), Vec3(1e30, 0.0, 0.0));
+    in.wsGridOrigin = Vec3(0.0);
+    const auto setup = computeShadowSetup(in);
+    ASSERT_TRUE(setup) << setup.error();
+    for (const ShadowView& view : setup->views) EXPECT_TRUE(isFinite(view.clipFromEyeRelative));
+    ASSERT_FALSE(setup->fallbacks.empty());
+    EXPECT_NE(setup->fallbacks.back().find("2^50 pages"), std::string::npos);
+    const ShadowView& finest = setup->views[0];
+    EXPECT_LE(outsideClipCube(finest.clipFromEyeRelative, Vec3(0.5, -1.8, -2.0)), 0.0); // 2 m ahead, on the ground
+}
