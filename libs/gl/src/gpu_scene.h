@@ -16,6 +16,10 @@ struct DrawStats {
     size_t instances = 0;
     size_t triangles = 0;
     size_t drawCalls = 0;
+    DrawStats& operator+=(const DrawStats& o) {
+        instances += o.instances, triangles += o.triangles, drawCalls += o.drawCalls;
+        return *this;
+    }
 };
 
 class GpuScene {

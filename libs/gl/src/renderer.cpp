@@ -127,6 +127,10 @@ struct Renderer::Impl {
     PassStats shadowPass(const core::ShadowSetup& setup, const RenderSettings& settings);
     // Technique virtual: the pages this frame must draw, each into its slot of the atlas.
     PassStats pagePass(const core::ShadowSetup& setup);
+    // The GL state both sun passes draw with: depth only, the bias as polygon offset (and
+    // caster culling), depth clamp when asked, the depth program and its uniforms bound.
+    void beginDepthPass(bool depthClamp) const;
+    static void endDepthPass();
     // Every local light's maps, timed.
     core::Result<PassStats> localPass(const RenderSettings& settings);
     void uploadFrame(const core::PerspectiveCamera& camera, const core::DirectionalLight& light,
@@ -452,28 +456,13 @@ PassStats Renderer::Impl::shadowPass(const core::ShadowSetup& setup, const Rende
         lastVirtual->triangles = stats.triangles;
         return stats;
     }
-    // Depth only, polygon offset for bias, depth clamp when the set-up asks for it; one
-    // array layer per shadow view.
+    // One array layer per shadow view.
     glBindFramebuffer(GL_FRAMEBUFFER, shadow->framebuffer.id());
     glViewport(0, 0, shadow->size, shadow->size);
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glDepthMask(GL_TRUE);
-    // Caster culling: front-face culling stores the casters' back sides (Scherzer 2005 §4.2).
-    if (bias.cull == core::CasterCull::None) {
-        glDisable(GL_CULL_FACE);
-    } else {
-        glEnable(GL_CULL_FACE);
-        glCullFace(bias.cull == core::CasterCull::Back ? GL_BACK : GL_FRONT);
-    }
-    if (setup.depthClamp) glEnable(GL_DEPTH_CLAMP);
+    beginDepthPass(setup.depthClamp);
     const auto slope = static_cast<float>(bias.slope), constant = static_cast<float>(bias.constant);
-    glEnable(GL_POLYGON_OFFSET_FILL);
-    glPolygonOffset(slope, constant);
-    glUseProgram(depthProgram.id());
-    glBindBufferBase(GL_UNIFORM_BUFFER, kDepthPassBinding, depthUniforms.id());
     const bool linear = setup.depthLayout == core::DepthLayout::Linear;
-    PassStats stats;
+    DrawStats draws;
     shadowTimer.begin();
     for (size_t layer = 0; layer < setup.views.size(); ++layer) {
         const core::ShadowView& view = setup.views[layer];
@@ -488,58 +477,47 @@ PassStats Renderer::Impl::shadowPass(const core::ShadowSetup& setup, const Rende
         shadow->attachLayer(static_cast<int>(layer));
         const float clearDepth = 1.0f;
         glClearNamedFramebufferfv(shadow->framebuffer.id(), GL_DEPTH, 0, &clearDepth);
-        const DrawStats draws = scene->draw(shadowLists[layer]);
-        stats.instances += draws.instances;
-        stats.triangles += draws.triangles;
-        stats.drawCalls += draws.drawCalls;
+        draws += scene->draw(shadowLists[layer]);
     }
     shadowTimer.end();
-    glDisable(GL_POLYGON_OFFSET_FILL);
-    glDisable(GL_DEPTH_CLAMP);
-    return stats; // time read after the frame, not to stall here
+    endDepthPass();
+    // Time read after the frame, not to stall here.
+    return {.instances = draws.instances, .triangles = draws.triangles, .drawCalls = draws.drawCalls};
 }
 
 PassStats Renderer::Impl::pagePass(const core::ShadowSetup& setup) {
-    // As the fixed maps' pass (depth only, polygon offset, clamp), one viewport per page: the
-    // slot of the atlas, scissored so its clear touches no other page.
+    // As the fixed maps' pass, one viewport per page (VirtualPages::drawPages).
     glBindFramebuffer(GL_FRAMEBUFFER, virtualPages->framebuffer().id());
+    beginDepthPass(true);
+    shadowTimer.begin();
+    const DrawStats draws = virtualPages->drawPages(*scene, pageLists, depthUniforms);
+    shadowTimer.end();
+    endDepthPass();
+    virtualPages->rendered(setup);
+    return {.instances = draws.instances, .triangles = draws.triangles, .drawCalls = draws.drawCalls};
+}
+
+void Renderer::Impl::beginDepthPass(bool depthClamp) const {
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
+    // Caster culling: front-face culling stores the casters' back sides (Scherzer 2005 §4.2).
     if (bias.cull == core::CasterCull::None) {
         glDisable(GL_CULL_FACE);
     } else {
         glEnable(GL_CULL_FACE);
         glCullFace(bias.cull == core::CasterCull::Back ? GL_BACK : GL_FRONT);
     }
-    glEnable(GL_DEPTH_CLAMP);
+    if (depthClamp) glEnable(GL_DEPTH_CLAMP);
     glEnable(GL_POLYGON_OFFSET_FILL);
     glPolygonOffset(static_cast<float>(bias.slope), static_cast<float>(bias.constant));
-    glEnable(GL_SCISSOR_TEST);
     glUseProgram(depthProgram.id());
     glBindBufferBase(GL_UNIFORM_BUFFER, kDepthPassBinding, depthUniforms.id());
-    PassStats stats;
-    shadowTimer.begin();
-    const auto pages = virtualPages->pagesToRender();
-    for (size_t i = 0; i < pages.size(); ++i) {
-        const glm::ivec3 v = virtualPages->slotViewport(pages[i].slot);
-        glViewport(v.x, v.y, v.z, v.z);
-        glScissor(v.x, v.y, v.z, v.z);
-        const float clearDepth = 1.0f;
-        glClearNamedFramebufferfv(virtualPages->framebuffer().id(), GL_DEPTH, 0, &clearDepth);
-        const DepthPassUniforms uniforms{.clipFromWorld = toFloat(pages[i].clipFromWorld)};
-        glNamedBufferSubData(depthUniforms.id(), 0, sizeof uniforms, &uniforms);
-        const DrawStats draws = scene->draw(pageLists[i], visibility::clipVolume(pages[i].clipFromWorld, false));
-        stats.instances += draws.instances;
-        stats.triangles += draws.triangles;
-        stats.drawCalls += draws.drawCalls;
-    }
-    shadowTimer.end();
-    glDisable(GL_SCISSOR_TEST);
+}
+
+void Renderer::Impl::endDepthPass() {
     glDisable(GL_POLYGON_OFFSET_FILL);
     glDisable(GL_DEPTH_CLAMP);
-    virtualPages->rendered(setup);
-    return stats;
 }
 
 void Renderer::Impl::uploadFrame(const core::PerspectiveCamera& camera, const core::DirectionalLight& light,

@@ -4,6 +4,7 @@
 #include "program.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <string>
 
@@ -99,15 +100,17 @@ void VirtualPages::dropAll() {
 std::vector<core::PageKey> VirtualPages::readRequests(const core::ShadowSetup& setup) const {
     // Coarsest level first: a receiver's fallback is allocated before its own page.
     const int pages = setup.clipmap->pagesPerSide();
+    const size_t perLevel = size_t(pages) * pages; // at least 64: whole words per level
     std::vector<core::PageKey> keys;
     for (int level = static_cast<int>(setup.views.size()) - 1; level >= 0; --level) {
         const core::ClipmapLevel& info = levelOf(setup.views[size_t(level)]);
-        const size_t first = size_t(level) * pages * pages;
-        for (size_t i = 0; i < size_t(pages) * pages; ++i) {
-            const size_t bit = first + i;
-            if (!(m_readBack[bit >> 5] & (1u << (bit & 31)))) continue;
-            keys.push_back({info.exponent, info.firstPageX + int64_t(i % pages), info.firstPageY + int64_t(i / pages)});
-        }
+        const size_t first = size_t(level) * perLevel;
+        for (size_t word = first / 32; word < (first + perLevel) / 32; ++word)
+            for (uint32_t bits = m_readBack[word]; bits != 0; bits &= bits - 1) { // each set bit
+                const size_t i = word * 32 + size_t(std::countr_zero(bits)) - first;
+                keys.push_back({info.exponent, info.firstPageX + int64_t(i % size_t(pages)),
+                                info.firstPageY + int64_t(i / size_t(pages))});
+            }
     }
     return keys;
 }
@@ -216,6 +219,24 @@ void VirtualPages::request(const CameraDepthTarget& depth, const core::Perspecti
     m_stats.poolBytes = int64_t(m_atlasTexels.x) * m_atlasTexels.y * 4;
 }
 
+DrawStats VirtualPages::drawPages(const GpuScene& scene, std::span<const PassList> lists,
+                                  const Buffer& depthUniforms) const {
+    DrawStats draws;
+    glEnable(GL_SCISSOR_TEST);
+    for (size_t i = 0; i < m_toRender.size(); ++i) {
+        const glm::ivec3 v = slotViewport(m_toRender[i].slot);
+        glViewport(v.x, v.y, v.z, v.z);
+        glScissor(v.x, v.y, v.z, v.z);
+        const float clearDepth = 1.0f;
+        glClearNamedFramebufferfv(m_framebuffer.id(), GL_DEPTH, 0, &clearDepth);
+        const DepthPassUniforms uniforms{.clipFromWorld = glm::mat4(m_toRender[i].clipFromWorld)};
+        glNamedBufferSubData(depthUniforms.id(), 0, sizeof uniforms, &uniforms);
+        draws += scene.draw(lists[i], visibility::clipVolume(m_toRender[i].clipFromWorld, false));
+    }
+    glDisable(GL_SCISSOR_TEST);
+    return draws;
+}
+
 void VirtualPages::rendered(const core::ShadowSetup& setup) {
     for (const PageToRender& p : m_toRender) m_slots[size_t(p.slot)].valid = true;
     // The page table: each level's window, slot + 1 of its valid resident pages.
@@ -230,17 +251,19 @@ void VirtualPages::rendered(const core::ShadowSetup& setup) {
     }
     m_table.assign(size_t(pages) * pages * levels, 0u);
     int resident = 0;
-    for (int l = 0; l < levels; ++l) {
+    for (int s = 0; s < static_cast<int>(m_slots.size()); ++s) {
+        const Slot& slot = m_slots[size_t(s)];
+        if (!slot.used || !slot.valid) continue;
+        ++resident;
+        // Levels are consecutive exponents from the finest: a kept page of a level no longer in
+        // the clipmap, or outside its level's window, has no entry.
+        const int l = slot.key.exponent - setup.clipmap->firstExponent;
+        if (l < 0 || l >= levels) continue;
         const core::ClipmapLevel& info = levelOf(setup.views[size_t(l)]);
-        for (int s = 0; s < static_cast<int>(m_slots.size()); ++s) {
-            const Slot& slot = m_slots[size_t(s)];
-            if (!slot.used || !slot.valid || slot.key.exponent != info.exponent) continue;
-            const int64_t x = slot.key.x - info.firstPageX, y = slot.key.y - info.firstPageY;
-            if (x < 0 || y < 0 || x >= pages || y >= pages) continue;
-            m_table[size_t(l) * pages * pages + size_t(y) * pages + size_t(x)] = uint32_t(s + 1);
-        }
+        const int64_t x = slot.key.x - info.firstPageX, y = slot.key.y - info.firstPageY;
+        if (x < 0 || y < 0 || x >= pages || y >= pages) continue;
+        m_table[size_t(l) * pages * pages + size_t(y) * pages + size_t(x)] = uint32_t(s + 1);
     }
-    for (const Slot& slot : m_slots) resident += slot.used && slot.valid;
     m_stats.pagesResident = resident;
     glTextureSubImage2D(m_pageTable.id(), 0, 0, 0, pages, pages * levels, GL_RED_INTEGER, GL_UNSIGNED_INT,
                         m_table.data());

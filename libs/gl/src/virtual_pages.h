@@ -8,6 +8,7 @@
 #pragma once
 
 #include "gl_object.h"
+#include "gpu_scene.h"
 #include "render_targets.h"
 #include "stopwatch.h"
 #include "uniforms.h"
@@ -69,6 +70,10 @@ public:
     std::span<const PageToRender> pagesToRender() const { return m_toRender; }
     // The slot's viewport in the atlas: x, y, side.
     glm::ivec3 slotViewport(int slot) const;
+    // Draws pagesToRender()[i] with lists[i] into its slot, scissored so its clear touches no
+    // other page, with the bound depth program: the page's matrix into `depthUniforms`, the
+    // clusters of large meshes culled to the page's volume. GL state (bias, clamp) is the caller's.
+    DrawStats drawPages(const GpuScene& scene, std::span<const PassList> lists, const Buffer& depthUniforms) const;
     const Framebuffer& framebuffer() const { return m_framebuffer; }
     // After the pages were drawn: they are valid, and the page table for `setup`'s windows is
     // uploaded.
