@@ -120,6 +120,25 @@ Mat4 clipmapPageClipFromWorld(const VirtualClipmap& c, const PageKey& page, int 
     return orthoZeroToOne(x0, x0 + side, y0, y0 + side, -c.zNear, -c.zFar) * lightFromGrid;
 }
 
+ShadowView clipmapLevelView(const VirtualClipmap& c, int exponent, const Vec3& wsEye) {
+    const Vec3 grid = gridInLight(c);
+    const Vec3 eye = Vec3(c.lightFromWorldRotation * Vec4(wsEye, 1.0));
+    const int pages = c.pagesPerSide();
+    const double pageMetres = c.pageTexels * texelMetres(exponent);
+    // The eye snapped to the nearest page corner of the grid.
+    const ClipmapLevel level{exponent, std::llround((eye.x - grid.x) / pageMetres) - pages / 2,
+                             std::llround((eye.y - grid.y) / pageMetres) - pages / 2};
+    const double x0 = grid.x + static_cast<double>(level.firstPageX) * pageMetres;
+    const double y0 = grid.y + static_cast<double>(level.firstPageY) * pageMetres;
+    const double side = pages * pageMetres;
+    ShadowView view;
+    view.lightFromWorld = c.lightFromWorldRotation;
+    view.clipFromLight = orthoZeroToOne(x0, x0 + side, y0, y0 + side, -(grid.z + c.zNear), -(grid.z + c.zFar));
+    view.clipFromWorld = view.clipFromLight * view.lightFromWorld;
+    view.warp = level;
+    return view;
+}
+
 LightRect clipmapRectOf(const VirtualClipmap& c, const Vec3& wsMin, const Vec3& wsMax) {
     const Vec3 grid = gridInLight(c);
     LightRect r{INFINITY, INFINITY, -INFINITY, -INFINITY};
@@ -198,22 +217,7 @@ ShadowSetup computeVirtualClipmap(const ShadowSetupInputs& in) {
     c.zNear = (std::floor(zHi / step) + 1.0) * step; // one step of margin towards the light
     c.zFar = (std::ceil(zLo / step) - 1.0) * step;
 
-    const int pages = c.pagesPerSide();
-    for (int e = first; e <= last; ++e) {
-        const double pageMetres = o.pageTexels * texelMetres(e);
-        // The eye snapped to the nearest page corner of the grid.
-        ClipmapLevel level{e, std::llround((eye.x - grid.x) / pageMetres) - pages / 2,
-                           std::llround((eye.y - grid.y) / pageMetres) - pages / 2};
-        const double x0 = grid.x + static_cast<double>(level.firstPageX) * pageMetres;
-        const double y0 = grid.y + static_cast<double>(level.firstPageY) * pageMetres;
-        const double side = pages * pageMetres;
-        ShadowView view;
-        view.lightFromWorld = c.lightFromWorldRotation;
-        view.clipFromLight = orthoZeroToOne(x0, x0 + side, y0, y0 + side, -(grid.z + c.zNear), -(grid.z + c.zFar));
-        view.clipFromWorld = view.clipFromLight * view.lightFromWorld;
-        view.warp = level;
-        setup.views.push_back(view);
-    }
+    for (int e = first; e <= last; ++e) setup.views.push_back(clipmapLevelView(c, e, in.camera.wsEye));
     setup.clipmap = c;
     return setup;
 }

@@ -110,7 +110,9 @@ TEST(VirtualClipmapTest, EveryVisibleReceiverLiesInsideTheLevelItsRulePicks) {
             EXPECT_TRUE(clipmapPageOf(*setup, *level, p));
             EXPECT_GE(*level, rule);
             // ...and at a field of view of 10° or more the rule's own level does (720 rows).
-            if (in.camera.fovYDegrees >= 10.0) EXPECT_EQ(*level, rule) << "config " << i << ", depth " << depth;
+            if (in.camera.fovYDegrees >= 10.0) {
+                EXPECT_EQ(*level, rule) << "config " << i << ", depth " << depth;
+            }
             ++checked;
         }
     }
@@ -201,4 +203,37 @@ TEST(VirtualClipmapTest, AnEyeBeyondAnyPageIndexMovesTheGridToItselfAndSaysSo) {
     EXPECT_NE(setup->fallbacks.back().find("2^50 pages"), std::string::npos);
     const ShadowView& finest = setup->views[0];
     EXPECT_LE(outsideClipCube(finest.clipFromEyeRelative, Vec3(0.5, -1.8, -2.0)), 0.0); // 2 m ahead, on the ground
+}
+
+TEST(VirtualClipmapTest, AClipmapKeptFromAnEarlierFramePlacesItsLevelsAroundALaterEyeAsTheSetUpWould) {
+    // gl's page budget keeps a clipmap drawn for an earlier sun on screen and places its levels
+    // around each new eye with clipmapLevelView: the windows and matrices the set-up itself
+    // gives at that eye, in the renderer's space, far from the origin too.
+    for (const double offset : {0.0, 1.0e6}) {
+        const Vec3 wsWorld(offset, 0.0, offset), wsEye0 = wsWorld + Vec3(0.0, 1.8, 0.0);
+        const auto kept = computeShadowSetup(forestView(wsEye0, wsWorld));
+        ASSERT_TRUE(kept);
+        const Vec3 wsSpace = wsEye0 + Vec3(5.0, 0.0, 3.0);
+        const VirtualClipmap keptLocal = *rebased(*kept, wsSpace).clipmap;
+        for (const Vec3& step : {Vec3(0.3, 0.0, -0.7), Vec3(-40.0, 25.0, -90.0)}) {
+            const auto now = computeShadowSetup(forestView(wsEye0 + step, wsWorld));
+            ASSERT_TRUE(now);
+            const ShadowSetup nowLocal = rebased(*now, wsSpace);
+            for (const ShadowView& expected : nowLocal.views) {
+                const ShadowView placed =
+                    clipmapLevelView(keptLocal, levelOf(expected).exponent, wsEye0 + step - wsSpace);
+                EXPECT_EQ(levelOf(placed).firstPageX, levelOf(expected).firstPageX);
+                EXPECT_EQ(levelOf(placed).firstPageY, levelOf(expected).firstPageY);
+                for (const Vec3& rel : {Vec3(1.0, 0.0, -2.0), Vec3(-30.0, 4.0, -60.0)}) {
+                    const Vec3 p = wsEye0 + step + rel - wsSpace;
+                    const Vec4 a = placed.clipFromWorld * Vec4(p, 1.0), b = expected.clipFromWorld * Vec4(p, 1.0);
+                    EXPECT_NEAR(a.x * 0.5 * kept->clipmap->virtualTexels, b.x * 0.5 * kept->clipmap->virtualTexels,
+                                1e-6);
+                    EXPECT_NEAR(a.y * 0.5 * kept->clipmap->virtualTexels, b.y * 0.5 * kept->clipmap->virtualTexels,
+                                1e-6);
+                    EXPECT_NEAR(a.z, b.z, 1e-9);
+                }
+            }
+        }
+    }
 }

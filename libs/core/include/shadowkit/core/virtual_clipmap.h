@@ -18,6 +18,7 @@ namespace shadowkit::core {
 
 struct ShadowSetup;
 struct ShadowSetupInputs;
+struct ShadowView;
 
 /// The clipmap's parameters: virtual map and page sizes, the levels, the level rule.
 struct VirtualOptions {
@@ -113,6 +114,13 @@ std::optional<PageKey> clipmapPageOf(const ShadowSetup& setup, int level, const 
 /// scene space after rebased()). Built from the clipmap's camera-independent frame only, so a
 /// page's matrix is the same in every frame: a cached page and a fresh one hold the same depths.
 Mat4 clipmapPageClipFromWorld(const VirtualClipmap& clipmap, const PageKey& page, int guardTexels);
+
+/// Level `exponent` of `clipmap` around an eye at `wsEye` (coordinates as `clipmap`'s): its
+/// window — the virtualTexels² texels around the eye snapped to the page grid — as an
+/// orthographic view, ShadowView::warp its ClipmapLevel. What computeVirtualClipmap makes of
+/// each level; also how a clipmap kept from an earlier sun is placed around a later eye (gl's
+/// page budget keeps levels of the previous sun on screen while the new sun's are drawn).
+ShadowView clipmapLevelView(const VirtualClipmap& clipmap, int exponent, const Vec3& wsEye);
 
 /// The light-space square [min, max] (x, y, relative to the grid origin) of a world box,
 /// for invalidation: the pages of a level whose squares meet it.
