@@ -242,9 +242,7 @@ int runEvalPath(const EvalPathArgs& args) {
                           {"truth_change_pct", r.temporal->truthChangePct}});
             if (r.refittedViews) j["refitted_views"] = *r.refittedViews;
             if (r.autoChoice) j.update({{"auto_choice", *r.autoChoice}, {"auto_ms", r.autoMilliseconds}});
-            if (const auto& v = r.virtualPages)
-                j["virtual"] = eval::virtualPagesJson({v->pagesRequested, v->pagesRendered, v->pagesResident,
-                                                       v->pagesFellBack, v->poolPages, v->poolBytes, v->triangles});
+            if (const auto& v = r.virtualPages) j["virtual"] = eval::virtualPagesJson(measure::virtualPagesReport(*v));
             frames.push_back(j);
         }
         auto summary = [](const Summary& s) {

@@ -68,6 +68,9 @@ void printFrameReport(const RenderArgs& args, const gl::Context& context, const 
                    v->pagesRequested, v->pagesRendered, v->pagesResident, v->pagesFellBack, v->poolPages,
                    static_cast<double>(v->poolBytes) / (1024.0 * 1024.0), setup.views.size(),
                    setup.clipmap ? std::ldexp(1.0, setup.clipmap->firstExponent) : 0.0);
+    if (const auto& v = stats.virtualPages; v && (v->pagesDeferred > 0 || v->lagFrames > 0))
+        fmt::print("  page budget    {} pages deferred  {} levels behind  the sun of {} frames ago shown\n",
+                   v->pagesDeferred, v->levelsBehind, v->lagFrames);
     fmt::print("  frame (wall)   {:8.1f} ms incl. readback\n", frameMs);
     if (const auto& v = frame.inputs.visibleDepth)
         fmt::print("  visible depth  {:.2f} .. {:.2f} m (LiSPSM n, csm splits)\n", v->x, v->y);

@@ -28,6 +28,7 @@ core::Result<frame::FrameConfig> frameConfigOf(const TechniqueOptions& technique
     s.lod = !render.noLod;
     s.virtualPoolPages = technique.virtualPoolPages;
     s.virtualBlendBand = technique.virtualBlendBand;
+    s.virtualPageBudget = technique.virtualPageBudget;
     s.localPass = lights.pass;
     s.localBias = lights.bias;
     config.fogDensity = render.fog;

@@ -415,6 +415,10 @@ void TechniqueOptions::addTo(CLI::App& cmd) {
     cmd.add_option("--virtual-pool-pages", virtualPoolPages,
                    "virtual: pages in the physical pool (0: as many as fit 64 MiB of depth)")
         ->capture_default_str();
+    cmd.add_option("--virtual-page-budget", virtualPageBudget,
+                   "virtual: at most N pages drawn a frame (0: all requested); a moving sun's new pages are drawn a "
+                   "level at a time while the earlier sun's keep serving")
+        ->capture_default_str();
     cmd.add_option("--stabilize-margin", hysteresis.margin,
                    "--stabilize with held lattices: spare room round the view at a refit, a fraction of the map")
         ->capture_default_str();
@@ -453,6 +457,9 @@ core::Status TechniqueOptions::check(bool measuresFrames, bool takesAuto) const 
     if (virtualPoolPages < 0)
         return core::makeError("--virtual-pool-pages: must be >= 0 (0: as many as fit 64 MiB), got " +
                                std::to_string(virtualPoolPages));
+    if (virtualPageBudget < 0)
+        return core::makeError("--virtual-page-budget: must be >= 0 (0: every page requested), got " +
+                               std::to_string(virtualPageBudget));
     return core::Ok{};
 }
 

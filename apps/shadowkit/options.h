@@ -69,6 +69,7 @@ struct TechniqueOptions {
     core::VirtualOptions virtualMaps;   // --virtual-*: the clipmap (its image height is each frame's)
     int virtualPoolPages = 0;           // --virtual-pool-pages (gl::RenderSettings::virtualPoolPages)
     float virtualBlendBand = 0.0f;      // --virtual-blend-band (gl::RenderSettings::virtualBlendBand)
+    int virtualPageBudget = 0;          // --virtual-page-budget (gl::RenderSettings::virtualPageBudget)
 
     // --stabilize holds texel lattices (core::SetupHysteresis) for every technique but
     // unwarped cascades, which snap their own texels (CascadeOptions::stabilize).

@@ -148,8 +148,8 @@ struct Viewer {
     std::array<float, 120> frameMs{};
     size_t frameIndex = 0;
     int drawnFrames = 0;
-    ImageTexture shadowMapImage, localMapsImage, errorImage, aliasingImage;
-    bool hasLocalMaps = false;
+    ImageTexture shadowMapImage, pageTableImage, localMapsImage, errorImage, aliasingImage;
+    bool hasLocalMaps = false, hasPageTable = false;
     TruthJob truth;
     std::optional<eval::Figures> truthFigures;
     std::vector<std::pair<std::string, eval::Figures>> truthPerLight; // with local lights
@@ -300,6 +300,9 @@ struct Viewer {
                 }
                 if (frame % 30 == 0) {
                     shadowMapImage.upload(renderer.readShadowMap());
+                    const scene::Image table = renderer.readVirtualPageTable();
+                    hasPageTable = table.width > 0;
+                    pageTableImage.upload(table);
                     const scene::Image local = renderer.readLocalShadowMaps();
                     hasLocalMaps = local.width > 0;
                     localMapsImage.upload(local);
@@ -399,6 +402,10 @@ struct Viewer {
         ImGui::Begin("maps", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
         ImGui::TextUnformatted("shadow map (near the light bright)");
         shadowMapImage.draw(260.0f);
+        if (hasPageTable) {
+            ImGui::TextUnformatted("virtual pages, finest level first:\nshown (level tint), served coarser (white)");
+            pageTableImage.draw(260.0f);
+        }
         if (hasLocalMaps) {
             ImGui::TextUnformatted("spot maps, cubes unfolded");
             localMapsImage.draw(260.0f);

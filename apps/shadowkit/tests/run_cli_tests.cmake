@@ -56,6 +56,7 @@ check_fails(auto-needs-a-frame "render and eval take it" setup ${small} --techni
 check_fails(budget-without-auto "only with --technique auto" eval ${small} --technique tsm --texel-budget 4M)
 check_fails(bad-texel-budget "--texel-budget" eval ${small} --technique auto --texel-budget 4X)
 check_fails(small-texel-budget "--texel-budget" eval ${small} --technique auto --texel-budget 1K --cascades 8)
+check_fails(negative-page-budget "--virtual-page-budget" render ${small} --technique virtual --virtual-page-budget -3)
 check_fails(missing-scene "does not exist" setup --scene "${WORK}/missing.glb")
 check_fails(unreadable-scene "garbage.glb" setup --scene "${WORK}/garbage.glb")
 check_fails(directory-scene "directory" export --scene "${WORK}/a_directory.obj" --out "${WORK}/x.glb")

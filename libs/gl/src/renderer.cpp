@@ -126,7 +126,12 @@ struct Renderer::Impl {
                         const core::ShadowSetup& setup, const RenderSettings& settings);
     PassStats shadowPass(const core::ShadowSetup& setup, const RenderSettings& settings);
     // Technique virtual: the pages this frame must draw, each into its slot of the atlas.
-    PassStats pagePass(const core::ShadowSetup& setup);
+    PassStats pagePass();
+    // The set-up the frame's lookups read: with virtual maps under a page budget, levels may
+    // still be shown from an earlier sun's pages (VirtualPages::shown).
+    const core::ShadowSetup& lookupSetup(const core::ShadowSetup& setup, const RenderSettings& settings) const {
+        return setup.clipmap && settings.sun ? virtualPages->shown() : setup;
+    }
     // The GL state both sun passes draw with: depth only, the bias as polygon offset (and
     // caster culling), depth clamp when asked, the depth program and its uniforms bound.
     void beginDepthPass(bool depthClamp) const;
@@ -311,12 +316,12 @@ void Renderer::Impl::collectVisible(const core::PerspectiveCamera& camera, const
     std::vector<PassList*> lists;
     shadowLists.resize(virtualMaps ? 0 : setup.views.size());
     pageLists.clear();
-    if (virtualMaps && settings.sun) {
-        // The pages the visible receivers request; each draws the casters in its own volume
-        // (extended towards the light), at levels of detail for its own texels.
+    if (virtualMaps && settings.sun && !prepassForDepthRange) {
+        // The pages the visible receivers request (not for visibleDepth(), which draws none); each draws the casters in
+        // its own volume (extended towards the light), at levels of detail for its own texels.
         const int guard = guardTexelsFor(settings.filter, bias);
         virtualPages->request(*cameraDepth, camera, setup, pageContentOf(*setup.clipmap, guard, bias, settings),
-                              movedBoxes, lookupReachTexels(settings.filter, bias));
+                              movedBoxes, lookupReachTexels(settings.filter, bias), settings.virtualPageBudget);
         movedBoxes.clear();
         cullGlTimes += virtualPages->glTimes();
         const auto pages = virtualPages->pagesToRender();
@@ -412,6 +417,9 @@ core::Status Renderer::Impl::prepare(const core::PerspectiveCamera& camera, cons
                                                               std::to_string(settings.virtualPoolPages));
         if (!(settings.virtualBlendBand >= 0.0f && settings.virtualBlendBand < 1.0f))
             return core::fieldError("virtual.blend_band", "must be a fraction in [0, 1)");
+        if (settings.virtualPageBudget < 0)
+            return core::fieldError("virtual.page_budget", "must be >= 0 (0: every page requested), got " +
+                                                               std::to_string(settings.virtualPageBudget));
         if (auto s = virtualPages->configure(settings.virtualPoolPages, setup.clipmap->pageTexels,
                                              guardTexelsFor(settings.filter, bias));
             !s)
@@ -451,7 +459,7 @@ PassStats Renderer::Impl::shadowPass(const core::ShadowSetup& setup, const Rende
         return {};
     }
     if (setup.clipmap) {
-        const PassStats stats = pagePass(setup);
+        const PassStats stats = pagePass();
         lastVirtual = virtualPages->stats();
         lastVirtual->triangles = stats.triangles;
         return stats;
@@ -485,7 +493,7 @@ PassStats Renderer::Impl::shadowPass(const core::ShadowSetup& setup, const Rende
     return {.instances = draws.instances, .triangles = draws.triangles, .drawCalls = draws.drawCalls};
 }
 
-PassStats Renderer::Impl::pagePass(const core::ShadowSetup& setup) {
+PassStats Renderer::Impl::pagePass() {
     // As the fixed maps' pass, one viewport per page (VirtualPages::drawPages).
     glBindFramebuffer(GL_FRAMEBUFFER, virtualPages->framebuffer().id());
     beginDepthPass(true);
@@ -493,7 +501,7 @@ PassStats Renderer::Impl::pagePass(const core::ShadowSetup& setup) {
     const DrawStats draws = virtualPages->drawPages(*scene, pageLists, depthUniforms);
     shadowTimer.end();
     endDepthPass();
-    virtualPages->rendered(setup);
+    virtualPages->rendered();
     return {.instances = draws.instances, .triangles = draws.triangles, .drawCalls = draws.drawCalls};
 }
 
@@ -629,11 +637,12 @@ core::Result<FrameStats> Renderer::render(const core::PerspectiveCamera& wsCamer
     // With the eye-space blur, the shadow term comes from the blurred screen-space mask.
     const bool blurred = settings.blur.iterations > 0;
     int maskIndex = 0;
+    const core::ShadowSetup& shown = r.lookupSetup(setup, settings);
     if (blurred) {
-        if (auto s = r.evalPass(camera, light, setup, settings); !s) return s.errorInfo();
+        if (auto s = r.evalPass(camera, light, shown, settings); !s) return s.errorInfo();
         maskIndex = r.blurPass(settings);
     }
-    r.uploadFrame(camera, light, setup, settings, blurred);
+    r.uploadFrame(camera, light, shown, settings, blurred);
     if (blurred) glBindTextureUnit(kShadowMaskUnit, r.mask->images[maskIndex].id());
     glBindFramebuffer(GL_FRAMEBUFFER, r.color->framebuffer.id());
     glViewport(0, 0, r.color->width, r.color->height);
@@ -679,7 +688,7 @@ core::Result<core::RasterBuffers> Renderer::renderEvalBuffers(const core::Perspe
     r.lastShadow = r.shadowPass(setup, settings);
     if (auto s = r.localPass(settings); !s) return s.errorInfo();
     r.evalLight = localLight;
-    const core::Status evaluated = r.evalPass(camera, light, setup, settings);
+    const core::Status evaluated = r.evalPass(camera, light, r.lookupSetup(setup, settings), settings);
     r.evalLight = -1;
     if (!evaluated) return evaluated.errorInfo();
     core::RasterBuffers buffers = r.eval->read();
@@ -793,6 +802,10 @@ void Renderer::present(int width, int height) const {
 }
 
 scene::Image Renderer::readColor() const { return m_impl->color ? m_impl->color->read() : scene::Image{}; }
+
+scene::Image Renderer::readVirtualPageTable() const {
+    return m_impl->shadow ? scene::Image{} : m_impl->virtualPages->pageTableImage();
+}
 
 scene::Image Renderer::readShadowMap() const {
     if (m_impl->shadow) return m_impl->shadow->readAsGreys();

@@ -1,7 +1,8 @@
 // Virtual shadow maps on the GPU (CTest label `gl`): a frame drawn from cached pages looks up
 // exactly what a frame with every page fresh looks up; a mover redraws only the pages under it
 // and its shadow moves; a pool too small for the view falls back to coarser levels, says so,
-// and still shadows where the caster is.
+// and still shadows where the caster is; a page budget caps the pages drawn a frame, shows the
+// old sun's pages while a new sun's are drawn, and converges on what fresh pages give.
 #include "headless_gl_test.h"
 
 #include "shadowkit/core/shadow_setup.h"
@@ -172,7 +173,21 @@ TEST_F(VirtualPagesTest, ATinyPoolFallsBackToCoarserLevelsSaysSoAndNeverShowsAno
         // Every receiver also asked for its page of the coarsest level, which is allocated
         // first: with room for those (24 here; 6 is fewer than the view's coarsest pages) the box
         // still shadows the ground under it, coarsely.
-        if (pool >= 24) EXPECT_LT(shadowAt(*buffers, cam, groundUnder({0, 2.5, 0})), 0.5f) << "pool of " << pool;
+        if (pool >= 24) {
+            EXPECT_LT(shadowAt(*buffers, cam, groundUnder({0, 2.5, 0})), 0.5f) << "pool of " << pool;
+        }
+        // The viewer's page-table picture: the pages served coarser in white, at most the pool's
+        // pages in their levels' tints.
+        const scene::Image table = (*renderer)->readVirtualPageTable();
+        int white = 0, tinted = 0;
+        for (size_t i = 0; i < table.rgba.size(); i += 4) {
+            const uint8_t* p = &table.rgba[i];
+            white += p[0] == 255 && p[1] == 255 && p[2] == 255;
+            tinted += p[3] == 255 && std::max({p[0], p[1], p[2]}) > 60 && !(p[0] == 255 && p[1] == 255 && p[2] == 255);
+        }
+        EXPECT_GT(white, 0) << "pool of " << pool;
+        EXPECT_GT(tinted, 0) << "pool of " << pool;
+        EXPECT_LE(tinted, pool) << "pool of " << pool;
     }
     settings.virtualPoolPages = -1;
     auto renderer = gl::Renderer::create(s);
@@ -181,6 +196,92 @@ TEST_F(VirtualPagesTest, ATinyPoolFallsBackToCoarserLevelsSaysSoAndNeverShowsAno
     settings.virtualPoolPages = 0;
     settings.virtualBlendBand = 1.0f;
     EXPECT_EQ((*renderer)->render(cam, kSun, setup, settings).errorInfo().field, "virtual.blend_band");
+}
+
+TEST_F(VirtualPagesTest, APageBudgetCapsEachFrameKeepsTheOldSunsPagesShownAndConvergesOnFreshPages) {
+    const scene::Scene s = boxesOverPlane();
+    const core::PerspectiveCamera cam = camera(0.0);
+    gl::RenderSettings settings = smallFrame();
+    settings.virtualPageBudget = 3;
+    const core::DirectionalLight sunA = kSun, sunB{glm::normalize(core::Vec3(0.38, -1.0, 0.12))};
+    const auto setupFor = [&](const core::DirectionalLight& sun) {
+        core::ShadowSetupInputs in{.camera = cam, .light = sun, .wsSceneBounds = s.wsBounds()};
+        in.technique = core::Technique::Virtual;
+        in.virtualMaps.imageHeight = settings.height;
+        // Small windows of small pages (32² of 32 texels): several levels hold this small scene.
+        in.virtualMaps.virtualTexels = 1024;
+        in.virtualMaps.pageTexels = 32;
+        in.visibleDepth = core::Vec2(6.0, 45.0); // levels for the receivers in view, not the near plane
+        return core::computeShadowSetup(in).value();
+    };
+    const auto freshTerm = [&](const core::DirectionalLight& sun) {
+        auto fresh = gl::Renderer::create(s);
+        gl::RenderSettings unlimited = settings;
+        unlimited.virtualPageBudget = 0;
+        return (*fresh)->renderEvalBuffers(cam, sun, setupFor(sun), unlimited).value().shadowTerm;
+    };
+    auto renderer = gl::Renderer::create(s);
+    ASSERT_TRUE(renderer);
+    // Frames until nothing is left to draw; none draws more than the budget.
+    const auto settle = [&](const core::DirectionalLight& sun, int& frames, int& behindFrames) {
+        for (frames = 1; frames < 200; ++frames) {
+            const auto stats = (*renderer)->render(cam, sun, setupFor(sun), settings);
+            EXPECT_TRUE(stats && stats->virtualPages);
+            if (!stats || !stats->virtualPages) return;
+            const gl::VirtualPageStats& v = *stats->virtualPages;
+            EXPECT_LE(v.pagesRendered, settings.virtualPageBudget);
+            behindFrames += v.levelsBehind > 0;
+            if (v.pagesRendered == 0 && v.pagesDeferred == 0 && v.levelsBehind == 0) return;
+        }
+    };
+    int frames = 0, behind = 0;
+    settle(sunA, frames, behind);
+    EXPECT_GT(frames, 2) << "the first frame's pages fit the budget: the test checks nothing";
+    EXPECT_EQ(behind, 0);
+    const auto termA = freshTerm(sunA);
+    EXPECT_EQ((*renderer)->renderEvalBuffers(cam, sunA, setupFor(sunA), settings)->shadowTerm, termA);
+
+    // The sun moves: until the back generation's finest level is drawn, every frame is still
+    // looked up in sun A's pages, and only those (the lookup reads the shadow maps alone; the
+    // light's direction only shades), while sun B's are drawn beside them.
+    const int levels = static_cast<int>(setupFor(sunB).views.size());
+    int allBehind = 0;
+    for (int frame = 0; frame < 50; ++frame) {
+        const auto term = (*renderer)->renderEvalBuffers(cam, sunB, setupFor(sunB), settings);
+        ASSERT_TRUE(term);
+        const auto stats = (*renderer)->lastVirtualPages();
+        ASSERT_TRUE(stats);
+        if (stats->levelsBehind < levels) break;
+        EXPECT_EQ(term->shadowTerm, termA) << "frame " << frame << " after the sun moved";
+        ++allBehind;
+    }
+    EXPECT_GE(allBehind, 2) << "the finest level was drawn at once: the test checks little";
+    // Then sun B's pages replace them level by level within the budget, and the frame ends equal
+    // to one drawn fresh for sun B.
+    behind = 0;
+    settle(sunB, frames, behind);
+    EXPECT_GT(behind, 1);
+    const auto termB = freshTerm(sunB);
+    EXPECT_NE(termA, termB);
+    EXPECT_EQ((*renderer)->renderEvalBuffers(cam, sunB, setupFor(sunB), settings)->shadowTerm, termB);
+
+    // A budget that holds every page draws what no budget does, frame for frame, the sun moving.
+    auto large = gl::Renderer::create(s), unlimited = gl::Renderer::create(s);
+    ASSERT_TRUE(large && unlimited);
+    gl::RenderSettings none = settings;
+    none.virtualPageBudget = 0;
+    settings.virtualPageBudget = 100000;
+    for (const core::DirectionalLight& sun : {sunA, sunA, sunB, sunB, sunA}) {
+        const auto a = (*large)->renderEvalBuffers(cam, sun, setupFor(sun), settings);
+        const auto b = (*unlimited)->renderEvalBuffers(cam, sun, setupFor(sun), none);
+        ASSERT_TRUE(a && b);
+        EXPECT_EQ(a->shadowTerm, b->shadowTerm);
+        EXPECT_EQ((*large)->lastVirtualPages()->lagFrames, 0);
+        EXPECT_EQ((*large)->lastVirtualPages()->pagesRendered, (*unlimited)->lastVirtualPages()->pagesRendered);
+    }
+
+    settings.virtualPageBudget = -1;
+    EXPECT_EQ((*renderer)->render(cam, sunB, setupFor(sunB), settings).errorInfo().field, "virtual.page_budget");
 }
 
 TEST_F(VirtualPagesTest, MovingThePageBordersChangesNoShadowForAnyFilter) {

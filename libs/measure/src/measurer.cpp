@@ -175,6 +175,19 @@ core::Result<Measurement> Measurer::measure(const frame::PreparedFrame& frame, c
     return m;
 }
 
+eval::VirtualPagesReport virtualPagesReport(const gl::VirtualPageStats& v) {
+    return {.pagesRequested = v.pagesRequested,
+            .pagesRendered = v.pagesRendered,
+            .pagesResident = v.pagesResident,
+            .pagesFellBack = v.pagesFellBack,
+            .pagesDeferred = v.pagesDeferred,
+            .levelsBehind = v.levelsBehind,
+            .lagFrames = v.lagFrames,
+            .poolPages = v.poolPages,
+            .poolBytes = v.poolBytes,
+            .shadowTriangles = v.triangles};
+}
+
 eval::ViewReport viewReport(const Measurement& m, const gl::RenderSettings& settings, const std::string& view,
                             const std::string& sceneName, uint64_t seed) {
     eval::ViewReport report;
@@ -192,10 +205,7 @@ eval::ViewReport viewReport(const Measurement& m, const gl::RenderSettings& sett
     report.fallbacks = m.setup.fallbacks;
     report.visibleDepth = m.visibleDepth;
     report.figures = m.comparison.figures;
-    if (const auto& v = m.virtualPages)
-        report.virtualPages =
-            eval::VirtualPagesReport{v->pagesRequested, v->pagesRendered, v->pagesResident, v->pagesFellBack,
-                                     v->poolPages,      v->poolBytes,     v->triangles};
+    if (const auto& v = m.virtualPages) report.virtualPages = virtualPagesReport(*v);
     for (const LightMeasurement& l : m.lights)
         report.lights.push_back({l.light, l.maps, l.skippedFaces, l.comparison.figures});
     return report;

@@ -27,7 +27,11 @@ struct LightReport {
 
 // Technique virtual: a frame's pages (gl::VirtualPageStats, which eval does not see).
 struct VirtualPagesReport {
-    int pagesRequested = 0, pagesRendered = 0, pagesResident = 0, pagesFellBack = 0, poolPages = 0;
+    int pagesRequested = 0, pagesRendered = 0, pagesResident = 0, pagesFellBack = 0;
+    int pagesDeferred = 0; // over the page budget, not drawn this frame
+    int levelsBehind = 0;  // page budget: levels shown from the older generation of pages
+    int lagFrames = 0;     // page budget: frames since the oldest sun shown was the current one
+    int poolPages = 0;
     int64_t poolBytes = 0;
     size_t shadowTriangles = 0; // drawn into the pages rendered
 };

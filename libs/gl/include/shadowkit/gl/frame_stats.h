@@ -23,9 +23,15 @@ struct VirtualPageStats {
     int pagesResident = 0;  // in the pool after the frame, requested or kept from earlier frames
     int pagesRendered = 0;  // drawn this frame: newly allocated or invalidated
     int pagesFellBack = 0;  // requested but not allocated (pool full): served by a coarser level
-    int poolPages = 0;      // slots in the pool
-    int64_t poolBytes = 0;  // the atlas's depth, 4 bytes a texel (guard bands included)
-    size_t triangles = 0;   // drawn into the pages rendered this frame
+    int pagesDeferred = 0;  // requested, allocated, not drawn: over the page budget (served coarser)
+    // Page budget: levels still shown from the older of two generations of pages while the
+    // newer one is drawn (what pages depend on changed: a moving sun, a new bias...), and how many
+    // frames ago the oldest shown was the current one (0: every level shows the current sun).
+    int levelsBehind = 0;
+    int lagFrames = 0;
+    int poolPages = 0;     // slots in the pool
+    int64_t poolBytes = 0; // the atlas's depth, 4 bytes a texel (guard bands included)
+    size_t triangles = 0;  // drawn into the pages rendered this frame
 };
 
 struct FrameStats {

@@ -103,6 +103,12 @@ struct RenderSettings {
     // Technique virtual: the last fraction of each level's range of pixel footprints, [0, 1),
     // over which the lookup fades into the next coarser level (two lookups there); 0: none.
     float virtualBlendBand = 0.0f;
+    // Technique virtual: at most this many pages drawn a frame; 0: every page requested. Over
+    // it, pages missing are served by coarser levels for a frame or more, and a change of what
+    // pages depend on (a moving sun) keeps the pages of the earlier sun on screen while the new
+    // sun's are drawn, each level shown in the frame its last page is (virtual_pages.h): the cost
+    // of a frame is capped, and the shadows lag the sun by the frames a clipmap takes to draw.
+    int virtualPageBudget = 0;
 };
 
 // The bias a frame with these settings is drawn with: settings.bias, or the recommended one.

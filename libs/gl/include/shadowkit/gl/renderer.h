@@ -96,6 +96,10 @@ public:
     scene::Image readShadowMap() const;
     // The local lights' last maps likewise: spot maps, then each cube unfolded as a cross.
     scene::Image readLocalShadowMaps() const;
+    // Technique virtual: the last frame's page table, a tile per level, finest first: a page
+    // shown in its level's --cascade-colors tint, one requested but served coarser (pool full,
+    // over the page budget) white. Empty for every other technique.
+    scene::Image readVirtualPageTable() const;
 
 private:
     Renderer();

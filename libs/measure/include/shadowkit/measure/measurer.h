@@ -124,6 +124,9 @@ private:
     std::unique_ptr<Impl> m_impl;
 };
 
+// A frame's virtual pages as `eval` reports them (eval sees no gl).
+eval::VirtualPagesReport virtualPagesReport(const gl::VirtualPageStats& pages);
+
 // The figures of one measurement as a row of `shadowkit eval --json` (eval::ViewReport);
 // `filter` is the filter's text form (core::filterName).
 eval::ViewReport viewReport(const Measurement& measurement, const gl::RenderSettings& settings, const std::string& view,
