@@ -1,12 +1,15 @@
-// What the set-up benchmarks share: the default forest (built once; only its bounds matter)
-// and a standard view resolved over it.
+// What the benchmarks share: the default forest (built once; only its bounds matter), a
+// standard view resolved over it, and the `flythrough` path's frames over any scene — the
+// moving camera a benchmark iterates over so that no two iterations share their inputs.
 #pragma once
 
 #include "shadowkit/core/result.h"
+#include "shadowkit/scene/camera_path.h"
 #include "shadowkit/scene/forest.h"
 #include "shadowkit/scene/views.h"
 
 #include <string>
+#include <vector>
 
 namespace shadowkit::bench {
 
@@ -26,6 +29,20 @@ inline core::Result<scene::ResolvedView> standardView(const std::string& name) {
     const auto spec = scene::findView(*views, name);
     if (!spec) return spec.errorInfo();
     return scene::resolveView(*spec, defaultForest());
+}
+
+// Every frame of data/paths/flythrough.json over `scene` (cameras on its terrain, the path's own
+// sun); an error names what is missing.
+inline core::Result<std::vector<scene::ResolvedView>> flythroughViews(const scene::Scene& scene) {
+    const auto path = scene::findCameraPath("flythrough", std::filesystem::path(SHADOWKIT_SOURCE_DATA_DIR) / "paths");
+    if (!path) return path.errorInfo();
+    std::vector<scene::ResolvedView> views;
+    for (int i = 0; i < path->frames; ++i) {
+        auto view = scene::viewAt(*path, scene, path->timeOfFrame(i));
+        if (!view) return view.errorInfo();
+        views.push_back(std::move(view).value());
+    }
+    return views;
 }
 
 } // namespace shadowkit::bench

@@ -61,24 +61,20 @@ void chooseForView(benchmark::State& state, const std::string& viewName, int sam
 // Every frame of the flythrough after the first, in order, round and round: the per-frame cost
 // of tracking. The first frame's full search (and the one after each wrap) is not timed.
 void trackAlongPath(benchmark::State& state, int cascades) {
-    const auto path = scene::findCameraPath("flythrough", std::filesystem::path(SHADOWKIT_SOURCE_DATA_DIR) / "paths");
-    if (!path) {
-        state.SkipWithError(path.error().c_str());
+    const auto views = bench::flythroughViews(bench::defaultForest());
+    if (!views) {
+        state.SkipWithError(views.error().c_str());
         return;
     }
     const core::Aabb bounds = bench::defaultForest().wsBounds();
     const double groundY = 0.5 * (bounds.min.y + bounds.max.y) - 0.25 * (bounds.max.y - bounds.min.y);
     std::vector<core::ShadowSetupInputs> frames;
     std::vector<std::vector<core::ReceiverSample>> receivers;
-    for (int i = 0; i < path->frames; ++i) {
-        auto view = scene::viewAt(*path, bench::defaultForest(), path->timeOfFrame(i));
-        if (!view) {
-            state.SkipWithError(view.error().c_str());
-            return;
-        }
-        frames.push_back({.camera = view->camera, .light = view->light, .wsSceneBounds = bounds});
-        receivers.push_back(groundSamples(view->camera, groundY, 4096));
+    for (const scene::ResolvedView& view : *views) {
+        frames.push_back({.camera = view.camera, .light = view.light, .wsSceneBounds = bounds});
+        receivers.push_back(groundSamples(view.camera, groundY, 4096));
     }
+    const int width = views->front().width, height = views->front().height;
     core::AutoOptions options;
     options.texelBudget = int64_t(4) << 20;
     options.cascades = cascades;
@@ -88,11 +84,11 @@ void trackAlongPath(benchmark::State& state, int cascades) {
         if (frame == 0) {
             state.PauseTiming();
             chooser.reset();
-            benchmark::DoNotOptimize(chooser.choose(frames[0], path->width, path->height, receivers[0]));
+            benchmark::DoNotOptimize(chooser.choose(frames[0], width, height, receivers[0]));
             frame = 1;
             state.ResumeTiming();
         }
-        auto choice = chooser.choose(frames[frame], path->width, path->height, receivers[frame]);
+        auto choice = chooser.choose(frames[frame], width, height, receivers[frame]);
         benchmark::DoNotOptimize(choice);
         frame = (frame + 1) % frames.size();
     }

@@ -46,20 +46,15 @@ core::ShadowSetupInputs inputsFor(const Technique& t, const core::PerspectiveCam
 
 // The flythrough's frames as set-up inputs; with `holdSun`, every frame under the first one's sun.
 std::vector<core::ShadowSetupInputs> pathFrames(const Technique& t, bool holdSun, std::string& error) {
-    const auto path = scene::findCameraPath("flythrough", std::filesystem::path(SHADOWKIT_SOURCE_DATA_DIR) / "paths");
-    if (!path) {
-        error = path.error();
+    const auto views = bench::flythroughViews(bench::defaultForest());
+    if (!views) {
+        error = views.error();
         return {};
     }
     std::vector<core::ShadowSetupInputs> frames;
-    for (int i = 0; i < path->frames; ++i) {
-        auto view = scene::viewAt(*path, bench::defaultForest(), path->timeOfFrame(i));
-        if (!view) {
-            error = view.error();
-            return {};
-        }
-        const core::DirectionalLight light = holdSun && !frames.empty() ? frames.front().light : view->light;
-        frames.push_back(inputsFor(t, view->camera, light));
+    for (const scene::ResolvedView& view : *views) {
+        const core::DirectionalLight light = holdSun && !frames.empty() ? frames.front().light : view.light;
+        frames.push_back(inputsFor(t, view.camera, light));
     }
     return frames;
 }
