@@ -30,6 +30,22 @@ struct RayScene::Impl {
 
 namespace {
 
+// A ray's single-precision form, relative to the scene's origin: the same conversions for one
+// ray and for a packet's lane, so both give the same answer.
+struct FloatRay {
+    float org[3], dir[3], tnear, tfar;
+};
+FloatRay toFloat(const core::Vec3& wsOrigin, const core::Vec3& origin, const core::Vec3& direction, double tNear,
+                 double tFar) {
+    const core::Vec3 local = origin - wsOrigin;
+    return {{static_cast<float>(local.x), static_cast<float>(local.y), static_cast<float>(local.z)},
+            {static_cast<float>(direction.x), static_cast<float>(direction.y), static_cast<float>(direction.z)},
+            static_cast<float>(tNear),
+            static_cast<float>(std::min(tFar, double(std::numeric_limits<float>::max())))};
+}
+
+constexpr int kPacket = 8; // rtcIntersect8 / rtcOccluded8
+
 void onEmbreeError(void* user, RTCError code, const char* message) {
     *static_cast<std::string*>(user) =
         "Embree error " + std::to_string(static_cast<int>(code)) + ": " + (message ? message : "?");
@@ -113,32 +129,39 @@ core::Status RayScene::moveInstances(const scene::Scene& scene, std::span<const 
     return core::Ok{};
 }
 
+namespace {
+
+// Embree reports instanced hits' Ng in object space: to world space, facing against the ray.
+RayHit worldHit(const std::vector<glm::mat3>& normalFromObject, float t, unsigned instance, const glm::vec3& osNg,
+                const core::Vec3& direction) {
+    RayHit hit;
+    hit.t = t;
+    hit.instance = instance;
+    core::Vec3 n = glm::normalize(core::Vec3(normalFromObject[instance] * osNg));
+    if (glm::dot(n, direction) > 0.0) n = -n;
+    hit.wsGeometricNormal = n;
+    return hit;
+}
+
+} // namespace
+
 bool RayScene::intersect(const core::Vec3& origin, const core::Vec3& direction, double tNear, double tFar,
                          RayHit& hit) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRayHit rh{};
-    const core::Vec3 local = origin - m_wsOrigin;
-    rh.ray.org_x = static_cast<float>(local.x);
-    rh.ray.org_y = static_cast<float>(local.y);
-    rh.ray.org_z = static_cast<float>(local.z);
-    rh.ray.dir_x = static_cast<float>(direction.x);
-    rh.ray.dir_y = static_cast<float>(direction.y);
-    rh.ray.dir_z = static_cast<float>(direction.z);
-    rh.ray.tnear = static_cast<float>(tNear);
-    rh.ray.tfar = static_cast<float>(std::min(tFar, double(std::numeric_limits<float>::max())));
+    const FloatRay f = toFloat(m_wsOrigin, origin, direction, tNear, tFar);
+    rh.ray.org_x = f.org[0], rh.ray.org_y = f.org[1], rh.ray.org_z = f.org[2];
+    rh.ray.dir_x = f.dir[0], rh.ray.dir_y = f.dir[1], rh.ray.dir_z = f.dir[2];
+    rh.ray.tnear = f.tnear;
+    rh.ray.tfar = f.tfar;
     rh.ray.mask = ~0u;
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(m_impl->top, &context, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
-    hit.t = rh.ray.tfar;
-    hit.instance = rh.hit.instID[0];
-    // Embree reports instanced hits' Ng in object space: bring it to world space.
-    const glm::vec3 osNg(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
-    core::Vec3 n = glm::normalize(core::Vec3(m_impl->normalFromObject[hit.instance] * osNg));
-    if (glm::dot(n, direction) > 0.0) n = -n;
-    hit.wsGeometricNormal = n;
+    hit = worldHit(m_impl->normalFromObject, rh.ray.tfar, rh.hit.instID[0],
+                   glm::vec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z), direction);
     return true;
 }
 
@@ -146,18 +169,75 @@ bool RayScene::occluded(const core::Vec3& origin, const core::Vec3& direction, d
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRay ray{};
-    const core::Vec3 local = origin - m_wsOrigin;
-    ray.org_x = static_cast<float>(local.x);
-    ray.org_y = static_cast<float>(local.y);
-    ray.org_z = static_cast<float>(local.z);
-    ray.dir_x = static_cast<float>(direction.x);
-    ray.dir_y = static_cast<float>(direction.y);
-    ray.dir_z = static_cast<float>(direction.z);
-    ray.tnear = static_cast<float>(tNear);
-    ray.tfar = static_cast<float>(std::min(tFar, double(std::numeric_limits<float>::max())));
+    const FloatRay f = toFloat(m_wsOrigin, origin, direction, tNear, tFar);
+    ray.org_x = f.org[0], ray.org_y = f.org[1], ray.org_z = f.org[2];
+    ray.dir_x = f.dir[0], ray.dir_y = f.dir[1], ray.dir_z = f.dir[2];
+    ray.tnear = f.tnear;
+    ray.tfar = f.tfar;
     ray.mask = ~0u;
     rtcOccluded1(m_impl->top, &context, &ray);
     return ray.tfar < 0.0f; // Embree sets tfar to -inf on a hit
+}
+
+namespace {
+
+// Lanes [first, first + count) of `rays` into a packet's ray part; the rest invalid.
+void fillPacket(RTCRay8& packet, int (&valid)[kPacket], const core::Vec3& wsOrigin, std::span<const Ray> rays,
+                size_t first, size_t count) {
+    for (size_t lane = 0; lane < size_t(kPacket); ++lane) {
+        valid[lane] = lane < count ? -1 : 0;
+        if (lane >= count) continue;
+        const Ray& r = rays[first + lane];
+        const FloatRay f = toFloat(wsOrigin, r.origin, r.direction, r.tNear, r.tFar);
+        packet.org_x[lane] = f.org[0], packet.org_y[lane] = f.org[1], packet.org_z[lane] = f.org[2];
+        packet.dir_x[lane] = f.dir[0], packet.dir_y[lane] = f.dir[1], packet.dir_z[lane] = f.dir[2];
+        packet.tnear[lane] = f.tnear;
+        packet.tfar[lane] = f.tfar;
+        packet.mask[lane] = ~0u;
+        packet.time[lane] = 0.0f;
+        packet.flags[lane] = 0;
+    }
+}
+
+} // namespace
+
+void RayScene::intersect(std::span<const Ray> rays, std::span<uint8_t> hit, std::span<RayHit> hits) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    for (size_t first = 0; first < rays.size(); first += kPacket) {
+        const size_t count = std::min(rays.size() - first, size_t(kPacket));
+        RTCRayHit8 packet{};
+        int valid[kPacket];
+        fillPacket(packet.ray, valid, m_wsOrigin, rays, first, count);
+        for (int lane = 0; lane < kPacket; ++lane) {
+            packet.hit.geomID[lane] = RTC_INVALID_GEOMETRY_ID;
+            packet.hit.instID[0][lane] = RTC_INVALID_GEOMETRY_ID;
+        }
+        rtcIntersect8(valid, m_impl->top, &context, &packet);
+        for (size_t lane = 0; lane < count; ++lane) {
+            hit[first + lane] = packet.hit.geomID[lane] != RTC_INVALID_GEOMETRY_ID;
+            if (!hit[first + lane]) continue;
+            hits[first + lane] =
+                worldHit(m_impl->normalFromObject, packet.ray.tfar[lane], packet.hit.instID[0][lane],
+                         glm::vec3(packet.hit.Ng_x[lane], packet.hit.Ng_y[lane], packet.hit.Ng_z[lane]),
+                         rays[first + lane].direction);
+        }
+    }
+}
+
+void RayScene::occluded(std::span<const Ray> rays, std::span<uint8_t> occluded) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    for (size_t first = 0; first < rays.size(); first += kPacket) {
+        const size_t count = std::min(rays.size() - first, size_t(kPacket));
+        RTCRay8 packet{};
+        int valid[kPacket];
+        fillPacket(packet, valid, m_wsOrigin, rays, first, count);
+        rtcOccluded8(valid, m_impl->top, &context, &packet);
+        for (size_t lane = 0; lane < count; ++lane) occluded[first + lane] = packet.tfar[lane] < 0.0f;
+    }
 }
 
 } // namespace shadowkit::eval

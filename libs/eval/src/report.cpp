@@ -49,6 +49,8 @@ std::string reportJson(const std::vector<ViewReport>& views) {
             {"pixels_per_texel_p95", f.pixelsPerTexelP95},
             {"pixels_per_texel_p99", f.pixelsPerTexelP99},
             {"seconds", v.seconds},
+            {"truth_seconds", v.truthSeconds},
+            {"truth_rays_per_second", v.truthRaysPerSecond},
         });
         if (v.visibleDepth) list.back()["visible_depth"] = {v.visibleDepth->x, v.visibleDepth->y};
         if (!v.autoChoice.empty()) list.back()["auto_choice"] = v.autoChoice;

@@ -5,17 +5,44 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 namespace shadowkit::eval {
 namespace {
 
 // The shadow ray of a surface point: towards the light from just off the surface.
-bool reachesLight(const RayScene& rays, const core::Vec3& wsPoint, const core::Vec3& wsNormal,
-                  const core::Vec3& towardsLight, double offset) {
-    return !rays.occluded(wsPoint + offset * wsNormal, towardsLight, 0.0, std::numeric_limits<double>::infinity());
+Ray shadowRay(const core::Vec3& wsPoint, const core::Vec3& wsNormal, const core::Vec3& towardsLight, double offset) {
+    return {wsPoint + offset * wsNormal, towardsLight, 0.0, std::numeric_limits<double>::infinity()};
+}
+
+// For the pixels i in [begin, end) whose `rayOf(i)` gives a shadow ray, lit[i] = it reaches the
+// light; the rays go through the ray tracer eight at a time (neighbouring pixels' shadow rays
+// are coherent).
+template <class RayOf>
+void traceLit(const RayScene& rays, size_t begin, size_t end, RayOf rayOf, std::vector<uint8_t>& lit) {
+    constexpr size_t kBatch = 8;
+    std::array<Ray, kBatch> batch;
+    std::array<size_t, kBatch> pixel;
+    std::array<uint8_t, kBatch> occluded;
+    size_t count = 0;
+    const auto flush = [&] {
+        rays.occluded(std::span(batch.data(), count), std::span(occluded.data(), count));
+        for (size_t k = 0; k < count; ++k) lit[pixel[k]] = !occluded[k];
+        count = 0;
+    };
+    for (size_t i = begin; i < end; ++i) {
+        const std::optional<Ray> ray = rayOf(i);
+        if (!ray) continue;
+        pixel[count] = i;
+        batch[count++] = *ray;
+        if (count == kBatch) flush();
+    }
+    flush();
 }
 
 // A local light's truth at `hits`' surfaces: which face it within what it admits (range,
@@ -28,17 +55,20 @@ void localLightTruth(const RayScene& rays, const TruthBuffers& hits, const core:
     lit.assign(hits.surfaceId.size(), 0);
     const double offset = options.normalOffsetFraction * std::max(rays.sceneDiagonal(), 1.0);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, lit.size()), [&](const tbb::blocked_range<size_t>& r) {
-        for (size_t i = r.begin(); i < r.end(); ++i) {
-            if (hits.surfaceId[i] == 0) continue;
-            const core::Vec3 p = hits.wsPosition[i], n(hits.wsNormal[i]);
-            const core::Vec3 toLight = wsLight - p;
-            const double distance = glm::length(toLight);
-            if (!(distance > 0.0) || !admits(p, distance) || !(glm::dot(n, toLight) > 0.0)) continue;
-            reached[i] = 1;
-            const core::Vec3 origin = p + offset * n;
-            const core::Vec3 towards = wsLight - origin;
-            lit[i] = !rays.occluded(origin, glm::normalize(towards), 0.0, glm::length(towards));
-        }
+        traceLit(
+            rays, r.begin(), r.end(),
+            [&](size_t i) -> std::optional<Ray> {
+                if (hits.surfaceId[i] == 0) return std::nullopt;
+                const core::Vec3 p = hits.wsPosition[i], n(hits.wsNormal[i]);
+                const core::Vec3 toLight = wsLight - p;
+                const double distance = glm::length(toLight);
+                if (!(distance > 0.0) || !admits(p, distance) || !(glm::dot(n, toLight) > 0.0)) return std::nullopt;
+                reached[i] = 1;
+                const core::Vec3 origin = p + offset * n;
+                const core::Vec3 towards = wsLight - origin;
+                return Ray{origin, glm::normalize(towards), 0.0, glm::length(towards)};
+            },
+            lit);
     });
 }
 
@@ -80,30 +110,59 @@ TruthBuffers computeTruth(const RayScene& rays, const core::PerspectiveCamera& c
     const core::Vec3 towardsLight = light.wsTowardsLight();
     const double offset = options.normalOffsetFraction * std::max(rays.sceneDiagonal(), 1.0);
 
-    // Rows in chunks so progress can be reported between them from this thread.
-    const int chunk = std::max(1, height / 20);
+    const auto start = std::chrono::steady_clock::now();
+    std::atomic<uint64_t> shadowRays{0};
+    // Rows in chunks so progress can be reported between them from this thread; within a
+    // chunk, tiles of 4 × 2 pixels: a tile's primary rays, then the shadow rays of those that
+    // face the light, go through the ray tracer as one 8-wide packet each (coherent rays
+    // traverse its hierarchy together; each answer is the one-ray query's).
+    constexpr int kTileW = 4, kTileH = 2;
+    const int chunk = std::max(kTileH, height / 20 / kTileH * kTileH);
     for (int y0 = 0; y0 < height; y0 += chunk) {
         const int y1 = std::min(height, y0 + chunk);
-        tbb::parallel_for(tbb::blocked_range2d<int>(y0, y1, 0, width), [&](const tbb::blocked_range2d<int>& r) {
-            for (int y = r.rows().begin(); y < r.rows().end(); ++y)
-                for (int x = r.cols().begin(); x < r.cols().end(); ++x) {
-                    const size_t i = static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x);
-                    RayHit hit;
-                    const core::Vec3 dir = primaryRayDirection(camera, width, height, x, y);
-                    if (!rays.intersect(camera.wsEye, dir, camera.zNear, camera.zFar, hit)) continue;
-                    const core::Vec3 p = camera.wsEye + hit.t * dir;
-                    t.surfaceId[i] = hit.instance + 1;
-                    t.viewDepth[i] = static_cast<float>(hit.t);
-                    t.wsPosition[i] = p;
-                    t.wsNormal[i] = glm::vec3(hit.wsGeometricNormal);
-                    const double nDotL = glm::dot(hit.wsGeometricNormal, towardsLight);
-                    if (!(nDotL > 0.0)) continue;
-                    t.facesLight[i] = 1;
-                    t.lit[i] = reachesLight(rays, p, hit.wsGeometricNormal, towardsLight, offset);
+        const tbb::blocked_range2d<int> tiles(0, (y1 - y0 + kTileH - 1) / kTileH, 0, (width + kTileW - 1) / kTileW);
+        tbb::parallel_for(tiles, [&](const tbb::blocked_range2d<int>& r) {
+            uint64_t traced = 0;
+            std::array<Ray, kTileW * kTileH> primary, shadow;
+            std::array<size_t, kTileW * kTileH> pixel, shadowPixel;
+            std::array<uint8_t, kTileW * kTileH> hit, occluded;
+            std::array<RayHit, kTileW * kTileH> hits;
+            for (int ty = r.rows().begin(); ty < r.rows().end(); ++ty)
+                for (int tx = r.cols().begin(); tx < r.cols().end(); ++tx) {
+                    size_t count = 0;
+                    for (int y = y0 + ty * kTileH; y < std::min(y1, y0 + (ty + 1) * kTileH); ++y)
+                        for (int x = tx * kTileW; x < std::min(width, (tx + 1) * kTileW); ++x) {
+                            pixel[count] = static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x);
+                            primary[count++] = {camera.wsEye, primaryRayDirection(camera, width, height, x, y),
+                                                camera.zNear, camera.zFar};
+                        }
+                    rays.intersect(std::span(primary.data(), count), std::span(hit.data(), count),
+                                   std::span(hits.data(), count));
+                    size_t shadows = 0;
+                    for (size_t k = 0; k < count; ++k) {
+                        if (!hit[k]) continue;
+                        const size_t i = pixel[k];
+                        const core::Vec3 p = camera.wsEye + hits[k].t * primary[k].direction;
+                        const core::Vec3& n = hits[k].wsGeometricNormal;
+                        t.surfaceId[i] = hits[k].instance + 1;
+                        t.viewDepth[i] = static_cast<float>(hits[k].t);
+                        t.wsPosition[i] = p;
+                        t.wsNormal[i] = glm::vec3(n);
+                        if (!(glm::dot(n, towardsLight) > 0.0)) continue;
+                        t.facesLight[i] = 1;
+                        shadowPixel[shadows] = i;
+                        shadow[shadows++] = shadowRay(p, n, towardsLight, offset);
+                    }
+                    rays.occluded(std::span(shadow.data(), shadows), std::span(occluded.data(), shadows));
+                    for (size_t k = 0; k < shadows; ++k) t.lit[shadowPixel[k]] = !occluded[k];
+                    traced += shadows;
                 }
+            shadowRays.fetch_add(traced, std::memory_order_relaxed);
         });
         if (options.progress) options.progress(double(y1) / height);
     }
+    t.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    t.rays = n + shadowRays.load();
     return t;
 }
 
@@ -113,12 +172,14 @@ std::vector<uint8_t> litAt(const RayScene& rays, const TruthBuffers& hits, const
     const core::Vec3 towardsLight = light.wsTowardsLight();
     const double offset = options.normalOffsetFraction * std::max(rays.sceneDiagonal(), 1.0);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, lit.size()), [&](const tbb::blocked_range<size_t>& r) {
-        for (size_t i = r.begin(); i < r.end(); ++i) {
-            if (hits.surfaceId[i] == 0) continue;
-            const core::Vec3 n(hits.wsNormal[i]);
-            if (!(glm::dot(n, towardsLight) > 0.0)) continue;
-            lit[i] = reachesLight(rays, hits.wsPosition[i], n, towardsLight, offset);
-        }
+        traceLit(
+            rays, r.begin(), r.end(),
+            [&](size_t i) -> std::optional<Ray> {
+                const core::Vec3 n(hits.wsNormal[i]);
+                if (hits.surfaceId[i] == 0 || !(glm::dot(n, towardsLight) > 0.0)) return std::nullopt;
+                return shadowRay(hits.wsPosition[i], n, towardsLight, offset);
+            },
+            lit);
     });
     return lit;
 }

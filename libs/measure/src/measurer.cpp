@@ -206,6 +206,10 @@ eval::ViewReport viewReport(const Measurement& m, const gl::RenderSettings& sett
     report.visibleDepth = m.visibleDepth;
     report.figures = m.comparison.figures;
     if (const auto& v = m.virtualPages) report.virtualPages = virtualPagesReport(*v);
+    if (m.truth && m.truth->seconds > 0.0) {
+        report.truthSeconds = m.truth->seconds;
+        report.truthRaysPerSecond = double(m.truth->rays) / m.truth->seconds;
+    }
     for (const LightMeasurement& l : m.lights)
         report.lights.push_back({l.light, l.maps, l.skippedFaces, l.comparison.figures});
     return report;

@@ -5,6 +5,7 @@
 #include "shadowkit/core/result.h"
 #include "shadowkit/scene/scene.h"
 
+#include <limits>
 #include <memory>
 #include <span>
 
@@ -14,6 +15,14 @@ struct RayHit {
     double t = 0.0;                 // ray parameter of the hit
     uint32_t instance = 0;          // global instance index (batches in Scene order)
     core::Vec3 wsGeometricNormal{}; // unit, world space, facing against the ray
+};
+
+// A ray for the batched queries: origin + t·direction, t in [tNear, tFar].
+struct Ray {
+    core::Vec3 origin{0.0};
+    core::Vec3 direction{0.0, 0.0, -1.0};
+    double tNear = 0.0;
+    double tFar = std::numeric_limits<double>::infinity();
 };
 
 // Rays come in world coordinates (double); the BVHs hold the scene in its own coordinates
@@ -32,6 +41,12 @@ public:
     bool intersect(const core::Vec3& origin, const core::Vec3& direction, double tNear, double tFar, RayHit& hit) const;
     // Anything hit for t in [tNear, tFar]?
     bool occluded(const core::Vec3& origin, const core::Vec3& direction, double tNear, double tFar) const;
+    // The same for many rays, eight at a time through Embree's packet kernels: coherent rays (a
+    // screen tile's, or their shadow rays towards the sun) traverse the hierarchy together. Each
+    // result is what the one-ray query gives for that ray. `hit[i]` / `occluded[i]` 0 or 1;
+    // `hits[i]` set where hit[i] is 1. Spans of equal length.
+    void intersect(std::span<const Ray> rays, std::span<uint8_t> hit, std::span<RayHit> hits) const;
+    void occluded(std::span<const Ray> rays, std::span<uint8_t> occluded) const;
 
     // Instances that moved (scene::animate's list of global indices) take their new
     // transforms from `scene`, the scene this was built from; the top-level BVH is rebuilt.

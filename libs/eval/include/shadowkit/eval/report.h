@@ -53,6 +53,9 @@ struct ViewReport {
     Figures figures;                        // every light together (eval::combine); the sun's alone in a sunlit view
     std::vector<LightReport> lights;        // per light, when the view has spot or point lights
     double seconds = 0.0;                   // wall time of this view's evaluation
+    // Computing the sun's truth (eval::TruthBuffers::seconds, rays): "truth_seconds",
+    // "truth_rays_per_second" (primary and shadow rays).
+    double truthSeconds = 0.0, truthRaysPerSecond = 0.0;
     std::optional<VirtualPagesReport> virtualPages; // "virtual": technique virtual's pages
 };
 

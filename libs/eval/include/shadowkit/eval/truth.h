@@ -21,6 +21,9 @@ struct TruthBuffers {
     std::vector<glm::vec3> wsNormal;    // geometric normal facing the viewer
     std::vector<uint8_t> facesLight;    // N·L > 0
     std::vector<uint8_t> lit;           // the shadow ray reached the light (only where facesLight)
+    // What computing it took: wall seconds, and rays traced (primary and shadow).
+    double seconds = 0.0;
+    uint64_t rays = 0;
 };
 
 struct TruthOptions {
