@@ -199,14 +199,20 @@ void fillPacket(RTCRay8& packet, int (&valid)[kPacket], const core::Vec3& wsOrig
     }
 }
 
-} // namespace
-
-void RayScene::intersect(std::span<const Ray> rays, std::span<uint8_t> hit, std::span<RayHit> hits) const {
+// Calls trace(context, first, count) for each packet of `rays`, with a context for coherent rays.
+template <class Trace>
+void forEachPacket(size_t rays, Trace trace) {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-    for (size_t first = 0; first < rays.size(); first += kPacket) {
-        const size_t count = std::min(rays.size() - first, size_t(kPacket));
+    for (size_t first = 0; first < rays; first += kPacket)
+        trace(context, first, std::min(rays - first, size_t(kPacket)));
+}
+
+} // namespace
+
+void RayScene::intersect(std::span<const Ray> rays, std::span<uint8_t> hit, std::span<RayHit> hits) const {
+    forEachPacket(rays.size(), [&](RTCIntersectContext& context, size_t first, size_t count) {
         RTCRayHit8 packet{};
         int valid[kPacket];
         fillPacket(packet.ray, valid, m_wsOrigin, rays, first, count);
@@ -223,21 +229,17 @@ void RayScene::intersect(std::span<const Ray> rays, std::span<uint8_t> hit, std:
                          glm::vec3(packet.hit.Ng_x[lane], packet.hit.Ng_y[lane], packet.hit.Ng_z[lane]),
                          rays[first + lane].direction);
         }
-    }
+    });
 }
 
 void RayScene::occluded(std::span<const Ray> rays, std::span<uint8_t> occluded) const {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-    for (size_t first = 0; first < rays.size(); first += kPacket) {
-        const size_t count = std::min(rays.size() - first, size_t(kPacket));
+    forEachPacket(rays.size(), [&](RTCIntersectContext& context, size_t first, size_t count) {
         RTCRay8 packet{};
         int valid[kPacket];
         fillPacket(packet, valid, m_wsOrigin, rays, first, count);
         rtcOccluded8(valid, m_impl->top, &context, &packet);
         for (size_t lane = 0; lane < count; ++lane) occluded[first + lane] = packet.tfar[lane] < 0.0f;
-    }
+    });
 }
 
 } // namespace shadowkit::eval
