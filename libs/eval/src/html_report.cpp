@@ -12,36 +12,33 @@
 namespace shadowkit::eval {
 namespace {
 
-constexpr std::array<FigureMeaning, 9> kMeanings = {{
-    {"valid_px", "pixels evaluated: the surface faces the sun and raster and ray tracer agree on it"},
-    {"excluded_px", "pixels facing the sun where raster and ray tracer see different surfaces (silhouettes)"},
-    {"wrong_pct", "% of valid pixels whose rendered lit/shadowed state differs from the ray-traced truth"},
-    {"false_shadow_pct", "% rendered shadowed where the truth is lit: acne, aliasing that darkens (red)"},
-    {"false_lit_pct", "% rendered lit where the truth is shadowed: peter-panning, leaks, missed casters (blue)"},
-    {"undersampled_pct", "% of valid pixels where one shadow texel covers more than one pixel"},
-    {"pixels_per_texel_p50", "median pixels one texel covers along its worst direction; above 1 shows stair steps"},
-    {"pixels_per_texel_p95", "95th percentile of the same: the coarsest texels most of the screen sees"},
-    {"pixels_per_texel_p99", "99th percentile of the same: mostly surfaces edge-on to the sun"},
-}};
-
 std::string fixed(double value, int digits) {
     char text[64];
     std::snprintf(text, sizeof text, "%.*f", digits, value);
     return text;
 }
 
-// The figure named `name` of `f`, printed as the command line's table prints it.
-std::string figureText(const Figures& f, std::string_view name) {
-    if (name == "valid_px") return std::to_string(f.validPx);
-    if (name == "excluded_px") return std::to_string(f.excludedPx);
-    if (name == "wrong_pct") return fixed(f.wrongPct, 2);
-    if (name == "false_shadow_pct") return fixed(f.falseShadowPct, 2);
-    if (name == "false_lit_pct") return fixed(f.falseLitPct, 2);
-    if (name == "undersampled_pct") return fixed(f.undersampledPct, 2);
-    if (name == "pixels_per_texel_p50") return fixed(f.pixelsPerTexelP50, 2);
-    if (name == "pixels_per_texel_p95") return fixed(f.pixelsPerTexelP95, 2);
-    return fixed(f.pixelsPerTexelP99, 1);
-}
+// Each figure's name, meaning and printed form, in one place.
+constexpr std::array<FigureMeaning, 9> kMeanings = {{
+    {"valid_px", "pixels evaluated: the surface faces the sun and raster and ray tracer agree on it",
+     [](const Figures& f) { return std::to_string(f.validPx); }},
+    {"excluded_px", "pixels facing the sun where raster and ray tracer see different surfaces (silhouettes)",
+     [](const Figures& f) { return std::to_string(f.excludedPx); }},
+    {"wrong_pct", "% of valid pixels whose rendered lit/shadowed state differs from the ray-traced truth",
+     [](const Figures& f) { return fixed(f.wrongPct, 2); }},
+    {"false_shadow_pct", "% rendered shadowed where the truth is lit: acne, aliasing that darkens (red)",
+     [](const Figures& f) { return fixed(f.falseShadowPct, 2); }},
+    {"false_lit_pct", "% rendered lit where the truth is shadowed: peter-panning, leaks, missed casters (blue)",
+     [](const Figures& f) { return fixed(f.falseLitPct, 2); }},
+    {"undersampled_pct", "% of valid pixels where one shadow texel covers more than one pixel",
+     [](const Figures& f) { return fixed(f.undersampledPct, 2); }},
+    {"pixels_per_texel_p50", "median pixels one texel covers along its worst direction; above 1 shows stair steps",
+     [](const Figures& f) { return fixed(f.pixelsPerTexelP50, 2); }},
+    {"pixels_per_texel_p95", "95th percentile of the same: the coarsest texels most of the screen sees",
+     [](const Figures& f) { return fixed(f.pixelsPerTexelP95, 2); }},
+    {"pixels_per_texel_p99", "99th percentile of the same: mostly surfaces edge-on to the sun",
+     [](const Figures& f) { return fixed(f.pixelsPerTexelP99, 1); }},
+}};
 
 constexpr std::string_view kStyle = R"(
 body { font: 15px/1.45 system-ui, sans-serif; margin: 2em auto; max-width: 1500px; padding: 0 1em; color: #222; }
@@ -92,7 +89,7 @@ void writeFiguresTable(std::ostringstream& out, const std::vector<const HtmlEntr
     out << "<th>what it means</th></tr>\n";
     for (const FigureMeaning& m : kMeanings) {
         out << "<tr><td><code>" << m.name << "</code></td>";
-        for (const HtmlEntry* e : entries) out << "<td>" << figureText(e->report.figures, m.name) << "</td>";
+        for (const HtmlEntry* e : entries) out << "<td>" << m.text(e->report.figures) << "</td>";
         out << "<td class=\"meaning\">" << htmlEscape(m.meaning) << "</td></tr>\n";
     }
     out << "</table>\n";

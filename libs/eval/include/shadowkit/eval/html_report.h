@@ -68,6 +68,7 @@ struct HtmlReport {
 struct FigureMeaning {
     std::string_view name; // the JSON field: "wrong_pct"
     std::string_view meaning;
+    std::string (*text)(const Figures&) = nullptr; // the figure as the command line's table prints it
 };
 std::span<const FigureMeaning> figureMeanings();
 
