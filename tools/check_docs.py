@@ -69,7 +69,7 @@ def check_links(root, page, problems):
 def check_meanings(root, problems):
     source = open(os.path.join(root, "libs/eval/src/html_report.cpp"), encoding="utf-8").read()
     page = open(os.path.join(root, "docs/evaluation.md"), encoding="utf-8").read()
-    meanings = re.findall(r'\{"([a-z0-9_]+)",\s*"([^"]+)"\}', source)
+    meanings = re.findall(r'\{"([a-z0-9_]+)",\s*"([^"]+)",', source)
     if not meanings:
         problems.append("libs/eval/src/html_report.cpp: no figure meanings found (kMeanings)")
     for name, meaning in meanings:
