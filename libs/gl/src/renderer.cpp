@@ -412,14 +412,7 @@ core::Status Renderer::Impl::prepare(const core::PerspectiveCamera& camera, cons
                                std::to_string(maps));
     const bool linearFilter = settings.filter.kind == core::ShadowFilter::Pcf2;
     if (virtualMaps) {
-        if (settings.virtualPoolPages < 0)
-            return core::fieldError("virtual.pool_pages", "must be >= 0 (0: as many as fit 64 MiB), got " +
-                                                              std::to_string(settings.virtualPoolPages));
-        if (!(settings.virtualBlendBand >= 0.0f && settings.virtualBlendBand < 1.0f))
-            return core::fieldError("virtual.blend_band", "must be a fraction in [0, 1)");
-        if (settings.virtualPageBudget < 0)
-            return core::fieldError("virtual.page_budget", "must be >= 0 (0: every page requested), got " +
-                                                               std::to_string(settings.virtualPageBudget));
+        if (auto s = validateVirtualSettings(settings); !s) return s;
         if (auto s = virtualPages->configure(settings.virtualPoolPages, setup.clipmap->pageTexels,
                                              guardTexelsFor(settings.filter, bias));
             !s)

@@ -33,6 +33,18 @@ PageContent pageContentOf(const core::VirtualClipmap& clipmap, int guardTexels, 
             .lodTexelError = settings.lodTexelError};
 }
 
+core::Status validateVirtualSettings(const RenderSettings& settings) {
+    if (settings.virtualPoolPages < 0)
+        return core::fieldError("virtual.pool_pages", "must be >= 0 (0: as many as fit 64 MiB), got " +
+                                                          std::to_string(settings.virtualPoolPages));
+    if (!(settings.virtualBlendBand >= 0.0f && settings.virtualBlendBand < 1.0f))
+        return core::fieldError("virtual.blend_band", "must be a fraction in [0, 1)");
+    if (settings.virtualPageBudget < 0)
+        return core::fieldError("virtual.page_budget", "must be >= 0 (0: every page requested), got " +
+                                                           std::to_string(settings.virtualPageBudget));
+    return core::Ok{};
+}
+
 core::Result<std::unique_ptr<VirtualPages>> VirtualPages::create() {
     auto pages = std::unique_ptr<VirtualPages>(new VirtualPages);
     auto program = buildComputeProgram("virtual page marking", {shaders::kVirtualMarkComp});

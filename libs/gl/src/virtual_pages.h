@@ -56,6 +56,10 @@ struct PageContent {
 PageContent pageContentOf(const core::VirtualClipmap& clipmap, int guardTexels, const core::BiasSettings& bias,
                           const RenderSettings& settings);
 
+// RenderSettings' virtual-map fields in range; errors name virtual.pool_pages,
+// virtual.blend_band, virtual.page_budget.
+core::Status validateVirtualSettings(const RenderSettings& settings);
+
 class VirtualPages {
 public:
     static core::Result<std::unique_ptr<VirtualPages>> create();
