@@ -68,6 +68,15 @@ std::vector<Vertex> makeScene() {
 }
 
 // ---- shaders ----
+// Exits naming what failed, with the driver's log, unless `ok`.
+void checkOrExit(GLint ok, const char* what, GLuint object, PFNGLGETSHADERINFOLOGPROC getLog) {
+    if (ok) return;
+    char log[4096];
+    getLog(object, sizeof log, nullptr, log);
+    std::fprintf(stderr, "minimal_gl: %s: %s\n", what, log);
+    std::exit(1);
+}
+
 GLuint compile(GLenum stage, const std::string& source) {
     const GLuint s = glCreateShader(stage);
     const char* text = source.c_str();
@@ -75,20 +84,19 @@ GLuint compile(GLenum stage, const std::string& source) {
     glCompileShader(s);
     GLint ok = 0;
     glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-        char log[4096];
-        glGetShaderInfoLog(s, sizeof log, nullptr, log);
-        std::fprintf(stderr, "minimal_gl: shader: %s\n", log);
-        std::exit(1);
-    }
+    checkOrExit(ok, "shader", s, glGetShaderInfoLog);
     return s;
 }
 
-GLuint link(const std::string& vertex, const std::string& fragment) {
+// Not `link`: that name is POSIX link(2), which a call with two C strings would pick.
+GLuint linkProgram(const std::string& vertex, const std::string& fragment) {
     const GLuint p = glCreateProgram();
     glAttachShader(p, compile(GL_VERTEX_SHADER, vertex));
     glAttachShader(p, compile(GL_FRAGMENT_SHADER, fragment));
     glLinkProgram(p);
+    GLint ok = 0;
+    glGetProgramiv(p, GL_LINK_STATUS, &ok);
+    checkOrExit(ok, "link", p, glGetProgramInfoLog); // same signature as the shader's
     return p;
 }
 
@@ -218,8 +226,8 @@ int main(int argc, char** argv) {
     glNamedFramebufferTexture(colorTarget, GL_COLOR_ATTACHMENT0, colorTexture, 0);
     glNamedFramebufferTexture(colorTarget, GL_DEPTH_ATTACHMENT, depthTexture, 0);
 
-    const GLuint depthProgram = link(kDepthVert, "#version 450 core\nvoid main() {}\n");
-    const GLuint mainProgram = link(kMainVert, kMainFragHead + readFile(SHADOWKIT_GLSL_FILE) + kMainFragBody);
+    const GLuint depthProgram = linkProgram(kDepthVert, "#version 450 core\nvoid main() {}\n");
+    const GLuint mainProgram = linkProgram(kMainVert, kMainFragHead + readFile(SHADOWKIT_GLSL_FILE) + kMainFragBody);
     glBindVertexArray(vao);
     glEnable(GL_DEPTH_TEST);
 
