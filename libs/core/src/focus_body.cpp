@@ -39,9 +39,16 @@ ConvexBody focusBodyOf(const PerspectiveCamera& camera, const Vec3& wsTowardsLig
     visible.clip(frustumPlanes);
     if (visible.isEmpty()) return visible;
 
-    ConvexBody body = ConvexBody::fromAabb(sceneBox); // (V ∩ S swept) ∩ S
+    // (V ∩ S swept) ∩ S. Only the sweep's planes that cut S can cut the body: those of V ∩ S's
+    // faces lying on S's own faces, and silhouettes beyond S, are passed over at the cost of
+    // one dot product each (the box's corner farthest out along the plane's normal).
     const ConvexBody::Planes sweep = visible.sweepHalfSpaces(wsTowardsLight);
-    body.clip(std::span<const Plane>(sweep.data(), sweep.size()));
+    const Vec3 centre = sceneBox.center(), half = 0.5 * (sceneBox.max - sceneBox.min);
+    ConvexBody::Planes cutting;
+    for (const Plane& plane : sweep)
+        if (plane.signedDistance(centre) + glm::dot(glm::abs(plane.normal), half) > 0.0) cutting.push_back(plane);
+    ConvexBody body = ConvexBody::fromAabb(sceneBox);
+    body.clip(std::span<const Plane>(cutting.data(), cutting.size()));
     return body;
 }
 
@@ -62,11 +69,10 @@ struct FocusBodyKey {
 } // namespace
 
 ConvexBody computeFocusBody(const PerspectiveCamera& camera, const DirectionalLight& light, const Aabb& wsSceneBounds) {
-    // The last body per thread, returned again for the same inputs: B is about 90 % of a
-    // single map's set-up (shadowkit_setup_bench: focused 9-15 µs, the warps 5 % more), and the
-    // error-driven search (error_driven.h) computes dozens of set-ups of one camera, light and
-    // scene per frame, differing only in the warp's parameters. Exact comparison, so the result
-    // is the one computed afresh.
+    // The last body per thread, returned again for the same inputs: B is about 80 % of a
+    // single map's set-up (docs/performance.md), and the error-driven search (error_driven.h)
+    // computes dozens of set-ups of one camera, light and scene per frame, differing only in
+    // the warp's parameters. Exact comparison, so the result is the one computed afresh.
     thread_local std::optional<std::pair<FocusBodyKey, ConvexBody>> last;
     const FocusBodyKey key{camera, light.wsTowardsLight(), wsSceneBounds};
     if (last && last->first == key) return last->second;

@@ -2,10 +2,38 @@
 
 #include <gtest/gtest.h>
 
+#include <random>
+#include <vector>
+
 using namespace shadowkit::core;
 
 namespace {
 Aabb unitBox() { return Aabb::fromMinMax(Vec3(0.0), Vec3(1.0)); }
+
+// The vertices of an intersection of half-spaces found the slow way, independently of the
+// clipper: every point where three of the planes meet and which lies inside all of them.
+std::vector<Vec3> verticesByBruteForce(const std::vector<Plane>& planes, double eps) {
+    std::vector<Vec3> out;
+    for (size_t i = 0; i < planes.size(); ++i)
+        for (size_t j = i + 1; j < planes.size(); ++j)
+            for (size_t k = j + 1; k < planes.size(); ++k) {
+                const glm::dmat3 normalsAsRows =
+                    glm::transpose(glm::dmat3(planes[i].normal, planes[j].normal, planes[k].normal));
+                if (std::abs(glm::determinant(normalsAsRows)) < 1e-9) continue; // no single point
+                const Vec3 p = glm::inverse(normalsAsRows) * -Vec3(planes[i].d, planes[j].d, planes[k].d);
+                bool inside = true;
+                for (const Plane& plane : planes) inside = inside && plane.signedDistance(p) <= eps;
+                bool known = false;
+                for (const Vec3& q : out) known = known || glm::length(q - p) <= eps;
+                if (inside && !known) out.push_back(p);
+            }
+    return out;
+}
+
+std::vector<Plane> boxPlanes(const Aabb& box) {
+    return {{Vec3(-1, 0, 0), box.min.x}, {Vec3(1, 0, 0), -box.max.x}, {Vec3(0, -1, 0), box.min.y},
+            {Vec3(0, 1, 0), -box.max.y}, {Vec3(0, 0, -1), box.min.z}, {Vec3(0, 0, 1), -box.max.z}};
+}
 } // namespace
 
 TEST(ConvexBodyTest, BoxHasEightVerticesAndItsVolume) {
@@ -18,7 +46,7 @@ TEST(ConvexBodyTest, ClipThroughTheMiddleHalvesTheVolumeAndAddsACap) {
     ConvexBody body = ConvexBody::fromAabb(unitBox());
     body.clip(Plane::fromPointNormal(Vec3(0.5), Vec3(1, 0, 0))); // keep x <= 0.5
     EXPECT_NEAR(body.volume(), 0.5, 1e-12);
-    EXPECT_EQ(body.faces().size(), 6u);
+    EXPECT_EQ(body.faceCount(), 6u);
     EXPECT_NEAR(body.bounds().max.x, 0.5, 1e-12);
 }
 
@@ -78,4 +106,84 @@ TEST(ConvexBodyTest, ObliqueSweepIsExactWhereExitPointsWouldLoseVolume) {
     // ...and nothing behind the cube (against the sweep).
     EXPECT_FALSE(swept.contains(Vec3(2, 1.5, 2) - 0.9 * dir, 1e-9));
     EXPECT_FALSE(swept.contains(Vec3(0.2, 9.5, 0.2), 1e-9));
+}
+
+TEST(ConvexBodyTest, ARandomlyClippedBoxHasExactlyTheVerticesThreePlanesMeetInInsideEveryHalfSpace) {
+    // 400 boxes, each cut by 1-9 random planes through points inside it, up to 1 km from the
+    // origin: the body's vertices are the brute-force ones (no vertex lost, none invented), each
+    // face lies on one of the planes, faces point outwards (positive volume) and an empty
+    // intersection gives the empty body.
+    std::mt19937 rng(20261125);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    int empty = 0, cut = 0;
+    for (int trial = 0; trial < 400; ++trial) {
+        const Vec3 centre = 1000.0 * Vec3(unit(rng), unit(rng), unit(rng));
+        const Vec3 half =
+            Vec3(1.0 + 50.0 * std::abs(unit(rng)), 1.0 + 5.0 * std::abs(unit(rng)), 1.0 + 50.0 * std::abs(unit(rng)));
+        const Aabb box = Aabb::fromMinMax(centre - half, centre + half);
+        std::vector<Plane> planes = boxPlanes(box);
+        ConvexBody body = ConvexBody::fromAabb(box);
+        const int cuts = 1 + trial % 9;
+        for (int c = 0; c < cuts; ++c) {
+            const Vec3 through = centre + half * Vec3(unit(rng), unit(rng), unit(rng));
+            const Plane plane = Plane::fromPointNormal(through, Vec3(unit(rng), unit(rng), unit(rng)));
+            planes.push_back(plane);
+            body.clip(plane);
+        }
+        const double eps = 1e-7 * glm::length(half);
+        const std::vector<Vec3> expected = verticesByBruteForce(planes, eps);
+        if (expected.size() < 4) {
+            EXPECT_TRUE(body.isEmpty()) << "trial " << trial;
+            ++empty;
+            continue;
+        }
+        ++cut;
+        ASSERT_FALSE(body.isEmpty()) << "trial " << trial;
+        const ConvexBody::Points got = body.vertices();
+        EXPECT_EQ(got.size(), expected.size()) << "trial " << trial;
+        for (const Vec3& p : expected) {
+            double nearest = INFINITY;
+            for (const Vec3& q : got) nearest = std::min(nearest, glm::length(q - p));
+            EXPECT_LE(nearest, eps) << "trial " << trial << ": a vertex is missing";
+        }
+        for (size_t f = 0; f < body.faceCount(); ++f) {
+            bool onAPlane = false;
+            for (const Plane& plane : planes) {
+                bool allOn = true;
+                for (const Vec3& p : body.face(f)) allOn = allOn && std::abs(plane.signedDistance(p)) <= eps;
+                onAPlane = onAPlane || allOn;
+            }
+            EXPECT_TRUE(onAPlane) << "trial " << trial << ", face " << f;
+        }
+        EXPECT_GT(body.volume(), 0.0) << "trial " << trial;
+    }
+    EXPECT_GT(empty, 20); // both outcomes met often enough to mean something
+    EXPECT_GT(cut, 150);
+}
+
+TEST(ConvexBodyTest, SweepPlanesHoldTheRandomBodySweptAndTouchIt) {
+    // For random bodies and directions: every vertex moved any distance along the sweep stays
+    // inside every plane, and every plane touches the body (a facet, not a loose bound).
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    for (int trial = 0; trial < 200; ++trial) {
+        const Aabb box = Aabb::fromMinMax(Vec3(-10.0), Vec3(10.0));
+        ConvexBody body = ConvexBody::fromAabb(box);
+        for (int c = 0; c < 5; ++c)
+            body.clip(Plane::fromPointNormal(5.0 * Vec3(unit(rng), unit(rng), unit(rng)),
+                                             Vec3(unit(rng), unit(rng), unit(rng))));
+        if (body.isEmpty()) continue;
+        const Vec3 dir = glm::normalize(Vec3(unit(rng), unit(rng), unit(rng)));
+        const ConvexBody::Planes planes = body.sweepHalfSpaces(dir);
+        const ConvexBody::Points verts = body.vertices();
+        for (const Plane& plane : planes) {
+            double highest = -INFINITY;
+            for (const Vec3& v : verts) {
+                highest = std::max(highest, plane.signedDistance(v));
+                for (const double t : {0.0, 1.0, 100.0, 1e4})
+                    EXPECT_LE(plane.signedDistance(v + t * dir), 1e-9 * (1.0 + t)) << "trial " << trial;
+            }
+            EXPECT_NEAR(highest, 0.0, 1e-9) << "trial " << trial << ": a plane that does not touch the body";
+        }
+    }
 }

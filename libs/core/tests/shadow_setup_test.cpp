@@ -72,6 +72,39 @@ TEST(ShadowSetupTest, FocusBodyContainsTheVisibleSceneAndEverythingBetweenItAndT
     EXPECT_GT(checked, 5000);
 }
 
+TEST(ShadowSetupTest, FocusBodyIsItsDefinitionWithEveryPlaneOfTheSweepApplied) {
+    // computeFocusBody passes over the sweep's planes that do not cut the scene box; B built
+    // from the definition with every plane applied must have the same vertices (no plane
+    // that cuts is ever passed over, and the fast path changes nothing else).
+    ConfigGenerator gen(2026);
+    int compared = 0;
+    for (int i = 0; i < 2000; ++i) {
+        const ShadowSetupInputs in = gen.next();
+        const Aabb box = sceneBoxForFocus(in.wsSceneBounds);
+        ConvexBody visible = ConvexBody::fromAabb(box);
+        visible.clip(in.camera.wsFrustumPlanes());
+        ConvexBody byDefinition;
+        if (!visible.isEmpty()) {
+            byDefinition = ConvexBody::fromAabb(box);
+            const ConvexBody::Planes sweep = visible.sweepHalfSpaces(in.light.wsTowardsLight());
+            byDefinition.clip(std::span<const Plane>(sweep.data(), sweep.size()));
+        }
+        const ConvexBody body = computeFocusBody(in.camera, in.light, in.wsSceneBounds);
+        ASSERT_EQ(body.isEmpty(), byDefinition.isEmpty()) << "config " << i;
+        if (body.isEmpty()) continue;
+        ++compared;
+        const double eps = 1e-7 * (box.diagonal() + glm::length(box.center()) + 1.0);
+        const ConvexBody::Points got = body.vertices(), expected = byDefinition.vertices();
+        ASSERT_EQ(got.size(), expected.size()) << "config " << i;
+        for (const Vec3& p : expected) {
+            double nearest = INFINITY;
+            for (const Vec3& q : got) nearest = std::min(nearest, glm::length(q - p));
+            ASSERT_LE(nearest, eps) << "config " << i;
+        }
+    }
+    EXPECT_GT(compared, 1000);
+}
+
 TEST(ShadowSetupTest, TheRememberedFocusBodyIsReturnedOnlyForExactlyTheSameInputs) {
     // computeFocusBody keeps its last result per thread: a change to any input it depends on
     // must compute B afresh, whatever was computed just before.

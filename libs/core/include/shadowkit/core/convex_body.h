@@ -12,6 +12,7 @@
 #include "shadowkit/core/plane.h"
 #include "shadowkit/core/small_vector.h"
 
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -20,16 +21,14 @@ namespace shadowkit::core {
 /// A convex polyhedron as a list of faces (point loops), clipped by planes: the focus body B and its pieces.
 class ConvexBody {
 public:
-    /// Inline capacities: a box clipped by a frustum, its sweep and the scene box has about
-    /// a dozen faces of up to eight points; beyond these sizes the containers spill to the
-    /// heap (still correct, no longer allocation-free).
-    using Polygon = SmallVector<Vec3, 12>;  ///< counter-clockwise seen from outside
-    using Faces = SmallVector<Polygon, 20>; ///< the faces, each a convex polygon
-    using Points = SmallVector<Vec3, 48>;   ///< a set of vertices
-    using Planes = SmallVector<Plane, 48>;  ///< a set of planes, outward
+    /// Inline capacities: a box clipped by a frustum, its sweep and the scene box has about a
+    /// dozen faces and fifty face corners (the flythrough's bodies: at most 20 and 90); beyond
+    /// these sizes the containers spill to the heap (still correct, no longer allocation-free).
+    using Points = SmallVector<Vec3, 48>;  ///< a set of vertices
+    using Planes = SmallVector<Plane, 48>; ///< a set of planes, outward
 
     ConvexBody() = default; ///< the empty body
-    /// The box as a body of six faces (an empty box gives the empty body).
+    /// The box as a body of six faces (an empty or flat box gives the empty body).
     static ConvexBody fromAabb(const Aabb& box);
 
     /// Moves every vertex by `offset` (exact up to the rounding of each sum).
@@ -46,8 +45,13 @@ public:
     /// direction. Intersect with a bounded body to use it.
     Planes sweepHalfSpaces(const Vec3& wsDirection) const;
 
-    bool isEmpty() const { return m_faces.empty(); } ///< no volume left
-    const Faces& faces() const { return m_faces; }   ///< the boundary, one polygon per face
+    bool isEmpty() const { return m_faceEnds.empty(); }    ///< no volume left
+    size_t faceCount() const { return m_faceEnds.size(); } ///< how many faces (0 for the empty body)
+    /// Face f's points, counter-clockwise seen from outside (a convex polygon).
+    std::span<const Vec3> face(size_t f) const {
+        const size_t begin = f == 0 ? 0 : m_faceEnds[f - 1];
+        return {m_points.data() + begin, m_faceEnds[f] - begin};
+    }
     /// Each distinct vertex once.
     Points vertices() const;
     Aabb bounds() const; ///< the smallest box holding every vertex
@@ -57,8 +61,14 @@ public:
 
 private:
     double tolerance() const;
+    void clip(const Plane& plane, double eps); ///< one cut, at a tolerance of eps metres
+    void clear();                              ///< the empty body
 
-    Faces m_faces;
+    // The faces' loops one after another (a vertex shared by faces appears once in each):
+    // face f is m_points[m_faceEnds[f - 1], m_faceEnds[f]). Flat, so a cut walks one array
+    // and a copy is one block.
+    SmallVector<Vec3, 128> m_points;
+    SmallVector<uint32_t, 24> m_faceEnds;
 };
 
 } // namespace shadowkit::core
