@@ -26,6 +26,8 @@
 #include "shadowkit/core/cascade_splits.h"
 #include "shadowkit/core/focus_body.h"
 #include "shadowkit/core/light_frame.h"
+#include "shadowkit/core/lispsm.h"
+#include "shadowkit/core/uniform_shadow_map.h"
 
 #include <algorithm>
 #include <cmath>
@@ -148,8 +150,11 @@ ShadowSetup computeCascades(const ShadowSetupInputs& in) {
         if (o.stabilize) {
             view = stableView(in, slice.camera, computeFocusBody(slice.camera, in.light, in.wsSceneBounds));
         } else {
-            // The slice's validated inputs cannot fail: same light and bounds, near < far.
-            ShadowSetup sub = computeShadowSetup(slice).value();
+            // The slice's technique itself, not computeShadowSetup: these inputs are validated and
+            // already relative to the eye (computeShadowSetup's work), and the depth rows are
+            // the whole set-up's (addLinearDepth), so only the split's view is wanted.
+            const ShadowSetup sub =
+                o.warp == CascadeWarp::Lispsm ? computeLispsm(slice) : computeFocusedShadowMap(slice);
             view = sub.views[0];
             for (const std::string& f : sub.fallbacks)
                 setup.fallbacks.push_back("cascade " + std::to_string(i) + ": " + f);
