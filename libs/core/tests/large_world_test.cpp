@@ -121,9 +121,10 @@ TEST(LargeWorldTest, SetUpsAreContainedAndTranslationInvariantAtTenToTheFiveSixA
                     const ShadowView& view = there->views[v];
                     for (const Vec3& eyeRelative : eyeRelativePointsToHold(far, *there, v)) {
                         ASSERT_GT((view.clipFromEyeRelative * Vec4(eyeRelative, 1.0)).w, 0.0) << info.name;
-                        if (holdsFocusBody(info.technique)) // a clipmap level holds what its rule gives it
+                        if (holdsFocusBody(info.technique)) { // a clipmap level holds what its rule gives it
                             ASSERT_LE(outsideClipCube(view.clipFromEyeRelative, eyeRelative), 1e-6)
                                 << info.name << " at " << distance;
+                        }
                         // The same map as at the origin: the points land where they land there.
                         const Vec3 d = ndcOf(view.clipFromEyeRelative, eyeRelative) -
                                        ndcOf(near->views[v].clipFromEyeRelative, eyeRelative);

@@ -143,15 +143,15 @@ TruthBuffers computeTruth(const RayScene& rays, const core::PerspectiveCamera& c
                         if (!hit[k]) continue;
                         const size_t i = pixel[k];
                         const core::Vec3 p = camera.wsEye + hits[k].t * primary[k].direction;
-                        const core::Vec3& n = hits[k].wsGeometricNormal;
+                        const core::Vec3& wsNormal = hits[k].wsGeometricNormal;
                         t.surfaceId[i] = hits[k].instance + 1;
                         t.viewDepth[i] = static_cast<float>(hits[k].t);
                         t.wsPosition[i] = p;
-                        t.wsNormal[i] = glm::vec3(n);
-                        if (!(glm::dot(n, towardsLight) > 0.0)) continue;
+                        t.wsNormal[i] = glm::vec3(wsNormal);
+                        if (!(glm::dot(wsNormal, towardsLight) > 0.0)) continue;
                         t.facesLight[i] = 1;
                         shadowPixel[shadows] = i;
-                        shadow[shadows++] = shadowRay(p, n, towardsLight, offset);
+                        shadow[shadows++] = shadowRay(p, wsNormal, towardsLight, offset);
                     }
                     rays.occluded(std::span(shadow.data(), shadows), std::span(occluded.data(), shadows));
                     for (size_t k = 0; k < shadows; ++k) t.lit[shadowPixel[k]] = !occluded[k];

@@ -75,8 +75,9 @@ TEST_F(RendererTest, BoxOverPlaneShadowsThePlaneBelowItForEveryTechnique) {
         ASSERT_TRUE(setup) << setup.error();
         const auto stats = (*renderer)->render(cam, sun, *setup, settings);
         ASSERT_TRUE(stats) << stats.error();
-        if (!setup->clipmap) // two batches per map (virtual maps: per page)
+        if (!setup->clipmap) { // two batches per map (virtual maps: per page)
             EXPECT_EQ(stats->shadow.drawCalls, 2u * setup->views.size());
+        }
         const scene::Image image = (*renderer)->readColor();
         const double under = luminanceAt(image, cam, {0.3, 0, 0.3});
         const double away = luminanceAt(image, cam, {6, 0, 2});
