@@ -24,6 +24,19 @@ drift from what the program measures.
       per view, the lowest wrong_pct of the `shadowkit eval --views all --json` reports and which
       one it was, and the mean of those (tools/measure-auto-oracle.sh)
 
+  tools/readme_tables.py setup BENCH.json
+      per technique, the set-up's CPU µs along the moving camera, sun moving and sun held:
+      median (min–max) of the repetitions in shadowkit_setup_bench's --benchmark_format=json
+      output (tools/measure-perf.sh)
+
+  tools/readme_tables.py culling BENCH.json
+      per culling benchmark of shadowkit_culling_bench's JSON output: CPU ms median (min–max)
+      of the repetitions, and what one iteration did (nodes, queries, casters)
+
+  tools/readme_tables.py truth EVAL.json ...
+      per view, over runs of `shadowkit eval --views all --json`: truth_seconds median (range),
+      truth_rays_per_second median (tools/measure-perf.sh)
+
   tools/readme_tables.py --into PAGE.md:NAME SUBCOMMAND ...
       any of the above, written into PAGE.md between its lines `<!-- table NAME: how it is measured -->` and
       `<!-- /table -->` (indented as the first marker is) instead of printed
@@ -143,6 +156,88 @@ def oracle(paths):
     print(f"| mean | {sum(best) / len(best):.3f} | over {len(reports)} configurations | |")
 
 
+# Google Benchmark's own numbers in each run's record; the rest are the benchmark's counters.
+BENCHMARK_OWN_KEYS = {"iterations", "real_time", "cpu_time", "family_index", "per_family_instance_index",
+                      "repetitions", "repetition_index", "threads"}
+
+
+def repetitions(path):
+    """Google Benchmark JSON with --benchmark_repetitions: name -> (sorted times, unit, counters)."""
+    with open(path) as f:
+        report = json.load(f)
+    runs = {}
+    for b in report["benchmarks"]:
+        if b.get("run_type") != "iteration" or b.get("error_occurred"):
+            continue
+        times, unit, counters = runs.setdefault(b["run_name"], ([], b["time_unit"], {}))
+        times.append(b["cpu_time"])
+        for key, value in b.items():
+            if key not in BENCHMARK_OWN_KEYS and isinstance(value, (int, float)):
+                counters.setdefault(key, []).append(value)
+    if not runs:
+        sys.exit(f"readme_tables: {path}: no benchmark repetitions (was it run with --benchmark_format=json?)")
+    return {name: (sorted(t), unit, c) for name, (t, unit, c) in runs.items()}
+
+
+def spread(times, scale=1.0, digits=1):
+    """'median (min–max)' of a sorted list."""
+    mid = times[len(times) // 2] if len(times) % 2 else 0.5 * (times[len(times) // 2 - 1] + times[len(times) // 2])
+    return f"{mid * scale:.{digits}f} ({times[0] * scale:.{digits}f}–{times[-1] * scale:.{digits}f})"
+
+
+def setup(paths):
+    runs = repetitions(paths[0])
+    to_us = {"ns": 1e-3, "us": 1.0, "ms": 1e3}
+    print("| technique | sun moving (the path's) | sun held |")
+    print("|---|---:|---:|")
+    names = []
+    for name in runs:  # benchmark order: the techniques as the bench registers them
+        technique = name.split("/")[1]
+        if name.startswith("setup/still-cached") or technique in names:
+            continue
+        names.append(technique)
+    for technique in names:
+        cells = []
+        for where in ("flythrough", "flythrough-sun-held"):
+            times, unit, _ = runs.get(f"setup/{technique}/{where}", ([], "us", {}))
+            cells.append(spread(times, to_us[unit]) if times else "–")
+        label = {"standard": "`standard` (no focus body)"}.get(technique, f"`{technique}`")
+        if technique.startswith("csm-"):
+            label = f"`csm`, {technique[4:]} splits"
+        print(f"| {label} | " + " | ".join(cells) + " |")
+
+
+def culling(paths):
+    runs = repetitions(paths[0])
+    to_ms = {"ns": 1e-6, "us": 1e-3, "ms": 1.0}
+    print("| benchmark | trees | camera | CPU ms: median (min–max) | per iteration |")
+    print("|---|---:|---|---:|---|")
+    for name, (times, unit, counters) in runs.items():
+        _, kind, where, trees = name.split("/")
+        did = ", ".join(f"{sorted(v)[len(v) // 2]:,.0f} {k.replace('_', ' ')}" for k, v in counters.items())
+        print(f"| `{kind}` | {int(trees):,} | {'moving (flythrough)' if where == 'flythrough' else 'still (perpendicular)'} | "
+              f"{spread(times, to_ms[unit], 2)} | {did} |")
+
+
+def truth(paths):
+    per_view = {}
+    for path in paths:
+        with open(path) as f:
+            for v in json.load(f)["views"]:
+                if "truth_seconds" not in v:
+                    sys.exit(f"readme_tables: {path}: view {v['view']} has no truth_seconds")
+                per_view.setdefault(v["view"], []).append((v["truth_seconds"], v["truth_rays_per_second"]))
+    print(f"| view | truth seconds: median (range of {len(paths)} runs) | rays per second |")
+    print("|---|---:|---:|")
+    for view in VIEWS:
+        runs = per_view.get(view)
+        if not runs:
+            sys.exit(f"readme_tables: no truth figures for view {view}")
+        seconds = sorted(r[0] for r in runs)
+        rays = sorted(r[1] for r in runs)[len(runs) // 2]
+        print(f"| {view} | {spread(seconds, 1.0, 3)} | {rays / 1e6:.1f} M |")
+
+
 def write_into(target, text):
     """Replaces the body of the table block NAME in PAGE (target 'PAGE:NAME') with `text`."""
     page, _, name = target.rpartition(":")
@@ -164,8 +259,10 @@ def write_into(target, text):
 
 def run(argv):
     """Prints the table the arguments (argv[1:], as on the command line) ask for."""
-    if len(argv) >= 3 and argv[1] in ("oracle", "stable", "visibility", "dynamics"):
-        {"oracle": oracle, "stable": stable, "visibility": visibility, "dynamics": dynamics}[argv[1]](argv[2:])
+    commands = {"oracle": oracle, "stable": stable, "visibility": visibility, "dynamics": dynamics,
+                "setup": setup, "culling": culling, "truth": truth}
+    if len(argv) >= 3 and argv[1] in commands:
+        commands[argv[1]](argv[2:])
         return
     if len(argv) < 3 or argv[1] not in ("summary", "details"):
         sys.exit(__doc__)
