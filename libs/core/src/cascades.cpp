@@ -123,7 +123,10 @@ ShadowSetup computeCascades(const ShadowSetupInputs& in) {
     const CascadeOptions& o = in.cascades;
     ShadowSetup setup;
     setup.technique = Technique::Csm;
-    setup.body = computeFocusBody(in.camera, in.light, in.wsSceneBounds);
+    // V ∩ S once: each split's is the same body cut by the split's near and far planes.
+    const ConvexBody visible = visibleSceneBody(in.camera, in.wsSceneBounds);
+    const Vec3 wsTowardsLight = in.light.wsTowardsLight();
+    setup.body = focusBodyFromVisible(visible, wsTowardsLight, in.wsSceneBounds);
     SplitDistances z;
     if (o.splits.empty()) {
         double zNear = in.camera.zNear, zFar = in.camera.zFar;
@@ -146,15 +149,21 @@ ShadowSetup computeCascades(const ShadowSetupInputs& in) {
         slice.camera.zFar = z[k + 1];
         slice.technique = o.warp == CascadeWarp::Lispsm ? Technique::Lispsm : Technique::Focused;
 
+        const Vec3 forward = glm::normalize(in.camera.wsDirection);
+        ConvexBody visibleSlice = visible;
+        visibleSlice.clip(Plane::fromPointNormal(in.camera.wsEye + start * forward, -forward));
+        visibleSlice.clip(Plane::fromPointNormal(in.camera.wsEye + z[k + 1] * forward, forward));
+        const ConvexBody body = focusBodyFromVisible(visibleSlice, wsTowardsLight, in.wsSceneBounds);
+
         ShadowView view;
         if (o.stabilize) {
-            view = stableView(in, slice.camera, computeFocusBody(slice.camera, in.light, in.wsSceneBounds));
+            view = stableView(in, slice.camera, body);
         } else {
             // The slice's technique itself, not computeShadowSetup: these inputs are validated and
             // already relative to the eye (computeShadowSetup's work), and the depth rows are
             // the whole set-up's (addLinearDepth), so only the split's view is wanted.
             const ShadowSetup sub =
-                o.warp == CascadeWarp::Lispsm ? computeLispsm(slice) : computeFocusedShadowMap(slice);
+                o.warp == CascadeWarp::Lispsm ? computeLispsm(slice, body) : computeFocusedShadowMap(slice, body);
             view = sub.views[0];
             for (const std::string& f : sub.fallbacks)
                 setup.fallbacks.push_back("cascade " + std::to_string(i) + ": " + f);

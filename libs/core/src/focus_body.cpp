@@ -29,20 +29,19 @@ Aabb sceneBoxForFocus(const Aabb& wsSceneBounds) {
     return box;
 }
 
-namespace {
+ConvexBody visibleSceneBody(const PerspectiveCamera& camera, const Aabb& wsSceneBounds) {
+    ConvexBody visible = ConvexBody::fromAabb(sceneBoxForFocus(wsSceneBounds));
+    visible.clip(camera.wsFrustumPlanes());
+    return visible;
+}
 
-ConvexBody focusBodyOf(const PerspectiveCamera& camera, const Vec3& wsTowardsLight, const Aabb& wsSceneBounds) {
-    const Aabb sceneBox = sceneBoxForFocus(wsSceneBounds);
-
-    ConvexBody visible = ConvexBody::fromAabb(sceneBox); // V ∩ S
-    const auto frustumPlanes = camera.wsFrustumPlanes();
-    visible.clip(frustumPlanes);
-    if (visible.isEmpty()) return visible;
-
+ConvexBody focusBodyFromVisible(const ConvexBody& visibleScene, const Vec3& wsTowardsLight, const Aabb& wsSceneBounds) {
+    if (visibleScene.isEmpty()) return {};
     // (V ∩ S swept) ∩ S. Only the sweep's planes that cut S can cut the body: those of V ∩ S's
     // faces lying on S's own faces, and silhouettes beyond S, are passed over at the cost of
     // one dot product each (the box's corner farthest out along the plane's normal).
-    const ConvexBody::Planes sweep = visible.sweepHalfSpaces(wsTowardsLight);
+    const Aabb sceneBox = sceneBoxForFocus(wsSceneBounds);
+    const ConvexBody::Planes sweep = visibleScene.sweepHalfSpaces(wsTowardsLight);
     const Vec3 centre = sceneBox.center(), half = 0.5 * (sceneBox.max - sceneBox.min);
     ConvexBody::Planes cutting;
     for (const Plane& plane : sweep)
@@ -51,6 +50,8 @@ ConvexBody focusBodyOf(const PerspectiveCamera& camera, const Vec3& wsTowardsLig
     body.clip(std::span<const Plane>(cutting.data(), cutting.size()));
     return body;
 }
+
+namespace {
 
 // What B depends on, compared exactly.
 struct FocusBodyKey {
@@ -76,7 +77,7 @@ ConvexBody computeFocusBody(const PerspectiveCamera& camera, const DirectionalLi
     thread_local std::optional<std::pair<FocusBodyKey, ConvexBody>> last;
     const FocusBodyKey key{camera, light.wsTowardsLight(), wsSceneBounds};
     if (last && last->first == key) return last->second;
-    ConvexBody body = focusBodyOf(camera, key.wsTowardsLight, wsSceneBounds);
+    ConvexBody body = focusBodyFromVisible(visibleSceneBody(camera, wsSceneBounds), key.wsTowardsLight, wsSceneBounds);
     last.emplace(key, body);
     return body;
 }

@@ -52,8 +52,12 @@ double visibleExtent(const ConvexBody& body, const PerspectiveCamera& cam, const
 } // namespace
 
 ShadowSetup computeLispsm(const ShadowSetupInputs& in) {
+    return computeLispsm(in, computeFocusBody(in.camera, in.light, in.wsSceneBounds));
+}
+
+ShadowSetup computeLispsm(const ShadowSetupInputs& in, const ConvexBody& body) {
     // The uniform map LiSPSM converges to: also the answer in every degenerate case.
-    ShadowSetup setup = computeFocusedShadowMap(in);
+    ShadowSetup setup = computeFocusedShadowMap(in, body);
     setup.technique = Technique::Lispsm;
     if (setup.body.isEmpty()) return setup;
 

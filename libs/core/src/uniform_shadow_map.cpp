@@ -41,9 +41,13 @@ ShadowSetup computeStandardShadowMap(const ShadowSetupInputs& inputs) {
 }
 
 ShadowSetup computeFocusedShadowMap(const ShadowSetupInputs& inputs) {
+    return computeFocusedShadowMap(inputs, computeFocusBody(inputs.camera, inputs.light, inputs.wsSceneBounds));
+}
+
+ShadowSetup computeFocusedShadowMap(const ShadowSetupInputs& inputs, const ConvexBody& body) {
     ShadowSetup setup;
     setup.technique = Technique::Focused;
-    setup.body = computeFocusBody(inputs.camera, inputs.light, inputs.wsSceneBounds);
+    setup.body = body;
     if (setup.body.isEmpty()) {
         setup.fallbacks.emplace_back(
             "empty focus body (the view frustum misses the scene box): fitted the whole scene box");

@@ -19,6 +19,15 @@ namespace shadowkit::core {
 /// and box: a set-up search tries many warps of one frame's body (error_driven.h).
 ConvexBody computeFocusBody(const PerspectiveCamera& camera, const DirectionalLight& light, const Aabb& wsSceneBounds);
 
+/// V ∩ S, the first half of computeFocusBody: the part of the (padded) scene box the camera
+/// sees. Empty when the frustum misses the box.
+ConvexBody visibleSceneBody(const PerspectiveCamera& camera, const Aabb& wsSceneBounds);
+
+/// The second half: B from a given V ∩ S (its sweep towards the light, cut by the scene box).
+/// Cascades hand each split the view's V ∩ S cut by the split's near and far planes, the same
+/// set as the split's own V ∩ S for two cuts instead of six.
+ConvexBody focusBodyFromVisible(const ConvexBody& visibleScene, const Vec3& wsTowardsLight, const Aabb& wsSceneBounds);
+
 /// The scene box grown so that no side is thinner than a millionth of its diagonal
 /// (or a millimetre for a zero-size box): a plane of terrain has zero height.
 Aabb sceneBoxForFocus(const Aabb& wsSceneBounds);

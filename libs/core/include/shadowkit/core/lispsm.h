@@ -1,6 +1,7 @@
 // Light space perspective shadow maps (LiSPSM).
 #pragma once
 
+#include "shadowkit/core/convex_body.h"
 #include "shadowkit/core/shadow_setup.h"
 
 namespace shadowkit::core {
@@ -10,6 +11,8 @@ namespace shadowkit::core {
 /// `views[0].warp` reports n, f, d, gamma_degrees and uniform (1 when the warp fell back
 /// to the focused uniform map). Inputs must be validated (computeShadowSetup does it).
 ShadowSetup computeLispsm(const ShadowSetupInputs& inputs);
+/// The same with B given (see computeFocusedShadowMap).
+ShadowSetup computeLispsm(const ShadowSetupInputs& inputs, const ConvexBody& body);
 
 /// Ratio n / d above which the warp is replaced by the uniform map it converges to: the
 /// texel density then varies by (1 + d/n)² < 0.2 % across the map, below anything the
