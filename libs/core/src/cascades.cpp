@@ -141,6 +141,7 @@ ShadowSetup computeCascades(const ShadowSetupInputs& in) {
     z.front() = in.camera.zNear; // exact ends, whatever rounding the caller's list carries
     z.back() = in.camera.zFar;
 
+    const Vec3 forward = glm::normalize(in.camera.wsDirection);
     for (int i = 0; i < o.count; ++i) {
         const size_t k = static_cast<size_t>(i);
         const double start = i == 0 ? z[0] : z[k] - o.blendBand * (z[k] - z[k - 1]);
@@ -149,7 +150,6 @@ ShadowSetup computeCascades(const ShadowSetupInputs& in) {
         slice.camera.zFar = z[k + 1];
         slice.technique = o.warp == CascadeWarp::Lispsm ? Technique::Lispsm : Technique::Focused;
 
-        const Vec3 forward = glm::normalize(in.camera.wsDirection);
         ConvexBody visibleSlice = visible;
         visibleSlice.clip(Plane::fromPointNormal(in.camera.wsEye + start * forward, -forward));
         visibleSlice.clip(Plane::fromPointNormal(in.camera.wsEye + z[k + 1] * forward, forward));
