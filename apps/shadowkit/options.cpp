@@ -313,9 +313,13 @@ void RenderOptions::addTo(CLI::App& cmd) {
         "--aliasing-overlay", aliasingOverlay,
         "show pixels per texel of the sun's map instead of shading, computed per pixel in the shader (eval's colours)");
     cmd.add_option("--visibility", visibility,
-                   "instances the camera pass draws: off (all, every pass), frustum, chc (CHC++ occlusion queries)")
-        ->transform(choice(Choices<gl::Culling>{
-            {"off", gl::Culling::Off}, {"frustum", gl::Culling::Frustum}, {"chc", gl::Culling::Occlusion}}))
+                   "instances the camera pass draws: off (all, every pass), frustum, chc (CHC++ occlusion queries), "
+                   "gpu (frustum and two-phase depth-pyramid occlusion in compute passes, indirect draws; every "
+                   "pass's lists on the GPU, no receiver masks)")
+        ->transform(choice(Choices<gl::Culling>{{"off", gl::Culling::Off},
+                                                {"frustum", gl::Culling::Frustum},
+                                                {"chc", gl::Culling::Occlusion},
+                                                {"gpu", gl::Culling::Gpu}}))
         ->default_str("chc");
     cmd.add_option("--caster-culling", receiverMask,
                    "casters each shadow map draws: volume (its clip volume), receivers (also only those that can "

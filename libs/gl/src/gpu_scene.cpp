@@ -111,6 +111,8 @@ DrawStats GpuScene::draw(const PassList& list, std::span<const visibility::HalfS
 DrawStats GpuScene::drawBatches(const PassList& list, bool setInstanceBase, int replicas,
                                 const std::span<const visibility::HalfSpace>* volume) const {
     DrawStats stats;
+    if (list.buffer != 0) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kVisibleBinding, list.buffer);
+    if (list.indirect >= 0) glBindBuffer(GL_DRAW_INDIRECT_BUFFER, list.commands);
     for (const GpuBatch& batch : m_batches) {
         const GpuMesh& mesh = m_meshes[batch.mesh];
         const std::vector<Range>& levels = list.shadow ? mesh.shadow : mesh.camera;
@@ -127,7 +129,7 @@ DrawStats GpuScene::drawBatches(const PassList& list, bool setInstanceBase, int 
             }
             const Range& range = levels[level];
             const auto& clusterLevels = list.shadow ? mesh.shadowClusters : mesh.cameraClusters;
-            if (volume && level < clusterLevels.size() && !clusterLevels[level].empty()) {
+            if (volume && list.indirect < 0 && level < clusterLevels.size() && !clusterLevels[level].empty()) {
                 // Each instance alone, each run of clusters meeting the volume in one draw.
                 const std::vector<scene::TriangleCluster>& clusters = clusterLevels[level];
                 for (uint32_t k = 0; k < count; ++k) {
@@ -161,6 +163,16 @@ DrawStats GpuScene::drawBatches(const PassList& list, bool setInstanceBase, int 
             glUniform1ui(kInstanceOffsetLocation, list.offset + list.first[slot]);
             // Camera passes move simplified receivers' shadow lookups by their error (main.vert).
             if (setInstanceBase) glUniform1f(kLodErrorLocation, range.objectError);
+            if (list.indirect >= 0) {
+                // The command holds the level's range and the instances the GPU kept (up to
+                // `count`): what is drawn is known to the GPU only (GpuCulling::submitted).
+                const size_t command = static_cast<size_t>(list.indirect) + slot;
+                glDrawElementsIndirect(
+                    GL_TRIANGLES, GL_UNSIGNED_INT,
+                    reinterpret_cast<const void*>(command * kIndirectCommandWords * sizeof(uint32_t)));
+                ++stats.drawCalls;
+                continue;
+            }
             glDrawElementsInstanced(GL_TRIANGLES, range.indexCount, GL_UNSIGNED_INT,
                                     reinterpret_cast<const void*>(range.byteOffset),
                                     static_cast<GLsizei>(count) * replicas);

@@ -35,6 +35,8 @@ const char* cullingName(Culling culling) {
         return "frustum";
     case Culling::Occlusion:
         return "chc";
+    case Culling::Gpu:
+        return "gpu";
     }
     return "?";
 }

@@ -3,6 +3,7 @@
 #include "depth_range.h"
 #include "gl_object.h"
 #include "gl_shaders.h"
+#include "gpu_culling.h"
 #include "gpu_scene.h"
 #include "line_pass.h"
 #include "local_shadows.h"
@@ -85,6 +86,7 @@ struct Renderer::Impl {
     CpuTimes cullGlTimes; // of which inside GL doing or awaiting GPU work (FrameStats)
     CpuTimes listTimes;   // of which choosing levels and building lists (FrameStats)
     std::unique_ptr<OcclusionCuller> occlusion;
+    std::unique_ptr<GpuCulling> gpuCulling;
     std::optional<CameraDepthTarget> cameraDepth; // the occlusion pre-pass's target
     std::vector<uint32_t> occlusionDrawn;
     visibility::CoherentCullingStats occlusionStats;
@@ -125,6 +127,17 @@ struct Renderer::Impl {
     void collectVisible(const core::PerspectiveCamera& camera, const core::DirectionalLight& light,
                         const core::ShadowSetup& setup, const RenderSettings& settings);
     PassStats shadowPass(const core::ShadowSetup& setup, const RenderSettings& settings);
+    // Culling::Gpu: the sun's pass stats with what its lists drew, read back (waits for the GPU).
+    PassStats gpuShadowDraws(PassStats pass) const {
+        if (pass.drawCalls == 0) return pass; // no sun: nothing drawn
+        pass.instances = pass.triangles = 0;
+        for (const PassList& list : shadowLists) {
+            const DrawStats drawn = gpuCulling->submitted(list);
+            pass.instances += drawn.instances;
+            pass.triangles += drawn.triangles;
+        }
+        return pass;
+    }
     // Technique virtual: the pages this frame must draw, each into its slot of the atlas.
     PassStats pagePass();
     // The set-up the frame's lookups read: with virtual maps under a page budget, levels may
@@ -206,6 +219,7 @@ core::Result<std::unique_ptr<Renderer>> Renderer::create(const scene::Scene& sce
     auto occlusion = OcclusionCuller::create(*r.visibility, *r.scene);
     if (!occlusion) return occlusion.errorInfo();
     r.occlusion = std::move(occlusion).value();
+    r.gpuCulling = GpuCulling::create(scene, lods, *r.scene);
     auto masks = ReceiverMasks::create();
     if (!masks) return masks.errorInfo();
     r.receiverMasks = std::move(masks).value();
@@ -256,10 +270,12 @@ void Renderer::Impl::collectVisible(const core::PerspectiveCamera& camera, const
     const Stopwatch total;
     visibility->takeListTimes();
     const bool cull = settings.culling != Culling::Off;
+    const bool gpu = settings.culling == Culling::Gpu;
     const bool virtualMaps = setup.clipmap.has_value();
     // Virtual maps cull per page, finer than any receiver mask; their pages come from the pre-pass.
-    const bool masked = cull && settings.receiverMask && !virtualMaps;
-    const bool prepass = settings.culling == Culling::Occlusion || masked || prepassForDepthRange || virtualMaps;
+    // Receiver masks are built on the CPU, GPU culling's shadow lists on the GPU: not with it.
+    const bool masked = cull && settings.receiverMask && !virtualMaps && !gpu;
+    const bool prepass = settings.culling == Culling::Occlusion || gpu || masked || prepassForDepthRange || virtualMaps;
     // Camera pass first: with occlusion culling or receiver masks the shadow passes' lists
     // depend on what it sees. Levels by pixels. A simplified receiver lies up to its error
     // off the true surface and would self-shadow against the map (measured without
@@ -278,7 +294,11 @@ void Renderer::Impl::collectVisible(const core::PerspectiveCamera& camera, const
             cameraDepth.emplace(settings.width, settings.height);
         uploadFrame(camera, light, setup, settings, false); // the pre-pass reads the camera's Frame
     }
-    if (settings.culling == Culling::Occlusion) {
+    if (gpu) {
+        gpuCulling->beginFrame(GpuCulling::kCameraPasses + (virtualMaps ? 0 : setup.views.size()));
+        gpuCulling->camera(camera, cameraLodOrNone, *cameraDepth, cameraList);
+        cullGlTimes += gpuCulling->takeGlTimes();
+    } else if (settings.culling == Culling::Occlusion) {
         const Stopwatch occlusionTime;
         occlusionStats = occlusion->frame(camera, cameraLodOrNone, *cameraDepth, occlusionDrawn);
         visibility->fromItems(occlusionDrawn, cameraLodOrNone, cameraList);
@@ -346,10 +366,16 @@ void Renderer::Impl::collectVisible(const core::PerspectiveCamera& camera, const
         // plane are drawn at depth 0 and must not be culled. Levels by texels of this map.
         const core::Mat4& clipFromWorld = setup.views[i].clipFromWorld;
         const LodChoice lod{{clipFromWorld, 0.5 * setup.mapSize, settings.lodTexelError}, cameraProjection, true};
+        if (gpu) {
+            gpuCulling->cull(GpuCulling::kCameraPasses + i, visibility::clipVolume(clipFromWorld, false),
+                             settings.lod ? &lod : nullptr, GpuCulling::Phase::All, shadowLists[i]);
+            continue;
+        }
         visibility->collect(visibility::clipVolume(clipFromWorld, false), cull, settings.lod ? &lod : nullptr,
                             shadowLists[i], masks ? &(*masks)[i] : nullptr);
         lists.push_back(&shadowLists[i]);
     }
+    if (gpu) cullGlTimes += gpuCulling->takeGlTimes();
     // Local lights: full meshes (levels are chosen for the sun's maps and the camera), culled
     // to each pass's volume; a point light's layered pass to the cube around its range.
     const LocalPass localPass = localMaps->resolve(settings.localPass);
@@ -378,7 +404,7 @@ void Renderer::Impl::collectVisible(const core::PerspectiveCamera& camera, const
             visibility->collect(visibility::clipVolume(spot.views[0].clipFromWorld, false), cull, nullptr, list);
     }
     for (PassList& list : localLists) lists.push_back(&list);
-    lists.push_back(&cameraList);
+    if (!gpu) lists.push_back(&cameraList);
     visibility->upload(lists);
     cullTimes = total.elapsed();
     listTimes = visibility->takeListTimes();
@@ -401,6 +427,10 @@ core::Status Renderer::Impl::prepare(const core::PerspectiveCamera& camera, cons
         return core::environmentError("image_size: each side must be in [1, " + std::to_string(maxSize) +
                                           "] pixels on this GL driver (GL_MAX_TEXTURE_SIZE)",
                                       "image_size");
+    if (settings.culling == Culling::Gpu)
+        if (auto s = gpuCulling->buildPrograms(); !s)
+            return core::environmentError("culling: gpu is not available on this GL driver: " + s.errorInfo().message,
+                                          "culling");
     bias = biasFor(setup, settings);
     if (auto s = core::validate(bias); !s) return s;
     if (auto s = core::validate(settings.filter); !s) return s;
@@ -647,9 +677,14 @@ core::Result<FrameStats> Renderer::render(const core::PerspectiveCamera& wsCamer
     glClearNamedFramebufferfv(r.color->framebuffer.id(), GL_DEPTH, 0, &clearDepth);
     glUseProgram(r.mainProgram.id());
     r.mainTimer.begin();
-    const DrawStats mainDraws = r.scene->draw(r.cameraList, true);
+    DrawStats mainDraws = r.scene->draw(r.cameraList, true);
     r.mainTimer.end();
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    if (settings.culling == Culling::Gpu) {
+        // What the GPU's lists drew, read back now that the frame is submitted.
+        mainDraws = r.gpuCulling->submitted(r.cameraList);
+        stats.shadow = r.lastShadow = r.gpuShadowDraws(r.lastShadow);
+    }
 
     stats.shadow.gpuMilliseconds = r.shadowTimer.milliseconds();
     stats.local.gpuMilliseconds = r.localTimer.milliseconds();
@@ -679,6 +714,7 @@ core::Result<core::RasterBuffers> Renderer::renderEvalBuffers(const core::Perspe
                                std::to_string(r.localLights.size()) + " set)");
     if (auto s = r.prepare(camera, light, setup, settings); !s) return s.errorInfo();
     r.lastShadow = r.shadowPass(setup, settings);
+    if (settings.culling == Culling::Gpu) r.lastShadow = r.gpuShadowDraws(r.lastShadow);
     if (auto s = r.localPass(settings); !s) return s.errorInfo();
     r.evalLight = localLight;
     const core::Status evaluated = r.evalPass(camera, light, r.lookupSetup(setup, settings), settings);
@@ -738,6 +774,7 @@ core::Status Renderer::moveInstances(const scene::Scene& scene, std::span<const 
         r.movedBoxes.push_back(r.visibility->hierarchy().itemBounds(global));
         r.movedBoxes.push_back(box);
         r.visibility->move(global, box);
+        if (r.gpuCulling) r.gpuCulling->move(global, box);
     }
     if (r.visibility->rebuildIfDegraded() && r.occlusion) r.occlusion->hierarchyRebuilt();
     for (size_t batch = 0; batch < scene.batches.size(); ++batch)

@@ -179,6 +179,9 @@ const std::string& shaderPrelude() {
         define("SK_LOCAL_DEPTH_BINDING", kLocalDepthBinding);
         define("SK_LOCAL_LIGHTS_BINDING", kLocalLightsBinding);
         define("SK_MAX_LOCAL_LIGHTS", kMaxLocalLights);
+        define("SK_CULL_PYRAMID_UNIT", kCullPyramidUnit);
+        define("SK_CULL_GROUP", kCullGroup);
+        define("SK_CULL_MAX_PYRAMID_LEVELS", kCullMaxPyramidLevels);
         s += "#line 1\n";
         return s;
     }();

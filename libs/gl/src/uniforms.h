@@ -49,7 +49,11 @@ inline constexpr unsigned kPageTableUnit = 4;                  // usampler2D: vi
 inline constexpr unsigned kLocalDepthBinding = 5;              // uniform block LocalDepth (local_depth.glsl)
 inline constexpr unsigned kLocalLightsBinding = 6;             // uniform block LocalLights (local_lights.glsl)
 inline constexpr int kMaxLocalLights = kMaxLocalLightsPerKind; // GLSL: SK_MAX_LOCAL_LIGHTS
-inline constexpr int kInstanceBaseLocation = 0;   // uniform uint instanceBase (main.vert): surface identity
+inline constexpr unsigned kCullPyramidUnit = 0; // GPU culling: the depth pyramid (or the depth it is built from)
+inline constexpr uint32_t kCullGroup = 128;     // GPU culling: instances per work group (gpu_cull.comp's chunks)
+inline constexpr int kCullMaxPyramidLevels =
+    16;                                         // GPU culling: depth pyramid levels (level 0 up to 32768 texels a side)
+inline constexpr int kInstanceBaseLocation = 0; // uniform uint instanceBase (main.vert): surface identity
 inline constexpr int kInstanceOffsetLocation = 1; // uniform uint instanceOffset: the draw's list in visibleInstances
 inline constexpr int kLodErrorLocation = 2;       // uniform float lodObjectError (main.vert): the level's error
 inline constexpr int kBoxOffsetLocation = 3;      // uniform uint boxOffset (occlusion_box.vert): first box of the draw

@@ -110,6 +110,8 @@ void Visibility::build(const LodChoice* lod, PassList& out) {
     // by (batch, level) keeps each list in increasing instance order.
     const size_t batches = m_batchFirst.size() - 1;
     out.shadow = lod && lod->shadow;
+    out.indirect = -1; // a list of the CPU's, drawn from its counts (and the last frame's may have been the GPU's)
+    out.commands = 0;
     out.first.assign(batches * kMaxLodLevels, 0);
     out.count.assign(batches * kMaxLodLevels, 0);
     std::vector<uint32_t>& slotOf = m_slots;
@@ -151,6 +153,7 @@ void Visibility::upload(std::span<PassList* const> lists) {
     glNamedBufferSubData(m_buffer.id(), 0, static_cast<GLsizeiptr>(m_staging.size() * sizeof(uint32_t)),
                          m_staging.data());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kVisibleBinding, m_buffer.id());
+    for (PassList* list : lists) list->buffer = m_buffer.id();
     m_listTimes += time.elapsed();
 }
 

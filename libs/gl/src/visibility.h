@@ -22,6 +22,8 @@
 namespace shadowkit::gl {
 
 inline constexpr size_t kMaxLodLevels = 4; // levels drawn per mesh (scene::LodOptions::maxLevels)
+// glDrawElementsIndirect's command: index count, instance count, first index, base vertex, base instance.
+inline constexpr size_t kIndirectCommandWords = 5;
 
 // One pass's instances: for each batch and level of detail, a range of `indices` holding
 // batch-local instance indices in increasing order (the order a full draw would use, so
@@ -31,6 +33,13 @@ struct PassList {
     std::vector<uint32_t> first, count; // [batch * kMaxLodLevels + level], into `indices`
     uint32_t offset = 0;
     bool shadow = false; // levels from the shadow chains (MeshLods::shadow)
+    // The buffer `indices` live in on the GPU, bound at SK_VISIBLE_BINDING to draw (0: the
+    // one bound). A list GPU culling writes (gpu_culling.h) has no `indices` on the CPU: each
+    // range holds up to `count` entries, and the number drawn is in its glDrawElementsIndirect
+    // command, the `indirect`-th + batch * kMaxLodLevels + level of `commands`.
+    GLuint buffer = 0;
+    GLuint commands = 0;
+    int64_t indirect = -1;
     size_t instances() const { return indices.size(); }
 };
 

@@ -43,19 +43,13 @@ std::vector<Variant> everyTechnique(const scene::ResolvedView& view, const core:
     return variants;
 }
 
-// A standard view and the settings of a small frame (width x height pixels) of it.
+// A standard view shaped for a small frame of width x height pixels.
 scene::ResolvedView smallView(const scene::Scene& forest, const char* name, int width, int height) {
     scene::ResolvedView view = gl::testing::standardView(forest, name);
     view.camera.aspect = double(width) / height;
     return view;
 }
-gl::RenderSettings smallFrame(int width, int height, gl::Culling culling) {
-    gl::RenderSettings settings;
-    settings.width = width;
-    settings.height = height;
-    settings.culling = culling;
-    return settings;
-}
+using gl::testing::smallFrame;
 
 } // namespace
 
@@ -91,7 +85,20 @@ TEST_F(CullingTest, CulledFramesMatchFullFramesPixelForPixelForEveryTechnique) {
             const auto fewestBuffers = (*renderer)->renderEvalBuffers(view.camera, view.light, *setup, settings);
             ASSERT_TRUE(fewestBuffers);
 
+            // GPU-driven: the same lists computed by compute passes, the camera's occlusion two-phase.
+            settings.culling = gl::Culling::Gpu;
+            const auto gpu = (*renderer)->render(view.camera, view.light, *setup, settings);
+            ASSERT_TRUE(gpu) << gpu.error();
+            const scene::Image gpuImage = (*renderer)->readColor();
+            const auto gpuBuffers = (*renderer)->renderEvalBuffers(view.camera, view.light, *setup, settings);
+            ASSERT_TRUE(gpuBuffers);
+
             const std::string what = std::string(viewName) + ", " + v.name;
+            EXPECT_EQ(fullImage.rgba, gpuImage.rgba) << what << ", gpu";
+            EXPECT_EQ(fullBuffers->shadowTerm, gpuBuffers->shadowTerm) << what << ", gpu";
+            EXPECT_EQ(fullBuffers->surfaceId, gpuBuffers->surfaceId) << what << ", gpu";
+            EXPECT_LE(gpu->main.instances, culled->main.instances) << what << ", gpu";
+            EXPECT_EQ(gpu->shadow.triangles, culled->shadow.triangles) << what << ", gpu: the CPU's lists";
             EXPECT_EQ(fullImage.rgba, fewestImage.rgba) << what << ", chc + receiver masks";
             EXPECT_EQ(fullBuffers->shadowTerm, fewestBuffers->shadowTerm) << what << ", chc + receiver masks";
             EXPECT_LE(fewest->shadow.instances, culled->shadow.instances) << what;

@@ -2,6 +2,7 @@
 // view placed over it.
 #pragma once
 
+#include "shadowkit/gl/render_settings.h"
 #include "shadowkit/scene/forest.h"
 #include "shadowkit/scene/views.h"
 
@@ -17,6 +18,15 @@ inline scene::Scene smallForest(int trees, double terrainSize, int terrainResolu
     o.terrainSize = terrainSize;
     o.terrainResolution = terrainResolution;
     return scene::makeForest(o);
+}
+
+// The settings of a small frame (width x height pixels) with this culling.
+inline RenderSettings smallFrame(int width, int height, Culling culling) {
+    RenderSettings settings;
+    settings.width = width;
+    settings.height = height;
+    settings.culling = culling;
+    return settings;
 }
 
 // The named view of data/views.json over `scene`; a failed test and a default view when

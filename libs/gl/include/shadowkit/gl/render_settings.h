@@ -35,8 +35,12 @@ enum class Culling {
     Off,       // every instance, every pass
     Frustum,   // those whose box meets the view frustum
     Occlusion, // of those, the ones CHC++ occlusion queries find visible (a depth pre-pass)
+    // Frustum and occlusion culling on the GPU (compute passes writing indirect draws, a
+    // two-phase depth pyramid for the camera; docs/scale-and-visibility.md): the camera
+    // pass as Occlusion, the sun's maps as Frustum, without receiver masks.
+    Gpu,
 };
-const char* cullingName(Culling culling); // "off", "frustum", "chc"
+const char* cullingName(Culling culling); // "off", "frustum", "chc", "gpu"
 
 inline constexpr int kMaxLocalLightsPerKind = 16; // spot and point lights a frame can shadow, each
 

@@ -1,0 +1,334 @@
+#include "gpu_culling.h"
+
+#include "gl_shaders.h"
+#include "program.h"
+#include "uniforms.h"
+
+#include <algorithm>
+#include <bit>
+#include <string>
+
+namespace shadowkit::gl {
+namespace {
+
+// std430 mirrors of gpu_cull.comp's structs.
+struct GpuInstance {
+    glm::dvec4 minScale;
+    glm::dvec4 max;
+};
+struct GpuBatchInfo {
+    uint32_t first, count, cameraLevels, shadowLevels, firstChunk, chunkCount, pad0, pad1;
+};
+struct GpuLevel {
+    float cameraError, shadowError;
+    uint32_t cameraIndexCount, cameraFirstIndex, shadowIndexCount, shadowFirstIndex, pad0, pad1;
+};
+static_assert(sizeof(GpuInstance) == 64 && sizeof(GpuBatchInfo) == 32 && sizeof(GpuLevel) == 32);
+
+constexpr size_t kCommandWords = kIndirectCommandWords;
+constexpr size_t kMaxPlanes = 8; // gpu_cull.comp's planes[]
+
+GpuInstance gpuInstance(const core::Aabb& box, float scale) {
+    return {glm::dvec4(box.min, double(scale)), glm::dvec4(box.max, 0.0)};
+}
+
+GLint uniform(GLuint program, const char* name) { return glGetUniformLocation(program, name); }
+
+} // namespace
+
+std::unique_ptr<GpuCulling> GpuCulling::create(const scene::Scene& scene, std::span<const scene::MeshLods> lods,
+                                               const GpuScene& gpuScene) {
+    auto culling = std::unique_ptr<GpuCulling>(new GpuCulling(gpuScene));
+    // Per instance its box and scale, per batch its chunks of kCullGroup and levels.
+    std::vector<GpuInstance> instances;
+    std::vector<glm::uvec4> chunks;
+    std::vector<GpuBatchInfo> batches;
+    std::vector<GpuLevel> levels;
+    const std::vector<core::Aabb> boxes = scene.instanceBounds();
+    uint32_t first = 0;
+    for (const scene::MeshBatch& batch : scene.batches) {
+        const auto count = static_cast<uint32_t>(batch.worldFromObject.size());
+        const scene::MeshLods& lod = lods[batch.mesh];
+        GpuBatchInfo info{first,
+                          count,
+                          static_cast<uint32_t>(std::min(lod.camera.size(), kMaxLodLevels)),
+                          static_cast<uint32_t>(std::min(lod.shadow.size(), kMaxLodLevels)),
+                          static_cast<uint32_t>(chunks.size()),
+                          0,
+                          0,
+                          0};
+        for (uint32_t k = 0; k < count; k += kCullGroup)
+            chunks.emplace_back(batches.size(), first + k, std::min<uint32_t>(kCullGroup, count - k), k);
+        info.chunkCount = static_cast<uint32_t>(chunks.size()) - info.firstChunk;
+        for (size_t l = 0; l < kMaxLodLevels; ++l) {
+            GpuLevel level{};
+            if (l < info.cameraLevels)
+                level.cameraError = lod.camera[l].objectError, level.cameraIndexCount = lod.camera[l].indexCount,
+                level.cameraFirstIndex = lod.camera[l].firstIndex;
+            if (l < info.shadowLevels)
+                level.shadowError = lod.shadow[l].objectError, level.shadowIndexCount = lod.shadow[l].indexCount,
+                level.shadowFirstIndex = lod.shadow[l].firstIndex;
+            levels.push_back(level);
+        }
+        for (uint32_t i = 0; i < count; ++i) {
+            const float scale = glm::length(glm::vec3(batch.worldFromObject[i][0])); // as Visibility's
+            culling->m_scales.push_back(scale);
+            instances.push_back(gpuInstance(boxes[first + i], scale));
+        }
+        culling->m_batchFirst.push_back(first);
+        culling->m_batchSize.push_back(count);
+        culling->m_cameraLevels.push_back(info.cameraLevels);
+        culling->m_shadowLevels.push_back(info.shadowLevels);
+        batches.push_back(info);
+        first += count;
+    }
+    culling->m_instanceCount = first;
+    culling->m_chunkCount = chunks.size();
+    culling->m_batchCount = batches.size();
+    // A buffer of size 0 cannot be bound: one element at least.
+    auto upload = [](const auto& v) {
+        using T = typename std::decay_t<decltype(v)>::value_type;
+        return v.empty() ? createBuffer(nullptr, sizeof(T)) : createBuffer(v.data(), v.size() * sizeof(T), true);
+    };
+    culling->m_instances = upload(instances);
+    culling->m_chunks = upload(chunks);
+    culling->m_batches = upload(batches);
+    culling->m_levels = upload(levels);
+    const size_t perInstance = std::max<size_t>(culling->m_instanceCount, 1) * sizeof(uint32_t);
+    culling->m_flags = createBuffer(nullptr, perInstance);
+    culling->m_ranks = createBuffer(nullptr, perInstance);
+    culling->m_chunkSums = createBuffer(nullptr, std::max<size_t>(culling->m_chunkCount, 1) * sizeof(glm::uvec4));
+    culling->forget();
+    return culling;
+}
+
+core::Status GpuCulling::buildPrograms() {
+    if (m_depthProgram.id() != 0) return core::Ok{};
+    using namespace shaders;
+    for (int stage = 0; stage < 3; ++stage) {
+        const std::string define = "#define SK_CULL_STAGE " + std::to_string(stage + 1) + "\n";
+        auto program = buildComputeProgram("GPU culling, stage " + std::to_string(stage + 1), {define, kGpuCullComp});
+        if (!program) return program.errorInfo();
+        m_stages[stage] = std::move(program).value();
+    }
+    auto pyramid = buildComputeProgram("GPU culling's depth pyramid", {kDepthPyramidComp});
+    if (!pyramid) return pyramid.errorInfo();
+    m_pyramidProgram = std::move(pyramid).value();
+    auto depth = buildProgram("GPU culling's depth pre-pass", {kFrameGlsl, kMainVert}, {kFrameGlsl, kCameraDepthFrag});
+    if (!depth) return depth.errorInfo();
+    if (auto s = checkUniformBlock(*depth, "GPU culling", "Frame", sizeof(FrameUniforms), frameFields()); !s) return s;
+    m_depthProgram = std::move(depth).value();
+    return core::Ok{};
+}
+
+void GpuCulling::move(uint32_t globalInstance, const core::Aabb& box) {
+    const GpuInstance instance = gpuInstance(box, m_scales[globalInstance]);
+    glNamedBufferSubData(m_instances.id(), GLintptr(globalInstance * sizeof(GpuInstance)), sizeof instance, &instance);
+}
+
+void GpuCulling::forget() {
+    const uint32_t zero = 0;
+    glClearNamedBufferData(m_flags.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+}
+
+void GpuCulling::beginFrame(size_t passes) {
+    if (passes <= m_passCapacity) return;
+    m_passCapacity = std::max(passes, 2 * m_passCapacity);
+    const size_t region = kMaxLodLevels * std::max<size_t>(m_instanceCount, 1);
+    m_lists = createBuffer(nullptr, m_passCapacity * region * sizeof(uint32_t));
+    const size_t commands = std::max<size_t>(m_batchCount, 1) * kMaxLodLevels * m_passCapacity;
+    m_commands = createBuffer(nullptr, commands * kCommandWords * sizeof(uint32_t));
+}
+
+void GpuCulling::cull(size_t pass, std::span<const visibility::HalfSpace> volume, const LodChoice* lod, Phase phase,
+                      PassList& out) {
+    const Stopwatch inGl;
+    const GLuint p = m_stages[0].id();
+    glProgramUniform1i(p, uniform(p, "phase"), static_cast<GLint>(phase));
+    glm::dvec4 planes[kMaxPlanes]{};
+    const size_t planeCount = std::min(volume.size(), kMaxPlanes); // clip volumes and boxes have at most six
+    std::copy_n(volume.begin(), planeCount, planes);
+    glProgramUniform4dv(p, uniform(p, "planes"), GLsizei(kMaxPlanes), &planes[0].x);
+    glProgramUniform1i(p, uniform(p, "planeCount"), GLint(planeCount));
+    const bool shadowChain = lod && lod->shadow;
+    glProgramUniform1i(p, uniform(p, "lodOn"), lod ? 1 : 0);
+    glProgramUniform1i(p, uniform(p, "shadowChain"), shadowChain ? 1 : 0);
+    if (lod) {
+        glProgramUniformMatrix4dv(p, uniform(p, "passClipFromWorld"), 1, GL_FALSE, &lod->pass.clipFromWorld[0][0]);
+        glProgramUniform1d(p, uniform(p, "passUnitsPerNdc"), lod->pass.unitsPerNdc);
+        glProgramUniform1d(p, uniform(p, "passMaxError"), lod->pass.maxError);
+        glProgramUniform1i(p, uniform(p, "cameraBound"), lod->camera ? 1 : 0);
+        if (lod->camera) {
+            glProgramUniformMatrix4dv(p, uniform(p, "cameraClipFromWorld"), 1, GL_FALSE,
+                                      &lod->camera->clipFromWorld[0][0]);
+            glProgramUniform1d(p, uniform(p, "cameraUnitsPerNdc"), lod->camera->unitsPerNdc);
+            glProgramUniform1d(p, uniform(p, "cameraMaxError"), lod->camera->maxError);
+        }
+    }
+    const bool occlusion = phase == Phase::NewlyVisible || phase == Phase::Visible;
+    if (occlusion) {
+        glProgramUniform1i(p, uniform(p, "pyramidLevels"), m_pyramidLevels);
+        glProgramUniform4iv(p, uniform(p, "pyramidLevel"), m_pyramidLevels, &m_pyramidLayout[0].x);
+        glProgramUniform2i(p, uniform(p, "viewport"), m_viewport.x, m_viewport.y);
+        glProgramUniformMatrix4fv(p, uniform(p, "clipFromWorld"), 1, GL_FALSE, &m_cameraClipFromWorld[0][0]);
+        glProgramUniform3fv(p, uniform(p, "wsEye"), 1, &m_wsEye.x);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, m_pyramid.id());
+    }
+    glUseProgram(p);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, m_instances.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, m_chunks.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, m_batches.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, m_levels.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, m_flags.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, m_ranks.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, m_chunkSums.id());
+    glDispatchCompute(GLuint(m_chunkCount), 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    compact(pass, shadowChain, out);
+    m_gl += inGl.elapsed();
+}
+
+void GpuCulling::compact(size_t pass, bool shadowChain, PassList& out) {
+    // Stage 2: offsets and commands; stage 3: the lists.
+    const GLuint firstCommand = GLuint(pass * m_batchCount * kMaxLodLevels);
+    const GLuint offsets = m_stages[1].id(), scatter = m_stages[2].id();
+    glProgramUniform1ui(offsets, uniform(offsets, "batchCount"), GLuint(m_batchCount));
+    glProgramUniform1i(offsets, uniform(offsets, "shadowChain"), shadowChain ? 1 : 0);
+    glProgramUniform1ui(offsets, uniform(offsets, "firstCommand"), firstCommand);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, m_commands.id());
+    glUseProgram(offsets);
+    glDispatchCompute(GLuint((kMaxLodLevels * m_batchCount + 63) / 64), 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    const GLuint passOffset = GLuint(pass * kMaxLodLevels * m_instanceCount);
+    glProgramUniform1ui(scatter, uniform(scatter, "passOffset"), passOffset);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, m_lists.id());
+    glUseProgram(scatter);
+    glDispatchCompute(GLuint(m_chunkCount), 1, 1);
+    // The draws read the lists in vertex shaders and the commands as indirect arguments.
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+
+    // Each batch's four levels get a region of its instance count each: the CPU knows where
+    // every list lies without knowing how long it is.
+    out.indices.clear();
+    out.shadow = shadowChain;
+    out.first.assign(m_batchCount * kMaxLodLevels, 0);
+    out.count.assign(m_batchCount * kMaxLodLevels, 0);
+    for (size_t b = 0; b < m_batchCount; ++b) {
+        const uint32_t levels = shadowChain ? m_shadowLevels[b] : m_cameraLevels[b];
+        for (uint32_t l = 0; l < levels; ++l) {
+            out.first[b * kMaxLodLevels + l] = uint32_t(kMaxLodLevels) * m_batchFirst[b] + l * m_batchSize[b];
+            out.count[b * kMaxLodLevels + l] = m_batchSize[b];
+        }
+    }
+    out.offset = passOffset;
+    out.buffer = m_lists.id();
+    out.commands = m_commands.id();
+    out.indirect = firstCommand;
+}
+
+void GpuCulling::buildPyramid(const CameraDepthTarget& target) {
+    // Level 0 a power of two a side (levels then halve exactly), at least half the pixels.
+    const int width = int(std::bit_ceil(unsigned(target.width + 1) / 2u));
+    const int height = int(std::bit_ceil(unsigned(target.height + 1) / 2u));
+    if (width != m_pyramidWidth || height != m_pyramidHeight) {
+        m_pyramidWidth = width, m_pyramidHeight = height;
+        m_pyramidLevels = std::bit_width(unsigned(std::max(width, height)));
+        size_t texels = 0;
+        for (int level = 0; level < m_pyramidLevels; ++level) {
+            m_pyramidLayout[size_t(level)] = {std::max(1, width >> level), std::max(1, height >> level), int(texels),
+                                              0};
+            texels += size_t(m_pyramidLayout[size_t(level)].x) * size_t(m_pyramidLayout[size_t(level)].y);
+        }
+        m_pyramid = createBuffer(nullptr, texels * sizeof(float));
+    }
+    const GLuint p = m_pyramidProgram.id();
+    glUseProgram(p);
+    glBindTextureUnit(kCullPyramidUnit, target.depth.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, m_pyramid.id());
+    glm::ivec4 source(target.width, target.height, 0, 0);
+    for (int level = 0; level < m_pyramidLevels; ++level) {
+        const glm::ivec4 at = m_pyramidLayout[size_t(level)];
+        glProgramUniform1i(p, uniform(p, "fromDepth"), level == 0 ? 1 : 0);
+        glProgramUniform2i(p, uniform(p, "sourceSize"), source.x, source.y);
+        glProgramUniform2i(p, uniform(p, "targetSize"), at.x, at.y);
+        glProgramUniform1i(p, uniform(p, "sourceOffset"), source.z);
+        glProgramUniform1i(p, uniform(p, "targetOffset"), at.z);
+        glDispatchCompute(GLuint(at.x + 7) / 8, GLuint(at.y + 7) / 8, 1);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        source = at;
+    }
+}
+
+void GpuCulling::camera(const core::PerspectiveCamera& camera, const LodChoice* lod, CameraDepthTarget& target,
+                        PassList& out) {
+    const core::Mat4 clipFromWorld = camera.clipFromWorld();
+    const std::vector<visibility::HalfSpace> frustum = visibility::clipVolume(clipFromWorld);
+    m_cameraClipFromWorld = glm::mat4(clipFromWorld);
+    m_wsEye = glm::vec3(camera.wsEye);
+    m_viewport = {target.width, target.height};
+    auto drawDepth = [&](const PassList& list) {
+        const Stopwatch inGl;
+        glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer.id());
+        glViewport(0, 0, target.width, target.height);
+        glEnable(GL_DEPTH_TEST);
+        glDepthFunc(GL_LESS);
+        glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+        glDepthMask(GL_TRUE);
+        glEnable(GL_CULL_FACE);
+        glCullFace(GL_BACK);
+        glUseProgram(m_depthProgram.id());
+        m_scene.draw(list);
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        m_gl += inGl.elapsed();
+    };
+    cull(0, frustum, lod, Phase::LastVisible, m_early);
+    target.clear();
+    drawDepth(m_early);
+    const Stopwatch pyramidTime;
+    buildPyramid(target);
+    m_gl += pyramidTime.elapsed();
+    cull(1, frustum, lod, Phase::NewlyVisible, m_late);
+    drawDepth(m_late);
+    cull(2, frustum, lod, Phase::Visible, out);
+}
+
+DrawStats GpuCulling::submitted(const PassList& list) const {
+    const size_t slots = m_batchCount * kMaxLodLevels;
+    std::vector<uint32_t> commands(slots * kCommandWords);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    glGetNamedBufferSubData(m_commands.id(), GLintptr(size_t(list.indirect) * kCommandWords * sizeof(uint32_t)),
+                            GLsizeiptr(commands.size() * sizeof(uint32_t)), commands.data());
+    DrawStats stats;
+    for (size_t slot = 0; slot < slots; ++slot) {
+        if (list.count[slot] == 0) continue;
+        const uint32_t indexCount = commands[slot * kCommandWords], instances = commands[slot * kCommandWords + 1];
+        stats.instances += instances;
+        stats.triangles += size_t(indexCount / 3) * instances;
+        ++stats.drawCalls;
+    }
+    return stats;
+}
+
+PassList GpuCulling::read(const PassList& list) const {
+    const size_t slots = m_batchCount * kMaxLodLevels;
+    std::vector<uint32_t> commands(slots * kCommandWords), region(kMaxLodLevels * m_instanceCount);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    glGetNamedBufferSubData(m_commands.id(), GLintptr(size_t(list.indirect) * kCommandWords * sizeof(uint32_t)),
+                            GLsizeiptr(commands.size() * sizeof(uint32_t)), commands.data());
+    glGetNamedBufferSubData(m_lists.id(), GLintptr(size_t(list.offset) * sizeof(uint32_t)),
+                            GLsizeiptr(region.size() * sizeof(uint32_t)), region.data());
+    PassList cpu;
+    cpu.shadow = list.shadow;
+    cpu.first.assign(slots, 0);
+    cpu.count.assign(slots, 0);
+    for (size_t slot = 0; slot < slots; ++slot) {
+        const uint32_t instances = list.count[slot] == 0 ? 0 : commands[slot * kCommandWords + 1];
+        cpu.first[slot] = uint32_t(cpu.indices.size());
+        cpu.count[slot] = instances;
+        cpu.indices.insert(cpu.indices.end(), region.begin() + list.first[slot],
+                           region.begin() + list.first[slot] + instances);
+    }
+    return cpu;
+}
+
+} // namespace shadowkit::gl

@@ -1,0 +1,113 @@
+// GPU-driven culling (Culling::Gpu): every instance tested in compute passes that write the
+// draw lists and glDrawElementsIndirect commands themselves, so the CPU issues a fixed set
+// of draws per pass (one per batch and level) and never learns, or waits for, what is drawn.
+//
+// Based on: two-phase occlusion culling against a hierarchical depth buffer — Haar &
+// Aaltonen, "GPU-Driven Rendering Pipelines" (SIGGRAPH 2015 Advances), as in zeux/niagara
+// and UE5's two-pass HZB (docs/references.md). The camera pass first draws, into its depth
+// pre-pass, the instances visible last frame that are still in the frustum; reduces that
+// depth to a pyramid of farthest depths; tests every instance in the frustum against it and
+// draws the newly visible ones too. What passes the test is next frame's "visible last
+// frame". No frame is ever wrong: the pyramid holds only depths of drawn geometry, so an
+// instance culled is hidden by something drawn this frame (with the grown boxes CHC++'s
+// queries use). Shadow maps keep the instances meeting their volume, like the CPU path.
+//
+// The tests are the CPU path's (visibility.cpp): the same half-spaces, the same level of
+// detail rule, in double precision, and lists in increasing instance order (gpu_cull.comp),
+// so the lists equal Visibility::collect's and the pixels a CPU-culled frame's. Not on the
+// GPU: receiver masks (a CPU structure), local lights' and virtual pages' lists.
+#pragma once
+
+#include "gl_object.h"
+#include "gpu_scene.h"
+#include "render_targets.h"
+#include "stopwatch.h"
+#include "uniforms.h"
+#include "visibility.h"
+
+#include "shadowkit/core/camera.h"
+#include "shadowkit/core/result.h"
+#include "shadowkit/scene/mesh_lod.h"
+#include "shadowkit/scene/scene.h"
+
+#include <array>
+#include <memory>
+#include <span>
+#include <utility>
+#include <vector>
+
+namespace shadowkit::gl {
+
+class GpuCulling {
+public:
+    // `scene` as the renderer was created with it; `gpuScene` must outlive the culling.
+    static std::unique_ptr<GpuCulling> create(const scene::Scene& scene, std::span<const scene::MeshLods> lods,
+                                              const GpuScene& gpuScene);
+
+    // Compiles the passes' programs, once: a renderer that never culls on the GPU never
+    // pays for them. An environment error where the driver rejects them (they need doubles).
+    core::Status buildPrograms();
+
+    // An instance moved: its new box (in the scene's coordinates).
+    void move(uint32_t globalInstance, const core::Aabb& box);
+    // Drops what was visible last frame: the next camera pass draws nothing early.
+    void forget();
+
+    // Makes room for a frame of `passes` lists (each the capacity of every instance at every
+    // level) and their commands. Lists of an earlier frame are not kept.
+    void beginFrame(size_t passes);
+
+    // Which instances of those meeting the volume a pass keeps.
+    enum class Phase {
+        All,          // every one
+        LastVisible,  // those the last camera pass found visible
+        NewlyVisible, // those not visible last frame that the depth pyramid does not hide
+        Visible,      // the union of the two; records what the pyramid does not hide for next frame
+    };
+    // One pass into region `pass` (< the frame's passes): `out` becomes a list the GPU writes,
+    // drawn by GpuScene::draw through its indirect commands.
+    void cull(size_t pass, std::span<const visibility::HalfSpace> volume, const LodChoice* lod, Phase phase,
+              PassList& out);
+
+    // The camera's two-phase pass (passes 0 to kCameraPasses − 1): the early and late
+    // instances drawn into `target`'s depth (cleared here; the camera's Frame uniforms must
+    // be bound), `out` the union the camera pass draws.
+    void camera(const core::PerspectiveCamera& camera, const LodChoice* lod, CameraDepthTarget& target, PassList& out);
+    static constexpr size_t kCameraPasses = 3;
+
+    // What a list drew, read back from its commands (waits for the GPU).
+    DrawStats submitted(const PassList& list) const;
+    // A list's contents in the CPU path's layout (indices, first, count), read back.
+    PassList read(const PassList& list) const;
+
+    // Time of the last camera() and cull()s inside GL calls (dispatches, the pre-pass's draws).
+    const CpuTimes& glTimes() const { return m_gl; }
+    CpuTimes takeGlTimes() { return std::exchange(m_gl, {}); }
+
+private:
+    GpuCulling(const GpuScene& gpuScene) : m_scene(gpuScene) {}
+    void buildPyramid(const CameraDepthTarget& target);
+    // Stages 2 and 3 of gpu_cull.comp after stage 1: the commands and lists of region `pass`.
+    void compact(size_t pass, bool shadowChain, PassList& out);
+
+    const GpuScene& m_scene;
+    Program m_stages[3], m_pyramidProgram, m_depthProgram;
+    Buffer m_instances, m_chunks, m_batches, m_levels, m_flags, m_ranks, m_chunkSums;
+    Buffer m_lists, m_commands;
+    size_t m_instanceCount = 0, m_chunkCount = 0, m_batchCount = 0;
+    std::vector<uint32_t> m_batchFirst, m_batchSize;      // per scene batch
+    std::vector<uint32_t> m_cameraLevels, m_shadowLevels; // per scene batch
+    std::vector<float> m_scales;                          // per instance, as Visibility's
+    size_t m_passCapacity = 0;                            // regions in m_lists
+    Buffer m_pyramid;                                     // every level, one after the other (depth_pyramid.comp)
+    int m_pyramidWidth = 0, m_pyramidHeight = 0, m_pyramidLevels = 0;
+    std::array<glm::ivec4, kCullMaxPyramidLevels> m_pyramidLayout{}; // per level: width, height, offset
+    // The camera pass's, for the occlusion test: its projection, eye and pixels.
+    glm::mat4 m_cameraClipFromWorld{1.0f};
+    glm::vec3 m_wsEye{0.0f};
+    glm::ivec2 m_viewport{1, 1};
+    PassList m_early, m_late;
+    CpuTimes m_gl;
+};
+
+} // namespace shadowkit::gl

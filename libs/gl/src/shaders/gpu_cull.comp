@@ -1,0 +1,241 @@
+// GPU-driven culling (gl/src/gpu_culling.h): one pass's instances into draw lists and
+// indirect commands, with the same rules as the CPU path (gl/src/visibility.cpp), in three
+// dispatches so that every list comes out in increasing instance order — the order a full
+// draw uses, so culling changes no pixel even where two instances' depths tie:
+//   SK_CULL_STAGE 1, one work group per chunk (up to 128 consecutive instances of one batch):
+//     which instances the pass keeps and at which level, and each one's rank among the kept
+//     instances of its chunk and level (a prefix sum in shared memory, four 8-bit counters
+//     packed in one uint);
+//   SK_CULL_STAGE 2, one invocation per batch and level: the chunks' counts into offsets,
+//     and the level's glDrawElementsIndirect command (its instance count: the total);
+//   SK_CULL_STAGE 3, one work group per chunk: each kept instance's batch-local index to
+//     its place, offset + rank, in its batch and level's region of the pass.
+// Frustum and level of detail are decided in double precision like the CPU's, so the
+// lists equal Visibility::collect's (a float test would flip an instance whose box touches a
+// plane, or whose projected error sits on a level's bound, about once in 10^7: every frame at
+// 100,000 trees); the occlusion test against the depth pyramid is float and conservative.
+
+#if SK_CULL_STAGE != 2
+layout(local_size_x = SK_CULL_GROUP) in;
+#endif
+
+struct Instance {
+    dvec4 minScale; // xyz: the box's minimum, w: the instance's uniform scale
+    dvec4 max;      // xyz: the box's maximum
+};
+struct Batch {
+    uint first, count;              // global index of the first instance; instances
+    uint cameraLevels, shadowLevels; // levels of each chain, [1, 4]
+    uint firstChunk, chunkCount;
+    uint pad0, pad1;
+};
+struct Level {
+    float cameraError, shadowError;            // object metres (scene::LodLevel::objectError)
+    uint cameraIndexCount, cameraFirstIndex;   // in the mesh's index buffer
+    uint shadowIndexCount, shadowFirstIndex;
+    uint pad0, pad1;
+};
+
+layout(std430, binding = 1) readonly buffer Chunks { uvec4 chunks[]; }; // batch, first global, count, first batch-local
+layout(std430, binding = 2) readonly buffer Batches { Batch batches[]; };
+layout(std430, binding = 5) buffer Ranks { uint ranks[]; };     // per global instance: level << 8 | rank, or ~0u
+layout(std430, binding = 6) buffer ChunkSums { uvec4 chunkSums[]; }; // per chunk and level: count, then offset
+
+const uint kNotKept = 0xFFFFFFFFu;
+
+#if SK_CULL_STAGE == 1
+
+layout(std430, binding = 0) readonly buffer Instances { Instance instances[]; };
+layout(std430, binding = 3) readonly buffer Levels { Level levels[]; }; // [batch * 4 + level]
+layout(std430, binding = 4) buffer Flags { uint wasVisible[]; };         // the camera's visible set, frame to frame
+
+// What the pass keeps (GpuCulling::Phase).
+const int kAll = 0, kLastVisible = 1, kNewlyVisible = 2, kVisible = 3;
+uniform int phase;
+uniform dvec4 planes[8]; // half-spaces: inside where dot(xyz, p) + w >= 0
+uniform int planeCount;
+// Levels of detail (gl/src/visibility.h, LodChoice): off when lodOn is false.
+uniform bool lodOn;
+uniform bool shadowChain;
+uniform dmat4 passClipFromWorld;
+uniform double passUnitsPerNdc, passMaxError;
+uniform bool cameraBound;
+uniform dmat4 cameraClipFromWorld;
+uniform double cameraUnitsPerNdc, cameraMaxError;
+// Occlusion (phases kNewlyVisible and kVisible): the depth pyramid of the camera's pre-pass.
+layout(std430, binding = 7) readonly buffer Pyramid { float pyramid[]; }; // level k: farthest over 2^(k+1) pixels
+uniform ivec4 pyramidLevel[SK_CULL_MAX_PYRAMID_LEVELS]; // per level: width, height, offset in pyramid[]
+uniform int pyramidLevels;
+uniform ivec2 viewport;
+uniform mat4 clipFromWorld; // the camera's
+uniform vec3 wsEye;
+
+bool outsideVolume(dvec3 lo, dvec3 hi) {
+    if (!(lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z)) return true; // empty (or NaN) boxes
+    for (int i = 0; i < planeCount; ++i) {
+        const dvec4 h = planes[i];
+        // The corner furthest along the normal ("positive vertex").
+        const dvec3 p = dvec3(h.x >= 0.0 ? hi.x : lo.x, h.y >= 0.0 ? hi.y : lo.y, h.z >= 0.0 ? hi.z : lo.z);
+        if (!(h.x * p.x + h.y * p.y + h.z * p.z + h.w >= 0.0)) return true;
+    }
+    return false;
+}
+
+// NDC units per world metre at `ws` (visibility.cpp's ndcPerMetre); negative: infinite.
+double ndcPerMetre(dmat4 m, dvec3 ws) {
+    const dvec4 c = m * dvec4(ws, 1.0);
+    if (!(c.w > 1e-9)) return -1.0;
+    const dvec2 ndc = c.xy / c.w;
+    double largest = 0.0;
+    for (int i = 0; i < 3; ++i) largest = max(largest, length((m[i].xy - ndc * m[i].w) / c.w));
+    return largest;
+}
+
+// The error a level may have, in object metres, by one bound.
+double allowedBy(dmat4 m, double unitsPerNdc, double maxError, dvec3 centre, double scale) {
+    const double npm = ndcPerMetre(m, centre);
+    if (npm < 0.0) return 0.0;
+    const double denominator = unitsPerNdc * npm * scale;
+    return denominator > 0.0 ? maxError / denominator : 1e300;
+}
+
+uint levelOf(uint batch, dvec3 centre, double scale) {
+    const uint count = shadowChain ? batches[batch].shadowLevels : batches[batch].cameraLevels;
+    if (!lodOn || count < 2u) return 0u;
+    double allowed = allowedBy(passClipFromWorld, passUnitsPerNdc, passMaxError, centre, scale);
+    if (cameraBound)
+        allowed = min(allowed, allowedBy(cameraClipFromWorld, cameraUnitsPerNdc, cameraMaxError, centre, scale));
+    uint level = 0u;
+    while (level + 1u < count) {
+        const Level next = levels[batch * 4u + level + 1u];
+        if (!(double(shadowChain ? next.shadowError : next.cameraError) <= allowed)) break;
+        ++level;
+    }
+    return level;
+}
+
+// False only when the box, grown as the CHC++ query boxes are (occlusion_culling.cpp), lies
+// wholly behind the pyramid's farthest depth over the pixels it covers.
+bool mayBeVisible(vec3 lo, vec3 hi) {
+    const vec3 nearest = clamp(wsEye, lo, hi);
+    const float margin = 0.01 + 1e-3 * distance(nearest, wsEye);
+    lo -= margin;
+    hi += margin;
+    vec2 ndcMin = vec2(1e30), ndcMax = vec2(-1e30);
+    float zMin = 1e30;
+    for (int i = 0; i < 8; ++i) {
+        const vec3 p = vec3((i & 1) != 0 ? hi.x : lo.x, (i & 2) != 0 ? hi.y : lo.y, (i & 4) != 0 ? hi.z : lo.z);
+        const vec4 c = clipFromWorld * vec4(p, 1.0);
+        if (!(c.w > 0.0) || c.z < 0.0) return true; // reaches the near plane: no depth to compare
+        ndcMin = min(ndcMin, c.xy / c.w);
+        ndcMax = max(ndcMax, c.xy / c.w);
+        zMin = min(zMin, c.z / c.w); // clip depth [0, 1] (glClipControl) is window depth
+    }
+    const ivec2 p0 = clamp(ivec2(floor((ndcMin * 0.5 + 0.5) * vec2(viewport))), ivec2(0), viewport - 1);
+    const ivec2 p1 = clamp(ivec2(floor((ndcMax * 0.5 + 0.5) * vec2(viewport))), ivec2(0), viewport - 1);
+    // The finest level at which the pixels span at most two texels a side: four fetches.
+    int level = 0;
+    while (level + 1 < pyramidLevels &&
+           any(greaterThan((p1 >> (level + 1)) - (p0 >> (level + 1)), ivec2(1))))
+        ++level;
+    const ivec4 at = pyramidLevel[level];
+    const ivec2 t0 = p0 >> (level + 1), t1 = p1 >> (level + 1), last = at.xy - 1;
+    float farthest = 0.0;
+    for (int y = t0.y; y <= t1.y; ++y)
+        for (int x = t0.x; x <= t1.x; ++x) {
+            const ivec2 t = min(ivec2(x, y), last);
+            farthest = max(farthest, pyramid[at.z + t.y * at.x + t.x]);
+        }
+    return zMin <= farthest;
+}
+
+shared uint scan[SK_CULL_GROUP];
+
+void main() {
+    const uvec4 chunk = chunks[gl_WorkGroupID.x];
+    const uint local = gl_LocalInvocationID.x;
+    const uint global = chunk.y + local;
+    uint word = 0u, level = 0u;
+    bool keep = false;
+    if (local < chunk.z) {
+        const Instance instance = instances[global];
+        const dvec3 lo = instance.minScale.xyz, hi = instance.max.xyz;
+        const bool inVolume = !outsideVolume(lo, hi);
+        const bool was = wasVisible[global] != 0u;
+        const bool tested = inVolume && (phase == kNewlyVisible || phase == kVisible);
+        const bool visible = tested && mayBeVisible(vec3(lo), vec3(hi));
+        if (phase == kAll) keep = inVolume;
+        else if (phase == kLastVisible) keep = inVolume && was;
+        else if (phase == kNewlyVisible) keep = visible && !was;
+        else keep = inVolume && (was || visible);
+        if (phase == kVisible) wasVisible[global] = visible ? 1u : 0u;
+        if (keep) {
+            level = levelOf(chunk.x, 0.5 * (lo + hi), instance.minScale.w);
+            word = 1u << (8u * level);
+        }
+    }
+    // Inclusive prefix sum over the group (Hillis & Steele): each level's counter stays
+    // below 256, so the four never carry into each other.
+    scan[local] = word;
+    barrier();
+    for (uint stride = 1u; stride < SK_CULL_GROUP; stride <<= 1) {
+        const uint add = local >= stride ? scan[local - stride] : 0u;
+        barrier();
+        scan[local] += add;
+        barrier();
+    }
+    if (local < chunk.z) ranks[global] = keep ? level << 8 | ((scan[local] - word) >> (8u * level) & 0xFFu) : kNotKept;
+    if (local == SK_CULL_GROUP - 1u) {
+        const uint total = scan[local];
+        chunkSums[gl_WorkGroupID.x] = uvec4(total & 0xFFu, total >> 8 & 0xFFu, total >> 16 & 0xFFu, total >> 24);
+    }
+}
+
+#elif SK_CULL_STAGE == 2
+
+layout(local_size_x = 64) in;
+layout(std430, binding = 3) readonly buffer Levels { Level levels[]; };
+layout(std430, binding = 7) writeonly buffer Commands { uint commands[]; }; // 5 uints each
+uniform uint batchCount;
+uniform bool shadowChain;
+uniform uint firstCommand; // the pass's first, in commands
+
+void main() {
+    const uint pair = gl_GlobalInvocationID.x; // batch * 4 + level
+    if (pair >= 4u * batchCount) return;
+    const uint b = pair / 4u, l = pair % 4u;
+    const Batch batch = batches[b];
+    uint running = 0u;
+    for (uint c = batch.firstChunk; c < batch.firstChunk + batch.chunkCount; ++c) {
+        const uint n = chunkSums[c][l];
+        chunkSums[c][l] = running;
+        running += n;
+    }
+    const bool exists = l < (shadowChain ? batch.shadowLevels : batch.cameraLevels);
+    const Level level = levels[pair];
+    const uint at = 5u * (firstCommand + pair);
+    commands[at + 0u] = exists ? (shadowChain ? level.shadowIndexCount : level.cameraIndexCount) : 0u;
+    commands[at + 1u] = exists ? running : 0u; // instances
+    commands[at + 2u] = shadowChain ? level.shadowFirstIndex : level.cameraFirstIndex;
+    commands[at + 3u] = 0u; // base vertex
+    commands[at + 4u] = 0u; // base instance: the list's place comes as instanceOffset
+}
+
+#else // SK_CULL_STAGE 3
+
+layout(std430, binding = 7) writeonly buffer Lists { uint lists[]; };
+uniform uint passOffset; // the pass's region in lists: 4 slots of capacity batch.count per batch
+
+void main() {
+    const uvec4 chunk = chunks[gl_WorkGroupID.x];
+    const uint local = gl_LocalInvocationID.x;
+    if (local >= chunk.z) return;
+    const uint r = ranks[chunk.y + local];
+    if (r == kNotKept) return;
+    const uint level = r >> 8, rank = r & 0xFFu;
+    const Batch batch = batches[chunk.x];
+    lists[passOffset + 4u * batch.first + level * batch.count + chunkSums[gl_WorkGroupID.x][level] + rank] =
+        chunk.w + local;
+}
+
+#endif

@@ -1,0 +1,196 @@
+// GPU-driven culling (gl/src/gpu_culling.h): its lists are the CPU path's, entry for entry,
+// and its two-phase occlusion never costs a pixel — not on the first frame, not after a cut,
+// not after an instance moves. CTest label `gl`.
+#include "headless_gl_test.h"
+#include "test_scenes.h"
+
+#include "gpu_culling.h"
+#include "gpu_scene.h"
+#include "visibility.h"
+
+#include "shadowkit/gl/renderer.h"
+#include "shadowkit/scene/mesh_builder.h"
+#include "shadowkit/scene/mesh_lod.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <gtest/gtest.h>
+
+#include <random>
+#include <set>
+
+using namespace shadowkit;
+
+namespace {
+
+class GpuCullingTest : public gl::testing::HeadlessGlTest {};
+
+using gl::testing::smallFrame;
+
+core::ShadowSetup lispsmSetup(const scene::ResolvedView& view, const scene::Scene& scene) {
+    const core::ShadowSetupInputs in{.camera = view.camera,
+                                     .light = view.light,
+                                     .wsSceneBounds = scene.wsBounds(),
+                                     .technique = core::Technique::Lispsm,
+                                     .mapSize = 512};
+    auto setup = core::computeShadowSetup(in);
+    EXPECT_TRUE(setup) << setup.error();
+    return setup ? *setup : core::ShadowSetup{};
+}
+
+} // namespace
+
+TEST_F(GpuCullingTest, ListsEqualTheCpuPathsForRandomVolumesAndLevelsOfDetail) {
+    // The same half-spaces and level rule in double precision, compacted in instance order:
+    // entry for entry what Visibility::collect builds, for camera frusta (levels by pixels) and
+    // shadow maps (levels by texels and by the camera's pixels), near the forest and far out.
+    const scene::Scene forest = gl::testing::smallForest(700, 300, 16);
+    std::vector<scene::MeshLods> lods;
+    for (const scene::Mesh& mesh : forest.meshes) lods.push_back(scene::buildLods(mesh));
+    const gl::GpuScene gpuScene(forest, lods);
+    gl::Visibility visibility(forest, lods);
+    const auto culling = gl::GpuCulling::create(forest, lods, gpuScene);
+    ASSERT_TRUE(culling->buildPrograms());
+    std::mt19937 random(7);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0), between(0.0, 1.0);
+    size_t drawnCamera = 0, drawnShadow = 0, coarser = 0;
+    constexpr int kCases = 60;
+    culling->beginFrame(kCases);
+    for (int c = 0; c < kCases; ++c) {
+        core::PerspectiveCamera camera;
+        camera.wsEye = core::Vec3(150.0 * unit(random), 2.0 + 80.0 * between(random), 150.0 * unit(random));
+        camera.wsDirection = core::Vec3(unit(random), -0.6 * between(random), unit(random));
+        camera.fovYDegrees = 30.0 + 60.0 * between(random);
+        camera.zFar = 50.0 + 400.0 * between(random);
+        const core::DirectionalLight light(
+            glm::normalize(core::Vec3(unit(random), -0.3 - between(random), unit(random))));
+        const int pixels = 64 << (c % 5); // pixel bounds from coarse to fine
+        const gl::LodProjection cameraProjection{camera.clipFromWorld(), 0.5 * pixels, 0.25 + between(random)};
+        gl::PassList cpu, gpu;
+        const bool shadow = c % 2 == 1;
+        std::vector<visibility::HalfSpace> volume;
+        gl::LodChoice lod{cameraProjection, std::nullopt, false};
+        if (shadow) {
+            const core::ShadowSetupInputs in{.camera = camera,
+                                             .light = light,
+                                             .wsSceneBounds = forest.wsBounds(),
+                                             .technique = core::Technique::Focused,
+                                             .mapSize = 1024};
+            const auto setup = core::computeShadowSetup(in);
+            ASSERT_TRUE(setup) << setup.error();
+            const core::Mat4& clipFromWorld = setup->views[0].clipFromWorld;
+            volume = visibility::clipVolume(clipFromWorld, false);
+            lod = {{clipFromWorld, 0.5 * setup->mapSize, 0.25}, cameraProjection, true};
+        } else {
+            volume = visibility::clipVolume(camera.clipFromWorld());
+        }
+        const gl::LodChoice* lodOrNone = c % 7 == 3 ? nullptr : &lod;
+        visibility.collect(volume, true, lodOrNone, cpu);
+        culling->cull(size_t(c), volume, lodOrNone, gl::GpuCulling::Phase::All, gpu);
+        const gl::PassList back = culling->read(gpu);
+        ASSERT_EQ(back.count, cpu.count) << "case " << c;
+        ASSERT_EQ(back.first, cpu.first) << "case " << c;
+        ASSERT_EQ(back.indices, cpu.indices) << "case " << c;
+        ASSERT_EQ(back.shadow, cpu.shadow) << "case " << c;
+        (shadow ? drawnShadow : drawnCamera) += cpu.instances();
+        for (size_t slot = 0; slot < cpu.count.size(); ++slot)
+            coarser += slot % gl::kMaxLodLevels > 0 ? cpu.count[slot] : 0;
+        // What the commands say was drawn is the list's length at each level.
+        const gl::DrawStats drawn = culling->submitted(gpu);
+        EXPECT_EQ(drawn.instances, cpu.instances()) << "case " << c;
+    }
+    // The cases are not vacuous: both kinds of pass keep instances, and levels are chosen.
+    EXPECT_GT(drawnCamera, 500u);
+    EXPECT_GT(drawnShadow, 500u);
+    EXPECT_GT(coarser, 100u);
+}
+
+TEST_F(GpuCullingTest, TwoPhaseFramesEqualFrustumCulledFramesFromTheFirstAndAfterCuts) {
+    // The first frame (nothing visible last frame: everything comes from the late phase), a
+    // still frame (everything from the early phase), and a turn to a new view (a cut: what is
+    // newly visible comes in the same frame) all equal frustum culling pixel for pixel, while
+    // the forest hides some of what the frustum holds.
+    const scene::Scene forest = gl::testing::smallForest(600, 200, 32);
+    auto renderer = gl::Renderer::create(forest);
+    ASSERT_TRUE(renderer) << renderer.error();
+    for (const char* name : {"perpendicular", "paper", "perpendicular", "into-sun"}) {
+        scene::ResolvedView view = gl::testing::standardView(forest, name);
+        view.camera.aspect = 160.0 / 90.0;
+        const core::ShadowSetup setup = lispsmSetup(view, forest);
+        gl::RenderSettings settings = smallFrame(160, 90, gl::Culling::Frustum);
+        const auto frustum = (*renderer)->render(view.camera, view.light, setup, settings);
+        ASSERT_TRUE(frustum);
+        const scene::Image frustumImage = (*renderer)->readColor();
+        const auto frustumBuffers = (*renderer)->renderEvalBuffers(view.camera, view.light, setup, settings);
+        settings.culling = gl::Culling::Gpu;
+        for (int frame = 0; frame < 2; ++frame) {
+            const auto gpu = (*renderer)->render(view.camera, view.light, setup, settings);
+            ASSERT_TRUE(gpu) << gpu.error();
+            EXPECT_EQ(frustumImage.rgba, (*renderer)->readColor().rgba) << name << ", frame " << frame;
+            EXPECT_LE(gpu->main.instances, frustum->main.instances) << name << ", frame " << frame;
+            // The sun's maps keep what their volumes hold, as the CPU path does without masks.
+            EXPECT_EQ(gpu->shadow.instances, frustum->shadow.instances) << name;
+            EXPECT_EQ(gpu->shadow.triangles, frustum->shadow.triangles) << name;
+        }
+        const auto gpuBuffers = (*renderer)->renderEvalBuffers(view.camera, view.light, setup, settings);
+        ASSERT_TRUE(frustumBuffers && gpuBuffers);
+        EXPECT_EQ(frustumBuffers->surfaceId, gpuBuffers->surfaceId) << name;
+        EXPECT_EQ(frustumBuffers->shadowTerm, gpuBuffers->shadowTerm) << name;
+        if (std::string(name) == "perpendicular") {
+            // Looking along the ground into the forest: trees hide trees.
+            const auto gpu = (*renderer)->render(view.camera, view.light, setup, settings);
+            ASSERT_TRUE(gpu);
+            EXPECT_LT(gpu->main.instances, frustum->main.instances) << name;
+        }
+    }
+}
+
+TEST_F(GpuCullingTest, AnInstanceMovedOutFromBehindAWallIsDrawnInTheFrameItAppears) {
+    // A cube hidden behind a wall is not visible last frame, so the early phase leaves it out;
+    // moved into the open, the late phase finds it against this frame's pyramid: it appears
+    // in that very frame, as with frustum culling, with no frame of lag.
+    scene::Scene s;
+    scene::Mesh ground, wall, cube;
+    scene::addBox(ground, glm::translate(glm::mat4(1.0f), {0, -0.05f, 0}), {50, 0.05f, 50}, glm::vec3(0.8f));
+    scene::addBox(wall, glm::translate(glm::mat4(1.0f), {0, 4, 0}), {6, 4, 0.5f}, glm::vec3(0.6f));
+    scene::addBox(cube, glm::mat4(1.0f), {1, 1, 1}, glm::vec3(0.9f, 0.2f, 0.2f));
+    for (scene::Mesh* m : {&ground, &wall, &cube}) m->computeBounds();
+    s.meshes = {ground, wall, cube};
+    const glm::mat4 hidden = glm::translate(glm::mat4(1.0f), {0, 1, -8});
+    s.batches = {{0, {glm::mat4(1.0f)}, false}, {1, {glm::mat4(1.0f)}, false}, {2, {hidden}, true}};
+    auto renderer = gl::Renderer::create(s);
+    ASSERT_TRUE(renderer) << renderer.error();
+    core::PerspectiveCamera camera;
+    camera.wsEye = {0, 3, 20};
+    camera.wsDirection = {0, -0.05, -1};
+    camera.aspect = 1.0;
+    camera.zNear = 0.5;
+    camera.zFar = 100.0;
+    const core::DirectionalLight sun(glm::normalize(core::Vec3(0.3, -1.0, 0.2)));
+    const auto setup = core::computeShadowSetup({.camera = camera,
+                                                 .light = sun,
+                                                 .wsSceneBounds = (*renderer)->wsSceneBounds(),
+                                                 .technique = core::Technique::Focused,
+                                                 .mapSize = 1024});
+    ASSERT_TRUE(setup) << setup.error();
+    auto frame = [&](gl::Culling culling) {
+        const auto stats = (*renderer)->render(camera, sun, *setup, smallFrame(128, 128, culling));
+        EXPECT_TRUE(stats) << stats.error();
+        return std::pair(stats ? stats->main.instances : 0, (*renderer)->readColor().rgba);
+    };
+    // Frame 0 tests against an empty pyramid (nothing was visible before it): everything in
+    // the frustum is drawn and counts as visible. Frame 1 draws that early, and its pyramid
+    // hides the cube; from frame 2 on the cube is left out.
+    for (int f = 0; f < 4; ++f) {
+        const auto [instances, image] = frame(gl::Culling::Gpu);
+        EXPECT_EQ(instances, f < 2 ? 3u : 2u) << "frame " << f;
+        EXPECT_EQ(image, frame(gl::Culling::Frustum).second) << "frame " << f;
+    }
+    s.batches[2].worldFromObject[0] = glm::translate(glm::mat4(1.0f), {9, 1, 0});
+    ASSERT_TRUE((*renderer)->moveInstances(s, std::vector<uint32_t>{2}));
+    const auto [instances, image] = frame(gl::Culling::Gpu);
+    EXPECT_EQ(instances, 3u) << "the cube in the open is drawn";
+    const auto [frustumInstances, frustumImage] = frame(gl::Culling::Frustum);
+    EXPECT_EQ(frustumInstances, 3u);
+    EXPECT_EQ(image, frustumImage);
+}
