@@ -314,8 +314,8 @@ void RenderOptions::addTo(CLI::App& cmd) {
         "show pixels per texel of the sun's map instead of shading, computed per pixel in the shader (eval's colours)");
     cmd.add_option("--visibility", visibility,
                    "instances the camera pass draws: off (all, every pass), frustum, chc (CHC++ occlusion queries), "
-                   "gpu (frustum and two-phase depth-pyramid occlusion in compute passes, indirect draws; every "
-                   "pass's lists on the GPU, no receiver masks)")
+                   "gpu (frustum, two-phase depth-pyramid occlusion and receiver masks in compute passes writing "
+                   "indirect draws: the camera's and the sun's lists never reach the CPU)")
         ->transform(choice(Choices<gl::Culling>{{"off", gl::Culling::Off},
                                                 {"frustum", gl::Culling::Frustum},
                                                 {"chc", gl::Culling::Occlusion},

@@ -2,6 +2,7 @@
 
 #include "gl_shaders.h"
 #include "program.h"
+#include "receiver_masks.h"
 #include "uniforms.h"
 
 #include <algorithm>
@@ -141,7 +142,7 @@ void GpuCulling::beginFrame(size_t passes) {
 }
 
 void GpuCulling::cull(size_t pass, std::span<const visibility::HalfSpace> volume, const LodChoice* lod, Phase phase,
-                      PassList& out) {
+                      PassList& out, const GpuReceiverMask* mask) {
     const Stopwatch inGl;
     const GLuint p = m_stages[0].id();
     glProgramUniform1i(p, uniform(p, "phase"), static_cast<GLint>(phase));
@@ -164,6 +165,18 @@ void GpuCulling::cull(size_t pass, std::span<const visibility::HalfSpace> volume
             glProgramUniform1d(p, uniform(p, "cameraUnitsPerNdc"), lod->camera->unitsPerNdc);
             glProgramUniform1d(p, uniform(p, "cameraMaxError"), lod->camera->maxError);
         }
+    }
+    glProgramUniform1i(p, uniform(p, "maskOn"), mask ? 1 : 0);
+    if (mask) {
+        const int texels = kReceiverMaskSize * kReceiverMaskSize;
+        glProgramUniform1i(p, uniform(p, "maskSize"), kReceiverMaskSize);
+        glProgramUniform1i(p, uniform(p, "maskBase"), mask->map * texels);
+        glProgramUniform1i(p, uniform(p, "maskFlag"), mask->mapCount * texels + mask->map);
+        glProgramUniformMatrix4dv(p, uniform(p, "maskClipFromWorld"), 1, GL_FALSE, &mask->clipFromWorld[0][0]);
+        glProgramUniform1i(p, uniform(p, "maskLinear"), mask->linearDepthFromWorld ? 1 : 0);
+        if (mask->linearDepthFromWorld)
+            glProgramUniform4dv(p, uniform(p, "maskLinearDepthFromWorld"), 1, &mask->linearDepthFromWorld->x);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kDilatedMaskBinding, mask->buffer);
     }
     const bool occlusion = phase == Phase::NewlyVisible || phase == Phase::Visible;
     if (occlusion) {

@@ -2,9 +2,10 @@
 // draw lists and glDrawElementsIndirect commands themselves, so the CPU issues a fixed set
 // of draws per pass (one per batch and level) and never learns, or waits for, what is drawn.
 //
-// Based on: two-phase occlusion culling against a hierarchical depth buffer — Haar &
-// Aaltonen, "GPU-Driven Rendering Pipelines" (SIGGRAPH 2015 Advances), as in zeux/niagara
-// and UE5's two-pass HZB (docs/references.md). The camera pass first draws, into its depth
+// Based on: Haar & Aaltonen 2015 ("GPU-Driven Rendering Pipelines", SIGGRAPH Advances
+// course): culling in compute passes writing indirect draws, and two-phase occlusion against
+// a hierarchical depth buffer (Greene et al. 1993) as zeux/niagara and UE5's two-pass HZB do
+// it (docs/references.md). The camera pass first draws, into its depth
 // pre-pass, the instances visible last frame that are still in the frustum; reduces that
 // depth to a pyramid of farthest depths; tests every instance in the frustum against it and
 // draws the newly visible ones too. What passes the test is next frame's "visible last
@@ -14,8 +15,9 @@
 //
 // The tests are the CPU path's (visibility.cpp): the same half-spaces, the same level of
 // detail rule, in double precision, and lists in increasing instance order (gpu_cull.comp),
-// so the lists equal Visibility::collect's and the pixels a CPU-culled frame's. Not on the
-// GPU: receiver masks (a CPU structure), local lights' and virtual pages' lists.
+// so the lists equal Visibility::collect's and the pixels a CPU-culled frame's. Receiver masks
+// (Bittner et al. 2011) are tested on the GPU too, at the mask's full resolution. Not on the
+// GPU: local lights' and virtual pages' lists.
 #pragma once
 
 #include "gl_object.h"
@@ -32,11 +34,20 @@
 
 #include <array>
 #include <memory>
+#include <optional>
 #include <span>
 #include <utility>
 #include <vector>
 
 namespace shadowkit::gl {
+
+// A shadow map's receiver mask left on the GPU (ReceiverMasks::markOnGpu).
+struct GpuReceiverMask {
+    GLuint buffer = 0; // ReceiverMasks::dilatedMasks()
+    int map = 0, mapCount = 1;
+    core::Mat4 clipFromWorld{1.0};                  // the map's
+    std::optional<core::Vec4> linearDepthFromWorld; // the linear layout's depth row
+};
 
 class GpuCulling {
 public:
@@ -65,9 +76,10 @@ public:
         Visible,      // the union of the two; records what the pyramid does not hide for next frame
     };
     // One pass into region `pass` (< the frame's passes): `out` becomes a list the GPU writes,
-    // drawn by GpuScene::draw through its indirect commands.
+    // drawn by GpuScene::draw through its indirect commands. With a mask (phase All only),
+    // only the instances that may shadow a receiver it holds.
     void cull(size_t pass, std::span<const visibility::HalfSpace> volume, const LodChoice* lod, Phase phase,
-              PassList& out);
+              PassList& out, const GpuReceiverMask* mask = nullptr);
 
     // The camera's two-phase pass (passes 0 to kCameraPasses − 1): the early and late
     // instances drawn into `target`'s depth (cleared here; the camera's Frame uniforms must

@@ -32,15 +32,15 @@ core::Result<std::unique_ptr<ReceiverMasks>> ReceiverMasks::create() {
         !s)
         return s.errorInfo();
     masks->m_program = std::move(program).value();
+    auto dilate = buildComputeProgram("receiver mask dilation", {shaders::kReceiverDilateComp});
+    if (!dilate) return dilate.errorInfo();
+    masks->m_dilateProgram = std::move(dilate).value();
     masks->m_uniforms = createBuffer(nullptr, sizeof(ReceiverMaskUniforms));
     return masks;
 }
 
-const std::vector<visibility::ReceiverMask>& ReceiverMasks::build(const CameraDepthTarget& target,
-                                                                  const core::PerspectiveCamera& camera,
-                                                                  const core::ShadowSetup& setup,
-                                                                  double dilationTexels) {
-    const Stopwatch inGl;
+void ReceiverMasks::mark(const CameraDepthTarget& target, const core::PerspectiveCamera& camera,
+                         const core::ShadowSetup& setup) {
     const int maps = static_cast<int>(setup.views.size());
     const bool linear = setup.depthLayout == core::DepthLayout::Linear;
     ReceiverMaskUniforms u{};
@@ -60,6 +60,9 @@ const std::vector<visibility::ReceiverMask>& ReceiverMasks::build(const CameraDe
     if (texels > m_texelCapacity) {
         m_texelCapacity = texels;
         m_texels = createBuffer(nullptr, texels * sizeof(uint32_t));
+        // The dilated masks (and their scratch) hold a flag per map after the texels.
+        m_scratch = createBuffer(nullptr, (texels + size_t(maps)) * sizeof(uint32_t));
+        m_dilated = createBuffer(nullptr, (texels + size_t(maps)) * sizeof(uint32_t));
     }
     const uint32_t zero = 0;
     glClearNamedBufferSubData(m_texels.id(), GL_R32UI, 0, GLsizeiptr(texels * sizeof(uint32_t)), GL_RED_INTEGER,
@@ -69,13 +72,23 @@ const std::vector<visibility::ReceiverMask>& ReceiverMasks::build(const CameraDe
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kMaskBinding, m_texels.id());
     glBindTextureUnit(kReceiverDepthUnit, target.viewDepth.id());
     glDispatchCompute(GLuint(target.width + 7) / 8, GLuint(target.height + 7) / 8, 1);
+}
+
+const std::vector<visibility::ReceiverMask>& ReceiverMasks::build(const CameraDepthTarget& target,
+                                                                  const core::PerspectiveCamera& camera,
+                                                                  const core::ShadowSetup& setup,
+                                                                  double dilationTexels) {
+    const Stopwatch inGl;
+    mark(target, camera, setup);
+    const int maps = static_cast<int>(setup.views.size());
+    const bool linear = setup.depthLayout == core::DepthLayout::Linear;
+    const size_t texels = size_t(maps) * kReceiverMaskSize * kReceiverMaskSize;
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     m_readBack.resize(texels);
     glGetNamedBufferSubData(m_texels.id(), 0, GLsizeiptr(texels * sizeof(uint32_t)), m_readBack.data());
     m_gl = inGl.elapsed();
 
-    // Map texels -> mask texels, plus one for the texel a receiver lands in at the edge.
-    const int dilation = static_cast<int>(std::ceil(dilationTexels * kReceiverMaskSize / setup.mapSize)) + 1;
+    const int dilation = dilationFor(setup, dilationTexels);
     m_masks.clear();
     for (int m = 0; m < maps; ++m) {
         const core::ShadowView& view = setup.views[size_t(m)];
@@ -87,6 +100,32 @@ const std::vector<visibility::ReceiverMask>& ReceiverMasks::build(const CameraDe
         mask.finish(dilation);
     }
     return m_masks;
+}
+
+void ReceiverMasks::markOnGpu(const CameraDepthTarget& target, const core::PerspectiveCamera& camera,
+                              const core::ShadowSetup& setup, double dilationTexels) {
+    const Stopwatch inGl;
+    mark(target, camera, setup);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    const int maps = static_cast<int>(setup.views.size());
+    const GLuint p = m_dilateProgram.id();
+    glUseProgram(p);
+    glProgramUniform1i(p, glGetUniformLocation(p, "maskSize"), kReceiverMaskSize);
+    glProgramUniform1i(p, glGetUniformLocation(p, "mapCount"), maps);
+    glProgramUniform1i(p, glGetUniformLocation(p, "dilation"), dilationFor(setup, dilationTexels));
+    for (int pass = 0; pass < 2; ++pass) {
+        glProgramUniform2i(p, glGetUniformLocation(p, "axis"), pass == 0 ? 1 : 0, pass == 0 ? 0 : 1);
+        glProgramUniform1i(p, glGetUniformLocation(p, "firstPass"), pass == 0 ? 1 : 0);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kMaskBinding, pass == 0 ? m_texels.id() : m_scratch.id());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kDilatedMaskBinding, pass == 0 ? m_scratch.id() : m_dilated.id());
+        glDispatchCompute(GLuint(kReceiverMaskSize + 7) / 8, GLuint(kReceiverMaskSize + 7) / 8, GLuint(maps));
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
+    m_gl = inGl.elapsed();
+}
+
+int ReceiverMasks::dilationFor(const core::ShadowSetup& setup, double dilationTexels) {
+    return static_cast<int>(std::ceil(dilationTexels * kReceiverMaskSize / setup.mapSize)) + 1;
 }
 
 } // namespace shadowkit::gl

@@ -273,8 +273,8 @@ void Renderer::Impl::collectVisible(const core::PerspectiveCamera& camera, const
     const bool gpu = settings.culling == Culling::Gpu;
     const bool virtualMaps = setup.clipmap.has_value();
     // Virtual maps cull per page, finer than any receiver mask; their pages come from the pre-pass.
-    // Receiver masks are built on the CPU, GPU culling's shadow lists on the GPU: not with it.
-    const bool masked = cull && settings.receiverMask && !virtualMaps && !gpu;
+    // With GPU culling the masks stay on the GPU, for its passes to test against.
+    const bool masked = cull && settings.receiverMask && !virtualMaps;
     const bool prepass = settings.culling == Culling::Occlusion || gpu || masked || prepassForDepthRange || virtualMaps;
     // Camera pass first: with occlusion culling or receiver masks the shadow passes' lists
     // depend on what it sees. Levels by pixels. A simplified receiver lies up to its error
@@ -296,7 +296,9 @@ void Renderer::Impl::collectVisible(const core::PerspectiveCamera& camera, const
     }
     if (gpu) {
         gpuCulling->beginFrame(GpuCulling::kCameraPasses + (virtualMaps ? 0 : setup.views.size()));
+        const Stopwatch cameraTime;
         gpuCulling->camera(camera, cameraLodOrNone, *cameraDepth, cameraList);
+        occlusionMilliseconds = cameraTime.elapsed().wallMilliseconds;
         cullGlTimes += gpuCulling->takeGlTimes();
     } else if (settings.culling == Culling::Occlusion) {
         const Stopwatch occlusionTime;
@@ -327,7 +329,12 @@ void Renderer::Impl::collectVisible(const core::PerspectiveCamera& camera, const
         depthRange->forget();
     }
     const std::vector<visibility::ReceiverMask>* masks = nullptr;
-    if (masked) {
+    if (masked && gpu) {
+        const Stopwatch maskTime;
+        receiverMasks->markOnGpu(*cameraDepth, camera, setup, lookupReachTexels(settings.filter, bias));
+        receiverMaskMilliseconds = maskTime.elapsed().wallMilliseconds;
+        cullGlTimes += receiverMasks->glTimes();
+    } else if (masked) {
         const Stopwatch maskTime;
         masks = &receiverMasks->build(*cameraDepth, camera, setup, lookupReachTexels(settings.filter, bias));
         receiverMaskMilliseconds = maskTime.elapsed().wallMilliseconds;
@@ -367,8 +374,13 @@ void Renderer::Impl::collectVisible(const core::PerspectiveCamera& camera, const
         const core::Mat4& clipFromWorld = setup.views[i].clipFromWorld;
         const LodChoice lod{{clipFromWorld, 0.5 * setup.mapSize, settings.lodTexelError}, cameraProjection, true};
         if (gpu) {
+            const GpuReceiverMask mask{
+                receiverMasks->dilatedMasks().id(), int(i), int(setup.views.size()), clipFromWorld,
+                setup.depthLayout == core::DepthLayout::Linear ? std::optional(setup.views[i].linearDepthFromWorld)
+                                                               : std::nullopt};
             gpuCulling->cull(GpuCulling::kCameraPasses + i, visibility::clipVolume(clipFromWorld, false),
-                             settings.lod ? &lod : nullptr, GpuCulling::Phase::All, shadowLists[i]);
+                             settings.lod ? &lod : nullptr, GpuCulling::Phase::All, shadowLists[i],
+                             masked ? &mask : nullptr);
             continue;
         }
         visibility->collect(visibility::clipVolume(clipFromWorld, false), cull, settings.lod ? &lod : nullptr,

@@ -158,6 +158,7 @@ const std::string& shaderPrelude() {
         define("SK_VISIBLE_BINDING", kVisibleBinding);
         define("SK_BOXES_BINDING", kBoxesBinding);
         define("SK_MASK_BINDING", kMaskBinding);
+        define("SK_DILATED_MASK_BINDING", kDilatedMaskBinding);
         define("SK_RECEIVER_MASK_BINDING", kReceiverMaskBinding);
         define("SK_RECEIVER_DEPTH_UNIT", kReceiverDepthUnit);
         define("SK_RANGE_BINDING", kRangeBinding);

@@ -26,9 +26,11 @@ static_assert(kMaxCascades == int(core::kMaxShadowViews));
 inline constexpr unsigned kFrameBinding = 0;
 inline constexpr unsigned kDepthPassBinding = 1;
 inline constexpr unsigned kBlurBinding = 2;
-inline constexpr unsigned kInstancesBinding = 0;    // shader storage: mat4 worldFromObject[] of the batch drawn
-inline constexpr unsigned kVisibleBinding = 1;      // shader storage: uint visibleInstances[] of the frame
-inline constexpr unsigned kMaskBinding = 3;         // shader storage: uint maskTexels[] of the receiver masks
+inline constexpr unsigned kInstancesBinding = 0; // shader storage: mat4 worldFromObject[] of the batch drawn
+inline constexpr unsigned kVisibleBinding = 1;   // shader storage: uint visibleInstances[] of the frame
+inline constexpr unsigned kMaskBinding = 3;      // shader storage: uint maskTexels[] of the receiver masks
+inline constexpr unsigned kDilatedMaskBinding =
+    8; // shader storage: the dilated masks (receiver_dilate.comp, gpu_cull.comp)
 inline constexpr unsigned kReceiverMaskBinding = 3; // uniform block ReceiverMask (receiver_mask.comp)
 inline constexpr unsigned kReceiverDepthUnit = 0;   // receiver mask pass: the pre-pass's view depth
 inline constexpr unsigned kRangeBinding = 4;        // shader storage: uint nearBits, farBits (depth_range.comp)

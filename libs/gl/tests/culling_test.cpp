@@ -85,7 +85,8 @@ TEST_F(CullingTest, CulledFramesMatchFullFramesPixelForPixelForEveryTechnique) {
             const auto fewestBuffers = (*renderer)->renderEvalBuffers(view.camera, view.light, *setup, settings);
             ASSERT_TRUE(fewestBuffers);
 
-            // GPU-driven: the same lists computed by compute passes, the camera's occlusion two-phase.
+            // GPU-driven: the lists computed by compute passes, the camera's occlusion two-phase,
+            // the receiver masks tested there too.
             settings.culling = gl::Culling::Gpu;
             const auto gpu = (*renderer)->render(view.camera, view.light, *setup, settings);
             ASSERT_TRUE(gpu) << gpu.error();
@@ -98,7 +99,7 @@ TEST_F(CullingTest, CulledFramesMatchFullFramesPixelForPixelForEveryTechnique) {
             EXPECT_EQ(fullBuffers->shadowTerm, gpuBuffers->shadowTerm) << what << ", gpu";
             EXPECT_EQ(fullBuffers->surfaceId, gpuBuffers->surfaceId) << what << ", gpu";
             EXPECT_LE(gpu->main.instances, culled->main.instances) << what << ", gpu";
-            EXPECT_EQ(gpu->shadow.triangles, culled->shadow.triangles) << what << ", gpu: the CPU's lists";
+            EXPECT_LE(gpu->shadow.instances, culled->shadow.instances) << what << ", gpu with receiver masks";
             EXPECT_EQ(fullImage.rgba, fewestImage.rgba) << what << ", chc + receiver masks";
             EXPECT_EQ(fullBuffers->shadowTerm, fewestBuffers->shadowTerm) << what << ", chc + receiver masks";
             EXPECT_LE(fewest->shadow.instances, culled->shadow.instances) << what;
@@ -149,32 +150,35 @@ TEST_F(CullingTest, CasterOutsideTheViewFrustumIsDrawnIntoTheMapAndItsShadowAppe
     settings.width = settings.height = 128;
     settings.fogDensity = 0.0f;
     // Also with casters culled by visible receivers: the wall is out of view, but the
-    // ground it shadows is in view, so the receiver mask must keep it.
-    for (const bool receiverMask : {false, true})
-        for (core::Technique t :
-             {core::Technique::Focused, core::Technique::Lispsm, core::Technique::Tsm, core::Technique::Csm}) {
-            settings.receiverMask = receiverMask;
-            const auto setup = core::computeShadowSetup(
-                {.camera = cam, .light = sun, .wsSceneBounds = s.wsBounds(), .technique = t, .mapSize = 1024});
-            ASSERT_TRUE(setup);
-            const auto stats = (*renderer)->render(cam, sun, *setup, settings);
-            ASSERT_TRUE(stats);
-            EXPECT_EQ(stats->main.instances, 1u) << core::techniqueName(t) << ": the camera pass draws the ground only";
-            EXPECT_GE(stats->shadow.instances, 2u * setup->views.size() - (setup->views.size() - 1))
-                << core::techniqueName(t) << ": the wall must be in the map that serves its shadow";
-            const scene::Image image = (*renderer)->readColor();
-            // The wall's shadow on the ground, 12 m + 15 m / tan(26.6°) ≈ 18 m ahead of it: well in view.
-            const auto shadowAt = [&](double z) { return core::Vec3(0, 0, z); };
-            auto luminance = [&](const core::Vec3& ws) {
-                const core::Vec4 cs = cam.clipFromWorld() * core::Vec4(ws, 1.0);
-                const int x = static_cast<int>((cs.x / cs.w * 0.5 + 0.5) * image.width);
-                const int y = static_cast<int>((0.5 - cs.y / cs.w * 0.5) * image.height);
-                const uint8_t* p = image.pixel(x, y);
-                return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
-            };
-            const double inShadow = luminance(shadowAt(-10)), lit = luminance(core::Vec3(4, 0, -10));
-            EXPECT_LT(inShadow, 0.7 * lit) << core::techniqueName(t) << ": shadow " << inShadow << ", lit " << lit;
-        }
+    // ground it shadows is in view, so the receiver mask must keep it. On the CPU and on the GPU.
+    for (const gl::Culling culling : {gl::Culling::Frustum, gl::Culling::Gpu})
+        for (const bool receiverMask : {false, true})
+            for (core::Technique t :
+                 {core::Technique::Focused, core::Technique::Lispsm, core::Technique::Tsm, core::Technique::Csm}) {
+                settings.culling = culling;
+                settings.receiverMask = receiverMask;
+                const auto setup = core::computeShadowSetup(
+                    {.camera = cam, .light = sun, .wsSceneBounds = s.wsBounds(), .technique = t, .mapSize = 1024});
+                ASSERT_TRUE(setup);
+                const auto stats = (*renderer)->render(cam, sun, *setup, settings);
+                ASSERT_TRUE(stats);
+                EXPECT_EQ(stats->main.instances, 1u)
+                    << core::techniqueName(t) << ": the camera pass draws the ground only";
+                EXPECT_GE(stats->shadow.instances, 2u * setup->views.size() - (setup->views.size() - 1))
+                    << core::techniqueName(t) << ": the wall must be in the map that serves its shadow";
+                const scene::Image image = (*renderer)->readColor();
+                // The wall's shadow on the ground, 12 m + 15 m / tan(26.6°) ≈ 18 m ahead of it: well in view.
+                const auto shadowAt = [&](double z) { return core::Vec3(0, 0, z); };
+                auto luminance = [&](const core::Vec3& ws) {
+                    const core::Vec4 cs = cam.clipFromWorld() * core::Vec4(ws, 1.0);
+                    const int x = static_cast<int>((cs.x / cs.w * 0.5 + 0.5) * image.width);
+                    const int y = static_cast<int>((0.5 - cs.y / cs.w * 0.5) * image.height);
+                    const uint8_t* p = image.pixel(x, y);
+                    return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
+                };
+                const double inShadow = luminance(shadowAt(-10)), lit = luminance(core::Vec3(4, 0, -10));
+                EXPECT_LT(inShadow, 0.7 * lit) << core::techniqueName(t) << ": shadow " << inShadow << ", lit " << lit;
+            }
 }
 
 TEST_F(CullingTest, LevelsOfDetailDrawFewerTrianglesForDistantTreesWithinTheirErrorBound) {

@@ -141,6 +141,18 @@ TEST_F(GpuCullingTest, TwoPhaseFramesEqualFrustumCulledFramesFromTheFirstAndAfte
             const auto gpu = (*renderer)->render(view.camera, view.light, setup, settings);
             ASSERT_TRUE(gpu);
             EXPECT_LT(gpu->main.instances, frustum->main.instances) << name;
+            // Receiver masks on the GPU: fewer casters, the same pixels, and no more casters
+            // than the CPU's masks keep (those test a coarser pyramid of the same marks).
+            settings.receiverMask = true;
+            const auto masked = (*renderer)->render(view.camera, view.light, setup, settings);
+            ASSERT_TRUE(masked);
+            EXPECT_EQ(frustumImage.rgba, (*renderer)->readColor().rgba) << name << ", receiver masks";
+            settings.culling = gl::Culling::Frustum;
+            const auto cpuMasked = (*renderer)->render(view.camera, view.light, setup, settings);
+            ASSERT_TRUE(cpuMasked);
+            EXPECT_LT(masked->shadow.instances, gpu->shadow.instances) << name;
+            EXPECT_LE(masked->shadow.instances, cpuMasked->shadow.instances) << name;
+            EXPECT_GT(masked->shadow.instances, 0u) << name;
         }
     }
 }

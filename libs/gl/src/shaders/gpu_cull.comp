@@ -69,6 +69,14 @@ uniform int pyramidLevels;
 uniform ivec2 viewport;
 uniform mat4 clipFromWorld; // the camera's
 uniform vec3 wsEye;
+// Shadow passes with receiver masks (receiver_masks.h, markOnGpu): this map's dilated mask.
+layout(std430, binding = SK_DILATED_MASK_BINDING) readonly buffer Masks { uint masks[]; };
+uniform bool maskOn;
+uniform int maskSize, maskBase, maskFlag; // the map's first texel and its flag in masks[]
+uniform dmat4 maskClipFromWorld;
+uniform bool maskLinear; // the map stores dot(maskLinearDepthFromWorld, (ws, 1)), not z / w
+uniform dvec4 maskLinearDepthFromWorld;
+const int kMaxMaskTexels = 1024; // a caster's footprint wider than this is kept untested
 
 bool outsideVolume(dvec3 lo, dvec3 hi) {
     if (!(lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z)) return true; // empty (or NaN) boxes
@@ -149,6 +157,41 @@ bool mayBeVisible(vec3 lo, vec3 hi) {
     return zMin <= farthest;
 }
 
+int maskTexelOf(double ndc) { return clamp(int(floor((0.5 * ndc + 0.5) * double(maskSize))), 0, maskSize - 1); }
+
+uint encodeDepth(float d) { // receiver_mask.comp's
+    const uint bits = floatBitsToUint(d);
+    return (bits & 0x80000000u) != 0u ? ~bits : bits | 0x80000000u;
+}
+
+// visibility::ReceiverMask::mayShadow on the GPU: false only when every mask texel under
+// the box's footprint holds receivers nearer the light than the box's nearest corner (the
+// argument in visibility/src/receiver_mask.cpp). The CPU climbs a max pyramid until the
+// footprint spans 4 texels; here the texels are read at full resolution, up to a bound.
+bool mayShadow(dvec3 lo, dvec3 hi) {
+    if (masks[maskFlag] != 0u) return true;
+    dvec2 ndcMin = dvec2(1e300), ndcMax = dvec2(-1e300);
+    double nearest = 1e300;
+    for (int i = 0; i < 8; ++i) {
+        const dvec3 p = dvec3((i & 1) != 0 ? hi.x : lo.x, (i & 2) != 0 ? hi.y : lo.y, (i & 4) != 0 ? hi.z : lo.z);
+        const dvec4 clip = maskClipFromWorld * dvec4(p, 1.0);
+        if (!(clip.w > 1e-12)) return true;
+        ndcMin = min(ndcMin, clip.xy / clip.w);
+        ndcMax = max(ndcMax, clip.xy / clip.w);
+        nearest = min(nearest, maskLinear ? dot(maskLinearDepthFromWorld, dvec4(p, 1.0)) : clip.z / clip.w);
+    }
+    if (ndcMax.x < -1.0 || ndcMin.x > 1.0 || ndcMax.y < -1.0 || ndcMin.y > 1.0) return false; // beside the map
+    const ivec2 t0 = ivec2(maskTexelOf(ndcMin.x), maskTexelOf(ndcMin.y));
+    const ivec2 t1 = ivec2(maskTexelOf(ndcMax.x), maskTexelOf(ndcMax.y));
+    if ((t1.x - t0.x + 1) * (t1.y - t0.y + 1) > kMaxMaskTexels) return true;
+    // A texel at or beyond the nearest depth, with a float step to spare (the marks are float).
+    const uint threshold = encodeDepth(float(nearest)) - 1u;
+    for (int y = t0.y; y <= t1.y; ++y)
+        for (int x = t0.x; x <= t1.x; ++x)
+            if (masks[maskBase + y * maskSize + x] >= threshold) return true;
+    return false;
+}
+
 shared uint scan[SK_CULL_GROUP];
 
 void main() {
@@ -164,7 +207,7 @@ void main() {
         const bool was = wasVisible[global] != 0u;
         const bool tested = inVolume && (phase == kNewlyVisible || phase == kVisible);
         const bool visible = tested && mayBeVisible(vec3(lo), vec3(hi));
-        if (phase == kAll) keep = inVolume;
+        if (phase == kAll) keep = inVolume && (!maskOn || mayShadow(lo, hi));
         else if (phase == kLastVisible) keep = inVolume && was;
         else if (phase == kNewlyVisible) keep = visible && !was;
         else keep = inVolume && (was || visible);

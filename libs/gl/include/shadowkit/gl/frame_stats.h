@@ -55,6 +55,8 @@ struct FrameStats {
     double listCpuMilliseconds = 0.0;
     // Culling::Occlusion: the CHC++ pre-pass (counted in cullMilliseconds, with its waits).
     visibility::CoherentCullingStats occlusion;
+    // Wall time of the CHC++ pre-pass, or with Culling::Gpu of the camera's two-phase pass (its
+    // culling dispatches, depth pyramid and both pre-pass draws); counted in cullMilliseconds.
     double occlusionMilliseconds = 0.0;
     double receiverMaskMilliseconds = 0.0;        // CPU, incl. the read-back (counted in cullMilliseconds)
     std::optional<VirtualPageStats> virtualPages; // technique virtual

@@ -37,7 +37,8 @@ enum class Culling {
     Occlusion, // of those, the ones CHC++ occlusion queries find visible (a depth pre-pass)
     // Frustum and occlusion culling on the GPU (compute passes writing indirect draws, a
     // two-phase depth pyramid for the camera; docs/scale-and-visibility.md): the camera
-    // pass as Occlusion, the sun's maps as Frustum, without receiver masks.
+    // pass as Occlusion, the sun's maps as Frustum (and receiverMask), the lists never on the
+    // CPU. Local lights and virtual pages are culled on the CPU as with Frustum.
     Gpu,
 };
 const char* cullingName(Culling culling); // "off", "frustum", "chc", "gpu"
@@ -80,7 +81,8 @@ struct RenderSettings {
     Culling culling = Culling::Frustum;
     // Shadow caster culling by visible receivers (Bittner et al. 2011): each shadow map
     // draws only casters that can shadow a pixel the camera sees, found from the camera's
-    // depth (a pre-pass; CHC++'s own with Occlusion). Same pixels; ignored when culling is Off.
+    // depth (a pre-pass; CHC++'s own with Occlusion, the two-phase one with Gpu, whose masks
+    // stay on the GPU). Same pixels; ignored when culling is Off.
     bool receiverMask = false;
     // Levels of detail (scene::buildLods): every instance is drawn at the coarsest level
     // whose geometric error, projected at its centre, stays within lodPixelError pixels of
