@@ -23,7 +23,11 @@ if [ "${1:-}" = "--sanitize" ]; then
   shift
   tools/install-deps.sh
   flags="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
+  # -g1: line tables only. Reports keep their file:line stacks; the build is about a quarter
+  # shorter than with full debug information (15.5 against 20 minutes here, CI's longest stage).
+  optimise="-O2 -g1 -DNDEBUG"
   cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSHADOWKIT_BUILD_PYTHON=OFF \
+        "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=$optimise" "-DCMAKE_C_FLAGS_RELWITHDEBINFO=$optimise" \
         -DSHADOWKIT_BUILD_BENCHMARKS=OFF "-DCMAKE_CXX_FLAGS=$flags" "-DCMAKE_C_FLAGS=$flags" \
         "-DCMAKE_EXE_LINKER_FLAGS=-fsanitize=address,undefined" "-DCMAKE_SHARED_LINKER_FLAGS=-fsanitize=address,undefined" >/dev/null
   cmake --build build-sanitize --parallel "$(nproc)"
