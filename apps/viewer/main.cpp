@@ -356,6 +356,8 @@ struct Viewer {
                 ImGui::Text("CHC++  %zu nodes visited, %zu queries, %zu waits",
                             static_cast<size_t>(st.occlusion.nodesVisited),
                             static_cast<size_t>(st.occlusion.queriesIssued), static_cast<size_t>(st.occlusion.waits));
+            if (drawn->frame.settings.culling == gl::Culling::Gpu)
+                ImGui::Text("GPU culling  camera's two-phase pass %.1f ms", st.occlusionMilliseconds);
             if (st.localMaps + st.skippedFaces > 0)
                 ImGui::Text("local lights  %d maps, %d cube faces skipped", st.localMaps, st.skippedFaces);
             ImGui::PlotLines("frame ms", frameMs.data(), static_cast<int>(frameMs.size()),
