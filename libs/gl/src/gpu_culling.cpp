@@ -185,16 +185,16 @@ void GpuCulling::cull(size_t pass, std::span<const visibility::HalfSpace> volume
         glProgramUniform2i(p, uniform(p, "viewport"), m_viewport.x, m_viewport.y);
         glProgramUniformMatrix4fv(p, uniform(p, "clipFromWorld"), 1, GL_FALSE, &m_cameraClipFromWorld[0][0]);
         glProgramUniform3fv(p, uniform(p, "wsEye"), 1, &m_wsEye.x);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, m_pyramid.id());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCullStageBinding, m_pyramid.id());
     }
     glUseProgram(p);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, m_instances.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, m_chunks.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, m_batches.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, m_levels.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, m_flags.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, m_ranks.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, m_chunkSums.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCullInstancesBinding, m_instances.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCullChunksBinding, m_chunks.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCullBatchesBinding, m_batches.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCullLevelsBinding, m_levels.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCullFlagsBinding, m_flags.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCullRanksBinding, m_ranks.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCullChunkSumsBinding, m_chunkSums.id());
     glDispatchCompute(GLuint(m_chunkCount), 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     compact(pass, shadowChain, out);
@@ -208,13 +208,13 @@ void GpuCulling::compact(size_t pass, bool shadowChain, PassList& out) {
     glProgramUniform1ui(offsets, uniform(offsets, "batchCount"), GLuint(m_batchCount));
     glProgramUniform1i(offsets, uniform(offsets, "shadowChain"), shadowChain ? 1 : 0);
     glProgramUniform1ui(offsets, uniform(offsets, "firstCommand"), firstCommand);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, m_commands.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCullStageBinding, m_commands.id());
     glUseProgram(offsets);
     glDispatchCompute(GLuint((kMaxLodLevels * m_batchCount + 63) / 64), 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     const GLuint passOffset = GLuint(pass * kMaxLodLevels * m_instanceCount);
     glProgramUniform1ui(scatter, uniform(scatter, "passOffset"), passOffset);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, m_lists.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCullStageBinding, m_lists.id());
     glUseProgram(scatter);
     glDispatchCompute(GLuint(m_chunkCount), 1, 1);
     // The draws read the lists in vertex shaders and the commands as indirect arguments.
@@ -257,7 +257,7 @@ void GpuCulling::buildPyramid(const CameraDepthTarget& target) {
     const GLuint p = m_pyramidProgram.id();
     glUseProgram(p);
     glBindTextureUnit(kCullPyramidUnit, target.depth.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, m_pyramid.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCullStageBinding, m_pyramid.id());
     glm::ivec4 source(target.width, target.height, 0, 0);
     for (int level = 0; level < m_pyramidLevels; ++level) {
         const glm::ivec4 at = m_pyramidLayout[size_t(level)];

@@ -181,6 +181,14 @@ const std::string& shaderPrelude() {
         define("SK_LOCAL_LIGHTS_BINDING", kLocalLightsBinding);
         define("SK_MAX_LOCAL_LIGHTS", kMaxLocalLights);
         define("SK_CULL_PYRAMID_UNIT", kCullPyramidUnit);
+        define("SK_CULL_INSTANCES_BINDING", kCullInstancesBinding);
+        define("SK_CULL_CHUNKS_BINDING", kCullChunksBinding);
+        define("SK_CULL_BATCHES_BINDING", kCullBatchesBinding);
+        define("SK_CULL_LEVELS_BINDING", kCullLevelsBinding);
+        define("SK_CULL_FLAGS_BINDING", kCullFlagsBinding);
+        define("SK_CULL_RANKS_BINDING", kCullRanksBinding);
+        define("SK_CULL_CHUNK_SUMS_BINDING", kCullChunkSumsBinding);
+        define("SK_CULL_STAGE_BINDING", kCullStageBinding);
         define("SK_CULL_GROUP", kCullGroup);
         define("SK_CULL_MAX_PYRAMID_LEVELS", kCullMaxPyramidLevels);
         s += "#line 1\n";

@@ -51,7 +51,17 @@ inline constexpr unsigned kPageTableUnit = 4;                  // usampler2D: vi
 inline constexpr unsigned kLocalDepthBinding = 5;              // uniform block LocalDepth (local_depth.glsl)
 inline constexpr unsigned kLocalLightsBinding = 6;             // uniform block LocalLights (local_lights.glsl)
 inline constexpr int kMaxLocalLights = kMaxLocalLightsPerKind; // GLSL: SK_MAX_LOCAL_LIGHTS
-inline constexpr unsigned kCullPyramidUnit = 0; // GPU culling: the depth pyramid (or the depth it is built from)
+// GPU culling's storage buffers (gpu_cull.comp, depth_pyramid.comp; gpu_culling.h), bound before each dispatch.
+inline constexpr unsigned kCullInstancesBinding = 0; // boxes and scales
+inline constexpr unsigned kCullChunksBinding = 1;    // up to kCullGroup instances of one batch each
+inline constexpr unsigned kCullBatchesBinding = 2;
+inline constexpr unsigned kCullLevelsBinding = 3;    // per batch and level: errors and index ranges
+inline constexpr unsigned kCullFlagsBinding = 4;     // visible last frame, per instance
+inline constexpr unsigned kCullRanksBinding = 5;     // per instance: its level and rank in its chunk
+inline constexpr unsigned kCullChunkSumsBinding = 6; // per chunk and level: count, then offset
+inline constexpr unsigned kCullStageBinding =
+    7; // each stage its own: the pyramid read (1), commands (2), lists (3), or the pyramid written
+inline constexpr unsigned kCullPyramidUnit = 0; // GPU culling: the depth the pyramid is built from
 inline constexpr uint32_t kCullGroup = 128;     // GPU culling: instances per work group (gpu_cull.comp's chunks)
 inline constexpr int kCullMaxPyramidLevels =
     16;                                         // GPU culling: depth pyramid levels (level 0 up to 32768 texels a side)

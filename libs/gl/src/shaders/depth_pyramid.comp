@@ -10,7 +10,7 @@
 layout(local_size_x = 8, local_size_y = 8) in;
 
 layout(binding = SK_CULL_PYRAMID_UNIT) uniform sampler2D depth; // the pre-pass's depth (fromDepth)
-layout(std430, binding = 7) buffer Pyramid { float pyramid[]; };
+layout(std430, binding = SK_CULL_STAGE_BINDING) buffer Pyramid { float pyramid[]; };
 uniform bool fromDepth;
 uniform ivec2 sourceSize, targetSize;
 uniform int sourceOffset, targetOffset; // in pyramid[]

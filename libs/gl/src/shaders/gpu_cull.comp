@@ -36,18 +36,18 @@ struct Level {
     uint pad0, pad1;
 };
 
-layout(std430, binding = 1) readonly buffer Chunks { uvec4 chunks[]; }; // batch, first global, count, first batch-local
-layout(std430, binding = 2) readonly buffer Batches { Batch batches[]; };
-layout(std430, binding = 5) buffer Ranks { uint ranks[]; };     // per global instance: level << 8 | rank, or ~0u
-layout(std430, binding = 6) buffer ChunkSums { uvec4 chunkSums[]; }; // per chunk and level: count, then offset
+layout(std430, binding = SK_CULL_CHUNKS_BINDING) readonly buffer Chunks { uvec4 chunks[]; }; // batch, first global, count, first batch-local
+layout(std430, binding = SK_CULL_BATCHES_BINDING) readonly buffer Batches { Batch batches[]; };
+layout(std430, binding = SK_CULL_RANKS_BINDING) buffer Ranks { uint ranks[]; };     // per global instance: level << 8 | rank, or ~0u
+layout(std430, binding = SK_CULL_CHUNK_SUMS_BINDING) buffer ChunkSums { uvec4 chunkSums[]; }; // per chunk and level: count, then offset
 
 const uint kNotKept = 0xFFFFFFFFu;
 
 #if SK_CULL_STAGE == 1
 
-layout(std430, binding = 0) readonly buffer Instances { Instance instances[]; };
-layout(std430, binding = 3) readonly buffer Levels { Level levels[]; }; // [batch * 4 + level]
-layout(std430, binding = 4) buffer Flags { uint wasVisible[]; };         // the camera's visible set, frame to frame
+layout(std430, binding = SK_CULL_INSTANCES_BINDING) readonly buffer Instances { Instance instances[]; };
+layout(std430, binding = SK_CULL_LEVELS_BINDING) readonly buffer Levels { Level levels[]; }; // [batch * 4 + level]
+layout(std430, binding = SK_CULL_FLAGS_BINDING) buffer Flags { uint wasVisible[]; };         // the camera's visible set, frame to frame
 
 // What the pass keeps (GpuCulling::Phase).
 const int kAll = 0, kLastVisible = 1, kNewlyVisible = 2, kVisible = 3;
@@ -63,7 +63,7 @@ uniform bool cameraBound;
 uniform dmat4 cameraClipFromWorld;
 uniform double cameraUnitsPerNdc, cameraMaxError;
 // Occlusion (phases kNewlyVisible and kVisible): the depth pyramid of the camera's pre-pass.
-layout(std430, binding = 7) readonly buffer Pyramid { float pyramid[]; }; // level k: farthest over 2^(k+1) pixels
+layout(std430, binding = SK_CULL_STAGE_BINDING) readonly buffer Pyramid { float pyramid[]; }; // level k: farthest over 2^(k+1) pixels
 uniform ivec4 pyramidLevel[SK_CULL_MAX_PYRAMID_LEVELS]; // per level: width, height, offset in pyramid[]
 uniform int pyramidLevels;
 uniform ivec2 viewport;
@@ -237,8 +237,8 @@ void main() {
 #elif SK_CULL_STAGE == 2
 
 layout(local_size_x = 64) in;
-layout(std430, binding = 3) readonly buffer Levels { Level levels[]; };
-layout(std430, binding = 7) writeonly buffer Commands { uint commands[]; }; // 5 uints each
+layout(std430, binding = SK_CULL_LEVELS_BINDING) readonly buffer Levels { Level levels[]; };
+layout(std430, binding = SK_CULL_STAGE_BINDING) writeonly buffer Commands { uint commands[]; }; // 5 uints each
 uniform uint batchCount;
 uniform bool shadowChain;
 uniform uint firstCommand; // the pass's first, in commands
@@ -266,7 +266,7 @@ void main() {
 
 #else // SK_CULL_STAGE 3
 
-layout(std430, binding = 7) writeonly buffer Lists { uint lists[]; };
+layout(std430, binding = SK_CULL_STAGE_BINDING) writeonly buffer Lists { uint lists[]; };
 uniform uint passOffset; // the pass's region in lists: 4 slots of capacity batch.count per batch
 
 void main() {
