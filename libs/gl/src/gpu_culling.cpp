@@ -2,7 +2,6 @@
 
 #include "gl_shaders.h"
 #include "program.h"
-#include "receiver_masks.h"
 #include "uniforms.h"
 
 #include <algorithm>
@@ -320,6 +319,18 @@ DrawStats GpuCulling::submitted(const PassList& list) const {
         ++stats.drawCalls;
     }
     return stats;
+}
+
+DrawStats GpuCulling::submitted(std::span<const PassList> lists) const {
+    DrawStats sum;
+    for (const PassList& list : lists) sum += submitted(list);
+    return sum;
+}
+
+GpuReceiverMask GpuReceiverMask::of(const ReceiverMasks& masks, const core::ShadowSetup& setup, size_t view) {
+    const bool linear = setup.depthLayout == core::DepthLayout::Linear;
+    return {masks.dilatedMasks().id(), int(view), int(setup.views.size()), setup.views[view].clipFromWorld,
+            linear ? std::optional(setup.views[view].linearDepthFromWorld) : std::nullopt};
 }
 
 PassList GpuCulling::read(const PassList& list) const {

@@ -22,6 +22,7 @@
 
 #include "gl_object.h"
 #include "gpu_scene.h"
+#include "receiver_masks.h"
 #include "render_targets.h"
 #include "stopwatch.h"
 #include "uniforms.h"
@@ -47,6 +48,8 @@ struct GpuReceiverMask {
     int map = 0, mapCount = 1;
     core::Mat4 clipFromWorld{1.0};                  // the map's
     std::optional<core::Vec4> linearDepthFromWorld; // the linear layout's depth row
+    // Shadow view `view` of `setup`, whose masks `masks` marked (ReceiverMasks::markOnGpu).
+    static GpuReceiverMask of(const ReceiverMasks& masks, const core::ShadowSetup& setup, size_t view);
 };
 
 class GpuCulling {
@@ -87,8 +90,9 @@ public:
     void camera(const core::PerspectiveCamera& camera, const LodChoice* lod, CameraDepthTarget& target, PassList& out);
     static constexpr size_t kCameraPasses = 3;
 
-    // What a list drew, read back from its commands (waits for the GPU).
+    // What a list drew, read back from its commands (waits for the GPU); of several, the sum.
     DrawStats submitted(const PassList& list) const;
+    DrawStats submitted(std::span<const PassList> lists) const;
     // A list's contents in the CPU path's layout (indices, first, count), read back.
     PassList read(const PassList& list) const;
 

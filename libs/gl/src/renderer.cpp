@@ -130,12 +130,8 @@ struct Renderer::Impl {
     // Culling::Gpu: the sun's pass stats with what its lists drew, read back (waits for the GPU).
     PassStats gpuShadowDraws(PassStats pass) const {
         if (pass.drawCalls == 0) return pass; // no sun: nothing drawn
-        pass.instances = pass.triangles = 0;
-        for (const PassList& list : shadowLists) {
-            const DrawStats drawn = gpuCulling->submitted(list);
-            pass.instances += drawn.instances;
-            pass.triangles += drawn.triangles;
-        }
+        const DrawStats drawn = gpuCulling->submitted(shadowLists);
+        pass.instances = drawn.instances, pass.triangles = drawn.triangles;
         return pass;
     }
     // Technique virtual: the pages this frame must draw, each into its slot of the atlas.
@@ -374,10 +370,7 @@ void Renderer::Impl::collectVisible(const core::PerspectiveCamera& camera, const
         const core::Mat4& clipFromWorld = setup.views[i].clipFromWorld;
         const LodChoice lod{{clipFromWorld, 0.5 * setup.mapSize, settings.lodTexelError}, cameraProjection, true};
         if (gpu) {
-            const GpuReceiverMask mask{
-                receiverMasks->dilatedMasks().id(), int(i), int(setup.views.size()), clipFromWorld,
-                setup.depthLayout == core::DepthLayout::Linear ? std::optional(setup.views[i].linearDepthFromWorld)
-                                                               : std::nullopt};
+            const GpuReceiverMask mask = GpuReceiverMask::of(*receiverMasks, setup, i);
             gpuCulling->cull(GpuCulling::kCameraPasses + i, visibility::clipVolume(clipFromWorld, false),
                              settings.lod ? &lod : nullptr, GpuCulling::Phase::All, shadowLists[i],
                              masked ? &mask : nullptr);
