@@ -206,3 +206,41 @@ TEST_F(GpuCullingTest, AnInstanceMovedOutFromBehindAWallIsDrawnInTheFrameItAppea
     EXPECT_EQ(frustumInstances, 3u);
     EXPECT_EQ(image, frustumImage);
 }
+
+TEST_F(GpuCullingTest, EmptyBatchesAndMeshesWithoutTrianglesDrawLikeTheCpuPath) {
+    // Batches without instances and meshes without indices get no chunks and no draws; the
+    // one instance beside them is culled and drawn as the CPU path does it.
+    scene::Scene s;
+    scene::Mesh ground, empty, cube;
+    scene::addBox(ground, glm::translate(glm::mat4(1.0f), {0, -0.05f, 0}), {20, 0.05f, 20}, glm::vec3(0.8f));
+    scene::addBox(cube, glm::mat4(1.0f), {1, 1, 1}, glm::vec3(0.9f));
+    for (scene::Mesh* m : {&ground, &cube}) m->computeBounds();
+    s.meshes = {ground, empty, cube};
+    s.batches = {{1, {glm::mat4(1.0f)}, false}, // a mesh without triangles
+                 {2, {}, false},                // a batch without instances
+                 {0, {glm::mat4(1.0f)}, false},
+                 {2, {glm::translate(glm::mat4(1.0f), {0, 1, 0})}, true}};
+    auto renderer = gl::Renderer::create(s);
+    ASSERT_TRUE(renderer) << renderer.error();
+    core::PerspectiveCamera camera;
+    camera.wsEye = {0, 4, 12};
+    camera.wsDirection = {0, -0.3, -1};
+    camera.aspect = 1.0;
+    const core::DirectionalLight sun(glm::normalize(core::Vec3(0.4, -1.0, 0.3)));
+    const auto setup = core::computeShadowSetup({.camera = camera,
+                                                 .light = sun,
+                                                 .wsSceneBounds = (*renderer)->wsSceneBounds(),
+                                                 .technique = core::Technique::Lispsm,
+                                                 .mapSize = 512});
+    ASSERT_TRUE(setup) << setup.error();
+    const auto frustum = (*renderer)->render(camera, sun, *setup, smallFrame(96, 96, gl::Culling::Frustum));
+    ASSERT_TRUE(frustum);
+    const std::vector<uint8_t> expected = (*renderer)->readColor().rgba;
+    for (int frame = 0; frame < 2; ++frame) {
+        const auto gpu = (*renderer)->render(camera, sun, *setup, smallFrame(96, 96, gl::Culling::Gpu));
+        ASSERT_TRUE(gpu) << gpu.error();
+        EXPECT_EQ((*renderer)->readColor().rgba, expected) << "frame " << frame;
+        EXPECT_EQ(gpu->main.instances, frustum->main.instances) << "frame " << frame;
+        EXPECT_EQ(gpu->shadow.triangles, frustum->shadow.triangles) << "frame " << frame;
+    }
+}
