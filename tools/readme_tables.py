@@ -12,6 +12,11 @@ drift from what the program measures.
       GPU ms, the culling's time in GL (pre-pass, masks) and its own thread CPU time
       (tools/measure-visibility.sh)
 
+  tools/readme_tables.py scale CULLED.json FULL.json [CULLED.json FULL.json ...]
+      per pair of `shadowkit bench --json` files (the same trees and views, with culling and levels of
+      detail and with --no-cull --no-lod): triangles and instances per pass, GPU ms, and the CPU ms of
+      the set-up's first frame and of culling, each as culled / full (tools/measure-scale.sh)
+
   tools/readme_tables.py dynamics LABEL=PATH.json ...
       per `shadowkit eval --path --json` file: flicker_pct and truth_change_pct (mean / p95 /
       max over the frames), mean wrong_pct and pixels_per_texel_p50 (tools/measure-dynamics.sh)
@@ -103,6 +108,37 @@ def visibility(paths):
                       f"{r['shadow']['gpu_ms']['median']:.0f} | {r['main']['gpu_ms']['median']:.0f} | "
                       f"{r['cull_gl_ms']['median']:.1f} ({o['prepass_ms']['median']:.1f}, {r['receiver_mask_ms']['median']:.1f}) | "
                       f"{r['cull_own_ms']['median']:.2f} | {r['list_ms']['median']:.2f} |")
+
+
+def scale(paths):
+    if len(paths) % 2:
+        sys.exit("readme_tables: scale takes pairs of files: CULLED.json FULL.json")
+    print("| trees | terrain | view | shadow pass: M triangles (instances) | main pass: M triangles (instances) | "
+          "shadow GPU ms | main GPU ms | CPU set-up + culling ms |")
+    print("|---:|---:|---|---:|---:|---:|---:|---:|")
+    for culled_path, full_path in zip(paths[0::2], paths[1::2]):
+        with open(culled_path) as f:
+            culled = json.load(f)["runs"]
+        with open(full_path) as f:
+            full = {(r["trees"], r["view"]): r for r in json.load(f)["runs"]}
+        for c in culled:
+            u = full.get((c["trees"], c["view"]))
+            if u is None:
+                sys.exit(f"readme_tables: {full_path} has no row for {c['trees']} trees, view {c['view']}")
+
+            def both(f):
+                return f"{f(c)} / {f(u)}"
+
+            def tris(p):
+                return lambda r: f"{r[p]['triangles'] / 1e6:.2f} ({r[p]['instances']})"
+
+            def gpu(p):
+                return lambda r: f"{r[p]['gpu_ms']['median']:.0f}"
+
+            def cpu(r):
+                return f"{r['setup_first_ms'] + r['cull_ms']['median']:.2f}"
+            print(f"| {c['trees']:,} | {c['terrain_size']:.0f} m | {c['view']} | {both(tris('shadow'))} | "
+                  f"{both(tris('main'))} | {both(gpu('shadow'))} | {both(gpu('main'))} | {both(cpu)} |")
 
 
 def load_path_run(arg):
@@ -260,7 +296,7 @@ def write_into(target, text):
 def run(argv):
     """Prints the table the arguments (argv[1:], as on the command line) ask for."""
     commands = {"oracle": oracle, "stable": stable, "visibility": visibility, "dynamics": dynamics,
-                "setup": setup, "culling": culling, "truth": truth}
+                "setup": setup, "culling": culling, "truth": truth, "scale": scale}
     if len(argv) >= 3 and argv[1] in commands:
         commands[argv[1]](argv[2:])
         return

@@ -95,7 +95,8 @@ struct Renderer::Impl {
     double receiverMaskMilliseconds = 0.0;
     std::unique_ptr<DepthRangeReduction> depthRange; // of every pre-pass: Renderer::lastVisibleDepth
     bool prepassForDepthRange = false;               // Renderer::visibleDepth: a pre-pass even if culling needs none
-    Program depthProgram, mainProgram, evalProgram, blurProgram;
+    Program depthProgram, blurProgram;
+    Program mainPrograms[2], evalPrograms[2]; // [1]: with virtual maps' lookup (shadow_lookup.glsl)
     Buffer depthUniforms, frameUniforms, blurUniforms;
     VertexArray emptyVertexArray; // for the full-screen triangle
     std::optional<ShadowTarget> shadow;
@@ -167,29 +168,35 @@ core::Result<std::unique_ptr<Renderer>> Renderer::create(const scene::Scene& sce
     using namespace shaders;
     auto depth = buildProgram("depth pass", {kDepthPassGlsl, kDepthVert}, {kDepthPassGlsl, kDepthFrag});
     if (!depth) return depth.errorInfo();
-    auto main = buildProgram("main pass", {kFrameGlsl, kMainVert},
-                             {kFrameGlsl, kShadowkitShadowsGlsl, kShadowLookupGlsl, kLocalLightsGlsl, kMainFrag});
-    if (!main) return main.errorInfo();
-    auto eval = buildProgram("eval pass", {kFrameGlsl, kMainVert},
-                             {kFrameGlsl, kShadowkitShadowsGlsl, kShadowLookupGlsl, kLocalLightsGlsl, kEvalFrag});
-    if (!eval) return eval.errorInfo();
     auto blur = buildProgram("blur pass", {kFullscreenVert}, {kBlurFrag});
     if (!blur) return blur.errorInfo();
     if (auto s = checkUniformBlock(*blur, "blur pass", "Blur", sizeof(BlurUniforms), blurFields()); !s)
         return s.errorInfo();
     if (auto s = checkUniformBlock(*depth, "depth pass", "DepthPass", sizeof(DepthPassUniforms), depthPassFields()); !s)
         return s.errorInfo();
-    for (const auto* p : {&main, &eval}) {
-        if (auto s = checkUniformBlock(**p, "camera pass", "Frame", sizeof(FrameUniforms), frameFields()); !s)
-            return s.errorInfo();
-        if (auto s =
-                checkUniformBlock(**p, "camera pass", "LocalLights", sizeof(LocalLightsUniforms), localLightsFields());
-            !s)
-            return s.errorInfo();
-        if (auto s =
-                checkUniformBlock(**p, "camera pass", "VirtualMaps", sizeof(VirtualMapsUniforms), virtualMapsFields());
-            !s)
-            return s.errorInfo();
+    // The camera passes twice: without and with virtual maps (SK_VIRTUAL_MAPS, shadow_lookup.glsl).
+    for (const bool virtualMaps : {false, true}) {
+        const std::string_view variant = virtualMaps ? "#define SK_VIRTUAL_MAPS 1\n" : "#define SK_VIRTUAL_MAPS 0\n";
+        for (const bool evalPass : {false, true}) {
+            const std::string name =
+                std::string(evalPass ? "eval pass" : "main pass") + (virtualMaps ? ", virtual" : "");
+            auto program = buildProgram(name, {kFrameGlsl, kMainVert},
+                                        {variant, kFrameGlsl, kShadowkitShadowsGlsl, kShadowLookupGlsl,
+                                         kLocalLightsGlsl, evalPass ? kEvalFrag : kMainFrag});
+            if (!program) return program.errorInfo();
+            if (auto s = checkUniformBlock(*program, name, "Frame", sizeof(FrameUniforms), frameFields()); !s)
+                return s.errorInfo();
+            if (auto s =
+                    checkUniformBlock(*program, name, "LocalLights", sizeof(LocalLightsUniforms), localLightsFields());
+                !s)
+                return s.errorInfo();
+            if (virtualMaps)
+                if (auto s = checkUniformBlock(*program, name, "VirtualMaps", sizeof(VirtualMapsUniforms),
+                                               virtualMapsFields());
+                    !s)
+                    return s.errorInfo();
+            (evalPass ? r.evalPrograms : r.mainPrograms)[virtualMaps ? 1 : 0] = std::move(program).value();
+        }
     }
     auto lines = LinePass::create();
     if (!lines) return lines.errorInfo();
@@ -198,8 +205,6 @@ core::Result<std::unique_ptr<Renderer>> Renderer::create(const scene::Scene& sce
     if (!localMaps) return localMaps.errorInfo();
     r.localMaps = std::move(localMaps).value();
     r.depthProgram = std::move(depth).value();
-    r.mainProgram = std::move(main).value();
-    r.evalProgram = std::move(eval).value();
     r.blurProgram = std::move(blur).value();
     r.depthUniforms = createBuffer(nullptr, sizeof(DepthPassUniforms));
     r.frameUniforms = createBuffer(nullptr, sizeof(FrameUniforms));
@@ -609,7 +614,7 @@ core::Status Renderer::Impl::evalPass(const core::PerspectiveCamera& camera, con
     glBindFramebuffer(GL_FRAMEBUFFER, eval->framebuffer.id());
     glViewport(0, 0, eval->width, eval->height);
     eval->clear();
-    glUseProgram(evalProgram.id());
+    glUseProgram(evalPrograms[setup.clipmap ? 1 : 0].id());
     scene->draw(cameraList, true);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     return core::Ok{};
@@ -680,7 +685,7 @@ core::Result<FrameStats> Renderer::render(const core::PerspectiveCamera& wsCamer
     const float clearDepth = 1.0f;
     glClearNamedFramebufferfv(r.color->framebuffer.id(), GL_COLOR, 0, clearColor);
     glClearNamedFramebufferfv(r.color->framebuffer.id(), GL_DEPTH, 0, &clearDepth);
-    glUseProgram(r.mainProgram.id());
+    glUseProgram(r.mainPrograms[setup.clipmap ? 1 : 0].id());
     r.mainTimer.begin();
     DrawStats mainDraws = r.scene->draw(r.cameraList, true);
     r.mainTimer.end();

@@ -2,6 +2,14 @@
 // glsl/shadowkit_shadows.glsl (before this file), which holds the lookup itself — hardware
 // comparison, linear depth, normal offset, receiver-plane bias, filters, cascade selection
 // and blending — so that the renderer and engines share one implementation.
+//
+// Two variants, by SK_VIRTUAL_MAPS (defined before this file; 0 when not): with virtual maps
+// the lookup goes through the page table, without them it is the cascades' alone. One shader
+// with a uniform branch between them cost llvmpipe 1.45× the camera pass for every technique
+// (it runs both sides), so the renderer builds both and draws with the one the set-up needs.
+#ifndef SK_VIRTUAL_MAPS
+#define SK_VIRTUAL_MAPS 0
+#endif
 layout(binding = SK_SHADOW_MAP_UNIT) uniform sampler2DArrayShadow shadowMap; // or the virtual page atlas
 layout(binding = SK_PAGE_TABLE_UNIT) uniform usampler2D pageTable;             // virtual maps' page table
 
@@ -24,10 +32,13 @@ SkVirtualMaps virtualMaps() {
 // The sun's map serving `ws`: its cascade, or the clipmap level its lookup reads.
 int sunMapOf(vec3 ws) {
     const float viewDepth = viewDepthOf(ws);
-    if (virtualEnabled == 0) return cascadeOf(viewDepth);
+#if SK_VIRTUAL_MAPS
     int level;
     vec4 atlasFromMap;
     return skVirtualPage(pageTable, virtualMaps(), viewDepth, ws, level, atlasFromMap) ? level : virtualLevels - 1;
+#else
+    return cascadeOf(viewDepth);
+#endif
 }
 
 // Texture coordinates of the map serving `ws`, times w (textureFromWorld of the core's
@@ -41,7 +52,9 @@ SkShadowOptions shadowOptions() {
 
 // `dwsdx`, `dwsdy`: screen derivatives of ws, taken by the caller in uniform control flow.
 float shadowTerm(vec3 ws, vec3 n, vec3 dwsdx, vec3 dwsdy) {
-    if (virtualEnabled != 0)
-        return skVirtualShadow(shadowMap, pageTable, virtualMaps(), shadowOptions(), viewDepthOf(ws), ws, n, dwsdx, dwsdy);
+#if SK_VIRTUAL_MAPS
+    return skVirtualShadow(shadowMap, pageTable, virtualMaps(), shadowOptions(), viewDepthOf(ws), ws, n, dwsdx, dwsdy);
+#else
     return skCascadedShadow(shadowMap, mapCount, shadowOptions(), viewDepthOf(ws), ws, n, dwsdx, dwsdy);
+#endif
 }
