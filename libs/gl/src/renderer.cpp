@@ -1,5 +1,6 @@
 #include "shadowkit/gl/renderer.h"
 
+#include "camera_programs.h"
 #include "depth_range.h"
 #include "gl_object.h"
 #include "gl_shaders.h"
@@ -96,7 +97,7 @@ struct Renderer::Impl {
     std::unique_ptr<DepthRangeReduction> depthRange; // of every pre-pass: Renderer::lastVisibleDepth
     bool prepassForDepthRange = false;               // Renderer::visibleDepth: a pre-pass even if culling needs none
     Program depthProgram, blurProgram;
-    Program mainPrograms[2], evalPrograms[2]; // [1]: with virtual maps' lookup (shadow_lookup.glsl)
+    CameraPrograms cameraPrograms; // the main and eval passes, with and without virtual maps
     Buffer depthUniforms, frameUniforms, blurUniforms;
     VertexArray emptyVertexArray; // for the full-screen triangle
     std::optional<ShadowTarget> shadow;
@@ -174,30 +175,9 @@ core::Result<std::unique_ptr<Renderer>> Renderer::create(const scene::Scene& sce
         return s.errorInfo();
     if (auto s = checkUniformBlock(*depth, "depth pass", "DepthPass", sizeof(DepthPassUniforms), depthPassFields()); !s)
         return s.errorInfo();
-    // The camera passes twice: without and with virtual maps (SK_VIRTUAL_MAPS, shadow_lookup.glsl).
-    for (const bool virtualMaps : {false, true}) {
-        const std::string_view variant = virtualMaps ? "#define SK_VIRTUAL_MAPS 1\n" : "#define SK_VIRTUAL_MAPS 0\n";
-        for (const bool evalPass : {false, true}) {
-            const std::string name =
-                std::string(evalPass ? "eval pass" : "main pass") + (virtualMaps ? ", virtual" : "");
-            auto program = buildProgram(name, {kFrameGlsl, kMainVert},
-                                        {variant, kFrameGlsl, kShadowkitShadowsGlsl, kShadowLookupGlsl,
-                                         kLocalLightsGlsl, evalPass ? kEvalFrag : kMainFrag});
-            if (!program) return program.errorInfo();
-            if (auto s = checkUniformBlock(*program, name, "Frame", sizeof(FrameUniforms), frameFields()); !s)
-                return s.errorInfo();
-            if (auto s =
-                    checkUniformBlock(*program, name, "LocalLights", sizeof(LocalLightsUniforms), localLightsFields());
-                !s)
-                return s.errorInfo();
-            if (virtualMaps)
-                if (auto s = checkUniformBlock(*program, name, "VirtualMaps", sizeof(VirtualMapsUniforms),
-                                               virtualMapsFields());
-                    !s)
-                    return s.errorInfo();
-            (evalPass ? r.evalPrograms : r.mainPrograms)[virtualMaps ? 1 : 0] = std::move(program).value();
-        }
-    }
+    auto camera = CameraPrograms::create();
+    if (!camera) return camera.errorInfo();
+    r.cameraPrograms = std::move(camera).value();
     auto lines = LinePass::create();
     if (!lines) return lines.errorInfo();
     r.lines = std::move(lines).value();
@@ -437,6 +417,7 @@ core::Status Renderer::Impl::prepare(const core::PerspectiveCamera& camera, cons
         return core::environmentError("image_size: each side must be in [1, " + std::to_string(maxSize) +
                                           "] pixels on this GL driver (GL_MAX_TEXTURE_SIZE)",
                                       "image_size");
+    if (auto s = cameraPrograms.prepare(virtualMaps); !s) return s;
     if (settings.culling == Culling::Gpu)
         if (auto s = gpuCulling->buildPrograms(); !s)
             return core::environmentError("culling: gpu is not available on this GL driver: " + s.errorInfo().message,
@@ -614,7 +595,7 @@ core::Status Renderer::Impl::evalPass(const core::PerspectiveCamera& camera, con
     glBindFramebuffer(GL_FRAMEBUFFER, eval->framebuffer.id());
     glViewport(0, 0, eval->width, eval->height);
     eval->clear();
-    glUseProgram(evalPrograms[setup.clipmap ? 1 : 0].id());
+    glUseProgram(cameraPrograms.eval(setup.clipmap.has_value()));
     scene->draw(cameraList, true);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     return core::Ok{};
@@ -685,7 +666,7 @@ core::Result<FrameStats> Renderer::render(const core::PerspectiveCamera& wsCamer
     const float clearDepth = 1.0f;
     glClearNamedFramebufferfv(r.color->framebuffer.id(), GL_COLOR, 0, clearColor);
     glClearNamedFramebufferfv(r.color->framebuffer.id(), GL_DEPTH, 0, &clearDepth);
-    glUseProgram(r.mainPrograms[setup.clipmap ? 1 : 0].id());
+    glUseProgram(r.cameraPrograms.main(setup.clipmap.has_value()));
     r.mainTimer.begin();
     DrawStats mainDraws = r.scene->draw(r.cameraList, true);
     r.mainTimer.end();
