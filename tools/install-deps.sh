@@ -9,7 +9,7 @@ packages=(
   libembree-dev libtbb-dev libtinygltf-dev libstb-dev nlohmann-json3-dev
   libcli11-dev libfmt-dev libmeshoptimizer-dev libtinyobjloader-dev libgtest-dev libbenchmark-dev
   libimgui-dev xvfb xauth
-  pybind11-dev python3-dev python3-numpy python3-matplotlib
+  pybind11-dev python3-dev python3-numpy python3-matplotlib python3-distributed
   chromium mkdocs doxygen
   clang libclang-rt-14-dev clang-format-14
 )

@@ -34,6 +34,7 @@ struct EvalArgs {
     LocalLightOptions lights;
     std::string views; // "a,b" or "all"; empty: --view
     std::string json, errorMap, aliasingMap, dump, csv, plot, report;
+    bool check = false; // --check: validate every option, render and measure nothing
 };
 
 // "maps/err.png" for view "noon" among several -> "maps/err-noon.png".
@@ -64,9 +65,17 @@ core::Result<std::vector<std::string>> viewNames(const EvalArgs& args) {
     return names;
 }
 
+core::Status checkViewName(const std::string& name) {
+    auto all = scene::loadViews(dataDirectory() / "views.json");
+    if (!all) return all.errorInfo();
+    if (auto found = scene::findView(*all, name); !found) return core::makeError("--view: " + found.error());
+    return core::Ok{};
+}
+
 int runEval(const EvalArgs& args) {
     if (auto s = args.technique.check(/*measuresFrames=*/true, /*takesAuto=*/true); !s) return fail(s.errorInfo());
     if (auto s = args.render.check(); !s) return fail(s.errorInfo());
+    if (auto s = args.scene.check(); !s) return fail(s.errorInfo());
     for (auto [flag, file] :
          {std::pair{"--json", &args.json}, {"--csv", &args.csv}, {"--plot", &args.plot}, {"--report", &args.report}})
         if (auto s = checkWritable(flag, *file); !s) return fail(s.errorInfo());
@@ -75,13 +84,15 @@ int runEval(const EvalArgs& args) {
             return fail("--path: evaluates a path's frames, so --views, --error-map, --aliasing-map and --dump (still "
                         "views) do not apply");
         return runEvalPath({args.scene, args.view, args.technique, args.render, args.timeline, args.lights, args.csv,
-                            args.plot, args.json, args.report});
+                            args.plot, args.json, args.report, args.check});
     }
     if (!args.csv.empty() || !args.plot.empty()) return fail("--csv and --plot need --path (figures per frame)");
     auto timeline = args.timeline.resolve(); // still views: --time and --sun-path
     if (!timeline) return fail(timeline.errorInfo());
     auto names = viewNames(args);
     if (!names) return fail(names.errorInfo());
+    if (args.views.empty())
+        if (auto s = checkViewName(args.view.view); !s) return fail(s.errorInfo());
     for (auto [flag, file] :
          {std::pair{"--json", &args.json}, {"--error-map", &args.errorMap}, {"--aliasing-map", &args.aliasingMap}})
         if (auto s = checkWritable(flag, *file); !s) return fail(s.errorInfo());
@@ -91,6 +102,7 @@ int runEval(const EvalArgs& args) {
     if (!config) return fail(config.errorInfo());
     auto driver = frame::FrameDriver::create(std::move(config).value());
     if (!driver) return fail(withFlagName(driver.errorInfo()));
+    if (args.check) return 0;
     auto sceneData = args.scene.load();
     if (!sceneData) return fail(sceneData.errorInfo());
     const double time = timeline->frames.front().time;
@@ -214,6 +226,10 @@ Command addEvalCommand(CLI::App& app) {
     cmd->add_option("--csv", args->csv,
                     "with --path: the figures of every frame as CSV, flicker_pct and truth_change_pct included");
     cmd->add_option("--plot", args->plot, "with --path: a PNG plot of flicker_pct and truth_change_pct per frame");
+    cmd->add_flag("--check", args->check,
+                  "check every option (scene's, view names, technique, filters, lights, path) and exit without "
+                  "rendering: 0 when the evaluation would start, else the one-line error (shadowkit sweep checks its "
+                  "cells so)");
     return {cmd, [args] { return runEval(*args); }};
 }
 

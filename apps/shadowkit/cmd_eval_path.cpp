@@ -93,6 +93,7 @@ int runEvalPath(const EvalPathArgs& args) {
     // Across the path: held lattices (--stabilize), auto's tracked choice.
     auto driver = frame::FrameDriver::create(std::move(config).value());
     if (!driver) return fail(withFlagName(driver.errorInfo()));
+    if (args.check) return 0;
     const bool held = driver->config().heldLattices.has_value(), automatic = driver->config().automatic.has_value();
     auto sceneData = args.scene.load();
     if (!sceneData) return fail(sceneData.errorInfo());

@@ -22,5 +22,6 @@ Command addEvalCommand(CLI::App& app);
 Command addAnalyzeCommand(CLI::App& app);
 Command addCompareCommand(CLI::App& app);
 Command addBenchCommand(CLI::App& app);
+Command addSweepCommand(CLI::App& app);
 
 } // namespace shadowkit::app

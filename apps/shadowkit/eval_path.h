@@ -18,6 +18,7 @@ struct EvalPathArgs {
     const TimelineOptions& timeline;
     const LocalLightOptions& lights;
     std::string csv, plot, json, report;
+    bool check = false; // --check: validate the options, render nothing
 };
 
 int runEvalPath(const EvalPathArgs& args);

@@ -9,6 +9,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <sstream>
 #include <string_view>
 #include <vector>
@@ -57,18 +58,36 @@ core::Result<core::Vec3> SceneOptions::offset() const {
     return v;
 }
 
+namespace {
+
+scene::ForestOptions forestOptionsOf(const SceneOptions& options) {
+    scene::ForestOptions o;
+    o.seed = options.seed;
+    o.trees = options.trees;
+    o.terrainSize = options.terrainSize;
+    o.terrainResolution = options.terrainResolution;
+    o.movers = options.movers;
+    return o;
+}
+
+} // namespace
+
+core::Status SceneOptions::check() const {
+    if (auto origin = offset(); !origin) return origin.errorInfo();
+    if (scene == "forest") return scene::validate(forestOptionsOf(*this));
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(scene, ec))
+        return core::makeError(fmt::format("--scene: {}: scene file does not exist", scene));
+    return core::Ok{};
+}
+
 core::Result<scene::Scene> SceneOptions::load(bool verbose) const {
     auto origin = offset();
     if (!origin) return origin.errorInfo();
     const auto start = std::chrono::steady_clock::now();
     core::Result<scene::Scene> result = core::makeError("");
     if (scene == "forest") {
-        scene::ForestOptions o;
-        o.seed = seed;
-        o.trees = trees;
-        o.terrainSize = terrainSize;
-        o.terrainResolution = terrainResolution;
-        o.movers = movers;
+        const scene::ForestOptions o = forestOptionsOf(*this);
         if (core::Status s = scene::validate(o); !s) return s.errorInfo();
         result = scene::makeForest(o);
     } else {

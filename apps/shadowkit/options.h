@@ -31,6 +31,8 @@ struct SceneOptions {
     void addTo(CLI::App& cmd);
     // --world-offset parsed (0 when not given).
     core::Result<core::Vec3> offset() const;
+    // Without building anything: the forest's options in range, a scene file present, the offset parsed.
+    core::Status check() const;
     // Builds the forest or loads the file, printing what it made and how long it took.
     core::Result<scene::Scene> load(bool verbose = true) const;
 };

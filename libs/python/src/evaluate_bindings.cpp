@@ -122,6 +122,10 @@ pixels_per_texel.)";
 } // namespace
 
 void bindEvaluation(py::module_& m) {
+    m.def(
+        "data_directory", [] { return dataDirectory().string(); },
+        "Where the module finds views.json and the camera paths: $SHADOWKIT_DATA_DIR, else the source tree's "
+        "data/ (a build), else the installed share/shadowkit.");
     // Defaults from the libraries' own option structs, as the command line's.
     const scene::ForestOptions d;
     const core::ShadowSetupInputs kDefaults;

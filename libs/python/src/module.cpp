@@ -9,7 +9,7 @@
 namespace py = pybind11;
 using shadowkit::python::SetupArguments;
 
-PYBIND11_MODULE(shadowkit, m) {
+PYBIND11_MODULE(_native, m) {
     m.doc() = "shadowkit: shadow-map set-ups and their error against ray-traced truth";
     m.attr("__version__") = SHADOWKIT_VERSION_STRING;
 

@@ -1,0 +1,265 @@
+#!/usr/bin/env python3
+"""shadowkit.sweep: the grid a specification expands to, its one-line errors before any cell
+runs, rows equal to `shadowkit eval --json`, resuming after a kill, stale results refused, and
+the Dask runners (a local cluster, a worker killed mid-sweep) giving the serial rows exactly
+once. Run by CTest with PYTHONPATH at the package and SHADOWKIT at the command line."""
+import contextlib
+import io
+import json
+import os
+import shutil
+import signal
+import socket
+import subprocess
+import sys
+import tempfile
+import time
+import unittest
+
+from shadowkit import sweep
+from shadowkit.sweep import cli
+from shadowkit.sweep.program import eval_options
+
+CLI = os.environ["SHADOWKIT"]
+SMALL = {"trees": 300, "terrain-size": 200, "terrain-resolution": 32, "size": "160x90"}
+# Timings differ run to run; every other figure must not.
+TIMINGS = {"seconds", "truth_seconds", "truth_rays_per_second"}
+
+
+def write_spec(directory, spec, name="spec.json"):
+    path = os.path.join(directory, name)
+    with open(path, "w") as f:
+        json.dump(spec, f)
+    return path
+
+
+def run_main(*argv):
+    """cli.main's exit code and what it printed on stderr."""
+    err = io.StringIO()
+    with contextlib.redirect_stderr(err):
+        code = cli.main(list(argv))
+    return code, err.getvalue()
+
+
+def records(out):
+    with open(os.path.join(out, "cells.jsonl")) as f:
+        return [json.loads(line) for line in f]
+
+
+def figures(out):
+    """{(cell key, view): figures without timings} of a finished sweep."""
+    rows = {}
+    for record in records(out):
+        for row in record["rows"]:
+            rows[(record["key"], row["view"])] = {k: v for k, v in row.items() if k not in TIMINGS}
+    return rows
+
+
+GRID = {"fixed": SMALL, "axes": {"technique": ["focused", "tsm", "lispsm"], "map-size": [512, 1024]},
+        "where": ["not (technique == 'focused' and map_size == 512)"]}  # 5 cells
+
+
+class ExpansionTest(unittest.TestCase):
+    def setUp(self):
+        self.options = eval_options(CLI)
+
+    def test_a_grid_is_the_product_of_its_axes_in_order_less_what_where_removes(self):
+        cells = sweep.expand(GRID, self.options)
+        got = [(c.options["technique"], c.options["map-size"]) for c in cells]
+        self.assertEqual(got, [("focused", 1024), ("tsm", 512), ("tsm", 1024), ("lispsm", 512), ("lispsm", 1024)])
+        self.assertTrue(all(c.options["trees"] == 300 for c in cells))
+
+    def test_bundles_and_derived_options(self):
+        # An equal texel budget: the map size derived from the number of maps.
+        spec = {"axes": {"set-up": [{"label": "one", "technique": "tsm", "cascades": 1},
+                                    {"label": "four", "technique": "csm", "cascades": 4}]},
+                "derive": {"map-size": "int(2048 / sqrt(cascades))"}}
+        cells = sweep.expand(spec, self.options)
+        self.assertEqual([c.labels["set-up"] for c in cells], ["one", "four"])
+        self.assertEqual([c.options["map-size"] for c in cells], [2048, 1024])
+        self.assertEqual(cells[1].arguments(self.options)[:2], ["--cascades", "4"])
+
+    def test_flags_are_present_or_absent(self):
+        cells = sweep.expand({"axes": {"stabilize": [True, False]}}, self.options)
+        self.assertIn("--stabilize", cells[0].arguments(self.options))
+        self.assertNotIn("--stabilize", cells[1].arguments(self.options))
+
+    def test_bad_specifications_name_their_key(self):
+        cases = [
+            ({"axes": {"technic": ["tsm"]}}, "axes.technic: not an option of shadowkit eval"),
+            ({"axes": {"technique": []}}, "axes.technique: is empty"),
+            ({"fixed": {"json": "x.json"}}, "fixed.json: the sweep writes the results itself"),
+            ({"axes": {"map-size": [1024]}, "where": ["map_size > 4096"]}, "where[0]: 'map_size > 4096' leaves no cell"),
+            ({"axes": {"map-size": [1024]}, "where": ["__import__('os')"]}, "where[0]:"),
+            ({"axes": {"map-size": [1024]}, "where": ["cascades > 1"]}, "where[0]: 'cascades > 1': unknown name"),
+            ({"fixed": {"stabilize": "yes"}}, "fixed.stabilize: --stabilize is a flag"),
+            ({"fixed": {"view": "--json=x"}}, "fixed.view: '--json=x' is not a value"),
+            ({"axes": {"view": ["noon"]}, "fixed": {"view": "paper"}}, "axes.view: also in fixed"),
+            ({"axis": {}}, "unknown key 'axis'"),
+        ]
+        for spec, message in cases:
+            with self.subTest(spec=spec):
+                with self.assertRaises(sweep.SpecError) as caught:
+                    sweep.expand(spec, self.options)
+                self.assertIn(message, str(caught.exception))
+                self.assertNotIn("\n", str(caught.exception))
+
+
+class SweepTest(unittest.TestCase):
+    def setUp(self):
+        self.dir = tempfile.mkdtemp(prefix="shadowkit-sweep-test-")
+
+    def tearDown(self):
+        shutil.rmtree(self.dir, ignore_errors=True)
+
+    def test_a_bad_value_stops_the_sweep_before_any_cell_runs(self):
+        for axes, key in [({"view": ["noon", "nowhere"]}, "axes.view: --view: unknown view \"nowhere\""),
+                          ({"filter": ["pcf:3", "pcf:40"]}, "axes.filter: --filter: expected")]:
+            out = os.path.join(self.dir, "bad")
+            spec = write_spec(self.dir, {"fixed": SMALL, "axes": axes})
+            code, err = run_main(spec, "--out", out)
+            self.assertEqual(code, 1)
+            self.assertIn(key, err)
+            self.assertEqual(len(err.strip().splitlines()), 1, err)
+            self.assertFalse(os.path.exists(os.path.join(out, "cells.jsonl")))
+
+    def test_a_cells_rows_are_what_eval_reports_for_the_same_options(self):
+        spec = write_spec(self.dir, {"fixed": {**SMALL, "views": "perpendicular,noon"},
+                                     "axes": {"technique": ["lispsm", "csm"]}})
+        out = os.path.join(self.dir, "out")
+        self.assertEqual(run_main(spec, "--out", out)[0], 0)
+        rows = figures(out)
+        self.assertEqual(len(rows), 4)
+        for technique in ["lispsm", "csm"]:
+            report = os.path.join(self.dir, f"{technique}.json")
+            subprocess.run([CLI, "eval", "--technique", technique, "--views", "perpendicular,noon", "--json", report,
+                            *[str(x) for k, v in SMALL.items() for x in (f"--{k}", v)]], check=True,
+                           capture_output=True)
+            with open(report) as f:
+                expected = json.load(f)["views"]
+            for view in expected:
+                got = next(r for (key, v), r in rows.items() if v == view["view"] and r["technique"] == technique)
+                want = {k: v for k, v in sweep.rows_of({"views": [view]})[0].items() if k not in TIMINGS}
+                self.assertEqual({k: got[k] for k in want}, want)
+        with open(os.path.join(out, "results.csv")) as f:
+            self.assertEqual(len(f.read().strip().splitlines()), 1 + 4)
+        for name in ["summary.md", "summary.html", "pareto.png"]:
+            self.assertTrue(os.path.getsize(os.path.join(out, name)) > 0, name)
+
+    def test_killed_and_resumed_every_cell_once_with_the_same_figures(self):
+        spec = write_spec(self.dir, GRID)
+        whole, cut = os.path.join(self.dir, "whole"), os.path.join(self.dir, "cut")
+        self.assertEqual(run_main(spec, "--out", whole)[0], 0)
+        process = subprocess.Popen([sys.executable, "-m", "shadowkit.sweep", spec, "--out", cut],
+                                   stderr=subprocess.DEVNULL, start_new_session=True)
+        jsonl = os.path.join(cut, "cells.jsonl")
+        deadline = time.monotonic() + 120
+        while time.monotonic() < deadline and process.poll() is None:
+            if os.path.exists(jsonl) and len(open(jsonl).readlines()) >= 2:
+                break
+            time.sleep(0.05)
+        os.killpg(process.pid, signal.SIGKILL)
+        process.wait()
+        kept = len(records(cut))
+        self.assertGreaterEqual(kept, 2)
+        self.assertLess(kept, 5, "the sweep finished before it was killed: nothing to resume")
+        with open(jsonl, "a") as f:
+            f.write('{"key": "cut sho')  # a line a kill cut short is ignored
+        code, err = run_main(spec, "--out", cut)
+        self.assertEqual(code, 0, err)
+        self.assertIn(f"{kept} measured before, {5 - kept} to run", err)
+        keys = [r["key"] for r in records(cut)]
+        self.assertEqual(len(keys), 5)
+        self.assertEqual(len(set(keys)), 5)
+        self.assertEqual(figures(cut), figures(whole))
+
+    def test_a_changed_option_reruns_only_the_cells_it_changes(self):
+        out = os.path.join(self.dir, "out")
+        self.assertEqual(run_main(write_spec(self.dir, GRID), "--out", out)[0], 0)
+        changed = json.loads(json.dumps(GRID))
+        changed["axes"]["technique"] = ["focused", "tsm", "psm"]  # lispsm's two cells become psm's
+        code, err = run_main(write_spec(self.dir, changed, "changed.json"), "--out", out, "--dry-run")
+        self.assertEqual(code, 0)
+        self.assertIn("3 measured before, 2 to run", err)
+
+    def test_results_of_another_program_are_refused_not_mixed(self):
+        out = os.path.join(self.dir, "out")
+        spec = write_spec(self.dir, {"fixed": SMALL, "axes": {"map-size": [512]}})
+        self.assertEqual(run_main(spec, "--out", out)[0], 0)
+        with open(os.path.join(out, "cells.jsonl")) as f:
+            record = json.loads(f.readline())
+        record["fingerprint"]["program"] = "0123456789abcdef"
+        with open(os.path.join(out, "cells.jsonl"), "w") as f:
+            f.write(json.dumps(record) + "\n")
+        code, err = run_main(spec, "--out", out)
+        self.assertEqual(code, 1)
+        self.assertIn("1 cells were measured by another shadowkit", err)
+        code, err = run_main(spec, "--out", out, "--discard-stale")
+        self.assertEqual(code, 0, err)
+        self.assertEqual(len(records(out)), 1)
+        self.assertTrue(os.path.exists(os.path.join(out, "cells.stale.jsonl")))
+
+
+def free_port():
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+@unittest.skipUnless(shutil.which("dask-scheduler") and shutil.which("dask-worker"),
+                     "Dask is not installed (Debian: python3-distributed)")
+class DaskTest(unittest.TestCase):
+    def setUp(self):
+        self.dir = tempfile.mkdtemp(prefix="shadowkit-sweep-dask-")
+        self.spec = write_spec(self.dir, {"fixed": SMALL, "axes": {"technique": ["focused", "tsm", "lispsm", "psm"],
+                                                                      "map-size": [512, 1024]}})  # 8 cells
+        self.serial = os.path.join(self.dir, "serial")
+        self.assertEqual(run_main(self.spec, "--out", self.serial)[0], 0)
+        self.processes = []
+
+    def tearDown(self):
+        for p in self.processes:
+            with contextlib.suppress(ProcessLookupError):
+                os.killpg(p.pid, signal.SIGKILL)
+            p.wait()
+        shutil.rmtree(self.dir, ignore_errors=True)
+
+    def start(self, *command):
+        p = subprocess.Popen(command, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True,
+                             cwd=self.dir)
+        self.processes.append(p)
+        return p
+
+    def test_a_local_cluster_gives_the_serial_rows(self):
+        out = os.path.join(self.dir, "local")
+        code, err = run_main(self.spec, "--out", out, "--local-workers", "2")
+        self.assertEqual(code, 0, err)
+        self.assertEqual(figures(out), figures(self.serial))
+
+    def test_a_worker_killed_mid_sweep_loses_nothing_and_duplicates_nothing(self):
+        address = f"tcp://127.0.0.1:{free_port()}"
+        self.start("dask-scheduler", "--host", "127.0.0.1", "--port", address.rsplit(":", 1)[1],
+                   "--dashboard-address", ":0")
+        workers = [self.start("dask-worker", address, "--nthreads", "1", "--no-nanny", "--no-dashboard")
+                   for _ in range(2)]
+        out = os.path.join(self.dir, "dask")
+        jsonl = os.path.join(out, "cells.jsonl")
+        sweep_run = subprocess.Popen([sys.executable, "-m", "shadowkit.sweep", self.spec, "--out", out, "--scheduler",
+                                      address], stderr=subprocess.PIPE, text=True)
+        deadline = time.monotonic() + 120
+        while time.monotonic() < deadline and sweep_run.poll() is None:
+            if os.path.exists(jsonl) and len(open(jsonl).readlines()) >= 1:
+                break
+            time.sleep(0.05)
+        measured_before_the_kill = len(records(out)) if os.path.exists(jsonl) else 0
+        os.killpg(workers[0].pid, signal.SIGKILL)  # its cells in flight are Dask's to run again
+        self.assertLess(measured_before_the_kill, 8, "the sweep finished before the worker was killed")
+        _, err = sweep_run.communicate(timeout=300)
+        self.assertEqual(sweep_run.returncode, 0, err)
+        keys = [r["key"] for r in records(out)]
+        self.assertEqual(sorted(keys), sorted(set(keys)))
+        self.assertEqual(figures(out), figures(self.serial))
+
+
+if __name__ == "__main__":
+    unittest.main()
