@@ -46,10 +46,13 @@ drift from what the program measures.
       any of the above, written into PAGE.md between its lines `<!-- table NAME: how it is measured -->` and
       `<!-- /table -->` (indented as the first marker is) instead of printed
 
-LABEL is the row's name as printed (e.g. '`tsm`' or '`csm` 4 × 1024²'). tools/measure-readme.sh
-runs the evaluations behind every table and prints them.
+LABEL is the row's name as printed (e.g. '`tsm`' or '`csm` 4 × 1024²'); FILE a `shadowkit eval --json`
+report, or a sweep's results.csv with the configuration's rows chosen by COLUMN=VALUE
+(`out/readme/results.csv#set-up=tsm`). tools/measure-readme.sh runs the sweep behind every table
+(data/sweeps/readme.json) and writes them.
 """
 import contextlib
+import csv
 import io
 import json
 import re
@@ -58,12 +61,31 @@ import sys
 VIEWS = ["paper", "perpendicular", "into-sun", "sun-behind", "noon", "aerial"]
 
 
+def number(text):
+    """A CSV cell as the JSON report had it: int, float, or the text."""
+    for kind in (int, float):
+        try:
+            return kind(text)
+        except ValueError:
+            pass
+    return text
+
+
 def load(arg):
     label, _, path = arg.partition("=")
     if not path:
-        sys.exit(f"readme_tables: expected LABEL=FILE.json, got '{arg}'")
-    with open(path) as f:
-        rows = {v["view"]: v for v in json.load(f)["views"]}
+        sys.exit(f"readme_tables: expected LABEL=FILE.json or LABEL=results.csv#COLUMN=VALUE, got '{arg}'")
+    if "#" in path:  # a sweep's results.csv, the rows of one configuration
+        path, _, selector = path.partition("#")
+        column, _, value = selector.partition("=")
+        with open(path, newline="") as f:
+            chosen = [r for r in csv.DictReader(f) if r.get(column) == value]
+        if not chosen:
+            sys.exit(f"readme_tables: {path}: no row with {column} = {value}")
+        rows = {r["view"]: {k: number(v) for k, v in r.items()} for r in chosen}
+    else:
+        with open(path) as f:
+            rows = {v["view"]: v for v in json.load(f)["views"]}
     missing = [v for v in VIEWS if v not in rows]
     if missing:
         sys.exit(f"readme_tables: {path}: no figures for view(s) {', '.join(missing)}")

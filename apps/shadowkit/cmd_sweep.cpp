@@ -25,8 +25,8 @@ namespace fs = std::filesystem;
 // built this program; empty when neither has it (built without pybind11).
 fs::path pythonPackageRoot(const fs::path& exe) {
     std::error_code ec;
-    for (const fs::path& root : {(exe.parent_path() / SHADOWKIT_PYTHON_FROM_BIN).lexically_normal(),
-                                 fs::path(SHADOWKIT_BUILD_PYTHON_DIR)})
+    for (const fs::path& root :
+         {(exe.parent_path() / SHADOWKIT_PYTHON_FROM_BIN).lexically_normal(), fs::path(SHADOWKIT_BUILD_PYTHON_DIR)})
         if (fs::exists(root / "shadowkit" / "sweep" / "__main__.py", ec)) return root;
     return {};
 }

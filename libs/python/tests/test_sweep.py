@@ -79,6 +79,16 @@ class ExpansionTest(unittest.TestCase):
         self.assertEqual([c.options["map-size"] for c in cells], [2048, 1024])
         self.assertEqual(cells[1].arguments(self.options)[:2], ["--cascades", "4"])
 
+    def test_the_example_specifications_expand(self):
+        examples = os.path.join(os.path.dirname(__file__), "..", "..", "..", "data", "sweeps")
+        budget = sweep.expand(sweep.load(os.path.join(examples, "texel-budget.toml")), self.options)
+        self.assertEqual(len(budget), 4 * 4 * 2)
+        for cell in budget:  # every set-up spends the same texels
+            texels = cell.options["cascades"] * cell.options["map-size"] ** 2
+            self.assertEqual(texels, cell.labels["budget"] ** 2, cell)
+        readme = sweep.expand(sweep.load(os.path.join(examples, "readme.json")), self.options)
+        self.assertEqual(len(readme), 13)
+
     def test_flags_are_present_or_absent(self):
         cells = sweep.expand({"axes": {"stabilize": [True, False]}}, self.options)
         self.assertIn("--stabilize", cells[0].arguments(self.options))
@@ -96,6 +106,8 @@ class ExpansionTest(unittest.TestCase):
             ({"fixed": {"view": "--json=x"}}, "fixed.view: '--json=x' is not a value"),
             ({"axes": {"view": ["noon"]}, "fixed": {"view": "paper"}}, "axes.view: also in fixed"),
             ({"axis": {}}, "unknown key 'axis'"),
+            ({"parameters": {"map-size": [1]}}, "parameters.map-size: is an option"),
+            ({"parameters": {"budget": []}}, "parameters.budget: expected a non-empty list"),
         ]
         for spec, message in cases:
             with self.subTest(spec=spec):

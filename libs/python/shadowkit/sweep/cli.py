@@ -7,6 +7,7 @@ import os
 import re
 import subprocess
 import sys
+import time
 
 from . import spec as specification
 from .cells import task_of
@@ -113,7 +114,9 @@ def main(argv=None):
             raise specification.SpecError(f"axes: cells {keys.index(keys[first]) + 1} and {first + 1} have the same "
                                            f"options ({cells[first].options})")
         arguments = [cell.arguments(takes_value) for cell in cells]
+        started = time.monotonic()
         check_cells(cells, arguments, program, data_dir)
+        timings = {"checked": time.monotonic() - started}
         store = Store(args.out, print_)
         store.refuse_stale(args.discard_stale)
         todo = [i for i, key in enumerate(keys) if key not in store.done]
@@ -130,11 +133,13 @@ def main(argv=None):
             return 0
         tasks = [task_of(cells[i], keys[i], arguments[i], program, data_dir, print_, args.cell_timeout) for i in todo]
         progress = Progress(len(cells), len(cells) - len(todo))
+        started = time.monotonic()
         if args.scheduler or args.local_workers:
             run_dask(tasks, store, progress, scheduler=args.scheduler, local_workers=args.local_workers)
         else:
             run_serial(tasks, store, progress)
         progress.finish()
+        timings["measured"] = time.monotonic() - started
     except (specification.SpecError, ProgramError, StoreError, RuntimeError, OSError) as e:
         print(f"shadowkit sweep: error: {e}", file=sys.stderr)
         return 1
@@ -148,13 +153,18 @@ def main(argv=None):
     finally:
         if store:
             store.close()
+    started = time.monotonic()
     rows = store.write_tables(keys)
     varying = _varying(specification.load(args.spec))
     title = specification.load(args.spec).get("description") or os.path.basename(args.spec)
     if rows:
-        summary = write_summary(rows, args.out, varying, title)
+        spec = specification.load(args.spec)
+        summary = write_summary(rows, args.out, varying, title, named=_varying({**spec, "derive": {}}))
         print(f"results: {os.path.join(args.out, 'results.csv')} ({len(rows)} rows), summary: {summary}",
               file=sys.stderr)
+    print(f"sweep: checked {len(cells)} cells in {timings['checked']:.2f} s, measured {len(todo)} in "
+          f"{timings['measured']:.2f} s, wrote the results and summary in {time.monotonic() - started:.2f} s",
+          file=sys.stderr)
     failed = len(cells) - sum(k in store.done for k in keys)
     if failed:
         print(f"shadowkit sweep: error: {failed} cells failed (errors in {os.path.join(args.out, 'failures.jsonl')})",
@@ -164,5 +174,5 @@ def main(argv=None):
 
 
 def _varying(spec):
-    names = list(spec.get("axes", {})) + list(spec.get("derive", {}))
+    names = list(spec.get("parameters", {})) + list(spec.get("axes", {})) + list(spec.get("derive", {}))
     return [n.replace("-", "_") if not isinstance(spec.get("axes", {}).get(n, [None])[0], dict) else n for n in names]

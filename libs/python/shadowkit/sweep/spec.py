@@ -5,6 +5,7 @@ A specification (JSON, or TOML) names `shadowkit eval` options:
     {
       "description": "what the grid is for",
       "fixed":  {"trees": 2000, "size": "640x360", "views": "all"},
+      "parameters": {"budget": [2048, 4096]},
       "axes":   {"technique": ["focused", "tsm", "lispsm"], "map-size": [1024, 2048]},
       "derive": {"bias-slope": "2 if technique == 'tsm' else 1"},
       "where":  ["not (technique == 'focused' and map_size == 1024)"]
@@ -14,6 +15,8 @@ A specification (JSON, or TOML) names `shadowkit eval` options:
   are their product, in the order written, the first axis slowest). An axis whose values are
   objects is a *bundle* axis: each value is a set of options with a `label`, e.g. `"set-up":
   [{"label": "csm 4x1024", "technique": "csm", "cascades": 4, "map-size": 1024}, ...]`.
+- `parameters`: axes that are not options but names for `derive` and `where` (a texel budget);
+  the grid's slowest axes, each cell's value a column of the results.
 - `derive`: options computed from the others (in the order written), `where`: conditions a
   cell must meet (expressions.py says what they may use; names take underscores).
 - Option names are `eval`'s flags without the dashes (`map-size` or `map_size`); a flag without
@@ -32,7 +35,7 @@ from .expressions import Expression, ExpressionError
 
 # Written by the sweep itself, or not a measurement.
 RESERVED = {"json", "csv", "plot", "report", "dump", "error-map", "aliasing-map", "state", "check", "help"}
-TOP_LEVEL = {"description", "fixed", "axes", "derive", "where"}
+TOP_LEVEL = {"description", "fixed", "parameters", "axes", "derive", "where"}
 MAX_CELLS = 1_000_000
 
 
@@ -155,8 +158,22 @@ def expand(spec, takes_value, source="spec"):
     axes = spec.get("axes", {})
     if not isinstance(axes, dict):
         raise SpecError("axes: expected an object of option: [values]")
+    parameters = spec.get("parameters", {})
+    if not isinstance(parameters, dict):
+        raise SpecError("parameters: expected an object of name: [values]")
     axis_values = []  # per axis: [(options, label or None)]
-    bundles = []
+    bundles = []  # axes whose cells carry a label: bundles and parameters
+    for key, values in parameters.items():
+        if key.replace("_", "-") in takes_value:
+            raise SpecError(f"parameters.{key}: is an option of shadowkit eval (make it an axis)")
+        if not key.isidentifier():
+            raise SpecError(f"parameters.{key}: a parameter's name is a name in expressions (letters, digits, _)")
+        if not isinstance(values, list) or not values:
+            raise SpecError(f"parameters.{key}: expected a non-empty list of values")
+        if any(isinstance(v, (dict, list)) or v is None for v in values):
+            raise SpecError(f"parameters.{key}: values are numbers or strings")
+        bundles.append(key)
+        axis_values.append([({}, v) for v in values])
     for key, values in axes.items():
         if not isinstance(values, list):
             raise SpecError(f"axes.{key}: expected a list of values")
@@ -216,7 +233,7 @@ def expand(spec, takes_value, source="spec"):
     for combination in itertools.product(*axis_values):
         options, labels = dict(fixed), {}
         origins = {name: f"fixed.{name}" for name in fixed}
-        for axis, (chosen, label) in zip(axes, combination):
+        for axis, (chosen, label) in zip([*parameters, *axes], combination):
             for name, value in chosen.items():
                 if name in options and options[name] != value:
                     raise SpecError(f"axes.{axis}: --{name} is also given by {origins[name]} for one cell "

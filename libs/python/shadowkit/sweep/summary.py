@@ -40,9 +40,14 @@ def _table(header, rows):
     return lines
 
 
-def write_summary(rows, directory, varying, title):
+def write_summary(rows, directory, varying, title, named=None):
     """Writes summary.md, summary.html and pareto.png; returns summary.md's path. `varying` are the
-    columns that tell the configurations apart (bundle axes, axes, derived options)."""
+    columns that tell the configurations apart (parameters, axes, derived options); `named` those
+    of them that name a configuration on the plot (default: all)."""
+    named = [k for k in (named or varying) if k not in ("view", "views", "path")]
+
+    def short(row):  # the plot's labels: values only
+        return " ".join(str(row[k]) for k in named if k in row and row[k] != "")
 
     def describe(row):  # the view (or path) is the table's own column
         return ", ".join(f"{k}={row[k]}" for k in varying
@@ -80,7 +85,7 @@ def write_summary(rows, directory, varying, title):
         path_rows.sort(key=lambda p: (p[0], p[1]))
         md += _table(["path", "configuration", "frames", "mean wrong_pct", "flicker_pct mean"],
                      [[p, d, n, f"{m:.3f}", f"{f:.3f}" if f != "" else "—"] for p, m, f, n, d in path_rows])
-    plot = _plot(fronts, still, directory, describe) if still else None
+    plot = _plot(fronts, still, directory, short, named) if still else None
     if plot:
         md += ["", f"![wrong_pct against texels per view, Pareto front joined]({os.path.basename(plot)})"]
     md_path = os.path.join(directory, "summary.md")
@@ -90,7 +95,7 @@ def write_summary(rows, directory, varying, title):
     return md_path
 
 
-def _plot(fronts, still, directory, describe):
+def _plot(fronts, still, directory, short, named):
     try:
         import matplotlib
     except ImportError:  # the tables do not need it
@@ -105,7 +110,7 @@ def _plot(fronts, still, directory, describe):
         return None
     columns = min(3, len(views))
     lines = math.ceil(len(views) / columns)
-    figure, axes = plt.subplots(lines, columns, figsize=(4.2 * columns, 3.4 * lines), squeeze=False)
+    figure, axes = plt.subplots(lines, columns, figsize=(4.8 * columns, 3.6 * lines), squeeze=False)
     for ax, view in zip(axes.flat, views):
         mine = [r for r in still if r["view"] == view and texels(r) is not None]
         ax.scatter([texels(r) / (1 << 20) for r in mine], [r["wrong_pct"] for r in mine], s=14, color="0.6",
@@ -114,9 +119,10 @@ def _plot(fronts, still, directory, describe):
         ax.plot([c / (1 << 20) for c, _, _ in front], [e for _, e, _ in front], "o-", color="C3", ms=4,
                 label="Pareto front")
         for c, e, r in front:
-            ax.annotate(describe(r), (c / (1 << 20), e), fontsize=5, xytext=(3, 3), textcoords="offset points")
+            ax.annotate(short(r), (c / (1 << 20), e), fontsize=6, xytext=(3, 3), textcoords="offset points")
         ax.set_xscale("log", base=2)
-        ax.set_title(view, fontsize=9)
+        ax.margins(x=0.25)
+        ax.set_title(f"{view} (front labelled: {' '.join(named)})", fontsize=8)
         ax.set_xlabel("M texels", fontsize=8)
         ax.set_ylabel("wrong_pct", fontsize=8)
         ax.tick_params(labelsize=7)
