@@ -46,6 +46,13 @@ def records(out):
         return [json.loads(line) for line in f]
 
 
+def lines_in(path):
+    if not os.path.exists(path):
+        return 0
+    with open(path) as f:
+        return sum(1 for _ in f)
+
+
 def figures(out):
     """{(cell key, view): figures without timings} of a finished sweep."""
     rows = {}
@@ -117,6 +124,53 @@ class ExpansionTest(unittest.TestCase):
                 self.assertNotIn("\n", str(caught.exception))
 
 
+class HostileSpecificationTest(unittest.TestCase):
+    """A specification is input from outside: thousands of mutations of the example grids must
+    each expand or give a SpecError, never another exception, a hang or a huge allocation."""
+
+    def test_mutated_specifications_expand_or_give_one_line(self):
+        import random
+
+        options = eval_options(CLI)
+        examples = os.path.join(os.path.dirname(__file__), "..", "..", "..", "data", "sweeps")
+        seeds = [sweep.load(os.path.join(examples, name)) for name in sorted(os.listdir(examples))] + [GRID]
+        values = [None, True, -1, 0, 2.5, 1e308, "", "x", "-", "--json", "'", "a" * 300, [], [1, 2], {},
+                  {"label": 1}, "map_size * 'x'", "10 ** 10 ** 10", "(" * 200 + "1" + ")" * 200, "[1] * 10",
+                  "max()", "sqrt(-1)", "int('a')", "technique.upper()", "__import__('os')", "lambda: 1",
+                  "budget // 0", "cascades if cascades else x", "'a' in 3", "[x for x in [1]]"]
+        rng = random.Random(20261125)
+
+        def mutate(node, depth=0):
+            if isinstance(node, dict) and node and rng.random() < 0.7:
+                key = rng.choice(list(node))
+                if rng.random() < 0.15:
+                    node.pop(key)
+                elif rng.random() < 0.2:
+                    node[rng.choice(["where", "derive", "axes", "fixed", "parameters", "label", "view", key + "x"])] = \
+                        rng.choice(values)
+                else:
+                    node[key] = mutate(node[key], depth + 1)
+                return node
+            if isinstance(node, list) and node and rng.random() < 0.7:
+                i = rng.randrange(len(node))
+                node[i] = mutate(node[i], depth + 1)
+                return node
+            return rng.choice(values) if depth or rng.random() < 0.3 else node
+
+        for trial in range(3000):
+            spec = mutate(json.loads(json.dumps(rng.choice(seeds))))
+            try:
+                cells = sweep.expand(spec, options) if isinstance(spec, dict) else None
+            except sweep.SpecError as e:
+                self.assertNotIn("\n", str(e))
+                continue
+            except Exception as e:  # noqa: BLE001: the point of the test
+                self.fail(f"trial {trial}: {type(e).__name__}: {e} for {json.dumps(spec)[:300]}")
+            for cell in cells or []:
+                args = cell.arguments(options)
+                self.assertFalse(any(a.startswith("--") and a[2:] not in options for a in args), args)
+
+
 class SweepTest(unittest.TestCase):
     def setUp(self):
         self.dir = tempfile.mkdtemp(prefix="shadowkit-sweep-test-")
@@ -167,7 +221,7 @@ class SweepTest(unittest.TestCase):
         jsonl = os.path.join(cut, "cells.jsonl")
         deadline = time.monotonic() + 120
         while time.monotonic() < deadline and process.poll() is None:
-            if os.path.exists(jsonl) and len(open(jsonl).readlines()) >= 2:
+            if lines_in(jsonl) >= 2:
                 break
             time.sleep(0.05)
         os.killpg(process.pid, signal.SIGKILL)
@@ -193,6 +247,39 @@ class SweepTest(unittest.TestCase):
         code, err = run_main(write_spec(self.dir, changed, "changed.json"), "--out", out, "--dry-run")
         self.assertEqual(code, 0)
         self.assertIn("3 measured before, 2 to run", err)
+
+    def test_a_path_gives_a_row_per_frame_with_the_paths_summary(self):
+        spec = write_spec(self.dir, {"fixed": {**SMALL, "path": "flythrough", "frames": "0:3"},
+                                     "axes": {"technique": ["tsm"]}})
+        out = os.path.join(self.dir, "out")
+        code, err = run_main(spec, "--out", out)
+        self.assertEqual(code, 0, err)
+        rows = records(out)[0]["rows"]
+        self.assertEqual([r["frame"] for r in rows], [0, 1, 2])
+        self.assertTrue(all(r["path"] == "flythrough" and "flicker_pct_mean" in r for r in rows))
+        with open(os.path.join(out, "summary.md")) as f:
+            self.assertIn("## Paths", f.read())
+
+    def test_a_worker_with_another_program_measures_nothing(self):
+        cell = sweep.expand({"fixed": SMALL}, eval_options(CLI))[0]
+        from shadowkit.sweep.cells import task_of
+        from shadowkit.sweep.program import data_directory, fingerprint
+
+        expected = dict(fingerprint(CLI, data_directory()), program="0123456789abcdef")
+        record = sweep.run_cell(task_of(cell, "k", cell.arguments(eval_options(CLI)), CLI, data_directory(), expected))
+        self.assertIn("runs another shadowkit or data", record["error"])
+        self.assertNotIn("rows", record)
+
+    def test_the_command_line_runs_the_package_with_itself(self):
+        spec = write_spec(self.dir, GRID)
+        env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "SHADOWKIT")}
+        done = subprocess.run([CLI, "sweep", spec, "--out", os.path.join(self.dir, "out"), "--dry-run"], env=env,
+                              capture_output=True, text=True)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        lines = done.stdout.strip().splitlines()
+        self.assertEqual(len(lines), 5)
+        self.assertTrue(all(line.startswith(os.path.basename(CLI) + " eval ") for line in lines), lines)
+        self.assertIn("5 cells", done.stderr)
 
     def test_results_of_another_program_are_refused_not_mixed(self):
         out = os.path.join(self.dir, "out")
@@ -260,10 +347,10 @@ class DaskTest(unittest.TestCase):
                                       address], stderr=subprocess.PIPE, text=True)
         deadline = time.monotonic() + 120
         while time.monotonic() < deadline and sweep_run.poll() is None:
-            if os.path.exists(jsonl) and len(open(jsonl).readlines()) >= 1:
+            if lines_in(jsonl) >= 1:
                 break
             time.sleep(0.05)
-        measured_before_the_kill = len(records(out)) if os.path.exists(jsonl) else 0
+        measured_before_the_kill = lines_in(jsonl)
         os.killpg(workers[0].pid, signal.SIGKILL)  # its cells in flight are Dask's to run again
         self.assertLess(measured_before_the_kill, 8, "the sweep finished before the worker was killed")
         _, err = sweep_run.communicate(timeout=300)

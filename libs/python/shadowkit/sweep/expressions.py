@@ -34,13 +34,17 @@ class Expression:
     def __init__(self, text):
         if not isinstance(text, str) or not text.strip():
             raise ExpressionError("expected an expression as a non-empty string")
+        if len(text) > 1000:
+            raise ExpressionError("an expression of more than 1000 characters")
+        self.text = text
         try:
             self._tree = ast.parse(text.strip(), mode="eval").body
+            self.names = set()
+            self._check(self._tree)
         except SyntaxError as e:
             raise ExpressionError(f"'{text}' is not an expression ({e.msg})") from None
-        self.text = text
-        self.names = set()
-        self._check(self._tree)
+        except (RecursionError, MemoryError):
+            raise ExpressionError(f"'{text[:40]}...' is nested too deeply") from None
 
     def _check(self, node):
         allowed = (ast.Constant, ast.Name, ast.BinOp, ast.UnaryOp, ast.BoolOp, ast.Compare, ast.IfExp, ast.Call,
@@ -69,6 +73,8 @@ class Expression:
             raise
         except (ArithmeticError, TypeError, ValueError) as e:
             raise ExpressionError(f"'{self.text}': {e}") from None
+        except RecursionError:
+            raise ExpressionError(f"'{self.text[:40]}...' is nested too deeply") from None
 
     def _eval(self, node, names):
         if isinstance(node, ast.Constant):
@@ -81,8 +87,10 @@ class Expression:
             return [self._eval(e, names) for e in node.elts]
         if isinstance(node, ast.BinOp):
             left, right = self._eval(node.left, names), self._eval(node.right, names)
-            if isinstance(node.op, ast.Pow) and abs(right) > 64:
+            if isinstance(node.op, ast.Pow) and isinstance(right, (int, float)) and abs(right) > 64:
                 raise ExpressionError(f"'{self.text}': exponent {right} is too large")
+            if isinstance(node.op, ast.Mult) and any(isinstance(v, (str, list)) for v in (left, right)):
+                raise ExpressionError(f"'{self.text}': only numbers multiply")
             return _BINARY[type(node.op)](left, right)
         if isinstance(node, ast.UnaryOp):
             value = self._eval(node.operand, names)

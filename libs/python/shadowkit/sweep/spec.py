@@ -99,7 +99,7 @@ def load(path):
             spec = tomllib.loads(data.decode())
         else:
             spec = json.loads(data)
-    except (ValueError, UnicodeDecodeError) as e:
+    except (ValueError, UnicodeDecodeError, RecursionError) as e:
         raise SpecError(f"{path}: not valid {'TOML' if path.endswith('.toml') else 'JSON'} ({e})") from None
     if not isinstance(spec, dict):
         raise SpecError(f"{path}: expected an object with fixed, axes, derive, where")
