@@ -2,6 +2,7 @@
 #include "auto_technique.h"
 #include "commands.h"
 #include "eval_path.h"
+#include "eval_session.h"
 #include "frame_config_options.h"
 #include "html_reports.h"
 #include "options.h"
@@ -10,7 +11,6 @@
 #include "shadowkit/eval/report.h"
 #include "shadowkit/frame/frame_driver.h"
 #include "shadowkit/measure/measurer.h"
-#include "shadowkit/scene/animation.h"
 
 #include <fmt/format.h>
 
@@ -34,7 +34,9 @@ struct EvalArgs {
     LocalLightOptions lights;
     std::string views; // "a,b" or "all"; empty: --view
     std::string json, errorMap, aliasingMap, dump, csv, plot, report;
-    bool check = false; // --check: validate every option, render and measure nothing
+    bool check = false;             // --check: validate every option, render and measure nothing
+    bool serve = false;             // --serve: evaluate each request read from stdin (eval_session.h)
+    EvalSession* session = nullptr; // a request of --serve: the scene and measurer kept between requests
 };
 
 // "maps/err.png" for view "noon" among several -> "maps/err-noon.png".
@@ -73,6 +75,7 @@ core::Status checkViewName(const std::string& name) {
 }
 
 int runEval(const EvalArgs& args) {
+    if (args.serve) return serveEvaluations();
     if (auto s = args.technique.check(/*measuresFrames=*/true, /*takesAuto=*/true); !s) return fail(s.errorInfo());
     if (auto s = args.render.check(); !s) return fail(s.errorInfo());
     if (auto s = args.scene.check(); !s) return fail(s.errorInfo());
@@ -83,6 +86,10 @@ int runEval(const EvalArgs& args) {
         if (!args.views.empty() || !args.errorMap.empty() || !args.aliasingMap.empty() || !args.dump.empty())
             return fail("--path: evaluates a path's frames, so --views, --error-map, --aliasing-map and --dump (still "
                         "views) do not apply");
+        // A path animates its scene frame by frame with a measurer (GL context) of its own, so
+        // --serve's kept one goes first: when the path's context is destroyed none is current,
+        // and the kept one would be drawn into unbound.
+        if (args.session) args.session->reset();
         return runEvalPath({args.scene, args.view, args.technique, args.render, args.timeline, args.lights, args.csv,
                             args.plot, args.json, args.report, args.check});
     }
@@ -103,29 +110,27 @@ int runEval(const EvalArgs& args) {
     auto driver = frame::FrameDriver::create(std::move(config).value());
     if (!driver) return fail(withFlagName(driver.errorInfo()));
     if (args.check) return 0;
-    auto sceneData = args.scene.load();
-    if (!sceneData) return fail(sceneData.errorInfo());
     const double time = timeline->frames.front().time;
-    scene::animate(*sceneData, time); // movers where they are at --time (t = 0: where they stand)
-    auto measurer = measure::Measurer::createHeadless(*sceneData);
-    if (!measurer) return fail(measurer.errorInfo());
-    fmt::print(stderr, "ray tracer: built in {:.2f} s\n", (*measurer)->rayTracerBuildSeconds());
+    EvalSession single;
+    EvalSession& session = args.session ? *args.session : single;
+    if (auto s = session.prepare(args.scene, time); !s) return fail(s.errorInfo());
+    scene::Scene& world = session.scene();
+    measure::Measurer* const measurer = &session.measurer();
 
     std::vector<eval::ViewReport> reports;
-    eval::HtmlReport page{
-        .title = "shadowkit eval", .command = invocation(), .machine = machineDescription(**measurer)};
+    eval::HtmlReport page{.title = "shadowkit eval", .command = invocation(), .machine = machineDescription(*measurer)};
     fmt::print("{:<14} {:<10} {:>5} {:>9} {:>8} {:>7} {:>8} {:>8} {:>7} {:>7} {:>7} {:>7} {:>6}\n", "view", "technique",
                "map", "valid_px", "excl_px", "wrong%", "fshadow%", "flit%", "under%", "ppt50", "ppt95", "ppt99", "sec");
     for (const std::string& name : *names) {
         const auto start = std::chrono::steady_clock::now();
         ViewOptions viewOptions = args.view;
         viewOptions.view = name;
-        auto view = viewOptions.resolve(*sceneData);
+        auto view = viewOptions.resolve(world);
         if (!view) return fail(view.errorInfo());
-        view = timeline->viewAt(*view, *sceneData, time); // the sun of --sun-path at --time
+        view = timeline->viewAt(*view, world, time); // the sun of --sun-path at --time
         if (!view) return fail(view.errorInfo());
         driver->reset(); // a still view is a first frame: the fresh fit, auto's full search
-        auto prepared = driver->prepare((*measurer)->renderer(), *view);
+        auto prepared = driver->prepare(measurer->renderer(), *view);
         if (!prepared) return fail(withFlagName(prepared.errorInfo()));
         printAutoChoice(name, *prepared);
 
@@ -139,7 +144,7 @@ int runEval(const EvalArgs& args) {
             fmt::print(stderr, "\r{}: ray tracing {:3.0f} %", name, 100.0 * done);
             if (done >= 1.0) fmt::print(stderr, "\n");
         };
-        auto measured = (*measurer)->measure(*prepared, options);
+        auto measured = measurer->measure(*prepared, options);
         if (!measured) return fail(withFlagName(measured.errorInfo()));
 
         if (!args.errorMap.empty())
@@ -204,8 +209,9 @@ int runEval(const EvalArgs& args) {
 
 } // namespace
 
-Command addEvalCommand(CLI::App& app) {
+Command addEvalCommand(CLI::App& app, EvalSession* session) {
     auto args = std::make_shared<EvalArgs>();
+    args->session = session;
     CLI::App* cmd = app.add_subcommand("eval", "Measure a technique against ray-traced shadows on the standard views");
     args->scene.addTo(*cmd);
     args->view.addTo(*cmd);
@@ -230,6 +236,11 @@ Command addEvalCommand(CLI::App& app) {
                   "check every option (scene's, view names, technique, filters, lights, path) and exit without "
                   "rendering: 0 when the evaluation would start, else the one-line error (shadowkit sweep checks its "
                   "cells so)");
+    if (!session)
+        cmd->add_flag("--serve", args->serve,
+                      "evaluate requests read from stdin, one JSON array of eval arguments a line, keeping the scene, "
+                      "GL context, BVHs and truths between them while the scene's options stay the same; after each, "
+                      "a line 'shadowkit-serve: exit CODE' (shadowkit sweep's workers)");
     return {cmd, [args] { return runEval(*args); }};
 }
 

@@ -18,7 +18,9 @@ struct Command {
 Command addRenderCommand(CLI::App& app);
 Command addSetupCommand(CLI::App& app);
 Command addExportCommand(CLI::App& app);
-Command addEvalCommand(CLI::App& app);
+class EvalSession;
+// With a session (eval --serve), the scene and measurer are taken from it and left in it.
+Command addEvalCommand(CLI::App& app, EvalSession* session = nullptr);
 Command addAnalyzeCommand(CLI::App& app);
 Command addCompareCommand(CLI::App& app);
 Command addBenchCommand(CLI::App& app);

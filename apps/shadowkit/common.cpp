@@ -1,5 +1,6 @@
 #include "common.h"
 
+#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -19,6 +20,13 @@ int fail(const std::string& message) {
 int fail(const core::Error& error) {
     fail(error.message);
     return error.kind == core::ErrorKind::Environment ? kExitEnvironment : kExitBadInput;
+}
+
+int parseErrorExit(const CLI::ParseError& e) {
+    fmt::print(stderr, "shadowkit: error: {} (see shadowkit --help)\n", e.what());
+    const bool badValue =
+        dynamic_cast<const CLI::ValidationError*>(&e) || dynamic_cast<const CLI::ConversionError*>(&e);
+    return badValue ? kExitBadInput : kExitUsage;
 }
 
 core::Status checkWritable(const char* flag, const std::string& file) {

@@ -6,6 +6,10 @@
 #include <filesystem>
 #include <string>
 
+namespace CLI {
+class ParseError;
+}
+
 namespace shadowkit::app {
 
 // Exit codes (docs/commands.md): 1 a bad value, 2 a usage error (unknown flag, missing
@@ -22,6 +26,11 @@ int fail(const core::Error& error);
 // share/shadowkit beside the running program's bin/ (an installed tree, wherever it was moved),
 // else the source tree's data/ (builds run in place), else the configured install prefix's.
 std::filesystem::path dataDirectory();
+
+// A command line CLI11 could not parse, as one line "shadowkit: error: ... (see shadowkit --help)":
+// 1 for a value that does not convert or is not one of the choices (bad input), else 2 (an
+// unknown flag or a missing argument: a usage error).
+int parseErrorExit(const CLI::ParseError& error);
 
 // A file a command will write later: fails now, before minutes of work, naming the flag, if
 // its directory is missing.

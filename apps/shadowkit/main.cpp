@@ -39,13 +39,8 @@ int main(int argc, char** argv) {
     } catch (const CLI::CallForVersion& e) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
-        // One line, not CLI11's two: what is wrong and where to look. A value that does not
-        // convert or is not one of the choices is bad input (exit 1, like every other bad
-        // value); an unknown flag or a missing argument is a usage error (exit 2).
-        fmt::print(stderr, "shadowkit: error: {} (see shadowkit --help)\n", e.what());
-        const bool badValue =
-            dynamic_cast<const CLI::ValidationError*>(&e) || dynamic_cast<const CLI::ConversionError*>(&e);
-        return badValue ? 1 : 2;
+        // One line, not CLI11's two: what is wrong and where to look.
+        return shadowkit::app::parseErrorExit(e);
     }
     for (const shadowkit::app::Command& command : commands)
         if (command.subcommand->parsed()) return command.run();

@@ -85,6 +85,20 @@ check_fails(eval-unwritable-json "--json" eval ${small} --json "${WORK}/no/such/
 check_fails(eval-unwritable-map "--error-map" eval ${small} --error-map "${WORK}/no/such/dir/e.png")
 
 # setup prints the JSON contract.
+if(CASE STREQUAL "eval-serve")
+  # eval --serve: a bad request is one error line and an exit code of its own; the server goes on
+  # to the next request (here one that only checks its options: no GL needed).
+  file(WRITE "${WORK}/requests" "not json\n[\"--technique\", \"nope\"]\n[\"--serve\"]\n[\"--check\", \"--technique\", \"lispsm\"]\n")
+  execute_process(COMMAND ${SHADOWKIT} eval --serve INPUT_FILE "${WORK}/requests" RESULT_VARIABLE rc
+                  OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  string(REGEX MATCHALL "shadowkit-serve: exit [0-9]+" exits "${out}")
+  string(REGEX MATCHALL "[^\n]*error[^\n]*" error_lines "${err}")
+  list(LENGTH error_lines n)
+  if(NOT rc EQUAL 0 OR NOT exits STREQUAL "shadowkit-serve: exit 1;shadowkit-serve: exit 1;shadowkit-serve: exit 1;shadowkit-serve: exit 0" OR NOT n EQUAL 3)
+    message(SEND_ERROR "eval-serve: rc ${rc}, exits '${exits}', ${n} error lines:\n${err}")
+  endif()
+endif()
+
 if(CASE STREQUAL "setup-json")
 execute_process(COMMAND ${SHADOWKIT} setup --scene-bounds -100,0,-100,100,30,100 --view paper --technique focused
                 RESULT_VARIABLE rc OUTPUT_VARIABLE json ERROR_VARIABLE err)

@@ -54,11 +54,12 @@ def lines_in(path):
 
 
 def figures(out):
-    """{(cell key, view): figures without timings} of a finished sweep."""
+    """{(cell key, view, frame): figures without timings} of a finished sweep."""
     rows = {}
     for record in records(out):
         for row in record["rows"]:
-            rows[(record["key"], row["view"])] = {k: v for k, v in row.items() if k not in TIMINGS}
+            rows[(record["key"], row.get("view"), row.get("frame"))] = {k: v for k, v in row.items()
+                                                                         if k not in TIMINGS}
     return rows
 
 
@@ -204,13 +205,38 @@ class SweepTest(unittest.TestCase):
             with open(report) as f:
                 expected = json.load(f)["views"]
             for view in expected:
-                got = next(r for (key, v), r in rows.items() if v == view["view"] and r["technique"] == technique)
+                got = next(r for (_, v, _), r in rows.items() if v == view["view"] and r["technique"] == technique)
                 want = {k: v for k, v in sweep.rows_of({"views": [view]})[0].items() if k not in TIMINGS}
                 self.assertEqual({k: got[k] for k in want}, want)
         with open(os.path.join(out, "results.csv")) as f:
             self.assertEqual(len(f.read().strip().splitlines()), 1 + 4)
         for name in ["summary.md", "summary.html", "pareto.png"]:
             self.assertTrue(os.path.getsize(os.path.join(out, name)) > 0, name)
+
+    def test_cells_served_by_one_process_equal_cells_in_processes_of_their_own(self):
+        # One `eval --serve` keeps the scene, GL context and truths between cells: nothing of one
+        # cell (virtual pages, CHC++'s or the GPU culling's last frame, cascades' layers, another
+        # forest) may reach the next one's figures.
+        spec = write_spec(self.dir, {
+            "fixed": {**{k: v for k, v in SMALL.items() if k != "trees"}, "views": "perpendicular,noon"},
+            "axes": {"trees": [300, 200], "technique": ["virtual", "csm", "lispsm"], "visibility": ["chc", "gpu"]}})
+        served, fresh = os.path.join(self.dir, "served"), os.path.join(self.dir, "fresh")
+        self.assertEqual(run_main(spec, "--out", served)[0], 0)
+        self.assertEqual(run_main(spec, "--out", fresh, "--fresh-processes")[0], 0)
+        self.assertEqual(len(figures(served)), 24)
+        self.assertEqual(figures(served), figures(fresh))
+
+    def test_a_served_still_view_after_a_path_equals_a_fresh_one(self):
+        # A path's cell measures with a GL context of its own: the still cells after it must not be
+        # drawn into a context that is no longer current.
+        spec = write_spec(self.dir, {"fixed": SMALL, "axes": {"what": [
+            {"label": "still", "view": "noon"}, {"label": "path", "path": "flythrough", "frames": "0:2"},
+            {"label": "still again", "view": "perpendicular"}]}})
+        served, fresh = os.path.join(self.dir, "served"), os.path.join(self.dir, "fresh")
+        code, err = run_main(spec, "--out", served)
+        self.assertEqual(code, 0, err)
+        self.assertEqual(run_main(spec, "--out", fresh, "--fresh-processes")[0], 0)
+        self.assertEqual(figures(served), figures(fresh))
 
     def test_killed_and_resumed_every_cell_once_with_the_same_figures(self):
         spec = write_spec(self.dir, GRID)

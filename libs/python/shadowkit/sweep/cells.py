@@ -1,9 +1,11 @@
 """Measuring one cell: `shadowkit eval` with the cell's options and --json, run where the cell
 is measured (this process, or a Dask worker), and its report turned into rows.
 
-A cell is a run of the command line, not a call into the compiled module, so every option of
-`eval` (local lights, paths, virtual maps, culling, any the program gains) is a sweep option
-and a row holds exactly what `shadowkit eval --json` reports for the same options.
+A cell is a request to the command line, not a call into the compiled module, so every option
+of `eval` (local lights, paths, virtual maps, culling, any the program gains) is a sweep option
+and a row holds exactly what `shadowkit eval --json` reports for the same options. By default
+the request goes to a `shadowkit eval --serve` process this process keeps (serve.py), which
+keeps the scene, GL context and truths between cells; `fresh` runs a process per cell.
 """
 import json
 import os
@@ -12,13 +14,16 @@ import subprocess
 import tempfile
 import time
 
+from . import serve
 from .program import ProgramError, data_directory, find_program, fingerprint
 
 
-def task_of(cell, key, arguments, program, data_dir, expected, timeout=None):
-    """What a worker needs to measure a cell (plain data: it travels to Dask workers)."""
+def task_of(cell, key, arguments, program, data_dir, expected, timeout=None, fresh=False):
+    """What a worker needs to measure a cell (plain data: it travels to Dask workers). A timeout
+    needs a process of its own per cell (`fresh`), which can be killed alone."""
     return {"key": key, "arguments": arguments, "program": program, "data_dir": data_dir,
-            "fingerprint": expected, "timeout": timeout, "options": cell.options, "labels": cell.labels}
+            "fingerprint": expected, "timeout": timeout, "fresh": fresh or timeout is not None,
+            "options": cell.options, "labels": cell.labels}
 
 
 def _last_error(stderr):
@@ -68,16 +73,25 @@ def run_cell(task):
         return {**base, "error": f"{host} runs another shadowkit or data ({mine}, the sweep's {task['fingerprint']})"}
     with tempfile.TemporaryDirectory(prefix="shadowkit-cell-") as tmp:
         report_path = os.path.join(tmp, "report.json")
-        command = [program, "eval", *task["arguments"], "--json", report_path]
+        arguments = [*task["arguments"], "--json", report_path]
         start = time.monotonic()
-        try:
-            done = subprocess.run(command, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True,
-                                  env={**os.environ, "SHADOWKIT_DATA_DIR": data_dir}, timeout=task["timeout"])
-        except subprocess.TimeoutExpired:
-            return {**base, "error": f"ran past --cell-timeout ({task['timeout']} s)"}
+        if task.get("fresh"):
+            try:
+                done = subprocess.run([program, "eval", *arguments], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+                                      text=True, env={**os.environ, "SHADOWKIT_DATA_DIR": data_dir},
+                                      timeout=task["timeout"])
+            except subprocess.TimeoutExpired:
+                return {**base, "error": f"ran past --cell-timeout ({task['timeout']} s)"}
+            code, stderr = done.returncode, done.stderr
+        else:
+            try:
+                code, stderr = serve.server(program, data_dir).evaluate(arguments)
+            except serve.ServerEnded as e:
+                serve.drop(program, data_dir)
+                return {**base, "error": str(e)}
         seconds = time.monotonic() - start
-        if done.returncode != 0:
-            return {**base, "error": _last_error(done.stderr)}
+        if code != 0:
+            return {**base, "error": _last_error(stderr)}
         try:
             with open(report_path) as f:
                 report = json.load(f)

@@ -40,7 +40,11 @@ def _parser():
                    "run none")
     p.add_argument("--discard-stale", action="store_true", help="move the cells another shadowkit or other data "
                    "measured in DIR aside (cells.stale.jsonl) instead of stopping")
-    p.add_argument("--cell-timeout", type=float, metavar="S", help="a cell running longer fails (default: none)")
+    p.add_argument("--cell-timeout", type=float, metavar="S", help="a cell running longer fails (default: none; "
+                   "implies --fresh-processes)")
+    p.add_argument("--fresh-processes", action="store_true", help="run each cell's eval in a process of its own "
+                   "(default: one `eval --serve` process per worker keeps the scene, GL context and truths between "
+                   "cells)")
     return p
 
 
@@ -131,7 +135,8 @@ def main(argv=None):
             for i in todo:
                 print(" ".join([os.path.basename(program), "eval", *arguments[i]]))
             return 0
-        tasks = [task_of(cells[i], keys[i], arguments[i], program, data_dir, print_, args.cell_timeout) for i in todo]
+        tasks = [task_of(cells[i], keys[i], arguments[i], program, data_dir, print_, args.cell_timeout,
+                         args.fresh_processes) for i in todo]
         progress = Progress(len(cells), len(cells) - len(todo))
         started = time.monotonic()
         if args.scheduler or args.local_workers:
