@@ -25,9 +25,10 @@ drift from what the program measures.
       per `shadowkit eval --path --json` file: flicker_pct (mean / p95 / max), mean wrong_pct
       and pixels_per_texel_p50, and how many frames --stabilize refitted a map in
 
-  tools/readme_tables.py oracle FILE.json ...
-      per view, the lowest wrong_pct of the `shadowkit eval --views all --json` reports and which
-      one it was, and the mean of those (tools/measure-auto-oracle.sh)
+  tools/readme_tables.py oracle [--name COLUMN,...] FILE.json|results.csv ...
+      per view, the lowest wrong_pct of the `shadowkit eval --views all --json` reports (or of a
+      sweep's cells, each named by the values of --name's columns) and which one it was, and the
+      mean of those (tools/measure-auto-oracle.sh)
 
   tools/readme_tables.py setup BENCH.json
       per technique, the set-up's CPU µs along the moving camera, sun moving and sun held:
@@ -200,10 +201,29 @@ def stable(args):
               f"{ppt:.2f} | {refits} |")
 
 
-def oracle(paths):
+def sweep_configurations(path, name_columns):
+    """A sweep's results.csv as (name, {view: row}) per cell, named by the non-empty values of
+    `name_columns` (e.g. technique,tsm_focus,cascades)."""
+    cells = {}
+    with open(path, newline="") as f:
+        for r in csv.DictReader(f):
+            cells.setdefault(r["cell"], {})[r["view"]] = {k: number(v) for k, v in r.items()}
+    out = []
+    for rows in cells.values():
+        first = next(iter(rows.values()))
+        out.append(("-".join(str(first[c]) for c in name_columns if first.get(c) not in (None, "")), rows))
+    return out
+
+
+def oracle(paths, name_columns=("technique",)):
     """Per view the best wrong_pct of many fixed configurations: what choosing with the truth gives."""
     import os
-    reports = [(os.path.basename(p).removesuffix(".json"), load("x=" + p)[1]) for p in paths]
+    reports = []
+    for p in paths:
+        if p.endswith(".csv"):
+            reports += sweep_configurations(p, name_columns)
+        else:
+            reports.append((os.path.basename(p).removesuffix(".json"), load("x=" + p)[1]))
     print("| view | lowest wrong_pct | configuration | its pixels_per_texel_p95 |")
     print("|---|---:|---|---:|")
     best = []
@@ -319,6 +339,9 @@ def run(argv):
     """Prints the table the arguments (argv[1:], as on the command line) ask for."""
     commands = {"oracle": oracle, "stable": stable, "visibility": visibility, "dynamics": dynamics,
                 "setup": setup, "culling": culling, "truth": truth, "scale": scale}
+    if len(argv) >= 5 and argv[1] == "oracle" and argv[2] == "--name":
+        oracle(argv[4:], argv[3].split(","))
+        return
     if len(argv) >= 3 and argv[1] in commands:
         commands[argv[1]](argv[2:])
         return

@@ -24,8 +24,8 @@ std::string keyOf(const SceneOptions& o, double time) {
         std::error_code ec;
         file = std::to_string(std::filesystem::last_write_time(o.scene, ec).time_since_epoch().count());
     }
-    return fmt::format("{}|{}|{}|{}|{}|{}|{}|{}|{}", o.scene, file, o.seed, o.trees, o.terrainSize,
-                       o.terrainResolution, o.movers, o.worldOffset, time);
+    return fmt::format("{}|{}|{}|{}|{}|{}|{}|{}|{}", o.scene, file, o.seed, o.trees, o.terrainSize, o.terrainResolution,
+                       o.movers, o.worldOffset, time);
 }
 
 } // namespace

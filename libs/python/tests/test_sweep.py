@@ -96,6 +96,24 @@ class ExpansionTest(unittest.TestCase):
             self.assertEqual(texels, cell.labels["budget"] ** 2, cell)
         readme = sweep.expand(sweep.load(os.path.join(examples, "readme.json")), self.options)
         self.assertEqual(len(readme), 13)
+        oracle = sweep.expand(sweep.load(os.path.join(examples, "auto-oracle.json")), self.options)
+        self.assertEqual(len(oracle), 5 + 10 + 24 + 1)  # the union of its four grids
+        sizes = {c.options["cascades"]: c.options["map-size"] for c in oracle if c.options["technique"] == "csm"}
+        self.assertEqual(sizes, {2: 1440, 3: 1168, 4: 1024})  # sqrt(4M / N), a multiple of 16 below
+        self.assertTrue(all(c.options["views"] == "all" for c in oracle))
+
+    def test_grids_are_concatenated_and_their_errors_name_the_grid(self):
+        spec = {"fixed": {"trees": 10}, "where": ["map_size >= 1024"],
+                "grids": [{"axes": {"technique": ["tsm", "lispsm"], "map-size": [512, 1024]}},
+                          {"fixed": {"technique": "csm"}, "axes": {"cascades": [2, 4]},
+                           "derive": {"map-size": "2048 // cascades"}}]}
+        cells = sweep.expand(spec, self.options)
+        self.assertEqual([(c.options["technique"], c.options["map-size"]) for c in cells],
+                         [("tsm", 1024), ("lispsm", 1024), ("csm", 1024)])
+        spec["grids"][1]["axes"]["cascades"] = []
+        with self.assertRaises(sweep.SpecError) as caught:
+            sweep.expand(spec, self.options)
+        self.assertIn("grids[1].axes.cascades: is empty", str(caught.exception))
 
     def test_flags_are_present_or_absent(self):
         cells = sweep.expand({"axes": {"stabilize": [True, False]}}, self.options)

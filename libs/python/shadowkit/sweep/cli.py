@@ -164,7 +164,9 @@ def main(argv=None):
     title = specification.load(args.spec).get("description") or os.path.basename(args.spec)
     if rows:
         spec = specification.load(args.spec)
-        summary = write_summary(rows, args.out, varying, title, named=_varying({**spec, "derive": {}}))
+        summary = write_summary(rows, args.out, varying, title,
+                                named=_varying({**spec, "derive": {}, "grids": [{**g, "derive": {}}
+                                                                                for g in spec.get("grids", [])]}))
         print(f"results: {os.path.join(args.out, 'results.csv')} ({len(rows)} rows), summary: {summary}",
               file=sys.stderr)
     print(f"sweep: checked {len(cells)} cells in {timings['checked']:.2f} s, measured {len(todo)} in "
@@ -179,5 +181,13 @@ def main(argv=None):
 
 
 def _varying(spec):
-    names = list(spec.get("parameters", {})) + list(spec.get("axes", {})) + list(spec.get("derive", {}))
-    return [n.replace("-", "_") if not isinstance(spec.get("axes", {}).get(n, [None])[0], dict) else n for n in names]
+    """The columns that tell a specification's configurations apart (its grids' too)."""
+    names = []
+    for grid in [spec, *spec.get("grids", [])]:
+        axes = grid.get("axes", {})
+        for n in [*grid.get("parameters", {}), *axes, *grid.get("derive", {})]:
+            bundle = isinstance(axes.get(n), list) and axes[n] and isinstance(axes[n][0], dict)
+            name = n if bundle else n.replace("-", "_")
+            if name not in names:
+                names.append(name)
+    return names

@@ -19,6 +19,9 @@ A specification (JSON, or TOML) names `shadowkit eval` options:
   the grid's slowest axes, each cell's value a column of the results.
 - `derive`: options computed from the others (in the order written), `where`: conditions a
   cell must meet (expressions.py says what they may use; names take underscores).
+- `grids`: a list of such grids (each with its own fixed, parameters, axes, derive, where), whose
+  cells are concatenated — set-ups whose parameters differ (TSM's focus, LiSPSM's weight, the
+  cascades' lambda) in one sweep. The top level's `fixed`, `derive` and `where` apply to each.
 - Option names are `eval`'s flags without the dashes (`map-size` or `map_size`); a flag without
   a value (`stabilize`) takes true or false; a repeatable one (`light`) a list. The sweep writes
   the results, so --json, --csv, --plot, --report, --dump, --error-map, --aliasing-map, --state
@@ -35,7 +38,8 @@ from .expressions import Expression, ExpressionError
 
 # Written by the sweep itself, or not a measurement.
 RESERVED = {"json", "csv", "plot", "report", "dump", "error-map", "aliasing-map", "state", "check", "help"}
-TOP_LEVEL = {"description", "fixed", "parameters", "axes", "derive", "where"}
+TOP_LEVEL = {"description", "fixed", "parameters", "axes", "derive", "where", "grids"}
+GRID_KEYS = {"fixed", "parameters", "axes", "derive", "where"}
 MAX_CELLS = 1_000_000
 
 
@@ -150,7 +154,60 @@ def _options(mapping, where, takes_value):
 def expand(spec, takes_value, source="spec"):
     """The cells of `spec` (a dict from load), in grid order. `takes_value` is
     program.eval_options(): which names are options and which of them take a value."""
+    if not isinstance(spec, dict):
+        raise SpecError(f"{source}: expected an object with fixed, axes, derive, where")
+    if "grids" not in spec:
+        return _expand_grid(spec, takes_value, source)
+    grids = spec["grids"]
+    if not isinstance(grids, list) or not grids:
+        raise SpecError("grids: expected a non-empty list of grids (objects with axes, fixed, ...)")
+    for key in ("axes", "parameters"):
+        if key in spec:
+            raise SpecError(f"{key}: with grids, each grid has its own {key}")
     unknown = set(spec) - TOP_LEVEL
+    if unknown:
+        raise SpecError(f"{source}: unknown key '{sorted(unknown)[0]}' (a specification has "
+                        f"{', '.join(sorted(TOP_LEVEL))})")
+    top_fixed, top_derive = spec.get("fixed", {}), spec.get("derive", {})
+    top_where = spec.get("where", [])
+    if not isinstance(top_fixed, dict) or not isinstance(top_derive, dict):
+        raise SpecError("fixed, derive: expected objects")
+    top_where = [top_where] if isinstance(top_where, str) else top_where
+    if not isinstance(top_where, list):
+        raise SpecError("where: expected a list of conditions")
+    cells = []
+    for i, grid in enumerate(grids):
+        if not isinstance(grid, dict):
+            raise SpecError(f"grids[{i}]: expected an object with axes, fixed, parameters, derive, where")
+        unknown = set(grid) - GRID_KEYS
+        if unknown:
+            raise SpecError(f"grids[{i}]: unknown key '{sorted(unknown)[0]}' (a grid has "
+                            f"{', '.join(sorted(GRID_KEYS))})")
+        fixed = grid.get("fixed", {})
+        if not isinstance(fixed, dict):
+            raise SpecError(f"grids[{i}].fixed: expected an object of options")
+        both = set(fixed) & set(top_fixed)
+        if both:
+            raise SpecError(f"grids[{i}].fixed.{sorted(both)[0]}: also in the top level's fixed")
+        derive, where = grid.get("derive", {}), grid.get("where", [])
+        if not isinstance(derive, dict):
+            raise SpecError(f"grids[{i}].derive: expected an object of option: \"expression\"")
+        where = [where] if isinstance(where, str) else where
+        if not isinstance(where, list):
+            raise SpecError(f"grids[{i}].where: expected a list of conditions")
+        merged = {"fixed": {**top_fixed, **fixed}, "parameters": grid.get("parameters", {}),
+                  "axes": grid.get("axes", {}), "derive": {**top_derive, **derive}, "where": [*top_where, *where]}
+        try:
+            cells += _expand_grid(merged, takes_value, source)
+        except SpecError as e:
+            raise SpecError(f"grids[{i}].{e}") from None
+        if len(cells) > MAX_CELLS:
+            raise SpecError(f"grids: more than {MAX_CELLS} cells (split the sweep)")
+    return cells
+
+
+def _expand_grid(spec, takes_value, source):
+    unknown = set(spec) - (TOP_LEVEL - {"grids"})
     if unknown:
         raise SpecError(f"{source}: unknown key '{sorted(unknown)[0]}' (a specification has "
                         f"{', '.join(sorted(TOP_LEVEL))})")
