@@ -109,14 +109,15 @@ def main(argv=None):
     try:
         program = find_program(args.program)
         takes_value = eval_options(program)
-        cells = specification.expand(specification.load(args.spec), takes_value, source=args.spec)
+        spec = specification.load(args.spec)
+        cells = specification.expand(spec, takes_value, source=args.spec)
         data_dir = data_directory()
         print_ = fingerprint(program, data_dir)
         keys = [cell.key(print_, specification.files_named(cell)) for cell in cells]
         if len(set(keys)) != len(keys):
             first = next(i for i, k in enumerate(keys) if keys.index(k) != i)
-            raise specification.SpecError(f"axes: cells {keys.index(keys[first]) + 1} and {first + 1} have the same "
-                                           f"options ({cells[first].options})")
+            raise specification.SpecError(f"{args.spec}: cells {keys.index(keys[first]) + 1} and {first + 1} of the "
+                                           f"grid have the same options ({cells[first].options})")
         arguments = [cell.arguments(takes_value) for cell in cells]
         started = time.monotonic()
         check_cells(cells, arguments, program, data_dir)
@@ -160,13 +161,9 @@ def main(argv=None):
             store.close()
     started = time.monotonic()
     rows = store.write_tables(keys)
-    varying = _varying(specification.load(args.spec))
-    title = specification.load(args.spec).get("description") or os.path.basename(args.spec)
     if rows:
-        spec = specification.load(args.spec)
-        summary = write_summary(rows, args.out, varying, title,
-                                named=_varying({**spec, "derive": {}, "grids": [{**g, "derive": {}}
-                                                                                for g in spec.get("grids", [])]}))
+        title = spec.get("description") or os.path.basename(args.spec)
+        summary = write_summary(rows, args.out, _varying(spec), title, named=_varying(spec, derived=False))
         print(f"results: {os.path.join(args.out, 'results.csv')} ({len(rows)} rows), summary: {summary}",
               file=sys.stderr)
     print(f"sweep: checked {len(cells)} cells in {timings['checked']:.2f} s, measured {len(todo)} in "
@@ -180,12 +177,13 @@ def main(argv=None):
     return 0
 
 
-def _varying(spec):
-    """The columns that tell a specification's configurations apart (its grids' too)."""
+def _varying(spec, derived=True):
+    """The columns that tell a specification's configurations apart, its grids' too (with `derived`
+    false, only those given: the plot's labels)."""
     names = []
     for grid in [spec, *spec.get("grids", [])]:
         axes = grid.get("axes", {})
-        for n in [*grid.get("parameters", {}), *axes, *grid.get("derive", {})]:
+        for n in [*grid.get("parameters", {}), *axes, *(grid.get("derive", {}) if derived else {})]:
             bundle = isinstance(axes.get(n), list) and axes[n] and isinstance(axes[n][0], dict)
             name = n if bundle else n.replace("-", "_")
             if name not in names:
