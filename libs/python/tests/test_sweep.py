@@ -124,7 +124,8 @@ class ExpansionTest(unittest.TestCase):
         cases = [
             ({"axes": {"technic": ["tsm"]}}, "axes.technic: not an option of shadowkit eval"),
             ({"axes": {"technique": []}}, "axes.technique: is empty"),
-            ({"fixed": {"json": "x.json"}}, "fixed.json: the sweep writes the results itself"),
+            ({"fixed": {"json": "x.json"}}, "fixed.json: not a cell's option"),
+            ({"axes": {"serve": [True]}}, "axes.serve: not a cell's option"),
             ({"axes": {"map-size": [1024]}, "where": ["map_size > 4096"]}, "where[0]: 'map_size > 4096' leaves no cell"),
             ({"axes": {"map-size": [1024]}, "where": ["__import__('os')"]}, "where[0]:"),
             ({"axes": {"map-size": [1024]}, "where": ["cascades > 1"]}, "where[0]: 'cascades > 1': unknown name"),

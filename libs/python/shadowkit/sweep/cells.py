@@ -77,7 +77,8 @@ def run_cell(task):
         start = time.monotonic()
         if task.get("fresh"):
             try:
-                done = subprocess.run([program, "eval", *arguments], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+                done = subprocess.run([program, "eval", *arguments], stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
+                                      stderr=subprocess.PIPE,
                                       text=True, env={**os.environ, "SHADOWKIT_DATA_DIR": data_dir},
                                       timeout=task["timeout"])
             except subprocess.TimeoutExpired:

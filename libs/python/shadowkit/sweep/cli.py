@@ -81,7 +81,8 @@ def check_cells(cells, arguments, program, data_dir):
     env = {**os.environ, "SHADOWKIT_DATA_DIR": data_dir}
 
     def check(args):
-        done = subprocess.run([program, "eval", *args, "--check"], capture_output=True, text=True, env=env)
+        done = subprocess.run([program, "eval", *args, "--check"], stdin=subprocess.DEVNULL, capture_output=True,
+                              text=True, env=env)
         return done.returncode, done.stderr.strip().splitlines()[-1:] or ["(no message)"]
 
     distinct = list(dict.fromkeys(tuple(a) for a in arguments))

@@ -25,7 +25,7 @@ A specification (JSON, or TOML) names `shadowkit eval` options:
 - Option names are `eval`'s flags without the dashes (`map-size` or `map_size`); a flag without
   a value (`stabilize`) takes true or false; a repeatable one (`light`) a list. The sweep writes
   the results, so --json, --csv, --plot, --report, --dump, --error-map, --aliasing-map, --state
-  and --check are not options of a cell.
+  --check and --serve are not options of a cell.
 
 Every problem is a SpecError whose message names the key, raised before any cell runs.
 """
@@ -37,7 +37,7 @@ import os
 from .expressions import Expression, ExpressionError
 
 # Written by the sweep itself, or not a measurement.
-RESERVED = {"json", "csv", "plot", "report", "dump", "error-map", "aliasing-map", "state", "check", "help"}
+RESERVED = {"json", "csv", "plot", "report", "dump", "error-map", "aliasing-map", "state", "check", "serve", "help"}
 TOP_LEVEL = {"description", "fixed", "parameters", "axes", "derive", "where", "grids"}
 GRID_KEYS = {"fixed", "parameters", "axes", "derive", "where"}
 MAX_CELLS = 1_000_000
@@ -113,7 +113,7 @@ def load(path):
 def _option_name(key, where, takes_value):
     name = key.replace("_", "-")
     if name in RESERVED:
-        raise SpecError(f"{where}.{key}: the sweep writes the results itself; {key} is not a cell's option")
+        raise SpecError(f"{where}.{key}: not a cell's option (the sweep writes the results and runs eval itself)")
     if name not in takes_value:
         raise SpecError(f"{where}.{key}: not an option of shadowkit eval")
     return name
