@@ -3,7 +3,10 @@ Dask cluster (`dask`: a scheduler's address, or a local cluster of N worker proc
 cell per task. Both hand each finished cell to the store as it arrives, so results stream
 into the same resumable files; the scheduling, retries and a lost worker's re-run are Dask's.
 """
+import logging
+import shutil
 import sys
+import tempfile
 import time
 
 from .cells import run_cell
@@ -83,8 +86,10 @@ def run_dask(tasks, store, progress, scheduler=None, local_workers=None):
             raise RuntimeError(f"--scheduler {scheduler}: cannot connect ({e})") from None
     else:
         # One thread per worker: a cell's eval already uses the machine's cores (GL and the ray tracer).
+        # Its own scratch directory: Dask purges (and logs) other clusters' stale ones in a shared one.
+        scratch = tempfile.mkdtemp(prefix="shadowkit-dask-")
         cluster = LocalCluster(n_workers=local_workers, threads_per_worker=1, processes=True,
-                               dashboard_address=None)
+                               dashboard_address=None, silence_logs=logging.ERROR, local_directory=scratch)
         client = Client(cluster)
     try:
         futures = [client.submit(run_cell, task, key=f"shadowkit-cell-{task['key']}", pure=False) for task in tasks]
@@ -100,3 +105,4 @@ def run_dask(tasks, store, progress, scheduler=None, local_workers=None):
         client.close()
         if cluster is not None:
             cluster.close()
+            shutil.rmtree(scratch, ignore_errors=True)
