@@ -1,0 +1,63 @@
+// Soft ray-traced truth: the fraction of the sun's disk a surface point sees (issue 34's truth
+// for soft shadows). The sun is not a point: it subtends about 0.53°, so under a 20 m tree its
+// penumbra on the ground is some 19 cm wide. Per point, shadow rays go towards stratified
+// directions spread uniformly over the disk's solid angle; a few probe rays first (on the rim
+// and inside), and the full count only where they disagree (the penumbrae), with the standard
+// error it leaves.
+#pragma once
+
+#include "shadowkit/eval/ray_scene.h"
+#include "shadowkit/eval/truth.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace shadowkit::eval {
+
+/// The sun as a disk: where it is and how large it looks.
+struct SunDisk {
+    core::Vec3 wsTowardsSun{0.0, 1.0, 0.0}; ///< unit vector from the scene towards the disk's centre
+    double angularDiameterDegrees = 0.53;   ///< the real sun's; 0 is the point-like sun of the hard truth
+};
+
+struct SoftTruthOptions {
+    /// Shadow rays per point in a penumbra, rounded up to a square (stratified k × k).
+    int samples = 256;
+    /// Rays per point first: 8 on the disk's rim (turned at random per point) and this many
+    /// inside (rounded up to a square, stratified); all visible or all blocked ends the point
+    /// there. A straight edge cutting off more than 1.3 % of the disk always meets the rim's
+    /// probes, so a point they call umbra or full sun is within 1.3 % of it (an occluder thinner
+    /// than the probes' spacing, a twig across the disk, can still pass between them).
+    int probes = 9;
+    /// Which jittered sample set: two seeds give independent estimates of the same truth.
+    uint64_t seed = 1;
+    /// Shadow-ray start offset along the geometric normal, a fraction of the scene diagonal (as
+    /// TruthOptions).
+    double normalOffsetFraction = 1e-5;
+};
+
+struct SoftTruth {
+    int width = 0, height = 0;
+    /// Row-major, top row first: the visible fraction of the disk, 0..1, at each point of `hits`
+    /// facing the sun; NaN where there is no surface or it faces away.
+    std::vector<float> visibility;
+    /// The estimate's standard error per point: sqrt(v (1 - v) / n) for n stratified samples (an
+    /// upper bound: stratification only lowers it); 0 where the probes agreed.
+    std::vector<float> standardError;
+    double seconds = 0.0;
+    uint64_t rays = 0;
+    uint64_t penumbraPoints = 0; ///< points that took the full sample count
+};
+
+/// The sun disk's visible fraction at the surface points of `hits` (computeTruth's). Every core
+/// (TBB). An angular diameter of 0 traces one ray per point, exactly the hard truth's.
+SoftTruth computeSoftTruth(const RayScene& rays, const TruthBuffers& hits, const SunDisk& sun,
+                           const SoftTruthOptions& options = {});
+
+/// Direction `k` of a k × k stratified set over a cone of half-angle `halfAngle` round `axis`
+/// (unit), uniform in solid angle: (u, v) in [0, 1)² mapped to the unit disk by Shirley and
+/// Chiu's concentric map, its radius squared the fraction of the cap's solid angle. In double:
+/// 1 - cos of the sun's 4.6 mrad is 1.1e-5, about 180 float steps.
+core::Vec3 coneDirection(const core::Vec3& axis, double halfAngle, double u, double v);
+
+} // namespace shadowkit::eval
