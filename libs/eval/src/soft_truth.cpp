@@ -123,8 +123,8 @@ SoftTruth computeSoftTruth(const RayScene& rays, const TruthBuffers& hits, const
             if (hits.surfaceId[i] == 0 || !(glm::dot(normal, axis) > 0.0)) continue;
             const core::Vec3 origin = hits.wsPosition[i] + offset * normal;
             if (halfAngle <= 0.0) { // the point-like sun: the hard truth's one ray, exactly
-                out.visibility[i] = rays.occluded(origin, axis, 0.0, std::numeric_limits<double>::infinity()) ? 0.f
-                                                                                                            : 1.f;
+                out.visibility[i] =
+                    rays.occluded(origin, axis, 0.0, std::numeric_limits<double>::infinity()) ? 0.f : 1.f;
                 ++myRays;
                 continue;
             }

@@ -1,6 +1,8 @@
 // The soft truth (the sun as a disk) against closed forms: its sample directions fill the cone
 // uniformly, a point-like sun gives the hard truth exactly, a straight edge's penumbra is the
 // disk's chord-area fraction, and two independent sample sets agree within their errors.
+#include "truth_scenes.h"
+
 #include "shadowkit/eval/soft_truth.h"
 #include "shadowkit/scene/mesh_builder.h"
 
@@ -17,26 +19,9 @@ constexpr double kPi = 3.14159265358979323846;
 
 // A ground slab with its top at y = 0 and a box caster of half extents `half` centred at `centre`.
 scene::Scene groundAndBox(const glm::vec3& centre, const glm::vec3& half) {
-    scene::Scene s;
-    scene::Mesh ground, box;
-    scene::addBox(ground, glm::translate(glm::mat4(1.0f), {0, -0.5f, 0}), {40, 0.5f, 40}, glm::vec3(0.8f));
+    scene::Mesh box;
     scene::addBox(box, glm::mat4(1.0f), half, glm::vec3(0.8f));
-    ground.computeBounds();
-    box.computeBounds();
-    s.meshes = {ground, box};
-    s.batches = {{0, {glm::mat4(1.0f)}, false}, {1, {glm::translate(glm::mat4(1.0f), centre)}, false}};
-    return s;
-}
-
-core::PerspectiveCamera cameraLookingAtOrigin() {
-    core::PerspectiveCamera cam;
-    cam.wsEye = {3, 9, 14};
-    cam.wsDirection = core::Vec3(-1.5, 0, -1) - cam.wsEye;
-    cam.fovYDegrees = 50;
-    cam.aspect = 4.0 / 3.0;
-    cam.zNear = 0.5;
-    cam.zFar = 80;
-    return cam;
+    return test::groundAnd(box, glm::translate(glm::mat4(1.0f), centre));
 }
 
 // Ground points (y = 0, facing up) at the given x, z = 0: a one-row TruthBuffers.
@@ -85,7 +70,7 @@ TEST(SoftTruthTest, APointLikeSunIsTheHardTruthExactly) {
     auto rays = eval::RayScene::build(s);
     ASSERT_TRUE(rays) << rays.error();
     const core::DirectionalLight sun = core::DirectionalLight::fromSunAngles(50, 120).value();
-    const eval::TruthBuffers hard = eval::computeTruth(**rays, cameraLookingAtOrigin(), sun, 160, 120);
+    const eval::TruthBuffers hard = eval::computeTruth(**rays, test::cameraLookingAtOrigin(), sun, 160, 120);
     const eval::SoftTruth soft = eval::computeSoftTruth(**rays, hard, {sun.wsTowardsLight(), 0.0});
     int shadowed = 0;
     for (size_t i = 0; i < hard.surfaceId.size(); ++i) {
@@ -114,7 +99,8 @@ TEST(SoftTruthTest, AStraightEdgesPenumbraIsTheDisksChordAreaFraction) {
     for (int i = -24; i <= 24; ++i) xs.push_back(halfWidth * i / 20.0); // across it and a little beyond
     eval::SoftTruthOptions options;
     options.samples = 1024;
-    const eval::SoftTruth soft = eval::computeSoftTruth(**rays, groundPoints(xs), {{0, 1, 0}, diameterDegrees}, options);
+    const eval::SoftTruth soft =
+        eval::computeSoftTruth(**rays, groundPoints(xs), {{0, 1, 0}, diameterDegrees}, options);
     double meanError = 0.0;
     for (size_t i = 0; i < xs.size(); ++i) {
         const double c = std::clamp(std::atan(xs[i] / h) / alpha, -1.0, 1.0);
@@ -135,7 +121,7 @@ TEST(SoftTruthTest, TwoIndependentSampleSetsAgreeWithinTheirStandardErrors) {
     auto rays = eval::RayScene::build(s);
     ASSERT_TRUE(rays) << rays.error();
     const core::DirectionalLight sun = core::DirectionalLight::fromSunAngles(50, 120).value();
-    const eval::TruthBuffers hits = eval::computeTruth(**rays, cameraLookingAtOrigin(), sun, 160, 120);
+    const eval::TruthBuffers hits = eval::computeTruth(**rays, test::cameraLookingAtOrigin(), sun, 160, 120);
     const eval::SunDisk disk{sun.wsTowardsLight(), 10.0}; // a large sun: a penumbra several pixels wide
     eval::SoftTruthOptions a, b;
     b.seed = 2;

@@ -1,4 +1,6 @@
 // The ray-traced truth against shadows known analytically.
+#include "truth_scenes.h"
+
 #include "shadowkit/eval/truth.h"
 #include "shadowkit/scene/mesh_builder.h"
 
@@ -8,33 +10,9 @@
 #include <cmath>
 
 using namespace shadowkit;
+using namespace shadowkit::test;
 
 namespace {
-
-constexpr uint32_t kGroundId = 1; // surface id of the ground (instance 0)
-
-// A ground slab with its top at y = 0 and one caster mesh placed by `worldFromCaster`.
-scene::Scene groundAnd(scene::Mesh caster, const glm::mat4& worldFromCaster) {
-    scene::Scene s;
-    scene::Mesh ground;
-    scene::addBox(ground, glm::translate(glm::mat4(1.0f), {0, -0.5f, 0}), {30, 0.5f, 30}, glm::vec3(0.8f));
-    ground.computeBounds();
-    caster.computeBounds();
-    s.meshes = {ground, caster};
-    s.batches = {{0, {glm::mat4(1.0f)}, false}, {1, {worldFromCaster}, false}};
-    return s;
-}
-
-core::PerspectiveCamera cameraLookingAtOrigin() {
-    core::PerspectiveCamera cam;
-    cam.wsEye = {3, 9, 14};
-    cam.wsDirection = core::Vec3(-1.5, 0, -1) - cam.wsEye;
-    cam.fovYDegrees = 50;
-    cam.aspect = 4.0 / 3.0;
-    cam.zNear = 0.5;
-    cam.zFar = 80;
-    return cam;
-}
 
 // Runs the truth and, for every ground pixel facing the light, compares with
 // `analyticShadow(p)` (nullopt: too close to the analytic boundary to call).
