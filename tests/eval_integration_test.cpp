@@ -4,6 +4,7 @@
 #include "test_scenes.h"
 
 #include "shadowkit/core/bias.h"
+#include "shadowkit/core/shadow_filter.h"
 #include "shadowkit/measure/measurer.h"
 #include "shadowkit/scene/forest.h"
 #include "shadowkit/scene/mesh_builder.h"
@@ -198,4 +199,43 @@ TEST_F(EvalIntegrationTest, CullingAndLevelsOfDetailLeaveTheFiguresWhereTheyWere
         EXPECT_NEAR(double(reduced.validPx), double(full.validPx), 0.002 * double(full.validPx))
             << core::techniqueName(t);
     }
+}
+
+TEST_F(EvalIntegrationTest, SoftFiguresOfAVanishingSunAreTheHardOnesAndPcfSoftensTowardsTheRealSun) {
+    const scene::Scene forest = gl::testing::smallForest(300, 200, 32);
+    scene::ResolvedView view = gl::testing::standardView(forest, "perpendicular");
+    view.camera.aspect = 4.0 / 3.0;
+    gl::RenderSettings settings;
+    settings.width = 200;
+    settings.height = 150;
+    auto measurer = measure::Measurer::create(forest);
+    ASSERT_TRUE(measurer) << measurer.error();
+    const core::ShadowSetupInputs inputs{.camera = view.camera,
+                                         .light = view.light,
+                                         .wsSceneBounds = forest.wsBounds(),
+                                         .technique = core::Technique::Tsm,
+                                         .mapSize = 2048};
+    const auto softOf = [&](double sunAngle, core::FilterSettings filter) {
+        measure::MeasureOptions options;
+        options.sunAngleDegrees = sunAngle;
+        gl::RenderSettings s = settings;
+        s.filter = filter;
+        auto m = (*measurer)->measure(inputs, s, options);
+        EXPECT_TRUE(m && m->soft) << (m ? "no soft figures" : m.error());
+        return std::pair{m->figures(), *m->soft};
+    };
+    // A disk a hundred-thousandth of a degree across is the point-like sun: every pixel's true
+    // visibility 0 or 1, so a hard test's soft errors are its wrong pixels, each off by 1.
+    const auto [hard, pointLike] = softOf(1e-5, core::FilterSettings{});
+    EXPECT_EQ(pointLike.comparedPx, hard.validPx);
+    EXPECT_EQ(pointLike.penumbraPx, 0);
+    EXPECT_NEAR(pointLike.softWrongPct, hard.wrongPct, 1e-9);
+    EXPECT_NEAR(100.0 * pointLike.softMae, hard.wrongPct, 1e-9);
+    // The real sun: its penumbrae are there, and a 3 x 3 PCF kernel comes closer to them than
+    // the hard test's step.
+    const auto [hardFigures, hardSoft] = softOf(0.53, core::FilterSettings{});
+    const auto [pcfFigures, pcfSoft] = softOf(0.53, core::parseFilter("pcf:3").value());
+    EXPECT_GT(hardSoft.penumbraPx, 100);
+    EXPECT_LT(pcfSoft.penumbraMae, hardSoft.penumbraMae);
+    EXPECT_GT(hardSoft.truthRays, static_cast<uint64_t>(hardSoft.comparedPx)); // probes: more than a ray a pixel
 }

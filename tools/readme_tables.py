@@ -30,6 +30,10 @@ drift from what the program measures.
       sweep's cells, each named by the values of --name's columns) and which one it was, and the
       mean of those (tools/measure-auto-oracle.sh)
 
+  tools/readme_tables.py soft results.csv
+      per filter of a sweep with --sun-angle (data/sweeps/soft-filters.json): penumbra_mae per view,
+      soft_mae in brackets, and their means
+
   tools/readme_tables.py setup BENCH.json
       per technique, the set-up's CPU µs along the moving camera, sun moving and sun held:
       median (min–max) of the repetitions in shadowkit_setup_bench's --benchmark_format=json
@@ -215,6 +219,24 @@ def sweep_configurations(path, name_columns):
     return out
 
 
+def soft(paths):
+    """Per filter of a sweep's results.csv (eval --sun-angle): penumbra_mae per view (soft_mae in
+    brackets) and the means."""
+    rows = []
+    for path in paths:
+        with open(path, newline="") as f:
+            rows += [{k: number(v) for k, v in r.items()} for r in csv.DictReader(f)]
+    filters = list(dict.fromkeys(r["filter"] for r in rows))
+    print("| filter | " + " | ".join(VIEWS) + " | mean penumbra_mae | mean soft_mae |")
+    print("|---|" + "---:|" * (len(VIEWS) + 2))
+    for name in filters:
+        by_view = {r["view"]: r for r in rows if r["filter"] == name}
+        cells = [f"{by_view[v]['penumbra_mae']:.3f} ({by_view[v]['soft_mae']:.4f})" for v in VIEWS]
+        pen = sum(by_view[v]["penumbra_mae"] for v in VIEWS) / len(VIEWS)
+        mae = sum(by_view[v]["soft_mae"] for v in VIEWS) / len(VIEWS)
+        print(f"| `{name}` | " + " | ".join(cells) + f" | {pen:.3f} | {mae:.4f} |")
+
+
 def oracle(paths, name_columns=("technique",)):
     """Per view the best wrong_pct of many fixed configurations: what choosing with the truth gives."""
     import os
@@ -337,7 +359,7 @@ def write_into(target, text):
 
 def run(argv):
     """Prints the table the arguments (argv[1:], as on the command line) ask for."""
-    commands = {"oracle": oracle, "stable": stable, "visibility": visibility, "dynamics": dynamics,
+    commands = {"oracle": oracle, "soft": soft, "stable": stable, "visibility": visibility, "dynamics": dynamics,
                 "setup": setup, "culling": culling, "truth": truth, "scale": scale}
     if len(argv) >= 5 and argv[1] == "oracle" and argv[2] == "--name":
         oracle(argv[4:], argv[3].split(","))

@@ -55,6 +55,16 @@ std::string reportJson(const std::vector<ViewReport>& views) {
         if (v.visibleDepth) list.back()["visible_depth"] = {v.visibleDepth->x, v.visibleDepth->y};
         if (!v.autoChoice.empty()) list.back()["auto_choice"] = v.autoChoice;
         if (v.virtualPages) list.back()["virtual"] = virtualPagesJson(*v.virtualPages);
+        if (v.soft) {
+            const SoftFigures& s = *v.soft;
+            list.back().update({{"sun_angle_deg", s.sunAngleDegrees},
+                                {"soft_compared_px", s.comparedPx},
+                                {"penumbra_px", s.penumbraPx},
+                                {"soft_mae", s.softMae},
+                                {"penumbra_mae", s.penumbraMae},
+                                {"soft_wrong_pct", s.softWrongPct},
+                                {"soft_truth_seconds", s.truthSeconds}});
+        }
         if (!v.lights.empty()) {
             nlohmann::json lights = nlohmann::json::array();
             for (const LightReport& l : v.lights)

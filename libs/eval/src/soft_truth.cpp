@@ -166,4 +166,36 @@ SoftTruth computeSoftTruth(const RayScene& rays, const TruthBuffers& hits, const
     return out;
 }
 
+SoftFigures compareSoft(std::span<const float> shadowTerm, const SoftTruth& soft, std::span<const PixelClass> classes,
+                        double sunAngleDegrees) {
+    SoftFigures f;
+    f.sunAngleDegrees = sunAngleDegrees;
+    f.truthSeconds = soft.seconds;
+    f.truthRays = soft.rays;
+    const size_t n = std::min({shadowTerm.size(), soft.visibility.size(), classes.size()});
+    double sum = 0.0, penumbraSum = 0.0;
+    int64_t wrong = 0;
+    for (size_t i = 0; i < n; ++i) {
+        const PixelClass c = classes[i];
+        const bool valid = c == PixelClass::LitCorrect || c == PixelClass::ShadowCorrect ||
+                           c == PixelClass::FalseShadow || c == PixelClass::FalseLit;
+        const float truth = soft.visibility[i];
+        if (!valid || std::isnan(truth)) continue;
+        const double error = std::abs(static_cast<double>(shadowTerm[i]) - truth);
+        ++f.comparedPx;
+        sum += error;
+        wrong += error > 0.25;
+        if (truth > 0.02f && truth < 0.98f) {
+            ++f.penumbraPx;
+            penumbraSum += error;
+        }
+    }
+    if (f.comparedPx > 0) {
+        f.softMae = sum / static_cast<double>(f.comparedPx);
+        f.softWrongPct = 100.0 * static_cast<double>(wrong) / static_cast<double>(f.comparedPx);
+    }
+    if (f.penumbraPx > 0) f.penumbraMae = penumbraSum / static_cast<double>(f.penumbraPx);
+    return f;
+}
+
 } // namespace shadowkit::eval

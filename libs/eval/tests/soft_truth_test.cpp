@@ -140,3 +140,24 @@ TEST(SoftTruthTest, TwoIndependentSampleSetsAgreeWithinTheirStandardErrors) {
     EXPECT_LE(outside, both / 100);
     EXPECT_GT(differ, both / 2); // independent sets: not the same rays twice
 }
+
+TEST(SoftTruthTest, SoftFiguresAreTheMeanErrorsOverTheValidPixelsAndThePenumbra) {
+    using PC = eval::PixelClass;
+    eval::SoftTruth soft;
+    soft.visibility = {1.0f, 0.0f, 0.5f, 0.25f, std::nanf(""), 0.5f, 1.0f};
+    soft.seconds = 2.0;
+    soft.rays = 42;
+    const std::vector<float> rendered = {1.0f, 1.0f, 0.0f, 0.25f, 0.0f, 1.0f, 0.0f};
+    // The last two pixels are not valid in the hard comparison (excluded, not evaluated); the fifth
+    // has no soft truth.
+    const std::vector<PC> classes = {PC::LitCorrect, PC::FalseLit, PC::ShadowCorrect, PC::LitCorrect,
+                                     PC::LitCorrect, PC::Excluded, PC::NotEvaluated};
+    const eval::SoftFigures f = eval::compareSoft(rendered, soft, classes, 0.53);
+    EXPECT_EQ(f.comparedPx, 4);
+    EXPECT_EQ(f.penumbraPx, 2); // visibilities 0.5 and 0.25
+    EXPECT_DOUBLE_EQ(f.softMae, (0.0 + 1.0 + 0.5 + 0.0) / 4.0);
+    EXPECT_DOUBLE_EQ(f.penumbraMae, (0.5 + 0.0) / 2.0);
+    EXPECT_DOUBLE_EQ(f.softWrongPct, 50.0); // errors 1 and 0.5 exceed 0.25
+    EXPECT_EQ(f.truthRays, 42u);
+    EXPECT_DOUBLE_EQ(f.sunAngleDegrees, 0.53);
+}

@@ -149,6 +149,11 @@ core::Result<Measurement> Measurer::measure(const frame::PreparedFrame& frame, c
     auto comparison = eval::compare(m.raster, *m.truth, options.compare);
     if (!comparison) return comparison.errorInfo();
     m.comparison = std::move(comparison).value();
+    if (options.sunAngleDegrees > 0.0 && settings.sun) {
+        const eval::SoftTruth soft = eval::computeSoftTruth(
+            *m_impl->rays, *m.truth, {inputs.light.wsTowardsLight(), options.sunAngleDegrees}, options.softTruth);
+        m.soft = eval::compareSoft(m.raster.shadowTerm, soft, m.comparison.classes, options.sunAngleDegrees);
+    }
     const core::LocalLighting& local = renderer.localLights();
     if (local.empty()) return m;
     if (settings.sun) m.lights.push_back({"sun", static_cast<int>(m.setup.views.size()), 0, m.comparison});
@@ -206,6 +211,7 @@ eval::ViewReport viewReport(const Measurement& m, const gl::RenderSettings& sett
     report.visibleDepth = m.visibleDepth;
     report.figures = m.comparison.figures;
     if (const auto& v = m.virtualPages) report.virtualPages = virtualPagesReport(*v);
+    report.soft = m.soft;
     if (m.truth && m.truth->seconds > 0.0) {
         report.truthSeconds = m.truth->seconds;
         report.truthRaysPerSecond = double(m.truth->rays) / m.truth->seconds;

@@ -6,6 +6,7 @@
 #include "shadowkit/core/raster_buffers.h"
 #include "shadowkit/core/result.h"
 #include "shadowkit/eval/metrics.h"
+#include "shadowkit/eval/soft_truth.h"
 #include "shadowkit/eval/truth.h"
 
 #include <nlohmann/json_fwd.hpp>
@@ -57,6 +58,9 @@ struct ViewReport {
     // "truth_rays_per_second" (primary and shadow rays).
     double truthSeconds = 0.0, truthRaysPerSecond = 0.0;
     std::optional<VirtualPagesReport> virtualPages; // "virtual": technique virtual's pages
+    // Against the soft truth (eval --sun-angle): "sun_angle_deg", "soft_compared_px", "penumbra_px",
+    // "soft_mae", "penumbra_mae", "soft_wrong_pct", "soft_truth_seconds".
+    std::optional<SoftFigures> soft;
 };
 
 // {"pages_requested", ..., "shadow_triangles"}: the "virtual" object of a view or a path's frame.

@@ -6,10 +6,12 @@
 // error it leaves.
 #pragma once
 
+#include "shadowkit/eval/metrics.h"
 #include "shadowkit/eval/ray_scene.h"
 #include "shadowkit/eval/truth.h"
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace shadowkit::eval {
@@ -53,6 +55,23 @@ struct SoftTruth {
 /// (TBB). An angular diameter of 0 traces one ray per point, exactly the hard truth's.
 SoftTruth computeSoftTruth(const RayScene& rays, const TruthBuffers& hits, const SunDisk& sun,
                            const SoftTruthOptions& options = {});
+
+/// Rendered shadows against the soft truth.
+struct SoftFigures {
+    double sunAngleDegrees = 0.0; ///< the disk's angular diameter
+    int64_t comparedPx = 0;       ///< the hard comparison's valid pixels (surface agreed, facing the sun)
+    int64_t penumbraPx = 0;       ///< of those, where the true visibility is in (0.02, 0.98)
+    double softMae = 0.0;         ///< mean |rendered − true visibility| over the compared pixels
+    double penumbraMae = 0.0;     ///< the same over the penumbra pixels (0 when there are none)
+    double softWrongPct = 0.0;    ///< % of the compared pixels off by more than 0.25
+    double truthSeconds = 0.0;    ///< computing the soft truth (SoftTruth::seconds)
+    uint64_t truthRays = 0;       ///< its shadow rays
+};
+
+/// The rendered shadow term (1 lit … 0 shadowed, core::RasterBuffers::shadowTerm) against the
+/// soft truth, over the pixels `classes` (the hard comparison's) calls valid.
+SoftFigures compareSoft(std::span<const float> shadowTerm, const SoftTruth& soft, std::span<const PixelClass> classes,
+                        double sunAngleDegrees);
 
 /// Direction `k` of a k × k stratified set over a cone of half-angle `halfAngle` round `axis`
 /// (unit), uniform in solid angle: (u, v) in [0, 1)² mapped to the unit disk by Shirley and

@@ -14,6 +14,7 @@
 #include "shadowkit/core/shadow_setup.h"
 #include "shadowkit/eval/metrics.h"
 #include "shadowkit/eval/report.h"
+#include "shadowkit/eval/soft_truth.h"
 #include "shadowkit/eval/temporal.h"
 #include "shadowkit/eval/truth.h"
 #include "shadowkit/frame/frame_driver.h"
@@ -43,6 +44,10 @@ struct MeasureOptions {
     // this camera is not cached yet.
     std::function<void(double)> truthProgress;
     eval::CompareOptions compare;
+    // The sun as a disk of this angular diameter, in degrees: also compare with the soft truth
+    // (eval::computeSoftTruth, Measurement::soft); 0 (the default): the hard truth alone.
+    double sunAngleDegrees = 0.0;
+    eval::SoftTruthOptions softTruth;
 };
 
 // One light of a frame with several: its name ("sun", "point[0]", "spot[1]"), maps and figures.
@@ -67,6 +72,7 @@ struct Measurement {
     scene::Image image;                               // the shaded frame, with MeasureOptions::shadedImage
     std::optional<gl::VirtualPageStats> virtualPages; // technique virtual: the frame's pages
     gl::PassStats shadowPass;                         // what the frame's sun shadow pass drew
+    std::optional<eval::SoftFigures> soft;            // with MeasureOptions::sunAngleDegrees > 0 and the sun on
     const eval::Figures& figures() const { return comparison.figures; }
 };
 
