@@ -13,7 +13,8 @@
 //     per-fragment linear depth, Scherzer 2005 §4.2);
 //   - the receiver-side biases: normal offset by a number of texels' world size, and
 //     receiver-plane depth bias (Isidoro 2006) from the screen derivatives of the position;
-//   - the filters: hard, 2 × 2 hardware PCF, N × N PCF, rotated Poisson disk;
+//   - the filters: hard, 2 × 2 hardware PCF, N × N PCF, rotated Poisson disk, and PCSS (soft
+//     shadows of a sun of a given angular size, its kernel on each map's local footprint);
 //   - cascades: split selection by view depth (Dimitrov 2007) and blending across a band;
 //   - virtual shadow maps: the clipmap level by the pixel's footprint, the page table's
 //     indirection into the physical page atlas, every filter inside the page's guard band.
@@ -33,6 +34,11 @@
 //   #define SK_SHADOW_SPLIT(i)                     mySplits[i].xy
 // skCascadedShadow is compiled only when SK_SHADOW_SPLIT is defined.
 //
+// PCSS reads the stored depths as well as comparing them: name a sampler2DArray of the same
+// texture (a sampler object with GL_TEXTURE_COMPARE_MODE GL_NONE, GL_NEAREST) before this file,
+//   #define SK_SHADOW_DEPTHS                       myShadowDepths
+// Without it SK_FILTER_PCSS takes the hard lookup.
+//
 // For virtual shadow maps (core/virtual_clipmap.h, docs/virtual-shadow-maps.md) the levels'
 // textureFromWorld come through one accessor, and skVirtualShadow is compiled when it is defined:
 //   #define SK_VIRTUAL_LEVEL_FROM_WORLD(i)         myLevelTextureFromWorld[i]
@@ -43,6 +49,7 @@
 #define SK_FILTER_PCF2 1    // the sampler's GL_LINEAR: 2 × 2 PCF in hardware
 #define SK_FILTER_GRID 2    // N × N comparisons one texel apart
 #define SK_FILTER_POISSON 3 // N comparisons on a Poisson disk rotated per pixel
+#define SK_FILTER_PCSS 4    // percentage-closer soft shadows: blocker search, then a penumbra-wide disk
 #endif
 
 struct SkShadowOptions {
@@ -51,8 +58,9 @@ struct SkShadowOptions {
     float normalOffsetTexels; // BiasSettings::normalOffset: receiver moved along its normal
     bool receiverPlane;       // BiasSettings::receiverPlane
     int filterKind;           // SK_FILTER_*
-    int filterTaps;           // N of the grid and Poisson filters
-    float poissonRadiusTexels;
+    int filterTaps;           // N of the grid, Poisson and PCSS filters
+    float poissonRadiusTexels; // Poisson: the disk's radius; PCSS: its widest kernel; in texels
+    float lightTanHalfAngle;   // PCSS: tan of the sun's angular radius (0.53° across: 0.004625); 0: a point
 };
 
 // (u, v, depth) of a world point: textureFromWorld's xy / w and the reference depth.
@@ -83,6 +91,92 @@ const vec2 kSkPoisson[32] = vec2[](
     vec2(0.169469, -0.997253), vec2(0.320597, 0.291055), vec2(0.359172, -0.633717), vec2(0.435713, -0.250832),
     vec2(0.507797, -0.916562), vec2(0.545763, 0.730216), vec2(0.56859, 0.11655), vec2(0.743156, -0.505173),
     vec2(0.736442, -0.189734), vec2(0.843562, 0.357036), vec2(0.865413, -0.795735), vec2(0.872393, 0.750194));
+
+#ifdef SK_SHADOW_DEPTHS
+// Percentage-closer soft shadows (Fernando 2005), the kernel on the map's local footprint.
+//
+// The sun is a disk of angular radius α. A receiver sees it through a cone of half-angle α
+// around ℓ, the direction towards the light; a distance Δ towards the light the cone's
+// cross-section is a disk of radius Δ·tan α, and blockers there hide the sun in the proportion
+// of that disk they cover. So for blockers at one distance the lit fraction is percentage-closer
+// filtering over that disk, and Fernando's two steps find Δ (the blockers' mean distance, from a
+// search over the widest disk that can matter) and then filter.
+//
+// The disk lies in the world, perpendicular to ℓ. The map's (u, v) is a projective function of
+// the world, so in the map the disk is an ellipse whose axes are the local Jacobian d(u, v)/d(world)
+// restricted to that plane: for warped maps (PSM, LiSPSM, TSM) it changes over the map, and a
+// kernel of so many texels everywhere would be wrong by the warp's ratio. ℓ is the direction in
+// which (u, v) stays put, ∇u × ∇v. Along it an orthographic, LiSPSM or TSM map keeps its footprint
+// (their warps' w does not change along the light), so the ellipse at the receiver is the ellipse at
+// the blocker, and depth is linear along it: Δ = (d_receiver − d_blocker) / |∂d/∂ℓ|.
+//
+// The search counts a tap as a blocker only where its depth puts it inside the receiver's cone
+// (ρ ≤ Δ·tan α, ρ the tap's distance off the axis in metres): a caster the search reaches but that
+// hides none of the sun does not pull the mean. A blocker's cone is as narrow as it is near, so
+// the search's taps lie at radii growing linearly from the axis itself (dense where the near
+// blockers must be found: the first tap is the receiver's own texel), not uniformly in area. The
+// filter's taps are a Vogel disk (golden-angle spiral, uniform in area for any count), as the sun
+// is. Both turn per pixel and take o.filterTaps taps; both kernels are capped at
+// o.poissonRadiusTexels texels along the ellipse's longer axis (a virtual page's guard band holds that).
+// `t`, `uv`, `depth`: the receiver's coordinates after the normal offset; dDepthDuv its plane.
+float skPcss(sampler2DArrayShadow maps, int layer, mat4 textureFromWorld, vec4 linearDepthFromWorld, SkShadowOptions o,
+             vec4 atlasFromMap, vec4 t, vec2 uv, float depth, vec2 dDepthDuv) {
+    const vec3 sx = skShadowStep(textureFromWorld, linearDepthFromWorld, o.linearDepth, t, vec3(1, 0, 0));
+    const vec3 sy = skShadowStep(textureFromWorld, linearDepthFromWorld, o.linearDepth, t, vec3(0, 1, 0));
+    const vec3 sz = skShadowStep(textureFromWorld, linearDepthFromWorld, o.linearDepth, t, vec3(0, 0, 1));
+    const vec3 gradU = vec3(sx.x, sy.x, sz.x), gradV = vec3(sx.y, sy.y, sz.y), gradDepth = vec3(sx.z, sy.z, sz.z);
+    vec3 towardsLight = cross(gradU, gradV);
+    float depthPerMetre = dot(gradDepth, towardsLight);
+    // Degenerate maps (no footprint, or depth not changing towards the light): the hard lookup.
+    if (!(abs(depthPerMetre) > 1e-30 * length(towardsLight)))
+        return texture(maps, vec4(uv * atlasFromMap.xy + atlasFromMap.zw, float(layer), clamp(depth, 0.0, 1.0)));
+    towardsLight *= -sign(depthPerMetre) / length(towardsLight); // depth falls towards the light
+    depthPerMetre = -dot(gradDepth, towardsLight);
+
+    // The ellipse: (u, v) per metre along an orthonormal basis of the plane ⟂ ℓ; its longer axis
+    // is uvFromDisk's larger singular value.
+    const vec3 e1 = normalize(cross(towardsLight, abs(towardsLight.y) < 0.9 ? vec3(0, 1, 0) : vec3(1, 0, 0)));
+    const vec3 e2 = cross(towardsLight, e1);
+    const mat2 uvFromDisk = mat2(dot(gradU, e1), dot(gradV, e1), dot(gradU, e2), dot(gradV, e2));
+    const float a = dot(uvFromDisk[0], uvFromDisk[0]), b = dot(uvFromDisk[0], uvFromDisk[1]);
+    const float c = dot(uvFromDisk[1], uvFromDisk[1]);
+    const float uvPerMetre = sqrt(0.5 * (a + c) + sqrt(0.25 * (a - c) * (a - c) + b * b));
+    const float widestMetres = o.poissonRadiusTexels / (o.mapTexels * max(uvPerMetre, 1e-30));
+
+    // Vogel disk: tap i at radius sqrt((i + ½) / N), each turned by the golden angle from the last.
+    const float angle = skPixelAngle();
+    const mat2 golden = mat2(-0.7373688, 0.6754903, -0.6754903, -0.7373688); // 2.39996 rad
+    const int taps = max(o.filterTaps, 1);
+
+    // 1. Blockers anywhere up to the map's near plane (depth 0) that the cone can reach.
+    const float searchMetres = min(depth / depthPerMetre * o.lightTanHalfAngle, widestMetres);
+    float blockerMetres = 0.0, blockers = 0.0;
+    vec2 direction = vec2(cos(angle), sin(angle));
+    for (int i = 0; i < taps; ++i, direction = golden * direction) {
+        const float rho = float(i) / float(taps) * searchMetres;
+        const vec2 offset = uvFromDisk * (direction * rho);
+        const float stored = texture(SK_SHADOW_DEPTHS, vec3((uv + offset) * atlasFromMap.xy + atlasFromMap.zw, float(layer))).r;
+        // The comparison's own test (a blocker where reference > stored), in metres towards the light.
+        const float metres = (depth + dot(dDepthDuv, offset) - stored) / depthPerMetre;
+        if (metres > 0.0 && metres * o.lightTanHalfAngle >= rho) {
+            blockerMetres += metres;
+            blockers += 1.0;
+        }
+    }
+    if (blockers == 0.0) return 1.0;
+
+    // 2. Percentage-closer filtering over the cone's disk at the blockers' mean distance.
+    const float filterMetres = min(blockerMetres / blockers * o.lightTanHalfAngle, widestMetres);
+    float lit = 0.0;
+    direction = vec2(cos(angle), sin(angle));
+    for (int i = 0; i < taps; ++i, direction = golden * direction) {
+        const vec2 offset = uvFromDisk * (direction * (sqrt((float(i) + 0.5) / float(taps)) * filterMetres));
+        const float reference = clamp(depth + dot(dDepthDuv, offset), 0.0, 1.0);
+        lit += texture(maps, vec4((uv + offset) * atlasFromMap.xy + atlasFromMap.zw, float(layer), reference));
+    }
+    return lit / float(taps);
+}
+#endif
 
 // The lit fraction (0 shadowed .. 1 lit) of a receiver at `ws` with unit normal `n` in one map
 // stored in layer `layer` of `maps` at (u, v) · atlasFromMap.xy + atlasFromMap.zw: the whole layer
@@ -117,6 +211,10 @@ float skShadowMapIn(sampler2DArrayShadow maps, int layer, mat4 textureFromWorld,
         const float det = dx.x * dy.y - dx.y * dy.x;
         if (abs(det) > 1e-20) dDepthDuv = vec2(dy.y * dx.z - dx.y * dy.z, dx.x * dy.z - dy.x * dx.z) / det;
     }
+#ifdef SK_SHADOW_DEPTHS
+    if (o.filterKind == SK_FILTER_PCSS && o.lightTanHalfAngle > 0.0)
+        return skPcss(maps, layer, textureFromWorld, linearDepthFromWorld, o, atlasFromMap, t, uv, depth, dDepthDuv);
+#endif
     const float size = o.mapTexels;
     const int taps = o.filterTaps;
     if (o.filterKind == SK_FILTER_GRID || o.filterKind == SK_FILTER_POISSON) {

@@ -201,7 +201,7 @@ TEST_F(EvalIntegrationTest, CullingAndLevelsOfDetailLeaveTheFiguresWhereTheyWere
     }
 }
 
-TEST_F(EvalIntegrationTest, SoftFiguresOfAVanishingSunAreTheHardOnesAndPcfSoftensTowardsTheRealSun) {
+TEST_F(EvalIntegrationTest, SoftFiguresOfAVanishingSunAreTheHardOnesAndPcfAndPcssSoftenTowardsTheRealSun) {
     const scene::Scene forest = gl::testing::smallForest(300, 200, 32);
     scene::ResolvedView view = gl::testing::standardView(forest, "perpendicular");
     view.camera.aspect = 4.0 / 3.0;
@@ -216,11 +216,10 @@ TEST_F(EvalIntegrationTest, SoftFiguresOfAVanishingSunAreTheHardOnesAndPcfSoften
                                          .technique = core::Technique::Tsm,
                                          .mapSize = 2048};
     const auto softOf = [&](double sunAngle, core::FilterSettings filter) {
-        measure::MeasureOptions options;
-        options.sunAngleDegrees = sunAngle;
         gl::RenderSettings s = settings;
         s.filter = filter;
-        auto m = (*measurer)->measure(inputs, s, options);
+        s.sunAngleDegrees = sunAngle;
+        auto m = (*measurer)->measure(inputs, s, {});
         EXPECT_TRUE(m && m->soft) << (m ? "no soft figures" : m.error());
         return std::pair{m->figures(), *m->soft};
     };
@@ -237,5 +236,10 @@ TEST_F(EvalIntegrationTest, SoftFiguresOfAVanishingSunAreTheHardOnesAndPcfSoften
     const auto [pcfFigures, pcfSoft] = softOf(0.53, core::parseFilter("pcf:3").value());
     EXPECT_GT(hardSoft.penumbraPx, 100);
     EXPECT_LT(pcfSoft.penumbraMae, hardSoft.penumbraMae);
+    // PCSS draws penumbrae as wide as that sun's: closer than either in the penumbrae, and over all
+    // pixels too (a fixed kernel blurs contact shadows and umbrae; PCSS keeps them hard).
+    const auto [pcssFigures, pcssSoft] = softOf(0.53, core::parseFilter("pcss").value());
+    EXPECT_LT(pcssSoft.penumbraMae, 0.8 * pcfSoft.penumbraMae);
+    EXPECT_LT(pcssSoft.softMae, 0.8 * std::min(hardSoft.softMae, pcfSoft.softMae));
     EXPECT_GT(hardSoft.truthRays, static_cast<uint64_t>(hardSoft.comparedPx)); // probes: more than a ray a pixel
 }

@@ -220,21 +220,27 @@ def sweep_configurations(path, name_columns):
 
 
 def soft(paths):
-    """Per filter of a sweep's results.csv (eval --sun-angle): penumbra_mae per view (soft_mae in
-    brackets) and the means."""
+    """Per set-up (a sweep's `set-up` bundle, if it has one) and filter of a sweep's results.csv
+    (eval --sun-angle): penumbra_mae per view (soft_mae in brackets) and the means."""
     rows = []
     for path in paths:
         with open(path, newline="") as f:
             rows += [{k: number(v) for k, v in r.items()} for r in csv.DictReader(f)]
+    setups = list(dict.fromkeys(r.get("set-up", "") for r in rows))
     filters = list(dict.fromkeys(r["filter"] for r in rows))
-    print("| filter | " + " | ".join(VIEWS) + " | mean penumbra_mae | mean soft_mae |")
-    print("|---|" + "---:|" * (len(VIEWS) + 2))
-    for name in filters:
-        by_view = {r["view"]: r for r in rows if r["filter"] == name}
-        cells = [f"{by_view[v]['penumbra_mae']:.3f} ({by_view[v]['soft_mae']:.4f})" for v in VIEWS]
-        pen = sum(by_view[v]["penumbra_mae"] for v in VIEWS) / len(VIEWS)
-        mae = sum(by_view[v]["soft_mae"] for v in VIEWS) / len(VIEWS)
-        print(f"| `{name}` | " + " | ".join(cells) + f" | {pen:.3f} | {mae:.4f} |")
+    labelled = setups != [""]
+    print(("| set-up " if labelled else "") + "| filter | " + " | ".join(VIEWS) + " | mean penumbra_mae | mean soft_mae |")
+    print(("|---" if labelled else "") + "|---|" + "---:|" * (len(VIEWS) + 2))
+    for setup in setups:
+        for name in filters:
+            by_view = {r["view"]: r for r in rows if r["filter"] == name and r.get("set-up", "") == setup}
+            if not by_view:
+                continue
+            cells = [f"{by_view[v]['penumbra_mae']:.3f} ({by_view[v]['soft_mae']:.4f})" for v in VIEWS]
+            pen = sum(by_view[v]["penumbra_mae"] for v in VIEWS) / len(VIEWS)
+            mae = sum(by_view[v]["soft_mae"] for v in VIEWS) / len(VIEWS)
+            print((f"| {setup} " if labelled else "") + f"| `{name}` | " + " | ".join(cells) +
+                  f" | {pen:.3f} | {mae:.4f} |")
 
 
 def oracle(paths, name_columns=("technique",)):

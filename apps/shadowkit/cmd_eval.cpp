@@ -34,7 +34,6 @@ struct EvalArgs {
     LocalLightOptions lights;
     std::string views; // "a,b" or "all"; empty: --view
     std::string json, errorMap, aliasingMap, dump, csv, plot, report;
-    double sunAngle = 0.0;          // --sun-angle: the sun as a disk this many degrees across; 0 the hard truth alone
     bool check = false;             // --check: validate every option, render and measure nothing
     bool serve = false;             // --serve: evaluate each request read from stdin (eval_session.h)
     EvalSession* session = nullptr; // a request of --serve: the scene and measurer kept between requests
@@ -80,8 +79,6 @@ int runEval(const EvalArgs& args) {
     if (auto s = args.technique.check(/*measuresFrames=*/true, /*takesAuto=*/true); !s) return fail(s.errorInfo());
     if (auto s = args.render.check(); !s) return fail(s.errorInfo());
     if (auto s = args.scene.check(); !s) return fail(s.errorInfo());
-    if (!(args.sunAngle >= 0.0 && args.sunAngle <= 20.0))
-        return fail(fmt::format("--sun-angle: must be in [0, 20] degrees (the sun: 0.53), got {}", args.sunAngle));
     for (auto [flag, file] :
          {std::pair{"--json", &args.json}, {"--csv", &args.csv}, {"--plot", &args.plot}, {"--report", &args.report}})
         if (auto s = checkWritable(flag, *file); !s) return fail(s.errorInfo());
@@ -140,7 +137,6 @@ int runEval(const EvalArgs& args) {
         // Progress only when the truth takes a while (large images, big scenes).
         measure::MeasureOptions options;
         options.shadedImage = !args.report.empty();
-        options.sunAngleDegrees = args.sunAngle;
         options.truthProgress = [&, shown = false](double done) mutable {
             const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
             if ((elapsed < 2.0 && !shown) || !isatty(fileno(stderr))) return; // a log gets the table only
@@ -240,10 +236,6 @@ Command addEvalCommand(CLI::App& app, EvalSession* session) {
     cmd->add_option("--csv", args->csv,
                     "with --path: the figures of every frame as CSV, flicker_pct and truth_change_pct included");
     cmd->add_option("--plot", args->plot, "with --path: a PNG plot of flicker_pct and truth_change_pct per frame");
-    cmd->add_option(
-        "--sun-angle", args->sunAngle,
-        "also measure against the soft truth of the sun as a disk this many degrees across (the real "
-        "sun: 0.53): soft_mae, penumbra_mae, soft_wrong_pct (default 0: the hard truth alone; still views)");
     cmd->add_flag("--check", args->check,
                   "check every option (scene's, view names, technique, filters, lights, path) and exit without "
                   "rendering: 0 when the evaluation would start, else the one-line error (shadowkit sweep checks its "

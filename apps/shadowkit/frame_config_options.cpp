@@ -20,6 +20,7 @@ core::Result<frame::FrameConfig> frameConfigOf(const TechniqueOptions& technique
 
     gl::RenderSettings& s = config.render;
     s.filter = core::parseFilter(render.filter).value(); // checked above
+    s.sunAngleDegrees = render.sunAngle;
     s.blur = render.blur;
     s.cascadeColors = render.cascadeColors;
     s.aliasingOverlay = render.aliasingOverlay;

@@ -248,6 +248,7 @@ constexpr std::pair<std::string_view, std::string_view> kFlagOfField[] = {
     {"filter", "--filter"},
     {"filter.taps", "--filter"},
     {"filter.radius", "--filter"},
+    {"sun_angle", "--sun-angle"},
     {"blur.iterations", "--blur-iterations"},
     {"blur.radius", "--blur-radius"},
     {"blur.depth_falloff", "--blur-depth-falloff"},
@@ -319,7 +320,13 @@ void RenderOptions::addTo(CLI::App& cmd) {
         ->transform(choice(Choices<Choice>{{"auto", Choice::Auto}, {"on", Choice::On}, {"off", Choice::Off}}))
         ->capture_default_str();
     cmd.add_option("--filter", filter,
-                   "hard, pcf2 (hardware 2x2), pcf:N (N x N, 1-9), poisson:N (N rotated taps, 1-32)")
+                   "hard, pcf2 (hardware 2x2), pcf:N (N x N, 1-9), poisson:N (N rotated taps, 1-32), pcss[:N] (soft "
+                   "shadows of a --sun-angle sun: blocker search and filter of N taps each, default 16)")
+        ->capture_default_str();
+    cmd.add_option("--sun-angle", sunAngle,
+                   "the sun's angular diameter in degrees, [0, 20] (the real sun: 0.53): the penumbrae --filter pcss "
+                   "draws, and eval's soft truth (soft_mae, penumbra_mae, soft_wrong_pct); 0: a point, hard shadows "
+                   "and the hard truth alone")
         ->capture_default_str();
     cmd.add_option("--blur-iterations", blur.iterations, "eye-space blur of the shadow mask: 0, 1, 2, 4, 8, 16 ...")
         ->capture_default_str();
@@ -352,6 +359,7 @@ void RenderOptions::addTo(CLI::App& cmd) {
 
 core::Status RenderOptions::check() const {
     if (auto f = core::parseFilter(filter); !f) return withFlagName(f.errorInfo());
+    if (auto s = gl::validateSunAngle(sunAngle); !s) return withFlagName(s.errorInfo());
     if (auto s = gl::validate(blur); !s) return withFlagName(s.errorInfo());
     if (fog && !(*fog >= 0.0 && std::isfinite(*fog))) return core::makeError("--fog: must be a density >= 0 (1/m)");
     core::BiasSettings b;

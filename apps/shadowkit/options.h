@@ -122,6 +122,7 @@ struct RenderOptions {
     CullChoice cull = CullChoice::Auto;
     Choice receiverPlaneBias = Choice::Auto;
     std::string filter = "hard";
+    double sunAngle = 0.0; // --sun-angle: the sun's angular diameter in degrees; 0 a point
     gl::BlurSettings blur;
     bool cascadeColors = false;
     bool aliasingOverlay = false;                    // --aliasing-overlay: pixels per texel instead of shading (live)

@@ -94,7 +94,7 @@ float numberOf(const char* name) { return std::stof(defaultOf(name)); }
 
 constexpr std::array kTexelBudgets = {"1M", "4M", "16M", "32M"};
 constexpr std::array kMapSizes = {"256", "512", "1024", "2048", "4096", "8192"};
-constexpr std::array kFilters = {"hard", "pcf2", "pcf:3", "pcf:5", "poisson:16", "poisson:32"};
+constexpr std::array kFilters = {"hard", "pcf2", "pcf:3", "pcf:5", "poisson:16", "poisson:32", "pcss", "pcss:32"};
 
 } // namespace
 
@@ -191,6 +191,8 @@ bool drawOptionsPanel(StateOptions& s, const PanelDefaults& d) {
             changed = true;
         }
         changed |= combo(s, "filter", "filter", kFilters, defaultOf("filter"));
+        // The sun's size: the width of the penumbrae pcss draws (0.53: the real sun).
+        changed |= sliderFloat(s, "sun angle (deg)", "sun-angle", 0.0f, 5.0f, numberOf("sun-angle"));
         changed |=
             sliderInt(s, "blur iterations", "blur-iterations", 0, 16, static_cast<int>(numberOf("blur-iterations")));
         if (valueOf(s, "blur-iterations", "0") != "0") {

@@ -131,7 +131,7 @@ out vec4 color;
 void main() {
     const vec3 n = normalize(wsNormal);
     const vec3 dx = dFdx(wsPosition), dy = dFdy(wsPosition); // uniform control flow
-    const SkShadowOptions o = SkShadowOptions(mapTexels, linearDepth != 0, normalOffsetTexels, false, SK_FILTER_PCF2, 0, 0.0);
+    const SkShadowOptions o = SkShadowOptions(mapTexels, linearDepth != 0, normalOffsetTexels, false, SK_FILTER_PCF2, 0, 0.0, 0.0);
     const float viewDepth = dot(wsPosition - wsEye, wsViewForward);
     const float nDotL = max(dot(n, wsTowardsSun), 0.0);
     const float lit = shadows != 0 && nDotL > 0.0 ? skCascadedShadow(shadowMaps, mapCount, o, viewDepth, wsPosition, n, dx, dy) : 1.0;

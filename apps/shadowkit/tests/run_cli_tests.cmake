@@ -36,6 +36,8 @@ file(MAKE_DIRECTORY "${WORK}/a_directory.obj")
 
 check_fails(unknown-technique "--technique" setup ${small} --technique nonsense)
 check_fails(eval-sun-angle-out-of-range "--sun-angle" eval --check --sun-angle 30)
+check_fails(render-sun-angle-negative "--sun-angle: must be in [0, 20] degrees" render --sun-angle -1 --out ${WORK}/never.png)
+check_fails(eval-pcss-taps "--filter: expected hard" eval --check --filter pcss:40)
 check_fails(eval-check-unknown-view "--view: unknown view" eval --check --view sideways)
 check_fails(eval-check-missing-scene "scene file does not exist" eval --check --scene ${WORK}/no-such-scene.glb)
 # shadowkit sweep runs the Python package; a build without it (no pybind11, the sanitizer build)

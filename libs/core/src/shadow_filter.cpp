@@ -7,10 +7,11 @@ namespace shadowkit::core {
 Status validate(const FilterSettings& f) {
     if (f.kind == ShadowFilter::PcfGrid && (f.taps < 1 || f.taps > 9))
         return fieldError("filter.taps", "pcf grid size must be in [1, 9], got " + std::to_string(f.taps));
-    if (f.kind == ShadowFilter::Poisson && (f.taps < 1 || f.taps > 32))
-        return fieldError("filter.taps", "poisson samples must be in [1, 32], got " + std::to_string(f.taps));
+    if ((f.kind == ShadowFilter::Poisson || f.kind == ShadowFilter::Pcss) && (f.taps < 1 || f.taps > 32))
+        return fieldError("filter.taps", std::string(f.kind == ShadowFilter::Pcss ? "pcss" : "poisson") +
+                                             " samples must be in [1, 32], got " + std::to_string(f.taps));
     if (!(f.radiusTexels > 0.0f && f.radiusTexels <= 16.0f)) // NaN-safe
-        return fieldError("filter.radius", "poisson radius must be in (0, 16] texels");
+        return fieldError("filter.radius", "filter radius must be in (0, 16] texels");
     return Ok{};
 }
 
@@ -24,15 +25,19 @@ std::string filterName(const FilterSettings& f) {
         return "pcf:" + std::to_string(f.taps);
     case ShadowFilter::Poisson:
         return "poisson:" + std::to_string(f.taps);
+    case ShadowFilter::Pcss:
+        return f.taps == kPcssTaps ? "pcss" : "pcss:" + std::to_string(f.taps);
     }
     return "unknown";
 }
 
 Result<FilterSettings> parseFilter(std::string_view text) {
-    const Error bad = fieldError("filter", "expected hard, pcf2, pcf:N (N 1-9) or poisson:N (N 1-32), got '" +
-                                               std::string(text) + "'");
+    const Error bad =
+        fieldError("filter", "expected hard, pcf2, pcf:N (N 1-9), poisson:N (N 1-32) or pcss[:N] (N 1-32), got '" +
+                                 std::string(text) + "'");
     if (text == "hard") return FilterSettings{ShadowFilter::Hard, 1};
     if (text == "pcf2") return FilterSettings{ShadowFilter::Pcf2, 1};
+    if (text == "pcss") return FilterSettings{ShadowFilter::Pcss, kPcssTaps, kPcssMaxRadiusTexels};
     const size_t colon = text.find(':');
     if (colon == std::string_view::npos) return bad;
     const std::string_view kind = text.substr(0, colon), count = text.substr(colon + 1);
@@ -41,7 +46,10 @@ Result<FilterSettings> parseFilter(std::string_view text) {
         f.kind = ShadowFilter::PcfGrid;
     else if (kind == "poisson")
         f.kind = ShadowFilter::Poisson;
-    else
+    else if (kind == "pcss") {
+        f.kind = ShadowFilter::Pcss;
+        f.radiusTexels = kPcssMaxRadiusTexels;
+    } else
         return bad;
     const auto [end, ec] = std::from_chars(count.data(), count.data() + count.size(), f.taps);
     if (ec != std::errc{} || end != count.data() + count.size() || !validate(f)) return bad;
@@ -49,7 +57,7 @@ Result<FilterSettings> parseFilter(std::string_view text) {
 }
 
 bool isWideKernel(const FilterSettings& f) {
-    return f.kind == ShadowFilter::PcfGrid || f.kind == ShadowFilter::Poisson;
+    return f.kind == ShadowFilter::PcfGrid || f.kind == ShadowFilter::Poisson || f.kind == ShadowFilter::Pcss;
 }
 
 } // namespace shadowkit::core

@@ -44,6 +44,7 @@ inline void deleteVertexArray(GLuint id) { glDeleteVertexArrays(1, &id); }
 inline void deleteQuery(GLuint id) { glDeleteQueries(1, &id); }
 inline void deleteProgram(GLuint id) { glDeleteProgram(id); }
 inline void deleteShader(GLuint id) { glDeleteShader(id); }
+inline void deleteSampler(GLuint id) { glDeleteSamplers(1, &id); }
 } // namespace detail
 
 using Buffer = GlObject<detail::deleteBuffer>;
@@ -53,6 +54,7 @@ using VertexArray = GlObject<detail::deleteVertexArray>;
 using Query = GlObject<detail::deleteQuery>;
 using Program = GlObject<detail::deleteProgram>;
 using Shader = GlObject<detail::deleteShader>;
+using Sampler = GlObject<detail::deleteSampler>;
 
 // Immutable storage; buffers created without data, or `updatable`, take glNamedBufferSubData.
 inline Buffer createBuffer(const void* data, size_t bytes, bool updatable = false) {
@@ -60,6 +62,19 @@ inline Buffer createBuffer(const void* data, size_t bytes, bool updatable = fals
     glCreateBuffers(1, &id);
     glNamedBufferStorage(id, static_cast<GLsizeiptr>(bytes), data, data && !updatable ? 0 : GL_DYNAMIC_STORAGE_BIT);
     return Buffer(id);
+}
+
+// A sampler that reads a depth texture's stored values, nearest texel, whatever the texture's
+// own comparison mode: PCSS's blocker search reads the shadow maps so beside their comparisons.
+inline Sampler createRawDepthSampler() {
+    GLuint id = 0;
+    glCreateSamplers(1, &id);
+    glSamplerParameteri(id, GL_TEXTURE_COMPARE_MODE, GL_NONE);
+    glSamplerParameteri(id, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glSamplerParameteri(id, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glSamplerParameteri(id, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glSamplerParameteri(id, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    return Sampler(id);
 }
 
 inline Framebuffer createFramebuffer() {

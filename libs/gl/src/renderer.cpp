@@ -100,6 +100,7 @@ struct Renderer::Impl {
     CameraPrograms cameraPrograms; // the main and eval passes, with and without virtual maps
     Buffer depthUniforms, frameUniforms, blurUniforms;
     VertexArray emptyVertexArray; // for the full-screen triangle
+    Sampler rawDepthSampler;      // kShadowDepthUnit: the sun's maps' stored depths (PCSS's blocker search)
     std::optional<ShadowTarget> shadow;
     std::optional<ColorTarget> color;
     std::optional<EvalTarget> eval;
@@ -192,6 +193,7 @@ core::Result<std::unique_ptr<Renderer>> Renderer::create(const scene::Scene& sce
     GLuint vao = 0;
     glCreateVertexArrays(1, &vao);
     r.emptyVertexArray = VertexArray(vao);
+    r.rawDepthSampler = createRawDepthSampler();
     // Levels of detail of every mesh, for the camera and for shadow maps (meshoptimizer).
     std::vector<scene::MeshLods> lods;
     for (const scene::Mesh& mesh : scene.meshes) lods.push_back(scene::buildLods(mesh));
@@ -233,6 +235,7 @@ double lookupReachTexels(const core::FilterSettings& filter, const core::BiasSet
         reach = 0.5 * (filter.taps - 1) + 1.0;
         break;
     case core::ShadowFilter::Poisson:
+    case core::ShadowFilter::Pcss: // its widest kernel and search
         reach = filter.radiusTexels + 1.0;
         break;
     }
@@ -425,6 +428,7 @@ core::Status Renderer::Impl::prepare(const core::PerspectiveCamera& camera, cons
     bias = biasFor(setup, settings);
     if (auto s = core::validate(bias); !s) return s;
     if (auto s = core::validate(settings.filter); !s) return s;
+    if (auto s = validateSunAngle(settings.sunAngleDegrees); !s) return s;
     if (auto s = validate(settings.blur); !s) return s;
     if (auto s = validate(settings.localBias); !s) return s;
     const int maps = static_cast<int>(setup.views.size());
@@ -561,6 +565,7 @@ void Renderer::Impl::uploadFrame(const core::PerspectiveCamera& camera, const co
     frame.filterKind = static_cast<int32_t>(f.kind); // SK_FILTER_* in the shaders
     frame.filterTaps = f.taps;
     frame.poissonRadiusTexels = f.radiusTexels;
+    frame.lightTanHalfAngle = static_cast<float>(std::tan(glm::radians(0.5 * settings.sunAngleDegrees)));
     frame.receiverPlane = bias.receiverPlane ? 1 : 0;
     frame.normalOffsetTexels = static_cast<float>(bias.normalOffset);
     frame.readBlurredMask = useMask ? 1 : 0;
@@ -578,8 +583,12 @@ void Renderer::Impl::uploadFrame(const core::PerspectiveCamera& camera, const co
         virtualPages->bind(setup, settings.virtualBlendBand);
     else {
         virtualPages->bindDisabled();
-        if (shadow) glBindTextureUnit(kShadowMapUnit, shadow->depth.id());
+        if (shadow) {
+            glBindTextureUnit(kShadowMapUnit, shadow->depth.id());
+            glBindTextureUnit(kShadowDepthUnit, shadow->depth.id());
+        }
     }
+    glBindSampler(kShadowDepthUnit, rawDepthSampler.id()); // the same texture, its stored depths
     localMaps->bind(localLights, settings.localBias, evalLight, settings.sun);
     glEnable(GL_CULL_FACE);
     glCullFace(GL_BACK);

@@ -40,6 +40,7 @@ std::span<const UniformField> frameFields() {
         SK_FIELD(FrameUniforms, normalOffsetTexels),
         SK_FIELD(FrameUniforms, readBlurredMask),
         SK_FIELD(FrameUniforms, aliasingOverlay),
+        SK_FIELD(FrameUniforms, lightTanHalfAngle),
         SK_ARRAY_FIELD(FrameUniforms, shadowTextureFromWorld),
         SK_ARRAY_FIELD(FrameUniforms, shadowLinearDepthFromWorld),
         SK_ARRAY_FIELD(FrameUniforms, cascadeRange),
@@ -151,6 +152,7 @@ const std::string& shaderPrelude() {
         define("SK_FILTER_PCF2", static_cast<int>(ShadowFilter::Pcf2));
         define("SK_FILTER_GRID", static_cast<int>(ShadowFilter::PcfGrid));
         define("SK_FILTER_POISSON", static_cast<int>(ShadowFilter::Poisson));
+        define("SK_FILTER_PCSS", static_cast<int>(ShadowFilter::Pcss));
         define("SK_FRAME_BINDING", kFrameBinding);
         define("SK_DEPTH_PASS_BINDING", kDepthPassBinding);
         define("SK_BLUR_BINDING", kBlurBinding);
@@ -171,6 +173,7 @@ const std::string& shaderPrelude() {
         define("SK_INSTANCE_OFFSET_LOCATION", kInstanceOffsetLocation);
         define("SK_LOD_ERROR_LOCATION", kLodErrorLocation);
         define("SK_SHADOW_MAP_UNIT", kShadowMapUnit);
+        define("SK_SHADOW_DEPTH_UNIT", kShadowDepthUnit);
         define("SK_SHADOW_MASK_UNIT", kShadowMaskUnit);
         define("SK_BLUR_MASK_UNIT", kBlurMaskUnit);
         define("SK_BLUR_DEPTH_UNIT", kBlurDepthUnit);

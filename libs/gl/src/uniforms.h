@@ -45,11 +45,12 @@ inline constexpr unsigned kShadowMaskUnit = 1; // main pass: the blurred shadow 
 inline constexpr unsigned kBlurMaskUnit = 0;   // blur pass: the mask being blurred
 inline constexpr unsigned kBlurDepthUnit = 1;  // blur pass: view depth, to stop at depth steps
 // Local lights (local_shadows.h): their maps beside the sun's in the camera passes.
-inline constexpr unsigned kSpotMapUnit = 2;                    // sampler2DArrayShadow, one layer per spot light
-inline constexpr unsigned kPointMapUnit = 3;                   // samplerCubeArrayShadow, one cube per point light
-inline constexpr unsigned kPageTableUnit = 4;                  // usampler2D: virtual maps' page table
-inline constexpr unsigned kLocalDepthBinding = 5;              // uniform block LocalDepth (local_depth.glsl)
-inline constexpr unsigned kLocalLightsBinding = 6;             // uniform block LocalLights (local_lights.glsl)
+inline constexpr unsigned kSpotMapUnit = 2;        // sampler2DArrayShadow, one layer per spot light
+inline constexpr unsigned kPointMapUnit = 3;       // samplerCubeArrayShadow, one cube per point light
+inline constexpr unsigned kPageTableUnit = 4;      // usampler2D: virtual maps' page table
+inline constexpr unsigned kShadowDepthUnit = 5;    // camera passes: kShadowMapUnit's texture, stored depths (PCSS)
+inline constexpr unsigned kLocalDepthBinding = 5;  // uniform block LocalDepth (local_depth.glsl)
+inline constexpr unsigned kLocalLightsBinding = 6; // uniform block LocalLights (local_lights.glsl)
 inline constexpr int kMaxLocalLights = kMaxLocalLightsPerKind; // GLSL: SK_MAX_LOCAL_LIGHTS
 // GPU culling's storage buffers (gpu_cull.comp, depth_pyramid.comp; gpu_culling.h), bound before each dispatch.
 inline constexpr unsigned kCullInstancesBinding = 0; // boxes and scales
@@ -88,19 +89,19 @@ struct FrameUniforms {        // GLSL: Frame (frame.glsl)
     glm::vec4 wsTowardsLight; // xyz, unit
     glm::vec4 sunRadiance;    // rgb
     glm::vec4 ambientRadiance;
-    glm::vec4 fogColorDensity; // rgb, a: density in 1/m
-    float mapTexels;           // texels per side of every map
-    int32_t mapCount;          // layers in use, [1, kMaxCascades]
-    int32_t linearLayout;      // 1: maps store linear depth
-    int32_t cascadeColors;     // 1: tint each split's range
-    int32_t filterKind;        // core::ShadowFilter (SK_FILTER_*)
-    int32_t filterTaps;        // N of N x N, or Poisson samples
-    float poissonRadiusTexels;
-    int32_t receiverPlane;    // 1: receiver-plane depth bias
-    float normalOffsetTexels; // receiver offset along its normal, in texels' world size
-    int32_t readBlurredMask;  // 1: main pass reads the blurred mask instead of the maps
-    int32_t aliasingOverlay;  // 1: main pass shows pixels per texel instead of shading
-    float pad1;
+    glm::vec4 fogColorDensity;                          // rgb, a: density in 1/m
+    float mapTexels;                                    // texels per side of every map
+    int32_t mapCount;                                   // layers in use, [1, kMaxCascades]
+    int32_t linearLayout;                               // 1: maps store linear depth
+    int32_t cascadeColors;                              // 1: tint each split's range
+    int32_t filterKind;                                 // core::ShadowFilter (SK_FILTER_*)
+    int32_t filterTaps;                                 // N of N x N, or Poisson samples
+    float poissonRadiusTexels;                          // Poisson's disk, or PCSS's widest kernel
+    int32_t receiverPlane;                              // 1: receiver-plane depth bias
+    float normalOffsetTexels;                           // receiver offset along its normal, in texels' world size
+    int32_t readBlurredMask;                            // 1: main pass reads the blurred mask instead of the maps
+    int32_t aliasingOverlay;                            // 1: main pass shows pixels per texel instead of shading
+    float lightTanHalfAngle;                            // tan of the sun's angular radius (PCSS); 0: a point
     glm::mat4 shadowTextureFromWorld[kMaxCascades];     // (u, v, depth, 1) · w of each map (core::toEngineView)
     glm::vec4 shadowLinearDepthFromWorld[kMaxCascades]; // rows, as in DepthPass
     glm::vec4 cascadeRange[kMaxCascades];               // x, y: view depth [start, end] each map serves

@@ -436,6 +436,7 @@ void VirtualPages::bind(const core::ShadowSetup& setup, float blendBand) const {
     glNamedBufferSubData(m_mapsUniforms.id(), 0, sizeof u, &u);
     glBindBufferBase(GL_UNIFORM_BUFFER, kVirtualBinding, m_mapsUniforms.id());
     glBindTextureUnit(kShadowMapUnit, m_atlas.id());
+    glBindTextureUnit(kShadowDepthUnit, m_atlas.id()); // PCSS's blocker search: its stored depths
     glBindTextureUnit(kPageTableUnit, m_pageTable.id());
 }
 

@@ -149,10 +149,10 @@ core::Result<Measurement> Measurer::measure(const frame::PreparedFrame& frame, c
     auto comparison = eval::compare(m.raster, *m.truth, options.compare);
     if (!comparison) return comparison.errorInfo();
     m.comparison = std::move(comparison).value();
-    if (options.sunAngleDegrees > 0.0 && settings.sun) {
+    if (settings.sunAngleDegrees > 0.0 && settings.sun) {
         const eval::SoftTruth soft = eval::computeSoftTruth(
-            *m_impl->rays, *m.truth, {inputs.light.wsTowardsLight(), options.sunAngleDegrees}, options.softTruth);
-        m.soft = eval::compareSoft(m.raster.shadowTerm, soft, m.comparison.classes, options.sunAngleDegrees);
+            *m_impl->rays, *m.truth, {inputs.light.wsTowardsLight(), settings.sunAngleDegrees}, options.softTruth);
+        m.soft = eval::compareSoft(m.raster.shadowTerm, soft, m.comparison.classes, settings.sunAngleDegrees);
     }
     const core::LocalLighting& local = renderer.localLights();
     if (local.empty()) return m;

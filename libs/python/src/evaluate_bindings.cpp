@@ -62,7 +62,7 @@ public:
 
     py::dict evaluate(const std::string& viewName, const std::string& technique, int mapSize,
                       std::optional<std::pair<int, int>> size, const std::string& filter, int cascades,
-                      const std::string& cascadeWarp) {
+                      const std::string& cascadeWarp, double sunAngle) {
         const auto views = check(scene::loadViews(dataDirectory() / "views.json"));
         scene::ResolvedView view = scene::resolveView(check(scene::findView(views, viewName)), m_scene);
         if (size) {
@@ -84,6 +84,8 @@ public:
         else if (cascadeWarp != "none")
             throw py::value_error("cascade_warp: must be none or lispsm");
         config.render.filter = check(core::parseFilter(filter));
+        check(gl::validateSunAngle(sunAngle));
+        config.render.sunAngleDegrees = sunAngle;
         auto driver = check(frame::FrameDriver::create(config));
         const frame::PreparedFrame prepared = check(driver.prepare(m_measurer->renderer(), view));
         const measure::Measurement m = check(m_measurer->measure(prepared));
@@ -92,6 +94,11 @@ public:
         out["figures"] = figuresDict(m.figures());
         out["technique"] = std::string(core::techniqueName(m.setup.technique));
         out["maps"] = m.setup.views.size();
+        if (m.soft)
+            out["soft"] = py::dict(
+                py::arg("sun_angle_deg") = m.soft->sunAngleDegrees, py::arg("soft_compared_px") = m.soft->comparedPx,
+                py::arg("penumbra_px") = m.soft->penumbraPx, py::arg("soft_mae") = m.soft->softMae,
+                py::arg("penumbra_mae") = m.soft->penumbraMae, py::arg("soft_wrong_pct") = m.soft->softWrongPct);
         out["shadow_term"] = image<float>(m.raster.shadowTerm, w, h);  // 1 lit .. 0 shadowed, the map's test
         out["view_depth"] = image<float>(m.raster.viewDepth, w, h);    // metres; 0 where nothing was drawn
         out["surface_id"] = image<uint32_t>(m.raster.surfaceId, w, h); // instance + 1; 0 sky
@@ -112,7 +119,10 @@ private:
 constexpr const char* kEvaluateDoc =
     R"(Render `view` (a standard view of data/views.json) with a technique, ray-trace the truth
 and compare per pixel, as `shadowkit eval` does. size=(width, height) overrides the view's;
-filter: hard, pcf2, pcf:N, poisson:N. Returns a dict: figures (valid_px, excluded_px,
+filter: hard, pcf2, pcf:N, poisson:N, pcss[:N]. sun_angle: the sun's angular diameter in degrees
+(0.53 the real sun; 0 a point): the penumbrae pcss draws, and the soft truth the frame is also
+compared with (then a dict soft: sun_angle_deg, soft_compared_px, penumbra_px, soft_mae,
+penumbra_mae, soft_wrong_pct). Returns a dict: figures (valid_px, excluded_px,
 wrong_pct, false_shadow_pct, false_lit_pct, undersampled_pct, pixels_per_texel_p50,
 pixels_per_texel_p95, pixels_per_texel_p99), technique, maps, and per-pixel arrays (height x width, top row first):
 shadow_term, view_depth, surface_id, truth_lit, truth_faces_light, pixel_class (0 not
@@ -137,21 +147,21 @@ void bindEvaluation(py::module_& m) {
         .def("evaluate", &Evaluator::evaluate, kEvaluateDoc, py::kw_only(), py::arg("view") = "perpendicular",
              py::arg("technique") = kDefaultTechnique, py::arg("map_size") = kDefaults.mapSize,
              py::arg("size") = py::none(), py::arg("filter") = "hard", py::arg("cascades") = kDefaults.cascades.count,
-             py::arg("cascade_warp") = "none");
+             py::arg("cascade_warp") = "none", py::arg("sun_angle") = 0.0);
     m.def(
         "evaluate",
         [](const std::string& view, const std::string& technique, int mapSize, std::optional<std::pair<int, int>> size,
-           const std::string& filter, int cascades, const std::string& cascadeWarp, uint64_t seed, int trees,
-           double terrainSize, int terrainResolution) {
+           const std::string& filter, int cascades, const std::string& cascadeWarp, double sunAngle, uint64_t seed,
+           int trees, double terrainSize, int terrainResolution) {
             Evaluator evaluator(seed, trees, terrainSize, terrainResolution, scene::ForestOptions{}.movers);
-            return evaluator.evaluate(view, technique, mapSize, size, filter, cascades, cascadeWarp);
+            return evaluator.evaluate(view, technique, mapSize, size, filter, cascades, cascadeWarp, sunAngle);
         },
         "One evaluation with a forest of its own (see Evaluator.evaluate; seed, trees, terrain_size, "
         "terrain_resolution make the forest).",
         py::kw_only(), py::arg("view") = "perpendicular", py::arg("technique") = kDefaultTechnique,
         py::arg("map_size") = kDefaults.mapSize, py::arg("size") = py::none(), py::arg("filter") = "hard",
-        py::arg("cascades") = kDefaults.cascades.count, py::arg("cascade_warp") = "none", py::arg("seed") = d.seed,
-        py::arg("trees") = d.trees, py::arg("terrain_size") = d.terrainSize,
+        py::arg("cascades") = kDefaults.cascades.count, py::arg("cascade_warp") = "none", py::arg("sun_angle") = 0.0,
+        py::arg("seed") = d.seed, py::arg("trees") = d.trees, py::arg("terrain_size") = d.terrainSize,
         py::arg("terrain_resolution") = d.terrainResolution);
 }
 

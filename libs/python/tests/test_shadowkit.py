@@ -113,6 +113,24 @@ class EvaluateTest(unittest.TestCase):
             self.assertTrue(np.all(got["truth_lit"][correct_shadow] == 0))
             self.assertTrue(np.all(np.isnan(got["pixels_per_texel"][~valid])))
 
+    def test_soft_shadows_of_the_real_sun_equal_shadowkit_evals(self):
+        evaluator = shadowkit.Evaluator(trees=300, terrain_size=200, terrain_resolution=32)
+        args = ["--view", "perpendicular", "--technique", "tsm", "--size", "160x90", "--map-size", "512"]
+        soft = ["--filter", "pcss", "--sun-angle", "0.53"]
+        with tempfile.TemporaryDirectory() as folder:
+            report = os.path.join(folder, "eval.json")
+            subprocess.run([CLI, "eval", *args, *soft, *SMALL, "--json", report], check=True, capture_output=True)
+            with open(report) as f:
+                expected = json.load(f)["views"][0]
+        got = evaluator.evaluate(view="perpendicular", technique="tsm", size=(160, 90), map_size=512, filter="pcss",
+                                 sun_angle=0.53)
+        for key in ["sun_angle_deg", "soft_compared_px", "penumbra_px", "soft_mae", "penumbra_mae", "soft_wrong_pct"]:
+            self.assertAlmostEqual(got["soft"][key], expected[key], places=9, msg=key)
+        self.assertGreater(got["soft"]["penumbra_px"], 0)
+        self.assertNotIn("soft", evaluator.evaluate(view="perpendicular", size=(160, 90), map_size=512))
+        with self.assertRaisesRegex(ValueError, "sun_angle"):
+            evaluator.evaluate(view="perpendicular", size=(160, 90), sun_angle=-1)
+
 
 if __name__ == "__main__":
     unittest.main(verbosity=2)

@@ -20,11 +20,12 @@ layout(std140, binding = SK_FRAME_BINDING) uniform Frame {
     int cascadeColors;        // 1: tint each split's range
     int filterKind;           // SK_FILTER_HARD, _PCF2 (hardware 2x2), _GRID (N x N), _POISSON
     int filterTaps;           // N
-    float poissonRadiusTexels;
+    float poissonRadiusTexels; // Poisson's disk, or PCSS's widest kernel
     int receiverPlane;        // 1: receiver-plane depth bias
     float normalOffsetTexels; // receiver offset along its normal, in texels' world size
     int readBlurredMask;      // 1: the main pass reads the blurred mask instead of the maps
     int aliasingOverlay;      // 1: the main pass shows pixels per texel instead of shading
+    float lightTanHalfAngle;  // tan of the sun's angular radius (PCSS); 0: a point
     mat4 shadowTextureFromWorld[SK_MAX_CASCADES];     // (u, v, depth, 1) · w of each map
     vec4 shadowLinearDepthFromWorld[SK_MAX_CASCADES]; // rows, see DepthPass
     vec4 cascadeRange[SK_MAX_CASCADES];               // x, y: view depth [start, end] each map serves
@@ -33,6 +34,10 @@ layout(std140, binding = SK_FRAME_BINDING) uniform Frame {
 #define SK_SHADOW_TEXTURE_FROM_WORLD(i) shadowTextureFromWorld[i]
 #define SK_SHADOW_LINEAR_DEPTH_FROM_WORLD(i) shadowLinearDepthFromWorld[i]
 #define SK_SHADOW_SPLIT(i) cascadeRange[i].xy
+// The sun's maps (or the virtual page atlas) once more, their stored depths through a sampler
+// without comparison: PCSS's blocker search.
+layout(binding = SK_SHADOW_DEPTH_UNIT) uniform sampler2DArray shadowDepths;
+#define SK_SHADOW_DEPTHS shadowDepths
 
 // Virtual shadow maps (virtual_pages.h): the C++ side is VirtualMapsUniforms. The levels'
 // textureFromWorld are Frame's shadowTextureFromWorld.

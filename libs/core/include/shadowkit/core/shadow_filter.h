@@ -16,20 +16,28 @@ enum class ShadowFilter {
     Pcf2 = 1,    ///< hardware 2x2 percentage-closer filtering (GL_LINEAR compare; Scherzer 2005's filter)
     PcfGrid = 2, ///< N x N comparisons one texel apart, averaged
     Poisson = 3, ///< N comparisons on a Poisson disk, rotated per pixel
+    Pcss = 4,    ///< percentage-closer soft shadows (Fernando 2005): a blocker search, then a kernel as wide as
+                 ///< the penumbra of a light of the frame's size, both on the map's local footprint
 };
 
 /// The shadow lookup filter: hard, 2×2 hardware PCF, N×N PCF or a rotated Poisson disk, and its kernel size.
 struct FilterSettings {
     ShadowFilter kind = ShadowFilter::Hard; ///< which filter
-    int taps = 1;                           ///< PcfGrid: N of N x N, [1, 9]; Poisson: samples, [1, 32]; else unused
-    float radiusTexels = 1.5f;              ///< Poisson disk radius in texels, (0, 16]
+    int taps = 1;              ///< PcfGrid: N of N x N, [1, 9]; Poisson, Pcss: samples, [1, 32]; else unused
+    float radiusTexels = 1.5f; ///< Poisson: disk radius; Pcss: the widest kernel and search; in texels, (0, 16]
 };
+
+/// PCSS's defaults: taps of the blocker search and of the filter each, and the widest kernel
+/// in texels (a virtual page's guard band holds it; a 20 m tree under the real sun needs
+/// about 9 cm, 6 texels of the finest level).
+inline constexpr int kPcssTaps = 16;
+inline constexpr float kPcssMaxRadiusTexels = 8.0f;
 
 /// Checks the ranges above; the error's field is "filter.taps" or "filter.radius".
 Status validate(const FilterSettings& filter);
 
 /// The text form used by the CLI, configuration files and reports: "hard", "pcf2",
-/// "pcf:N" (N x N grid), "poisson:N" (N samples).
+/// "pcf:N" (N x N grid), "poisson:N" (N samples), "pcss" or "pcss:N" (N samples).
 std::string filterName(const FilterSettings& filter);
 /// Parses the text form and validates it; the error's field is "filter".
 Result<FilterSettings> parseFilter(std::string_view text);

@@ -30,6 +30,9 @@ struct BlurSettings {
 // "blur.depth_falloff", "blur.depth_threshold".
 core::Status validate(const BlurSettings& blur);
 
+// The sun's angular diameter: [0, 20] degrees; the error's field is "sun_angle".
+core::Status validateSunAngle(double degrees);
+
 // Which instances the camera pass draws (shadow passes cull by their volume unless Off).
 enum class Culling {
     Off,       // every instance, every pass
@@ -72,6 +75,9 @@ struct RenderSettings {
     // set-up's technique and depth layout and this filter (biasFor).
     std::optional<core::BiasSettings> bias;
     core::FilterSettings filter;
+    // The sun's angular diameter in degrees, [0, 20] (the real sun: 0.53): the width of the
+    // penumbrae the Pcss filter draws. 0: a point, hard shadows whatever the filter.
+    double sunAngleDegrees = 0.0;
     BlurSettings blur;
     float fogDensity = 0.002f; // 1/m of exponential fog (Scherzer 2005 used fog); 0 = none
     // Draw only the instances each pass can see: the camera pass those meeting the view

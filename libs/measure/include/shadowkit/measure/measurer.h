@@ -44,9 +44,8 @@ struct MeasureOptions {
     // this camera is not cached yet.
     std::function<void(double)> truthProgress;
     eval::CompareOptions compare;
-    // The sun as a disk of this angular diameter, in degrees: also compare with the soft truth
-    // (eval::computeSoftTruth, Measurement::soft); 0 (the default): the hard truth alone.
-    double sunAngleDegrees = 0.0;
+    // With a sun of some size (the frame's gl::RenderSettings::sunAngleDegrees > 0), the frame
+    // is also compared with the soft truth of that disk (eval::computeSoftTruth, Measurement::soft).
     eval::SoftTruthOptions softTruth;
 };
 
@@ -72,7 +71,7 @@ struct Measurement {
     scene::Image image;                               // the shaded frame, with MeasureOptions::shadedImage
     std::optional<gl::VirtualPageStats> virtualPages; // technique virtual: the frame's pages
     gl::PassStats shadowPass;                         // what the frame's sun shadow pass drew
-    std::optional<eval::SoftFigures> soft;            // with MeasureOptions::sunAngleDegrees > 0 and the sun on
+    std::optional<eval::SoftFigures> soft;            // with RenderSettings::sunAngleDegrees > 0 and the sun on
     const eval::Figures& figures() const { return comparison.figures; }
 };
 

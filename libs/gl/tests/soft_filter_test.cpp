@@ -1,0 +1,233 @@
+// PCSS (core::ShadowFilter::Pcss, glsl/shadowkit_shadows.glsl's skPcss) on a wall standing on
+// the ground: its shadow's side edges are penumbrae whose width the geometry gives exactly.
+//
+// The wall is the plane x = 0 (z in [−3, 3], 6 m tall); the sun comes from −x at 45°, so the
+// ground point (x, 0, z) sees the sun past the wall's vertical side edges at Δ = x·√2 metres
+// towards the light. A sun of angular radius α seen past a straight edge: the lit fraction across
+// the edge is the area of a circular segment of the disk of radius r = Δ·tan α that the edge
+// leaves, and that function's 10–90 % width is 2 · 0.6871 · r (the offset d at which
+// (acos d − d·√(1 − d²)) / π = 0.1 is d = 0.6871). The edge is parallel to x and the disk's plane
+// holds z, so on the ground the width along z is that width itself.
+#include "headless_gl_test.h"
+
+#include "shadowkit/core/output_conventions.h"
+#include "shadowkit/core/shadow_setup.h"
+#include "shadowkit/gl/renderer.h"
+#include "shadowkit/scene/mesh_builder.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+using namespace shadowkit;
+
+namespace {
+
+class SoftFilterTest : public gl::testing::HeadlessGlTest {};
+
+constexpr double kSegmentWidthPerRadius = 2.0 * 0.6871; // 10–90 % of a disk passing an edge
+
+scene::Scene wallOnGround() {
+    scene::Scene s;
+    scene::Mesh ground, wall;
+    scene::addBox(ground, glm::translate(glm::mat4(1.0f), {0, -0.5f, 0}), {20, 0.5f, 20}, glm::vec3(0.8f));
+    scene::addBox(wall, glm::translate(glm::mat4(1.0f), {-0.05f, 3, 0}), {0.05f, 3, 3}, glm::vec3(0.8f));
+    ground.computeBounds();
+    wall.computeBounds();
+    s.meshes = {ground, wall};
+    s.batches = {{0, {glm::mat4(1.0f)}, false}, {1, {glm::mat4(1.0f)}, false}};
+    return s;
+}
+
+const core::DirectionalLight kSun = core::DirectionalLight::fromDirection({1, -1, 0}).value(); // from −x, 45°
+
+struct Frame {
+    core::PerspectiveCamera camera;
+    core::RasterBuffers raster;
+    core::ShadowSetup setup;
+};
+
+Frame renderWall(gl::Renderer& renderer, const scene::Scene& scene, const core::PerspectiveCamera& camera,
+                 core::Technique technique, const gl::RenderSettings& settings, int mapSize = 1024) {
+    auto setup = core::computeShadowSetup(
+        {.camera = camera, .light = kSun, .wsSceneBounds = scene.wsBounds(), .technique = technique, .mapSize = mapSize});
+    EXPECT_TRUE(setup) << setup.error();
+    auto raster = renderer.renderEvalBuffers(camera, kSun, *setup, settings);
+    EXPECT_TRUE(raster) << raster.error();
+    return {camera, std::move(raster).value(), std::move(setup).value()};
+}
+
+// The shadow term at a ground point, from the pixel that shows it (NaN where that is not ground).
+float termAt(const Frame& f, const core::Vec3& ws) {
+    const core::Vec4 c = f.camera.clipFromWorld() * core::Vec4(ws, 1.0);
+    const int px = static_cast<int>((c.x / c.w * 0.5 + 0.5) * f.raster.width);
+    const int py = static_cast<int>((0.5 - c.y / c.w * 0.5) * f.raster.height);
+    if (c.w <= 0.0 || px < 0 || py < 0 || px >= f.raster.width || py >= f.raster.height) return NAN;
+    const size_t i = f.raster.index(px, py);
+    return f.raster.surfaceId[i] == 1u ? f.raster.shadowTerm[i] : NAN; // 1: the ground
+}
+
+// 10–90 % width along z of the shadow's side edge at `zEdge` (shadow towards z = 0), at x: the
+// terms averaged over a band of x (each pixel's taps turn differently: the average is the
+// filter's expectation), then the first crossings from the lit side.
+double penumbraWidth(const Frame& f, double x, double zEdge) {
+    const double inward = zEdge > 0.0 ? -1.0 : 1.0, step = 0.005, reach = 0.6;
+    std::vector<double> profile; // from zEdge + reach outward (lit) to zEdge − reach inward (shadow)
+    for (double s = -reach; s <= reach; s += step) {
+        double sum = 0.0;
+        int n = 0;
+        for (double dx = -0.2; dx <= 0.2001; dx += 0.02) {
+            const float t = termAt(f, {x + dx, 0.0, zEdge + inward * s});
+            if (std::isfinite(t)) sum += t, ++n;
+        }
+        EXPECT_GT(n, 0) << "no ground pixel at x " << x << ", z " << zEdge + inward * s;
+        profile.push_back(n ? sum / n : NAN);
+    }
+    EXPECT_GT(profile.front(), 0.97) << "lit beside the shadow";
+    EXPECT_LT(profile.back(), 0.03) << "shadowed inside it";
+    auto crossing = [&](double level) -> double {
+        for (size_t i = 1; i < profile.size(); ++i)
+            if (profile[i] < level) return step * (double(i - 1) + (profile[i - 1] - level) / (profile[i - 1] - profile[i]));
+        return NAN;
+    };
+    return crossing(0.1) - crossing(0.9);
+}
+
+double expectedWidth(double x, double sunAngleDegrees) {
+    const double delta = x * std::numbers::sqrt2;
+    return kSegmentWidthPerRadius * delta * std::tan(0.5 * sunAngleDegrees * std::numbers::pi / 180.0);
+}
+
+core::PerspectiveCamera topDown() {
+    core::PerspectiveCamera cam;
+    cam.wsEye = {3, 14, 0};
+    cam.wsDirection = {0, -1, 0};
+    cam.wsUp = {0, 0, -1};
+    cam.fovYDegrees = 36;
+    cam.aspect = 1.0;
+    cam.zNear = 1;
+    cam.zFar = 30;
+    return cam;
+}
+
+gl::RenderSettings pcssSettings(double sunAngleDegrees) {
+    gl::RenderSettings s;
+    s.width = s.height = 480;
+    s.fogDensity = 0.0f;
+    s.filter = {core::ShadowFilter::Pcss, 32, 16.0f}; // kernels up to 16 texels: the cap stays out of the way
+    s.sunAngleDegrees = sunAngleDegrees;
+    return s;
+}
+
+} // namespace
+
+TEST_F(SoftFilterTest, PcssPenumbraWidensAwayFromTheWallsFootAsTheDiskGeometrySays) {
+    const scene::Scene s = wallOnGround();
+    auto renderer = gl::Renderer::create(s);
+    ASSERT_TRUE(renderer) << renderer.error();
+    const double sunAngle = 2.0; // penumbrae of 5 and 15 cm: pixels are 2 cm
+    const Frame f = renderWall(**renderer, s, topDown(), core::Technique::Focused, pcssSettings(sunAngle));
+    for (const double zEdge : {3.0, -3.0}) {
+        const double near = penumbraWidth(f, 1.5, zEdge), far = penumbraWidth(f, 4.5, zEdge);
+        // Contact hardening: three times the blocker distance, about three times the width.
+        EXPECT_GT(far, 2.0 * near) << "edge z " << zEdge;
+        EXPECT_NEAR(far, expectedWidth(4.5, sunAngle), 0.2 * expectedWidth(4.5, sunAngle)) << "edge z " << zEdge;
+        EXPECT_NEAR(near, expectedWidth(1.5, sunAngle), 0.025) << "edge z " << zEdge; // ± a texel and a pixel
+    }
+}
+
+TEST_F(SoftFilterTest, PcssOfAVanishingSunIsTheHardLookupPixelForPixel) {
+    const scene::Scene s = wallOnGround();
+    auto renderer = gl::Renderer::create(s);
+    ASSERT_TRUE(renderer);
+    for (const core::Technique technique : {core::Technique::Focused, core::Technique::Lispsm, core::Technique::Csm}) {
+        gl::RenderSettings hard = pcssSettings(0.0);
+        hard.filter = core::FilterSettings{};
+        hard.bias = core::recommendedBias(technique, core::DepthLayout::Hyperbolic, hard.filter);
+        gl::RenderSettings pcss = pcssSettings(1e-6); // the kernels collapse onto the receiver's own texel
+        pcss.bias = hard.bias;                         // without the receiver plane the hard test snaps to
+        const Frame a = renderWall(**renderer, s, topDown(), technique, hard);
+        const Frame b = renderWall(**renderer, s, topDown(), technique, pcss);
+        size_t differing = 0, shadowed = 0;
+        for (size_t i = 0; i < a.raster.shadowTerm.size(); ++i) {
+            differing += a.raster.shadowTerm[i] != b.raster.shadowTerm[i];
+            shadowed += a.raster.shadowTerm[i] < 0.5f;
+        }
+        EXPECT_EQ(differing, 0u) << core::techniqueName(technique);
+        EXPECT_GT(shadowed, 1000u) << core::techniqueName(technique); // the wall's shadow is in view
+    }
+}
+
+TEST_F(SoftFilterTest, PcssKernelFollowsAWarpedMapsLocalFootprintNotAConstantTexelCount) {
+    // LiSPSM with the camera low and looking along −z past the wall: the near edge's texels are
+    // several times smaller than the far edge's. A kernel of constant texels would make the two
+    // penumbrae differ by that ratio; PCSS's, from the local Jacobian, makes them the same width in
+    // metres, the one the geometry gives.
+    const scene::Scene s = wallOnGround();
+    auto renderer = gl::Renderer::create(s);
+    ASSERT_TRUE(renderer);
+    core::PerspectiveCamera cam;
+    cam.wsEye = {5, 1.5, 5.5};
+    cam.wsDirection = core::Vec3(5, 0, -1) - cam.wsEye;
+    cam.fovYDegrees = 80;
+    cam.aspect = 1.0;
+    cam.zNear = 0.3;
+    cam.zFar = 40;
+    const double sunAngle = 4.0;
+    const gl::RenderSettings settings = pcssSettings(sunAngle);
+    const Frame f = renderWall(**renderer, s, cam, core::Technique::Lispsm, settings, 256);
+
+    // Texels per metre along z at both edges, from the map's own textureFromWorld.
+    const core::Mat4 textureFromWorld = core::toEngineView(f.setup.views[0], f.setup, {}).textureFromWorld;
+    const auto texelsPerMetre = [&](const core::Vec3& ws) {
+        const core::Vec4 a = textureFromWorld * core::Vec4(ws, 1.0);
+        const core::Vec4 b = textureFromWorld * core::Vec4(ws + core::Vec3(0, 0, 0.01), 1.0);
+        return glm::length(core::Vec2(b) / b.w - core::Vec2(a) / a.w) * f.setup.mapSize / 0.01;
+    };
+    const double nearDensity = texelsPerMetre({5, 0, 3}), farDensity = texelsPerMetre({5, 0, -3});
+    ASSERT_GT(nearDensity, 2.0 * farDensity) << "the warp must make the constant-texel kernel wrong by over 2x";
+
+    const double nearWidth = penumbraWidth(f, 5.0, 3.0), farWidth = penumbraWidth(f, 5.0, -3.0);
+    const double expected = expectedWidth(5.0, sunAngle);
+    EXPECT_NEAR(nearWidth, expected, 0.25 * expected);
+    EXPECT_NEAR(farWidth, expected, 0.25 * expected);
+}
+
+TEST_F(SoftFilterTest, PcssUnderTheRealSunIsFiniteAndLitAwayFromCastersForEveryTechnique) {
+    // Cascade seams, virtual pages' borders and warped maps' far texels all lie in this view; no
+    // term may be NaN or outside [0, 1], the shadow must be there, and ground no caster can shade
+    // (the sun's side of the wall, and beyond its ends) must be lit.
+    const scene::Scene s = wallOnGround();
+    auto renderer = gl::Renderer::create(s);
+    ASSERT_TRUE(renderer);
+    core::PerspectiveCamera cam;
+    cam.wsEye = {-6, 4, 12};
+    cam.wsDirection = core::Vec3(2, 0, 0) - cam.wsEye;
+    cam.fovYDegrees = 60;
+    cam.aspect = 1.0;
+    cam.zNear = 0.3;
+    cam.zFar = 60;
+    gl::RenderSettings settings = pcssSettings(0.53);
+    settings.width = settings.height = 256;
+    for (const core::TechniqueInfo& technique : core::allTechniques()) {
+        auto setup = core::computeShadowSetup({.camera = cam,
+                                               .light = kSun,
+                                               .wsSceneBounds = s.wsBounds(),
+                                               .technique = technique.technique,
+                                               .mapSize = 512,
+                                               .virtualMaps = {.imageHeight = settings.height}});
+        ASSERT_TRUE(setup) << setup.error();
+        settings.filter = core::parseFilter("pcss").value();
+        auto raster = (*renderer)->renderEvalBuffers(cam, kSun, *setup, settings);
+        ASSERT_TRUE(raster) << raster.error();
+        const Frame f{cam, std::move(raster).value(), std::move(setup).value()};
+        size_t bad = 0;
+        for (const float t : f.raster.shadowTerm) bad += !(t >= 0.0f && t <= 1.0f);
+        EXPECT_EQ(bad, 0u) << technique.name;
+        EXPECT_LT(termAt(f, {3, 0, 0}), 0.05f) << technique.name << ": the wall's shadow";
+        for (const core::Vec3 lit : {core::Vec3(-2, 0, 0), core::Vec3(-4, 0, 4), core::Vec3(3, 0, 5), core::Vec3(8, 0, 0)})
+            EXPECT_GT(termAt(f, lit), 0.99f) << technique.name << " at " << lit.x << ", " << lit.z;
+    }
+}
