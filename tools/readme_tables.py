@@ -33,6 +33,8 @@ drift from what the program measures.
   tools/readme_tables.py soft results.csv
       per filter of a sweep with --sun-angle (data/sweeps/soft-filters.json): penumbra_mae per view,
       soft_mae in brackets, and their means
+  tools/readme_tables.py soft-summary results.csv
+      the same sweep's means per set-up (rows) and filter (columns): the README's soft table
 
   tools/readme_tables.py setup BENCH.json
       per technique, the set-up's CPU µs along the moving camera, sun moving and sun held:
@@ -219,15 +221,19 @@ def sweep_configurations(path, name_columns):
     return out
 
 
-def soft(paths):
-    """Per set-up (a sweep's `set-up` bundle, if it has one) and filter of a sweep's results.csv
-    (eval --sun-angle): penumbra_mae per view (soft_mae in brackets) and the means."""
+def soft_rows(paths):
+    """A soft sweep's results.csv rows (numbers parsed), its set-up labels and filters, in order."""
     rows = []
     for path in paths:
         with open(path, newline="") as f:
             rows += [{k: number(v) for k, v in r.items()} for r in csv.DictReader(f)]
-    setups = list(dict.fromkeys(r.get("set-up", "") for r in rows))
-    filters = list(dict.fromkeys(r["filter"] for r in rows))
+    return rows, list(dict.fromkeys(r.get("set-up", "") for r in rows)), list(dict.fromkeys(r["filter"] for r in rows))
+
+
+def soft(paths):
+    """Per set-up (a sweep's `set-up` bundle, if it has one) and filter of a sweep's results.csv
+    (eval --sun-angle): penumbra_mae per view (soft_mae in brackets) and the means."""
+    rows, setups, filters = soft_rows(paths)
     labelled = setups != [""]
     print(("| set-up " if labelled else "") + "| filter | " + " | ".join(VIEWS) + " | mean penumbra_mae | mean soft_mae |")
     print(("|---" if labelled else "") + "|---|" + "---:|" * (len(VIEWS) + 2))
@@ -241,6 +247,23 @@ def soft(paths):
             mae = sum(by_view[v]["soft_mae"] for v in VIEWS) / len(VIEWS)
             print((f"| {setup} " if labelled else "") + f"| `{name}` | " + " | ".join(cells) +
                   f" | {pen:.3f} | {mae:.4f} |")
+
+
+def soft_summary(paths):
+    """The README's soft-shadow table: per set-up (rows) and filter (columns) of a sweep's
+    results.csv, the mean penumbra_mae / mean soft_mae over the views; the best of each row bold."""
+    rows, setups, filters = soft_rows(paths)
+    print("| set-up | " + " | ".join(f"`{f}`" for f in filters) + " |")
+    print("|---|" + "---:|" * len(filters))
+    for setup in setups:
+        means = {}
+        for name in filters:
+            by_view = {r["view"]: r for r in rows if r["filter"] == name and r.get("set-up", "") == setup}
+            means[name] = (sum(by_view[v]["penumbra_mae"] for v in VIEWS) / len(VIEWS),
+                           sum(by_view[v]["soft_mae"] for v in VIEWS) / len(VIEWS))
+        best = min(means, key=lambda n: means[n][1])
+        cells = [(f"**{p:.3f} / {m:.4f}**" if n == best else f"{p:.3f} / {m:.4f}") for n, (p, m) in means.items()]
+        print(f"| {setup} | " + " | ".join(cells) + " |")
 
 
 def oracle(paths, name_columns=("technique",)):
@@ -365,7 +388,7 @@ def write_into(target, text):
 
 def run(argv):
     """Prints the table the arguments (argv[1:], as on the command line) ask for."""
-    commands = {"oracle": oracle, "soft": soft, "stable": stable, "visibility": visibility, "dynamics": dynamics,
+    commands = {"oracle": oracle, "soft": soft, "soft-summary": soft_summary, "stable": stable, "visibility": visibility, "dynamics": dynamics,
                 "setup": setup, "culling": culling, "truth": truth, "scale": scale}
     if len(argv) >= 5 and argv[1] == "oracle" and argv[2] == "--name":
         oracle(argv[4:], argv[3].split(","))

@@ -159,7 +159,8 @@ int runEval(const EvalArgs& args) {
                 return fail("--aliasing-map: " + s.error());
         if (!args.dump.empty())
             if (auto s = eval::dumpBuffers(several ? fs::path(args.dump) / name : fs::path(args.dump), measured->raster,
-                                           *measured->truth, measured->comparison);
+                                           *measured->truth, measured->comparison,
+                                           measured->softTruth ? &*measured->softTruth : nullptr);
                 !s)
                 return fail("--dump: " + s.error());
 

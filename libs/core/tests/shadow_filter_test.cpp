@@ -7,7 +7,8 @@
 using namespace shadowkit::core;
 
 TEST(ShadowFilterTest, EveryFilterNameParsesBackToItself) {
-    for (const char* name : {"hard", "pcf2", "pcf:1", "pcf:9", "poisson:1", "poisson:32", "pcss", "pcss:1", "pcss:32"}) {
+    for (const char* name :
+         {"hard", "pcf2", "pcf:1", "pcf:9", "poisson:1", "poisson:32", "pcss", "pcss:1", "pcss:32"}) {
         const auto f = parseFilter(name);
         ASSERT_TRUE(f) << name << ": " << f.error();
         EXPECT_EQ(filterName(*f), name);
@@ -25,7 +26,8 @@ TEST(ShadowFilterTest, PcssTakesItsOwnDefaultsAndWidestKernel) {
     EXPECT_EQ(parseFilter("pcss:8")->radiusTexels, kPcssMaxRadiusTexels);
     // It reads texels away from the receiver: receiver-plane bias, as the wide PCF kernels.
     EXPECT_TRUE(isWideKernel(pcss));
-    for (const TechniqueInfo& t : allTechniques()) EXPECT_TRUE(recommendedBias(t.technique, DepthLayout::Linear, pcss).receiverPlane);
+    for (const TechniqueInfo& t : allTechniques())
+        EXPECT_TRUE(recommendedBias(t.technique, DepthLayout::Linear, pcss).receiverPlane);
 }
 
 TEST(ShadowFilterTest, MalformedNamesAndOutOfRangeTapsAreOneErrorNamingTheFilter) {

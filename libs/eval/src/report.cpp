@@ -94,7 +94,7 @@ core::Status writeReportJson(const std::vector<ViewReport>& views, const std::fi
 }
 
 core::Status dumpBuffers(const std::filesystem::path& dir, const core::RasterBuffers& raster, const TruthBuffers& truth,
-                         const Comparison& comparison) {
+                         const Comparison& comparison, const SoftTruth* soft) {
     std::error_code ec;
     std::filesystem::create_directories(dir, ec);
     if (ec) return core::makeError(dir.string() + ": cannot create directory (" + ec.message() + ")");
@@ -117,6 +117,11 @@ core::Status dumpBuffers(const std::filesystem::path& dir, const core::RasterBuf
           writeNpy(dir / "pixels_per_texel.npy", std::span<const float>(comparison.pixelsPerTexel), {h, w}),
           writeNpy(dir / "surface_id.npy", std::span<const uint32_t>(raster.surfaceId), {h, w})})
         if (!status) return status;
+    if (soft)
+        for (auto status :
+             {writeNpy(dir / "soft_visibility.npy", std::span<const float>(soft->visibility), {h, w}),
+              writeNpy(dir / "soft_standard_error.npy", std::span<const float>(soft->standardError), {h, w})})
+            if (!status) return status;
     return core::Ok{};
 }
 

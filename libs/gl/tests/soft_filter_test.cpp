@@ -51,8 +51,11 @@ struct Frame {
 
 Frame renderWall(gl::Renderer& renderer, const scene::Scene& scene, const core::PerspectiveCamera& camera,
                  core::Technique technique, const gl::RenderSettings& settings, int mapSize = 1024) {
-    auto setup = core::computeShadowSetup(
-        {.camera = camera, .light = kSun, .wsSceneBounds = scene.wsBounds(), .technique = technique, .mapSize = mapSize});
+    auto setup = core::computeShadowSetup({.camera = camera,
+                                           .light = kSun,
+                                           .wsSceneBounds = scene.wsBounds(),
+                                           .technique = technique,
+                                           .mapSize = mapSize});
     EXPECT_TRUE(setup) << setup.error();
     auto raster = renderer.renderEvalBuffers(camera, kSun, *setup, settings);
     EXPECT_TRUE(raster) << raster.error();
@@ -89,7 +92,8 @@ double penumbraWidth(const Frame& f, double x, double zEdge) {
     EXPECT_LT(profile.back(), 0.03) << "shadowed inside it";
     auto crossing = [&](double level) -> double {
         for (size_t i = 1; i < profile.size(); ++i)
-            if (profile[i] < level) return step * (double(i - 1) + (profile[i - 1] - level) / (profile[i - 1] - profile[i]));
+            if (profile[i] < level)
+                return step * (double(i - 1) + (profile[i - 1] - level) / (profile[i - 1] - profile[i]));
         return NAN;
     };
     return crossing(0.1) - crossing(0.9);
@@ -147,7 +151,7 @@ TEST_F(SoftFilterTest, PcssOfAVanishingSunIsTheHardLookupPixelForPixel) {
         hard.filter = core::FilterSettings{};
         hard.bias = core::recommendedBias(technique, core::DepthLayout::Hyperbolic, hard.filter);
         gl::RenderSettings pcss = pcssSettings(1e-6); // the kernels collapse onto the receiver's own texel
-        pcss.bias = hard.bias;                         // without the receiver plane the hard test snaps to
+        pcss.bias = hard.bias;                        // without the receiver plane the hard test snaps to
         const Frame a = renderWall(**renderer, s, topDown(), technique, hard);
         const Frame b = renderWall(**renderer, s, topDown(), technique, pcss);
         size_t differing = 0, shadowed = 0;
@@ -227,7 +231,8 @@ TEST_F(SoftFilterTest, PcssUnderTheRealSunIsFiniteAndLitAwayFromCastersForEveryT
         for (const float t : f.raster.shadowTerm) bad += !(t >= 0.0f && t <= 1.0f);
         EXPECT_EQ(bad, 0u) << technique.name;
         EXPECT_LT(termAt(f, {3, 0, 0}), 0.05f) << technique.name << ": the wall's shadow";
-        for (const core::Vec3 lit : {core::Vec3(-2, 0, 0), core::Vec3(-4, 0, 4), core::Vec3(3, 0, 5), core::Vec3(8, 0, 0)})
+        for (const core::Vec3 lit :
+             {core::Vec3(-2, 0, 0), core::Vec3(-4, 0, 4), core::Vec3(3, 0, 5), core::Vec3(8, 0, 0)})
             EXPECT_GT(termAt(f, lit), 0.99f) << technique.name << " at " << lit.x << ", " << lit.z;
     }
 }

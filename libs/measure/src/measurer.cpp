@@ -150,9 +150,9 @@ core::Result<Measurement> Measurer::measure(const frame::PreparedFrame& frame, c
     if (!comparison) return comparison.errorInfo();
     m.comparison = std::move(comparison).value();
     if (settings.sunAngleDegrees > 0.0 && settings.sun) {
-        const eval::SoftTruth soft = eval::computeSoftTruth(
+        m.softTruth = eval::computeSoftTruth(
             *m_impl->rays, *m.truth, {inputs.light.wsTowardsLight(), settings.sunAngleDegrees}, options.softTruth);
-        m.soft = eval::compareSoft(m.raster.shadowTerm, soft, m.comparison.classes, settings.sunAngleDegrees);
+        m.soft = eval::compareSoft(m.raster.shadowTerm, *m.softTruth, m.comparison.classes, settings.sunAngleDegrees);
     }
     const core::LocalLighting& local = renderer.localLights();
     if (local.empty()) return m;

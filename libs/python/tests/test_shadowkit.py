@@ -119,14 +119,25 @@ class EvaluateTest(unittest.TestCase):
         soft = ["--filter", "pcss", "--sun-angle", "0.53"]
         with tempfile.TemporaryDirectory() as folder:
             report = os.path.join(folder, "eval.json")
-            subprocess.run([CLI, "eval", *args, *soft, *SMALL, "--json", report], check=True, capture_output=True)
+            dump = os.path.join(folder, "dump")
+            subprocess.run([CLI, "eval", *args, *soft, *SMALL, "--json", report, "--dump", dump], check=True,
+                           capture_output=True)
             with open(report) as f:
                 expected = json.load(f)["views"][0]
+            dumped = np.load(os.path.join(dump, "soft_visibility.npy"))
+            error = np.load(os.path.join(dump, "soft_standard_error.npy"))
         got = evaluator.evaluate(view="perpendicular", technique="tsm", size=(160, 90), map_size=512, filter="pcss",
                                  sun_angle=0.53)
         for key in ["sun_angle_deg", "soft_compared_px", "penumbra_px", "soft_mae", "penumbra_mae", "soft_wrong_pct"]:
             self.assertAlmostEqual(got["soft"][key], expected[key], places=9, msg=key)
         self.assertGreater(got["soft"]["penumbra_px"], 0)
+        # The per-pixel truth behind the figures: the dump's, a fraction where there is a surface.
+        visibility = got["soft_visibility"]
+        np.testing.assert_array_equal(visibility, dumped)
+        surface = np.isfinite(visibility)
+        self.assertTrue(np.all((visibility[surface] >= 0) & (visibility[surface] <= 1)))
+        penumbra = surface & (visibility > 0.02) & (visibility < 0.98)
+        self.assertTrue(np.all(error[penumbra] > 0))  # the penumbrae's estimates carry their error
         self.assertNotIn("soft", evaluator.evaluate(view="perpendicular", size=(160, 90), map_size=512))
         with self.assertRaisesRegex(ValueError, "sun_angle"):
             evaluator.evaluate(view="perpendicular", size=(160, 90), sun_angle=-1)

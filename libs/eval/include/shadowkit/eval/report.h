@@ -71,8 +71,9 @@ std::string reportJson(const std::vector<ViewReport>& views);
 core::Status writeReportJson(const std::vector<ViewReport>& views, const std::filesystem::path& file);
 
 // Writes shadow_term, truth_lit, class, world_position, normal, truth_normal,
-// pixels_per_texel and surface_id as .npy files into `dir` (created if missing).
+// pixels_per_texel and surface_id as .npy files into `dir` (created if missing); with a soft
+// truth also soft_visibility and soft_standard_error.
 core::Status dumpBuffers(const std::filesystem::path& dir, const core::RasterBuffers& raster, const TruthBuffers& truth,
-                         const Comparison& comparison);
+                         const Comparison& comparison, const SoftTruth* soft = nullptr);
 
 } // namespace shadowkit::eval

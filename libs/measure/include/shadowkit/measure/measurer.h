@@ -72,6 +72,7 @@ struct Measurement {
     std::optional<gl::VirtualPageStats> virtualPages; // technique virtual: the frame's pages
     gl::PassStats shadowPass;                         // what the frame's sun shadow pass drew
     std::optional<eval::SoftFigures> soft;            // with RenderSettings::sunAngleDegrees > 0 and the sun on
+    std::optional<eval::SoftTruth> softTruth;         // the per-pixel truth those figures compare with
     const eval::Figures& figures() const { return comparison.figures; }
 };
 
