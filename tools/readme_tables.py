@@ -227,6 +227,9 @@ def soft_rows(paths):
     for path in paths:
         with open(path, newline="") as f:
             rows += [{k: number(v) for k, v in r.items()} for r in csv.DictReader(f)]
+    for r in rows:  # the seed's eye-space blur is a filter of its own here
+        if r.get("blur_iterations") not in (None, "", 0):
+            r["filter"] = f"{r['filter']} + blur {r['blur_iterations']}"
     return rows, list(dict.fromkeys(r.get("set-up", "") for r in rows)), list(dict.fromkeys(r["filter"] for r in rows))
 
 
