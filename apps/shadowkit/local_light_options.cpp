@@ -9,25 +9,33 @@
 namespace shadowkit::app {
 namespace {
 
-constexpr const char* kForms = "point:x,y,z[,range] or spot:x,y,z,dx,dy,dz,angle[,range]";
+constexpr const char* kForms = "point:x,y,z[,range][,radius=R] or spot:x,y,z,dx,dy,dz,angle[,range][,radius=R]";
 
 core::Result<LocalLight> parseLight(const std::string& spec) {
     const size_t colon = spec.find(':');
-    const std::string kind = spec.substr(0, colon), rest = colon == std::string::npos ? "" : spec.substr(colon + 1);
-    std::vector<double> v;
-    const bool numbers = parseNumbers(rest, ',', v);
+    const std::string kind = spec.substr(0, colon);
+    std::string rest = colon == std::string::npos ? "" : spec.substr(colon + 1);
     auto bad = [&] { return core::makeError(fmt::format("--light: expected {}, got '{}'", kForms, spec)); };
-    if (!numbers) return bad();
+    // The lamp's size, last and named: ",radius=R" (metres).
+    std::vector<double> radius;
+    if (const size_t named = rest.find(",radius="); named != std::string::npos) {
+        if (!parseNumbers(rest.substr(named + 8), ',', radius) || radius.size() != 1) return bad();
+        rest.resize(named);
+    }
+    std::vector<double> v;
+    if (!parseNumbers(rest, ',', v)) return bad();
     core::Status valid = core::Ok{};
     LocalLight light;
     if (kind == "point" && (v.size() == 3 || v.size() == 4)) {
         core::PointLight p{.wsPosition = {v[0], v[1], v[2]}};
         if (v.size() == 4) p.range = v[3];
+        if (!radius.empty()) p.radius = radius[0];
         valid = p.validate();
         light = p;
     } else if (kind == "spot" && (v.size() == 7 || v.size() == 8)) {
         core::SpotLight s{.wsPosition = {v[0], v[1], v[2]}, .wsDirection = {v[3], v[4], v[5]}, .coneDegrees = v[6]};
         if (v.size() == 8) s.range = v[7];
+        if (!radius.empty()) s.radius = radius[0];
         valid = s.validate();
         light = s;
     } else {
@@ -42,7 +50,7 @@ core::Result<LocalLight> parseLight(const std::string& spec) {
 void LocalLightOptions::addTo(CLI::App& cmd, bool withMaps) {
     cmd.add_option("--light", specs,
                    fmt::format("a local light with shadows, repeatable: {} (degrees, metres; range 30 m "
-                               "unless given)",
+                               "unless given; radius: the lamp's size, soft shadows with --filter pcss)",
                                kForms));
     cmd.add_option("--local-map-size", mapSize, "texels per side of each spot map and cube face")
         ->check(CLI::Range(core::kMinMapSize, core::kMaxMapSize))

@@ -140,6 +140,7 @@ Status SpotLight::validate() const {
     if (!(coneDegrees > 0.0 && coneDegrees <= 170.0)) return fieldError("spot.cone", "must be in (0, 170] degrees");
     if (!(range > 0.0 && std::isfinite(range)))
         return fieldError("spot.range", "must be a finite number of metres > 0");
+    if (!(radius >= 0.0 && radius < range)) return fieldError("spot.radius", "must be in [0, range) metres");
     return Ok{};
 }
 
@@ -147,6 +148,7 @@ Status PointLight::validate() const {
     if (!isFinite(wsPosition)) return fieldError("point.position", "must be finite");
     if (!(range > 0.0 && std::isfinite(range)))
         return fieldError("point.range", "must be a finite number of metres > 0");
+    if (!(radius >= 0.0 && radius < range)) return fieldError("point.radius", "must be in [0, range) metres");
     return Ok{};
 }
 

@@ -1,8 +1,8 @@
-// The fraction of the sun's disk each point sees (soft_truth.h). The disk's radiance is taken
-// uniform (no limb darkening), so the visible fraction of its solid angle is the visible
-// fraction of its light. Sampling: stratified jittered k × k over the unit square, Shirley and
-// Chiu's concentric map to the disk (strata stay compact, so stratification keeps lowering
-// the variance at a penumbra's straight edge), radius² as the fraction of the cap's solid angle.
+// The fraction of the sun's disk, or of a sphere light, each point sees (soft_truth.h). The
+// radiance is taken uniform over the disk (no limb darkening), so the visible fraction of its
+// solid angle is the visible fraction of its light. Sampling: stratified jittered k × k over the unit square, Shirley
+// and Chiu's concentric map to the disk (strata stay compact, so stratification keeps lowering the variance at a
+// penumbra's straight edge), radius² as the fraction of the cap's solid angle.
 #include "shadowkit/eval/soft_truth.h"
 
 #include <tbb/blocked_range.h>
@@ -14,6 +14,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 namespace shadowkit::eval {
 namespace {
@@ -34,10 +35,30 @@ constexpr int kRing = 8; // probe rays on the disk's rim
 
 int side(int count) { return std::max(1, static_cast<int>(std::ceil(std::sqrt(static_cast<double>(count))))); }
 
-// Counts the visible rays from `origin` of a set of directions over the sun's cone, eight at a
+// The light as a point sees it: a cone of directions round `axis`, and how far a ray towards
+// the light along a direction may go before it has reached the light.
+struct LightCone {
+    core::Vec3 axis;  // unit, towards the light's centre
+    double halfAngle; // radians; 0 a point
+    // Towards a sphere: its centre relative to the ray's origin, and its radius; the sun: none.
+    core::Vec3 toCentre{0.0};
+    double radius = -1.0;
+
+    // The segment of a shadow ray along `direction` that must be free: up to the sphere's near
+    // surface (b − √(R² − |c − b ω|²), b = c · ω), or to infinity for the sun.
+    Ray ray(const core::Vec3& origin, const core::Vec3& direction) const {
+        if (radius < 0.0) return {origin, direction, 0.0, std::numeric_limits<double>::infinity()};
+        const double b = glm::dot(toCentre, direction);
+        const core::Vec3 offAxis = toCentre - b * direction;
+        return {origin, direction, 0.0, b - std::sqrt(std::max(radius * radius - glm::dot(offAxis, offAxis), 0.0))};
+    }
+};
+
+// Counts the visible rays from `origin` of a set of directions over the light's cone, eight at a
 // time through the packet kernels; `directionOf(j)` gives ray j of `count`.
 template <class DirectionOf>
-int visibleRays(const RayScene& rays, const core::Vec3& origin, int count, DirectionOf directionOf) {
+int visibleRays(const RayScene& rays, const core::Vec3& origin, const LightCone& cone, int count,
+                DirectionOf directionOf) {
     std::array<Ray, 8> batch;
     std::array<uint8_t, 8> occluded;
     int visible = 0;
@@ -48,7 +69,7 @@ int visibleRays(const RayScene& rays, const core::Vec3& origin, int count, Direc
         filled = 0;
     };
     for (int j = 0; j < count; ++j) {
-        batch[filled++] = {origin, directionOf(j), 0.0, std::numeric_limits<double>::infinity()};
+        batch[filled++] = cone.ray(origin, directionOf(j));
         if (filled == batch.size()) flush();
     }
     flush();
@@ -102,42 +123,46 @@ core::Vec3 coneDirection(const core::Vec3& axis, double halfAngle, double u, dou
     return aroundAxis(axis, r * r * 2.0 * s * s, along * std::cos(phi), along * std::sin(phi));
 }
 
-SoftTruth computeSoftTruth(const RayScene& rays, const TruthBuffers& hits, const SunDisk& sun,
-                           const SoftTruthOptions& options) {
+namespace {
+
+// The soft truth at every point of `hits` that `coneAt(i, origin)` gives a light cone for
+// (std::nullopt: not lit by this light at all, NaN); the rest as computeSoftTruth says.
+template <class ConeAt>
+SoftTruth softTruth(const RayScene& rays, const TruthBuffers& hits, const SoftTruthOptions& options, ConeAt coneAt) {
     const auto start = std::chrono::steady_clock::now();
     SoftTruth out;
     out.width = hits.width, out.height = hits.height;
     const size_t n = hits.surfaceId.size();
     out.visibility.assign(n, std::numeric_limits<float>::quiet_NaN());
     out.standardError.assign(n, 0.0f);
-    const core::Vec3 axis = glm::normalize(sun.wsTowardsSun);
-    const double halfAngle = 0.5 * sun.angularDiameterDegrees * kPi / 180.0;
     const double offset = options.normalOffsetFraction * std::max(rays.sceneDiagonal(), 1.0);
-    const int probeSide = halfAngle > 0.0 ? side(options.probes) : 1;
+    const int probeSide = side(options.probes);
     const int sampleSide = std::max(side(options.samples), probeSide);
     std::atomic<uint64_t> traced{0}, penumbra{0};
     tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 64), [&](const tbb::blocked_range<size_t>& range) {
         uint64_t myRays = 0, myPenumbra = 0;
         for (size_t i = range.begin(); i < range.end(); ++i) {
+            if (hits.surfaceId[i] == 0) continue;
             const core::Vec3 normal(hits.wsNormal[i]);
-            if (hits.surfaceId[i] == 0 || !(glm::dot(normal, axis) > 0.0)) continue;
             const core::Vec3 origin = hits.wsPosition[i] + offset * normal;
-            if (halfAngle <= 0.0) { // the point-like sun: the hard truth's one ray, exactly
-                out.visibility[i] =
-                    rays.occluded(origin, axis, 0.0, std::numeric_limits<double>::infinity()) ? 0.f : 1.f;
+            const std::optional<LightCone> cone = coneAt(i, normal, origin);
+            if (!cone) continue;
+            if (cone->halfAngle <= 0.0) { // a point: the hard truth's one ray, exactly
+                const Ray r = cone->ray(origin, cone->axis);
+                out.visibility[i] = rays.occluded(r.origin, r.direction, r.tNear, r.tFar) ? 0.f : 1.f;
                 ++myRays;
                 continue;
             }
             // Probes: a ring on the disk's rim (a random turn per point) and a stratified set inside.
             // A straight edge cutting off more than 1.3 % of the disk on either side meets the
             // ring (a segment deeper than 1 - cos(π / 8) of the radius spans more than 45° of rim),
-            // so points the probes call umbra or full sun are within 1.3 % of it.
+            // so points the probes call umbra or full light are within 1.3 % of it.
             const double turn = 2.0 * kPi * uniform(options.seed, i, 1u << 30);
             const int probes = kRing + probeSide * probeSide;
-            const int seen = visibleRays(rays, origin, probes, [&](int j) {
-                if (j < kRing) return rimDirection(axis, halfAngle, turn + 2.0 * kPi * j / kRing);
+            const int seen = visibleRays(rays, origin, *cone, probes, [&](int j) {
+                if (j < kRing) return rimDirection(cone->axis, cone->halfAngle, turn + 2.0 * kPi * j / kRing);
                 const auto [u, v] = stratum(j - kRing, probeSide, options.seed, i, 0);
-                return coneDirection(axis, halfAngle, u, v);
+                return coneDirection(cone->axis, cone->halfAngle, u, v);
             });
             myRays += probes;
             if (seen == 0 || seen == probes) {
@@ -147,9 +172,9 @@ SoftTruth computeSoftTruth(const RayScene& rays, const TruthBuffers& hits, const
             // A penumbra: a fresh, finer set (its own sample stream), the probes not reused, so the
             // estimate is the stratified set's alone.
             const int samples = sampleSide * sampleSide;
-            const int visible = visibleRays(rays, origin, samples, [&](int j) {
+            const int visible = visibleRays(rays, origin, *cone, samples, [&](int j) {
                 const auto [u, v] = stratum(j, sampleSide, options.seed, i, 1u << 20);
-                return coneDirection(axis, halfAngle, u, v);
+                return coneDirection(cone->axis, cone->halfAngle, u, v);
             });
             myRays += samples;
             ++myPenumbra;
@@ -164,6 +189,29 @@ SoftTruth computeSoftTruth(const RayScene& rays, const TruthBuffers& hits, const
     out.penumbraPoints = penumbra.load();
     out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return out;
+}
+
+} // namespace
+
+SoftTruth computeSoftTruth(const RayScene& rays, const TruthBuffers& hits, const SunDisk& sun,
+                           const SoftTruthOptions& options) {
+    const LightCone cone{glm::normalize(sun.wsTowardsSun), 0.5 * sun.angularDiameterDegrees * kPi / 180.0};
+    return softTruth(rays, hits, options, [&](size_t, const core::Vec3& normal, const core::Vec3&) {
+        return glm::dot(normal, cone.axis) > 0.0 ? std::optional(cone) : std::nullopt;
+    });
+}
+
+SoftTruth computeSphereSoftTruth(const RayScene& rays, const TruthBuffers& underLight, const SphereLight& light,
+                                 const SoftTruthOptions& options) {
+    return softTruth(rays, underLight, options,
+                     [&](size_t i, const core::Vec3&, const core::Vec3& origin) -> std::optional<LightCone> {
+                         if (!underLight.facesLight[i]) return std::nullopt; // out of its reach
+                         const core::Vec3 toCentre = light.wsCentre - origin;
+                         const double distance = glm::length(toCentre);
+                         // Inside the sphere (or at its centre) the whole light is seen.
+                         const double sinHalf = std::min(light.radius / std::max(distance, 1e-300), 1.0);
+                         return LightCone{toCentre / distance, std::asin(sinHalf), toCentre, light.radius};
+                     });
 }
 
 SoftFigures compareSoft(std::span<const float> shadowTerm, const SoftTruth& soft, std::span<const PixelClass> classes,

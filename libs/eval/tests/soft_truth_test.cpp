@@ -161,3 +161,59 @@ TEST(SoftTruthTest, SoftFiguresAreTheMeanErrorsOverTheValidPixelsAndThePenumbra)
     EXPECT_EQ(f.truthRays, 42u);
     EXPECT_DOUBLE_EQ(f.sunAngleDegrees, 0.53);
 }
+
+TEST(SoftTruthTest, ASphereLightOfRadiusZeroIsTheLampsHardTruthExactly) {
+    const scene::Scene s = groundAndBox({0, 2.5f, 0}, {1, 0.5f, 1.5f});
+    auto rays = eval::RayScene::build(s);
+    ASSERT_TRUE(rays) << rays.error();
+    const core::DirectionalLight sun = core::DirectionalLight::fromSunAngles(50, 120).value();
+    const eval::TruthBuffers hits = eval::computeTruth(**rays, test::cameraLookingAtOrigin(), sun, 160, 120);
+    const core::PointLight lamp{.wsPosition = {1.5, 6, 1}, .range = 12};
+    const eval::TruthBuffers hard = eval::underLight(**rays, hits, lamp);
+    const eval::SoftTruth soft = eval::computeSphereSoftTruth(**rays, hard, {lamp.wsPosition, 0.0});
+    int shadowed = 0, lit = 0;
+    for (size_t i = 0; i < hard.surfaceId.size(); ++i) {
+        if (!hard.facesLight[i]) {
+            EXPECT_TRUE(std::isnan(soft.visibility[i])) << "pixel " << i << ": out of the lamp's reach";
+            continue;
+        }
+        ASSERT_EQ(soft.visibility[i], hard.lit[i] ? 1.0f : 0.0f) << "pixel " << i;
+        shadowed += !hard.lit[i], lit += hard.lit[i];
+    }
+    EXPECT_GT(shadowed, 100);
+    EXPECT_GT(lit, 100);
+}
+
+TEST(SoftTruthTest, ASphereLightsPenumbraUnderAnEdgeIsTheDisksChordAreaFraction) {
+    // A thin plate covering x < 0 at height h, a lamp of radius R at height H right above its edge.
+    // From ground point x the ray to the lamp's point at offset l along x passes height h at
+    // x + (l − x) h / H, so the lamp is seen where l ≥ −x (H − h) / h: the disk's area beyond a chord
+    // at c = x (H − h) / (h R) from its centre, 1 − (acos c − c √(1 − c²)) / π, over a penumbra
+    // 2 h R / (H − h) wide (similar triangles; the disk seen from near under the lamp, so flat).
+    const double h = 2.0, H = 5.0, R = 0.2;
+    const scene::Scene s = groundAndBox({-20.0f, float(h) + 0.001f, 0}, {20, 0.001f, 20});
+    auto rays = eval::RayScene::build(s);
+    ASSERT_TRUE(rays) << rays.error();
+    const double halfWidth = h * R / (H - h);
+    std::vector<double> xs;
+    for (int i = -24; i <= 24; ++i) xs.push_back(halfWidth * i / 20.0);
+    eval::SoftTruthOptions options;
+    options.samples = 1024;
+    const eval::SoftTruth soft = eval::computeSphereSoftTruth(**rays, groundPoints(xs), {{0, H, 0}, R}, options);
+    double meanError = 0.0;
+    for (size_t i = 0; i < xs.size(); ++i) {
+        const double c = std::clamp(xs[i] * (H - h) / (h * R), -1.0, 1.0);
+        const double expected = 1.0 - (std::acos(c) - c * std::sqrt(1.0 - c * c)) / kPi;
+        EXPECT_NEAR(soft.visibility[i], expected, 4.0 * soft.standardError[i] + 0.013) << "x = " << xs[i];
+        meanError += std::abs(soft.visibility[i] - expected);
+    }
+    EXPECT_LT(meanError / static_cast<double>(xs.size()), 0.01);
+    EXPECT_EQ(soft.visibility.front(), 0.0f);
+    EXPECT_EQ(soft.visibility.back(), 1.0f);
+    // The rays stop at the lamp's surface: a caster beyond the lamp (a ceiling above it) hides nothing.
+    const scene::Scene ceiling = groundAndBox({0.0f, float(H) + 1.0f, 0}, {20, 0.05f, 20});
+    auto ceilingRays = eval::RayScene::build(ceiling);
+    ASSERT_TRUE(ceilingRays);
+    const eval::SoftTruth under = eval::computeSphereSoftTruth(**ceilingRays, groundPoints(xs), {{0, H, 0}, R});
+    for (const float v : under.visibility) EXPECT_EQ(v, 1.0f);
+}

@@ -30,9 +30,12 @@ core::Result<ViewLight> parseLight(const json& j, const std::string& view) {
     if (auto s = vec3("aim", l.aim); !s) return s.errorInfo();
     l.coneDegrees = j.value("cone", l.coneDegrees);
     l.range = j.value("range", l.range);
+    l.radius = j.value("radius", l.radius);
     const core::Status valid =
-        l.spot ? core::SpotLight{.wsDirection = l.aim, .coneDegrees = l.coneDegrees, .range = l.range}.validate()
-               : core::PointLight{.range = l.range}.validate();
+        l.spot
+            ? core::SpotLight{.wsDirection = l.aim, .coneDegrees = l.coneDegrees, .range = l.range, .radius = l.radius}
+                  .validate()
+            : core::PointLight{.range = l.range, .radius = l.radius}.validate();
     if (!valid) return core::makeError(where + valid.error());
     if (!core::isFinite(l.at)) return core::makeError(where + "at must be finite");
     return l;
@@ -184,9 +187,10 @@ ResolvedView resolveView(const ViewSpec& view, const Scene& scene) {
             out.spots.push_back({.wsPosition = position,
                                  .wsDirection = l.aim.x * right + l.aim.y * up + l.aim.z * forward,
                                  .coneDegrees = l.coneDegrees,
-                                 .range = l.range});
+                                 .range = l.range,
+                                 .radius = l.radius});
         else
-            out.points.push_back({.wsPosition = position, .range = l.range});
+            out.points.push_back({.wsPosition = position, .range = l.range, .radius = l.radius});
     }
     cam.wsEye += scene.wsOrigin;
     for (core::SpotLight& s : out.spots) s.wsPosition += scene.wsOrigin;

@@ -24,8 +24,9 @@ struct SpotLight {
     Vec3 wsDirection{0.0, -1.0, 0.0}; ///< axis of the cone, any length > 0
     double coneDegrees = 40.0;        ///< full opening angle of the cone, (0, 170]
     double range = 30.0;              ///< metres: nothing farther is lit, > 0
+    double radius = 0.0;              ///< metres: a sphere of light (penumbrae), [0, range); 0 a point
 
-    /// Fields "spot.position", "spot.direction", "spot.cone", "spot.range".
+    /// Fields "spot.position", "spot.direction", "spot.cone", "spot.range", "spot.radius".
     Status validate() const;
 };
 
@@ -33,8 +34,9 @@ struct SpotLight {
 struct PointLight {
     Vec3 wsPosition{0.0, 3.0, 0.0}; ///< world space
     double range = 30.0;            ///< metres, > 0
+    double radius = 0.0;            ///< metres: a sphere of light (penumbrae), [0, range); 0 a point
 
-    /// Fields "point.position", "point.range".
+    /// Fields "point.position", "point.range", "point.radius".
     Status validate() const;
 };
 

@@ -22,6 +22,12 @@ struct SunDisk {
     double angularDiameterDegrees = 0.53;   ///< the real sun's; 0 is the point-like sun of the hard truth
 };
 
+/// A spot or point light of some size: a sphere of uniform radiance (a lamp's bulb or globe).
+struct SphereLight {
+    core::Vec3 wsCentre{0.0};
+    double radius = 0.05; ///< metres; 0 a point
+};
+
 struct SoftTruthOptions {
     /// Shadow rays per point in a penumbra, rounded up to a square (stratified k × k).
     int samples = 256;
@@ -55,6 +61,13 @@ struct SoftTruth {
 /// (TBB). An angular diameter of 0 traces one ray per point, exactly the hard truth's.
 SoftTruth computeSoftTruth(const RayScene& rays, const TruthBuffers& hits, const SunDisk& sun,
                            const SoftTruthOptions& options = {});
+/// The visible fraction of a sphere light at the points of `underLight` (eval::underLight's: its
+/// facesLight marks the points the light reaches; NaN elsewhere). The sphere seen from a point at
+/// distance d is a disk of angular radius asin(R / d), uniform in solid angle as the sun's; each
+/// shadow ray must be free up to the sphere's near surface along it. A radius of 0 traces the
+/// hard truth's one ray towards the centre.
+SoftTruth computeSphereSoftTruth(const RayScene& rays, const TruthBuffers& underLight, const SphereLight& light,
+                                 const SoftTruthOptions& options = {});
 
 /// Rendered shadows against the soft truth.
 struct SoftFigures {

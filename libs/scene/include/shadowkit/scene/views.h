@@ -22,6 +22,7 @@ struct ViewLight {
     core::Vec3 aim{0.0, 0.0, 1.0};
     double coneDegrees = 40.0;
     double range = 30.0;
+    double radius = 0.0; // metres: the lamp's size (soft shadows); 0 a point
 };
 
 struct ViewSpec {
