@@ -175,13 +175,19 @@ int runEval(const EvalArgs& args) {
             f.falseLitPct, f.undersampledPct, f.pixelsPerTexelP50, f.pixelsPerTexelP95, f.pixelsPerTexelP99,
             report.seconds);
         // With spot and point lights the row above is every light together; each follows.
-        for (const eval::LightReport& l : report.lights)
+        for (const eval::LightReport& l : report.lights) {
             fmt::print("  {:<12} {:<10} {:>5} {:>9} {:>8} {:>7.2f} {:>8.2f} {:>8.2f} {:>7.2f} {:>7.3f} {:>7.3f} "
                        "{:>7.3f}   {} maps{}\n",
                        l.light, "", "", l.figures.validPx, "", l.figures.wrongPct, l.figures.falseShadowPct,
                        l.figures.falseLitPct, l.figures.undersampledPct, l.figures.pixelsPerTexelP50,
                        l.figures.pixelsPerTexelP95, l.figures.pixelsPerTexelP99, l.maps,
                        l.skippedFaces ? fmt::format(", {} faces skipped", l.skippedFaces) : "");
+            if (const auto& s = l.soft)
+                fmt::print(
+                    "    soft truth, lamp {:.3g} m: soft_mae {:.4f}, penumbra_mae {:.3f} over {} px, soft_wrong% "
+                    "{:.2f} ({:.1f} s)\n",
+                    l.radiusMetres, s->softMae, s->penumbraMae, s->penumbraPx, s->softWrongPct, s->truthSeconds);
+        }
         if (const auto& s = report.soft)
             fmt::print("  soft truth, sun {:.2f}°: soft_mae {:.4f}, penumbra_mae {:.3f} over {} px, soft_wrong% {:.2f} "
                        "({:.1f} s)\n",

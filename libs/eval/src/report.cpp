@@ -16,6 +16,17 @@ nlohmann::json virtualPagesJson(const VirtualPagesReport& v) {
             {"pool_bytes", v.poolBytes},           {"shadow_triangles", v.shadowTriangles}};
 }
 
+namespace {
+
+// The figures against a soft truth, as JSON keys (the light's size is its caller's).
+nlohmann::json softJson(const SoftFigures& s) {
+    return {
+        {"soft_compared_px", s.comparedPx}, {"penumbra_px", s.penumbraPx},      {"soft_mae", s.softMae},
+        {"penumbra_mae", s.penumbraMae},    {"soft_wrong_pct", s.softWrongPct}, {"soft_truth_seconds", s.truthSeconds}};
+}
+
+} // namespace
+
 std::string reportJson(const std::vector<ViewReport>& views) {
     nlohmann::json list = nlohmann::json::array();
     for (const ViewReport& v : views) {
@@ -56,18 +67,12 @@ std::string reportJson(const std::vector<ViewReport>& views) {
         if (!v.autoChoice.empty()) list.back()["auto_choice"] = v.autoChoice;
         if (v.virtualPages) list.back()["virtual"] = virtualPagesJson(*v.virtualPages);
         if (v.soft) {
-            const SoftFigures& s = *v.soft;
-            list.back().update({{"sun_angle_deg", s.sunAngleDegrees},
-                                {"soft_compared_px", s.comparedPx},
-                                {"penumbra_px", s.penumbraPx},
-                                {"soft_mae", s.softMae},
-                                {"penumbra_mae", s.penumbraMae},
-                                {"soft_wrong_pct", s.softWrongPct},
-                                {"soft_truth_seconds", s.truthSeconds}});
+            list.back().update(softJson(*v.soft));
+            list.back()["sun_angle_deg"] = v.soft->sunAngleDegrees;
         }
         if (!v.lights.empty()) {
             nlohmann::json lights = nlohmann::json::array();
-            for (const LightReport& l : v.lights)
+            for (const LightReport& l : v.lights) {
                 lights.push_back({{"light", l.light},
                                   {"maps", l.maps},
                                   {"skipped_faces", l.skippedFaces},
@@ -79,6 +84,11 @@ std::string reportJson(const std::vector<ViewReport>& views) {
                                   {"pixels_per_texel_p50", l.figures.pixelsPerTexelP50},
                                   {"pixels_per_texel_p95", l.figures.pixelsPerTexelP95},
                                   {"pixels_per_texel_p99", l.figures.pixelsPerTexelP99}});
+                if (l.soft) {
+                    lights.back().update(softJson(*l.soft));
+                    lights.back()["radius_m"] = l.radiusMetres;
+                }
+            }
             list.back()["lights"] = lights;
         }
     }

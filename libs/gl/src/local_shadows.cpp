@@ -175,6 +175,7 @@ void LocalShadowMaps::bind(const core::LocalLighting& lights, const LocalBiasSet
         const core::PointLight& l = lights.points[i];
         u.pointPositionRange[i] = positionRange(l.wsPosition, l.range);
         u.pointRadianceTexel[i] = glm::vec4(radianceOf(l.range), texelOf(lights.pointSetups[i]));
+        u.lightRadius[i].x = static_cast<float>(l.radius);
     }
     for (size_t i = 0; i < lights.spots.size(); ++i) {
         const core::SpotLight& l = lights.spots[i];
@@ -182,6 +183,7 @@ void LocalShadowMaps::bind(const core::LocalLighting& lights, const LocalBiasSet
         u.spotAxisCosHalf[i] = glm::vec4(glm::vec3(glm::normalize(l.wsDirection)),
                                          static_cast<float>(std::cos(0.5 * glm::radians(l.coneDegrees))));
         u.spotRadianceTexel[i] = glm::vec4(radianceOf(l.range), texelOf(lights.spotSetups[i]));
+        u.lightRadius[i].y = static_cast<float>(l.radius);
         const core::ShadowSetup& setup = lights.spotSetups[i];
         if (!setup.views.empty()) u.spotClipFromWorld[i] = glm::mat4(setup.views[0].clipFromWorld);
     }
@@ -195,6 +197,9 @@ void LocalShadowMaps::bind(const core::LocalLighting& lights, const LocalBiasSet
     glBindBufferBase(GL_UNIFORM_BUFFER, kLocalLightsBinding, m_lightUniforms.id());
     glBindTextureUnit(kSpotMapUnit, m_spotMaps.id());
     glBindTextureUnit(kPointMapUnit, m_pointMaps.id());
+    // The same maps' stored distances for PCSS's blocker search (the renderer binds the sampler).
+    glBindTextureUnit(kSpotDepthUnit, m_spotMaps.id());
+    glBindTextureUnit(kPointDepthUnit, m_pointMaps.id());
 }
 
 scene::Image LocalShadowMaps::readAsGreys(const core::LocalLighting& lights) const {

@@ -588,7 +588,8 @@ void Renderer::Impl::uploadFrame(const core::PerspectiveCamera& camera, const co
             glBindTextureUnit(kShadowDepthUnit, shadow->depth.id());
         }
     }
-    glBindSampler(kShadowDepthUnit, rawDepthSampler.id()); // the same texture, its stored depths
+    for (const unsigned unit : {kShadowDepthUnit, kSpotDepthUnit, kPointDepthUnit})
+        glBindSampler(unit, rawDepthSampler.id()); // the maps once more, their stored depths
     localMaps->bind(localLights, settings.localBias, evalLight, settings.sun);
     glEnable(GL_CULL_FACE);
     glCullFace(GL_BACK);

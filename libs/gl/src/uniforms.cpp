@@ -133,6 +133,7 @@ std::span<const UniformField> localLightsFields() {
         SK_FIELD(LocalLightsUniforms, localNormalOffsetTexels),
         SK_FIELD(LocalLightsUniforms, localConstantBiasMetres),
         SK_FIELD(LocalLightsUniforms, localMapTexels),
+        SK_ARRAY_FIELD(LocalLightsUniforms, lightRadius),
     };
     return kFields;
 }
@@ -174,6 +175,8 @@ const std::string& shaderPrelude() {
         define("SK_LOD_ERROR_LOCATION", kLodErrorLocation);
         define("SK_SHADOW_MAP_UNIT", kShadowMapUnit);
         define("SK_SHADOW_DEPTH_UNIT", kShadowDepthUnit);
+        define("SK_SPOT_DEPTH_UNIT", kSpotDepthUnit);
+        define("SK_POINT_DEPTH_UNIT", kPointDepthUnit);
         define("SK_SHADOW_MASK_UNIT", kShadowMaskUnit);
         define("SK_BLUR_MASK_UNIT", kBlurMaskUnit);
         define("SK_BLUR_DEPTH_UNIT", kBlurDepthUnit);

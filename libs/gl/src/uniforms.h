@@ -49,6 +49,8 @@ inline constexpr unsigned kSpotMapUnit = 2;        // sampler2DArrayShadow, one 
 inline constexpr unsigned kPointMapUnit = 3;       // samplerCubeArrayShadow, one cube per point light
 inline constexpr unsigned kPageTableUnit = 4;      // usampler2D: virtual maps' page table
 inline constexpr unsigned kShadowDepthUnit = 5;    // camera passes: kShadowMapUnit's texture, stored depths (PCSS)
+inline constexpr unsigned kSpotDepthUnit = 6;      // camera passes: the spot maps' stored distances (PCSS)
+inline constexpr unsigned kPointDepthUnit = 7;     // camera passes: the point cubes' stored distances (PCSS)
 inline constexpr unsigned kLocalDepthBinding = 5;  // uniform block LocalDepth (local_depth.glsl)
 inline constexpr unsigned kLocalLightsBinding = 6; // uniform block LocalLights (local_lights.glsl)
 inline constexpr int kMaxLocalLights = kMaxLocalLightsPerKind; // GLSL: SK_MAX_LOCAL_LIGHTS
@@ -130,6 +132,7 @@ struct LocalLightsUniforms {                       // GLSL: LocalLights (local_l
     float localNormalOffsetTexels; // receiver moved along its normal by this × texel size
     float localConstantBiasMetres; // and its distance reduced by this
     float localMapTexels;          // texels per side of every spot map and cube face
+    glm::vec4 lightRadius[kMaxLocalLights]; // x: point light i's radius, y: spot light i's, in metres (PCSS)
 };
 
 struct ReceiverMaskUniforms { // GLSL: ReceiverMask (receiver_mask.comp)
@@ -188,7 +191,7 @@ static_assert(offsetof(FrameUniforms, mapTexels) == 160 && offsetof(FrameUniform
 static_assert(sizeof(FrameUniforms) == 208 + kMaxCascades * (64 + 16 + 16));
 static_assert(sizeof(BlurUniforms) == 16);
 static_assert(sizeof(LocalDepthUniforms) == 6 * 64 + 16 + 32 + 16);
-static_assert(sizeof(LocalLightsUniforms) == kMaxLocalLights * (5 * 16 + 64) + 32);
+static_assert(sizeof(LocalLightsUniforms) == kMaxLocalLights * (6 * 16 + 64) + 32);
 
 // One member of a block: its GLSL name (arrays: "name[0]") and C++ offset.
 struct UniformField {

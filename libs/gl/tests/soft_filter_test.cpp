@@ -72,20 +72,22 @@ float termAt(const Frame& f, const core::Vec3& ws) {
     return f.raster.surfaceId[i] == 1u ? f.raster.shadowTerm[i] : NAN; // 1: the ground
 }
 
-// 10–90 % width along z of the shadow's side edge at `zEdge` (shadow towards z = 0), at x: the
-// terms averaged over a band of x (each pixel's taps turn differently: the average is the
-// filter's expectation), then the first crossings from the lit side.
-double penumbraWidth(const Frame& f, double x, double zEdge) {
-    const double inward = zEdge > 0.0 ? -1.0 : 1.0, step = 0.005, reach = 0.6;
-    std::vector<double> profile; // from zEdge + reach outward (lit) to zEdge − reach inward (shadow)
-    for (double s = -reach; s <= reach; s += step) {
+// The 10–90 % width of a penumbra on the ground, along the line from `litEnd` to `shadowEnd`: the
+// terms at 5 mm steps, each averaged over a band of ± `band` across the line (each pixel's taps turn
+// differently: the average is the filter's expectation), then the first crossings from the lit end.
+double penumbraWidthAlong(const Frame& f, const core::Vec3& litEnd, const core::Vec3& shadowEnd,
+                          const core::Vec3& band) {
+    const double step = 0.005, length = glm::length(shadowEnd - litEnd);
+    const core::Vec3 along = (shadowEnd - litEnd) / length;
+    std::vector<double> profile;
+    for (double s = 0.0; s <= length; s += step) {
         double sum = 0.0;
         int n = 0;
-        for (double dx = -0.2; dx <= 0.2001; dx += 0.02) {
-            const float t = termAt(f, {x + dx, 0.0, zEdge + inward * s});
+        for (int k = -10; k <= 10; ++k) {
+            const float t = termAt(f, litEnd + s * along + (k / 10.0) * band);
             if (std::isfinite(t)) sum += t, ++n;
         }
-        EXPECT_GT(n, 0) << "no ground pixel at x " << x << ", z " << zEdge + inward * s;
+        EXPECT_GT(n, 0) << "no ground pixel " << s << " m along the line";
         profile.push_back(n ? sum / n : NAN);
     }
     EXPECT_GT(profile.front(), 0.97) << "lit beside the shadow";
@@ -97,6 +99,12 @@ double penumbraWidth(const Frame& f, double x, double zEdge) {
         return NAN;
     };
     return crossing(0.1) - crossing(0.9);
+}
+
+// The wall's side edge at `zEdge` (its shadow towards z = 0), at x.
+double penumbraWidth(const Frame& f, double x, double zEdge) {
+    const double inward = zEdge > 0.0 ? -1.0 : 1.0, reach = 0.6;
+    return penumbraWidthAlong(f, {x, 0.0, zEdge - inward * reach}, {x, 0.0, zEdge + inward * reach}, {0.2, 0.0, 0.0});
 }
 
 double expectedWidth(double x, double sunAngleDegrees) {
@@ -234,5 +242,107 @@ TEST_F(SoftFilterTest, PcssUnderTheRealSunIsFiniteAndLitAwayFromCastersForEveryT
         for (const core::Vec3 lit :
              {core::Vec3(-2, 0, 0), core::Vec3(-4, 0, 4), core::Vec3(3, 0, 5), core::Vec3(8, 0, 0)})
             EXPECT_GT(termAt(f, lit), 0.99f) << technique.name << " at " << lit.x << ", " << lit.z;
+    }
+}
+
+namespace {
+
+// A thin plate covering x < 0 at height h = 2 m, and a lamp of radius R right above its edge at
+// H = 5 m: from ground point x the lamp is seen where its points' offsets l along x satisfy
+// l ≥ −x (H − h) / h, so the lit fraction is the disk's area beyond a chord at c = x (H − h) / (h R)
+// from its centre (eval's sphere-truth test has the closed form), and between 10 % and 90 % the
+// penumbra is 2 · 0.6871 · h R / (H − h) wide along x.
+constexpr double kPlateHeight = 2.0, kLampHeight = 5.0;
+
+scene::Scene plateOverGround() {
+    scene::Scene s;
+    scene::Mesh ground, plate;
+    scene::addBox(ground, glm::translate(glm::mat4(1.0f), {0, -0.5f, 0}), {20, 0.5f, 20}, glm::vec3(0.8f));
+    scene::addBox(plate, glm::translate(glm::mat4(1.0f), {-6, float(kPlateHeight) + 0.01f, 0}), {6, 0.01f, 6},
+                  glm::vec3(0.8f));
+    ground.computeBounds();
+    plate.computeBounds();
+    s.meshes = {ground, plate};
+    s.batches = {{0, {glm::mat4(1.0f)}, false}, {1, {glm::mat4(1.0f)}, false}};
+    return s;
+}
+
+// Under the plate's edge, seen from below its height.
+core::PerspectiveCamera underThePlate() {
+    core::PerspectiveCamera cam;
+    cam.wsEye = {0, 1.2, 2.5};
+    cam.wsDirection = core::Vec3(0, 0, 0) - cam.wsEye;
+    cam.fovYDegrees = 40;
+    cam.aspect = 1.0;
+    cam.zNear = 0.1;
+    cam.zFar = 30;
+    return cam;
+}
+
+// Across the plate's edge, from x = 0.6 (lit) to x = −0.6 (under the plate), z in [−0.2, 0.2].
+double lampPenumbraWidth(const Frame& f) {
+    return penumbraWidthAlong(f, {0.6, 0.0, 0.0}, {-0.6, 0.0, 0.0}, {0.0, 0.0, 0.2});
+}
+
+Frame renderLamp(gl::Renderer& renderer, const scene::Scene& scene, bool spot, double radius,
+                 core::ShadowFilter filter) {
+    const core::PerspectiveCamera cam = underThePlate();
+    const core::Vec3 at(0, kLampHeight, 0);
+    std::vector<core::PointLight> points;
+    std::vector<core::SpotLight> spots;
+    if (spot)
+        spots.push_back(
+            {.wsPosition = at, .wsDirection = {0, -1, 0}, .coneDegrees = 120, .range = 20, .radius = radius});
+    else
+        points.push_back({.wsPosition = at, .range = 20, .radius = radius});
+    // 256²: 16 texels hold the widest kernel, R (d − s) / s = 0.27 m for R = 0.4 m (the maps are focused on
+    // what the camera sees, so their texels are finer than a cube face's 2 / 256 per metre).
+    auto lighting =
+        core::computeLocalLighting({.camera = cam, .wsSceneBounds = scene.wsBounds(), .mapSize = 256}, points, spots);
+    EXPECT_TRUE(lighting) << lighting.error();
+    EXPECT_TRUE(renderer.setLocalLights(*lighting));
+    gl::RenderSettings settings;
+    settings.width = settings.height = 480;
+    settings.fogDensity = 0.0f;
+    settings.sun = false;
+    settings.filter = {filter, 32, 16.0f};
+    auto sunSetup =
+        core::computeShadowSetup({.camera = cam, .light = {}, .wsSceneBounds = scene.wsBounds(), .mapSize = 64});
+    auto raster = renderer.renderEvalBuffers(cam, {}, *sunSetup, settings, 0);
+    EXPECT_TRUE(raster) << raster.error();
+    return {cam, std::move(raster).value(), std::move(sunSetup).value()};
+}
+
+} // namespace
+
+TEST_F(SoftFilterTest, PcssOfALampIsAsWideAsTheSpheresPenumbraInSpotAndCubeMaps) {
+    const scene::Scene s = plateOverGround();
+    auto renderer = gl::Renderer::create(s);
+    ASSERT_TRUE(renderer) << renderer.error();
+    for (const bool spot : {false, true})
+        for (const double radius : {0.2, 0.4}) {
+            const Frame f = renderLamp(**renderer, s, spot, radius, core::ShadowFilter::Pcss);
+            const double expected = kSegmentWidthPerRadius * kPlateHeight * radius / (kLampHeight - kPlateHeight);
+            EXPECT_NEAR(lampPenumbraWidth(f), expected, 0.25 * expected)
+                << (spot ? "spot" : "point") << ", R " << radius;
+        }
+}
+
+TEST_F(SoftFilterTest, PcssOfAVanishingLampIsTheHardLookupPixelForPixel) {
+    const scene::Scene s = plateOverGround();
+    auto renderer = gl::Renderer::create(s);
+    ASSERT_TRUE(renderer);
+    for (const bool spot : {false, true}) {
+        const Frame hard = renderLamp(**renderer, s, spot, 1e-6, core::ShadowFilter::Hard);
+        const Frame pcss = renderLamp(**renderer, s, spot, 1e-6, core::ShadowFilter::Pcss);
+        size_t differing = 0, shadowed = 0, bad = 0;
+        for (size_t i = 0; i < hard.raster.shadowTerm.size(); ++i) {
+            differing += hard.raster.shadowTerm[i] != pcss.raster.shadowTerm[i];
+            shadowed += hard.raster.shadowTerm[i] < 0.5f;
+            bad += !(pcss.raster.shadowTerm[i] >= 0.0f && pcss.raster.shadowTerm[i] <= 1.0f);
+        }
+        EXPECT_EQ(differing, 0u) << (spot ? "spot" : "point");
+        EXPECT_EQ(bad, 0u);
+        EXPECT_GT(shadowed, 1000u) << (spot ? "spot" : "point");
     }
 }

@@ -168,9 +168,17 @@ core::Result<Measurement> Measurer::measure(const frame::PreparedFrame& frame, c
                                                     : eval::underLight(*m_impl->rays, *m.truth, local.spots[k]);
         auto lightComparison = eval::compare(*lightRaster, lightTruth, options.compare);
         if (!lightComparison) return lightComparison.errorInfo();
+        const core::Vec3 wsLight = point ? local.points[k].wsPosition : local.spots[k].wsPosition;
+        const double radius = point ? local.points[k].radius : local.spots[k].radius;
+        std::optional<eval::SoftFigures> soft;
+        if (radius > 0.0) // a lamp with a size: its penumbrae against the sphere's soft truth
+            soft = eval::compareSoft(
+                lightRaster->shadowTerm,
+                eval::computeSphereSoftTruth(*m_impl->rays, lightTruth, {wsLight, radius}, options.softTruth),
+                lightComparison->classes, 0.0);
         m.lights.push_back({std::string(point ? "point[" : "spot[") + std::to_string(k) + "]",
                             static_cast<int>(lightSetup.views.size()), lightSetup.skippedFaces,
-                            std::move(lightComparison).value()});
+                            std::move(lightComparison).value(), radius, soft});
     }
     std::vector<const eval::Comparison*> parts;
     for (const LightMeasurement& l : m.lights) parts.push_back(&l.comparison);
@@ -217,7 +225,7 @@ eval::ViewReport viewReport(const Measurement& m, const gl::RenderSettings& sett
         report.truthRaysPerSecond = double(m.truth->rays) / m.truth->seconds;
     }
     for (const LightMeasurement& l : m.lights)
-        report.lights.push_back({l.light, l.maps, l.skippedFaces, l.comparison.figures});
+        report.lights.push_back({l.light, l.maps, l.skippedFaces, l.comparison.figures, l.radius, l.soft});
     return report;
 }
 

@@ -20,10 +20,14 @@ layout(std140, binding = SK_LOCAL_LIGHTS_BINDING) uniform LocalLights {
     float localNormalOffsetTexels;
     float localConstantBiasMetres;
     float localMapTexels; // texels per side of every spot map and cube face
+    vec4 lightRadius[SK_MAX_LOCAL_LIGHTS]; // x: point light i's radius, y: spot light i's (metres; PCSS)
 };
 
 layout(binding = SK_SPOT_MAP_UNIT) uniform sampler2DArrayShadow spotMaps;
 layout(binding = SK_POINT_MAP_UNIT) uniform samplerCubeArrayShadow pointMaps;
+// The same maps' stored distances / range, for PCSS's blocker search.
+layout(binding = SK_SPOT_DEPTH_UNIT) uniform sampler2DArray spotDepths;
+layout(binding = SK_POINT_DEPTH_UNIT) uniform samplerCubeArray pointDepths;
 
 // A local light's reach at a receiver: inside its range (and cone), facing it. Truth uses
 // the same test (eval::litAt), so only the map decides where the two differ.
@@ -48,24 +52,103 @@ vec4 biasedReceiver(vec3 ws, vec3 n, vec3 wsLight, float texelPerMetre) {
     return vec4(moved, d - localSlopeBiasTexels * texel * tanAngle - localConstantBiasMetres);
 }
 
-// 1 lit, 0 shadowed, by point light i's cube (layer i of the cube array).
-float pointShadow(int i, vec3 ws, vec3 n) {
-    const vec4 r = biasedReceiver(ws, n, pointPositionRange[i].xyz, pointRadianceTexel[i].w);
-    return texture(pointMaps, vec4(r.xyz - pointPositionRange[i].xyz, float(i)), r.w / pointPositionRange[i].w);
-}
-
 // The spot map's texture coordinates of a world point.
 vec2 spotUv(int i, vec3 ws) {
     const vec4 cs = spotClipFromWorld[i] * vec4(ws, 1.0);
     return cs.xy / cs.w * 0.5 + 0.5;
 }
 
+// Light `i`'s map (a point's cube, or a spot's layer) at the world point `q`: the comparison with
+// a reference distance, and the stored distance itself (both in metres / range).
+float localCompare(bool point, int i, vec3 q, float reference) {
+    if (point) return texture(pointMaps, vec4(q - pointPositionRange[i].xyz, float(i)), reference);
+    // The map spans every receiver the camera sees in the cone; only offsets step past its border.
+    return texture(spotMaps, vec4(clamp(spotUv(i, q), 0.0, 1.0), float(i), reference));
+}
+float localStored(bool point, int i, vec3 q) {
+    if (point) return texture(pointDepths, vec4(q - pointPositionRange[i].xyz, float(i))).r;
+    return texture(spotDepths, vec3(clamp(spotUv(i, q), 0.0, 1.0), float(i))).r;
+}
+
+// PCSS (Fernando 2005) for a lamp of radius R, a sphere at wsLight, in a map that stores the
+// distance from the light (every spot map and cube face alike).
+//
+// A receiver a distance d from the lamp sees it through a cone; a distance s from the lamp the
+// cone's cross-section has radius R (d − s) / d, and a blocker there hides the lamp in the
+// proportion of that disk it covers. The map is a perspective view from the lamp, so a point s
+// from it at lateral offset ρ_s lies on the ray through the receiver's plane (⟂ the ray to the lamp)
+// at ρ = ρ_s d / s: in that plane the cone of blockers s away is a disk of radius R (d − s) / s, the
+// classic PCSS penumbra. The taps are world points of that plane, looked up by their own rays, so
+// the kernel is right on any face, across cube faces and in any spot's projection without a
+// Jacobian; each tap's reference is where its ray meets the receiver's tangent plane (the
+// receiver-plane bias in world space) less the receiver's own bias.
+//
+// As for the sun (glsl/shadowkit_shadows.glsl's skPcss): the search counts a tap as a blocker only
+// inside its cone (ρ ≤ R (d − s) / s), at radii growing linearly from the receiver's own texel;
+// the filter is a Vogel disk; both take filterTaps taps and stop at poissonRadiusTexels texels of
+// the map at the receiver's distance.
+float localPcss(bool point, int i, vec3 ws, vec3 n, vec3 wsLight, float range, float radius, float texelPerMetre) {
+    const vec4 r = biasedReceiver(ws, n, wsLight, texelPerMetre);
+    const vec3 p = r.xyz;
+    const vec3 toLight = wsLight - p;
+    const float d = length(toLight);
+    const float bias = d - r.w; // metres the biases take off the receiver's distance
+    const vec3 axis = toLight / d;
+    const vec3 e1 = normalize(cross(axis, abs(axis.y) < 0.9 ? vec3(0, 1, 0) : vec3(1, 0, 0)));
+    const vec3 e2 = cross(axis, e1);
+    const float widest = poissonRadiusTexels * d * texelPerMetre;
+    // The reference distance of tap q: along its ray from the lamp to the receiver's tangent plane.
+    const float planeDistance = dot(p - wsLight, n);
+    const int taps = max(filterTaps, 1);
+    const float angle = skPixelAngle();
+    const mat2 golden = mat2(-0.7373688, 0.6754903, -0.6754903, -0.7373688); // 2.39996 rad
+
+    // 1. Blockers between the lamp's surface and the receiver whose cones hold the tap.
+    const float search = min(d - radius, widest);
+    float blockerDistance = 0.0, blockers = 0.0;
+    vec2 direction = vec2(cos(angle), sin(angle));
+    for (int k = 0; k < taps; ++k, direction = golden * direction) {
+        const float rho = float(k) / float(taps) * search;
+        const vec3 q = p + rho * (direction.x * e1 + direction.y * e2);
+        const vec3 ray = normalize(q - wsLight);
+        const float along = dot(ray, n) < -1e-4 ? planeDistance / dot(ray, n) : d;
+        const float s = localStored(point, i, q) * range;
+        if (s < along - bias && rho * s <= radius * (d - s)) {
+            blockerDistance += s;
+            blockers += 1.0;
+        }
+    }
+    if (blockers == 0.0) return 1.0;
+
+    // 2. Percentage-closer filtering over the cone's disk at the blockers' mean distance.
+    const float s = blockerDistance / blockers;
+    const float kernel = min(radius * (d - s) / max(s, 1e-4), widest);
+    float lit = 0.0;
+    direction = vec2(cos(angle), sin(angle));
+    for (int k = 0; k < taps; ++k, direction = golden * direction) {
+        const vec3 q = p + sqrt((float(k) + 0.5) / float(taps)) * kernel * (direction.x * e1 + direction.y * e2);
+        const vec3 ray = normalize(q - wsLight);
+        const float along = dot(ray, n) < -1e-4 ? planeDistance / dot(ray, n) : d;
+        lit += localCompare(point, i, q, (along - bias) / range);
+    }
+    return lit / float(taps);
+}
+
+// 1 lit, 0 shadowed, by point light i's cube (layer i of the cube array).
+float pointShadow(int i, vec3 ws, vec3 n) {
+    if (filterKind == SK_FILTER_PCSS && lightRadius[i].x > 0.0)
+        return localPcss(true, i, ws, n, pointPositionRange[i].xyz, pointPositionRange[i].w, lightRadius[i].x,
+                         pointRadianceTexel[i].w);
+    const vec4 r = biasedReceiver(ws, n, pointPositionRange[i].xyz, pointRadianceTexel[i].w);
+    return localCompare(true, i, r.xyz, r.w / pointPositionRange[i].w);
+}
+
 float spotShadow(int i, vec3 ws, vec3 n) {
+    if (filterKind == SK_FILTER_PCSS && lightRadius[i].y > 0.0)
+        return localPcss(false, i, ws, n, spotPositionRange[i].xyz, spotPositionRange[i].w, lightRadius[i].y,
+                         spotRadianceTexel[i].w);
     const vec4 r = biasedReceiver(ws, n, spotPositionRange[i].xyz, spotRadianceTexel[i].w);
-    // The map spans every receiver the camera sees in the cone; only the normal offset can
-    // step past its border.
-    const vec2 uv = clamp(spotUv(i, r.xyz), 0.0, 1.0);
-    return texture(spotMaps, vec4(uv, float(i), r.w / spotPositionRange[i].w));
+    return localCompare(false, i, r.xyz, r.w / spotPositionRange[i].w);
 }
 
 // The map's test of local light `light` (points first, then spots) alone, for the

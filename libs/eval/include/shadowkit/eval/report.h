@@ -24,6 +24,10 @@ struct LightReport {
     int maps = 1;         // maps drawn: cube faces kept for a point light
     int skippedFaces = 0; // point lights: faces that saw nothing of the view
     Figures figures;
+    // A lamp with a size: its radius and the figures against its soft truth (JSON: "radius_m",
+    // "soft_compared_px", "penumbra_px", "soft_mae", "penumbra_mae", "soft_wrong_pct", "soft_truth_seconds").
+    double radiusMetres = 0.0;
+    std::optional<SoftFigures> soft;
 };
 
 // Technique virtual: a frame's pages (gl::VirtualPageStats, which eval does not see).

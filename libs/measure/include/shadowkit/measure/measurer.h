@@ -55,6 +55,8 @@ struct LightMeasurement {
     int maps = 1;
     int skippedFaces = 0;
     eval::Comparison comparison;
+    double radius = 0.0;                   // a lamp's size in metres: then its soft figures
+    std::optional<eval::SoftFigures> soft; // against eval::computeSphereSoftTruth
 };
 
 struct Measurement {
