@@ -6,7 +6,9 @@
 #   2. each filter's cost: the camera pass's GPU ms (median of 5 frames after the first) of
 #      `shadowkit bench` on the default forest, four 2048² cascades with per-split LiSPSM, on two
 #      views at 1280 × 720, printed as a table;
-#   3. the picture of penumbrae beside the truth, docs/soft-penumbrae.png (tools/soft_figure.py).
+#   3. the lamps (data/sweeps/soft-lamps.json: lamp and torch, 5 cm) against their spheres' truth,
+#      written into the page, and their filters' cost on the same two views;
+#   4. the picture of penumbrae beside the truth, docs/soft-penumbrae.png (tools/soft_figure.py).
 # SKIP_SWEEP=1 keeps the sweep's last results.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -18,18 +20,28 @@ fi
 python3 tools/readme_tables.py --into docs/soft-shadows.md:soft-filters soft "$out/results.csv"
 python3 tools/readme_tables.py --into README.md:soft-summary soft-summary "$out/results.csv"
 
-echo "| filter | perpendicular | noon | over hard |"
-echo "|---|---:|---:|---:|"
-hard=""
-for f in hard pcf2 pcf:3 pcf:5 poisson:16 pcss pcss:32; do
-  ms=()
-  for v in perpendicular noon; do
-    # The bench's row for the camera pass: "... main INSTANCES MTRIS DRAWS MIN MED MAX ...".
-    ms+=("$("$B" bench --trees 10000 --views "$v" --filter "$f" --sun-angle 0.53 --frames 5 --technique csm \
-      --cascades 4 --cascade-warp lispsm --map-size 2048 2>/dev/null | awk '$0 ~ / main / {print $(NF-5)}')")
+# A cost table: the camera pass's GPU ms per filter on two views, and the mean's change over the
+# first filter. cost VIEW1 VIEW2 "FILTERS" [bench options...]
+cost() {
+  local v1=$1 v2=$2 filters=$3 base="" f v ms mean
+  shift 3
+  echo "| filter | $v1 | $v2 | over ${filters%% *} |"
+  echo "|---|---:|---:|---:|"
+  for f in $filters; do
+    ms=()
+    for v in "$v1" "$v2"; do
+      # The bench's row for the camera pass: "... main INSTANCES MTRIS DRAWS MIN MED MAX ...".
+      ms+=("$("$B" bench --trees 10000 --views "$v" --filter "$f" --frames 5 "$@" 2>/dev/null |
+        awk '$0 ~ / main / {print $(NF-5)}')")
+    done
+    mean=$(echo "(${ms[0]} + ${ms[1]}) / 2" | bc -l)
+    [[ -z "$base" ]] && base=$mean
+    printf '| `%s` | %s | %s | %+.0f %% |\n' "$f" "${ms[0]}" "${ms[1]}" "$(echo "100 * ($mean / $base - 1)" | bc -l)"
   done
-  mean=$(echo "(${ms[0]} + ${ms[1]}) / 2" | bc -l)
-  [[ -z "$hard" ]] && hard=$mean
-  printf '| `%s` | %s | %s | %+.0f %% |\n' "$f" "${ms[0]}" "${ms[1]}" "$(echo "100 * ($mean / $hard - 1)" | bc -l)"
-done
+}
+cost perpendicular noon "hard pcf2 pcf:3 pcf:5 poisson:16 pcss pcss:32" --sun-angle 0.53 --technique csm --cascades 4 \
+  --cascade-warp lispsm --map-size 2048
+"$B" sweep data/sweeps/soft-lamps.json --out out/sweeps/soft-lamps --discard-stale
+python3 tools/readme_tables.py --into docs/soft-shadows.md:soft-lamps soft-lamps out/sweeps/soft-lamps/results.csv
+cost lamp torch "hard pcf2 pcss"
 /usr/bin/python3 tools/soft_figure.py

@@ -35,6 +35,9 @@ drift from what the program measures.
       soft_mae in brackets, and their means
   tools/readme_tables.py soft-summary results.csv
       the same sweep's means per set-up (rows) and filter (columns): the README's soft table
+  tools/readme_tables.py soft-lamps results.csv
+      per view and lamp of data/sweeps/soft-lamps.json, per filter: penumbra_mae / soft_mae
+      the same sweep's means per set-up (rows) and filter (columns): the README's soft table
 
   tools/readme_tables.py setup BENCH.json
       per technique, the set-up's CPU µs along the moving camera, sun moving and sun held:
@@ -269,6 +272,31 @@ def soft_summary(paths):
         print(f"| {setup} | " + " | ".join(cells) + " |")
 
 
+def soft_lamps(paths):
+    """Per view and lamp of a sweep over views with lamps of some size (data/sweeps/soft-lamps.json),
+    per filter: penumbra_mae / soft_mae against the lamp's sphere, from each row's `lights` JSON."""
+    rows = []
+    for path in paths:
+        with open(path, newline="") as f:
+            rows += list(csv.DictReader(f))
+    filters = list(dict.fromkeys(r["filter"] for r in rows))
+    lamps = {}  # (view, light) -> {filter: light's figures}
+    for r in rows:
+        for light in json.loads(r["lights"]):
+            if "soft_mae" in light:
+                lamps.setdefault((r["view"], light["light"], light["radius_m"]), {})[r["filter"]] = light
+    print("| view | lamp | " + " | ".join(f"`{f}`" for f in filters) + " | penumbra px |")
+    print("|---|---|" + "---:|" * (len(filters) + 1))
+    for (view, light, radius), by_filter in lamps.items():
+        best = min(by_filter, key=lambda f: by_filter[f]["soft_mae"])
+        cells = []
+        for f in filters:
+            text = f"{by_filter[f]['penumbra_mae']:.3f} / {by_filter[f]['soft_mae']:.4f}"
+            cells.append(f"**{text}**" if f == best else text)
+        penumbra = next(iter(by_filter.values()))["penumbra_px"]
+        print(f"| {view} | {light}, {radius * 100:g} cm | " + " | ".join(cells) + f" | {penumbra} |")
+
+
 def oracle(paths, name_columns=("technique",)):
     """Per view the best wrong_pct of many fixed configurations: what choosing with the truth gives."""
     import os
@@ -391,7 +419,7 @@ def write_into(target, text):
 
 def run(argv):
     """Prints the table the arguments (argv[1:], as on the command line) ask for."""
-    commands = {"oracle": oracle, "soft": soft, "soft-summary": soft_summary, "stable": stable, "visibility": visibility, "dynamics": dynamics,
+    commands = {"oracle": oracle, "soft": soft, "soft-summary": soft_summary, "soft-lamps": soft_lamps, "stable": stable, "visibility": visibility, "dynamics": dynamics,
                 "setup": setup, "culling": culling, "truth": truth, "scale": scale}
     if len(argv) >= 5 and argv[1] == "oracle" and argv[2] == "--name":
         oracle(argv[4:], argv[3].split(","))
