@@ -84,10 +84,18 @@ int runCompare(const CompareArgs& args) {
         }
         images.push_back(std::move(measured->image));
         const eval::Figures& f = measured->figures();
-        captions.push_back(fmt::format("{} - wrong {:.2f}% (shadow {:.2f}, lit {:.2f})", caption((*cells)[i]),
-                                       f.wrongPct, f.falseShadowPct, f.falseLitPct));
-        fmt::print("{:>2}  wrong {:6.2f} %  false shadow {:6.2f} %  false lit {:6.2f} %  {}\n", i + 1, f.wrongPct,
-                   f.falseShadowPct, f.falseLitPct, caption((*cells)[i]));
+        // A cell with a sun of some size (--sun-angle) is also measured against the disk's soft truth.
+        const std::string soft = measured->soft ? fmt::format(", penumbra {:.3f}, soft {:.4f}",
+                                                              measured->soft->penumbraMae, measured->soft->softMae)
+                                                : "";
+        captions.push_back(fmt::format("{} - wrong {:.2f}% (shadow {:.2f}, lit {:.2f}){}", caption((*cells)[i]),
+                                       f.wrongPct, f.falseShadowPct, f.falseLitPct, soft));
+        fmt::print("{:>2}  wrong {:6.2f} %  false shadow {:6.2f} %  false lit {:6.2f} %{}  {}\n", i + 1, f.wrongPct,
+                   f.falseShadowPct, f.falseLitPct,
+                   measured->soft ? fmt::format("  penumbra_mae {:.3f}  soft_mae {:.4f}", measured->soft->penumbraMae,
+                                                measured->soft->softMae)
+                                  : "",
+                   caption((*cells)[i]));
     }
     if (auto s = scene::writePng(imaging::captionedGrid(images, captions, args.columns), args.out); !s)
         return fail("--out: " + s.error());

@@ -359,6 +359,18 @@ if(CASE STREQUAL "gl-compare")
   endif()
 endif()
 
+# compare with a sun of some size: each cell also against the disk's soft truth.
+if(CASE STREQUAL "gl-compare-soft")
+  execute_process(COMMAND ${SHADOWKIT} compare ${small} --view perpendicular --size 64x36
+                          --configs "filter=hard,sun-angle=2;filter=pcss,sun-angle=2;filter=pcss"
+                          --out "${WORK}/grid.png" RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  string(REGEX MATCHALL "penumbra_mae" soft "${out}")
+  list(LENGTH soft n)
+  if(NOT rc EQUAL 0 OR NOT n EQUAL 2)
+    message(SEND_ERROR "compare: expected soft figures for the two cells with a sun angle, got ${n}: ${out}${err}")
+  endif()
+endif()
+
 # eval writes its report, maps (one per view) and per-pixel dumps.
 if(CASE STREQUAL "gl-eval")
   execute_process(COMMAND ${SHADOWKIT} eval ${small} --views paper,noon --size 48x32 --map-size 256
