@@ -39,7 +39,7 @@ cost() {
     printf '| `%s` | %s | %s | %+.0f %% |\n' "$f" "${ms[0]}" "${ms[1]}" "$(echo "100 * ($mean / $base - 1)" | bc -l)"
   done
 }
-cost perpendicular noon "hard pcf2 pcf:3 pcf:5 poisson:16 pcss pcss:32" --sun-angle 0.53 --technique csm --cascades 4 \
+cost perpendicular noon "hard pcf2 pcf:3 pcf:5 poisson:16 pcss pcss:32 msm" --sun-angle 0.53 --technique csm --cascades 4 \
   --cascade-warp lispsm --map-size 2048
 "$B" sweep data/sweeps/soft-lamps.json --out out/sweeps/soft-lamps --discard-stale
 python3 tools/readme_tables.py --into docs/soft-shadows.md:soft-lamps soft-lamps out/sweeps/soft-lamps/results.csv

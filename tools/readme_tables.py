@@ -265,10 +265,12 @@ def soft_summary(paths):
         means = {}
         for name in filters:
             by_view = {r["view"]: r for r in rows if r["filter"] == name and r.get("set-up", "") == setup}
-            means[name] = (sum(by_view[v]["penumbra_mae"] for v in VIEWS) / len(VIEWS),
-                           sum(by_view[v]["soft_mae"] for v in VIEWS) / len(VIEWS))
+            if by_view:  # a filter a set-up cannot take (msm on virtual pages) has none
+                means[name] = (sum(by_view[v]["penumbra_mae"] for v in VIEWS) / len(VIEWS),
+                               sum(by_view[v]["soft_mae"] for v in VIEWS) / len(VIEWS))
         best = min(means, key=lambda n: means[n][1])
-        cells = [(f"**{p:.3f} / {m:.4f}**" if n == best else f"{p:.3f} / {m:.4f}") for n, (p, m) in means.items()]
+        cells = [(("**{:.3f} / {:.4f}**" if n == best else "{:.3f} / {:.4f}").format(*means[n]) if n in means else "—")
+                 for n in filters]
         print(f"| {setup} | " + " | ".join(cells) + " |")
 
 

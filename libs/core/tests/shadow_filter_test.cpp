@@ -7,8 +7,8 @@
 using namespace shadowkit::core;
 
 TEST(ShadowFilterTest, EveryFilterNameParsesBackToItself) {
-    for (const char* name :
-         {"hard", "pcf2", "pcf:1", "pcf:9", "poisson:1", "poisson:32", "pcss", "pcss:1", "pcss:32"}) {
+    for (const char* name : {"hard", "pcf2", "pcf:1", "pcf:9", "poisson:1", "poisson:32", "pcss", "pcss:1", "pcss:32",
+                             "msm", "msm:0", "msm:8"}) {
         const auto f = parseFilter(name);
         ASSERT_TRUE(f) << name << ": " << f.error();
         EXPECT_EQ(filterName(*f), name);
@@ -16,6 +16,9 @@ TEST(ShadowFilterTest, EveryFilterNameParsesBackToItself) {
     }
     // pcss:16 is the default's long form: the short name is the one reports print.
     EXPECT_EQ(filterName(parseFilter("pcss:16").value()), "pcss");
+    EXPECT_EQ(filterName(parseFilter("msm:2").value()), "msm");
+    EXPECT_EQ(parseFilter("msm")->taps, kMsmBlurTexels);
+    EXPECT_FALSE(isWideKernel(parseFilter("msm").value())); // one lookup at the receiver: no receiver plane
 }
 
 TEST(ShadowFilterTest, PcssTakesItsOwnDefaultsAndWidestKernel) {
@@ -31,11 +34,13 @@ TEST(ShadowFilterTest, PcssTakesItsOwnDefaultsAndWidestKernel) {
 }
 
 TEST(ShadowFilterTest, MalformedNamesAndOutOfRangeTapsAreOneErrorNamingTheFilter) {
-    for (const char* name : {"", "soft", "pcss:", "pcss:0", "pcss:33", "pcss:4x", "pcss:-1", "poisson", "pcf:10"}) {
+    for (const char* name :
+         {"", "soft", "pcss:", "pcss:0", "pcss:33", "pcss:4x", "pcss:-1", "poisson", "pcf:10", "msm:9", "msm:-1"}) {
         const auto f = parseFilter(name);
         ASSERT_FALSE(f) << name;
         EXPECT_EQ(f.errorInfo().field, "filter") << name;
         EXPECT_NE(f.error().find("pcss[:N]"), std::string::npos) << f.error(); // the choices are listed
+        EXPECT_NE(f.error().find("msm[:N]"), std::string::npos) << f.error();
     }
     FilterSettings f{ShadowFilter::Pcss, 40};
     EXPECT_EQ(validate(f).errorInfo().field, "filter.taps");

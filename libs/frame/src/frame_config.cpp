@@ -25,6 +25,8 @@ core::Status FrameConfig::check() const {
     if (heldLattices)
         if (auto s = core::validate(*heldLattices); !s) return s;
     if (auto s = core::validate(render.filter); !s) return s;
+    if (render.filter.kind == core::ShadowFilter::Msm && technique.technique == core::Technique::Virtual && !automatic)
+        return core::fieldError("filter", "msm needs fixed maps: virtual pages hold depth only (use pcss)");
     if (auto s = gl::validate(render.blur); !s) return s;
     if (auto s = gl::validate(render.localBias); !s) return s;
     // The overridden bias values within BiasSettings' ranges (the recommendation always is).

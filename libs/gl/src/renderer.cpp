@@ -8,6 +8,7 @@
 #include "gpu_scene.h"
 #include "line_pass.h"
 #include "local_shadows.h"
+#include "moment_maps.h"
 #include "occlusion_culling.h"
 #include "program.h"
 #include "receiver_masks.h"
@@ -99,8 +100,10 @@ struct Renderer::Impl {
     Program depthProgram, blurProgram;
     CameraPrograms cameraPrograms; // the main and eval passes, with and without virtual maps
     Buffer depthUniforms, frameUniforms, blurUniforms;
-    VertexArray emptyVertexArray; // for the full-screen triangle
-    Sampler rawDepthSampler;      // kShadowDepthUnit: the sun's maps' stored depths (PCSS's blocker search)
+    VertexArray emptyVertexArray;            // for the full-screen triangle
+    Sampler rawDepthSampler;                 // kShadowDepthUnit: the sun's maps' stored depths (PCSS's blocker search)
+    std::unique_ptr<MomentMaps> moments;     // --filter msm: the sun's maps as prefiltered moments
+    core::Status momentsStatus = core::Ok{}; // of the last shadow pass's moments (out of memory)
     std::optional<ShadowTarget> shadow;
     std::optional<ColorTarget> color;
     std::optional<EvalTarget> eval;
@@ -194,6 +197,9 @@ core::Result<std::unique_ptr<Renderer>> Renderer::create(const scene::Scene& sce
     glCreateVertexArrays(1, &vao);
     r.emptyVertexArray = VertexArray(vao);
     r.rawDepthSampler = createRawDepthSampler();
+    auto moments = MomentMaps::create();
+    if (!moments) return moments.errorInfo();
+    r.moments = std::move(moments).value();
     // Levels of detail of every mesh, for the camera and for shadow maps (meshoptimizer).
     std::vector<scene::MeshLods> lods;
     for (const scene::Mesh& mesh : scene.meshes) lods.push_back(scene::buildLods(mesh));
@@ -436,6 +442,8 @@ core::Status Renderer::Impl::prepare(const core::PerspectiveCamera& camera, cons
         return core::makeError("renderer: set-ups need 1 to " + std::to_string(kMaxCascades) + " shadow maps, got " +
                                std::to_string(maps));
     const bool linearFilter = settings.filter.kind == core::ShadowFilter::Pcf2;
+    if (virtualMaps && settings.filter.kind == core::ShadowFilter::Msm)
+        return core::fieldError("filter", "msm needs fixed maps: virtual pages hold depth only (use pcss)");
     if (virtualMaps) {
         if (auto s = validateVirtualSettings(settings); !s) return s;
         if (auto s = virtualPages->configure(settings.virtualPoolPages, setup.clipmap->pageTexels,
@@ -470,6 +478,7 @@ core::Result<PassStats> Renderer::Impl::localPass(const RenderSettings& settings
 
 PassStats Renderer::Impl::shadowPass(const core::ShadowSetup& setup, const RenderSettings& settings) {
     lastVirtual.reset();
+    momentsStatus = core::Ok{};
     // Night: no sun, no sun maps (the camera passes do not read them).
     if (!settings.sun) {
         shadowTimer.begin();
@@ -505,6 +514,10 @@ PassStats Renderer::Impl::shadowPass(const core::ShadowSetup& setup, const Rende
         glClearNamedFramebufferfv(shadow->framebuffer.id(), GL_DEPTH, 0, &clearDepth);
         draws += scene->draw(shadowLists[layer]);
     }
+    // MSM: the maps' moments, blurred, inside the pass's time (a real frame pays them with it).
+    if (settings.filter.kind == core::ShadowFilter::Msm)
+        momentsStatus =
+            moments->update(shadow->depth, rawDepthSampler.id(), shadow->size, shadow->layers, settings.filter.taps);
     shadowTimer.end();
     endDepthPass();
     // Time read after the frame, not to stall here.
@@ -590,6 +603,7 @@ void Renderer::Impl::uploadFrame(const core::PerspectiveCamera& camera, const co
     }
     for (const unsigned unit : {kShadowDepthUnit, kSpotDepthUnit, kPointDepthUnit})
         glBindSampler(unit, rawDepthSampler.id()); // the maps once more, their stored depths
+    if (settings.filter.kind == core::ShadowFilter::Msm) moments->bind();
     localMaps->bind(localLights, settings.localBias, evalLight, settings.sun);
     glEnable(GL_CULL_FACE);
     glCullFace(GL_BACK);
@@ -651,6 +665,7 @@ core::Result<FrameStats> Renderer::render(const core::PerspectiveCamera& wsCamer
     }
     FrameStats stats;
     stats.shadow = r.lastShadow = r.shadowPass(setup, settings);
+    if (!r.momentsStatus) return r.momentsStatus.errorInfo();
     auto local = r.localPass(settings);
     if (!local) return local.errorInfo();
     stats.local = *local;
@@ -715,6 +730,7 @@ core::Result<core::RasterBuffers> Renderer::renderEvalBuffers(const core::Perspe
                                std::to_string(r.localLights.size()) + " set)");
     if (auto s = r.prepare(camera, light, setup, settings); !s) return s.errorInfo();
     r.lastShadow = r.shadowPass(setup, settings);
+    if (!r.momentsStatus) return r.momentsStatus.errorInfo();
     if (settings.culling == Culling::Gpu) r.lastShadow = r.gpuShadowDraws(r.lastShadow);
     if (auto s = r.localPass(settings); !s) return s.errorInfo();
     r.evalLight = localLight;

@@ -154,6 +154,7 @@ const std::string& shaderPrelude() {
         define("SK_FILTER_GRID", static_cast<int>(ShadowFilter::PcfGrid));
         define("SK_FILTER_POISSON", static_cast<int>(ShadowFilter::Poisson));
         define("SK_FILTER_PCSS", static_cast<int>(ShadowFilter::Pcss));
+        define("SK_FILTER_MSM", static_cast<int>(ShadowFilter::Msm));
         define("SK_FRAME_BINDING", kFrameBinding);
         define("SK_DEPTH_PASS_BINDING", kDepthPassBinding);
         define("SK_BLUR_BINDING", kBlurBinding);
@@ -177,6 +178,9 @@ const std::string& shaderPrelude() {
         define("SK_SHADOW_DEPTH_UNIT", kShadowDepthUnit);
         define("SK_SPOT_DEPTH_UNIT", kSpotDepthUnit);
         define("SK_POINT_DEPTH_UNIT", kPointDepthUnit);
+        define("SK_MOMENTS_UNIT", kMomentsUnit);
+        define("SK_MOMENTS_SOURCE_UNIT", kMomentsSourceUnit);
+        define("SK_MOMENTS_IMAGE_UNIT", kMomentsImageUnit);
         define("SK_SHADOW_MASK_UNIT", kShadowMaskUnit);
         define("SK_BLUR_MASK_UNIT", kBlurMaskUnit);
         define("SK_BLUR_DEPTH_UNIT", kBlurDepthUnit);

@@ -38,6 +38,9 @@ layout(std140, binding = SK_FRAME_BINDING) uniform Frame {
 // without comparison: PCSS's blocker search.
 layout(binding = SK_SHADOW_DEPTH_UNIT) uniform sampler2DArray shadowDepths;
 #define SK_SHADOW_DEPTHS shadowDepths
+// The sun's maps as prefiltered moments (moment_maps.h): MSM's lookup.
+layout(binding = SK_MOMENTS_UNIT) uniform sampler2DArray shadowMoments;
+#define SK_SHADOW_MOMENTS shadowMoments
 
 // Virtual shadow maps (virtual_pages.h): the C++ side is VirtualMapsUniforms. The levels'
 // textureFromWorld are Frame's shadowTextureFromWorld.

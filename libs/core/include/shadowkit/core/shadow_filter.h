@@ -18,12 +18,15 @@ enum class ShadowFilter {
     Poisson = 3, ///< N comparisons on a Poisson disk, rotated per pixel
     Pcss = 4,    ///< percentage-closer soft shadows (Fernando 2005): a blocker search, then a kernel as wide as
                  ///< the penumbra of a light of the frame's size, both on the map's local footprint
+    Msm = 5,     ///< moment shadow maps (Peters & Klein 2015): four moments per texel, prefiltered by a blur
+                 ///< of N texels' radius, one filtered lookup and the Hamburger 4MSM bound
 };
 
 /// The shadow lookup filter: hard, 2×2 hardware PCF, N×N PCF or a rotated Poisson disk, and its kernel size.
 struct FilterSettings {
     ShadowFilter kind = ShadowFilter::Hard; ///< which filter
-    int taps = 1;              ///< PcfGrid: N of N x N, [1, 9]; Poisson, Pcss: samples, [1, 32]; else unused
+    int taps = 1;              ///< PcfGrid: N of N x N, [1, 9]; Poisson, Pcss: samples, [1, 32]; Msm: blur radius
+                               ///< in texels, [0, 8]; else unused
     float radiusTexels = 1.5f; ///< Poisson: disk radius; Pcss: the widest kernel and search; in texels, (0, 16]
 };
 
@@ -32,12 +35,15 @@ struct FilterSettings {
 /// about 9 cm, 6 texels of the finest level).
 inline constexpr int kPcssTaps = 16;
 inline constexpr float kPcssMaxRadiusTexels = 8.0f;
+/// MSM's default prefilter: a Gaussian blur of this radius in texels (σ = radius / 2).
+inline constexpr int kMsmBlurTexels = 2;
 
 /// Checks the ranges above; the error's field is "filter.taps" or "filter.radius".
 Status validate(const FilterSettings& filter);
 
 /// The text form used by the CLI, configuration files and reports: "hard", "pcf2",
-/// "pcf:N" (N x N grid), "poisson:N" (N samples), "pcss" or "pcss:N" (N samples).
+/// "pcf:N" (N x N grid), "poisson:N" (N samples), "pcss" or "pcss:N" (N samples), "msm" or "msm:N"
+/// (N texels of blur).
 std::string filterName(const FilterSettings& filter);
 /// Parses the text form and validates it; the error's field is "filter".
 Result<FilterSettings> parseFilter(std::string_view text);
