@@ -41,6 +41,14 @@ cost() {
 }
 cost perpendicular noon "hard pcf2 pcf:3 pcf:5 poisson:16 pcss pcss:32 msm" --sun-angle 0.53 --technique csm --cascades 4 \
   --cascade-warp lispsm --map-size 2048
+# MSM pays in the shadow pass (moments and their blur): that pass's GPU ms beside the hard test's.
+echo "| filter | shadow pass | camera pass |"
+echo "|---|---:|---:|"
+for f in hard msm; do
+  "$B" bench --trees 10000 --views perpendicular --filter "$f" --frames 5 --technique csm --cascades 4 \
+    --cascade-warp lispsm --map-size 2048 2>/dev/null |
+    awk -v f="$f" '/ shadow / {s = $(NF-5)} / main / {printf "| `%s` | %s | %s |\n", f, s, $(NF-5)}'
+done
 "$B" sweep data/sweeps/soft-lamps.json --out out/sweeps/soft-lamps --discard-stale
 python3 tools/readme_tables.py --into docs/soft-shadows.md:soft-lamps soft-lamps out/sweeps/soft-lamps/results.csv
 cost lamp torch "hard pcf2 pcss"

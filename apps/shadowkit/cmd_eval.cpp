@@ -34,7 +34,8 @@ struct EvalArgs {
     LocalLightOptions lights;
     std::string views; // "a,b" or "all"; empty: --view
     std::string json, errorMap, aliasingMap, dump, csv, plot, report;
-    bool check = false;             // --check: validate every option, render and measure nothing
+    int softSamples = eval::SoftTruthOptions{}.samples; // --soft-samples: rays a penumbra point takes
+    bool check = false;                                 // --check: validate every option, render and measure nothing
     bool serve = false;             // --serve: evaluate each request read from stdin (eval_session.h)
     EvalSession* session = nullptr; // a request of --serve: the scene and measurer kept between requests
 };
@@ -79,6 +80,8 @@ int runEval(const EvalArgs& args) {
     if (auto s = args.technique.check(/*measuresFrames=*/true, /*takesAuto=*/true); !s) return fail(s.errorInfo());
     if (auto s = args.render.check(); !s) return fail(s.errorInfo());
     if (auto s = args.scene.check(); !s) return fail(s.errorInfo());
+    if (args.softSamples < 16 || args.softSamples > 4096)
+        return fail(fmt::format("--soft-samples: must be in [16, 4096] rays, got {}", args.softSamples));
     for (auto [flag, file] :
          {std::pair{"--json", &args.json}, {"--csv", &args.csv}, {"--plot", &args.plot}, {"--report", &args.report}})
         if (auto s = checkWritable(flag, *file); !s) return fail(s.errorInfo());
@@ -137,6 +140,7 @@ int runEval(const EvalArgs& args) {
         // Progress only when the truth takes a while (large images, big scenes).
         measure::MeasureOptions options;
         options.shadedImage = !args.report.empty();
+        options.softTruth.samples = args.softSamples;
         options.truthProgress = [&, shown = false](double done) mutable {
             const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
             if ((elapsed < 2.0 && !shown) || !isatty(fileno(stderr))) return; // a log gets the table only
@@ -152,6 +156,15 @@ int runEval(const EvalArgs& args) {
                                          perView(args.errorMap, name, several));
                 !s)
                 return fail("--error-map: " + s.error());
+        // With a sun of some size, also the signed error against its soft truth: NAME-soft.png.
+        if (!args.errorMap.empty() && measured->softTruth) {
+            const fs::path hard = perView(args.errorMap, name, several);
+            if (auto s = scene::writePng(
+                    eval::softErrorMapImage(measured->raster.shadowTerm, *measured->softTruth, measured->comparison),
+                    hard.parent_path() / (hard.stem().string() + "-soft" + hard.extension().string()));
+                !s)
+                return fail("--error-map: " + s.error());
+        }
         if (!args.aliasingMap.empty())
             if (auto s = scene::writePng(eval::aliasingMapImage(measured->comparison, view->width, view->height),
                                          perView(args.aliasingMap, name, several));
@@ -233,8 +246,14 @@ Command addEvalCommand(CLI::App& app, EvalSession* session) {
     args->render.addTo(*cmd);
     args->lights.addTo(*cmd);
     cmd->add_option("--json", args->json, "write the figures as JSON {\"views\": [...]}");
-    cmd->add_option("--error-map", args->errorMap, "write the error map PNG (one per view: NAME-view.png)");
+    cmd->add_option("--error-map", args->errorMap,
+                    "write the error map PNG (one per view: NAME-view.png); with --sun-angle also NAME-soft.png, "
+                    "the signed error against the soft truth (red too dark, blue too light)");
     cmd->add_option("--aliasing-map", args->aliasingMap, "write the pixels-per-texel heat map PNG");
+    cmd->add_option("--soft-samples", args->softSamples,
+                    "--sun-angle and lamps with a radius: shadow rays per penumbra point of the soft truth, rounded up "
+                    "to a square (its standard error about 1 / (2 sqrt(N)) at most)")
+        ->capture_default_str();
     cmd->add_option("--report", args->report,
                     "write an HTML page (pictures beside it): per view the frame, rendered and ray-traced shadows, "
                     "error and aliasing maps, the figures explained and the command that reproduces them");

@@ -59,6 +59,30 @@ scene::Image errorMapImage(const Comparison& comparison, int width, int height) 
     return image;
 }
 
+scene::Image softErrorMapImage(std::span<const float> shadowTerm, const SoftTruth& soft, const Comparison& comparison) {
+    using C = ErrorMapColors;
+    scene::Image image(soft.width, soft.height);
+    for (int y = 0; y < soft.height; ++y)
+        for (int x = 0; x < soft.width; ++x) {
+            const size_t i = static_cast<size_t>(y) * size_t(soft.width) + size_t(x);
+            const PixelClass c = comparison.classes[i];
+            const bool valid = c == PixelClass::LitCorrect || c == PixelClass::ShadowCorrect ||
+                               c == PixelClass::FalseShadow || c == PixelClass::FalseLit;
+            if (!valid || std::isnan(soft.visibility[i])) {
+                put(image, x, y, C::notEvaluated);
+                continue;
+            }
+            // Linear from the grey of a right pixel to the full colour at an error of 1.
+            const double e = std::clamp(double(shadowTerm[i]) - soft.visibility[i], -1.0, 1.0);
+            const uint8_t* to = e < 0.0 ? C::falseShadow : C::falseLit;
+            uint8_t rgb[3];
+            for (int k = 0; k < 3; ++k)
+                rgb[k] = static_cast<uint8_t>(std::lround(C::litCorrect[k] + std::abs(e) * (to[k] - C::litCorrect[k])));
+            put(image, x, y, rgb);
+        }
+    return image;
+}
+
 scene::Image aliasingMapImage(const Comparison& comparison, int width, int height) {
     const int scale = std::max(1, width / 640); // label size
     const int barHeight = 6 * scale + (imaging::kGlyphHeight + 4) * scale + 6;

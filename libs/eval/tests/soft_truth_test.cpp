@@ -3,6 +3,7 @@
 // disk's chord-area fraction, and two independent sample sets agree within their errors.
 #include "truth_scenes.h"
 
+#include "shadowkit/eval/maps.h"
 #include "shadowkit/eval/soft_truth.h"
 #include "shadowkit/scene/mesh_builder.h"
 
@@ -160,6 +161,30 @@ TEST(SoftTruthTest, SoftFiguresAreTheMeanErrorsOverTheValidPixelsAndThePenumbra)
     EXPECT_DOUBLE_EQ(f.softWrongPct, 50.0); // errors 1 and 0.5 exceed 0.25
     EXPECT_EQ(f.truthRays, 42u);
     EXPECT_DOUBLE_EQ(f.sunAngleDegrees, 0.53);
+}
+
+TEST(SoftTruthTest, TheSoftErrorMapIsRedWhereTooDarkBlueWhereTooLightAndGreyWhereRight) {
+    using PC = eval::PixelClass;
+    using C = eval::ErrorMapColors;
+    eval::SoftTruth soft;
+    soft.width = 5, soft.height = 1;
+    soft.visibility = {1.0f, 0.0f, 0.5f, 0.5f, 1.0f};
+    const std::vector<float> rendered = {0.0f, 1.0f, 0.5f, 0.25f, 1.0f};
+    eval::Comparison comparison;
+    comparison.classes = {PC::FalseShadow, PC::FalseLit, PC::LitCorrect, PC::ShadowCorrect, PC::Excluded};
+    const scene::Image image = eval::softErrorMapImage(rendered, soft, comparison);
+    const auto is = [&](int x, const uint8_t(&rgb)[3]) {
+        const uint8_t* p = image.pixel(x, 0);
+        return p[0] == rgb[0] && p[1] == rgb[1] && p[2] == rgb[2];
+    };
+    EXPECT_TRUE(is(0, C::falseShadow));  // error −1: shadow where the whole sun is seen
+    EXPECT_TRUE(is(1, C::falseLit));     // +1
+    EXPECT_TRUE(is(2, C::litCorrect));   // right
+    EXPECT_TRUE(is(4, C::notEvaluated)); // not compared
+    // A quarter too dark: a quarter of the way from grey to red.
+    const uint8_t* p = image.pixel(3, 0);
+    for (int k = 0; k < 3; ++k)
+        EXPECT_NEAR(p[k], C::litCorrect[k] + 0.25 * (C::falseShadow[k] - C::litCorrect[k]), 0.51) << k;
 }
 
 TEST(SoftTruthTest, ASphereLightOfRadiusZeroIsTheLampsHardTruthExactly) {

@@ -42,7 +42,8 @@ core::Status MomentMaps::update(const Texture& depth, GLuint rawSampler, int siz
             m_moments.reset(), m_scratch.reset();
             m_size = m_layers = 0;
             return core::environmentError("map_size: the GL driver is out of memory for moment maps of " +
-                                              std::to_string(layers) + " × " + std::to_string(size) + "² (16 bytes a texel, twice)",
+                                              std::to_string(layers) + " × " + std::to_string(size) +
+                                              "² (16 bytes a texel, twice)",
                                           "map_size");
         }
         m_size = size, m_layers = layers;

@@ -5,8 +5,11 @@
 #include "shadowkit/core/light.h"
 #include "shadowkit/core/raster_buffers.h"
 #include "shadowkit/eval/metrics.h"
+#include "shadowkit/eval/soft_truth.h"
 #include "shadowkit/eval/truth.h"
 #include "shadowkit/scene/image.h"
+
+#include <span>
 
 namespace shadowkit::eval {
 
@@ -26,6 +29,12 @@ scene::Image errorMapImage(const Comparison& comparison, int width, int height);
 // colour bar and labels under the image; 1 pixel per texel is the white tick. Pixels
 // that are not valid are black.
 scene::Image aliasingMapImage(const Comparison& comparison, int width, int height);
+
+// The signed error against a soft truth (eval --sun-angle --error-map): rendered − true
+// visibility per valid pixel, red where the rendered shadow is too dark (−1: shadow where the
+// sun is wholly seen), light grey where it is right, blue where too light (+1), in the error
+// map's false-shadow and false-lit colours; pixels not compared keep its not-evaluated colour.
+scene::Image softErrorMapImage(std::span<const float> shadowTerm, const SoftTruth& soft, const Comparison& comparison);
 
 // The truth's surfaces in grey, lit by the sun alone: ambient + (1 − ambient) · N·L · v, with
 // v the visibility — `truth.lit` for the ray-traced picture, the rendered shadow term
