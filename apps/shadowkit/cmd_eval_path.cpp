@@ -33,6 +33,7 @@ struct FrameRow {
     double autoMilliseconds = 0.0;                    // and the CPU time of the choice (model + search)
     std::optional<gl::VirtualPageStats> virtualPages; // --technique virtual: the frame's pages
     size_t shadowTriangles = 0;                       // drawn by the frame's sun shadow pass
+    std::optional<eval::SoftFigures> soft;            // --sun-angle: against the sun disk's soft truth
     double seconds = 0.0;
 };
 
@@ -65,7 +66,7 @@ core::Status writeCsv(const std::string& file, const std::vector<FrameRow>& rows
     std::ofstream out(file);
     out << "frame,time_s,valid_px,wrong_pct,false_shadow_pct,false_lit_pct,pixels_per_texel_p50,compared_px,flicker_"
            "pct,"
-           "truth_change_pct,refitted_views\n";
+           "truth_change_pct,refitted_views,soft_mae,penumbra_mae\n";
     for (const FrameRow& r : rows) {
         out << fmt::format("{},{:.6g},{},{:.6g},{:.6g},{:.6g},{:.6g}", r.frame, r.time, r.figures.validPx,
                            r.figures.wrongPct, r.figures.falseShadowPct, r.figures.falseLitPct,
@@ -75,7 +76,8 @@ core::Status writeCsv(const std::string& file, const std::vector<FrameRow>& rows
                                r.temporal->truthChangePct);
         else
             out << ",,,";
-        out << (r.refittedViews ? fmt::format(",{}\n", *r.refittedViews) : std::string(",\n"));
+        out << (r.refittedViews ? fmt::format(",{}", *r.refittedViews) : std::string(","));
+        out << (r.soft ? fmt::format(",{:.6g},{:.6g}\n", r.soft->softMae, r.soft->penumbraMae) : std::string(",,\n"));
     }
     if (!out) return core::makeError(file + ": cannot write");
     return core::Ok{};
@@ -132,6 +134,7 @@ int runEvalPath(const EvalPathArgs& args) {
         row.temporal = measured->temporal;
         row.virtualPages = measured->measurement.virtualPages;
         row.shadowTriangles = measured->measurement.shadowPass.triangles;
+        row.soft = measured->measurement.soft;
         if (prepared.refits) {
             refits += prepared.refits->views > 0;
             toCover += prepared.refits->toCover, stale += prepared.refits->stale;
@@ -159,9 +162,10 @@ int runEvalPath(const EvalPathArgs& args) {
         rows.push_back(row);
     }
 
-    std::vector<double> flicker, truthChange, wrong, autoMs;
+    std::vector<double> flicker, truthChange, wrong, autoMs, softMae, penumbraMae;
     for (const FrameRow& r : rows) {
         wrong.push_back(r.figures.wrongPct);
+        if (r.soft) softMae.push_back(r.soft->softMae), penumbraMae.push_back(r.soft->penumbraMae);
         if (r.temporal) flicker.push_back(r.temporal->flickerPct), truthChange.push_back(r.temporal->truthChangePct);
         if (automatic && &r != &rows.front()) autoMs.push_back(r.autoMilliseconds); // the first frame searches in full
     }
@@ -181,6 +185,11 @@ int runEvalPath(const EvalPathArgs& args) {
                "p95 {:.3f} "
                "max {:.3f} | wrong_pct mean {:.3f}\n",
                technique, timeline->path->name, rows.size(), fl.mean, fl.p95, fl.max, tc.mean, tc.p95, tc.max, wr.mean);
+    const Summary sm = summarise(softMae), pm = summarise(penumbraMae);
+    if (!softMae.empty())
+        fmt::print("  soft truth, sun {:.2f}°: soft_mae mean {:.4f} p95 {:.4f} max {:.4f} | penumbra_mae mean {:.3f} "
+                   "p95 {:.3f} max {:.3f}\n",
+                   rows.front().soft->sunAngleDegrees, sm.mean, sm.p95, sm.max, pm.mean, pm.p95, pm.max);
 
     if (!args.csv.empty())
         if (auto s = writeCsv(args.csv, rows); !s) return fail("--csv: " + s.error());
@@ -242,6 +251,10 @@ int runEvalPath(const EvalPathArgs& args) {
                           {"flicker_pct", r.temporal->flickerPct},
                           {"truth_change_pct", r.temporal->truthChangePct}});
             if (r.refittedViews) j["refitted_views"] = *r.refittedViews;
+            if (r.soft)
+                j.update({{"soft_mae", r.soft->softMae},
+                          {"penumbra_mae", r.soft->penumbraMae},
+                          {"penumbra_px", r.soft->penumbraPx}});
             if (r.autoChoice) j.update({{"auto_choice", *r.autoChoice}, {"auto_ms", r.autoMilliseconds}});
             if (const auto& v = r.virtualPages) j["virtual"] = eval::virtualPagesJson(measure::virtualPagesReport(*v));
             frames.push_back(j);
@@ -255,6 +268,11 @@ int runEvalPath(const EvalPathArgs& args) {
             {"refits", held ? nlohmann::json(refits) : nlohmann::json(nullptr)},
             {"summary", {{"flicker_pct", summary(fl)}, {"truth_change_pct", summary(tc)}, {"wrong_pct", summary(wr)}}},
             {"frames", frames}};
+        if (!softMae.empty()) {
+            root["summary"]["soft_mae"] = summary(sm);
+            root["summary"]["penumbra_mae"] = summary(pm);
+            root["sun_angle_deg"] = rows.front().soft->sunAngleDegrees;
+        }
         if (automatic)
             root["auto"] = {{"family_switches", familySwitches(autoChosen)},
                             {"first_frame_ms", rows.front().autoMilliseconds},

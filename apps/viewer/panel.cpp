@@ -94,7 +94,8 @@ float numberOf(const char* name) { return std::stof(defaultOf(name)); }
 
 constexpr std::array kTexelBudgets = {"1M", "4M", "16M", "32M"};
 constexpr std::array kMapSizes = {"256", "512", "1024", "2048", "4096", "8192"};
-constexpr std::array kFilters = {"hard", "pcf2", "pcf:3", "pcf:5", "poisson:16", "poisson:32", "pcss", "pcss:32", "msm"};
+constexpr std::array kFilters = {"hard",       "pcf2", "pcf:3",   "pcf:5", "poisson:16",
+                                 "poisson:32", "pcss", "pcss:32", "msm"};
 
 } // namespace
 

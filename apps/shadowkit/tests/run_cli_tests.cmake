@@ -327,6 +327,15 @@ if(CASE STREQUAL "gl-eval-path")
   if(NOT rc EQUAL 0 OR NOT refits)
     message(SEND_ERROR "eval --path --stabilize (held lattices): failed or no refit count: ${out} ${err}")
   endif()
+  # With a sun of some size every frame is also measured against the disk's soft truth.
+  execute_process(COMMAND ${SHADOWKIT} eval ${small} --path flythrough --frames 0:3 --size 32x18 --map-size 64
+                          --filter pcss --sun-angle 2 --csv "${WORK}/soft.csv"
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  file(STRINGS "${WORK}/soft.csv" soft)
+  list(GET soft 1 first)
+  if(NOT rc EQUAL 0 OR NOT out MATCHES "soft_mae mean" OR NOT first MATCHES ",[0-9.e-]+,[0-9.e-]+$")
+    message(SEND_ERROR "eval --path --sun-angle: no soft figures per frame or in the summary: ${out} ${first} ${err}")
+  endif()
 endif()
 if(CASE STREQUAL "gl-render-sequence")
   execute_process(COMMAND ${SHADOWKIT} render ${small} --movers 12 --path flythrough --frames 10:13 --size 32x18 --map-size 64
