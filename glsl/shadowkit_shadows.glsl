@@ -99,6 +99,10 @@ const vec2 kSkPoisson[32] = vec2[](
     vec2(0.507797, -0.916562), vec2(0.545763, 0.730216), vec2(0.56859, 0.11655), vec2(0.743156, -0.505173),
     vec2(0.736442, -0.189734), vec2(0.843562, 0.357036), vec2(0.865413, -0.795735), vec2(0.872393, 0.750194));
 
+// The golden angle, 2.39996 rad, as a rotation: tap i + 1 of a Vogel disk is tap i turned by it
+// (PCSS's filter taps here and the lamps' in the renderer's local_lights.glsl).
+const mat2 kSkGoldenTurn = mat2(-0.7373688, 0.6754903, -0.6754903, -0.7373688);
+
 #ifdef SK_SHADOW_DEPTHS
 // Percentage-closer soft shadows (Fernando 2005), the kernel on the map's local footprint.
 //
@@ -152,14 +156,13 @@ float skPcss(sampler2DArrayShadow maps, int layer, mat4 textureFromWorld, vec4 l
 
     // Vogel disk: tap i at radius sqrt((i + ½) / N), each turned by the golden angle from the last.
     const float angle = skPixelAngle();
-    const mat2 golden = mat2(-0.7373688, 0.6754903, -0.6754903, -0.7373688); // 2.39996 rad
     const int taps = max(o.filterTaps, 1);
 
     // 1. Blockers anywhere up to the map's near plane (depth 0) that the cone can reach.
     const float searchMetres = min(depth / depthPerMetre * o.lightTanHalfAngle, widestMetres);
     float blockerMetres = 0.0, blockers = 0.0;
     vec2 direction = vec2(cos(angle), sin(angle));
-    for (int i = 0; i < taps; ++i, direction = golden * direction) {
+    for (int i = 0; i < taps; ++i, direction = kSkGoldenTurn * direction) {
         const float rho = float(i) / float(taps) * searchMetres;
         const vec2 offset = uvFromDisk * (direction * rho);
         const float stored = texture(SK_SHADOW_DEPTHS, vec3((uv + offset) * atlasFromMap.xy + atlasFromMap.zw, float(layer))).r;
@@ -176,7 +179,7 @@ float skPcss(sampler2DArrayShadow maps, int layer, mat4 textureFromWorld, vec4 l
     const float filterMetres = min(blockerMetres / blockers * o.lightTanHalfAngle, widestMetres);
     float lit = 0.0;
     direction = vec2(cos(angle), sin(angle));
-    for (int i = 0; i < taps; ++i, direction = golden * direction) {
+    for (int i = 0; i < taps; ++i, direction = kSkGoldenTurn * direction) {
         const vec2 offset = uvFromDisk * (direction * (sqrt((float(i) + 0.5) / float(taps)) * filterMetres));
         const float reference = clamp(depth + dot(dDepthDuv, offset), 0.0, 1.0);
         lit += texture(maps, vec4((uv + offset) * atlasFromMap.xy + atlasFromMap.zw, float(layer), reference));

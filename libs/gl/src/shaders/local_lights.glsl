@@ -101,13 +101,12 @@ float localPcss(bool point, int i, vec3 ws, vec3 n, vec3 wsLight, float range, f
     const float planeDistance = dot(p - wsLight, n);
     const int taps = max(filterTaps, 1);
     const float angle = skPixelAngle();
-    const mat2 golden = mat2(-0.7373688, 0.6754903, -0.6754903, -0.7373688); // 2.39996 rad
 
     // 1. Blockers between the lamp's surface and the receiver whose cones hold the tap.
     const float search = min(d - radius, widest);
     float blockerDistance = 0.0, blockers = 0.0;
     vec2 direction = vec2(cos(angle), sin(angle));
-    for (int k = 0; k < taps; ++k, direction = golden * direction) {
+    for (int k = 0; k < taps; ++k, direction = kSkGoldenTurn * direction) {
         const float rho = float(k) / float(taps) * search;
         const vec3 q = p + rho * (direction.x * e1 + direction.y * e2);
         const vec3 ray = normalize(q - wsLight);
@@ -125,7 +124,7 @@ float localPcss(bool point, int i, vec3 ws, vec3 n, vec3 wsLight, float range, f
     const float kernel = min(radius * (d - s) / max(s, 1e-4), widest);
     float lit = 0.0;
     direction = vec2(cos(angle), sin(angle));
-    for (int k = 0; k < taps; ++k, direction = golden * direction) {
+    for (int k = 0; k < taps; ++k, direction = kSkGoldenTurn * direction) {
         const vec3 q = p + sqrt((float(k) + 0.5) / float(taps)) * kernel * (direction.x * e1 + direction.y * e2);
         const vec3 ray = normalize(q - wsLight);
         const float along = dot(ray, n) < -1e-4 ? planeDistance / dot(ray, n) : d;
