@@ -214,7 +214,7 @@ void forEachPacket(size_t rays, Trace trace) {
 void RayScene::intersect(std::span<const Ray> rays, std::span<uint8_t> hit, std::span<RayHit> hits) const {
     forEachPacket(rays.size(), [&](RTCIntersectContext& context, size_t first, size_t count) {
         RTCRayHit8 packet{};
-        int valid[kPacket];
+        alignas(32) int valid[kPacket]; // Embree loads the mask with aligned vector loads
         fillPacket(packet.ray, valid, m_wsOrigin, rays, first, count);
         for (int lane = 0; lane < kPacket; ++lane) {
             packet.hit.geomID[lane] = RTC_INVALID_GEOMETRY_ID;
@@ -235,7 +235,7 @@ void RayScene::intersect(std::span<const Ray> rays, std::span<uint8_t> hit, std:
 void RayScene::occluded(std::span<const Ray> rays, std::span<uint8_t> occluded) const {
     forEachPacket(rays.size(), [&](RTCIntersectContext& context, size_t first, size_t count) {
         RTCRay8 packet{};
-        int valid[kPacket];
+        alignas(32) int valid[kPacket]; // Embree loads the mask with aligned vector loads
         fillPacket(packet, valid, m_wsOrigin, rays, first, count);
         rtcOccluded8(valid, m_impl->top, &context, &packet);
         for (size_t lane = 0; lane < count; ++lane) occluded[first + lane] = packet.tfar[lane] < 0.0f;
