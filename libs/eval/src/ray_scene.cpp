@@ -1,4 +1,5 @@
-// Embree 3 scene construction with two-level instancing.
+// Embree 3 scene construction with two-level instancing, and alpha-tested materials as
+// Embree filter functions: a hit on a masked surface counts only where its alpha covers it.
 #include "shadowkit/eval/ray_scene.h"
 
 #include <embree3/rtcore.h>
@@ -13,10 +14,47 @@
 
 namespace shadowkit::eval {
 
+namespace {
+
+// What the filter of an alpha-tested mesh needs, owned here (a RayScene may outlive the
+// scene it was built from): each vertex's uv, the triangles, the texture and the test.
+struct AlphaSurface {
+    std::vector<glm::vec2> uvs;
+    std::vector<uint32_t> indices;
+    scene::Texture texture; // empty image: the factor's alpha alone
+    float baseAlpha = 1.0f, cutoff = 0.5f;
+
+    // glTF 2.0 §3.9.4 at the hit's barycentrics (u, v): level 0 of the texture, sampled as GL
+    // samples it up close (scene::sampleLevel0). The rasteriser's distant mip levels keep
+    // coverage (scene/texture_mips.h); the truth is the full-resolution card.
+    bool covers(uint32_t triangle, float u, float v) const {
+        const size_t i = size_t(triangle) * 3;
+        if (i + 2 >= indices.size()) return true;
+        const glm::vec2 uv = (1.0f - u - v) * uvs[indices[i]] + u * uvs[indices[i + 1]] + v * uvs[indices[i + 2]];
+        const float alpha = baseAlpha * (texture.image.width > 0 ? scene::sampleLevel0(texture, uv).a : 1.0f);
+        return alpha >= cutoff;
+    }
+};
+
+// Embree's intersection and occlusion filter (RTCFilterFunctionN): rejects the hits that
+// fall where the material's alpha is below its cutoff, so the ray goes on through the hole.
+void alphaFilter(const RTCFilterFunctionNArguments* args) {
+    const auto& surface = *static_cast<const AlphaSurface*>(args->geometryUserPtr);
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (args->valid[i] == 0) continue;
+        const uint32_t triangle = RTCHitN_primID(args->hit, args->N, i);
+        if (!surface.covers(triangle, RTCHitN_u(args->hit, args->N, i), RTCHitN_v(args->hit, args->N, i)))
+            args->valid[i] = 0;
+    }
+}
+
+} // namespace
+
 struct RayScene::Impl {
     RTCDevice device = nullptr;
     RTCScene top = nullptr;
     std::vector<RTCScene> meshes;
+    std::vector<std::unique_ptr<AlphaSurface>> alphaSurfaces; // user data of the filters: fixed addresses
     std::vector<glm::mat3> normalFromObject; // per global instance: inverse transpose of the linear part
     std::string lastError;
 
@@ -81,6 +119,19 @@ core::Result<std::unique_ptr<RayScene>> RayScene::build(const scene::Scene& scen
         }
         for (size_t i = 0; i < mesh.vertices.size(); ++i) std::memcpy(vertices + 3 * i, &mesh.vertices[i].position, 12);
         std::memcpy(indices, mesh.indices.data(), mesh.indices.size() / 3 * 3 * sizeof(uint32_t));
+        if (const scene::Material* material = scene.materialOf(mesh); material && material->alphaTested()) {
+            auto surface = std::make_unique<AlphaSurface>();
+            for (const scene::Vertex& v : mesh.vertices) surface->uvs.push_back(v.uv);
+            surface->indices = mesh.indices;
+            const int32_t t = material->baseColorTexture;
+            if (t >= 0 && size_t(t) < scene.textures.size()) surface->texture = scene.textures[size_t(t)];
+            surface->baseAlpha = material->baseColorFactor.a;
+            surface->cutoff = material->alphaCutoff;
+            rtcSetGeometryUserData(geom, surface.get());
+            rtcSetGeometryIntersectFilterFunction(geom, alphaFilter);
+            rtcSetGeometryOccludedFilterFunction(geom, alphaFilter);
+            impl.alphaSurfaces.push_back(std::move(surface));
+        }
         rtcCommitGeometry(geom);
         rtcAttachGeometry(meshScene, geom);
         rtcReleaseGeometry(geom);

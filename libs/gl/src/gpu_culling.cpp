@@ -1,5 +1,6 @@
 #include "gpu_culling.h"
 
+#include "camera_programs.h"
 #include "gl_shaders.h"
 #include "program.h"
 #include "uniforms.h"
@@ -103,7 +104,7 @@ std::unique_ptr<GpuCulling> GpuCulling::create(const scene::Scene& scene, std::s
 }
 
 core::Status GpuCulling::buildPrograms() {
-    if (m_depthProgram.id() != 0) return core::Ok{};
+    if (m_depthPrograms.plain.id() != 0) return core::Ok{};
     using namespace shaders;
     for (int stage = 0; stage < 3; ++stage) {
         const std::string define = "#define SK_CULL_STAGE " + std::to_string(stage + 1) + "\n";
@@ -114,10 +115,9 @@ core::Status GpuCulling::buildPrograms() {
     auto pyramid = buildComputeProgram("GPU culling's depth pyramid", {kDepthPyramidComp});
     if (!pyramid) return pyramid.errorInfo();
     m_pyramidProgram = std::move(pyramid).value();
-    auto depth = buildProgram("GPU culling's depth pre-pass", {kFrameGlsl, kMainVert}, {kFrameGlsl, kCameraDepthFrag});
+    auto depth = buildCameraDepthPrePass("GPU culling's depth pre-pass");
     if (!depth) return depth.errorInfo();
-    if (auto s = checkUniformBlock(*depth, "GPU culling", "Frame", sizeof(FrameUniforms), frameFields()); !s) return s;
-    m_depthProgram = std::move(depth).value();
+    m_depthPrograms = std::move(depth).value();
     return core::Ok{};
 }
 
@@ -288,8 +288,7 @@ void GpuCulling::camera(const core::PerspectiveCamera& camera, const LodChoice* 
         glDepthMask(GL_TRUE);
         glEnable(GL_CULL_FACE);
         glCullFace(GL_BACK);
-        glUseProgram(m_depthProgram.id());
-        m_scene.draw(list);
+        m_scene.draw(list, m_depthPrograms.passPrograms());
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
         m_gl += inGl.elapsed();
     };

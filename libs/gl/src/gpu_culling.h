@@ -107,7 +107,8 @@ private:
     void compact(size_t pass, bool shadowChain, PassList& out);
 
     const GpuScene& m_scene;
-    Program m_stages[3], m_pyramidProgram, m_depthProgram;
+    Program m_stages[3], m_pyramidProgram;
+    ProgramPair m_depthPrograms; // the camera depth pre-pass
     Buffer m_instances, m_chunks, m_batches, m_levels, m_flags, m_ranks, m_chunkSums;
     Buffer m_lists, m_commands;
     size_t m_instanceCount = 0, m_chunkCount = 0, m_batchCount = 0;

@@ -2,8 +2,11 @@
 
 #include "uniforms.h"
 
+#include "shadowkit/scene/texture_mips.h"
+
 #include <algorithm>
 #include <cstddef>
+#include <optional>
 
 namespace shadowkit::gl {
 
@@ -17,9 +20,51 @@ std::vector<GpuScene::Range> rangesOf(const std::vector<scene::LodLevel>& chain)
     return ranges;
 }
 
+GLenum glWrap(scene::TextureWrap wrap) {
+    return wrap == scene::TextureWrap::ClampToEdge      ? GL_CLAMP_TO_EDGE
+           : wrap == scene::TextureWrap::MirroredRepeat ? GL_MIRRORED_REPEAT
+                                                        : GL_REPEAT;
+}
+
+// A texture with its whole mip chain: coverage-keeping for alpha-tested use (the cutoff of the
+// first alpha-tested material that samples it), plain box-filtered otherwise.
+Texture uploadTexture(const scene::Texture& texture, std::optional<float> alphaCutoff) {
+    const std::vector<scene::Image> chain =
+        texture.mipmaps ? scene::buildMipChain(texture.image, alphaCutoff) : std::vector<scene::Image>{texture.image};
+    GLuint id = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &id);
+    Texture gl(id);
+    glTextureStorage2D(id, static_cast<GLsizei>(chain.size()), GL_SRGB8_ALPHA8, texture.image.width,
+                       texture.image.height);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    for (size_t level = 0; level < chain.size(); ++level)
+        glTextureSubImage2D(id, static_cast<GLint>(level), 0, 0, chain[level].width, chain[level].height, GL_RGBA,
+                            GL_UNSIGNED_BYTE, chain[level].rgba.data());
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glTextureParameteri(id, GL_TEXTURE_WRAP_S, static_cast<GLint>(glWrap(texture.wrapS)));
+    glTextureParameteri(id, GL_TEXTURE_WRAP_T, static_cast<GLint>(glWrap(texture.wrapT)));
+    glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, texture.nearest ? GL_NEAREST : GL_LINEAR);
+    glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, texture.mipmaps ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR);
+    return gl;
+}
+
 } // namespace
 
 GpuScene::GpuScene(const scene::Scene& scene, std::span<const scene::MeshLods> lods) {
+    for (size_t t = 0; t < scene.textures.size(); ++t) {
+        std::optional<float> cutoff;
+        for (const scene::Material& m : scene.materials)
+            if (m.alphaTested() && m.baseColorTexture == static_cast<int32_t>(t)) {
+                cutoff = m.alphaCutoff;
+                break;
+            }
+        m_textures.push_back(uploadTexture(scene.textures[t], cutoff));
+    }
+    scene::Texture white;
+    white.image = scene::Image(1, 1);
+    white.image.rgba = {255, 255, 255, 255};
+    white.mipmaps = false;
+    m_white = uploadTexture(white, std::nullopt);
     for (size_t m = 0; m < scene.meshes.size(); ++m) {
         const scene::Mesh& mesh = scene.meshes[m];
         const scene::MeshLods& lod = lods[m];
@@ -59,11 +104,12 @@ GpuScene::GpuScene(const scene::Scene& scene, std::span<const scene::MeshLods> l
         gpu.vertexArray = VertexArray(vao);
         glVertexArrayVertexBuffer(vao, 0, gpu.vertices.id(), 0, sizeof(scene::Vertex));
         glVertexArrayElementBuffer(vao, gpu.indices.id());
-        const GLuint offsets[3] = {offsetof(scene::Vertex, position), offsetof(scene::Vertex, normal),
-                                   offsetof(scene::Vertex, albedo)};
-        for (GLuint attrib = 0; attrib < 3; ++attrib) {
+        // position, normal, albedo, uv (main.vert's and material.glsl's locations)
+        const GLuint offsets[4] = {offsetof(scene::Vertex, position), offsetof(scene::Vertex, normal),
+                                   offsetof(scene::Vertex, albedo), offsetof(scene::Vertex, uv)};
+        for (GLuint attrib = 0; attrib < 4; ++attrib) {
             glEnableVertexArrayAttrib(vao, attrib);
-            glVertexArrayAttribFormat(vao, attrib, 3, GL_FLOAT, GL_FALSE, offsets[attrib]);
+            glVertexArrayAttribFormat(vao, attrib, attrib == 3 ? 2 : 3, GL_FLOAT, GL_FALSE, offsets[attrib]);
             glVertexArrayAttribBinding(vao, attrib, 0);
         }
         m_meshes.push_back(std::move(gpu));
@@ -73,7 +119,18 @@ GpuScene::GpuScene(const scene::Scene& scene, std::span<const scene::MeshLods> l
         const scene::MeshBatch& batch = scene.batches[b];
         const auto count = static_cast<GLuint>(batch.worldFromObject.size());
         if (count > 0 && !scene.meshes[batch.mesh].indices.empty()) {
+            GpuMaterial material;
+            if (const scene::Material* m = scene.materialOf(scene.meshes[batch.mesh])) {
+                const int32_t t = m->baseColorTexture;
+                material.alphaTested = m->alphaTested();
+                material.doubleSided = m->doubleSided;
+                material.textured = t >= 0 && static_cast<size_t>(t) < m_textures.size();
+                material.texture = material.textured ? m_textures[static_cast<size_t>(t)].id() : m_white.id();
+                material.baseAlpha = m->baseColorFactor.a;
+                material.alphaCutoff = m->alphaTested() ? m->alphaCutoff : -1.0f;
+            }
             m_batches.push_back({batch.mesh,
+                                 material,
                                  createBuffer(batch.worldFromObject.data(),
                                               batch.worldFromObject.size() * sizeof(glm::mat4), batch.dynamic),
                                  firstInstance,
@@ -100,88 +157,113 @@ void GpuScene::updateBatch(const scene::Scene& scene, size_t sceneBatch) {
     }
 }
 
-DrawStats GpuScene::draw(const PassList& list, bool setInstanceBase, int replicas) const {
-    return drawBatches(list, setInstanceBase, replicas, nullptr);
+DrawStats GpuScene::draw(const PassList& list, const PassPrograms& programs, bool setInstanceBase, int replicas) const {
+    return drawBatches(list, programs, setInstanceBase, replicas, nullptr);
 }
 
-DrawStats GpuScene::draw(const PassList& list, std::span<const visibility::HalfSpace> volume) const {
-    return drawBatches(list, false, 1, &volume);
+DrawStats GpuScene::draw(const PassList& list, const PassPrograms& programs,
+                         std::span<const visibility::HalfSpace> volume) const {
+    return drawBatches(list, programs, false, 1, &volume);
 }
 
-DrawStats GpuScene::drawBatches(const PassList& list, bool setInstanceBase, int replicas,
+DrawStats GpuScene::drawBatches(const PassList& list, const PassPrograms& programs, bool setInstanceBase, int replicas,
                                 const std::span<const visibility::HalfSpace>* volume) const {
     DrawStats stats;
     if (list.buffer != 0) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kVisibleBinding, list.buffer);
     if (list.indirect >= 0) glBindBuffer(GL_DRAW_INDIRECT_BUFFER, list.commands);
-    for (const GpuBatch& batch : m_batches) {
-        const GpuMesh& mesh = m_meshes[batch.mesh];
-        const std::vector<Range>& levels = list.shadow ? mesh.shadow : mesh.camera;
-        bool bound = false;
-        for (size_t level = 0; level < levels.size(); ++level) {
-            const size_t slot = batch.index * kMaxLodLevels + level;
-            const uint32_t count = list.count[slot];
-            if (count == 0) continue;
-            if (!bound) {
-                if (setInstanceBase) glUniform1ui(kInstanceBaseLocation, batch.firstInstance);
-                glBindVertexArray(mesh.vertexArray.id());
-                glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kInstancesBinding, batch.instances.id());
-                bound = true;
+    const bool culling = glIsEnabled(GL_CULL_FACE) == GL_TRUE;
+    auto usesMaterial = [&](const GpuBatch& batch) {
+        return programs.material != 0 && (batch.material.alphaTested || (programs.colour && batch.material.textured));
+    };
+    for (const bool materialSweep : {false, true}) {
+        bool programBound = false;
+        for (const GpuBatch& batch : m_batches) {
+            if (usesMaterial(batch) != materialSweep) continue;
+            if (!programBound) {
+                glUseProgram(materialSweep ? programs.material : programs.plain);
+                programBound = true;
             }
-            const Range& range = levels[level];
-            const auto& clusterLevels = list.shadow ? mesh.shadowClusters : mesh.cameraClusters;
-            if (volume && list.indirect < 0 && level < clusterLevels.size() && !clusterLevels[level].empty()) {
-                // Each instance alone, each run of clusters meeting the volume in one draw.
-                const std::vector<scene::TriangleCluster>& clusters = clusterLevels[level];
-                for (uint32_t k = 0; k < count; ++k) {
-                    const core::Mat4 worldFromObject(batch.worldFromObject[list.indices[list.first[slot] + k]]);
-                    glUniform1ui(kInstanceOffsetLocation, list.offset + list.first[slot] + k);
-                    size_t run = 0, runIndices = 0;
-                    auto flush = [&](size_t end) {
-                        if (runIndices == 0) return;
-                        glDrawElementsInstanced(
-                            GL_TRIANGLES, static_cast<GLsizei>(runIndices), GL_UNSIGNED_INT,
-                            reinterpret_cast<const void*>(clusters[run].firstIndex * sizeof(uint32_t)), 1);
-                        stats.triangles += runIndices / 3;
-                        ++stats.drawCalls;
-                        runIndices = 0;
-                        run = end;
-                    };
-                    for (size_t c = 0; c < clusters.size(); ++c) {
-                        if (visibility::isOutside(*volume,
-                                                  core::transformBounds(worldFromObject, clusters[c].osBounds))) {
-                            flush(c + 1);
-                            continue;
-                        }
-                        if (runIndices == 0) run = c;
-                        runIndices += clusters[c].indexCount;
-                    }
-                    flush(clusters.size());
-                    ++stats.instances;
-                }
-                continue;
+            if (materialSweep) {
+                glBindTextureUnit(kBaseColorUnit, batch.material.texture);
+                glUniform1f(kBaseAlphaLocation, batch.material.baseAlpha);
+                glUniform1f(kAlphaCutoffLocation, batch.material.alphaCutoff);
             }
-            glUniform1ui(kInstanceOffsetLocation, list.offset + list.first[slot]);
-            // Camera passes move simplified receivers' shadow lookups by their error (main.vert).
-            if (setInstanceBase) glUniform1f(kLodErrorLocation, range.objectError);
-            if (list.indirect >= 0) {
-                // The command holds the level's range and the instances the GPU kept (up to
-                // `count`): what is drawn is known to the GPU only (GpuCulling::submitted).
-                const size_t command = static_cast<size_t>(list.indirect) + slot;
-                glDrawElementsIndirect(
-                    GL_TRIANGLES, GL_UNSIGNED_INT,
-                    reinterpret_cast<const void*>(command * kIndirectCommandWords * sizeof(uint32_t)));
-                ++stats.drawCalls;
-                continue;
-            }
-            glDrawElementsInstanced(GL_TRIANGLES, range.indexCount, GL_UNSIGNED_INT,
-                                    reinterpret_cast<const void*>(range.byteOffset),
-                                    static_cast<GLsizei>(count) * replicas);
-            stats.instances += static_cast<size_t>(count) * static_cast<size_t>(replicas);
-            stats.triangles += static_cast<size_t>(range.indexCount / 3) * count * static_cast<size_t>(replicas);
-            ++stats.drawCalls;
+            if (batch.material.doubleSided && culling) glDisable(GL_CULL_FACE);
+            stats += drawBatch(batch, list, setInstanceBase, replicas, volume);
+            if (batch.material.doubleSided && culling) glEnable(GL_CULL_FACE);
         }
     }
     glBindVertexArray(0);
+    return stats;
+}
+
+DrawStats GpuScene::drawBatch(const GpuBatch& batch, const PassList& list, bool setInstanceBase, int replicas,
+                              const std::span<const visibility::HalfSpace>* volume) const {
+    DrawStats stats;
+    const GpuMesh& mesh = m_meshes[batch.mesh];
+    const std::vector<Range>& levels = list.shadow ? mesh.shadow : mesh.camera;
+    bool bound = false;
+    for (size_t level = 0; level < levels.size(); ++level) {
+        const size_t slot = batch.index * kMaxLodLevels + level;
+        const uint32_t count = list.count[slot];
+        if (count == 0) continue;
+        if (!bound) {
+            if (setInstanceBase) glUniform1ui(kInstanceBaseLocation, batch.firstInstance);
+            glBindVertexArray(mesh.vertexArray.id());
+            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kInstancesBinding, batch.instances.id());
+            bound = true;
+        }
+        const Range& range = levels[level];
+        const auto& clusterLevels = list.shadow ? mesh.shadowClusters : mesh.cameraClusters;
+        if (volume && list.indirect < 0 && level < clusterLevels.size() && !clusterLevels[level].empty()) {
+            // Each instance alone, each run of clusters meeting the volume in one draw.
+            const std::vector<scene::TriangleCluster>& clusters = clusterLevels[level];
+            for (uint32_t k = 0; k < count; ++k) {
+                const core::Mat4 worldFromObject(batch.worldFromObject[list.indices[list.first[slot] + k]]);
+                glUniform1ui(kInstanceOffsetLocation, list.offset + list.first[slot] + k);
+                size_t run = 0, runIndices = 0;
+                auto flush = [&](size_t end) {
+                    if (runIndices == 0) return;
+                    glDrawElementsInstanced(GL_TRIANGLES, static_cast<GLsizei>(runIndices), GL_UNSIGNED_INT,
+                                            reinterpret_cast<const void*>(clusters[run].firstIndex * sizeof(uint32_t)),
+                                            1);
+                    stats.triangles += runIndices / 3;
+                    ++stats.drawCalls;
+                    runIndices = 0;
+                    run = end;
+                };
+                for (size_t c = 0; c < clusters.size(); ++c) {
+                    if (visibility::isOutside(*volume, core::transformBounds(worldFromObject, clusters[c].osBounds))) {
+                        flush(c + 1);
+                        continue;
+                    }
+                    if (runIndices == 0) run = c;
+                    runIndices += clusters[c].indexCount;
+                }
+                flush(clusters.size());
+                ++stats.instances;
+            }
+            continue;
+        }
+        glUniform1ui(kInstanceOffsetLocation, list.offset + list.first[slot]);
+        // Camera passes move simplified receivers' shadow lookups by their error (main.vert).
+        if (setInstanceBase) glUniform1f(kLodErrorLocation, range.objectError);
+        if (list.indirect >= 0) {
+            // The command holds the level's range and the instances the GPU kept (up to
+            // `count`): what is drawn is known to the GPU only (GpuCulling::submitted).
+            const size_t command = static_cast<size_t>(list.indirect) + slot;
+            glDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT,
+                                   reinterpret_cast<const void*>(command * kIndirectCommandWords * sizeof(uint32_t)));
+            ++stats.drawCalls;
+            continue;
+        }
+        glDrawElementsInstanced(GL_TRIANGLES, range.indexCount, GL_UNSIGNED_INT,
+                                reinterpret_cast<const void*>(range.byteOffset),
+                                static_cast<GLsizei>(count) * replicas);
+        stats.instances += static_cast<size_t>(count) * static_cast<size_t>(replicas);
+        stats.triangles += static_cast<size_t>(range.indexCount / 3) * count * static_cast<size_t>(replicas);
+        ++stats.drawCalls;
+    }
     return stats;
 }
 

@@ -8,9 +8,29 @@
 #include "shadowkit/scene/scene.h"
 #include "shadowkit/visibility/instance_hierarchy.h"
 
+#include <string_view>
 #include <vector>
 
 namespace shadowkit::gl {
+
+// The programs a pass draws the scene with: a plain one and its SK_MATERIAL variant
+// (material.glsl), built from the same sources with kMaterialVariant[1] in front of each
+// stage. Batches whose material is alpha-tested draw with `material`, which samples the
+// base colour texture and discards what alpha does not cover; so do textured batches in a
+// pass that shades colour. Every other batch draws with `plain`: a depth-only pass over
+// opaque casters reads no texture and keeps its early depth test.
+struct PassPrograms {
+    GLuint plain = 0;
+    GLuint material = 0; // 0: every batch with `plain` (a pass that draws no materials)
+    bool colour = false; // the pass shades colour (main pass): textures matter to opaque batches too
+};
+inline constexpr std::string_view kMaterialVariant[2] = {"", "#define SK_MATERIAL 1\n"};
+
+// A pass's two programs, owned.
+struct ProgramPair {
+    Program plain, material;
+    PassPrograms passPrograms(bool colour = false) const { return {plain.id(), material.id(), colour}; }
+};
 
 struct DrawStats {
     size_t instances = 0;
@@ -34,12 +54,16 @@ public:
     // receives the batch's first global instance index (Scene order), the surface identity
     // of the evaluation. `replicas` > 1 draws every instance that many times in a row
     // (gl_InstanceID / replicas is the list entry): the layered cube pass's faces.
-    DrawStats draw(const PassList& list, bool setInstanceBase = false, int replicas = 1) const;
+    // Batches whose material is double-sided draw with back-face culling off (the state is
+    // restored after each). Plain batches first, then the material ones.
+    DrawStats draw(const PassList& list, const PassPrograms& programs, bool setInstanceBase = false,
+                   int replicas = 1) const;
     // The same, where a large mesh's instance (kClusterMinTriangles or more at its level) draws
     // only its triangle clusters whose boxes meet `volume`: a pass that sees a small part of a
     // kilometre of terrain (a virtual map's page) draws that part. The same pixels as draw():
     // the clusters left out lie wholly outside the pass's volume.
-    DrawStats draw(const PassList& list, std::span<const visibility::HalfSpace> volume) const;
+    DrawStats draw(const PassList& list, const PassPrograms& programs,
+                   std::span<const visibility::HalfSpace> volume) const;
     static constexpr size_t kClusterMinTriangles = 16384, kClusterTriangles = 2048;
     // Uploads the transforms of Scene::batches[sceneBatch] again (a dynamic batch, whose
     // instances moved; other batches' buffers are immutable).
@@ -60,15 +84,27 @@ private:
         // Per level of each chain: its triangles' spatial clusters (empty below kClusterMinTriangles).
         std::vector<std::vector<scene::TriangleCluster>> cameraClusters, shadowClusters;
     };
+    // A mesh's material as its draws need it (scene::Material).
+    struct GpuMaterial {
+        bool alphaTested = false, doubleSided = false;
+        GLuint texture = 0; // the base colour texture, or the white 1×1 one
+        bool textured = false;
+        float baseAlpha = 1.0f, alphaCutoff = -1.0f; // uniforms of material.glsl; cutoff < 0: opaque
+    };
     struct GpuBatch {
         size_t mesh = 0;
+        GpuMaterial material;
         Buffer instances;
         GLuint firstInstance = 0;               // global index over all batches
         size_t index = 0;                       // in Scene::batches (PassList's per-batch ranges)
         std::vector<glm::mat4> worldFromObject; // kept on the CPU for clustered meshes only
     };
-    DrawStats drawBatches(const PassList& list, bool setInstanceBase, int replicas,
+    DrawStats drawBatches(const PassList& list, const PassPrograms& programs, bool setInstanceBase, int replicas,
                           const std::span<const visibility::HalfSpace>* volume) const;
+    DrawStats drawBatch(const GpuBatch& batch, const PassList& list, bool setInstanceBase, int replicas,
+                        const std::span<const visibility::HalfSpace>* volume) const;
+    std::vector<Texture> m_textures; // Scene::textures, mipmapped (scene::buildMipChain)
+    Texture m_white;                 // for alpha-tested materials without a texture
     std::vector<GpuMesh> m_meshes;
     std::vector<GpuBatch> m_batches;
 };

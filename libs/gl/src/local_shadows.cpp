@@ -35,23 +35,35 @@ glm::vec4 positionRange(const core::Vec3& p, double range) { return {glm::vec3(p
 core::Result<std::unique_ptr<LocalShadowMaps>> LocalShadowMaps::create() {
     auto maps = std::unique_ptr<LocalShadowMaps>(new LocalShadowMaps);
     using namespace shaders;
-    auto geometry = buildProgram("local lights' depth pass (geometry shader)", {kLocalDepthGlsl, kLocalDepthWorldVert},
-                                 {kLocalDepthGlsl, kLocalDepthGeom}, {kLocalDepthGlsl, kLocalDepthFrag});
-    if (!geometry) return geometry.errorInfo();
-    maps->m_geometryProgram = std::move(geometry).value();
+    for (const bool material : {false, true}) {
+        const std::string_view with = kMaterialVariant[material];
+        auto geometry =
+            buildProgram(material ? "local lights' depth pass (geometry shader, materials)"
+                                  : "local lights' depth pass (geometry shader)",
+                         {with, kLocalDepthGlsl, kLocalDepthWorldVert}, {with, kLocalDepthGlsl, kLocalDepthGeom},
+                         {with, kLocalDepthGlsl, kMaterialGlsl, kLocalDepthFrag});
+        if (!geometry) return geometry.errorInfo();
+        (material ? maps->m_geometryPrograms.material : maps->m_geometryPrograms.plain) = std::move(geometry).value();
+    }
     const char* extension = epoxy_has_gl_extension("GL_ARB_shader_viewport_layer_array")
                                 ? "GL_ARB_shader_viewport_layer_array"
                             : epoxy_has_gl_extension("GL_AMD_vertex_shader_layer") ? "GL_AMD_vertex_shader_layer"
                                                                                    : nullptr;
     if (extension) {
         const std::string enable = std::string("#extension ") + extension + " : require\n";
-        auto layered =
-            buildProgram("local lights' depth pass (vertex layer)", {enable, kLocalDepthGlsl, kLocalDepthLayerVert},
-                         {kLocalDepthGlsl, kLocalDepthFrag});
-        if (!layered) return layered.errorInfo();
-        maps->m_vertexLayerProgram = std::move(layered).value();
+        for (const bool material : {false, true}) {
+            const std::string_view with = kMaterialVariant[material];
+            auto layered = buildProgram(material ? "local lights' depth pass (vertex layer, materials)"
+                                                 : "local lights' depth pass (vertex layer)",
+                                        {enable, with, kLocalDepthGlsl, kLocalDepthLayerVert},
+                                        {with, kLocalDepthGlsl, kMaterialGlsl, kLocalDepthFrag});
+            if (!layered) return layered.errorInfo();
+            (material ? maps->m_vertexLayerPrograms.material : maps->m_vertexLayerPrograms.plain) =
+                std::move(layered).value();
+        }
     }
-    for (const Program* p : {&maps->m_geometryProgram, &maps->m_vertexLayerProgram})
+    for (const Program* p : {&maps->m_geometryPrograms.plain, &maps->m_geometryPrograms.material,
+                             &maps->m_vertexLayerPrograms.plain, &maps->m_vertexLayerPrograms.material})
         if (*p)
             if (auto s = checkUniformBlock(*p, "local lights' depth pass", "LocalDepth", sizeof(LocalDepthUniforms),
                                            localDepthFields());
@@ -112,7 +124,7 @@ core::Result<PassStats> LocalShadowMaps::draw(const GpuScene& scene, const core:
     glDisable(GL_CULL_FACE);  // both sides stored; the lookup's bias keeps surfaces off themselves
     glEnable(GL_DEPTH_CLAMP); // nothing clipped at near or far: depth is written per fragment
     const bool vertexLayer = pass == LocalPass::VertexLayer || (pass == LocalPass::PerFace && hasVertexLayer());
-    glUseProgram(vertexLayer ? m_vertexLayerProgram.id() : m_geometryProgram.id());
+    const PassPrograms programs = (vertexLayer ? m_vertexLayerPrograms : m_geometryPrograms).passPrograms();
     glBindBufferBase(GL_UNIFORM_BUFFER, kLocalDepthBinding, m_depthUniforms.id());
 
     PassStats stats;
@@ -129,7 +141,7 @@ core::Result<PassStats> LocalShadowMaps::draw(const GpuScene& scene, const core:
         u.replicas = static_cast<int32_t>(faces.size());
         glNamedBufferSubData(m_depthUniforms.id(), 0, sizeof u, &u);
         const int copies = static_cast<int>(faces.size());
-        const DrawStats d = scene.draw(list, false, vertexLayer ? copies : 1);
+        const DrawStats d = scene.draw(list, programs, false, vertexLayer ? copies : 1);
         // Counted as faces written: the geometry shader amplifies what the vertex path instances.
         const size_t amplify = vertexLayer ? 1 : faces.size();
         stats.instances += d.instances * amplify;

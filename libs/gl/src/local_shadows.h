@@ -31,7 +31,7 @@ public:
     static core::Result<std::unique_ptr<LocalShadowMaps>> create();
 
     // The driver lets the vertex shader choose the layer.
-    bool hasVertexLayer() const { return static_cast<bool>(m_vertexLayerProgram); }
+    bool hasVertexLayer() const { return static_cast<bool>(m_vertexLayerPrograms.plain); }
     // What `pass` runs as here: Layered is VertexLayer where the driver has it, else Geometry.
     LocalPass resolve(LocalPass pass) const;
 
@@ -55,7 +55,7 @@ public:
 
 private:
     LocalShadowMaps() = default;
-    Program m_vertexLayerProgram, m_geometryProgram;
+    ProgramPair m_vertexLayerPrograms, m_geometryPrograms; // plain and with materials
     Buffer m_depthUniforms, m_lightUniforms;
     Texture m_spotMaps, m_pointMaps;
     Framebuffer m_framebuffer;

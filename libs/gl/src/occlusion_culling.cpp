@@ -1,5 +1,6 @@
 #include "occlusion_culling.h"
 
+#include "camera_programs.h"
 #include "gl_shaders.h"
 #include "program.h"
 #include "stopwatch.h"
@@ -36,14 +37,13 @@ OcclusionCuller::~OcclusionCuller() {
 core::Result<std::unique_ptr<OcclusionCuller>> OcclusionCuller::create(Visibility& visibility, const GpuScene& scene) {
     auto culler = std::unique_ptr<OcclusionCuller>(new OcclusionCuller(visibility, scene));
     using namespace shaders;
-    auto depth = buildProgram("camera depth pre-pass", {kFrameGlsl, kMainVert}, {kFrameGlsl, kCameraDepthFrag});
+    auto depth = buildCameraDepthPrePass("camera depth pre-pass");
     if (!depth) return depth.errorInfo();
     auto box = buildProgram("occlusion query boxes", {kFrameGlsl, kOcclusionBoxVert}, {kEmptyFrag});
     if (!box) return box.errorInfo();
-    for (const Program* p : {&*depth, &*box})
-        if (auto s = checkUniformBlock(*p, "occlusion culling", "Frame", sizeof(FrameUniforms), frameFields()); !s)
-            return s.errorInfo();
-    culler->m_depthProgram = std::move(depth).value();
+    if (auto s = checkUniformBlock(*box, "occlusion culling", "Frame", sizeof(FrameUniforms), frameFields()); !s)
+        return s.errorInfo();
+    culler->m_depthPrograms = std::move(depth).value();
     culler->m_boxProgram = std::move(box).value();
     GLuint vao = 0;
     glCreateVertexArrays(1, &vao);
@@ -126,12 +126,11 @@ void OcclusionCuller::draw(std::span<const uint32_t> items) {
     m_drawList.offset = static_cast<uint32_t>(m_listCursor);
     m_listCursor += n;
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kVisibleBinding, m_lists.id());
-    glUseProgram(m_depthProgram.id());
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glDepthMask(GL_TRUE);
     glEnable(GL_CULL_FACE);
     glCullFace(GL_BACK);
-    m_scene.draw(m_drawList);
+    m_scene.draw(m_drawList, m_depthPrograms.passPrograms());
     m_unflushed = true;
     m_gl += inGl.elapsed();
 }

@@ -62,7 +62,8 @@ private:
     Visibility& m_visibility;
     const GpuScene& m_scene;
     visibility::CoherentCulling m_chc;
-    Program m_depthProgram, m_boxProgram;
+    ProgramPair m_depthPrograms; // the camera depth pre-pass
+    Program m_boxProgram;
     VertexArray m_emptyVertexArray;
     std::vector<GLuint> m_queries; // pool; a handle is an index
     std::vector<uint32_t> m_freeQueries;

@@ -97,7 +97,9 @@ struct Renderer::Impl {
     double receiverMaskMilliseconds = 0.0;
     std::unique_ptr<DepthRangeReduction> depthRange; // of every pre-pass: Renderer::lastVisibleDepth
     bool prepassForDepthRange = false;               // Renderer::visibleDepth: a pre-pass even if culling needs none
-    Program depthProgram, blurProgram;
+    ProgramPair depthPrograms;                       // the shadow maps' depth pass
+    Program blurProgram;
+    PassPrograms depthPass() const { return depthPrograms.passPrograms(); }
     CameraPrograms cameraPrograms; // the main and eval passes, with and without virtual maps
     Buffer depthUniforms, frameUniforms, blurUniforms;
     VertexArray emptyVertexArray;            // for the full-screen triangle
@@ -171,13 +173,19 @@ core::Result<std::unique_ptr<Renderer>> Renderer::create(const scene::Scene& sce
     Impl& r = *renderer->m_impl;
     r.wsOrigin = scene.wsOrigin;
     using namespace shaders;
-    auto depth = buildProgram("depth pass", {kDepthPassGlsl, kDepthVert}, {kDepthPassGlsl, kDepthFrag});
-    if (!depth) return depth.errorInfo();
+    for (const bool material : {false, true}) {
+        const std::string_view withMaterial = kMaterialVariant[material];
+        const std::string name = material ? "depth pass, materials" : "depth pass";
+        auto depth = buildProgram(name, {withMaterial, kDepthPassGlsl, kDepthVert},
+                                  {withMaterial, kDepthPassGlsl, kMaterialGlsl, kDepthFrag});
+        if (!depth) return depth.errorInfo();
+        if (auto s = checkUniformBlock(*depth, name, "DepthPass", sizeof(DepthPassUniforms), depthPassFields()); !s)
+            return s.errorInfo();
+        (material ? r.depthPrograms.material : r.depthPrograms.plain) = std::move(depth).value();
+    }
     auto blur = buildProgram("blur pass", {kFullscreenVert}, {kBlurFrag});
     if (!blur) return blur.errorInfo();
     if (auto s = checkUniformBlock(*blur, "blur pass", "Blur", sizeof(BlurUniforms), blurFields()); !s)
-        return s.errorInfo();
-    if (auto s = checkUniformBlock(*depth, "depth pass", "DepthPass", sizeof(DepthPassUniforms), depthPassFields()); !s)
         return s.errorInfo();
     auto camera = CameraPrograms::create();
     if (!camera) return camera.errorInfo();
@@ -188,7 +196,6 @@ core::Result<std::unique_ptr<Renderer>> Renderer::create(const scene::Scene& sce
     auto localMaps = LocalShadowMaps::create();
     if (!localMaps) return localMaps.errorInfo();
     r.localMaps = std::move(localMaps).value();
-    r.depthProgram = std::move(depth).value();
     r.blurProgram = std::move(blur).value();
     r.depthUniforms = createBuffer(nullptr, sizeof(DepthPassUniforms));
     r.frameUniforms = createBuffer(nullptr, sizeof(FrameUniforms));
@@ -512,7 +519,7 @@ PassStats Renderer::Impl::shadowPass(const core::ShadowSetup& setup, const Rende
         shadow->attachLayer(static_cast<int>(layer));
         const float clearDepth = 1.0f;
         glClearNamedFramebufferfv(shadow->framebuffer.id(), GL_DEPTH, 0, &clearDepth);
-        draws += scene->draw(shadowLists[layer]);
+        draws += scene->draw(shadowLists[layer], depthPass());
     }
     // MSM: the maps' moments, blurred, inside the pass's time (a real frame pays them with it).
     if (settings.filter.kind == core::ShadowFilter::Msm)
@@ -529,7 +536,7 @@ PassStats Renderer::Impl::pagePass() {
     glBindFramebuffer(GL_FRAMEBUFFER, virtualPages->framebuffer().id());
     beginDepthPass(true);
     shadowTimer.begin();
-    const DrawStats draws = virtualPages->drawPages(*scene, pageLists, depthUniforms);
+    const DrawStats draws = virtualPages->drawPages(*scene, depthPass(), pageLists, depthUniforms);
     shadowTimer.end();
     endDepthPass();
     virtualPages->rendered();
@@ -550,7 +557,7 @@ void Renderer::Impl::beginDepthPass(bool depthClamp) const {
     if (depthClamp) glEnable(GL_DEPTH_CLAMP);
     glEnable(GL_POLYGON_OFFSET_FILL);
     glPolygonOffset(static_cast<float>(bias.slope), static_cast<float>(bias.constant));
-    glUseProgram(depthProgram.id());
+    glUseProgram(depthPrograms.plain.id());
     glBindBufferBase(GL_UNIFORM_BUFFER, kDepthPassBinding, depthUniforms.id());
 }
 
@@ -619,8 +626,7 @@ core::Status Renderer::Impl::evalPass(const core::PerspectiveCamera& camera, con
     glBindFramebuffer(GL_FRAMEBUFFER, eval->framebuffer.id());
     glViewport(0, 0, eval->width, eval->height);
     eval->clear();
-    glUseProgram(cameraPrograms.eval(setup.clipmap.has_value()));
-    scene->draw(cameraList, true);
+    scene->draw(cameraList, cameraPrograms.eval(setup.clipmap.has_value()), true);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     return core::Ok{};
 }
@@ -691,9 +697,8 @@ core::Result<FrameStats> Renderer::render(const core::PerspectiveCamera& wsCamer
     const float clearDepth = 1.0f;
     glClearNamedFramebufferfv(r.color->framebuffer.id(), GL_COLOR, 0, clearColor);
     glClearNamedFramebufferfv(r.color->framebuffer.id(), GL_DEPTH, 0, &clearDepth);
-    glUseProgram(r.cameraPrograms.main(setup.clipmap.has_value()));
     r.mainTimer.begin();
-    DrawStats mainDraws = r.scene->draw(r.cameraList, true);
+    DrawStats mainDraws = r.scene->draw(r.cameraList, r.cameraPrograms.main(setup.clipmap.has_value()), true);
     r.mainTimer.end();
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     if (settings.culling == Culling::Gpu) {

@@ -179,6 +179,9 @@ const std::string& shaderPrelude() {
         define("SK_SPOT_DEPTH_UNIT", kSpotDepthUnit);
         define("SK_POINT_DEPTH_UNIT", kPointDepthUnit);
         define("SK_MOMENTS_UNIT", kMomentsUnit);
+        define("SK_BASE_COLOR_UNIT", kBaseColorUnit);
+        define("SK_BASE_ALPHA_LOCATION", kBaseAlphaLocation);
+        define("SK_ALPHA_CUTOFF_LOCATION", kAlphaCutoffLocation);
         define("SK_MOMENTS_SOURCE_UNIT", kMomentsSourceUnit);
         define("SK_MOMENTS_IMAGE_UNIT", kMomentsImageUnit);
         define("SK_SHADOW_MASK_UNIT", kShadowMaskUnit);

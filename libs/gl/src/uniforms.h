@@ -45,17 +45,18 @@ inline constexpr unsigned kShadowMaskUnit = 1; // main pass: the blurred shadow 
 inline constexpr unsigned kBlurMaskUnit = 0;   // blur pass: the mask being blurred
 inline constexpr unsigned kBlurDepthUnit = 1;  // blur pass: view depth, to stop at depth steps
 // Local lights (local_shadows.h): their maps beside the sun's in the camera passes.
-inline constexpr unsigned kSpotMapUnit = 2;        // sampler2DArrayShadow, one layer per spot light
-inline constexpr unsigned kPointMapUnit = 3;       // samplerCubeArrayShadow, one cube per point light
-inline constexpr unsigned kPageTableUnit = 4;      // usampler2D: virtual maps' page table
-inline constexpr unsigned kShadowDepthUnit = 5;    // camera passes: kShadowMapUnit's texture, stored depths (PCSS)
-inline constexpr unsigned kSpotDepthUnit = 6;      // camera passes: the spot maps' stored distances (PCSS)
-inline constexpr unsigned kPointDepthUnit = 7;     // camera passes: the point cubes' stored distances (PCSS)
-inline constexpr unsigned kMomentsUnit = 8;        // camera passes: the sun's moment maps (MSM)
-inline constexpr unsigned kMomentsSourceUnit = 0;  // moments.comp: the depth maps or moments it reads
-inline constexpr unsigned kMomentsImageUnit = 0;   // moments.comp: the image it writes
-inline constexpr unsigned kLocalDepthBinding = 5;  // uniform block LocalDepth (local_depth.glsl)
-inline constexpr unsigned kLocalLightsBinding = 6; // uniform block LocalLights (local_lights.glsl)
+inline constexpr unsigned kSpotMapUnit = 2;       // sampler2DArrayShadow, one layer per spot light
+inline constexpr unsigned kPointMapUnit = 3;      // samplerCubeArrayShadow, one cube per point light
+inline constexpr unsigned kPageTableUnit = 4;     // usampler2D: virtual maps' page table
+inline constexpr unsigned kShadowDepthUnit = 5;   // camera passes: kShadowMapUnit's texture, stored depths (PCSS)
+inline constexpr unsigned kSpotDepthUnit = 6;     // camera passes: the spot maps' stored distances (PCSS)
+inline constexpr unsigned kPointDepthUnit = 7;    // camera passes: the point cubes' stored distances (PCSS)
+inline constexpr unsigned kMomentsUnit = 8;       // camera passes: the sun's moment maps (MSM)
+inline constexpr unsigned kBaseColorUnit = 9;     // SK_MATERIAL passes: the batch's base colour texture (material.glsl)
+inline constexpr unsigned kMomentsSourceUnit = 0; // moments.comp: the depth maps or moments it reads
+inline constexpr unsigned kMomentsImageUnit = 0;  // moments.comp: the image it writes
+inline constexpr unsigned kLocalDepthBinding = 5; // uniform block LocalDepth (local_depth.glsl)
+inline constexpr unsigned kLocalLightsBinding = 6;             // uniform block LocalLights (local_lights.glsl)
 inline constexpr int kMaxLocalLights = kMaxLocalLightsPerKind; // GLSL: SK_MAX_LOCAL_LIGHTS
 // GPU culling's storage buffers (gpu_cull.comp, depth_pyramid.comp; gpu_culling.h), bound before each dispatch.
 inline constexpr unsigned kCullInstancesBinding = 0; // boxes and scales
@@ -75,6 +76,8 @@ inline constexpr int kInstanceBaseLocation = 0; // uniform uint instanceBase (ma
 inline constexpr int kInstanceOffsetLocation = 1; // uniform uint instanceOffset: the draw's list in visibleInstances
 inline constexpr int kLodErrorLocation = 2;       // uniform float lodObjectError (main.vert): the level's error
 inline constexpr int kBoxOffsetLocation = 3;      // uniform uint boxOffset (occlusion_box.vert): first box of the draw
+inline constexpr int kBaseAlphaLocation = 4;      // uniform float skBaseAlpha (material.glsl): baseColorFactor.a
+inline constexpr int kAlphaCutoffLocation = 5;    // uniform float skAlphaCutoff (material.glsl); < 0: never discard
 
 // std140: scalars pack in fours, vec4 and mat4 start on 16 bytes. Booleans are int32.
 

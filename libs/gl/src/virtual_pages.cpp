@@ -365,7 +365,7 @@ void VirtualPages::request(const CameraDepthTarget& depth, const core::Perspecti
     m_stats.poolBytes = int64_t(m_atlasTexels.x) * m_atlasTexels.y * 4;
 }
 
-DrawStats VirtualPages::drawPages(const GpuScene& scene, std::span<const PassList> lists,
+DrawStats VirtualPages::drawPages(const GpuScene& scene, const PassPrograms& programs, std::span<const PassList> lists,
                                   const Buffer& depthUniforms) const {
     DrawStats draws;
     glEnable(GL_SCISSOR_TEST);
@@ -377,7 +377,7 @@ DrawStats VirtualPages::drawPages(const GpuScene& scene, std::span<const PassLis
         glClearNamedFramebufferfv(m_framebuffer.id(), GL_DEPTH, 0, &clearDepth);
         const DepthPassUniforms uniforms{.clipFromWorld = glm::mat4(m_toRender[i].clipFromWorld)};
         glNamedBufferSubData(depthUniforms.id(), 0, sizeof uniforms, &uniforms);
-        draws += scene.draw(lists[i], visibility::clipVolume(m_toRender[i].clipFromWorld, false));
+        draws += scene.draw(lists[i], programs, visibility::clipVolume(m_toRender[i].clipFromWorld, false));
     }
     glDisable(GL_SCISSOR_TEST);
     return draws;

@@ -7,7 +7,13 @@
 //     and unsigned as c / (2^n − 1) (KHR_mesh_quantization's positions, normals and colours);
 //   - sparse accessors: the base values (zeros without a buffer view), then the listed ones;
 //   - triangle lists, strips and fans (strips and fans unrolled into lists);
-//   - what cannot be read is named: glTF 1.0, Draco-compressed meshes, non-finite positions.
+//   - materials (§3.9): base colour factor and texture with its TEXCOORD set and sampler,
+//     KHR_texture_transform applied to the uvs, alpha mode and cutoff, double-sidedness;
+//   - images (§3.8.4): PNG and JPEG, embedded (buffer view or data URI) or external, decoded by
+//     scene::decodeImage within its limits; a buffer view's bytes are checked against its
+//     buffer before they are read (tinygltf does not check them);
+//   - what cannot be read is named: glTF 1.0, Draco-compressed meshes, non-finite positions, a
+//     missing or broken image.
 #include "scene_formats.h"
 
 #include <tiny_gltf.h>
@@ -193,6 +199,27 @@ std::vector<uint32_t> triangleList(int mode, const std::vector<uint32_t>& sequen
     return list;
 }
 
+// KHR_texture_transform on a texture reference: uv' = T · R · S · uv (the extension's order),
+// or nullopt when there is none.
+std::optional<glm::mat3> textureTransform(const tinygltf::TextureInfo& info) {
+    const auto ext = info.extensions.find("KHR_texture_transform");
+    if (ext == info.extensions.end() || !ext->second.IsObject()) return std::nullopt;
+    const tinygltf::Value& v = ext->second;
+    auto number = [&](const char* key, int i, double fallback) {
+        const tinygltf::Value& a = v.Get(key);
+        if (!a.IsArray() || int(a.ArrayLen()) <= i || !a.Get(i).IsNumber()) return fallback;
+        return a.Get(i).GetNumberAsDouble();
+    };
+    const double rotation = v.Get("rotation").IsNumber() ? v.Get("rotation").GetNumberAsDouble() : 0.0;
+    const glm::dmat3 translate(1, 0, 0, 0, 1, 0, number("offset", 0, 0.0), number("offset", 1, 0.0), 1);
+    const double c = std::cos(rotation), s = std::sin(rotation);
+    const glm::dmat3 rotate(c, -s, 0, s, c, 0, 0, 0, 1); // columns: the extension's matrix transposed
+    const glm::dmat3 scale(number("scale", 0, 1.0), 0, 0, 0, number("scale", 1, 1.0), 0, 0, 0, 1);
+    const glm::mat3 m(translate * rotate * scale);
+    if (!core::isFinite(glm::dmat4(glm::dmat3(m)))) return std::nullopt;
+    return m;
+}
+
 // Converts one primitive: an empty mesh for primitives that are not triangles (points,
 // lines) or have no positions, an error for what is wrong or cannot be read.
 core::Result<Mesh> convertPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& prim,
@@ -210,8 +237,11 @@ core::Result<Mesh> convertPrimitive(const tinygltf::Model& model, const tinygltf
     auto positions = AccessorReader::open(model, pos->second, where + " POSITION");
     if (!positions) return positions.errorInfo();
     glm::vec3 albedo(0.7f);
+    const tinygltf::Material* material = nullptr;
     if (prim.material >= 0 && size_t(prim.material) < model.materials.size()) {
-        const auto& f = model.materials[size_t(prim.material)].pbrMetallicRoughness.baseColorFactor;
+        material = &model.materials[size_t(prim.material)];
+        mesh.material = prim.material;
+        const auto& f = material->pbrMetallicRoughness.baseColorFactor;
         if (f.size() >= 3) albedo = glm::vec3(float(f[0]), float(f[1]), float(f[2]));
     }
     mesh.vertices.resize(positions->count());
@@ -226,6 +256,23 @@ core::Result<Mesh> convertPrimitive(const tinygltf::Model& model, const tinygltf
         if (!colors) return colors.errorInfo();
         for (size_t i = 0; i < std::min(colors->count(), mesh.vertices.size()); ++i)
             mesh.vertices[i].albedo = albedo * glm::vec3(colors->read(i, glm::vec4(1.0f)));
+    }
+    if (material && material->pbrMetallicRoughness.baseColorTexture.index >= 0) {
+        // The texture's coordinates, with KHR_texture_transform applied once here.
+        const tinygltf::TextureInfo& info = material->pbrMetallicRoughness.baseColorTexture;
+        const std::string set = "TEXCOORD_" + std::to_string(info.texCoord);
+        const auto t = prim.attributes.find(set);
+        if (t == prim.attributes.end())
+            return core::makeError(where + ": its material's base colour texture reads " + set +
+                                   ", which the primitive does not have");
+        auto uvs = AccessorReader::open(model, t->second, where + " " + set);
+        if (!uvs) return uvs.errorInfo();
+        const std::optional<glm::mat3> transform = textureTransform(info);
+        for (size_t i = 0; i < std::min(uvs->count(), mesh.vertices.size()); ++i) {
+            glm::vec2 uv(uvs->read(i));
+            if (transform) uv = glm::vec2(*transform * glm::vec3(uv, 1.0f));
+            mesh.vertices[i].uv = std::isfinite(uv.x) && std::isfinite(uv.y) ? uv : glm::vec2(0.0f);
+        }
     }
     std::vector<uint32_t> sequence;
     if (prim.indices >= 0) {
@@ -289,21 +336,135 @@ bool isGltf1(const fs::path& file, bool binary) {
     return text.compare(quote + 1, 1, "1") == 0;
 }
 
+// tinygltf's image callback. Images in a buffer view are left for readMaterials (their bytes
+// are checked against the buffer there; tinygltf hands them over unchecked); the bytes of
+// data URIs and external files are whole, and decoded here.
+struct ImageContext {
+    std::string file;
+    std::optional<core::Error> failure; // the first image that could not be decoded
+};
+
+std::string imageName(const std::string& file, int index, const tinygltf::Image& image) {
+    const std::string& label = !image.name.empty() ? image.name : image.uri.substr(0, 80);
+    return file + ": image " + std::to_string(index) +
+           (label.empty() || label.starts_with("data:") ? "" : " '" + label + "'");
+}
+
+bool loadImage(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
+               const unsigned char* bytes, int size, void* user) {
+    if (image->bufferView >= 0) return true;
+    auto& context = *static_cast<ImageContext*>(user);
+    auto decoded = decodeImage(std::span(bytes, size_t(std::max(size, 0))), imageName(context.file, index, *image));
+    if (!decoded) {
+        if (!context.failure) context.failure = decoded.errorInfo();
+        if (err) *err += "an image could not be decoded";
+        return false;
+    }
+    image->width = decoded->width, image->height = decoded->height;
+    image->component = 4, image->bits = 8, image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+    image->image = std::move(decoded->rgba);
+    return true;
+}
+
+// Decoded texels of all a file's textures, at most: 1 GiB.
+constexpr size_t kMaxTextureBytes = size_t(1) << 30;
+
+TextureWrap wrapOf(int gltfWrap) {
+    return gltfWrap == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE     ? TextureWrap::ClampToEdge
+           : gltfWrap == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT ? TextureWrap::MirroredRepeat
+                                                               : TextureWrap::Repeat;
+}
+
+// Scene::materials in the file's order (Mesh::material is the glTF index) and the textures
+// their base colours use, decoded.
+core::Status readMaterials(const tinygltf::Model& model, const fs::path& file, Scene& scene) {
+    std::map<int, int32_t> textureOf; // glTF texture -> Scene::textures
+    size_t textureBytes = 0;
+    for (size_t m = 0; m < model.materials.size(); ++m) {
+        const tinygltf::Material& in = model.materials[m];
+        const std::string where =
+            file.string() + ": material " + std::to_string(m) + (in.name.empty() ? "" : " '" + in.name + "'");
+        Material out;
+        out.name = in.name;
+        const auto& f = in.pbrMetallicRoughness.baseColorFactor;
+        for (size_t c = 0; c < std::min<size_t>(f.size(), 4); ++c) out.baseColorFactor[int(c)] = float(f[c]);
+        if (!core::isFinite(glm::dvec4(out.baseColorFactor)))
+            return core::makeError(where + ": baseColorFactor is not finite");
+        out.alphaMode = in.alphaMode == "MASK"    ? AlphaMode::Mask
+                        : in.alphaMode == "BLEND" ? AlphaMode::Blend
+                                                  : AlphaMode::Opaque;
+        out.alphaCutoff = float(in.alphaCutoff);
+        if (!(out.alphaCutoff >= 0.0f && out.alphaCutoff <= 1.0f)) // NaN-safe
+            return core::makeError(where + ": alphaCutoff " + std::to_string(in.alphaCutoff) + " is not in [0, 1]");
+        out.doubleSided = in.doubleSided;
+        const int t = in.pbrMetallicRoughness.baseColorTexture.index;
+        if (t >= 0) {
+            if (size_t(t) >= model.textures.size()) return core::makeError(where + ": no texture " + std::to_string(t));
+            if (const auto known = textureOf.find(t); known != textureOf.end()) {
+                out.baseColorTexture = known->second;
+            } else {
+                const tinygltf::Texture& texture = model.textures[size_t(t)];
+                if (texture.source < 0 || size_t(texture.source) >= model.images.size())
+                    return core::makeError(where + ": texture " + std::to_string(t) + " has no image");
+                const tinygltf::Image& image = model.images[size_t(texture.source)];
+                const std::string name = imageName(file.string(), texture.source, image);
+                Texture decoded;
+                if (image.bufferView >= 0) {
+                    const auto& views = model.bufferViews;
+                    const size_t length =
+                        size_t(image.bufferView) < views.size() ? views[size_t(image.bufferView)].byteLength : 0;
+                    auto bytes = bytesOf(model, image.bufferView, 0, 1, length, length, name);
+                    if (!bytes) return bytes.errorInfo();
+                    auto pixels = decodeImage(std::span(*bytes, length), name);
+                    if (!pixels) return pixels.errorInfo();
+                    decoded.image = std::move(*pixels);
+                } else if (image.image.empty() || image.width <= 0 || image.height <= 0 ||
+                           image.image.size() != size_t(image.width) * size_t(image.height) * 4) {
+                    return core::makeError(name + ": cannot read it (a missing file?)");
+                } else {
+                    decoded.image.width = image.width, decoded.image.height = image.height;
+                    decoded.image.rgba = image.image;
+                }
+                textureBytes += decoded.image.rgba.size();
+                if (textureBytes > kMaxTextureBytes)
+                    return core::makeError(name + ": the file's textures decode to more than 1 GiB");
+                if (texture.sampler >= 0 && size_t(texture.sampler) < model.samplers.size()) {
+                    const tinygltf::Sampler& sampler = model.samplers[size_t(texture.sampler)];
+                    decoded.wrapS = wrapOf(sampler.wrapS);
+                    decoded.wrapT = wrapOf(sampler.wrapT);
+                    decoded.nearest = sampler.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST;
+                    decoded.mipmaps = sampler.minFilter != TINYGLTF_TEXTURE_FILTER_NEAREST &&
+                                      sampler.minFilter != TINYGLTF_TEXTURE_FILTER_LINEAR;
+                }
+                out.baseColorTexture = int32_t(scene.textures.size());
+                textureOf[t] = out.baseColorTexture;
+                scene.textures.push_back(std::move(decoded));
+            }
+        }
+        scene.materials.push_back(std::move(out));
+    }
+    return core::Ok{};
+}
+
 } // namespace
 
 core::Result<Scene> loadGltf(const fs::path& file) {
     const bool binary = lowerExtension(file) == ".glb";
     if (isGltf1(file, binary)) return core::makeError(file.string() + ": glTF 1.0 is not supported; glTF 2.0 is");
     tinygltf::TinyGLTF loader;
+    ImageContext images{file.string()};
+    loader.SetImageLoader(loadImage, &images);
     tinygltf::Model model;
     std::string err, warn;
     const bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, file.string())
                            : loader.LoadASCIIFromFile(&model, &err, &warn, file.string());
+    if (!ok && images.failure) return *images.failure;
     if (!ok) {
         std::replace(err.begin(), err.end(), '\n', ' ');
         return core::makeError(file.string() + ": not a readable glTF file (" + err + ")");
     }
     Scene scene;
+    if (auto s = readMaterials(model, file, scene); !s) return s.errorInfo();
     // (mesh, primitive) -> batch index: a mesh placed by many nodes becomes one instanced batch.
     std::map<std::pair<int, size_t>, size_t> batchOf;
     std::optional<core::Error> failure;

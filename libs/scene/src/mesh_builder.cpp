@@ -17,8 +17,8 @@ struct Appender {
     glm::mat4 m;
     glm::mat3 n = glm::transpose(glm::inverse(glm::mat3(m)));
 
-    uint32_t vertex(const glm::vec3& p, const glm::vec3& normal, const glm::vec3& albedo) {
-        mesh.vertices.push_back({glm::vec3(m * glm::vec4(p, 1.0f)), glm::normalize(n * normal), albedo});
+    uint32_t vertex(const glm::vec3& p, const glm::vec3& normal, const glm::vec3& albedo, glm::vec2 uv = {}) {
+        mesh.vertices.push_back({glm::vec3(m * glm::vec4(p, 1.0f)), glm::normalize(n * normal), albedo, uv});
         return static_cast<uint32_t>(mesh.vertices.size() - 1);
     }
     void triangle(uint32_t a, uint32_t b, uint32_t c) { mesh.indices.insert(mesh.indices.end(), {a, b, c}); }
@@ -132,6 +132,17 @@ void addBox(Mesh& mesh, const glm::mat4& objectFromPart, const glm::vec3& halfEx
             out.triangle(a, d, e);
         }
     }
+}
+
+void addCard(Mesh& mesh, const glm::mat4& objectFromPart, glm::vec2 uvMin, glm::vec2 uvMax, const glm::vec3& albedo) {
+    Appender out{mesh, objectFromPart};
+    const glm::vec3 facing(0, 0, 1);
+    const uint32_t a = out.vertex({-0.5f, 0, 0}, facing, albedo, uvMin);
+    const uint32_t b = out.vertex({0.5f, 0, 0}, facing, albedo, {uvMax.x, uvMin.y});
+    const uint32_t c = out.vertex({0.5f, 1, 0}, facing, albedo, uvMax);
+    const uint32_t d = out.vertex({-0.5f, 1, 0}, facing, albedo, {uvMin.x, uvMax.y});
+    out.triangle(a, b, c);
+    out.triangle(a, c, d);
 }
 
 } // namespace shadowkit::scene

@@ -42,7 +42,7 @@ BakedBatch bake(const Scene& scene, const MeshBatch& batch) {
         const auto base = static_cast<uint32_t>(out.vertices.size());
         for (const Vertex& v : mesh.vertices)
             out.vertices.push_back(
-                {glm::vec3(m * glm::vec4(v.position, 1.0f)), glm::normalize(normalMatrix * v.normal), v.albedo});
+                {glm::vec3(m * glm::vec4(v.position, 1.0f)), glm::normalize(normalMatrix * v.normal), v.albedo, v.uv});
         for (uint32_t i : mesh.indices) out.indices.push_back(base + i);
     }
     return out;

@@ -2,6 +2,8 @@
 // attributes, sparse accessors; and what cannot be read, named in one line.
 #include "shadowkit/scene/scene_io.h"
 
+#include "gltf_test_files.h"
+
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -23,19 +25,7 @@ void append(std::vector<unsigned char>& buffer, std::initializer_list<T> values)
     }
 }
 
-std::string base64(const std::vector<unsigned char>& data) {
-    static const char* digits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    std::string out;
-    for (size_t i = 0; i < data.size(); i += 3) {
-        const uint32_t n = uint32_t(data[i]) << 16 | (i + 1 < data.size() ? uint32_t(data[i + 1]) << 8 : 0) |
-                           (i + 2 < data.size() ? uint32_t(data[i + 2]) : 0);
-        out += digits[n >> 18 & 63];
-        out += digits[n >> 12 & 63];
-        out += i + 1 < data.size() ? digits[n >> 6 & 63] : '=';
-        out += i + 2 < data.size() ? digits[n & 63] : '=';
-    }
-    return out;
-}
+using scene::testing::base64;
 
 // A .gltf with one mesh node; `rest` holds "meshes", "accessors" and "bufferViews" (JSON text
 // after the opening brace), the buffer is embedded.

@@ -3,4 +3,8 @@
 in vec3 wsPosition;
 layout(location = 0) out float viewDepth;
 
-void main() { viewDepth = dot(wsPosition - wsEye.xyz, wsViewForward.xyz); }
+void main() {
+    const vec4 baseColor = skSurfaceBaseColor();
+    viewDepth = dot(wsPosition - wsEye.xyz, wsViewForward.xyz);
+    SK_DISCARD_UNCOVERED(baseColor); // a leaf card's holes occlude nothing (occlusion culling, receiver masks)
+}

@@ -7,6 +7,7 @@
 in vec3 wsPosition;
 
 void main() {
+    const vec4 baseColor = skSurfaceBaseColor();
     if (linearLayout != 0) {
         const float d = dot(linearDepthFromWorld, vec4(wsPosition, 1.0));
         const float slope = max(abs(dFdx(d)), abs(dFdy(d))); // glPolygonOffset's "m"
@@ -14,4 +15,5 @@ void main() {
     } else {
         gl_FragDepth = gl_FragCoord.z;
     }
+    SK_DISCARD_UNCOVERED(baseColor);
 }

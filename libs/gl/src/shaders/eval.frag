@@ -13,8 +13,9 @@ layout(location = 4) out vec2 outTexel;
 layout(location = 5) out vec4 outTexelFromPixel;
 
 void main() {
+    const vec4 baseColor = skSurfaceBaseColor();
     const vec3 dwsdx = dFdx(wsPosition), dwsdy = dFdy(wsPosition); // uniform control flow
-    const vec3 n = normalize(wsNormal);
+    const vec3 n = gl_FrontFacing ? normalize(wsNormal) : -normalize(wsNormal); // double-sided: the side seen
     outSurfaceId = vSurfaceId;
     outViewDepth = viewDepthOf(wsPosition);
     // The drawn triangle's own plane (the truth's geometric normal, on the shading normal's
@@ -30,6 +31,7 @@ void main() {
         vec4 texelFromPixel;
         outTexel = localTexel(evalLight, wsPosition, localMapTexels, dFdxFine(wsPosition), dFdyFine(wsPosition), texelFromPixel);
         outTexelFromPixel = vec4(texelFromPixel.xy, -texelFromPixel.zw); // rows run down, as below
+        SK_DISCARD_UNCOVERED(baseColor);
         return;
     } else {
         // The maps' test alone, without N·L (also the mask the eye-space blur starts from).
@@ -42,4 +44,5 @@ void main() {
     // Screen derivatives of the texel position (fine: per pixel, not per 2x2 quad).
     // GL's y runs up; negate so the second column is the derivative along image rows (down).
     outTexelFromPixel = vec4(dFdxFine(texel), -dFdyFine(texel));
+    SK_DISCARD_UNCOVERED(baseColor);
 }

@@ -2,4 +2,8 @@
 // on every face), exact per fragment. No bias here: the lookup applies it in metres.
 in vec3 wsPosition;
 
-void main() { gl_FragDepth = distance(wsPosition, wsLightInvRange.xyz) * wsLightInvRange.w; }
+void main() {
+    const vec4 baseColor = skSurfaceBaseColor();
+    gl_FragDepth = distance(wsPosition, wsLightInvRange.xyz) * wsLightInvRange.w;
+    SK_DISCARD_UNCOVERED(baseColor);
+}

@@ -5,12 +5,19 @@ layout(triangle_strip, max_vertices = 3) out;
 
 in vec3 vsWorld[];
 out vec3 wsPosition;
+#ifdef SK_MATERIAL
+in vec2 vsUv[];
+out vec2 vUv;
+#endif
 
 void main() {
     if (gl_InvocationID >= replicas) return;
     const int face = faceOf(gl_InvocationID);
     for (int i = 0; i < 3; ++i) {
         wsPosition = vsWorld[i];
+#ifdef SK_MATERIAL
+        vUv = vsUv[i];
+#endif
         gl_Position = faceClipFromWorld[face] * vec4(vsWorld[i], 1.0);
         gl_Layer = layerBase + face;
         EmitVertex();

@@ -2,6 +2,10 @@
 // every instance is drawn `replicas` times, each copy to its own cube face, so all the faces
 // of a light are written by one instanced draw per batch, with no geometry shader.
 layout(location = 0) in vec3 osPosition;
+#ifdef SK_MATERIAL
+layout(location = 3) in vec2 uv; // the base colour texture's coordinates (material.glsl)
+out vec2 vUv;
+#endif
 
 layout(std430, binding = SK_INSTANCES_BINDING) readonly buffer Instances { mat4 worldFromObject[]; };
 layout(std430, binding = SK_VISIBLE_BINDING) readonly buffer Visible { uint visibleInstances[]; };
@@ -15,6 +19,9 @@ void main() {
     const int face = faceOf(int(uint(gl_InstanceID) % copies));
     const vec4 ws = worldFromObject[instance] * vec4(osPosition, 1.0);
     wsPosition = ws.xyz;
+#ifdef SK_MATERIAL
+    vUv = uv;
+#endif
     gl_Position = faceClipFromWorld[face] * ws;
     gl_Layer = layerBase + face;
 }

@@ -1,6 +1,10 @@
 // Local lights' depth pass with a geometry shader: the vertex stage only places the vertex in
 // the world; local_depth.geom projects each triangle into every face.
 layout(location = 0) in vec3 osPosition;
+#ifdef SK_MATERIAL
+layout(location = 3) in vec2 uv; // the base colour texture's coordinates (material.glsl)
+out vec2 vsUv; // to local_depth.geom
+#endif
 
 layout(std430, binding = SK_INSTANCES_BINDING) readonly buffer Instances { mat4 worldFromObject[]; };
 layout(std430, binding = SK_VISIBLE_BINDING) readonly buffer Visible { uint visibleInstances[]; };
@@ -11,5 +15,8 @@ out vec3 vsWorld;
 void main() {
     const vec4 ws = worldFromObject[visibleInstances[instanceOffset + uint(gl_InstanceID)]] * vec4(osPosition, 1.0);
     vsWorld = ws.xyz;
+#ifdef SK_MATERIAL
+    vsUv = uv;
+#endif
     gl_Position = ws;
 }

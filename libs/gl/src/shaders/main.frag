@@ -34,14 +34,16 @@ float pixelsPerTexel(vec2 dTexelDx, vec2 dTexelDy) {
 }
 
 void main() {
+    const vec4 baseColor = skSurfaceBaseColor();
     if (aliasingOverlay != 0) {
         // The texel of the map serving this pixel, differentiated per pixel (uniform flow).
         const vec4 t = shadowTexture(sunMapOf(wsPosition), wsPosition);
         const vec2 texel = t.xy / t.w * mapTexels;
         outColor = vec4(aliasingColor(pixelsPerTexel(dFdxFine(texel), dFdyFine(texel))), 1.0);
+        SK_DISCARD_UNCOVERED(baseColor);
         return;
     }
-    const vec3 n = normalize(wsNormal);
+    const vec3 n = gl_FrontFacing ? normalize(wsNormal) : -normalize(wsNormal); // double-sided: the side seen
     const vec3 l = wsTowardsLight.xyz;
     const float nDotL = max(dot(n, l), 0.0);
     const vec3 dwsdx = dFdx(wsPosition), dwsdy = dFdy(wsPosition); // uniform control flow
@@ -49,10 +51,11 @@ void main() {
     if (sunLights != 0 && nDotL > 0.0)
         lit = readBlurredMask != 0 ? texelFetch(shadowMask, ivec2(gl_FragCoord.xy), 0).r
                                    : shadowTerm(receiverLookup(wsPosition, vLodError), n, dwsdx, dwsdy);
-    vec3 albedo = vAlbedo;
+    vec3 albedo = vAlbedo * baseColor.rgb;
     if (cascadeColors != 0) albedo *= kCascadeTint[sunMapOf(wsPosition) % 8];
     vec3 color = albedo * (ambientRadiance.rgb + sunRadiance.rgb * nDotL * lit + localLighting(wsPosition, n));
     const float fog = exp(-fogColorDensity.a * distance(wsPosition, wsEye.xyz));
     color = mix(fogColorDensity.rgb, color, fog);
     outColor = vec4(pow(clamp(color, 0.0, 1.0), vec3(1.0 / 2.2)), 1.0);
+    SK_DISCARD_UNCOVERED(baseColor);
 }

@@ -2,6 +2,10 @@
 layout(location = 0) in vec3 osPosition;
 layout(location = 1) in vec3 osNormal;
 layout(location = 2) in vec3 albedo;
+#ifdef SK_MATERIAL
+layout(location = 3) in vec2 uv; // the base colour texture's coordinates (material.glsl)
+out vec2 vUv;
+#endif
 
 // Global index of this batch's first instance: surface identity shared with the ray tracer.
 layout(location = SK_INSTANCE_BASE_LOCATION) uniform uint instanceBase;
@@ -22,6 +26,9 @@ void main() {
     wsPosition = ws.xyz;
     wsNormal = mat3(m) * osNormal; // rigid + uniform scale: renormalised per fragment
     vAlbedo = albedo;
+#ifdef SK_MATERIAL
+    vUv = uv;
+#endif
     vSurfaceId = instanceBase + instance + 1u;
     vLodError = lodObjectError * length(m[0].xyz); // rigid + uniform scale
     gl_Position = clipFromWorld * ws;

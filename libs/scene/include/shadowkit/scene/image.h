@@ -1,10 +1,13 @@
-// 8-bit RGBA images and PNG files: rendered frames, shadow-map views, error maps.
+// 8-bit RGBA images: rendered frames, shadow-map views and error maps written as PNG; the
+// textures of glTF materials decoded from PNG and JPEG.
 #pragma once
 
 #include "shadowkit/core/result.h"
 
 #include <cstdint>
 #include <filesystem>
+#include <span>
+#include <string_view>
 #include <vector>
 
 namespace shadowkit::scene {
@@ -25,5 +28,16 @@ struct Image {
 
 // Errors name the file (unwritable directory, disk full).
 core::Status writePng(const Image& image, const std::filesystem::path& file);
+
+// Limits on a decoded image, checked from its header before any pixel is decoded: a side of
+// at most 16384 texels (GL_MAX_TEXTURE_SIZE of the drivers we run on) and 2^26 texels (256 MiB
+// of RGBA8) in all.
+inline constexpr int kMaxImageSide = 16384;
+inline constexpr int64_t kMaxImageTexels = int64_t(1) << 26;
+
+// Decodes a PNG or JPEG image (stb_image) into RGBA8, grey and RGB given alpha 255. Anything
+// else — another format, a truncated or corrupt file, a side or size past the limits — is an
+// error of one line that starts with `what` (e.g. "scene.gltf: image 2 'leaf.png'").
+core::Result<Image> decodeImage(std::span<const uint8_t> bytes, std::string_view what);
 
 } // namespace shadowkit::scene

@@ -16,5 +16,10 @@ void addCone(Mesh& mesh, const glm::mat4& objectFromPart, int segments, float ra
 void addIcosphere(Mesh& mesh, const glm::mat4& objectFromPart, int subdivisions, float radius, const glm::vec3& albedo);
 // Axis-aligned box with flat faces.
 void addBox(Mesh& mesh, const glm::mat4& objectFromPart, const glm::vec3& halfExtent, const glm::vec3& albedo);
+// A card: the quad x, y in [-½, ½] × [0, 1] of the part's space (scale it to the card's size),
+// facing +z, two triangles. Its uvs span `uvMin` at the bottom-left corner to `uvMax` at the
+// top-right — a leaf's cell of a texture atlas, top rows first (v grows downwards, glTF's
+// convention, so uvMin.y is usually the larger). Cards are drawn double-sided by their material.
+void addCard(Mesh& mesh, const glm::mat4& objectFromPart, glm::vec2 uvMin, glm::vec2 uvMax, const glm::vec3& albedo);
 
 } // namespace shadowkit::scene

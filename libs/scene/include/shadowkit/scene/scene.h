@@ -6,6 +6,7 @@
 
 #include "shadowkit/core/aabb.h"
 #include "shadowkit/scene/heightfield.h"
+#include "shadowkit/scene/material.h"
 
 #include <glm/glm.hpp>
 
@@ -19,7 +20,8 @@ namespace shadowkit::scene {
 struct Vertex {
     glm::vec3 position; // object space, metres
     glm::vec3 normal;   // object space, unit
-    glm::vec3 albedo;   // linear RGB in [0,1] ("materials-lite")
+    glm::vec3 albedo;   // linear RGB in [0,1]: the material's base colour factor × vertex colour
+    glm::vec2 uv{0.0f}; // the base colour texture's coordinates (glTF TEXCOORD_n of its texCoord)
 };
 
 struct Mesh {
@@ -27,6 +29,7 @@ struct Mesh {
     std::vector<Vertex> vertices;
     std::vector<uint32_t> indices; // triangle list, counter-clockwise front faces
     core::Aabb osBounds;           // object-space bounds, kept by computeBounds()
+    int32_t material = -1;         // index into Scene::materials; -1: opaque, vertex colours only
 
     void computeBounds();
     size_t triangleCount() const { return indices.size() / 3; }
@@ -69,6 +72,14 @@ struct Scene {
     std::vector<MeshBatch> batches;
     std::optional<Heightfield> terrain; // set for procedural terrain: ground height lookups
     std::vector<Track> tracks;          // animated instances (a batch's `dynamic` instances)
+    std::vector<Material> materials;    // what Mesh::material names (material.h)
+    std::vector<Texture> textures;      // what Material::baseColorTexture names
+
+    // The material of a mesh, or nullptr for the plain opaque one.
+    const Material* materialOf(const Mesh& mesh) const {
+        return mesh.material >= 0 && size_t(mesh.material) < materials.size() ? &materials[size_t(mesh.material)]
+                                                                              : nullptr;
+    }
 
     // Bounds of every instance (empty box for an empty scene): in the world, and in the scene's own coordinates.
     core::Aabb wsBounds() const;

@@ -1,0 +1,51 @@
+#include "shadowkit/scene/material.h"
+
+#include <cmath>
+
+namespace shadowkit::scene {
+
+namespace {
+
+// Texel index i of a row or column of n texels under a wrap mode (GL 4.5 §8.14.2).
+int wrapIndex(int i, int n, TextureWrap wrap) {
+    switch (wrap) {
+    case TextureWrap::ClampToEdge:
+        return i < 0 ? 0 : (i >= n ? n - 1 : i);
+    case TextureWrap::MirroredRepeat: {
+        const int period = 2 * n;
+        int m = i % period;
+        if (m < 0) m += period;
+        return m < n ? m : period - 1 - m;
+    }
+    case TextureWrap::Repeat:
+    default: {
+        const int m = i % n;
+        return m < 0 ? m + n : m;
+    }
+    }
+}
+
+glm::vec4 texel(const Texture& t, int x, int y) {
+    const uint8_t* p = t.image.pixel(wrapIndex(x, t.image.width, t.wrapS), wrapIndex(y, t.image.height, t.wrapT));
+    return glm::vec4(p[0], p[1], p[2], p[3]) / 255.0f;
+}
+
+} // namespace
+
+glm::vec4 sampleLevel0(const Texture& texture, glm::vec2 uv) {
+    if (texture.image.width <= 0 || texture.image.height <= 0) return glm::vec4(1.0f);
+    if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) uv = glm::vec2(0.0f); // NaN-safe: a degenerate hit
+    const glm::vec2 size(float(texture.image.width), float(texture.image.height));
+    // Clamped where a float has no fraction left (and an int conversion would overflow).
+    const glm::vec2 st = glm::clamp(uv * size, glm::vec2(-16777216.0f), glm::vec2(16777216.0f));
+    if (texture.nearest) return texel(texture, int(std::floor(st.x)), int(std::floor(st.y)));
+    const glm::vec2 p = st - 0.5f;
+    const glm::vec2 base = glm::floor(p);
+    const glm::vec2 f = p - base;
+    const int x = int(base.x), y = int(base.y);
+    const glm::vec4 top = glm::mix(texel(texture, x, y), texel(texture, x + 1, y), f.x);
+    const glm::vec4 bottom = glm::mix(texel(texture, x, y + 1), texel(texture, x + 1, y + 1), f.x);
+    return glm::mix(top, bottom, f.y);
+}
+
+} // namespace shadowkit::scene

@@ -1,0 +1,258 @@
+// Materials and their images: glTF base colour textures with their samplers and transforms,
+// alpha modes, images decoded within limits (and every broken one named in one line), the
+// texture lookup the truth shares with GL, and mipmaps that keep an alpha test's coverage.
+#include "shadowkit/scene/image.h"
+#include "shadowkit/scene/material.h"
+#include "shadowkit/scene/mesh_builder.h"
+#include "shadowkit/scene/scene_io.h"
+#include "shadowkit/scene/texture_mips.h"
+
+#include "gltf_test_files.h"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <random>
+#include <vector>
+
+using namespace shadowkit;
+namespace fs = std::filesystem;
+
+namespace {
+
+// An image whose alpha is a checkerboard of `cells` × `cells` squares, colour a gradient.
+scene::Image checkerAlpha(int size, int cells) {
+    scene::Image image(size, size);
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x) {
+            uint8_t* p = image.pixel(x, y);
+            p[0] = uint8_t(x * 255 / size), p[1] = uint8_t(y * 255 / size), p[2] = 40;
+            p[3] = ((x * cells / size) + (y * cells / size)) % 2 == 0 ? 255 : 0;
+        }
+    return image;
+}
+
+std::vector<uint8_t> fileBytes(const fs::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), {}};
+}
+
+std::vector<uint8_t> pngBytes(const scene::Image& image) {
+    const fs::path file = fs::temp_directory_path() / "sk_material_image.png";
+    EXPECT_TRUE(scene::writePng(image, file));
+    auto bytes = fileBytes(file);
+    fs::remove(file);
+    return bytes;
+}
+
+using scene::testing::base64;
+
+// A .gltf in `dir` holding one textured quad (positions, TEXCOORD_`set`, indices) whose
+// material is `material` (JSON) and whose only image is `image` (JSON), with `extra` more
+// top-level members (samplers, textures).
+fs::path writeQuadGltf(const fs::path& dir, const std::string& material, const std::string& image, int set = 0,
+                       const std::string& extra = R"("textures":[{"source":0}])") {
+    std::vector<uint8_t> buffer;
+    auto put = [&](const auto& values) {
+        const size_t at = buffer.size();
+        buffer.resize(at + sizeof(values));
+        std::memcpy(buffer.data() + at, &values, sizeof(values));
+    };
+    put(std::array<float, 12>{0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0});
+    put(std::array<float, 8>{0, 1, 1, 1, 1, 0, 0, 0});
+    put(std::array<uint16_t, 6>{0, 1, 2, 0, 2, 3});
+    const fs::path file = dir / "quad.gltf";
+    std::ofstream(file) << R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"
+                        << R"("meshes":[{"primitives":[{"attributes":{"POSITION":0,"TEXCOORD_)" << set
+                        << R"(":1},"indices":2,"material":0}]}],)"
+                        << R"("accessors":[{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3","min":[0,0,0],"max":[1,1,0]},)"
+                        << R"({"bufferView":1,"componentType":5126,"count":4,"type":"VEC2"},)"
+                        << R"({"bufferView":2,"componentType":5123,"count":6,"type":"SCALAR"}],)"
+                        << R"("bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":48},{"buffer":0,"byteOffset":48,"byteLength":32},)"
+                        << R"({"buffer":0,"byteOffset":80,"byteLength":12}],)"
+                        << R"("buffers":[{"byteLength":)" << buffer.size()
+                        << R"(,"uri":"data:application/octet-stream;base64,)" << base64(buffer) << R"("}],)"
+                        << R"("materials":[)" << material << R"(],"images":[)" << image << "]," << extra << "}";
+    return file;
+}
+
+class MaterialsTest : public ::testing::Test {
+protected:
+    void SetUp() override {
+        m_dir = fs::temp_directory_path() / ("sk_materials_" + std::to_string(::getpid()));
+        fs::create_directories(m_dir);
+    }
+    void TearDown() override { fs::remove_all(m_dir); }
+    fs::path m_dir;
+};
+
+} // namespace
+
+TEST_F(MaterialsTest, MaskedTexturedQuadLoadsWithItsMaterialSamplerAndTransformedUvs) {
+    ASSERT_TRUE(scene::writePng(checkerAlpha(8, 2), m_dir / "leaf.png"));
+    const fs::path file = writeQuadGltf(
+        m_dir,
+        R"({"name":"leaf","alphaMode":"MASK","alphaCutoff":0.3,"doubleSided":true,"pbrMetallicRoughness":{"baseColorFactor":[1,0.5,1,0.8],)"
+        R"("baseColorTexture":{"index":0,"extensions":{"KHR_texture_transform":{"offset":[0.5,0],"scale":[2,2]}}}}})",
+        R"({"uri":"leaf.png"})", 0,
+        R"("samplers":[{"wrapS":33071,"wrapT":33648,"magFilter":9728,"minFilter":9729}],"textures":[{"source":0,"sampler":0}])");
+    auto loaded = scene::loadScene(file);
+    ASSERT_TRUE(loaded) << loaded.error();
+    ASSERT_EQ(loaded->materials.size(), 1u);
+    ASSERT_EQ(loaded->textures.size(), 1u);
+    const scene::Material& m = loaded->materials[0];
+    EXPECT_EQ(m.name, "leaf");
+    EXPECT_EQ(m.alphaMode, scene::AlphaMode::Mask);
+    EXPECT_FLOAT_EQ(m.alphaCutoff, 0.3f);
+    EXPECT_TRUE(m.doubleSided);
+    EXPECT_EQ(m.baseColorFactor, glm::vec4(1, 0.5f, 1, 0.8f));
+    EXPECT_EQ(m.baseColorTexture, 0);
+    const scene::Texture& t = loaded->textures[0];
+    EXPECT_EQ(t.image.width, 8);
+    EXPECT_EQ(t.image.rgba, checkerAlpha(8, 2).rgba); // PNG is lossless
+    EXPECT_EQ(t.wrapS, scene::TextureWrap::ClampToEdge);
+    EXPECT_EQ(t.wrapT, scene::TextureWrap::MirroredRepeat);
+    EXPECT_TRUE(t.nearest);
+    EXPECT_FALSE(t.mipmaps); // minFilter LINEAR: no mip levels
+    const scene::Mesh& mesh = loaded->meshes[0];
+    EXPECT_EQ(mesh.material, 0);
+    EXPECT_EQ(loaded->materialOf(mesh), &loaded->materials[0]);
+    // KHR_texture_transform: uv' = offset + scale · uv; the file's uv (1, 0) becomes (2.5, 0).
+    EXPECT_EQ(mesh.vertices[2].uv, glm::vec2(2.5f, 0.0f));
+    EXPECT_EQ(mesh.vertices[0].uv, glm::vec2(0.5f, 2.0f));
+}
+
+TEST_F(MaterialsTest, ImagesInBufferViewsAndDataUrisDecodeAndOpaqueIsTheDefault) {
+    const std::vector<uint8_t> png = pngBytes(checkerAlpha(4, 2));
+    const fs::path file = writeQuadGltf(m_dir, R"({"pbrMetallicRoughness":{"baseColorTexture":{"index":0}}})",
+                                        R"({"uri":"data:image/png;base64,)" + base64(png) + "\"}");
+    auto loaded = scene::loadScene(file);
+    ASSERT_TRUE(loaded) << loaded.error();
+    EXPECT_EQ(loaded->materials[0].alphaMode, scene::AlphaMode::Opaque);
+    EXPECT_FALSE(loaded->materials[0].alphaTested());
+    EXPECT_FALSE(loaded->materials[0].doubleSided);
+    EXPECT_EQ(loaded->textures[0].image.rgba, checkerAlpha(4, 2).rgba);
+    EXPECT_EQ(loaded->textures[0].wrapS, scene::TextureWrap::Repeat);
+}
+
+TEST_F(MaterialsTest, EveryBrokenImageIsOneLineNamingTheFileAndTheImage) {
+    const std::vector<uint8_t> png = pngBytes(checkerAlpha(16, 2));
+    std::vector<uint8_t> truncated(png.begin(), png.begin() + std::ptrdiff_t(png.size() / 2));
+    std::vector<uint8_t> badJpeg = {0xFF, 0xD8, 0xFF, 0x01, 0x02, 0x03, 0x04, 0x05};
+    std::vector<uint8_t> gif = {'G', 'I', 'F', '8', '9', 'a', 1, 0, 1, 0, 0, 0, 0};
+    const fs::path tall = m_dir / "tall.png";
+    ASSERT_TRUE(scene::writePng(scene::Image(1, 65536), tall));
+    const std::vector<uint8_t> tallBytes = fileBytes(tall);
+    struct Case {
+        std::string image, expected;
+    };
+    const Case cases[] = {
+        {R"({"uri":"data:image/png;base64,)" + base64(truncated) + "\"}", "corrupt or truncated PNG"},
+        {R"({"uri":"data:image/jpeg;base64,)" + base64(badJpeg) + "\"}", "JPEG"},
+        {R"({"uri":"data:image/gif;base64,)" + base64(gif) + "\"}", "not a PNG or JPEG image"},
+        {R"({"uri":"tall.png"})", "1×65536 PNG is over shadowkit's limits"},
+        {R"({"uri":"missing.png"})", "image 0 'missing.png': cannot read it (a missing file?)"},
+    };
+    for (const Case& c : cases) {
+        const fs::path file =
+            writeQuadGltf(m_dir, R"({"alphaMode":"MASK","pbrMetallicRoughness":{"baseColorTexture":{"index":0}}})",
+                          c.image);
+        auto loaded = scene::loadScene(file);
+        ASSERT_FALSE(loaded) << c.expected;
+        const std::string& message = loaded.error();
+        EXPECT_NE(message.find(file.string()), std::string::npos) << message;
+        EXPECT_NE(message.find("image 0"), std::string::npos) << message;
+        EXPECT_NE(message.find(c.expected), std::string::npos) << message;
+        EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    }
+    // The decoder alone, on the same bytes: the limit is read from the header, before decoding.
+    EXPECT_FALSE(scene::decodeImage(tallBytes, "tall"));
+    EXPECT_FALSE(scene::decodeImage({}, "empty"));
+    EXPECT_TRUE(scene::decodeImage(png, "whole"));
+    // A texture coordinate set the primitive lacks, and a cutoff out of range.
+    const fs::path noSet = writeQuadGltf(
+        m_dir, R"({"pbrMetallicRoughness":{"baseColorTexture":{"index":0,"texCoord":1}}})",
+        R"({"uri":"data:image/png;base64,)" + base64(png) + "\"}");
+    auto missingSet = scene::loadScene(noSet);
+    ASSERT_FALSE(missingSet);
+    EXPECT_NE(missingSet.error().find("TEXCOORD_1"), std::string::npos) << missingSet.error();
+    const fs::path badCutoff = writeQuadGltf(m_dir, R"({"alphaMode":"MASK","alphaCutoff":-2})",
+                                             R"({"uri":"data:image/png;base64,)" + base64(png) + "\"}");
+    auto cutoff = scene::loadScene(badCutoff);
+    ASSERT_FALSE(cutoff);
+    EXPECT_NE(cutoff.error().find("alphaCutoff"), std::string::npos) << cutoff.error();
+}
+
+TEST(TextureSamplingTest, Level0LookupIsGlsBilinearWithItsWrapModes) {
+    scene::Texture t;
+    t.image = scene::Image(2, 1);
+    t.image.pixel(0, 0)[3] = 0;
+    t.image.pixel(1, 0)[3] = 255;
+    // Texel centres give the texels; half way between them, the mean.
+    EXPECT_FLOAT_EQ(scene::sampleLevel0(t, {0.25f, 0.5f}).a, 0.0f);
+    EXPECT_FLOAT_EQ(scene::sampleLevel0(t, {0.75f, 0.5f}).a, 1.0f);
+    EXPECT_FLOAT_EQ(scene::sampleLevel0(t, {0.5f, 0.5f}).a, 0.5f);
+    // At u = 0 the left neighbour is texel 1 under REPEAT, texel 0 itself under CLAMP_TO_EDGE.
+    EXPECT_FLOAT_EQ(scene::sampleLevel0(t, {0.0f, 0.5f}).a, 0.5f);
+    t.wrapS = scene::TextureWrap::ClampToEdge;
+    EXPECT_FLOAT_EQ(scene::sampleLevel0(t, {0.0f, 0.5f}).a, 0.0f);
+    // MIRRORED_REPEAT: u in [1, 2) reads the texture backwards.
+    t.wrapS = scene::TextureWrap::MirroredRepeat;
+    EXPECT_FLOAT_EQ(scene::sampleLevel0(t, {1.25f, 0.5f}).a, 1.0f);
+    EXPECT_FLOAT_EQ(scene::sampleLevel0(t, {1.75f, 0.5f}).a, 0.0f);
+    // NEAREST: the texel under the point; huge and non-finite uvs stay finite.
+    t.nearest = true;
+    EXPECT_FLOAT_EQ(scene::sampleLevel0(t, {0.49f, 0.5f}).a, 0.0f);
+    EXPECT_FLOAT_EQ(scene::sampleLevel0(t, {0.51f, 0.5f}).a, 1.0f);
+    EXPECT_TRUE(std::isfinite(scene::sampleLevel0(t, {1e30f, -1e30f}).a));
+    EXPECT_TRUE(std::isfinite(scene::sampleLevel0(t, {NAN, 0.5f}).a));
+}
+
+TEST(TextureMipsTest, AlphaTestedMipsKeepTheCoverageThatBoxFilteringLoses) {
+    // Foliage-like alpha: round leaves of alpha 1 covering about 30 % of a 256² texture.
+    scene::Image leaves(256, 256);
+    std::mt19937 random(7);
+    std::uniform_real_distribution<float> at(0.0f, 256.0f);
+    for (int leaf = 0; leaf < 90; ++leaf) {
+        const float cx = at(random), cy = at(random);
+        for (int y = 0; y < 256; ++y)
+            for (int x = 0; x < 256; ++x)
+                if ((float(x) - cx) * (float(x) - cx) + (float(y) - cy) * (float(y) - cy) < 81.0f)
+                    leaves.pixel(x, y)[3] = 255;
+    }
+    const double coverage = scene::sampledAlphaCoverage(leaves, 0.5f);
+    ASSERT_GT(coverage, 0.2);
+    ASSERT_LT(coverage, 0.4);
+    const std::vector<scene::Image> kept = scene::buildMipChain(leaves, 0.5f);
+    const std::vector<scene::Image> boxed = scene::buildMipChain(leaves, std::nullopt);
+    ASSERT_EQ(kept.size(), 9u); // 256 … 1
+    ASSERT_EQ(boxed.size(), 9u);
+    EXPECT_EQ(kept[8].width, 1);
+    // Down to 8×8 texels (256 samples: coverage steps of 0.4 %) every level keeps level 0's
+    // bilinear coverage within 3 points; box filtering loses it — the canopy that thins with distance.
+    for (size_t level = 1; level <= 5; ++level) {
+        EXPECT_NEAR(scene::sampledAlphaCoverage(kept[level], 0.5f), coverage, 0.03) << "level " << level;
+    }
+    EXPECT_LT(scene::sampledAlphaCoverage(boxed[5], 0.5f), 0.5 * coverage);
+    EXPECT_EQ(scene::alphaCoverage(boxed[8], 0.5f), 0.0); // 1×1: the mean alpha, under the cutoff
+    // Colour is the box filter's either way.
+    EXPECT_EQ(kept[3].pixel(2, 2)[0], boxed[3].pixel(2, 2)[0]);
+}
+
+TEST(MeshBuilderTest, ACardSpansItsAtlasCellFromBottomLeftToTopRight) {
+    scene::Mesh mesh;
+    scene::addCard(mesh, glm::mat4(1.0f), {0.25f, 0.5f}, {0.5f, 0.0f}, glm::vec3(1.0f));
+    ASSERT_EQ(mesh.vertices.size(), 4u);
+    ASSERT_EQ(mesh.triangleCount(), 2u);
+    EXPECT_EQ(mesh.vertices[0].position, glm::vec3(-0.5f, 0, 0));
+    EXPECT_EQ(mesh.vertices[0].uv, glm::vec2(0.25f, 0.5f));
+    EXPECT_EQ(mesh.vertices[2].position, glm::vec3(0.5f, 1, 0));
+    EXPECT_EQ(mesh.vertices[2].uv, glm::vec2(0.5f, 0.0f));
+    // Counter-clockwise seen from +z, the side its normal faces.
+    const glm::vec3 a = mesh.vertices[mesh.indices[0]].position, b = mesh.vertices[mesh.indices[1]].position,
+                    c = mesh.vertices[mesh.indices[2]].position;
+    EXPECT_GT(glm::cross(b - a, c - a).z, 0.0f);
+}

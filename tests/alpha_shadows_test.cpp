@@ -1,0 +1,181 @@
+// Alpha-tested casters, end to end: a leaf card's holes let the sun through in the shadow
+// maps and in the ray-traced truth alike. CTest label `gl`: headless on Mesa llvmpipe.
+#include "headless_gl_test.h"
+
+#include "shadowkit/measure/measurer.h"
+#include "shadowkit/scene/mesh_builder.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace shadowkit;
+
+namespace {
+
+// A 4 × 4 m card standing in the plane x = 0 (facing +x, z in [-2, 2], y in [0.5, 4.5]) over
+// a ground plane at y = 0.01, its texture's alpha a checkerboard of 4 × 4 one-metre squares.
+// Squares with an even (column + row) are covered.
+scene::Scene cardScene(scene::Texture texture, scene::AlphaMode mode, float cutoff) {
+    scene::Scene s;
+    scene::Mesh ground, card;
+    scene::addBox(ground, glm::mat4(1.0f), {12.0f, 0.01f, 12.0f}, glm::vec3(0.7f));
+    const glm::mat4 cardFromQuad = glm::translate(glm::mat4(1.0f), {0.0f, 0.5f, 0.0f}) *
+                                   glm::rotate(glm::mat4(1.0f), glm::radians(90.0f), {0.0f, 1.0f, 0.0f}) *
+                                   glm::scale(glm::mat4(1.0f), {4.0f, 4.0f, 1.0f});
+    scene::addCard(card, cardFromQuad, {0.0f, 1.0f}, {1.0f, 0.0f}, glm::vec3(0.3f, 0.6f, 0.2f));
+    card.material = 0;
+    for (scene::Mesh* m : {&ground, &card}) m->computeBounds();
+    s.meshes = {ground, card};
+    s.batches = {{0, {glm::mat4(1.0f)}, false}, {1, {glm::mat4(1.0f)}, false}};
+    s.textures = {std::move(texture)};
+    s.materials = {{.name = "checker",
+                    .baseColorTexture = 0,
+                    .alphaMode = mode,
+                    .alphaCutoff = cutoff,
+                    .doubleSided = true}};
+    return s;
+}
+
+scene::Scene checkerCardScene(scene::AlphaMode mode, float cutoff = 0.5f) {
+    scene::Texture texture;
+    texture.image = scene::Image(64, 64);
+    for (int y = 0; y < 64; ++y)
+        for (int x = 0; x < 64; ++x) {
+            uint8_t* p = texture.image.pixel(x, y);
+            p[0] = p[1] = p[2] = 255;
+            p[3] = (x / 16 + y / 16) % 2 == 0 ? 255 : 0;
+        }
+    return cardScene(std::move(texture), mode, cutoff);
+}
+
+// The card as a canopy seen from afar: 200 round leaves of 5 cm (radius 3 texels of 256²)
+// covering about a quarter of it, a pattern far finer than a coarse map's texels.
+scene::Scene leafyCardScene() {
+    scene::Texture texture;
+    texture.image = scene::Image(256, 256);
+    uint32_t state = 12345u;
+    auto next = [&] { return (state = state * 1664525u + 1013904223u) >> 8 & 255u; };
+    for (int leaf = 0; leaf < 600; ++leaf) {
+        const int cx = int(next()), cy = int(next());
+        for (int y = cy - 4; y <= cy + 4; ++y)
+            for (int x = cx - 4; x <= cx + 4; ++x)
+                if ((x - cx) * (x - cx) + (y - cy) * (y - cy) <= 9 + 1 && x >= 0 && y >= 0 && x < 256 && y < 256)
+                    texture.image.pixel(x, y)[3] = 255;
+    }
+    return cardScene(std::move(texture), scene::AlphaMode::Mask, 0.5f);
+}
+
+// Where the sun ray from a ground point crosses the card (sun travelling along (−1, −1, 0)/√2):
+// at height y = −x + 0.01 over the same z. Its square's parity and how close it lies to a
+// square's edge (metres), or nullopt off the card.
+struct CardCrossing {
+    bool covered = false;
+    double edgeDistance = 0.0;
+};
+std::optional<CardCrossing> crossing(const core::Vec3& wsGround) {
+    const double y = -wsGround.x + 0.01, z = wsGround.z;
+    // The card's texture: u from z = +2 (u = 0) to z = −2, v from the top (y = 4.5, v = 0) down.
+    const double u = (2.0 - z) / 4.0, v = (4.5 - y) / 4.0;
+    if (u <= 0.0 || u >= 1.0 || v <= 0.0 || v >= 1.0) return std::nullopt;
+    const double cu = u * 4.0, cv = v * 4.0; // in squares (= metres)
+    const int column = int(cu), row = int(cv);
+    const double edge = std::min({cu - column, column + 1 - cu, cv - row, row + 1 - cv});
+    return CardCrossing{(column + row) % 2 == 0, edge};
+}
+
+struct Agreement {
+    int covered = 0, open = 0;    // ground pixels behind covered / open squares
+    int glAgrees = 0, truthAgrees = 0;
+    int glShadowed = 0, truthShadowed = 0;
+};
+
+class AlphaShadowsTest : public gl::testing::HeadlessGlTest {
+protected:
+    static Agreement measureCard(const scene::Scene& s, core::Technique technique, int mapSize = 1024,
+                                 double edgeMargin = 0.12) {
+        auto measurer = measure::Measurer::create(s);
+        EXPECT_TRUE(measurer) << measurer.error();
+        core::PerspectiveCamera camera;
+        camera.wsEye = {-2.5, 9.0, 4.0};
+        camera.wsDirection = core::Vec3(-2.5, 0.0, 0.0) - camera.wsEye;
+        camera.aspect = 4.0 / 3.0;
+        camera.zNear = 1.0;
+        camera.zFar = 40.0;
+        const core::DirectionalLight sun = core::DirectionalLight::fromDirection({-1.0, -1.0, 0.0}).value();
+        gl::RenderSettings settings;
+        settings.width = 160;
+        settings.height = 120;
+        settings.fogDensity = 0.0f;
+        auto m = (*measurer)->measure(
+            {.camera = camera, .light = sun, .wsSceneBounds = s.wsBounds(), .technique = technique, .mapSize = mapSize},
+            settings);
+        EXPECT_TRUE(m) << m.error();
+        Agreement a;
+        if (!m) return a;
+        const eval::TruthBuffers& truth = *m->truth;
+        for (size_t i = 0; i < truth.surfaceId.size(); ++i) {
+            if (truth.surfaceId[i] != 1 || !truth.facesLight[i] || m->raster.surfaceId[i] != 1) continue; // ground
+            const auto cross = crossing(truth.wsPosition[i]);
+            if (!cross || cross->edgeDistance < edgeMargin) continue; // a texel and a pixel from every square's edge
+            const bool glShadowed = m->raster.shadowTerm[i] < 0.5f, truthShadowed = !truth.lit[i];
+            (cross->covered ? a.covered : a.open) += 1;
+            a.glAgrees += glShadowed == cross->covered;
+            a.truthAgrees += truthShadowed == cross->covered;
+            a.glShadowed += glShadowed;
+            a.truthShadowed += truthShadowed;
+        }
+        return a;
+    }
+};
+
+} // namespace
+
+TEST_F(AlphaShadowsTest, AMaskedCheckerCardCastsACheckerShadowInTheMapsAndInTheTruth) {
+    for (const core::Technique technique : {core::Technique::Focused, core::Technique::Lispsm}) {
+        const Agreement a = measureCard(checkerCardScene(scene::AlphaMode::Mask), technique);
+        const int pixels = a.covered + a.open;
+        ASSERT_GT(a.covered, 150) << core::techniqueName(technique);
+        ASSERT_GT(a.open, 150) << core::techniqueName(technique); // lit squares under the card
+        // The truth's rays pass the holes and stop at the squares: exactly the checkerboard.
+        EXPECT_EQ(a.truthAgrees, pixels) << core::techniqueName(technique);
+        // The maps, up to a few texels of aliasing along the squares' edges.
+        EXPECT_GT(a.glAgrees, 0.97 * pixels) << core::techniqueName(technique);
+    }
+}
+
+TEST_F(AlphaShadowsTest, TheSameCardOpaqueCastsOneSolidShadowAndBlendCastsAsMask) {
+    const Agreement opaque = measureCard(checkerCardScene(scene::AlphaMode::Opaque), core::Technique::Focused);
+    const int pixels = opaque.covered + opaque.open;
+    ASSERT_GT(pixels, 300);
+    EXPECT_EQ(opaque.truthShadowed, pixels);
+    EXPECT_GT(opaque.glShadowed, 0.99 * pixels);
+    // BLEND is cast as MASK at its cutoff (scene/material.h): the checkerboard again.
+    const Agreement blend = measureCard(checkerCardScene(scene::AlphaMode::Blend), core::Technique::Focused);
+    EXPECT_EQ(blend.truthAgrees, blend.covered + blend.open);
+    EXPECT_GT(blend.glAgrees, 0.97 * (blend.covered + blend.open));
+    // A cutoff above every alpha the texture holds covers nothing: no shadow at all.
+    const Agreement none = measureCard(checkerCardScene(scene::AlphaMode::Mask, 1.01f), core::Technique::Focused);
+    ASSERT_GT(none.covered + none.open, 300);
+    EXPECT_EQ(none.truthShadowed, 0);
+    EXPECT_EQ(none.glShadowed, 0);
+}
+
+TEST_F(AlphaShadowsTest, ACanopyInACoarseMapKeepsTheCoverageTheTruthSees) {
+    // Standard over a 24 m scene at 64 texels: 0.4 m texels, the 4 m card about ten texels
+    // wide, so its 256² texture is read around mip level 4 (16² texels). Box-filtered mips would
+    // hold alpha near the canopy's mean (~0.25, under the cutoff) there and the shadow would
+    // vanish (TextureMipsTest); the coverage-keeping chain keeps the shadowed fraction.
+    const scene::Scene canopy = leafyCardScene();
+    const Agreement fine = measureCard(canopy, core::Technique::Focused, 2048, 0.05);
+    const Agreement coarse = measureCard(canopy, core::Technique::Standard, 64, 0.05);
+    const int finePixels = fine.covered + fine.open, coarsePixels = coarse.covered + coarse.open;
+    ASSERT_GT(finePixels, 500);
+    ASSERT_GT(coarsePixels, 500);
+    const double truthShadowed = double(coarse.truthShadowed) / coarsePixels;
+    ASSERT_GT(truthShadowed, 0.1); // the leaves' shadow, through the truth's full-resolution card
+    ASSERT_LT(truthShadowed, 0.5);
+    EXPECT_NEAR(double(fine.glShadowed) / finePixels, truthShadowed, 0.05);   // near: level 0
+    EXPECT_NEAR(double(coarse.glShadowed) / coarsePixels, truthShadowed, 0.08); // far: neither thinned nor fattened
+}
