@@ -2,6 +2,7 @@
 // maps and in the ray-traced truth alike. CTest label `gl`: headless on Mesa llvmpipe.
 #include "headless_gl_test.h"
 
+#include "shadowkit/core/local_lights.h"
 #include "shadowkit/measure/measurer.h"
 #include "shadowkit/scene/mesh_builder.h"
 
@@ -30,11 +31,8 @@ scene::Scene cardScene(scene::Texture texture, scene::AlphaMode mode, float cuto
     s.meshes = {ground, card};
     s.batches = {{0, {glm::mat4(1.0f)}, false}, {1, {glm::mat4(1.0f)}, false}};
     s.textures = {std::move(texture)};
-    s.materials = {{.name = "checker",
-                    .baseColorTexture = 0,
-                    .alphaMode = mode,
-                    .alphaCutoff = cutoff,
-                    .doubleSided = true}};
+    s.materials = {
+        {.name = "checker", .baseColorTexture = 0, .alphaMode = mode, .alphaCutoff = cutoff, .doubleSided = true}};
     return s;
 }
 
@@ -67,15 +65,17 @@ scene::Scene leafyCardScene() {
     return cardScene(std::move(texture), scene::AlphaMode::Mask, 0.5f);
 }
 
-// Where the sun ray from a ground point crosses the card (sun travelling along (−1, −1, 0)/√2):
-// at height y = −x + 0.01 over the same z. Its square's parity and how close it lies to a
-// square's edge (metres), or nullopt off the card.
+// Where the ray from a ground point towards the light (along `wsTowards`) crosses the card's
+// plane x = 0: its square's parity and how close it lies to a square's edge (metres), or
+// nullopt off the card.
 struct CardCrossing {
     bool covered = false;
     double edgeDistance = 0.0;
 };
-std::optional<CardCrossing> crossing(const core::Vec3& wsGround) {
-    const double y = -wsGround.x + 0.01, z = wsGround.z;
+std::optional<CardCrossing> crossing(const core::Vec3& wsGround, const core::Vec3& wsTowards) {
+    if (wsGround.x >= 0.0 || wsTowards.x <= 0.0) return std::nullopt;
+    const core::Vec3 onCard = wsGround + wsTowards * (-wsGround.x / wsTowards.x);
+    const double y = onCard.y, z = onCard.z;
     // The card's texture: u from z = +2 (u = 0) to z = −2, v from the top (y = 4.5, v = 0) down.
     const double u = (2.0 - z) / 4.0, v = (4.5 - y) / 4.0;
     if (u <= 0.0 || u >= 1.0 || v <= 0.0 || v >= 1.0) return std::nullopt;
@@ -86,10 +86,36 @@ std::optional<CardCrossing> crossing(const core::Vec3& wsGround) {
 }
 
 struct Agreement {
-    int covered = 0, open = 0;    // ground pixels behind covered / open squares
+    int covered = 0, open = 0; // ground pixels behind covered / open squares
     int glAgrees = 0, truthAgrees = 0;
     int glShadowed = 0, truthShadowed = 0;
+
+    void add(const CardCrossing& cross, bool glShadowed, bool truthShadowed) {
+        (cross.covered ? covered : open) += 1;
+        glAgrees += glShadowed == cross.covered;
+        truthAgrees += truthShadowed == cross.covered;
+        this->glShadowed += glShadowed;
+        this->truthShadowed += truthShadowed;
+    }
 };
+
+core::PerspectiveCamera cardCamera() {
+    core::PerspectiveCamera camera;
+    camera.wsEye = {-2.5, 9.0, 4.0};
+    camera.wsDirection = core::Vec3(-2.5, 0.0, 0.0) - camera.wsEye;
+    camera.aspect = 4.0 / 3.0;
+    camera.zNear = 1.0;
+    camera.zFar = 40.0;
+    return camera;
+}
+
+gl::RenderSettings cardFrame() {
+    gl::RenderSettings settings;
+    settings.width = 160;
+    settings.height = 120;
+    settings.fogDensity = 0.0f;
+    return settings;
+}
 
 class AlphaShadowsTest : public gl::testing::HeadlessGlTest {
 protected:
@@ -97,34 +123,59 @@ protected:
                                  double edgeMargin = 0.12) {
         auto measurer = measure::Measurer::create(s);
         EXPECT_TRUE(measurer) << measurer.error();
-        core::PerspectiveCamera camera;
-        camera.wsEye = {-2.5, 9.0, 4.0};
-        camera.wsDirection = core::Vec3(-2.5, 0.0, 0.0) - camera.wsEye;
-        camera.aspect = 4.0 / 3.0;
-        camera.zNear = 1.0;
-        camera.zFar = 40.0;
         const core::DirectionalLight sun = core::DirectionalLight::fromDirection({-1.0, -1.0, 0.0}).value();
-        gl::RenderSettings settings;
-        settings.width = 160;
-        settings.height = 120;
-        settings.fogDensity = 0.0f;
-        auto m = (*measurer)->measure(
-            {.camera = camera, .light = sun, .wsSceneBounds = s.wsBounds(), .technique = technique, .mapSize = mapSize},
-            settings);
+        auto m = (*measurer)->measure({.camera = cardCamera(),
+                                       .light = sun,
+                                       .wsSceneBounds = s.wsBounds(),
+                                       .technique = technique,
+                                       .mapSize = mapSize},
+                                      cardFrame());
         EXPECT_TRUE(m) << m.error();
         Agreement a;
         if (!m) return a;
         const eval::TruthBuffers& truth = *m->truth;
         for (size_t i = 0; i < truth.surfaceId.size(); ++i) {
             if (truth.surfaceId[i] != 1 || !truth.facesLight[i] || m->raster.surfaceId[i] != 1) continue; // ground
-            const auto cross = crossing(truth.wsPosition[i]);
+            const auto cross = crossing(truth.wsPosition[i], -sun.wsDirection);
             if (!cross || cross->edgeDistance < edgeMargin) continue; // a texel and a pixel from every square's edge
-            const bool glShadowed = m->raster.shadowTerm[i] < 0.5f, truthShadowed = !truth.lit[i];
-            (cross->covered ? a.covered : a.open) += 1;
-            a.glAgrees += glShadowed == cross->covered;
-            a.truthAgrees += truthShadowed == cross->covered;
-            a.glShadowed += glShadowed;
-            a.truthShadowed += truthShadowed;
+            a.add(*cross, m->raster.shadowTerm[i] < 0.5f, !truth.lit[i]);
+        }
+        return a;
+    }
+
+    // The same under a lamp above and in front of the card (the sun off): a point light's cube
+    // or a spot light's map, read from the measurer's per-light classes.
+    static Agreement measureCardUnderLamp(const scene::Scene& s, bool spot) {
+        auto measurer = measure::Measurer::create(s);
+        EXPECT_TRUE(measurer) << measurer.error();
+        const core::Vec3 wsLamp(4.0, 8.0, 0.0);
+        std::vector<core::PointLight> points;
+        std::vector<core::SpotLight> spots;
+        if (spot)
+            spots.push_back(
+                {.wsPosition = wsLamp, .wsDirection = core::Vec3(-2.5, 0, 0) - wsLamp, .coneDegrees = 100.0});
+        else
+            points.push_back({.wsPosition = wsLamp});
+        const core::Aabb bounds = s.wsBounds();
+        auto lighting = core::computeLocalLighting({.camera = cardCamera(), .wsSceneBounds = bounds, .mapSize = 1024},
+                                                   points, spots);
+        EXPECT_TRUE(lighting) << lighting.error();
+        EXPECT_TRUE((*measurer)->renderer().setLocalLights(*lighting));
+        gl::RenderSettings settings = cardFrame();
+        settings.sun = false;
+        auto m = (*measurer)->measure({.camera = cardCamera(), .light = {}, .wsSceneBounds = bounds}, settings);
+        EXPECT_TRUE(m) << m.error();
+        Agreement a;
+        if (!m || m->lights.size() != 1) return a;
+        const std::vector<eval::PixelClass>& classes = m->lights[0].comparison.classes;
+        for (size_t i = 0; i < classes.size(); ++i) {
+            using eval::PixelClass;
+            const PixelClass c = classes[i];
+            if (c == PixelClass::NotEvaluated || c == PixelClass::Excluded || m->truth->surfaceId[i] != 1) continue;
+            const auto cross = crossing(m->truth->wsPosition[i], wsLamp - m->truth->wsPosition[i]);
+            if (!cross || cross->edgeDistance < 0.12) continue;
+            a.add(*cross, c == PixelClass::ShadowCorrect || c == PixelClass::FalseShadow,
+                  c == PixelClass::ShadowCorrect || c == PixelClass::FalseLit);
         }
         return a;
     }
@@ -133,7 +184,8 @@ protected:
 } // namespace
 
 TEST_F(AlphaShadowsTest, AMaskedCheckerCardCastsACheckerShadowInTheMapsAndInTheTruth) {
-    for (const core::Technique technique : {core::Technique::Focused, core::Technique::Lispsm}) {
+    for (const core::Technique technique :
+         {core::Technique::Focused, core::Technique::Lispsm, core::Technique::Csm, core::Technique::Virtual}) {
         const Agreement a = measureCard(checkerCardScene(scene::AlphaMode::Mask), technique);
         const int pixels = a.covered + a.open;
         ASSERT_GT(a.covered, 150) << core::techniqueName(technique);
@@ -176,6 +228,17 @@ TEST_F(AlphaShadowsTest, ACanopyInACoarseMapKeepsTheCoverageTheTruthSees) {
     const double truthShadowed = double(coarse.truthShadowed) / coarsePixels;
     ASSERT_GT(truthShadowed, 0.1); // the leaves' shadow, through the truth's full-resolution card
     ASSERT_LT(truthShadowed, 0.5);
-    EXPECT_NEAR(double(fine.glShadowed) / finePixels, truthShadowed, 0.05);   // near: level 0
+    EXPECT_NEAR(double(fine.glShadowed) / finePixels, truthShadowed, 0.05);     // near: level 0
     EXPECT_NEAR(double(coarse.glShadowed) / coarsePixels, truthShadowed, 0.08); // far: neither thinned nor fattened
+}
+
+TEST_F(AlphaShadowsTest, LampsSeeTheCardsHolesInPointCubesAndSpotMaps) {
+    for (const bool spot : {false, true}) {
+        const Agreement a = measureCardUnderLamp(checkerCardScene(scene::AlphaMode::Mask), spot);
+        const int pixels = a.covered + a.open;
+        ASSERT_GT(a.covered, 100) << (spot ? "spot" : "point");
+        ASSERT_GT(a.open, 100) << (spot ? "spot" : "point");
+        EXPECT_EQ(a.truthAgrees, pixels) << (spot ? "spot" : "point");
+        EXPECT_GT(a.glAgrees, 0.97 * pixels) << (spot ? "spot" : "point");
+    }
 }

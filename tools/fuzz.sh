@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # tools/fuzz.sh TARGET SECONDS [RUNS]: builds the libFuzzer target fuzz_TARGET (gltf, obj, views,
-# configs; fuzz/CMakeLists.txt) with clang, AddressSanitizer and UndefinedBehaviorSanitizer into
+# configs, image; fuzz/CMakeLists.txt) with clang, AddressSanitizer and UndefinedBehaviorSanitizer into
 # build-fuzz/, and runs it for SECONDS (and at most RUNS executions when given) over a copy of its
 # seed corpus fuzz/corpus/TARGET, keeping what it learns in build-fuzz/corpus/TARGET. A crash
 # leaves its input in build-fuzz/ (crash-*) and exits non-zero. `all` runs every target in turn.
@@ -9,7 +9,7 @@ cd "$(dirname "$0")/.."
 target=${1:?usage: tools/fuzz.sh TARGET|all SECONDS [RUNS]}
 seconds=${2:?usage: tools/fuzz.sh TARGET|all SECONDS [RUNS]}
 runs=${3:--1}
-targets=(gltf obj views configs)
+targets=(gltf obj views configs image)
 [ "$target" = all ] || targets=("$target")
 
 tools/install-deps.sh

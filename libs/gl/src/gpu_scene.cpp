@@ -27,7 +27,10 @@ GLenum glWrap(scene::TextureWrap wrap) {
 }
 
 // A texture with its whole mip chain: coverage-keeping for alpha-tested use (the cutoff of the
-// first alpha-tested material that samples it), plain box-filtered otherwise.
+// first alpha-tested material that samples it), plain box-filtered otherwise. Minified through
+// the nearest level, bilinear within it, whatever the file's sampler asks: blending two levels
+// (trilinear) mixes two patterns each scaled to the right coverage into one that is not — a
+// sparse canopy thins again — and costs llvmpipe a second bilinear lookup in every pass.
 Texture uploadTexture(const scene::Texture& texture, std::optional<float> alphaCutoff) {
     const std::vector<scene::Image> chain =
         texture.mipmaps ? scene::buildMipChain(texture.image, alphaCutoff) : std::vector<scene::Image>{texture.image};
@@ -44,7 +47,7 @@ Texture uploadTexture(const scene::Texture& texture, std::optional<float> alphaC
     glTextureParameteri(id, GL_TEXTURE_WRAP_S, static_cast<GLint>(glWrap(texture.wrapS)));
     glTextureParameteri(id, GL_TEXTURE_WRAP_T, static_cast<GLint>(glWrap(texture.wrapT)));
     glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, texture.nearest ? GL_NEAREST : GL_LINEAR);
-    glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, texture.mipmaps ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR);
+    glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, texture.mipmaps ? GL_LINEAR_MIPMAP_NEAREST : GL_LINEAR);
     return gl;
 }
 

@@ -344,8 +344,15 @@ struct ImageContext {
     std::optional<core::Error> failure; // the first image that could not be decoded
 };
 
+// A name from the file as it may appear in a one-line message: control characters replaced.
+std::string printable(std::string text) {
+    for (char& c : text)
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7F) c = '?';
+    return text;
+}
+
 std::string imageName(const std::string& file, int index, const tinygltf::Image& image) {
-    const std::string& label = !image.name.empty() ? image.name : image.uri.substr(0, 80);
+    const std::string label = printable(!image.name.empty() ? image.name : image.uri.substr(0, 80));
     return file + ": image " + std::to_string(index) +
            (label.empty() || label.starts_with("data:") ? "" : " '" + label + "'");
 }
@@ -382,8 +389,8 @@ core::Status readMaterials(const tinygltf::Model& model, const fs::path& file, S
     size_t textureBytes = 0;
     for (size_t m = 0; m < model.materials.size(); ++m) {
         const tinygltf::Material& in = model.materials[m];
-        const std::string where =
-            file.string() + ": material " + std::to_string(m) + (in.name.empty() ? "" : " '" + in.name + "'");
+        const std::string where = file.string() + ": material " + std::to_string(m) +
+                                  (in.name.empty() ? "" : " '" + printable(in.name) + "'");
         Material out;
         out.name = in.name;
         const auto& f = in.pbrMetallicRoughness.baseColorFactor;
@@ -485,8 +492,8 @@ core::Result<Scene> loadGltf(const fs::path& file) {
         const tinygltf::Node& node = model.nodes[size_t(nodeIndex)];
         const glm::mat4 world = parent * nodeLocalMatrix(node);
         if (!core::isFinite(glm::dmat4(world))) {
-            failure = core::makeError(file.string() + ": node " + std::to_string(nodeIndex) + " '" + node.name +
-                                      "' has a non-finite transform");
+            failure = core::makeError(file.string() + ": node " + std::to_string(nodeIndex) + " '" +
+                                      printable(node.name) + "' has a non-finite transform");
             return;
         }
         if (node.mesh >= 0 && size_t(node.mesh) < model.meshes.size()) {
@@ -494,7 +501,7 @@ core::Result<Scene> loadGltf(const fs::path& file) {
             for (size_t p = 0; p < gltfMesh.primitives.size(); ++p) {
                 auto [it, inserted] = batchOf.try_emplace({node.mesh, p}, scene.batches.size());
                 if (inserted) {
-                    const std::string named = gltfMesh.name.empty() ? "" : " '" + gltfMesh.name + "'";
+                    const std::string named = gltfMesh.name.empty() ? "" : " '" + printable(gltfMesh.name) + "'";
                     const std::string where = file.string() + ": mesh " + std::to_string(node.mesh) + named +
                                               " primitive " + std::to_string(p);
                     core::Result<Mesh> mesh = convertPrimitive(model, gltfMesh.primitives[p], where);

@@ -2,9 +2,15 @@
 // its implementation. Decoded bytes come from files we did not write: the header is read and
 // checked against the limits before stb allocates anything, and only the two formats glTF
 // allows (§3.8.4) are compiled in.
+//
+// Debian 12's stb_image is v2.27, whose JPEG reader writes past its Huffman tables when a DHT
+// segment declares more than 256 codes (fuzz_image found it; v2.28 added the check). Until the
+// package has it, every DHT segment is checked here before stb sees the file; likewise a PNG's
+// chunk list (below).
 #include "shadowkit/scene/image.h"
 
 #include <algorithm>
+#include <cstdlib>
 #include <string>
 
 #define STB_IMAGE_STATIC // private to this file: libtinygltf may carry its own copy
@@ -12,6 +18,12 @@
 #define STBI_ONLY_PNG
 #define STBI_ONLY_JPEG
 #define STBI_NO_STDIO
+// Zeroed allocations: a JPEG scan may name a Huffman table no DHT defined, and stb 2.27 then
+// decodes with the table's uninitialised memory (indices out of bounds, fuzz_image). A zeroed
+// table has no codes: decoding with it fails cleanly.
+#define STBI_MALLOC(bytes) std::calloc(1, bytes)
+#define STBI_REALLOC(pointer, bytes) std::realloc(pointer, bytes)
+#define STBI_FREE(pointer) std::free(pointer)
 #if defined(__GNUC__)
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wconversion"
@@ -27,6 +39,60 @@
 
 namespace shadowkit::scene {
 
+namespace {
+
+// Whether every Huffman table a JPEG could define holds at most 256 codes (ITU T.81 §B.2.4.2:
+// a DHT segment is a length, then tables of class/id, 16 counts and the counted symbols). Every
+// 0xFF 0xC4 in the file is read as stb would read a DHT segment there — table after table while
+// the length lasts, bytes past the end read as 0 — a superset of the segments stb can reach
+// (it skips stray bytes between markers), so none escapes the check.
+bool jpegHuffmanTablesFit(std::span<const uint8_t> b) {
+    auto at = [&](size_t k) -> size_t { return k < b.size() ? b[k] : 0; };
+    for (size_t i = 0; i + 1 < b.size(); ++i) {
+        if (b[i] != 0xFF || b[i + 1] != 0xC4) continue;
+        long remaining = long(at(i + 2) << 8 | at(i + 3)) - 2;
+        for (size_t t = i + 4; remaining > 0 && t < b.size();) {
+            size_t codes = 0;
+            for (size_t k = 1; k <= 16; ++k) codes += at(t + k);
+            if (codes > 256) return false;
+            remaining -= long(17 + codes);
+            t += 17 + codes;
+        }
+    }
+    return true;
+}
+
+// What is wrong with a PNG's chunk list before stb reads it, or nullptr. Chunks: a 4-byte
+// big-endian length, a 4-byte type, the data and a 4-byte CRC (ISO 15948 §5.3). stb 2.27 grows
+// its buffer to an IDAT chunk's declared length before it finds the bytes missing (2 GiB for a
+// 100-byte file, fuzz_image), and copies an empty first IDAT with memcpy(nullptr, p, 0), which
+// is undefined; no encoder writes either, so both are refused as corrupt.
+const char* pngChunkProblem(std::span<const uint8_t> b) {
+    bool sawData = false;
+    for (size_t i = 8; i + 8 <= b.size();) {
+        const size_t length = size_t(b[i]) << 24 | size_t(b[i + 1]) << 16 | size_t(b[i + 2]) << 8 | b[i + 3];
+        const auto type = b.subspan(i + 4, 4);
+        if (length > b.size() - (i + 8)) return "a chunk runs past the end of the file";
+        const bool data = std::equal(type.begin(), type.end(), "IDAT");
+        if (data && !sawData && length == 0) return "an empty first IDAT chunk";
+        sawData = sawData || data;
+        if (std::equal(type.begin(), type.end(), "IEND")) break;
+        i += 12 + length;
+    }
+    return nullptr;
+}
+
+// stb's reason for a failure, printable: it can quote the file's bytes (an unknown PNG chunk's
+// type), and an error stays one line.
+std::string failureReason() {
+    std::string reason = stbi_failure_reason() ? stbi_failure_reason() : "unknown";
+    for (char& c : reason)
+        if (c < 0x20 || c > 0x7E) c = '?';
+    return reason;
+}
+
+} // namespace
+
 core::Result<Image> decodeImage(std::span<const uint8_t> bytes, std::string_view what) {
     const std::string name(what);
     if (bytes.empty()) return core::makeError(name + ": the image is empty");
@@ -39,10 +105,14 @@ core::Result<Image> decodeImage(std::span<const uint8_t> bytes, std::string_view
     const bool jpeg = bytes.size() >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8 && bytes[2] == 0xFF;
     if (!png && !jpeg) return core::makeError(name + ": not a PNG or JPEG image");
     const char* format = png ? "PNG" : "JPEG";
+    if (const char* problem = png ? pngChunkProblem(bytes) : nullptr)
+        return core::makeError(name + ": corrupt or truncated PNG (" + problem + ")");
+    if (jpeg && !jpegHuffmanTablesFit(bytes))
+        return core::makeError(name + ": corrupt JPEG (a Huffman table with more than 256 codes)");
     // stb's own side limit (2^24) is left alone: ours is checked here, with a message that says so.
     int width = 0, height = 0, channels = 0;
     if (!stbi_info_from_memory(data, length, &width, &height, &channels))
-        return core::makeError(name + ": unreadable " + format + " header (" + stbi_failure_reason() + ")");
+        return core::makeError(name + ": unreadable " + format + " header (" + failureReason() + ")");
     if (width <= 0 || height <= 0 || width > kMaxImageSide || height > kMaxImageSide ||
         int64_t(width) * height > kMaxImageTexels)
         return core::makeError(name + ": " + std::to_string(width) + "×" + std::to_string(height) + " " + format +
@@ -50,8 +120,7 @@ core::Result<Image> decodeImage(std::span<const uint8_t> bytes, std::string_view
                                ", 2^26 texels)");
     int w = 0, h = 0;
     stbi_uc* pixels = stbi_load_from_memory(data, length, &w, &h, &channels, 4);
-    if (!pixels)
-        return core::makeError(name + ": corrupt or truncated " + format + " (" + stbi_failure_reason() + ")");
+    if (!pixels) return core::makeError(name + ": corrupt or truncated " + format + " (" + failureReason() + ")");
     Image image(w, h);
     std::copy(pixels, pixels + image.rgba.size(), image.rgba.begin());
     stbi_image_free(pixels);

@@ -29,7 +29,8 @@ FloatLevel halve(const FloatLevel& from) {
     FloatLevel to{std::max(1, from.width / 2), std::max(1, from.height / 2), {}};
     to.texels.resize(size_t(to.width) * size_t(to.height));
     auto at = [&](int x, int y) {
-        return from.texels[size_t(std::min(y, from.height - 1)) * size_t(from.width) + size_t(std::min(x, from.width - 1))];
+        return from
+            .texels[size_t(std::min(y, from.height - 1)) * size_t(from.width) + size_t(std::min(x, from.width - 1))];
     };
     for (int y = 0; y < to.height; ++y)
         for (int x = 0; x < to.width; ++x)
@@ -57,7 +58,8 @@ double sampledAlphaCoverage(const Image& image, float cutoff) {
     const int w = image.width, h = image.height;
     if (w <= 0 || h <= 0) return 0.0;
     auto alpha = [&](int x, int y) {
-        return float(image.rgba[(size_t(std::clamp(y, 0, h - 1)) * size_t(w) + size_t(std::clamp(x, 0, w - 1))) * 4 + 3]) /
+        return float(image.rgba[(size_t(std::clamp(y, 0, h - 1)) * size_t(w) + size_t(std::clamp(x, 0, w - 1))) * 4 +
+                                3]) /
                255.0f;
     };
     size_t covered = 0;
@@ -66,7 +68,8 @@ double sampledAlphaCoverage(const Image& image, float cutoff) {
             for (int sy = 0; sy < 2; ++sy)
                 for (int sx = 0; sx < 2; ++sx) {
                     // p = sample − ½: the texel below-left of the sample and the fraction past it.
-                    const float px = float(x) + 0.25f + 0.5f * float(sx) - 0.5f, py = float(y) + 0.25f + 0.5f * float(sy) - 0.5f;
+                    const float px = float(x) + 0.25f + 0.5f * float(sx) - 0.5f,
+                                py = float(y) + 0.25f + 0.5f * float(sy) - 0.5f;
                     const int x0 = int(std::floor(px)), y0 = int(std::floor(py));
                     const float fx = px - float(x0), fy = py - float(y0);
                     const float a = (1 - fy) * ((1 - fx) * alpha(x0, y0) + fx * alpha(x0 + 1, y0)) +
