@@ -1,6 +1,7 @@
 // Evaluation as a regression suite: every technique, with its defaults, on every standard
-// view of a small forest, measured against ray-traced truth and compared with the figures
-// recorded in data/golden/small-forest.json within that file's tolerances. A change that
+// view of a small forest — the blob forest and the leafy one, each in its own file — measured
+// against ray-traced truth and compared with the figures recorded in data/golden/ within the
+// tolerances below. A change that
 // moves a figure past its tolerance fails here, before it reaches the tables of README and docs/.
 //
 // After a change that is meant to move figures, re-record them (and say why in the commit):
@@ -24,8 +25,7 @@ using nlohmann::json;
 
 namespace {
 
-const std::filesystem::path kGoldenFile =
-    std::filesystem::path(SHADOWKIT_SOURCE_DATA_DIR) / "golden" / "small-forest.json";
+const std::filesystem::path kGoldenFolder = std::filesystem::path(SHADOWKIT_SOURCE_DATA_DIR) / "golden";
 
 // The figures compared, with how far each may move: absolute for percentages of pixels,
 // relative for pixel counts and pixels-per-texel quantiles.
@@ -53,17 +53,22 @@ json figuresJson(const eval::Figures& f) {
             {"pixels_per_texel_p99", f.pixelsPerTexelP99}};
 }
 
-class GoldenFiguresTest : public gl::testing::HeadlessGlTest {};
+class GoldenFiguresTest : public gl::testing::HeadlessGlTest {
+protected:
+    static void checkGolden(const std::filesystem::path& goldenFile);
+};
 
 } // namespace
 
-TEST_F(GoldenFiguresTest, EveryTechniqueMatchesItsRecordedFiguresOnEveryStandardView) {
-    std::ifstream in(kGoldenFile);
-    ASSERT_TRUE(in) << kGoldenFile << ": missing";
+void GoldenFiguresTest::checkGolden(const std::filesystem::path& goldenFile) {
+    std::ifstream in(goldenFile);
+    ASSERT_TRUE(in) << goldenFile << ": missing";
     json golden = json::parse(in);
     const json& config = golden.at("config");
 
     scene::ForestOptions forestOptions;
+    forestOptions.kind =
+        config.value("forest", "simple") == "leafy" ? scene::ForestKind::Leafy : scene::ForestKind::Simple;
     forestOptions.trees = config.at("trees");
     forestOptions.terrainSize = config.at("terrain_size");
     forestOptions.terrainResolution = config.at("terrain_resolution");
@@ -103,7 +108,16 @@ TEST_F(GoldenFiguresTest, EveryTechniqueMatchesItsRecordedFiguresOnEveryStandard
     }
     if (update) {
         golden["figures"] = recorded;
-        std::ofstream(kGoldenFile) << golden.dump(2) << "\n";
-        std::printf("re-recorded %s\n", kGoldenFile.string().c_str());
+        std::ofstream(goldenFile) << golden.dump(2) << "\n";
+        std::printf("re-recorded %s\n", goldenFile.string().c_str());
     }
+}
+
+TEST_F(GoldenFiguresTest, EveryTechniqueMatchesItsRecordedFiguresOnEveryStandardView) {
+    checkGolden(kGoldenFolder / "small-forest.json");
+}
+
+// The leafy forest's cards and thin wood, alpha-tested in every map and in the truth.
+TEST_F(GoldenFiguresTest, EveryTechniqueMatchesItsRecordedFiguresOnTheLeafyForest) {
+    checkGolden(kGoldenFolder / "small-leafy-forest.json");
 }

@@ -111,6 +111,28 @@ def summary(reports, first_column="technique"):
         print(f"| {label} | " + " | ".join(cells) + f" | {mean:.2f} |")
 
 
+def forests(args):
+    """LABEL=BLOB|LEAFY per set-up (each side as load() reads it): the same set-up's mean
+    wrong_pct and median pixels per texel on the two forests, their ratio, and the leafy
+    forest's worst view."""
+    print("| set-up | blob forest: mean wrong% | leafy forest: mean wrong% | leafy / blob | leafy: worst view | "
+          "leafy: ppt p50 (mean) |")
+    print("|---|---:|---:|---:|---|---:|")
+    for arg in args:
+        label, _, sides = arg.partition("=")
+        blob_source, _, leafy_source = sides.partition("|")
+        if not leafy_source:
+            sys.exit(f"readme_tables: forests: expected LABEL=BLOB|LEAFY, got '{arg}'")
+        _, blob = load(f"{label}={blob_source}")
+        _, leafy = load(f"{label}={leafy_source}")
+        blob_mean = sum(blob[v]["wrong_pct"] for v in VIEWS) / len(VIEWS)
+        leafy_mean = sum(leafy[v]["wrong_pct"] for v in VIEWS) / len(VIEWS)
+        worst = max(VIEWS, key=lambda v: leafy[v]["wrong_pct"])
+        ppt = sum(leafy[v]["pixels_per_texel_p50"] for v in VIEWS) / len(VIEWS)
+        print(f"| {label} | {blob_mean:.2f} | {leafy_mean:.2f} | {leafy_mean / blob_mean:.1f}× | "
+              f"{worst} ({leafy[worst]['wrong_pct']:.2f}) | {ppt:.1f} |")
+
+
 def details(reports):
     print("| technique | view | valid_px | excluded_px | wrong_pct | false_shadow_pct | false_lit_pct | "
           "undersampled_pct | pixels_per_texel_p50 | p99 |")
@@ -421,7 +443,7 @@ def write_into(target, text):
 
 def run(argv):
     """Prints the table the arguments (argv[1:], as on the command line) ask for."""
-    commands = {"oracle": oracle, "soft": soft, "soft-summary": soft_summary, "soft-lamps": soft_lamps, "stable": stable, "visibility": visibility, "dynamics": dynamics,
+    commands = {"forests": forests, "oracle": oracle, "soft": soft, "soft-summary": soft_summary, "soft-lamps": soft_lamps, "stable": stable, "visibility": visibility, "dynamics": dynamics,
                 "setup": setup, "culling": culling, "truth": truth, "scale": scale}
     if len(argv) >= 5 and argv[1] == "oracle" and argv[2] == "--name":
         oracle(argv[4:], argv[3].split(","))

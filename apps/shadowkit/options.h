@@ -21,6 +21,8 @@ namespace shadowkit::app {
 
 struct SceneOptions {
     std::string scene = "forest";
+    std::string forest =
+        "simple"; // the built-in forest's trees: simple (opaque blobs) or leafy (branches and leaf cards)
     uint64_t seed = 1;
     int trees = 10000;
     double terrainSize = 1024.0;

@@ -236,6 +236,17 @@ if(CASE STREQUAL "gl-render")
     message(SEND_ERROR "render: failed or wrote no image: ${err}")
   endif()
 endif()
+# The leafy forest renders, and an unknown forest kind is named.
+if(CASE STREQUAL "gl-render-leafy")
+  execute_process(COMMAND ${SHADOWKIT} render --forest leafy --trees 8 --terrain-size 60 --terrain-resolution 8
+                          --size 64x48 --map-size 256 --out "${WORK}/leafy.png"
+                  RESULT_VARIABLE rc ERROR_VARIABLE err OUTPUT_QUIET)
+  string(FIND "${err}" "forest (leafy)" named)
+  if(NOT rc EQUAL 0 OR NOT EXISTS "${WORK}/leafy.png" OR named EQUAL -1)
+    message(SEND_ERROR "render --forest leafy: failed, wrote no image or did not name the forest: ${err}")
+  endif()
+endif()
+check_fails(forest-unknown "--forest" setup ${small} --forest bushy)
 check_fails(gl-unwritable-output "--out" render ${small} --size 16x16 --map-size 64 --out "${WORK}/no/such/dir/r.png")
 check_fails(map-too-large "--map-size" render ${small} --size 16x16 --map-size 1000000)
 

@@ -207,9 +207,15 @@ core::Result<std::unique_ptr<Renderer>> Renderer::create(const scene::Scene& sce
     auto moments = MomentMaps::create();
     if (!moments) return moments.errorInfo();
     r.moments = std::move(moments).value();
-    // Levels of detail of every mesh, for the camera and for shadow maps (meshoptimizer).
+    // Levels of detail of every mesh, for the camera and for shadow maps (meshoptimizer). An
+    // alpha-tested mesh keeps its one level: a simplifier moves positions under fixed uvs
+    // (and the shadow chain's vertex clustering joins vertices of different cards), so the
+    // alpha a simplified card shows would no longer be the leaf's.
     std::vector<scene::MeshLods> lods;
-    for (const scene::Mesh& mesh : scene.meshes) lods.push_back(scene::buildLods(mesh));
+    for (const scene::Mesh& mesh : scene.meshes) {
+        const scene::Material* material = scene.materialOf(mesh);
+        lods.push_back(scene::buildLods(mesh, {.maxLevels = material && material->alphaTested() ? 1 : 4}));
+    }
     r.scene.emplace(scene, lods);
     r.visibility.emplace(scene, lods);
     auto occlusion = OcclusionCuller::create(*r.visibility, *r.scene);
@@ -250,6 +256,9 @@ double lookupReachTexels(const core::FilterSettings& filter, const core::BiasSet
     case core::ShadowFilter::Poisson:
     case core::ShadowFilter::Pcss: // its widest kernel and search
         reach = filter.radiusTexels + 1.0;
+        break;
+    case core::ShadowFilter::Msm: // the moments' blur radius, then a bilinear lookup
+        reach = filter.taps + 1.0;
         break;
     }
     return reach + std::abs(bias.normalOffset) + 2.0;

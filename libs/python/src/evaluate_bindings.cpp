@@ -51,8 +51,12 @@ py::dict figuresDict(const eval::Figures& f) {
 // the ray tracer's BVH is the slow part; truths are cached per camera, sun and size).
 class Evaluator {
 public:
-    Evaluator(uint64_t seed, int trees, double terrainSize, int terrainResolution, int movers) {
+    Evaluator(uint64_t seed, int trees, double terrainSize, int terrainResolution, int movers,
+              const std::string& forest) {
         scene::ForestOptions o;
+        if (forest != "simple" && forest != "leafy")
+            throw py::value_error("forest: must be 'simple' or 'leafy', got '" + forest + "'");
+        o.kind = forest == "leafy" ? scene::ForestKind::Leafy : scene::ForestKind::Simple;
         o.seed = seed, o.trees = trees, o.terrainSize = terrainSize, o.terrainResolution = terrainResolution,
         o.movers = movers;
         if (core::Status s = scene::validate(o); !s) throw py::value_error(s.error());
@@ -143,9 +147,10 @@ void bindEvaluation(py::module_& m) {
     const core::ShadowSetupInputs kDefaults;
     const std::string kDefaultTechnique(core::techniqueName(core::defaultTechnique()));
     py::class_<Evaluator>(m, "Evaluator", "A forest and a headless GL context (EGL) for repeated evaluations.")
-        .def(py::init<uint64_t, int, double, int, int>(), py::kw_only(), py::arg("seed") = d.seed,
+        .def(py::init<uint64_t, int, double, int, int, const std::string&>(), py::kw_only(), py::arg("seed") = d.seed,
              py::arg("trees") = d.trees, py::arg("terrain_size") = d.terrainSize,
-             py::arg("terrain_resolution") = d.terrainResolution, py::arg("movers") = d.movers)
+             py::arg("terrain_resolution") = d.terrainResolution, py::arg("movers") = d.movers,
+             py::arg("forest") = "simple")
         .def("evaluate", &Evaluator::evaluate, kEvaluateDoc, py::kw_only(), py::arg("view") = "perpendicular",
              py::arg("technique") = kDefaultTechnique, py::arg("map_size") = kDefaults.mapSize,
              py::arg("size") = py::none(), py::arg("filter") = "hard", py::arg("cascades") = kDefaults.cascades.count,
@@ -154,17 +159,17 @@ void bindEvaluation(py::module_& m) {
         "evaluate",
         [](const std::string& view, const std::string& technique, int mapSize, std::optional<std::pair<int, int>> size,
            const std::string& filter, int cascades, const std::string& cascadeWarp, double sunAngle, uint64_t seed,
-           int trees, double terrainSize, int terrainResolution) {
-            Evaluator evaluator(seed, trees, terrainSize, terrainResolution, scene::ForestOptions{}.movers);
+           int trees, double terrainSize, int terrainResolution, const std::string& forest) {
+            Evaluator evaluator(seed, trees, terrainSize, terrainResolution, scene::ForestOptions{}.movers, forest);
             return evaluator.evaluate(view, technique, mapSize, size, filter, cascades, cascadeWarp, sunAngle);
         },
         "One evaluation with a forest of its own (see Evaluator.evaluate; seed, trees, terrain_size, "
-        "terrain_resolution make the forest).",
+        "terrain_resolution and forest ('simple' or 'leafy': branches and alpha-tested leaf cards) make the forest).",
         py::kw_only(), py::arg("view") = "perpendicular", py::arg("technique") = kDefaultTechnique,
         py::arg("map_size") = kDefaults.mapSize, py::arg("size") = py::none(), py::arg("filter") = "hard",
         py::arg("cascades") = kDefaults.cascades.count, py::arg("cascade_warp") = "none", py::arg("sun_angle") = 0.0,
         py::arg("seed") = d.seed, py::arg("trees") = d.trees, py::arg("terrain_size") = d.terrainSize,
-        py::arg("terrain_resolution") = d.terrainResolution);
+        py::arg("terrain_resolution") = d.terrainResolution, py::arg("forest") = "simple");
 }
 
 } // namespace shadowkit::python

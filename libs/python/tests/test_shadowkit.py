@@ -113,6 +113,21 @@ class EvaluateTest(unittest.TestCase):
             self.assertTrue(np.all(got["truth_lit"][correct_shadow] == 0))
             self.assertTrue(np.all(np.isnan(got["pixels_per_texel"][~valid])))
 
+    def test_the_leafy_forest_equals_shadowkit_eval_and_an_unknown_forest_is_named(self):
+        got = shadowkit.evaluate(view="perpendicular", technique="lispsm", size=(160, 90), map_size=512,
+                                 forest="leafy", trees=60, terrain_size=200, terrain_resolution=32)
+        args = ["--view", "perpendicular", "--technique", "lispsm", "--size", "160x90", "--map-size", "512",
+                "--forest", "leafy", "--trees", "60", "--terrain-size", "200", "--terrain-resolution", "32"]
+        with tempfile.TemporaryDirectory() as folder:
+            report = os.path.join(folder, "eval.json")
+            subprocess.run([CLI, "eval", *args, "--json", report], check=True, capture_output=True)
+            with open(report) as f:
+                expected = json.load(f)["views"][0]
+        for key, value in got["figures"].items():
+            self.assertEqual(value, expected[key], key)
+        with self.assertRaisesRegex(ValueError, "forest: must be 'simple' or 'leafy'"):
+            shadowkit.Evaluator(trees=10, terrain_size=100, terrain_resolution=8, forest="bushy")
+
     def test_soft_shadows_of_the_real_sun_equal_shadowkit_evals(self):
         evaluator = shadowkit.Evaluator(trees=300, terrain_size=200, terrain_resolution=32)
         args = ["--view", "perpendicular", "--technique", "tsm", "--size", "160x90", "--map-size", "512"]

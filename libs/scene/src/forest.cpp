@@ -6,8 +6,11 @@
 #include "shadowkit/scene/forest.h"
 
 #include "shadowkit/scene/animation.h"
+#include "shadowkit/scene/leafy_trees.h"
 
 #include "shadowkit/scene/mesh_builder.h"
+
+#include "split_mix.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -17,22 +20,6 @@
 
 namespace shadowkit::scene {
 namespace {
-
-class SplitMix64 {
-public:
-    explicit SplitMix64(uint64_t seed) : m_state(seed) {}
-    uint64_t next() {
-        uint64_t z = (m_state += 0x9e3779b97f4a7c15ull);
-        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-        z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-        return z ^ (z >> 31);
-    }
-    double uniform() { return static_cast<double>(next() >> 11) * 0x1.0p-53; } // [0, 1)
-    double uniform(double lo, double hi) { return lo + (hi - lo) * uniform(); }
-
-private:
-    uint64_t m_state;
-};
 
 // Value noise: a hashed random value per integer lattice point, smoothly interpolated.
 double latticeValue(uint64_t seed, int64_t x, int64_t z) {
@@ -183,6 +170,37 @@ glm::mat4 placement(const Heightfield& field, const Spot& s, const glm::vec3& sc
     return glm::scale(m, scale);
 }
 
+// The leafy forest's trees: three species, a wood and a leaf batch each, every tree placed in
+// both with one transform. The same draws from `rng` per tree as the simple forest (a spot, a
+// kind, a height), so the two forests of a seed have their trees in the same places.
+template <class AddMesh>
+void addLeafyTrees(Scene& scene, SplitMix64& rng, const ForestOptions& o, AddMesh addMesh) {
+    scene.textures.push_back(makeLeafAtlas());
+    scene.materials.push_back(leafMaterial(0));
+    struct Species {
+        size_t wood, leaves;
+        double minHeight, maxHeight, unitHeight;
+    };
+    const double heights[kTreeSpeciesCount][2] = {{8.0, 18.0}, {10.0, 24.0}, {1.5, 3.0}};
+    std::vector<Species> species;
+    for (int k = 0; k < kTreeSpeciesCount; ++k) {
+        LeafyTree tree = makeLeafyTree(static_cast<TreeSpecies>(k), o.seed);
+        tree.leaves.material = 0;
+        const double top = std::max(tree.wood.osBounds.max.y, tree.leaves.osBounds.max.y);
+        species.push_back(
+            {addMesh(std::move(tree.wood)), addMesh(std::move(tree.leaves)), heights[k][0], heights[k][1], top});
+    }
+    const Heightfield& field = *scene.terrain;
+    for (int i = 0; i < o.trees; ++i) {
+        const Spot s = randomSpot(rng, o);
+        const Species& kind = species[static_cast<size_t>(rng.next() % kTreeSpeciesCount)];
+        const double height = kind.minHeight + (kind.maxHeight - kind.minHeight) * rng.uniform();
+        const glm::mat4 m = placement(field, s, glm::vec3(static_cast<float>(height / kind.unitHeight)), 0.1);
+        scene.batches[kind.wood].worldFromObject.push_back(m);
+        scene.batches[kind.leaves].worldFromObject.push_back(m);
+    }
+}
+
 } // namespace
 
 core::Status validate(const ForestOptions& o) {
@@ -216,18 +234,22 @@ Scene makeForest(const ForestOptions& o) {
     const size_t terrain = addMesh(makeTerrainMesh(field));
     scene.batches[terrain].worldFromObject.push_back(glm::mat4(1.0f));
 
-    // Two species, two foliage tints each: 4 meshes, 4 instanced draws for all trees.
-    const size_t species[4] = {addMesh(makeConifer({0.13f, 0.27f, 0.12f})), addMesh(makeConifer({0.17f, 0.32f, 0.14f})),
-                               addMesh(makeBroadleaf({0.22f, 0.38f, 0.13f})),
-                               addMesh(makeBroadleaf({0.28f, 0.42f, 0.16f}))};
-    for (int i = 0; i < o.trees; ++i) {
-        const Spot s = randomSpot(rng, o);
-        const size_t kind = static_cast<size_t>(rng.next() % 4);
-        const double height = rng.uniform(6.0, 20.0);
-        MeshBatch& batch = scene.batches[species[kind]];
-        // Meshes are roughly unit height; divide by the exact one so heights stay in range.
-        const auto scale = static_cast<float>(height / scene.meshes[batch.mesh].osBounds.extent().y);
-        batch.worldFromObject.push_back(placement(field, s, glm::vec3(scale), 0.1));
+    if (o.kind == ForestKind::Leafy) {
+        addLeafyTrees(scene, rng, o, addMesh);
+    } else {
+        // Two species, two foliage tints each: 4 meshes, 4 instanced draws for all trees.
+        const size_t species[4] = {
+            addMesh(makeConifer({0.13f, 0.27f, 0.12f})), addMesh(makeConifer({0.17f, 0.32f, 0.14f})),
+            addMesh(makeBroadleaf({0.22f, 0.38f, 0.13f})), addMesh(makeBroadleaf({0.28f, 0.42f, 0.16f}))};
+        for (int i = 0; i < o.trees; ++i) {
+            const Spot s = randomSpot(rng, o);
+            const size_t kind = static_cast<size_t>(rng.next() % 4);
+            const double height = rng.uniform(6.0, 20.0);
+            MeshBatch& batch = scene.batches[species[kind]];
+            // Meshes are roughly unit height; divide by the exact one so heights stay in range.
+            const auto scale = static_cast<float>(height / scene.meshes[batch.mesh].osBounds.extent().y);
+            batch.worldFromObject.push_back(placement(field, s, glm::vec3(scale), 0.1));
+        }
     }
     const size_t rocks = addMesh(makeRock());
     for (int i = 0; i < o.rocks; ++i) {

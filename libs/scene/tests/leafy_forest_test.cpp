@@ -1,0 +1,132 @@
+// The leafy forest: trees of branches and alpha-tested leaf cards (leafy_trees.h), as a
+// second standard scene.
+#include "shadowkit/scene/forest.h"
+#include "shadowkit/scene/leafy_trees.h"
+#include "shadowkit/scene/texture_mips.h"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+
+using namespace shadowkit;
+using namespace shadowkit::scene;
+
+namespace {
+
+ForestOptions smallLeafy(uint64_t seed = 1) {
+    ForestOptions o;
+    o.kind = ForestKind::Leafy;
+    o.seed = seed;
+    o.trees = 60;
+    o.terrainSize = 120;
+    o.terrainResolution = 16;
+    o.rocks = 2;
+    o.buildings = 1;
+    o.movers = 1;
+    return o;
+}
+
+bool sameMesh(const Mesh& a, const Mesh& b) {
+    return a.indices == b.indices && a.vertices.size() == b.vertices.size() &&
+           std::memcmp(a.vertices.data(), b.vertices.data(), a.vertices.size() * sizeof(Vertex)) == 0;
+}
+
+// The atlas cell (column, row) a uv lies in.
+glm::ivec2 cellOf(glm::vec2 uv) { return glm::ivec2(glm::floor(uv * float(kLeafAtlasCells))); }
+
+} // namespace
+
+TEST(LeafyTreesTest, EachSpeciesIsFiveToTwentyThousandTrianglesOfWoodAndCardsAboutAUnitHigh) {
+    for (int k = 0; k < kTreeSpeciesCount; ++k) {
+        const auto species = static_cast<TreeSpecies>(k);
+        const LeafyTree tree = makeLeafyTree(species, 1);
+        const size_t triangles = tree.wood.triangleCount() + tree.leaves.triangleCount();
+        EXPECT_GE(triangles, 5000u) << k;
+        EXPECT_LE(triangles, 20000u) << k;
+        EXPECT_GT(tree.wood.triangleCount(), 100u) << k << ": a trunk, boughs or stems";
+        EXPECT_EQ(tree.leaves.vertices.size(), 2 * tree.leaves.triangleCount()) << k << ": cards, 4 vertices and 2 triangles each";
+        EXPECT_NEAR(tree.wood.osBounds.min.y, 0.0, 0.02) << k << ": standing on its base";
+        EXPECT_GT(std::max(tree.wood.osBounds.max.y, tree.leaves.osBounds.max.y), 0.85) << k;
+        EXPECT_LT(std::max(tree.wood.osBounds.max.y, tree.leaves.osBounds.max.y), 1.15) << k;
+        // Every card shows one whole cell of its species' rows, corner to corner.
+        const int firstRow = species == TreeSpecies::Broadleaf ? 0 : species == TreeSpecies::Conifer ? 2 : 3;
+        const int lastRow = species == TreeSpecies::Broadleaf ? 1 : firstRow;
+        for (size_t v = 0; v < tree.leaves.vertices.size(); v += 4) {
+            const glm::vec2 uvMin = tree.leaves.vertices[v].uv, uvMax = tree.leaves.vertices[v + 2].uv;
+            const glm::ivec2 cell = cellOf(0.5f * (uvMin + uvMax));
+            ASSERT_GE(cell.y, firstRow) << k;
+            ASSERT_LE(cell.y, lastRow) << k;
+            ASSERT_NEAR(std::abs(uvMax.x - uvMin.x), 1.0f / kLeafAtlasCells, 1e-6f);
+        }
+    }
+}
+
+TEST(LeafyTreesTest, TheSameSeedGivesTheSameTreeAndAnotherSeedAnotherOne) {
+    for (int k = 0; k < kTreeSpeciesCount; ++k) {
+        const auto species = static_cast<TreeSpecies>(k);
+        const LeafyTree a = makeLeafyTree(species, 7), b = makeLeafyTree(species, 7), c = makeLeafyTree(species, 8);
+        EXPECT_TRUE(sameMesh(a.wood, b.wood) && sameMesh(a.leaves, b.leaves)) << k;
+        EXPECT_FALSE(sameMesh(a.leaves, c.leaves)) << k;
+    }
+}
+
+TEST(LeafyTreesTest, TheAtlasCellsAreLeavesWithHolesAndOpenBorders) {
+    const Texture atlas = makeLeafAtlas();
+    ASSERT_EQ(atlas.image.width, 512);
+    ASSERT_EQ(atlas.image.height, 512);
+    EXPECT_EQ(makeLeafAtlas().image.rgba, atlas.image.rgba); // deterministic
+    const int cell = atlas.image.width / kLeafAtlasCells;
+    for (int cy = 0; cy < kLeafAtlasCells; ++cy)
+        for (int cx = 0; cx < kLeafAtlasCells; ++cx) {
+            Image one(cell, cell);
+            for (int y = 0; y < cell; ++y)
+                std::memcpy(one.pixel(0, y), atlas.image.pixel(cx * cell, cy * cell + y), size_t(cell) * 4);
+            const double coverage = alphaCoverage(one, 0.5f);
+            EXPECT_GT(coverage, 0.08) << cx << "," << cy << ": leaves";
+            EXPECT_LT(coverage, 0.7) << cx << "," << cy << ": holes between them";
+            for (int i = 0; i < cell; ++i) // a bilinear lookup of one cell never reads its neighbour
+                ASSERT_TRUE(one.pixel(i, 0)[3] == 0 && one.pixel(0, i)[3] == 0 && one.pixel(i, cell - 1)[3] == 0 &&
+                            one.pixel(cell - 1, i)[3] == 0);
+        }
+}
+
+TEST(LeafyForestTest, TreesStandWhereTheSimpleForestsDoEachAsWoodAndMaskedLeaves) {
+    const Scene leafy = makeForest(smallLeafy());
+    ForestOptions simpleOptions = smallLeafy();
+    simpleOptions.kind = ForestKind::Simple;
+    const Scene simple = makeForest(simpleOptions);
+    ASSERT_EQ(leafy.materials.size(), 1u);
+    ASSERT_EQ(leafy.textures.size(), 1u);
+    EXPECT_EQ(leafy.materials[0].alphaMode, AlphaMode::Mask);
+    EXPECT_TRUE(leafy.materials[0].doubleSided);
+    EXPECT_EQ(leafy.materials[0].baseColorTexture, 0);
+    // Tree positions: the translations of every tree, in either forest.
+    auto treeSpots = [](const Scene& s, bool leavesOnly) {
+        std::vector<std::pair<float, float>> spots;
+        for (const MeshBatch& b : s.batches) {
+            const Mesh& m = s.meshes[b.mesh];
+            const bool tree = m.name.find("conifer") != std::string::npos || m.name.find("broadleaf") != std::string::npos ||
+                              m.name.find("shrub") != std::string::npos;
+            if (!tree || (leavesOnly && m.material < 0)) continue;
+            for (const glm::mat4& t : b.worldFromObject) spots.emplace_back(t[3].x, t[3].z);
+        }
+        std::sort(spots.begin(), spots.end());
+        return spots;
+    };
+    EXPECT_EQ(treeSpots(leafy, true), treeSpots(simple, false));
+    size_t leafBatches = 0;
+    for (const MeshBatch& b : leafy.batches) {
+        const Mesh& m = leafy.meshes[b.mesh];
+        if (m.material < 0) continue;
+        ++leafBatches;
+        EXPECT_TRUE(leafy.materialOf(m)->alphaTested());
+        // Its wood is the batch before it, with the same placements.
+        const MeshBatch& wood = (&b)[-1];
+        EXPECT_EQ(wood.worldFromObject, b.worldFromObject) << m.name;
+    }
+    EXPECT_EQ(leafBatches, size_t(kTreeSpeciesCount));
+    const Scene again = makeForest(smallLeafy()), other = makeForest(smallLeafy(2));
+    for (size_t i = 0; i < leafy.batches.size(); ++i)
+        EXPECT_EQ(leafy.batches[i].worldFromObject, again.batches[i].worldFromObject);
+    EXPECT_NE(treeSpots(leafy, true), treeSpots(other, true));
+}
