@@ -1,4 +1,7 @@
-// Binary glTF 2.0 export (one mesh per batch, instances baked, COLOR_0).
+// Binary glTF 2.0 export (one mesh per batch, instances baked, COLOR_0), with the scene's
+// materials and their textures: base colour factor, alpha mode and cutoff, double-sidedness,
+// the texture as an embedded PNG with its sampler and TEXCOORD_0 — what gltf_read.cpp reads, so
+// an exported leafy forest loads back with its leaves' holes.
 #include "scene_formats.h"
 
 #include <tiny_gltf.h>
@@ -35,6 +38,45 @@ int appendAccessor(tinygltf::Model& model, int view, int componentType, int type
     return int(model.accessors.size() - 1);
 }
 
+int gltfWrap(TextureWrap wrap) {
+    return wrap == TextureWrap::ClampToEdge      ? TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE
+           : wrap == TextureWrap::MirroredRepeat ? TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT
+                                                 : TINYGLTF_TEXTURE_WRAP_REPEAT;
+}
+
+// Scene::textures as images (pixels handed to tinygltf, which embeds them as PNG) with one
+// sampler each, and Scene::materials in order.
+void addMaterials(const Scene& scene, tinygltf::Model& model) {
+    for (const Texture& t : scene.textures) {
+        tinygltf::Image image;
+        image.width = t.image.width, image.height = t.image.height;
+        image.component = 4, image.bits = 8, image.pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+        image.mimeType = "image/png";
+        image.image = t.image.rgba;
+        model.images.push_back(std::move(image));
+        tinygltf::Sampler sampler;
+        sampler.wrapS = gltfWrap(t.wrapS), sampler.wrapT = gltfWrap(t.wrapT);
+        sampler.magFilter = t.nearest ? TINYGLTF_TEXTURE_FILTER_NEAREST : TINYGLTF_TEXTURE_FILTER_LINEAR;
+        sampler.minFilter = t.mipmaps ? TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR : TINYGLTF_TEXTURE_FILTER_LINEAR;
+        model.samplers.push_back(sampler);
+        tinygltf::Texture texture;
+        texture.source = texture.sampler = int(model.images.size() - 1);
+        model.textures.push_back(texture);
+    }
+    for (const Material& m : scene.materials) {
+        tinygltf::Material out;
+        out.name = m.name;
+        out.pbrMetallicRoughness.baseColorFactor = {m.baseColorFactor.r, m.baseColorFactor.g, m.baseColorFactor.b,
+                                                    m.baseColorFactor.a};
+        out.pbrMetallicRoughness.baseColorTexture.index = m.baseColorTexture;
+        out.pbrMetallicRoughness.baseColorTexture.texCoord = 0;
+        out.alphaMode = m.alphaMode == AlphaMode::Mask ? "MASK" : m.alphaMode == AlphaMode::Blend ? "BLEND" : "OPAQUE";
+        out.alphaCutoff = m.alphaCutoff;
+        out.doubleSided = m.doubleSided;
+        model.materials.push_back(std::move(out));
+    }
+}
+
 core::Status exportGlb(const Scene& scene, const fs::path& file) {
     tinygltf::Model model;
     model.asset.version = "2.0";
@@ -42,14 +84,20 @@ core::Status exportGlb(const Scene& scene, const fs::path& file) {
     model.buffers.emplace_back();
     model.scenes.emplace_back();
     model.defaultScene = 0;
+    addMaterials(scene, model);
     for (size_t b = 0; b < scene.batches.size(); ++b) {
         const BakedBatch baked = bake(scene, scene.batches[b]);
         std::vector<glm::vec3> positions, normals, colors;
         core::Aabb bounds;
+        // The reader multiplies COLOR_0 by the material's factor: the factor comes out here.
+        const Material* material = scene.materialOf(scene.meshes[scene.batches[b].mesh]);
+        const glm::vec3 factor = material ? glm::vec3(material->baseColorFactor) : glm::vec3(1.0f);
         for (const Vertex& v : baked.vertices) {
             positions.push_back(v.position);
             normals.push_back(v.normal);
-            colors.push_back(v.albedo);
+            colors.push_back(glm::vec3(factor.r > 0.0f ? v.albedo.r / factor.r : v.albedo.r,
+                                       factor.g > 0.0f ? v.albedo.g / factor.g : v.albedo.g,
+                                       factor.b > 0.0f ? v.albedo.b / factor.b : v.albedo.b));
             bounds.extend(core::Vec3(v.position));
         }
         tinygltf::Primitive prim;
@@ -64,6 +112,16 @@ core::Status exportGlb(const Scene& scene, const fs::path& file) {
         prim.attributes["COLOR_0"] =
             appendAccessor(model, appendBufferView(model, colors, TINYGLTF_TARGET_ARRAY_BUFFER),
                            TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, colors.size());
+        if (material) {
+            prim.material = scene.meshes[scene.batches[b].mesh].material;
+            if (material->baseColorTexture >= 0) {
+                std::vector<glm::vec2> uvs;
+                for (const Vertex& v : baked.vertices) uvs.push_back(v.uv);
+                prim.attributes["TEXCOORD_0"] =
+                    appendAccessor(model, appendBufferView(model, uvs, TINYGLTF_TARGET_ARRAY_BUFFER),
+                                   TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC2, uvs.size());
+            }
+        }
         prim.indices =
             appendAccessor(model, appendBufferView(model, baked.indices, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
                            TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, baked.indices.size());

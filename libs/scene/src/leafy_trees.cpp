@@ -47,7 +47,7 @@ void paintLeaf(Image& atlas, int cx, int cy, glm::vec2 centre, float a, float b,
             const glm::vec2 d = glm::vec2(float(x) + 0.5f, float(y) + 0.5f) - centre;
             const float s = glm::dot(d, along) / a, t = glm::dot(d, across) / b;
             if (s * s + t * t > 1.0f) continue;
-            const float shade = 0.85f + 0.15f * s;             // lighter towards the tip
+            const float shade = 0.85f + 0.15f * s;                // lighter towards the tip
             const float rib = std::abs(t) < 0.12f ? 0.75f : 1.0f; // the midrib
             paint(atlas, cx, cy, x, y, colour * shade * rib);
         }
@@ -241,8 +241,8 @@ void makeShrub(LeafyTree& tree, SplitMix64& rng) {
         glm::vec3 p = inBall(rng);
         p.y = std::abs(p.y); // the upper half: a dome on the ground
         const glm::vec3 centre(0.7f * p.x, 0.08f + 0.84f * p.y, 0.7f * p.z);
-        addLeafCard(tree.leaves, centre, uniform(rng, 0.1f, 0.14f), uniform(rng, 0, 2 * kPi),
-                    uniform(rng, -1.2f, 1.2f), uniform(rng, -0.8f, 0.8f), speciesCell(TreeSpecies::Shrub, rng));
+        addLeafCard(tree.leaves, centre, uniform(rng, 0.1f, 0.14f), uniform(rng, 0, 2 * kPi), uniform(rng, -1.2f, 1.2f),
+                    uniform(rng, -0.8f, 0.8f), speciesCell(TreeSpecies::Shrub, rng));
     }
 }
 

@@ -44,7 +44,8 @@ TEST(LeafyTreesTest, EachSpeciesIsFiveToTwentyThousandTrianglesOfWoodAndCardsAbo
         EXPECT_GE(triangles, 5000u) << k;
         EXPECT_LE(triangles, 20000u) << k;
         EXPECT_GT(tree.wood.triangleCount(), 100u) << k << ": a trunk, boughs or stems";
-        EXPECT_EQ(tree.leaves.vertices.size(), 2 * tree.leaves.triangleCount()) << k << ": cards, 4 vertices and 2 triangles each";
+        EXPECT_EQ(tree.leaves.vertices.size(), 2 * tree.leaves.triangleCount())
+            << k << ": cards, 4 vertices and 2 triangles each";
         EXPECT_NEAR(tree.wood.osBounds.min.y, 0.0, 0.02) << k << ": standing on its base";
         EXPECT_GT(std::max(tree.wood.osBounds.max.y, tree.leaves.osBounds.max.y), 0.85) << k;
         EXPECT_LT(std::max(tree.wood.osBounds.max.y, tree.leaves.osBounds.max.y), 1.15) << k;
@@ -105,7 +106,8 @@ TEST(LeafyForestTest, TreesStandWhereTheSimpleForestsDoEachAsWoodAndMaskedLeaves
         std::vector<std::pair<float, float>> spots;
         for (const MeshBatch& b : s.batches) {
             const Mesh& m = s.meshes[b.mesh];
-            const bool tree = m.name.find("conifer") != std::string::npos || m.name.find("broadleaf") != std::string::npos ||
+            const bool tree = m.name.find("conifer") != std::string::npos ||
+                              m.name.find("broadleaf") != std::string::npos ||
                               m.name.find("shrub") != std::string::npos;
             if (!tree || (leavesOnly && m.material < 0)) continue;
             for (const glm::mat4& t : b.worldFromObject) spots.emplace_back(t[3].x, t[3].z);

@@ -193,6 +193,53 @@ TEST_F(MaterialsTest, EveryBrokenImageIsOneLineNamingTheFileAndTheImage) {
     EXPECT_NE(cutoff.error().find("alphaCutoff"), std::string::npos) << cutoff.error();
 }
 
+TEST_F(MaterialsTest, ExportedGlbLoadsBackWithItsMaterialsTexturesAndUvs) {
+    scene::Scene s;
+    scene::Mesh plain, card;
+    scene::addBox(plain, glm::mat4(1.0f), {1.0f, 1.0f, 1.0f}, glm::vec3(0.5f, 0.25f, 0.1f));
+    scene::addCard(card, glm::mat4(1.0f), {0.0f, 1.0f}, {0.5f, 0.5f}, glm::vec3(0.5f, 0.8f, 0.4f));
+    card.material = 0;
+    for (scene::Mesh* m : {&plain, &card}) m->computeBounds();
+    s.meshes = {plain, card};
+    s.batches = {{0, {glm::mat4(1.0f)}, false}, {1, {glm::translate(glm::mat4(1.0f), {3.0f, 0.0f, 0.0f})}, false}};
+    scene::Texture texture;
+    texture.image = checkerAlpha(16, 4);
+    texture.wrapS = scene::TextureWrap::ClampToEdge;
+    s.textures = {texture};
+    s.materials = {{.name = "leaf",
+                    .baseColorFactor = {0.5f, 1.0f, 1.0f, 0.9f},
+                    .baseColorTexture = 0,
+                    .alphaMode = scene::AlphaMode::Mask,
+                    .alphaCutoff = 0.4f,
+                    .doubleSided = true}};
+    const fs::path file = m_dir / "exported.glb";
+    ASSERT_TRUE(scene::exportScene(s, file));
+    auto loaded = scene::loadScene(file);
+    ASSERT_TRUE(loaded) << loaded.error();
+    ASSERT_EQ(loaded->materials.size(), 1u);
+    ASSERT_EQ(loaded->textures.size(), 1u);
+    const scene::Material& m = loaded->materials[0];
+    EXPECT_EQ(m.name, "leaf");
+    EXPECT_EQ(m.alphaMode, scene::AlphaMode::Mask);
+    EXPECT_FLOAT_EQ(m.alphaCutoff, 0.4f);
+    EXPECT_TRUE(m.doubleSided);
+    EXPECT_EQ(m.baseColorFactor, glm::vec4(0.5f, 1.0f, 1.0f, 0.9f));
+    EXPECT_EQ(loaded->textures[0].image.rgba, texture.image.rgba);
+    EXPECT_EQ(loaded->textures[0].wrapS, scene::TextureWrap::ClampToEdge);
+    ASSERT_EQ(loaded->meshes.size(), 2u);
+    const scene::Mesh& plainBack = loaded->meshes[0];
+    const scene::Mesh& cardBack = loaded->meshes[1];
+    EXPECT_EQ(plainBack.material, -1);
+    EXPECT_EQ(cardBack.material, 0);
+    ASSERT_EQ(cardBack.vertices.size(), card.vertices.size());
+    for (size_t v = 0; v < card.vertices.size(); ++v) {
+        EXPECT_EQ(cardBack.vertices[v].uv, card.vertices[v].uv);
+        EXPECT_NEAR(glm::distance(cardBack.vertices[v].albedo, card.vertices[v].albedo), 0.0f, 1e-6f); // factor once
+        EXPECT_NEAR(glm::distance(cardBack.vertices[v].position, card.vertices[v].position + glm::vec3(3, 0, 0)), 0.0f,
+                    1e-6f);
+    }
+}
+
 TEST(TextureSamplingTest, Level0LookupIsGlsBilinearWithItsWrapModes) {
     scene::Texture t;
     t.image = scene::Image(2, 1);
