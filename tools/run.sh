@@ -3,7 +3,9 @@
 # view with the default set-up — the six sunlit views and the night and dusk views with spot and
 # point lights — measure each against ray-traced truth and write one page, out/index.html (per
 # view the frame, the rendered and ray-traced shadows, the error and aliasing maps, the figures
-# explained) with the figures as JSON beside it (out/figures.json).
+# explained) with the figures as JSON beside it (out/figures.json); then the same for the six
+# sunlit views of the leafy forest (--forest leafy: branches and alpha-tested leaf cards), in
+# out/leafy/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 tools/build.sh
@@ -12,4 +14,8 @@ shadowkit=build/apps/shadowkit/shadowkit
 echo "== eval, every standard view (sunlit, then with spot and point lights)" >&2
 "$shadowkit" eval --views paper,perpendicular,into-sun,sun-behind,noon,aerial,lamp,torch,village \
     --json out/figures.json --report out/index.html
-echo "open $(pwd)/out/index.html" >&2
+echo "== eval, the leafy forest's sunlit views" >&2
+mkdir -p out/leafy
+"$shadowkit" eval --forest leafy --views paper,perpendicular,into-sun,sun-behind,noon,aerial \
+    --json out/leafy/figures.json --report out/leafy/index.html
+echo "open $(pwd)/out/index.html (the leafy forest: $(pwd)/out/leafy/index.html)" >&2

@@ -208,13 +208,15 @@ core::Result<std::unique_ptr<Renderer>> Renderer::create(const scene::Scene& sce
     if (!moments) return moments.errorInfo();
     r.moments = std::move(moments).value();
     // Levels of detail of every mesh, for the camera and for shadow maps (meshoptimizer). An
-    // alpha-tested mesh keeps its one level: a simplifier moves positions under fixed uvs
-    // (and the shadow chain's vertex clustering joins vertices of different cards), so the
-    // alpha a simplified card shows would no longer be the leaf's.
+    // alpha-tested mesh keeps its one level unless it brings its own (leaf cards: fewer, larger
+    // cards): a simplifier moves positions under fixed uvs (and the shadow chain's vertex
+    // clustering joins vertices of different cards), so a simplified card would no longer show
+    // the leaf.
     std::vector<scene::MeshLods> lods;
     for (const scene::Mesh& mesh : scene.meshes) {
         const scene::Material* material = scene.materialOf(mesh);
-        lods.push_back(scene::buildLods(mesh, {.maxLevels = material && material->alphaTested() ? 1 : 4}));
+        const bool keepWhole = material && material->alphaTested() && mesh.authoredLods.empty();
+        lods.push_back(scene::buildLods(mesh, {.maxLevels = keepWhole ? 1 : 4}));
     }
     r.scene.emplace(scene, lods);
     r.visibility.emplace(scene, lods);

@@ -155,15 +155,53 @@ void addBranch(Mesh& mesh, glm::vec3 from, glm::vec3 to, float r0, float r1, int
 
 // A card of `size` centred at `centre`: its face turned by yaw about y, then tilted by `tilt`
 // about its own horizontal axis, its up axis rolled by `roll` within its plane.
-void addLeafCard(Mesh& mesh, glm::vec3 centre, float size, float yaw, float tilt, float roll,
+struct Card {
+    glm::vec3 centre;
+    float size, yaw, tilt, roll;
+    std::pair<glm::vec2, glm::vec2> cell;
+};
+
+void addLeafCard(std::vector<Card>& cards, glm::vec3 centre, float size, float yaw, float tilt, float roll,
                  std::pair<glm::vec2, glm::vec2> cell) {
-    glm::mat4 m = glm::translate(glm::mat4(1.0f), centre);
-    m = glm::rotate(m, yaw, {0, 1, 0});
-    m = glm::rotate(m, tilt, {1, 0, 0});
-    m = glm::rotate(m, roll, {0, 0, 1});
-    m = glm::scale(m, glm::vec3(size));
+    cards.push_back({centre, size, yaw, tilt, roll, cell});
+}
+
+// The card's quad into `mesh`, `grow` times its size.
+void emitCard(Mesh& mesh, const Card& card, float grow) {
+    glm::mat4 m = glm::translate(glm::mat4(1.0f), card.centre);
+    m = glm::rotate(m, card.yaw, {0, 1, 0});
+    m = glm::rotate(m, card.tilt, {1, 0, 0});
+    m = glm::rotate(m, card.roll, {0, 0, 1});
+    m = glm::scale(m, glm::vec3(card.size * grow));
     m = glm::translate(m, {0.0f, -0.5f, 0.0f});
-    addCard(mesh, m, cell.first, cell.second, glm::vec3(1.0f));
+    addCard(mesh, m, card.cell.first, card.cell.second, glm::vec3(1.0f));
+}
+
+// Level 0: every card. Coarser levels (kCardLevels of them): every 2^k-th card, √(2^k) times
+// larger, so the leaves' total area — and with it, on average, what a canopy covers — stays
+// while the cards halve; a card-aware level of detail (closed-mesh simplifiers cannot reduce a
+// card soup). Each level's error is half its mean card size: how far, in object metres, its
+// coverage moves from the full canopy's, the bound a pass compares against its pixel or texel.
+constexpr int kCardLevels = 2;
+void emitCards(Mesh& leaves, const std::vector<Card>& cards) {
+    for (const Card& card : cards) emitCard(leaves, card, 1.0f);
+    for (int level = 1; level <= kCardLevels; ++level) {
+        const size_t stride = size_t(1) << level;
+        const float grow = std::sqrt(float(stride));
+        const auto firstIndex = leaves.indices.size();
+        double sizes = 0.0;
+        size_t kept = 0;
+        for (size_t c = 0; c < cards.size(); c += stride, ++kept) {
+            emitCard(leaves, cards[c], grow);
+            sizes += cards[c].size * grow;
+        }
+        // addCard appended to Mesh::indices: those triangles are this level's, not level 0's.
+        AuthoredLod lod;
+        lod.indices.assign(leaves.indices.begin() + std::ptrdiff_t(firstIndex), leaves.indices.end());
+        leaves.indices.resize(firstIndex);
+        lod.objectError = kept > 0 ? float(0.5 * sizes / double(kept)) : 0.0f;
+        leaves.authoredLods.push_back(std::move(lod));
+    }
 }
 
 // A point in the unit ball, uniform (rejection sampling).
@@ -176,7 +214,7 @@ glm::vec3 inBall(SplitMix64& rng) {
 
 // Trunk to 0.42, five boughs up and out, four twigs on each; 2,600 cards clumped round the
 // twigs' ends into a crown of about 0.45 radius centred at 0.68.
-void makeBroadleaf(LeafyTree& tree, SplitMix64& rng) {
+void makeBroadleaf(LeafyTree& tree, std::vector<Card>& cards, SplitMix64& rng) {
     const glm::vec3 fork(0.0f, 0.42f, 0.0f);
     addBranch(tree.wood, {0, 0, 0}, fork, 0.03f, 0.022f, 12);
     std::vector<glm::vec3> tips;
@@ -195,17 +233,17 @@ void makeBroadleaf(LeafyTree& tree, SplitMix64& rng) {
             tips.push_back(tip);
         }
     }
-    const int cards = 2600;
-    for (int c = 0; c < cards; ++c) {
+    const int count = 2600;
+    for (int c = 0; c < count; ++c) {
         const glm::vec3 centre = tips[size_t(c) % tips.size()] + 0.11f * inBall(rng);
-        addLeafCard(tree.leaves, centre, uniform(rng, 0.06f, 0.085f), uniform(rng, 0, 2 * kPi),
-                    uniform(rng, -1.1f, 1.1f), uniform(rng, -0.6f, 0.6f), speciesCell(TreeSpecies::Broadleaf, rng));
+        addLeafCard(cards, centre, uniform(rng, 0.06f, 0.085f), uniform(rng, 0, 2 * kPi), uniform(rng, -1.1f, 1.1f),
+                    uniform(rng, -0.6f, 0.6f), speciesCell(TreeSpecies::Broadleaf, rng));
     }
 }
 
 // A trunk to the top and fourteen whorls of six drooping branches, shorter towards the top
 // (a cone); 30 needle sprays along each branch, lying nearly flat.
-void makeConifer(LeafyTree& tree, SplitMix64& rng) {
+void makeConifer(LeafyTree& tree, std::vector<Card>& cards, SplitMix64& rng) {
     addBranch(tree.wood, {0, 0, 0}, {0, 1.0f, 0}, 0.022f, 0.003f, 12);
     const int whorls = 14, perWhorl = 6;
     for (int w = 0; w < whorls; ++w) {
@@ -221,7 +259,7 @@ void makeConifer(LeafyTree& tree, SplitMix64& rng) {
                 const float along = 0.15f + 0.85f * uniform(rng, 0.0f, 1.0f);
                 const glm::vec3 centre = glm::mix(from, to, along) + 0.015f * inBall(rng);
                 // Flat sprays whose up axis runs out along the branch.
-                addLeafCard(tree.leaves, centre, uniform(rng, 0.04f, 0.06f), -yaw + 0.5f * kPi,
+                addLeafCard(cards, centre, uniform(rng, 0.04f, 0.06f), -yaw + 0.5f * kPi,
                             -0.5f * kPi + uniform(rng, -0.35f, 0.35f), uniform(rng, -0.5f, 0.5f),
                             speciesCell(TreeSpecies::Conifer, rng));
             }
@@ -230,7 +268,7 @@ void makeConifer(LeafyTree& tree, SplitMix64& rng) {
 }
 
 // Eight stems fanning out from the ground and 2,500 cards in a dome about 0.7 wide and 1 high.
-void makeShrub(LeafyTree& tree, SplitMix64& rng) {
+void makeShrub(LeafyTree& tree, std::vector<Card>& cards, SplitMix64& rng) {
     for (int s = 0; s < 8; ++s) {
         const float yaw = 2.0f * kPi * (float(s) + uniform(rng, -0.3f, 0.3f)) / 8.0f;
         const float rise = uniform(rng, 0.7f, 1.2f);
@@ -241,7 +279,7 @@ void makeShrub(LeafyTree& tree, SplitMix64& rng) {
         glm::vec3 p = inBall(rng);
         p.y = std::abs(p.y); // the upper half: a dome on the ground
         const glm::vec3 centre(0.7f * p.x, 0.08f + 0.84f * p.y, 0.7f * p.z);
-        addLeafCard(tree.leaves, centre, uniform(rng, 0.1f, 0.14f), uniform(rng, 0, 2 * kPi), uniform(rng, -1.2f, 1.2f),
+        addLeafCard(cards, centre, uniform(rng, 0.1f, 0.14f), uniform(rng, 0, 2 * kPi), uniform(rng, -1.2f, 1.2f),
                     uniform(rng, -0.8f, 0.8f), speciesCell(TreeSpecies::Shrub, rng));
     }
 }
@@ -269,21 +307,23 @@ Texture makeLeafAtlas() {
 
 LeafyTree makeLeafyTree(TreeSpecies species, uint64_t seed) {
     LeafyTree tree;
+    std::vector<Card> cards;
     SplitMix64 rng(seed * 0x2545f4914f6cdd1dull + uint64_t(species) + 1);
     switch (species) {
     case TreeSpecies::Broadleaf:
         tree.wood.name = "broadleaf wood", tree.leaves.name = "broadleaf leaves";
-        makeBroadleaf(tree, rng);
+        makeBroadleaf(tree, cards, rng);
         break;
     case TreeSpecies::Conifer:
         tree.wood.name = "conifer wood", tree.leaves.name = "conifer needles";
-        makeConifer(tree, rng);
+        makeConifer(tree, cards, rng);
         break;
     case TreeSpecies::Shrub:
         tree.wood.name = "shrub wood", tree.leaves.name = "shrub leaves";
-        makeShrub(tree, rng);
+        makeShrub(tree, cards, rng);
         break;
     }
+    emitCards(tree.leaves, cards);
     tree.wood.computeBounds();
     tree.leaves.computeBounds();
     return tree;

@@ -60,6 +60,18 @@ MeshLods buildLods(const Mesh& mesh, const LodOptions& o) {
         out.shadow.push_back({});
         return out;
     }
+    if (!mesh.authoredLods.empty()) { // the mesh's own levels, for both passes
+        out.camera.push_back({0, static_cast<uint32_t>(mesh.indices.size()), 0.0f});
+        out.indices = mesh.indices;
+        for (const AuthoredLod& level : mesh.authoredLods) {
+            if (static_cast<int>(out.camera.size()) >= o.maxLevels) break;
+            out.camera.push_back({static_cast<uint32_t>(out.indices.size()),
+                                  static_cast<uint32_t>(level.indices.size()), level.objectError});
+            out.indices.insert(out.indices.end(), level.indices.begin(), level.indices.end());
+        }
+        out.shadow = out.camera;
+        return out;
+    }
     const float scale = meshopt_simplifyScale(&mesh.vertices[0].position.x, mesh.vertices.size(), sizeof(Vertex));
     appendChain(mesh, mesh.indices, o, scale, false, out, out.camera);
     if (mesh.triangleCount() > o.maxTriangles) { // one level: both passes draw the same triangles

@@ -2,6 +2,7 @@
 // second standard scene.
 #include "shadowkit/scene/forest.h"
 #include "shadowkit/scene/leafy_trees.h"
+#include "shadowkit/scene/mesh_lod.h"
 #include "shadowkit/scene/texture_mips.h"
 
 #include <gtest/gtest.h>
@@ -44,8 +45,10 @@ TEST(LeafyTreesTest, EachSpeciesIsFiveToTwentyThousandTrianglesOfWoodAndCardsAbo
         EXPECT_GE(triangles, 5000u) << k;
         EXPECT_LE(triangles, 20000u) << k;
         EXPECT_GT(tree.wood.triangleCount(), 100u) << k << ": a trunk, boughs or stems";
-        EXPECT_EQ(tree.leaves.vertices.size(), 2 * tree.leaves.triangleCount())
-            << k << ": cards, 4 vertices and 2 triangles each";
+        // Cards, 4 vertices and 2 triangles each, every level's in the vertex buffer.
+        size_t lodTriangles = 0;
+        for (const AuthoredLod& lod : tree.leaves.authoredLods) lodTriangles += lod.indices.size() / 3;
+        EXPECT_EQ(tree.leaves.vertices.size(), 2 * (tree.leaves.triangleCount() + lodTriangles)) << k;
         EXPECT_NEAR(tree.wood.osBounds.min.y, 0.0, 0.02) << k << ": standing on its base";
         EXPECT_GT(std::max(tree.wood.osBounds.max.y, tree.leaves.osBounds.max.y), 0.85) << k;
         EXPECT_LT(std::max(tree.wood.osBounds.max.y, tree.leaves.osBounds.max.y), 1.15) << k;
@@ -59,6 +62,40 @@ TEST(LeafyTreesTest, EachSpeciesIsFiveToTwentyThousandTrianglesOfWoodAndCardsAbo
             ASSERT_LE(cell.y, lastRow) << k;
             ASSERT_NEAR(std::abs(uvMax.x - uvMin.x), 1.0f / kLeafAtlasCells, 1e-6f);
         }
+    }
+}
+
+TEST(LeafyTreesTest, CardLevelsHalveTheCardsAndKeepTheLeafArea) {
+    for (int k = 0; k < kTreeSpeciesCount; ++k) {
+        const LeafyTree tree = makeLeafyTree(static_cast<TreeSpecies>(k), 1);
+        // A card's area from its triangles.
+        auto area = [&](const std::vector<uint32_t>& indices) {
+            double sum = 0.0;
+            for (size_t i = 0; i + 2 < indices.size(); i += 3) {
+                const glm::vec3 a = tree.leaves.vertices[indices[i]].position,
+                                b = tree.leaves.vertices[indices[i + 1]].position,
+                                c = tree.leaves.vertices[indices[i + 2]].position;
+                sum += 0.5 * glm::length(glm::cross(b - a, c - a));
+            }
+            return sum;
+        };
+        ASSERT_EQ(tree.leaves.authoredLods.size(), 2u) << k;
+        const double full = area(tree.leaves.indices);
+        size_t previous = tree.leaves.indices.size();
+        float previousError = 0.0f;
+        for (const AuthoredLod& lod : tree.leaves.authoredLods) {
+            EXPECT_NEAR(double(lod.indices.size()), 0.5 * double(previous), 6.0) << k; // half the cards (rounded up)
+            EXPECT_NEAR(area(lod.indices) / full, 1.0, 0.05) << k;                     // the same leaf area
+            EXPECT_GT(lod.objectError, previousError) << k;                            // coarser, larger error
+            for (uint32_t i : lod.indices) ASSERT_LT(i, tree.leaves.vertices.size());
+            previous = lod.indices.size();
+            previousError = lod.objectError;
+        }
+        // The levels build into two chains that are the same (mesh_lod.h).
+        const MeshLods lods = buildLods(tree.leaves);
+        ASSERT_EQ(lods.camera.size(), 3u);
+        EXPECT_EQ(lods.shadow.size(), 3u);
+        EXPECT_EQ(lods.camera[2].indexCount, tree.leaves.authoredLods[1].indices.size());
     }
 }
 

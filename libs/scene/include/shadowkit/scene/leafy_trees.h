@@ -28,7 +28,9 @@ inline constexpr int kLeafAtlasCells = 4; // per side
 // One tree of a species, standing at the origin with its base at y = 0 and its top at about
 // y = 1 (the forest scales it to a height), both meshes in the same object space. `leaves`
 // carries uvs into makeLeafAtlas()'s cells of its species; its `material` is left at -1 for the
-// caller to set (the scene's index of the leaves' material). Deterministic for (species, seed).
+// caller to set (the scene's index of the leaves' material), and two authored levels of detail
+// (Mesh::authoredLods): every second card √2 larger, every fourth twice as large — the leaves'
+// area kept while the cards halve. Deterministic for (species, seed).
 struct LeafyTree {
     Mesh wood;
     Mesh leaves;

@@ -37,7 +37,8 @@ struct LodOptions {
     size_t maxTriangles = 65536;
 };
 
-// Deterministic for a given mesh and options.
+// Deterministic for a given mesh and options. A mesh with authored levels (Mesh::authoredLods)
+// gets those, the same for both chains, up to maxLevels.
 MeshLods buildLods(const Mesh& mesh, const LodOptions& options = {});
 
 } // namespace shadowkit::scene

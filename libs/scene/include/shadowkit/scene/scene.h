@@ -24,12 +24,20 @@ struct Vertex {
     glm::vec2 uv{0.0f}; // the base colour texture's coordinates (glTF TEXCOORD_n of its texCoord)
 };
 
+// A coarser version of a mesh made with it (scene/mesh_lod.h uses it instead of simplifying):
+// leaf cards do not simplify like closed surfaces, so a leafy tree brings fewer, larger cards.
+struct AuthoredLod {
+    std::vector<uint32_t> indices; // over the mesh's vertices (which hold every level's)
+    float objectError = 0.0f;      // object-space metres, as scene::LodLevel::objectError
+};
+
 struct Mesh {
     std::string name;
     std::vector<Vertex> vertices;
-    std::vector<uint32_t> indices; // triangle list, counter-clockwise front faces
-    core::Aabb osBounds;           // object-space bounds, kept by computeBounds()
-    int32_t material = -1;         // index into Scene::materials; -1: opaque, vertex colours only
+    std::vector<uint32_t> indices;         // triangle list, counter-clockwise front faces; the full mesh
+    core::Aabb osBounds;                   // object-space bounds, kept by computeBounds()
+    int32_t material = -1;                 // index into Scene::materials; -1: opaque, vertex colours only
+    std::vector<AuthoredLod> authoredLods; // coarser after coarser; empty: buildLods simplifies
 
     void computeBounds();
     size_t triangleCount() const { return indices.size() / 3; }
