@@ -28,6 +28,7 @@ struct BenchArgs {
     TechniqueOptions technique;
     RenderOptions render;
     std::string trees = "1000,10000,100000", views = "perpendicular,aerial,paper", json, report;
+    std::string forest = "simple"; // or leafy: branches and alpha-tested leaf cards
     uint64_t seed = 1;
     double terrainSize = 1024.0;
     int terrainResolution = 256;
@@ -102,6 +103,7 @@ int runBench(const BenchArgs& args) {
         .command = invocationWithout({"--report"}, {})};
     for (const int trees : *counts) {
         scene::ForestOptions forestOptions;
+        forestOptions.kind = args.forest == "leafy" ? scene::ForestKind::Leafy : scene::ForestKind::Simple;
         forestOptions.seed = args.seed;
         forestOptions.trees = trees;
         // --same-density: the terrain grows with the count so trees stand as densely as
@@ -114,8 +116,8 @@ int runBench(const BenchArgs& args) {
         const scene::Scene forest = scene::makeForest(forestOptions);
         const double buildSeconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - buildStart).count();
-        fmt::print(stderr, "forest: {} trees on {:.0f} m, {:.2f} M triangles, built in {:.2f} s\n", trees,
-                   forestOptions.terrainSize, static_cast<double>(forest.triangleCount()) * 1e-6, buildSeconds);
+        fmt::print(stderr, "forest ({}): {} trees on {:.0f} m, {:.2f} M triangles, built in {:.2f} s\n", args.forest,
+                   trees, forestOptions.terrainSize, static_cast<double>(forest.triangleCount()) * 1e-6, buildSeconds);
         auto renderer = gl::Renderer::create(forest);
         if (!renderer) return fail(renderer.errorInfo());
 
@@ -265,6 +267,10 @@ Command addBenchCommand(CLI::App& app) {
     cmd->add_option("--trees", args->trees, "forest sizes to measure, comma-separated")->capture_default_str();
     cmd->add_option("--views", args->views, "standard views, comma-separated")->capture_default_str();
     cmd->add_option("--frames", args->frames, "frames per view: min / median / max over them")->capture_default_str();
+    cmd->add_option("--forest", args->forest,
+                    "forest: its trees, simple (opaque blobs) or leafy (alpha-tested leaf cards)")
+        ->check(CLI::IsMember({"simple", "leafy"}))
+        ->capture_default_str();
     cmd->add_option("--seed", args->seed, "forest: random seed")->capture_default_str();
     cmd->add_option("--terrain-size", args->terrainSize, "forest: terrain side in metres")->capture_default_str();
     cmd->add_option("--terrain-resolution", args->terrainResolution, "forest: terrain quads per side")
