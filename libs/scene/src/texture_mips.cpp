@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 #include <glm/glm.hpp>
 
@@ -52,31 +53,37 @@ Image toImage(const FloatLevel& level, float alphaScale) {
     return image;
 }
 
-} // namespace
-
-double sampledAlphaCoverage(const Image& image, float cutoff) {
-    const int w = image.width, h = image.height;
-    if (w <= 0 || h <= 0) return 0.0;
-    auto alpha = [&](int x, int y) {
-        return float(image.rgba[(size_t(std::clamp(y, 0, h - 1)) * size_t(w) + size_t(std::clamp(x, 0, w - 1))) * 4 +
-                                3]) /
-               255.0f;
+// The alpha a bilinear lookup reads at 2 × 2 points inside every texel of a w × h level (texel
+// units x + ¼ and x + ¾, centres at x + ½), each from its four nearest texels with clamped
+// edges; `alpha(texel)` gives a texel's alpha by its row-major index.
+template <class Alpha>
+std::vector<float> bilinearSamples(int w, int h, Alpha alpha) {
+    auto at = [&](int x, int y) {
+        return alpha(size_t(std::clamp(y, 0, h - 1)) * size_t(w) + size_t(std::clamp(x, 0, w - 1)));
     };
-    size_t covered = 0;
+    std::vector<float> samples;
+    samples.reserve(size_t(w) * size_t(h) * 4);
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x)
             for (int sy = 0; sy < 2; ++sy)
                 for (int sx = 0; sx < 2; ++sx) {
-                    // p = sample − ½: the texel below-left of the sample and the fraction past it.
-                    const float px = float(x) + 0.25f + 0.5f * float(sx) - 0.5f,
-                                py = float(y) + 0.25f + 0.5f * float(sy) - 0.5f;
-                    const int x0 = int(std::floor(px)), y0 = int(std::floor(py));
-                    const float fx = px - float(x0), fy = py - float(y0);
-                    const float a = (1 - fy) * ((1 - fx) * alpha(x0, y0) + fx * alpha(x0 + 1, y0)) +
-                                    fy * ((1 - fx) * alpha(x0, y0 + 1) + fx * alpha(x0 + 1, y0 + 1));
-                    covered += a >= cutoff;
+                    // The texel below-left of the sample (sample − ½) and the fraction past it: ¾ or ¼.
+                    const int x0 = x - 1 + sx, y0 = y - 1 + sy;
+                    const float fx = sx == 0 ? 0.75f : 0.25f, fy = sy == 0 ? 0.75f : 0.25f;
+                    samples.push_back((1 - fy) * ((1 - fx) * at(x0, y0) + fx * at(x0 + 1, y0)) +
+                                      fy * ((1 - fx) * at(x0, y0 + 1) + fx * at(x0 + 1, y0 + 1)));
                 }
-    return double(covered) / (4.0 * double(w) * double(h));
+    return samples;
+}
+
+} // namespace
+
+double sampledAlphaCoverage(const Image& image, float cutoff) {
+    if (image.width <= 0 || image.height <= 0) return 0.0;
+    const std::vector<float> samples = bilinearSamples(
+        image.width, image.height, [&](size_t texel) { return float(image.rgba[4 * texel + 3]) / 255.0f; });
+    const auto covered = std::count_if(samples.begin(), samples.end(), [&](float a) { return a >= cutoff; });
+    return double(covered) / double(samples.size());
 }
 
 double alphaCoverage(const Image& image, float cutoff) {
@@ -97,15 +104,21 @@ std::vector<Image> buildMipChain(const Image& level0, std::optional<float> alpha
         level = halve(level);
         float scale = 1.0f;
         if (alphaCutoff && *alphaCutoff > 0.0f) {
-            // Bisection for the smallest scale whose sampled coverage reaches level 0's. Coverage
-            // of the rounded bytes (what the GPU will compare), not of the floats.
-            float lo = 0.0f, hi = 1.0f;
-            while (sampledAlphaCoverage(toImage(level, hi), *alphaCutoff) < target && hi < 256.0f) hi *= 2.0f;
-            for (int i = 0; i < 16; ++i) {
-                const float mid = 0.5f * (lo + hi);
-                (sampledAlphaCoverage(toImage(level, mid), *alphaCutoff) < target ? lo : hi) = mid;
+            // Interpolation is linear, so scaling alpha scales every sample: the scale that covers
+            // the k = ⌈target · n⌉ highest samples puts the k-th highest at the cutoff (a selection,
+            // not a search). Half a byte above it, so rounding to bytes does not undo it. Texels that
+            // clamp at alpha 1 can pull a sample next to them back under the cutoff: what that costs
+            // is bounded by TextureMipsTest (the bytes' sampled coverage, within 3 points).
+            std::vector<float> samples =
+                bilinearSamples(level.width, level.height, [&](size_t texel) { return level.texels[texel].a; });
+            const auto covered = static_cast<size_t>(std::ceil(target * double(samples.size()) - 1e-9));
+            if (covered == 0) {
+                scale = 0.0f;
+            } else {
+                const auto kth = samples.begin() + std::ptrdiff_t(covered - 1);
+                std::nth_element(samples.begin(), kth, samples.end(), std::greater<float>());
+                scale = *kth > 0.0f ? std::min((*alphaCutoff + 0.5f / 255.0f) / *kth, 256.0f) : 256.0f;
             }
-            scale = hi;
         }
         chain.push_back(toImage(level, scale));
     }

@@ -5,8 +5,9 @@
 // alpha 1 become a level of alpha ≈ 0.4 everywhere, below a cutoff of 0.5, and the canopy
 // of a distant tree — or of any tree in a shadow map whose texels are larger than its
 // leaves — vanishes. Each level's alpha is therefore scaled by the factor s that makes its
-// coverage at the cutoff equal to level 0's (found by bisection; coverage grows monotonically
-// with s). Colour is box-filtered as usual.
+// coverage at the cutoff equal to level 0's (a selection: bilinear interpolation is linear, so
+// the scale putting the right quantile of the level's samples at the cutoff). Colour is
+// box-filtered as usual.
 //
 // Deviation: Castaño counts stored texels. We count what a bilinear lookup covers
 // (sampledAlphaCoverage): a sparse canopy's isolated covered texels shrink under
