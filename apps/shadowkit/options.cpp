@@ -161,6 +161,24 @@ core::Result<scene::ResolvedView> ViewOptions::resolve(const scene::Scene& scene
         *targets[i] = *v;
     }
     if (fov) cam.fovYDegrees = *fov;
+    if (out.framed && (!eye.empty() || !dir.empty()) && !zNear && !zFar && glm::length(cam.wsDirection) > 0.0) {
+        // The framing's planes fitted its own eye: from another eye (or along another direction)
+        // they would cut the scene away. Refit them to the scene's box seen from this camera: its
+        // corners' depths, a margin each way, the near plane no closer than 1/1000 of the far.
+        const core::Vec3 forward = glm::normalize(cam.wsDirection);
+        double nearest = INFINITY, farthest = 0.0;
+        for (const core::Vec3& corner : sceneData.wsBounds().corners()) {
+            const double depth = glm::dot(corner - cam.wsEye, forward);
+            nearest = std::min(nearest, depth), farthest = std::max(farthest, depth);
+        }
+        if (farthest > 0.0) {
+            cam.zFar = 1.1 * farthest;
+            cam.zNear = std::max(0.9 * nearest, 1e-3 * cam.zFar);
+            out.fogDensity = 0.3 / cam.zFar;
+            fmt::print(stderr, "view {}: the loaded scene from the given camera: near {:.3g} m, far {:.3g} m\n", view,
+                       cam.zNear, cam.zFar);
+        }
+    }
     if (zNear) cam.zNear = *zNear;
     if (zFar) cam.zFar = *zFar;
     if (core::Status s = cam.validate(); !s) return s.errorInfo();

@@ -236,6 +236,17 @@ if(CASE STREQUAL "gl-render")
     message(SEND_ERROR "render: failed or wrote no image: ${err}")
   endif()
 endif()
+# A loaded scene viewed from a given eye: the framing's planes are refitted to it (they fitted the
+# framing's own eye, 100 m nearer, and cut the scene away: far 21 m).
+if(CASE STREQUAL "framed-scene-eye")
+  get_filename_component(source_dir "${CMAKE_CURRENT_LIST_DIR}/../../.." ABSOLUTE)
+  execute_process(COMMAND ${SHADOWKIT} setup --scene "${source_dir}/tests/data/pillar_on_plate.gltf"
+                          --eye 2000,108.56,-2902.04 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  string(JSON far ERROR_VARIABLE json_error GET "${out}" inputs camera far)
+  if(NOT rc EQUAL 0 OR json_error OR far LESS 110)
+    message(SEND_ERROR "setup --scene with --eye: far plane ${far} should reach the scene 110-125 m away: ${err}")
+  endif()
+endif()
 # The leafy forest renders, and an unknown forest kind is named.
 if(CASE STREQUAL "gl-render-leafy")
   execute_process(COMMAND ${SHADOWKIT} render --forest leafy --trees 8 --terrain-size 60 --terrain-resolution 8
