@@ -80,6 +80,16 @@ fs::path writeQuadGltf(const fs::path& dir, const std::string& material, const s
     return file;
 }
 
+// Every field of a loaded material against the one it should be.
+void expectMaterial(const scene::Material& actual, const scene::Material& expected) {
+    EXPECT_EQ(actual.name, expected.name);
+    EXPECT_EQ(actual.alphaMode, expected.alphaMode);
+    EXPECT_FLOAT_EQ(actual.alphaCutoff, expected.alphaCutoff);
+    EXPECT_EQ(actual.doubleSided, expected.doubleSided);
+    EXPECT_EQ(actual.baseColorFactor, expected.baseColorFactor);
+    EXPECT_EQ(actual.baseColorTexture, expected.baseColorTexture);
+}
+
 class MaterialsTest : public ::testing::Test {
 protected:
     void SetUp() override {
@@ -104,13 +114,12 @@ TEST_F(MaterialsTest, MaskedTexturedQuadLoadsWithItsMaterialSamplerAndTransforme
     ASSERT_TRUE(loaded) << loaded.error();
     ASSERT_EQ(loaded->materials.size(), 1u);
     ASSERT_EQ(loaded->textures.size(), 1u);
-    const scene::Material& m = loaded->materials[0];
-    EXPECT_EQ(m.name, "leaf");
-    EXPECT_EQ(m.alphaMode, scene::AlphaMode::Mask);
-    EXPECT_FLOAT_EQ(m.alphaCutoff, 0.3f);
-    EXPECT_TRUE(m.doubleSided);
-    EXPECT_EQ(m.baseColorFactor, glm::vec4(1, 0.5f, 1, 0.8f));
-    EXPECT_EQ(m.baseColorTexture, 0);
+    expectMaterial(loaded->materials[0], {.name = "leaf",
+                                          .baseColorFactor = {1, 0.5f, 1, 0.8f},
+                                          .baseColorTexture = 0,
+                                          .alphaMode = scene::AlphaMode::Mask,
+                                          .alphaCutoff = 0.3f,
+                                          .doubleSided = true});
     const scene::Texture& t = loaded->textures[0];
     EXPECT_EQ(t.image.width, 8);
     EXPECT_EQ(t.image.rgba, checkerAlpha(8, 2).rgba); // PNG is lossless
@@ -218,12 +227,7 @@ TEST_F(MaterialsTest, ExportedGlbLoadsBackWithItsMaterialsTexturesAndUvs) {
     ASSERT_TRUE(loaded) << loaded.error();
     ASSERT_EQ(loaded->materials.size(), 1u);
     ASSERT_EQ(loaded->textures.size(), 1u);
-    const scene::Material& m = loaded->materials[0];
-    EXPECT_EQ(m.name, "leaf");
-    EXPECT_EQ(m.alphaMode, scene::AlphaMode::Mask);
-    EXPECT_FLOAT_EQ(m.alphaCutoff, 0.4f);
-    EXPECT_TRUE(m.doubleSided);
-    EXPECT_EQ(m.baseColorFactor, glm::vec4(0.5f, 1.0f, 1.0f, 0.9f));
+    expectMaterial(loaded->materials[0], s.materials[0]);
     EXPECT_EQ(loaded->textures[0].image.rgba, texture.image.rgba);
     EXPECT_EQ(loaded->textures[0].wrapS, scene::TextureWrap::ClampToEdge);
     ASSERT_EQ(loaded->meshes.size(), 2u);
