@@ -358,19 +358,26 @@ int skVirtualLevelRule(SkVirtualMaps v, float viewDepth) {
 // first coarser one with the receiver's page resident (a page not resident — the pool full, or
 // the rule's level not reaching as far as a narrow view — falls back to the coarser level, which
 // the marking always requests too). False when no level has it: lit, as outside any map.
+//
+// The loop runs on a local and assigns `level` once, at the return: NVIDIA's GLSL compiler
+// (580.159) returned the loop's out parameter one increment on when the loop ran on it — every
+// receiver read its page with the next coarser level's matrix.
 bool skVirtualPageFrom(usampler2D pageTable, SkVirtualMaps v, int first, vec3 ws, out int level, out vec4 atlasFromMap) {
-    for (level = first; level < v.levels; ++level) {
-        const vec4 t = SK_VIRTUAL_LEVEL_FROM_WORLD(level) * vec4(ws, 1.0);
+    level = v.levels - 1;
+    atlasFromMap = vec4(0.0);
+    for (int l = first; l < v.levels; ++l) {
+        const vec4 t = SK_VIRTUAL_LEVEL_FROM_WORLD(l) * vec4(ws, 1.0);
         const vec2 uv = t.xy / t.w;
         if (any(lessThan(uv, vec2(0.0))) || any(greaterThanEqual(uv, vec2(1.0)))) continue;
         const ivec2 page = min(ivec2(uv * float(v.pagesPerSide)), ivec2(v.pagesPerSide - 1));
-        const uint entry = texelFetch(pageTable, ivec2(page.x, page.y + level * v.pagesPerSide), 0).r;
+        const uint entry = texelFetch(pageTable, ivec2(page.x, page.y + l * v.pagesPerSide), 0).r;
         if (entry == 0u) continue;
         const int slot = int(entry) - 1;
         // Atlas texel of map texel m: slot corner + guard + (m − page · pageTexels).
         const vec2 corner = vec2(slot % v.slotsPerRow, slot / v.slotsPerRow) * float(v.pageTexels + 2 * v.guardTexels);
         const vec2 offsetTexels = corner + float(v.guardTexels) - vec2(page) * float(v.pageTexels);
         atlasFromMap = vec4(vec2(v.virtualTexels) / v.atlasTexels, offsetTexels / v.atlasTexels);
+        level = l;
         return true;
     }
     return false;
