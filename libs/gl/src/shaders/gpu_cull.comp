@@ -104,7 +104,7 @@ double allowedBy(dmat4 m, double unitsPerNdc, double maxError, dvec3 centre, dou
     const double npm = ndcPerMetre(m, centre);
     if (npm < 0.0) return 0.0;
     const double denominator = unitsPerNdc * npm * scale;
-    return denominator > 0.0 ? maxError / denominator : 1e300;
+    return denominator > 0.0 ? maxError / denominator : 1e300lf;
 }
 
 uint levelOf(uint batch, dvec3 centre, double scale) {
@@ -170,8 +170,8 @@ uint encodeDepth(float d) { // receiver_mask.comp's
 // footprint spans 4 texels; here the texels are read at full resolution, up to a bound.
 bool mayShadow(dvec3 lo, dvec3 hi) {
     if (masks[maskFlag] != 0u) return true;
-    dvec2 ndcMin = dvec2(1e300), ndcMax = dvec2(-1e300);
-    double nearest = 1e300;
+    dvec2 ndcMin = dvec2(1e300lf), ndcMax = dvec2(-1e300lf);
+    double nearest = 1e300lf;
     for (int i = 0; i < 8; ++i) {
         const dvec3 p = dvec3((i & 1) != 0 ? hi.x : lo.x, (i & 2) != 0 ? hi.y : lo.y, (i & 4) != 0 ? hi.z : lo.z);
         const dvec4 clip = maskClipFromWorld * dvec4(p, 1.0);
