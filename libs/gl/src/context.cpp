@@ -11,6 +11,7 @@
 #include <epoxy/egl.h>
 #include <epoxy/gl.h>
 
+#include <cstdlib>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -74,8 +75,6 @@ public:
         return true;
     }
 
-private:
-public:
     std::string failures; // why each display tried did not give a context
 
 private:
@@ -85,7 +84,12 @@ private:
 
 } // namespace
 
-core::Result<std::unique_ptr<Context>> Context::createHeadless(const ContextOptions& options) {
+core::Result<std::unique_ptr<Context>> Context::createHeadless(const ContextOptions& asked) {
+    // SHADOWKIT_GL_DEBUG=1 turns the driver's messages on in any build: what a real driver
+    // rejects that llvmpipe accepts shows up as a line on stderr.
+    ContextOptions options = asked;
+    if (const char* env = std::getenv("SHADOWKIT_GL_DEBUG"); env && *env && std::strcmp(env, "0") != 0)
+        options.debug = true;
     auto context = std::unique_ptr<EglContext>(new EglContext);
     const char* clientExt = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
 

@@ -9,7 +9,8 @@
 namespace shadowkit::gl {
 
 struct ContextOptions {
-    // KHR_debug output (one line per message on stderr). Default: on in debug builds.
+    // KHR_debug output (one line per message on stderr). Default: on in debug builds, and in
+    // any headless context when the environment has SHADOWKIT_GL_DEBUG=1.
 #ifdef NDEBUG
     bool debug = false;
 #else
