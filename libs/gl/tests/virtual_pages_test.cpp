@@ -9,6 +9,7 @@
 #include "shadowkit/gl/renderer.h"
 #include "shadowkit/scene/mesh_builder.h"
 
+#include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
@@ -99,9 +100,15 @@ TEST_F(VirtualPagesTest, FramesFromCachedPagesLookUpExactlyWhatFreshPagesGive) {
             const auto b = (*fresh)->renderEvalBuffers(cam, kSun, setup, settings);
             ASSERT_TRUE(a && b);
             ASSERT_EQ(a->shadowTerm.size(), b->shadowTerm.size());
+            // Exactly equal, but for the hardware 2 × 2 filter's weights: GL leaves their precision
+            // to the driver, and a kept page lies in another atlas slot than a fresh one, so its
+            // texel coordinates round to other fixed-point fractions (one pixel in 16,384 on an
+            // NVIDIA H100, by less than this; llvmpipe gives equal terms). A wrong page is off by
+            // far more: a lit receiver reads shadow, or a shadowed one light.
+            const float tolerance = filter == core::ShadowFilter::Pcf2 ? 1.0f / 64.0f : 0.0f;
             int differ = 0, shadowed = 0;
             for (size_t i = 0; i < a->shadowTerm.size(); ++i) {
-                differ += a->shadowTerm[i] != b->shadowTerm[i];
+                differ += std::abs(a->shadowTerm[i] - b->shadowTerm[i]) > tolerance;
                 shadowed += b->shadowTerm[i] < 0.5f;
             }
             EXPECT_EQ(differ, 0) << "frame " << frame << ", filter " << int(filter);
