@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# tools/gpu-tables.sh RESULTS.tgz: writes docs/performance.md's real-GPU tables ("On a real GPU")
+# from the gpu-results.tgz tools/measure-gpu.sh leaves on the GPU machine (the device tool copies
+# it back), beside llvmpipe's eval of the same set-ups, measured here first (about 5 minutes on
+# the project's 2-core machine; KEEP_LLVMPIPE=1 keeps the last ones).
+set -euo pipefail
+[[ $# -eq 1 && -f $1 ]] || { echo "usage: tools/gpu-tables.sh RESULTS.tgz (from tools/measure-gpu.sh)" >&2; exit 2; }
+results=$(realpath "$1")
+cd "$(dirname "$0")/.."
+[ -x build/apps/shadowkit/shadowkit ] || tools/build.sh
+gpu=out/gpu/results
+cpu=out/gpu/llvmpipe
+rm -rf "$gpu" && mkdir -p "$gpu" "$cpu"
+tar -xzf "$results" -C "$gpu"
+# The set-ups tools/measure-gpu.sh's eval section measures, with the same options.
+for setup in "tsm|--technique tsm" "csm4x2048-lispsm|--technique csm --cascades 4 --map-size 2048 --cascade-warp lispsm" \
+  "virtual|--technique virtual"; do
+  name=${setup%%|*}
+  if [[ -z ${KEEP_LLVMPIPE:-} || ! -f $cpu/eval-$name.json ]]; then
+    echo "== llvmpipe: eval --views all ${setup#*|}" >&2
+    # shellcheck disable=SC2086
+    build/apps/shadowkit/shadowkit eval --views all ${setup#*|} --json "$cpu/eval-$name.json" >/dev/null
+  fi
+done
+python3 tools/gpu_tables.py "$gpu" "$cpu"
+head -4 "$gpu/summary.txt" >&2

@@ -1,0 +1,132 @@
+#!/usr/bin/env bash
+# tools/measure-gpu.sh [SECTION ...]: the real-GPU figures of docs/performance.md "On a real GPU",
+# run on a machine with a GPU driver and none of this project's libraries (the device tool's H100)
+# over the bundle tools/gpu-bundle.sh packs here. With the device tool, from the repository root:
+#
+#   tools/gpu-bundle.sh      # here: .gpu/bundle.tar.xz (programs + libraries, ~12 MB)
+#   run(carry=[".gl", ".gpu"], command="for f in .gl/*.deb; do dpkg -x $f /; done; ldconfig; tools/measure-gpu.sh")
+#
+# Sections (default: all, in this order, most wanted first): tests (the GL test programs on the
+# real driver), frame (a default frame, 1,000-100,000 trees, three views, CHC++ and GPU culling),
+# techniques (every set-up at 10,000 trees), filters (each filter's passes under the real sun and
+# the lamps), leafy (the leafy forest's frame), eval (the standard views' figures against the truth,
+# to compare with llvmpipe's: the same program on another rasteriser), alpha (tools/measure-alpha.sh),
+# scaling (what the shadow pass's time follows at 100,000 trees).
+# Every step has its own time limit and the whole run a deadline (DEADLINE seconds, default 540,
+# inside the device tool's 10 minutes): steps past it are skipped and say so. Results, logs and
+# bench JSON go to $OUT/gpu-results.tgz (re-packed after every step, so a killed run still returns
+# what it measured) and a summary is printed last. Nothing here asserts a time: it prints figures.
+set -uo pipefail
+cd "$(dirname "$0")/.."
+start=$SECONDS
+deadline=${DEADLINE:-540}
+out=${OUT:-$PWD/out/gpu}
+res=$(mktemp -d)
+mkdir -p "$out"
+
+# The bundle: programs in bin/, libraries in lib/. Tests and the CLI find data/ through the source
+# path compiled into them (/work/main here), so that path is made to lead to this checkout.
+root=/tmp/shadowkit-gpu
+mkdir -p "$root" && tar -C "$root" -xJf .gpu/bundle.tar.xz || { echo "measure-gpu: .gpu/bundle.tar.xz: cannot unpack (run tools/gpu-bundle.sh here first)"; exit 1; }
+export LD_LIBRARY_PATH=$root/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}
+# NVIDIA's EGL vendor file, where the device tool's README says it is.
+for f in /usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json /usr/share/glvnd/egl_vendor.d/10_nvidia.json; do
+  [[ -f $f && -z ${__EGL_VENDOR_LIBRARY_FILENAMES:-} ]] && export __EGL_VENDOR_LIBRARY_FILENAMES=$f
+done
+[[ -e /work/main ]] || { mkdir -p /work && ln -s "$PWD" /work/main; }
+# Where tools/measure-alpha.sh looks for the CLI (a build here is used as it is).
+[[ -e build/apps/shadowkit/shadowkit ]] || { mkdir -p build/apps/shadowkit && ln -s "$root/bin/shadowkit" build/apps/shadowkit/shadowkit; }
+B=build/apps/shadowkit/shadowkit
+
+summary=$res/summary.txt
+note() { echo "$*" | tee -a "$summary"; }
+pack() { tar -C "$res" -czf "$out/gpu-results.tgz" . 2>/dev/null; }
+# step NAME SECONDS COMMAND...: runs one measurement into NAME.log unless the deadline is near.
+step() {
+  local name=$1 limit=$2 left=$((deadline - (SECONDS - start)))
+  shift 2
+  if ((left < 20)); then note "skipped $name: ${left}s left of the deadline"; return; fi
+  ((limit > left)) && limit=$left
+  local t0=$SECONDS
+  timeout "$limit" "$@" >"$res/$name.log" 2>&1
+  local rc=$?
+  note "$(printf '%-34s rc %3d  %4ds' "$name" "$rc" $((SECONDS - t0)))"
+  pack
+}
+
+note "commit $(cat .gpu/commit 2>/dev/null || echo '?'), $(nproc) CPU cores, $(date -u +%Y-%m-%dT%H:%MZ)"
+nvidia-smi --query-gpu=name,driver_version,clocks.sm,clocks.max.sm,memory.total --format=csv,noheader 2>&1 |
+  tee -a "$summary"
+step context 60 "$B" bench --trees 1000 --views perpendicular --frames 2
+note "context: $(grep -o '^4\.[0-9].*via EGL[^|]*' "$res/context.log" | head -1)"
+grep -q 'via EGL' "$res/context.log" || { note "no OpenGL context: $(tail -3 "$res/context.log")"; pack; exit 1; }
+
+sections=("$@")
+((${#sections[@]})) || sections=(tests frame techniques filters leafy eval alpha scaling)
+bench=("$B" bench --frames 11)
+for section in "${sections[@]}"; do
+  case $section in
+  tests)
+    for t in gl_tests frame_tests integration_tests golden_tests; do
+      step "test-$t" 150 "$root/bin/shadowkit_$t" --gtest_brief=1
+      note "  $(grep -E '^\[  (PASSED|FAILED) ' "$res/test-$t.log" | tr '\n' ' ')"
+    done
+    ;;
+  frame)
+    step frame-chc 150 "${bench[@]}" --trees 1000,10000,100000 --views perpendicular,aerial,paper --json "$res/frame-chc.json"
+    step frame-gpu 120 "${bench[@]}" --trees 1000,10000,100000 --views perpendicular,aerial,paper --visibility gpu \
+      --json "$res/frame-gpu.json"
+    step frame-frustum 60 "${bench[@]}" --trees 10000 --views perpendicular --visibility frustum --caster-culling volume \
+      --json "$res/frame-frustum.json"
+    ;;
+  techniques)
+    # name|options: the README's set-ups.
+    for setup in "standard|--technique standard" "focused|--technique focused" "psm|--technique psm" \
+      "tsm|--technique tsm" "lispsm|--technique lispsm" "csm4x1024|--technique csm --cascades 4 --map-size 1024" \
+      "csm4x2048-lispsm|--technique csm --cascades 4 --map-size 2048 --cascade-warp lispsm" \
+      "virtual|--technique virtual"; do
+      # shellcheck disable=SC2086
+      step "tech-${setup%%|*}" 60 "${bench[@]}" --trees 10000 --views perpendicular,aerial ${setup#*|} \
+        --json "$res/tech-${setup%%|*}.json"
+    done
+    ;;
+  filters)
+    for f in hard pcf2 pcf:3 pcf:5 poisson:16 pcss pcss:32 msm; do
+      step "filter-${f/:/}" 60 "${bench[@]}" --trees 10000 --views perpendicular,noon --sun-angle 0.53 --technique csm \
+        --cascades 4 --cascade-warp lispsm --map-size 2048 --filter "$f" --json "$res/filter-${f/:/}.json"
+    done
+    for f in hard pcf2 pcss; do
+      step "lamp-$f" 60 "${bench[@]}" --trees 10000 --views lamp,torch --filter "$f" --json "$res/lamp-$f.json"
+    done
+    ;;
+  leafy)
+    step leafy 120 "${bench[@]}" --forest leafy --trees 10000 --views perpendicular,aerial --json "$res/leafy.json"
+    ;;
+  eval)
+    for setup in "tsm|--technique tsm" "csm4x2048-lispsm|--technique csm --cascades 4 --map-size 2048 --cascade-warp lispsm" \
+      "virtual|--technique virtual"; do
+      # shellcheck disable=SC2086
+      step "eval-${setup%%|*}" 120 "$B" eval --views all ${setup#*|} --json "$res/eval-${setup%%|*}.json"
+    done
+    ;;
+  scaling)
+    # What the shadow pass's time follows at 100,000 trees: the default, without culling by
+    # receivers, without levels of detail, with every instance drawn.
+    for variant in "default|" "volume|--visibility frustum --caster-culling volume" "no-lod|--no-lod" "all|--visibility off"; do
+      # shellcheck disable=SC2086
+      step "scaling-${variant%%|*}" 60 "${bench[@]}" --trees 100000 --views perpendicular ${variant#*|} \
+        --json "$res/scaling-${variant%%|*}.json"
+    done
+    # And the driver's own performance warnings for that frame.
+    step scaling-driver-messages 60 env SHADOWKIT_GL_DEBUG=1 "$B" bench --frames 3 --trees 100000 --views perpendicular
+    ;;
+  alpha)
+    step alpha-tsm 90 tools/measure-alpha.sh 20000 5 tsm
+    ;;
+  *) note "unknown section $section" ;;
+  esac
+done
+note "done in $((SECONDS - start)) s"
+pack
+echo "== summary"
+cat "$summary"
