@@ -1,9 +1,9 @@
 // Headless EGL contexts.
 //
-// Order: the EGL device platform with a hardware device first (NVIDIA's driver exposes
-// no Mesa surfaceless platform), then Mesa's surfaceless platform (llvmpipe on CPU-only
-// machines). Both create a 4.5 core context without a config or surface
-// (EGL_KHR_no_config_context, EGL_KHR_surfaceless_context) and render into FBOs.
+// Order: the EGL device platform with a hardware device first (for drivers without Mesa's
+// surfaceless platform), then Mesa's surfaceless platform: llvmpipe on CPU-only machines, and
+// NVIDIA's 580 driver on an H100 answered through it too (docs/performance.md, On a real GPU). Both create a 4.5 core
+// context without a config or surface (EGL_KHR_no_config_context, EGL_KHR_surfaceless_context) and render into FBOs.
 #include "shadowkit/gl/context.h"
 
 #include "debug_output.h"
