@@ -66,7 +66,7 @@ core::Status writeCsv(const std::string& file, const std::vector<FrameRow>& rows
     std::ofstream out(file);
     out << "frame,time_s,valid_px,wrong_pct,false_shadow_pct,false_lit_pct,pixels_per_texel_p50,compared_px,flicker_"
            "pct,"
-           "truth_change_pct,refitted_views,soft_mae,penumbra_mae\n";
+           "truth_change_pct,refitted_views,soft_mae,penumbra_mae,sun_angle_deg\n";
     for (const FrameRow& r : rows) {
         out << fmt::format("{},{:.6g},{},{:.6g},{:.6g},{:.6g},{:.6g}", r.frame, r.time, r.figures.validPx,
                            r.figures.wrongPct, r.figures.falseShadowPct, r.figures.falseLitPct,
@@ -77,7 +77,9 @@ core::Status writeCsv(const std::string& file, const std::vector<FrameRow>& rows
         else
             out << ",,,";
         out << (r.refittedViews ? fmt::format(",{}", *r.refittedViews) : std::string(","));
-        out << (r.soft ? fmt::format(",{:.6g},{:.6g}\n", r.soft->softMae, r.soft->penumbraMae) : std::string(",,\n"));
+        out << (r.soft ? fmt::format(",{:.6g},{:.6g},{:.6g}\n", r.soft->softMae, r.soft->penumbraMae,
+                                     r.soft->sunAngleDegrees)
+                       : std::string(",,,\n"));
     }
     if (!out) return core::makeError(file + ": cannot write");
     return core::Ok{};
@@ -162,10 +164,12 @@ int runEvalPath(const EvalPathArgs& args) {
         rows.push_back(row);
     }
 
-    std::vector<double> flicker, truthChange, wrong, autoMs, softMae, penumbraMae;
+    std::vector<double> flicker, truthChange, wrong, autoMs, softMae, penumbraMae, sunAngles;
     for (const FrameRow& r : rows) {
         wrong.push_back(r.figures.wrongPct);
-        if (r.soft) softMae.push_back(r.soft->softMae), penumbraMae.push_back(r.soft->penumbraMae);
+        if (r.soft)
+            softMae.push_back(r.soft->softMae), penumbraMae.push_back(r.soft->penumbraMae),
+                sunAngles.push_back(r.soft->sunAngleDegrees);
         if (r.temporal) flicker.push_back(r.temporal->flickerPct), truthChange.push_back(r.temporal->truthChangePct);
         if (automatic && &r != &rows.front()) autoMs.push_back(r.autoMilliseconds); // the first frame searches in full
     }
@@ -186,10 +190,16 @@ int runEvalPath(const EvalPathArgs& args) {
                "max {:.3f} | wrong_pct mean {:.3f}\n",
                technique, timeline->path->name, rows.size(), fl.mean, fl.p95, fl.max, tc.mean, tc.p95, tc.max, wr.mean);
     const Summary sm = summarise(softMae), pm = summarise(penumbraMae);
+    // A path's sun keys may change the sun's size (and to 0, where a frame has no soft truth).
+    const auto [smallestSun, largestSun] = std::minmax_element(sunAngles.begin(), sunAngles.end());
+    const std::string sunSize = sunAngles.empty() || *smallestSun == *largestSun
+                                    ? fmt::format("sun {:.2f}°", sunAngles.empty() ? 0.0 : *smallestSun)
+                                    : fmt::format("{} of {} frames, sun {:.2f}–{:.2f}°", sunAngles.size(), rows.size(),
+                                                  *smallestSun, *largestSun);
     if (!softMae.empty())
-        fmt::print("  soft truth, sun {:.2f}°: soft_mae mean {:.4f} p95 {:.4f} max {:.4f} | penumbra_mae mean {:.3f} "
+        fmt::print("  soft truth, {}: soft_mae mean {:.4f} p95 {:.4f} max {:.4f} | penumbra_mae mean {:.3f} "
                    "p95 {:.3f} max {:.3f}\n",
-                   rows.front().soft->sunAngleDegrees, sm.mean, sm.p95, sm.max, pm.mean, pm.p95, pm.max);
+                   sunSize, sm.mean, sm.p95, sm.max, pm.mean, pm.p95, pm.max);
 
     if (!args.csv.empty())
         if (auto s = writeCsv(args.csv, rows); !s) return fail("--csv: " + s.error());
@@ -254,7 +264,8 @@ int runEvalPath(const EvalPathArgs& args) {
             if (r.soft)
                 j.update({{"soft_mae", r.soft->softMae},
                           {"penumbra_mae", r.soft->penumbraMae},
-                          {"penumbra_px", r.soft->penumbraPx}});
+                          {"penumbra_px", r.soft->penumbraPx},
+                          {"sun_angle_deg", r.soft->sunAngleDegrees}});
             if (r.autoChoice) j.update({{"auto_choice", *r.autoChoice}, {"auto_ms", r.autoMilliseconds}});
             if (const auto& v = r.virtualPages) j["virtual"] = eval::virtualPagesJson(measure::virtualPagesReport(*v));
             frames.push_back(j);
@@ -271,7 +282,7 @@ int runEvalPath(const EvalPathArgs& args) {
         if (!softMae.empty()) {
             root["summary"]["soft_mae"] = summary(sm);
             root["summary"]["penumbra_mae"] = summary(pm);
-            root["sun_angle_deg"] = rows.front().soft->sunAngleDegrees;
+            root["sun_angle_deg"] = {{"min", *smallestSun}, {"max", *largestSun}};
         }
         if (automatic)
             root["auto"] = {{"family_switches", familySwitches(autoChosen)},

@@ -96,19 +96,23 @@ core::Result<scene::ResolvedView> Timeline::viewAt(const scene::ResolvedView& st
     // Where the sun comes from, and when: held where it is at the path's start with `off`.
     const double sunTime = holdSun ? (path ? path->startTime() : 0.0) : t;
     core::DirectionalLight sun = still.light;
+    std::optional<double> sunAngle = still.sunAngleDegrees; // the sun keys' size, else the view's
     if (!sunKeys.empty()) {
         const scene::SunKey key = scene::sunAt(sunKeys, sunTime);
         auto light = core::DirectionalLight::fromSunAngles(key.elevationDegrees, key.azimuthDegrees);
         if (!light) return core::makeError("--sun-path: " + light.error());
         sun = *light;
+        if (key.angleDegrees) sunAngle = key.angleDegrees;
     }
     if (!path) {
         scene::ResolvedView view = still;
         view.light = sun;
+        view.sunAngleDegrees = sunAngle;
         return view;
     }
     auto view = scene::viewAt(*path, scene, t, sun);
     if (!view) return core::makeError("--path: " + view.error());
+    view->sunAngleDegrees = sunAngle;
     if (stillSize) {
         view->width = still.width;
         view->height = still.height;

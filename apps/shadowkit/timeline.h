@@ -30,8 +30,9 @@ struct Timeline {
 
     bool isSequence() const { return path.has_value() && frames.size() > 1; }
     // The view at time t: the path's camera (else `still`, the --view), the sun from
-    // --sun-path, else the path's own sun keys, else `still`'s; `off` holds the sun where it
-    // is at the path's start. `stillSize`: the image size is `still`'s (--size given), not the path's.
+    // --sun-path, else the path's own sun keys, else `still`'s (its size likewise: the keys'
+    // "angle" where they give one, else `still`'s); `off` holds the sun where it is at the path's start. `stillSize`:
+    // the image size is `still`'s (--size given), not the path's.
     core::Result<scene::ResolvedView> viewAt(const scene::ResolvedView& still, const scene::Scene& scene, double t,
                                              bool stillSize = false) const;
 };

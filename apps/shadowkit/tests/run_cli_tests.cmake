@@ -358,6 +358,20 @@ if(CASE STREQUAL "gl-eval-path")
   if(NOT rc EQUAL 0 OR NOT out MATCHES "soft_mae mean" OR NOT first MATCHES ",[0-9.e-]+,[0-9.e-]+$")
     message(SEND_ERROR "eval --path --sun-angle: no soft figures per frame or in the summary: ${out} ${first} ${err}")
   endif()
+  # A sun path's "angle" takes the place of --sun-angle frame by frame: a point at the first frame
+  # (the hard truth alone), then a growing disk.
+  file(WRITE "${WORK}/growing-sun.json" [[{"camera": [{"time": 0, "eye_xz": [0, 0], "target_xz": [0, -5]}],
+    "sun": [{"time": 0, "elevation": 30, "azimuth": 90, "angle": 0}, {"time": 0.1, "elevation": 30, "azimuth": 90, "angle": 1}]}]])
+  execute_process(COMMAND ${SHADOWKIT} eval ${small} --path flythrough --frames 0:3 --size 32x18 --map-size 64
+                          --filter pcss --sun-angle 2 --sun-path "${WORK}/growing-sun.json" --csv "${WORK}/growing.csv"
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  file(STRINGS "${WORK}/growing.csv" growing)
+  list(GET growing 1 first)
+  list(GET growing 3 last)
+  if(NOT rc EQUAL 0 OR NOT out MATCHES "soft truth, 2 of 3 frames, sun 0\\.[0-9]+–0\\.[0-9]+°" OR NOT first MATCHES ",,,$"
+     OR NOT last MATCHES ",0\\.[0-9]+$")
+    message(SEND_ERROR "eval --path with a sun path's angle: not per frame: ${out} ${first} ${last} ${err}")
+  endif()
 endif()
 if(CASE STREQUAL "gl-render-sequence")
   execute_process(COMMAND ${SHADOWKIT} render ${small} --movers 12 --path flythrough --frames 10:13 --size 32x18 --map-size 64

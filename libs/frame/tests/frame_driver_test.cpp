@@ -192,6 +192,33 @@ TEST_F(FrameDriverTest, TheViewsLampsAndTheConfiguredOnesAreSetUp) {
     EXPECT_EQ(f.errorInfo().field, "lights");
 }
 
+TEST_F(FrameDriverTest, AViewsSunSizeTakesThePlaceOfTheConfiguredOneAndSoftensTheShadows) {
+    frame::FrameConfig c = config(core::Technique::Tsm);
+    c.render.filter = {core::ShadowFilter::Pcss, 16, 8.0f};
+    c.render.sunAngleDegrees = 0.0; // a point-like sun: PCSS is the hard test
+    auto driver = frame::FrameDriver::create(c);
+    ASSERT_TRUE(driver);
+    // Penumbra pixels of a prepared frame's shadow term.
+    auto softPixels = [&](const frame::PreparedFrame& f) {
+        auto raster = renderer->renderEvalBuffers(f.inputs.camera, f.inputs.light, f.setup, f.settings);
+        EXPECT_TRUE(raster) << raster.error();
+        size_t n = 0;
+        for (const float t : raster->shadowTerm) n += t > 0.05f && t < 0.95f;
+        return n;
+    };
+    auto point = driver->prepare(*renderer, view);
+    ASSERT_TRUE(point) << point.error();
+    EXPECT_EQ(point->settings.sunAngleDegrees, 0.0);
+    scene::ResolvedView sized = view; // a path's sun key or a view's "sun_angle" of 3°
+    sized.sunAngleDegrees = 3.0;
+    auto soft = driver->prepare(*renderer, sized);
+    ASSERT_TRUE(soft) << soft.error();
+    EXPECT_EQ(soft->settings.sunAngleDegrees, 3.0);
+    EXPECT_GT(softPixels(*soft), 2 * softPixels(*point) + 50);
+    // The driver keeps no size between frames: the next view without one is the configuration's.
+    EXPECT_EQ(driver->prepare(*renderer, view)->settings.sunAngleDegrees, 0.0);
+}
+
 TEST(FrameConfigTest, BadOptionsAreRefusedNamingTheirField) {
     auto fieldOf = [](const frame::FrameConfig& c) {
         const core::Status s = c.check();

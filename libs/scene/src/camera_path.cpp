@@ -117,10 +117,19 @@ core::Result<CameraPath> parsePath(const json& root) {
             const std::string where = "sun key " + std::to_string(k);
             if (!j.is_object() || !j.contains("time") || !j.contains("elevation") || !j.contains("azimuth"))
                 return core::makeError(where + ": needs \"time\", \"elevation\" and \"azimuth\"");
-            const SunKey key{j["time"].get<double>(), j["elevation"].get<double>(), j["azimuth"].get<double>()};
+            SunKey key{j["time"].get<double>(), j["elevation"].get<double>(), j["azimuth"].get<double>()};
             if (!std::isfinite(key.time) || !std::isfinite(key.azimuthDegrees) ||
                 !(std::abs(key.elevationDegrees) <= 90.0))
                 return core::makeError(where + ": time and azimuth must be finite, elevation in [-90, 90] degrees");
+            if (j.contains("angle")) {
+                if (!j["angle"].is_number() || !(j["angle"].get<double>() >= 0.0 && j["angle"].get<double>() <= 20.0))
+                    return core::makeError(where + ": angle must be a number in [0, 20] degrees (the sun: 0.53)");
+                key.angleDegrees = j["angle"].get<double>();
+            }
+            // All or none: between a key with a size and one without there is nothing to interpolate.
+            if (!path.sun.empty() && path.sun.front().angleDegrees.has_value() != key.angleDegrees.has_value())
+                return core::makeError(where +
+                                       ": \"angle\" on some sun keys but not on others: give it on every key or none");
             if (!path.sun.empty() && !(key.time > path.sun.back().time))
                 return core::makeError(where + ": times must increase from key to key");
             path.sun.push_back(key);
@@ -184,7 +193,11 @@ SunKey sunAt(const std::vector<SunKey>& keys, double t) {
     SK_ASSERT(!keys.empty(), "sunAt(): a sun path needs keys");
     const core::Vec2 angles =
         interpolate<2>(keys, t, [](const SunKey& k) { return core::Vec2(k.elevationDegrees, k.azimuthDegrees); });
-    return {t, angles.x, angles.y};
+    SunKey out{t, angles.x, angles.y};
+    // Monotone between keys, so never outside the two keys' sizes: never negative.
+    if (keys.front().angleDegrees)
+        out.angleDegrees = interpolate<1>(keys, t, [](const SunKey& k) { return glm::dvec1(*k.angleDegrees); }).x;
+    return out;
 }
 
 core::Result<ResolvedView> viewAt(const CameraPath& path, const Scene& scene, double t,
@@ -211,6 +224,7 @@ core::Result<ResolvedView> viewAt(const CameraPath& path, const Scene& scene, do
         auto light = core::DirectionalLight::fromSunAngles(sun.elevationDegrees, sun.azimuthDegrees);
         if (!light) return light.errorInfo();
         view.light = *light;
+        view.sunAngleDegrees = sun.angleDegrees;
     }
     if (core::Status s = view.camera.validate(); !s) return core::makeError("path \"" + path.name + "\": " + s.error());
     return view;

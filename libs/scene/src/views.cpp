@@ -69,6 +69,7 @@ core::Result<ViewSpec> parseView(const json& j) {
         v.sunElevationDegrees = j.value("sun_elevation", v.sunElevationDegrees);
         v.sunAzimuthFromViewDegrees = j.value("sun_azimuth_from_view", v.sunAzimuthFromViewDegrees);
         v.sun = j.value("sun", v.sun);
+        if (j.contains("sun_angle")) v.sunAngleDegrees = j["sun_angle"].get<double>();
         if (j.contains("lights")) {
             if (!j["lights"].is_array()) return core::makeError("view \"" + v.name + "\": lights must be an array");
             for (const json& entry : j["lights"]) {
@@ -86,6 +87,8 @@ core::Result<ViewSpec> parseView(const json& j) {
         return core::makeError("view \"" + v.name + "\": pitch must be in (-90, 90)");
     if (!(std::abs(v.sunElevationDegrees) <= 90.0))
         return core::makeError("view \"" + v.name + "\": sun_elevation must be in [-90, 90]");
+    if (v.sunAngleDegrees && !(*v.sunAngleDegrees >= 0.0 && *v.sunAngleDegrees <= 20.0))
+        return core::makeError("view \"" + v.name + "\": sun_angle must be in [0, 20] degrees (the sun: 0.53)");
     core::PerspectiveCamera probe;
     probe.fovYDegrees = v.fovYDegrees;
     probe.zNear = v.zNear;
@@ -177,6 +180,7 @@ ResolvedView resolveView(const ViewSpec& view, const Scene& scene) {
                                                       view.azimuthDegrees + view.sunAzimuthFromViewDegrees)
                     .value();
     out.sun = view.sun;
+    out.sunAngleDegrees = view.sunAngleDegrees;
     // The view's frame on the ground: right and forward by its azimuth alone (not its pitch).
     const core::Vec3 forward(std::sin(az), 0.0, -std::cos(az)), right(std::cos(az), 0.0, std::sin(az)),
         up(0.0, 1.0, 0.0);

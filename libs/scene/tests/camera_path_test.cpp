@@ -133,3 +133,61 @@ TEST(CameraPath, EyeMeetingTargetIsAnErrorNotANanCamera) {
     ASSERT_FALSE(view);
     EXPECT_NE(view.error().find("eye and target meet"), std::string::npos);
 }
+
+TEST(CameraPath, TheSunsSizeFollowsItsKeysMonotoneAndReachesTheView) {
+    // A sunset through haze: the sun's disk grows from 0.53° to 1.2°, then holds.
+    const auto file = writeFile("sk_path_sun_angle.json", R"({"camera": [
+        {"time": 0, "eye_xz": [0, 0], "target_xz": [0, -5]}, {"time": 4, "eye_xz": [1, 0], "target_xz": [1, -5]}],
+        "sun": [{"time": 0, "elevation": 30, "azimuth": 90, "angle": 0.53},
+                {"time": 2, "elevation": 10, "azimuth": 100, "angle": 1.2},
+                {"time": 4, "elevation": 5, "azimuth": 110, "angle": 1.2}]})");
+    auto path = scene::loadCameraPath(file);
+    ASSERT_TRUE(path) << path.error();
+    double last = 0.0;
+    for (double t = -1.0; t <= 5.0; t += 0.125) {
+        const scene::SunKey key = scene::sunAt(path->sun, t);
+        ASSERT_TRUE(key.angleDegrees) << t;
+        // Never outside its neighbouring keys: no size below the smallest, never shrinking on the way up.
+        EXPECT_GE(*key.angleDegrees, 0.53 - 1e-12) << t;
+        EXPECT_LE(*key.angleDegrees, 1.2 + 1e-12) << t;
+        EXPECT_GE(*key.angleDegrees, last - 1e-12) << t;
+        last = *key.angleDegrees;
+    }
+    EXPECT_NEAR(*scene::sunAt(path->sun, 0.0).angleDegrees, 0.53, 1e-12);
+    EXPECT_NEAR(*scene::sunAt(path->sun, 3.0).angleDegrees, 1.2, 1e-12); // held between equal keys
+
+    scene::ForestOptions o;
+    o.trees = 0;
+    o.terrainResolution = 16;
+    const scene::Scene forest = scene::makeForest(o);
+    auto view = scene::viewAt(*path, forest, 2.0);
+    ASSERT_TRUE(view) << view.error();
+    ASSERT_TRUE(view->sunAngleDegrees);
+    EXPECT_NEAR(*view->sunAngleDegrees, 1.2, 1e-12);
+    // Keys without a size leave the view's unset (--sun-angle decides).
+    path->sun = {{0.0, 30.0, 90.0, std::nullopt}};
+    EXPECT_FALSE(scene::viewAt(*path, forest, 0.0).value().sunAngleDegrees);
+}
+
+TEST(CameraPath, ASunSizeOnSomeKeysOnlyOrOutOfRangeIsAnErrorNamingTheKey) {
+    const std::string camera = R"("camera": [{"time": 0, "eye_xz": [0, 0], "target_xz": [0, -5]}])";
+    const std::pair<const char*, const char*> cases[] = {
+        {R"("sun": [{"time": 0, "elevation": 30, "azimuth": 0, "angle": 0.5}, {"time": 1, "elevation": 30, "azimuth": 0}])",
+         "sun key 1: \"angle\" on some sun keys but not on others"},
+        {R"("sun": [{"time": 0, "elevation": 30, "azimuth": 0}, {"time": 1, "elevation": 30, "azimuth": 0, "angle": 0.5}])",
+         "sun key 1: \"angle\" on some sun keys but not on others"},
+        {R"("sun": [{"time": 0, "elevation": 30, "azimuth": 0, "angle": 21}])",
+         "sun key 0: angle must be a number in [0, 20]"},
+        {R"("sun": [{"time": 0, "elevation": 30, "azimuth": 0, "angle": -1}])",
+         "sun key 0: angle must be a number in [0, 20]"},
+        {R"("sun": [{"time": 0, "elevation": 30, "azimuth": 0, "angle": "wide"}])",
+         "sun key 0: angle must be a number"},
+    };
+    for (const auto& [sun, expected] : cases) {
+        const auto file = writeFile("sk_path_bad_angle.json", "{" + camera + ", " + sun + "}");
+        auto p = scene::loadCameraPath(file);
+        ASSERT_FALSE(p) << sun;
+        EXPECT_NE(p.error().find(expected), std::string::npos) << p.error();
+        EXPECT_NE(p.error().find("sk_path_bad_angle.json"), std::string::npos) << p.error();
+    }
+}

@@ -73,3 +73,31 @@ TEST(ViewsTest, MalformedFilesNameTheFileAndTheProblem) {
     EXPECT_NE(loadViews(bad).error().find("whole numbers in [1, 16384]"), std::string::npos) << loadViews(bad).error();
     std::filesystem::remove(bad);
 }
+
+TEST(ViewsTest, AViewsSunAngleReachesTheResolvedViewAndBadOnesAreErrors) {
+    const auto file = std::filesystem::temp_directory_path() / "shadowkit_views_sun_angle.json";
+    std::ofstream(file) << R"({"views": [{"name": "sized", "sun_angle": 0.53}, {"name": "point"}]})";
+    auto views = loadViews(file);
+    ASSERT_TRUE(views) << views.error();
+    ForestOptions o;
+    o.trees = 0;
+    o.terrainResolution = 16;
+    const Scene forest = makeForest(o);
+    const ResolvedView sized = resolveView(findView(*views, "sized").value(), forest);
+    ASSERT_TRUE(sized.sunAngleDegrees);
+    EXPECT_EQ(*sized.sunAngleDegrees, 0.53);
+    // Unset stays unset: the front end's --sun-angle decides (the standard views are so).
+    EXPECT_FALSE(resolveView(findView(*views, "point").value(), forest).sunAngleDegrees);
+    for (const ViewSpec& v : standardViews()) EXPECT_FALSE(v.sunAngleDegrees) << v.name;
+
+    for (const char* bad :
+         {R"({"views": [{"name": "x", "sun_angle": -0.1}]})", R"({"views": [{"name": "x", "sun_angle": 25}]})"}) {
+        std::ofstream(file) << bad;
+        auto r = loadViews(file);
+        ASSERT_FALSE(r) << bad;
+        EXPECT_NE(r.error().find("sun_angle must be in [0, 20]"), std::string::npos) << r.error();
+    }
+    std::ofstream(file) << R"({"views": [{"name": "x", "sun_angle": "big"}]})";
+    EXPECT_NE(loadViews(file).error().find("wrong type"), std::string::npos) << loadViews(file).error();
+    std::filesystem::remove(file);
+}

@@ -25,6 +25,9 @@ struct SunKey {
     double time = 0.0;              // seconds
     double elevationDegrees = 45.0; // [-90, 90]
     double azimuthDegrees = 90.0;   // compass (conventions.h)
+    // The sun's angular diameter in degrees, [0, 20] ("angle"; the real sun 0.53): on every key
+    // of a path or on none. None: the sun's size comes from elsewhere (--sun-angle).
+    std::optional<double> angleDegrees;
 };
 
 struct CameraPath {
@@ -52,11 +55,11 @@ core::Result<CameraPath> findCameraPath(const std::string& nameOrFile, const std
 // coordinate within its two neighbouring keys' range (a monotone piecewise cubic; a single
 // key holds still). Before the first key and after the last the path holds its end key.
 CameraKey cameraAt(const std::vector<CameraKey>& keys, double t);
-// Likewise for the sun's angles; precondition: keys not empty.
+// Likewise for the sun's angles, and its size when the keys have one; precondition: keys not empty.
 SunKey sunAt(const std::vector<SunKey>& keys, double t);
 
 // The camera at time t placed over the scene's ground, with the path's sun when it has one
-// (else `fallbackSun`). Fails when eye and target meet.
+// (else `fallbackSun`) and its size when its keys give one. Fails when eye and target meet.
 core::Result<ResolvedView> viewAt(const CameraPath& path, const Scene& scene, double t,
                                   const core::DirectionalLight& fallbackSun = {});
 

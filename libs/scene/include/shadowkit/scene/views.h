@@ -8,6 +8,7 @@
 #include "shadowkit/scene/scene.h"
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,9 @@ struct ViewSpec {
     double sunElevationDegrees = 45.0;
     double sunAzimuthFromViewDegrees = 90.0;
     bool sun = true; // false: night, lit by `lights` alone ("sun": false)
+    // The sun's angular diameter in degrees, [0, 20] ("sun_angle"; the real sun 0.53). Unset: the
+    // front end's (--sun-angle); the standard views leave it unset (the seeds' point-like sun).
+    std::optional<double> sunAngleDegrees;
     std::vector<ViewLight> lights;
 };
 
@@ -53,6 +57,10 @@ struct ResolvedView {
     // wide is not fogged away, a county-sized one keeps its depth cue.
     double fogDensity = 0.002;
     bool framed = false; // the camera frames the scene's bounds (a scene without a heightfield); front ends say so
+    // The sun's angular diameter in degrees at this moment, when the view ("sun_angle") or a
+    // camera path's sun keys ("angle") give one; it then takes the place of the front end's
+    // (--sun-angle, gl::RenderSettings::sunAngleDegrees): frame::FrameDriver draws the frame with it.
+    std::optional<double> sunAngleDegrees;
 };
 
 // Reads a views file; errors name the file and the offending entry or field.
