@@ -2,6 +2,7 @@
 
 #include "common.h"
 
+#include "shadowkit/core/light_size.h"
 #include "shadowkit/scene/forest.h"
 #include "shadowkit/scene/scene_io.h"
 
@@ -384,7 +385,7 @@ void RenderOptions::addTo(CLI::App& cmd) {
 
 core::Status RenderOptions::check() const {
     if (auto f = core::parseFilter(filter); !f) return withFlagName(f.errorInfo());
-    if (auto s = gl::validateSunAngle(sunAngle); !s) return withFlagName(s.errorInfo());
+    if (auto s = core::validateSunAngle(sunAngle); !s) return withFlagName(s.errorInfo());
     if (auto s = gl::validate(blur); !s) return withFlagName(s.errorInfo());
     if (fog && !(*fog >= 0.0 && std::isfinite(*fog))) return core::makeError("--fog: must be a density >= 0 (1/m)");
     core::BiasSettings b;

@@ -3,6 +3,7 @@
 
 #include "shadowkit/core/bias.h"
 #include "shadowkit/core/engine_camera.h"
+#include "shadowkit/core/light_size.h"
 #include "shadowkit/core/output_conventions.h"
 #include "shadowkit/core/version.h"
 
@@ -94,6 +95,11 @@ int shadowkit_compute_setup(const shadowkit_inputs* in, shadowkit_setup* out, ch
         writeError("technique: must be one of the shadowkit_technique values (0 to 5)", error, errorSize);
         return 1;
     }
+    if (const Status s = validateSunAngle(in->sun_angle_degrees); !s) {
+        const Error& e = s.errorInfo(); // "sun_angle: ...", in the C struct's own spelling
+        writeError("sun_angle_degrees" + e.message.substr(e.field.size()), error, errorSize);
+        return 1;
+    }
     ShadowSetupInputs inputs;
     inputs.camera = *camera;
     // Any non-zero length (the C++ struct wants a unit vector); a zero or NaN one stays so and is
@@ -144,12 +150,20 @@ int shadowkit_compute_setup(const shadowkit_inputs* in, shadowkit_setup* out, ch
     out->bias = {bias.slope, bias.constant, bias.normalOffset, bias.receiverPlane};
     store(setup->wsEye, out->eye_relative_origin);
     out->fallback_count = static_cast<int>(setup->fallbacks.size());
+    out->light_tan_half_angle = tanAngularRadius(in->sun_angle_degrees);
     return 0;
 }
 
 double shadowkit_texel_size(const shadowkit_view* view, int mapSize, const double lightDirection[3],
                             const double point[3]) {
     return wsTexelSize(toMat4(view->clip_from_world), mapSize, toVec3(lightDirection), toVec3(point));
+}
+
+double shadowkit_penumbra_texels_per_metre(const shadowkit_view* view, int mapSize, const double lightDirection[3],
+                                           double sunAngleDegrees, const double point[3]) {
+    if (!validateSunAngle(sunAngleDegrees)) return 0.0;
+    return penumbraTexelsPerMetre(toMat4(view->clip_from_world), mapSize, toVec3(lightDirection), sunAngleDegrees,
+                                  toVec3(point));
 }
 
 const char* shadowkit_version_string(void) { return SHADOWKIT_VERSION_STRING; }

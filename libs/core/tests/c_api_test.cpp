@@ -3,6 +3,7 @@
 
 #include "shadowkit/core/bias.h"
 #include "shadowkit/core/engine_camera.h"
+#include "shadowkit/core/light_size.h"
 #include "shadowkit/core/output_conventions.h"
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -73,6 +74,7 @@ TEST(CApiTest, GivesTheCppResultsForTheSameInputs) {
         c.clip_depth = static_cast<int>(rng() % 2);
         c.reversed_z = static_cast<int>(rng() % 2);
         c.texture_origin = static_cast<int>(rng() % 2);
+        c.sun_angle_degrees = i % 3 == 0 ? 0.0 : uniform(0.0, 5.0);
         const OutputConventions conventions{c.clip_depth ? ClipDepthRange::MinusOneToOne : ClipDepthRange::ZeroToOne,
                                             c.reversed_z != 0,
                                             c.texture_origin ? TextureOrigin::TopLeft : TextureOrigin::BottomLeft};
@@ -87,6 +89,7 @@ TEST(CApiTest, GivesTheCppResultsForTheSameInputs) {
         const BiasSettings bias = recommendedBias(setup.technique, setup.depthLayout);
         EXPECT_EQ(out.bias.slope, bias.slope);
         EXPECT_EQ(out.bias.normal_offset, bias.normalOffset);
+        EXPECT_EQ(out.light_tan_half_angle, tanAngularRadius(c.sun_angle_degrees));
         for (size_t v = 0; v < setup.views.size(); ++v) {
             const EngineShadowView view = toEngineView(setup.views[v], setup, conventions);
             expectEqual(view.clipFromWorld, out.views[v].clip_from_world, "clip_from_world");
@@ -100,6 +103,10 @@ TEST(CApiTest, GivesTheCppResultsForTheSameInputs) {
             const double point[3] = {camera.wsEye.x, 0.0, camera.wsEye.z};
             ASSERT_EQ(shadowkit_texel_size(&out.views[v], 1024, c.light_direction, point),
                       wsTexelSize(view.clipFromWorld, 1024, light, Vec3(point[0], point[1], point[2])));
+            ASSERT_EQ(
+                shadowkit_penumbra_texels_per_metre(&out.views[v], 1024, c.light_direction, c.sun_angle_degrees, point),
+                penumbraTexelsPerMetre(view.clipFromWorld, 1024, light, c.sun_angle_degrees,
+                                       Vec3(point[0], point[1], point[2])));
         }
     }
 }
@@ -127,4 +134,11 @@ TEST(CApiTest, BadInputGivesTheCppMessageAndLeavesTheOutputAlone) {
     in.technique = 42;
     ASSERT_NE(shadowkit_compute_setup(&in, &out, error, sizeof error), 0);
     EXPECT_NE(std::string(error).find("technique"), std::string::npos);
+    in.technique = SHADOWKIT_TECHNIQUE_TSM;
+    for (const double angle : {-0.5, 25.0, std::nan("")}) {
+        in.sun_angle_degrees = angle;
+        ASSERT_NE(shadowkit_compute_setup(&in, &out, error, sizeof error), 0) << angle;
+        EXPECT_EQ(std::string(error), "sun_angle_degrees: must be in [0, 20] degrees (the sun: 0.53)");
+    }
+    EXPECT_EQ(out.view_count, -7);
 }

@@ -52,12 +52,6 @@ core::Status validate(const BlurSettings& b) {
     return core::Ok{};
 }
 
-core::Status validateSunAngle(double degrees) {
-    if (!(degrees >= 0.0 && degrees <= 20.0)) // NaN-safe
-        return core::fieldError("sun_angle", "must be in [0, 20] degrees (the sun: 0.53)");
-    return core::Ok{};
-}
-
 core::BiasSettings biasFor(const core::ShadowSetup& setup, const RenderSettings& settings) {
     return settings.bias.value_or(core::recommendedBias(setup.technique, setup.depthLayout, settings.filter));
 }

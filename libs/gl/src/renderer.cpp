@@ -19,6 +19,7 @@
 #include "virtual_pages.h"
 #include "visibility.h"
 
+#include "shadowkit/core/light_size.h"
 #include "shadowkit/core/output_conventions.h"
 
 #include <algorithm>
@@ -452,7 +453,7 @@ core::Status Renderer::Impl::prepare(const core::PerspectiveCamera& camera, cons
     bias = biasFor(setup, settings);
     if (auto s = core::validate(bias); !s) return s;
     if (auto s = core::validate(settings.filter); !s) return s;
-    if (auto s = validateSunAngle(settings.sunAngleDegrees); !s) return s;
+    if (auto s = core::validateSunAngle(settings.sunAngleDegrees); !s) return s;
     if (auto s = validate(settings.blur); !s) return s;
     if (auto s = validate(settings.localBias); !s) return s;
     const int maps = static_cast<int>(setup.views.size());
@@ -596,7 +597,7 @@ void Renderer::Impl::uploadFrame(const core::PerspectiveCamera& camera, const co
     frame.filterKind = static_cast<int32_t>(f.kind); // SK_FILTER_* in the shaders
     frame.filterTaps = f.taps;
     frame.poissonRadiusTexels = f.radiusTexels;
-    frame.lightTanHalfAngle = static_cast<float>(std::tan(glm::radians(0.5 * settings.sunAngleDegrees)));
+    frame.lightTanHalfAngle = static_cast<float>(core::tanAngularRadius(settings.sunAngleDegrees));
     frame.receiverPlane = bias.receiverPlane ? 1 : 0;
     frame.normalOffsetTexels = static_cast<float>(bias.normalOffset);
     frame.readBlurredMask = useMask ? 1 : 0;

@@ -47,6 +47,7 @@ struct SetupArguments {
     std::string cascadeWarp = "none";
     std::string conventions = "default";
     bool reversedZ = false;
+    double sunAngle = 0.0; // degrees across: light_tan_half_angle for PCSS
 };
 
 py::dict setup(const SetupArguments& arguments);

@@ -3,6 +3,7 @@
 // `shadowkit eval` and the per-pixel buffers as NumPy arrays (top row first).
 #include "bindings.h"
 
+#include "shadowkit/core/light_size.h"
 #include "shadowkit/core/shadow_filter.h"
 #include "shadowkit/frame/frame_driver.h"
 #include "shadowkit/measure/measurer.h"
@@ -88,7 +89,7 @@ public:
         else if (cascadeWarp != "none")
             throw py::value_error("cascade_warp: must be none or lispsm");
         config.render.filter = check(core::parseFilter(filter));
-        check(gl::validateSunAngle(sunAngle));
+        check(core::validateSunAngle(sunAngle));
         config.render.sunAngleDegrees = sunAngle;
         auto driver = check(frame::FrameDriver::create(config));
         const frame::PreparedFrame prepared = check(driver.prepare(m_measurer->renderer(), view));

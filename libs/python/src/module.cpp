@@ -23,12 +23,12 @@ PYBIND11_MODULE(_native, m) {
            std::string clipDepth, bool leftHanded, std::optional<double> shadowDistance,
            std::optional<std::vector<double>> light, std::pair<double, double> sun, std::vector<double> sceneMin,
            std::vector<double> sceneMax, std::string technique, int mapSize, int cascades, double lambda,
-           std::string cascadeWarp, std::string conventions, bool reversedZ) {
+           std::string cascadeWarp, std::string conventions, bool reversedZ, double sunAngle) {
             return shadowkit::python::setup(
                 {eye,      direction,     up,           fov,         aspect,     zNear,
                  zFar,     viewFromWorld, clipFromView, clipDepth,   leftHanded, shadowDistance,
                  light,    sun,           sceneMin,     sceneMax,    technique,  mapSize,
-                 cascades, lambda,        cascadeWarp,  conventions, reversedZ});
+                 cascades, lambda,        cascadeWarp,  conventions, reversedZ,  sunAngle});
         },
         R"(The shadow set-up for a camera, the sun and the scene's bounds.
 
@@ -36,12 +36,14 @@ Camera: eye, direction, up, fov (vertical, degrees), aspect, near, far -- or the
 view_from_world and clip_from_view (4 x 4, [row, column]) with clip_depth ('zero_to_one' or
 'minus_one_to_one'), left_handed (orthographic only), reversed-Z and infinite far recognised.
 shadow_distance ends shadows before the far plane (required with an infinite far plane).
-Sun: light (the direction sunlight travels) or sun=(elevation, azimuth) in degrees.
+Sun: light (the direction sunlight travels) or sun=(elevation, azimuth) in degrees;
+sun_angle its angular diameter in degrees ([0, 20], the real sun 0.53; 0 a point).
 technique: standard, focused, lispsm, psm, tsm, csm; cascades, lambda, cascade_warp ('none',
 'lispsm') for csm. conventions: 'default' (= 'vulkan': clip depth [0, 1], v up), 'opengl',
 'direct3d'/'metal'; reversed_z.
 
 Returns a dict: technique, depth_layout, map_size, depth_clamp, bias (the recommended one),
+light_tan_half_angle (tan of sun_angle / 2: the GLSL's lightTanHalfAngle for PCSS),
 fallbacks, body (the focus body's points) and views, each with clip_from_world,
 texture_from_world, light_from_world, clip_from_light, linear_depth_from_world,
 culling_planes (k x 4: n, d; outside where n.p + d > 0), split, and for camera-relative
@@ -56,7 +58,7 @@ core's message for bad input.)",
         py::arg("scene_min") = d.sceneMin, py::arg("scene_max") = d.sceneMax, py::arg("technique") = d.technique,
         py::arg("map_size") = d.mapSize, py::arg("cascades") = d.cascades, py::arg("lambda_") = d.lambda,
         py::arg("cascade_warp") = d.cascadeWarp, py::arg("conventions") = d.conventions,
-        py::arg("reversed_z") = d.reversedZ);
+        py::arg("reversed_z") = d.reversedZ, py::arg("sun_angle") = d.sunAngle);
 
     shadowkit::python::bindEvaluation(m);
 }

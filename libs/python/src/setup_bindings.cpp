@@ -6,6 +6,7 @@
 
 #include "shadowkit/core/bias.h"
 #include "shadowkit/core/engine_camera.h"
+#include "shadowkit/core/light_size.h"
 #include "shadowkit/core/output_conventions.h"
 
 #include <pybind11/stl.h>
@@ -125,6 +126,7 @@ py::dict setup(const SetupArguments& a) {
         in.cascades.warp = CascadeWarp::Lispsm;
     else if (a.cascadeWarp != "none")
         throw py::value_error("cascade_warp: must be none or lispsm");
+    check(validateSunAngle(a.sunAngle));
     const ShadowSetup s = check(computeShadowSetup(in));
     const OutputConventions conventions = conventionsFor(a.conventions, a.reversedZ);
 
@@ -139,6 +141,7 @@ py::dict setup(const SetupArguments& a) {
     const BiasSettings b = recommendedBias(s.technique, s.depthLayout);
     out["bias"] = py::dict(py::arg("slope") = b.slope, py::arg("constant") = b.constant,
                            py::arg("normal_offset") = b.normalOffset, py::arg("receiver_plane") = b.receiverPlane);
+    out["light_tan_half_angle"] = tanAngularRadius(a.sunAngle);
     out["fallbacks"] = s.fallbacks;
     py::list body;
     for (const Vec3& p : s.body.vertices()) body.append(py::make_tuple(p.x, p.y, p.z));

@@ -85,6 +85,12 @@ class SetupTest(unittest.TestCase):
             shadowkit.setup(technique="nope")
         with self.assertRaisesRegex(ValueError, "camera.clip_from_view"):
             shadowkit.setup(view_from_world=np.identity(4), clip_from_view=np.zeros((4, 4)))
+        with self.assertRaisesRegex(ValueError, r"sun_angle: must be in \[0, 20\]"):
+            shadowkit.setup(sun_angle=21.0)
+
+    def test_the_suns_size_gives_pcss_its_tangent_of_the_angular_radius(self):
+        self.assertEqual(shadowkit.setup()["light_tan_half_angle"], 0.0)  # a point-like sun by default
+        self.assertAlmostEqual(shadowkit.setup(sun_angle=0.53)["light_tan_half_angle"], 0.004625, places=6)
 
 
 class EvaluateTest(unittest.TestCase):

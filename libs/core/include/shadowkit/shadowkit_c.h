@@ -95,6 +95,9 @@ typedef struct shadowkit_inputs {
     int clip_depth;     /**< shadowkit_clip_depth */
     int reversed_z;     /**< 1: the light's near side stored as 1 */
     int texture_origin; /**< shadowkit_texture_origin */
+    /** The sun's angular diameter in degrees, [0, 20] (the real sun 0.53; 0 a point): soft
+       shadows' light size, returned as shadowkit_setup's light_tan_half_angle. */
+    double sun_angle_degrees;
 } shadowkit_inputs;
 
 /** One shadow map of a set-up, in the requested output conventions. */
@@ -131,6 +134,9 @@ typedef struct shadowkit_setup {
     shadowkit_bias bias;                       /**< the recommended bias for this technique and layout */
     double eye_relative_origin[3];             /**< the camera's eye: what the views' *_eye_relative take p minus */
     int fallback_count; /**< degenerate cases met (view along the light, a view missing the scene) */
+    /** tan of the sun's angular *radius* (half of sun_angle_degrees): the GLSL's
+       SkShadowOptions.lightTanHalfAngle for SK_FILTER_PCSS, 0.004625 for the real sun. */
+    double light_tan_half_angle;
 } shadowkit_setup;
 
 /** The defaults of the C++ API: technique TSM, 2048², cascades 4 / 0.9, a camera 1.8 m up
@@ -146,6 +152,14 @@ SHADOWKIT_CORE_EXPORT int shadowkit_compute_setup(const shadowkit_inputs* inputs
    +inf where the map's projection degenerates. */
 SHADOWKIT_CORE_EXPORT double shadowkit_texel_size(const shadowkit_view* view, int map_size,
                                                   const double light_direction[3], const double point[3]);
+
+/** PCSS's light size in `view`'s own texels at `point`: the radius, in texels, of the cone of a sun
+   sun_angle_degrees across one metre towards it (times a blocker's distance in metres: the
+   penumbra's half-width). It changes over warped maps and between cascades, so an engine's own
+   PCSS takes it per receiver or per map; 0 for a point sun or where the projection degenerates. */
+SHADOWKIT_CORE_EXPORT double shadowkit_penumbra_texels_per_metre(const shadowkit_view* view, int map_size,
+                                                                 const double light_direction[3],
+                                                                 double sun_angle_degrees, const double point[3]);
 
 /** "major.minor.patch" of the library linked. */
 SHADOWKIT_CORE_EXPORT const char* shadowkit_version_string(void);

@@ -30,9 +30,6 @@ struct BlurSettings {
 // "blur.depth_falloff", "blur.depth_threshold".
 core::Status validate(const BlurSettings& blur);
 
-// The sun's angular diameter: [0, 20] degrees; the error's field is "sun_angle".
-core::Status validateSunAngle(double degrees);
-
 // Which instances the camera pass draws (shadow passes cull by their volume unless Off).
 enum class Culling {
     Off,       // every instance, every pass
