@@ -117,9 +117,10 @@ const mat2 kSkGoldenTurn = mat2(-0.7373688, 0.6754903, -0.6754903, -0.7373688);
 // the world, so in the map the disk is an ellipse whose axes are the local Jacobian d(u, v)/d(world)
 // restricted to that plane: for warped maps (PSM, LiSPSM, TSM) it changes over the map, and a
 // kernel of so many texels everywhere would be wrong by the warp's ratio. ℓ is the direction in
-// which (u, v) stays put, ∇u × ∇v. Along it an orthographic, LiSPSM or TSM map keeps its footprint
-// (their warps' w does not change along the light), so the ellipse at the receiver is the ellipse at
-// the blocker, and depth is linear along it: Δ = (d_receiver − d_blocker) / |∂d/∂ℓ|.
+// which (u, v) stays put, ∇u × ∇v. Along it every sun map keeps its footprint — PSM's too, whose
+// sun may be a point light in post-perspective space: a (u, v) = (N_u, N_v) / w constant along ℓ
+// for every receiver forces ∂w/∂ℓ = 0 — so the ellipse at the receiver is the ellipse at the
+// blocker, and depth is linear along it: Δ = (d_receiver − d_blocker) / |∂d/∂ℓ|.
 //
 // The search counts a tap as a blocker only where its depth puts it inside the receiver's cone
 // (ρ ≤ Δ·tan α, ρ the tap's distance off the axis in metres): a caster the search reaches but that

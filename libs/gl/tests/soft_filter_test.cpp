@@ -10,6 +10,7 @@
 // holds z, so on the ground the width along z is that width itself.
 #include "headless_gl_test.h"
 
+#include "shadowkit/core/light_size.h"
 #include "shadowkit/core/output_conventions.h"
 #include "shadowkit/core/shadow_setup.h"
 #include "shadowkit/gl/renderer.h"
@@ -124,6 +125,18 @@ core::PerspectiveCamera topDown() {
     return cam;
 }
 
+// A wide camera standing low beside the wall's shadow: where warped maps warp most.
+core::PerspectiveCamera lowCamera(const core::Vec3& wsEye, const core::Vec3& wsDirection) {
+    core::PerspectiveCamera cam;
+    cam.wsEye = wsEye;
+    cam.wsDirection = wsDirection;
+    cam.fovYDegrees = 80;
+    cam.aspect = 1.0;
+    cam.zNear = 0.3;
+    cam.zFar = 40;
+    return cam;
+}
+
 gl::RenderSettings pcssSettings(double sunAngleDegrees) {
     gl::RenderSettings s;
     s.width = s.height = 480;
@@ -180,13 +193,7 @@ TEST_F(SoftFilterTest, PcssKernelFollowsAWarpedMapsLocalFootprintNotAConstantTex
     const scene::Scene s = wallOnGround();
     auto renderer = gl::Renderer::create(s);
     ASSERT_TRUE(renderer);
-    core::PerspectiveCamera cam;
-    cam.wsEye = {5, 1.5, 5.5};
-    cam.wsDirection = core::Vec3(5, 0, -1) - cam.wsEye;
-    cam.fovYDegrees = 80;
-    cam.aspect = 1.0;
-    cam.zNear = 0.3;
-    cam.zFar = 40;
+    const core::PerspectiveCamera cam = lowCamera({5, 1.5, 5.5}, core::Vec3(0, -1.5, -6.5));
     const double sunAngle = 4.0;
     const gl::RenderSettings settings = pcssSettings(sunAngle);
     const Frame f = renderWall(**renderer, s, cam, core::Technique::Lispsm, settings, 256);
@@ -205,6 +212,42 @@ TEST_F(SoftFilterTest, PcssKernelFollowsAWarpedMapsLocalFootprintNotAConstantTex
     const double expected = expectedWidth(5.0, sunAngle);
     EXPECT_NEAR(nearWidth, expected, 0.25 * expected);
     EXPECT_NEAR(farWidth, expected, 0.25 * expected);
+}
+
+TEST_F(SoftFilterTest, PcssOnAPerspectiveShadowMapIsAsWideAsTheDiskWhereItsTexelsAreThreeTimesDenser) {
+    // PSM with the sun across the view (where shadowkit's PSM warps), looking along −z past the
+    // wall: its texels are some three times denser at the near edge than at the far one, so a
+    // kernel of so many texels taken anywhere else is wrong there by up to that ratio. (Only the
+    // near edge is measured: from 1.5 m up the far one is seen too obliquely, a pixel 28 cm deep.)
+    // In post-perspective space the sun may be a point light, yet in the world a sun map's
+    // texel rays are lines parallel to ℓ — a (u, v) constant along ℓ for every receiver forces
+    // ∂w/∂ℓ = 0 — so the footprint at the blocker is the receiver's and depth is linear towards
+    // the light: PCSS's kernel from the receiver's Jacobian needs nothing of PSM's own.
+    const scene::Scene s = wallOnGround();
+    auto renderer = gl::Renderer::create(s);
+    ASSERT_TRUE(renderer);
+    const core::PerspectiveCamera cam = lowCamera({5, 1.5, 8}, {0, 0, -1});
+    const double sunAngle = 4.0;
+    const Frame f = renderWall(**renderer, s, cam, core::Technique::Psm, pcssSettings(sunAngle), 512);
+    ASSERT_EQ(f.setup.technique, core::Technique::Psm);
+    ASSERT_TRUE(f.setup.fallbacks.empty()) << "a true perspective shadow map, not a fallback";
+
+    const core::EngineShadowView view = core::toEngineView(f.setup.views[0], f.setup, {});
+    const core::Vec3 receiver(5, 0, 3), blocker(0, 5, 3); // the edge's top seen from the receiver along ℓ
+    const double wReceiver = (view.textureFromWorld * core::Vec4(receiver, 1.0)).w;
+    const double wBlocker = (view.textureFromWorld * core::Vec4(blocker, 1.0)).w;
+    EXPECT_NEAR(wBlocker / wReceiver, 1.0, 1e-9) << "the kernel's premise: w constant towards the light";
+    const auto radiusTexels = [&](const core::Vec3& ws) { // a blocker 5 m up: Δ = 5√2 m
+        return 5.0 * std::numbers::sqrt2 *
+               core::penumbraTexelsPerMetre(view.clipFromWorld, f.setup.mapSize, kSun.wsDirection, sunAngle, ws);
+    };
+    const double nearRadius = radiusTexels({5, 0, 3}), farRadius = radiusTexels({5, 0, -3});
+    ASSERT_GT(nearRadius, 2.0 * farRadius) << "a constant-texel kernel must be wrong by over 2x";
+    ASSERT_LT(nearRadius, 8.0) << "the kernel's cap (16 texels on the ellipse's longer axis) must stay out of the way";
+    ASSERT_GT(nearRadius, 2.0) << "a penumbra of a few texels";
+
+    const double expected = expectedWidth(5.0, sunAngle);
+    EXPECT_NEAR(penumbraWidth(f, 5.0, 3.0), expected, 0.2 * expected);
 }
 
 TEST_F(SoftFilterTest, PcssUnderTheRealSunIsFiniteAndLitAwayFromCastersForEveryTechnique) {
