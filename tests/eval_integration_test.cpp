@@ -241,5 +241,12 @@ TEST_F(EvalIntegrationTest, SoftFiguresOfAVanishingSunAreTheHardOnesAndPcfAndPcs
     const auto [pcssFigures, pcssSoft] = softOf(0.53, core::parseFilter("pcss").value());
     EXPECT_LT(pcssSoft.penumbraMae, 0.8 * pcfSoft.penumbraMae);
     EXPECT_LT(pcssSoft.softMae, 0.8 * std::min(hardSoft.softMae, pcfSoft.softMae));
+    // Widths: the hard test draws none; PCSS draws the sun's; a fixed kernel of 5 × 5 texels draws
+    // every edge wider than PCSS does (over-softening at contact).
+    EXPECT_EQ(hardSoft.penumbraWidthRatio, 0.0);
+    EXPECT_GT(pcssSoft.penumbraWidthRatio, 0.7);
+    EXPECT_LT(pcssSoft.penumbraWidthRatio, 1.4);
+    const auto [wideFigures, wideSoft] = softOf(0.53, core::parseFilter("pcf:5").value());
+    EXPECT_GT(wideSoft.penumbraWidthRatio, pcssSoft.penumbraWidthRatio);
     EXPECT_GT(hardSoft.truthRays, static_cast<uint64_t>(hardSoft.comparedPx)); // probes: more than a ray a pixel
 }

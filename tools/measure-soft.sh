@@ -19,6 +19,7 @@ if [[ -z "${SKIP_SWEEP:-}" ]]; then
 fi
 python3 tools/readme_tables.py --into docs/soft-shadows.md:soft-filters soft "$out/results.csv"
 python3 tools/readme_tables.py --into README.md:soft-summary soft-summary "$out/results.csv"
+python3 tools/readme_tables.py --into docs/soft-shadows.md:soft-widths soft-widths "$out/results.csv"
 
 # A cost table: the camera pass's GPU ms per filter on two views, and the mean's change over the
 # first filter. cost VIEW1 VIEW2 "FILTERS" [bench options...]

@@ -35,6 +35,8 @@ drift from what the program measures.
       soft_mae in brackets, and their means
   tools/readme_tables.py soft-summary results.csv
       the same sweep's means per set-up (rows) and filter (columns): the README's soft table
+  tools/readme_tables.py soft-widths results.csv
+      the same sweep's penumbra_width_ratio per set-up (rows) and filter (columns): mean (range)
   tools/readme_tables.py soft-lamps results.csv
       per view and lamp of data/sweeps/soft-lamps.json, per filter: penumbra_mae / soft_mae
       the same sweep's means per set-up (rows) and filter (columns): the README's soft table
@@ -296,6 +298,23 @@ def soft_summary(paths):
         print(f"| {setup} | " + " | ".join(cells) + " |")
 
 
+def soft_widths(paths):
+    """Per set-up (rows) and filter (columns) of a soft sweep's results.csv: the penumbra width
+    ratio (rendered 10–90 % band over the true one), its mean over the views and, in brackets, its
+    smallest and largest; views whose truth has no penumbra are left out."""
+    rows, setups, filters = soft_rows(paths)
+    print("| set-up | " + " | ".join(f"`{f}`" for f in filters) + " |")
+    print("|---|" + "---:|" * len(filters))
+    for setup in setups:
+        cells = []
+        for name in filters:
+            ratios = [r["penumbra_width_ratio"] for r in rows if r["filter"] == name and r.get("set-up", "") == setup
+                      and isinstance(r.get("penumbra_width_ratio"), (int, float))
+                      and r["penumbra_width_ratio"] == r["penumbra_width_ratio"]]  # not NaN
+            cells.append(f"{sum(ratios) / len(ratios):.2f} ({min(ratios):.2f}–{max(ratios):.2f})" if ratios else "—")
+        print(f"| {setup} | " + " | ".join(cells) + " |")
+
+
 def soft_lamps(paths):
     """Per view and lamp of a sweep over views with lamps of some size (data/sweeps/soft-lamps.json),
     per filter: penumbra_mae / soft_mae against the lamp's sphere, from each row's `lights` JSON."""
@@ -443,7 +462,7 @@ def write_into(target, text):
 
 def run(argv):
     """Prints the table the arguments (argv[1:], as on the command line) ask for."""
-    commands = {"forests": forests, "oracle": oracle, "soft": soft, "soft-summary": soft_summary, "soft-lamps": soft_lamps, "stable": stable, "visibility": visibility, "dynamics": dynamics,
+    commands = {"forests": forests, "oracle": oracle, "soft": soft, "soft-summary": soft_summary, "soft-widths": soft_widths, "soft-lamps": soft_lamps, "stable": stable, "visibility": visibility, "dynamics": dynamics,
                 "setup": setup, "culling": culling, "truth": truth, "scale": scale}
     if len(argv) >= 5 and argv[1] == "oracle" and argv[2] == "--name":
         oracle(argv[4:], argv[3].split(","))

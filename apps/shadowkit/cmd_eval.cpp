@@ -198,13 +198,16 @@ int runEval(const EvalArgs& args) {
             if (const auto& s = l.soft)
                 fmt::print(
                     "    soft truth, lamp {:.3g} m: soft_mae {:.4f}, penumbra_mae {:.3f} over {} px, soft_wrong% "
-                    "{:.2f} ({:.1f} s)\n",
-                    l.radiusMetres, s->softMae, s->penumbraMae, s->penumbraPx, s->softWrongPct, s->truthSeconds);
+                    "{:.2f}, penumbra width ×{:.2f} ({:.1f} s)\n",
+                    l.radiusMetres, s->softMae, s->penumbraMae, s->penumbraPx, s->softWrongPct, s->penumbraWidthRatio,
+                    s->truthSeconds);
         }
         if (const auto& s = report.soft)
-            fmt::print("  soft truth, sun {:.2f}°: soft_mae {:.4f}, penumbra_mae {:.3f} over {} px, soft_wrong% {:.2f} "
-                       "({:.1f} s)\n",
-                       s->sunAngleDegrees, s->softMae, s->penumbraMae, s->penumbraPx, s->softWrongPct, s->truthSeconds);
+            fmt::print(
+                "  soft truth, sun {:.2f}°: soft_mae {:.4f}, penumbra_mae {:.3f} over {} px, soft_wrong% {:.2f}, "
+                "penumbra width ×{:.2f} ({:.1f} s)\n",
+                s->sunAngleDegrees, s->softMae, s->penumbraMae, s->penumbraPx, s->softWrongPct, s->penumbraWidthRatio,
+                s->truthSeconds);
         std::fflush(stdout);
         if (!args.report.empty()) {
             const std::string label =

@@ -40,6 +40,25 @@ constexpr std::array<FigureMeaning, 9> kMeanings = {{
      [](const Figures& f) { return fixed(f.pixelsPerTexelP99, 1); }},
 }};
 
+// The figures against the soft truth (a sun of some size), likewise.
+struct SoftMeaning {
+    std::string_view name, meaning;
+    std::string (*text)(const SoftFigures&);
+};
+constexpr std::array<SoftMeaning, 5> kSoftMeanings = {{
+    {"sun_angle_deg", "the sun's angular diameter: the disk the soft truth sees (the real sun 0.53)",
+     [](const SoftFigures& s) { return fixed(s.sunAngleDegrees, 2); }},
+    {"soft_mae",
+     "mean absolute difference of the rendered term and the true visible fraction of the sun over the valid pixels",
+     [](const SoftFigures& s) { return fixed(s.softMae, 4); }},
+    {"penumbra_mae", "the same where the truth is a penumbra (visible fraction in 0.02–0.98)",
+     [](const SoftFigures& s) { return fixed(s.penumbraMae, 3); }},
+    {"soft_wrong_pct", "% of valid pixels off by more than 0.25",
+     [](const SoftFigures& s) { return fixed(s.softWrongPct, 2); }},
+    {"penumbra_width_ratio", "rendered penumbrae's width over the true ones' (10–90 % bands): 1 as wide, 0 hard",
+     [](const SoftFigures& s) { return fixed(s.penumbraWidthRatio, 2); }},
+}};
+
 constexpr std::string_view kStyle = R"(
 body { font: 15px/1.45 system-ui, sans-serif; margin: 2em auto; max-width: 1500px; padding: 0 1em; color: #222; }
 h1 { font-size: 1.6em; } h2 { margin-top: 2em; border-bottom: 1px solid #ccc; }
@@ -92,6 +111,13 @@ void writeFiguresTable(std::ostringstream& out, const std::vector<const HtmlEntr
         for (const HtmlEntry* e : entries) out << "<td>" << m.text(e->report.figures) << "</td>";
         out << "<td class=\"meaning\">" << htmlEscape(m.meaning) << "</td></tr>\n";
     }
+    if (std::any_of(entries.begin(), entries.end(), [](const HtmlEntry* e) { return e->report.soft.has_value(); }))
+        for (const SoftMeaning& m : kSoftMeanings) {
+            out << "<tr><td><code>" << m.name << "</code></td>";
+            for (const HtmlEntry* e : entries)
+                out << "<td>" << (e->report.soft ? m.text(*e->report.soft) : "—") << "</td>";
+            out << "<td class=\"meaning\">" << htmlEscape(m.meaning) << "</td></tr>\n";
+        }
     out << "</table>\n";
     for (const HtmlEntry* e : entries) {
         if (e->report.lights.empty()) continue;

@@ -20,9 +20,13 @@ namespace {
 
 // The figures against a soft truth, as JSON keys (the light's size is its caller's).
 nlohmann::json softJson(const SoftFigures& s) {
-    return {
-        {"soft_compared_px", s.comparedPx}, {"penumbra_px", s.penumbraPx},      {"soft_mae", s.softMae},
-        {"penumbra_mae", s.penumbraMae},    {"soft_wrong_pct", s.softWrongPct}, {"soft_truth_seconds", s.truthSeconds}};
+    return {{"soft_compared_px", s.comparedPx},
+            {"penumbra_px", s.penumbraPx},
+            {"soft_mae", s.softMae},
+            {"penumbra_mae", s.penumbraMae},
+            {"soft_wrong_pct", s.softWrongPct},
+            {"soft_truth_seconds", s.truthSeconds},
+            {"penumbra_width_ratio", s.penumbraWidthRatio}};
 }
 
 } // namespace

@@ -222,7 +222,7 @@ SoftFigures compareSoft(std::span<const float> shadowTerm, const SoftTruth& soft
     f.truthRays = soft.rays;
     const size_t n = std::min({shadowTerm.size(), soft.visibility.size(), classes.size()});
     double sum = 0.0, penumbraSum = 0.0;
-    int64_t wrong = 0;
+    int64_t wrong = 0, trueBand = 0, renderedBand = 0; // 10–90 %: the width the penumbra tests measure
     for (size_t i = 0; i < n; ++i) {
         const PixelClass c = classes[i];
         const bool valid = c == PixelClass::LitCorrect || c == PixelClass::ShadowCorrect ||
@@ -233,6 +233,8 @@ SoftFigures compareSoft(std::span<const float> shadowTerm, const SoftTruth& soft
         ++f.comparedPx;
         sum += error;
         wrong += error > 0.25;
+        trueBand += truth > 0.1f && truth < 0.9f;
+        renderedBand += shadowTerm[i] > 0.1f && shadowTerm[i] < 0.9f;
         if (truth > 0.02f && truth < 0.98f) {
             ++f.penumbraPx;
             penumbraSum += error;
@@ -243,6 +245,7 @@ SoftFigures compareSoft(std::span<const float> shadowTerm, const SoftTruth& soft
         f.softWrongPct = 100.0 * static_cast<double>(wrong) / static_cast<double>(f.comparedPx);
     }
     if (f.penumbraPx > 0) f.penumbraMae = penumbraSum / static_cast<double>(f.penumbraPx);
+    f.penumbraWidthRatio = trueBand > 0 ? static_cast<double>(renderedBand) / static_cast<double>(trueBand) : NAN;
     return f;
 }
 

@@ -3,6 +3,7 @@
 // disk's chord-area fraction, and two independent sample sets agree within their errors.
 #include "truth_scenes.h"
 
+#include "shadowkit/eval/html_report.h"
 #include "shadowkit/eval/maps.h"
 #include "shadowkit/eval/soft_truth.h"
 #include "shadowkit/scene/mesh_builder.h"
@@ -10,6 +11,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 using namespace shadowkit;
@@ -163,6 +165,29 @@ TEST(SoftTruthTest, SoftFiguresAreTheMeanErrorsOverTheValidPixelsAndThePenumbra)
     EXPECT_DOUBLE_EQ(f.sunAngleDegrees, 0.53);
 }
 
+TEST(SoftTruthTest, ThePenumbraWidthRatioIsTheRenderedBandsWidthOverTheTrueOnes) {
+    // One row across a straight edge: the true visibility ramps from 1 to 0 over 20 pixels, the
+    // rendered one over 10 (too hard), 40 (too soft) or not at all (the hard test).
+    const int width = 100;
+    auto ramp = [&](double widthPx) {
+        std::vector<float> v(width);
+        for (int x = 0; x < width; ++x)
+            v[x] = static_cast<float>(std::clamp(0.5 - (x + 0.5 - 50.0) / widthPx, 0.0, 1.0));
+        return v;
+    };
+    eval::SoftTruth soft;
+    soft.width = width, soft.height = 1;
+    soft.visibility = ramp(20.0);
+    const std::vector<eval::PixelClass> classes(width, eval::PixelClass::LitCorrect);
+    EXPECT_NEAR(eval::compareSoft(ramp(10.0), soft, classes, 0.53).penumbraWidthRatio, 0.5, 0.06);
+    EXPECT_NEAR(eval::compareSoft(ramp(40.0), soft, classes, 0.53).penumbraWidthRatio, 2.0, 0.06);
+    EXPECT_NEAR(eval::compareSoft(soft.visibility, soft, classes, 0.53).penumbraWidthRatio, 1.0, 1e-12);
+    EXPECT_EQ(eval::compareSoft(ramp(1e-6), soft, classes, 0.53).penumbraWidthRatio, 0.0); // hard edges
+    // No true penumbra (a point-like sun's hard truth): no ratio to give.
+    soft.visibility = ramp(1e-6);
+    EXPECT_TRUE(std::isnan(eval::compareSoft(ramp(10.0), soft, classes, 0.53).penumbraWidthRatio));
+}
+
 TEST(SoftTruthTest, TheSoftErrorMapIsRedWhereTooDarkBlueWhereTooLightAndGreyWhereRight) {
     using PC = eval::PixelClass;
     using C = eval::ErrorMapColors;
@@ -241,4 +266,23 @@ TEST(SoftTruthTest, ASphereLightsPenumbraUnderAnEdgeIsTheDisksChordAreaFraction)
     ASSERT_TRUE(ceilingRays);
     const eval::SoftTruth under = eval::computeSphereSoftTruth(**ceilingRays, groundPoints(xs), {{0, H, 0}, R});
     for (const float v : under.visibility) EXPECT_EQ(v, 1.0f);
+}
+
+TEST(SoftTruthTest, TheHtmlReportShowsTheSoftFiguresWithTheirMeaningOnlyWhereThereAreAny) {
+    eval::HtmlEntry hard, soft;
+    hard.label = "hard";
+    soft.label = "pcss";
+    soft.report.soft = eval::SoftFigures{.sunAngleDegrees = 0.53,
+                                         .softMae = 0.0049,
+                                         .penumbraMae = 0.133,
+                                         .softWrongPct = 0.4,
+                                         .penumbraWidthRatio = 0.99};
+    eval::HtmlReport report;
+    report.entries = {hard};
+    EXPECT_EQ(eval::htmlReport(report).find("penumbra_width_ratio"), std::string::npos);
+    report.entries = {hard, soft};
+    const std::string page = eval::htmlReport(report);
+    for (const char* shown : {"<td>0.0049</td>", "<td>0.133</td>", "<td>0.99</td>", "<code>penumbra_mae</code>",
+                              "<code>penumbra_width_ratio</code>", "<td>—</td>"}) // the hard entry has none
+        EXPECT_NE(page.find(shown), std::string::npos) << shown;
 }

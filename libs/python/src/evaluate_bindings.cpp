@@ -103,7 +103,8 @@ public:
             out["soft"] = py::dict(
                 py::arg("sun_angle_deg") = m.soft->sunAngleDegrees, py::arg("soft_compared_px") = m.soft->comparedPx,
                 py::arg("penumbra_px") = m.soft->penumbraPx, py::arg("soft_mae") = m.soft->softMae,
-                py::arg("penumbra_mae") = m.soft->penumbraMae, py::arg("soft_wrong_pct") = m.soft->softWrongPct);
+                py::arg("penumbra_mae") = m.soft->penumbraMae, py::arg("soft_wrong_pct") = m.soft->softWrongPct,
+                py::arg("penumbra_width_ratio") = m.soft->penumbraWidthRatio);
         if (m.softTruth) out["soft_visibility"] = image<float>(m.softTruth->visibility, w, h); // NaN: no surface
         out["shadow_term"] = image<float>(m.raster.shadowTerm, w, h);  // 1 lit .. 0 shadowed, the map's test
         out["view_depth"] = image<float>(m.raster.viewDepth, w, h);    // metres; 0 where nothing was drawn
@@ -128,7 +129,7 @@ and compare per pixel, as `shadowkit eval` does. size=(width, height) overrides 
 filter: hard, pcf2, pcf:N, poisson:N, pcss[:N]. sun_angle: the sun's angular diameter in degrees
 (0.53 the real sun; 0 a point): the penumbrae pcss draws, and the soft truth the frame is also
 compared with (then a dict soft: sun_angle_deg, soft_compared_px, penumbra_px, soft_mae,
-penumbra_mae, soft_wrong_pct, and the array soft_visibility: the visible fraction of the
+penumbra_mae, soft_wrong_pct, penumbra_width_ratio, and the array soft_visibility: the visible fraction of the
 disk per pixel). Returns a dict: figures (valid_px, excluded_px,
 wrong_pct, false_shadow_pct, false_lit_pct, undersampled_pct, pixels_per_texel_p50,
 pixels_per_texel_p95, pixels_per_texel_p99), technique, maps, and per-pixel arrays (height x width, top row first):

@@ -149,7 +149,8 @@ class EvaluateTest(unittest.TestCase):
             error = np.load(os.path.join(dump, "soft_standard_error.npy"))
         got = evaluator.evaluate(view="perpendicular", technique="tsm", size=(160, 90), map_size=512, filter="pcss",
                                  sun_angle=0.53)
-        for key in ["sun_angle_deg", "soft_compared_px", "penumbra_px", "soft_mae", "penumbra_mae", "soft_wrong_pct"]:
+        for key in ["sun_angle_deg", "soft_compared_px", "penumbra_px", "soft_mae", "penumbra_mae", "soft_wrong_pct",
+                    "penumbra_width_ratio"]:
             self.assertAlmostEqual(got["soft"][key], expected[key], places=9, msg=key)
         self.assertGreater(got["soft"]["penumbra_px"], 0)
         # The per-pixel truth behind the figures: the dump's, a fraction where there is a surface.

@@ -25,7 +25,8 @@ struct LightReport {
     int skippedFaces = 0; // point lights: faces that saw nothing of the view
     Figures figures;
     // A lamp with a size: its radius and the figures against its soft truth (JSON: "radius_m",
-    // "soft_compared_px", "penumbra_px", "soft_mae", "penumbra_mae", "soft_wrong_pct", "soft_truth_seconds").
+    // "soft_compared_px", "penumbra_px", "soft_mae", "penumbra_mae", "soft_wrong_pct", "penumbra_width_ratio",
+    // "soft_truth_seconds").
     double radiusMetres = 0.0;
     std::optional<SoftFigures> soft;
 };
@@ -63,7 +64,7 @@ struct ViewReport {
     double truthSeconds = 0.0, truthRaysPerSecond = 0.0;
     std::optional<VirtualPagesReport> virtualPages; // "virtual": technique virtual's pages
     // Against the soft truth (eval --sun-angle): "sun_angle_deg", "soft_compared_px", "penumbra_px",
-    // "soft_mae", "penumbra_mae", "soft_wrong_pct", "soft_truth_seconds".
+    // "soft_mae", "penumbra_mae", "soft_wrong_pct", "penumbra_width_ratio", "soft_truth_seconds".
     std::optional<SoftFigures> soft;
 };
 

@@ -77,8 +77,15 @@ struct SoftFigures {
     double softMae = 0.0;         ///< mean |rendered − true visibility| over the compared pixels
     double penumbraMae = 0.0;     ///< the same over the penumbra pixels (0 when there are none)
     double softWrongPct = 0.0;    ///< % of the compared pixels off by more than 0.25
-    double truthSeconds = 0.0;    ///< computing the soft truth (SoftTruth::seconds)
-    uint64_t truthRays = 0;       ///< its shadow rays
+    /// Penumbra width, rendered against true: the compared pixels whose rendered term is in
+    /// (0.1, 0.9) over those whose true visibility is. Both are the shadows of the same edges, so
+    /// their bands' areas are edge length × 10–90 % width, and the ratio is the rendered
+    /// penumbrae's mean width over the true ones' (weighted by edge length): 1 as wide, 0 hard
+    /// edges, above 1 too soft. One ratio for the view: an edge drawn too wide and one too narrow
+    /// cancel (penumbra_mae sees both). NaN where the truth has no such pixel.
+    double penumbraWidthRatio = 0.0;
+    double truthSeconds = 0.0; ///< computing the soft truth (SoftTruth::seconds)
+    uint64_t truthRays = 0;    ///< its shadow rays
 };
 
 /// The rendered shadow term (1 lit … 0 shadowed, core::RasterBuffers::shadowTerm) against the
