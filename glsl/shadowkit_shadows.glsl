@@ -128,8 +128,10 @@ const mat2 kSkGoldenTurn = mat2(-0.7373688, 0.6754903, -0.6754903, -0.7373688);
 // the search's taps lie at radii growing linearly from the axis itself (dense where the near
 // blockers must be found: the first tap is the receiver's own texel), not uniformly in area. The
 // filter's taps are a Vogel disk (golden-angle spiral, uniform in area for any count), as the sun
-// is. Both turn per pixel and take o.filterTaps taps; both kernels are capped at
-// o.poissonRadiusTexels texels along the ellipse's longer axis (a virtual page's guard band holds that).
+// is. Both turn per pixel and take o.filterTaps taps; the filter is capped at o.poissonRadiusTexels
+// texels along the ellipse's longer axis (a virtual page's guard band holds that), the search at
+// half a texel a tap (8 texels for 16): a far blocker is found near the axis as well as at its
+// cone's rim, and taps spread wider than that missed contact shadows (docs/soft-shadows.md).
 // `t`, `uv`, `depth`: the receiver's coordinates after the normal offset; dDepthDuv its plane.
 float skPcss(sampler2DArrayShadow maps, int layer, mat4 textureFromWorld, vec4 linearDepthFromWorld, SkShadowOptions o,
              vec4 atlasFromMap, vec4 t, vec2 uv, float depth, vec2 dDepthDuv) {
@@ -153,14 +155,17 @@ float skPcss(sampler2DArrayShadow maps, int layer, mat4 textureFromWorld, vec4 l
     const float a = dot(uvFromDisk[0], uvFromDisk[0]), b = dot(uvFromDisk[0], uvFromDisk[1]);
     const float c = dot(uvFromDisk[1], uvFromDisk[1]);
     const float uvPerMetre = sqrt(0.5 * (a + c) + sqrt(0.25 * (a - c) * (a - c) + b * b));
-    const float widestMetres = o.poissonRadiusTexels / (o.mapTexels * max(uvPerMetre, 1e-30));
+    const float metresPerTexel = 1.0 / (o.mapTexels * max(uvPerMetre, 1e-30));
+    const float widestMetres = o.poissonRadiusTexels * metresPerTexel;
 
     // Vogel disk: tap i at radius sqrt((i + ½) / N), each turned by the golden angle from the last.
     const float angle = skPixelAngle();
     const int taps = max(o.filterTaps, 1);
 
-    // 1. Blockers anywhere up to the map's near plane (depth 0) that the cone can reach.
-    const float searchMetres = min(depth / depthPerMetre * o.lightTanHalfAngle, widestMetres);
+    // 1. Blockers anywhere up to the map's near plane (depth 0) that the cone can reach, the taps
+    // half a texel apart along their spiral's radius at most.
+    const float searchMetres = min(depth / depthPerMetre * o.lightTanHalfAngle,
+                                   min(0.5 * float(taps) * metresPerTexel, widestMetres));
     float blockerMetres = 0.0, blockers = 0.0;
     vec2 direction = vec2(cos(angle), sin(angle));
     for (int i = 0; i < taps; ++i, direction = kSkGoldenTurn * direction) {

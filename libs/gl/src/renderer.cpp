@@ -272,6 +272,20 @@ int guardTexelsFor(const core::FilterSettings& filter, const core::BiasSettings&
     return static_cast<int>(std::ceil(lookupReachTexels(filter, bias)));
 }
 
+// PCSS's widest filter on virtual pages. Their guard band holds it: a band for 8 texels leaves a
+// pool of 16 M texels 726 pages of 128² (the hard test's 934), one for 16 only 594, fewer than
+// `noon` and `aerial` ask for (675 and 760: with 16, 114 and 175 pages fell back to coarser
+// levels and `aerial`'s soft_mae rose by a quarter). The finest level's texels are about a pixel,
+// where 8 texels hold a 20 m tree's penumbra under the real sun.
+constexpr float kPcssVirtualMaxRadiusTexels = 8.0f;
+
+// The filter the lookups of a set-up take: `filter`, its PCSS kernel capped on virtual pages.
+core::FilterSettings lookupFilterFor(const core::ShadowSetup& setup, core::FilterSettings filter) {
+    if (setup.clipmap && filter.kind == core::ShadowFilter::Pcss)
+        filter.radiusTexels = std::min(filter.radiusTexels, kPcssVirtualMaxRadiusTexels);
+    return filter;
+}
+
 } // namespace
 
 void Renderer::Impl::collectVisible(const core::PerspectiveCamera& camera, const core::DirectionalLight& light,
@@ -355,9 +369,10 @@ void Renderer::Impl::collectVisible(const core::PerspectiveCamera& camera, const
     if (virtualMaps && settings.sun && !prepassForDepthRange) {
         // The pages the visible receivers request (not for visibleDepth(), which draws none); each draws the casters in
         // its own volume (extended towards the light), at levels of detail for its own texels.
-        const int guard = guardTexelsFor(settings.filter, bias);
+        const core::FilterSettings filter = lookupFilterFor(setup, settings.filter);
+        const int guard = guardTexelsFor(filter, bias);
         virtualPages->request(*cameraDepth, camera, setup, pageContentOf(*setup.clipmap, guard, bias, settings),
-                              movedBoxes, lookupReachTexels(settings.filter, bias), settings.virtualPageBudget);
+                              movedBoxes, lookupReachTexels(filter, bias), settings.virtualPageBudget);
         movedBoxes.clear();
         cullGlTimes += virtualPages->glTimes();
         const auto pages = virtualPages->pagesToRender();
@@ -466,7 +481,7 @@ core::Status Renderer::Impl::prepare(const core::PerspectiveCamera& camera, cons
     if (virtualMaps) {
         if (auto s = validateVirtualSettings(settings); !s) return s;
         if (auto s = virtualPages->configure(settings.virtualPoolPages, setup.clipmap->pageTexels,
-                                             guardTexelsFor(settings.filter, bias));
+                                             guardTexelsFor(lookupFilterFor(setup, settings.filter), bias));
             !s)
             return s;
         virtualPages->setLinearFilter(linearFilter);
@@ -593,7 +608,7 @@ void Renderer::Impl::uploadFrame(const core::PerspectiveCamera& camera, const co
     frame.mapCount = static_cast<int32_t>(setup.views.size());
     frame.linearLayout = setup.depthLayout == core::DepthLayout::Linear ? 1 : 0;
     frame.cascadeColors = settings.cascadeColors ? 1 : 0;
-    const core::FilterSettings& f = settings.filter;
+    const core::FilterSettings f = lookupFilterFor(setup, settings.filter);
     frame.filterKind = static_cast<int32_t>(f.kind); // SK_FILTER_* in the shaders
     frame.filterTaps = f.taps;
     frame.poissonRadiusTexels = f.radiusTexels;

@@ -85,8 +85,8 @@ float localStored(bool point, int i, vec3 q) {
 //
 // As for the sun (glsl/shadowkit_shadows.glsl's skPcss): the search counts a tap as a blocker only
 // inside its cone (ρ ≤ R (d − s) / s), at radii growing linearly from the receiver's own texel;
-// the filter is a Vogel disk; both take filterTaps taps and stop at poissonRadiusTexels texels of
-// the map at the receiver's distance.
+// the filter is a Vogel disk; both take filterTaps taps, the filter stops at poissonRadiusTexels
+// texels of the map at the receiver's distance and the search at half a texel a tap (as the sun's).
 float localPcss(bool point, int i, vec3 ws, vec3 n, vec3 wsLight, float range, float radius, float texelPerMetre) {
     const vec4 r = biasedReceiver(ws, n, wsLight, texelPerMetre);
     const vec3 p = r.xyz;
@@ -103,7 +103,7 @@ float localPcss(bool point, int i, vec3 ws, vec3 n, vec3 wsLight, float range, f
     const float angle = skPixelAngle();
 
     // 1. Blockers between the lamp's surface and the receiver whose cones hold the tap.
-    const float search = min(d - radius, widest);
+    const float search = min(d - radius, min(0.5 * float(max(filterTaps, 1)) * d * texelPerMetre, widest));
     float blockerDistance = 0.0, blockers = 0.0;
     vec2 direction = vec2(cos(angle), sin(angle));
     for (int k = 0; k < taps; ++k, direction = kSkGoldenTurn * direction) {
