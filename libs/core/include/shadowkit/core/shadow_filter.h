@@ -30,10 +30,11 @@ struct FilterSettings {
     float radiusTexels = 1.5f; ///< Poisson: disk radius; Pcss: the widest filter and search; in texels, (0, 16]
 };
 
-/// PCSS's defaults: taps of the blocker search and of the filter each, and the widest filter
-/// in texels; the search reaches half a texel a tap, 8 (a virtual page's guard band holds the filter; a
-/// 20 m tree under the real sun needs about 9 cm, 6 texels of the finest virtual level, and 10 to
-/// 20 of the first 2048² cascade over `paper`'s 70 m: 8 made those penumbrae a third too narrow).
+/// PCSS's defaults: taps of the blocker search and of the filter each, and the widest filter in
+/// texels; the search reaches half a texel a tap, 8 for 16. Under the real sun a blocker 10 m up
+/// casts a penumbra of 4.6 cm radius, 15 texels of the 2048² cascade serving `paper`'s ground 5 m
+/// ahead: a cap of 8 drew those penumbrae at a third of their width (docs/soft-shadows.md).
+/// Virtual pages cap the filter at 8, which their guard band holds (gl's renderer).
 inline constexpr int kPcssTaps = 16;
 inline constexpr float kPcssMaxRadiusTexels = 16.0f;
 /// MSM's default prefilter: a Gaussian blur of this radius in texels (σ = radius / 2).
