@@ -38,13 +38,19 @@ TEST(LightSize, OnAnOrthographicMapThePenumbraIsTheDisksWidthInTexels) {
     in.camera.wsEye = {0, 10, 0};
     const ShadowSetup setup = computeShadowSetup(in).value();
     const EngineShadowView view = toEngineView(setup.views.front(), setup, {});
-    const double metresPerTexel = wsTexelSize(view.clipFromWorld, in.mapSize, in.light.wsDirection, {3, 0, -7});
+    // The texel's size from the map itself: texels per metre along x on the ground, which an
+    // overhead sun's plane holds (an orthographic map: the same everywhere).
+    const auto texel = [&](const Vec3& q) {
+        const Vec4 t = view.textureFromWorld * Vec4(q, 1.0);
+        return Vec2(t) / t.w * double(in.mapSize);
+    };
+    const double metresPerTexel = 1.0 / glm::length(texel({4, 0, -7}) - texel({3, 0, -7}));
     ASSERT_GT(metresPerTexel, 0.05);
     ASSERT_LT(metresPerTexel, 0.2);
     for (const Vec3 p : {Vec3(3, 0, -7), Vec3(-80, 5, 60)}) {
         const double texels = penumbraTexelsPerMetre(view.clipFromWorld, in.mapSize, in.light.wsDirection, 2.0, p);
         // A blocker 10 m up: a penumbra of half-width 10·tan 1°, so many texels, the same anywhere.
-        EXPECT_NEAR(10.0 * texels, 10.0 * std::tan(std::numbers::pi / 180.0) / metresPerTexel, 1e-9);
+        EXPECT_NEAR(10.0 * texels, 10.0 * std::tan(std::numbers::pi / 180.0) / metresPerTexel, 1e-6);
     }
     EXPECT_EQ(penumbraTexelsPerMetre(view.clipFromWorld, in.mapSize, in.light.wsDirection, 0.0, {0, 0, 0}), 0.0);
 }

@@ -8,6 +8,7 @@
 #include "gpu_scene.h"
 #include "line_pass.h"
 #include "local_shadows.h"
+#include "lookup_reach.h"
 #include "moment_maps.h"
 #include "occlusion_culling.h"
 #include "program.h"
@@ -238,55 +239,6 @@ core::Result<std::unique_ptr<Renderer>> Renderer::create(const scene::Scene& sce
     glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
     return renderer;
 }
-
-namespace {
-
-// How far from its own texel a receiver's lookup reads, in map texels: the filter's
-// footprint, the normal offset (in texels' world size), and two for rounding and for the
-// shift of simplified receivers' lookups.
-double lookupReachTexels(const core::FilterSettings& filter, const core::BiasSettings& bias) {
-    double reach = 0.0;
-    switch (filter.kind) {
-    case core::ShadowFilter::Hard:
-        reach = 0.0;
-        break;
-    case core::ShadowFilter::Pcf2:
-        reach = 1.0;
-        break;
-    case core::ShadowFilter::PcfGrid:
-        reach = 0.5 * (filter.taps - 1) + 1.0;
-        break;
-    case core::ShadowFilter::Poisson:
-    case core::ShadowFilter::Pcss: // its widest kernel and search
-        reach = filter.radiusTexels + 1.0;
-        break;
-    case core::ShadowFilter::Msm: // the moments' blur radius, then a bilinear lookup
-        reach = filter.taps + 1.0;
-        break;
-    }
-    return reach + std::abs(bias.normalOffset) + 2.0;
-}
-
-// A virtual page's guard band: the texels around it that a lookup in the page may read.
-int guardTexelsFor(const core::FilterSettings& filter, const core::BiasSettings& bias) {
-    return static_cast<int>(std::ceil(lookupReachTexels(filter, bias)));
-}
-
-// PCSS's widest filter on virtual pages. Their guard band holds it: a band for 8 texels leaves a
-// pool of 16 M texels 726 pages of 128² (the hard test's 934), one for 16 only 594, fewer than
-// `noon` and `aerial` ask for (675 and 760: with 16, 114 and 175 pages fell back to coarser
-// levels and `aerial`'s soft_mae rose by a quarter). The finest level's texels are about a pixel,
-// where 8 texels hold a 20 m tree's penumbra under the real sun.
-constexpr float kPcssVirtualMaxRadiusTexels = 8.0f;
-
-// The filter the lookups of a set-up take: `filter`, its PCSS kernel capped on virtual pages.
-core::FilterSettings lookupFilterFor(const core::ShadowSetup& setup, core::FilterSettings filter) {
-    if (setup.clipmap && filter.kind == core::ShadowFilter::Pcss)
-        filter.radiusTexels = std::min(filter.radiusTexels, kPcssVirtualMaxRadiusTexels);
-    return filter;
-}
-
-} // namespace
 
 void Renderer::Impl::collectVisible(const core::PerspectiveCamera& camera, const core::DirectionalLight& light,
                                     const core::ShadowSetup& setup, const RenderSettings& settings) {
