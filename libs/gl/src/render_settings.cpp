@@ -1,6 +1,8 @@
 // RenderSettings' names and checks (render_settings.h): what a front end validates before it draws.
 #include "shadowkit/gl/render_settings.h"
 
+#include <string>
+
 namespace shadowkit::gl {
 
 const char* localPassName(LocalPass pass) {
@@ -49,6 +51,24 @@ core::Status validate(const BlurSettings& b) {
         return core::fieldError("blur.depth_falloff", "must be in [0, 10] per metre");
     if (!(b.depthThreshold > 0.0f && b.depthThreshold <= 1.0f))
         return core::fieldError("blur.depth_threshold", "must be in (0, 1]");
+    return core::Ok{};
+}
+
+core::Status validateVirtualSettings(const RenderSettings& settings) {
+    if (settings.virtualPoolPages < 0)
+        return core::fieldError("virtual.pool_pages", "must be >= 0 (0: as many as fit 64 MiB), got " +
+                                                          std::to_string(settings.virtualPoolPages));
+    if (!(settings.virtualBlendBand >= 0.0f && settings.virtualBlendBand < 1.0f))
+        return core::fieldError("virtual.blend_band", "must be a fraction in [0, 1)");
+    if (settings.virtualPageBudget < 0)
+        return core::fieldError("virtual.page_budget", "must be >= 0 (0: every page requested), got " +
+                                                           std::to_string(settings.virtualPageBudget));
+    return core::Ok{};
+}
+
+core::Status validateVirtualFilter(const core::FilterSettings& filter) {
+    if (filter.kind == core::ShadowFilter::Msm)
+        return core::fieldError("filter", "msm needs fixed maps: virtual pages hold depth only (use pcss)");
     return core::Ok{};
 }
 

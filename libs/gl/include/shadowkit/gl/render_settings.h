@@ -120,6 +120,13 @@ struct RenderSettings {
     int virtualPageBudget = 0;
 };
 
+// RenderSettings' virtual-map fields in range; errors name virtual.pool_pages,
+// virtual.blend_band, virtual.page_budget. The renderer checks them for every virtual frame;
+// front ends call it to fail before anything is loaded.
+core::Status validateVirtualSettings(const RenderSettings& settings);
+// A filter virtual maps can draw with: not msm (the pages hold depth only); the error names "filter".
+core::Status validateVirtualFilter(const core::FilterSettings& filter);
+
 // The bias a frame with these settings is drawn with: settings.bias, or the recommended one.
 core::BiasSettings biasFor(const core::ShadowSetup& setup, const RenderSettings& settings);
 

@@ -1,0 +1,242 @@
+// The virtual page cache's policy without a GL context: a budget caps each frame's pages and
+// serves the coarsest levels first, a new sun's pages replace the old ones only a whole level at
+// a time, a mover invalidates exactly the pages under its old and new boxes, a tiny pool falls
+// back and says so, and a cached page is never drawn again while nothing changed.
+#include "shadowkit/core/shadow_setup.h"
+#include "shadowkit/core/virtual_clipmap.h"
+#include "shadowkit/core/virtual_page_cache.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <set>
+#include <tuple>
+#include <vector>
+
+using namespace shadowkit::core;
+
+namespace {
+
+// A small clipmap (windows of 32² pages of 32 texels) over a 200 m box, eye 1.8 m up.
+ShadowSetup virtualSetup(const Vec3& wsTowardsSun = Vec3(0.5, 1.0, 0.3)) {
+    ShadowSetupInputs in;
+    in.technique = Technique::Virtual;
+    in.camera.wsEye = Vec3(0.0, 1.8, 0.0);
+    in.camera.wsDirection = Vec3(0.0, -0.3, -1.0);
+    in.camera.zNear = 0.5;
+    in.camera.zFar = 200.0;
+    in.light = DirectionalLight{-glm::normalize(wsTowardsSun)};
+    in.wsSceneBounds = Aabb::fromMinMax(Vec3(-100.0, -2.0, -100.0), Vec3(100.0, 20.0, 100.0));
+    in.virtualMaps.virtualTexels = 1024;
+    in.virtualMaps.pageTexels = 32;
+    in.virtualMaps.imageHeight = 180;
+    in.visibleDepth = Vec2(3.0, 60.0);
+    return computeShadowSetup(in).value();
+}
+
+// Receivers on the ground in front of the eye.
+std::vector<Vec3> receivers() {
+    std::vector<Vec3> points;
+    for (double x = -12.0; x <= 12.0; x += 1.5)
+        for (double z = -40.0; z <= -3.0; z += 1.5) points.emplace_back(x, 0.0, z);
+    return points;
+}
+
+constexpr int kGuard = 2;
+
+using Key = std::tuple<int, int64_t, int64_t>; // exponent, x, y
+Key keyOf(const PageKey& k) { return {k.exponent, k.x, k.y}; }
+
+// What the marking pass (virtual_mark.comp) would read back: for every receiver, its page in
+// every level's window — the level rule's page and all its coarser fallbacks —, found through
+// the window's own clip matrix (a window kept from an older sun projects in that sun's light).
+std::vector<uint32_t> requestBits(const ShadowSetup& setup, std::span<const ShadowView> windows,
+                                  std::set<Key>* keys = nullptr) {
+    const int pages = setup.clipmap->pagesPerSide();
+    const size_t perLevel = size_t(pages) * pages;
+    std::vector<uint32_t> bits((perLevel * windows.size() + 31) / 32, 0u);
+    for (const Vec3& p : receivers())
+        for (size_t l = 0; l < windows.size(); ++l) {
+            const Vec4 clip = windows[l].clipFromWorld * Vec4(p, 1.0);
+            const Vec2 page = glm::floor((Vec2(clip) / clip.w * 0.5 + 0.5) * double(pages));
+            if (page.x < 0.0 || page.y < 0.0 || page.x >= pages || page.y >= pages) continue;
+            const size_t i = l * perLevel + size_t(page.y) * pages + size_t(page.x);
+            bits[i / 32] |= 1u << (i % 32);
+            const ClipmapLevel& level = std::get<ClipmapLevel>(windows[l].warp);
+            if (keys)
+                keys->insert({level.exponent, level.firstPageX + int64_t(page.x), level.firstPageY + int64_t(page.y)});
+        }
+    return bits;
+}
+
+// One frame: marks, requests, "draws" (rendered()); returns the keys drawn.
+std::vector<Key> frame(VirtualPageCache& cache, const ShadowSetup& setup, int budget,
+                       std::span<const Aabb> moved = {}) {
+    const auto& windows = cache.beginFrame(setup, pageContentOf(*setup.clipmap, kGuard), budget, Vec3(0.0, 1.8, 0.0));
+    const std::vector<uint32_t> standing = requestBits(setup, windows.standing);
+    const std::vector<uint32_t> back = windows.drawingBack ? requestBits(setup, windows.back) : std::vector<uint32_t>{};
+    cache.request(standing, back, moved);
+    std::vector<Key> drawn;
+    for (const auto& p : cache.pagesToRender()) drawn.push_back(keyOf(p.key));
+    cache.rendered();
+    return drawn;
+}
+
+int exponentOf(const Key& k) { return std::get<0>(k); }
+
+} // namespace
+
+TEST(VirtualPageCacheTest, AFrameDrawsEveryRequestedPageOnceThenNothingWhileNothingChanges) {
+    const ShadowSetup setup = virtualSetup();
+    std::set<Key> requested;
+    requestBits(setup, setup.views, &requested);
+    ASSERT_GT(requested.size(), 20u);
+    VirtualPageCache cache;
+    cache.configure(4096, kGuard);
+    const std::vector<Key> first = frame(cache, setup, 0);
+    EXPECT_EQ(std::set<Key>(first.begin(), first.end()), requested);
+    EXPECT_EQ(first.size(), requested.size()); // none twice
+    EXPECT_EQ(cache.stats().pagesResident, static_cast<int>(requested.size()));
+    EXPECT_TRUE(frame(cache, setup, 0).empty()); // cached
+    // Every requested page has its slot in the table, and no slot serves two pages.
+    const auto table = cache.pageTable();
+    std::set<uint32_t> slots;
+    for (const uint32_t entry : table) {
+        if (entry == 0) continue;
+        EXPECT_TRUE(slots.insert(entry).second);
+    }
+    EXPECT_EQ(slots.size(), requested.size());
+    // Without a budget, a new sun drops every page at once: all drawn again.
+    const ShadowSetup other = virtualSetup(Vec3(-0.4, 1.0, 0.2));
+    std::set<Key> otherRequested;
+    requestBits(other, other.views, &otherRequested);
+    EXPECT_EQ(frame(cache, other, 0).size(), otherRequested.size());
+    EXPECT_EQ(cache.stats().levelsBehind, 0);
+}
+
+TEST(VirtualPageCacheTest, ABudgetCapsEachFrameCoarsestLevelFirstAndConvergesOnTheSamePages) {
+    const ShadowSetup setup = virtualSetup();
+    std::set<Key> requested;
+    requestBits(setup, setup.views, &requested);
+    VirtualPageCache cache;
+    cache.configure(4096, kGuard);
+    constexpr int kBudget = 5;
+    std::vector<Key> all;
+    int frames = 0;
+    for (; frames < 200; ++frames) {
+        const std::vector<Key> drawn = frame(cache, setup, kBudget);
+        if (drawn.empty()) break;
+        EXPECT_LE(drawn.size(), size_t(kBudget));
+        // Coarsest first: nothing drawn in a frame is coarser than what an earlier frame drew.
+        if (!all.empty()) {
+            EXPECT_LE(exponentOf(drawn.front()), exponentOf(all.back())) << "frame " << frames;
+        }
+        EXPECT_EQ(cache.stats().pagesDeferred + cache.stats().pagesRendered,
+                  static_cast<int>(requested.size()) - static_cast<int>(all.size()));
+        all.insert(all.end(), drawn.begin(), drawn.end());
+    }
+    EXPECT_GT(frames, 3) << "the budget held every page: the test checks nothing";
+    EXPECT_EQ(std::set<Key>(all.begin(), all.end()), requested);
+    EXPECT_EQ(all.size(), requested.size());
+}
+
+TEST(VirtualPageCacheTest, TheOldSunsPagesServeUntilALevelIsCompleteForTheNewOne) {
+    const ShadowSetup sunA = virtualSetup(), sunB = virtualSetup(Vec3(-0.4, 1.0, 0.2));
+    VirtualPageCache cache;
+    cache.configure(4096, kGuard);
+    constexpr int kBudget = 4;
+    for (int f = 0; f < 200 && !frame(cache, sunA, kBudget).empty(); ++f) {
+    }
+    const int levels = static_cast<int>(sunB.views.size());
+    int framesBehind = 0, switches = 0;
+    std::vector<bool> onB(size_t(levels), false);
+    for (int f = 0; f < 400; ++f) {
+        const std::vector<Key> drawn = frame(cache, sunB, kBudget);
+        EXPECT_LE(drawn.size(), size_t(kBudget));
+        const ShadowSetup& shown = cache.shown();
+        ASSERT_EQ(static_cast<int>(shown.views.size()), levels);
+        // Each level is shown whole from one sun: every page its receivers request in the window
+        // it is shown in has a slot in the table (none half drawn, none of the other sun).
+        const std::vector<uint32_t> bits = requestBits(sunB, shown.views);
+        const auto table = cache.pageTable();
+        for (size_t i = 0; i < table.size(); ++i) {
+            const bool requestedHere = (bits[i / 32] >> (i % 32) & 1u) != 0;
+            EXPECT_TRUE(!requestedHere || table[i] != 0u) << "frame " << f << " entry " << i;
+        }
+        for (int l = 0; l < levels; ++l) {
+            const bool fromB = shown.views[size_t(l)].clipFromWorld == sunB.views[size_t(l)].clipFromWorld;
+            EXPECT_TRUE(fromB || !onB[size_t(l)]) << "level " << l << " went back to the old sun";
+            switches += fromB && !onB[size_t(l)];
+            onB[size_t(l)] = fromB;
+        }
+        framesBehind += cache.stats().levelsBehind > 0;
+        if (cache.stats().levelsBehind == 0 && drawn.empty()) break;
+    }
+    EXPECT_EQ(switches, levels);
+    EXPECT_GT(framesBehind, 2) << "the new sun's pages fit one frame: the test checks little";
+    EXPECT_EQ(cache.stats().levelsBehind, 0);
+    EXPECT_EQ(cache.stats().lagFrames, 0);
+}
+
+TEST(VirtualPageCacheTest, AMoverInvalidatesExactlyThePagesUnderItsOldAndNewBoxesInEveryLevel) {
+    const ShadowSetup setup = virtualSetup();
+    VirtualPageCache cache;
+    cache.configure(4096, kGuard);
+    std::set<Key> requested;
+    requestBits(setup, setup.views, &requested);
+    frame(cache, setup, 0);
+    const Aabb oldBox = Aabb::fromMinMax(Vec3(-1.0, 0.0, -10.0), Vec3(1.0, 2.0, -8.0));
+    const Aabb newBox = Aabb::fromMinMax(Vec3(3.0, 0.0, -10.0), Vec3(5.0, 2.0, -8.0));
+    const Aabb moved[] = {oldBox, newBox};
+    // Expected independently of the light-space rectangles the cache uses: a page is redrawn when
+    // either box's corners, through the page's own clip matrix (guard band included), reach its
+    // square.
+    std::set<Key> expected;
+    for (const Key& k : requested) {
+        const PageKey key{std::get<0>(k), std::get<1>(k), std::get<2>(k)};
+        const Mat4 clipFromWorld = clipmapPageClipFromWorld(*setup.clipmap, key, kGuard);
+        for (const Aabb& box : moved) {
+            Vec2 lo(1e30), hi(-1e30);
+            for (const Vec3& c : box.corners()) {
+                const Vec4 p = clipFromWorld * Vec4(c, 1.0);
+                lo = glm::min(lo, Vec2(p) / p.w), hi = glm::max(hi, Vec2(p) / p.w);
+            }
+            if (hi.x >= -1.0 && lo.x <= 1.0 && hi.y >= -1.0 && lo.y <= 1.0) expected.insert(k);
+        }
+    }
+    ASSERT_FALSE(expected.empty());
+    ASSERT_LT(expected.size(), requested.size() / 2) << "the boxes cover the view: the test checks little";
+    std::set<int> levelsHit;
+    for (const Key& k : expected) levelsHit.insert(exponentOf(k));
+    EXPECT_EQ(levelsHit.size(), setup.views.size()); // every level
+    const std::vector<Key> redrawn = frame(cache, setup, 0, moved);
+    EXPECT_EQ(std::set<Key>(redrawn.begin(), redrawn.end()), expected);
+    EXPECT_TRUE(frame(cache, setup, 0).empty()); // and then cached again
+}
+
+TEST(VirtualPageCacheTest, ATinyPoolFallsBackToCoarserLevelsAndSaysSo) {
+    const ShadowSetup setup = virtualSetup();
+    std::set<Key> requested;
+    requestBits(setup, setup.views, &requested);
+    constexpr int kPool = 6;
+    VirtualPageCache cache;
+    cache.configure(kPool, kGuard);
+    const std::vector<Key> drawn = frame(cache, setup, 0);
+    EXPECT_EQ(drawn.size(), size_t(kPool));
+    EXPECT_EQ(cache.stats().poolPages, kPool);
+    EXPECT_EQ(cache.stats().pagesResident, kPool);
+    EXPECT_EQ(cache.stats().pagesFellBack, static_cast<int>(requested.size()) - kPool);
+    // The pages allocated are the coarsest requested: every receiver's fallback first.
+    std::vector<int> exponents;
+    for (const Key& k : requested) exponents.push_back(exponentOf(k));
+    std::ranges::sort(exponents, std::greater<>());
+    for (const Key& k : drawn) EXPECT_GE(exponentOf(k), exponents[kPool - 1]);
+    // The table points only at the pool's slots, once each.
+    std::set<uint32_t> slots;
+    for (const uint32_t entry : cache.pageTable()) {
+        if (entry == 0) continue;
+        EXPECT_LE(entry, uint32_t(kPool));
+        EXPECT_TRUE(slots.insert(entry).second);
+    }
+    EXPECT_EQ(slots.size(), size_t(kPool));
+}
