@@ -3,6 +3,7 @@
 #include "headless_gl_test.h"
 #include "test_scenes.h"
 
+#include "shadowkit/core/visible_depth.h"
 #include "shadowkit/frame/frame_driver.h"
 
 #include <gtest/gtest.h>
@@ -103,6 +104,45 @@ TEST_F(FrameDriverTest, TheVisibleDepthIsMeasuredFromThisFrameBeforeTheSetUp) {
     EXPECT_LE(with->inputs.visibleDepth->y, view.camera.zFar);
     // And the set-up took it: LiSPSM's n follows the measured range, so the matrices differ.
     EXPECT_NE(with->setup.views[0].clipFromWorld, without->setup.views[0].clipFromWorld);
+}
+
+TEST_F(FrameDriverTest, AFrameThatMeasuresItsVisibleDepthDrawsOneCameraPrePass) {
+    // The range's pre-pass is the frame's own: with CHC++ or a receiver mask the frame needs a
+    // pre-pass anyway, and one is drawn, not two; the frame equals one drawn without the reuse.
+    for (const gl::Culling culling : {gl::Culling::Occlusion, gl::Culling::Frustum}) {
+        frame::FrameConfig c = config(core::Technique::Lispsm);
+        c.render.culling = culling;
+        c.render.receiverMask = true;
+        c.visibleDepthFromFrame = true;
+        auto driver = frame::FrameDriver::create(c);
+        ASSERT_TRUE(driver) << driver.error();
+        const int before = renderer->cameraPrePassesDrawn();
+        auto drawn = driver->draw(*renderer, view);
+        ASSERT_TRUE(drawn) << drawn.error();
+        EXPECT_EQ(renderer->cameraPrePassesDrawn() - before, 1) << gl::cullingName(culling);
+        const scene::Image reused = renderer->readColor();
+        // The same frame, its pre-pass drawn afresh (the set-up given, nothing measured first).
+        ASSERT_TRUE(renderer->render(view.camera, view.light, drawn->frame.setup, drawn->frame.settings));
+        EXPECT_EQ(renderer->cameraPrePassesDrawn() - before, 2);
+        EXPECT_EQ(renderer->readColor().rgba, reused.rgba) << gl::cullingName(culling);
+    }
+}
+
+TEST_F(FrameDriverTest, AutosReceiverReadBackDrawsNoShadowPass) {
+    frame::FrameConfig c = config(core::Technique::Tsm);
+    const auto inputs = frame::FrameDriver::create(c)->prepare(*renderer, view);
+    ASSERT_TRUE(inputs);
+    ASSERT_TRUE(renderer->render(view.camera, view.light, inputs->setup, inputs->settings));
+    ASSERT_GT(renderer->lastShadowPass().triangles, 0u);
+    auto receivers = frame::readReceivers(*renderer, inputs->inputs, inputs->settings);
+    ASSERT_TRUE(receivers) << receivers.error();
+    EXPECT_EQ(renderer->lastShadowPass().triangles, 0u);
+    EXPECT_EQ(renderer->lastShadowPass().drawCalls, 0);
+    // The surfaces are there all the same: depth and normals where the forest is.
+    const auto range = core::visibleDepthRange(receivers->viewDepth);
+    ASSERT_TRUE(range);
+    EXPECT_GT(range->y, range->x);
+    for (const float term : receivers->shadowTerm) EXPECT_EQ(term, 1.0f);
 }
 
 TEST_F(FrameDriverTest, WithAutoTheVisibleDepthComesFromTheReceiversReadBack) {

@@ -23,7 +23,7 @@ core::Result<core::RasterBuffers> readReceivers(Renderer& renderer, const core::
     // The same levels of detail as the frame: a geometric error is fewer pixels of the
     // smaller image, so the bound shrinks with it (else coarser meshes, other normals).
     small.lodPixelError = settings.lodPixelError * float(small.width) / float(settings.width);
-    return renderer.renderEvalBuffers(camera, light, shadowSetup, small);
+    return renderer.renderSurfaceBuffers(camera, light, shadowSetup, small);
 }
 
 } // namespace shadowkit::gl

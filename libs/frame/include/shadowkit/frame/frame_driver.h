@@ -81,9 +81,9 @@ private:
     std::optional<core::AutoChooser> m_chooser;
 };
 
-// What `inputs`' camera sees, read back at the sampling's low resolution (gl::readReceivers)
-// with the cheapest shadow pass there is — a `standard` map of 64² texels, of which nothing is
-// read: auto's receivers and, with it, the visible depth range (steps 2–3).
+// What `inputs`' camera sees, read back at the sampling's low resolution (gl::readReceivers;
+// no shadow pass is drawn, the set-up it checks is a `standard` map of 64² texels): auto's
+// receivers and, with it, the visible depth range (steps 2–3).
 core::Result<core::RasterBuffers> readReceivers(gl::Renderer& renderer, const core::ShadowSetupInputs& inputs,
                                                 const gl::RenderSettings& settings,
                                                 const gl::ReceiverSampling& sampling = {});

@@ -20,9 +20,9 @@ struct ReceiverSampling {
 
 // `camera`'s view drawn at ReceiverSampling::width with `settings` (its culling and level of
 // detail; filters, blur and receiver masks off) and its per-pixel buffers read back: depth and
-// normals for the receivers, and the drawn view-depth range. The eval pass draws
-// `shadowSetup`'s shadow pass, of which nothing is read: the caller picks the cheapest it has
-// (frame::FrameDriver draws a `standard` map of 64² texels).
+// normals for the receivers, and the drawn view-depth range (Renderer::renderSurfaceBuffers: no
+// shadow pass is drawn). `shadowSetup` only picks the eval pass's variant and is checked: the
+// caller picks the cheapest it has (frame::FrameDriver's is a `standard` map of 64² texels).
 core::Result<core::RasterBuffers> readReceivers(Renderer& renderer, const core::PerspectiveCamera& camera,
                                                 const core::DirectionalLight& light,
                                                 const core::ShadowSetup& shadowSetup, const RenderSettings& settings,

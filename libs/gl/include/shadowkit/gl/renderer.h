@@ -48,6 +48,15 @@ public:
                                                         const core::ShadowSetup& setup, const RenderSettings& settings,
                                                         int localLight = -1);
 
+    // The eval pass's surfaces alone, with no shadow pass drawn: surface identity, view depth,
+    // normals — the visible receivers a sampling model reads (readReceivers). The shadow term
+    // reads lit everywhere and the texel fields are not meaningful; `setup` only chooses the
+    // pass's variant (and is checked as render() checks it).
+    core::Result<core::RasterBuffers> renderSurfaceBuffers(const core::PerspectiveCamera& camera,
+                                                           const core::DirectionalLight& light,
+                                                           const core::ShadowSetup& setup,
+                                                           const RenderSettings& settings);
+
     // The spot and point lights of the frames to come, with their set-ups (core::computeLocalLighting
     // for the frame's camera), drawn beside the sun until set again. At most
     // kMaxLocalLightsPerKind of each kind.
@@ -67,6 +76,9 @@ public:
     // frame's set-up, by then long computed, so nothing waits (Scherzer 2005 took Δz "from
     // the visibility algorithm" the same way). nullopt without a pre-pass or visible pixels.
     std::optional<core::Vec2> lastVisibleDepth();
+    // Camera depth pre-passes drawn since the renderer was created (work, for tests and benches):
+    // a render() right after visibleDepth() for the same camera and culling reuses that one.
+    int cameraPrePassesDrawn() const;
 
     // Instances that moved since the last frame (scene::animate's list of global indices),
     // all of dynamic batches of the scene the renderer was created with: their transforms

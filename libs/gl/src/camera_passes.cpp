@@ -1,0 +1,149 @@
+#include "camera_passes.h"
+
+#include "gl_shaders.h"
+#include "look.h"
+#include "lookup_reach.h"
+#include "program.h"
+#include "uniforms.h"
+
+#include "shadowkit/core/light_size.h"
+#include "shadowkit/core/output_conventions.h"
+
+namespace shadowkit::gl {
+namespace {
+
+FrameUniforms frameUniformsOf(const CameraView& view, bool readBlurredMask) {
+    const core::PerspectiveCamera& camera = view.camera;
+    const core::ShadowSetup& setup = view.setup;
+    const RenderSettings& settings = view.settings;
+    FrameUniforms frame{};
+    frame.clipFromWorld = glm::mat4(camera.clipFromWorld());
+    frame.wsEye = glm::vec4(glm::vec3(camera.wsEye), 1.0f);
+    frame.wsViewForward = glm::vec4(glm::vec3(glm::normalize(camera.wsDirection)), 0.0f);
+    frame.wsTowardsLight = glm::vec4(glm::vec3(view.light.wsTowardsLight()), 0.0f);
+    const Radiance radiance = radianceOf(daylight(view.light, settings));
+    frame.sunRadiance = radiance.sun;
+    frame.ambientRadiance = radiance.ambient;
+    frame.fogColorDensity = glm::vec4(glm::vec3(radiance.fogColor), settings.fogDensity);
+    frame.mapTexels = static_cast<float>(setup.mapSize);
+    frame.mapCount = static_cast<int32_t>(setup.views.size());
+    frame.linearLayout = setup.depthLayout == core::DepthLayout::Linear ? 1 : 0;
+    frame.cascadeColors = settings.cascadeColors ? 1 : 0;
+    const core::FilterSettings f = lookupFilterFor(setup, settings.filter);
+    frame.filterKind = static_cast<int32_t>(f.kind); // SK_FILTER_* in the shaders
+    frame.filterTaps = f.taps;
+    frame.poissonRadiusTexels = f.radiusTexels;
+    frame.lightTanHalfAngle = static_cast<float>(core::tanAngularRadius(settings.sunAngleDegrees));
+    frame.receiverPlane = view.bias.receiverPlane ? 1 : 0;
+    frame.normalOffsetTexels = static_cast<float>(view.bias.normalOffset);
+    frame.readBlurredMask = readBlurredMask ? 1 : 0;
+    frame.aliasingOverlay = settings.aliasingOverlay ? 1 : 0;
+    for (size_t i = 0; i < setup.views.size(); ++i) {
+        const core::ShadowView& map = setup.views[i];
+        frame.shadowTextureFromWorld[i] = glm::mat4(core::toEngineView(map, setup, {}).textureFromWorld);
+        frame.shadowLinearDepthFromWorld[i] = glm::vec4(map.linearDepthFromWorld);
+        const core::Vec2 range = map.split.value_or(core::Vec2(camera.zNear, camera.zFar));
+        frame.cascadeRange[i] = glm::vec4(static_cast<float>(range.x), static_cast<float>(range.y), 0.0f, 0.0f);
+    }
+    return frame;
+}
+
+} // namespace
+
+core::Result<std::unique_ptr<CameraPasses>> CameraPasses::create() {
+    auto passes = std::unique_ptr<CameraPasses>(new CameraPasses);
+    auto programs = CameraPrograms::create();
+    if (!programs) return programs.errorInfo();
+    passes->m_programs = std::move(programs).value();
+    auto blur = buildProgram("blur pass", {shaders::kFullscreenVert}, {shaders::kBlurFrag});
+    if (!blur) return blur.errorInfo();
+    if (auto s = checkUniformBlock(*blur, "blur pass", "Blur", sizeof(BlurUniforms), blurFields()); !s)
+        return s.errorInfo();
+    passes->m_blurProgram = std::move(blur).value();
+    passes->m_frameUniforms = createBuffer(nullptr, sizeof(FrameUniforms));
+    passes->m_blurUniforms = createBuffer(nullptr, sizeof(BlurUniforms));
+    GLuint vao = 0;
+    glCreateVertexArrays(1, &vao);
+    passes->m_emptyVertexArray = VertexArray(vao);
+    passes->m_rawDepth = createRawDepthSampler();
+    return passes;
+}
+
+void CameraPasses::bindFrame(const CameraView& view, bool readBlurredMask) const {
+    const FrameUniforms frame = frameUniformsOf(view, readBlurredMask);
+    glNamedBufferSubData(m_frameUniforms.id(), 0, sizeof frame, &frame);
+    glBindBufferBase(GL_UNIFORM_BUFFER, kFrameBinding, m_frameUniforms.id());
+    for (const unsigned unit : {kShadowDepthUnit, kSpotDepthUnit, kPointDepthUnit})
+        glBindSampler(unit, m_rawDepth.id()); // the maps once more, their stored depths
+    // The camera passes' own raster state, whatever ran before (the culling's box queries leave
+    // depth writes off; a frame without shadow passes has nothing between them and these).
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glEnable(GL_CULL_FACE);
+    glCullFace(GL_BACK);
+}
+
+core::Status CameraPasses::evalPass(const GpuScene& scene, const PassList& list, const CameraView& view) {
+    const RenderSettings& settings = view.settings;
+    if (!m_eval || m_eval->width != settings.width || m_eval->height != settings.height) {
+        m_eval.emplace(settings.width, settings.height);
+        if (auto s = checkComplete(m_eval->framebuffer, "eval pass"); !s) return s;
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, m_eval->framebuffer.id());
+    glViewport(0, 0, m_eval->width, m_eval->height);
+    m_eval->clear();
+    scene.draw(list, m_programs.eval(view.setup.clipmap.has_value()), true);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    return core::Ok{};
+}
+
+int CameraPasses::blurPass(const BlurSettings& blur) {
+    const int width = m_eval->width, height = m_eval->height;
+    if (!m_mask || m_mask->width != width || m_mask->height != height) m_mask.emplace(width, height);
+    const BlurUniforms uniforms{
+        .radiusPixels = blur.radiusPixels, .depthFalloff = blur.depthFalloff, .depthThreshold = blur.depthThreshold};
+    glNamedBufferSubData(m_blurUniforms.id(), 0, sizeof uniforms, &uniforms);
+    glBindBufferBase(GL_UNIFORM_BUFFER, kBlurBinding, m_blurUniforms.id());
+    glUseProgram(m_blurProgram.id());
+    glBindVertexArray(m_emptyVertexArray.id());
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+    glViewport(0, 0, width, height);
+    glBindTextureUnit(kBlurDepthUnit, m_eval->viewDepth.id());
+    int target = 0;
+    for (int i = 0; i < blur.iterations; ++i) {
+        glBindTextureUnit(kBlurMaskUnit, i == 0 ? m_eval->shadowTerm.id() : m_mask->images[1 - target].id());
+        glBindFramebuffer(GL_FRAMEBUFFER, m_mask->framebuffers[target].id());
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        target = 1 - target;
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glBindVertexArray(0);
+    glEnable(GL_DEPTH_TEST);
+    return 1 - target; // the last one written
+}
+
+core::Result<DrawStats> CameraPasses::mainPass(const GpuScene& scene, const PassList& list, const CameraView& view,
+                                               int blurredMask) {
+    const RenderSettings& settings = view.settings;
+    if (!m_color || m_color->width != settings.width || m_color->height != settings.height) {
+        m_color.emplace(settings.width, settings.height);
+        if (auto s = checkComplete(m_color->framebuffer, "main pass"); !s) return s.errorInfo();
+    }
+    if (blurredMask >= 0) glBindTextureUnit(kShadowMaskUnit, m_mask->images[blurredMask].id());
+    glBindFramebuffer(GL_FRAMEBUFFER, m_color->framebuffer.id());
+    glViewport(0, 0, m_color->width, m_color->height);
+    const glm::vec3 sky = skyColor(daylight(view.light, settings));
+    const float clearColor[4] = {sky.r, sky.g, sky.b, 1.0f};
+    const float clearDepth = 1.0f;
+    glClearNamedFramebufferfv(m_color->framebuffer.id(), GL_COLOR, 0, clearColor);
+    glClearNamedFramebufferfv(m_color->framebuffer.id(), GL_DEPTH, 0, &clearDepth);
+    m_mainTimer.begin();
+    const DrawStats draws = scene.draw(list, m_programs.main(view.setup.clipmap.has_value()), true);
+    m_mainTimer.end();
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    return draws;
+}
+
+} // namespace shadowkit::gl

@@ -1,0 +1,77 @@
+// The camera's passes: the main pass (shaded colour, main.frag), the eval pass (the per-pixel
+// buffers the evaluation compares with truth, eval.frag) and the eye-space blur of the shadow
+// term (blur.frag), with the Frame block they all read. The shadow maps they look up are bound
+// by their own passes (SunPass::bind, LocalShadowMaps::bind); the lists come from the culling
+// planner (pass_lists.h).
+#pragma once
+
+#include "camera_programs.h"
+#include "gl_object.h"
+#include "gpu_scene.h"
+#include "pass_timer.h"
+#include "render_targets.h"
+#include "visibility.h"
+
+#include "shadowkit/core/bias.h"
+#include "shadowkit/core/camera.h"
+#include "shadowkit/core/light.h"
+#include "shadowkit/core/raster_buffers.h"
+#include "shadowkit/core/result.h"
+#include "shadowkit/core/shadow_setup.h"
+#include "shadowkit/gl/render_settings.h"
+
+#include <memory>
+#include <optional>
+
+namespace shadowkit::gl {
+
+// What a camera pass draws with, in the renderer's (scene) space.
+struct CameraView {
+    const core::PerspectiveCamera& camera;
+    const core::DirectionalLight& light;
+    const core::ShadowSetup& setup; // as the lookups read it (SunPass::lookupSetup)
+    const RenderSettings& settings;
+    const core::BiasSettings& bias; // the frame's (biasFor)
+};
+
+class CameraPasses {
+public:
+    static core::Result<std::unique_ptr<CameraPasses>> create();
+    // The programs of this frame's variant (with or without virtual maps' lookup).
+    core::Status prepare(bool virtualMaps) { return m_programs.prepare(virtualMaps); }
+
+    // The Frame block for `view` at kFrameBinding (the depth pre-pass reads it too), the raw-depth
+    // sampler on every map's depth unit, the depth test on with writes, back faces culled. `readBlurredMask`: the
+    // shadow term comes from the blurred mask (mainPass's `blurredMask`).
+    void bindFrame(const CameraView& view, bool readBlurredMask) const;
+    // The eval pass into its target (shadow term, surface id, depth, normal, texel coordinates and
+    // their derivatives). The frame and the maps bound.
+    core::Status evalPass(const GpuScene& scene, const PassList& list, const CameraView& view);
+    core::RasterBuffers readEval() const { return m_eval->read(); }
+    // Blurs the eval pass's shadow term in eye space; returns the ping-pong index holding it.
+    int blurPass(const BlurSettings& blur);
+    std::vector<float> readBlurred(int index) const { return m_mask->read(index); }
+    // The shaded frame into the colour target, over the sky; `blurredMask` ≥ 0: the blur's
+    // result to read the shadow term from. The frame and the maps bound. Timed (milliseconds()).
+    core::Result<DrawStats> mainPass(const GpuScene& scene, const PassList& list, const CameraView& view,
+                                     int blurredMask);
+    // The GPU time of the last main pass; waits for it.
+    double milliseconds() const { return m_mainTimer.milliseconds(); }
+
+    // The colour target: nullptr before the first frame.
+    const ColorTarget* color() const { return m_color ? &*m_color : nullptr; }
+
+private:
+    CameraPasses() = default;
+    CameraPrograms m_programs;
+    Program m_blurProgram;
+    Buffer m_frameUniforms, m_blurUniforms;
+    VertexArray m_emptyVertexArray; // for the full-screen triangle
+    Sampler m_rawDepth;             // the maps' stored depths (PCSS's blocker search)
+    std::optional<ColorTarget> m_color;
+    std::optional<EvalTarget> m_eval;
+    std::optional<MaskPingPong> m_mask;
+    PassTimer m_mainTimer;
+};
+
+} // namespace shadowkit::gl

@@ -1,0 +1,16 @@
+// A frame's inputs checked before anything is drawn: the set-up's maps and the image within
+// this driver's limits, and every range RenderSettings' fields and the frame's bias must keep.
+#pragma once
+
+#include "shadowkit/core/bias.h"
+#include "shadowkit/core/result.h"
+#include "shadowkit/core/shadow_setup.h"
+#include "shadowkit/gl/render_settings.h"
+
+namespace shadowkit::gl {
+
+// The first thing wrong, as one error naming the field (environment errors for the driver's
+// limits), or Ok.
+core::Status checkFrame(const core::ShadowSetup& setup, const RenderSettings& settings, const core::BiasSettings& bias);
+
+} // namespace shadowkit::gl

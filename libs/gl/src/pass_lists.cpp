@@ -1,0 +1,279 @@
+#include "pass_lists.h"
+
+#include "local_shadows.h"
+#include "lookup_reach.h"
+
+#include <algorithm>
+
+namespace shadowkit::gl {
+namespace {
+
+// The instances a point light's cube may draw: those meeting the cube around its range.
+std::vector<visibility::HalfSpace> rangeBox(const core::Vec3& wsLight, double range) {
+    std::vector<visibility::HalfSpace> box;
+    for (int axis = 0; axis < 3; ++axis)
+        for (const double side : {1.0, -1.0}) {
+            core::Vec4 h(0.0);
+            h[axis] = side; // side · x + (range − side · light) >= 0
+            h.w = range - side * wsLight[axis];
+            box.push_back(h);
+        }
+    return box;
+}
+
+bool virtualMaps(const core::ShadowSetup& setup) { return setup.clipmap.has_value(); }
+
+// Virtual maps cull per page, finer than any receiver mask; their pages come from the pre-pass.
+bool masked(const core::ShadowSetup& setup, const RenderSettings& settings) {
+    return settings.culling != Culling::Off && settings.receiverMask && !virtualMaps(setup);
+}
+
+// The camera's levels by pixels. A simplified receiver lies up to its error off the true surface
+// and would self-shadow against the map (measured without compensation: +0.05 to +0.12 points of
+// false shadow on an aerial view), so its lookup moves that far towards the light (receiverLookup
+// in shadow_lookup.glsl).
+LodProjection cameraProjectionOf(const core::PerspectiveCamera& camera, const RenderSettings& settings) {
+    return {camera.clipFromWorld(), 0.5 * std::max(settings.width, settings.height), settings.lodPixelError};
+}
+
+} // namespace
+
+core::Result<std::unique_ptr<PassLists>>
+PassLists::create(const scene::Scene& scene, std::span<const scene::MeshLods> lods, const GpuScene& gpuScene) {
+    auto lists = std::unique_ptr<PassLists>(new PassLists);
+    lists->m_visibility.emplace(scene, lods);
+    auto occlusion = OcclusionCuller::create(*lists->m_visibility, gpuScene);
+    if (!occlusion) return occlusion.errorInfo();
+    lists->m_occlusion = std::move(occlusion).value();
+    lists->m_gpuCulling = GpuCulling::create(scene, lods, gpuScene);
+    auto masks = ReceiverMasks::create();
+    if (!masks) return masks.errorInfo();
+    lists->m_receiverMasks = std::move(masks).value();
+    auto depthRange = DepthRangeReduction::create();
+    if (!depthRange) return depthRange.errorInfo();
+    lists->m_depthRange = std::move(depthRange).value();
+    return lists;
+}
+
+bool PassLists::needsPrepass(const core::ShadowSetup& setup, const RenderSettings& settings, PassPurpose purpose) {
+    const bool cameraCulling = settings.culling == Culling::Occlusion || settings.culling == Culling::Gpu;
+    switch (purpose) {
+    case PassPurpose::Frame:
+        return cameraCulling || masked(setup, settings) || virtualMaps(setup);
+    case PassPurpose::DepthRange:
+        return true;
+    case PassPurpose::Surfaces:
+        return cameraCulling;
+    }
+    return true;
+}
+
+void PassLists::plan(const PassPlanInputs& in, VirtualPages& pages) {
+    const Stopwatch total;
+    m_visibility->takeListTimes();
+    m_costs = {};
+    const bool prepass = needsPrepass(in.setup, in.settings, in.purpose);
+    const CameraKey camera{in.camera.clipFromWorld(), in.settings.width, in.settings.height,
+                           in.settings.culling,       in.settings.lod,   in.settings.lodPixelError};
+    if (prepass && in.purpose == PassPurpose::Frame && m_keptCamera == camera) {
+        // The depth-range pre-pass just drawn for this very camera: its list, depth and costs.
+        m_costs.occlusion = m_keptCameraCosts.occlusion;
+        m_costs.occlusionMilliseconds = m_keptCameraCosts.occlusionMilliseconds;
+    } else {
+        planCamera(in, prepass);
+        m_prepassesDrawn += prepass;
+    }
+    m_keptCamera.reset();
+    if (in.purpose == PassPurpose::DepthRange && in.settings.culling != Culling::Gpu) {
+        m_keptCamera = camera;
+        m_keptCameraCosts = m_costs;
+    }
+    planMasks(in);
+    // The pre-pass's depth range, for whoever reads it (lastVisibleDepth).
+    m_prepassUnreduced = false;
+    if (!prepass) {
+        m_depthRange->forget();
+    } else if (m_depthRangeWanted) {
+        // On llvmpipe the dispatch runs at once, after the pre-pass's rasterisation it reads: GL
+        // time, not culling's own.
+        const Stopwatch reduceTime;
+        m_depthRange->reduce(*m_cameraDepth);
+        m_costs.inGl += reduceTime.elapsed();
+    } else {
+        m_prepassUnreduced = true;
+    }
+
+    std::vector<PassList*> lists;
+    m_pages.clear();
+    m_sun.clear();
+    m_local.clear();
+    const bool shadows = in.purpose == PassPurpose::Frame;
+    if (shadows && virtualMaps(in.setup) && in.settings.sun) planPages(in, pages, lists);
+    if (!virtualMaps(in.setup) && !m_movedBoxes.empty()) {
+        pages.forget(); // the pages under those movers were not redrawn
+        m_movedBoxes.clear();
+    }
+    if (shadows) {
+        planSunMaps(in, lists);
+        planLocal(in);
+    }
+    for (PassList& list : m_local) lists.push_back(&list);
+    if (in.settings.culling != Culling::Gpu) lists.push_back(&m_camera);
+    m_visibility->upload(lists);
+    m_costs.total = total.elapsed();
+    m_costs.lists = m_visibility->takeListTimes();
+}
+
+void PassLists::planCamera(const PassPlanInputs& in, bool prepass) {
+    const RenderSettings& settings = in.settings;
+    const bool cull = settings.culling != Culling::Off;
+    const LodChoice cameraLod{cameraProjectionOf(in.camera, settings), std::nullopt, false};
+    const LodChoice* lod = settings.lod ? &cameraLod : nullptr;
+    const std::vector<visibility::HalfSpace> cameraVolume = visibility::clipVolume(in.camera.clipFromWorld());
+    if (prepass &&
+        (!m_cameraDepth || m_cameraDepth->width != settings.width || m_cameraDepth->height != settings.height))
+        m_cameraDepth.emplace(settings.width, settings.height);
+    if (settings.culling == Culling::Gpu) {
+        m_gpuCulling->beginFrame(GpuCulling::kCameraPasses + (virtualMaps(in.setup) ? 0 : in.setup.views.size()));
+        const Stopwatch cameraTime;
+        m_gpuCulling->camera(in.camera, lod, *m_cameraDepth, m_camera);
+        m_costs.occlusionMilliseconds = cameraTime.elapsed().wallMilliseconds;
+        m_costs.inGl += m_gpuCulling->takeGlTimes();
+    } else if (settings.culling == Culling::Occlusion) {
+        const Stopwatch occlusionTime;
+        m_costs.occlusion = m_occlusion->frame(in.camera, lod, *m_cameraDepth, m_prepassDrawn);
+        m_visibility->fromItems(m_prepassDrawn, lod, m_camera);
+        m_costs.occlusionMilliseconds = occlusionTime.elapsed().wallMilliseconds;
+        m_costs.inGl += m_occlusion->glTimes();
+    } else if (prepass) {
+        // The frustum's instances, asked once, for the depth pre-pass and the camera pass.
+        m_prepassDrawn.clear();
+        m_visibility->hierarchy().query(cameraVolume, m_prepassDrawn);
+        if (cull)
+            m_visibility->fromItems(m_prepassDrawn, lod, m_camera);
+        else
+            m_visibility->collect(cameraVolume, false, lod, m_camera);
+        m_occlusion->prepass(lod, *m_cameraDepth, m_prepassDrawn);
+        m_costs.inGl += m_occlusion->glTimes();
+    } else {
+        m_visibility->collect(cameraVolume, cull, lod, m_camera);
+    }
+}
+
+void PassLists::planMasks(const PassPlanInputs& in) {
+    // On the CPU, or left on the GPU for its culling passes to test against.
+    const RenderSettings& settings = in.settings;
+    m_masks = nullptr;
+    if (!masked(in.setup, settings) || in.purpose != PassPurpose::Frame) return;
+    const Stopwatch maskTime;
+    const double reach = lookupReachTexels(settings.filter, in.bias);
+    if (settings.culling == Culling::Gpu)
+        m_receiverMasks->markOnGpu(*m_cameraDepth, in.camera, in.setup, reach);
+    else
+        m_masks = &m_receiverMasks->build(*m_cameraDepth, in.camera, in.setup, reach);
+    m_costs.receiverMaskMilliseconds = maskTime.elapsed().wallMilliseconds;
+    m_costs.inGl += m_receiverMasks->glTimes();
+}
+
+void PassLists::planPages(const PassPlanInputs& in, VirtualPages& pages, std::vector<PassList*>& lists) {
+    const RenderSettings& settings = in.settings;
+    const core::ShadowSetup& setup = in.setup;
+    const core::FilterSettings filter = lookupFilterFor(setup, settings.filter);
+    const int guard = guardTexelsFor(filter, in.bias);
+    pages.request(*m_cameraDepth, in.camera, setup, pageContentOf(*setup.clipmap, guard, in.bias, settings),
+                  m_movedBoxes, lookupReachTexels(filter, in.bias), settings.virtualPageBudget);
+    m_movedBoxes.clear();
+    m_costs.inGl += pages.glTimes();
+    const auto toRender = pages.pagesToRender();
+    m_pages.resize(toRender.size());
+    const double slotTexels = setup.clipmap->pageTexels + 2.0 * guard;
+    for (size_t i = 0; i < toRender.size(); ++i) {
+        // Levels by the page's own texels only, not by the camera: a page must hold the same
+        // depths whenever it is drawn, or a page redrawn after a mover would differ from its
+        // cached neighbours (and its texels already match the pixels it serves).
+        const LodChoice lod{{toRender[i].clipFromWorld, 0.5 * slotTexels, settings.lodTexelError}, std::nullopt, true};
+        m_visibility->collect(visibility::clipVolume(toRender[i].clipFromWorld, false),
+                              settings.culling != Culling::Off, settings.lod ? &lod : nullptr, m_pages[i]);
+        lists.push_back(&m_pages[i]);
+    }
+}
+
+void PassLists::planSunMaps(const PassPlanInputs& in, std::vector<PassList*>& lists) {
+    const RenderSettings& settings = in.settings;
+    const bool gpu = settings.culling == Culling::Gpu;
+    const LodProjection cameraProjection = cameraProjectionOf(in.camera, settings);
+    m_sun.resize(virtualMaps(in.setup) ? 0 : in.setup.views.size());
+    for (size_t i = 0; i < m_sun.size(); ++i) {
+        // No near plane: the pass clamps depth, so casters between the light and the near
+        // plane are drawn at depth 0 and must not be culled. Levels by texels of this map.
+        const core::Mat4& clipFromWorld = in.setup.views[i].clipFromWorld;
+        const LodChoice lod{{clipFromWorld, 0.5 * in.setup.mapSize, settings.lodTexelError}, cameraProjection, true};
+        const std::vector<visibility::HalfSpace> volume = visibility::clipVolume(clipFromWorld, false);
+        if (gpu) {
+            const GpuReceiverMask mask = GpuReceiverMask::of(*m_receiverMasks, in.setup, i);
+            m_gpuCulling->cull(GpuCulling::kCameraPasses + i, volume, settings.lod ? &lod : nullptr,
+                               GpuCulling::Phase::All, m_sun[i], masked(in.setup, settings) ? &mask : nullptr);
+            continue;
+        }
+        m_visibility->collect(volume, settings.culling != Culling::Off, settings.lod ? &lod : nullptr, m_sun[i],
+                              m_masks ? &(*m_masks)[i] : nullptr);
+        lists.push_back(&m_sun[i]);
+    }
+    if (gpu) m_costs.inGl += m_gpuCulling->takeGlTimes();
+}
+
+void PassLists::planLocal(const PassPlanInputs& in) {
+    // Full meshes (levels are chosen for the sun's maps and the camera); a point light's layered
+    // pass culled to the cube around its range.
+    const bool cull = in.settings.culling != Culling::Off;
+    const core::LocalLighting& lights = in.localLights;
+    m_local.resize(LocalShadowMaps::listCount(lights, in.localPass));
+    size_t next = 0;
+    const auto collect = [&](std::span<const visibility::HalfSpace> volume) {
+        m_visibility->collect(volume, cull, nullptr, m_local[next++]);
+    };
+    for (size_t p = 0; p < lights.points.size(); ++p) {
+        const core::ShadowSetup& cube = lights.pointSetups[p];
+        if (in.localPass == LocalPass::PerFace) {
+            for (const core::ShadowView& view : cube.views) collect(visibility::clipVolume(view.clipFromWorld, false));
+        } else if (cube.views.empty()) {
+            m_local[next++] = {};
+        } else {
+            collect(rangeBox(lights.points[p].wsPosition, lights.points[p].range));
+        }
+    }
+    for (const core::ShadowSetup& spot : lights.spotSetups) {
+        if (spot.views.empty())
+            m_local[next++] = {};
+        else
+            collect(visibility::clipVolume(spot.views[0].clipFromWorld, false));
+    }
+}
+
+std::optional<core::Vec2> PassLists::lastVisibleDepth() {
+    m_depthRangeWanted = true; // from now on every pre-pass is reduced as it is drawn
+    return visibleDepthNow();
+}
+
+std::optional<core::Vec2> PassLists::visibleDepthNow() {
+    if (m_prepassUnreduced) {
+        m_depthRange->reduce(*m_cameraDepth);
+        m_prepassUnreduced = false;
+    }
+    return m_depthRange->read();
+}
+
+void PassLists::move(uint32_t globalInstance, const core::Aabb& wsBox) {
+    // Virtual maps redraw the pages under where it was and where it is.
+    m_movedBoxes.push_back(m_visibility->hierarchy().itemBounds(globalInstance));
+    m_movedBoxes.push_back(wsBox);
+    m_keptCamera.reset(); // its list and depth no longer hold
+    m_visibility->move(globalInstance, wsBox);
+    m_gpuCulling->move(globalInstance, wsBox);
+}
+
+void PassLists::afterMoves() {
+    if (m_visibility->rebuildIfDegraded()) m_occlusion->hierarchyRebuilt();
+}
+
+} // namespace shadowkit::gl

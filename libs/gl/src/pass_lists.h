@@ -1,0 +1,153 @@
+// The culling planner: which instances, at which level of detail, every pass of a frame
+// draws. It owns the culling state that lives across frames — the instance hierarchy
+// (visibility.h), CHC++'s history (occlusion_culling.h), the GPU-driven culling's buffers
+// (gpu_culling.h), the receiver masks (receiver_masks.h), the camera's depth pre-pass and its
+// reduction to a depth range (depth_range.h) — and produces one PassList per pass: the camera
+// pass, each sun map or each virtual page to draw, each local light's map.
+//
+// The camera pass is planned first: with occlusion culling, receiver masks or virtual maps the
+// shadow passes' lists depend on what it sees (its depth pre-pass).
+#pragma once
+
+#include "depth_range.h"
+#include "gpu_culling.h"
+#include "gpu_scene.h"
+#include "occlusion_culling.h"
+#include "receiver_masks.h"
+#include "render_targets.h"
+#include "stopwatch.h"
+#include "virtual_pages.h"
+#include "visibility.h"
+
+#include "shadowkit/core/bias.h"
+#include "shadowkit/core/camera.h"
+#include "shadowkit/core/local_lights.h"
+#include "shadowkit/core/result.h"
+#include "shadowkit/core/shadow_setup.h"
+#include "shadowkit/gl/frame_stats.h"
+#include "shadowkit/gl/render_settings.h"
+
+#include <memory>
+#include <optional>
+#include <span>
+#include <vector>
+
+namespace shadowkit::gl {
+
+// What a frame's lists are for.
+enum class PassPurpose {
+    Frame,      // every pass: camera, sun maps or virtual pages, local lights
+    DepthRange, // Renderer::visibleDepth: the camera's pre-pass and list only
+    Surfaces,   // Renderer::renderSurfaceBuffers: the camera's list only, no shadow pass
+};
+
+// One frame to plan, in the renderer's (scene) space.
+struct PassPlanInputs {
+    const core::PerspectiveCamera& camera;
+    const core::ShadowSetup& setup;
+    const RenderSettings& settings;
+    const core::BiasSettings& bias;           // the frame's (biasFor): the receiver masks' reach
+    const core::LocalLighting& localLights;   // in the scene's coordinates
+    LocalPass localPass = LocalPass::Layered; // as LocalShadowMaps::resolve chose it
+    PassPurpose purpose = PassPurpose::Frame;
+};
+
+// What building the lists cost (FrameStats' culling figures).
+struct CullingCosts {
+    CpuTimes total; // building this frame's lists
+    CpuTimes inGl;  // of which inside GL doing or awaiting GPU work
+    CpuTimes lists; // of which choosing levels and building lists
+    visibility::CoherentCullingStats occlusion;
+    double occlusionMilliseconds = 0.0; // the camera's culling (CHC++ or the GPU's)
+    double receiverMaskMilliseconds = 0.0;
+};
+
+class PassLists {
+public:
+    // `gpuScene` must outlive the planner (the culling passes draw its meshes).
+    static core::Result<std::unique_ptr<PassLists>>
+    create(const scene::Scene& scene, std::span<const scene::MeshLods> lods, const GpuScene& gpuScene);
+
+    // Whether plan() draws the camera's depth pre-pass: it reads the camera's Frame block, which
+    // must be bound before plan() is called.
+    static bool needsPrepass(const core::ShadowSetup& setup, const RenderSettings& settings, PassPurpose purpose);
+    // GPU-driven culling's programs (built on first use; an error when the driver cannot).
+    core::Status prepareGpuCulling() { return m_gpuCulling->buildPrograms(); }
+
+    // Every list of the frame, uploaded together; for PassPurpose::Frame alone the shadow passes'
+    // (and with virtual maps and a sun, the pages the visible receivers request, through `pages`).
+    void plan(const PassPlanInputs& in, VirtualPages& pages);
+
+    const PassList& cameraList() const { return m_camera; }
+    std::span<const PassList> sunLists() const { return m_sun; }     // one per fixed map; none with virtual maps
+    std::span<const PassList> pageLists() const { return m_pages; }  // one per VirtualPages::pagesToRender()
+    std::span<const PassList> localLists() const { return m_local; } // LocalShadowMaps::listCount of them
+    const CullingCosts& costs() const { return m_costs; }
+    // Camera depth pre-passes drawn since the planner was made (a CHC++ settle loop counts once).
+    int prepassesDrawn() const { return m_prepassesDrawn; }
+
+    // Culling::Gpu: what the camera's and the sun maps' lists drew, read back (waits for the GPU).
+    DrawStats gpuCameraDrawn() const { return m_gpuCulling->submitted(m_camera); }
+    DrawStats gpuSunDrawn() const { return m_gpuCulling->submitted(m_sun); }
+
+    // The view-depth range of the last pre-pass (Renderer::lastVisibleDepth). The reduction is
+    // queued after every pre-pass once a range has been asked for; until then, the first ask
+    // reduces the last pre-pass's depths itself (it is kept until the next one).
+    std::optional<core::Vec2> lastVisibleDepth();
+    // The range of the pre-pass plan() just drew, reduced now (Renderer::visibleDepth).
+    std::optional<core::Vec2> visibleDepthNow();
+
+    // An instance moved: its new world box into the hierarchy and the GPU culling; its old and
+    // new boxes kept for the next frame's virtual pages to redraw what lies under them.
+    void move(uint32_t globalInstance, const core::Aabb& wsBox);
+    // After a frame's moves: the hierarchy rebuilt when they degraded it.
+    void afterMoves();
+    const visibility::InstanceHierarchy& hierarchy() const { return m_visibility->hierarchy(); }
+    const core::Aabb& bounds() const { return m_visibility->bounds(); } // in the scene's coordinates
+
+private:
+    PassLists() = default;
+    // The camera's list, and its depth pre-pass when the frame needs one.
+    void planCamera(const PassPlanInputs& in, bool prepass);
+    // The receiver masks of the frame's fixed maps, from the pre-pass.
+    void planMasks(const PassPlanInputs& in);
+    // The sun's fixed maps' lists (receiver-masked when asked).
+    void planSunMaps(const PassPlanInputs& in, std::vector<PassList*>& lists);
+    // Virtual maps: the pages the receivers request, each with the casters in its own volume.
+    void planPages(const PassPlanInputs& in, VirtualPages& pages, std::vector<PassList*>& lists);
+    // Every local light's map: full meshes, culled to each pass's volume.
+    void planLocal(const PassPlanInputs& in);
+
+    std::optional<Visibility> m_visibility;
+    std::unique_ptr<OcclusionCuller> m_occlusion;
+    std::unique_ptr<GpuCulling> m_gpuCulling;
+    std::unique_ptr<ReceiverMasks> m_receiverMasks;
+    const std::vector<visibility::ReceiverMask>* m_masks = nullptr; // this frame's, CPU-side
+    std::unique_ptr<DepthRangeReduction> m_depthRange;
+    std::optional<CameraDepthTarget> m_cameraDepth; // the pre-pass's target
+    bool m_prepassUnreduced = false;                // m_cameraDepth holds a pre-pass not yet reduced
+    bool m_depthRangeWanted = false;                // lastVisibleDepth() has been asked
+    std::vector<uint32_t> m_prepassDrawn;
+    std::vector<core::Aabb> m_movedBoxes; // old and new boxes of instances moved since the last frame
+    int m_prepassesDrawn = 0;
+    // What the camera's list and pre-pass depend on. A DepthRange plan keeps its camera part for
+    // the frame that follows it with the same key (the frame driver measures the visible depth,
+    // then draws that frame): one pre-pass, not two. Not with GPU culling, whose per-frame
+    // buffers the next frame resets.
+    struct CameraKey {
+        core::Mat4 clipFromWorld{1.0};
+        int width = 0, height = 0;
+        Culling culling = Culling::Off;
+        bool lod = false;
+        float lodPixelError = 0.0f;
+        bool operator==(const CameraKey&) const = default;
+    };
+    std::optional<CameraKey> m_keptCamera;
+    CullingCosts m_keptCameraCosts;
+
+    PassList m_camera;
+    std::vector<PassList> m_sun, m_pages, m_local;
+    CullingCosts m_costs;
+};
+
+} // namespace shadowkit::gl

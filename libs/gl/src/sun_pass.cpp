@@ -1,0 +1,165 @@
+#include "sun_pass.h"
+
+#include "gl_shaders.h"
+#include "lookup_reach.h"
+#include "program.h"
+#include "uniforms.h"
+
+#include <string>
+
+namespace shadowkit::gl {
+
+core::Result<std::unique_ptr<SunPass>> SunPass::create() {
+    auto pass = std::unique_ptr<SunPass>(new SunPass);
+    using namespace shaders;
+    for (const bool material : {false, true}) {
+        const std::string_view withMaterial = kMaterialVariant[material];
+        const std::string name = material ? "depth pass, materials" : "depth pass";
+        auto depth = buildProgram(name, {withMaterial, kDepthPassGlsl, kDepthVert},
+                                  {withMaterial, kDepthPassGlsl, kMaterialGlsl, kDepthFrag});
+        if (!depth) return depth.errorInfo();
+        if (auto s = checkUniformBlock(*depth, name, "DepthPass", sizeof(DepthPassUniforms), depthPassFields()); !s)
+            return s.errorInfo();
+        (material ? pass->m_programs.material : pass->m_programs.plain) = std::move(depth).value();
+    }
+    pass->m_uniforms = createBuffer(nullptr, sizeof(DepthPassUniforms));
+    pass->m_rawDepth = createRawDepthSampler();
+    auto moments = MomentMaps::create();
+    if (!moments) return moments.errorInfo();
+    pass->m_moments = std::move(moments).value();
+    auto pages = VirtualPages::create();
+    if (!pages) return pages.errorInfo();
+    pass->m_pages = std::move(pages).value();
+    return pass;
+}
+
+core::Status SunPass::prepare(const core::ShadowSetup& setup, const RenderSettings& settings,
+                              const core::BiasSettings& bias) {
+    const bool linearFilter = settings.filter.kind == core::ShadowFilter::Pcf2;
+    if (setup.clipmap) {
+        const int guard = guardTexelsFor(lookupFilterFor(setup, settings.filter), bias);
+        if (auto s = m_pages->configure(settings.virtualPoolPages, setup.clipmap->pageTexels, guard); !s) return s;
+        m_pages->setLinearFilter(linearFilter);
+        m_shadow.reset(); // no fixed maps: their memory is the pool's
+        return core::Ok{};
+    }
+    const int maps = static_cast<int>(setup.views.size());
+    if (!m_shadow || m_shadow->size != setup.mapSize || m_shadow->layers != maps) {
+        m_shadow.reset(); // the old maps go before the new ones are allocated
+        auto target = ShadowTarget::create(setup.mapSize, maps);
+        if (!target) return target.errorInfo();
+        m_shadow.emplace(std::move(target).value());
+    }
+    // Hardware 2x2 PCF is the sampler's linear filter; every other filter takes its own taps.
+    const GLint filter = linearFilter ? GL_LINEAR : GL_NEAREST;
+    glTextureParameteri(m_shadow->depth.id(), GL_TEXTURE_MIN_FILTER, filter);
+    glTextureParameteri(m_shadow->depth.id(), GL_TEXTURE_MAG_FILTER, filter);
+    return core::Ok{};
+}
+
+core::Result<PassStats> SunPass::draw(const GpuScene& scene, const core::ShadowSetup& setup,
+                                      const RenderSettings& settings, const core::BiasSettings& bias,
+                                      std::span<const PassList> mapLists, std::span<const PassList> pageLists) {
+    m_lastVirtual.reset();
+    // Night: no sun, no sun maps (the camera passes do not read them).
+    if (!settings.sun) {
+        m_timer.begin();
+        m_timer.end();
+        return PassStats{};
+    }
+    DrawStats draws;
+    if (setup.clipmap) {
+        // As the fixed maps' pass, one viewport per page (VirtualPages::drawPages).
+        glBindFramebuffer(GL_FRAMEBUFFER, m_pages->framebuffer().id());
+        beginDepthPass(bias, true);
+        m_timer.begin();
+        draws = m_pages->drawPages(scene, m_programs.passPrograms(), pageLists, m_uniforms);
+        m_timer.end();
+        endDepthPass();
+        m_pages->rendered();
+        m_lastVirtual = m_pages->stats();
+        m_lastVirtual->triangles = draws.triangles;
+        return PassStats{.instances = draws.instances, .triangles = draws.triangles, .drawCalls = draws.drawCalls};
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, m_shadow->framebuffer.id());
+    glViewport(0, 0, m_shadow->size, m_shadow->size);
+    beginDepthPass(bias, setup.depthClamp);
+    m_timer.begin();
+    draws = drawFixedMaps(scene, setup, bias, mapLists);
+    // MSM: the maps' moments, blurred, inside the pass's time (a real frame pays them with it).
+    core::Status moments = core::Ok{};
+    if (settings.filter.kind == core::ShadowFilter::Msm)
+        moments =
+            m_moments->update(m_shadow->depth, m_rawDepth.id(), m_shadow->size, m_shadow->layers, settings.filter.taps);
+    m_timer.end();
+    endDepthPass();
+    if (!moments) return moments.errorInfo();
+    // Time read after the frame, not to stall here.
+    return PassStats{.instances = draws.instances, .triangles = draws.triangles, .drawCalls = draws.drawCalls};
+}
+
+DrawStats SunPass::drawFixedMaps(const GpuScene& scene, const core::ShadowSetup& setup, const core::BiasSettings& bias,
+                                 std::span<const PassList> lists) const {
+    const auto slope = static_cast<float>(bias.slope), constant = static_cast<float>(bias.constant);
+    const bool linear = setup.depthLayout == core::DepthLayout::Linear;
+    DrawStats draws;
+    for (size_t layer = 0; layer < setup.views.size(); ++layer) { // one array layer per shadow view
+        const core::ShadowView& view = setup.views[layer];
+        // Linear layout: the same slope / constant bias, applied in depth.frag. One constant
+        // unit is 2^-24 of the depth range, the resolvable step of a 24-bit buffer.
+        const DepthPassUniforms uniforms{.clipFromWorld = glm::mat4(view.clipFromWorld),
+                                         .linearDepthFromWorld = glm::vec4(view.linearDepthFromWorld),
+                                         .linearLayout = linear ? 1 : 0,
+                                         .slopeBias = slope,
+                                         .constantBias = constant * 0x1p-24f};
+        glNamedBufferSubData(m_uniforms.id(), 0, sizeof uniforms, &uniforms);
+        m_shadow->attachLayer(static_cast<int>(layer));
+        const float clearDepth = 1.0f;
+        glClearNamedFramebufferfv(m_shadow->framebuffer.id(), GL_DEPTH, 0, &clearDepth);
+        draws += scene.draw(lists[layer], m_programs.passPrograms());
+    }
+    return draws;
+}
+
+void SunPass::beginDepthPass(const core::BiasSettings& bias, bool depthClamp) const {
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    // Caster culling: front-face culling stores the casters' back sides (Scherzer 2005 §4.2).
+    if (bias.cull == core::CasterCull::None) {
+        glDisable(GL_CULL_FACE);
+    } else {
+        glEnable(GL_CULL_FACE);
+        glCullFace(bias.cull == core::CasterCull::Back ? GL_BACK : GL_FRONT);
+    }
+    if (depthClamp) glEnable(GL_DEPTH_CLAMP);
+    glEnable(GL_POLYGON_OFFSET_FILL);
+    glPolygonOffset(static_cast<float>(bias.slope), static_cast<float>(bias.constant));
+    glUseProgram(m_programs.plain.id());
+    glBindBufferBase(GL_UNIFORM_BUFFER, kDepthPassBinding, m_uniforms.id());
+}
+
+void SunPass::endDepthPass() {
+    glDisable(GL_POLYGON_OFFSET_FILL);
+    glDisable(GL_DEPTH_CLAMP);
+}
+
+void SunPass::bind(const core::ShadowSetup& setup, const RenderSettings& settings) const {
+    if (setup.clipmap) {
+        m_pages->bind(setup, settings.virtualBlendBand);
+    } else {
+        m_pages->bindDisabled();
+        if (m_shadow) {
+            glBindTextureUnit(kShadowMapUnit, m_shadow->depth.id());
+            glBindTextureUnit(kShadowDepthUnit, m_shadow->depth.id());
+        }
+    }
+    if (settings.filter.kind == core::ShadowFilter::Msm) m_moments->bind();
+}
+
+scene::Image SunPass::readMaps() const {
+    if (m_shadow) return m_shadow->readAsGreys();
+    return m_pages->readAtlas(); // virtual maps: the page pool
+}
+
+} // namespace shadowkit::gl

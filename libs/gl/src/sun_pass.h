@@ -1,0 +1,79 @@
+// The sun's shadow pass: depth into the set-up's maps — one layer of a 2D array per fixed map
+// (single maps and cascades), or the virtual pages a frame must draw into the page atlas
+// (virtual_pages.h) — with the bias as polygon offset and caster culling (Scherzer 2005 §4.2),
+// and with --filter msm the maps' moments (moment_maps.h). It owns the maps and what draws
+// them; the culling planner (pass_lists.h) hands it the lists.
+#pragma once
+
+#include "gpu_scene.h"
+#include "moment_maps.h"
+#include "pass_timer.h"
+#include "render_targets.h"
+#include "virtual_pages.h"
+#include "visibility.h"
+
+#include "shadowkit/core/bias.h"
+#include "shadowkit/core/result.h"
+#include "shadowkit/core/shadow_setup.h"
+#include "shadowkit/gl/frame_stats.h"
+#include "shadowkit/gl/render_settings.h"
+
+#include <memory>
+#include <optional>
+#include <span>
+
+namespace shadowkit::gl {
+
+class SunPass {
+public:
+    static core::Result<std::unique_ptr<SunPass>> create();
+
+    // The maps `setup` draws into, allocated (or kept) before the frame's lists are planned:
+    // fixed layers of setup.mapSize², or the page pool sized for the set-up's pages and the
+    // filter's guard band. Fails when the driver cannot (out of memory, too large).
+    core::Status prepare(const core::ShadowSetup& setup, const RenderSettings& settings,
+                         const core::BiasSettings& bias);
+    // Draws the maps: `mapLists` one per fixed map, or `pageLists` one per page to render. No
+    // sun (settings.sun false): nothing is drawn. Timed (milliseconds()).
+    core::Result<PassStats> draw(const GpuScene& scene, const core::ShadowSetup& setup, const RenderSettings& settings,
+                                 const core::BiasSettings& bias, std::span<const PassList> mapLists,
+                                 std::span<const PassList> pageLists);
+    // The GPU time of the last draw(); waits for it.
+    double milliseconds() const { return m_timer.milliseconds(); }
+
+    // The set-up the frame's lookups read: with virtual maps under a page budget, levels may
+    // still be shown from an earlier sun's pages (VirtualPages::shown).
+    const core::ShadowSetup& lookupSetup(const core::ShadowSetup& setup, const RenderSettings& settings) const {
+        return setup.clipmap && settings.sun ? m_pages->shown() : setup;
+    }
+    // The maps for the camera passes' lookups: the fixed maps or the page atlas and its table
+    // (kShadowMapUnit, kShadowDepthUnit, kPageTableUnit), the VirtualMaps block, the moments.
+    void bind(const core::ShadowSetup& setup, const RenderSettings& settings) const;
+
+    VirtualPages& pages() { return *m_pages; }
+    // Technique virtual: the pages of the last frame drawn; nullopt when it had no virtual maps.
+    const std::optional<VirtualPageStats>& lastVirtual() const { return m_lastVirtual; }
+    // The last maps as greys (the page atlas with virtual maps), and the virtual page table.
+    scene::Image readMaps() const;
+    scene::Image readPageTable() const { return m_shadow ? scene::Image{} : m_pages->pageTableImage(); }
+
+private:
+    SunPass() = default;
+    // The GL state both kinds of map draw with: depth only, the bias as polygon offset (and
+    // caster culling), depth clamp when asked, the depth program and its uniforms bound.
+    void beginDepthPass(const core::BiasSettings& bias, bool depthClamp) const;
+    static void endDepthPass();
+    DrawStats drawFixedMaps(const GpuScene& scene, const core::ShadowSetup& setup, const core::BiasSettings& bias,
+                            std::span<const PassList> lists) const;
+
+    ProgramPair m_programs; // depth only; alpha-tested materials discard
+    Buffer m_uniforms;      // the DepthPass block
+    Sampler m_rawDepth;     // the maps' stored depths, for the moments
+    std::optional<ShadowTarget> m_shadow;
+    std::unique_ptr<VirtualPages> m_pages;
+    std::unique_ptr<MomentMaps> m_moments;
+    std::optional<VirtualPageStats> m_lastVirtual;
+    PassTimer m_timer;
+};
+
+} // namespace shadowkit::gl
