@@ -3,6 +3,7 @@
 #include "common.h"
 
 #include "shadowkit/core/light_size.h"
+#include "shadowkit/frame/frame_config.h"
 #include "shadowkit/scene/forest.h"
 #include "shadowkit/scene/scene_io.h"
 
@@ -268,6 +269,7 @@ constexpr std::pair<std::string_view, std::string_view> kFlagOfField[] = {
     {"virtual.lod_bias", "--virtual-lod-bias"},
     {"virtual.pool_pages", "--virtual-pool-pages"},
     {"virtual.blend_band", "--virtual-blend-band"},
+    {"virtual.page_budget", "--virtual-page-budget"},
     {"bias.slope", "--bias-slope"},
     {"bias.constant", "--bias-constant"},
     {"bias.normal_offset", "--normal-offset"},
@@ -387,12 +389,9 @@ core::Status RenderOptions::check() const {
     if (auto f = core::parseFilter(filter); !f) return withFlagName(f.errorInfo());
     if (auto s = core::validateSunAngle(sunAngle); !s) return withFlagName(s.errorInfo());
     if (auto s = gl::validate(blur); !s) return withFlagName(s.errorInfo());
-    if (fog && !(*fog >= 0.0 && std::isfinite(*fog))) return core::makeError("--fog: must be a density >= 0 (1/m)");
-    core::BiasSettings b;
-    b.slope = biasSlope.value_or(b.slope);
-    b.constant = biasConstant.value_or(b.constant);
-    b.normalOffset = normalOffset.value_or(b.normalOffset);
-    if (auto s = core::validate(b); !s) return withFlagName(s.errorInfo());
+    if (auto s = frame::validateFog(fog); !s) return withFlagName(s.errorInfo());
+    const frame::BiasOverrides overrides{.slope = biasSlope, .constant = biasConstant, .normalOffset = normalOffset};
+    if (auto s = overrides.validate(); !s) return withFlagName(s.errorInfo());
     return core::Ok{};
 }
 
@@ -508,15 +507,11 @@ core::Status TechniqueOptions::check(bool measuresFrames, bool takesAuto) const 
     // The camera-independent checks only: the view is not resolved yet.
     if (auto s = core::validateOptions(*in); !s) return withFlagName(s.errorInfo());
     if (auto s = core::validate(hysteresis); !s) return withFlagName(s.errorInfo());
-    if (!(virtualBlendBand >= 0.0f && virtualBlendBand < 1.0f))
-        return core::makeError("--virtual-blend-band: must be a fraction in [0, 1), got " +
-                               std::to_string(virtualBlendBand));
-    if (virtualPoolPages < 0)
-        return core::makeError("--virtual-pool-pages: must be >= 0 (0: as many as fit 64 MiB), got " +
-                               std::to_string(virtualPoolPages));
-    if (virtualPageBudget < 0)
-        return core::makeError("--virtual-page-budget: must be >= 0 (0: every page requested), got " +
-                               std::to_string(virtualPageBudget));
+    gl::RenderSettings pages;
+    pages.virtualPoolPages = virtualPoolPages;
+    pages.virtualBlendBand = virtualBlendBand;
+    pages.virtualPageBudget = virtualPageBudget;
+    if (auto s = gl::validateVirtualSettings(pages); !s) return withFlagName(s.errorInfo());
     return core::Ok{};
 }
 

@@ -1,5 +1,7 @@
 #include "shadowkit/frame/frame_config.h"
 
+#include "shadowkit/core/light_size.h"
+
 #include <cmath>
 #include <string>
 
@@ -17,6 +19,20 @@ std::optional<core::BiasSettings> BiasOverrides::resolve(const core::ShadowSetup
     return b;
 }
 
+core::Status BiasOverrides::validate() const {
+    core::BiasSettings b;
+    b.slope = slope.value_or(b.slope);
+    b.constant = constant.value_or(b.constant);
+    b.normalOffset = normalOffset.value_or(b.normalOffset);
+    return core::validate(b);
+}
+
+core::Status validateFog(std::optional<double> fogDensity) {
+    if (fogDensity && !(*fogDensity >= 0.0 && std::isfinite(*fogDensity)))
+        return core::fieldError("fog", "must be a density >= 0 (1/m)");
+    return core::Ok{};
+}
+
 core::Status FrameConfig::check() const {
     // The technique's own options: their checks need no camera (validateOptions).
     if (auto s = core::validateOptions(technique); !s) return s;
@@ -25,18 +41,14 @@ core::Status FrameConfig::check() const {
     if (heldLattices)
         if (auto s = core::validate(*heldLattices); !s) return s;
     if (auto s = core::validate(render.filter); !s) return s;
-    if (render.filter.kind == core::ShadowFilter::Msm && technique.technique == core::Technique::Virtual && !automatic)
-        return core::fieldError("filter", "msm needs fixed maps: virtual pages hold depth only (use pcss)");
+    if (auto s = core::validateSunAngle(render.sunAngleDegrees); !s) return s;
+    if (technique.technique == core::Technique::Virtual && !automatic)
+        if (auto s = gl::validateVirtualFilter(render.filter); !s) return s;
     if (auto s = gl::validate(render.blur); !s) return s;
     if (auto s = gl::validate(render.localBias); !s) return s;
-    // The overridden bias values within BiasSettings' ranges (the recommendation always is).
-    core::BiasSettings b;
-    b.slope = bias.slope.value_or(b.slope);
-    b.constant = bias.constant.value_or(b.constant);
-    b.normalOffset = bias.normalOffset.value_or(b.normalOffset);
-    if (auto s = core::validate(b); !s) return s;
-    if (fogDensity && !(*fogDensity >= 0.0 && std::isfinite(*fogDensity)))
-        return core::fieldError("fog", "must be a density >= 0 (1/m)");
+    if (auto s = gl::validateVirtualSettings(render); !s) return s;
+    if (auto s = bias.validate(); !s) return s;
+    if (auto s = validateFog(fogDensity); !s) return s;
     if (auto s = core::validateMapSize(localMapSize); !s)
         return core::fieldError("local_map_size", s.error().substr(s.errorInfo().field.size() + 2)); // "map_size: " off
     return core::Ok{};

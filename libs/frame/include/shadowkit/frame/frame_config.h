@@ -32,7 +32,12 @@ struct BiasOverrides {
     // (the renderer then takes the recommendation itself: gl::biasFor).
     std::optional<core::BiasSettings> resolve(const core::ShadowSetupInputs& inputs,
                                               const core::FilterSettings& filter) const;
+    // The values set within core::BiasSettings' ranges (the recommendation always is).
+    core::Status validate() const;
 };
+
+// A fog density override: >= 0 per metre and finite; the error names "fog".
+core::Status validateFog(std::optional<double> fogDensity);
 
 using LocalLight = std::variant<core::PointLight, core::SpotLight>;
 
