@@ -8,6 +8,7 @@
 #include "shadowkit/frame/frame_driver.h"
 #include "shadowkit/gl/context.h"
 #include "shadowkit/gl/renderer.h"
+#include "shadowkit/measure/frame_costs.h"
 #include "shadowkit/scene/forest.h"
 
 #include <fmt/format.h>
@@ -17,7 +18,6 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 
 namespace shadowkit::app {
@@ -36,15 +36,6 @@ struct BenchArgs {
     int frames = 5;
 };
 
-struct Spread {
-    double min = 0, median = 0, max = 0;
-};
-Spread spread(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return {v.front(), v[v.size() / 2], v.back()};
-}
-nlohmann::json toJson(const Spread& s) { return {{"min", s.min}, {"median", s.median}, {"max", s.max}}; }
-
 core::Result<std::vector<int>> parseCounts(const std::string& text) {
     std::vector<int> counts;
     std::stringstream ss(text);
@@ -60,6 +51,138 @@ core::Result<std::vector<int>> parseCounts(const std::string& text) {
     return counts;
 }
 
+gl::Culling cullingOf(const RenderOptions& render) { return render.noCull ? gl::Culling::Off : render.visibility; }
+
+// One forest of the run: its options (--same-density: the terrain grows with the count so trees
+// stand as densely as 10,000 on the given size, 100,000 trees on 3238 m for the default 1024 m).
+core::Result<scene::ForestOptions> forestOptionsFor(const BenchArgs& args, int trees) {
+    scene::ForestOptions forest;
+    forest.kind = args.forest == "leafy" ? scene::ForestKind::Leafy : scene::ForestKind::Simple;
+    forest.seed = args.seed;
+    forest.trees = trees;
+    forest.terrainSize =
+        args.sameDensity ? args.terrainSize * std::sqrt(std::max(trees, 1) / 10000.0) : args.terrainSize;
+    forest.terrainResolution = args.terrainResolution;
+    if (auto s = scene::validate(forest); !s) return s.errorInfo();
+    return forest;
+}
+
+// What a row is measured on: the forest and the view.
+struct BenchRow {
+    int trees = 0;
+    double terrainSize = 0.0, forestSeconds = 0.0;
+    std::string view;
+};
+
+// The lines under a view's two pass rows: the camera's culling pass, CHC++'s counts, culling's
+// CPU time and the receiver masks', as they apply.
+void printCullingLines(const BenchArgs& args, const measure::FrameCosts& costs) {
+    const measure::Spread prepass = costs.prepass(), cull = costs.cull();
+    const gl::Culling culling = cullingOf(args.render);
+    if (culling == gl::Culling::Gpu)
+        fmt::print("{:>7} {:>7} {:<14} gpu     camera's two-phase pass (culling dispatches, depth pyramid, "
+                   "early and late pre-pass draws) CPU ms med {:.2f} max {:.2f}\n",
+                   "", "", "", prepass.median, prepass.max);
+    if (culling == gl::Culling::Occlusion) {
+        const measure::FrameCosts::Occlusion o = costs.occlusion();
+        fmt::print("{:>7} {:>7} {:<14} chc     medians of the frames after the first: {} nodes visited, {} queries "
+                   "over {} nodes ({} multi-queries failed), {} waits (max {}); pre-pass CPU ms med {:.2f} max {:.2f} "
+                   "(incl. its draws and waits)\n",
+                   "", "", "", o.nodesVisited.median, o.queries.median, o.nodesQueried.median,
+                   o.multiQueryFailures.median, o.waits.median, o.waits.max, prepass.median, prepass.max);
+    }
+    if (!args.render.noCull) {
+        const measure::Spread own = costs.cullOwn(), gl = costs.cullGl(), lists = costs.lists();
+        fmt::print("{:>7} {:>7} {:<14} cull    CPU ms med {:.2f} max {:.2f}: in GL (pre-pass, queries, masks, waits) "
+                   "med {:.2f} max {:.2f}; culling's own (thread CPU: queries of the hierarchy and masks, traversal) "
+                   "med {:.3f} max {:.3f}; levels and lists med {:.3f} max {:.3f}\n",
+                   "", "", "", cull.median, cull.max, gl.median, gl.max, own.median, own.max, lists.median, lists.max);
+    }
+    if (args.render.receiverMask && !args.render.noCull) {
+        const measure::Spread masks = costs.masks();
+        fmt::print("{:>7} {:>7} {:<14} masks   receiver masks CPU ms med {:.2f} max {:.2f} (compute + read-back + "
+                   "mask)\n",
+                   "", "", "", masks.median, masks.max);
+    }
+}
+
+// Prints a view's rows and adds them to --report's table.
+void printRows(const BenchRow& row, const measure::FrameCosts& costs, eval::HtmlTable& table) {
+    const measure::Spread setup = costs.setupRest(), cull = costs.cull();
+    const gl::FrameStats& last = costs.last();
+    for (const auto& [pass, stats, gpu] :
+         {std::tuple{"shadow", &last.shadow, costs.shadowGpu()}, std::tuple{"main", &last.main, costs.mainGpu()}}) {
+        const double megaTriangles = static_cast<double>(stats->triangles) * 1e-6;
+        fmt::print("{:>7} {:>7.0f} {:<14} {:<7} {:>9} {:>9.3f} {:>6} {:>8.1f} {:>8.1f} {:>8.1f} {:>10.3f} {:>9.3f} "
+                   "{:>10.3f} {:>9.3f}\n",
+                   row.trees, row.terrainSize, row.view, pass, stats->instances, megaTriangles, stats->drawCalls,
+                   gpu.min, gpu.median, gpu.max, costs.setupFirst(), setup.median, cull.median, cull.max);
+        table.rows.push_back({std::to_string(row.trees), fmt::format("{:.0f}", row.terrainSize), row.view, pass,
+                              std::to_string(stats->instances), fmt::format("{:.3f}", megaTriangles),
+                              std::to_string(stats->drawCalls),
+                              fmt::format("{:.1f} / {:.1f} / {:.1f}", gpu.min, gpu.median, gpu.max),
+                              fmt::format("{:.3f} / {:.3f}", costs.setupFirst(), setup.median),
+                              fmt::format("{:.2f} / {:.2f}", cull.median, cull.max)});
+    }
+}
+
+// --report's table, before its rows.
+eval::HtmlTable reportTable(const BenchArgs& args, const std::string& machine) {
+    return eval::HtmlTable{
+        .title = "Frame cost per pass",
+        .note =
+            fmt::format("{} | technique {} | {} frames per row. GPU ms: timer queries around each pass (min / "
+                        "median / max over the frames; on a CPU rasteriser only ratios within one run compare). "
+                        "Set-up: CPU ms of the first frame, which computes the focus body, and the median of the rest, "
+                        "which on a still view reuse it (shadowkit_setup_bench times a moving camera). Culling: "
+                        "CPU ms per frame (median / max). Triangles and instances: what the "
+                        "pass submitted in the last frame, after culling and levels of detail.",
+                        machine, core::techniqueName(args.technique.technique), args.frames),
+        .header = {"trees", "terrain m", "view", "pass", "instances", "M triangles", "draws", "GPU ms min / med / max",
+                   "set-up ms first / rest", "cull ms med / max"},
+        .rows = {},
+        .pictures = {},
+        .command = invocationWithout({"--report"}, {})};
+}
+
+// One view of one forest: its frames drawn and their costs printed; its JSON row.
+core::Result<nlohmann::json> benchView(const BenchArgs& args, const BenchRow& row, const scene::Scene& forest,
+                                       gl::Renderer& renderer, frame::FrameDriver& driver, eval::HtmlTable& table) {
+    ViewOptions viewOptions = args.view;
+    viewOptions.view = row.view;
+    auto view = viewOptions.resolve(forest);
+    if (!view) return view.errorInfo();
+    measure::FrameCosts costs;
+    driver.reset(); // --stabilize with held lattices: kept over the view's frames
+    for (int frame = 0; frame < args.frames; ++frame) {
+        auto drawn = driver.draw(renderer, *view);
+        if (!drawn) return withFlagName(drawn.errorInfo());
+        costs.add(*drawn);
+    }
+    printRows(row, costs, table);
+    printCullingLines(args, costs);
+    nlohmann::json run = costs.json();
+    run.update({{"trees", row.trees},
+                {"terrain_size", row.terrainSize},
+                {"forest_seconds", row.forestSeconds},
+                {"view", row.view},
+                {"technique", core::techniqueName(args.technique.technique)},
+                {"visibility", gl::cullingName(cullingOf(args.render))},
+                {"frames", args.frames},
+                {"width", view->width},
+                {"height", view->height},
+                {"receiver_mask", args.render.receiverMask && !args.render.noCull}});
+    if (!args.report.empty()) {
+        const std::filesystem::path page(args.report);
+        const std::string file = fmt::format("{}-{}-{}.png", page.stem().string(), row.trees, row.view);
+        if (auto s = scene::writePng(renderer.readColor(), page.parent_path() / file); !s)
+            return core::makeError("--report: " + s.error());
+        table.pictures.push_back({file, fmt::format("{} trees, {}", row.trees, row.view)});
+    }
+    std::fflush(stdout);
+    return run;
+}
+
 int runBench(const BenchArgs& args) {
     auto counts = parseCounts(args.trees);
     if (!counts) return fail(counts.errorInfo());
@@ -70,8 +193,8 @@ int runBench(const BenchArgs& args) {
     std::stringstream ss(args.views);
     for (std::string name; std::getline(ss, name, ',');) viewNames.push_back(name);
     if (viewNames.empty()) return fail("--views: no view named");
-
-    if (auto s = checkWritable("--report", args.report); !s) return fail(s.errorInfo());
+    for (const char* flag : {"--report", "--json"})
+        if (auto s = checkWritable(flag, flag[2] == 'r' ? args.report : args.json); !s) return fail(s.errorInfo());
     auto config = frameConfigOf(args.technique, args.render, LocalLightOptions{});
     if (!config) return fail(config.errorInfo());
     auto driver = frame::FrameDriver::create(std::move(config).value());
@@ -79,175 +202,34 @@ int runBench(const BenchArgs& args) {
     auto context = gl::Context::createHeadless();
     if (!context) return fail(context.errorInfo());
     fmt::print("{} | technique {} | {} frames per row | culling {}\n", (*context)->description(),
-               core::techniqueName(args.technique.technique), args.frames,
-               gl::cullingName(args.render.noCull ? gl::Culling::Off : args.render.visibility));
+               core::techniqueName(args.technique.technique), args.frames, gl::cullingName(cullingOf(args.render)));
     fmt::print("caster culling {}\n", args.render.receiverMask ? "by visible receivers" : "by volume");
     fmt::print("{:>7} {:>7} {:<14} {:<7} {:>9} {:>9} {:>6} {:>26} {:>20} {:>20}\n", "trees", "terrain", "view", "pass",
                "instances", "M tris", "draws", "GPU ms min/med/max", "set-up ms 1st/rest", "cull ms med/max");
     nlohmann::json runs = nlohmann::json::array();
-    // --report: the rows as printed, and each row's last frame.
-    eval::HtmlTable table{
-        .title = "Frame cost per pass",
-        .note =
-            fmt::format("{} | technique {} | {} frames per row. GPU ms: timer queries around each pass (min / "
-                        "median / max over the frames; on a CPU rasteriser only ratios within one run compare). "
-                        "Set-up: CPU ms of the first frame, which computes the focus body, and the median of the rest, "
-                        "which on a still view reuse it (shadowkit_setup_bench times a moving camera). Culling: "
-                        "CPU ms per frame (median / max). Triangles and instances: what the "
-                        "pass submitted in the last frame, after culling and levels of detail.",
-                        (*context)->description(), core::techniqueName(args.technique.technique), args.frames),
-        .header = {"trees", "terrain m", "view", "pass", "instances", "M triangles", "draws", "GPU ms min / med / max",
-                   "set-up ms first / rest", "cull ms med / max"},
-        .rows = {},
-        .pictures = {},
-        .command = invocationWithout({"--report"}, {})};
+    eval::HtmlTable table = reportTable(args, (*context)->description()); // --report: the rows as printed
     for (const int trees : *counts) {
-        scene::ForestOptions forestOptions;
-        forestOptions.kind = args.forest == "leafy" ? scene::ForestKind::Leafy : scene::ForestKind::Simple;
-        forestOptions.seed = args.seed;
-        forestOptions.trees = trees;
-        // --same-density: the terrain grows with the count so trees stand as densely as
-        // 10,000 on the given size (100,000 trees on 3238 m for the default 1024 m).
-        forestOptions.terrainSize =
-            args.sameDensity ? args.terrainSize * std::sqrt(std::max(trees, 1) / 10000.0) : args.terrainSize;
-        forestOptions.terrainResolution = args.terrainResolution;
-        if (auto s = scene::validate(forestOptions); !s) return fail(s.errorInfo());
+        auto forestOptions = forestOptionsFor(args, trees);
+        if (!forestOptions) return fail(forestOptions.errorInfo());
         const auto buildStart = std::chrono::steady_clock::now();
-        const scene::Scene forest = scene::makeForest(forestOptions);
-        const double buildSeconds =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - buildStart).count();
+        const scene::Scene forest = scene::makeForest(*forestOptions);
+        const BenchRow row{trees, forestOptions->terrainSize,
+                           std::chrono::duration<double>(std::chrono::steady_clock::now() - buildStart).count(), ""};
         fmt::print(stderr, "forest ({}): {} trees on {:.0f} m, {:.2f} M triangles, built in {:.2f} s\n", args.forest,
-                   trees, forestOptions.terrainSize, static_cast<double>(forest.triangleCount()) * 1e-6, buildSeconds);
+                   trees, row.terrainSize, static_cast<double>(forest.triangleCount()) * 1e-6, row.forestSeconds);
         auto renderer = gl::Renderer::create(forest);
         if (!renderer) return fail(renderer.errorInfo());
-
         for (const std::string& name : viewNames) {
-            ViewOptions viewOptions = args.view;
-            viewOptions.view = name;
-            auto view = viewOptions.resolve(forest);
-            if (!view) return fail(view.errorInfo());
-            // CHC++'s counts over the steady frames (after the first, a camera cut).
-            std::vector<double> nodesVisited, queries, nodesQueried, multiQueryFailures, waits;
-            std::vector<double> setupMs, cullMs, cullOwnMs, cullGlMs, listMs, shadowMs, mainMs, occlusionMs, maskMs;
-            gl::FrameStats last;
-            driver->reset(); // --stabilize with held lattices: kept over the view's frames
-            for (int frame = 0; frame < args.frames; ++frame) {
-                auto drawn = driver->draw(**renderer, *view);
-                if (!drawn) return fail(withFlagName(drawn.errorInfo()));
-                setupMs.push_back(drawn->frame.setupMilliseconds);
-                const gl::FrameStats* stats = &drawn->stats;
-                cullMs.push_back(stats->cullMilliseconds);
-                cullGlMs.push_back(stats->cullGlMilliseconds);
-                cullOwnMs.push_back(stats->cullOwnCpuMilliseconds);
-                listMs.push_back(stats->listCpuMilliseconds);
-                occlusionMs.push_back(stats->occlusionMilliseconds);
-                maskMs.push_back(stats->receiverMaskMilliseconds);
-                shadowMs.push_back(stats->shadow.gpuMilliseconds);
-                mainMs.push_back(stats->main.gpuMilliseconds);
-                last = *stats;
-                if (frame > 0 || args.frames == 1) {
-                    const visibility::CoherentCullingStats& o = stats->occlusion;
-                    nodesVisited.push_back(double(o.nodesVisited));
-                    queries.push_back(double(o.queriesIssued));
-                    nodesQueried.push_back(double(o.nodesQueried));
-                    multiQueryFailures.push_back(double(o.multiQueryFailures));
-                    waits.push_back(double(o.waits));
-                }
-            }
-            // The first frame computes the focus body; the rest of a still view get it remembered.
-            const double setupFirst = setupMs.front();
-            const Spread setupSpread =
-                spread(setupMs.size() > 1 ? std::vector<double>(setupMs.begin() + 1, setupMs.end()) : setupMs);
-            const Spread cullSpread = spread(cullMs);
-            nlohmann::json run = {
-                {"trees", trees},
-                {"terrain_size", forestOptions.terrainSize},
-                {"forest_seconds", buildSeconds},
-                {"view", name},
-                {"technique", core::techniqueName(args.technique.technique)},
-                {"visibility", gl::cullingName(args.render.noCull ? gl::Culling::Off : args.render.visibility)},
-                {"frames", args.frames},
-                {"width", view->width},
-                {"height", view->height},
-                {"setup_first_ms", setupFirst},
-                {"setup_ms", toJson(setupSpread)},
-                {"cull_ms", toJson(cullSpread)},
-                {"cull_own_ms", toJson(spread(cullOwnMs))},
-                {"cull_gl_ms", toJson(spread(cullGlMs))},
-                {"list_ms", toJson(spread(listMs))}};
-            for (const auto& [pass, stats, gpu] :
-                 {std::tuple{"shadow", &last.shadow, &shadowMs}, {"main", &last.main, &mainMs}}) {
-                const Spread g = spread(*gpu);
-                fmt::print("{:>7} {:>7.0f} {:<14} {:<7} {:>9} {:>9.3f} {:>6} {:>8.1f} {:>8.1f} {:>8.1f} {:>10.3f} "
-                           "{:>9.3f} {:>10.3f} {:>9.3f}\n",
-                           trees, forestOptions.terrainSize, name, pass, stats->instances,
-                           static_cast<double>(stats->triangles) * 1e-6, stats->drawCalls, g.min, g.median, g.max,
-                           setupFirst, setupSpread.median, cullSpread.median, cullSpread.max);
-                table.rows.push_back({std::to_string(trees), fmt::format("{:.0f}", forestOptions.terrainSize), name,
-                                      pass, std::to_string(stats->instances),
-                                      fmt::format("{:.3f}", static_cast<double>(stats->triangles) * 1e-6),
-                                      std::to_string(stats->drawCalls),
-                                      fmt::format("{:.1f} / {:.1f} / {:.1f}", g.min, g.median, g.max),
-                                      fmt::format("{:.3f} / {:.3f}", setupFirst, setupSpread.median),
-                                      fmt::format("{:.2f} / {:.2f}", cullSpread.median, cullSpread.max)});
-                run[pass] = {{"instances", stats->instances},
-                             {"triangles", stats->triangles},
-                             {"draw_calls", stats->drawCalls},
-                             {"gpu_ms", toJson(g)}};
-            }
-            const Spread occlusionSpread = spread(occlusionMs), maskSpread = spread(maskMs);
-            const Spread visited = spread(nodesVisited), issued = spread(queries), inQueries = spread(nodesQueried),
-                         failed = spread(multiQueryFailures), waited = spread(waits);
-            if (args.render.visibility == gl::Culling::Gpu && !args.render.noCull)
-                fmt::print("{:>7} {:>7} {:<14} gpu     camera's two-phase pass (culling dispatches, depth pyramid, "
-                           "early and late pre-pass draws) CPU ms med {:.2f} max {:.2f}\n",
-                           "", "", "", occlusionSpread.median, occlusionSpread.max);
-            if (args.render.visibility == gl::Culling::Occlusion && !args.render.noCull)
-                fmt::print(
-                    "{:>7} {:>7} {:<14} chc     medians of the frames after the first: {} nodes visited, {} queries "
-                    "over "
-                    "{} nodes ({} multi-queries failed), {} waits (max {}); pre-pass CPU ms med {:.2f} max {:.2f} "
-                    "(incl. its draws and waits)\n",
-                    "", "", "", visited.median, issued.median, inQueries.median, failed.median, waited.median,
-                    waited.max, occlusionSpread.median, occlusionSpread.max);
-            if (!args.render.noCull) {
-                const Spread own = spread(cullOwnMs), gl = spread(cullGlMs), lists = spread(listMs);
-                fmt::print(
-                    "{:>7} {:>7} {:<14} cull    CPU ms med {:.2f} max {:.2f}: in GL (pre-pass, queries, masks, waits) "
-                    "med {:.2f} max {:.2f}; culling's own (thread CPU: queries of the hierarchy and masks, traversal) "
-                    "med {:.3f} max {:.3f}; levels and lists med {:.3f} max {:.3f}\n",
-                    "", "", "", cullSpread.median, cullSpread.max, gl.median, gl.max, own.median, own.max, lists.median,
-                    lists.max);
-            }
-            const bool masked = args.render.receiverMask && !args.render.noCull;
-            if (masked)
-                fmt::print("{:>7} {:>7} {:<14} masks   receiver masks CPU ms med {:.2f} max {:.2f} (compute + "
-                           "read-back + mask)\n",
-                           "", "", "", maskSpread.median, maskSpread.max);
-            run["receiver_mask"] = masked;
-            run["receiver_mask_ms"] = toJson(maskSpread);
-            run["occlusion"] = {{"nodes_visited", toJson(visited)},
-                                {"queries", toJson(issued)},
-                                {"nodes_queried", toJson(inQueries)},
-                                {"multi_query_failures", toJson(failed)},
-                                {"waits", toJson(waited)},
-                                {"prepass_ms", toJson(occlusionSpread)}};
-            if (!args.report.empty()) {
-                const std::filesystem::path page(args.report);
-                const std::string file = fmt::format("{}-{}-{}.png", page.stem().string(), trees, name);
-                if (auto s = scene::writePng((*renderer)->readColor(), page.parent_path() / file); !s)
-                    return fail("--report: " + s.error());
-                table.pictures.push_back({file, fmt::format("{} trees, {}", trees, name)});
-            }
-            std::fflush(stdout);
-            runs.push_back(run);
+            BenchRow viewRow = row;
+            viewRow.view = name;
+            auto run = benchView(args, viewRow, forest, **renderer, *driver, table);
+            if (!run) return fail(run.errorInfo());
+            runs.push_back(std::move(run).value());
         }
     }
-    if (!args.json.empty()) {
-        std::ofstream out(args.json);
-        out << nlohmann::json{{"runs", runs}}.dump(2) << "\n";
-        if (!out) return fail("--json: " + args.json + ": cannot write");
-    }
+    if (!args.json.empty())
+        if (auto s = writeTextFile("--json", args.json, nlohmann::json{{"runs", runs}}.dump(2) + "\n"); !s)
+            return fail(s.errorInfo());
     if (!args.report.empty()) {
         eval::HtmlReport page{
             .title = "shadowkit bench", .command = invocation(), .machine = (*context)->description()};

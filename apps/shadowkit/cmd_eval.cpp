@@ -75,6 +75,70 @@ core::Status checkViewName(const std::string& name) {
     return core::Ok{};
 }
 
+// The per-view files asked for: error and aliasing maps (and with a sun of some size the signed
+// error against its soft truth, NAME-soft.png), the raw buffers.
+core::Status writeViewFiles(const EvalArgs& args, const measure::Measurement& measured, const std::string& name,
+                            bool several) {
+    if (!args.errorMap.empty())
+        if (auto s =
+                scene::writePng(eval::errorMapImage(measured.comparison, measured.raster.width, measured.raster.height),
+                                perView(args.errorMap, name, several));
+            !s)
+            return core::makeError("--error-map: " + s.error());
+    // With a sun of some size, also the signed error against its soft truth: NAME-soft.png.
+    if (!args.errorMap.empty() && measured.softTruth) {
+        const fs::path hard = perView(args.errorMap, name, several);
+        if (auto s = scene::writePng(
+                eval::softErrorMapImage(measured.raster.shadowTerm, *measured.softTruth, measured.comparison),
+                hard.parent_path() / (hard.stem().string() + "-soft" + hard.extension().string()));
+            !s)
+            return core::makeError("--error-map: " + s.error());
+    }
+    if (!args.aliasingMap.empty())
+        if (auto s = scene::writePng(
+                eval::aliasingMapImage(measured.comparison, measured.raster.width, measured.raster.height),
+                perView(args.aliasingMap, name, several));
+            !s)
+            return core::makeError("--aliasing-map: " + s.error());
+    if (!args.dump.empty())
+        if (auto s = eval::dumpBuffers(several ? fs::path(args.dump) / name : fs::path(args.dump), measured.raster,
+                                       *measured.truth, measured.comparison,
+                                       measured.softTruth ? &*measured.softTruth : nullptr);
+            !s)
+            return core::makeError("--dump: " + s.error());
+
+    return core::Ok{};
+}
+
+// The view's row, a row per local light with its soft figures, and the sun's soft figures.
+void printViewRow(const eval::ViewReport& report) {
+    const std::string& name = report.view;
+    const eval::Figures& f = report.figures;
+    fmt::print(
+        "{:<14} {:<10} {:>5} {:>9} {:>8} {:>7.2f} {:>8.2f} {:>8.2f} {:>7.2f} {:>7.3f} {:>7.3f} {:>7.3f} {:>6.1f}\n",
+        name, report.technique, report.mapSize, f.validPx, f.excludedPx, f.wrongPct, f.falseShadowPct, f.falseLitPct,
+        f.undersampledPct, f.pixelsPerTexelP50, f.pixelsPerTexelP95, f.pixelsPerTexelP99, report.seconds);
+    // With spot and point lights the row above is every light together; each follows.
+    for (const eval::LightReport& l : report.lights) {
+        fmt::print("  {:<12} {:<10} {:>5} {:>9} {:>8} {:>7.2f} {:>8.2f} {:>8.2f} {:>7.2f} {:>7.3f} {:>7.3f} "
+                   "{:>7.3f}   {} maps{}\n",
+                   l.light, "", "", l.figures.validPx, "", l.figures.wrongPct, l.figures.falseShadowPct,
+                   l.figures.falseLitPct, l.figures.undersampledPct, l.figures.pixelsPerTexelP50,
+                   l.figures.pixelsPerTexelP95, l.figures.pixelsPerTexelP99, l.maps,
+                   l.skippedFaces ? fmt::format(", {} faces skipped", l.skippedFaces) : "");
+        if (const auto& s = l.soft)
+            fmt::print("    soft truth, lamp {:.3g} m: soft_mae {:.4f}, penumbra_mae {:.3f} over {} px, soft_wrong% "
+                       "{:.2f}, penumbra width ×{:.2f} ({:.1f} s)\n",
+                       l.radiusMetres, s->softMae, s->penumbraMae, s->penumbraPx, s->softWrongPct,
+                       s->penumbraWidthRatio, s->truthSeconds);
+    }
+    if (const auto& s = report.soft)
+        fmt::print("  soft truth, sun {:.2f}°: soft_mae {:.4f}, penumbra_mae {:.3f} over {} px, soft_wrong% {:.2f}, "
+                   "penumbra width ×{:.2f} ({:.1f} s)\n",
+                   s->sunAngleDegrees, s->softMae, s->penumbraMae, s->penumbraPx, s->softWrongPct,
+                   s->penumbraWidthRatio, s->truthSeconds);
+}
+
 int runEval(const EvalArgs& args) {
     if (args.serve) return serveEvaluations();
     if (auto s = args.technique.check(/*measuresFrames=*/true, /*takesAuto=*/true); !s) return fail(s.errorInfo());
@@ -151,63 +215,12 @@ int runEval(const EvalArgs& args) {
         auto measured = measurer->measure(*prepared, options);
         if (!measured) return fail(withFlagName(measured.errorInfo()));
 
-        if (!args.errorMap.empty())
-            if (auto s = scene::writePng(eval::errorMapImage(measured->comparison, view->width, view->height),
-                                         perView(args.errorMap, name, several));
-                !s)
-                return fail("--error-map: " + s.error());
-        // With a sun of some size, also the signed error against its soft truth: NAME-soft.png.
-        if (!args.errorMap.empty() && measured->softTruth) {
-            const fs::path hard = perView(args.errorMap, name, several);
-            if (auto s = scene::writePng(
-                    eval::softErrorMapImage(measured->raster.shadowTerm, *measured->softTruth, measured->comparison),
-                    hard.parent_path() / (hard.stem().string() + "-soft" + hard.extension().string()));
-                !s)
-                return fail("--error-map: " + s.error());
-        }
-        if (!args.aliasingMap.empty())
-            if (auto s = scene::writePng(eval::aliasingMapImage(measured->comparison, view->width, view->height),
-                                         perView(args.aliasingMap, name, several));
-                !s)
-                return fail("--aliasing-map: " + s.error());
-        if (!args.dump.empty())
-            if (auto s = eval::dumpBuffers(several ? fs::path(args.dump) / name : fs::path(args.dump), measured->raster,
-                                           *measured->truth, measured->comparison,
-                                           measured->softTruth ? &*measured->softTruth : nullptr);
-                !s)
-                return fail("--dump: " + s.error());
-
+        if (auto s = writeViewFiles(args, *measured, name, several); !s) return fail(s.errorInfo());
         eval::ViewReport report =
             measure::viewReport(*measured, prepared->settings, name, args.scene.scene, args.scene.seed);
         report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         if (prepared->autoChoice) report.autoChoice = core::describe(*prepared->autoChoice);
-        const eval::Figures& f = report.figures;
-        fmt::print(
-            "{:<14} {:<10} {:>5} {:>9} {:>8} {:>7.2f} {:>8.2f} {:>8.2f} {:>7.2f} {:>7.3f} {:>7.3f} {:>7.3f} {:>6.1f}\n",
-            name, report.technique, report.mapSize, f.validPx, f.excludedPx, f.wrongPct, f.falseShadowPct,
-            f.falseLitPct, f.undersampledPct, f.pixelsPerTexelP50, f.pixelsPerTexelP95, f.pixelsPerTexelP99,
-            report.seconds);
-        // With spot and point lights the row above is every light together; each follows.
-        for (const eval::LightReport& l : report.lights) {
-            fmt::print("  {:<12} {:<10} {:>5} {:>9} {:>8} {:>7.2f} {:>8.2f} {:>8.2f} {:>7.2f} {:>7.3f} {:>7.3f} "
-                       "{:>7.3f}   {} maps{}\n",
-                       l.light, "", "", l.figures.validPx, "", l.figures.wrongPct, l.figures.falseShadowPct,
-                       l.figures.falseLitPct, l.figures.undersampledPct, l.figures.pixelsPerTexelP50,
-                       l.figures.pixelsPerTexelP95, l.figures.pixelsPerTexelP99, l.maps,
-                       l.skippedFaces ? fmt::format(", {} faces skipped", l.skippedFaces) : "");
-            if (const auto& s = l.soft)
-                fmt::print(
-                    "    soft truth, lamp {:.3g} m: soft_mae {:.4f}, penumbra_mae {:.3f} over {} px, soft_wrong% "
-                    "{:.2f}, penumbra width ×{:.2f} ({:.1f} s)\n",
-                    l.radiusMetres, s->softMae, s->penumbraMae, s->penumbraPx, s->softWrongPct, s->penumbraWidthRatio,
-                    s->truthSeconds);
-        }
-        if (const auto& s = report.soft)
-            fmt::print(
-                "  soft truth, sun {:.2f}°: soft_mae {:.4f}, penumbra_mae {:.3f} over {} px, soft_wrong% {:.2f}, "
-                "penumbra width ×{:.2f} ({:.1f} s)\n",
-                s->sunAngleDegrees, s->softMae, s->penumbraMae, s->penumbraPx, s->softWrongPct, s->penumbraWidthRatio,
-                s->truthSeconds);
+        printViewRow(report);
         std::fflush(stdout);
         if (!args.report.empty()) {
             const std::string label =

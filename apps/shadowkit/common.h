@@ -36,4 +36,10 @@ int parseErrorExit(const CLI::ParseError& error);
 // its directory is missing.
 core::Status checkWritable(const char* flag, const std::string& file);
 
+// Writes `text` to `file` whole or not at all: into FILE.tmp-PID, flushed and checked, then renamed
+// over it, so a full disk or a missing folder is an error naming the flag and the file, and never
+// a short file a later run would take for a result. A device or pipe (/dev/stdout) is written in
+// place, every error checked the same way.
+core::Status writeTextFile(const char* flag, const std::string& file, const std::string& text);
+
 } // namespace shadowkit::app

@@ -80,6 +80,11 @@ check_fails(budget-without-auto "only with --technique auto" eval ${small} --tec
 check_fails(bad-texel-budget "--texel-budget" eval ${small} --technique auto --texel-budget 4X)
 check_fails(small-texel-budget "--texel-budget" eval ${small} --technique auto --texel-budget 1K --cascades 8)
 check_fails(negative-page-budget "--virtual-page-budget" render ${small} --technique virtual --virtual-page-budget -3)
+# Ranges written once, in the library that owns the field, named by the flag through kFlagOfField.
+check_fails(bad-blend-band "--virtual-blend-band" eval ${small} --technique virtual --virtual-blend-band 1.5)
+check_fails(negative-pool "--virtual-pool-pages" render ${small} --technique virtual --virtual-pool-pages -1)
+check_fails(negative-fog "--fog" render ${small} --fog -0.5)
+check_fails(msm-on-virtual-maps "--filter" render ${small} --technique virtual --filter msm)
 check_fails(missing-scene "does not exist" setup --scene "${WORK}/missing.glb")
 check_fails(unreadable-scene "garbage.glb" setup --scene "${WORK}/garbage.glb")
 check_fails(directory-scene "directory" export --scene "${WORK}/a_directory.obj" --out "${WORK}/x.glb")
@@ -326,6 +331,9 @@ check_fails(strip-unwritable "--strip" render ${small} --path flythrough --frame
 check_fails(eval-path-one-frame "--path" eval ${small} --path flythrough --frames 5)
 check_fails(eval-csv-without-path "--csv" eval ${small} --csv "${WORK}/f.csv")
 check_fails(eval-path-with-views "--path" eval ${small} --path flythrough --views all)
+# A full disk is an error naming the flag, never "written" and exit 0 (the writes are checked).
+check_fails(eval-path-csv-full-disk "--csv" eval ${small} --path flythrough --frames 0:2 --size 32x18 --map-size 64 --csv /dev/full)
+check_fails(bench-json-full-disk "--json" bench --trees 10 --views paper --frames 1 --size 32x18 --terrain-resolution 16 --json /dev/full)
 if(CASE STREQUAL "gl-eval-path")
   execute_process(COMMAND ${SHADOWKIT} eval ${small} --path flythrough --frames 0:3 --size 32x18 --map-size 64
                           --csv "${WORK}/f.csv" --plot "${WORK}/f.png" --json "${WORK}/f.json"

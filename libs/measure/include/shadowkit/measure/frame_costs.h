@@ -1,0 +1,58 @@
+// What a view's frames cost (`shadowkit bench`): each frame's CPU and GPU figures collected
+// (FrameDriver::draw's DrawnFrame), then their spread — min / median / max over the frames — and
+// the JSON row `bench --json` writes. Timings are figures to print, never to assert.
+#pragma once
+
+#include "shadowkit/frame/frame_driver.h"
+
+#include <nlohmann/json_fwd.hpp>
+
+#include <vector>
+
+namespace shadowkit::measure {
+
+struct Spread {
+    double min = 0.0, median = 0.0, max = 0.0;
+};
+// The spread of `values` (upper median for an even count); zeros for none.
+Spread spreadOf(std::vector<double> values);
+nlohmann::json toJson(const Spread& spread); // {"min", "median", "max"}
+
+class FrameCosts {
+public:
+    // The next frame of the view; the first is a camera cut (CHC++'s counts skip it).
+    void add(const frame::DrawnFrame& drawn);
+    int frames() const { return static_cast<int>(m_setup.size()); }
+    // The last frame's pass statistics (triangles, instances, draws).
+    const gl::FrameStats& last() const { return m_last; }
+
+    // The set-up's CPU ms: the first frame computes the focus body; the rest of a still view get
+    // it remembered (their spread; the first's alone with one frame).
+    double setupFirst() const { return m_setup.empty() ? 0.0 : m_setup.front(); }
+    Spread setupRest() const;
+    Spread cull() const { return spreadOf(m_cull); }           // culling's CPU ms, all of it
+    Spread cullOwn() const { return spreadOf(m_cullOwn); }     // of which culling's own thread time
+    Spread cullGl() const { return spreadOf(m_cullGl); }       // of which in GL (pre-pass, queries, waits)
+    Spread lists() const { return spreadOf(m_lists); }         // of which levels and lists
+    Spread shadowGpu() const { return spreadOf(m_shadowGpu); } // the sun's pass, GPU ms
+    Spread mainGpu() const { return spreadOf(m_mainGpu); }     // the camera's pass, GPU ms
+    Spread prepass() const { return spreadOf(m_prepass); }     // the camera's culling pass, CPU ms
+    Spread masks() const { return spreadOf(m_masks); }         // the receiver masks, CPU ms
+    // CHC++'s counts over the steady frames (after the first; the first alone with one frame).
+    struct Occlusion {
+        Spread nodesVisited, queries, nodesQueried, multiQueryFailures, waits;
+    };
+    Occlusion occlusion() const;
+
+    // The cost fields of a bench row: setup_first_ms, setup_ms, cull_ms, cull_own_ms, cull_gl_ms,
+    // list_ms, shadow and main ({instances, triangles, draw_calls, gpu_ms}), receiver_mask_ms,
+    // occlusion ({nodes_visited, queries, nodes_queried, multi_query_failures, waits, prepass_ms}).
+    nlohmann::json json() const;
+
+private:
+    std::vector<double> m_setup, m_cull, m_cullOwn, m_cullGl, m_lists, m_shadowGpu, m_mainGpu, m_prepass, m_masks;
+    std::vector<double> m_nodesVisited, m_queries, m_nodesQueried, m_multiQueryFailures, m_waits;
+    gl::FrameStats m_last;
+};
+
+} // namespace shadowkit::measure

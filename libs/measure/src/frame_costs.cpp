@@ -1,0 +1,73 @@
+#include "shadowkit/measure/frame_costs.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+
+namespace shadowkit::measure {
+namespace {
+
+// The values after the first (a camera cut), or the first alone when there is no other.
+std::vector<double> steady(const std::vector<double>& values) {
+    return values.size() > 1 ? std::vector<double>(values.begin() + 1, values.end()) : values;
+}
+
+} // namespace
+
+Spread spreadOf(std::vector<double> v) {
+    if (v.empty()) return {};
+    std::sort(v.begin(), v.end());
+    return {v.front(), v[v.size() / 2], v.back()};
+}
+
+nlohmann::json toJson(const Spread& s) { return {{"min", s.min}, {"median", s.median}, {"max", s.max}}; }
+
+void FrameCosts::add(const frame::DrawnFrame& drawn) {
+    const gl::FrameStats& stats = drawn.stats;
+    m_setup.push_back(drawn.frame.setupMilliseconds);
+    m_cull.push_back(stats.cullMilliseconds);
+    m_cullGl.push_back(stats.cullGlMilliseconds);
+    m_cullOwn.push_back(stats.cullOwnCpuMilliseconds);
+    m_lists.push_back(stats.listCpuMilliseconds);
+    m_prepass.push_back(stats.occlusionMilliseconds);
+    m_masks.push_back(stats.receiverMaskMilliseconds);
+    m_shadowGpu.push_back(stats.shadow.gpuMilliseconds);
+    m_mainGpu.push_back(stats.main.gpuMilliseconds);
+    const visibility::CoherentCullingStats& o = stats.occlusion;
+    m_nodesVisited.push_back(double(o.nodesVisited));
+    m_queries.push_back(double(o.queriesIssued));
+    m_nodesQueried.push_back(double(o.nodesQueried));
+    m_multiQueryFailures.push_back(double(o.multiQueryFailures));
+    m_waits.push_back(double(o.waits));
+    m_last = stats;
+}
+
+Spread FrameCosts::setupRest() const { return spreadOf(steady(m_setup)); }
+
+FrameCosts::Occlusion FrameCosts::occlusion() const {
+    return {spreadOf(steady(m_nodesVisited)), spreadOf(steady(m_queries)), spreadOf(steady(m_nodesQueried)),
+            spreadOf(steady(m_multiQueryFailures)), spreadOf(steady(m_waits))};
+}
+
+nlohmann::json FrameCosts::json() const {
+    nlohmann::json j = {{"setup_first_ms", setupFirst()}, {"setup_ms", toJson(setupRest())},
+                        {"cull_ms", toJson(cull())},      {"cull_own_ms", toJson(cullOwn())},
+                        {"cull_gl_ms", toJson(cullGl())}, {"list_ms", toJson(lists())}};
+    for (const auto& [pass, stats, gpu] :
+         {std::tuple{"shadow", &m_last.shadow, shadowGpu()}, std::tuple{"main", &m_last.main, mainGpu()}})
+        j[pass] = {{"instances", stats->instances},
+                   {"triangles", stats->triangles},
+                   {"draw_calls", stats->drawCalls},
+                   {"gpu_ms", toJson(gpu)}};
+    const Occlusion o = occlusion();
+    j["receiver_mask_ms"] = toJson(masks());
+    j["occlusion"] = {{"nodes_visited", toJson(o.nodesVisited)},
+                      {"queries", toJson(o.queries)},
+                      {"nodes_queried", toJson(o.nodesQueried)},
+                      {"multi_query_failures", toJson(o.multiQueryFailures)},
+                      {"waits", toJson(o.waits)},
+                      {"prepass_ms", toJson(prepass())}};
+    return j;
+}
+
+} // namespace shadowkit::measure
