@@ -139,16 +139,26 @@ void printViewRow(const eval::ViewReport& report) {
                    s->penumbraWidthRatio, s->truthSeconds);
 }
 
+// What can be checked before anything is loaded: the options, and the folders of every file to write.
+core::Status checkEvalArgs(const EvalArgs& args) {
+    if (auto s = args.technique.check(/*measuresFrames=*/true, /*takesAuto=*/true); !s) return s;
+    if (auto s = args.render.check(); !s) return s;
+    if (auto s = args.scene.check(); !s) return s;
+    if (args.softSamples < 16 || args.softSamples > 4096)
+        return core::makeError(fmt::format("--soft-samples: must be in [16, 4096] rays, got {}", args.softSamples));
+    for (auto [flag, file] : {std::pair{"--json", &args.json},
+                              {"--csv", &args.csv},
+                              {"--plot", &args.plot},
+                              {"--report", &args.report},
+                              {"--error-map", &args.errorMap},
+                              {"--aliasing-map", &args.aliasingMap}})
+        if (auto s = checkWritable(flag, *file); !s) return s;
+    return core::Ok{};
+}
+
 int runEval(const EvalArgs& args) {
     if (args.serve) return serveEvaluations();
-    if (auto s = args.technique.check(/*measuresFrames=*/true, /*takesAuto=*/true); !s) return fail(s.errorInfo());
-    if (auto s = args.render.check(); !s) return fail(s.errorInfo());
-    if (auto s = args.scene.check(); !s) return fail(s.errorInfo());
-    if (args.softSamples < 16 || args.softSamples > 4096)
-        return fail(fmt::format("--soft-samples: must be in [16, 4096] rays, got {}", args.softSamples));
-    for (auto [flag, file] :
-         {std::pair{"--json", &args.json}, {"--csv", &args.csv}, {"--plot", &args.plot}, {"--report", &args.report}})
-        if (auto s = checkWritable(flag, *file); !s) return fail(s.errorInfo());
+    if (auto s = checkEvalArgs(args); !s) return fail(s.errorInfo());
     if (!args.timeline.path.empty()) {
         if (!args.views.empty() || !args.errorMap.empty() || !args.aliasingMap.empty() || !args.dump.empty())
             return fail("--path: evaluates a path's frames, so --views, --error-map, --aliasing-map and --dump (still "
@@ -167,9 +177,6 @@ int runEval(const EvalArgs& args) {
     if (!names) return fail(names.errorInfo());
     if (args.views.empty())
         if (auto s = checkViewName(args.view.view); !s) return fail(s.errorInfo());
-    for (auto [flag, file] :
-         {std::pair{"--json", &args.json}, {"--error-map", &args.errorMap}, {"--aliasing-map", &args.aliasingMap}})
-        if (auto s = checkWritable(flag, *file); !s) return fail(s.errorInfo());
     const bool several = names->size() > 1;
 
     auto config = frameConfigOf(args.technique, args.render, args.lights);

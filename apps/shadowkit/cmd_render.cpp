@@ -90,25 +90,46 @@ core::Status encodeVideo(const std::string& pattern, int firstFrame, double fram
     return core::Ok{};
 }
 
+// The outputs' flags agree with the timeline (--video and --strip need a path) and their
+// folders exist, before the scene is loaded.
+core::Status checkOutputs(const RenderArgs& args, const Timeline& timeline) {
+    const bool sequence = timeline.isSequence();
+    if (sequence || !args.video.empty())
+        if (auto name = frameFileName(args.out, 0); !name) return name.errorInfo();
+    if (!args.video.empty() && !timeline.path) return core::makeError("--video: needs --path (a sequence of frames)");
+    if (!args.strip.empty() && !sequence) return core::makeError("--strip: needs --path (a sequence of frames)");
+    for (auto [flag, file] : {std::pair{"--strip", &args.strip},
+                              {"--video", &args.video},
+                              {"--shadow-map-out", &args.shadowMapOut},
+                              {"--local-map-out", &args.localMapOut}})
+        if (auto s = checkWritable(flag, *file); !s) return s;
+    if (!sequence)
+        if (auto s = checkWritable("--out", args.out); !s) return s;
+    if (!args.video.empty() && !ffmpegInstalled())
+        return core::makeError(
+            "--video: ffmpeg is not installed (apt install ffmpeg), write the frames with --out alone");
+    return core::Ok{};
+}
+
+// A still frame's maps as pictures: --shadow-map-out, --local-map-out.
+core::Status writeMaps(const RenderArgs& args, const gl::Renderer& renderer) {
+    if (!args.shadowMapOut.empty())
+        if (auto s = scene::writePng(renderer.readShadowMap(), args.shadowMapOut); !s)
+            return core::makeError("--shadow-map-out: " + s.error());
+    if (args.localMapOut.empty()) return core::Ok{};
+    const scene::Image maps = renderer.readLocalShadowMaps();
+    if (maps.width == 0) return core::makeError("--local-map-out: the view has no local light with a map");
+    if (auto s = scene::writePng(maps, args.localMapOut); !s) return core::makeError("--local-map-out: " + s.error());
+    return core::Ok{};
+}
+
 int runRender(const RenderArgs& args) {
     if (auto s = args.technique.check(/*measuresFrames=*/true, /*takesAuto=*/true); !s) return fail(s.errorInfo());
     if (auto s = args.render.check(); !s) return fail(s.errorInfo());
     auto timeline = args.timeline.resolve();
     if (!timeline) return fail(timeline.errorInfo());
     const bool sequence = timeline->isSequence();
-    if (sequence || !args.video.empty())
-        if (auto name = frameFileName(args.out, 0); !name) return fail(name.errorInfo());
-    if (!args.video.empty() && !timeline->path) return fail("--video: needs --path (a sequence of frames)");
-    if (!args.strip.empty() && !sequence) return fail("--strip: needs --path (a sequence of frames)");
-    for (auto [flag, file] : {std::pair{"--strip", &args.strip},
-                              {"--video", &args.video},
-                              {"--shadow-map-out", &args.shadowMapOut},
-                              {"--local-map-out", &args.localMapOut}})
-        if (auto s = checkWritable(flag, *file); !s) return fail(s.errorInfo());
-    if (!sequence)
-        if (auto s = checkWritable("--out", args.out); !s) return fail(s.errorInfo());
-    if (!args.video.empty() && !ffmpegInstalled())
-        return fail("--video: ffmpeg is not installed (apt install ffmpeg), write the frames with --out alone");
+    if (auto s = checkOutputs(args, *timeline); !s) return fail(s.errorInfo());
     auto sceneData = args.scene.load();
     if (!sceneData) return fail(sceneData.errorInfo());
     scene::Scene& world = *sceneData;
@@ -174,14 +195,7 @@ int runRender(const RenderArgs& args) {
             stripCaptions.push_back(fmt::format("frame {}, t = {:.2f} s", frame.number, frame.time));
         }
         if (!sequence) {
-            if (!args.shadowMapOut.empty())
-                if (auto s = scene::writePng((*renderer)->readShadowMap(), args.shadowMapOut); !s)
-                    return fail("--shadow-map-out: " + s.error());
-            if (!args.localMapOut.empty()) {
-                const scene::Image maps = (*renderer)->readLocalShadowMaps();
-                if (maps.width == 0) return fail("--local-map-out: the view has no local light with a map");
-                if (auto s = scene::writePng(maps, args.localMapOut); !s) return fail("--local-map-out: " + s.error());
-            }
+            if (auto s = writeMaps(args, **renderer); !s) return fail(s.errorInfo());
             printFrameReport(args, **context, f, drawn->stats, frameMs);
             fmt::print("wrote {}{}\n", out, args.shadowMapOut.empty() ? "" : " and " + args.shadowMapOut);
             continue;

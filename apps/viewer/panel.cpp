@@ -97,111 +97,126 @@ constexpr std::array kMapSizes = {"256", "512", "1024", "2048", "4096", "8192"};
 constexpr std::array kFilters = {"hard",       "pcf2", "pcf:3",   "pcf:5", "poisson:16",
                                  "poisson:32", "pcss", "pcss:32", "msm"};
 
+// The sun: night, or its elevation and azimuth.
+bool sunSection(StateOptions& s, const PanelDefaults& d) {
+    const auto f = [](double v) { return static_cast<float>(v); };
+    bool changed = false;
+    bool night = valueOf(s, "sun", "") == "off";
+    if (ImGui::Checkbox("night (--sun off)", &night)) {
+        if (night)
+            set(s, "sun", "off");
+        else
+            s.erase("sun");
+        changed = true;
+    }
+    if (!night) {
+        // Angles replace a direction given as a vector.
+        if (sliderFloat(s, "elevation", "sun-elevation", 1.0f, 89.0f, f(d.sunElevationDegrees)) |
+            sliderFloat(s, "azimuth", "sun-azimuth", 0.0f, 360.0f, f(d.sunAzimuthDegrees))) {
+            s.erase("sun");
+            changed = true;
+        }
+    }
+    return changed;
+}
+
+// The technique and its parameters, as the chosen family has them.
+bool techniqueSection(StateOptions& s) {
+    bool changed = false;
+    changed |= choiceCombo(s, "technique", "technique");
+    changed |= combo(s, "map size", "map-size", kMapSizes, defaultOf("map-size"));
+    const std::string t = valueOf(s, "technique", defaultOf("technique"));
+    if (t == "auto") changed |= combo(s, "texel budget", "texel-budget", kTexelBudgets, "4M");
+    if (t == "lispsm") {
+        changed |= choiceCombo(s, "n formula", "lispsm-formula");
+        changed |= choiceCombo(s, "warp axis", "lispsm-direction");
+        changed |= sliderFloat(s, "n weight", "lispsm-weight", 0.1f, 10.0f, numberOf("lispsm-weight"), true);
+        // A fixed n replaces the formula while it is set.
+        bool fixedN = s.count("lispsm-n") > 0;
+        if (ImGui::Checkbox("fixed n", &fixedN)) {
+            if (fixedN)
+                set(s, "lispsm-n", "10");
+            else
+                s.erase("lispsm-n");
+            changed = true;
+        }
+        if (fixedN) changed |= sliderFloat(s, "n (m)", "lispsm-n", 0.1f, 1000.0f, 10.0f, true);
+        changed |= checkbox(s, "z_n from the visible near", "lispsm-visible-near");
+    }
+    if (t == "lispsm" || t == "csm") {
+        bool measured = valueOf(s, "visible-depth", "") == "auto";
+        if (ImGui::Checkbox("visible depth from the frame", &measured)) {
+            if (measured)
+                set(s, "visible-depth", "auto");
+            else
+                s.erase("visible-depth");
+            changed = true;
+        }
+    }
+    if (t == "tsm") changed |= sliderFloat(s, "focus", "tsm-focus", 0.0f, 0.9f, numberOf("tsm-focus"));
+    if (t == "csm") {
+        changed |= sliderInt(s, "cascades", "cascades", 1, 8, static_cast<int>(numberOf("cascades")));
+        changed |= sliderFloat(s, "lambda", "lambda", 0.0f, 1.0f, numberOf("lambda"));
+        // Explicit split distances replace λ while given (Enter applies, empty clears).
+        std::array<char, 256> splits{};
+        const std::string current = valueOf(s, "splits", "");
+        current.copy(splits.data(), splits.size() - 1);
+        if (ImGui::InputText("splits near,...,far", splits.data(), splits.size(),
+                             ImGuiInputTextFlags_EnterReturnsTrue)) {
+            if (splits[0] == '\0')
+                s.erase("splits");
+            else
+                set(s, "splits", splits.data());
+            changed = true;
+        }
+        changed |= choiceCombo(s, "warp", "cascade-warp");
+        changed |= sliderFloat(s, "blend band", "blend-band", 0.0f, 0.5f, numberOf("blend-band"));
+    }
+    changed |= checkbox(s, "stabilize", "stabilize");
+    if (s.count("stabilize") && !(t == "csm" && valueOf(s, "cascade-warp", "none") == "none")) {
+        changed |= sliderFloat(s, "refit margin", "stabilize-margin", 0.0f, 1.0f, numberOf("stabilize-margin"));
+        changed |= sliderFloat(s, "texel growth", "stabilize-growth", 1.01f, 4.0f, numberOf("stabilize-growth"));
+        changed |= sliderInt(s, "look-ahead frames", "stabilize-lookahead", 0, 120,
+                             static_cast<int>(numberOf("stabilize-lookahead")));
+    }
+    return changed;
+}
+
+// The bias (defaults: the recommendation), the filter, the sun's size and the blur.
+bool biasAndFilterSection(StateOptions& s, const PanelDefaults& d) {
+    const auto f = [](double v) { return static_cast<float>(v); };
+    bool changed = false;
+    changed |= sliderFloat(s, "slope", "bias-slope", 0.0f, 8.0f, f(d.biasSlope));
+    changed |= sliderFloat(s, "constant", "bias-constant", 0.0f, 100000.0f, f(d.biasConstant), true);
+    changed |= sliderFloat(s, "normal offset", "normal-offset", 0.0f, 4.0f, f(d.normalOffset));
+    changed |= choiceCombo(s, "receiver plane", "receiver-plane-bias");
+    changed |= choiceCombo(s, "cull", "cull");
+    changed |= choiceCombo(s, "depth layout", "depth-layout");
+    if (ImGui::Button("reset to recommended")) {
+        for (const char* name :
+             {"bias-slope", "bias-constant", "normal-offset", "receiver-plane-bias", "cull", "depth-layout"})
+            s.erase(name);
+        changed = true;
+    }
+    changed |= combo(s, "filter", "filter", kFilters, defaultOf("filter"));
+    // The sun's size: the width of the penumbrae pcss draws (0.53: the real sun).
+    changed |= sliderFloat(s, "sun angle (deg)", "sun-angle", 0.0f, 5.0f, numberOf("sun-angle"));
+    changed |= sliderInt(s, "blur iterations", "blur-iterations", 0, 16, static_cast<int>(numberOf("blur-iterations")));
+    if (valueOf(s, "blur-iterations", "0") != "0") {
+        changed |= sliderFloat(s, "blur radius (px)", "blur-radius", 0.1f, 16.0f, numberOf("blur-radius"));
+        changed |=
+            sliderFloat(s, "blur depth falloff", "blur-depth-falloff", 0.0f, 1.0f, numberOf("blur-depth-falloff"));
+    }
+    return changed;
+}
+
 } // namespace
 
 bool drawOptionsPanel(StateOptions& s, const PanelDefaults& d) {
-    const auto f = [](double v) { return static_cast<float>(v); };
     bool changed = false;
-    if (ImGui::CollapsingHeader("Sun", ImGuiTreeNodeFlags_DefaultOpen)) {
-        bool night = valueOf(s, "sun", "") == "off";
-        if (ImGui::Checkbox("night (--sun off)", &night)) {
-            if (night)
-                set(s, "sun", "off");
-            else
-                s.erase("sun");
-            changed = true;
-        }
-        if (!night) {
-            // Angles replace a direction given as a vector.
-            if (sliderFloat(s, "elevation", "sun-elevation", 1.0f, 89.0f, f(d.sunElevationDegrees)) |
-                sliderFloat(s, "azimuth", "sun-azimuth", 0.0f, 360.0f, f(d.sunAzimuthDegrees))) {
-                s.erase("sun");
-                changed = true;
-            }
-        }
-    }
-    if (ImGui::CollapsingHeader("Technique", ImGuiTreeNodeFlags_DefaultOpen)) {
-        changed |= choiceCombo(s, "technique", "technique");
-        changed |= combo(s, "map size", "map-size", kMapSizes, defaultOf("map-size"));
-        const std::string t = valueOf(s, "technique", defaultOf("technique"));
-        if (t == "auto") changed |= combo(s, "texel budget", "texel-budget", kTexelBudgets, "4M");
-        if (t == "lispsm") {
-            changed |= choiceCombo(s, "n formula", "lispsm-formula");
-            changed |= choiceCombo(s, "warp axis", "lispsm-direction");
-            changed |= sliderFloat(s, "n weight", "lispsm-weight", 0.1f, 10.0f, numberOf("lispsm-weight"), true);
-            // A fixed n replaces the formula while it is set.
-            bool fixedN = s.count("lispsm-n") > 0;
-            if (ImGui::Checkbox("fixed n", &fixedN)) {
-                if (fixedN)
-                    set(s, "lispsm-n", "10");
-                else
-                    s.erase("lispsm-n");
-                changed = true;
-            }
-            if (fixedN) changed |= sliderFloat(s, "n (m)", "lispsm-n", 0.1f, 1000.0f, 10.0f, true);
-            changed |= checkbox(s, "z_n from the visible near", "lispsm-visible-near");
-        }
-        if (t == "lispsm" || t == "csm") {
-            bool measured = valueOf(s, "visible-depth", "") == "auto";
-            if (ImGui::Checkbox("visible depth from the frame", &measured)) {
-                if (measured)
-                    set(s, "visible-depth", "auto");
-                else
-                    s.erase("visible-depth");
-                changed = true;
-            }
-        }
-        if (t == "tsm") changed |= sliderFloat(s, "focus", "tsm-focus", 0.0f, 0.9f, numberOf("tsm-focus"));
-        if (t == "csm") {
-            changed |= sliderInt(s, "cascades", "cascades", 1, 8, static_cast<int>(numberOf("cascades")));
-            changed |= sliderFloat(s, "lambda", "lambda", 0.0f, 1.0f, numberOf("lambda"));
-            // Explicit split distances replace λ while given (Enter applies, empty clears).
-            std::array<char, 256> splits{};
-            const std::string current = valueOf(s, "splits", "");
-            current.copy(splits.data(), splits.size() - 1);
-            if (ImGui::InputText("splits near,...,far", splits.data(), splits.size(),
-                                 ImGuiInputTextFlags_EnterReturnsTrue)) {
-                if (splits[0] == '\0')
-                    s.erase("splits");
-                else
-                    set(s, "splits", splits.data());
-                changed = true;
-            }
-            changed |= choiceCombo(s, "warp", "cascade-warp");
-            changed |= sliderFloat(s, "blend band", "blend-band", 0.0f, 0.5f, numberOf("blend-band"));
-        }
-        changed |= checkbox(s, "stabilize", "stabilize");
-        if (s.count("stabilize") && !(t == "csm" && valueOf(s, "cascade-warp", "none") == "none")) {
-            changed |= sliderFloat(s, "refit margin", "stabilize-margin", 0.0f, 1.0f, numberOf("stabilize-margin"));
-            changed |= sliderFloat(s, "texel growth", "stabilize-growth", 1.01f, 4.0f, numberOf("stabilize-growth"));
-            changed |= sliderInt(s, "look-ahead frames", "stabilize-lookahead", 0, 120,
-                                 static_cast<int>(numberOf("stabilize-lookahead")));
-        }
-    }
-    if (ImGui::CollapsingHeader("Bias and filter")) {
-        changed |= sliderFloat(s, "slope", "bias-slope", 0.0f, 8.0f, f(d.biasSlope));
-        changed |= sliderFloat(s, "constant", "bias-constant", 0.0f, 100000.0f, f(d.biasConstant), true);
-        changed |= sliderFloat(s, "normal offset", "normal-offset", 0.0f, 4.0f, f(d.normalOffset));
-        changed |= choiceCombo(s, "receiver plane", "receiver-plane-bias");
-        changed |= choiceCombo(s, "cull", "cull");
-        changed |= choiceCombo(s, "depth layout", "depth-layout");
-        if (ImGui::Button("reset to recommended")) {
-            for (const char* name :
-                 {"bias-slope", "bias-constant", "normal-offset", "receiver-plane-bias", "cull", "depth-layout"})
-                s.erase(name);
-            changed = true;
-        }
-        changed |= combo(s, "filter", "filter", kFilters, defaultOf("filter"));
-        // The sun's size: the width of the penumbrae pcss draws (0.53: the real sun).
-        changed |= sliderFloat(s, "sun angle (deg)", "sun-angle", 0.0f, 5.0f, numberOf("sun-angle"));
-        changed |=
-            sliderInt(s, "blur iterations", "blur-iterations", 0, 16, static_cast<int>(numberOf("blur-iterations")));
-        if (valueOf(s, "blur-iterations", "0") != "0") {
-            changed |= sliderFloat(s, "blur radius (px)", "blur-radius", 0.1f, 16.0f, numberOf("blur-radius"));
-            changed |=
-                sliderFloat(s, "blur depth falloff", "blur-depth-falloff", 0.0f, 1.0f, numberOf("blur-depth-falloff"));
-        }
-    }
+    if (ImGui::CollapsingHeader("Sun", ImGuiTreeNodeFlags_DefaultOpen)) changed |= sunSection(s, d);
+    if (ImGui::CollapsingHeader("Technique", ImGuiTreeNodeFlags_DefaultOpen)) changed |= techniqueSection(s);
+    if (ImGui::CollapsingHeader("Bias and filter")) changed |= biasAndFilterSection(s, d);
     if (ImGui::CollapsingHeader("Insight", ImGuiTreeNodeFlags_DefaultOpen)) {
         changed |= checkbox(s, "aliasing heat map (pixels per texel)", "aliasing-overlay");
         changed |= checkbox(s, "split colours", "cascade-colors");
