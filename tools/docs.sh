@@ -31,9 +31,15 @@ cp -r "$SK_DOXYGEN_OUT/html" "$stage/api/cpp"
 # Python: pydoc of the built module, when there is one.
 python_page="The Python module is documented where it is built (\`tools/build.sh\` with \`pybind11-dev\`)."
 module_dir=build/libs/python
-if ls "$module_dir"/shadowkit*.so >/dev/null 2>&1; then
+# The package lays out shadowkit/__init__.py over the compiled shadowkit/_native*.so.
+if ls "$module_dir"/shadowkit/_native*.so >/dev/null 2>&1; then
   (cd "$stage/api" && PYTHONPATH="$OLDPWD/$module_dir" /usr/bin/python3 -m pydoc -w shadowkit >/dev/null)
   python_page="[The Python module \`shadowkit\`](shadowkit.html) (pybind11 docstrings, by pydoc)."
+  # A built module whose page did not come out is an error, not a quietly shorter reference.
+  [ -s "$stage/api/shadowkit.html" ] || { echo "docs: pydoc wrote no page for the built module in $module_dir" >&2; exit 1; }
+elif [ -d "$module_dir/shadowkit" ]; then
+  echo "docs: $module_dir/shadowkit has no compiled _native module: the Python API page would be missing" >&2
+  exit 1
 fi
 cat > "$stage/api/index.md" <<PAGE
 # API reference

@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
-# tools/gpu-bundle.sh: packs what tools/measure-gpu.sh needs on a machine that has a GPU driver but
-# none of this project's Debian libraries (the device tool's H100, docs/performance.md "On a real
-# GPU") into .gpu/bundle.tar.xz: the `shadowkit` CLI, the GL test programs and every shared library
-# they load except the C and C++ runtimes (the target's are newer). Embree alone is 44 MB; xz packs
-# the lot to about a fifth, so it travels under the device tool's 64 MiB.
-# The GL loader packages travel separately in .gl/ (the device tool's README says how to fetch them).
+# tools/gpu-bundle.sh: packs what tools/measure-gpu.sh needs on a machine that has an NVIDIA driver
+# with EGL but none of this project's Debian libraries (docs/performance.md "On a real GPU") into
+# .gpu/bundle.tar.xz: the `shadowkit` CLI, the GL test programs and every shared library they load
+# except the C and C++ runtimes (the target's are newer). Embree alone is 44 MB; xz packs the lot to
+# about a fifth (~12 MB), small enough to copy anywhere.
+# The GL loader (Debian's libglvnd, libepoxy and libegl packages, as .deb files in .gl/) is copied
+# beside it when the GPU machine has none: `apt-get download` them here.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 [ -x build/apps/shadowkit/shadowkit ] || tools/build.sh

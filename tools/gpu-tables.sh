@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # tools/gpu-tables.sh RESULTS.tgz: writes docs/performance.md's real-GPU tables ("On a real GPU")
-# from the gpu-results.tgz tools/measure-gpu.sh leaves on the GPU machine (the device tool copies
-# it back), beside llvmpipe's eval of the same set-ups, measured here first (about 5 minutes on
+# from the gpu-results.tgz tools/measure-gpu.sh leaves on the GPU machine (copied back here),
+# beside llvmpipe's eval of the same set-ups, measured here first (about 5 minutes on
 # the project's 2-core machine; KEEP_LLVMPIPE=1 keeps the last ones).
 set -euo pipefail
 [[ $# -eq 1 && -f $1 ]] || { echo "usage: tools/gpu-tables.sh RESULTS.tgz (from tools/measure-gpu.sh)" >&2; exit 2; }

@@ -1,10 +1,13 @@
 #!/usr/bin/env bash
 # tools/measure-gpu.sh [SECTION ...]: the real-GPU figures of docs/performance.md "On a real GPU",
-# run on a machine with a GPU driver and none of this project's libraries (the device tool's H100)
-# over the bundle tools/gpu-bundle.sh packs here. With the device tool, from the repository root:
+# run on any machine with an NVIDIA driver and EGL and none of this project's libraries, over the
+# bundle tools/gpu-bundle.sh packs on a machine that builds the project. From the repository root:
 #
-#   tools/gpu-bundle.sh      # here: .gpu/bundle.tar.xz (programs + libraries, ~12 MB)
-#   run(carry=[".gl", ".gpu"], command="for f in .gl/*.deb; do dpkg -x $f /; done; ldconfig; tools/measure-gpu.sh")
+#   tools/gpu-bundle.sh      # on the build machine: .gpu/bundle.tar.xz (programs + libraries, ~12 MB)
+#   # copy the checkout with .gpu/ (and .gl/, the GL loader's .deb files, if the GPU machine lacks
+#   # them) to the GPU machine, then there:
+#   for f in .gl/*.deb; do dpkg -x $f /; done; ldconfig   # only with .gl/
+#   tools/measure-gpu.sh     # then tools/gpu-tables.sh on its gpu-results.tgz, back on the build machine
 #
 # Sections (default: all, in this order, most wanted first): tests (the GL test programs on the
 # real driver), frame (a default frame, 1,000-100,000 trees, three views, CHC++ and GPU culling),
@@ -13,7 +16,7 @@
 # to compare with llvmpipe's: the same program on another rasteriser), alpha (tools/measure-alpha.sh),
 # scaling (what the shadow pass's time follows at 100,000 trees).
 # Every step has its own time limit and the whole run a deadline (DEADLINE seconds, default 540,
-# inside the device tool's 10 minutes): steps past it are skipped and say so. Results, logs and
+# nine minutes): steps past it are skipped and say so. Results, logs and
 # bench JSON go to $OUT/gpu-results.tgz (re-packed after every step, so a killed run still returns
 # what it measured) and a summary is printed last. Nothing here asserts a time: it prints figures.
 set -uo pipefail
@@ -29,7 +32,7 @@ mkdir -p "$out"
 root=/tmp/shadowkit-gpu
 mkdir -p "$root" && tar -C "$root" -xJf .gpu/bundle.tar.xz || { echo "measure-gpu: .gpu/bundle.tar.xz: cannot unpack (run tools/gpu-bundle.sh here first)"; exit 1; }
 export LD_LIBRARY_PATH=$root/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}
-# NVIDIA's EGL vendor file, where the device tool's README says it is.
+# NVIDIA's EGL vendor file, where NVIDIA's container and desktop installs put it.
 for f in /usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json /usr/share/glvnd/egl_vendor.d/10_nvidia.json; do
   [[ -f $f && -z ${__EGL_VENDOR_LIBRARY_FILENAMES:-} ]] && export __EGL_VENDOR_LIBRARY_FILENAMES=$f
 done
