@@ -1,10 +1,9 @@
 #include "auto_technique.h"
 
+#include "shadowkit/frame/auto_candidates.h"
 #include "shadowkit/gl/context.h"
 
 #include <fmt/format.h>
-
-#include <chrono>
 
 namespace shadowkit::app {
 
@@ -29,35 +28,17 @@ core::Status printAutoCandidates(const SceneOptions& sceneOptions, const ViewOpt
     if (!renderer) return renderer.errorInfo();
     auto base = technique.inputsFor(*view, (*renderer)->wsSceneBounds());
     if (!base) return base.errorInfo();
-    gl::RenderSettings settings;
-    settings.width = view->width;
-    settings.height = view->height;
-    auto samples = frame::sampleReceivers(**renderer, *base, settings);
-    if (!samples) return samples.errorInfo();
-    auto model = core::SamplingErrorModel::create(base->camera, settings.width, settings.height, *samples);
-    if (!model) return model.errorInfo();
-    const auto start = std::chrono::steady_clock::now();
-    auto ranked = core::rankCandidates(*base, *options, *model);
-    if (!ranked) return withFlagName(ranked.errorInfo());
-    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    auto candidates = frame::autoCandidates(**renderer, *base, *options, view->width, view->height);
+    if (!candidates) return withFlagName(candidates.errorInfo());
     fmt::print(
         "Candidates of --technique auto for view '{}' at {}x{}, {} texels, predicted at {} receivers ({:.1f} ms):\n",
-        viewOptions.view, settings.width, settings.height, options->texelBudget, model->size(), ms);
+        viewOptions.view, view->width, view->height, options->texelBudget, candidates->receivers,
+        candidates->milliseconds);
     fmt::print("  {:<54} {:>9} {:>9}   {:>9} {:>9}\n", "candidate (optimised parameters)", "def p50", "def p95", "p50",
                "p95");
-    for (const core::ParameterChoice& c : *ranked) {
-        // The same family, maps and size with its default parameters.
-        core::ShadowSetupInputs defaults = *base;
-        defaults.technique = c.inputs.technique;
-        defaults.mapSize = c.inputs.mapSize;
-        defaults.cascades.count = c.inputs.cascades.count;
-        defaults.cascades.warp = c.inputs.cascades.warp;
-        auto setup = core::computeShadowSetup(defaults);
-        if (!setup) return withFlagName(setup.errorInfo());
-        const core::SamplingFigures d = model->figures(*setup);
-        fmt::print("  {:<54} {:>9.3f} {:>9.3f}   {:>9.3f} {:>9.3f}\n", core::describe(c), d.p50, d.p95, c.predicted.p50,
-                   c.predicted.p95);
-    }
+    for (const frame::AutoCandidate& c : candidates->ranked)
+        fmt::print("  {:<54} {:>9.3f} {:>9.3f}   {:>9.3f} {:>9.3f}\n", core::describe(c.choice), c.defaults.p50,
+                   c.defaults.p95, c.choice.predicted.p50, c.choice.predicted.p95);
     return core::Ok{};
 }
 

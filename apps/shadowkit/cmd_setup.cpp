@@ -1,6 +1,7 @@
 // shadowkit setup: the shadow matrices as JSON, without any GL. The output is a
 // contract for engines and tests (docs/commands.md, "shadowkit setup"): keep the names stable.
 #include "commands.h"
+#include "frame_config_options.h"
 #include "local_light_options.h"
 #include "options.h"
 
@@ -105,8 +106,9 @@ int runSetup(const SetupArgs& args) {
 
     auto inputs = args.technique.inputsFor(*view, bounds);
     if (!inputs) return fail(inputs.errorInfo());
-    std::optional<core::SetupHysteresis> hysteresis;
-    auto setup = args.technique.setupFor(*inputs, hysteresis);
+    auto config = frameConfigOf(args.technique, RenderOptions{}, LocalLightOptions{});
+    if (!config) return fail(config.errorInfo());
+    auto setup = frame::firstSetup(*config, *inputs);
     if (!setup) return fail(withFlagName(setup.errorInfo()));
 
     const core::PerspectiveCamera& cam = view->camera;

@@ -515,12 +515,6 @@ core::Status TechniqueOptions::check(bool measuresFrames, bool takesAuto) const 
     return core::Ok{};
 }
 
-core::Result<core::ShadowSetup> TechniqueOptions::setupFor(const core::ShadowSetupInputs& inputs,
-                                                           std::optional<core::SetupHysteresis>& sequence) const {
-    if (!sequence) sequence = newHysteresis();
-    return sequence ? sequence->next(inputs) : core::computeShadowSetup(inputs);
-}
-
 core::Result<core::AutoOptions> TechniqueOptions::autoOptions() const {
     core::AutoOptions options;
     options.cascades = cascadesGiven ? cascades.count : 0;

@@ -80,22 +80,11 @@ struct TechniqueOptions {
     bool holdsLattices() const {
         return cascades.stabilize && (technique != core::Technique::Csm || cascades.warp != core::CascadeWarp::None);
     }
-    // A fresh core::SetupHysteresis with these options when holdsLattices(), else none.
-    std::optional<core::SetupHysteresis> newHysteresis() const {
-        if (holdsLattices()) return core::SetupHysteresis(hysteresis);
-        return std::nullopt;
-    }
-
     void addTo(CLI::App& cmd);
     // Checks the technique's flags (cheap: call before loading a scene); errors name the flag.
     // Commands that do not render and measure a frame refuse --visible-depth auto.
     // Only commands that resolve it per frame (render, eval) take --technique auto.
     core::Status check(bool measuresFrames = true, bool takesAuto = false) const;
-    // The set-up of a frame: through `sequence`'s hysteresis when --stabilize asks for one
-    // (created on first use; a sequence keeps it across its frames, a still frame gets a
-    // fresh one: the fresh fit itself), else core::computeShadowSetup.
-    core::Result<core::ShadowSetup> setupFor(const core::ShadowSetupInputs& inputs,
-                                             std::optional<core::SetupHysteresis>& sequence) const;
     // --technique auto's options: the budget (K and M are 2^10 and 2^20 texels) and, with
     // --cascades given, that count. Errors name the flag.
     core::Result<core::AutoOptions> autoOptions() const;

@@ -54,6 +54,12 @@ core::Status FrameConfig::check() const {
     return core::Ok{};
 }
 
+core::Result<core::ShadowSetup> firstSetup(const FrameConfig& config, const core::ShadowSetupInputs& inputs) {
+    if (auto s = config.check(); !s) return s.errorInfo();
+    if (config.heldLattices) return core::SetupHysteresis(*config.heldLattices).next(inputs);
+    return core::computeShadowSetup(inputs);
+}
+
 core::Result<core::LocalLighting> localLightingFor(const FrameConfig& config, const scene::ResolvedView& view,
                                                    const core::Aabb& wsSceneBounds) {
     std::vector<core::PointLight> points = view.points;

@@ -69,6 +69,11 @@ struct FrameConfig {
     core::Status check() const;
 };
 
+// The set-up a FrameDriver's first frame computes for `inputs` (a frame's technique inputs,
+// camera and light and box filled in): held lattices' first fit, or a fresh set-up. No GL: what
+// `shadowkit setup` prints, so its matrices are the ones `render` draws.
+core::Result<core::ShadowSetup> firstSetup(const FrameConfig& config, const core::ShadowSetupInputs& inputs);
+
 // The spot and point lights of a frame: the view's, then the configuration's, set up for the
 // view's camera over the scene box. Errors name "lights" (too many, or a bad light).
 core::Result<core::LocalLighting> localLightingFor(const FrameConfig& config, const scene::ResolvedView& view,
