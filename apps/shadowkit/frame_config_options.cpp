@@ -27,6 +27,8 @@ core::Result<frame::FrameConfig> frameConfigOf(const TechniqueOptions& technique
     s.culling = render.noCull ? gl::Culling::Off : render.visibility;
     s.receiverMask = render.receiverMask;
     s.lod = !render.noLod;
+    s.lodPixelError = render.lodPixelError;
+    s.lodTexelError = render.lodTexelError;
     s.virtualPoolPages = technique.virtualPoolPages;
     s.virtualBlendBand = technique.virtualBlendBand;
     s.virtualPageBudget = technique.virtualPageBudget;

@@ -4,6 +4,7 @@
 
 #include "shadowkit/core/light_size.h"
 #include "shadowkit/frame/frame_config.h"
+#include "shadowkit/frame/option_table.h"
 #include "shadowkit/scene/forest.h"
 #include "shadowkit/scene/scene_io.h"
 
@@ -241,55 +242,6 @@ core::Result<BoundedView> BoundsOptions::resolve(const SceneOptions& scene, cons
 
 namespace {
 
-// Library fields (core::Error::field) and the flags that set them.
-constexpr std::pair<std::string_view, std::string_view> kFlagOfField[] = {
-    {"map_size", "--map-size"},
-    {"image_size", "--size"},
-    {"lispsm.weight", "--lispsm-weight"},
-    {"lispsm.n", "--lispsm-n"},
-    {"visible_depth", "--visible-depth"},
-    {"tsm.focus", "--tsm-focus"},
-    {"cascades.count", "--cascades"},
-    {"cascades.lambda", "--lambda"},
-    {"cascades.blend_band", "--blend-band"},
-    {"cascades.stabilize", "--stabilize"},
-    {"hysteresis.margin", "--stabilize-margin"},
-    {"hysteresis.growth", "--stabilize-growth"},
-    {"hysteresis.lookahead", "--stabilize-lookahead"},
-    {"spot.position", "--light"},
-    {"spot.direction", "--light"},
-    {"spot.cone", "--light"},
-    {"spot.range", "--light"},
-    {"point.position", "--light"},
-    {"point.range", "--light"},
-    {"cascades.splits", "--splits"},
-    {"virtual.texels", "--virtual-texels"},
-    {"virtual.page_texels", "--virtual-page-texels"},
-    {"virtual.first_level", "--virtual-first-level"},
-    {"virtual.lod_bias", "--virtual-lod-bias"},
-    {"virtual.pool_pages", "--virtual-pool-pages"},
-    {"virtual.blend_band", "--virtual-blend-band"},
-    {"virtual.page_budget", "--virtual-page-budget"},
-    {"bias.slope", "--bias-slope"},
-    {"bias.constant", "--bias-constant"},
-    {"bias.normal_offset", "--normal-offset"},
-    {"filter", "--filter"},
-    {"filter.taps", "--filter"},
-    {"filter.radius", "--filter"},
-    {"sun_angle", "--sun-angle"},
-    {"blur.iterations", "--blur-iterations"},
-    {"blur.radius", "--blur-radius"},
-    {"blur.depth_falloff", "--blur-depth-falloff"},
-    {"auto.texel_budget", "--texel-budget"},
-    {"auto.cascades", "--cascades"},
-    {"fog", "--fog"},
-    {"lights", "--light"},
-    {"local_map_size", "--local-map-size"},
-    {"local_bias.slope", "--local-bias-slope"},
-    {"local_bias.normal_offset", "--local-normal-offset"},
-    {"local_bias.constant", "--local-bias-constant"},
-};
-
 Choices<core::Technique> techniqueChoices() {
     Choices<core::Technique> choices;
     for (const core::TechniqueInfo& info : core::allTechniques()) choices.emplace_back(info.name, info.technique);
@@ -317,15 +269,13 @@ std::string defaultOf(CLI::App& cmd, const std::string& flag) {
 }
 
 core::Error withFlagName(const core::Error& error) {
-    for (const auto& [field, flag] : kFlagOfField)
-        if (error.field == field) {
-            const std::string prefix = error.field + ": ";
-            const bool prefixed = error.message.compare(0, prefix.size(), prefix) == 0;
-            return core::Error{std::string(flag) + ": " +
-                                   (prefixed ? error.message.substr(prefix.size()) : error.message),
-                               error.field, error.kind};
-        }
-    return error;
+    // The flag of the field from the one table of options (frame/option_table.h).
+    const frame::OptionRow* row = frame::optionForField(error.field);
+    if (!row) return error;
+    const std::string prefix = error.field + ": ";
+    const bool prefixed = error.message.compare(0, prefix.size(), prefix) == 0;
+    return core::Error{std::string(row->flag) + ": " + (prefixed ? error.message.substr(prefix.size()) : error.message),
+                       error.field, error.kind};
 }
 
 void RenderOptions::addTo(CLI::App& cmd) {
@@ -360,6 +310,9 @@ void RenderOptions::addTo(CLI::App& cmd) {
         ->capture_default_str();
     cmd.add_option("--blur-radius", blur.radiusPixels, "blur tap distance in pixels at the viewer")
         ->capture_default_str();
+    cmd.add_option("--blur-depth-threshold", blur.depthThreshold,
+                   "blur: neighbours whose view depth differs by more than this fraction are left out")
+        ->capture_default_str();
     cmd.add_option("--blur-depth-falloff", blur.depthFalloff, "blur radius / (1 + falloff * depth): 0 = uniform blur")
         ->capture_default_str();
     cmd.add_flag("--cascade-colors", cascadeColors, "tint each cascade's depth range (Dimitrov 2007 Figure 3-2)");
@@ -383,6 +336,12 @@ void RenderOptions::addTo(CLI::App& cmd) {
     cmd.add_flag("--no-cull", noCull,
                  "same as --visibility off: every instance in every pass (same pixels, more work)");
     cmd.add_flag("--no-lod", noLod, "draw full meshes in every pass (no levels of detail)");
+    cmd.add_option("--lod-pixel-error", lodPixelError,
+                   "levels of detail: the coarsest level whose error stays within this many pixels of the camera")
+        ->capture_default_str();
+    cmd.add_option("--lod-texel-error", lodTexelError,
+                   "levels of detail: within this many texels of each shadow map (and the camera's bound near it)")
+        ->capture_default_str();
 }
 
 core::Status RenderOptions::check() const {
@@ -390,6 +349,7 @@ core::Status RenderOptions::check() const {
     if (auto s = core::validateSunAngle(sunAngle); !s) return withFlagName(s.errorInfo());
     if (auto s = gl::validate(blur); !s) return withFlagName(s.errorInfo());
     if (auto s = frame::validateFog(fog); !s) return withFlagName(s.errorInfo());
+    if (auto s = gl::validateLevelsOfDetail(lodPixelError, lodTexelError); !s) return withFlagName(s.errorInfo());
     const frame::BiasOverrides overrides{.slope = biasSlope, .constant = biasConstant, .normalOffset = normalOffset};
     if (auto s = overrides.validate(); !s) return withFlagName(s.errorInfo());
     return core::Ok{};

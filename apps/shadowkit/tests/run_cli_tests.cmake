@@ -85,6 +85,8 @@ check_fails(bad-blend-band "--virtual-blend-band" eval ${small} --technique virt
 check_fails(negative-pool "--virtual-pool-pages" render ${small} --technique virtual --virtual-pool-pages -1)
 check_fails(negative-fog "--fog" render ${small} --fog -0.5)
 check_fails(msm-on-virtual-maps "--filter" render ${small} --technique virtual --filter msm)
+check_fails(bad-lod-pixel-error "--lod-pixel-error" render ${small} --lod-pixel-error 0)
+check_fails(bad-blur-depth-threshold "--blur-depth-threshold" render ${small} --blur-depth-threshold 2)
 check_fails(missing-scene "does not exist" setup --scene "${WORK}/missing.glb")
 check_fails(unreadable-scene "garbage.glb" setup --scene "${WORK}/garbage.glb")
 check_fails(directory-scene "directory" export --scene "${WORK}/a_directory.obj" --out "${WORK}/x.glb")

@@ -28,9 +28,7 @@ core::Status BiasOverrides::validate() const {
 }
 
 core::Status validateFog(std::optional<double> fogDensity) {
-    if (fogDensity && !(*fogDensity >= 0.0 && std::isfinite(*fogDensity)))
-        return core::fieldError("fog", "must be a density >= 0 (1/m)");
-    return core::Ok{};
+    return fogDensity ? gl::validateFogDensity(*fogDensity) : core::Ok{};
 }
 
 core::Status FrameConfig::check() const {
@@ -47,6 +45,7 @@ core::Status FrameConfig::check() const {
     if (auto s = gl::validate(render.blur); !s) return s;
     if (auto s = gl::validate(render.localBias); !s) return s;
     if (auto s = gl::validateVirtualSettings(render); !s) return s;
+    if (auto s = gl::validateLevelsOfDetail(render.lodPixelError, render.lodTexelError); !s) return s;
     if (auto s = bias.validate(); !s) return s;
     if (auto s = validateFog(fogDensity); !s) return s;
     if (auto s = core::validateMapSize(localMapSize); !s)

@@ -31,6 +31,8 @@ core::Status checkFrame(const core::ShadowSetup& setup, const RenderSettings& se
     if (auto s = core::validateSunAngle(settings.sunAngleDegrees); !s) return s;
     if (auto s = validate(settings.blur); !s) return s;
     if (auto s = validate(settings.localBias); !s) return s;
+    if (auto s = validateLevelsOfDetail(settings.lodPixelError, settings.lodTexelError); !s) return s;
+    if (auto s = validateFogDensity(settings.fogDensity); !s) return s;
     const int maps = static_cast<int>(setup.views.size());
     if (maps < 1 || maps > kMaxCascades)
         return core::makeError("renderer: set-ups need 1 to " + std::to_string(kMaxCascades) + " shadow maps, got " +

@@ -1,6 +1,7 @@
 // RenderSettings' names and checks (render_settings.h): what a front end validates before it draws.
 #include "shadowkit/gl/render_settings.h"
 
+#include <cmath>
 #include <string>
 
 namespace shadowkit::gl {
@@ -63,6 +64,19 @@ core::Status validateVirtualSettings(const RenderSettings& settings) {
     if (settings.virtualPageBudget < 0)
         return core::fieldError("virtual.page_budget", "must be >= 0 (0: every page requested), got " +
                                                            std::to_string(settings.virtualPageBudget));
+    return core::Ok{};
+}
+
+core::Status validateLevelsOfDetail(float pixelError, float texelError) {
+    if (!(pixelError > 0.0f && pixelError <= 16.0f))
+        return core::fieldError("lod.pixel_error", "must be in (0, 16] pixels");
+    if (!(texelError > 0.0f && texelError <= 16.0f))
+        return core::fieldError("lod.texel_error", "must be in (0, 16] texels");
+    return core::Ok{};
+}
+
+core::Status validateFogDensity(double density) {
+    if (!(density >= 0.0 && std::isfinite(density))) return core::fieldError("fog", "must be a density >= 0 (1/m)");
     return core::Ok{};
 }
 

@@ -124,6 +124,11 @@ struct RenderSettings {
 // virtual.blend_band, virtual.page_budget. The renderer checks them for every virtual frame;
 // front ends call it to fail before anything is loaded.
 core::Status validateVirtualSettings(const RenderSettings& settings);
+// The levels of detail's error bounds in (0, 16] pixels and texels; errors name
+// lod.pixel_error and lod.texel_error.
+core::Status validateLevelsOfDetail(float pixelError, float texelError);
+// A fog density >= 0 per metre, finite; the error names "fog".
+core::Status validateFogDensity(double density);
 // A filter virtual maps can draw with: not msm (the pages hold depth only); the error names "filter".
 core::Status validateVirtualFilter(const core::FilterSettings& filter);
 
