@@ -4,7 +4,10 @@ namespace shadowkit::app {
 
 core::Result<frame::FrameConfig> frameConfigOf(const TechniqueOptions& technique, const RenderOptions& render,
                                                const LocalLightOptions& lights) {
-    if (auto s = render.check(); !s) return s.errorInfo();
+    // The ranges are FrameConfig::check's, run once by FrameDriver::create (or frame::firstSetup);
+    // the commands ran RenderOptions::check before loading anything.
+    auto filter = core::parseFilter(render.filter);
+    if (!filter) return withFlagName(filter.errorInfo());
     frame::FrameConfig config;
     // The technique's inputs without a frame: camera, light and scene box come with each.
     auto inputs = technique.inputsFor(scene::ResolvedView{}, core::Aabb{});
@@ -19,7 +22,7 @@ core::Result<frame::FrameConfig> frameConfigOf(const TechniqueOptions& technique
     if (technique.holdsLattices()) config.heldLattices = technique.hysteresis;
 
     gl::RenderSettings& s = config.render;
-    s.filter = core::parseFilter(render.filter).value(); // checked above
+    s.filter = *filter;
     s.sunAngleDegrees = render.sunAngle;
     s.blur = render.blur;
     s.cascadeColors = render.cascadeColors;
@@ -50,7 +53,6 @@ core::Result<frame::FrameConfig> frameConfigOf(const TechniqueOptions& technique
     if (!local) return local.errorInfo();
     config.lights.assign(local->begin(), local->end());
     config.localMapSize = lights.mapSize;
-    if (auto c = config.check(); !c) return withFlagName(c.errorInfo());
     return config;
 }
 

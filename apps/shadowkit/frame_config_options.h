@@ -9,7 +9,8 @@
 
 namespace shadowkit::app {
 
-// Errors name the flag.
+// The flags' FrameConfig, unchecked: FrameDriver::create (or frame::firstSetup) checks it, once;
+// errors (of parsing here) name the flag.
 core::Result<frame::FrameConfig> frameConfigOf(const TechniqueOptions& technique, const RenderOptions& render,
                                                const LocalLightOptions& lights);
 

@@ -16,9 +16,11 @@
 // the frame an unlimited one draws. At most two generations live in the pool; each level is
 // shown from one of them, so a lookup never mixes two suns' depths within a level.
 //
-// Based on: the page caching of Unreal Engine 5's virtual shadow maps (pages invalidated by
-// moving casters' bounds, kept while the light is still), with generations added here so a
-// budget never shows a level half drawn for a new sun.
+// Based on: the page caching of Unreal Engine 5's virtual shadow maps as its "Virtual Shadow
+// Maps" pages document it (cached pages kept while the light is still, invalidated under the
+// bounds of moving casters), and Lefohn et al. 2007 (pages requested by visible receivers).
+// Deviation: the two generations under a budget are ours, so a budget never shows a level half
+// drawn for a new sun.
 #pragma once
 
 #include "shadowkit/core/aabb.h"
