@@ -43,6 +43,12 @@ struct Renderer::Impl {
     // The sun's maps, then the local lights' (shadow terms every camera pass reads).
     core::Result<PassStats> shadowPasses(const core::ShadowSetup& setup, const RenderSettings& settings,
                                          const core::BiasSettings& bias);
+    // Culling::Gpu: what the sun's lists drew, read back into lastShadow (waits for the GPU).
+    void readGpuShadowDraws(const RenderSettings& settings) {
+        if (settings.culling != Culling::Gpu || lastShadow.drawCalls == 0) return; // no sun: nothing drawn
+        const DrawStats drawn = lists->gpuSunDrawn();
+        lastShadow.instances = drawn.instances, lastShadow.triangles = drawn.triangles;
+    }
     // The eval pass's buffers after the shadow passes (PassPurpose::Frame) or none (Surfaces).
     core::Result<core::RasterBuffers> evalBuffers(const SceneFrame& frame, const core::DirectionalLight& light,
                                                   const RenderSettings& settings, int localLight, PassPurpose purpose);
@@ -155,10 +161,7 @@ core::Result<FrameStats> Renderer::render(const core::PerspectiveCamera& wsCamer
     if (settings.culling == Culling::Gpu) {
         // What the GPU's lists drew, read back now that the frame is submitted.
         *mainDraws = r.lists->gpuCameraDrawn();
-        if (r.lastShadow.drawCalls > 0) { // else no sun: nothing drawn
-            const DrawStats drawn = r.lists->gpuSunDrawn();
-            r.lastShadow.instances = drawn.instances, r.lastShadow.triangles = drawn.triangles;
-        }
+        r.readGpuShadowDraws(settings);
     }
 
     stats.shadow = r.lastShadow;
@@ -208,10 +211,7 @@ core::Result<core::RasterBuffers> Renderer::Impl::evalBuffers(const SceneFrame& 
     lastShadow = {};
     if (shadows)
         if (auto s = shadowPasses(setup, settings, *bias); !s) return s.errorInfo();
-    if (settings.culling == Culling::Gpu && lastShadow.drawCalls > 0) {
-        const DrawStats drawn = lists->gpuSunDrawn();
-        lastShadow.instances = drawn.instances, lastShadow.triangles = drawn.triangles;
-    }
+    readGpuShadowDraws(settings);
     const CameraView view{frame.camera, light, sun->lookupSetup(setup, settings), settings, *bias};
     bindFrame(view, false, localLight);
     if (auto s = camera->evalPass(*scene, lists->cameraList(), view); !s) return s.errorInfo();

@@ -143,16 +143,10 @@ void VirtualPages::request(const CameraDepthTarget& depth, const core::Perspecti
 }
 
 VirtualPageStats VirtualPages::stats() const {
-    const core::PageCacheStats& c = m_cache.stats();
-    return {.pagesRequested = c.pagesRequested,
-            .pagesResident = c.pagesResident,
-            .pagesRendered = c.pagesRendered,
-            .pagesFellBack = c.pagesFellBack,
-            .pagesDeferred = c.pagesDeferred,
-            .levelsBehind = c.levelsBehind,
-            .lagFrames = c.lagFrames,
-            .poolPages = c.poolPages,
-            .poolBytes = int64_t(m_atlasTexels.x) * m_atlasTexels.y * 4};
+    VirtualPageStats stats;
+    static_cast<core::PageCacheStats&>(stats) = m_cache.stats();
+    stats.poolBytes = int64_t(m_atlasTexels.x) * m_atlasTexels.y * 4;
+    return stats;
 }
 
 DrawStats VirtualPages::drawPages(const GpuScene& scene, const PassPrograms& programs, std::span<const PassList> lists,

@@ -3,6 +3,7 @@
 #include "bindings.h"
 
 #include "shadowkit/core/version.h"
+#include "shadowkit/frame/option_table.h"
 
 #include <pybind11/stl.h>
 
@@ -12,6 +13,18 @@ using shadowkit::python::SetupArguments;
 PYBIND11_MODULE(_native, m) {
     m.doc() = "shadowkit: shadow-map set-ups and their error against ray-traced truth";
     m.attr("__version__") = SHADOWKIT_VERSION_STRING;
+
+    // The one table of options (frame/option_table.h): the flag of every frame field, so a
+    // keyword argument can be held to the command line's name for it.
+    m.def(
+        "option_flags",
+        [] {
+            std::vector<std::pair<std::string, std::string>> rows;
+            for (const shadowkit::frame::OptionRow& row : shadowkit::frame::optionTable())
+                if (!row.flag.empty()) rows.emplace_back(std::string(row.flag), std::string(row.member));
+            return rows;
+        },
+        "Every frame option's command-line flag and the struct member it sets, as (flag, member) pairs.");
 
     const SetupArguments d;
     m.def(

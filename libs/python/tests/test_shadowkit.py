@@ -5,6 +5,7 @@ numbers; the module must give the same. Run by CTest with PYTHONPATH at the modu
 SHADOWKIT at the command line."""
 import json
 import os
+import re
 import subprocess
 import tempfile
 import unittest
@@ -25,6 +26,21 @@ def cli_json(*args):
 def column_major(flat):
     """A matrix as the CLI prints it (16 values, column after column) as [row, column]."""
     return np.array(flat, dtype=float).reshape(4, 4).T
+
+
+class OptionNamesTest(unittest.TestCase):
+    def test_every_frame_keyword_is_a_flag_of_the_one_table(self):
+        # evaluate()'s keywords that set a frame option are the command line's flags, spelt with
+        # underscores: each must name a row of frame/option_table.h.
+        flags = {flag for flag, _ in shadowkit.option_flags()}
+        self.assertIn("--sun-angle", flags)
+        signature = shadowkit.evaluate.__doc__.splitlines()[0]
+        keywords = re.findall(r"(\w+): ", signature)
+        scene_and_view = {"view", "seed", "trees", "terrain_size", "terrain_resolution", "movers", "forest"}
+        frame_keywords = [k for k in keywords if k not in scene_and_view]
+        self.assertGreaterEqual(len(frame_keywords), 5, signature)
+        for keyword in frame_keywords:
+            self.assertIn("--" + keyword.replace("_", "-"), flags, keyword)
 
 
 class SetupTest(unittest.TestCase):

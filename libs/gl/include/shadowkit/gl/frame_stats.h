@@ -2,6 +2,7 @@
 // went (Renderer::render's result).
 #pragma once
 
+#include "shadowkit/core/virtual_page_cache.h"
 #include "shadowkit/visibility/coherent_culling.h"
 
 #include <cstddef>
@@ -17,19 +18,10 @@ struct PassStats {
     size_t drawCalls = 0;
 };
 
-// Virtual shadow maps' pages in one frame (docs/virtual-shadow-maps.md).
-struct VirtualPageStats {
-    int pagesRequested = 0; // marked by the visible receivers (each with its coarser fallback)
-    int pagesResident = 0;  // in the pool after the frame, requested or kept from earlier frames
-    int pagesRendered = 0;  // drawn this frame: newly allocated or invalidated
-    int pagesFellBack = 0;  // requested but not allocated (pool full): served by a coarser level
-    int pagesDeferred = 0;  // requested, allocated, not drawn: over the page budget (served coarser)
-    // Page budget: levels still shown from the older of two generations of pages while the
-    // newer one is drawn (what pages depend on changed: a moving sun, a new bias...), and how many
-    // frames ago the oldest shown was the current one (0: every level shows the current sun).
-    int levelsBehind = 0;
-    int lagFrames = 0;
-    int poolPages = 0;     // slots in the pool
+// Virtual shadow maps' pages in one frame (docs/virtual-shadow-maps.md): the page cache's
+// figures (core::PageCacheStats: requested, resident, rendered, fallen back, deferred, levels
+// behind and their lag, slots), and what the GPU side adds.
+struct VirtualPageStats : core::PageCacheStats {
     int64_t poolBytes = 0; // the atlas's depth, 4 bytes a texel (guard bands included)
     size_t triangles = 0;  // drawn into the pages rendered this frame
 };
