@@ -11,7 +11,6 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
-#include <fstream>
 #include <iostream>
 
 namespace shadowkit::app {
@@ -46,12 +45,10 @@ int runAnalyze(const AnalyzeArgs& args) {
     const core::AliasingCurve lispsm = core::sampleAliasing(args.zNear, args.zFar, nOpt);
 
     if (!args.csv.empty()) {
-        std::ofstream out(args.csv);
-        if (!out) return fail("--csv: " + args.csv + ": cannot open for writing");
-        out << "z,uniform,psm,lispsm\n";
+        std::string csv = "z,uniform,psm,lispsm\n";
         for (size_t i = 0; i < uniform.z.size(); ++i)
-            out << fmt::format("{},{},{},{}\n", uniform.z[i], uniform.dpds[i], psm.dpds[i], lispsm.dpds[i]);
-        if (!out) return fail("--csv: " + args.csv + ": write failed");
+            csv += fmt::format("{},{},{},{}\n", uniform.z[i], uniform.dpds[i], psm.dpds[i], lispsm.dpds[i]);
+        if (auto s = writeTextFile("--csv", args.csv, csv); !s) return fail(s.errorInfo());
     }
     if (!args.plot.empty()) {
         imaging::PlotOptions po;

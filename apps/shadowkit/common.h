@@ -32,14 +32,12 @@ std::filesystem::path dataDirectory();
 // unknown flag or a missing argument: a usage error).
 int parseErrorExit(const CLI::ParseError& error);
 
-// A file a command will write later: fails now, before minutes of work, naming the flag, if
-// its directory is missing.
+// A file a command will write later: creates its missing directories now, or fails now,
+// before minutes of work, naming the flag.
 core::Status checkWritable(const char* flag, const std::string& file);
 
-// Writes `text` to `file` whole or not at all: into FILE.tmp-PID, flushed and checked, then renamed
-// over it, so a full disk or a missing folder is an error naming the flag and the file, and never
-// a short file a later run would take for a result. A device or pipe (/dev/stdout) is written in
-// place, every error checked the same way.
+// Writes `text` to `file` whole or not at all (scene::writeFile), an error naming the flag
+// and the file.
 core::Status writeTextFile(const char* flag, const std::string& file, const std::string& text);
 
 } // namespace shadowkit::app

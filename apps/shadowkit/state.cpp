@@ -1,5 +1,7 @@
 #include "state.h"
 
+#include "shadowkit/scene/file_write.h"
+
 #include <nlohmann/json.hpp>
 
 #include <fstream>
@@ -58,11 +60,7 @@ core::Status saveState(const StateOptions& options, const std::string& file) {
     nlohmann::json list = nlohmann::json::object();
     for (const auto& [name, values] : options)
         list[name] = values.size() == 1 ? nlohmann::json(values.front()) : nlohmann::json(values);
-    std::ofstream out(file);
-    if (!out) return core::makeError(file + ": cannot open for writing");
-    out << nlohmann::json{{"shadowkit_state", kStateVersion}, {"options", list}}.dump(2) << "\n";
-    if (!out) return core::makeError(file + ": write failed");
-    return core::Ok{};
+    return scene::writeFile(file, nlohmann::json{{"shadowkit_state", kStateVersion}, {"options", list}}.dump(2) + "\n");
 }
 
 core::Result<std::vector<std::string>> expandState(const std::vector<std::string>& args) {

@@ -1,11 +1,11 @@
 #include "shadowkit/eval/html_report.h"
 
 #include "shadowkit/eval/maps.h"
+#include "shadowkit/scene/file_write.h"
 
 #include <algorithm>
 #include <array>
 #include <cstdio>
-#include <fstream>
 #include <map>
 #include <sstream>
 
@@ -286,11 +286,7 @@ std::string htmlReport(const HtmlReport& report) {
 }
 
 core::Status writeHtmlReport(const HtmlReport& report, const std::filesystem::path& file) {
-    std::ofstream out(file);
-    if (!out) return core::makeError(file.string() + ": cannot open for writing");
-    out << htmlReport(report);
-    if (!out) return core::makeError(file.string() + ": write failed");
-    return core::Ok{};
+    return scene::writeFile(file, htmlReport(report));
 }
 
 } // namespace shadowkit::eval

@@ -1,6 +1,7 @@
 #include "shadowkit/eval/npy.h"
 
-#include <fstream>
+#include "shadowkit/scene/file_write.h"
+
 #include <functional>
 #include <numeric>
 #include <string>
@@ -20,16 +21,13 @@ core::Status write(const std::filesystem::path& file, const void* data, size_t e
     const size_t total = (10 + header.size() + 1 + 63) / 64 * 64;
     header.append(total - 10 - header.size() - 1, ' ');
     header += '\n';
-    std::ofstream out(file, std::ios::binary);
-    if (!out) return core::makeError(file.string() + ": cannot open for writing");
     const auto len = static_cast<uint16_t>(header.size());
-    out.write("\x93NUMPY\x01\x00", 8);
-    const char lenBytes[2] = {static_cast<char>(len & 0xff), static_cast<char>(len >> 8)};
-    out.write(lenBytes, 2);
-    out << header;
-    out.write(static_cast<const char*>(data), static_cast<std::streamsize>(elementSize * count));
-    if (!out) return core::makeError(file.string() + ": write failed");
-    return core::Ok{};
+    std::string bytes("\x93NUMPY\x01\x00", 8);
+    bytes += static_cast<char>(len & 0xff);
+    bytes += static_cast<char>(len >> 8);
+    bytes += header;
+    bytes.append(static_cast<const char*>(data), elementSize * count);
+    return scene::writeFile(file, bytes);
 }
 
 } // namespace

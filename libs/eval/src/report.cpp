@@ -1,10 +1,9 @@
 #include "shadowkit/eval/report.h"
 
 #include "shadowkit/eval/npy.h"
+#include "shadowkit/scene/file_write.h"
 
 #include <nlohmann/json.hpp>
-
-#include <fstream>
 
 namespace shadowkit::eval {
 
@@ -100,11 +99,7 @@ std::string reportJson(const std::vector<ViewReport>& views) {
 }
 
 core::Status writeReportJson(const std::vector<ViewReport>& views, const std::filesystem::path& file) {
-    std::ofstream out(file);
-    if (!out) return core::makeError(file.string() + ": cannot open for writing");
-    out << reportJson(views);
-    if (!out) return core::makeError(file.string() + ": write failed");
-    return core::Ok{};
+    return scene::writeFile(file, reportJson(views));
 }
 
 core::Status dumpBuffers(const std::filesystem::path& dir, const core::RasterBuffers& raster, const TruthBuffers& truth,

@@ -4,7 +4,11 @@
 // an exported leafy forest loads back with its leaves' holes.
 #include "scene_formats.h"
 
+#include "shadowkit/scene/file_write.h"
+
 #include <tiny_gltf.h>
+
+#include <sstream>
 
 namespace shadowkit::scene::formats {
 
@@ -136,9 +140,10 @@ core::Status exportGlb(const Scene& scene, const fs::path& file) {
         model.scenes[0].nodes.push_back(int(model.nodes.size() - 1));
     }
     tinygltf::TinyGLTF writer;
-    if (!writer.WriteGltfSceneToFile(&model, file.string(), true, true, false, true))
-        return core::makeError(file.string() + ": cannot write glTF file");
-    return core::Ok{};
+    std::ostringstream glb;
+    if (!writer.WriteGltfSceneToStream(&model, glb, false, true))
+        return core::makeError(file.string() + ": cannot encode glTF");
+    return writeFile(file, glb.view());
 }
 
 } // namespace shadowkit::scene::formats

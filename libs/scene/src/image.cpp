@@ -1,14 +1,24 @@
 #include "shadowkit/scene/image.h"
 
+#include "shadowkit/scene/file_write.h"
+
 #include <stb/stb_image_write.h>
+
+#include <string>
 
 namespace shadowkit::scene {
 
 core::Status writePng(const Image& image, const std::filesystem::path& file) {
     if (image.width <= 0 || image.height <= 0) return core::makeError(file.string() + ": cannot write an empty image");
-    if (!stbi_write_png(file.string().c_str(), image.width, image.height, 4, image.rgba.data(), image.width * 4))
-        return core::makeError(file.string() + ": cannot write PNG (does the directory exist and is it writable?)");
-    return core::Ok{};
+    // Encoded in memory, then written whole (file_write.h): stb's own file writer reports
+    // neither a full disk nor a failed close.
+    std::string png;
+    const auto append = [](void* context, void* data, int size) {
+        static_cast<std::string*>(context)->append(static_cast<const char*>(data), size_t(size));
+    };
+    if (!stbi_write_png_to_func(append, &png, image.width, image.height, 4, image.rgba.data(), image.width * 4))
+        return core::makeError(file.string() + ": cannot encode PNG");
+    return writeFile(file, png);
 }
 
 } // namespace shadowkit::scene

@@ -1,15 +1,16 @@
 // Wavefront OBJ export, with per-vertex colours as `v x y z r g b`.
 #include "scene_formats.h"
 
-#include <fstream>
+#include "shadowkit/scene/file_write.h"
+
+#include <sstream>
 
 namespace shadowkit::scene::formats {
 
 namespace fs = std::filesystem;
 
 core::Status exportObj(const Scene& scene, const fs::path& file) {
-    std::ofstream out(file);
-    if (!out) return core::makeError(file.string() + ": cannot open for writing");
+    std::ostringstream out;
     out << "# shadowkit export: " << scene.triangleCount() << " triangles, instances baked into world space\n";
     size_t base = 1;
     char buf[160];
@@ -32,8 +33,7 @@ core::Status exportObj(const Scene& scene, const fs::path& file) {
         }
         base += baked.vertices.size();
     }
-    if (!out) return core::makeError(file.string() + ": write failed (disk full?)");
-    return core::Ok{};
+    return writeFile(file, out.view());
 }
 
 } // namespace shadowkit::scene::formats
