@@ -6,7 +6,7 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config
   libglm-dev libepoxy-dev libegl1-mesa-dev libgl1-mesa-dri libglfw3-dev
-  libembree-dev libtbb-dev libtinygltf-dev libstb-dev nlohmann-json3-dev
+  libembree-dev libtbb-dev libtinygltf-dev libstb-dev libwebp-dev nlohmann-json3-dev
   libcli11-dev libfmt-dev libmeshoptimizer-dev libtinyobjloader-dev libgtest-dev libbenchmark-dev
   libimgui-dev xvfb xauth
   pybind11-dev python3-dev python3-numpy python3-matplotlib python3-distributed

@@ -9,11 +9,16 @@
 //   - triangle lists, strips and fans (strips and fans unrolled into lists);
 //   - materials (§3.9): base colour factor and texture with its TEXCOORD set and sampler,
 //     KHR_texture_transform applied to the uvs, alpha mode and cutoff, double-sidedness;
-//   - images (§3.8.4): PNG and JPEG, embedded (buffer view or data URI) or external, decoded by
+//   - images (§3.8.4): PNG, JPEG and WebP (EXT_texture_webp), embedded (buffer view or data
+//     URI) or external (tinygltf decodes percent-encoded URIs, RFC 3986 §2.1), decoded by
 //     scene::decodeImage within its limits; a buffer view's bytes are checked against its
-//     buffer before they are read (tinygltf does not check them);
-//   - what cannot be read is named: glTF 1.0, Draco-compressed meshes, non-finite positions, a
-//     missing or broken image.
+//     buffer before they are read (tinygltf does not check them). A texture's sources are tried
+//     in order — the WebP extension's, the core PNG/JPEG fallback, KHR_texture_basisu's (KTX2,
+//     which no Debian library decodes, so it fails with its name);
+//   - a texture that cannot be read (missing, corrupt, KTX2 only) matters only where the
+//     material's alpha does: on an OPAQUE material it is dropped with one warning in
+//     Scene::warnings (shadows never read an opaque colour), on MASK and BLEND it is an error;
+//   - what cannot be read is named: glTF 1.0, Draco-compressed meshes, non-finite positions.
 #include "scene_formats.h"
 
 #include <tiny_gltf.h>
@@ -28,7 +33,9 @@
 #include <fstream>
 #include <map>
 #include <optional>
+#include <set>
 #include <unordered_map>
+#include <variant>
 
 namespace shadowkit::scene::formats {
 
@@ -338,10 +345,11 @@ bool isGltf1(const fs::path& file, bool binary) {
 
 // tinygltf's image callback. Images in a buffer view are left for readMaterials (their bytes
 // are checked against the buffer there; tinygltf hands them over unchecked); the bytes of
-// data URIs and external files are whole, and decoded here.
+// data URIs and external files are whole, and decoded here. An image that cannot be decoded
+// does not stop the load: whether it matters depends on the materials that use it.
 struct ImageContext {
     std::string file;
-    std::optional<core::Error> failure; // the first image that could not be decoded
+    std::map<int, core::Error> failures; // by image index
 };
 
 // A name from the file as it may appear in a one-line message: control characters replaced.
@@ -357,15 +365,14 @@ std::string imageName(const std::string& file, int index, const tinygltf::Image&
            (label.empty() || label.starts_with("data:") ? "" : " '" + label + "'");
 }
 
-bool loadImage(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
+bool loadImage(tinygltf::Image* image, const int index, std::string*, std::string*, int, int,
                const unsigned char* bytes, int size, void* user) {
     if (image->bufferView >= 0) return true;
     auto& context = *static_cast<ImageContext*>(user);
     auto decoded = decodeImage(std::span(bytes, size_t(std::max(size, 0))), imageName(context.file, index, *image));
     if (!decoded) {
-        if (!context.failure) context.failure = decoded.errorInfo();
-        if (err) *err += "an image could not be decoded";
-        return false;
+        context.failures.emplace(index, decoded.errorInfo());
+        return true;
     }
     image->width = decoded->width, image->height = decoded->height;
     image->component = 4, image->bits = 8, image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
@@ -382,10 +389,82 @@ TextureWrap wrapOf(int gltfWrap) {
                                                                : TextureWrap::Repeat;
 }
 
+// One image decoded: from its buffer view (bytes checked against the buffer), or as the image
+// callback left it.
+core::Result<Image> readImage(const tinygltf::Model& model, const fs::path& file, int source,
+                              const ImageContext& images) {
+    if (source < 0 || size_t(source) >= model.images.size())
+        return core::makeError(file.string() + ": no image " + std::to_string(source));
+    const tinygltf::Image& image = model.images[size_t(source)];
+    const std::string name = imageName(file.string(), source, image);
+    if (const auto failed = images.failures.find(source); failed != images.failures.end()) return failed->second;
+    if (image.bufferView >= 0) {
+        const auto& views = model.bufferViews;
+        const size_t length = size_t(image.bufferView) < views.size() ? views[size_t(image.bufferView)].byteLength : 0;
+        auto bytes = bytesOf(model, image.bufferView, 0, 1, length, length, name);
+        if (!bytes) return bytes.errorInfo();
+        return decodeImage(std::span(*bytes, length), name);
+    }
+    if (image.image.empty() || image.width <= 0 || image.height <= 0 ||
+        image.image.size() != size_t(image.width) * size_t(image.height) * 4)
+        return core::makeError(name + ": cannot read it (a missing file?)");
+    Image out;
+    out.width = image.width, out.height = image.height;
+    out.rgba = image.image;
+    return out;
+}
+
+// The image sources of a texture, best first: EXT_texture_webp's, the core source (PNG or
+// JPEG, the extensions' fallback), KHR_texture_basisu's.
+std::vector<int> textureSources(const tinygltf::Texture& texture) {
+    std::vector<int> sources;
+    const auto extensionSource = [&](const char* name) {
+        const auto ext = texture.extensions.find(name);
+        if (ext != texture.extensions.end() && ext->second.IsObject() && ext->second.Has("source") &&
+            ext->second.Get("source").IsNumber())
+            sources.push_back(ext->second.Get("source").GetNumberAsInt());
+    };
+    extensionSource("EXT_texture_webp");
+    if (texture.source >= 0) sources.push_back(texture.source);
+    extensionSource("KHR_texture_basisu");
+    return sources;
+}
+
+// A texture with its sampler, from the first of its sources that decodes; else the first
+// source's failure.
+core::Result<Texture> readTexture(const tinygltf::Model& model, const fs::path& file, const tinygltf::Texture& texture,
+                                  const ImageContext& images) {
+    const std::vector<int> sources = textureSources(texture);
+    if (sources.empty()) return core::makeError(file.string() + ": a texture has no image");
+    std::optional<core::Error> firstFailure;
+    Texture decoded;
+    for (int source : sources) {
+        core::Result<Image> image = readImage(model, file, source, images);
+        if (image) {
+            decoded.image = std::move(*image);
+            firstFailure.reset();
+            break;
+        }
+        if (!firstFailure) firstFailure = image.errorInfo();
+    }
+    if (firstFailure) return *firstFailure;
+    if (texture.sampler >= 0 && size_t(texture.sampler) < model.samplers.size()) {
+        const tinygltf::Sampler& sampler = model.samplers[size_t(texture.sampler)];
+        decoded.wrapS = wrapOf(sampler.wrapS);
+        decoded.wrapT = wrapOf(sampler.wrapT);
+        decoded.nearest = sampler.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST;
+        decoded.mipmaps =
+            sampler.minFilter != TINYGLTF_TEXTURE_FILTER_NEAREST && sampler.minFilter != TINYGLTF_TEXTURE_FILTER_LINEAR;
+    }
+    return decoded;
+}
+
 // Scene::materials in the file's order (Mesh::material is the glTF index) and the textures
 // their base colours use, decoded.
-core::Status readMaterials(const tinygltf::Model& model, const fs::path& file, Scene& scene) {
-    std::map<int, int32_t> textureOf; // glTF texture -> Scene::textures
+core::Status readMaterials(const tinygltf::Model& model, const fs::path& file, const ImageContext& images,
+                           Scene& scene) {
+    std::map<int, std::variant<int32_t, core::Error>> textureOf; // glTF texture -> Scene::textures, or why not
+    std::set<int> dropped;                                       // textures warned about
     size_t textureBytes = 0;
     for (size_t m = 0; m < model.materials.size(); ++m) {
         const tinygltf::Material& in = model.materials[m];
@@ -407,45 +486,26 @@ core::Status readMaterials(const tinygltf::Model& model, const fs::path& file, S
         const int t = in.pbrMetallicRoughness.baseColorTexture.index;
         if (t >= 0) {
             if (size_t(t) >= model.textures.size()) return core::makeError(where + ": no texture " + std::to_string(t));
-            if (const auto known = textureOf.find(t); known != textureOf.end()) {
-                out.baseColorTexture = known->second;
-            } else {
-                const tinygltf::Texture& texture = model.textures[size_t(t)];
-                if (texture.source < 0 || size_t(texture.source) >= model.images.size())
-                    return core::makeError(where + ": texture " + std::to_string(t) + " has no image");
-                const tinygltf::Image& image = model.images[size_t(texture.source)];
-                const std::string name = imageName(file.string(), texture.source, image);
-                Texture decoded;
-                if (image.bufferView >= 0) {
-                    const auto& views = model.bufferViews;
-                    const size_t length =
-                        size_t(image.bufferView) < views.size() ? views[size_t(image.bufferView)].byteLength : 0;
-                    auto bytes = bytesOf(model, image.bufferView, 0, 1, length, length, name);
-                    if (!bytes) return bytes.errorInfo();
-                    auto pixels = decodeImage(std::span(*bytes, length), name);
-                    if (!pixels) return pixels.errorInfo();
-                    decoded.image = std::move(*pixels);
-                } else if (image.image.empty() || image.width <= 0 || image.height <= 0 ||
-                           image.image.size() != size_t(image.width) * size_t(image.height) * 4) {
-                    return core::makeError(name + ": cannot read it (a missing file?)");
+            auto known = textureOf.find(t);
+            if (known == textureOf.end()) {
+                core::Result<Texture> decoded = readTexture(model, file, model.textures[size_t(t)], images);
+                if (decoded && (textureBytes += decoded->image.rgba.size()) > kMaxTextureBytes)
+                    return core::makeError(file.string() + ": the file's textures decode to more than 1 GiB");
+                if (decoded) {
+                    known = textureOf.emplace(t, int32_t(scene.textures.size())).first;
+                    scene.textures.push_back(std::move(*decoded));
                 } else {
-                    decoded.image.width = image.width, decoded.image.height = image.height;
-                    decoded.image.rgba = image.image;
+                    known = textureOf.emplace(t, decoded.errorInfo()).first;
                 }
-                textureBytes += decoded.image.rgba.size();
-                if (textureBytes > kMaxTextureBytes)
-                    return core::makeError(name + ": the file's textures decode to more than 1 GiB");
-                if (texture.sampler >= 0 && size_t(texture.sampler) < model.samplers.size()) {
-                    const tinygltf::Sampler& sampler = model.samplers[size_t(texture.sampler)];
-                    decoded.wrapS = wrapOf(sampler.wrapS);
-                    decoded.wrapT = wrapOf(sampler.wrapT);
-                    decoded.nearest = sampler.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST;
-                    decoded.mipmaps = sampler.minFilter != TINYGLTF_TEXTURE_FILTER_NEAREST &&
-                                      sampler.minFilter != TINYGLTF_TEXTURE_FILTER_LINEAR;
-                }
-                out.baseColorTexture = int32_t(scene.textures.size());
-                textureOf[t] = out.baseColorTexture;
-                scene.textures.push_back(std::move(decoded));
+            }
+            if (const auto* index = std::get_if<int32_t>(&known->second)) {
+                out.baseColorTexture = *index;
+            } else if (out.alphaMode != AlphaMode::Opaque) {
+                return core::makeError(std::get<core::Error>(known->second).message + " (" + where +
+                                       " needs its alpha)");
+            } else if (dropped.insert(t).second) {
+                scene.warnings.push_back(std::get<core::Error>(known->second).message +
+                                         "; its opaque materials are drawn untextured");
             }
         }
         scene.materials.push_back(std::move(out));
@@ -465,13 +525,12 @@ core::Result<Scene> loadGltf(const fs::path& file) {
     std::string err, warn;
     const bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, file.string())
                            : loader.LoadASCIIFromFile(&model, &err, &warn, file.string());
-    if (!ok && images.failure) return *images.failure;
     if (!ok) {
         std::replace(err.begin(), err.end(), '\n', ' ');
         return core::makeError(file.string() + ": not a readable glTF file (" + err + ")");
     }
     Scene scene;
-    if (auto s = readMaterials(model, file, scene); !s) return s.errorInfo();
+    if (auto s = readMaterials(model, file, images, scene); !s) return s.errorInfo();
     // (mesh, primitive) -> batch index: a mesh placed by many nodes becomes one instanced batch.
     std::map<std::pair<int, size_t>, size_t> batchOf;
     std::optional<core::Error> failure;

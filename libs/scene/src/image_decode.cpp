@@ -1,7 +1,9 @@
 // PNG and JPEG decoding through stb_image (libstb-dev), the one translation unit that holds
-// its implementation. Decoded bytes come from files we did not write: the header is read and
-// checked against the limits before stb allocates anything, and only the two formats glTF
-// allows (§3.8.4) are compiled in.
+// its implementation, and WebP through libwebp (EXT_texture_webp, as common in the wild as the
+// two formats glTF itself allows, §3.8.4). Decoded bytes come from files we did not write: the
+// header is read and checked against the limits before anything is allocated. KTX2 (the
+// container of KHR_texture_basisu) is recognised and named: no Debian library decodes Basis
+// Universal, so the glTF reader falls back to the texture's PNG or JPEG or does without it.
 //
 // Debian 12's stb_image is v2.27, whose JPEG reader writes past its Huffman tables when a DHT
 // segment declares more than 256 codes (fuzz_image found it; v2.28 added the check). Until the
@@ -36,6 +38,8 @@
 #if defined(__GNUC__)
 #pragma GCC diagnostic pop
 #endif
+
+#include <webp/decode.h>
 
 namespace shadowkit::scene {
 
@@ -91,6 +95,30 @@ std::string failureReason() {
     return reason;
 }
 
+// The image's size against shadowkit's limits (image.h), or an error naming it.
+core::Status checkSize(const std::string& name, const char* format, int width, int height) {
+    if (width <= 0 || height <= 0 || width > kMaxImageSide || height > kMaxImageSide ||
+        int64_t(width) * height > kMaxImageTexels)
+        return core::makeError(name + ": " + std::to_string(width) + "×" + std::to_string(height) + " " + format +
+                               " is over shadowkit's limits (sides up to " + std::to_string(kMaxImageSide) +
+                               ", 2^26 texels)");
+    return core::Ok{};
+}
+
+// WebP (RIFF container, "WEBP" form type): lossy, lossless, with or without alpha; animated
+// WebP has no single image to take and is refused.
+core::Result<Image> decodeWebp(std::span<const uint8_t> bytes, const std::string& name) {
+    WebPBitstreamFeatures features{};
+    if (WebPGetFeatures(bytes.data(), bytes.size(), &features) != VP8_STATUS_OK)
+        return core::makeError(name + ": unreadable WebP header");
+    if (features.has_animation) return core::makeError(name + ": an animated WebP, not one image");
+    if (auto s = checkSize(name, "WebP", features.width, features.height); !s) return s.errorInfo();
+    Image image(features.width, features.height);
+    if (!WebPDecodeRGBAInto(bytes.data(), bytes.size(), image.rgba.data(), image.rgba.size(), image.width * 4))
+        return core::makeError(name + ": corrupt or truncated WebP");
+    return image;
+}
+
 } // namespace
 
 core::Result<Image> decodeImage(std::span<const uint8_t> bytes, std::string_view what) {
@@ -103,7 +131,16 @@ core::Result<Image> decodeImage(std::span<const uint8_t> bytes, std::string_view
     static constexpr uint8_t kPng[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
     const bool png = bytes.size() >= 8 && std::equal(kPng, kPng + 8, bytes.begin());
     const bool jpeg = bytes.size() >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8 && bytes[2] == 0xFF;
-    if (!png && !jpeg) return core::makeError(name + ": not a PNG or JPEG image");
+    // WebP: "RIFF", a 4-byte size, "WEBP"; KTX2: its 12-byte identifier («KTX 20»\r\n\x1A\n).
+    const auto at = [&](size_t offset, std::string_view tag) {
+        return bytes.size() >= offset + tag.size() &&
+               std::equal(tag.begin(), tag.end(), bytes.begin() + std::ptrdiff_t(offset),
+                          [](char t, uint8_t b) { return uint8_t(t) == b; }); // bytes past 0x7F, unsigned
+    };
+    if (at(0, "RIFF") && at(8, "WEBP")) return decodeWebp(bytes, name);
+    if (at(0, "\xABKTX 20\xBB\r\n\x1A\n"))
+        return core::makeError(name + ": a KTX2 (Basis Universal) texture, which shadowkit cannot decode");
+    if (!png && !jpeg) return core::makeError(name + ": not a PNG, JPEG or WebP image");
     const char* format = png ? "PNG" : "JPEG";
     if (const char* problem = png ? pngChunkProblem(bytes) : nullptr)
         return core::makeError(name + ": corrupt or truncated PNG (" + problem + ")");
@@ -113,11 +150,7 @@ core::Result<Image> decodeImage(std::span<const uint8_t> bytes, std::string_view
     int width = 0, height = 0, channels = 0;
     if (!stbi_info_from_memory(data, length, &width, &height, &channels))
         return core::makeError(name + ": unreadable " + format + " header (" + failureReason() + ")");
-    if (width <= 0 || height <= 0 || width > kMaxImageSide || height > kMaxImageSide ||
-        int64_t(width) * height > kMaxImageTexels)
-        return core::makeError(name + ": " + std::to_string(width) + "×" + std::to_string(height) + " " + format +
-                               " is over shadowkit's limits (sides up to " + std::to_string(kMaxImageSide) +
-                               ", 2^26 texels)");
+    if (auto s = checkSize(name, format, width, height); !s) return s.errorInfo();
     int w = 0, h = 0;
     stbi_uc* pixels = stbi_load_from_memory(data, length, &w, &h, &channels, 4);
     if (!pixels) return core::makeError(name + ": corrupt or truncated " + format + " (" + failureReason() + ")");

@@ -10,6 +10,7 @@
 #include "gltf_test_files.h"
 
 #include <gtest/gtest.h>
+#include <webp/encode.h>
 
 #include <cstring>
 #include <filesystem>
@@ -162,7 +163,7 @@ TEST_F(MaterialsTest, EveryBrokenImageIsOneLineNamingTheFileAndTheImage) {
     const Case cases[] = {
         {R"({"uri":"data:image/png;base64,)" + base64(truncated) + "\"}", "corrupt or truncated PNG"},
         {R"({"uri":"data:image/jpeg;base64,)" + base64(badJpeg) + "\"}", "JPEG"},
-        {R"({"uri":"data:image/gif;base64,)" + base64(gif) + "\"}", "not a PNG or JPEG image"},
+        {R"({"uri":"data:image/gif;base64,)" + base64(gif) + "\"}", "not a PNG, JPEG or WebP image"},
         {R"({"uri":"tall.png"})", "1×65536 PNG is over shadowkit's limits"},
         {R"({"uri":"missing.png"})", "image 0 'missing.png': cannot read it (a missing file?)"},
     };
@@ -200,6 +201,93 @@ TEST_F(MaterialsTest, EveryBrokenImageIsOneLineNamingTheFileAndTheImage) {
     auto cutoff = scene::loadScene(badCutoff);
     ASSERT_FALSE(cutoff);
     EXPECT_NE(cutoff.error().find("alphaCutoff"), std::string::npos) << cutoff.error();
+}
+
+// Lossless WebP of an image (libwebp); the colour under fully transparent texels may differ.
+std::vector<uint8_t> webpBytes(const scene::Image& image) {
+    uint8_t* encoded = nullptr;
+    const size_t size = WebPEncodeLosslessRGBA(image.rgba.data(), image.width, image.height, image.width * 4, &encoded);
+    std::vector<uint8_t> bytes(encoded, encoded + size);
+    WebPFree(encoded);
+    return bytes;
+}
+
+// Alpha everywhere and colour where a texel is not fully transparent: what lossless WebP keeps.
+void expectSameVisibleTexels(const scene::Image& actual, const scene::Image& expected) {
+    ASSERT_EQ(actual.width, expected.width);
+    ASSERT_EQ(actual.height, expected.height);
+    for (int y = 0; y < expected.height; ++y)
+        for (int x = 0; x < expected.width; ++x) {
+            const uint8_t *a = actual.pixel(x, y), *e = expected.pixel(x, y);
+            ASSERT_EQ(a[3], e[3]) << x << "," << y;
+            if (e[3] > 0) {
+                ASSERT_TRUE(std::equal(a, a + 3, e)) << x << "," << y;
+            }
+        }
+}
+
+const std::string kMaskedTexture = R"({"alphaMode":"MASK","pbrMetallicRoughness":{"baseColorTexture":{"index":0}}})";
+const std::string kOpaqueTexture = R"({"pbrMetallicRoughness":{"baseColorTexture":{"index":0}}})";
+
+TEST_F(MaterialsTest, WebpTexturesDecodeAndKtx2FallsBackToTheCoreImage) {
+    const scene::Image checker = checkerAlpha(8, 2);
+    // EXT_texture_webp with no core source (as a town exported for the web has it). tinygltf 2.7
+    // takes data URIs of PNG, JPEG and octet-stream only; decodeImage goes by the bytes.
+    const std::string webp = R"({"uri":"data:application/octet-stream;base64,)" + base64(webpBytes(checker)) + "\"}";
+    auto loaded = scene::loadScene(writeQuadGltf(m_dir, kMaskedTexture, webp, 0,
+                                                 R"("textures":[{"extensions":{"EXT_texture_webp":{"source":0}}}])"));
+    ASSERT_TRUE(loaded) << loaded.error();
+    ASSERT_EQ(loaded->textures.size(), 1u);
+    expectSameVisibleTexels(loaded->textures[0].image, checker);
+    EXPECT_TRUE(loaded->warnings.empty());
+    // KHR_texture_basisu: the KTX2 image cannot be decoded here, the core PNG source can.
+    const std::vector<uint8_t> ktx2 = {0xAB, 'K', 'T', 'X', ' ', '2', '0', 0xBB, '\r', '\n', 0x1A, '\n', 0, 0, 0, 0};
+    const std::string images = R"({"uri":"data:application/octet-stream;base64,)" + base64(ktx2) +
+                               R"("},{"uri":"data:image/png;base64,)" + base64(pngBytes(checker)) + "\"}";
+    loaded = scene::loadScene(
+        writeQuadGltf(m_dir, kMaskedTexture, images, 0,
+                      R"("textures":[{"source":1,"extensions":{"KHR_texture_basisu":{"source":0}}}])"));
+    ASSERT_TRUE(loaded) << loaded.error();
+    EXPECT_EQ(loaded->textures[0].image.rgba, checker.rgba);
+    // KTX2 alone on a MASK material: its alpha is needed and cannot be had; the error says why.
+    loaded = scene::loadScene(writeQuadGltf(m_dir, kMaskedTexture, images, 0,
+                                            R"("textures":[{"extensions":{"KHR_texture_basisu":{"source":0}}}])"));
+    ASSERT_FALSE(loaded);
+    EXPECT_NE(loaded.error().find("KTX2"), std::string::npos) << loaded.error();
+    EXPECT_NE(loaded.error().find("needs its alpha"), std::string::npos) << loaded.error();
+    EXPECT_EQ(loaded.error().find('\n'), std::string::npos);
+    // An animated or truncated WebP is an error of its own, not a crash.
+    std::vector<uint8_t> cut = webpBytes(checker);
+    cut.resize(cut.size() / 2);
+    auto truncated = scene::decodeImage(cut, "cut");
+    ASSERT_FALSE(truncated);
+    EXPECT_NE(truncated.error().find("WebP"), std::string::npos) << truncated.error();
+}
+
+TEST_F(MaterialsTest, AnUndecodableTextureOnOpaqueMaterialsIsOneWarningNotARefusedScene) {
+    // Two opaque materials share a texture whose file is missing: the scene loads, untextured,
+    // with one warning naming the image; shadows never read an opaque material's colour.
+    auto loaded =
+        scene::loadScene(writeQuadGltf(m_dir, kOpaqueTexture + "," + kOpaqueTexture, R"({"uri":"gone.png"})"));
+    ASSERT_TRUE(loaded) << loaded.error();
+    ASSERT_EQ(loaded->warnings.size(), 1u);
+    EXPECT_NE(loaded->warnings[0].find("image 0 'gone.png'"), std::string::npos) << loaded->warnings[0];
+    EXPECT_EQ(loaded->warnings[0].find('\n'), std::string::npos);
+    EXPECT_EQ(loaded->materials[0].baseColorTexture, -1);
+    EXPECT_EQ(loaded->materials[1].baseColorTexture, -1);
+    EXPECT_TRUE(loaded->textures.empty());
+    // The same image on a MASK material is refused: its holes would be lost.
+    auto masked = scene::loadScene(writeQuadGltf(m_dir, kMaskedTexture, R"({"uri":"gone.png"})"));
+    ASSERT_FALSE(masked);
+    EXPECT_NE(masked.error().find("gone.png"), std::string::npos) << masked.error();
+}
+
+TEST_F(MaterialsTest, PercentEncodedUrisNameTheirFiles) {
+    const scene::Image checker = checkerAlpha(4, 2);
+    ASSERT_TRUE(scene::writePng(checker, m_dir / "leaf atlas 100%.png"));
+    auto loaded = scene::loadScene(writeQuadGltf(m_dir, kMaskedTexture, R"({"uri":"leaf%20atlas%20100%25.png"})"));
+    ASSERT_TRUE(loaded) << loaded.error();
+    EXPECT_EQ(loaded->textures[0].image.rgba, checker.rgba);
 }
 
 TEST_F(MaterialsTest, ExportedGlbLoadsBackWithItsMaterialsTexturesAndUvs) {

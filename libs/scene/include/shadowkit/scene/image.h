@@ -1,5 +1,5 @@
 // 8-bit RGBA images: rendered frames, shadow-map views and error maps written as PNG; the
-// textures of glTF materials decoded from PNG and JPEG.
+// textures of glTF materials decoded from PNG, JPEG and WebP.
 #pragma once
 
 #include "shadowkit/core/result.h"
@@ -35,9 +35,10 @@ core::Status writePng(const Image& image, const std::filesystem::path& file);
 inline constexpr int kMaxImageSide = 16384;
 inline constexpr int64_t kMaxImageTexels = int64_t(1) << 26;
 
-// Decodes a PNG or JPEG image (stb_image) into RGBA8, grey and RGB given alpha 255. Anything
-// else — another format, a truncated or corrupt file, a side or size past the limits — is an
-// error of one line that starts with `what` (e.g. "scene.gltf: image 2 'leaf.png'").
+// Decodes a PNG or JPEG (stb_image) or WebP (libwebp) image into RGBA8, grey and RGB given
+// alpha 255. Anything else — another format (KTX2 named as such), an animated WebP, a truncated
+// or corrupt file, a side or size past the limits — is an error of one line that starts with
+// `what` (e.g. "scene.gltf: image 2 'leaf.png'").
 core::Result<Image> decodeImage(std::span<const uint8_t> bytes, std::string_view what);
 
 } // namespace shadowkit::scene

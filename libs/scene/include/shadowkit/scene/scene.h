@@ -82,6 +82,9 @@ struct Scene {
     std::vector<Track> tracks;          // animated instances (a batch's `dynamic` instances)
     std::vector<Material> materials;    // what Mesh::material names (material.h)
     std::vector<Texture> textures;      // what Material::baseColorTexture names
+    // What a loader could not use and did without, one line each (an undecodable texture on an
+    // opaque material): the caller shows them; nothing here changes a shadow.
+    std::vector<std::string> warnings;
 
     // The material of a mesh, or nullptr for the plain opaque one.
     const Material* materialOf(const Mesh& mesh) const {
