@@ -228,9 +228,11 @@ std::optional<glm::mat3> textureTransform(const tinygltf::TextureInfo& info) {
 }
 
 // Converts one primitive: an empty mesh for primitives that are not triangles (points,
-// lines) or have no positions, an error for what is wrong or cannot be read.
+// lines) or have no positions, an error for what is wrong or cannot be read. Texture
+// coordinates an OPAQUE material reads but the primitive lacks are a warning (its texture
+// colours, it never cuts holes), as an unreadable texture is.
 core::Result<Mesh> convertPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& prim,
-                                    const std::string& where) {
+                                    const std::string& where, std::vector<std::string>& warnings) {
     Mesh mesh;
     if (prim.extensions.count("KHR_draco_mesh_compression"))
         return core::makeError(
@@ -269,16 +271,21 @@ core::Result<Mesh> convertPrimitive(const tinygltf::Model& model, const tinygltf
         const tinygltf::TextureInfo& info = material->pbrMetallicRoughness.baseColorTexture;
         const std::string set = "TEXCOORD_" + std::to_string(info.texCoord);
         const auto t = prim.attributes.find(set);
-        if (t == prim.attributes.end())
-            return core::makeError(where + ": its material's base colour texture reads " + set +
-                                   ", which the primitive does not have");
-        auto uvs = AccessorReader::open(model, t->second, where + " " + set);
-        if (!uvs) return uvs.errorInfo();
-        const std::optional<glm::mat3> transform = textureTransform(info);
-        for (size_t i = 0; i < std::min(uvs->count(), mesh.vertices.size()); ++i) {
-            glm::vec2 uv(uvs->read(i));
-            if (transform) uv = glm::vec2(*transform * glm::vec3(uv, 1.0f));
-            mesh.vertices[i].uv = std::isfinite(uv.x) && std::isfinite(uv.y) ? uv : glm::vec2(0.0f);
+        const std::string missing =
+            where + ": its material's base colour texture reads " + set + ", which the primitive does not have";
+        const bool opaque = material->alphaMode != "MASK" && material->alphaMode != "BLEND";
+        if (t == prim.attributes.end() && !opaque) return core::makeError(missing);
+        if (t == prim.attributes.end()) {
+            warnings.push_back(missing + "; its texture's first texel colours it");
+        } else {
+            auto uvs = AccessorReader::open(model, t->second, where + " " + set);
+            if (!uvs) return uvs.errorInfo();
+            const std::optional<glm::mat3> transform = textureTransform(info);
+            for (size_t i = 0; i < std::min(uvs->count(), mesh.vertices.size()); ++i) {
+                glm::vec2 uv(uvs->read(i));
+                if (transform) uv = glm::vec2(*transform * glm::vec3(uv, 1.0f));
+                mesh.vertices[i].uv = std::isfinite(uv.x) && std::isfinite(uv.y) ? uv : glm::vec2(0.0f);
+            }
         }
     }
     std::vector<uint32_t> sequence;
@@ -563,7 +570,7 @@ core::Result<Scene> loadGltf(const fs::path& file) {
                     const std::string named = gltfMesh.name.empty() ? "" : " '" + printable(gltfMesh.name) + "'";
                     const std::string where = file.string() + ": mesh " + std::to_string(node.mesh) + named +
                                               " primitive " + std::to_string(p);
-                    core::Result<Mesh> mesh = convertPrimitive(model, gltfMesh.primitives[p], where);
+                    core::Result<Mesh> mesh = convertPrimitive(model, gltfMesh.primitives[p], where, scene.warnings);
                     if (!mesh) {
                         failure = mesh.errorInfo();
                         return;

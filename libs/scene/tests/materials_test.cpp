@@ -189,13 +189,18 @@ TEST_F(MaterialsTest, EveryBrokenImageIsOneLineNamingTheFileAndTheImage) {
     auto huge = scene::decodeImage(dht, "dht");
     ASSERT_FALSE(huge);
     EXPECT_NE(huge.error().find("Huffman table"), std::string::npos) << huge.error();
-    // A texture coordinate set the primitive lacks, and a cutoff out of range.
-    const fs::path noSet =
-        writeQuadGltf(m_dir, R"({"pbrMetallicRoughness":{"baseColorTexture":{"index":0,"texCoord":1}}})",
-                      R"({"uri":"data:image/png;base64,)" + base64(png) + "\"}");
-    auto missingSet = scene::loadScene(noSet);
+    // A texture coordinate set the primitive lacks: refused where the alpha test needs it,
+    // one warning where the material is opaque; and a cutoff out of range.
+    const std::string pngUri = R"({"uri":"data:image/png;base64,)" + base64(png) + "\"}";
+    auto missingSet = scene::loadScene(writeQuadGltf(
+        m_dir, R"({"alphaMode":"MASK","pbrMetallicRoughness":{"baseColorTexture":{"index":0,"texCoord":1}}})", pngUri));
     ASSERT_FALSE(missingSet);
     EXPECT_NE(missingSet.error().find("TEXCOORD_1"), std::string::npos) << missingSet.error();
+    auto opaqueSet = scene::loadScene(
+        writeQuadGltf(m_dir, R"({"pbrMetallicRoughness":{"baseColorTexture":{"index":0,"texCoord":1}}})", pngUri));
+    ASSERT_TRUE(opaqueSet) << opaqueSet.error();
+    ASSERT_EQ(opaqueSet->warnings.size(), 1u);
+    EXPECT_NE(opaqueSet->warnings[0].find("TEXCOORD_1"), std::string::npos) << opaqueSet->warnings[0];
     const fs::path badCutoff = writeQuadGltf(m_dir, R"({"alphaMode":"MASK","alphaCutoff":-2})",
                                              R"({"uri":"data:image/png;base64,)" + base64(png) + "\"}");
     auto cutoff = scene::loadScene(badCutoff);
