@@ -49,6 +49,45 @@ TEST(TsmTest, NearGroundGetsMoreTexelsThanInTheFocusedMap) {
               5.0 * glm::length(Vec2(ndc(*focused, a) - ndc(*focused, b))));
 }
 
+TEST(TsmTest, ACompactModelSeenFromAfarIsNotWarpedPastItsOwnPerspective) {
+    // A 20 m model with no ground, a camera 400 m away in a loose frustum, the sun near the
+    // zenith: the case where the 80 % rule alone warped the map ~20:1 across the model. The
+    // camera's pixels thin out across it only by the ratio of its far and near view depths, and
+    // the map's texels (measured along the view's ground direction) may not thin out faster.
+    ShadowSetupInputs in;
+    in.wsSceneBounds = Aabb::fromMinMax(Vec3(-10, 0, -10), Vec3(10, 10, 10));
+    in.camera.wsEye = Vec3(0, 200, 346);
+    in.camera.wsDirection = glm::normalize(-in.camera.wsEye);
+    in.camera.zNear = 1;
+    in.camera.zFar = 2000;
+    in.light = DirectionalLight{glm::normalize(Vec3(0.1, -1, 0.05))};
+    in.technique = Technique::Tsm;
+    const auto tsm = computeShadowSetup(in);
+    ASSERT_TRUE(tsm);
+    double nearest = INFINITY, farthest = 0.0;
+    for (const Vec3& corner : in.wsSceneBounds.corners()) {
+        const double depth = glm::dot(corner - in.camera.wsEye, in.camera.wsDirection);
+        nearest = std::min(nearest, depth), farthest = std::max(farthest, depth);
+    }
+    const auto spacing = [&](const ShadowSetup& s, const Vec3& a, const Vec3& b) {
+        return glm::length(Vec2(ndc(s, a) - ndc(s, b)));
+    };
+    // The warp's own far/near ratio is at most the view's (as PSM's, the camera's own
+    // perspective, would be); texel spacing goes with its square.
+    const auto* warp = std::get_if<TsmWarp>(&tsm->views[0].warp);
+    ASSERT_NE(warp, nullptr);
+    EXPECT_LE((warp->eta + warp->lambda) / warp->eta, farthest / nearest * (1 + 1e-9));
+    const Vec3 nearA(0, 10, 9), nearB(0, 10, 8), farA(0, 10, -8), farB(0, 10, -9);
+    const double ratio = spacing(*tsm, nearA, nearB) / spacing(*tsm, farA, farB);
+    EXPECT_LE(ratio, std::pow(farthest / nearest, 2.0)) << "texels thin out faster than the view's pixels";
+    EXPECT_GE(ratio, 1.0) << "still warped towards the viewer";
+    // And the model is not starved: its far end keeps most of the focused map's texels.
+    in.technique = Technique::Focused;
+    const auto focused = computeShadowSetup(in);
+    ASSERT_TRUE(focused);
+    EXPECT_GE(spacing(*tsm, farA, farB), 0.75 * spacing(*focused, farA, farB));
+}
+
 TEST(TsmTest, ViewAlongTheLightFallsBackToTheFocusedMap) {
     ShadowSetupInputs in = perpendicularView();
     in.camera.wsDirection = Vec3(0, -1, 0);
