@@ -29,6 +29,24 @@ ShadowSetupInputs levelView(double gammaDegrees, LispsmFormula formula = LispsmF
     return in;
 }
 
+// The spread of the camera's frustum corners along the view direction's part perpendicular
+// to the light (LiSPSM's warp axis), from the camera's own parameters.
+double frustumSpreadAcrossTheLight(const ShadowSetupInputs& in) {
+    const PerspectiveCamera& c = in.camera;
+    const Vec3 v = glm::normalize(c.wsDirection), l = glm::normalize(in.light.wsDirection);
+    const Vec3 axis = glm::normalize(v - glm::dot(v, l) * l);
+    const Vec3 right = glm::normalize(glm::cross(v, c.wsUp)), up = glm::cross(right, v);
+    const double tanHalf = std::tan(glm::radians(c.fovYDegrees) / 2.0);
+    double lo = INFINITY, hi = -INFINITY;
+    for (const double z : {c.zNear, c.zFar})
+        for (const double sx : {-1.0, 1.0})
+            for (const double sy : {-1.0, 1.0}) {
+                const Vec3 corner = c.wsEye + z * (v + sx * tanHalf * c.aspect * right + sy * tanHalf * up);
+                lo = std::min(lo, glm::dot(corner, axis)), hi = std::max(hi, glm::dot(corner, axis));
+            }
+    return hi - lo;
+}
+
 } // namespace
 
 TEST(LispsmTest, NEqualsTheClosedFormWhenViewIsPerpendicularToLight) {
@@ -207,7 +225,12 @@ TEST(LispsmTest, TheDefaultMatrixGivesThePapersTexelDensityAlongTheViewAtAnyAngl
         ASSERT_TRUE(setup) << gamma;
         const LispsmWarp& warp = std::get<LispsmWarp>(setup->views[0].warp);
         ASSERT_FALSE(warp.uniform) << gamma;
-        const double sinGamma = std::sin(glm::radians(gamma)), zNear = in.camera.zNear, d = warp.d;
+        // d, B's depth along the warp axis, from the camera alone: the frustum lies inside the
+        // scene box and sweeping it along the light does not move it along the axis (⟂ light),
+        // so d is the spread of the frustum's corners along the axis.
+        const double d = frustumSpreadAcrossTheLight(in);
+        EXPECT_NEAR(warp.d, d, 1e-6 * d) << gamma;
+        const double sinGamma = std::sin(glm::radians(gamma)), zNear = in.camera.zNear;
         const double n = (zNear + std::sqrt(zNear * (zNear + d))) / sinGamma;
         // Map coordinates (NDC x, y) of the view-axis point at depth z.
         auto mapAt = [&](double z) {

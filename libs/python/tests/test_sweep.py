@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """shadowkit.sweep: the grid a specification expands to, its one-line errors before any cell
-runs, rows equal to `shadowkit eval --json`, resuming after a kill, stale results refused, and
+runs, rows carrying the recorded golden figures and equal to `shadowkit eval --json`, resuming after a kill, stale results refused, and
 the Dask runners (a local cluster, a worker killed mid-sweep) giving the serial rows exactly
 once. Run by CTest with PYTHONPATH at the package and SHADOWKIT at the command line."""
 import contextlib
@@ -21,6 +21,7 @@ from shadowkit.sweep import cli
 from shadowkit.sweep.program import eval_options
 
 CLI = os.environ["SHADOWKIT"]
+SOURCE_DIR = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", ".."))
 SMALL = {"trees": 300, "terrain-size": 200, "terrain-resolution": 32, "size": "160x90"}
 # Timings differ run to run; every other figure must not.
 TIMINGS = {"seconds", "truth_seconds", "truth_rays_per_second"}
@@ -209,17 +210,32 @@ class SweepTest(unittest.TestCase):
             self.assertEqual(len(err.strip().splitlines()), 1, err)
             self.assertFalse(os.path.exists(os.path.join(out, "cells.jsonl")))
 
-    def test_a_cells_rows_are_what_eval_reports_for_the_same_options(self):
-        spec = write_spec(self.dir, {"fixed": {**SMALL, "views": "perpendicular,noon"},
-                                     "axes": {"technique": ["lispsm", "csm"]}})
+    def test_a_cells_rows_are_the_recorded_golden_figures_and_what_eval_reports(self):
+        # The configuration of data/golden/small-forest.json (each view's size / 4): the rows must
+        # carry the figures recorded there (an independent reference, within the golden test's
+        # tolerances), and every field eval reports for the same options.
+        golden = json.load(open(os.path.join(SOURCE_DIR, "data", "golden", "small-forest.json")))
+        config = golden["config"]
+        options = {"trees": config["trees"], "terrain-size": config["terrain_size"],
+                   "terrain-resolution": config["terrain_resolution"], "map-size": config["map_size"],
+                   "size": f"{1280 // config['image_divisor']}x{720 // config['image_divisor']}"}
+        spec = write_spec(self.dir, {"fixed": {**options, "views": "perpendicular,noon"},
+                                     "axes": {"technique": ["lispsm", "tsm"]}})
         out = os.path.join(self.dir, "out")
         self.assertEqual(run_main(spec, "--out", out)[0], 0)
         rows = figures(out)
         self.assertEqual(len(rows), 4)
-        for technique in ["lispsm", "csm"]:
+        for (_, view, _), row in rows.items():
+            recorded = golden["figures"][row["technique"]][view]
+            for key in ["wrong_pct", "false_shadow_pct", "false_lit_pct"]:
+                self.assertAlmostEqual(row[key], recorded[key], delta=0.05, msg=f"{row['technique']} {view} {key}")
+            self.assertAlmostEqual(row["pixels_per_texel_p50"], recorded["pixels_per_texel_p50"],
+                                   delta=0.02 * recorded["pixels_per_texel_p50"], msg=f"{row['technique']} {view}")
+            self.assertEqual(row["valid_px"], recorded["valid_px"])
+        for technique in ["lispsm", "tsm"]:
             report = os.path.join(self.dir, f"{technique}.json")
             subprocess.run([CLI, "eval", "--technique", technique, "--views", "perpendicular,noon", "--json", report,
-                            *[str(x) for k, v in SMALL.items() for x in (f"--{k}", v)]], check=True,
+                            *[str(x) for k, v in options.items() for x in (f"--{k}", v)]], check=True,
                            capture_output=True)
             with open(report) as f:
                 expected = json.load(f)["views"]
