@@ -5,6 +5,7 @@
 
 #include "shadowkit/core/visible_depth.h"
 #include "shadowkit/frame/frame_driver.h"
+#include "shadowkit/gl/read_backs.h"
 
 #include <gtest/gtest.h>
 
@@ -82,19 +83,23 @@ TEST_F(FrameDriverTest, TheVisibleDepthIsMeasuredFromThisFrameBeforeTheSetUp) {
     frame::FrameConfig c = config(core::Technique::Lispsm);
     auto plain = frame::FrameDriver::create(c);
     ASSERT_TRUE(plain);
+    int64_t readBacks = gl::readBacksMade();
     auto without = plain->prepare(*renderer, view);
     ASSERT_TRUE(without);
     EXPECT_FALSE(without->inputs.visibleDepth);
     EXPECT_EQ(without->prePasses.submissions, 0);
+    EXPECT_EQ(gl::readBacksMade() - readBacks, 0) << "what GL was asked to read back";
 
     c.visibleDepthFromFrame = true;
     auto measuring = frame::FrameDriver::create(c);
     ASSERT_TRUE(measuring);
+    readBacks = gl::readBacksMade();
     auto with = measuring->prepare(*renderer, view);
     ASSERT_TRUE(with) << with.error();
     ASSERT_TRUE(with->inputs.visibleDepth);
     EXPECT_EQ(with->prePasses.submissions, 1);
     EXPECT_EQ(with->prePasses.readBacks, 1);
+    EXPECT_EQ(gl::readBacksMade() - readBacks, 1) << "what GL was asked to read back";
     // The range of what the camera sees, within its planes and narrower than them (the view
     // looks over the forest, whose far edge is nearer than the far plane here or not).
     const auto range = renderer->visibleDepth(view.camera, view.light, without->setup, without->settings);
@@ -152,11 +157,14 @@ TEST_F(FrameDriverTest, WithAutoTheVisibleDepthComesFromTheReceiversReadBack) {
     c.visibleDepthFromFrame = true;
     auto driver = frame::FrameDriver::create(c);
     ASSERT_TRUE(driver);
+    const int64_t readBacks = gl::readBacksMade();
     auto f = driver->prepare(*renderer, view);
     ASSERT_TRUE(f) << f.error();
-    // One read-back serves both: not a pre-pass for the range and another for the receivers.
+    // One read-back serves both: not a pre-pass for the range and another for the receivers —
+    // by the driver's count and by what GL was asked.
     EXPECT_EQ(f->prePasses.submissions, 1);
     EXPECT_EQ(f->prePasses.readBacks, 1);
+    EXPECT_EQ(gl::readBacksMade() - readBacks, 1);
     ASSERT_TRUE(f->inputs.visibleDepth);
     // The low-resolution range against the frame's own (a full-resolution camera pre-pass):
     // it lies within it (up to where a coarser pixel's centre falls), short of it by little.

@@ -1,6 +1,7 @@
 #include "depth_range.h"
 
 #include "gl_shaders.h"
+#include "shadowkit/gl/read_backs.h"
 #include "uniforms.h"
 
 #include <bit>
@@ -33,6 +34,7 @@ std::optional<core::Vec2> DepthRangeReduction::read() {
     if (!m_pending) return m_last;
     m_pending = false;
     uint32_t bits[2] = {0, 0};
+    detail::countReadBack();
     glGetNamedBufferSubData(m_range.id(), 0, sizeof bits, bits);
     m_last.reset();
     if (bits[1] == 0u) return m_last;

@@ -3,6 +3,7 @@
 #include "camera_programs.h"
 #include "gl_shaders.h"
 #include "program.h"
+#include "shadowkit/gl/read_backs.h"
 #include "uniforms.h"
 
 #include <algorithm>
@@ -304,6 +305,7 @@ void GpuCulling::camera(const core::PerspectiveCamera& camera, const LodChoice* 
 }
 
 DrawStats GpuCulling::submitted(const PassList& list) const {
+    detail::countReadBack();
     const size_t slots = m_batchCount * kMaxLodLevels;
     std::vector<uint32_t> commands(slots * kCommandWords);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
@@ -333,6 +335,7 @@ GpuReceiverMask GpuReceiverMask::of(const ReceiverMasks& masks, const core::Shad
 }
 
 PassList GpuCulling::read(const PassList& list) const {
+    detail::countReadBack(); // the commands and the lists after one wait
     const size_t slots = m_batchCount * kMaxLodLevels;
     std::vector<uint32_t> commands(slots * kCommandWords), region(kMaxLodLevels * m_instanceCount);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);

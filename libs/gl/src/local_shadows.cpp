@@ -1,6 +1,7 @@
 #include "local_shadows.h"
 
 #include "gl_shaders.h"
+#include "shadowkit/gl/read_backs.h"
 #include "uniforms.h"
 
 #include <algorithm>
@@ -218,6 +219,7 @@ scene::Image LocalShadowMaps::readAsGreys(const core::LocalLighting& lights) con
     const int n = m_size;
     const int spots = static_cast<int>(lights.spots.size()), points = static_cast<int>(lights.points.size());
     if (spots + points == 0 || n != lights.mapSize) return {};
+    detail::countReadBack(); // both arrays after one wait
     const size_t layerTexels = static_cast<size_t>(n) * static_cast<size_t>(n);
     auto readAll = [&](const Texture& t, int layers) {
         std::vector<float> d(layerTexels * static_cast<size_t>(layers));

@@ -2,6 +2,7 @@
 
 #include "gl_shaders.h"
 #include "program.h"
+#include "shadowkit/gl/read_backs.h"
 #include "stopwatch.h"
 #include "uniforms.h"
 
@@ -85,6 +86,7 @@ const std::vector<visibility::ReceiverMask>& ReceiverMasks::build(const CameraDe
     const size_t texels = size_t(maps) * kReceiverMaskSize * kReceiverMaskSize;
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     m_readBack.resize(texels);
+    detail::countReadBack();
     glGetNamedBufferSubData(m_texels.id(), 0, GLsizeiptr(texels * sizeof(uint32_t)), m_readBack.data());
     m_gl = inGl.elapsed();
 

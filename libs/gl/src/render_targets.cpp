@@ -1,5 +1,7 @@
 #include "render_targets.h"
 
+#include "shadowkit/gl/read_backs.h"
+
 #include <algorithm>
 #include <cstring>
 #include <string>
@@ -66,6 +68,7 @@ void ShadowTarget::attachLayer(int layer) const {
 scene::Image ShadowTarget::readAsGreys() const { return readDepthAsGreys(depth, size, size, layers); }
 
 scene::Image readDepthAsGreys(const Texture& depth, int width, int height, int layers) {
+    detail::countReadBack();
     // All layers come back stacked (layer-major), each bottom row first.
     const size_t layerTexels = static_cast<size_t>(width) * static_cast<size_t>(height);
     std::vector<float> d(layerTexels * static_cast<size_t>(layers));
@@ -99,6 +102,7 @@ ColorTarget::ColorTarget(int w, int h)
 }
 
 scene::Image ColorTarget::read() const {
+    detail::countReadBack();
     scene::Image image(width, height);
     const auto pixels = readFlipped<uint32_t>(color, GL_RGBA, GL_UNSIGNED_BYTE, width, height);
     std::memcpy(image.rgba.data(), pixels.data(), image.rgba.size());
@@ -120,6 +124,7 @@ MaskPingPong::MaskPingPong(int w, int h)
 }
 
 std::vector<float> MaskPingPong::read(int index) const {
+    detail::countReadBack();
     return readFlipped<float>(images[index], GL_RED, GL_FLOAT, width, height);
 }
 
@@ -171,11 +176,13 @@ void EvalTarget::clear() const {
 }
 
 std::vector<float> EvalTarget::readViewDepth() const {
+    detail::countReadBack();
     // Row order does not matter to a min/max; the same read keeps one code path.
     return readFlipped<float>(viewDepth, GL_RED, GL_FLOAT, width, height);
 }
 
 core::RasterBuffers EvalTarget::read() const {
+    detail::countReadBack(); // every buffer after one wait
     core::RasterBuffers b;
     b.width = width;
     b.height = height;

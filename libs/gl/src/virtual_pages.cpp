@@ -2,6 +2,7 @@
 
 #include "gl_shaders.h"
 #include "program.h"
+#include "shadowkit/gl/read_backs.h"
 
 #include <algorithm>
 #include <bit>
@@ -124,6 +125,7 @@ void VirtualPages::mark(const CameraDepthTarget& depth, const core::PerspectiveC
     glDispatchCompute(GLuint(depth.width + 7) / 8, GLuint(depth.height + 7) / 8, 1);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     readBack.resize(words);
+    detail::countReadBack();
     glGetNamedBufferSubData(bits.id(), 0, GLsizeiptr(words * sizeof(uint32_t)), readBack.data());
 }
 
