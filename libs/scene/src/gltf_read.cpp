@@ -532,6 +532,15 @@ core::Result<Scene> loadGltf(const fs::path& file) {
     std::string err, warn;
     const bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, file.string())
                            : loader.LoadASCIIFromFile(&model, &err, &warn, file.string());
+    // A Draco file's accessors have no buffer views, which tinygltf refuses before any
+    // primitive is seen; the extension lists it parsed first say why.
+    const auto lists = [&](const std::vector<std::string>& names) {
+        return std::find(names.begin(), names.end(), "KHR_draco_mesh_compression") != names.end();
+    };
+    if (!ok && (lists(model.extensionsRequired) || lists(model.extensionsUsed)))
+        return core::makeError(file.string() +
+                               ": its meshes are Draco-compressed (KHR_draco_mesh_compression), which shadowkit cannot "
+                               "read: export it uncompressed");
     if (!ok) {
         std::replace(err.begin(), err.end(), '\n', ' ');
         return core::makeError(file.string() + ": not a readable glTF file (" + err + ")");
