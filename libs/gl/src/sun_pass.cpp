@@ -12,16 +12,20 @@ namespace shadowkit::gl {
 core::Result<std::unique_ptr<SunPass>> SunPass::create() {
     auto pass = std::unique_ptr<SunPass>(new SunPass);
     using namespace shaders;
-    for (const bool material : {false, true}) {
-        const std::string_view withMaterial = kMaterialVariant[material];
-        const std::string name = material ? "depth pass, materials" : "depth pass";
-        auto depth = buildProgram(name, {withMaterial, kDepthPassGlsl, kDepthVert},
-                                  {withMaterial, kDepthPassGlsl, kMaterialGlsl, kDepthFrag});
-        if (!depth) return depth.errorInfo();
-        if (auto s = checkUniformBlock(*depth, name, "DepthPass", sizeof(DepthPassUniforms), depthPassFields()); !s)
-            return s.errorInfo();
-        (material ? pass->m_programs.material : pass->m_programs.plain) = std::move(depth).value();
-    }
+    for (const bool linear : {false, true})
+        for (const bool material : {false, true}) {
+            const std::string_view withMaterial = kMaterialVariant[material];
+            const std::string_view layout = linear ? "#define SK_LINEAR_DEPTH 1\n" : "";
+            const std::string name =
+                std::string(linear ? "linear " : "") + (material ? "depth pass, materials" : "depth pass");
+            auto depth = buildProgram(name, {withMaterial, kDepthPassGlsl, kDepthVert},
+                                      {withMaterial, layout, kDepthPassGlsl, kMaterialGlsl, kDepthFrag});
+            if (!depth) return depth.errorInfo();
+            if (auto s = checkUniformBlock(*depth, name, "DepthPass", sizeof(DepthPassUniforms), depthPassFields()); !s)
+                return s.errorInfo();
+            ProgramPair& pair = pass->m_programs[linear];
+            (material ? pair.material : pair.plain) = std::move(depth).value();
+        }
     pass->m_uniforms = createBuffer(nullptr, sizeof(DepthPassUniforms));
     pass->m_rawDepth = createRawDepthSampler();
     auto moments = MomentMaps::create();
@@ -71,9 +75,9 @@ core::Result<PassStats> SunPass::draw(const GpuScene& scene, const core::ShadowS
     if (setup.clipmap) {
         // As the fixed maps' pass, one viewport per page (VirtualPages::drawPages).
         glBindFramebuffer(GL_FRAMEBUFFER, m_pages->framebuffer().id());
-        beginDepthPass(bias, true);
+        beginDepthPass(bias, true, core::DepthLayout::Hyperbolic); // pages store clip depth
         m_timer.begin();
-        draws = m_pages->drawPages(scene, m_programs.passPrograms(), pageLists, m_uniforms);
+        draws = m_pages->drawPages(scene, programsFor(core::DepthLayout::Hyperbolic), pageLists, m_uniforms);
         m_timer.end();
         endDepthPass();
         m_pages->rendered();
@@ -83,7 +87,7 @@ core::Result<PassStats> SunPass::draw(const GpuScene& scene, const core::ShadowS
     }
     glBindFramebuffer(GL_FRAMEBUFFER, m_shadow->framebuffer.id());
     glViewport(0, 0, m_shadow->size, m_shadow->size);
-    beginDepthPass(bias, setup.depthClamp);
+    beginDepthPass(bias, setup.depthClamp, setup.depthLayout);
     m_timer.begin();
     draws = drawFixedMaps(scene, setup, bias, mapLists);
     // MSM: the maps' moments, blurred, inside the pass's time (a real frame pays them with it).
@@ -101,7 +105,6 @@ core::Result<PassStats> SunPass::draw(const GpuScene& scene, const core::ShadowS
 DrawStats SunPass::drawFixedMaps(const GpuScene& scene, const core::ShadowSetup& setup, const core::BiasSettings& bias,
                                  std::span<const PassList> lists) const {
     const auto slope = static_cast<float>(bias.slope), constant = static_cast<float>(bias.constant);
-    const bool linear = setup.depthLayout == core::DepthLayout::Linear;
     DrawStats draws;
     for (size_t layer = 0; layer < setup.views.size(); ++layer) { // one array layer per shadow view
         const core::ShadowView& view = setup.views[layer];
@@ -109,19 +112,18 @@ DrawStats SunPass::drawFixedMaps(const GpuScene& scene, const core::ShadowSetup&
         // unit is 2^-24 of the depth range, the resolvable step of a 24-bit buffer.
         const DepthPassUniforms uniforms{.clipFromWorld = glm::mat4(view.clipFromWorld),
                                          .linearDepthFromWorld = glm::vec4(view.linearDepthFromWorld),
-                                         .linearLayout = linear ? 1 : 0,
                                          .slopeBias = slope,
                                          .constantBias = constant * 0x1p-24f};
         glNamedBufferSubData(m_uniforms.id(), 0, sizeof uniforms, &uniforms);
         m_shadow->attachLayer(static_cast<int>(layer));
         const float clearDepth = 1.0f;
         glClearNamedFramebufferfv(m_shadow->framebuffer.id(), GL_DEPTH, 0, &clearDepth);
-        draws += scene.draw(lists[layer], m_programs.passPrograms());
+        draws += scene.draw(lists[layer], programsFor(setup.depthLayout));
     }
     return draws;
 }
 
-void SunPass::beginDepthPass(const core::BiasSettings& bias, bool depthClamp) const {
+void SunPass::beginDepthPass(const core::BiasSettings& bias, bool depthClamp, core::DepthLayout layout) const {
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
@@ -135,7 +137,7 @@ void SunPass::beginDepthPass(const core::BiasSettings& bias, bool depthClamp) co
     if (depthClamp) glEnable(GL_DEPTH_CLAMP);
     glEnable(GL_POLYGON_OFFSET_FILL);
     glPolygonOffset(static_cast<float>(bias.slope), static_cast<float>(bias.constant));
-    glUseProgram(m_programs.plain.id());
+    glUseProgram(programsFor(layout).plain);
     glBindBufferBase(GL_UNIFORM_BUFFER, kDepthPassBinding, m_uniforms.id());
 }
 

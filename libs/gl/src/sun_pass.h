@@ -57,18 +57,23 @@ public:
     scene::Image readMaps() const;
     scene::Image readPageTable() const { return m_shadow ? scene::Image{} : m_pages->pageTableImage(); }
 
+    // The depth programs of a layout: only the linear one writes gl_FragDepth (depth.frag).
+    PassPrograms programsFor(core::DepthLayout layout) const {
+        return m_programs[layout == core::DepthLayout::Linear].passPrograms();
+    }
+
 private:
     SunPass() = default;
     // The GL state both kinds of map draw with: depth only, the bias as polygon offset (and
     // caster culling), depth clamp when asked, the depth program and its uniforms bound.
-    void beginDepthPass(const core::BiasSettings& bias, bool depthClamp) const;
+    void beginDepthPass(const core::BiasSettings& bias, bool depthClamp, core::DepthLayout layout) const;
     static void endDepthPass();
     DrawStats drawFixedMaps(const GpuScene& scene, const core::ShadowSetup& setup, const core::BiasSettings& bias,
                             std::span<const PassList> lists) const;
 
-    ProgramPair m_programs; // depth only; alpha-tested materials discard
-    Buffer m_uniforms;      // the DepthPass block
-    Sampler m_rawDepth;     // the maps' stored depths, for the moments
+    ProgramPair m_programs[2]; // depth only, [hyperbolic, linear]; alpha-tested materials discard
+    Buffer m_uniforms;         // the DepthPass block
+    Sampler m_rawDepth;        // the maps' stored depths, for the moments
     std::optional<ShadowTarget> m_shadow;
     std::unique_ptr<VirtualPages> m_pages;
     std::unique_ptr<MomentMaps> m_moments;

@@ -13,8 +13,9 @@ namespace shadowkit::gl {
 
 std::span<const UniformField> depthPassFields() {
     static constexpr std::array kFields = {
-        SK_FIELD(DepthPassUniforms, clipFromWorld), SK_FIELD(DepthPassUniforms, linearDepthFromWorld),
-        SK_FIELD(DepthPassUniforms, linearLayout),  SK_FIELD(DepthPassUniforms, slopeBias),
+        SK_FIELD(DepthPassUniforms, clipFromWorld),
+        SK_FIELD(DepthPassUniforms, linearDepthFromWorld),
+        SK_FIELD(DepthPassUniforms, slopeBias),
         SK_FIELD(DepthPassUniforms, constantBias),
     };
     return kFields;

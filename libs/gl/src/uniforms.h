@@ -84,10 +84,9 @@ inline constexpr int kAlphaCutoffLocation = 5;    // uniform float skAlphaCutoff
 struct DepthPassUniforms {          // GLSL: DepthPass (depth_pass.glsl)
     glm::mat4 clipFromWorld;        // the shadow view's light clip space
     glm::vec4 linearDepthFromWorld; // row: depth = dot(row, (ws, 1)), [0, 1] over B
-    int32_t linearLayout;           // 1: write linear depth per fragment; 0: clip z / w
     float slopeBias;                // linear layout: × max depth slope (glPolygonOffset's factor)
     float constantBias;             // linear layout: in depth units (glPolygonOffset's units × 2^-24)
-    float pad0;
+    float pad0, pad1;               // the layout is the program's (SK_LINEAR_DEPTH), not a uniform
 };
 
 struct FrameUniforms {        // GLSL: Frame (frame.glsl)

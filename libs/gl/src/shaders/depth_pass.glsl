@@ -3,7 +3,6 @@
 layout(std140, binding = SK_DEPTH_PASS_BINDING) uniform DepthPass {
     mat4 clipFromWorld;        // the shadow view's light clip space
     vec4 linearDepthFromWorld; // row: linear depth along the light, [0,1] over B
-    int linearLayout;          // 1: write linear depth per fragment; 0: hyperbolic (clip z / w)
     float slopeBias;           // linear layout: × max depth slope
     float constantBias;        // linear layout: depth units
 };
