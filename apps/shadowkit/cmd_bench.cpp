@@ -75,8 +75,8 @@ struct BenchRow {
 };
 
 // The lines under a view's two pass rows: the camera's culling pass, CHC++'s counts, culling's
-// CPU time and the receiver masks', as they apply.
-void printCullingLines(const BenchArgs& args, const measure::FrameCosts& costs) {
+// CPU time, the shadow pass's samples per texel and the receiver masks', as they apply.
+void printPassLines(const BenchArgs& args, const measure::FrameCosts& costs) {
     const measure::Spread prepass = costs.prepass(), cull = costs.cull();
     const gl::Culling culling = cullingOf(args.render);
     if (culling == gl::Culling::Gpu)
@@ -98,6 +98,11 @@ void printCullingLines(const BenchArgs& args, const measure::FrameCosts& costs) 
                    "med {:.3f} max {:.3f}; levels and lists med {:.3f} max {:.3f}\n",
                    "", "", "", cull.median, cull.max, gl.median, gl.max, own.median, own.max, lists.median, lists.max);
     }
+    if (const gl::PassStats& shadow = costs.last().shadow; shadow.mapTexels > 0)
+        fmt::print("{:>7} {:>7} {:<14} depth   the shadow pass wrote {:.2f} samples per map texel ({} samples passed, "
+                   "{} texels; 1 is no overdraw)\n",
+                   "", "", "", double(shadow.samplesPassed) / double(shadow.mapTexels), shadow.samplesPassed,
+                   shadow.mapTexels);
     if (args.render.receiverMask && !args.render.noCull) {
         const measure::Spread masks = costs.masks();
         fmt::print("{:>7} {:>7} {:<14} masks   receiver masks CPU ms med {:.2f} max {:.2f} (compute + read-back + "
@@ -160,7 +165,7 @@ core::Result<nlohmann::json> benchView(const BenchArgs& args, const BenchRow& ro
         costs.add(*drawn);
     }
     printRows(row, costs, table);
-    printCullingLines(args, costs);
+    printPassLines(args, costs);
     nlohmann::json run = costs.json();
     run.update({{"trees", row.trees},
                 {"terrain_size", row.terrainSize},

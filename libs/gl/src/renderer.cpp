@@ -166,6 +166,8 @@ core::Result<FrameStats> Renderer::render(const core::PerspectiveCamera& wsCamer
 
     stats.shadow = r.lastShadow;
     stats.shadow.gpuMilliseconds = r.sun->milliseconds();
+    stats.shadow.samplesPassed = r.sun->samplesPassed();
+    stats.shadow.mapTexels = r.sun->mapTexels();
     stats.local.gpuMilliseconds = r.localTimer.milliseconds();
     stats.main = {r.camera->milliseconds(), mainDraws->instances, mainDraws->triangles, mainDraws->drawCalls};
     const CullingCosts& culling = r.lists->costs();

@@ -65,6 +65,8 @@ core::Result<PassStats> SunPass::draw(const GpuScene& scene, const core::ShadowS
                                       const RenderSettings& settings, const core::BiasSettings& bias,
                                       std::span<const PassList> mapLists, std::span<const PassList> pageLists) {
     m_lastVirtual.reset();
+    m_samples.reset();
+    m_countedTexels = 0;
     // Night: no sun, no sun maps (the camera passes do not read them).
     if (!settings.sun) {
         m_timer.begin();
@@ -89,7 +91,10 @@ core::Result<PassStats> SunPass::draw(const GpuScene& scene, const core::ShadowS
     glViewport(0, 0, m_shadow->size, m_shadow->size);
     beginDepthPass(bias, setup.depthClamp, setup.depthLayout);
     m_timer.begin();
+    m_samples.begin();
     draws = drawFixedMaps(scene, setup, bias, mapLists);
+    m_samples.end();
+    m_countedTexels = uint64_t(m_shadow->size) * uint64_t(m_shadow->size) * setup.views.size();
     // MSM: the maps' moments, blurred, inside the pass's time (a real frame pays them with it).
     core::Status moments = core::Ok{};
     if (settings.filter.kind == core::ShadowFilter::Msm)

@@ -7,6 +7,7 @@
 
 #include "gpu_scene.h"
 #include "moment_maps.h"
+#include "pass_samples.h"
 #include "pass_timer.h"
 #include "render_targets.h"
 #include "virtual_pages.h"
@@ -40,6 +41,10 @@ public:
                                  std::span<const PassList> pageLists);
     // The GPU time of the last draw(); waits for it.
     double milliseconds() const { return m_timer.milliseconds(); }
+    // The samples the last draw() wrote into its fixed maps and the texels they hold (0, 0 for
+    // virtual pages and without a sun); waits for the count.
+    uint64_t samplesPassed() const { return m_samples.samples(); }
+    uint64_t mapTexels() const { return m_countedTexels; }
 
     // The set-up the frame's lookups read: with virtual maps under a page budget, levels may
     // still be shown from an earlier sun's pages (VirtualPages::shown).
@@ -79,6 +84,8 @@ private:
     std::unique_ptr<MomentMaps> m_moments;
     std::optional<VirtualPageStats> m_lastVirtual;
     PassTimer m_timer;
+    PassSamples m_samples;
+    uint64_t m_countedTexels = 0;
 };
 
 } // namespace shadowkit::gl

@@ -9,6 +9,8 @@
 
 #include "sun_pass.h"
 
+#include "shadowkit/gl/renderer.h"
+
 #include <epoxy/gl.h>
 #include <gtest/gtest.h>
 
@@ -35,4 +37,50 @@ TEST_F(DepthProgramsTest, OnlyTheLinearLayoutsDepthProgramsWriteFragmentDepth) {
         EXPECT_EQ(writesFragmentDepth(programs.plain), linear) << "opaque casters, layout " << int(layout);
         EXPECT_EQ(writesFragmentDepth(programs.material), linear) << "alpha-tested casters, layout " << int(layout);
     }
+}
+
+TEST_F(DepthProgramsTest, AMapCoveredByOneQuadCountsOneSamplePerTexel) {
+    // The counter against a count known without it: a ground quad wider than the focus body
+    // covers every texel of the focused map once; a second quad above half of it, drawn after
+    // (its batch comes later), passes the depth test over its own texels too — overdraw.
+    scene::Scene s;
+    scene::Mesh ground, roof;
+    const auto quad = [](scene::Mesh& m, float y, float x0, float x1) {
+        m.vertices = {{{x0, y, -10}}, {{x1, y, -10}}, {{x1, y, 10}}, {{x0, y, 10}}};
+        for (scene::Vertex& v : m.vertices) v.normal = {0, 1, 0}, v.albedo = glm::vec3(0.8f);
+        m.indices = {0, 2, 1, 0, 3, 2};
+        m.computeBounds();
+    };
+    quad(ground, 0.0f, -10, 10);
+    quad(roof, 2.0f, -10, 0);
+    s.meshes = {ground, roof};
+    s.batches = {{0, {glm::mat4(1.0f)}, false}, {1, {glm::mat4(1.0f)}, false}};
+    auto renderer = gl::Renderer::create(s);
+    ASSERT_TRUE(renderer) << renderer.error();
+    core::PerspectiveCamera camera;
+    camera.wsEye = {0, 30, 0.01};
+    camera.wsDirection = {0, -1, 0};
+    camera.wsUp = {0, 0, -1};
+    camera.fovYDegrees = 90;
+    camera.zNear = 1, camera.zFar = 100;
+    const core::DirectionalLight sun{{0, -1, 0}};
+    gl::RenderSettings settings;
+    settings.width = settings.height = 32;
+    settings.bias = core::BiasSettings{.cull = core::CasterCull::None};
+    // The box reaches a metre below the ground: a caster on the box's far face would store the
+    // cleared depth (1) and fail GL_LESS.
+    const core::Aabb bounds = core::Aabb::fromMinMax(core::Vec3(-10, -1, -10), core::Vec3(10, 3, 10));
+    const auto setup = core::computeShadowSetup({.camera = camera,
+                                                 .light = sun,
+                                                 .wsSceneBounds = bounds,
+                                                 .technique = core::Technique::Focused,
+                                                 .mapSize = 64});
+    ASSERT_TRUE(setup);
+    auto stats = (*renderer)->render(camera, sun, *setup, settings);
+    ASSERT_TRUE(stats) << stats.error();
+    ASSERT_EQ(stats->shadow.mapTexels, 64u * 64u);
+    // The ground alone would give exactly 4096; the roof adds its half of the map (its edge
+    // texels by the rasteriser's centre rule: within a column of the half).
+    EXPECT_GE(stats->shadow.samplesPassed, 4096u + 32u * 64u - 64u);
+    EXPECT_LE(stats->shadow.samplesPassed, 4096u + 32u * 64u + 64u);
 }

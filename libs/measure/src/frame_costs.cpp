@@ -59,6 +59,11 @@ nlohmann::json FrameCosts::json() const {
                    {"triangles", stats->triangles},
                    {"draw_calls", stats->drawCalls},
                    {"gpu_ms", toJson(gpu)}};
+    // The last frame's overdraw that reached the maps' depth (fixed maps; 0 texels otherwise).
+    j["shadow"]["samples_passed"] = m_last.shadow.samplesPassed;
+    j["shadow"]["map_texels"] = m_last.shadow.mapTexels;
+    if (m_last.shadow.mapTexels > 0)
+        j["shadow"]["samples_per_texel"] = double(m_last.shadow.samplesPassed) / double(m_last.shadow.mapTexels);
     const Occlusion o = occlusion();
     j["receiver_mask_ms"] = toJson(masks());
     j["occlusion"] = {{"nodes_visited", toJson(o.nodesVisited)},

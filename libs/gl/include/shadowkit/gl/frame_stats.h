@@ -16,6 +16,10 @@ struct PassStats {
     size_t instances = 0;         // submitted (over every map, for the shadow pass)
     size_t triangles = 0;         // submitted
     size_t drawCalls = 0;
+    // Shadow pass, fixed maps: samples that passed the depth test (written), and the texels of
+    // the maps drawn; their ratio is the overdraw that reaches the depth buffer (1 at best).
+    uint64_t samplesPassed = 0;
+    uint64_t mapTexels = 0;
 };
 
 // Virtual shadow maps' pages in one frame (docs/virtual-shadow-maps.md): the page cache's
