@@ -132,6 +132,8 @@ GpuScene::GpuScene(const scene::Scene& scene, std::span<const scene::MeshLods> l
                 material.baseAlpha = m->baseColorFactor.a;
                 material.alphaCutoff = m->alphaTested() ? m->alphaCutoff : -1.0f;
             }
+            m_batchAt.resize(b + 1, -1);
+            m_batchAt[b] = int32_t(m_batches.size());
             m_batches.push_back({batch.mesh,
                                  material,
                                  createBuffer(batch.worldFromObject.data(),
@@ -180,7 +182,15 @@ DrawStats GpuScene::drawBatches(const PassList& list, const PassPrograms& progra
     };
     for (const bool materialSweep : {false, true}) {
         bool programBound = false;
-        for (const GpuBatch& batch : m_batches) {
+        // PassList::batchOrder names Scene::batches; the batches kept out (no instances, no
+        // triangles) have no GpuBatch.
+        const size_t n = list.batchOrder.empty() ? m_batches.size() : list.batchOrder.size();
+        for (size_t k = 0; k < n; ++k) {
+            const int32_t at = list.batchOrder.empty()                 ? int32_t(k)
+                               : list.batchOrder[k] < m_batchAt.size() ? m_batchAt[list.batchOrder[k]]
+                                                                       : -1;
+            if (at < 0) continue;
+            const GpuBatch& batch = m_batches[size_t(at)];
             if (usesMaterial(batch) != materialSweep) continue;
             if (!programBound) {
                 glUseProgram(materialSweep ? programs.material : programs.plain);

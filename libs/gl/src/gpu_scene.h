@@ -107,6 +107,7 @@ private:
     Texture m_white;                 // for alpha-tested materials without a texture
     std::vector<GpuMesh> m_meshes;
     std::vector<GpuBatch> m_batches;
+    std::vector<int32_t> m_batchAt; // Scene::batches index -> m_batches, -1 for a batch kept out
 };
 
 } // namespace shadowkit::gl

@@ -4,6 +4,8 @@
 #include "lookup_reach.h"
 
 #include <algorithm>
+#include <cmath>
+#include <numeric>
 
 namespace shadowkit::gl {
 namespace {
@@ -42,6 +44,13 @@ core::Result<std::unique_ptr<PassLists>>
 PassLists::create(const scene::Scene& scene, std::span<const scene::MeshLods> lods, const GpuScene& gpuScene) {
     auto lists = std::unique_ptr<PassLists>(new PassLists);
     lists->m_visibility.emplace(scene, lods);
+    const std::vector<core::Aabb> instances = scene.instanceBounds(); // batch after batch
+    size_t next = 0;
+    for (const scene::MeshBatch& batch : scene.batches) {
+        core::Aabb box;
+        for (size_t k = 0; k < batch.worldFromObject.size(); ++k) box.extend(instances[next++]);
+        lists->m_batchBounds.push_back(box);
+    }
     auto occlusion = OcclusionCuller::create(*lists->m_visibility, gpuScene);
     if (!occlusion) return occlusion.errorInfo();
     lists->m_occlusion = std::move(occlusion).value();
@@ -198,6 +207,19 @@ void PassLists::planPages(const PassPlanInputs& in, VirtualPages& pages, std::ve
     }
 }
 
+std::vector<uint32_t> PassLists::nearestFirst(const core::Mat4& clipFromWorld) const {
+    std::vector<double> depth(m_batchBounds.size(), INFINITY); // empty batches last
+    for (size_t b = 0; b < depth.size(); ++b) {
+        if (m_batchBounds[b].isEmpty()) continue;
+        const core::Vec4 c = clipFromWorld * core::Vec4(m_batchBounds[b].center(), 1.0);
+        depth[b] = c.z / c.w;
+    }
+    std::vector<uint32_t> order(depth.size());
+    std::iota(order.begin(), order.end(), 0u);
+    std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return depth[a] < depth[b]; });
+    return order;
+}
+
 void PassLists::planSunMaps(const PassPlanInputs& in, std::vector<PassList*>& lists) {
     const RenderSettings& settings = in.settings;
     const bool gpu = settings.culling == Culling::Gpu;
@@ -209,6 +231,7 @@ void PassLists::planSunMaps(const PassPlanInputs& in, std::vector<PassList*>& li
         const core::Mat4& clipFromWorld = in.setup.views[i].clipFromWorld;
         const LodChoice lod{{clipFromWorld, 0.5 * in.setup.mapSize, settings.lodTexelError}, cameraProjection, true};
         const std::vector<visibility::HalfSpace> volume = visibility::clipVolume(clipFromWorld, false);
+        m_sun[i].batchOrder = nearestFirst(clipFromWorld);
         if (gpu) {
             const GpuReceiverMask mask = GpuReceiverMask::of(*m_receiverMasks, in.setup, i);
             m_gpuCulling->cull(GpuCulling::kCameraPasses + i, volume, settings.lod ? &lod : nullptr,

@@ -111,6 +111,10 @@ private:
     void planCamera(const PassPlanInputs& in, bool prepass);
     // The receiver masks of the frame's fixed maps, from the pre-pass.
     void planMasks(const PassPlanInputs& in);
+    // Batches nearest the light first, by the depth of their boxes' centres in the map: the
+    // trees before the terrain under them, so the terrain's covered texels are rejected rather
+    // than written and overwritten (the samples a pass writes per texel, PassStats).
+    std::vector<uint32_t> nearestFirst(const core::Mat4& clipFromWorld) const;
     // The sun's fixed maps' lists (receiver-masked when asked).
     void planSunMaps(const PassPlanInputs& in, std::vector<PassList*>& lists);
     // Virtual maps: the pages the receivers request, each with the casters in its own volume.
@@ -128,7 +132,8 @@ private:
     bool m_prepassUnreduced = false;                // m_cameraDepth holds a pre-pass not yet reduced
     bool m_depthRangeWanted = false;                // lastVisibleDepth() has been asked
     std::vector<uint32_t> m_prepassDrawn;
-    std::vector<core::Aabb> m_movedBoxes; // old and new boxes of instances moved since the last frame
+    std::vector<core::Aabb> m_movedBoxes;  // old and new boxes of instances moved since the last frame
+    std::vector<core::Aabb> m_batchBounds; // each batch's instances, as loaded: the sun maps' draw order
     int m_prepassesDrawn = 0;
     // What the camera's list and pre-pass depend on. A DepthRange plan keeps its camera part for
     // the frame that follows it with the same key (the frame driver measures the visible depth,

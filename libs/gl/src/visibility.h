@@ -40,6 +40,9 @@ struct PassList {
     GLuint buffer = 0;
     GLuint commands = 0;
     int64_t indirect = -1;
+    // The order the pass draws its batches in (every batch index once), empty for index order.
+    // Depth-only passes draw nearest first: what is covered is then rejected, not written.
+    std::vector<uint32_t> batchOrder;
     size_t instances() const { return indices.size(); }
 };
 
