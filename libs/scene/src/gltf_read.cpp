@@ -7,10 +7,11 @@
 //     and unsigned as c / (2^n − 1) (KHR_mesh_quantization's positions, normals and colours);
 //   - sparse accessors: the base values (zeros without a buffer view), then the listed ones;
 //   - triangle lists, strips and fans (strips and fans unrolled into lists);
-//   - materials (§3.9): base colour factor and texture with its TEXCOORD set and sampler,
-//     KHR_texture_transform applied to the uvs, alpha mode and cutoff, double-sidedness;
-//   - images (§3.8.4): PNG, JPEG and WebP (EXT_texture_webp), embedded (buffer view or data
-//     URI) or external (tinygltf decodes percent-encoded URIs, RFC 3986 §2.1), decoded by
+//   - materials (§3.9, gltf_materials.cpp): base colour factor and texture with its TEXCOORD
+//     set and sampler, KHR_texture_transform applied to the uvs, alpha mode and cutoff,
+//     double-sidedness;
+//   - images (§3.8.4, gltf_materials.cpp): PNG, JPEG and WebP (EXT_texture_webp), embedded
+//     (buffer view or data URI) or external (tinygltf decodes percent-encoded URIs), decoded by
 //     scene::decodeImage within its limits; a buffer view's bytes are checked against its
 //     buffer before they are read (tinygltf does not check them). A texture's sources are tried
 //     in order — the WebP extension's, the core PNG/JPEG fallback, KHR_texture_basisu's (KTX2,
@@ -19,6 +20,7 @@
 //     material's alpha does: on an OPAQUE material it is dropped with one warning in
 //     Scene::warnings (shadows never read an opaque colour), on MASK and BLEND it is an error;
 //   - what cannot be read is named: glTF 1.0, Draco-compressed meshes, non-finite positions.
+#include "gltf_materials.h"
 #include "scene_formats.h"
 
 #include <tiny_gltf.h>
@@ -33,9 +35,7 @@
 #include <fstream>
 #include <map>
 #include <optional>
-#include <set>
 #include <unordered_map>
-#include <variant>
 
 namespace shadowkit::scene::formats {
 
@@ -79,23 +79,6 @@ double component(int type, bool normalized, const unsigned char* p) {
     default:
         return 0.0;
     }
-}
-
-// `count` elements of `elementSize` bytes every `stride` bytes from `offset` in view `viewIndex`:
-// the first byte, or an error when any of it lies outside the view or its buffer.
-core::Result<const unsigned char*> bytesOf(const tinygltf::Model& model, int viewIndex, size_t offset, size_t count,
-                                           size_t elementSize, size_t stride, const std::string& what) {
-    if (viewIndex < 0 || size_t(viewIndex) >= model.bufferViews.size())
-        return core::makeError(what + ": no such buffer view");
-    const tinygltf::BufferView& view = model.bufferViews[size_t(viewIndex)];
-    if (view.buffer < 0 || size_t(view.buffer) >= model.buffers.size())
-        return core::makeError(what + ": no such buffer");
-    const std::vector<unsigned char>& buffer = model.buffers[size_t(view.buffer)].data;
-    const size_t span = count == 0 ? 0 : (count - 1) * stride + elementSize;
-    if (offset > view.byteLength || span > view.byteLength - offset || view.byteOffset > buffer.size() ||
-        view.byteLength > buffer.size() - view.byteOffset)
-        return core::makeError(what + ": reaches past its buffer");
-    return buffer.data() + view.byteOffset + offset;
 }
 
 // One accessor, checked, read element by element with sparse values substituted.
@@ -350,177 +333,22 @@ bool isGltf1(const fs::path& file, bool binary) {
     return text.compare(quote + 1, 1, "1") == 0;
 }
 
-// tinygltf's image callback. Images in a buffer view are left for readMaterials (their bytes
-// are checked against the buffer there; tinygltf hands them over unchecked); the bytes of
-// data URIs and external files are whole, and decoded here. An image that cannot be decoded
-// does not stop the load: whether it matters depends on the materials that use it.
-struct ImageContext {
-    std::string file;
-    std::map<int, core::Error> failures; // by image index
-};
-
-// A name from the file as it may appear in a one-line message: control characters replaced.
-std::string printable(std::string text) {
-    for (char& c : text)
-        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7F) c = '?';
-    return text;
-}
-
-std::string imageName(const std::string& file, int index, const tinygltf::Image& image) {
-    const std::string label = printable(!image.name.empty() ? image.name : image.uri.substr(0, 80));
-    return file + ": image " + std::to_string(index) +
-           (label.empty() || label.starts_with("data:") ? "" : " '" + label + "'");
-}
-
-bool loadImage(tinygltf::Image* image, const int index, std::string*, std::string*, int, int,
-               const unsigned char* bytes, int size, void* user) {
-    if (image->bufferView >= 0) return true;
-    auto& context = *static_cast<ImageContext*>(user);
-    auto decoded = decodeImage(std::span(bytes, size_t(std::max(size, 0))), imageName(context.file, index, *image));
-    if (!decoded) {
-        context.failures.emplace(index, decoded.errorInfo());
-        return true;
-    }
-    image->width = decoded->width, image->height = decoded->height;
-    image->component = 4, image->bits = 8, image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
-    image->image = std::move(decoded->rgba);
-    return true;
-}
-
-// Decoded texels of all a file's textures, at most: 1 GiB.
-constexpr size_t kMaxTextureBytes = size_t(1) << 30;
-
-TextureWrap wrapOf(int gltfWrap) {
-    return gltfWrap == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE     ? TextureWrap::ClampToEdge
-           : gltfWrap == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT ? TextureWrap::MirroredRepeat
-                                                               : TextureWrap::Repeat;
-}
-
-// One image decoded: from its buffer view (bytes checked against the buffer), or as the image
-// callback left it.
-core::Result<Image> readImage(const tinygltf::Model& model, const fs::path& file, int source,
-                              const ImageContext& images) {
-    if (source < 0 || size_t(source) >= model.images.size())
-        return core::makeError(file.string() + ": no image " + std::to_string(source));
-    const tinygltf::Image& image = model.images[size_t(source)];
-    const std::string name = imageName(file.string(), source, image);
-    if (const auto failed = images.failures.find(source); failed != images.failures.end()) return failed->second;
-    if (image.bufferView >= 0) {
-        const auto& views = model.bufferViews;
-        const size_t length = size_t(image.bufferView) < views.size() ? views[size_t(image.bufferView)].byteLength : 0;
-        auto bytes = bytesOf(model, image.bufferView, 0, 1, length, length, name);
-        if (!bytes) return bytes.errorInfo();
-        return decodeImage(std::span(*bytes, length), name);
-    }
-    if (image.image.empty() || image.width <= 0 || image.height <= 0 ||
-        image.image.size() != size_t(image.width) * size_t(image.height) * 4)
-        return core::makeError(name + ": cannot read it (a missing file?)");
-    Image out;
-    out.width = image.width, out.height = image.height;
-    out.rgba = image.image;
-    return out;
-}
-
-// The image sources of a texture, best first: EXT_texture_webp's, the core source (PNG or
-// JPEG, the extensions' fallback), KHR_texture_basisu's.
-std::vector<int> textureSources(const tinygltf::Texture& texture) {
-    std::vector<int> sources;
-    const auto extensionSource = [&](const char* name) {
-        const auto ext = texture.extensions.find(name);
-        if (ext != texture.extensions.end() && ext->second.IsObject() && ext->second.Has("source") &&
-            ext->second.Get("source").IsNumber())
-            sources.push_back(ext->second.Get("source").GetNumberAsInt());
-    };
-    extensionSource("EXT_texture_webp");
-    if (texture.source >= 0) sources.push_back(texture.source);
-    extensionSource("KHR_texture_basisu");
-    return sources;
-}
-
-// A texture with its sampler, from the first of its sources that decodes; else the first
-// source's failure.
-core::Result<Texture> readTexture(const tinygltf::Model& model, const fs::path& file, const tinygltf::Texture& texture,
-                                  const ImageContext& images) {
-    const std::vector<int> sources = textureSources(texture);
-    if (sources.empty()) return core::makeError(file.string() + ": a texture has no image");
-    std::optional<core::Error> firstFailure;
-    Texture decoded;
-    for (int source : sources) {
-        core::Result<Image> image = readImage(model, file, source, images);
-        if (image) {
-            decoded.image = std::move(*image);
-            firstFailure.reset();
-            break;
-        }
-        if (!firstFailure) firstFailure = image.errorInfo();
-    }
-    if (firstFailure) return *firstFailure;
-    if (texture.sampler >= 0 && size_t(texture.sampler) < model.samplers.size()) {
-        const tinygltf::Sampler& sampler = model.samplers[size_t(texture.sampler)];
-        decoded.wrapS = wrapOf(sampler.wrapS);
-        decoded.wrapT = wrapOf(sampler.wrapT);
-        decoded.nearest = sampler.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST;
-        decoded.mipmaps =
-            sampler.minFilter != TINYGLTF_TEXTURE_FILTER_NEAREST && sampler.minFilter != TINYGLTF_TEXTURE_FILTER_LINEAR;
-    }
-    return decoded;
-}
-
-// Scene::materials in the file's order (Mesh::material is the glTF index) and the textures
-// their base colours use, decoded.
-core::Status readMaterials(const tinygltf::Model& model, const fs::path& file, const ImageContext& images,
-                           Scene& scene) {
-    std::map<int, std::variant<int32_t, core::Error>> textureOf; // glTF texture -> Scene::textures, or why not
-    std::set<int> dropped;                                       // textures warned about
-    size_t textureBytes = 0;
-    for (size_t m = 0; m < model.materials.size(); ++m) {
-        const tinygltf::Material& in = model.materials[m];
-        const std::string where = file.string() + ": material " + std::to_string(m) +
-                                  (in.name.empty() ? "" : " '" + printable(in.name) + "'");
-        Material out;
-        out.name = in.name;
-        const auto& f = in.pbrMetallicRoughness.baseColorFactor;
-        for (size_t c = 0; c < std::min<size_t>(f.size(), 4); ++c) out.baseColorFactor[int(c)] = float(f[c]);
-        if (!core::isFinite(glm::dvec4(out.baseColorFactor)))
-            return core::makeError(where + ": baseColorFactor is not finite");
-        out.alphaMode = in.alphaMode == "MASK"    ? AlphaMode::Mask
-                        : in.alphaMode == "BLEND" ? AlphaMode::Blend
-                                                  : AlphaMode::Opaque;
-        out.alphaCutoff = float(in.alphaCutoff);
-        if (!(out.alphaCutoff >= 0.0f && out.alphaCutoff <= 1.0f)) // NaN-safe
-            return core::makeError(where + ": alphaCutoff " + std::to_string(in.alphaCutoff) + " is not in [0, 1]");
-        out.doubleSided = in.doubleSided;
-        const int t = in.pbrMetallicRoughness.baseColorTexture.index;
-        if (t >= 0) {
-            if (size_t(t) >= model.textures.size()) return core::makeError(where + ": no texture " + std::to_string(t));
-            auto known = textureOf.find(t);
-            if (known == textureOf.end()) {
-                core::Result<Texture> decoded = readTexture(model, file, model.textures[size_t(t)], images);
-                if (decoded && (textureBytes += decoded->image.rgba.size()) > kMaxTextureBytes)
-                    return core::makeError(file.string() + ": the file's textures decode to more than 1 GiB");
-                if (decoded) {
-                    known = textureOf.emplace(t, int32_t(scene.textures.size())).first;
-                    scene.textures.push_back(std::move(*decoded));
-                } else {
-                    known = textureOf.emplace(t, decoded.errorInfo()).first;
-                }
-            }
-            if (const auto* index = std::get_if<int32_t>(&known->second)) {
-                out.baseColorTexture = *index;
-            } else if (out.alphaMode != AlphaMode::Opaque) {
-                return core::makeError(std::get<core::Error>(known->second).message + " (" + where +
-                                       " needs its alpha)");
-            } else if (dropped.insert(t).second) {
-                scene.warnings.push_back(std::get<core::Error>(known->second).message +
-                                         "; its opaque materials are drawn untextured");
-            }
-        }
-        scene.materials.push_back(std::move(out));
-    }
-    return core::Ok{};
-}
-
 } // namespace
+
+core::Result<const unsigned char*> bytesOf(const tinygltf::Model& model, int viewIndex, size_t offset, size_t count,
+                                           size_t elementSize, size_t stride, const std::string& what) {
+    if (viewIndex < 0 || size_t(viewIndex) >= model.bufferViews.size())
+        return core::makeError(what + ": no such buffer view");
+    const tinygltf::BufferView& view = model.bufferViews[size_t(viewIndex)];
+    if (view.buffer < 0 || size_t(view.buffer) >= model.buffers.size())
+        return core::makeError(what + ": no such buffer");
+    const std::vector<unsigned char>& buffer = model.buffers[size_t(view.buffer)].data;
+    const size_t span = count == 0 ? 0 : (count - 1) * stride + elementSize;
+    if (offset > view.byteLength || span > view.byteLength - offset || view.byteOffset > buffer.size() ||
+        view.byteLength > buffer.size() - view.byteOffset)
+        return core::makeError(what + ": reaches past its buffer");
+    return buffer.data() + view.byteOffset + offset;
+}
 
 core::Result<Scene> loadGltf(const fs::path& file) {
     const bool binary = lowerExtension(file) == ".glb";

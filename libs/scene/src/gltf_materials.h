@@ -1,0 +1,41 @@
+// glTF materials and images (gltf_materials.cpp) and the buffer access they share with the
+// mesh reader (gltf_read.cpp). Internal to libs/scene.
+#pragma once
+
+#include "shadowkit/core/result.h"
+#include "shadowkit/scene/scene.h"
+
+#include <tiny_gltf.h>
+
+#include <filesystem>
+#include <map>
+#include <string>
+
+namespace shadowkit::scene::formats {
+
+// tinygltf's image callback (ImageContext as its user data). Images in a buffer view are left
+// for readMaterials (their bytes are checked against the buffer there; tinygltf hands them
+// over unchecked); the bytes of data URIs and external files are whole, and decoded here. An
+// image that cannot be decoded does not stop the load: whether it matters depends on the
+// materials that use it.
+struct ImageContext {
+    std::string file;
+    std::map<int, core::Error> failures; // by image index
+};
+bool loadImage(tinygltf::Image* image, int index, std::string* err, std::string* warn, int reqWidth, int reqHeight,
+               const unsigned char* bytes, int size, void* user);
+
+// Scene::materials in the file's order (Mesh::material is the glTF index) and the textures
+// their base colours use, decoded; the textures dropped go to Scene::warnings.
+core::Status readMaterials(const tinygltf::Model& model, const std::filesystem::path& file, const ImageContext& images,
+                           Scene& scene);
+
+// `count` elements of `elementSize` bytes every `stride` bytes from `offset` in view
+// `viewIndex`: the first byte, or an error when any of it lies outside the view or its buffer.
+core::Result<const unsigned char*> bytesOf(const tinygltf::Model& model, int viewIndex, size_t offset, size_t count,
+                                           size_t elementSize, size_t stride, const std::string& what);
+
+// A name from the file as it may appear in a one-line message: control characters replaced.
+std::string printable(std::string text);
+
+} // namespace shadowkit::scene::formats
