@@ -8,7 +8,7 @@
 // measured on every standard view against ray-traced truth, default against focused: the
 // default may be at most 1.5 times as wrong, plus 0.1 points for views where both are
 // nearly right (a handful of pixels). The public models come from Debian's assimp-testmodels
-// (tools/install-deps.sh); a model that is not installed is reported and skipped.
+// (tools/install-deps.sh); a model that is missing fails the test, naming the package.
 // CTest label `gl`: runs headless on Mesa llvmpipe.
 #include "headless_gl_test.h"
 
