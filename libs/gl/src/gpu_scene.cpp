@@ -118,6 +118,7 @@ GpuScene::GpuScene(const scene::Scene& scene, std::span<const scene::MeshLods> l
         m_meshes.push_back(std::move(gpu));
     }
     GLuint firstInstance = 0;
+    m_batchAt.assign(scene.batches.size(), -1);
     for (size_t b = 0; b < scene.batches.size(); ++b) {
         const scene::MeshBatch& batch = scene.batches[b];
         const auto count = static_cast<GLuint>(batch.worldFromObject.size());
@@ -132,7 +133,6 @@ GpuScene::GpuScene(const scene::Scene& scene, std::span<const scene::MeshLods> l
                 material.baseAlpha = m->baseColorFactor.a;
                 material.alphaCutoff = m->alphaTested() ? m->alphaCutoff : -1.0f;
             }
-            m_batchAt.resize(b + 1, -1);
             m_batchAt[b] = int32_t(m_batches.size());
             m_batches.push_back({batch.mesh,
                                  material,
@@ -186,9 +186,7 @@ DrawStats GpuScene::drawBatches(const PassList& list, const PassPrograms& progra
         // triangles) have no GpuBatch.
         const size_t n = list.batchOrder.empty() ? m_batches.size() : list.batchOrder.size();
         for (size_t k = 0; k < n; ++k) {
-            const int32_t at = list.batchOrder.empty()                 ? int32_t(k)
-                               : list.batchOrder[k] < m_batchAt.size() ? m_batchAt[list.batchOrder[k]]
-                                                                       : -1;
+            const int32_t at = list.batchOrder.empty() ? int32_t(k) : m_batchAt[list.batchOrder[k]];
             if (at < 0) continue;
             const GpuBatch& batch = m_batches[size_t(at)];
             if (usesMaterial(batch) != materialSweep) continue;
