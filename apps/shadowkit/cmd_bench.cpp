@@ -51,8 +51,6 @@ core::Result<std::vector<int>> parseCounts(const std::string& text) {
     return counts;
 }
 
-gl::Culling cullingOf(const RenderOptions& render) { return render.noCull ? gl::Culling::Off : render.visibility; }
-
 // One forest of the run: its options (--same-density: the terrain grows with the count so trees
 // stand as densely as 10,000 on the given size, 100,000 trees on 3238 m for the default 1024 m).
 core::Result<scene::ForestOptions> forestOptionsFor(const BenchArgs& args, int trees) {
@@ -76,9 +74,8 @@ struct BenchRow {
 
 // The lines under a view's two pass rows: the camera's culling pass, CHC++'s counts, culling's
 // CPU time, the shadow pass's samples per texel and the receiver masks', as they apply.
-void printPassLines(const BenchArgs& args, const measure::FrameCosts& costs) {
+void printPassLines(const BenchArgs& args, gl::Culling culling, const measure::FrameCosts& costs) {
     const measure::Spread prepass = costs.prepass(), cull = costs.cull();
-    const gl::Culling culling = cullingOf(args.render);
     if (culling == gl::Culling::Gpu)
         fmt::print("{:>7} {:>7} {:<14} gpu     camera's two-phase pass (culling dispatches, depth pyramid, "
                    "early and late pre-pass draws) CPU ms med {:.2f} max {:.2f}\n",
@@ -165,14 +162,15 @@ core::Result<nlohmann::json> benchView(const BenchArgs& args, const BenchRow& ro
         costs.add(*drawn);
     }
     printRows(row, costs, table);
-    printPassLines(args, costs);
+    const gl::Culling culling = renderer.culling(args.render.culling()); // auto resolved for this driver
+    printPassLines(args, culling, costs);
     nlohmann::json run = costs.json();
     run.update({{"trees", row.trees},
                 {"terrain_size", row.terrainSize},
                 {"forest_seconds", row.forestSeconds},
                 {"view", row.view},
                 {"technique", core::techniqueName(args.technique.technique)},
-                {"visibility", gl::cullingName(cullingOf(args.render))},
+                {"visibility", gl::cullingName(culling)},
                 {"frames", args.frames},
                 {"width", view->width},
                 {"height", view->height},
@@ -207,7 +205,8 @@ int runBench(const BenchArgs& args) {
     auto context = gl::Context::createHeadless();
     if (!context) return fail(context.errorInfo());
     fmt::print("{} | technique {} | {} frames per row | culling {}\n", (*context)->description(),
-               core::techniqueName(args.technique.technique), args.frames, gl::cullingName(cullingOf(args.render)));
+               core::techniqueName(args.technique.technique), args.frames,
+               cullingSaid(args.render.culling(), (*context)->renderer()));
     fmt::print("caster culling {}\n", args.render.receiverMask ? "by visible receivers" : "by volume");
     fmt::print("{:>7} {:>7} {:<14} {:<7} {:>9} {:>9} {:>6} {:>26} {:>20} {:>20}\n", "trees", "terrain", "view", "pass",
                "instances", "M tris", "draws", "GPU ms min/med/max", "set-up ms 1st/rest", "cull ms med/max");

@@ -37,9 +37,10 @@ void printFrameReport(const RenderArgs& args, const gl::Context& context, const 
                       const gl::FrameStats& stats, double frameMs) {
     const core::ShadowSetup& setup = frame.setup;
     const gl::RenderSettings& settings = frame.settings;
-    fmt::print("{} | {} | {}x{} | map {}² | view {}\n", core::techniqueName(setup.technique), context.description(),
-               settings.width, settings.height, setup.mapSize,
-               args.timeline.path.empty() ? args.view.view : "path " + args.timeline.path);
+    fmt::print("{} | {} | {}x{} | map {}² | view {} | culling {}\n", core::techniqueName(setup.technique),
+               context.description(), settings.width, settings.height, setup.mapSize,
+               args.timeline.path.empty() ? args.view.view : "path " + args.timeline.path,
+               cullingSaid(args.render.culling(), context.renderer()));
     fmt::print("  set-up (CPU)   {:8.3f} ms\n", frame.setupMilliseconds);
     if (frame.prePasses.submissions > 0)
         fmt::print(

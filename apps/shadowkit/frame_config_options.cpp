@@ -27,7 +27,7 @@ core::Result<frame::FrameConfig> frameConfigOf(const TechniqueOptions& technique
     s.blur = render.blur;
     s.cascadeColors = render.cascadeColors;
     s.aliasingOverlay = render.aliasingOverlay;
-    s.culling = render.noCull ? gl::Culling::Off : render.visibility;
+    s.culling = render.culling();
     s.receiverMask = render.receiverMask;
     s.lod = !render.noLod;
     s.lodPixelError = render.lodPixelError;

@@ -323,12 +323,14 @@ void RenderOptions::addTo(CLI::App& cmd) {
     cmd.add_option("--visibility", visibility,
                    "instances the camera pass draws: off (all, every pass), frustum, chc (CHC++ occlusion queries), "
                    "gpu (frustum, two-phase depth-pyramid occlusion and receiver masks in compute passes writing "
-                   "indirect draws: the camera's and the sun's lists never reach the CPU)")
+                   "indirect draws: the camera's and the sun's lists never reach the CPU), auto (gpu on a GPU, chc "
+                   "on a software rasteriser such as llvmpipe, whose compute passes share the CPU's cores)")
         ->transform(choice(Choices<gl::Culling>{{"off", gl::Culling::Off},
                                                 {"frustum", gl::Culling::Frustum},
                                                 {"chc", gl::Culling::Occlusion},
-                                                {"gpu", gl::Culling::Gpu}}))
-        ->default_str("chc");
+                                                {"gpu", gl::Culling::Gpu},
+                                                {"auto", gl::Culling::Auto}}))
+        ->default_str("auto");
     cmd.add_option("--caster-culling", receiverMask,
                    "casters each shadow map draws: volume (its clip volume), receivers (also only those that can "
                    "shadow a pixel the camera sees; a camera depth pre-pass)")
@@ -343,6 +345,13 @@ void RenderOptions::addTo(CLI::App& cmd) {
     cmd.add_option("--lod-texel-error", lodTexelError,
                    "levels of detail: within this many texels of each shadow map (and the camera's bound near it)")
         ->capture_default_str();
+}
+
+std::string cullingSaid(gl::Culling requested, std::string_view glRenderer) {
+    const gl::Culling drawn = gl::resolveCulling(requested, glRenderer);
+    if (requested != gl::Culling::Auto) return gl::cullingName(drawn);
+    return fmt::format("{} (auto: {} is a {} rasteriser)", gl::cullingName(drawn), glRenderer,
+                       gl::isSoftwareRasteriser(glRenderer) ? "software" : "GPU");
 }
 
 core::Status RenderOptions::check() const {

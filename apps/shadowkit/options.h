@@ -116,11 +116,11 @@ struct RenderOptions {
     double sunAngle = 0.0; // --sun-angle: the sun's angular diameter in degrees; 0 a point
     gl::BlurSettings blur;
     bool cascadeColors = false;
-    bool aliasingOverlay = false;                    // --aliasing-overlay: pixels per texel instead of shading (live)
-    gl::Culling visibility = gl::Culling::Occlusion; // --visibility (docs/scale-and-visibility.md: the best measured)
-    bool receiverMask = true;                        // --caster-culling receivers (likewise)
-    bool noCull = false;                             // --no-cull: --visibility off (what culling saves, measured)
-    bool noLod = false;                              // full meshes everywhere (what levels of detail save, measured)
+    bool aliasingOverlay = false;               // --aliasing-overlay: pixels per texel instead of shading (live)
+    gl::Culling visibility = gl::Culling::Auto; // --visibility: gpu on a GPU, chc on a software rasteriser
+    bool receiverMask = true;                   // --caster-culling receivers (docs/scale-and-visibility.md)
+    bool noCull = false;                        // --no-cull: --visibility off (what culling saves, measured)
+    bool noLod = false;                         // full meshes everywhere (what levels of detail save, measured)
     float lodPixelError = gl::RenderSettings{}.lodPixelError; // --lod-pixel-error: the camera's level bound
     float lodTexelError = gl::RenderSettings{}.lodTexelError; // --lod-texel-error: the shadow maps' level bound
     std::optional<double> fog; // --fog: density in 1/m; unset: the scene's (scene::ResolvedView::fogDensity)
@@ -128,7 +128,14 @@ struct RenderOptions {
     void addTo(CLI::App& cmd);
     // Checks the flags (cheap: call before loading a scene); errors name the flag.
     core::Status check() const;
+    // The culling asked for: --visibility, or off with --no-cull.
+    gl::Culling culling() const { return noCull ? gl::Culling::Off : visibility; }
 };
+
+// The culling a frame asking for `requested` is drawn with on the driver whose GL_RENDERER is
+// `glRenderer`, as front ends print it: "chc", or for auto "chc (auto: llvmpipe ... is a
+// software rasteriser)" / "gpu (auto: a GPU rasteriser)".
+std::string cullingSaid(gl::Culling requested, std::string_view glRenderer);
 
 // A CLI11 transform from a name to an enum value: the names appear in --help as the
 // option's type ("standard|focused|..."), and anything else is a one-line error naming the

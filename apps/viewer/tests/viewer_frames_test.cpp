@@ -87,7 +87,7 @@ TEST(OptionTableTest, EnumeratedOptionsListEveryChoiceAndTheLibrariesDefaults) {
         EXPECT_NE(std::find(techniques.begin(), techniques.end(), std::string(t.name)), techniques.end()) << t.name;
     EXPECT_EQ(techniques.back(), "auto");
     EXPECT_EQ(app::defaultOf(app, "--technique"), core::techniqueName(core::defaultTechnique()));
-    EXPECT_EQ(app::choicesOf(app, "--visibility"), (std::vector<std::string>{"off", "frustum", "chc", "gpu"}));
+    EXPECT_EQ(app::choicesOf(app, "--visibility"), (std::vector<std::string>{"off", "frustum", "chc", "gpu", "auto"}));
     EXPECT_EQ(app::choicesOf(app, "--local-pass"),
               (std::vector<std::string>{"layered", "vertex-layer", "geometry", "per-face"}));
     EXPECT_EQ(app::defaultOf(app, "--map-size"), std::to_string(core::ShadowSetupInputs{}.mapSize));

@@ -47,6 +47,7 @@ core::Result<PreparedFrame> FrameDriver::prepare(gl::Renderer& renderer, const s
     f.settings.width = view.width;
     f.settings.height = view.height;
     f.settings.sun = view.sun;
+    f.settings.culling = renderer.culling(m_config.render.culling); // auto: what this driver runs best
     // The sun's size where the view or its path gives one (a sunset path's sun, a view of its own).
     if (view.sunAngleDegrees) f.settings.sunAngleDegrees = *view.sunAngleDegrees;
     f.settings.fogDensity = static_cast<float>(m_config.fogDensity.value_or(view.fogDensity));

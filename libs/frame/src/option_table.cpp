@@ -55,7 +55,7 @@ constexpr auto kRows = std::to_array<OptionRow>({
     {"RenderSettings.blur.depthFalloff", "--blur-depth-falloff", "blur.depth_falloff", "[0, 10] per metre", Gl},
     {"RenderSettings.blur.depthThreshold", "--blur-depth-threshold", "blur.depth_threshold", "(0, 1]", Gl},
     {"RenderSettings.fogDensity", "--fog", "fog", "a density >= 0 per metre", Gl},
-    {"RenderSettings.culling", "--visibility", "", "off | frustum | chc | gpu", None},
+    {"RenderSettings.culling", "--visibility", "", "off | frustum | chc | gpu | auto", None},
     {"RenderSettings.receiverMask", "--caster-culling", "", "volume | receivers", None},
     {"RenderSettings.lod", "--no-lod", "", "on | off", None},
     {"RenderSettings.lodPixelError", "--lod-pixel-error", "lod.pixel_error", "(0, 16] pixels", Gl},

@@ -125,7 +125,8 @@ void Context::finishSetup(const ContextOptions& options, const std::string& plat
         const auto* s = reinterpret_cast<const char*>(glGetString(name));
         return std::string(s ? s : "?");
     };
-    m_description = str(GL_VERSION) + ", " + str(GL_RENDERER) + " via " + platform;
+    m_renderer = str(GL_RENDERER);
+    m_description = str(GL_VERSION) + ", " + m_renderer + " via " + platform;
     if (options.debug) installDebugOutput();
 }
 

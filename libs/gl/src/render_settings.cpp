@@ -1,6 +1,8 @@
 // RenderSettings' names and checks (render_settings.h): what a front end validates before it draws.
 #include "shadowkit/gl/render_settings.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <string>
 
@@ -40,8 +42,23 @@ const char* cullingName(Culling culling) {
         return "chc";
     case Culling::Gpu:
         return "gpu";
+    case Culling::Auto:
+        return "auto";
     }
     return "?";
+}
+
+bool isSoftwareRasteriser(std::string_view glRenderer) {
+    std::string lower(glRenderer);
+    std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
+    for (const char* software : {"llvmpipe", "softpipe", "swiftshader", "swrast", "gdi generic", "basic render"})
+        if (lower.find(software) != std::string::npos) return true;
+    return false;
+}
+
+Culling resolveCulling(Culling requested, std::string_view glRenderer) {
+    if (requested != Culling::Auto) return requested;
+    return isSoftwareRasteriser(glRenderer) ? Culling::Occlusion : Culling::Gpu;
 }
 
 core::Status validate(const BlurSettings& b) {

@@ -34,6 +34,15 @@ struct Renderer::Impl {
     core::LocalLighting wsLocalLights; // the same as given: Renderer::localLights()
     core::Vec3 wsOrigin{0.0};          // Scene::wsOrigin: where the GPU's coordinates start
     PassStats lastShadow;              // the last sun shadow pass (its GPU time not read)
+    std::string glRenderer;            // GL_RENDERER: what Culling::Auto is resolved for
+
+    // The settings a frame is drawn with: Culling::Auto resolved for this driver. Every public
+    // entry takes its settings through here, so no pass sees Auto.
+    RenderSettings resolved(const RenderSettings& asked) const {
+        RenderSettings settings = asked;
+        settings.culling = resolveCulling(asked.culling, glRenderer);
+        return settings;
+    }
 
     // Checks the frame against the driver and the settings' ranges, allocates the maps and plans
     // every pass's lists; returns the frame's bias.
@@ -68,6 +77,7 @@ core::Result<std::unique_ptr<Renderer>> Renderer::create(const scene::Scene& sce
     auto renderer = std::unique_ptr<Renderer>(new Renderer);
     Impl& r = *renderer->m_impl;
     r.wsOrigin = scene.wsOrigin;
+    if (const auto* name = reinterpret_cast<const char*>(glGetString(GL_RENDERER))) r.glRenderer = name;
     auto sun = SunPass::create();
     if (!sun) return sun.errorInfo();
     r.sun = std::move(sun).value();
@@ -131,8 +141,9 @@ core::Result<PassStats> Renderer::Impl::shadowPasses(const core::ShadowSetup& se
 }
 
 core::Result<FrameStats> Renderer::render(const core::PerspectiveCamera& wsCamera, const core::DirectionalLight& light,
-                                          const core::ShadowSetup& wsSetup, const RenderSettings& settings) {
+                                          const core::ShadowSetup& wsSetup, const RenderSettings& asked) {
     Impl& r = *m_impl;
+    const RenderSettings settings = r.resolved(asked);
     const SceneFrame frame = inScene(r.wsOrigin, wsCamera, wsSetup);
     const core::PerspectiveCamera& camera = frame.camera;
     const core::ShadowSetup& setup = frame.setup();
@@ -190,15 +201,15 @@ core::Result<core::RasterBuffers> Renderer::renderEvalBuffers(const core::Perspe
     if (localLight < -1 || localLight >= static_cast<int>(m_impl->localLights.size()))
         return core::makeError("renderer: local light " + std::to_string(localLight) + " does not exist (" +
                                std::to_string(m_impl->localLights.size()) + " set)");
-    return m_impl->evalBuffers(inScene(m_impl->wsOrigin, wsCamera, wsSetup), light, settings, localLight,
-                               PassPurpose::Frame);
+    return m_impl->evalBuffers(inScene(m_impl->wsOrigin, wsCamera, wsSetup), light, m_impl->resolved(settings),
+                               localLight, PassPurpose::Frame);
 }
 
 core::Result<core::RasterBuffers> Renderer::renderSurfaceBuffers(const core::PerspectiveCamera& wsCamera,
                                                                  const core::DirectionalLight& light,
                                                                  const core::ShadowSetup& wsSetup,
                                                                  const RenderSettings& settings) {
-    return m_impl->evalBuffers(inScene(m_impl->wsOrigin, wsCamera, wsSetup), light, settings, -1,
+    return m_impl->evalBuffers(inScene(m_impl->wsOrigin, wsCamera, wsSetup), light, m_impl->resolved(settings), -1,
                                PassPurpose::Surfaces);
 }
 
@@ -236,12 +247,14 @@ core::Result<std::optional<core::Vec2>> Renderer::visibleDepth(const core::Persp
     Impl& r = *m_impl;
     const SceneFrame frame = inScene(r.wsOrigin, wsCamera, wsSetup);
     // The culling's own pre-pass, or one made for the purpose; no shadow pass.
-    if (auto s = r.prepare(frame.camera, light, frame.setup(), settings, PassPurpose::DepthRange); !s)
+    if (auto s = r.prepare(frame.camera, light, frame.setup(), r.resolved(settings), PassPurpose::DepthRange); !s)
         return s.errorInfo();
     return r.lists->visibleDepthNow();
 }
 
 std::optional<core::Vec2> Renderer::lastVisibleDepth() { return m_impl->lists->lastVisibleDepth(); }
+
+Culling Renderer::culling(Culling requested) const { return resolveCulling(requested, m_impl->glRenderer); }
 
 int Renderer::cameraPrePassesDrawn() const { return m_impl->lists->prepassesDrawn(); }
 

@@ -51,6 +51,15 @@ scene::ResolvedView smallView(const scene::Scene& forest, const char* name, int 
 }
 using gl::testing::smallFrame;
 
+// LiSPSM at 512² over the whole forest: a set-up every culling must draw alike.
+core::Result<core::ShadowSetup> lispsmOver(const scene::Scene& forest, const scene::ResolvedView& view) {
+    return core::computeShadowSetup({.camera = view.camera,
+                                     .light = view.light,
+                                     .wsSceneBounds = forest.wsBounds(),
+                                     .technique = core::Technique::Lispsm,
+                                     .mapSize = 512});
+}
+
 } // namespace
 
 TEST_F(CullingTest, CulledFramesMatchFullFramesPixelForPixelForEveryTechnique) {
@@ -230,12 +239,7 @@ TEST_F(CullingTest, OcclusionCulledFramesMatchFrustumCulledFramesAfterTheFirst) 
     auto renderer = gl::Renderer::create(forest);
     ASSERT_TRUE(renderer) << renderer.error();
     const scene::ResolvedView view = smallView(forest, "perpendicular", 160, 90);
-    core::ShadowSetupInputs in{.camera = view.camera,
-                               .light = view.light,
-                               .wsSceneBounds = forest.wsBounds(),
-                               .technique = core::Technique::Lispsm,
-                               .mapSize = 512};
-    const auto setup = core::computeShadowSetup(in);
+    const auto setup = lispsmOver(forest, view);
     ASSERT_TRUE(setup) << setup.error();
     gl::RenderSettings settings = smallFrame(160, 90, gl::Culling::Frustum);
     const auto frustum = (*renderer)->render(view.camera, view.light, *setup, settings);
@@ -254,4 +258,53 @@ TEST_F(CullingTest, OcclusionCulledFramesMatchFrustumCulledFramesAfterTheFirst) 
     ASSERT_TRUE(frustumBuffers && occludedBuffers);
     EXPECT_EQ(frustumBuffers->surfaceId, occludedBuffers->surfaceId);
     EXPECT_EQ(frustumBuffers->shadowTerm, occludedBuffers->shadowTerm);
+}
+
+TEST(CullingAutoTest, IsGpuOnAGpuAndChcOnASoftwareRasteriser) {
+    // GL_RENDERER strings as drivers give them: Mesa's CPU rasterisers and SwiftShader share the
+    // CPU's cores with culling's compute passes; every GPU (Mesa's hardware drivers, whose names
+    // mention LLVM too, included) does not.
+    for (const char* software : {"llvmpipe (LLVM 15.0.6, 256 bits)", "softpipe", "SwiftShader Device (Subzero)",
+                                 "Mesa X11 swrast", "GDI Generic", "Microsoft Basic Render Driver"}) {
+        EXPECT_TRUE(gl::isSoftwareRasteriser(software)) << software;
+        EXPECT_EQ(gl::resolveCulling(gl::Culling::Auto, software), gl::Culling::Occlusion) << software;
+    }
+    for (const char* gpu : {"NVIDIA H200/PCIe/SSE2", "AMD Radeon RX 7900 XTX (radeonsi, navi31, LLVM 15.0.7)",
+                            "Mesa Intel(R) UHD Graphics 620 (KBL GT2)", "Apple M2", ""}) {
+        EXPECT_FALSE(gl::isSoftwareRasteriser(gpu)) << gpu;
+        EXPECT_EQ(gl::resolveCulling(gl::Culling::Auto, gpu), gl::Culling::Gpu) << gpu;
+    }
+    // A culling asked for by name is kept on either.
+    for (const gl::Culling asked : {gl::Culling::Off, gl::Culling::Frustum, gl::Culling::Occlusion, gl::Culling::Gpu})
+        for (const char* renderer : {"llvmpipe (LLVM 15.0.6, 256 bits)", "NVIDIA H200/PCIe/SSE2"})
+            EXPECT_EQ(gl::resolveCulling(asked, renderer), asked) << gl::cullingName(asked) << " on " << renderer;
+}
+
+TEST_F(CullingTest, AutoDrawsTheCullingItResolvesToForThisDriver) {
+    // No pass may see Auto: a frame asking for it is the frame of the culling it resolves to —
+    // pixel for pixel, with that culling's own work (CHC++'s queries, or none on the GPU path).
+    // Each first frame of a renderer of its own, so CHC++'s history cannot differ.
+    const scene::Scene forest = gl::testing::smallForest(300, 200, 32);
+    const scene::ResolvedView view = smallView(forest, "perpendicular", 160, 90);
+    const auto setup = lispsmOver(forest, view);
+    ASSERT_TRUE(setup) << setup.error();
+    std::optional<gl::Culling> resolved;
+    std::vector<gl::FrameStats> stats;
+    std::vector<scene::Image> images;
+    for (int frame = 0; frame < 2; ++frame) {
+        auto renderer = gl::Renderer::create(forest);
+        ASSERT_TRUE(renderer) << renderer.error();
+        if (!resolved) resolved = (*renderer)->culling(gl::Culling::Auto);
+        const auto drawn = (*renderer)->render(view.camera, view.light, *setup,
+                                               smallFrame(160, 90, frame == 0 ? gl::Culling::Auto : *resolved));
+        ASSERT_TRUE(drawn) << drawn.error();
+        stats.push_back(*drawn);
+        images.push_back((*renderer)->readColor());
+    }
+    EXPECT_EQ(*resolved, gl::resolveCulling(gl::Culling::Auto, context().renderer()));
+    EXPECT_EQ(*resolved, gl::isSoftwareRasteriser(context().renderer()) ? gl::Culling::Occlusion : gl::Culling::Gpu);
+    EXPECT_EQ(images[0].rgba, images[1].rgba);
+    EXPECT_EQ(stats[0].main.instances, stats[1].main.instances);
+    EXPECT_EQ(stats[0].shadow.instances, stats[1].shadow.instances);
+    EXPECT_EQ(stats[0].occlusion.nodesVisited > 0, *resolved == gl::Culling::Occlusion);
 }

@@ -30,6 +30,9 @@ public:
 
     // "4.5 (Core Profile) Mesa 22.3.6, llvmpipe (LLVM 15.0.6, 256 bits) via EGL surfaceless"
     const std::string& description() const { return m_description; }
+    // GL_RENDERER alone: "llvmpipe (LLVM 15.0.6, 256 bits)", "NVIDIA H200/PCIe/SSE2"
+    // (gl::resolveCulling reads it).
+    const std::string& renderer() const { return m_renderer; }
 
 protected:
     Context() = default;
@@ -38,6 +41,7 @@ protected:
 
 private:
     std::string m_description;
+    std::string m_renderer;
 };
 
 } // namespace shadowkit::gl

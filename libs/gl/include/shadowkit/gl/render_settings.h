@@ -12,6 +12,7 @@
 #include <glm/vec3.hpp>
 
 #include <optional>
+#include <string_view>
 
 namespace shadowkit::gl {
 
@@ -40,8 +41,19 @@ enum class Culling {
     // pass as Occlusion, the sun's maps as Frustum (and receiverMask), the lists never on the
     // CPU. Local lights and virtual pages are culled on the CPU as with Frustum.
     Gpu,
+    // Gpu where the rasteriser is a GPU, Occlusion where it is software (Mesa's llvmpipe: the
+    // compute passes would run on the CPU's cores beside the rasteriser's threads, and cost
+    // more than CHC++'s queries there). The renderer resolves it for its driver
+    // (Renderer::culling); front ends say which it chose.
+    Auto,
 };
-const char* cullingName(Culling culling); // "off", "frustum", "chc", "gpu"
+const char* cullingName(Culling culling); // "off", "frustum", "chc", "gpu", "auto"
+
+// Whether OpenGL's GL_RENDERER string names a software rasteriser: Mesa's llvmpipe and softpipe,
+// SwiftShader, Microsoft's GDI and Basic Render drivers. Anything else is taken for a GPU.
+bool isSoftwareRasteriser(std::string_view glRenderer);
+// `requested`, with Auto resolved for the driver whose GL_RENDERER is `glRenderer`.
+Culling resolveCulling(Culling requested, std::string_view glRenderer);
 
 inline constexpr int kMaxLocalLightsPerKind = 16; // spot and point lights a frame can shadow, each
 

@@ -76,6 +76,10 @@ public:
     // frame's set-up, by then long computed, so nothing waits (Scherzer 2005 took Δz "from
     // the visibility algorithm" the same way). nullopt without a pre-pass or visible pixels.
     std::optional<core::Vec2> lastVisibleDepth();
+    // The culling a frame asking for `requested` is drawn with: Culling::Auto resolved for this
+    // renderer's driver (resolveCulling: Gpu on a GPU, Occlusion on a software rasteriser),
+    // anything else as asked. What front ends print.
+    Culling culling(Culling requested) const;
     // Camera depth pre-passes drawn since the renderer was created (work, for tests and benches):
     // a render() right after visibleDepth() for the same camera and culling reuses that one.
     int cameraPrePassesDrawn() const;
