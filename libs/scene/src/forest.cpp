@@ -258,7 +258,10 @@ Scene makeForest(const ForestOptions& o) {
     }
     const size_t buildings = addMesh(makeBuilding());
     for (int i = 0; i < o.buildings; ++i) {
-        const glm::vec3 size(rng.uniform(8, 16), rng.uniform(6, 12), rng.uniform(8, 20));
+        // Depth, height, width drawn in that order: one draw per statement, so the town does not
+        // depend on the compiler (a call's arguments are evaluated in an unspecified order).
+        const float depth = static_cast<float>(rng.uniform(8, 20)), height = static_cast<float>(rng.uniform(6, 12));
+        const glm::vec3 size(static_cast<float>(rng.uniform(8, 16)), height, depth);
         scene.batches[buildings].worldFromObject.push_back(placement(field, randomSpot(rng, o), size, 1.0));
     }
     // Movers float 2-4 m above the ground on circles round the viewer's clearing, where the

@@ -25,7 +25,19 @@ constexpr float kPi = std::numbers::pi_v<float>;
 constexpr int kCellTexels = 128;
 const glm::vec3 kBark(0.33f, 0.24f, 0.16f);
 
+// Draws happen one per statement wherever several feed one call: the order in which a call's
+// arguments are evaluated is unspecified (GCC 12 evaluates these last first, clang 14 first
+// first), and a forest must not depend on the compiler that built it. Each such place draws in
+// the order the recorded figures (data/golden) were made with: the last argument first.
 float uniform(SplitMix64& rng, float lo, float hi) { return static_cast<float>(rng.uniform(lo, hi)); }
+
+// A colour whose channels are drawn blue, green, red (see above).
+glm::vec3 randomColour(SplitMix64& rng, glm::vec2 red, glm::vec2 green, glm::vec2 blue) {
+    const float b = uniform(rng, blue.x, blue.y);
+    const float g = uniform(rng, green.x, green.y);
+    const float r = uniform(rng, red.x, red.y);
+    return {r, g, b};
+}
 
 // --- the atlas ---------------------------------------------------------------------------
 
@@ -77,7 +89,7 @@ void paintBroadleafCell(Image& atlas, int cx, int cy, SplitMix64& rng) {
         const float a = uniform(rng, 20.0f, 27.0f), b = uniform(rng, 8.0f, 11.0f);
         const glm::vec2 stem(0.5f * n, (1.0f - along) * n);
         const glm::vec2 centre = stem + a * glm::vec2(std::cos(angle), std::sin(angle));
-        const glm::vec3 green(uniform(rng, 0.18f, 0.28f), uniform(rng, 0.38f, 0.5f), uniform(rng, 0.08f, 0.14f));
+        const glm::vec3 green = randomColour(rng, {0.18f, 0.28f}, {0.38f, 0.5f}, {0.08f, 0.14f});
         paintLeaf(atlas, cx, cy, centre, a, b, angle, green);
     }
 }
@@ -106,8 +118,9 @@ void paintShrubCell(Image& atlas, int cx, int cy, SplitMix64& rng) {
         const float distance = uniform(rng, 0.12f, 0.32f) * n;
         const glm::vec2 centre = middle + distance * glm::vec2(std::cos(angle), std::sin(angle));
         paintLine(atlas, cx, cy, middle, centre, 2.0f, kBark * 1.3f);
-        const glm::vec3 green(uniform(rng, 0.2f, 0.3f), uniform(rng, 0.36f, 0.46f), uniform(rng, 0.1f, 0.16f));
-        paintLeaf(atlas, cx, cy, centre, uniform(rng, 10.0f, 14.0f), uniform(rng, 8.0f, 11.0f), angle, green);
+        const glm::vec3 green = randomColour(rng, {0.2f, 0.3f}, {0.36f, 0.46f}, {0.1f, 0.16f});
+        const float across = uniform(rng, 8.0f, 11.0f);
+        paintLeaf(atlas, cx, cy, centre, uniform(rng, 10.0f, 14.0f), across, angle, green);
     }
 }
 
@@ -166,6 +179,17 @@ void addLeafCard(std::vector<Card>& cards, glm::vec3 centre, float size, float y
     cards.push_back({centre, size, yaw, tilt, roll, cell});
 }
 
+// A card of any yaw, its size, tilt and roll drawn within these ranges, showing one of the
+// species' cells; drawn cell, roll, tilt, yaw, size (see uniform).
+void addRandomCard(std::vector<Card>& cards, glm::vec3 centre, glm::vec2 size, glm::vec2 tilt, glm::vec2 roll,
+                   TreeSpecies species, SplitMix64& rng) {
+    const auto cell = speciesCell(species, rng);
+    const float r = uniform(rng, roll.x, roll.y);
+    const float t = uniform(rng, tilt.x, tilt.y);
+    const float yaw = uniform(rng, 0, 2 * kPi);
+    addLeafCard(cards, centre, uniform(rng, size.x, size.y), yaw, t, r, cell);
+}
+
 // The card's quad into `mesh`, `grow` times its size.
 void emitCard(Mesh& mesh, const Card& card, float grow) {
     glm::mat4 m = glm::translate(glm::mat4(1.0f), card.centre);
@@ -207,7 +231,8 @@ void emitCards(Mesh& leaves, const std::vector<Card>& cards) {
 // A point in the unit ball, uniform (rejection sampling).
 glm::vec3 inBall(SplitMix64& rng) {
     for (;;) {
-        const glm::vec3 p(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1));
+        const float z = uniform(rng, -1, 1), y = uniform(rng, -1, 1), x = uniform(rng, -1, 1);
+        const glm::vec3 p(x, y, z);
         if (glm::dot(p, p) <= 1.0f) return p;
     }
 }
@@ -236,8 +261,7 @@ void makeBroadleaf(LeafyTree& tree, std::vector<Card>& cards, SplitMix64& rng) {
     const int count = 2600;
     for (int c = 0; c < count; ++c) {
         const glm::vec3 centre = tips[size_t(c) % tips.size()] + 0.11f * inBall(rng);
-        addLeafCard(cards, centre, uniform(rng, 0.06f, 0.085f), uniform(rng, 0, 2 * kPi), uniform(rng, -1.1f, 1.1f),
-                    uniform(rng, -0.6f, 0.6f), speciesCell(TreeSpecies::Broadleaf, rng));
+        addRandomCard(cards, centre, {0.06f, 0.085f}, {-1.1f, 1.1f}, {-0.6f, 0.6f}, TreeSpecies::Broadleaf, rng);
     }
 }
 
@@ -259,9 +283,10 @@ void makeConifer(LeafyTree& tree, std::vector<Card>& cards, SplitMix64& rng) {
                 const float along = 0.15f + 0.85f * uniform(rng, 0.0f, 1.0f);
                 const glm::vec3 centre = glm::mix(from, to, along) + 0.015f * inBall(rng);
                 // Flat sprays whose up axis runs out along the branch.
-                addLeafCard(cards, centre, uniform(rng, 0.04f, 0.06f), -yaw + 0.5f * kPi,
-                            -0.5f * kPi + uniform(rng, -0.35f, 0.35f), uniform(rng, -0.5f, 0.5f),
-                            speciesCell(TreeSpecies::Conifer, rng));
+                const auto cell = speciesCell(TreeSpecies::Conifer, rng);
+                const float roll = uniform(rng, -0.5f, 0.5f);
+                const float tilt = -0.5f * kPi + uniform(rng, -0.35f, 0.35f);
+                addLeafCard(cards, centre, uniform(rng, 0.04f, 0.06f), -yaw + 0.5f * kPi, tilt, roll, cell);
             }
         }
     }
@@ -279,8 +304,7 @@ void makeShrub(LeafyTree& tree, std::vector<Card>& cards, SplitMix64& rng) {
         glm::vec3 p = inBall(rng);
         p.y = std::abs(p.y); // the upper half: a dome on the ground
         const glm::vec3 centre(0.7f * p.x, 0.08f + 0.84f * p.y, 0.7f * p.z);
-        addLeafCard(cards, centre, uniform(rng, 0.1f, 0.14f), uniform(rng, 0, 2 * kPi), uniform(rng, -1.2f, 1.2f),
-                    uniform(rng, -0.8f, 0.8f), speciesCell(TreeSpecies::Shrub, rng));
+        addRandomCard(cards, centre, {0.1f, 0.14f}, {-1.2f, 1.2f}, {-0.8f, 0.8f}, TreeSpecies::Shrub, rng);
     }
 }
 
