@@ -62,8 +62,8 @@ TEST_F(GpuCullingTest, ListsEqualTheCpuPathsForRandomVolumesAndLevelsOfDetail) {
         camera.wsDirection = core::Vec3(unit(random), -0.6 * between(random), unit(random));
         camera.fovYDegrees = 30.0 + 60.0 * between(random);
         camera.zFar = 50.0 + 400.0 * between(random);
-        const core::DirectionalLight light(
-            glm::normalize(core::Vec3(unit(random), -0.3 - between(random), unit(random))));
+        const core::DirectionalLight light{
+            glm::normalize(core::Vec3(unit(random), -0.3 - between(random), unit(random)))};
         const int pixels = 64 << (c % 5); // pixel bounds from coarse to fine
         const gl::LodProjection cameraProjection{camera.clipFromWorld(), 0.5 * pixels, 0.25 + between(random)};
         gl::PassList cpu, gpu;
@@ -178,7 +178,7 @@ TEST_F(GpuCullingTest, AnInstanceMovedOutFromBehindAWallIsDrawnInTheFrameItAppea
     camera.aspect = 1.0;
     camera.zNear = 0.5;
     camera.zFar = 100.0;
-    const core::DirectionalLight sun(glm::normalize(core::Vec3(0.3, -1.0, 0.2)));
+    const core::DirectionalLight sun{glm::normalize(core::Vec3(0.3, -1.0, 0.2))};
     const auto setup = core::computeShadowSetup({.camera = camera,
                                                  .light = sun,
                                                  .wsSceneBounds = (*renderer)->wsSceneBounds(),
@@ -226,7 +226,7 @@ TEST_F(GpuCullingTest, EmptyBatchesAndMeshesWithoutTrianglesDrawLikeTheCpuPath) 
     camera.wsEye = {0, 4, 12};
     camera.wsDirection = {0, -0.3, -1};
     camera.aspect = 1.0;
-    const core::DirectionalLight sun(glm::normalize(core::Vec3(0.4, -1.0, 0.3)));
+    const core::DirectionalLight sun{glm::normalize(core::Vec3(0.4, -1.0, 0.3))};
     const auto setup = core::computeShadowSetup({.camera = camera,
                                                  .light = sun,
                                                  .wsSceneBounds = (*renderer)->wsSceneBounds(),
