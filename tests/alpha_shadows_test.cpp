@@ -90,12 +90,12 @@ struct Agreement {
     int glAgrees = 0, truthAgrees = 0;
     int glShadowed = 0, truthShadowed = 0;
 
-    void add(const CardCrossing& cross, bool glShadowed, bool truthShadowed) {
+    void add(const CardCrossing& cross, bool glSaysShadow, bool truthSaysShadow) {
         (cross.covered ? covered : open) += 1;
-        glAgrees += glShadowed == cross.covered;
-        truthAgrees += truthShadowed == cross.covered;
-        this->glShadowed += glShadowed;
-        this->truthShadowed += truthShadowed;
+        glAgrees += glSaysShadow == cross.covered;
+        truthAgrees += truthSaysShadow == cross.covered;
+        glShadowed += glSaysShadow;
+        truthShadowed += truthSaysShadow;
     }
 };
 
