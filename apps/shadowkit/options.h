@@ -134,7 +134,7 @@ struct RenderOptions {
 
 // The culling a frame asking for `requested` is drawn with on the driver whose GL_RENDERER is
 // `glRenderer`, as front ends print it: "chc", or for auto "chc (auto: llvmpipe ... is a
-// software rasteriser)" / "gpu (auto: a GPU rasteriser)".
+// software rasteriser)" / "gpu (auto: NVIDIA ... is a GPU rasteriser)".
 std::string cullingSaid(gl::Culling requested, std::string_view glRenderer);
 
 // A CLI11 transform from a name to an enum value: the names appear in --help as the

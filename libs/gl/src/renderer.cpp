@@ -30,17 +30,17 @@ struct Renderer::Impl {
     std::unique_ptr<CameraPasses> camera;   // main, eval, blur
     std::unique_ptr<LinePass> lines;
     PassTimer localTimer;
-    core::LocalLighting localLights;   // Renderer::setLocalLights, in the scene's coordinates
-    core::LocalLighting wsLocalLights; // the same as given: Renderer::localLights()
-    core::Vec3 wsOrigin{0.0};          // Scene::wsOrigin: where the GPU's coordinates start
-    PassStats lastShadow;              // the last sun shadow pass (its GPU time not read)
-    std::string glRenderer;            // GL_RENDERER: what Culling::Auto is resolved for
+    core::LocalLighting localLights;          // Renderer::setLocalLights, in the scene's coordinates
+    core::LocalLighting wsLocalLights;        // the same as given: Renderer::localLights()
+    core::Vec3 wsOrigin{0.0};                 // Scene::wsOrigin: where the GPU's coordinates start
+    PassStats lastShadow;                     // the last sun shadow pass (its GPU time not read)
+    Culling autoCulling = Culling::Occlusion; // what Culling::Auto is on this driver (read at create)
 
     // The settings a frame is drawn with: Culling::Auto resolved for this driver. Every public
     // entry takes its settings through here, so no pass sees Auto.
     RenderSettings resolved(const RenderSettings& asked) const {
         RenderSettings settings = asked;
-        settings.culling = resolveCulling(asked.culling, glRenderer);
+        if (asked.culling == Culling::Auto) settings.culling = autoCulling;
         return settings;
     }
 
@@ -77,7 +77,8 @@ core::Result<std::unique_ptr<Renderer>> Renderer::create(const scene::Scene& sce
     auto renderer = std::unique_ptr<Renderer>(new Renderer);
     Impl& r = *renderer->m_impl;
     r.wsOrigin = scene.wsOrigin;
-    if (const auto* name = reinterpret_cast<const char*>(glGetString(GL_RENDERER))) r.glRenderer = name;
+    const auto* glRenderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+    r.autoCulling = resolveCulling(Culling::Auto, glRenderer ? glRenderer : "");
     auto sun = SunPass::create();
     if (!sun) return sun.errorInfo();
     r.sun = std::move(sun).value();
@@ -254,7 +255,9 @@ core::Result<std::optional<core::Vec2>> Renderer::visibleDepth(const core::Persp
 
 std::optional<core::Vec2> Renderer::lastVisibleDepth() { return m_impl->lists->lastVisibleDepth(); }
 
-Culling Renderer::culling(Culling requested) const { return resolveCulling(requested, m_impl->glRenderer); }
+Culling Renderer::culling(Culling requested) const {
+    return requested == Culling::Auto ? m_impl->autoCulling : requested;
+}
 
 int Renderer::cameraPrePassesDrawn() const { return m_impl->lists->prepassesDrawn(); }
 
