@@ -24,8 +24,10 @@ struct Appender {
     void triangle(uint32_t a, uint32_t b, uint32_t c) { mesh.indices.insert(mesh.indices.end(), {a, b, c}); }
 };
 
+// Point i of `segments` round a circle; i = segments is point 0 exactly (not cos/sin of 2π in
+// float, 1.7e-7 off), so a side's seam meets itself and its caps: the solid is watertight.
 glm::vec3 ring(int i, int segments, float radius, float y) {
-    const float a = kTwoPi * static_cast<float>(i) / static_cast<float>(segments);
+    const float a = kTwoPi * static_cast<float>(i % segments) / static_cast<float>(segments);
     return {radius * std::cos(a), y, -radius * std::sin(a)};
 }
 
@@ -59,6 +61,7 @@ void addCylinder(Mesh& mesh, const glm::mat4& objectFromPart, int segments, floa
         out.triangle(b0, b1, t1);
         out.triangle(b0, t1, t0);
     }
+    addDisc(out, segments, radius, 0.0f, -1.0f, albedo);
     addDisc(out, segments, radius, height, 1.0f, albedo);
 }
 

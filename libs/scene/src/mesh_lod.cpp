@@ -11,6 +11,8 @@
 // whose open cone layers stop the quadric simplifier at 187 of 228 triangles.
 #include "shadowkit/scene/mesh_lod.h"
 
+#include "shadowkit/scene/closed_surface.h"
+
 #include <meshoptimizer.h>
 
 #include <algorithm>
@@ -51,6 +53,12 @@ void appendChain(const Mesh& mesh, const std::vector<uint32_t>& base, const LodO
     }
 }
 
+// Which shadow levels bound solids: the full mesh may be closed and a clustered level opened.
+void markClosedLevels(const Mesh& mesh, MeshLods& lods) {
+    for (LodLevel& level : lods.shadow)
+        level.closed = boundsSolid(mesh, std::span(lods.indices).subspan(level.firstIndex, level.indexCount));
+}
+
 } // namespace
 
 MeshLods buildLods(const Mesh& mesh, const LodOptions& o) {
@@ -70,12 +78,14 @@ MeshLods buildLods(const Mesh& mesh, const LodOptions& o) {
             out.indices.insert(out.indices.end(), level.indices.begin(), level.indices.end());
         }
         out.shadow = out.camera;
+        markClosedLevels(mesh, out);
         return out;
     }
     const float scale = meshopt_simplifyScale(&mesh.vertices[0].position.x, mesh.vertices.size(), sizeof(Vertex));
     appendChain(mesh, mesh.indices, o, scale, false, out, out.camera);
     if (mesh.triangleCount() > o.maxTriangles) { // one level: both passes draw the same triangles
         out.shadow = out.camera;
+        markClosedLevels(mesh, out);
         return out;
     }
     std::vector<uint32_t> welded(mesh.indices.size());
@@ -83,6 +93,7 @@ MeshLods buildLods(const Mesh& mesh, const LodOptions& o) {
                                       &mesh.vertices[0].position, mesh.vertices.size(), sizeof(glm::vec3),
                                       sizeof(Vertex));
     appendChain(mesh, welded, o, scale, true, out, out.shadow);
+    markClosedLevels(mesh, out);
     return out;
 }
 

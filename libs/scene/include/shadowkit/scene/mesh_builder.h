@@ -6,7 +6,8 @@
 namespace shadowkit::scene {
 
 // Appends to `mesh`, transformed by objectFromPart. Each uses smooth normals on curved
-// sides and flat caps.
+// sides and flat caps, and each is a closed solid (scene/closed_surface.h): a depth pass may
+// cull its faces turned away from the light.
 void addCylinder(Mesh& mesh, const glm::mat4& objectFromPart, int segments, float radius, float height,
                  const glm::vec3& albedo);
 // Cone with its base disc at y = 0 and apex at y = height (base closed).

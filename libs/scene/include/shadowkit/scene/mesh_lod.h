@@ -16,6 +16,9 @@ struct LodLevel {
     // Largest distance, in object-space metres, between the simplified surface and the
     // original (meshoptimizer's error bound times the mesh's extent). 0 for the full mesh.
     float objectError = 0.0f;
+    // Shadow chain: the level bounds solids (closed_surface.h), so a depth pass may cull the
+    // faces turned away from the light and store the same depth. Always false in the camera chain.
+    bool closed = false;
 };
 
 struct MeshLods {
