@@ -100,28 +100,31 @@ Mesh makeTerrainMesh(const Heightfield& field) {
 
 const glm::vec3 kBark(0.33f, 0.23f, 0.14f);
 
-// Unit-height conifer: 12-sided trunk and four 24-sided cone layers (216 triangles).
+// Unit-height conifer: 12-sided trunk and four 24-sided cone layers (228 triangles).
 Mesh makeConifer(const glm::vec3& needles) {
     Mesh mesh;
     mesh.name = "conifer";
-    addCylinder(mesh, glm::mat4(1.0f), 12, 0.025f, 0.35f, kBark);
-    for (int layer = 0; layer < 4; ++layer) {
+    // Top layer first, trunk last: a depth pass from a light above draws the nearest surfaces
+    // first, so the layers and the trunk beneath them fail the depth test instead of
+    // overwriting it (the samples per texel in docs/performance.md).
+    for (int layer = 3; layer >= 0; --layer) {
         const float base = 0.22f + 0.17f * static_cast<float>(layer);
         const float radius = 0.24f - 0.045f * static_cast<float>(layer);
         addCone(mesh, glm::translate(glm::mat4(1.0f), {0.0f, base, 0.0f}), 24, radius, 1.0f - base, needles);
     }
+    addCylinder(mesh, glm::mat4(1.0f), 12, 0.025f, 0.35f, kBark);
     mesh.computeBounds();
     return mesh;
 }
 
-// Unit-height broadleaf tree: trunk and a geodesic crown (344 triangles).
+// Unit-height broadleaf tree: trunk and a geodesic crown (356 triangles), crown first (as the conifer).
 Mesh makeBroadleaf(const glm::vec3& leaves) {
     Mesh mesh;
     mesh.name = "broadleaf";
-    addCylinder(mesh, glm::mat4(1.0f), 12, 0.035f, 0.55f, kBark);
     glm::mat4 crown = glm::translate(glm::mat4(1.0f), {0.0f, 0.68f, 0.0f});
     crown = glm::scale(crown, {1.0f, 0.9f, 1.0f});
     addIcosphere(mesh, crown, 2, 0.32f, leaves);
+    addCylinder(mesh, glm::mat4(1.0f), 12, 0.035f, 0.55f, kBark);
     mesh.computeBounds();
     return mesh;
 }
