@@ -12,6 +12,12 @@ enum class CasterCull {
     Back,  ///< front faces only (the usual choice for closed meshes)
     Front, ///< back faces only: "back-side rendering" (Scherzer 2005 §4.2): the stored depth is the
            // far side of each caster, so lit front faces are never compared with themselves
+    /// Back faces of closed casters only (scene/closed_surface.h: mesh levels that bound solids,
+    /// single-sided materials, no mirrored instance); open ones draw both sides. Without bias the
+    /// map is None's — a ray from the light enters a solid through a face turned towards it —
+    /// for fewer samples written; with slope-scaled offset it is not: a steep near side is
+    /// pushed back past what its far side would have stored (docs/performance.md).
+    BackOfClosed,
 };
 
 /// Caster-side and receiver-side bias of a shadow map: slope, constant, normal offset, receiver plane, culled faces.
@@ -26,7 +32,9 @@ struct BiasSettings {
     /// Receiver-plane depth bias: the reference depth follows the receiver's plane to each
     /// texel (tap) centre, using the screen derivatives of the shadow coordinates.
     bool receiverPlane = false;
-    CasterCull cull = CasterCull::None; ///< caster faces culled when drawing the map (front: back sides only)
+    /// Caster faces culled when drawing the map (front: back sides only). Faces are turned
+    /// towards or away from the light in the world (caster_facing.h), whatever the warp.
+    CasterCull cull = CasterCull::None;
 };
 
 /// Checks the ranges above; error fields "bias.slope", "bias.constant", "bias.normal_offset".
