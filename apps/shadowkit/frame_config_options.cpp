@@ -43,7 +43,8 @@ core::Result<frame::FrameConfig> frameConfigOf(const TechniqueOptions& technique
     config.bias.normalOffset = render.normalOffset;
     using Cull = RenderOptions::CullChoice;
     if (render.cull != Cull::Auto)
-        config.bias.cull = render.cull == Cull::Back    ? core::CasterCull::Back
+        config.bias.cull = render.cull == Cull::Closed  ? core::CasterCull::BackOfClosed
+                           : render.cull == Cull::Back  ? core::CasterCull::Back
                            : render.cull == Cull::Front ? core::CasterCull::Front
                                                         : core::CasterCull::None;
     if (render.receiverPlaneBias != RenderOptions::Choice::Auto)

@@ -284,8 +284,11 @@ void RenderOptions::addTo(CLI::App& cmd) {
                    "slope-scaled depth bias (glPolygonOffset factor; default: per technique)");
     cmd.add_option("--bias-constant", biasConstant,
                    "constant depth bias (glPolygonOffset units; default: per technique)");
-    cmd.add_option("--cull", cull, "caster faces left out of the map (front: back-side rendering; auto: per technique)")
+    cmd.add_option("--cull", cull,
+                   "caster faces left out of the map (closed: back faces of closed meshes, the same map as none's "
+                   "at half the samples; front: back-side rendering; auto: per technique)")
         ->transform(choice(Choices<CullChoice>{{"auto", CullChoice::Auto},
+                                               {"closed", CullChoice::Closed},
                                                {"back", CullChoice::Back},
                                                {"front", CullChoice::Front},
                                                {"none", CullChoice::None}}))

@@ -108,7 +108,7 @@ struct BoundsOptions {
 // Bias values not given come from core::recommendedBias for the technique and filter.
 struct RenderOptions {
     enum class Choice { Auto, On, Off };
-    enum class CullChoice { Auto, Back, Front, None }; // Auto: the recommended culling
+    enum class CullChoice { Auto, Closed, Back, Front, None }; // Auto: the recommended culling
     std::optional<double> biasSlope, biasConstant, normalOffset;
     CullChoice cull = CullChoice::Auto;
     Choice receiverPlaneBias = Choice::Auto;

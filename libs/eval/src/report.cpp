@@ -47,9 +47,10 @@ std::string reportJson(const std::vector<ViewReport>& views) {
             {"bias_constant", v.bias.constant},
             {"normal_offset", v.bias.normalOffset},
             {"receiver_plane_bias", v.bias.receiverPlane},
-            {"cull", v.bias.cull == core::CasterCull::None   ? "none"
-                     : v.bias.cull == core::CasterCull::Back ? "back"
-                                                             : "front"},
+            {"cull", v.bias.cull == core::CasterCull::None           ? "none"
+                     : v.bias.cull == core::CasterCull::Back         ? "back"
+                     : v.bias.cull == core::CasterCull::BackOfClosed ? "closed"
+                                                                     : "front"},
             {"filter", v.filter},
             {"blur_iterations", v.blurIterations},
             {"fallbacks", v.fallbacks},

@@ -2,6 +2,7 @@
 
 #include "uniforms.h"
 
+#include "shadowkit/core/caster_facing.h"
 #include "shadowkit/scene/texture_mips.h"
 
 #include <algorithm>
@@ -15,8 +16,8 @@ namespace {
 std::vector<GpuScene::Range> rangesOf(const std::vector<scene::LodLevel>& chain) {
     std::vector<GpuScene::Range> ranges;
     for (size_t l = 0; l < std::min(chain.size(), kMaxLodLevels); ++l)
-        ranges.push_back(
-            {static_cast<GLsizei>(chain[l].indexCount), chain[l].firstIndex * sizeof(uint32_t), chain[l].objectError});
+        ranges.push_back({static_cast<GLsizei>(chain[l].indexCount), chain[l].firstIndex * sizeof(uint32_t),
+                          chain[l].objectError, chain[l].closed});
     return ranges;
 }
 
@@ -51,7 +52,16 @@ Texture uploadTexture(const scene::Texture& texture, std::optional<float> alphaC
     return gl;
 }
 
+bool anyMirrored(const std::vector<glm::mat4>& worldFromObject) {
+    return std::any_of(worldFromObject.begin(), worldFromObject.end(),
+                       [](const glm::mat4& m) { return glm::determinant(glm::mat3(m)) < 0.0f; });
+}
+
 } // namespace
+
+void setLightFacingFront(const core::Mat4& clipFromWorld, const core::Vec3& wsTowardsLight) {
+    glFrontFace(core::lightFacingWinding(clipFromWorld, wsTowardsLight) == core::Winding::Clockwise ? GL_CW : GL_CCW);
+}
 
 GpuScene::GpuScene(const scene::Scene& scene, std::span<const scene::MeshLods> lods) {
     for (size_t t = 0; t < scene.textures.size(); ++t) {
@@ -140,6 +150,7 @@ GpuScene::GpuScene(const scene::Scene& scene, std::span<const scene::MeshLods> l
                                               batch.worldFromObject.size() * sizeof(glm::mat4), batch.dynamic),
                                  firstInstance,
                                  b,
+                                 anyMirrored(batch.worldFromObject),
                                  {}});
             const GpuMesh& mesh = m_meshes[batch.mesh];
             const auto clustered = [](const auto& levels) {
@@ -156,6 +167,7 @@ void GpuScene::updateBatch(const scene::Scene& scene, size_t sceneBatch) {
     for (GpuBatch& batch : m_batches) {
         if (batch.index != sceneBatch) continue;
         const std::vector<glm::mat4>& transforms = scene.batches[sceneBatch].worldFromObject;
+        batch.mirrored = anyMirrored(transforms);
         if (!batch.worldFromObject.empty()) batch.worldFromObject = transforms;
         glNamedBufferSubData(batch.instances.id(), 0, static_cast<GLsizeiptr>(transforms.size() * sizeof(glm::mat4)),
                              transforms.data());
@@ -199,16 +211,15 @@ DrawStats GpuScene::drawBatches(const PassList& list, const PassPrograms& progra
                 glUniform1f(kBaseAlphaLocation, batch.material.baseAlpha);
                 glUniform1f(kAlphaCutoffLocation, batch.material.alphaCutoff);
             }
-            if (batch.material.doubleSided && culling) glDisable(GL_CULL_FACE);
-            stats += drawBatch(batch, list, setInstanceBase, replicas, volume);
-            if (batch.material.doubleSided && culling) glEnable(GL_CULL_FACE);
+            stats += drawBatch(batch, list, programs, culling, setInstanceBase, replicas, volume);
         }
     }
     glBindVertexArray(0);
     return stats;
 }
 
-DrawStats GpuScene::drawBatch(const GpuBatch& batch, const PassList& list, bool setInstanceBase, int replicas,
+DrawStats GpuScene::drawBatch(const GpuBatch& batch, const PassList& list, const PassPrograms& programs, bool culling,
+                              bool setInstanceBase, int replicas,
                               const std::span<const visibility::HalfSpace>* volume) const {
     DrawStats stats;
     const GpuMesh& mesh = m_meshes[batch.mesh];
@@ -225,56 +236,70 @@ DrawStats GpuScene::drawBatch(const GpuBatch& batch, const PassList& list, bool 
             bound = true;
         }
         const Range& range = levels[level];
-        const auto& clusterLevels = list.shadow ? mesh.shadowClusters : mesh.cameraClusters;
-        if (volume && list.indirect < 0 && level < clusterLevels.size() && !clusterLevels[level].empty()) {
-            // Each instance alone, each run of clusters meeting the volume in one draw.
-            const std::vector<scene::TriangleCluster>& clusters = clusterLevels[level];
-            for (uint32_t k = 0; k < count; ++k) {
-                const core::Mat4 worldFromObject(batch.worldFromObject[list.indices[list.first[slot] + k]]);
-                glUniform1ui(kInstanceOffsetLocation, list.offset + list.first[slot] + k);
-                size_t run = 0, runIndices = 0;
-                auto flush = [&](size_t end) {
-                    if (runIndices == 0) return;
-                    glDrawElementsInstanced(GL_TRIANGLES, static_cast<GLsizei>(runIndices), GL_UNSIGNED_INT,
-                                            reinterpret_cast<const void*>(clusters[run].firstIndex * sizeof(uint32_t)),
-                                            1);
-                    stats.triangles += runIndices / 3;
-                    ++stats.drawCalls;
-                    runIndices = 0;
-                    run = end;
-                };
-                for (size_t c = 0; c < clusters.size(); ++c) {
-                    if (visibility::isOutside(*volume, core::transformBounds(worldFromObject, clusters[c].osBounds))) {
-                        flush(c + 1);
-                        continue;
-                    }
-                    if (runIndices == 0) run = c;
-                    runIndices += clusters[c].indexCount;
-                }
-                flush(clusters.size());
-                ++stats.instances;
-            }
-            continue;
-        }
-        glUniform1ui(kInstanceOffsetLocation, list.offset + list.first[slot]);
-        // Camera passes move simplified receivers' shadow lookups by their error (main.vert).
-        if (setInstanceBase) glUniform1f(kLodErrorLocation, range.objectError);
-        if (list.indirect >= 0) {
-            // The command holds the level's range and the instances the GPU kept (up to
-            // `count`): what is drawn is known to the GPU only (GpuCulling::submitted).
-            const size_t command = static_cast<size_t>(list.indirect) + slot;
-            glDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT,
-                                   reinterpret_cast<const void*>(command * kIndirectCommandWords * sizeof(uint32_t)));
-            ++stats.drawCalls;
-            continue;
-        }
-        glDrawElementsInstanced(GL_TRIANGLES, range.indexCount, GL_UNSIGNED_INT,
-                                reinterpret_cast<const void*>(range.byteOffset),
-                                static_cast<GLsizei>(count) * replicas);
-        stats.instances += static_cast<size_t>(count) * static_cast<size_t>(replicas);
-        stats.triangles += static_cast<size_t>(range.indexCount / 3) * count * static_cast<size_t>(replicas);
-        ++stats.drawCalls;
+        // Both sides where culling could lose a face the light or camera meets first.
+        const bool twoSided =
+            culling && (batch.material.doubleSided || batch.mirrored || (programs.cullClosedOnly && !range.closed));
+        if (twoSided) glDisable(GL_CULL_FACE);
+        stats += drawLevel(batch, list, level, range, setInstanceBase, replicas, volume);
+        if (twoSided) glEnable(GL_CULL_FACE);
     }
+    return stats;
+}
+
+DrawStats GpuScene::drawLevel(const GpuBatch& batch, const PassList& list, size_t level, const Range& range,
+                              bool setInstanceBase, int replicas,
+                              const std::span<const visibility::HalfSpace>* volume) const {
+    DrawStats stats;
+    const GpuMesh& mesh = m_meshes[batch.mesh];
+    const size_t slot = batch.index * kMaxLodLevels + level;
+    const uint32_t count = list.count[slot];
+    const auto& clusterLevels = list.shadow ? mesh.shadowClusters : mesh.cameraClusters;
+    if (volume && list.indirect < 0 && level < clusterLevels.size() && !clusterLevels[level].empty()) {
+        // Each instance alone, each run of clusters meeting the volume in one draw.
+        const std::vector<scene::TriangleCluster>& clusters = clusterLevels[level];
+        for (uint32_t k = 0; k < count; ++k) {
+            const core::Mat4 worldFromObject(batch.worldFromObject[list.indices[list.first[slot] + k]]);
+            glUniform1ui(kInstanceOffsetLocation, list.offset + list.first[slot] + k);
+            size_t run = 0, runIndices = 0;
+            auto flush = [&](size_t end) {
+                if (runIndices == 0) return;
+                glDrawElementsInstanced(GL_TRIANGLES, static_cast<GLsizei>(runIndices), GL_UNSIGNED_INT,
+                                        reinterpret_cast<const void*>(clusters[run].firstIndex * sizeof(uint32_t)), 1);
+                stats.triangles += runIndices / 3;
+                ++stats.drawCalls;
+                runIndices = 0;
+                run = end;
+            };
+            for (size_t c = 0; c < clusters.size(); ++c) {
+                if (visibility::isOutside(*volume, core::transformBounds(worldFromObject, clusters[c].osBounds))) {
+                    flush(c + 1);
+                    continue;
+                }
+                if (runIndices == 0) run = c;
+                runIndices += clusters[c].indexCount;
+            }
+            flush(clusters.size());
+            ++stats.instances;
+        }
+        return stats;
+    }
+    glUniform1ui(kInstanceOffsetLocation, list.offset + list.first[slot]);
+    // Camera passes move simplified receivers' shadow lookups by their error (main.vert).
+    if (setInstanceBase) glUniform1f(kLodErrorLocation, range.objectError);
+    if (list.indirect >= 0) {
+        // The command holds the level's range and the instances the GPU kept (up to
+        // `count`): what is drawn is known to the GPU only (GpuCulling::submitted).
+        const size_t command = static_cast<size_t>(list.indirect) + slot;
+        glDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT,
+                               reinterpret_cast<const void*>(command * kIndirectCommandWords * sizeof(uint32_t)));
+        ++stats.drawCalls;
+        return stats;
+    }
+    glDrawElementsInstanced(GL_TRIANGLES, range.indexCount, GL_UNSIGNED_INT,
+                            reinterpret_cast<const void*>(range.byteOffset), static_cast<GLsizei>(count) * replicas);
+    stats.instances += static_cast<size_t>(count) * static_cast<size_t>(replicas);
+    stats.triangles += static_cast<size_t>(range.indexCount / 3) * count * static_cast<size_t>(replicas);
+    ++stats.drawCalls;
     return stats;
 }
 

@@ -23,6 +23,9 @@ struct PassPrograms {
     GLuint plain = 0;
     GLuint material = 0; // 0: every batch with `plain` (a pass that draws no materials)
     bool colour = false; // the pass shades colour (main pass): textures matter to opaque batches too
+    // With face culling enabled: only levels known closed are culled (core::CasterCull::BackOfClosed),
+    // open ones draw both sides. Otherwise every batch but a double-sided one is culled.
+    bool cullClosedOnly = false;
 };
 inline constexpr std::string_view kMaterialVariant[2] = {"", "#define SK_MATERIAL 1\n"};
 
@@ -42,6 +45,11 @@ struct DrawStats {
     }
 };
 
+// glFrontFace for a depth pass into the map of `clipFromWorld`: the winding the faces turned
+// towards the sun show there (core/caster_facing.h), so that culling GL_BACK leaves out the
+// faces turned away from it under any warp. The pass restores GL_CCW when it ends.
+void setLightFacingFront(const core::Mat4& clipFromWorld, const core::Vec3& wsTowardsLight);
+
 class GpuScene {
 public:
     // `lods[m]` holds mesh m's index buffer with every level of detail (scene::buildLods).
@@ -54,7 +62,9 @@ public:
     // receives the batch's first global instance index (Scene order), the surface identity
     // of the evaluation. `replicas` > 1 draws every instance that many times in a row
     // (gl_InstanceID / replicas is the list entry): the layered cube pass's faces.
-    // Batches whose material is double-sided draw with back-face culling off (the state is
+    // With face culling enabled, batches whose material is double-sided draw with it off, and
+    // so do mirrored batches (an instance whose transform has a negative determinant: its
+    // winding is reversed) and, where `programs` asks, levels not known closed (the state is
     // restored after each). Plain batches first, then the material ones.
     DrawStats draw(const PassList& list, const PassPrograms& programs, bool setInstanceBase = false,
                    int replicas = 1) const;
@@ -74,6 +84,7 @@ public:
         GLsizei indexCount = 0;
         size_t byteOffset = 0;
         float objectError = 0.0f; // scene::LodLevel::objectError
+        bool closed = false;      // scene::LodLevel::closed
     };
 
 private:
@@ -97,12 +108,16 @@ private:
         Buffer instances;
         GLuint firstInstance = 0;               // global index over all batches
         size_t index = 0;                       // in Scene::batches (PassList's per-batch ranges)
+        bool mirrored = false;                  // an instance's transform has a negative determinant
         std::vector<glm::mat4> worldFromObject; // kept on the CPU for clustered meshes only
     };
     DrawStats drawBatches(const PassList& list, const PassPrograms& programs, bool setInstanceBase, int replicas,
                           const std::span<const visibility::HalfSpace>* volume) const;
-    DrawStats drawBatch(const GpuBatch& batch, const PassList& list, bool setInstanceBase, int replicas,
-                        const std::span<const visibility::HalfSpace>* volume) const;
+    DrawStats drawBatch(const GpuBatch& batch, const PassList& list, const PassPrograms& programs, bool culling,
+                        bool setInstanceBase, int replicas, const std::span<const visibility::HalfSpace>* volume) const;
+    // One level of a batch: its instances in `list`, one draw (or one per run of clusters).
+    DrawStats drawLevel(const GpuBatch& batch, const PassList& list, size_t level, const Range& range,
+                        bool setInstanceBase, int replicas, const std::span<const visibility::HalfSpace>* volume) const;
     std::vector<Texture> m_textures; // Scene::textures, mipmapped (scene::buildMipChain)
     Texture m_white;                 // for alpha-tested materials without a texture
     std::vector<GpuMesh> m_meshes;

@@ -50,8 +50,8 @@ struct Renderer::Impl {
                                              const core::ShadowSetup& setup, const RenderSettings& settings,
                                              PassPurpose purpose);
     // The sun's maps, then the local lights' (shadow terms every camera pass reads).
-    core::Result<PassStats> shadowPasses(const core::ShadowSetup& setup, const RenderSettings& settings,
-                                         const core::BiasSettings& bias);
+    core::Result<PassStats> shadowPasses(const core::DirectionalLight& light, const core::ShadowSetup& setup,
+                                         const RenderSettings& settings, const core::BiasSettings& bias);
     // Culling::Gpu: what the sun's lists drew, read back into lastShadow (waits for the GPU).
     void readGpuShadowDraws(const RenderSettings& settings) {
         if (settings.culling != Culling::Gpu || lastShadow.drawCalls == 0) return; // no sun: nothing drawn
@@ -129,9 +129,11 @@ core::Result<core::BiasSettings> Renderer::Impl::prepare(const core::Perspective
     return bias;
 }
 
-core::Result<PassStats> Renderer::Impl::shadowPasses(const core::ShadowSetup& setup, const RenderSettings& settings,
+core::Result<PassStats> Renderer::Impl::shadowPasses(const core::DirectionalLight& light,
+                                                     const core::ShadowSetup& setup, const RenderSettings& settings,
                                                      const core::BiasSettings& bias) {
-    auto sunStats = sun->draw(*scene, setup, settings, bias, lists->sunLists(), lists->pageLists());
+    auto sunStats =
+        sun->draw(*scene, setup, settings, bias, light.wsTowardsLight(), lists->sunLists(), lists->pageLists());
     if (!sunStats) return sunStats.errorInfo();
     lastShadow = *sunStats;
     localTimer.begin();
@@ -151,7 +153,7 @@ core::Result<FrameStats> Renderer::render(const core::PerspectiveCamera& wsCamer
     const auto bias = r.prepare(camera, light, setup, settings, PassPurpose::Frame);
     if (!bias) return bias.errorInfo();
     FrameStats stats;
-    auto local = r.shadowPasses(setup, settings, *bias);
+    auto local = r.shadowPasses(light, setup, settings, *bias);
     if (!local) return local.errorInfo();
     stats.local = *local;
     for (const core::ShadowSetup& s : r.localLights.pointSetups)
@@ -224,7 +226,7 @@ core::Result<core::RasterBuffers> Renderer::Impl::evalBuffers(const SceneFrame& 
     const bool shadows = purpose == PassPurpose::Frame;
     lastShadow = {};
     if (shadows)
-        if (auto s = shadowPasses(setup, settings, *bias); !s) return s.errorInfo();
+        if (auto s = shadowPasses(light, setup, settings, *bias); !s) return s.errorInfo();
     readGpuShadowDraws(settings);
     const CameraView view{frame.camera, light, sun->lookupSetup(setup, settings), settings, *bias};
     bindFrame(view, false, localLight);

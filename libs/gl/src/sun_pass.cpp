@@ -63,7 +63,8 @@ core::Status SunPass::prepare(const core::ShadowSetup& setup, const RenderSettin
 
 core::Result<PassStats> SunPass::draw(const GpuScene& scene, const core::ShadowSetup& setup,
                                       const RenderSettings& settings, const core::BiasSettings& bias,
-                                      std::span<const PassList> mapLists, std::span<const PassList> pageLists) {
+                                      const core::Vec3& wsTowardsLight, std::span<const PassList> mapLists,
+                                      std::span<const PassList> pageLists) {
     m_lastVirtual.reset();
     m_samples.reset();
     m_countedTexels = 0;
@@ -79,7 +80,8 @@ core::Result<PassStats> SunPass::draw(const GpuScene& scene, const core::ShadowS
         glBindFramebuffer(GL_FRAMEBUFFER, m_pages->framebuffer().id());
         beginDepthPass(bias, true, core::DepthLayout::Hyperbolic); // pages store clip depth
         m_timer.begin();
-        draws = m_pages->drawPages(scene, programsFor(core::DepthLayout::Hyperbolic), pageLists, m_uniforms);
+        draws = m_pages->drawPages(scene, casterPrograms(core::DepthLayout::Hyperbolic, bias), wsTowardsLight,
+                                   pageLists, m_uniforms);
         m_timer.end();
         endDepthPass();
         m_pages->rendered();
@@ -92,7 +94,7 @@ core::Result<PassStats> SunPass::draw(const GpuScene& scene, const core::ShadowS
     beginDepthPass(bias, setup.depthClamp, setup.depthLayout);
     m_timer.begin();
     m_samples.begin();
-    draws = drawFixedMaps(scene, setup, bias, mapLists);
+    draws = drawFixedMaps(scene, setup, bias, wsTowardsLight, mapLists);
     m_samples.end();
     m_countedTexels = uint64_t(m_shadow->size) * uint64_t(m_shadow->size) * setup.views.size();
     // MSM: the maps' moments, blurred, inside the pass's time (a real frame pays them with it).
@@ -108,7 +110,7 @@ core::Result<PassStats> SunPass::draw(const GpuScene& scene, const core::ShadowS
 }
 
 DrawStats SunPass::drawFixedMaps(const GpuScene& scene, const core::ShadowSetup& setup, const core::BiasSettings& bias,
-                                 std::span<const PassList> lists) const {
+                                 const core::Vec3& wsTowardsLight, std::span<const PassList> lists) const {
     const auto slope = static_cast<float>(bias.slope), constant = static_cast<float>(bias.constant);
     DrawStats draws;
     for (size_t layer = 0; layer < setup.views.size(); ++layer) { // one array layer per shadow view
@@ -123,7 +125,8 @@ DrawStats SunPass::drawFixedMaps(const GpuScene& scene, const core::ShadowSetup&
         m_shadow->attachLayer(static_cast<int>(layer));
         const float clearDepth = 1.0f;
         glClearNamedFramebufferfv(m_shadow->framebuffer.id(), GL_DEPTH, 0, &clearDepth);
-        draws += scene.draw(lists[layer], programsFor(setup.depthLayout));
+        setLightFacingFront(view.clipFromWorld, wsTowardsLight);
+        draws += scene.draw(lists[layer], casterPrograms(setup.depthLayout, bias));
     }
     return draws;
 }
@@ -132,12 +135,15 @@ void SunPass::beginDepthPass(const core::BiasSettings& bias, bool depthClamp, co
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
-    // Caster culling: front-face culling stores the casters' back sides (Scherzer 2005 §4.2).
+    // Caster culling: front-face culling stores the casters' back sides (Scherzer 2005 §4.2);
+    // back-face culling of closed casters leaves the map as it is at half the samples. Each
+    // map sets which winding faces the light (setLightFacingFront); GpuScene keeps open levels,
+    // double-sided materials and mirrored instances two-sided where asked.
     if (bias.cull == core::CasterCull::None) {
         glDisable(GL_CULL_FACE);
     } else {
         glEnable(GL_CULL_FACE);
-        glCullFace(bias.cull == core::CasterCull::Back ? GL_BACK : GL_FRONT);
+        glCullFace(bias.cull == core::CasterCull::Front ? GL_FRONT : GL_BACK);
     }
     if (depthClamp) glEnable(GL_DEPTH_CLAMP);
     glEnable(GL_POLYGON_OFFSET_FILL);
@@ -147,6 +153,7 @@ void SunPass::beginDepthPass(const core::BiasSettings& bias, bool depthClamp, co
 }
 
 void SunPass::endDepthPass() {
+    glFrontFace(GL_CCW); // the camera passes' winding
     glDisable(GL_POLYGON_OFFSET_FILL);
     glDisable(GL_DEPTH_CLAMP);
 }

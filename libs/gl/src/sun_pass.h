@@ -35,10 +35,11 @@ public:
     core::Status prepare(const core::ShadowSetup& setup, const RenderSettings& settings,
                          const core::BiasSettings& bias);
     // Draws the maps: `mapLists` one per fixed map, or `pageLists` one per page to render. No
-    // sun (settings.sun false): nothing is drawn. Timed (milliseconds()).
+    // sun (settings.sun false): nothing is drawn. Timed (milliseconds()). `wsTowardsLight`
+    // says which faces bias.cull's front and back are (core/caster_facing.h).
     core::Result<PassStats> draw(const GpuScene& scene, const core::ShadowSetup& setup, const RenderSettings& settings,
-                                 const core::BiasSettings& bias, std::span<const PassList> mapLists,
-                                 std::span<const PassList> pageLists);
+                                 const core::BiasSettings& bias, const core::Vec3& wsTowardsLight,
+                                 std::span<const PassList> mapLists, std::span<const PassList> pageLists);
     // The GPU time of the last draw(); waits for it.
     double milliseconds() const { return m_timer.milliseconds(); }
     // The samples the last draw() wrote into its fixed maps and the texels they hold (0, 0 for
@@ -73,8 +74,14 @@ private:
     // caster culling), depth clamp when asked, the depth program and its uniforms bound.
     void beginDepthPass(const core::BiasSettings& bias, bool depthClamp, core::DepthLayout layout) const;
     static void endDepthPass();
+    // The depth programs of a layout, told which levels bias.cull may cull.
+    PassPrograms casterPrograms(core::DepthLayout layout, const core::BiasSettings& bias) const {
+        PassPrograms programs = programsFor(layout);
+        programs.cullClosedOnly = bias.cull == core::CasterCull::BackOfClosed;
+        return programs;
+    }
     DrawStats drawFixedMaps(const GpuScene& scene, const core::ShadowSetup& setup, const core::BiasSettings& bias,
-                            std::span<const PassList> lists) const;
+                            const core::Vec3& wsTowardsLight, std::span<const PassList> lists) const;
 
     ProgramPair m_programs[2]; // depth only, [hyperbolic, linear]; alpha-tested materials discard
     Buffer m_uniforms;         // the DepthPass block

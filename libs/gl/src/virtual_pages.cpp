@@ -151,8 +151,8 @@ VirtualPageStats VirtualPages::stats() const {
     return stats;
 }
 
-DrawStats VirtualPages::drawPages(const GpuScene& scene, const PassPrograms& programs, std::span<const PassList> lists,
-                                  const Buffer& depthUniforms) const {
+DrawStats VirtualPages::drawPages(const GpuScene& scene, const PassPrograms& programs, const core::Vec3& wsTowardsLight,
+                                  std::span<const PassList> lists, const Buffer& depthUniforms) const {
     DrawStats draws;
     glEnable(GL_SCISSOR_TEST);
     const auto toRender = m_cache.pagesToRender();
@@ -164,6 +164,7 @@ DrawStats VirtualPages::drawPages(const GpuScene& scene, const PassPrograms& pro
         glClearNamedFramebufferfv(m_framebuffer.id(), GL_DEPTH, 0, &clearDepth);
         const DepthPassUniforms uniforms{.clipFromWorld = glm::mat4(toRender[i].clipFromWorld)};
         glNamedBufferSubData(depthUniforms.id(), 0, sizeof uniforms, &uniforms);
+        setLightFacingFront(toRender[i].clipFromWorld, wsTowardsLight);
         draws += scene.draw(lists[i], programs, visibility::clipVolume(toRender[i].clipFromWorld, false));
     }
     glDisable(GL_SCISSOR_TEST);

@@ -187,7 +187,8 @@ TEST_F(RendererTest, EveryBiasModeAndFilterWorksWithEveryTechnique) {
     base.width = base.height = 96;
     base.fogDensity = 0.0f;
     base.bias = core::BiasSettings{}; // every mode below changes one thing from the same bias
-    for (core::CasterCull cull : {core::CasterCull::None, core::CasterCull::Back, core::CasterCull::Front}) {
+    for (core::CasterCull cull :
+         {core::CasterCull::None, core::CasterCull::Back, core::CasterCull::Front, core::CasterCull::BackOfClosed}) {
         gl::RenderSettings m = base;
         m.bias->cull = cull;
         modes.emplace_back("cull " + std::to_string(int(cull)), m);
