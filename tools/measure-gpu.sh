@@ -76,7 +76,8 @@ for section in "${sections[@]}"; do
     done
     ;;
   frame)
-    step frame-chc 150 "${bench[@]}" --trees 1000,10000,100000 --views perpendicular,aerial,paper --json "$res/frame-chc.json"
+    step frame-chc 150 "${bench[@]}" --trees 1000,10000,100000 --views perpendicular,aerial,paper --limits \
+      --json "$res/frame-chc.json"
     step frame-gpu 120 "${bench[@]}" --trees 1000,10000,100000 --views perpendicular,aerial,paper --visibility gpu \
       --json "$res/frame-gpu.json"
     step frame-frustum 60 "${bench[@]}" --trees 10000 --views perpendicular --visibility frustum --caster-culling volume \

@@ -7,6 +7,7 @@
 
 #include "shadowkit/frame/frame_driver.h"
 #include "shadowkit/gl/context.h"
+#include "shadowkit/gl/depth_limits.h"
 #include "shadowkit/gl/renderer.h"
 #include "shadowkit/measure/frame_costs.h"
 #include "shadowkit/scene/forest.h"
@@ -18,6 +19,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <optional>
 #include <sstream>
 
 namespace shadowkit::app {
@@ -33,6 +35,7 @@ struct BenchArgs {
     double terrainSize = 1024.0;
     int terrainResolution = 256;
     bool sameDensity = false;
+    bool limits = false; // --limits: this GL's depth fill and triangle rates, and each shadow pass against them
     int frames = 5;
 };
 
@@ -108,6 +111,31 @@ void printPassLines(const BenchArgs& args, gl::Culling culling, const measure::F
     }
 }
 
+// --limits: this GL's ceilings, measured once before the forests (gl/depth_limits.h).
+void printLimits(const gl::DepthLimits& l) {
+    fmt::print("limits: depth-only fill {:.3f} G samples/s ({} samples in {:.2f} ms); triangles {:.3g} M/s small "
+               "(about 2 texels each, {} in {:.2f} ms), {:.3g} M/s large (half the map each, {:.2f} ms)\n",
+               l.fillSamplesPerSecond * 1e-9, l.fillSamples, l.fillMilliseconds, l.smallTrianglesPerSecond * 1e-6,
+               l.smallTriangles, l.smallMilliseconds, l.largeTrianglesPerSecond * 1e-6, l.largeMilliseconds);
+}
+
+nlohmann::json limitsJson(const gl::DepthLimits& l) {
+    return {{"fill_samples_per_s", l.fillSamplesPerSecond},
+            {"small_triangles_per_s", l.smallTrianglesPerSecond},
+            {"large_triangles_per_s", l.largeTrianglesPerSecond},
+            {"fill_samples", l.fillSamples},
+            {"small_triangles", l.smallTriangles},
+            {"large_triangles", l.largeTriangles}};
+}
+
+// --limits: the view's shadow pass against them.
+void printShadowRates(const measure::FrameCosts::Rates& r) {
+    fmt::print("{:>7} {:>7} {:<14} limits  the shadow pass wrote {:.3f} G samples/s ({:.1f} % of the fill rate) and "
+               "set up {:.2f} M triangles/s ({:.1f} % of the triangle rate): {}\n",
+               "", "", "", r.samplesPerSecond * 1e-9, 100.0 * r.ofFill, r.trianglesPerSecond * 1e-6,
+               100.0 * r.ofTriangles, r.ofFill >= r.ofTriangles ? "fill-bound" : "triangle-bound");
+}
+
 // Prints a view's rows and adds them to --report's table.
 void printRows(const BenchRow& row, const measure::FrameCosts& costs, eval::HtmlTable& table) {
     const measure::Spread setup = costs.setupRest(), cull = costs.cull();
@@ -149,7 +177,8 @@ eval::HtmlTable reportTable(const BenchArgs& args, const std::string& machine) {
 
 // One view of one forest: its frames drawn and their costs printed; its JSON row.
 core::Result<nlohmann::json> benchView(const BenchArgs& args, const BenchRow& row, const scene::Scene& forest,
-                                       gl::Renderer& renderer, frame::FrameDriver& driver, eval::HtmlTable& table) {
+                                       gl::Renderer& renderer, frame::FrameDriver& driver, eval::HtmlTable& table,
+                                       const std::optional<gl::DepthLimits>& limits) {
     ViewOptions viewOptions = args.view;
     viewOptions.view = row.view;
     auto view = viewOptions.resolve(forest);
@@ -165,6 +194,14 @@ core::Result<nlohmann::json> benchView(const BenchArgs& args, const BenchRow& ro
     const gl::Culling culling = renderer.culling(args.render.culling()); // auto resolved for this driver
     printPassLines(args, culling, costs);
     nlohmann::json run = costs.json();
+    if (limits) {
+        const measure::FrameCosts::Rates rates = costs.shadowRates(*limits);
+        printShadowRates(rates);
+        run["shadow_rates"] = {{"samples_per_s", rates.samplesPerSecond},
+                               {"triangles_per_s", rates.trianglesPerSecond},
+                               {"of_fill", rates.ofFill},
+                               {"of_triangles", rates.ofTriangles}};
+    }
     run.update({{"trees", row.trees},
                 {"terrain_size", row.terrainSize},
                 {"forest_seconds", row.forestSeconds},
@@ -208,6 +245,13 @@ int runBench(const BenchArgs& args) {
                core::techniqueName(args.technique.technique), args.frames,
                cullingSaid(args.render.culling(), (*context)->renderer()));
     fmt::print("caster culling {}\n", args.render.receiverMask ? "by visible receivers" : "by volume");
+    std::optional<gl::DepthLimits> limits;
+    if (args.limits) {
+        auto measured = gl::measureDepthLimits();
+        if (!measured) return fail(measured.errorInfo());
+        limits = *measured;
+        printLimits(*limits);
+    }
     fmt::print("{:>7} {:>7} {:<14} {:<7} {:>9} {:>9} {:>6} {:>26} {:>20} {:>20}\n", "trees", "terrain", "view", "pass",
                "instances", "M tris", "draws", "GPU ms min/med/max", "set-up ms 1st/rest", "cull ms med/max");
     nlohmann::json runs = nlohmann::json::array();
@@ -226,13 +270,16 @@ int runBench(const BenchArgs& args) {
         for (const std::string& name : viewNames) {
             BenchRow viewRow = row;
             viewRow.view = name;
-            auto run = benchView(args, viewRow, forest, **renderer, *driver, table);
+            auto run = benchView(args, viewRow, forest, **renderer, *driver, table, limits);
             if (!run) return fail(run.errorInfo());
             runs.push_back(std::move(run).value());
         }
     }
     if (!args.json.empty())
-        if (auto s = writeTextFile("--json", args.json, nlohmann::json{{"runs", runs}}.dump(2) + "\n"); !s)
+        if (auto s = writeTextFile(
+                "--json", args.json,
+                nlohmann::json{{"runs", runs}, {"limits", limits ? limitsJson(*limits) : nullptr}}.dump(2) + "\n");
+            !s)
             return fail(s.errorInfo());
     if (!args.report.empty()) {
         eval::HtmlReport page{
@@ -267,7 +314,10 @@ Command addBenchCommand(CLI::App& app) {
     cmd->remove_option(cmd->get_option("--view"));
     args->technique.addTo(*cmd);
     args->render.addTo(*cmd);
-    cmd->add_option("--json", args->json, "write every row as JSON {\"runs\": [...]}");
+    cmd->add_flag("--limits", args->limits,
+                  "first measure this GL's depth-only fill and triangle rates (a 2048² map: 16 full-map layers, "
+                  "2 M small triangles, 64 large), then give each shadow pass's rates as fractions of them");
+    cmd->add_option("--json", args->json, "write every row as JSON {\"runs\": [...], \"limits\": {...} or null}");
     cmd->add_option("--report", args->report, "also write an HTML page: the rows, what they mean, each view's frame");
     return {cmd, [args] { return runBench(*args); }};
 }

@@ -571,6 +571,25 @@ if(CASE STREQUAL "gl-bench")
     endif()
   endif()
 endif()
+# bench --limits: the GL's ceilings measured before the forests, their counted work in the JSON
+# (16 full-map layers of a 2048² map, every texel written by each), and the shadow pass's
+# rates against them per view.
+if(CASE STREQUAL "gl-bench-limits")
+  execute_process(COMMAND ${SHADOWKIT} bench --limits --trees 20 --terrain-size 200 --terrain-resolution 16 --views paper
+                          --size 48x32 --map-size 256 --frames 1 --json "${WORK}/limits.json"
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE table ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0 OR NOT EXISTS "${WORK}/limits.json" OR NOT table MATCHES "limits: depth-only fill"
+     OR NOT table MATCHES "% of the fill rate")
+    message(SEND_ERROR "bench --limits: failed or printed no limits: ${table} ${err}")
+  else()
+    file(READ "${WORK}/limits.json" report)
+    string(JSON samples GET "${report}" limits fill_samples)
+    string(JSON ofFill GET "${report}" runs 0 shadow_rates of_fill)
+    if(NOT samples EQUAL 67108864 OR NOT ofFill GREATER 0)
+      message(SEND_ERROR "bench --limits: unexpected JSON: ${report}")
+    endif()
+  endif()
+endif()
 check_fails(bench-bad-trees "--trees" bench --trees 10,-5)
 check_fails(bench-bad-frames "--frames" bench --trees 10 --frames 0)
 check_fails(visible-depth-auto-without-frame "--visible-depth" setup ${small} --visible-depth auto)

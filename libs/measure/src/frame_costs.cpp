@@ -75,4 +75,15 @@ nlohmann::json FrameCosts::json() const {
     return j;
 }
 
+FrameCosts::Rates FrameCosts::shadowRates(const gl::DepthLimits& limits) const {
+    const double seconds = shadowGpu().median * 1e-3;
+    if (!(seconds > 0.0)) return {};
+    Rates r;
+    r.samplesPerSecond = double(m_last.shadow.samplesPassed) / seconds;
+    r.trianglesPerSecond = double(m_last.shadow.triangles) / seconds;
+    if (limits.fillSamplesPerSecond > 0.0) r.ofFill = r.samplesPerSecond / limits.fillSamplesPerSecond;
+    if (limits.smallTrianglesPerSecond > 0.0) r.ofTriangles = r.trianglesPerSecond / limits.smallTrianglesPerSecond;
+    return r;
+}
+
 } // namespace shadowkit::measure

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "shadowkit/frame/frame_driver.h"
+#include "shadowkit/gl/depth_limits.h"
 
 #include <nlohmann/json_fwd.hpp>
 
@@ -48,6 +49,17 @@ public:
     // list_ms, shadow and main ({instances, triangles, draw_calls, gpu_ms}), receiver_mask_ms,
     // occlusion ({nodes_visited, queries, nodes_queried, multi_query_failures, waits, prepass_ms}).
     nlohmann::json json() const;
+
+    // The sun's pass against this GL's ceilings (gl/depth_limits.h): the samples it wrote and the
+    // triangles it submitted in the last frame over its median GPU time, each as a fraction of
+    // the depth fill rate and of the small-triangle rate. The larger fraction is what bounds it;
+    // both far below 1 is time lost to neither (state changes, draws, stalls). Zeros without a
+    // shadow pass time or fixed maps (virtual pages count no samples).
+    struct Rates {
+        double samplesPerSecond = 0.0, trianglesPerSecond = 0.0;
+        double ofFill = 0.0, ofTriangles = 0.0;
+    };
+    Rates shadowRates(const gl::DepthLimits& limits) const;
 
 private:
     std::vector<double> m_setup, m_cull, m_cullOwn, m_cullGl, m_lists, m_shadowGpu, m_mainGpu, m_prepass, m_masks;
