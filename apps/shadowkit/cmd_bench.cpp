@@ -8,6 +8,7 @@
 #include "shadowkit/frame/frame_driver.h"
 #include "shadowkit/gl/context.h"
 #include "shadowkit/gl/depth_limits.h"
+#include "shadowkit/gl/read_backs.h"
 #include "shadowkit/gl/renderer.h"
 #include "shadowkit/measure/frame_costs.h"
 #include "shadowkit/scene/forest.h"
@@ -103,6 +104,10 @@ void printPassLines(const BenchArgs& args, gl::Culling culling, const measure::F
                    "{} texels; 1 is no overdraw)\n",
                    "", "", "", double(shadow.samplesPassed) / double(shadow.mapTexels), shadow.samplesPassed,
                    shadow.mapTexels);
+    const measure::Spread readBacks = costs.readBacks();
+    fmt::print("{:>7} {:>7} {:<14} sync    {:.0f} read-backs per frame (median; max {:.0f}; the frames after the "
+               "first): GPU-to-CPU data reads, each a stall on a GPU (CHC++'s query waits are counted above)\n",
+               "", "", "", readBacks.median, readBacks.max);
     if (args.render.receiverMask && !args.render.noCull) {
         const measure::Spread masks = costs.masks();
         fmt::print("{:>7} {:>7} {:<14} masks   receiver masks CPU ms med {:.2f} max {:.2f} (compute + read-back + "
@@ -186,9 +191,10 @@ core::Result<nlohmann::json> benchView(const BenchArgs& args, const BenchRow& ro
     measure::FrameCosts costs;
     driver.reset(); // --stabilize with held lattices: kept over the view's frames
     for (int frame = 0; frame < args.frames; ++frame) {
+        const int64_t readBacksBefore = gl::readBacksMade();
         auto drawn = driver.draw(renderer, *view);
         if (!drawn) return withFlagName(drawn.errorInfo());
-        costs.add(*drawn);
+        costs.add(*drawn, gl::readBacksMade() - readBacksBefore);
     }
     printRows(row, costs, table);
     const gl::Culling culling = renderer.culling(args.render.culling()); // auto resolved for this driver

@@ -138,7 +138,8 @@ void GpuCulling::beginFrame(size_t passes) {
     const size_t region = kMaxLodLevels * std::max<size_t>(m_instanceCount, 1);
     m_lists = createBuffer(nullptr, m_passCapacity * region * sizeof(uint32_t));
     const size_t commands = std::max<size_t>(m_batchCount, 1) * kMaxLodLevels * m_passCapacity;
-    m_commands = createBuffer(nullptr, commands * kCommandWords * sizeof(uint32_t));
+    m_commandWords = commands * kCommandWords;
+    m_commands = createBuffer(nullptr, m_commandWords * sizeof(uint32_t));
 }
 
 void GpuCulling::cull(size_t pass, std::span<const visibility::HalfSpace> volume, const LodChoice* lod, Phase phase,
@@ -304,27 +305,38 @@ void GpuCulling::camera(const core::PerspectiveCamera& camera, const LodChoice* 
     cull(2, frustum, lod, Phase::Visible, out);
 }
 
-DrawStats GpuCulling::submitted(const PassList& list) const {
-    detail::countReadBack();
+std::vector<DrawStats> GpuCulling::submitted(std::span<const PassList* const> lists) const {
+    std::vector<DrawStats> drawn(lists.size());
+    if (lists.empty()) return drawn;
+    detail::countReadBack(); // every list's commands after one wait
     const size_t slots = m_batchCount * kMaxLodLevels;
-    std::vector<uint32_t> commands(slots * kCommandWords);
+    std::vector<uint32_t> commands(m_commandWords);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    glGetNamedBufferSubData(m_commands.id(), GLintptr(size_t(list.indirect) * kCommandWords * sizeof(uint32_t)),
-                            GLsizeiptr(commands.size() * sizeof(uint32_t)), commands.data());
-    DrawStats stats;
-    for (size_t slot = 0; slot < slots; ++slot) {
-        if (list.count[slot] == 0) continue;
-        const uint32_t indexCount = commands[slot * kCommandWords], instances = commands[slot * kCommandWords + 1];
-        stats.instances += instances;
-        stats.triangles += size_t(indexCount / 3) * instances;
-        ++stats.drawCalls;
+    glGetNamedBufferSubData(m_commands.id(), 0, GLsizeiptr(commands.size() * sizeof(uint32_t)), commands.data());
+    for (size_t i = 0; i < lists.size(); ++i) {
+        const PassList& list = *lists[i];
+        const uint32_t* command = commands.data() + size_t(list.indirect) * kCommandWords;
+        for (size_t slot = 0; slot < slots; ++slot) {
+            if (list.count[slot] == 0) continue;
+            const uint32_t indexCount = command[slot * kCommandWords], instances = command[slot * kCommandWords + 1];
+            drawn[i].instances += instances;
+            drawn[i].triangles += size_t(indexCount / 3) * instances;
+            ++drawn[i].drawCalls;
+        }
     }
-    return stats;
+    return drawn;
+}
+
+DrawStats GpuCulling::submitted(const PassList& list) const {
+    const PassList* one[] = {&list};
+    return submitted(one).front();
 }
 
 DrawStats GpuCulling::submitted(std::span<const PassList> lists) const {
+    std::vector<const PassList*> each;
+    for (const PassList& list : lists) each.push_back(&list);
     DrawStats sum;
-    for (const PassList& list : lists) sum += submitted(list);
+    for (const DrawStats& drawn : submitted(each)) sum += drawn;
     return sum;
 }
 

@@ -90,9 +90,11 @@ public:
     void camera(const core::PerspectiveCamera& camera, const LodChoice* lod, CameraDepthTarget& target, PassList& out);
     static constexpr size_t kCameraPasses = 3;
 
-    // What a list drew, read back from its commands (waits for the GPU); of several, the sum.
+    // What each list drew, read back from its commands: one read of the whole command buffer
+    // (one wait for the GPU, one synchronisation counted) however many lists are asked for.
+    std::vector<DrawStats> submitted(std::span<const PassList* const> lists) const;
     DrawStats submitted(const PassList& list) const;
-    DrawStats submitted(std::span<const PassList> lists) const;
+    DrawStats submitted(std::span<const PassList> lists) const; // their sum
     // A list's contents in the CPU path's layout (indices, first, count), read back.
     PassList read(const PassList& list) const;
 
@@ -111,6 +113,7 @@ private:
     ProgramPair m_depthPrograms; // the camera depth pre-pass
     Buffer m_instances, m_chunks, m_batches, m_levels, m_flags, m_ranks, m_chunkSums;
     Buffer m_lists, m_commands;
+    size_t m_commandWords = 0; // m_commands' size in words
     size_t m_instanceCount = 0, m_chunkCount = 0, m_batchCount = 0;
     std::vector<uint32_t> m_batchFirst, m_batchSize;      // per scene batch
     std::vector<uint32_t> m_cameraLevels, m_shadowLevels; // per scene batch

@@ -207,6 +207,15 @@ void PassLists::planPages(const PassPlanInputs& in, VirtualPages& pages, std::ve
     }
 }
 
+PassLists::GpuDrawn PassLists::gpuDrawn() const {
+    std::vector<const PassList*> lists = {&m_camera};
+    for (const PassList& sun : m_sun) lists.push_back(&sun);
+    const std::vector<DrawStats> drawn = m_gpuCulling->submitted(lists);
+    GpuDrawn out{drawn.front(), {}};
+    for (size_t i = 1; i < drawn.size(); ++i) out.sun += drawn[i];
+    return out;
+}
+
 std::vector<uint32_t> PassLists::nearestFirst(const core::Mat4& clipFromWorld) const {
     std::vector<double> depth(m_batchBounds.size(), INFINITY); // empty batches last
     for (size_t b = 0; b < depth.size(); ++b) {

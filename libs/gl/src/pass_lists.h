@@ -86,8 +86,12 @@ public:
     // Camera depth pre-passes drawn since the planner was made (a CHC++ settle loop counts once).
     int prepassesDrawn() const { return m_prepassesDrawn; }
 
-    // Culling::Gpu: what the camera's and the sun maps' lists drew, read back (waits for the GPU).
-    DrawStats gpuCameraDrawn() const { return m_gpuCulling->submitted(m_camera); }
+    // Culling::Gpu: what the camera's and the sun maps' lists drew, read back (waits for the GPU):
+    // both in one read, or the sun's alone.
+    struct GpuDrawn {
+        DrawStats camera, sun;
+    };
+    GpuDrawn gpuDrawn() const;
     DrawStats gpuSunDrawn() const { return m_gpuCulling->submitted(m_sun); }
 
     // The view-depth range of the last pre-pass (Renderer::lastVisibleDepth). The reduction is

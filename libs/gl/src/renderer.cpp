@@ -173,9 +173,11 @@ core::Result<FrameStats> Renderer::render(const core::PerspectiveCamera& wsCamer
     auto mainDraws = r.camera->mainPass(*r.scene, r.lists->cameraList(), view, maskIndex);
     if (!mainDraws) return mainDraws.errorInfo();
     if (settings.culling == Culling::Gpu) {
-        // What the GPU's lists drew, read back now that the frame is submitted.
-        *mainDraws = r.lists->gpuCameraDrawn();
-        r.readGpuShadowDraws(settings);
+        // What the GPU's lists drew, read back now that the frame is submitted: one read for all.
+        const PassLists::GpuDrawn drawn = r.lists->gpuDrawn();
+        *mainDraws = drawn.camera;
+        if (r.lastShadow.drawCalls > 0) // no sun: nothing drawn
+            r.lastShadow.instances = drawn.sun.instances, r.lastShadow.triangles = drawn.sun.triangles;
     }
 
     stats.shadow = r.lastShadow;

@@ -22,8 +22,9 @@ Spread spreadOf(std::vector<double> v) {
 
 nlohmann::json toJson(const Spread& s) { return {{"min", s.min}, {"median", s.median}, {"max", s.max}}; }
 
-void FrameCosts::add(const frame::DrawnFrame& drawn) {
+void FrameCosts::add(const frame::DrawnFrame& drawn, int64_t readBacks) {
     const gl::FrameStats& stats = drawn.stats;
+    m_readBacks.push_back(double(readBacks));
     m_setup.push_back(drawn.frame.setupMilliseconds);
     m_cull.push_back(stats.cullMilliseconds);
     m_cullGl.push_back(stats.cullGlMilliseconds);
@@ -44,15 +45,18 @@ void FrameCosts::add(const frame::DrawnFrame& drawn) {
 
 Spread FrameCosts::setupRest() const { return spreadOf(steady(m_setup)); }
 
+Spread FrameCosts::readBacks() const { return spreadOf(steady(m_readBacks)); }
+
 FrameCosts::Occlusion FrameCosts::occlusion() const {
     return {spreadOf(steady(m_nodesVisited)), spreadOf(steady(m_queries)), spreadOf(steady(m_nodesQueried)),
             spreadOf(steady(m_multiQueryFailures)), spreadOf(steady(m_waits))};
 }
 
 nlohmann::json FrameCosts::json() const {
-    nlohmann::json j = {{"setup_first_ms", setupFirst()}, {"setup_ms", toJson(setupRest())},
-                        {"cull_ms", toJson(cull())},      {"cull_own_ms", toJson(cullOwn())},
-                        {"cull_gl_ms", toJson(cullGl())}, {"list_ms", toJson(lists())}};
+    nlohmann::json j = {{"setup_first_ms", setupFirst()},   {"setup_ms", toJson(setupRest())},
+                        {"cull_ms", toJson(cull())},        {"cull_own_ms", toJson(cullOwn())},
+                        {"cull_gl_ms", toJson(cullGl())},   {"list_ms", toJson(lists())},
+                        {"read_backs", toJson(readBacks())}};
     for (const auto& [pass, stats, gpu] :
          {std::tuple{"shadow", &m_last.shadow, shadowGpu()}, std::tuple{"main", &m_last.main, mainGpu()}})
         j[pass] = {{"instances", stats->instances},

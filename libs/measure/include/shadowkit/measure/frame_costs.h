@@ -22,7 +22,9 @@ nlohmann::json toJson(const Spread& spread); // {"min", "median", "max"}
 class FrameCosts {
 public:
     // The next frame of the view; the first is a camera cut (CHC++'s counts skip it).
-    void add(const frame::DrawnFrame& drawn);
+    // `readBacks`: the synchronous GPU-to-CPU data reads the frame made (gl::readBacksMade()
+    // before and after it), each a stall on a GPU.
+    void add(const frame::DrawnFrame& drawn, int64_t readBacks = 0);
     int frames() const { return static_cast<int>(m_setup.size()); }
     // The last frame's pass statistics (triangles, instances, draws).
     const gl::FrameStats& last() const { return m_last; }
@@ -39,6 +41,7 @@ public:
     Spread mainGpu() const { return spreadOf(m_mainGpu); }     // the camera's pass, GPU ms
     Spread prepass() const { return spreadOf(m_prepass); }     // the camera's culling pass, CPU ms
     Spread masks() const { return spreadOf(m_masks); }         // the receiver masks, CPU ms
+    Spread readBacks() const;                                  // per steady frame (after the first)
     // CHC++'s counts over the steady frames (after the first; the first alone with one frame).
     struct Occlusion {
         Spread nodesVisited, queries, nodesQueried, multiQueryFailures, waits;
@@ -46,7 +49,7 @@ public:
     Occlusion occlusion() const;
 
     // The cost fields of a bench row: setup_first_ms, setup_ms, cull_ms, cull_own_ms, cull_gl_ms,
-    // list_ms, shadow and main ({instances, triangles, draw_calls, gpu_ms}), receiver_mask_ms,
+    // list_ms, read_backs, shadow and main ({instances, triangles, draw_calls, gpu_ms}), receiver_mask_ms,
     // occlusion ({nodes_visited, queries, nodes_queried, multi_query_failures, waits, prepass_ms}).
     nlohmann::json json() const;
 
@@ -63,6 +66,7 @@ public:
 
 private:
     std::vector<double> m_setup, m_cull, m_cullOwn, m_cullGl, m_lists, m_shadowGpu, m_mainGpu, m_prepass, m_masks;
+    std::vector<double> m_readBacks;
     std::vector<double> m_nodesVisited, m_queries, m_nodesQueried, m_multiQueryFailures, m_waits;
     gl::FrameStats m_last;
 };
