@@ -35,7 +35,9 @@
 #include <fstream>
 #include <map>
 #include <optional>
+#include <tuple>
 #include <unordered_map>
+#include <utility>
 
 namespace shadowkit::scene::formats {
 
@@ -376,7 +378,10 @@ core::Result<Scene> loadGltf(const fs::path& file) {
     Scene scene;
     if (auto s = readMaterials(model, file, images, scene); !s) return s.errorInfo();
     // (mesh, primitive) -> batch index: a mesh placed by many nodes becomes one instanced batch.
-    std::map<std::pair<int, size_t>, size_t> batchOf;
+    // A batch per mesh primitive and handedness: glTF reverses the winding of a node whose
+    // transform has a negative determinant (a mirror), so its instances get the primitive with
+    // each triangle reversed, and every instance transform of a batch keeps the winding's sense.
+    std::map<std::tuple<int, size_t, bool>, size_t> batchOf;
     std::optional<core::Error> failure;
     // glTF's nodes form trees, but a file may list a node as a child many times over: a chain of
     // nodes each naming the next twice places 2^depth instances (fuzz_gltf hung on one). Placing
@@ -401,8 +406,9 @@ core::Result<Scene> loadGltf(const fs::path& file) {
         }
         if (node.mesh >= 0 && size_t(node.mesh) < model.meshes.size()) {
             const tinygltf::Mesh& gltfMesh = model.meshes[size_t(node.mesh)];
+            const bool mirrored = glm::determinant(glm::mat3(world)) < 0.0f;
             for (size_t p = 0; p < gltfMesh.primitives.size(); ++p) {
-                auto [it, inserted] = batchOf.try_emplace({node.mesh, p}, scene.batches.size());
+                auto [it, inserted] = batchOf.try_emplace({node.mesh, p, mirrored}, scene.batches.size());
                 if (inserted) {
                     const std::string named = gltfMesh.name.empty() ? "" : " '" + printable(gltfMesh.name) + "'";
                     const std::string where = file.string() + ": mesh " + std::to_string(node.mesh) + named +
@@ -416,6 +422,9 @@ core::Result<Scene> loadGltf(const fs::path& file) {
                         batchOf.erase(it);
                         continue;
                     }
+                    if (mirrored) // counter-clockwise again once the mirror has turned it
+                        for (size_t t = 0; t + 2 < mesh->indices.size(); t += 3)
+                            std::swap(mesh->indices[t + 1], mesh->indices[t + 2]);
                     mesh->name = gltfMesh.name;
                     scene.meshes.push_back(std::move(*mesh));
                     scene.batches.push_back({uint32_t(scene.meshes.size() - 1), {}, false});

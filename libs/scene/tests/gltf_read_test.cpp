@@ -189,3 +189,44 @@ TEST(GltfReadTest, WhatCannotBeReadIsNamedInOneLine) {
                              }()),
                 "index 2 names no vertex");
 }
+
+TEST(GltfReadTest, MirroredNodesKeepTheirFacesOutward) {
+    // glTF: a node whose transform has a negative determinant reverses its mesh's winding. One
+    // triangle facing up (counter-clockwise from above), placed plainly, mirrored in x, and
+    // mirrored twice (no mirror): in the world every triangle must wind counter-clockwise about
+    // its own normal, or a pass culling back faces would drop the lit side.
+    std::vector<unsigned char> triangle;
+    append<float>(triangle, {0, 0, 0, 1, 0, 0, 0, 0, -1});
+    const std::string text =
+        R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0,1,2]}],"nodes":[{"mesh":0},
+        {"mesh":0,"scale":[-1,1,1],"translation":[5,0,0]},{"mesh":0,"scale":[-1,-1,1],"translation":[9,0,0]}],
+        "meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],
+        "accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,-1],"max":[1,0,0]}],
+        "bufferViews":[{"buffer":0,"byteLength":36}],"buffers":[{"byteLength":36,"uri":"data:application/octet-stream;base64,)" +
+        base64(triangle) + "\"}]}";
+    const auto file = std::filesystem::temp_directory_path() / "sk_mirrored.gltf";
+    std::ofstream(file) << text;
+    const auto scene = scene::loadScene(file);
+    std::filesystem::remove(file);
+    ASSERT_TRUE(scene) << scene.error();
+    size_t instances = 0;
+    for (const scene::MeshBatch& batch : scene->batches) {
+        const scene::Mesh& mesh = scene->meshes[batch.mesh];
+        for (const glm::mat4& worldFromObject : batch.worldFromObject) {
+            const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(worldFromObject)));
+            for (size_t t = 0; t < mesh.triangleCount(); ++t) {
+                glm::vec3 ws[3], wsNormal(0.0f);
+                for (int k = 0; k < 3; ++k) {
+                    const scene::Vertex& v = mesh.vertices[mesh.indices[3 * t + size_t(k)]];
+                    ws[k] = glm::vec3(worldFromObject * glm::vec4(v.position, 1.0f));
+                    wsNormal += normalMatrix * v.normal;
+                }
+                EXPECT_GT(glm::dot(glm::cross(ws[1] - ws[0], ws[2] - ws[0]), wsNormal), 0.0f)
+                    << "instance at x = " << worldFromObject[3].x;
+            }
+            ++instances;
+        }
+    }
+    EXPECT_EQ(instances, 3u);
+    EXPECT_EQ(scene->batches.size(), 2u) << "plain and doubly mirrored share a batch; mirrored has its own";
+}
