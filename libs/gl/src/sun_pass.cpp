@@ -136,7 +136,8 @@ void SunPass::beginDepthPass(const core::BiasSettings& bias, bool depthClamp, co
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
     // Caster culling: front-face culling stores the casters' back sides (Scherzer 2005 §4.2);
-    // back-face culling of closed casters leaves the map as it is at half the samples. Each
+    // back-face culling of closed casters stores the same depths without bias for fewer samples
+    // (not with slope-scaled offset: core/bias.h). Each
     // map sets which winding faces the light (setLightFacingFront); GpuScene keeps open levels,
     // double-sided materials and mirrored instances two-sided where asked.
     if (bias.cull == core::CasterCull::None) {

@@ -2,9 +2,9 @@
 // cull the faces turned away from it under every projection, warped ones included.
 //
 // OpenGL culls by the winding a triangle shows in window space, not by its facing in the world.
-// For a shadow map the two agree only for some matrices: a post-perspective warp, a mirrored fit
-// or PSM's inverted projection (a light behind the viewer) may show a face turned towards the
-// light clockwise. The winding follows from the matrix alone:
+// For a shadow map the two agree only for some matrices: TSM's trapezoid and PSM's
+// post-perspective projection show a face turned towards the light clockwise for many views
+// (CasterFacingTest), as would any mirrored fit. The winding follows from the matrix alone:
 //
 //   Let A be the x, y and w rows of clipFromWorld and V_i = (p_i, 1) a triangle's corners. The
 //   window-space signed area has the sign of det[A V_0, A V_1, A V_2] / (w_0 w_1 w_2). By the
