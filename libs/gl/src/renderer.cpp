@@ -54,9 +54,12 @@ struct Renderer::Impl {
                                          const RenderSettings& settings, const core::BiasSettings& bias);
     // Culling::Gpu: what the sun's lists drew, read back into lastShadow (waits for the GPU).
     void readGpuShadowDraws(const RenderSettings& settings) {
-        if (settings.culling != Culling::Gpu || lastShadow.drawCalls == 0) return; // no sun: nothing drawn
-        const DrawStats drawn = lists->gpuSunDrawn();
-        lastShadow.instances = drawn.instances, lastShadow.triangles = drawn.triangles;
+        // No sun: nothing was drawn, nothing to read back.
+        if (settings.culling == Culling::Gpu && lastShadow.drawCalls > 0) keepGpuShadowDraws(lists->gpuSunDrawn());
+    }
+    // What the sun's GPU-culled lists drew, into lastShadow (no sun: nothing was drawn).
+    void keepGpuShadowDraws(const DrawStats& drawn) {
+        if (lastShadow.drawCalls > 0) lastShadow.instances = drawn.instances, lastShadow.triangles = drawn.triangles;
     }
     // The eval pass's buffers after the shadow passes (PassPurpose::Frame) or none (Surfaces).
     core::Result<core::RasterBuffers> evalBuffers(const SceneFrame& frame, const core::DirectionalLight& light,
@@ -176,8 +179,7 @@ core::Result<FrameStats> Renderer::render(const core::PerspectiveCamera& wsCamer
         // What the GPU's lists drew, read back now that the frame is submitted: one read for all.
         const PassLists::GpuDrawn drawn = r.lists->gpuDrawn();
         *mainDraws = drawn.camera;
-        if (r.lastShadow.drawCalls > 0) // no sun: nothing drawn
-            r.lastShadow.instances = drawn.sun.instances, r.lastShadow.triangles = drawn.sun.triangles;
+        r.keepGpuShadowDraws(drawn.sun);
     }
 
     stats.shadow = r.lastShadow;
