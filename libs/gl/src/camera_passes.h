@@ -57,6 +57,7 @@ public:
                                      int blurredMask);
     // The GPU time of the last main pass; waits for it.
     double milliseconds() const { return m_mainTimer.milliseconds(); }
+    const PassTimer& timer() const { return m_mainTimer; } // for a late read (gpu_figures.h)
 
     // The colour target: nullptr before the first frame.
     const ColorTarget* color() const { return m_color ? &*m_color : nullptr; }

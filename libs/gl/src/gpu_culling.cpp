@@ -305,25 +305,27 @@ void GpuCulling::camera(const core::PerspectiveCamera& camera, const LodChoice* 
     cull(2, frustum, lod, Phase::Visible, out);
 }
 
+DrawStats GpuCulling::drawnBy(std::span<const uint32_t> commands, int64_t indirect, std::span<const uint32_t> count) {
+    DrawStats drawn;
+    const uint32_t* command = commands.data() + size_t(indirect) * kCommandWords;
+    for (size_t slot = 0; slot < count.size(); ++slot) {
+        if (count[slot] == 0) continue;
+        const uint32_t indexCount = command[slot * kCommandWords], instances = command[slot * kCommandWords + 1];
+        drawn.instances += instances;
+        drawn.triangles += size_t(indexCount / 3) * instances;
+        ++drawn.drawCalls;
+    }
+    return drawn;
+}
+
 std::vector<DrawStats> GpuCulling::submitted(std::span<const PassList* const> lists) const {
     std::vector<DrawStats> drawn(lists.size());
     if (lists.empty()) return drawn;
     detail::countReadBack(); // every list's commands after one wait
-    const size_t slots = m_batchCount * kMaxLodLevels;
     std::vector<uint32_t> commands(m_commandWords);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     glGetNamedBufferSubData(m_commands.id(), 0, GLsizeiptr(commands.size() * sizeof(uint32_t)), commands.data());
-    for (size_t i = 0; i < lists.size(); ++i) {
-        const PassList& list = *lists[i];
-        const uint32_t* command = commands.data() + size_t(list.indirect) * kCommandWords;
-        for (size_t slot = 0; slot < slots; ++slot) {
-            if (list.count[slot] == 0) continue;
-            const uint32_t indexCount = command[slot * kCommandWords], instances = command[slot * kCommandWords + 1];
-            drawn[i].instances += instances;
-            drawn[i].triangles += size_t(indexCount / 3) * instances;
-            ++drawn[i].drawCalls;
-        }
-    }
+    for (size_t i = 0; i < lists.size(); ++i) drawn[i] = drawnBy(commands, lists[i]->indirect, lists[i]->count);
     return drawn;
 }
 

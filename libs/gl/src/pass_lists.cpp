@@ -207,13 +207,11 @@ void PassLists::planPages(const PassPlanInputs& in, VirtualPages& pages, std::ve
     }
 }
 
-PassLists::GpuDrawn PassLists::gpuDrawn() const {
-    std::vector<const PassList*> lists = {&m_camera};
-    for (const PassList& sun : m_sun) lists.push_back(&sun);
-    const std::vector<DrawStats> drawn = m_gpuCulling->submitted(lists);
-    GpuDrawn out{drawn.front(), {}};
-    for (size_t i = 1; i < drawn.size(); ++i) out.sun += drawn[i];
-    return out;
+void PassLists::describeGpuLists(FrameFigureSources& sources) const {
+    sources.commands = m_gpuCulling->commandBuffer();
+    sources.commandWords = m_gpuCulling->commandWords();
+    sources.lists.push_back({m_camera.indirect, m_camera.count, false});
+    for (const PassList& sun : m_sun) sources.lists.push_back({sun.indirect, sun.count, true});
 }
 
 std::vector<uint32_t> PassLists::nearestFirst(const core::Mat4& clipFromWorld) const {

@@ -11,6 +11,7 @@
 
 #include "depth_range.h"
 #include "gpu_culling.h"
+#include "gpu_figures.h"
 #include "gpu_scene.h"
 #include "occlusion_culling.h"
 #include "receiver_masks.h"
@@ -86,13 +87,11 @@ public:
     // Camera depth pre-passes drawn since the planner was made (a CHC++ settle loop counts once).
     int prepassesDrawn() const { return m_prepassesDrawn; }
 
-    // Culling::Gpu: what the camera's and the sun maps' lists drew, read back (waits for the GPU):
-    // both in one read, or the sun's alone.
-    struct GpuDrawn {
-        DrawStats camera, sun;
-    };
-    GpuDrawn gpuDrawn() const;
+    // Culling::Gpu: what the sun maps' lists drew, read back (waits for the GPU).
     DrawStats gpuSunDrawn() const { return m_gpuCulling->submitted(m_sun); }
+    // Culling::Gpu: the same lists for a late read (gpu_figures.h): the command buffer the GPU
+    // wrote and where each list's draws lie in it.
+    void describeGpuLists(FrameFigureSources& sources) const;
 
     // The view-depth range of the last pre-pass (Renderer::lastVisibleDepth). The reduction is
     // queued after every pre-pass once a range has been asked for; until then, the first ask

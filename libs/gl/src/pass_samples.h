@@ -7,6 +7,8 @@
 
 #include "gl_object.h"
 
+#include "shadowkit/gl/read_backs.h"
+
 #include <cstdint>
 
 namespace shadowkit::gl {
@@ -25,13 +27,19 @@ public:
         m_counted = true;
     }
     void end() const { glEndQuery(GL_SAMPLES_PASSED); }
-    // Waits for the result: call it after the frame is submitted. 0 when nothing was counted.
+    // Waits for the result (a synchronisation, counted): call it after the frame is submitted.
+    // 0 when nothing was counted.
     uint64_t samples() const {
         GLuint64 n = 0;
-        if (m_counted) glGetQueryObjectui64v(m_query.id(), GL_QUERY_RESULT, &n);
+        if (!m_counted) return n;
+        detail::countReadBack();
+        glGetQueryObjectui64v(m_query.id(), GL_QUERY_RESULT, &n);
         return n;
     }
     void reset() { m_counted = false; }
+    // This pass's query, for a late read on the GPU (gpu_figures.h); counted() false: none.
+    bool counted() const { return m_counted; }
+    GLuint query() const { return m_query.id(); }
 
 private:
     Query m_query;

@@ -10,6 +10,7 @@
 
 #include "camera_passes.h"
 #include "frame_check.h"
+#include "gpu_figures.h"
 #include "gpu_scene.h"
 #include "line_pass.h"
 #include "local_shadows.h"
@@ -34,6 +35,9 @@ struct Renderer::Impl {
     core::LocalLighting wsLocalLights;        // the same as given: Renderer::localLights()
     core::Vec3 wsOrigin{0.0};                 // Scene::wsOrigin: where the GPU's coordinates start
     PassStats lastShadow;                     // the last sun shadow pass (its GPU time not read)
+    int64_t frames = 0;                       // render() calls
+    GpuFigureRing figures;                    // every frame's GPU times, samples, GPU-culled counts
+    bool lateFigures = false;                 // Renderer::readGpuFiguresLate
     Culling autoCulling = Culling::Occlusion; // what Culling::Auto is on this driver (read at create)
 
     // The settings a frame is drawn with: Culling::Auto resolved for this driver. Every public
@@ -61,6 +65,9 @@ struct Renderer::Impl {
     void keepGpuShadowDraws(const DrawStats& drawn) {
         if (lastShadow.drawCalls > 0) lastShadow.instances = drawn.instances, lastShadow.triangles = drawn.triangles;
     }
+    // The frame's GPU figures into `stats`: waited for now, or handed to the ring (and those
+    // of earlier frames that came back taken from it).
+    void gpuFigures(FrameStats& stats, const RenderSettings& settings, const DrawStats& mainDraws);
     // The eval pass's buffers after the shadow passes (PassPurpose::Frame) or none (Surfaces).
     core::Result<core::RasterBuffers> evalBuffers(const SceneFrame& frame, const core::DirectionalLight& light,
                                                   const RenderSettings& settings, int localLight, PassPurpose purpose);
@@ -175,19 +182,8 @@ core::Result<FrameStats> Renderer::render(const core::PerspectiveCamera& wsCamer
     r.bindFrame(view, blurred, -1);
     auto mainDraws = r.camera->mainPass(*r.scene, r.lists->cameraList(), view, maskIndex);
     if (!mainDraws) return mainDraws.errorInfo();
-    if (settings.culling == Culling::Gpu) {
-        // What the GPU's lists drew, read back now that the frame is submitted: one read for all.
-        const PassLists::GpuDrawn drawn = r.lists->gpuDrawn();
-        *mainDraws = drawn.camera;
-        r.keepGpuShadowDraws(drawn.sun);
-    }
-
-    stats.shadow = r.lastShadow;
-    stats.shadow.gpuMilliseconds = r.sun->milliseconds();
-    stats.shadow.samplesPassed = r.sun->samplesPassed();
-    stats.shadow.mapTexels = r.sun->mapTexels();
-    stats.local.gpuMilliseconds = r.localTimer.milliseconds();
-    stats.main = {r.camera->milliseconds(), mainDraws->instances, mainDraws->triangles, mainDraws->drawCalls};
+    stats.frame = ++r.frames;
+    r.gpuFigures(stats, settings, *mainDraws);
     const CullingCosts& culling = r.lists->costs();
     stats.cullMilliseconds = culling.total.wallMilliseconds;
     stats.cullGlMilliseconds = culling.inGl.wallMilliseconds;
@@ -200,6 +196,35 @@ core::Result<FrameStats> Renderer::render(const core::PerspectiveCamera& wsCamer
     stats.virtualPages = r.sun->lastVirtual();
     return stats;
 }
+
+void Renderer::Impl::gpuFigures(FrameStats& stats, const RenderSettings& settings, const DrawStats& mainDraws) {
+    stats.shadow = lastShadow;
+    stats.shadow.mapTexels = sun->mapTexels();
+    stats.main = {0.0, mainDraws.instances, mainDraws.triangles, mainDraws.drawCalls};
+    FrameFigureSources sources{sun->timer(), localTimer, camera->timer(), sun->samples(), sun->mapTexels()};
+    if (settings.culling == Culling::Gpu) lists->describeGpuLists(sources);
+    // One path for both reads: the GPU gathers the figures; read late, or waited for at once.
+    stats.gpuFigures = figures.record(stats.frame, sources);
+    stats.gpuFiguresLate = lateFigures;
+    if (lateFigures) {
+        // What GPU-culled lists drew comes with the figures: the CPU knows only capacities.
+        if (sources.commands)
+            for (PassStats* pass : {&stats.shadow, &stats.main}) pass->instances = pass->triangles = 0;
+        return;
+    }
+    for (const GpuFigures& f : figures.finish()) {
+        if (f.frame != stats.frame) {
+            stats.gpuFigures.push_back(f); // an earlier late frame's
+            continue;
+        }
+        f.fill(stats);
+        if (f.shadowInstances) keepGpuShadowDraws({*f.shadowInstances, *f.shadowTriangles, 0});
+    }
+}
+
+void Renderer::readGpuFiguresLate(bool late) { m_impl->lateFigures = late; }
+
+std::vector<GpuFigures> Renderer::finishGpuFigures() { return m_impl->figures.finish(); }
 
 core::Result<core::RasterBuffers> Renderer::renderEvalBuffers(const core::PerspectiveCamera& wsCamera,
                                                               const core::DirectionalLight& light,

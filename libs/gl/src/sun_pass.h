@@ -45,6 +45,9 @@ public:
     // The samples the last draw() wrote into its fixed maps and the texels they hold (0, 0 for
     // virtual pages and without a sun); waits for the count.
     uint64_t samplesPassed() const { return m_samples.samples(); }
+    // The queries behind both, for a late read (gpu_figures.h).
+    const PassTimer& timer() const { return m_timer; }
+    const PassSamples& samples() const { return m_samples; }
     uint64_t mapTexels() const { return m_countedTexels; }
 
     // The set-up the frame's lookups read: with virtual maps under a page budget, levels may

@@ -3,6 +3,8 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 namespace shadowkit::measure {
 namespace {
@@ -15,6 +17,7 @@ std::vector<double> steady(const std::vector<double>& values) {
 } // namespace
 
 Spread spreadOf(std::vector<double> v) {
+    std::erase_if(v, [](double x) { return std::isnan(x); }); // late figures that never came
     if (v.empty()) return {};
     std::sort(v.begin(), v.end());
     return {v.front(), v[v.size() / 2], v.back()};
@@ -32,8 +35,10 @@ void FrameCosts::add(const frame::DrawnFrame& drawn, int64_t readBacks) {
     m_lists.push_back(stats.listCpuMilliseconds);
     m_prepass.push_back(stats.occlusionMilliseconds);
     m_masks.push_back(stats.receiverMaskMilliseconds);
-    m_shadowGpu.push_back(stats.shadow.gpuMilliseconds);
-    m_mainGpu.push_back(stats.main.gpuMilliseconds);
+    const double unknown = std::numeric_limits<double>::quiet_NaN(); // until late figures come
+    m_shadowGpu.push_back(stats.gpuFiguresLate ? unknown : stats.shadow.gpuMilliseconds);
+    m_mainGpu.push_back(stats.gpuFiguresLate ? unknown : stats.main.gpuMilliseconds);
+    m_frameNumbers.push_back(stats.frame);
     const visibility::CoherentCullingStats& o = stats.occlusion;
     m_nodesVisited.push_back(double(o.nodesVisited));
     m_queries.push_back(double(o.queriesIssued));
@@ -41,6 +46,18 @@ void FrameCosts::add(const frame::DrawnFrame& drawn, int64_t readBacks) {
     m_multiQueryFailures.push_back(double(o.multiQueryFailures));
     m_waits.push_back(double(o.waits));
     m_last = stats;
+    addLate(stats.gpuFigures);
+}
+
+void FrameCosts::addLate(std::span<const gl::GpuFigures> figures) {
+    for (const gl::GpuFigures& f : figures) {
+        const auto at = std::find(m_frameNumbers.begin(), m_frameNumbers.end(), f.frame);
+        if (at == m_frameNumbers.end()) continue; // another view's frame
+        const size_t i = size_t(at - m_frameNumbers.begin());
+        m_shadowGpu[i] = f.shadowMilliseconds;
+        m_mainGpu[i] = f.mainMilliseconds;
+        if (i + 1 == m_frameNumbers.size()) f.fill(m_last);
+    }
 }
 
 Spread FrameCosts::setupRest() const { return spreadOf(steady(m_setup)); }

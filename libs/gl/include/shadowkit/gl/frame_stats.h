@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <optional>
+#include <vector>
 
 namespace shadowkit::gl {
 
@@ -30,7 +31,30 @@ struct VirtualPageStats : core::PageCacheStats {
     size_t triangles = 0;  // drawn into the pages rendered this frame
 };
 
+// A frame's figures that only the GPU knows, as they come back frames later when the renderer
+// reads them late (Renderer::readGpuFiguresLate): its passes' GPU times, the samples the sun
+// maps' depth tests passed, and with Culling::Gpu what the GPU-culled lists drew.
+struct FrameStats;
+struct GpuFigures {
+    int64_t frame = 0; // the frame they describe: its FrameStats::frame
+    double shadowMilliseconds = 0.0, localMilliseconds = 0.0, mainMilliseconds = 0.0;
+    uint64_t samplesPassed = 0; // the sun's fixed maps (PassStats::samplesPassed)
+    uint64_t mapTexels = 0;
+    // Culling::Gpu: instances, triangles and draws submitted by the culled lists (the other
+    // cullings' counts are known on the CPU: FrameStats::shadow and main carry them).
+    std::optional<size_t> shadowInstances, shadowTriangles, mainInstances, mainTriangles;
+    // Into the GPU fields of their frame's stats (as render() fills them when it waits).
+    void fill(FrameStats& stats) const;
+};
+
 struct FrameStats {
+    // This frame's number (render() calls since the renderer was created, from 1).
+    int64_t frame = 0;
+    // Read late: no GPU time, sample count or GPU-culled count in `shadow`, `local` and `main`
+    // (those of this frame are not back yet), and the figures of earlier frames that came back
+    // since the last frame, oldest first.
+    bool gpuFiguresLate = false;
+    std::vector<GpuFigures> gpuFigures;
     PassStats shadow, main;
     PassStats local;               // every local light's maps (Renderer::setLocalLights), faces written counted
     int localMaps = 0;             // spot maps and cube faces drawn

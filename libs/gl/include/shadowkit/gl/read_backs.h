@@ -1,9 +1,9 @@
-// Synchronous GPU-to-CPU reads of data (buffers, textures) made by libs/gl in this process.
-// Each one waits for the GPU to finish all the work before it — a stall on a real GPU — so
-// tests and benches count them as work: a frame's claim that one read-back serves two uses is
-// checked here against what GL was asked, not against the frame's own bookkeeping. Results of
-// occlusion queries are not data read-backs and are not counted here (CHC++'s waits are in
-// visibility::CoherentCullingStats).
+// Synchronisations made by libs/gl in this process: GPU-to-CPU reads of data (buffers, textures)
+// and waits for a pass's timer or sample query or for a fence. Each one waits for the GPU to
+// finish the work before it — a stall on a real GPU — so tests and benches count them as work:
+// a frame's claim that one read-back serves two uses is checked here against what GL was asked,
+// not against the frame's own bookkeeping. CHC++'s occlusion query waits are counted apart
+// (visibility::CoherentCullingStats).
 #pragma once
 
 #include <cstdint>
@@ -14,7 +14,8 @@ namespace shadowkit::gl {
 int64_t readBacksMade();
 
 namespace detail {
-// Called next to every glGetTextureImage / glGetNamedBufferSubData in libs/gl.
+// Called next to every glGetTextureImage / glGetNamedBufferSubData, blocking query read and
+// fence wait in libs/gl.
 void countReadBack();
 } // namespace detail
 

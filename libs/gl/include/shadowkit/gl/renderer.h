@@ -80,6 +80,15 @@ public:
     // renderer's driver (resolveCulling: Gpu on a GPU, Occlusion on a software rasteriser),
     // anything else as asked. What front ends print.
     Culling culling(Culling requested) const;
+    // How render() reads the GPU's figures (pass times, samples, GPU-culled counts). By default
+    // each frame waits for its own (exact at once, a stall a frame on a GPU). Late: each frame
+    // hands its figures to a ring the GPU fills and returns, without waiting, those of earlier
+    // frames whose fence has passed (FrameStats::gpuFigures, two or three frames late): what an
+    // application loop wants. finishGpuFigures() waits for the rest.
+    void readGpuFiguresLate(bool late);
+    // Every frame's figures not yet returned, after waiting for the GPU (one synchronisation,
+    // outside any frame): what a benchmark collects at the end of its frames.
+    std::vector<GpuFigures> finishGpuFigures();
     // Camera depth pre-passes drawn since the renderer was created (work, for tests and benches):
     // a render() right after visibleDepth() for the same camera and culling reuses that one.
     int cameraPrePassesDrawn() const;

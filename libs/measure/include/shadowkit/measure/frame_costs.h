@@ -8,6 +8,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include <span>
 #include <vector>
 
 namespace shadowkit::measure {
@@ -24,9 +25,15 @@ public:
     // The next frame of the view; the first is a camera cut (CHC++'s counts skip it).
     // `readBacks`: the synchronous GPU-to-CPU data reads the frame made (gl::readBacksMade()
     // before and after it), each a stall on a GPU.
+    // A frame drawn with late figures (gl::Renderer::readGpuFiguresLate) has its GPU times and
+    // GPU-culled counts filled when they come back, with a later frame or from addLate().
     void add(const frame::DrawnFrame& drawn, int64_t readBacks = 0);
+    // Figures read late: each into its frame, when that frame is one of this view's; a frame
+    // whose figures never came (the GPU too far behind) is left out of the GPU spreads.
+    void addLate(std::span<const gl::GpuFigures> figures);
     int frames() const { return static_cast<int>(m_setup.size()); }
-    // The last frame's pass statistics (triangles, instances, draws).
+    // The last frame's pass statistics (triangles, instances, draws; with late figures, once
+    // they came back).
     const gl::FrameStats& last() const { return m_last; }
 
     // The set-up's CPU ms: the first frame computes the focus body; the rest of a still view get
@@ -67,6 +74,7 @@ public:
 private:
     std::vector<double> m_setup, m_cull, m_cullOwn, m_cullGl, m_lists, m_shadowGpu, m_mainGpu, m_prepass, m_masks;
     std::vector<double> m_readBacks;
+    std::vector<int64_t> m_frameNumbers; // gl::FrameStats::frame of each
     std::vector<double> m_nodesVisited, m_queries, m_nodesQueried, m_multiQueryFailures, m_waits;
     gl::FrameStats m_last;
 };

@@ -1,0 +1,142 @@
+#include "gpu_figures.h"
+
+#include "gpu_culling.h"
+
+#include "shadowkit/gl/read_backs.h"
+
+#include <algorithm>
+#include <cstring>
+#include <limits>
+
+namespace shadowkit::gl {
+namespace {
+
+// A slot's layout: seven 64-bit query results, then the commands (if any).
+enum Stamp : size_t { ShadowStart, ShadowEnd, LocalStart, LocalEnd, MainStart, MainEnd, Samples, kStamps };
+constexpr size_t kCommandsOffset = 64;
+static_assert(kStamps * sizeof(uint64_t) <= kCommandsOffset);
+
+bool signalled(GLsync fence, GLuint64 timeoutNs) {
+    const GLenum state = glClientWaitSync(fence, timeoutNs ? GL_SYNC_FLUSH_COMMANDS_BIT : 0, timeoutNs);
+    return state == GL_ALREADY_SIGNALED || state == GL_CONDITION_SATISFIED;
+}
+
+} // namespace
+
+void GpuFigures::fill(FrameStats& stats) const {
+    stats.shadow.gpuMilliseconds = shadowMilliseconds;
+    stats.shadow.samplesPassed = samplesPassed;
+    stats.shadow.mapTexels = mapTexels;
+    stats.local.gpuMilliseconds = localMilliseconds;
+    stats.main.gpuMilliseconds = mainMilliseconds;
+    if (shadowInstances) stats.shadow.instances = *shadowInstances, stats.shadow.triangles = *shadowTriangles;
+    if (mainInstances) stats.main.instances = *mainInstances, stats.main.triangles = *mainTriangles;
+}
+
+GpuFigureRing::~GpuFigureRing() {
+    for (Slot& slot : m_slots) release(slot);
+}
+
+void GpuFigureRing::release(Slot& slot) {
+    if (slot.fence) glDeleteSync(slot.fence);
+    slot.fence = nullptr;
+}
+
+std::vector<GpuFigures> GpuFigureRing::record(int64_t frame, const FrameFigureSources& sources) {
+    // What came back since the last frame, oldest first (fences pass in submission order).
+    std::vector<GpuFigures> arrived;
+    for (int64_t i = m_next - kFrames; i < m_next; ++i) {
+        if (i < 0) continue;
+        Slot& slot = m_slots[size_t(i % kFrames)];
+        if (!slot.fence) continue; // collected already
+        if (!signalled(slot.fence, 0)) break;
+        arrived.push_back(collect(slot));
+    }
+
+    Slot& slot = m_slots[size_t(m_next++ % kFrames)];
+    if (slot.fence) { // the GPU is kFrames behind: this one's figures are lost, not waited for
+        release(slot);
+        ++m_dropped;
+    }
+    const size_t bytes = kCommandsOffset + sources.commandWords * sizeof(uint32_t);
+    if (slot.bytes < bytes) {
+        GLuint id = 0;
+        glCreateBuffers(1, &id);
+        const GLbitfield access = GL_MAP_READ_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT;
+        glNamedBufferStorage(id, GLsizeiptr(bytes), nullptr, access | GL_CLIENT_STORAGE_BIT);
+        slot.buffer = Buffer(id);
+        slot.mapped = glMapNamedBufferRange(id, 0, GLsizeiptr(bytes), access);
+        slot.bytes = bytes;
+    }
+    const GLuint buffer = slot.buffer.id();
+    const auto stamp = [buffer](GLuint query, Stamp at) {
+        glGetQueryBufferObjectui64v(query, buffer, GL_QUERY_RESULT, GLintptr(at * sizeof(uint64_t)));
+    };
+    const PassTimer* timers[3] = {&sources.shadow, &sources.local, &sources.main};
+    for (size_t t = 0; t < 3; ++t) {
+        slot.timed[t] = timers[t]->stamped();
+        if (!slot.timed[t]) continue;
+        stamp(timers[t]->startQuery(), Stamp(2 * t));
+        stamp(timers[t]->endQuery(), Stamp(2 * t + 1));
+    }
+    slot.counted = sources.samples.counted();
+    if (slot.counted) stamp(sources.samples.query(), Samples);
+    if (sources.commands) {
+        // The culling's compute passes wrote the commands: visible to a copy after this barrier.
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        glCopyNamedBufferSubData(sources.commands, buffer, 0, GLintptr(kCommandsOffset),
+                                 GLsizeiptr(sources.commandWords * sizeof(uint32_t)));
+    }
+    slot.fence = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+    glFlush(); // so the fence reaches the GPU and a zero-timeout poll can see it pass
+    slot.frame = frame;
+    slot.mapTexels = sources.mapTexels;
+    slot.lists = sources.lists;
+    return arrived;
+}
+
+std::vector<GpuFigures> GpuFigureRing::finish() {
+    std::vector<GpuFigures> arrived;
+    bool waited = false;
+    for (int64_t i = m_next - kFrames; i < m_next; ++i) {
+        if (i < 0) continue;
+        Slot& slot = m_slots[size_t(i % kFrames)];
+        if (!slot.fence) continue;
+        if (!waited) detail::countReadBack(); // one wait: later fences pass right after it
+        waited = true;
+        if (!signalled(slot.fence, std::numeric_limits<GLuint64>::max())) {
+            release(slot); // a lost context: nothing more will come back
+            ++m_dropped;
+            continue;
+        }
+        arrived.push_back(collect(slot));
+    }
+    return arrived;
+}
+
+GpuFigures GpuFigureRing::collect(Slot& slot) {
+    release(slot);
+    uint64_t stamps[kStamps] = {};
+    std::memcpy(stamps, slot.mapped, sizeof stamps);
+    const auto ms = [&](size_t t) {
+        const uint64_t start = stamps[2 * t], end = stamps[2 * t + 1];
+        return slot.timed[t] && end > start ? double(end - start) * 1e-6 : 0.0;
+    };
+    GpuFigures figures{.frame = slot.frame,
+                       .shadowMilliseconds = ms(0),
+                       .localMilliseconds = ms(1),
+                       .mainMilliseconds = ms(2),
+                       .samplesPassed = slot.counted ? stamps[Samples] : 0,
+                       .mapTexels = slot.mapTexels};
+    if (slot.lists.empty()) return figures;
+    const auto* words = reinterpret_cast<const uint32_t*>(static_cast<const char*>(slot.mapped) + kCommandsOffset);
+    const std::span<const uint32_t> commands(words, (slot.bytes - kCommandsOffset) / sizeof(uint32_t));
+    DrawStats shadow, main;
+    for (const CulledListShape& list : slot.lists)
+        (list.shadow ? shadow : main) += GpuCulling::drawnBy(commands, list.indirect, list.count);
+    figures.shadowInstances = shadow.instances, figures.shadowTriangles = shadow.triangles;
+    figures.mainInstances = main.instances, figures.mainTriangles = main.triangles;
+    return figures;
+}
+
+} // namespace shadowkit::gl

@@ -1,0 +1,85 @@
+// A frame's figures that only the GPU knows — each pass's GPU time, the samples the sun maps'
+// depth tests passed, what the GPU-culled lists drew — gathered by the GPU itself into one
+// buffer per frame and read by the CPU frames later, once that frame's fence has passed. Engines
+// read their GPU statistics this way: a frame that asks for its own figures must wait for the
+// GPU to finish it, a stall of the whole pipeline on a real GPU (Renderer::readGpuFiguresLate).
+//
+// A ring of kFrames slots, each a persistently mapped buffer the GPU writes in command order: the
+// timestamps and the sample count through GL_QUERY_BUFFER (glGetQueryBufferObjectui64v, GL 4.5),
+// the GPU-culled lists' indirect commands by glCopyNamedBufferSubData; then a fence. The CPU polls
+// the fences with a zero timeout. A slot whose fence has not passed when its turn comes round
+// again is dropped, not waited for: the figures are statistics, and a frame never waits for them.
+#pragma once
+
+#include "gl_object.h"
+#include "gpu_scene.h"
+#include "pass_samples.h"
+#include "pass_timer.h"
+
+#include "shadowkit/gl/frame_stats.h"
+
+#include <array>
+#include <span>
+#include <vector>
+
+namespace shadowkit::gl {
+
+// Where a GPU-culled list's draws lie in the commands copied (GpuCulling::drawnBy).
+struct CulledListShape {
+    int64_t indirect = -1;
+    std::vector<uint32_t> count; // PassList::count: the ranges that can draw
+    bool shadow = false;         // the sun's (else the camera's)
+};
+
+// What one frame hands over: the queries its passes ended, and with Culling::Gpu the commands
+// buffer its lists drew from.
+struct FrameFigureSources {
+    const PassTimer& shadow;
+    const PassTimer& local;
+    const PassTimer& main;
+    const PassSamples& samples;
+    uint64_t mapTexels = 0;
+    GLuint commands = 0; // 0: no GPU-culled list
+    size_t commandWords = 0;
+    std::vector<CulledListShape> lists;
+};
+
+class GpuFigureRing {
+public:
+    static constexpr int kFrames = 3;
+
+    // The GPU writes the frame's figures after its commands; returns what came back meanwhile.
+    std::vector<GpuFigures> record(int64_t frame, const FrameFigureSources& sources);
+    // Every figure still pending, after one wait for the GPU (counted as a read-back).
+    std::vector<GpuFigures> finish();
+    // Figures dropped because the GPU had not finished their frame when the slot came round.
+    int64_t dropped() const { return m_dropped; }
+
+private:
+    struct Slot {
+        Buffer buffer;
+        void* mapped = nullptr;
+        size_t bytes = 0;
+        GLsync fence = nullptr;
+        int64_t frame = 0;
+        uint64_t mapTexels = 0;
+        bool timed[3] = {false, false, false};
+        bool counted = false;
+        std::vector<CulledListShape> lists;
+    };
+    // The figures of a slot whose fence has passed; frees it.
+    GpuFigures collect(Slot& slot);
+    void release(Slot& slot);
+
+    std::array<Slot, kFrames> m_slots;
+    int64_t m_next = 0; // the slot the next frame takes, modulo kFrames
+    int64_t m_dropped = 0;
+
+public:
+    GpuFigureRing() = default;
+    GpuFigureRing(const GpuFigureRing&) = delete;
+    GpuFigureRing& operator=(const GpuFigureRing&) = delete;
+    ~GpuFigureRing();
+};
+
+} // namespace shadowkit::gl
