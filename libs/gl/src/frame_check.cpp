@@ -43,4 +43,22 @@ core::Status checkFrame(const core::ShadowSetup& setup, const RenderSettings& se
     return core::Ok{};
 }
 
+core::Status checkLocalLights(const core::LocalLighting& lights) {
+    if (lights.points.size() > static_cast<size_t>(kMaxLocalLights) ||
+        lights.spots.size() > static_cast<size_t>(kMaxLocalLights))
+        return core::makeError("renderer: at most " + std::to_string(kMaxLocalLights) + " point and " +
+                               std::to_string(kMaxLocalLights) + " spot lights, got " +
+                               std::to_string(lights.points.size()) + " and " + std::to_string(lights.spots.size()));
+    if (lights.pointSetups.size() != lights.points.size() || lights.spotSetups.size() != lights.spots.size())
+        return core::makeError("renderer: every local light needs its set-up (core::computeLocalLighting)");
+    GLint maxSize = 0;
+    glGetIntegerv(GL_MAX_CUBE_MAP_TEXTURE_SIZE, &maxSize);
+    if (!lights.empty() && (lights.mapSize < core::kMinMapSize || lights.mapSize > maxSize))
+        return core::environmentError(
+            "local_map_size: must be in [" + std::to_string(core::kMinMapSize) + ", " + std::to_string(maxSize) +
+                "] texels on this GL driver (GL_MAX_CUBE_MAP_TEXTURE_SIZE), got " + std::to_string(lights.mapSize),
+            "local_map_size");
+    return core::Ok{};
+}
+
 } // namespace shadowkit::gl

@@ -95,6 +95,22 @@ std::vector<GpuFigures> GpuFigureRing::record(int64_t frame, const FrameFigureSo
     return arrived;
 }
 
+void GpuFigureRing::take(FrameStats& stats, const FrameFigureSources& sources, bool late) {
+    stats.gpuFigures = record(stats.frame, sources);
+    stats.gpuFiguresLate = late;
+    if (late) {
+        if (sources.commands)
+            for (PassStats* pass : {&stats.shadow, &stats.main}) pass->instances = pass->triangles = 0;
+        return;
+    }
+    for (const GpuFigures& f : finish()) {
+        if (f.frame == stats.frame)
+            f.fill(stats);
+        else
+            stats.gpuFigures.push_back(f); // an earlier frame's, read late before this one
+    }
+}
+
 std::vector<GpuFigures> GpuFigureRing::finish() {
     std::vector<GpuFigures> arrived;
     bool waited = false;

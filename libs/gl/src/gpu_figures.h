@@ -50,6 +50,10 @@ public:
 
     // The GPU writes the frame's figures after its commands; returns what came back meanwhile.
     std::vector<GpuFigures> record(int64_t frame, const FrameFigureSources& sources);
+    // record() for the frame `stats` describes. Late: `stats` gets the earlier frames' figures
+    // that came back and none of its own (its GPU-culled counts zeroed: the CPU knows only the
+    // lists' capacities); else its own figures after one wait.
+    void take(FrameStats& stats, const FrameFigureSources& sources, bool late);
     // Every figure still pending, after one wait for the GPU (counted as a read-back).
     std::vector<GpuFigures> finish();
     // Figures dropped because the GPU had not finished their frame when the slot came round.

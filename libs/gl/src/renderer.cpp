@@ -203,23 +203,8 @@ void Renderer::Impl::gpuFigures(FrameStats& stats, const RenderSettings& setting
     stats.main = {0.0, mainDraws.instances, mainDraws.triangles, mainDraws.drawCalls};
     FrameFigureSources sources{sun->timer(), localTimer, camera->timer(), sun->samples(), sun->mapTexels()};
     if (settings.culling == Culling::Gpu) lists->describeGpuLists(sources);
-    // One path for both reads: the GPU gathers the figures; read late, or waited for at once.
-    stats.gpuFigures = figures.record(stats.frame, sources);
-    stats.gpuFiguresLate = lateFigures;
-    if (lateFigures) {
-        // What GPU-culled lists drew comes with the figures: the CPU knows only capacities.
-        if (sources.commands)
-            for (PassStats* pass : {&stats.shadow, &stats.main}) pass->instances = pass->triangles = 0;
-        return;
-    }
-    for (const GpuFigures& f : figures.finish()) {
-        if (f.frame != stats.frame) {
-            stats.gpuFigures.push_back(f); // an earlier late frame's
-            continue;
-        }
-        f.fill(stats);
-        if (f.shadowInstances) keepGpuShadowDraws({*f.shadowInstances, *f.shadowTriangles, 0});
-    }
+    figures.take(stats, sources, lateFigures);
+    if (!lateFigures && sources.commands) keepGpuShadowDraws({stats.shadow.instances, stats.shadow.triangles, 0});
 }
 
 void Renderer::readGpuFiguresLate(bool late) { m_impl->lateFigures = late; }
@@ -324,20 +309,7 @@ core::Status Renderer::moveInstances(const scene::Scene& scene, std::span<const 
 }
 
 core::Status Renderer::setLocalLights(core::LocalLighting lights) {
-    if (lights.points.size() > static_cast<size_t>(kMaxLocalLights) ||
-        lights.spots.size() > static_cast<size_t>(kMaxLocalLights))
-        return core::makeError("renderer: at most " + std::to_string(kMaxLocalLights) + " point and " +
-                               std::to_string(kMaxLocalLights) + " spot lights, got " +
-                               std::to_string(lights.points.size()) + " and " + std::to_string(lights.spots.size()));
-    if (lights.pointSetups.size() != lights.points.size() || lights.spotSetups.size() != lights.spots.size())
-        return core::makeError("renderer: every local light needs its set-up (core::computeLocalLighting)");
-    GLint maxSize = 0;
-    glGetIntegerv(GL_MAX_CUBE_MAP_TEXTURE_SIZE, &maxSize);
-    if (!lights.empty() && (lights.mapSize < core::kMinMapSize || lights.mapSize > maxSize))
-        return core::environmentError(
-            "local_map_size: must be in [" + std::to_string(core::kMinMapSize) + ", " + std::to_string(maxSize) +
-                "] texels on this GL driver (GL_MAX_CUBE_MAP_TEXTURE_SIZE), got " + std::to_string(lights.mapSize),
-            "local_map_size");
+    if (auto s = checkLocalLights(lights); !s) return s;
     m_impl->localLights = m_impl->wsOrigin == core::Vec3(0.0) ? lights : core::rebased(lights, m_impl->wsOrigin);
     m_impl->wsLocalLights = std::move(lights);
     return core::Ok{};
