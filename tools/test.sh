@@ -22,22 +22,7 @@ cd "$(dirname "$0")/.."
 if [ "${1:-}" = "--sanitize" ]; then
   shift
   tools/install-deps.sh
-  flags="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
-  # -g1: line tables only. Reports keep their file:line stacks; the build is about a quarter
-  # shorter than with full debug information.
-  optimise="-O2 -g1 -DNDEBUG"
-  # clang, as the fuzz targets: it compiles the instrumented code 2.3 times as fast as GCC 12
-  # (apps/shadowkit/configs.cpp, CLI11 and nlohmann::json instantiated under ASan and UBSan:
-  # 41 s against 94 s here), and the build was most of CI's longest stage. A tree configured
-  # with another compiler is started afresh (CMake cannot change a tree's compiler).
-  if [ -f build-sanitize/CMakeCache.txt ] && ! grep -q '^CMAKE_CXX_COMPILER:[A-Z]*=.*clang++' build-sanitize/CMakeCache.txt; then
-    rm -rf build-sanitize
-  fi
-  cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSHADOWKIT_BUILD_PYTHON=OFF \
-        -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
-        "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=$optimise" "-DCMAKE_C_FLAGS_RELWITHDEBINFO=$optimise" \
-        -DSHADOWKIT_BUILD_BENCHMARKS=OFF "-DCMAKE_CXX_FLAGS=$flags" "-DCMAKE_C_FLAGS=$flags" \
-        "-DCMAKE_EXE_LINKER_FLAGS=-fsanitize=address,undefined" "-DCMAKE_SHARED_LINKER_FLAGS=-fsanitize=address,undefined" >/dev/null
+  tools/sanitize-tree.sh
   cmake --build build-sanitize --parallel "$(nproc)"
   cd build-sanitize
   export LSAN_OPTIONS="suppressions=$PWD/../tools/lsan.supp:print_suppressions=0"
