@@ -30,6 +30,7 @@ struct BenchArgs {
     ViewOptions view;
     TechniqueOptions technique;
     RenderOptions render;
+    LocalLightOptions lights; // --light: spot and point lights over every view (and the views' own)
     std::string trees = "1000,10000,100000", views = "perpendicular,aerial,paper", json, report;
     std::string forest = "simple"; // or leafy: branches and alpha-tested leaf cards
     uint64_t seed = 1;
@@ -147,7 +148,9 @@ void printRows(const BenchRow& row, const measure::FrameCosts& costs, eval::Html
     const measure::Spread setup = costs.setupRest(), cull = costs.cull();
     const gl::FrameStats& last = costs.last();
     for (const auto& [pass, stats, gpu] :
-         {std::tuple{"shadow", &last.shadow, costs.shadowGpu()}, std::tuple{"main", &last.main, costs.mainGpu()}}) {
+         {std::tuple{"shadow", &last.shadow, costs.shadowGpu()}, std::tuple{"local", &last.local, costs.localGpu()},
+          std::tuple{"main", &last.main, costs.mainGpu()}}) {
+        if (stats == &last.local && last.localMaps == 0) continue; // no local light
         const double megaTriangles = static_cast<double>(stats->triangles) * 1e-6;
         fmt::print("{:>7} {:>7.0f} {:<14} {:<7} {:>9} {:>9.3f} {:>6} {:>8.1f} {:>8.1f} {:>8.1f} {:>10.3f} {:>9.3f} "
                    "{:>10.3f} {:>9.3f}\n",
@@ -243,7 +246,7 @@ int runBench(const BenchArgs& args) {
     if (viewNames.empty()) return fail("--views: no view named");
     for (const char* flag : {"--report", "--json"})
         if (auto s = checkWritable(flag, flag[2] == 'r' ? args.report : args.json); !s) return fail(s.errorInfo());
-    auto config = frameConfigOf(args.technique, args.render, LocalLightOptions{});
+    auto config = frameConfigOf(args.technique, args.render, args.lights);
     if (!config) return fail(config.errorInfo());
     auto driver = frame::FrameDriver::create(std::move(config).value());
     if (!driver) return fail(withFlagName(driver.errorInfo()));
@@ -324,6 +327,7 @@ Command addBenchCommand(CLI::App& app) {
     cmd->remove_option(cmd->get_option("--view"));
     args->technique.addTo(*cmd);
     args->render.addTo(*cmd);
+    args->lights.addTo(*cmd);
     cmd->add_flag("--limits", args->limits,
                   "first measure this GL's depth-only fill and triangle rates (a 2048² map: 16 full-map layers, "
                   "2 M small triangles, 64 large), then give each shadow pass's rates as fractions of them");

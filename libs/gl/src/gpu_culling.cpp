@@ -143,7 +143,7 @@ void GpuCulling::beginFrame(size_t passes) {
 }
 
 void GpuCulling::cull(size_t pass, std::span<const visibility::HalfSpace> volume, const LodChoice* lod, Phase phase,
-                      PassList& out, const GpuReceiverMask* mask) {
+                      PassList& out, const GpuReceiverMask* mask, uint32_t replicas) {
     const Stopwatch inGl;
     const GLuint p = m_stages[0].id();
     glProgramUniform1i(p, uniform(p, "phase"), static_cast<GLint>(phase));
@@ -198,17 +198,18 @@ void GpuCulling::cull(size_t pass, std::span<const visibility::HalfSpace> volume
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCullChunkSumsBinding, m_chunkSums.id());
     glDispatchCompute(GLuint(m_chunkCount), 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    compact(pass, shadowChain, out);
+    compact(pass, shadowChain, out, replicas);
     m_gl += inGl.elapsed();
 }
 
-void GpuCulling::compact(size_t pass, bool shadowChain, PassList& out) {
+void GpuCulling::compact(size_t pass, bool shadowChain, PassList& out, uint32_t replicas) {
     // Stage 2: offsets and commands; stage 3: the lists.
     const GLuint firstCommand = GLuint(pass * m_batchCount * kMaxLodLevels);
     const GLuint offsets = m_stages[1].id(), scatter = m_stages[2].id();
     glProgramUniform1ui(offsets, uniform(offsets, "batchCount"), GLuint(m_batchCount));
     glProgramUniform1i(offsets, uniform(offsets, "shadowChain"), shadowChain ? 1 : 0);
     glProgramUniform1ui(offsets, uniform(offsets, "firstCommand"), firstCommand);
+    glProgramUniform1ui(offsets, uniform(offsets, "replicas"), replicas);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCullStageBinding, m_commands.id());
     glUseProgram(offsets);
     glDispatchCompute(GLuint((kMaxLodLevels * m_batchCount + 63) / 64), 1, 1);

@@ -80,9 +80,10 @@ public:
     };
     // One pass into region `pass` (< the frame's passes): `out` becomes a list the GPU writes,
     // drawn by GpuScene::draw through its indirect commands. With a mask (phase All only),
-    // only the instances that may shadow a receiver it holds.
+    // only the instances that may shadow a receiver it holds. `replicas`: each kept instance is
+    // drawn that many times (a point light's cube faces, each copy to its own layer).
     void cull(size_t pass, std::span<const visibility::HalfSpace> volume, const LodChoice* lod, Phase phase,
-              PassList& out, const GpuReceiverMask* mask = nullptr);
+              PassList& out, const GpuReceiverMask* mask = nullptr, uint32_t replicas = 1);
 
     // The camera's two-phase pass (passes 0 to kCameraPasses − 1): the early and late
     // instances drawn into `target`'s depth (cleared here; the camera's Frame uniforms must
@@ -111,7 +112,7 @@ private:
     GpuCulling(const GpuScene& gpuScene) : m_scene(gpuScene) {}
     void buildPyramid(const CameraDepthTarget& target);
     // Stages 2 and 3 of gpu_cull.comp after stage 1: the commands and lists of region `pass`.
-    void compact(size_t pass, bool shadowChain, PassList& out);
+    void compact(size_t pass, bool shadowChain, PassList& out, uint32_t replicas = 1);
 
     const GpuScene& m_scene;
     Program m_stages[3], m_pyramidProgram;

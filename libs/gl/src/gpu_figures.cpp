@@ -31,6 +31,7 @@ void GpuFigures::fill(FrameStats& stats) const {
     stats.main.gpuMilliseconds = mainMilliseconds;
     if (shadowInstances) stats.shadow.instances = *shadowInstances, stats.shadow.triangles = *shadowTriangles;
     if (mainInstances) stats.main.instances = *mainInstances, stats.main.triangles = *mainTriangles;
+    if (localInstances) stats.local.instances = *localInstances, stats.local.triangles = *localTriangles;
 }
 
 GpuFigureRing::~GpuFigureRing() {
@@ -100,7 +101,7 @@ void GpuFigureRing::take(FrameStats& stats, const FrameFigureSources& sources, b
     stats.gpuFiguresLate = late;
     if (late) {
         if (sources.commands)
-            for (PassStats* pass : {&stats.shadow, &stats.main}) pass->instances = pass->triangles = 0;
+            for (PassStats* pass : {&stats.shadow, &stats.local, &stats.main}) pass->instances = pass->triangles = 0;
         return;
     }
     for (const GpuFigures& f : finish()) {
@@ -147,11 +148,22 @@ GpuFigures GpuFigureRing::collect(Slot& slot) {
     if (slot.lists.empty()) return figures;
     const auto* words = reinterpret_cast<const uint32_t*>(static_cast<const char*>(slot.mapped) + kCommandsOffset);
     const std::span<const uint32_t> commands(words, (slot.bytes - kCommandsOffset) / sizeof(uint32_t));
-    DrawStats shadow, main;
-    for (const CulledListShape& list : slot.lists)
-        (list.shadow ? shadow : main) += GpuCulling::drawnBy(commands, list.indirect, list.count);
-    figures.shadowInstances = shadow.instances, figures.shadowTriangles = shadow.triangles;
-    figures.mainInstances = main.instances, figures.mainTriangles = main.triangles;
+    DrawStats drawn[3];
+    for (const CulledListShape& list : slot.lists) {
+        DrawStats d = GpuCulling::drawnBy(commands, list.indirect, list.count);
+        d.instances *= list.faces, d.triangles *= list.faces;
+        drawn[size_t(list.pass)] += d;
+    }
+    using Pass = CulledListShape::Pass;
+    figures.mainInstances = drawn[size_t(Pass::Camera)].instances;
+    figures.mainTriangles = drawn[size_t(Pass::Camera)].triangles;
+    figures.shadowInstances = drawn[size_t(Pass::Sun)].instances;
+    figures.shadowTriangles = drawn[size_t(Pass::Sun)].triangles;
+    const bool local = std::ranges::any_of(slot.lists, [](const auto& l) { return l.pass == Pass::Local; });
+    if (local) {
+        figures.localInstances = drawn[size_t(Pass::Local)].instances;
+        figures.localTriangles = drawn[size_t(Pass::Local)].triangles;
+    }
     return figures;
 }
 

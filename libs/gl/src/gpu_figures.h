@@ -26,9 +26,11 @@ namespace shadowkit::gl {
 
 // Where a GPU-culled list's draws lie in the commands copied (GpuCulling::drawnBy).
 struct CulledListShape {
+    enum class Pass { Camera, Sun, Local };
     int64_t indirect = -1;
     std::vector<uint32_t> count; // PassList::count: the ranges that can draw
-    bool shadow = false;         // the sun's (else the camera's)
+    Pass pass = Pass::Camera;    // whose figures it adds to
+    uint32_t faces = 1;          // map faces a geometry shader writes each drawn instance into
 };
 
 // What one frame hands over: the queries its passes ended, and with Culling::Gpu the commands

@@ -126,8 +126,10 @@ void PassLists::plan(const PassPlanInputs& in, VirtualPages& pages) {
         planSunMaps(in, lists);
         planLocal(in);
     }
-    for (PassList& list : m_local) lists.push_back(&list);
-    if (in.settings.culling != Culling::Gpu) lists.push_back(&m_camera);
+    if (in.settings.culling != Culling::Gpu) {
+        for (PassList& list : m_local) lists.push_back(&list);
+        lists.push_back(&m_camera);
+    }
     m_visibility->upload(lists);
     m_costs.total = total.elapsed();
     m_costs.lists = m_visibility->takeListTimes();
@@ -143,7 +145,9 @@ void PassLists::planCamera(const PassPlanInputs& in, bool prepass) {
         (!m_cameraDepth || m_cameraDepth->width != settings.width || m_cameraDepth->height != settings.height))
         m_cameraDepth.emplace(settings.width, settings.height);
     if (settings.culling == Culling::Gpu) {
-        m_gpuCulling->beginFrame(GpuCulling::kCameraPasses + (virtualMaps(in.setup) ? 0 : in.setup.views.size()));
+        const bool shadows = in.purpose == PassPurpose::Frame;
+        m_gpuCulling->beginFrame(firstLocalPass(in.setup) +
+                                 (shadows ? LocalShadowMaps::listCount(in.localLights, in.localPass) : 0));
         const Stopwatch cameraTime;
         m_gpuCulling->camera(in.camera, lod, *m_cameraDepth, m_camera);
         m_costs.occlusionMilliseconds = cameraTime.elapsed().wallMilliseconds;
@@ -210,8 +214,12 @@ void PassLists::planPages(const PassPlanInputs& in, VirtualPages& pages, std::ve
 void PassLists::describeGpuLists(FrameFigureSources& sources) const {
     sources.commands = m_gpuCulling->commandBuffer();
     sources.commandWords = m_gpuCulling->commandWords();
-    sources.lists.push_back({m_camera.indirect, m_camera.count, false});
-    for (const PassList& sun : m_sun) sources.lists.push_back({sun.indirect, sun.count, true});
+    sources.lists.push_back({m_camera.indirect, m_camera.count, CulledListShape::Pass::Camera});
+    for (const PassList& sun : m_sun) sources.lists.push_back({sun.indirect, sun.count, CulledListShape::Pass::Sun});
+    for (size_t i = 0; i < m_local.size(); ++i)
+        if (m_local[i].indirect >= 0)
+            sources.lists.push_back(
+                {m_local[i].indirect, m_local[i].count, CulledListShape::Pass::Local, m_localFaces[i]});
 }
 
 std::vector<uint32_t> PassLists::nearestFirst(const core::Mat4& clipFromWorld) const {
@@ -252,15 +260,27 @@ void PassLists::planSunMaps(const PassPlanInputs& in, std::vector<PassList*>& li
     if (gpu) m_costs.inGl += m_gpuCulling->takeGlTimes();
 }
 
+size_t PassLists::firstLocalPass(const core::ShadowSetup& setup) {
+    return GpuCulling::kCameraPasses + (virtualMaps(setup) ? 0 : setup.views.size());
+}
+
 void PassLists::planLocal(const PassPlanInputs& in) {
     // Full meshes (levels are chosen for the sun's maps and the camera); a point light's layered
-    // pass culled to the cube around its range.
-    const bool cull = in.settings.culling != Culling::Off;
+    // pass culled to the cube around its range. With GPU culling, each list culled on the GPU
+    // in a pass of its own, after the sun's.
+    const bool cull = in.settings.culling != Culling::Off, gpu = in.settings.culling == Culling::Gpu;
     const core::LocalLighting& lights = in.localLights;
     m_local.resize(LocalShadowMaps::listCount(lights, in.localPass));
+    m_localFaces.assign(m_local.size(), 1);
     size_t next = 0;
-    const auto collect = [&](std::span<const visibility::HalfSpace> volume) {
-        m_visibility->collect(volume, cull, nullptr, m_local[next++]);
+    const auto collect = [&](std::span<const visibility::HalfSpace> volume, uint32_t replicas = 1) {
+        PassList& list = m_local[next];
+        if (gpu)
+            m_gpuCulling->cull(firstLocalPass(in.setup) + next, volume, nullptr, GpuCulling::Phase::All, list, nullptr,
+                               replicas);
+        else
+            m_visibility->collect(volume, cull, nullptr, list);
+        ++next;
     };
     for (size_t p = 0; p < lights.points.size(); ++p) {
         const core::ShadowSetup& cube = lights.pointSetups[p];
@@ -269,7 +289,12 @@ void PassLists::planLocal(const PassPlanInputs& in) {
         } else if (cube.views.empty()) {
             m_local[next++] = {};
         } else {
-            collect(rangeBox(lights.points[p].wsPosition, lights.points[p].range));
+            // Layered from the vertex shader: every instance drawn once per kept face.
+            // (or amplified by the geometry shader: counted so, as LocalShadowMaps::draw counts).
+            const bool perInstance = in.localPass == LocalPass::VertexLayer;
+            if (!perInstance) m_localFaces[next] = uint32_t(cube.views.size());
+            collect(rangeBox(lights.points[p].wsPosition, lights.points[p].range),
+                    perInstance ? uint32_t(cube.views.size()) : 1u);
         }
     }
     for (const core::ShadowSetup& spot : lights.spotSetups) {

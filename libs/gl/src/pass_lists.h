@@ -124,6 +124,8 @@ private:
     void planPages(const PassPlanInputs& in, VirtualPages& pages, std::vector<PassList*>& lists);
     // Every local light's map: full meshes, culled to each pass's volume.
     void planLocal(const PassPlanInputs& in);
+    // GPU culling's pass of the first local list: after the camera's and the sun maps'.
+    static size_t firstLocalPass(const core::ShadowSetup& setup);
 
     std::optional<Visibility> m_visibility;
     std::unique_ptr<OcclusionCuller> m_occlusion;
@@ -155,6 +157,7 @@ private:
 
     PassList m_camera;
     std::vector<PassList> m_sun, m_pages, m_local;
+    std::vector<uint32_t> m_localFaces; // per local list: the faces a geometry shader draws each instance into
     CullingCosts m_costs;
 };
 

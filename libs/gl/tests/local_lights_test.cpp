@@ -10,6 +10,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <string>
+#include <vector>
 
 using namespace shadowkit;
 
@@ -20,7 +22,7 @@ class LocalLightsTest : public gl::testing::HeadlessGlTest {};
 constexpr int kImage = 160;
 
 // A scene of boxes (centre, half extents), each its own static mesh.
-scene::Scene boxes(std::initializer_list<std::pair<core::Vec3, core::Vec3>> list) {
+scene::Scene boxes(const std::vector<std::pair<core::Vec3, core::Vec3>>& list) {
     scene::Scene s;
     for (const auto& [centre, half] : list) {
         scene::Mesh mesh;
@@ -211,14 +213,7 @@ TEST_F(LocalLightsTest, EightPointAndEightSpotLightsEachShadowInOneFrame) {
         else
             spots.push_back({.wsPosition = light, .wsDirection = {0, -0.4, -1}, .coneDegrees = 90.0, .range = 4.0});
     }
-    scene::Scene s;
-    for (const auto& [centre, half] : parts) {
-        scene::Mesh mesh;
-        scene::addBox(mesh, glm::translate(glm::mat4(1.0f), glm::vec3(centre)), glm::vec3(half), glm::vec3(0.8f));
-        mesh.computeBounds();
-        s.batches.push_back({static_cast<uint32_t>(s.meshes.size()), {glm::mat4(1.0f)}, false});
-        s.meshes.push_back(std::move(mesh));
-    }
+    const scene::Scene s = boxes(parts);
     auto renderer = gl::Renderer::create(s);
     ASSERT_TRUE(renderer) << renderer.error();
     const core::PerspectiveCamera cam =
@@ -241,5 +236,48 @@ TEST_F(LocalLightsTest, EightPointAndEightSpotLightsEachShadowInOneFrame) {
         };
         EXPECT_LT(termAt({x, 0, -1.6}), 0.5f) << "light " << light << ": no shadow behind its post";
         EXPECT_GT(termAt({x + 1.2, 0, -0.3}), 0.5f) << "light " << light << ": shadow beside its post";
+    }
+}
+
+TEST_F(LocalLightsTest, GpuCulledListsWriteTheMapsTheCpuListsWrite) {
+    // Every local pass, its lists culled on the GPU (the default on a GPU) or on the CPU: the
+    // same maps texel for texel and the same instances and triangles written (the GPU's read
+    // from its commands). Read late, the local lights' counts come with the GPU's figures: the
+    // lists were culled there, not on the CPU.
+    std::vector<std::pair<core::Vec3, core::Vec3>> parts = {{core::Vec3(0, -0.1, 0), core::Vec3(30, 0.1, 20)}};
+    for (int i = 0; i < 12; ++i) parts.push_back({core::Vec3(2.2 * (i - 5.5), 0.75, 0), core::Vec3(0.3, 0.75, 0.3)});
+    const scene::Scene s = boxes(parts);
+    auto renderer = gl::Renderer::create(s);
+    ASSERT_TRUE(renderer) << renderer.error();
+    const core::PerspectiveCamera cam = looking({0, 30, 10}, {0, 0, 0}, {0, 1, 0});
+    ASSERT_TRUE((*renderer)->setLocalLights(lighting(
+        cam, (*renderer)->wsSceneBounds(),
+        {{.wsPosition = {-6.6, 1.0, 1.5}, .range = 4.0}, {.wsPosition = {2.2, 1.0, 1.5}, .range = 4.0}},
+        {{.wsPosition = {6.6, 1.0, 1.5}, .wsDirection = {0, -0.4, -1}, .coneDegrees = 90.0, .range = 4.0}}, 128)));
+    const core::ShadowSetup sun = sunSetup(cam, (*renderer)->wsSceneBounds());
+    for (const gl::LocalPass pass : {gl::LocalPass::VertexLayer, gl::LocalPass::Geometry, gl::LocalPass::PerFace}) {
+        gl::RenderSettings settings = nightSettings(pass);
+        settings.culling = gl::Culling::Frustum;
+        auto cpu = (*renderer)->render(cam, {}, sun, settings);
+        ASSERT_TRUE(cpu) << cpu.error();
+        const scene::Image cpuMaps = (*renderer)->readLocalShadowMaps();
+        settings.culling = gl::Culling::Gpu;
+        auto gpu = (*renderer)->render(cam, {}, sun, settings);
+        ASSERT_TRUE(gpu) << gpu.error();
+        const std::string name(gl::localPassName(pass));
+        EXPECT_TRUE(cpuMaps.rgba == (*renderer)->readLocalShadowMaps().rgba) << name;
+        EXPECT_GT(cpu->local.instances, 0u) << name;
+        EXPECT_LT(cpu->local.instances, 3u * 6u * parts.size()) << name << ": the lights' ranges cull";
+        EXPECT_EQ(gpu->local.instances, cpu->local.instances) << name;
+        EXPECT_EQ(gpu->local.triangles, cpu->local.triangles) << name;
+
+        (*renderer)->readGpuFiguresLate(true);
+        auto late = (*renderer)->render(cam, {}, sun, settings);
+        ASSERT_TRUE(late);
+        const std::vector<gl::GpuFigures> figures = (*renderer)->finishGpuFigures();
+        ASSERT_FALSE(figures.empty());
+        ASSERT_TRUE(figures.back().localInstances) << name << ": culled on the CPU";
+        EXPECT_EQ(*figures.back().localInstances, cpu->local.instances) << name;
+        (*renderer)->readGpuFiguresLate(false);
     }
 }

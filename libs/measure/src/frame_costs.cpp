@@ -38,6 +38,7 @@ void FrameCosts::add(const frame::DrawnFrame& drawn, int64_t readBacks) {
     const double unknown = std::numeric_limits<double>::quiet_NaN(); // until late figures come
     m_shadowGpu.push_back(stats.gpuFiguresLate ? unknown : stats.shadow.gpuMilliseconds);
     m_mainGpu.push_back(stats.gpuFiguresLate ? unknown : stats.main.gpuMilliseconds);
+    m_localGpu.push_back(stats.gpuFiguresLate ? unknown : stats.local.gpuMilliseconds);
     m_frameNumbers.push_back(stats.frame);
     const visibility::CoherentCullingStats& o = stats.occlusion;
     m_nodesVisited.push_back(double(o.nodesVisited));
@@ -56,6 +57,7 @@ void FrameCosts::addLate(std::span<const gl::GpuFigures> figures) {
         const size_t i = size_t(at - m_frameNumbers.begin());
         m_shadowGpu[i] = f.shadowMilliseconds;
         m_mainGpu[i] = f.mainMilliseconds;
+        m_localGpu[i] = f.localMilliseconds;
         if (i + 1 == m_frameNumbers.size()) f.fill(m_last);
     }
 }
@@ -75,7 +77,8 @@ nlohmann::json FrameCosts::json() const {
                         {"cull_gl_ms", toJson(cullGl())},   {"list_ms", toJson(lists())},
                         {"read_backs", toJson(readBacks())}};
     for (const auto& [pass, stats, gpu] :
-         {std::tuple{"shadow", &m_last.shadow, shadowGpu()}, std::tuple{"main", &m_last.main, mainGpu()}})
+         {std::tuple{"shadow", &m_last.shadow, shadowGpu()}, std::tuple{"local", &m_last.local, localGpu()},
+          std::tuple{"main", &m_last.main, mainGpu()}})
         j[pass] = {{"instances", stats->instances},
                    {"triangles", stats->triangles},
                    {"draw_calls", stats->drawCalls},

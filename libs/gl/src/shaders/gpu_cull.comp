@@ -242,6 +242,7 @@ layout(std430, binding = SK_CULL_STAGE_BINDING) writeonly buffer Commands { uint
 uniform uint batchCount;
 uniform bool shadowChain;
 uniform uint firstCommand; // the pass's first, in commands
+uniform uint replicas;     // draws per kept instance: a point light's cube faces, layered per instance
 
 void main() {
     const uint pair = gl_GlobalInvocationID.x; // batch * 4 + level
@@ -258,7 +259,7 @@ void main() {
     const Level level = levels[pair];
     const uint at = 5u * (firstCommand + pair);
     commands[at + 0u] = exists ? (shadowChain ? level.shadowIndexCount : level.cameraIndexCount) : 0u;
-    commands[at + 1u] = exists ? running : 0u; // instances
+    commands[at + 1u] = exists ? running * replicas : 0u; // instances
     commands[at + 2u] = shadowChain ? level.shadowFirstIndex : level.cameraFirstIndex;
     commands[at + 3u] = 0u; // base vertex
     commands[at + 4u] = 0u; // base instance: the list's place comes as instanceOffset

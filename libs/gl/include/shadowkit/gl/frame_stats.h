@@ -40,9 +40,12 @@ struct GpuFigures {
     double shadowMilliseconds = 0.0, localMilliseconds = 0.0, mainMilliseconds = 0.0;
     uint64_t samplesPassed = 0; // the sun's fixed maps (PassStats::samplesPassed)
     uint64_t mapTexels = 0;
-    // Culling::Gpu: instances, triangles and draws submitted by the culled lists (the other
-    // cullings' counts are known on the CPU: FrameStats::shadow and main carry them).
+    // Culling::Gpu: instances and triangles submitted by the culled lists (the other cullings'
+    // counts are known on the CPU: FrameStats::shadow, local and main carry them). The local
+    // lights' (when there are any) count each instance once per map face it is drawn into, as
+    // FrameStats::local.
     std::optional<size_t> shadowInstances, shadowTriangles, mainInstances, mainTriangles;
+    std::optional<size_t> localInstances, localTriangles;
     // Into the GPU fields of their frame's stats (as render() fills them when it waits).
     void fill(FrameStats& stats) const;
 };

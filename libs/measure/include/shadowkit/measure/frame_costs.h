@@ -46,6 +46,7 @@ public:
     Spread lists() const { return spreadOf(m_lists); }         // of which levels and lists
     Spread shadowGpu() const { return spreadOf(m_shadowGpu); } // the sun's pass, GPU ms
     Spread mainGpu() const { return spreadOf(m_mainGpu); }     // the camera's pass, GPU ms
+    Spread localGpu() const { return spreadOf(m_localGpu); }   // the local lights' maps, GPU ms
     Spread prepass() const { return spreadOf(m_prepass); }     // the camera's culling pass, CPU ms
     Spread masks() const { return spreadOf(m_masks); }         // the receiver masks, CPU ms
     Spread readBacks() const;                                  // per steady frame (after the first)
@@ -56,7 +57,7 @@ public:
     Occlusion occlusion() const;
 
     // The cost fields of a bench row: setup_first_ms, setup_ms, cull_ms, cull_own_ms, cull_gl_ms,
-    // list_ms, read_backs, shadow and main ({instances, triangles, draw_calls, gpu_ms}), receiver_mask_ms,
+    // list_ms, read_backs, shadow, local and main ({instances, triangles, draw_calls, gpu_ms}), receiver_mask_ms,
     // occlusion ({nodes_visited, queries, nodes_queried, multi_query_failures, waits, prepass_ms}).
     nlohmann::json json() const;
 
@@ -72,7 +73,8 @@ public:
     Rates shadowRates(const gl::DepthLimits& limits) const;
 
 private:
-    std::vector<double> m_setup, m_cull, m_cullOwn, m_cullGl, m_lists, m_shadowGpu, m_mainGpu, m_prepass, m_masks;
+    std::vector<double> m_setup, m_cull, m_cullOwn, m_cullGl, m_lists, m_shadowGpu, m_mainGpu, m_localGpu, m_prepass,
+        m_masks;
     std::vector<double> m_readBacks;
     std::vector<int64_t> m_frameNumbers; // gl::FrameStats::frame of each
     std::vector<double> m_nodesVisited, m_queries, m_nodesQueried, m_multiQueryFailures, m_waits;
