@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <cstring>
-#include <limits>
 
 namespace shadowkit::gl {
 namespace {
@@ -16,9 +15,21 @@ enum Stamp : size_t { ShadowStart, ShadowEnd, LocalStart, LocalEnd, MainStart, M
 constexpr size_t kCommandsOffset = 64;
 static_assert(kStamps * sizeof(uint64_t) <= kCommandsOffset);
 
-bool signalled(GLsync fence, GLuint64 timeoutNs) {
-    const GLenum state = glClientWaitSync(fence, timeoutNs ? GL_SYNC_FLUSH_COMMANDS_BIT : 0, timeoutNs);
-    return state == GL_ALREADY_SIGNALED || state == GL_CONDITION_SATISFIED;
+bool passed(GLenum state) { return state == GL_ALREADY_SIGNALED || state == GL_CONDITION_SATISFIED; }
+
+// Whether the fence has passed, without waiting.
+bool signalled(GLsync fence) { return passed(glClientWaitSync(fence, 0, 0)); }
+
+// Waits until the fence passes, in rounds of a second (a driver may turn a timeout near 2^64 ns
+// into a deadline in the past); false only when the wait fails (a lost context).
+bool waitFor(GLsync fence) {
+    GLbitfield flags = GL_SYNC_FLUSH_COMMANDS_BIT;
+    for (;;) {
+        const GLenum state = glClientWaitSync(fence, flags, 1'000'000'000);
+        if (passed(state)) return true;
+        if (state != GL_TIMEOUT_EXPIRED) return false;
+        flags = 0;
+    }
 }
 
 } // namespace
@@ -50,7 +61,7 @@ std::vector<GpuFigures> GpuFigureRing::record(int64_t frame, const FrameFigureSo
         if (i < 0) continue;
         Slot& slot = m_slots[size_t(i % kFrames)];
         if (!slot.fence) continue; // collected already
-        if (!signalled(slot.fence, 0)) break;
+        if (!signalled(slot.fence)) break;
         arrived.push_back(collect(slot));
     }
 
@@ -121,7 +132,7 @@ std::vector<GpuFigures> GpuFigureRing::finish() {
         if (!slot.fence) continue;
         if (!waited) detail::countReadBack(); // one wait: later fences pass right after it
         waited = true;
-        if (!signalled(slot.fence, std::numeric_limits<GLuint64>::max())) {
+        if (!waitFor(slot.fence)) {
             release(slot); // a lost context: nothing more will come back
             ++m_dropped;
             continue;
