@@ -66,10 +66,7 @@ std::vector<GpuFigures> GpuFigureRing::record(int64_t frame, const FrameFigureSo
     }
 
     Slot& slot = m_slots[size_t(m_next++ % kFrames)];
-    if (slot.fence) { // the GPU is kFrames behind: this one's figures are lost, not waited for
-        release(slot);
-        ++m_dropped;
-    }
+    release(slot); // a fence left: the GPU is kFrames behind; those figures are lost, not waited for
     const size_t bytes = kCommandsOffset + sources.commandWords * sizeof(uint32_t);
     if (slot.bytes < bytes) {
         GLuint id = 0;
@@ -134,7 +131,6 @@ std::vector<GpuFigures> GpuFigureRing::finish() {
         waited = true;
         if (!waitFor(slot.fence)) {
             release(slot); // a lost context: nothing more will come back
-            ++m_dropped;
             continue;
         }
         arrived.push_back(collect(slot));

@@ -50,6 +50,11 @@ class GpuFigureRing {
 public:
     static constexpr int kFrames = 3;
 
+    GpuFigureRing() = default;
+    GpuFigureRing(const GpuFigureRing&) = delete;
+    GpuFigureRing& operator=(const GpuFigureRing&) = delete;
+    ~GpuFigureRing(); // the fences (the buffers unmap as they are deleted)
+
     // The GPU writes the frame's figures after its commands; returns what came back meanwhile.
     std::vector<GpuFigures> record(int64_t frame, const FrameFigureSources& sources);
     // record() for the frame `stats` describes. Late: `stats` gets the earlier frames' figures
@@ -58,8 +63,6 @@ public:
     void take(FrameStats& stats, const FrameFigureSources& sources, bool late);
     // Every figure still pending, after one wait for the GPU (counted as a read-back).
     std::vector<GpuFigures> finish();
-    // Figures dropped because the GPU had not finished their frame when the slot came round.
-    int64_t dropped() const { return m_dropped; }
 
 private:
     struct Slot {
@@ -79,13 +82,6 @@ private:
 
     std::array<Slot, kFrames> m_slots;
     int64_t m_next = 0; // the slot the next frame takes, modulo kFrames
-    int64_t m_dropped = 0;
-
-public:
-    GpuFigureRing() = default;
-    GpuFigureRing(const GpuFigureRing&) = delete;
-    GpuFigureRing& operator=(const GpuFigureRing&) = delete;
-    ~GpuFigureRing();
 };
 
 } // namespace shadowkit::gl
