@@ -52,12 +52,11 @@ public:
     int blurPass(const BlurSettings& blur);
     std::vector<float> readBlurred(int index) const { return m_mask->read(index); }
     // The shaded frame into the colour target, over the sky; `blurredMask` ≥ 0: the blur's
-    // result to read the shadow term from. The frame and the maps bound. Timed (milliseconds()).
+    // result to read the shadow term from. The frame and the maps bound. Timed (timer()).
     core::Result<DrawStats> mainPass(const GpuScene& scene, const PassList& list, const CameraView& view,
                                      int blurredMask);
-    // The GPU time of the last main pass; waits for it.
-    double milliseconds() const { return m_mainTimer.milliseconds(); }
-    const PassTimer& timer() const { return m_mainTimer; } // for a late read (gpu_figures.h)
+    // The last main pass's GPU time, as the queries the frame's figures read (gpu_figures.h).
+    const PassTimer& timer() const { return m_mainTimer; }
 
     // The colour target: nullptr before the first frame.
     const ColorTarget* color() const { return m_color ? &*m_color : nullptr; }

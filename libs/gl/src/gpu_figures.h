@@ -55,9 +55,8 @@ public:
     GpuFigureRing& operator=(const GpuFigureRing&) = delete;
     ~GpuFigureRing(); // the fences (the buffers unmap as they are deleted)
 
-    // The GPU writes the frame's figures after its commands; returns what came back meanwhile.
-    std::vector<GpuFigures> record(int64_t frame, const FrameFigureSources& sources);
-    // record() for the frame `stats` describes. Late: `stats` gets the earlier frames' figures
+    // The frame `stats` describes hands over its figures, which the GPU writes after its
+    // commands. Late: `stats` gets the earlier frames' figures
     // that came back and none of its own (its GPU-culled counts zeroed: the CPU knows only the
     // lists' capacities); else its own figures after one wait.
     void take(FrameStats& stats, const FrameFigureSources& sources, bool late);
@@ -65,6 +64,9 @@ public:
     std::vector<GpuFigures> finish();
 
 private:
+    // Hands over a frame's figures; returns the earlier frames' that came back meanwhile.
+    std::vector<GpuFigures> record(int64_t frame, const FrameFigureSources& sources);
+
     struct Slot {
         Buffer buffer;
         void* mapped = nullptr;

@@ -289,8 +289,9 @@ void PassLists::planLocal(const PassPlanInputs& in) {
         } else if (cube.views.empty()) {
             m_local[next++] = {};
         } else {
-            // Layered from the vertex shader: every instance drawn once per kept face.
-            // (or amplified by the geometry shader: counted so, as LocalShadowMaps::draw counts).
+            // Layered from the vertex shader, every instance is drawn once per kept face; from
+            // the geometry shader, drawn once and amplified (counted per face all the same, as
+            // LocalShadowMaps::draw counts).
             const bool perInstance = in.localPass == LocalPass::VertexLayer;
             if (!perInstance) m_localFaces[next] = uint32_t(cube.views.size());
             collect(rangeBox(lights.points[p].wsPosition, lights.points[p].range),

@@ -1,9 +1,7 @@
-// The GPU time of one pass, read after the frame.
+// The GPU time of one pass, as two timestamps the frame's figures read (gpu_figures.h).
 #pragma once
 
 #include "gl_object.h"
-
-#include "shadowkit/gl/read_backs.h"
 
 namespace shadowkit::gl {
 
@@ -23,18 +21,7 @@ public:
         glQueryCounter(m_end.id(), GL_TIMESTAMP);
         m_stamped = true;
     }
-    // Waits for the end stamp (a synchronisation, counted): call it after the frame is
-    // submitted, not between its passes. 0 before the first end().
-    double milliseconds() const {
-        if (!m_stamped) return 0.0;
-        detail::countReadBack();
-        GLuint64 start = 0, end = 0;
-        glGetQueryObjectui64v(m_start.id(), GL_QUERY_RESULT, &start);
-        glGetQueryObjectui64v(m_end.id(), GL_QUERY_RESULT, &end);
-        return end > start ? static_cast<double>(end - start) * 1e-6 : 0.0;
-    }
-
-    // The stamps, for a late read on the GPU (gpu_figures.h); false before the first end().
+    // The stamps, written into the frame's figures on the GPU; false before the first end().
     bool stamped() const { return m_stamped; }
     GLuint startQuery() const { return m_start.id(); }
     GLuint endQuery() const { return m_end.id(); }

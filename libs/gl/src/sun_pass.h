@@ -35,17 +35,14 @@ public:
     core::Status prepare(const core::ShadowSetup& setup, const RenderSettings& settings,
                          const core::BiasSettings& bias);
     // Draws the maps: `mapLists` one per fixed map, or `pageLists` one per page to render. No
-    // sun (settings.sun false): nothing is drawn. Timed (milliseconds()). `wsTowardsLight`
+    // sun (settings.sun false): nothing is drawn. Timed (timer()). `wsTowardsLight`
     // says which faces bias.cull's front and back are (core/caster_facing.h).
     core::Result<PassStats> draw(const GpuScene& scene, const core::ShadowSetup& setup, const RenderSettings& settings,
                                  const core::BiasSettings& bias, const core::Vec3& wsTowardsLight,
                                  std::span<const PassList> mapLists, std::span<const PassList> pageLists);
-    // The GPU time of the last draw(); waits for it.
-    double milliseconds() const { return m_timer.milliseconds(); }
-    // The samples the last draw() wrote into its fixed maps and the texels they hold (0, 0 for
-    // virtual pages and without a sun); waits for the count.
-    uint64_t samplesPassed() const { return m_samples.samples(); }
-    // The queries behind both, for a late read (gpu_figures.h).
+    // The last draw()'s GPU time and the samples it wrote into its fixed maps, as queries the
+    // frame's figures read (gpu_figures.h), and the texels those maps hold (0 for virtual pages
+    // and without a sun, whose samples are not counted).
     const PassTimer& timer() const { return m_timer; }
     const PassSamples& samples() const { return m_samples; }
     uint64_t mapTexels() const { return m_countedTexels; }

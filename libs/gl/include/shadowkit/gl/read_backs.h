@@ -1,5 +1,5 @@
 // Synchronisations made by libs/gl in this process: GPU-to-CPU reads of data (buffers, textures)
-// and waits for a pass's timer or sample query or for a fence. Each one waits for the GPU to
+// and waits for a sample query or for a fence. Each one waits for the GPU to
 // finish the work before it — a stall on a real GPU — so tests and benches count them as work:
 // a frame's claim that one read-back serves two uses is checked here against what GL was asked,
 // not against the frame's own bookkeeping. CHC++'s occlusion query waits are counted apart
