@@ -40,6 +40,16 @@ LodProjection cameraProjectionOf(const core::PerspectiveCamera& camera, const Re
 
 } // namespace
 
+void CullingCosts::fill(FrameStats& stats) const {
+    stats.cullMilliseconds = total.wallMilliseconds;
+    stats.cullGlMilliseconds = inGl.wallMilliseconds;
+    stats.listCpuMilliseconds = lists.threadMilliseconds;
+    stats.cullOwnCpuMilliseconds = total.threadMilliseconds - inGl.threadMilliseconds - lists.threadMilliseconds;
+    stats.occlusion = occlusion;
+    stats.occlusionMilliseconds = occlusionMilliseconds;
+    stats.receiverMaskMilliseconds = receiverMaskMilliseconds;
+}
+
 core::Result<std::unique_ptr<PassLists>>
 PassLists::create(const scene::Scene& scene, std::span<const scene::MeshLods> lods, const GpuScene& gpuScene) {
     auto lists = std::unique_ptr<PassLists>(new PassLists);

@@ -61,6 +61,9 @@ struct CullingCosts {
     visibility::CoherentCullingStats occlusion;
     double occlusionMilliseconds = 0.0; // the camera's culling (CHC++ or the GPU's)
     double receiverMaskMilliseconds = 0.0;
+
+    // Into a frame's figures: wall and GL times, the list building's and culling's own CPU time.
+    void fill(FrameStats& stats) const;
 };
 
 class PassLists {

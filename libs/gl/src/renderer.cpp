@@ -184,15 +184,7 @@ core::Result<FrameStats> Renderer::render(const core::PerspectiveCamera& wsCamer
     if (!mainDraws) return mainDraws.errorInfo();
     stats.frame = ++r.frames;
     r.gpuFigures(stats, settings, *mainDraws);
-    const CullingCosts& culling = r.lists->costs();
-    stats.cullMilliseconds = culling.total.wallMilliseconds;
-    stats.cullGlMilliseconds = culling.inGl.wallMilliseconds;
-    stats.listCpuMilliseconds = culling.lists.threadMilliseconds;
-    stats.cullOwnCpuMilliseconds =
-        culling.total.threadMilliseconds - culling.inGl.threadMilliseconds - stats.listCpuMilliseconds;
-    stats.occlusion = culling.occlusion;
-    stats.occlusionMilliseconds = culling.occlusionMilliseconds;
-    stats.receiverMaskMilliseconds = culling.receiverMaskMilliseconds;
+    r.lists->costs().fill(stats);
     stats.virtualPages = r.sun->lastVirtual();
     return stats;
 }
