@@ -5,6 +5,7 @@
 # once. fuzz/CMakeLists.txt adds libFuzzer's coverage (-fsanitize=fuzzer-no-link) to the libraries
 # the fuzz targets feed only (core, scene, frame, the command line's options); the tests link
 # those with the sanitizer runtime, whose coverage callbacks do nothing outside a fuzzer.
+# SHADOWKIT_UNITY_BUILD as for tools/build.sh.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 flags="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
@@ -20,6 +21,7 @@ if [ -f build-sanitize/CMakeCache.txt ] && ! grep -q '^CMAKE_CXX_COMPILER:[A-Z]*
 fi
 cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSHADOWKIT_BUILD_PYTHON=OFF \
       -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DSHADOWKIT_FUZZ=ON \
+      "-DCMAKE_UNITY_BUILD=${SHADOWKIT_UNITY_BUILD:-OFF}" \
       "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=$optimise" "-DCMAKE_C_FLAGS_RELWITHDEBINFO=$optimise" \
       -DSHADOWKIT_BUILD_BENCHMARKS=OFF "-DCMAKE_CXX_FLAGS=$flags" "-DCMAKE_C_FLAGS=$flags" \
       "-DCMAKE_EXE_LINKER_FLAGS=-fsanitize=address,undefined" "-DCMAKE_SHARED_LINKER_FLAGS=-fsanitize=address,undefined" >/dev/null

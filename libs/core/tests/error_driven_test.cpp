@@ -16,7 +16,7 @@ using core::testing::ConfigGenerator;
 
 namespace {
 
-constexpr int kWidth = core::testing::kGroundWidth, kHeight = core::testing::kGroundHeight;
+constexpr int kViewWidth = core::testing::kGroundWidth, kViewHeight = core::testing::kGroundHeight;
 using core::testing::groundReceivers;
 using core::testing::groundView;
 
@@ -46,9 +46,9 @@ TEST(ErrorDrivenTest, OptimisedParametersLoseNoCasterAndNeverLoseToTheDefaults) 
         const Technique families[] = {Technique::Lispsm, Technique::Tsm, Technique::Csm};
         in.technique = families[i % 3];
         in.cascades.stabilize = false;
-        in.camera.aspect = double(kWidth) / kHeight;
+        in.camera.aspect = double(kViewWidth) / kViewHeight;
         if (!validate(in)) continue;
-        auto model = SamplingErrorModel::create(in.camera, kWidth, kHeight, randomReceivers(in, gen, 24));
+        auto model = SamplingErrorModel::create(in.camera, kViewWidth, kViewHeight, randomReceivers(in, gen, 24));
         ASSERT_TRUE(model);
         auto choice = optimiseParameters(in, *model);
         ASSERT_TRUE(choice) << choice.error();
@@ -77,7 +77,7 @@ TEST(ErrorDrivenTest, OptimisedParametersLoseNoCasterAndNeverLoseToTheDefaults) 
 // TSM's 80 % rule, with parameters inside the searched ranges.
 TEST(ErrorDrivenTest, FindsABetterWarpThanTheDefaultsOnAGroundView) {
     ShadowSetupInputs in = groundView(30.0, 90.0);
-    auto model = SamplingErrorModel::create(in.camera, kWidth, kHeight, groundReceivers(in.camera, 300.0, 60));
+    auto model = SamplingErrorModel::create(in.camera, kViewWidth, kViewHeight, groundReceivers(in.camera, 300.0, 60));
     ASSERT_TRUE(model);
     for (const Technique t : {Technique::Lispsm, Technique::Tsm}) {
         in.technique = t;
@@ -97,7 +97,7 @@ TEST(ErrorDrivenTest, FindsABetterWarpThanTheDefaultsOnAGroundView) {
 
 TEST(ErrorDrivenTest, AutoRanksEveryCandidateOfTheBudgetAndIsDeterministic) {
     const ShadowSetupInputs in = groundView(40.0, 60.0);
-    auto model = SamplingErrorModel::create(in.camera, kWidth, kHeight, groundReceivers(in.camera, 300.0, 40));
+    auto model = SamplingErrorModel::create(in.camera, kViewWidth, kViewHeight, groundReceivers(in.camera, 300.0, 40));
     ASSERT_TRUE(model);
     AutoOptions options;
     options.texelBudget = int64_t(4) << 20; // 4 M: 1 x 2048² or 4 x 1024²
@@ -131,7 +131,7 @@ TEST(ErrorDrivenTest, AutoRanksEveryCandidateOfTheBudgetAndIsDeterministic) {
 // little); one much worse is replaced; with none the best is taken.
 TEST(ErrorDrivenTest, AutoKeepsThePreviousChoiceUnlessClearlyBeaten) {
     ShadowSetupInputs in = groundView(35.0, 80.0);
-    auto model = SamplingErrorModel::create(in.camera, kWidth, kHeight, groundReceivers(in.camera, 300.0, 40));
+    auto model = SamplingErrorModel::create(in.camera, kViewWidth, kViewHeight, groundReceivers(in.camera, 300.0, 40));
     ASSERT_TRUE(model);
     AutoOptions options;
     options.cascades = 1;
@@ -175,7 +175,7 @@ TEST(ErrorDrivenTest, BadOptionsAreErrorsNamingTheField) {
     EXPECT_EQ(validate(options).errorInfo().field, "auto.search_samples");
     // No samples: nothing to judge by, so the default technique as it is, not an error.
     const ShadowSetupInputs in = groundView(40.0, 60.0);
-    auto empty = SamplingErrorModel::create(in.camera, kWidth, kHeight, {});
+    auto empty = SamplingErrorModel::create(in.camera, kViewWidth, kViewHeight, {});
     ASSERT_TRUE(empty);
     auto choice = chooseAuto(in, AutoOptions{}, *empty);
     ASSERT_TRUE(choice);

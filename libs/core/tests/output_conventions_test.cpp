@@ -12,8 +12,8 @@ using namespace shadowkit::core;
 
 namespace {
 
-struct Random : shadowkit::core::testing::RandomSource {
-    Random() : RandomSource(1123) {}
+struct RandomInputs : shadowkit::core::testing::RandomSource {
+    RandomInputs() : RandomSource(1123) {}
     ShadowSetupInputs inputs() {
         ShadowSetupInputs in;
         in.wsSceneBounds = Aabb::fromMinMax(Vec3(-400, 0, -400), Vec3(400, 40, 400));
@@ -33,7 +33,7 @@ struct Random : shadowkit::core::testing::RandomSource {
 
 // Points each map must serve: B's vertices (receivers) and points between them and the sun
 // inside the scene box (casters).
-std::vector<Vec3> receiversAndCasters(const ShadowSetup& setup, const ShadowSetupInputs& in, Random& random) {
+std::vector<Vec3> receiversAndCasters(const ShadowSetup& setup, const ShadowSetupInputs& in, RandomInputs& random) {
     std::vector<Vec3> points;
     for (const Vec3& p : setup.body.vertices()) {
         points.push_back(p);
@@ -55,7 +55,7 @@ Lookup lookUp(const EngineShadowView& view, const Vec3& p) {
 } // namespace
 
 TEST(OutputConventionsTest, EveryConventionIsTheDefaultLookupUnderTheDocumentedFlip) {
-    Random random;
+    RandomInputs random;
     int checked = 0;
     for (int i = 0; i < 300; ++i) {
         ShadowSetupInputs in = random.inputs();
@@ -112,7 +112,7 @@ TEST(OutputConventionsTest, ClipConversionMapsTheLightsNearAndFarPlanes) {
 }
 
 TEST(OutputConventionsTest, CullingPlanesKeepReceiversAndCastersAndDropWhatIsBesideTheMap) {
-    Random random;
+    RandomInputs random;
     for (int i = 0; i < 300; ++i) {
         ShadowSetupInputs in = random.inputs();
         for (const TechniqueInfo& info : allTechniques()) {

@@ -42,29 +42,29 @@ scene::Scene wallOnGround() {
     return s;
 }
 
-const core::DirectionalLight kSun = core::DirectionalLight::fromDirection({1, -1, 0}).value(); // from −x, 45°
+const core::DirectionalLight kSideSun = core::DirectionalLight::fromDirection({1, -1, 0}).value(); // from −x, 45°
 
-struct Frame {
+struct WallFrame {
     core::PerspectiveCamera camera;
     core::RasterBuffers raster;
     core::ShadowSetup setup;
 };
 
-Frame renderWall(gl::Renderer& renderer, const scene::Scene& scene, const core::PerspectiveCamera& camera,
-                 core::Technique technique, const gl::RenderSettings& settings, int mapSize = 1024) {
+WallFrame renderWall(gl::Renderer& renderer, const scene::Scene& scene, const core::PerspectiveCamera& camera,
+                     core::Technique technique, const gl::RenderSettings& settings, int mapSize = 1024) {
     auto setup = core::computeShadowSetup({.camera = camera,
-                                           .light = kSun,
+                                           .light = kSideSun,
                                            .wsSceneBounds = scene.wsBounds(),
                                            .technique = technique,
                                            .mapSize = mapSize});
     EXPECT_TRUE(setup) << setup.error();
-    auto raster = renderer.renderEvalBuffers(camera, kSun, *setup, settings);
+    auto raster = renderer.renderEvalBuffers(camera, kSideSun, *setup, settings);
     EXPECT_TRUE(raster) << raster.error();
     return {camera, std::move(raster).value(), std::move(setup).value()};
 }
 
 // The shadow term at a ground point, from the pixel that shows it (NaN where that is not ground).
-float termAt(const Frame& f, const core::Vec3& ws) {
+float termAt(const WallFrame& f, const core::Vec3& ws) {
     const core::Vec4 c = f.camera.clipFromWorld() * core::Vec4(ws, 1.0);
     const int px = static_cast<int>((c.x / c.w * 0.5 + 0.5) * f.raster.width);
     const int py = static_cast<int>((0.5 - c.y / c.w * 0.5) * f.raster.height);
@@ -76,7 +76,7 @@ float termAt(const Frame& f, const core::Vec3& ws) {
 // The 10–90 % width of a penumbra on the ground, along the line from `litEnd` to `shadowEnd`: the
 // terms at 5 mm steps, each averaged over a band of ± `band` across the line (each pixel's taps turn
 // differently: the average is the filter's expectation), then the first crossings from the lit end.
-double penumbraWidthAlong(const Frame& f, const core::Vec3& litEnd, const core::Vec3& shadowEnd,
+double penumbraWidthAlong(const WallFrame& f, const core::Vec3& litEnd, const core::Vec3& shadowEnd,
                           const core::Vec3& band) {
     const double step = 0.005, length = glm::length(shadowEnd - litEnd);
     const core::Vec3 along = (shadowEnd - litEnd) / length;
@@ -103,7 +103,7 @@ double penumbraWidthAlong(const Frame& f, const core::Vec3& litEnd, const core::
 }
 
 // The wall's side edge at `zEdge` (its shadow towards z = 0), at x.
-double penumbraWidth(const Frame& f, double x, double zEdge) {
+double penumbraWidth(const WallFrame& f, double x, double zEdge) {
     const double inward = zEdge > 0.0 ? -1.0 : 1.0, reach = 0.6;
     return penumbraWidthAlong(f, {x, 0.0, zEdge - inward * reach}, {x, 0.0, zEdge + inward * reach}, {0.2, 0.0, 0.0});
 }
@@ -153,7 +153,7 @@ TEST_F(SoftFilterTest, PcssPenumbraWidensAwayFromTheWallsFootAsTheDiskGeometrySa
     auto renderer = gl::Renderer::create(s);
     ASSERT_TRUE(renderer) << renderer.error();
     const double sunAngle = 2.0; // penumbrae of 5 and 15 cm: pixels are 2 cm
-    const Frame f = renderWall(**renderer, s, topDown(), core::Technique::Focused, pcssSettings(sunAngle));
+    const WallFrame f = renderWall(**renderer, s, topDown(), core::Technique::Focused, pcssSettings(sunAngle));
     for (const double zEdge : {3.0, -3.0}) {
         const double near = penumbraWidth(f, 1.5, zEdge), far = penumbraWidth(f, 4.5, zEdge);
         // Contact hardening: three times the blocker distance, about three times the width.
@@ -173,8 +173,8 @@ TEST_F(SoftFilterTest, PcssOfAVanishingSunIsTheHardLookupPixelForPixel) {
         hard.bias = core::recommendedBias(technique, core::DepthLayout::Hyperbolic, hard.filter);
         gl::RenderSettings pcss = pcssSettings(1e-6); // the kernels collapse onto the receiver's own texel
         pcss.bias = hard.bias;                        // without the receiver plane the hard test snaps to
-        const Frame a = renderWall(**renderer, s, topDown(), technique, hard);
-        const Frame b = renderWall(**renderer, s, topDown(), technique, pcss);
+        const WallFrame a = renderWall(**renderer, s, topDown(), technique, hard);
+        const WallFrame b = renderWall(**renderer, s, topDown(), technique, pcss);
         size_t differing = 0, shadowed = 0;
         for (size_t i = 0; i < a.raster.shadowTerm.size(); ++i) {
             differing += a.raster.shadowTerm[i] != b.raster.shadowTerm[i];
@@ -196,7 +196,7 @@ TEST_F(SoftFilterTest, PcssKernelFollowsAWarpedMapsLocalFootprintNotAConstantTex
     const core::PerspectiveCamera cam = lowCamera({5, 1.5, 5.5}, core::Vec3(0, -1.5, -6.5));
     const double sunAngle = 4.0;
     const gl::RenderSettings settings = pcssSettings(sunAngle);
-    const Frame f = renderWall(**renderer, s, cam, core::Technique::Lispsm, settings, 256);
+    const WallFrame f = renderWall(**renderer, s, cam, core::Technique::Lispsm, settings, 256);
 
     // Texels per metre along z at both edges, from the map's own textureFromWorld.
     const core::Mat4 textureFromWorld = core::toEngineView(f.setup.views[0], f.setup, {}).textureFromWorld;
@@ -228,7 +228,7 @@ TEST_F(SoftFilterTest, PcssOnAPerspectiveShadowMapIsAsWideAsTheDiskWhereItsTexel
     ASSERT_TRUE(renderer);
     const core::PerspectiveCamera cam = lowCamera({5, 1.5, 8}, {0, 0, -1});
     const double sunAngle = 4.0;
-    const Frame f = renderWall(**renderer, s, cam, core::Technique::Psm, pcssSettings(sunAngle), 512);
+    const WallFrame f = renderWall(**renderer, s, cam, core::Technique::Psm, pcssSettings(sunAngle), 512);
     ASSERT_EQ(f.setup.technique, core::Technique::Psm);
     ASSERT_TRUE(f.setup.fallbacks.empty()) << "a true perspective shadow map, not a fallback";
 
@@ -239,7 +239,7 @@ TEST_F(SoftFilterTest, PcssOnAPerspectiveShadowMapIsAsWideAsTheDiskWhereItsTexel
     EXPECT_NEAR(wBlocker / wReceiver, 1.0, 1e-9) << "the kernel's premise: w constant towards the light";
     const auto radiusTexels = [&](const core::Vec3& ws) { // a blocker 5 m up: Δ = 5√2 m
         return 5.0 * std::numbers::sqrt2 *
-               core::penumbraTexelsPerMetre(view.clipFromWorld, f.setup.mapSize, kSun.wsDirection, sunAngle, ws);
+               core::penumbraTexelsPerMetre(view.clipFromWorld, f.setup.mapSize, kSideSun.wsDirection, sunAngle, ws);
     };
     const double nearRadius = radiusTexels({5, 0, 3}), farRadius = radiusTexels({5, 0, -3});
     ASSERT_GT(nearRadius, 2.0 * farRadius) << "a constant-texel kernel must be wrong by over 2x";
@@ -269,7 +269,7 @@ TEST_F(SoftFilterTest, EveryFilterUnderTheRealSunIsFiniteAndLitAwayFromCastersFo
     settings.width = settings.height = 256;
     for (const core::TechniqueInfo& technique : core::allTechniques()) {
         auto setup = core::computeShadowSetup({.camera = cam,
-                                               .light = kSun,
+                                               .light = kSideSun,
                                                .wsSceneBounds = s.wsBounds(),
                                                .technique = technique.technique,
                                                .mapSize = 512,
@@ -278,9 +278,9 @@ TEST_F(SoftFilterTest, EveryFilterUnderTheRealSunIsFiniteAndLitAwayFromCastersFo
         for (const char* filter : {"hard", "pcf2", "pcf:3", "pcf:5", "poisson:16", "pcss", "msm"}) {
             if (technique.technique == core::Technique::Virtual && std::string_view(filter) == "msm") continue;
             settings.filter = core::parseFilter(filter).value();
-            auto raster = (*renderer)->renderEvalBuffers(cam, kSun, *setup, settings);
+            auto raster = (*renderer)->renderEvalBuffers(cam, kSideSun, *setup, settings);
             ASSERT_TRUE(raster) << raster.error();
-            const Frame f{cam, std::move(raster).value(), *setup};
+            const WallFrame f{cam, std::move(raster).value(), *setup};
             const std::string what = std::string(technique.name) + " " + filter;
             size_t bad = 0;
             for (const float t : f.raster.shadowTerm) bad += !(t >= 0.0f && t <= 1.0f);
@@ -328,12 +328,12 @@ core::PerspectiveCamera underThePlate() {
 }
 
 // Across the plate's edge, from x = 0.6 (lit) to x = −0.6 (under the plate), z in [−0.2, 0.2].
-double lampPenumbraWidth(const Frame& f) {
+double lampPenumbraWidth(const WallFrame& f) {
     return penumbraWidthAlong(f, {0.6, 0.0, 0.0}, {-0.6, 0.0, 0.0}, {0.0, 0.0, 0.2});
 }
 
-Frame renderLamp(gl::Renderer& renderer, const scene::Scene& scene, bool spot, double radius,
-                 core::ShadowFilter filter) {
+WallFrame renderLamp(gl::Renderer& renderer, const scene::Scene& scene, bool spot, double radius,
+                     core::ShadowFilter filter) {
     const core::PerspectiveCamera cam = underThePlate();
     const core::Vec3 at(0, kLampHeight, 0);
     std::vector<core::PointLight> points;
@@ -369,7 +369,7 @@ TEST_F(SoftFilterTest, PcssOfALampIsAsWideAsTheSpheresPenumbraInSpotAndCubeMaps)
     ASSERT_TRUE(renderer) << renderer.error();
     for (const bool spot : {false, true})
         for (const double radius : {0.2, 0.4}) {
-            const Frame f = renderLamp(**renderer, s, spot, radius, core::ShadowFilter::Pcss);
+            const WallFrame f = renderLamp(**renderer, s, spot, radius, core::ShadowFilter::Pcss);
             const double expected = kSegmentWidthPerRadius * kPlateHeight * radius / (kLampHeight - kPlateHeight);
             EXPECT_NEAR(lampPenumbraWidth(f), expected, 0.25 * expected)
                 << (spot ? "spot" : "point") << ", R " << radius;
@@ -381,8 +381,8 @@ TEST_F(SoftFilterTest, PcssOfAVanishingLampIsTheHardLookupPixelForPixel) {
     auto renderer = gl::Renderer::create(s);
     ASSERT_TRUE(renderer);
     for (const bool spot : {false, true}) {
-        const Frame hard = renderLamp(**renderer, s, spot, 1e-6, core::ShadowFilter::Hard);
-        const Frame pcss = renderLamp(**renderer, s, spot, 1e-6, core::ShadowFilter::Pcss);
+        const WallFrame hard = renderLamp(**renderer, s, spot, 1e-6, core::ShadowFilter::Hard);
+        const WallFrame pcss = renderLamp(**renderer, s, spot, 1e-6, core::ShadowFilter::Pcss);
         size_t differing = 0, shadowed = 0, bad = 0;
         for (size_t i = 0; i < hard.raster.shadowTerm.size(); ++i) {
             differing += hard.raster.shadowTerm[i] != pcss.raster.shadowTerm[i];
@@ -416,8 +416,8 @@ scene::Scene platesOverGround(const std::vector<std::pair<glm::vec3, glm::vec3>>
 }
 
 // Seen from `eye` (below the plates) looking at `target` on the ground.
-Frame renderFrom(gl::Renderer& renderer, const scene::Scene& s, core::FilterSettings filter, const core::Vec3& eye,
-                 const core::Vec3& target) {
+WallFrame renderFrom(gl::Renderer& renderer, const scene::Scene& s, core::FilterSettings filter, const core::Vec3& eye,
+                     const core::Vec3& target) {
     core::PerspectiveCamera cam;
     cam.wsEye = eye;
     cam.wsDirection = target - eye;
@@ -451,7 +451,7 @@ TEST_F(SoftFilterTest, MsmAcrossAnEdgeFollowsTheBlurredCoverageAndIsDarkUnderThe
     const scene::Scene s = platesOverGround({{{-10, 5, 0}, {10, 0.05f, 10}}});
     auto renderer = gl::Renderer::create(s);
     ASSERT_TRUE(renderer) << renderer.error();
-    const Frame f = renderFrom(**renderer, s, core::parseFilter("msm:4").value(), {6, 1.5, 6}, {0, 0, 0});
+    const WallFrame f = renderFrom(**renderer, s, core::parseFilter("msm:4").value(), {6, 1.5, 6}, {0, 0, 0});
     // The map's texel in metres along x, from its own textureFromWorld.
     const core::Mat4 textureFromWorld = core::toEngineView(f.setup.views[0], f.setup, {}).textureFromWorld;
     const double texel = 1.0 / (glm::length(core::Vec2(textureFromWorld * core::Vec4(1, 0, 0, 0))) * f.setup.mapSize);
@@ -483,7 +483,7 @@ TEST_F(SoftFilterTest, MsmLightBleedingUnderTwoStackedPlatesIsRemovedByTheReduct
     const scene::Scene s = platesOverGround({{{0, 2, 0}, {5, 0.05f, 10}}, {{-5.3f, 8, 0}, {10, 0.05f, 10}}});
     auto renderer = gl::Renderer::create(s);
     ASSERT_TRUE(renderer);
-    const Frame f = renderFrom(**renderer, s, core::parseFilter("msm:4").value(), {4, 1, 6}, {4, 0, 0});
+    const WallFrame f = renderFrom(**renderer, s, core::parseFilter("msm:4").value(), {4, 1, 6}, {4, 0, 0});
     float worst = 0.0f;
     for (double x = 3.0; x <= 4.6; x += 0.02) {
         const float t = termAt(f, {x, 0.0, 0.0});

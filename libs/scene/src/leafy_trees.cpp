@@ -23,7 +23,7 @@ namespace {
 
 constexpr float kPi = std::numbers::pi_v<float>;
 constexpr int kCellTexels = 128;
-const glm::vec3 kBark(0.33f, 0.24f, 0.16f);
+const glm::vec3 kLeafyBark(0.33f, 0.24f, 0.16f);
 
 // Draws happen one per statement wherever several feed one call: the order in which a call's
 // arguments are evaluated is unspecified (GCC 12 evaluates these last first, clang 14 first
@@ -80,7 +80,7 @@ void paintLine(Image& atlas, int cx, int cy, glm::vec2 a, glm::vec2 b, float wid
 // A broadleaf cluster: a twig up the cell's middle and five to seven leaves along it.
 void paintBroadleafCell(Image& atlas, int cx, int cy, SplitMix64& rng) {
     const float n = kCellTexels;
-    paintLine(atlas, cx, cy, {0.5f * n, 0.97f * n}, {0.5f * n, 0.2f * n}, 3.0f, kBark * 1.2f);
+    paintLine(atlas, cx, cy, {0.5f * n, 0.97f * n}, {0.5f * n, 0.2f * n}, 3.0f, kLeafyBark * 1.2f);
     const int leaves = 5 + int(rng.next() % 3);
     for (int i = 0; i < leaves; ++i) {
         const float along = 0.2f + 0.7f * float(i) / float(leaves);
@@ -98,7 +98,7 @@ void paintBroadleafCell(Image& atlas, int cx, int cy, SplitMix64& rng) {
 void paintNeedleCell(Image& atlas, int cx, int cy, SplitMix64& rng) {
     const float n = kCellTexels;
     const glm::vec3 needle(0.10f, 0.26f, 0.12f);
-    paintLine(atlas, cx, cy, {0.5f * n, 0.97f * n}, {0.5f * n, 0.06f * n}, 2.5f, kBark);
+    paintLine(atlas, cx, cy, {0.5f * n, 0.97f * n}, {0.5f * n, 0.06f * n}, 2.5f, kLeafyBark);
     for (int i = 0; i < 36; ++i) {
         const float y = (0.94f - 0.86f * float(i) / 36.0f) * n;
         const float side = i % 2 == 0 ? -1.0f : 1.0f;
@@ -117,7 +117,7 @@ void paintShrubCell(Image& atlas, int cx, int cy, SplitMix64& rng) {
         const float angle = 2.0f * kPi * float(i) / 12.0f + uniform(rng, -0.2f, 0.2f);
         const float distance = uniform(rng, 0.12f, 0.32f) * n;
         const glm::vec2 centre = middle + distance * glm::vec2(std::cos(angle), std::sin(angle));
-        paintLine(atlas, cx, cy, middle, centre, 2.0f, kBark * 1.3f);
+        paintLine(atlas, cx, cy, middle, centre, 2.0f, kLeafyBark * 1.3f);
         const glm::vec3 green = randomColour(rng, {0.2f, 0.3f}, {0.36f, 0.46f}, {0.1f, 0.16f});
         const float across = uniform(rng, 8.0f, 11.0f);
         paintLeaf(atlas, cx, cy, centre, uniform(rng, 10.0f, 14.0f), across, angle, green);
@@ -156,8 +156,8 @@ void addBranch(Mesh& mesh, glm::vec3 from, glm::vec3 to, float r0, float r1, int
     for (int i = 0; i < segments; ++i) {
         const float a = 2.0f * kPi * float(i) / float(segments);
         const glm::vec3 radial = std::cos(a) * u + std::sin(a) * v;
-        mesh.vertices.push_back({from + r0 * radial, radial, kBark, {}});
-        mesh.vertices.push_back({to + r1 * radial, radial, kBark, {}});
+        mesh.vertices.push_back({from + r0 * radial, radial, kLeafyBark, {}});
+        mesh.vertices.push_back({to + r1 * radial, radial, kLeafyBark, {}});
     }
     for (int i = 0; i < segments; ++i) {
         const uint32_t a0 = first + 2 * uint32_t(i), a1 = a0 + 1;
