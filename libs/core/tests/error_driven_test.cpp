@@ -4,11 +4,13 @@
 #include "ground_receivers.h"
 #include "setup_configs.h"
 
+#include "shadowkit/core/bias.h"
 #include "shadowkit/core/error_driven.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 using namespace shadowkit;
 using namespace shadowkit::core;
@@ -104,7 +106,9 @@ TEST(ErrorDrivenTest, AutoRanksEveryCandidateOfTheBudgetAndIsDeterministic) {
     auto ranked = rankCandidates(in, options, *model);
     ASSERT_TRUE(ranked);
     ASSERT_EQ(ranked->size(), 4u + 3u * 2u); // four single maps; 2, 3, 4 cascades, each unwarped and warped
-    for (size_t i = 1; i < ranked->size(); ++i) EXPECT_LE((*ranked)[i - 1].objective, (*ranked)[i].objective);
+    // Best first; only a near-tie may put a family with a normal offset ahead (next test).
+    for (size_t i = 2; i < ranked->size(); ++i) EXPECT_LE((*ranked)[i - 1].objective, (*ranked)[i].objective);
+    EXPECT_LE(ranked->front().objective, (1.0 + options.hysteresis) * (*ranked)[1].objective);
     for (const ParameterChoice& c : *ranked) {
         const int maps = c.inputs.technique == Technique::Csm ? c.inputs.cascades.count : 1;
         EXPECT_LE(int64_t(maps) * c.inputs.mapSize * c.inputs.mapSize, options.texelBudget) << describe(c);
@@ -125,6 +129,46 @@ TEST(ErrorDrivenTest, AutoRanksEveryCandidateOfTheBudgetAndIsDeterministic) {
     ASSERT_TRUE(three);
     ASSERT_EQ(three->size(), 2u);
     for (const ParameterChoice& c : *three) EXPECT_EQ(c.inputs.cascades.count, 3);
+}
+
+// The model sees sampling, not depth: where focused or psm (no normal offset in their
+// recommended bias) are best by less than the hysteresis margin, the best family with a normal
+// offset goes first (on a public engine model under a low sun, focused was predicted 0.6 %
+// better than LiSPSM and measured 11.50 % wrong against 0.07 %); where they are clearly best
+// they stay.
+TEST(ErrorDrivenTest, NearTiesGoToAFamilyWithANormalOffset) {
+    ConfigGenerator gen(52);
+    AutoOptions options;
+    options.cascades = 1;
+    auto offsets = [](const ParameterChoice& c) {
+        return recommendedBias(c.inputs.technique, depthLayoutFor(c.inputs)).normalOffset > 0.0;
+    };
+    int moved = 0, keptClearBest = 0;
+    for (int i = 0; i < 400; ++i) {
+        ShadowSetupInputs in = gen.next();
+        in.camera.aspect = double(kViewWidth) / kViewHeight;
+        if (!validate(in)) continue;
+        auto model = SamplingErrorModel::create(in.camera, kViewWidth, kViewHeight, randomReceivers(in, gen, 24));
+        ASSERT_TRUE(model);
+        auto ranked = rankCandidates(in, options, *model);
+        ASSERT_TRUE(ranked);
+        double lowest = std::numeric_limits<double>::infinity(), lowestWithOffset = lowest;
+        for (const ParameterChoice& c : *ranked) {
+            lowest = std::min(lowest, c.objective);
+            if (offsets(c)) lowestWithOffset = std::min(lowestWithOffset, c.objective);
+        }
+        const ParameterChoice& front = ranked->front();
+        if (lowestWithOffset <= (1.0 + options.hysteresis) * lowest) {
+            EXPECT_TRUE(offsets(front)) << "config " << i << ": " << describe(front);
+            EXPECT_EQ(front.objective, lowestWithOffset) << "config " << i;
+            moved += front.objective > lowest;
+        } else {
+            EXPECT_EQ(front.objective, lowest) << "config " << i;
+            keptClearBest += !offsets(front);
+        }
+    }
+    EXPECT_GT(moved, 0);         // near-ties happened and were resolved
+    EXPECT_GT(keptClearBest, 0); // and a clearly better focused or psm map was still chosen
 }
 
 // Hysteresis: a previous choice nearly as good as the best is kept (the camera moved a

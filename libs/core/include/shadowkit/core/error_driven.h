@@ -90,7 +90,10 @@ Status validate(const AutoOptions& options);
 
 /// Every candidate the options allow — focused, psm, tsm and lispsm as one map, cascades of each
 /// allowed count unwarped and with per-split LiSPSM — each with optimised parameters, best
-/// (lowest objective) first. `base` gives the camera, light, scene box and default options.
+/// (lowest objective) first; except that when the best is a family whose recommended bias has
+/// no normal offset (focused, psm) and one that has it is within AutoOptions::hysteresis of it,
+/// that one goes first (the model cannot see the acne the offset prevents). `base` gives the
+/// camera, light, scene box and default options.
 Result<std::vector<ParameterChoice>> rankCandidates(const ShadowSetupInputs& base, const AutoOptions& options,
                                                     const SamplingErrorModel& model);
 
