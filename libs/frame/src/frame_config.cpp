@@ -69,11 +69,8 @@ core::Result<core::LocalLighting> localLightingFor(const FrameConfig& config, co
         else
             spots.push_back(std::get<core::SpotLight>(l));
     }
-    constexpr size_t kMax = static_cast<size_t>(gl::kMaxLocalLightsPerKind);
-    if (points.size() > kMax || spots.size() > kMax)
-        return core::fieldError("lights", "at most " + std::to_string(kMax) + " point and " + std::to_string(kMax) +
-                                              " spot lights, got " + std::to_string(points.size()) + " and " +
-                                              std::to_string(spots.size()) + " (with the view's)");
+    // The view's lights count too.
+    if (auto s = gl::validateLocalLightCounts(points.size(), spots.size()); !s) return s.errorInfo();
     const core::LocalShadowInputs inputs{
         .camera = view.camera, .wsSceneBounds = wsSceneBounds, .mapSize = config.localMapSize};
     auto lighting = core::computeLocalLighting(inputs, points, spots);

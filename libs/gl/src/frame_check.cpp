@@ -44,11 +44,7 @@ core::Status checkFrame(const core::ShadowSetup& setup, const RenderSettings& se
 }
 
 core::Status checkLocalLights(const core::LocalLighting& lights) {
-    if (lights.points.size() > static_cast<size_t>(kMaxLocalLights) ||
-        lights.spots.size() > static_cast<size_t>(kMaxLocalLights))
-        return core::makeError("renderer: at most " + std::to_string(kMaxLocalLights) + " point and " +
-                               std::to_string(kMaxLocalLights) + " spot lights, got " +
-                               std::to_string(lights.points.size()) + " and " + std::to_string(lights.spots.size()));
+    if (auto s = validateLocalLightCounts(lights.points.size(), lights.spots.size()); !s) return s;
     if (lights.pointSetups.size() != lights.points.size() || lights.spotSetups.size() != lights.spots.size())
         return core::makeError("renderer: every local light needs its set-up (core::computeLocalLighting)");
     GLint maxSize = 0;

@@ -97,6 +97,15 @@ core::Status validateFogDensity(double density) {
     return core::Ok{};
 }
 
+core::Status validateLocalLightCounts(size_t points, size_t spots) {
+    constexpr auto kMax = static_cast<size_t>(kMaxLocalLightsPerKind);
+    if (points > kMax || spots > kMax)
+        return core::fieldError("lights", "at most " + std::to_string(kMax) + " point and " + std::to_string(kMax) +
+                                              " spot lights, got " + std::to_string(points) + " and " +
+                                              std::to_string(spots));
+    return core::Ok{};
+}
+
 core::Status validateVirtualFilter(const core::FilterSettings& filter) {
     if (filter.kind == core::ShadowFilter::Msm)
         return core::fieldError("filter", "msm needs fixed maps: virtual pages hold depth only (use pcss)");

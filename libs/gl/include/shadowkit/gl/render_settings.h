@@ -143,6 +143,9 @@ core::Status validateLevelsOfDetail(float pixelError, float texelError);
 core::Status validateFogDensity(double density);
 // A filter virtual maps can draw with: not msm (the pages hold depth only); the error names "filter".
 core::Status validateVirtualFilter(const core::FilterSettings& filter);
+// At most kMaxLocalLightsPerKind point and as many spot lights (Renderer::setLocalLights; front
+// ends call it before computing the lights' set-ups); the error names "lights".
+core::Status validateLocalLightCounts(size_t points, size_t spots);
 
 // The bias a frame with these settings is drawn with: settings.bias, or the recommended one.
 core::BiasSettings biasFor(const core::ShadowSetup& setup, const RenderSettings& settings);
