@@ -10,11 +10,13 @@
 #   tools/measure-gpu.sh     # then tools/gpu-tables.sh on its gpu-results.tgz, back on the build machine
 #
 # Sections (default: all, in this order, most wanted first): tests (the GL test programs on the
-# real driver), frame (a default frame, 1,000-100,000 trees, three views, CHC++ and GPU culling),
+# real driver), frame (a default frame, 1,000-100,000 trees, three views, CHC++ and GPU culling;
+# then the flythrough's moving camera at 10,000 and 100,000 trees),
 # techniques (every set-up at 10,000 trees), filters (each filter's passes under the real sun and
 # the lamps), leafy (the leafy forest's frame), eval (the standard views' figures against the truth,
-# to compare with llvmpipe's: the same program on another rasteriser), alpha (tools/measure-alpha.sh),
-# scaling (what the shadow pass's time follows at 100,000 trees).
+# to compare with llvmpipe's: the same program on another rasteriser; TSM's two depth layouts; PSM
+# with the receiver-plane bias), alpha (tools/measure-alpha.sh), scaling (what the shadow pass's
+# time follows at 100,000 trees: culling, levels, the depth layout).
 # Every step has its own time limit and the whole run a deadline (DEADLINE seconds, default 540,
 # nine minutes): steps past it are skipped and say so. Results, logs and
 # bench JSON go to $OUT/gpu-results.tgz (re-packed after every step, so a killed run still returns
@@ -77,9 +79,13 @@ for section in "${sections[@]}"; do
     ;;
   frame)
     step frame-chc 150 "${bench[@]}" --trees 1000,10000,100000 --views perpendicular,aerial,paper --limits \
-      --json "$res/frame-chc.json"
+      --visibility chc --json "$res/frame-chc.json"
     step frame-gpu 120 "${bench[@]}" --trees 1000,10000,100000 --views perpendicular,aerial,paper --visibility gpu \
       --json "$res/frame-gpu.json"
+    # A moving camera: the flythrough's 240 frames in order, the whole CPU side of each frame.
+    for v in gpu chc; do
+      step "path-$v" 120 "$B" bench --trees 10000,100000 --path flythrough --visibility "$v" --json "$res/path-$v.json"
+    done
     step frame-frustum 60 "${bench[@]}" --trees 10000 --views perpendicular --visibility frustum --caster-culling volume \
       --json "$res/frame-frustum.json"
     ;;
@@ -90,7 +96,7 @@ for section in "${sections[@]}"; do
       "csm4x2048-lispsm|--technique csm --cascades 4 --map-size 2048 --cascade-warp lispsm" \
       "virtual|--technique virtual"; do
       # shellcheck disable=SC2086
-      step "tech-${setup%%|*}" 60 "${bench[@]}" --trees 10000 --views perpendicular,aerial ${setup#*|} \
+      step "tech-${setup%%|*}" 60 "${bench[@]}" --trees 10000 --views perpendicular,aerial --limits ${setup#*|} \
         --json "$res/tech-${setup%%|*}.json"
     done
     ;;
@@ -108,7 +114,8 @@ for section in "${sections[@]}"; do
     ;;
   eval)
     for setup in "tsm|--technique tsm" "csm4x2048-lispsm|--technique csm --cascades 4 --map-size 2048 --cascade-warp lispsm" \
-      "virtual|--technique virtual"; do
+      "virtual|--technique virtual" "tsm-hyperbolic|--technique tsm --depth-layout hyperbolic" \
+      "psm-receiver-plane|--technique psm --receiver-plane-bias on --filter pcf:3"; do
       # shellcheck disable=SC2086
       step "eval-${setup%%|*}" 120 "$B" eval --views all ${setup#*|} --json "$res/eval-${setup%%|*}.json"
     done
@@ -116,7 +123,8 @@ for section in "${sections[@]}"; do
   scaling)
     # What the shadow pass's time follows at 100,000 trees: the default, without culling by
     # receivers, without levels of detail, with every instance drawn.
-    for variant in "default|" "volume|--visibility frustum --caster-culling volume" "no-lod|--no-lod" "all|--visibility off"; do
+    for variant in "default|" "volume|--visibility frustum --caster-culling volume" "no-lod|--no-lod" "all|--visibility off" \
+      "hyperbolic|--depth-layout hyperbolic" "chc|--visibility chc"; do
       # shellcheck disable=SC2086
       step "scaling-${variant%%|*}" 60 "${bench[@]}" --trees 100000 --views perpendicular ${variant#*|} \
         --json "$res/scaling-${variant%%|*}.json"

@@ -4,6 +4,7 @@
 #include "commands.h"
 #include "frame_config_options.h"
 #include "html_reports.h"
+#include "timeline.h"
 
 #include "shadowkit/frame/frame_driver.h"
 #include "shadowkit/gl/context.h"
@@ -39,6 +40,10 @@ struct BenchArgs {
     bool sameDensity = false;
     bool limits = false; // --limits: this GL's depth fill and triangle rates, and each shadow pass against them
     int frames = 5;
+    bool framesGiven = false, viewsGiven = false;
+    // --path: a moving camera (and sun) instead of still views — the frames an application
+    // draws, so no cache of a still view flatters the CPU's figures.
+    std::string path;
 };
 
 core::Result<std::vector<int>> parseCounts(const std::string& text) {
@@ -105,6 +110,11 @@ void printPassLines(const BenchArgs& args, gl::Culling culling, const measure::F
                    "{} texels; 1 is no overdraw)\n",
                    "", "", "", double(shadow.samplesPassed) / double(shadow.mapTexels), shadow.samplesPassed,
                    shadow.mapTexels);
+    const measure::Spread frameCpu = costs.frameCpu();
+    fmt::print("{:>7} {:>7} {:<14} cpu     the frame's CPU side ms med {:.3f} max {:.3f} (the frames after the "
+               "first: pre-passes, set-up, culling, levels and lists, every GL call; on a software rasteriser the "
+               "drawing too)\n",
+               "", "", "", frameCpu.median, frameCpu.max);
     const measure::Spread readBacks = costs.readBacks();
     fmt::print("{:>7} {:>7} {:<14} sync    {:.0f} synchronisations per frame (median; max {:.0f}; the frames after "
                "the first): GPU-to-CPU data reads and query waits, each a stall on a GPU (CHC++'s are counted "
@@ -184,19 +194,27 @@ eval::HtmlTable reportTable(const BenchArgs& args, const std::string& machine) {
         .command = invocationWithout({"--report"}, {})};
 }
 
-// One view of one forest: its frames drawn and their costs printed; its JSON row.
+// One view of one forest, or --path's frames over it: its frames drawn and their costs printed;
+// its JSON row.
 core::Result<nlohmann::json> benchView(const BenchArgs& args, const BenchRow& row, const scene::Scene& forest,
-                                       gl::Renderer& renderer, frame::FrameDriver& driver, eval::HtmlTable& table,
-                                       const std::optional<gl::DepthLimits>& limits) {
+                                       const Timeline& timeline, gl::Renderer& renderer, frame::FrameDriver& driver,
+                                       eval::HtmlTable& table, const std::optional<gl::DepthLimits>& limits) {
     ViewOptions viewOptions = args.view;
-    viewOptions.view = row.view;
-    auto view = viewOptions.resolve(forest);
-    if (!view) return view.errorInfo();
+    if (!timeline.path) viewOptions.view = row.view; // a path's frames take the default view's sun where it has none
+    auto still = viewOptions.resolve(forest);
+    if (!still) return still.errorInfo();
+    const int frames = timeline.path ? static_cast<int>(timeline.frames.size()) : args.frames;
+    scene::ResolvedView view = *still;
     measure::FrameCosts costs;
     driver.reset(); // --stabilize with held lattices: kept over the view's frames
-    for (int frame = 0; frame < args.frames; ++frame) {
+    for (int frame = 0; frame < frames; ++frame) {
+        if (timeline.path) {
+            auto moved = timeline.viewAt(*still, forest, timeline.frames[size_t(frame)].time, !args.view.size.empty());
+            if (!moved) return moved.errorInfo();
+            view = std::move(moved).value();
+        }
         const int64_t readBacksBefore = gl::readBacksMade();
-        auto drawn = driver.draw(renderer, *view);
+        auto drawn = driver.draw(renderer, view);
         if (!drawn) return withFlagName(drawn.errorInfo());
         costs.add(*drawn, gl::readBacksMade() - readBacksBefore);
     }
@@ -219,9 +237,10 @@ core::Result<nlohmann::json> benchView(const BenchArgs& args, const BenchRow& ro
                 {"view", row.view},
                 {"technique", core::techniqueName(args.technique.technique)},
                 {"visibility", gl::cullingName(culling)},
-                {"frames", args.frames},
-                {"width", view->width},
-                {"height", view->height},
+                {"frames", frames},
+                {"path", timeline.path ? nlohmann::json(args.path) : nlohmann::json(nullptr)},
+                {"width", view.width},
+                {"height", view.height},
                 {"receiver_mask", args.render.receiverMask && !args.render.noCull}});
     if (!args.report.empty()) {
         const std::filesystem::path page(args.report);
@@ -244,6 +263,15 @@ int runBench(const BenchArgs& args) {
     std::stringstream ss(args.views);
     for (std::string name; std::getline(ss, name, ',');) viewNames.push_back(name);
     if (viewNames.empty()) return fail("--views: no view named");
+    TimelineOptions timelineOptions;
+    timelineOptions.path = args.path;
+    if (!args.path.empty()) {
+        if (args.viewsGiven) return fail("--views: cannot be combined with --path (the path is the camera)");
+        if (args.framesGiven) timelineOptions.frames = fmt::format(":{}", args.frames); // the path's first frames
+    }
+    auto timeline = timelineOptions.resolve();
+    if (!timeline) return fail(timeline.errorInfo());
+    if (timeline->path) viewNames = {args.path};
     for (const char* flag : {"--report", "--json"})
         if (auto s = checkWritable(flag, flag[2] == 'r' ? args.report : args.json); !s) return fail(s.errorInfo());
     auto config = frameConfigOf(args.technique, args.render, args.lights);
@@ -252,8 +280,11 @@ int runBench(const BenchArgs& args) {
     if (!driver) return fail(withFlagName(driver.errorInfo()));
     auto context = gl::Context::createHeadless();
     if (!context) return fail(context.errorInfo());
-    fmt::print("{} | technique {} | {} frames per row | culling {}\n", (*context)->description(),
-               core::techniqueName(args.technique.technique), args.frames,
+    const std::string frames = timeline->path
+                                   ? fmt::format("{} frames of --path {}", timeline->frames.size(), args.path)
+                                   : fmt::format("{} frames per row", args.frames);
+    fmt::print("{} | technique {} | {} | culling {}\n", (*context)->description(),
+               core::techniqueName(args.technique.technique), frames,
                cullingSaid(args.render.culling(), (*context)->renderer()));
     fmt::print("caster culling {}\n", args.render.receiverMask ? "by visible receivers" : "by volume");
     std::optional<gl::DepthLimits> limits;
@@ -283,7 +314,7 @@ int runBench(const BenchArgs& args) {
         for (const std::string& name : viewNames) {
             BenchRow viewRow = row;
             viewRow.view = name;
-            auto run = benchView(args, viewRow, forest, **renderer, *driver, table, limits);
+            auto run = benchView(args, viewRow, forest, *timeline, **renderer, *driver, table, limits);
             if (!run) return fail(run.errorInfo());
             runs.push_back(std::move(run).value());
         }
@@ -311,8 +342,15 @@ Command addBenchCommand(CLI::App& app) {
     CLI::App* cmd = app.add_subcommand(
         "bench", "Frame cost per pass as the forest grows: instances, triangles, draws, GPU and CPU ms");
     cmd->add_option("--trees", args->trees, "forest sizes to measure, comma-separated")->capture_default_str();
-    cmd->add_option("--views", args->views, "standard views, comma-separated")->capture_default_str();
-    cmd->add_option("--frames", args->frames, "frames per view: min / median / max over them")->capture_default_str();
+    CLI::Option* views =
+        cmd->add_option("--views", args->views, "standard views, comma-separated")->capture_default_str();
+    CLI::Option* frames = cmd->add_option("--frames", args->frames,
+                                          "frames per view: min / median / max over them (with --path: its first N; "
+                                          "default all)")
+                              ->capture_default_str();
+    cmd->add_option("--path", args->path,
+                    "bench a moving camera instead of the views: a camera path's frames in order (a name from "
+                    "data/paths, e.g. flythrough, or a .json file), the sun as the path moves it");
     cmd->add_option("--forest", args->forest,
                     "forest: its trees, simple (opaque blobs) or leafy (alpha-tested leaf cards)")
         ->check(CLI::IsMember({"simple", "leafy"}))
@@ -333,7 +371,11 @@ Command addBenchCommand(CLI::App& app) {
                   "2 M small triangles, 64 large), then give each shadow pass's rates as fractions of them");
     cmd->add_option("--json", args->json, "write every row as JSON {\"runs\": [...], \"limits\": {...} or null}");
     cmd->add_option("--report", args->report, "also write an HTML page: the rows, what they mean, each view's frame");
-    return {cmd, [args] { return runBench(*args); }};
+    return {cmd, [args, views, frames] {
+                args->viewsGiven = views->count() > 0;
+                args->framesGiven = frames->count() > 0;
+                return runBench(*args);
+            }};
 }
 
 } // namespace shadowkit::app

@@ -35,7 +35,10 @@ core::Result<std::pair<int, int>> parseFrameRange(const std::string& text, int c
         if ((!a.empty() && !number(a, first)) || (!b.empty() && !number(b, end)) || (a.empty() && b.empty()))
             return bad();
     }
-    if (first >= count || end > count || first >= end)
+    if (end > count && first < count)
+        return core::makeError(
+            fmt::format("--frames: '{}' reaches past the path's {} frames (0 to {})", text, count, count - 1));
+    if (first >= count || first >= end)
         return core::makeError(
             fmt::format("--frames: '{}' selects no frame of the path's {} (0 to {})", text, count, count - 1));
     return std::pair{first, end};

@@ -29,6 +29,7 @@ void FrameCosts::add(const frame::DrawnFrame& drawn, int64_t readBacks) {
     const gl::FrameStats& stats = drawn.stats;
     m_readBacks.push_back(double(readBacks));
     m_setup.push_back(drawn.frame.setupMilliseconds);
+    m_frameCpu.push_back(drawn.frame.prePasses.milliseconds + drawn.frame.setupMilliseconds + drawn.milliseconds);
     m_cull.push_back(stats.cullMilliseconds);
     m_cullGl.push_back(stats.cullGlMilliseconds);
     m_cullOwn.push_back(stats.cullOwnCpuMilliseconds);
@@ -66,16 +67,18 @@ Spread FrameCosts::setupRest() const { return spreadOf(steady(m_setup)); }
 
 Spread FrameCosts::readBacks() const { return spreadOf(steady(m_readBacks)); }
 
+std::vector<double> FrameCosts::steadyFrameCpu() const { return steady(m_frameCpu); }
+
 FrameCosts::Occlusion FrameCosts::occlusion() const {
     return {spreadOf(steady(m_nodesVisited)), spreadOf(steady(m_queries)), spreadOf(steady(m_nodesQueried)),
             spreadOf(steady(m_multiQueryFailures)), spreadOf(steady(m_waits))};
 }
 
 nlohmann::json FrameCosts::json() const {
-    nlohmann::json j = {{"setup_first_ms", setupFirst()},   {"setup_ms", toJson(setupRest())},
-                        {"cull_ms", toJson(cull())},        {"cull_own_ms", toJson(cullOwn())},
-                        {"cull_gl_ms", toJson(cullGl())},   {"list_ms", toJson(lists())},
-                        {"read_backs", toJson(readBacks())}};
+    nlohmann::json j = {{"frame_cpu_ms", toJson(frameCpu())}, {"setup_first_ms", setupFirst()},
+                        {"setup_ms", toJson(setupRest())},    {"cull_ms", toJson(cull())},
+                        {"cull_own_ms", toJson(cullOwn())},   {"cull_gl_ms", toJson(cullGl())},
+                        {"list_ms", toJson(lists())},         {"read_backs", toJson(readBacks())}};
     for (const auto& [pass, stats, gpu] :
          {std::tuple{"shadow", &m_last.shadow, shadowGpu()}, std::tuple{"local", &m_last.local, localGpu()},
           std::tuple{"main", &m_last.main, mainGpu()}})

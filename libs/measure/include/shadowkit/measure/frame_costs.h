@@ -50,13 +50,19 @@ public:
     Spread prepass() const { return spreadOf(m_prepass); }     // the camera's culling pass, CPU ms
     Spread masks() const { return spreadOf(m_masks); }         // the receiver masks, CPU ms
     Spread readBacks() const;                                  // per steady frame (after the first)
+    // The whole CPU side of a steady frame (after the first), in ms: its pre-passes (a measured
+    // visible depth, auto's receivers) and set-up, then
+    // Renderer::render's wall-clock — culling, levels and lists, uniforms and every GL call made.
+    // On a GPU that is what the application's thread pays a frame (nothing in it waits for the
+    // GPU once figures are read late); on a software rasteriser it includes the drawing itself.
+    Spread frameCpu() const { return spreadOf(steadyFrameCpu()); }
     // CHC++'s counts over the steady frames (after the first; the first alone with one frame).
     struct Occlusion {
         Spread nodesVisited, queries, nodesQueried, multiQueryFailures, waits;
     };
     Occlusion occlusion() const;
 
-    // The cost fields of a bench row: setup_first_ms, setup_ms, cull_ms, cull_own_ms, cull_gl_ms,
+    // The cost fields of a bench row: frame_cpu_ms, setup_first_ms, setup_ms, cull_ms, cull_own_ms, cull_gl_ms,
     // list_ms, read_backs, shadow, local and main ({instances, triangles, draw_calls, gpu_ms}), receiver_mask_ms,
     // occlusion ({nodes_visited, queries, nodes_queried, multi_query_failures, waits, prepass_ms}).
     nlohmann::json json() const;
@@ -73,8 +79,10 @@ public:
     Rates shadowRates(const gl::DepthLimits& limits) const;
 
 private:
-    std::vector<double> m_setup, m_cull, m_cullOwn, m_cullGl, m_lists, m_shadowGpu, m_mainGpu, m_localGpu, m_prepass,
-        m_masks;
+    std::vector<double> steadyFrameCpu() const;
+
+    std::vector<double> m_frameCpu, m_setup, m_cull, m_cullOwn, m_cullGl, m_lists, m_shadowGpu, m_mainGpu, m_localGpu,
+        m_prepass, m_masks;
     std::vector<double> m_readBacks;
     std::vector<int64_t> m_frameNumbers; // gl::FrameStats::frame of each
     std::vector<double> m_nodesVisited, m_queries, m_nodesQueried, m_multiQueryFailures, m_waits;
