@@ -7,8 +7,17 @@
 // After a change that is meant to move figures, re-record them (and say why in the commit):
 //   SHADOWKIT_UPDATE_GOLDEN=1 build/tests/shadowkit_golden_tests
 // CTest label `gl`: runs headless on Mesa llvmpipe.
+//
+// The figures are one rasteriser's regression baselines, not a specification: another rounds
+// coverage, depth and alpha-tested textures' mip levels its own way (an NVIDIA H100 and H200,
+// driver 580, measured up to 0.09 points of a percentage from llvmpipe's on the blob forest and
+// 0.54 on the leafy one, with the same program). So each rasteriser is held to its own figures
+// where it has some — llvmpipe's in data/golden/, a GPU family's in data/golden/<family>/,
+// recorded on it the same way — at the tolerances below; any other to llvmpipe's, with the
+// percentages' tolerance widened to the file's "other_rasteriser_pct".
 #include "headless_gl_test.h"
 
+#include "shadowkit/gl/render_settings.h"
 #include "shadowkit/measure/measurer.h"
 #include "shadowkit/scene/forest.h"
 #include "shadowkit/scene/views.h"
@@ -16,9 +25,13 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <optional>
+#include <string>
 
 using namespace shadowkit;
 using nlohmann::json;
@@ -53,6 +66,18 @@ json figuresJson(const eval::Figures& f) {
             {"pixels_per_texel_p99", f.pixelsPerTexelP99}};
 }
 
+// The folder of a rasteriser's own figures under data/golden/: "" for the software rasteriser
+// the project records on, a GPU vendor's family otherwise; nullopt for one not known here.
+std::optional<std::string> rasteriserFamily(const std::string& glRenderer) {
+    if (gl::isSoftwareRasteriser(glRenderer)) return "";
+    std::string lower = glRenderer;
+    std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
+    for (const auto& [name, family] :
+         {std::pair{"nvidia", "nvidia"}, {"radeon", "amd"}, {"amd", "amd"}, {"intel", "intel"}, {"apple", "apple"}})
+        if (lower.find(name) != std::string::npos) return std::string(family);
+    return std::nullopt;
+}
+
 class GoldenFiguresTest : public gl::testing::HeadlessGlTest {
 protected:
     static void checkGolden(const std::filesystem::path& goldenFile);
@@ -60,11 +85,25 @@ protected:
 
 } // namespace
 
-void GoldenFiguresTest::checkGolden(const std::filesystem::path& goldenFile) {
-    std::ifstream in(goldenFile);
-    ASSERT_TRUE(in) << goldenFile << ": missing";
+void GoldenFiguresTest::checkGolden(const std::filesystem::path& fileName) {
+    // This rasteriser's own figures where it has some, else llvmpipe's with wider tolerances.
+    const std::optional<std::string> family = rasteriserFamily(context().renderer());
+    const bool update = std::getenv("SHADOWKIT_UPDATE_GOLDEN") != nullptr;
+    const std::filesystem::path llvmpipeFile = kGoldenFolder / fileName;
+    const std::filesystem::path ownFile = family ? kGoldenFolder / *family / fileName : llvmpipeFile;
+    if (update) {
+        ASSERT_TRUE(family) << "SHADOWKIT_UPDATE_GOLDEN: no folder under data/golden/ for the rasteriser '"
+                            << context().renderer() << "' (rasteriserFamily knows llvmpipe and four GPU vendors)";
+    }
+    const bool own = std::filesystem::exists(ownFile);
+    std::ifstream in(own ? ownFile : llvmpipeFile);
+    ASSERT_TRUE(in) << llvmpipeFile << ": missing";
     json golden = json::parse(in);
     const json& config = golden.at("config");
+    const double otherRasteriserPct = own ? 0.0 : config.at("other_rasteriser_pct").get<double>();
+    if (!own && !update)
+        std::printf("%s: no figures of this rasteriser's (%s); llvmpipe's, percentages within %.2f points\n",
+                    fileName.string().c_str(), context().renderer().c_str(), otherRasteriserPct);
 
     scene::ForestOptions forestOptions;
     forestOptions.kind =
@@ -79,7 +118,6 @@ void GoldenFiguresTest::checkGolden(const std::filesystem::path& goldenFile) {
     ASSERT_TRUE(measurer) << measurer.error();
     const int divisor = config.at("image_divisor");
 
-    const bool update = std::getenv("SHADOWKIT_UPDATE_GOLDEN") != nullptr;
     json recorded = json::object();
     for (const core::TechniqueInfo& technique : core::allTechniques()) {
         for (const scene::ViewSpec& spec : *views) {
@@ -101,23 +139,28 @@ void GoldenFiguresTest::checkGolden(const std::filesystem::path& goldenFile) {
             const json& expected = golden.at("figures").at(std::string(technique.name)).at(spec.name);
             for (const Tolerance& t : kTolerances) {
                 const double want = expected.at(t.name), got = actual.at(t.name);
-                EXPECT_LE(std::abs(got - want), t.absolute + t.relative * std::abs(want))
+                const double absolute = t.relative == 0.0 ? std::max(t.absolute, otherRasteriserPct) : t.absolute;
+                EXPECT_LE(std::abs(got - want), absolute + t.relative * std::abs(want))
                     << technique.name << " on " << spec.name << ": " << t.name << " " << got << ", recorded " << want;
             }
         }
     }
     if (update) {
         golden["figures"] = recorded;
-        std::ofstream(goldenFile) << golden.dump(2) << "\n";
-        std::printf("re-recorded %s\n", goldenFile.string().c_str());
+        if (!own) golden["rasteriser"] = context().renderer(); // a GPU family's first figures
+        std::filesystem::create_directories(ownFile.parent_path());
+        std::ofstream out(ownFile);
+        out << golden.dump(2) << "\n";
+        ASSERT_TRUE(out.good()) << ownFile << ": could not be written";
+        std::printf("re-recorded %s\n", ownFile.string().c_str());
     }
 }
 
 TEST_F(GoldenFiguresTest, EveryTechniqueMatchesItsRecordedFiguresOnEveryStandardView) {
-    checkGolden(kGoldenFolder / "small-forest.json");
+    checkGolden("small-forest.json");
 }
 
 // The leafy forest's cards and thin wood, alpha-tested in every map and in the truth.
 TEST_F(GoldenFiguresTest, EveryTechniqueMatchesItsRecordedFiguresOnTheLeafyForest) {
-    checkGolden(kGoldenFolder / "small-leafy-forest.json");
+    checkGolden("small-leafy-forest.json");
 }

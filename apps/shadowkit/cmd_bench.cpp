@@ -113,8 +113,8 @@ void printPassLines(const BenchArgs& args, gl::Culling culling, const measure::F
     const measure::Spread frameCpu = costs.frameCpu();
     fmt::print("{:>7} {:>7} {:<14} cpu     the frame's CPU side ms med {:.3f} max {:.3f} (the frames after the "
                "first: pre-passes, set-up, culling, levels and lists, every GL call; on a software rasteriser the "
-               "drawing too)\n",
-               "", "", "", frameCpu.median, frameCpu.max);
+               "drawing too); GPU ms over the {} of {} frames whose times came back\n",
+               "", "", "", frameCpu.median, frameCpu.max, costs.framesTimed(), costs.frames());
     const measure::Spread readBacks = costs.readBacks();
     fmt::print("{:>7} {:>7} {:<14} sync    {:.0f} synchronisations per frame (median; max {:.0f}; the frames after "
                "the first): GPU-to-CPU data reads and query waits, each a stall on a GPU (CHC++'s are counted "

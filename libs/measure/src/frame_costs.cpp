@@ -63,6 +63,11 @@ void FrameCosts::addLate(std::span<const gl::GpuFigures> figures) {
     }
 }
 
+int FrameCosts::framesTimed() const {
+    return static_cast<int>(
+        std::count_if(m_shadowGpu.begin(), m_shadowGpu.end(), [](double v) { return !std::isnan(v); }));
+}
+
 Spread FrameCosts::setupRest() const { return spreadOf(steady(m_setup)); }
 
 Spread FrameCosts::readBacks() const { return spreadOf(steady(m_readBacks)); }
@@ -75,10 +80,10 @@ FrameCosts::Occlusion FrameCosts::occlusion() const {
 }
 
 nlohmann::json FrameCosts::json() const {
-    nlohmann::json j = {{"frame_cpu_ms", toJson(frameCpu())}, {"setup_first_ms", setupFirst()},
-                        {"setup_ms", toJson(setupRest())},    {"cull_ms", toJson(cull())},
-                        {"cull_own_ms", toJson(cullOwn())},   {"cull_gl_ms", toJson(cullGl())},
-                        {"list_ms", toJson(lists())},         {"read_backs", toJson(readBacks())}};
+    nlohmann::json j = {
+        {"frame_cpu_ms", toJson(frameCpu())}, {"frames_timed", framesTimed()}, {"setup_first_ms", setupFirst()},
+        {"setup_ms", toJson(setupRest())},    {"cull_ms", toJson(cull())},     {"cull_own_ms", toJson(cullOwn())},
+        {"cull_gl_ms", toJson(cullGl())},     {"list_ms", toJson(lists())},    {"read_backs", toJson(readBacks())}};
     for (const auto& [pass, stats, gpu] :
          {std::tuple{"shadow", &m_last.shadow, shadowGpu()}, std::tuple{"local", &m_last.local, localGpu()},
           std::tuple{"main", &m_last.main, mainGpu()}})

@@ -32,6 +32,9 @@ public:
     // whose figures never came (the GPU too far behind) is left out of the GPU spreads.
     void addLate(std::span<const gl::GpuFigures> figures);
     int frames() const { return static_cast<int>(m_setup.size()); }
+    // Frames whose GPU times came back: with late figures, a frame the GPU was too far behind
+    // for has none, and the GPU spreads are over the rest.
+    int framesTimed() const;
     // The last frame's pass statistics (triangles, instances, draws; with late figures, once
     // they came back).
     const gl::FrameStats& last() const { return m_last; }
@@ -62,9 +65,9 @@ public:
     };
     Occlusion occlusion() const;
 
-    // The cost fields of a bench row: frame_cpu_ms, setup_first_ms, setup_ms, cull_ms, cull_own_ms, cull_gl_ms,
-    // list_ms, read_backs, shadow, local and main ({instances, triangles, draw_calls, gpu_ms}), receiver_mask_ms,
-    // occlusion ({nodes_visited, queries, nodes_queried, multi_query_failures, waits, prepass_ms}).
+    // The cost fields of a bench row: frame_cpu_ms, frames_timed, setup_first_ms, setup_ms, cull_ms, cull_own_ms,
+    // cull_gl_ms, list_ms, read_backs, shadow, local and main ({instances, triangles, draw_calls, gpu_ms}),
+    // receiver_mask_ms, occlusion ({nodes_visited, queries, nodes_queried, multi_query_failures, waits, prepass_ms}).
     nlohmann::json json() const;
 
     // The sun's pass against this GL's ceilings (gl/depth_limits.h): the samples it wrote and the
