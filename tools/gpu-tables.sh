@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # tools/gpu-tables.sh RESULTS.tgz: writes docs/performance.md's real-GPU tables ("On a real GPU")
 # from the gpu-results.tgz tools/measure-gpu.sh leaves on the GPU machine (copied back here),
-# beside llvmpipe's eval of the same set-ups, measured here first (about 5 minutes on
-# the project's 2-core machine; KEEP_LLVMPIPE=1 keeps the last ones).
+# beside llvmpipe's eval of the same five set-ups, measured here first (a few minutes on the
+# project's 2-core machine; KEEP_LLVMPIPE=1 keeps the last ones).
 set -euo pipefail
 [[ $# -eq 1 && -f $1 ]] || { echo "usage: tools/gpu-tables.sh RESULTS.tgz (from tools/measure-gpu.sh)" >&2; exit 2; }
 results=$(realpath "$1")
@@ -14,7 +14,8 @@ rm -rf "$gpu" && mkdir -p "$gpu" "$cpu"
 tar -xzf "$results" -C "$gpu"
 # The set-ups tools/measure-gpu.sh's eval section measures, with the same options.
 for setup in "tsm|--technique tsm" "csm4x2048-lispsm|--technique csm --cascades 4 --map-size 2048 --cascade-warp lispsm" \
-  "virtual|--technique virtual"; do
+  "virtual|--technique virtual" "tsm-hyperbolic|--technique tsm --depth-layout hyperbolic" \
+  "psm-receiver-plane|--technique psm --receiver-plane-bias on --filter pcf:3"; do
   name=${setup%%|*}
   if [[ -z ${KEEP_LLVMPIPE:-} || ! -f $cpu/eval-$name.json ]]; then
     echo "== llvmpipe: eval --views all ${setup#*|}" >&2

@@ -2,8 +2,9 @@
 """docs/performance.md's real-GPU tables, from what tools/measure-gpu.sh measured on the device.
 
 Usage: gpu_tables.py RESULTS_DIR LLVMPIPE_DIR
-  RESULTS_DIR   gpu-results.tgz unpacked: bench JSON per set-up (frame-*.json, tech-*.json,
-                filter-*.json, lamp-*.json, leafy.json), eval-*.json, summary.txt, alpha-tsm.log
+  RESULTS_DIR   gpu-results.tgz unpacked: bench JSON per set-up (frame-*.json, path-*.json,
+                tech-*.json, filter-*.json, lamp-*.json, leafy.json, scaling-*.json), eval-*.json,
+                summary.txt, alpha-tsm.log
   LLVMPIPE_DIR  the same eval-*.json taken on this machine (tools/gpu-tables.sh runs them)
 
 Writes the tables between `<!-- table gpu-...: tools/gpu-tables.sh -->` and `<!-- /table -->` in
@@ -30,20 +31,75 @@ def ms(run, pass_name):
     return run[pass_name]["gpu_ms"]["median"]
 
 
+def gpu_name(d):
+    """The GPU's name as the run's summary recorded it ("NVIDIA H200"), for the tables' headers."""
+    for line in (d / "summary.txt").read_text().splitlines()[1:3]:
+        if line.startswith("NVIDIA"):
+            return line.split(",")[0].replace("80GB HBM3", "").strip()
+    return "GPU"
+
+
+def per_texel(run):
+    """Samples that passed the shadow pass's depth test per map texel: its overdraw (1 is none)."""
+    return run["shadow"].get("samples_per_texel", 0.0)
+
+
 def frame_table(d):
-    """Per forest size and view: both passes' GPU ms and the culling's CPU ms, CHC++ and GPU culling."""
-    chc = {(r["trees"], r["view"]): r for r in runs(d / "frame-chc.json")}
+    """Per forest size and view: both passes' GPU ms, the frame's CPU ms and the shadow pass's
+    samples per texel, GPU-driven culling (the default on a GPU) and CHC++."""
     gpu = {(r["trees"], r["view"]): r for r in runs(d / "frame-gpu.json")}
-    out = ["| trees | view | shadow pass: M triangles (instances) | shadow GPU ms | main GPU ms | culling CPU ms "
-           "| GPU culling: shadow GPU ms | main GPU ms | culling CPU ms |",
-           "|---:|---|---:|---:|---:|---:|---:|---:|---:|"]
-    for key, c in chc.items():
-        g = gpu.get(key)
-        if g is None:
-            sys.exit(f"gpu_tables: frame-gpu.json has no row for {key}")
-        out.append(f"| {key[0]:,} | {key[1]} | {c['shadow']['triangles'] / 1e6:.2f} ({c['shadow']['instances']:,}) | "
-                   f"{ms(c, 'shadow'):.1f} | {ms(c, 'main'):.1f} | {c['cull_ms']['median']:.1f} | "
-                   f"{ms(g, 'shadow'):.1f} | {ms(g, 'main'):.1f} | {g['cull_ms']['median']:.1f} |")
+    chc = {(r["trees"], r["view"]): r for r in runs(d / "frame-chc.json")}
+    out = ["| trees | view | shadow pass: M triangles (instances) | samples per texel | shadow GPU ms | main GPU ms "
+           "| frame CPU ms | CHC++: shadow GPU ms | main GPU ms | frame CPU ms |",
+           "|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|"]
+    for key, g in gpu.items():
+        c = chc.get(key)
+        if c is None:
+            sys.exit(f"gpu_tables: frame-chc.json has no row for {key}")
+        out.append(f"| {key[0]:,} | {key[1]} | {g['shadow']['triangles'] / 1e6:.2f} ({g['shadow']['instances']:,}) | "
+                   f"{per_texel(g):.2f} | {ms(g, 'shadow'):.1f} | {ms(g, 'main'):.1f} | "
+                   f"{g['frame_cpu_ms']['median']:.2f} | {ms(c, 'shadow'):.1f} | {ms(c, 'main'):.1f} | "
+                   f"{c['frame_cpu_ms']['median']:.1f} |")
+    return "\n".join(out)
+
+
+def path_table(d):
+    """The flythrough's 240 frames in order, GPU-driven and CHC++: the CPU side of a moving frame."""
+    # No GPU times here: the GPU-driven frames run far ahead of the GPU, and the late figures of
+    # most of them never come back (their ring slot is reused first), so a median would be over
+    # the last few frames alone.
+    out = ["| trees | culling | frame CPU ms: median | max | synchronisations a frame | shadow pass: M triangles "
+           "(last frame) | main pass: M triangles (last frame) |",
+           "|---:|---|---:|---:|---:|---:|---:|"]
+    for name, label in (("gpu", "GPU-driven (default)"), ("chc", "CHC++")):
+        for r in runs(d / f"path-{name}.json"):
+            out.append(f"| {r['trees']:,} | {label} | {r['frame_cpu_ms']['median']:.2f} | {r['frame_cpu_ms']['max']:.1f} | "
+                       f"{r['read_backs']['median']:.0f} | {r['shadow']['triangles'] / 1e6:.2f} | "
+                       f"{r['main']['triangles'] / 1e6:.2f} |")
+    return "\n".join(out)
+
+
+def limits_line(d):
+    """The GPU's ceilings as bench --limits measured them in the frame section's run."""
+    with open(d / "frame-chc.json") as f:
+        l = json.load(f)["limits"]
+    return (f"depth-only fill {l['fill_samples_per_s'] * 1e-9:.1f} G samples/s; "
+            f"{l['small_triangles_per_s'] * 1e-6:.0f} M small triangles/s")
+
+
+def depth_layout_table(d):
+    """TSM's two depth layouts at 100,000 trees (`perpendicular`): the shadow pass's GPU ms and
+    work, and every standard view's wrong_pct."""
+    rows = [("linear (TSM's default)", runs(d / "scaling-default.json")[0], "eval-tsm.json"),
+            ("hyperbolic", runs(d / "scaling-hyperbolic.json")[0], "eval-tsm-hyperbolic.json")]
+    out = ["| depth layout | shadow GPU ms | samples per texel | M triangles | " +
+           " | ".join(f"{v} wrong %" for v in VIEWS) + " |",
+           "|---|---:|---:|---:|" + "---:|" * len(VIEWS)]
+    for label, r, ev in rows:
+        with open(d / ev) as f:
+            wrong = {v["view"]: v["wrong_pct"] for v in json.load(f)["views"]}
+        out.append(f"| {label} | {ms(r, 'shadow'):.1f} | {per_texel(r):.2f} | {r['shadow']['triangles'] / 1e6:.2f} | " +
+                   " | ".join(f"{wrong[v]:.3f}" for v in VIEWS) + " |")
     return "\n".join(out)
 
 
@@ -55,8 +111,9 @@ SETUPS = [("standard", "`standard` 2048²"), ("focused", "`focused` 2048²"), ("
 def setups_table(d):
     """Per set-up, 10,000 trees: each view's shadow pass (triangles, GPU ms) and camera pass."""
     views = [r["view"] for r in runs(d / "tech-tsm.json")]
-    out = ["| set-up | " + " | ".join(f"{v}: shadow M triangles | shadow GPU ms | main GPU ms" for v in views) + " |",
-           "|---|" + "---:|---:|---:|" * len(views)]
+    out = ["| set-up | " + " | ".join(f"{v}: shadow M triangles | samples per texel | shadow GPU ms | main GPU ms"
+                                    for v in views) + " |",
+           "|---|" + "---:|---:|---:|---:|" * len(views)]
     for name, label in SETUPS:
         rows = {r["view"]: r for r in runs(d / f"tech-{name}.json")}
         cells = []
@@ -66,9 +123,10 @@ def setups_table(d):
                 # A still camera keeps every page after the first frame, whose pass is the slowest
                 # of the 11 (bench keeps no per-frame triangles): the median would time a cache.
                 shadow = f"{r['shadow']['gpu_ms']['max']:.1f} first frame, then {ms(r, 'shadow'):.1f}"
-                cells += ["all pages, then none", shadow, f"{ms(r, 'main'):.1f}"]
+                cells += ["all pages, then none", "–", shadow, f"{ms(r, 'main'):.1f}"]
             else:
-                cells += [f"{r['shadow']['triangles'] / 1e6:.2f}", f"{ms(r, 'shadow'):.1f}", f"{ms(r, 'main'):.1f}"]
+                cells += [f"{r['shadow']['triangles'] / 1e6:.2f}", f"{per_texel(r):.2f}", f"{ms(r, 'shadow'):.1f}",
+                          f"{ms(r, 'main'):.1f}"]
         out.append(f"| {label} | " + " | ".join(cells) + " |")
     return "\n".join(out)
 
@@ -98,19 +156,21 @@ def filters_table(d, prefix, filters, shadow_column=True):
 def leafy_table(d):
     """The leafy forest's frame beside the blob forest's (TSM 2048², 10,000 trees)."""
     blob = {r["view"]: r for r in runs(d / "tech-tsm.json")}
-    out = ["| forest | view | shadow pass: M triangles | shadow GPU ms | main pass: M triangles | main GPU ms | culling CPU ms |",
+    out = ["| forest | view | shadow pass: M triangles | shadow GPU ms | main pass: M triangles | main GPU ms | frame CPU ms |",
            "|---|---|---:|---:|---:|---:|---:|"]
     for label, rows in (("blob", blob), ("leafy", {r["view"]: r for r in runs(d / "leafy.json")})):
         for v, r in rows.items():
             out.append(f"| {label} | {v} | {r['shadow']['triangles'] / 1e6:.2f} | {ms(r, 'shadow'):.1f} | "
-                       f"{r['main']['triangles'] / 1e6:.2f} | {ms(r, 'main'):.1f} | {r['cull_ms']['median']:.1f} |")
+                       f"{r['main']['triangles'] / 1e6:.2f} | {ms(r, 'main'):.1f} | {r['frame_cpu_ms']['median']:.2f} |")
     return "\n".join(out)
 
 
 def eval_table(d, local):
-    """wrong_pct per view and set-up on the H100 beside llvmpipe's, the same program and scene."""
-    names = [("tsm", "`tsm`"), ("csm4x2048-lispsm", "`csm` 4 × 2048² LiSPSM"), ("virtual", "`virtual`")]
-    out = ["| view | " + " | ".join(f"{label}: H100 / llvmpipe" for _, label in names) + " |",
+    """wrong_pct per view and set-up on the GPU beside llvmpipe's, the same program and scene."""
+    names = [("tsm", "`tsm`"), ("csm4x2048-lispsm", "`csm` 4 × 2048² LiSPSM"), ("virtual", "`virtual`"),
+             ("tsm-hyperbolic", "`tsm`, hyperbolic depth"), ("psm-receiver-plane", "`psm`, receiver plane, `pcf:3`")]
+    gpu = gpu_name(d).replace("NVIDIA ", "")
+    out = ["| view | " + " | ".join(f"{label}: {gpu} / llvmpipe" for _, label in names) + " |",
            "|---|" + "---:|" * len(names)]
     figures = {}
     for name, _ in names:
@@ -118,16 +178,17 @@ def eval_table(d, local):
             with open(folder / f"eval-{name}.json") as f:
                 for v in json.load(f)["views"]:
                     figures[(name, where, v["view"])] = v["wrong_pct"]
-    worst = 0.0
+    worst = {}
     for view in VIEWS:
         cells = []
         for name, _ in names:
             g, c = figures[(name, "gpu", view)], figures[(name, "cpu", view)]
-            worst = max(worst, abs(g - c))
+            worst[name] = max(worst.get(name, 0.0), abs(g - c))
             cells.append(f"{g:.3f} / {c:.3f}")
         out.append(f"| {view} | " + " | ".join(cells) + " |")
     out.append("")
-    out.append(f"Largest difference: {worst:.3f} points of `wrong_pct`.")
+    out.append("Largest difference: " + "; ".join(f"{label} {worst[name]:.3f}" for name, label in names) +
+               " points of `wrong_pct`.")
     return "\n".join(out)
 
 
@@ -138,9 +199,11 @@ def main(argv):
     summary = (d / "summary.txt").read_text()
     if "NVIDIA" not in summary and "via EGL device" not in summary:
         print("gpu_tables: warning: summary.txt names no GPU driver", file=sys.stderr)
-    machine = [l for l in summary.splitlines()[:4] if not l.startswith("context ")]
+    machine = [l for l in summary.splitlines()[:4] if not l.startswith("context ")] + [f"limits: {limits_line(d)}"]
     write_into(f"{PAGE}:gpu-machine", "\n".join(["```text"] + machine + ["```"]))
     write_into(f"{PAGE}:gpu-frame", frame_table(d))
+    write_into(f"{PAGE}:gpu-path", path_table(d))
+    write_into(f"{PAGE}:gpu-depth-layout", depth_layout_table(d))
     write_into(f"{PAGE}:gpu-setups", setups_table(d))
     write_into(f"{PAGE}:gpu-filters", filters_table(d, "filter", FILTERS))
     write_into(f"{PAGE}:gpu-lamps", filters_table(d, "lamp", ["hard", "pcf2", "pcss"], shadow_column=False))
