@@ -35,6 +35,9 @@ drift from what the program measures.
       soft_mae in brackets, and their means
   tools/readme_tables.py soft-summary results.csv
       the same sweep's means per set-up (rows) and filter (columns): the README's soft table
+  tools/readme_tables.py soft-forests BLOB.csv LEAFY.csv
+      two soft sweeps of the same cells, the blob and the leafy forest: per set-up and filter the
+      means of wrong_pct (hard truth) and soft_mae, penumbra_mae, soft_wrong_pct (the sun's disk)
   tools/readme_tables.py soft-widths results.csv
       the same sweep's penumbra_width_ratio per set-up (rows) and filter (columns): mean (range)
   tools/readme_tables.py soft-lamps results.csv
@@ -298,6 +301,33 @@ def soft_summary(paths):
         print(f"| {setup} | " + " | ".join(cells) + " |")
 
 
+def soft_forests(paths):
+    """The two forests under the real sun, side by side: per set-up and filter of two soft sweeps'
+    results.csv (the blob forest's first, the leafy forest's second, the same cells), the means
+    over the views of wrong_pct against the hard truth and soft_mae, penumbra_mae and soft_wrong_pct
+    against the sun disk's; the leafy forest's best soft_mae per set-up bold."""
+    if len(paths) != 2:
+        sys.exit("readme_tables: soft-forests takes two results.csv: the blob forest's, then the leafy forest's")
+    (blob, setups, filters), (leafy, _, _) = soft_rows(paths[:1]), soft_rows(paths[1:])
+
+    def means(rows, setup, name):
+        by_view = {r["view"]: r for r in rows if r["filter"] == name and r.get("set-up", "") == setup}
+        if len(by_view) != len(VIEWS):
+            return None
+        return [sum(by_view[v][k] for v in VIEWS) / len(VIEWS)
+                for k in ("wrong_pct", "soft_mae", "penumbra_mae", "soft_wrong_pct")]
+
+    print("| set-up | filter | blob: wrong % | soft_mae | leafy: wrong % | soft_mae | penumbra_mae | soft_wrong % |")
+    print("|---|---|---:|---:|---:|---:|---:|---:|")
+    for setup in setups:
+        cells = {name: (means(blob, setup, name), means(leafy, setup, name)) for name in filters}
+        cells = {name: c for name, c in cells.items() if c[0] and c[1]}
+        best = min(cells, key=lambda n: cells[n][1][1])
+        for name, (b, l) in cells.items():
+            soft = f"**{l[1]:.4f}**" if name == best else f"{l[1]:.4f}"
+            print(f"| {setup} | `{name}` | {b[0]:.2f} | {b[1]:.4f} | {l[0]:.2f} | {soft} | {l[2]:.3f} | {l[3]:.2f} |")
+
+
 def soft_widths(paths):
     """Per set-up (rows) and filter (columns) of a soft sweep's results.csv: the penumbra width
     ratio (rendered 10–90 % band over the true one), its mean over the views and, in brackets, its
@@ -462,7 +492,8 @@ def write_into(target, text):
 
 def run(argv):
     """Prints the table the arguments (argv[1:], as on the command line) ask for."""
-    commands = {"forests": forests, "oracle": oracle, "soft": soft, "soft-summary": soft_summary, "soft-widths": soft_widths, "soft-lamps": soft_lamps, "stable": stable, "visibility": visibility, "dynamics": dynamics,
+    commands = {"forests": forests, "oracle": oracle, "soft": soft, "soft-summary": soft_summary,
+                "soft-forests": soft_forests, "soft-widths": soft_widths, "soft-lamps": soft_lamps, "stable": stable, "visibility": visibility, "dynamics": dynamics,
                 "setup": setup, "culling": culling, "truth": truth, "scale": scale}
     if len(argv) >= 5 and argv[1] == "oracle" and argv[2] == "--name":
         oracle(argv[4:], argv[3].split(","))
