@@ -25,5 +25,6 @@ Command addAnalyzeCommand(CLI::App& app);
 Command addCompareCommand(CLI::App& app);
 Command addBenchCommand(CLI::App& app);
 Command addSweepCommand(CLI::App& app);
+Command addScoreCommand(CLI::App& app);
 
 } // namespace shadowkit::app

@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
         shadowkit::app::addAnalyzeCommand(app), shadowkit::app::addCompareCommand(app),
         shadowkit::app::addBenchCommand(app),   shadowkit::app::addSetupCommand(app),
         shadowkit::app::addExportCommand(app),  shadowkit::app::addSweepCommand(app),
+        shadowkit::app::addScoreCommand(app),
     };
 
     shadowkit::app::setInvocation(std::vector<std::string>(argv + 1, argv + argc)); // reports print it

@@ -615,6 +615,41 @@ if(CASE STREQUAL "gl-bench-path")
 endif()
 check_fails(bench-path-and-views "--views" bench --trees 10 --path flythrough --views paper)
 check_fails(bench-path-past-its-end "--frames" bench --trees 10 --path flythrough --frames 241)
+# score: eval's own term (--dump), scored as another renderer's mask, from the view and from the
+# camera as `setup` prints it; a mask of another size or camera, or a missing one, refused.
+if(CASE STREQUAL "gl-score")
+  set(view --view perpendicular --size 96x54)
+  execute_process(COMMAND ${SHADOWKIT} eval ${small} ${view} --map-size 256 --dump "${WORK}/score-dump" --json "${WORK}/score-eval.json"
+                  RESULT_VARIABLE rc OUTPUT_QUIET ERROR_VARIABLE err)
+  execute_process(COMMAND ${SHADOWKIT} score "${WORK}/score-dump/shadow_term.npy" ${small} ${view}
+                          --json "${WORK}/score.json" --error-map "${WORK}/score.png"
+                  RESULT_VARIABLE rc2 OUTPUT_VARIABLE table ERROR_VARIABLE err2)
+  execute_process(COMMAND ${SHADOWKIT} setup ${small} ${view} OUTPUT_FILE "${WORK}/score-camera.json" RESULT_VARIABLE rc3)
+  execute_process(COMMAND ${SHADOWKIT} score "${WORK}/score-dump/shadow_term.npy" ${small} --camera "${WORK}/score-camera.json"
+                  RESULT_VARIABLE rc4 OUTPUT_VARIABLE camera_table ERROR_VARIABLE err4)
+  execute_process(COMMAND ${SHADOWKIT} score "${WORK}/score-dump/shadow_term.npy" ${small} --view perpendicular
+                  RESULT_VARIABLE rc5 ERROR_VARIABLE err5)
+  if(NOT rc EQUAL 0 OR NOT rc2 EQUAL 0 OR NOT rc3 EQUAL 0 OR NOT rc4 EQUAL 0 OR NOT EXISTS "${WORK}/score.png")
+    message(SEND_ERROR "score: failed: ${err} ${err2} ${err4}")
+  else()
+    file(READ "${WORK}/score-eval.json" evaluated)
+    file(READ "${WORK}/score.json" scored)
+    string(JSON valid GET "${evaluated}" views 0 valid_px)
+    string(JSON excluded GET "${evaluated}" views 0 excluded_px)
+    string(JSON scored_valid GET "${scored}" scores 0 valid_px)
+    math(EXPR expected "${valid} + ${excluded}")
+    # The view's own camera, and the camera `setup` printed for it: the same pixels.
+    string(REGEX MATCH "perpendicular +shadow_term.npy +([0-9]+)" row "${table}")
+    string(REGEX MATCH "camera +shadow_term.npy +([0-9]+)" camera_row "${camera_table}")
+    if(NOT scored_valid EQUAL expected OR NOT row OR NOT camera_row)
+      message(SEND_ERROR "score: ${scored_valid} valid pixels, expected ${expected}: ${table} ${camera_table}")
+    endif()
+  endif()
+  if(rc5 EQUAL 0 OR NOT err5 MATCHES "96×54 pixels, but the view is 1280×720")
+    message(SEND_ERROR "score: a mask of another size was not refused in one line: ${err5}")
+  endif()
+endif()
+check_fails(score-missing-mask "no-such-mask.png: cannot be read" score no-such-mask.png ${small})
 check_fails(bench-bad-trees "--trees" bench --trees 10,-5)
 check_fails(bench-bad-frames "--frames" bench --trees 10 --frames 0)
 check_fails(visible-depth-auto-without-frame "--visible-depth" setup ${small} --visible-depth auto)

@@ -107,6 +107,7 @@ core::Result<Comparison> compare(const core::RasterBuffers& raster, const TruthB
             out.classes[i] = PixelClass::FalseShadow, ++falseShadow;
         else
             out.classes[i] = PixelClass::FalseLit, ++falseLit;
+        if (raster.texelFromPixel.empty()) continue; // no map known (a mask from elsewhere: eval/score.h)
         const double p = core::pixelsPerTexel(glm::dmat2(raster.texelFromPixel[i]));
         out.pixelsPerTexel[i] = static_cast<float>(p);
         ppt.push_back(p);

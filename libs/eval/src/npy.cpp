@@ -1,9 +1,15 @@
 #include "shadowkit/eval/npy.h"
 
 #include "shadowkit/scene/file_write.h"
+#include "shadowkit/scene/image.h"
 
+#include <cmath>
+#include <cstring>
+#include <fstream>
 #include <functional>
+#include <iterator>
 #include <numeric>
+#include <regex>
 #include <string>
 
 namespace shadowkit::eval {
@@ -30,7 +36,94 @@ core::Status write(const std::filesystem::path& file, const void* data, size_t e
     return scene::writeFile(file, bytes);
 }
 
+// The value of `key` in a .npy header's dict ("'descr': '<f4'" -> "<f4", "'shape': (3, 4)" ->
+// "3, 4"), or empty when the header has no such key.
+std::string headerField(const std::string& header, const std::string& key) {
+    std::smatch m;
+    const std::regex quoted("'" + key + "'\\s*:\\s*'([^']*)'"), tuple("'" + key + "'\\s*:\\s*\\(([^)]*)\\)"),
+        word("'" + key + "'\\s*:\\s*(True|False)");
+    if (std::regex_search(header, m, quoted) || std::regex_search(header, m, tuple) ||
+        std::regex_search(header, m, word))
+        return m[1];
+    return {};
+}
+
 } // namespace
+
+core::Result<NpyImage> readNpyImage(const std::filesystem::path& file) {
+    const std::string name = file.string();
+    // The largest a file within the limits can be: its header and 2^26 float64 values.
+    std::error_code ec;
+    const uintmax_t size = std::filesystem::file_size(file, ec);
+    if (!ec && size > 65536 + 16 + sizeof(double) * uintmax_t(scene::kMaxImageTexels))
+        return core::makeError(name + ": " + std::to_string(size >> 20) + " MiB, over the largest .npy image read");
+    std::ifstream in(file, std::ios::binary);
+    if (!in) return core::makeError(name + ": cannot be read");
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (bytes.size() < 10 || bytes.compare(0, 6, "\x93NUMPY") != 0)
+        return core::makeError(name + ": not a NumPy .npy file");
+    const int major = static_cast<unsigned char>(bytes[6]);
+    if (major != 1 && major != 2)
+        return core::makeError(name + ": .npy format version " + std::to_string(major) + " (1 or 2 read)");
+    const size_t lengthBytes = major == 1 ? 2 : 4;
+    if (bytes.size() < 8 + lengthBytes) return core::makeError(name + ": truncated .npy header");
+    size_t headerLength = 0;
+    for (size_t k = 0; k < lengthBytes; ++k)
+        headerLength |= size_t(static_cast<unsigned char>(bytes[8 + k])) << (8 * k);
+    const size_t dataStart = 8 + lengthBytes + headerLength;
+    if (headerLength > 65536 || dataStart > bytes.size()) return core::makeError(name + ": truncated .npy header");
+    const std::string header = bytes.substr(8 + lengthBytes, headerLength);
+    const std::string descr = headerField(header, "descr"), order = headerField(header, "fortran_order");
+    if (order != "False") return core::makeError(name + ": a .npy array in Fortran order (C order read)");
+    size_t elementSize = 0;
+    if (descr == "<f4")
+        elementSize = 4;
+    else if (descr == "<f8")
+        elementSize = 8;
+    else if (descr == "|u1" || descr == "<u1")
+        elementSize = 1;
+    else if (descr == "<u2")
+        elementSize = 2;
+    else
+        return core::makeError(name + ": .npy dtype '" + descr + "' (float32, float64, uint8 or uint16 read)");
+    // "h, w" (a trailing comma allowed); one value per pixel.
+    std::vector<long long> shape;
+    const std::string dims = headerField(header, "shape");
+    const std::regex number("\\s*(\\d{1,9})\\s*(,|$)");
+    for (auto it = std::sregex_iterator(dims.begin(), dims.end(), number); it != std::sregex_iterator(); ++it)
+        shape.push_back(std::stoll((*it)[1]));
+    if (shape.size() != 2) return core::makeError(name + ": a .npy array of shape (" + dims + "), not (height, width)");
+    const long long height = shape[0], width = shape[1];
+    if (height < 1 || width < 1 || height > scene::kMaxImageSide || width > scene::kMaxImageSide ||
+        height * width > scene::kMaxImageTexels)
+        return core::makeError(name + ": a " + std::to_string(width) + "×" + std::to_string(height) +
+                               " .npy array is over shadowkit's image limits (sides 1 to " +
+                               std::to_string(scene::kMaxImageSide) + ", 2^26 values)");
+    const size_t count = size_t(height) * size_t(width);
+    if (bytes.size() - dataStart != count * elementSize)
+        return core::makeError(name + ": " + std::to_string(bytes.size() - dataStart) + " bytes of data where shape (" +
+                               dims + ") of " + descr + " needs " + std::to_string(count * elementSize));
+    NpyImage out{int(height), int(width), std::vector<float>(count)};
+    const char* data = bytes.data() + dataStart;
+    for (size_t i = 0; i < count; ++i) {
+        if (elementSize == 4) {
+            float v;
+            std::memcpy(&v, data + 4 * i, 4);
+            out.values[i] = v;
+        } else if (elementSize == 8) {
+            double v;
+            std::memcpy(&v, data + 8 * i, 8);
+            out.values[i] = static_cast<float>(v);
+        } else if (elementSize == 2) {
+            uint16_t v;
+            std::memcpy(&v, data + 2 * i, 2);
+            out.values[i] = float(v) / 65535.0f;
+        } else {
+            out.values[i] = float(static_cast<unsigned char>(data[i])) / 255.0f;
+        }
+    }
+    return out;
+}
 
 // Little-endian descriptors: the machines we build for (x86-64, arm64) are little-endian.
 core::Status writeNpy(const std::filesystem::path& file, std::span<const float> data, std::vector<size_t> shape) {

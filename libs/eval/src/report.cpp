@@ -99,6 +99,26 @@ std::string reportJson(const std::vector<ViewReport>& views) {
     return nlohmann::json{{"views", list}}.dump(2) + "\n";
 }
 
+std::string scoreReportJson(const ScoreReport& r) {
+    const Figures& f = r.figures;
+    nlohmann::json score = {{"mask", r.mask},
+                            {"view", r.view},
+                            {"scene", r.scene},
+                            {"width", r.width},
+                            {"height", r.height},
+                            {"valid_px", f.validPx},
+                            {"excluded_px", f.excludedPx},
+                            {"wrong_pct", f.wrongPct},
+                            {"false_shadow_pct", f.falseShadowPct},
+                            {"false_lit_pct", f.falseLitPct},
+                            {"truth_seconds", r.truthSeconds}};
+    if (r.soft) {
+        score.update(softJson(*r.soft));
+        score["sun_angle_deg"] = r.soft->sunAngleDegrees;
+    }
+    return nlohmann::json{{"scores", nlohmann::json::array({score})}}.dump(2) + "\n";
+}
+
 core::Status writeReportJson(const std::vector<ViewReport>& views, const std::filesystem::path& file) {
     return scene::writeFile(file, reportJson(views));
 }

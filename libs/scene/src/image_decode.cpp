@@ -119,17 +119,82 @@ core::Result<Image> decodeWebp(std::span<const uint8_t> bytes, const std::string
     return image;
 }
 
+// PNG's eight-byte signature (ISO 15948 §5.2).
+bool isPng(std::span<const uint8_t> bytes) {
+    static constexpr uint8_t kPng[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
+    return bytes.size() >= 8 && std::equal(kPng, kPng + 8, bytes.begin());
+}
+
+// The checks before stb reads a PNG or JPEG: the encoded size, the PNG's chunk list or the
+// JPEG's Huffman tables, the header and the decoded size against the limits. Sets the header's
+// width, height and channels.
+core::Status checkStbInput(std::span<const uint8_t> bytes, const std::string& name, bool png, int& width, int& height,
+                           int& channels) {
+    const char* format = png ? "PNG" : "JPEG";
+    if (const char* problem = png ? pngChunkProblem(bytes) : nullptr)
+        return core::makeError(name + ": corrupt or truncated PNG (" + problem + ")");
+    if (!png && !jpegHuffmanTablesFit(bytes))
+        return core::makeError(name + ": corrupt JPEG (a Huffman table with more than 256 codes)");
+    // stb's own side limit (2^24) is left alone: ours is checked here, with a message that says so.
+    if (!stbi_info_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()), static_cast<int>(bytes.size()), &width,
+                               &height, &channels))
+        return core::makeError(name + ": unreadable " + format + " header (" + failureReason() + ")");
+    return checkSize(name, format, width, height);
+}
+
+// The size every decoder accepts before it looks at the bytes.
+core::Status checkEncodedSize(std::span<const uint8_t> bytes, const std::string& name) {
+    if (bytes.empty()) return core::makeError(name + ": the image is empty");
+    if (bytes.size() > size_t(1) << 30) return core::makeError(name + ": the encoded image is over 1 GiB");
+    return core::Ok{};
+}
+
 } // namespace
+
+core::Result<LevelImage> decodeLevels(std::span<const uint8_t> bytes, std::string_view what) {
+    const std::string name(what);
+    if (auto s = checkEncodedSize(bytes, name); !s) return s.errorInfo();
+    if (!isPng(bytes)) return core::makeError(name + ": not a PNG (a mask must be lossless: PNG of 8 or 16 bits)");
+    int width = 0, height = 0, channels = 0;
+    if (auto s = checkStbInput(bytes, name, true, width, height, channels); !s) return s.errorInfo();
+    const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
+    const int length = static_cast<int>(bytes.size());
+    const bool sixteen = stbi_is_16_bit_from_memory(data, length) != 0;
+    const bool alpha = channels == 2 || channels == 4;
+    const size_t n = size_t(width) * size_t(height);
+    LevelImage image{width, height, std::vector<float>(n), alpha ? std::vector<float>(n) : std::vector<float>()};
+    // Decoded with the file's own channels, so grey stays one channel and alpha is where it is.
+    int w = 0, h = 0, c = 0;
+    auto fill = [&](const auto* pixels, float scale) {
+        if (w != width || h != height) return; // not what its header said: left at zero, refused below
+        for (size_t i = 0; i < n; ++i) {
+            image.level[i] = float(pixels[i * size_t(channels)]) * scale;
+            if (alpha) image.alpha[i] = float(pixels[i * size_t(channels) + size_t(channels - 1)]) * scale;
+        }
+    };
+    if (sixteen) {
+        stbi_us* pixels = stbi_load_16_from_memory(data, length, &w, &h, &c, channels);
+        if (!pixels) return core::makeError(name + ": corrupt or truncated PNG (" + failureReason() + ")");
+        fill(pixels, 1.0f / 65535.0f);
+        stbi_image_free(pixels);
+    } else {
+        stbi_uc* pixels = stbi_load_from_memory(data, length, &w, &h, &c, channels);
+        if (!pixels) return core::makeError(name + ": corrupt or truncated PNG (" + failureReason() + ")");
+        fill(pixels, 1.0f / 255.0f);
+        stbi_image_free(pixels);
+    }
+    if (w != width || h != height || c != channels)
+        return core::makeError(name + ": corrupt PNG (its pixels are not what its header declares)");
+    return image;
+}
 
 core::Result<Image> decodeImage(std::span<const uint8_t> bytes, std::string_view what) {
     const std::string name(what);
-    if (bytes.empty()) return core::makeError(name + ": the image is empty");
-    if (bytes.size() > size_t(1) << 30) return core::makeError(name + ": the encoded image is over 1 GiB");
+    if (auto s = checkEncodedSize(bytes, name); !s) return s.errorInfo();
     const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
     const int length = static_cast<int>(bytes.size());
-    // The signatures: PNG's eight bytes (ISO 15948 §5.2), JPEG's start-of-image marker and the next marker's 0xFF.
-    static constexpr uint8_t kPng[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
-    const bool png = bytes.size() >= 8 && std::equal(kPng, kPng + 8, bytes.begin());
+    // The signatures: PNG's, JPEG's start-of-image marker and the next marker's 0xFF.
+    const bool png = isPng(bytes);
     const bool jpeg = bytes.size() >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8 && bytes[2] == 0xFF;
     // WebP: "RIFF", a 4-byte size, "WEBP"; KTX2: its 12-byte identifier («KTX 20»\r\n\x1A\n).
     const auto at = [&](size_t offset, std::string_view tag) {
@@ -142,15 +207,8 @@ core::Result<Image> decodeImage(std::span<const uint8_t> bytes, std::string_view
         return core::makeError(name + ": a KTX2 (Basis Universal) texture, which shadowkit cannot decode");
     if (!png && !jpeg) return core::makeError(name + ": not a PNG, JPEG or WebP image");
     const char* format = png ? "PNG" : "JPEG";
-    if (const char* problem = png ? pngChunkProblem(bytes) : nullptr)
-        return core::makeError(name + ": corrupt or truncated PNG (" + problem + ")");
-    if (jpeg && !jpegHuffmanTablesFit(bytes))
-        return core::makeError(name + ": corrupt JPEG (a Huffman table with more than 256 codes)");
-    // stb's own side limit (2^24) is left alone: ours is checked here, with a message that says so.
     int width = 0, height = 0, channels = 0;
-    if (!stbi_info_from_memory(data, length, &width, &height, &channels))
-        return core::makeError(name + ": unreadable " + format + " header (" + failureReason() + ")");
-    if (auto s = checkSize(name, format, width, height); !s) return s.errorInfo();
+    if (auto s = checkStbInput(bytes, name, png, width, height, channels); !s) return s.errorInfo();
     int w = 0, h = 0;
     stbi_uc* pixels = stbi_load_from_memory(data, length, &w, &h, &channels, 4);
     if (!pixels) return core::makeError(name + ": corrupt or truncated " + format + " (" + failureReason() + ")");

@@ -46,7 +46,9 @@ struct CompareOptions {
     double shadowThreshold = 0.5;  // rendered term below this counts as shadowed
 };
 
-// Fails (one line) when the two sets of buffers differ in size.
+// Fails (one line) when the two sets of buffers differ in size. A raster without texel
+// Jacobians (texelFromPixel empty: a mask another renderer drew) has no sampling figures: its
+// pixels per texel stay NaN and its percentiles 0.
 core::Result<Comparison> compare(const core::RasterBuffers& raster, const TruthBuffers& truth,
                                  const CompareOptions& options = {});
 

@@ -75,6 +75,19 @@ nlohmann::json virtualPagesJson(const VirtualPagesReport& pages);
 std::string reportJson(const std::vector<ViewReport>& views);
 core::Status writeReportJson(const std::vector<ViewReport>& views, const std::filesystem::path& file);
 
+// A mask another renderer drew, scored against the truth (`shadowkit score --json`): eval's
+// keys for the same figures, no map's — {"scores": [{"mask", "view", "scene", "width",
+// "height", "valid_px", "excluded_px", "wrong_pct", "false_shadow_pct", "false_lit_pct",
+// "truth_seconds", and with a sun of some size "sun_angle_deg" and the soft keys above}]}.
+struct ScoreReport {
+    std::string mask, view, scene;
+    int width = 0, height = 0;
+    Figures figures;
+    double truthSeconds = 0.0;
+    std::optional<SoftFigures> soft;
+};
+std::string scoreReportJson(const ScoreReport& report);
+
 // Writes shadow_term, truth_lit, class, world_position, normal, truth_normal,
 // pixels_per_texel and surface_id as .npy files into `dir` (created if missing); with a soft
 // truth also soft_visibility and soft_standard_error.

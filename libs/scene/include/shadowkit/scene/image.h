@@ -41,4 +41,15 @@ inline constexpr int64_t kMaxImageTexels = int64_t(1) << 26;
 // `what` (e.g. "scene.gltf: image 2 'leaf.png'").
 core::Result<Image> decodeImage(std::span<const uint8_t> bytes, std::string_view what);
 
+// One channel of an image at its full depth, as [0, 1] levels: a shadow mask another renderer
+// drew (`shadowkit score`). PNG only — a lossy format would move the levels — of 8 or 16 bits,
+// grey, grey and alpha, RGB or RGBA: `level` is the first channel (grey, or red), `alpha` the
+// alpha channel (empty when the image has none); row-major, top row first. The same checks
+// and limits as decodeImage, errors of one line that start with `what`.
+struct LevelImage {
+    int width = 0, height = 0;
+    std::vector<float> level, alpha;
+};
+core::Result<LevelImage> decodeLevels(std::span<const uint8_t> bytes, std::string_view what);
+
 } // namespace shadowkit::scene
