@@ -31,9 +31,7 @@ namespace {
 
 Status checkInputs(const LocalShadowInputs& in) {
     if (Status s = in.camera.validate(); !s) return s;
-    const Aabb& b = in.wsSceneBounds;
-    if (!isFinite(b.min) || !isFinite(b.max) || b.isEmpty())
-        return fieldError("scene_bounds", "must be finite with min <= max on every axis");
+    if (Status s = validateSceneBounds(in.wsSceneBounds); !s) return s;
     return validateMapSize(in.mapSize);
 }
 

@@ -113,6 +113,12 @@ Status validate(const TsmOptions& o) {
     return Ok{};
 }
 
+Status validateSceneBounds(const Aabb& b) {
+    if (!isFinite(b.min) || !isFinite(b.max) || b.isEmpty())
+        return fieldError("scene_bounds", "must be finite with min <= max on every axis");
+    return Ok{};
+}
+
 Status validateMapSize(int texels) {
     if (texels < kMinMapSize || texels > kMaxMapSize)
         return fieldError("map_size", "must be in [" + std::to_string(kMinMapSize) + ", " +
@@ -125,9 +131,7 @@ Status validate(const ShadowSetupInputs& inputs) {
     const Vec3& l = inputs.light.wsDirection;
     if (!isFinite(l) || std::abs(glm::length(l) - 1.0) > 1e-6)
         return fieldError("light_direction", "must be a finite unit vector");
-    const Aabb& s = inputs.wsSceneBounds;
-    if (!isFinite(s.min) || !isFinite(s.max) || s.isEmpty())
-        return fieldError("scene_bounds", "must be finite with min <= max on every axis");
+    if (Status st = validateSceneBounds(inputs.wsSceneBounds); !st) return st;
     if (Status st = validateOptions(inputs); !st) return st;
     return inputs.technique == Technique::Csm ? validateCascades(inputs) : Status(Ok{});
 }

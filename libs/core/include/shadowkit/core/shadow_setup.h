@@ -136,6 +136,8 @@ inline constexpr int kMaxCascadeCount = 8;                  ///< cascades.count 
 inline constexpr size_t kMaxShadowViews = kMaxClipmapLevels;
 /// Error field "map_size".
 Status validateMapSize(int texelsPerSide);
+/// Error field "scene_bounds": finite, min <= max on every axis (the sun's and the local lights' set-ups).
+Status validateSceneBounds(const Aabb& wsSceneBounds);
 
 /// Everything a set-up is computed from: camera, light, scene box, technique and its options, map size.
 struct ShadowSetupInputs {
