@@ -176,17 +176,18 @@ void printRows(const BenchRow& row, const measure::FrameCosts& costs, eval::Html
 }
 
 // --report's table, before its rows.
-eval::HtmlTable reportTable(const BenchArgs& args, const std::string& machine) {
+// `frames`: "5 frames per row" or "240 frames of --path flythrough".
+eval::HtmlTable reportTable(const BenchArgs& args, const std::string& machine, const std::string& frames) {
     return eval::HtmlTable{
         .title = "Frame cost per pass",
         .note =
-            fmt::format("{} | technique {} | {} frames per row. GPU ms: timer queries around each pass (min / "
+            fmt::format("{} | technique {} | {}. GPU ms: timer queries around each pass (min / "
                         "median / max over the frames; on a CPU rasteriser only ratios within one run compare). "
                         "Set-up: CPU ms of the first frame, which computes the focus body, and the median of the rest, "
                         "which on a still view reuse it (shadowkit_setup_bench times a moving camera). Culling: "
                         "CPU ms per frame (median / max). Triangles and instances: what the "
                         "pass submitted in the last frame, after culling and levels of detail.",
-                        machine, core::techniqueName(args.technique.technique), args.frames),
+                        machine, core::techniqueName(args.technique.technique), frames),
         .header = {"trees", "terrain m", "view", "pass", "instances", "M triangles", "draws", "GPU ms min / med / max",
                    "set-up ms first / rest", "cull ms med / max"},
         .rows = {},
@@ -297,7 +298,7 @@ int runBench(const BenchArgs& args) {
     fmt::print("{:>7} {:>7} {:<14} {:<7} {:>9} {:>9} {:>6} {:>26} {:>20} {:>20}\n", "trees", "terrain", "view", "pass",
                "instances", "M tris", "draws", "GPU ms min/med/max", "set-up ms 1st/rest", "cull ms med/max");
     nlohmann::json runs = nlohmann::json::array();
-    eval::HtmlTable table = reportTable(args, (*context)->description()); // --report: the rows as printed
+    eval::HtmlTable table = reportTable(args, (*context)->description(), frames); // --report: the rows as printed
     for (const int trees : *counts) {
         auto forestOptions = forestOptionsFor(args, trees);
         if (!forestOptions) return fail(forestOptions.errorInfo());

@@ -93,7 +93,8 @@ int runScore(const ScoreArgs& args) {
     auto scored = eval::scoreMask(*mask, truth, options);
     if (!scored) return fail(args.mask + ": " + scored.error());
 
-    eval::ScoreReport report{args.mask,    args.view.view,  args.scene.scene, view->width,
+    const std::string viewName = args.camera.empty() ? args.view.view : "camera"; // --camera's, not the view's
+    eval::ScoreReport report{args.mask,    viewName,        args.scene.scene, view->width,
                              view->height, scored->figures, truth.seconds,    std::nullopt};
     std::optional<eval::SoftTruth> soft;
     if (args.sunAngle > 0.0) {
@@ -106,9 +107,9 @@ int runScore(const ScoreArgs& args) {
     const eval::Figures& f = scored->figures;
     fmt::print("{:<14} {:<24} {:>9} {:>8} {:>7} {:>8} {:>8} {:>6}\n", "view", "mask", "valid_px", "excl_px", "wrong%",
                "fshadow%", "flit%", "sec");
-    fmt::print("{:<14} {:<24} {:>9} {:>8} {:>7.2f} {:>8.2f} {:>8.2f} {:>6.1f}\n",
-               args.camera.empty() ? args.view.view : "camera", std::filesystem::path(args.mask).filename().string(),
-               f.validPx, f.excludedPx, f.wrongPct, f.falseShadowPct, f.falseLitPct, seconds);
+    fmt::print("{:<14} {:<24} {:>9} {:>8} {:>7.2f} {:>8.2f} {:>8.2f} {:>6.1f}\n", viewName,
+               std::filesystem::path(args.mask).filename().string(), f.validPx, f.excludedPx, f.wrongPct,
+               f.falseShadowPct, f.falseLitPct, seconds);
     if (const auto& s = report.soft)
         fmt::print("  soft truth, sun {:.2f}°: soft_mae {:.4f}, penumbra_mae {:.3f} over {} px, soft_wrong% {:.2f}, "
                    "penumbra width ×{:.2f} ({:.1f} s)\n",
