@@ -19,6 +19,7 @@
 
 #include "shadowkit/gl/render_settings.h"
 #include "shadowkit/measure/measurer.h"
+#include "shadowkit/scene/file_write.h"
 #include "shadowkit/scene/forest.h"
 #include "shadowkit/scene/views.h"
 
@@ -147,11 +148,9 @@ void GoldenFiguresTest::checkGolden(const std::filesystem::path& fileName) {
     }
     if (update) {
         golden["figures"] = recorded;
-        if (!own) golden["rasteriser"] = context().renderer(); // a GPU family's first figures
-        std::filesystem::create_directories(ownFile.parent_path());
-        std::ofstream out(ownFile);
-        out << golden.dump(2) << "\n";
-        ASSERT_TRUE(out.good()) << ownFile << ": could not be written";
+        if (!own) golden["rasteriser"] = context().renderer();                         // a GPU family's first figures
+        const core::Status written = scene::writeFile(ownFile, golden.dump(2) + "\n"); // whole or not at all
+        ASSERT_TRUE(written) << written.error();
         std::printf("re-recorded %s\n", ownFile.string().c_str());
     }
 }

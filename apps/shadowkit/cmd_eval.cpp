@@ -127,16 +127,10 @@ void printViewRow(const eval::ViewReport& report) {
                    l.figures.pixelsPerTexelP95, l.figures.pixelsPerTexelP99, l.maps,
                    l.skippedFaces ? fmt::format(", {} faces skipped", l.skippedFaces) : "");
         if (const auto& s = l.soft)
-            fmt::print("    soft truth, lamp {:.3g} m: soft_mae {:.4f}, penumbra_mae {:.3f} over {} px, soft_wrong% "
-                       "{:.2f}, penumbra width ×{:.2f} ({:.1f} s)\n",
-                       l.radiusMetres, s->softMae, s->penumbraMae, s->penumbraPx, s->softWrongPct,
-                       s->penumbraWidthRatio, s->truthSeconds);
+            fmt::print("    soft truth, lamp {:.3g} m: {}\n", l.radiusMetres, eval::softFiguresLine(*s));
     }
     if (const auto& s = report.soft)
-        fmt::print("  soft truth, sun {:.2f}°: soft_mae {:.4f}, penumbra_mae {:.3f} over {} px, soft_wrong% {:.2f}, "
-                   "penumbra width ×{:.2f} ({:.1f} s)\n",
-                   s->sunAngleDegrees, s->softMae, s->penumbraMae, s->penumbraPx, s->softWrongPct,
-                   s->penumbraWidthRatio, s->truthSeconds);
+        fmt::print("  soft truth, sun {:.2f}°: {}\n", s->sunAngleDegrees, eval::softFiguresLine(*s));
 }
 
 // What can be checked before anything is loaded: the options, and the folders of every file to write.

@@ -111,10 +111,7 @@ int runScore(const ScoreArgs& args) {
                std::filesystem::path(args.mask).filename().string(), f.validPx, f.excludedPx, f.wrongPct,
                f.falseShadowPct, f.falseLitPct, seconds);
     if (const auto& s = report.soft)
-        fmt::print("  soft truth, sun {:.2f}°: soft_mae {:.4f}, penumbra_mae {:.3f} over {} px, soft_wrong% {:.2f}, "
-                   "penumbra width ×{:.2f} ({:.1f} s)\n",
-                   s->sunAngleDegrees, s->softMae, s->penumbraMae, s->penumbraPx, s->softWrongPct,
-                   s->penumbraWidthRatio, s->truthSeconds);
+        fmt::print("  soft truth, sun {:.2f}°: {}\n", s->sunAngleDegrees, eval::softFiguresLine(*s));
     if (!args.errorMap.empty()) {
         if (auto s = scene::writePng(eval::errorMapImage(*scored, view->width, view->height), args.errorMap); !s)
             return fail("--error-map: " + s.error());

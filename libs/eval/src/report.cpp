@@ -5,6 +5,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cstdio>
+
 namespace shadowkit::eval {
 
 nlohmann::json virtualPagesJson(const VirtualPagesReport& v) {
@@ -97,6 +99,15 @@ std::string reportJson(const std::vector<ViewReport>& views) {
         }
     }
     return nlohmann::json{{"views", list}}.dump(2) + "\n";
+}
+
+std::string softFiguresLine(const SoftFigures& s) {
+    char text[256];
+    std::snprintf(text, sizeof text,
+                  "soft_mae %.4f, penumbra_mae %.3f over %lld px, soft_wrong%% %.2f, penumbra width ×%.2f (%.1f s)",
+                  s.softMae, s.penumbraMae, static_cast<long long>(s.penumbraPx), s.softWrongPct, s.penumbraWidthRatio,
+                  s.truthSeconds);
+    return text;
 }
 
 std::string scoreReportJson(const ScoreReport& r) {

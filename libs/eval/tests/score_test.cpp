@@ -2,6 +2,7 @@
 // mask files it reads (16-bit PNG, .npy), which come from outside.
 #include "shadowkit/eval/npy.h"
 #include "shadowkit/eval/score.h"
+#include "shadowkit/scene/file_write.h"
 #include "shadowkit/scene/image.h"
 
 #include <gtest/gtest.h>
@@ -31,7 +32,8 @@ eval::TruthBuffers eightPixels() {
 std::filesystem::path tempFile(const std::string& name) { return std::filesystem::temp_directory_path() / name; }
 
 void writeBytes(const std::filesystem::path& file, const std::string& bytes) {
-    std::ofstream(file, std::ios::binary) << bytes;
+    const core::Status written = scene::writeFile(file, bytes);
+    ASSERT_TRUE(written) << written.error();
 }
 
 // A PNG of 16-bit grey pixels, its image data in one stored (uncompressed) deflate block, so

@@ -88,6 +88,10 @@ struct ScoreReport {
 };
 std::string scoreReportJson(const ScoreReport& report);
 
+// The soft figures as the command line prints them under a view's row (eval, score): "soft_mae
+// 0.0118, penumbra_mae 0.425 over 161 px, soft_wrong% 1.49, penumbra width ×0.93 (0.4 s)".
+std::string softFiguresLine(const SoftFigures& soft);
+
 // Writes shadow_term, truth_lit, class, world_position, normal, truth_normal,
 // pixels_per_texel and surface_id as .npy files into `dir` (created if missing); with a soft
 // truth also soft_visibility and soft_standard_error.
