@@ -17,7 +17,8 @@
 //     shadows of a sun of a given angular size, its kernel on each map's local footprint);
 //   - cascades: split selection by view depth (Dimitrov 2007) and blending across a band;
 //   - virtual shadow maps: the clipmap level by the pixel's footprint, the page table's
-//     indirection into the physical page atlas, every filter inside the page's guard band.
+//     indirection into the physical page atlas, every filter inside the page's guard band;
+//   - partial occlusion by leaves: opacity layers beside fixed maps (SK_SHADOW_OPACITY, below).
 //
 // Inputs, all from the core (output_conventions.h, shadowkit_c.h):
 //   textureFromWorld       EngineShadowView::textureFromWorld / shadowkit_view.texture_from_world
@@ -109,6 +110,36 @@ const vec2 kSkPoisson[32] = vec2[](
 // (PCSS's filter taps here and the lamps' in the renderer's local_lights.glsl).
 const mat2 kSkGoldenTurn = mat2(-0.7373688, 0.6754903, -0.6754903, -0.7373688);
 
+// The sun's disk at a receiver as a map sees it (skPcss's comment, below, has the geometry): uvFromDisk
+// takes metres in the plane ⟂ ℓ to (u, v), depthPerMetre is the depth's fall per metre towards
+// the light, metresPerTexel a texel's size along the disk's longer axis in the map. False for a
+// degenerate map (no footprint, or depth not changing towards the light).
+bool skSunDiskInMap(mat4 textureFromWorld, vec4 linearDepthFromWorld, SkShadowOptions o, vec4 t, out mat2 uvFromDisk,
+                    out float depthPerMetre, out float metresPerTexel) {
+    const vec3 sx = skShadowStep(textureFromWorld, linearDepthFromWorld, o.linearDepth, t, vec3(1, 0, 0));
+    const vec3 sy = skShadowStep(textureFromWorld, linearDepthFromWorld, o.linearDepth, t, vec3(0, 1, 0));
+    const vec3 sz = skShadowStep(textureFromWorld, linearDepthFromWorld, o.linearDepth, t, vec3(0, 0, 1));
+    const vec3 gradU = vec3(sx.x, sy.x, sz.x), gradV = vec3(sx.y, sy.y, sz.y), gradDepth = vec3(sx.z, sy.z, sz.z);
+    vec3 towardsLight = cross(gradU, gradV);
+    depthPerMetre = dot(gradDepth, towardsLight);
+    uvFromDisk = mat2(0.0);
+    metresPerTexel = 0.0;
+    if (!(abs(depthPerMetre) > 1e-30 * length(towardsLight))) return false;
+    towardsLight *= -sign(depthPerMetre) / length(towardsLight); // depth falls towards the light
+    depthPerMetre = -dot(gradDepth, towardsLight);
+
+    // The ellipse: (u, v) per metre along an orthonormal basis of the plane ⟂ ℓ; its longer axis
+    // is uvFromDisk's larger singular value.
+    const vec3 e1 = normalize(cross(towardsLight, abs(towardsLight.y) < 0.9 ? vec3(0, 1, 0) : vec3(1, 0, 0)));
+    const vec3 e2 = cross(towardsLight, e1);
+    uvFromDisk = mat2(dot(gradU, e1), dot(gradV, e1), dot(gradU, e2), dot(gradV, e2));
+    const float a = dot(uvFromDisk[0], uvFromDisk[0]), b = dot(uvFromDisk[0], uvFromDisk[1]);
+    const float c = dot(uvFromDisk[1], uvFromDisk[1]);
+    const float uvPerMetre = sqrt(0.5 * (a + c) + sqrt(0.25 * (a - c) * (a - c) + b * b));
+    metresPerTexel = 1.0 / (o.mapTexels * max(uvPerMetre, 1e-30));
+    return true;
+}
+
 #ifdef SK_SHADOW_DEPTHS
 // Percentage-closer soft shadows (Fernando 2005), the kernel on the map's local footprint.
 //
@@ -141,27 +172,11 @@ const mat2 kSkGoldenTurn = mat2(-0.7373688, 0.6754903, -0.6754903, -0.7373688);
 // `t`, `uv`, `depth`: the receiver's coordinates after the normal offset; dDepthDuv its plane.
 float skPcss(sampler2DArrayShadow maps, int layer, mat4 textureFromWorld, vec4 linearDepthFromWorld, SkShadowOptions o,
              vec4 atlasFromMap, vec4 t, vec2 uv, float depth, vec2 dDepthDuv) {
-    const vec3 sx = skShadowStep(textureFromWorld, linearDepthFromWorld, o.linearDepth, t, vec3(1, 0, 0));
-    const vec3 sy = skShadowStep(textureFromWorld, linearDepthFromWorld, o.linearDepth, t, vec3(0, 1, 0));
-    const vec3 sz = skShadowStep(textureFromWorld, linearDepthFromWorld, o.linearDepth, t, vec3(0, 0, 1));
-    const vec3 gradU = vec3(sx.x, sy.x, sz.x), gradV = vec3(sx.y, sy.y, sz.y), gradDepth = vec3(sx.z, sy.z, sz.z);
-    vec3 towardsLight = cross(gradU, gradV);
-    float depthPerMetre = dot(gradDepth, towardsLight);
+    mat2 uvFromDisk;
+    float depthPerMetre, metresPerTexel;
     // Degenerate maps (no footprint, or depth not changing towards the light): the hard lookup.
-    if (!(abs(depthPerMetre) > 1e-30 * length(towardsLight)))
+    if (!skSunDiskInMap(textureFromWorld, linearDepthFromWorld, o, t, uvFromDisk, depthPerMetre, metresPerTexel))
         return texture(maps, vec4(uv * atlasFromMap.xy + atlasFromMap.zw, float(layer), clamp(depth, 0.0, 1.0)));
-    towardsLight *= -sign(depthPerMetre) / length(towardsLight); // depth falls towards the light
-    depthPerMetre = -dot(gradDepth, towardsLight);
-
-    // The ellipse: (u, v) per metre along an orthonormal basis of the plane ⟂ ℓ; its longer axis
-    // is uvFromDisk's larger singular value.
-    const vec3 e1 = normalize(cross(towardsLight, abs(towardsLight.y) < 0.9 ? vec3(0, 1, 0) : vec3(1, 0, 0)));
-    const vec3 e2 = cross(towardsLight, e1);
-    const mat2 uvFromDisk = mat2(dot(gradU, e1), dot(gradV, e1), dot(gradU, e2), dot(gradV, e2));
-    const float a = dot(uvFromDisk[0], uvFromDisk[0]), b = dot(uvFromDisk[0], uvFromDisk[1]);
-    const float c = dot(uvFromDisk[1], uvFromDisk[1]);
-    const float uvPerMetre = sqrt(0.5 * (a + c) + sqrt(0.25 * (a - c) * (a - c) + b * b));
-    const float metresPerTexel = 1.0 / (o.mapTexels * max(uvPerMetre, 1e-30));
     const float widestMetres = o.poissonRadiusTexels * metresPerTexel;
 
     // Vogel disk: tap i at radius sqrt((i + ½) / N), each turned by the golden angle from the last.
@@ -239,6 +254,105 @@ float skMomentLit(vec4 b, float zf) {
         shadow = (zf * z3 - b.x * (zf + z3) + b.y) / ((z3 - z2) * (zf - z2));
     const float lit = 1.0 - clamp(shadow, 0.0, 1.0);
     return clamp((lit - SK_MSM_BLEEDING_REDUCTION) / (1.0 - SK_MSM_BLEEDING_REDUCTION), 0.0, 1.0);
+}
+#endif
+
+// Partial occlusion by foliage: opacity layers beside the depth map (--foliage-opacity). A texel
+// of a sun map holds one depth, so an alpha-tested canopy whose leaves are smaller than a texel
+// either covers it or not, and the ground under it is all lit or all dark, where under the real
+// sun it is a fraction lit. Deep opacity maps (Yuksel & Keyser 2008) keep instead, per texel, the
+// depth of the first leaf and how much light the leaves behind it let through, in a few layers
+// measured from it: here four, ending SK_OPACITY_LAYER_EDGES metres behind the first leaf, each
+// the product of (1 − coverage) over its leaves (multiplicative blending: any order). A receiver
+// `m` metres behind the first leaf is lit by the product of the layers in front of it, a layer it
+// lies inside counted in proportion, T^share (its leaves taken as spread evenly through it; what
+// lies beyond the last edge counts in the last layer). Transmittance, not absorbance, is what is
+// stored and filtered: the sun's disk averages transmittance, and the exponential of a mean
+// absorbance is darker than the mean transmittance (measured: a half-covered card stacked on
+// another let through 0.17 of the light averaged as absorbance, 0.25 — the truth — averaged as
+// transmittance). The opaque casters stay in the depth map; the two multiply (skShadowMap).
+#ifndef SK_OPACITY_LAYER_EDGES
+#define SK_OPACITY_LAYER_EDGES vec4(1.0, 3.0, 6.0, 12.0)
+#endif
+// A leaf covering a texel whole lets this much through it: 1 %.
+#ifndef SK_OPACITY_MAX_COVERAGE
+#define SK_OPACITY_MAX_COVERAGE 0.99
+#endif
+
+// What a fragment covering `coverage` of its texel lets through.
+float skLeafTransmittance(float coverage) { return 1.0 - clamp(coverage, 0.0, SK_OPACITY_MAX_COVERAGE); }
+
+// The layer a leaf `metres` behind the texel's first leaf multiplies, as a one-hot vector.
+vec4 skOpacityLayerOf(float metres) {
+    const vec4 end = SK_OPACITY_LAYER_EDGES;
+    return vec4(metres < end.x, metres >= end.x && metres < end.y, metres >= end.y && metres < end.z, metres >= end.z);
+}
+
+// Each layer's absorbance, −ln T, in front of a receiver `metres` behind the first leaf; `share`
+// says how much of each layer lies in front of it.
+vec4 skLayerAbsorbanceBefore(vec4 layers, float metres, out vec4 share) {
+    const vec4 end = SK_OPACITY_LAYER_EDGES, start = vec4(0.0, end.xyz);
+    share = clamp((metres - start) / (end - start), 0.0, 1.0);
+    return -log(max(layers, vec4(1e-6))) * share; // 0 · ln 0 would be NaN
+}
+
+#ifdef SK_SHADOW_OPACITY
+// The caller names two sampler2DArrays laid out as the depth maps: the layers' absorbance (RGBA,
+// GL_LINEAR) and the first leaf's linear depth (R, GL_NEAREST; 1
+// where no leaf covers the texel), and when the lookup applies:
+//   #define SK_SHADOW_OPACITY          myOpacityLayers
+//   #define SK_SHADOW_OPACITY_FIRST    myOpacityFirst
+//   #define SK_SHADOW_OPACITY_ENABLED  (myFoliageOpacity != 0)   (default: always)
+#ifndef SK_SHADOW_OPACITY_ENABLED
+#define SK_SHADOW_OPACITY_ENABLED true
+#endif
+
+// The leaves' transmittance at one point (u, v) of map `layer` for a receiver at linear depth
+// `depth`, `metresPerDepth` metres per unit of it.
+float skOpacityTransmittanceAt(int layer, vec2 uv, float depth, float metresPerDepth) {
+    const float first = texture(SK_SHADOW_OPACITY_FIRST, vec3(uv, float(layer))).r;
+    if (!(depth > first)) return 1.0; // in front of every leaf, or none here
+    vec4 share;
+    const vec4 absorbance =
+        skLayerAbsorbanceBefore(texture(SK_SHADOW_OPACITY, vec3(uv, float(layer))), (depth - first) * metresPerDepth, share);
+    return exp(-dot(absorbance, vec4(1.0)));
+}
+
+// The share of the sun the leaves let through to a receiver at `ws` in map `layer`. The opacity
+// layers are in linear depth whatever the depth map's layout (linearDepthFromWorld's row, whose
+// gradient's length is 1 / the range in metres). With PCSS and a sun of some size, the mean over
+// the sun's disk where it crosses the leaves in front (their absorbance-weighted mean distance),
+// o.filterTaps taps of a Vogel disk as skPcss's filter; otherwise at the receiver's own point.
+float skFoliageTransmittance(int layer, mat4 textureFromWorld, vec4 linearDepthFromWorld, SkShadowOptions o, vec3 ws) {
+    vec4 t;
+    const vec3 uvz = skShadowCoordinates(textureFromWorld, linearDepthFromWorld, true, ws, t);
+    if (t.w <= 0.0 || any(lessThan(uvz.xy, vec2(0.0))) || any(greaterThan(uvz.xy, vec2(1.0)))) return 1.0;
+    const float metresPerDepth = 1.0 / max(length(linearDepthFromWorld.xyz), 1e-30);
+    mat2 uvFromDisk;
+    float depthPerMetre, metresPerTexel;
+    if (o.filterKind != SK_FILTER_PCSS || !(o.lightTanHalfAngle > 0.0) ||
+        !skSunDiskInMap(textureFromWorld, linearDepthFromWorld, o, t, uvFromDisk, depthPerMetre, metresPerTexel))
+        return skOpacityTransmittanceAt(layer, uvz.xy, uvz.z, metresPerDepth);
+
+    const float first = texture(SK_SHADOW_OPACITY_FIRST, vec3(uvz.xy, float(layer))).r;
+    const float metres = (uvz.z - first) * metresPerDepth;
+    if (!(metres > 0.0)) return 1.0;
+    // Each layer's absorbance in front of the receiver, and the middle of that part of the layer.
+    vec4 share;
+    const vec4 mass = skLayerAbsorbanceBefore(texture(SK_SHADOW_OPACITY, vec3(uvz.xy, float(layer))), metres, share);
+    const float total = dot(mass, vec4(1.0));
+    const vec4 end = SK_OPACITY_LAYER_EDGES, start = vec4(0.0, end.xyz);
+    if (!(total > 0.0)) return 1.0;
+    const float leavesMetres = metres - dot(mass, start + 0.5 * share * (end - start)) / total;
+    const float diskMetres = min(leavesMetres * o.lightTanHalfAngle, o.poissonRadiusTexels * metresPerTexel);
+    const int taps = max(o.filterTaps, 1);
+    float lit = 0.0;
+    vec2 direction = vec2(cos(skPixelAngle()), sin(skPixelAngle()));
+    for (int i = 0; i < taps; ++i, direction = kSkGoldenTurn * direction) {
+        const vec2 offset = uvFromDisk * (direction * (sqrt((float(i) + 0.5) / float(taps)) * diskMetres));
+        lit += skOpacityTransmittanceAt(layer, uvz.xy + offset, uvz.z, metresPerDepth);
+    }
+    return lit / float(taps);
 }
 #endif
 
@@ -321,9 +435,14 @@ float skShadowMapIn(sampler2DArrayShadow maps, int layer, mat4 textureFromWorld,
 }
 
 // One map filling layer `layer` of `maps`.
+// With opacity layers (SK_SHADOW_OPACITY), the leaves' transmittance times the depth map's term.
 float skShadowMap(sampler2DArrayShadow maps, int layer, mat4 textureFromWorld, vec4 linearDepthFromWorld, SkShadowOptions o,
                   vec3 ws, vec3 n, vec3 dwsdx, vec3 dwsdy) {
-    return skShadowMapIn(maps, layer, textureFromWorld, linearDepthFromWorld, o, vec4(1.0, 1.0, 0.0, 0.0), ws, n, dwsdx, dwsdy);
+    float lit = skShadowMapIn(maps, layer, textureFromWorld, linearDepthFromWorld, o, vec4(1.0, 1.0, 0.0, 0.0), ws, n, dwsdx, dwsdy);
+#ifdef SK_SHADOW_OPACITY
+    if (SK_SHADOW_OPACITY_ENABLED && lit > 0.0) lit *= skFoliageTransmittance(layer, textureFromWorld, linearDepthFromWorld, o, ws);
+#endif
+    return lit;
 }
 
 #ifdef SK_SHADOW_SPLIT

@@ -38,6 +38,9 @@ drift from what the program measures.
   tools/readme_tables.py soft-forests BLOB.csv LEAFY.csv
       two soft sweeps of the same cells, the blob and the leafy forest: per set-up and filter the
       means of wrong_pct (hard truth) and soft_mae, penumbra_mae, soft_wrong_pct (the sun's disk)
+  tools/readme_tables.py soft-table results.csv
+      one soft sweep's means per set-up and filter (rows): wrong_pct, soft_mae, penumbra_mae,
+      soft_wrong_pct (a filter with --foliage-opacity is named "FILTER + opacity layers")
   tools/readme_tables.py soft-widths results.csv
       the same sweep's penumbra_width_ratio per set-up (rows) and filter (columns): mean (range)
   tools/readme_tables.py soft-lamps results.csv
@@ -260,6 +263,8 @@ def soft_rows(paths):
     for r in rows:  # the seed's eye-space blur is a filter of its own here
         if r.get("blur_iterations") not in (None, "", 0):
             r["filter"] = f"{r['filter']} + blur {r['blur_iterations']}"
+        if any(r.get(k) in (True, 1, "true", "True") for k in ("foliage_opacity", "foliage-opacity")):
+            r["filter"] = f"{r['filter']} + opacity layers"  # leaves through opacity layers
     return rows, list(dict.fromkeys(r.get("set-up", "") for r in rows)), list(dict.fromkeys(r["filter"] for r in rows))
 
 
@@ -301,6 +306,33 @@ def soft_summary(paths):
         print(f"| {setup} | " + " | ".join(cells) + " |")
 
 
+SOFT_MEANS = ("wrong_pct", "soft_mae", "penumbra_mae", "soft_wrong_pct")
+
+
+def soft_means(rows, setup, name):
+    """The means over the six views of SOFT_MEANS for one set-up and filter; None without all six."""
+    by_view = {r["view"]: r for r in rows if r["filter"] == name and r.get("set-up", "") == setup}
+    if len(by_view) != len(VIEWS):
+        return None
+    return [sum(by_view[v][k] for v in VIEWS) / len(VIEWS) for k in SOFT_MEANS]
+
+
+def soft_table(paths):
+    """Per set-up and filter of one soft sweep's results.csv, the means over the views of wrong_pct
+    against the hard truth and soft_mae, penumbra_mae and soft_wrong_pct against the sun disk's;
+    each set-up's best soft_mae bold."""
+    rows, setups, filters = soft_rows(paths)
+    print("| set-up | filter | wrong % | soft_mae | penumbra_mae | soft_wrong % |")
+    print("|---|---|---:|---:|---:|---:|")
+    for setup in setups:
+        cells = {name: soft_means(rows, setup, name) for name in filters}
+        cells = {name: c for name, c in cells.items() if c}
+        best = min(cells, key=lambda n: cells[n][1])
+        for name, m in cells.items():
+            mae = f"**{m[1]:.4f}**" if name == best else f"{m[1]:.4f}"
+            print(f"| {setup} | `{name}` | {m[0]:.2f} | {mae} | {m[2]:.3f} | {m[3]:.2f} |")
+
+
 def soft_forests(paths):
     """The two forests under the real sun, side by side: per set-up and filter of two soft sweeps'
     results.csv (the blob forest's first, the leafy forest's second, the same cells), the means
@@ -309,13 +341,7 @@ def soft_forests(paths):
     if len(paths) != 2:
         sys.exit("readme_tables: soft-forests takes two results.csv: the blob forest's, then the leafy forest's")
     (blob, setups, filters), (leafy, _, _) = soft_rows(paths[:1]), soft_rows(paths[1:])
-
-    def means(rows, setup, name):
-        by_view = {r["view"]: r for r in rows if r["filter"] == name and r.get("set-up", "") == setup}
-        if len(by_view) != len(VIEWS):
-            return None
-        return [sum(by_view[v][k] for v in VIEWS) / len(VIEWS)
-                for k in ("wrong_pct", "soft_mae", "penumbra_mae", "soft_wrong_pct")]
+    means = soft_means
 
     print("| set-up | filter | blob: wrong % | soft_mae | leafy: wrong % | soft_mae | penumbra_mae | soft_wrong % |")
     print("|---|---|---:|---:|---:|---:|---:|---:|")
@@ -493,7 +519,7 @@ def write_into(target, text):
 def run(argv):
     """Prints the table the arguments (argv[1:], as on the command line) ask for."""
     commands = {"forests": forests, "oracle": oracle, "soft": soft, "soft-summary": soft_summary,
-                "soft-forests": soft_forests, "soft-widths": soft_widths, "soft-lamps": soft_lamps, "stable": stable, "visibility": visibility, "dynamics": dynamics,
+                "soft-forests": soft_forests, "soft-table": soft_table, "soft-widths": soft_widths, "soft-lamps": soft_lamps, "stable": stable, "visibility": visibility, "dynamics": dynamics,
                 "setup": setup, "culling": culling, "truth": truth, "scale": scale}
     if len(argv) >= 5 and argv[1] == "oracle" and argv[2] == "--name":
         oracle(argv[4:], argv[3].split(","))

@@ -26,6 +26,7 @@ core::Result<frame::FrameConfig> frameConfigOf(const TechniqueOptions& technique
     s.sunAngleDegrees = render.sunAngle;
     s.blur = render.blur;
     s.cascadeColors = render.cascadeColors;
+    s.foliageOpacity = render.foliageOpacity;
     s.aliasingOverlay = render.aliasingOverlay;
     s.culling = render.culling();
     s.receiverMask = render.receiverMask;

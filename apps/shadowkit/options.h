@@ -115,6 +115,7 @@ struct RenderOptions {
     std::string filter = "hard";
     double sunAngle = 0.0; // --sun-angle: the sun's angular diameter in degrees; 0 a point
     gl::BlurSettings blur;
+    bool foliageOpacity = false; // --foliage-opacity: leaves cast through opacity layers (partial occlusion)
     bool cascadeColors = false;
     bool aliasingOverlay = false;               // --aliasing-overlay: pixels per texel instead of shading (live)
     gl::Culling visibility = gl::Culling::Auto; // --visibility: gpu on a GPU, chc on a software rasteriser

@@ -55,6 +55,7 @@ std::string reportJson(const std::vector<ViewReport>& views) {
                                                                      : "front"},
             {"filter", v.filter},
             {"blur_iterations", v.blurIterations},
+            {"foliage_opacity", v.foliageOpacity},
             {"fallbacks", v.fallbacks},
             {"valid_px", f.validPx},
             {"excluded_px", f.excludedPx},

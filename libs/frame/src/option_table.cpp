@@ -61,6 +61,8 @@ constexpr auto kRows = std::to_array<OptionRow>({
     {"RenderSettings.lodPixelError", "--lod-pixel-error", "lod.pixel_error", "(0, 16] pixels", Gl},
     {"RenderSettings.lodTexelError", "--lod-texel-error", "lod.texel_error", "(0, 16] texels", Gl},
     {"RenderSettings.cascadeColors", "--cascade-colors", "", "on | off", None},
+    {"RenderSettings.foliageOpacity", "--foliage-opacity", "foliage_opacity", "fixed maps and cascades, not virtual",
+     Gl},
     {"RenderSettings.aliasingOverlay", "--aliasing-overlay", "", "on | off", None},
     {"RenderSettings.sun", "--sun", "", "a direction, or off (night)", None},
     {"RenderSettings.localPass", "--local-pass", "", "layered | vertex-layer | geometry | per-face", None},

@@ -97,4 +97,15 @@ inline Texture createTexture2DArray(GLenum internalFormat, int width, int height
     return Texture(id);
 }
 
+// Square layers read through their own filter (GL_NEAREST or GL_LINEAR), clamped at the edges:
+// the side textures of the sun's maps (moments, opacity layers).
+inline Texture createMapLayers(GLenum internalFormat, int size, int layers, GLint filter) {
+    Texture t = createTexture2DArray(internalFormat, size, size, layers);
+    glTextureParameteri(t.id(), GL_TEXTURE_MIN_FILTER, filter);
+    glTextureParameteri(t.id(), GL_TEXTURE_MAG_FILTER, filter);
+    glTextureParameteri(t.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(t.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    return t;
+}
+
 } // namespace shadowkit::gl

@@ -202,6 +202,9 @@ DrawStats GpuScene::drawBatches(const PassList& list, const PassPrograms& progra
             if (at < 0) continue;
             const GpuBatch& batch = m_batches[size_t(at)];
             if (usesMaterial(batch) != materialSweep) continue;
+            if (programs.batches != PassPrograms::Batches::All &&
+                batch.material.alphaTested != (programs.batches == PassPrograms::Batches::AlphaTested))
+                continue;
             if (!programBound) {
                 glUseProgram(materialSweep ? programs.material : programs.plain);
                 programBound = true;

@@ -26,6 +26,9 @@ struct PassPrograms {
     // With face culling enabled: only levels known closed are culled (core::CasterCull::BackOfClosed),
     // open ones draw both sides. Otherwise every batch but a double-sided one is culled.
     bool cullClosedOnly = false;
+    // Which batches the pass draws, by material: all of them, or with --foliage-opacity the sun's
+    // depth pass the opaque ones and its opacity passes the alpha-tested ones (opacity_layers.h).
+    enum class Batches { All, Opaque, AlphaTested } batches = Batches::All;
 };
 inline constexpr std::string_view kMaterialVariant[2] = {"", "#define SK_MATERIAL 1\n"};
 

@@ -12,14 +12,7 @@ namespace {
 // moments.comp's uniforms (explicit locations).
 constexpr GLint kModeLocation = 0, kStepLocation = 1, kRadiusLocation = 2;
 
-Texture momentTexture(int size, int layers) {
-    Texture t = createTexture2DArray(GL_RGBA32F, size, size, layers);
-    glTextureParameteri(t.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTextureParameteri(t.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTextureParameteri(t.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTextureParameteri(t.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    return t;
-}
+Texture momentTexture(int size, int layers) { return createMapLayers(GL_RGBA32F, size, layers, GL_LINEAR); }
 
 } // namespace
 

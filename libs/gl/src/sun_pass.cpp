@@ -41,6 +41,9 @@ core::Status SunPass::prepare(const core::ShadowSetup& setup, const RenderSettin
                               const core::BiasSettings& bias) {
     const bool linearFilter = settings.filter.kind == core::ShadowFilter::Pcf2;
     if (setup.clipmap) {
+        if (settings.foliageOpacity)
+            return core::fieldError("foliage_opacity", "opacity layers are drawn for fixed maps and cascades, "
+                                                       "not for technique virtual's pages");
         const int guard = guardTexelsFor(lookupFilterFor(setup, settings.filter), bias);
         if (auto s = m_pages->configure(settings.virtualPoolPages, setup.clipmap->pageTexels, guard); !s) return s;
         m_pages->setLinearFilter(linearFilter);
@@ -48,6 +51,14 @@ core::Status SunPass::prepare(const core::ShadowSetup& setup, const RenderSettin
         return core::Ok{};
     }
     const int maps = static_cast<int>(setup.views.size());
+    if (settings.foliageOpacity) {
+        if (!m_opacity) {
+            auto opacity = OpacityLayers::create();
+            if (!opacity) return opacity.errorInfo();
+            m_opacity = std::move(opacity).value();
+        }
+        if (auto s = m_opacity->prepare(setup.mapSize, maps); !s) return s;
+    }
     if (!m_shadow || m_shadow->size != setup.mapSize || m_shadow->layers != maps) {
         m_shadow.reset(); // the old maps go before the new ones are allocated
         auto target = ShadowTarget::create(setup.mapSize, maps);
@@ -94,8 +105,11 @@ core::Result<PassStats> SunPass::draw(const GpuScene& scene, const core::ShadowS
     beginDepthPass(bias, setup.depthClamp, setup.depthLayout);
     m_timer.begin();
     m_samples.begin();
-    draws = drawFixedMaps(scene, setup, bias, wsTowardsLight, mapLists);
+    using enum PassPrograms::Batches;
+    draws = drawFixedMaps(scene, setup, bias, wsTowardsLight, mapLists, settings.foliageOpacity ? Opaque : All);
     m_samples.end();
+    // Opacity layers: the alpha-tested casters, inside the pass's time as the moments are.
+    if (settings.foliageOpacity) draws += m_opacity->draw(scene, setup, bias, mapLists, m_uniforms);
     m_countedTexels = uint64_t(m_shadow->size) * uint64_t(m_shadow->size) * setup.views.size();
     // MSM: the maps' moments, blurred, inside the pass's time (a real frame pays them with it).
     core::Status moments = core::Ok{};
@@ -110,23 +124,20 @@ core::Result<PassStats> SunPass::draw(const GpuScene& scene, const core::ShadowS
 }
 
 DrawStats SunPass::drawFixedMaps(const GpuScene& scene, const core::ShadowSetup& setup, const core::BiasSettings& bias,
-                                 const core::Vec3& wsTowardsLight, std::span<const PassList> lists) const {
-    const auto slope = static_cast<float>(bias.slope), constant = static_cast<float>(bias.constant);
+                                 const core::Vec3& wsTowardsLight, std::span<const PassList> lists,
+                                 PassPrograms::Batches batches) const {
+    PassPrograms programs = casterPrograms(setup.depthLayout, bias);
+    programs.batches = batches;
     DrawStats draws;
     for (size_t layer = 0; layer < setup.views.size(); ++layer) { // one array layer per shadow view
         const core::ShadowView& view = setup.views[layer];
-        // Linear layout: the same slope / constant bias, applied in depth.frag. One constant
-        // unit is 2^-24 of the depth range, the resolvable step of a 24-bit buffer.
-        const DepthPassUniforms uniforms{.clipFromWorld = glm::mat4(view.clipFromWorld),
-                                         .linearDepthFromWorld = glm::vec4(view.linearDepthFromWorld),
-                                         .slopeBias = slope,
-                                         .constantBias = constant * 0x1p-24f};
+        const DepthPassUniforms uniforms = depthPassUniformsFor(view, bias);
         glNamedBufferSubData(m_uniforms.id(), 0, sizeof uniforms, &uniforms);
         m_shadow->attachLayer(static_cast<int>(layer));
         const float clearDepth = 1.0f;
         glClearNamedFramebufferfv(m_shadow->framebuffer.id(), GL_DEPTH, 0, &clearDepth);
         setLightFacingFront(view.clipFromWorld, wsTowardsLight);
-        draws += scene.draw(lists[layer], casterPrograms(setup.depthLayout, bias));
+        draws += scene.draw(lists[layer], programs);
     }
     return draws;
 }
@@ -170,6 +181,7 @@ void SunPass::bind(const core::ShadowSetup& setup, const RenderSettings& setting
         }
     }
     if (settings.filter.kind == core::ShadowFilter::Msm) m_moments->bind();
+    if (settings.foliageOpacity && !setup.clipmap && m_opacity) m_opacity->bind();
 }
 
 scene::Image SunPass::readMaps() const {

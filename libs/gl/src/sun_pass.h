@@ -1,12 +1,14 @@
 // The sun's shadow pass: depth into the set-up's maps — one layer of a 2D array per fixed map
 // (single maps and cascades), or the virtual pages a frame must draw into the page atlas
 // (virtual_pages.h) — with the bias as polygon offset and caster culling (Scherzer 2005 §4.2),
-// and with --filter msm the maps' moments (moment_maps.h). It owns the maps and what draws
+// with --filter msm the maps' moments (moment_maps.h), and with --foliage-opacity the maps'
+// opacity layers (opacity_layers.h). It owns the maps and what draws
 // them; the culling planner (pass_lists.h) hands it the lists.
 #pragma once
 
 #include "gpu_scene.h"
 #include "moment_maps.h"
+#include "opacity_layers.h"
 #include "pass_samples.h"
 #include "pass_timer.h"
 #include "render_targets.h"
@@ -31,7 +33,8 @@ public:
 
     // The maps `setup` draws into, allocated (or kept) before the frame's lists are planned:
     // fixed layers of setup.mapSize², or the page pool sized for the set-up's pages and the
-    // filter's guard band. Fails when the driver cannot (out of memory, too large).
+    // filter's guard band. Fails when the driver cannot (out of memory, too large), and for
+    // --foliage-opacity with virtual maps (field foliage_opacity: fixed maps only).
     core::Status prepare(const core::ShadowSetup& setup, const RenderSettings& settings,
                          const core::BiasSettings& bias);
     // Draws the maps: `mapLists` one per fixed map, or `pageLists` one per page to render. No
@@ -80,8 +83,10 @@ private:
         programs.cullClosedOnly = bias.cull == core::CasterCull::BackOfClosed;
         return programs;
     }
+    // `batches`: all, or the opaque ones when the alpha-tested cast through opacity layers.
     DrawStats drawFixedMaps(const GpuScene& scene, const core::ShadowSetup& setup, const core::BiasSettings& bias,
-                            const core::Vec3& wsTowardsLight, std::span<const PassList> lists) const;
+                            const core::Vec3& wsTowardsLight, std::span<const PassList> lists,
+                            PassPrograms::Batches batches) const;
 
     ProgramPair m_programs[2]; // depth only, [hyperbolic, linear]; alpha-tested materials discard
     Buffer m_uniforms;         // the DepthPass block
@@ -89,6 +94,7 @@ private:
     std::optional<ShadowTarget> m_shadow;
     std::unique_ptr<VirtualPages> m_pages;
     std::unique_ptr<MomentMaps> m_moments;
+    std::unique_ptr<OpacityLayers> m_opacity; // built on the first frame that asks for it
     std::optional<VirtualPageStats> m_lastVirtual;
     PassTimer m_timer;
     PassSamples m_samples;

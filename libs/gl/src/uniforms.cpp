@@ -34,6 +34,7 @@ std::span<const UniformField> frameFields() {
         SK_FIELD(FrameUniforms, mapCount),
         SK_FIELD(FrameUniforms, linearLayout),
         SK_FIELD(FrameUniforms, cascadeColors),
+        SK_FIELD(FrameUniforms, foliageOpacity),
         SK_FIELD(FrameUniforms, filterKind),
         SK_FIELD(FrameUniforms, filterTaps),
         SK_FIELD(FrameUniforms, poissonRadiusTexels),
@@ -181,6 +182,9 @@ const std::string& shaderPrelude() {
         define("SK_POINT_DEPTH_UNIT", kPointDepthUnit);
         define("SK_MOMENTS_UNIT", kMomentsUnit);
         define("SK_BASE_COLOR_UNIT", kBaseColorUnit);
+        define("SK_OPACITY_UNIT", kOpacityUnit);
+        define("SK_OPACITY_FIRST_UNIT", kOpacityFirstUnit);
+        define("SK_OPACITY_LAYER_LOCATION", kOpacityLayerLocation);
         define("SK_BASE_ALPHA_LOCATION", kBaseAlphaLocation);
         define("SK_ALPHA_CUTOFF_LOCATION", kAlphaCutoffLocation);
         define("SK_MOMENTS_SOURCE_UNIT", kMomentsSourceUnit);
@@ -209,6 +213,15 @@ const std::string& shaderPrelude() {
         return s;
     }();
     return kPrelude;
+}
+
+DepthPassUniforms depthPassUniformsFor(const core::ShadowView& view, const core::BiasSettings& bias) {
+    // Linear layout: the same slope / constant bias, applied in depth.frag. One constant unit is
+    // 2^-24 of the depth range, the resolvable step of a 24-bit buffer.
+    return {.clipFromWorld = glm::mat4(view.clipFromWorld),
+            .linearDepthFromWorld = glm::vec4(view.linearDepthFromWorld),
+            .slopeBias = static_cast<float>(bias.slope),
+            .constantBias = static_cast<float>(bias.constant) * 0x1p-24f};
 }
 
 } // namespace shadowkit::gl

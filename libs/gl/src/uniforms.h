@@ -53,6 +53,8 @@ inline constexpr unsigned kSpotDepthUnit = 6;     // camera passes: the spot map
 inline constexpr unsigned kPointDepthUnit = 7;    // camera passes: the point cubes' stored distances (PCSS)
 inline constexpr unsigned kMomentsUnit = 8;       // camera passes: the sun's moment maps (MSM)
 inline constexpr unsigned kBaseColorUnit = 9;     // SK_MATERIAL passes: the batch's base colour texture (material.glsl)
+inline constexpr unsigned kOpacityUnit = 10;      // camera passes: the sun's opacity layers (opacity_layers.h)
+inline constexpr unsigned kOpacityFirstUnit = 11; // camera passes and opacity.frag: the first leaves' depths
 inline constexpr unsigned kMomentsSourceUnit = 0; // moments.comp: the depth maps or moments it reads
 inline constexpr unsigned kMomentsImageUnit = 0;  // moments.comp: the image it writes
 inline constexpr unsigned kLocalDepthBinding = 5; // uniform block LocalDepth (local_depth.glsl)
@@ -78,6 +80,7 @@ inline constexpr int kLodErrorLocation = 2;       // uniform float lodObjectErro
 inline constexpr int kBoxOffsetLocation = 3;      // uniform uint boxOffset (occlusion_box.vert): first box of the draw
 inline constexpr int kBaseAlphaLocation = 4;      // uniform float skBaseAlpha (material.glsl): baseColorFactor.a
 inline constexpr int kAlphaCutoffLocation = 5;    // uniform float skAlphaCutoff (material.glsl); < 0: never discard
+inline constexpr int kOpacityLayerLocation = 6;   // uniform int opacityLayer (opacity.frag): the map drawn
 
 // std140: scalars pack in fours, vec4 and mat4 start on 16 bytes. Booleans are int32.
 
@@ -88,6 +91,9 @@ struct DepthPassUniforms {          // GLSL: DepthPass (depth_pass.glsl)
     float constantBias;             // linear layout: in depth units (glPolygonOffset's units × 2^-24)
     float pad0, pad1;               // the layout is the program's (SK_LINEAR_DEPTH), not a uniform
 };
+
+// The block for drawing into `view`: the linear layout's bias as glPolygonOffset's would be.
+DepthPassUniforms depthPassUniformsFor(const core::ShadowView& view, const core::BiasSettings& bias);
 
 struct FrameUniforms {        // GLSL: Frame (frame.glsl)
     glm::mat4 clipFromWorld;  // camera
@@ -109,6 +115,8 @@ struct FrameUniforms {        // GLSL: Frame (frame.glsl)
     int32_t readBlurredMask;                            // 1: main pass reads the blurred mask instead of the maps
     int32_t aliasingOverlay;                            // 1: main pass shows pixels per texel instead of shading
     float lightTanHalfAngle;                            // tan of the sun's angular radius (PCSS); 0: a point
+    int32_t foliageOpacity;                             // 1: the maps' opacity layers apply (opacity_layers.h)
+    float pad0, pad1, pad2;                             // std140: the mat4 array starts on 16 bytes
     glm::mat4 shadowTextureFromWorld[kMaxCascades];     // (u, v, depth, 1) · w of each map (core::toEngineView)
     glm::vec4 shadowLinearDepthFromWorld[kMaxCascades]; // rows, as in DepthPass
     glm::vec4 cascadeRange[kMaxCascades];               // x, y: view depth [start, end] each map serves
@@ -191,9 +199,9 @@ struct BlurUniforms {     // GLSL: Blur (blur.frag)
 };
 
 static_assert(offsetof(DepthPassUniforms, linearDepthFromWorld) == 64 && sizeof(DepthPassUniforms) == 96);
-static_assert(offsetof(FrameUniforms, mapTexels) == 160 && offsetof(FrameUniforms, shadowTextureFromWorld) == 208,
+static_assert(offsetof(FrameUniforms, mapTexels) == 160 && offsetof(FrameUniforms, shadowTextureFromWorld) == 224,
               "std140: the scalars must fill whole 16-byte rows before the arrays");
-static_assert(sizeof(FrameUniforms) == 208 + kMaxCascades * (64 + 16 + 16));
+static_assert(sizeof(FrameUniforms) == 224 + kMaxCascades * (64 + 16 + 16));
 static_assert(sizeof(BlurUniforms) == 16);
 static_assert(sizeof(LocalDepthUniforms) == 6 * 64 + 16 + 32 + 16);
 static_assert(sizeof(LocalLightsUniforms) == kMaxLocalLights * (6 * 16 + 64) + 32);

@@ -215,6 +215,7 @@ eval::ViewReport viewReport(const Measurement& m, const gl::RenderSettings& sett
     report.bias = m.bias;
     report.filter = core::filterName(settings.filter);
     report.blurIterations = settings.blur.iterations;
+    report.foliageOpacity = settings.foliageOpacity;
     report.fallbacks = m.setup.fallbacks;
     report.visibleDepth = m.visibleDepth;
     report.figures = m.comparison.figures;

@@ -26,6 +26,7 @@ layout(std140, binding = SK_FRAME_BINDING) uniform Frame {
     int readBlurredMask;      // 1: the main pass reads the blurred mask instead of the maps
     int aliasingOverlay;      // 1: the main pass shows pixels per texel instead of shading
     float lightTanHalfAngle;  // tan of the sun's angular radius (PCSS); 0: a point
+    int foliageOpacity;       // 1: the maps' opacity layers apply (leaves cast a fraction of shadow)
     mat4 shadowTextureFromWorld[SK_MAX_CASCADES];     // (u, v, depth, 1) · w of each map
     vec4 shadowLinearDepthFromWorld[SK_MAX_CASCADES]; // rows, see DepthPass
     vec4 cascadeRange[SK_MAX_CASCADES];               // x, y: view depth [start, end] each map serves
@@ -41,6 +42,12 @@ layout(binding = SK_SHADOW_DEPTH_UNIT) uniform sampler2DArray shadowDepths;
 // The sun's maps as prefiltered moments (moment_maps.h): MSM's lookup.
 layout(binding = SK_MOMENTS_UNIT) uniform sampler2DArray shadowMoments;
 #define SK_SHADOW_MOMENTS shadowMoments
+// The sun's opacity layers (opacity_layers.h): the leaves' absorbance behind the first leaf's depth.
+layout(binding = SK_OPACITY_UNIT) uniform sampler2DArray shadowOpacity;
+layout(binding = SK_OPACITY_FIRST_UNIT) uniform sampler2DArray shadowOpacityFirst;
+#define SK_SHADOW_OPACITY shadowOpacity
+#define SK_SHADOW_OPACITY_FIRST shadowOpacityFirst
+#define SK_SHADOW_OPACITY_ENABLED (foliageOpacity != 0)
 
 // Virtual shadow maps (virtual_pages.h): the C++ side is VirtualMapsUniforms. The levels'
 // textureFromWorld are Frame's shadowTextureFromWorld.

@@ -53,6 +53,7 @@ struct ViewReport {
     core::BiasSettings bias;
     std::string filter = "hard"; // as given to --filter
     int blurIterations = 0;
+    bool foliageOpacity = false; // leaves cast through opacity layers (--foliage-opacity)
     std::vector<std::string> fallbacks;
     std::string autoChoice; // "auto_choice": what --technique auto chose, with its parameters (else left out)
     std::optional<core::Vec2> visibleDepth; // the visible view-depth range the set-up used, when one was given

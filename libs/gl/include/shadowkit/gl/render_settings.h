@@ -108,6 +108,11 @@ struct RenderSettings {
     float lodPixelError = 0.25f; // (0, 16]
     float lodTexelError = 0.25f; // (0, 16]
     bool cascadeColors = false;  // tint each cascade's range (Dimitrov 2007, Figure 3-2)
+    // Partial occlusion by alpha-tested casters (leaves): they cast through opacity layers beside
+    // the sun's maps (deep opacity maps, Yuksel & Keyser 2008; gl/src/opacity_layers.h) as a
+    // fraction of the light, the maps' depth holding the opaque casters alone. Fixed maps and
+    // cascades; refused with virtual maps. 12 bytes a texel more.
+    bool foliageOpacity = false;
     // Show, instead of the shaded colour, each pixel's pixels per texel of the sun's map that
     // serves it — eval's `pixels_per_texel` (largest singular value of d(pixel)/d(texel)) with
     // eval::aliasingMapImage's colours (log2 from 1/64 to 64) — computed in the shader, live.

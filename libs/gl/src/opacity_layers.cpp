@@ -1,0 +1,92 @@
+#include "opacity_layers.h"
+
+#include "gl_shaders.h"
+#include "program.h"
+#include "uniforms.h"
+
+#include <string>
+
+namespace shadowkit::gl {
+core::Result<std::unique_ptr<OpacityLayers>> OpacityLayers::create() {
+    auto layers = std::unique_ptr<OpacityLayers>(new OpacityLayers);
+    using namespace shaders;
+    for (const bool first : {true, false}) {
+        const std::string name = first ? "opacity layers, first leaf" : "opacity layers, transmittance";
+        auto program = buildProgram(name, {kMaterialVariant[1], kDepthPassGlsl, kDepthVert},
+                                    {kMaterialVariant[1], first ? "#define SK_OPACITY_FIRST 1\n" : "", kDepthPassGlsl,
+                                     kMaterialGlsl, kShadowkitShadowsGlsl, kOpacityFrag});
+        if (!program) return program.errorInfo();
+        (first ? layers->m_first : layers->m_transmittance) = std::move(program).value();
+    }
+    layers->m_framebuffer = createFramebuffer();
+    return layers;
+}
+
+core::Status OpacityLayers::prepare(int size, int layers) {
+    if (m_size == size && m_count == layers) return core::Ok{};
+    m_firstDepth.reset(), m_layers.reset(); // the old ones go before the new ones are allocated
+    while (glGetError() != GL_NO_ERROR) {
+    }
+    m_firstDepth = createMapLayers(GL_R32F, size, layers, GL_NEAREST);
+    m_layers = createMapLayers(GL_RGBA16F, size, layers, GL_LINEAR);
+    if (glGetError() == GL_OUT_OF_MEMORY) {
+        m_firstDepth.reset(), m_layers.reset();
+        m_size = m_count = 0;
+        return core::environmentError("map_size: the GL driver is out of memory for opacity layers of " +
+                                          std::to_string(layers) + " × " + std::to_string(size) +
+                                          "² (12 bytes a texel)",
+                                      "map_size");
+    }
+    m_size = size, m_count = layers;
+    return core::Ok{};
+}
+
+DrawStats OpacityLayers::draw(const GpuScene& scene, const core::ShadowSetup& setup, const core::BiasSettings& bias,
+                              std::span<const PassList> lists, const Buffer& depthPass) const {
+    // No depth test and both sides of every leaf: each fragment of each leaf counts once.
+    glDisable(GL_DEPTH_TEST);
+    glDepthMask(GL_FALSE);
+    glDisable(GL_CULL_FACE);
+    if (setup.depthClamp) glEnable(GL_DEPTH_CLAMP); // casters before the near plane, as the depth pass
+    glEnable(GL_BLEND);
+    glBindFramebuffer(GL_FRAMEBUFFER, m_framebuffer.id());
+    glViewport(0, 0, m_size, m_size);
+    glBindBufferBase(GL_UNIFORM_BUFFER, kDepthPassBinding, depthPass.id());
+    const PassPrograms first{.material = m_first.id(), .batches = PassPrograms::Batches::AlphaTested};
+    const PassPrograms transmittance{.material = m_transmittance.id(), .batches = PassPrograms::Batches::AlphaTested};
+    DrawStats draws;
+    for (size_t layer = 0; layer < setup.views.size() && layer < lists.size(); ++layer) {
+        const DepthPassUniforms uniforms = depthPassUniformsFor(setup.views[layer], bias);
+        glNamedBufferSubData(depthPass.id(), 0, sizeof uniforms, &uniforms);
+        const auto l = static_cast<GLint>(layer);
+
+        glNamedFramebufferTextureLayer(m_framebuffer.id(), GL_COLOR_ATTACHMENT0, m_firstDepth.id(), 0, l);
+        const float far[4] = {1.0f, 1.0f, 1.0f, 1.0f}; // no leaf: the far end of the map's depth
+        glClearNamedFramebufferfv(m_framebuffer.id(), GL_COLOR, 0, far);
+        glBlendEquation(GL_MIN);
+        draws += scene.draw(lists[layer], first);
+
+        glNamedFramebufferTextureLayer(m_framebuffer.id(), GL_COLOR_ATTACHMENT0, m_layers.id(), 0, l);
+        const float clear[4] = {1.0f, 1.0f, 1.0f, 1.0f}; // no leaf lets all the light through
+        glClearNamedFramebufferfv(m_framebuffer.id(), GL_COLOR, 0, clear);
+        glBlendEquation(GL_FUNC_ADD);
+        glBlendFunc(GL_ZERO, GL_SRC_COLOR); // destination × source: the layer's leaves multiply
+        glBindTextureUnit(kOpacityFirstUnit, m_firstDepth.id());
+        glProgramUniform1i(m_transmittance.id(), kOpacityLayerLocation, l);
+        draws += scene.draw(lists[layer], transmittance);
+        glBindTextureUnit(kOpacityFirstUnit, 0); // the next layer's first pass writes it
+    }
+    glDisable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ZERO);
+    glDisable(GL_DEPTH_CLAMP);
+    glEnable(GL_DEPTH_TEST);
+    glDepthMask(GL_TRUE);
+    return draws;
+}
+
+void OpacityLayers::bind() const {
+    glBindTextureUnit(kOpacityUnit, m_layers.id());
+    glBindTextureUnit(kOpacityFirstUnit, m_firstDepth.id());
+}
+
+} // namespace shadowkit::gl

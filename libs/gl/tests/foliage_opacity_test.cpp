@@ -1,0 +1,229 @@
+// Opacity layers (RenderSettings::foliageOpacity, gl/src/opacity_layers.h, glsl/shadowkit_shadows.glsl's
+// skFoliageTransmittance): leaves smaller than a texel cast a fraction of the light, stacked leaves
+// multiply, a receiver between two layers of leaves is shadowed by the layer above it only, and the
+// opaque casters still cast through the depth map.
+//
+// The scene: a ground slab, and two horizontal alpha-tested cards whose texture is random noise
+// covering half of each 3 cm cell (far finer than the map's 8 cm texels): the upper card at
+// y = 7 over x, z ∈ [−2, 2], the lower at y = 5 over x ∈ [−2, 4], z ∈ [−2, 0]. An opaque plate at
+// y = 6 (x ∈ [2.2, 3], z ∈ [−2, 0]) lies between them. The sun comes from −x at 45°, so a point
+// at height h casts onto the ground h metres further along +x: the upper card onto x ∈ [5, 9], the
+// lower onto x ∈ [3, 9] (z < 0), the plate onto x ∈ [8.2, 9], and the upper card's shadow crosses
+// the plate's top.
+#include "headless_gl_test.h"
+
+#include "shadowkit/core/shadow_setup.h"
+#include "shadowkit/gl/renderer.h"
+#include "shadowkit/scene/mesh_builder.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+using namespace shadowkit;
+
+namespace {
+
+class FoliageOpacityTest : public gl::testing::HeadlessGlTest {};
+
+// Instances in the order of the batches below (surfaceId = instance + 1).
+constexpr uint32_t kGround = 1, kPlate = 2;
+
+// A 128² texture whose texels are covered (alpha 1) or not (0) at random, half of each.
+scene::Texture halfCoveredNoise() {
+    scene::Image image;
+    image.width = image.height = 128;
+    image.rgba.resize(size_t(128) * 128 * 4);
+    uint32_t state = 12345u;
+    for (size_t i = 0; i < image.rgba.size(); i += 4) {
+        state = state * 1664525u + 1013904223u; // a linear congruential generator: deterministic
+        image.rgba[i] = image.rgba[i + 1] = image.rgba[i + 2] = 200;
+        image.rgba[i + 3] = (state >> 31) != 0 ? 255 : 0;
+    }
+    return scene::Texture{.image = std::move(image)};
+}
+
+// A horizontal card at height y over [x0, x1] × [z0, z1].
+void addHorizontalCard(scene::Mesh& mesh, float y, float x0, float x1, float z0, float z1) {
+    const glm::mat4 partToObject = glm::translate(glm::mat4(1.0f), {0.5f * (x0 + x1), y, 0.5f * (z0 + z1)}) *
+                                   glm::rotate(glm::mat4(1.0f), -0.5f * std::numbers::pi_v<float>, {1, 0, 0}) *
+                                   glm::scale(glm::mat4(1.0f), {x1 - x0, z1 - z0, 1.0f}) *
+                                   glm::translate(glm::mat4(1.0f), {0, -0.5f, 0});
+    scene::addCard(mesh, partToObject, {0, 1}, {1, 0}, glm::vec3(0.3f, 0.6f, 0.2f));
+}
+
+scene::Scene cardsOverGround() {
+    scene::Scene s;
+    scene::Mesh ground, plate, cards;
+    scene::addBox(ground, glm::translate(glm::mat4(1.0f), {2, -0.5f, 0}), {12, 0.5f, 12}, glm::vec3(0.8f));
+    scene::addBox(plate, glm::translate(glm::mat4(1.0f), {2.6f, 6, -1}), {0.4f, 0.05f, 1}, glm::vec3(0.8f));
+    addHorizontalCard(cards, 7, -2, 2, -2, 2);
+    addHorizontalCard(cards, 5, -2, 4, -2, 0);
+    cards.material = 0;
+    for (scene::Mesh* m : {&ground, &plate, &cards}) m->computeBounds();
+    s.meshes = {ground, plate, cards};
+    s.textures = {halfCoveredNoise()};
+    s.materials = {scene::Material{.name = "leaves",
+                                   .baseColorTexture = 0,
+                                   .alphaMode = scene::AlphaMode::Mask,
+                                   .alphaCutoff = 0.5f,
+                                   .doubleSided = true}};
+    s.batches = {{0, {glm::mat4(1.0f)}, false}, {1, {glm::mat4(1.0f)}, false}, {2, {glm::mat4(1.0f)}, false}};
+    return s;
+}
+
+const core::DirectionalLight kSun = core::DirectionalLight::fromDirection({1, -1, 0}).value(); // from −x, 45°
+
+struct Frame {
+    core::PerspectiveCamera camera;
+    core::RasterBuffers raster;
+};
+
+// Looking straight down on the cards' shadows from above x = 5: no ray to the ground there
+// passes through a card.
+Frame render(gl::Renderer& renderer, const scene::Scene& scene, const gl::RenderSettings& settings) {
+    core::PerspectiveCamera camera;
+    camera.wsEye = {5, 14, 0};
+    camera.wsDirection = {0, -1, 0};
+    camera.wsUp = {1, 0, 0};
+    camera.aspect = 1.0;
+    camera.zNear = 1.0;
+    camera.zFar = 40.0;
+    auto setup = core::computeShadowSetup({.camera = camera,
+                                           .light = kSun,
+                                           .wsSceneBounds = scene.wsBounds(),
+                                           .technique = core::Technique::Focused,
+                                           .mapSize = 256});
+    EXPECT_TRUE(setup) << setup.error();
+    auto raster = renderer.renderEvalBuffers(camera, kSun, *setup, settings);
+    EXPECT_TRUE(raster) << raster.error();
+    return {camera, raster ? std::move(raster).value() : core::RasterBuffers{}};
+}
+
+struct Region {
+    double mean = 0.0;
+    double spread = 0.0;     // the terms' standard deviation
+    double fractional = 0.0; // the share of its pixels strictly between 0.2 and 0.8
+    int pixels = 0;
+};
+
+// The shadow terms of the pixels showing `surface` at world points (x, y, z), x ∈ [x0, x1],
+// z ∈ [z0, z1], on a 5 cm grid.
+Region termsOver(const Frame& f, uint32_t surface, double y, double x0, double x1, double z0, double z1) {
+    Region r;
+    double sum = 0.0, squares = 0.0;
+    int fractional = 0;
+    for (double x = x0; x <= x1; x += 0.05)
+        for (double z = z0; z <= z1; z += 0.05) {
+            const core::Vec4 c = f.camera.clipFromWorld() * core::Vec4(x, y, z, 1.0);
+            const int px = static_cast<int>((c.x / c.w * 0.5 + 0.5) * f.raster.width);
+            const int py = static_cast<int>((0.5 - c.y / c.w * 0.5) * f.raster.height);
+            if (c.w <= 0.0 || px < 0 || py < 0 || px >= f.raster.width || py >= f.raster.height) continue;
+            const size_t i = f.raster.index(px, py);
+            if (f.raster.surfaceId[i] != surface) continue;
+            const float term = f.raster.shadowTerm[i];
+            sum += term;
+            squares += double(term) * term;
+            fractional += term > 0.2f && term < 0.8f;
+            ++r.pixels;
+        }
+    if (r.pixels > 0) {
+        r.mean = sum / r.pixels, r.fractional = double(fractional) / r.pixels;
+        r.spread = std::sqrt(std::max(squares / r.pixels - r.mean * r.mean, 0.0));
+    }
+    return r;
+}
+
+gl::RenderSettings settings(bool foliageOpacity) {
+    gl::RenderSettings s;
+    s.width = s.height = 256;
+    s.fogDensity = 0.0f;
+    s.foliageOpacity = foliageOpacity;
+    return s;
+}
+
+} // namespace
+
+TEST_F(FoliageOpacityTest, LeavesFinerThanATexelCastAFractionAndStackedLayersMultiply) {
+    const scene::Scene s = cardsOverGround();
+    auto renderer = gl::Renderer::create(s);
+    ASSERT_TRUE(renderer) << renderer.error();
+    const Frame f = render(**renderer, s, settings(true));
+    const Region upperOnly = termsOver(f, kGround, 0.0, 5.5, 7.8, 0.4, 1.6);
+    const Region both = termsOver(f, kGround, 0.0, 5.5, 7.8, -1.6, -0.4);
+    const Region lowerOnly = termsOver(f, kGround, 0.0, 4.2, 4.8, -1.6, -0.4);
+    const Region open = termsOver(f, kGround, 0.0, 10.0, 11.0, -1.0, 1.0);
+    for (const Region* r : {&upperOnly, &both, &lowerOnly, &open}) ASSERT_GT(r->pixels, 50);
+    // One card covering half: half the light, as a fraction in nearly every pixel.
+    EXPECT_NEAR(upperOnly.mean, 0.5, 0.1);
+    EXPECT_NEAR(lowerOnly.mean, 0.5, 0.1);
+    EXPECT_GT(upperOnly.fractional, 0.8);
+    // Two: a half of a half (absorbances add, transmittances multiply).
+    EXPECT_NEAR(both.mean, 0.25, 0.08);
+    EXPECT_GT(open.mean, 0.99);
+}
+
+TEST_F(FoliageOpacityTest, AReceiverBetweenTwoLayersIsShadowedByTheOneAboveItAndOpaqueCastersStayHard) {
+    const scene::Scene s = cardsOverGround();
+    auto renderer = gl::Renderer::create(s);
+    ASSERT_TRUE(renderer) << renderer.error();
+    const Frame f = render(**renderer, s, settings(true));
+    // The plate's top: under the upper card, over the lower one, which the same texels hold.
+    const Region plateTop = termsOver(f, kPlate, 6.05, 2.3, 2.9, -1.6, -0.4);
+    ASSERT_GT(plateTop.pixels, 20);
+    EXPECT_NEAR(plateTop.mean, 0.5, 0.12);
+    // The plate itself casts through the depth map: a hard shadow, whatever the leaves do.
+    const Region underPlate = termsOver(f, kGround, 0.0, 8.35, 8.85, -1.6, -0.4);
+    ASSERT_GT(underPlate.pixels, 20);
+    EXPECT_LT(underPlate.mean, 0.02);
+}
+
+TEST_F(FoliageOpacityTest, WithoutOpacityLayersTheSameLeavesCastAllOrNothingPerPixel) {
+    const scene::Scene s = cardsOverGround();
+    auto renderer = gl::Renderer::create(s);
+    ASSERT_TRUE(renderer) << renderer.error();
+    const Frame f = render(**renderer, s, settings(false));
+    const Region upperOnly = termsOver(f, kGround, 0.0, 5.5, 7.8, 0.4, 1.6);
+    ASSERT_GT(upperOnly.pixels, 50);
+    EXPECT_LT(upperOnly.fractional, 0.05);  // the hard test: each pixel lit or not
+    EXPECT_NEAR(upperOnly.mean, 0.5, 0.15); // the coverage-keeping mips keep about half
+}
+
+TEST_F(FoliageOpacityTest, UnderTheSunsDiskTheLeavesTransmittanceIsAveragedOverItsCrossing) {
+    // PCSS with a sun of 4°: the disk crosses the upper card 9.9 m up the light as a circle 70 cm
+    // across, nine texels: the same half of the light on the mean, far less spread from pixel to
+    // pixel than the point sun's lookup of one bilinear footprint.
+    const scene::Scene s = cardsOverGround();
+    auto renderer = gl::Renderer::create(s);
+    ASSERT_TRUE(renderer) << renderer.error();
+    gl::RenderSettings point = settings(true), disk = settings(true);
+    disk.filter = {core::ShadowFilter::Pcss, 32, 16.0f};
+    disk.sunAngleDegrees = 4.0;
+    const Region sharp = termsOver(render(**renderer, s, point), kGround, 0.0, 5.5, 7.8, 0.4, 1.6);
+    const Region soft = termsOver(render(**renderer, s, disk), kGround, 0.0, 5.5, 7.8, 0.4, 1.6);
+    ASSERT_GT(soft.pixels, 50);
+    EXPECT_NEAR(soft.mean, sharp.mean, 0.05);
+    EXPECT_LT(soft.spread, 0.6 * sharp.spread) << "point sun " << sharp.spread << ", disk " << soft.spread;
+}
+
+TEST_F(FoliageOpacityTest, VirtualMapsRefuseOpacityLayersNamingTheSetting) {
+    const scene::Scene s = cardsOverGround();
+    auto renderer = gl::Renderer::create(s);
+    ASSERT_TRUE(renderer) << renderer.error();
+    core::PerspectiveCamera camera;
+    camera.wsEye = {5, 14, 0};
+    camera.wsDirection = {0, -1, 0};
+    camera.wsUp = {1, 0, 0};
+    auto setup = core::computeShadowSetup({.camera = camera,
+                                           .light = kSun,
+                                           .wsSceneBounds = s.wsBounds(),
+                                           .technique = core::Technique::Virtual,
+                                           .mapSize = 256});
+    ASSERT_TRUE(setup) << setup.error();
+    auto raster = (*renderer)->renderEvalBuffers(camera, kSun, *setup, settings(true));
+    ASSERT_FALSE(raster);
+    EXPECT_NE(raster.error().find("foliage_opacity"), std::string::npos) << raster.error();
+}
