@@ -297,9 +297,9 @@ vec4 skLayerAbsorbanceBefore(vec4 layers, float metres, out vec4 share) {
 }
 
 #ifdef SK_SHADOW_OPACITY
-// The caller names two sampler2DArrays laid out as the depth maps: the layers' absorbance (RGBA,
-// GL_LINEAR) and the first leaf's linear depth (R, GL_NEAREST; 1
-// where no leaf covers the texel), and when the lookup applies:
+// The caller names two sampler2DArrays laid out as the depth maps: the layers' transmittance
+// (RGBA, GL_LINEAR; 1 where no leaf is) and the first leaf's linear depth (R, GL_NEAREST; 1 where
+// no leaf covers the texel), and when the lookup applies:
 //   #define SK_SHADOW_OPACITY          myOpacityLayers
 //   #define SK_SHADOW_OPACITY_FIRST    myOpacityFirst
 //   #define SK_SHADOW_OPACITY_ENABLED  (myFoliageOpacity != 0)   (default: always)
