@@ -347,7 +347,8 @@ float skFoliageTransmittance(int layer, mat4 textureFromWorld, vec4 linearDepthF
     const float diskMetres = min(leavesMetres * o.lightTanHalfAngle, o.poissonRadiusTexels * metresPerTexel);
     const int taps = max(o.filterTaps, 1);
     float lit = 0.0;
-    vec2 direction = vec2(cos(skPixelAngle()), sin(skPixelAngle()));
+    const float angle = skPixelAngle();
+    vec2 direction = vec2(cos(angle), sin(angle));
     for (int i = 0; i < taps; ++i, direction = kSkGoldenTurn * direction) {
         const vec2 offset = uvFromDisk * (direction * (sqrt((float(i) + 0.5) / float(taps)) * diskMetres));
         lit += skOpacityTransmittanceAt(layer, uvz.xy + offset, uvz.z, metresPerDepth);
