@@ -1,7 +1,8 @@
 // Opacity layers (RenderSettings::foliageOpacity, gl/src/opacity_layers.h, glsl/shadowkit_shadows.glsl's
 // skFoliageTransmittance): leaves smaller than a texel cast a fraction of the light, stacked leaves
-// multiply, a receiver between two layers of leaves is shadowed by the layer above it only, and the
-// opaque casters still cast through the depth map.
+// multiply, a receiver between two layers of leaves is shadowed by the layer above it only, the
+// ground beside a canopy's edge is partly shadowed under the sun's disk, and the opaque casters
+// still cast through the depth map.
 //
 // The scene: a ground slab, and two horizontal alpha-tested cards whose texture is random noise
 // covering half of each 3 cm cell (far finer than the map's 8 cm texels): the upper card at
@@ -207,6 +208,29 @@ TEST_F(FoliageOpacityTest, UnderTheSunsDiskTheLeavesTransmittanceIsAveragedOverI
     ASSERT_GT(soft.pixels, 50);
     EXPECT_NEAR(soft.mean, sharp.mean, 0.05);
     EXPECT_LT(soft.spread, 0.6 * sharp.spread) << "point sun " << sharp.spread << ", disk " << soft.spread;
+}
+
+TEST_F(FoliageOpacityTest, UnderTheSunsDiskTheGroundBesideACanopysEdgeIsPartlyShadowed) {
+    // The upper card's edge z = 2 lies across the light, so it casts onto the ground along z = 2.
+    // With a 4° sun the disk crosses the card 9.9 m up the light as a circle 35 cm in radius: the
+    // ground 10–25 cm beyond the edge sees some of the card (a half-covered one) across part of the
+    // disk, about 0.9 of the sun on the mean, though the map's texel above it holds no leaf. The
+    // lookup must look for leaves over the disk, as PCSS's blocker search does; taken from the
+    // receiver's own texel alone it drew that ground wholly lit.
+    const scene::Scene s = cardsOverGround();
+    auto renderer = gl::Renderer::create(s);
+    ASSERT_TRUE(renderer) << renderer.error();
+    gl::RenderSettings disk = settings(true);
+    disk.filter = {core::ShadowFilter::Pcss, 32, 16.0f};
+    disk.sunAngleDegrees = 4.0;
+    const Frame f = render(**renderer, s, disk);
+    const Region beside = termsOver(f, kGround, 0.0, 5.5, 7.8, 2.1, 2.25);
+    const Region farther = termsOver(f, kGround, 0.0, 5.5, 7.8, 2.5, 2.8);
+    ASSERT_GT(beside.pixels, 50);
+    ASSERT_GT(farther.pixels, 50);
+    EXPECT_LT(beside.mean, 0.97);
+    EXPECT_GT(beside.mean, 0.75);
+    EXPECT_GT(farther.mean, 0.99); // past the disk's reach: all the sun
 }
 
 TEST_F(FoliageOpacityTest, VirtualMapsRefuseOpacityLayersNamingTheSetting) {
