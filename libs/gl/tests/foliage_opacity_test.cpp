@@ -146,6 +146,14 @@ gl::RenderSettings settings(bool foliageOpacity) {
     return s;
 }
 
+// The layers under a sun of 4° with PCSS (kernels up to 16 texels: the cap stays out of the way).
+gl::RenderSettings underAWideSun() {
+    gl::RenderSettings s = settings(true);
+    s.filter = {core::ShadowFilter::Pcss, 32, 16.0f};
+    s.sunAngleDegrees = 4.0;
+    return s;
+}
+
 } // namespace
 
 TEST_F(FoliageOpacityTest, LeavesFinerThanATexelCastAFractionAndStackedLayersMultiply) {
@@ -200,11 +208,8 @@ TEST_F(FoliageOpacityTest, UnderTheSunsDiskTheLeavesTransmittanceIsAveragedOverI
     const scene::Scene s = cardsOverGround();
     auto renderer = gl::Renderer::create(s);
     ASSERT_TRUE(renderer) << renderer.error();
-    gl::RenderSettings point = settings(true), disk = settings(true);
-    disk.filter = {core::ShadowFilter::Pcss, 32, 16.0f};
-    disk.sunAngleDegrees = 4.0;
-    const Region sharp = termsOver(render(**renderer, s, point), kGround, 0.0, 5.5, 7.8, 0.4, 1.6);
-    const Region soft = termsOver(render(**renderer, s, disk), kGround, 0.0, 5.5, 7.8, 0.4, 1.6);
+    const Region sharp = termsOver(render(**renderer, s, settings(true)), kGround, 0.0, 5.5, 7.8, 0.4, 1.6);
+    const Region soft = termsOver(render(**renderer, s, underAWideSun()), kGround, 0.0, 5.5, 7.8, 0.4, 1.6);
     ASSERT_GT(soft.pixels, 50);
     EXPECT_NEAR(soft.mean, sharp.mean, 0.05);
     EXPECT_LT(soft.spread, 0.6 * sharp.spread) << "point sun " << sharp.spread << ", disk " << soft.spread;
@@ -220,10 +225,7 @@ TEST_F(FoliageOpacityTest, UnderTheSunsDiskTheGroundBesideACanopysEdgeIsPartlySh
     const scene::Scene s = cardsOverGround();
     auto renderer = gl::Renderer::create(s);
     ASSERT_TRUE(renderer) << renderer.error();
-    gl::RenderSettings disk = settings(true);
-    disk.filter = {core::ShadowFilter::Pcss, 32, 16.0f};
-    disk.sunAngleDegrees = 4.0;
-    const Frame f = render(**renderer, s, disk);
+    const Frame f = render(**renderer, s, underAWideSun());
     const Region beside = termsOver(f, kGround, 0.0, 5.5, 7.8, 2.1, 2.25);
     const Region farther = termsOver(f, kGround, 0.0, 5.5, 7.8, 2.5, 2.8);
     ASSERT_GT(beside.pixels, 50);
