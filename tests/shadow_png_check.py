@@ -10,7 +10,8 @@ import sys
 import zlib
 
 
-def read_png(path):
+def decode_png(path):
+    """(width, height, channels, rows): each row a bytearray of width × channels samples."""
     with open(path, "rb") as f:
         data = f.read()
     if data[:8] != b"\x89PNG\r\n\x1a\n":
@@ -47,6 +48,12 @@ def read_png(path):
                 line[i] = (line[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
         rows.append(line)
         prev = line
+    return width, height, channels, rows
+
+
+def read_png(path):
+    """(width, height, brightness): the sum of R, G and B per pixel, rows top first."""
+    width, height, channels, rows = decode_png(path)
     return width, height, [sum(row[x * channels:x * channels + 3]) for row in rows for x in range(width)]
 
 

@@ -1,0 +1,102 @@
+// shadowkit inside OpenSceneGraph 3.6: a ViewDependentShadowMap whose shadow camera is
+// shadowkit's (TSM, LiSPSM, PSM, focused or standard), drawn and looked up by OSG as before.
+//
+// OSG's ViewDependentShadowMap (VDSM) calls computeShadowCameraSettings once a frame per light
+// with the view's frustum and the light; what it returns is the shadow camera's view and
+// projection, which OSG then draws the casters with (its polygon offset and face culling) and
+// turns into the receivers' texgen (bias · projection · view · inverse(camera view)). This
+// class answers that call with shadowkit::core's set-up, so a user switches with one line:
+//
+//     auto shadowMap = new shadowkit::osgadapter::ShadowMap;   // was: new osgShadow::ViewDependentShadowMap
+//     shadowedScene->setShadowTechnique(shadowMap);
+//
+// Conventions, converted once in shadowCameraFor: OSG's matrices are row-vector (v · M) and
+// their memory is OpenGL's column-major order, so a glm::dmat4 reads them as they lie; OSG
+// rasterises with OpenGL's clip depth [−1, 1] and samples with v = 0 at the bottom row
+// (core::OutputConventions::openGL()). The map stores what OSG's rasteriser writes, so the
+// set-up's depth layout is always Hyperbolic (TSM's linear depth would need our depth shader).
+#pragma once
+
+#include "shadowkit/core/shadow_setup.h"
+
+#include <osg/BoundingBox>
+#include <osg/Matrixd>
+#include <osgShadow/ViewDependentShadowMap>
+
+#include <optional>
+#include <string>
+
+namespace shadowkit::osgadapter {
+
+/// A shadow camera as OSG holds it (row-vector matrices): the map is drawn with
+/// viewMatrix · projectionMatrix, whose clip depth is OpenGL's [−1, 1].
+struct ShadowCamera {
+    ::osg::Matrixd viewMatrix;       ///< world to light space: rigid
+    ::osg::Matrixd projectionMatrix; ///< light space to clip (the warp of TSM, LiSPSM, PSM)
+    core::ShadowSetup setup;         ///< what the core computed: fallbacks, warp parameters
+};
+
+/// The core's set-up for OSG's camera (its modelview and projection as OSG holds them) and a
+/// directional light travelling along wsLightDirection, with the options of `options` (its
+/// technique, mapSize and the techniques' own options; camera, light, bounds and depth layout
+/// are taken from here). Fails, in one line, for the techniques with more than one map
+/// (`csm`, `virtual`: VDSM draws one map per light here), a camera the core cannot read, an
+/// empty or non-finite scene box, or a zero light direction.
+core::Result<ShadowCamera> shadowCameraFor(const ::osg::Matrixd& viewFromWorld, const ::osg::Matrixd& clipFromView,
+                                           double shadowDistance, const ::osg::Vec3d& wsLightDirection,
+                                           const ::osg::BoundingBoxd& wsSceneBounds, core::ShadowSetupInputs options);
+
+/// osgShadow::ViewDependentShadowMap with shadowkit's shadow camera for directional lights
+/// (positional lights keep OSG's own). The map size is ShadowSettings' texture size; shadows
+/// end at ShadowSettings' maximum shadow map distance, as OSG's own do; use one shadow map
+/// per light.
+class ShadowMap : public osgShadow::ViewDependentShadowMap {
+public:
+    ShadowMap();
+    ShadowMap(const ShadowMap& other, const ::osg::CopyOp& copyop = ::osg::CopyOp::SHALLOW_COPY);
+    META_Object(shadowkit, ShadowMap);
+
+    /// The technique and its options (ShadowSetupInputs' camera, light, bounds, map size and
+    /// depth layout are ignored: they come from OSG). Default: TSM, the core's default.
+    void setInputs(const core::ShadowSetupInputs& inputs) { m_inputs = inputs; }
+    const core::ShadowSetupInputs& inputs() const { return m_inputs; }
+
+    /// The box every caster and receiver lies in. Unset (the default): the shadowed scene's
+    /// own, from a ComputeBoundsVisitor, computed again whenever the scene's bound changes.
+    void setSceneBounds(std::optional<::osg::BoundingBoxd> wsBounds) { m_fixedBounds = wsBounds; }
+
+    /// The last frame's set-up (its technique, fallbacks and warp), or the error that left the
+    /// frame without a shadow camera.
+    const std::optional<core::ShadowSetup>& lastSetup() const { return m_lastSetup; }
+    const std::string& lastError() const { return m_lastError; }
+
+    void init() override;
+
+    /// The call VDSM makes once a frame: public so an application (and the tests) can ask it
+    /// for a frustum and light of its own.
+    bool computeShadowCameraSettings(Frustum& frustum, LightData& light, ::osg::Matrixd& projectionMatrix,
+                                     ::osg::Matrixd& viewMatrix) override;
+
+protected:
+    ~ShadowMap() override = default;
+    /// OSG's perspective hint would warp the map a second time: ours is warped already.
+    bool adjustPerspectiveShadowMapCameraSettings(osgUtil::RenderStage* renderStage, Frustum& frustum, LightData& light,
+                                                  ::osg::Camera* camera) override;
+    /// OSG narrows a shadow camera's depth range to the casters by taking its projection apart
+    /// as a frustum or a box, which a trapezoid or a post-perspective map is not: ours already
+    /// spans the casters, so the shadow cameras keep it.
+    void cullShadowCastingScene(osgUtil::CullVisitor* cv, ::osg::Camera* camera) const override;
+
+private:
+    ::osg::BoundingBoxd sceneBounds();
+
+    core::ShadowSetupInputs m_inputs;
+    std::optional<::osg::BoundingBoxd> m_fixedBounds;
+    ::osg::BoundingBoxd m_cachedBounds;
+    ::osg::BoundingSphere m_cachedFor; ///< the scene's bound when m_cachedBounds was computed
+    std::optional<core::ShadowSetup> m_lastSetup;
+    std::string m_lastError;
+    bool m_ownCamera = false; ///< this light's shadow camera is ours (directional), for the cull that follows
+};
+
+} // namespace shadowkit::osgadapter

@@ -1,0 +1,274 @@
+// shadowkit-osg-sample: a scene drawn by OpenSceneGraph from a camera file, with OSG's own
+// shadows or shadowkit's shadow camera, and the shadow term written as a mask for
+// `shadowkit score` (docs/engine-integration.md, "OpenSceneGraph").
+//
+//   shadowkit export --out forest.obj
+//   shadowkit setup --view perpendicular > camera.json
+//   xvfb-run -a shadowkit-osg-sample forest.obj camera.json mask.png --technique tsm
+//   shadowkit score mask.png --view perpendicular --size 640x360
+//
+// The switch an OSG user makes is one line (below, `makeShadowMap`): a
+// shadowkit::osgadapter::ShadowMap where an osgShadow::ViewDependentShadowMap was.
+#include "shadowkit/osg/shadow_map.h"
+
+#include <nlohmann/json.hpp>
+#include <osg/LightSource>
+#include <osg/Program>
+#include <osg/Timer>
+#include <osgDB/ReadFile>
+#include <osgDB/WriteFile>
+#include <osgShadow/ShadowedScene>
+#include <osgViewer/Viewer>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace {
+
+namespace core = shadowkit::core;
+
+// One picture: a camera file, a technique (a shadowkit one, or osg, osg-perspective,
+// osg-split) and the PNG to write.
+struct Shot {
+    std::string cameraFile, technique, out;
+};
+
+struct Options {
+    std::string scene;
+    std::vector<Shot> shots;
+    int mapSize = 2048;
+    int width = 640, height = 360;
+    bool picture = false; // the lit frame as OSG's own shader shades it, instead of the mask
+};
+
+[[noreturn]] void fail(const std::string& message) {
+    std::fprintf(stderr, "shadowkit-osg-sample: error: %s\n", message.c_str());
+    std::exit(1);
+}
+
+Options parse(int argc, char** argv) {
+    Options o;
+    int positional = 0;
+    std::string cameraFile, out, technique = "tsm", shotsFile;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        auto value = [&]() -> std::string {
+            if (i + 1 >= argc) fail(a + " needs a value");
+            return argv[++i];
+        };
+        if (a == "--technique")
+            technique = value();
+        else if (a == "--shots")
+            shotsFile = value();
+        else if (a == "--map-size")
+            o.mapSize = std::atoi(value().c_str());
+        else if (a == "--size") {
+            const std::string s = value();
+            if (std::sscanf(s.c_str(), "%dx%d", &o.width, &o.height) != 2) fail("--size " + s + ": not WIDTHxHEIGHT");
+        } else if (a == "--picture")
+            o.picture = true;
+        else if (a.rfind("--", 0) == 0)
+            fail("unknown option " + a);
+        else if (positional == 0)
+            o.scene = a, ++positional;
+        else if (positional == 1)
+            cameraFile = a, ++positional;
+        else if (positional == 2)
+            out = a, ++positional;
+        else
+            fail("one scene, one camera file and one output, got more: " + a);
+    }
+    if (positional == 3 && shotsFile.empty())
+        o.shots.push_back({cameraFile, technique, out});
+    else if (positional == 1 && !shotsFile.empty()) {
+        // Many pictures of one scene, loaded once: a line "CAMERA.json TECHNIQUE OUT.png" each.
+        std::ifstream in(shotsFile);
+        if (!in) fail("--shots " + shotsFile + ": cannot be read");
+        std::string line;
+        for (int number = 1; std::getline(in, line); ++number) {
+            std::istringstream words(line);
+            Shot shot;
+            if (!(words >> shot.cameraFile)) continue; // a blank line
+            std::string extra;
+            if (!(words >> shot.technique >> shot.out) || (words >> extra))
+                fail("--shots " + shotsFile + ":" + std::to_string(number) + ": not \"CAMERA.json TECHNIQUE OUT.png\"");
+            o.shots.push_back(shot);
+        }
+        if (o.shots.empty()) fail("--shots " + shotsFile + ": no shots in it");
+    } else
+        fail("usage: shadowkit-osg-sample SCENE.obj CAMERA.json OUT.png [--technique T] [--map-size N] [--size WxH] "
+             "[--picture], or SCENE.obj --shots FILE");
+    if (o.mapSize < 16 || o.mapSize > 16384) fail("--map-size " + std::to_string(o.mapSize) + ": not in [16, 16384]");
+    if (o.width < 1 || o.height < 1 || o.width > 16384 || o.height > 16384)
+        fail("--size: not in [1, 16384] pixels a side");
+    return o;
+}
+
+// The camera and sun of `shadowkit setup`'s JSON (under "inputs") or of a flat camera file.
+struct CameraAndSun {
+    osg::Vec3d eye, direction, up, sunTravel;
+    double fovY = 60.0, zNear = 0.5, zFar = 500.0;
+};
+
+osg::Vec3d vec3(const nlohmann::json& j, const char* key, const std::string& file) {
+    if (!j.contains(key) || !j[key].is_array() || j[key].size() != 3)
+        fail(file + ": no \"" + std::string(key) + "\" [x, y, z]");
+    return {j[key][0].get<double>(), j[key][1].get<double>(), j[key][2].get<double>()};
+}
+
+CameraAndSun readCamera(const std::string& file) {
+    std::ifstream in(file);
+    if (!in) fail(file + ": cannot be read");
+    const nlohmann::json root = nlohmann::json::parse(in, nullptr, false);
+    if (root.is_discarded() || !root.is_object()) fail(file + ": not a JSON object");
+    const nlohmann::json& holder = root.contains("inputs") ? root["inputs"] : root;
+    const nlohmann::json& camera = holder.contains("camera") ? holder["camera"] : holder;
+    CameraAndSun c;
+    c.eye = vec3(camera, "eye", file), c.direction = vec3(camera, "direction", file), c.up = vec3(camera, "up", file);
+    for (auto [key, target] :
+         {std::pair{"fov_y_degrees", &c.fovY}, std::pair{"near", &c.zNear}, std::pair{"far", &c.zFar}}) {
+        if (!camera.contains(key) || !camera[key].is_number()) fail(file + ": no \"" + std::string(key) + "\"");
+        *target = camera[key].get<double>();
+    }
+    if (!holder.contains("light") || !holder["light"].is_object())
+        fail(file + ": no \"light\": {\"direction\"} for the sun");
+    c.sunTravel = vec3(holder["light"], "direction", file);
+    return c;
+}
+
+// Both kinds of shadow map, with the casters drawn by the fixed-function pipeline: the mask's
+// shader below is set on the scene and would otherwise run in the depth pass too.
+template <class Base>
+class WithPlainCasters : public Base {
+public:
+    void init() override {
+        Base::init();
+        if (this->_shadowCastingStateSet.valid())
+            this->_shadowCastingStateSet->setAttributeAndModes(new osg::Program,
+                                                               osg::StateAttribute::ON | osg::StateAttribute::OVERRIDE);
+    }
+};
+
+osg::ref_ptr<osgShadow::ShadowTechnique> makeShadowMap(const std::string& name, int mapSize,
+                                                       osgShadow::ShadowSettings& settings) {
+    const auto side = static_cast<short>(mapSize); // checked in [16, 16384]
+    settings.setTextureSize({side, side});
+    if (name.rfind("osg", 0) == 0) {
+        // OSG's own: a box around what the view sees (osg), its light-space perspective warp
+        // (osg-perspective, its default) or that warp split over two maps of half the texels.
+        if (name == "osg")
+            settings.setShadowMapProjectionHint(osgShadow::ShadowSettings::ORTHOGRAPHIC_SHADOW_MAP);
+        else if (name == "osg-perspective" || name == "osg-split")
+            settings.setShadowMapProjectionHint(osgShadow::ShadowSettings::PERSPECTIVE_SHADOW_MAP);
+        else
+            fail("--technique " + name + ": OSG's own are osg, osg-perspective and osg-split");
+        if (name == "osg-split") {
+            settings.setNumShadowMapsPerLight(2);
+            const auto half = static_cast<short>(std::lround(mapSize / std::sqrt(2.0))); // the same texel memory
+            settings.setTextureSize({half, half});
+        }
+        return new WithPlainCasters<osgShadow::ViewDependentShadowMap>;
+    }
+    const auto technique = core::parseTechnique(name);
+    if (!technique)
+        fail("--technique " + name + ": not one of " + core::techniqueNameList() + ", osg, osg-perspective, osg-split");
+    // The one line an OSG user changes: shadowkit's ShadowMap for OSG's ViewDependentShadowMap.
+    osg::ref_ptr<WithPlainCasters<shadowkit::osgadapter::ShadowMap>> shadowMap =
+        new WithPlainCasters<shadowkit::osgadapter::ShadowMap>;
+    core::ShadowSetupInputs inputs;
+    inputs.technique = *technique;
+    shadowMap->setInputs(inputs);
+    return shadowMap;
+}
+
+// The sun's visibility per pixel, grey, alpha 1 where a surface was drawn: shadow2DProj of
+// each map VDSM made, as its own shader reads them, without the shading.
+osg::ref_ptr<osg::Program> maskProgram(int maps, unsigned firstUnit) {
+    std::string source = "#version 120\n";
+    std::string visibility = "1.0";
+    for (int i = 0; i < maps; ++i) {
+        const std::string n = std::to_string(i), unit = std::to_string(firstUnit + unsigned(i));
+        source += "uniform sampler2DShadow shadowTexture" + n + ";\n";
+        visibility += " * shadow2DProj(shadowTexture" + n + ", gl_TexCoord[" + unit + "]).r";
+    }
+    source += "void main() { float lit = " + visibility + "; gl_FragColor = vec4(lit, lit, lit, 1.0); }\n";
+    osg::ref_ptr<osg::Program> program = new osg::Program;
+    program->addShader(new osg::Shader(osg::Shader::FRAGMENT, source));
+    return program;
+}
+
+// Draws one shot of the model and writes it; the model is shared between shots.
+void draw(const Options& o, const Shot& shot, osg::Node* model) {
+    const CameraAndSun view = readCamera(shot.cameraFile);
+    osg::ref_ptr<osgShadow::ShadowedScene> shadowed = new osgShadow::ShadowedScene;
+    osg::ref_ptr<osgShadow::ShadowSettings> settings = shadowed->getShadowSettings();
+    settings->setLightNum(0);
+    shadowed->setShadowTechnique(makeShadowMap(shot.technique, o.mapSize, *settings).get());
+    osg::ref_ptr<osg::LightSource> sun = new osg::LightSource;
+    sun->getLight()->setLightNum(0);
+    sun->getLight()->setPosition(osg::Vec4(-view.sunTravel, 0.0)); // w = 0: towards a directional light
+    sun->getLight()->setAmbient({0.3f, 0.3f, 0.3f, 1.0f});
+    shadowed->addChild(sun);
+    shadowed->addChild(model);
+    if (o.picture)
+        model->getOrCreateStateSet()->removeAttribute(osg::StateAttribute::PROGRAM);
+    else
+        model->getOrCreateStateSet()->setAttribute(
+            maskProgram(int(settings->getNumShadowMapsPerLight()), settings->getBaseShadowTextureUnit()));
+
+    // A pbuffer of the mask's size, read back after the frame (Xvfb's GLX and Mesa headless).
+    osg::ref_ptr<osg::GraphicsContext::Traits> traits = new osg::GraphicsContext::Traits;
+    traits->readDISPLAY(); // the X display xvfb-run made, not :0
+    traits->setUndefinedScreenDetailsToDefaultScreen();
+    traits->width = o.width, traits->height = o.height;
+    traits->pbuffer = true, traits->alpha = 8, traits->depth = 24, traits->doubleBuffer = false;
+    osg::ref_ptr<osg::GraphicsContext> gc = osg::GraphicsContext::createGraphicsContext(traits.get());
+    if (!gc) fail("no OpenGL context: run under xvfb-run (OpenSceneGraph's Debian build has GLX, not EGL)");
+
+    osgViewer::Viewer viewer;
+    viewer.setThreadingModel(osgViewer::Viewer::SingleThreaded);
+    viewer.setLightingMode(osg::View::NO_LIGHT);
+    viewer.setSceneData(shadowed);
+    osg::Camera* camera = viewer.getCamera();
+    camera->setGraphicsContext(gc.get());
+    camera->setViewport(0, 0, o.width, o.height);
+    camera->setClearColor({0.0f, 0.0f, 0.0f, 0.0f}); // alpha 0: no surface
+    camera->setComputeNearFarMode(osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR);
+    camera->setProjectionMatrixAsPerspective(view.fovY, double(o.width) / o.height, view.zNear, view.zFar);
+    camera->setViewMatrixAsLookAt(view.eye, view.eye + view.direction, view.up);
+    osg::ref_ptr<osg::Image> frame = new osg::Image;
+    frame->allocateImage(o.width, o.height, 1, GL_RGBA, GL_UNSIGNED_BYTE);
+    camera->attach(osg::Camera::COLOR_BUFFER, frame.get());
+    viewer.realize();
+    const osg::Timer_t drawStart = osg::Timer::instance()->tick();
+    viewer.frame();
+    const double drawSeconds = osg::Timer::instance()->delta_s(drawStart, osg::Timer::instance()->tick());
+    shadowed->removeChild(model);
+
+    // Read back what was written: a full disk or a missing folder must not pass as "wrote".
+    osg::ref_ptr<osg::Image> written =
+        osgDB::writeImageFile(*frame, shot.out) ? osgDB::readImageFile(shot.out) : nullptr;
+    if (!written || written->s() != o.width || written->t() != o.height) fail(shot.out + ": could not be written");
+    std::printf("wrote %s (%dx%d, %s, %d² map, drawn in %.1f s)\n", shot.out.c_str(), o.width, o.height,
+                shot.technique.c_str(), o.mapSize, drawSeconds);
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    const Options o = parse(argc, argv);
+    // shadowkit's scenes are y-up, as OBJ is: OSG's OBJ reader would turn them z-up.
+    const osg::Timer_t loadStart = osg::Timer::instance()->tick();
+    osg::ref_ptr<osg::Node> model = osgDB::readNodeFile(o.scene, new osgDB::Options("noRotation"));
+    if (!model) fail(o.scene + ": OpenSceneGraph could not read it (an .obj, or a format it has a plugin for)");
+    std::printf("loaded %s in %.1f s\n", o.scene.c_str(),
+                osg::Timer::instance()->delta_s(loadStart, osg::Timer::instance()->tick()));
+    for (const Shot& shot : o.shots) draw(o, shot, model.get());
+    return 0;
+}

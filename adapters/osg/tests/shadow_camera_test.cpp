@@ -1,0 +1,193 @@
+// The OSG adapter's shadow camera, as VDSM holds it, against shadowkit::core's own set-up:
+// the conventions (OSG's row-vector matrices, OpenGL's clip depth, v = 0 at the bottom) must
+// be converted so that every point of the focus body lands on the same texel and depth.
+#include "shadowkit/osg/shadow_map.h"
+
+#include "shadowkit/core/engine_camera.h"
+#include "shadowkit/core/output_conventions.h"
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include <gtest/gtest.h>
+#include <osg/Light>
+#include <osg/Viewport>
+#include <osgUtil/CullVisitor>
+
+#include <cmath>
+#include <random>
+
+namespace {
+
+namespace core = shadowkit::core;
+using shadowkit::osgadapter::ShadowMap;
+
+const ::osg::BoundingBoxd kForestBox({-512.0, -4.0, -512.0}, {512.0, 50.0, 512.0});
+
+// The call VDSM makes each frame, made as VDSM makes it: a Frustum read from a cull visitor
+// holding the camera's matrices, and the light's data from an osg::Light.
+struct VdsmCall {
+    ::osg::Matrixd view, projection;
+    ::osg::Vec3d wsLightDirection; ///< the direction VDSM's LightData holds (float-rounded by osg::Light)
+    bool ok = false;
+};
+
+VdsmCall callAsVdsm(ShadowMap& shadowMap, const ::osg::Matrixd& cameraView, const ::osg::Matrixd& cameraProjection,
+                    const ::osg::Vec3d& wsLightTravel) {
+    ::osg::ref_ptr<osgUtil::CullVisitor> cv = new osgUtil::CullVisitor;
+    cv->setComputeNearFarMode(::osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR);
+    cv->pushViewport(new ::osg::Viewport(0, 0, 1280, 720));
+    cv->pushProjectionMatrix(new ::osg::RefMatrix(cameraProjection));
+    cv->pushModelViewMatrix(new ::osg::RefMatrix(cameraView), ::osg::Transform::ABSOLUTE_RF);
+    ShadowMap::Frustum frustum(cv.get(), 0.0, 1e30);
+    ::osg::ref_ptr<::osg::Light> light = new ::osg::Light;
+    light->setPosition(::osg::Vec4(-wsLightTravel, 0.0)); // OSG: towards the light, w = 0
+    ::osg::ref_ptr<ShadowMap::LightData> lightData = new ShadowMap::LightData(nullptr);
+    lightData->setLightData(nullptr, light.get(), ::osg::Matrixd::identity());
+    VdsmCall call;
+    call.wsLightDirection = lightData->lightDir;
+    call.ok = shadowMap.computeShadowCameraSettings(frustum, *lightData, call.projection, call.view);
+    return call;
+}
+
+core::Vec3 unitVector(std::mt19937& rng) {
+    std::normal_distribution<double> n;
+    core::Vec3 v(n(rng), n(rng), n(rng));
+    return glm::normalize(v);
+}
+
+TEST(OsgShadowCamera, MapsTheFocusBodyToTheCoresTexelsForRandomCamerasAndSuns) {
+    std::mt19937 rng(53);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    const core::Technique techniques[] = {core::Technique::Tsm, core::Technique::Lispsm, core::Technique::Psm,
+                                          core::Technique::Focused, core::Technique::Standard};
+    int compared = 0;
+    for (int trial = 0; trial < 60; ++trial) {
+        const core::Technique technique = techniques[trial % 5];
+        const core::Vec3 wsEye(-300.0 + 600.0 * u(rng), 2.0 + 40.0 * u(rng), -300.0 + 600.0 * u(rng));
+        core::Vec3 forward = unitVector(rng);
+        if (std::abs(forward.y) > 0.95) forward = glm::normalize(core::Vec3(1.0, forward.y, 0.0));
+        core::Vec3 sunTravel = unitVector(rng);
+        sunTravel.y = -0.2 - 0.8 * std::abs(sunTravel.y); // above the horizon
+        const double fovY = 40.0 + 40.0 * u(rng), aspect = 1.0 + u(rng), zNear = 0.3 + u(rng),
+                     zFar = 200.0 + 400.0 * u(rng);
+        const ::osg::Matrixd cameraView = ::osg::Matrixd::lookAt(
+            ::osg::Vec3d(wsEye.x, wsEye.y, wsEye.z),
+            ::osg::Vec3d(wsEye.x + forward.x, wsEye.y + forward.y, wsEye.z + forward.z), ::osg::Vec3d(0, 1, 0));
+        const ::osg::Matrixd cameraProjection = ::osg::Matrixd::perspective(fovY, aspect, zNear, zFar);
+
+        ::osg::ref_ptr<ShadowMap> shadowMap = new ShadowMap;
+        core::ShadowSetupInputs options;
+        options.technique = technique;
+        options.mapSize = 2048;
+        shadowMap->setInputs(options);
+        shadowMap->setSceneBounds(kForestBox);
+        const VdsmCall call =
+            callAsVdsm(*shadowMap, cameraView, cameraProjection, {sunTravel.x, sunTravel.y, sunTravel.z});
+        ASSERT_TRUE(call.ok) << shadowMap->lastError();
+        // The core's own set-up for the same camera and light, in OpenGL's conventions.
+        core::ShadowSetupInputs in;
+        in.technique = technique;
+        in.mapSize = 2048;
+        in.depthLayout = core::DepthLayout::Hyperbolic;
+        // The camera as the engine holds it, read by the core's own reader of engine matrices
+        // (tested against eye/direction set-ups in engine_camera_test.cpp): what is compared
+        // here is the conversion to and from OSG's conventions alone.
+        in.camera = core::cameraFromMatrices({glm::make_mat4(cameraView.ptr()), glm::make_mat4(cameraProjection.ptr()),
+                                              core::ClipDepthRange::MinusOneToOne})
+                        .value();
+        // The light as OSG holds it: osg::Light keeps its position in float.
+        in.light = core::DirectionalLight::fromDirection(
+                       {call.wsLightDirection.x(), call.wsLightDirection.y(), call.wsLightDirection.z()})
+                       .value();
+        in.wsSceneBounds = core::Aabb::fromMinMax(core::Vec3(-512, -4, -512), core::Vec3(512, 50, 512));
+        auto setup = core::computeShadowSetup(in);
+        ASSERT_TRUE(setup) << setup.error();
+        // The focus body's corners; `standard` has none and maps the scene box.
+        core::ConvexBody::Points points = setup->body.vertices();
+        if (points.empty())
+            for (int corner = 0; corner < 8; ++corner)
+                points.push_back(core::Vec3(corner & 1 ? kForestBox.xMax() : kForestBox.xMin(),
+                                            corner & 2 ? kForestBox.yMax() : kForestBox.yMin(),
+                                            corner & 4 ? kForestBox.zMax() : kForestBox.zMin()));
+        if (points.empty()) continue; // the view missed the scene
+        const core::EngineShadowView expected =
+            core::toEngineView(setup->views[0], *setup, core::OutputConventions::openGL());
+
+        for (const core::Vec3& p : points) {
+            // OSG: the point through view · projection (row vectors, divided by w), then
+            // OpenGL's viewport and depth range, as VDSM's texgen bias does.
+            const ::osg::Vec3d ndc = ::osg::Vec3d(p.x, p.y, p.z) * call.view * call.projection;
+            const core::Vec4 t = expected.textureFromWorld * core::Vec4(p, 1.0);
+            const double texels = in.mapSize;
+            EXPECT_NEAR((0.5 * ndc.x() + 0.5) * texels, t.x / t.w * texels, 1e-4) << core::techniqueName(technique);
+            EXPECT_NEAR((0.5 * ndc.y() + 0.5) * texels, t.y / t.w * texels, 1e-4) << core::techniqueName(technique);
+            EXPECT_NEAR(0.5 * ndc.z() + 0.5, t.z / t.w, 1e-7) << core::techniqueName(technique);
+        }
+        // The view matrix is the light's rigid frame: OSG culls casters in its light space.
+        for (int r = 0; r < 3; ++r) {
+            const ::osg::Vec3d axis(call.view(0, r), call.view(1, r), call.view(2, r));
+            EXPECT_NEAR(axis.length(), 1.0, 1e-9);
+        }
+        ++compared;
+    }
+    EXPECT_GE(compared, 55);
+}
+
+TEST(OsgShadowCamera, StaysFiniteWithTheSunAlongTheViewDirection) {
+    // The case engines' own LiSPSM meets with NaN matrices: the view looking straight along
+    // the light (and straight against it).
+    for (const double sign : {1.0, -1.0}) {
+        for (const core::Technique technique : {core::Technique::Tsm, core::Technique::Lispsm, core::Technique::Psm,
+                                                core::Technique::Focused, core::Technique::Standard}) {
+            const ::osg::Vec3d travel = ::osg::Vec3d(0.3, -1.0, 0.2) / ::osg::Vec3d(0.3, -1.0, 0.2).length();
+            const ::osg::Vec3d eye(10.0, 120.0, -20.0);
+            const ::osg::Matrixd cameraView = ::osg::Matrixd::lookAt(eye, eye + travel * sign, {0.0, 0.0, 1.0});
+            ::osg::ref_ptr<ShadowMap> shadowMap = new ShadowMap;
+            core::ShadowSetupInputs options;
+            options.technique = technique;
+            shadowMap->setInputs(options);
+            shadowMap->setSceneBounds(kForestBox);
+            const VdsmCall call =
+                callAsVdsm(*shadowMap, cameraView, ::osg::Matrixd::perspective(60.0, 1.5, 0.5, 500.0), travel);
+            ASSERT_TRUE(call.ok) << shadowMap->lastError();
+            for (int r = 0; r < 4; ++r)
+                for (int c = 0; c < 4; ++c) {
+                    EXPECT_TRUE(std::isfinite(call.view(r, c))) << core::techniqueName(technique);
+                    EXPECT_TRUE(std::isfinite(call.projection(r, c))) << core::techniqueName(technique);
+                }
+            // The ground under the eye is on the map.
+            const ::osg::Vec3d ground = ::osg::Vec3d(eye.x(), 0.0, eye.z()) * call.view * call.projection;
+            EXPECT_LE(std::abs(ground.x()), 1.0) << core::techniqueName(technique) << " sign " << sign;
+            EXPECT_LE(std::abs(ground.y()), 1.0) << core::techniqueName(technique) << " sign " << sign;
+        }
+    }
+}
+
+TEST(OsgShadowCamera, RefusesManyMapTechniquesAndAnEmptySceneInOneLine) {
+    const ::osg::Matrixd view =
+        ::osg::Matrixd::lookAt(::osg::Vec3d(0, 20, 0), ::osg::Vec3d(0, 20, -1), ::osg::Vec3d(0, 1, 0));
+    const ::osg::Matrixd projection = ::osg::Matrixd::perspective(60.0, 1.5, 0.5, 500.0);
+    core::ShadowSetupInputs options;
+    options.technique = core::Technique::Csm;
+    auto csm = shadowkit::osgadapter::shadowCameraFor(view, projection, INFINITY, {0, -1, 0.3}, kForestBox, options);
+    ASSERT_FALSE(csm);
+    EXPECT_NE(csm.error().find("csm"), std::string::npos) << csm.error();
+    EXPECT_EQ(csm.error().find('\n'), std::string::npos);
+
+    options.technique = core::Technique::Tsm;
+    auto empty = shadowkit::osgadapter::shadowCameraFor(view, projection, INFINITY, {0, -1, 0.3}, ::osg::BoundingBoxd(),
+                                                        options);
+    ASSERT_FALSE(empty);
+    EXPECT_NE(empty.error().find("scene bounds"), std::string::npos) << empty.error();
+
+    // Through VDSM's call the frame goes without shadows, and says why.
+    ::osg::ref_ptr<ShadowMap> shadowMap = new ShadowMap;
+    options.technique = core::Technique::Virtual;
+    shadowMap->setInputs(options);
+    shadowMap->setSceneBounds(kForestBox);
+    EXPECT_FALSE(callAsVdsm(*shadowMap, view, projection, {0, -1, 0.3}).ok);
+    EXPECT_NE(shadowMap->lastError().find("virtual"), std::string::npos);
+    EXPECT_FALSE(shadowMap->lastSetup());
+}
+
+} // namespace
