@@ -32,6 +32,22 @@ foreach(ask OFF ON)
   endif()
 endforeach()
 
+# The OSG adapter, where it was built: an OSG program finds it, and OSG with it.
+if(EXISTS "${WORK}/prefix/lib/cmake/shadowkit/shadowkit_osgTargets.cmake")
+  file(REMOVE_RECURSE "${WORK}/osg_consumer")
+  execute_process(COMMAND ${CMAKE_COMMAND} -S "${SOURCE_DIR}/tests/package_consumer_osg" -B "${WORK}/osg_consumer"
+                          "-DCMAKE_PREFIX_PATH=${WORK}/prefix" RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(rc EQUAL 0)
+    execute_process(COMMAND ${CMAKE_COMMAND} --build "${WORK}/osg_consumer" RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  endif()
+  if(rc EQUAL 0)
+    execute_process(COMMAND "${WORK}/osg_consumer/osg_consumer" RESULT_VARIABLE rc OUTPUT_VARIABLE out)
+  endif()
+  if(NOT rc EQUAL 0 OR NOT out MATCHES "^shadowkit osg: tsm")
+    message(FATAL_ERROR "the OSG consumer of the installed component osg failed: ${out} ${err}")
+  endif()
+endif()
+
 # A relocated install reads the data beside its bin/: move the tree, give the moved copy's
 # views.json a view no other data directory has, and ask the moved command line for it.
 if(EXISTS "${WORK}/prefix/bin/shadowkit")
