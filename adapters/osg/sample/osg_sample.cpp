@@ -33,10 +33,63 @@ namespace {
 
 namespace core = shadowkit::core;
 
-// One picture: a camera file, a technique (a shadowkit one, or osg, osg-perspective,
-// osg-split) and the PNG to write.
+[[noreturn]] void fail(const std::string& message) {
+    std::fprintf(stderr, "shadowkit-osg-sample: error: %s\n", message.c_str());
+    std::exit(1);
+}
+
+// The camera and sun of `shadowkit setup`'s JSON (under "inputs") or of a flat camera file.
+struct CameraAndSun {
+    osg::Vec3d eye, direction, up, sunTravel;
+    double fovY = 60.0, zNear = 0.5, zFar = 500.0;
+};
+
+osg::Vec3d vec3(const nlohmann::json& j, const char* key, const std::string& file) {
+    if (!j.contains(key) || !j[key].is_array() || j[key].size() != 3 || !j[key][0].is_number() ||
+        !j[key][1].is_number() || !j[key][2].is_number())
+        fail(file + ": no \"" + std::string(key) + "\" [x, y, z]");
+    return {j[key][0].get<double>(), j[key][1].get<double>(), j[key][2].get<double>()};
+}
+
+CameraAndSun readCamera(const std::string& file) {
+    std::ifstream in(file);
+    if (!in) fail(file + ": cannot be read");
+    const nlohmann::json root = nlohmann::json::parse(in, nullptr, false);
+    if (root.is_discarded() || !root.is_object()) fail(file + ": not a JSON object");
+    const nlohmann::json& holder = root.contains("inputs") ? root["inputs"] : root;
+    const nlohmann::json& camera = holder.contains("camera") ? holder["camera"] : holder;
+    CameraAndSun c;
+    c.eye = vec3(camera, "eye", file), c.direction = vec3(camera, "direction", file), c.up = vec3(camera, "up", file);
+    for (auto [key, target] :
+         {std::pair{"fov_y_degrees", &c.fovY}, std::pair{"near", &c.zNear}, std::pair{"far", &c.zFar}}) {
+        if (!camera.contains(key) || !camera[key].is_number()) fail(file + ": no \"" + std::string(key) + "\"");
+        *target = camera[key].get<double>();
+    }
+    if (!holder.contains("light") || !holder["light"].is_object())
+        fail(file + ": no \"light\": {\"direction\"} for the sun");
+    c.sunTravel = vec3(holder["light"], "direction", file);
+    return c;
+}
+
+// The techniques a shot may name: OSG's own, or the adapter's (one map per light).
+const char* const kOsgOwn[] = {"osg", "osg-perspective", "osg-split"};
+const char* const kAdapters[] = {"tsm", "lispsm", "psm", "focused", "standard"};
+
+void checkTechnique(const std::string& name) {
+    for (const char* t : kOsgOwn)
+        if (name == t) return;
+    for (const char* t : kAdapters)
+        if (name == t) return;
+    fail("technique " + name +
+         ": not one of osg, osg-perspective, osg-split (OSG's own) or tsm, lispsm, psm, focused, "
+         "standard (shadowkit's, one map per light in OSG)");
+}
+
+// One picture: the camera and sun, a technique and the PNG to write, all checked before the
+// scene is loaded (OSG's OBJ reader can take minutes).
 struct Shot {
     std::string cameraFile, technique, out;
+    CameraAndSun view;
 };
 
 struct Options {
@@ -46,11 +99,6 @@ struct Options {
     int width = 640, height = 360;
     bool picture = false; // the lit frame as OSG's own shader shades it, instead of the mask
 };
-
-[[noreturn]] void fail(const std::string& message) {
-    std::fprintf(stderr, "shadowkit-osg-sample: error: %s\n", message.c_str());
-    std::exit(1);
-}
 
 Options parse(int argc, char** argv) {
     Options o;
@@ -107,39 +155,11 @@ Options parse(int argc, char** argv) {
     if (o.mapSize < 16 || o.mapSize > 16384) fail("--map-size " + std::to_string(o.mapSize) + ": not in [16, 16384]");
     if (o.width < 1 || o.height < 1 || o.width > 16384 || o.height > 16384)
         fail("--size: not in [1, 16384] pixels a side");
-    return o;
-}
-
-// The camera and sun of `shadowkit setup`'s JSON (under "inputs") or of a flat camera file.
-struct CameraAndSun {
-    osg::Vec3d eye, direction, up, sunTravel;
-    double fovY = 60.0, zNear = 0.5, zFar = 500.0;
-};
-
-osg::Vec3d vec3(const nlohmann::json& j, const char* key, const std::string& file) {
-    if (!j.contains(key) || !j[key].is_array() || j[key].size() != 3)
-        fail(file + ": no \"" + std::string(key) + "\" [x, y, z]");
-    return {j[key][0].get<double>(), j[key][1].get<double>(), j[key][2].get<double>()};
-}
-
-CameraAndSun readCamera(const std::string& file) {
-    std::ifstream in(file);
-    if (!in) fail(file + ": cannot be read");
-    const nlohmann::json root = nlohmann::json::parse(in, nullptr, false);
-    if (root.is_discarded() || !root.is_object()) fail(file + ": not a JSON object");
-    const nlohmann::json& holder = root.contains("inputs") ? root["inputs"] : root;
-    const nlohmann::json& camera = holder.contains("camera") ? holder["camera"] : holder;
-    CameraAndSun c;
-    c.eye = vec3(camera, "eye", file), c.direction = vec3(camera, "direction", file), c.up = vec3(camera, "up", file);
-    for (auto [key, target] :
-         {std::pair{"fov_y_degrees", &c.fovY}, std::pair{"near", &c.zNear}, std::pair{"far", &c.zFar}}) {
-        if (!camera.contains(key) || !camera[key].is_number()) fail(file + ": no \"" + std::string(key) + "\"");
-        *target = camera[key].get<double>();
+    for (Shot& shot : o.shots) {
+        checkTechnique(shot.technique);
+        shot.view = readCamera(shot.cameraFile);
     }
-    if (!holder.contains("light") || !holder["light"].is_object())
-        fail(file + ": no \"light\": {\"direction\"} for the sun");
-    c.sunTravel = vec3(holder["light"], "direction", file);
-    return c;
+    return o;
 }
 
 // Both kinds of shadow map, with the casters drawn by the fixed-function pipeline: the mask's
@@ -166,8 +186,6 @@ osg::ref_ptr<osgShadow::ShadowTechnique> makeShadowMap(const std::string& name, 
             settings.setShadowMapProjectionHint(osgShadow::ShadowSettings::ORTHOGRAPHIC_SHADOW_MAP);
         else if (name == "osg-perspective" || name == "osg-split")
             settings.setShadowMapProjectionHint(osgShadow::ShadowSettings::PERSPECTIVE_SHADOW_MAP);
-        else
-            fail("--technique " + name + ": OSG's own are osg, osg-perspective and osg-split");
         if (name == "osg-split") {
             settings.setNumShadowMapsPerLight(2);
             const auto half = static_cast<short>(std::lround(mapSize / std::sqrt(2.0))); // the same texel memory
@@ -175,9 +193,7 @@ osg::ref_ptr<osgShadow::ShadowTechnique> makeShadowMap(const std::string& name, 
         }
         return new WithPlainCasters<osgShadow::ViewDependentShadowMap>;
     }
-    const auto technique = core::parseTechnique(name);
-    if (!technique)
-        fail("--technique " + name + ": not one of " + core::techniqueNameList() + ", osg, osg-perspective, osg-split");
+    const auto technique = core::parseTechnique(name); // checked by checkTechnique
     // The one line an OSG user changes: shadowkit's ShadowMap for OSG's ViewDependentShadowMap.
     osg::ref_ptr<WithPlainCasters<shadowkit::osgadapter::ShadowMap>> shadowMap =
         new WithPlainCasters<shadowkit::osgadapter::ShadowMap>;
@@ -205,7 +221,7 @@ osg::ref_ptr<osg::Program> maskProgram(int maps, unsigned firstUnit) {
 
 // Draws one shot of the model and writes it; the model is shared between shots.
 void draw(const Options& o, const Shot& shot, osg::Node* model) {
-    const CameraAndSun view = readCamera(shot.cameraFile);
+    const CameraAndSun& view = shot.view;
     osg::ref_ptr<osgShadow::ShadowedScene> shadowed = new osgShadow::ShadowedScene;
     osg::ref_ptr<osgShadow::ShadowSettings> settings = shadowed->getShadowSettings();
     settings->setLightNum(0);
