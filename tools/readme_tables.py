@@ -60,6 +60,15 @@ drift from what the program measures.
       per view, over runs of `shadowkit eval --views all --json`: truth_seconds median (range),
       truth_rays_per_second median (tools/measure-perf.sh)
 
+  tools/readme_tables.py wrong LABEL=FILE.json ...
+      wrong_pct per view and the mean, FILE a `shadowkit eval --json` report or a glob of
+      `shadowkit score --json` files (one mask each), e.g. 'out/engines/*-tsm.json'
+      (tools/measure-engines.sh)
+
+  tools/readme_tables.py scores FILE.json ...
+      one row per `shadowkit score --json` file, named by the file: wrong_pct, false shadow and
+      false lit (tools/measure-engines.sh)
+
   tools/readme_tables.py --into PAGE.md:NAME SUBCOMMAND ...
       any of the above, written into PAGE.md between its lines `<!-- table NAME: how it is measured -->` and
       `<!-- /table -->` (indented as the first marker is) instead of printed
@@ -71,6 +80,7 @@ report, or a sweep's results.csv with the configuration's rows chosen by COLUMN=
 """
 import contextlib
 import csv
+import glob
 import io
 import json
 import re
@@ -102,8 +112,12 @@ def load(arg):
             sys.exit(f"readme_tables: {path}: no row with {column} = {value}")
         rows = {r["view"]: {k: number(v) for k, v in r.items()} for r in chosen}
     else:
-        with open(path) as f:
-            rows = {v["view"]: v for v in json.load(f)["views"]}
+        rows = {}
+        for file in sorted(glob.glob(path)) or [path]:
+            with open(file) as f:
+                report = json.load(f)
+            # eval's report lists "views"; score's, one entry per mask under "scores".
+            rows.update({v["view"]: v for v in report.get("views", report.get("scores", []))})
     missing = [v for v in VIEWS if v not in rows]
     if missing:
         sys.exit(f"readme_tables: {path}: no figures for view(s) {', '.join(missing)}")
@@ -117,6 +131,26 @@ def summary(reports, first_column="technique"):
         cells = [f"{rows[v]['wrong_pct']:.2f} ({rows[v]['pixels_per_texel_p50']:.1f})" for v in VIEWS]
         mean = sum(rows[v]["wrong_pct"] for v in VIEWS) / len(VIEWS)
         print(f"| {label} | " + " | ".join(cells) + f" | {mean:.2f} |")
+
+
+def wrong(args):
+    """wrong_pct per view and the mean, a row per LABEL=FILE (eval reports or score files)."""
+    print("| set-up | " + " | ".join(VIEWS) + " | mean |")
+    print("|---|" + "---:|" * (len(VIEWS) + 1))
+    for label, rows in (load(a) for a in args):
+        mean = sum(rows[v]["wrong_pct"] for v in VIEWS) / len(VIEWS)
+        print(f"| {label} | " + " | ".join(f"{rows[v]['wrong_pct']:.2f}" for v in VIEWS) + f" | {mean:.2f} |")
+
+
+def scores(paths):
+    """One row per score file (its name without .json): wrong, false shadow and false lit %."""
+    print("| mask | wrong % | false shadow % | false lit % |")
+    print("|---|---:|---:|---:|")
+    for path in paths:
+        with open(path) as f:
+            entry = json.load(f)["scores"][0]
+        name = path.rsplit("/", 1)[-1].removesuffix(".json")
+        print(f"| `{name}` | {entry['wrong_pct']:.2f} | {entry['false_shadow_pct']:.2f} | {entry['false_lit_pct']:.2f} |")
 
 
 def forests(args):
@@ -520,7 +554,7 @@ def run(argv):
     """Prints the table the arguments (argv[1:], as on the command line) ask for."""
     commands = {"forests": forests, "oracle": oracle, "soft": soft, "soft-summary": soft_summary,
                 "soft-forests": soft_forests, "soft-table": soft_table, "soft-widths": soft_widths, "soft-lamps": soft_lamps, "stable": stable, "visibility": visibility, "dynamics": dynamics,
-                "setup": setup, "culling": culling, "truth": truth, "scale": scale}
+                "setup": setup, "culling": culling, "truth": truth, "scale": scale, "wrong": wrong, "scores": scores}
     if len(argv) >= 5 and argv[1] == "oracle" and argv[2] == "--name":
         oracle(argv[4:], argv[3].split(","))
         return

@@ -1,0 +1,54 @@
+#!/usr/bin/env bash
+# Shadows inside engines against the truth (issue 53, item 4): the standard forest's six sunlit
+# views drawn by OpenSceneGraph (adapters/osg's sample, under Xvfb) with OSG's own
+# ViewDependentShadowMap — its box fit (`osg`), its light-space perspective warp
+# (`osg-perspective`, OSG's default) and that warp over two maps (`osg-split`, each 1448², the
+# same texels) — and with shadowkit's shadow camera in the same engine (the adapter: `tsm`,
+# `lispsm`, `focused`, `psm`), all at 2048², each mask scored by `shadowkit score`; shadowkit's
+# own renderer (`eval`) beside them. Written into docs/engine-integration.md. About 15 minutes
+# on this project's 2-core llvmpipe machine (OSG's OBJ reader takes 4 of them).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+[ -x build/apps/shadowkit/shadowkit ] && [ -x build/adapters/osg/shadowkit-osg-sample ] || tools/build.sh
+B=build/apps/shadowkit/shadowkit
+OSG=build/adapters/osg/shadowkit-osg-sample
+[ -x "$OSG" ] || { echo "measure-engines: no $OSG: install libopenscenegraph-dev (tools/install-deps.sh)" >&2; exit 1; }
+out=out/engines
+mkdir -p "$out/along-sun"
+views=(paper perpendicular into-sun sun-behind noon aerial)
+techniques=(osg osg-perspective osg-split tsm lispsm focused psm)
+[ -s "$out/forest.obj" ] || "$B" export --out "$out/forest.obj"
+: > "$out/shots.txt"
+for v in "${views[@]}"; do
+  "$B" setup --view "$v" > "$out/$v.json"
+  for t in "${techniques[@]}"; do echo "$out/$v.json $t $out/$v-$t.png" >> "$out/shots.txt"; done
+done
+# The degenerate case of the engines' own warps: `perpendicular`'s eye looking along the sun.
+python3 -c 'import json, sys
+d = json.load(open(sys.argv[1]))
+d["inputs"]["camera"]["direction"] = d["inputs"]["light"]["direction"]
+json.dump({"inputs": d["inputs"]}, open(sys.argv[2], "w"))' "$out/perpendicular.json" "$out/along-sun.json"
+for t in "${techniques[@]}"; do echo "$out/along-sun.json $t $out/along-sun-$t.png" >> "$out/shots.txt"; done
+xvfb-run -a "$OSG" "$out/forest.obj" --shots "$out/shots.txt" --size 640x360 --map-size 2048 2> "$out/osg.log"
+for v in "${views[@]}"; do
+  for t in "${techniques[@]}"; do
+    "$B" score "$out/$v-$t.png" --view "$v" --size 640x360 --json "$out/$v-$t.json" > /dev/null
+  done
+done
+mkdir -p "$out/eval"
+for t in "${techniques[@]}"; do
+  "$B" score "$out/along-sun-$t.png" --camera "$out/along-sun.json" --size 640x360 --json "$out/along-sun/$t.json" > /dev/null
+done
+"$B" eval --views all --size 640x360 --technique tsm --json "$out/eval/tsm.json" > /dev/null
+python3 tools/readme_tables.py --into docs/engine-integration.md:engines-osg wrong \
+  "OSG's own: box fit (\`osg\`)=$out/*-osg.json" \
+  "OSG's own: perspective warp (\`osg-perspective\`, its default)=$out/*-osg-perspective.json" \
+  "OSG's own: two maps of 1448² (\`osg-split\`)=$out/*-osg-split.json" \
+  "shadowkit in OSG: \`tsm\`=$out/*-tsm.json" \
+  "shadowkit in OSG: \`lispsm\`=$out/*-lispsm.json" \
+  "shadowkit in OSG: \`focused\`=$out/*-focused.json" \
+  "shadowkit in OSG: \`psm\`=$out/*-psm.json" \
+  "shadowkit's own renderer: \`tsm\` (\`eval\`)=$out/eval/tsm.json"
+python3 tools/readme_tables.py --into docs/engine-integration.md:engines-osg-along-sun scores \
+  $(for t in "${techniques[@]}"; do echo "$out/along-sun/$t.json"; done)
+git diff --stat -- docs/engine-integration.md
