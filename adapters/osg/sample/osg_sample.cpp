@@ -71,18 +71,14 @@ CameraAndSun readCamera(const std::string& file) {
     return c;
 }
 
-// The techniques a shot may name: OSG's own, or the adapter's (one map per light).
-const char* const kOsgOwn[] = {"osg", "osg-perspective", "osg-split"};
-const char* const kAdapters[] = {"tsm", "lispsm", "psm", "focused", "standard"};
-
+// A technique a shot may name: OSG's own, or one the adapter draws.
 void checkTechnique(const std::string& name) {
-    for (const char* t : kOsgOwn)
-        if (name == t) return;
-    for (const char* t : kAdapters)
-        if (name == t) return;
-    fail("technique " + name +
-         ": not one of osg, osg-perspective, osg-split (OSG's own) or tsm, lispsm, psm, focused, "
-         "standard (shadowkit's, one map per light in OSG)");
+    if (name == "osg" || name == "osg-perspective" || name == "osg-split") return;
+    const auto technique = core::parseTechnique(name);
+    if (!technique)
+        fail("technique " + name + ": not osg, osg-perspective or osg-split (OSG's own) nor one of " +
+             core::techniqueNameList());
+    if (auto usable = shadowkit::osgadapter::checkTechnique(*technique); !usable) fail(usable.error());
 }
 
 // One picture: the camera and sun, a technique and the PNG to write, all checked before the

@@ -30,14 +30,19 @@ bool isFinite(const ::osg::BoundingBoxd& b) {
 
 } // namespace
 
-core::Result<ShadowCamera> shadowCameraFor(const ::osg::Matrixd& viewFromWorld, const ::osg::Matrixd& clipFromView,
-                                           double shadowDistance, const ::osg::Vec3d& wsLightDirection,
-                                           const ::osg::BoundingBoxd& wsSceneBounds, core::ShadowSetupInputs options) {
-    if (options.technique == core::Technique::Csm || options.technique == core::Technique::Virtual)
-        return core::Error{"technique " + std::string(core::techniqueName(options.technique)) +
+core::Status checkTechnique(core::Technique technique) {
+    if (technique == core::Technique::Csm || technique == core::Technique::Virtual)
+        return core::Error{"technique " + std::string(core::techniqueName(technique)) +
                                ": OSG's ViewDependentShadowMap draws one map per light; use tsm, lispsm, psm, "
                                "focused or standard",
                            "technique"};
+    return core::Ok{};
+}
+
+core::Result<ShadowCamera> shadowCameraFor(const ::osg::Matrixd& viewFromWorld, const ::osg::Matrixd& clipFromView,
+                                           double shadowDistance, const ::osg::Vec3d& wsLightDirection,
+                                           const ::osg::BoundingBoxd& wsSceneBounds, core::ShadowSetupInputs options) {
+    if (auto usable = checkTechnique(options.technique); !usable) return usable.errorInfo();
     if (!wsSceneBounds.valid() || !isFinite(wsSceneBounds))
         return core::Error{"scene bounds: empty or not finite (nothing under the ShadowedScene?)", "scene_bounds"};
 
@@ -59,6 +64,7 @@ core::Result<ShadowCamera> shadowCameraFor(const ::osg::Matrixd& viewFromWorld, 
     options.depthLayout = core::DepthLayout::Hyperbolic;
     auto setup = core::computeShadowSetup(options);
     if (!setup) return setup.errorInfo();
+    if (setup->views.empty()) return core::Error{"the set-up has no shadow map for this view", "technique"};
 
     // The light's rigid frame is OSG's view matrix, the rest of the map's clip matrix (in
     // OpenGL's depth range) its projection, so OSG's caster culling sees a light-space frustum.

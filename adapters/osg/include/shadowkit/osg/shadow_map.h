@@ -36,6 +36,10 @@ struct ShadowCamera {
     core::ShadowSetup setup;         ///< what the core computed: fallbacks, warp parameters
 };
 
+/// Whether the adapter can draw a technique: those of one map (tsm, lispsm, psm, focused,
+/// standard); `csm` and `virtual` fail in one line (VDSM draws one map per light here).
+core::Status checkTechnique(core::Technique technique);
+
 /// The core's set-up for OSG's camera (its modelview and projection as OSG holds them) and a
 /// directional light travelling along wsLightDirection, with the options of `options` (its
 /// technique, mapSize and the techniques' own options; camera, light, bounds and depth layout
