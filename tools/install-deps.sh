@@ -8,7 +8,7 @@ packages=(
   libglm-dev libepoxy-dev libegl1-mesa-dev libgl1-mesa-dri libglfw3-dev
   libembree-dev libtbb-dev libtinygltf-dev libstb-dev libwebp-dev nlohmann-json3-dev
   libcli11-dev libfmt-dev libmeshoptimizer-dev libtinyobjloader-dev libgtest-dev libbenchmark-dev
-  libimgui-dev xvfb xauth assimp-testmodels libopenscenegraph-dev
+  libimgui-dev xvfb xauth assimp-testmodels libopenscenegraph-dev libogre-1.12-dev
   pybind11-dev python3-dev python3-numpy python3-matplotlib python3-distributed
   chromium mkdocs doxygen
   clang libclang-rt-14-dev clang-format-14

@@ -1,0 +1,86 @@
+// shadowkit inside OGRE 1.12: a ShadowCameraSetup whose texture-shadow cameras are shadowkit's
+// (TSM, LiSPSM, PSM, focused, standard, or cascades one per shadow-texture iteration).
+//
+// OGRE asks a light's ShadowCameraSetup once per shadow texture and frame (getShadowCamera,
+// `iteration` counting the light's textures) to set the texture camera; OGRE then draws the
+// casters with it and derives the receivers' texture projection from the same camera. This
+// class sets the core's set-up as the camera's custom view and projection, so a user switches
+// with one line:
+//
+//     sceneManager->setShadowCameraSetup(std::make_shared<shadowkit::ogreadapter::ShadowCameraSetup>());
+//     // was: std::make_shared<Ogre::LiSPSMShadowCameraSetup>() (or the Focused / PSSM ones)
+//
+// Conventions, converted once here: OGRE's matrices are row-major for column vectors (M · v),
+// its Real is float in Debian's build, and its "standard" projection is OpenGL's (clip depth
+// [−1, 1]; each render system converts it): core::OutputConventions::openGL(). The map holds
+// what OGRE's rasteriser writes, so the depth layout is always Hyperbolic.
+#pragma once
+
+#include "shadowkit/core/shadow_setup.h"
+
+// OgreShadowCameraSetup.h returns a SharedPtr it does not include.
+#include <OgreSharedPtr.h>
+
+#include <OgreAxisAlignedBox.h>
+#include <OgreMatrix4.h>
+#include <OgreShadowCameraSetup.h>
+
+#include <optional>
+#include <string>
+
+namespace shadowkit::ogreadapter {
+
+/// Every technique but `virtual` (OGRE draws a fixed number of shadow textures per light;
+/// `csm` takes one per cascade, as OGRE's PSSM set-up does).
+core::Status checkTechnique(core::Technique technique);
+
+/// The core's set-up for an OGRE camera as OGRE holds it (its view and standard projection)
+/// and a sun travelling along wsLightDirection, with the options of `options` (technique,
+/// map size, the techniques' own; camera, light, bounds and depth layout come from here).
+/// shadowDistance: where shadows end along the view (+inf: the far plane). Fails in one line.
+core::Result<core::ShadowSetup> setupFor(const Ogre::Affine3& viewFromWorld, const Ogre::Matrix4& clipFromView,
+                                         double shadowDistance, const Ogre::Vector3& wsLightDirection,
+                                         const Ogre::AxisAlignedBox& wsSceneBounds, core::ShadowSetupInputs options);
+
+/// One view of a set-up as OGRE's texture camera takes it: the light's rigid frame and the
+/// rest of the map's OpenGL-convention clip matrix.
+struct TextureCamera {
+    Ogre::Affine3 viewMatrix;
+    Ogre::Matrix4 projectionMatrix;
+};
+TextureCamera textureCameraOf(const core::ShadowSetup& setup, size_t view);
+
+/// Ogre::ShadowCameraSetup with shadowkit's set-ups for directional lights (spot and point
+/// lights get OGRE's default). Give the scene manager as many shadow textures per directional
+/// light as the technique has maps (one; four cascades for `csm` by default).
+class ShadowCameraSetup : public Ogre::ShadowCameraSetup {
+public:
+    /// The technique and its options (ShadowSetupInputs' camera, light, bounds and depth
+    /// layout are ignored: they come from OGRE). Default: TSM. Fails for `virtual`.
+    core::Status setInputs(const core::ShadowSetupInputs& inputs);
+    const core::ShadowSetupInputs& inputs() const { return m_inputs; }
+
+    /// The box every caster and receiver lies in. Unset (the default): the root scene node's
+    /// world bounds, as OGRE keeps them up to date.
+    void setSceneBounds(std::optional<Ogre::AxisAlignedBox> wsBounds) { m_fixedBounds = wsBounds; }
+
+    /// The set-up of the last frame (for cascades, its views' `split` are the view depths each
+    /// texture serves, what a receiver shader selects by), or the error that left the frame
+    /// with OGRE's default camera instead.
+    const std::optional<core::ShadowSetup>& lastSetup() const { return m_lastSetup; }
+    const std::string& lastError() const { return m_lastError; }
+
+    void getShadowCamera(const Ogre::SceneManager* sm, const Ogre::Camera* cam, const Ogre::Viewport* vp,
+                         const Ogre::Light* light, Ogre::Camera* texCam, size_t iteration) const override;
+
+private:
+    core::ShadowSetupInputs m_inputs;
+    std::optional<Ogre::AxisAlignedBox> m_fixedBounds;
+    // getShadowCamera is const in OGRE's interface; a frame's set-up is computed at its first
+    // texture (iteration 0) and its views handed out for the others.
+    mutable std::optional<core::ShadowSetup> m_lastSetup;
+    mutable std::string m_lastError;
+    Ogre::DefaultShadowCameraSetup m_fallback; ///< spot and point lights, and frames whose set-up failed
+};
+
+} // namespace shadowkit::ogreadapter

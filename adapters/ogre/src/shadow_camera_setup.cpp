@@ -1,0 +1,124 @@
+// The OGRE adapter's one idea: a texture-shadow camera from shadowkit::core
+// (shadow_camera_setup.h).
+#include "shadowkit/ogre/shadow_camera_setup.h"
+
+#include "shadowkit/core/engine_camera.h"
+#include "shadowkit/core/output_conventions.h"
+
+#include <OgreCamera.h>
+#include <OgreLight.h>
+#include <OgreLogManager.h>
+#include <OgreSceneManager.h>
+#include <OgreSceneNode.h>
+
+#include <cmath>
+#include <limits>
+
+namespace shadowkit::ogreadapter {
+
+namespace {
+
+// OGRE's m[row][column] for column vectors is glm's m[column][row]: one transpose, in double.
+template <class OgreMatrix>
+core::Mat4 toCore(const OgreMatrix& m) {
+    core::Mat4 out(1.0);
+    for (int row = 0; row < 4; ++row)
+        for (int column = 0; column < 4; ++column) out[column][row] = double(m[row][column]);
+    return out;
+}
+
+core::Vec3 toCore(const Ogre::Vector3& v) { return {double(v.x), double(v.y), double(v.z)}; }
+
+} // namespace
+
+core::Status checkTechnique(core::Technique technique) {
+    if (technique == core::Technique::Virtual)
+        return core::Error{"technique virtual: OGRE draws a fixed number of shadow textures per light, not pages; use "
+                           "tsm, lispsm, psm, focused, standard or csm",
+                           "technique"};
+    return core::Ok{};
+}
+
+core::Result<core::ShadowSetup> setupFor(const Ogre::Affine3& viewFromWorld, const Ogre::Matrix4& clipFromView,
+                                         double shadowDistance, const Ogre::Vector3& wsLightDirection,
+                                         const Ogre::AxisAlignedBox& wsSceneBounds, core::ShadowSetupInputs options) {
+    if (auto usable = checkTechnique(options.technique); !usable) return usable.errorInfo();
+    if (!wsSceneBounds.isFinite() || wsSceneBounds.isNull())
+        return core::Error{"scene bounds: empty or infinite (nothing in the scene, or an infinite object in it)",
+                           "scene_bounds"};
+    // OGRE's standard projection: OpenGL's clip depth, a right-handed view looking down −Z.
+    core::EngineCamera engine{toCore(viewFromWorld), toCore(clipFromView), core::ClipDepthRange::MinusOneToOne};
+    engine.shadowDistance = shadowDistance;
+    auto camera = core::cameraFromMatrices(engine);
+    if (!camera) return camera.errorInfo();
+    auto light = core::DirectionalLight::fromDirection(toCore(wsLightDirection));
+    if (!light) return light.errorInfo();
+    options.camera = *camera;
+    options.light = *light;
+    options.wsSceneBounds =
+        core::Aabb::fromMinMax(toCore(wsSceneBounds.getMinimum()), toCore(wsSceneBounds.getMaximum()));
+    // OGRE's casters write the rasteriser's depth; TSM's linear depth would need our shader.
+    options.depthLayout = core::DepthLayout::Hyperbolic;
+    auto setup = core::computeShadowSetup(options);
+    if (!setup) return setup.errorInfo();
+    if (setup->views.empty()) return core::Error{"the set-up has no shadow map for this view", "technique"};
+    return setup;
+}
+
+TextureCamera textureCameraOf(const core::ShadowSetup& setup, size_t view) {
+    const core::ShadowView& v = setup.views[view];
+    const core::EngineShadowView gl = core::toEngineView(v, setup, core::OutputConventions::openGL());
+    const core::Mat4 clipFromLight = gl.clipFromWorld * glm::inverse(v.lightFromWorld);
+    double rows[12];
+    for (int row = 0; row < 3; ++row)
+        for (int column = 0; column < 4; ++column) rows[row * 4 + column] = v.lightFromWorld[column][row];
+    TextureCamera out{Ogre::Affine3(rows), Ogre::Matrix4()};
+    for (int row = 0; row < 4; ++row)
+        for (int column = 0; column < 4; ++column)
+            out.projectionMatrix[row][column] = Ogre::Real(clipFromLight[column][row]);
+    return out;
+}
+
+core::Status ShadowCameraSetup::setInputs(const core::ShadowSetupInputs& inputs) {
+    if (auto usable = checkTechnique(inputs.technique); !usable) return usable;
+    m_inputs = inputs;
+    return core::Ok{};
+}
+
+void ShadowCameraSetup::getShadowCamera(const Ogre::SceneManager* sm, const Ogre::Camera* cam, const Ogre::Viewport* vp,
+                                        const Ogre::Light* light, Ogre::Camera* texCam, size_t iteration) const {
+    if (light->getType() != Ogre::Light::LT_DIRECTIONAL) {
+        m_fallback.getShadowCamera(sm, cam, vp, light, texCam, iteration);
+        return;
+    }
+    if (iteration == 0 || !m_lastSetup) {
+        // The root node's world box holds every object; OGRE hands the setup a const scene
+        // manager, whose getRootSceneNode is not const though it only returns the node.
+        const Ogre::AxisAlignedBox bounds =
+            m_fixedBounds ? *m_fixedBounds : const_cast<Ogre::SceneManager*>(sm)->getRootSceneNode()->_getWorldAABB();
+        const double far = sm->getShadowFarDistance();
+        auto setup = setupFor(cam->getViewMatrix(), cam->getProjectionMatrix(),
+                              far > 0.0 ? far : std::numeric_limits<double>::infinity(), light->getDerivedDirection(),
+                              bounds, m_inputs);
+        if (!setup) {
+            // Said once per different error; the frame gets OGRE's default camera, not garbage.
+            if (setup.error() != m_lastError)
+                Ogre::LogManager::getSingleton().logWarning("shadowkit: " + setup.error());
+            m_lastError = setup.error();
+            m_lastSetup.reset();
+        } else {
+            m_lastError.clear();
+            m_lastSetup = std::move(*setup);
+        }
+    }
+    if (!m_lastSetup || iteration >= m_lastSetup->views.size()) {
+        // No set-up, or more textures than the technique has maps: those see OGRE's default.
+        m_fallback.getShadowCamera(sm, cam, vp, light, texCam, iteration);
+        return;
+    }
+    const TextureCamera camera = textureCameraOf(*m_lastSetup, iteration);
+    texCam->setCustomViewMatrix(true, camera.viewMatrix);
+    texCam->setCustomProjectionMatrix(true, camera.projectionMatrix);
+}
+
+} // namespace shadowkit::ogreadapter

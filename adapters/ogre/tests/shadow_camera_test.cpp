@@ -1,0 +1,235 @@
+// The OGRE adapter's texture cameras, as OGRE holds them, against shadowkit::core's own set-up:
+// OGRE's row-major, column-vector float matrices and OpenGL-style projection converted so that
+// every point of the focus body lands on the core's texel and depth. OGRE needs no render
+// system for this: a Root, a scene manager, cameras and a light.
+#include "shadowkit/ogre/shadow_camera_setup.h"
+
+#include "shadowkit/core/engine_camera.h"
+#include "shadowkit/core/output_conventions.h"
+
+#include <OgreCamera.h>
+#include <OgreDefaultHardwareBufferManager.h>
+#include <OgreLight.h>
+#include <OgreLogManager.h>
+#include <OgreMaterialManager.h>
+#include <OgreRoot.h>
+#include <OgreSceneManager.h>
+#include <OgreSceneNode.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+#include <random>
+
+namespace {
+
+namespace core = shadowkit::core;
+using shadowkit::ogreadapter::ShadowCameraSetup;
+
+const Ogre::AxisAlignedBox kForestBox(-512, -4, -512, 512, 50, 512);
+
+// One OGRE Root for the test binary: a silent log, no plugins, no render system.
+class OgreScene : public ::testing::Test {
+protected:
+    static void SetUpTestSuite() {
+        s_log = std::make_unique<Ogre::LogManager>();
+        s_log->createLog("shadowkit_ogre_tests.log", true, false, true); // default, not to stdout, no file
+        s_root = std::make_unique<Ogre::Root>("", "", "");
+        // Cameras keep vertex data for their debug outline: buffers in memory stand in for a
+        // render system's.
+        s_buffers = std::make_unique<Ogre::DefaultHardwareBufferManager>();
+        Ogre::MaterialManager::getSingleton().initialise(); // the default material a camera takes
+    }
+    static void TearDownTestSuite() {
+        s_root.reset();
+        s_buffers.reset();
+        s_log.reset();
+    }
+    void SetUp() override { m_sm = s_root->createSceneManager(); }
+    void TearDown() override { s_root->destroySceneManager(m_sm); }
+
+    // A camera at wsEye looking along `forward` with OGRE's own projection.
+    Ogre::Camera* camera(const core::Vec3& wsEye, const core::Vec3& forward, double fovY, double aspect, double zNear,
+                         double zFar) {
+        Ogre::Camera* cam = m_sm->createCamera("camera" + std::to_string(m_cameras++));
+        Ogre::SceneNode* node = m_sm->getRootSceneNode()->createChildSceneNode();
+        node->attachObject(cam);
+        node->setPosition(Ogre::Vector3(Ogre::Real(wsEye.x), Ogre::Real(wsEye.y), Ogre::Real(wsEye.z)));
+        node->setFixedYawAxis(true);
+        node->setDirection(Ogre::Vector3(Ogre::Real(forward.x), Ogre::Real(forward.y), Ogre::Real(forward.z)),
+                           Ogre::Node::TS_WORLD);
+        cam->setFOVy(Ogre::Radian(Ogre::Degree(Ogre::Real(fovY))));
+        cam->setAspectRatio(Ogre::Real(aspect));
+        cam->setNearClipDistance(Ogre::Real(zNear));
+        cam->setFarClipDistance(Ogre::Real(zFar));
+        return cam;
+    }
+    Ogre::Light* sun(const core::Vec3& travel) {
+        Ogre::Light* light = m_sm->createLight();
+        light->setType(Ogre::Light::LT_DIRECTIONAL);
+        Ogre::SceneNode* node = m_sm->getRootSceneNode()->createChildSceneNode();
+        node->attachObject(light);
+        node->setDirection(Ogre::Vector3(Ogre::Real(travel.x), Ogre::Real(travel.y), Ogre::Real(travel.z)),
+                           Ogre::Node::TS_WORLD);
+        m_sm->getRootSceneNode()->_update(true, false);
+        return light;
+    }
+
+    static std::unique_ptr<Ogre::LogManager> s_log;
+    static std::unique_ptr<Ogre::Root> s_root;
+    static std::unique_ptr<Ogre::DefaultHardwareBufferManager> s_buffers;
+    Ogre::SceneManager* m_sm = nullptr;
+    int m_cameras = 0;
+};
+std::unique_ptr<Ogre::LogManager> OgreScene::s_log;
+std::unique_ptr<Ogre::Root> OgreScene::s_root;
+std::unique_ptr<Ogre::DefaultHardwareBufferManager> OgreScene::s_buffers;
+
+core::Vec3 unitVector(std::mt19937& rng) {
+    std::normal_distribution<double> n;
+    return glm::normalize(core::Vec3(n(rng), n(rng), n(rng)));
+}
+
+// A world point through a texture camera as OGRE holds it, in double: (u, v) in texels as
+// OpenGL's viewport maps clip x, y, and the depth in [0, 1].
+core::Vec3 texelOf(const Ogre::Camera& texCam, const core::Vec3& p, int texels) {
+    const core::Mat4 view = [&] {
+        core::Mat4 m(1.0);
+        const Ogre::Affine3& a = texCam.getViewMatrix();
+        for (int r = 0; r < 4; ++r)
+            for (int c = 0; c < 4; ++c) m[c][r] = a[r][c];
+        return m;
+    }();
+    core::Mat4 projection(1.0);
+    const Ogre::Matrix4& o = texCam.getProjectionMatrix();
+    for (int r = 0; r < 4; ++r)
+        for (int c = 0; c < 4; ++c) projection[c][r] = o[r][c];
+    const core::Vec4 clip = projection * view * core::Vec4(p, 1.0);
+    return {(0.5 * clip.x / clip.w + 0.5) * texels, (0.5 * clip.y / clip.w + 0.5) * texels,
+            0.5 * clip.z / clip.w + 0.5};
+}
+
+TEST_F(OgreScene, TextureCamerasMapTheFocusBodyToTheCoresTexelsForRandomCamerasAndSuns) {
+    std::mt19937 rng(53);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    const core::Technique techniques[] = {core::Technique::Tsm,     core::Technique::Lispsm,   core::Technique::Psm,
+                                          core::Technique::Focused, core::Technique::Standard, core::Technique::Csm};
+    int compared = 0;
+    for (int trial = 0; trial < 60; ++trial) {
+        const core::Technique technique = techniques[trial % 6];
+        const core::Vec3 wsEye(-300.0 + 600.0 * u(rng), 2.0 + 40.0 * u(rng), -300.0 + 600.0 * u(rng));
+        core::Vec3 forward = unitVector(rng);
+        if (std::abs(forward.y) > 0.95) forward = glm::normalize(core::Vec3(1.0, forward.y, 0.0));
+        core::Vec3 sunTravel = unitVector(rng);
+        sunTravel.y = -0.2 - 0.8 * std::abs(sunTravel.y);
+        Ogre::Camera* cam =
+            camera(wsEye, forward, 40.0 + 40.0 * u(rng), 1.0 + u(rng), 0.3 + u(rng), 200.0 + 400.0 * u(rng));
+        Ogre::Light* light = sun(glm::normalize(sunTravel));
+
+        ShadowCameraSetup setup;
+        core::ShadowSetupInputs options;
+        options.technique = technique;
+        ASSERT_TRUE(setup.setInputs(options));
+        setup.setSceneBounds(kForestBox);
+
+        // The core's own set-up for the camera and sun as OGRE holds them (float), in double.
+        core::ShadowSetupInputs in = options;
+        core::Mat4 view(1.0), projection(1.0);
+        for (int r = 0; r < 4; ++r)
+            for (int c = 0; c < 4; ++c) {
+                view[c][r] = cam->getViewMatrix()[r][c];
+                projection[c][r] = cam->getProjectionMatrix()[r][c];
+            }
+        in.camera = core::cameraFromMatrices({view, projection, core::ClipDepthRange::MinusOneToOne}).value();
+        const Ogre::Vector3 travel = light->getDerivedDirection();
+        in.light = core::DirectionalLight::fromDirection({travel.x, travel.y, travel.z}).value();
+        in.wsSceneBounds = core::Aabb::fromMinMax(core::Vec3(-512, -4, -512), core::Vec3(512, 50, 512));
+        in.depthLayout = core::DepthLayout::Hyperbolic;
+        const core::ShadowSetup expected = core::computeShadowSetup(in).value();
+
+        for (size_t iteration = 0; iteration < expected.views.size(); ++iteration) {
+            Ogre::Camera* texCam =
+                m_sm->createCamera("texture" + std::to_string(trial) + "-" + std::to_string(iteration));
+            setup.getShadowCamera(m_sm, cam, nullptr, light, texCam, iteration);
+            ASSERT_TRUE(setup.lastSetup()) << setup.lastError();
+            const core::EngineShadowView gl =
+                core::toEngineView(expected.views[iteration], expected, core::OutputConventions::openGL());
+            core::ConvexBody::Points points = expected.body.vertices();
+            if (points.empty()) // `standard` has no body: the scene box's corners
+                for (int corner = 0; corner < 8; ++corner)
+                    points.push_back(
+                        core::Vec3(corner & 1 ? 512 : -512, corner & 2 ? 50 : -4, corner & 4 ? 512 : -512));
+            for (const core::Vec3& p : points) {
+                const core::Vec4 t = gl.textureFromWorld * core::Vec4(p, 1.0);
+                if (t.w <= 0.0 || std::abs(t.x / t.w - 0.5) > 0.5 || std::abs(t.y / t.w - 0.5) > 0.5)
+                    continue; // another cascade's
+                const core::Vec3 texel = texelOf(*texCam, p, in.mapSize);
+                // OGRE holds the matrices in float (7 digits): their rounding moves a point by
+                // up to 2e-3 of a texel of a 2048² map here; a wrong convention moves it by
+                // hundreds (OSG's double matrices are held to 1e-4).
+                EXPECT_NEAR(texel.x, t.x / t.w * in.mapSize, 5e-3) << core::techniqueName(technique);
+                EXPECT_NEAR(texel.y, t.y / t.w * in.mapSize, 5e-3) << core::techniqueName(technique);
+                EXPECT_NEAR(texel.z, t.z / t.w, 1e-5) << core::techniqueName(technique);
+            }
+        }
+        ++compared;
+    }
+    EXPECT_EQ(compared, 60);
+}
+
+TEST_F(OgreScene, StaysFiniteWithTheSunAlongTheViewDirection) {
+    const core::Vec3 travel = glm::normalize(core::Vec3(0.3, -1.0, 0.2));
+    for (const double sign : {1.0, -1.0})
+        for (const core::Technique technique : {core::Technique::Tsm, core::Technique::Lispsm, core::Technique::Psm,
+                                                core::Technique::Focused, core::Technique::Csm}) {
+            Ogre::Camera* cam = camera(core::Vec3(10.0, 120.0, -20.0), travel * sign, 60.0, 1.5, 0.5, 500.0);
+            Ogre::Light* light = sun(travel);
+            ShadowCameraSetup setup;
+            core::ShadowSetupInputs options;
+            options.technique = technique;
+            ASSERT_TRUE(setup.setInputs(options));
+            setup.setSceneBounds(kForestBox);
+            Ogre::Camera* texCam = m_sm->createCamera("texture" + std::to_string(m_cameras++));
+            setup.getShadowCamera(m_sm, cam, nullptr, light, texCam, 0);
+            ASSERT_TRUE(setup.lastSetup()) << setup.lastError();
+            for (int r = 0; r < 4; ++r)
+                for (int c = 0; c < 4; ++c) {
+                    EXPECT_TRUE(std::isfinite(texCam->getProjectionMatrix()[r][c])) << core::techniqueName(technique);
+                    EXPECT_TRUE(std::isfinite(texCam->getViewMatrix()[r][c])) << core::techniqueName(technique);
+                }
+            const core::Vec3 ground = texelOf(*texCam, core::Vec3(10.0, 0.0, -20.0), 2048);
+            EXPECT_GE(ground.x, 0.0) << core::techniqueName(technique);
+            EXPECT_LE(ground.x, 2048.0) << core::techniqueName(technique);
+            EXPECT_GE(ground.y, 0.0) << core::techniqueName(technique);
+            EXPECT_LE(ground.y, 2048.0) << core::techniqueName(technique);
+        }
+}
+
+TEST_F(OgreScene, RefusesVirtualAndAnEmptySceneInOneLine) {
+    ShadowCameraSetup setup;
+    core::ShadowSetupInputs options;
+    options.technique = core::Technique::Virtual;
+    const core::Status refused = setup.setInputs(options);
+    ASSERT_FALSE(refused);
+    EXPECT_NE(refused.error().find("virtual"), std::string::npos);
+    EXPECT_EQ(refused.error().find('\n'), std::string::npos);
+    EXPECT_EQ(setup.inputs().technique, core::defaultTechnique()); // unchanged
+
+    // An empty scene (a null box) has no set-up; getShadowCamera then gives the frame OGRE's
+    // default camera, which needs a render system's viewport and is OGRE's to test.
+    Ogre::Camera* cam = camera(core::Vec3(0, 20, 0), core::Vec3(0, 0, -1), 60.0, 1.5, 0.5, 500.0);
+    auto empty = shadowkit::ogreadapter::setupFor(cam->getViewMatrix(), cam->getProjectionMatrix(), INFINITY,
+                                                  Ogre::Vector3(0, -1, 0.3f), Ogre::AxisAlignedBox(), {});
+    ASSERT_FALSE(empty);
+    EXPECT_NE(empty.error().find("scene bounds"), std::string::npos) << empty.error();
+    auto infinite = shadowkit::ogreadapter::setupFor(cam->getViewMatrix(), cam->getProjectionMatrix(), INFINITY,
+                                                     Ogre::Vector3(0, -1, 0.3f),
+                                                     Ogre::AxisAlignedBox(Ogre::AxisAlignedBox::EXTENT_INFINITE), {});
+    ASSERT_FALSE(infinite);
+    auto noLight = shadowkit::ogreadapter::setupFor(cam->getViewMatrix(), cam->getProjectionMatrix(), INFINITY,
+                                                    Ogre::Vector3::ZERO, kForestBox, {});
+    ASSERT_FALSE(noLight);
+    EXPECT_NE(noLight.error().find("light direction"), std::string::npos) << noLight.error();
+}
+
+} // namespace
