@@ -140,12 +140,16 @@ TEST_F(OgreScene, TextureCamerasMapTheFocusBodyToTheCoresTexelsForRandomCamerasA
                 view[c][r] = cam->getViewMatrix()[r][c];
                 projection[c][r] = cam->getProjectionMatrix()[r][c];
             }
-        in.camera = core::cameraFromMatrices({view, projection, core::ClipDepthRange::MinusOneToOne}).value();
+        auto engineCamera = core::cameraFromMatrices({view, projection, core::ClipDepthRange::MinusOneToOne});
+        ASSERT_TRUE(engineCamera) << engineCamera.error();
+        in.camera = *engineCamera;
         const Ogre::Vector3 travel = light->getDerivedDirection();
         in.light = core::DirectionalLight::fromDirection({travel.x, travel.y, travel.z}).value();
         in.wsSceneBounds = core::Aabb::fromMinMax(core::Vec3(-512, -4, -512), core::Vec3(512, 50, 512));
         in.depthLayout = core::DepthLayout::Hyperbolic;
-        const core::ShadowSetup expected = core::computeShadowSetup(in).value();
+        auto computed = core::computeShadowSetup(in);
+        ASSERT_TRUE(computed) << computed.error();
+        const core::ShadowSetup& expected = *computed;
 
         for (size_t iteration = 0; iteration < expected.views.size(); ++iteration) {
             Ogre::Camera* texCam =

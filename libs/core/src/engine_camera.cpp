@@ -109,8 +109,12 @@ Result<PerspectiveCamera> cameraFromMatrices(const EngineCamera& in) {
     const Mat3 rotation(view);
     const Mat3 gram = glm::transpose(rotation) * rotation;
     bool rigid = std::abs(view[0][3]) + std::abs(view[1][3]) + std::abs(view[2][3]) + std::abs(view[3][3] - 1.0) < 1e-9;
+    // Engines that hold their matrices in float (OGRE's Real) round each entry of a rotation
+    // to 6e-8 of it; the Gram matrix's entries then drift by a few 1e-7, and more where the
+    // engine composed the rotation from a quaternion. 1e-5 takes those and still refuses a
+    // scale of 1.00001 (2e-5 on the diagonal).
     for (int c = 0; c < 3; ++c)
-        for (int r = 0; r < 3; ++r) rigid = rigid && std::abs(gram[c][r] - (c == r ? 1.0 : 0.0)) < 1e-6;
+        for (int r = 0; r < 3; ++r) rigid = rigid && std::abs(gram[c][r] - (c == r ? 1.0 : 0.0)) < 1e-5;
     if (!rigid)
         return fieldError("camera.view_from_world",
                           "must be rigid (a rotation and a translation, no scale or projection)");

@@ -5,6 +5,7 @@
 #include "shadowkit/core/shadow_setup.h"
 
 #include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
 #include <gtest/gtest.h>
 
 #include <random>
@@ -256,6 +257,29 @@ TEST(EngineCameraTest, OrthographicViewsAreEnclosedWithTheStatedOverscan) {
         in.camera = *c;
         expectEveryTechniqueContained(in, " ortho config " + std::to_string(i));
     }
+}
+
+TEST(EngineCameraTest, AFloatEnginesRotationIsRigidAndAScaleIsNot) {
+    // Engines with float matrices (OGRE's Real): a view built in float from a float quaternion,
+    // as such an engine builds it, is a rigid view; a scale of 1.0001 is not.
+    std::mt19937 rng(7);
+    std::normal_distribution<float> n;
+    int accepted = 0;
+    for (int i = 0; i < 2000; ++i) {
+        const glm::quat q = glm::normalize(glm::quat(n(rng), n(rng), n(rng), n(rng)));
+        glm::mat4 viewF = glm::mat4_cast(q);
+        viewF[3] = glm::vec4(300.0f * n(rng), 40.0f * n(rng), 300.0f * n(rng), 1.0f);
+        const Mat4 view(viewF);
+        const PerspectiveCamera camera;
+        accepted += cameraFromMatrices({view, camera.clipFromView()}).hasValue();
+        if (i == 0) {
+            const Result<PerspectiveCamera> scaled =
+                cameraFromMatrices({glm::scale(view, Vec3(1.0001)), camera.clipFromView()});
+            ASSERT_FALSE(scaled);
+            EXPECT_EQ(scaled.errorInfo().field, "camera.view_from_world");
+        }
+    }
+    EXPECT_EQ(accepted, 2000);
 }
 
 TEST(EngineCameraTest, BadMatricesAreNamedErrors) {
