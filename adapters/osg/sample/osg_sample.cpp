@@ -216,7 +216,35 @@ osg::ref_ptr<osg::Program> maskProgram(int maps, unsigned firstUnit) {
 }
 
 // Draws one shot of the model and writes it; the model is shared between shots.
-void draw(const Options& o, const Shot& shot, osg::Node* model) {
+// The one viewer of every shot: a pbuffer of the mask's size, read back after each frame
+// (Xvfb's GLX and Mesa headless). One context for the run: Xvfb resets when its last client
+// leaves, and a context opened during the reset finds no display.
+struct Viewer {
+    osgViewer::Viewer viewer;
+    osg::ref_ptr<osg::Image> frame = new osg::Image;
+};
+
+void realize(const Options& o, Viewer& v) {
+    osg::ref_ptr<osg::GraphicsContext::Traits> traits = new osg::GraphicsContext::Traits;
+    traits->readDISPLAY(); // the X display xvfb-run made, not :0
+    traits->setUndefinedScreenDetailsToDefaultScreen();
+    traits->width = o.width, traits->height = o.height;
+    traits->pbuffer = true, traits->alpha = 8, traits->depth = 24, traits->doubleBuffer = false;
+    osg::ref_ptr<osg::GraphicsContext> gc = osg::GraphicsContext::createGraphicsContext(traits.get());
+    if (!gc) fail("no OpenGL context: run under xvfb-run (OpenSceneGraph's Debian build has GLX, not EGL)");
+    v.viewer.setThreadingModel(osgViewer::Viewer::SingleThreaded);
+    v.viewer.setLightingMode(osg::View::NO_LIGHT);
+    osg::Camera* camera = v.viewer.getCamera();
+    camera->setGraphicsContext(gc.get());
+    camera->setViewport(0, 0, o.width, o.height);
+    camera->setClearColor({0.0f, 0.0f, 0.0f, 0.0f}); // alpha 0: no surface
+    camera->setComputeNearFarMode(osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR);
+    v.frame->allocateImage(o.width, o.height, 1, GL_RGBA, GL_UNSIGNED_BYTE);
+    camera->attach(osg::Camera::COLOR_BUFFER, v.frame.get());
+}
+
+// Draws one shot of the model and writes it; the model is shared between shots.
+void draw(const Options& o, const Shot& shot, osg::Node* model, Viewer& v) {
     const CameraAndSun& view = shot.view;
     osg::ref_ptr<osgShadow::ShadowedScene> shadowed = new osgShadow::ShadowedScene;
     osg::ref_ptr<osgShadow::ShadowSettings> settings = shadowed->getShadowSettings();
@@ -234,38 +262,19 @@ void draw(const Options& o, const Shot& shot, osg::Node* model) {
         model->getOrCreateStateSet()->setAttribute(
             maskProgram(int(settings->getNumShadowMapsPerLight()), settings->getBaseShadowTextureUnit()));
 
-    // A pbuffer of the mask's size, read back after the frame (Xvfb's GLX and Mesa headless).
-    osg::ref_ptr<osg::GraphicsContext::Traits> traits = new osg::GraphicsContext::Traits;
-    traits->readDISPLAY(); // the X display xvfb-run made, not :0
-    traits->setUndefinedScreenDetailsToDefaultScreen();
-    traits->width = o.width, traits->height = o.height;
-    traits->pbuffer = true, traits->alpha = 8, traits->depth = 24, traits->doubleBuffer = false;
-    osg::ref_ptr<osg::GraphicsContext> gc = osg::GraphicsContext::createGraphicsContext(traits.get());
-    if (!gc) fail("no OpenGL context: run under xvfb-run (OpenSceneGraph's Debian build has GLX, not EGL)");
-
-    osgViewer::Viewer viewer;
-    viewer.setThreadingModel(osgViewer::Viewer::SingleThreaded);
-    viewer.setLightingMode(osg::View::NO_LIGHT);
-    viewer.setSceneData(shadowed);
-    osg::Camera* camera = viewer.getCamera();
-    camera->setGraphicsContext(gc.get());
-    camera->setViewport(0, 0, o.width, o.height);
-    camera->setClearColor({0.0f, 0.0f, 0.0f, 0.0f}); // alpha 0: no surface
-    camera->setComputeNearFarMode(osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR);
+    v.viewer.setSceneData(shadowed);
+    osg::Camera* camera = v.viewer.getCamera();
     camera->setProjectionMatrixAsPerspective(view.fovY, double(o.width) / o.height, view.zNear, view.zFar);
     camera->setViewMatrixAsLookAt(view.eye, view.eye + view.direction, view.up);
-    osg::ref_ptr<osg::Image> frame = new osg::Image;
-    frame->allocateImage(o.width, o.height, 1, GL_RGBA, GL_UNSIGNED_BYTE);
-    camera->attach(osg::Camera::COLOR_BUFFER, frame.get());
-    viewer.realize();
+    if (!v.viewer.isRealized()) v.viewer.realize();
     const osg::Timer_t drawStart = osg::Timer::instance()->tick();
-    viewer.frame();
+    v.viewer.frame();
     const double drawSeconds = osg::Timer::instance()->delta_s(drawStart, osg::Timer::instance()->tick());
     shadowed->removeChild(model);
 
     // Read back what was written: a full disk or a missing folder must not pass as "wrote".
     osg::ref_ptr<osg::Image> written =
-        osgDB::writeImageFile(*frame, shot.out) ? osgDB::readImageFile(shot.out) : nullptr;
+        osgDB::writeImageFile(*v.frame, shot.out) ? osgDB::readImageFile(shot.out) : nullptr;
     if (!written || written->s() != o.width || written->t() != o.height) fail(shot.out + ": could not be written");
     std::printf("wrote %s (%dx%d, %s, %d² map, drawn in %.1f s)\n", shot.out.c_str(), o.width, o.height,
                 shot.technique.c_str(), o.mapSize, drawSeconds);
@@ -281,6 +290,8 @@ int main(int argc, char** argv) {
     if (!model) fail(o.scene + ": OpenSceneGraph could not read it (an .obj, or a format it has a plugin for)");
     std::printf("loaded %s in %.1f s\n", o.scene.c_str(),
                 osg::Timer::instance()->delta_s(loadStart, osg::Timer::instance()->tick()));
-    for (const Shot& shot : o.shots) draw(o, shot, model.get());
+    Viewer viewer;
+    realize(o, viewer);
+    for (const Shot& shot : o.shots) draw(o, shot, model.get(), viewer);
     return 0;
 }
