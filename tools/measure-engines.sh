@@ -5,7 +5,7 @@
 # (`osg-perspective`, OSG's default) and that warp over two maps (`osg-split`, each 1448², the
 # same texels) — and with shadowkit's shadow camera in the same engine (the adapter: `tsm`,
 # `lispsm`, `focused`, `psm`), all at 2048², each mask scored by `shadowkit score`; shadowkit's
-# own renderer (`eval`) beside them. Written into docs/engine-integration.md. About 15 minutes
+# own renderer (`eval`) beside them. Written into docs/engine-integration.md. About 6 minutes
 # on this project's 2-core llvmpipe machine (OSG's OBJ reader takes 4 of them).
 set -euo pipefail
 cd "$(dirname "$0")/.."
