@@ -6,12 +6,15 @@
 #include "shadowkit/core/output_conventions.h"
 
 #include <OgreCamera.h>
+#include <OgreFrustum.h>
 #include <OgreLight.h>
 #include <OgreLogManager.h>
 #include <OgreSceneManager.h>
 #include <OgreSceneNode.h>
 
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <limits>
 
 namespace shadowkit::ogreadapter {
@@ -65,6 +68,19 @@ core::Result<core::ShadowSetup> setupFor(const Ogre::Affine3& viewFromWorld, con
     return setup;
 }
 
+Ogre::AxisAlignedBox sceneBounds(const Ogre::SceneNode& node) {
+    Ogre::AxisAlignedBox bounds;
+    // By class, not by type flags: an object made without a factory (a ManualObject of its
+    // own) reports every flag.
+    for (const Ogre::MovableObject* object : node.getAttachedObjects()) {
+        const bool geometry = !dynamic_cast<const Ogre::Frustum*>(object) && !dynamic_cast<const Ogre::Light*>(object);
+        if (geometry && object->isVisible()) bounds.merge(object->getWorldBoundingBox(true));
+    }
+    for (const Ogre::Node* child : node.getChildren())
+        if (const auto* sceneNode = dynamic_cast<const Ogre::SceneNode*>(child)) bounds.merge(sceneBounds(*sceneNode));
+    return bounds;
+}
+
 TextureCamera textureCameraOf(const core::ShadowSetup& setup, size_t view) {
     const core::ShadowView& v = setup.views[view];
     const core::EngineShadowView gl = core::toEngineView(v, setup, core::OutputConventions::openGL());
@@ -92,10 +108,11 @@ void ShadowCameraSetup::getShadowCamera(const Ogre::SceneManager* sm, const Ogre
         return;
     }
     if (iteration == 0 || !m_lastSetup) {
-        // The root node's world box holds every object; OGRE hands the setup a const scene
-        // manager, whose getRootSceneNode is not const though it only returns the node.
+        // Not the root node's world box: it holds the cameras' boxes, which reach their far
+        // planes. OGRE hands the set-up a const scene manager, whose getRootSceneNode is not
+        // const though it only returns the node.
         const Ogre::AxisAlignedBox bounds =
-            m_fixedBounds ? *m_fixedBounds : const_cast<Ogre::SceneManager*>(sm)->getRootSceneNode()->_getWorldAABB();
+            m_fixedBounds ? *m_fixedBounds : sceneBounds(*const_cast<Ogre::SceneManager*>(sm)->getRootSceneNode());
         const double far = sm->getShadowFarDistance();
         auto setup = setupFor(cam->getViewMatrix(), cam->getProjectionMatrix(),
                               far > 0.0 ? far : std::numeric_limits<double>::infinity(), light->getDerivedDirection(),

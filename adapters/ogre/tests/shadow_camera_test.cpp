@@ -11,6 +11,7 @@
 #include <OgreDefaultHardwareBufferManager.h>
 #include <OgreLight.h>
 #include <OgreLogManager.h>
+#include <OgreManualObject.h>
 #include <OgreMaterialManager.h>
 #include <OgreRoot.h>
 #include <OgreSceneManager.h>
@@ -207,6 +208,33 @@ TEST_F(OgreScene, StaysFiniteWithTheSunAlongTheViewDirection) {
             EXPECT_GE(ground.y, 0.0) << core::techniqueName(technique);
             EXPECT_LE(ground.y, 2048.0) << core::techniqueName(technique);
         }
+}
+
+TEST_F(OgreScene, TheDefaultSceneBoxHoldsTheGeometryNotTheCameras) {
+    // A 100 m box of geometry, and a camera whose own box reaches its far plane 100 km away: the
+    // root node's world box takes the camera's, which made every warped map of the first OGRE
+    // sample hopelessly coarse. The set-up's box must be the geometry's.
+    Ogre::ManualObject* box = m_sm->createManualObject();
+    box->begin("BaseWhite", Ogre::RenderOperation::OT_TRIANGLE_LIST);
+    box->position(-50, 0, -50);
+    box->position(50, 0, -50);
+    box->position(0, 20, 50);
+    box->triangle(0, 1, 2);
+    box->end();
+    m_sm->getRootSceneNode()->createChildSceneNode()->attachObject(box);
+    Ogre::Camera* cam = camera(core::Vec3(0, 20, 0), core::Vec3(0, -0.3, -1), 60.0, 1.5, 0.5, 100000.0);
+    sun(core::Vec3(0.3, -1, 0.2));
+    m_sm->getRootSceneNode()->_update(true, false);
+    ASSERT_GT(m_sm->getRootSceneNode()->_getWorldAABB().getSize().length(), 1000.0); // the cameras' box is in there
+
+    const Ogre::AxisAlignedBox bounds = shadowkit::ogreadapter::sceneBounds(*m_sm->getRootSceneNode());
+    EXPECT_NEAR(bounds.getMinimum().x, -50, 1e-4);
+    EXPECT_NEAR(bounds.getMaximum().x, 50, 1e-4);
+    EXPECT_NEAR(bounds.getMinimum().y, 0, 1e-4);
+    EXPECT_NEAR(bounds.getMaximum().y, 20, 1e-4);
+    EXPECT_NEAR(bounds.getMinimum().z, -50, 1e-4);
+    EXPECT_NEAR(bounds.getMaximum().z, 50, 1e-4);
+    (void)cam;
 }
 
 TEST_F(OgreScene, RefusesVirtualAndAnEmptySceneInOneLine) {

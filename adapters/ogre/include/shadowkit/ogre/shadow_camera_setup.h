@@ -42,6 +42,11 @@ core::Result<core::ShadowSetup> setupFor(const Ogre::Affine3& viewFromWorld, con
                                          double shadowDistance, const Ogre::Vector3& wsLightDirection,
                                          const Ogre::AxisAlignedBox& wsSceneBounds, core::ShadowSetupInputs options);
 
+/// The world box of everything under `node` that can cast or receive a shadow: every attached
+/// object but cameras, frustums and lights, whose boxes (a camera's reaches its far plane)
+/// are not geometry. What the set-ups take by default.
+Ogre::AxisAlignedBox sceneBounds(const Ogre::SceneNode& node);
+
 /// One view of a set-up as OGRE's texture camera takes it: the light's rigid frame and the
 /// rest of the map's OpenGL-convention clip matrix.
 struct TextureCamera {
@@ -60,8 +65,8 @@ public:
     core::Status setInputs(const core::ShadowSetupInputs& inputs);
     const core::ShadowSetupInputs& inputs() const { return m_inputs; }
 
-    /// The box every caster and receiver lies in. Unset (the default): the root scene node's
-    /// world bounds, as OGRE keeps them up to date.
+    /// The box every caster and receiver lies in. Unset (the default): sceneBounds of the root
+    /// scene node, taken each frame.
     void setSceneBounds(std::optional<Ogre::AxisAlignedBox> wsBounds) { m_fixedBounds = wsBounds; }
 
     /// The set-up of the last frame (for cascades, its views' `split` are the view depths each
