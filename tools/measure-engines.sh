@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Shadows inside engines against the truth (issue 53, item 4): the standard forest's six sunlit
-# views drawn by OpenSceneGraph (adapters/osg's sample, under Xvfb) with OSG's own
+# views drawn by OpenSceneGraph and by OGRE (below), first by OpenSceneGraph (adapters/osg's sample, under Xvfb) with OSG's own
 # ViewDependentShadowMap — its box fit (`osg`), its light-space perspective warp
 # (`osg-perspective`, OSG's default) and that warp over two maps (`osg-split`, each 1448², the
 # same texels) — and with shadowkit's shadow camera in the same engine (the adapter: `tsm`,
@@ -9,10 +9,14 @@
 # on this project's 2-core llvmpipe machine (OSG's OBJ reader takes 4 of them).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-[ -x build/apps/shadowkit/shadowkit ] && [ -x build/adapters/osg/shadowkit-osg-sample ] || tools/build.sh
+[ -x build/apps/shadowkit/shadowkit ] && [ -x build/adapters/osg/shadowkit-osg-sample ] &&
+  [ -x build/adapters/ogre/shadowkit-ogre-sample ] || tools/build.sh
 B=build/apps/shadowkit/shadowkit
 OSG=build/adapters/osg/shadowkit-osg-sample
-[ -x "$OSG" ] || { echo "measure-engines: no $OSG: install libopenscenegraph-dev (tools/install-deps.sh)" >&2; exit 1; }
+OGRE=build/adapters/ogre/shadowkit-ogre-sample
+for sample in "$OSG" "$OGRE"; do
+  [ -x "$sample" ] || { echo "measure-engines: no $sample: install the engines (tools/install-deps.sh)" >&2; exit 1; }
+done
 out=out/engines
 mkdir -p "$out/along-sun"
 views=(paper perpendicular into-sun sun-behind noon aerial)
@@ -51,4 +55,28 @@ python3 tools/readme_tables.py --into docs/engine-integration.md:engines-osg wro
   "shadowkit's own renderer: \`tsm\` (\`eval\`)=$out/eval/tsm.json"
 python3 tools/readme_tables.py --into docs/engine-integration.md:engines-osg-along-sun scores \
   $(for t in "${techniques[@]}"; do echo "$out/along-sun/$t.json"; done)
+
+# OGRE: its own set-ups (default, focused, LiSPSM) and the adapter's, one 2048² map each,
+# drawn by the same depth-map shaders (adapters/ogre/sample).
+ogre_techniques=(ogre ogre-focused ogre-lispsm tsm lispsm focused psm)
+for t in "${ogre_techniques[@]}"; do mkdir -p "$out/ogre/$t"; done
+: > "$out/ogre/shots.txt"
+for v in "${views[@]}"; do
+  for t in "${ogre_techniques[@]}"; do echo "$out/$v.json $t $out/ogre/$t/$v.png" >> "$out/ogre/shots.txt"; done
+done
+xvfb-run -a "$OGRE" "$out/forest.obj" --shots "$out/ogre/shots.txt" --size 640x360 --map-size 2048
+for v in "${views[@]}"; do
+  for t in "${ogre_techniques[@]}"; do
+    "$B" score "$out/ogre/$t/$v.png" --view "$v" --size 640x360 --json "$out/ogre/$t/$v.json" > /dev/null
+  done
+done
+python3 tools/readme_tables.py --into docs/engine-integration.md:engines-ogre wrong \
+  "OGRE's own: \`DefaultShadowCameraSetup\` (\`ogre\`)=$out/ogre/ogre/*.json" \
+  "OGRE's own: \`FocusedShadowCameraSetup\` (\`ogre-focused\`)=$out/ogre/ogre-focused/*.json" \
+  "OGRE's own: \`LiSPSMShadowCameraSetup\` (\`ogre-lispsm\`)=$out/ogre/ogre-lispsm/*.json" \
+  "shadowkit in OGRE: \`tsm\`=$out/ogre/tsm/*.json" \
+  "shadowkit in OGRE: \`lispsm\`=$out/ogre/lispsm/*.json" \
+  "shadowkit in OGRE: \`focused\`=$out/ogre/focused/*.json" \
+  "shadowkit in OGRE: \`psm\`=$out/ogre/psm/*.json" \
+  "shadowkit's own renderer: \`tsm\` (\`eval\`)=$out/eval/tsm.json"
 git diff --stat -- docs/engine-integration.md

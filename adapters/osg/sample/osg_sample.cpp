@@ -11,6 +11,8 @@
 // shadowkit::osgadapter::ShadowMap where an osgShadow::ViewDependentShadowMap was.
 #include "shadowkit/osg/shadow_map.h"
 
+#include "common/sample_options.h"
+
 #include <nlohmann/json.hpp>
 #include <osg/LightSource>
 #include <osg/Program>
@@ -32,44 +34,11 @@
 namespace {
 
 namespace core = shadowkit::core;
+namespace samples = shadowkit::samples;
 
-[[noreturn]] void fail(const std::string& message) {
-    std::fprintf(stderr, "shadowkit-osg-sample: error: %s\n", message.c_str());
-    std::exit(1);
-}
-
-// The camera and sun of `shadowkit setup`'s JSON (under "inputs") or of a flat camera file.
-struct CameraAndSun {
-    osg::Vec3d eye, direction, up, sunTravel;
-    double fovY = 60.0, zNear = 0.5, zFar = 500.0;
-};
-
-osg::Vec3d vec3(const nlohmann::json& j, const char* key, const std::string& file) {
-    if (!j.contains(key) || !j[key].is_array() || j[key].size() != 3 || !j[key][0].is_number() ||
-        !j[key][1].is_number() || !j[key][2].is_number())
-        fail(file + ": no \"" + std::string(key) + "\" [x, y, z]");
-    return {j[key][0].get<double>(), j[key][1].get<double>(), j[key][2].get<double>()};
-}
-
-CameraAndSun readCamera(const std::string& file) {
-    std::ifstream in(file);
-    if (!in) fail(file + ": cannot be read");
-    const nlohmann::json root = nlohmann::json::parse(in, nullptr, false);
-    if (root.is_discarded() || !root.is_object()) fail(file + ": not a JSON object");
-    const nlohmann::json& holder = root.contains("inputs") ? root["inputs"] : root;
-    const nlohmann::json& camera = holder.contains("camera") ? holder["camera"] : holder;
-    CameraAndSun c;
-    c.eye = vec3(camera, "eye", file), c.direction = vec3(camera, "direction", file), c.up = vec3(camera, "up", file);
-    for (auto [key, target] :
-         {std::pair{"fov_y_degrees", &c.fovY}, std::pair{"near", &c.zNear}, std::pair{"far", &c.zFar}}) {
-        if (!camera.contains(key) || !camera[key].is_number()) fail(file + ": no \"" + std::string(key) + "\"");
-        *target = camera[key].get<double>();
-    }
-    if (!holder.contains("light") || !holder["light"].is_object())
-        fail(file + ": no \"light\": {\"direction\"} for the sun");
-    c.sunTravel = vec3(holder["light"], "direction", file);
-    return c;
-}
+using samples::fail;
+using samples::Options;
+using samples::Shot;
 
 // A technique a shot may name: OSG's own, or one the adapter draws.
 void checkTechnique(const std::string& name) {
@@ -79,83 +48,6 @@ void checkTechnique(const std::string& name) {
         fail("technique " + name + ": not osg, osg-perspective or osg-split (OSG's own) nor one of " +
              core::techniqueNameList());
     if (auto usable = shadowkit::osgadapter::checkTechnique(*technique); !usable) fail(usable.error());
-}
-
-// One picture: the camera and sun, a technique and the PNG to write, all checked before the
-// scene is loaded (OSG's OBJ reader can take minutes).
-struct Shot {
-    std::string cameraFile, technique, out;
-    CameraAndSun view;
-};
-
-struct Options {
-    std::string scene;
-    std::vector<Shot> shots;
-    int mapSize = 2048;
-    int width = 640, height = 360;
-    bool picture = false; // the lit frame as OSG's own shader shades it, instead of the mask
-};
-
-Options parse(int argc, char** argv) {
-    Options o;
-    int positional = 0;
-    std::string cameraFile, out, technique = "tsm", shotsFile;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        auto value = [&]() -> std::string {
-            if (i + 1 >= argc) fail(a + " needs a value");
-            return argv[++i];
-        };
-        if (a == "--technique")
-            technique = value();
-        else if (a == "--shots")
-            shotsFile = value();
-        else if (a == "--map-size")
-            o.mapSize = std::atoi(value().c_str());
-        else if (a == "--size") {
-            const std::string s = value();
-            if (std::sscanf(s.c_str(), "%dx%d", &o.width, &o.height) != 2) fail("--size " + s + ": not WIDTHxHEIGHT");
-        } else if (a == "--picture")
-            o.picture = true;
-        else if (a.rfind("--", 0) == 0)
-            fail("unknown option " + a);
-        else if (positional == 0)
-            o.scene = a, ++positional;
-        else if (positional == 1)
-            cameraFile = a, ++positional;
-        else if (positional == 2)
-            out = a, ++positional;
-        else
-            fail("one scene, one camera file and one output, got more: " + a);
-    }
-    if (positional == 3 && shotsFile.empty())
-        o.shots.push_back({cameraFile, technique, out});
-    else if (positional == 1 && !shotsFile.empty()) {
-        // Many pictures of one scene, loaded once: a line "CAMERA.json TECHNIQUE OUT.png" each.
-        std::ifstream in(shotsFile);
-        if (!in) fail("--shots " + shotsFile + ": cannot be read");
-        std::string line;
-        for (int number = 1; std::getline(in, line); ++number) {
-            std::istringstream words(line);
-            Shot shot;
-            if (!(words >> shot.cameraFile)) continue; // a blank line
-            std::string extra;
-            if (!(words >> shot.technique >> shot.out) || (words >> extra))
-                fail("--shots " + shotsFile + ":" + std::to_string(number) + ": not \"CAMERA.json TECHNIQUE OUT.png\"");
-            o.shots.push_back(shot);
-        }
-        if (o.shots.empty()) fail("--shots " + shotsFile + ": no shots in it");
-    } else
-        fail("usage: shadowkit-osg-sample SCENE.obj CAMERA.json OUT.png [--technique T] [--map-size N] [--size WxH] "
-             "[--picture], or SCENE.obj --shots FILE");
-    if (o.mapSize < 16 || o.mapSize > 16384) fail("--map-size " + std::to_string(o.mapSize) + ": not in [16, 16384]");
-    if (o.width < 1 || o.height < 1 || o.width > 16384 || o.height > 16384)
-        fail("--size: not in [1, 16384] pixels a side");
-    for (Shot& shot : o.shots) {
-        checkTechnique(shot.technique);
-        shot.view = readCamera(shot.cameraFile);
-    }
-    return o;
 }
 
 // Both kinds of shadow map, with the casters drawn by the fixed-function pipeline: the mask's
@@ -245,14 +137,15 @@ void realize(const Options& o, Viewer& v) {
 
 // Draws one shot of the model and writes it; the model is shared between shots.
 void draw(const Options& o, const Shot& shot, osg::Node* model, Viewer& v) {
-    const CameraAndSun& view = shot.view;
+    const samples::CameraAndSun& view = shot.view;
+    const auto vec = [](const samples::Vec3& xyz) { return osg::Vec3d(xyz[0], xyz[1], xyz[2]); };
     osg::ref_ptr<osgShadow::ShadowedScene> shadowed = new osgShadow::ShadowedScene;
     osg::ref_ptr<osgShadow::ShadowSettings> settings = shadowed->getShadowSettings();
     settings->setLightNum(0);
     shadowed->setShadowTechnique(makeShadowMap(shot.technique, o.mapSize, *settings).get());
     osg::ref_ptr<osg::LightSource> sun = new osg::LightSource;
     sun->getLight()->setLightNum(0);
-    sun->getLight()->setPosition(osg::Vec4(-view.sunTravel, 0.0)); // w = 0: towards a directional light
+    sun->getLight()->setPosition(osg::Vec4(-vec(view.sunTravel), 0.0)); // w = 0: towards a directional light
     sun->getLight()->setAmbient({0.3f, 0.3f, 0.3f, 1.0f});
     shadowed->addChild(sun);
     shadowed->addChild(model);
@@ -265,7 +158,7 @@ void draw(const Options& o, const Shot& shot, osg::Node* model, Viewer& v) {
     v.viewer.setSceneData(shadowed);
     osg::Camera* camera = v.viewer.getCamera();
     camera->setProjectionMatrixAsPerspective(view.fovY, double(o.width) / o.height, view.zNear, view.zFar);
-    camera->setViewMatrixAsLookAt(view.eye, view.eye + view.direction, view.up);
+    camera->setViewMatrixAsLookAt(vec(view.eye), vec(view.eye) + vec(view.direction), vec(view.up));
     if (!v.viewer.isRealized()) v.viewer.realize();
     const osg::Timer_t drawStart = osg::Timer::instance()->tick();
     v.viewer.frame();
@@ -283,7 +176,8 @@ void draw(const Options& o, const Shot& shot, osg::Node* model, Viewer& v) {
 } // namespace
 
 int main(int argc, char** argv) {
-    const Options o = parse(argc, argv);
+    samples::programName() = "shadowkit-osg-sample";
+    const Options o = samples::parse(argc, argv, checkTechnique, /*offersPicture=*/true);
     // shadowkit's scenes are y-up, as OBJ is: OSG's OBJ reader would turn them z-up.
     const osg::Timer_t loadStart = osg::Timer::instance()->tick();
     osg::ref_ptr<osg::Node> model = osgDB::readNodeFile(o.scene, new osgDB::Options("noRotation"));

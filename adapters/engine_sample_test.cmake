@@ -1,13 +1,13 @@
-# The OSG adapter end to end: a small forest exported as OBJ, drawn by OpenSceneGraph from a
-# standard view with shadowkit's TSM (the adapter) and with OSG's own default, each mask scored
-# against the ray-traced truth and put beside `eval`'s figure for the same technique
-# (osg_sample_check.py says what must hold).
-#   cmake -DSHADOWKIT=... -DSAMPLE=... -DSOURCE_DIR=... -DWORK=... -P osg_sample_test.cmake
+# An engine adapter end to end: a small forest exported as OBJ, drawn by the engine's sample
+# (OpenSceneGraph's, OGRE's) from a standard view with shadowkit's TSM (the adapter) and with
+# the engine's own technique OWN, each mask scored against the ray-traced truth and put beside
+# `eval`'s figure for the same technique (engine_sample_check.py says what must hold).
+#   cmake -DSHADOWKIT=... -DSAMPLE=... -DOWN=... -DWORK=... -P engine_sample_test.cmake
 file(REMOVE_RECURSE "${WORK}")
 file(MAKE_DIRECTORY "${WORK}")
 find_program(XVFB_RUN xvfb-run)
 if(NOT XVFB_RUN)
-  message("SKIP: no Xvfb (apt install xvfb): OpenSceneGraph's Debian build draws through GLX only")
+  message("SKIP: no Xvfb (apt install xvfb): the engines' Debian builds draw through GLX only")
   return()
 endif()
 set(forest --trees 300 --terrain-size 256) # a dense patch: a third of the view in shadow
@@ -24,12 +24,12 @@ execute_process(COMMAND ${SHADOWKIT} setup --view aerial ${forest} OUTPUT_FILE "
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "shadowkit setup: exit ${rc}")
 endif()
-file(WRITE "${WORK}/shots.txt" "${WORK}/camera.json tsm ${WORK}/tsm.png\n${WORK}/camera.json osg-perspective ${WORK}/osg.png\n")
+file(WRITE "${WORK}/shots.txt" "${WORK}/camera.json tsm ${WORK}/tsm.png\n${WORK}/camera.json ${OWN} ${WORK}/own.png\n")
 run(${XVFB_RUN} -a ${SAMPLE} "${WORK}/forest.obj" --shots "${WORK}/shots.txt" --size 640x360)
-foreach(mask tsm osg)
+foreach(mask tsm own)
   run(${SHADOWKIT} score "${WORK}/${mask}.png" ${forest} ${view} --json "${WORK}/${mask}.json")
 endforeach()
 run(${SHADOWKIT} eval ${forest} ${view} --technique tsm --json "${WORK}/eval.json")
 find_program(PYTHON NAMES python3 REQUIRED)
-run(${PYTHON} "${CMAKE_CURRENT_LIST_DIR}/osg_sample_check.py" "${WORK}/tsm.png" "${WORK}/tsm.json" "${WORK}/osg.json"
+run(${PYTHON} "${CMAKE_CURRENT_LIST_DIR}/engine_sample_check.py" "${WORK}/tsm.png" "${WORK}/tsm.json" "${WORK}/own.json"
     "${WORK}/eval.json")

@@ -1,0 +1,147 @@
+// What both engine samples (adapters/osg/sample, adapters/ogre/sample) read from their command
+// line, checked before the scene loads (an engine's OBJ reader can take minutes): the scene,
+// the shots (a camera file, a technique, the PNG to write, one or many from --shots), the map
+// and image sizes. Header-only: the samples are single files and link nothing of each other.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <array>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <functional>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace shadowkit::samples {
+
+/// The sample's name in its one-line errors ("shadowkit-osg-sample").
+inline std::string& programName() {
+    static std::string name = "shadowkit-sample";
+    return name;
+}
+
+[[noreturn]] inline void fail(const std::string& message) {
+    std::fprintf(stderr, "%s: error: %s\n", programName().c_str(), message.c_str());
+    std::exit(1);
+}
+
+using Vec3 = std::array<double, 3>;
+
+/// The camera and sun of `shadowkit setup`'s JSON (under "inputs") or of a flat camera file.
+struct CameraAndSun {
+    Vec3 eye{}, direction{}, up{}, sunTravel{};
+    double fovY = 60.0, zNear = 0.5, zFar = 500.0;
+};
+
+inline Vec3 vec3(const nlohmann::json& j, const char* key, const std::string& file) {
+    if (!j.contains(key) || !j[key].is_array() || j[key].size() != 3 || !j[key][0].is_number() ||
+        !j[key][1].is_number() || !j[key][2].is_number())
+        fail(file + ": no \"" + std::string(key) + "\" [x, y, z]");
+    return {j[key][0].get<double>(), j[key][1].get<double>(), j[key][2].get<double>()};
+}
+
+inline CameraAndSun readCamera(const std::string& file) {
+    std::ifstream in(file);
+    if (!in) fail(file + ": cannot be read");
+    const nlohmann::json root = nlohmann::json::parse(in, nullptr, false);
+    if (root.is_discarded() || !root.is_object()) fail(file + ": not a JSON object");
+    const nlohmann::json& holder = root.contains("inputs") ? root["inputs"] : root;
+    const nlohmann::json& camera = holder.contains("camera") ? holder["camera"] : holder;
+    CameraAndSun c;
+    c.eye = vec3(camera, "eye", file), c.direction = vec3(camera, "direction", file), c.up = vec3(camera, "up", file);
+    for (auto [key, target] :
+         {std::pair{"fov_y_degrees", &c.fovY}, std::pair{"near", &c.zNear}, std::pair{"far", &c.zFar}}) {
+        if (!camera.contains(key) || !camera[key].is_number()) fail(file + ": no \"" + std::string(key) + "\"");
+        *target = camera[key].get<double>();
+    }
+    if (!holder.contains("light") || !holder["light"].is_object())
+        fail(file + ": no \"light\": {\"direction\"} for the sun");
+    c.sunTravel = vec3(holder["light"], "direction", file);
+    return c;
+}
+
+/// One picture: the camera and sun, a technique and the PNG to write.
+struct Shot {
+    std::string cameraFile, technique, out;
+    CameraAndSun view;
+};
+
+struct Options {
+    std::string scene;
+    std::vector<Shot> shots;
+    int mapSize = 2048;
+    int width = 640, height = 360;
+    bool picture = false; ///< OSG's sample: the frame as the engine shades it, not the mask
+};
+
+/// `SAMPLE SCENE.obj CAMERA.json OUT.png [--technique T] [--map-size N] [--size WxH]`, or
+/// `SAMPLE SCENE.obj --shots FILE` (a line "CAMERA.json TECHNIQUE OUT.png" each); `--picture`
+/// where `picture` is offered. Every shot's technique goes through `checkTechnique` (which
+/// fails in one line) and its camera file is read, before anything is loaded.
+inline Options parse(int argc, char** argv, const std::function<void(const std::string&)>& checkTechnique,
+                     bool offersPicture) {
+    Options o;
+    int positional = 0;
+    std::string cameraFile, out, technique = "tsm", shotsFile;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        auto value = [&]() -> std::string {
+            if (i + 1 >= argc) fail(a + " needs a value");
+            return argv[++i];
+        };
+        if (a == "--technique")
+            technique = value();
+        else if (a == "--shots")
+            shotsFile = value();
+        else if (a == "--map-size")
+            o.mapSize = std::atoi(value().c_str());
+        else if (a == "--size") {
+            const std::string s = value();
+            if (std::sscanf(s.c_str(), "%dx%d", &o.width, &o.height) != 2) fail("--size " + s + ": not WIDTHxHEIGHT");
+        } else if (a == "--picture" && offersPicture)
+            o.picture = true;
+        else if (a.rfind("--", 0) == 0)
+            fail("unknown option " + a);
+        else if (positional == 0)
+            o.scene = a, ++positional;
+        else if (positional == 1)
+            cameraFile = a, ++positional;
+        else if (positional == 2)
+            out = a, ++positional;
+        else
+            fail("one scene, one camera file and one output, got more: " + a);
+    }
+    if (positional == 3 && shotsFile.empty())
+        o.shots.push_back({cameraFile, technique, out, {}});
+    else if (positional == 1 && !shotsFile.empty()) {
+        std::ifstream in(shotsFile);
+        if (!in) fail("--shots " + shotsFile + ": cannot be read");
+        std::string line;
+        for (int number = 1; std::getline(in, line); ++number) {
+            std::istringstream words(line);
+            Shot shot;
+            if (!(words >> shot.cameraFile)) continue; // a blank line
+            std::string extra;
+            if (!(words >> shot.technique >> shot.out) || (words >> extra))
+                fail("--shots " + shotsFile + ":" + std::to_string(number) + ": not \"CAMERA.json TECHNIQUE OUT.png\"");
+            o.shots.push_back(shot);
+        }
+        if (o.shots.empty()) fail("--shots " + shotsFile + ": no shots in it");
+    } else
+        fail("usage: " + programName() + " SCENE.obj CAMERA.json OUT.png [--technique T] [--map-size N] [--size WxH]" +
+             (offersPicture ? " [--picture]" : "") + ", or SCENE.obj --shots FILE");
+    if (o.mapSize < 16 || o.mapSize > 16384) fail("--map-size " + std::to_string(o.mapSize) + ": not in [16, 16384]");
+    if (o.width < 1 || o.height < 1 || o.width > 16384 || o.height > 16384)
+        fail("--size: not in [1, 16384] pixels a side");
+    for (Shot& shot : o.shots) {
+        checkTechnique(shot.technique);
+        shot.view = readCamera(shot.cameraFile);
+    }
+    return o;
+}
+
+} // namespace shadowkit::samples

@@ -1,0 +1,259 @@
+// shadowkit-ogre-sample: a scene drawn by OGRE 1.12 from a camera file, with OGRE's own
+// shadow camera set-ups or shadowkit's, and the shadow term written as a mask for
+// `shadowkit score` (docs/engine-integration.md, "OGRE").
+//
+//   shadowkit export --out forest.obj && shadowkit setup --view aerial > aerial.json
+//   xvfb-run -a shadowkit-ogre-sample forest.obj aerial.json mask.png --technique tsm
+//   shadowkit score mask.png --view aerial --size 640x360
+//
+// The switch an OGRE user makes is one line (below, `makeCameraSetup`):
+//   sceneManager->setShadowCameraSetup(std::make_shared<shadowkit::ogreadapter::ShadowCameraSetup>());
+// The rest is a plain depth shadow map, the same for every set-up: the casters write their
+// clip depth into a float texture, the receivers compare against it (one map per light).
+#include "shadowkit/ogre/shadow_camera_setup.h"
+
+#include "common/sample_options.h"
+
+#include <Ogre.h>
+#include <OgreShadowCameraSetupFocused.h>
+#include <OgreShadowCameraSetupLiSPSM.h>
+#include <nlohmann/json.hpp>
+#include <tiny_obj_loader.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace {
+
+namespace core = shadowkit::core;
+namespace samples = shadowkit::samples;
+
+using samples::fail;
+using samples::Options;
+using samples::Shot;
+
+// A technique a shot may name: OGRE's own set-ups, or one the adapter draws in one map.
+void checkTechnique(const std::string& name) {
+    if (name == "ogre" || name == "ogre-focused" || name == "ogre-lispsm") return;
+    const auto technique = core::parseTechnique(name);
+    if (!technique || *technique == core::Technique::Csm)
+        fail("technique " + name +
+             ": not ogre, ogre-focused or ogre-lispsm (OGRE's own) nor one of tsm, lispsm, psm, "
+             "focused, standard (shadowkit's; this sample draws one map)");
+    if (auto usable = shadowkit::ogreadapter::checkTechnique(*technique); !usable) fail(usable.error());
+}
+
+Ogre::ShadowCameraSetupPtr makeCameraSetup(const std::string& name) {
+    if (name == "ogre") return std::make_shared<Ogre::DefaultShadowCameraSetup>();
+    if (name == "ogre-focused") return std::make_shared<Ogre::FocusedShadowCameraSetup>();
+    if (name == "ogre-lispsm") return std::make_shared<Ogre::LiSPSMShadowCameraSetup>();
+    // The one line an OGRE user changes: shadowkit's set-up for OGRE's.
+    auto setup = std::make_shared<shadowkit::ogreadapter::ShadowCameraSetup>();
+    core::ShadowSetupInputs inputs;
+    inputs.technique = *core::parseTechnique(name); // checked by checkTechnique
+    (void)setup->setInputs(inputs);
+    return setup;
+}
+
+// The depth map and its lookup, as plain GLSL 1.20 for OGRE's GL render system: casters
+// write their window depth, after the rasteriser's slope-scaled offset, into a float texture;
+// receivers project themselves with the shadow texture's matrix, compare, and write the sun's
+// visibility (alpha 1: drawn). The offset is OSG's default (1.1 × slope + 4 units), the same
+// for every set-up: a constant bias in depth units would swallow the shadows of a warped map,
+// whose depth range is spent unevenly.
+// The set-ups fit the map's near plane to what the camera needs and ask that casters nearer
+// the sun be clamped to it (ShadowSetup::depthClamp); OGRE 1.12 has no depth clamp, so the
+// caster shader flattens them onto the near plane itself ("pancaking").
+const char* kCasterVertex = R"(#version 120
+uniform mat4 worldViewProj;
+void main() {
+    gl_Position = worldViewProj * gl_Vertex;
+    gl_Position.z = max(gl_Position.z, -gl_Position.w);
+})";
+const char* kCasterFragment = R"(#version 120
+void main() { gl_FragColor = vec4(gl_FragCoord.z); })";
+const char* kReceiverVertex = R"(#version 120
+uniform mat4 worldViewProj;
+uniform mat4 textureWorldViewProj;
+varying vec4 shadowCoord;
+void main() { gl_Position = worldViewProj * gl_Vertex; shadowCoord = textureWorldViewProj * gl_Vertex; })";
+const char* kReceiverFragment = R"(#version 120
+uniform sampler2D shadowMap;
+varying vec4 shadowCoord;
+void main() {
+    vec3 p = shadowCoord.xyz / shadowCoord.w;
+    float lit = 1.0;
+    if (all(greaterThanEqual(p.xy, vec2(0.0))) && all(lessThanEqual(p.xy, vec2(1.0))))
+        lit = 0.5 * p.z + 0.5 <= texture2D(shadowMap, p.xy).r ? 1.0 : 0.0;
+    gl_FragColor = vec4(lit, lit, lit, 1.0);
+})";
+
+Ogre::GpuProgramPtr program(const std::string& name, Ogre::GpuProgramType type, const char* source) {
+    Ogre::HighLevelGpuProgramPtr p = Ogre::HighLevelGpuProgramManager::getSingleton().createProgram(
+        name, Ogre::ResourceGroupManager::DEFAULT_RESOURCE_GROUP_NAME, "glsl", type);
+    p->setSource(source);
+    p->load();
+    if (p->hasCompileError()) fail("OGRE could not compile " + name);
+    return p;
+}
+
+void makeMaterials(Ogre::SceneManager* sm) {
+    program("sk/caster.vert", Ogre::GPT_VERTEX_PROGRAM, kCasterVertex);
+    program("sk/caster.frag", Ogre::GPT_FRAGMENT_PROGRAM, kCasterFragment);
+    program("sk/receiver.vert", Ogre::GPT_VERTEX_PROGRAM, kReceiverVertex);
+    program("sk/receiver.frag", Ogre::GPT_FRAGMENT_PROGRAM, kReceiverFragment);
+    const std::string group = Ogre::ResourceGroupManager::DEFAULT_RESOURCE_GROUP_NAME;
+
+    Ogre::MaterialPtr caster = Ogre::MaterialManager::getSingleton().create("sk/caster", group);
+    Ogre::Pass* cp = caster->getTechnique(0)->getPass(0);
+    cp->setVertexProgram("sk/caster.vert");
+    cp->setFragmentProgram("sk/caster.frag");
+    cp->getVertexProgramParameters()->setNamedAutoConstant("worldViewProj",
+                                                           Ogre::GpuProgramParameters::ACT_WORLDVIEWPROJ_MATRIX);
+    cp->setCullingMode(Ogre::CULL_NONE);
+    cp->setDepthCheckEnabled(true);
+    cp->setDepthWriteEnabled(true);
+    cp->setDepthFunction(Ogre::CMPF_LESS_EQUAL);
+    cp->setDepthBias(-4.0f, -1.1f); // OGRE: positive brings a surface nearer; away from the sun
+    sm->setShadowTextureCasterMaterial(caster);
+
+    Ogre::MaterialPtr receiver = Ogre::MaterialManager::getSingleton().create("sk/receiver", group);
+    Ogre::Pass* rp = receiver->getTechnique(0)->getPass(0);
+    rp->setVertexProgram("sk/receiver.vert");
+    rp->setFragmentProgram("sk/receiver.frag");
+    rp->getVertexProgramParameters()->setNamedAutoConstant("worldViewProj",
+                                                           Ogre::GpuProgramParameters::ACT_WORLDVIEWPROJ_MATRIX);
+    rp->getVertexProgramParameters()->setNamedAutoConstant(
+        "textureWorldViewProj", Ogre::GpuProgramParameters::ACT_TEXTURE_WORLDVIEWPROJ_MATRIX, 0);
+    rp->getFragmentProgramParameters()->setNamedConstant("shadowMap", 0);
+    Ogre::TextureUnitState* shadow = rp->createTextureUnitState();
+    shadow->setContentType(Ogre::TextureUnitState::CONTENT_SHADOW);
+    shadow->setTextureAddressingMode(Ogre::TextureUnitState::TAM_BORDER);
+    shadow->setTextureBorderColour(Ogre::ColourValue::White);
+    shadow->setTextureFiltering(Ogre::TFO_NONE);
+}
+
+// The OBJ as one ManualObject: positions only (the mask needs no shading), 32-bit indices.
+Ogre::ManualObject* loadObj(Ogre::SceneManager* sm, const std::string& file) {
+    tinyobj::ObjReader reader;
+    tinyobj::ObjReaderConfig config;
+    config.triangulate = true;
+    if (!reader.ParseFromFile(file, config)) fail(file + ": " + reader.Error());
+    const tinyobj::attrib_t& attrib = reader.GetAttrib();
+    Ogre::ManualObject* mesh = sm->createManualObject("scene");
+    mesh->setCastShadows(true);
+    mesh->estimateVertexCount(attrib.vertices.size() / 3);
+    mesh->begin("sk/receiver", Ogre::RenderOperation::OT_TRIANGLE_LIST);
+    for (size_t i = 0; i + 2 < attrib.vertices.size(); i += 3)
+        mesh->position(attrib.vertices[i], attrib.vertices[i + 1], attrib.vertices[i + 2]);
+    for (const tinyobj::shape_t& shape : reader.GetShapes())
+        for (const tinyobj::index_t& index : shape.mesh.indices) mesh->index(Ogre::uint32(index.vertex_index));
+    mesh->end();
+    return mesh;
+}
+
+void draw(const Options& o, const Shot& shot, Ogre::Root& root, Ogre::SceneManager* sm, Ogre::RenderWindow* window) {
+    sm->setShadowCameraSetup(makeCameraSetup(shot.technique));
+    Ogre::Light* sun = sm->getLight("sun");
+    const auto vec = [](const samples::Vec3& v) {
+        return Ogre::Vector3(Ogre::Real(v[0]), Ogre::Real(v[1]), Ogre::Real(v[2]));
+    };
+    sun->getParentSceneNode()->setDirection(vec(shot.view.sunTravel), Ogre::Node::TS_WORLD);
+    Ogre::Camera* camera = sm->getCamera("camera");
+    Ogre::SceneNode* eye = camera->getParentSceneNode();
+    eye->setPosition(vec(shot.view.eye));
+    eye->setDirection(vec(shot.view.direction), Ogre::Node::TS_WORLD);
+    camera->setFOVy(Ogre::Degree(Ogre::Real(shot.view.fovY)));
+    camera->setNearClipDistance(Ogre::Real(shot.view.zNear));
+    camera->setFarClipDistance(Ogre::Real(shot.view.zFar));
+    camera->setAspectRatio(Ogre::Real(o.width) / Ogre::Real(o.height));
+
+    const auto start = std::chrono::steady_clock::now();
+    root.renderOneFrame();
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    Ogre::Image frame(Ogre::PF_BYTE_RGBA, o.width, o.height);
+    window->copyContentsToMemory(frame.getPixelBox(), frame.getPixelBox());
+    try {
+        frame.save(shot.out);
+    } catch (const Ogre::Exception& e) {
+        std::string why = e.getDescription();
+        std::replace(why.begin(), why.end(), '\n', ' ');
+        fail(shot.out + ": could not be written: " + why);
+    }
+    // Read back what was written: a full disk or a missing folder must not pass as "wrote".
+    Ogre::Image written;
+    try {
+        std::ifstream file(shot.out, std::ios::binary);
+        if (!file) throw std::runtime_error("cannot be read back");
+        Ogre::DataStreamPtr stream(new Ogre::FileStreamDataStream(&file, false));
+        written.load(stream, "png");
+    } catch (const std::exception& e) {
+        fail(shot.out + ": could not be written (" + e.what() + ")");
+    }
+    if (written.getWidth() != Ogre::uint32(o.width) || written.getHeight() != Ogre::uint32(o.height))
+        fail(shot.out + ": could not be written");
+    std::printf("wrote %s (%dx%d, %s, %d² map, drawn in %.1f s)\n", shot.out.c_str(), o.width, o.height,
+                shot.technique.c_str(), o.mapSize, seconds);
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    samples::programName() = "shadowkit-ogre-sample";
+    const Options o = samples::parse(argc, argv, checkTechnique, /*offersPicture=*/false);
+    auto log = std::make_unique<Ogre::LogManager>();
+    log->createLog("shadowkit-ogre-sample.log", true, false, true); // quiet: no console, no file
+    Ogre::Root root("", "", "");
+    const std::string plugins = OGRE_PLUGIN_DIR;
+    try {
+        root.loadPlugin(plugins + "/RenderSystem_GL");
+        root.loadPlugin(plugins + "/Codec_STBI");
+    } catch (const Ogre::Exception& e) {
+        fail("OGRE's plugins in " + plugins + ": " + e.getDescription());
+    }
+    root.setRenderSystem(root.getRenderSystemByName("OpenGL Rendering Subsystem"));
+    root.initialise(false);
+    Ogre::RenderWindow* window = nullptr;
+    try {
+        window = root.createRenderWindow("shadowkit", unsigned(o.width), unsigned(o.height), false);
+    } catch (const Ogre::Exception& e) {
+        fail("no OpenGL window: run under xvfb-run (OGRE's Debian build has GLX, not EGL): " + e.getDescription());
+    }
+    // OGRE's scene manager sets up its shadow programs from the ShadowVolume media even for
+    // texture shadows.
+    Ogre::ResourceGroupManager::getSingleton().addResourceLocation(OGRE_MEDIA_DIR "/ShadowVolume", "FileSystem");
+    Ogre::ResourceGroupManager::getSingleton().initialiseAllResourceGroups();
+    Ogre::SceneManager* sm = root.createSceneManager();
+    makeMaterials(sm);
+    sm->setShadowTechnique(Ogre::SHADOWTYPE_TEXTURE_ADDITIVE_INTEGRATED);
+    sm->setShadowTextureSettings(Ogre::uint16(o.mapSize), 1, Ogre::PF_FLOAT32_R);
+    sm->setShadowTextureSelfShadow(true);
+    sm->setShadowDirLightTextureOffset(0.0f);
+
+    const auto loadStart = std::chrono::steady_clock::now();
+    Ogre::ManualObject* scene = loadObj(sm, o.scene);
+    sm->getRootSceneNode()->createChildSceneNode()->attachObject(scene);
+    std::printf("loaded %s in %.1f s\n", o.scene.c_str(),
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - loadStart).count());
+
+    Ogre::Light* sun = sm->createLight("sun");
+    sun->setType(Ogre::Light::LT_DIRECTIONAL);
+    sm->getRootSceneNode()->createChildSceneNode()->attachObject(sun);
+    Ogre::Camera* camera = sm->createCamera("camera");
+    Ogre::SceneNode* eye = sm->getRootSceneNode()->createChildSceneNode();
+    eye->attachObject(camera);
+    const samples::Vec3& up = o.shots.front().view.up;
+    eye->setFixedYawAxis(true, Ogre::Vector3(Ogre::Real(up[0]), Ogre::Real(up[1]), Ogre::Real(up[2])));
+    Ogre::Viewport* viewport = window->addViewport(camera);
+    viewport->setBackgroundColour(Ogre::ColourValue(0, 0, 0, 0)); // alpha 0: no surface
+    viewport->setShadowsEnabled(true);
+    for (const Shot& shot : o.shots) draw(o, shot, root, sm, window);
+    return 0;
+}
