@@ -64,12 +64,19 @@ for t in "${ogre_techniques[@]}"; do mkdir -p "$out/ogre/$t"; done
 for v in "${views[@]}"; do
   for t in "${ogre_techniques[@]}"; do echo "$out/$v.json $t $out/ogre/$t/$v.png" >> "$out/ogre/shots.txt"; done
 done
+for t in "${ogre_techniques[@]}"; do echo "$out/along-sun.json $t $out/ogre/$t/along-sun.png" >> "$out/ogre/shots.txt"; done
 xvfb-run -a "$OGRE" "$out/forest.obj" --shots "$out/ogre/shots.txt" --size 640x360 --map-size 2048
 for v in "${views[@]}"; do
   for t in "${ogre_techniques[@]}"; do
     "$B" score "$out/ogre/$t/$v.png" --view "$v" --size 640x360 --json "$out/ogre/$t/$v.json" > /dev/null
   done
 done
+mkdir -p "$out/ogre/along-sun"
+for t in "${ogre_techniques[@]}"; do
+  "$B" score "$out/ogre/$t/along-sun.png" --camera "$out/along-sun.json" --size 640x360 --json "$out/ogre/along-sun/$t.json" > /dev/null
+done
+python3 tools/readme_tables.py --into docs/engine-integration.md:engines-ogre-along-sun scores \
+  $(for t in "${ogre_techniques[@]}"; do echo "$out/ogre/along-sun/$t.json"; done)
 python3 tools/readme_tables.py --into docs/engine-integration.md:engines-ogre wrong \
   "OGRE's own: \`DefaultShadowCameraSetup\` (\`ogre\`)=$out/ogre/ogre/*.json" \
   "OGRE's own: \`FocusedShadowCameraSetup\` (\`ogre-focused\`)=$out/ogre/ogre-focused/*.json" \
