@@ -17,15 +17,12 @@
 #include <Ogre.h>
 #include <OgreShadowCameraSetupFocused.h>
 #include <OgreShadowCameraSetupLiSPSM.h>
-#include <nlohmann/json.hpp>
 #include <tiny_obj_loader.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <cstdlib>
 #include <fstream>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>

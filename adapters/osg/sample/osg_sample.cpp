@@ -13,7 +13,6 @@
 
 #include "common/sample_options.h"
 
-#include <nlohmann/json.hpp>
 #include <osg/LightSource>
 #include <osg/Program>
 #include <osg/Timer>
@@ -24,12 +23,7 @@
 
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <fstream>
-#include <sstream>
-#include <stdexcept>
 #include <string>
-#include <vector>
 
 namespace {
 
