@@ -13,17 +13,15 @@
 #include "shadowkit/ogre/shadow_camera_setup.h"
 
 #include "common/sample_options.h"
+#include "shadowkit/scene/image.h"
 
 #include <Ogre.h>
 #include <OgreShadowCameraSetupFocused.h>
 #include <OgreShadowCameraSetupLiSPSM.h>
 #include <tiny_obj_loader.h>
 
-#include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <fstream>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -175,27 +173,13 @@ void draw(const Options& o, const Shot& shot, Ogre::Root& root, Ogre::SceneManag
     const auto start = std::chrono::steady_clock::now();
     root.renderOneFrame();
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    Ogre::Image frame(Ogre::PF_BYTE_RGBA, o.width, o.height);
-    window->copyContentsToMemory(frame.getPixelBox(), frame.getPixelBox());
-    try {
-        frame.save(shot.out);
-    } catch (const Ogre::Exception& e) {
-        std::string why = e.getDescription();
-        std::replace(why.begin(), why.end(), '\n', ' ');
-        fail(shot.out + ": could not be written: " + why);
-    }
-    // Read back what was written: a full disk or a missing folder must not pass as "wrote".
-    Ogre::Image written;
-    try {
-        std::ifstream file(shot.out, std::ios::binary);
-        if (!file) throw std::runtime_error("cannot be read back");
-        Ogre::DataStreamPtr stream(new Ogre::FileStreamDataStream(&file, false));
-        written.load(stream, "png");
-    } catch (const std::exception& e) {
-        fail(shot.out + ": could not be written (" + e.what() + ")");
-    }
-    if (written.getWidth() != Ogre::uint32(o.width) || written.getHeight() != Ogre::uint32(o.height))
-        fail(shot.out + ": could not be written");
+    // Copied out top row first, RGBA bytes, and written by shadowkit's own PNG writer, which
+    // checks every write (OGRE 1.12's STBI codec frees with delete[] what it took with malloc).
+    shadowkit::scene::Image frame(o.width, o.height);
+    const Ogre::PixelBox pixels(Ogre::uint32(o.width), Ogre::uint32(o.height), 1, Ogre::PF_BYTE_RGBA,
+                                frame.rgba.data());
+    window->copyContentsToMemory(pixels, pixels);
+    if (auto written = shadowkit::scene::writePng(frame, shot.out); !written) fail(written.error());
     std::printf("wrote %s (%dx%d, %s, %d² map, drawn in %.1f s)\n", shot.out.c_str(), o.width, o.height,
                 shot.technique.c_str(), o.mapSize, seconds);
 }
@@ -211,7 +195,6 @@ int main(int argc, char** argv) {
     const std::string plugins = OGRE_PLUGIN_DIR;
     try {
         root.loadPlugin(plugins + "/RenderSystem_GL");
-        root.loadPlugin(plugins + "/Codec_STBI");
     } catch (const Ogre::Exception& e) {
         fail("OGRE's plugins in " + plugins + ": " + e.getDescription());
     }
