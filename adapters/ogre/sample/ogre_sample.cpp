@@ -113,9 +113,6 @@ void makeMaterials(Ogre::SceneManager* sm) {
     cp->getVertexProgramParameters()->setNamedAutoConstant("worldViewProj",
                                                            Ogre::GpuProgramParameters::ACT_WORLDVIEWPROJ_MATRIX);
     cp->setCullingMode(Ogre::CULL_NONE);
-    cp->setDepthCheckEnabled(true);
-    cp->setDepthWriteEnabled(true);
-    cp->setDepthFunction(Ogre::CMPF_LESS_EQUAL);
     cp->setDepthBias(-4.0f, -1.1f); // OGRE: positive brings a surface nearer; away from the sun
     sm->setShadowTextureCasterMaterial(caster);
 
