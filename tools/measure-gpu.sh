@@ -13,7 +13,7 @@
 # real driver), frame (a default frame, 1,000-100,000 trees, three views, CHC++ and GPU culling;
 # then the flythrough's moving camera at 10,000 and 100,000 trees),
 # techniques (every set-up at 10,000 trees), filters (each filter's passes under the real sun and
-# the lamps), leafy (the leafy forest's frame), eval (the standard views' figures against the truth,
+# the lamps), leafy (the leafy forest's frame: with its levels, without, and at 100,000 trees), eval (the standard views' figures against the truth,
 # to compare with llvmpipe's: the same program on another rasteriser; TSM's two depth layouts; PSM
 # with the receiver-plane bias), alpha (tools/measure-alpha.sh), scaling (what the shadow pass's
 # time follows at 100,000 trees: culling, levels, the depth layout).
@@ -110,7 +110,13 @@ for section in "${sections[@]}"; do
     done
     ;;
   leafy)
+    # The leafy forest's frame with its levels down to billboard clouds (the default), with the
+    # full trees everywhere, and at 100,000 trees on 3.2 km.
     step leafy 120 "${bench[@]}" --forest leafy --trees 10000 --views perpendicular,aerial --json "$res/leafy.json"
+    step leafy-no-lod 120 "${bench[@]}" --forest leafy --trees 10000 --views perpendicular,aerial --no-lod \
+      --json "$res/leafy-no-lod.json"
+    step leafy-100k 150 "${bench[@]}" --forest leafy --trees 100000 --same-density --views perpendicular,aerial \
+      --json "$res/leafy-100k.json"
     ;;
   eval)
     for setup in "tsm|--technique tsm" "csm4x2048-lispsm|--technique csm --cascades 4 --map-size 2048 --cascade-warp lispsm" \

@@ -33,6 +33,7 @@ core::Result<frame::FrameConfig> frameConfigOf(const TechniqueOptions& technique
     s.lod = !render.noLod;
     s.lodPixelError = render.lodPixelError;
     s.lodTexelError = render.lodTexelError;
+    s.lodFoliageScale = render.lodFoliageScale;
     s.virtualPoolPages = technique.virtualPoolPages;
     s.virtualBlendBand = technique.virtualBlendBand;
     s.virtualPageBudget = technique.virtualPageBudget;

@@ -351,6 +351,10 @@ void RenderOptions::addTo(CLI::App& cmd) {
     cmd.add_option("--lod-texel-error", lodTexelError,
                    "levels of detail: within this many texels of each shadow map (and the camera's bound near it)")
         ->capture_default_str();
+    cmd.add_option("--lod-foliage-scale", lodFoliageScale,
+                   "levels of detail that keep coverage (leaf cards, billboard clouds) may err this many times the "
+                   "pixel and texel bounds; 1: as every other mesh")
+        ->capture_default_str();
 }
 
 std::string cullingSaid(gl::Culling requested, std::string_view glRenderer) {
@@ -365,7 +369,8 @@ core::Status RenderOptions::check() const {
     if (auto s = core::validateSunAngle(sunAngle); !s) return withFlagName(s.errorInfo());
     if (auto s = gl::validate(blur); !s) return withFlagName(s.errorInfo());
     if (auto s = frame::validateFog(fog); !s) return withFlagName(s.errorInfo());
-    if (auto s = gl::validateLevelsOfDetail(lodPixelError, lodTexelError); !s) return withFlagName(s.errorInfo());
+    if (auto s = gl::validateLevelsOfDetail(lodPixelError, lodTexelError, lodFoliageScale); !s)
+        return withFlagName(s.errorInfo());
     const frame::BiasOverrides overrides{.slope = biasSlope, .constant = biasConstant, .normalOffset = normalOffset};
     if (auto s = overrides.validate(); !s) return withFlagName(s.errorInfo());
     return core::Ok{};

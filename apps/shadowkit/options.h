@@ -122,8 +122,9 @@ struct RenderOptions {
     bool receiverMask = true;                   // --caster-culling receivers (docs/scale-and-visibility.md)
     bool noCull = false;                        // --no-cull: --visibility off (what culling saves, measured)
     bool noLod = false;                         // full meshes everywhere (what levels of detail save, measured)
-    float lodPixelError = gl::RenderSettings{}.lodPixelError; // --lod-pixel-error: the camera's level bound
-    float lodTexelError = gl::RenderSettings{}.lodTexelError; // --lod-texel-error: the shadow maps' level bound
+    float lodPixelError = gl::RenderSettings{}.lodPixelError;     // --lod-pixel-error: the camera's level bound
+    float lodTexelError = gl::RenderSettings{}.lodTexelError;     // --lod-texel-error: the shadow maps' level bound
+    float lodFoliageScale = gl::RenderSettings{}.lodFoliageScale; // --lod-foliage-scale: coverage levels' multiple
     std::optional<double> fog; // --fog: density in 1/m; unset: the scene's (scene::ResolvedView::fogDensity)
 
     void addTo(CLI::App& cmd);

@@ -23,7 +23,9 @@ struct GpuBatchInfo {
 };
 struct GpuLevel {
     float cameraError, shadowError;
-    uint32_t cameraIndexCount, cameraFirstIndex, shadowIndexCount, shadowFirstIndex, pad0, pad1;
+    uint32_t cameraIndexCount, cameraFirstIndex, shadowIndexCount, shadowFirstIndex;
+    uint32_t keepsCoverage; // bit 0: the camera level keeps coverage, bit 1: the shadow level (gpu_cull.comp)
+    uint32_t pad1;
 };
 static_assert(sizeof(GpuInstance) == 64 && sizeof(GpuBatchInfo) == 32 && sizeof(GpuLevel) == 32);
 
@@ -66,10 +68,12 @@ std::unique_ptr<GpuCulling> GpuCulling::create(const scene::Scene& scene, std::s
             GpuLevel level{};
             if (l < info.cameraLevels)
                 level.cameraError = lod.camera[l].objectError, level.cameraIndexCount = lod.camera[l].indexCount,
-                level.cameraFirstIndex = lod.camera[l].firstIndex;
+                level.cameraFirstIndex = lod.camera[l].firstIndex,
+                level.keepsCoverage |= lod.camera[l].keepsCoverage ? 1u : 0u;
             if (l < info.shadowLevels)
                 level.shadowError = lod.shadow[l].objectError, level.shadowIndexCount = lod.shadow[l].indexCount,
-                level.shadowFirstIndex = lod.shadow[l].firstIndex;
+                level.shadowFirstIndex = lod.shadow[l].firstIndex,
+                level.keepsCoverage |= lod.shadow[l].keepsCoverage ? 2u : 0u;
             levels.push_back(level);
         }
         for (uint32_t i = 0; i < count; ++i) {
@@ -159,6 +163,7 @@ void GpuCulling::cull(size_t pass, std::span<const visibility::HalfSpace> volume
         glProgramUniformMatrix4dv(p, uniform(p, "passClipFromWorld"), 1, GL_FALSE, &lod->pass.clipFromWorld[0][0]);
         glProgramUniform1d(p, uniform(p, "passUnitsPerNdc"), lod->pass.unitsPerNdc);
         glProgramUniform1d(p, uniform(p, "passMaxError"), lod->pass.maxError);
+        glProgramUniform1d(p, uniform(p, "coverageScale"), lod->coverageScale);
         glProgramUniform1i(p, uniform(p, "cameraBound"), lod->camera ? 1 : 0);
         if (lod->camera) {
             glProgramUniformMatrix4dv(p, uniform(p, "cameraClipFromWorld"), 1, GL_FALSE,

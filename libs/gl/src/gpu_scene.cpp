@@ -34,7 +34,8 @@ GLenum glWrap(scene::TextureWrap wrap) {
 // sparse canopy thins again — and costs llvmpipe a second bilinear lookup in every pass.
 Texture uploadTexture(const scene::Texture& texture, std::optional<float> alphaCutoff) {
     const std::vector<scene::Image> chain =
-        texture.mipmaps ? scene::buildMipChain(texture.image, alphaCutoff) : std::vector<scene::Image>{texture.image};
+        texture.mipmaps ? scene::buildMipChain(texture.image, alphaCutoff, texture.coverageRegions)
+                        : std::vector<scene::Image>{texture.image};
     GLuint id = 0;
     glCreateTextures(GL_TEXTURE_2D, 1, &id);
     Texture gl(id);

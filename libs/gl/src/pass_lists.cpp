@@ -92,8 +92,9 @@ void PassLists::plan(const PassPlanInputs& in, VirtualPages& pages) {
     m_visibility->takeListTimes();
     m_costs = {};
     const bool prepass = needsPrepass(in.setup, in.settings, in.purpose);
-    const CameraKey camera{in.camera.clipFromWorld(), in.settings.width, in.settings.height,
-                           in.settings.culling,       in.settings.lod,   in.settings.lodPixelError};
+    const CameraKey camera{in.camera.clipFromWorld(),  in.settings.width, in.settings.height,
+                           in.settings.culling,        in.settings.lod,   in.settings.lodPixelError,
+                           in.settings.lodFoliageScale};
     if (prepass && in.purpose == PassPurpose::Frame && m_keptCamera == camera) {
         // The depth-range pre-pass just drawn for this very camera: its list, depth and costs.
         m_costs.occlusion = m_keptCameraCosts.occlusion;
@@ -148,7 +149,7 @@ void PassLists::plan(const PassPlanInputs& in, VirtualPages& pages) {
 void PassLists::planCamera(const PassPlanInputs& in, bool prepass) {
     const RenderSettings& settings = in.settings;
     const bool cull = settings.culling != Culling::Off;
-    const LodChoice cameraLod{cameraProjectionOf(in.camera, settings), std::nullopt, false};
+    const LodChoice cameraLod{cameraProjectionOf(in.camera, settings), std::nullopt, false, settings.lodFoliageScale};
     const LodChoice* lod = settings.lod ? &cameraLod : nullptr;
     const std::vector<visibility::HalfSpace> cameraVolume = visibility::clipVolume(in.camera.clipFromWorld());
     if (prepass &&
@@ -214,7 +215,10 @@ void PassLists::planPages(const PassPlanInputs& in, VirtualPages& pages, std::ve
         // Levels by the page's own texels only, not by the camera: a page must hold the same
         // depths whenever it is drawn, or a page redrawn after a mover would differ from its
         // cached neighbours (and its texels already match the pixels it serves).
-        const LodChoice lod{{toRender[i].clipFromWorld, 0.5 * slotTexels, settings.lodTexelError}, std::nullopt, true};
+        const LodChoice lod{{toRender[i].clipFromWorld, 0.5 * slotTexels, settings.lodTexelError},
+                            std::nullopt,
+                            true,
+                            settings.lodFoliageScale};
         m_visibility->collect(visibility::clipVolume(toRender[i].clipFromWorld, false),
                               settings.culling != Culling::Off, settings.lod ? &lod : nullptr, m_pages[i]);
         lists.push_back(&m_pages[i]);
@@ -254,7 +258,10 @@ void PassLists::planSunMaps(const PassPlanInputs& in, std::vector<PassList*>& li
         // No near plane: the pass clamps depth, so casters between the light and the near
         // plane are drawn at depth 0 and must not be culled. Levels by texels of this map.
         const core::Mat4& clipFromWorld = in.setup.views[i].clipFromWorld;
-        const LodChoice lod{{clipFromWorld, 0.5 * in.setup.mapSize, settings.lodTexelError}, cameraProjection, true};
+        const LodChoice lod{{clipFromWorld, 0.5 * in.setup.mapSize, settings.lodTexelError},
+                            cameraProjection,
+                            true,
+                            settings.lodFoliageScale};
         const std::vector<visibility::HalfSpace> volume = visibility::clipVolume(clipFromWorld, false);
         m_sun[i].batchOrder = nearestFirst(clipFromWorld);
         if (gpu) {

@@ -153,6 +153,7 @@ private:
         Culling culling = Culling::Off;
         bool lod = false;
         float lodPixelError = 0.0f;
+        float lodFoliageScale = 0.0f;
         bool operator==(const CameraKey&) const = default;
     };
     std::optional<CameraKey> m_keptCamera;

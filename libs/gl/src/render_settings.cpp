@@ -84,11 +84,13 @@ core::Status validateVirtualSettings(const RenderSettings& settings) {
     return core::Ok{};
 }
 
-core::Status validateLevelsOfDetail(float pixelError, float texelError) {
+core::Status validateLevelsOfDetail(float pixelError, float texelError, float foliageScale) {
     if (!(pixelError > 0.0f && pixelError <= 16.0f))
         return core::fieldError("lod.pixel_error", "must be in (0, 16] pixels");
     if (!(texelError > 0.0f && texelError <= 16.0f))
         return core::fieldError("lod.texel_error", "must be in (0, 16] texels");
+    if (!(foliageScale >= 1.0f && foliageScale <= 64.0f))
+        return core::fieldError("lod.foliage_scale", "must be in [1, 64]");
     return core::Ok{};
 }
 

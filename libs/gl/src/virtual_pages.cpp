@@ -29,7 +29,8 @@ PageContent pageContentOf(const core::VirtualClipmap& clipmap, int guardTexels, 
             .constantBias = static_cast<float>(bias.constant),
             .cull = static_cast<int>(bias.cull),
             .lod = settings.lod,
-            .lodTexelError = settings.lodTexelError};
+            .lodTexelError = settings.lodTexelError,
+            .lodFoliageScale = settings.lodFoliageScale};
 }
 
 core::Result<std::unique_ptr<VirtualPages>> VirtualPages::create() {

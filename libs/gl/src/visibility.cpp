@@ -29,6 +29,11 @@ std::vector<float> levelErrors(const std::vector<scene::LodLevel>& chain) {
     for (size_t l = 0; l < std::min(chain.size(), kMaxLodLevels); ++l) errors.push_back(chain[l].objectError);
     return errors;
 }
+std::vector<bool> levelsKeepingCoverage(const std::vector<scene::LodLevel>& chain) {
+    std::vector<bool> coverage;
+    for (size_t l = 0; l < std::min(chain.size(), kMaxLodLevels); ++l) coverage.push_back(chain[l].keepsCoverage);
+    return coverage;
+}
 
 } // namespace
 
@@ -47,6 +52,8 @@ Visibility::Visibility(const scene::Scene& scene, std::span<const scene::MeshLod
     for (const scene::MeshLods& mesh : lods) {
         m_cameraErrors.push_back(levelErrors(mesh.camera));
         m_shadowErrors.push_back(levelErrors(mesh.shadow));
+        m_cameraCoverage.push_back(levelsKeepingCoverage(mesh.camera));
+        m_shadowCoverage.push_back(levelsKeepingCoverage(mesh.shadow));
     }
 }
 
@@ -91,6 +98,7 @@ void Visibility::build(const LodChoice* lod, PassList& out) {
     m_levels.assign(m_scratch.size(), 0);
     if (lod) {
         const auto& errors = lod->shadow ? m_shadowErrors : m_cameraErrors;
+        const auto& coverage = lod->shadow ? m_shadowCoverage : m_cameraCoverage;
         for (size_t k = 0; k < m_scratch.size(); ++k) {
             const uint32_t global = m_scratch[k];
             const std::vector<float>& levels = errors[m_instanceMesh[global]];
@@ -101,8 +109,12 @@ void Visibility::build(const LodChoice* lod, PassList& out) {
             };
             double allowed = allowedBy(lod->pass);
             if (lod->camera) allowed = std::min(allowed, allowedBy(*lod->camera));
+            // Levels that keep coverage may err coverageScale times more (the GPU's levelOf alike).
+            const std::vector<bool>& keepsCoverage = coverage[m_instanceMesh[global]];
             uint8_t level = 0;
-            while (level + 1u < levels.size() && levels[level + 1u] <= allowed) ++level;
+            while (level + 1u < levels.size() &&
+                   double(levels[level + 1u]) <= (keepsCoverage[level + 1u] ? allowed * lod->coverageScale : allowed))
+                ++level;
             m_levels[k] = level;
         }
     }

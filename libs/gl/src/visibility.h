@@ -60,6 +60,9 @@ struct LodChoice {
     LodProjection pass;
     std::optional<LodProjection> camera; // shadow passes
     bool shadow = false;
+    // Levels that keep coverage (scene::LodLevel::keepsCoverage) may err this many times more
+    // than both bounds allow (RenderSettings::lodFoliageScale).
+    double coverageScale = 1.0;
 };
 
 class Visibility {
@@ -104,12 +107,13 @@ private:
     // object error for that level times the scale.
     std::vector<float> m_instanceScale;
     std::vector<uint32_t> m_instanceMesh;
-    std::vector<std::vector<float>> m_cameraErrors, m_shadowErrors; // per mesh, per level (object metres)
-    std::vector<uint8_t> m_levels;                                  // level per visible instance, reused every pass
-    std::vector<uint32_t> m_slots, m_cursor;                        // counting-sort scratch, reused every pass
-    std::vector<uint64_t> m_visibleBits;                            // one bit per instance, reused every pass
-    std::vector<uint32_t> m_scratch;                                // query result, reused every pass
-    std::vector<uint32_t> m_staging;                                // the frame's concatenated lists
+    std::vector<std::vector<float>> m_cameraErrors, m_shadowErrors;    // per mesh, per level (object metres)
+    std::vector<std::vector<bool>> m_cameraCoverage, m_shadowCoverage; // per mesh, per level: keepsCoverage
+    std::vector<uint8_t> m_levels;                                     // level per visible instance, reused every pass
+    std::vector<uint32_t> m_slots, m_cursor;                           // counting-sort scratch, reused every pass
+    std::vector<uint64_t> m_visibleBits;                               // one bit per instance, reused every pass
+    std::vector<uint32_t> m_scratch;                                   // query result, reused every pass
+    std::vector<uint32_t> m_staging;                                   // the frame's concatenated lists
     Buffer m_buffer;
     size_t m_capacity = 0; // in indices
     CpuTimes m_listTimes;

@@ -9,6 +9,7 @@
 #include "visibility.h"
 
 #include "shadowkit/gl/renderer.h"
+#include "shadowkit/scene/forest.h"
 #include "shadowkit/scene/mesh_builder.h"
 #include "shadowkit/scene/mesh_lod.h"
 
@@ -38,22 +39,30 @@ core::ShadowSetup lispsmSetup(const scene::ResolvedView& view, const scene::Scen
     return setup ? *setup : core::ShadowSetup{};
 }
 
-} // namespace
+// What compareWithTheCpuPath drew: instances kept by camera and shadow passes, those drawn
+// coarser than level 0, and, per batch, how many were drawn at its coarsest level.
+struct ComparedLists {
+    size_t drawnCamera = 0, drawnShadow = 0, coarser = 0;
+    std::vector<size_t> coarsest;
+};
 
-TEST_F(GpuCullingTest, ListsEqualTheCpuPathsForRandomVolumesAndLevelsOfDetail) {
-    // The same half-spaces and level rule in double precision, compacted in instance order:
-    // entry for entry what Visibility::collect builds, for camera frusta (levels by pixels) and
-    // shadow maps (levels by texels and by the camera's pixels), near the forest and far out.
-    const scene::Scene forest = gl::testing::smallForest(700, 300, 16);
+// Random camera frusta (levels by pixels) and shadow maps (levels by texels and by the camera's
+// pixels), near the scene and far out, culled by both paths: the GPU's lists must equal
+// Visibility::collect's entry for entry — the same half-spaces and level rule in double
+// precision, compacted in instance order. `coverageScale` gives each case's
+// LodChoice::coverageScale.
+template <class CoverageScale>
+ComparedLists compareWithTheCpuPath(const scene::Scene& scene, CoverageScale coverageScale) {
+    ComparedLists result;
+    result.coarsest.assign(scene.batches.size(), 0);
     std::vector<scene::MeshLods> lods;
-    for (const scene::Mesh& mesh : forest.meshes) lods.push_back(scene::buildLods(mesh));
-    const gl::GpuScene gpuScene(forest, lods);
-    gl::Visibility visibility(forest, lods);
-    const auto culling = gl::GpuCulling::create(forest, lods, gpuScene);
-    ASSERT_TRUE(culling->buildPrograms());
+    for (const scene::Mesh& mesh : scene.meshes) lods.push_back(scene::buildLods(mesh));
+    const gl::GpuScene gpuScene(scene, lods);
+    gl::Visibility visibility(scene, lods);
+    const auto culling = gl::GpuCulling::create(scene, lods, gpuScene);
+    EXPECT_TRUE(culling->buildPrograms());
     std::mt19937 random(7);
     std::uniform_real_distribution<double> unit(-1.0, 1.0), between(0.0, 1.0);
-    size_t drawnCamera = 0, drawnShadow = 0, coarser = 0;
     constexpr int kCases = 60;
     culling->beginFrame(kCases);
     for (int c = 0; c < kCases; ++c) {
@@ -69,18 +78,19 @@ TEST_F(GpuCullingTest, ListsEqualTheCpuPathsForRandomVolumesAndLevelsOfDetail) {
         gl::PassList cpu, gpu;
         const bool shadow = c % 2 == 1;
         std::vector<visibility::HalfSpace> volume;
-        gl::LodChoice lod{cameraProjection, std::nullopt, false};
+        gl::LodChoice lod{cameraProjection, std::nullopt, false, coverageScale(random)};
         if (shadow) {
             const core::ShadowSetupInputs in{.camera = camera,
                                              .light = light,
-                                             .wsSceneBounds = forest.wsBounds(),
+                                             .wsSceneBounds = scene.wsBounds(),
                                              .technique = core::Technique::Focused,
                                              .mapSize = 1024};
             const auto setup = core::computeShadowSetup(in);
-            ASSERT_TRUE(setup) << setup.error();
+            EXPECT_TRUE(setup) << setup.error();
+            if (!setup) return result;
             const core::Mat4& clipFromWorld = setup->views[0].clipFromWorld;
             volume = visibility::clipVolume(clipFromWorld, false);
-            lod = {{clipFromWorld, 0.5 * setup->mapSize, 0.25}, cameraProjection, true};
+            lod = {{clipFromWorld, 0.5 * setup->mapSize, 0.25}, cameraProjection, true, lod.coverageScale};
         } else {
             volume = visibility::clipVolume(camera.clipFromWorld());
         }
@@ -88,21 +98,51 @@ TEST_F(GpuCullingTest, ListsEqualTheCpuPathsForRandomVolumesAndLevelsOfDetail) {
         visibility.collect(volume, true, lodOrNone, cpu);
         culling->cull(size_t(c), volume, lodOrNone, gl::GpuCulling::Phase::All, gpu);
         const gl::PassList back = culling->read(gpu);
-        ASSERT_EQ(back.count, cpu.count) << "case " << c;
-        ASSERT_EQ(back.first, cpu.first) << "case " << c;
-        ASSERT_EQ(back.indices, cpu.indices) << "case " << c;
-        ASSERT_EQ(back.shadow, cpu.shadow) << "case " << c;
-        (shadow ? drawnShadow : drawnCamera) += cpu.instances();
-        for (size_t slot = 0; slot < cpu.count.size(); ++slot)
-            coarser += slot % gl::kMaxLodLevels > 0 ? cpu.count[slot] : 0;
+        EXPECT_EQ(back.count, cpu.count) << "case " << c;
+        EXPECT_EQ(back.first, cpu.first) << "case " << c;
+        EXPECT_EQ(back.indices, cpu.indices) << "case " << c;
+        EXPECT_EQ(back.shadow, cpu.shadow) << "case " << c;
+        (shadow ? result.drawnShadow : result.drawnCamera) += cpu.instances();
+        for (size_t slot = 0; slot < cpu.count.size(); ++slot) {
+            const size_t batch = slot / gl::kMaxLodLevels, level = slot % gl::kMaxLodLevels;
+            result.coarser += level > 0 ? cpu.count[slot] : 0;
+            const size_t levels =
+                shadow ? lods[scene.batches[batch].mesh].shadow.size() : lods[scene.batches[batch].mesh].camera.size();
+            if (levels > 1 && level + 1 == levels) result.coarsest[batch] += cpu.count[slot];
+        }
         // What the commands say was drawn is the list's length at each level.
         const gl::DrawStats drawn = culling->submitted(gpu);
         EXPECT_EQ(drawn.instances, cpu.instances()) << "case " << c;
     }
+    return result;
+}
+
+} // namespace
+
+TEST_F(GpuCullingTest, ListsEqualTheCpuPathsForRandomVolumesAndLevelsOfDetail) {
+    const ComparedLists drawn =
+        compareWithTheCpuPath(gl::testing::smallForest(700, 300, 16), [](std::mt19937&) { return 1.0; });
     // The cases are not vacuous: both kinds of pass keep instances, and levels are chosen.
-    EXPECT_GT(drawnCamera, 500u);
-    EXPECT_GT(drawnShadow, 500u);
-    EXPECT_GT(coarser, 100u);
+    EXPECT_GT(drawn.drawnCamera, 500u);
+    EXPECT_GT(drawn.drawnShadow, 500u);
+    EXPECT_GT(drawn.coarser, 100u);
+}
+
+// Leafy trees, whose levels keep coverage (card levels, billboard clouds) and are taken further
+// out by LodChoice::coverageScale: the GPU's rule reads the levels' flags as the CPU's does.
+TEST_F(GpuCullingTest, ListsEqualTheCpuPathsWithLevelsThatKeepCoverage) {
+    scene::ForestOptions options;
+    options.kind = scene::ForestKind::Leafy;
+    options.trees = 300, options.terrainSize = 300, options.terrainResolution = 16;
+    options.rocks = 4, options.buildings = 2, options.movers = 0;
+    const scene::Scene forest = scene::makeForest(options);
+    const ComparedLists drawn = compareWithTheCpuPath(
+        forest, [](std::mt19937& random) { return std::uniform_real_distribution<double>(1.0, 16.0)(random); });
+    EXPECT_GT(drawn.drawnCamera + drawn.drawnShadow, 500u);
+    // Every leafy batch reaches its billboard cloud somewhere.
+    for (size_t b = 0; b < forest.batches.size(); ++b)
+        if (forest.meshes[forest.batches[b].mesh].material >= 0)
+            EXPECT_GT(drawn.coarsest[b], 0u) << forest.meshes[forest.batches[b].mesh].name;
 }
 
 TEST_F(GpuCullingTest, TwoPhaseFramesEqualFrustumCulledFramesFromTheFirstAndAfterCuts) {

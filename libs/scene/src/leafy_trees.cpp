@@ -126,8 +126,8 @@ void paintShrubCell(Image& atlas, int cx, int cy, SplitMix64& rng) {
 
 // The uvs of an atlas cell, bottom-left to top-right (addCard's convention: rows top first).
 std::pair<glm::vec2, glm::vec2> cellUvs(int cx, int cy) {
-    const float step = 1.0f / kLeafAtlasCells;
-    return {{float(cx) * step, float(cy + 1) * step}, {float(cx + 1) * step, float(cy) * step}};
+    const float across = 1.0f / kLeafAtlasCells, down = 1.0f / (2 * kLeafAtlasCells); // the upper half's cells
+    return {{float(cx) * across, float(cy + 1) * down}, {float(cx + 1) * across, float(cy) * down}};
 }
 
 // The cell a card of this species shows, picked at random among the species' cells.
@@ -224,6 +224,7 @@ void emitCards(Mesh& leaves, const std::vector<Card>& cards) {
         lod.indices.assign(leaves.indices.begin() + std::ptrdiff_t(firstIndex), leaves.indices.end());
         leaves.indices.resize(firstIndex);
         lod.objectError = kept > 0 ? float(0.5 * sizes / double(kept)) : 0.0f;
+        lod.keepsCoverage = true; // the leaves' area, in fewer cards
         leaves.authoredLods.push_back(std::move(lod));
     }
 }
@@ -242,6 +243,7 @@ glm::vec3 inBall(SplitMix64& rng) {
 void makeBroadleaf(LeafyTree& tree, std::vector<Card>& cards, SplitMix64& rng) {
     const glm::vec3 fork(0.0f, 0.42f, 0.0f);
     addBranch(tree.wood, {0, 0, 0}, fork, 0.03f, 0.022f, 12);
+    tree.trunkIndices = tree.wood.indices.size();
     std::vector<glm::vec3> tips;
     const int boughs = 5;
     for (int b = 0; b < boughs; ++b) {
@@ -269,6 +271,7 @@ void makeBroadleaf(LeafyTree& tree, std::vector<Card>& cards, SplitMix64& rng) {
 // (a cone); 30 needle sprays along each branch, lying nearly flat.
 void makeConifer(LeafyTree& tree, std::vector<Card>& cards, SplitMix64& rng) {
     addBranch(tree.wood, {0, 0, 0}, {0, 1.0f, 0}, 0.022f, 0.003f, 12);
+    tree.trunkIndices = tree.wood.indices.size();
     const int whorls = 14, perWhorl = 6;
     for (int w = 0; w < whorls; ++w) {
         const float height = 0.16f + 0.78f * float(w) / float(whorls - 1);
@@ -299,6 +302,7 @@ void makeShrub(LeafyTree& tree, std::vector<Card>& cards, SplitMix64& rng) {
         const float rise = uniform(rng, 0.7f, 1.2f);
         const glm::vec3 direction(std::cos(yaw) * std::cos(rise), std::sin(rise), std::sin(yaw) * std::cos(rise));
         addBranch(tree.wood, {0, 0, 0}, uniform(rng, 0.55f, 0.8f) * direction, 0.02f, 0.005f, 8);
+        if (s == 0) tree.trunkIndices = tree.wood.indices.size(); // the first stem stands for the trunk
     }
     for (int c = 0; c < 2500; ++c) {
         glm::vec3 p = inBall(rng);
@@ -312,7 +316,7 @@ void makeShrub(LeafyTree& tree, std::vector<Card>& cards, SplitMix64& rng) {
 
 Texture makeLeafAtlas() {
     Texture atlas;
-    atlas.image = Image(kLeafAtlasCells * kCellTexels, kLeafAtlasCells * kCellTexels);
+    atlas.image = Image(kLeafAtlasCells * kCellTexels, 2 * kLeafAtlasCells * kCellTexels);
     // Open texels keep a leaf green (alpha 0): bilinear lookups at a leaf's edge mix towards
     // green, not black.
     for (size_t i = 0; i < atlas.image.rgba.size(); i += 4) {
@@ -326,6 +330,9 @@ Texture makeLeafAtlas() {
         paintShrubCell(atlas.image, cx, 3, rng);
     }
     atlas.wrapS = atlas.wrapT = TextureWrap::ClampToEdge;
+    // The leaf cells keep their coverage in the mips apart from the far levels' sparse planes.
+    atlas.coverageRegions = {{0, 0, atlas.image.width, kLeafAtlasCells * kCellTexels}};
+    for (int k = 0; k < kTreeSpeciesCount; ++k) atlas.coverageRegions.push_back(farLevelRegion(TreeSpecies(k)));
     return atlas;
 }
 
@@ -351,6 +358,35 @@ LeafyTree makeLeafyTree(TreeSpecies species, uint64_t seed) {
     tree.wood.computeBounds();
     tree.leaves.computeBounds();
     return tree;
+}
+
+ImageRegion farLevelRegion(TreeSpecies species) {
+    // The lower half in three bands of 168 rows, one per species (8-row aligned).
+    const int width = kLeafAtlasCells * kCellTexels, top = kLeafAtlasCells * kCellTexels, rows = 168;
+    return {0, top + int(species) * rows, width, rows};
+}
+
+BillboardCloud addFarLevel(LeafyTree& tree, TreeSpecies species, Image& atlas) {
+    const std::span<const uint32_t> branches(tree.wood.indices.begin() + std::ptrdiff_t(tree.trunkIndices),
+                                             tree.wood.indices.end());
+    const CloudSource sources[] = {{&tree.leaves, tree.leaves.indices, true}, {&tree.wood, branches, false}};
+    BillboardCloud cloud = bakeBillboardCloud(sources, atlas, farLevelRegion(species));
+    // A pass takes the coarsest level within its bound, so errors must grow along the chain: a
+    // card level that errs as much as the cloud (its cards' own size) but draws a hundred times
+    // its triangles is dropped. Its cards stay in the vertex buffer, unreferenced.
+    while (!tree.leaves.authoredLods.empty() && tree.leaves.authoredLods.back().objectError >= cloud.objectError)
+        tree.leaves.authoredLods.pop_back();
+    AuthoredLod leaves{{}, cloud.objectError, true};
+    const auto base = static_cast<uint32_t>(tree.leaves.vertices.size());
+    tree.leaves.vertices.insert(tree.leaves.vertices.end(), cloud.vertices.begin(), cloud.vertices.end());
+    for (const uint32_t i : cloud.indices) leaves.indices.push_back(base + i);
+    tree.leaves.authoredLods.push_back(std::move(leaves));
+    tree.wood.authoredLods.push_back(
+        {std::vector<uint32_t>(tree.wood.indices.begin(),
+                               tree.wood.indices.begin() + std::ptrdiff_t(tree.trunkIndices)),
+         cloud.objectError, true});
+    tree.leaves.computeBounds();
+    return cloud;
 }
 
 Material leafMaterial(int32_t atlasTexture) {

@@ -74,7 +74,8 @@ MeshLods buildLods(const Mesh& mesh, const LodOptions& o) {
         for (const AuthoredLod& level : mesh.authoredLods) {
             if (static_cast<int>(out.camera.size()) >= o.maxLevels) break;
             out.camera.push_back({static_cast<uint32_t>(out.indices.size()),
-                                  static_cast<uint32_t>(level.indices.size()), level.objectError});
+                                  static_cast<uint32_t>(level.indices.size()), level.objectError, false,
+                                  level.keepsCoverage});
             out.indices.insert(out.indices.end(), level.indices.begin(), level.indices.end());
         }
         out.shadow = out.camera;

@@ -24,22 +24,29 @@ struct Instance {
     dvec4 max;      // xyz: the box's maximum
 };
 struct Batch {
-    uint first, count;              // global index of the first instance; instances
+    uint first, count;               // global index of the first instance; instances
     uint cameraLevels, shadowLevels; // levels of each chain, [1, 4]
     uint firstChunk, chunkCount;
     uint pad0, pad1;
 };
 struct Level {
-    float cameraError, shadowError;            // object metres (scene::LodLevel::objectError)
-    uint cameraIndexCount, cameraFirstIndex;   // in the mesh's index buffer
+    float cameraError, shadowError;          // object metres (scene::LodLevel::objectError)
+    uint cameraIndexCount, cameraFirstIndex; // in the mesh's index buffer
     uint shadowIndexCount, shadowFirstIndex;
-    uint pad0, pad1;
+    uint keepsCoverage; // bit 0: the camera chain's level, bit 1: the shadow chain's (scene::LodLevel::keepsCoverage)
+    uint pad1;
 };
 
-layout(std430, binding = SK_CULL_CHUNKS_BINDING) readonly buffer Chunks { uvec4 chunks[]; }; // batch, first global, count, first batch-local
+layout(std430, binding = SK_CULL_CHUNKS_BINDING) readonly buffer Chunks {
+    uvec4 chunks[];
+}; // batch, first global, count, first batch-local
 layout(std430, binding = SK_CULL_BATCHES_BINDING) readonly buffer Batches { Batch batches[]; };
-layout(std430, binding = SK_CULL_RANKS_BINDING) buffer Ranks { uint ranks[]; };     // per global instance: level << 8 | rank, or ~0u
-layout(std430, binding = SK_CULL_CHUNK_SUMS_BINDING) buffer ChunkSums { uvec4 chunkSums[]; }; // per chunk and level: count, then offset
+layout(std430, binding = SK_CULL_RANKS_BINDING) buffer Ranks {
+    uint ranks[];
+}; // per global instance: level << 8 | rank, or ~0u
+layout(std430, binding = SK_CULL_CHUNK_SUMS_BINDING) buffer ChunkSums {
+    uvec4 chunkSums[];
+}; // per chunk and level: count, then offset
 
 const uint kNotKept = 0xFFFFFFFFu;
 
@@ -47,7 +54,9 @@ const uint kNotKept = 0xFFFFFFFFu;
 
 layout(std430, binding = SK_CULL_INSTANCES_BINDING) readonly buffer Instances { Instance instances[]; };
 layout(std430, binding = SK_CULL_LEVELS_BINDING) readonly buffer Levels { Level levels[]; }; // [batch * 4 + level]
-layout(std430, binding = SK_CULL_FLAGS_BINDING) buffer Flags { uint wasVisible[]; };         // the camera's visible set, frame to frame
+layout(std430, binding = SK_CULL_FLAGS_BINDING) buffer Flags {
+    uint wasVisible[];
+}; // the camera's visible set, frame to frame
 
 // What the pass keeps (GpuCulling::Phase).
 const int kAll = 0, kLastVisible = 1, kNewlyVisible = 2, kVisible = 3;
@@ -62,8 +71,11 @@ uniform double passUnitsPerNdc, passMaxError;
 uniform bool cameraBound;
 uniform dmat4 cameraClipFromWorld;
 uniform double cameraUnitsPerNdc, cameraMaxError;
+uniform double coverageScale; // LodChoice::coverageScale: levels that keep coverage may err this many times more
 // Occlusion (phases kNewlyVisible and kVisible): the depth pyramid of the camera's pre-pass.
-layout(std430, binding = SK_CULL_STAGE_BINDING) readonly buffer Pyramid { float pyramid[]; }; // level k: farthest over 2^(k+1) pixels
+layout(std430, binding = SK_CULL_STAGE_BINDING) readonly buffer Pyramid {
+    float pyramid[];
+};                                                      // level k: farthest over 2^(k+1) pixels
 uniform ivec4 pyramidLevel[SK_CULL_MAX_PYRAMID_LEVELS]; // per level: width, height, offset in pyramid[]
 uniform int pyramidLevels;
 uniform ivec2 viewport;
@@ -116,7 +128,10 @@ uint levelOf(uint batch, dvec3 centre, double scale) {
     uint level = 0u;
     while (level + 1u < count) {
         const Level next = levels[batch * 4u + level + 1u];
-        if (!(double(shadowChain ? next.shadowError : next.cameraError) <= allowed)) break;
+        const bool coverage = (next.keepsCoverage & (shadowChain ? 2u : 1u)) != 0u;
+        if (!(double(shadowChain ? next.shadowError : next.cameraError) <=
+              (coverage ? allowed * coverageScale : allowed)))
+            break;
         ++level;
     }
     return level;
@@ -143,9 +158,7 @@ bool mayBeVisible(vec3 lo, vec3 hi) {
     const ivec2 p1 = clamp(ivec2(floor((ndcMax * 0.5 + 0.5) * vec2(viewport))), ivec2(0), viewport - 1);
     // The finest level at which the pixels span at most two texels a side: four fetches.
     int level = 0;
-    while (level + 1 < pyramidLevels &&
-           any(greaterThan((p1 >> (level + 1)) - (p0 >> (level + 1)), ivec2(1))))
-        ++level;
+    while (level + 1 < pyramidLevels && any(greaterThan((p1 >> (level + 1)) - (p0 >> (level + 1)), ivec2(1)))) ++level;
     const ivec4 at = pyramidLevel[level];
     const ivec2 t0 = p0 >> (level + 1), t1 = p1 >> (level + 1), last = at.xy - 1;
     float farthest = 0.0;
@@ -207,10 +220,14 @@ void main() {
         const bool was = wasVisible[global] != 0u;
         const bool tested = inVolume && (phase == kNewlyVisible || phase == kVisible);
         const bool visible = tested && mayBeVisible(vec3(lo), vec3(hi));
-        if (phase == kAll) keep = inVolume && (!maskOn || mayShadow(lo, hi));
-        else if (phase == kLastVisible) keep = inVolume && was;
-        else if (phase == kNewlyVisible) keep = visible && !was;
-        else keep = inVolume && (was || visible);
+        if (phase == kAll)
+            keep = inVolume && (!maskOn || mayShadow(lo, hi));
+        else if (phase == kLastVisible)
+            keep = inVolume && was;
+        else if (phase == kNewlyVisible)
+            keep = visible && !was;
+        else
+            keep = inVolume && (was || visible);
         if (phase == kVisible) wasVisible[global] = visible ? 1u : 0u;
         if (keep) {
             level = levelOf(chunk.x, 0.5 * (lo + hi), instance.minScale.w);

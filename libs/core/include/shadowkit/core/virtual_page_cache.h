@@ -50,6 +50,7 @@ struct PageContent {
     int cull = 0;                                        ///< caster culling (CasterCull as a number)
     bool lod = false;                                    ///< levels of detail on
     double lodTexelError = 0.0;                          ///< their bound, texels
+    double lodFoliageScale = 1.0;                        ///< the bound's multiple for levels that keep coverage
     bool operator==(const PageContent&) const = default; ///< the same content
 };
 /// The content `clipmap`'s pages have with everything else default (tests, engines without bias).

@@ -107,7 +107,11 @@ struct RenderSettings {
     bool lod = true;
     float lodPixelError = 0.25f; // (0, 16]
     float lodTexelError = 0.25f; // (0, 16]
-    bool cascadeColors = false;  // tint each cascade's range (Dimitrov 2007, Figure 3-2)
+    // Levels that keep coverage rather than a surface (leaf cards, the leafy trees' billboard
+    // clouds: scene::LodLevel::keepsCoverage) are taken this many times further out: they may
+    // move their coverage lodFoliageScale × the pixel and texel bounds. 1: as every other mesh.
+    float lodFoliageScale = 8.0f; // [1, 64]
+    bool cascadeColors = false;   // tint each cascade's range (Dimitrov 2007, Figure 3-2)
     // Partial occlusion by alpha-tested casters (leaves): they cast through opacity layers beside
     // the sun's maps (deep opacity maps, Yuksel & Keyser 2008; gl/src/opacity_layers.h) as a
     // fraction of the light, the maps' depth holding the opaque casters alone. Fixed maps and
@@ -143,7 +147,7 @@ struct RenderSettings {
 core::Status validateVirtualSettings(const RenderSettings& settings);
 // The levels of detail's error bounds in (0, 16] pixels and texels; errors name
 // lod.pixel_error and lod.texel_error.
-core::Status validateLevelsOfDetail(float pixelError, float texelError);
+core::Status validateLevelsOfDetail(float pixelError, float texelError, float foliageScale);
 // A fog density >= 0 per metre, finite; the error names "fog".
 core::Status validateFogDensity(double density);
 // A filter virtual maps can draw with: not msm (the pages hold depth only); the error names "filter".

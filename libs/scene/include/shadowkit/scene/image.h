@@ -12,6 +12,12 @@
 
 namespace shadowkit::scene {
 
+// A rectangle of an image's texels (an atlas's part: a texture_mips.h coverage region, the
+// place a billboard cloud is baked).
+struct ImageRegion {
+    int x = 0, y = 0, width = 0, height = 0;
+};
+
 struct Image {
     int width = 0, height = 0;
     std::vector<uint8_t> rgba; // row-major, top row first, 4 bytes per pixel

@@ -19,6 +19,12 @@ struct LodLevel {
     // Shadow chain: the level bounds solids (closed_surface.h), so a depth pass may cull the
     // faces turned away from the light and store the same depth. Always false in the camera chain.
     bool closed = false;
+    // The level keeps what the mesh covers seen from afar — its leaves' area, their coverage
+    // baked into planes — rather than its surface (leaf cards, billboard clouds: authored
+    // levels that say so). Passes may let it move that coverage further than a surface
+    // (RenderSettings::lodFoliageScale): under a pixel a leaf's exact place is noise, its
+    // share of the pixel is not.
+    bool keepsCoverage = false;
 };
 
 struct MeshLods {

@@ -29,6 +29,7 @@ struct Vertex {
 struct AuthoredLod {
     std::vector<uint32_t> indices; // over the mesh's vertices (which hold every level's)
     float objectError = 0.0f;      // object-space metres, as scene::LodLevel::objectError
+    bool keepsCoverage = false;    // as scene::LodLevel::keepsCoverage
 };
 
 struct Mesh {

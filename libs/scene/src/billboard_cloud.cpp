@@ -1,0 +1,353 @@
+// Billboard clouds (billboard_cloud.h; Décoret et al. 2003).
+#include "shadowkit/scene/billboard_cloud.h"
+
+#include "shadowkit/core/conventions.h"
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cmath>
+#include <numeric>
+
+namespace shadowkit::scene {
+namespace {
+
+constexpr int kSamplesPerSide = 4; // per texel side: 16 coverage samples a texel
+constexpr int kBorderTexels = 2;   // open texels round each plane, so its mips and bilinear lookups stay its own
+
+// The planes' orientations: the three axes and the four cube diagonals. Any unit normal lies
+// within 39.2° of one of them (an axis and a diagonal are 54.7° apart; the worst normal lies
+// between an axis and two diagonals), so turning a card into its plane changes little.
+const std::array<glm::vec3, 7>& orientations() {
+    static const std::array<glm::vec3, 7> all = [] {
+        const float d = 1.0f / std::sqrt(3.0f);
+        return std::array<glm::vec3, 7>{glm::vec3(1, 0, 0), glm::vec3(0, 1, 0),  glm::vec3(0, 0, 1),
+                                        glm::vec3(d, d, d), glm::vec3(d, d, -d), glm::vec3(d, -d, d),
+                                        glm::vec3(-d, d, d)};
+    }();
+    return all;
+}
+
+// The rotation taking unit `from` onto unit `to` about their common perpendicular
+// (Rodrigues' formula), as a matrix. `from` ≈ −`to` cannot happen here: normals are flipped to
+// the orientation's side first.
+glm::mat3 rotationBetween(glm::vec3 from, glm::vec3 to) {
+    const glm::vec3 axis = glm::cross(from, to);
+    const float s = glm::length(axis), c = glm::dot(from, to);
+    if (s < 1e-7f) return glm::mat3(1.0f);
+    const glm::vec3 k = axis / s;
+    const glm::mat3 cross(0, k.z, -k.y, -k.z, 0, k.x, k.y, -k.x, 0); // column-major [k]×
+    return glm::mat3(1.0f) + s * cross + (1.0f - c) * (cross * cross);
+}
+
+// One triangle of a source.
+struct Triangle {
+    const CloudSource* source;
+    size_t first; // offset of its three indices in source->indices
+    glm::vec3 position(int corner) const {
+        return source->mesh->vertices[source->indices[first + size_t(corner)]].position;
+    }
+    const Vertex& vertex(int corner) const { return source->mesh->vertices[source->indices[first + size_t(corner)]]; }
+};
+
+// A set of triangles moved together onto one plane: a card (its triangles share vertices and
+// a plane), or a single triangle of anything else.
+struct Item {
+    std::vector<Triangle> triangles;
+    glm::vec3 centre{0.0f};
+    glm::mat3 turn{1.0f}; // about `centre`, into the orientation
+    int orientation = 0;
+    float area = 0.0f;
+};
+
+struct Plane {
+    int orientation = 0;
+    float offset = 0.0f; // along the orientation's normal, object metres
+    std::vector<size_t> items;
+    glm::vec2 lo{INFINITY}, hi{-INFINITY};   // in-plane bounds, object metres
+    int x = 0, y = 0, width = 0, height = 0; // texels of the atlas, border included
+};
+
+// An in-plane basis for each orientation.
+glm::vec3 tangentOf(glm::vec3 n) {
+    const glm::vec3 helper = std::abs(n.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+    return glm::normalize(glm::cross(helper, n));
+}
+
+size_t findRoot(std::vector<uint32_t>& parent, size_t i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+}
+
+// The items of the sources: connected, planar triangles of an alpha-tested source (cards) as
+// one, every other triangle alone.
+std::vector<Item> itemsOf(std::span<const CloudSource> sources) {
+    std::vector<Item> items;
+    for (const CloudSource& source : sources) {
+        const Mesh& mesh = *source.mesh;
+        const size_t triangles = source.indices.size() / 3;
+        std::vector<uint32_t> parent(mesh.vertices.size());
+        std::iota(parent.begin(), parent.end(), 0u);
+        if (source.alphaTested)
+            for (size_t t = 0; t < triangles; ++t)
+                for (int k = 1; k < 3; ++k) {
+                    const size_t a = findRoot(parent, source.indices[3 * t]);
+                    const size_t b = findRoot(parent, source.indices[3 * t + size_t(k)]);
+                    if (a != b) parent[b] = static_cast<uint32_t>(a);
+                }
+        std::vector<std::vector<Triangle>> groups;
+        std::vector<int> groupOfRoot(mesh.vertices.size(), -1);
+        for (size_t t = 0; t < triangles; ++t) {
+            const Triangle triangle{&source, 3 * t};
+            if (!source.alphaTested) {
+                groups.push_back({triangle});
+                continue;
+            }
+            const size_t root = findRoot(parent, source.indices[3 * t]);
+            if (groupOfRoot[root] < 0) {
+                groupOfRoot[root] = static_cast<int>(groups.size());
+                groups.emplace_back();
+            }
+            groups[size_t(groupOfRoot[root])].push_back(triangle);
+        }
+        for (std::vector<Triangle>& group : groups) {
+            // Area-weighted normal: its length equals the area when the group is flat.
+            glm::vec3 normalSum(0.0f), centreSum(0.0f);
+            float area = 0.0f;
+            for (const Triangle& t : group) {
+                const glm::vec3 a = t.position(0), b = t.position(1), c = t.position(2);
+                const glm::vec3 twice = glm::cross(b - a, c - a);
+                const float twiceArea = glm::length(twice);
+                normalSum += 0.5f * twice, area += 0.5f * twiceArea;
+                centreSum += 0.5f * twiceArea * (a + b + c) / 3.0f;
+            }
+            if (!(area > 0.0f)) continue; // degenerate: covers nothing
+            if (group.size() > 1 && glm::length(normalSum) < 0.98f * area) {
+                for (const Triangle& t : group) items.push_back(Item{{t}}); // not flat: each triangle alone
+                for (size_t k = items.size() - group.size(); k < items.size(); ++k) {
+                    Item& item = items[k];
+                    const glm::vec3 a = item.triangles[0].position(0), b = item.triangles[0].position(1),
+                                    c = item.triangles[0].position(2);
+                    item.area = 0.5f * glm::length(glm::cross(b - a, c - a));
+                    item.centre = (a + b + c) / 3.0f;
+                }
+                continue;
+            }
+            items.push_back(Item{std::move(group), centreSum / area, glm::mat3(1.0f), 0, area});
+        }
+    }
+    // Each item's orientation: the one its normal is closest to, either side.
+    for (Item& item : items) {
+        const Triangle& t = item.triangles[0];
+        glm::vec3 normal(0.0f);
+        for (const Triangle& each : item.triangles)
+            normal += glm::cross(each.position(1) - each.position(0), each.position(2) - each.position(0));
+        if (!(glm::length(normal) > 0.0f))
+            normal = glm::cross(t.position(1) - t.position(0), t.position(2) - t.position(0));
+        normal = glm::normalize(normal);
+        float best = -1.0f;
+        for (int o = 0; o < int(orientations().size()); ++o) {
+            const float alignment = std::abs(glm::dot(normal, orientations()[size_t(o)]));
+            if (alignment > best) best = alignment, item.orientation = o;
+        }
+        const glm::vec3 axis = orientations()[size_t(item.orientation)];
+        item.turn = rotationBetween(glm::dot(normal, axis) >= 0.0f ? normal : -normal, axis);
+    }
+    return items;
+}
+
+// Packs the planes' rectangles into the region in shelves, tallest first, at `texelsPerMetre`.
+bool pack(std::vector<Plane>& planes, const ImageRegion& region, float texelsPerMetre) {
+    std::vector<size_t> order(planes.size());
+    std::iota(order.begin(), order.end(), size_t{0});
+    for (Plane& p : planes) {
+        p.width = int(std::ceil((p.hi.x - p.lo.x) * texelsPerMetre)) + 2 * kBorderTexels;
+        p.height = int(std::ceil((p.hi.y - p.lo.y) * texelsPerMetre)) + 2 * kBorderTexels;
+    }
+    std::stable_sort(order.begin(), order.end(),
+                     [&](size_t a, size_t b) { return planes[a].height > planes[b].height; });
+    int x = 0, y = 0, shelf = 0;
+    for (const size_t i : order) {
+        Plane& p = planes[i];
+        if (p.width > region.width) return false;
+        if (x + p.width > region.width) x = 0, y += shelf, shelf = 0;
+        if (y + p.height > region.height) return false;
+        p.x = region.x + x, p.y = region.y + y;
+        x += p.width, shelf = std::max(shelf, p.height);
+    }
+    return true;
+}
+
+// A texel of the atlas at uv (nearest; v runs down the image, glTF's convention).
+const uint8_t* texelAt(const Image& atlas, glm::vec2 uv) {
+    const int x = std::clamp(int(std::floor(uv.x * float(atlas.width))), 0, atlas.width - 1);
+    const int y = std::clamp(int(std::floor(uv.y * float(atlas.height))), 0, atlas.height - 1);
+    return atlas.pixel(x, y);
+}
+
+// 4 × 4 ordered-dither thresholds (Bayer), in sixteenths: a region of coverage c/16 keeps
+// exactly c texels of every 16.
+constexpr std::array<int, 16> kBayer{0, 8, 2, 10, 12, 4, 14, 6, 3, 11, 1, 9, 15, 7, 13, 5};
+
+} // namespace
+
+BillboardCloud bakeBillboardCloud(std::span<const CloudSource> sources, Image& atlas, ImageRegion region,
+                                  const BillboardCloudOptions& options) {
+    SK_ASSERT(region.x >= 0 && region.y >= 0 && region.width > 0 && region.height > 0 &&
+                  region.x + region.width <= atlas.width && region.y + region.height <= atlas.height,
+              "bakeBillboardCloud(): the region lies outside the atlas");
+    SK_ASSERT(options.slabsPerOrientation >= 1 && options.slabsPerOrientation <= 64,
+              "bakeBillboardCloud(): slabsPerOrientation out of [1, 64]");
+    BillboardCloud cloud;
+    std::vector<Item> items = itemsOf(sources);
+    if (items.empty()) return cloud;
+
+    // Slabs: each orientation's extent over every source vertex, cut evenly.
+    const auto& axes = orientations();
+    std::array<float, 7> lo, hi;
+    lo.fill(INFINITY), hi.fill(-INFINITY);
+    for (const Item& item : items)
+        for (const Triangle& t : item.triangles)
+            for (int c = 0; c < 3; ++c)
+                for (size_t o = 0; o < axes.size(); ++o) {
+                    const float d = glm::dot(t.position(c), axes[o]);
+                    lo[o] = std::min(lo[o], d), hi[o] = std::max(hi[o], d);
+                }
+    const int slabs = options.slabsPerOrientation;
+    std::vector<int> planeOf(axes.size() * size_t(slabs), -1);
+    std::vector<Plane> planes;
+    std::vector<glm::vec3> tangents, bitangents;
+    for (const glm::vec3& n : axes) tangents.push_back(tangentOf(n)), bitangents.push_back(glm::cross(n, tangentOf(n)));
+    std::vector<int> itemPlane(items.size());
+    for (size_t i = 0; i < items.size(); ++i) {
+        const Item& item = items[i];
+        const auto o = size_t(item.orientation);
+        const float thickness = std::max(hi[o] - lo[o], 1e-6f) / float(slabs);
+        const int slab = std::clamp(int((glm::dot(item.centre, axes[o]) - lo[o]) / thickness), 0, slabs - 1);
+        int& p = planeOf[o * size_t(slabs) + size_t(slab)];
+        if (p < 0) {
+            p = static_cast<int>(planes.size());
+            planes.push_back({item.orientation, lo[o] + (float(slab) + 0.5f) * thickness, {}});
+        }
+        planes[size_t(p)].items.push_back(i);
+        itemPlane[i] = p;
+    }
+
+    // Where each item's corners land: turned about its centre, then along the normal onto its plane.
+    auto moved = [&](const Item& item, glm::vec3 position, const Plane& plane) {
+        const glm::vec3 axis = axes[size_t(plane.orientation)];
+        const glm::vec3 turned = item.centre + item.turn * (position - item.centre);
+        return turned + (plane.offset - glm::dot(turned, axis)) * axis;
+    };
+    auto inPlane = [&](const Plane& plane, glm::vec3 p) {
+        return glm::vec2(glm::dot(p, tangents[size_t(plane.orientation)]),
+                         glm::dot(p, bitangents[size_t(plane.orientation)]));
+    };
+    double movedArea = 0.0, totalArea = 0.0, planeArea = 0.0;
+    for (size_t i = 0; i < items.size(); ++i) {
+        Plane& plane = planes[size_t(itemPlane[i])];
+        double shift = 0.0;
+        for (const Triangle& t : items[i].triangles)
+            for (int c = 0; c < 3; ++c) {
+                const glm::vec3 p = moved(items[i], t.position(c), plane);
+                const glm::vec2 uv = inPlane(plane, p);
+                plane.lo = glm::min(plane.lo, uv), plane.hi = glm::max(plane.hi, uv);
+                shift += glm::length(p - t.position(c));
+            }
+        movedArea += items[i].area * shift / double(3 * items[i].triangles.size());
+        totalArea += items[i].area;
+    }
+    for (const Plane& p : planes) planeArea += double(p.hi.x - p.lo.x) * double(p.hi.y - p.lo.y);
+
+    // The largest density that packs: from the area bound down in 5 % steps.
+    float texelsPerMetre =
+        float(std::sqrt(0.85 * double(region.width) * double(region.height) / std::max(planeArea, 1e-12)));
+    while (!pack(planes, region, texelsPerMetre)) texelsPerMetre *= 0.95f;
+    cloud.texelsPerMetre = texelsPerMetre;
+    cloud.planes = static_cast<int>(planes.size());
+    cloud.objectError = float(movedArea / totalArea + 0.5 / double(texelsPerMetre));
+
+    // Clear the region: open texels keep the atlas's green, alpha 0 (as its cells' borders).
+    for (int y = region.y; y < region.y + region.height; ++y)
+        for (int x = region.x; x < region.x + region.width; ++x) {
+            uint8_t* p = atlas.pixel(x, y);
+            p[0] = 50, p[1] = 100, p[2] = 30, p[3] = 0;
+        }
+
+    // Bake: 16 samples a texel, each covered once, by the first item that covers it.
+    size_t opaque = 0, interior = 0;
+    for (const Plane& plane : planes) {
+        const int w = plane.width, h = plane.height;
+        std::vector<uint16_t> mask(size_t(w) * size_t(h), 0);
+        std::vector<glm::vec3> colour(size_t(w) * size_t(h), glm::vec3(0.0f));
+        auto toTexel = [&](glm::vec2 uv) { return (uv - plane.lo) * texelsPerMetre + float(kBorderTexels); };
+        for (const size_t i : plane.items)
+            for (const Triangle& t : items[i].triangles) {
+                std::array<glm::vec2, 3> q;
+                for (int c = 0; c < 3; ++c)
+                    q[size_t(c)] = toTexel(inPlane(plane, moved(items[i], t.position(c), plane)));
+                const float twiceArea = (q[1].x - q[0].x) * (q[2].y - q[0].y) - (q[2].x - q[0].x) * (q[1].y - q[0].y);
+                if (std::abs(twiceArea) < 1e-12f) continue;
+                const glm::vec2 boxLo = glm::min(q[0], glm::min(q[1], q[2])),
+                                boxHi = glm::max(q[0], glm::max(q[1], q[2]));
+                for (int ty = std::max(0, int(boxLo.y)); ty <= std::min(h - 1, int(boxHi.y)); ++ty)
+                    for (int tx = std::max(0, int(boxLo.x)); tx <= std::min(w - 1, int(boxHi.x)); ++tx)
+                        for (int s = 0; s < kSamplesPerSide * kSamplesPerSide; ++s) {
+                            const uint16_t bit = uint16_t(1u << s);
+                            uint16_t& m = mask[size_t(ty) * size_t(w) + size_t(tx)];
+                            if (m & bit) continue;
+                            const glm::vec2 p(float(tx) + (float(s % kSamplesPerSide) + 0.5f) / kSamplesPerSide,
+                                              float(ty) + (float(s / kSamplesPerSide) + 0.5f) / kSamplesPerSide);
+                            // Barycentric weights of corners 1 and 2; inside when all three lie in [0, 1].
+                            const float b1 =
+                                ((p.x - q[0].x) * (q[2].y - q[0].y) - (q[2].x - q[0].x) * (p.y - q[0].y)) / twiceArea;
+                            const float b2 =
+                                ((q[1].x - q[0].x) * (p.y - q[0].y) - (p.x - q[0].x) * (q[1].y - q[0].y)) / twiceArea;
+                            if (b1 < 0.0f || b2 < 0.0f || b1 + b2 > 1.0f) continue;
+                            glm::vec3 rgb;
+                            if (t.source->alphaTested) {
+                                const glm::vec2 uv =
+                                    (1.0f - b1 - b2) * t.vertex(0).uv + b1 * t.vertex(1).uv + b2 * t.vertex(2).uv;
+                                const uint8_t* texel = texelAt(atlas, uv);
+                                if (float(texel[3]) < options.alphaCutoff * 255.0f) continue;
+                                rgb = glm::vec3(texel[0], texel[1], texel[2]) * t.vertex(0).albedo;
+                            } else {
+                                rgb = 255.0f * t.vertex(0).albedo;
+                            }
+                            m |= bit;
+                            colour[size_t(ty) * size_t(w) + size_t(tx)] += rgb;
+                        }
+            }
+        for (int ty = kBorderTexels; ty < h - kBorderTexels; ++ty)
+            for (int tx = kBorderTexels; tx < w - kBorderTexels; ++tx) {
+                const size_t k = size_t(ty) * size_t(w) + size_t(tx);
+                const int covered = std::popcount(mask[k]);
+                ++interior;
+                if (covered == 0) continue;
+                uint8_t* out = atlas.pixel(plane.x + tx, plane.y + ty);
+                const glm::vec3 mean = glm::clamp(colour[k] / float(covered), 0.0f, 255.0f);
+                out[0] = uint8_t(mean.r), out[1] = uint8_t(mean.g), out[2] = uint8_t(mean.b);
+                const bool keep = covered > kBayer[size_t((ty % 4) * 4 + tx % 4)];
+                out[3] = keep ? 255 : 0;
+                opaque += keep ? 1 : 0;
+            }
+        // The plane's quad spans its interior texels exactly.
+        const glm::vec3 n = axes[size_t(plane.orientation)], u = tangents[size_t(plane.orientation)],
+                        v = bitangents[size_t(plane.orientation)];
+        const glm::vec2 span = glm::vec2(float(w - 2 * kBorderTexels), float(h - 2 * kBorderTexels)) / texelsPerMetre;
+        const auto first = static_cast<uint32_t>(cloud.vertices.size());
+        for (int corner = 0; corner < 4; ++corner) {
+            const glm::vec2 f(float(corner & 1), float(corner >> 1));
+            const glm::vec2 planar = plane.lo + f * span;
+            const glm::vec2 texel = glm::vec2(plane.x + kBorderTexels, plane.y + kBorderTexels) +
+                                    f * glm::vec2(float(w - 2 * kBorderTexels), float(h - 2 * kBorderTexels));
+            cloud.vertices.push_back({plane.offset * n + planar.x * u + planar.y * v, n, glm::vec3(1.0f),
+                                      texel / glm::vec2(float(atlas.width), float(atlas.height))});
+        }
+        cloud.indices.insert(cloud.indices.end(), {first, first + 1, first + 3, first, first + 3, first + 2});
+    }
+    cloud.coverage = interior > 0 ? double(opaque) / double(interior) : 0.0;
+    return cloud;
+}
+
+} // namespace shadowkit::scene
