@@ -1,0 +1,84 @@
+#!/usr/bin/env python3
+"""docs/materials.md's foliage levels-of-detail tables, from what tools/measure-foliage-lod.sh measured.
+
+Usage: foliage_lod_tables.py RESULTS_DIR
+  RESULTS_DIR  eval-{lod,no-lod,s16}.json and soft-{lod,no-lod,s16}.json (`shadowkit eval --forest
+               leafy --views all`, hard and with `--sun-angle 0.53 --filter pcss`), bench
+               leafy{,-no-lod,-s16}.json (10,000 trees) and leafy-100k{,-no-lod}.json (100,000 trees,
+               --same-density), summary.txt (the machine)
+
+Writes the tables between `<!-- table foliage-lod...: tools/measure-foliage-lod.sh -->` and
+`<!-- /table -->`: the error of the levels against the full geometry's truth, view by view, and
+the work and GPU time they save. "lod" is the default (--lod-foliage-scale 8), "s16" the scale
+that meets the triangle target, "no-lod" every tree at full detail.
+"""
+import json
+import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from readme_tables import VIEWS, write_into  # noqa: E402
+
+PAGE = "docs/materials.md"
+SETS = [("no-lod", "`--no-lod`"), ("lod", "levels (default, scale 8)"), ("s16", "`--lod-foliage-scale 16`")]
+
+
+def views(path):
+    with open(path) as f:
+        return {v["view"]: v for v in json.load(f)["views"]}
+
+
+def runs(path):
+    if not path.exists():
+        return {}
+    with open(path) as f:
+        return {r["view"]: r for r in json.load(f)["runs"]}
+
+
+def machine(d):
+    lines = (d / "summary.txt").read_text().splitlines() if (d / "summary.txt").exists() else []
+    gpu = next((l.split(",")[0] for l in lines if l.startswith("NVIDIA")), None)
+    return gpu or "this machine"
+
+
+def error_table(d):
+    hard = {s: views(d / f"eval-{s}.json") for s, _ in SETS}
+    soft = {s: views(d / f"soft-{s}.json") for s, _ in SETS}
+    out = ["| view | " + " | ".join(f"{label}: wrong % / soft_mae" for _, label in SETS) + " | valid pixels, levels / none |",
+           "|---|" + "---:|" * (len(SETS) + 1)]
+    for view in VIEWS:
+        cells = [f"{hard[s][view]['wrong_pct']:.2f} / {soft[s][view]['soft_mae']:.4f}" for s, _ in SETS]
+        valid = hard["lod"][view]["valid_px"] / hard["no-lod"][view]["valid_px"]
+        out.append(f"| {view} | " + " | ".join(cells) + f" | {valid:.3f} |")
+    worst = {s: max(hard[s][v]["wrong_pct"] - hard["no-lod"][v]["wrong_pct"] for v in VIEWS) for s, _ in SETS[1:]}
+    ratio = {s: max(soft[s][v]["soft_mae"] / soft["no-lod"][v]["soft_mae"] for v in VIEWS) for s, _ in SETS[1:]}
+    out.append("")
+    out.append("Worst view against `--no-lod`: " + "; ".join(
+        f"{label} {worst[s]:+.2f} points of `wrong_pct`, `soft_mae` ×{ratio[s]:.3f}" for s, label in SETS[1:]) + ".")
+    return "\n".join(out)
+
+
+def work_table(d):
+    out = ["| trees | view | set | shadow pass: M triangles | shadow GPU ms | main pass: M triangles | main GPU ms | frame CPU ms |",
+           "|---:|---|---|---:|---:|---:|---:|---:|"]
+    for trees, suffix in (("10,000", ""), ("100,000", "-100k")):
+        for s, label in SETS:
+            name = "leafy" + suffix + ("" if s == "lod" else f"-{s}")
+            for view, r in runs(d / f"{name}.json").items():
+                out.append(f"| {trees} | {view} | {label} | {r['shadow']['triangles'] / 1e6:.2f} | "
+                           f"{r['shadow']['gpu_ms']['median']:.1f} | {r['main']['triangles'] / 1e6:.2f} | "
+                           f"{r['main']['gpu_ms']['median']:.1f} | {r['frame_cpu_ms']['median']:.2f} |")
+    return "\n".join(out)
+
+
+def main(argv):
+    if len(argv) != 2:
+        sys.exit(__doc__)
+    d = Path(argv[1])
+    write_into(f"{PAGE}:foliage-lod", error_table(d))
+    write_into(f"{PAGE}:foliage-lod-work", work_table(d))
+    print(f"foliage_lod_tables: figures of {machine(d)}", file=sys.stderr)
+
+
+if __name__ == "__main__":
+    main(sys.argv)

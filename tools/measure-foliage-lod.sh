@@ -1,0 +1,44 @@
+#!/usr/bin/env bash
+# tools/measure-foliage-lod.sh: the leafy forest's levels of detail down to billboard clouds,
+# against the full geometry's truth and in work — docs/materials.md "Foliage levels of detail".
+#
+# Runs, for the default levels (--lod-foliage-scale 8), a looser scale (16) and none (--no-lod):
+# `eval --forest leafy --views all` hard and under the real sun (--sun-angle 0.53 --filter pcss),
+# and `bench --forest leafy` at 10,000 trees and at 100,000 (--same-density), into
+# out/foliage-lod/; then writes the tables. On this project's 2-core llvmpipe machine about
+# 40 minutes (the bench frames without levels are the slow part); on a GPU machine a few.
+#   FOLIAGE_LOD_RESULTS=DIR_OR_TGZ  writes the tables from a kept run instead (the docs' figures:
+#                                   data/gpu/h200-2026-11-28-foliage-lod.tgz)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+if [[ -n ${FOLIAGE_LOD_RESULTS:-} ]]; then
+  dir=$FOLIAGE_LOD_RESULTS
+  if [[ -f $dir ]]; then
+    mkdir -p out/foliage-lod-kept && tar -xzf "$dir" -C out/foliage-lod-kept && dir=out/foliage-lod-kept
+  fi
+  exec python3 tools/foliage_lod_tables.py "$dir"
+fi
+[ -x build/apps/shadowkit/shadowkit ] || tools/build.sh
+B=build/apps/shadowkit/shadowkit
+out=out/foliage-lod
+mkdir -p "$out"
+{ echo "commit $(git rev-parse --short HEAD), $(nproc) CPU cores, $(date -u +%Y-%m-%dT%H:%MZ)"; } >"$out/summary.txt"
+for set in "lod|" "no-lod|--no-lod" "s16|--lod-foliage-scale 16"; do
+  name=${set%%|*} options=${set#*|}
+  echo "== $name: eval, hard and under the real sun" >&2
+  # shellcheck disable=SC2086
+  $B eval --forest leafy --views all $options --json "$out/eval-$name.json" >/dev/null
+  # shellcheck disable=SC2086
+  $B eval --forest leafy --views all --sun-angle 0.53 --filter pcss $options --json "$out/soft-$name.json" >/dev/null
+  suffix=$([[ $name == lod ]] && echo "" || echo "-$name")
+  echo "== $name: bench, 10,000 trees" >&2
+  # shellcheck disable=SC2086
+  $B bench --forest leafy --trees 10000 --views perpendicular,aerial --frames 3 $options --json "$out/leafy$suffix.json" >/dev/null
+  if [[ $name != s16 ]]; then
+    echo "== $name: bench, 100,000 trees" >&2
+    # shellcheck disable=SC2086
+    $B bench --forest leafy --trees 100000 --same-density --views perpendicular,aerial --frames 3 $options \
+      --json "$out/leafy-100k$suffix.json" >/dev/null
+  fi
+done
+python3 tools/foliage_lod_tables.py "$out"
