@@ -17,7 +17,7 @@ std::vector<GpuScene::Range> rangesOf(const std::vector<scene::LodLevel>& chain)
     std::vector<GpuScene::Range> ranges;
     for (size_t l = 0; l < std::min(chain.size(), kMaxLodLevels); ++l)
         ranges.push_back({static_cast<GLsizei>(chain[l].indexCount), chain[l].firstIndex * sizeof(uint32_t),
-                          chain[l].objectError, chain[l].closed});
+                          chain[l].objectError, chain[l].closed, chain[l].texture});
     return ranges;
 }
 
@@ -34,8 +34,7 @@ GLenum glWrap(scene::TextureWrap wrap) {
 // sparse canopy thins again — and costs llvmpipe a second bilinear lookup in every pass.
 Texture uploadTexture(const scene::Texture& texture, std::optional<float> alphaCutoff) {
     const std::vector<scene::Image> chain =
-        texture.mipmaps ? scene::buildMipChain(texture.image, alphaCutoff, texture.coverageRegions)
-                        : std::vector<scene::Image>{texture.image};
+        texture.mipmaps ? scene::buildMipChain(texture.image, alphaCutoff) : std::vector<scene::Image>{texture.image};
     GLuint id = 0;
     glCreateTextures(GL_TEXTURE_2D, 1, &id);
     Texture gl(id);
@@ -72,6 +71,14 @@ GpuScene::GpuScene(const scene::Scene& scene, std::span<const scene::MeshLods> l
                 cutoff = m.alphaCutoff;
                 break;
             }
+        // A level's own texture (a billboard cloud's) is alpha-tested as its mesh's material is.
+        for (size_t m = 0; m < scene.meshes.size() && m < lods.size() && !cutoff; ++m) {
+            const scene::Material* material = scene.materialOf(scene.meshes[m]);
+            if (!material || !material->alphaTested()) continue;
+            for (const auto* chain : {&lods[m].camera, &lods[m].shadow})
+                for (const scene::LodLevel& level : *chain)
+                    if (level.texture == static_cast<int32_t>(t)) cutoff = material->alphaCutoff;
+        }
         m_textures.push_back(uploadTexture(scene.textures[t], cutoff));
     }
     scene::Texture white;
@@ -215,7 +222,7 @@ DrawStats GpuScene::drawBatches(const PassList& list, const PassPrograms& progra
                 glUniform1f(kBaseAlphaLocation, batch.material.baseAlpha);
                 glUniform1f(kAlphaCutoffLocation, batch.material.alphaCutoff);
             }
-            stats += drawBatch(batch, list, programs, culling, setInstanceBase, replicas, volume);
+            stats += drawBatch(batch, list, programs, culling, materialSweep, setInstanceBase, replicas, volume);
         }
     }
     glBindVertexArray(0);
@@ -223,7 +230,7 @@ DrawStats GpuScene::drawBatches(const PassList& list, const PassPrograms& progra
 }
 
 DrawStats GpuScene::drawBatch(const GpuBatch& batch, const PassList& list, const PassPrograms& programs, bool culling,
-                              bool setInstanceBase, int replicas,
+                              bool materialBound, bool setInstanceBase, int replicas,
                               const std::span<const visibility::HalfSpace>* volume) const {
     DrawStats stats;
     const GpuMesh& mesh = m_meshes[batch.mesh];
@@ -244,7 +251,11 @@ DrawStats GpuScene::drawBatch(const GpuBatch& batch, const PassList& list, const
         const bool twoSided =
             culling && (batch.material.doubleSided || batch.mirrored || (programs.cullClosedOnly && !range.closed));
         if (twoSided) glDisable(GL_CULL_FACE);
+        // A level with a texture of its own (a billboard cloud) reads it in place of the material's.
+        const bool ownTexture = materialBound && range.texture >= 0 && size_t(range.texture) < m_textures.size();
+        if (ownTexture) glBindTextureUnit(kBaseColorUnit, m_textures[size_t(range.texture)].id());
         stats += drawLevel(batch, list, level, range, setInstanceBase, replicas, volume);
+        if (ownTexture) glBindTextureUnit(kBaseColorUnit, batch.material.texture);
         if (twoSided) glEnable(GL_CULL_FACE);
     }
     return stats;

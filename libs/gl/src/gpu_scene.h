@@ -88,6 +88,7 @@ public:
         size_t byteOffset = 0;
         float objectError = 0.0f; // scene::LodLevel::objectError
         bool closed = false;      // scene::LodLevel::closed
+        int32_t texture = -1;     // scene::LodLevel::texture: its own base colour, else the material's
     };
 
 private:
@@ -116,8 +117,10 @@ private:
     };
     DrawStats drawBatches(const PassList& list, const PassPrograms& programs, bool setInstanceBase, int replicas,
                           const std::span<const visibility::HalfSpace>* volume) const;
+    // materialBound: the material program is bound (a level's own texture is bound with it).
     DrawStats drawBatch(const GpuBatch& batch, const PassList& list, const PassPrograms& programs, bool culling,
-                        bool setInstanceBase, int replicas, const std::span<const visibility::HalfSpace>* volume) const;
+                        bool materialBound, bool setInstanceBase, int replicas,
+                        const std::span<const visibility::HalfSpace>* volume) const;
     // One level of a batch: its instances in `list`, one draw (or one per run of clusters).
     DrawStats drawLevel(const GpuBatch& batch, const PassList& list, size_t level, const Range& range,
                         bool setInstanceBase, int replicas, const std::span<const visibility::HalfSpace>* volume) const;

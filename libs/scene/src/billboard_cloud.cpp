@@ -65,7 +65,7 @@ struct Plane {
     float offset = 0.0f; // along the orientation's normal, object metres
     std::vector<size_t> items;
     glm::vec2 lo{INFINITY}, hi{-INFINITY};   // in-plane bounds, object metres
-    int x = 0, y = 0, width = 0, height = 0; // texels of the atlas, border included
+    int x = 0, y = 0, width = 0, height = 0; // texels of the target, border included
 };
 
 // An in-plane basis for each orientation.
@@ -88,7 +88,7 @@ std::vector<Item> itemsOf(std::span<const CloudSource> sources) {
         const size_t triangles = source.indices.size() / 3;
         std::vector<uint32_t> parent(mesh.vertices.size());
         std::iota(parent.begin(), parent.end(), 0u);
-        if (source.alphaTested)
+        if (source.texture)
             for (size_t t = 0; t < triangles; ++t)
                 for (int k = 1; k < 3; ++k) {
                     const size_t a = findRoot(parent, source.indices[3 * t]);
@@ -99,7 +99,7 @@ std::vector<Item> itemsOf(std::span<const CloudSource> sources) {
         std::vector<int> groupOfRoot(mesh.vertices.size(), -1);
         for (size_t t = 0; t < triangles; ++t) {
             const Triangle triangle{&source, 3 * t};
-            if (!source.alphaTested) {
+            if (!source.texture) {
                 groups.push_back({triangle});
                 continue;
             }
@@ -178,11 +178,11 @@ bool pack(std::vector<Plane>& planes, const ImageRegion& region, float texelsPer
     return true;
 }
 
-// A texel of the atlas at uv (nearest; v runs down the image, glTF's convention).
-const uint8_t* texelAt(const Image& atlas, glm::vec2 uv) {
-    const int x = std::clamp(int(std::floor(uv.x * float(atlas.width))), 0, atlas.width - 1);
-    const int y = std::clamp(int(std::floor(uv.y * float(atlas.height))), 0, atlas.height - 1);
-    return atlas.pixel(x, y);
+// A texel of a texture at uv (nearest; v runs down the image, glTF's convention).
+const uint8_t* texelAt(const Image& texture, glm::vec2 uv) {
+    const int x = std::clamp(int(std::floor(uv.x * float(texture.width))), 0, texture.width - 1);
+    const int y = std::clamp(int(std::floor(uv.y * float(texture.height))), 0, texture.height - 1);
+    return texture.pixel(x, y);
 }
 
 // 4 × 4 ordered-dither thresholds (Bayer), in sixteenths: a region of coverage c/16 keeps
@@ -191,11 +191,11 @@ constexpr std::array<int, 16> kBayer{0, 8, 2, 10, 12, 4, 14, 6, 3, 11, 1, 9, 15,
 
 } // namespace
 
-BillboardCloud bakeBillboardCloud(std::span<const CloudSource> sources, Image& atlas, ImageRegion region,
+BillboardCloud bakeBillboardCloud(std::span<const CloudSource> sources, Image& target, ImageRegion region,
                                   const BillboardCloudOptions& options) {
     SK_ASSERT(region.x >= 0 && region.y >= 0 && region.width > 0 && region.height > 0 &&
-                  region.x + region.width <= atlas.width && region.y + region.height <= atlas.height,
-              "bakeBillboardCloud(): the region lies outside the atlas");
+                  region.x + region.width <= target.width && region.y + region.height <= target.height,
+              "bakeBillboardCloud(): the region lies outside the target");
     SK_ASSERT(options.slabsPerOrientation >= 1 && options.slabsPerOrientation <= 64,
               "bakeBillboardCloud(): slabsPerOrientation out of [1, 64]");
     BillboardCloud cloud;
@@ -267,10 +267,10 @@ BillboardCloud bakeBillboardCloud(std::span<const CloudSource> sources, Image& a
     cloud.planes = static_cast<int>(planes.size());
     cloud.objectError = float(movedArea / totalArea + 0.5 / double(texelsPerMetre));
 
-    // Clear the region: open texels keep the atlas's green, alpha 0 (as its cells' borders).
+    // Clear the region: open texels a leaf's green (bilinear lookups at a plane's edge mix towards green), alpha 0.
     for (int y = region.y; y < region.y + region.height; ++y)
         for (int x = region.x; x < region.x + region.width; ++x) {
-            uint8_t* p = atlas.pixel(x, y);
+            uint8_t* p = target.pixel(x, y);
             p[0] = 50, p[1] = 100, p[2] = 30, p[3] = 0;
         }
 
@@ -305,10 +305,10 @@ BillboardCloud bakeBillboardCloud(std::span<const CloudSource> sources, Image& a
                                 ((q[1].x - q[0].x) * (p.y - q[0].y) - (p.x - q[0].x) * (q[1].y - q[0].y)) / twiceArea;
                             if (b1 < 0.0f || b2 < 0.0f || b1 + b2 > 1.0f) continue;
                             glm::vec3 rgb;
-                            if (t.source->alphaTested) {
+                            if (t.source->texture) {
                                 const glm::vec2 uv =
                                     (1.0f - b1 - b2) * t.vertex(0).uv + b1 * t.vertex(1).uv + b2 * t.vertex(2).uv;
-                                const uint8_t* texel = texelAt(atlas, uv);
+                                const uint8_t* texel = texelAt(*t.source->texture, uv);
                                 if (float(texel[3]) < options.alphaCutoff * 255.0f) continue;
                                 rgb = glm::vec3(texel[0], texel[1], texel[2]) * t.vertex(0).albedo;
                             } else {
@@ -324,7 +324,7 @@ BillboardCloud bakeBillboardCloud(std::span<const CloudSource> sources, Image& a
                 const int covered = std::popcount(mask[k]);
                 ++interior;
                 if (covered == 0) continue;
-                uint8_t* out = atlas.pixel(plane.x + tx, plane.y + ty);
+                uint8_t* out = target.pixel(plane.x + tx, plane.y + ty);
                 const glm::vec3 mean = glm::clamp(colour[k] / float(covered), 0.0f, 255.0f);
                 out[0] = uint8_t(mean.r), out[1] = uint8_t(mean.g), out[2] = uint8_t(mean.b);
                 const bool keep = covered > kBayer[size_t((ty % 4) * 4 + tx % 4)];
@@ -342,7 +342,7 @@ BillboardCloud bakeBillboardCloud(std::span<const CloudSource> sources, Image& a
             const glm::vec2 texel = glm::vec2(plane.x + kBorderTexels, plane.y + kBorderTexels) +
                                     f * glm::vec2(float(w - 2 * kBorderTexels), float(h - 2 * kBorderTexels));
             cloud.vertices.push_back({plane.offset * n + planar.x * u + planar.y * v, n, glm::vec3(1.0f),
-                                      texel / glm::vec2(float(atlas.width), float(atlas.height))});
+                                      texel / glm::vec2(float(target.width), float(target.height))});
         }
         cloud.indices.insert(cloud.indices.end(), {first, first + 1, first + 3, first, first + 3, first + 2});
     }

@@ -126,8 +126,8 @@ void paintShrubCell(Image& atlas, int cx, int cy, SplitMix64& rng) {
 
 // The uvs of an atlas cell, bottom-left to top-right (addCard's convention: rows top first).
 std::pair<glm::vec2, glm::vec2> cellUvs(int cx, int cy) {
-    const float across = 1.0f / kLeafAtlasCells, down = 1.0f / (2 * kLeafAtlasCells); // the upper half's cells
-    return {{float(cx) * across, float(cy + 1) * down}, {float(cx + 1) * across, float(cy) * down}};
+    const float step = 1.0f / kLeafAtlasCells;
+    return {{float(cx) * step, float(cy + 1) * step}, {float(cx + 1) * step, float(cy) * step}};
 }
 
 // The cell a card of this species shows, picked at random among the species' cells.
@@ -316,7 +316,7 @@ void makeShrub(LeafyTree& tree, std::vector<Card>& cards, SplitMix64& rng) {
 
 Texture makeLeafAtlas() {
     Texture atlas;
-    atlas.image = Image(kLeafAtlasCells * kCellTexels, 2 * kLeafAtlasCells * kCellTexels);
+    atlas.image = Image(kLeafAtlasCells * kCellTexels, kLeafAtlasCells * kCellTexels);
     // Open texels keep a leaf green (alpha 0): bilinear lookups at a leaf's edge mix towards
     // green, not black.
     for (size_t i = 0; i < atlas.image.rgba.size(); i += 4) {
@@ -330,9 +330,6 @@ Texture makeLeafAtlas() {
         paintShrubCell(atlas.image, cx, 3, rng);
     }
     atlas.wrapS = atlas.wrapT = TextureWrap::ClampToEdge;
-    // The leaf cells keep their coverage in the mips apart from the far levels' sparse planes.
-    atlas.coverageRegions = {{0, 0, atlas.image.width, kLeafAtlasCells * kCellTexels}};
-    for (int k = 0; k < kTreeSpeciesCount; ++k) atlas.coverageRegions.push_back(farLevelRegion(TreeSpecies(k)));
     return atlas;
 }
 
@@ -360,23 +357,21 @@ LeafyTree makeLeafyTree(TreeSpecies species, uint64_t seed) {
     return tree;
 }
 
-ImageRegion farLevelRegion(TreeSpecies species) {
-    // The lower half in three bands of 168 rows, one per species (8-row aligned).
-    const int width = kLeafAtlasCells * kCellTexels, top = kLeafAtlasCells * kCellTexels, rows = 168;
-    return {0, top + int(species) * rows, width, rows};
-}
-
-BillboardCloud addFarLevel(LeafyTree& tree, TreeSpecies species, Image& atlas) {
+FarLevel addFarLevel(LeafyTree& tree, const Image& leafAtlas, int32_t cloudTextureIndex) {
     const std::span<const uint32_t> branches(tree.wood.indices.begin() + std::ptrdiff_t(tree.trunkIndices),
                                              tree.wood.indices.end());
-    const CloudSource sources[] = {{&tree.leaves, tree.leaves.indices, true}, {&tree.wood, branches, false}};
-    BillboardCloud cloud = bakeBillboardCloud(sources, atlas, farLevelRegion(species));
+    const CloudSource sources[] = {{&tree.leaves, tree.leaves.indices, &leafAtlas}, {&tree.wood, branches, nullptr}};
+    FarLevel far;
+    far.texture.image = Image(512, 256);
+    far.texture.wrapS = far.texture.wrapT = TextureWrap::ClampToEdge;
+    far.cloud = bakeBillboardCloud(sources, far.texture.image, {0, 0, 512, 256});
+    BillboardCloud& cloud = far.cloud;
     // A pass takes the coarsest level within its bound, so errors must grow along the chain: a
     // card level that errs as much as the cloud (its cards' own size) but draws a hundred times
     // its triangles is dropped. Its cards stay in the vertex buffer, unreferenced.
     while (!tree.leaves.authoredLods.empty() && tree.leaves.authoredLods.back().objectError >= cloud.objectError)
         tree.leaves.authoredLods.pop_back();
-    AuthoredLod leaves{{}, cloud.objectError, true};
+    AuthoredLod leaves{{}, cloud.objectError, true, cloudTextureIndex};
     const auto base = static_cast<uint32_t>(tree.leaves.vertices.size());
     tree.leaves.vertices.insert(tree.leaves.vertices.end(), cloud.vertices.begin(), cloud.vertices.end());
     for (const uint32_t i : cloud.indices) leaves.indices.push_back(base + i);
@@ -386,7 +381,7 @@ BillboardCloud addFarLevel(LeafyTree& tree, TreeSpecies species, Image& atlas) {
                                tree.wood.indices.begin() + std::ptrdiff_t(tree.trunkIndices)),
          cloud.objectError, true});
     tree.leaves.computeBounds();
-    return cloud;
+    return far;
 }
 
 Material leafMaterial(int32_t atlasTexture) {

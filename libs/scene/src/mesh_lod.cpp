@@ -75,7 +75,7 @@ MeshLods buildLods(const Mesh& mesh, const LodOptions& o) {
             if (static_cast<int>(out.camera.size()) >= o.maxLevels) break;
             out.camera.push_back({static_cast<uint32_t>(out.indices.size()),
                                   static_cast<uint32_t>(level.indices.size()), level.objectError, false,
-                                  level.keepsCoverage});
+                                  level.keepsCoverage, level.texture});
             out.indices.insert(out.indices.end(), level.indices.begin(), level.indices.end());
         }
         out.shadow = out.camera;

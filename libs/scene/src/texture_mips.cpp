@@ -1,7 +1,5 @@
 #include "shadowkit/scene/texture_mips.h"
 
-#include "shadowkit/core/conventions.h"
-
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -44,13 +42,13 @@ FloatLevel halve(const FloatLevel& from) {
 
 uint8_t toByte(float v) { return static_cast<uint8_t>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)); }
 
-// The image of a level with each texel's alpha scaled by its `alphaScale`.
-Image toImage(const FloatLevel& level, const std::vector<float>& alphaScale) {
+// The image of a level with its alpha scaled by `scale`.
+Image toImage(const FloatLevel& level, float alphaScale) {
     Image image(level.width, level.height);
     for (size_t i = 0; i < level.texels.size(); ++i) {
         const glm::vec4& t = level.texels[i];
         uint8_t* p = image.rgba.data() + 4 * i;
-        p[0] = toByte(t.r), p[1] = toByte(t.g), p[2] = toByte(t.b), p[3] = toByte(t.a * alphaScale[i]);
+        p[0] = toByte(t.r), p[1] = toByte(t.g), p[2] = toByte(t.b), p[3] = toByte(t.a * alphaScale);
     }
     return image;
 }
@@ -78,38 +76,6 @@ std::vector<float> bilinearSamples(int w, int h, Alpha alpha) {
     return samples;
 }
 
-// A region at mip level `l`: its texels halved l times (empty once it no longer spans a texel).
-ImageRegion atLevel(const ImageRegion& r, int l) {
-    const int x0 = r.x >> l, y0 = r.y >> l, x1 = (r.x + r.width) >> l, y1 = (r.y + r.height) >> l;
-    return {x0, y0, x1 - x0, y1 - y0};
-}
-
-// The scale that gives `region` of a level (its samples clamped at its own edges) the sampled
-// coverage `target` at `cutoff`. Interpolation is linear, so scaling alpha scales every sample:
-// the scale that covers the k = ⌈target · n⌉ highest samples puts the k-th highest at the
-// cutoff (a selection, not a search). Half a byte above it, so rounding to bytes does not undo
-// it. Texels that clamp at alpha 1 can pull a sample next to them back under the cutoff: what
-// that costs is bounded by TextureMipsTest (the bytes' sampled coverage, within 3 points).
-float coverageScale(const FloatLevel& level, const ImageRegion& region, double target, float cutoff) {
-    std::vector<float> samples = bilinearSamples(region.width, region.height, [&](size_t texel) {
-        const size_t x = size_t(region.x) + texel % size_t(region.width),
-                     y = size_t(region.y) + texel / size_t(region.width);
-        return level.texels[y * size_t(level.width) + x].a;
-    });
-    const auto covered = static_cast<size_t>(std::ceil(target * double(samples.size()) - 1e-9));
-    if (covered == 0) return 0.0f;
-    const auto kth = samples.begin() + std::ptrdiff_t(covered - 1);
-    std::nth_element(samples.begin(), kth, samples.end(), std::greater<float>());
-    return *kth > 0.0f ? std::min((cutoff + 0.5f / 255.0f) / *kth, 256.0f) : 256.0f;
-}
-
-// Level 0's sampled coverage of a region, as an image of its own.
-double regionCoverage(const Image& image, const ImageRegion& r, float cutoff) {
-    Image part(r.width, r.height);
-    for (int y = 0; y < r.height; ++y) std::copy_n(image.pixel(r.x, r.y + y), size_t(r.width) * 4, part.pixel(0, y));
-    return sampledAlphaCoverage(part, cutoff);
-}
-
 } // namespace
 
 double sampledAlphaCoverage(const Image& image, float cutoff) {
@@ -129,33 +95,29 @@ double alphaCoverage(const Image& image, float cutoff) {
     return double(covered) / double(texels);
 }
 
-std::vector<Image> buildMipChain(const Image& level0, std::optional<float> alphaCutoff,
-                                 std::span<const ImageRegion> regions) {
+std::vector<Image> buildMipChain(const Image& level0, std::optional<float> alphaCutoff) {
     std::vector<Image> chain{level0};
     if (level0.width <= 0 || level0.height <= 0) return chain;
-    const bool keepCoverage = alphaCutoff && *alphaCutoff > 0.0f;
-    const double target = keepCoverage ? sampledAlphaCoverage(level0, *alphaCutoff) : 0.0;
-    std::vector<double> targets;
-    for (const ImageRegion& r : regions) {
-        SK_ASSERT(r.x >= 0 && r.y >= 0 && r.width > 0 && r.height > 0 && r.x + r.width <= level0.width &&
-                      r.y + r.height <= level0.height,
-                  "buildMipChain(): a region lies outside the image");
-        targets.push_back(keepCoverage ? regionCoverage(level0, r, *alphaCutoff) : 0.0);
-    }
+    const double target = alphaCutoff ? sampledAlphaCoverage(level0, *alphaCutoff) : 0.0;
     FloatLevel level = toFloat(level0);
-    for (int l = 1; level.width > 1 || level.height > 1; ++l) {
+    while (level.width > 1 || level.height > 1) {
         level = halve(level);
-        std::vector<float> scale(level.texels.size(), 1.0f);
-        if (keepCoverage) {
-            const ImageRegion whole{0, 0, level.width, level.height};
-            std::fill(scale.begin(), scale.end(), coverageScale(level, whole, target, *alphaCutoff));
-            for (size_t k = 0; k < regions.size(); ++k) {
-                const ImageRegion r = atLevel(regions[k], l);
-                if (r.width <= 0 || r.height <= 0) continue;
-                const float s = coverageScale(level, r, targets[k], *alphaCutoff);
-                for (int y = r.y; y < r.y + r.height; ++y)
-                    std::fill_n(scale.begin() + std::ptrdiff_t(size_t(y) * size_t(level.width) + size_t(r.x)), r.width,
-                                s);
+        float scale = 1.0f;
+        if (alphaCutoff && *alphaCutoff > 0.0f) {
+            // Interpolation is linear, so scaling alpha scales every sample: the scale that covers
+            // the k = ⌈target · n⌉ highest samples puts the k-th highest at the cutoff (a selection,
+            // not a search). Half a byte above it, so rounding to bytes does not undo it. Texels that
+            // clamp at alpha 1 can pull a sample next to them back under the cutoff: what that costs
+            // is bounded by TextureMipsTest (the bytes' sampled coverage, within 3 points).
+            std::vector<float> samples =
+                bilinearSamples(level.width, level.height, [&](size_t texel) { return level.texels[texel].a; });
+            const auto covered = static_cast<size_t>(std::ceil(target * double(samples.size()) - 1e-9));
+            if (covered == 0) {
+                scale = 0.0f;
+            } else {
+                const auto kth = samples.begin() + std::ptrdiff_t(covered - 1);
+                std::nth_element(samples.begin(), kth, samples.end(), std::greater<float>());
+                scale = *kth > 0.0f ? std::min((*alphaCutoff + 0.5f / 255.0f) / *kth, 256.0f) : 256.0f;
             }
         }
         chain.push_back(toImage(level, scale));

@@ -26,7 +26,7 @@ struct View {
     int cells;
 };
 
-std::vector<double> coverageSeen(const View& view, std::span<const CloudSource> sources, const Image& atlas) {
+std::vector<double> coverageSeen(const View& view, std::span<const CloudSource> sources) {
     constexpr int kSub = 16;
     const int n = view.cells * kSub;
     const glm::vec3 d = glm::normalize(view.direction);
@@ -54,7 +54,8 @@ std::vector<double> coverageSeen(const View& view, std::span<const CloudSource> 
                     const float b1 = ((p.x - q[0].x) * (q[2].y - q[0].y) - (q[2].x - q[0].x) * (p.y - q[0].y)) / area;
                     const float b2 = ((q[1].x - q[0].x) * (p.y - q[0].y) - (p.x - q[0].x) * (q[1].y - q[0].y)) / area;
                     if (b1 < 0 || b2 < 0 || b1 + b2 > 1) continue;
-                    if (source.alphaTested) {
+                    if (source.texture) {
+                        const Image& atlas = *source.texture;
                         const glm::vec2 uv = (1 - b1 - b2) * corner[0]->uv + b1 * corner[1]->uv + b2 * corner[2]->uv;
                         const int tx = std::clamp(int(uv.x * float(atlas.width)), 0, atlas.width - 1);
                         const int ty = std::clamp(int(uv.y * float(atlas.height)), 0, atlas.height - 1);
@@ -87,9 +88,9 @@ double sum(const std::vector<double>& a) {
 struct BakedTree {
     LeafyTree full, far;
     Texture atlas = makeLeafAtlas();
-    BillboardCloud cloud;
+    FarLevel level;
     explicit BakedTree(TreeSpecies species) : full(makeLeafyTree(species, 1)), far(full) {
-        cloud = addFarLevel(far, species, atlas.image);
+        level = addFarLevel(far, atlas.image, 1);
     }
     std::vector<uint32_t> farIndices() const { return far.leaves.authoredLods.back().indices; }
 };
@@ -115,16 +116,17 @@ TEST(BillboardCloudTest, TheFarLevelCoversWhatTheFullTreeCoversFromEveryDirectio
         const BakedTree tree(species);
         const std::vector<uint32_t> farIndices = tree.farIndices();
         const std::vector<uint32_t> trunk = tree.far.wood.authoredLods.back().indices;
-        const CloudSource full[] = {{&tree.full.leaves, tree.full.leaves.indices, true},
-                                    {&tree.full.wood, tree.full.wood.indices, false}};
-        const CloudSource far[] = {{&tree.far.leaves, farIndices, true}, {&tree.far.wood, trunk, false}};
+        const CloudSource full[] = {{&tree.full.leaves, tree.full.leaves.indices, &tree.atlas.image},
+                                    {&tree.full.wood, tree.full.wood.indices, nullptr}};
+        const CloudSource far[] = {{&tree.far.leaves, farIndices, &tree.level.texture.image},
+                                   {&tree.far.wood, trunk, nullptr}};
         const core::Aabb box = tree.full.leaves.osBounds;
         const glm::vec3 centre(box.center());
         const float side = float(glm::length(box.max - box.min));
         for (const glm::vec3& direction : directions) {
             const View view{direction, centre, side, 16};
-            const std::vector<double> truth = coverageSeen(view, full, tree.atlas.image);
-            const std::vector<double> cloud = coverageSeen(view, far, tree.atlas.image);
+            const std::vector<double> truth = coverageSeen(view, full);
+            const std::vector<double> cloud = coverageSeen(view, far);
             EXPECT_GE(iou(truth, cloud), 0.65)
                 << k << " along " << direction.x << "," << direction.y << "," << direction.z;
             EXPECT_GT(sum(cloud) / sum(truth), 0.7) << k << ": area seen";
@@ -135,7 +137,7 @@ TEST(BillboardCloudTest, TheFarLevelCoversWhatTheFullTreeCoversFromEveryDirectio
 
 // The far level is a few dozen planes, at an error above the card levels kept before it,
 // inside the species' region of the atlas, and the wood's far level is the trunk alone.
-TEST(BillboardCloudTest, TheFarLevelIsAFewPlanesInsideItsRegionAtTheChainsLargestError) {
+TEST(BillboardCloudTest, TheFarLevelIsAFewPlanesInItsOwnTextureAtTheChainsLargestError) {
     for (int k = 0; k < kTreeSpeciesCount; ++k) {
         const auto species = static_cast<TreeSpecies>(k);
         const BakedTree tree(species);
@@ -143,33 +145,22 @@ TEST(BillboardCloudTest, TheFarLevelIsAFewPlanesInsideItsRegionAtTheChainsLarges
         ASSERT_GE(levels.size(), 1u) << k;
         ASSERT_LE(levels.size(), tree.full.leaves.authoredLods.size() + 1) << k;
         EXPECT_LE(levels.back().indices.size(), size_t(6 * 7 * BillboardCloudOptions{}.slabsPerOrientation)) << k;
-        EXPECT_EQ(levels.back().indices.size(), size_t(6 * tree.cloud.planes)) << k;
+        EXPECT_EQ(levels.back().indices.size(), size_t(6 * tree.level.cloud.planes)) << k;
+        EXPECT_EQ(levels.back().texture, 1) << k << ": its own texture";
+        EXPECT_TRUE(levels.back().keepsCoverage) << k;
         for (size_t l = 1; l < levels.size(); ++l) EXPECT_GT(levels[l].objectError, levels[l - 1].objectError) << k;
         for (size_t l = 0; l + 1 < levels.size(); ++l) // the card levels kept are the first ones, as they were
             EXPECT_EQ(levels[l].indices, tree.full.leaves.authoredLods[l].indices) << k;
         EXPECT_LT(levels.back().objectError, 0.2f) << k << ": a fifth of the tree's height at most";
-        const ImageRegion region = farLevelRegion(species);
         for (size_t v = tree.full.leaves.vertices.size(); v < tree.far.leaves.vertices.size(); ++v) {
-            const glm::vec2 texel = tree.far.leaves.vertices[v].uv * glm::vec2(512.0f, 1024.0f);
-            EXPECT_GE(texel.x, float(region.x)) << k;
-            EXPECT_LE(texel.x, float(region.x + region.width)) << k;
-            EXPECT_GE(texel.y, float(region.y)) << k;
-            EXPECT_LE(texel.y, float(region.y + region.height)) << k;
+            const glm::vec2 uv = tree.far.leaves.vertices[v].uv;
+            EXPECT_TRUE(uv.x >= 0.0f && uv.x <= 1.0f && uv.y >= 0.0f && uv.y <= 1.0f) << k;
         }
-        Image baked(region.width, region.height);
-        for (int y = 0; y < region.height; ++y)
-            std::memcpy(baked.pixel(0, y), tree.atlas.image.pixel(region.x, region.y + y), size_t(region.width) * 4);
-        // Its mips keep the planes' own coverage (Texture::coverageRegions), not the leaf cells'.
-        const std::vector<Image> chain = buildMipChain(tree.atlas.image, 0.5f, tree.atlas.coverageRegions);
-        auto regionCoverageAt = [&](size_t level) {
-            const Image& m = chain[level];
-            const int y0 = region.y >> level, y1 = (region.y + region.height) >> level;
-            Image part(m.width, y1 - y0);
-            for (int y = 0; y < y1 - y0; ++y) std::memcpy(part.pixel(0, y), m.pixel(0, y0 + y), size_t(m.width) * 4);
-            return sampledAlphaCoverage(part, 0.5f);
-        };
+        // The texture's coverage-kept mips keep the planes' coverage down to 32 × 16 texels.
+        const std::vector<Image> chain = buildMipChain(tree.level.texture.image, 0.5f);
         for (size_t level = 1; level <= 4; ++level)
-            EXPECT_NEAR(regionCoverageAt(level), regionCoverageAt(0), 0.3 * regionCoverageAt(0))
+            EXPECT_NEAR(sampledAlphaCoverage(chain[level], 0.5f), sampledAlphaCoverage(chain[0], 0.5f),
+                        0.3 * sampledAlphaCoverage(chain[0], 0.5f))
                 << k << " level " << level;
         ASSERT_EQ(tree.far.wood.authoredLods.size(), 1u) << k;
         EXPECT_EQ(tree.far.wood.authoredLods[0].indices,
@@ -177,25 +168,22 @@ TEST(BillboardCloudTest, TheFarLevelIsAFewPlanesInsideItsRegionAtTheChainsLarges
                                         tree.full.wood.indices.begin() + std::ptrdiff_t(tree.full.trunkIndices)))
             << k;
         EXPECT_EQ(tree.far.wood.authoredLods[0].objectError, levels.back().objectError) << k;
-        // The cards' texels above the regions are not touched.
-        const Texture fresh = makeLeafAtlas();
-        EXPECT_TRUE(std::equal(fresh.image.rgba.begin(), fresh.image.rgba.begin() + 512 * 512 * 4,
-                               tree.atlas.image.rgba.begin()))
-            << k;
+        EXPECT_EQ(tree.atlas.image.rgba, makeLeafAtlas().image.rgba) << k << ": the leaf atlas is only read";
     }
 }
 
 // One card lying in an orientation's plane is baked where it lies, its leaves' coverage kept
 // (ordered dithering keeps a fraction exactly on average), and moved by at most half a texel.
 TEST(BillboardCloudTest, ACardInAPlaneOfTheCloudKeepsItsCoverageAndDoesNotMove) {
-    Texture atlas = makeLeafAtlas();
+    const Texture atlas = makeLeafAtlas();
     Mesh card;
-    // A 0.4 m card facing +z showing the first broadleaf cell: uvs (0, 1/8) – (1/4, 0).
-    addCard(card, glm::scale(glm::translate(glm::mat4(1.0f), glm::vec3(0, 0.5f, 0)), glm::vec3(0.4f)), {0.0f, 0.125f},
+    // A 0.4 m card facing +z showing the first broadleaf cell: uvs (0, 1/4) – (1/4, 0).
+    addCard(card, glm::scale(glm::translate(glm::mat4(1.0f), glm::vec3(0, 0.5f, 0)), glm::vec3(0.4f)), {0.0f, 0.25f},
             {0.25f, 0.0f}, glm::vec3(1.0f));
     card.computeBounds();
-    const CloudSource source[] = {{&card, card.indices, true}};
-    const BillboardCloud cloud = bakeBillboardCloud(source, atlas.image, farLevelRegion(TreeSpecies::Broadleaf));
+    const CloudSource source[] = {{&card, card.indices, &atlas.image}};
+    Image target(256, 256);
+    const BillboardCloud cloud = bakeBillboardCloud(source, target, {0, 0, 256, 256});
     ASSERT_EQ(cloud.planes, 1);
     EXPECT_LE(cloud.objectError, 0.5f / cloud.texelsPerMetre + 1e-4f);
     // The cell's own coverage, from its texels.

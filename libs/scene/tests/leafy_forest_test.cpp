@@ -32,8 +32,8 @@ bool sameMesh(const Mesh& a, const Mesh& b) {
            std::memcmp(a.vertices.data(), b.vertices.data(), a.vertices.size() * sizeof(Vertex)) == 0;
 }
 
-// The atlas cell (column, row) a uv lies in: cells of 128², four across, eight down.
-glm::ivec2 cellOf(glm::vec2 uv) { return glm::ivec2(glm::floor(uv * glm::vec2(kLeafAtlasCells, 2 * kLeafAtlasCells))); }
+// The atlas cell (column, row) a uv lies in.
+glm::ivec2 cellOf(glm::vec2 uv) { return glm::ivec2(glm::floor(uv * float(kLeafAtlasCells))); }
 
 } // namespace
 
@@ -111,7 +111,7 @@ TEST(LeafyTreesTest, TheSameSeedGivesTheSameTreeAndAnotherSeedAnotherOne) {
 TEST(LeafyTreesTest, TheAtlasCellsAreLeavesWithHolesAndOpenBorders) {
     const Texture atlas = makeLeafAtlas();
     ASSERT_EQ(atlas.image.width, 512);
-    ASSERT_EQ(atlas.image.height, 1024);                     // the lower half for the trees' far levels
+    ASSERT_EQ(atlas.image.height, 512);
     EXPECT_EQ(makeLeafAtlas().image.rgba, atlas.image.rgba); // deterministic
     const int cell = atlas.image.width / kLeafAtlasCells;
     for (int cy = 0; cy < kLeafAtlasCells; ++cy)
@@ -134,7 +134,7 @@ TEST(LeafyForestTest, TreesStandWhereTheSimpleForestsDoEachAsWoodAndMaskedLeaves
     simpleOptions.kind = ForestKind::Simple;
     const Scene simple = makeForest(simpleOptions);
     ASSERT_EQ(leafy.materials.size(), 1u);
-    ASSERT_EQ(leafy.textures.size(), 1u);
+    ASSERT_EQ(leafy.textures.size(), 1u + kTreeSpeciesCount); // the atlas, then each species' billboard cloud
     EXPECT_EQ(leafy.materials[0].alphaMode, AlphaMode::Mask);
     EXPECT_TRUE(leafy.materials[0].doubleSided);
     EXPECT_EQ(leafy.materials[0].baseColorTexture, 0);

@@ -24,12 +24,12 @@
 namespace shadowkit::scene {
 
 // What a cloud is baked from: the triangles `indices` of `mesh`. Alpha-tested sources read
-// their coverage from `atlas` at the vertices' uvs (alpha ≥ cutoff); opaque ones (wood) cover
-// wherever they lie and give the texels their vertex colour.
+// their coverage from `texture` at the vertices' uvs (alpha ≥ cutoff); opaque ones (wood, no
+// texture) cover wherever they lie and give the texels their vertex colour.
 struct CloudSource {
     const Mesh* mesh = nullptr;
     std::span<const uint32_t> indices;
-    bool alphaTested = false;
+    const Image* texture = nullptr; // alpha-tested sources: what their uvs index
 };
 
 struct BillboardCloudOptions {
@@ -38,7 +38,7 @@ struct BillboardCloudOptions {
 };
 
 struct BillboardCloud {
-    std::vector<Vertex> vertices;  // four per plane, normal along the plane's orientation, uvs into the atlas
+    std::vector<Vertex> vertices;  // four per plane, normal along the plane's orientation, uvs into the target
     std::vector<uint32_t> indices; // two triangles per plane, over `vertices` (0-based)
     // Mean distance, in object metres, a unit of covered area moved (turn + slab + half a
     // baked texel): the level's geometric error, as AuthoredLod::objectError.
@@ -49,11 +49,12 @@ struct BillboardCloud {
 };
 
 // Builds the cloud of `sources` (all in one object space) and bakes it into `region` of
-// `atlas` (RGBA8; the region is overwritten; name it among the atlas's Texture::coverageRegions,
-// or its mips thin its sparse planes by the rest of the atlas's coverage). The planes are packed at the largest texel
-// density that fits. Precondition: the region lies inside the atlas and the sources' triangles
-// index their meshes' vertices.
-BillboardCloud bakeBillboardCloud(std::span<const CloudSource> sources, Image& atlas, ImageRegion region,
+// `target` (RGBA8; the region is overwritten), the planes packed at the largest texel density
+// that fits. Give the cloud a texture of its own (LodLevel::texture): mips of an atlas shared
+// with dense cells blend the two at coarse levels. Precondition: the region lies inside the
+// target, which is none of the sources' textures, and the sources' triangles index their
+// meshes' vertices.
+BillboardCloud bakeBillboardCloud(std::span<const CloudSource> sources, Image& target, ImageRegion region,
                                   const BillboardCloudOptions& options = {});
 
 } // namespace shadowkit::scene

@@ -12,8 +12,7 @@
 
 namespace shadowkit::scene {
 
-// A rectangle of an image's texels (an atlas's part: a texture_mips.h coverage region, the
-// place a billboard cloud is baked).
+// A rectangle of an image's texels (the part of a texture a billboard cloud is baked into).
 struct ImageRegion {
     int x = 0, y = 0, width = 0, height = 0;
 };

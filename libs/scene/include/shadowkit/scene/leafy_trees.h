@@ -19,14 +19,12 @@ namespace shadowkit::scene {
 enum class TreeSpecies : uint8_t { Broadleaf, Conifer, Shrub };
 inline constexpr int kTreeSpeciesCount = 3;
 
-// The leaf atlas: 512 × 1024 RGBA8. Its upper half holds 4 × 4 cells of 128² texels, alpha 255
-// on a leaf and 0 between leaves. Rows 0–1: broadleaf clusters (a twig with five to seven
-// leaves), row 2: conifer needle sprays, row 3: shrub leaves. Every cell keeps a two-texel open
-// border, so bilinear lookups of one cell never read its neighbour. Its lower half is a region
-// per species for the trees' far levels (addFarLevel), open until baked. Deterministic.
+// The leaf atlas: 512² RGBA8 in 4 × 4 cells of 128² texels, alpha 255 on a leaf and 0 between
+// leaves. Rows 0–1: broadleaf clusters (a twig with five to seven leaves), row 2: conifer needle
+// sprays, row 3: shrub leaves. Every cell keeps a two-texel open border, so bilinear lookups of
+// one cell never read its neighbour. Deterministic.
 Texture makeLeafAtlas();
-inline constexpr int kLeafAtlasCells = 4;        // per side of the upper half
-ImageRegion farLevelRegion(TreeSpecies species); // texels of makeLeafAtlas()'s lower half
+inline constexpr int kLeafAtlasCells = 4; // per side
 
 // One tree of a species, standing at the origin with its base at y = 0 and its top at about
 // y = 1 (the forest scales it to a height), both meshes in the same object space. `leaves`
@@ -42,12 +40,18 @@ struct LeafyTree {
 LeafyTree makeLeafyTree(TreeSpecies species, uint64_t seed);
 
 // The tree's far level, for where a canopy covers a few pixels or texels: a billboard cloud
-// (billboard_cloud.h) of its leaves and of every branch but the trunk, baked into the species'
-// region of `atlas` (makeLeafAtlas()'s image) and appended to `tree.leaves` as its last authored
-// level, after the card levels that err less than it (those that err as much are dropped); the
-// trunk alone becomes `tree.wood`'s one authored level, at the same error, so the two switch
-// together. Returns the cloud (planes, error, coverage) for reports and tests.
-BillboardCloud addFarLevel(LeafyTree& tree, TreeSpecies species, Image& atlas);
+// (billboard_cloud.h) of its leaves (their alpha read from `leafAtlas`, makeLeafAtlas()'s image)
+// and of every branch but the trunk, baked into a texture of its own (512 × 256, clamped) and
+// appended to `tree.leaves` as its last authored level, reading that texture from
+// Scene::textures[cloudTextureIndex] — after the card levels that err less than it (those that
+// err as much are dropped); the trunk alone becomes `tree.wood`'s one authored level, at the
+// same error, so the two switch together. Returns the texture (for the scene) and the cloud
+// (planes, error, coverage).
+struct FarLevel {
+    Texture texture;
+    BillboardCloud cloud;
+};
+FarLevel addFarLevel(LeafyTree& tree, const Image& leafAtlas, int32_t cloudTextureIndex);
 
 // The leaves' material: MASK at glTF's default cutoff 0.5, double-sided, the atlas at
 // `atlasTexture` (an index into Scene::textures).

@@ -34,8 +34,6 @@ struct Texture {
     TextureWrap wrapS = TextureWrap::Repeat, wrapT = TextureWrap::Repeat;
     bool nearest = false; // magnification filter NEAREST (else LINEAR)
     bool mipmaps = true;  // minification through mipmaps (every glTF *_MIPMAP_* filter, or none given)
-    // Parts of an atlas whose mips keep their own alpha coverage (texture_mips.h); empty: the whole image.
-    std::vector<ImageRegion> coverageRegions;
 };
 
 struct Material {

@@ -25,6 +25,11 @@ struct LodLevel {
     // (RenderSettings::lodFoliageScale): under a pixel a leaf's exact place is noise, its
     // share of the pixel is not.
     bool keepsCoverage = false;
+    // The level's own base-colour texture (an index into Scene::textures; a billboard cloud's
+    // baked planes), read in place of its material's; -1: the material's. Its own texture, not a
+    // part of the material's atlas: coarse mips of a shared atlas blend neighbouring parts, and
+    // a sparse part thins the cells beside it.
+    int32_t texture = -1;
 };
 
 struct MeshLods {

@@ -30,6 +30,7 @@ struct AuthoredLod {
     std::vector<uint32_t> indices; // over the mesh's vertices (which hold every level's)
     float objectError = 0.0f;      // object-space metres, as scene::LodLevel::objectError
     bool keepsCoverage = false;    // as scene::LodLevel::keepsCoverage
+    int32_t texture = -1;          // as scene::LodLevel::texture
 };
 
 struct Mesh {

@@ -19,7 +19,6 @@
 #include "shadowkit/scene/image.h"
 
 #include <optional>
-#include <span>
 #include <vector>
 
 namespace shadowkit::scene {
@@ -33,12 +32,7 @@ double sampledAlphaCoverage(const Image& image, float cutoff);
 
 // The full chain down to 1×1, level 0 first (GL's sizes: each side halved, rounded down, at
 // least 1). With a cutoff, every level's alpha is scaled to keep level 0's coverage at it;
-// without, plain 2×2 box filtering. An atlas whose parts differ in coverage (dense leaf cells
-// above, sparse billboard-cloud planes below) names its parts in `regions`: each keeps its own
-// coverage, measured within it as if it were an image of its own, for as long as it spans a
-// texel (Texture::coverageRegions); texels outside every region, and every level where one no
-// longer spans a texel, keep the whole image's. No regions: the whole image is one.
-std::vector<Image> buildMipChain(const Image& level0, std::optional<float> alphaCutoff,
-                                 std::span<const ImageRegion> regions = {});
+// without, plain 2×2 box filtering.
+std::vector<Image> buildMipChain(const Image& level0, std::optional<float> alphaCutoff);
 
 } // namespace shadowkit::scene
