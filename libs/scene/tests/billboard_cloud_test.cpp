@@ -100,8 +100,8 @@ struct BakedTree {
 // At the size it is drawn at (the canopy some 16 cells across: a few texels of a shadow map per
 // leaf cluster), the far level covers the cells the full tree covers, from the side, from
 // above and along the standard views' suns, for every species. Measured when written: the
-// broadleaf tree and the shrub 0.86–0.92 (the area seen ×1.05–1.15); the conifer 0.94 from
-// above but 0.67–0.71 from the side (×0.71–0.75): its needle sprays lie within 20° of flat and
+// broadleaf tree and the shrub 0.91–0.96 (the area seen ×1.00–1.06); the conifer 0.95 from
+// above but 0.71–0.72 from the side (×0.73–0.76): its needle sprays lie within 20° of flat and
 // are turned flat, where the side sees them edge-on — the cloud's known shortfall.
 TEST(BillboardCloudTest, TheFarLevelCoversWhatTheFullTreeCoversFromEveryDirection) {
     const glm::vec3 directions[] = {{1, 0, 0},
