@@ -16,7 +16,7 @@ constexpr int kSamplesPerSide = 4; // per texel side: 16 coverage samples a texe
 constexpr int kBorderTexels = 2;   // open texels round each plane, so its mips and bilinear lookups stay its own
 
 // The planes' orientations: the three axes and the four cube diagonals. Any unit normal lies
-// within 39.2° of one of them (an axis and a diagonal are 54.7° apart; the worst normal lies
+// within 36.2° of one of them (an axis and a diagonal are 54.7° apart; the worst normals lie
 // between an axis and two diagonals), so turning a card into its plane changes little.
 const std::array<glm::vec3, 7>& orientations() {
     static const std::array<glm::vec3, 7> all = [] {

@@ -6,7 +6,7 @@
 // its plane, one texture per plane; a shadow map then sees the planes from any light direction,
 // which a view-dependent impostor (one quad turned to the viewer) cannot give a depth pass
 // whose light is not the viewer. Here the planes come from a fixed family of orientations (the
-// three axes and the four cube diagonals, so a card meets one within 39°) cut into parallel
+// three axes and the four cube diagonals, so a card meets one within 36°) cut into parallel
 // slabs, rather than the paper's greedy search: each card is turned about its centre into the
 // best-aligned orientation, which keeps its area (so, averaged over light directions, the area
 // its shadow covers), and moved along that normal onto the middle of its slab. A plane's texels
