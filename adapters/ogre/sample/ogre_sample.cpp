@@ -99,29 +99,32 @@ Ogre::GpuProgramPtr program(const std::string& name, Ogre::GpuProgramType type, 
     return p;
 }
 
+// A material NAME of one pass drawing NAME.vert and NAME.frag (made by program()), the vertex
+// program given the world-view-projection matrix.
+Ogre::MaterialPtr programmedMaterial(const std::string& name) {
+    Ogre::MaterialPtr material =
+        Ogre::MaterialManager::getSingleton().create(name, Ogre::ResourceGroupManager::DEFAULT_RESOURCE_GROUP_NAME);
+    Ogre::Pass* pass = material->getTechnique(0)->getPass(0);
+    pass->setVertexProgram(name + ".vert");
+    pass->setFragmentProgram(name + ".frag");
+    pass->getVertexProgramParameters()->setNamedAutoConstant("worldViewProj",
+                                                             Ogre::GpuProgramParameters::ACT_WORLDVIEWPROJ_MATRIX);
+    return material;
+}
+
 void makeMaterials(Ogre::SceneManager* sm) {
     program("sk/caster.vert", Ogre::GPT_VERTEX_PROGRAM, kCasterVertex);
     program("sk/caster.frag", Ogre::GPT_FRAGMENT_PROGRAM, kCasterFragment);
     program("sk/receiver.vert", Ogre::GPT_VERTEX_PROGRAM, kReceiverVertex);
     program("sk/receiver.frag", Ogre::GPT_FRAGMENT_PROGRAM, kReceiverFragment);
-    const std::string group = Ogre::ResourceGroupManager::DEFAULT_RESOURCE_GROUP_NAME;
 
-    Ogre::MaterialPtr caster = Ogre::MaterialManager::getSingleton().create("sk/caster", group);
+    const Ogre::MaterialPtr caster = programmedMaterial("sk/caster");
     Ogre::Pass* cp = caster->getTechnique(0)->getPass(0);
-    cp->setVertexProgram("sk/caster.vert");
-    cp->setFragmentProgram("sk/caster.frag");
-    cp->getVertexProgramParameters()->setNamedAutoConstant("worldViewProj",
-                                                           Ogre::GpuProgramParameters::ACT_WORLDVIEWPROJ_MATRIX);
     cp->setCullingMode(Ogre::CULL_NONE);
     cp->setDepthBias(-4.0f, -1.1f); // OGRE: positive brings a surface nearer; away from the sun
     sm->setShadowTextureCasterMaterial(caster);
 
-    Ogre::MaterialPtr receiver = Ogre::MaterialManager::getSingleton().create("sk/receiver", group);
-    Ogre::Pass* rp = receiver->getTechnique(0)->getPass(0);
-    rp->setVertexProgram("sk/receiver.vert");
-    rp->setFragmentProgram("sk/receiver.frag");
-    rp->getVertexProgramParameters()->setNamedAutoConstant("worldViewProj",
-                                                           Ogre::GpuProgramParameters::ACT_WORLDVIEWPROJ_MATRIX);
+    Ogre::Pass* rp = programmedMaterial("sk/receiver")->getTechnique(0)->getPass(0);
     rp->getVertexProgramParameters()->setNamedAutoConstant(
         "textureWorldViewProj", Ogre::GpuProgramParameters::ACT_TEXTURE_WORLDVIEWPROJ_MATRIX, 0);
     rp->getFragmentProgramParameters()->setNamedConstant("shadowMap", 0);

@@ -24,17 +24,6 @@ double ndcPerMetre(const core::Mat4& clipFromWorld, const core::Vec3& ws) {
     return largest;
 }
 
-std::vector<float> levelErrors(const std::vector<scene::LodLevel>& chain) {
-    std::vector<float> errors;
-    for (size_t l = 0; l < std::min(chain.size(), kMaxLodLevels); ++l) errors.push_back(chain[l].objectError);
-    return errors;
-}
-std::vector<bool> levelsKeepingCoverage(const std::vector<scene::LodLevel>& chain) {
-    std::vector<bool> coverage;
-    for (size_t l = 0; l < std::min(chain.size(), kMaxLodLevels); ++l) coverage.push_back(chain[l].keepsCoverage);
-    return coverage;
-}
-
 } // namespace
 
 Visibility::Visibility(const scene::Scene& scene, std::span<const scene::MeshLods> lods)
@@ -50,10 +39,12 @@ Visibility::Visibility(const scene::Scene& scene, std::span<const scene::MeshLod
     }
     m_batchFirst.push_back(first); // end of the last batch
     for (const scene::MeshLods& mesh : lods) {
-        m_cameraErrors.push_back(levelErrors(mesh.camera));
-        m_shadowErrors.push_back(levelErrors(mesh.shadow));
-        m_cameraCoverage.push_back(levelsKeepingCoverage(mesh.camera));
-        m_shadowCoverage.push_back(levelsKeepingCoverage(mesh.shadow));
+        for (const auto& [chain, bounds] :
+             {std::pair{&mesh.camera, &m_cameraLevels}, {&mesh.shadow, &m_shadowLevels}}) {
+            std::vector<LevelBound>& levels = bounds->emplace_back();
+            for (size_t l = 0; l < std::min(chain->size(), kMaxLodLevels); ++l)
+                levels.push_back({(*chain)[l].objectError, (*chain)[l].keepsCoverage});
+        }
     }
 }
 
@@ -97,11 +88,10 @@ void Visibility::build(const LodChoice* lod, PassList& out) {
     // in the pass's units, stays within the bound.
     m_levels.assign(m_scratch.size(), 0);
     if (lod) {
-        const auto& errors = lod->shadow ? m_shadowErrors : m_cameraErrors;
-        const auto& coverage = lod->shadow ? m_shadowCoverage : m_cameraCoverage;
+        const auto& chains = lod->shadow ? m_shadowLevels : m_cameraLevels;
         for (size_t k = 0; k < m_scratch.size(); ++k) {
             const uint32_t global = m_scratch[k];
-            const std::vector<float>& levels = errors[m_instanceMesh[global]];
+            const std::vector<LevelBound>& levels = chains[m_instanceMesh[global]];
             if (levels.size() < 2) continue;
             const core::Vec3 centre = m_hierarchy.itemBounds(global).center();
             auto allowedBy = [&](const LodProjection& p) { // in object metres
@@ -110,11 +100,12 @@ void Visibility::build(const LodChoice* lod, PassList& out) {
             double allowed = allowedBy(lod->pass);
             if (lod->camera) allowed = std::min(allowed, allowedBy(*lod->camera));
             // Levels that keep coverage may err coverageScale times more (the GPU's levelOf alike).
-            const std::vector<bool>& keepsCoverage = coverage[m_instanceMesh[global]];
             uint8_t level = 0;
-            while (level + 1u < levels.size() &&
-                   double(levels[level + 1u]) <= (keepsCoverage[level + 1u] ? allowed * lod->coverageScale : allowed))
+            while (level + 1u < levels.size()) {
+                const LevelBound& next = levels[level + 1u];
+                if (!(double(next.objectError) <= (next.keepsCoverage ? allowed * lod->coverageScale : allowed))) break;
                 ++level;
+            }
             m_levels[k] = level;
         }
     }

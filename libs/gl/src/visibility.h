@@ -107,13 +107,18 @@ private:
     // object error for that level times the scale.
     std::vector<float> m_instanceScale;
     std::vector<uint32_t> m_instanceMesh;
-    std::vector<std::vector<float>> m_cameraErrors, m_shadowErrors;    // per mesh, per level (object metres)
-    std::vector<std::vector<bool>> m_cameraCoverage, m_shadowCoverage; // per mesh, per level: keepsCoverage
-    std::vector<uint8_t> m_levels;                                     // level per visible instance, reused every pass
-    std::vector<uint32_t> m_slots, m_cursor;                           // counting-sort scratch, reused every pass
-    std::vector<uint64_t> m_visibleBits;                               // one bit per instance, reused every pass
-    std::vector<uint32_t> m_scratch;                                   // query result, reused every pass
-    std::vector<uint32_t> m_staging;                                   // the frame's concatenated lists
+    // What a pass compares of a level (scene::LodLevel): its error in object metres, and whether
+    // it keeps coverage (judged against LodChoice::coverageScale times the bound).
+    struct LevelBound {
+        float objectError = 0.0f;
+        bool keepsCoverage = false;
+    };
+    std::vector<std::vector<LevelBound>> m_cameraLevels, m_shadowLevels; // per mesh, per level
+    std::vector<uint8_t> m_levels;           // level per visible instance, reused every pass
+    std::vector<uint32_t> m_slots, m_cursor; // counting-sort scratch, reused every pass
+    std::vector<uint64_t> m_visibleBits;     // one bit per instance, reused every pass
+    std::vector<uint32_t> m_scratch;         // query result, reused every pass
+    std::vector<uint32_t> m_staging;         // the frame's concatenated lists
     Buffer m_buffer;
     size_t m_capacity = 0; // in indices
     CpuTimes m_listTimes;

@@ -8,6 +8,7 @@
 #include <bit>
 #include <cmath>
 #include <numeric>
+#include <optional>
 
 namespace shadowkit::scene {
 namespace {
@@ -58,6 +59,7 @@ struct Item {
     glm::mat3 turn{1.0f}; // about `centre`, into the orientation
     int orientation = 0;
     float area = 0.0f;
+    float flatness = 1.0f; // |Σ area · normal| / Σ area: 1 when the triangles share a plane
 };
 
 struct Plane {
@@ -77,6 +79,32 @@ glm::vec3 tangentOf(glm::vec3 n) {
 size_t findRoot(std::vector<uint32_t>& parent, size_t i) {
     while (parent[i] != i) i = parent[i] = parent[parent[i]];
     return i;
+}
+
+// The item of triangles moved together: its area-weighted centre and normal, the orientation
+// that normal is closest to (either side) and the turn into it; nullopt when it covers nothing.
+std::optional<Item> itemOf(std::vector<Triangle> triangles) {
+    glm::vec3 normalSum(0.0f), centreSum(0.0f); // area-weighted: |normalSum| = area when flat
+    float area = 0.0f;
+    for (const Triangle& t : triangles) {
+        const glm::vec3 a = t.position(0), b = t.position(1), c = t.position(2);
+        const glm::vec3 twice = glm::cross(b - a, c - a);
+        const float twiceArea = glm::length(twice);
+        normalSum += 0.5f * twice, area += 0.5f * twiceArea;
+        centreSum += 0.5f * twiceArea * (a + b + c) / 3.0f;
+    }
+    if (!(area > 0.0f)) return std::nullopt;
+    Item item{std::move(triangles), centreSum / area, glm::mat3(1.0f), 0, area, glm::length(normalSum) / area};
+    if (!(item.flatness > 0.0f)) return item; // normals that cancel: split by the caller, never oriented
+    const glm::vec3 normal = glm::normalize(normalSum);
+    float best = -1.0f;
+    for (int o = 0; o < int(orientations().size()); ++o) {
+        const float alignment = std::abs(glm::dot(normal, orientations()[size_t(o)]));
+        if (alignment > best) best = alignment, item.orientation = o;
+    }
+    const glm::vec3 axis = orientations()[size_t(item.orientation)];
+    item.turn = rotationBetween(glm::dot(normal, axis) >= 0.0f ? normal : -normal, axis);
+    return item;
 }
 
 // The items of the sources: connected, planar triangles of an alpha-tested source (cards) as
@@ -111,47 +139,15 @@ std::vector<Item> itemsOf(std::span<const CloudSource> sources) {
             groups[size_t(groupOfRoot[root])].push_back(triangle);
         }
         for (std::vector<Triangle>& group : groups) {
-            // Area-weighted normal: its length equals the area when the group is flat.
-            glm::vec3 normalSum(0.0f), centreSum(0.0f);
-            float area = 0.0f;
-            for (const Triangle& t : group) {
-                const glm::vec3 a = t.position(0), b = t.position(1), c = t.position(2);
-                const glm::vec3 twice = glm::cross(b - a, c - a);
-                const float twiceArea = glm::length(twice);
-                normalSum += 0.5f * twice, area += 0.5f * twiceArea;
-                centreSum += 0.5f * twiceArea * (a + b + c) / 3.0f;
-            }
-            if (!(area > 0.0f)) continue; // degenerate: covers nothing
-            if (group.size() > 1 && glm::length(normalSum) < 0.98f * area) {
-                for (const Triangle& t : group) items.push_back(Item{{t}}); // not flat: each triangle alone
-                for (size_t k = items.size() - group.size(); k < items.size(); ++k) {
-                    Item& item = items[k];
-                    const glm::vec3 a = item.triangles[0].position(0), b = item.triangles[0].position(1),
-                                    c = item.triangles[0].position(2);
-                    item.area = 0.5f * glm::length(glm::cross(b - a, c - a));
-                    item.centre = (a + b + c) / 3.0f;
-                }
+            std::optional<Item> item = itemOf(group);
+            if (!item) continue;           // degenerate: covers nothing
+            if (item->flatness >= 0.98f) { // one triangle, or a card
+                items.push_back(std::move(*item));
                 continue;
             }
-            items.push_back(Item{std::move(group), centreSum / area, glm::mat3(1.0f), 0, area});
+            for (const Triangle& t : group) // not flat: each triangle alone
+                if (std::optional<Item> one = itemOf({t})) items.push_back(std::move(*one));
         }
-    }
-    // Each item's orientation: the one its normal is closest to, either side.
-    for (Item& item : items) {
-        const Triangle& t = item.triangles[0];
-        glm::vec3 normal(0.0f);
-        for (const Triangle& each : item.triangles)
-            normal += glm::cross(each.position(1) - each.position(0), each.position(2) - each.position(0));
-        if (!(glm::length(normal) > 0.0f))
-            normal = glm::cross(t.position(1) - t.position(0), t.position(2) - t.position(0));
-        normal = glm::normalize(normal);
-        float best = -1.0f;
-        for (int o = 0; o < int(orientations().size()); ++o) {
-            const float alignment = std::abs(glm::dot(normal, orientations()[size_t(o)]));
-            if (alignment > best) best = alignment, item.orientation = o;
-        }
-        const glm::vec3 axis = orientations()[size_t(item.orientation)];
-        item.turn = rotationBetween(glm::dot(normal, axis) >= 0.0f ? normal : -normal, axis);
     }
     return items;
 }
