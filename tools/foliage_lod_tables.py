@@ -5,7 +5,8 @@ Usage: foliage_lod_tables.py RESULTS_DIR
   RESULTS_DIR  eval-{lod,no-lod,s16}.json and soft-{lod,no-lod,s16}.json (`shadowkit eval --forest
                leafy --views all`, hard and with `--sun-angle 0.53 --filter pcss`), bench
                leafy{,-no-lod,-s16}.json (10,000 trees) and leafy-100k{,-no-lod}.json (100,000 trees,
-               --same-density), summary.txt (the machine)
+               --same-density), fly-{lod,no-lod}.log (`eval --path flythrough`, optional),
+               summary.txt (the commit and the machine)
 
 Writes the tables between `<!-- table foliage-lod...: tools/measure-foliage-lod.sh -->` and
 `<!-- /table -->`: the error of the levels against the full geometry's truth, view by view, and
@@ -38,7 +39,20 @@ def runs(path):
 def machine(d):
     lines = (d / "summary.txt").read_text().splitlines() if (d / "summary.txt").exists() else []
     gpu = next((l.split(",")[0] for l in lines if l.startswith("NVIDIA")), None)
-    return gpu or "this machine"
+    # The bench's renderer line: "GL version, renderer via EGL ..."
+    drawn = next((l.split(" via ")[0].split(", ", 1)[-1] for l in lines if " via " in l), None)
+    return gpu or drawn or "this machine"
+
+
+def flicker(d, s):
+    """flicker_pct p95 of the flythrough run `s` (its log's last line), or None."""
+    log = d / f"fly-{s}.log"
+    if not log.exists():
+        return None
+    for line in reversed(log.read_text().splitlines()):
+        if "flicker_pct" in line and " p95 " in line:
+            return float(line.split("flicker_pct")[1].split(" p95 ")[1].split()[0])
+    return None
 
 
 def error_table(d):
@@ -55,6 +69,11 @@ def error_table(d):
     out.append("")
     out.append("Worst view against `--no-lod`: " + "; ".join(
         f"{label} {worst[s]:+.2f} points of `wrong_pct`, `soft_mae` ×{ratio[s]:.3f}" for s, label in SETS[1:]) + ".")
+    with_levels, without = flicker(d, "lod"), flicker(d, "no-lod")
+    if with_levels is not None and without is not None:
+        out.append("")
+        out.append(f"Along `flythrough` (its first 48 frames, sun held): `flicker_pct` p95 {with_levels:.3f} with the "
+                   f"default levels, {without:.3f} without (×{with_levels / without:.3f}).")
     return "\n".join(out)
 
 

@@ -357,29 +357,47 @@ LeafyTree makeLeafyTree(TreeSpecies species, uint64_t seed) {
     return tree;
 }
 
-FarLevel addFarLevel(LeafyTree& tree, const Image& leafAtlas, int32_t cloudTextureIndex) {
+std::vector<FarLevel> addFarLevels(LeafyTree& tree, const Image& leafAtlas, int32_t firstTextureIndex) {
+    // Finer to coarser: each halves the planes (and the slabs' spacing doubles, so the error
+    // grows about 1.6×) and gets a quarter of the texels, which its smaller projection needs.
+    struct Bake {
+        int slabs, width, height;
+    };
+    constexpr Bake kBakes[] = {{16, 1024, 512}, {8, 512, 256}, {4, 256, 128}};
     const std::span<const uint32_t> branches(tree.wood.indices.begin() + std::ptrdiff_t(tree.trunkIndices),
                                              tree.wood.indices.end());
     const CloudSource sources[] = {{&tree.leaves, tree.leaves.indices, &leafAtlas}, {&tree.wood, branches, nullptr}};
-    FarLevel far;
-    far.texture.image = Image(512, 256);
-    far.texture.wrapS = far.texture.wrapT = TextureWrap::ClampToEdge;
-    far.cloud = bakeBillboardCloud(sources, far.texture.image, {0, 0, 512, 256});
-    BillboardCloud& cloud = far.cloud;
-    // A pass takes the coarsest level within its bound, so errors must grow along the chain: a
-    // card level that errs as much as the cloud (its cards' own size) but draws a hundred times
-    // its triangles is dropped. Its cards stay in the vertex buffer, unreferenced.
-    while (!tree.leaves.authoredLods.empty() && tree.leaves.authoredLods.back().objectError >= cloud.objectError)
+    std::vector<FarLevel> far;
+    for (const Bake& bake : kBakes) {
+        FarLevel level;
+        level.texture.image = Image(bake.width, bake.height);
+        level.texture.wrapS = level.texture.wrapT = TextureWrap::ClampToEdge;
+        level.cloud = bakeBillboardCloud(sources, level.texture.image, {0, 0, bake.width, bake.height},
+                                         {.slabsPerOrientation = bake.slabs});
+        // Errors must grow along the chain: a pass takes the coarsest level within its bound.
+        if (!far.empty() && !(level.cloud.objectError > far.back().cloud.objectError)) continue;
+        far.push_back(std::move(level));
+    }
+    // A card level that errs as much as the finest cloud (its cards' own size) but draws fifty
+    // times its triangles is dropped. Its cards stay in the vertex buffer, unreferenced.
+    while (!tree.leaves.authoredLods.empty() &&
+           tree.leaves.authoredLods.back().objectError >= far.front().cloud.objectError)
         tree.leaves.authoredLods.pop_back();
-    AuthoredLod leaves{{}, cloud.objectError, true, cloudTextureIndex};
-    const auto base = static_cast<uint32_t>(tree.leaves.vertices.size());
-    tree.leaves.vertices.insert(tree.leaves.vertices.end(), cloud.vertices.begin(), cloud.vertices.end());
-    for (const uint32_t i : cloud.indices) leaves.indices.push_back(base + i);
-    tree.leaves.authoredLods.push_back(std::move(leaves));
+    // Every cloud's planes go into the vertex buffer after the cards; the indices of each level
+    // are its own. Taken after the loop: the sources read tree.leaves while the clouds bake.
+    for (size_t i = 0; i < far.size(); ++i) {
+        const BillboardCloud& cloud = far[i].cloud;
+        AuthoredLod leaves{{}, cloud.objectError, true, firstTextureIndex + int32_t(i)};
+        const auto base = static_cast<uint32_t>(tree.leaves.vertices.size());
+        tree.leaves.vertices.insert(tree.leaves.vertices.end(), cloud.vertices.begin(), cloud.vertices.end());
+        for (const uint32_t index : cloud.indices) leaves.indices.push_back(base + index);
+        tree.leaves.authoredLods.push_back(std::move(leaves));
+    }
+    // The branches are in every cloud: the trunk alone from the first.
     tree.wood.authoredLods.push_back(
         {std::vector<uint32_t>(tree.wood.indices.begin(),
                                tree.wood.indices.begin() + std::ptrdiff_t(tree.trunkIndices)),
-         cloud.objectError, true});
+         far.front().cloud.objectError, true});
     tree.leaves.computeBounds();
     return far;
 }

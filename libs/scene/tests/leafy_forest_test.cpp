@@ -7,7 +7,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
+#include <numeric>
 
 using namespace shadowkit;
 using namespace shadowkit::scene;
@@ -134,7 +136,16 @@ TEST(LeafyForestTest, TreesStandWhereTheSimpleForestsDoEachAsWoodAndMaskedLeaves
     simpleOptions.kind = ForestKind::Simple;
     const Scene simple = makeForest(simpleOptions);
     ASSERT_EQ(leafy.materials.size(), 1u);
-    ASSERT_EQ(leafy.textures.size(), 1u + kTreeSpeciesCount); // the atlas, then each species' billboard cloud
+    // The atlas, then each species' three billboard clouds, each level reading a texture of its own.
+    ASSERT_EQ(leafy.textures.size(), 1u + 3u * kTreeSpeciesCount);
+    std::vector<int32_t> levelTextures;
+    for (const Mesh& m : leafy.meshes)
+        for (const AuthoredLod& level : m.authoredLods)
+            if (level.texture >= 0) levelTextures.push_back(level.texture);
+    std::sort(levelTextures.begin(), levelTextures.end());
+    std::vector<int32_t> clouds(3u * kTreeSpeciesCount);
+    std::iota(clouds.begin(), clouds.end(), 1);
+    EXPECT_EQ(levelTextures, clouds);
     EXPECT_EQ(leafy.materials[0].alphaMode, AlphaMode::Mask);
     EXPECT_TRUE(leafy.materials[0].doubleSided);
     EXPECT_EQ(leafy.materials[0].baseColorTexture, 0);

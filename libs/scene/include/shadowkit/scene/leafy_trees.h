@@ -13,6 +13,7 @@
 #include "shadowkit/scene/scene.h"
 
 #include <cstdint>
+#include <vector>
 
 namespace shadowkit::scene {
 
@@ -39,19 +40,21 @@ struct LeafyTree {
 };
 LeafyTree makeLeafyTree(TreeSpecies species, uint64_t seed);
 
-// The tree's far level, for where a canopy covers a few pixels or texels: a billboard cloud
-// (billboard_cloud.h) of its leaves (their alpha read from `leafAtlas`, makeLeafAtlas()'s image)
-// and of every branch but the trunk, baked into a texture of its own (512 × 256, clamped) and
-// appended to `tree.leaves` as its last authored level, reading that texture from
-// Scene::textures[cloudTextureIndex] — after the card levels that err less than it (those that
-// err as much are dropped); the trunk alone becomes `tree.wood`'s one authored level, at the
-// same error, so the two switch together. Returns the texture (for the scene) and the cloud
-// (planes, error, coverage).
+// The tree's far levels, for where a canopy covers a few dozen pixels or texels and fewer:
+// three billboard clouds (billboard_cloud.h) of its leaves (their alpha read from `leafAtlas`,
+// makeLeafAtlas()'s image) and of every branch but the trunk — 16, 8 and 4 slabs per
+// orientation, each baked into a texture of its own (1024 × 512, 512 × 256, 256 × 128,
+// clamped) — appended to `tree.leaves` as its last authored levels, finer first, the i-th
+// reading Scene::textures[firstTextureIndex + i]. Each errs more and draws about half the
+// planes of the one before (a cloud that would not err more is left out); the card levels
+// that err as much as the finest cloud are dropped. The trunk alone becomes `tree.wood`'s one
+// authored level, at the finest cloud's error, so the branches leave the wood as they enter
+// the leaves. Returns the clouds in chain order, with their textures (for the scene).
 struct FarLevel {
     Texture texture;
     BillboardCloud cloud;
 };
-FarLevel addFarLevel(LeafyTree& tree, const Image& leafAtlas, int32_t cloudTextureIndex);
+std::vector<FarLevel> addFarLevels(LeafyTree& tree, const Image& leafAtlas, int32_t firstTextureIndex);
 
 // The leaves' material: MASK at glTF's default cutoff 0.5, double-sided, the atlas at
 // `atlasTexture` (an index into Scene::textures).
