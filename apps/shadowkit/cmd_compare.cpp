@@ -63,7 +63,7 @@ int runCompare(const CompareArgs& args) {
             return fail(error);
         }
         // Cells that share camera, sun and size share one ray-traced truth (Measurer's cache).
-        auto measured = (*measurer)->measure(*prepared, {.shadedImage = true});
+        auto measured = (*measurer)->measure(*prepared, {.shadedImage = true, .levelMap = true});
         if (!measured) {
             core::Error error = withFlagName(measured.errorInfo()); // keeps its kind: a driver limit exits 3
             error.message = "--configs: " + error.message;

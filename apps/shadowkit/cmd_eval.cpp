@@ -205,6 +205,7 @@ int runEval(const EvalArgs& args) {
         // Progress only when the truth takes a while (large images, big scenes).
         measure::MeasureOptions options;
         options.shadedImage = !args.report.empty();
+        options.levelMap = !args.report.empty(); // the report's level map
         options.softTruth.samples = args.softSamples;
         options.truthProgress = [&, shown = false](double done) mutable {
             const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -1,5 +1,6 @@
 #include "html_reports.h"
 
+#include "shadowkit/eval/level_map.h"
 #include "shadowkit/eval/maps.h"
 
 #include <fmt/format.h>
@@ -26,6 +27,27 @@ std::string quoted(const std::string& arg) {
     std::string out = "'";
     for (char c : arg) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
     return out + "'";
+}
+
+// The level map's caption: what its colours mean, and the truth's shadowed pixels split by the
+// level their caster was drawn at, with the share of each that came out lit.
+std::string levelCaption(const eval::LevelMap& levels, const eval::Comparison& comparison) {
+    const std::vector<eval::CasterLevelFigures> split = eval::casterLevelFigures(levels, comparison);
+    int64_t shadowed = 0;
+    for (const eval::CasterLevelFigures& f : split) shadowed += f.shadowedPx;
+    std::string caption = "levels of detail: where the truth is in shadow, the level the sun pass drew its caster at; "
+                          "elsewhere, faded, the camera pass's level of the surface";
+    const char* separator = ". Of the shadowed pixels: ";
+    for (const eval::CasterLevelFigures& f : split) {
+        const std::string level = f.level == eval::kLevelNotDrawn ? "casters not drawn"
+                                  : f.level == 0                  ? "full casters"
+                                                                  : fmt::format("level {} casters", f.level);
+        caption += fmt::format("{}{} {:.1f} % ({:.1f} % of them lit)", separator, level,
+                               100.0 * double(f.shadowedPx) / double(std::max<int64_t>(shadowed, 1)),
+                               100.0 * double(f.falseLitPx) / double(std::max<int64_t>(f.shadowedPx, 1)));
+        separator = "; ";
+    }
+    return caption;
 }
 
 } // namespace
@@ -92,6 +114,11 @@ core::Result<eval::HtmlEntry> reportEntry(const measure::Measurement& measured, 
     if (auto s = add(eval::aliasingMapImage(measured.comparison, w, h), "aliasing", "aliasing map (pixels per texel)");
         !s)
         return s.errorInfo();
+    if (measured.levels)
+        if (auto s = add(eval::levelMapImage(*measured.levels), "levels",
+                         levelCaption(*measured.levels, measured.comparison));
+            !s)
+            return s.errorInfo();
     return entry;
 }
 

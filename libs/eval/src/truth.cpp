@@ -20,19 +20,17 @@ Ray shadowRay(const core::Vec3& wsPoint, const core::Vec3& wsNormal, const core:
     return {wsPoint + offset * wsNormal, towardsLight, 0.0, std::numeric_limits<double>::infinity()};
 }
 
-// For the pixels i in [begin, end) whose `rayOf(i)` gives a shadow ray, lit[i] = it reaches the
-// light; the rays go through the ray tracer eight at a time (neighbouring pixels' shadow rays
-// are coherent).
-template <class RayOf>
-void traceLit(const RayScene& rays, size_t begin, size_t end, RayOf rayOf, std::vector<uint8_t>& lit) {
+// For the pixels i in [begin, end) whose `rayOf(i)` gives a ray, `trace(rays, pixels)` with up
+// to eight of them at a time: neighbouring pixels' shadow rays are coherent, and the ray tracer's
+// packet kernels take them together.
+template <class RayOf, class Trace>
+void inBatches(size_t begin, size_t end, RayOf rayOf, Trace trace) {
     constexpr size_t kBatch = 8;
     std::array<Ray, kBatch> batch;
     std::array<size_t, kBatch> pixel;
-    std::array<uint8_t, kBatch> occluded;
     size_t count = 0;
     const auto flush = [&] {
-        rays.occluded(std::span(batch.data(), count), std::span(occluded.data(), count));
-        for (size_t k = 0; k < count; ++k) lit[pixel[k]] = !occluded[k];
+        trace(std::span<const Ray>(batch.data(), count), std::span<const size_t>(pixel.data(), count));
         count = 0;
     };
     for (size_t i = begin; i < end; ++i) {
@@ -43,6 +41,23 @@ void traceLit(const RayScene& rays, size_t begin, size_t end, RayOf rayOf, std::
         if (count == kBatch) flush();
     }
     flush();
+}
+
+// lit[i] = the ray reaches the light, for the pixels whose `rayOf(i)` gives a shadow ray.
+template <class RayOf>
+void traceLit(const RayScene& rays, size_t begin, size_t end, RayOf rayOf, std::vector<uint8_t>& lit) {
+    std::array<uint8_t, 8> occluded;
+    inBatches(begin, end, rayOf, [&](std::span<const Ray> batch, std::span<const size_t> pixels) {
+        rays.occluded(batch, std::span(occluded.data(), batch.size()));
+        for (size_t k = 0; k < batch.size(); ++k) lit[pixels[k]] = !occluded[k];
+    });
+}
+
+// The sun's shadow ray of `hits`' pixel i, where it has a surface facing the light.
+std::optional<Ray> sunShadowRay(const TruthBuffers& hits, size_t i, const core::Vec3& towardsLight, double offset) {
+    const core::Vec3 n(hits.wsNormal[i]);
+    if (hits.surfaceId[i] == 0 || !(glm::dot(n, towardsLight) > 0.0)) return std::nullopt;
+    return shadowRay(hits.wsPosition[i], n, towardsLight, offset);
 }
 
 // A local light's truth at `hits`' surfaces: which face it within what it admits (range,
@@ -173,15 +188,29 @@ std::vector<uint8_t> litAt(const RayScene& rays, const TruthBuffers& hits, const
     const double offset = options.normalOffsetFraction * std::max(rays.sceneDiagonal(), 1.0);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, lit.size()), [&](const tbb::blocked_range<size_t>& r) {
         traceLit(
-            rays, r.begin(), r.end(),
-            [&](size_t i) -> std::optional<Ray> {
-                const core::Vec3 n(hits.wsNormal[i]);
-                if (hits.surfaceId[i] == 0 || !(glm::dot(n, towardsLight) > 0.0)) return std::nullopt;
-                return shadowRay(hits.wsPosition[i], n, towardsLight, offset);
-            },
-            lit);
+            rays, r.begin(), r.end(), [&](size_t i) { return sunShadowRay(hits, i, towardsLight, offset); }, lit);
     });
     return lit;
+}
+
+std::vector<uint32_t> castersAt(const RayScene& rays, const TruthBuffers& hits, const core::DirectionalLight& light,
+                                const TruthOptions& options) {
+    std::vector<uint32_t> caster(hits.surfaceId.size(), 0);
+    const core::Vec3 towardsLight = light.wsTowardsLight();
+    const double offset = options.normalOffsetFraction * std::max(rays.sceneDiagonal(), 1.0);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, caster.size()), [&](const tbb::blocked_range<size_t>& r) {
+        std::array<uint8_t, 8> hit;
+        std::array<RayHit, 8> nearest;
+        inBatches(
+            r.begin(), r.end(),
+            [&](size_t i) { return hits.lit[i] ? std::nullopt : sunShadowRay(hits, i, towardsLight, offset); },
+            [&](std::span<const Ray> batch, std::span<const size_t> pixels) {
+                rays.intersect(batch, std::span(hit.data(), batch.size()), std::span(nearest.data(), batch.size()));
+                for (size_t k = 0; k < batch.size(); ++k)
+                    if (hit[k]) caster[pixels[k]] = nearest[k].instance + 1;
+            });
+    });
+    return caster;
 }
 
 std::vector<uint8_t> litAt(const RayScene& rays, const TruthBuffers& hits, const core::PointLight& light,

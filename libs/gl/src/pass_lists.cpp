@@ -225,6 +225,29 @@ void PassLists::planPages(const PassPlanInputs& in, VirtualPages& pages, std::ve
     }
 }
 
+LevelsDrawn PassLists::levelsDrawn() const {
+    const std::span<const uint32_t> batchFirst = m_visibility->batchFirst();
+    LevelsDrawn out;
+    out.camera.assign(batchFirst.back(), kLevelNotDrawn);
+    out.sun.assign(batchFirst.back(), kLevelNotDrawn);
+    auto mark = [&](const PassList& list, std::vector<uint8_t>& levels) {
+        const PassList read = list.indirect >= 0 ? m_gpuCulling->read(list) : PassList{};
+        const PassList& drawn = list.indirect >= 0 ? read : list;
+        for (size_t slot = 0; slot < drawn.count.size(); ++slot) {
+            const size_t batch = slot / kMaxLodLevels;
+            const auto level = static_cast<uint8_t>(slot % kMaxLodLevels);
+            for (uint32_t k = 0; k < drawn.count[slot]; ++k) {
+                uint8_t& at = levels[batchFirst[batch] + drawn.indices[drawn.first[slot] + k]];
+                at = std::min(at, level);
+            }
+        }
+    };
+    mark(m_camera, out.camera);
+    for (const PassList& list : m_sun) mark(list, out.sun);
+    for (const PassList& list : m_pages) mark(list, out.sun);
+    return out;
+}
+
 void PassLists::describeGpuLists(FrameFigureSources& sources) const {
     sources.commands = m_gpuCulling->commandBuffer();
     sources.commandWords = m_gpuCulling->commandWords();

@@ -90,6 +90,9 @@ public:
     // Camera depth pre-passes drawn since the planner was made (a CHC++ settle loop counts once).
     int prepassesDrawn() const { return m_prepassesDrawn; }
 
+    // The levels the last frame's camera list and sun lists (maps or pages) drew each instance at.
+    // GPU-culled lists are read back (a wait: for reports, not for frames).
+    LevelsDrawn levelsDrawn() const;
     // Culling::Gpu: what the sun maps' lists drew, read back (waits for the GPU).
     DrawStats gpuSunDrawn() const { return m_gpuCulling->submitted(m_sun); }
     // Culling::Gpu: the same lists for a late read (gpu_figures.h): the command buffer the GPU

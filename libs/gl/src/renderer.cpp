@@ -273,6 +273,8 @@ std::optional<VirtualPageStats> Renderer::lastVirtualPages() const { return m_im
 
 PassStats Renderer::lastShadowPass() const { return m_impl->lastShadow; }
 
+LevelsDrawn Renderer::levelsDrawn() const { return m_impl->lists->levelsDrawn(); }
+
 core::Status Renderer::moveInstances(const scene::Scene& scene, std::span<const uint32_t> moved) {
     Impl& r = *m_impl;
     if (scene.instanceCount() != r.lists->hierarchy().size())

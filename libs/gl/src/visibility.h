@@ -71,6 +71,8 @@ public:
 
     const core::Aabb& bounds() const { return m_hierarchy.bounds(); } // in the scene's coordinates
     const visibility::InstanceHierarchy& hierarchy() const { return m_hierarchy; }
+    // The global index of each batch's first instance, and the instance count last.
+    std::span<const uint32_t> batchFirst() const { return m_batchFirst; }
 
     // The instances the half-spaces may see (every instance when `cull` is false), each at
     // the level `lod` picks (the full mesh without one).

@@ -6,6 +6,7 @@
 #include "shadowkit/gl/renderer.h"
 #include "shadowkit/scene/forest.h"
 #include "shadowkit/scene/mesh_builder.h"
+#include "shadowkit/scene/mesh_lod.h"
 #include "shadowkit/scene/views.h"
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -229,6 +230,59 @@ TEST_F(CullingTest, LevelsOfDetailDrawFewerTrianglesForDistantTreesWithinTheirEr
         EXPECT_EQ(strictStats.shadow.triangles, fullStats.shadow.triangles) << name;
         EXPECT_EQ(strict.shadowTerm, full.shadowTerm) << name;
         EXPECT_EQ(strict.surfaceId, full.surfaceId) << name;
+    }
+}
+
+// Renderer::levelsDrawn (the report's level map) says which level each pass drew each instance
+// at: summed over the instances, those levels' triangles are exactly what the frame's passes
+// submitted, on the CPU's lists and on the GPU's (read back), and the leafy trees' far levels
+// — their billboard clouds — are among them in both passes.
+TEST_F(CullingTest, LevelsDrawnAccountForEveryTriangleEachPassSubmitted) {
+    const scene::Scene forest = gl::testing::smallLeafyForest();
+    const scene::ResolvedView view = smallView(forest, "aerial", 320, 180);
+    auto renderer = gl::Renderer::create(forest);
+    ASSERT_TRUE(renderer);
+    // Each global instance's mesh, and each mesh's triangles per level (as the renderer builds them).
+    std::vector<uint32_t> meshOf;
+    for (const scene::MeshBatch& batch : forest.batches)
+        meshOf.insert(meshOf.end(), batch.worldFromObject.size(), batch.mesh);
+    std::vector<scene::MeshLods> lods;
+    for (const scene::Mesh& mesh : forest.meshes) {
+        const scene::Material* material = forest.materialOf(mesh);
+        const bool keepWhole = material && material->alphaTested() && mesh.authoredLods.empty();
+        lods.push_back(scene::buildLods(mesh, {.maxLevels = keepWhole ? 1 : 4}));
+    }
+    auto trianglesOf = [&](const std::vector<uint8_t>& levels, bool shadow, uint8_t& coarsestLeaves) {
+        size_t triangles = 0;
+        for (size_t i = 0; i < levels.size(); ++i) {
+            if (levels[i] == gl::kLevelNotDrawn) continue;
+            const auto& chain = shadow ? lods[meshOf[i]].shadow : lods[meshOf[i]].camera;
+            EXPECT_LT(levels[i], chain.size()) << i;
+            triangles += chain[levels[i]].indexCount / 3;
+            if (forest.meshes[meshOf[i]].material >= 0) coarsestLeaves = std::max(coarsestLeaves, levels[i]);
+        }
+        return triangles;
+    };
+    const auto setup = core::computeShadowSetup({.camera = view.camera,
+                                                 .light = view.light,
+                                                 .wsSceneBounds = forest.wsBounds(),
+                                                 .technique = core::Technique::Tsm,
+                                                 .mapSize = 512});
+    ASSERT_TRUE(setup);
+    for (const gl::Culling culling : {gl::Culling::Frustum, gl::Culling::Gpu}) {
+        gl::RenderSettings settings = smallFrame(320, 180, culling);
+        settings.lodFoliageScale = 32.0f; // clouds within this small forest
+        const auto stats = (*renderer)->render(view.camera, view.light, *setup, settings);
+        ASSERT_TRUE(stats) << stats.error();
+        const gl::LevelsDrawn levels = (*renderer)->levelsDrawn();
+        ASSERT_EQ(levels.camera.size(), meshOf.size());
+        ASSERT_EQ(levels.sun.size(), meshOf.size());
+        uint8_t cameraLeaves = 0, sunLeaves = 0;
+        const std::string name(gl::cullingName(culling));
+        EXPECT_EQ(trianglesOf(levels.camera, false, cameraLeaves), stats->main.triangles) << name;
+        EXPECT_EQ(trianglesOf(levels.sun, true, sunLeaves), stats->shadow.triangles) << name; // one map: once each
+        EXPECT_GE(cameraLeaves, 2) << name << ": the 8-slab cloud or coarser in the camera pass";
+        EXPECT_GE(sunLeaves, 1) << name << ": a cloud in the shadow pass";
     }
 }
 

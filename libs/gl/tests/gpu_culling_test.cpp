@@ -131,18 +131,16 @@ TEST_F(GpuCullingTest, ListsEqualTheCpuPathsForRandomVolumesAndLevelsOfDetail) {
 // Leafy trees, whose levels keep coverage (card levels, billboard clouds) and are taken further
 // out by LodChoice::coverageScale: the GPU's rule reads the levels' flags as the CPU's does.
 TEST_F(GpuCullingTest, ListsEqualTheCpuPathsWithLevelsThatKeepCoverage) {
-    scene::ForestOptions options;
-    options.kind = scene::ForestKind::Leafy;
-    options.trees = 300, options.terrainSize = 300, options.terrainResolution = 16;
-    options.rocks = 4, options.buildings = 2, options.movers = 0;
-    const scene::Scene forest = scene::makeForest(options);
+    const scene::Scene forest = gl::testing::smallLeafyForest();
     const ComparedLists drawn = compareWithTheCpuPath(
         forest, [](std::mt19937& random) { return std::uniform_real_distribution<double>(1.0, 16.0)(random); });
     EXPECT_GT(drawn.drawnCamera + drawn.drawnShadow, 500u);
     // Every leafy batch reaches its billboard cloud somewhere.
-    for (size_t b = 0; b < forest.batches.size(); ++b)
-        if (forest.meshes[forest.batches[b].mesh].material >= 0)
+    for (size_t b = 0; b < forest.batches.size(); ++b) {
+        if (forest.meshes[forest.batches[b].mesh].material >= 0) {
             EXPECT_GT(drawn.coarsest[b], 0u) << forest.meshes[forest.batches[b].mesh].name;
+        }
+    }
 }
 
 TEST_F(GpuCullingTest, TwoPhaseFramesEqualFrustumCulledFramesFromTheFirstAndAfterCuts) {

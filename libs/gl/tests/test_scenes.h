@@ -20,6 +20,16 @@ inline scene::Scene smallForest(int trees, double terrainSize, int terrainResolu
     return scene::makeForest(o);
 }
 
+// A small leafy forest (alpha-tested cards, their levels down to billboard clouds): 300 trees on
+// 300 m, a few rocks and buildings, nothing moving.
+inline scene::Scene smallLeafyForest() {
+    scene::ForestOptions o;
+    o.kind = scene::ForestKind::Leafy;
+    o.trees = 300, o.terrainSize = 300, o.terrainResolution = 16;
+    o.rocks = 4, o.buildings = 2, o.movers = 0;
+    return scene::makeForest(o);
+}
+
 // The settings of a small frame (width x height pixels) with this culling.
 inline RenderSettings smallFrame(int width, int height, Culling culling) {
     RenderSettings settings;

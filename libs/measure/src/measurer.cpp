@@ -134,21 +134,31 @@ core::Result<Measurement> Measurer::measure(const frame::PreparedFrame& frame, c
     m.setup = frame.setup;
     m.bias = gl::biasFor(m.setup, settings);
     gl::Renderer& renderer = *m_impl->renderer;
+    std::optional<gl::LevelsDrawn> levels; // with options.levelMap: of the frame's own passes, as virtualPages
     if (options.shadedImage) {
         if (auto stats = renderer.render(inputs.camera, inputs.light, m.setup, settings); !stats)
             return stats.errorInfo();
         m.image = renderer.readColor();
         m.virtualPages = renderer.lastVirtualPages(); // the frame's own pages, before the eval pass reuses them
         m.shadowPass = renderer.lastShadowPass();
+        if (options.levelMap) levels = renderer.levelsDrawn();
     }
     auto raster = renderer.renderEvalBuffers(inputs.camera, inputs.light, m.setup, settings);
     if (!raster) return raster.errorInfo();
-    if (!options.shadedImage) m.virtualPages = renderer.lastVirtualPages(), m.shadowPass = renderer.lastShadowPass();
+    if (!options.shadedImage) {
+        m.virtualPages = renderer.lastVirtualPages(), m.shadowPass = renderer.lastShadowPass();
+        if (options.levelMap) levels = renderer.levelsDrawn();
+    }
     m.raster = std::move(raster).value();
     m.truth = truth(inputs.camera, inputs.light, settings.width, settings.height, options.truthProgress);
     auto comparison = eval::compare(m.raster, *m.truth, options.compare);
     if (!comparison) return comparison.errorInfo();
     m.comparison = std::move(comparison).value();
+    if (levels && settings.sun) {
+        static_assert(gl::kLevelNotDrawn == eval::kLevelNotDrawn);
+        m.levels = eval::levelMap(m.raster.surfaceId, eval::castersAt(*m_impl->rays, *m.truth, inputs.light),
+                                  levels->camera, levels->sun, m.raster.width, m.raster.height);
+    }
     if (settings.sunAngleDegrees > 0.0 && settings.sun) {
         m.softTruth = eval::computeSoftTruth(
             *m_impl->rays, *m.truth, {inputs.light.wsTowardsLight(), settings.sunAngleDegrees}, options.softTruth);

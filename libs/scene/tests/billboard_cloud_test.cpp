@@ -164,7 +164,9 @@ TEST(BillboardCloudTest, TheCloudsAreFewerPlanesAlongTheChainEachInItsOwnTexture
             const BillboardCloud& cloud = tree.clouds[c].cloud;
             EXPECT_EQ(level.indices.size(), size_t(6 * cloud.planes)) << k;
             EXPECT_LE(cloud.planes, 7 * (16 >> c)) << k << ": seven orientations, 16 >> c slabs each";
-            if (c > 0) EXPECT_LT(cloud.planes, tree.clouds[c - 1].cloud.planes) << k;
+            if (c > 0) {
+                EXPECT_LT(cloud.planes, tree.clouds[c - 1].cloud.planes) << k;
+            }
             EXPECT_EQ(level.objectError, cloud.objectError) << k;
             EXPECT_EQ(level.texture, int32_t(1 + c)) << k << ": its own texture";
             EXPECT_TRUE(level.keepsCoverage) << k;

@@ -45,6 +45,12 @@ TruthBuffers computeTruth(const RayScene& rays, const core::PerspectiveCamera& c
 std::vector<uint8_t> litAt(const RayScene& rays, const TruthBuffers& hits, const core::DirectionalLight& light,
                            const TruthOptions& options = {});
 
+// The casters of the sun's truth at `hits`' surfaces: per pixel, the global instance + 1 of the
+// first surface its shadow ray meets, where the point faces the light and its ray is blocked
+// (`hits.lit` 0); 0 elsewhere. The same rays as litAt's, traced for their nearest hit.
+std::vector<uint32_t> castersAt(const RayScene& rays, const TruthBuffers& hits, const core::DirectionalLight& light,
+                                const TruthOptions& options = {});
+
 // The truth for a local light at the surface points of `hits`: per pixel, 1 where the point
 // lies within the light's range (and, for a spot light, inside its cone), faces the light,
 // and the segment from it to the light is free; else 0 (also where `hits` has no surface).

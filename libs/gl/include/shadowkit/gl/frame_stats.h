@@ -12,6 +12,14 @@
 
 namespace shadowkit::gl {
 
+// The level of detail each instance was drawn at in a frame (Renderer::levelsDrawn), per global
+// instance (batches in Scene order): 0 the full mesh, kLevelNotDrawn where the pass drew none.
+inline constexpr uint8_t kLevelNotDrawn = 0xff;
+struct LevelsDrawn {
+    std::vector<uint8_t> camera; // the camera pass
+    std::vector<uint8_t> sun;    // the sun's maps, or the virtual pages drawn: the finest level any drew it at
+};
+
 struct PassStats {
     double gpuMilliseconds = 0.0; // between two GL timestamp queries
     size_t instances = 0;         // submitted (over every map, for the shadow pass)

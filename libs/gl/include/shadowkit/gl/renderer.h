@@ -105,6 +105,10 @@ public:
     // What the last frame's sun shadow pass drew (render or renderEvalBuffers); its GPU time is
     // left 0 here (render's FrameStats has it).
     PassStats lastShadowPass() const;
+    // The level of detail the last frame (render or renderEvalBuffers) drew each instance at, in
+    // the camera pass and in the sun's maps or pages (the finest where several drew it): what a
+    // report's level map shows. GPU-culled lists are read back, a wait: not for every frame.
+    LevelsDrawn levelsDrawn() const;
 
     // World bounds of every instance, from the instance hierarchy: O(1).
     core::Aabb wsSceneBounds() const;

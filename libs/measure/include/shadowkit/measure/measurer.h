@@ -12,6 +12,7 @@
 #include "shadowkit/core/result.h"
 #include "shadowkit/core/setup_hysteresis.h"
 #include "shadowkit/core/shadow_setup.h"
+#include "shadowkit/eval/level_map.h"
 #include "shadowkit/eval/metrics.h"
 #include "shadowkit/eval/report.h"
 #include "shadowkit/eval/soft_truth.h"
@@ -40,6 +41,9 @@ namespace shadowkit::measure {
 struct MeasureOptions {
     // Also draw the shaded frame and read it back (Measurement::image).
     bool shadedImage = false;
+    // Also find which level of detail drew each pixel's surface and its caster (Measurement::levels):
+    // a shadow ray more per shadowed pixel, and GPU-culled lists read back.
+    bool levelMap = false;
     // Ray-tracing progress, 0..1, from the calling thread; called only when the truth for
     // this camera is not cached yet.
     std::function<void(double)> truthProgress;
@@ -75,6 +79,7 @@ struct Measurement {
     gl::PassStats shadowPass;                         // what the frame's sun shadow pass drew
     std::optional<eval::SoftFigures> soft;            // with RenderSettings::sunAngleDegrees > 0 and the sun on
     std::optional<eval::SoftTruth> softTruth;         // the per-pixel truth those figures compare with
+    std::optional<eval::LevelMap> levels;             // with MeasureOptions::levelMap and the sun on
     const eval::Figures& figures() const { return comparison.figures; }
 };
 
