@@ -174,11 +174,14 @@ bool pack(std::vector<Plane>& planes, const ImageRegion& region, float texelsPer
     return true;
 }
 
-// A texel of a texture at uv (nearest; v runs down the image, glTF's convention).
-const uint8_t* texelAt(const Image& texture, glm::vec2 uv) {
-    const int x = std::clamp(int(std::floor(uv.x * float(texture.width))), 0, texture.width - 1);
-    const int y = std::clamp(int(std::floor(uv.y * float(texture.height))), 0, texture.height - 1);
-    return texture.pixel(x, y);
+// A source's texel at uv (nearest, wrapped as its texture is; v runs down the image, glTF's convention).
+const uint8_t* texelAt(const CloudSource& source, glm::vec2 uv) {
+    const Image& texture = *source.texture;
+    // Clamped where a float has no fraction left (and an int conversion would overflow).
+    const glm::vec2 st = glm::clamp(uv * glm::vec2(float(texture.width), float(texture.height)),
+                                    glm::vec2(-16777216.0f), glm::vec2(16777216.0f));
+    return texture.pixel(wrapTexelIndex(int(std::floor(st.x)), texture.width, source.wrapS),
+                         wrapTexelIndex(int(std::floor(st.y)), texture.height, source.wrapT));
 }
 
 // 4 × 4 ordered-dither thresholds (Bayer), in sixteenths: a region of coverage c/16 keeps
@@ -304,8 +307,8 @@ BillboardCloud bakeBillboardCloud(std::span<const CloudSource> sources, Image& t
                             if (t.source->texture) {
                                 const glm::vec2 uv =
                                     (1.0f - b1 - b2) * t.vertex(0).uv + b1 * t.vertex(1).uv + b2 * t.vertex(2).uv;
-                                const uint8_t* texel = texelAt(*t.source->texture, uv);
-                                if (float(texel[3]) < options.alphaCutoff * 255.0f) continue;
+                                const uint8_t* texel = texelAt(*t.source, uv);
+                                if (t.source->alphaFactor * float(texel[3]) < options.alphaCutoff * 255.0f) continue;
                                 rgb = glm::vec3(texel[0], texel[1], texel[2]) * t.vertex(0).albedo;
                             } else {
                                 rgb = 255.0f * t.vertex(0).albedo;

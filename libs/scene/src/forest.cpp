@@ -191,7 +191,7 @@ void addLeafyTrees(Scene& scene, SplitMix64& rng, const ForestOptions& o, AddMes
         tree.leaves.material = 0;
         // The height of the full tree: the far level's planes may reach a little past it.
         const double top = std::max(tree.wood.osBounds.max.y, tree.leaves.osBounds.max.y);
-        for (FarLevel& far : addFarLevels(tree, scene.textures[0].image, int32_t(scene.textures.size())))
+        for (BakedCloud& far : addFarLevels(tree, scene.textures[0].image, int32_t(scene.textures.size())))
             scene.textures.push_back(std::move(far.texture));
         species.push_back(
             {addMesh(std::move(tree.wood)), addMesh(std::move(tree.leaves)), heights[k][0], heights[k][1], top});

@@ -357,48 +357,23 @@ LeafyTree makeLeafyTree(TreeSpecies species, uint64_t seed) {
     return tree;
 }
 
-std::vector<FarLevel> addFarLevels(LeafyTree& tree, const Image& leafAtlas, int32_t firstTextureIndex) {
-    // Finer to coarser: each halves the planes (and the slabs' spacing doubles, so the error
-    // grows about 1.6×) and gets a quarter of the texels, which its smaller projection needs.
-    struct Bake {
-        int slabs, width, height;
-    };
-    constexpr Bake kBakes[] = {{16, 1024, 512}, {8, 512, 256}, {4, 256, 128}};
+std::vector<BakedCloud> addFarLevels(LeafyTree& tree, const Image& leafAtlas, int32_t firstTextureIndex) {
     const std::span<const uint32_t> branches(tree.wood.indices.begin() + std::ptrdiff_t(tree.trunkIndices),
                                              tree.wood.indices.end());
     const CloudSource sources[] = {{&tree.leaves, tree.leaves.indices, &leafAtlas}, {&tree.wood, branches, nullptr}};
-    std::vector<FarLevel> far;
-    for (const Bake& bake : kBakes) {
-        FarLevel level;
-        level.texture.image = Image(bake.width, bake.height);
-        level.texture.wrapS = level.texture.wrapT = TextureWrap::ClampToEdge;
-        level.cloud = bakeBillboardCloud(sources, level.texture.image, {0, 0, bake.width, bake.height},
-                                         {.slabsPerOrientation = bake.slabs});
-        // Errors must grow along the chain: a pass takes the coarsest level within its bound.
-        if (!far.empty() && !(level.cloud.objectError > far.back().cloud.objectError)) continue;
-        far.push_back(std::move(level));
-    }
+    std::vector<BakedCloud> far = bakeCloudChain(sources, leafMaterial(0).alphaCutoff);
+    if (far.empty()) return far; // no leaves
     // A card level that errs as much as the finest cloud (its cards' own size) but draws fifty
     // times its triangles is dropped. Its cards stay in the vertex buffer, unreferenced.
     while (!tree.leaves.authoredLods.empty() &&
            tree.leaves.authoredLods.back().objectError >= far.front().cloud.objectError)
         tree.leaves.authoredLods.pop_back();
-    // Every cloud's planes go into the vertex buffer after the cards; the indices of each level
-    // are its own. Taken after the loop: the sources read tree.leaves while the clouds bake.
-    for (size_t i = 0; i < far.size(); ++i) {
-        const BillboardCloud& cloud = far[i].cloud;
-        AuthoredLod leaves{{}, cloud.objectError, true, firstTextureIndex + int32_t(i)};
-        const auto base = static_cast<uint32_t>(tree.leaves.vertices.size());
-        tree.leaves.vertices.insert(tree.leaves.vertices.end(), cloud.vertices.begin(), cloud.vertices.end());
-        for (const uint32_t index : cloud.indices) leaves.indices.push_back(base + index);
-        tree.leaves.authoredLods.push_back(std::move(leaves));
-    }
+    appendCloudLevels(tree.leaves, far, firstTextureIndex);
     // The branches are in every cloud: the trunk alone from the first.
     tree.wood.authoredLods.push_back(
         {std::vector<uint32_t>(tree.wood.indices.begin(),
                                tree.wood.indices.begin() + std::ptrdiff_t(tree.trunkIndices)),
          far.front().cloud.objectError, true});
-    tree.leaves.computeBounds();
     return far;
 }
 

@@ -4,10 +4,7 @@
 
 namespace shadowkit::scene {
 
-namespace {
-
-// Texel index i of a row or column of n texels under a wrap mode (GL 4.5 §8.14.2).
-int wrapIndex(int i, int n, TextureWrap wrap) {
+int wrapTexelIndex(int i, int n, TextureWrap wrap) {
     switch (wrap) {
     case TextureWrap::ClampToEdge:
         return i < 0 ? 0 : (i >= n ? n - 1 : i);
@@ -25,8 +22,11 @@ int wrapIndex(int i, int n, TextureWrap wrap) {
     }
 }
 
+namespace {
+
 glm::vec4 texel(const Texture& t, int x, int y) {
-    const uint8_t* p = t.image.pixel(wrapIndex(x, t.image.width, t.wrapS), wrapIndex(y, t.image.height, t.wrapT));
+    const uint8_t* p =
+        t.image.pixel(wrapTexelIndex(x, t.image.width, t.wrapS), wrapTexelIndex(y, t.image.height, t.wrapT));
     return glm::vec4(p[0], p[1], p[2], p[3]) / 255.0f;
 }
 

@@ -2,6 +2,8 @@
 
 #include "scene_formats.h"
 
+#include "shadowkit/scene/foliage_levels.h"
+
 #include <algorithm>
 
 namespace shadowkit::scene {
@@ -58,9 +60,12 @@ core::Result<Scene> loadScene(const fs::path& file) {
     if (!fs::exists(file, ec)) return core::makeError(file.string() + ": scene file does not exist");
     if (fs::is_directory(file, ec)) return core::makeError(file.string() + ": is a directory, not a scene file");
     const std::string ext = lowerExtension(file);
-    if (ext == ".gltf" || ext == ".glb") return loadGltf(file);
-    if (ext == ".obj") return loadObj(file);
-    return core::makeError(file.string() + ": unknown scene format (use .gltf, .glb or .obj)");
+    if (ext != ".gltf" && ext != ".glb" && ext != ".obj")
+        return core::makeError(file.string() + ": unknown scene format (use .gltf, .glb or .obj)");
+    core::Result<Scene> scene = ext == ".obj" ? loadObj(file) : loadGltf(file);
+    // Foliage that brings no levels of its own gets billboard clouds, as the leafy forest's trees.
+    if (scene) addFoliageClouds(*scene);
+    return scene;
 }
 
 core::Status exportScene(const Scene& scene, const fs::path& file) {

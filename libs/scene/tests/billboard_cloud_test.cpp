@@ -89,7 +89,7 @@ double sum(const std::vector<double>& a) {
 struct BakedTree {
     LeafyTree full, far;
     Texture atlas = makeLeafAtlas();
-    std::vector<FarLevel> clouds;
+    std::vector<BakedCloud> clouds;
     explicit BakedTree(TreeSpecies species) : full(makeLeafyTree(species, 1)), far(full) {
         clouds = addFarLevels(far, atlas.image, 1);
     }

@@ -24,12 +24,15 @@
 namespace shadowkit::scene {
 
 // What a cloud is baked from: the triangles `indices` of `mesh`. Alpha-tested sources read
-// their coverage from `texture` at the vertices' uvs (alpha ≥ cutoff); opaque ones (wood, no
-// texture) cover wherever they lie and give the texels their vertex colour.
+// their coverage from `texture` at the vertices' uvs (alphaFactor × alpha ≥ cutoff, the texel
+// nearest, wrapped as the texture says); opaque ones (wood, no texture) cover wherever they lie
+// and give the texels their vertex colour.
 struct CloudSource {
     const Mesh* mesh = nullptr;
     std::span<const uint32_t> indices;
     const Image* texture = nullptr; // alpha-tested sources: what their uvs index
+    TextureWrap wrapS = TextureWrap::ClampToEdge, wrapT = TextureWrap::ClampToEdge;
+    float alphaFactor = 1.0f; // the material's baseColorFactor alpha
 };
 
 struct BillboardCloudOptions {

@@ -8,7 +8,7 @@
 // seen edge-on by the light — which is why this forest exists (issue 33; docs/materials.md).
 #pragma once
 
-#include "shadowkit/scene/billboard_cloud.h"
+#include "shadowkit/scene/foliage_levels.h"
 #include "shadowkit/scene/material.h"
 #include "shadowkit/scene/scene.h"
 
@@ -40,21 +40,15 @@ struct LeafyTree {
 };
 LeafyTree makeLeafyTree(TreeSpecies species, uint64_t seed);
 
-// The tree's far levels, for where a canopy covers a few dozen pixels or texels and fewer:
-// three billboard clouds (billboard_cloud.h) of its leaves (their alpha read from `leafAtlas`,
-// makeLeafAtlas()'s image) and of every branch but the trunk — 16, 8 and 4 slabs per
-// orientation, each baked into a texture of its own (1024 × 512, 512 × 256, 256 × 128,
-// clamped) — appended to `tree.leaves` as its last authored levels, finer first, the i-th
-// reading Scene::textures[firstTextureIndex + i]. Each errs more and draws about half the
-// planes of the one before (a cloud that would not err more is left out); the card levels
+// The tree's far levels, for where a canopy covers a few dozen pixels or texels and fewer: the
+// cloud chain (foliage_levels.h: three billboard clouds, 16, 8 and 4 slabs per orientation, each
+// in a texture of its own) of its leaves (their alpha read from `leafAtlas`, makeLeafAtlas()'s
+// image) and of every branch but the trunk, appended to `tree.leaves` as its last authored
+// levels, finer first, the i-th reading Scene::textures[firstTextureIndex + i]; the card levels
 // that err as much as the finest cloud are dropped. The trunk alone becomes `tree.wood`'s one
 // authored level, at the finest cloud's error, so the branches leave the wood as they enter
 // the leaves. Returns the clouds in chain order, with their textures (for the scene).
-struct FarLevel {
-    Texture texture;
-    BillboardCloud cloud;
-};
-std::vector<FarLevel> addFarLevels(LeafyTree& tree, const Image& leafAtlas, int32_t firstTextureIndex);
+std::vector<BakedCloud> addFarLevels(LeafyTree& tree, const Image& leafAtlas, int32_t firstTextureIndex);
 
 // The leaves' material: MASK at glTF's default cutoff 0.5, double-sided, the atlas at
 // `atlasTexture` (an index into Scene::textures).

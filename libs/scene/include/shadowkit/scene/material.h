@@ -48,6 +48,9 @@ struct Material {
     bool alphaTested() const { return alphaMode != AlphaMode::Opaque; }
 };
 
+// Texel index i of a row or column of n texels under a wrap mode (GL 4.5 §8.14.2).
+int wrapTexelIndex(int i, int n, TextureWrap wrap);
+
 // The texture's value at `uv` as GL samples level 0 with a LINEAR filter (or NEAREST when
 // the texture says so): texel centres at (i + ½) / size, the wrap mode applied to each texel
 // index. The ray-traced truth reads alpha through this, so that it sees the card the

@@ -1,0 +1,47 @@
+// Far levels of detail for foliage: a chain of billboard clouds (billboard_cloud.h) appended to a
+// card mesh as authored levels, for the leafy forest's trees and for the alpha-tested meshes a
+// loaded scene brings without levels of its own (a glTF's leaves).
+//
+// A simplifier cannot reduce a soup of cards (each is two triangles of its own) and a card level
+// only halves them; a cloud draws a few dozen planes. Three of them, each about 1.6 times the error
+// and half the planes of the one before, let a tree's far level shrink with its projection.
+#pragma once
+
+#include "shadowkit/scene/billboard_cloud.h"
+#include "shadowkit/scene/scene.h"
+
+#include <span>
+#include <vector>
+
+namespace shadowkit::scene {
+
+// One cloud of a chain and the texture it was baked into (its own: clamped, coverage-kept mips).
+struct BakedCloud {
+    Texture texture;
+    BillboardCloud cloud;
+};
+
+// The chain of `sources`: 16, 8 and 4 slabs per orientation, baked into 1024 × 512, 512 × 256 and
+// 256 × 128 texels (a coarser cloud's smaller projection needs a quarter of the texels), finer
+// first. A cloud that would not err more than the one before it is left out, so errors grow along
+// the chain as a pass's choice of the coarsest level within its bound needs. Deterministic.
+std::vector<BakedCloud> bakeCloudChain(std::span<const CloudSource> sources, float alphaCutoff);
+
+// Appends `clouds` to `mesh` as its last authored levels (keeping coverage), their planes after
+// its vertices, the i-th reading Scene::textures[firstTextureIndex + i]; recomputes its bounds.
+void appendCloudLevels(Mesh& mesh, std::span<const BakedCloud> clouds, int32_t firstTextureIndex);
+
+struct FoliageCloudOptions {
+    // Meshes of fewer triangles keep their one level (a few cards draw as cheaply as a cloud)...
+    size_t minTriangles = 256;
+    // ... and of more, too (baking takes about a second per 100,000 triangles).
+    size_t maxTriangles = 262144;
+};
+
+// Gives every alpha-tested mesh of `scene` that has no authored levels (and a triangle count in
+// the options' range) the cloud chain of all its triangles, their coverage read from its
+// material's base-colour texture (with the texture's wrap modes and the material's alpha factor
+// and cutoff), the textures appended to Scene::textures. Returns how many meshes it gave levels.
+int addFoliageClouds(Scene& scene, const FoliageCloudOptions& options = {});
+
+} // namespace shadowkit::scene

@@ -1,0 +1,65 @@
+#include "shadowkit/scene/foliage_levels.h"
+
+namespace shadowkit::scene {
+
+std::vector<BakedCloud> bakeCloudChain(std::span<const CloudSource> sources, float alphaCutoff) {
+    // Finer to coarser: each halves the planes (the slabs' spacing doubles, so the error grows
+    // about 1.6×) and gets a quarter of the texels.
+    struct Bake {
+        int slabs, width, height;
+    };
+    constexpr Bake kBakes[] = {{16, 1024, 512}, {8, 512, 256}, {4, 256, 128}};
+    std::vector<BakedCloud> chain;
+    for (const Bake& bake : kBakes) {
+        BakedCloud level;
+        level.texture.image = Image(bake.width, bake.height);
+        level.texture.wrapS = level.texture.wrapT = TextureWrap::ClampToEdge;
+        level.cloud = bakeBillboardCloud(sources, level.texture.image, {0, 0, bake.width, bake.height},
+                                         {.slabsPerOrientation = bake.slabs, .alphaCutoff = alphaCutoff});
+        if (level.cloud.planes == 0) break; // nothing to cover
+        if (!chain.empty() && !(level.cloud.objectError > chain.back().cloud.objectError)) continue;
+        chain.push_back(std::move(level));
+    }
+    return chain;
+}
+
+void appendCloudLevels(Mesh& mesh, std::span<const BakedCloud> clouds, int32_t firstTextureIndex) {
+    for (size_t i = 0; i < clouds.size(); ++i) {
+        const BillboardCloud& cloud = clouds[i].cloud;
+        AuthoredLod level{{}, cloud.objectError, true, firstTextureIndex + int32_t(i)};
+        const auto base = static_cast<uint32_t>(mesh.vertices.size());
+        mesh.vertices.insert(mesh.vertices.end(), cloud.vertices.begin(), cloud.vertices.end());
+        for (const uint32_t index : cloud.indices) level.indices.push_back(base + index);
+        mesh.authoredLods.push_back(std::move(level));
+    }
+    mesh.computeBounds();
+}
+
+int addFoliageClouds(Scene& scene, const FoliageCloudOptions& options) {
+    int given = 0;
+    for (Mesh& mesh : scene.meshes) {
+        const Material* material = scene.materialOf(mesh);
+        if (!material || !material->alphaTested() || !mesh.authoredLods.empty()) continue;
+        if (mesh.triangleCount() < options.minTriangles || mesh.triangleCount() > options.maxTriangles) continue;
+        const Texture* texture =
+            material->baseColorTexture >= 0 && size_t(material->baseColorTexture) < scene.textures.size()
+                ? &scene.textures[size_t(material->baseColorTexture)]
+                : nullptr;
+        // Without a texture the alpha is the factor's alone: everything or nothing is covered.
+        if (!texture && material->baseColorFactor.a < material->alphaCutoff) continue;
+        const CloudSource source{&mesh,
+                                 mesh.indices,
+                                 texture ? &texture->image : nullptr,
+                                 texture ? texture->wrapS : TextureWrap::ClampToEdge,
+                                 texture ? texture->wrapT : TextureWrap::ClampToEdge,
+                                 material->baseColorFactor.a};
+        std::vector<BakedCloud> chain = bakeCloudChain(std::span(&source, 1), material->alphaCutoff);
+        if (chain.empty()) continue;
+        appendCloudLevels(mesh, chain, int32_t(scene.textures.size()));
+        for (BakedCloud& cloud : chain) scene.textures.push_back(std::move(cloud.texture));
+        ++given;
+    }
+    return given;
+}
+
+} // namespace shadowkit::scene
