@@ -9,11 +9,6 @@
 namespace shadowkit::eval {
 namespace {
 
-void put(scene::Image& image, int x, int y, const uint8_t rgb[3]) {
-    uint8_t* p = image.pixel(x, y);
-    p[0] = rgb[0], p[1] = rgb[1], p[2] = rgb[2], p[3] = 255;
-}
-
 // The level of global instance `id - 1` in `levels`; id 0 (nothing) and ids out of range: none.
 uint8_t levelOf(std::span<const uint8_t> levels, uint32_t id) {
     return id == 0 || id > levels.size() ? kLevelNotDrawn : levels[id - 1];
@@ -68,21 +63,21 @@ scene::Image levelMapImage(const LevelMap& map) {
         for (int x = 0; x < width; ++x) {
             const size_t i = size_t(y) * size_t(width) + size_t(x);
             if (map.caster[i] != kNoCaster) {
-                put(image, x, y, levelColor(map.caster[i]));
+                image.setOpaque(x, y, levelColor(map.caster[i]));
                 continue;
             }
             if (map.surface[i] == kLevelNotDrawn) {
-                put(image, x, y, dark);
+                image.setOpaque(x, y, dark);
                 continue;
             }
             // Lit or unevaluated surfaces: their own level, faded towards white.
             const uint8_t* c = levelColor(map.surface[i]);
             const uint8_t faded[3] = {uint8_t((c[0] + 2 * 235) / 3), uint8_t((c[1] + 2 * 235) / 3),
                                       uint8_t((c[2] + 2 * 235) / 3)};
-            put(image, x, y, faded);
+            image.setOpaque(x, y, faded);
         }
     for (int y = height; y < height + legendHeight; ++y)
-        for (int x = 0; x < width; ++x) put(image, x, y, dark);
+        for (int x = 0; x < width; ++x) image.setOpaque(x, y, dark);
     // Legend: a swatch and a name per level, then the grey of casters no pass drew.
     static constexpr uint8_t white[3] = {255, 255, 255};
     const std::array<std::pair<uint8_t, const char*>, 5> entries{
@@ -92,7 +87,7 @@ scene::Image levelMapImage(const LevelMap& map) {
     for (const auto& [level, name] : entries) {
         for (int dy = 0; dy < imaging::kGlyphHeight * scale; ++dy)
             for (int dx = 0; dx < imaging::kGlyphHeight * scale && x + dx < width; ++dx)
-                put(image, x + dx, top + dy, levelColor(level));
+                image.setOpaque(x + dx, top + dy, levelColor(level));
         x += (imaging::kGlyphHeight + 3) * scale;
         imaging::drawText(image, x, top, name, white, scale);
         x += imaging::textWidth(name, scale) + 8 * scale;

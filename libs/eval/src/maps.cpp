@@ -10,11 +10,6 @@
 namespace shadowkit::eval {
 namespace {
 
-void put(scene::Image& image, int x, int y, const uint8_t rgb[3]) {
-    uint8_t* p = image.pixel(x, y);
-    p[0] = rgb[0], p[1] = rgb[1], p[2] = rgb[2], p[3] = 255;
-}
-
 // A perceptually ordered dark-blue → green → yellow ramp (viridis-like), t in [0,1].
 std::array<uint8_t, 3> ramp(double t) {
     static constexpr double stops[5][3] = {{68, 1, 84}, {59, 82, 139}, {33, 145, 140}, {94, 201, 98}, {253, 231, 37}};
@@ -36,13 +31,13 @@ void shade(scene::Image& image, const TruthBuffers& truth, const core::Direction
     static constexpr uint8_t missing[3] = {230, 0, 230};
     static constexpr double ambient = 0.25;
     const int x = static_cast<int>(i % size_t(truth.width)), y = static_cast<int>(i / size_t(truth.width));
-    if (truth.surfaceId[i] == 0) return put(image, x, y, sky);
-    if (std::isnan(visibility)) return put(image, x, y, missing);
+    if (truth.surfaceId[i] == 0) return image.setOpaque(x, y, sky);
+    if (std::isnan(visibility)) return image.setOpaque(x, y, missing);
     const double nDotL = std::max(0.0, glm::dot(core::Vec3(truth.wsNormal[i]), light.wsTowardsLight()));
     const double v = truth.facesLight[i] ? std::clamp(double(visibility), 0.0, 1.0) : 0.0;
     const auto grey = static_cast<uint8_t>(std::lround(255.0 * (ambient + (1.0 - ambient) * nDotL * v)));
     const uint8_t rgb[3] = {grey, grey, grey};
-    put(image, x, y, rgb);
+    image.setOpaque(x, y, rgb);
 }
 
 } // namespace
@@ -54,8 +49,8 @@ scene::Image errorMapImage(const Comparison& comparison, int width, int height) 
                                C::falseShadow,  C::falseLit,   C::excluded};
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x)
-            put(image, x, y,
-                colors[static_cast<int>(comparison.classes[static_cast<size_t>(y) * size_t(width) + size_t(x)])]);
+            image.setOpaque(
+                x, y, colors[static_cast<int>(comparison.classes[static_cast<size_t>(y) * size_t(width) + size_t(x)])]);
     return image;
 }
 
@@ -69,7 +64,7 @@ scene::Image softErrorMapImage(std::span<const float> shadowTerm, const SoftTrut
             const bool valid = c == PixelClass::LitCorrect || c == PixelClass::ShadowCorrect ||
                                c == PixelClass::FalseShadow || c == PixelClass::FalseLit;
             if (!valid || std::isnan(soft.visibility[i])) {
-                put(image, x, y, C::notEvaluated);
+                image.setOpaque(x, y, C::notEvaluated);
                 continue;
             }
             // Linear from the grey of a right pixel to the full colour at an error of 1.
@@ -78,7 +73,7 @@ scene::Image softErrorMapImage(std::span<const float> shadowTerm, const SoftTrut
             uint8_t rgb[3];
             for (int k = 0; k < 3; ++k)
                 rgb[k] = static_cast<uint8_t>(std::lround(C::litCorrect[k] + std::abs(e) * (to[k] - C::litCorrect[k])));
-            put(image, x, y, rgb);
+            image.setOpaque(x, y, rgb);
         }
     return image;
 }
@@ -92,19 +87,19 @@ scene::Image aliasingMapImage(const Comparison& comparison, int width, int heigh
         for (int x = 0; x < width; ++x) {
             const float p = comparison.pixelsPerTexel[static_cast<size_t>(y) * size_t(width) + size_t(x)];
             if (std::isnan(p)) {
-                put(image, x, y, black);
+                image.setOpaque(x, y, black);
                 continue;
             }
             const auto c = ramp((std::log2(std::max(double(p), 1e-9)) - kLog2Min) / (kLog2Max - kLog2Min));
-            put(image, x, y, c.data());
+            image.setOpaque(x, y, c.data());
         }
     // Colour bar with ticks at every power of eight and labels 1/64 … 64.
     const int barTop = height + 2, barBottom = height + 2 + 6 * scale;
     for (int y = height; y < height + barHeight; ++y)
-        for (int x = 0; x < width; ++x) put(image, x, y, black);
+        for (int x = 0; x < width; ++x) image.setOpaque(x, y, black);
     for (int x = 0; x < width; ++x) {
         const auto c = ramp((x + 0.5) / width);
-        for (int y = barTop; y < barBottom; ++y) put(image, x, y, c.data());
+        for (int y = barTop; y < barBottom; ++y) image.setOpaque(x, y, c.data());
     }
     const char* labels[] = {"1/64", "1/8", "1", "8", "64"};
     for (int k = 0; k < 5; ++k) {
@@ -112,7 +107,8 @@ scene::Image aliasingMapImage(const Comparison& comparison, int width, int heigh
         const int x = std::clamp(static_cast<int>(t * (width - 1)), 0, width - 1);
         static constexpr uint8_t white[3] = {255, 255, 255};
         for (int y = barTop; y < barBottom + 2 * scale; ++y)
-            for (int w = 0; w < (k == 2 ? 2 * scale : scale); ++w) put(image, std::min(width - 1, x + w), y, white);
+            for (int w = 0; w < (k == 2 ? 2 * scale : scale); ++w)
+                image.setOpaque(std::min(width - 1, x + w), y, white);
         const int labelWidth = imaging::textWidth(labels[k], scale);
         imaging::drawText(image, std::clamp(x - labelWidth / 2, 0, width - labelWidth), barBottom + 3 * scale,
                           labels[k], white, scale);

@@ -29,6 +29,11 @@ struct Image {
     const uint8_t* pixel(int x, int y) const {
         return rgba.data() + (static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x)) * 4;
     }
+    // Pixel (x, y) set to an opaque colour.
+    void setOpaque(int x, int y, const uint8_t rgb[3]) {
+        uint8_t* p = pixel(x, y);
+        p[0] = rgb[0], p[1] = rgb[1], p[2] = rgb[2], p[3] = 255;
+    }
 };
 
 // Errors name the file (unwritable directory, disk full).
