@@ -23,9 +23,10 @@ Ray shadowRay(const core::Vec3& wsPoint, const core::Vec3& wsNormal, const core:
 // For the pixels i in [begin, end) whose `rayOf(i)` gives a ray, `trace(rays, pixels)` with up
 // to eight of them at a time: neighbouring pixels' shadow rays are coherent, and the ray tracer's
 // packet kernels take them together.
+constexpr size_t kBatch = 8; // rays per call: the packet kernels' width
+
 template <class RayOf, class Trace>
 void inBatches(size_t begin, size_t end, RayOf rayOf, Trace trace) {
-    constexpr size_t kBatch = 8;
     std::array<Ray, kBatch> batch;
     std::array<size_t, kBatch> pixel;
     size_t count = 0;
@@ -46,7 +47,7 @@ void inBatches(size_t begin, size_t end, RayOf rayOf, Trace trace) {
 // lit[i] = the ray reaches the light, for the pixels whose `rayOf(i)` gives a shadow ray.
 template <class RayOf>
 void traceLit(const RayScene& rays, size_t begin, size_t end, RayOf rayOf, std::vector<uint8_t>& lit) {
-    std::array<uint8_t, 8> occluded;
+    std::array<uint8_t, kBatch> occluded;
     inBatches(begin, end, rayOf, [&](std::span<const Ray> batch, std::span<const size_t> pixels) {
         rays.occluded(batch, std::span(occluded.data(), batch.size()));
         for (size_t k = 0; k < batch.size(); ++k) lit[pixels[k]] = !occluded[k];
@@ -199,8 +200,8 @@ std::vector<uint32_t> castersAt(const RayScene& rays, const TruthBuffers& hits, 
     const core::Vec3 towardsLight = light.wsTowardsLight();
     const double offset = options.normalOffsetFraction * std::max(rays.sceneDiagonal(), 1.0);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, caster.size()), [&](const tbb::blocked_range<size_t>& r) {
-        std::array<uint8_t, 8> hit;
-        std::array<RayHit, 8> nearest;
+        std::array<uint8_t, kBatch> hit;
+        std::array<RayHit, kBatch> nearest;
         inBatches(
             r.begin(), r.end(),
             [&](size_t i) { return hits.lit[i] ? std::nullopt : sunShadowRay(hits, i, towardsLight, offset); },
