@@ -91,7 +91,44 @@ const VirtualPageCache::Windows& VirtualPageCache::beginFrame(const ShadowSetup&
         if (m_back) m_windows.back[size_t(l)] = levelView(l, *m_back);
         m_windows.drawingBack |= m_back && !switched(l);
     }
+    MarkedFrame marked{.frame = m_frame,
+                       .windows = m_windows,
+                       .pagesPerSide = setup.clipmap->pagesPerSide(),
+                       .backGeneration = m_back ? m_back->id : -1};
+    for (int l = 0; l < static_cast<int>(setup.views.size()); ++l)
+        marked.standingGeneration.push_back(switched(l) ? m_back->id : m_front.id);
+    if (m_marked.size() == size_t(kMarkedFramesKept)) m_marked.erase(m_marked.begin());
+    m_marked.push_back(std::move(marked));
     return m_windows;
+}
+
+int VirtualPageCache::MarkedFrame::levelWith(int exponent) const {
+    for (size_t l = 0; l < windows.standing.size(); ++l)
+        if (levelOf(windows.standing[l]).exponent == exponent) return static_cast<int>(l);
+    return -1;
+}
+
+bool VirtualPageCache::MarkedFrame::serves(const MarkedFrame& now) const {
+    if (pagesPerSide != now.pagesPerSide || backGeneration != now.backGeneration ||
+        windows.drawingBack != now.windows.drawingBack)
+        return false;
+    // Every level of now, marked then, for the same generation (a level added since — the eye
+    // moved to where the clipmap needs one more — has no marks: the frame needs its own).
+    for (size_t l = 0; l < now.windows.standing.size(); ++l) {
+        const int then = levelWith(levelOf(now.windows.standing[l]).exponent);
+        if (then < 0 || standingGeneration[size_t(then)] != now.standingGeneration[l]) return false;
+    }
+    return true;
+}
+
+const VirtualPageCache::MarkedFrame* VirtualPageCache::markedFrame(int64_t frame) const {
+    const auto it = std::ranges::find(m_marked, frame, &MarkedFrame::frame);
+    return it == m_marked.end() ? nullptr : &*it;
+}
+
+bool VirtualPageCache::marksApply(int64_t marked) const {
+    const MarkedFrame* then = markedFrame(marked);
+    return then && !m_marked.empty() && then->serves(m_marked.back());
 }
 
 void VirtualPageCache::appendKeys(const ShadowView& window, int level, std::span<const uint32_t> bits,
@@ -176,19 +213,25 @@ void VirtualPageCache::scheduleShown(const std::vector<SlotKey>& keys) {
 }
 
 void VirtualPageCache::request(std::span<const uint32_t> standingBits, std::span<const uint32_t> backBits,
-                               std::span<const Aabb> moved) {
+                               std::span<const Aabb> moved, int64_t markedIn) {
     const int levels = static_cast<int>(m_setup.views.size());
     const bool drawingBack = m_windows.drawingBack;
     m_stats = {};
     invalidateUnder(moved);
 
-    // Requests, per level.
+    // Requests, per level, through the windows they were marked in: marksApply() holds for them
+    // (the caller's check), so their levels and generations are this frame's. Marks that do not
+    // apply request nothing: the frame shows what is resident.
+    if (markedIn == 0) markedIn = m_frame;
+    const MarkedFrame* marked = marksApply(markedIn) ? markedFrame(markedIn) : nullptr;
+    m_stats.marksLate = marked && markedIn != m_frame;
     LevelKeys standingKeys(static_cast<size_t>(levels)), backKeys(standingKeys.size());
-    for (int l = 0; l < levels; ++l) {
-        appendKeys(m_windows.standing[size_t(l)], l, standingBits, switched(l) ? m_back->id : m_front.id,
+    for (int l = 0; l < levels && marked; ++l) {
+        const int then = marked->levelWith(levelOf(m_setup.views[size_t(l)]).exponent); // ≥ 0: marksApply
+        appendKeys(marked->windows.standing[size_t(then)], then, standingBits, switched(l) ? m_back->id : m_front.id,
                    standingKeys[size_t(l)]);
         if (drawingBack && !switched(l))
-            appendKeys(m_windows.back[size_t(l)], l, backBits, m_back->id, backKeys[size_t(l)]);
+            appendKeys(marked->windows.back[size_t(then)], then, backBits, m_back->id, backKeys[size_t(l)]);
     }
     touch(standingKeys, backKeys);
 

@@ -1,7 +1,8 @@
 // The virtual page cache's policy without a GL context: a budget caps each frame's pages and
 // serves the coarsest levels first, a new sun's pages replace the old ones only a whole level at
 // a time, a mover invalidates exactly the pages under its old and new boxes, a tiny pool falls
-// back and says so, and a cached page is never drawn again while nothing changed.
+// back and says so, a cached page is never drawn again while nothing changed, and requests read
+// frames late ask for the pages their own frame marked, or for nothing once the sun has moved.
 #include "shadowkit/core/shadow_setup.h"
 #include "shadowkit/core/virtual_clipmap.h"
 #include "shadowkit/core/virtual_page_cache.h"
@@ -18,10 +19,10 @@ using namespace shadowkit::core;
 namespace {
 
 // A small clipmap (windows of 32² pages of 32 texels) over a 200 m box, eye 1.8 m up.
-ShadowSetup virtualSetup(const Vec3& wsTowardsSun = Vec3(0.5, 1.0, 0.3)) {
+ShadowSetup virtualSetup(const Vec3& wsTowardsSun = Vec3(0.5, 1.0, 0.3), const Vec3& wsEye = Vec3(0.0, 1.8, 0.0)) {
     ShadowSetupInputs in;
     in.technique = Technique::Virtual;
-    in.camera.wsEye = Vec3(0.0, 1.8, 0.0);
+    in.camera.wsEye = wsEye;
     in.camera.wsDirection = Vec3(0.0, -0.3, -1.0);
     in.camera.zNear = 0.5;
     in.camera.zFar = 200.0;
@@ -239,4 +240,102 @@ TEST(VirtualPageCacheTest, ATinyPoolFallsBackToCoarserLevelsAndSaysSo) {
         EXPECT_TRUE(slots.insert(entry).second);
     }
     EXPECT_EQ(slots.size(), size_t(kPool));
+}
+
+namespace {
+
+// The keys of the pages a page table shows (slot numbers differ between two caches).
+std::set<Key> shownKeys(const VirtualPageCache& cache) {
+    std::set<Key> keys;
+    const ShadowSetup& shown = cache.shown();
+    const int pages = shown.clipmap->pagesPerSide();
+    const auto table = cache.pageTable();
+    for (size_t i = 0; i < table.size(); ++i) {
+        if (table[i] == 0) continue;
+        const ClipmapLevel& level = std::get<ClipmapLevel>(shown.views[i / (size_t(pages) * pages)].warp);
+        const size_t inLevel = i % (size_t(pages) * pages);
+        keys.insert({level.exponent, level.firstPageX + int64_t(inLevel % size_t(pages)),
+                     level.firstPageY + int64_t(inLevel / size_t(pages))});
+    }
+    return keys;
+}
+
+} // namespace
+
+TEST(VirtualPageCacheTest, MarksReadTwoFramesLateRequestThePagesTheirFrameMarkedWhereverTheWindowMoved) {
+    // The eye walks 6 m a frame, then stands. One cache reads each frame's own marks; the other
+    // reads, from the third frame on, the marks of two frames before, as a GPU returns them
+    // without a wait. The late cache draws exactly the pages those earlier frames marked —
+    // pages named in the grid, not in the window that has moved on since — and, two frames
+    // after the eye stops, shows the same pages as the cache that waited. Where the marks of two
+    // frames before do not apply, the frame reads its own, as the GPU path then waits.
+    constexpr int kWalk = 6, kStand = 4, kLate = 2;
+    const auto eyeAt = [&](int f) { return Vec3(6.0 * std::min(f, kWalk), 1.8, -2.0 * std::min(f, kWalk)); };
+    VirtualPageCache waiting, late;
+    waiting.configure(4096, kGuard);
+    late.configure(4096, kGuard);
+    std::vector<std::vector<uint32_t>> marks; // per frame, in that frame's windows
+    std::vector<int64_t> markedIn;
+    std::set<Key> drawnLate, expectedLate;
+    std::set<int64_t> firstPagesX; // the finest window's corner, to see it move
+    int ownMarks = 0;
+    for (int f = 0; f < kWalk + kStand; ++f) {
+        const ShadowSetup setup = virtualSetup(Vec3(0.5, 1.0, 0.3), eyeAt(f));
+        const PageContent content = pageContentOf(*setup.clipmap, kGuard);
+        waiting.beginFrame(setup, content, 0, eyeAt(f));
+        waiting.request(requestBits(setup, setup.views), {}, {});
+        waiting.rendered();
+
+        const auto& windows = late.beginFrame(setup, content, 0, eyeAt(f));
+        marks.push_back(requestBits(setup, windows.standing));
+        markedIn.push_back(late.frame());
+        firstPagesX.insert(std::get<ClipmapLevel>(windows.standing[0].warp).firstPageX);
+        // The first frames have nothing earlier, and a frame with a level its source frame did not
+        // have (the eye walked to where the clipmap needs one more) cannot use it: their own.
+        int source = f < kLate ? f : f - kLate;
+        if (!late.marksApply(markedIn[size_t(source)])) source = f;
+        ownMarks += source == f;
+        const ShadowSetup then = virtualSetup(Vec3(0.5, 1.0, 0.3), eyeAt(source));
+        requestBits(then, then.views, &expectedLate);
+        late.request(marks[size_t(source)], {}, {}, markedIn[size_t(source)]);
+        EXPECT_EQ(late.stats().marksLate, source != f);
+        for (const auto& p : late.pagesToRender()) drawnLate.insert(keyOf(p.key));
+        late.rendered();
+    }
+    // Two frames had no earlier marks; the level added on the walk makes two more wait.
+    EXPECT_EQ(ownMarks, 4);
+    ASSERT_GE(firstPagesX.size(), 4u) << "the windows did not move: the test checks little";
+    EXPECT_EQ(drawnLate, expectedLate);
+    EXPECT_EQ(shownKeys(late), shownKeys(waiting));
+    EXPECT_FALSE(shownKeys(late).empty());
+}
+
+TEST(VirtualPageCacheTest, MarksFromBeforeTheSunMovedDoNotApplyAndRequestNothing) {
+    const ShadowSetup sunA = virtualSetup(), sunB = virtualSetup(Vec3(-0.4, 1.0, 0.2));
+    for (const int budget : {0, 4}) {
+        VirtualPageCache cache;
+        cache.configure(4096, kGuard);
+        const auto& windows = cache.beginFrame(sunA, pageContentOf(*sunA.clipmap, kGuard), budget, Vec3(0.0, 1.8, 0.0));
+        const std::vector<uint32_t> marksA = requestBits(sunA, windows.standing);
+        const int64_t frameA = cache.frame();
+        cache.request(marksA, {}, {});
+        cache.rendered();
+        cache.beginFrame(sunA, pageContentOf(*sunA.clipmap, kGuard), budget, Vec3(0.0, 1.8, 0.0));
+        EXPECT_TRUE(cache.marksApply(frameA)) << "the same sun, the same levels";
+        cache.request({}, {}, {});
+        cache.rendered();
+        cache.beginFrame(sunB, pageContentOf(*sunB.clipmap, kGuard), budget, Vec3(0.0, 1.8, 0.0));
+        EXPECT_FALSE(cache.marksApply(frameA)) << "budget " << budget;
+        EXPECT_TRUE(cache.marksApply(cache.frame()));
+        cache.request(marksA, {}, {}, frameA);
+        EXPECT_EQ(cache.stats().pagesRequested, 0) << "budget " << budget;
+        EXPECT_TRUE(cache.pagesToRender().empty()) << "budget " << budget;
+        cache.rendered();
+    }
+    VirtualPageCache cache;
+    cache.configure(64, kGuard);
+    for (int f = 0; f < VirtualPageCache::kMarkedFramesKept + 1; ++f)
+        cache.beginFrame(sunA, pageContentOf(*sunA.clipmap, kGuard), 0, Vec3(0.0, 1.8, 0.0));
+    EXPECT_FALSE(cache.marksApply(1)) << "a frame no longer kept";
+    EXPECT_TRUE(cache.marksApply(2));
 }

@@ -66,6 +66,7 @@ struct PageCacheStats {
     int levelsBehind = 0;   ///< levels still shown from the older generation
     int lagFrames = 0;      ///< how many frames ago the oldest generation shown was current
     int poolPages = 0;      ///< slots in the pool
+    bool marksLate = false; ///< the requests were an earlier frame's marks (request()'s markedIn)
 };
 
 /// The pool's slots, the pages they hold and the frame's schedule (see the file's comment).
@@ -95,8 +96,23 @@ public:
     /// unless drawingBack). Invalidates the pages under `moved` boxes (old and new places of
     /// moved casters, same coordinates), allocates and schedules at most the budget, and decides
     /// what the lookup reads.
+    ///
+    /// `markedIn`: the frame whose windows the bits were marked in — this one (0, or frame()),
+    /// or an earlier one for which marksApply() holds: requests read late, as a GPU returns them
+    /// without a wait. A page is a place in the clipmap's grid, so an earlier window's bits name
+    /// the same pages wherever the window has moved since; pages this frame's receivers need and
+    /// no earlier frame asked for are served by a coarser level until their marks arrive.
     void request(std::span<const uint32_t> standingBits, std::span<const uint32_t> backBits,
-                 std::span<const Aabb> moved);
+                 std::span<const Aabb> moved, int64_t markedIn = 0);
+    /// This frame's number (from 1, one per beginFrame()): what bits marked now are tagged with.
+    int64_t frame() const { return m_frame; }
+    /// Whether bits marked in frame `marked` (one of the last kMarkedFramesKept, this one
+    /// included) can be read now: every level of this frame marked then, for the generation it
+    /// stands in now, and the same back generation — no change of content, no level switched
+    /// and none added since. Otherwise their pages belong to depths no longer drawn, or a level
+    /// has none, and the frame needs its own marks.
+    bool marksApply(int64_t marked) const;
+    static constexpr int kMarkedFramesKept = 8;
 
     /// A page this frame draws, into its slot.
     struct PageToRender {
@@ -177,6 +193,21 @@ private:
     std::vector<int> m_backExponents; // levels (by exponent) shown from m_back
     int64_t m_nextGeneration = 0;
     int64_t m_frame = 0;
+
+    // What a frame's marks refer to: its windows and the generation of each, kept a few frames
+    // for marks read late (marksApply).
+    struct MarkedFrame {
+        int64_t frame = 0;
+        Windows windows;
+        int pagesPerSide = 0;
+        SmallVector<int64_t, kMaxShadowViews> standingGeneration; // per level
+        int64_t backGeneration = -1;                              // -1: none
+        int levelWith(int exponent) const;                        // the index of the level, −1: none
+        // Whether these marks name pages of the generations `now` draws, for each of its levels.
+        bool serves(const MarkedFrame& now) const;
+    };
+    const MarkedFrame* markedFrame(int64_t frame) const;
+    std::vector<MarkedFrame> m_marked; // the last kMarkedFramesKept frames', oldest first
 
     // The frame in flight (beginFrame to rendered).
     ShadowSetup m_setup;
