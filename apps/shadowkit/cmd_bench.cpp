@@ -288,6 +288,10 @@ int runBench(const BenchArgs& args) {
                core::techniqueName(args.technique.technique), frames,
                cullingSaid(args.render.culling(), (*context)->renderer()));
     fmt::print("caster culling {}\n", args.render.receiverMask ? "by visible receivers" : "by volume");
+    if (args.technique.technique == core::Technique::Virtual)
+        fmt::print("virtual page requests {}\n", args.technique.virtualRequestsLate
+                                                     ? "read late (--virtual-requests wait: each frame waits)"
+                                                     : "waited for each frame");
     std::optional<gl::DepthLimits> limits;
     if (args.limits) {
         auto measured = gl::measureDepthLimits();
@@ -364,6 +368,7 @@ Command addBenchCommand(CLI::App& app) {
                   "scale the terrain with the tree count (as dense as 10,000 trees on --terrain-size)");
     args->view.addTo(*cmd);
     cmd->remove_option(cmd->get_option("--view"));
+    args->technique.virtualRequestsLate = true; // as an application loop: no frame waits for its requests
     args->technique.addTo(*cmd);
     args->render.addTo(*cmd);
     args->lights.addTo(*cmd);

@@ -37,6 +37,7 @@ core::Result<frame::FrameConfig> frameConfigOf(const TechniqueOptions& technique
     s.virtualPoolPages = technique.virtualPoolPages;
     s.virtualBlendBand = technique.virtualBlendBand;
     s.virtualPageBudget = technique.virtualPageBudget;
+    s.virtualRequestsLate = technique.virtualRequestsLate;
     s.localPass = lights.pass;
     s.localBias = lights.bias;
     config.fogDensity = render.fog;

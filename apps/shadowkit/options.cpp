@@ -456,6 +456,11 @@ void TechniqueOptions::addTo(CLI::App& cmd) {
                    "virtual: at most N pages drawn a frame (0: all requested); a moving sun's new pages are drawn a "
                    "level at a time while the earlier sun's keep serving")
         ->capture_default_str();
+    cmd.add_option("--virtual-requests", virtualRequestsLate,
+                   "virtual: wait for each frame's page requests (exact at once, a stall a frame on a GPU), or read "
+                   "them late as the GPU returns them (pages first needed served coarser for a frame or two)")
+        ->transform(choice(Choices<bool>{{"wait", false}, {"late", true}}))
+        ->default_str(virtualRequestsLate ? "late" : "wait");
     cmd.add_option("--stabilize-margin", hysteresis.margin,
                    "--stabilize with held lattices: spare room round the view at a refit, a fraction of the map")
         ->capture_default_str();

@@ -74,6 +74,7 @@ struct TechniqueOptions {
     int virtualPoolPages = 0;           // --virtual-pool-pages (gl::RenderSettings::virtualPoolPages)
     float virtualBlendBand = 0.0f;      // --virtual-blend-band (gl::RenderSettings::virtualBlendBand)
     int virtualPageBudget = 0;          // --virtual-page-budget (gl::RenderSettings::virtualPageBudget)
+    bool virtualRequestsLate = false;   // --virtual-requests (gl::RenderSettings::virtualRequestsLate)
 
     // --stabilize holds texel lattices (core::SetupHysteresis) for every technique but
     // unwarped cascades, which snap their own texels (CascadeOptions::stabilize).

@@ -75,6 +75,7 @@ constexpr auto kRows = std::to_array<OptionRow>({
      Gl},
     {"RenderSettings.virtualBlendBand", "--virtual-blend-band", "virtual.blend_band", "[0, 1)", Gl},
     {"RenderSettings.virtualPageBudget", "--virtual-page-budget", "virtual.page_budget", ">= 0 (0: every page)", Gl},
+    {"RenderSettings.virtualRequestsLate", "--virtual-requests", "", "wait | late", None},
 
     // frame::FrameConfig.
     {"FrameConfig.technique", "", "", "", None, "the ShadowSetupInputs rows"},

@@ -15,23 +15,6 @@ enum Stamp : size_t { ShadowStart, ShadowEnd, LocalStart, LocalEnd, MainStart, M
 constexpr size_t kCommandsOffset = 64;
 static_assert(kStamps * sizeof(uint64_t) <= kCommandsOffset);
 
-bool passed(GLenum state) { return state == GL_ALREADY_SIGNALED || state == GL_CONDITION_SATISFIED; }
-
-// Whether the fence has passed, without waiting.
-bool signalled(GLsync fence) { return passed(glClientWaitSync(fence, 0, 0)); }
-
-// Waits until the fence passes, in rounds of a second (a driver may turn a timeout near 2^64 ns
-// into a deadline in the past); false only when the wait fails (a lost context).
-bool waitFor(GLsync fence) {
-    GLbitfield flags = GL_SYNC_FLUSH_COMMANDS_BIT;
-    for (;;) {
-        const GLenum state = glClientWaitSync(fence, flags, 1'000'000'000);
-        if (passed(state)) return true;
-        if (state != GL_TIMEOUT_EXPIRED) return false;
-        flags = 0;
-    }
-}
-
 } // namespace
 
 void GpuFigures::fill(FrameStats& stats) const {
@@ -45,39 +28,21 @@ void GpuFigures::fill(FrameStats& stats) const {
     if (localInstances) stats.local.instances = *localInstances, stats.local.triangles = *localTriangles;
 }
 
-GpuFigureRing::~GpuFigureRing() {
-    for (Slot& slot : m_slots) release(slot);
-}
-
-void GpuFigureRing::release(Slot& slot) {
-    if (slot.fence) glDeleteSync(slot.fence);
-    slot.fence = nullptr;
-}
-
 std::vector<GpuFigures> GpuFigureRing::record(int64_t frame, const FrameFigureSources& sources) {
     // What came back since the last frame, oldest first (fences pass in submission order).
     std::vector<GpuFigures> arrived;
     for (int64_t i = m_next - kFrames; i < m_next; ++i) {
         if (i < 0) continue;
         Slot& slot = m_slots[size_t(i % kFrames)];
-        if (!slot.fence) continue; // collected already
-        if (!signalled(slot.fence)) break;
+        if (!slot.read.pending()) continue; // collected already
+        if (!slot.read.arrived()) break;
         arrived.push_back(collect(slot));
     }
 
     Slot& slot = m_slots[size_t(m_next++ % kFrames)];
-    release(slot); // a fence left: the GPU is kFrames behind; those figures are lost, not waited for
-    const size_t bytes = kCommandsOffset + sources.commandWords * sizeof(uint32_t);
-    if (slot.bytes < bytes) {
-        GLuint id = 0;
-        glCreateBuffers(1, &id);
-        const GLbitfield access = GL_MAP_READ_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT;
-        glNamedBufferStorage(id, GLsizeiptr(bytes), nullptr, access | GL_CLIENT_STORAGE_BIT);
-        slot.buffer = Buffer(id);
-        slot.mapped = glMapNamedBufferRange(id, 0, GLsizeiptr(bytes), access);
-        slot.bytes = bytes;
-    }
-    const GLuint buffer = slot.buffer.id();
+    slot.read.dropFence(); // one left: the GPU is kFrames behind; those figures are lost, not waited for
+    slot.read.reserve(kCommandsOffset + sources.commandWords * sizeof(uint32_t));
+    const GLuint buffer = slot.read.id();
     const auto stamp = [buffer](GLuint query, Stamp at) {
         glGetQueryBufferObjectui64v(query, buffer, GL_QUERY_RESULT, GLintptr(at * sizeof(uint64_t)));
     };
@@ -96,8 +61,7 @@ std::vector<GpuFigures> GpuFigureRing::record(int64_t frame, const FrameFigureSo
         glCopyNamedBufferSubData(sources.commands, buffer, 0, GLintptr(kCommandsOffset),
                                  GLsizeiptr(sources.commandWords * sizeof(uint32_t)));
     }
-    slot.fence = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
-    glFlush(); // so the fence reaches the GPU and a zero-timeout poll can see it pass
+    slot.read.fence();
     slot.frame = frame;
     slot.mapTexels = sources.mapTexels;
     slot.lists = sources.lists;
@@ -126,11 +90,11 @@ std::vector<GpuFigures> GpuFigureRing::finish() {
     for (int64_t i = m_next - kFrames; i < m_next; ++i) {
         if (i < 0) continue;
         Slot& slot = m_slots[size_t(i % kFrames)];
-        if (!slot.fence) continue;
+        if (!slot.read.pending()) continue;
         if (!waited) detail::countReadBack(); // one wait: later fences pass right after it
         waited = true;
-        if (!waitFor(slot.fence)) {
-            release(slot); // a lost context: nothing more will come back
+        if (!slot.read.waited()) {
+            slot.read.dropFence(); // a lost context: nothing more will come back
             continue;
         }
         arrived.push_back(collect(slot));
@@ -139,9 +103,9 @@ std::vector<GpuFigures> GpuFigureRing::finish() {
 }
 
 GpuFigures GpuFigureRing::collect(Slot& slot) {
-    release(slot);
+    slot.read.dropFence();
     uint64_t stamps[kStamps] = {};
-    std::memcpy(stamps, slot.mapped, sizeof stamps);
+    std::memcpy(stamps, slot.read.data(), sizeof stamps);
     const auto ms = [&](size_t t) {
         const uint64_t start = stamps[2 * t], end = stamps[2 * t + 1];
         return slot.timed[t] && end > start ? double(end - start) * 1e-6 : 0.0;
@@ -153,8 +117,8 @@ GpuFigures GpuFigureRing::collect(Slot& slot) {
                        .samplesPassed = slot.counted ? stamps[Samples] : 0,
                        .mapTexels = slot.mapTexels};
     if (slot.lists.empty()) return figures;
-    const auto* words = reinterpret_cast<const uint32_t*>(static_cast<const char*>(slot.mapped) + kCommandsOffset);
-    const std::span<const uint32_t> commands(words, (slot.bytes - kCommandsOffset) / sizeof(uint32_t));
+    const auto* words = reinterpret_cast<const uint32_t*>(static_cast<const char*>(slot.read.data()) + kCommandsOffset);
+    const std::span<const uint32_t> commands(words, (slot.read.bytes() - kCommandsOffset) / sizeof(uint32_t));
     DrawStats drawn[3];
     for (const CulledListShape& list : slot.lists) {
         DrawStats d = GpuCulling::drawnBy(commands, list.indirect, list.count);

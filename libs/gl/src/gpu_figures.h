@@ -11,6 +11,7 @@
 // again is dropped, not waited for: the figures are statistics, and a frame never waits for them.
 #pragma once
 
+#include "fenced_read.h"
 #include "gl_object.h"
 #include "gpu_scene.h"
 #include "pass_samples.h"
@@ -53,7 +54,6 @@ public:
     GpuFigureRing() = default;
     GpuFigureRing(const GpuFigureRing&) = delete;
     GpuFigureRing& operator=(const GpuFigureRing&) = delete;
-    ~GpuFigureRing(); // the fences (the buffers unmap as they are deleted)
 
     // The frame `stats` describes hands over its figures, which the GPU writes after its
     // commands. Late: `stats` gets the earlier frames' figures
@@ -68,10 +68,7 @@ private:
     std::vector<GpuFigures> record(int64_t frame, const FrameFigureSources& sources);
 
     struct Slot {
-        Buffer buffer;
-        void* mapped = nullptr;
-        size_t bytes = 0;
-        GLsync fence = nullptr;
+        FencedReadBuffer read;
         int64_t frame = 0;
         uint64_t mapTexels = 0;
         bool timed[3] = {false, false, false};
@@ -80,7 +77,6 @@ private:
     };
     // The figures of a slot whose fence has passed; frees it.
     GpuFigures collect(Slot& slot);
-    void release(Slot& slot);
 
     std::array<Slot, kFrames> m_slots;
     int64_t m_next = 0; // the slot the next frame takes, modulo kFrames

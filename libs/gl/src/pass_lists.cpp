@@ -205,7 +205,8 @@ void PassLists::planPages(const PassPlanInputs& in, VirtualPages& pages, std::ve
     const core::FilterSettings filter = lookupFilterFor(setup, settings.filter);
     const int guard = guardTexelsFor(filter, in.bias);
     pages.request(*m_cameraDepth, in.camera, setup, pageContentOf(*setup.clipmap, guard, in.bias, settings),
-                  m_movedBoxes, lookupReachTexels(filter, in.bias), settings.virtualPageBudget);
+                  m_movedBoxes, lookupReachTexels(filter, in.bias), settings.virtualPageBudget,
+                  settings.virtualRequestsLate);
     m_movedBoxes.clear();
     m_costs.inGl += pages.glTimes();
     const auto toRender = pages.pagesToRender();

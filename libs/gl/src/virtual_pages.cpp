@@ -84,17 +84,23 @@ core::Status VirtualPages::configure(int slots, int pageTexels, int guardTexels)
     m_guardTexels = guardTexels;
     m_atlasTexels = {perRow * slotTexels, rows * slotTexels};
     m_cache.configure(slots, guardTexels);
-    m_cache.dropAll(); // a new atlas holds no page
+    forget(); // a new atlas holds no page
     return core::Ok{};
+}
+
+void VirtualPages::forget() {
+    m_cache.dropAll();
+    for (MarkSlot& slot : m_marks) slot.read.dropFence();
+    m_lastMarksRead = 0;
 }
 
 glm::ivec3 VirtualPages::slotViewport(int slot) const {
     return {(slot % m_slotsPerRow) * m_slotTexels, (slot / m_slotsPerRow) * m_slotTexels, m_slotTexels};
 }
 
-void VirtualPages::mark(const CameraDepthTarget& depth, const core::PerspectiveCamera& camera,
-                        const core::ShadowSetup& setup, std::span<const core::ShadowView> views, double reachTexels,
-                        Buffer& bits, size_t& capacity, std::vector<uint32_t>& readBack) {
+size_t VirtualPages::mark(const CameraDepthTarget& depth, const core::PerspectiveCamera& camera,
+                          const core::ShadowSetup& setup, std::span<const core::ShadowView> views, double reachTexels,
+                          Buffer& bits, size_t& capacity) {
     const core::VirtualClipmap& clipmap = *setup.clipmap;
     const int levels = static_cast<int>(views.size());
     const int pages = clipmap.pagesPerSide();
@@ -124,25 +130,84 @@ void VirtualPages::mark(const CameraDepthTarget& depth, const core::PerspectiveC
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPageRequestBinding, bits.id());
     glBindTextureUnit(kReceiverDepthUnit, depth.viewDepth.id());
     glDispatchCompute(GLuint(depth.width + 7) / 8, GLuint(depth.height + 7) / 8, 1);
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    readBack.resize(words);
-    detail::countReadBack();
-    glGetNamedBufferSubData(bits.id(), 0, GLsizeiptr(words * sizeof(uint32_t)), readBack.data());
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT); // for a read or a copy of the bits
+    return words;
 }
 
 void VirtualPages::request(const CameraDepthTarget& depth, const core::PerspectiveCamera& camera,
                            const core::ShadowSetup& setup, const PageContent& content,
-                           std::span<const core::Aabb> moved, double reachTexels, int pageBudget) {
+                           std::span<const core::Aabb> moved, double reachTexels, int pageBudget, bool late) {
     const Stopwatch inGl;
     const core::VirtualPageCache::Windows& windows = m_cache.beginFrame(setup, content, pageBudget, camera.wsEye);
     // One bit per page of every level's standing window; and of the back generation's windows.
-    mark(depth, camera, setup, windows.standing, reachTexels, m_requestBits, m_requestCapacity, m_readBack);
-    if (windows.drawingBack)
-        mark(depth, camera, setup, windows.back, reachTexels, m_backRequestBits, m_backRequestCapacity, m_backReadBack);
+    const size_t words = mark(depth, camera, setup, windows.standing, reachTexels, m_requestBits, m_requestCapacity);
+    const size_t backWords = windows.drawingBack ? mark(depth, camera, setup, windows.back, reachTexels,
+                                                        m_backRequestBits, m_backRequestCapacity)
+                                                 : 0;
+    int64_t markedIn = m_cache.frame();
+    if (late) {
+        markedIn = readMarksLate(words, backWords);
+    } else {
+        m_readBack.resize(words);
+        detail::countReadBack();
+        glGetNamedBufferSubData(m_requestBits.id(), 0, GLsizeiptr(words * sizeof(uint32_t)), m_readBack.data());
+        m_backReadBack.resize(backWords);
+        if (backWords > 0) {
+            detail::countReadBack();
+            glGetNamedBufferSubData(m_backRequestBits.id(), 0, GLsizeiptr(backWords * sizeof(uint32_t)),
+                                    m_backReadBack.data());
+        }
+    }
     m_gl = inGl.elapsed();
-    m_cache.request(m_readBack,
-                    windows.drawingBack ? std::span<const uint32_t>(m_backReadBack) : std::span<const uint32_t>{},
-                    moved);
+    if (markedIn == 0) { // marks that apply are on their way: show what is resident
+        m_readBack.clear();
+        m_backReadBack.clear();
+        markedIn = m_cache.frame();
+    }
+    m_cache.request(m_readBack, m_backReadBack, moved, markedIn);
+}
+
+int64_t VirtualPages::readMarksLate(size_t words, size_t backWords) {
+    // This frame's marks into the next slot, after its own: one buffer, the back marks after the
+    // standing ones. A slot still pending there is a frame the GPU has not finished: dropped.
+    MarkSlot& slot = m_marks[size_t(m_nextMark++ % kMarkSlots)];
+    slot.read.reserve((words + backWords) * sizeof(uint32_t));
+    glCopyNamedBufferSubData(m_requestBits.id(), slot.read.id(), 0, 0, GLsizeiptr(words * sizeof(uint32_t)));
+    if (backWords > 0)
+        glCopyNamedBufferSubData(m_backRequestBits.id(), slot.read.id(), 0, GLintptr(words * sizeof(uint32_t)),
+                                 GLsizeiptr(backWords * sizeof(uint32_t)));
+    slot.read.fence();
+    slot.frame = m_cache.frame();
+    slot.words = words, slot.backWords = backWords;
+
+    // The newest earlier frame's marks that arrived and apply; those and any older are done with.
+    const auto take = [&](MarkSlot& from) {
+        const auto* bits = static_cast<const uint32_t*>(from.read.data());
+        m_readBack.assign(bits, bits + from.words);
+        m_backReadBack.assign(bits + from.words, bits + from.words + from.backWords);
+        return m_lastMarksRead = from.frame;
+    };
+    bool onTheirWay = false;
+    for (int64_t i = m_nextMark - 2; i >= 0 && i > m_nextMark - 1 - kMarkSlots; --i) { // newest first
+        MarkSlot& earlier = m_marks[size_t(i % kMarkSlots)];
+        if (!earlier.read.pending() || !m_cache.marksApply(earlier.frame)) continue;
+        if (!earlier.read.arrived()) {
+            onTheirWay = true;
+            continue;
+        }
+        const int64_t frame = take(earlier);
+        for (MarkSlot& s : m_marks)
+            if (s.frame <= frame) s.read.dropFence();
+        return frame;
+    }
+    // None arrived: the pages stand as the last marks read left them, if those still apply (the
+    // same sun and levels: what they asked for is resident or coming), else nothing stands for
+    // this frame's receivers — its own marks, after a wait.
+    if (onTheirWay || (m_lastMarksRead > 0 && m_cache.marksApply(m_lastMarksRead))) return 0;
+    detail::countReadBack();
+    const int64_t frame = slot.read.waited() ? take(slot) : 0;
+    slot.read.dropFence();
+    return frame;
 }
 
 VirtualPageStats VirtualPages::stats() const {

@@ -6,6 +6,7 @@
 // lookup reads.
 #pragma once
 
+#include "fenced_read.h"
 #include "gl_object.h"
 #include "gpu_scene.h"
 #include "render_targets.h"
@@ -21,6 +22,7 @@
 #include "shadowkit/gl/frame_stats.h"
 #include "shadowkit/gl/render_settings.h"
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -45,11 +47,20 @@ public:
     core::Status configure(int slots, int pageTexels, int guardTexels);
 
     // A frame's requests: marks the pages the pre-pass's receivers need in the windows the cache
-    // asks for (compute pass, bits read back), and hands them to the cache with the boxes of moved
-    // casters: it lists the pages to render, at most `pageBudget` (0: every one).
-    // `setup` and `moved` in the renderer's space.
+    // asks for (compute pass), and hands them to the cache with the boxes of moved casters: it
+    // lists the pages to render, at most `pageBudget` (0: every one). `setup` and `moved` in the
+    // renderer's space.
+    //
+    // `late` false: the frame waits for its own marks (one read-back; two while a new sun's pages
+    // are drawn under a budget). True: the marks go to a ring of mapped buffers behind fences, and
+    // the frame reads the newest earlier frame's that arrived and still apply
+    // (core::VirtualPageCache::marksApply) — no wait. When none arrived it requests nothing and
+    // shows what is resident, unless no marks that apply were read lately (the first frame, a
+    // moved sun, a level added): then it waits for its own. Pages needed first in this frame are then
+    // served by coarser levels for the frame or two their marks take.
     void request(const CameraDepthTarget& depth, const core::PerspectiveCamera& camera, const core::ShadowSetup& setup,
-                 const PageContent& content, std::span<const core::Aabb> moved, double reachTexels, int pageBudget);
+                 const PageContent& content, std::span<const core::Aabb> moved, double reachTexels, int pageBudget,
+                 bool late);
     // The set-up the lookup must read this frame (after request()): `setup` itself, or with the
     // levels still shown from the previous sun's pages placed around this frame's eye.
     const core::ShadowSetup& shown() const { return m_cache.shown(); }
@@ -81,8 +92,9 @@ public:
     scene::Image pageTableImage() const;
 
     // Every page dropped: what they hold is no longer known (casters moved in frames drawn
-    // without virtual maps).
-    void forget() { m_cache.dropAll(); }
+    // without virtual maps, a new atlas). The marks on their way go with them: the next frame
+    // waits for its own.
+    void forget();
 
     VirtualPageStats stats() const;
     const CpuTimes& glTimes() const { return m_gl; }
@@ -90,16 +102,30 @@ public:
 private:
     VirtualPages() = default;
     // Marks the pages the pre-pass's receivers request in the windows of `views` (one per level
-    // of `setup`) into `bits`, read back into `readBack`.
-    void mark(const CameraDepthTarget& depth, const core::PerspectiveCamera& camera, const core::ShadowSetup& setup,
-              std::span<const core::ShadowView> views, double reachTexels, Buffer& bits, size_t& capacity,
-              std::vector<uint32_t>& readBack);
+    // of `setup`) into `bits` (grown as needed); returns the words marked.
+    size_t mark(const CameraDepthTarget& depth, const core::PerspectiveCamera& camera, const core::ShadowSetup& setup,
+                std::span<const core::ShadowView> views, double reachTexels, Buffer& bits, size_t& capacity);
+    // Late requests: this frame's marks (`words` and `backWords` of them) into the ring; the marks
+    // of an earlier frame that arrived and apply, or this frame's after a wait, into m_readBack and
+    // m_backReadBack. Returns the frame the marks read were made in, 0: none (nothing requested).
+    int64_t readMarksLate(size_t words, size_t backWords);
+
+    // A frame's marks on their way back (request()'s `late`).
+    struct MarkSlot {
+        FencedReadBuffer read;
+        int64_t frame = 0; // the cache's frame they were marked in
+        size_t words = 0, backWords = 0;
+    };
+    static constexpr int kMarkSlots = 3;
 
     core::VirtualPageCache m_cache;
     Program m_mark;
     Buffer m_markUniforms, m_mapsUniforms, m_disabledUniforms, m_requestBits, m_backRequestBits;
     size_t m_requestCapacity = 0, m_backRequestCapacity = 0; // uints
-    std::vector<uint32_t> m_readBack, m_backReadBack;
+    std::vector<uint32_t> m_readBack, m_backReadBack;        // the marks the cache read this frame
+    std::array<MarkSlot, kMarkSlots> m_marks;
+    int64_t m_nextMark = 0;
+    int64_t m_lastMarksRead = 0; // the frame of the last marks readMarksLate() gave the cache
     Texture m_atlas, m_pageTable;
     Framebuffer m_framebuffer;
     int m_slotsPerRow = 0, m_slotTexels = 0, m_pageTexels = 0, m_guardTexels = 0;

@@ -2,10 +2,13 @@
 // exactly what a frame with every page fresh looks up; a mover redraws only the pages under it
 // and its shadow moves; a pool too small for the view falls back to coarser levels, says so,
 // and still shadows where the caster is; a page budget caps the pages drawn a frame, shows the
-// old sun's pages while a new sun's are drawn, and converges on what fresh pages give.
+// old sun's pages while a new sun's are drawn, and converges on what fresh pages give; requests
+// read late wait only when nothing that applies is on its way, and converge on what waiting
+// frames show.
 #include "headless_gl_test.h"
 
 #include "shadowkit/core/shadow_setup.h"
+#include "shadowkit/gl/read_backs.h"
 #include "shadowkit/gl/renderer.h"
 #include "shadowkit/scene/mesh_builder.h"
 
@@ -49,8 +52,9 @@ core::PerspectiveCamera camera(double x) {
 
 const core::DirectionalLight kSun{glm::normalize(core::Vec3(0.3, -1.0, 0.2))};
 
-core::ShadowSetup virtualSetup(const scene::Scene& s, const core::PerspectiveCamera& cam, int imageHeight) {
-    core::ShadowSetupInputs in{.camera = cam, .light = kSun, .wsSceneBounds = s.wsBounds()};
+core::ShadowSetup virtualSetup(const scene::Scene& s, const core::PerspectiveCamera& cam, int imageHeight,
+                               const core::DirectionalLight& sun = kSun) {
+    core::ShadowSetupInputs in{.camera = cam, .light = sun, .wsSceneBounds = s.wsBounds()};
     in.technique = core::Technique::Virtual;
     in.virtualMaps.imageHeight = imageHeight;
     in.virtualMaps.virtualTexels = 4096; // 32 × 32 pages: small windows, many pages at 128 px
@@ -335,4 +339,46 @@ TEST_F(VirtualPagesTest, MovingThePageBordersChangesNoShadowForAnyFilter) {
         EXPECT_GT(shadowed, 200);
         EXPECT_LE(differ, 2) << "filter " << int(kind) << ": " << differ << " pixels changed with the page borders";
     }
+}
+
+TEST_F(VirtualPagesTest, RequestsReadLateWaitOnlyWhenNothingAppliesAndConvergeOnWhatWaitingFramesShow) {
+    // Two renderers draw the same frames: the camera walks 0.9 m a frame, then stands. One waits
+    // for each frame's page requests; the other reads them late. The late one waits (a counted
+    // read-back) only in the first frame and after the sun moves — never while the sun holds —,
+    // and two frames after the camera stands it looks up what the waiting one does.
+    const scene::Scene s = boxesOverPlane();
+    auto waiting = gl::Renderer::create(s), late = gl::Renderer::create(s);
+    ASSERT_TRUE(waiting && late);
+    (*waiting)->readGpuFiguresLate(true);
+    (*late)->readGpuFiguresLate(true); // so that nothing but the page requests could wait
+    gl::RenderSettings settings = smallFrame();
+    settings.culling = gl::Culling::Frustum;
+    gl::RenderSettings lateSettings = settings;
+    lateSettings.virtualRequestsLate = true;
+    const core::DirectionalLight sunB{glm::normalize(core::Vec3(0.38, -1.0, 0.12))};
+    constexpr int kWalk = 6, kStand = 3;
+    int lateMarks = 0;
+    for (const core::DirectionalLight& sun : {kSun, sunB}) {
+        for (int frame = 0; frame < kWalk + kStand; ++frame) {
+            const core::PerspectiveCamera cam = camera(0.9 * std::min(frame, kWalk));
+            const core::ShadowSetup setup = virtualSetup(s, cam, settings.height, sun);
+            ASSERT_TRUE((*waiting)->render(cam, sun, setup, settings));
+            const int64_t before = gl::readBacksMade();
+            const auto stats = (*late)->render(cam, sun, setup, lateSettings);
+            ASSERT_TRUE(stats && stats->virtualPages) << (stats ? "no page stats" : stats.error());
+            EXPECT_EQ(gl::readBacksMade() - before, frame == 0 ? 1 : 0)
+                << "frame " << frame << (sun.wsDirection == kSun.wsDirection ? "" : " after the sun moved");
+            lateMarks += stats->virtualPages->marksLate;
+        }
+        const core::PerspectiveCamera cam = camera(0.9 * kWalk);
+        const core::ShadowSetup setup = virtualSetup(s, cam, settings.height, sun);
+        const auto a = (*late)->renderEvalBuffers(cam, sun, setup, lateSettings);
+        const auto b = (*waiting)->renderEvalBuffers(cam, sun, setup, settings);
+        ASSERT_TRUE(a && b);
+        int shadowed = 0;
+        for (const float t : b->shadowTerm) shadowed += t < 0.5f;
+        EXPECT_GT(shadowed, 100); // the boxes' shadows are in view
+        EXPECT_EQ(a->shadowTerm, b->shadowTerm);
+    }
+    EXPECT_GE(lateMarks, kWalk) << "the earlier frames' marks never arrived in time: the test checks little";
 }

@@ -142,6 +142,12 @@ struct RenderSettings {
     // sun's are drawn, each level shown in the frame its last page is (virtual_pages.h): the cost
     // of a frame is capped, and the shadows lag the sun by the frames a clipmap takes to draw.
     int virtualPageBudget = 0;
+    // Technique virtual: how a frame learns which pages its receivers need. false: it waits for
+    // its own requests (exact at once; a stall of the pipeline on a GPU, one a frame). true: it
+    // reads an earlier frame's, one or two frames late as the GPU returns them, and never waits
+    // while the sun holds — pages first needed meanwhile are served by coarser levels. What an
+    // application loop wants (bench's default); eval and render wait.
+    bool virtualRequestsLate = false;
 };
 
 // RenderSettings' virtual-map fields in range; errors name virtual.pool_pages,
