@@ -223,8 +223,8 @@ void VirtualPageCache::request(std::span<const uint32_t> standingBits, std::span
     // (the caller's check), so their levels and generations are this frame's. Marks that do not
     // apply request nothing: the frame shows what is resident.
     if (markedIn == 0) markedIn = m_frame;
-    const MarkedFrame* marked = marksApply(markedIn) ? markedFrame(markedIn) : nullptr;
-    m_stats.marksLate = marked && markedIn != m_frame;
+    const MarkedFrame* marked = markedIn > 0 && marksApply(markedIn) ? markedFrame(markedIn) : nullptr;
+    m_stats.marksAge = marked ? static_cast<int>(m_frame - markedIn) : -1;
     LevelKeys standingKeys(static_cast<size_t>(levels)), backKeys(standingKeys.size());
     for (int l = 0; l < levels && marked; ++l) {
         const int then = marked->levelWith(levelOf(m_setup.views[size_t(l)]).exponent); // ≥ 0: marksApply

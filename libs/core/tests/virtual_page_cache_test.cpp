@@ -298,7 +298,7 @@ TEST(VirtualPageCacheTest, MarksReadTwoFramesLateRequestThePagesTheirFrameMarked
         const ShadowSetup then = virtualSetup(Vec3(0.5, 1.0, 0.3), eyeAt(source));
         requestBits(then, then.views, &expectedLate);
         late.request(marks[size_t(source)], {}, {}, markedIn[size_t(source)]);
-        EXPECT_EQ(late.stats().marksLate, source != f);
+        EXPECT_EQ(late.stats().marksAge, f - source);
         for (const auto& p : late.pagesToRender()) drawnLate.insert(keyOf(p.key));
         late.rendered();
     }
@@ -329,6 +329,7 @@ TEST(VirtualPageCacheTest, MarksFromBeforeTheSunMovedDoNotApplyAndRequestNothing
         EXPECT_TRUE(cache.marksApply(cache.frame()));
         cache.request(marksA, {}, {}, frameA);
         EXPECT_EQ(cache.stats().pagesRequested, 0) << "budget " << budget;
+        EXPECT_EQ(cache.stats().marksAge, -1);
         EXPECT_TRUE(cache.pagesToRender().empty()) << "budget " << budget;
         cache.rendered();
     }

@@ -10,11 +10,17 @@
 namespace shadowkit::eval {
 
 nlohmann::json virtualPagesJson(const VirtualPagesReport& v) {
-    return {{"pages_requested", v.pagesRequested}, {"pages_rendered", v.pagesRendered},
-            {"pages_resident", v.pagesResident},   {"pages_fell_back", v.pagesFellBack},
-            {"pages_deferred", v.pagesDeferred},   {"levels_behind", v.levelsBehind},
-            {"lag_frames", v.lagFrames},           {"pool_pages", v.poolPages},
-            {"pool_bytes", v.poolBytes},           {"shadow_triangles", v.shadowTriangles}};
+    return {{"pages_requested", v.pagesRequested},
+            {"pages_rendered", v.pagesRendered},
+            {"pages_resident", v.pagesResident},
+            {"pages_fell_back", v.pagesFellBack},
+            {"pages_deferred", v.pagesDeferred},
+            {"levels_behind", v.levelsBehind},
+            {"lag_frames", v.lagFrames},
+            {"requests_age", v.requestsAge},
+            {"pool_pages", v.poolPages},
+            {"pool_bytes", v.poolBytes},
+            {"shadow_triangles", v.shadowTriangles}};
 }
 
 namespace {

@@ -157,13 +157,9 @@ void VirtualPages::request(const CameraDepthTarget& depth, const core::Perspecti
             glGetNamedBufferSubData(m_backRequestBits.id(), 0, GLsizeiptr(backWords * sizeof(uint32_t)),
                                     m_backReadBack.data());
         }
+        m_lastMarksRead = markedIn;
     }
     m_gl = inGl.elapsed();
-    if (markedIn == 0) { // marks that apply are on their way: show what is resident
-        m_readBack.clear();
-        m_backReadBack.clear();
-        markedIn = m_cache.frame();
-    }
     m_cache.request(m_readBack, m_backReadBack, moved, markedIn);
 }
 
@@ -187,25 +183,20 @@ int64_t VirtualPages::readMarksLate(size_t words, size_t backWords) {
         m_backReadBack.assign(bits + from.words, bits + from.words + from.backWords);
         return m_lastMarksRead = from.frame;
     };
-    bool onTheirWay = false;
     for (int64_t i = m_nextMark - 2; i >= 0 && i > m_nextMark - 1 - kMarkSlots; --i) { // newest first
         MarkSlot& earlier = m_marks[size_t(i % kMarkSlots)];
-        if (!earlier.read.pending() || !m_cache.marksApply(earlier.frame)) continue;
-        if (!earlier.read.arrived()) {
-            onTheirWay = true;
-            continue;
-        }
+        if (!earlier.read.pending() || !m_cache.marksApply(earlier.frame) || !earlier.read.arrived()) continue;
         const int64_t frame = take(earlier);
         for (MarkSlot& s : m_marks)
             if (s.frame <= frame) s.read.dropFence();
         return frame;
     }
-    // None arrived: the pages stand as the last marks read left them, if those still apply (the
-    // same sun and levels: what they asked for is resident or coming), else nothing stands for
-    // this frame's receivers — its own marks, after a wait.
-    if (onTheirWay || (m_lastMarksRead > 0 && m_cache.marksApply(m_lastMarksRead))) return 0;
+    // None arrived: the last marks read, again, if they still apply (the same sun and levels):
+    // they keep the pages they name from eviction and redraw those a mover has invalidated since.
+    // Else nothing names the pages this frame's receivers need — its own marks, after a wait.
+    if (m_lastMarksRead > 0 && m_cache.marksApply(m_lastMarksRead)) return m_lastMarksRead;
     detail::countReadBack();
-    const int64_t frame = slot.read.waited() ? take(slot) : 0;
+    const int64_t frame = slot.read.waited() ? take(slot) : -1; // −1: a lost context, nothing requested
     slot.read.dropFence();
     return frame;
 }

@@ -54,9 +54,9 @@ public:
     // `late` false: the frame waits for its own marks (one read-back; two while a new sun's pages
     // are drawn under a budget). True: the marks go to a ring of mapped buffers behind fences, and
     // the frame reads the newest earlier frame's that arrived and still apply
-    // (core::VirtualPageCache::marksApply) — no wait. When none arrived it requests nothing and
-    // shows what is resident, unless no marks that apply were read lately (the first frame, a
-    // moved sun, a level added): then it waits for its own. Pages needed first in this frame are then
+    // (core::VirtualPageCache::marksApply) — no wait. When none arrived it requests again what the
+    // last marks read asked for, unless those no longer apply (the first frame, a moved sun, a
+    // level added): then it waits for its own. Pages needed first in this frame are then
     // served by coarser levels for the frame or two their marks take.
     void request(const CameraDepthTarget& depth, const core::PerspectiveCamera& camera, const core::ShadowSetup& setup,
                  const PageContent& content, std::span<const core::Aabb> moved, double reachTexels, int pageBudget,
@@ -106,8 +106,8 @@ private:
     size_t mark(const CameraDepthTarget& depth, const core::PerspectiveCamera& camera, const core::ShadowSetup& setup,
                 std::span<const core::ShadowView> views, double reachTexels, Buffer& bits, size_t& capacity);
     // Late requests: this frame's marks (`words` and `backWords` of them) into the ring; the marks
-    // of an earlier frame that arrived and apply, or this frame's after a wait, into m_readBack and
-    // m_backReadBack. Returns the frame the marks read were made in, 0: none (nothing requested).
+    // of an earlier frame that arrived and apply, the last ones read again, or this frame's after
+    // a wait, in m_readBack and m_backReadBack. Returns the frame they were marked in.
     int64_t readMarksLate(size_t words, size_t backWords);
 
     // A frame's marks on their way back (request()'s `late`).
@@ -125,7 +125,7 @@ private:
     std::vector<uint32_t> m_readBack, m_backReadBack;        // the marks the cache read this frame
     std::array<MarkSlot, kMarkSlots> m_marks;
     int64_t m_nextMark = 0;
-    int64_t m_lastMarksRead = 0; // the frame of the last marks readMarksLate() gave the cache
+    int64_t m_lastMarksRead = 0; // the frame the marks in m_readBack were made in
     Texture m_atlas, m_pageTable;
     Framebuffer m_framebuffer;
     int m_slotsPerRow = 0, m_slotTexels = 0, m_pageTexels = 0, m_guardTexels = 0;

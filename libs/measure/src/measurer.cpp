@@ -206,6 +206,7 @@ eval::VirtualPagesReport virtualPagesReport(const gl::VirtualPageStats& v) {
             .pagesDeferred = v.pagesDeferred,
             .levelsBehind = v.levelsBehind,
             .lagFrames = v.lagFrames,
+            .requestsAge = v.marksAge,
             .poolPages = v.poolPages,
             .poolBytes = v.poolBytes,
             .shadowTriangles = v.triangles};

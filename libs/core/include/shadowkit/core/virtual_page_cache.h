@@ -66,7 +66,7 @@ struct PageCacheStats {
     int levelsBehind = 0;   ///< levels still shown from the older generation
     int lagFrames = 0;      ///< how many frames ago the oldest generation shown was current
     int poolPages = 0;      ///< slots in the pool
-    bool marksLate = false; ///< the requests were an earlier frame's marks (request()'s markedIn)
+    int marksAge = 0;       ///< frames since the requests read were marked (0: this frame's); −1: none
 };
 
 /// The pool's slots, the pages they hold and the frame's schedule (see the file's comment).
@@ -99,9 +99,10 @@ public:
     ///
     /// `markedIn`: the frame whose windows the bits were marked in — this one (0, or frame()),
     /// or an earlier one for which marksApply() holds: requests read late, as a GPU returns them
-    /// without a wait. A page is a place in the clipmap's grid, so an earlier window's bits name
-    /// the same pages wherever the window has moved since; pages this frame's receivers need and
-    /// no earlier frame asked for are served by a coarser level until their marks arrive.
+    /// without a wait; −1: no marks arrived, nothing is requested and the frame shows what is
+    /// resident (as it does for marks that do not apply). A page is a place in the clipmap's grid, so an earlier
+    /// window's bits name the same pages wherever the window has moved since; pages this frame's receivers need and no
+    /// earlier frame asked for are served by a coarser level until their marks arrive.
     void request(std::span<const uint32_t> standingBits, std::span<const uint32_t> backBits,
                  std::span<const Aabb> moved, int64_t markedIn = 0);
     /// This frame's number (from 1, one per beginFrame()): what bits marked now are tagged with.

@@ -37,6 +37,7 @@ struct VirtualPagesReport {
     int pagesDeferred = 0; // over the page budget, not drawn this frame
     int levelsBehind = 0;  // page budget: levels shown from the older generation of pages
     int lagFrames = 0;     // page budget: frames since the oldest sun shown was the current one
+    int requestsAge = 0;   // frames since the requests read were marked (0: the frame's own; −1: none)
     int poolPages = 0;
     int64_t poolBytes = 0;
     size_t shadowTriangles = 0; // drawn into the pages rendered
