@@ -132,17 +132,19 @@ bool VirtualPageCache::marksApply(int64_t marked) const {
 }
 
 void VirtualPageCache::appendKeys(const ShadowView& window, int level, std::span<const uint32_t> bits,
-                                  int64_t generation, std::vector<SlotKey>& keys) const {
+                                  int64_t generation, const ShadowView& shown, std::vector<SlotKey>& keys) const {
     const ClipmapLevel& info = levelOf(window);
+    const ClipmapLevel& now = levelOf(shown);
     const int pagesPerSide = m_setup.clipmap->pagesPerSide();
     const size_t perLevel = size_t(pagesPerSide) * pagesPerSide; // at least 64: whole words per level
     const size_t first = size_t(level) * perLevel;
     for (size_t word = first / 32; word < (first + perLevel) / 32 && word < bits.size(); ++word)
         for (uint32_t set = bits[word]; set != 0; set &= set - 1) { // each set bit
             const size_t i = word * 32 + size_t(std::countr_zero(set)) - first;
-            keys.push_back({{info.exponent, info.firstPageX + int64_t(i % size_t(pagesPerSide)),
-                             info.firstPageY + int64_t(i / size_t(pagesPerSide))},
-                            generation});
+            const PageKey page{info.exponent, info.firstPageX + int64_t(i % size_t(pagesPerSide)),
+                               info.firstPageY + int64_t(i / size_t(pagesPerSide))};
+            const int64_t x = page.x - now.firstPageX, y = page.y - now.firstPageY;
+            if (x >= 0 && y >= 0 && x < pagesPerSide && y < pagesPerSide) keys.push_back({page, generation});
         }
 }
 
@@ -229,9 +231,10 @@ void VirtualPageCache::request(std::span<const uint32_t> standingBits, std::span
     for (int l = 0; l < levels && marked; ++l) {
         const int then = marked->levelWith(levelOf(m_setup.views[size_t(l)]).exponent); // ≥ 0: marksApply
         appendKeys(marked->windows.standing[size_t(then)], then, standingBits, switched(l) ? m_back->id : m_front.id,
-                   standingKeys[size_t(l)]);
+                   m_windows.standing[size_t(l)], standingKeys[size_t(l)]);
         if (drawingBack && !switched(l))
-            appendKeys(marked->windows.back[size_t(then)], then, backBits, m_back->id, backKeys[size_t(l)]);
+            appendKeys(marked->windows.back[size_t(then)], then, backBits, m_back->id, m_windows.back[size_t(l)],
+                       backKeys[size_t(l)]);
     }
     touch(standingKeys, backKeys);
 

@@ -100,9 +100,10 @@ public:
     /// `markedIn`: the frame whose windows the bits were marked in — this one (0, or frame()),
     /// or an earlier one for which marksApply() holds: requests read late, as a GPU returns them
     /// without a wait; −1: no marks arrived, nothing is requested and the frame shows what is
-    /// resident (as it does for marks that do not apply). A page is a place in the clipmap's grid, so an earlier
-    /// window's bits name the same pages wherever the window has moved since; pages this frame's receivers need and no
-    /// earlier frame asked for are served by a coarser level until their marks arrive.
+    /// resident (as it does for marks that do not apply). A page is a place in the clipmap's
+    /// grid, so an earlier window's bits name the same pages wherever the window has moved since
+    /// (those it has left are not requested); pages this frame's receivers need and no earlier
+    /// frame asked for are served by a coarser level until their marks arrive.
     void request(std::span<const uint32_t> standingBits, std::span<const uint32_t> backBits,
                  std::span<const Aabb> moved, int64_t markedIn = 0);
     /// This frame's number (from 1, one per beginFrame()): what bits marked now are tagged with.
@@ -172,9 +173,11 @@ private:
     bool switched(int level) const;
     // Marks invalid every valid page a moved box (old or new place) touches, in any level.
     void invalidateUnder(std::span<const Aabb> moved);
-    // Appends the keys of the bits set for level `level` of `window`, as pages of `generation`.
+    // Appends the keys of the bits set for level `level` of `window` (the window they were
+    // marked in), as pages of `generation`, those inside `shown` (this frame's window of the
+    // same level) only: a page marked in a window that has moved on since cannot be shown.
     void appendKeys(const ShadowView& window, int level, std::span<const uint32_t> bits, int64_t generation,
-                    std::vector<SlotKey>& keys) const;
+                    const ShadowView& shown, std::vector<SlotKey>& keys) const;
     // Marks every resident page requested this frame, and lists the slots that may be taken,
     // free ones first, then the least recently requested.
     using LevelKeys = std::vector<std::vector<SlotKey>>; // per level
