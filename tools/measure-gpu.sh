@@ -86,6 +86,12 @@ for section in "${sections[@]}"; do
     for v in gpu chc; do
       step "path-$v" 120 "$B" bench --trees 10000,100000 --path flythrough --visibility "$v" --json "$res/path-$v.json"
     done
+    # Technique virtual along it with the sun held: page requests read late (bench's default)
+    # against a frame that waits for its own (one stall a frame).
+    for r in late wait; do
+      step "path-virtual-$r" 120 "$B" bench --trees 10000 --path flythrough --sun-path off --technique virtual \
+        --virtual-requests "$r" --json "$res/path-virtual-$r.json"
+    done
     step frame-frustum 60 "${bench[@]}" --trees 10000 --views perpendicular --visibility frustum --caster-culling volume \
       --json "$res/frame-frustum.json"
     ;;

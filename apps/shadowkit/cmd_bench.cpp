@@ -44,6 +44,7 @@ struct BenchArgs {
     // --path: a moving camera (and sun) instead of still views — the frames an application
     // draws, so no cache of a still view flatters the CPU's figures.
     std::string path;
+    std::string sunPath; // --sun-path: eval's; "off" holds the sun where the path starts
 };
 
 core::Result<std::vector<int>> parseCounts(const std::string& text) {
@@ -266,6 +267,8 @@ int runBench(const BenchArgs& args) {
     if (viewNames.empty()) return fail("--views: no view named");
     TimelineOptions timelineOptions;
     timelineOptions.path = args.path;
+    timelineOptions.sunPath = args.sunPath;
+    if (!args.sunPath.empty() && args.path.empty()) return fail("--sun-path: needs --path");
     if (!args.path.empty()) {
         if (args.viewsGiven) return fail("--views: cannot be combined with --path (the path is the camera)");
         if (args.framesGiven) timelineOptions.frames = fmt::format(":{}", args.frames); // the path's first frames
@@ -356,6 +359,9 @@ Command addBenchCommand(CLI::App& app) {
     cmd->add_option("--path", args->path,
                     "bench a moving camera instead of the views: a camera path's frames in order (a name from "
                     "data/paths, e.g. flythrough, or a .json file), the sun as the path moves it");
+    cmd->add_option("--sun-path", args->sunPath,
+                    "with --path: the sun's motion, a path name or .json file with sun keys, or 'off' to hold the "
+                    "sun where it starts (default: the camera path's own)");
     cmd->add_option("--forest", args->forest,
                     "forest: its trees, simple (opaque blobs) or leafy (alpha-tested leaf cards)")
         ->check(CLI::IsMember({"simple", "leafy"}))
