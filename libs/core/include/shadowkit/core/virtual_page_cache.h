@@ -114,7 +114,7 @@ public:
     /// and none added since. Otherwise their pages belong to depths no longer drawn, or a level
     /// has none, and the frame needs its own marks.
     bool marksApply(int64_t marked) const;
-    static constexpr int kMarkedFramesKept = 8;
+    static constexpr int kMarkedFramesKept = 8; ///< frames whose windows marksApply() still knows
 
     /// A page this frame draws, into its slot.
     struct PageToRender {
