@@ -109,6 +109,17 @@ core::Result<eval::HtmlEntry> reportEntry(const measure::Measurement& measured, 
             return s.errorInfo();
         if (auto s = add(eval::truthShadowImage(*measured.truth, sun), "truth", "ray-traced truth"); !s)
             return s.errorInfo();
+        // Under the sun's disk (--sun-angle): the soft truth and the signed error against it.
+        if (const auto& soft = measured.softTruth) {
+            if (auto s = add(eval::softTruthShadowImage(*measured.truth, *soft, sun), "soft-truth",
+                             "ray-traced truth under the sun's disk (the visible fraction of it)");
+                !s)
+                return s.errorInfo();
+            if (auto s = add(eval::softErrorMapImage(measured.raster.shadowTerm, *soft, measured.comparison),
+                             "soft-error", "error against the sun's disk: red too dark, blue too light");
+                !s)
+                return s.errorInfo();
+        }
     }
     if (auto s = add(eval::errorMapImage(measured.comparison, w, h), "error", "error map"); !s) return s.errorInfo();
     if (auto s = add(eval::aliasingMapImage(measured.comparison, w, h), "aliasing", "aliasing map (pixels per texel)");

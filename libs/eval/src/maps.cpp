@@ -122,6 +122,17 @@ scene::Image truthShadowImage(const TruthBuffers& truth, const core::Directional
     return image;
 }
 
+scene::Image softTruthShadowImage(const TruthBuffers& truth, const SoftTruth& soft,
+                                  const core::DirectionalLight& light) {
+    scene::Image image(truth.width, truth.height);
+    for (size_t i = 0; i < truth.surfaceId.size(); ++i) {
+        // NaN where the surface faces away from the sun: unlit whatever the disk does.
+        const float v = i < soft.visibility.size() && truth.facesLight[i] ? soft.visibility[i] : 0.0f;
+        shade(image, truth, light, i, v);
+    }
+    return image;
+}
+
 scene::Image renderedShadowImage(const TruthBuffers& truth, const core::RasterBuffers& raster,
                                  const core::DirectionalLight& light) {
     scene::Image image(truth.width, truth.height);

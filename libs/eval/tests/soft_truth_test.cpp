@@ -286,3 +286,39 @@ TEST(SoftTruthTest, TheHtmlReportShowsTheSoftFiguresWithTheirMeaningOnlyWhereThe
                               "<code>penumbra_width_ratio</code>", "<td>—</td>"}) // the hard entry has none
         EXPECT_NE(page.find(shown), std::string::npos) << shown;
 }
+
+TEST(SoftTruthTest, TheSoftTruthPictureIsGreyBetweenTheUmbrasAndTheSunsAsTheDiskIsSeen) {
+    // A box over the ground under an 8° sun: each pixel of the soft picture is the hard picture's
+    // shadowed grey where none of the disk is seen, its lit grey where all of it is, and strictly
+    // between in the penumbra.
+    const scene::Scene s = groundAndBox({0, 2.5f, 0}, {1, 0.5f, 1.5f});
+    auto rays = eval::RayScene::build(s);
+    ASSERT_TRUE(rays) << rays.error();
+    const core::DirectionalLight sun = core::DirectionalLight::fromSunAngles(50, 120).value();
+    const eval::TruthBuffers truth = eval::computeTruth(**rays, test::cameraLookingAtOrigin(), sun, 160, 120);
+    const eval::SoftTruth soft = eval::computeSoftTruth(**rays, truth, {sun.wsTowardsLight(), 8.0});
+    eval::TruthBuffers dark = truth, bright = truth;
+    std::ranges::fill(dark.lit, false);
+    std::ranges::fill(bright.lit, true);
+    const scene::Image picture = eval::softTruthShadowImage(truth, soft, sun);
+    const scene::Image umbra = eval::truthShadowImage(dark, sun), lit = eval::truthShadowImage(bright, sun);
+    int penumbra = 0;
+    for (int y = 0; y < truth.height; ++y)
+        for (int x = 0; x < truth.width; ++x) {
+            const size_t i = size_t(y) * truth.width + x;
+            const int g = picture.pixel(x, y)[0], g0 = umbra.pixel(x, y)[0], g1 = lit.pixel(x, y)[0];
+            if (!truth.facesLight[i] || truth.surfaceId[i] == 0) {
+                EXPECT_EQ(g, g0) << x << ", " << y; // facing away, or sky: as the hard picture
+                continue;
+            }
+            const float v = soft.visibility[i];
+            if (v == 0.0f) EXPECT_EQ(g, g0) << x << ", " << y;
+            if (v == 1.0f) EXPECT_EQ(g, g1) << x << ", " << y;
+            if (v > 0.1f && v < 0.9f && g1 - g0 >= 20) {
+                EXPECT_GT(g, g0) << x << ", " << y;
+                EXPECT_LT(g, g1) << x << ", " << y;
+                ++penumbra;
+            }
+        }
+    EXPECT_GT(penumbra, 50) << "no penumbra in view: the test checks little";
+}

@@ -44,5 +44,9 @@ scene::Image softErrorMapImage(std::span<const float> shadowTerm, const SoftTrut
 scene::Image truthShadowImage(const TruthBuffers& truth, const core::DirectionalLight& light);
 scene::Image renderedShadowImage(const TruthBuffers& truth, const core::RasterBuffers& raster,
                                  const core::DirectionalLight& light);
+// The same picture under the sun's disk: v the visible fraction of the disk (`soft`, computed on
+// `truth`'s surfaces), so penumbrae and the partial light under leaves show as greys.
+scene::Image softTruthShadowImage(const TruthBuffers& truth, const SoftTruth& soft,
+                                  const core::DirectionalLight& light);
 
 } // namespace shadowkit::eval
