@@ -13,7 +13,8 @@
 namespace shadowkit::viewer {
 
 struct FrameOptions {
-    app::SceneOptions scene; // read once: the viewer keeps the scene it started with
+    FrameOptions() { technique.virtualRequestsLate = true; } // an application loop: no frame waits for them
+    app::SceneOptions scene;                                 // read once: the viewer keeps the scene it started with
     app::ViewOptions view;
     app::TechniqueOptions technique;
     app::RenderOptions render;

@@ -155,6 +155,9 @@ struct Viewer {
     std::vector<std::pair<std::string, eval::Figures>> truthPerLight; // with local lights
     int64_t shadowedRight = 0;              // of the last evaluation: pixels drawn in shadow where truth has shadow
     std::optional<frame::DrawnFrame> drawn; // the last frame, for the panel, the truth and the debug camera
+    // The GPU's figures of the newest frame whose figures came back: read late, as an
+    // application loop reads them (Renderer::readGpuFiguresLate), so no frame waits for its own.
+    std::optional<gl::GpuFigures> gpuFigures;
     std::string message;
 
     // Keys (the camera unless ImGui has the keyboard): moving, framing, toggles, screenshot,
@@ -273,6 +276,7 @@ struct Viewer {
             if (frameDrawn) {
                 drawn = std::move(frameDrawn).value();
                 ++drawnFrames;
+                keepGpuFigures(drawn->stats);
                 // A camera path leads: the fly camera follows it.
                 if (frames.timeline()->path) {
                     const double speed = camera.metresPerSecond;
@@ -289,8 +293,9 @@ struct Viewer {
                     seenFrom.zFar = 4.0 * drawn->frame.view.camera.zFar;
                     seenFrom.zNear = std::max(drawn->frame.view.camera.zNear, 0.5);
                     if (auto s = renderer.render(seenFrom, drawn->frame.view.light, drawn->frame.setup,
-                                                 drawn->frame.settings);
-                        !s)
+                                                 drawn->frame.settings))
+                        keepGpuFigures(*s);
+                    else
                         message = s.error();
                     if (wireframes)
                         renderer.drawLines(seenFrom, insightLines(drawn->frame.view.camera, drawn->frame.setup));
@@ -312,6 +317,10 @@ struct Viewer {
                 frameError = app::withFlagName(frameDrawn.errorInfo()).message;
             }
         }
+    }
+
+    void keepGpuFigures(const gl::FrameStats& stats) {
+        if (!stats.gpuFigures.empty()) gpuFigures = stats.gpuFigures.back();
     }
 
     // The truth job's result, when one arrives.
@@ -344,10 +353,14 @@ struct Viewer {
         ImGui::SetNextWindowSize(ImVec2(340, static_cast<float>(height) - 20.0f), ImGuiCond_FirstUseEver);
         ImGui::Begin("shadowkit");
         if (drawn) {
-            const gl::FrameStats& st = drawn->stats;
+            gl::FrameStats st = drawn->stats; // with the GPU's figures of the newest frame that has them
+            if (gpuFigures) gpuFigures->fill(st);
             ImGui::Text("%s  %dx%d  map %d", core::techniqueName(drawn->frame.setup.technique).data(),
                         drawn->frame.settings.width, drawn->frame.settings.height, drawn->frame.setup.mapSize);
             ImGui::Text("set-up %.3f ms CPU   culling %.1f ms", drawn->frame.setupMilliseconds, st.cullMilliseconds);
+            if (gpuFigures)
+                ImGui::Text("GPU figures of frame %lld (%lld back)", static_cast<long long>(gpuFigures->frame),
+                            static_cast<long long>(st.frame - gpuFigures->frame));
             for (const auto& [name, pass] :
                  {std::pair{"shadow", &st.shadow}, {"local ", &st.local}, {"main  ", &st.main}})
                 ImGui::Text("%s %7.2f ms GPU  %6.3f M tris  %zu inst  %zu draws", name, pass->gpuMilliseconds,
@@ -441,6 +454,7 @@ int run(const ViewerArgs& args, app::StateOptions state) {
     ImGui_ImplOpenGL3_Init("#version 450 core");
 
     Viewer v{args, std::move(state), world, **measurer, (*measurer)->renderer(), glfw, first->camera.fovYDegrees};
+    v.renderer.readGpuFiguresLate(true);
     v.camera = FlyCamera::looking(first->camera.wsEye, first->camera.wsDirection);
     v.wireframes = args.wireframes;
     v.sceneTime = args.options.timeline.time.value_or(0.0);
