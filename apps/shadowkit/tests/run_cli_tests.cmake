@@ -613,6 +613,33 @@ if(CASE STREQUAL "gl-bench-path")
     endif()
   endif()
 endif()
+# bench --technique virtual along the path with the sun held: page requests read late by default
+# (no synchronisation in a steady frame, the requests a frame old), one a frame with
+# --virtual-requests wait (the frame's own).
+if(CASE STREQUAL "gl-bench-virtual-requests")
+  foreach(requests late wait)
+    execute_process(COMMAND ${SHADOWKIT} bench --trees 20 --terrain-size 200 --terrain-resolution 16 --path flythrough
+                            --sun-path off --frames 4 --size 48x32 --technique virtual --virtual-requests ${requests}
+                            --json "${WORK}/virtual-${requests}.json"
+                    RESULT_VARIABLE rc OUTPUT_VARIABLE table ERROR_VARIABLE err)
+    if(NOT rc EQUAL 0 OR NOT EXISTS "${WORK}/virtual-${requests}.json")
+      message(SEND_ERROR "bench --virtual-requests ${requests}: failed: ${table} ${err}")
+    else()
+      file(READ "${WORK}/virtual-${requests}.json" report)
+      string(JSON syncs GET "${report}" runs 0 read_backs max)
+      string(JSON age GET "${report}" runs 0 virtual requests_age median)
+      # Late: a frame or more old, as the GPU returns them; waited for: the frame's own.
+      if(requests STREQUAL "late" AND (NOT syncs EQUAL 0 OR age LESS 1))
+        message(SEND_ERROR "bench --virtual-requests late: ${syncs} synchronisations a frame, requests ${age} "
+                           "frames old: ${report}")
+      elseif(requests STREQUAL "wait" AND (NOT syncs EQUAL 1 OR NOT age EQUAL 0))
+        message(SEND_ERROR "bench --virtual-requests wait: ${syncs} synchronisations a frame, requests ${age} "
+                           "frames old: ${report}")
+      endif()
+    endif()
+  endforeach()
+endif()
+check_fails(bench-sun-path-without-path "--sun-path" bench --trees 10 --sun-path off)
 check_fails(bench-path-and-views "--views" bench --trees 10 --path flythrough --views paper)
 check_fails(bench-path-past-its-end "--frames" bench --trees 10 --path flythrough --frames 241)
 # score: eval's own term (--dump), scored as another renderer's mask, from the view and from the

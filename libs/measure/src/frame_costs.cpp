@@ -47,6 +47,10 @@ void FrameCosts::add(const frame::DrawnFrame& drawn, int64_t readBacks) {
     m_nodesQueried.push_back(double(o.nodesQueried));
     m_multiQueryFailures.push_back(double(o.multiQueryFailures));
     m_waits.push_back(double(o.waits));
+    if (const auto& v = stats.virtualPages) {
+        m_pagesRendered.push_back(double(v->pagesRendered));
+        m_requestsAge.push_back(double(v->marksAge));
+    }
     m_last = stats;
     addLate(stats.gpuFigures);
 }
@@ -71,6 +75,8 @@ int FrameCosts::framesTimed() const {
 Spread FrameCosts::setupRest() const { return spreadOf(steady(m_setup)); }
 
 Spread FrameCosts::readBacks() const { return spreadOf(steady(m_readBacks)); }
+Spread FrameCosts::pagesRendered() const { return spreadOf(steady(m_pagesRendered)); }
+Spread FrameCosts::requestsAge() const { return spreadOf(steady(m_requestsAge)); }
 
 std::vector<double> FrameCosts::steadyFrameCpu() const { return steady(m_frameCpu); }
 
@@ -104,6 +110,8 @@ nlohmann::json FrameCosts::json() const {
                       {"multi_query_failures", toJson(o.multiQueryFailures)},
                       {"waits", toJson(o.waits)},
                       {"prepass_ms", toJson(prepass())}};
+    if (!m_pagesRendered.empty())
+        j["virtual"] = {{"pages_rendered", toJson(pagesRendered())}, {"requests_age", toJson(requestsAge())}};
     return j;
 }
 
