@@ -121,7 +121,7 @@ void printPassLines(const BenchArgs& args, gl::Culling culling, const measure::F
                "the first): GPU-to-CPU data reads and query waits, each a stall on a GPU (CHC++'s are counted "
                "above; the GPU's figures are read late)\n",
                "", "", "", readBacks.median, readBacks.max);
-    if (args.technique.technique == core::Technique::Virtual) {
+    if (costs.last().virtualPages) { // the frames drew virtual pages (auto may choose them too)
         const measure::Spread pages = costs.pagesRendered(), age = costs.requestsAge();
         fmt::print("{:>7} {:>7} {:<14} pages   drawn a frame med {:.0f} max {:.0f}; page requests read {:.0f} frames "
                    "late (median; max {:.0f}; 0: the frame's own, −1: none had arrived)\n",
