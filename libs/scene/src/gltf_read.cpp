@@ -352,6 +352,47 @@ core::Result<const unsigned char*> bytesOf(const tinygltf::Model& model, int vie
     return buffer.data() + view.byteOffset + offset;
 }
 
+// glTF 2.0 (Concepts, "Nodes and Hierarchy"): "the node hierarchy MUST be a set of disjoint
+// strict trees": no cycles, each node with at most one parent, and a scene's roots unique.
+// tinygltf does not check it, and a file that breaks it can place a node exponentially often:
+// a chain of nodes each naming the next twice places 2^depth instances, and a node that is its
+// own child recursed to the old depth limit of 64, doubling at every level (fuzz_gltf hung on
+// both). Checked before anything is placed, every node is visited at most once, and a chain
+// as long as the file is walked no deeper than kMaxNodeDepth.
+constexpr int kMaxNodeDepth = 512;
+
+core::Status checkNodeTrees(const tinygltf::Model& model, const fs::path& file) {
+    const auto named = [&](size_t node) {
+        const std::string& name = model.nodes[node].name;
+        return "node " + std::to_string(node) + (name.empty() ? "" : " '" + printable(name) + "'");
+    };
+    std::vector<int> parentOf(model.nodes.size(), -1);
+    for (size_t node = 0; node < model.nodes.size(); ++node)
+        for (int child : model.nodes[node].children) {
+            if (child < 0 || size_t(child) >= model.nodes.size())
+                return core::makeError(file.string() + ": " + named(node) + " lists child " + std::to_string(child) +
+                                       ", which is not a node");
+            if (parentOf[size_t(child)] >= 0)
+                return core::makeError(file.string() + ": " + named(size_t(child)) + " is a child of " +
+                                       named(size_t(parentOf[size_t(child)])) + " and again of " + named(node) +
+                                       " (glTF's nodes form trees: one parent each)");
+            parentOf[size_t(child)] = int(node);
+        }
+    for (size_t s = 0; s < model.scenes.size(); ++s) {
+        std::vector<bool> listed(model.nodes.size(), false);
+        for (int root : model.scenes[s].nodes) {
+            if (root < 0 || size_t(root) >= model.nodes.size()) continue; // placed nowhere
+            const std::string where = file.string() + ": scene " + std::to_string(s) + "'s root " + named(size_t(root));
+            if (parentOf[size_t(root)] >= 0)
+                return core::makeError(where + " is also a child of " + named(size_t(parentOf[size_t(root)])) +
+                                       " (a cycle in the node hierarchy)");
+            if (listed[size_t(root)]) return core::makeError(where + " is listed twice");
+            listed[size_t(root)] = true;
+        }
+    }
+    return core::Ok{};
+}
+
 core::Result<Scene> loadGltf(const fs::path& file) {
     const bool binary = lowerExtension(file) == ".glb";
     if (isGltf1(file, binary)) return core::makeError(file.string() + ": glTF 1.0 is not supported; glTF 2.0 is");
@@ -375,6 +416,7 @@ core::Result<Scene> loadGltf(const fs::path& file) {
         std::replace(err.begin(), err.end(), '\n', ' ');
         return core::makeError(file.string() + ": not a readable glTF file (" + err + ")");
     }
+    if (auto s = checkNodeTrees(model, file); !s) return s.errorInfo();
     Scene scene;
     if (auto s = readMaterials(model, file, images, scene); !s) return s.errorInfo();
     // (mesh, primitive) -> batch index: a mesh placed by many nodes becomes one instanced batch.
@@ -383,18 +425,11 @@ core::Result<Scene> loadGltf(const fs::path& file) {
     // each triangle reversed, and every instance transform of a batch keeps the winding's sense.
     std::map<std::tuple<int, size_t, bool>, size_t> batchOf;
     std::optional<core::Error> failure;
-    // glTF's nodes form trees, but a file may list a node as a child many times over: a chain of
-    // nodes each naming the next twice places 2^depth instances (fuzz_gltf hung on one). Placing
-    // more than kMaxNodeVisits nodes is refused.
-    constexpr size_t kMaxNodeVisits = size_t(1) << 20;
-    size_t visits = 0;
     auto visit = [&](auto&& self, int nodeIndex, const glm::mat4& parent, int depth) -> void {
-        if (failure || depth > 64 || nodeIndex < 0 || size_t(nodeIndex) >= model.nodes.size())
-            return; // cycles / bad refs
-        if (++visits > kMaxNodeVisits) {
-            failure = core::makeError(
-                file.string() +
-                ": the node hierarchy places more than 1048576 nodes (a node listed as a child repeatedly?)");
+        if (failure || nodeIndex < 0 || size_t(nodeIndex) >= model.nodes.size()) return; // a bad root is skipped
+        if (depth > kMaxNodeDepth) {
+            failure = core::makeError(file.string() + ": the node hierarchy is deeper than " +
+                                      std::to_string(kMaxNodeDepth) + " levels");
             return;
         }
         const tinygltf::Node& node = model.nodes[size_t(nodeIndex)];

@@ -167,17 +167,6 @@ TEST(GltfReadTest, WhatCannotBeReadIsNamedInOneLine) {
                                  views,
                              triangle),
                 "reaches past its buffer");
-    // Found by fuzz_gltf: each node naming the next one twice placed 2^40 instances (a hang).
-    std::string chain = R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[)";
-    for (int i = 0; i < 40; ++i)
-        chain += "{\"children\":[" + std::to_string(i + 1) + "," + std::to_string(i + 1) + "]},";
-    chain += R"({"mesh":0}],"meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],)" + accessor + views +
-             R"(,"buffers":[{"byteLength":36,"uri":"data:application/octet-stream;base64,)" + base64(triangle) +
-             "\"}]}";
-    const auto chainFile = std::filesystem::temp_directory_path() / "sk_chain.gltf";
-    std::ofstream(chainFile) << chain;
-    expectError(scene::loadScene(chainFile), "places more than 1048576 nodes");
-    std::filesystem::remove(chainFile);
     expectError(loadGltfText("sk_badindex.gltf",
                              R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1}]}],
         "accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3"},{"bufferView":1,"componentType":5125,"count":3,"type":"SCALAR"}],
@@ -188,6 +177,65 @@ TEST(GltfReadTest, WhatCannotBeReadIsNamedInOneLine) {
                                  return b;
                              }()),
                 "index 2 names no vertex");
+}
+
+// A .gltf of one triangle mesh placed by the given scene roots and nodes (JSON arrays' insides).
+core::Result<scene::Scene> loadNodes(const std::string& name, const std::string& roots, const std::string& nodes) {
+    std::vector<unsigned char> triangle;
+    append<float>(triangle, {0, 0, 0, 1, 0, 0, 0, 0, -1});
+    const auto file = std::filesystem::temp_directory_path() / name;
+    std::ofstream(file) << R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[)" << roots << R"(]}],"nodes":[)"
+                        << nodes << R"(],"meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],)"
+                        << R"("accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3"}],)"
+                        << R"("bufferViews":[{"buffer":0,"byteLength":36}],"buffers":[{"byteLength":36,)"
+                        << R"("uri":"data:application/octet-stream;base64,)" << base64(triangle) << "\"}]}";
+    auto scene = scene::loadScene(file);
+    std::filesystem::remove(file);
+    return scene;
+}
+
+// A chain of `links` nodes, each the parent of the next and one metre along x from it; the last
+// places the mesh.
+std::string chainOfNodes(int links) {
+    std::string nodes;
+    for (int i = 0; i + 1 < links; ++i)
+        nodes += R"({"translation":[1,0,0],"children":[)" + std::to_string(i + 1) + "]},";
+    return nodes + R"({"translation":[1,0,0],"mesh":0})";
+}
+
+TEST(GltfReadTest, NodeHierarchiesThatAreNotTreesAreRefusedInOneLine) {
+    // glTF's nodes form disjoint trees. Each file below breaks that in a way that, unchecked,
+    // places a node exponentially often; each was a hang before.
+    auto expectError = [](const core::Result<scene::Scene>& s, const std::string& part) {
+        ASSERT_FALSE(s) << "accepted; expected: " << part;
+        EXPECT_NE(s.error().find(part), std::string::npos) << s.error();
+        EXPECT_EQ(s.error().find('\n'), std::string::npos) << s.error();
+    };
+    // Each node naming the next twice: 2^40 placements of the mesh.
+    std::string doubled;
+    for (int i = 0; i < 40; ++i)
+        doubled += "{\"children\":[" + std::to_string(i + 1) + "," + std::to_string(i + 1) + "]},";
+    expectError(loadNodes("sk_doubled.gltf", "0", doubled + R"({"mesh":0})"),
+                "node 1 is a child of node 0 and again of node 0");
+    // Found by fuzz_gltf (a 12 s timeout under the sanitizers): a root that is its own child
+    // beside a second child, doubling at each of 64 levels.
+    expectError(loadNodes("sk_cycle.gltf", "0", R"({"name":"site","children":[0,1]},{"mesh":0})"),
+                "scene 0's root node 0 'site' is also a child of node 0 'site' (a cycle");
+    // Two parents of one node.
+    expectError(loadNodes("sk_parents.gltf", "0,1", R"({"children":[2]},{"children":[2]},{"mesh":0})"),
+                "node 2 is a child of node 0 and again of node 1");
+    expectError(loadNodes("sk_roots.gltf", "0,0", R"({"mesh":0})"), "scene 0's root node 0 is listed twice");
+    expectError(loadNodes("sk_child.gltf", "0", R"({"children":[7]})"), "node 0 lists child 7, which is not a node");
+    expectError(loadNodes("sk_deep.gltf", "0", chainOfNodes(600)), "deeper than 512 levels");
+}
+
+TEST(GltfReadTest, ADeepTreeOfNodesComposesEveryTransform) {
+    // 300 nested nodes, each a metre along x from its parent: the mesh lands 300 m along x, once.
+    auto s = loadNodes("sk_chain.gltf", "0", chainOfNodes(300));
+    ASSERT_TRUE(s) << s.error();
+    ASSERT_EQ(s->batches.size(), 1u);
+    ASSERT_EQ(s->batches[0].worldFromObject.size(), 1u);
+    EXPECT_NEAR(s->batches[0].worldFromObject[0][3].x, 300.0f, 1e-3f);
 }
 
 TEST(GltfReadTest, MirroredNodesKeepTheirFacesOutward) {
