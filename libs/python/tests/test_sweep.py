@@ -192,6 +192,50 @@ class HostileSpecificationTest(unittest.TestCase):
                 self.assertFalse(any(a.startswith("--") and a[2:] not in options for a in args), args)
 
 
+class EstimateTest(unittest.TestCase):
+    """The time a sweep says it will take, before and after some of its cells have run."""
+
+    class Measured:  # a Store's measured cells, as estimate_seconds reads them
+        def __init__(self, records):
+            self.done = {str(i): record for i, record in enumerate(records)}
+
+    @staticmethod
+    def cell(**options):
+        return sweep.Cell({"views": "all", **{k.replace("_", "-"): v for k, v in options.items()}}, {})
+
+    def seconds(self, **options):
+        return cli.cell_seconds(self.cell(**options))
+
+    def test_leaves_the_suns_disk_pixels_and_trees_each_cost_time(self):
+        plain = self.seconds(size="1280x720")
+        self.assertGreater(self.seconds(size="1280x720", forest="leafy"), 2 * plain)
+        self.assertGreater(self.seconds(size="1280x720", sun_angle=0.53), 2 * plain)
+        # Under the sun's disk the truth's rays crowd into the leaves' penumbrae: the leafy forest's
+        # soft truth costs more a pixel than the blob forest's.
+        leafy_soft = self.seconds(size="1280x720", forest="leafy", sun_angle=0.53)
+        self.assertGreater(leafy_soft - self.seconds(size="1280x720", forest="leafy"),
+                           2 * (self.seconds(size="1280x720", sun_angle=0.53) - plain))
+        self.assertLess(self.seconds(size="640x360", forest="leafy", sun_angle=0.53), leafy_soft)
+        self.assertGreater(self.seconds(size="1280x720", trees=40000), plain)
+        self.assertAlmostEqual(self.seconds(size="1280x720", sun_angle=0), plain)  # a point sun: no soft truth
+        self.assertAlmostEqual(self.seconds(size="1280x720", views="paper"), plain / 6)
+        self.assertGreater(self.seconds(size="640x360", forest="leafy", foliage_opacity=True),
+                           self.seconds(size="640x360", forest="leafy"))
+        # A loaded scene is not the forest the forest's options describe.
+        self.assertAlmostEqual(self.seconds(size="1280x720", scene="m.glb", forest="leafy", trees=40000),
+                               self.seconds(size="1280x720", scene="m.glb"))
+
+    def test_measured_cells_scale_the_estimate_of_the_rest(self):
+        todo = [self.cell(size="640x360", forest="leafy", technique=t) for t in ("tsm", "lispsm")]
+        fresh = cli.estimate_seconds(todo, self.Measured([]))
+        self.assertAlmostEqual(fresh, sum(cli.START_SECONDS + cli.cell_seconds(c) for c in todo))
+        # Cells that took three times what the figures say (a slower machine): the rest will too.
+        done = [self.cell(size="640x360", forest="leafy", technique="focused"), self.cell(size="160x90")]
+        slow = self.Measured([{"options": c.options, "seconds": 3 * cli.cell_seconds(c)} for c in done])
+        self.assertAlmostEqual(cli.estimate_seconds(todo, slow), len(todo) * cli.START_SECONDS +
+                               3 * (fresh - len(todo) * cli.START_SECONDS))
+
+
 class SweepTest(unittest.TestCase):
     def setUp(self):
         self.dir = tempfile.mkdtemp(prefix="shadowkit-sweep-test-")

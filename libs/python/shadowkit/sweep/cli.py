@@ -16,10 +16,24 @@ from .runners import Progress, run_dask, run_serial
 from .store import Store, StoreError, describe
 from .summary import write_summary
 
-# The estimate before any cell of this sweep has run (a resumed sweep uses its own cells' times):
-# `shadowkit eval` on the project's 2-core machine, default forest, llvmpipe, measured 2026-11-25
-# (docs/sweeps.md): about 0.3 s to start and 1.3 s a 1280 x 720 view.
-START_SECONDS, VIEW_SECONDS, VIEW_PIXELS = 0.3, 1.3, 1280 * 720
+# The estimate before any cell of this sweep has run. A view of `shadowkit eval` costs a part that
+# follows the scene (drawing it: the passes, the levels, the culling) and a part that follows its
+# pixels (the ray-traced truth, and under a sun of some size its soft truth, whose rays crowd into
+# penumbrae: many more under leaves). Per scene: seconds a view, then seconds per million pixels
+# for the point sun's truth and again for the sun's disk, on this project's 2-core machine with
+# llvmpipe, from the sweeps' own cells of 2026-11-28/29 (docs/sweeps.md):
+#   the default forest: soft-filters.json at 1280 x 720, about 1.3 s a view, 4 s under the sun;
+#   the leafy forest: leafy-soft-setups.json at 640 x 360, about 7 s a view under the sun.
+# A forest of N trees takes (N / 10,000)^0.7 times as long to draw (40,000 leafy trees: x2.6 a
+# view, measured), and with the leaves' opacity layers (foliage-opacity) about twice as long
+# (leafy-opacity.json's cells of 2026-11-28). Any other scene is taken as the default forest.
+# Once cells of this directory have run, the estimate is scaled by how long they took against
+# it: another machine, another scene.
+START_SECONDS = 0.3
+SCENE_SECONDS = {"forest": (1.0, 0.3, 3.0), "leafy": (3.5, 1.1, 15.0)}  # draw, truth s/M px, soft truth s/M px
+TREES, TREES_EXPONENT = 10000, 0.7
+OPACITY_FACTOR = 2.0
+VIEW_PIXELS = 1280 * 720
 STANDARD_VIEWS = {"all": 6, "local": 3}
 
 
@@ -60,19 +74,34 @@ def _views_and_pixels(cell):
     return max(views, 1), pixels
 
 
+def _number(value, default):
+    try:
+        return float(value)
+    except (TypeError, ValueError):
+        return default
+
+
+def cell_seconds(cell):
+    """What one cell should take by the figures above, without the process's start."""
+    o = cell.options
+    draw, truth, soft = SCENE_SECONDS["leafy" if o.get("forest") == "leafy" and "scene" not in o else "forest"]
+    if "scene" not in o:
+        draw *= (max(_number(o.get("trees"), TREES), 1.0) / TREES) ** TREES_EXPONENT
+    if _number(o.get("sun-angle"), 0.0) > 0.0:
+        truth += soft
+    views, pixels = _views_and_pixels(cell)
+    return views * (draw + truth * pixels / 1e6) * (OPACITY_FACTOR if o.get("foliage-opacity") else 1.0)
+
+
 def estimate_seconds(cells, store):
-    """Seconds the cells should take: from this directory's measured cells when it has some, else
-    the figures above."""
-    start, per_pixel = START_SECONDS, VIEW_SECONDS / VIEW_PIXELS
-    measured = [(r["seconds"], len(r["rows"]), r["options"]) for r in store.done.values() if r.get("seconds")]
+    """Seconds the cells should take: the figures above, scaled by how long this directory's
+    measured cells took against them when it has some."""
+    scale = 1.0
+    measured = [(r["seconds"], r["options"]) for r in store.done.values() if r.get("seconds")]
     if measured:
-        work = sum(rows * _views_and_pixels(specification.Cell(options, {}))[1] for _, rows, options in measured)
-        per_pixel = max(sum(s - START_SECONDS for s, _, _ in measured), 0.0) / max(work, 1)
-    total = 0.0
-    for cell in cells:
-        views, pixels = _views_and_pixels(cell)
-        total += start + views * pixels * per_pixel
-    return total
+        predicted = sum(cell_seconds(specification.Cell(options, {})) for _, options in measured)
+        scale = sum(seconds for seconds, _ in measured) / predicted if predicted > 0 else 1.0
+    return sum(START_SECONDS + scale * cell_seconds(cell) for cell in cells)
 
 
 def check_cells(cells, arguments, program, data_dir):
