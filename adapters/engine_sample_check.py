@@ -7,10 +7,10 @@
   view looks down on a dense patch of trees, about a third of it in shadow; an
   adapter that hands OSG a camera missing the view draws none);
 - scored against the truth, it is within 0.5 points of `eval`'s wrong_pct for the same
-  technique (the same set-up drawn by shadowkit's own renderer; the bias and filter differ):
+  set-up (drawn by shadowkit's own renderer; the bias and filter differ):
   the engine's matrices read in the wrong order, or a light camera that does not hold the view
   (fitted to a scene box that holds the cameras' far planes), put shadows in the wrong places
-  and cost far more. (A wrong depth range or flipped rows cancel inside an engine that derives
+  and cost far more, as does a receiver reading the wrong cascade's map. (A wrong depth range or flipped rows cancel inside an engine that derives
   its lookup from the same matrices: each adapter's shadow_camera_test.cpp holds those to the
   core's own set-up, texel for texel.)
 The engine's own figure is printed beside them, not required."""
@@ -42,8 +42,8 @@ def main():
             shadowed += row[x * channels] < 128
     adapter, own, evaluated = score(sys.argv[2]), score(sys.argv[3]), score(sys.argv[4])
     share = 100.0 * shadowed / max(drawn, 1)
-    print(f"adapter (tsm in the engine): wrong {adapter:.2f} %, shadowed {share:.1f} % of {drawn} drawn pixels; "
-          f"eval tsm: {evaluated:.2f} %; the engine's own: {own:.2f} %")
+    print(f"adapter (in the engine): wrong {adapter:.2f} %, shadowed {share:.1f} % of {drawn} drawn pixels; "
+          f"eval, the same set-up: {evaluated:.2f} %; the engine's own: {own:.2f} %")
     failures = []
     if share < 10.0:
         failures.append(f"the adapter's mask is shadowed on {share:.1f} % of its pixels, expected at least 10 %")

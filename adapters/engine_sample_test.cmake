@@ -1,8 +1,17 @@
 # An engine adapter end to end: a small forest exported as OBJ, drawn by the engine's sample
-# (OpenSceneGraph's, OGRE's) from a standard view with shadowkit's TSM (the adapter) and with
-# the engine's own technique OWN, each mask scored against the ray-traced truth and put beside
-# `eval`'s figure for the same technique (engine_sample_check.py says what must hold).
-#   cmake -DSHADOWKIT=... -DSAMPLE=... -DOWN=... -DWORK=... -P engine_sample_test.cmake
+# (OpenSceneGraph's, OGRE's) from a standard view with shadowkit's technique ADAPTER (default
+# tsm) and with the engine's own technique OWN, each mask scored against the ray-traced truth
+# and put beside `eval`'s figure for the same set-up, EVAL_OPTIONS (default --technique ADAPTER;
+# engine_sample_check.py says what must hold).
+#   cmake -DSHADOWKIT=... -DSAMPLE=... -DOWN=... -DWORK=... [-DADAPTER=csm "-DEVAL_OPTIONS=..."]
+#         -P engine_sample_test.cmake
+if(NOT ADAPTER)
+  set(ADAPTER tsm)
+endif()
+if(NOT EVAL_OPTIONS)
+  set(EVAL_OPTIONS "--technique ${ADAPTER}")
+endif()
+separate_arguments(eval_options UNIX_COMMAND "${EVAL_OPTIONS}")
 file(REMOVE_RECURSE "${WORK}")
 file(MAKE_DIRECTORY "${WORK}")
 find_program(XVFB_RUN xvfb-run)
@@ -24,12 +33,13 @@ execute_process(COMMAND ${SHADOWKIT} setup --view aerial ${forest} OUTPUT_FILE "
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "shadowkit setup: exit ${rc}")
 endif()
-file(WRITE "${WORK}/shots.txt" "${WORK}/camera.json tsm ${WORK}/tsm.png\n${WORK}/camera.json ${OWN} ${WORK}/own.png\n")
+file(WRITE "${WORK}/shots.txt"
+     "${WORK}/camera.json ${ADAPTER} ${WORK}/adapter.png\n${WORK}/camera.json ${OWN} ${WORK}/own.png\n")
 run(${XVFB_RUN} -a ${SAMPLE} "${WORK}/forest.obj" --shots "${WORK}/shots.txt" --size 640x360)
-foreach(mask tsm own)
+foreach(mask adapter own)
   run(${SHADOWKIT} score "${WORK}/${mask}.png" ${forest} ${view} --json "${WORK}/${mask}.json")
 endforeach()
-run(${SHADOWKIT} eval ${forest} ${view} --technique tsm --json "${WORK}/eval.json")
+run(${SHADOWKIT} eval ${forest} ${view} ${eval_options} --json "${WORK}/eval.json")
 find_program(PYTHON NAMES python3 REQUIRED)
-run(${PYTHON} "${CMAKE_CURRENT_LIST_DIR}/engine_sample_check.py" "${WORK}/tsm.png" "${WORK}/tsm.json" "${WORK}/own.json"
-    "${WORK}/eval.json")
+run(${PYTHON} "${CMAKE_CURRENT_LIST_DIR}/engine_sample_check.py" "${WORK}/adapter.png" "${WORK}/adapter.json"
+    "${WORK}/own.json" "${WORK}/eval.json")

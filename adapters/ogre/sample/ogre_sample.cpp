@@ -9,7 +9,9 @@
 // The switch an OGRE user makes is one line (below, `makeCameraSetup`):
 //   sceneManager->setShadowCameraSetup(std::make_shared<shadowkit::ogreadapter::ShadowCameraSetup>());
 // The rest is a plain depth shadow map, the same for every set-up: the casters write their
-// clip depth into a float texture, the receivers compare against it (one map per light).
+// clip depth into a float texture, the receivers compare against it. One map per light, or four
+// split along the view for OGRE's PSSM and shadowkit's cascades (`ogre-pssm`, `csm`), each of
+// half the side: the same texel memory as one map of --map-size.
 #include "shadowkit/ogre/shadow_camera_setup.h"
 
 #include "common/sample_options.h"
@@ -18,6 +20,7 @@
 #include <Ogre.h>
 #include <OgreShadowCameraSetupFocused.h>
 #include <OgreShadowCameraSetupLiSPSM.h>
+#include <OgreShadowCameraSetupPSSM.h>
 #include <tiny_obj_loader.h>
 
 #include <chrono>
@@ -34,25 +37,34 @@ using samples::fail;
 using samples::Options;
 using samples::Shot;
 
-// A technique a shot may name: OGRE's own set-ups, or one the adapter draws in one map.
+// Split set-ups draw four maps of half the side, one per split of the view.
+constexpr int kSplitMaps = 4;
+bool isSplit(const std::string& name) { return name == "ogre-pssm" || name == "csm"; }
+int mapsOf(const std::string& name) { return isSplit(name) ? kSplitMaps : 1; }
+int mapSideOf(const std::string& name, int mapSize) { return isSplit(name) ? mapSize / 2 : mapSize; }
+
+// A technique a shot may name: OGRE's own set-ups, or the adapter's.
 void checkTechnique(const std::string& name) {
-    if (name == "ogre" || name == "ogre-focused" || name == "ogre-lispsm") return;
+    if (name == "ogre" || name == "ogre-focused" || name == "ogre-lispsm" || name == "ogre-pssm") return;
     const auto technique = core::parseTechnique(name);
-    if (!technique || *technique == core::Technique::Csm)
+    if (!technique)
         fail("technique " + name +
-             ": not ogre, ogre-focused or ogre-lispsm (OGRE's own) nor one of tsm, lispsm, psm, "
-             "focused, standard (shadowkit's; this sample draws one map)");
+             ": not ogre, ogre-focused, ogre-lispsm or ogre-pssm (OGRE's own) nor one of tsm, lispsm, psm, "
+             "focused, standard, csm (shadowkit's)");
     if (auto usable = shadowkit::ogreadapter::checkTechnique(*technique); !usable) fail(usable.error());
 }
 
-Ogre::ShadowCameraSetupPtr makeCameraSetup(const std::string& name) {
+Ogre::ShadowCameraSetupPtr makeCameraSetup(const std::string& name, int mapSize) {
     if (name == "ogre") return std::make_shared<Ogre::DefaultShadowCameraSetup>();
     if (name == "ogre-focused") return std::make_shared<Ogre::FocusedShadowCameraSetup>();
     if (name == "ogre-lispsm") return std::make_shared<Ogre::LiSPSMShadowCameraSetup>();
+    if (name == "ogre-pssm") return std::make_shared<Ogre::PSSMShadowCameraSetup>(); // split per shot (draw)
     // The one line an OGRE user changes: shadowkit's set-up for OGRE's.
     auto setup = std::make_shared<shadowkit::ogreadapter::ShadowCameraSetup>();
     core::ShadowSetupInputs inputs;
     inputs.technique = *core::parseTechnique(name); // checked by checkTechnique
+    inputs.mapSize = mapSideOf(name, mapSize);
+    inputs.cascades.count = kSplitMaps;
     (void)setup->setInputs(inputs);
     return setup;
 }
@@ -90,6 +102,41 @@ void main() {
     gl_FragColor = vec4(lit, lit, lit, 1.0);
 })";
 
+// The same lookup in four maps split along the view: each map serves the view depths up to its
+// entry of splitFar (set every frame from the set-up: SplitDepths below).
+const char* kSplitReceiverVertex = R"(#version 120
+uniform mat4 worldViewProj;
+uniform mat4 worldView;
+uniform mat4 textureWorldViewProj0, textureWorldViewProj1, textureWorldViewProj2, textureWorldViewProj3;
+varying vec4 shadowCoord0, shadowCoord1, shadowCoord2, shadowCoord3;
+varying float viewDepth;
+void main() {
+    gl_Position = worldViewProj * gl_Vertex;
+    viewDepth = -(worldView * gl_Vertex).z;
+    shadowCoord0 = textureWorldViewProj0 * gl_Vertex;
+    shadowCoord1 = textureWorldViewProj1 * gl_Vertex;
+    shadowCoord2 = textureWorldViewProj2 * gl_Vertex;
+    shadowCoord3 = textureWorldViewProj3 * gl_Vertex;
+})";
+const char* kSplitReceiverFragment = R"(#version 120
+uniform sampler2D shadowMap0, shadowMap1, shadowMap2, shadowMap3;
+uniform vec4 splitFar;
+varying vec4 shadowCoord0, shadowCoord1, shadowCoord2, shadowCoord3;
+varying float viewDepth;
+float litIn(sampler2D map, vec4 coord) {
+    vec3 p = coord.xyz / coord.w;
+    if (any(lessThan(p.xy, vec2(0.0))) || any(greaterThan(p.xy, vec2(1.0)))) return 1.0;
+    return 0.5 * p.z + 0.5 <= texture2D(map, p.xy).r ? 1.0 : 0.0;
+}
+void main() {
+    float lit = 1.0;
+    if (viewDepth <= splitFar.x) lit = litIn(shadowMap0, shadowCoord0);
+    else if (viewDepth <= splitFar.y) lit = litIn(shadowMap1, shadowCoord1);
+    else if (viewDepth <= splitFar.z) lit = litIn(shadowMap2, shadowCoord2);
+    else if (viewDepth <= splitFar.w) lit = litIn(shadowMap3, shadowCoord3);
+    gl_FragColor = vec4(lit, lit, lit, 1.0);
+})";
+
 Ogre::GpuProgramPtr program(const std::string& name, Ogre::GpuProgramType type, const char* source) {
     Ogre::HighLevelGpuProgramPtr p = Ogre::HighLevelGpuProgramManager::getSingleton().createProgram(
         name, Ogre::ResourceGroupManager::DEFAULT_RESOURCE_GROUP_NAME, "glsl", type);
@@ -112,6 +159,57 @@ Ogre::MaterialPtr programmedMaterial(const std::string& name) {
     return material;
 }
 
+// A shadow texture unit: the next of the light's shadow textures, white (lit) beyond its border.
+void addShadowUnit(Ogre::Pass* pass) {
+    Ogre::TextureUnitState* shadow = pass->createTextureUnitState();
+    shadow->setContentType(Ogre::TextureUnitState::CONTENT_SHADOW);
+    shadow->setTextureAddressingMode(Ogre::TextureUnitState::TAM_BORDER);
+    shadow->setTextureBorderColour(Ogre::ColourValue::White);
+    shadow->setTextureFiltering(Ogre::TFO_NONE);
+}
+
+// The receivers' pass of the split set-ups.
+Ogre::Pass* makeSplitReceiver() {
+    program("sk/receiver-split.vert", Ogre::GPT_VERTEX_PROGRAM, kSplitReceiverVertex);
+    program("sk/receiver-split.frag", Ogre::GPT_FRAGMENT_PROGRAM, kSplitReceiverFragment);
+    Ogre::Pass* pass = programmedMaterial("sk/receiver-split")->getTechnique(0)->getPass(0);
+    const auto vertex = pass->getVertexProgramParameters(), fragment = pass->getFragmentProgramParameters();
+    vertex->setNamedAutoConstant("worldView", Ogre::GpuProgramParameters::ACT_WORLDVIEW_MATRIX);
+    for (int i = 0; i < kSplitMaps; ++i) {
+        const std::string n = std::to_string(i);
+        vertex->setNamedAutoConstant("textureWorldViewProj" + n,
+                                     Ogre::GpuProgramParameters::ACT_TEXTURE_WORLDVIEWPROJ_MATRIX, size_t(i));
+        fragment->setNamedConstant("shadowMap" + n, i);
+        addShadowUnit(pass);
+    }
+    return pass;
+}
+
+// Sets the split receivers' splitFar once the frame's shadow textures are drawn, when the
+// adapter's set-up for this frame is known: OGRE's PSSM splits are fixed before the frame.
+class SplitDepths : public Ogre::SceneManager::Listener {
+public:
+    explicit SplitDepths(Ogre::Pass* receiver) : m_receiver(receiver) {}
+    void use(Ogre::ShadowCameraSetupPtr setup) { m_setup = std::move(setup); }
+    void shadowTexturesUpdated(size_t) override {
+        Ogre::Vector4 far(0, 0, 0, 0);
+        if (auto* pssm = dynamic_cast<Ogre::PSSMShadowCameraSetup*>(m_setup.get())) {
+            const auto& points = pssm->getSplitPoints(); // near, then each split's far
+            for (size_t i = 0; i < kSplitMaps && i + 1 < points.size(); ++i) far[i] = points[i + 1];
+        } else if (auto* ours = dynamic_cast<shadowkit::ogreadapter::ShadowCameraSetup*>(m_setup.get())) {
+            if (!ours->lastSetup()) fail("the adapter's cascades failed: " + ours->lastError());
+            const auto& views = ours->lastSetup()->views;
+            for (size_t i = 0; i < kSplitMaps && i < views.size(); ++i)
+                far[i] = views[i].split ? Ogre::Real(views[i].split->y) : Ogre::Real(0);
+        }
+        m_receiver->getFragmentProgramParameters()->setNamedConstant("splitFar", far);
+    }
+
+private:
+    Ogre::Pass* m_receiver;
+    Ogre::ShadowCameraSetupPtr m_setup;
+};
+
 void makeMaterials(Ogre::SceneManager* sm) {
     program("sk/caster.vert", Ogre::GPT_VERTEX_PROGRAM, kCasterVertex);
     program("sk/caster.frag", Ogre::GPT_FRAGMENT_PROGRAM, kCasterFragment);
@@ -128,11 +226,7 @@ void makeMaterials(Ogre::SceneManager* sm) {
     rp->getVertexProgramParameters()->setNamedAutoConstant(
         "textureWorldViewProj", Ogre::GpuProgramParameters::ACT_TEXTURE_WORLDVIEWPROJ_MATRIX, 0);
     rp->getFragmentProgramParameters()->setNamedConstant("shadowMap", 0);
-    Ogre::TextureUnitState* shadow = rp->createTextureUnitState();
-    shadow->setContentType(Ogre::TextureUnitState::CONTENT_SHADOW);
-    shadow->setTextureAddressingMode(Ogre::TextureUnitState::TAM_BORDER);
-    shadow->setTextureBorderColour(Ogre::ColourValue::White);
-    shadow->setTextureFiltering(Ogre::TFO_NONE);
+    addShadowUnit(rp);
 }
 
 // The OBJ as one ManualObject: positions only (the mask needs no shading), 32-bit indices.
@@ -154,8 +248,16 @@ Ogre::ManualObject* loadObj(Ogre::SceneManager* sm, const std::string& file) {
     return mesh;
 }
 
-void draw(const Options& o, const Shot& shot, Ogre::Root& root, Ogre::SceneManager* sm, Ogre::RenderWindow* window) {
-    sm->setShadowCameraSetup(makeCameraSetup(shot.technique));
+void draw(const Options& o, const Shot& shot, Ogre::Root& root, Ogre::SceneManager* sm, Ogre::RenderWindow* window,
+          Ogre::ManualObject* scene, SplitDepths& splits) {
+    const Ogre::ShadowCameraSetupPtr setup = makeCameraSetup(shot.technique, o.mapSize);
+    sm->setShadowCameraSetup(setup);
+    const int maps = mapsOf(shot.technique);
+    sm->setShadowTextureCountPerLightType(Ogre::Light::LT_DIRECTIONAL, size_t(maps));
+    sm->setShadowTextureSettings(Ogre::uint16(mapSideOf(shot.technique, o.mapSize)), Ogre::uint16(maps),
+                                 Ogre::PF_FLOAT32_R);
+    scene->setMaterialName(0, maps > 1 ? "sk/receiver-split" : "sk/receiver");
+    splits.use(setup);
     Ogre::Light* sun = sm->getLight("sun");
     const auto vec = [](const samples::Vec3& v) {
         return Ogre::Vector3(Ogre::Real(v[0]), Ogre::Real(v[1]), Ogre::Real(v[2]));
@@ -169,6 +271,8 @@ void draw(const Options& o, const Shot& shot, Ogre::Root& root, Ogre::SceneManag
     camera->setNearClipDistance(Ogre::Real(shot.view.zNear));
     camera->setFarClipDistance(Ogre::Real(shot.view.zFar));
     camera->setAspectRatio(Ogre::Real(o.width) / Ogre::Real(o.height));
+    if (auto* pssm = dynamic_cast<Ogre::PSSMShadowCameraSetup*>(setup.get()))
+        pssm->calculateSplitPoints(kSplitMaps, Ogre::Real(shot.view.zNear), Ogre::Real(shot.view.zFar));
 
     const auto start = std::chrono::steady_clock::now();
     root.renderOneFrame();
@@ -180,8 +284,8 @@ void draw(const Options& o, const Shot& shot, Ogre::Root& root, Ogre::SceneManag
                                 frame.rgba.data());
     window->copyContentsToMemory(pixels, pixels);
     if (auto written = shadowkit::scene::writePng(frame, shot.out); !written) fail(written.error());
-    std::printf("wrote %s (%dx%d, %s, %d² map, drawn in %.1f s)\n", shot.out.c_str(), o.width, o.height,
-                shot.technique.c_str(), o.mapSize, seconds);
+    std::printf("wrote %s (%dx%d, %s, %d × %d² maps, drawn in %.1f s)\n", shot.out.c_str(), o.width, o.height,
+                shot.technique.c_str(), maps, mapSideOf(shot.technique, o.mapSize), seconds);
 }
 
 } // namespace
@@ -212,8 +316,9 @@ int main(int argc, char** argv) {
     Ogre::ResourceGroupManager::getSingleton().initialiseAllResourceGroups();
     Ogre::SceneManager* sm = root.createSceneManager();
     makeMaterials(sm);
+    SplitDepths splits(makeSplitReceiver());
+    sm->addListener(&splits);
     sm->setShadowTechnique(Ogre::SHADOWTYPE_TEXTURE_ADDITIVE_INTEGRATED);
-    sm->setShadowTextureSettings(Ogre::uint16(o.mapSize), 1, Ogre::PF_FLOAT32_R);
     sm->setShadowTextureSelfShadow(true);
     sm->setShadowDirLightTextureOffset(0.0f);
 
@@ -234,6 +339,7 @@ int main(int argc, char** argv) {
     Ogre::Viewport* viewport = window->addViewport(camera);
     viewport->setBackgroundColour(Ogre::ColourValue(0, 0, 0, 0)); // alpha 0: no surface
     viewport->setShadowsEnabled(true);
-    for (const Shot& shot : o.shots) draw(o, shot, root, sm, window);
+    for (const Shot& shot : o.shots) draw(o, shot, root, sm, window, scene, splits);
+    sm->removeListener(&splits);
     return 0;
 }
