@@ -19,6 +19,7 @@ import unittest
 from shadowkit import sweep
 from shadowkit.sweep import cli
 from shadowkit.sweep.program import eval_options
+from shadowkit.sweep.runners import Progress
 
 CLI = os.environ["SHADOWKIT"]
 SOURCE_DIR = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", ".."))
@@ -234,6 +235,18 @@ class EstimateTest(unittest.TestCase):
         slow = self.Measured([{"options": c.options, "seconds": 3 * cli.cell_seconds(c)} for c in done])
         self.assertAlmostEqual(cli.estimate_seconds(todo, slow), len(todo) * cli.START_SECONDS +
                                3 * (fresh - len(todo) * cli.START_SECONDS))
+
+
+    def test_the_time_left_weighs_the_cells_left_by_their_estimate(self):
+        # A quick cell done in 5 s, a nine times slower one left: 45 s left, not 5.
+        weighed = Progress(2, 0, stream=io.StringIO(), expected={"quick": 10.0, "slow": 90.0})
+        weighed.step({"key": "quick", "host": "h"}, stored=True)
+        self.assertAlmostEqual(weighed.seconds_left(5.0), 45.0)
+        weighed.step({"key": "quick", "host": "h"}, stored=False)  # a duplicate changes nothing
+        self.assertAlmostEqual(weighed.seconds_left(5.0), 45.0)
+        counted = Progress(2, 0, stream=io.StringIO())
+        counted.step({"key": "quick", "host": "h"}, stored=True)
+        self.assertAlmostEqual(counted.seconds_left(5.0), 5.0)
 
 
 class SweepTest(unittest.TestCase):

@@ -168,7 +168,8 @@ def main(argv=None):
             return 0
         tasks = [task_of(cells[i], keys[i], arguments[i], program, data_dir, print_, args.cell_timeout,
                          args.fresh_processes) for i in todo]
-        progress = Progress(len(cells), len(cells) - len(todo))
+        progress = Progress(len(cells), len(cells) - len(todo),
+                            expected={keys[i]: cell_seconds(cells[i]) for i in todo})
         started = time.monotonic()
         if args.scheduler or args.local_workers:
             run_dask(tasks, store, progress, scheduler=args.scheduler, local_workers=args.local_workers)

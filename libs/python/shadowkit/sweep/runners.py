@@ -13,14 +13,21 @@ from .cells import run_cell
 
 
 class Progress:
-    """cells done / total, rate and time left, on one line of a terminal (a line per cell in a log)."""
+    """cells done / total, rate and time left, on one line of a terminal (a line per cell in a log).
 
-    def __init__(self, total, already, stream=sys.stderr):
+    `expected` ({cell key: seconds}, cli.cell_seconds of the cells to run) weighs the time left:
+    the time so far scaled by what the cells left should take against those done, so a sweep
+    whose slow cells (leaves, the sun's disk, large images) come last is not told it is nearly
+    done. Without it, every cell counts the same."""
+
+    def __init__(self, total, already, stream=sys.stderr, expected=None):
         self.total, self.done, self.failed = total, already, 0
         self.first = already
         self.start = time.monotonic()
         self.stream = stream
         self.tty = stream.isatty()
+        self.expected = dict(expected or {})
+        self.expected_left, self.expected_done = sum(self.expected.values()), 0.0
 
     def step(self, record, stored):
         self.done += 1
@@ -29,7 +36,18 @@ class Progress:
             self._line(f"cell {record['key']} failed on {record['host']}: {record['error']}")
         elif not stored:
             self.done -= 1  # a duplicate: already counted
+        if "error" in record or stored:
+            seconds = self.expected.pop(record["key"], 0.0)
+            self.expected_left -= seconds
+            self.expected_done += seconds
         self._bar()
+
+    def seconds_left(self, elapsed):
+        """The time the cells not yet done should take, from `elapsed` seconds for those done."""
+        now = self.done - self.first
+        if self.expected_done > 0:
+            return elapsed * max(self.expected_left, 0.0) / self.expected_done
+        return (self.total - self.done) / (now / elapsed) if now and elapsed > 0 else float("nan")
 
     def _line(self, text):
         self.stream.write(("\r\033[K" if self.tty else "") + text + "\n")
@@ -38,7 +56,7 @@ class Progress:
         elapsed = time.monotonic() - self.start
         now = self.done - self.first
         rate = now / elapsed * 60 if elapsed > 0 else 0.0
-        left = (self.total - self.done) / (now / elapsed) if now else float("nan")
+        left = self.seconds_left(elapsed)
         width = 30
         filled = int(width * self.done / self.total) if self.total else width
         text = (f"[{'#' * filled}{'.' * (width - filled)}] {self.done}/{self.total} cells · {rate:.1f}/min · "
