@@ -1,5 +1,6 @@
 #include "shadowkit/eval/level_map.h"
 
+#include "shadowkit/eval/maps.h"
 #include "shadowkit/imaging/bitmap_font.h"
 
 #include <algorithm>
@@ -58,7 +59,7 @@ scene::Image levelMapImage(const LevelMap& map) {
     const int scale = std::max(1, width / 640); // label size
     const int legendHeight = (imaging::kGlyphHeight + 8) * scale;
     scene::Image image(width, height + legendHeight);
-    static constexpr uint8_t dark[3] = {24, 24, 28};
+    const uint8_t* dark = ErrorMapColors::notEvaluated; // the error maps' background: no surface drawn
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x) {
             const size_t i = size_t(y) * size_t(width) + size_t(x);
