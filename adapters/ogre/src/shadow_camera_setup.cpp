@@ -12,6 +12,7 @@
 #include <OgreSceneManager.h>
 #include <OgreSceneNode.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -42,10 +43,10 @@ core::Status checkTechnique(core::Technique technique) {
     return core::Ok{};
 }
 
-core::Result<core::ShadowSetup> setupFor(const Ogre::Affine3& viewFromWorld, const Ogre::Matrix4& clipFromView,
-                                         double shadowDistance, const Ogre::Vector3& wsLightDirection,
-                                         const Ogre::AxisAlignedBox& wsSceneBounds, core::ShadowSetupInputs options) {
-    if (auto usable = checkTechnique(options.technique); !usable) return usable.errorInfo();
+core::Result<core::ShadowSetupInputs> inputsFor(const Ogre::Affine3& viewFromWorld, const Ogre::Matrix4& clipFromView,
+                                                double shadowDistance, const Ogre::Vector3& wsLightDirection,
+                                                const Ogre::AxisAlignedBox& wsSceneBounds,
+                                                core::ShadowSetupInputs options) {
     if (!wsSceneBounds.isFinite() || wsSceneBounds.isNull())
         return core::Error{"scene bounds: empty or infinite (nothing in the scene, or an infinite object in it)",
                            "scene_bounds"};
@@ -62,7 +63,16 @@ core::Result<core::ShadowSetup> setupFor(const Ogre::Affine3& viewFromWorld, con
         core::Aabb::fromMinMax(toCore(wsSceneBounds.getMinimum()), toCore(wsSceneBounds.getMaximum()));
     // OGRE's casters write the rasteriser's depth; TSM's linear depth would need our shader.
     options.depthLayout = core::DepthLayout::Hyperbolic;
-    auto setup = core::computeShadowSetup(options);
+    return options;
+}
+
+core::Result<core::ShadowSetup> setupFor(const Ogre::Affine3& viewFromWorld, const Ogre::Matrix4& clipFromView,
+                                         double shadowDistance, const Ogre::Vector3& wsLightDirection,
+                                         const Ogre::AxisAlignedBox& wsSceneBounds, core::ShadowSetupInputs options) {
+    if (auto usable = checkTechnique(options.technique); !usable) return usable.errorInfo();
+    auto inputs = inputsFor(viewFromWorld, clipFromView, shadowDistance, wsLightDirection, wsSceneBounds, options);
+    if (!inputs) return inputs.errorInfo();
+    auto setup = core::computeShadowSetup(*inputs);
     if (!setup) return setup.errorInfo();
     if (setup->views.empty()) return core::Error{"the set-up has no shadow map for this view", "technique"};
     return setup;
@@ -101,6 +111,34 @@ core::Status ShadowCameraSetup::setInputs(const core::ShadowSetupInputs& inputs)
     return core::Ok{};
 }
 
+core::Status ShadowCameraSetup::setAuto(const core::AutoOptions& options) {
+    if (auto valid = core::validate(options); !valid) return valid;
+    m_chooser.emplace(options);
+    m_lastChoice.reset();
+    return core::Ok{};
+}
+
+void ShadowCameraSetup::setReceivers(std::vector<core::ReceiverSample> receivers, int width, int height) {
+    m_receivers = std::move(receivers);
+    m_receiverWidth = width, m_receiverHeight = height;
+}
+
+core::Result<core::ShadowSetup> ShadowCameraSetup::setupOf(const core::ShadowSetupInputs& frame) const {
+    core::ShadowSetupInputs inputs = frame;
+    if (m_chooser) {
+        auto choice =
+            m_chooser->choose(frame, std::max(m_receiverWidth, 1), std::max(m_receiverHeight, 1), m_receivers);
+        if (!choice) return choice.errorInfo();
+        m_lastChoice = *choice;
+        inputs = choice->inputs;
+        inputs.depthLayout = core::DepthLayout::Hyperbolic; // what OGRE's rasteriser writes
+    }
+    auto setup = core::computeShadowSetup(inputs);
+    if (!setup) return setup.errorInfo();
+    if (setup->views.empty()) return core::Error{"the set-up has no shadow map for this view", "technique"};
+    return setup;
+}
+
 void ShadowCameraSetup::getShadowCamera(const Ogre::SceneManager* sm, const Ogre::Camera* cam, const Ogre::Viewport* vp,
                                         const Ogre::Light* light, Ogre::Camera* texCam, size_t iteration) const {
     if (light->getType() != Ogre::Light::LT_DIRECTIONAL) {
@@ -114,9 +152,10 @@ void ShadowCameraSetup::getShadowCamera(const Ogre::SceneManager* sm, const Ogre
         const Ogre::AxisAlignedBox bounds =
             m_fixedBounds ? *m_fixedBounds : sceneBounds(*const_cast<Ogre::SceneManager*>(sm)->getRootSceneNode());
         const double far = sm->getShadowFarDistance();
-        auto setup = setupFor(cam->getViewMatrix(), cam->getProjectionMatrix(),
-                              far > 0.0 ? far : std::numeric_limits<double>::infinity(), light->getDerivedDirection(),
-                              bounds, m_inputs);
+        const auto frame = inputsFor(cam->getViewMatrix(), cam->getProjectionMatrix(),
+                                     far > 0.0 ? far : std::numeric_limits<double>::infinity(),
+                                     light->getDerivedDirection(), bounds, m_inputs);
+        auto setup = frame ? setupOf(*frame) : core::Result<core::ShadowSetup>(frame.errorInfo());
         if (!setup) {
             // Said once per different error; the frame gets OGRE's default camera, not garbage.
             if (setup.error() != m_lastError)

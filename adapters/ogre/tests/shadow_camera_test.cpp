@@ -237,6 +237,68 @@ TEST_F(OgreScene, TheDefaultSceneBoxHoldsTheGeometryNotTheCameras) {
     (void)cam;
 }
 
+TEST_F(OgreScene, AutoChoosesForTheReceiversItIsHandedAsTheCoreWould) {
+    // `auto` inside OGRE: without receivers the recommended technique; with them, what the
+    // core's own chooser picks for the same camera, sun, box and receivers, and the texture
+    // camera of that choice's set-up.
+    Ogre::Camera* cam = camera(core::Vec3(0.0, 8.0, 0.0), core::Vec3(0.0, -0.25, -1.0), 60.0, 16.0 / 9.0, 0.5, 400.0);
+    Ogre::Light* light = sun(core::Vec3(0.6, -0.5, 0.2));
+    ShadowCameraSetup setup;
+    setup.setSceneBounds(kForestBox);
+    core::AutoOptions options;
+    options.cascades = 1; // one shadow texture
+    ASSERT_TRUE(setup.setAuto(options));
+    Ogre::Camera* texCam = m_sm->createCamera("texture" + std::to_string(m_cameras++));
+    setup.getShadowCamera(m_sm, cam, nullptr, light, texCam, 0);
+    ASSERT_TRUE(setup.lastSetup()) << setup.lastError();
+    ASSERT_TRUE(setup.lastChoice());
+    EXPECT_EQ(setup.lastChoice()->inputs.technique, core::defaultTechnique());
+
+    // The ground the camera looks at, 2 to 300 m ahead and 40 m to each side, facing up.
+    std::vector<core::ReceiverSample> receivers;
+    for (double z = 2.0; z < 300.0; z *= 1.08)
+        for (double x = -40.0; x <= 40.0; x += 4.0) receivers.push_back({core::Vec3(x, 0.0, -z), core::Vec3(0, 1, 0)});
+    ShadowCameraSetup fresh; // a chooser with no history, as the reference's
+    fresh.setSceneBounds(kForestBox);
+    ASSERT_TRUE(fresh.setAuto(options));
+    fresh.setReceivers(receivers, 320, 180);
+    fresh.getShadowCamera(m_sm, cam, nullptr, light, texCam, 0);
+    ASSERT_TRUE(fresh.lastSetup()) << fresh.lastError();
+    ASSERT_TRUE(fresh.lastChoice());
+
+    const auto inputs = shadowkit::ogreadapter::inputsFor(cam->getViewMatrix(), cam->getProjectionMatrix(), INFINITY,
+                                                          light->getDerivedDirection(), kForestBox, {});
+    ASSERT_TRUE(inputs) << inputs.error();
+    core::AutoChooser reference(options);
+    const auto choice = reference.choose(*inputs, 320, 180, receivers);
+    ASSERT_TRUE(choice) << choice.error();
+    EXPECT_EQ(fresh.lastChoice()->inputs.technique, choice->inputs.technique);
+    EXPECT_GT(fresh.lastChoice()->predicted.samples, 0u); // judged by the receivers (here LiSPSM, not TSM)
+    EXPECT_EQ(fresh.lastSetup()->views.size(), 1u);
+    core::ShadowSetupInputs chosen = choice->inputs;
+    chosen.depthLayout = core::DepthLayout::Hyperbolic;
+    const auto expected = core::computeShadowSetup(chosen);
+    ASSERT_TRUE(expected) << expected.error();
+    for (const core::Vec3& p : {core::Vec3(0, 0, -10), core::Vec3(20, 0, -150), core::Vec3(-30, 10, -60)}) {
+        const core::Vec3 got = texelOf(*texCam, p, 2048);
+        const auto want = shadowkit::ogreadapter::textureCameraOf(*expected, 0);
+        Ogre::Camera* wantCam = m_sm->createCamera("want" + std::to_string(m_cameras++));
+        wantCam->setCustomViewMatrix(true, want.viewMatrix);
+        wantCam->setCustomProjectionMatrix(true, want.projectionMatrix);
+        const core::Vec3 reference3 = texelOf(*wantCam, p, 2048);
+        EXPECT_NEAR(got.x, reference3.x, 1e-3) << core::techniqueName(choice->inputs.technique);
+        EXPECT_NEAR(got.y, reference3.y, 1e-3);
+        EXPECT_NEAR(got.z, reference3.z, 1e-6);
+    }
+
+    core::AutoOptions invalid;
+    invalid.cascades = 9;
+    const core::Status refused = fresh.setAuto(invalid);
+    ASSERT_FALSE(refused);
+    EXPECT_NE(refused.error().find("cascades"), std::string::npos) << refused.error();
+    EXPECT_EQ(refused.error().find('\n'), std::string::npos);
+}
+
 TEST_F(OgreScene, RefusesVirtualAndAnEmptySceneInOneLine) {
     ShadowCameraSetup setup;
     core::ShadowSetupInputs options;

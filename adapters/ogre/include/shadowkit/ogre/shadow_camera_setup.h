@@ -16,6 +16,7 @@
 // what OGRE's rasteriser writes, so the depth layout is always Hyperbolic.
 #pragma once
 
+#include "shadowkit/core/auto_chooser.h"
 #include "shadowkit/core/shadow_setup.h"
 
 // OgreShadowCameraSetup.h returns a SharedPtr it does not include.
@@ -27,6 +28,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace shadowkit::ogreadapter {
 
@@ -46,6 +48,13 @@ core::Result<core::ShadowSetup> setupFor(const Ogre::Affine3& viewFromWorld, con
 /// object but cameras, frustums and lights, whose boxes (a camera's reaches its far plane)
 /// are not geometry. What the set-ups take by default.
 Ogre::AxisAlignedBox sceneBounds(const Ogre::SceneNode& node);
+
+/// setupFor's inputs before the set-up is computed (camera, light, bounds and depth layout
+/// converted and checked): what `auto` chooses a technique for. Fails in one line.
+core::Result<core::ShadowSetupInputs> inputsFor(const Ogre::Affine3& viewFromWorld, const Ogre::Matrix4& clipFromView,
+                                                double shadowDistance, const Ogre::Vector3& wsLightDirection,
+                                                const Ogre::AxisAlignedBox& wsSceneBounds,
+                                                core::ShadowSetupInputs options);
 
 /// One view of a set-up as OGRE's texture camera takes it: the light's rigid frame and the
 /// rest of the map's OpenGL-convention clip matrix.
@@ -69,6 +78,17 @@ public:
     /// scene node, taken each frame.
     void setSceneBounds(std::optional<Ogre::AxisAlignedBox> wsBounds) { m_fixedBounds = wsBounds; }
 
+    /// `--technique auto` in OGRE: each frame, the technique and parameters the core's error-driven
+    /// chooser (core::AutoChooser, docs/error-driven.md) predicts best for the receivers last
+    /// handed to setReceivers, with hysteresis between frames; at most options.cascades maps (0:
+    /// up to 4 cascades; give the light as many shadow textures). Until receivers come, the
+    /// recommended technique. Fails, keeping the last mode, for invalid options.
+    core::Status setAuto(const core::AutoOptions& options);
+    /// What the camera sees, as receivers of a width × height frame: the engine's read-back of
+    /// view depth and normals through core::receiverSamples (a frame or two late is fine).
+    void setReceivers(std::vector<core::ReceiverSample> receivers, int width, int height);
+    /// With setAuto: the last frame's choice.
+    const std::optional<core::ParameterChoice>& lastChoice() const { return m_lastChoice; }
     /// The set-up of the last frame (for cascades, its views' `split` are the view depths each
     /// texture serves, what a receiver shader selects by), or the error that left the frame
     /// with OGRE's default camera instead.
@@ -79,8 +99,15 @@ public:
                          const Ogre::Light* light, Ogre::Camera* texCam, size_t iteration) const override;
 
 private:
+    // The frame's set-up from its inputs: the fixed technique's, or auto's choice.
+    core::Result<core::ShadowSetup> setupOf(const core::ShadowSetupInputs& frame) const;
+
     core::ShadowSetupInputs m_inputs;
     std::optional<Ogre::AxisAlignedBox> m_fixedBounds;
+    mutable std::optional<core::AutoChooser> m_chooser; // with setAuto
+    mutable std::optional<core::ParameterChoice> m_lastChoice;
+    std::vector<core::ReceiverSample> m_receivers;
+    int m_receiverWidth = 0, m_receiverHeight = 0;
     // getShadowCamera is const in OGRE's interface; a frame's set-up is computed at its first
     // texture (iteration 0) and its views handed out for the others.
     mutable std::optional<core::ShadowSetup> m_lastSetup;
