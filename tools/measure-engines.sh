@@ -62,9 +62,10 @@ fi
 
 # OGRE: its own set-ups (default, focused, LiSPSM: one 2048² map each; PSSM: four 1024² maps)
 # and the adapter's (the same; `csm`: four 1024² cascades through OGRE's shadow-texture
-# iterations), drawn by the same depth-map shaders (adapters/ogre/sample).
+# iterations; `auto`: the core's choice of single map for the receivers OGRE's camera sees), drawn
+# by the same depth-map shaders (adapters/ogre/sample).
 [[ " $engines " == *" ogre "* ]] || exit 0
-ogre_techniques=(ogre ogre-focused ogre-lispsm ogre-pssm tsm lispsm focused psm csm)
+ogre_techniques=(ogre ogre-focused ogre-lispsm ogre-pssm tsm lispsm focused psm csm auto)
 for t in "${ogre_techniques[@]}"; do mkdir -p "$out/ogre/$t"; done
 : > "$out/ogre/shots.txt"
 for v in "${views[@]}"; do
@@ -93,6 +94,7 @@ python3 tools/readme_tables.py --into docs/engine-integration.md:engines-ogre wr
   "shadowkit in OGRE: \`focused\`=$out/ogre/focused/*.json" \
   "shadowkit in OGRE: \`psm\`=$out/ogre/psm/*.json" \
   "shadowkit in OGRE: \`csm\`, 4 × 1024²=$out/ogre/csm/*.json" \
+  "shadowkit in OGRE: \`auto\` over single maps=$out/ogre/auto/*.json" \
   "shadowkit's own renderer: \`tsm\` (\`eval\`)=$out/eval/tsm.json" \
   "shadowkit's own renderer: \`csm\`, 4 × 1024² (\`eval\`)=$out/eval/csm-1024.json"
 git diff --stat -- docs/engine-integration.md

@@ -15,6 +15,11 @@
 #include "shadowkit/ogre/shadow_camera_setup.h"
 
 #include "common/sample_options.h"
+#include "shadowkit/core/camera.h"
+#include "shadowkit/core/error_driven.h"
+#include "shadowkit/core/light.h"
+#include "shadowkit/core/raster_buffers.h"
+#include "shadowkit/core/sampling_error.h"
 #include "shadowkit/scene/image.h"
 
 #include <Ogre.h>
@@ -23,6 +28,7 @@
 #include <OgreShadowCameraSetupPSSM.h>
 #include <tiny_obj_loader.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <string>
@@ -45,12 +51,13 @@ int mapSideOf(const std::string& name, int mapSize) { return isSplit(name) ? map
 
 // A technique a shot may name: OGRE's own set-ups, or the adapter's.
 void checkTechnique(const std::string& name) {
-    if (name == "ogre" || name == "ogre-focused" || name == "ogre-lispsm" || name == "ogre-pssm") return;
+    if (name == "ogre" || name == "ogre-focused" || name == "ogre-lispsm" || name == "ogre-pssm" || name == "auto")
+        return;
     const auto technique = core::parseTechnique(name);
     if (!technique)
         fail("technique " + name +
              ": not ogre, ogre-focused, ogre-lispsm or ogre-pssm (OGRE's own) nor one of tsm, lispsm, psm, "
-             "focused, standard, csm (shadowkit's)");
+             "focused, standard, csm, auto (shadowkit's)");
     if (auto usable = shadowkit::ogreadapter::checkTechnique(*technique); !usable) fail(usable.error());
 }
 
@@ -61,6 +68,15 @@ Ogre::ShadowCameraSetupPtr makeCameraSetup(const std::string& name, int mapSize)
     if (name == "ogre-pssm") return std::make_shared<Ogre::PSSMShadowCameraSetup>(); // split per shot (draw)
     // The one line an OGRE user changes: shadowkit's set-up for OGRE's.
     auto setup = std::make_shared<shadowkit::ogreadapter::ShadowCameraSetup>();
+    if (name == "auto") {
+        // Over single maps of this texel budget: the sample gives each shot's light its
+        // textures before the frame (draw() hands the receivers).
+        core::AutoOptions options;
+        options.cascades = 1;
+        options.texelBudget = int64_t(mapSize) * mapSize;
+        if (auto valid = setup->setAuto(options); !valid) fail(valid.error());
+        return setup;
+    }
     core::ShadowSetupInputs inputs;
     inputs.technique = *core::parseTechnique(name); // checked by checkTechnique
     inputs.mapSize = mapSideOf(name, mapSize);
@@ -137,6 +153,30 @@ void main() {
     gl_FragColor = vec4(lit, lit, lit, 1.0);
 })";
 
+// What the camera sees, for `auto`: each pixel's view depth and its triangle's normal (turned
+// towards the eye) into a float target, the read-back an application hands the adapter from its
+// own depth and normal buffers (core::receiverSamples).
+const char* kSurfaceVertex = R"(#version 120
+uniform mat4 worldViewProj;
+uniform mat4 worldView;
+uniform mat4 world;
+varying vec3 wsPosition;
+varying float viewDepth;
+void main() {
+    gl_Position = worldViewProj * gl_Vertex;
+    wsPosition = (world * gl_Vertex).xyz;
+    viewDepth = -(worldView * gl_Vertex).z;
+})";
+const char* kSurfaceFragment = R"(#version 120
+uniform vec3 wsEye;
+varying vec3 wsPosition;
+varying float viewDepth;
+void main() {
+    vec3 n = normalize(cross(dFdx(wsPosition), dFdy(wsPosition)));
+    if (dot(n, wsEye - wsPosition) < 0.0) n = -n;
+    gl_FragColor = vec4(viewDepth, n);
+})";
+
 Ogre::GpuProgramPtr program(const std::string& name, Ogre::GpuProgramType type, const char* source) {
     Ogre::HighLevelGpuProgramPtr p = Ogre::HighLevelGpuProgramManager::getSingleton().createProgram(
         name, Ogre::ResourceGroupManager::DEFAULT_RESOURCE_GROUP_NAME, "glsl", type);
@@ -183,6 +223,64 @@ Ogre::Pass* makeSplitReceiver() {
         addShadowUnit(pass);
     }
     return pass;
+}
+
+// The float target `auto`'s receivers are drawn into, a quarter of the frame a side.
+struct ReceiverTarget {
+    Ogre::RenderTexture* target = nullptr;
+    int width = 0, height = 0;
+};
+
+ReceiverTarget makeReceiverTarget(Ogre::Camera* camera, int width, int height) {
+    program("sk/surface.vert", Ogre::GPT_VERTEX_PROGRAM, kSurfaceVertex);
+    program("sk/surface.frag", Ogre::GPT_FRAGMENT_PROGRAM, kSurfaceFragment);
+    const Ogre::MaterialPtr material = programmedMaterial("sk/surface");
+    material->setReceiveShadows(false);
+    Ogre::Pass* pass = material->getTechnique(0)->getPass(0);
+    pass->setCullingMode(Ogre::CULL_NONE);
+    pass->getVertexProgramParameters()->setNamedAutoConstant("worldView",
+                                                             Ogre::GpuProgramParameters::ACT_WORLDVIEW_MATRIX);
+    pass->getVertexProgramParameters()->setNamedAutoConstant("world", Ogre::GpuProgramParameters::ACT_WORLD_MATRIX);
+    pass->getFragmentProgramParameters()->setNamedAutoConstant("wsEye",
+                                                               Ogre::GpuProgramParameters::ACT_CAMERA_POSITION);
+    ReceiverTarget out{nullptr, std::max(width / 4, 16), std::max(height / 4, 9)};
+    Ogre::TexturePtr texture = Ogre::TextureManager::getSingleton().createManual(
+        "sk/receivers", Ogre::ResourceGroupManager::DEFAULT_RESOURCE_GROUP_NAME, Ogre::TEX_TYPE_2D,
+        Ogre::uint(out.width), Ogre::uint(out.height), 0, Ogre::PF_FLOAT32_RGBA, Ogre::TU_RENDERTARGET);
+    out.target = texture->getBuffer()->getRenderTarget();
+    out.target->setAutoUpdated(false);
+    Ogre::Viewport* viewport = out.target->addViewport(camera);
+    viewport->setShadowsEnabled(false);
+    viewport->setOverlaysEnabled(false);
+    viewport->setBackgroundColour(Ogre::ColourValue(0, 0, 0, 0)); // view depth 0: nothing drawn
+    return out;
+}
+
+// The receivers the shot's camera sees: the scene drawn with sk/surface, read back top row first,
+// thinned to at most 4,096 facing the sun (core::receiverSamples).
+std::vector<core::ReceiverSample> receiversSeen(const ReceiverTarget& t, Ogre::ManualObject* scene,
+                                                const samples::CameraAndSun& view) {
+    const std::string material = scene->getSection(0)->getMaterialName();
+    scene->setMaterialName(0, "sk/surface");
+    t.target->update();
+    scene->setMaterialName(0, material);
+    std::vector<float> texels(size_t(t.width) * size_t(t.height) * 4);
+    const Ogre::PixelBox pixels(Ogre::uint32(t.width), Ogre::uint32(t.height), 1, Ogre::PF_FLOAT32_RGBA, texels.data());
+    t.target->copyContentsToMemory(pixels, pixels);
+    core::RasterBuffers raster;
+    raster.width = t.width, raster.height = t.height;
+    for (size_t i = 0; i < texels.size(); i += 4) {
+        raster.viewDepth.push_back(texels[i]);
+        raster.wsNormal.emplace_back(texels[i + 1], texels[i + 2], texels[i + 3]);
+    }
+    const auto vec = [](const samples::Vec3& v) { return core::Vec3(v[0], v[1], v[2]); };
+    core::PerspectiveCamera camera;
+    camera.wsEye = vec(view.eye), camera.wsDirection = vec(view.direction), camera.wsUp = vec(view.up);
+    camera.fovYDegrees = view.fovY, camera.aspect = double(t.width) / double(t.height);
+    camera.zNear = view.zNear, camera.zFar = view.zFar;
+    auto sun = core::DirectionalLight::fromDirection(vec(view.sunTravel));
+    if (!sun) fail("the shot's sun: " + sun.error());
+    return core::receiverSamples(raster, camera, *sun, 4096);
 }
 
 // Sets the split receivers' splitFar once the frame's shadow textures are drawn, when the
@@ -249,7 +347,7 @@ Ogre::ManualObject* loadObj(Ogre::SceneManager* sm, const std::string& file) {
 }
 
 void draw(const Options& o, const Shot& shot, Ogre::Root& root, Ogre::SceneManager* sm, Ogre::RenderWindow* window,
-          Ogre::ManualObject* scene, SplitDepths& splits) {
+          Ogre::ManualObject* scene, SplitDepths& splits, const ReceiverTarget& receivers) {
     const Ogre::ShadowCameraSetupPtr setup = makeCameraSetup(shot.technique, o.mapSize);
     sm->setShadowCameraSetup(setup);
     const int maps = mapsOf(shot.technique);
@@ -273,6 +371,11 @@ void draw(const Options& o, const Shot& shot, Ogre::Root& root, Ogre::SceneManag
     camera->setAspectRatio(Ogre::Real(o.width) / Ogre::Real(o.height));
     if (auto* pssm = dynamic_cast<Ogre::PSSMShadowCameraSetup*>(setup.get()))
         pssm->calculateSplitPoints(kSplitMaps, Ogre::Real(shot.view.zNear), Ogre::Real(shot.view.zFar));
+    if (shot.technique == "auto") {
+        auto* ours = static_cast<shadowkit::ogreadapter::ShadowCameraSetup*>(setup.get());
+        sm->getRootSceneNode()->_update(true, false);
+        ours->setReceivers(receiversSeen(receivers, scene, shot.view), receivers.width, receivers.height);
+    }
 
     const auto start = std::chrono::steady_clock::now();
     root.renderOneFrame();
@@ -284,8 +387,12 @@ void draw(const Options& o, const Shot& shot, Ogre::Root& root, Ogre::SceneManag
                                 frame.rgba.data());
     window->copyContentsToMemory(pixels, pixels);
     if (auto written = shadowkit::scene::writePng(frame, shot.out); !written) fail(written.error());
+    std::string technique = shot.technique;
+    if (const auto* ours = dynamic_cast<const shadowkit::ogreadapter::ShadowCameraSetup*>(setup.get());
+        ours && ours->lastChoice())
+        technique += " chose " + core::describe(*ours->lastChoice());
     std::printf("wrote %s (%dx%d, %s, %d × %d² maps, drawn in %.1f s)\n", shot.out.c_str(), o.width, o.height,
-                shot.technique.c_str(), maps, mapSideOf(shot.technique, o.mapSize), seconds);
+                technique.c_str(), maps, mapSideOf(shot.technique, o.mapSize), seconds);
 }
 
 } // namespace
@@ -339,7 +446,8 @@ int main(int argc, char** argv) {
     Ogre::Viewport* viewport = window->addViewport(camera);
     viewport->setBackgroundColour(Ogre::ColourValue(0, 0, 0, 0)); // alpha 0: no surface
     viewport->setShadowsEnabled(true);
-    for (const Shot& shot : o.shots) draw(o, shot, root, sm, window, scene, splits);
+    const ReceiverTarget receivers = makeReceiverTarget(camera, o.width, o.height);
+    for (const Shot& shot : o.shots) draw(o, shot, root, sm, window, scene, splits, receivers);
     sm->removeListener(&splits);
     return 0;
 }

@@ -1,5 +1,6 @@
 // shadowkit inside OGRE 1.12: a ShadowCameraSetup whose texture-shadow cameras are shadowkit's
-// (TSM, LiSPSM, PSM, focused, standard, or cascades one per shadow-texture iteration).
+// (TSM, LiSPSM, PSM, focused, standard, cascades one per shadow-texture iteration, or `auto`:
+// the core's error-driven choice each frame for the receivers the application hands it).
 //
 // OGRE asks a light's ShadowCameraSetup once per shadow texture and frame (getShadowCamera,
 // `iteration` counting the light's textures) to set the texture camera; OGRE then draws the
