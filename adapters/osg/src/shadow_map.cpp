@@ -10,6 +10,7 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -39,10 +40,10 @@ core::Status checkTechnique(core::Technique technique) {
     return core::Ok{};
 }
 
-core::Result<ShadowCamera> shadowCameraFor(const ::osg::Matrixd& viewFromWorld, const ::osg::Matrixd& clipFromView,
-                                           double shadowDistance, const ::osg::Vec3d& wsLightDirection,
-                                           const ::osg::BoundingBoxd& wsSceneBounds, core::ShadowSetupInputs options) {
-    if (auto usable = checkTechnique(options.technique); !usable) return usable.errorInfo();
+core::Result<core::ShadowSetupInputs> inputsFor(const ::osg::Matrixd& viewFromWorld, const ::osg::Matrixd& clipFromView,
+                                                double shadowDistance, const ::osg::Vec3d& wsLightDirection,
+                                                const ::osg::BoundingBoxd& wsSceneBounds,
+                                                core::ShadowSetupInputs options) {
     if (!wsSceneBounds.valid() || !isFinite(wsSceneBounds))
         return core::Error{"scene bounds: empty or not finite (nothing under the ShadowedScene?)", "scene_bounds"};
 
@@ -62,7 +63,12 @@ core::Result<ShadowCamera> shadowCameraFor(const ::osg::Matrixd& viewFromWorld, 
                                core::Vec3(wsSceneBounds.xMax(), wsSceneBounds.yMax(), wsSceneBounds.zMax()));
     // OSG's caster pass writes the rasteriser's depth; it cannot write TSM's linear depth.
     options.depthLayout = core::DepthLayout::Hyperbolic;
-    auto setup = core::computeShadowSetup(options);
+    return options;
+}
+
+core::Result<ShadowCamera> shadowCameraOf(const core::ShadowSetupInputs& inputs) {
+    if (auto usable = checkTechnique(inputs.technique); !usable) return usable.errorInfo();
+    auto setup = core::computeShadowSetup(inputs);
     if (!setup) return setup.errorInfo();
     if (setup->views.empty()) return core::Error{"the set-up has no shadow map for this view", "technique"};
 
@@ -74,10 +80,36 @@ core::Result<ShadowCamera> shadowCameraFor(const ::osg::Matrixd& viewFromWorld, 
     return ShadowCamera{toOsg(view.lightFromWorld), toOsg(clipFromLight), std::move(*setup)};
 }
 
+core::Result<ShadowCamera> shadowCameraFor(const ::osg::Matrixd& viewFromWorld, const ::osg::Matrixd& clipFromView,
+                                           double shadowDistance, const ::osg::Vec3d& wsLightDirection,
+                                           const ::osg::BoundingBoxd& wsSceneBounds, core::ShadowSetupInputs options) {
+    if (auto usable = checkTechnique(options.technique); !usable) return usable.errorInfo();
+    auto inputs = inputsFor(viewFromWorld, clipFromView, shadowDistance, wsLightDirection, wsSceneBounds, options);
+    if (!inputs) return inputs.errorInfo();
+    return shadowCameraOf(*inputs);
+}
+
 ShadowMap::ShadowMap() = default;
 
 ShadowMap::ShadowMap(const ShadowMap& other, const ::osg::CopyOp& copyop)
-    : osgShadow::ViewDependentShadowMap(other, copyop), m_inputs(other.m_inputs), m_fixedBounds(other.m_fixedBounds) {}
+    : osgShadow::ViewDependentShadowMap(other, copyop), m_inputs(other.m_inputs), m_fixedBounds(other.m_fixedBounds),
+      m_chooser(other.m_chooser), m_receivers(other.m_receivers), m_receiverWidth(other.m_receiverWidth),
+      m_receiverHeight(other.m_receiverHeight) {}
+
+core::Status ShadowMap::setAuto(const core::AutoOptions& options) {
+    if (options.cascades != 1)
+        return core::Error{"auto.cascades: OSG's ViewDependentShadowMap draws one map per light here; use 1",
+                           "auto.cascades"};
+    if (auto valid = core::validate(options); !valid) return valid;
+    m_chooser.emplace(options);
+    m_lastChoice.reset();
+    return core::Ok{};
+}
+
+void ShadowMap::setReceivers(std::vector<core::ReceiverSample> receivers, int width, int height) {
+    m_receivers = std::move(receivers);
+    m_receiverWidth = width, m_receiverHeight = height;
+}
 
 void ShadowMap::init() {
     osgShadow::ViewDependentShadowMap::init();
@@ -115,8 +147,19 @@ bool ShadowMap::computeShadowCameraSettings(Frustum& frustum, LightData& light, 
     const double shadowDistance =
         maxDistance >= std::numeric_limits<double>::max() ? std::numeric_limits<double>::infinity() : maxDistance;
 
-    auto camera = shadowCameraFor(frustum.modelViewMatrix, frustum.projectionMatrix, shadowDistance, light.lightDir,
-                                  sceneBounds(), inputs);
+    auto camera = [&]() -> core::Result<ShadowCamera> {
+        auto frame = inputsFor(frustum.modelViewMatrix, frustum.projectionMatrix, shadowDistance, light.lightDir,
+                               sceneBounds(), inputs);
+        if (!frame || !m_chooser) return frame ? shadowCameraOf(*frame) : frame.errorInfo();
+        // auto: the chooser's technique and parameters for the receivers last handed over.
+        auto choice =
+            m_chooser->choose(*frame, std::max(m_receiverWidth, 1), std::max(m_receiverHeight, 1), m_receivers);
+        if (!choice) return choice.errorInfo();
+        m_lastChoice = *choice;
+        core::ShadowSetupInputs chosen = choice->inputs;
+        chosen.depthLayout = core::DepthLayout::Hyperbolic;
+        return shadowCameraOf(chosen);
+    }();
     if (!camera) {
         // Said once per different error, not once a frame; the frame goes without shadows.
         if (camera.error() != m_lastError) OSG_WARN << "shadowkit: " << camera.error() << std::endl;

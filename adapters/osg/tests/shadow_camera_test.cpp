@@ -163,6 +163,64 @@ TEST(OsgShadowCamera, StaysFiniteWithTheSunAlongTheViewDirection) {
     }
 }
 
+TEST(OsgShadowCamera, AutoChoosesForTheReceiversItIsHandedAsTheCoreWould) {
+    // `auto` inside OSG: without receivers the recommended technique; with them, what the core's
+    // own chooser picks for the same camera, sun, box and receivers, and that choice's camera.
+    const ::osg::Matrixd view =
+        ::osg::Matrixd::lookAt(::osg::Vec3d(0, 8, 0), ::osg::Vec3d(0, 7.75, -1), ::osg::Vec3d(0, 1, 0));
+    const ::osg::Matrixd projection = ::osg::Matrixd::perspective(60.0, 16.0 / 9.0, 0.5, 400.0);
+    const ::osg::Vec3d sunTravel(0.6, -0.5, 0.2);
+    core::AutoOptions options;
+    options.cascades = 1;
+    ::osg::ref_ptr<ShadowMap> shadowMap = new ShadowMap;
+    shadowMap->setSceneBounds(kForestBox);
+    ASSERT_TRUE(shadowMap->setAuto(options));
+    ASSERT_TRUE(callAsVdsm(*shadowMap, view, projection, sunTravel).ok) << shadowMap->lastError();
+    ASSERT_TRUE(shadowMap->lastChoice());
+    EXPECT_EQ(shadowMap->lastChoice()->inputs.technique, core::defaultTechnique());
+
+    // The ground the camera looks at, 2 to 300 m ahead and 40 m to each side, facing up.
+    std::vector<core::ReceiverSample> receivers;
+    for (double z = 2.0; z < 300.0; z *= 1.08)
+        for (double x = -40.0; x <= 40.0; x += 4.0) receivers.push_back({core::Vec3(x, 0.0, -z), core::Vec3(0, 1, 0)});
+    ::osg::ref_ptr<ShadowMap> fresh = new ShadowMap; // no history, as the reference's
+    fresh->setSceneBounds(kForestBox);
+    ASSERT_TRUE(fresh->setAuto(options));
+    fresh->setReceivers(receivers, 320, 180);
+    const VdsmCall call = callAsVdsm(*fresh, view, projection, sunTravel);
+    ASSERT_TRUE(call.ok) << fresh->lastError();
+    ASSERT_TRUE(fresh->lastChoice());
+    EXPECT_GT(fresh->lastChoice()->predicted.samples, 0u); // judged by the receivers
+
+    core::ShadowSetupInputs base;
+    base.mapSize = 2048; // ShadowSettings' default texture size, as VDSM hands it
+    const auto inputs =
+        shadowkit::osgadapter::inputsFor(view, projection, INFINITY, call.wsLightDirection, kForestBox, base);
+    ASSERT_TRUE(inputs) << inputs.error();
+    core::AutoChooser reference(options);
+    const auto choice = reference.choose(*inputs, 320, 180, receivers);
+    ASSERT_TRUE(choice) << choice.error();
+    EXPECT_EQ(fresh->lastChoice()->inputs.technique, choice->inputs.technique);
+    core::ShadowSetupInputs chosen = choice->inputs;
+    chosen.depthLayout = core::DepthLayout::Hyperbolic;
+    const auto expected = shadowkit::osgadapter::shadowCameraOf(chosen);
+    ASSERT_TRUE(expected) << expected.error();
+    for (const ::osg::Vec3d p : {::osg::Vec3d(0, 0, -10), ::osg::Vec3d(20, 0, -150), ::osg::Vec3d(-30, 10, -60)}) {
+        const ::osg::Vec3d got = p * call.view * call.projection;
+        const ::osg::Vec3d want = p * expected->viewMatrix * expected->projectionMatrix;
+        EXPECT_NEAR(got.x() * 1024.0, want.x() * 1024.0, 1e-4) << core::techniqueName(choice->inputs.technique);
+        EXPECT_NEAR(got.y() * 1024.0, want.y() * 1024.0, 1e-4);
+        EXPECT_NEAR(got.z(), want.z(), 1e-7);
+    }
+
+    core::AutoOptions cascades;
+    cascades.cascades = 4;
+    const core::Status refused = fresh->setAuto(cascades);
+    ASSERT_FALSE(refused);
+    EXPECT_NE(refused.error().find("auto.cascades"), std::string::npos) << refused.error();
+    EXPECT_EQ(refused.error().find('\n'), std::string::npos);
+}
+
 TEST(OsgShadowCamera, RefusesManyMapTechniquesAndAnEmptySceneInOneLine) {
     const ::osg::Matrixd view =
         ::osg::Matrixd::lookAt(::osg::Vec3d(0, 20, 0), ::osg::Vec3d(0, 20, -1), ::osg::Vec3d(0, 1, 0));

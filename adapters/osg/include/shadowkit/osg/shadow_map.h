@@ -1,5 +1,6 @@
 // shadowkit inside OpenSceneGraph 3.6: a ViewDependentShadowMap whose shadow camera is
-// shadowkit's (TSM, LiSPSM, PSM, focused or standard), drawn and looked up by OSG as before.
+// shadowkit's (TSM, LiSPSM, PSM, focused or standard, or `auto`: the core's choice of them each
+// frame for the receivers the application hands it), drawn and looked up by OSG as before.
 //
 // OSG's ViewDependentShadowMap (VDSM) calls computeShadowCameraSettings once a frame per light
 // with the view's frustum and the light; what it returns is the shadow camera's view and
@@ -17,6 +18,7 @@
 // set-up's depth layout is always Hyperbolic (TSM's linear depth would need our depth shader).
 #pragma once
 
+#include "shadowkit/core/auto_chooser.h"
 #include "shadowkit/core/shadow_setup.h"
 
 #include <osg/BoundingBox>
@@ -25,6 +27,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace shadowkit::osgadapter {
 
@@ -50,6 +53,15 @@ core::Result<ShadowCamera> shadowCameraFor(const ::osg::Matrixd& viewFromWorld, 
                                            double shadowDistance, const ::osg::Vec3d& wsLightDirection,
                                            const ::osg::BoundingBoxd& wsSceneBounds, core::ShadowSetupInputs options);
 
+/// shadowCameraFor's inputs before the set-up (camera, light, bounds and depth layout converted
+/// and checked): what `auto` chooses a technique for. Fails in one line.
+core::Result<core::ShadowSetupInputs> inputsFor(const ::osg::Matrixd& viewFromWorld, const ::osg::Matrixd& clipFromView,
+                                                double shadowDistance, const ::osg::Vec3d& wsLightDirection,
+                                                const ::osg::BoundingBoxd& wsSceneBounds,
+                                                core::ShadowSetupInputs options);
+/// The shadow camera of the set-up for `inputs` (from inputsFor): one map, or a one-line error.
+core::Result<ShadowCamera> shadowCameraOf(const core::ShadowSetupInputs& inputs);
+
 /// osgShadow::ViewDependentShadowMap with shadowkit's shadow camera for directional lights
 /// (positional lights keep OSG's own). The map size is ShadowSettings' texture size; shadows
 /// end at ShadowSettings' maximum shadow map distance, as OSG's own do; use one shadow map
@@ -72,6 +84,17 @@ public:
     /// The last frame's set-up (its technique, fallbacks and warp), or the error that left the
     /// frame without a shadow camera.
     const std::optional<core::ShadowSetup>& lastSetup() const { return m_lastSetup; }
+    /// `auto`: each frame, the single map and parameters the core's error-driven chooser
+    /// (core::AutoChooser, docs/error-driven.md) predicts best for the receivers last handed to
+    /// setReceivers, with hysteresis between frames; the recommended technique until receivers
+    /// come. options.cascades must be 1 (one map per light here). Fails in one line, keeping
+    /// the last mode.
+    core::Status setAuto(const core::AutoOptions& options);
+    /// What the camera sees, as receivers of a width × height frame: the application's read-back
+    /// of view depth and normals through core::receiverSamples (a frame or two late is fine).
+    void setReceivers(std::vector<core::ReceiverSample> receivers, int width, int height);
+    /// With setAuto: the last frame's choice.
+    const std::optional<core::ParameterChoice>& lastChoice() const { return m_lastChoice; }
     const std::string& lastError() const { return m_lastError; }
 
     void init() override;
@@ -96,6 +119,10 @@ private:
 
     core::ShadowSetupInputs m_inputs;
     std::optional<::osg::BoundingBoxd> m_fixedBounds;
+    std::optional<core::AutoChooser> m_chooser; // with setAuto
+    std::optional<core::ParameterChoice> m_lastChoice;
+    std::vector<core::ReceiverSample> m_receivers;
+    int m_receiverWidth = 0, m_receiverHeight = 0;
     ::osg::BoundingBoxd m_cachedBounds;
     ::osg::BoundingSphere m_cachedFor; ///< the scene's bound when m_cachedBounds was computed
     std::optional<core::ShadowSetup> m_lastSetup;
