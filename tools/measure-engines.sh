@@ -4,7 +4,8 @@
 # ViewDependentShadowMap — its box fit (`osg`), its light-space perspective warp
 # (`osg-perspective`, OSG's default) and that warp over two maps (`osg-split`, each 1448², the
 # same texels) — and with shadowkit's shadow camera in the same engine (the adapter: `tsm`,
-# `lispsm`, `focused`, `psm`), all at 2048², each mask scored by `shadowkit score`; shadowkit's
+# `lispsm`, `focused`, `psm`, and `auto` for the receivers the sample reads back), all at 2048²,
+# each mask scored by `shadowkit score`; shadowkit's
 # own renderer (`eval`) beside them. Written into docs/engine-integration.md. About 6 minutes
 # on this project's 2-core llvmpipe machine (OSG's OBJ reader takes 4 of them).
 # ENGINES="osg ogre" (the default) or either alone re-measures that engine's tables only.
@@ -21,7 +22,7 @@ done
 out=out/engines
 mkdir -p "$out/along-sun" "$out/eval"
 views=(paper perpendicular into-sun sun-behind noon aerial)
-techniques=(osg osg-perspective osg-split tsm lispsm focused psm)
+techniques=(osg osg-perspective osg-split tsm lispsm focused psm auto)
 [ -s "$out/forest.obj" ] || "$B" export --out "$out/forest.obj"
 : > "$out/shots.txt"
 for v in "${views[@]}"; do
@@ -55,6 +56,7 @@ if [[ " $engines " == *" osg "* ]]; then
     "shadowkit in OSG: \`lispsm\`=$out/*-lispsm.json" \
     "shadowkit in OSG: \`focused\`=$out/*-focused.json" \
     "shadowkit in OSG: \`psm\`=$out/*-psm.json" \
+    "shadowkit in OSG: \`auto\` over single maps=$out/*-auto.json" \
     "shadowkit's own renderer: \`tsm\` (\`eval\`)=$out/eval/tsm.json"
   python3 tools/readme_tables.py --into docs/engine-integration.md:engines-osg-along-sun scores \
     $(for t in "${techniques[@]}"; do echo "$out/along-sun/$t.json"; done)

@@ -12,6 +12,11 @@
 #include "shadowkit/osg/shadow_map.h"
 
 #include "common/sample_options.h"
+#include "shadowkit/core/camera.h"
+#include "shadowkit/core/error_driven.h"
+#include "shadowkit/core/light.h"
+#include "shadowkit/core/raster_buffers.h"
+#include "shadowkit/core/sampling_error.h"
 
 #include <osg/LightSource>
 #include <osg/Program>
@@ -24,6 +29,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 namespace {
 
@@ -36,7 +42,7 @@ using samples::Shot;
 
 // A technique a shot may name: OSG's own, or one the adapter draws.
 void checkTechnique(const std::string& name) {
-    if (name == "osg" || name == "osg-perspective" || name == "osg-split") return;
+    if (name == "osg" || name == "osg-perspective" || name == "osg-split" || name == "auto") return;
     const auto technique = core::parseTechnique(name);
     if (!technique)
         fail("technique " + name + ": not osg, osg-perspective or osg-split (OSG's own) nor one of " +
@@ -75,10 +81,17 @@ osg::ref_ptr<osgShadow::ShadowTechnique> makeShadowMap(const std::string& name, 
         }
         return new WithPlainCasters<osgShadow::ViewDependentShadowMap>;
     }
-    const auto technique = core::parseTechnique(name); // checked by checkTechnique
     // The one line an OSG user changes: shadowkit's ShadowMap for OSG's ViewDependentShadowMap.
     osg::ref_ptr<WithPlainCasters<shadowkit::osgadapter::ShadowMap>> shadowMap =
         new WithPlainCasters<shadowkit::osgadapter::ShadowMap>;
+    if (name == "auto") { // draw() hands it the receivers
+        core::AutoOptions options;
+        options.cascades = 1;
+        options.texelBudget = int64_t(mapSize) * mapSize;
+        if (auto valid = shadowMap->setAuto(options); !valid) fail(valid.error());
+        return shadowMap;
+    }
+    const auto technique = core::parseTechnique(name); // checked by checkTechnique
     core::ShadowSetupInputs inputs;
     inputs.technique = *technique;
     shadowMap->setInputs(inputs);
@@ -98,6 +111,37 @@ osg::ref_ptr<osg::Program> maskProgram(int maps, unsigned firstUnit) {
     source += "void main() { float lit = " + visibility + "; gl_FragColor = vec4(lit, lit, lit, 1.0); }\n";
     osg::ref_ptr<osg::Program> program = new osg::Program;
     program->addShader(new osg::Shader(osg::Shader::FRAGMENT, source));
+    return program;
+}
+
+// What the camera sees, for `auto`, in the pbuffer's 8-bit colour over two frames: the
+// surfaces' world normals (n / 2 + 1/2), then their view depth over the far plane in 24 bits;
+// alpha 1 where a surface was drawn. The read-back an application hands the adapter from its own
+// depth and normal buffers (core::receiverSamples).
+const char* kSurfaceVertex = R"(#version 120
+varying vec3 esPosition;
+void main() { esPosition = (gl_ModelViewMatrix * gl_Vertex).xyz; gl_Position = ftransform(); })";
+const char* kNormalFragment = R"(#version 120
+uniform mat3 worldFromEye;
+varying vec3 esPosition;
+void main() {
+    vec3 n = normalize(cross(dFdx(esPosition), dFdy(esPosition)));
+    if (dot(n, -esPosition) < 0.0) n = -n;
+    gl_FragColor = vec4(0.5 * (worldFromEye * n) + 0.5, 1.0);
+})";
+const char* kDepthFragment = R"(#version 120
+uniform float zFar;
+varying vec3 esPosition;
+void main() {
+    float d = floor(clamp(-esPosition.z / zFar, 0.0, 1.0) * 16777215.0);
+    vec3 bytes = vec3(floor(d / 65536.0), mod(floor(d / 256.0), 256.0), mod(d, 256.0));
+    gl_FragColor = vec4(bytes / 255.0, 1.0);
+})";
+
+osg::ref_ptr<osg::Program> surfaceProgram(const char* fragment) {
+    osg::ref_ptr<osg::Program> program = new osg::Program;
+    program->addShader(new osg::Shader(osg::Shader::VERTEX, kSurfaceVertex));
+    program->addShader(new osg::Shader(osg::Shader::FRAGMENT, fragment));
     return program;
 }
 
@@ -129,6 +173,57 @@ void realize(const Options& o, Viewer& v) {
     camera->attach(osg::Camera::COLOR_BUFFER, v.frame.get());
 }
 
+// The receivers the shot's camera sees (its viewer camera already placed), top row first.
+std::vector<core::ReceiverSample> receiversSeen(const Options& o, const samples::CameraAndSun& view, osg::Node* model,
+                                                Viewer& v) {
+    osg::StateSet* state = model->getOrCreateStateSet();
+    const osg::Matrixd eyeFromWorld = v.viewer.getCamera()->getViewMatrix();
+    osg::Matrix3 worldFromEye; // the view's rotation, inverted: its transpose (row vectors)
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) worldFromEye(r, c) = float(eyeFromWorld(c, r));
+    state->getOrCreateUniform("worldFromEye", osg::Uniform::FLOAT_MAT3)->set(worldFromEye);
+    state->getOrCreateUniform("zFar", osg::Uniform::FLOAT)->set(float(view.zFar));
+    v.viewer.setSceneData(model);
+    std::vector<unsigned char> normals, depths;
+    for (const char* fragment : {kNormalFragment, kDepthFragment}) {
+        state->setAttribute(surfaceProgram(fragment));
+        v.viewer.frame();
+        const unsigned char* data = v.frame->data();
+        (fragment == kNormalFragment ? normals : depths).assign(data, data + size_t(o.width) * size_t(o.height) * 4);
+    }
+    core::RasterBuffers raster;
+    raster.width = o.width, raster.height = o.height;
+    for (int y = 0; y < o.height; ++y)
+        for (int x = 0; x < o.width; ++x) {
+            const size_t at =
+                (size_t(o.height - 1 - y) * size_t(o.width) + size_t(x)) * 4; // OpenGL's rows: bottom first
+            const bool drawn = depths[at + 3] != 0;
+            const double d = (depths[at] * 65536.0 + depths[at + 1] * 256.0 + depths[at + 2]) / 16777215.0;
+            raster.viewDepth.push_back(drawn ? float(d * view.zFar) : 0.0f);
+            raster.wsNormal.emplace_back(normals[at] / 127.5f - 1.0f, normals[at + 1] / 127.5f - 1.0f,
+                                         normals[at + 2] / 127.5f - 1.0f);
+        }
+    const auto vec = [](const samples::Vec3& xyz) { return core::Vec3(xyz[0], xyz[1], xyz[2]); };
+    core::PerspectiveCamera camera;
+    camera.wsEye = vec(view.eye), camera.wsDirection = vec(view.direction), camera.wsUp = vec(view.up);
+    camera.fovYDegrees = view.fovY, camera.aspect = double(o.width) / o.height;
+    camera.zNear = view.zNear, camera.zFar = view.zFar;
+    auto sun = core::DirectionalLight::fromDirection(vec(view.sunTravel));
+    if (!sun) fail("the shot's sun: " + sun.error());
+    for (glm::vec3& n : raster.wsNormal)
+        if (glm::length(n) > 0.0f) n = glm::normalize(n);
+    return core::receiverSamples(raster, camera, *sun, 4096);
+}
+
+// The model's program: the mask's, or none for the engine's own picture.
+void setMaskProgram(const Options& o, osg::Node* model, const osgShadow::ShadowSettings& settings) {
+    if (o.picture)
+        model->getOrCreateStateSet()->removeAttribute(osg::StateAttribute::PROGRAM);
+    else
+        model->getOrCreateStateSet()->setAttribute(
+            maskProgram(int(settings.getNumShadowMapsPerLight()), settings.getBaseShadowTextureUnit()));
+}
+
 // Draws one shot of the model and writes it; the model is shared between shots.
 void draw(const Options& o, const Shot& shot, osg::Node* model, Viewer& v) {
     const samples::CameraAndSun& view = shot.view;
@@ -143,17 +238,20 @@ void draw(const Options& o, const Shot& shot, osg::Node* model, Viewer& v) {
     sun->getLight()->setAmbient({0.3f, 0.3f, 0.3f, 1.0f});
     shadowed->addChild(sun);
     shadowed->addChild(model);
-    if (o.picture)
-        model->getOrCreateStateSet()->removeAttribute(osg::StateAttribute::PROGRAM);
-    else
-        model->getOrCreateStateSet()->setAttribute(
-            maskProgram(int(settings->getNumShadowMapsPerLight()), settings->getBaseShadowTextureUnit()));
+    setMaskProgram(o, model, *settings);
 
-    v.viewer.setSceneData(shadowed);
     osg::Camera* camera = v.viewer.getCamera();
     camera->setProjectionMatrixAsPerspective(view.fovY, double(o.width) / o.height, view.zNear, view.zFar);
     camera->setViewMatrixAsLookAt(vec(view.eye), vec(view.eye) + vec(view.direction), vec(view.up));
     if (!v.viewer.isRealized()) v.viewer.realize();
+    if (auto* ours = dynamic_cast<shadowkit::osgadapter::ShadowMap*>(shadowed->getShadowTechnique());
+        ours && shot.technique == "auto") {
+        shadowed->removeChild(model);
+        ours->setReceivers(receiversSeen(o, view, model, v), o.width, o.height);
+        shadowed->addChild(model);
+        setMaskProgram(o, model, *settings);
+    }
+    v.viewer.setSceneData(shadowed);
     const osg::Timer_t drawStart = osg::Timer::instance()->tick();
     v.viewer.frame();
     const double drawSeconds = osg::Timer::instance()->delta_s(drawStart, osg::Timer::instance()->tick());
@@ -163,8 +261,12 @@ void draw(const Options& o, const Shot& shot, osg::Node* model, Viewer& v) {
     osg::ref_ptr<osg::Image> written =
         osgDB::writeImageFile(*v.frame, shot.out) ? osgDB::readImageFile(shot.out) : nullptr;
     if (!written || written->s() != o.width || written->t() != o.height) fail(shot.out + ": could not be written");
+    std::string technique = shot.technique;
+    if (const auto* ours = dynamic_cast<const shadowkit::osgadapter::ShadowMap*>(shadowed->getShadowTechnique());
+        ours && ours->lastChoice())
+        technique += " chose " + core::describe(*ours->lastChoice());
     std::printf("wrote %s (%dx%d, %s, %d² map, drawn in %.1f s)\n", shot.out.c_str(), o.width, o.height,
-                shot.technique.c_str(), o.mapSize, drawSeconds);
+                technique.c_str(), o.mapSize, drawSeconds);
 }
 
 } // namespace
