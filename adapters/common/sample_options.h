@@ -4,6 +4,11 @@
 // and image sizes. Header-only: the samples are single files and link nothing of each other.
 #pragma once
 
+#include "shadowkit/core/camera.h"
+#include "shadowkit/core/light.h"
+#include "shadowkit/core/raster_buffers.h"
+#include "shadowkit/core/sampling_error.h"
+
 #include <nlohmann/json.hpp>
 
 #include <array>
@@ -62,6 +67,20 @@ inline CameraAndSun readCamera(const std::string& file) {
         fail(file + ": no \"light\": {\"direction\"} for the sun");
     c.sunTravel = vec3(holder["light"], "direction", file);
     return c;
+}
+
+/// `auto`'s receivers from what the engine drew of the shot's camera (`raster`: view depth and
+/// normals, top row first, at the frame's aspect): at most 4,096 facing the sun, as an
+/// application hands the adapters from its own read-back (core::receiverSamples).
+inline std::vector<core::ReceiverSample> receiversOf(const core::RasterBuffers& raster, const CameraAndSun& view) {
+    const auto vec = [](const Vec3& v) { return core::Vec3(v[0], v[1], v[2]); };
+    core::PerspectiveCamera camera;
+    camera.wsEye = vec(view.eye), camera.wsDirection = vec(view.direction), camera.wsUp = vec(view.up);
+    camera.fovYDegrees = view.fovY, camera.aspect = double(raster.width) / double(raster.height);
+    camera.zNear = view.zNear, camera.zFar = view.zFar;
+    auto sun = core::DirectionalLight::fromDirection(vec(view.sunTravel));
+    if (!sun) fail("the shot's sun: " + sun.error());
+    return core::receiverSamples(raster, camera, *sun, 4096);
 }
 
 /// One picture: the camera and sun, a technique and the PNG to write.

@@ -15,11 +15,7 @@
 #include "shadowkit/ogre/shadow_camera_setup.h"
 
 #include "common/sample_options.h"
-#include "shadowkit/core/camera.h"
 #include "shadowkit/core/error_driven.h"
-#include "shadowkit/core/light.h"
-#include "shadowkit/core/raster_buffers.h"
-#include "shadowkit/core/sampling_error.h"
 #include "shadowkit/scene/image.h"
 
 #include <Ogre.h>
@@ -273,14 +269,7 @@ std::vector<core::ReceiverSample> receiversSeen(const ReceiverTarget& t, Ogre::M
         raster.viewDepth.push_back(texels[i]);
         raster.wsNormal.emplace_back(texels[i + 1], texels[i + 2], texels[i + 3]);
     }
-    const auto vec = [](const samples::Vec3& v) { return core::Vec3(v[0], v[1], v[2]); };
-    core::PerspectiveCamera camera;
-    camera.wsEye = vec(view.eye), camera.wsDirection = vec(view.direction), camera.wsUp = vec(view.up);
-    camera.fovYDegrees = view.fovY, camera.aspect = double(t.width) / double(t.height);
-    camera.zNear = view.zNear, camera.zFar = view.zFar;
-    auto sun = core::DirectionalLight::fromDirection(vec(view.sunTravel));
-    if (!sun) fail("the shot's sun: " + sun.error());
-    return core::receiverSamples(raster, camera, *sun, 4096);
+    return samples::receiversOf(raster, view);
 }
 
 // Sets the split receivers' splitFar once the frame's shadow textures are drawn, when the

@@ -12,11 +12,7 @@
 #include "shadowkit/osg/shadow_map.h"
 
 #include "common/sample_options.h"
-#include "shadowkit/core/camera.h"
 #include "shadowkit/core/error_driven.h"
-#include "shadowkit/core/light.h"
-#include "shadowkit/core/raster_buffers.h"
-#include "shadowkit/core/sampling_error.h"
 
 #include <osg/LightSource>
 #include <osg/Program>
@@ -203,16 +199,9 @@ std::vector<core::ReceiverSample> receiversSeen(const Options& o, const samples:
             raster.wsNormal.emplace_back(normals[at] / 127.5f - 1.0f, normals[at + 1] / 127.5f - 1.0f,
                                          normals[at + 2] / 127.5f - 1.0f);
         }
-    const auto vec = [](const samples::Vec3& xyz) { return core::Vec3(xyz[0], xyz[1], xyz[2]); };
-    core::PerspectiveCamera camera;
-    camera.wsEye = vec(view.eye), camera.wsDirection = vec(view.direction), camera.wsUp = vec(view.up);
-    camera.fovYDegrees = view.fovY, camera.aspect = double(o.width) / o.height;
-    camera.zNear = view.zNear, camera.zFar = view.zFar;
-    auto sun = core::DirectionalLight::fromDirection(vec(view.sunTravel));
-    if (!sun) fail("the shot's sun: " + sun.error());
     for (glm::vec3& n : raster.wsNormal)
         if (glm::length(n) > 0.0f) n = glm::normalize(n);
-    return core::receiverSamples(raster, camera, *sun, 4096);
+    return samples::receiversOf(raster, view);
 }
 
 // The model's program: the mask's, or none for the engine's own picture.
