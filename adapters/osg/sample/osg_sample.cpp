@@ -196,11 +196,10 @@ std::vector<core::ReceiverSample> receiversSeen(const Options& o, const samples:
             const bool drawn = depths[at + 3] != 0;
             const double d = (depths[at] * 65536.0 + depths[at + 1] * 256.0 + depths[at + 2]) / 16777215.0;
             raster.viewDepth.push_back(drawn ? float(d * view.zFar) : 0.0f);
-            raster.wsNormal.emplace_back(normals[at] / 127.5f - 1.0f, normals[at + 1] / 127.5f - 1.0f,
-                                         normals[at + 2] / 127.5f - 1.0f);
+            const glm::vec3 n(normals[at] / 127.5f - 1.0f, normals[at + 1] / 127.5f - 1.0f,
+                              normals[at + 2] / 127.5f - 1.0f);
+            raster.wsNormal.push_back(drawn ? glm::normalize(n) : glm::vec3(0.0f, 1.0f, 0.0f));
         }
-    for (glm::vec3& n : raster.wsNormal)
-        if (glm::length(n) > 0.0f) n = glm::normalize(n);
     return samples::receiversOf(raster, view);
 }
 

@@ -27,18 +27,27 @@ void append(std::vector<unsigned char>& buffer, std::initializer_list<T> values)
 
 using scene::testing::base64;
 
+// `text` as the temporary file `name`, loaded and removed; a file that could not be written is
+// the test's failure, not the reader's.
+core::Result<scene::Scene> loadWritten(const std::string& name, const std::string& text) {
+    const auto file = std::filesystem::temp_directory_path() / name;
+    std::ofstream out(file);
+    out << text;
+    out.close();
+    if (!out) return core::makeError(file.string() + ": the test could not write it");
+    auto scene = scene::loadScene(file);
+    std::filesystem::remove(file);
+    return scene;
+}
+
 // A .gltf with one mesh node; `rest` holds "meshes", "accessors" and "bufferViews" (JSON text
 // after the opening brace), the buffer is embedded.
 core::Result<scene::Scene> loadGltfText(const std::string& name, const std::string& rest,
                                         const std::vector<unsigned char>& buffer,
                                         const std::string& asset = R"({"version":"2.0"})") {
-    const auto file = std::filesystem::temp_directory_path() / name;
-    std::ofstream(file) << R"({"asset":)" << asset << R"(,"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"
-                        << rest << R"(,"buffers":[{"byteLength":)" << buffer.size()
-                        << R"(,"uri":"data:application/octet-stream;base64,)" << base64(buffer) << "\"}]}";
-    auto scene = scene::loadScene(file);
-    std::filesystem::remove(file);
-    return scene;
+    return loadWritten(name, R"({"asset":)" + asset + R"(,"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)" +
+                                 rest + R"(,"buffers":[{"byteLength":)" + std::to_string(buffer.size()) +
+                                 R"(,"uri":"data:application/octet-stream;base64,)" + base64(buffer) + "\"}]}");
 }
 
 // Signed area of a triangle seen from +y, for winding checks.
@@ -183,15 +192,13 @@ TEST(GltfReadTest, WhatCannotBeReadIsNamedInOneLine) {
 core::Result<scene::Scene> loadNodes(const std::string& name, const std::string& roots, const std::string& nodes) {
     std::vector<unsigned char> triangle;
     append<float>(triangle, {0, 0, 0, 1, 0, 0, 0, 0, -1});
-    const auto file = std::filesystem::temp_directory_path() / name;
-    std::ofstream(file) << R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[)" << roots << R"(]}],"nodes":[)"
-                        << nodes << R"(],"meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],)"
-                        << R"("accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3"}],)"
-                        << R"("bufferViews":[{"buffer":0,"byteLength":36}],"buffers":[{"byteLength":36,)"
-                        << R"("uri":"data:application/octet-stream;base64,)" << base64(triangle) << "\"}]}";
-    auto scene = scene::loadScene(file);
-    std::filesystem::remove(file);
-    return scene;
+    return loadWritten(name, R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[)" + roots +
+                                 R"(]}],"nodes":[)" + nodes +
+                                 R"(],"meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],)"
+                                 R"("accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3"}],)"
+                                 R"("bufferViews":[{"buffer":0,"byteLength":36}],"buffers":[{"byteLength":36,)"
+                                 R"("uri":"data:application/octet-stream;base64,)" +
+                                 base64(triangle) + "\"}]}");
 }
 
 // A chain of `links` nodes, each the parent of the next and one metre along x from it; the last
@@ -252,10 +259,7 @@ TEST(GltfReadTest, MirroredNodesKeepTheirFacesOutward) {
         "accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,-1],"max":[1,0,0]}],
         "bufferViews":[{"buffer":0,"byteLength":36}],"buffers":[{"byteLength":36,"uri":"data:application/octet-stream;base64,)" +
         base64(triangle) + "\"}]}";
-    const auto file = std::filesystem::temp_directory_path() / "sk_mirrored.gltf";
-    std::ofstream(file) << text;
-    const auto scene = scene::loadScene(file);
-    std::filesystem::remove(file);
+    const auto scene = loadWritten("sk_mirrored.gltf", text);
     ASSERT_TRUE(scene) << scene.error();
     size_t instances = 0;
     for (const scene::MeshBatch& batch : scene->batches) {
