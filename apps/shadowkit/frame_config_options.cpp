@@ -34,6 +34,7 @@ core::Result<frame::FrameConfig> frameConfigOf(const TechniqueOptions& technique
     s.lodPixelError = render.lodPixelError;
     s.lodTexelError = render.lodTexelError;
     s.lodFoliageScale = render.lodFoliageScale;
+    s.lodFade = render.lodFade;
     s.virtualPoolPages = technique.virtualPoolPages;
     s.virtualBlendBand = technique.virtualBlendBand;
     s.virtualPageBudget = technique.virtualPageBudget;

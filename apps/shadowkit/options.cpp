@@ -355,6 +355,10 @@ void RenderOptions::addTo(CLI::App& cmd) {
                    "levels of detail that keep coverage (leaf cards, billboard clouds) may err this many times the "
                    "pixel and texel bounds; 1: as every other mesh")
         ->capture_default_str();
+    cmd.add_option("--lod-fade", lodFade,
+                   "levels of detail that keep coverage are crossed into over this fraction of their bound, both "
+                   "levels drawn in a dither; 0: they switch at the bound")
+        ->capture_default_str();
 }
 
 std::string cullingSaid(gl::Culling requested, std::string_view glRenderer) {
@@ -369,7 +373,7 @@ core::Status RenderOptions::check() const {
     if (auto s = core::validateSunAngle(sunAngle); !s) return withFlagName(s.errorInfo());
     if (auto s = gl::validate(blur); !s) return withFlagName(s.errorInfo());
     if (auto s = frame::validateFog(fog); !s) return withFlagName(s.errorInfo());
-    if (auto s = gl::validateLevelsOfDetail(lodPixelError, lodTexelError, lodFoliageScale); !s)
+    if (auto s = gl::validateLevelsOfDetail(lodPixelError, lodTexelError, lodFoliageScale, lodFade); !s)
         return withFlagName(s.errorInfo());
     const frame::BiasOverrides overrides{.slope = biasSlope, .constant = biasConstant, .normalOffset = normalOffset};
     if (auto s = overrides.validate(); !s) return withFlagName(s.errorInfo());

@@ -126,6 +126,7 @@ struct RenderOptions {
     float lodPixelError = gl::RenderSettings{}.lodPixelError;     // --lod-pixel-error: the camera's level bound
     float lodTexelError = gl::RenderSettings{}.lodTexelError;     // --lod-texel-error: the shadow maps' level bound
     float lodFoliageScale = gl::RenderSettings{}.lodFoliageScale; // --lod-foliage-scale: coverage levels' multiple
+    float lodFade = gl::RenderSettings{}.lodFade;                 // --lod-fade: the cross-fade band, a fraction
     std::optional<double> fog; // --fog: density in 1/m; unset: the scene's (scene::ResolvedView::fogDensity)
 
     void addTo(CLI::App& cmd);

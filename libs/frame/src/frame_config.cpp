@@ -45,7 +45,9 @@ core::Status FrameConfig::check() const {
     if (auto s = gl::validate(render.blur); !s) return s;
     if (auto s = gl::validate(render.localBias); !s) return s;
     if (auto s = gl::validateVirtualSettings(render); !s) return s;
-    if (auto s = gl::validateLevelsOfDetail(render.lodPixelError, render.lodTexelError, render.lodFoliageScale); !s)
+    if (auto s = gl::validateLevelsOfDetail(render.lodPixelError, render.lodTexelError, render.lodFoliageScale,
+                                            render.lodFade);
+        !s)
         return s;
     if (auto s = bias.validate(); !s) return s;
     if (auto s = validateFog(fogDensity); !s) return s;

@@ -61,6 +61,7 @@ constexpr auto kRows = std::to_array<OptionRow>({
     {"RenderSettings.lodPixelError", "--lod-pixel-error", "lod.pixel_error", "(0, 16] pixels", Gl},
     {"RenderSettings.lodTexelError", "--lod-texel-error", "lod.texel_error", "(0, 16] texels", Gl},
     {"RenderSettings.lodFoliageScale", "--lod-foliage-scale", "lod.foliage_scale", "[1, 64]", Gl},
+    {"RenderSettings.lodFade", "--lod-fade", "lod.fade", "[0, 0.9]", Gl},
     {"RenderSettings.cascadeColors", "--cascade-colors", "", "on | off", None},
     {"RenderSettings.foliageOpacity", "--foliage-opacity", "foliage_opacity", "fixed maps and cascades, not virtual",
      Gl},

@@ -13,7 +13,7 @@ core::Result<ProgramPair> buildCameraDepthPrePass(std::string_view name) {
     ProgramPair pair;
     for (const bool material : {false, true}) {
         const std::string_view withMaterial = kMaterialVariant[material];
-        auto program = buildProgram(name, {withMaterial, kFrameGlsl, kMainVert},
+        auto program = buildProgram(name, {withMaterial, kFrameGlsl, kVisibleGlsl, kMainVert},
                                     {withMaterial, kFrameGlsl, kMaterialGlsl, kCameraDepthFrag});
         if (!program) return program.errorInfo();
         if (auto s = checkUniformBlock(*program, name, "Frame", sizeof(FrameUniforms), frameFields()); !s)
@@ -39,7 +39,7 @@ core::Status CameraPrograms::prepare(bool virtualMaps) {
             const std::string name = std::string(evalPass ? "eval pass" : "main pass") +
                                      (virtualMaps ? ", virtual" : "") + (material ? ", materials" : "");
             const std::string_view withMaterial = kMaterialVariant[material];
-            auto program = buildProgram(name, {withMaterial, kFrameGlsl, kMainVert},
+            auto program = buildProgram(name, {withMaterial, kFrameGlsl, kVisibleGlsl, kMainVert},
                                         {withMaterial, variant, kFrameGlsl, kMaterialGlsl, kShadowkitShadowsGlsl,
                                          kShadowLookupGlsl, kLocalLightsGlsl, evalPass ? kEvalFrag : kMainFrag});
             if (!program) return program.errorInfo();

@@ -31,7 +31,9 @@ core::Status checkFrame(const core::ShadowSetup& setup, const RenderSettings& se
     if (auto s = core::validateSunAngle(settings.sunAngleDegrees); !s) return s;
     if (auto s = validate(settings.blur); !s) return s;
     if (auto s = validate(settings.localBias); !s) return s;
-    if (auto s = validateLevelsOfDetail(settings.lodPixelError, settings.lodTexelError, settings.lodFoliageScale); !s)
+    if (auto s = validateLevelsOfDetail(settings.lodPixelError, settings.lodTexelError, settings.lodFoliageScale,
+                                        settings.lodFade);
+        !s)
         return s;
     if (auto s = validateFogDensity(settings.fogDensity); !s) return s;
     const int maps = static_cast<int>(setup.views.size());

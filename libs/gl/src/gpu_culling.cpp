@@ -164,6 +164,7 @@ void GpuCulling::cull(size_t pass, std::span<const visibility::HalfSpace> volume
         glProgramUniform1d(p, uniform(p, "passUnitsPerNdc"), lod->pass.unitsPerNdc);
         glProgramUniform1d(p, uniform(p, "passMaxError"), lod->pass.maxError);
         glProgramUniform1d(p, uniform(p, "coverageScale"), lod->coverageScale);
+        glProgramUniform1d(p, uniform(p, "fadeBand"), lod->fadeBand);
         glProgramUniform1i(p, uniform(p, "cameraBound"), lod->camera ? 1 : 0);
         if (lod->camera) {
             glProgramUniformMatrix4dv(p, uniform(p, "cameraClipFromWorld"), 1, GL_FALSE,

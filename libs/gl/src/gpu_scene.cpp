@@ -273,7 +273,8 @@ DrawStats GpuScene::drawLevel(const GpuBatch& batch, const PassList& list, size_
         // Each instance alone, each run of clusters meeting the volume in one draw.
         const std::vector<scene::TriangleCluster>& clusters = clusterLevels[level];
         for (uint32_t k = 0; k < count; ++k) {
-            const core::Mat4 worldFromObject(batch.worldFromObject[list.indices[list.first[slot] + k]]);
+            const core::Mat4 worldFromObject(
+                batch.worldFromObject[instanceOfEntry(list.indices[list.first[slot] + k])]);
             glUniform1ui(kInstanceOffsetLocation, list.offset + list.first[slot] + k);
             size_t run = 0, runIndices = 0;
             auto flush = [&](size_t end) {

@@ -12,7 +12,7 @@ core::Result<std::unique_ptr<OpacityLayers>> OpacityLayers::create() {
     using namespace shaders;
     for (const bool first : {true, false}) {
         const std::string name = first ? "opacity layers, first leaf" : "opacity layers, transmittance";
-        auto program = buildProgram(name, {kMaterialVariant[1], kDepthPassGlsl, kDepthVert},
+        auto program = buildProgram(name, {kMaterialVariant[1], kDepthPassGlsl, kVisibleGlsl, kDepthVert},
                                     {kMaterialVariant[1], first ? "#define SK_OPACITY_FIRST 1\n" : "", kDepthPassGlsl,
                                      kMaterialGlsl, kShadowkitShadowsGlsl, kOpacityFrag});
         if (!program) return program.errorInfo();

@@ -92,9 +92,9 @@ void PassLists::plan(const PassPlanInputs& in, VirtualPages& pages) {
     m_visibility->takeListTimes();
     m_costs = {};
     const bool prepass = needsPrepass(in.setup, in.settings, in.purpose);
-    const CameraKey camera{in.camera.clipFromWorld(),  in.settings.width, in.settings.height,
-                           in.settings.culling,        in.settings.lod,   in.settings.lodPixelError,
-                           in.settings.lodFoliageScale};
+    const CameraKey camera{in.camera.clipFromWorld(),   in.settings.width,  in.settings.height,
+                           in.settings.culling,         in.settings.lod,    in.settings.lodPixelError,
+                           in.settings.lodFoliageScale, in.settings.lodFade};
     if (prepass && in.purpose == PassPurpose::Frame && m_keptCamera == camera) {
         // The depth-range pre-pass just drawn for this very camera: its list, depth and costs.
         m_costs.occlusion = m_keptCameraCosts.occlusion;
@@ -149,7 +149,8 @@ void PassLists::plan(const PassPlanInputs& in, VirtualPages& pages) {
 void PassLists::planCamera(const PassPlanInputs& in, bool prepass) {
     const RenderSettings& settings = in.settings;
     const bool cull = settings.culling != Culling::Off;
-    const LodChoice cameraLod{cameraProjectionOf(in.camera, settings), std::nullopt, false, settings.lodFoliageScale};
+    const LodChoice cameraLod{cameraProjectionOf(in.camera, settings), std::nullopt, false, settings.lodFoliageScale,
+                              settings.lodFade};
     const LodChoice* lod = settings.lod ? &cameraLod : nullptr;
     const std::vector<visibility::HalfSpace> cameraVolume = visibility::clipVolume(in.camera.clipFromWorld());
     if (prepass &&
@@ -219,7 +220,8 @@ void PassLists::planPages(const PassPlanInputs& in, VirtualPages& pages, std::ve
         const LodChoice lod{{toRender[i].clipFromWorld, 0.5 * slotTexels, settings.lodTexelError},
                             std::nullopt,
                             true,
-                            settings.lodFoliageScale};
+                            settings.lodFoliageScale,
+                            settings.lodFade};
         m_visibility->collect(visibility::clipVolume(toRender[i].clipFromWorld, false),
                               settings.culling != Culling::Off, settings.lod ? &lod : nullptr, m_pages[i]);
         lists.push_back(&m_pages[i]);
@@ -238,7 +240,7 @@ LevelsDrawn PassLists::levelsDrawn() const {
             const size_t batch = slot / kMaxLodLevels;
             const auto level = static_cast<uint8_t>(slot % kMaxLodLevels);
             for (uint32_t k = 0; k < drawn.count[slot]; ++k) {
-                uint8_t& at = levels[batchFirst[batch] + drawn.indices[drawn.first[slot] + k]];
+                uint8_t& at = levels[batchFirst[batch] + instanceOfEntry(drawn.indices[drawn.first[slot] + k])];
                 at = std::min(at, level);
             }
         }
@@ -285,7 +287,8 @@ void PassLists::planSunMaps(const PassPlanInputs& in, std::vector<PassList*>& li
         const LodChoice lod{{clipFromWorld, 0.5 * in.setup.mapSize, settings.lodTexelError},
                             cameraProjection,
                             true,
-                            settings.lodFoliageScale};
+                            settings.lodFoliageScale,
+                            settings.lodFade};
         const std::vector<visibility::HalfSpace> volume = visibility::clipVolume(clipFromWorld, false);
         m_sun[i].batchOrder = nearestFirst(clipFromWorld);
         if (gpu) {

@@ -157,6 +157,7 @@ private:
         bool lod = false;
         float lodPixelError = 0.0f;
         float lodFoliageScale = 0.0f;
+        float lodFade = 0.0f;
         bool operator==(const CameraKey&) const = default;
     };
     std::optional<CameraKey> m_keptCamera;

@@ -84,13 +84,14 @@ core::Status validateVirtualSettings(const RenderSettings& settings) {
     return core::Ok{};
 }
 
-core::Status validateLevelsOfDetail(float pixelError, float texelError, float foliageScale) {
+core::Status validateLevelsOfDetail(float pixelError, float texelError, float foliageScale, float fade) {
     if (!(pixelError > 0.0f && pixelError <= 16.0f))
         return core::fieldError("lod.pixel_error", "must be in (0, 16] pixels");
     if (!(texelError > 0.0f && texelError <= 16.0f))
         return core::fieldError("lod.texel_error", "must be in (0, 16] texels");
     if (!(foliageScale >= 1.0f && foliageScale <= 64.0f))
         return core::fieldError("lod.foliage_scale", "must be in [1, 64]");
+    if (!(fade >= 0.0f && fade <= 0.9f)) return core::fieldError("lod.fade", "must be a fraction in [0, 0.9]");
     return core::Ok{};
 }
 

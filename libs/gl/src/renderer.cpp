@@ -84,6 +84,12 @@ Renderer::Renderer() : m_impl(std::make_unique<Impl>()) {}
 Renderer::~Renderer() = default;
 
 core::Result<std::unique_ptr<Renderer>> Renderer::create(const scene::Scene& scene) {
+    // Draw lists keep 24 bits of an entry for the instance's index in its batch (visibility.h).
+    for (size_t b = 0; b < scene.batches.size(); ++b)
+        if (scene.batches[b].worldFromObject.size() > size_t{kListIndexMask} + 1)
+            return core::makeError("renderer: batch " + std::to_string(b) + " has " +
+                                   std::to_string(scene.batches[b].worldFromObject.size()) +
+                                   " instances; at most 16,777,216 fit one batch's draw lists");
     auto renderer = std::unique_ptr<Renderer>(new Renderer);
     Impl& r = *renderer->m_impl;
     r.wsOrigin = scene.wsOrigin;

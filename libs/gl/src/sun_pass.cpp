@@ -18,7 +18,7 @@ core::Result<std::unique_ptr<SunPass>> SunPass::create() {
             const std::string_view layout = linear ? "#define SK_LINEAR_DEPTH 1\n" : "";
             const std::string name =
                 std::string(linear ? "linear " : "") + (material ? "depth pass, materials" : "depth pass");
-            auto depth = buildProgram(name, {withMaterial, kDepthPassGlsl, kDepthVert},
+            auto depth = buildProgram(name, {withMaterial, kDepthPassGlsl, kVisibleGlsl, kDepthVert},
                                       {withMaterial, layout, kDepthPassGlsl, kMaterialGlsl, kDepthFrag});
             if (!depth) return depth.errorInfo();
             if (auto s = checkUniformBlock(*depth, name, "DepthPass", sizeof(DepthPassUniforms), depthPassFields()); !s)

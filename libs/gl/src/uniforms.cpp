@@ -13,10 +13,9 @@ namespace shadowkit::gl {
 
 std::span<const UniformField> depthPassFields() {
     static constexpr std::array kFields = {
-        SK_FIELD(DepthPassUniforms, clipFromWorld),
-        SK_FIELD(DepthPassUniforms, linearDepthFromWorld),
-        SK_FIELD(DepthPassUniforms, slopeBias),
-        SK_FIELD(DepthPassUniforms, constantBias),
+        SK_FIELD(DepthPassUniforms, clipFromWorld), SK_FIELD(DepthPassUniforms, linearDepthFromWorld),
+        SK_FIELD(DepthPassUniforms, slopeBias),     SK_FIELD(DepthPassUniforms, constantBias),
+        SK_FIELD(DepthPassUniforms, ditherOrigin),
     };
     return kFields;
 }

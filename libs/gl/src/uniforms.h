@@ -89,7 +89,9 @@ struct DepthPassUniforms {          // GLSL: DepthPass (depth_pass.glsl)
     glm::vec4 linearDepthFromWorld; // row: depth = dot(row, (ws, 1)), [0, 1] over B
     float slopeBias;                // linear layout: × max depth slope (glPolygonOffset's factor)
     float constantBias;             // linear layout: in depth units (glPolygonOffset's units × 2^-24)
-    float pad0, pad1;               // the layout is the program's (SK_LINEAR_DEPTH), not a uniform
+    // Added to gl_FragCoord.xy for the levels' cross-fade dither (material.glsl): a virtual
+    // page's texel origin in its level minus its slot's in the atlas, modulo the dither's 8.
+    glm::vec2 ditherOrigin{0.0f};
 };
 
 // The block for drawing into `view`: the linear layout's bias as glPolygonOffset's would be.

@@ -30,7 +30,8 @@ PageContent pageContentOf(const core::VirtualClipmap& clipmap, int guardTexels, 
             .cull = static_cast<int>(bias.cull),
             .lod = settings.lod,
             .lodTexelError = settings.lodTexelError,
-            .lodFoliageScale = settings.lodFoliageScale};
+            .lodFoliageScale = settings.lodFoliageScale,
+            .lodFade = settings.lodFade};
 }
 
 core::Result<std::unique_ptr<VirtualPages>> VirtualPages::create() {
@@ -212,6 +213,12 @@ DrawStats VirtualPages::drawPages(const GpuScene& scene, const PassPrograms& pro
                                   std::span<const PassList> lists, const Buffer& depthUniforms) const {
     DrawStats draws;
     glEnable(GL_SCISSOR_TEST);
+    // A page's first texel in its level's grid less its slot's in the atlas, so that the levels'
+    // cross-fade dither (material.glsl) is the same in any slot; modulo 8, the dither's period,
+    // to stay exact in a float.
+    auto ditherOf = [](int64_t levelTexel, int slotTexel) {
+        return static_cast<float>(((levelTexel - slotTexel) % 8 + 8) % 8);
+    };
     const auto toRender = m_cache.pagesToRender();
     for (size_t i = 0; i < toRender.size(); ++i) {
         const glm::ivec3 v = slotViewport(toRender[i].slot);
@@ -219,7 +226,10 @@ DrawStats VirtualPages::drawPages(const GpuScene& scene, const PassPrograms& pro
         glScissor(v.x, v.y, v.z, v.z);
         const float clearDepth = 1.0f;
         glClearNamedFramebufferfv(m_framebuffer.id(), GL_DEPTH, 0, &clearDepth);
-        const DepthPassUniforms uniforms{.clipFromWorld = glm::mat4(toRender[i].clipFromWorld)};
+        const DepthPassUniforms uniforms{
+            .clipFromWorld = glm::mat4(toRender[i].clipFromWorld),
+            .ditherOrigin = {ditherOf(toRender[i].key.x * m_pageTexels - m_guardTexels, v.x),
+                             ditherOf(toRender[i].key.y * m_pageTexels - m_guardTexels, v.y)}};
         glNamedBufferSubData(depthUniforms.id(), 0, sizeof uniforms, &uniforms);
         setLightFacingFront(toRender[i].clipFromWorld, wsTowardsLight);
         draws += scene.draw(lists[i], programs, visibility::clipVolume(toRender[i].clipFromWorld, false));

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cassert>
 #include <cmath>
 
 namespace shadowkit::gl {
@@ -26,10 +27,19 @@ double ndcPerMetre(const core::Mat4& clipFromWorld, const core::Vec3& ws) {
 
 } // namespace
 
+uint32_t fadeStepsOf(double allowed, double coarserError, double fadeBand) {
+    if (!(fadeBand > 0.0) || !(coarserError > 0.0)) return 0;
+    const double share = (allowed / coarserError - (1.0 - fadeBand)) / fadeBand;
+    if (!(share > 0.0)) return 0;
+    return static_cast<uint32_t>(std::min(std::floor(share * kFadeSteps), double(kFadeSteps - 1)));
+}
+
 Visibility::Visibility(const scene::Scene& scene, std::span<const scene::MeshLods> lods)
     : m_hierarchy(scene.instanceBounds()) {
     uint32_t first = 0;
     for (const scene::MeshBatch& batch : scene.batches) {
+        // Checked by Renderer::create: list entries keep kListIndexBits for the index.
+        assert(batch.worldFromObject.size() <= kListIndexMask + size_t{1});
         m_batchFirst.push_back(first);
         first += static_cast<uint32_t>(batch.worldFromObject.size());
         for (const glm::mat4& m : batch.worldFromObject) {
@@ -87,6 +97,7 @@ void Visibility::build(const LodChoice* lod, PassList& out) {
     // The level of each instance: the coarsest whose world error (object error × scale),
     // in the pass's units, stays within the bound.
     m_levels.assign(m_scratch.size(), 0);
+    m_fades.assign(m_scratch.size(), 0);
     if (lod) {
         const auto& chains = lod->shadow ? m_shadowLevels : m_cameraLevels;
         for (size_t k = 0; k < m_scratch.size(); ++k) {
@@ -100,13 +111,21 @@ void Visibility::build(const LodChoice* lod, PassList& out) {
             double allowed = allowedBy(lod->pass);
             if (lod->camera) allowed = std::min(allowed, allowedBy(*lod->camera));
             // Levels that keep coverage may err coverageScale times more (the GPU's levelOf alike).
+            auto boundOf = [&](const LevelBound& l) {
+                return l.keepsCoverage ? allowed * lod->coverageScale : allowed;
+            };
             uint8_t level = 0;
             while (level + 1u < levels.size()) {
                 const LevelBound& next = levels[level + 1u];
-                if (!(double(next.objectError) <= (next.keepsCoverage ? allowed * lod->coverageScale : allowed))) break;
+                if (!(double(next.objectError) <= boundOf(next))) break;
                 ++level;
             }
             m_levels[k] = level;
+            // Crossing into the next level only where it keeps coverage: the leaves' levels are
+            // alpha-tested, so their fragment stages can drop the other level's pixels.
+            if (level + 1u < levels.size() && levels[level + 1u].keepsCoverage)
+                m_fades[k] = static_cast<uint8_t>(
+                    fadeStepsOf(boundOf(levels[level + 1u]), double(levels[level + 1u].objectError), lod->fadeBand));
         }
     }
     // Global indices are sorted and batches are consecutive global ranges: a counting sort
@@ -119,24 +138,29 @@ void Visibility::build(const LodChoice* lod, PassList& out) {
     out.count.assign(batches * kMaxLodLevels, 0);
     std::vector<uint32_t>& slotOf = m_slots;
     slotOf.resize(m_scratch.size());
-    size_t batch = 0;
+    size_t batch = 0, entries = 0;
     for (size_t k = 0; k < m_scratch.size(); ++k) {
         while (m_scratch[k] >= m_batchFirst[batch + 1]) ++batch;
         slotOf[k] = static_cast<uint32_t>(batch * kMaxLodLevels + m_levels[k]);
         ++out.count[slotOf[k]];
+        if (m_fades[k] != 0) ++out.count[slotOf[k] + 1]; // and in the next level's list
+        entries += m_fades[k] != 0 ? 2 : 1;
     }
     uint32_t running = 0;
     for (size_t slot = 0; slot < out.count.size(); ++slot) {
         out.first[slot] = running;
         running += out.count[slot];
     }
-    out.indices.resize(m_scratch.size());
+    out.indices.resize(entries);
     std::vector<uint32_t>& cursor = m_cursor;
     cursor.assign(out.first.begin(), out.first.end());
     batch = 0;
     for (size_t k = 0; k < m_scratch.size(); ++k) {
         while (m_scratch[k] >= m_batchFirst[batch + 1]) ++batch;
-        out.indices[cursor[slotOf[k]]++] = m_scratch[k] - m_batchFirst[batch];
+        const uint32_t local = m_scratch[k] - m_batchFirst[batch];
+        const uint32_t fade = uint32_t(m_fades[k]) << kListIndexBits;
+        out.indices[cursor[slotOf[k]]++] = local | fade;
+        if (fade != 0) out.indices[cursor[slotOf[k] + 1]++] = local | fade | kFadeIncoming;
     }
     m_listTimes += time.elapsed();
 }

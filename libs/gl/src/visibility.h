@@ -25,8 +25,20 @@ inline constexpr size_t kMaxLodLevels = 4; // levels drawn per mesh (scene::LodO
 // glDrawElementsIndirect's command: index count, instance count, first index, base vertex, base instance.
 inline constexpr size_t kIndirectCommandWords = 5;
 
+// A list entry (a word of PassList::indices): the batch-local instance index in the low
+// kListIndexBits bits. An instance crossing into a coarser level of detail (LodChoice::fadeBand)
+// is in both levels' lists, each entry with the coarser level's share of the pixels in 128ths in
+// bits 24–30, and bit 31 set in the coarser level's: the fragment stages keep the pixels whose
+// dither threshold lies below the share in the coarser level and the others in the finer one
+// (visible.glsl, material.glsl), so the two draws together cover each pixel once.
+inline constexpr uint32_t kListIndexBits = 24;
+inline constexpr uint32_t kListIndexMask = (1u << kListIndexBits) - 1u;
+inline constexpr uint32_t kFadeSteps = 128;         // the share's resolution
+inline constexpr uint32_t kFadeIncoming = 1u << 31; // the coarser level's entry
+inline constexpr uint32_t instanceOfEntry(uint32_t entry) { return entry & kListIndexMask; }
+
 // One pass's instances: for each batch and level of detail, a range of `indices` holding
-// batch-local instance indices in increasing order (the order a full draw would use, so
+// batch-local instance indices (list entries, above) in increasing order (the order a full draw would use, so
 // culling changes no pixel). `offset` is where `indices` starts in the frame's buffer.
 struct PassList {
     std::vector<uint32_t> indices;
@@ -63,7 +75,19 @@ struct LodChoice {
     // Levels that keep coverage (scene::LodLevel::keepsCoverage) may err this many times more
     // than both bounds allow (RenderSettings::lodFoliageScale).
     double coverageScale = 1.0;
+    // An instance crosses into a coarser level that keeps coverage over this fraction of the
+    // level's bound (RenderSettings::lodFade): where its allowed error is a fraction a ∈ [1 − fadeBand, 1)
+    // of the bound the level needs, it is drawn at both levels, the coarser one taking the share
+    // (a − (1 − fadeBand)) / fadeBand of its pixels. 0: levels switch at the bound.
+    double fadeBand = 0.0;
 };
+
+// The coarser level's share of the pixels, in kFadeSteps (0: not crossing), for an instance
+// allowed `allowed` of error where the coarser level errs `coarserError` (in the same units):
+// 0 up to allowed = (1 − fadeBand) × coarserError, rising linearly to all but the last step just
+// below allowed = coarserError, where the pass takes the coarser level outright. The GPU's
+// culling pass computes the same in double precision (gpu_cull.comp, fadeOf).
+uint32_t fadeStepsOf(double allowed, double coarserError, double fadeBand);
 
 class Visibility {
 public:
@@ -117,6 +141,7 @@ private:
     };
     std::vector<std::vector<LevelBound>> m_cameraLevels, m_shadowLevels; // per mesh, per level
     std::vector<uint8_t> m_levels;           // level per visible instance, reused every pass
+    std::vector<uint8_t> m_fades;            // its crossing into the next level (fadeStepsOf), reused
     std::vector<uint32_t> m_slots, m_cursor; // counting-sort scratch, reused every pass
     std::vector<uint64_t> m_visibleBits;     // one bit per instance, reused every pass
     std::vector<uint32_t> m_scratch;         // query result, reused every pass

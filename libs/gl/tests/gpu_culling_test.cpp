@@ -40,19 +40,20 @@ core::ShadowSetup lispsmSetup(const scene::ResolvedView& view, const scene::Scen
 }
 
 // What compareWithTheCpuPath drew: instances kept by camera and shadow passes, those drawn
-// coarser than level 0, and, per batch, how many were drawn at its coarsest level.
+// coarser than level 0, crossing into the next level (LodChoice::fadeBand), and, per batch, how
+// many were drawn at its coarsest level.
 struct ComparedLists {
-    size_t drawnCamera = 0, drawnShadow = 0, coarser = 0;
+    size_t drawnCamera = 0, drawnShadow = 0, coarser = 0, crossing = 0;
     std::vector<size_t> coarsest;
 };
 
 // Random camera frusta (levels by pixels) and shadow maps (levels by texels and by the camera's
 // pixels), near the scene and far out, culled by both paths: the GPU's lists must equal
 // Visibility::collect's entry for entry — the same half-spaces and level rule in double
-// precision, compacted in instance order. `coverageScale` gives each case's
-// LodChoice::coverageScale.
-template <class CoverageScale>
-ComparedLists compareWithTheCpuPath(const scene::Scene& scene, CoverageScale coverageScale) {
+// precision, compacted in instance order. `coverageScale` and `fadeBand` give each case's
+// LodChoice::coverageScale and fadeBand.
+template <class CoverageScale, class FadeBand>
+ComparedLists compareWithTheCpuPath(const scene::Scene& scene, CoverageScale coverageScale, FadeBand fadeBand) {
     ComparedLists result;
     result.coarsest.assign(scene.batches.size(), 0);
     std::vector<scene::MeshLods> lods;
@@ -78,7 +79,7 @@ ComparedLists compareWithTheCpuPath(const scene::Scene& scene, CoverageScale cov
         gl::PassList cpu, gpu;
         const bool shadow = c % 2 == 1;
         std::vector<visibility::HalfSpace> volume;
-        gl::LodChoice lod{cameraProjection, std::nullopt, false, coverageScale(random)};
+        gl::LodChoice lod{cameraProjection, std::nullopt, false, coverageScale(random), fadeBand(random)};
         if (shadow) {
             const core::ShadowSetupInputs in{.camera = camera,
                                              .light = light,
@@ -90,7 +91,8 @@ ComparedLists compareWithTheCpuPath(const scene::Scene& scene, CoverageScale cov
             if (!setup) return result;
             const core::Mat4& clipFromWorld = setup->views[0].clipFromWorld;
             volume = visibility::clipVolume(clipFromWorld, false);
-            lod = {{clipFromWorld, 0.5 * setup->mapSize, 0.25}, cameraProjection, true, lod.coverageScale};
+            lod = {
+                {clipFromWorld, 0.5 * setup->mapSize, 0.25}, cameraProjection, true, lod.coverageScale, lod.fadeBand};
         } else {
             volume = visibility::clipVolume(camera.clipFromWorld());
         }
@@ -103,6 +105,7 @@ ComparedLists compareWithTheCpuPath(const scene::Scene& scene, CoverageScale cov
         EXPECT_EQ(back.indices, cpu.indices) << "case " << c;
         EXPECT_EQ(back.shadow, cpu.shadow) << "case " << c;
         (shadow ? result.drawnShadow : result.drawnCamera) += cpu.instances();
+        for (const uint32_t entry : cpu.indices) result.crossing += (entry & gl::kFadeIncoming) != 0;
         for (size_t slot = 0; slot < cpu.count.size(); ++slot) {
             const size_t batch = slot / gl::kMaxLodLevels, level = slot % gl::kMaxLodLevels;
             result.coarser += level > 0 ? cpu.count[slot] : 0;
@@ -120,8 +123,8 @@ ComparedLists compareWithTheCpuPath(const scene::Scene& scene, CoverageScale cov
 } // namespace
 
 TEST_F(GpuCullingTest, ListsEqualTheCpuPathsForRandomVolumesAndLevelsOfDetail) {
-    const ComparedLists drawn =
-        compareWithTheCpuPath(gl::testing::smallForest(700, 300, 16), [](std::mt19937&) { return 1.0; });
+    const ComparedLists drawn = compareWithTheCpuPath(
+        gl::testing::smallForest(700, 300, 16), [](std::mt19937&) { return 1.0; }, [](std::mt19937&) { return 0.0; });
     // The cases are not vacuous: both kinds of pass keep instances, and levels are chosen.
     EXPECT_GT(drawn.drawnCamera, 500u);
     EXPECT_GT(drawn.drawnShadow, 500u);
@@ -133,14 +136,27 @@ TEST_F(GpuCullingTest, ListsEqualTheCpuPathsForRandomVolumesAndLevelsOfDetail) {
 TEST_F(GpuCullingTest, ListsEqualTheCpuPathsWithLevelsThatKeepCoverage) {
     const scene::Scene forest = gl::testing::smallLeafyForest();
     const ComparedLists drawn = compareWithTheCpuPath(
-        forest, [](std::mt19937& random) { return std::uniform_real_distribution<double>(1.0, 16.0)(random); });
+        forest, [](std::mt19937& random) { return std::uniform_real_distribution<double>(1.0, 16.0)(random); },
+        [](std::mt19937&) { return 0.0; });
     EXPECT_GT(drawn.drawnCamera + drawn.drawnShadow, 500u);
+    EXPECT_EQ(drawn.crossing, 0u);
     // Every leafy batch reaches its billboard cloud somewhere.
     for (size_t b = 0; b < forest.batches.size(); ++b) {
         if (forest.meshes[forest.batches[b].mesh].material >= 0) {
             EXPECT_GT(drawn.coarsest[b], 0u) << forest.meshes[forest.batches[b].mesh].name;
         }
     }
+}
+
+// With crossings between levels (RenderSettings::lodFade): the GPU marks the same instances as
+// crossing, with the same shares, and puts each crossing instance's second entry in the next
+// level's list where the CPU does.
+TEST_F(GpuCullingTest, ListsEqualTheCpuPathsWhileInstancesCrossLevels) {
+    const ComparedLists drawn = compareWithTheCpuPath(
+        gl::testing::smallLeafyForest(),
+        [](std::mt19937& random) { return std::uniform_real_distribution<double>(1.0, 16.0)(random); },
+        [](std::mt19937& random) { return std::uniform_real_distribution<double>(0.05, 0.9)(random); });
+    EXPECT_GT(drawn.crossing, 100u);
 }
 
 TEST_F(GpuCullingTest, TwoPhaseFramesEqualFrustumCulledFramesFromTheFirstAndAfterCuts) {

@@ -6,17 +6,16 @@ out vec2 vUv;
 #endif
 
 layout(std430, binding = SK_INSTANCES_BINDING) readonly buffer Instances { mat4 worldFromObject[]; };
-// The batch-local indices of the instances this pass draws (gl/src/visibility.h).
-layout(std430, binding = SK_VISIBLE_BINDING) readonly buffer Visible { uint visibleInstances[]; };
-layout(location = SK_INSTANCE_OFFSET_LOCATION) uniform uint instanceOffset;
 
 // World position for the linear layout: interpolated perspective-correctly, so the
 // fragment shader can compute the exact linear depth (see depth.frag).
 out vec3 wsPosition;
 
 void main() {
-    const vec4 ws = worldFromObject[visibleInstances[instanceOffset + uint(gl_InstanceID)]] * vec4(osPosition, 1.0);
+    const uint entry = skVisibleEntry(uint(gl_InstanceID));
+    const vec4 ws = worldFromObject[skInstanceOf(entry)] * vec4(osPosition, 1.0);
     wsPosition = ws.xyz;
+    SK_PASS_CROSSING(entry);
 #ifdef SK_MATERIAL
     vUv = uv;
 #endif

@@ -5,4 +5,6 @@ layout(std140, binding = SK_DEPTH_PASS_BINDING) uniform DepthPass {
     vec4 linearDepthFromWorld; // row: linear depth along the light, [0,1] over B
     float slopeBias;           // linear layout: × max depth slope
     float constantBias;        // linear layout: depth units
+    vec2 ditherOrigin;         // texels added to gl_FragCoord.xy for the levels' cross-fade (material.glsl)
 };
+#define SK_DITHER_ORIGIN ditherOrigin

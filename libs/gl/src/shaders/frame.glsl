@@ -2,9 +2,6 @@
 // uniforms.h. The C++ side of Frame is FrameUniforms there (member offsets checked when
 // the programs are built).
 layout(std430, binding = SK_INSTANCES_BINDING) readonly buffer Instances { mat4 worldFromObject[]; };
-// The batch-local indices of the instances this pass draws (gl/src/visibility.h).
-layout(std430, binding = SK_VISIBLE_BINDING) readonly buffer Visible { uint visibleInstances[]; };
-layout(location = SK_INSTANCE_OFFSET_LOCATION) uniform uint instanceOffset;
 
 layout(std140, binding = SK_FRAME_BINDING) uniform Frame {
     mat4 clipFromWorld;       // camera

@@ -3,13 +3,15 @@
 // dispatches so that every list comes out in increasing instance order — the order a full
 // draw uses, so culling changes no pixel even where two instances' depths tie:
 //   SK_CULL_STAGE 1, one work group per chunk (up to 128 consecutive instances of one batch):
-//     which instances the pass keeps and at which level, and each one's rank among the kept
+//     which instances the pass keeps and at which level (and whether each crosses into the next,
+//     LodChoice::fadeBand: then it is kept at both), and each one's rank among the kept
 //     instances of its chunk and level (a prefix sum in shared memory, four 8-bit counters
 //     packed in one uint);
 //   SK_CULL_STAGE 2, one invocation per batch and level: the chunks' counts into offsets,
 //     and the level's glDrawElementsIndirect command (its instance count: the total);
-//   SK_CULL_STAGE 3, one work group per chunk: each kept instance's batch-local index to
-//     its place, offset + rank, in its batch and level's region of the pass.
+//   SK_CULL_STAGE 3, one work group per chunk: each kept instance's list entry (batch-local
+//     index, and its crossing: visibility.h) to its place, offset + rank, in its batch and
+//     level's region of the pass, and a crossing instance's second entry to the next level's.
 // Frustum and level of detail are decided in double precision like the CPU's, so the
 // lists equal Visibility::collect's (a float test would flip an instance whose box touches a
 // plane, or whose projected error sits on a level's bound, about once in 10^7: every frame at
@@ -43,7 +45,7 @@ layout(std430, binding = SK_CULL_CHUNKS_BINDING) readonly buffer Chunks {
 layout(std430, binding = SK_CULL_BATCHES_BINDING) readonly buffer Batches { Batch batches[]; };
 layout(std430, binding = SK_CULL_RANKS_BINDING) buffer Ranks {
     uint ranks[];
-}; // per global instance: level << 8 | rank, or ~0u
+}; // per global instance: fade << 24 | next level's rank << 16 | level << 8 | rank, or ~0u
 layout(std430, binding = SK_CULL_CHUNK_SUMS_BINDING) buffer ChunkSums {
     uvec4 chunkSums[];
 }; // per chunk and level: count, then offset
@@ -72,6 +74,7 @@ uniform bool cameraBound;
 uniform dmat4 cameraClipFromWorld;
 uniform double cameraUnitsPerNdc, cameraMaxError;
 uniform double coverageScale; // LodChoice::coverageScale: levels that keep coverage may err this many times more
+uniform double fadeBand;      // LodChoice::fadeBand
 // Occlusion (phases kNewlyVisible and kVisible): the depth pyramid of the camera's pre-pass.
 layout(std430, binding = SK_CULL_STAGE_BINDING) readonly buffer Pyramid {
     float pyramid[];
@@ -119,9 +122,18 @@ double allowedBy(dmat4 m, double unitsPerNdc, double maxError, dvec3 centre, dou
     return denominator > 0.0 ? maxError / denominator : 1e300lf;
 }
 
-uint levelOf(uint batch, dvec3 centre, double scale) {
+// visibility.cpp's fadeStepsOf: the coarser level's share of the pixels in 128ths (0: none).
+uint fadeOf(double allowed, double coarserError) {
+    if (!(fadeBand > 0.0) || !(coarserError > 0.0)) return 0u;
+    const double share = (allowed / coarserError - (1.0 - fadeBand)) / fadeBand;
+    if (!(share > 0.0)) return 0u;
+    return uint(min(floor(share * 128.0), 127.0));
+}
+
+// The instance's level, and in .y its crossing into the next (fadeOf).
+uvec2 levelOf(uint batch, dvec3 centre, double scale) {
     const uint count = shadowChain ? batches[batch].shadowLevels : batches[batch].cameraLevels;
-    if (!lodOn || count < 2u) return 0u;
+    if (!lodOn || count < 2u) return uvec2(0u);
     double allowed = allowedBy(passClipFromWorld, passUnitsPerNdc, passMaxError, centre, scale);
     if (cameraBound)
         allowed = min(allowed, allowedBy(cameraClipFromWorld, cameraUnitsPerNdc, cameraMaxError, centre, scale));
@@ -134,7 +146,10 @@ uint levelOf(uint batch, dvec3 centre, double scale) {
             break;
         ++level;
     }
-    return level;
+    if (level + 1u >= count) return uvec2(level, 0u);
+    const Level next = levels[batch * 4u + level + 1u];
+    if ((next.keepsCoverage & (shadowChain ? 2u : 1u)) == 0u) return uvec2(level, 0u);
+    return uvec2(level, fadeOf(allowed * coverageScale, double(shadowChain ? next.shadowError : next.cameraError)));
 }
 
 // False only when the box, grown as the CHC++ query boxes are (occlusion_culling.cpp), lies
@@ -211,7 +226,7 @@ void main() {
     const uvec4 chunk = chunks[gl_WorkGroupID.x];
     const uint local = gl_LocalInvocationID.x;
     const uint global = chunk.y + local;
-    uint word = 0u, level = 0u;
+    uint word = 0u, level = 0u, fade = 0u;
     bool keep = false;
     if (local < chunk.z) {
         const Instance instance = instances[global];
@@ -230,8 +245,11 @@ void main() {
             keep = inVolume && (was || visible);
         if (phase == kVisible) wasVisible[global] = visible ? 1u : 0u;
         if (keep) {
-            level = levelOf(chunk.x, 0.5 * (lo + hi), instance.minScale.w);
+            const uvec2 chosen = levelOf(chunk.x, 0.5 * (lo + hi), instance.minScale.w);
+            level = chosen.x;
+            fade = chosen.y;
             word = 1u << (8u * level);
+            if (fade != 0u) word |= 1u << (8u * (level + 1u)); // kept at the next level too
         }
     }
     // Inclusive prefix sum over the group (Hillis & Steele): each level's counter stays
@@ -244,7 +262,11 @@ void main() {
         scan[local] += add;
         barrier();
     }
-    if (local < chunk.z) ranks[global] = keep ? level << 8 | ((scan[local] - word) >> (8u * level) & 0xFFu) : kNotKept;
+    const uint before = scan[local] - word;
+    if (local < chunk.z)
+        ranks[global] = keep ? fade << 24 | (fade != 0u ? (before >> (8u * (level + 1u)) & 0xFFu) << 16 : 0u) |
+                                   level << 8 | (before >> (8u * level) & 0xFFu)
+                             : kNotKept;
     if (local == SK_CULL_GROUP - 1u) {
         const uint total = scan[local];
         chunkSums[gl_WorkGroupID.x] = uvec4(total & 0xFFu, total >> 8 & 0xFFu, total >> 16 & 0xFFu, total >> 24);
@@ -293,10 +315,13 @@ void main() {
     if (local >= chunk.z) return;
     const uint r = ranks[chunk.y + local];
     if (r == kNotKept) return;
-    const uint level = r >> 8, rank = r & 0xFFu;
+    const uint level = r >> 8 & 3u, rank = r & 0xFFu, fade = r >> 24;
     const Batch batch = batches[chunk.x];
-    lists[passOffset + 4u * batch.first + level * batch.count + chunkSums[gl_WorkGroupID.x][level] + rank] =
-        chunk.w + local;
+    const uint entry = chunk.w + local | fade << 24;
+    lists[passOffset + 4u * batch.first + level * batch.count + chunkSums[gl_WorkGroupID.x][level] + rank] = entry;
+    if (fade != 0u) // the coarser level's entry (visibility.h, kFadeIncoming)
+        lists[passOffset + 4u * batch.first + (level + 1u) * batch.count + chunkSums[gl_WorkGroupID.x][level + 1u] +
+              (r >> 16 & 0xFFu)] = entry | 0x80000000u;
 }
 
 #endif

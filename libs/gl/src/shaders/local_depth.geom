@@ -8,6 +8,8 @@ out vec3 wsPosition;
 #ifdef SK_MATERIAL
 in vec2 vsUv[];
 out vec2 vUv;
+flat in uint vsCrossing[]; // local_depth_world.vert's (visible.glsl)
+flat out uint vCrossing;   // to material.glsl
 #endif
 
 void main() {
@@ -17,6 +19,7 @@ void main() {
         wsPosition = vsWorld[i];
 #ifdef SK_MATERIAL
         vUv = vsUv[i];
+        vCrossing = vsCrossing[i];
 #endif
         gl_Position = faceClipFromWorld[face] * vec4(vsWorld[i], 1.0);
         gl_Layer = layerBase + face;

@@ -8,14 +8,14 @@ out vec2 vUv;
 #endif
 
 layout(std430, binding = SK_INSTANCES_BINDING) readonly buffer Instances { mat4 worldFromObject[]; };
-layout(std430, binding = SK_VISIBLE_BINDING) readonly buffer Visible { uint visibleInstances[]; };
-layout(location = SK_INSTANCE_OFFSET_LOCATION) uniform uint instanceOffset;
 
 out vec3 wsPosition;
 
 void main() {
     const uint copies = uint(replicas);
-    const uint instance = visibleInstances[instanceOffset + uint(gl_InstanceID) / copies];
+    const uint entry = skVisibleEntry(uint(gl_InstanceID) / copies);
+    const uint instance = skInstanceOf(entry);
+    SK_PASS_CROSSING(entry);
     const int face = faceOf(int(uint(gl_InstanceID) % copies));
     const vec4 ws = worldFromObject[instance] * vec4(osPosition, 1.0);
     wsPosition = ws.xyz;

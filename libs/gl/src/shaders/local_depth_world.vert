@@ -7,13 +7,13 @@ out vec2 vsUv; // to local_depth.geom
 #endif
 
 layout(std430, binding = SK_INSTANCES_BINDING) readonly buffer Instances { mat4 worldFromObject[]; };
-layout(std430, binding = SK_VISIBLE_BINDING) readonly buffer Visible { uint visibleInstances[]; };
-layout(location = SK_INSTANCE_OFFSET_LOCATION) uniform uint instanceOffset;
 
 out vec3 vsWorld;
 
 void main() {
-    const vec4 ws = worldFromObject[visibleInstances[instanceOffset + uint(gl_InstanceID)]] * vec4(osPosition, 1.0);
+    const uint entry = skVisibleEntry(uint(gl_InstanceID));
+    const vec4 ws = worldFromObject[skInstanceOf(entry)] * vec4(osPosition, 1.0);
+    SK_PASS_CROSSING(entry); // through local_depth.geom
     vsWorld = ws.xyz;
 #ifdef SK_MATERIAL
     vsUv = uv;

@@ -20,7 +20,9 @@ flat out uint vSurfaceId;
 flat out float vLodError; // in world metres
 
 void main() {
-    const uint instance = visibleInstances[instanceOffset + uint(gl_InstanceID)];
+    const uint entry = skVisibleEntry(uint(gl_InstanceID));
+    const uint instance = skInstanceOf(entry);
+    SK_PASS_CROSSING(entry);
     const mat4 m = worldFromObject[instance];
     const vec4 ws = m * vec4(osPosition, 1.0);
     wsPosition = ws.xyz;

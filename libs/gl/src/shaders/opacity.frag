@@ -29,7 +29,8 @@ float skFootprintCoverage() {
 }
 
 void main() {
-    const float coverage = skFootprintCoverage();
+    // An instance crossing levels of detail casts each level's share of its absorbance.
+    const float coverage = skFootprintCoverage() * skCrossingShare();
     const float depth = dot(linearDepthFromWorld, vec4(wsPosition, 1.0));
 #ifdef SK_OPACITY_FIRST
     firstDepth = depth;

@@ -114,7 +114,12 @@ struct RenderSettings {
     // than the full trees with TSM or virtual pages (docs/materials.md); 8 draws a quarter fewer
     // triangles for up to 0.9 more.
     float lodFoliageScale = 6.0f; // [1, 64]
-    bool cascadeColors = false;   // tint each cascade's range (Dimitrov 2007, Figure 3-2)
+    // Into a level that keeps coverage a tree crosses over this fraction of the level's bound
+    // instead of switching at it: from (1 − lodFade) × the bound on, it is drawn at both levels,
+    // each keeping its share of the pixels and texels in an ordered dither (material.glsl), so a
+    // moving camera sees the canopy dissolve into its cloud rather than pop. 0: a switch.
+    float lodFade = 0.0f;       // [0, 0.9]
+    bool cascadeColors = false; // tint each cascade's range (Dimitrov 2007, Figure 3-2)
     // Partial occlusion by alpha-tested casters (leaves): they cast through opacity layers beside
     // the sun's maps (deep opacity maps, Yuksel & Keyser 2008; gl/src/opacity_layers.h) as a
     // fraction of the light, the maps' depth holding the opaque casters alone. Fixed maps and
@@ -154,9 +159,10 @@ struct RenderSettings {
 // virtual.blend_band, virtual.page_budget. The renderer checks them for every virtual frame;
 // front ends call it to fail before anything is loaded.
 core::Status validateVirtualSettings(const RenderSettings& settings);
-// The levels of detail's error bounds in (0, 16] pixels and texels; errors name
-// lod.pixel_error and lod.texel_error.
-core::Status validateLevelsOfDetail(float pixelError, float texelError, float foliageScale);
+// The levels of detail's error bounds in (0, 16] pixels and texels, the foliage scale in
+// [1, 64] and the cross-fade band in [0, 0.9]; errors name lod.pixel_error, lod.texel_error,
+// lod.foliage_scale and lod.fade.
+core::Status validateLevelsOfDetail(float pixelError, float texelError, float foliageScale, float fade);
 // A fog density >= 0 per metre, finite; the error names "fog".
 core::Status validateFogDensity(double density);
 // A filter virtual maps can draw with: not msm (the pages hold depth only); the error names "filter".

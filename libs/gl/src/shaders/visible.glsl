@@ -1,0 +1,20 @@
+// The instances a pass draws, for the vertex stages (gl/src/visibility.h, PassList): one entry
+// per instance and level of detail, the instance's index in its batch in the low 24 bits. An
+// instance crossing into a coarser level (LodChoice::fadeBand) has an entry in both levels'
+// lists, with the coarser level's share of the pixels in bits 24–30 (128ths) and bit 31 set in
+// the coarser level's entry; material.glsl's fragment stages keep each level's share.
+layout(std430, binding = SK_VISIBLE_BINDING) readonly buffer Visible { uint visibleInstances[]; };
+layout(location = SK_INSTANCE_OFFSET_LOCATION) uniform uint instanceOffset;
+
+uint skVisibleEntry(uint k) { return visibleInstances[instanceOffset + k]; }
+uint skInstanceOf(uint entry) { return entry & 0xFFFFFFu; }
+
+#ifdef SK_MATERIAL
+#ifndef SK_CROSSING_OUT // a geometry stage between passes it on under another name (local_depth.geom)
+#define SK_CROSSING_OUT vCrossing
+#endif
+flat out uint SK_CROSSING_OUT; // the entry's top byte (material.glsl)
+#define SK_PASS_CROSSING(entry) SK_CROSSING_OUT = (entry) >> 24
+#else
+#define SK_PASS_CROSSING(entry)
+#endif
