@@ -226,6 +226,11 @@ bool drawOptionsPanel(StateOptions& s, const PanelDefaults& d) {
     if (ImGui::CollapsingHeader("Visibility")) {
         changed |= choiceCombo(s, "visibility", "visibility");
         changed |= choiceCombo(s, "caster culling", "caster-culling");
+        // Levels of detail of the leaves: how far out their clouds are taken, and the band over
+        // which a tree crosses into one (0: it switches in one frame).
+        changed |=
+            sliderFloat(s, "foliage level scale", "lod-foliage-scale", 1.0f, 64.0f, numberOf("lod-foliage-scale"));
+        changed |= sliderFloat(s, "level cross-fade band", "lod-fade", 0.0f, 0.9f, numberOf("lod-fade"));
     }
     if (ImGui::CollapsingHeader("Spot and point lights")) {
         changed |= combo(s, "local map size", "local-map-size", kMapSizes, defaultOf("local-map-size"));

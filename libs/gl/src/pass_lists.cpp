@@ -38,6 +38,18 @@ LodProjection cameraProjectionOf(const core::PerspectiveCamera& camera, const Re
     return {camera.clipFromWorld(), 0.5 * std::max(settings.width, settings.height), settings.lodPixelError};
 }
 
+// A pass's choice of levels with RenderSettings' foliage scale and cross-fade. The crossing is
+// centred on where the coarser level would be switched to: with x the allowed error over the
+// coarser level's (the foliage scale's bound), its share is 0 at x = 1 − B/2, ½ at x = 1 and 1 at
+// x = 1 + B/2 (B = lodFade), so that on the mean a tree is drawn as fine as when switching.
+// LodChoice's band ends at its bound, where the level is taken outright: that bound is x = 1 + B/2,
+// a foliage scale divided by 1 + B/2, and the band is B of the scale's bound, B / (1 + B/2) of its own.
+LodChoice lodChoiceOf(const LodProjection& pass, std::optional<LodProjection> camera, bool shadow,
+                      const RenderSettings& settings) {
+    const double outwards = 1.0 + 0.5 * settings.lodFade;
+    return {pass, camera, shadow, settings.lodFoliageScale / outwards, settings.lodFade / outwards};
+}
+
 } // namespace
 
 void CullingCosts::fill(FrameStats& stats) const {
@@ -149,8 +161,7 @@ void PassLists::plan(const PassPlanInputs& in, VirtualPages& pages) {
 void PassLists::planCamera(const PassPlanInputs& in, bool prepass) {
     const RenderSettings& settings = in.settings;
     const bool cull = settings.culling != Culling::Off;
-    const LodChoice cameraLod{cameraProjectionOf(in.camera, settings), std::nullopt, false, settings.lodFoliageScale,
-                              settings.lodFade};
+    const LodChoice cameraLod = lodChoiceOf(cameraProjectionOf(in.camera, settings), std::nullopt, false, settings);
     const LodChoice* lod = settings.lod ? &cameraLod : nullptr;
     const std::vector<visibility::HalfSpace> cameraVolume = visibility::clipVolume(in.camera.clipFromWorld());
     if (prepass &&
@@ -217,11 +228,8 @@ void PassLists::planPages(const PassPlanInputs& in, VirtualPages& pages, std::ve
         // Levels by the page's own texels only, not by the camera: a page must hold the same
         // depths whenever it is drawn, or a page redrawn after a mover would differ from its
         // cached neighbours (and its texels already match the pixels it serves).
-        const LodChoice lod{{toRender[i].clipFromWorld, 0.5 * slotTexels, settings.lodTexelError},
-                            std::nullopt,
-                            true,
-                            settings.lodFoliageScale,
-                            settings.lodFade};
+        const LodChoice lod = lodChoiceOf({toRender[i].clipFromWorld, 0.5 * slotTexels, settings.lodTexelError},
+                                          std::nullopt, true, settings);
         m_visibility->collect(visibility::clipVolume(toRender[i].clipFromWorld, false),
                               settings.culling != Culling::Off, settings.lod ? &lod : nullptr, m_pages[i]);
         lists.push_back(&m_pages[i]);
@@ -284,11 +292,8 @@ void PassLists::planSunMaps(const PassPlanInputs& in, std::vector<PassList*>& li
         // No near plane: the pass clamps depth, so casters between the light and the near
         // plane are drawn at depth 0 and must not be culled. Levels by texels of this map.
         const core::Mat4& clipFromWorld = in.setup.views[i].clipFromWorld;
-        const LodChoice lod{{clipFromWorld, 0.5 * in.setup.mapSize, settings.lodTexelError},
-                            cameraProjection,
-                            true,
-                            settings.lodFoliageScale,
-                            settings.lodFade};
+        const LodChoice lod = lodChoiceOf({clipFromWorld, 0.5 * in.setup.mapSize, settings.lodTexelError},
+                                          cameraProjection, true, settings);
         const std::vector<visibility::HalfSpace> volume = visibility::clipVolume(clipFromWorld, false);
         m_sun[i].batchOrder = nearestFirst(clipFromWorld);
         if (gpu) {

@@ -166,8 +166,9 @@ scene::Scene cardWithTwoColouredLevels(float coarserError, float coarserLift = 0
 
 TEST_F(LevelCrossingTest, TheTwoLevelsDrawEachPixelAndEachTexelOnceInTheirShares) {
     // The coarser level errs 25 times the camera's allowance there: at foliage scale 1 the card is
-    // drawn full and, with a band of 0.9, does not cross yet (1 / 25 < 0.1); at scale 64 it is
-    // drawn coarse; at scale 9.25 it stands at 0.37 of the bound, 0.3 of the way through the band.
+    // drawn full and, with a band of 0.9 centred on the bound, does not cross yet (1 / 25 < 0.55);
+    // at scale 64 it is drawn coarse; at scale 20.5 it stands at 0.82 of the bound, 0.3 of the way
+    // through the band (RenderSettings::lodFade).
     const double allowed = allowedAtTheCard();
     const scene::Scene scene = cardWithTwoColouredLevels(float(25.0 * allowed));
     auto renderer = gl::Renderer::create(scene);
@@ -199,7 +200,7 @@ TEST_F(LevelCrossingTest, TheTwoLevelsDrawEachPixelAndEachTexelOnceInTheirShares
     };
     const scene::Image full = draw(1.0f, 0.9f, gl::Culling::Frustum);
     const scene::Image coarse = draw(64.0f, 0.0f, gl::Culling::Frustum);
-    const scene::Image crossing = draw(9.25f, 0.9f, gl::Culling::Frustum);
+    const scene::Image crossing = draw(20.5f, 0.9f, gl::Culling::Frustum);
     ASSERT_EQ(full.rgba.size(), crossing.rgba.size());
     auto at = [](const scene::Image& image, size_t p) {
         return std::array{image.rgba[4 * p], image.rgba[4 * p + 1], image.rgba[4 * p + 2]};
@@ -222,10 +223,10 @@ TEST_F(LevelCrossingTest, TheTwoLevelsDrawEachPixelAndEachTexelOnceInTheirShares
     EXPECT_EQ(neither, 0u) << "card pixels drawn by neither level, or by both";
     ASSERT_GT(card, size_t(kSide * kSide) / 10);
     EXPECT_GT(shadowed, size_t(kSide * kSide) / 20); // the shadow is in the picture
-    // (0.37 − 0.1) / 0.9 = 0.3 of the card's pixels.
+    // (0.82 − 0.55) / 0.9 = 0.3 of the card's pixels.
     EXPECT_NEAR(double(coarser) / double(card), 0.3, 0.05);
     // GPU-driven culling draws the same lists, so the same pixels.
-    EXPECT_EQ(draw(9.25f, 0.9f, gl::Culling::Gpu).rgba, crossing.rgba);
+    EXPECT_EQ(draw(20.5f, 0.9f, gl::Culling::Gpu).rgba, crossing.rgba);
 }
 
 // Virtual pages: a page is drawn into whichever atlas slot is free, so the dither is taken over

@@ -114,10 +114,11 @@ struct RenderSettings {
     // than the full trees with TSM or virtual pages (docs/materials.md); 8 draws a quarter fewer
     // triangles for up to 0.9 more.
     float lodFoliageScale = 6.0f; // [1, 64]
-    // Into a level that keeps coverage a tree crosses over this fraction of the level's bound
-    // instead of switching at it: from (1 − lodFade) × the bound on, it is drawn at both levels,
-    // each keeping its share of the pixels and texels in an ordered dither (material.glsl), so a
-    // moving camera sees the canopy dissolve into its cloud rather than pop. 0: a switch.
+    // Into a level that keeps coverage a tree crosses over this fraction of the level's bound,
+    // centred on it, instead of switching at it: from (1 − lodFade / 2) × the bound to
+    // (1 + lodFade / 2) × it, it is drawn at both levels, each keeping its share of the pixels and
+    // texels in an ordered dither (material.glsl), so a moving camera sees the canopy dissolve into
+    // its cloud rather than pop, and on the mean a tree is as fine as when switching. 0: a switch.
     float lodFade = 0.0f;       // [0, 0.9]
     bool cascadeColors = false; // tint each cascade's range (Dimitrov 2007, Figure 3-2)
     // Partial occlusion by alpha-tested casters (leaves): they cast through opacity layers beside
