@@ -13,7 +13,7 @@
 # real driver), frame (a default frame, 1,000-100,000 trees, three views, CHC++ and GPU culling;
 # then the flythrough's moving camera at 10,000 and 100,000 trees),
 # techniques (every set-up at 10,000 trees), filters (each filter's passes under the real sun and
-# the lamps), leafy (the leafy forest's frame: with its levels, without, and at 100,000 trees), eval (the standard views' figures against the truth,
+# the lamps), leafy (the leafy forest's frame: with its levels, crossing into them, without, and at 100,000 trees), eval (the standard views' figures against the truth,
 # to compare with llvmpipe's: the same program on another rasteriser; TSM's two depth layouts; PSM
 # with the receiver-plane bias), alpha (tools/measure-alpha.sh), scaling (what the shadow pass's
 # time follows at 100,000 trees: culling, levels, the depth layout).
@@ -116,9 +116,12 @@ for section in "${sections[@]}"; do
     done
     ;;
   leafy)
-    # The leafy forest's frame with its levels down to billboard clouds (the default), with the
-    # full trees everywhere, and at 100,000 trees on 3.2 km.
+    # The leafy forest's frame with its levels down to billboard clouds (the default), crossing into
+    # them over a quarter of their bound (--lod-fade 0.25: the finer level's triangles kept in half
+    # the band), with the full trees everywhere, and at 100,000 trees on 3.2 km.
     step leafy 120 "${bench[@]}" --forest leafy --trees 10000 --views perpendicular,aerial --json "$res/leafy.json"
+    step leafy-fade 120 "${bench[@]}" --forest leafy --trees 10000 --views perpendicular,aerial --lod-fade 0.25 \
+      --json "$res/leafy-fade.json"
     step leafy-no-lod 120 "${bench[@]}" --forest leafy --trees 10000 --views perpendicular,aerial --no-lod \
       --json "$res/leafy-no-lod.json"
     step leafy-100k 150 "${bench[@]}" --forest leafy --trees 100000 --same-density --views perpendicular,aerial \
