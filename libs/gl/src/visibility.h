@@ -38,8 +38,8 @@ inline constexpr uint32_t kFadeIncoming = 1u << 31; // the coarser level's entry
 inline constexpr uint32_t instanceOfEntry(uint32_t entry) { return entry & kListIndexMask; }
 
 // One pass's instances: for each batch and level of detail, a range of `indices` holding
-// batch-local instance indices (list entries, above) in increasing order (the order a full draw would use, so
-// culling changes no pixel). `offset` is where `indices` starts in the frame's buffer.
+// batch-local instance indices (list entries, above) in increasing order (the order a full draw
+// would use, so culling changes no pixel). `offset` is where `indices` starts in the frame's buffer.
 struct PassList {
     std::vector<uint32_t> indices;
     std::vector<uint32_t> first, count; // [batch * kMaxLodLevels + level], into `indices`
@@ -76,9 +76,10 @@ struct LodChoice {
     // than both bounds allow (RenderSettings::lodFoliageScale).
     double coverageScale = 1.0;
     // An instance crosses into a coarser level that keeps coverage over this fraction of the
-    // level's bound (RenderSettings::lodFade): where its allowed error is a fraction a ∈ [1 − fadeBand, 1)
-    // of the bound the level needs, it is drawn at both levels, the coarser one taking the share
-    // (a − (1 − fadeBand)) / fadeBand of its pixels. 0: levels switch at the bound.
+    // level's bound: where its allowed error is a fraction a ∈ [1 − fadeBand, 1) of the bound the
+    // level needs, it is drawn at both levels, the coarser one taking the share
+    // (a − (1 − fadeBand)) / fadeBand of its pixels. 0: levels switch at the bound. From
+    // RenderSettings::lodFade, centred on the switch by pass_lists.cpp's lodChoiceOf.
     double fadeBand = 0.0;
 };
 
