@@ -7,7 +7,7 @@
 //
 // An instance crossing between two levels of detail (visible.glsl) is drawn at both, and each
 // draw keeps its level's share of the pixels: those whose threshold in an 8 × 8 ordered dither
-// (Bayer) lies below the coarser level's share go to the coarser level, the others to the finer,
+// (Bayer 1973) lies below the coarser level's share go to the coarser level, the others to the finer,
 // so together the two draws cover each pixel once, and the share moves smoothly with distance
 // instead of the whole tree switching at once. The dither is taken over the pixels of the
 // target the pass draws into, shifted by SK_DITHER_ORIGIN (a virtual page's place in its level,
