@@ -135,6 +135,35 @@ void printPassLines(const BenchArgs& args, gl::Culling culling, const measure::F
     }
 }
 
+// Where the last frame's triangles went: each pass's instances and triangles per level of detail,
+// the alpha-tested batches' (leaves and their clouds) in brackets. Levels no instance drew at are
+// left out.
+void printLevelLines(const gl::WorkByLevel& work) {
+    for (const auto& [pass, levels] : {std::pair{"shadow", &work.sun}, std::pair{"main", &work.camera}}) {
+        std::string line;
+        for (size_t level = 0; level < levels->size(); ++level) {
+            const gl::LevelWork& w = (*levels)[level];
+            if (w.instances == 0) continue;
+            line +=
+                fmt::format("{}{} {} inst {:.3f} M ({} / {:.3f} M alpha-tested)", line.empty() ? "" : "; ",
+                            level == 0 ? std::string("full") : fmt::format("level {}", level), w.instances,
+                            double(w.triangles) * 1e-6, w.alphaTestedInstances, double(w.alphaTestedTriangles) * 1e-6);
+        }
+        fmt::print("{:>7} {:>7} {:<14} levels  {} pass by level of detail: {}\n", "", "", "", pass,
+                   line.empty() ? "nothing drawn" : line);
+    }
+}
+
+nlohmann::json levelsJson(const std::vector<gl::LevelWork>& levels) {
+    nlohmann::json j = nlohmann::json::array();
+    for (const gl::LevelWork& w : levels)
+        j.push_back({{"instances", w.instances},
+                     {"triangles", w.triangles},
+                     {"alpha_tested_instances", w.alphaTestedInstances},
+                     {"alpha_tested_triangles", w.alphaTestedTriangles}});
+    return j;
+}
+
 // --limits: this GL's ceilings, measured once before the forests (gl/depth_limits.h).
 void printLimits(const gl::DepthLimits& l) {
     fmt::print("limits: depth-only fill {:.3f} G samples/s ({} samples in {:.2f} ms); triangles {:.3g} M/s small "
@@ -230,7 +259,10 @@ core::Result<nlohmann::json> benchView(const BenchArgs& args, const BenchRow& ro
     printRows(row, costs, table);
     const gl::Culling culling = renderer.culling(args.render.culling()); // auto resolved for this driver
     printPassLines(args, culling, costs);
+    const gl::WorkByLevel work = renderer.workByLevel(); // reads GPU-culled lists back: after the timed frames
+    printLevelLines(work);
     nlohmann::json run = costs.json();
+    run["levels"] = {{"shadow", levelsJson(work.sun)}, {"main", levelsJson(work.camera)}};
     if (limits) {
         const measure::FrameCosts::Rates rates = costs.shadowRates(*limits);
         printShadowRates(rates);

@@ -261,6 +261,22 @@ DrawStats GpuScene::drawBatch(const GpuBatch& batch, const PassList& list, const
     return stats;
 }
 
+void GpuScene::addLevelWork(const PassList& drawn, std::span<LevelWork> work) const {
+    for (const GpuBatch& batch : m_batches) {
+        const std::vector<Range>& ranges = drawn.shadow ? m_meshes[batch.mesh].shadow : m_meshes[batch.mesh].camera;
+        for (size_t level = 0; level < ranges.size() && level < work.size(); ++level) {
+            const size_t slot = batch.index * kMaxLodLevels + level;
+            const size_t instances = slot < drawn.count.size() ? drawn.count[slot] : 0;
+            const size_t triangles = instances * size_t(ranges[level].indexCount / 3);
+            work[level].instances += instances;
+            work[level].triangles += triangles;
+            if (!batch.material.alphaTested) continue;
+            work[level].alphaTestedInstances += instances;
+            work[level].alphaTestedTriangles += triangles;
+        }
+    }
+}
+
 DrawStats GpuScene::drawLevel(const GpuBatch& batch, const PassList& list, size_t level, const Range& range,
                               bool setInstanceBase, int replicas,
                               const std::span<const visibility::HalfSpace>* volume) const {

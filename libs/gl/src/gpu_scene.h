@@ -4,10 +4,12 @@
 #include "gl_object.h"
 #include "visibility.h"
 
+#include "shadowkit/gl/frame_stats.h"
 #include "shadowkit/scene/mesh_clusters.h"
 #include "shadowkit/scene/scene.h"
 #include "shadowkit/visibility/instance_hierarchy.h"
 
+#include <span>
 #include <string_view>
 #include <vector>
 
@@ -78,6 +80,9 @@ public:
     DrawStats draw(const PassList& list, const PassPrograms& programs,
                    std::span<const visibility::HalfSpace> volume) const;
     static constexpr size_t kClusterMinTriangles = 16384, kClusterTriangles = 2048;
+    // A drawn list's instances and whole levels' triangles, added to `work` (kMaxLodLevels
+    // entries) at each level, the alpha-tested batches' also apart (Renderer::workByLevel).
+    void addLevelWork(const PassList& drawn, std::span<LevelWork> work) const;
     // Uploads the transforms of Scene::batches[sceneBatch] again (a dynamic batch, whose
     // instances moved; other batches' buffers are immutable).
     void updateBatch(const scene::Scene& scene, size_t sceneBatch);

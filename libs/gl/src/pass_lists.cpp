@@ -242,8 +242,7 @@ LevelsDrawn PassLists::levelsDrawn() const {
     out.camera.assign(batchFirst.back(), kLevelNotDrawn);
     out.sun.assign(batchFirst.back(), kLevelNotDrawn);
     auto mark = [&](const PassList& list, std::vector<uint8_t>& levels) {
-        const PassList read = list.indirect >= 0 ? m_gpuCulling->read(list) : PassList{};
-        const PassList& drawn = list.indirect >= 0 ? read : list;
+        const PassList drawn = this->drawn(list);
         for (size_t slot = 0; slot < drawn.count.size(); ++slot) {
             const size_t batch = slot / kMaxLodLevels;
             const auto level = static_cast<uint8_t>(slot % kMaxLodLevels);
@@ -256,6 +255,16 @@ LevelsDrawn PassLists::levelsDrawn() const {
     mark(m_camera, out.camera);
     for (const PassList& list : m_sun) mark(list, out.sun);
     for (const PassList& list : m_pages) mark(list, out.sun);
+    return out;
+}
+
+WorkByLevel PassLists::workByLevel(const GpuScene& gpuScene) const {
+    WorkByLevel out;
+    out.camera.assign(kMaxLodLevels, {});
+    out.sun.assign(kMaxLodLevels, {});
+    gpuScene.addLevelWork(drawn(m_camera), out.camera);
+    for (const PassList& list : m_sun) gpuScene.addLevelWork(drawn(list), out.sun);
+    for (const PassList& list : m_pages) gpuScene.addLevelWork(drawn(list), out.sun);
     return out;
 }
 

@@ -93,6 +93,8 @@ public:
     // The levels the last frame's camera list and sun lists (maps or pages) drew each instance at.
     // GPU-culled lists are read back (a wait: for reports, not for frames).
     LevelsDrawn levelsDrawn() const;
+    // What the same lists drew at each level (Renderer::workByLevel), read back the same way.
+    WorkByLevel workByLevel(const GpuScene& gpuScene) const;
     // Culling::Gpu: what the sun maps' lists drew, read back (waits for the GPU).
     DrawStats gpuSunDrawn() const { return m_gpuCulling->submitted(m_sun); }
     // Culling::Gpu: the same lists for a late read (gpu_figures.h): the command buffer the GPU
@@ -116,6 +118,8 @@ public:
 
 private:
     PassLists() = default;
+    // A list as drawn: a GPU-culled one read back (a wait), any other as it is.
+    PassList drawn(const PassList& list) const { return list.indirect >= 0 ? m_gpuCulling->read(list) : list; }
     // The camera's list, and its depth pre-pass when the frame needs one.
     void planCamera(const PassPlanInputs& in, bool prepass);
     // The receiver masks of the frame's fixed maps, from the pre-pass.

@@ -281,6 +281,8 @@ PassStats Renderer::lastShadowPass() const { return m_impl->lastShadow; }
 
 LevelsDrawn Renderer::levelsDrawn() const { return m_impl->lists->levelsDrawn(); }
 
+WorkByLevel Renderer::workByLevel() const { return m_impl->lists->workByLevel(*m_impl->scene); }
+
 core::Status Renderer::moveInstances(const scene::Scene& scene, std::span<const uint32_t> moved) {
     Impl& r = *m_impl;
     if (scene.instanceCount() != r.lists->hierarchy().size())

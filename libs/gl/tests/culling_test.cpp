@@ -236,7 +236,8 @@ TEST_F(CullingTest, LevelsOfDetailDrawFewerTrianglesForDistantTreesWithinTheirEr
 // Renderer::levelsDrawn (the report's level map) says which level each pass drew each instance
 // at: summed over the instances, those levels' triangles are exactly what the frame's passes
 // submitted, on the CPU's lists and on the GPU's (read back), and the leafy trees' far levels
-// — their billboard clouds — are among them in both passes.
+// — their billboard clouds — are among them in both passes. Renderer::workByLevel, what `bench`
+// prints of where the triangles went, splits the same counts by level and by material.
 TEST_F(CullingTest, LevelsDrawnAccountForEveryTriangleEachPassSubmitted) {
     const scene::Scene forest = gl::testing::smallLeafyForest();
     const scene::ResolvedView view = smallView(forest, "aerial", 320, 180);
@@ -252,16 +253,35 @@ TEST_F(CullingTest, LevelsDrawnAccountForEveryTriangleEachPassSubmitted) {
         const bool keepWhole = material && material->alphaTested() && mesh.authoredLods.empty();
         lods.push_back(scene::buildLods(mesh, {.maxLevels = keepWhole ? 1 : 4}));
     }
-    auto trianglesOf = [&](const std::vector<uint8_t>& levels, bool shadow, uint8_t& coarsestLeaves) {
+    // Also per level, as Renderer::workByLevel gives it: the same instances' levels counted here.
+    auto trianglesOf = [&](const std::vector<uint8_t>& levels, bool shadow, uint8_t& coarsestLeaves,
+                           std::vector<gl::LevelWork>& perLevel) {
         size_t triangles = 0;
+        perLevel.assign(4, {});
         for (size_t i = 0; i < levels.size(); ++i) {
             if (levels[i] == gl::kLevelNotDrawn) continue;
             const auto& chain = shadow ? lods[meshOf[i]].shadow : lods[meshOf[i]].camera;
             EXPECT_LT(levels[i], chain.size()) << i;
-            triangles += chain[levels[i]].indexCount / 3;
-            if (forest.meshes[meshOf[i]].material >= 0) coarsestLeaves = std::max(coarsestLeaves, levels[i]);
+            const size_t levelTriangles = chain[levels[i]].indexCount / 3;
+            triangles += levelTriangles;
+            gl::LevelWork& work = perLevel[levels[i]];
+            ++work.instances, work.triangles += levelTriangles;
+            if (forest.meshes[meshOf[i]].material >= 0) {
+                coarsestLeaves = std::max(coarsestLeaves, levels[i]);
+                ++work.alphaTestedInstances, work.alphaTestedTriangles += levelTriangles;
+            }
         }
         return triangles;
+    };
+    auto expectEqualWork = [](const std::vector<gl::LevelWork>& got, const std::vector<gl::LevelWork>& want,
+                              const std::string& name) {
+        ASSERT_EQ(got.size(), want.size()) << name;
+        for (size_t l = 0; l < want.size(); ++l) {
+            EXPECT_EQ(got[l].instances, want[l].instances) << name << " level " << l;
+            EXPECT_EQ(got[l].triangles, want[l].triangles) << name << " level " << l;
+            EXPECT_EQ(got[l].alphaTestedInstances, want[l].alphaTestedInstances) << name << " level " << l;
+            EXPECT_EQ(got[l].alphaTestedTriangles, want[l].alphaTestedTriangles) << name << " level " << l;
+        }
     };
     const auto setup = core::computeShadowSetup({.camera = view.camera,
                                                  .light = view.light,
@@ -278,11 +298,16 @@ TEST_F(CullingTest, LevelsDrawnAccountForEveryTriangleEachPassSubmitted) {
         ASSERT_EQ(levels.camera.size(), meshOf.size());
         ASSERT_EQ(levels.sun.size(), meshOf.size());
         uint8_t cameraLeaves = 0, sunLeaves = 0;
+        std::vector<gl::LevelWork> cameraWork, sunWork;
         const std::string name(gl::cullingName(culling));
-        EXPECT_EQ(trianglesOf(levels.camera, false, cameraLeaves), stats->main.triangles) << name;
-        EXPECT_EQ(trianglesOf(levels.sun, true, sunLeaves), stats->shadow.triangles) << name; // one map: once each
+        EXPECT_EQ(trianglesOf(levels.camera, false, cameraLeaves, cameraWork), stats->main.triangles) << name;
+        EXPECT_EQ(trianglesOf(levels.sun, true, sunLeaves, sunWork), stats->shadow.triangles)
+            << name; // one map: once each
         EXPECT_GE(cameraLeaves, 2) << name << ": the 8-slab cloud or coarser in the camera pass";
         EXPECT_GE(sunLeaves, 1) << name << ": a cloud in the shadow pass";
+        const gl::WorkByLevel work = (*renderer)->workByLevel();
+        expectEqualWork(work.camera, cameraWork, name + ", camera pass");
+        expectEqualWork(work.sun, sunWork, name + ", sun pass");
     }
 }
 

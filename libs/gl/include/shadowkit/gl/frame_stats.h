@@ -20,6 +20,20 @@ struct LevelsDrawn {
     std::vector<uint8_t> sun;    // the sun's maps, or the virtual pages drawn: the finest level any drew it at
 };
 
+// What a pass drew at each level of detail in a frame (Renderer::workByLevel): the instances and
+// the triangles of their levels, level 0 the full meshes, and of them the alpha-tested batches'
+// (leaves, cards and their billboard clouds) apart. An instance crossing between two levels
+// (RenderSettings::lodFade) is drawn, and counted, at both. Whole levels: a large mesh whose
+// instance a virtual page draws cluster by cluster counts all of its level's triangles.
+struct LevelWork {
+    size_t instances = 0, triangles = 0;
+    size_t alphaTestedInstances = 0, alphaTestedTriangles = 0;
+};
+struct WorkByLevel {
+    std::vector<LevelWork> camera; // one entry per level, finest first
+    std::vector<LevelWork> sun;    // every sun map's or virtual page's list together
+};
+
 struct PassStats {
     double gpuMilliseconds = 0.0; // between two GL timestamp queries
     size_t instances = 0;         // submitted (over every map, for the shadow pass)

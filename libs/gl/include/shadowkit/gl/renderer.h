@@ -109,6 +109,9 @@ public:
     // the camera pass and in the sun's maps or pages (the finest where several drew it): what a
     // report's level map shows. GPU-culled lists are read back, a wait: not for every frame.
     LevelsDrawn levelsDrawn() const;
+    // What the last frame's camera pass and sun pass drew at each level of detail: where a
+    // frame's triangles go. Reads GPU-culled lists back like levelsDrawn (a wait).
+    WorkByLevel workByLevel() const;
 
     // World bounds of every instance, from the instance hierarchy: O(1).
     core::Aabb wsSceneBounds() const;
