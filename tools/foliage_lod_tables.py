@@ -2,16 +2,18 @@
 """docs/materials.md's foliage levels-of-detail tables, from what tools/measure-foliage-lod.sh measured.
 
 Usage: foliage_lod_tables.py RESULTS_DIR
-  RESULTS_DIR  eval-{lod,no-lod,s8}.json and soft-{lod,no-lod,s8}.json (`shadowkit eval --forest
-               leafy --views all`, hard and with `--sun-angle 0.53 --filter pcss`), bench
-               leafy{,-no-lod,-s8}.json (10,000 trees) and leafy-100k{,-no-lod,-s8}.json (100,000 trees,
-               --same-density), fly-{no-lod,lod,s8}.log (`eval --path flythrough`, each optional),
-               summary.txt (the commit and the machine)
+  RESULTS_DIR  eval-{lod,no-lod,VARIANT}.json and soft-{lod,no-lod,VARIANT}.json (`shadowkit eval
+               --forest leafy --views all`, hard and with `--sun-angle 0.53 --filter pcss`), bench
+               leafy{,-no-lod,-VARIANT}.json (10,000 trees) and leafy-100k{,-no-lod,-VARIANT}.json
+               (100,000 trees, --same-density), fly-{no-lod,lod,VARIANT}.log (`eval --path
+               flythrough`, each optional), summary.txt (the commit and the machine); VARIANT is s4
+               or s8 (--lod-foliage-scale 4 or 8), whichever the run has
 
 Writes the tables between `<!-- table foliage-lod...: tools/measure-foliage-lod.sh -->` and
 `<!-- /table -->`: the error of the levels against the full geometry's truth, view by view, and
-the work and GPU time they save. "lod" is the default (--lod-foliage-scale 6), "s8" the scale
-that meets the triangle target, "no-lod" every tree at full detail.
+the work and GPU time they save. "lod" is the default (--lod-foliage-scale 6), "no-lod" every
+tree at full detail, the variant a stricter scale (s4, today's runs) or a looser one (s8, the
+runs kept from the chain of 16, 8 and 4 slabs).
 """
 import json
 import sys
@@ -21,7 +23,9 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from readme_tables import VIEWS, write_into  # noqa: E402
 
 PAGE = "docs/materials.md"
-SETS = [("no-lod", "`--no-lod`"), ("lod", "levels (default, scale 6)"), ("s8", "`--lod-foliage-scale 8`")]
+BASE_SETS = [("no-lod", "`--no-lod`"), ("lod", "levels (default, scale 6)")]
+VARIANTS = [("s4", "`--lod-foliage-scale 4`"), ("s8", "`--lod-foliage-scale 8`")]
+SETS = list(BASE_SETS)  # with the variant the results hold, set by main()
 
 
 def views(path):
@@ -101,6 +105,7 @@ def main(argv):
     if len(argv) != 2:
         sys.exit(__doc__)
     d = Path(argv[1])
+    SETS.extend(v for v in VARIANTS if (d / f"eval-{v[0]}.json").exists())
     write_into(f"{PAGE}:foliage-lod", error_table(d))
     write_into(f"{PAGE}:foliage-lod-work", work_table(d))
     print(f"foliage_lod_tables: figures of {machine(d)}", file=sys.stderr)

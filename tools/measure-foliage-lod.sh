@@ -2,7 +2,7 @@
 # tools/measure-foliage-lod.sh: the leafy forest's levels of detail down to billboard clouds,
 # against the full geometry's truth and in work — docs/materials.md "Foliage levels of detail".
 #
-# Runs, for the default levels (--lod-foliage-scale 6), a looser scale (8) and none (--no-lod):
+# Runs, for the default levels (--lod-foliage-scale 6), a stricter scale (4) and none (--no-lod):
 # `eval --forest leafy --views all` hard and under the real sun (--sun-angle 0.53 --filter pcss),
 # `bench --forest leafy` at 10,000 trees and at 100,000 (--same-density) with GPU-driven
 # culling (every machine's default on a GPU; named so that a software rasteriser's triangle
@@ -12,7 +12,8 @@
 # part); on a GPU machine a few.
 #   FOLIAGE_LOD_RESULTS=DIR_OR_TGZ  writes the tables from a kept run instead (the H200's of the
 #                                   single cloud, data/gpu/h200-2026-11-28-foliage-lod.tgz, were
-#                                   written by this script at 66186b9, whose sets they are)
+#                                   written by this script at 66186b9, whose variant was scale 8)
+#   SHADOWKIT=PATH                  the binary to run (a copy keeps a rebuild from changing it mid-run)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 if [[ -n ${FOLIAGE_LOD_RESULTS:-} ]]; then
@@ -22,12 +23,12 @@ if [[ -n ${FOLIAGE_LOD_RESULTS:-} ]]; then
   fi
   exec python3 tools/foliage_lod_tables.py "$dir"
 fi
-[ -x build/apps/shadowkit/shadowkit ] || tools/build.sh
-B=build/apps/shadowkit/shadowkit
+[[ -n ${SHADOWKIT:-} ]] || [ -x build/apps/shadowkit/shadowkit ] || tools/build.sh
+B=${SHADOWKIT:-build/apps/shadowkit/shadowkit}
 out=out/foliage-lod
 mkdir -p "$out"
 { echo "commit $(git rev-parse --short HEAD), $(nproc) CPU cores, $(date -u +%Y-%m-%dT%H:%MZ)"; } >"$out/summary.txt"
-for set in "lod|" "no-lod|--no-lod" "s8|--lod-foliage-scale 8"; do
+for set in "lod|" "no-lod|--no-lod" "s4|--lod-foliage-scale 4"; do
   name=${set%%|*} options=${set#*|}
   echo "== $name: eval, hard and under the real sun" >&2
   # shellcheck disable=SC2086

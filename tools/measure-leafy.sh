@@ -7,9 +7,11 @@
 # forests. Resumable; results in out/leafy/ and out/readme/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-tools/build.sh
-build/apps/shadowkit/shadowkit sweep data/sweeps/leafy.json --out out/leafy --discard-stale
-build/apps/shadowkit/shadowkit sweep data/sweeps/readme.json --out out/readme --discard-stale
+# SHADOWKIT=PATH: the binary to run (a copy keeps a rebuild from changing it mid-run).
+[[ -n ${SHADOWKIT:-} ]] || tools/build.sh
+B=${SHADOWKIT:-build/apps/shadowkit/shadowkit}
+$B sweep data/sweeps/leafy.json --out out/leafy --discard-stale
+$B sweep data/sweeps/readme.json --out out/readme --discard-stale
 l="out/leafy/results.csv#set-up="
 b="out/readme/results.csv#set-up="
 tables="python3 tools/readme_tables.py --into"

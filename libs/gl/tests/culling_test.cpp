@@ -303,7 +303,7 @@ TEST_F(CullingTest, LevelsDrawnAccountForEveryTriangleEachPassSubmitted) {
         EXPECT_EQ(trianglesOf(levels.camera, false, cameraLeaves, cameraWork), stats->main.triangles) << name;
         EXPECT_EQ(trianglesOf(levels.sun, true, sunLeaves, sunWork), stats->shadow.triangles)
             << name; // one map: once each
-        EXPECT_GE(cameraLeaves, 2) << name << ": the 8-slab cloud or coarser in the camera pass";
+        EXPECT_GE(cameraLeaves, 2) << name << ": the second cloud or coarser in the camera pass";
         EXPECT_GE(sunLeaves, 1) << name << ": a cloud in the shadow pass";
         const gl::WorkByLevel work = (*renderer)->workByLevel();
         expectEqualWork(work.camera, cameraWork, name + ", camera pass");

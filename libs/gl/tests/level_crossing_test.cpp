@@ -64,7 +64,7 @@ TEST_F(LevelCrossingTest, ACrossingInstanceIsInBothLevelsListsAndChangesNothingE
     std::mt19937 random(11);
     std::uniform_real_distribution<double> unit(-1.0, 1.0), between(0.0, 1.0);
     size_t crossings = 0;
-    for (int c = 0; c < 30; ++c) {
+    for (int c = 0; c < 45; ++c) {
         core::PerspectiveCamera camera;
         camera.wsEye = core::Vec3(120.0 * unit(random), 5.0 + 60.0 * between(random), 120.0 * unit(random));
         camera.wsDirection = core::Vec3(unit(random), -0.5 * between(random) - 0.1, unit(random));

@@ -1,14 +1,19 @@
 #include "shadowkit/scene/foliage_levels.h"
 
+#include "shadowkit/core/conventions.h"
+
 namespace shadowkit::scene {
 
-std::vector<BakedCloud> bakeCloudChain(std::span<const CloudSource> sources, float alphaCutoff) {
+std::vector<BakedCloud> bakeCloudChain(std::span<const CloudSource> sources, float alphaCutoff, int finestSlabs) {
+    SK_ASSERT(finestSlabs >= 4 && finestSlabs <= 64, "bakeCloudChain(): finestSlabs out of [4, 64]");
     // Finer to coarser: each halves the planes (the slabs' spacing doubles, so the error grows
-    // about 1.6×) and gets a quarter of the texels.
+    // about 1.6×) and gets a quarter of the texels: 64 × 32 texels a slab of the orientation.
     struct Bake {
         int slabs, width, height;
     };
-    constexpr Bake kBakes[] = {{16, 1024, 512}, {8, 512, 256}, {4, 256, 128}};
+    const Bake kBakes[] = {{finestSlabs, 64 * finestSlabs, 32 * finestSlabs},
+                           {finestSlabs / 2, 32 * finestSlabs, 16 * finestSlabs},
+                           {finestSlabs / 4, 16 * finestSlabs, 8 * finestSlabs}};
     std::vector<BakedCloud> chain;
     for (const Bake& bake : kBakes) {
         BakedCloud level;
@@ -53,7 +58,8 @@ int addFoliageClouds(Scene& scene, const FoliageCloudOptions& options) {
                                  texture ? texture->wrapS : TextureWrap::ClampToEdge,
                                  texture ? texture->wrapT : TextureWrap::ClampToEdge,
                                  material->baseColorFactor.a};
-        std::vector<BakedCloud> chain = bakeCloudChain(std::span(&source, 1), material->alphaCutoff);
+        std::vector<BakedCloud> chain =
+            bakeCloudChain(std::span(&source, 1), material->alphaCutoff, kLoadedFinestSlabs);
         if (chain.empty()) continue;
         appendCloudLevels(mesh, chain, int32_t(scene.textures.size()));
         for (BakedCloud& cloud : chain) scene.textures.push_back(std::move(cloud.texture));

@@ -361,7 +361,7 @@ std::vector<BakedCloud> addFarLevels(LeafyTree& tree, const Image& leafAtlas, in
     const std::span<const uint32_t> branches(tree.wood.indices.begin() + std::ptrdiff_t(tree.trunkIndices),
                                              tree.wood.indices.end());
     const CloudSource sources[] = {{&tree.leaves, tree.leaves.indices, &leafAtlas}, {&tree.wood, branches, nullptr}};
-    std::vector<BakedCloud> far = bakeCloudChain(sources, leafMaterial(0).alphaCutoff);
+    std::vector<BakedCloud> far = bakeCloudChain(sources, leafMaterial(0).alphaCutoff, kSpeciesFinestSlabs);
     if (far.empty()) return far; // no leaves
     // A card level that errs as much as the finest cloud (its cards' own size) but draws fifty
     // times its triangles is dropped. Its cards stay in the vertex buffer, unreferenced.
