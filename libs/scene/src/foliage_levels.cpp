@@ -7,7 +7,7 @@ namespace shadowkit::scene {
 std::vector<BakedCloud> bakeCloudChain(std::span<const CloudSource> sources, float alphaCutoff, int finestSlabs) {
     SK_ASSERT(finestSlabs >= 4 && finestSlabs <= 64, "bakeCloudChain(): finestSlabs out of [4, 64]");
     // Finer to coarser: each halves the planes (the slabs' spacing doubles, so the error grows
-    // about 1.6×) and gets a quarter of the texels: 64 × 32 texels a slab of the orientation.
+    // 1.3–1.9×: the turn's share does not) and gets a quarter of the texels.
     struct Bake {
         int slabs, width, height;
     };
