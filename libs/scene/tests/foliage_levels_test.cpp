@@ -48,6 +48,10 @@ TEST(FoliageLevelsTest, AMaskedMeshWithoutLevelsGetsTheCloudChainAndNothingElseC
         const AuthoredLod& level = leaves.authoredLods[l];
         EXPECT_EQ(level.texture, int32_t(1 + l)) << l << ": a texture of its own";
         EXPECT_TRUE(level.keepsCoverage) << l;
+        // The loaded chain, not the species' finer one: 16, 8 and 4 slabs in 1024 × 512 texels
+        // and down, a quarter of the species' memory for each of what may be hundreds of meshes.
+        EXPECT_EQ(s.textures[1 + l].image.width, 1024 >> l) << l;
+        EXPECT_EQ(s.textures[1 + l].image.height, 512 >> l) << l;
         if (l > 0) {
             EXPECT_GT(level.objectError, leaves.authoredLods[l - 1].objectError) << l;
             EXPECT_LT(level.indices.size(), leaves.authoredLods[l - 1].indices.size()) << l;
