@@ -8,7 +8,7 @@
 # culling (every machine's default on a GPU; named so that a software rasteriser's triangle
 # counts are the same work), and `eval --path flythrough` over its first 48 frames with the sun
 # held (flicker_pct), into out/foliage-lod/; then writes the tables. On this project's 2-core
-# llvmpipe machine about 70 minutes (the flythroughs and the frames without levels are the slow
+# llvmpipe machine about 45 minutes (the flythroughs and the frames without levels are the slow
 # part); on a GPU machine a few.
 #   FOLIAGE_LOD_RESULTS=DIR_OR_TGZ  writes the tables from a kept run instead (the H200's of the
 #                                   single cloud, data/gpu/h200-2026-11-28-foliage-lod.tgz, were

@@ -247,17 +247,18 @@ TEST_F(CullingTest, LevelsDrawnAccountForEveryTriangleEachPassSubmitted) {
     std::vector<uint32_t> meshOf;
     for (const scene::MeshBatch& batch : forest.batches)
         meshOf.insert(meshOf.end(), batch.worldFromObject.size(), batch.mesh);
+    constexpr int kLevelsPerMesh = 4; // as the renderer builds them (Renderer::create)
     std::vector<scene::MeshLods> lods;
     for (const scene::Mesh& mesh : forest.meshes) {
         const scene::Material* material = forest.materialOf(mesh);
         const bool keepWhole = material && material->alphaTested() && mesh.authoredLods.empty();
-        lods.push_back(scene::buildLods(mesh, {.maxLevels = keepWhole ? 1 : 4}));
+        lods.push_back(scene::buildLods(mesh, {.maxLevels = keepWhole ? 1 : kLevelsPerMesh}));
     }
     // Also per level, as Renderer::workByLevel gives it: the same instances' levels counted here.
     auto trianglesOf = [&](const std::vector<uint8_t>& levels, bool shadow, uint8_t& coarsestLeaves,
                            std::vector<gl::LevelWork>& perLevel) {
         size_t triangles = 0;
-        perLevel.assign(4, {});
+        perLevel.assign(kLevelsPerMesh, {});
         for (size_t i = 0; i < levels.size(); ++i) {
             if (levels[i] == gl::kLevelNotDrawn) continue;
             const auto& chain = shadow ? lods[meshOf[i]].shadow : lods[meshOf[i]].camera;

@@ -11,11 +11,11 @@ std::vector<BakedCloud> bakeCloudChain(std::span<const CloudSource> sources, flo
     struct Bake {
         int slabs, width, height;
     };
-    const Bake kBakes[] = {{finestSlabs, 64 * finestSlabs, 32 * finestSlabs},
-                           {finestSlabs / 2, 32 * finestSlabs, 16 * finestSlabs},
-                           {finestSlabs / 4, 16 * finestSlabs, 8 * finestSlabs}};
+    const Bake bakes[] = {{finestSlabs, 64 * finestSlabs, 32 * finestSlabs},
+                          {finestSlabs / 2, 32 * finestSlabs, 16 * finestSlabs},
+                          {finestSlabs / 4, 16 * finestSlabs, 8 * finestSlabs}};
     std::vector<BakedCloud> chain;
-    for (const Bake& bake : kBakes) {
+    for (const Bake& bake : bakes) {
         BakedCloud level;
         level.texture.image = Image(bake.width, bake.height);
         level.texture.wrapS = level.texture.wrapT = TextureWrap::ClampToEdge;

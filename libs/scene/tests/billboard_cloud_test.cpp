@@ -102,13 +102,15 @@ struct BakedTree {
 } // namespace
 
 // Each cloud, at the size a pass draws it at (where its error spans two pixels or texels, a
-// little coarser than the default bound, RenderSettings::lodFoliageScale 6 times a quarter), covers the cells the full
-// tree covers, from the side, from above and along the standard views' suns, for every species. Measured when written
-// (32, 16 and 8 slabs), IoU: the broadleaf tree and the shrub 0.91–0.97 (the area seen ×0.99–1.06); the conifer
-// 0.79–0.96 from above and along the suns, but from the side 0.61–0.65 for the finest cloud, 0.66–0.69 and 0.70–0.71
-// for the others (×0.68–0.76): its needle sprays lie within 20° of flat and are turned flat, where the side sees them
-// edge-on, and the finest cloud is drawn where its small error (mostly the slabs') spans two cells, finer cells that
-// see the lost thickness more — the clouds' known shortfall, held here to what it is.
+// little coarser than the default bound, RenderSettings::lodFoliageScale 6 times a quarter),
+// covers the cells the full tree covers, from the side, from above and along the standard views'
+// suns, for every species. Measured when written (32, 16 and 8 slabs), IoU: the broadleaf tree and
+// the shrub 0.91–0.97 (the area seen ×0.99–1.06); the conifer 0.79–0.96 from above and along the
+// suns, but from the side 0.61–0.65 for the finest cloud, 0.66–0.69 and 0.70–0.71 for the others
+// (×0.68–0.76): its needle sprays lie within 20° of flat and are turned flat, where the side sees
+// them edge-on, and the finest cloud is drawn where its small error (mostly the slabs') spans two
+// cells, finer cells that see the lost thickness more — the clouds' known shortfall, held here to
+// what it is.
 TEST(BillboardCloudTest, EveryCloudCoversWhatTheFullTreeCoversFromEveryDirection) {
     const glm::vec3 directions[] = {{1, 0, 0},
                                     {0.6f, 0, 0.8f},
