@@ -103,7 +103,8 @@ std::unique_ptr<GpuCulling> GpuCulling::create(const scene::Scene& scene, std::s
     const size_t perInstance = std::max<size_t>(culling->m_instanceCount, 1) * sizeof(uint32_t);
     culling->m_flags = createBuffer(nullptr, perInstance);
     culling->m_ranks = createBuffer(nullptr, perInstance);
-    culling->m_chunkSums = createBuffer(nullptr, std::max<size_t>(culling->m_chunkCount, 1) * sizeof(glm::uvec4));
+    culling->m_chunkSums =
+        createBuffer(nullptr, std::max<size_t>(culling->m_chunkCount, 1) * kMaxLodLevels * sizeof(uint32_t));
     culling->forget();
     return culling;
 }
@@ -228,7 +229,7 @@ void GpuCulling::compact(size_t pass, bool shadowChain, PassList& out, uint32_t 
     // The draws read the lists in vertex shaders and the commands as indirect arguments.
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
 
-    // Each batch's four levels get a region of its instance count each: the CPU knows where
+    // Each batch's kMaxLodLevels levels get a region of its instance count each: the CPU knows where
     // every list lies without knowing how long it is.
     out.indices.clear();
     out.shadow = shadowChain;

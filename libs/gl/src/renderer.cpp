@@ -107,17 +107,9 @@ core::Result<std::unique_ptr<Renderer>> Renderer::create(const scene::Scene& sce
     auto local = LocalShadowMaps::create();
     if (!local) return local.errorInfo();
     r.local = std::move(local).value();
-    // Levels of detail of every mesh, for the camera and for shadow maps (meshoptimizer). An
-    // alpha-tested mesh keeps its one level unless it brings its own (leaf cards: fewer, larger
-    // cards): a simplifier moves positions under fixed uvs (and the shadow chain's vertex
-    // clustering joins vertices of different cards), so a simplified card would no longer show
-    // the leaf.
+    // Levels of detail of every mesh, for the camera and for shadow maps (meshoptimizer).
     std::vector<scene::MeshLods> lods;
-    for (const scene::Mesh& mesh : scene.meshes) {
-        const scene::Material* material = scene.materialOf(mesh);
-        const bool keepWhole = material && material->alphaTested() && mesh.authoredLods.empty();
-        lods.push_back(scene::buildLods(mesh, {.maxLevels = keepWhole ? 1 : 4}));
-    }
+    for (const scene::Mesh& mesh : scene.meshes) lods.push_back(scene::buildLods(mesh, lodOptionsOf(scene, mesh)));
     r.scene.emplace(scene, lods);
     auto lists = PassLists::create(scene, lods, *r.scene);
     if (!lists) return lists.errorInfo();

@@ -1,5 +1,7 @@
 #include "uniforms.h"
 
+#include "visibility.h"
+
 #include <array>
 #include <cstddef>
 #include <string_view>
@@ -207,6 +209,7 @@ const std::string& shaderPrelude() {
         define("SK_CULL_CHUNK_SUMS_BINDING", kCullChunkSumsBinding);
         define("SK_CULL_STAGE_BINDING", kCullStageBinding);
         define("SK_CULL_GROUP", kCullGroup);
+        define("SK_CULL_LEVELS", static_cast<long long>(kMaxLodLevels));
         define("SK_CULL_MAX_PYRAMID_LEVELS", kCullMaxPyramidLevels);
         s += "#line 1\n";
         return s;

@@ -27,6 +27,12 @@ double ndcPerMetre(const core::Mat4& clipFromWorld, const core::Vec3& ws) {
 
 } // namespace
 
+scene::LodOptions lodOptionsOf(const scene::Scene& scene, const scene::Mesh& mesh) {
+    const scene::Material* material = scene.materialOf(mesh);
+    const bool keepWhole = material && material->alphaTested() && mesh.authoredLods.empty();
+    return {.maxLevels = keepWhole ? 1 : 4, .maxAuthoredLevels = static_cast<int>(kMaxLodLevels)};
+}
+
 uint32_t fadeStepsOf(double allowed, double coarserError, double fadeBand) {
     if (!(fadeBand > 0.0) || !(coarserError > 0.0)) return 0;
     const double share = (allowed / coarserError - (1.0 - fadeBand)) / fadeBand;

@@ -21,7 +21,16 @@
 
 namespace shadowkit::gl {
 
-inline constexpr size_t kMaxLodLevels = 4; // levels drawn per mesh (scene::LodOptions::maxLevels)
+// Levels drawn per mesh (scene::LodOptions::maxLevels): the full mesh and up to four coarser, as
+// the leafy trees' 32-, 16-, 8- and 4-slab clouds.
+inline constexpr size_t kMaxLodLevels = 5;
+
+// The levels built for `mesh` of `scene` (Renderer::create): an alpha-tested mesh keeps its one
+// level unless it brings its own (leaf cards, clouds): a simplifier moves positions under fixed
+// uvs (and the shadow chain's vertex clustering joins vertices of different cards), so a
+// simplified card would no longer show the leaf. A simplified chain keeps the four levels every
+// blob-forest figure was measured with; a mesh's own levels take up to kMaxLodLevels.
+scene::LodOptions lodOptionsOf(const scene::Scene& scene, const scene::Mesh& mesh);
 // glDrawElementsIndirect's command: index count, instance count, first index, base vertex, base instance.
 inline constexpr size_t kIndirectCommandWords = 5;
 

@@ -2,6 +2,7 @@
 // technique; and a caster outside the view frustum still casts into it. CTest label `gl`.
 #include "headless_gl_test.h"
 #include "test_scenes.h"
+#include "visibility.h"
 
 #include "shadowkit/gl/renderer.h"
 #include "shadowkit/scene/forest.h"
@@ -247,18 +248,14 @@ TEST_F(CullingTest, LevelsDrawnAccountForEveryTriangleEachPassSubmitted) {
     std::vector<uint32_t> meshOf;
     for (const scene::MeshBatch& batch : forest.batches)
         meshOf.insert(meshOf.end(), batch.worldFromObject.size(), batch.mesh);
-    constexpr int kLevelsPerMesh = 4; // as the renderer builds them (Renderer::create)
-    std::vector<scene::MeshLods> lods;
-    for (const scene::Mesh& mesh : forest.meshes) {
-        const scene::Material* material = forest.materialOf(mesh);
-        const bool keepWhole = material && material->alphaTested() && mesh.authoredLods.empty();
-        lods.push_back(scene::buildLods(mesh, {.maxLevels = keepWhole ? 1 : kLevelsPerMesh}));
-    }
+    std::vector<scene::MeshLods> lods; // as the renderer builds them (Renderer::create)
+    for (const scene::Mesh& mesh : forest.meshes)
+        lods.push_back(scene::buildLods(mesh, gl::lodOptionsOf(forest, mesh)));
     // Also per level, as Renderer::workByLevel gives it: the same instances' levels counted here.
     auto trianglesOf = [&](const std::vector<uint8_t>& levels, bool shadow, uint8_t& coarsestLeaves,
                            std::vector<gl::LevelWork>& perLevel) {
         size_t triangles = 0;
-        perLevel.assign(kLevelsPerMesh, {});
+        perLevel.assign(gl::kMaxLodLevels, {});
         for (size_t i = 0; i < levels.size(); ++i) {
             if (levels[i] == gl::kLevelNotDrawn) continue;
             const auto& chain = shadow ? lods[meshOf[i]].shadow : lods[meshOf[i]].camera;

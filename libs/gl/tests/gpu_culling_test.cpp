@@ -140,10 +140,13 @@ TEST_F(GpuCullingTest, ListsEqualTheCpuPathsWithLevelsThatKeepCoverage) {
         [](std::mt19937&) { return 0.0; });
     EXPECT_GT(drawn.drawnCamera + drawn.drawnShadow, 500u);
     EXPECT_EQ(drawn.crossing, 0u);
-    // Every leafy batch reaches its billboard cloud somewhere.
+    // Every leafy batch reaches its coarsest billboard cloud somewhere, the fifth level: its
+    // counters are the second word of gpu_cull.comp's scan.
     for (size_t b = 0; b < forest.batches.size(); ++b) {
-        if (forest.meshes[forest.batches[b].mesh].material >= 0) {
-            EXPECT_GT(drawn.coarsest[b], 0u) << forest.meshes[forest.batches[b].mesh].name;
+        const scene::Mesh& mesh = forest.meshes[forest.batches[b].mesh];
+        if (mesh.material >= 0) {
+            EXPECT_EQ(scene::buildLods(mesh).shadow.size(), gl::kMaxLodLevels) << mesh.name;
+            EXPECT_GT(drawn.coarsest[b], 0u) << mesh.name;
         }
     }
 }

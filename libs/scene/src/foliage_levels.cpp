@@ -6,21 +6,17 @@ namespace shadowkit::scene {
 
 std::vector<BakedCloud> bakeCloudChain(std::span<const CloudSource> sources, float alphaCutoff, int finestSlabs) {
     SK_ASSERT(finestSlabs >= 4 && finestSlabs <= 64, "bakeCloudChain(): finestSlabs out of [4, 64]");
-    // Finer to coarser: each halves the planes (the slabs' spacing doubles, so the error grows
-    // 1.3–1.9×: the turn's share does not) and gets a quarter of the texels.
-    struct Bake {
-        int slabs, width, height;
-    };
-    const Bake bakes[] = {{finestSlabs, 64 * finestSlabs, 32 * finestSlabs},
-                          {finestSlabs / 2, 32 * finestSlabs, 16 * finestSlabs},
-                          {finestSlabs / 4, 16 * finestSlabs, 8 * finestSlabs}};
+    // Finer to coarser down to kCoarsestSlabs: each halves the planes (the slabs' spacing
+    // doubles, so the error grows 1.3–1.9×: the turn's share does not) and gets a quarter of the
+    // texels.
     std::vector<BakedCloud> chain;
-    for (const Bake& bake : bakes) {
+    for (int slabs = finestSlabs; slabs >= kCoarsestSlabs; slabs /= 2) {
+        const int width = 64 * slabs, height = 32 * slabs;
         BakedCloud level;
-        level.texture.image = Image(bake.width, bake.height);
+        level.texture.image = Image(width, height);
         level.texture.wrapS = level.texture.wrapT = TextureWrap::ClampToEdge;
-        level.cloud = bakeBillboardCloud(sources, level.texture.image, {0, 0, bake.width, bake.height},
-                                         {.slabsPerOrientation = bake.slabs, .alphaCutoff = alphaCutoff});
+        level.cloud = bakeBillboardCloud(sources, level.texture.image, {0, 0, width, height},
+                                         {.slabsPerOrientation = slabs, .alphaCutoff = alphaCutoff});
         if (level.cloud.planes == 0) break; // nothing to cover
         if (!chain.empty() && !(level.cloud.objectError > chain.back().cloud.objectError)) continue;
         chain.push_back(std::move(level));

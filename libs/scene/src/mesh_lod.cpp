@@ -72,7 +72,7 @@ MeshLods buildLods(const Mesh& mesh, const LodOptions& o) {
         out.camera.push_back({0, static_cast<uint32_t>(mesh.indices.size()), 0.0f});
         out.indices = mesh.indices;
         for (const AuthoredLod& level : mesh.authoredLods) {
-            if (static_cast<int>(out.camera.size()) >= o.maxLevels) break;
+            if (static_cast<int>(out.camera.size()) >= o.maxAuthoredLevels) break;
             out.camera.push_back({static_cast<uint32_t>(out.indices.size()),
                                   static_cast<uint32_t>(level.indices.size()), level.objectError, false,
                                   level.keepsCoverage, level.texture});

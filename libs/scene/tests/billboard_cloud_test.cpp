@@ -104,13 +104,15 @@ struct BakedTree {
 // Each cloud, at the size a pass draws it at (where its error spans two pixels or texels, a
 // little coarser than the default bound, RenderSettings::lodFoliageScale 6 times a quarter),
 // covers the cells the full tree covers, from the side, from above and along the standard views'
-// suns, for every species. Measured when written (32, 16 and 8 slabs), IoU: the broadleaf tree and
-// the shrub 0.91–0.97 (the area seen ×0.99–1.06); the conifer 0.79–0.96 from above and along the
-// suns, but from the side 0.61–0.65 for the finest cloud, 0.66–0.69 and 0.70–0.71 for the others
-// (×0.68–0.76): its needle sprays lie within 20° of flat and are turned flat, where the side sees
-// them edge-on, and the finest cloud is drawn where its small error (mostly the slabs') spans two
-// cells, finer cells that see the lost thickness more — the clouds' known shortfall, held here to
-// what it is.
+// suns, for every species. Measured when written, IoU: the broadleaf tree and the shrub 0.91–0.97
+// for 32, 16 and 8 slabs (the area seen ×0.99–1.06); the conifer 0.79–0.96 from above and along
+// the suns, but from the side 0.61–0.65 for the finest cloud, 0.66–0.69 and 0.70–0.71 for the
+// next (×0.68–0.76): its needle sprays lie within 20° of flat and are turned flat, where the side
+// sees them edge-on, and the finest cloud is drawn where its small error (mostly the slabs')
+// spans two cells, finer cells that see the lost thickness more. The coarsest, 4 slabs, seen at
+// 10–12 cells: broadleaf and shrub 0.86–0.94 (×1.04–1.16: a slab's leaves spread over its plane),
+// the conifer 0.72–0.93 (×0.78–1.05) and 0.70–0.72 from the side — the clouds' known shortfall,
+// held here to what it is.
 TEST(BillboardCloudTest, EveryCloudCoversWhatTheFullTreeCoversFromEveryDirection) {
     const glm::vec3 directions[] = {{1, 0, 0},
                                     {0.6f, 0, 0.8f},
@@ -142,8 +144,15 @@ TEST(BillboardCloudTest, EveryCloudCoversWhatTheFullTreeCoversFromEveryDirection
                                           std::to_string(direction.y) + "," + std::to_string(direction.z);
                 const bool coniferSide = species == TreeSpecies::Conifer && direction.y == 0.0f;
                 const bool conifer = species == TreeSpecies::Conifer;
-                EXPECT_GE(iou(truth, cloud), coniferSide ? 0.6 : conifer ? 0.75 : 0.88) << where;
-                EXPECT_GT(sum(cloud) / sum(truth), coniferSide ? 0.65 : 0.85) << where << ": area seen";
+                const bool coarsest = c + 1 == tree.clouds.size();
+                EXPECT_GE(iou(truth, cloud), coniferSide ? 0.6
+                                             : conifer   ? (coarsest ? 0.7 : 0.75)
+                                                         : (coarsest ? 0.85 : 0.88))
+                    << where;
+                EXPECT_GT(sum(cloud) / sum(truth), coniferSide           ? 0.65
+                                                   : conifer && coarsest ? 0.75
+                                                                         : 0.85)
+                    << where << ": area seen";
                 EXPECT_LT(sum(cloud) / sum(truth), 1.2) << where << ": area seen";
             }
         }
@@ -158,7 +167,7 @@ TEST(BillboardCloudTest, TheCloudsAreFewerPlanesAlongTheChainEachInItsOwnTexture
         const auto species = static_cast<TreeSpecies>(k);
         const BakedTree tree(species);
         const auto& levels = tree.far.leaves.authoredLods;
-        ASSERT_EQ(tree.clouds.size(), 3u) << k << ": 32, 16 and 8 slabs, each erring more";
+        ASSERT_EQ(tree.clouds.size(), 4u) << k << ": 32, 16, 8 and 4 slabs, each erring more";
         ASSERT_LE(levels.size(), tree.full.leaves.authoredLods.size() + tree.clouds.size()) << k;
         for (size_t l = 1; l < levels.size(); ++l) EXPECT_GT(levels[l].objectError, levels[l - 1].objectError) << k;
         const size_t cards = levels.size() - tree.clouds.size();

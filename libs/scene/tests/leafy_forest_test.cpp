@@ -136,14 +136,14 @@ TEST(LeafyForestTest, TreesStandWhereTheSimpleForestsDoEachAsWoodAndMaskedLeaves
     simpleOptions.kind = ForestKind::Simple;
     const Scene simple = makeForest(simpleOptions);
     ASSERT_EQ(leafy.materials.size(), 1u);
-    // The atlas, then each species' three billboard clouds, each level reading a texture of its own.
-    ASSERT_EQ(leafy.textures.size(), 1u + 3u * kTreeSpeciesCount);
+    // The atlas, then each species' four billboard clouds, each level reading a texture of its own.
+    ASSERT_EQ(leafy.textures.size(), 1u + 4u * kTreeSpeciesCount);
     std::vector<int32_t> levelTextures;
     for (const Mesh& m : leafy.meshes)
         for (const AuthoredLod& level : m.authoredLods)
             if (level.texture >= 0) levelTextures.push_back(level.texture);
     std::sort(levelTextures.begin(), levelTextures.end());
-    std::vector<int32_t> clouds(3u * kTreeSpeciesCount);
+    std::vector<int32_t> clouds(4u * kTreeSpeciesCount);
     std::iota(clouds.begin(), clouds.end(), 1);
     EXPECT_EQ(levelTextures, clouds);
     EXPECT_EQ(leafy.materials[0].alphaMode, AlphaMode::Mask);

@@ -5,8 +5,8 @@
 //   SK_CULL_STAGE 1, one work group per chunk (up to 128 consecutive instances of one batch):
 //     which instances the pass keeps and at which level (and whether each crosses into the next,
 //     LodChoice::fadeBand: then it is kept at both), and each one's rank among the kept
-//     instances of its chunk and level (a prefix sum in shared memory, four 8-bit counters
-//     packed in one uint);
+//     instances of its chunk and level (a prefix sum in shared memory, 8-bit counters packed
+//     four to a uint);
 //   SK_CULL_STAGE 2, one invocation per batch and level: the chunks' counts into offsets,
 //     and the level's glDrawElementsIndirect command (its instance count: the total);
 //   SK_CULL_STAGE 3, one work group per chunk: each kept instance's list entry (batch-local
@@ -27,7 +27,7 @@ struct Instance {
 };
 struct Batch {
     uint first, count;               // global index of the first instance; instances
-    uint cameraLevels, shadowLevels; // levels of each chain, [1, 4]
+    uint cameraLevels, shadowLevels; // levels of each chain, [1, SK_CULL_LEVELS]
     uint firstChunk, chunkCount;
     uint pad0, pad1;
 };
@@ -47,15 +47,15 @@ layout(std430, binding = SK_CULL_RANKS_BINDING) buffer Ranks {
     uint ranks[];
 }; // per global instance: fade << 24 | next level's rank << 16 | level << 8 | rank, or ~0u
 layout(std430, binding = SK_CULL_CHUNK_SUMS_BINDING) buffer ChunkSums {
-    uvec4 chunkSums[];
-}; // per chunk and level: count, then offset
+    uint chunkSums[];
+}; // [chunk * SK_CULL_LEVELS + level]: the chunk's count at the level, then its offset
 
 const uint kNotKept = 0xFFFFFFFFu;
 
 #if SK_CULL_STAGE == 1
 
 layout(std430, binding = SK_CULL_INSTANCES_BINDING) readonly buffer Instances { Instance instances[]; };
-layout(std430, binding = SK_CULL_LEVELS_BINDING) readonly buffer Levels { Level levels[]; }; // [batch * 4 + level]
+layout(std430, binding = SK_CULL_LEVELS_BINDING) readonly buffer Levels { Level levels[]; }; // [batch * SK_CULL_LEVELS + level]
 layout(std430, binding = SK_CULL_FLAGS_BINDING) buffer Flags {
     uint wasVisible[];
 }; // the camera's visible set, frame to frame
@@ -139,7 +139,7 @@ uvec2 levelOf(uint batch, dvec3 centre, double scale) {
         allowed = min(allowed, allowedBy(cameraClipFromWorld, cameraUnitsPerNdc, cameraMaxError, centre, scale));
     uint level = 0u;
     while (level + 1u < count) {
-        const Level next = levels[batch * 4u + level + 1u];
+        const Level next = levels[batch * SK_CULL_LEVELS + level + 1u];
         const bool coverage = (next.keepsCoverage & (shadowChain ? 2u : 1u)) != 0u;
         if (!(double(shadowChain ? next.shadowError : next.cameraError) <=
               (coverage ? allowed * coverageScale : allowed)))
@@ -147,7 +147,7 @@ uvec2 levelOf(uint batch, dvec3 centre, double scale) {
         ++level;
     }
     if (level + 1u >= count) return uvec2(level, 0u);
-    const Level next = levels[batch * 4u + level + 1u];
+    const Level next = levels[batch * SK_CULL_LEVELS + level + 1u];
     if ((next.keepsCoverage & (shadowChain ? 2u : 1u)) == 0u) return uvec2(level, 0u);
     return uvec2(level, fadeOf(allowed * coverageScale, double(shadowChain ? next.shadowError : next.cameraError)));
 }
@@ -220,13 +220,23 @@ bool mayShadow(dvec3 lo, dvec3 hi) {
     return false;
 }
 
-shared uint scan[SK_CULL_GROUP];
+// An instance's counters: one per level, 8 bits each (a chunk keeps at most 128 instances a
+// level), four to a uint. kWords uints hold SK_CULL_LEVELS of them.
+const uint kWords = (SK_CULL_LEVELS + 3u) / 4u;
+struct Counters {
+    uint word[kWords];
+};
+shared Counters scan[SK_CULL_GROUP];
+
+uint counterOf(Counters c, uint level) { return c.word[level >> 2] >> (8u * (level & 3u)) & 0xFFu; }
 
 void main() {
     const uvec4 chunk = chunks[gl_WorkGroupID.x];
     const uint local = gl_LocalInvocationID.x;
     const uint global = chunk.y + local;
-    uint word = 0u, level = 0u, fade = 0u;
+    Counters mine;
+    for (uint w = 0u; w < kWords; ++w) mine.word[w] = 0u;
+    uint level = 0u, fade = 0u;
     bool keep = false;
     if (local < chunk.z) {
         const Instance instance = instances[global];
@@ -248,29 +258,31 @@ void main() {
             const uvec2 chosen = levelOf(chunk.x, 0.5 * (lo + hi), instance.minScale.w);
             level = chosen.x;
             fade = chosen.y;
-            word = 1u << (8u * level);
-            if (fade != 0u) word |= 1u << (8u * (level + 1u)); // kept at the next level too
+            mine.word[level >> 2] |= 1u << (8u * (level & 3u));
+            if (fade != 0u) // kept at the next level too
+                mine.word[(level + 1u) >> 2] |= 1u << (8u * ((level + 1u) & 3u));
         }
     }
     // Inclusive prefix sum over the group (Hillis & Steele): each level's counter stays
-    // below 256, so the four never carry into each other.
-    scan[local] = word;
+    // below 256, so they never carry into each other.
+    scan[local] = mine;
     barrier();
     for (uint stride = 1u; stride < SK_CULL_GROUP; stride <<= 1) {
-        const uint add = local >= stride ? scan[local - stride] : 0u;
+        Counters add;
+        for (uint w = 0u; w < kWords; ++w) add.word[w] = local >= stride ? scan[local - stride].word[w] : 0u;
         barrier();
-        scan[local] += add;
+        for (uint w = 0u; w < kWords; ++w) scan[local].word[w] += add.word[w];
         barrier();
     }
-    const uint before = scan[local] - word;
+    Counters before;
+    for (uint w = 0u; w < kWords; ++w) before.word[w] = scan[local].word[w] - mine.word[w];
     if (local < chunk.z)
-        ranks[global] = keep ? fade << 24 | (fade != 0u ? (before >> (8u * (level + 1u)) & 0xFFu) << 16 : 0u) |
-                                   level << 8 | (before >> (8u * level) & 0xFFu)
+        ranks[global] = keep ? fade << 24 | (fade != 0u ? counterOf(before, level + 1u) << 16 : 0u) | level << 8 |
+                                   counterOf(before, level)
                              : kNotKept;
-    if (local == SK_CULL_GROUP - 1u) {
-        const uint total = scan[local];
-        chunkSums[gl_WorkGroupID.x] = uvec4(total & 0xFFu, total >> 8 & 0xFFu, total >> 16 & 0xFFu, total >> 24);
-    }
+    if (local == SK_CULL_GROUP - 1u)
+        for (uint l = 0u; l < SK_CULL_LEVELS; ++l)
+            chunkSums[gl_WorkGroupID.x * SK_CULL_LEVELS + l] = counterOf(scan[local], l);
 }
 
 #elif SK_CULL_STAGE == 2
@@ -284,14 +296,14 @@ uniform uint firstCommand; // the pass's first, in commands
 uniform uint replicas;     // draws per kept instance: a point light's cube faces, layered per instance
 
 void main() {
-    const uint pair = gl_GlobalInvocationID.x; // batch * 4 + level
-    if (pair >= 4u * batchCount) return;
-    const uint b = pair / 4u, l = pair % 4u;
+    const uint pair = gl_GlobalInvocationID.x; // batch * SK_CULL_LEVELS + level
+    if (pair >= SK_CULL_LEVELS * batchCount) return;
+    const uint b = pair / SK_CULL_LEVELS, l = pair % SK_CULL_LEVELS;
     const Batch batch = batches[b];
     uint running = 0u;
     for (uint c = batch.firstChunk; c < batch.firstChunk + batch.chunkCount; ++c) {
-        const uint n = chunkSums[c][l];
-        chunkSums[c][l] = running;
+        const uint n = chunkSums[c * SK_CULL_LEVELS + l];
+        chunkSums[c * SK_CULL_LEVELS + l] = running;
         running += n;
     }
     const bool exists = l < (shadowChain ? batch.shadowLevels : batch.cameraLevels);
@@ -307,7 +319,7 @@ void main() {
 #else // SK_CULL_STAGE 3
 
 layout(std430, binding = SK_CULL_STAGE_BINDING) writeonly buffer Lists { uint lists[]; };
-uniform uint passOffset; // the pass's region in lists: 4 slots of capacity batch.count per batch
+uniform uint passOffset; // the pass's region in lists: SK_CULL_LEVELS slots of batch.count per batch
 
 void main() {
     const uvec4 chunk = chunks[gl_WorkGroupID.x];
@@ -315,13 +327,14 @@ void main() {
     if (local >= chunk.z) return;
     const uint r = ranks[chunk.y + local];
     if (r == kNotKept) return;
-    const uint level = r >> 8 & 3u, rank = r & 0xFFu, fade = r >> 24;
+    const uint level = r >> 8 & 0xFFu, rank = r & 0xFFu, fade = r >> 24;
     const Batch batch = batches[chunk.x];
     const uint entry = chunk.w + local | fade << 24;
-    lists[passOffset + 4u * batch.first + level * batch.count + chunkSums[gl_WorkGroupID.x][level] + rank] = entry;
+    const uint region = passOffset + SK_CULL_LEVELS * batch.first, sums = gl_WorkGroupID.x * SK_CULL_LEVELS;
+    lists[region + level * batch.count + chunkSums[sums + level] + rank] = entry;
     if (fade != 0u) // the coarser level's entry (visibility.h, kFadeIncoming)
-        lists[passOffset + 4u * batch.first + (level + 1u) * batch.count + chunkSums[gl_WorkGroupID.x][level + 1u] +
-              (r >> 16 & 0xFFu)] = entry | 0x80000000u;
+        lists[region + (level + 1u) * batch.count + chunkSums[sums + level + 1u] + (r >> 16 & 0xFFu)] =
+            entry | 0x80000000u;
 }
 
 #endif

@@ -3,9 +3,9 @@
 // loaded scene brings without levels of its own (a glTF's leaves).
 //
 // A simplifier cannot reduce a soup of cards (each is two triangles of its own) and a card level
-// only halves them; a cloud draws a few dozen to a few hundred planes. Three of them, each 1.3 to
-// 1.9 times the error and half the planes of the one before, let a tree's far level shrink with
-// its projection.
+// only halves them; a cloud draws a dozen to a few hundred planes. Three or four of them, each 1.3
+// to 1.9 times the error and half the planes of the one before, let a tree's far level shrink
+// with its projection.
 #pragma once
 
 #include "shadowkit/scene/billboard_cloud.h"
@@ -22,18 +22,20 @@ struct BakedCloud {
     BillboardCloud cloud;
 };
 
-// The chain of `sources`: `finestSlabs`, half and a quarter of them per orientation, each baked
-// into (64 × slabs) × (32 × slabs) texels, 1024 × 512 for 16 (a coarser cloud's smaller
-// projection needs a quarter of the texels), finer first. A cloud that would not err more than
-// the one before it is left out, so errors grow along the chain as a pass's choice of the
-// coarsest level within its bound needs. Deterministic. Precondition: finestSlabs in [4, 64].
+// The chain of `sources`: `finestSlabs` per orientation, then half as many, down to
+// kCoarsestSlabs, each baked into (64 × slabs) × (32 × slabs) texels, 1024 × 512 for 16 (a
+// coarser cloud's smaller projection needs a quarter of the texels), finer first. A cloud that
+// would not err more than the one before it is left out, so errors grow along the chain as a
+// pass's choice of the coarsest level within its bound needs. Deterministic. Precondition:
+// finestSlabs in [4, 64].
 std::vector<BakedCloud> bakeCloudChain(std::span<const CloudSource> sources, float alphaCutoff, int finestSlabs);
 
 // The leafy forest's species start at 32 slabs (2048 × 1024 texels, 125–199 planes): between a
 // tree's 5,000 card triangles and its 16-slab cloud's 132–212 the step was thirty-fold, and
 // the trees just short of it were most of a frame's triangles. A loaded scene's meshes start at
-// 16: each bakes textures of its own, and a file may bring hundreds of them.
-inline constexpr int kSpeciesFinestSlabs = 32, kLoadedFinestSlabs = 16;
+// 16: each bakes textures of its own, and a file may bring hundreds of them. Every chain ends at
+// 4 slabs: a 100,000-tree forest's farthest trees, most of its frame, cast from it.
+inline constexpr int kSpeciesFinestSlabs = 32, kLoadedFinestSlabs = 16, kCoarsestSlabs = 4;
 
 // Appends `clouds` to `mesh` as its last authored levels (keeping coverage), their planes after
 // its vertices, the i-th reading Scene::textures[firstTextureIndex + i]; recomputes its bounds.

@@ -41,7 +41,7 @@ struct LeafyTree {
 LeafyTree makeLeafyTree(TreeSpecies species, uint64_t seed);
 
 // The tree's far levels, for where a canopy covers a few dozen pixels or texels and fewer: the
-// cloud chain (foliage_levels.h: three billboard clouds, 32, 16 and 8 slabs per orientation, each
+// cloud chain (foliage_levels.h: four billboard clouds, 32, 16, 8 and 4 slabs per orientation, each
 // in a texture of its own) of its leaves (their alpha read from `leafAtlas`, makeLeafAtlas()'s
 // image) and of every branch but the trunk, appended to `tree.leaves` as its last authored
 // levels, finer first, the i-th reading Scene::textures[firstTextureIndex + i]; the card levels

@@ -47,12 +47,15 @@ struct LodOptions {
     // under its bound (a fraction of a pixel or texel), i.e. for tiny instances.
     float maxRelativeError = 0.5f;
     int maxLevels = 4; // including the full mesh, [1, 8]
+    // A mesh's own levels (Mesh::authoredLods), the full mesh included, are kept up to this
+    // many: the leafy trees bring four billboard clouds. [1, 8]
+    int maxAuthoredLevels = 5;
     // Meshes above this size keep one level: the terrain is one instance, near everything.
     size_t maxTriangles = 65536;
 };
 
 // Deterministic for a given mesh and options. A mesh with authored levels (Mesh::authoredLods)
-// gets those, the same for both chains, up to maxLevels.
+// gets those, the same for both chains, up to maxAuthoredLevels.
 MeshLods buildLods(const Mesh& mesh, const LodOptions& options = {});
 
 } // namespace shadowkit::scene
