@@ -10,9 +10,12 @@
 #include "sun_pass.h"
 
 #include "shadowkit/gl/renderer.h"
+#include "shadowkit/scene/leafy_trees.h"
 
 #include <epoxy/gl.h>
 #include <gtest/gtest.h>
+
+#include <algorithm>
 
 using namespace shadowkit;
 
@@ -81,4 +84,80 @@ TEST_F(DepthProgramsTest, StackedCastersDrawnNearestFirstWriteEachTexelOnce) {
     ASSERT_TRUE(stats) << stats.error();
     ASSERT_EQ(stats->shadow.mapTexels, 64u * 64u);
     EXPECT_EQ(stats->shadow.samplesPassed, 64u * 64u);
+}
+
+namespace {
+
+// One leafy broadleaf tree, 10 m high, its leaves alone (every card: no levels), in the order
+// the tree brings them or with its cards reversed.
+scene::Scene oneCanopy(bool reversed) {
+    scene::LeafyTree tree = scene::makeLeafyTree(scene::TreeSpecies::Broadleaf, 1);
+    tree.leaves.authoredLods.clear();
+    tree.leaves.material = 0;
+    if (reversed) { // a card is two triangles, six indices, that stay together
+        std::vector<uint32_t>& indices = tree.leaves.indices;
+        std::vector<uint32_t> back;
+        for (size_t card = indices.size() / 6; card-- > 0;)
+            back.insert(back.end(), indices.begin() + std::ptrdiff_t(6 * card),
+                        indices.begin() + std::ptrdiff_t(6 * card + 6));
+        indices = std::move(back);
+    }
+    scene::Scene s;
+    s.textures.push_back(scene::makeLeafAtlas());
+    s.materials.push_back(scene::leafMaterial(0));
+    s.meshes = {tree.leaves};
+    s.batches = {{0, {glm::scale(glm::mat4(1.0f), glm::vec3(10.0f))}, false}};
+    return s;
+}
+
+// Samples the canopy's shadow pass wrote per map texel it covers, the sun `elevation` degrees
+// up; the map, as greys, in `map`.
+double samplesPerCoveredTexel(const scene::Scene& s, double elevation, scene::Image& map) {
+    auto renderer = gl::Renderer::create(s);
+    EXPECT_TRUE(renderer) << renderer.error();
+    if (!renderer) return 0.0;
+    core::PerspectiveCamera camera;
+    camera.wsEye = {0, 8, 25};
+    camera.wsDirection = glm::normalize(core::Vec3(0, -0.1, -1));
+    camera.wsUp = {0, 1, 0};
+    camera.zNear = 0.5, camera.zFar = 100;
+    const double e = glm::radians(elevation);
+    const core::DirectionalLight sun{glm::normalize(core::Vec3(std::cos(e), -std::sin(e), 0.3))};
+    gl::RenderSettings settings;
+    settings.width = settings.height = 64;
+    settings.lod = false;
+    const auto setup = core::computeShadowSetup({.camera = camera,
+                                                 .light = sun,
+                                                 .wsSceneBounds = s.wsBounds(),
+                                                 .technique = core::Technique::Focused,
+                                                 .mapSize = 512});
+    EXPECT_TRUE(setup);
+    if (!setup) return 0.0;
+    auto stats = (*renderer)->render(camera, sun, *setup, settings);
+    EXPECT_TRUE(stats) << stats.error();
+    if (!stats) return 0.0;
+    map = (*renderer)->readShadowMap(); // empty texels black
+    size_t covered = 0;
+    for (int y = 0; y < map.height; ++y)
+        for (int x = 0; x < map.width; ++x) covered += map.pixel(x, y)[0] != 0;
+    EXPECT_GT(covered, 1000u);
+    return covered > 0 ? double(stats->shadow.samplesPassed) / double(covered) : 0.0;
+}
+
+} // namespace
+
+// A leafy tree's cards come highest first (leafy_trees.cpp), so a shadow pass under a sun above
+// the horizon meets the upper leaves before those they hide and rejects these. The same cards
+// reversed (lowest first: each leaf written, then overwritten) draw the same map with three
+// times the samples — the counter sees the order. Measured when written, highest first 1.12,
+// 1.17 and 1.26 samples per covered texel with the sun 80°, 45° and 25° up; reversed 3.5–4.1;
+// in the order the cards grew (before they were sorted) 1.92–2.16.
+TEST_F(DepthProgramsTest, ALeafyCanopysCardsHighestFirstWriteItsTexelsNearlyOnce) {
+    const scene::Scene highestFirst = oneCanopy(false), lowestFirst = oneCanopy(true);
+    for (const double elevation : {80.0, 45.0, 25.0}) {
+        scene::Image map, reversedMap;
+        EXPECT_LT(samplesPerCoveredTexel(highestFirst, elevation, map), 1.4) << elevation << " degrees";
+        EXPECT_GT(samplesPerCoveredTexel(lowestFirst, elevation, reversedMap), 2.5) << elevation << " degrees";
+        EXPECT_EQ(map.rgba, reversedMap.rgba) << elevation << " degrees: the order changes no texel";
+    }
 }

@@ -1,6 +1,7 @@
 #include "shadowkit/scene/foliage_levels.h"
 
 #include "shadowkit/core/conventions.h"
+#include "shadowkit/scene/mesh_builder.h"
 
 namespace shadowkit::scene {
 
@@ -31,6 +32,7 @@ void appendCloudLevels(Mesh& mesh, std::span<const BakedCloud> clouds, int32_t f
         const auto base = static_cast<uint32_t>(mesh.vertices.size());
         mesh.vertices.insert(mesh.vertices.end(), cloud.vertices.begin(), cloud.vertices.end());
         for (const uint32_t index : cloud.indices) level.indices.push_back(base + index);
+        orderQuadsHighestFirst(mesh.vertices, level.indices);
         mesh.authoredLods.push_back(std::move(level));
     }
     mesh.computeBounds();

@@ -209,6 +209,7 @@ void emitCard(Mesh& mesh, const Card& card, float grow) {
 constexpr int kCardLevels = 2;
 void emitCards(Mesh& leaves, const std::vector<Card>& cards) {
     for (const Card& card : cards) emitCard(leaves, card, 1.0f);
+    orderQuadsHighestFirst(leaves.vertices, leaves.indices);
     for (int level = 1; level <= kCardLevels; ++level) {
         const size_t stride = size_t(1) << level;
         const float grow = std::sqrt(float(stride));
@@ -223,6 +224,7 @@ void emitCards(Mesh& leaves, const std::vector<Card>& cards) {
         AuthoredLod lod;
         lod.indices.assign(leaves.indices.begin() + std::ptrdiff_t(firstIndex), leaves.indices.end());
         leaves.indices.resize(firstIndex);
+        orderQuadsHighestFirst(leaves.vertices, lod.indices);
         lod.objectError = kept > 0 ? float(0.5 * sizes / double(kept)) : 0.0f;
         lod.keepsCoverage = true; // the leaves' area, in fewer cards
         leaves.authoredLods.push_back(std::move(lod));

@@ -1,5 +1,7 @@
 #include "shadowkit/scene/mesh_builder.h"
 
+#include "shadowkit/core/conventions.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -146,6 +148,24 @@ void addCard(Mesh& mesh, const glm::mat4& objectFromPart, glm::vec2 uvMin, glm::
     const uint32_t d = out.vertex({-0.5f, 1, 0}, facing, albedo, {uvMin.x, uvMax.y});
     out.triangle(a, b, c);
     out.triangle(a, c, d);
+}
+
+void orderQuadsHighestFirst(std::span<const Vertex> vertices, std::vector<uint32_t>& indices) {
+    constexpr size_t kQuad = 6;
+    SK_ASSERT(indices.size() % kQuad == 0, "orderQuadsHighestFirst(): not whole quads");
+    std::vector<std::pair<float, size_t>> heights; // the sum of the six corners' heights, the quad
+    for (size_t q = 0; q < indices.size() / kQuad; ++q) {
+        float height = 0.0f;
+        for (size_t i = 0; i < kQuad; ++i) height += vertices[indices[kQuad * q + i]].position.y;
+        heights.emplace_back(height, q);
+    }
+    std::stable_sort(heights.begin(), heights.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+    std::vector<uint32_t> ordered;
+    ordered.reserve(indices.size());
+    for (const auto& [height, q] : heights)
+        ordered.insert(ordered.end(), indices.begin() + std::ptrdiff_t(kQuad * q),
+                       indices.begin() + std::ptrdiff_t(kQuad * q + kQuad));
+    indices = std::move(ordered);
 }
 
 } // namespace shadowkit::scene

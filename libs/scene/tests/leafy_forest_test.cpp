@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <numeric>
 
@@ -98,6 +99,36 @@ TEST(LeafyTreesTest, CardLevelsHalveTheCardsAndKeepTheLeafArea) {
         ASSERT_EQ(lods.camera.size(), 3u);
         EXPECT_EQ(lods.shadow.size(), 3u);
         EXPECT_EQ(lods.camera[2].indexCount, tree.leaves.authoredLods[1].indices.size());
+    }
+}
+
+// Every level of the leaves, cards and clouds, lists its quads highest first (mesh_builder.h,
+// orderQuadsHighestFirst: a shadow pass then rejects the leaves the upper ones hide), each quad
+// whole — its two triangles together, as they were built.
+TEST(LeafyTreesTest, EveryLevelsQuadsComeHighestFirst) {
+    const Texture atlas = makeLeafAtlas();
+    for (int k = 0; k < kTreeSpeciesCount; ++k) {
+        LeafyTree tree = makeLeafyTree(static_cast<TreeSpecies>(k), 3);
+        const size_t cardLevels = tree.leaves.authoredLods.size();
+        ASSERT_FALSE(addFarLevels(tree, atlas.image, 1).empty()) << k;
+        std::vector<std::vector<uint32_t>> levels{tree.leaves.indices};
+        for (const AuthoredLod& level : tree.leaves.authoredLods) levels.push_back(level.indices);
+        ASSERT_GE(levels.size(), 5u) << k << ": the cards, then four clouds (" << cardLevels << " card levels before)";
+        for (size_t l = 0; l < levels.size(); ++l) {
+            const std::vector<uint32_t>& indices = levels[l];
+            ASSERT_EQ(indices.size() % 6, 0u) << k << " level " << l;
+            float previous = INFINITY;
+            for (size_t q = 0; q < indices.size() / 6; ++q) {
+                const uint32_t* quad = &indices[6 * q];
+                // Two triangles sharing an edge: the second starts at the first's first corner
+                // and takes its third (addCard's and the clouds' a, b, c / a, c, d).
+                ASSERT_TRUE(quad[3] == quad[0] && quad[4] == quad[2]) << k << " level " << l << " quad " << q;
+                float height = 0.0f;
+                for (int i = 0; i < 6; ++i) height += tree.leaves.vertices[quad[i]].position.y;
+                EXPECT_LE(height, previous) << k << " level " << l << " quad " << q;
+                previous = height;
+            }
+        }
     }
 }
 

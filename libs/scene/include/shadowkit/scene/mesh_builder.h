@@ -3,6 +3,9 @@
 
 #include "shadowkit/scene/scene.h"
 
+#include <span>
+#include <vector>
+
 namespace shadowkit::scene {
 
 // Appends to `mesh`, transformed by objectFromPart. Each uses smooth normals on curved
@@ -22,5 +25,14 @@ void addBox(Mesh& mesh, const glm::mat4& objectFromPart, const glm::vec3& halfEx
 // top-right — a leaf's cell of a texture atlas, top rows first (v grows downwards, glTF's
 // convention, so uvMin.y is usually the larger). Cards are drawn double-sided by their material.
 void addCard(Mesh& mesh, const glm::mat4& objectFromPart, glm::vec2 uvMin, glm::vec2 uvMax, const glm::vec3& albedo);
+
+// Reorders `indices`, quads of two triangles (six indices each: cards, billboard-cloud planes)
+// into `vertices`, highest centroid first, each quad's indices kept as they were. A shadow pass
+// under a sun above the horizon then meets a canopy's upper leaves before the ones they hide and
+// its depth test rejects those, instead of each being written and then overwritten: the leafy
+// forest's shadow pass wrote 2.4 samples per map texel on its low-sun views in the order the
+// cards grew, 1.9 this way. No pass's pixels depend on the order (the depth test keeps the
+// nearest). Precondition: indices.size() is a multiple of 6.
+void orderQuadsHighestFirst(std::span<const Vertex> vertices, std::vector<uint32_t>& indices);
 
 } // namespace shadowkit::scene
