@@ -91,9 +91,12 @@ public:
     struct Range {
         GLsizei indexCount = 0;
         size_t byteOffset = 0;
-        float objectError = 0.0f; // scene::LodLevel::objectError
-        bool closed = false;      // scene::LodLevel::closed
-        int32_t texture = -1;     // scene::LodLevel::texture: its own base colour, else the material's
+        // How far, in object metres, a receiver drawn at this level moves its shadow lookup
+        // towards the light (shadow_lookup.glsl, receiverLookup): a simplified surface's error
+        // (scene::LodLevel::objectError), 0 for a level that keeps coverage (rangesOf).
+        float lookupOffset = 0.0f;
+        bool closed = false;  // scene::LodLevel::closed
+        int32_t texture = -1; // scene::LodLevel::texture: its own base colour, else the material's
     };
 
 private:

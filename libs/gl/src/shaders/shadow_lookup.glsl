@@ -18,7 +18,8 @@ float viewDepthOf(vec3 ws) { return dot(ws - wsEye.xyz, wsViewForward.xyz); }
 // Where a receiver looks itself up: a simplified surface lies up to `lodError` metres off
 // the true one, which the map holds, so it is moved that far towards the light — never
 // behind its own surface (no self-shadowing), at most a fraction of a pixel from it (the
-// level was chosen so). Exactly `ws` for full meshes (lodError 0).
+// level was chosen so). Exactly `ws` for full meshes and levels that keep coverage (lodError 0:
+// gpu_scene.cpp, rangesOf).
 vec3 receiverLookup(vec3 ws, float lodError) { return ws + wsTowardsLight.xyz * lodError; }
 
 int cascadeOf(float viewDepth) { return skCascadeOf(viewDepth, mapCount); }
