@@ -31,6 +31,7 @@ inline constexpr size_t kMaxLodLevels = 5;
 // simplified card would no longer show the leaf. A simplified chain keeps the four levels every
 // blob-forest figure was measured with; a mesh's own levels take up to kMaxLodLevels.
 scene::LodOptions lodOptionsOf(const scene::Scene& scene, const scene::Mesh& mesh);
+
 // glDrawElementsIndirect's command: index count, instance count, first index, base vertex, base instance.
 inline constexpr size_t kIndirectCommandWords = 5;
 
