@@ -297,11 +297,14 @@ vec4 skLayerAbsorbanceBefore(vec4 layers, float metres, out vec4 share) {
 }
 
 #ifdef SK_SHADOW_OPACITY
-// The caller names two sampler2DArrays laid out as the depth maps: the layers' transmittance
-// (RGBA, GL_LINEAR; 1 where no leaf is) and the first leaf's linear depth (R, GL_NEAREST; 1 where
-// no leaf covers the texel), and when the lookup applies:
-//   #define SK_SHADOW_OPACITY          myOpacityLayers
-//   #define SK_SHADOW_OPACITY_FIRST    myOpacityFirst
+// The caller names three sampler2DArrays laid out as the depth maps: the layers' transmittance
+// (RGBA, GL_LINEAR; 1 where no leaf is), the first leaf's linear depth (R, GL_NEAREST; 1 where
+// no leaf covers the texel) and the layers prefiltered (RGBA, mipmapped, GL_LINEAR_MIPMAP_LINEAR:
+// per texel T, A = −ln T and A × the leaves' depth; gl's opacity_prefilter.frag is the model),
+// and when the lookup applies:
+//   #define SK_SHADOW_OPACITY              myOpacityLayers
+//   #define SK_SHADOW_OPACITY_FIRST        myOpacityFirst
+//   #define SK_SHADOW_OPACITY_PREFILTERED  myOpacityPrefiltered
 //   #define SK_SHADOW_OPACITY_ENABLED  (myFoliageOpacity != 0)   (default: always)
 #ifndef SK_SHADOW_OPACITY_ENABLED
 #define SK_SHADOW_OPACITY_ENABLED true
@@ -325,22 +328,38 @@ float skLeavesInFront(int layer, vec2 uv, float depth, float metresPerDepth, out
     return total;
 }
 
-// The leaves' transmittance at one point (u, v) of map `layer`.
+// The leaves' transmittance at one point (u, v) of map `layer`: exp(−Σ share · (−ln T)) over the
+// layers, computed as the product it is, Π T^share. Every layer but the one the receiver lies in
+// has a share of 0 or 1, so that is the product of the layers wholly in front times one power:
+// a logarithm and an exponential per tap of the disk where the sum took five.
 float skOpacityTransmittanceAt(int layer, vec2 uv, float depth, float metresPerDepth) {
-    float unused;
-    return exp(-skLeavesInFront(layer, uv, depth, metresPerDepth, unused));
+    const float first = texture(SK_SHADOW_OPACITY_FIRST, vec3(uv, float(layer))).r;
+    const float metres = (depth - first) * metresPerDepth;
+    if (!(metres > 0.0)) return 1.0; // in front of every leaf, or none here
+    const vec4 layers = max(texture(SK_SHADOW_OPACITY, vec3(uv, float(layer))), vec4(1e-6));
+    const vec4 end = SK_OPACITY_LAYER_EDGES, start = vec4(0.0, end.xyz);
+    const vec4 share = clamp((metres - start) / (end - start), 0.0, 1.0);
+    const vec4 whole = vec4(greaterThanEqual(share, vec4(1.0)));
+    const vec4 inside = vec4(greaterThan(share, vec4(0.0))) - whole; // one-hot, or none
+    const vec4 front = mix(vec4(1.0), layers, whole);
+    const float partial = dot(inside, layers) + 1.0 - dot(inside, vec4(1.0)); // 1 where none
+    return front.x * front.y * front.z * front.w * pow(partial, dot(inside, share));
 }
 
 // The share of the sun the leaves let through to a receiver at `ws` in map `layer`. The opacity
 // layers are in linear depth whatever the depth map's layout (linearDepthFromWorld's row, whose
 // gradient's length is 1 / the range in metres). With PCSS and a sun of some size, skPcss's two
-// steps on the layers: a search of the widest disk that can matter for leaves whose cone reaches
-// the receiver (their mean distance, weighted by absorbance), then the mean transmittance over
-// the sun's disk at that distance, o.filterTaps taps of a Vogel disk each; otherwise at the
-// receiver's own point. The search is what lets light through a gap and shade the ground beside
-// a canopy's edge: the receiver's own texel may see no leaf at all (measured on the leafy forest:
-// taking the distance from that texel alone drew the penumbrae at 0.65 of the truth's width and
-// lit 35 % of the ground's penumbra pixels whole; docs/materials.md).
+// steps on the layers: the leaves' distance in front of the receiver, then the mean transmittance
+// over the sun's disk at that distance, o.filterTaps taps of a Vogel disk; otherwise at the
+// receiver's own point. The distance is that of the leaves in front of the receiver in its own
+// texel, or where there are none — a gap in a canopy, the ground just beside its shadow — the
+// absorbance-weighted mean depth of the leaves over the widest disk that can matter, one fetch of
+// the prefiltered layers (opacity_prefilter.frag). Without that search such a receiver was drawn
+// wholly lit (measured on the leafy forest: penumbrae at 0.65 of the truth's width, 35 % of the
+// ground's penumbra pixels lit whole; docs/materials.md). The search used to take o.filterTaps
+// taps of the layers too, counting only leaves whose cone reaches the receiver: the same figures
+// to 0.0001 of soft_mae on the leafy forest's `perpendicular` and `aerial`, and most of the
+// lookup's cost.
 float skFoliageTransmittance(int layer, mat4 textureFromWorld, vec4 linearDepthFromWorld, SkShadowOptions o, vec3 ws) {
     vec4 t;
     const vec3 uvz = skShadowCoordinates(textureFromWorld, linearDepthFromWorld, true, ws, t);
@@ -351,32 +370,28 @@ float skFoliageTransmittance(int layer, mat4 textureFromWorld, vec4 linearDepthF
     if (o.filterKind != SK_FILTER_PCSS || !(o.lightTanHalfAngle > 0.0) ||
         !skSunDiskInMap(textureFromWorld, linearDepthFromWorld, o, t, uvFromDisk, depthPerMetre, metresPerTexel))
         return skOpacityTransmittanceAt(layer, uvz.xy, uvz.z, metresPerDepth);
-
     const float widestMetres = o.poissonRadiusTexels * metresPerTexel;
     const int taps = max(o.filterTaps, 1);
-    const float angle = skPixelAngle();
-    // 1. Leaves anywhere up to the map's near plane whose cone reaches the receiver, the taps at
-    // radii growing linearly from its own texel, half a texel apart at most (skPcss's search).
-    const float searchMetres = min(uvz.z * metresPerDepth * o.lightTanHalfAngle,
-                                   min(0.5 * float(taps) * metresPerTexel, widestMetres));
-    float weightedMetres = 0.0, mass = 0.0;
-    vec2 direction = vec2(cos(angle), sin(angle));
-    for (int i = 0; i < taps; ++i, direction = kSkGoldenTurn * direction) {
-        const float rho = float(i) / float(taps) * searchMetres;
-        float away;
-        const float absorbance =
-            skLeavesInFront(layer, uvz.xy + uvFromDisk * (direction * rho), uvz.z, metresPerDepth, away);
-        if (absorbance > 0.0 && away * o.lightTanHalfAngle >= rho) {
-            weightedMetres += absorbance * away;
-            mass += absorbance;
-        }
-    }
-    if (!(mass > 0.0)) return 1.0;
 
-    // 2. The mean transmittance over the cone's disk at the leaves' mean distance.
-    const float diskMetres = min(weightedMetres / mass * o.lightTanHalfAngle, widestMetres);
+    // 1. The leaves' distance: in the receiver's own texel, else their mean over the search's disk
+    // (PCSS's: the cone up to the map's near plane, at most half a texel per tap).
+    float awayMetres;
+    if (!(skLeavesInFront(layer, uvz.xy, uvz.z, metresPerDepth, awayMetres) > 0.0)) {
+        const float searchMetres = min(uvz.z * metresPerDepth * o.lightTanHalfAngle,
+                                       min(0.5 * float(taps) * metresPerTexel, widestMetres));
+        const float side = 1.77 * searchMetres; // √π r: a square of the disk's area
+        const vec4 found = textureGrad(SK_SHADOW_OPACITY_PREFILTERED, vec3(uvz.xy, float(layer)),
+                                       uvFromDisk[0] * side, uvFromDisk[1] * side);
+        if (!(found.y > 1e-3)) return 1.0; // no leaf there
+        awayMetres = (uvz.z - found.z / found.y) * metresPerDepth;
+        if (!(awayMetres > 0.0)) return 1.0; // the leaves there lie behind the receiver
+    }
+
+    // 2. The mean transmittance over the cone's disk at that distance.
+    const float diskMetres = min(awayMetres * o.lightTanHalfAngle, widestMetres);
+    const float angle = skPixelAngle();
     float lit = 0.0;
-    direction = vec2(cos(angle), sin(angle));
+    vec2 direction = vec2(cos(angle), sin(angle));
     for (int i = 0; i < taps; ++i, direction = kSkGoldenTurn * direction) {
         const vec2 offset = uvFromDisk * (direction * (sqrt((float(i) + 0.5) / float(taps)) * diskMetres));
         lit += skOpacityTransmittanceAt(layer, uvz.xy + offset, uvz.z, metresPerDepth);

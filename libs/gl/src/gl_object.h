@@ -108,4 +108,18 @@ inline Texture createMapLayers(GLenum internalFormat, int size, int layers, GLin
     return t;
 }
 
+// The same with a full mip chain, read trilinearly: means over squares of 2^k texels.
+inline Texture createMipmappedMapLayers(GLenum internalFormat, int size, int layers) {
+    GLuint id = 0;
+    glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &id);
+    int levels = 1;
+    while ((size >> levels) > 0) ++levels;
+    glTextureStorage3D(id, levels, internalFormat, size, size, layers);
+    glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(id, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(id, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    return Texture(id);
+}
+
 } // namespace shadowkit::gl

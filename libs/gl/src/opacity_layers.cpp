@@ -18,23 +18,31 @@ core::Result<std::unique_ptr<OpacityLayers>> OpacityLayers::create() {
         if (!program) return program.errorInfo();
         (first ? layers->m_first : layers->m_transmittance) = std::move(program).value();
     }
+    auto prefilter =
+        buildProgram("opacity layers, prefiltered", {kFullscreenVert}, {kShadowkitShadowsGlsl, kOpacityPrefilterFrag});
+    if (!prefilter) return prefilter.errorInfo();
+    layers->m_prefilter = std::move(prefilter).value();
     layers->m_framebuffer = createFramebuffer();
+    GLuint vao = 0;
+    glCreateVertexArrays(1, &vao); // attribute-less: the prefilter's triangle comes from gl_VertexID
+    layers->m_emptyVertexArray = VertexArray(vao);
     return layers;
 }
 
 core::Status OpacityLayers::prepare(int size, int layers) {
     if (m_size == size && m_count == layers) return core::Ok{};
-    m_firstDepth.reset(), m_layers.reset(); // the old ones go before the new ones are allocated
+    m_firstDepth.reset(), m_layers.reset(), m_prefiltered.reset(); // the old ones go first
     while (glGetError() != GL_NO_ERROR) {
     }
     m_firstDepth = createMapLayers(GL_R32F, size, layers, GL_NEAREST);
     m_layers = createMapLayers(GL_RGBA16F, size, layers, GL_LINEAR);
+    m_prefiltered = createMipmappedMapLayers(GL_RGBA16F, size, layers);
     if (glGetError() == GL_OUT_OF_MEMORY) {
-        m_firstDepth.reset(), m_layers.reset();
+        m_firstDepth.reset(), m_layers.reset(), m_prefiltered.reset();
         m_size = m_count = 0;
         return core::environmentError("map_size: the GL driver is out of memory for opacity layers of " +
                                           std::to_string(layers) + " × " + std::to_string(size) +
-                                          "² (12 bytes a texel)",
+                                          "² (23 bytes a texel)",
                                       "map_size");
     }
     m_size = size, m_count = layers;
@@ -79,14 +87,34 @@ DrawStats OpacityLayers::draw(const GpuScene& scene, const core::ShadowSetup& se
     glDisable(GL_BLEND);
     glBlendFunc(GL_ONE, GL_ZERO);
     glDisable(GL_DEPTH_CLAMP);
+    prefilter(setup); // still with no depth test: one triangle over each whole layer
     glEnable(GL_DEPTH_TEST);
     glDepthMask(GL_TRUE);
     return draws;
 }
 
+void OpacityLayers::prefilter(const core::ShadowSetup& setup) const {
+    glUseProgram(m_prefilter.id());
+    glBindVertexArray(m_emptyVertexArray.id());
+    glBindTextureUnit(kOpacityUnit, m_layers.id());
+    glBindTextureUnit(kOpacityFirstUnit, m_firstDepth.id());
+    for (size_t layer = 0; layer < setup.views.size() && layer < size_t(m_count); ++layer) {
+        const auto l = static_cast<GLint>(layer);
+        glNamedFramebufferTextureLayer(m_framebuffer.id(), GL_COLOR_ATTACHMENT0, m_prefiltered.id(), 0, l);
+        glProgramUniform1i(m_prefilter.id(), kOpacityLayerLocation, l);
+        // The linear depth row's gradient is 1 / the map's depth range in metres.
+        glProgramUniform1f(m_prefilter.id(), kOpacityDepthPerMetreLocation,
+                           static_cast<float>(glm::length(core::Vec3(setup.views[layer].linearDepthFromWorld))));
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+    }
+    glBindVertexArray(0);
+    glGenerateTextureMipmap(m_prefiltered.id());
+}
+
 void OpacityLayers::bind() const {
     glBindTextureUnit(kOpacityUnit, m_layers.id());
     glBindTextureUnit(kOpacityFirstUnit, m_firstDepth.id());
+    glBindTextureUnit(kOpacityPrefilteredUnit, m_prefiltered.id());
 }
 
 } // namespace shadowkit::gl

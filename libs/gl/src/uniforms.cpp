@@ -185,6 +185,8 @@ const std::string& shaderPrelude() {
         define("SK_BASE_COLOR_UNIT", kBaseColorUnit);
         define("SK_OPACITY_UNIT", kOpacityUnit);
         define("SK_OPACITY_FIRST_UNIT", kOpacityFirstUnit);
+        define("SK_OPACITY_PREFILTERED_UNIT", kOpacityPrefilteredUnit);
+        define("SK_OPACITY_DEPTH_PER_METRE_LOCATION", kOpacityDepthPerMetreLocation);
         define("SK_OPACITY_LAYER_LOCATION", kOpacityLayerLocation);
         define("SK_BASE_ALPHA_LOCATION", kBaseAlphaLocation);
         define("SK_ALPHA_CUTOFF_LOCATION", kAlphaCutoffLocation);

@@ -55,9 +55,10 @@ inline constexpr unsigned kMomentsUnit = 8;       // camera passes: the sun's mo
 inline constexpr unsigned kBaseColorUnit = 9;     // SK_MATERIAL passes: the batch's base colour texture (material.glsl)
 inline constexpr unsigned kOpacityUnit = 10;      // camera passes: the sun's opacity layers (opacity_layers.h)
 inline constexpr unsigned kOpacityFirstUnit = 11; // camera passes and opacity.frag: the first leaves' depths
-inline constexpr unsigned kMomentsSourceUnit = 0; // moments.comp: the depth maps or moments it reads
-inline constexpr unsigned kMomentsImageUnit = 0;  // moments.comp: the image it writes
-inline constexpr unsigned kLocalDepthBinding = 5; // uniform block LocalDepth (local_depth.glsl)
+inline constexpr unsigned kOpacityPrefilteredUnit = 12;        // camera passes: the layers prefiltered, mipmapped
+inline constexpr unsigned kMomentsSourceUnit = 0;              // moments.comp: the depth maps or moments it reads
+inline constexpr unsigned kMomentsImageUnit = 0;               // moments.comp: the image it writes
+inline constexpr unsigned kLocalDepthBinding = 5;              // uniform block LocalDepth (local_depth.glsl)
 inline constexpr unsigned kLocalLightsBinding = 6;             // uniform block LocalLights (local_lights.glsl)
 inline constexpr int kMaxLocalLights = kMaxLocalLightsPerKind; // GLSL: SK_MAX_LOCAL_LIGHTS
 // GPU culling's storage buffers (gpu_cull.comp, depth_pyramid.comp; gpu_culling.h), bound before each dispatch.
@@ -81,6 +82,7 @@ inline constexpr int kBoxOffsetLocation = 3;      // uniform uint boxOffset (occ
 inline constexpr int kBaseAlphaLocation = 4;      // uniform float skBaseAlpha (material.glsl): baseColorFactor.a
 inline constexpr int kAlphaCutoffLocation = 5;    // uniform float skAlphaCutoff (material.glsl); < 0: never discard
 inline constexpr int kOpacityLayerLocation = 6;   // uniform int opacityLayer (opacity.frag): the map drawn
+inline constexpr int kOpacityDepthPerMetreLocation = 7; // uniform float depthPerMetre (opacity_prefilter.frag)
 
 // std140: scalars pack in fours, vec4 and mat4 start on 16 bytes. Booleans are int32.
 

@@ -221,7 +221,8 @@ TEST_F(FoliageOpacityTest, UnderTheSunsDiskTheGroundBesideACanopysEdgeIsPartlySh
     // ground 10–25 cm beyond the edge sees some of the card (a half-covered one) across part of the
     // disk, about 0.9 of the sun on the mean, though the map's texel above it holds no leaf. The
     // lookup must look for leaves over the disk, as PCSS's blocker search does; taken from the
-    // receiver's own texel alone it drew that ground wholly lit.
+    // receiver's own texel alone it drew that ground wholly lit, and so did a search in the
+    // prefiltered layers while nothing had been drawn into them (seen while it was written).
     const scene::Scene s = cardsOverGround();
     auto renderer = gl::Renderer::create(s);
     ASSERT_TRUE(renderer) << renderer.error();

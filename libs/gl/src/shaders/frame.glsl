@@ -44,6 +44,8 @@ layout(binding = SK_OPACITY_UNIT) uniform sampler2DArray shadowOpacity;
 layout(binding = SK_OPACITY_FIRST_UNIT) uniform sampler2DArray shadowOpacityFirst;
 #define SK_SHADOW_OPACITY shadowOpacity
 #define SK_SHADOW_OPACITY_FIRST shadowOpacityFirst
+layout(binding = SK_OPACITY_PREFILTERED_UNIT) uniform sampler2DArray shadowOpacityPrefiltered;
+#define SK_SHADOW_OPACITY_PREFILTERED shadowOpacityPrefiltered
 #define SK_SHADOW_OPACITY_ENABLED (foliageOpacity != 0)
 
 // Virtual shadow maps (virtual_pages.h): the C++ side is VirtualMapsUniforms. The levels'
