@@ -5,10 +5,11 @@
 # data/sweeps/leafy-opacity.json at 640 × 360 — written into docs/materials.md: the means against
 # both truths and the figures per view. About 25 minutes on this project's 2-core llvmpipe
 # machine (the leafy shadow passes dominate; the opacity layers draw the leaves twice more).
+#   SHADOWKIT=PATH   the binary to run (a copy keeps a rebuild from changing it mid-run)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-[ -x build/apps/shadowkit/shadowkit ] || tools/build.sh
-B=build/apps/shadowkit/shadowkit
+[[ -n ${SHADOWKIT:-} ]] || [ -x build/apps/shadowkit/shadowkit ] || tools/build.sh
+B=${SHADOWKIT:-build/apps/shadowkit/shadowkit}
 "$B" sweep data/sweeps/leafy-opacity.json --out out/sweeps/leafy-opacity --discard-stale
 results=out/sweeps/leafy-opacity/results.csv
 python3 tools/readme_tables.py --into docs/materials.md:foliage-opacity soft-table "$results"
