@@ -299,8 +299,8 @@ vec4 skLayerAbsorbanceBefore(vec4 layers, float metres, out vec4 share) {
 #ifdef SK_SHADOW_OPACITY
 // The caller names three sampler2DArrays laid out as the depth maps: the layers' transmittance
 // (RGBA, GL_LINEAR; 1 where no leaf is), the first leaf's linear depth (R, GL_NEAREST; 1 where
-// no leaf covers the texel) and the layers prefiltered (RGBA, mipmapped, GL_LINEAR_MIPMAP_LINEAR:
-// per texel T, A = −ln T and A × the leaves' depth; gl's opacity_prefilter.frag is the model),
+// no leaf covers the texel) and the layers prefiltered (RG, mipmapped, GL_LINEAR_MIPMAP_LINEAR:
+// per texel A = −ln T and A × the leaves' depth; gl's opacity_prefilter.frag is the model),
 // and when the lookup applies:
 //   #define SK_SHADOW_OPACITY              myOpacityLayers
 //   #define SK_SHADOW_OPACITY_FIRST        myOpacityFirst
@@ -382,8 +382,8 @@ float skFoliageTransmittance(int layer, mat4 textureFromWorld, vec4 linearDepthF
         const float side = 1.77 * searchMetres; // √π r: a square of the disk's area
         const vec4 found = textureGrad(SK_SHADOW_OPACITY_PREFILTERED, vec3(uvz.xy, float(layer)),
                                        uvFromDisk[0] * side, uvFromDisk[1] * side);
-        if (!(found.y > 1e-3)) return 1.0; // no leaf there
-        awayMetres = (uvz.z - found.z / found.y) * metresPerDepth;
+        if (!(found.x > 1e-3)) return 1.0; // no leaf there
+        awayMetres = (uvz.z - found.y / found.x) * metresPerDepth;
         if (!(awayMetres > 0.0)) return 1.0; // the leaves there lie behind the receiver
     }
 

@@ -36,13 +36,13 @@ core::Status OpacityLayers::prepare(int size, int layers) {
     }
     m_firstDepth = createMapLayers(GL_R32F, size, layers, GL_NEAREST);
     m_layers = createMapLayers(GL_RGBA16F, size, layers, GL_LINEAR);
-    m_prefiltered = createMipmappedMapLayers(GL_RGBA16F, size, layers);
+    m_prefiltered = createMipmappedMapLayers(GL_RG16F, size, layers);
     if (glGetError() == GL_OUT_OF_MEMORY) {
         m_firstDepth.reset(), m_layers.reset(), m_prefiltered.reset();
         m_size = m_count = 0;
         return core::environmentError("map_size: the GL driver is out of memory for opacity layers of " +
                                           std::to_string(layers) + " × " + std::to_string(size) +
-                                          "² (23 bytes a texel)",
+                                          "² (17 bytes a texel)",
                                       "map_size");
     }
     m_size = size, m_count = layers;

@@ -3,9 +3,9 @@
 // Forum 27(2)). Per texel of each map, the linear depth of the first leaf (R32F) and what the
 // leaves let through in four layers measured back from it (RGBA16F); glsl/shadowkit_shadows.glsl's
 // skFoliageTransmittance reads them and multiplies the depth map's term, which then holds the
-// opaque casters only (PassPrograms::Batches). Beside them the layers prefiltered (RGBA16F with
-// its mip chain: per texel T, A = −ln T and A × the leaves' depth), from which the lookup reads
-// the mean depth of the leaves around a receiver in one fetch. About 23 bytes a texel beside the
+// opaque casters only (PassPrograms::Batches). Beside them the layers prefiltered (RG16F with
+// its mip chain: per texel A = −ln T and A × the leaves' depth), from which the lookup reads the
+// mean depth of the leaves around a receiver in one fetch. About 17 bytes a texel beside the
 // depth map's 4.
 //
 // Two passes over the alpha-tested batches of each map's list, with no depth test: the first
@@ -50,7 +50,7 @@ private:
     Program m_first, m_transmittance; // opacity.frag with and without SK_OPACITY_FIRST, materials only
     Program m_prefilter;              // opacity_prefilter.frag
     Texture m_firstDepth, m_layers;
-    Texture m_prefiltered; // mipmapped: what a receiver below the leaves sees of them (opacity_prefilter.frag)
+    Texture m_prefiltered; // mipmapped: the leaves' absorbance and its depth moment (opacity_prefilter.frag)
     Framebuffer m_framebuffer;
     VertexArray m_emptyVertexArray;
     int m_size = 0, m_count = 0;
