@@ -357,9 +357,8 @@ float skOpacityTransmittanceAt(int layer, vec2 uv, float depth, float metresPerD
 // the prefiltered layers (opacity_prefilter.frag). Without that search such a receiver was drawn
 // wholly lit (measured on the leafy forest: penumbrae at 0.65 of the truth's width, 35 % of the
 // ground's penumbra pixels lit whole; docs/materials.md). The search used to take o.filterTaps
-// taps of the layers too, counting only leaves whose cone reaches the receiver: the same figures
-// to 0.0001 of soft_mae on the leafy forest's `perpendicular` and `aerial`, and most of the
-// lookup's cost.
+// taps of the layers too, counting only leaves whose cone reaches the receiver: most of the
+// lookup's cost, for soft_mae within 0.0004 of this one's on every view of the leafy forest.
 float skFoliageTransmittance(int layer, mat4 textureFromWorld, vec4 linearDepthFromWorld, SkShadowOptions o, vec3 ws) {
     vec4 t;
     const vec3 uvz = skShadowCoordinates(textureFromWorld, linearDepthFromWorld, true, ws, t);
