@@ -288,12 +288,24 @@ vec4 skOpacityLayerOf(float metres) {
     return vec4(metres < end.x, metres >= end.x && metres < end.y, metres >= end.y && metres < end.z, metres >= end.z);
 }
 
+// How much of each layer lies in front of a receiver `metres` behind the first leaf, 0 to 1.
+vec4 skLayerShareBefore(float metres) {
+    const vec4 end = SK_OPACITY_LAYER_EDGES, start = vec4(0.0, end.xyz);
+    return clamp((metres - start) / (end - start), 0.0, 1.0);
+}
+
 // Each layer's absorbance, −ln T, in front of a receiver `metres` behind the first leaf; `share`
 // says how much of each layer lies in front of it.
 vec4 skLayerAbsorbanceBefore(vec4 layers, float metres, out vec4 share) {
-    const vec4 end = SK_OPACITY_LAYER_EDGES, start = vec4(0.0, end.xyz);
-    share = clamp((metres - start) / (end - start), 0.0, 1.0);
+    share = skLayerShareBefore(metres);
     return -log(max(layers, vec4(1e-6))) * share; // 0 · ln 0 would be NaN
+}
+
+// The mean distance behind the first leaf of the leaves of absorbance `mass` (> 0 in all) in the
+// parts `share` of the layers: each layer's part weighted by its absorbance, taken at its middle.
+float skLeavesMeanMetres(vec4 mass, vec4 share) {
+    const vec4 end = SK_OPACITY_LAYER_EDGES, start = vec4(0.0, end.xyz);
+    return dot(mass, start + 0.5 * share * (end - start)) / dot(mass, vec4(1.0));
 }
 
 #ifdef SK_SHADOW_OPACITY
@@ -323,8 +335,7 @@ float skLeavesInFront(int layer, vec2 uv, float depth, float metresPerDepth, out
     const vec4 mass = skLayerAbsorbanceBefore(texture(SK_SHADOW_OPACITY, vec3(uv, float(layer))), metres, share);
     const float total = dot(mass, vec4(1.0));
     if (!(total > 0.0)) return 0.0;
-    const vec4 end = SK_OPACITY_LAYER_EDGES, start = vec4(0.0, end.xyz);
-    metresAway = metres - dot(mass, start + 0.5 * share * (end - start)) / total;
+    metresAway = metres - skLeavesMeanMetres(mass, share);
     return total;
 }
 
@@ -337,8 +348,7 @@ float skOpacityTransmittanceAt(int layer, vec2 uv, float depth, float metresPerD
     const float metres = (depth - first) * metresPerDepth;
     if (!(metres > 0.0)) return 1.0; // in front of every leaf, or none here
     const vec4 layers = max(texture(SK_SHADOW_OPACITY, vec3(uv, float(layer))), vec4(1e-6));
-    const vec4 end = SK_OPACITY_LAYER_EDGES, start = vec4(0.0, end.xyz);
-    const vec4 share = clamp((metres - start) / (end - start), 0.0, 1.0);
+    const vec4 share = skLayerShareBefore(metres);
     const vec4 whole = vec4(greaterThanEqual(share, vec4(1.0)));
     const vec4 inside = vec4(greaterThan(share, vec4(0.0))) - whole; // one-hot, or none
     const vec4 front = mix(vec4(1.0), layers, whole);

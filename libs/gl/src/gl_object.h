@@ -90,36 +90,25 @@ inline Texture createTexture2D(GLenum internalFormat, int width, int height) {
     return Texture(id);
 }
 
-inline Texture createTexture2DArray(GLenum internalFormat, int width, int height, int layers) {
+inline Texture createTexture2DArray(GLenum internalFormat, int width, int height, int layers, int levels = 1) {
     GLuint id = 0;
     glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &id);
-    glTextureStorage3D(id, 1, internalFormat, width, height, layers);
+    glTextureStorage3D(id, levels, internalFormat, width, height, layers);
     return Texture(id);
 }
 
 // Square layers read through their own filter (GL_NEAREST or GL_LINEAR), clamped at the edges:
-// the side textures of the sun's maps (moments, opacity layers).
-inline Texture createMapLayers(GLenum internalFormat, int size, int layers, GLint filter) {
-    Texture t = createTexture2DArray(internalFormat, size, size, layers);
-    glTextureParameteri(t.id(), GL_TEXTURE_MIN_FILTER, filter);
+// the side textures of the sun's maps (moments, opacity layers). With `mipmapped`, a full mip
+// chain read trilinearly (GL_LINEAR): means over squares of 2^k texels.
+inline Texture createMapLayers(GLenum internalFormat, int size, int layers, GLint filter, bool mipmapped = false) {
+    int levels = 1;
+    while (mipmapped && (size >> levels) > 0) ++levels;
+    Texture t = createTexture2DArray(internalFormat, size, size, layers, levels);
+    glTextureParameteri(t.id(), GL_TEXTURE_MIN_FILTER, mipmapped ? GL_LINEAR_MIPMAP_LINEAR : filter);
     glTextureParameteri(t.id(), GL_TEXTURE_MAG_FILTER, filter);
     glTextureParameteri(t.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     glTextureParameteri(t.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     return t;
-}
-
-// The same with a full mip chain, read trilinearly: means over squares of 2^k texels.
-inline Texture createMipmappedMapLayers(GLenum internalFormat, int size, int layers) {
-    GLuint id = 0;
-    glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &id);
-    int levels = 1;
-    while ((size >> levels) > 0) ++levels;
-    glTextureStorage3D(id, levels, internalFormat, size, size, layers);
-    glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-    glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTextureParameteri(id, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTextureParameteri(id, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    return Texture(id);
 }
 
 } // namespace shadowkit::gl

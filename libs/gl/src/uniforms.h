@@ -81,7 +81,7 @@ inline constexpr int kLodErrorLocation = 2;       // uniform float lodObjectErro
 inline constexpr int kBoxOffsetLocation = 3;      // uniform uint boxOffset (occlusion_box.vert): first box of the draw
 inline constexpr int kBaseAlphaLocation = 4;      // uniform float skBaseAlpha (material.glsl): baseColorFactor.a
 inline constexpr int kAlphaCutoffLocation = 5;    // uniform float skAlphaCutoff (material.glsl); < 0: never discard
-inline constexpr int kOpacityLayerLocation = 6;   // uniform int opacityLayer (opacity.frag): the map drawn
+inline constexpr int kOpacityLayerLocation = 6;   // uniform int (opacity.frag, opacity_prefilter.frag): the map drawn
 inline constexpr int kOpacityDepthPerMetreLocation = 7; // uniform float depthPerMetre (opacity_prefilter.frag)
 
 // std140: scalars pack in fours, vec4 and mat4 start on 16 bytes. Booleans are int32.

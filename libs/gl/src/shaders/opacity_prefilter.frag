@@ -18,9 +18,9 @@ layout(location = 0) out vec2 prefiltered;
 void main() {
     const ivec3 p = ivec3(gl_FragCoord.xy, mapLayer);
     const float first = texelFetch(firstDepths, p, 0).r;
-    const vec4 absorbance = -log(max(texelFetch(layers, p, 0), vec4(1e-6)));
+    vec4 share; // every layer whole: a receiver behind the last edge
+    const vec4 absorbance = skLayerAbsorbanceBefore(texelFetch(layers, p, 0), SK_OPACITY_LAYER_EDGES.w, share);
     const float total = dot(absorbance, vec4(1.0));
-    const vec4 end = SK_OPACITY_LAYER_EDGES, start = vec4(0.0, end.xyz);
-    const float metres = total > 0.0 ? dot(absorbance, 0.5 * (start + end)) / total : 0.0;
+    const float metres = total > 0.0 ? skLeavesMeanMetres(absorbance, share) : 0.0;
     prefiltered = vec2(total, total * (first + metres * depthPerMetre));
 }
