@@ -279,16 +279,20 @@ void PassLists::describeGpuLists(FrameFigureSources& sources) const {
                 {m_local[i].indirect, m_local[i].count, CulledListShape::Pass::Local, m_localFaces[i]});
 }
 
-std::vector<uint32_t> PassLists::nearestFirst(const core::Mat4& clipFromWorld) const {
-    std::vector<double> depth(m_batchBounds.size(), INFINITY); // empty batches last
-    for (size_t b = 0; b < depth.size(); ++b) {
-        if (m_batchBounds[b].isEmpty()) continue;
-        const core::Vec4 c = clipFromWorld * core::Vec4(m_batchBounds[b].center(), 1.0);
-        depth[b] = c.z / c.w;
-    }
-    std::vector<uint32_t> order(depth.size());
+std::vector<uint32_t> PassLists::nearestFirst(const core::Vec3& wsTowardsLight) const {
+    // Along any ray of a sun above the horizon, nearer the sun is higher: a linear key
+    // dot(p, a) orders every ray's points as the depth test does whenever dot(a, wsTowardsLight)
+    // > 0. Of those keys, height (a = up) ignores where a batch lies across the ground: the
+    // light's own distance (a = wsTowardsLight) would rank the ground under a roof by the
+    // ground's centre, which on a slope towards the sun lies far nearer the sun than the roof.
+    // A sun on the horizon leaves height no order along its rays: its distance does.
+    const core::Vec3 key = wsTowardsLight.y > 1e-3 ? core::Vec3(0.0, 1.0, 0.0) : wsTowardsLight;
+    std::vector<double> nearness(m_batchBounds.size(), -INFINITY); // empty batches last
+    for (size_t b = 0; b < nearness.size(); ++b)
+        if (!m_batchBounds[b].isEmpty()) nearness[b] = glm::dot(m_batchBounds[b].center(), key);
+    std::vector<uint32_t> order(nearness.size());
     std::iota(order.begin(), order.end(), 0u);
-    std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return depth[a] < depth[b]; });
+    std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return nearness[a] > nearness[b]; });
     return order;
 }
 
@@ -297,6 +301,7 @@ void PassLists::planSunMaps(const PassPlanInputs& in, std::vector<PassList*>& li
     const bool gpu = settings.culling == Culling::Gpu;
     const LodProjection cameraProjection = cameraProjectionOf(in.camera, settings);
     m_sun.resize(virtualMaps(in.setup) ? 0 : in.setup.views.size());
+    const std::vector<uint32_t> order = nearestFirst(in.wsTowardsLight);
     for (size_t i = 0; i < m_sun.size(); ++i) {
         // No near plane: the pass clamps depth, so casters between the light and the near
         // plane are drawn at depth 0 and must not be culled. Levels by texels of this map.
@@ -304,7 +309,7 @@ void PassLists::planSunMaps(const PassPlanInputs& in, std::vector<PassList*>& li
         const LodChoice lod = lodChoiceOf({clipFromWorld, 0.5 * in.setup.mapSize, settings.lodTexelError},
                                           cameraProjection, true, settings);
         const std::vector<visibility::HalfSpace> volume = visibility::clipVolume(clipFromWorld, false);
-        m_sun[i].batchOrder = nearestFirst(clipFromWorld);
+        m_sun[i].batchOrder = order;
         if (gpu) {
             const GpuReceiverMask mask = GpuReceiverMask::of(*m_receiverMasks, in.setup, i);
             m_gpuCulling->cull(GpuCulling::kCameraPasses + i, volume, settings.lod ? &lod : nullptr,

@@ -46,6 +46,7 @@ enum class PassPurpose {
 struct PassPlanInputs {
     const core::PerspectiveCamera& camera;
     const core::ShadowSetup& setup;
+    core::Vec3 wsTowardsLight; // the sun's (unit), in the scene's coordinates
     const RenderSettings& settings;
     const core::BiasSettings& bias;           // the frame's (biasFor): the receiver masks' reach
     const core::LocalLighting& localLights;   // in the scene's coordinates
@@ -124,10 +125,11 @@ private:
     void planCamera(const PassPlanInputs& in, bool prepass);
     // The receiver masks of the frame's fixed maps, from the pre-pass.
     void planMasks(const PassPlanInputs& in);
-    // Batches nearest the light first, by the depth of their boxes' centres in the map: the
-    // trees before the terrain under them, so the terrain's covered texels are rejected rather
-    // than written and overwritten (the samples a pass writes per texel, PassStats).
-    std::vector<uint32_t> nearestFirst(const core::Mat4& clipFromWorld) const;
+    // Batches nearest the sun first, by the height of their boxes' centres (along the light
+    // when the sun is on the horizon): the trees before the terrain under them, so the
+    // terrain's covered texels are rejected rather than written and overwritten (the samples
+    // a pass writes per texel, PassStats). One order for every map of the sun.
+    std::vector<uint32_t> nearestFirst(const core::Vec3& wsTowardsLight) const;
     // The sun's fixed maps' lists (receiver-masked when asked).
     void planSunMaps(const PassPlanInputs& in, std::vector<PassList*>& lists);
     // Virtual maps: the pages the receivers request, each with the casters in its own volume.

@@ -133,7 +133,9 @@ core::Result<core::BiasSettings> Renderer::Impl::prepare(const core::Perspective
     if (auto s = sun->prepare(setup, settings, bias); !s) return s.errorInfo();
     // The pre-pass reads the camera's Frame block.
     if (PassLists::needsPrepass(setup, settings, purpose)) bindFrame({cam, light, setup, settings, bias}, false, -1);
-    lists->plan({cam, setup, settings, bias, localLights, local->resolve(settings.localPass), purpose}, sun->pages());
+    lists->plan(
+        {cam, setup, light.wsTowardsLight(), settings, bias, localLights, local->resolve(settings.localPass), purpose},
+        sun->pages());
     return bias;
 }
 

@@ -16,6 +16,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 
 using namespace shadowkit;
 
@@ -42,48 +43,91 @@ TEST_F(DepthProgramsTest, OnlyTheLinearLayoutsDepthProgramsWriteFragmentDepth) {
     }
 }
 
+namespace {
+
+// A ground quad under a roof over part of it, the roof in the later batch: drawn in batch
+// order, every texel under the roof is written twice.
+scene::Scene groundAndRoof(const core::Vec2& groundHalfXZ, const core::Vec4& roofXZ, float roofY) {
+    scene::Scene s;
+    scene::Mesh ground, roof;
+    const auto quad = [](scene::Mesh& m, float y, float x0, float x1, float z0, float z1) {
+        m.vertices = {{{x0, y, z0}}, {{x1, y, z0}}, {{x1, y, z1}}, {{x0, y, z1}}};
+        for (scene::Vertex& v : m.vertices) v.normal = {0, 1, 0}, v.albedo = glm::vec3(0.8f);
+        m.indices = {0, 2, 1, 0, 3, 2};
+        m.computeBounds();
+    };
+    const auto gx = float(groundHalfXZ.x), gz = float(groundHalfXZ.y);
+    quad(ground, 0.0f, -gx, gx, -gz, gz);
+    quad(roof, roofY, float(roofXZ.x), float(roofXZ.y), float(roofXZ.z), float(roofXZ.w));
+    s.meshes = {ground, roof};
+    s.batches = {{0, {glm::mat4(1.0f)}, false}, {1, {glm::mat4(1.0f)}, false}};
+    return s;
+}
+
+// The shadow pass's samples and texels for one frame of `s`.
+gl::PassStats shadowPassOf(const scene::Scene& s, const core::PerspectiveCamera& camera,
+                           const core::DirectionalLight& sun, const core::Aabb& bounds, core::Technique technique) {
+    auto renderer = gl::Renderer::create(s);
+    EXPECT_TRUE(renderer) << renderer.error();
+    if (!renderer) return {};
+    gl::RenderSettings settings;
+    settings.width = settings.height = 32;
+    settings.bias = core::BiasSettings{.cull = core::CasterCull::None};
+    const auto setup = core::computeShadowSetup(
+        {.camera = camera, .light = sun, .wsSceneBounds = bounds, .technique = technique, .mapSize = 64});
+    EXPECT_TRUE(setup) << setup.error();
+    if (!setup) return {};
+    auto stats = (*renderer)->render(camera, sun, *setup, settings);
+    EXPECT_TRUE(stats) << stats.error();
+    return stats ? stats->shadow : gl::PassStats{};
+}
+
+} // namespace
+
 TEST_F(DepthProgramsTest, StackedCastersDrawnNearestFirstWriteEachTexelOnce) {
     // The counter against a count known without it: a ground quad wider than the focus body
     // covers every texel of the focused map; a roof over half of it, in a later batch, is
     // nearer the light and drawn first (PassLists::nearestFirst), so the ground under it is
     // rejected: every texel written exactly once. In batch order it would be 1.5 per texel.
-    scene::Scene s;
-    scene::Mesh ground, roof;
-    const auto quad = [](scene::Mesh& m, float y, float x0, float x1) {
-        m.vertices = {{{x0, y, -10}}, {{x1, y, -10}}, {{x1, y, 10}}, {{x0, y, 10}}};
-        for (scene::Vertex& v : m.vertices) v.normal = {0, 1, 0}, v.albedo = glm::vec3(0.8f);
-        m.indices = {0, 2, 1, 0, 3, 2};
-        m.computeBounds();
-    };
-    quad(ground, 0.0f, -10, 10);
-    quad(roof, 2.0f, -10, 0);
-    s.meshes = {ground, roof};
-    s.batches = {{0, {glm::mat4(1.0f)}, false}, {1, {glm::mat4(1.0f)}, false}};
-    auto renderer = gl::Renderer::create(s);
-    ASSERT_TRUE(renderer) << renderer.error();
     core::PerspectiveCamera camera;
     camera.wsEye = {0, 30, 0.01};
     camera.wsDirection = {0, -1, 0};
     camera.wsUp = {0, 0, -1};
     camera.fovYDegrees = 90;
     camera.zNear = 1, camera.zFar = 100;
-    const core::DirectionalLight sun{{0, -1, 0}};
-    gl::RenderSettings settings;
-    settings.width = settings.height = 32;
-    settings.bias = core::BiasSettings{.cull = core::CasterCull::None};
     // The box reaches a metre below the ground: a caster on the box's far face would store the
     // cleared depth (1) and fail GL_LESS.
     const core::Aabb bounds = core::Aabb::fromMinMax(core::Vec3(-10, -1, -10), core::Vec3(10, 3, 10));
-    const auto setup = core::computeShadowSetup({.camera = camera,
-                                                 .light = sun,
-                                                 .wsSceneBounds = bounds,
-                                                 .technique = core::Technique::Focused,
-                                                 .mapSize = 64});
-    ASSERT_TRUE(setup);
-    auto stats = (*renderer)->render(camera, sun, *setup, settings);
-    ASSERT_TRUE(stats) << stats.error();
-    ASSERT_EQ(stats->shadow.mapTexels, 64u * 64u);
-    EXPECT_EQ(stats->shadow.samplesPassed, 64u * 64u);
+    const gl::PassStats pass = shadowPassOf(groundAndRoof({10, 10}, {-10, 0, -10, 10}, 2.0f), camera,
+                                            core::DirectionalLight{{0, -1, 0}}, bounds, core::Technique::Focused);
+    ASSERT_EQ(pass.mapTexels, 64u * 64u);
+    EXPECT_EQ(pass.samplesPassed, 64u * 64u);
+}
+
+TEST_F(DepthProgramsTest, ARoofOverPartOfAWideGroundIsDrawnBeforeIt) {
+    // Nearest first means nearer the sun on each ray, and a batch's centre says little of that
+    // when batches differ in extent. Seen level with the sun 25 degrees up behind the viewer
+    // (LiSPSM's duelling frusta), a roof 3 m up over the far part of a wide ground: the ground's
+    // centre lies nearer the sun than the roof's, both along the light and in the warped map's
+    // depth (the two orders tried before), so the ground was drawn first and every texel under
+    // the roof written twice. By height, the order every ray of a sun above the horizon keeps,
+    // the roof goes first. One quad over another: no texel needs two writes.
+    core::PerspectiveCamera camera;
+    camera.wsEye = {0, 1.8, 0};
+    camera.wsDirection = {0, 0, -1};
+    camera.wsUp = {0, 1, 0};
+    camera.fovYDegrees = 60;
+    camera.zNear = 0.5, camera.zFar = 150;
+    const double elevation = glm::radians(25.0);
+    const core::DirectionalLight sun{-core::Vec3(0, std::sin(elevation), std::cos(elevation))};
+    const core::Aabb bounds = core::Aabb::fromMinMax(core::Vec3(-50, -1, -100), core::Vec3(50, 4, 20));
+    for (const core::Technique technique : {core::Technique::Lispsm, core::Technique::Tsm}) {
+        const gl::PassStats pass =
+            shadowPassOf(groundAndRoof({400, 400}, {-50, 50, -100, -40}, 3.0f), camera, sun, bounds, technique);
+        ASSERT_EQ(pass.mapTexels, 64u * 64u);
+        EXPECT_GT(pass.samplesPassed, 64u * 64u / 4) << "the roof and ground must fill much of the map";
+        EXPECT_LE(pass.samplesPassed, 64u * 64u) << core::techniqueName(technique);
+    }
 }
 
 namespace {
