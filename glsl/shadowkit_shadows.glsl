@@ -385,7 +385,8 @@ float skFoliageTransmittance(int layer, mat4 textureFromWorld, vec4 linearDepthF
     // 1. The leaves' distance: in the receiver's own texel, else their mean over the search's disk
     // (PCSS's: the cone up to the map's near plane, at most half a texel per tap).
     float awayMetres;
-    if (!(skLeavesInFront(layer, uvz.xy, uvz.z, metresPerDepth, awayMetres) > 0.0)) {
+    const float ownAbsorbance = skLeavesInFront(layer, uvz.xy, uvz.z, metresPerDepth, awayMetres);
+    if (!(ownAbsorbance > 0.0)) {
         const float searchMetres = min(uvz.z * metresPerDepth * o.lightTanHalfAngle,
                                        min(0.5 * float(taps) * metresPerTexel, widestMetres));
         const float side = 1.77 * searchMetres; // √π r: a square of the disk's area
@@ -396,8 +397,13 @@ float skFoliageTransmittance(int layer, mat4 textureFromWorld, vec4 linearDepthF
         if (!(awayMetres > 0.0)) return 1.0; // the leaves there lie behind the receiver
     }
 
-    // 2. The mean transmittance over the cone's disk at that distance.
+    // 2. The mean transmittance over the cone's disk at that distance. A disk within a quarter of
+    // the map's finest texel spans at most two texels' bilinear layers, whose mean over a disk is
+    // their value at its centre (exact where the layers are linear): the receiver's own point,
+    // whose leaves step 1 has read, exp(−absorbance) = Π T^share. That is most receivers inside a
+    // canopy, a metre or two below its leaves, where the disk is millimetres wide.
     const float diskMetres = min(awayMetres * o.lightTanHalfAngle, widestMetres);
+    if (diskMetres < 0.25 * metresPerTexel) return exp(-ownAbsorbance);
     const float angle = skPixelAngle();
     float lit = 0.0;
     vec2 direction = vec2(cos(angle), sin(angle));

@@ -236,6 +236,42 @@ TEST_F(FoliageOpacityTest, UnderTheSunsDiskTheGroundBesideACanopysEdgeIsPartlySh
     EXPECT_GT(farther.mean, 0.99); // past the disk's reach: all the sun
 }
 
+TEST_F(FoliageOpacityTest, ADiskWithinAQuarterTexelTakesOneTapWithoutASeam) {
+    // Under the upper card, 9.9 m up the light, a sun of 0.12° crosses the leaves as a disk
+    // 1.0 cm in radius, well within a quarter of the map's 8 cm texel: the lookup takes one tap at
+    // the disk's centre, which is the point sun's lookup, pixel for pixel. A sun of 0.30° (2.6 cm)
+    // takes the disk's taps; over those leaves, half-covered at a scale finer than the texel, the
+    // two must draw the same light on the mean (no step where a disk crosses a quarter texel) and
+    // differ per pixel only as bilinear layers do over a fraction of a texel.
+    const scene::Scene s = cardsOverGround();
+    auto renderer = gl::Renderer::create(s);
+    ASSERT_TRUE(renderer) << renderer.error();
+    gl::RenderSettings oneTap = underAWideSun(), taps = underAWideSun();
+    oneTap.sunAngleDegrees = 0.12;
+    taps.sunAngleDegrees = 0.30;
+    const Frame point = render(**renderer, s, settings(true));
+    const Frame a = render(**renderer, s, oneTap), b = render(**renderer, s, taps);
+    // Mean absolute difference over the ground pixels in some shadow in either frame.
+    const auto difference = [](const Frame& x, const Frame& y) {
+        double sum = 0.0;
+        int pixels = 0;
+        for (size_t i = 0; i < x.raster.shadowTerm.size(); ++i) {
+            if (x.raster.surfaceId[i] != kGround || y.raster.surfaceId[i] != kGround) continue;
+            if (std::min(x.raster.shadowTerm[i], y.raster.shadowTerm[i]) > 0.999f) continue; // open ground
+            sum += std::abs(double(x.raster.shadowTerm[i]) - double(y.raster.shadowTerm[i]));
+            ++pixels;
+        }
+        EXPECT_GT(pixels, 1000);
+        return sum / std::max(pixels, 1);
+    };
+    EXPECT_LT(difference(a, point), 1e-3); // a few pixels by opaque casters: PCSS against the hard test
+    const Region underOne = termsOver(a, kGround, 0.0, 5.5, 7.8, 0.4, 1.6);
+    const Region underTaps = termsOver(b, kGround, 0.0, 5.5, 7.8, 0.4, 1.6);
+    EXPECT_NEAR(underOne.mean, 0.5, 0.1);
+    EXPECT_NEAR(underOne.mean, underTaps.mean, 0.01);
+    EXPECT_LT(difference(a, b), 0.05);
+}
+
 TEST_F(FoliageOpacityTest, VirtualMapsRefuseOpacityLayersNamingTheSetting) {
     const scene::Scene s = cardsOverGround();
     auto renderer = gl::Renderer::create(s);
