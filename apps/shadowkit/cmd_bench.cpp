@@ -107,10 +107,11 @@ void printPassLines(const BenchArgs& args, gl::Culling culling, const measure::F
                    "", "", "", cull.median, cull.max, gl.median, gl.max, own.median, own.max, lists.median, lists.max);
     }
     if (const gl::PassStats& shadow = costs.last().shadow; shadow.mapTexels > 0)
-        fmt::print("{:>7} {:>7} {:<14} depth   the shadow pass wrote {:.2f} samples per map texel ({} samples passed, "
-                   "{} texels; 1 is no overdraw)\n",
-                   "", "", "", double(shadow.samplesPassed) / double(shadow.mapTexels), shadow.samplesPassed,
-                   shadow.mapTexels);
+        fmt::print(
+            "{:>7} {:>7} {:<14} depth   the shadow pass wrote {:.2f} samples per texel drawn ({} samples passed, "
+            "{} texels of the maps, or of the virtual pages the last frame drew; 1 is no overdraw)\n",
+            "", "", "", double(shadow.samplesPassed) / double(shadow.mapTexels), shadow.samplesPassed,
+            shadow.mapTexels);
     const measure::Spread frameCpu = costs.frameCpu();
     fmt::print("{:>7} {:>7} {:<14} cpu     the frame's CPU side ms med {:.3f} max {:.3f} (the frames after the "
                "first: pre-passes, set-up, culling, levels and lists, every GL call; on a software rasteriser the "

@@ -207,30 +207,38 @@ DrawStats GpuScene::drawBatches(const PassList& list, const PassPrograms& progra
     auto usesMaterial = [&](const GpuBatch& batch) {
         return programs.material != 0 && (batch.material.alphaTested || (programs.colour && batch.material.textured));
     };
-    for (const bool materialSweep : {false, true}) {
-        bool programBound = false;
-        // PassList::batchOrder names Scene::batches; the batches kept out (no instances, no
-        // triangles) have no GpuBatch.
-        const size_t n = list.batchOrder.empty() ? m_batches.size() : list.batchOrder.size();
-        for (size_t k = 0; k < n; ++k) {
-            const int32_t at = list.batchOrder.empty() ? int32_t(k) : m_batchAt[list.batchOrder[k]];
-            if (at < 0) continue;
-            const GpuBatch& batch = m_batches[size_t(at)];
-            if (usesMaterial(batch) != materialSweep) continue;
-            if (programs.batches != PassPrograms::Batches::All &&
-                batch.material.alphaTested != (programs.batches == PassPrograms::Batches::AlphaTested))
-                continue;
-            if (!programBound) {
-                glUseProgram(materialSweep ? programs.material : programs.plain);
-                programBound = true;
-            }
-            if (materialSweep) {
-                glBindTextureUnit(kBaseColorUnit, batch.material.texture);
-                glUniform1f(kBaseAlphaLocation, batch.material.baseAlpha);
-                glUniform1f(kAlphaCutoffLocation, batch.material.alphaCutoff);
-            }
-            stats += drawBatch(batch, list, programs, culling, materialSweep, setInstanceBase, replicas, volume);
+    GLuint bound = 0;
+    // Scene batch `index` (one kept out — no instances, no triangles — has no GpuBatch), when it
+    // is of the kind `sweep` asks for (any when unset) and of the batches the programs take.
+    auto drawIndex = [&](uint32_t index, std::optional<bool> sweep) {
+        const int32_t at = m_batchAt[index];
+        if (at < 0) return;
+        const GpuBatch& batch = m_batches[size_t(at)];
+        const bool material = usesMaterial(batch);
+        if (sweep && material != *sweep) return;
+        if (programs.batches != PassPrograms::Batches::All &&
+            batch.material.alphaTested != (programs.batches == PassPrograms::Batches::AlphaTested))
+            return;
+        if (const GLuint program = material ? programs.material : programs.plain; program != bound) {
+            glUseProgram(program);
+            bound = program;
         }
+        if (material) {
+            glBindTextureUnit(kBaseColorUnit, batch.material.texture);
+            glUniform1f(kBaseAlphaLocation, batch.material.baseAlpha);
+            glUniform1f(kAlphaCutoffLocation, batch.material.alphaCutoff);
+        }
+        stats += drawBatch(batch, list, programs, culling, material, setInstanceBase, replicas, volume);
+    };
+    // A list that names its order (the sun's maps and pages: nearest the sun first) is drawn in
+    // it, switching programs where a batch needs the other: drawn after the terrain under it, an
+    // alpha-tested canopy would overwrite every texel it covers. Otherwise the opaque batches
+    // first, then the alpha-tested ones: one switch.
+    if (!list.batchOrder.empty()) {
+        for (const uint32_t index : list.batchOrder) drawIndex(index, std::nullopt);
+    } else {
+        for (const bool sweep : {false, true})
+            for (uint32_t index = 0; index < m_batchAt.size(); ++index) drawIndex(index, sweep);
     }
     glBindVertexArray(0);
     return stats;

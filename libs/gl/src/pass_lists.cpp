@@ -224,7 +224,9 @@ void PassLists::planPages(const PassPlanInputs& in, VirtualPages& pages, std::ve
     const auto toRender = pages.pagesToRender();
     m_pages.resize(toRender.size());
     const double slotTexels = setup.clipmap->pageTexels + 2.0 * guard;
+    const std::vector<uint32_t> order = nearestFirst(in.wsTowardsLight);
     for (size_t i = 0; i < toRender.size(); ++i) {
+        m_pages[i].batchOrder = order;
         // Levels by the page's own texels only, not by the camera: a page must hold the same
         // depths whenever it is drawn, or a page redrawn after a mover would differ from its
         // cached neighbours (and its texels already match the pixels it serves).

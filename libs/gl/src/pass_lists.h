@@ -128,7 +128,7 @@ private:
     // Batches nearest the sun first, by the height of their boxes' centres (along the light
     // when the sun is on the horizon): the trees before the terrain under them, so the
     // terrain's covered texels are rejected rather than written and overwritten (the samples
-    // a pass writes per texel, PassStats). One order for every map of the sun.
+    // a pass writes per texel, PassStats). One order for every map and virtual page of the sun.
     std::vector<uint32_t> nearestFirst(const core::Vec3& wsTowardsLight) const;
     // The sun's fixed maps' lists (receiver-masked when asked).
     void planSunMaps(const PassPlanInputs& in, std::vector<PassList*>& lists);

@@ -90,10 +90,19 @@ core::Result<PassStats> SunPass::draw(const GpuScene& scene, const core::ShadowS
         // As the fixed maps' pass, one viewport per page (VirtualPages::drawPages).
         glBindFramebuffer(GL_FRAMEBUFFER, m_pages->framebuffer().id());
         beginDepthPass(bias, true, core::DepthLayout::Hyperbolic); // pages store clip depth
+        // Samples over the texels of the pages drawn, guard bands and all (their slots): each of
+        // those texels is cleared and drawn into, as a fixed map's are.
+        const auto pages = m_pages->pagesToRender();
         m_timer.begin();
+        if (!pages.empty()) m_samples.begin();
         draws = m_pages->drawPages(scene, casterPrograms(core::DepthLayout::Hyperbolic, bias), wsTowardsLight,
                                    pageLists, m_uniforms);
+        if (!pages.empty()) m_samples.end();
         m_timer.end();
+        if (!pages.empty()) {
+            const auto side = uint64_t(m_pages->slotViewport(pages.front().slot).z);
+            m_countedTexels = uint64_t(pages.size()) * side * side;
+        }
         endDepthPass();
         m_pages->rendered();
         m_lastVirtual = m_pages->stats();

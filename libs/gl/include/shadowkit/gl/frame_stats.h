@@ -39,8 +39,9 @@ struct PassStats {
     size_t instances = 0;         // submitted (over every map, for the shadow pass)
     size_t triangles = 0;         // submitted
     size_t drawCalls = 0;
-    // Shadow pass, fixed maps: samples that passed the depth test (written), and the texels of
-    // the maps drawn; their ratio is the overdraw that reaches the depth buffer (1 at best).
+    // Shadow pass: samples that passed the depth test (written), and the texels of the maps drawn
+    // (the fixed maps, or the virtual pages drawn this frame, guard bands and all: none in a frame
+    // that draws no page); their ratio is the overdraw that reaches the depth buffer (1 at best).
     uint64_t samplesPassed = 0;
     uint64_t mapTexels = 0;
 };
@@ -60,7 +61,7 @@ struct FrameStats;
 struct GpuFigures {
     int64_t frame = 0; // the frame they describe: its FrameStats::frame
     double shadowMilliseconds = 0.0, localMilliseconds = 0.0, mainMilliseconds = 0.0;
-    uint64_t samplesPassed = 0; // the sun's fixed maps (PassStats::samplesPassed)
+    uint64_t samplesPassed = 0; // the sun's maps or pages (PassStats::samplesPassed)
     uint64_t mapTexels = 0;
     // Culling::Gpu: instances and triangles submitted by the culled lists (the other cullings'
     // counts are known on the CPU: FrameStats::shadow, local and main carry them). The local
