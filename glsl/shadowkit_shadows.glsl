@@ -360,8 +360,8 @@ float skOpacityTransmittanceAt(int layer, vec2 uv, float depth, float metresPerD
 // layers are in linear depth whatever the depth map's layout (linearDepthFromWorld's row, whose
 // gradient's length is 1 / the range in metres). With PCSS and a sun of some size, skPcss's two
 // steps on the layers: the leaves' distance in front of the receiver, then the mean transmittance
-// over the sun's disk at that distance, o.filterTaps taps of a Vogel disk; otherwise at the
-// receiver's own point. The distance is that of the leaves in front of the receiver in its own
+// over the sun's disk at that distance, o.filterTaps taps of a Vogel disk (one, the receiver's own
+// point, where the disk is within a quarter texel); otherwise at the receiver's own point. The distance is that of the leaves in front of the receiver in its own
 // texel, or where there are none — a gap in a canopy, the ground just beside its shadow — the
 // absorbance-weighted mean depth of the leaves over the widest disk that can matter, one fetch of
 // the prefiltered layers (opacity_prefilter.frag). Without that search such a receiver was drawn
@@ -398,10 +398,11 @@ float skFoliageTransmittance(int layer, mat4 textureFromWorld, vec4 linearDepthF
     }
 
     // 2. The mean transmittance over the cone's disk at that distance. A disk within a quarter of
-    // the map's finest texel spans at most two texels' bilinear layers, whose mean over a disk is
-    // their value at its centre (exact where the layers are linear): the receiver's own point,
-    // whose leaves step 1 has read, exp(−absorbance) = Π T^share. That is most receivers inside a
-    // canopy, a metre or two below its leaves, where the disk is millimetres wide.
+    // the map's finest texel lies inside one cell of the bilinear layers or just across its edge,
+    // and over a disk inside one cell a bilinear function's mean is its value at the centre (the
+    // uv term averages out): so one tap, the receiver's own point, whose leaves step 1 has read,
+    // exp(−absorbance) = Π T^share. That is most receivers inside a canopy, a metre or a few below
+    // its leaves, where the disk is millimetres wide.
     const float diskMetres = min(awayMetres * o.lightTanHalfAngle, widestMetres);
     if (diskMetres < 0.25 * metresPerTexel) return exp(-ownAbsorbance);
     const float angle = skPixelAngle();

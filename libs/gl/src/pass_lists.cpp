@@ -285,9 +285,10 @@ std::vector<uint32_t> PassLists::nearestFirst(const core::Vec3& wsTowardsLight) 
     // Along any ray of a sun above the horizon, nearer the sun is higher: a linear key
     // dot(p, a) orders every ray's points as the depth test does whenever dot(a, wsTowardsLight)
     // > 0. Of those keys, height (a = up) ignores where a batch lies across the ground: the
-    // light's own distance (a = wsTowardsLight) would rank the ground under a roof by the
-    // ground's centre, which on a slope towards the sun lies far nearer the sun than the roof.
-    // A sun on the horizon leaves height no order along its rays: its distance does.
+    // light's own distance (a = wsTowardsLight) ranks a ground by its centre, which for a ground
+    // wider than what stands on it can lie nearer the sun than a roof over its far part (and a
+    // warped map's depth orders the points of one ray only). A sun on the horizon leaves height
+    // no order along its rays: its distance does.
     const core::Vec3 key = wsTowardsLight.y > 1e-3 ? core::Vec3(0.0, 1.0, 0.0) : wsTowardsLight;
     std::vector<double> nearness(m_batchBounds.size(), -INFINITY); // empty batches last
     for (size_t b = 0; b < nearness.size(); ++b)
