@@ -103,7 +103,8 @@ GLuint linkProgram(const std::string& vertex, const std::string& fragment) {
 const char* kDepthVert = R"(#version 450 core
 layout(location = 0) in vec3 position;
 uniform mat4 clipFromWorld;
-void main() { gl_Position = clipFromWorld * vec4(position, 1.0); })";
+uniform float constantBias; // bias.constant * 2^-24: the constant term in clip space, not glPolygonOffset's
+void main() { gl_Position = clipFromWorld * vec4(position, 1.0); gl_Position.z += constantBias * gl_Position.w; })";
 
 const char* kMainVert = R"(#version 450 core
 layout(location = 0) in vec3 position;
@@ -236,7 +237,8 @@ int main(int argc, char** argv) {
     glViewport(0, 0, kMapSize, kMapSize);
     if (setup->depthClamp) glEnable(GL_DEPTH_CLAMP); // casters before a map's near plane still cast
     glEnable(GL_POLYGON_OFFSET_FILL);
-    glPolygonOffset(float(bias.slope), float(bias.constant));
+    glPolygonOffset(float(bias.slope), 0.0f); // a float map scales units by a primitive's largest depth
+    glUniform1f(glGetUniformLocation(depthProgram, "constantBias"), float(bias.constant) * 0x1p-24f);
     for (size_t i = 0; i < views.size(); ++i) {
         glNamedFramebufferTextureLayer(mapTarget, GL_DEPTH_ATTACHMENT, maps, 0, GLint(i));
         glBindFramebuffer(GL_FRAMEBUFFER, mapTarget);

@@ -18,7 +18,7 @@ core::Result<std::unique_ptr<SunPass>> SunPass::create() {
             const std::string_view layout = linear ? "#define SK_LINEAR_DEPTH 1\n" : "";
             const std::string name =
                 std::string(linear ? "linear " : "") + (material ? "depth pass, materials" : "depth pass");
-            auto depth = buildProgram(name, {withMaterial, kDepthPassGlsl, kVisibleGlsl, kDepthVert},
+            auto depth = buildProgram(name, {withMaterial, layout, kDepthPassGlsl, kVisibleGlsl, kDepthVert},
                                       {withMaterial, layout, kDepthPassGlsl, kMaterialGlsl, kDepthFrag});
             if (!depth) return depth.errorInfo();
             if (auto s = checkUniformBlock(*depth, name, "DepthPass", sizeof(DepthPassUniforms), depthPassFields()); !s)
@@ -95,7 +95,7 @@ core::Result<PassStats> SunPass::draw(const GpuScene& scene, const core::ShadowS
         const auto pages = m_pages->pagesToRender();
         m_timer.begin();
         if (!pages.empty()) m_samples.begin();
-        draws = m_pages->drawPages(scene, casterPrograms(core::DepthLayout::Hyperbolic, bias), wsTowardsLight,
+        draws = m_pages->drawPages(scene, casterPrograms(core::DepthLayout::Hyperbolic, bias), bias, wsTowardsLight,
                                    pageLists, m_uniforms);
         if (!pages.empty()) m_samples.end();
         m_timer.end();
@@ -168,7 +168,8 @@ void SunPass::beginDepthPass(const core::BiasSettings& bias, bool depthClamp, co
     }
     if (depthClamp) glEnable(GL_DEPTH_CLAMP);
     glEnable(GL_POLYGON_OFFSET_FILL);
-    glPolygonOffset(static_cast<float>(bias.slope), static_cast<float>(bias.constant));
+    // The slope term only: the constant one is added in depth.vert (why there).
+    glPolygonOffset(static_cast<float>(bias.slope), 0.0f);
     glUseProgram(programsFor(layout).plain);
     glBindBufferBase(GL_UNIFORM_BUFFER, kDepthPassBinding, m_uniforms.id());
 }

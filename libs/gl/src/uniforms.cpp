@@ -220,10 +220,16 @@ const std::string& shaderPrelude() {
 }
 
 DepthPassUniforms depthPassUniformsFor(const core::ShadowView& view, const core::BiasSettings& bias) {
-    // Linear layout: the same slope / constant bias, applied in depth.frag. One constant unit is
-    // 2^-24 of the depth range, the resolvable step of a 24-bit buffer.
-    return {.clipFromWorld = glm::mat4(view.clipFromWorld),
-            .linearDepthFromWorld = glm::vec4(view.linearDepthFromWorld),
+    DepthPassUniforms uniforms = depthPassUniformsFor(view.clipFromWorld, bias);
+    uniforms.linearDepthFromWorld = glm::vec4(view.linearDepthFromWorld);
+    return uniforms;
+}
+
+DepthPassUniforms depthPassUniformsFor(const core::Mat4& clipFromWorld, const core::BiasSettings& bias) {
+    // Linear layout: the same slope / constant bias, applied in depth.frag; hyperbolic: the
+    // slope term by glPolygonOffset, the constant one in depth.vert. One constant unit is 2^-24
+    // of the depth range, the resolvable step of a 24-bit buffer.
+    return {.clipFromWorld = glm::mat4(clipFromWorld),
             .slopeBias = static_cast<float>(bias.slope),
             .constantBias = static_cast<float>(bias.constant) * 0x1p-24f};
 }

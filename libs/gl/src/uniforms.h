@@ -90,14 +90,17 @@ struct DepthPassUniforms {          // GLSL: DepthPass (depth_pass.glsl)
     glm::mat4 clipFromWorld;        // the shadow view's light clip space
     glm::vec4 linearDepthFromWorld; // row: depth = dot(row, (ws, 1)), [0, 1] over B
     float slopeBias;                // linear layout: × max depth slope (glPolygonOffset's factor)
-    float constantBias;             // linear layout: in depth units (glPolygonOffset's units × 2^-24)
+    float constantBias;             // both layouts: in depth units (glPolygonOffset's units × 2^-24)
     // Added to gl_FragCoord.xy for the levels' cross-fade dither (material.glsl): a virtual
     // page's texel origin in its level minus its slot's in the atlas, modulo the dither's 8.
     glm::vec2 ditherOrigin{0.0f};
 };
 
-// The block for drawing into `view`: the linear layout's bias as glPolygonOffset's would be.
+// The block for drawing into `view`: the linear layout's bias as glPolygonOffset's would be,
+// the constant term for both layouts (depth.vert says why not glPolygonOffset's).
 DepthPassUniforms depthPassUniformsFor(const core::ShadowView& view, const core::BiasSettings& bias);
+// The same for a map that stores clip depth only (a virtual page): no linear row.
+DepthPassUniforms depthPassUniformsFor(const core::Mat4& clipFromWorld, const core::BiasSettings& bias);
 
 struct FrameUniforms {        // GLSL: Frame (frame.glsl)
     glm::mat4 clipFromWorld;  // camera

@@ -209,8 +209,9 @@ VirtualPageStats VirtualPages::stats() const {
     return stats;
 }
 
-DrawStats VirtualPages::drawPages(const GpuScene& scene, const PassPrograms& programs, const core::Vec3& wsTowardsLight,
-                                  std::span<const PassList> lists, const Buffer& depthUniforms) const {
+DrawStats VirtualPages::drawPages(const GpuScene& scene, const PassPrograms& programs, const core::BiasSettings& bias,
+                                  const core::Vec3& wsTowardsLight, std::span<const PassList> lists,
+                                  const Buffer& depthUniforms) const {
     DrawStats draws;
     glEnable(GL_SCISSOR_TEST);
     // A page's first texel in its level's grid less its slot's in the atlas, so that the levels'
@@ -226,10 +227,9 @@ DrawStats VirtualPages::drawPages(const GpuScene& scene, const PassPrograms& pro
         glScissor(v.x, v.y, v.z, v.z);
         const float clearDepth = 1.0f;
         glClearNamedFramebufferfv(m_framebuffer.id(), GL_DEPTH, 0, &clearDepth);
-        const DepthPassUniforms uniforms{
-            .clipFromWorld = glm::mat4(toRender[i].clipFromWorld),
-            .ditherOrigin = {ditherOf(toRender[i].key.x * m_pageTexels - m_guardTexels, v.x),
-                             ditherOf(toRender[i].key.y * m_pageTexels - m_guardTexels, v.y)}};
+        DepthPassUniforms uniforms = depthPassUniformsFor(toRender[i].clipFromWorld, bias);
+        uniforms.ditherOrigin = {ditherOf(toRender[i].key.x * m_pageTexels - m_guardTexels, v.x),
+                                 ditherOf(toRender[i].key.y * m_pageTexels - m_guardTexels, v.y)};
         glNamedBufferSubData(depthUniforms.id(), 0, sizeof uniforms, &uniforms);
         setLightFacingFront(toRender[i].clipFromWorld, wsTowardsLight);
         draws += scene.draw(lists[i], programs, visibility::clipVolume(toRender[i].clipFromWorld, false));

@@ -72,9 +72,11 @@ public:
     // Draws pagesToRender()[i] with lists[i] into its slot, scissored so its clear touches no
     // other page, with the bound depth program: the page's matrix into `depthUniforms`, the
     // clusters of large meshes culled to the page's volume, the faces towards `wsTowardsLight`
-    // as the front ones (setLightFacingFront). Other GL state (bias, clamp, culling) is the caller's.
-    DrawStats drawPages(const GpuScene& scene, const PassPrograms& programs, const core::Vec3& wsTowardsLight,
-                        std::span<const PassList> lists, const Buffer& depthUniforms) const;
+    // as the front ones (setLightFacingFront), `bias`'s constant term in the block (depth.vert).
+    // Other GL state (polygon offset's slope term, clamp, culling) is the caller's.
+    DrawStats drawPages(const GpuScene& scene, const PassPrograms& programs, const core::BiasSettings& bias,
+                        const core::Vec3& wsTowardsLight, std::span<const PassList> lists,
+                        const Buffer& depthUniforms) const;
     const Framebuffer& framebuffer() const { return m_framebuffer; }
     // After the pages were drawn: they are valid, and the page table for shown()'s windows is
     // uploaded.

@@ -129,6 +129,10 @@ TEST_F(DepthProgramsTest, ARoofOverPartOfAWideGroundIsDrawnBeforeIt) {
     // depth (the two orders tried before), so the ground was drawn first and every texel under
     // the roof written twice. By height, the order every ray of a sun above the horizon keeps,
     // the roof goes first. One quad over another: no texel needs two writes.
+    // The ground spans LiSPSM's w = 0 plane (its far corners lie behind the warp's projection
+    // centre): on NVIDIA's driver (580, an H200) glPolygonOffset's constant units pushed it out
+    // of the map under depth clamping, 710 samples (the roof alone) against llvmpipe's 3,982,
+    // until the constant term moved into depth.vert.
     core::PerspectiveCamera camera;
     camera.wsEye = {0, 1.8, 0};
     camera.wsDirection = {0, 0, -1};
@@ -145,7 +149,8 @@ TEST_F(DepthProgramsTest, ARoofOverPartOfAWideGroundIsDrawnBeforeIt) {
             shadowPassOf(groundAndRoof({400, 400}, {-50, 50, -100, -40}, 3.0f), camera, sun, bounds, technique);
         if (technique != core::Technique::Virtual) ASSERT_EQ(pass.mapTexels, 64u * 64u);
         ASSERT_GT(pass.mapTexels, 0u) << core::techniqueName(technique);
-        EXPECT_GT(pass.samplesPassed, pass.mapTexels / 4) << "the roof and ground must fill much of the map";
+        EXPECT_GT(pass.samplesPassed, pass.mapTexels / 4)
+            << core::techniqueName(technique) << ": the roof and ground must fill much of the map";
         EXPECT_LE(pass.samplesPassed, pass.mapTexels) << core::techniqueName(technique);
     }
 }

@@ -117,8 +117,8 @@ typedef struct shadowkit_view {
 
 /** The recommended bias of a set-up (core::recommendedBias). */
 typedef struct shadowkit_bias {
-    double slope;         /**< glPolygonOffset factor (per fragment for linear depth) */
-    double constant;      /**< glPolygonOffset units: 2^-24 of the depth range each */
+    double slope;    /**< glPolygonOffset factor (per fragment for linear depth) */
+    double constant; /**< 2^-24 of the depth range each: add constant·2^-24·w to clip z (not glPolygonOffset units) */
     double normal_offset; /**< texels of world size (shadowkit_texel_size) along the normal */
     int receiver_plane;   /**< 1: receiver-plane depth bias in the lookup */
 } shadowkit_bias;

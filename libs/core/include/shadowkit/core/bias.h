@@ -22,8 +22,11 @@ enum class CasterCull {
 
 /// Caster-side and receiver-side bias of a shadow map: slope, constant, normal offset, receiver plane, culled faces.
 struct BiasSettings {
-    /// glPolygonOffset(slope, constant) for hyperbolic depth; for linear depth the same
-    /// applied per fragment, a constant unit being 2^-24 of the depth range.
+    /// The slope term is glPolygonOffset's factor for hyperbolic depth, applied per fragment for
+    /// linear depth. A constant unit is 2^-24 of the depth range for both: added to clip z
+    /// (z += constant·2^-24·w) rather than as glPolygonOffset's units, which for a float depth
+    /// buffer scale with the largest depth in the primitive and are unbounded for one that
+    /// crosses a warped map's w = 0 under depth clamping (docs/bias-and-filtering.md).
     double slope = 2.0;    ///< × max depth slope; [0, 100]
     double constant = 4.0; ///< minimum resolvable depth steps; [0, 1e6]
     /// Receiver moved along its normal by this many texels' world size before the lookup
