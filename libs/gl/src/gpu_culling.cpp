@@ -29,6 +29,18 @@ struct GpuLevel {
 };
 static_assert(sizeof(GpuInstance) == 64 && sizeof(GpuBatchInfo) == 32 && sizeof(GpuLevel) == 32);
 
+// `bytes` of `source` from `offset`, read through a copy. Reading the culling's own buffers
+// back (glGetNamedBufferSubData on them) made NVIDIA's driver (580) move them to host memory for
+// good — its performance warning names the indirect commands and the lists — and from then on
+// each frame's culling waited for the GPU before writing them: `bench` read the levels' work
+// after one view and every later view's frame took 4.6–44 ms of CPU instead of 0.3 (on an
+// H200, 2026-11-29). A copy on the GPU into a buffer made for it leaves them where they are.
+void readThroughCopy(GLuint source, size_t offset, size_t bytes, void* out) {
+    const Buffer staging = createBuffer(nullptr, bytes);
+    glCopyNamedBufferSubData(source, staging.id(), GLintptr(offset), 0, GLsizeiptr(bytes));
+    glGetNamedBufferSubData(staging.id(), 0, GLsizeiptr(bytes), out);
+}
+
 constexpr size_t kCommandWords = kIndirectCommandWords;
 constexpr size_t kMaxPlanes = 8; // gpu_cull.comp's planes[]
 
@@ -332,7 +344,7 @@ std::vector<DrawStats> GpuCulling::submitted(std::span<const PassList* const> li
     detail::countReadBack(); // every list's commands after one wait
     std::vector<uint32_t> commands(m_commandWords);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    glGetNamedBufferSubData(m_commands.id(), 0, GLsizeiptr(commands.size() * sizeof(uint32_t)), commands.data());
+    readThroughCopy(m_commands.id(), 0, commands.size() * sizeof(uint32_t), commands.data());
     for (size_t i = 0; i < lists.size(); ++i) drawn[i] = drawnBy(commands, lists[i]->indirect, lists[i]->count);
     return drawn;
 }
@@ -361,10 +373,10 @@ PassList GpuCulling::read(const PassList& list) const {
     const size_t slots = m_batchCount * kMaxLodLevels;
     std::vector<uint32_t> commands(slots * kCommandWords), region(kMaxLodLevels * m_instanceCount);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    glGetNamedBufferSubData(m_commands.id(), GLintptr(size_t(list.indirect) * kCommandWords * sizeof(uint32_t)),
-                            GLsizeiptr(commands.size() * sizeof(uint32_t)), commands.data());
-    glGetNamedBufferSubData(m_lists.id(), GLintptr(size_t(list.offset) * sizeof(uint32_t)),
-                            GLsizeiptr(region.size() * sizeof(uint32_t)), region.data());
+    readThroughCopy(m_commands.id(), size_t(list.indirect) * kCommandWords * sizeof(uint32_t),
+                    commands.size() * sizeof(uint32_t), commands.data());
+    readThroughCopy(m_lists.id(), size_t(list.offset) * sizeof(uint32_t), region.size() * sizeof(uint32_t),
+                    region.data());
     PassList cpu;
     cpu.shadow = list.shadow;
     cpu.first.assign(slots, 0);
