@@ -3,7 +3,7 @@
 
 Usage: gpu_tables.py RESULTS_DIR LLVMPIPE_DIR
   RESULTS_DIR   gpu-results.tgz unpacked: bench JSON per set-up (frame-*.json, path-*.json,
-                tech-*.json, filter-*.json, lamp-*.json, leafy.json, scaling-*.json), eval-*.json,
+                tech-*.json, filter-*.json, lamp-*.json, leafy*.json, opacity-*.json, scaling-*.json), eval-*.json,
                 summary.txt, alpha-tsm.log
   LLVMPIPE_DIR  the same eval-*.json taken on this machine (tools/gpu-tables.sh runs them)
 
@@ -154,14 +154,46 @@ def filters_table(d, prefix, filters, shadow_column=True):
 
 
 def leafy_table(d):
-    """The leafy forest's frame beside the blob forest's (TSM 2048², 10,000 trees)."""
-    blob = {r["view"]: r for r in runs(d / "tech-tsm.json")}
-    out = ["| forest | view | shadow pass: M triangles | shadow GPU ms | main pass: M triangles | main GPU ms | frame CPU ms |",
-           "|---|---|---:|---:|---:|---:|---:|"]
-    for label, rows in (("blob", blob), ("leafy", {r["view"]: r for r in runs(d / "leafy.json")})):
-        for v, r in rows.items():
-            out.append(f"| {label} | {v} | {r['shadow']['triangles'] / 1e6:.2f} | {ms(r, 'shadow'):.1f} | "
-                       f"{r['main']['triangles'] / 1e6:.2f} | {ms(r, 'main'):.1f} | {r['frame_cpu_ms']['median']:.2f} |")
+    """The leafy forest's frame beside the blob forest's (TSM 2048², 10,000 trees): with its
+    levels of detail (the default), without them, and at 100,000 trees on the same density —
+    the last two where the run has them (runs before 2026-11-29 do not)."""
+    sets = [("blob", "tech-tsm.json"), ("leafy", "leafy.json"), ("leafy, `--no-lod`", "leafy-no-lod.json"),
+            ("leafy, 100,000 trees", "leafy-100k.json")]
+    out = ["| forest | view | shadow pass: M triangles | samples per texel | shadow GPU ms | main pass: M triangles "
+           "| main GPU ms | frame CPU ms |",
+           "|---|---|---:|---:|---:|---:|---:|---:|"]
+    for label, name in sets:
+        if not (d / name).exists():
+            continue
+        for r in runs(d / name):
+            out.append(f"| {label} | {r['view']} | {r['shadow']['triangles'] / 1e6:.2f} | {per_texel(r):.2f} | "
+                       f"{ms(r, 'shadow'):.1f} | {r['main']['triangles'] / 1e6:.2f} | {ms(r, 'main'):.1f} | "
+                       f"{r['frame_cpu_ms']['median']:.2f} |")
+    return "\n".join(out)
+
+
+def opacity_table(d):
+    """What the leaves' opacity layers cost (--foliage-opacity): the leafy forest under the real
+    sun, each set-up with the hard test, PCSS, and PCSS with the layers; both passes' GPU ms per
+    view, and the camera pass against PCSS's (the issue's ratio) and its lookup's share (what it
+    adds to the hard test's pass) against PCSS's."""
+    setups = [("tsm", "`tsm` 2048²"), ("csm4x2048-lispsm", "`csm` 4 × 2048² LiSPSM")]
+    filters = [("hard", "`hard`"), ("pcss", "`pcss`"), ("layers", "`pcss` + opacity layers")]
+    views = [r["view"] for r in runs(d / "opacity-tsm-hard.json")]
+    out = ["| set-up | filter | " + " | ".join(f"{v}: shadow GPU ms | camera GPU ms" for v in views) +
+           " | camera pass over PCSS's | lookup's share over PCSS's |",
+           "|---|---|" + "---:|---:|" * len(views) + "---:|---:|"]
+    for name, label in setups:
+        data = {f: {r["view"]: r for r in runs(d / f"opacity-{name}-{f}.json")} for f, _ in filters}
+        for f, flabel in filters:
+            cells = " | ".join(f"{ms(data[f][v], 'shadow'):.1f} | {ms(data[f][v], 'main'):.1f}" for v in views)
+            over, share = "–", "–"
+            if f == "layers":
+                over = " / ".join(f"×{ms(data['layers'][v], 'main') / ms(data['pcss'][v], 'main'):.2f}" for v in views)
+                share = " / ".join(
+                    f"×{(ms(data['layers'][v], 'main') - ms(data['hard'][v], 'main')) / (ms(data['pcss'][v], 'main') - ms(data['hard'][v], 'main')):.2f}"
+                    for v in views)
+            out.append(f"| {label} | {flabel} | {cells} | {over} | {share} |")
     return "\n".join(out)
 
 
@@ -208,6 +240,8 @@ def main(argv):
     write_into(f"{PAGE}:gpu-filters", filters_table(d, "filter", FILTERS))
     write_into(f"{PAGE}:gpu-lamps", filters_table(d, "lamp", ["hard", "pcf2", "pcss"], shadow_column=False))
     write_into(f"{PAGE}:gpu-leafy", leafy_table(d))
+    if (d / "opacity-tsm-hard.json").exists():
+        write_into(f"{PAGE}:gpu-opacity", opacity_table(d))
     write_into(f"{PAGE}:gpu-eval", eval_table(d, local))
     alpha = (d / "alpha-tsm.log").read_text()
     ratio = re.search(r"alpha-tested / opaque: shadow pass ([0-9.]+)×, main pass ([0-9.]+)×", alpha)

@@ -16,7 +16,8 @@
 # the lamps), leafy (the leafy forest's frame: with its levels, crossing into them, without, and at 100,000 trees), eval (the standard views' figures against the truth,
 # to compare with llvmpipe's: the same program on another rasteriser; TSM's two depth layouts; PSM
 # with the receiver-plane bias), alpha (tools/measure-alpha.sh), scaling (what the shadow pass's
-# time follows at 100,000 trees: culling, levels, the depth layout).
+# time follows at 100,000 trees: culling, levels, the depth layout), opacity (what the leaves'
+# opacity layers cost), foliage (the leafy forest's soft sweep, about four minutes).
 # Every step has its own time limit and the whole run a deadline (DEADLINE seconds, default 540,
 # nine minutes): steps past it are skipped and say so. Results, logs and
 # bench JSON go to $OUT/gpu-results.tgz (re-packed after every step, so a killed run still returns
@@ -67,7 +68,7 @@ note "context: $(grep -o '^4\.[0-9].*via EGL[^|]*' "$res/context.log" | head -1)
 grep -q 'via EGL' "$res/context.log" || { note "no OpenGL context: $(tail -3 "$res/context.log")"; pack; exit 1; }
 
 sections=("$@")
-((${#sections[@]})) || sections=(tests frame techniques filters leafy eval alpha scaling)
+((${#sections[@]})) || sections=(tests frame techniques filters leafy eval alpha scaling opacity foliage)
 bench=("$B" bench --frames 11)
 for section in "${sections[@]}"; do
   case $section in
@@ -149,6 +150,25 @@ for section in "${sections[@]}"; do
     ;;
   alpha)
     step alpha-tsm 90 tools/measure-alpha.sh 20000 5 tsm
+    ;;
+  opacity)
+    # What partial occlusion by leaves costs (issue 52): the leafy forest under the real sun, the
+    # hard test, PCSS, and PCSS with the opacity layers (their two leaf draws are in the shadow
+    # pass's time, their lookup in the camera pass's), for TSM and four LiSPSM cascades.
+    for setup in "tsm|--technique tsm" "csm4x2048-lispsm|--technique csm --cascades 4 --map-size 2048 --cascade-warp lispsm"; do
+      for f in "hard|--filter hard" "pcss|--filter pcss" "layers|--filter pcss --foliage-opacity"; do
+        # shellcheck disable=SC2086
+        step "opacity-${setup%%|*}-${f%%|*}" 60 "${bench[@]}" --forest leafy --trees 10000 --views perpendicular,aerial \
+          --sun-angle 0.53 ${setup#*|} ${f#*|} --json "$res/opacity-${setup%%|*}-${f%%|*}.json"
+      done
+    done
+    ;;
+  foliage)
+    # The leafy forest against both truths (tools/measure-foliage.sh's sweep, 1280 × 720): its
+    # results.csv is what LEAFY_RESULTS= writes the foliage tables from.
+    step foliage-soft 330 "$B" sweep data/sweeps/leafy-soft.json --out "$root/leafy-soft" --discard-stale
+    cp "$root/leafy-soft/results.csv" "$res/leafy-soft.csv" 2>/dev/null
+    pack
     ;;
   *) note "unknown section $section" ;;
   esac
