@@ -166,7 +166,13 @@ for section in "${sections[@]}"; do
   foliage)
     # The leafy forest against both truths (tools/measure-foliage.sh's sweep, 1280 × 720): its
     # results.csv is what LEAFY_RESULTS= writes the foliage tables from.
-    step foliage-soft 330 "$B" sweep data/sweeps/leafy-soft.json --out "$root/leafy-soft" --discard-stale
+    # The bundle has no compiled Python module, and `shadowkit sweep` needs it: the package runs
+    # from a copy of the checkout's, without the module's import, its data directory named (the
+    # sweep asks the module only when SHADOWKIT_DATA_DIR is unset).
+    py=$root/python
+    mkdir -p "$py" && cp -r libs/python/shadowkit "$py/" && : >"$py/shadowkit/__init__.py"
+    step foliage-soft 330 env PYTHONPATH="$py" SHADOWKIT="$root/bin/shadowkit" SHADOWKIT_DATA_DIR="$PWD/data" \
+      python3 -m shadowkit.sweep data/sweeps/leafy-soft.json --out "$root/leafy-soft" --discard-stale
     cp "$root/leafy-soft/results.csv" "$res/leafy-soft.csv" 2>/dev/null
     pack
     ;;
