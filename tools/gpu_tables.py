@@ -79,6 +79,18 @@ def path_table(d):
     return "\n".join(out)
 
 
+def limits_table(d):
+    """The default shadow pass (CHC++'s run, which measured the limits) as a fraction of this GPU's
+    triangle and depth-only fill rates, per forest size and view."""
+    out = ["| trees | view | shadow pass GPU ms | M triangles | of the triangle rate | of the fill rate |",
+           "|---:|---|---:|---:|---:|---:|"]
+    for r in runs(d / "frame-chc.json"):
+        rates = r["shadow_rates"]
+        out.append(f"| {r['trees']:,} | {r['view']} | {ms(r, 'shadow'):.1f} | {r['shadow']['triangles'] / 1e6:.2f} | "
+                   f"{100 * rates['of_triangles']:.0f} % | {100 * rates['of_fill']:.0f} % |")
+    return "\n".join(out)
+
+
 def limits_line(d):
     """The GPU's ceilings as bench --limits measured them in the frame section's run."""
     with open(d / "frame-chc.json") as f:
@@ -234,6 +246,7 @@ def main(argv):
     machine = [l for l in summary.splitlines()[:4] if not l.startswith("context ")] + [f"limits: {limits_line(d)}"]
     write_into(f"{PAGE}:gpu-machine", "\n".join(["```text"] + machine + ["```"]))
     write_into(f"{PAGE}:gpu-frame", frame_table(d))
+    write_into(f"{PAGE}:gpu-limits", limits_table(d))
     write_into(f"{PAGE}:gpu-path", path_table(d))
     write_into(f"{PAGE}:gpu-depth-layout", depth_layout_table(d))
     write_into(f"{PAGE}:gpu-setups", setups_table(d))
