@@ -30,11 +30,12 @@ struct GpuLevel {
 static_assert(sizeof(GpuInstance) == 64 && sizeof(GpuBatchInfo) == 32 && sizeof(GpuLevel) == 32);
 
 // `bytes` of `source` from `offset`, read through a copy. Reading the culling's own buffers
-// back (glGetNamedBufferSubData on them) made NVIDIA's driver (580) move them to host memory for
-// good — its performance warning names the indirect commands and the lists — and from then on
-// each frame's culling waited for the GPU before writing them: `bench` read the levels' work
-// after one view and every later view's frame took 4.6–44 ms of CPU instead of 0.3 (on an
-// H200, 2026-11-29). A copy on the GPU into a buffer made for it leaves them where they are.
+// back (glGetNamedBufferSubData on them) made NVIDIA's driver (580) move them to host memory —
+// its performance warning names the indirect commands and the lists. `bench` read the levels'
+// work after each view, and on an H200 (2026-11-29) every later view of a run spent 3–300 ms of
+// CPU a frame in its culling where the first spent 0.2–0.7: by that pattern, each frame then
+// waited for the GPU before writing them. A copy on the GPU into a buffer made for it leaves
+// them where they are (not yet measured there).
 void readThroughCopy(GLuint source, size_t offset, size_t bytes, void* out) {
     const Buffer staging = createBuffer(nullptr, bytes);
     glCopyNamedBufferSubData(source, staging.id(), GLintptr(offset), 0, GLsizeiptr(bytes));
