@@ -132,7 +132,7 @@ TEST_F(DepthProgramsTest, ARoofOverPartOfAWideGroundIsDrawnBeforeIt) {
     // The ground spans LiSPSM's w = 0 plane (its far corners lie behind the warp's projection
     // centre): on NVIDIA's driver (580, an H200) glPolygonOffset's constant units pushed it out
     // of the map under depth clamping, 710 samples (the roof alone) against llvmpipe's 3,982,
-    // until the constant term moved into depth.vert.
+    // which is why the constant term moved into depth.vert (not yet re-run on that driver).
     core::PerspectiveCamera camera;
     camera.wsEye = {0, 1.8, 0};
     camera.wsDirection = {0, 0, -1};
