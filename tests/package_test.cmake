@@ -9,6 +9,12 @@ execute_process(COMMAND ${CMAKE_COMMAND} --install "${BUILD_DIR}" --prefix "${WO
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "install failed")
 endif()
+# The shader half an engine appends: the lookup, and the leaves' lookup that follows it.
+foreach(f shadowkit_shadows.glsl shadowkit_foliage_opacity.glsl)
+  if(NOT EXISTS "${WORK}/prefix/share/shadowkit/glsl/${f}")
+    message(FATAL_ERROR "install left out share/shadowkit/glsl/${f}")
+  endif()
+endforeach()
 set(hidden)
 foreach(p nlohmann_json TinyGLTF meshoptimizer tinyobjloader PkgConfig glfw3 embree TBB GTest benchmark)
   list(APPEND hidden "-DCMAKE_DISABLE_FIND_PACKAGE_${p}=ON")

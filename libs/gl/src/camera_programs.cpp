@@ -41,7 +41,8 @@ core::Status CameraPrograms::prepare(bool virtualMaps) {
             const std::string_view withMaterial = kMaterialVariant[material];
             auto program = buildProgram(name, {withMaterial, kFrameGlsl, kVisibleGlsl, kMainVert},
                                         {withMaterial, variant, kFrameGlsl, kMaterialGlsl, kShadowkitShadowsGlsl,
-                                         kShadowLookupGlsl, kLocalLightsGlsl, evalPass ? kEvalFrag : kMainFrag});
+                                         kShadowkitFoliageOpacityGlsl, kShadowLookupGlsl, kLocalLightsGlsl,
+                                         evalPass ? kEvalFrag : kMainFrag});
             if (!program) return program.errorInfo();
             if (auto s = checkUniformBlock(*program, name, "Frame", sizeof(FrameUniforms), frameFields()); !s) return s;
             if (auto s =

@@ -14,12 +14,12 @@ core::Result<std::unique_ptr<OpacityLayers>> OpacityLayers::create() {
         const std::string name = first ? "opacity layers, first leaf" : "opacity layers, transmittance";
         auto program = buildProgram(name, {kMaterialVariant[1], kDepthPassGlsl, kVisibleGlsl, kDepthVert},
                                     {kMaterialVariant[1], first ? "#define SK_OPACITY_FIRST 1\n" : "", kDepthPassGlsl,
-                                     kMaterialGlsl, kShadowkitShadowsGlsl, kOpacityFrag});
+                                     kMaterialGlsl, kShadowkitShadowsGlsl, kShadowkitFoliageOpacityGlsl, kOpacityFrag});
         if (!program) return program.errorInfo();
         (first ? layers->m_first : layers->m_transmittance) = std::move(program).value();
     }
-    auto prefilter =
-        buildProgram("opacity layers, prefiltered", {kFullscreenVert}, {kShadowkitShadowsGlsl, kOpacityPrefilterFrag});
+    auto prefilter = buildProgram("opacity layers, prefiltered", {kFullscreenVert},
+                                  {kShadowkitShadowsGlsl, kShadowkitFoliageOpacityGlsl, kOpacityPrefilterFrag});
     if (!prefilter) return prefilter.errorInfo();
     layers->m_prefilter = std::move(prefilter).value();
     layers->m_framebuffer = createFramebuffer();

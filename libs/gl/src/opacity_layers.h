@@ -1,12 +1,12 @@
 // Opacity layers for the sun's fixed maps (--foliage-opacity): partial occlusion by alpha-tested
 // casters, after deep opacity maps (Yuksel & Keyser 2008, "Deep Opacity Maps", Computer Graphics
 // Forum 27(2)). Per texel of each map, the linear depth of the first leaf (R32F) and what the
-// leaves let through in four layers measured back from it (RGBA16F); glsl/shadowkit_shadows.glsl's
-// skFoliageTransmittance reads them and multiplies the depth map's term, which then holds the
-// opaque casters only (PassPrograms::Batches). Beside them the layers prefiltered (RG16F with
-// its mip chain: per texel A = −ln T and A × the leaves' depth), from which the lookup reads the
-// mean depth of the leaves around a receiver in one fetch. About 17 bytes a texel beside the
-// depth map's 4.
+// leaves let through in four layers measured back from it (RGBA16F);
+// glsl/shadowkit_foliage_opacity.glsl's skFoliageTransmittance reads them and multiplies the depth
+// map's term, which then holds the opaque casters only (PassPrograms::Batches). Beside them the
+// layers prefiltered (RG16F with its mip chain: per texel A = −ln T and A × the leaves' depth),
+// from which the lookup reads the mean depth of the leaves around a receiver in one fetch. About
+// 17 bytes a texel beside the depth map's 4.
 //
 // Two passes over the alpha-tested batches of each map's list, with no depth test: the first
 // leaf by GL_MIN blending, then each leaf fragment's transmittance by multiplicative blending

@@ -1,8 +1,8 @@
-// Opacity layers (RenderSettings::foliageOpacity, gl/src/opacity_layers.h, glsl/shadowkit_shadows.glsl's
-// skFoliageTransmittance): leaves smaller than a texel cast a fraction of the light, stacked leaves
-// multiply, a receiver between two layers of leaves is shadowed by the layer above it only, the
-// ground beside a canopy's edge is partly shadowed under the sun's disk, and the opaque casters
-// still cast through the depth map.
+// Opacity layers (RenderSettings::foliageOpacity, gl/src/opacity_layers.h,
+// glsl/shadowkit_foliage_opacity.glsl's skFoliageTransmittance): leaves smaller than a texel cast
+// a fraction of the light, stacked leaves multiply, a receiver between two layers of leaves is
+// shadowed by the layer above it only, the ground beside a canopy's edge is partly shadowed under
+// the sun's disk, and the opaque casters still cast through the depth map.
 //
 // The scene: a ground slab, and two horizontal alpha-tested cards whose texture is random noise
 // covering half of each 3 cm cell (far finer than the map's 8 cm texels): the upper card at
