@@ -84,8 +84,9 @@ struct BenchRow {
 };
 
 // The lines under a view's two pass rows: the camera's culling pass, CHC++'s counts, culling's
-// CPU time, the shadow pass's samples per texel and the receiver masks', as they apply.
-void printPassLines(const BenchArgs& args, gl::Culling culling, const measure::FrameCosts& costs) {
+// CPU time, the shadow pass's samples per texel, the main pass's per pixel of the frame
+// (`pixels` of them) and the receiver masks', as they apply.
+void printPassLines(const BenchArgs& args, gl::Culling culling, const measure::FrameCosts& costs, double pixels) {
     const measure::Spread prepass = costs.prepass(), cull = costs.cull();
     if (culling == gl::Culling::Gpu)
         fmt::print("{:>7} {:>7} {:<14} gpu     camera's two-phase pass (culling dispatches, depth pyramid, "
@@ -112,6 +113,12 @@ void printPassLines(const BenchArgs& args, gl::Culling culling, const measure::F
             "{} texels of the maps, or of the virtual pages the last frame drew; 1 is no overdraw)\n",
             "", "", "", double(shadow.samplesPassed) / double(shadow.mapTexels), shadow.samplesPassed,
             shadow.mapTexels);
+    const gl::PassStats& main = costs.last().main;
+    if (main.samplesPassed > 0)
+        fmt::print("{:>7} {:>7} {:<14} camera  the main pass shaded {:.2f} samples per pixel of the frame ({} "
+                   "samples passed its depth test; over the camera's depth pre-pass each covered pixel once, else "
+                   "every fragment nearer than those drawn before it)\n",
+                   "", "", "", double(main.samplesPassed) / pixels, main.samplesPassed);
     const measure::Spread frameCpu = costs.frameCpu();
     fmt::print("{:>7} {:>7} {:<14} cpu     the frame's CPU side ms med {:.3f} max {:.3f} (the frames after the "
                "first: pre-passes, set-up, culling, levels and lists, every GL call; on a software rasteriser the "
@@ -259,7 +266,7 @@ core::Result<nlohmann::json> benchView(const BenchArgs& args, const BenchRow& ro
     costs.addLate(renderer.finishGpuFigures()); // the last frames' figures, after the view's frames
     printRows(row, costs, table);
     const gl::Culling culling = renderer.culling(args.render.culling()); // auto resolved for this driver
-    printPassLines(args, culling, costs);
+    printPassLines(args, culling, costs, double(view.width) * double(view.height));
     const gl::WorkByLevel work = renderer.workByLevel(); // reads GPU-culled lists back: after the timed frames
     printLevelLines(work);
     nlohmann::json run = costs.json();

@@ -8,6 +8,7 @@
 #include "camera_programs.h"
 #include "gl_object.h"
 #include "gpu_scene.h"
+#include "pass_samples.h"
 #include "pass_timer.h"
 #include "render_targets.h"
 #include "visibility.h"
@@ -44,19 +45,30 @@ public:
     // sampler on every map's depth unit, the depth test on with writes, back faces culled. `readBlurredMask`: the
     // shadow term comes from the blurred mask (mainPass's `blurredMask`).
     void bindFrame(const CameraView& view, bool readBlurredMask) const;
+    // Both passes below draw over the camera's depth pre-pass when the frame has one (`prepass`,
+    // PassLists::cameraPrepass): its depth copied in, tested GL_LEQUAL with writes off, so each
+    // pixel is shaded once, by the surface the pre-pass found nearest, instead of by every
+    // fragment that was nearest when it was drawn. The pre-pass holds the depth of the same list
+    // drawn with the same vertex shader and alpha test, so the image is the same.
+    //
     // The eval pass into its target (shadow term, surface id, depth, normal, texel coordinates and
     // their derivatives). The frame and the maps bound.
-    core::Status evalPass(const GpuScene& scene, const PassList& list, const CameraView& view);
+    core::Status evalPass(const GpuScene& scene, const PassList& list, const CameraView& view,
+                          const CameraDepthTarget* prepass);
     core::RasterBuffers readEval() const { return m_eval->read(); }
     // Blurs the eval pass's shadow term in eye space; returns the ping-pong index holding it.
     int blurPass(const BlurSettings& blur);
     std::vector<float> readBlurred(int index) const { return m_mask->read(index); }
     // The shaded frame into the colour target, over the sky; `blurredMask` ≥ 0: the blur's
-    // result to read the shadow term from. The frame and the maps bound. Timed (timer()).
+    // result to read the shadow term from. The frame and the maps bound. Timed (timer()) and its
+    // samples counted (samples()).
     core::Result<DrawStats> mainPass(const GpuScene& scene, const PassList& list, const CameraView& view,
-                                     int blurredMask);
-    // The last main pass's GPU time, as the queries the frame's figures read (gpu_figures.h).
+                                     int blurredMask, const CameraDepthTarget* prepass);
+    // The last main pass's GPU time and the samples its depth test passed — the fragments it
+    // shaded into the image, once per covered pixel over a pre-pass — as the queries the frame's
+    // figures read (gpu_figures.h).
     const PassTimer& timer() const { return m_mainTimer; }
+    const PassSamples& samples() const { return m_mainSamples; }
 
     // The colour target: nullptr before the first frame.
     const ColorTarget* color() const { return m_color ? &*m_color : nullptr; }
@@ -72,6 +84,7 @@ private:
     std::optional<EvalTarget> m_eval;
     std::optional<MaskPingPong> m_mask;
     PassTimer m_mainTimer;
+    PassSamples m_mainSamples;
 };
 
 } // namespace shadowkit::gl

@@ -10,8 +10,8 @@
 namespace shadowkit::gl {
 namespace {
 
-// A slot's layout: seven 64-bit query results, then the commands (if any).
-enum Stamp : size_t { ShadowStart, ShadowEnd, LocalStart, LocalEnd, MainStart, MainEnd, Samples, kStamps };
+// A slot's layout: eight 64-bit query results, then the commands (if any).
+enum Stamp : size_t { ShadowStart, ShadowEnd, LocalStart, LocalEnd, MainStart, MainEnd, Samples, MainSamples, kStamps };
 constexpr size_t kCommandsOffset = 64;
 static_assert(kStamps * sizeof(uint64_t) <= kCommandsOffset);
 
@@ -23,6 +23,7 @@ void GpuFigures::fill(FrameStats& stats) const {
     stats.shadow.mapTexels = mapTexels;
     stats.local.gpuMilliseconds = localMilliseconds;
     stats.main.gpuMilliseconds = mainMilliseconds;
+    stats.main.samplesPassed = mainSamplesPassed;
     if (shadowInstances) stats.shadow.instances = *shadowInstances, stats.shadow.triangles = *shadowTriangles;
     if (mainInstances) stats.main.instances = *mainInstances, stats.main.triangles = *mainTriangles;
     if (localInstances) stats.local.instances = *localInstances, stats.local.triangles = *localTriangles;
@@ -55,6 +56,8 @@ std::vector<GpuFigures> GpuFigureRing::record(int64_t frame, const FrameFigureSo
     }
     slot.counted = sources.samples.counted();
     if (slot.counted) stamp(sources.samples.query(), Samples);
+    slot.mainCounted = sources.mainSamples.counted();
+    if (slot.mainCounted) stamp(sources.mainSamples.query(), MainSamples);
     if (sources.commands) {
         // The culling's compute passes wrote the commands: visible to a copy after this barrier.
         glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
@@ -115,7 +118,8 @@ GpuFigures GpuFigureRing::collect(Slot& slot) {
                        .localMilliseconds = ms(1),
                        .mainMilliseconds = ms(2),
                        .samplesPassed = slot.counted ? stamps[Samples] : 0,
-                       .mapTexels = slot.mapTexels};
+                       .mapTexels = slot.mapTexels,
+                       .mainSamplesPassed = slot.mainCounted ? stamps[MainSamples] : 0};
     if (slot.lists.empty()) return figures;
     const auto* words = reinterpret_cast<const uint32_t*>(static_cast<const char*>(slot.read.data()) + kCommandsOffset);
     const std::span<const uint32_t> commands(words, (slot.read.bytes() - kCommandsOffset) / sizeof(uint32_t));

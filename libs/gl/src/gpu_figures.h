@@ -40,7 +40,8 @@ struct FrameFigureSources {
     const PassTimer& shadow;
     const PassTimer& local;
     const PassTimer& main;
-    const PassSamples& samples;
+    const PassSamples& samples;     // the sun's maps or pages
+    const PassSamples& mainSamples; // the camera's main pass
     uint64_t mapTexels = 0;
     GLuint commands = 0; // 0: no GPU-culled list
     size_t commandWords = 0;
@@ -72,7 +73,7 @@ private:
         int64_t frame = 0;
         uint64_t mapTexels = 0;
         bool timed[3] = {false, false, false};
-        bool counted = false;
+        bool counted = false, mainCounted = false;
         std::vector<CulledListShape> lists;
     };
     // The figures of a slot whose fence has passed; frees it.

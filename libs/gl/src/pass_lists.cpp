@@ -123,6 +123,7 @@ void PassLists::plan(const PassPlanInputs& in, VirtualPages& pages) {
     planMasks(in);
     // The pre-pass's depth range, for whoever reads it (lastVisibleDepth).
     m_prepassUnreduced = false;
+    m_prepassThisFrame = prepass;
     if (!prepass) {
         m_depthRange->forget();
     } else if (m_depthRangeWanted) {

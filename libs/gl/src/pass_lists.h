@@ -90,6 +90,11 @@ public:
     const CullingCosts& costs() const { return m_costs; }
     // Camera depth pre-passes drawn since the planner was made (a CHC++ settle loop counts once).
     int prepassesDrawn() const { return m_prepassesDrawn; }
+    // The camera's depth pre-pass of the frame last planned, when it has one: the depth of the
+    // surfaces the camera list draws — the same instances at the same levels (GPU culling's may
+    // add instances found hidden behind them), the same vertex shader and alpha test — which the
+    // camera passes draw over (CameraPasses). nullptr: none.
+    const CameraDepthTarget* cameraPrepass() const { return m_prepassThisFrame ? &*m_cameraDepth : nullptr; }
 
     // The levels the last frame's camera list and sun lists (maps or pages) drew each instance at.
     // GPU-culled lists are read back (a wait: for reports, not for frames).
@@ -147,6 +152,7 @@ private:
     std::unique_ptr<DepthRangeReduction> m_depthRange;
     std::optional<CameraDepthTarget> m_cameraDepth; // the pre-pass's target
     bool m_prepassUnreduced = false;                // m_cameraDepth holds a pre-pass not yet reduced
+    bool m_prepassThisFrame = false;                // m_cameraDepth holds the last planned frame's pre-pass
     bool m_depthRangeWanted = false;                // lastVisibleDepth() has been asked
     std::vector<uint32_t> m_prepassDrawn;
     std::vector<core::Aabb> m_movedBoxes;  // old and new boxes of instances moved since the last frame

@@ -165,14 +165,12 @@ EvalTarget::EvalTarget(int w, int h)
     glNamedFramebufferTexture(framebuffer.id(), GL_DEPTH_ATTACHMENT, depth.id(), 0);
 }
 
-void EvalTarget::clear() const {
+void EvalTarget::clearColors() const {
     const float zero[4] = {0, 0, 0, 0}, one[4] = {1, 0, 0, 0};
     const GLuint none[4] = {0, 0, 0, 0};
     glClearNamedFramebufferfv(framebuffer.id(), GL_COLOR, 0, one); // nothing drawn: lit
     glClearNamedFramebufferuiv(framebuffer.id(), GL_COLOR, 1, none);
     for (GLint i = 2; i < 6; ++i) glClearNamedFramebufferfv(framebuffer.id(), GL_COLOR, i, zero);
-    const float clearDepth = 1.0f;
-    glClearNamedFramebufferfv(framebuffer.id(), GL_DEPTH, 0, &clearDepth);
 }
 
 std::vector<float> EvalTarget::readViewDepth() const {

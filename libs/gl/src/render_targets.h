@@ -69,7 +69,7 @@ struct EvalTarget {
     int width = 0, height = 0;
 
     EvalTarget(int w, int h);
-    void clear() const;
+    void clearColors() const;                 // nothing drawn: lit, no surface; the depth is the pass's (CameraPasses)
     core::RasterBuffers read() const;         // top row first
     std::vector<float> readViewDepth() const; // metres, 0 where nothing was drawn
 };

@@ -176,11 +176,12 @@ core::Result<FrameStats> Renderer::render(const core::PerspectiveCamera& wsCamer
     int maskIndex = -1;
     if (blurred) {
         r.bindFrame(view, false, -1);
-        if (auto s = r.camera->evalPass(*r.scene, r.lists->cameraList(), view); !s) return s.errorInfo();
+        if (auto s = r.camera->evalPass(*r.scene, r.lists->cameraList(), view, r.lists->cameraPrepass()); !s)
+            return s.errorInfo();
         maskIndex = r.camera->blurPass(settings.blur);
     }
     r.bindFrame(view, blurred, -1);
-    auto mainDraws = r.camera->mainPass(*r.scene, r.lists->cameraList(), view, maskIndex);
+    auto mainDraws = r.camera->mainPass(*r.scene, r.lists->cameraList(), view, maskIndex, r.lists->cameraPrepass());
     if (!mainDraws) return mainDraws.errorInfo();
     stats.frame = ++r.frames;
     r.gpuFigures(stats, settings, *mainDraws);
@@ -193,7 +194,8 @@ void Renderer::Impl::gpuFigures(FrameStats& stats, const RenderSettings& setting
     stats.shadow = lastShadow;
     stats.shadow.mapTexels = sun->mapTexels();
     stats.main = {0.0, mainDraws.instances, mainDraws.triangles, mainDraws.drawCalls};
-    FrameFigureSources sources{sun->timer(), localTimer, camera->timer(), sun->samples(), sun->mapTexels()};
+    FrameFigureSources sources{sun->timer(),   localTimer,        camera->timer(),
+                               sun->samples(), camera->samples(), sun->mapTexels()};
     if (settings.culling == Culling::Gpu) lists->describeGpuLists(sources);
     figures.take(stats, sources, lateFigures);
     if (!lateFigures && sources.commands) keepGpuShadowDraws({stats.shadow.instances, stats.shadow.triangles, 0});
@@ -236,7 +238,7 @@ core::Result<core::RasterBuffers> Renderer::Impl::evalBuffers(const SceneFrame& 
     readGpuShadowDraws(settings);
     const CameraView view{frame.camera, light, sun->lookupSetup(setup, settings), settings, *bias};
     bindFrame(view, false, localLight);
-    if (auto s = camera->evalPass(*scene, lists->cameraList(), view); !s) return s.errorInfo();
+    if (auto s = camera->evalPass(*scene, lists->cameraList(), view, lists->cameraPrepass()); !s) return s.errorInfo();
     core::RasterBuffers buffers = camera->readEval();
     if (!shadows) std::ranges::fill(buffers.shadowTerm, 1.0f); // no map was drawn: lit
     if (localLight >= 0) {                                     // the eye-space blur is the sun's

@@ -60,26 +60,24 @@ void main() {
 
 TEST_F(InstalledGlslTest, TheLookupAloneCompilesWithAnEnginesOwnDeclarations) {
     using namespace gl::shaders;
-    const auto program = gl::buildProgram("engine shader", {kVertex},
-                                          {kEngineDeclarations, kShadowkitShadowsGlsl, kEngineShading});
+    const auto program =
+        gl::buildProgram("engine shader", {kVertex}, {kEngineDeclarations, kShadowkitShadowsGlsl, kEngineShading});
     EXPECT_TRUE(program) << program.error();
 }
 
 TEST_F(InstalledGlslTest, WithOpacityLayersTheFoliageFileAppendedAfterTheLookupCompletesIt) {
     using namespace gl::shaders;
-    const auto program =
-        gl::buildProgram("engine shader, opacity layers", {kVertex},
-                         {kEngineDeclarations, kOpacityDeclarations, kShadowkitShadowsGlsl,
-                          kShadowkitFoliageOpacityGlsl, kEngineShading});
+    const auto program = gl::buildProgram("engine shader, opacity layers", {kVertex},
+                                          {kEngineDeclarations, kOpacityDeclarations, kShadowkitShadowsGlsl,
+                                           kShadowkitFoliageOpacityGlsl, kEngineShading});
     EXPECT_TRUE(program) << program.error();
 }
 
 TEST_F(InstalledGlslTest, TheFoliageFileBeforeTheLookupIsRefusedNamingTheOrder) {
     using namespace gl::shaders;
-    const auto program =
-        gl::buildProgram("engine shader, files swapped", {kVertex},
-                         {kEngineDeclarations, kOpacityDeclarations, kShadowkitFoliageOpacityGlsl,
-                          kShadowkitShadowsGlsl, kEngineShading});
+    const auto program = gl::buildProgram("engine shader, files swapped", {kVertex},
+                                          {kEngineDeclarations, kOpacityDeclarations, kShadowkitFoliageOpacityGlsl,
+                                           kShadowkitShadowsGlsl, kEngineShading});
     ASSERT_FALSE(program);
     EXPECT_NE(program.error().find("append it after shadowkit_shadows.glsl"), std::string::npos) << program.error();
 }
@@ -89,8 +87,8 @@ TEST_F(InstalledGlslTest, OpacityLayersNamedWithoutTheFoliageFileAreRefused) {
     // cannot be made, never a silently unshadowed leaf. (Mesa names the function in its link log;
     // the wording is the driver's, so only the refusal is asserted.)
     using namespace gl::shaders;
-    const auto program = gl::buildProgram("engine shader, foliage file missing", {kVertex},
-                                          {kEngineDeclarations, kOpacityDeclarations, kShadowkitShadowsGlsl,
-                                           kEngineShading});
+    const auto program =
+        gl::buildProgram("engine shader, foliage file missing", {kVertex},
+                         {kEngineDeclarations, kOpacityDeclarations, kShadowkitShadowsGlsl, kEngineShading});
     EXPECT_FALSE(program);
 }

@@ -102,6 +102,9 @@ nlohmann::json FrameCosts::json() const {
     j["shadow"]["map_texels"] = m_last.shadow.mapTexels;
     if (m_last.shadow.mapTexels > 0)
         j["shadow"]["samples_per_texel"] = double(m_last.shadow.samplesPassed) / double(m_last.shadow.mapTexels);
+    // The fragments the last frame's main pass shaded into the image (once per covered pixel
+    // over the camera's depth pre-pass).
+    j["main"]["samples_passed"] = m_last.main.samplesPassed;
     const Occlusion o = occlusion();
     j["receiver_mask_ms"] = toJson(masks());
     j["occlusion"] = {{"nodes_visited", toJson(o.nodesVisited)},

@@ -19,6 +19,11 @@ out vec3 vAlbedo;
 flat out uint vSurfaceId;
 flat out float vLodError; // in world metres
 
+// The camera's depth pre-pass and the camera passes run this shader in different programs; the
+// passes then test against the pre-pass's depth with GL_LEQUAL (CameraPasses), which needs the
+// same depth to the bit for the same vertex (GLSL 4.50 §4.8.1).
+invariant gl_Position;
+
 void main() {
     const uint entry = skVisibleEntry(uint(gl_InstanceID));
     const uint instance = skInstanceOf(entry);

@@ -42,6 +42,8 @@ struct PassStats {
     // Shadow pass: samples that passed the depth test (written), and the texels of the maps drawn
     // (the fixed maps, or the virtual pages drawn this frame, guard bands and all: none in a frame
     // that draws no page); their ratio is the overdraw that reaches the depth buffer (1 at best).
+    // Main (camera) pass: the samples its depth test passed, the fragments shaded into the image:
+    // at most one per pixel over the camera's depth pre-pass (RenderSettings width × height).
     uint64_t samplesPassed = 0;
     uint64_t mapTexels = 0;
 };
@@ -63,6 +65,7 @@ struct GpuFigures {
     double shadowMilliseconds = 0.0, localMilliseconds = 0.0, mainMilliseconds = 0.0;
     uint64_t samplesPassed = 0; // the sun's maps or pages (PassStats::samplesPassed)
     uint64_t mapTexels = 0;
+    uint64_t mainSamplesPassed = 0; // the main pass's (PassStats::samplesPassed of FrameStats::main)
     // Culling::Gpu: instances and triangles submitted by the culled lists (the other cullings'
     // counts are known on the CPU: FrameStats::shadow, local and main carry them). The local
     // lights' (when there are any) count each instance once per map face it is drawn into, as
