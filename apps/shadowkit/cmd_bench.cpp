@@ -83,6 +83,14 @@ struct BenchRow {
     std::string view;
 };
 
+// A pass's fragment-shader invocations beside the samples it wrote, where the driver counts them.
+std::string shadedSaid(const gl::PassStats& pass) {
+    if (pass.fragmentsShaded == 0 || pass.samplesPassed == 0) return "";
+    return fmt::format("; {} fragments shaded, {:.2f} per sample written (more: shaded, then rejected by a "
+                       "late depth test or an alpha test; llvmpipe counts the samples written alone)",
+                       pass.fragmentsShaded, double(pass.fragmentsShaded) / double(pass.samplesPassed));
+}
+
 // The lines under a view's two pass rows: the camera's culling pass, CHC++'s counts, culling's
 // CPU time, the shadow pass's samples per texel, the main pass's per pixel of the frame
 // (`pixels` of them) and the receiver masks', as they apply.
@@ -110,15 +118,15 @@ void printPassLines(const BenchArgs& args, gl::Culling culling, const measure::F
     if (const gl::PassStats& shadow = costs.last().shadow; shadow.mapTexels > 0)
         fmt::print(
             "{:>7} {:>7} {:<14} depth   the shadow pass wrote {:.2f} samples per texel drawn ({} samples passed, "
-            "{} texels of the maps, or of the virtual pages the last frame drew; 1 is no overdraw)\n",
-            "", "", "", double(shadow.samplesPassed) / double(shadow.mapTexels), shadow.samplesPassed,
-            shadow.mapTexels);
+            "{} texels of the maps, or of the virtual pages the last frame drew; 1 is no overdraw){}\n",
+            "", "", "", double(shadow.samplesPassed) / double(shadow.mapTexels), shadow.samplesPassed, shadow.mapTexels,
+            shadedSaid(shadow));
     const gl::PassStats& main = costs.last().main;
     if (main.samplesPassed > 0)
-        fmt::print("{:>7} {:>7} {:<14} camera  the main pass shaded {:.2f} samples per pixel of the frame ({} "
-                   "samples passed its depth test; over the camera's depth pre-pass each covered pixel once, else "
-                   "every fragment nearer than those drawn before it)\n",
-                   "", "", "", double(main.samplesPassed) / pixels, main.samplesPassed);
+        fmt::print("{:>7} {:>7} {:<14} camera  the main pass wrote {:.2f} samples per pixel of the frame ({} "
+                   "passed its depth test; over the camera's depth pre-pass each covered pixel once, else every "
+                   "fragment nearer than those drawn before it){}\n",
+                   "", "", "", double(main.samplesPassed) / pixels, main.samplesPassed, shadedSaid(main));
     const measure::Spread frameCpu = costs.frameCpu();
     fmt::print("{:>7} {:>7} {:<14} cpu     the frame's CPU side ms med {:.3f} max {:.3f} (the frames after the "
                "first: pre-passes, set-up, culling, levels and lists, every GL call; on a software rasteriser the "

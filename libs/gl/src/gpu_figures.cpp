@@ -10,9 +10,21 @@
 namespace shadowkit::gl {
 namespace {
 
-// A slot's layout: eight 64-bit query results, then the commands (if any).
-enum Stamp : size_t { ShadowStart, ShadowEnd, LocalStart, LocalEnd, MainStart, MainEnd, Samples, MainSamples, kStamps };
-constexpr size_t kCommandsOffset = 64;
+// A slot's layout: ten 64-bit query results, then the commands (if any).
+enum Stamp : size_t {
+    ShadowStart,
+    ShadowEnd,
+    LocalStart,
+    LocalEnd,
+    MainStart,
+    MainEnd,
+    Samples,
+    MainSamples,
+    Shaded,
+    MainShaded,
+    kStamps
+};
+constexpr size_t kCommandsOffset = 128;
 static_assert(kStamps * sizeof(uint64_t) <= kCommandsOffset);
 
 } // namespace
@@ -24,6 +36,8 @@ void GpuFigures::fill(FrameStats& stats) const {
     stats.local.gpuMilliseconds = localMilliseconds;
     stats.main.gpuMilliseconds = mainMilliseconds;
     stats.main.samplesPassed = mainSamplesPassed;
+    stats.shadow.fragmentsShaded = fragmentsShaded;
+    stats.main.fragmentsShaded = mainFragmentsShaded;
     if (shadowInstances) stats.shadow.instances = *shadowInstances, stats.shadow.triangles = *shadowTriangles;
     if (mainInstances) stats.main.instances = *mainInstances, stats.main.triangles = *mainTriangles;
     if (localInstances) stats.local.instances = *localInstances, stats.local.triangles = *localTriangles;
@@ -54,10 +68,15 @@ std::vector<GpuFigures> GpuFigureRing::record(int64_t frame, const FrameFigureSo
         stamp(timers[t]->startQuery(), Stamp(2 * t));
         stamp(timers[t]->endQuery(), Stamp(2 * t + 1));
     }
-    slot.counted = sources.samples.counted();
-    if (slot.counted) stamp(sources.samples.query(), Samples);
-    slot.mainCounted = sources.mainSamples.counted();
-    if (slot.mainCounted) stamp(sources.mainSamples.query(), MainSamples);
+    // Each pass's samples written and, where the driver counts them, fragments shaded.
+    const auto count = [&](const PassSamples& pass, Stamp samples, Stamp shaded, bool& counted, bool& shadedCounted) {
+        counted = pass.counted();
+        shadedCounted = counted && pass.shadedQuery() != 0;
+        if (counted) stamp(pass.query(), samples);
+        if (shadedCounted) stamp(pass.shadedQuery(), shaded);
+    };
+    count(sources.samples, Samples, Shaded, slot.counted, slot.shaded);
+    count(sources.mainSamples, MainSamples, MainShaded, slot.mainCounted, slot.mainShaded);
     if (sources.commands) {
         // The culling's compute passes wrote the commands: visible to a copy after this barrier.
         glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
@@ -119,7 +138,9 @@ GpuFigures GpuFigureRing::collect(Slot& slot) {
                        .mainMilliseconds = ms(2),
                        .samplesPassed = slot.counted ? stamps[Samples] : 0,
                        .mapTexels = slot.mapTexels,
-                       .mainSamplesPassed = slot.mainCounted ? stamps[MainSamples] : 0};
+                       .mainSamplesPassed = slot.mainCounted ? stamps[MainSamples] : 0,
+                       .fragmentsShaded = slot.shaded ? stamps[Shaded] : 0,
+                       .mainFragmentsShaded = slot.mainShaded ? stamps[MainShaded] : 0};
     if (slot.lists.empty()) return figures;
     const auto* words = reinterpret_cast<const uint32_t*>(static_cast<const char*>(slot.read.data()) + kCommandsOffset);
     const std::span<const uint32_t> commands(words, (slot.read.bytes() - kCommandsOffset) / sizeof(uint32_t));

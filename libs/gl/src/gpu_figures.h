@@ -73,7 +73,8 @@ private:
         int64_t frame = 0;
         uint64_t mapTexels = 0;
         bool timed[3] = {false, false, false};
-        bool counted = false, mainCounted = false;
+        bool counted = false, mainCounted = false; // samples written, sun's and main pass's
+        bool shaded = false, mainShaded = false;   // fragments shaded
         std::vector<CulledListShape> lists;
     };
     // The figures of a slot whose fence has passed; frees it.

@@ -105,6 +105,9 @@ nlohmann::json FrameCosts::json() const {
     // The fragments the last frame's main pass shaded into the image (once per covered pixel
     // over the camera's depth pre-pass).
     j["main"]["samples_passed"] = m_last.main.samplesPassed;
+    // Fragment-shader invocations in the same spans, where the driver counts them (0: it does not).
+    j["shadow"]["fragments_shaded"] = m_last.shadow.fragmentsShaded;
+    j["main"]["fragments_shaded"] = m_last.main.fragmentsShaded;
     const Occlusion o = occlusion();
     j["receiver_mask_ms"] = toJson(masks());
     j["occlusion"] = {{"nodes_visited", toJson(o.nodesVisited)},

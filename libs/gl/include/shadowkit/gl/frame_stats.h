@@ -45,6 +45,11 @@ struct PassStats {
     // Main (camera) pass: the samples its depth test passed, the fragments shaded into the image:
     // at most one per pixel over the camera's depth pre-pass (RenderSettings width × height).
     uint64_t samplesPassed = 0;
+    // Fragment-shader invocations in the same span as samplesPassed, where the driver counts
+    // them (ARB_pipeline_statistics_query; 0 where not): more than samplesPassed by the
+    // fragments shaded and then rejected — by a late depth test, or a discard (pass_samples.h;
+    // llvmpipe's counter gives samplesPassed itself).
+    uint64_t fragmentsShaded = 0;
     uint64_t mapTexels = 0;
 };
 
@@ -66,6 +71,7 @@ struct GpuFigures {
     uint64_t samplesPassed = 0; // the sun's maps or pages (PassStats::samplesPassed)
     uint64_t mapTexels = 0;
     uint64_t mainSamplesPassed = 0; // the main pass's (PassStats::samplesPassed of FrameStats::main)
+    uint64_t fragmentsShaded = 0, mainFragmentsShaded = 0; // PassStats::fragmentsShaded of shadow and main
     // Culling::Gpu: instances and triangles submitted by the culled lists (the other cullings'
     // counts are known on the CPU: FrameStats::shadow, local and main carry them). The local
     // lights' (when there are any) count each instance once per map face it is drawn into, as
