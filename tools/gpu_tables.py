@@ -184,6 +184,33 @@ def leafy_table(d):
     return "\n".join(out)
 
 
+def work_table(d):
+    """Each pass's work per fragment on the GPU: the samples its depth test passed and the
+    fragments it shaded (bench's fragments_shaded, ARB_pipeline_statistics_query), the shadow
+    pass's per map texel and the main pass's per pixel, for the blob and leafy forests' frames.
+    A shaded fragment that wrote no sample was thrown away by a late depth test or an alpha test.
+    None when the run predates the counter (326f753)."""
+    sets = [("blob", "tech-tsm.json"), ("leafy", "leafy.json"), ("leafy, `--no-lod`", "leafy-no-lod.json")]
+    rows = []
+    for label, name in sets:
+        if not (d / name).exists():
+            continue
+        for r in runs(d / name):
+            shadow, main = r["shadow"], r["main"]
+            if not shadow.get("fragments_shaded") or not main.get("fragments_shaded"):
+                continue
+            pixels = r["width"] * r["height"]
+            rows.append(f"| {label} | {r['view']} | {per_texel(r):.2f} | "
+                        f"{shadow['fragments_shaded'] / shadow['samples_passed']:.2f} | "
+                        f"{main['samples_passed'] / pixels:.2f} | "
+                        f"{main['fragments_shaded'] / main['samples_passed']:.2f} |")
+    if not rows:
+        return None
+    return "\n".join(["| forest | view | shadow pass: samples per texel | fragments shaded per sample | "
+                      "main pass: samples per pixel | fragments shaded per sample |",
+                      "|---|---|---:|---:|---:|---:|"] + rows)
+
+
 def opacity_table(d):
     """What the leaves' opacity layers cost (--foliage-opacity): the leafy forest under the real
     sun, each set-up with the hard test, PCSS, and PCSS with the layers; both passes' GPU ms per
@@ -253,6 +280,8 @@ def main(argv):
     write_into(f"{PAGE}:gpu-filters", filters_table(d, "filter", FILTERS))
     write_into(f"{PAGE}:gpu-lamps", filters_table(d, "lamp", ["hard", "pcf2", "pcss"], shadow_column=False))
     write_into(f"{PAGE}:gpu-leafy", leafy_table(d))
+    if (work := work_table(d)) is not None:
+        write_into(f"{PAGE}:gpu-work", work)
     if (d / "opacity-tsm-hard.json").exists():
         write_into(f"{PAGE}:gpu-opacity", opacity_table(d))
     write_into(f"{PAGE}:gpu-eval", eval_table(d, local))
