@@ -51,24 +51,22 @@ FrameUniforms frameUniformsOf(const CameraView& view, bool readBlurredMask) {
 
 // The depth a camera pass starts from: the pre-pass's, tested GL_LEQUAL with writes off (the
 // pre-pass already holds every covered pixel's nearest depth, to the bit: main.vert's
-// gl_Position is invariant), or cleared to the far plane for GL_LESS with writes. A pre-pass of
-// another size (none this frame) is not used. Returns whether the pass draws over it.
-bool startDepth(const Texture& depth, int width, int height, const CameraDepthTarget* prepass, GLuint framebuffer) {
+// gl_Position is invariant), or cleared to the far plane for bindFrame's GL_LESS with writes. A
+// pre-pass of another size (none this frame) is not used.
+void startDepth(const Texture& depth, int width, int height, const CameraDepthTarget* prepass, GLuint framebuffer) {
     if (prepass && prepass->width == width && prepass->height == height) {
         glCopyImageSubData(prepass->depth.id(), GL_TEXTURE_2D, 0, 0, 0, 0, depth.id(), GL_TEXTURE_2D, 0, 0, 0, 0, width,
                            height, 1);
         glDepthFunc(GL_LEQUAL);
         glDepthMask(GL_FALSE);
-        return true;
+        return;
     }
     const float clearDepth = 1.0f;
     glClearNamedFramebufferfv(framebuffer, GL_DEPTH, 0, &clearDepth);
-    return false;
 }
 
-// Back to bindFrame's depth state after a pass drawn over the pre-pass.
-void endDepth(bool overPrepass) {
-    if (!overPrepass) return;
+// Back to bindFrame's depth state after a camera pass.
+void endDepth() {
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
 }
@@ -119,9 +117,9 @@ core::Status CameraPasses::evalPass(const GpuScene& scene, const PassList& list,
     glBindFramebuffer(GL_FRAMEBUFFER, m_eval->framebuffer.id());
     glViewport(0, 0, m_eval->width, m_eval->height);
     m_eval->clearColors();
-    const bool over = startDepth(m_eval->depth, m_eval->width, m_eval->height, prepass, m_eval->framebuffer.id());
+    startDepth(m_eval->depth, m_eval->width, m_eval->height, prepass, m_eval->framebuffer.id());
     scene.draw(list, m_programs.eval(view.setup.clipmap.has_value()), true);
-    endDepth(over);
+    endDepth();
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     return core::Ok{};
 }
@@ -165,13 +163,13 @@ core::Result<DrawStats> CameraPasses::mainPass(const GpuScene& scene, const Pass
     const glm::vec3 sky = skyColor(daylight(view.light, settings));
     const float clearColor[4] = {sky.r, sky.g, sky.b, 1.0f};
     glClearNamedFramebufferfv(m_color->framebuffer.id(), GL_COLOR, 0, clearColor);
-    const bool over = startDepth(m_color->depth, m_color->width, m_color->height, prepass, m_color->framebuffer.id());
+    startDepth(m_color->depth, m_color->width, m_color->height, prepass, m_color->framebuffer.id());
     m_mainTimer.begin();
     m_mainSamples.begin();
     const DrawStats draws = scene.draw(list, m_programs.main(view.setup.clipmap.has_value()), true);
     m_mainSamples.end();
     m_mainTimer.end();
-    endDepth(over);
+    endDepth();
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     return draws;
 }

@@ -64,9 +64,9 @@ public:
     // samples counted (samples()).
     core::Result<DrawStats> mainPass(const GpuScene& scene, const PassList& list, const CameraView& view,
                                      int blurredMask, const CameraDepthTarget* prepass);
-    // The last main pass's GPU time and the samples its depth test passed — the fragments it
-    // shaded into the image, once per covered pixel over a pre-pass — as the queries the frame's
-    // figures read (gpu_figures.h).
+    // The last main pass's GPU time and its work — the samples its depth test passed (written
+    // into the image, once per covered pixel over a pre-pass) and the fragments it shaded — as
+    // the queries the frame's figures read (gpu_figures.h).
     const PassTimer& timer() const { return m_mainTimer; }
     const PassSamples& samples() const { return m_mainSamples; }
 

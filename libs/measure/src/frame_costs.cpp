@@ -102,7 +102,7 @@ nlohmann::json FrameCosts::json() const {
     j["shadow"]["map_texels"] = m_last.shadow.mapTexels;
     if (m_last.shadow.mapTexels > 0)
         j["shadow"]["samples_per_texel"] = double(m_last.shadow.samplesPassed) / double(m_last.shadow.mapTexels);
-    // The fragments the last frame's main pass shaded into the image (once per covered pixel
+    // The samples the last frame's main pass wrote into the image (once per covered pixel
     // over the camera's depth pre-pass).
     j["main"]["samples_passed"] = m_last.main.samplesPassed;
     // Fragment-shader invocations in the same spans, where the driver counts them (0: it does not).

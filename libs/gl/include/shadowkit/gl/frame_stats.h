@@ -42,7 +42,7 @@ struct PassStats {
     // Shadow pass: samples that passed the depth test (written), and the texels of the maps drawn
     // (the fixed maps, or the virtual pages drawn this frame, guard bands and all: none in a frame
     // that draws no page); their ratio is the overdraw that reaches the depth buffer (1 at best).
-    // Main (camera) pass: the samples its depth test passed, the fragments shaded into the image:
+    // Main (camera) pass: the samples its depth test passed, the fragments written into the image:
     // at most one per pixel over the camera's depth pre-pass (RenderSettings width × height).
     uint64_t samplesPassed = 0;
     // Fragment-shader invocations in the same span as samplesPassed, where the driver counts
