@@ -68,6 +68,10 @@ struct Renderer::Impl {
     // The frame's GPU figures into `stats`: waited for now, or handed to the ring (and those
     // of earlier frames that came back taken from it).
     void gpuFigures(FrameStats& stats, const RenderSettings& settings, const DrawStats& mainDraws);
+    // A frame: the shadow passes, then the main pass; with `evalBuffers`, the eval pass's buffers
+    // of the same frame are read into it first (renderWithEvalBuffers).
+    core::Result<FrameStats> frame(const SceneFrame& frame, const core::DirectionalLight& light,
+                                   const RenderSettings& settings, core::RasterBuffers* evalBuffers);
     // The eval pass's buffers after the shadow passes (PassPurpose::Frame) or none (Surfaces).
     core::Result<core::RasterBuffers> evalBuffers(const SceneFrame& frame, const core::DirectionalLight& light,
                                                   const RenderSettings& settings, int localLight, PassPurpose purpose);
@@ -155,38 +159,55 @@ core::Result<PassStats> Renderer::Impl::shadowPasses(const core::DirectionalLigh
 
 core::Result<FrameStats> Renderer::render(const core::PerspectiveCamera& wsCamera, const core::DirectionalLight& light,
                                           const core::ShadowSetup& wsSetup, const RenderSettings& asked) {
-    Impl& r = *m_impl;
-    const RenderSettings settings = r.resolved(asked);
-    const SceneFrame frame = inScene(r.wsOrigin, wsCamera, wsSetup);
-    const core::PerspectiveCamera& camera = frame.camera;
-    const core::ShadowSetup& setup = frame.setup();
-    const auto bias = r.prepare(camera, light, setup, settings, PassPurpose::Frame);
+    return m_impl->frame(inScene(m_impl->wsOrigin, wsCamera, wsSetup), light, m_impl->resolved(asked), nullptr);
+}
+
+core::Result<std::pair<FrameStats, core::RasterBuffers>>
+Renderer::renderWithEvalBuffers(const core::PerspectiveCamera& wsCamera, const core::DirectionalLight& light,
+                                const core::ShadowSetup& wsSetup, const RenderSettings& asked) {
+    core::RasterBuffers buffers;
+    auto stats = m_impl->frame(inScene(m_impl->wsOrigin, wsCamera, wsSetup), light, m_impl->resolved(asked), &buffers);
+    if (!stats) return stats.errorInfo();
+    return std::pair{*stats, std::move(buffers)};
+}
+
+core::Result<FrameStats> Renderer::Impl::frame(const SceneFrame& sceneFrame, const core::DirectionalLight& light,
+                                               const RenderSettings& settings, core::RasterBuffers* evalBuffers) {
+    const core::PerspectiveCamera& cam = sceneFrame.camera;
+    const core::ShadowSetup& setup = sceneFrame.setup();
+    const auto bias = prepare(cam, light, setup, settings, PassPurpose::Frame);
     if (!bias) return bias.errorInfo();
     FrameStats stats;
-    auto local = r.shadowPasses(light, setup, settings, *bias);
-    if (!local) return local.errorInfo();
-    stats.local = *local;
-    for (const core::ShadowSetup& s : r.localLights.pointSetups)
+    auto localStats = shadowPasses(light, setup, settings, *bias);
+    if (!localStats) return localStats.errorInfo();
+    stats.local = *localStats;
+    for (const core::ShadowSetup& s : localLights.pointSetups)
         stats.localMaps += static_cast<int>(s.views.size()), stats.skippedFaces += s.skippedFaces;
-    for (const core::ShadowSetup& s : r.localLights.spotSetups) stats.localMaps += static_cast<int>(s.views.size());
+    for (const core::ShadowSetup& s : localLights.spotSetups) stats.localMaps += static_cast<int>(s.views.size());
 
-    // With the eye-space blur, the shadow term comes from the blurred screen-space mask.
-    const CameraView view{camera, light, r.sun->lookupSetup(setup, settings), settings, *bias};
+    // With the eye-space blur, the shadow term comes from the blurred screen-space mask, which
+    // the eval pass draws; an evaluation reads that pass's buffers before the blur.
+    const CameraView view{cam, light, sun->lookupSetup(setup, settings), settings, *bias};
     const bool blurred = settings.blur.iterations > 0;
     int maskIndex = -1;
-    if (blurred) {
-        r.bindFrame(view, false, -1);
-        if (auto s = r.camera->evalPass(*r.scene, r.lists->cameraList(), view, r.lists->cameraPrepass()); !s)
+    if (blurred || evalBuffers) {
+        bindFrame(view, false, -1);
+        if (auto s = camera->evalPass(*scene, lists->cameraList(), view, lists->cameraPrepass()); !s)
             return s.errorInfo();
-        maskIndex = r.camera->blurPass(settings.blur);
+        if (evalBuffers) *evalBuffers = camera->readEval();
+        if (blurred) maskIndex = camera->blurPass(settings.blur);
+        if (evalBuffers) {
+            if (blurred) evalBuffers->shadowTerm = camera->readBlurred(maskIndex);
+            evalBuffers->mapSize = setup.mapSize;
+        }
     }
-    r.bindFrame(view, blurred, -1);
-    auto mainDraws = r.camera->mainPass(*r.scene, r.lists->cameraList(), view, maskIndex, r.lists->cameraPrepass());
+    bindFrame(view, blurred, -1);
+    auto mainDraws = camera->mainPass(*scene, lists->cameraList(), view, maskIndex, lists->cameraPrepass());
     if (!mainDraws) return mainDraws.errorInfo();
-    stats.frame = ++r.frames;
-    r.gpuFigures(stats, settings, *mainDraws);
-    r.lists->costs().fill(stats);
-    stats.virtualPages = r.sun->lastVirtual();
+    stats.frame = ++frames;
+    gpuFigures(stats, settings, *mainDraws);
+    lists->costs().fill(stats);
+    stats.virtualPages = sun->lastVirtual();
     return stats;
 }
 

@@ -1,6 +1,7 @@
 // Headless rendering tests (CTest label `gl`): a box floating over a plane under an
 // overhead sun must shadow the plane below it, for every technique.
 #include "headless_gl_test.h"
+#include "test_scenes.h"
 
 #include "shadowkit/core/visible_depth.h"
 #include "shadowkit/gl/context.h"
@@ -87,6 +88,62 @@ TEST_F(RendererTest, BoxOverPlaneShadowsThePlaneBelowItForEveryTechnique) {
         // Shadowed: ambient only; lit: ambient + sun. The ratio is ~0.45 with our radiances.
         EXPECT_LT(under, 0.7 * away) << technique.name << ": under " << under << ", away " << away;
         EXPECT_GT(away, 100.0) << technique.name << ": the lit plane must not be dark (acne or a wrong matrix)";
+    }
+}
+
+// An evaluation that wants the shaded frame too draws the eval pass inside it
+// (renderWithEvalBuffers): the same buffers as renderEvalBuffers() and the same picture as
+// render(), each on a renderer of its own that has drawn the same frames, to the bit — though
+// the shadow passes and the culling are drawn once, not twice. CHC++'s pre-pass, GPU culling,
+// the eye-space blur and virtual pages each take a case.
+TEST_F(RendererTest, AFrameWithItsEvalBuffersEqualsTheFrameAndTheEvalPassDrawnApart) {
+    const scene::Scene forest = gl::testing::smallForest(400, 300, 32);
+    constexpr int kWidth = 160, kHeight = 90;
+    auto together = gl::Renderer::create(forest), shaded = gl::Renderer::create(forest),
+         evaluated = gl::Renderer::create(forest);
+    ASSERT_TRUE(together && shaded && evaluated);
+    struct Case {
+        const char* name;
+        core::Technique technique;
+        gl::Culling culling;
+        int blurIterations;
+    };
+    for (const Case& c : {Case{"tsm, chc", core::Technique::Tsm, gl::Culling::Occlusion, 0},
+                          Case{"lispsm, gpu culling, blurred", core::Technique::Lispsm, gl::Culling::Gpu, 2},
+                          Case{"virtual, frustum", core::Technique::Virtual, gl::Culling::Frustum, 0}}) {
+        scene::ResolvedView view = gl::testing::standardView(forest, "perpendicular");
+        view.camera.aspect = double(kWidth) / kHeight;
+        core::ShadowSetupInputs in{.camera = view.camera,
+                                   .light = view.light,
+                                   .wsSceneBounds = forest.wsBounds(),
+                                   .technique = c.technique,
+                                   .mapSize = 512};
+        in.virtualMaps.imageHeight = kHeight;
+        const auto setup = core::computeShadowSetup(in);
+        ASSERT_TRUE(setup) << c.name << ": " << setup.error();
+        gl::RenderSettings settings = gl::testing::smallFrame(kWidth, kHeight, c.culling);
+        settings.blur.iterations = c.blurIterations;
+
+        const auto both = (*together)->renderWithEvalBuffers(view.camera, view.light, *setup, settings);
+        ASSERT_TRUE(both) << c.name << ": " << both.error();
+        const scene::Image image = (*together)->readColor();
+        ASSERT_TRUE((*shaded)->render(view.camera, view.light, *setup, settings)) << c.name;
+        const auto buffers = (*evaluated)->renderEvalBuffers(view.camera, view.light, *setup, settings);
+        ASSERT_TRUE(buffers) << c.name << ": " << buffers.error();
+
+        const core::RasterBuffers& inFrame = both->second;
+        EXPECT_GT(std::ranges::count_if(inFrame.surfaceId, [](uint32_t id) { return id != 0; }), kWidth * kHeight / 2)
+            << c.name << ": the forest fills most of the frame";
+        EXPECT_GT(std::ranges::count(inFrame.shadowTerm, 0.0f), 0) << c.name << ": some of it in shadow";
+        EXPECT_EQ(inFrame.surfaceId, buffers->surfaceId) << c.name;
+        EXPECT_EQ(inFrame.shadowTerm, buffers->shadowTerm) << c.name;
+        EXPECT_EQ(inFrame.viewDepth, buffers->viewDepth) << c.name;
+        EXPECT_EQ(inFrame.wsNormal, buffers->wsNormal) << c.name;
+        EXPECT_EQ(inFrame.tsTexel, buffers->tsTexel) << c.name;
+        EXPECT_EQ(inFrame.texelFromPixel, buffers->texelFromPixel) << c.name;
+        EXPECT_EQ(inFrame.mapSize, buffers->mapSize) << c.name;
+        EXPECT_EQ(image.rgba, (*shaded)->readColor().rgba) << c.name;
+        EXPECT_EQ(both->first.shadow.triangles, (*together)->lastShadowPass().triangles) << c.name;
     }
 }
 

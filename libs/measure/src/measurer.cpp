@@ -135,21 +135,19 @@ core::Result<Measurement> Measurer::measure(const frame::PreparedFrame& frame, c
     m.bias = gl::biasFor(m.setup, settings);
     gl::Renderer& renderer = *m_impl->renderer;
     std::optional<gl::LevelsDrawn> levels; // with options.levelMap: of the frame's own passes, as virtualPages
+    // With the shaded frame, the eval pass is drawn inside it, over the same maps and lists.
     if (options.shadedImage) {
-        if (auto stats = renderer.render(inputs.camera, inputs.light, m.setup, settings); !stats)
-            return stats.errorInfo();
+        auto drawn = renderer.renderWithEvalBuffers(inputs.camera, inputs.light, m.setup, settings);
+        if (!drawn) return drawn.errorInfo();
+        m.raster = std::move(drawn->second);
         m.image = renderer.readColor();
-        m.virtualPages = renderer.lastVirtualPages(); // the frame's own pages, before the eval pass reuses them
-        m.shadowPass = renderer.lastShadowPass();
-        if (options.levelMap) levels = renderer.levelsDrawn();
+    } else {
+        auto raster = renderer.renderEvalBuffers(inputs.camera, inputs.light, m.setup, settings);
+        if (!raster) return raster.errorInfo();
+        m.raster = std::move(raster).value();
     }
-    auto raster = renderer.renderEvalBuffers(inputs.camera, inputs.light, m.setup, settings);
-    if (!raster) return raster.errorInfo();
-    if (!options.shadedImage) {
-        m.virtualPages = renderer.lastVirtualPages(), m.shadowPass = renderer.lastShadowPass();
-        if (options.levelMap) levels = renderer.levelsDrawn();
-    }
-    m.raster = std::move(raster).value();
+    m.virtualPages = renderer.lastVirtualPages(), m.shadowPass = renderer.lastShadowPass();
+    if (options.levelMap) levels = renderer.levelsDrawn();
     m.truth = truth(inputs.camera, inputs.light, settings.width, settings.height, options.truthProgress);
     auto comparison = eval::compare(m.raster, *m.truth, options.compare);
     if (!comparison) return comparison.errorInfo();

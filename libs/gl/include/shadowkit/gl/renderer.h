@@ -16,6 +16,7 @@
 #include <memory>
 #include <optional>
 #include <span>
+#include <utility>
 
 namespace shadowkit::gl {
 
@@ -47,6 +48,14 @@ public:
                                                         const core::DirectionalLight& light,
                                                         const core::ShadowSetup& setup, const RenderSettings& settings,
                                                         int localLight = -1);
+
+    // render(), handing back too the eval pass's buffers of the same frame — drawn over its maps,
+    // lists and pre-pass, just before the main pass — what renderEvalBuffers() gives for these
+    // inputs without drawing the shadow passes and the culling a second time (an evaluation that
+    // wants the shaded frame too).
+    core::Result<std::pair<FrameStats, core::RasterBuffers>>
+    renderWithEvalBuffers(const core::PerspectiveCamera& camera, const core::DirectionalLight& light,
+                          const core::ShadowSetup& setup, const RenderSettings& settings);
 
     // The eval pass's surfaces alone, with no shadow pass drawn: surface identity, view depth,
     // normals — the visible receivers a sampling model reads (readReceivers). The shadow term
