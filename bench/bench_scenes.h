@@ -1,5 +1,5 @@
-// What the benchmarks share: the default forest (built once; only its bounds matter), a
-// standard view resolved over it, and the `flythrough` path's frames over any scene — the
+// What the benchmarks share: the default forest and the leafy one (each built once), a
+// standard view resolved over either, and the `flythrough` path's frames over any scene — the
 // moving camera a benchmark iterates over so that no two iterations share their inputs.
 #pragma once
 
@@ -22,13 +22,25 @@ inline const scene::Scene& defaultForest() {
     return s;
 }
 
-// The standard view of that name over the default forest; an error names what is missing.
-inline core::Result<scene::ResolvedView> standardView(const std::string& name) {
+// The leafy forest of `--forest leafy` (10,000 trees of wood and alpha-tested leaf cards).
+inline const scene::Scene& leafyForest() {
+    static const scene::Scene s = [] {
+        scene::ForestOptions o;
+        o.kind = scene::ForestKind::Leafy;
+        o.trees = 10000;
+        return scene::makeForest(o);
+    }();
+    return s;
+}
+
+// The standard view of that name over `over`; an error names what is missing.
+inline core::Result<scene::ResolvedView> standardView(const std::string& name,
+                                                      const scene::Scene& over = defaultForest()) {
     const auto views = scene::loadViews(std::filesystem::path(SHADOWKIT_SOURCE_DATA_DIR) / "views.json");
     if (!views) return views.errorInfo();
     const auto spec = scene::findView(*views, name);
     if (!spec) return spec.errorInfo();
-    return scene::resolveView(*spec, defaultForest());
+    return scene::resolveView(*spec, over);
 }
 
 // Every frame of data/paths/flythrough.json over `scene` (cameras on its terrain, the path's own
