@@ -27,8 +27,6 @@ public:
     // Whether covers(uv) is answered by the table, without sampling (for tests and statistics).
     bool decidedByTable(glm::vec2 uv) const;
 
-    const Texture& texture() const { return m_texture; }
-
 private:
     enum class Cell : uint8_t { Hole, Covered, Edge };
 
