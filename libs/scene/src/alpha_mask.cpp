@@ -9,7 +9,8 @@ namespace shadowkit::scene {
 namespace {
 
 float alphaAt(const Texture& t, int x, int y) {
-    return float(t.image.pixel(wrapTexelIndex(x, t.image.width, t.wrapS), wrapTexelIndex(y, t.image.height, t.wrapT))[3]) /
+    return float(t.image.pixel(wrapTexelIndex(x, t.image.width, t.wrapS),
+                               wrapTexelIndex(y, t.image.height, t.wrapT))[3]) /
            255.0f;
 }
 
@@ -32,8 +33,10 @@ AlphaMask::AlphaMask(Texture texture, float baseAlpha, float cutoff)
             const float lo = std::min(m_baseAlpha * aMin, m_baseAlpha * aMax);
             const float hi = std::max(m_baseAlpha * aMin, m_baseAlpha * aMax);
             Cell cell = Cell::Edge;
-            if (lo >= m_cutoff + margin) cell = Cell::Covered;
-            else if (hi < m_cutoff - margin) cell = Cell::Hole;
+            if (lo >= m_cutoff + margin)
+                cell = Cell::Covered;
+            else if (hi < m_cutoff - margin)
+                cell = Cell::Hole;
             m_cells[size_t(j) * size_t(w + 1) + size_t(i)] = cell;
         }
     }
@@ -48,7 +51,8 @@ const AlphaMask::Cell* AlphaMask::cellAt(glm::vec2 uv) const {
     if (m_cells.empty() || !std::isfinite(uv.x) || !std::isfinite(uv.y)) return nullptr;
     // The footprint's lower texel as sampleLevel0 finds it (the same float operations).
     const int w = m_texture.image.width, h = m_texture.image.height;
-    const glm::vec2 st = glm::clamp(uv * glm::vec2(float(w), float(h)), glm::vec2(-16777216.0f), glm::vec2(16777216.0f));
+    const glm::vec2 st =
+        glm::clamp(uv * glm::vec2(float(w), float(h)), glm::vec2(-16777216.0f), glm::vec2(16777216.0f));
     const glm::vec2 base = glm::floor(st - 0.5f);
     const int i = int(base.x) + 1, j = int(base.y) + 1;
     if (i < 0 || i > w || j < 0 || j > h) return nullptr; // beyond the ring: texels wrapped further

@@ -24,7 +24,8 @@ scene::Texture leafTexture(int width, int height) {
     t.image = scene::Image(width, height);
     for (int y = 0; y < height; ++y) {
         for (int x = 0; x < width; ++x) {
-            const float r = std::hypot((float(x) + 0.5f) / float(width) - 0.5f, (float(y) + 0.5f) / float(height) - 0.45f) * 2.0f;
+            const float r =
+                std::hypot((float(x) + 0.5f) / float(width) - 0.5f, (float(y) + 0.5f) / float(height) - 0.45f) * 2.0f;
             const float a = std::clamp((0.8f - r) * 12.0f + 0.5f, 0.0f, 1.0f);
             t.image.pixel(x, y)[3] = uint8_t(std::lround(a * 255.0f));
         }
@@ -42,12 +43,14 @@ std::vector<glm::vec2> testUvs(int width, int height, int count, uint32_t seed) 
     std::uniform_int_distribution<int> texel(-2, 2 * std::max(width, height));
     std::vector<glm::vec2> uvs;
     for (int k = 0; k < count; ++k) {
-        if (k % 4 == 0) uvs.push_back({float(texel(rng)) * 0.5f / float(width), float(texel(rng)) * 0.5f / float(height)});
-        else uvs.push_back({wide(rng), wide(rng)});
+        if (k % 4 == 0)
+            uvs.push_back({float(texel(rng)) * 0.5f / float(width), float(texel(rng)) * 0.5f / float(height)});
+        else
+            uvs.push_back({wide(rng), wide(rng)});
     }
     const float inf = std::numeric_limits<float>::infinity(), nan = std::numeric_limits<float>::quiet_NaN();
-    for (const glm::vec2 odd : {glm::vec2(nan, 0.5f), glm::vec2(0.5f, inf), glm::vec2(-inf, nan), glm::vec2(1e30f, -1e30f),
-                                glm::vec2(0.0f), glm::vec2(1.0f)})
+    for (const glm::vec2 odd : {glm::vec2(nan, 0.5f), glm::vec2(0.5f, inf), glm::vec2(-inf, nan),
+                                glm::vec2(1e30f, -1e30f), glm::vec2(0.0f), glm::vec2(1.0f)})
         uvs.push_back(odd);
     return uvs;
 }
@@ -67,9 +70,9 @@ TEST(AlphaMaskTest, AnswersAsLevel0SamplingDoesForEveryUvWrapModeAndFactor) {
                         int mismatches = 0;
                         for (const glm::vec2 uv : testUvs(width, height, 4000, uint32_t(width * 131 + height)))
                             mismatches += mask.covers(uv) != coversBySampling(t, baseAlpha, cutoff, uv);
-                        EXPECT_EQ(mismatches, 0) << width << "×" << height << " wrap " << int(wrapS) << int(wrapT)
-                                                 << (nearest ? " nearest" : "") << " factor " << baseAlpha << " cutoff "
-                                                 << cutoff;
+                        EXPECT_EQ(mismatches, 0)
+                            << width << "×" << height << " wrap " << int(wrapS) << int(wrapT)
+                            << (nearest ? " nearest" : "") << " factor " << baseAlpha << " cutoff " << cutoff;
                     }
                 }
             }
