@@ -32,12 +32,8 @@ AlphaMask::AlphaMask(Texture texture, float baseAlpha, float cutoff)
             const auto [aMin, aMax] = std::minmax({a[0], a[1], a[2], a[3]});
             const float lo = std::min(m_baseAlpha * aMin, m_baseAlpha * aMax);
             const float hi = std::max(m_baseAlpha * aMin, m_baseAlpha * aMax);
-            Cell cell = Cell::Edge;
-            if (lo >= m_cutoff + margin)
-                cell = Cell::Covered;
-            else if (hi < m_cutoff - margin)
-                cell = Cell::Hole;
-            m_cells[size_t(j) * size_t(w + 1) + size_t(i)] = cell;
+            m_cells[size_t(j) * size_t(w + 1) + size_t(i)] =
+                lo >= m_cutoff + margin ? Cell::Covered : (hi < m_cutoff - margin ? Cell::Hole : Cell::Edge);
         }
     }
 }
