@@ -109,10 +109,16 @@ std::string reportJson(const std::vector<ViewReport>& views) {
 }
 
 std::string softFiguresLine(const SoftFigures& s) {
+    // A width of 0 is a hard test or filter, which draws no penumbra at all: said in words, as
+    // "×0.00" alone reads like a fault.
+    char width[64];
+    if (s.penumbraWidthRatio == 0.0)
+        std::snprintf(width, sizeof width, "penumbrae drawn hard (width ×0)");
+    else
+        std::snprintf(width, sizeof width, "penumbra width ×%.2f", s.penumbraWidthRatio);
     char text[256];
-    std::snprintf(text, sizeof text,
-                  "soft_mae %.4f, penumbra_mae %.3f over %lld px, soft_wrong%% %.2f, penumbra width ×%.2f (%.1f s)",
-                  s.softMae, s.penumbraMae, static_cast<long long>(s.penumbraPx), s.softWrongPct, s.penumbraWidthRatio,
+    std::snprintf(text, sizeof text, "soft_mae %.4f, penumbra_mae %.3f over %lld px, soft_wrong%% %.2f, %s (%.1f s)",
+                  s.softMae, s.penumbraMae, static_cast<long long>(s.penumbraPx), s.softWrongPct, width,
                   s.truthSeconds);
     return text;
 }

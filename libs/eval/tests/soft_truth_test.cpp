@@ -5,6 +5,7 @@
 
 #include "shadowkit/eval/html_report.h"
 #include "shadowkit/eval/maps.h"
+#include "shadowkit/eval/report.h"
 #include "shadowkit/eval/soft_truth.h"
 #include "shadowkit/scene/mesh_builder.h"
 
@@ -188,6 +189,16 @@ TEST(SoftTruthTest, ThePenumbraWidthRatioIsTheRenderedBandsWidthOverTheTrueOnes)
     EXPECT_TRUE(std::isnan(eval::compareSoft(ramp(10.0), soft, classes, 0.53).penumbraWidthRatio));
 }
 
+TEST(SoftTruthTest, TheFiguresLineSaysAHardShadowIsHardRatherThanAWidthOfZero) {
+    eval::SoftFigures figures;
+    figures.penumbraWidthRatio = 0.93;
+    EXPECT_NE(eval::softFiguresLine(figures).find("penumbra width ×0.93"), std::string::npos);
+    figures.penumbraWidthRatio = 0.0;
+    const std::string hard = eval::softFiguresLine(figures);
+    EXPECT_NE(hard.find("penumbrae drawn hard (width ×0)"), std::string::npos) << hard;
+    EXPECT_EQ(hard.find("×0.00"), std::string::npos) << hard;
+}
+
 TEST(SoftTruthTest, TheSoftErrorMapIsRedWhereTooDarkBlueWhereTooLightAndGreyWhereRight) {
     using PC = eval::PixelClass;
     using C = eval::ErrorMapColors;
@@ -312,8 +323,12 @@ TEST(SoftTruthTest, TheSoftTruthPictureIsGreyBetweenTheUmbrasAndTheSunsAsTheDisk
                 continue;
             }
             const float v = soft.visibility[i];
-            if (v == 0.0f) EXPECT_EQ(g, g0) << x << ", " << y;
-            if (v == 1.0f) EXPECT_EQ(g, g1) << x << ", " << y;
+            if (v == 0.0f) {
+                EXPECT_EQ(g, g0) << x << ", " << y;
+            }
+            if (v == 1.0f) {
+                EXPECT_EQ(g, g1) << x << ", " << y;
+            }
             if (v > 0.1f && v < 0.9f && g1 - g0 >= 20) {
                 EXPECT_GT(g, g0) << x << ", " << y;
                 EXPECT_LT(g, g1) << x << ", " << y;

@@ -91,7 +91,8 @@ struct ScoreReport {
 std::string scoreReportJson(const ScoreReport& report);
 
 // The soft figures as the command line prints them under a view's row (eval, score): "soft_mae
-// 0.0118, penumbra_mae 0.425 over 161 px, soft_wrong% 1.49, penumbra width ×0.93 (0.4 s)".
+// 0.0118, penumbra_mae 0.425 over 161 px, soft_wrong% 1.49, penumbra width ×0.93 (0.4 s)"; a
+// width of 0 (a hard test) as "penumbrae drawn hard (width ×0)".
 std::string softFiguresLine(const SoftFigures& soft);
 
 // Writes shadow_term, truth_lit, class, world_position, normal, truth_normal,
