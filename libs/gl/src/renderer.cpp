@@ -194,12 +194,12 @@ core::Result<FrameStats> Renderer::Impl::frame(const SceneFrame& sceneFrame, con
         bindFrame(view, false, -1);
         if (auto s = camera->evalPass(*scene, lists->cameraList(), view, lists->cameraPrepass()); !s)
             return s.errorInfo();
-        if (evalBuffers) *evalBuffers = camera->readEval();
-        if (blurred) maskIndex = camera->blurPass(settings.blur);
         if (evalBuffers) {
-            if (blurred) evalBuffers->shadowTerm = camera->readBlurred(maskIndex);
+            *evalBuffers = camera->readEval();
             evalBuffers->mapSize = setup.mapSize;
         }
+        if (blurred) maskIndex = camera->blurPass(settings.blur);
+        if (blurred && evalBuffers) evalBuffers->shadowTerm = camera->readBlurred(maskIndex);
     }
     bindFrame(view, blurred, -1);
     auto mainDraws = camera->mainPass(*scene, lists->cameraList(), view, maskIndex, lists->cameraPrepass());
