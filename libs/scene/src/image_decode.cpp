@@ -8,7 +8,7 @@
 // Debian 12's stb_image is v2.27, whose JPEG reader writes past its Huffman tables when a DHT
 // segment declares more than 256 codes (fuzz_image found it; v2.28 added the check). Until the
 // package has it, every DHT segment is checked here before stb sees the file; likewise a PNG's
-// chunk list (below).
+// chunk list (below), and its JPEG bit reader's refill (next).
 #include "shadowkit/scene/image.h"
 
 #include <algorithm>
@@ -26,6 +26,20 @@
 #define STBI_MALLOC(bytes) std::calloc(1, bytes)
 #define STBI_REALLOC(pointer, bytes) std::realloc(pointer, bytes)
 #define STBI_FREE(pointer) std::free(pointer)
+// stb 2.27's JPEG bit reader takes some codes (its fast AC path) without checking that its buffer
+// holds them. When a refill stops at a marker that cuts a scan short (a corrupt file), the count of
+// buffered bits goes negative and the next refill shifts by `24 - code_bits` >= 32, which is
+// undefined (fuzz_image, fuzz/corpus/image/scan-cut-by-marker.jpg). Every refill is routed through
+// refillJpegBits() below, which does what 2.28 does there: reads on as zeros. The renaming works
+// on the first token inside the parentheses: the definition's `stbi__jpeg *j` becomes
+// stbRefillJpegBits, stb's own refill, and the calls' `j` or `z` become refillJpegBits; a call
+// with any other argument fails to compile rather than escape the check.
+template <class Jpeg>
+static void refillJpegBits(Jpeg* jpeg);
+#define stbi__grow_buffer_unsafe(first) SHADOWKIT_STB_REFILL_##first)
+#define SHADOWKIT_STB_REFILL_stbi__jpeg stbRefillJpegBits(stbi__jpeg
+#define SHADOWKIT_STB_REFILL_j refillJpegBits(j
+#define SHADOWKIT_STB_REFILL_z refillJpegBits(z
 #if defined(__GNUC__)
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wconversion"
@@ -38,6 +52,17 @@
 #if defined(__GNUC__)
 #pragma GCC diagnostic pop
 #endif
+#undef stbi__grow_buffer_unsafe
+#undef SHADOWKIT_STB_REFILL_stbi__jpeg
+#undef SHADOWKIT_STB_REFILL_j
+#undef SHADOWKIT_STB_REFILL_z
+
+template <class Jpeg>
+static void refillJpegBits(Jpeg* jpeg) {
+    // A negative count: every buffered bit was taken, then zeros past them; the buffer is empty.
+    if (jpeg->code_bits < 0) jpeg->code_bits = 0;
+    stbRefillJpegBits(jpeg);
+}
 
 #include <webp/decode.h>
 

@@ -3,13 +3,19 @@
 // out of range, missing buffers, recursive nodes, Draco, wrong JSON types) loaded as a user
 // would load them. Each either loads into finite, non-empty geometry or is refused with one
 // line naming the file; none crashes, hangs or loads NaNs (run under the sanitizers in CI).
+//
+// And the image fuzzer's seeds (fuzz/corpus/image), which keep every input that once crashed a
+// decoder: each decodes to the size its header states or is refused in one line.
 #include "shadowkit/core/conventions.h"
+#include "shadowkit/scene/image.h"
 #include "shadowkit/scene/scene_io.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -63,4 +69,29 @@ TEST(CorpusTest, EveryPublicTestModelLoadsFiniteOrIsRefusedInOneLineNamingIt) {
     // Most of the corpus is well-formed: a reader that refuses everything must not pass.
     EXPECT_GT(loaded, refused) << loaded << " loaded, " << refused << " refused";
     std::printf("corpus: %zu files, %zu loaded, %zu refused\n", files.size(), loaded, refused);
+}
+
+TEST(CorpusTest, EveryImageFuzzSeedDecodesWholeOrIsRefusedInOneLine) {
+    const fs::path dir = fs::path(SHADOWKIT_FUZZ_CORPUS_DIR) / "image";
+    size_t decoded = 0, refused = 0;
+    for (const auto& entry : fs::directory_iterator(dir)) {
+        SCOPED_TRACE(entry.path().string());
+        std::ifstream in(entry.path(), std::ios::binary);
+        const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        ASSERT_FALSE(bytes.empty());
+        const auto image = scene::decodeImage(bytes, "seed");
+        if (!image) {
+            ++refused;
+            EXPECT_EQ(image.error().rfind("seed: ", 0), 0u) << image.error();
+            EXPECT_EQ(image.error().find('\n'), std::string::npos) << image.error();
+            continue;
+        }
+        ++decoded;
+        ASSERT_GT(image->width, 0);
+        ASSERT_GT(image->height, 0);
+        EXPECT_EQ(image->rgba.size(), size_t(image->width) * size_t(image->height) * 4);
+    }
+    // The seeds hold well-formed images of every format too: a decoder refusing all must not pass.
+    EXPECT_GE(decoded, 8u) << decoded << " decoded, " << refused << " refused";
+    EXPECT_GE(refused, 5u) << decoded << " decoded, " << refused << " refused";
 }
