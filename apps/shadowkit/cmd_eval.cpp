@@ -35,7 +35,10 @@ struct EvalArgs {
     std::string views; // "a,b" or "all"; empty: --view
     std::string json, errorMap, aliasingMap, dump, csv, plot, report;
     int softSamples = eval::SoftTruthOptions{}.samples; // --soft-samples: rays a penumbra point takes
-    bool check = false;                                 // --check: validate every option, render and measure nothing
+    // --depth-tolerance: how far, as a fraction of the view depth, the raster's surface may lie from the
+    // ray's for a pixel to be compared (EVALUATION.md: 0.5 %)
+    double depthTolerance = eval::CompareOptions{}.depthTolerance;
+    bool check = false;             // --check: validate every option, render and measure nothing
     bool serve = false;             // --serve: evaluate each request read from stdin (eval_session.h)
     EvalSession* session = nullptr; // a request of --serve: the scene and measurer kept between requests
 };
@@ -140,6 +143,9 @@ core::Status checkEvalArgs(const EvalArgs& args) {
     if (auto s = args.scene.check(); !s) return s;
     if (args.softSamples < 16 || args.softSamples > 4096)
         return core::makeError(fmt::format("--soft-samples: must be in [16, 4096] rays, got {}", args.softSamples));
+    if (!(args.depthTolerance >= 1e-5 && args.depthTolerance <= 0.1))
+        return core::makeError(
+            fmt::format("--depth-tolerance: must be in [0.00001, 0.1] of the view depth, got {}", args.depthTolerance));
     for (auto [flag, file] : {std::pair{"--json", &args.json},
                               {"--csv", &args.csv},
                               {"--plot", &args.plot},
@@ -157,6 +163,8 @@ int runEval(const EvalArgs& args) {
         if (!args.views.empty() || !args.errorMap.empty() || !args.aliasingMap.empty() || !args.dump.empty())
             return fail("--path: evaluates a path's frames, so --views, --error-map, --aliasing-map and --dump (still "
                         "views) do not apply");
+        if (args.depthTolerance != eval::CompareOptions{}.depthTolerance)
+            return fail("--depth-tolerance: still views only (a path's frames are compared at EVALUATION.md's 0.5 %)");
         // A path animates its scene frame by frame with a measurer (GL context) of its own, so
         // --serve's kept one goes first: when the path's context is destroyed none is current,
         // and the kept one would be drawn into unbound.
@@ -207,6 +215,7 @@ int runEval(const EvalArgs& args) {
         options.shadedImage = !args.report.empty();
         options.levelMap = !args.report.empty(); // the report's level map
         options.softTruth.samples = args.softSamples;
+        options.compare.depthTolerance = args.depthTolerance;
         options.truthProgress = [&, shown = false](double done) mutable {
             const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
             if ((elapsed < 2.0 && !shown) || !isatty(fileno(stderr))) return; // a log gets the table only
@@ -221,6 +230,7 @@ int runEval(const EvalArgs& args) {
         eval::ViewReport report =
             measure::viewReport(*measured, prepared->settings, name, args.scene.scene, args.scene.seed);
         report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        report.depthTolerance = args.depthTolerance;
         if (prepared->autoChoice) report.autoChoice = core::describe(*prepared->autoChoice);
         printViewRow(report);
         std::fflush(stdout);
@@ -271,6 +281,10 @@ Command addEvalCommand(CLI::App& app, EvalSession* session) {
     cmd->add_option("--soft-samples", args->softSamples,
                     "--sun-angle and lamps with a radius: shadow rays per penumbra point of the soft truth, rounded up "
                     "to a square (its standard error about 1 / (2 sqrt(N)) at most)")
+        ->capture_default_str();
+    cmd->add_option("--depth-tolerance", args->depthTolerance,
+                    "a pixel is compared when the raster's surface is the ray's instance within this fraction of the "
+                    "view depth (EVALUATION.md's 0.5 %); tighter keeps apart two leaves of one tree")
         ->capture_default_str();
     cmd->add_option("--report", args->report,
                     "write an HTML page (pictures beside it): per view the frame, rendered and ray-traced shadows, "

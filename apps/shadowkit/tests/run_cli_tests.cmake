@@ -41,6 +41,8 @@ check_fails(eval-sun-angle-out-of-range "--sun-angle" eval --check --sun-angle 3
 check_fails(render-sun-angle-negative "--sun-angle: must be in [0, 20] degrees" render --sun-angle -1 --out ${WORK}/never.png)
 check_fails(eval-pcss-taps "--filter: expected hard" eval --check --filter pcss:40)
 check_fails(eval-soft-samples-range "--soft-samples: must be in" eval --check --soft-samples 5)
+check_fails(eval-depth-tolerance-range "--depth-tolerance: must be in" eval --check --depth-tolerance 0)
+check_fails(eval-depth-tolerance-path "--depth-tolerance: still views only" eval --path flythrough --frames 2 --depth-tolerance 0.001)
 check_fails(eval-msm-virtual "--filter: msm needs fixed maps" eval --check --technique virtual --filter msm)
 check_fails(light-radius-beyond-range "point.radius: must be in" eval --check --light point:0,3,0,10,radius=20)
 check_fails(light-radius-malformed "--light: expected point" eval --check --light point:0,3,0,radius=big)

@@ -63,6 +63,7 @@ std::string reportJson(const std::vector<ViewReport>& views) {
             {"blur_iterations", v.blurIterations},
             {"foliage_opacity", v.foliageOpacity},
             {"fallbacks", v.fallbacks},
+            {"depth_tolerance", v.depthTolerance},
             {"valid_px", f.validPx},
             {"excluded_px", f.excludedPx},
             {"wrong_pct", f.wrongPct},

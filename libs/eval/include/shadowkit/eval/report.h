@@ -58,9 +58,10 @@ struct ViewReport {
     std::vector<std::string> fallbacks;
     std::string autoChoice; // "auto_choice": what --technique auto chose, with its parameters (else left out)
     std::optional<core::Vec2> visibleDepth; // the visible view-depth range the set-up used, when one was given
-    Figures figures;                        // every light together (eval::combine); the sun's alone in a sunlit view
-    std::vector<LightReport> lights;        // per light, when the view has spot or point lights
-    double seconds = 0.0;                   // wall time of this view's evaluation
+    double depthTolerance = CompareOptions{}.depthTolerance; // "depth_tolerance": raster and ray agree (metrics.h)
+    Figures figures;                 // every light together (eval::combine); the sun's alone in a sunlit view
+    std::vector<LightReport> lights; // per light, when the view has spot or point lights
+    double seconds = 0.0;            // wall time of this view's evaluation
     // Computing the sun's truth (eval::TruthBuffers::seconds, rays): "truth_seconds",
     // "truth_rays_per_second" (primary and shadow rays).
     double truthSeconds = 0.0, truthRaysPerSecond = 0.0;
