@@ -5,7 +5,8 @@
 // line naming the file; none crashes, hangs or loads NaNs (run under the sanitizers in CI).
 //
 // And the image fuzzer's seeds (fuzz/corpus/image), which keep every input that once crashed a
-// decoder: each decodes to the size its header states or is refused in one line.
+// decoder: each decodes whole (four bytes for each of its width × height texels) or is refused in
+// one line naming it.
 #include "shadowkit/core/conventions.h"
 #include "shadowkit/scene/image.h"
 #include "shadowkit/scene/scene_io.h"
