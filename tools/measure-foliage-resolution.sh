@@ -4,8 +4,8 @@
 # texels up to sixteen times them, then without levels of detail and with raster and ray held to
 # one leaf (--depth-tolerance 0.0005) — sweep data/sweeps/leafy-resolution.json at 640 × 360 —
 # and where `aerial`'s error lies, ground or trees (tools/foliage_error_split.py over `eval
-# --dump`), all written into docs/materials.md. About 20 minutes on this project's 2-core llvmpipe
-# machine.
+# --dump`), all written into docs/materials.md, and docs/foliage-one-leaf.png
+# (tools/foliage_agreement_figure.py). About 20 minutes on this project's 2-core llvmpipe machine.
 #   SHADOWKIT=PATH   the binary to run (a copy keeps a rebuild from changing it mid-run)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -25,4 +25,5 @@ aerial=(eval --forest leafy --views aerial --size 640x360 --sun-angle 0.53 --fil
 /usr/bin/python3 tools/foliage_error_split.py --into docs/materials.md:foliage-resolution-split \
   "tsm 2048²=$dumps/2048" "tsm 8192²=$dumps/8192" "tsm 8192², no levels=$dumps/8192-no-lod" \
   "tsm 8192², no levels, one leaf=$dumps/8192-no-lod-one-leaf"
-git diff --stat -- docs/materials.md
+/usr/bin/python3 tools/foliage_agreement_figure.py "$dumps/8192-no-lod" "$dumps/8192-no-lod-one-leaf"
+git diff --stat -- docs/materials.md docs/foliage-one-leaf.png
