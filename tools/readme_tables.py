@@ -354,14 +354,14 @@ def soft_means(rows, setup, name):
 def soft_table(paths):
     """Per set-up and filter of one soft sweep's results.csv, the means over the views of wrong_pct
     against the hard truth and soft_mae, penumbra_mae and soft_wrong_pct against the sun disk's;
-    each set-up's best soft_mae bold."""
+    each set-up's best soft_mae bold where it has several filters."""
     rows, setups, filters = soft_rows(paths)
     print("| set-up | filter | wrong % | soft_mae | penumbra_mae | soft_wrong % |")
     print("|---|---|---:|---:|---:|---:|")
     for setup in setups:
         cells = {name: soft_means(rows, setup, name) for name in filters}
         cells = {name: c for name, c in cells.items() if c}
-        best = min(cells, key=lambda n: cells[n][1])
+        best = min(cells, key=lambda n: cells[n][1]) if len(cells) > 1 else None  # one filter: nothing to single out
         for name, m in cells.items():
             mae = f"**{m[1]:.4f}**" if name == best else f"{m[1]:.4f}"
             print(f"| {setup} | `{name}` | {m[0]:.2f} | {mae} | {m[2]:.3f} | {m[3]:.2f} |")
