@@ -13,6 +13,7 @@ import os
 import sys
 
 import numpy as np
+from foliage_error_split import compared_pixels  # the same tools/ folder
 from matplotlib import pyplot as plt
 
 if len(sys.argv) != 3:
@@ -29,7 +30,7 @@ loose, tight = load(sys.argv[1]), load(sys.argv[2])
 truth = loose["soft_visibility"]
 h, w = truth.shape
 wh, ww = h // 4, h // 3
-dropped = ((loose["class"] >= 1) & (loose["class"] <= 4) & (tight["class"] == 5)).astype(np.int64)
+dropped = (compared_pixels(loose["class"], truth) & (tight["class"] == 5)).astype(np.int64)
 sums = np.pad(dropped.cumsum(0).cumsum(1), ((1, 0), (1, 0)))
 window = sums[wh:, ww:] - sums[:-wh, ww:] - sums[wh:, :-ww] + sums[:-wh, :-ww]
 y0, x0 = np.unravel_index(np.argmax(window[::8, ::8]), window[::8, ::8].shape)
@@ -42,7 +43,7 @@ def crop(image):
 
 def error_picture(d):
     """Signed error (red too dark, blue too light) where compared, yellow where excluded, grey elsewhere."""
-    compared = (d["class"] >= 1) & (d["class"] <= 4) & np.isfinite(truth)
+    compared = compared_pixels(d["class"], truth)
     rgb = plt.get_cmap("RdBu")((np.nan_to_num(d["shadow_term"] - truth) + 1.0) / 2.0)[..., :3]
     rgb[~compared] = (0.55, 0.55, 0.55)
     rgb[d["class"] == 5] = (0.95, 0.85, 0.2)

@@ -20,6 +20,11 @@ import numpy as np
 TERRAIN = 1  # surface_id.npy: instance index + 1; the forest's terrain is its first instance
 
 
+def compared_pixels(classes, truth):
+    """The pixels soft_mae averages (eval::compareSoft): classes 1-4 of class.npy, a finite truth."""
+    return (classes >= 1) & (classes <= 4) & np.isfinite(truth)
+
+
 def split(directory):
     def load(name):
         return np.load(f"{directory}/{name}.npy")
@@ -28,7 +33,7 @@ def split(directory):
     classes, surface = load("class"), load("surface_id")
     # The raster's facet against the ray's: |cos| below 0.99 (8°) is another card of the tree.
     same_facet = np.abs((load("normal") * load("truth_normal")).sum(axis=-1)) >= 0.99
-    compared = (classes >= 1) & (classes <= 4) & np.isfinite(truth)
+    compared = compared_pixels(classes, truth)
     n = compared.sum()
     if n == 0:
         sys.exit(f"foliage_error_split: {directory}: no compared pixels (a dump with --sun-angle?)")
