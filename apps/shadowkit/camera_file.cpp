@@ -1,10 +1,11 @@
 #include "camera_file.h"
 
+#include "shadowkit/scene/file_read.h"
+
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include <cmath>
-#include <fstream>
 
 namespace shadowkit::app {
 namespace {
@@ -38,9 +39,9 @@ core::Result<core::Vec3> vectorAt(const json& object, const char* key, const std
 
 core::Result<CameraFile> loadCameraFile(const std::string& file) {
     const std::string what = "--camera " + file;
-    std::ifstream in(file);
-    if (!in) return core::makeError(what + ": cannot be read");
-    json root = json::parse(in, nullptr, /*allow_exceptions=*/false);
+    const auto text = scene::readFile(file);
+    if (!text) return core::makeError("--camera " + text.error());
+    json root = json::parse(*text, nullptr, /*allow_exceptions=*/false);
     if (root.is_discarded() || !root.is_object()) return core::makeError(what + ": not a JSON object");
     // `setup`'s output holds the camera and the sun under "inputs".
     const json& holder = root.contains("inputs") && root["inputs"].is_object() ? root["inputs"] : root;

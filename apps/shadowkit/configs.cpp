@@ -1,11 +1,12 @@
 // compare --configs (configs.h).
 #include "configs.h"
 
+#include "shadowkit/scene/file_read.h"
+
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
-#include <fstream>
 #include <sstream>
 
 namespace shadowkit::app {
@@ -14,10 +15,10 @@ namespace shadowkit::app {
 core::Result<std::vector<Cell>> parseConfigs(const std::string& text) {
     std::vector<Cell> cells;
     if (text.size() > 5 && text.substr(text.size() - 5) == ".json") {
-        std::ifstream in(text);
-        if (!in) return core::makeError("--configs: " + text + ": cannot open");
+        const auto file = scene::readFile(text);
+        if (!file) return core::makeError("--configs: " + file.error());
         try {
-            const nlohmann::json list = nlohmann::json::parse(in);
+            const nlohmann::json list = nlohmann::json::parse(*file);
             if (!list.is_array()) return core::makeError("--configs: " + text + ": expected a list of objects");
             for (const auto& object : list) {
                 if (!object.is_object()) return core::makeError("--configs: " + text + ": expected a list of objects");

@@ -85,8 +85,11 @@ core::Status SceneOptions::check() const {
     if (auto origin = offset(); !origin) return origin.errorInfo();
     if (scene == "forest") return scene::validate(forestOptionsOf(*this));
     std::error_code ec;
-    if (!std::filesystem::is_regular_file(scene, ec))
+    const auto status = std::filesystem::status(scene, ec);
+    if (!std::filesystem::exists(status))
         return core::makeError(fmt::format("--scene: {}: scene file does not exist", scene));
+    if (!std::filesystem::is_regular_file(status))
+        return core::makeError(fmt::format("--scene: {}: a directory, device or pipe, not a scene file", scene));
     return core::Ok{};
 }
 

@@ -1,10 +1,10 @@
 #include "state.h"
 
+#include "shadowkit/scene/file_read.h"
 #include "shadowkit/scene/file_write.h"
 
 #include <nlohmann/json.hpp>
 
-#include <fstream>
 #include <set>
 
 namespace shadowkit::app {
@@ -21,11 +21,11 @@ std::string optionName(const std::string& word) {
 } // namespace
 
 core::Result<StateOptions> loadState(const std::string& file) {
-    std::ifstream in(file);
-    if (!in) return core::makeError("--state: " + file + ": cannot open");
+    const auto bytes = scene::readFile(file);
+    if (!bytes) return core::makeError("--state: " + bytes.error());
     nlohmann::json root;
     try {
-        root = nlohmann::json::parse(in);
+        root = nlohmann::json::parse(*bytes);
     } catch (const nlohmann::json::exception&) { // parse errors, and numbers out of range
         return core::makeError("--state: " + file + ": not valid JSON");
     }

@@ -1,13 +1,12 @@
 #include "shadowkit/eval/npy.h"
 
+#include "shadowkit/scene/file_read.h"
 #include "shadowkit/scene/file_write.h"
 #include "shadowkit/scene/image.h"
 
 #include <cmath>
 #include <cstring>
-#include <fstream>
 #include <functional>
-#include <iterator>
 #include <numeric>
 #include <regex>
 #include <string>
@@ -53,13 +52,9 @@ std::string headerField(const std::string& header, const std::string& key) {
 core::Result<NpyImage> readNpyImage(const std::filesystem::path& file) {
     const std::string name = file.string();
     // The largest a file within the limits can be: its header and 2^26 float64 values.
-    std::error_code ec;
-    const uintmax_t size = std::filesystem::file_size(file, ec);
-    if (!ec && size > 65536 + 16 + sizeof(double) * uintmax_t(scene::kMaxImageTexels))
-        return core::makeError(name + ": " + std::to_string(size >> 20) + " MiB, over the largest .npy image read");
-    std::ifstream in(file, std::ios::binary);
-    if (!in) return core::makeError(name + ": cannot be read");
-    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const auto read = scene::readFile(file, 65536 + 16 + sizeof(double) * uintmax_t(scene::kMaxImageTexels));
+    if (!read) return read.errorInfo();
+    const std::string& bytes = *read;
     if (bytes.size() < 10 || bytes.compare(0, 6, "\x93NUMPY") != 0)
         return core::makeError(name + ": not a NumPy .npy file");
     const int major = static_cast<unsigned char>(bytes[6]);
@@ -74,6 +69,8 @@ core::Result<NpyImage> readNpyImage(const std::filesystem::path& file) {
     if (headerLength > 65536 || dataStart > bytes.size()) return core::makeError(name + ": truncated .npy header");
     const std::string header = bytes.substr(8 + lengthBytes, headerLength);
     const std::string descr = headerField(header, "descr"), order = headerField(header, "fortran_order");
+    if (descr.empty() || order.empty())
+        return core::makeError(name + ": a .npy header without 'descr' or 'fortran_order' (cut short?)");
     if (order != "False") return core::makeError(name + ": a .npy array in Fortran order (C order read)");
     size_t elementSize = 0;
     if (descr == "<f4")

@@ -1,12 +1,11 @@
 #include "shadowkit/eval/score.h"
 
 #include "shadowkit/eval/npy.h"
+#include "shadowkit/scene/file_read.h"
 #include "shadowkit/scene/image.h"
 
 #include <cmath>
 #include <cstdio>
-#include <fstream>
-#include <iterator>
 #include <string>
 
 namespace shadowkit::eval {
@@ -35,9 +34,9 @@ core::Result<ShadowMask> loadShadowMask(const std::filesystem::path& file) {
         if (!npy) return npy.errorInfo();
         mask = {npy->width, npy->height, std::move(npy->values), {}};
     } else {
-        std::ifstream in(file, std::ios::binary);
-        if (!in) return core::makeError(name + ": cannot be read");
-        const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        const auto text = scene::readFile(file);
+        if (!text) return text.errorInfo();
+        const std::vector<uint8_t> bytes(text->begin(), text->end());
         auto png = scene::decodeLevels(bytes, name);
         if (!png) return png.errorInfo();
         mask = {png->width, png->height, std::move(png->level), {}};

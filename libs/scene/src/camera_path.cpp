@@ -10,11 +10,12 @@
 // end segments' slopes.
 #include "shadowkit/scene/camera_path.h"
 
+#include "shadowkit/scene/file_read.h"
+
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 
 namespace shadowkit::scene {
 namespace {
@@ -146,11 +147,11 @@ double CameraPath::timeOfFrame(int frame) const {
 }
 
 core::Result<CameraPath> loadCameraPath(const std::filesystem::path& file) {
-    std::ifstream in(file);
-    if (!in) return core::makeError(file.string() + ": cannot open path file");
+    const auto text = readFile(file);
+    if (!text) return text.errorInfo();
     json root;
     try {
-        root = json::parse(in);
+        root = json::parse(*text);
     } catch (const json::exception& e) { // parse errors, and numbers out of range (out_of_range.406)
         return core::makeError(file.string() + ": not valid JSON (" + e.what() + ")");
     }

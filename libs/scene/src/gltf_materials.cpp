@@ -57,8 +57,14 @@ core::Result<Image> readImage(const tinygltf::Model& model, const fs::path& file
         return decodeImage(std::span(*bytes, length), name);
     }
     if (image.image.empty() || image.width <= 0 || image.height <= 0 ||
-        image.image.size() != size_t(image.width) * size_t(image.height) * 4)
+        image.image.size() != size_t(image.width) * size_t(image.height) * 4) {
+        if (image.uri.empty()) return core::makeError(name + ": neither a uri nor a buffer view");
+        // The file tinygltf looked for, beside the glTF (a percent-encoded uri is not matched:
+        // the general reason stands there).
+        for (const auto& [path, why] : images.refusedFiles)
+            if (path == image.uri || path.ends_with("/" + image.uri)) return core::makeError(name + ": " + why);
         return core::makeError(name + ": cannot read it (a missing file?)");
+    }
     Image out;
     out.width = image.width, out.height = image.height;
     out.rgba = image.image;

@@ -21,6 +21,9 @@ namespace shadowkit::scene::formats {
 struct ImageContext {
     std::string file;
     std::map<int, core::Error> failures; // by image index
+    // Why each file the glTF names that scene::readFile refused was refused ("a directory, not a
+    // file"), by the path tinygltf asked for: an unreadable image says why rather than guessing.
+    std::map<std::string, std::string> refusedFiles;
 };
 bool loadImage(tinygltf::Image* image, int index, std::string* err, std::string* warn, int reqWidth, int reqHeight,
                const unsigned char* bytes, int size, void* user);

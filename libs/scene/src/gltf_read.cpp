@@ -19,9 +19,13 @@
 //   - a texture that cannot be read (missing, corrupt, KTX2 only) matters only where the
 //     material's alpha does: on an OPAQUE material it is dropped with one warning in
 //     Scene::warnings (shadows never read an opaque colour), on MASK and BLEND it is an error;
-//   - what cannot be read is named: glTF 1.0, Draco-compressed meshes, non-finite positions.
+//   - what cannot be read is named: glTF 1.0, Draco-compressed meshes, non-finite positions;
+//   - the file and every file it names are read through scene::readFile (regular files only,
+//     within its limit): a URI naming a directory or a pipe is refused in one line.
 #include "gltf_materials.h"
 #include "scene_formats.h"
+
+#include "shadowkit/scene/file_read.h"
 
 #include <tiny_gltf.h>
 
@@ -32,9 +36,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <fstream>
 #include <map>
 #include <optional>
+#include <string_view>
+#include <system_error>
 #include <tuple>
 #include <unordered_map>
 #include <utility>
@@ -313,19 +318,14 @@ char valueStart(const std::string& text, size_t key) {
 
 // Whether a file is glTF 1.0, checked before tinygltf (which takes a 1.0 file for a 2.0 one with
 // nothing in it): the glb header's version; in JSON, asset.version "1..." or, since 1.0 made the
-// asset optional, "meshes" as an object (2.0 has arrays). Reads the first MiB of JSON at most.
-bool isGltf1(const fs::path& file, bool binary) {
-    std::ifstream in(file, std::ios::binary);
+// asset optional, "meshes" as an object (2.0 has arrays). Looks at the first MiB of JSON at most.
+bool isGltf1(std::string_view bytes, bool binary) {
     if (binary) {
-        char header[8] = {};
-        in.read(header, 8);
         uint32_t version = 0;
-        std::memcpy(&version, header + 4, 4);
-        return in && std::memcmp(header, "glTF", 4) == 0 && version == 1;
+        if (bytes.size() >= 8) std::memcpy(&version, bytes.data() + 4, 4);
+        return bytes.size() >= 8 && bytes.substr(0, 4) == "glTF" && version == 1;
     }
-    std::string text(size_t(1) << 20, '\0');
-    in.read(text.data(), std::streamsize(text.size()));
-    text.resize(size_t(in.gcount()));
+    const std::string text(bytes.substr(0, size_t(1) << 20));
     if (const size_t meshes = text.find("\"meshes\""); meshes != std::string::npos && valueStart(text, meshes) == '{')
         return true;
     const size_t asset = text.find("\"asset\"");
@@ -333,6 +333,35 @@ bool isGltf1(const fs::path& file, bool binary) {
     if (version == std::string::npos || valueStart(text, version) != '"') return false;
     const size_t quote = text.find('"', text.find(':', version));
     return text.compare(quote + 1, 1, "1") == 0;
+}
+
+// The file system tinygltf reads a file's external buffers and images through: readFile's
+// (file_read.h), not tinygltf's own, which asks a directory for 2^63 bytes and waits on a pipe
+// (a URI of "textures/" names a directory beside the file). The reason a file is refused goes
+// into tinygltf's message ("File read error : PATH : REASON") and into `images`' refusedFiles.
+tinygltf::FsCallbacks guardedFileSystem(ImageContext& images) {
+    tinygltf::FsCallbacks callbacks{};
+    callbacks.FileExists = [](const std::string& path, void*) {
+        std::error_code ec;
+        return fs::exists(path, ec); // a directory or pipe too, so that the read says what it is
+    };
+    callbacks.ExpandFilePath = &tinygltf::ExpandFilePath; // tinygltf 2.7's: the path as written
+    callbacks.ReadWholeFile = [](std::vector<unsigned char>* out, std::string* err, const std::string& path,
+                                 void* context) {
+        auto bytes = readFile(path);
+        if (!bytes) {
+            const std::string& message = bytes.error(); // "PATH: WHY"
+            static_cast<ImageContext*>(context)->refusedFiles[path] =
+                message.starts_with(path + ": ") ? message.substr(path.size() + 2) : message;
+            if (err) *err += message;
+            return false;
+        }
+        out->assign(bytes->begin(), bytes->end());
+        return true;
+    };
+    callbacks.WriteWholeFile = &tinygltf::WriteWholeFile; // never called: the loader writes nothing
+    callbacks.user_data = &images;
+    return callbacks;
 }
 
 } // namespace
@@ -395,14 +424,23 @@ core::Status checkNodeTrees(const tinygltf::Model& model, const fs::path& file) 
 
 core::Result<Scene> loadGltf(const fs::path& file) {
     const bool binary = lowerExtension(file) == ".glb";
-    if (isGltf1(file, binary)) return core::makeError(file.string() + ": glTF 1.0 is not supported; glTF 2.0 is");
+    const auto bytes = readFile(file);
+    if (!bytes) return bytes.errorInfo();
+    if (bytes->empty()) return core::makeError(file.string() + ": an empty file, not glTF");
+    if (isGltf1(*bytes, binary)) return core::makeError(file.string() + ": glTF 1.0 is not supported; glTF 2.0 is");
     tinygltf::TinyGLTF loader;
-    ImageContext images{file.string()};
+    ImageContext images{file.string(), {}, {}};
+    loader.SetFsCallbacks(guardedFileSystem(images));
     loader.SetImageLoader(loadImage, &images);
     tinygltf::Model model;
     std::string err, warn;
-    const bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, file.string())
-                           : loader.LoadASCIIFromFile(&model, &err, &warn, file.string());
+    // tinygltf's own base directory rule (GetBaseDir): the file's name up to its last slash.
+    const std::string baseDir = file.parent_path().string();
+    const auto length = static_cast<unsigned int>(bytes->size()); // within readFile's 32-bit limit
+    const bool ok =
+        binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(bytes->data()),
+                                             length, baseDir)
+               : loader.LoadASCIIFromString(&model, &err, &warn, bytes->data(), length, baseDir);
     // A Draco file's accessors have no buffer views, which tinygltf refuses before any
     // primitive is seen; the extension lists it parsed first say why.
     const auto lists = [&](const std::vector<std::string>& names) {
@@ -414,6 +452,7 @@ core::Result<Scene> loadGltf(const fs::path& file) {
                                "read: export it uncompressed");
     if (!ok) {
         std::replace(err.begin(), err.end(), '\n', ' ');
+        while (!err.empty() && err.back() == ' ') err.pop_back();
         return core::makeError(file.string() + ": not a readable glTF file (" + err + ")");
     }
     if (auto s = checkNodeTrees(model, file); !s) return s.errorInfo();

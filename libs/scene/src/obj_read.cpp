@@ -2,13 +2,18 @@
 // Polygons are triangulated; normals come from the file when every corner has one, else from
 // the faces; albedo is the material's diffuse colour (Kd, from the .mtl beside the file) times
 // the vertex colour of the widely read `v x y z r g b` extension, which shadowkit's own export
-// writes. Files without either are light grey.
+// writes. Files without either are light grey. The file and the material libraries it names
+// are read through scene::readFile: an mtllib line naming a pipe would otherwise wait forever.
 #include "scene_formats.h"
+
+#include "shadowkit/scene/file_read.h"
 
 #include <tiny_obj_loader.h>
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <sstream>
 #include <unordered_map>
 #include <vector>
 
@@ -24,22 +29,47 @@ std::string oneLine(std::string text) {
     return text;
 }
 
+// The material libraries an OBJ names (`mtllib`), beside it, as tinyobjloader's own reader finds
+// them; one that cannot be read is a warning of tinyobjloader's, as a missing one is there.
+class MaterialLibraries : public tinyobj::MaterialReader {
+public:
+    explicit MaterialLibraries(fs::path directory) : m_directory(std::move(directory)) {}
+    bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
+                    std::map<std::string, int>* materialOf, std::string* warn, std::string* err) override {
+        const auto text = readFile(m_directory / name);
+        if (!text) {
+            if (warn) *warn += "Material file: " + text.error() + "\n";
+            return false;
+        }
+        std::istringstream in(*text);
+        tinyobj::LoadMtl(materialOf, materials, &in, warn, err);
+        return true;
+    }
+
+private:
+    fs::path m_directory;
+};
+
 } // namespace
 
 core::Result<Scene> loadObj(const fs::path& file) {
-    tinyobj::ObjReaderConfig config;
-    config.triangulate = true;
-    config.vertex_color = false; // colours only when every vertex has one (no white fallback)
-    tinyobj::ObjReader reader;
-    if (!reader.ParseFromFile(file.string(), config))
-        return core::makeError(file.string() + ": not a readable OBJ file (" + oneLine(reader.Error()) + ")");
-    const tinyobj::attrib_t& attrib = reader.GetAttrib();
-    const auto& materials = reader.GetMaterials();
+    const auto text = readFile(file);
+    if (!text) return text.errorInfo();
+    std::istringstream in(*text);
+    MaterialLibraries libraries(file.parent_path());
+    tinyobj::attrib_t attrib;
+    std::vector<tinyobj::shape_t> shapes;
+    std::vector<tinyobj::material_t> materials;
+    std::string warn, err;
+    // Triangulated; colours only when every vertex has one (no white fallback).
+    if (!tinyobj::LoadObj(&attrib, &shapes, &materials, &warn, &err, &in, &libraries, /*triangulate=*/true,
+                          /*default_vcols_fallback=*/false))
+        return core::makeError(file.string() + ": not a readable OBJ file (" + oneLine(err) + ")");
     const bool colours = !attrib.colors.empty();
     const size_t vertexCount = attrib.vertices.size() / 3, normalCount = attrib.normals.size() / 3;
 
     Scene scene;
-    for (const tinyobj::shape_t& shape : reader.GetShapes()) {
+    for (const tinyobj::shape_t& shape : shapes) {
         const tinyobj::mesh_t& faces = shape.mesh;
         Mesh mesh;
         mesh.name = shape.name.empty() ? file.stem().string() : shape.name;

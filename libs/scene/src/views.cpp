@@ -1,11 +1,12 @@
 #include "shadowkit/scene/views.h"
 
+#include "shadowkit/scene/file_read.h"
+
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
-#include <fstream>
 
 namespace shadowkit::scene {
 namespace {
@@ -100,11 +101,11 @@ core::Result<ViewSpec> parseView(const json& j) {
 } // namespace
 
 core::Result<std::vector<ViewSpec>> loadViews(const std::filesystem::path& file) {
-    std::ifstream in(file);
-    if (!in) return core::makeError(file.string() + ": cannot open views file");
+    const auto text = readFile(file);
+    if (!text) return text.errorInfo();
     json root;
     try {
-        root = json::parse(in);
+        root = json::parse(*text);
     } catch (const json::exception& e) { // parse errors, and numbers out of range (out_of_range.406)
         return core::makeError(file.string() + ": not valid JSON (" + e.what() + ")");
     }

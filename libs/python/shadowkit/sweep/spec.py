@@ -33,6 +33,7 @@ import hashlib
 import itertools
 import json
 import os
+import stat
 
 from .expressions import Expression, ExpressionError
 
@@ -89,13 +90,21 @@ def _text(value):
 
 def load(path):
     """The specification at `path` (.json or .toml) as a dict; SpecError if it does not parse."""
+    # As scene::readFile does: opened without waiting on a pipe that has no writer, and its type
+    # and size read from the open descriptor before any byte is (/dev/zero would never end).
     try:
-        with open(path, "rb") as f:
-            data = f.read()
+        fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK)
     except OSError as e:
         raise SpecError(f"{path}: cannot read ({e.strerror})") from None
-    if len(data) > 4 << 20:
-        raise SpecError(f"{path}: larger than 4 MiB: not a sweep specification")
+    with os.fdopen(fd, "rb") as f:
+        status = os.fstat(fd)
+        if stat.S_ISDIR(status.st_mode):
+            raise SpecError(f"{path}: a directory, not a file")
+        if not stat.S_ISREG(status.st_mode):
+            raise SpecError(f"{path}: a device, pipe or socket, not a file")
+        if status.st_size > 4 << 20:
+            raise SpecError(f"{path}: larger than 4 MiB: not a sweep specification")
+        data = f.read()
     try:
         if path.endswith(".toml"):
             import tomllib
