@@ -7,6 +7,7 @@ namespace shadowkit::core {
 
 Status PerspectiveCamera::validate() const {
     if (!isFinite(wsEye)) return makeError("camera eye: must be finite");
+    if (glm::length(wsEye) > kMaxWorldMetres) return makeError("camera eye: at most 1e13 m from the origin");
     if (!isFinite(wsDirection) || glm::length(wsDirection) < 1e-12)
         return makeError("camera direction: must be a finite, non-zero vector");
     if (!isFinite(wsUp) || glm::length(wsUp) < 1e-12) return makeError("camera up: must be a finite, non-zero vector");

@@ -61,6 +61,13 @@ TEST(CameraTest, ValidateNamesTheBadField) {
     cam.fovYDegrees = 180;
     EXPECT_NE(cam.validate().error().find("fov"), std::string::npos);
     EXPECT_TRUE(obliqueCamera().validate());
+    // An eye past the world's end (a ray origin Embree would abort on at 1.8e18 m), and one at it.
+    cam = obliqueCamera();
+    cam.wsEye = Vec3(0, 1e20, 0);
+    ASSERT_FALSE(cam.validate());
+    EXPECT_NE(cam.validate().error().find("camera eye: at most 1e13 m"), std::string::npos);
+    cam.wsEye = Vec3(0, 0.9e13, 0);
+    EXPECT_TRUE(cam.validate());
 }
 
 TEST(LightTest, SunAnglesFollowTheCompassConvention) {

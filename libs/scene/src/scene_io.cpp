@@ -2,9 +2,11 @@
 
 #include "scene_formats.h"
 
+#include "shadowkit/core/camera.h"
 #include "shadowkit/scene/foliage_levels.h"
 
 #include <algorithm>
+#include <cstdio>
 
 namespace shadowkit::scene {
 namespace formats {
@@ -63,6 +65,18 @@ core::Result<Scene> loadScene(const fs::path& file) {
     if (ext != ".gltf" && ext != ".glb" && ext != ".obj")
         return core::makeError(file.string() + ": unknown scene format (use .gltf, .glb or .obj)");
     core::Result<Scene> scene = ext == ".obj" ? loadObj(file) : loadGltf(file);
+    // Finite positions placed (or scaled by a node) past the world's end: a view framing them
+    // would put its eye there, and Embree aborts on such a ray origin.
+    if (scene) {
+        const core::Aabb bounds = scene->wsBounds();
+        const double reach = std::max(glm::length(bounds.min), glm::length(bounds.max));
+        if (!(reach <= core::kMaxWorldMetres)) {
+            char metres[32];
+            std::snprintf(metres, sizeof metres, "%.3g", reach);
+            return core::makeError(file.string() + ": its geometry reaches " + metres +
+                                   " m from the origin; at most 1e13 m");
+        }
+    }
     // Foliage that brings no levels of its own gets billboard clouds, as the leafy forest's trees.
     if (scene) addFoliageClouds(*scene);
     return scene;

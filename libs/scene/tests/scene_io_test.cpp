@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <utility>
 
 using namespace shadowkit;
 using namespace shadowkit::scene;
@@ -84,6 +85,36 @@ TEST(SceneIoTest, BadFilesGiveOneLineNamingTheFile) {
 
     EXPECT_FALSE(loadScene(dir / "x.fbx"));
     EXPECT_FALSE(exportScene(tinyForest(), dir / "x.fbx"));
+}
+
+// Finite geometry past the world's end: a view framing it put its eye at 1e20 m, and Embree
+// aborted the program on the first ray from there (`eval --scene far.obj`).
+TEST(SceneIoTest, GeometryPastTheWorldsEndIsRefusedInOneLine) {
+    const auto dir = std::filesystem::temp_directory_path();
+    const auto far = dir / "shadowkit_far.obj";
+    std::ofstream(far) << "v 0 0 0\nv 1 0 0\nv 0 1e20 0\nf 1 2 3\n";
+    const auto loaded = loadScene(far);
+    ASSERT_FALSE(loaded);
+    EXPECT_NE(loaded.error().find("shadowkit_far.obj: its geometry reaches 1e+20 m from the origin"), std::string::npos)
+        << loaded.error();
+    // A unit triangle put there by a node's scale, and one a node moves 9e12 m: only the first.
+    for (const auto& [node, refused] : {std::pair{R"({"mesh":0,"scale":[1e15,1e15,1e15]})", true},
+                                        std::pair{R"({"mesh":0,"translation":[9e12,0,0]})", false}}) {
+        const auto file = dir / "shadowkit_far.gltf";
+        std::ofstream(file) << R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[)" << node
+                            << R"(],"meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],)"
+                            << R"("accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3",)"
+                            << R"("min":[0,0,0],"max":[1,1,0]}],"bufferViews":[{"buffer":0,"byteLength":36}],)"
+                            << R"("buffers":[{"byteLength":36,"uri":"data:application/octet-stream;base64,)"
+                            << R"(AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}]})";
+        const auto scene = loadScene(file);
+        EXPECT_EQ(!scene, refused) << node;
+        if (!scene) {
+            EXPECT_NE(scene.error().find("at most 1e13 m"), std::string::npos) << scene.error();
+        }
+        std::filesystem::remove(file);
+    }
+    std::filesystem::remove(far);
 }
 
 TEST(SceneIoTest, LoadedTerrainPlacesTheEyeOverItNotUnderIt) {

@@ -9,6 +9,12 @@
 
 namespace shadowkit::core {
 
+/// The farthest from the world's origin an eye or a scene's geometry may lie, in metres: ten times
+/// the largest world offset the programs take (1e12 m), so any scene moved that far still fits.
+/// Nothing beyond is resolvable in the float a GPU draws with, and Embree, given a ray origin past
+/// 1.8e18 m, aborts the program rather than fail.
+inline constexpr double kMaxWorldMetres = 1e13;
+
 /// A symmetric perspective camera: eye, direction, up, vertical field of view, aspect, near and far.
 struct PerspectiveCamera {
     Vec3 wsEye{0.0, 1.8, 0.0};        ///< the eye, world space
