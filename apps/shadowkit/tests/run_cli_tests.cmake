@@ -252,6 +252,14 @@ if(CASE STREQUAL "gl-render")
     message(SEND_ERROR "render: failed or wrote no image: ${err}")
   endif()
 endif()
+# A view of the sky compares no pixel: its 0.00 % must not pass for perfect shadows in silence.
+if(CASE STREQUAL "gl-eval-nothing-compared-warns")
+  execute_process(COMMAND ${SHADOWKIT} eval ${small} --view paper --size 32x18 --map-size 64 --dir 0,1,0 --up 0,0,-1
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0 OR NOT err MATCHES "warning: view paper: no pixel was compared")
+    message(SEND_ERROR "eval of the sky: exit ${rc}, no warning that nothing was compared:\n${out}${err}")
+  endif()
+endif()
 # A loaded scene viewed from a given eye: the framing's planes are refitted to it (they fitted the
 # framing's own eye, 100 m nearer, and cut the scene away: far 21 m).
 if(CASE STREQUAL "framed-scene-eye")

@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <cstdio>
 
 namespace shadowkit::eval {
@@ -109,11 +110,20 @@ std::string reportJson(const std::vector<ViewReport>& views) {
     return nlohmann::json{{"views", list}}.dump(2) + "\n";
 }
 
+std::string nothingComparedWarning(const std::string& view, const Figures& figures) {
+    if (figures.validPx > 0) return {};
+    return "view " + view +
+           ": no pixel was compared (none shows a sunlit surface that raster and ray agree on): its figures measure "
+           "nothing";
+}
+
 std::string softFiguresLine(const SoftFigures& s) {
     // A width of 0 is a hard test or filter, which draws no penumbra at all: said in words, as
     // "×0.00" alone reads like a fault.
     char width[64];
-    if (s.penumbraWidthRatio == 0.0)
+    if (std::isnan(s.penumbraWidthRatio)) // no truth pixel between 10 and 90 % lit: nothing to compare a width with
+        std::snprintf(width, sizeof width, "no penumbra in the truth");
+    else if (s.penumbraWidthRatio == 0.0)
         std::snprintf(width, sizeof width, "penumbrae drawn hard (width ×0)");
     else
         std::snprintf(width, sizeof width, "penumbra width ×%.2f", s.penumbraWidthRatio);

@@ -189,7 +189,7 @@ TEST(SoftTruthTest, ThePenumbraWidthRatioIsTheRenderedBandsWidthOverTheTrueOnes)
     EXPECT_TRUE(std::isnan(eval::compareSoft(ramp(10.0), soft, classes, 0.53).penumbraWidthRatio));
 }
 
-TEST(SoftTruthTest, TheFiguresLineSaysAHardShadowIsHardRatherThanAWidthOfZero) {
+TEST(SoftTruthTest, TheFiguresLineSaysAHardShadowIsHardAndAMissingWidthIsMissing) {
     eval::SoftFigures figures;
     figures.penumbraWidthRatio = 0.93;
     EXPECT_NE(eval::softFiguresLine(figures).find("penumbra width ×0.93"), std::string::npos);
@@ -197,6 +197,19 @@ TEST(SoftTruthTest, TheFiguresLineSaysAHardShadowIsHardRatherThanAWidthOfZero) {
     const std::string hard = eval::softFiguresLine(figures);
     EXPECT_NE(hard.find("penumbrae drawn hard (width ×0)"), std::string::npos) << hard;
     EXPECT_EQ(hard.find("×0.00"), std::string::npos) << hard;
+    // No true penumbra to measure a width against (a view of a pixel or two): said, not "×nan".
+    figures.penumbraWidthRatio = std::nan("");
+    const std::string none = eval::softFiguresLine(figures);
+    EXPECT_NE(none.find("no penumbra in the truth"), std::string::npos) << none;
+    EXPECT_EQ(none.find("nan"), std::string::npos) << none;
+}
+
+TEST(SoftTruthTest, AViewThatComparedNoPixelIsWarnedOfAndOneThatDidIsNot) {
+    eval::Figures figures; // valid_px 0, wrong_pct 0: what the sky gives
+    const std::string warning = eval::nothingComparedWarning("paper", figures);
+    EXPECT_NE(warning.find("view paper: no pixel was compared"), std::string::npos) << warning;
+    figures.validPx = 1;
+    EXPECT_TRUE(eval::nothingComparedWarning("paper", figures).empty());
 }
 
 TEST(SoftTruthTest, TheSoftErrorMapIsRedWhereTooDarkBlueWhereTooLightAndGreyWhereRight) {

@@ -96,6 +96,10 @@ std::string scoreReportJson(const ScoreReport& report);
 // width of 0 (a hard test) as "penumbrae drawn hard (width ×0)".
 std::string softFiguresLine(const SoftFigures& soft);
 
+/// The warning for a view in which no pixel was compared (valid_px 0: the sky, a mask of a pixel
+/// or two), whose 0.00 % would read as perfect shadows; empty when some pixel was.
+std::string nothingComparedWarning(const std::string& view, const Figures& figures);
+
 // Writes shadow_term, truth_lit, class, world_position, normal, truth_normal,
 // pixels_per_texel and surface_id as .npy files into `dir` (created if missing); with a soft
 // truth also soft_visibility and soft_standard_error.
