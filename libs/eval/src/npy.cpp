@@ -4,12 +4,13 @@
 #include "shadowkit/scene/file_write.h"
 #include "shadowkit/scene/image.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <functional>
 #include <numeric>
-#include <regex>
 #include <string>
+#include <string_view>
 
 namespace shadowkit::eval {
 namespace {
@@ -36,15 +37,57 @@ core::Status write(const std::filesystem::path& file, const void* data, size_t e
 }
 
 // The value of `key` in a .npy header's dict ("'descr': '<f4'" -> "<f4", "'shape': (3, 4)" ->
-// "3, 4"), or empty when the header has no such key.
-std::string headerField(const std::string& header, const std::string& key) {
-    std::smatch m;
-    const std::regex quoted("'" + key + "'\\s*:\\s*'([^']*)'"), tuple("'" + key + "'\\s*:\\s*\\(([^)]*)\\)"),
-        word("'" + key + "'\\s*:\\s*(True|False)");
-    if (std::regex_search(header, m, quoted) || std::regex_search(header, m, tuple) ||
-        std::regex_search(header, m, word))
-        return m[1];
+// "3, 4", "'fortran_order': False" -> "False"), or empty when the header has no such key.
+// Scanned by hand: libstdc++'s std::regex recurses once a character matched, and a header of
+// 60,000 characters overflowed the stack.
+std::string headerField(std::string_view header, std::string_view key) {
+    std::string quotedKey(1, '\'');
+    quotedKey.append(key).append(1, '\''); // not "'" + …: GCC 12 warns falsely of an overlap there
+    const size_t at = header.find(quotedKey);
+    if (at == std::string_view::npos) return {};
+    size_t i = header.find_first_not_of(" \t", at + quotedKey.size());
+    if (i == std::string_view::npos || header[i] != ':') return {};
+    i = header.find_first_not_of(" \t", i + 1);
+    if (i == std::string_view::npos) return {};
+    if (header[i] == '\'' || header[i] == '(') {
+        const size_t close = header.find(header[i] == '\'' ? '\'' : ')', i + 1);
+        return close == std::string_view::npos ? std::string() : std::string(header.substr(i + 1, close - i - 1));
+    }
+    for (const std::string_view word : {"True", "False"})
+        if (header.substr(i, word.size()) == word) return std::string(word);
     return {};
+}
+
+// A header's value as a one-line message may show it: at most 40 bytes, control characters as '?'
+// (a value may run over a newline to the next closing bracket).
+std::string excerpt(const std::string& text) {
+    std::string shown = text.substr(0, 40);
+    for (char& c : shown)
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+    return text.size() <= 40 ? shown : shown + "…";
+}
+
+// The dimensions of a shape's "h, w" (a trailing comma allowed, as NumPy writes it), each a whole
+// number of at most 9 digits; empty when any is not.
+std::vector<long long> dimensionsOf(std::string_view dims) {
+    const auto trimmed = [](std::string_view text) {
+        const size_t first = text.find_first_not_of(" \t\r\n");
+        return first == std::string_view::npos ? std::string_view()
+                                               : text.substr(first, text.find_last_not_of(" \t\r\n") - first + 1);
+    };
+    std::vector<long long> shape;
+    for (size_t start = 0; start <= dims.size();) {
+        const size_t comma = dims.find(',', start);
+        const size_t end = comma == std::string_view::npos ? dims.size() : comma;
+        const std::string_view token = trimmed(dims.substr(start, end - start));
+        if (token.empty() && end == dims.size() && !shape.empty()) break; // the trailing comma
+        if (token.empty() || token.size() > 9 ||
+            !std::all_of(token.begin(), token.end(), [](char c) { return c >= '0' && c <= '9'; }))
+            return {};
+        shape.push_back(std::stoll(std::string(token)));
+        start = end + 1;
+    }
+    return shape;
 }
 
 } // namespace
@@ -82,14 +125,12 @@ core::Result<NpyImage> readNpyImage(const std::filesystem::path& file) {
     else if (descr == "<u2")
         elementSize = 2;
     else
-        return core::makeError(name + ": .npy dtype '" + descr + "' (float32, float64, uint8 or uint16 read)");
+        return core::makeError(name + ": .npy dtype '" + excerpt(descr) + "' (float32, float64, uint8 or uint16 read)");
     // "h, w" (a trailing comma allowed); one value per pixel.
-    std::vector<long long> shape;
     const std::string dims = headerField(header, "shape");
-    const std::regex number("\\s*(\\d{1,9})\\s*(,|$)");
-    for (auto it = std::sregex_iterator(dims.begin(), dims.end(), number); it != std::sregex_iterator(); ++it)
-        shape.push_back(std::stoll((*it)[1]));
-    if (shape.size() != 2) return core::makeError(name + ": a .npy array of shape (" + dims + "), not (height, width)");
+    const std::vector<long long> shape = dimensionsOf(dims);
+    if (shape.size() != 2)
+        return core::makeError(name + ": a .npy array of shape (" + excerpt(dims) + "), not (height, width)");
     const long long height = shape[0], width = shape[1];
     if (height < 1 || width < 1 || height > scene::kMaxImageSide || width > scene::kMaxImageSide ||
         height * width > scene::kMaxImageTexels)
@@ -99,7 +140,7 @@ core::Result<NpyImage> readNpyImage(const std::filesystem::path& file) {
     const size_t count = size_t(height) * size_t(width);
     if (bytes.size() - dataStart != count * elementSize)
         return core::makeError(name + ": " + std::to_string(bytes.size() - dataStart) + " bytes of data where shape (" +
-                               dims + ") of " + descr + " needs " + std::to_string(count * elementSize));
+                               excerpt(dims) + ") of " + descr + " needs " + std::to_string(count * elementSize));
     NpyImage out{int(height), int(width), std::vector<float>(count)};
     const char* data = bytes.data() + dataStart;
     for (size_t i = 0; i < count; ++i) {

@@ -169,6 +169,7 @@ TEST(ScoreTest, NpyMasksLoadAndHostileOnesAreRefusedInOneLine) {
         if (!m) {
             EXPECT_EQ(m.error().find('\n'), std::string::npos) << m.error();
             EXPECT_NE(m.error().find(file.string()), std::string::npos) << m.error();
+            EXPECT_LT(m.error().size(), file.string().size() + 200) << "a line, not a page: " << what;
         }
     };
     ASSERT_TRUE(eval::writeNpy(file, std::vector<float>{0.5f, 1.5f}, {1, 2}));
@@ -193,5 +194,24 @@ TEST(ScoreTest, NpyMasksLoadAndHostileOnesAreRefusedInOneLine) {
     huge.replace(huge.find("(2,3)"), 5, "(99999,99999)");
     writeBytes(file, huge);
     refused("a shape past the limits");
+    // Headers written by hand, each over 24 bytes of float32 data (a valid 2 × 3 mask).
+    const auto withHeader = [&](const std::string& dict) {
+        const std::string header = dict + "\n";
+        std::string npy = std::string("\x93NUMPY\x01\x00", 8) + char(header.size() & 0xff) + char(header.size() >> 8);
+        writeBytes(file, npy + header + bytes.substr(bytes.size() - 24));
+    };
+    withHeader("{'descr': '<f4', 'fortran_order': False, 'shape': (2, 3), }");
+    EXPECT_TRUE(eval::loadShadowMask(file)) << "the hand-written header itself";
+    // libstdc++'s std::regex recursed once a character and overflowed the stack on this one.
+    withHeader("{'descr': '" + std::string(60000, 'x') + "', 'fortran_order': False, 'shape': (2, 3), }");
+    refused("a 60,000-character dtype");
+    withHeader("{'descr': '<f4', 'fortran_order': False, 'shape': (" + std::string(60000, ' ') + "2, 3), }");
+    EXPECT_TRUE(eval::loadShadowMask(file)) << "a shape after 60,000 spaces";
+    withHeader("{'descr': '<f4', 'fortran_order': False, 'shape': (2, x, 3), }"); // once read as (2, 3)
+    refused("a dimension that is not a number");
+    withHeader("{'descr': '<f4', 'shape': (2, 3), }");
+    refused("no fortran_order");
+    withHeader("{'descr': '<f4', 'fortran_order': False, 'shape': (2,\n }\n 'shape': (2, 3), }"); // fuzz_npy
+    refused("a shape running over a newline to the next bracket");
     std::filesystem::remove(file);
 }
