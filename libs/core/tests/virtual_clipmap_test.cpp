@@ -193,9 +193,10 @@ TEST(VirtualClipmapTest, BadOptionsAreRefusedByName) {
 TEST(VirtualClipmapTest, AnEyeBeyondAnyPageIndexMovesTheGridToItselfAndSaysSo) {
     // 1e30 m from the grid origin is far more than 2^50 pages: page indices would overflow and
     // the levels' squares vanish in double. The grid passes through the eye instead: finite
-    // levels that hold the view, and a note saying why.
-    ShadowSetupInputs in = forestView(Vec3(1e30, 1.8, 0.0), Vec3(1e30, 0.0, 0.0));
-    in.wsGridOrigin = Vec3(0.0);
+    // levels that hold the view, and a note saying why. (The eye itself stays within
+    // kMaxWorldMetres of the world's origin; the grid's origin is where an engine puts it.)
+    ShadowSetupInputs in = forestView(Vec3(1e12, 1.8, 0.0), Vec3(1e12, 0.0, 0.0));
+    in.wsGridOrigin = Vec3(-1e30, 0.0, 0.0);
     const auto setup = computeShadowSetup(in);
     ASSERT_TRUE(setup) << setup.error();
     for (const ShadowView& view : setup->views) EXPECT_TRUE(isFinite(view.clipFromEyeRelative));
