@@ -30,6 +30,10 @@ const fs::path kModels[] = {
     "/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb",
     "/usr/share/assimp/models/OBJ/spider.obj",
     fs::path(SHADOWKIT_SOURCE_DATA_DIR) / ".." / "tests" / "data" / "pillar_on_plate.gltf",
+    // Authored here (tools/authored_shapes.py): 3 cm ropes and 40 cm masts seen from afar. Its
+    // siblings, a wide flat town and a single tree of alpha-cut leaves, are not held to the bound
+    // yet: the default misses it on `into-sun` (docs/reliability.md, "Models we did not make").
+    fs::path(SHADOWKIT_SOURCE_DATA_DIR) / ".." / "tests" / "data" / "shapes" / "ship.obj",
 };
 constexpr double kRatio = 1.5, kSlackPoints = 0.1;
 constexpr int kWidth = 320, kHeight = 180;

@@ -1,0 +1,172 @@
+#!/usr/bin/env python3
+"""The shapes that broke the default technique on public models, authored here for the corpus.
+
+  tools/authored_shapes.py [DIR]     (default tests/data/shapes; deterministic: the same bytes every run)
+
+Writes three scenes, each framed by the standard views as a loaded model is (no terrain to stand on):
+  ship.obj   thin ropes (3 cm) and masts (40 cm, 22 m tall) over a hull on a 300 m sea;
+  town.obj   a wide flat town: 17 x 17 houses, 5-9 m high, 50 m apart, on a 1.2 km ground;
+  tree.gltf  a single tree: a trunk and 60 alpha-cut leaf cards (MASK, a 32 x 32 texture of round
+             leaves in a data URI) over a 40 m ground.
+docs/reliability.md ("Models we did not make") measures the default against `focused` on them;
+tests/corpus_defaults_test.cpp holds the ship to it.
+"""
+import base64
+import json
+import math
+import os
+import random
+import struct
+import sys
+import zlib
+
+
+class Obj:
+    """Quads of a Wavefront OBJ, counter-clockwise seen from outside."""
+
+    def __init__(self):
+        self.vertices, self.faces = [], []
+
+    def box(self, lo, hi):
+        first = len(self.vertices) + 1
+        for x in (lo[0], hi[0]):
+            for y in (lo[1], hi[1]):
+                for z in (lo[2], hi[2]):
+                    self.vertices.append((x, y, z))
+
+        def at(x, y, z):
+            return first + x * 4 + y * 2 + z
+
+        self.faces += [(at(0, 0, 0), at(0, 0, 1), at(0, 1, 1), at(0, 1, 0)), (at(1, 0, 0), at(1, 1, 0), at(1, 1, 1), at(1, 0, 1)),
+                       (at(0, 0, 0), at(1, 0, 0), at(1, 0, 1), at(0, 0, 1)), (at(0, 1, 0), at(0, 1, 1), at(1, 1, 1), at(1, 1, 0)),
+                       (at(0, 0, 0), at(0, 1, 0), at(1, 1, 0), at(1, 0, 0)), (at(0, 0, 1), at(1, 0, 1), at(1, 1, 1), at(0, 1, 1))]
+
+    def beam(self, a, b, half):
+        """A square prism of half-width `half` from a to b."""
+        axis = [b[i] - a[i] for i in range(3)]
+        length = math.sqrt(sum(c * c for c in axis))
+        d = [c / length for c in axis]
+        up = (0, 1, 0) if abs(d[1]) < 0.9 else (1, 0, 0)
+        u = [d[1] * up[2] - d[2] * up[1], d[2] * up[0] - d[0] * up[2], d[0] * up[1] - d[1] * up[0]]
+        norm = math.sqrt(sum(c * c for c in u))
+        u = [c / norm for c in u]
+        w = [d[1] * u[2] - d[2] * u[1], d[2] * u[0] - d[0] * u[2], d[0] * u[1] - d[1] * u[0]]
+        first = len(self.vertices) + 1
+        for end in (a, b):
+            for su, sw in ((-1, -1), (1, -1), (1, 1), (-1, 1)):
+                self.vertices.append(tuple(end[i] + half * (su * u[i] + sw * w[i]) for i in range(3)))
+        for k in range(4):
+            k2 = (k + 1) % 4
+            self.faces.append((first + k, first + k2, first + 4 + k2, first + 4 + k))
+        self.faces += [(first + 3, first + 2, first + 1, first), (first + 4, first + 5, first + 6, first + 7)]
+
+    def ground(self, half):
+        first = len(self.vertices) + 1
+        self.vertices += [(-half, 0, -half), (half, 0, -half), (half, 0, half), (-half, 0, half)]
+        self.faces.append((first, first + 3, first + 2, first + 1))
+
+    def write(self, path, comment):
+        with open(path, "w") as f:
+            f.write(f"# {comment} (tools/authored_shapes.py)\n")
+            f.writelines("v %g %g %g\n" % v for v in self.vertices)
+            f.writelines("f " + " ".join(str(i) for i in face) + "\n" for face in self.faces)
+
+
+def ship(path):
+    o = Obj()
+    o.ground(150)
+    o.box((-15, 0, -4), (15, 4, 4))
+    masts = [(-9, 4, 0), (0, 4, 0), (9, 4, 0)]
+    for x, y, z in masts:
+        o.beam((x, y, z), (x, y + 22, z), 0.2)
+        o.beam((x - 4, y + 15, z), (x + 4, y + 15, z), 0.1)  # a yard
+    for x, y, z in masts:
+        for end in ((-15, 4, -4), (-15, 4, 4), (15, 4, -4), (15, 4, 4), (x, 4, -4), (x, 4, 4)):
+            o.beam((x, y + 22, z), end, 0.015)  # ropes 3 cm thick
+    o.write(path, "thin ropes and masts over a hull on a 300 m sea")
+
+
+def town(path):
+    o = Obj()
+    o.ground(450)
+    for i in range(-8, 9):
+        for j in range(-8, 9):
+            x, z, height = i * 50, j * 50, 5 + (i * 7 + j * 13) % 5
+            o.box((x - 6, 0, z - 5), (x + 6, height, z + 5))
+    o.write(path, "a wide flat town: 17 x 17 houses on a 900 m ground")
+
+
+def png_rgba(width, height, pixel):
+    rows = b"".join(b"\0" + b"".join(bytes(pixel(x, y)) for x in range(width)) for y in range(height))
+
+    def chunk(kind, data):
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data) & 0xFFFFFFFF)
+
+    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 6, 0, 0, 0)) +
+            chunk(b"IDAT", zlib.compress(rows, 9)) + chunk(b"IEND", b""))
+
+
+def tree(path):
+    def leaf(x, y):  # four round leaves on a 32 x 32 texture
+        cx, cy = x % 16 - 7.5, y % 16 - 7.5
+        return (40, 110, 30, 255 if cx * cx + cy * cy < 36 else 0)
+
+    rng = random.Random(7)
+    positions, uvs, indices = [], [], []
+
+    def quad(centre, u, v, corners_uv):
+        first = len(positions)
+        for (su, sv), uv in zip(((-1, -1), (1, -1), (1, 1), (-1, 1)), corners_uv):
+            positions.append(tuple(centre[i] + su * u[i] + sv * v[i] for i in range(3)))
+            uvs.append(uv)
+        indices.extend([first, first + 1, first + 2, first, first + 2, first + 3])
+
+    plain = ((0, 0),) * 4
+    quad((0, 0, -15), (20, 0, 0), (0, 0, -20), plain)  # ground
+    for u, v, centre in (((0.15, 0, 0), (0, 3, 0), (0, 3, -15.15)), ((0.15, 0, 0), (0, 3, 0), (0, 3, -14.85)),
+                         ((0, 0, 0.15), (0, 3, 0), (-0.15, 3, -15)), ((0, 0, 0.15), (0, 3, 0), (0.15, 3, -15))):
+        quad(centre, u, v, plain)  # the trunk's four sides
+    opaque = len(indices)
+    for _ in range(60):  # leaf cards 1.2 m across, a crown 4-9 m up
+        centre = (rng.uniform(-2.5, 2.5), rng.uniform(4, 9), -15 + rng.uniform(-2.5, 2.5))
+        a, e = rng.uniform(0, math.pi), rng.uniform(-0.6, 0.6)
+        u = (0.6 * math.cos(a), 0, 0.6 * math.sin(a))
+        v = (-0.6 * math.sin(a) * math.sin(e), 0.6 * math.cos(e), 0.6 * math.cos(a) * math.sin(e))
+        quad(centre, u, v, ((0, 1), (1, 1), (1, 0), (0, 0)))
+    views = [b"".join(struct.pack("<3f", *p) for p in positions), b"".join(struct.pack("<2f", *t) for t in uvs),
+             b"".join(struct.pack("<I", i) for i in indices[:opaque]), b"".join(struct.pack("<I", i) for i in indices[opaque:])]
+    offsets = [sum(len(v) for v in views[:k]) for k in range(4)]
+    scene = {
+        "asset": {"version": "2.0", "generator": "shadowkit tools/authored_shapes.py"},
+        "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0, "name": "tree"}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "indices": 2, "material": 0},
+                                   {"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "indices": 3, "material": 1}]}],
+        "materials": [{"name": "bark and ground", "pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.45, 0.35, 1]}},
+                      {"name": "leaves", "alphaMode": "MASK", "doubleSided": True,
+                       "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}],
+        "textures": [{"source": 0}],
+        "images": [{"uri": "data:image/png;base64," + base64.b64encode(png_rgba(32, 32, leaf)).decode()}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": len(positions), "type": "VEC3",
+                       "min": [min(p[i] for p in positions) for i in range(3)],
+                       "max": [max(p[i] for p in positions) for i in range(3)]},
+                      {"bufferView": 1, "componentType": 5126, "count": len(uvs), "type": "VEC2"},
+                      {"bufferView": 2, "componentType": 5125, "count": opaque, "type": "SCALAR"},
+                      {"bufferView": 3, "componentType": 5125, "count": len(indices) - opaque, "type": "SCALAR"}],
+        "bufferViews": [{"buffer": 0, "byteOffset": offsets[k], "byteLength": len(views[k])} for k in range(4)],
+        "buffers": [{"byteLength": sum(len(v) for v in views),
+                     "uri": "data:application/octet-stream;base64," + base64.b64encode(b"".join(views)).decode()}],
+    }
+    with open(path, "w") as f:
+        json.dump(scene, f)
+
+
+def main(args):
+    directory = args[0] if args else os.path.join(os.path.dirname(__file__), "..", "tests", "data", "shapes")
+    os.makedirs(directory, exist_ok=True)
+    ship(os.path.join(directory, "ship.obj"))
+    town(os.path.join(directory, "town.obj"))
+    tree(os.path.join(directory, "tree.gltf"))
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])
