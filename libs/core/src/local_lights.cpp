@@ -133,6 +133,7 @@ ShadowSetup localSetup(LightType type, const Vec3& wsLight, int mapSize) {
 
 Status SpotLight::validate() const {
     if (!isFinite(wsPosition)) return fieldError("spot.position", "must be finite");
+    if (glm::length(wsPosition) > kMaxWorldMetres) return fieldError("spot.position", "at most 1e13 m from the origin");
     if (!isFinite(wsDirection) || !(glm::length(wsDirection) > 0.0))
         return fieldError("spot.direction", "must be a finite, non-zero vector");
     if (!(coneDegrees > 0.0 && coneDegrees <= 170.0)) return fieldError("spot.cone", "must be in (0, 170] degrees");
@@ -144,6 +145,8 @@ Status SpotLight::validate() const {
 
 Status PointLight::validate() const {
     if (!isFinite(wsPosition)) return fieldError("point.position", "must be finite");
+    if (glm::length(wsPosition) > kMaxWorldMetres)
+        return fieldError("point.position", "at most 1e13 m from the origin");
     if (!(range > 0.0 && std::isfinite(range)))
         return fieldError("point.range", "must be a finite number of metres > 0");
     if (!(radius >= 0.0 && radius < range)) return fieldError("point.radius", "must be in [0, range) metres");

@@ -214,6 +214,9 @@ TEST(LocalLights, BadLightsAreRefusedNamingTheField) {
     auto field = [](const auto& result) { return result ? std::string() : result.errorInfo().field; };
     EXPECT_EQ(field(computePointShadowSetup(in, PointLight{.range = 0})), "point.range");
     EXPECT_EQ(field(computePointShadowSetup(in, PointLight{.wsPosition = {NAN, 0, 0}})), "point.position");
+    EXPECT_EQ(field(computePointShadowSetup(in, PointLight{.wsPosition = {0, 1e20, 0}})),
+              "point.position"); // past the world's end
+    EXPECT_EQ(field(computeSpotShadowSetup(in, SpotLight{.wsPosition = {0, 1e20, 0}})), "spot.position");
     EXPECT_EQ(field(computeSpotShadowSetup(in, SpotLight{.wsDirection = {0, 0, 0}})), "spot.direction");
     EXPECT_EQ(field(computeSpotShadowSetup(in, SpotLight{.coneDegrees = 180})), "spot.cone");
     EXPECT_EQ(field(computeSpotShadowSetup(in, SpotLight{.range = INFINITY})), "spot.range");
