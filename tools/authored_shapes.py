@@ -21,6 +21,22 @@ import sys
 import zlib
 
 
+def write_whole(path, text):
+    """`text` to `path` whole or not at all: a temporary beside it, flushed, renamed over it; a failure
+    (a full disk, a missing folder) is one line and a non-zero exit, as for the project's own writers."""
+    temporary = path + ".tmp"
+    try:
+        with open(temporary, "w") as f:
+            f.write(text)
+            f.flush()
+            os.fsync(f.fileno())
+        os.replace(temporary, path)
+    except OSError as e:
+        if os.path.exists(temporary):
+            os.remove(temporary)
+        sys.exit(f"authored_shapes: {path}: cannot write ({e.strerror})")
+
+
 class Obj:
     """Quads of a Wavefront OBJ, counter-clockwise seen from outside."""
 
@@ -66,10 +82,9 @@ class Obj:
         self.faces.append((first, first + 3, first + 2, first + 1))
 
     def write(self, path, comment):
-        with open(path, "w") as f:
-            f.write(f"# {comment} (tools/authored_shapes.py)\n")
-            f.writelines("v %g %g %g\n" % v for v in self.vertices)
-            f.writelines("f " + " ".join(str(i) for i in face) + "\n" for face in self.faces)
+        write_whole(path, f"# {comment} (tools/authored_shapes.py)\n" +
+                    "".join("v %g %g %g\n" % v for v in self.vertices) +
+                    "".join("f " + " ".join(str(i) for i in face) + "\n" for face in self.faces))
 
 
 def ship(path):
@@ -156,13 +171,15 @@ def tree(path):
         "buffers": [{"byteLength": sum(len(v) for v in views),
                      "uri": "data:application/octet-stream;base64," + base64.b64encode(b"".join(views)).decode()}],
     }
-    with open(path, "w") as f:
-        json.dump(scene, f)
+    write_whole(path, json.dumps(scene))
 
 
 def main(args):
     directory = args[0] if args else os.path.join(os.path.dirname(__file__), "..", "tests", "data", "shapes")
-    os.makedirs(directory, exist_ok=True)
+    try:
+        os.makedirs(directory, exist_ok=True)
+    except OSError as e:
+        sys.exit(f"authored_shapes: {directory}: cannot create it ({e.strerror})")
     ship(os.path.join(directory, "ship.obj"))
     town(os.path.join(directory, "town.obj"))
     tree(os.path.join(directory, "tree.gltf"))

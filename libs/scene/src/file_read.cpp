@@ -38,6 +38,11 @@ core::Error refused(const std::filesystem::path& file, const std::string& why) {
     return core::makeError(message);
 }
 
+// A failed open, fstat or read, with errno's reason.
+core::Error cannotRead(const std::filesystem::path& file) {
+    return refused(file, std::string("cannot be read (") + std::strerror(errno) + ")");
+}
+
 } // namespace
 
 core::Result<std::string> readFile(const std::filesystem::path& file, uintmax_t maxBytes) {
@@ -45,10 +50,9 @@ core::Result<std::string> readFile(const std::filesystem::path& file, uintmax_t 
     // a regular file it changes nothing. The type is then read from the open descriptor, so a
     // file swapped for a pipe between a check and the open cannot slip through.
     const Descriptor in{::open(file.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC)};
-    if (in.fd < 0) return refused(file, std::string("cannot be read (") + std::strerror(errno) + ")");
+    if (in.fd < 0) return cannotRead(file);
     struct stat status {};
-    if (::fstat(in.fd, &status) != 0)
-        return refused(file, std::string("cannot be read (") + std::strerror(errno) + ")");
+    if (::fstat(in.fd, &status) != 0) return cannotRead(file);
     if (S_ISDIR(status.st_mode)) return refused(file, "a directory, not a file");
     if (!S_ISREG(status.st_mode)) return refused(file, "a device, pipe or socket, not a file");
     const auto size = static_cast<uintmax_t>(status.st_size);
@@ -58,7 +62,7 @@ core::Result<std::string> readFile(const std::filesystem::path& file, uintmax_t 
     while (done < bytes.size()) {
         const ssize_t n = ::read(in.fd, bytes.data() + done, bytes.size() - done);
         if (n < 0 && errno == EINTR) continue;
-        if (n < 0) return refused(file, std::string("cannot be read (") + std::strerror(errno) + ")");
+        if (n < 0) return cannotRead(file);
         if (n == 0) return refused(file, "shorter than its size said (changed while read?)");
         done += size_t(n);
     }
