@@ -16,7 +16,9 @@
 //      compact model seen from afar) the rule still warps hard and spends the map on B's
 //      first metres: a 25 m model at `noon` was 27.5 % wrong at 28 pixels per texel where the
 //      focused map was 2.07 % at 0.32. So η is also kept at or above the warp that the view's
-//      own perspective asks for (below), and the map tends to the focused one as z_f/z_n → 1.
+//      own perspective asks for (below), and the map tends to the focused one as z_f/z_n → 1,
+//      or as the nearest pixels at the trapezoid's two ends draw level (the sun behind the
+//      viewer or ahead of it, where the centre line runs across a model rather than into it).
 //   4. The trapezoid's sides pass through Q and touch the hull; a 2-D projective map sends it
 //      to the square: y' = a + b / u (u: distance from Q along the centre line, u in
 //      [η, η + λ] -> [−1, 1]) and x' proportional to (lateral offset) / u.
@@ -27,6 +29,7 @@
 // trapezoid exists: the focused map is used (the paper's own fallback).
 #include "shadowkit/core/tsm.h"
 
+#include "shadowkit/core/focus_body.h"
 #include "shadowkit/core/uniform_shadow_map.h"
 #include "shadowkit/core/warp_fit.h"
 
@@ -36,7 +39,9 @@
 namespace shadowkit::core {
 namespace {
 
-constexpr double kXi = -0.6; // Martin & Tan's "80 % line": ξ = −0.6 maps to 0.8 of the map
+constexpr double kXi = -0.6;        // Martin & Tan's "80 % line": ξ = −0.6 maps to 0.8 of the map
+constexpr double kEndBand = 0.25;   // the share of the footprint at each end whose nearest pixel it asks for
+constexpr double kWarpedEnds = 0.5; // z_b / z_t − 1 from which the view's whole depth ratio may be warped
 
 } // namespace
 
@@ -68,8 +73,9 @@ ShadowSetup computeTsm(const ShadowSetupInputs& in) {
     }
     const double lambda = base - top;
 
-    // 3. The focus point and η; the view depths B spans (within the visible depth range when
-    // the frame measured one) bound η from below.
+    // 3. The focus point and η; the perspective the warp answers bounds η from below: the view
+    // depths B spans (within the visible depth range when the frame measured one) and where
+    // the nearest pixels lie along the centre line.
     double bodyNear = cam.zFar, bodyFar = cam.zNear;
     for (const Vec3& p : wsPoints) {
         const double depth = glm::dot(p - cam.wsEye, v);
@@ -79,17 +85,56 @@ ShadowSetup computeTsm(const ShadowSetupInputs& in) {
     if (in.visibleDepth && in.visibleDepth->y > bodyNear && in.visibleDepth->x < bodyFar)
         bodyNear = std::max(bodyNear, in.visibleDepth->x), bodyFar = std::min(bodyFar, in.visibleDepth->y);
     if (!(bodyFar > bodyNear)) bodyNear = cam.zNear, bodyFar = cam.zFar;
+    auto viewDepth = [&](const Vec3& ws) { return std::clamp(glm::dot(ws - cam.wsEye, v), bodyNear, bodyFar); };
+    // The nearest view depth in the first and in the last kEndBand of the receivers' extent
+    // along the centre line: what the finest pixels at each end ask of the map. The receivers
+    // are V ∩ S, not B, whose sweep towards the light adds casters that no pixel sees. Exactly:
+    // V ∩ S cut by the plane where `along` is that far from its end; depth being linear, the
+    // nearest point is one of the cut body's vertices.
+    const ConvexBody receivers = visibleSceneBody(cam, in.wsSceneBounds);
+    const Vec3 wsAlong = glm::transpose(glm::dmat3(lFromWorld)) * Vec3(u, 0.0); // ∇along, per metre
+    const double along0 = glm::dot(toL(Vec3(0.0)) - nearCentre, u);             // along at the origin
+    double receiversTop = INFINITY, receiversBase = -INFINITY;
+    for (const Vec3& p : receivers.vertices()) {
+        const double along = glm::dot(wsAlong, p) + along0;
+        receiversTop = std::min(receiversTop, along), receiversBase = std::max(receiversBase, along);
+    }
+    auto nearestInBand = [&](double sign, double edge) { // the receivers with sign·(along − edge) <= 0
+        ConvexBody band = receivers;
+        band.clip(Plane{sign * wsAlong / glm::length(wsAlong), sign * (along0 - edge) / glm::length(wsAlong)});
+        double nearest = INFINITY;
+        for (const Vec3& p : band.vertices()) nearest = std::min(nearest, viewDepth(p));
+        return nearest;
+    };
+    const double receiversLength = receiversBase - receiversTop; // -inf for no receivers (not reached: B is empty then)
+    const double topNear = receiversLength > 0.0 ? nearestInBand(1.0, receiversTop + kEndBand * receiversLength) : NAN;
+    const double baseNear =
+        receiversLength > 0.0 ? nearestInBand(-1.0, receiversBase - kEndBand * receiversLength) : NAN;
+
     const double focusDepth = cam.zNear + in.tsm.focusFraction * (cam.zFar - cam.zNear);
     double delta = glm::dot(toL(cam.wsEye + focusDepth * v) - nearCentre, u) - top;
     // η needs δ' < 0.8 λ; below 0.01 λ the far/near ratio of the warp (≈ 400) would exceed
     // what float texel coordinates resolve, so the focus is kept off the top line.
     delta = std::clamp(delta, 0.01 * lambda, 0.75 * lambda);
     // The warp never outgrows the perspective it answers: texels thin out from the top line to
-    // the base by (η + λ)/η along the centre line, the camera's pixels by z_f/z_n over B, so η
-    // is kept at or above λ z_n / (z_f − z_n). On a terrain seen from its surface z_f/z_n is in
-    // the hundreds and the 80 % rule's η stands; on a compact model seen from afar the ratio
-    // nears 1 and the map tends to the focused one, as perspective aliasing vanishes there.
-    const double perspectiveEta = lambda * bodyNear / std::max(bodyFar - bodyNear, 1e-3 * bodyNear);
+    // the base by r = (η + λ)/η along the centre line, the camera's pixels by at most
+    // z_f/z_n over B, so r <= z_f/z_n, η >= λ / (z_f/z_n − 1). On a terrain seen from its
+    // surface z_f/z_n is in the hundreds and the 80 % rule's η stands; on a compact model seen
+    // from afar it nears 1 and the map tends to the focused one, as perspective aliasing
+    // vanishes there. And the far pixels must lie at the base: with the sun behind the viewer
+    // or ahead of it the centre line is short, the footprint's extent along it is the model's
+    // width rather than its depth, and the nearest pixels at the base end are no farther than
+    // those at the top (z_b <= z_t): B's depth range warped a 12 m model seen from 13 m with the
+    // sun behind into texels 2.5 times coarser than the focused map's at the median pixel. So
+    // the allowed ratio fades from z_f/z_n, where z_b exceeds z_t by kWarpedEnds or more (every
+    // view of a terrain), to 1 (no warp) where z_b <= z_t, geometrically: r = (z_f/z_n)^t.
+    // (Bounding r by z_b/z_t itself also starves the far band's majority on views from above:
+    // the sampling model's best TSM on the forest's `aerial` coarsens from 0.339 to 0.370 pixels
+    // per texel at the median.)
+    const double endsRatio = baseNear / topNear; // z_b / z_t: NaN where V ∩ S has no length along the line
+    const double endsApart = std::isfinite(endsRatio) ? std::clamp((endsRatio - 1.0) / kWarpedEnds, 0.0, 1.0) : 1.0;
+    const double allowedRatio = std::pow(bodyFar / bodyNear, endsApart); // t = endsApart
+    const double perspectiveEta = allowedRatio > 1.0 + 1e-3 ? lambda / (allowedRatio - 1.0) : 1e3 * lambda;
     const double eta = std::max(lambda * delta * (1.0 + kXi) / (lambda * (1.0 - kXi) - 2.0 * delta),
                                 std::min(perspectiveEta, 1e3 * lambda));
 

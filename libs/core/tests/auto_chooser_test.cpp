@@ -115,7 +115,7 @@ TEST(AutoChooserTest, FindsTheBetterFamilyAfterACut) {
     ASSERT_TRUE(chooser.choose(ground, kGroundWidth, kGroundHeight, visibleGround(ground.camera, 4.0)));
     ShadowSetupInputs aerial = ground;
     aerial.camera.wsEye = Vec3(0.0, 150.0, 0.0);
-    aerial.camera.wsDirection = Vec3(0.0, -1.0, -0.3);
+    aerial.camera.wsDirection = glm::normalize(Vec3(0.0, -1.0, -0.05)); // straight down: PSM's case
     const auto receivers = visibleGround(aerial.camera, 4.0);
     auto model = SamplingErrorModel::create(aerial.camera, kGroundWidth, kGroundHeight, receivers);
     auto best = chooseAuto(aerial, options, *model);
