@@ -9,3 +9,11 @@ function(add_engine_sample_test name sample own adapter eval)
                    -DWORK=${CMAKE_CURRENT_BINARY_DIR}/${name} -P ${PROJECT_SOURCE_DIR}/adapters/engine_sample_test.cmake)
   set_tests_properties(${name} PROPERTIES LABELS gl SKIP_REGULAR_EXPRESSION "SKIP:")
 endfunction()
+
+# add_engine_sample_input_test(NAME SAMPLE): the sample refuses a camera or shots file that is a
+# pipe or a directory in one line (engine_sample_input_test.cmake); no display needed.
+function(add_engine_sample_input_test name sample)
+  add_test(NAME ${name}
+           COMMAND ${CMAKE_COMMAND} -DSAMPLE=$<TARGET_FILE:${sample}> -DWORK=${CMAKE_CURRENT_BINARY_DIR}/${name}
+                   -P ${PROJECT_SOURCE_DIR}/adapters/engine_sample_input_test.cmake)
+endfunction()

@@ -2,19 +2,22 @@
 // line, checked before the scene loads (an engine's OBJ reader can take minutes): the scene,
 // the shots (a camera file, a technique, the PNG to write, one or many from --shots), the map
 // and image sizes. Header-only: the samples are single files and link nothing of each other.
+// Files are read as every shadowkit command reads them (scene::readFile): a camera or shots file
+// that is a pipe or a directory is refused in one line instead of waiting for a writer.
 #pragma once
 
 #include "shadowkit/core/camera.h"
 #include "shadowkit/core/light.h"
 #include "shadowkit/core/raster_buffers.h"
 #include "shadowkit/core/sampling_error.h"
+#include "shadowkit/scene/file_read.h"
 
 #include <nlohmann/json.hpp>
 
 #include <array>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
 #include <functional>
 #include <sstream>
 #include <string>
@@ -49,10 +52,16 @@ inline Vec3 vec3(const nlohmann::json& j, const char* key, const std::string& fi
     return {j[key][0].get<double>(), j[key][1].get<double>(), j[key][2].get<double>()};
 }
 
+/// A camera or shots file whole, or the sample's one-line error (`what` names the option).
+inline std::string readText(const std::string& what, const std::string& file) {
+    constexpr uintmax_t kMaxTextBytes = uintmax_t(16) << 20; // a camera is a few hundred bytes
+    auto text = scene::readFile(file, kMaxTextBytes);
+    if (!text) fail(what + text.error());
+    return std::move(*text);
+}
+
 inline CameraAndSun readCamera(const std::string& file) {
-    std::ifstream in(file);
-    if (!in) fail(file + ": cannot be read");
-    const nlohmann::json root = nlohmann::json::parse(in, nullptr, false);
+    const nlohmann::json root = nlohmann::json::parse(readText("", file), nullptr, false);
     if (root.is_discarded() || !root.is_object()) fail(file + ": not a JSON object");
     const nlohmann::json& holder = root.contains("inputs") ? root["inputs"] : root;
     const nlohmann::json& camera = holder.contains("camera") ? holder["camera"] : holder;
@@ -137,8 +146,7 @@ inline Options parse(int argc, char** argv, const std::function<void(const std::
     if (positional == 3 && shotsFile.empty())
         o.shots.push_back({cameraFile, technique, out, {}});
     else if (positional == 1 && !shotsFile.empty()) {
-        std::ifstream in(shotsFile);
-        if (!in) fail("--shots " + shotsFile + ": cannot be read");
+        std::istringstream in(readText("--shots ", shotsFile));
         std::string line;
         for (int number = 1; std::getline(in, line); ++number) {
             std::istringstream words(line);

@@ -1,0 +1,32 @@
+# An engine sample given hostile shot files (no display needed: the sample reads them before it
+# loads the scene or opens a window): a camera file that is a pipe or a directory, and a --shots
+# file that is a pipe, are each refused at once in one line naming the file, with a non-zero exit
+# and no picture written. Before, a pipe made the sample wait for a writer for ever.
+#   cmake -DSAMPLE=... -DWORK=... -P engine_sample_input_test.cmake
+file(REMOVE_RECURSE "${WORK}")
+file(MAKE_DIRECTORY "${WORK}/a_directory.json")
+execute_process(COMMAND mkfifo "${WORK}/a_pipe.json" "${WORK}/a_pipe.txt" RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "mkfifo: exit ${rc}")
+endif()
+function(expect_refusal expected)
+  execute_process(COMMAND ${SAMPLE} ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 30)
+  if(NOT rc MATCHES "^[0-9]+$")
+    message(FATAL_ERROR "${ARGN}: ${rc} (waited on the file?)")
+  endif()
+  if(rc EQUAL 0)
+    message(FATAL_ERROR "${ARGN}: exit 0, expected a refusal")
+  endif()
+  string(FIND "${err}" "${expected}" at)
+  string(REGEX MATCHALL "\n" newlines "${err}")
+  list(LENGTH newlines lines)
+  if(at EQUAL -1 OR NOT lines EQUAL 1)
+    message(FATAL_ERROR "${ARGN}: expected one line with '${expected}', got:\n${err}")
+  endif()
+  if(EXISTS "${WORK}/out.png")
+    message(FATAL_ERROR "${ARGN}: wrote ${WORK}/out.png although it failed")
+  endif()
+endfunction()
+expect_refusal("a_pipe.json: a device, pipe or socket, not a file" "${WORK}/scene.obj" "${WORK}/a_pipe.json" "${WORK}/out.png")
+expect_refusal("a_directory.json: a directory, not a file" "${WORK}/scene.obj" "${WORK}/a_directory.json" "${WORK}/out.png")
+expect_refusal("--shots ${WORK}/a_pipe.txt: a device, pipe or socket, not a file" "${WORK}/scene.obj" --shots "${WORK}/a_pipe.txt")
