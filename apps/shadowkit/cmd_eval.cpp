@@ -121,10 +121,7 @@ void printViewRow(const eval::ViewReport& report) {
         "{:<14} {:<10} {:>5} {:>9} {:>8} {:>7.2f} {:>8.2f} {:>8.2f} {:>7.2f} {:>7.3f} {:>7.3f} {:>7.3f} {:>6.1f}\n",
         name, report.technique, report.mapSize, f.validPx, f.excludedPx, f.wrongPct, f.falseShadowPct, f.falseLitPct,
         f.undersampledPct, f.pixelsPerTexelP50, f.pixelsPerTexelP95, f.pixelsPerTexelP99, report.seconds);
-    if (const std::string warning = eval::nothingComparedWarning(name, f); !warning.empty()) {
-        std::fflush(stdout); // after the row, where both go to one pipe
-        fmt::print(stderr, "shadowkit: warning: {}\n", warning);
-    }
+    if (const std::string warning = eval::nothingComparedWarning(name, f); !warning.empty()) warn(warning);
     // With spot and point lights the row above is every light together; each follows.
     for (const eval::LightReport& l : report.lights) {
         fmt::print("  {:<12} {:<10} {:>5} {:>9} {:>8} {:>7.2f} {:>8.2f} {:>8.2f} {:>7.2f} {:>7.3f} {:>7.3f} "

@@ -111,10 +111,7 @@ int runScore(const ScoreArgs& args) {
     fmt::print("{:<14} {:<24} {:>9} {:>8} {:>7.2f} {:>8.2f} {:>8.2f} {:>6.1f}\n", viewName,
                std::filesystem::path(args.mask).filename().string(), f.validPx, f.excludedPx, f.wrongPct,
                f.falseShadowPct, f.falseLitPct, seconds);
-    if (const std::string warning = eval::nothingComparedWarning(viewName, f); !warning.empty()) {
-        std::fflush(stdout); // after the row, where both go to one pipe
-        fmt::print(stderr, "shadowkit: warning: {}\n", warning);
-    }
+    if (const std::string warning = eval::nothingComparedWarning(viewName, f); !warning.empty()) warn(warning);
     if (const auto& s = report.soft)
         fmt::print("  soft truth, sun {:.2f}°: {}\n", s->sunAngleDegrees, eval::softFiguresLine(*s));
     if (!args.errorMap.empty()) {

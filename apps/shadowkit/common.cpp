@@ -6,16 +6,29 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cstdio>
 
 namespace shadowkit::app {
 
-int fail(const std::string& message) {
-    // One line whatever the message echoes of the input (a newline typed into --configs).
+namespace {
+// One line whatever the message echoes of the input (a newline typed into --configs, a control
+// character in a glTF's image name).
+std::string oneLine(const std::string& message) {
     std::string line = message;
     std::replace_if(
         line.begin(), line.end(), [](unsigned char c) { return c < 0x20; }, ' ');
-    fmt::print(stderr, "shadowkit: error: {}\n", line);
+    return line;
+}
+} // namespace
+
+int fail(const std::string& message) {
+    fmt::print(stderr, "shadowkit: error: {}\n", oneLine(message));
     return kExitBadInput;
+}
+
+void warn(const std::string& message) {
+    std::fflush(stdout);
+    fmt::print(stderr, "shadowkit: warning: {}\n", oneLine(message));
 }
 
 int fail(const core::Error& error) {

@@ -21,6 +21,9 @@ inline constexpr int kExitBadInput = 1, kExitUsage = 2, kExitEnvironment = 3;
 int fail(const std::string& message);
 // The same for a library error, returning kExitEnvironment for ErrorKind::Environment.
 int fail(const core::Error& error);
+// Prints "shadowkit: warning: <message>" (one line, as fail's) to stderr after whatever stdout
+// holds, so that where both go to one pipe the warning follows the row it is about.
+void warn(const std::string& message);
 
 // The directory holding views.json, camera paths and golden figures: $SHADOWKIT_DATA_DIR, else
 // share/shadowkit beside the running program's bin/ (an installed tree, wherever it was moved),

@@ -105,7 +105,7 @@ core::Result<scene::Scene> SceneOptions::load(bool verbose) const {
     } else {
         result = scene::loadScene(scene);
         if (!result) return result;
-        for (const std::string& warning : result->warnings) fmt::print(stderr, "shadowkit: warning: {}\n", warning);
+        for (const std::string& warning : result->warnings) warn(warning);
     }
     if (verbose) {
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
