@@ -4,10 +4,10 @@
 // public 25 m model with no ground under it at `noon`: 27.5 % wrong where the focused map was
 // 2.07 % (TSM's 80 % rule warps hard whatever the view's depth ratio; tsm.cpp now caps the warp
 // at the view's own perspective). Here public models — a compact engine seen from afar with
-// no ground (the failing shape), a spider of thin legs, and our pillar on a plate — are
-// measured on every standard view against ray-traced truth, default against focused: the
-// default may be at most 1.5 times as wrong, plus 0.1 points for views where both are
-// nearly right (a handful of pixels). The public models come from Debian's assimp-testmodels
+// no ground (the failing shape), a spider of thin legs — our pillar on a plate and the shapes
+// authored for the corpus are measured on every standard view against ray-traced truth,
+// default against focused: the default may be at most 1.5 times as wrong, plus 0.1 points for
+// views where both are nearly right (a handful of pixels). The public models come from Debian's assimp-testmodels
 // (tools/install-deps.sh); a model that is missing fails the test, naming the package.
 // CTest label `gl`: runs headless on Mesa llvmpipe.
 #include "headless_gl_test.h"
@@ -20,20 +20,28 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <string>
 
 using namespace shadowkit;
 namespace fs = std::filesystem;
 
 namespace {
 
-const fs::path kModels[] = {
-    "/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb",
-    "/usr/share/assimp/models/OBJ/spider.obj",
-    fs::path(SHADOWKIT_SOURCE_DATA_DIR) / ".." / "tests" / "data" / "pillar_on_plate.gltf",
-    // Authored here (tools/authored_shapes.py): 3 cm ropes and 40 cm masts seen from afar. Its
-    // siblings, a wide flat town and a single tree of alpha-cut leaves, are not held to the bound
-    // yet: the default misses it on `into-sun` (docs/reliability.md, "Models we did not make").
-    fs::path(SHADOWKIT_SOURCE_DATA_DIR) / ".." / "tests" / "data" / "shapes" / "ship.obj",
+// Each model with the one view it is not held on yet ("" for none).
+const struct {
+    fs::path file;
+    std::string notYet;
+} kModels[] = {
+    {"/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb", ""},
+    {"/usr/share/assimp/models/OBJ/spider.obj", ""},
+    {fs::path(SHADOWKIT_SOURCE_DATA_DIR) / ".." / "tests" / "data" / "pillar_on_plate.gltf", ""},
+    // Authored here (tools/authored_shapes.py): 3 cm ropes and 40 cm masts seen from afar; a wide
+    // flat town; a single tree of alpha-cut leaves. The town and the tree miss the bound on
+    // `into-sun`, where TSM's normal offset leaks light (docs/reliability.md, "Models we did not
+    // make"); every other view holds it.
+    {fs::path(SHADOWKIT_SOURCE_DATA_DIR) / ".." / "tests" / "data" / "shapes" / "ship.obj", ""},
+    {fs::path(SHADOWKIT_SOURCE_DATA_DIR) / ".." / "tests" / "data" / "shapes" / "town.obj", "into-sun"},
+    {fs::path(SHADOWKIT_SOURCE_DATA_DIR) / ".." / "tests" / "data" / "shapes" / "tree.gltf", "into-sun"},
 };
 constexpr double kRatio = 1.5, kSlackPoints = 0.1;
 constexpr int kWidth = 320, kHeight = 180;
@@ -47,7 +55,7 @@ TEST_F(CorpusDefaultsTest, TheDefaultIsNeverMuchWorseThanTheFocusedMapOnAnyViewO
     ASSERT_TRUE(views) << views.error();
     const core::ShadowSetupInputs defaults = frame::FrameConfig{}.technique;
     int measured = 0;
-    for (const fs::path& file : kModels) {
+    for (const auto& [file, notYet] : kModels) {
         if (!fs::exists(file)) {
             ADD_FAILURE() << file << " is missing: install assimp-testmodels (tools/install-deps.sh)";
             continue;
@@ -57,7 +65,7 @@ TEST_F(CorpusDefaultsTest, TheDefaultIsNeverMuchWorseThanTheFocusedMapOnAnyViewO
         auto measurer = measure::Measurer::create(*model);
         ASSERT_TRUE(measurer) << measurer.error();
         for (const scene::ViewSpec& spec : *views) {
-            if (!spec.lights.empty()) continue; // the sun's set-ups on the sunlit views
+            if (!spec.lights.empty() || spec.name == notYet) continue; // the sun's set-ups on the sunlit views
             const scene::ResolvedView view = scene::resolveView(spec, *model);
             gl::RenderSettings settings; // the recommended bias, hard test
             settings.width = kWidth, settings.height = kHeight;
