@@ -29,9 +29,25 @@ Aabb sceneBoxForFocus(const Aabb& wsSceneBounds) {
     return box;
 }
 
+namespace {
+
+bool sameCamera(const PerspectiveCamera& a, const PerspectiveCamera& b) {
+    return a.wsEye == b.wsEye && a.wsDirection == b.wsDirection && a.wsUp == b.wsUp && a.fovYDegrees == b.fovYDegrees &&
+           a.aspect == b.aspect && a.zNear == b.zNear && a.zFar == b.zFar;
+}
+
+} // namespace
+
 ConvexBody visibleSceneBody(const PerspectiveCamera& camera, const Aabb& wsSceneBounds) {
+    // The last V ∩ S per thread, as computeFocusBody keeps B: a TSM set-up asks for it again
+    // after B (where its nearest receivers lie, tsm.cpp). Exact comparison.
+    thread_local std::optional<std::pair<std::pair<PerspectiveCamera, Aabb>, ConvexBody>> last;
+    if (last && sameCamera(last->first.first, camera) && last->first.second.min == wsSceneBounds.min &&
+        last->first.second.max == wsSceneBounds.max)
+        return last->second;
     ConvexBody visible = ConvexBody::fromAabb(sceneBoxForFocus(wsSceneBounds));
     visible.clip(camera.wsFrustumPlanes());
+    last.emplace(std::pair{camera, wsSceneBounds}, visible);
     return visible;
 }
 
@@ -59,11 +75,8 @@ struct FocusBodyKey {
     Vec3 wsTowardsLight;
     Aabb wsSceneBounds;
     bool operator==(const FocusBodyKey& o) const {
-        const PerspectiveCamera &a = camera, &b = o.camera;
-        return a.wsEye == b.wsEye && a.wsDirection == b.wsDirection && a.wsUp == b.wsUp &&
-               a.fovYDegrees == b.fovYDegrees && a.aspect == b.aspect && a.zNear == b.zNear && a.zFar == b.zFar &&
-               wsTowardsLight == o.wsTowardsLight && wsSceneBounds.min == o.wsSceneBounds.min &&
-               wsSceneBounds.max == o.wsSceneBounds.max;
+        return sameCamera(camera, o.camera) && wsTowardsLight == o.wsTowardsLight &&
+               wsSceneBounds.min == o.wsSceneBounds.min && wsSceneBounds.max == o.wsSceneBounds.max;
     }
 };
 

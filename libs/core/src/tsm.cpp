@@ -88,22 +88,28 @@ ShadowSetup computeTsm(const ShadowSetupInputs& in) {
     auto viewDepth = [&](const Vec3& ws) { return std::clamp(glm::dot(ws - cam.wsEye, v), bodyNear, bodyFar); };
     // The nearest view depth in the first and in the last kEndBand of the receivers' extent
     // along the centre line: what the finest pixels at each end ask of the map. The receivers
-    // are V ∩ S, not B, whose sweep towards the light adds casters that no pixel sees. Exactly:
-    // V ∩ S cut by the plane where `along` is that far from its end; depth being linear, the
-    // nearest point is one of the cut body's vertices.
+    // are V ∩ S, not B, whose sweep towards the light adds casters that no pixel sees. Depth
+    // being linear, the nearest receiver of a band is a vertex of V ∩ S inside it or a point
+    // where one of its edges crosses the band's edge.
     const ConvexBody receivers = visibleSceneBody(cam, in.wsSceneBounds);
     const Vec3 wsAlong = glm::transpose(glm::dmat3(lFromWorld)) * Vec3(u, 0.0); // ∇along, per metre
     const double along0 = glm::dot(toL(Vec3(0.0)) - nearCentre, u);             // along at the origin
+    auto alongOf = [&](const Vec3& ws) { return glm::dot(wsAlong, ws) + along0; };
     double receiversTop = INFINITY, receiversBase = -INFINITY;
-    for (const Vec3& p : receivers.vertices()) {
-        const double along = glm::dot(wsAlong, p) + along0;
-        receiversTop = std::min(receiversTop, along), receiversBase = std::max(receiversBase, along);
-    }
+    for (size_t f = 0; f < receivers.faceCount(); ++f)
+        for (const Vec3& p : receivers.face(f))
+            receiversTop = std::min(receiversTop, alongOf(p)), receiversBase = std::max(receiversBase, alongOf(p));
     auto nearestInBand = [&](double sign, double edge) { // the receivers with sign·(along − edge) <= 0
-        ConvexBody band = receivers;
-        band.clip(Plane{sign * wsAlong / glm::length(wsAlong), sign * (along0 - edge) / glm::length(wsAlong)});
         double nearest = INFINITY;
-        for (const Vec3& p : band.vertices()) nearest = std::min(nearest, viewDepth(p));
+        for (size_t f = 0; f < receivers.faceCount(); ++f) {
+            const std::span<const Vec3> loop = receivers.face(f);
+            for (size_t i = 0; i < loop.size(); ++i) {
+                const Vec3 &a = loop[i], &b = loop[(i + 1) % loop.size()];
+                const double da = sign * (alongOf(a) - edge), db = sign * (alongOf(b) - edge);
+                if (da <= 0.0) nearest = std::min(nearest, viewDepth(a));
+                if ((da < 0.0) != (db < 0.0)) nearest = std::min(nearest, viewDepth(a + (da / (da - db)) * (b - a)));
+            }
+        }
         return nearest;
     };
     const double receiversLength = receiversBase - receiversTop; // -inf for no receivers (not reached: B is empty then)
