@@ -18,7 +18,7 @@
 //      focused map was 2.07 % at 0.32. So η is also kept at or above the warp that the view's
 //      own perspective asks for (below), and the map tends to the focused one as z_f/z_n → 1,
 //      or as the nearest pixels at the trapezoid's two ends draw level (the sun behind the
-//      viewer or ahead of it, where the centre line runs across a model rather than into it).
+//      viewer, where the centre line runs across a model rather than into it).
 //   4. The trapezoid's sides pass through Q and touch the hull; a 2-D projective map sends it
 //      to the square: y' = a + b / u (u: distance from Q along the centre line, u in
 //      [η, η + λ] -> [−1, 1]) and x' proportional to (lateral offset) / u.
@@ -128,9 +128,9 @@ ShadowSetup computeTsm(const ShadowSetupInputs& in) {
     // surface z_f/z_n is in the hundreds and the 80 % rule's η stands; on a compact model seen
     // from afar it nears 1 and the map tends to the focused one, as perspective aliasing
     // vanishes there. And the far pixels must lie at the base: with the sun behind the viewer
-    // or ahead of it the centre line is short, the footprint's extent along it is the model's
-    // width rather than its depth, and the nearest pixels at the base end are no farther than
-    // those at the top (z_b <= z_t): B's depth range warped a 12 m model seen from 13 m with the
+    // the centre line is short, the footprint's extent along it is the model's width rather
+    // than its depth, and the nearest pixels at the base end are no farther than those at the
+    // top (z_b <= z_t): B's depth range warped a 12 m model seen from 13 m with the
     // sun behind into texels 2.5 times coarser than the focused map's at the median pixel. So
     // the allowed ratio fades from z_f/z_n, where z_b exceeds z_t by kWarpedEnds or more (every
     // view of a terrain), to 1 (no warp) where z_b <= z_t, geometrically: r = (z_f/z_n)^t.
