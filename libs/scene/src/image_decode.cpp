@@ -40,6 +40,18 @@ static void refillJpegBits(Jpeg* jpeg);
 #define SHADOWKIT_STB_REFILL_stbi__jpeg stbRefillJpegBits(stbi__jpeg
 #define SHADOWKIT_STB_REFILL_j refillJpegBits(j
 #define SHADOWKIT_STB_REFILL_z refillJpegBits(z
+// Likewise a progressive JPEG's DC scan: stb 2.27 adds each block's difference to the component's
+// predictor with no bound, and a corrupt scan drives it past what `dc << succ_low` holds in an int
+// (signed overflow, undefined; fuzz_image in CI, fuzz/corpus/image/dc-predictor-overflow.jpg).
+// Every DC block goes through decodeBlockProgDc() below, which refuses a predictor outside
+// ±2^15 first, as 2.28 refuses the overflow itself: then |dc| < 2^16 (a difference has at most
+// 15 bits) and dc · 2^13 (succ_low <= 13, checked at the SOS) fits. A real JPEG's DC predictor
+// stays within 11 bits.
+template <class Jpeg, class Huffman>
+static int decodeBlockProgDc(Jpeg* jpeg, short* data, Huffman* hdc, int b);
+#define stbi__jpeg_decode_block_prog_dc(first, ...) SHADOWKIT_STB_PROG_DC_##first, __VA_ARGS__)
+#define SHADOWKIT_STB_PROG_DC_stbi__jpeg stbDecodeBlockProgDc(stbi__jpeg
+#define SHADOWKIT_STB_PROG_DC_z decodeBlockProgDc(z
 #if defined(__GNUC__)
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wconversion"
@@ -56,12 +68,23 @@ static void refillJpegBits(Jpeg* jpeg);
 #undef SHADOWKIT_STB_REFILL_stbi__jpeg
 #undef SHADOWKIT_STB_REFILL_j
 #undef SHADOWKIT_STB_REFILL_z
+#undef stbi__jpeg_decode_block_prog_dc
+#undef SHADOWKIT_STB_PROG_DC_stbi__jpeg
+#undef SHADOWKIT_STB_PROG_DC_z
 
 template <class Jpeg>
 static void refillJpegBits(Jpeg* jpeg) {
     // A negative count: every buffered bit was taken, then zeros past them; the buffer is empty.
     if (jpeg->code_bits < 0) jpeg->code_bits = 0;
     stbRefillJpegBits(jpeg);
+}
+
+template <class Jpeg, class Huffman>
+static int decodeBlockProgDc(Jpeg* jpeg, short* data, Huffman* hdc, int b) {
+    constexpr int kMaxPredictor = 1 << 15;
+    const int predictor = jpeg->img_comp[b].dc_pred;
+    if (predictor <= -kMaxPredictor || predictor >= kMaxPredictor) return stbi__err("bad DC", "Corrupt JPEG");
+    return stbDecodeBlockProgDc(jpeg, data, hdc, b);
 }
 
 #include <webp/decode.h>
