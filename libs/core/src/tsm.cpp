@@ -42,6 +42,7 @@ namespace {
 constexpr double kXi = -0.6;        // Martin & Tan's "80 % line": ξ = −0.6 maps to 0.8 of the map
 constexpr double kEndBand = 0.25;   // the share of the footprint at each end whose nearest pixel it asks for
 constexpr double kWarpedEnds = 0.5; // z_b / z_t − 1 from which the view's whole depth ratio may be warped
+constexpr double kWidening = 1.0;   // base / top width of the receivers − 1 from which they widen as ground does
 
 } // namespace
 
@@ -99,23 +100,34 @@ ShadowSetup computeTsm(const ShadowSetupInputs& in) {
     for (size_t f = 0; f < receivers.faceCount(); ++f)
         for (const Vec3& p : receivers.face(f))
             receiversTop = std::min(receiversTop, alongOf(p)), receiversBase = std::max(receiversBase, alongOf(p));
-    auto nearestInBand = [&](double sign, double edge) { // the receivers with sign·(along − edge) <= 0
-        double nearest = INFINITY;
+    // Across the line likewise (∇across, per metre): the band's width, linear too, is spanned
+    // by the same points.
+    const Vec3 wsAcross = glm::transpose(glm::dmat3(lFromWorld)) * Vec3(w, 0.0);
+    struct Band {
+        double nearest = INFINITY;                          // view depth of its nearest receiver
+        double acrossMin = INFINITY, acrossMax = -INFINITY; // its extent across the line, L units
+    };
+    auto bandOf = [&](double sign, double edge) { // the receivers with sign·(along − edge) <= 0
+        Band band;
+        auto take = [&](const Vec3& ws) {
+            band.nearest = std::min(band.nearest, viewDepth(ws));
+            band.acrossMin = std::min(band.acrossMin, glm::dot(wsAcross, ws));
+            band.acrossMax = std::max(band.acrossMax, glm::dot(wsAcross, ws));
+        };
         for (size_t f = 0; f < receivers.faceCount(); ++f) {
             const std::span<const Vec3> loop = receivers.face(f);
             for (size_t i = 0; i < loop.size(); ++i) {
                 const Vec3 &a = loop[i], &b = loop[(i + 1) % loop.size()];
                 const double da = sign * (alongOf(a) - edge), db = sign * (alongOf(b) - edge);
-                if (da <= 0.0) nearest = std::min(nearest, viewDepth(a));
-                if ((da < 0.0) != (db < 0.0)) nearest = std::min(nearest, viewDepth(a + (da / (da - db)) * (b - a)));
+                if (da <= 0.0) take(a);
+                if ((da < 0.0) != (db < 0.0)) take(a + (da / (da - db)) * (b - a));
             }
         }
-        return nearest;
+        return band;
     };
     const double receiversLength = receiversBase - receiversTop; // -inf for no receivers (not reached: B is empty then)
-    const double topNear = receiversLength > 0.0 ? nearestInBand(1.0, receiversTop + kEndBand * receiversLength) : NAN;
-    const double baseNear =
-        receiversLength > 0.0 ? nearestInBand(-1.0, receiversBase - kEndBand * receiversLength) : NAN;
+    const Band topBand = receiversLength > 0.0 ? bandOf(1.0, receiversTop + kEndBand * receiversLength) : Band{};
+    const Band baseBand = receiversLength > 0.0 ? bandOf(-1.0, receiversBase - kEndBand * receiversLength) : Band{};
 
     const double focusDepth = cam.zNear + in.tsm.focusFraction * (cam.zFar - cam.zNear);
     double delta = glm::dot(toL(cam.wsEye + focusDepth * v) - nearCentre, u) - top;
@@ -137,9 +149,28 @@ ShadowSetup computeTsm(const ShadowSetupInputs& in) {
     // (Bounding r by z_b/z_t itself also starves the far band's majority on views from above:
     // the sampling model's best TSM on the forest's `aerial` coarsens from 0.339 to 0.370 pixels
     // per texel at the median.)
-    const double endsRatio = baseNear / topNear; // z_b / z_t: NaN where V ∩ S has no length along the line
+    // Nor may the warp outgrow what the receivers' footprint can use. Along the line a texel's
+    // length grows as u², across it its width as u (the trapezoid's), so from top to base the
+    // worst direction's texel — the one eval's pixels per texel measures — grows by r². Ground
+    // seen at a grazing angle asks for that much: its pixels' footprints grow as z² along the
+    // ground (and as z across, where the ground's footprint widens with the frustum's: on a
+    // terrain the receivers' width at the base is 2.5–4 times that at the top), so r = z_b/z_t,
+    // which the view's ratio above allows. A compact model inside the frustum does not widen,
+    // and its pixels on surfaces facing the camera grow as z in every direction: the warp that
+    // fits them is r² = z_b/z_t. Without that bound the default's median texel on framed models
+    // seen into the sun was up to 1.47 times the focused map's. The width ratio g of base to top
+    // band says which: the bound holds in full at g = 1 and fades out geometrically by
+    // g = 1 + kWidening.
+    const double endsRatio =
+        baseBand.nearest / topBand.nearest; // z_b / z_t: NaN where V ∩ S has no length along the line
     const double endsApart = std::isfinite(endsRatio) ? std::clamp((endsRatio - 1.0) / kWarpedEnds, 0.0, 1.0) : 1.0;
-    const double allowedRatio = std::pow(bodyFar / bodyNear, endsApart); // t = endsApart
+    double allowedRatio = std::pow(bodyFar / bodyNear, endsApart); // t = endsApart
+    const double topWidth = topBand.acrossMax - topBand.acrossMin, baseWidth = baseBand.acrossMax - baseBand.acrossMin;
+    if (std::isfinite(endsRatio) && topWidth > 0.0 && baseWidth > 0.0) {
+        const double widening = std::clamp((baseWidth / topWidth - 1.0) / kWidening, 0.0, 1.0);
+        const double facingRatio = std::min(allowedRatio, std::sqrt(std::max(endsRatio, 1.0)));
+        allowedRatio = std::pow(allowedRatio, widening) * std::pow(facingRatio, 1.0 - widening);
+    }
     const double perspectiveEta = allowedRatio > 1.0 + 1e-3 ? lambda / (allowedRatio - 1.0) : 1e3 * lambda;
     const double eta = std::max(lambda * delta * (1.0 + kXi) / (lambda * (1.0 - kXi) - 2.0 * delta),
                                 std::min(perspectiveEta, 1e3 * lambda));

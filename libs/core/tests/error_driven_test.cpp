@@ -71,7 +71,10 @@ TEST(ErrorDrivenTest, OptimisedParametersLoseNoCasterAndNeverLoseToTheDefaults) 
         ++optimised;
     }
     EXPECT_GT(optimised, 9000);
-    EXPECT_GT(improved, optimised / 3); // the search does find better parameters, often
+    // The search does find better parameters, often: 3,273 of 10,000 (LiSPSM 1,670 of 3,334,
+    // cascades 1,162, TSM 441 — 598 before TSM's warp stopped outgrowing a compact footprint's
+    // pixels, which left its search less to find).
+    EXPECT_GT(improved, optimised / 4);
 }
 
 // A view low over a ground plane lit from the side (LiSPSM's case, Wimmer et al. 2004 §4.3):
