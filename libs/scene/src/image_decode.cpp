@@ -52,6 +52,18 @@ static int decodeBlockProgDc(Jpeg* jpeg, short* data, Huffman* hdc, int b);
 #define stbi__jpeg_decode_block_prog_dc(first, ...) SHADOWKIT_STB_PROG_DC_##first, __VA_ARGS__)
 #define SHADOWKIT_STB_PROG_DC_stbi__jpeg stbDecodeBlockProgDc(stbi__jpeg
 #define SHADOWKIT_STB_PROG_DC_z decodeBlockProgDc(z
+// And a baseline JPEG's blocks: the same unbounded predictor, then `dc * dequant[0]` in an int. A
+// DQT of 16-bit precision (which the standard allows for 12-bit samples only, and 2.27 takes for
+// 8-bit) holds quantisers up to 65535, and a DC of 49151 times 65535 overflows
+// (fuzz/corpus/image/dc-dequant-overflow.jpg). Every block goes through decodeBlock() below,
+// which refuses a predictor outside ±2^15 and a DC quantiser of 2^15 or more: then |dc| < 2^16
+// and |dc · q| < 2^31. 2.28 refuses any product outside a short. The AC products fit as they
+// are: (2^15 − 1) · (2^16 − 1) < 2^31.
+template <class Jpeg, class Huffman, class FastAc, class Quantiser>
+static int decodeBlock(Jpeg* jpeg, short* data, Huffman* hdc, Huffman* hac, FastAc* fac, int b, Quantiser* dequant);
+#define stbi__jpeg_decode_block(first, ...) SHADOWKIT_STB_BLOCK_##first, __VA_ARGS__)
+#define SHADOWKIT_STB_BLOCK_stbi__jpeg stbDecodeBlock(stbi__jpeg
+#define SHADOWKIT_STB_BLOCK_z decodeBlock(z
 #if defined(__GNUC__)
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wconversion"
@@ -71,6 +83,9 @@ static int decodeBlockProgDc(Jpeg* jpeg, short* data, Huffman* hdc, int b);
 #undef stbi__jpeg_decode_block_prog_dc
 #undef SHADOWKIT_STB_PROG_DC_stbi__jpeg
 #undef SHADOWKIT_STB_PROG_DC_z
+#undef stbi__jpeg_decode_block
+#undef SHADOWKIT_STB_BLOCK_stbi__jpeg
+#undef SHADOWKIT_STB_BLOCK_z
 
 template <class Jpeg>
 static void refillJpegBits(Jpeg* jpeg) {
@@ -79,12 +94,25 @@ static void refillJpegBits(Jpeg* jpeg) {
     stbRefillJpegBits(jpeg);
 }
 
-template <class Jpeg, class Huffman>
-static int decodeBlockProgDc(Jpeg* jpeg, short* data, Huffman* hdc, int b) {
+// A DC predictor within ±2^15 (see above): a real JPEG's stays within 11 bits.
+template <class Jpeg>
+static bool dcPredictorInRange(const Jpeg* jpeg, int b) {
     constexpr int kMaxPredictor = 1 << 15;
     const int predictor = jpeg->img_comp[b].dc_pred;
-    if (predictor <= -kMaxPredictor || predictor >= kMaxPredictor) return stbi__err("bad DC", "Corrupt JPEG");
+    return predictor > -kMaxPredictor && predictor < kMaxPredictor;
+}
+
+template <class Jpeg, class Huffman>
+static int decodeBlockProgDc(Jpeg* jpeg, short* data, Huffman* hdc, int b) {
+    if (!dcPredictorInRange(jpeg, b)) return stbi__err("bad DC", "Corrupt JPEG");
     return stbDecodeBlockProgDc(jpeg, data, hdc, b);
+}
+
+template <class Jpeg, class Huffman, class FastAc, class Quantiser>
+static int decodeBlock(Jpeg* jpeg, short* data, Huffman* hdc, Huffman* hac, FastAc* fac, int b, Quantiser* dequant) {
+    if (!dcPredictorInRange(jpeg, b)) return stbi__err("bad DC", "Corrupt JPEG");
+    if (dequant[0] >= 1 << 15) return stbi__err("bad DC quantiser", "Corrupt JPEG");
+    return stbDecodeBlock(jpeg, data, hdc, hac, fac, b, dequant);
 }
 
 #include <webp/decode.h>
