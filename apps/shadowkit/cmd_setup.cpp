@@ -50,7 +50,12 @@ json warpJson(const core::WarpParameters& warp) {
                         {"inverted", flag(w.inverted)}};
             } else if constexpr (std::is_same_v<W, core::TsmWarp>) {
                 json j = {{"uniform", flag(w.uniform)}};
-                if (!w.uniform) j.update({{"lambda", w.lambda}, {"delta", w.delta}, {"eta", w.eta}});
+                if (!w.uniform)
+                    j.update({{"lambda", w.lambda},
+                              {"delta", w.delta},
+                              {"eta", w.eta},
+                              {"ends_ratio", w.endsRatio},
+                              {"width_ratio", w.widthRatio}});
                 return j;
             } else if constexpr (std::is_same_v<W, core::ClipmapLevel>) {
                 // A clipmap level: texels of 2^exponent metres, its window's first page.

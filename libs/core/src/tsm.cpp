@@ -18,7 +18,9 @@
 //      focused map was 2.07 % at 0.32. So η is also kept at or above the warp that the view's
 //      own perspective asks for (below), and the map tends to the focused one as z_f/z_n → 1,
 //      or as the nearest pixels at the trapezoid's two ends draw level (the sun behind the
-//      viewer, where the centre line runs across a model rather than into it).
+//      viewer, where the centre line runs across a model rather than into it); where the
+//      receivers do not widen along the line (a model inside the frustum) the warp is held to
+//      what pixels facing the camera ask for, √(z_b/z_t).
 //   4. The trapezoid's sides pass through Q and touch the hull; a 2-D projective map sends it
 //      to the square: y' = a + b / u (u: distance from Q along the centre line, u in
 //      [η, η + λ] -> [−1, 1]) and x' proportional to (lateral offset) / u.
@@ -110,9 +112,10 @@ ShadowSetup computeTsm(const ShadowSetupInputs& in) {
     auto bandOf = [&](double sign, double edge) { // the receivers with sign·(along − edge) <= 0
         Band band;
         auto take = [&](const Vec3& ws) {
+            const double across = glm::dot(wsAcross, ws);
             band.nearest = std::min(band.nearest, viewDepth(ws));
-            band.acrossMin = std::min(band.acrossMin, glm::dot(wsAcross, ws));
-            band.acrossMax = std::max(band.acrossMax, glm::dot(wsAcross, ws));
+            band.acrossMin = std::min(band.acrossMin, across);
+            band.acrossMax = std::max(band.acrossMax, across);
         };
         for (size_t f = 0; f < receivers.faceCount(); ++f) {
             const std::span<const Vec3> loop = receivers.face(f);
@@ -166,8 +169,9 @@ ShadowSetup computeTsm(const ShadowSetupInputs& in) {
     const double endsApart = std::isfinite(endsRatio) ? std::clamp((endsRatio - 1.0) / kWarpedEnds, 0.0, 1.0) : 1.0;
     double allowedRatio = std::pow(bodyFar / bodyNear, endsApart); // t = endsApart
     const double topWidth = topBand.acrossMax - topBand.acrossMin, baseWidth = baseBand.acrossMax - baseBand.acrossMin;
-    if (std::isfinite(endsRatio) && topWidth > 0.0 && baseWidth > 0.0) {
-        const double widening = std::clamp((baseWidth / topWidth - 1.0) / kWidening, 0.0, 1.0);
+    const double widthRatio = topWidth > 0.0 && baseWidth > 0.0 ? baseWidth / topWidth : NAN; // g
+    if (std::isfinite(endsRatio) && std::isfinite(widthRatio)) {
+        const double widening = std::clamp((widthRatio - 1.0) / kWidening, 0.0, 1.0);
         const double facingRatio = std::min(allowedRatio, std::sqrt(std::max(endsRatio, 1.0)));
         allowedRatio = std::pow(allowedRatio, widening) * std::pow(facingRatio, 1.0 - widening);
     }
@@ -204,7 +208,7 @@ ShadowSetup computeTsm(const ShadowSetupInputs& in) {
     for (const Vec3& p : wsPoints) lsPoints.push_back(Vec3(view.lightFromWorld * Vec4(p, 1.0)));
     view.clipFromLight = fitToClipCube(trapezoid * toAB * view.clipFromLight, lsPoints);
     view.clipFromWorld = view.clipFromLight * view.lightFromWorld;
-    view.warp = TsmWarp{.lambda = lambda, .delta = delta, .eta = eta};
+    view.warp = TsmWarp{.lambda = lambda, .delta = delta, .eta = eta, .endsRatio = endsRatio, .widthRatio = widthRatio};
     return setup;
 }
 

@@ -195,9 +195,15 @@ struct PsmWarp {
 struct TsmWarp {
     /// "lambda", "delta", "eta": trapezoid height, focus distance and top line offset (L units);
     /// left out of the JSON when uniform.
-    double lambda = 0.0;  ///< "lambda": trapezoid height
-    double delta = 0.0;   ///< "delta": focus distance
-    double eta = 0.0;     ///< "eta": top line offset
+    double lambda = 0.0; ///< "lambda": trapezoid height
+    double delta = 0.0;  ///< "delta": focus distance
+    double eta = 0.0;    ///< "eta": top line offset
+    /// "ends_ratio": z_b / z_t, the nearest receiver's view depth in the last quarter of the
+    /// receivers' extent along the centre line over that in the first (NaN: no extent).
+    double endsRatio = 0.0;
+    /// "width_ratio": the receivers' width across the centre line in those two bands, last over
+    /// first (1 for a model inside the frustum, 2.5–4 for a terrain; NaN: no extent; JSON null).
+    double widthRatio = 0.0;
     bool uniform = false; ///< "uniform": view parallel to the light, no trapezoid
 };
 using WarpParameters = std::variant<std::monostate, LispsmWarp, PsmWarp, TsmWarp, ClipmapLevel>;
