@@ -7,8 +7,10 @@
 #include <array>
 #include <bit>
 #include <cmath>
+#include <map>
 #include <numeric>
 #include <optional>
+#include <utility>
 
 namespace shadowkit::scene {
 namespace {
@@ -174,14 +176,48 @@ bool pack(std::vector<Plane>& planes, const ImageRegion& region, float texelsPer
     return true;
 }
 
-// A source's texel at uv (nearest, wrapped as its texture is; v runs down the image, glTF's convention).
-const uint8_t* texelAt(const CloudSource& source, glm::vec2 uv) {
+// A source's texel at uv (nearest, wrapped as its texture is; v runs down the image, glTF's
+// convention), as an index into its texels.
+size_t texelIndexAt(const CloudSource& source, glm::vec2 uv) {
     const Image& texture = *source.texture;
     // Clamped where a float has no fraction left (and an int conversion would overflow).
     const glm::vec2 st = glm::clamp(uv * glm::vec2(float(texture.width), float(texture.height)),
                                     glm::vec2(-16777216.0f), glm::vec2(16777216.0f));
-    return texture.pixel(wrapTexelIndex(int(std::floor(st.x)), texture.width, source.wrapS),
-                         wrapTexelIndex(int(std::floor(st.y)), texture.height, source.wrapT));
+    return size_t(wrapTexelIndex(int(std::floor(st.y)), texture.height, source.wrapT)) * size_t(texture.width) +
+           size_t(wrapTexelIndex(int(std::floor(st.x)), texture.width, source.wrapS));
+}
+
+// Which texels of an alpha-tested source pass its cutoff, a byte each: most samples of a leaf
+// card fall on its texture's holes, and this table is a quarter of the texture's bytes to touch.
+std::vector<uint8_t> texelsKept(const CloudSource& source, float alphaCutoff255) {
+    const Image& texture = *source.texture;
+    std::vector<uint8_t> kept(size_t(texture.width) * size_t(texture.height));
+    for (int y = 0; y < texture.height; ++y)
+        for (int x = 0; x < texture.width; ++x)
+            kept[size_t(y) * size_t(texture.width) + size_t(x)] =
+                source.alphaFactor * float(texture.pixel(x, y)[3]) < alphaCutoff255 ? 0 : 1;
+    return kept;
+}
+
+constexpr uint16_t kEverySample = uint16_t((1u << (kSamplesPerSide * kSamplesPerSide)) - 1u);
+
+// The texel columns of row `ty` that can hold a sample of the triangle `q` (texel units): its
+// x-extent over the rows either side as well, and a column either side of that. A sample the
+// span leaves out lies more than a texel from the triangle, where its barycentric test (a
+// rounding error below a thousandth of a texel on planes of a few thousand texels) cannot pass:
+// the bake is the same, texel for texel, as testing every texel of the bounding box.
+std::pair<int, int> rowReach(const std::array<glm::vec2, 3>& q, int ty) {
+    const double bandLo = double(ty) - 1.0, bandHi = double(ty) + 2.0;
+    double lo = INFINITY, hi = -INFINITY;
+    auto take = [&](double x) { lo = std::min(lo, x), hi = std::max(hi, x); };
+    for (size_t a = 0; a < 3; ++a) {
+        const glm::dvec2 p(q[a]), r(q[(a + 1) % 3]);
+        if (p.y >= bandLo && p.y <= bandHi) take(p.x);
+        for (const double y : {bandLo, bandHi}) // where the edge crosses the band's sides
+            if ((p.y - y) * (r.y - y) < 0.0) take(p.x + (r.x - p.x) * (y - p.y) / (r.y - p.y));
+    }
+    if (!(lo <= hi)) return {1, 0}; // the triangle misses the band: no column
+    return {int(std::floor(std::max(lo, -1e9))) - 1, int(std::floor(std::min(hi, 1e9))) + 1};
 }
 
 // 4 × 4 ordered-dither thresholds (Bayer), in sixteenths: a region of coverage c/16 keeps
@@ -275,6 +311,15 @@ BillboardCloud bakeBillboardCloud(std::span<const CloudSource> sources, Image& t
 
     // Bake: 16 samples a texel, each covered once, by the first item that covers it.
     size_t opaque = 0, interior = 0;
+    const float alphaCutoff255 = options.alphaCutoff * 255.0f;
+    std::map<const CloudSource*, std::vector<uint8_t>> keptOf; // per alpha-tested source, made as first met
+    auto keptFor = [&](const CloudSource& source) -> const std::vector<uint8_t>& {
+        static const std::vector<uint8_t> none;
+        if (!source.texture) return none;
+        auto [at, made] = keptOf.try_emplace(&source);
+        if (made) at->second = texelsKept(source, alphaCutoff255);
+        return at->second;
+    };
     for (const Plane& plane : planes) {
         const int w = plane.width, h = plane.height;
         std::vector<uint16_t> mask(size_t(w) * size_t(h), 0);
@@ -287,13 +332,21 @@ BillboardCloud bakeBillboardCloud(std::span<const CloudSource> sources, Image& t
                     q[size_t(c)] = toTexel(inPlane(plane, moved(items[i], t.position(c), plane)));
                 const float twiceArea = (q[1].x - q[0].x) * (q[2].y - q[0].y) - (q[2].x - q[0].x) * (q[1].y - q[0].y);
                 if (std::abs(twiceArea) < 1e-12f) continue;
+                // What every sample of the triangle reads, read once (the stores below could alias it).
+                const CloudSource& source = *t.source;
+                const glm::vec2 uv0 = t.vertex(0).uv, uv1 = t.vertex(1).uv, uv2 = t.vertex(2).uv;
+                const glm::vec3 albedo = t.vertex(0).albedo;
+                const std::vector<uint8_t>& kept = keptFor(source);
                 const glm::vec2 boxLo = glm::min(q[0], glm::min(q[1], q[2])),
                                 boxHi = glm::max(q[0], glm::max(q[1], q[2]));
-                for (int ty = std::max(0, int(boxLo.y)); ty <= std::min(h - 1, int(boxHi.y)); ++ty)
-                    for (int tx = std::max(0, int(boxLo.x)); tx <= std::min(w - 1, int(boxHi.x)); ++tx)
+                for (int ty = std::max(0, int(boxLo.y)); ty <= std::min(h - 1, int(boxHi.y)); ++ty) {
+                    const auto [spanLo, spanHi] = rowReach(q, ty);
+                    for (int tx = std::max({0, int(boxLo.x), spanLo}); tx <= std::min({w - 1, int(boxHi.x), spanHi});
+                         ++tx) {
+                        uint16_t& m = mask[size_t(ty) * size_t(w) + size_t(tx)];
+                        if (m == kEverySample) continue;
                         for (int s = 0; s < kSamplesPerSide * kSamplesPerSide; ++s) {
                             const uint16_t bit = uint16_t(1u << s);
-                            uint16_t& m = mask[size_t(ty) * size_t(w) + size_t(tx)];
                             if (m & bit) continue;
                             const glm::vec2 p(float(tx) + (float(s % kSamplesPerSide) + 0.5f) / kSamplesPerSide,
                                               float(ty) + (float(s / kSamplesPerSide) + 0.5f) / kSamplesPerSide);
@@ -304,18 +357,20 @@ BillboardCloud bakeBillboardCloud(std::span<const CloudSource> sources, Image& t
                                 ((q[1].x - q[0].x) * (p.y - q[0].y) - (p.x - q[0].x) * (q[1].y - q[0].y)) / twiceArea;
                             if (b1 < 0.0f || b2 < 0.0f || b1 + b2 > 1.0f) continue;
                             glm::vec3 rgb;
-                            if (t.source->texture) {
-                                const glm::vec2 uv =
-                                    (1.0f - b1 - b2) * t.vertex(0).uv + b1 * t.vertex(1).uv + b2 * t.vertex(2).uv;
-                                const uint8_t* texel = texelAt(*t.source, uv);
-                                if (t.source->alphaFactor * float(texel[3]) < options.alphaCutoff * 255.0f) continue;
-                                rgb = glm::vec3(texel[0], texel[1], texel[2]) * t.vertex(0).albedo;
+                            if (source.texture) {
+                                const glm::vec2 uv = (1.0f - b1 - b2) * uv0 + b1 * uv1 + b2 * uv2;
+                                const size_t k = texelIndexAt(source, uv);
+                                if (!kept[k]) continue;
+                                const uint8_t* texel = source.texture->rgba.data() + 4 * k;
+                                rgb = glm::vec3(texel[0], texel[1], texel[2]) * albedo;
                             } else {
-                                rgb = 255.0f * t.vertex(0).albedo;
+                                rgb = 255.0f * albedo;
                             }
                             m |= bit;
                             colour[size_t(ty) * size_t(w) + size_t(tx)] += rgb;
                         }
+                    }
+                }
             }
         for (int ty = kBorderTexels; ty < h - kBorderTexels; ++ty)
             for (int tx = kBorderTexels; tx < w - kBorderTexels; ++tx) {
