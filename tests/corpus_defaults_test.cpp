@@ -4,10 +4,12 @@
 // public 25 m model with no ground under it at `noon`: 27.5 % wrong where the focused map was
 // 2.07 % (TSM's 80 % rule warps hard whatever the view's depth ratio; tsm.cpp now caps the warp
 // at the view's own perspective). Here public models — a compact engine seen from afar with
-// no ground (the failing shape), a spider of thin legs, a grooved figure — our pillar on a
-// plate and the shapes authored for the corpus are measured on every standard view against
-// ray-traced truth, default against focused: the default may be at most 1.5 times as wrong,
-// plus 0.1 points for views where both are nearly right (a handful of pixels). The public
+// no ground (the failing shape), a spider of thin legs, a grooved figure, spheres in walled
+// cells, a hip roof — our pillar on a plate and the shapes authored for the corpus are measured
+// on every standard view against ray-traced truth, default against focused: the default may be
+// at most 1.5 times as wrong, plus 0.1 points for views where both are nearly right (a handful
+// of pixels). The grooved figure, the spheres and the roof have views not held yet (below;
+// tools/measure-corpus.sh measures every file of the corpus, docs/reliability.md). The public
 // models come from Debian's assimp-testmodels (tools/install-deps.sh); a model that is missing
 // fails the test, naming the package.
 // CTest label `gl`: runs headless on Mesa llvmpipe.
@@ -21,6 +23,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <set>
 #include <string>
 
 using namespace shadowkit;
@@ -28,24 +31,31 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Each model with the one view it is not held on yet ("" for none).
+// Each model with the views it is not held on yet.
 const struct {
     fs::path file;
-    std::string notYet;
+    std::set<std::string> notYet;
 } kModels[] = {
-    {"/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb", ""},
-    {"/usr/share/assimp/models/OBJ/spider.obj", ""},
+    {"/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb", {}},
+    {"/usr/share/assimp/models/OBJ/spider.obj", {}},
     // A figure with fine grooves: on `into-sun` TSM's normal offset, half a texel, carries the
-    // lookup past ridges narrower than that (1.14 % against the focused map's 0.57).
-    {"/usr/share/assimp/models/OBJ/WusonOBJ.obj", "into-sun"},
-    {fs::path(SHADOWKIT_SOURCE_DATA_DIR) / ".." / "tests" / "data" / "pillar_on_plate.gltf", ""},
+    // lookup past ridges narrower than that (1.14 % against the focused map's 0.57), most of it
+    // on facets within a degree of grazing.
+    {"/usr/share/assimp/models/OBJ/WusonOBJ.obj", {"into-sun"}},
+    // Spheres in walled cells: on `paper` the offset carries receivers at the spheres' rims out
+    // of the walls' shadows (4.94 % against 1.39).
+    {"/usr/share/assimp/models/glTF2/ClearCoat-glTF/ClearCoatTest.gltf", {"paper"}},
+    // A hip roof: the offset carries receivers at its valleys and eaves under the neighbouring
+    // face, false shadow in lines along the creases (sun-behind 0.57 % against 0.01).
+    {"/usr/share/assimp/models/OBJ/regr01.obj", {"paper", "perpendicular", "sun-behind", "noon"}},
+    {fs::path(SHADOWKIT_SOURCE_DATA_DIR) / ".." / "tests" / "data" / "pillar_on_plate.gltf", {}},
     // Authored here (tools/authored_shapes.py): 3 cm ropes and 40 cm masts seen from afar; a wide
     // flat town; a single tree of alpha-cut leaves. Their `into-sun` holds since TSM's warp
     // stopped outgrowing a compact footprint's pixels (docs/reliability.md, "Models we did not
     // make").
-    {fs::path(SHADOWKIT_SOURCE_DATA_DIR) / ".." / "tests" / "data" / "shapes" / "ship.obj", ""},
-    {fs::path(SHADOWKIT_SOURCE_DATA_DIR) / ".." / "tests" / "data" / "shapes" / "town.obj", ""},
-    {fs::path(SHADOWKIT_SOURCE_DATA_DIR) / ".." / "tests" / "data" / "shapes" / "tree.gltf", ""},
+    {fs::path(SHADOWKIT_SOURCE_DATA_DIR) / ".." / "tests" / "data" / "shapes" / "ship.obj", {}},
+    {fs::path(SHADOWKIT_SOURCE_DATA_DIR) / ".." / "tests" / "data" / "shapes" / "town.obj", {}},
+    {fs::path(SHADOWKIT_SOURCE_DATA_DIR) / ".." / "tests" / "data" / "shapes" / "tree.gltf", {}},
 };
 constexpr double kRatio = 1.5, kSlackPoints = 0.1;
 // 640 × 360: a small model covers a few thousand pixels (Wuson about 8,600 against 2,100 at
@@ -72,7 +82,7 @@ TEST_F(CorpusDefaultsTest, TheDefaultIsNeverMuchWorseThanTheFocusedMapOnAnyViewO
         auto measurer = measure::Measurer::create(*model);
         ASSERT_TRUE(measurer) << measurer.error();
         for (const scene::ViewSpec& spec : *views) {
-            if (!spec.lights.empty() || spec.name == notYet) continue; // the sun's set-ups on the sunlit views
+            if (!spec.lights.empty() || notYet.contains(spec.name)) continue; // the sun's set-ups on the sunlit views
             const scene::ResolvedView view = scene::resolveView(spec, *model);
             gl::RenderSettings settings; // the recommended bias, hard test
             settings.width = kWidth, settings.height = kHeight;

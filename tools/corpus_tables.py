@@ -1,0 +1,75 @@
+#!/usr/bin/env python3
+"""docs/reliability.md's table of the default set-up on the whole public corpus.
+
+Usage: corpus_tables.py RESULTS_DIR
+  RESULTS_DIR  what tools/measure-corpus.sh leaves: NAME.default.json and NAME.focused.json
+               (`shadowkit eval --scene FILE --views all --size 640x360 [--technique focused]`)
+               for each file that loads, names.tsv (NAME, the file under the corpus) and
+               refused.txt listing the files the loader refused
+
+Writes the table between `<!-- table corpus-bound: tools/measure-corpus.sh -->` and
+`<!-- /table -->`: a line counting the files, those refused, those no sunlit view shows, and
+those on which the default holds issue 49's bound (wrong_pct at most 1.5 × focused's + 0.1
+points) on every view; then a row per model on which it does not, `wrong_pct` default
+(focused) on each view, the views outside the bound in bold.
+"""
+import json
+import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from readme_tables import VIEWS, write_into  # noqa: E402
+
+PAGE = "docs/reliability.md"
+RATIO, SLACK = 1.5, 0.1
+
+
+def views(path):
+    with open(path) as f:
+        return {v["view"]: v for v in json.load(f)["views"]}
+
+
+def main(argv):
+    if len(argv) != 2:
+        sys.exit(__doc__)
+    results = Path(argv[1])
+    refused_file = results / "refused.txt"
+    refused = refused_file.read_text().split("\n") if refused_file.exists() else []
+    refused = [r for r in refused if r]
+    names = dict(line.split("\t", 1) for line in (results / "names.tsv").read_text().splitlines() if line)
+    rows, unseen, held = [], 0, 0
+    for default_path in sorted(results.glob("*.default.json")):
+        name = default_path.name[: -len(".default.json")]
+        focused_path = results / f"{name}.focused.json"
+        if not focused_path.exists():
+            sys.exit(f"corpus_tables: {focused_path} is missing: run tools/measure-corpus.sh again")
+        default, focused = views(default_path), views(focused_path)
+        if all(default[v]["valid_px"] == 0 for v in VIEWS):
+            unseen += 1
+            continue
+        cells, misses = [], 0
+        for v in VIEWS:
+            d, f = default[v]["wrong_pct"], focused[v]["wrong_pct"]
+            outside = d > RATIO * f + SLACK
+            misses += outside
+            cell = f"{d:.2f} ({f:.2f})"
+            cells.append(f"**{cell}**" if outside else cell)
+        if misses == 0:
+            held += 1
+        else:
+            rows.append((names[name], f"| `{names[name]}` | " + " | ".join(cells) + " |"))
+    measured = held + len(rows)
+    total = measured + unseen + len(refused)
+    lines = [
+        f"{total} files: {len(refused)} refused by the loader, {unseen} that no sunlit view shows, "
+        f"{measured} measured; the default holds the bound on every view of {held} and misses it "
+        f"on {sum(r.count('**') // 2 for _, r in rows)} views of {len(rows)}:",
+        "",
+        "| model | " + " | ".join(VIEWS) + " |",
+        "|---|" + "---:|" * len(VIEWS),
+    ] + [row for _, row in sorted(rows)]
+    write_into(f"{PAGE}:corpus-bound", "\n".join(lines) + "\n")
+
+
+if __name__ == "__main__":
+    main(sys.argv)
