@@ -256,7 +256,7 @@ ReceiverTarget makeReceiverTarget(Ogre::Camera* camera, int width, int height) {
 // thinned to at most 4,096 facing the sun (core::receiverSamples).
 std::vector<core::ReceiverSample> receiversSeen(const ReceiverTarget& t, Ogre::ManualObject* scene,
                                                 const samples::CameraAndSun& view) {
-    const std::string material = scene->getSection(0)->getMaterialName();
+    const std::string material = scene->getSections().front()->getMaterialName();
     scene->setMaterialName(0, "sk/surface");
     t.target->update();
     scene->setMaterialName(0, material);
