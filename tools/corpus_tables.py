@@ -5,7 +5,7 @@ Usage: corpus_tables.py RESULTS_DIR
   RESULTS_DIR  what tools/measure-corpus.sh leaves: NAME.default.json and NAME.focused.json
                (`shadowkit eval --scene FILE --views all --size 640x360 [--technique focused]`)
                for each file that loads, names.tsv (NAME, the file under the corpus) and
-               refused.txt listing the files the loader refused
+               refused.txt (each file shadowkit refused, and its one-line reason)
 
 Writes the table between `<!-- table corpus-bound: tools/measure-corpus.sh -->` and
 `<!-- /table -->`: a line counting the files, those refused, those no sunlit view shows, and
@@ -61,7 +61,7 @@ def main(argv):
     measured = held + len(rows)
     total = measured + unseen + len(refused)
     lines = [
-        f"{total} files: {len(refused)} refused by the loader, {unseen} that no sunlit view shows, "
+        f"{total} files: {len(refused)} refused in one line, {unseen} that no sunlit view shows, "
         f"{measured} measured; the default holds the bound on every view of {held} and misses it "
         f"on {sum(r.count('**') // 2 for _, r in rows)} views of {len(rows)}:",
         "",

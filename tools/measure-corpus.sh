@@ -6,7 +6,8 @@
 # which the default is more than 1.5 × `focused` + 0.1 points wrong on some view into
 # docs/reliability.md, and the count of those on which it is not. The project's own scenes for the
 # corpus follow (the pillar on its plate, tools/authored_shapes.py's shapes). Files the loader
-# refuses are counted, not evaluated. About 10 minutes on this project's 2-core llvmpipe machine.
+# refuses (exit 1 and a one-line reason, kept in out/corpus/refused.txt) are counted, not
+# evaluated; any other failure stops the script. About 5 minutes on this project's 2-core machine.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 B=build/apps/shadowkit/shadowkit
@@ -26,10 +27,15 @@ rm -rf "$out" && mkdir -p "$out"
     for technique in default focused; do
       args=()
       [ "$technique" = focused ] && args=(--technique focused)
-      if ! "$B" eval --scene "$file" --views all --size 640x360 "${args[@]}" --json "$out/$name.$technique.json" \
-          > /dev/null 2> "$out/$name.$technique.err"; then
-        echo "$relative" >> "$out/refused.txt"
+      status=0
+      "$B" eval --scene "$file" --views all --size 640x360 "${args[@]}" --json "$out/$name.$technique.json" \
+        > /dev/null 2> "$out/$name.$technique.err" || status=$?
+      if [ "$status" = 1 ]; then # refused with its one-line reason
+        printf '%s\t%s\n' "$relative" "$(tail -n 1 "$out/$name.$technique.err")" >> "$out/refused.txt"
         break
+      elif [ "$status" != 0 ]; then # a crash or a kill is a fault, never a refusal
+        echo "measure-corpus: $relative: shadowkit eval exited with $status (see $out/$name.$technique.err)" >&2
+        exit 1
       fi
     done
     echo "measure-corpus: $relative" >&2
