@@ -2,6 +2,7 @@
 
 #include <cerrno>
 #include <cstring>
+#include <string_view>
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -43,6 +44,43 @@ core::Error cannotRead(const std::filesystem::path& file) {
     return refused(file, std::string("cannot be read (") + std::strerror(errno) + ")");
 }
 
+// UTF-8 of the UTF-16 `units` (the bytes after the mark), or why they are not UTF-16; `offset`
+// is where they start in the file, for the message.
+core::Result<std::string> utf8FromUtf16(const std::filesystem::path& file, std::string_view units, bool bigEndian,
+                                        size_t offset) {
+    if (units.size() % 2 != 0) return refused(file, "UTF-16 text of an odd number of bytes");
+    auto unit = [&](size_t i) {
+        const auto first = uint32_t(uint8_t(units[i])), second = uint32_t(uint8_t(units[i + 1]));
+        return bigEndian ? first << 8 | second : second << 8 | first;
+    };
+    auto lone = [&](size_t i) {
+        return refused(file, "UTF-16 text with a lone surrogate at byte " + std::to_string(offset + i));
+    };
+    std::string text;
+    text.reserve(units.size() / 2);
+    for (size_t i = 0; i < units.size(); i += 2) {
+        uint32_t c = unit(i);
+        if (c >= 0xDC00 && c < 0xE000) return lone(i); // a low surrogate first
+        if (c >= 0xD800 && c < 0xDC00) {               // a high one: its low one follows
+            const uint32_t low = i + 3 < units.size() ? unit(i + 2) : 0;
+            if (low < 0xDC00 || low >= 0xE000) return lone(i);
+            c = 0x10000 + ((c - 0xD800) << 10) + (low - 0xDC00);
+            i += 2;
+        }
+        if (c < 0x80) {
+            text += char(c);
+        } else if (c < 0x800) {
+            text += char(0xC0 | c >> 6), text += char(0x80 | (c & 0x3F));
+        } else if (c < 0x10000) {
+            text += char(0xE0 | c >> 12), text += char(0x80 | (c >> 6 & 0x3F)), text += char(0x80 | (c & 0x3F));
+        } else {
+            text += char(0xF0 | c >> 18), text += char(0x80 | (c >> 12 & 0x3F)), text += char(0x80 | (c >> 6 & 0x3F)),
+                text += char(0x80 | (c & 0x3F));
+        }
+    }
+    return text;
+}
+
 } // namespace
 
 core::Result<std::string> readFile(const std::filesystem::path& file, uintmax_t maxBytes) {
@@ -66,6 +104,16 @@ core::Result<std::string> readFile(const std::filesystem::path& file, uintmax_t 
         if (n == 0) return refused(file, "shorter than its size said (changed while read?)");
         done += size_t(n);
     }
+    return bytes;
+}
+
+core::Result<std::string> readTextFile(const std::filesystem::path& file, uintmax_t maxBytes) {
+    auto bytes = readFile(file, maxBytes);
+    if (!bytes) return bytes;
+    const std::string_view view(*bytes);
+    if (view.starts_with("\xEF\xBB\xBF")) return std::string(view.substr(3));
+    if (view.starts_with("\xFE\xFF")) return utf8FromUtf16(file, view.substr(2), /*bigEndian=*/true, 2);
+    if (view.starts_with("\xFF\xFE")) return utf8FromUtf16(file, view.substr(2), /*bigEndian=*/false, 2);
     return bytes;
 }
 

@@ -3,7 +3,8 @@
 // the faces; albedo is the material's diffuse colour (Kd, from the .mtl beside the file) times
 // the vertex colour of the widely read `v x y z r g b` extension, which shadowkit's own export
 // writes. Files without either are light grey. The file and the material libraries it names
-// are read through scene::readFile: an mtllib line naming a pipe would otherwise wait forever.
+// are read through scene::readTextFile: an mtllib line naming a pipe would otherwise wait
+// forever, and a byte-order mark or UTF-16 would hide the first line from the parser.
 #include "scene_formats.h"
 
 #include "shadowkit/scene/file_read.h"
@@ -36,7 +37,7 @@ public:
     explicit MaterialLibraries(fs::path directory) : m_directory(std::move(directory)) {}
     bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
                     std::map<std::string, int>* materialOf, std::string* warn, std::string* err) override {
-        const auto text = readFile(m_directory / name);
+        const auto text = readTextFile(m_directory / name);
         if (!text) {
             if (warn) *warn += "Material file: " + text.error() + "\n";
             return false;
@@ -53,7 +54,7 @@ private:
 } // namespace
 
 core::Result<Scene> loadObj(const fs::path& file) {
-    const auto text = readFile(file);
+    const auto text = readTextFile(file);
     if (!text) return text.errorInfo();
     std::istringstream in(*text);
     MaterialLibraries libraries(file.parent_path());

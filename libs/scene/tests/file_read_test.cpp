@@ -169,3 +169,57 @@ TEST_F(FileReadTest, AnObjWhoseMaterialLibraryIsAPipeLoadsWithoutItsMaterials) {
         EXPECT_EQ(loaded->meshes[0].vertices[0].albedo, glm::vec3(0.7f)) << name; // no material: light grey
     }
 }
+
+namespace {
+
+// `text` (UTF-8, every code point below U+10000 or a four-byte one) as UTF-16 behind its mark.
+std::string utf16(const std::u16string& text, bool bigEndian) {
+    std::string bytes = bigEndian ? "\xFE\xFF" : "\xFF\xFE";
+    for (const char16_t unit : text) {
+        const char high = char(unit >> 8), low = char(unit & 0xFF);
+        bytes += bigEndian ? high : low;
+        bytes += bigEndian ? low : high;
+    }
+    return bytes;
+}
+
+} // namespace
+
+// OBJ and MTL files come from editors that write a byte-order mark (Notepad's UTF-8) or UTF-16
+// (assimp-testmodels' box_UTF16BE.obj). Before readTextFile the mark glued itself to the first
+// line, so `v 0 0 0` was no vertex and the face naming it was refused; UTF-16 had no faces at all.
+TEST_F(FileReadTest, TextWithAByteOrderMarkOrInUtf16ReadsAsItsUtf8) {
+    // é (two UTF-8 bytes), € (three) and 𝄞 (four: a surrogate pair in UTF-16) in a comment.
+    const std::string utf8 = "# caf\xC3\xA9 \xE2\x82\xAC \xF0\x9D\x84\x9E\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    const std::u16string units = u"# caf\u00E9 \u20AC \U0001D11E\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    const std::pair<const char*, std::string> files[] = {{"plain.obj", utf8},
+                                                         {"bom.obj", "\xEF\xBB\xBF" + utf8},
+                                                         {"le.obj", utf16(units, false)},
+                                                         {"be.obj", utf16(units, true)}};
+    for (const auto& [name, bytes] : files) {
+        write(name, bytes);
+        const auto text = scene::readTextFile(m_dir / name);
+        ASSERT_TRUE(text) << name << ": " << text.error();
+        EXPECT_EQ(*text, utf8) << name;
+        const auto model = scene::loadScene(m_dir / name);
+        ASSERT_TRUE(model) << name << ": " << model.error();
+        EXPECT_EQ(model->triangleCount(), 1u) << name;
+        EXPECT_EQ(model->wsBounds().max, glm::dvec3(1, 1, 0)) << name;
+    }
+    // Bytes without a mark are left as they are, whatever they hold.
+    write("raw.bin", std::string("v \xFF\xFE 1\n", 7));
+    EXPECT_EQ(*scene::readTextFile(m_dir / "raw.bin"), std::string("v \xFF\xFE 1\n", 7));
+}
+
+TEST_F(FileReadTest, Utf16ThatIsNotIsRefusedInOneLineNamingTheFile) {
+    write("odd.obj", utf16(u"v 0 0 0\n", false) + "v");
+    expectOneLine(scene::readTextFile(m_dir / "odd.obj").error(), "odd.obj", "UTF-16 text of an odd number of bytes");
+    std::string lowFirst = utf16(u"v 0 0 0\n", true);
+    lowFirst += std::string("\xDC\x00", 2); // a low surrogate with no high one before it, at byte 18
+    write("low.obj", lowFirst);
+    expectOneLine(scene::readTextFile(m_dir / "low.obj").error(), "low.obj", "lone surrogate at byte 18");
+    std::string highLast = utf16(u"v", false);
+    highLast += "\x3D\xD8"; // a high surrogate with nothing after it, at byte 4
+    write("high.obj", highLast);
+    expectOneLine(scene::loadScene(m_dir / "high.obj").error(), "high.obj", "lone surrogate at byte 4");
+}

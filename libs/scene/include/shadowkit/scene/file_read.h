@@ -26,4 +26,12 @@ inline constexpr uintmax_t kMaxReadFileBytes = (uintmax_t(1) << 32) - 1;
 /// Symbolic links are followed.
 core::Result<std::string> readFile(const std::filesystem::path& file, uintmax_t maxBytes = kMaxReadFileBytes);
 
+/// The whole of a text `file` as UTF-8, for the parsers of line formats (OBJ, MTL) that read
+/// ASCII: a UTF-8 byte-order mark is dropped (one before `v 0 0 0` made the first vertex a line
+/// of nothing, and a face naming it was refused as naming no vertex) and UTF-16 behind its mark,
+/// little- or big-endian as Windows editors write it, is converted. UTF-16 of an odd length or
+/// with a surrogate out of its pair is refused in one line ("x.obj: UTF-16 text with a lone
+/// surrogate at byte 10"); the rest as readFile.
+core::Result<std::string> readTextFile(const std::filesystem::path& file, uintmax_t maxBytes = kMaxReadFileBytes);
+
 } // namespace shadowkit::scene
