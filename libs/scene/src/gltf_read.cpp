@@ -441,15 +441,25 @@ core::Result<Scene> loadGltf(const fs::path& file) {
         binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(bytes->data()),
                                              length, baseDir)
                : loader.LoadASCIIFromString(&model, &err, &warn, bytes->data(), length, baseDir);
-    // A Draco file's accessors have no buffer views, which tinygltf refuses before any
-    // primitive is seen; the extension lists it parsed first say why.
-    const auto lists = [&](const std::vector<std::string>& names) {
-        return std::find(names.begin(), names.end(), "KHR_draco_mesh_compression") != names.end();
+    // Compressed geometry, which shadowkit does not decode. tinygltf refuses a Draco file's
+    // accessors without buffer views, and a meshopt file's fallback buffer (a length and no data,
+    // gltfpack -c), before any primitive is seen; the extension lists it parsed first say why.
+    // Where a meshopt file does load, the fallback's bytes are not the geometry unless the
+    // extension is merely used, so a file that requires it is refused too. (A Draco primitive in
+    // a file that loads is named by convertPrimitive.)
+    const auto lists = [&](const std::vector<std::string>& names, const char* extension) {
+        return std::find(names.begin(), names.end(), extension) != names.end();
     };
-    if (!ok && (lists(model.extensionsRequired) || lists(model.extensionsUsed)))
-        return core::makeError(file.string() +
-                               ": its meshes are Draco-compressed (KHR_draco_mesh_compression), which shadowkit cannot "
-                               "read: export it uncompressed");
+    const auto compressed = [&](const char* extension, const char* what) {
+        return core::makeError(file.string() + ": " + what + " (" + extension +
+                               "), which shadowkit cannot read: export it uncompressed");
+    };
+    const char* draco = "KHR_draco_mesh_compression";
+    if (!ok && (lists(model.extensionsRequired, draco) || lists(model.extensionsUsed, draco)))
+        return compressed(draco, "its meshes are Draco-compressed");
+    const char* meshopt = "EXT_meshopt_compression";
+    if (lists(model.extensionsRequired, meshopt) || (!ok && lists(model.extensionsUsed, meshopt)))
+        return compressed(meshopt, "its buffers are meshopt-compressed");
     if (!ok) {
         std::replace(err.begin(), err.end(), '\n', ' ');
         while (!err.empty() && err.back() == ' ') err.pop_back();

@@ -282,3 +282,42 @@ TEST(GltfReadTest, MirroredNodesKeepTheirFacesOutward) {
     EXPECT_EQ(instances, 3u);
     EXPECT_EQ(scene->batches.size(), 2u) << "plain and doubly mirrored share a batch; mirrored has its own";
 }
+
+// gltfpack -c writes its geometry meshopt-compressed (EXT_meshopt_compression): the buffer views
+// point at a fallback buffer that has a length and no data, and the compressed bytes lie in
+// another. shadowkit does not decode them; it says so, in one line, whether tinygltf refuses the
+// data-less fallback or the fallback holds bytes that are not the geometry. A file that merely
+// uses the extension, with real data in its fallback, loads from that data.
+TEST(GltfReadTest, MeshoptCompressedGeometryIsRefusedByNameUnlessItsFallbackIsReal) {
+    std::vector<unsigned char> triangle;
+    append<float>(triangle, {0, 0, 0, 1, 0, 0, 0, 0, -1});
+    const std::string data = "data:application/octet-stream;base64," + base64(triangle);
+    // The view names the fallback (buffer 1); its extension, the compressed bytes in buffer 0.
+    auto file = [&](const std::string& extensionLists, const std::string& fallback) {
+        return R"({"asset":{"version":"2.0"},)" + extensionLists +
+               R"("scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],
+            "meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],
+            "accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3"}],
+            "bufferViews":[{"buffer":1,"byteLength":36,"byteStride":12,"extensions":{"EXT_meshopt_compression":
+                {"buffer":0,"byteLength":36,"byteStride":12,"count":3,"mode":"ATTRIBUTES"}}}],
+            "buffers":[{"byteLength":36,"uri":")" +
+               data + R"("},{"byteLength":36,)" + fallback +
+               R"("extensions":{"EXT_meshopt_compression":{"fallback":true}}}]})";
+    };
+    const std::string required = R"("extensionsUsed":["EXT_meshopt_compression"],)"
+                                 R"("extensionsRequired":["EXT_meshopt_compression"],)";
+    for (const auto& [name, text] :
+         {std::pair{"sk_meshopt_nodata.gltf", file(required, "")},
+          std::pair{"sk_meshopt_required.gltf", file(required, R"("uri":")" + data + "\",")}}) {
+        const auto s = loadWritten(name, text);
+        ASSERT_FALSE(s) << name << " was accepted";
+        EXPECT_NE(s.error().find(std::string(name) + ": its buffers are meshopt-compressed (EXT_meshopt_compression)"),
+                  std::string::npos)
+            << s.error();
+        EXPECT_EQ(s.error().find('\n'), std::string::npos) << s.error();
+    }
+    const auto used = loadWritten(
+        "sk_meshopt_used.gltf", file(R"("extensionsUsed":["EXT_meshopt_compression"],)", R"("uri":")" + data + "\","));
+    ASSERT_TRUE(used) << used.error();
+    EXPECT_EQ(used->triangleCount(), 1u);
+}
