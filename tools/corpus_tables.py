@@ -57,17 +57,17 @@ def main(argv):
         if misses == 0:
             held += 1
         else:
-            rows.append((names[name], f"| `{names[name]}` | " + " | ".join(cells) + " |"))
+            rows.append((names[name], misses, f"| `{names[name]}` | " + " | ".join(cells) + " |"))
     measured = held + len(rows)
     total = measured + unseen + len(refused)
     lines = [
         f"{total} files: {len(refused)} refused in one line, {unseen} that no sunlit view shows, "
         f"{measured} measured; the default holds the bound on every view of {held} and misses it "
-        f"on {sum(r.count('**') // 2 for _, r in rows)} views of {len(rows)}:",
+        f"on {sum(misses for _, misses, _ in rows)} views of {len(rows)}:",
         "",
         "| model | " + " | ".join(VIEWS) + " |",
         "|---|" + "---:|" * len(VIEWS),
-    ] + [row for _, row in sorted(rows)]
+    ] + [row for _, _, row in sorted(rows)]
     write_into(f"{PAGE}:corpus-bound", "\n".join(lines) + "\n")
 
 

@@ -54,6 +54,14 @@ namespace {
 // hostile count cannot make us allocate without bound.
 constexpr size_t kMaxAccessorCount = size_t(1) << 28;
 
+// Compressed geometry, which shadowkit does not decode, refused with its extension's name:
+// "SUBJECT (EXTENSION), which shadowkit cannot read: export it uncompressed".
+constexpr const char* kDraco = "KHR_draco_mesh_compression";
+constexpr const char* kMeshopt = "EXT_meshopt_compression";
+core::Error compressedGeometry(const std::string& subject, const char* extension) {
+    return core::makeError(subject + " (" + extension + "), which shadowkit cannot read: export it uncompressed");
+}
+
 double component(int type, bool normalized, const unsigned char* p) {
     switch (type) {
     case TINYGLTF_COMPONENT_TYPE_FLOAT: {
@@ -224,10 +232,7 @@ std::optional<glm::mat3> textureTransform(const tinygltf::TextureInfo& info) {
 core::Result<Mesh> convertPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& prim,
                                     const std::string& where, std::vector<std::string>& warnings) {
     Mesh mesh;
-    if (prim.extensions.count("KHR_draco_mesh_compression"))
-        return core::makeError(
-            where +
-            " is Draco-compressed (KHR_draco_mesh_compression), which shadowkit cannot read: export it uncompressed");
+    if (prim.extensions.count(kDraco)) return compressedGeometry(where + " is Draco-compressed", kDraco);
     const int mode = prim.mode == -1 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
     if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN)
         return mesh;
@@ -450,16 +455,10 @@ core::Result<Scene> loadGltf(const fs::path& file) {
     const auto lists = [&](const std::vector<std::string>& names, const char* extension) {
         return std::find(names.begin(), names.end(), extension) != names.end();
     };
-    const auto compressed = [&](const char* extension, const char* what) {
-        return core::makeError(file.string() + ": " + what + " (" + extension +
-                               "), which shadowkit cannot read: export it uncompressed");
-    };
-    const char* draco = "KHR_draco_mesh_compression";
-    if (!ok && (lists(model.extensionsRequired, draco) || lists(model.extensionsUsed, draco)))
-        return compressed(draco, "its meshes are Draco-compressed");
-    const char* meshopt = "EXT_meshopt_compression";
-    if (lists(model.extensionsRequired, meshopt) || (!ok && lists(model.extensionsUsed, meshopt)))
-        return compressed(meshopt, "its buffers are meshopt-compressed");
+    if (!ok && (lists(model.extensionsRequired, kDraco) || lists(model.extensionsUsed, kDraco)))
+        return compressedGeometry(file.string() + ": its meshes are Draco-compressed", kDraco);
+    if (lists(model.extensionsRequired, kMeshopt) || (!ok && lists(model.extensionsUsed, kMeshopt)))
+        return compressedGeometry(file.string() + ": its buffers are meshopt-compressed", kMeshopt);
     if (!ok) {
         std::replace(err.begin(), err.end(), '\n', ' ');
         while (!err.empty() && err.back() == ' ') err.pop_back();
