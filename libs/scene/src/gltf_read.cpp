@@ -19,10 +19,13 @@
 //   - a texture that cannot be read (missing, corrupt, KTX2 only) matters only where the
 //     material's alpha does: on an OPAQUE material it is dropped with one warning in
 //     Scene::warnings (shadows never read an opaque colour), on MASK and BLEND it is an error;
+//   - meshopt-compressed buffer views (EXT_meshopt_compression, gltfpack -c) decoded before any
+//     accessor reads them (gltf_meshopt.cpp);
 //   - what cannot be read is named: glTF 1.0, Draco-compressed meshes, non-finite positions;
 //   - the file and every file it names are read through scene::readFile (regular files only,
 //     within its limit): a URI naming a directory or a pipe is refused in one line.
 #include "gltf_materials.h"
+#include "gltf_meshopt.h"
 #include "scene_formats.h"
 
 #include "shadowkit/scene/file_read.h"
@@ -54,12 +57,10 @@ namespace {
 // hostile count cannot make us allocate without bound.
 constexpr size_t kMaxAccessorCount = size_t(1) << 28;
 
-// Compressed geometry, which shadowkit does not decode, refused with its extension's name:
-// "SUBJECT (EXTENSION), which shadowkit cannot read: export it uncompressed".
+// Draco-compressed geometry, which shadowkit does not decode (no Debian library does), refused by name.
 constexpr const char* kDraco = "KHR_draco_mesh_compression";
-constexpr const char* kMeshopt = "EXT_meshopt_compression";
-core::Error compressedGeometry(const std::string& subject, const char* extension) {
-    return core::makeError(subject + " (" + extension + "), which shadowkit cannot read: export it uncompressed");
+core::Error dracoCompressed(const std::string& subject) {
+    return core::makeError(subject + " (" + kDraco + "), which shadowkit cannot read: export it uncompressed");
 }
 
 double component(int type, bool normalized, const unsigned char* p) {
@@ -232,7 +233,7 @@ std::optional<glm::mat3> textureTransform(const tinygltf::TextureInfo& info) {
 core::Result<Mesh> convertPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& prim,
                                     const std::string& where, std::vector<std::string>& warnings) {
     Mesh mesh;
-    if (prim.extensions.count(kDraco)) return compressedGeometry(where + " is Draco-compressed", kDraco);
+    if (prim.extensions.count(kDraco)) return dracoCompressed(where + " is Draco-compressed");
     const int mode = prim.mode == -1 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
     if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN)
         return mesh;
@@ -441,30 +442,30 @@ core::Result<Scene> loadGltf(const fs::path& file) {
     std::string err, warn;
     // tinygltf's own base directory rule (GetBaseDir): the file's name up to its last slash.
     const std::string baseDir = file.parent_path().string();
-    const auto length = static_cast<unsigned int>(bytes->size()); // within readFile's 32-bit limit
+    // A file with meshopt-compressed views is parsed with its placeholder buffers given a byte of data.
+    const std::optional<MeshoptFile> meshopt = prepareMeshopt(*bytes, binary);
+    const std::string_view parsed = meshopt ? std::string_view(meshopt->bytes) : std::string_view(*bytes);
+    const auto length = static_cast<unsigned int>(parsed.size()); // within readFile's 32-bit limit
     const bool ok =
-        binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(bytes->data()),
+        binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(parsed.data()),
                                              length, baseDir)
-               : loader.LoadASCIIFromString(&model, &err, &warn, bytes->data(), length, baseDir);
-    // Compressed geometry, which shadowkit does not decode. tinygltf refuses a Draco file's
-    // accessors without buffer views, and a meshopt file's fallback buffer (a length and no data,
-    // gltfpack -c), before any primitive is seen; the extension lists it parsed first say why.
-    // Where a meshopt file does load, the fallback's bytes are not the geometry unless the
-    // extension is merely used, so a file that requires it is refused too. (A Draco primitive in
-    // a file that loads is named by convertPrimitive.)
-    const auto lists = [&](const std::vector<std::string>& names, const char* extension) {
-        return std::find(names.begin(), names.end(), extension) != names.end();
+               : loader.LoadASCIIFromString(&model, &err, &warn, parsed.data(), length, baseDir);
+    // tinygltf refuses a Draco file's accessors without buffer views before any primitive is
+    // seen; the extension lists it parsed first say why. (A Draco primitive in a file that loads
+    // is named by convertPrimitive.)
+    const auto lists = [&](const std::vector<std::string>& names) {
+        return std::find(names.begin(), names.end(), kDraco) != names.end();
     };
-    if (!ok && (lists(model.extensionsRequired, kDraco) || lists(model.extensionsUsed, kDraco)))
-        return compressedGeometry(file.string() + ": its meshes are Draco-compressed", kDraco);
-    if (lists(model.extensionsRequired, kMeshopt) || (!ok && lists(model.extensionsUsed, kMeshopt)))
-        return compressedGeometry(file.string() + ": its buffers are meshopt-compressed", kMeshopt);
+    if (!ok && (lists(model.extensionsRequired) || lists(model.extensionsUsed)))
+        return dracoCompressed(file.string() + ": its meshes are Draco-compressed");
     if (!ok) {
         std::replace(err.begin(), err.end(), '\n', ' ');
         while (!err.empty() && err.back() == ' ') err.pop_back();
         return core::makeError(file.string() + ": not a readable glTF file (" + err + ")");
     }
     if (auto s = checkNodeTrees(model, file); !s) return s.errorInfo();
+    if (meshopt)
+        if (auto s = decodeMeshoptViews(model, meshopt->placeholders, file.string()); !s) return s.errorInfo();
     Scene scene;
     if (auto s = readMaterials(model, file, images, scene); !s) return s.errorInfo();
     // (mesh, primitive) -> batch index: a mesh placed by many nodes becomes one instanced batch.
