@@ -19,6 +19,7 @@
 //   - a texture that cannot be read (missing, corrupt, KTX2 only) matters only where the
 //     material's alpha does: on an OPAQUE material it is dropped with one warning in
 //     Scene::warnings (shadows never read an opaque colour), on MASK and BLEND it is an error;
+//   - nodes instancing their mesh (EXT_mesh_gpu_instancing, gltfpack -mi): one instance each;
 //   - meshopt-compressed buffer views (EXT_meshopt_compression, gltfpack -c) decoded before any
 //     accessor reads them (gltf_meshopt.cpp);
 //   - what cannot be read is named: glTF 1.0, Draco-compressed meshes, non-finite positions;
@@ -184,6 +185,65 @@ glm::mat4 nodeLocalMatrix(const tinygltf::Node& node) {
         m *= glm::mat4_cast(glm::dquat(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]));
     if (node.scale.size() == 3) m = glm::scale(m, glm::dvec3(node.scale[0], node.scale[1], node.scale[2]));
     return glm::mat4(m);
+}
+
+// EXT_mesh_gpu_instancing (gltfpack -mi): a node that places its mesh once per element of its
+// TRANSLATION, ROTATION and SCALE accessors (each optional, all of one count), at
+// nodeWorld × T × R × S (the extension's order, as for a node's own TRS). Quaternions are
+// normalised (normalized 16-bit ones are not quite unit; a zero one is an error). A file may not
+// place more than kMaxInstances instances in all: a sparse accessor of zeros costs no bytes, and
+// many nodes may share it.
+constexpr const char* kInstancing = "EXT_mesh_gpu_instancing";
+constexpr size_t kMaxInstances = size_t(1) << 24;
+
+core::Result<std::vector<glm::mat4>> instanceTransforms(const tinygltf::Model& model, const tinygltf::Node& node,
+                                                        const glm::mat4& world, const std::string& where,
+                                                        size_t& placed) {
+    const auto ext = node.extensions.find(kInstancing);
+    if (ext == node.extensions.end()) return std::vector<glm::mat4>{world};
+    const std::string what = where + " (" + kInstancing + ")";
+    const tinygltf::Value& attributes = ext->second.Get("attributes");
+    if (!attributes.IsObject()) return core::makeError(what + ": no attributes");
+    std::optional<AccessorReader> readers[3]; // TRANSLATION, ROTATION, SCALE
+    const char* names[3] = {"TRANSLATION", "ROTATION", "SCALE"};
+    std::optional<size_t> count;
+    for (int a = 0; a < 3; ++a) {
+        const tinygltf::Value& index = attributes.Get(names[a]);
+        if (index.Type() == tinygltf::NULL_TYPE) continue;
+        if (!index.IsInt()) return core::makeError(what + ": " + names[a] + " is not an accessor index");
+        const int accessor = index.Get<int>();
+        auto reader = AccessorReader::open(model, accessor, what + " " + names[a]);
+        if (!reader) return reader.errorInfo();
+        const int type = model.accessors[size_t(accessor)].type;
+        if (type != (a == 1 ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3))
+            return core::makeError(what + ": " + names[a] + " must be a " + (a == 1 ? "VEC4" : "VEC3") + " accessor");
+        if (count && *count != reader->count())
+            return core::makeError(what + ": its attributes have different counts (" + std::to_string(*count) +
+                                   " and " + std::to_string(reader->count()) + ")");
+        count = reader->count();
+        readers[a] = std::move(*reader);
+    }
+    if (!count) return std::vector<glm::mat4>{world}; // no attributes: the node as it is
+    placed += *count;
+    if (placed > kMaxInstances)
+        return core::makeError(what + ": more instances than shadowkit places in one scene (2^24)");
+    std::vector<glm::mat4> out(*count);
+    for (size_t i = 0; i < *count; ++i) {
+        glm::dmat4 m(1.0);
+        if (readers[0]) m = glm::translate(m, glm::dvec3(readers[0]->read(i)));
+        if (readers[1]) {
+            const glm::dvec4 q(readers[1]->read(i));
+            const double length = glm::length(q);
+            if (!(length > 0.0) || !std::isfinite(length))
+                return core::makeError(what + ": instance " + std::to_string(i) + "'s rotation is not a quaternion");
+            m *= glm::mat4_cast(glm::dquat(q.w / length, q.x / length, q.y / length, q.z / length));
+        }
+        if (readers[2]) m = glm::scale(m, glm::dvec3(readers[2]->read(i)));
+        out[i] = glm::mat4(glm::dmat4(world) * m);
+        if (!core::isFinite(glm::dmat4(out[i])))
+            return core::makeError(what + ": instance " + std::to_string(i) + " has a non-finite transform");
+    }
+    return out;
 }
 
 // The triangle list of a primitive's vertex sequence (indices or 0, 1, 2, ...) in its mode.
@@ -474,6 +534,7 @@ core::Result<Scene> loadGltf(const fs::path& file) {
     // each triangle reversed, and every instance transform of a batch keeps the winding's sense.
     std::map<std::tuple<int, size_t, bool>, size_t> batchOf;
     std::optional<core::Error> failure;
+    size_t instancesPlaced = 0; // by EXT_mesh_gpu_instancing
     auto visit = [&](auto&& self, int nodeIndex, const glm::mat4& parent, int depth) -> void {
         if (failure || nodeIndex < 0 || size_t(nodeIndex) >= model.nodes.size()) return; // a bad root is skipped
         if (depth > kMaxNodeDepth) {
@@ -490,30 +551,41 @@ core::Result<Scene> loadGltf(const fs::path& file) {
         }
         if (node.mesh >= 0 && size_t(node.mesh) < model.meshes.size()) {
             const tinygltf::Mesh& gltfMesh = model.meshes[size_t(node.mesh)];
-            const bool mirrored = glm::determinant(glm::mat3(world)) < 0.0f;
-            for (size_t p = 0; p < gltfMesh.primitives.size(); ++p) {
-                auto [it, inserted] = batchOf.try_emplace({node.mesh, p, mirrored}, scene.batches.size());
-                if (inserted) {
-                    const std::string named = gltfMesh.name.empty() ? "" : " '" + printable(gltfMesh.name) + "'";
-                    const std::string where = file.string() + ": mesh " + std::to_string(node.mesh) + named +
-                                              " primitive " + std::to_string(p);
-                    core::Result<Mesh> mesh = convertPrimitive(model, gltfMesh.primitives[p], where, scene.warnings);
-                    if (!mesh) {
-                        failure = mesh.errorInfo();
-                        return;
+            const auto transforms = instanceTransforms(model, node, world,
+                                                       file.string() + ": node " + std::to_string(nodeIndex) +
+                                                           (node.name.empty() ? "" : " '" + printable(node.name) + "'"),
+                                                       instancesPlaced);
+            if (!transforms) {
+                failure = transforms.errorInfo();
+                return;
+            }
+            for (const glm::mat4& transform : *transforms) {
+                const bool mirrored = glm::determinant(glm::mat3(transform)) < 0.0f;
+                for (size_t p = 0; p < gltfMesh.primitives.size(); ++p) {
+                    auto [it, inserted] = batchOf.try_emplace({node.mesh, p, mirrored}, scene.batches.size());
+                    if (inserted) {
+                        const std::string named = gltfMesh.name.empty() ? "" : " '" + printable(gltfMesh.name) + "'";
+                        const std::string where = file.string() + ": mesh " + std::to_string(node.mesh) + named +
+                                                  " primitive " + std::to_string(p);
+                        core::Result<Mesh> mesh =
+                            convertPrimitive(model, gltfMesh.primitives[p], where, scene.warnings);
+                        if (!mesh) {
+                            failure = mesh.errorInfo();
+                            return;
+                        }
+                        if (mesh->indices.empty()) { // not triangles: nothing to draw or cast
+                            batchOf.erase(it);
+                            continue;
+                        }
+                        if (mirrored) // counter-clockwise again once the mirror has turned it
+                            for (size_t t = 0; t + 2 < mesh->indices.size(); t += 3)
+                                std::swap(mesh->indices[t + 1], mesh->indices[t + 2]);
+                        mesh->name = gltfMesh.name;
+                        scene.meshes.push_back(std::move(*mesh));
+                        scene.batches.push_back({uint32_t(scene.meshes.size() - 1), {}, false});
                     }
-                    if (mesh->indices.empty()) { // not triangles: nothing to draw or cast
-                        batchOf.erase(it);
-                        continue;
-                    }
-                    if (mirrored) // counter-clockwise again once the mirror has turned it
-                        for (size_t t = 0; t + 2 < mesh->indices.size(); t += 3)
-                            std::swap(mesh->indices[t + 1], mesh->indices[t + 2]);
-                    mesh->name = gltfMesh.name;
-                    scene.meshes.push_back(std::move(*mesh));
-                    scene.batches.push_back({uint32_t(scene.meshes.size() - 1), {}, false});
+                    scene.batches[it->second].worldFromObject.push_back(transform);
                 }
-                scene.batches[it->second].worldFromObject.push_back(world);
             }
         }
         for (int child : node.children) self(self, child, world, depth + 1);

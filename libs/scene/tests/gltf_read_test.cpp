@@ -6,9 +6,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <tuple>
 #include <vector>
 
 using namespace shadowkit;
@@ -281,4 +284,82 @@ TEST(GltfReadTest, MirroredNodesKeepTheirFacesOutward) {
     }
     EXPECT_EQ(instances, 3u);
     EXPECT_EQ(scene->batches.size(), 2u) << "plain and doubly mirrored share a batch; mirrored has its own";
+}
+
+namespace {
+
+// EXT_mesh_gpu_instancing (gltfpack -mi): one node places its mesh once per instance, at
+// node × T × R × S. A triangle, a node at (10, 0, 0) and three instances: (0, 0, 0) as it is;
+// (0, 5, 0), turned 90° about y, twice the size; (0, 0, 3) mirrored in x, its quaternion (0, 0, 0, 2)
+// not unit. `attributes` picks among their accessors (4: zeros).
+core::Result<scene::Scene> loadInstanced(const std::string& name, const std::string& attributes,
+                                         const std::string& rotationType = "VEC4", int scaleCount = 3) {
+    std::vector<unsigned char> b;
+    append<float>(b, {0, 0, 0, 1, 0, 0, 0, 0, -1});             // the triangle: 36 bytes
+    append<float>(b, {0, 0, 0, 0, 5, 0, 0, 0, 3});              // TRANSLATION: 36 at 36
+    const float s45 = std::sqrt(0.5f);                          // 90° about y: (0, sin 45°, 0, cos 45°)
+    append<float>(b, {0, 0, 0, 1, 0, s45, 0, s45, 0, 0, 0, 2}); // ROTATION: 48 at 72 (the last not unit)
+    append<float>(b, {1, 1, 1, 2, 2, 2, -1, 1, 1});             // SCALE: 36 at 120
+    append<float>(b, {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0});     // zeros: 48 at 156
+    return loadWritten(
+        name,
+        R"({"asset":{"version":"2.0"},"extensionsUsed":["EXT_mesh_gpu_instancing"],"scene":0,"scenes":[{"nodes":[0]}],
+        "nodes":[{"mesh":0,"translation":[10,0,0],"extensions":{"EXT_mesh_gpu_instancing":{"attributes":)" +
+            attributes + R"(}}}],
+        "meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],
+        "accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3"},
+                     {"bufferView":1,"componentType":5126,"count":3,"type":"VEC3"},
+                     {"bufferView":2,"componentType":5126,"count":3,"type":")" +
+            rotationType + R"("},
+                     {"bufferView":3,"componentType":5126,"count":)" +
+            std::to_string(scaleCount) + R"(,"type":"VEC3"},
+                     {"bufferView":4,"componentType":5126,"count":3,"type":"VEC4"}],
+        "bufferViews":[{"buffer":0,"byteLength":36},{"buffer":0,"byteOffset":36,"byteLength":36},
+                       {"buffer":0,"byteOffset":72,"byteLength":48},{"buffer":0,"byteOffset":120,"byteLength":36},
+                       {"buffer":0,"byteOffset":156,"byteLength":48}],
+        "buffers":[{"byteLength":204,"uri":"data:application/octet-stream;base64,)" +
+            base64(b) + "\"}]}");
+}
+
+} // namespace
+
+TEST(GltfReadTest, AnInstancedNodePlacesItsMeshOncePerInstance) {
+    const auto s = loadInstanced("sk_instanced.gltf", R"({"TRANSLATION":1,"ROTATION":2,"SCALE":3})");
+    ASSERT_TRUE(s) << s.error();
+    // Where each instance puts the corner (1, 0, 0), worked by hand: (11, 0, 0); (1, 0, 0) doubled,
+    // turned to (0, 0, -2), raised 5 and moved with the node, (10, 5, -2); mirrored to (-1, 0, 0),
+    // moved 3 along z and with the node, (9, 0, 3).
+    std::vector<glm::vec3> corners;
+    size_t mirrored = 0;
+    for (const scene::MeshBatch& batch : s->batches)
+        for (const glm::mat4& m : batch.worldFromObject) {
+            corners.push_back(glm::vec3(m * glm::vec4(1, 0, 0, 1)));
+            mirrored += glm::determinant(glm::mat3(m)) < 0.0f;
+        }
+    ASSERT_EQ(corners.size(), 3u) << "one instance per element, not one per node";
+    EXPECT_EQ(mirrored, 1u);
+    EXPECT_EQ(s->batches.size(), 2u) << "the mirrored instance has a batch of its own";
+    for (const glm::vec3& expected : {glm::vec3(11, 0, 0), glm::vec3(10, 5, -2), glm::vec3(9, 0, 3)})
+        EXPECT_TRUE(std::any_of(corners.begin(), corners.end(),
+                                [&](const glm::vec3& c) { return glm::distance(c, expected) < 1e-5f; }))
+            << expected.x << "," << expected.y << "," << expected.z;
+}
+
+TEST(GltfReadTest, InstancingThatCannotBePlacedIsRefusedInOneLine) {
+    for (const auto& [what, s, expected] : {
+             std::tuple{"counts differ", loadInstanced("sk_inst.gltf", R"({"TRANSLATION":1,"SCALE":3})", "VEC4", 2),
+                        "its attributes have different counts (3 and 2)"},
+             std::tuple{"a rotation of three components", loadInstanced("sk_inst.gltf", R"({"ROTATION":2})", "VEC3"),
+                        "ROTATION must be a VEC4 accessor"},
+             std::tuple{"a zero quaternion", loadInstanced("sk_inst.gltf", R"({"ROTATION":4})"),
+                        "instance 0's rotation is not a quaternion"},
+             std::tuple{"an accessor that is not there", loadInstanced("sk_inst.gltf", R"({"SCALE":9})"),
+                        "SCALE: accessor 9: no such accessor"},
+         }) {
+        SCOPED_TRACE(what);
+        ASSERT_FALSE(s);
+        EXPECT_NE(s.error().find("sk_inst.gltf: node 0 (EXT_mesh_gpu_instancing)"), std::string::npos) << s.error();
+        EXPECT_NE(s.error().find(expected), std::string::npos) << s.error();
+        EXPECT_EQ(s.error().find('\n'), std::string::npos) << s.error();
+    }
 }
