@@ -246,6 +246,20 @@ core::Result<std::vector<glm::mat4>> instanceTransforms(const tinygltf::Model& m
     return out;
 }
 
+// Whether shadows can ignore a required extension shadowkit does not read: those that only shade
+// (materials, lights, shader techniques) and those read elsewhere (textures: gltf_materials.cpp;
+// meshopt: gltf_meshopt.cpp; Draco: refused by name). glTF 2.0 (§3.12) lets a loader refuse a
+// file whose required extension it lacks; shadowkit loads what it can and names the rest in a
+// warning, since the shapes such an extension describes may be missing.
+bool knownOrShadingOnly(const std::string& extension) {
+    for (const char* prefix : {"KHR_materials_", "KHR_texture_", "EXT_texture_", "KHR_lights_", "KHR_technique"})
+        if (extension.starts_with(prefix)) return true;
+    for (const char* known :
+         {"KHR_mesh_quantization", "EXT_meshopt_compression", "KHR_meshopt_compression", kInstancing, kDraco})
+        if (extension == known) return true;
+    return false;
+}
+
 // The triangle list of a primitive's vertex sequence (indices or 0, 1, 2, ...) in its mode.
 std::vector<uint32_t> triangleList(int mode, const std::vector<uint32_t>& sequence) {
     if (mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN) {
@@ -527,6 +541,10 @@ core::Result<Scene> loadGltf(const fs::path& file) {
     if (meshopt)
         if (auto s = decodeMeshoptViews(model, meshopt->placeholders, file.string()); !s) return s.errorInfo();
     Scene scene;
+    for (const std::string& extension : model.extensionsRequired)
+        if (!knownOrShadingOnly(extension))
+            scene.warnings.push_back(file.string() + ": it requires " + printable(extension) +
+                                     ", which shadowkit does not read: what it describes is left out");
     if (auto s = readMaterials(model, file, images, scene); !s) return s.errorInfo();
     // (mesh, primitive) -> batch index: a mesh placed by many nodes becomes one instanced batch.
     // A batch per mesh primitive and handedness: glTF reverses the winding of a node whose

@@ -363,3 +363,29 @@ TEST(GltfReadTest, InstancingThatCannotBePlacedIsRefusedInOneLine) {
         EXPECT_EQ(s.error().find('\n'), std::string::npos) << s.error();
     }
 }
+
+TEST(GltfReadTest, ARequiredExtensionThatMayCarryShapesIsNamedInAWarning) {
+    std::vector<unsigned char> b;
+    append<float>(b, {0, 0, 0, 1, 0, 0, 0, 0, -1});
+    const auto file = [&](const std::string& required) {
+        return R"({"asset":{"version":"2.0"},"extensionsUsed":[)" + required + R"(],"extensionsRequired":[)" +
+               required + R"(],"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],
+            "meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],
+            "accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3"}],
+            "bufferViews":[{"buffer":0,"byteLength":36}],
+            "buffers":[{"byteLength":36,"uri":"data:application/octet-stream;base64,)" +
+               base64(b) + "\"}]}";
+    };
+    const auto unknown = loadWritten("sk_required.gltf", file(R"("EXT_made_up_geometry")"));
+    ASSERT_TRUE(unknown) << unknown.error();
+    ASSERT_EQ(unknown->warnings.size(), 1u);
+    EXPECT_NE(unknown->warnings[0].find("sk_required.gltf: it requires EXT_made_up_geometry, which shadowkit does "
+                                        "not read"),
+              std::string::npos)
+        << unknown->warnings[0];
+    // Extensions that only shade, or that the reader handles, say nothing.
+    const auto shading = loadWritten(
+        "sk_required.gltf", file(R"("KHR_materials_clearcoat","KHR_mesh_quantization","EXT_mesh_gpu_instancing")"));
+    ASSERT_TRUE(shading) << shading.error();
+    EXPECT_TRUE(shading->warnings.empty()) << shading->warnings.front();
+}
