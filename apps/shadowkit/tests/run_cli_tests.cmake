@@ -707,14 +707,18 @@ check_fails(visible-depth-auto-without-frame "--visible-depth" setup ${small} --
 # A user's own scene file drawn with no flag but the file: framed, shadowed, few errors
 # (tests/real_scene_check.py). Files made by `shadowkit export` in both formats, and a small
 # hand-made glTF 2 km from the origin (tests/data/pillar_on_plate.gltf), which the forest's
-# eye-level camera at the origin would never see.
+# eye-level camera at the origin would never see, and gltfpack's compressed, instanced output
+# of a grove of posts (tests/data/meshopt/grove-mi-cc.glb).
 if(CASE STREQUAL "gl-real-scenes")
   find_program(PYTHON NAMES python3 REQUIRED)
   get_filename_component(source_dir "${CMAKE_CURRENT_LIST_DIR}/../../.." ABSOLUTE)
-  foreach(format glb obj gltf)
+  foreach(format glb obj gltf packed)
     set(file "${WORK}/user_scene.${format}")
     if(format STREQUAL "gltf")
       set(file "${source_dir}/tests/data/pillar_on_plate.gltf")
+      set(rc 0)
+    elseif(format STREQUAL "packed")
+      set(file "${source_dir}/tests/data/meshopt/grove-mi-cc.glb")
       set(rc 0)
     else()
       execute_process(COMMAND ${SHADOWKIT} export --trees 150 --terrain-size 100 --terrain-resolution 12 --seed 7 --out "${file}"
