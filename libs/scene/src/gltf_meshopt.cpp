@@ -134,7 +134,8 @@ std::optional<MeshoptFile> prepareMeshopt(std::string_view bytes, bool binary) {
     for (size_t i = 0; i < buffers->size(); ++i) {
         nlohmann::json& buffer = (*buffers)[i];
         const nlohmann::json* extension = extensionOf(buffer);
-        const bool fallback = extension && extension->value("fallback", false) == true;
+        const auto marked = extension ? extension->find("fallback") : nlohmann::json::const_iterator{};
+        const bool fallback = extension && marked != extension->end() && marked->is_boolean() && marked->get<bool>();
         const bool noData = buffer.is_object() && !buffer.contains("uri") && !(binary && i == 0);
         const auto length = buffer.is_object() ? buffer.find("byteLength") : buffer.end();
         if (!(fallback || (noData && decodedInto.count(i))) || length == buffer.end() || !length->is_number_unsigned())
@@ -143,7 +144,9 @@ std::optional<MeshoptFile> prepareMeshopt(std::string_view bytes, bool binary) {
         buffer["uri"] = kPlaceholderUri;
         buffer["byteLength"] = 1;
     }
-    file.bytes = binary ? withJson(bytes, *text, json.dump()) : json.dump();
+    // The parser took only well-formed UTF-8, so nothing is replaced; the handler keeps dump() from throwing.
+    std::string rewritten = json.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+    file.bytes = binary ? withJson(bytes, *text, std::move(rewritten)) : std::move(rewritten);
     return file;
 }
 
