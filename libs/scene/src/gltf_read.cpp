@@ -20,13 +20,16 @@
 //     material's alpha does: on an OPAQUE material it is dropped with one warning in
 //     Scene::warnings (shadows never read an opaque colour), on MASK and BLEND it is an error;
 //   - nodes instancing their mesh (EXT_mesh_gpu_instancing, gltfpack -mi): one instance each;
+//   - skinned meshes posed by their joints at the file's rest pose (gltf_pose.cpp);
 //   - meshopt-compressed buffer views (EXT_meshopt_compression, gltfpack -c) decoded before any
 //     accessor reads them (gltf_meshopt.cpp);
 //   - what cannot be read is named: glTF 1.0, Draco-compressed meshes, non-finite positions;
 //   - the file and every file it names are read through scene::readFile (regular files only,
 //     within its limit): a URI naming a directory or a pipe is refused in one line.
+#include "gltf_accessor.h"
 #include "gltf_materials.h"
 #include "gltf_meshopt.h"
+#include "gltf_pose.h"
 #include "scene_formats.h"
 
 #include "shadowkit/scene/file_read.h"
@@ -54,137 +57,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Elements an accessor may hold before it is refused: 2^28 (a 4 GiB float4 array), so a
-// hostile count cannot make us allocate without bound.
-constexpr size_t kMaxAccessorCount = size_t(1) << 28;
-
 // Draco-compressed geometry, which shadowkit does not decode (no Debian library does), refused by name.
 constexpr const char* kDraco = "KHR_draco_mesh_compression";
 core::Error dracoCompressed(const std::string& subject) {
     return core::makeError(subject + " (" + kDraco + "), which shadowkit cannot read: export it uncompressed");
-}
-
-double component(int type, bool normalized, const unsigned char* p) {
-    switch (type) {
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: {
-        float f;
-        std::memcpy(&f, p, 4);
-        return f;
-    }
-    case TINYGLTF_COMPONENT_TYPE_BYTE: {
-        int8_t v;
-        std::memcpy(&v, p, 1);
-        return normalized ? std::max(v / 127.0, -1.0) : v;
-    }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-        return normalized ? *p / 255.0 : *p;
-    case TINYGLTF_COMPONENT_TYPE_SHORT: {
-        int16_t v;
-        std::memcpy(&v, p, 2);
-        return normalized ? std::max(v / 32767.0, -1.0) : v;
-    }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
-        uint16_t v;
-        std::memcpy(&v, p, 2);
-        return normalized ? v / 65535.0 : v;
-    }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
-        uint32_t v;
-        std::memcpy(&v, p, 4);
-        return v;
-    }
-    default:
-        return 0.0;
-    }
-}
-
-// One accessor, checked, read element by element with sparse values substituted.
-class AccessorReader {
-public:
-    static core::Result<AccessorReader> open(const tinygltf::Model& model, int index, const std::string& where) {
-        const std::string what = where + ": accessor " + std::to_string(index);
-        if (index < 0 || size_t(index) >= model.accessors.size()) return core::makeError(what + ": no such accessor");
-        AccessorReader r;
-        const tinygltf::Accessor& a = model.accessors[size_t(index)];
-        r.m_type = a.componentType;
-        r.m_normalized = a.normalized;
-        r.m_count = a.count;
-        r.m_components = tinygltf::GetNumComponentsInType(uint32_t(a.type));
-        r.m_componentSize = tinygltf::GetComponentSizeInBytes(uint32_t(a.componentType));
-        if (r.m_components <= 0 || r.m_componentSize <= 0)
-            return core::makeError(what + ": unknown type or component type");
-        if (a.count > kMaxAccessorCount) return core::makeError(what + ": more elements than shadowkit reads (2^28)");
-        const size_t elementSize = size_t(r.m_components) * size_t(r.m_componentSize);
-        if (a.bufferView >= 0) {
-            if (size_t(a.bufferView) >= model.bufferViews.size())
-                return core::makeError(what + ": no such buffer view");
-            const int stride = a.ByteStride(model.bufferViews[size_t(a.bufferView)]);
-            if (stride <= 0) return core::makeError(what + ": bad byte stride");
-            r.m_stride = size_t(stride);
-            auto base = bytesOf(model, a.bufferView, a.byteOffset, a.count, elementSize, r.m_stride, what);
-            if (!base) return base.errorInfo();
-            r.m_base = *base;
-        }
-        if (a.sparse.isSparse) {
-            const auto& s = a.sparse;
-            const size_t n = size_t(s.count);
-            const int indexSize = tinygltf::GetComponentSizeInBytes(uint32_t(s.indices.componentType));
-            if (s.count < 0 || n > a.count || indexSize <= 0)
-                return core::makeError(what + ": bad sparse count or index type");
-            auto indices = bytesOf(model, s.indices.bufferView, size_t(s.indices.byteOffset), n, size_t(indexSize),
-                                   size_t(indexSize), what);
-            auto values =
-                bytesOf(model, s.values.bufferView, size_t(s.values.byteOffset), n, elementSize, elementSize, what);
-            if (!indices) return indices.errorInfo();
-            if (!values) return values.errorInfo();
-            r.m_sparseValues = *values;
-            for (size_t k = 0; k < n; ++k) {
-                const size_t i = size_t(component(s.indices.componentType, false, *indices + k * size_t(indexSize)));
-                if (i >= a.count) return core::makeError(what + ": a sparse index lies past the accessor's count");
-                r.m_sparse[i] = k;
-            }
-        }
-        return r;
-    }
-
-    size_t count() const { return m_count; }
-    double get(size_t i, int c) const {
-        if (c >= m_components) return 0.0;
-        const size_t offset = size_t(c) * size_t(m_componentSize);
-        if (!m_sparse.empty())
-            if (const auto it = m_sparse.find(i); it != m_sparse.end())
-                return component(m_type, m_normalized,
-                                 m_sparseValues + it->second * size_t(m_components * m_componentSize) + offset);
-        return m_base ? component(m_type, m_normalized, m_base + i * m_stride + offset) : 0.0;
-    }
-    glm::vec4 read(size_t i, glm::vec4 fallback = glm::vec4(0, 0, 0, 1)) const {
-        for (int c = 0; c < std::min(m_components, 4); ++c) fallback[c] = float(get(i, c));
-        return fallback;
-    }
-
-private:
-    int m_type = 0;
-    bool m_normalized = false;
-    size_t m_count = 0, m_stride = 0;
-    int m_components = 0, m_componentSize = 0;
-    const unsigned char* m_base = nullptr; // null: a sparse accessor over zeros
-    const unsigned char* m_sparseValues = nullptr;
-    std::unordered_map<size_t, size_t> m_sparse; // element -> position among the sparse values
-};
-
-glm::mat4 nodeLocalMatrix(const tinygltf::Node& node) {
-    if (node.matrix.size() == 16) {
-        glm::dmat4 m;
-        std::copy(node.matrix.begin(), node.matrix.end(), glm::value_ptr(m));
-        return glm::mat4(m);
-    }
-    glm::dmat4 m(1.0);
-    if (node.translation.size() == 3)
-        m = glm::translate(m, glm::dvec3(node.translation[0], node.translation[1], node.translation[2]));
-    if (node.rotation.size() == 4)
-        m *= glm::mat4_cast(glm::dquat(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]));
-    if (node.scale.size() == 3) m = glm::scale(m, glm::dvec3(node.scale[0], node.scale[1], node.scale[2]));
-    return glm::mat4(m);
 }
 
 // EXT_mesh_gpu_instancing (gltfpack -mi): a node that places its mesh once per element of its
@@ -550,7 +426,10 @@ core::Result<Scene> loadGltf(const fs::path& file) {
     // A batch per mesh primitive and handedness: glTF reverses the winding of a node whose
     // transform has a negative determinant (a mirror), so its instances get the primitive with
     // each triangle reversed, and every instance transform of a batch keeps the winding's sense.
-    std::map<std::tuple<int, size_t, bool>, size_t> batchOf;
+    // Skinned meshes are posed per skin: a batch per mesh primitive, handedness and skin (-1: none).
+    std::map<std::tuple<int, size_t, bool, int>, size_t> batchOf;
+    std::vector<glm::dmat4> globals;                 // every node's, made when a skin first needs them
+    std::map<int, std::vector<glm::dmat4>> jointsOf; // each skin's joint matrices
     std::optional<core::Error> failure;
     size_t instancesPlaced = 0; // by EXT_mesh_gpu_instancing
     auto visit = [&](auto&& self, int nodeIndex, const glm::mat4& parent, int depth) -> void {
@@ -569,10 +448,21 @@ core::Result<Scene> loadGltf(const fs::path& file) {
         }
         if (node.mesh >= 0 && size_t(node.mesh) < model.meshes.size()) {
             const tinygltf::Mesh& gltfMesh = model.meshes[size_t(node.mesh)];
-            const auto transforms = instanceTransforms(model, node, world,
-                                                       file.string() + ": node " + std::to_string(nodeIndex) +
-                                                           (node.name.empty() ? "" : " '" + printable(node.name) + "'"),
-                                                       instancesPlaced);
+            const std::string nodeName = file.string() + ": node " + std::to_string(nodeIndex) +
+                                         (node.name.empty() ? "" : " '" + printable(node.name) + "'");
+            // A skinned mesh is placed by its joints alone: its node's transform is ignored (gltf_pose.cpp).
+            const int skin = node.skin >= 0 && size_t(node.skin) < model.skins.size() ? node.skin : -1;
+            if (skin >= 0 && !jointsOf.count(skin)) {
+                if (globals.empty()) globals = nodeGlobalTransforms(model);
+                auto joints = jointMatrices(model, skin, globals, file.string());
+                if (!joints) {
+                    failure = joints.errorInfo();
+                    return;
+                }
+                jointsOf.emplace(skin, std::move(*joints));
+            }
+            const auto transforms = skin >= 0 ? std::vector<glm::mat4>{glm::mat4(1.0f)}
+                                              : instanceTransforms(model, node, world, nodeName, instancesPlaced);
             if (!transforms) {
                 failure = transforms.errorInfo();
                 return;
@@ -580,7 +470,7 @@ core::Result<Scene> loadGltf(const fs::path& file) {
             for (const glm::mat4& transform : *transforms) {
                 const bool mirrored = glm::determinant(glm::mat3(transform)) < 0.0f;
                 for (size_t p = 0; p < gltfMesh.primitives.size(); ++p) {
-                    auto [it, inserted] = batchOf.try_emplace({node.mesh, p, mirrored}, scene.batches.size());
+                    auto [it, inserted] = batchOf.try_emplace({node.mesh, p, mirrored, skin}, scene.batches.size());
                     if (inserted) {
                         const std::string named = gltfMesh.name.empty() ? "" : " '" + printable(gltfMesh.name) + "'";
                         const std::string where = file.string() + ": mesh " + std::to_string(node.mesh) + named +
@@ -595,6 +485,12 @@ core::Result<Scene> loadGltf(const fs::path& file) {
                             batchOf.erase(it);
                             continue;
                         }
+                        if (skin >= 0)
+                            if (auto posed = applySkin(model, gltfMesh.primitives[p], jointsOf.at(skin), *mesh, where);
+                                !posed) {
+                                failure = posed.errorInfo();
+                                return;
+                            }
                         if (mirrored) // counter-clockwise again once the mirror has turned it
                             for (size_t t = 0; t + 2 < mesh->indices.size(); t += 3)
                                 std::swap(mesh->indices[t + 1], mesh->indices[t + 2]);

@@ -1,0 +1,33 @@
+// glTF nodes and skinned meshes at the file's rest pose (gltf_pose.cpp). Internal to libs/scene.
+#pragma once
+
+#include "shadowkit/core/result.h"
+#include "shadowkit/scene/scene.h"
+
+#include <tiny_gltf.h>
+
+#include <glm/glm.hpp>
+
+#include <string>
+#include <vector>
+
+namespace shadowkit::scene::formats {
+
+/// A node's transform relative to its parent: its matrix, or T · R · S.
+glm::mat4 nodeLocalMatrix(const tinygltf::Node& node);
+
+/// Every node's global transform at the rest pose (the nodes' TRS or matrices as written), for
+/// a file whose nodes form trees (checkNodeTrees).
+std::vector<glm::dmat4> nodeGlobalTransforms(const tinygltf::Model& model);
+
+/// Skin `skin`'s joint matrices: each joint's global transform times its inverse bind matrix.
+core::Result<std::vector<glm::dmat4>> jointMatrices(const tinygltf::Model& model, int skin,
+                                                    const std::vector<glm::dmat4>& globals, const std::string& where);
+
+/// The primitive's vertices (`mesh`, as convertPrimitive read them) moved by their joints:
+/// p' = Σ w_k · joint[j_k] · p over every JOINTS_n / WEIGHTS_n set, normals by the inverse
+/// transpose of the blend; bounds recomputed.
+core::Status applySkin(const tinygltf::Model& model, const tinygltf::Primitive& prim,
+                       const std::vector<glm::dmat4>& joints, Mesh& mesh, const std::string& where);
+
+} // namespace shadowkit::scene::formats
