@@ -1,7 +1,8 @@
-// glTF nodes and skinned meshes at the file's rest pose.
+// glTF nodes, morph targets and skinned meshes at the file's rest pose.
 //
-// Based on: the glTF 2.0 specification, "Skins" (§3.7.3) and "Skinned Mesh Attributes"
-// (§3.7.3.3): a skinned vertex is
+// Based on: the glTF 2.0 specification, "Morph Targets" (§3.7.2.2): a morphed vertex is
+// p + Σ_t w_t · POSITION_t, with the node's weights or else the mesh's defaults (normals
+// likewise); then "Skins" (§3.7.3) and "Skinned Mesh Attributes" (§3.7.3.3): a skinned vertex is
 //     p' = Σ_k w_k · J(j_k) · p,   J(j) = G(joint j) · IBM(j)
 // with G a node's global transform and IBM the skin's inverse bind matrix (identity when the
 // skin has none), over every JOINTS_n / WEIGHTS_n set; the transform of the node that holds the
@@ -91,6 +92,47 @@ core::Result<std::vector<glm::dmat4>> jointMatrices(const tinygltf::Model& model
             return core::makeError(what + ": joint " + std::to_string(j) + "'s matrix is not finite");
     }
     return out;
+}
+
+core::Status applyMorphTargets(const tinygltf::Model& model, const tinygltf::Primitive& prim,
+                               const std::vector<double>& weights, Mesh& mesh, const std::string& where) {
+    bool moved = false;
+    std::vector<glm::dvec3> normals(mesh.vertices.size(), glm::dvec3(0.0));
+    for (size_t v = 0; v < mesh.vertices.size(); ++v) normals[v] = glm::dvec3(mesh.vertices[v].normal);
+    for (size_t t = 0; t < prim.targets.size() && t < weights.size(); ++t) {
+        const double weight = weights[t];
+        if (weight == 0.0) continue;
+        const std::string what = where + " target " + std::to_string(t);
+        if (!std::isfinite(weight)) return core::makeError(what + ": its weight is not finite");
+        for (const char* attribute : {"POSITION", "NORMAL"}) {
+            const auto a = prim.targets[t].find(attribute);
+            if (a == prim.targets[t].end()) continue;
+            auto reader = AccessorReader::open(model, a->second, what + " " + attribute);
+            if (!reader) return reader.errorInfo();
+            for (size_t v = 0; v < std::min(reader->count(), mesh.vertices.size()); ++v) {
+                const glm::dvec3 d = weight * glm::dvec3(reader->read(v));
+                if (attribute[0] == 'N') {
+                    normals[v] += d;
+                    continue;
+                }
+                const glm::dvec3 p = glm::dvec3(mesh.vertices[v].position) + d;
+                if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+                    return core::makeError(what + ": vertex " + std::to_string(v) + " moves to a non-finite position");
+                mesh.vertices[v].position = glm::vec3(p);
+            }
+            moved = true;
+        }
+    }
+    if (!moved) return core::Ok{};
+    if (prim.attributes.count("NORMAL") == 0) {
+        computeNormals(mesh); // the faces' normals, from the moved positions
+    } else {
+        for (size_t v = 0; v < mesh.vertices.size(); ++v)
+            if (const double length = glm::length(normals[v]); length > 0.0 && std::isfinite(length))
+                mesh.vertices[v].normal = glm::vec3(normals[v] / length);
+    }
+    mesh.computeBounds();
+    return core::Ok{};
 }
 
 core::Status applySkin(const tinygltf::Model& model, const tinygltf::Primitive& prim,

@@ -24,6 +24,12 @@ std::vector<glm::dmat4> nodeGlobalTransforms(const tinygltf::Model& model);
 core::Result<std::vector<glm::dmat4>> jointMatrices(const tinygltf::Model& model, int skin,
                                                     const std::vector<glm::dmat4>& globals, const std::string& where);
 
+/// The primitive's morph targets (§3.7.2.2) at `weights` (the node's, else the mesh's defaults):
+/// p' = p + Σ w_t · POSITION_t, normals likewise and renormalised (recomputed from the faces for a
+/// primitive without normals); nothing where every weight is 0.
+core::Status applyMorphTargets(const tinygltf::Model& model, const tinygltf::Primitive& prim,
+                               const std::vector<double>& weights, Mesh& mesh, const std::string& where);
+
 /// The primitive's vertices (`mesh`, as convertPrimitive read them) moved by their joints:
 /// p' = Σ w_k · joint[j_k] · p over every JOINTS_n / WEIGHTS_n set, normals by the inverse
 /// transpose of the blend; bounds recomputed.

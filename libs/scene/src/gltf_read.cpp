@@ -20,7 +20,8 @@
 //     material's alpha does: on an OPAQUE material it is dropped with one warning in
 //     Scene::warnings (shadows never read an opaque colour), on MASK and BLEND it is an error;
 //   - nodes instancing their mesh (EXT_mesh_gpu_instancing, gltfpack -mi): one instance each;
-//   - skinned meshes posed by their joints at the file's rest pose (gltf_pose.cpp);
+//   - morph targets at their default weights, then skinned meshes posed by their joints, at the
+//     file's rest pose (gltf_pose.cpp);
 //   - meshopt-compressed buffer views (EXT_meshopt_compression, gltfpack -c) decoded before any
 //     accessor reads them (gltf_meshopt.cpp);
 //   - what cannot be read is named: glTF 1.0, Draco-compressed meshes, non-finite positions;
@@ -427,7 +428,8 @@ core::Result<Scene> loadGltf(const fs::path& file) {
     // transform has a negative determinant (a mirror), so its instances get the primitive with
     // each triangle reversed, and every instance transform of a batch keeps the winding's sense.
     // Skinned meshes are posed per skin: a batch per mesh primitive, handedness and skin (-1: none).
-    std::map<std::tuple<int, size_t, bool, int>, size_t> batchOf;
+    // A node with morph weights of its own gets batches of its own too (the last: its index, else -1).
+    std::map<std::tuple<int, size_t, bool, int, int>, size_t> batchOf;
     std::vector<glm::dmat4> globals;                 // every node's, made when a skin first needs them
     std::map<int, std::vector<glm::dmat4>> jointsOf; // each skin's joint matrices
     std::optional<core::Error> failure;
@@ -470,7 +472,8 @@ core::Result<Scene> loadGltf(const fs::path& file) {
             for (const glm::mat4& transform : *transforms) {
                 const bool mirrored = glm::determinant(glm::mat3(transform)) < 0.0f;
                 for (size_t p = 0; p < gltfMesh.primitives.size(); ++p) {
-                    auto [it, inserted] = batchOf.try_emplace({node.mesh, p, mirrored, skin}, scene.batches.size());
+                    auto [it, inserted] = batchOf.try_emplace(
+                        {node.mesh, p, mirrored, skin, node.weights.empty() ? -1 : nodeIndex}, scene.batches.size());
                     if (inserted) {
                         const std::string named = gltfMesh.name.empty() ? "" : " '" + printable(gltfMesh.name) + "'";
                         const std::string where = file.string() + ": mesh " + std::to_string(node.mesh) + named +
@@ -484,6 +487,13 @@ core::Result<Scene> loadGltf(const fs::path& file) {
                         if (mesh->indices.empty()) { // not triangles: nothing to draw or cast
                             batchOf.erase(it);
                             continue;
+                        }
+                        if (auto morphed =
+                                applyMorphTargets(model, gltfMesh.primitives[p],
+                                                  node.weights.empty() ? gltfMesh.weights : node.weights, *mesh, where);
+                            !morphed) {
+                            failure = morphed.errorInfo();
+                            return;
                         }
                         if (skin >= 0)
                             if (auto posed = applySkin(model, gltfMesh.primitives[p], jointsOf.at(skin), *mesh, where);

@@ -457,3 +457,33 @@ TEST(GltfReadTest, ASkinThatCannotBePosedIsRefusedInOneLine) {
         EXPECT_EQ(s.error().find('\n'), std::string::npos) << s.error();
     }
 }
+
+TEST(GltfReadTest, MorphTargetsTakeTheirDefaultWeightsOrTheirNodesOwn) {
+    // A triangle whose one target lifts its third corner 2 m; the mesh's default weight is 0.5,
+    // and a second node, 5 m along x, sets its own weight of 1.
+    std::vector<unsigned char> b;
+    append<float>(b, {0, 0, 0, 1, 0, 0, 0, 0, -1}); // POSITION: 36 at 0
+    append<float>(b, {0, 0, 0, 0, 0, 0, 0, 2, 0});  // the target's POSITION: 36 at 36
+    const auto s = loadWritten("sk_morph.gltf", R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0,1]}],
+        "nodes":[{"mesh":0},{"mesh":0,"translation":[5,0,0],"weights":[1]}],
+        "meshes":[{"weights":[0.5],"primitives":[{"attributes":{"POSITION":0},"targets":[{"POSITION":1}]}]}],
+        "accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3"},
+                     {"bufferView":1,"componentType":5126,"count":3,"type":"VEC3"}],
+        "bufferViews":[{"buffer":0,"byteLength":36},{"buffer":0,"byteOffset":36,"byteLength":36}],
+        "buffers":[{"byteLength":72,"uri":"data:application/octet-stream;base64,)" +
+                                                    base64(b) + "\"}]}");
+    ASSERT_TRUE(s) << s.error();
+    ASSERT_EQ(s->batches.size(), 2u) << "the node with weights of its own has its own shape";
+    std::vector<float> lifted; // the third corner's height, per instance
+    for (const scene::MeshBatch& batch : s->batches)
+        for (const glm::mat4& m : batch.worldFromObject) {
+            const scene::Mesh& mesh = s->meshes[batch.mesh];
+            lifted.push_back((m * glm::vec4(mesh.vertices[2].position, 1.0f)).y);
+            // The face's normal follows the moved corner: no longer straight up.
+            EXPECT_LT(mesh.vertices[0].normal.y, 0.9f);
+        }
+    std::sort(lifted.begin(), lifted.end());
+    ASSERT_EQ(lifted.size(), 2u);
+    EXPECT_FLOAT_EQ(lifted[0], 1.0f); // 0.5 × 2 m
+    EXPECT_FLOAT_EQ(lifted[1], 2.0f); // 1 × 2 m
+}
