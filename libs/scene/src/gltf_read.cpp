@@ -58,7 +58,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Draco-compressed geometry, which shadowkit does not decode (no Debian library does), refused by name.
+// Draco-compressed geometry, refused by name: Debian 12 ships a decoder (libdraco 1.5.5), but it is not
+// among the project's dependencies (DESIGN.md), and no issue has named it.
 constexpr const char* kDraco = "KHR_draco_mesh_compression";
 core::Error dracoCompressed(const std::string& subject) {
     return core::makeError(subject + " (" + kDraco + "), which shadowkit cannot read: export it uncompressed");
