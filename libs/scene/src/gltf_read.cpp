@@ -80,7 +80,8 @@ core::Result<std::vector<glm::mat4>> instanceTransforms(const tinygltf::Model& m
     const auto ext = node.extensions.find(kInstancing);
     if (ext == node.extensions.end()) return std::vector<glm::mat4>{world};
     const std::string what = where + " (" + kInstancing + ")";
-    const tinygltf::Value& attributes = ext->second.Get("attributes");
+    if (!ext->second.IsObject()) return core::makeError(what + ": the extension is not an object");
+    const tinygltf::Value& attributes = ext->second.Get("attributes"); // Get() asserts an object
     if (!attributes.IsObject()) return core::makeError(what + ": no attributes");
     std::optional<AccessorReader> readers[3]; // TRANSLATION, ROTATION, SCALE
     const char* names[3] = {"TRANSLATION", "ROTATION", "SCALE"};
