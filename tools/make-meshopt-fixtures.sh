@@ -20,6 +20,8 @@ pack tests/data/pillar_on_plate.gltf pillar-khr.glb -cc -ce khr  # vertex codec 
 # its own way), which gltfpack -mi folds into one node of EXT_mesh_gpu_instancing.
 python3 - "$out/grove.gltf" <<'PY'
 import json, math, sys
+sys.path.insert(0, "tools")
+from authored_shapes import write_whole  # whole or not at all, a failure in one line
 scene = json.load(open("tests/data/pillar_on_plate.gltf"))
 nodes = [{"name": "plate", "mesh": 0, "scale": [12, 0.2, 12]}]
 for i in range(24):
@@ -35,8 +37,7 @@ for i in range(24):
 scene["asset"]["generator"] = "shadowkit tools/make-meshopt-fixtures.sh"
 scene["nodes"] = nodes
 scene["scenes"] = [{"nodes": list(range(len(nodes)))}]
-with open(sys.argv[1], "w") as f:
-    json.dump(scene, f, separators=(",", ":"))
+write_whole(sys.argv[1], json.dumps(scene, separators=(",", ":")))
 PY
 pack "$out/grove.gltf" grove-mi.glb -mi -noq                    # instancing, floats, uncompressed
 pack "$out/grove.gltf" grove-mi-cc.glb -mi -cc                  # instancing, quantized, quaternion filter

@@ -21,6 +21,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
+#include <algorithm>
 #include <optional>
 
 namespace shadowkit::scene::formats {
@@ -96,8 +97,12 @@ core::Result<std::vector<glm::dmat4>> jointMatrices(const tinygltf::Model& model
 
 core::Status applyMorphTargets(const tinygltf::Model& model, const tinygltf::Primitive& prim,
                                const std::vector<double>& weights, Mesh& mesh, const std::string& where) {
+    // Most primitives have no targets, or weights of 0: nothing to copy or allocate for them.
+    if (std::none_of(weights.begin(), weights.begin() + std::ptrdiff_t(std::min(weights.size(), prim.targets.size())),
+                     [](double w) { return w != 0.0; }))
+        return core::Ok{};
     bool moved = false;
-    std::vector<glm::dvec3> normals(mesh.vertices.size(), glm::dvec3(0.0));
+    std::vector<glm::dvec3> normals(mesh.vertices.size());
     for (size_t v = 0; v < mesh.vertices.size(); ++v) normals[v] = glm::dvec3(mesh.vertices[v].normal);
     for (size_t t = 0; t < prim.targets.size() && t < weights.size(); ++t) {
         const double weight = weights[t];

@@ -13,7 +13,6 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <functional>
 #include <limits>
 #include <vector>
@@ -251,14 +250,6 @@ std::string squareFile(const std::function<void(std::string&)>& edit = {}, bool 
     return text;
 }
 
-core::Result<scene::Scene> loadText(const std::string& name, const std::string& text) {
-    const fs::path file = fs::temp_directory_path() / name;
-    std::ofstream(file) << text;
-    auto s = scene::loadScene(file);
-    fs::remove(file);
-    return s;
-}
-
 void replace(std::string& text, const std::string& from, const std::string& to) {
     const size_t at = text.find(from);
     ASSERT_NE(at, std::string::npos) << from;
@@ -266,7 +257,7 @@ void replace(std::string& text, const std::string& from, const std::string& to) 
 }
 
 TEST(GltfMeshoptTest, EveryModeAndFilterDecodesWhatMeshoptimizersEncoderWrote) {
-    const auto s = loadText("sk_meshopt_square.gltf", squareFile());
+    const auto s = scene::testing::loadWritten("sk_meshopt_square.gltf", squareFile());
     ASSERT_TRUE(s) << s.error();
     ASSERT_EQ(s->meshes.size(), 2u);
     const glm::vec3 corners[4] = {{0, 0, 0}, {1, 0, 0}, {1, 0, -1}, {0, 0, -1}};
@@ -290,8 +281,8 @@ TEST(GltfMeshoptTest, APlaceholderIsKnownByItsMissingDataWhateverItsMarkSays) {
     // a mark of the wrong type is no reason to stop (the JSON library throws on a mistyped read).
     for (const char* mark : {R"("fallback":"yes")", R"("fallback":false)", R"("other":1)"}) {
         SCOPED_TRACE(mark);
-        const auto s = loadText("sk_meshopt_mark.gltf",
-                                squareFile([&](std::string& t) { replace(t, R"("fallback":true)", mark); }));
+        const auto s = scene::testing::loadWritten(
+            "sk_meshopt_mark.gltf", squareFile([&](std::string& t) { replace(t, R"("fallback":true)", mark); }));
         ASSERT_TRUE(s) << s.error();
         EXPECT_EQ(s->triangleCount(), 2u);
     }
@@ -360,7 +351,7 @@ TEST(GltfMeshoptTest, MalformedAndHostileViewsAreRefusedInOneLine) {
     };
     for (const Case& c : cases) {
         SCOPED_TRACE(c.what);
-        const auto s = loadText("sk_meshopt_bad.gltf", c.text);
+        const auto s = scene::testing::loadWritten("sk_meshopt_bad.gltf", c.text);
         ASSERT_FALSE(s) << "accepted";
         EXPECT_NE(s.error().find("sk_meshopt_bad.gltf: buffer view"), std::string::npos) << s.error();
         EXPECT_NE(s.error().find(c.expected), std::string::npos) << s.error();

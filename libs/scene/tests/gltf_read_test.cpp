@@ -10,7 +10,6 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <tuple>
 #include <vector>
 
@@ -29,19 +28,7 @@ void append(std::vector<unsigned char>& buffer, std::initializer_list<T> values)
 }
 
 using scene::testing::base64;
-
-// `text` as the temporary file `name`, loaded and removed; a file that could not be written is
-// the test's failure, not the reader's.
-core::Result<scene::Scene> loadWritten(const std::string& name, const std::string& text) {
-    const auto file = std::filesystem::temp_directory_path() / name;
-    std::ofstream out(file);
-    out << text;
-    out.close();
-    if (!out) return core::makeError(file.string() + ": the test could not write it");
-    auto scene = scene::loadScene(file);
-    std::filesystem::remove(file);
-    return scene;
-}
+using scene::testing::loadWritten;
 
 // A .gltf with one mesh node; `rest` holds "meshes", "accessors" and "bufferViews" (JSON text
 // after the opening brace), the buffer is embedded.

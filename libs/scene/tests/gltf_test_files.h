@@ -1,7 +1,11 @@
 // Helpers for tests that write glTF files by hand.
 #pragma once
 
+#include "shadowkit/scene/scene_io.h"
+
 #include <cstdint>
+#include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -20,6 +24,19 @@ inline std::string base64(const std::vector<unsigned char>& data) {
         out += i + 2 < data.size() ? digits[n & 63] : '=';
     }
     return out;
+}
+
+// `text` as the temporary file `name`, loaded and removed; a file that could not be written is
+// the test's failure, not the reader's.
+inline core::Result<Scene> loadWritten(const std::string& name, const std::string& text) {
+    const auto file = std::filesystem::temp_directory_path() / name;
+    std::ofstream out(file);
+    out << text;
+    out.close();
+    if (!out) return core::makeError(file.string() + ": the test could not write it");
+    auto scene = loadScene(file);
+    std::filesystem::remove(file);
+    return scene;
 }
 
 } // namespace shadowkit::scene::testing
