@@ -1,11 +1,16 @@
-// Convex polyhedron clipping (Sutherland–Hodgman per face plus a cap polygon).
+// Convex polyhedron clipping by the double description of a polytope: its vertices, each
+// marked with the face planes it lies on.
 //
-// Based on: the body-clipping used for the focus body B in Wimmer et al., "Light Space
-// Perspective Shadow Maps" (EGSR 2004, §3.3), written here from the definition:
-// each face polygon is clipped against the plane, and the points that land on the plane
-// are joined into the new cap face. The faces are stored one after another in one array, so a
-// cut is a walk over it and a copy one block (a focus body costs a few microseconds a frame:
-// docs/performance.md).
+// Based on: the body clipping used for the focus body B in Wimmer et al., "Light Space
+// Perspective Shadow Maps" (EGSR 2004, §3.3), done as one step of the double description
+// method (Motzkin et al. 1953; the combinatorial adjacency test of Fukuda & Prodon, "Double
+// description method revisited", 1996; full citations in docs/references.md). A cut by a plane
+// keeps the vertices inside it, marks those on it, and adds one vertex where each edge from a
+// vertex inside to one outside crosses it. In three dimensions two vertices span an edge exactly
+// when they share at least two face planes and no third vertex lies on all the planes they share
+// (then it would lie on their line, between them or beyond). Nothing is merged or sorted: the
+// marks are the structure, so a cut costs a few dozen bit operations per vertex pair instead of
+// clipping every face as a polygon (docs/performance.md has the figures).
 #include "shadowkit/core/convex_body.h"
 
 #include <algorithm>
@@ -27,23 +32,8 @@ Vec3 newellNormal(std::span<const Vec3> poly) {
     return n;
 }
 
-bool hasArea(std::span<const Vec3> poly, double eps) {
-    return poly.size() >= 3 && glm::length(newellNormal(poly)) > eps * eps;
-}
-
-template <class Points>
-void appendUnique(Points& points, const Vec3& p, double eps) {
-    const double eps2 = eps * eps; // compared squared: no square root per pair
-    for (const Vec3& q : points) {
-        const Vec3 d = q - p;
-        if (glm::dot(d, d) <= eps2) return;
-    }
-    points.push_back(p);
-}
-
 // Where the edge from `inside` (signed distance dIn < 0) to `outside` (dOut > 0) meets the
-// plane. Always computed from the inside end, so the two faces sharing the edge get the same
-// point to the last bit: shared vertices stay copies of one another.
+// plane.
 Vec3 crossing(const Vec3& inside, double dIn, const Vec3& outside, double dOut) {
     const double t = dIn / (dIn - dOut); // |dIn - dOut| > 2 eps: no division by ~0
     return inside + t * (outside - inside);
@@ -60,9 +50,9 @@ double pseudoAngle(double x, double y) {
     return x < 0.0 ? 2.0 - y / (-x - y) : 3.0 + x / (x - y);
 }
 
-// Appends points lying on a plane of normal `normal` to `out`, counter-clockwise around it.
-template <class Out>
-void appendOrderedOnPlane(std::span<const Vec3> points, const Vec3& normal, Out& out) {
+// Points lying on a plane of normal `normal`, counter-clockwise around it.
+ConvexBody::Points orderedOnPlane(const ConvexBody::Points& points, const Vec3& normal) {
+    if (points.size() < 3) return points;
     Vec3 centroid(0.0);
     for (const Vec3& p : points) centroid += p;
     centroid /= static_cast<double>(points.size());
@@ -73,13 +63,15 @@ void appendOrderedOnPlane(std::span<const Vec3> points, const Vec3& normal, Out&
         double angle;
         Vec3 point;
     };
-    SmallVector<Keyed, 24> keyed;
+    SmallVector<Keyed, 48> keyed;
     for (const Vec3& p : points) {
         const Vec3 d = p - centroid;
         keyed.push_back({pseudoAngle(glm::dot(d, u), glm::dot(d, v)), p});
     }
     std::sort(keyed.begin(), keyed.end(), [](const Keyed& a, const Keyed& b) { return a.angle < b.angle; });
+    ConvexBody::Points out;
     for (const Keyed& k : keyed) out.push_back(k.point);
+    return out;
 }
 
 } // namespace
@@ -88,19 +80,14 @@ ConvexBody ConvexBody::fromAabb(const Aabb& box) {
     ConvexBody body;
     // A box flat along an axis has no volume: the empty body, as a cut to a sliver gives.
     if (box.isEmpty() || !(box.min.x < box.max.x && box.min.y < box.max.y && box.min.z < box.max.z)) return body;
+    // Faces 0-5: -x, +x, -y, +y, -z, +z (n·p + d = 0 on each, n outward).
+    body.m_planes = {{{-1, 0, 0}, box.min.x}, {{1, 0, 0}, -box.max.x}, {{0, -1, 0}, box.min.y},
+                     {{0, 1, 0}, -box.max.y}, {{0, 0, -1}, box.min.z}, {{0, 0, 1}, -box.max.z}};
     const auto c = box.corners(); // bit 0: x, bit 1: y, bit 2: z
-    // Each face listed counter-clockwise seen from outside.
-    constexpr size_t faces[6][4] = {
-        {0, 4, 6, 2}, // -x
-        {1, 3, 7, 5}, // +x
-        {0, 1, 5, 4}, // -y
-        {2, 6, 7, 3}, // +y
-        {0, 2, 3, 1}, // -z
-        {4, 5, 7, 6}, // +z
-    };
-    for (const auto& f : faces) {
-        for (const size_t corner : f) body.m_points.push_back(c[corner]);
-        body.m_faceEnds.push_back(static_cast<uint32_t>(body.m_points.size()));
+    for (size_t i = 0; i < 8; ++i) {
+        const PlaneSet on =
+            PlaneSet(1) << (i & 1 ? 1 : 0) | PlaneSet(1) << (i & 2 ? 3 : 2) | PlaneSet(1) << (i & 4 ? 5 : 4);
+        body.m_vertices.push_back({c[i], on});
     }
     return body;
 }
@@ -111,7 +98,7 @@ double ConvexBody::tolerance() const {
     const Aabb b = bounds();
     if (b.isEmpty()) return 1e-12;
     const double magnitude = glm::length(b.extent()) + glm::length(glm::abs(b.center()));
-    return 1e-10 * std::max(magnitude, 1.0);
+    return 1e-12 * std::max(magnitude, 1.0);
 }
 
 void ConvexBody::clip(const Plane& plane) { clip(std::span<const Plane>(&plane, 1)); }
@@ -127,165 +114,163 @@ void ConvexBody::clip(std::span<const Plane> planes) {
     }
 }
 
+bool ConvexBody::adjacent(size_t a, size_t b) const {
+    const PlaneSet shared = m_vertices[a].on & m_vertices[b].on;
+    if ((shared & (shared - 1)) == 0) return false; // two planes at least make a line
+    for (size_t w = 0; w < m_vertices.size(); ++w)
+        if (w != a && w != b && (m_vertices[w].on & shared) == shared) return false; // a third on that line
+    return true;
+}
+
 void ConvexBody::clip(const Plane& plane, double eps) {
-    // Each face corner's signed distance once.
-    SmallVector<double, 128> distances;
-    bool anyOutside = false, anyInside = false;
-    for (const Vec3& p : m_points) {
-        const double dist = plane.signedDistance(p);
+    // Each vertex's signed distance once: inside (< -eps), on the plane, or outside (> eps).
+    SmallVector<double, 48> distances;
+    SmallVector<uint32_t, 48> inside, outside;
+    for (size_t i = 0; i < m_vertices.size(); ++i) {
+        const double dist = plane.signedDistance(m_vertices[i].p);
         distances.push_back(dist);
-        anyOutside |= dist > eps;
-        anyInside |= dist < -eps;
+        if (dist > eps) outside.push_back(static_cast<uint32_t>(i));
+        if (dist < -eps) inside.push_back(static_cast<uint32_t>(i));
     }
-    if (!anyOutside) return; // entirely kept: the plane does not cut the body
-    if (!anyInside) {
+    if (outside.empty()) return; // entirely kept: the plane does not cut the body
+    if (inside.empty()) {
         clear();
         return;
     } // at most a flat sliver remains
+    SK_ASSERT(m_planes.size() < kMaxFaces, "ConvexBody::clip(): a body has at most kMaxFaces faces");
+    const PlaneSet onCut = PlaneSet(1) << m_planes.size();
 
-    // Each face clipped (Sutherland–Hodgman), the points on the plane gathered for the cap.
-    decltype(m_points) points;
-    decltype(m_faceEnds) faceEnds;
-    SmallVector<Vec3, 24> capPoints;
-    auto closeFace = [&](size_t start) {
-        if (hasArea(std::span(points.data() + start, points.size() - start), eps))
-            faceEnds.push_back(static_cast<uint32_t>(points.size()));
-        else
-            points.truncate(start); // a face cut down to a sliver
-    };
-    size_t begin = 0;
-    for (const uint32_t end : m_faceEnds) {
-        const size_t start = points.size();
-        if (std::all_of(distances.begin() + begin, distances.begin() + end, [&](double d) { return d < -eps; })) {
-            // Wholly inside, no corner on the plane: the face stays as it is (and keeps its area).
-            for (size_t i = begin; i < end; ++i) points.push_back(m_points[i]);
-            faceEnds.push_back(static_cast<uint32_t>(points.size()));
-            begin = end;
-            continue;
-        }
-        for (size_t i = begin; i < end; ++i) {
-            const size_t next = i + 1 == end ? begin : i + 1;
-            const double dc = distances[i], dn = distances[next];
-            if (dc <= eps) {
-                points.push_back(m_points[i]);
-                if (dc >= -eps) appendUnique(capPoints, m_points[i], eps);
-            }
-            if (dc < -eps && dn > eps) {
-                points.push_back(crossing(m_points[i], dc, m_points[next], dn));
-                appendUnique(capPoints, points.back(), eps);
-            } else if (dc > eps && dn < -eps) {
-                points.push_back(crossing(m_points[next], dn, m_points[i], dc));
-                appendUnique(capPoints, points.back(), eps);
-            }
-        }
-        closeFace(start);
-        begin = end;
+    // A new vertex on each edge from inside to outside, on the planes the edge lies on and the
+    // cut; the faces that lose vertices outside are the only ones that may stop being faces.
+    SmallVector<Vertex, 16> added;
+    PlaneSet losing = 0;
+    for (const uint32_t out : outside) {
+        losing |= m_vertices[out].on;
+        for (const uint32_t in : inside)
+            if (adjacent(in, out))
+                added.push_back({crossing(m_vertices[in].p, distances[in], m_vertices[out].p, distances[out]),
+                                 (m_vertices[in].on & m_vertices[out].on) | onCut});
     }
-    if (capPoints.size() >= 3) {
-        const size_t start = points.size();
-        appendOrderedOnPlane(std::span<const Vec3>(capPoints.data(), capPoints.size()), plane.normal, points);
-        closeFace(start);
+    // The vertices kept, in place, those on the plane marked; then the new ones.
+    size_t kept = 0;
+    for (size_t i = 0; i < m_vertices.size(); ++i)
+        if (distances[i] <= eps)
+            m_vertices[kept++] = {m_vertices[i].p, m_vertices[i].on | (distances[i] >= -eps ? onCut : 0)};
+    m_vertices.truncate(kept);
+    for (const Vertex& v : added) m_vertices.push_back(v);
+    m_planes.push_back(plane);
+    keepOnlyFaces(losing);
+    if (m_planes.size() < 4) clear(); // < 4 faces: no volume
+}
+
+void ConvexBody::keepOnlyFaces(PlaneSet candidates) {
+    // A plane with fewer than three vertices on it only touches the body (at an edge or a
+    // vertex, or not at all once cut away): it bounds no face.
+    PlaneSet dropped = 0;
+    for (size_t f = 0; f < m_planes.size(); ++f) {
+        const PlaneSet bit = PlaneSet(1) << f;
+        if (!(candidates & bit)) continue;
+        int count = 0;
+        for (const Vertex& v : m_vertices)
+            if ((v.on & bit) && ++count == 3) break;
+        if (count < 3) dropped |= bit;
     }
-    if (faceEnds.size() < 4) { // < 4 faces: no volume
-        clear();
-        return;
+    // Each dropped plane's bit taken out of every mark, the higher bits moved down one:
+    // highest first, so the lower ones keep their places until their turn.
+    for (size_t f = m_planes.size(); f-- > 0;) {
+        if (!(dropped & (PlaneSet(1) << f))) continue;
+        const PlaneSet below = (PlaneSet(1) << f) - 1;
+        for (Vertex& v : m_vertices) v.on = (v.on & below) | ((v.on >> 1) & ~below);
+        for (size_t g = f; g + 1 < m_planes.size(); ++g) m_planes[g] = m_planes[g + 1];
+        m_planes.truncate(m_planes.size() - 1);
     }
-    m_points = std::move(points);
-    m_faceEnds = std::move(faceEnds);
 }
 
 void ConvexBody::clear() {
-    m_points.clear();
-    m_faceEnds.clear();
+    m_vertices.clear();
+    m_planes.clear();
 }
 
 ConvexBody::Planes ConvexBody::sweepHalfSpaces(const Vec3& wsDirection) const {
     Planes planes;
     if (isEmpty()) return planes;
     const Vec3 dir = glm::normalize(wsDirection);
-    const double eps = tolerance();
-    const Points verts = vertices();
 
     // A face whose outward normal has no component along the sweep bounds the swept body
     // too; one facing along the sweep is swept away.
-    SmallVector<char, 32> sweptAway; // per face (char: SmallVector<bool> would have no data())
-    for (size_t f = 0; f < faceCount(); ++f) {
-        const std::span<const Vec3> poly = face(f);
-        const Vec3 n = glm::normalize(newellNormal(poly));
-        const bool away = glm::dot(n, dir) > 1e-12;
-        sweptAway.push_back(away);
-        if (!away) planes.push_back(Plane::fromPointNormal(poly[0], n));
+    SmallVector<double, kMaxFaces> along; // n·dir per face
+    for (const Plane& face : m_planes) {
+        along.push_back(glm::dot(face.normal, dir));
+        if (!(along.back() > 1e-12)) planes.push_back(face);
     }
-    // Silhouette edges: a plane through the edge containing the sweep direction is a facet of
-    // the swept body exactly when the whole body lies on one side of it. A silhouette edge
-    // joins a face swept away to one that is not, so the edges of the faces swept away are
-    // all the candidates (each silhouette found once, from its swept side).
-    for (size_t f = 0; f < faceCount(); ++f) {
-        if (!sweptAway[f]) continue;
-        const std::span<const Vec3> poly = face(f);
-        for (size_t i = 0; i < poly.size(); ++i) {
-            const Vec3& a = poly[i];
-            const Vec3& b = poly[i + 1 == poly.size() ? 0 : i + 1];
-            const Vec3 m = glm::cross(b - a, dir);
-            if (glm::length(m) <= eps) continue; // edge parallel to the sweep
-            const Plane plane = Plane::fromPointNormal(a, m);
-            double lo = 0.0, hi = 0.0;
-            for (const Vec3& v : verts) {
-                const double dist = plane.signedDistance(v);
-                lo = std::min(lo, dist);
-                hi = std::max(hi, dist);
-                if (lo < -eps && hi > eps) break; // vertices on both sides: not a facet
-            }
-            if (hi <= eps)
-                planes.push_back(plane);
-            else if (lo >= -eps)
-                planes.push_back({-plane.normal, -plane.d});
+    // Silhouette edges join a face swept away (i) to one that is not (j); two faces share an
+    // edge when two vertices lie on both. The swept body's facet there is the plane through
+    // the edge containing the sweep: its normal m = -(n_j·d) n_i + (n_i·d) n_j has m·d = 0
+    // and, a combination of the two faces' normals with weights >= 0, points out of the body.
+    for (size_t i = 0; i < m_planes.size(); ++i) {
+        if (!(along[i] > 1e-12)) continue;
+        for (size_t j = 0; j < m_planes.size(); ++j) {
+            if (along[j] > 1e-12) continue;
+            const PlaneSet both = PlaneSet(1) << i | PlaneSet(1) << j;
+            const Vertex* onEdge = nullptr;
+            int count = 0;
+            for (const Vertex& v : m_vertices)
+                if ((v.on & both) == both) onEdge = &v, ++count;
+            if (count < 2) continue;
+            const Vec3 m = -along[j] * m_planes[i].normal + along[i] * m_planes[j].normal;
+            // Both faces (nearly) along the sweep: face j's own plane already bounds the sweep.
+            if (!(glm::length(m) > 1e-9)) continue;
+            planes.push_back(Plane::fromPointNormal(onEdge->p, m));
         }
     }
     return planes;
 }
 
 void ConvexBody::translate(const Vec3& offset) {
-    for (Vec3& p : m_points) p += offset;
+    for (Vertex& v : m_vertices) v.p += offset;
+    for (Plane& plane : m_planes) plane.d -= glm::dot(plane.normal, offset);
+}
+
+ConvexBody::Points ConvexBody::face(size_t f) const {
+    Points points;
+    const PlaneSet bit = PlaneSet(1) << f;
+    for (const Vertex& v : m_vertices)
+        if (v.on & bit) points.push_back(v.p);
+    return orderedOnPlane(points, m_planes[f].normal);
 }
 
 ConvexBody::Points ConvexBody::vertices() const {
-    // A vertex shared by faces is, but for near-coincident points met in one cut, the same
-    // bits in each (crossing() makes it so): drop exact copies first, three compares each,
-    // then merge what lies within the tolerance among the few left. The same points, in the
-    // same order, as merging the whole list at the tolerance.
-    Points distinct;
-    for (const Vec3& p : m_points)
-        if (std::none_of(distinct.begin(), distinct.end(), [&](const Vec3& q) { return q == p; }))
-            distinct.push_back(p);
     Points out;
-    const double eps = tolerance();
-    for (const Vec3& p : distinct) appendUnique(out, p, eps);
+    for (const Vertex& v : m_vertices) out.push_back(v.p);
+    return out;
+}
+
+ConvexBody::Edges ConvexBody::edges() const {
+    Edges out;
+    for (size_t a = 0; a < m_vertices.size(); ++a)
+        for (size_t b = a + 1; b < m_vertices.size(); ++b)
+            if (adjacent(a, b)) out.push_back({m_vertices[a].p, m_vertices[b].p});
     return out;
 }
 
 Aabb ConvexBody::bounds() const {
     Aabb b;
-    for (const Vec3& p : m_points) b.extend(p);
+    for (const Vertex& v : m_vertices) b.extend(v.p);
     return b;
 }
 
 bool ConvexBody::contains(const Vec3& p, double eps) const {
     if (isEmpty()) return false;
-    for (size_t f = 0; f < faceCount(); ++f) {
-        const std::span<const Vec3> poly = face(f);
-        const Vec3 n = glm::normalize(newellNormal(poly));
-        if (glm::dot(n, p - poly[0]) > eps) return false;
-    }
-    return true;
+    return std::all_of(m_planes.begin(), m_planes.end(),
+                       [&](const Plane& face) { return face.signedDistance(p) <= eps; });
 }
 
 double ConvexBody::volume() const {
     // Divergence theorem: V = 1/3 Σ_faces (point · area-weighted normal).
     double v = 0.0;
     for (size_t f = 0; f < faceCount(); ++f) {
-        const std::span<const Vec3> poly = face(f);
-        v += glm::dot(poly[0], 0.5 * newellNormal(poly));
+        const Points loop = face(f);
+        v += glm::dot(loop[0], 0.5 * newellNormal(std::span<const Vec3>(loop.data(), loop.size())));
     }
     return v / 3.0;
 }

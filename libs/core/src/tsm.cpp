@@ -99,9 +99,10 @@ ShadowSetup computeTsm(const ShadowSetupInputs& in) {
     const double along0 = glm::dot(toL(Vec3(0.0)) - nearCentre, u);             // along at the origin
     auto alongOf = [&](const Vec3& ws) { return glm::dot(wsAlong, ws) + along0; };
     double receiversTop = INFINITY, receiversBase = -INFINITY;
-    for (size_t f = 0; f < receivers.faceCount(); ++f)
-        for (const Vec3& p : receivers.face(f))
-            receiversTop = std::min(receiversTop, alongOf(p)), receiversBase = std::max(receiversBase, alongOf(p));
+    const ConvexBody::Points receiverCorners = receivers.vertices();
+    const ConvexBody::Edges receiverEdges = receivers.edges();
+    for (const Vec3& p : receiverCorners)
+        receiversTop = std::min(receiversTop, alongOf(p)), receiversBase = std::max(receiversBase, alongOf(p));
     // Across the line likewise (∇across, per metre): the band's width, linear too, is spanned
     // by the same points.
     const Vec3 wsAcross = glm::transpose(glm::dmat3(lFromWorld)) * Vec3(w, 0.0);
@@ -117,14 +118,11 @@ ShadowSetup computeTsm(const ShadowSetupInputs& in) {
             band.acrossMin = std::min(band.acrossMin, across);
             band.acrossMax = std::max(band.acrossMax, across);
         };
-        for (size_t f = 0; f < receivers.faceCount(); ++f) {
-            const std::span<const Vec3> loop = receivers.face(f);
-            for (size_t i = 0; i < loop.size(); ++i) {
-                const Vec3 &a = loop[i], &b = loop[(i + 1) % loop.size()];
-                const double da = sign * (alongOf(a) - edge), db = sign * (alongOf(b) - edge);
-                if (da <= 0.0) take(a);
-                if ((da < 0.0) != (db < 0.0)) take(a + (da / (da - db)) * (b - a));
-            }
+        for (const Vec3& p : receiverCorners)
+            if (sign * (alongOf(p) - edge) <= 0.0) take(p);
+        for (const auto& [a, b] : receiverEdges) {
+            const double da = sign * (alongOf(a) - edge), db = sign * (alongOf(b) - edge);
+            if ((da < 0.0) != (db < 0.0)) take(a + (da / (da - db)) * (b - a));
         }
         return band;
     };

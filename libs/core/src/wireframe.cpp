@@ -25,22 +25,7 @@ std::vector<Edge> clipVolumeEdges(const Mat4& clipFromWorld) {
 
 std::vector<Edge> bodyEdges(const ConvexBody& body) {
     std::vector<Edge> edges;
-    if (body.isEmpty()) return edges;
-    const Aabb box = body.bounds();
-    const double eps =
-        1e-9 * std::max(1.0, glm::length(box.max - box.min)); // shared points are copies: equal or nearly
-    auto same = [&](const Vec3& a, const Vec3& b) { return glm::length(a - b) <= eps; };
-    for (size_t f = 0; f < body.faceCount(); ++f) {
-        const std::span<const Vec3> face = body.face(f);
-        for (size_t i = 0; i < face.size(); ++i) {
-            const Vec3& a = face[i];
-            const Vec3& b = face[(i + 1) % face.size()];
-            bool seen = false;
-            for (const Edge& e : edges)
-                seen = seen || (same(e.first, b) && same(e.second, a)) || (same(e.first, a) && same(e.second, b));
-            if (!seen) edges.emplace_back(a, b);
-        }
-    }
+    for (const auto& [a, b] : body.edges()) edges.emplace_back(a, b);
     return edges;
 }
 

@@ -187,3 +187,81 @@ TEST(ConvexBodyTest, SweepPlanesHoldTheRandomBodySweptAndTouchIt) {
         }
     }
 }
+
+TEST(ConvexBodyTest, RandomBodiesHaveEulersCountOfEdgesEachOnTwoFacesAndConvexFaces) {
+    // The body is held as vertices marked with their planes; its edges are found from the marks
+    // alone (two shared planes, no third vertex on both). A wrong adjacency breaks Euler's
+    // V − E + F = 2, or leaves an edge that does not lie on two faces' planes, or a face loop
+    // that is not convex and counter-clockwise seen from outside.
+    std::mt19937 rng(20261130);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    int checked = 0;
+    for (int trial = 0; trial < 300; ++trial) {
+        const Vec3 centre = 500.0 * Vec3(unit(rng), unit(rng), unit(rng));
+        ConvexBody body = ConvexBody::fromAabb(Aabb::fromMinMax(centre - Vec3(5.0), centre + Vec3(5.0)));
+        for (int c = 0; c < 1 + trial % 12; ++c) { // planes 1-4.5 m out, facing roughly away from the centre
+            const Vec3 out = glm::normalize(Vec3(unit(rng), unit(rng), unit(rng)));
+            body.clip(Plane::fromPointNormal(centre + (2.75 + 1.75 * unit(rng)) * out,
+                                             out + 0.5 * Vec3(unit(rng), unit(rng), unit(rng))));
+        }
+        if (body.isEmpty()) continue;
+        ++checked;
+        const ConvexBody::Points vertices = body.vertices();
+        const ConvexBody::Edges edges = body.edges();
+        EXPECT_EQ(static_cast<long>(vertices.size()) - static_cast<long>(edges.size()) +
+                      static_cast<long>(body.faceCount()),
+                  2)
+            << "trial " << trial;
+        std::vector<std::vector<Vec3>> faces;
+        for (size_t f = 0; f < body.faceCount(); ++f) {
+            const ConvexBody::Points loop = body.face(f);
+            ASSERT_GE(loop.size(), 3u) << "trial " << trial;
+            faces.emplace_back(loop.begin(), loop.end());
+            const Vec3 n = glm::normalize(glm::cross(loop[1] - loop[0], loop[2] - loop[0]));
+            for (size_t i = 0; i < loop.size(); ++i) { // every turn the same way
+                const Vec3 &a = loop[i], &b = loop[(i + 1) % loop.size()], &c = loop[(i + 2) % loop.size()];
+                EXPECT_GE(glm::dot(glm::cross(b - a, c - b), n), -1e-9) << "trial " << trial << ", face " << f;
+            }
+            // Outward: the body's centroid lies behind the face.
+            Vec3 centroid(0.0);
+            for (const Vec3& v : vertices) centroid += v / double(vertices.size());
+            EXPECT_LT(glm::dot(centroid - loop[0], n), 0.0) << "trial " << trial << ", face " << f;
+        }
+        for (const auto& [a, b] : edges) { // each edge is a side of exactly two face loops
+            int sides = 0;
+            for (const std::vector<Vec3>& loop : faces)
+                for (size_t i = 0; i < loop.size(); ++i) {
+                    const Vec3 &p = loop[i], &q = loop[(i + 1) % loop.size()];
+                    sides += (p == a && q == b) || (p == b && q == a);
+                }
+            EXPECT_EQ(sides, 2) << "trial " << trial;
+        }
+    }
+    EXPECT_GT(checked, 250);
+}
+
+TEST(ConvexBodyTest, CutsThroughVerticesAndEdgesKeepTheExactBody) {
+    // Degenerate cuts, where a plane passes exactly through existing vertices: the vertices on
+    // it are marked, not doubled, and the body is the brute-force one.
+    ConvexBody body = ConvexBody::fromAabb(Aabb::fromMinMax(Vec3(-1.0), Vec3(1.0)));
+    std::vector<Plane> planes = boxPlanes(Aabb::fromMinMax(Vec3(-1.0), Vec3(1.0)));
+    // y <= z through two opposite edges; x + y + z <= 1 through three corners; x <= z through
+    // two vertices the first cut made; x - y + 0.5 z <= 0 through the centre.
+    for (const Plane& plane :
+         {Plane::fromPointNormal(Vec3(0.0), Vec3(0, 1, -1)), Plane::fromPointNormal(Vec3(1, -1, 1), Vec3(1, 1, 1)),
+          Plane::fromPointNormal(Vec3(0.0), Vec3(1, 0, -1)), Plane::fromPointNormal(Vec3(0.0), Vec3(1, -1, 0.5))}) {
+        body.clip(plane);
+        planes.push_back(plane);
+    }
+    const std::vector<Vec3> expected = verticesByBruteForce(planes, 1e-9);
+    const ConvexBody::Points got = body.vertices();
+    ASSERT_EQ(got.size(), expected.size());
+    for (const Vec3& p : expected) {
+        double nearest = INFINITY;
+        for (const Vec3& q : got) nearest = std::min(nearest, glm::length(q - p));
+        EXPECT_LE(nearest, 1e-9);
+    }
+    EXPECT_EQ(static_cast<long>(got.size()) - static_cast<long>(body.edges().size()) +
+                  static_cast<long>(body.faceCount()),
+              2);
+}

@@ -1,4 +1,4 @@
-// Convex polyhedron as a list of planar polygonal faces, clipped by half-spaces.
+// Convex polyhedron as its vertices and the face planes each lies on, clipped by half-spaces.
 //
 // This is the representation the focus body B of the LiSPSM papers needs (Wimmer et al. 2004 §3.3,
 // Scherzer 2005 §4.1): start from a box, clip it by planes, sweep it towards a light.
@@ -14,24 +14,33 @@
 
 #include <cstdint>
 #include <span>
-#include <vector>
 
 namespace shadowkit::core {
 
-/// A convex polyhedron as a list of faces (point loops), clipped by planes: the focus body B and its pieces.
+/// A convex polyhedron, clipped by planes: the focus body B and its pieces. Held as its
+/// vertices, each marked with the face planes it lies on (at most kMaxFaces faces).
 class ConvexBody {
 public:
     /// Inline capacities: a box clipped by a frustum, its sweep and the scene box has about a
-    /// dozen faces and fifty face corners (the flythrough's bodies: at most 20 and 90); beyond
-    /// these sizes the containers spill to the heap (still correct, no longer allocation-free).
+    /// dozen faces and vertices (the flythrough's bodies: at most 20 faces); beyond these sizes
+    /// the containers spill to the heap (still correct, no longer allocation-free).
     using Points = SmallVector<Vec3, 48>;  ///< a set of vertices
     using Planes = SmallVector<Plane, 48>; ///< a set of planes, outward
+    /// An edge: the segment between two vertices.
+    struct Segment {
+        Vec3 a; ///< one end
+        Vec3 b; ///< the other end
+    };
+    using Edges = SmallVector<Segment, 48>; ///< segments between vertices
+    /// The most faces a body can have: one bit per face in each vertex's mark. The bodies this
+    /// library builds have at most about 30 (a box cut by a frustum and by a sweep's planes).
+    static constexpr size_t kMaxFaces = 64;
 
     ConvexBody() = default; ///< the empty body
     /// The box as a body of six faces (an empty or flat box gives the empty body).
     static ConvexBody fromAabb(const Aabb& box);
 
-    /// Moves every vertex by `offset` (exact up to the rounding of each sum).
+    /// Moves every vertex and face by `offset` (exact up to the rounding of each sum).
     void translate(const Vec3& offset);
 
     /// Keeps the part of the body with plane.signedDistance(p) <= 0.
@@ -45,30 +54,34 @@ public:
     /// direction. Intersect with a bounded body to use it.
     Planes sweepHalfSpaces(const Vec3& wsDirection) const;
 
-    bool isEmpty() const { return m_faceEnds.empty(); }    ///< no volume left
-    size_t faceCount() const { return m_faceEnds.size(); } ///< how many faces (0 for the empty body)
-    /// Face f's points, counter-clockwise seen from outside (a convex polygon).
-    std::span<const Vec3> face(size_t f) const {
-        const size_t begin = f == 0 ? 0 : m_faceEnds[f - 1];
-        return {m_points.data() + begin, m_faceEnds[f] - begin};
-    }
-    /// Each distinct vertex once.
+    bool isEmpty() const { return m_vertices.empty(); }  ///< no volume left
+    size_t faceCount() const { return m_planes.size(); } ///< how many faces (0 for the empty body)
+    /// Face f's vertices, counter-clockwise seen from outside (a convex polygon).
+    Points face(size_t f) const;
+    /// Each vertex once.
     Points vertices() const;
+    /// Each edge once, as its two end vertices.
+    Edges edges() const;
     Aabb bounds() const; ///< the smallest box holding every vertex
     /// True if p lies inside every face plane, with a tolerance of eps metres.
     bool contains(const Vec3& p, double eps) const;
     double volume() const; ///< cubic metres (the divergence theorem over the faces)
 
 private:
+    using PlaneSet = uint64_t; ///< bit f: on the plane of face f
+    struct Vertex {
+        Vec3 p;
+        PlaneSet on = 0;
+    };
+
     double tolerance() const;
     void clip(const Plane& plane, double eps); ///< one cut, at a tolerance of eps metres
+    void keepOnlyFaces(PlaneSet candidates);   ///< drops those of the candidate planes that hold no face
+    bool adjacent(size_t a, size_t b) const;   ///< whether vertices a and b span an edge
     void clear();                              ///< the empty body
 
-    // The faces' loops one after another (a vertex shared by faces appears once in each):
-    // face f is m_points[m_faceEnds[f - 1], m_faceEnds[f]). Flat, so a cut walks one array
-    // and a copy is one block.
-    SmallVector<Vec3, 128> m_points;
-    SmallVector<uint32_t, 24> m_faceEnds;
+    SmallVector<Vertex, 48> m_vertices;
+    SmallVector<Plane, kMaxFaces> m_planes; // the faces' planes, outward; bit f of a mark is m_planes[f]
 };
 
 } // namespace shadowkit::core
