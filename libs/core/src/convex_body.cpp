@@ -14,6 +14,7 @@
 #include "shadowkit/core/convex_body.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 namespace shadowkit::core {
@@ -165,16 +166,14 @@ void ConvexBody::clip(const Plane& plane, double eps) {
 
 void ConvexBody::keepOnlyFaces(PlaneSet candidates) {
     // A plane with fewer than three vertices on it only touches the body (at an edge or a
-    // vertex, or not at all once cut away): it bounds no face.
+    // vertex, or not at all once cut away): it bounds no face. Counted a vertex's marks at a
+    // time (a vertex lies on three or four planes).
+    uint8_t count[kMaxFaces] = {};
+    for (const Vertex& v : m_vertices)
+        for (PlaneSet on = v.on & candidates; on != 0; on &= on - 1) ++count[std::countr_zero(on)];
     PlaneSet dropped = 0;
-    for (size_t f = 0; f < m_planes.size(); ++f) {
-        const PlaneSet bit = PlaneSet(1) << f;
-        if (!(candidates & bit)) continue;
-        int count = 0;
-        for (const Vertex& v : m_vertices)
-            if ((v.on & bit) && ++count == 3) break;
-        if (count < 3) dropped |= bit;
-    }
+    for (size_t f = 0; f < m_planes.size(); ++f)
+        if ((candidates & (PlaneSet(1) << f)) && count[f] < 3) dropped |= PlaneSet(1) << f;
     // Each dropped plane's bit taken out of every mark, the higher bits moved down one:
     // highest first, so the lower ones keep their places until their turn.
     for (size_t f = m_planes.size(); f-- > 0;) {
@@ -224,6 +223,79 @@ ConvexBody::Planes ConvexBody::sweepHalfSpaces(const Vec3& wsDirection) const {
         }
     }
     return planes;
+}
+
+ConvexBody ConvexBody::sweptUntil(const Vec3& wsDirection, const Plane& stop) const {
+    ConvexBody swept;
+    if (isEmpty()) return swept;
+    const Vec3 dir = glm::normalize(wsDirection);
+    const double stopAlong = glm::dot(stop.normal, dir);
+    SK_ASSERT(stopAlong > 0.0, "ConvexBody::sweptUntil(): the stop plane must face along the sweep");
+    const double eps = tolerance();
+
+    // The swept body's faces (sweepHalfSpaces), then the stop plane. A silhouette next to a
+    // face parallel to the sweep is that face's own plane: left out, so no plane is listed twice.
+    SmallVector<double, kMaxFaces> along; // n·dir per face
+    PlaneSet back = 0, parallel = 0;      // faces facing against the sweep, and along it
+    for (size_t f = 0; f < m_planes.size(); ++f) {
+        along.push_back(glm::dot(m_planes[f].normal, dir));
+        if (!(along[f] > 1e-12)) swept.m_planes.push_back(m_planes[f]);
+        if (along[f] < -1e-12)
+            back |= PlaneSet(1) << f;
+        else if (!(along[f] > 1e-12))
+            parallel |= PlaneSet(1) << f;
+    }
+    // Two faces share an edge when two vertices lie on both: counted a vertex at a time.
+    uint8_t shared[kMaxFaces][kMaxFaces]; // [swept away][facing against], only those pairs written
+    for (PlaneSet i = ~back & ~parallel & facesMask(); i != 0; i &= i - 1)
+        for (PlaneSet j = back; j != 0; j &= j - 1) shared[std::countr_zero(i)][std::countr_zero(j)] = 0;
+    struct FacePair {
+        uint8_t i, j; // swept away, facing against
+    };
+    SmallVector<FacePair, 32> silhouettes; // once each
+    for (const Vertex& v : m_vertices)
+        for (PlaneSet i = v.on & ~back & ~parallel; i != 0; i &= i - 1)
+            for (PlaneSet j = v.on & back; j != 0; j &= j - 1) {
+                const auto a = static_cast<uint8_t>(std::countr_zero(i)), b = static_cast<uint8_t>(std::countr_zero(j));
+                if (++shared[a][b] == 2) silhouettes.push_back({a, b});
+            }
+    for (const auto [i, j] : silhouettes) {
+        const Vec3 m = -along[j] * m_planes[i].normal + along[i] * m_planes[j].normal; // as in sweepHalfSpaces
+        const PlaneSet both = PlaneSet(1) << i | PlaneSet(1) << j;
+        const Vertex* onEdge = &m_vertices[0];
+        while ((onEdge->on & both) != both) ++onEdge;
+        swept.m_planes.push_back(Plane::fromPointNormal(onEdge->p, m));
+    }
+    SK_ASSERT(swept.m_planes.size() < kMaxFaces, "ConvexBody::sweptUntil(): a body has at most kMaxFaces faces");
+    const size_t stopFace = swept.m_planes.size();
+    swept.m_planes.push_back(stop);
+
+    // Its vertices: the body's vertices on a face facing against the sweep (the others lie
+    // inside the swept body or on its edges along the sweep), each marked with the planes it
+    // lies on; and where each edge along the sweep — from a vertex on two planes containing the
+    // sweep direction — meets the stop plane. A vertex already on the stop plane is its own end.
+    for (const Vertex& v : m_vertices) {
+        if (!(v.on & back)) continue;
+        Vertex kept{v.p, 0};
+        PlaneSet alongSweep = 0; // the planes through v containing the direction
+        for (size_t f = 0; f < stopFace; ++f)
+            if (std::abs(swept.m_planes[f].signedDistance(v.p)) <= eps) {
+                kept.on |= PlaneSet(1) << f;
+                if (!(std::abs(glm::dot(swept.m_planes[f].normal, dir)) > 1e-12)) alongSweep |= PlaneSet(1) << f;
+            }
+        const double toStop = stop.signedDistance(v.p); // <= 0: the body lies inside it
+        if (toStop >= -eps) {
+            kept.on |= PlaneSet(1) << stopFace;
+            swept.m_vertices.push_back(kept);
+            continue;
+        }
+        swept.m_vertices.push_back(kept);
+        if ((alongSweep & (alongSweep - 1)) != 0) // two planes: an edge along the sweep starts here
+            swept.m_vertices.push_back({v.p - (toStop / stopAlong) * dir, alongSweep | PlaneSet(1) << stopFace});
+    }
+    swept.keepOnlyFaces(~PlaneSet(0));
+    if (swept.m_planes.size() < 4) swept.clear();
+    return swept;
 }
 
 void ConvexBody::translate(const Vec3& offset) {

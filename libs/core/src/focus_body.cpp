@@ -12,6 +12,9 @@
 // when rays leave S through different faces — here the sweep is exact (ConvexBody).
 #include "shadowkit/core/focus_body.h"
 
+#include <algorithm>
+#include <array>
+#include <cmath>
 #include <optional>
 #include <utility>
 
@@ -53,17 +56,33 @@ ConvexBody visibleSceneBody(const PerspectiveCamera& camera, const Aabb& wsScene
 
 ConvexBody focusBodyFromVisible(const ConvexBody& visibleScene, const Vec3& wsTowardsLight, const Aabb& wsSceneBounds) {
     if (visibleScene.isEmpty()) return {};
-    // (V ∩ S swept) ∩ S. Only the sweep's planes that cut S can cut the body: those of V ∩ S's
-    // faces lying on S's own faces, and silhouettes beyond S, are passed over at the cost of
-    // one dot product each (the box's corner farthest out along the plane's normal).
-    const Aabb sceneBox = sceneBoxForFocus(wsSceneBounds);
-    const ConvexBody::Planes sweep = visibleScene.sweepHalfSpaces(wsTowardsLight);
-    const Vec3 centre = sceneBox.center(), half = 0.5 * (sceneBox.max - sceneBox.min);
-    ConvexBody::Planes cutting;
-    for (const Plane& plane : sweep)
-        if (plane.signedDistance(centre) + glm::dot(glm::abs(plane.normal), half) > 0.0) cutting.push_back(plane);
-    ConvexBody body = ConvexBody::fromAabb(sceneBox);
-    body.clip(std::span<const Plane>(cutting.data(), cutting.size()));
+    // (V ∩ S swept) ∩ S: swept as far as the box's face that the sweep leaves it through
+    // first (the least, over the faces facing the light, of the farthest any vertex travels
+    // to reach it), then cut by the other five, which the swept body then rarely reaches (a
+    // cut that misses costs a dot product a vertex).
+    const Aabb box = sceneBoxForFocus(wsSceneBounds);
+    const std::array<Plane, 6> boxPlanes = {{{{-1, 0, 0}, box.min.x},
+                                             {{1, 0, 0}, -box.max.x},
+                                             {{0, -1, 0}, box.min.y},
+                                             {{0, 1, 0}, -box.max.y},
+                                             {{0, 0, -1}, box.min.z},
+                                             {{0, 0, 1}, -box.max.z}}};
+    const Vec3 dir = glm::normalize(wsTowardsLight);
+    const ConvexBody::Points corners = visibleScene.vertices();
+    size_t stop = 0;
+    double nearest = INFINITY;
+    for (size_t f = 0; f < boxPlanes.size(); ++f) {
+        const double along = glm::dot(boxPlanes[f].normal, dir);
+        if (!(along > 1e-3)) continue; // at least one face has along >= 1/√3
+        double farthest = 0.0;
+        for (const Vec3& p : corners) farthest = std::max(farthest, -boxPlanes[f].signedDistance(p) / along);
+        if (farthest < nearest) nearest = farthest, stop = f;
+    }
+    ConvexBody body = visibleScene.sweptUntil(dir, boxPlanes[stop]);
+    ConvexBody::Planes others;
+    for (size_t f = 0; f < boxPlanes.size(); ++f)
+        if (f != stop) others.push_back(boxPlanes[f]);
+    body.clip(std::span<const Plane>(others.data(), others.size()));
     return body;
 }
 

@@ -265,3 +265,44 @@ TEST(ConvexBodyTest, CutsThroughVerticesAndEdgesKeepTheExactBody) {
                   static_cast<long>(body.faceCount()),
               2);
 }
+
+TEST(ConvexBodyTest, SweptUntilAPlaneIsTheBoxCutByTheSweepsPlanes) {
+    // sweptUntil builds the swept body at once; cut by the rest of the box it must be the box
+    // cut by every plane of sweepHalfSpaces: for random bodies, random sweeps and sweeps along
+    // the axes (faces parallel to the sweep) and bodies touching the stop plane (cut by it).
+    std::mt19937 rng(31);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    const Aabb box = Aabb::fromMinMax(Vec3(-10.0), Vec3(10.0));
+    const std::vector<Plane> walls = boxPlanes(box);
+    int compared = 0;
+    for (int trial = 0; trial < 600; ++trial) {
+        ConvexBody body = ConvexBody::fromAabb(trial % 3 == 0 ? box : Aabb::fromMinMax(Vec3(-6.0), Vec3(4.0)));
+        for (int c = 0; c < 1 + trial % 6; ++c)
+            body.clip(Plane::fromPointNormal(5.0 * Vec3(unit(rng), unit(rng), unit(rng)),
+                                             Vec3(unit(rng), unit(rng), unit(rng))));
+        if (body.isEmpty()) continue;
+        Vec3 dir = glm::normalize(Vec3(unit(rng), unit(rng), unit(rng)));
+        if (trial % 4 == 1) dir = Vec3(0, 1, 0); // four faces of the box parallel to the sweep
+        if (trial % 4 == 2) dir = glm::normalize(Vec3(1, 1, 0));
+        size_t stop = 0;
+        for (size_t f = 1; f < walls.size(); ++f)
+            if (glm::dot(walls[f].normal, dir) > glm::dot(walls[stop].normal, dir)) stop = f;
+        ConvexBody swept = body.sweptUntil(dir, walls[stop]);
+        for (size_t f = 0; f < walls.size(); ++f)
+            if (f != stop) swept.clip(walls[f]);
+        ConvexBody expected = ConvexBody::fromAabb(box);
+        const ConvexBody::Planes sweep = body.sweepHalfSpaces(dir);
+        expected.clip(std::span<const Plane>(sweep.data(), sweep.size()));
+        ASSERT_EQ(swept.isEmpty(), expected.isEmpty()) << "trial " << trial;
+        ++compared;
+        const ConvexBody::Points got = swept.vertices(), want = expected.vertices();
+        ASSERT_EQ(got.size(), want.size()) << "trial " << trial;
+        for (const Vec3& p : want) {
+            double nearest = INFINITY;
+            for (const Vec3& q : got) nearest = std::min(nearest, glm::length(q - p));
+            EXPECT_LE(nearest, 1e-9) << "trial " << trial;
+        }
+        EXPECT_NEAR(swept.volume(), expected.volume(), 1e-9 * expected.volume()) << "trial " << trial;
+    }
+    EXPECT_GT(compared, 400);
+}

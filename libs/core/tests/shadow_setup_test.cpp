@@ -73,9 +73,9 @@ TEST(ShadowSetupTest, FocusBodyContainsTheVisibleSceneAndEverythingBetweenItAndT
 }
 
 TEST(ShadowSetupTest, FocusBodyIsItsDefinitionWithEveryPlaneOfTheSweepApplied) {
-    // computeFocusBody passes over the sweep's planes that do not cut the scene box; B built
-    // from the definition with every plane applied must have the same vertices (no plane
-    // that cuts is ever passed over, and the fast path changes nothing else).
+    // computeFocusBody sweeps V ∩ S as far as one face of the scene box and cuts it by the
+    // other five (ConvexBody::sweptUntil); B built from the definition — the box cut by every
+    // plane of the sweep — must have the same vertices.
     ConfigGenerator gen(2026);
     int compared = 0;
     for (int i = 0; i < 2000; ++i) {

@@ -54,6 +54,13 @@ public:
     /// direction. Intersect with a bounded body to use it.
     Planes sweepHalfSpaces(const Vec3& wsDirection) const;
 
+    /// The body swept along `wsDirection` as far as the plane `stop`, whose normal must point
+    /// along the direction (stop.normal·dir > 0) and which the body must lie inside: the
+    /// intersection of sweepHalfSpaces(dir) with stop's half-space, built at once — the body's
+    /// vertices facing against the sweep, and where each edge along the sweep meets `stop` —
+    /// instead of cut plane by plane out of a larger body.
+    ConvexBody sweptUntil(const Vec3& wsDirection, const Plane& stop) const;
+
     bool isEmpty() const { return m_vertices.empty(); }  ///< no volume left
     size_t faceCount() const { return m_planes.size(); } ///< how many faces (0 for the empty body)
     /// Face f's vertices, counter-clockwise seen from outside (a convex polygon).
@@ -78,7 +85,9 @@ private:
     void clip(const Plane& plane, double eps); ///< one cut, at a tolerance of eps metres
     void keepOnlyFaces(PlaneSet candidates);   ///< drops those of the candidate planes that hold no face
     bool adjacent(size_t a, size_t b) const;   ///< whether vertices a and b span an edge
-    void clear();                              ///< the empty body
+    /// Every face's bit.
+    PlaneSet facesMask() const { return m_planes.size() == 64 ? ~PlaneSet(0) : (PlaneSet(1) << m_planes.size()) - 1; }
+    void clear(); ///< the empty body
 
     SmallVector<Vertex, 48> m_vertices;
     SmallVector<Plane, kMaxFaces> m_planes; // the faces' planes, outward; bit f of a mark is m_planes[f]
