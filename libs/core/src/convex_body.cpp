@@ -77,13 +77,22 @@ ConvexBody::Points orderedOnPlane(const ConvexBody::Points& points, const Vec3& 
 
 } // namespace
 
+std::array<Plane, 6> boxFaces(const Aabb& box) {
+    // n·p + d = 0 on each, n outward.
+    return {{{{-1, 0, 0}, box.min.x},
+             {{1, 0, 0}, -box.max.x},
+             {{0, -1, 0}, box.min.y},
+             {{0, 1, 0}, -box.max.y},
+             {{0, 0, -1}, box.min.z},
+             {{0, 0, 1}, -box.max.z}}};
+}
+
 ConvexBody ConvexBody::fromAabb(const Aabb& box) {
     ConvexBody body;
     // A box flat along an axis has no volume: the empty body, as a cut to a sliver gives.
     if (box.isEmpty() || !(box.min.x < box.max.x && box.min.y < box.max.y && box.min.z < box.max.z)) return body;
-    // Faces 0-5: -x, +x, -y, +y, -z, +z (n·p + d = 0 on each, n outward).
-    body.m_planes = {{{-1, 0, 0}, box.min.x}, {{1, 0, 0}, -box.max.x}, {{0, -1, 0}, box.min.y},
-                     {{0, 1, 0}, -box.max.y}, {{0, 0, -1}, box.min.z}, {{0, 0, 1}, -box.max.z}};
+    // Faces 0-5: -x, +x, -y, +y, -z, +z.
+    for (const Plane& face : boxFaces(box)) body.m_planes.push_back(face);
     const auto c = box.corners(); // bit 0: x, bit 1: y, bit 2: z
     for (size_t i = 0; i < 8; ++i) {
         const PlaneSet on =
@@ -190,39 +199,53 @@ void ConvexBody::clear() {
     m_planes.clear();
 }
 
-ConvexBody::Planes ConvexBody::sweepHalfSpaces(const Vec3& wsDirection) const {
-    Planes planes;
-    if (isEmpty()) return planes;
-    const Vec3 dir = glm::normalize(wsDirection);
-
+ConvexBody::SweepFaces ConvexBody::sweepFaces(const Vec3& dir) const {
     // A face whose outward normal has no component along the sweep bounds the swept body
     // too; one facing along the sweep is swept away.
+    SweepFaces sweep;
     SmallVector<double, kMaxFaces> along; // n·dir per face
-    for (const Plane& face : m_planes) {
-        along.push_back(glm::dot(face.normal, dir));
-        if (!(along.back() > 1e-12)) planes.push_back(face);
+    PlaneSet parallel = 0;                // faces along the sweep
+    for (size_t f = 0; f < m_planes.size(); ++f) {
+        along.push_back(glm::dot(m_planes[f].normal, dir));
+        if (!(along[f] > 1e-12)) sweep.planes.push_back(m_planes[f]);
+        if (along[f] < -1e-12)
+            sweep.back |= PlaneSet(1) << f;
+        else if (!(along[f] > 1e-12))
+            parallel |= PlaneSet(1) << f;
     }
-    // Silhouette edges join a face swept away (i) to one that is not (j); two faces share an
-    // edge when two vertices lie on both. The swept body's facet there is the plane through
-    // the edge containing the sweep: its normal m = -(n_j·d) n_i + (n_i·d) n_j has m·d = 0
-    // and, a combination of the two faces' normals with weights >= 0, points out of the body.
-    for (size_t i = 0; i < m_planes.size(); ++i) {
-        if (!(along[i] > 1e-12)) continue;
-        for (size_t j = 0; j < m_planes.size(); ++j) {
-            if (along[j] > 1e-12) continue;
-            const PlaneSet both = PlaneSet(1) << i | PlaneSet(1) << j;
-            const Vertex* onEdge = nullptr;
-            int count = 0;
-            for (const Vertex& v : m_vertices)
-                if ((v.on & both) == both) onEdge = &v, ++count;
-            if (count < 2) continue;
-            const Vec3 m = -along[j] * m_planes[i].normal + along[i] * m_planes[j].normal;
-            // Both faces (nearly) along the sweep: face j's own plane already bounds the sweep.
-            if (!(glm::length(m) > 1e-9)) continue;
-            planes.push_back(Plane::fromPointNormal(onEdge->p, m));
-        }
+    // Silhouette edges join a face swept away (i) to one facing against the sweep (j); two
+    // faces share an edge when two vertices lie on both, counted a vertex's marks at a time.
+    // The swept body's facet there is the plane through the edge containing the sweep: its
+    // normal m = -(n_j·d) n_i + (n_i·d) n_j has m·d = 0 and, a combination of the two faces'
+    // normals with weights > 0, points out of the body. (Next to a face along the sweep the
+    // silhouette's plane is that face's own, listed already.)
+    const PlaneSet awayMask = ~sweep.back & ~parallel & facesMask();
+    uint8_t shared[kMaxFaces][kMaxFaces]; // [swept away][facing against], only those pairs written
+    for (PlaneSet i = awayMask; i != 0; i &= i - 1)
+        for (PlaneSet j = sweep.back; j != 0; j &= j - 1) shared[std::countr_zero(i)][std::countr_zero(j)] = 0;
+    struct FacePair {
+        uint8_t i, j; // swept away, facing against
+    };
+    SmallVector<FacePair, 32> silhouettes; // once each
+    for (const Vertex& v : m_vertices)
+        for (PlaneSet i = v.on & awayMask; i != 0; i &= i - 1)
+            for (PlaneSet j = v.on & sweep.back; j != 0; j &= j - 1) {
+                const auto a = static_cast<uint8_t>(std::countr_zero(i)), b = static_cast<uint8_t>(std::countr_zero(j));
+                if (++shared[a][b] == 2) silhouettes.push_back({a, b});
+            }
+    for (const auto [i, j] : silhouettes) {
+        const Vec3 m = -along[j] * m_planes[i].normal + along[i] * m_planes[j].normal;
+        const PlaneSet both = PlaneSet(1) << i | PlaneSet(1) << j;
+        const Vertex* onEdge = &m_vertices[0];
+        while ((onEdge->on & both) != both) ++onEdge;
+        sweep.planes.push_back(Plane::fromPointNormal(onEdge->p, m));
     }
-    return planes;
+    return sweep;
+}
+
+ConvexBody::Planes ConvexBody::sweepHalfSpaces(const Vec3& wsDirection) const {
+    if (isEmpty()) return {};
+    return sweepFaces(glm::normalize(wsDirection)).planes;
 }
 
 ConvexBody ConvexBody::sweptUntil(const Vec3& wsDirection, const Plane& stop) const {
@@ -233,39 +256,10 @@ ConvexBody ConvexBody::sweptUntil(const Vec3& wsDirection, const Plane& stop) co
     SK_ASSERT(stopAlong > 0.0, "ConvexBody::sweptUntil(): the stop plane must face along the sweep");
     const double eps = tolerance();
 
-    // The swept body's faces (sweepHalfSpaces), then the stop plane. A silhouette next to a
-    // face parallel to the sweep is that face's own plane: left out, so no plane is listed twice.
-    SmallVector<double, kMaxFaces> along; // n·dir per face
-    PlaneSet back = 0, parallel = 0;      // faces facing against the sweep, and along it
-    for (size_t f = 0; f < m_planes.size(); ++f) {
-        along.push_back(glm::dot(m_planes[f].normal, dir));
-        if (!(along[f] > 1e-12)) swept.m_planes.push_back(m_planes[f]);
-        if (along[f] < -1e-12)
-            back |= PlaneSet(1) << f;
-        else if (!(along[f] > 1e-12))
-            parallel |= PlaneSet(1) << f;
-    }
-    // Two faces share an edge when two vertices lie on both: counted a vertex at a time.
-    uint8_t shared[kMaxFaces][kMaxFaces]; // [swept away][facing against], only those pairs written
-    for (PlaneSet i = ~back & ~parallel & facesMask(); i != 0; i &= i - 1)
-        for (PlaneSet j = back; j != 0; j &= j - 1) shared[std::countr_zero(i)][std::countr_zero(j)] = 0;
-    struct FacePair {
-        uint8_t i, j; // swept away, facing against
-    };
-    SmallVector<FacePair, 32> silhouettes; // once each
-    for (const Vertex& v : m_vertices)
-        for (PlaneSet i = v.on & ~back & ~parallel; i != 0; i &= i - 1)
-            for (PlaneSet j = v.on & back; j != 0; j &= j - 1) {
-                const auto a = static_cast<uint8_t>(std::countr_zero(i)), b = static_cast<uint8_t>(std::countr_zero(j));
-                if (++shared[a][b] == 2) silhouettes.push_back({a, b});
-            }
-    for (const auto [i, j] : silhouettes) {
-        const Vec3 m = -along[j] * m_planes[i].normal + along[i] * m_planes[j].normal; // as in sweepHalfSpaces
-        const PlaneSet both = PlaneSet(1) << i | PlaneSet(1) << j;
-        const Vertex* onEdge = &m_vertices[0];
-        while ((onEdge->on & both) != both) ++onEdge;
-        swept.m_planes.push_back(Plane::fromPointNormal(onEdge->p, m));
-    }
+    // The swept body's faces, then the stop plane.
+    const SweepFaces sweep = sweepFaces(dir);
+    for (const Plane& plane : sweep.planes) swept.m_planes.push_back(plane);
+    const PlaneSet back = sweep.back;
     SK_ASSERT(swept.m_planes.size() < kMaxFaces, "ConvexBody::sweptUntil(): a body has at most kMaxFaces faces");
     const size_t stopFace = swept.m_planes.size();
     swept.m_planes.push_back(stop);

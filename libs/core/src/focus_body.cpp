@@ -61,12 +61,7 @@ ConvexBody focusBodyFromVisible(const ConvexBody& visibleScene, const Vec3& wsTo
     // to reach it), then cut by the other five, which the swept body then rarely reaches (a
     // cut that misses costs a dot product a vertex).
     const Aabb box = sceneBoxForFocus(wsSceneBounds);
-    const std::array<Plane, 6> boxPlanes = {{{{-1, 0, 0}, box.min.x},
-                                             {{1, 0, 0}, -box.max.x},
-                                             {{0, -1, 0}, box.min.y},
-                                             {{0, 1, 0}, -box.max.y},
-                                             {{0, 0, -1}, box.min.z},
-                                             {{0, 0, 1}, -box.max.z}}};
+    const std::array<Plane, 6> boxPlanes = boxFaces(box);
     const Vec3 dir = glm::normalize(wsTowardsLight);
     const ConvexBody::Points corners = visibleScene.vertices();
     size_t stop = 0;

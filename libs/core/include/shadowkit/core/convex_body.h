@@ -12,6 +12,7 @@
 #include "shadowkit/core/plane.h"
 #include "shadowkit/core/small_vector.h"
 
+#include <array>
 #include <cstdint>
 #include <span>
 
@@ -86,11 +87,19 @@ private:
     void keepOnlyFaces(PlaneSet candidates);   ///< drops those of the candidate planes that hold no face
     bool adjacent(size_t a, size_t b) const;   ///< whether vertices a and b span an edge
     /// Every face's bit.
+    struct SweepFaces {
+        Planes planes;     ///< sweepHalfSpaces()
+        PlaneSet back = 0; ///< the faces facing against the sweep
+    };
+    SweepFaces sweepFaces(const Vec3& dir) const; ///< the swept body's planes, dir of unit length
     PlaneSet facesMask() const { return m_planes.size() == 64 ? ~PlaneSet(0) : (PlaneSet(1) << m_planes.size()) - 1; }
     void clear(); ///< the empty body
 
     SmallVector<Vertex, 48> m_vertices;
     SmallVector<Plane, kMaxFaces> m_planes; // the faces' planes, outward; bit f of a mark is m_planes[f]
 };
+
+/// The box's six face planes, outward: -x, +x, -y, +y, -z, +z.
+std::array<Plane, 6> boxFaces(const Aabb& box);
 
 } // namespace shadowkit::core
