@@ -8,8 +8,11 @@
 //   setup/still-cached/<technique>/<view>  one still camera: after the first iteration the
 //                                          focus body is the remembered one — the cached path,
 //                                          what a paused frame costs, not a moving one
+//   body/visible/flythrough                the focus body's first half alone, V ∩ S
+//   body/focus/flythrough                  the whole focus body B (V ∩ S, then its sweep)
 //   build/bench/shadowkit_setup_bench [--benchmark_repetitions=5]
 #include "bench_scenes.h"
+#include "shadowkit/core/focus_body.h"
 #include "shadowkit/core/shadow_setup.h"
 #include "shadowkit/scene/camera_path.h"
 
@@ -75,6 +78,24 @@ void setupAlongPath(benchmark::State& state, const Technique& t, bool holdSun) {
     state.counters["frames"] = double(frames.size());
 }
 
+// The parts of a set-up that build the focus body, along the same path (sun moving).
+void bodyAlongPath(benchmark::State& state, bool wholeBody) {
+    std::string error;
+    const std::vector<core::ShadowSetupInputs> frames = pathFrames({"focused", core::Technique::Focused}, false, error);
+    if (frames.empty()) {
+        state.SkipWithError(error.c_str());
+        return;
+    }
+    size_t frame = 0;
+    for (auto _ : state) {
+        const core::ShadowSetupInputs& in = frames[frame];
+        auto body = wholeBody ? core::computeFocusBody(in.camera, in.light, in.wsSceneBounds)
+                              : core::visibleSceneBody(in.camera, in.wsSceneBounds);
+        benchmark::DoNotOptimize(body);
+        frame = (frame + 1) % frames.size();
+    }
+}
+
 void setupStillCached(benchmark::State& state, const Technique& t, const std::string& viewName) {
     const auto resolved = bench::standardView(viewName);
     if (!resolved) {
@@ -95,6 +116,8 @@ void registerAll() {
                 ("setup/" + t.name + (holdSun ? "/flythrough-sun-held" : "/flythrough")).c_str(), setupAlongPath, t,
                 holdSun)
                 ->Unit(benchmark::kMicrosecond);
+    benchmark::RegisterBenchmark("body/visible/flythrough", bodyAlongPath, false)->Unit(benchmark::kMicrosecond);
+    benchmark::RegisterBenchmark("body/focus/flythrough", bodyAlongPath, true)->Unit(benchmark::kMicrosecond);
     for (const Technique& t : techniques())
         for (const char* view : {"perpendicular", "sun-behind", "aerial"})
             benchmark::RegisterBenchmark(("setup/still-cached/" + t.name + "/" + view).c_str(), setupStillCached, t,

@@ -12,6 +12,8 @@
 // when rays leave S through different faces — here the sweep is exact (ConvexBody).
 #include "shadowkit/core/focus_body.h"
 
+#include "shadowkit/core/convex_body_structure.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -48,10 +50,23 @@ ConvexBody visibleSceneBody(const PerspectiveCamera& camera, const Aabb& wsScene
     if (last && sameCamera(last->first.first, camera) && last->first.second.min == wsSceneBounds.min &&
         last->first.second.max == wsSceneBounds.max)
         return last->second;
-    ConvexBody visible = ConvexBody::fromAabb(sceneBoxForFocus(wsSceneBounds));
-    visible.clip(camera.wsFrustumPlanes());
-    last.emplace(std::pair{camera, wsSceneBounds}, visible);
-    return visible;
+    // Else re-solved from an earlier frame's structure where it still holds: the box's six planes
+    // and the frustum's six define it, in that order.
+    const Aabb box = sceneBoxForFocus(wsSceneBounds);
+    const std::array<Plane, 6> boxPlanes = boxFaces(box), frustum = camera.wsFrustumPlanes();
+    SmallVector<Plane, 12> definition;
+    for (const Plane& p : boxPlanes) definition.push_back(p);
+    for (const Plane& p : frustum) definition.push_back(p);
+    const std::span<const Plane> planes(definition.data(), definition.size());
+    thread_local ConvexBodyStructures structures;
+    std::optional<ConvexBody> visible = structures.resolve(planes);
+    if (!visible) {
+        ConvexBody clipped = ConvexBody::fromAabb(box);
+        clipped.clip(frustum);
+        visible = structures.remember(std::move(clipped), planes);
+    }
+    last.emplace(std::pair{camera, wsSceneBounds}, *visible);
+    return *visible;
 }
 
 ConvexBody focusBodyFromVisible(const ConvexBody& visibleScene, const Vec3& wsTowardsLight, const Aabb& wsSceneBounds) {

@@ -76,7 +76,8 @@ public:
     double volume() const; ///< cubic metres (the divergence theorem over the faces)
 
 private:
-    using PlaneSet = uint64_t; ///< bit f: on the plane of face f
+    friend class ConvexBodyStructure; // re-solves a body from its marks (convex_body_structure.h)
+    using PlaneSet = uint64_t;        ///< bit f: on the plane of face f
     struct Vertex {
         Vec3 p;
         PlaneSet on = 0;
