@@ -169,6 +169,8 @@ core::Status applySkin(const tinygltf::Model& model, const tinygltf::Primitive& 
                 weightSum[i] += weight;
             }
     }
+    // Each vertex's handedness under its pose: -1 where its blended joints mirror it.
+    std::vector<int> handedness(mesh.vertices.size(), 1);
     for (size_t i = 0; i < mesh.vertices.size(); ++i) {
         if (!(weightSum[i] > 0.0) || !std::isfinite(weightSum[i])) continue; // unweighted: as bound
         const glm::dmat4 m = blend[i] / weightSum[i];
@@ -178,11 +180,19 @@ core::Status applySkin(const tinygltf::Model& model, const tinygltf::Primitive& 
             return core::makeError(where + ": vertex " + std::to_string(i) + " is skinned to a non-finite position");
         v.position = glm::vec3(p);
         const glm::dmat3 linear(m);
-        if (std::abs(glm::determinant(linear)) > 1e-12) {
+        const double det = glm::determinant(linear);
+        if (det < 0.0) handedness[i] = -1;
+        if (std::abs(det) > 1e-12) {
             const glm::dvec3 n = glm::inverseTranspose(linear) * glm::dvec3(v.normal);
             if (glm::length(n) > 0.0) v.normal = glm::vec3(glm::normalize(n));
         }
     }
+    // A pose that mirrors turns a triangle's winding as a mirrored node does (gltf_read.cpp), while
+    // its normals, moved by the inverse transpose, keep pointing out: so a triangle whose corners
+    // are mostly mirrored is reversed, and its front stays the side its normals face.
+    for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3)
+        if (handedness[mesh.indices[t]] + handedness[mesh.indices[t + 1]] + handedness[mesh.indices[t + 2]] < 0)
+            std::swap(mesh.indices[t + 1], mesh.indices[t + 2]);
     mesh.computeBounds();
     return core::Ok{};
 }

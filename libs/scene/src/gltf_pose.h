@@ -32,7 +32,8 @@ core::Status applyMorphTargets(const tinygltf::Model& model, const tinygltf::Pri
 
 /// The primitive's vertices (`mesh`, as convertPrimitive read them) moved by their joints:
 /// p' = Σ w_k · joint[j_k] · p over every JOINTS_n / WEIGHTS_n set, normals by the inverse
-/// transpose of the blend; bounds recomputed.
+/// transpose of the blend; a triangle whose corners are mostly mirrored by their blends
+/// (negative determinant) reversed, as a mirrored node's are; bounds recomputed.
 core::Status applySkin(const tinygltf::Model& model, const tinygltf::Primitive& prim,
                        const std::vector<glm::dmat4>& joints, Mesh& mesh, const std::string& where);
 

@@ -430,6 +430,50 @@ TEST(GltfReadTest, ASkinnedMeshIsPlacedByItsJointsAtTheRestPose) {
     }
 }
 
+TEST(GltfReadTest, MirroringSkinsKeepTheirFacesOutward) {
+    // As MirroredNodesKeepTheirFacesOutward, for a skinned triangle: its one joint mirrored in x,
+    // or mirrored twice (no mirror), every corner bound to it alone. The pose turns the winding
+    // where it mirrors while the normals (the inverse transpose) keep pointing out: in the world
+    // every triangle must wind counter-clockwise about its own normal.
+    std::vector<unsigned char> b;
+    append<float>(b, {0, 0, 0, 1, 0, 0, 0, 0, -1});           // POSITION: 36 at 0
+    append<uint8_t>(b, {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0}); // JOINTS_0: 12 at 36
+    append<float>(b, {1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0});   // WEIGHTS_0: 48 at 48
+    const auto s = loadWritten("sk_mirrored_skin.gltf", R"({"asset":{"version":"2.0"},"scene":0,
+        "scenes":[{"nodes":[0,1,2,3]}],
+        "nodes":[{"mesh":0,"skin":0},{"mesh":0,"skin":1},{"scale":[-1,1,1],"translation":[5,0,0]},
+                 {"scale":[-1,-1,1],"translation":[9,0,0]}],
+        "skins":[{"joints":[2]},{"joints":[3]}],
+        "meshes":[{"primitives":[{"attributes":{"POSITION":0,"JOINTS_0":1,"WEIGHTS_0":2}}]}],
+        "accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3"},
+                     {"bufferView":1,"componentType":5121,"count":3,"type":"VEC4"},
+                     {"bufferView":2,"componentType":5126,"count":3,"type":"VEC4"}],
+        "bufferViews":[{"buffer":0,"byteLength":36},{"buffer":0,"byteOffset":36,"byteLength":12},
+                       {"buffer":0,"byteOffset":48,"byteLength":48}],
+        "buffers":[{"byteLength":96,"uri":"data:application/octet-stream;base64,)" +
+                                                            base64(b) + "\"}]}");
+    ASSERT_TRUE(s) << s.error();
+    size_t triangles = 0;
+    for (const scene::MeshBatch& batch : s->batches) {
+        const scene::Mesh& mesh = s->meshes[batch.mesh];
+        for (const glm::mat4& worldFromObject : batch.worldFromObject) {
+            const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(worldFromObject)));
+            for (size_t t = 0; t < mesh.triangleCount(); ++t) {
+                glm::vec3 ws[3], wsNormal(0.0f);
+                for (int k = 0; k < 3; ++k) {
+                    const scene::Vertex& v = mesh.vertices[mesh.indices[3 * t + size_t(k)]];
+                    ws[k] = glm::vec3(worldFromObject * glm::vec4(v.position, 1.0f));
+                    wsNormal += normalMatrix * v.normal;
+                }
+                EXPECT_GT(glm::dot(glm::cross(ws[1] - ws[0], ws[2] - ws[0]), wsNormal), 0.0f)
+                    << "the triangle near x = " << ws[0].x;
+                ++triangles;
+            }
+        }
+    }
+    EXPECT_EQ(triangles, 2u);
+}
+
 TEST(GltfReadTest, ASkinThatCannotBePosedIsRefusedInOneLine) {
     for (const auto& [what, s, expected] :
          {std::tuple{"one inverse bind matrix for two joints", loadSkinned("sk_skin.gltf", 1),
