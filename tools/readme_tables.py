@@ -486,7 +486,7 @@ def setup(paths):
     names = []
     for name in runs:  # benchmark order: the techniques as the bench registers them
         technique = name.split("/")[1]
-        if name.startswith("setup/still-cached") or technique in names:
+        if not name.startswith("setup/") or name.startswith("setup/still-cached") or technique in names:
             continue
         names.append(technique)
     for technique in names:
@@ -498,6 +498,12 @@ def setup(paths):
         if technique.startswith("csm-"):
             label = f"`csm`, {technique[4:]} splits"
         print(f"| {label} | " + " | ".join(cells) + " |")
+    parts = {"visible": "the focus body's V ∩ S alone (`visibleSceneBody`)",
+             "focus": "the whole focus body B alone (`computeFocusBody`)"}
+    for part, label in parts.items():
+        times, unit, _ = runs.get(f"body/{part}/flythrough", ([], "us", {}))
+        if times:
+            print(f"| {label} | {spread(times, to_us[unit])} | – |")
 
 
 def culling(paths):
