@@ -17,8 +17,8 @@ namespace shadowkit::core {
 namespace {
 
 // Strictly inside means farther from a plane than this times the definition's largest distance
-// from the origin: hundreds of times the clipping tolerance (ConvexBody::tolerance, 1e-12 of the
-// body's size and distance from the origin), so a vertex accepted here is one that clipping
+// from the origin: about a thousand times the clipping tolerance (ConvexBody::tolerance, 1e-12 of
+// the body's size and distance from the origin), so a vertex accepted here is one that clipping
 // afresh would also have found on its three planes only.
 constexpr double kStrictMargin = 1e-9;
 // Three planes whose normals span less than this volume meet at an ill-conditioned point.

@@ -24,13 +24,14 @@ namespace shadowkit::core {
 ///
 /// The vertices are solved with their three planes in an order fixed by the planes' values, so
 /// a body resolved from a remembered structure and the same body clipped afresh and resolved by
-/// its own structure are equal to the last bit.
+/// its own structure are equal to the last bit. (A body too near a degenerate configuration to
+/// be resolved by its own structure is not remembered: the caller clips it every time.)
 class ConvexBodyStructure {
 public:
     /// Remembers `body` as the intersection of `definition`'s half-spaces; each face must be a
     /// copy of one of those planes. False, and nothing remembered, for an empty body, a face not
     /// in the definition, a vertex on more (or fewer) than three faces — a body whose corners are
-    /// not all simple — or a definition of 256 planes or more.
+    /// not all simple — or a definition of 255 planes or more.
     bool remember(const ConvexBody& body, std::span<const Plane> definition);
     /// Whether a structure is held.
     bool holds() const { return !m_vertices.empty(); }

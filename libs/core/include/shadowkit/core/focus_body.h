@@ -16,15 +16,16 @@ namespace shadowkit::core {
 /// zero-size scene still gives a body with volume.
 ///
 /// Each thread keeps its last result and returns it again for exactly the same camera, light
-/// and box: a set-up search tries many warps of one frame's body (error_driven.h). For new
-/// inputs it re-solves the body from the structure of an earlier frame's while that provably
-/// still holds (ConvexBodyStructure: the same triples of planes at its corners, each strictly
-/// inside the others), which a moving camera and sun allow most frames; the result is the same,
-/// to the last bit, as the body built afresh.
+/// and box: a set-up search tries many warps of one frame's body (error_driven.h). Its first
+/// half, V ∩ S, carries over from earlier frames (visibleSceneBody).
 ConvexBody computeFocusBody(const PerspectiveCamera& camera, const DirectionalLight& light, const Aabb& wsSceneBounds);
 
 /// V ∩ S, the first half of computeFocusBody: the part of the (padded) scene box the camera
-/// sees. Empty when the frustum misses the box.
+/// sees. Empty when the frustum misses the box. Each thread keeps its last result for exactly the
+/// same camera and box; for new ones it re-solves the body from an earlier frame's structure
+/// while that provably still holds (ConvexBodyStructure: the same triples of planes at its
+/// corners, each strictly inside the others), which a moving camera allows most frames; the
+/// result is the same, to the last bit, as the body clipped afresh.
 ConvexBody visibleSceneBody(const PerspectiveCamera& camera, const Aabb& wsSceneBounds);
 
 /// The second half: B from a given V ∩ S (its sweep towards the light, cut by the scene box).
