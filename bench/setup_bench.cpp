@@ -62,7 +62,9 @@ std::vector<core::ShadowSetupInputs> pathFrames(const Technique& t, bool holdSun
     return frames;
 }
 
-void setupAlongPath(benchmark::State& state, const Technique& t, bool holdSun) {
+// Each iteration `work(frame)` on the next of the path's frames, round and round.
+template <class Work>
+void alongPath(benchmark::State& state, const Technique& t, bool holdSun, Work work) {
     std::string error;
     const std::vector<core::ShadowSetupInputs> frames = pathFrames(t, holdSun, error);
     if (frames.empty()) {
@@ -71,29 +73,23 @@ void setupAlongPath(benchmark::State& state, const Technique& t, bool holdSun) {
     }
     size_t frame = 0;
     for (auto _ : state) {
-        auto setup = core::computeShadowSetup(frames[frame]);
-        benchmark::DoNotOptimize(setup);
+        auto result = work(frames[frame]);
+        benchmark::DoNotOptimize(result);
         frame = (frame + 1) % frames.size();
     }
     state.counters["frames"] = double(frames.size());
 }
 
+void setupAlongPath(benchmark::State& state, const Technique& t, bool holdSun) {
+    alongPath(state, t, holdSun, [](const core::ShadowSetupInputs& in) { return core::computeShadowSetup(in); });
+}
+
 // The parts of a set-up that build the focus body, along the same path (sun moving).
 void bodyAlongPath(benchmark::State& state, bool wholeBody) {
-    std::string error;
-    const std::vector<core::ShadowSetupInputs> frames = pathFrames({"focused", core::Technique::Focused}, false, error);
-    if (frames.empty()) {
-        state.SkipWithError(error.c_str());
-        return;
-    }
-    size_t frame = 0;
-    for (auto _ : state) {
-        const core::ShadowSetupInputs& in = frames[frame];
-        auto body = wholeBody ? core::computeFocusBody(in.camera, in.light, in.wsSceneBounds)
-                              : core::visibleSceneBody(in.camera, in.wsSceneBounds);
-        benchmark::DoNotOptimize(body);
-        frame = (frame + 1) % frames.size();
-    }
+    alongPath(state, {"focused", core::Technique::Focused}, false, [wholeBody](const core::ShadowSetupInputs& in) {
+        return wholeBody ? core::computeFocusBody(in.camera, in.light, in.wsSceneBounds)
+                         : core::visibleSceneBody(in.camera, in.wsSceneBounds);
+    });
 }
 
 void setupStillCached(benchmark::State& state, const Technique& t, const std::string& viewName) {

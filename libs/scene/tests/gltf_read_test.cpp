@@ -235,6 +235,34 @@ TEST(GltfReadTest, ADeepTreeOfNodesComposesEveryTransform) {
     EXPECT_NEAR(s->batches[0].worldFromObject[0][3].x, 300.0f, 1e-3f);
 }
 
+namespace {
+
+// Every triangle placed in the world must wind counter-clockwise about its own normal (the
+// normal matrix of its instance applied), or a pass culling back faces would drop the side that
+// faces out. Returns how many triangles were placed.
+size_t expectEveryTriangleFacesOutward(const scene::Scene& scene) {
+    size_t triangles = 0;
+    for (const scene::MeshBatch& batch : scene.batches) {
+        const scene::Mesh& mesh = scene.meshes[batch.mesh];
+        for (const glm::mat4& worldFromObject : batch.worldFromObject) {
+            const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(worldFromObject)));
+            for (size_t t = 0; t < mesh.triangleCount(); ++t, ++triangles) {
+                glm::vec3 ws[3], wsNormal(0.0f);
+                for (int k = 0; k < 3; ++k) {
+                    const scene::Vertex& v = mesh.vertices[mesh.indices[3 * t + size_t(k)]];
+                    ws[k] = glm::vec3(worldFromObject * glm::vec4(v.position, 1.0f));
+                    wsNormal += normalMatrix * v.normal;
+                }
+                EXPECT_GT(glm::dot(glm::cross(ws[1] - ws[0], ws[2] - ws[0]), wsNormal), 0.0f)
+                    << "the triangle near x = " << ws[0].x;
+            }
+        }
+    }
+    return triangles;
+}
+
+} // namespace
+
 TEST(GltfReadTest, MirroredNodesKeepTheirFacesOutward) {
     // glTF: a node whose transform has a negative determinant reverses its mesh's winding. One
     // triangle facing up (counter-clockwise from above), placed plainly, mirrored in x, and
@@ -251,25 +279,7 @@ TEST(GltfReadTest, MirroredNodesKeepTheirFacesOutward) {
         base64(triangle) + "\"}]}";
     const auto scene = loadWritten("sk_mirrored.gltf", text);
     ASSERT_TRUE(scene) << scene.error();
-    size_t instances = 0;
-    for (const scene::MeshBatch& batch : scene->batches) {
-        const scene::Mesh& mesh = scene->meshes[batch.mesh];
-        for (const glm::mat4& worldFromObject : batch.worldFromObject) {
-            const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(worldFromObject)));
-            for (size_t t = 0; t < mesh.triangleCount(); ++t) {
-                glm::vec3 ws[3], wsNormal(0.0f);
-                for (int k = 0; k < 3; ++k) {
-                    const scene::Vertex& v = mesh.vertices[mesh.indices[3 * t + size_t(k)]];
-                    ws[k] = glm::vec3(worldFromObject * glm::vec4(v.position, 1.0f));
-                    wsNormal += normalMatrix * v.normal;
-                }
-                EXPECT_GT(glm::dot(glm::cross(ws[1] - ws[0], ws[2] - ws[0]), wsNormal), 0.0f)
-                    << "instance at x = " << worldFromObject[3].x;
-            }
-            ++instances;
-        }
-    }
-    EXPECT_EQ(instances, 3u);
+    EXPECT_EQ(expectEveryTriangleFacesOutward(*scene), 3u) << "one triangle per node";
     EXPECT_EQ(scene->batches.size(), 2u) << "plain and doubly mirrored share a batch; mirrored has its own";
 }
 
@@ -453,25 +463,7 @@ TEST(GltfReadTest, MirroringSkinsKeepTheirFacesOutward) {
         "buffers":[{"byteLength":96,"uri":"data:application/octet-stream;base64,)" +
                                                             base64(b) + "\"}]}");
     ASSERT_TRUE(s) << s.error();
-    size_t triangles = 0;
-    for (const scene::MeshBatch& batch : s->batches) {
-        const scene::Mesh& mesh = s->meshes[batch.mesh];
-        for (const glm::mat4& worldFromObject : batch.worldFromObject) {
-            const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(worldFromObject)));
-            for (size_t t = 0; t < mesh.triangleCount(); ++t) {
-                glm::vec3 ws[3], wsNormal(0.0f);
-                for (int k = 0; k < 3; ++k) {
-                    const scene::Vertex& v = mesh.vertices[mesh.indices[3 * t + size_t(k)]];
-                    ws[k] = glm::vec3(worldFromObject * glm::vec4(v.position, 1.0f));
-                    wsNormal += normalMatrix * v.normal;
-                }
-                EXPECT_GT(glm::dot(glm::cross(ws[1] - ws[0], ws[2] - ws[0]), wsNormal), 0.0f)
-                    << "the triangle near x = " << ws[0].x;
-                ++triangles;
-            }
-        }
-    }
-    EXPECT_EQ(triangles, 2u);
+    EXPECT_EQ(expectEveryTriangleFacesOutward(*s), 2u) << "one triangle per skinned node";
 }
 
 TEST(GltfReadTest, ASkinThatCannotBePosedIsRefusedInOneLine) {
