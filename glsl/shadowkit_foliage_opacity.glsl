@@ -27,8 +27,19 @@
 // absorbance is darker than the mean transmittance (measured: a half-covered card stacked on
 // another let through 0.17 of the light averaged as absorbance, 0.25 — the truth — averaged as
 // transmittance). The opaque casters stay in the depth map; the two multiply (skShadowMap).
+//
+// The layers are thin at the front, where a receiver inside a canopy lies: there its share of a
+// layer stands for the leaves in front of it, and the thinner the layer, the less a leaf behind
+// it counts as one in front (chosen on the leafy forest's six views; docs/materials.md).
 #ifndef SK_OPACITY_LAYER_EDGES
-#define SK_OPACITY_LAYER_EDGES vec4(1.0, 3.0, 6.0, 12.0)
+#define SK_OPACITY_LAYER_EDGES vec4(0.3, 1.5, 5.0, 12.0)
+#endif
+// The lookup's own bias, in texels of the map towards the light. A texel holds its first leaf's
+// depth at the texel's centre, so a receiver on a leaf tilted against the light lies up to half a
+// texel times the tilt's slope behind it, and without a bias took a share of its own leaf's shade:
+// acne, in fractions (a sunlit card 45° to the light read 0.93 of the light where it is all lit).
+#ifndef SK_OPACITY_BIAS_TEXELS
+#define SK_OPACITY_BIAS_TEXELS 1.5
 #endif
 // A leaf covering a texel whole lets this much through it: 1 %.
 #ifndef SK_OPACITY_MAX_COVERAGE
@@ -124,13 +135,14 @@ float skOpacityTransmittanceAt(int layer, vec2 uv, float depth, float metresPerD
 // lookup's cost, for soft_mae within 0.0004 of this one's on every view of the leafy forest.
 float skFoliageTransmittance(int layer, mat4 textureFromWorld, vec4 linearDepthFromWorld, SkShadowOptions o, vec3 ws) {
     vec4 t;
-    const vec3 uvz = skShadowCoordinates(textureFromWorld, linearDepthFromWorld, true, ws, t);
+    vec3 uvz = skShadowCoordinates(textureFromWorld, linearDepthFromWorld, true, ws, t);
     if (t.w <= 0.0 || any(lessThan(uvz.xy, vec2(0.0))) || any(greaterThan(uvz.xy, vec2(1.0)))) return 1.0;
     const float metresPerDepth = 1.0 / max(length(linearDepthFromWorld.xyz), 1e-30);
     mat2 uvFromDisk;
     float depthPerMetre, metresPerTexel;
-    if (o.filterKind != SK_FILTER_PCSS || !(o.lightTanHalfAngle > 0.0) ||
-        !skSunDiskInMap(textureFromWorld, linearDepthFromWorld, o, t, uvFromDisk, depthPerMetre, metresPerTexel))
+    const bool footprint = skSunDiskInMap(textureFromWorld, linearDepthFromWorld, o, t, uvFromDisk, depthPerMetre, metresPerTexel);
+    uvz.z -= SK_OPACITY_BIAS_TEXELS * metresPerTexel / metresPerDepth; // 0 where the map has no footprint here
+    if (o.filterKind != SK_FILTER_PCSS || !(o.lightTanHalfAngle > 0.0) || !footprint)
         return skOpacityTransmittanceAt(layer, uvz.xy, uvz.z, metresPerDepth);
     const float widestMetres = o.poissonRadiusTexels * metresPerTexel;
     const int taps = max(o.filterTaps, 1);
