@@ -77,14 +77,24 @@ float skLeavesMeanMetres(vec4 mass, vec4 share) {
 
 #ifdef SK_SHADOW_OPACITY
 // The caller names three sampler2DArrays laid out as the depth maps: the layers' transmittance
-// (RGBA, GL_LINEAR; 1 where no leaf is), the first leaf's linear depth (R, GL_NEAREST; 1 where
-// no leaf covers the texel) and the layers prefiltered (RG, mipmapped, GL_LINEAR_MIPMAP_LINEAR:
-// per texel A = −ln T and A × the leaves' depth; gl's opacity_prefilter.frag is the model),
-// and when the lookup applies:
+// (RGBA; 1 where no leaf is) and the first leaf's linear depth (R; 1 where no leaf covers the
+// texel), both read texel by texel, and the layers prefiltered (RG, mipmapped,
+// GL_LINEAR_MIPMAP_LINEAR: per texel A = −ln T and A × the leaves' depth; gl's
+// opacity_prefilter.frag is the model), and when the lookup applies:
 //   #define SK_SHADOW_OPACITY              myOpacityLayers
 //   #define SK_SHADOW_OPACITY_FIRST        myOpacityFirst
 //   #define SK_SHADOW_OPACITY_PREFILTERED  myOpacityPrefiltered
 //   #define SK_SHADOW_OPACITY_ENABLED  (myFoliageOpacity != 0)   (default: always)
+
+// The texel at (u, v) of map `layer`. The layers and the first leaf's depth are read texel by
+// texel (texelFetch, whatever the samplers' filters): each texel's layers are measured from its
+// own first leaf, and a receiver's layers blended with a neighbour's, measured from another depth,
+// put leaves where its own texel has none (bilinear layers until 2026-12-01: the cascades' mean
+// `soft_mae` 0.0331 against 0.0323 read texel by texel; docs/materials.md).
+ivec3 skOpacityTexel(int layer, vec2 uv) {
+    const ivec2 size = textureSize(SK_SHADOW_OPACITY_FIRST, 0).xy;
+    return ivec3(clamp(ivec2(floor(uv * vec2(size))), ivec2(0), size - 1), layer);
+}
 
 // The leaves in front of a receiver at linear depth `depth` at one point (u, v) of map `layer`,
 // `metresPerDepth` metres per unit of depth: their absorbance, −ln T (0 where none is), and in
@@ -92,11 +102,11 @@ float skLeavesMeanMetres(vec4 mass, vec4 share) {
 // absorbance and taken at its middle.
 float skLeavesInFront(int layer, vec2 uv, float depth, float metresPerDepth, out float metresAway) {
     metresAway = 0.0;
-    const float first = texture(SK_SHADOW_OPACITY_FIRST, vec3(uv, float(layer))).r;
-    const float metres = (depth - first) * metresPerDepth;
+    const ivec3 texel = skOpacityTexel(layer, uv);
+    const float metres = (depth - texelFetch(SK_SHADOW_OPACITY_FIRST, texel, 0).r) * metresPerDepth;
     if (!(metres > 0.0)) return 0.0; // in front of every leaf, or none here
     vec4 share;
-    const vec4 mass = skLayerAbsorbanceBefore(texture(SK_SHADOW_OPACITY, vec3(uv, float(layer))), metres, share);
+    const vec4 mass = skLayerAbsorbanceBefore(texelFetch(SK_SHADOW_OPACITY, texel, 0), metres, share);
     const float total = dot(mass, vec4(1.0));
     if (!(total > 0.0)) return 0.0;
     metresAway = metres - skLeavesMeanMetres(mass, share);
@@ -108,10 +118,10 @@ float skLeavesInFront(int layer, vec2 uv, float depth, float metresPerDepth, out
 // has a share of 0 or 1, so that is the product of the layers wholly in front times one power:
 // a logarithm and an exponential per tap of the disk where the sum took five.
 float skOpacityTransmittanceAt(int layer, vec2 uv, float depth, float metresPerDepth) {
-    const float first = texture(SK_SHADOW_OPACITY_FIRST, vec3(uv, float(layer))).r;
-    const float metres = (depth - first) * metresPerDepth;
+    const ivec3 texel = skOpacityTexel(layer, uv);
+    const float metres = (depth - texelFetch(SK_SHADOW_OPACITY_FIRST, texel, 0).r) * metresPerDepth;
     if (!(metres > 0.0)) return 1.0; // in front of every leaf, or none here
-    const vec4 layers = max(texture(SK_SHADOW_OPACITY, vec3(uv, float(layer))), vec4(1e-6));
+    const vec4 layers = max(texelFetch(SK_SHADOW_OPACITY, texel, 0), vec4(1e-6));
     const vec4 share = skLayerShareBefore(metres);
     const vec4 whole = vec4(greaterThanEqual(share, vec4(1.0)));
     const vec4 inside = vec4(greaterThan(share, vec4(0.0))) - whole; // one-hot, or none
@@ -125,14 +135,15 @@ float skOpacityTransmittanceAt(int layer, vec2 uv, float depth, float metresPerD
 // gradient's length is 1 / the range in metres). With PCSS and a sun of some size, skPcss's two
 // steps on the layers: the leaves' distance in front of the receiver, then the mean transmittance
 // over the sun's disk at that distance, o.filterTaps taps of a Vogel disk (one, the receiver's own
-// point, where the disk is within a quarter texel); otherwise at the receiver's own point. The distance is that of the leaves in front of the receiver in its own
-// texel, or where there are none — a gap in a canopy, the ground just beside its shadow — the
-// absorbance-weighted mean depth of the leaves over the widest disk that can matter, one fetch of
-// the prefiltered layers (opacity_prefilter.frag). Without that search such a receiver was drawn
-// wholly lit (measured on the leafy forest: penumbrae at 0.65 of the truth's width, 35 % of the
-// ground's penumbra pixels lit whole; docs/materials.md). The search used to take o.filterTaps
-// taps of the layers too, counting only leaves whose cone reaches the receiver: most of the
-// lookup's cost, for soft_mae within 0.0004 of this one's on every view of the leafy forest.
+// point, where the disk lies inside its texel); otherwise at the receiver's own point. The
+// distance is that of the leaves in front of the receiver in its own texel, or where there are
+// none — a gap in a canopy, the ground just beside its shadow — the absorbance-weighted mean depth
+// of the leaves over the widest disk that can matter, one fetch of the prefiltered layers
+// (opacity_prefilter.frag). Without that search such a receiver was drawn wholly lit (measured on
+// the leafy forest: penumbrae at 0.65 of the truth's width, 35 % of the ground's penumbra pixels
+// lit whole; docs/materials.md). The search used to take o.filterTaps taps of the layers too,
+// counting only leaves whose cone reaches the receiver: most of the lookup's cost, for soft_mae
+// within 0.0004 of this one's on every view of the leafy forest.
 float skFoliageTransmittance(int layer, mat4 textureFromWorld, vec4 linearDepthFromWorld, SkShadowOptions o, vec3 ws) {
     vec4 t;
     vec3 uvz = skShadowCoordinates(textureFromWorld, linearDepthFromWorld, true, ws, t);
@@ -162,14 +173,18 @@ float skFoliageTransmittance(int layer, mat4 textureFromWorld, vec4 linearDepthF
         if (!(awayMetres > 0.0)) return 1.0; // the leaves there lie behind the receiver
     }
 
-    // 2. The mean transmittance over the cone's disk at that distance. A disk within a quarter of
-    // the map's finest texel lies inside one cell of the bilinear layers or just across its edge,
-    // and over a disk inside one cell a bilinear function's mean is its value at the centre (the
-    // uv term averages out): so one tap, the receiver's own point, whose leaves step 1 has read,
-    // exp(−absorbance) = Π T^share. That is most receivers inside a canopy, a metre or a few below
-    // its leaves, where the disk is millimetres wide.
+    // 2. The mean transmittance over the cone's disk at that distance. The layers are constant
+    // over a texel, so over a disk inside the receiver's own texel their mean is that texel's:
+    // one tap, the receiver's own point, whose leaves step 1 has read, exp(−absorbance) =
+    // Π T^share — exactly. That is most receivers inside a canopy, a metre or a few below its
+    // leaves, where the disk is millimetres wide. (The disk's reach along u is its radius times
+    // the length of uvFromDisk's first row, along v its second's.)
     const float diskMetres = min(awayMetres * o.lightTanHalfAngle, widestMetres);
-    if (diskMetres < 0.25 * metresPerTexel) return exp(-ownAbsorbance);
+    const vec2 size = vec2(textureSize(SK_SHADOW_OPACITY_FIRST, 0).xy);
+    const vec2 inTexel = fract(uvz.xy * size);
+    const vec2 uvPerMetre = vec2(length(vec2(uvFromDisk[0].x, uvFromDisk[1].x)), length(vec2(uvFromDisk[0].y, uvFromDisk[1].y)));
+    const vec2 reach = diskMetres * size * uvPerMetre; // in texels
+    if (all(lessThan(reach, min(inTexel, 1.0 - inTexel)))) return exp(-ownAbsorbance);
     const float angle = skPixelAngle();
     float lit = 0.0;
     vec2 direction = vec2(cos(angle), sin(angle));

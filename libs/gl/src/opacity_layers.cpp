@@ -35,7 +35,7 @@ core::Status OpacityLayers::prepare(int size, int layers) {
     while (glGetError() != GL_NO_ERROR) {
     }
     m_firstDepth = createMapLayers(GL_R32F, size, layers, GL_NEAREST);
-    m_layers = createMapLayers(GL_RGBA16F, size, layers, GL_LINEAR);
+    m_layers = createMapLayers(GL_RGBA16F, size, layers, GL_NEAREST); // read texel by texel, as the first depth
     m_prefiltered = createMapLayers(GL_RG16F, size, layers, GL_LINEAR, /*mipmapped=*/true);
     if (glGetError() == GL_OUT_OF_MEMORY) {
         m_firstDepth.reset(), m_layers.reset(), m_prefiltered.reset();
