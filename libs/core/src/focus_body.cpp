@@ -73,8 +73,9 @@ ConvexBody focusBodyFromVisible(const ConvexBody& visibleScene, const Vec3& wsTo
     if (visibleScene.isEmpty()) return {};
     // (V ∩ S swept) ∩ S: swept as far as the box's face that the sweep leaves it through
     // first (the least, over the faces facing the light, of the farthest any vertex travels
-    // to reach it), then cut by the other five, which the swept body then rarely reaches (a
-    // cut that misses costs a dot product a vertex).
+    // to reach it), then cut by the other faces facing the light, which the swept body then
+    // rarely reaches. A face facing away cannot cut it: V ∩ S lies inside, n·p <= d, and the
+    // sweep only lowers n·(p + t·dir) for t >= 0 when n·dir <= 0.
     const Aabb box = sceneBoxForFocus(wsSceneBounds);
     const std::array<Plane, 6> boxPlanes = boxFaces(box);
     const Vec3 dir = glm::normalize(wsTowardsLight);
@@ -91,7 +92,7 @@ ConvexBody focusBodyFromVisible(const ConvexBody& visibleScene, const Vec3& wsTo
     ConvexBody body = visibleScene.sweptUntil(dir, boxPlanes[stop]);
     ConvexBody::Planes others;
     for (size_t f = 0; f < boxPlanes.size(); ++f)
-        if (f != stop) others.push_back(boxPlanes[f]);
+        if (f != stop && glm::dot(boxPlanes[f].normal, dir) > 0.0) others.push_back(boxPlanes[f]);
     body.clip(std::span<const Plane>(others.data(), others.size()));
     return body;
 }

@@ -170,7 +170,8 @@ Result<ShadowSetup> computeShadowSetup(const ShadowSetupInputs& inputs) {
         view.linearDepthFromEyeRelative = view.linearDepthFromWorld;
     }
     setup->wsEye = Vec3(0.0);
-    return rebased(*setup, -wsEye);
+    rebase(*setup, -wsEye); // in place, not into a copy of the whole set-up (views, body)
+    return setup;
 }
 
 void setEyeRelativeFromWorld(ShadowSetup& setup, const Vec3& wsEye) {
@@ -184,21 +185,25 @@ void setEyeRelativeFromWorld(ShadowSetup& setup, const Vec3& wsEye) {
     setup.wsEye = wsEye;
 }
 
-ShadowSetup rebased(const ShadowSetup& setup, const Vec3& wsOrigin) {
-    ShadowSetup out = setup;
+void rebase(ShadowSetup& setup, const Vec3& wsOrigin) {
     // q = p − wsOrigin, and p − wsEye = q − (wsEye − wsOrigin): the eye in the new coordinates.
     const Vec3 qsEye = setup.wsEye - wsOrigin;
     const Mat4 eyeRelativeFromQ = glm::translate(Mat4(1.0), -qsEye);
-    for (ShadowView& view : out.views) {
+    for (ShadowView& view : setup.views) {
         view.lightFromWorld = view.lightFromEyeRelative * eyeRelativeFromQ;
         view.clipFromWorld = view.clipFromEyeRelative * eyeRelativeFromQ;
         const Vec4& row = view.linearDepthFromEyeRelative;
         view.linearDepthFromWorld = Vec4(Vec3(row), row.w - glm::dot(Vec3(row), qsEye));
     }
-    out.body.translate(-wsOrigin);
-    if (out.clipmap) out.clipmap->wsGridOrigin -= wsOrigin;
-    out.wsLightPosition -= wsOrigin;
-    out.wsEye = qsEye;
+    setup.body.translate(-wsOrigin);
+    if (setup.clipmap) setup.clipmap->wsGridOrigin -= wsOrigin;
+    setup.wsLightPosition -= wsOrigin;
+    setup.wsEye = qsEye;
+}
+
+ShadowSetup rebased(const ShadowSetup& setup, const Vec3& wsOrigin) {
+    ShadowSetup out = setup;
+    rebase(out, wsOrigin);
     return out;
 }
 

@@ -274,6 +274,8 @@ void setEyeRelativeFromWorld(ShadowSetup& setup, const Vec3& wsEye);
 /// an origin near the eye (a renderer's scene origin, a tile's centre) loses nothing however
 /// far both are from the world's origin.
 ShadowSetup rebased(const ShadowSetup& setup, const Vec3& wsOrigin);
+/// The same in place.
+void rebase(ShadowSetup& setup, const Vec3& wsOrigin);
 
 /// Checks the options that do not depend on the camera, light or scene (map size, LiSPSM,
 /// TSM and cascade options): what a front end can check before it has loaded a scene.
