@@ -33,7 +33,12 @@ Mat4 PerspectiveCamera::clipFromView() const {
 }
 
 std::array<Vec3, 8> PerspectiveCamera::wsFrustumCorners() const {
-    const Mat4 worldFromView = glm::inverse(viewFromWorld());
+    // The view space's axes in the world, as viewFromWorld's lookAt builds them: its inverse is
+    // rigid, so a view point (x, y, −z) is wsEye + x·right + y·up + z·forward — no general 4 × 4
+    // inverse, which every set-up paid for here.
+    const Vec3 forward = glm::normalize(wsDirection);
+    const Vec3 right = glm::normalize(glm::cross(forward, glm::normalize(wsUp)));
+    const Vec3 up = glm::cross(right, forward);
     const double ty = std::tan(0.5 * glm::radians(fovYDegrees));
     const double tx = ty * aspect;
     std::array<Vec3, 8> corners;
@@ -41,10 +46,9 @@ std::array<Vec3, 8> PerspectiveCamera::wsFrustumCorners() const {
     const double signs[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
     for (int plane = 0; plane < 2; ++plane) {
         const double z = depths[plane];
-        for (int i = 0; i < 4; ++i) {
-            const Vec4 vs(signs[i][0] * tx * z, signs[i][1] * ty * z, -z, 1.0);
-            corners[static_cast<size_t>(plane * 4 + i)] = Vec3(worldFromView * vs);
-        }
+        for (int i = 0; i < 4; ++i)
+            corners[static_cast<size_t>(plane * 4 + i)] =
+                wsEye + (signs[i][0] * tx * z) * right + (signs[i][1] * ty * z) * up + z * forward;
     }
     return corners;
 }
