@@ -75,7 +75,7 @@ ConvexBody focusBodyFromVisible(const ConvexBody& visibleScene, const Vec3& wsTo
     // first (the least, over the faces facing the light, of the farthest any vertex travels
     // to reach it), then cut by the other faces facing the light, which the swept body then
     // rarely reaches. A face facing away cannot cut it: V ∩ S lies inside, n·p <= d, and the
-    // sweep only lowers n·(p + t·dir) for t >= 0 when n·dir <= 0.
+    // sweep never raises n·(p + t·dir) for t >= 0 when n·dir <= 0.
     const Aabb box = sceneBoxForFocus(wsSceneBounds);
     const std::array<Plane, 6> boxPlanes = boxFaces(box);
     const Vec3 dir = glm::normalize(wsTowardsLight);
