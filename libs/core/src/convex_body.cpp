@@ -325,6 +325,15 @@ Aabb ConvexBody::bounds() const {
     return b;
 }
 
+Vec2 ConvexBody::rangeAlong(const Vec3& axis) const {
+    Vec2 range(INFINITY, -INFINITY);
+    for (const Vertex& v : m_vertices) {
+        const double x = glm::dot(axis, v.p);
+        range = Vec2(std::min(range.x, x), std::max(range.y, x));
+    }
+    return range;
+}
+
 bool ConvexBody::contains(const Vec3& p, double eps) const {
     if (isEmpty()) return false;
     return std::all_of(m_planes.begin(), m_planes.end(),

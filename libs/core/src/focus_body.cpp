@@ -79,14 +79,14 @@ ConvexBody focusBodyFromVisible(const ConvexBody& visibleScene, const Vec3& wsTo
     const Aabb box = sceneBoxForFocus(wsSceneBounds);
     const std::array<Plane, 6> boxPlanes = boxFaces(box);
     const Vec3 dir = glm::normalize(wsTowardsLight);
-    const ConvexBody::Points corners = visibleScene.vertices();
     size_t stop = 0;
     double nearest = INFINITY;
     for (size_t f = 0; f < boxPlanes.size(); ++f) {
         const double along = glm::dot(boxPlanes[f].normal, dir);
         if (!(along > 1e-3)) continue; // at least one face has along >= 1/√3
-        double farthest = 0.0;
-        for (const Vec3& p : corners) farthest = std::max(farthest, -boxPlanes[f].signedDistance(p) / along);
+        // The farthest any vertex travels to the face: −(n·p + d) / along at the least n·p.
+        const double lowest = visibleScene.rangeAlong(boxPlanes[f].normal).x;
+        const double farthest = std::max(0.0, -(lowest + boxPlanes[f].d) / along);
         if (farthest < nearest) nearest = farthest, stop = f;
     }
     ConvexBody body = visibleScene.sweptUntil(dir, boxPlanes[stop]);

@@ -76,14 +76,10 @@ Result<ShadowSetup> runTechnique(const ShadowSetupInputs& inputs) {
 // same for every technique since it does not depend on the warp.
 void addLinearDepth(const ShadowSetupInputs& inputs, ShadowSetup& setup) {
     const Vec3 towards = inputs.light.wsTowardsLight();
-    ConvexBody::Points points = setup.body.vertices();
-    if (points.empty())
-        for (const Vec3& corner : sceneBoxForFocus(inputs.wsSceneBounds).corners()) points.push_back(corner);
-    double lo = INFINITY, hi = -INFINITY;
-    for (const Vec3& p : points) {
-        lo = std::min(lo, glm::dot(p, towards));
-        hi = std::max(hi, glm::dot(p, towards));
-    }
+    const Vec2 along = setup.body.isEmpty()
+                           ? ConvexBody::fromAabb(sceneBoxForFocus(inputs.wsSceneBounds)).rangeAlong(towards)
+                           : setup.body.rangeAlong(towards);
+    const double lo = along.x, hi = along.y;
     const double range = std::max(hi - lo, 1e-9 * std::max(std::abs(hi), 1.0));
     for (ShadowView& view : setup.views) view.linearDepthFromWorld = Vec4(-towards / range, hi / range);
     setup.depthLayout = depthLayoutFor(inputs);

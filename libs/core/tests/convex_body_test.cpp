@@ -57,6 +57,18 @@ TEST(ConvexBodyTest, DiagonalClipLeavesATetrahedronCorner) {
     EXPECT_EQ(body.vertices().size(), 4u);
 }
 
+TEST(ConvexBodyTest, RangeAlongAnAxisIsTheBodysExtentThereAndEmptyForNoBody) {
+    // The tetrahedron x, y, z >= 0, x + y + z <= 1 along (1, 2, 3): 0 at the origin, 3 at (0, 0, 1).
+    ConvexBody body = ConvexBody::fromAabb(unitBox());
+    body.clip(Plane::fromPointNormal(Vec3(1, 0, 0), Vec3(1, 1, 1)));
+    const Vec2 range = body.rangeAlong(Vec3(1, 2, 3));
+    EXPECT_NEAR(range.x, 0.0, 1e-12);
+    EXPECT_NEAR(range.y, 3.0, 1e-12);
+    EXPECT_NEAR(body.rangeAlong(Vec3(-1, 0, 0)).x, -1.0, 1e-12); // a negative axis turns it over
+    const Vec2 none = ConvexBody().rangeAlong(Vec3(1, 0, 0));
+    EXPECT_FALSE(none.x <= none.y); // nothing lies along it
+}
+
 TEST(ConvexBodyTest, PlaneOutsideKeepsEverythingAndPlaneBeyondEmptiesIt) {
     ConvexBody body = ConvexBody::fromAabb(unitBox());
     body.clip(Plane::fromPointNormal(Vec3(2, 0, 0), Vec3(1, 0, 0)));

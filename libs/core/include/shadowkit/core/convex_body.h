@@ -71,6 +71,9 @@ public:
     /// Each edge once, as its two end vertices.
     Edges edges() const;
     Aabb bounds() const; ///< the smallest box holding every vertex
+    /// The least and the greatest of axis·p over the vertices (axis need not be a unit vector):
+    /// the body's extent along it, without copying the vertices out. Empty body: (+inf, -inf).
+    Vec2 rangeAlong(const Vec3& axis) const;
     /// True if p lies inside every face plane, with a tolerance of eps metres.
     bool contains(const Vec3& p, double eps) const;
     double volume() const; ///< cubic metres (the divergence theorem over the faces)
