@@ -79,20 +79,21 @@ ConvexBody focusBodyFromVisible(const ConvexBody& visibleScene, const Vec3& wsTo
     const Aabb box = sceneBoxForFocus(wsSceneBounds);
     const std::array<Plane, 6> boxPlanes = boxFaces(box);
     const Vec3 dir = glm::normalize(wsTowardsLight);
+    std::array<double, 6> along{}; // n·dir per face: > 0 where the face faces the light
     size_t stop = 0;
     double nearest = INFINITY;
     for (size_t f = 0; f < boxPlanes.size(); ++f) {
-        const double along = glm::dot(boxPlanes[f].normal, dir);
-        if (!(along > 1e-3)) continue; // at least one face has along >= 1/√3
+        along[f] = glm::dot(boxPlanes[f].normal, dir);
+        if (!(along[f] > 1e-3)) continue; // at least one face has along >= 1/√3
         // The farthest any vertex travels to the face: −(n·p + d) / along at the least n·p.
         const double lowest = visibleScene.rangeAlong(boxPlanes[f].normal).x;
-        const double farthest = std::max(0.0, -(lowest + boxPlanes[f].d) / along);
+        const double farthest = std::max(0.0, -(lowest + boxPlanes[f].d) / along[f]);
         if (farthest < nearest) nearest = farthest, stop = f;
     }
     ConvexBody body = visibleScene.sweptUntil(dir, boxPlanes[stop]);
     ConvexBody::Planes others;
     for (size_t f = 0; f < boxPlanes.size(); ++f)
-        if (f != stop && glm::dot(boxPlanes[f].normal, dir) > 0.0) others.push_back(boxPlanes[f]);
+        if (f != stop && along[f] > 0.0) others.push_back(boxPlanes[f]);
     body.clip(std::span<const Plane>(others.data(), others.size()));
     return body;
 }
