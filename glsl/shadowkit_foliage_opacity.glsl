@@ -76,7 +76,8 @@ float skLeavesMeanMetres(vec4 mass, vec4 share) {
 }
 
 #ifdef SK_SHADOW_OPACITY
-// The caller names three sampler2DArrays laid out as the depth maps: the layers' transmittance
+// The caller names three sampler2DArrays laid out as the depth maps — for virtual maps as the
+// page atlas, one layer, each page drawn into its slot with its guard band: the layers' transmittance
 // (RGBA; 1 where no leaf is) and the first leaf's linear depth (R; 1 where no leaf covers the
 // texel), both read texel by texel, and the layers prefiltered (RG, mipmapped,
 // GL_LINEAR_MIPMAP_LINEAR: per texel A = −ln T and A × the leaves' depth; gl's
@@ -86,23 +87,26 @@ float skLeavesMeanMetres(vec4 mass, vec4 share) {
 //   #define SK_SHADOW_OPACITY_PREFILTERED  myOpacityPrefiltered
 //   #define SK_SHADOW_OPACITY_ENABLED  (myFoliageOpacity != 0)   (default: always)
 
-// The texel at (u, v) of map `layer`. The layers and the first leaf's depth are read texel by
-// texel (texelFetch, whatever the samplers' filters): each texel's layers are measured from its
-// own first leaf, and a receiver's layers blended with a neighbour's, measured from another depth,
-// put leaves where its own texel has none (bilinear layers until 2026-12-01: the cascades' mean
-// `soft_mae` 0.0331 against 0.0323 read texel by texel; docs/materials.md).
-ivec3 skOpacityTexel(int layer, vec2 uv) {
+// The texel at (u, v) of map `layer`, stored at (u, v) · atlasFromMap.xy + atlasFromMap.zw of the
+// textures: the whole layer (1, 1, 0, 0), or a virtual map's page in the atlases laid out as the
+// depth atlas (skVirtualShadow), whose guard band holds every tap. The layers and the first
+// leaf's depth are read texel by texel (texelFetch, whatever the samplers' filters): each
+// texel's layers are measured from its own first leaf, and a receiver's layers blended with a
+// neighbour's, measured from another depth, put leaves where its own texel has none (bilinear
+// layers until 2026-12-01: the cascades' mean `soft_mae` 0.0331 against 0.0323 read texel by
+// texel; docs/materials.md).
+ivec3 skOpacityTexel(int layer, vec2 uv, vec4 atlasFromMap) {
     const ivec2 size = textureSize(SK_SHADOW_OPACITY_FIRST, 0).xy;
-    return ivec3(clamp(ivec2(floor(uv * vec2(size))), ivec2(0), size - 1), layer);
+    return ivec3(clamp(ivec2(floor((uv * atlasFromMap.xy + atlasFromMap.zw) * vec2(size))), ivec2(0), size - 1), layer);
 }
 
 // The leaves in front of a receiver at linear depth `depth` at one point (u, v) of map `layer`,
 // `metresPerDepth` metres per unit of depth: their absorbance, −ln T (0 where none is), and in
 // `metresAway` their mean distance in front of the receiver, each layer's part weighted by its
 // absorbance and taken at its middle.
-float skLeavesInFront(int layer, vec2 uv, float depth, float metresPerDepth, out float metresAway) {
+float skLeavesInFront(int layer, vec2 uv, vec4 atlasFromMap, float depth, float metresPerDepth, out float metresAway) {
     metresAway = 0.0;
-    const ivec3 texel = skOpacityTexel(layer, uv);
+    const ivec3 texel = skOpacityTexel(layer, uv, atlasFromMap);
     const float metres = (depth - texelFetch(SK_SHADOW_OPACITY_FIRST, texel, 0).r) * metresPerDepth;
     if (!(metres > 0.0)) return 0.0; // in front of every leaf, or none here
     vec4 share;
@@ -117,8 +121,8 @@ float skLeavesInFront(int layer, vec2 uv, float depth, float metresPerDepth, out
 // layers, computed as the product it is, Π T^share. Every layer but the one the receiver lies in
 // has a share of 0 or 1, so that is the product of the layers wholly in front times one power:
 // a logarithm and an exponential per tap of the disk where the sum took five.
-float skOpacityTransmittanceAt(int layer, vec2 uv, float depth, float metresPerDepth) {
-    const ivec3 texel = skOpacityTexel(layer, uv);
+float skOpacityTransmittanceAt(int layer, vec2 uv, vec4 atlasFromMap, float depth, float metresPerDepth) {
+    const ivec3 texel = skOpacityTexel(layer, uv, atlasFromMap);
     const float metres = (depth - texelFetch(SK_SHADOW_OPACITY_FIRST, texel, 0).r) * metresPerDepth;
     if (!(metres > 0.0)) return 1.0; // in front of every leaf, or none here
     const vec4 layers = max(texelFetch(SK_SHADOW_OPACITY, texel, 0), vec4(1e-6));
@@ -130,8 +134,8 @@ float skOpacityTransmittanceAt(int layer, vec2 uv, float depth, float metresPerD
     return front.x * front.y * front.z * front.w * pow(partial, dot(inside, share));
 }
 
-// The share of the sun the leaves let through to a receiver at `ws` in map `layer`. The opacity
-// layers are in linear depth whatever the depth map's layout (linearDepthFromWorld's row, whose
+// The share of the sun the leaves let through to a receiver at `ws` in map `layer`, stored at
+// atlasFromMap (skOpacityTexel). The opacity layers are in linear depth whatever the depth map's layout (linearDepthFromWorld's row, whose
 // gradient's length is 1 / the range in metres). With PCSS and a sun of some size, skPcss's two
 // steps on the layers: the leaves' distance in front of the receiver, then the mean transmittance
 // over the sun's disk at that distance, o.filterTaps taps of a Vogel disk (one, the receiver's own
@@ -144,7 +148,8 @@ float skOpacityTransmittanceAt(int layer, vec2 uv, float depth, float metresPerD
 // lit whole; docs/materials.md). The search used to take o.filterTaps taps of the layers too,
 // counting only leaves whose cone reaches the receiver: most of the lookup's cost, for soft_mae
 // within 0.0004 of this one's on every view of the leafy forest.
-float skFoliageTransmittance(int layer, mat4 textureFromWorld, vec4 linearDepthFromWorld, SkShadowOptions o, vec3 ws) {
+float skFoliageTransmittanceIn(int layer, mat4 textureFromWorld, vec4 linearDepthFromWorld, SkShadowOptions o,
+                               vec4 atlasFromMap, vec3 ws) {
     vec4 t;
     vec3 uvz = skShadowCoordinates(textureFromWorld, linearDepthFromWorld, true, ws, t);
     if (t.w <= 0.0 || any(lessThan(uvz.xy, vec2(0.0))) || any(greaterThan(uvz.xy, vec2(1.0)))) return 1.0;
@@ -154,20 +159,21 @@ float skFoliageTransmittance(int layer, mat4 textureFromWorld, vec4 linearDepthF
     const bool footprint = skSunDiskInMap(textureFromWorld, linearDepthFromWorld, o, t, uvFromDisk, depthPerMetre, metresPerTexel);
     uvz.z -= SK_OPACITY_BIAS_TEXELS * metresPerTexel / metresPerDepth; // 0 where the map has no footprint here
     if (o.filterKind != SK_FILTER_PCSS || !(o.lightTanHalfAngle > 0.0) || !footprint)
-        return skOpacityTransmittanceAt(layer, uvz.xy, uvz.z, metresPerDepth);
+        return skOpacityTransmittanceAt(layer, uvz.xy, atlasFromMap, uvz.z, metresPerDepth);
     const float widestMetres = o.poissonRadiusTexels * metresPerTexel;
     const int taps = max(o.filterTaps, 1);
 
     // 1. The leaves' distance: in the receiver's own texel, else their mean over the search's disk
     // (PCSS's: the cone up to the map's near plane, at most half a texel per tap).
     float awayMetres;
-    const float ownAbsorbance = skLeavesInFront(layer, uvz.xy, uvz.z, metresPerDepth, awayMetres);
+    const float ownAbsorbance = skLeavesInFront(layer, uvz.xy, atlasFromMap, uvz.z, metresPerDepth, awayMetres);
     if (!(ownAbsorbance > 0.0)) {
         const float searchMetres = min(uvz.z * metresPerDepth * o.lightTanHalfAngle,
                                        min(0.5 * float(taps) * metresPerTexel, widestMetres));
         const float side = 1.77 * searchMetres; // √π r: a square of the disk's area
-        const vec4 found = textureGrad(SK_SHADOW_OPACITY_PREFILTERED, vec3(uvz.xy, float(layer)),
-                                       uvFromDisk[0] * side, uvFromDisk[1] * side);
+        const vec3 at = vec3(uvz.xy * atlasFromMap.xy + atlasFromMap.zw, float(layer));
+        const vec4 found = textureGrad(SK_SHADOW_OPACITY_PREFILTERED, at, uvFromDisk[0] * side * atlasFromMap.xy,
+                                       uvFromDisk[1] * side * atlasFromMap.xy);
         if (!(found.x > 1e-3)) return 1.0; // no leaf there
         awayMetres = (uvz.z - found.y / found.x) * metresPerDepth;
         if (!(awayMetres > 0.0)) return 1.0; // the leaves there lie behind the receiver
@@ -180,7 +186,7 @@ float skFoliageTransmittance(int layer, mat4 textureFromWorld, vec4 linearDepthF
     // leaves, where the disk is millimetres wide. (The disk's reach along u is its radius times
     // the length of uvFromDisk's first row, along v its second's.)
     const float diskMetres = min(awayMetres * o.lightTanHalfAngle, widestMetres);
-    const vec2 size = vec2(textureSize(SK_SHADOW_OPACITY_FIRST, 0).xy);
+    const vec2 size = vec2(textureSize(SK_SHADOW_OPACITY_FIRST, 0).xy) * atlasFromMap.xy; // the map's texels
     const vec2 inTexel = fract(uvz.xy * size);
     const vec2 uvPerMetre = vec2(length(vec2(uvFromDisk[0].x, uvFromDisk[1].x)), length(vec2(uvFromDisk[0].y, uvFromDisk[1].y)));
     const vec2 reach = diskMetres * size * uvPerMetre; // in texels
@@ -190,8 +196,13 @@ float skFoliageTransmittance(int layer, mat4 textureFromWorld, vec4 linearDepthF
     vec2 direction = vec2(cos(angle), sin(angle));
     for (int i = 0; i < taps; ++i, direction = kSkGoldenTurn * direction) {
         const vec2 offset = uvFromDisk * (direction * (sqrt((float(i) + 0.5) / float(taps)) * diskMetres));
-        lit += skOpacityTransmittanceAt(layer, uvz.xy + offset, uvz.z, metresPerDepth);
+        lit += skOpacityTransmittanceAt(layer, uvz.xy + offset, atlasFromMap, uvz.z, metresPerDepth);
     }
     return lit / float(taps);
+}
+
+// One map filling layer `layer` of the textures.
+float skFoliageTransmittance(int layer, mat4 textureFromWorld, vec4 linearDepthFromWorld, SkShadowOptions o, vec3 ws) {
+    return skFoliageTransmittanceIn(layer, textureFromWorld, linearDepthFromWorld, o, vec4(1.0, 1.0, 0.0, 0.0), ws);
 }
 #endif

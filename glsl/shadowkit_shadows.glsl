@@ -18,8 +18,9 @@
 //   - cascades: split selection by view depth (Dimitrov 2007) and blending across a band;
 //   - virtual shadow maps: the clipmap level by the pixel's footprint, the page table's
 //     indirection into the physical page atlas, every filter inside the page's guard band;
-//   - partial occlusion by leaves: opacity layers beside fixed maps, with SK_SHADOW_OPACITY defined
-//     and shadowkit_foliage_opacity.glsl appended after this file (that file says what to name).
+//   - partial occlusion by leaves: opacity layers beside fixed maps and virtual pages, with
+//     SK_SHADOW_OPACITY defined and shadowkit_foliage_opacity.glsl appended after this file (that
+//     file says what to name).
 //
 // Inputs, all from the core (output_conventions.h, shadowkit_c.h):
 //   textureFromWorld       EngineShadowView::textureFromWorld / shadowkit_view.texture_from_world
@@ -267,8 +268,11 @@ float skMomentLit(vec4 b, float zf) {
 #define SK_SHADOW_OPACITY_ENABLED true
 #endif
 // The share of the sun the leaves let through to a receiver: shadowkit_foliage_opacity.glsl, which
-// an engine with opacity layers appends after this file.
+// an engine with opacity layers appends after this file. The first for a map filling a layer, the
+// second for one stored at atlasFromMap (a virtual page, as skShadowMapIn's).
 float skFoliageTransmittance(int layer, mat4 textureFromWorld, vec4 linearDepthFromWorld, SkShadowOptions o, vec3 ws);
+float skFoliageTransmittanceIn(int layer, mat4 textureFromWorld, vec4 linearDepthFromWorld, SkShadowOptions o,
+                               vec4 atlasFromMap, vec3 ws);
 #endif
 
 // The lit fraction (0 shadowed .. 1 lit) of a receiver at `ws` with unit normal `n` in one map
@@ -442,6 +446,23 @@ bool skVirtualPage(usampler2D pageTable, SkVirtualMaps v, float viewDepth, vec3 
     return skVirtualPageFrom(pageTable, v, skVirtualLevelRule(v, viewDepth), ws, level, atlasFromMap);
 }
 
+// The lit fraction of a receiver in level `level` of a virtual clipmap, its page at atlasFromMap.
+// With opacity layers (SK_SHADOW_OPACITY) in atlases laid out as the depth atlas, the leaves'
+// transmittance times the depth page's term. A page's clip depth is linear (its map is
+// orthographic), so the layers' linear depth is that depth: textureFromWorld's depth row.
+float skVirtualLevelShadow(sampler2DArrayShadow atlas, int level, vec4 atlasFromMap, SkShadowOptions o, vec3 ws, vec3 n,
+                           vec3 dwsdx, vec3 dwsdy) {
+    const mat4 textureFromWorld = SK_VIRTUAL_LEVEL_FROM_WORLD(level);
+    float lit = skShadowMapIn(atlas, 0, textureFromWorld, vec4(0.0), o, atlasFromMap, ws, n, dwsdx, dwsdy);
+#ifdef SK_SHADOW_OPACITY
+    if (SK_SHADOW_OPACITY_ENABLED && lit > 0.0) {
+        const vec4 depthRow = vec4(textureFromWorld[0].z, textureFromWorld[1].z, textureFromWorld[2].z, textureFromWorld[3].z);
+        lit *= skFoliageTransmittanceIn(0, textureFromWorld, depthRow, o, atlasFromMap, ws);
+    }
+#endif
+    return lit;
+}
+
 // The lit fraction of a receiver in a virtual clipmap; o.mapTexels is virtualTexels. The pages
 // store clip depth, linear in an orthographic map: o.linearDepth is ignored.
 float skVirtualShadow(sampler2DArrayShadow atlas, usampler2D pageTable, SkVirtualMaps v, SkShadowOptions o, float viewDepth,
@@ -450,7 +471,7 @@ float skVirtualShadow(sampler2DArrayShadow atlas, usampler2D pageTable, SkVirtua
     int level;
     vec4 atlasFromMap;
     if (!skVirtualPage(pageTable, v, viewDepth, ws, level, atlasFromMap)) return 1.0;
-    float term = skShadowMapIn(atlas, 0, SK_VIRTUAL_LEVEL_FROM_WORLD(level), vec4(0.0), o, atlasFromMap, ws, n, dwsdx, dwsdy);
+    float term = skVirtualLevelShadow(atlas, level, atlasFromMap, o, ws, n, dwsdx, dwsdy);
     // Blend band (as cascades'): where the footprint nears the next level's texel, fade into that
     // level, so resolution changes smoothly with view depth instead of at a line that moves with
     // the camera. Only from the rule's own level (a fallback is already coarser).
@@ -459,7 +480,7 @@ float skVirtualShadow(sampler2DArrayShadow atlas, usampler2D pageTable, SkVirtua
     int next;
     vec4 nextFromMap;
     if (w > 0.0 && e < 1.0 && skVirtualPageFrom(pageTable, v, level + 1, ws, next, nextFromMap))
-        term = mix(term, skShadowMapIn(atlas, 0, SK_VIRTUAL_LEVEL_FROM_WORLD(next), vec4(0.0), o, nextFromMap, ws, n, dwsdx, dwsdy), w);
+        term = mix(term, skVirtualLevelShadow(atlas, next, nextFromMap, o, ws, n, dwsdx, dwsdy), w);
     return term;
 }
 #endif

@@ -315,7 +315,7 @@ void RenderOptions::addTo(CLI::App& cmd) {
         ->capture_default_str();
     cmd.add_flag("--foliage-opacity", foliageOpacity,
                  "alpha-tested casters (leaves) cast a fraction of the light through opacity layers beside the sun's "
-                 "maps, the opaque casters through their depth (fixed maps and cascades; not --technique virtual)");
+                 "maps or virtual pages, the opaque casters through their depth");
     cmd.add_option("--blur-iterations", blur.iterations, "eye-space blur of the shadow mask: 0, 1, 2, 4, 8, 16 ...")
         ->capture_default_str();
     cmd.add_option("--blur-radius", blur.radiusPixels, "blur tap distance in pixels at the viewer")

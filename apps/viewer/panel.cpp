@@ -201,7 +201,7 @@ bool biasAndFilterSection(StateOptions& s, const PanelDefaults& d) {
     changed |= combo(s, "filter", "filter", kFilters, defaultOf("filter"));
     // The sun's size: the width of the penumbrae pcss draws (0.53: the real sun).
     changed |= sliderFloat(s, "sun angle (deg)", "sun-angle", 0.0f, 5.0f, numberOf("sun-angle"));
-    // Leaves cast a fraction of the light (opacity layers; not with virtual maps).
+    // Leaves cast a fraction of the light (opacity layers, beside fixed maps or virtual pages).
     changed |= checkbox(s, "leaves: opacity layers", "foliage-opacity");
     changed |= sliderInt(s, "blur iterations", "blur-iterations", 0, 16, static_cast<int>(numberOf("blur-iterations")));
     if (valueOf(s, "blur-iterations", "0") != "0") {

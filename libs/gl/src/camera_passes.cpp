@@ -38,7 +38,7 @@ FrameUniforms frameUniformsOf(const CameraView& view, bool readBlurredMask) {
     frame.normalOffsetTexels = static_cast<float>(view.bias.normalOffset);
     frame.readBlurredMask = readBlurredMask ? 1 : 0;
     frame.aliasingOverlay = settings.aliasingOverlay ? 1 : 0;
-    frame.foliageOpacity = settings.foliageOpacity && !setup.clipmap ? 1 : 0;
+    frame.foliageOpacity = settings.foliageOpacity ? 1 : 0;
     for (size_t i = 0; i < setup.views.size(); ++i) {
         const core::ShadowView& map = setup.views[i];
         frame.shadowTextureFromWorld[i] = glm::mat4(core::toEngineView(map, setup, {}).textureFromWorld);

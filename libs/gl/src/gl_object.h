@@ -4,6 +4,8 @@
 
 #include <epoxy/gl.h>
 
+#include <algorithm>
+#include <limits>
 #include <utility>
 
 namespace shadowkit::gl {
@@ -97,18 +99,24 @@ inline Texture createTexture2DArray(GLenum internalFormat, int width, int height
     return Texture(id);
 }
 
-// Square layers read through their own filter (GL_NEAREST or GL_LINEAR), clamped at the edges:
-// the side textures of the sun's maps (moments, opacity layers). With `mipmapped`, a full mip
-// chain read trilinearly (GL_LINEAR): means over squares of 2^k texels.
-inline Texture createMapLayers(GLenum internalFormat, int size, int layers, GLint filter, bool mipmapped = false) {
-    int levels = 1;
-    while (mipmapped && (size >> levels) > 0) ++levels;
-    Texture t = createTexture2DArray(internalFormat, size, size, layers, levels);
-    glTextureParameteri(t.id(), GL_TEXTURE_MIN_FILTER, mipmapped ? GL_LINEAR_MIPMAP_LINEAR : filter);
+// Layers of width × height read through their own filter (GL_NEAREST or GL_LINEAR), clamped at
+// the edges: the side textures of the sun's maps (moments, opacity layers) and of the virtual
+// page atlas. With `levels` > 1, a mip chain of that many levels (at most a full one) read
+// trilinearly (GL_LINEAR): means over squares of 2^k texels.
+inline Texture createMapLayers(GLenum internalFormat, int width, int height, int layers, GLint filter, int levels) {
+    int full = 1;
+    while ((std::max(width, height) >> full) > 0) ++full;
+    levels = std::clamp(levels, 1, full);
+    Texture t = createTexture2DArray(internalFormat, width, height, layers, levels);
+    glTextureParameteri(t.id(), GL_TEXTURE_MIN_FILTER, levels > 1 ? GL_LINEAR_MIPMAP_LINEAR : filter);
     glTextureParameteri(t.id(), GL_TEXTURE_MAG_FILTER, filter);
     glTextureParameteri(t.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     glTextureParameteri(t.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     return t;
+}
+// Square layers, with a full mip chain when `mipmapped`.
+inline Texture createMapLayers(GLenum internalFormat, int size, int layers, GLint filter, bool mipmapped = false) {
+    return createMapLayers(internalFormat, size, size, layers, filter, mipmapped ? std::numeric_limits<int>::max() : 1);
 }
 
 } // namespace shadowkit::gl

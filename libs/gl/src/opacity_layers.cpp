@@ -29,86 +29,112 @@ core::Result<std::unique_ptr<OpacityLayers>> OpacityLayers::create() {
     return layers;
 }
 
-core::Status OpacityLayers::prepare(int size, int layers) {
-    if (m_size == size && m_count == layers) return core::Ok{};
+std::vector<OpacityView> opacityViewsOf(const core::ShadowSetup& setup, int size) {
+    std::vector<OpacityView> views;
+    for (size_t i = 0; i < setup.views.size(); ++i)
+        views.push_back({.layer = static_cast<int>(i),
+                         .viewport = {0, 0, size},
+                         .clipFromWorld = setup.views[i].clipFromWorld,
+                         .linearDepthFromWorld = setup.views[i].linearDepthFromWorld});
+    return views;
+}
+
+bool OpacityLayers::holds(int width, int height, int layers, int mipLevels) const {
+    return m_width == width && m_height == height && m_count == layers && m_mipLevels == mipLevels;
+}
+
+core::Status OpacityLayers::prepare(int width, int height, int layers, int mipLevels, const std::string& field) {
+    if (holds(width, height, layers, mipLevels)) return core::Ok{};
     m_firstDepth.reset(), m_layers.reset(), m_prefiltered.reset(); // the old ones go first
     while (glGetError() != GL_NO_ERROR) {
     }
-    m_firstDepth = createMapLayers(GL_R32F, size, layers, GL_NEAREST);
-    m_layers = createMapLayers(GL_RGBA16F, size, layers, GL_NEAREST); // read texel by texel, as the first depth
-    m_prefiltered = createMapLayers(GL_RG16F, size, layers, GL_LINEAR, /*mipmapped=*/true);
+    m_firstDepth = createMapLayers(GL_R32F, width, height, layers, GL_NEAREST, 1);
+    m_layers =
+        createMapLayers(GL_RGBA16F, width, height, layers, GL_NEAREST, 1); // read texel by texel, as the first depth
+    m_prefiltered = createMapLayers(GL_RG16F, width, height, layers, GL_LINEAR, mipLevels);
     if (glGetError() == GL_OUT_OF_MEMORY) {
         m_firstDepth.reset(), m_layers.reset(), m_prefiltered.reset();
-        m_size = m_count = 0;
-        return core::environmentError("map_size: the GL driver is out of memory for opacity layers of " +
-                                          std::to_string(layers) + " × " + std::to_string(size) +
-                                          "² (17 bytes a texel)",
-                                      "map_size");
+        m_width = m_height = m_count = m_mipLevels = 0;
+        return core::environmentError(field + ": the GL driver is out of memory for opacity layers of " +
+                                          std::to_string(layers) + " × " + std::to_string(width) + " × " +
+                                          std::to_string(height) + " texels (17 bytes a texel)",
+                                      field);
     }
-    m_size = size, m_count = layers;
+    m_width = width, m_height = height, m_count = layers, m_mipLevels = mipLevels;
     return core::Ok{};
 }
 
-DrawStats OpacityLayers::draw(const GpuScene& scene, const core::ShadowSetup& setup, const core::BiasSettings& bias,
-                              std::span<const PassList> lists, const Buffer& depthPass) const {
-    // No depth test and both sides of every leaf: each fragment of each leaf counts once.
+DrawStats OpacityLayers::draw(const GpuScene& scene, const core::BiasSettings& bias, std::span<const OpacityView> views,
+                              std::span<const PassList> lists, const Buffer& depthPass, bool depthClamp) const {
+    // No depth test and both sides of every leaf: each fragment of each leaf counts once. Each
+    // view's clears and draws stay inside its viewport (a page's slot).
     glDisable(GL_DEPTH_TEST);
     glDepthMask(GL_FALSE);
     glDisable(GL_CULL_FACE);
-    if (setup.depthClamp) glEnable(GL_DEPTH_CLAMP); // casters before the near plane, as the depth pass
+    if (depthClamp) glEnable(GL_DEPTH_CLAMP); // casters before the near plane, as the depth pass
     glEnable(GL_BLEND);
+    glEnable(GL_SCISSOR_TEST);
     glBindFramebuffer(GL_FRAMEBUFFER, m_framebuffer.id());
-    glViewport(0, 0, m_size, m_size);
     glBindBufferBase(GL_UNIFORM_BUFFER, kDepthPassBinding, depthPass.id());
     const PassPrograms first{.material = m_first.id(), .batches = PassPrograms::Batches::AlphaTested};
     const PassPrograms transmittance{.material = m_transmittance.id(), .batches = PassPrograms::Batches::AlphaTested};
     DrawStats draws;
-    for (size_t layer = 0; layer < setup.views.size() && layer < lists.size(); ++layer) {
-        const DepthPassUniforms uniforms = depthPassUniformsFor(setup.views[layer], bias);
+    for (size_t i = 0; i < views.size() && i < lists.size(); ++i) {
+        const OpacityView& view = views[i];
+        DepthPassUniforms uniforms = depthPassUniformsFor(view.clipFromWorld, bias);
+        uniforms.linearDepthFromWorld = glm::vec4(view.linearDepthFromWorld);
         glNamedBufferSubData(depthPass.id(), 0, sizeof uniforms, &uniforms);
-        const auto l = static_cast<GLint>(layer);
+        glViewport(view.viewport.x, view.viewport.y, view.viewport.z, view.viewport.z);
+        glScissor(view.viewport.x, view.viewport.y, view.viewport.z, view.viewport.z);
+        const auto drawLeaves = [&](const PassPrograms& programs) {
+            return view.clustersInView
+                       ? scene.draw(lists[i], programs, visibility::clipVolume(view.clipFromWorld, false))
+                       : scene.draw(lists[i], programs);
+        };
 
-        glNamedFramebufferTextureLayer(m_framebuffer.id(), GL_COLOR_ATTACHMENT0, m_firstDepth.id(), 0, l);
+        glNamedFramebufferTextureLayer(m_framebuffer.id(), GL_COLOR_ATTACHMENT0, m_firstDepth.id(), 0, view.layer);
         const float far[4] = {1.0f, 1.0f, 1.0f, 1.0f}; // no leaf: the far end of the map's depth
         glClearNamedFramebufferfv(m_framebuffer.id(), GL_COLOR, 0, far);
         glBlendEquation(GL_MIN);
-        draws += scene.draw(lists[layer], first);
+        draws += drawLeaves(first);
 
-        glNamedFramebufferTextureLayer(m_framebuffer.id(), GL_COLOR_ATTACHMENT0, m_layers.id(), 0, l);
+        glNamedFramebufferTextureLayer(m_framebuffer.id(), GL_COLOR_ATTACHMENT0, m_layers.id(), 0, view.layer);
         const float clear[4] = {1.0f, 1.0f, 1.0f, 1.0f}; // no leaf lets all the light through
         glClearNamedFramebufferfv(m_framebuffer.id(), GL_COLOR, 0, clear);
         glBlendEquation(GL_FUNC_ADD);
         glBlendFunc(GL_ZERO, GL_SRC_COLOR); // destination × source: the layer's leaves multiply
         glBindTextureUnit(kOpacityFirstUnit, m_firstDepth.id());
-        glProgramUniform1i(m_transmittance.id(), kOpacityLayerLocation, l);
-        draws += scene.draw(lists[layer], transmittance);
-        glBindTextureUnit(kOpacityFirstUnit, 0); // the next layer's first pass writes it
+        glProgramUniform1i(m_transmittance.id(), kOpacityLayerLocation, view.layer);
+        draws += drawLeaves(transmittance);
+        glBindTextureUnit(kOpacityFirstUnit, 0); // the next view's first pass writes it
     }
     glDisable(GL_BLEND);
     glBlendFunc(GL_ONE, GL_ZERO);
     glDisable(GL_DEPTH_CLAMP);
-    prefilter(setup); // still with no depth test: one triangle over each whole layer
+    if (!views.empty()) prefilter(views); // still with no depth test: one triangle over each view
+    glDisable(GL_SCISSOR_TEST);
     glEnable(GL_DEPTH_TEST);
     glDepthMask(GL_TRUE);
     return draws;
 }
 
-void OpacityLayers::prefilter(const core::ShadowSetup& setup) const {
+void OpacityLayers::prefilter(std::span<const OpacityView> views) const {
     glUseProgram(m_prefilter.id());
     glBindVertexArray(m_emptyVertexArray.id());
     glBindTextureUnit(kOpacityUnit, m_layers.id());
     glBindTextureUnit(kOpacityFirstUnit, m_firstDepth.id());
-    for (size_t layer = 0; layer < setup.views.size() && layer < size_t(m_count); ++layer) {
-        const auto l = static_cast<GLint>(layer);
-        glNamedFramebufferTextureLayer(m_framebuffer.id(), GL_COLOR_ATTACHMENT0, m_prefiltered.id(), 0, l);
-        glProgramUniform1i(m_prefilter.id(), kOpacityLayerLocation, l);
+    for (const OpacityView& view : views) {
+        glNamedFramebufferTextureLayer(m_framebuffer.id(), GL_COLOR_ATTACHMENT0, m_prefiltered.id(), 0, view.layer);
+        glViewport(view.viewport.x, view.viewport.y, view.viewport.z, view.viewport.z);
+        glScissor(view.viewport.x, view.viewport.y, view.viewport.z, view.viewport.z);
+        glProgramUniform1i(m_prefilter.id(), kOpacityLayerLocation, view.layer);
         // The linear depth row's gradient is 1 / the map's depth range in metres.
         glProgramUniform1f(m_prefilter.id(), kOpacityDepthPerMetreLocation,
-                           static_cast<float>(glm::length(core::Vec3(setup.views[layer].linearDepthFromWorld))));
+                           static_cast<float>(glm::length(core::Vec3(view.linearDepthFromWorld))));
         glDrawArrays(GL_TRIANGLES, 0, 3);
     }
     glBindVertexArray(0);
-    glGenerateTextureMipmap(m_prefiltered.id());
+    if (m_mipLevels > 1) glGenerateTextureMipmap(m_prefiltered.id());
 }
 
 void OpacityLayers::bind() const {

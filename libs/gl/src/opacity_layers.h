@@ -1,7 +1,7 @@
-// Opacity layers for the sun's fixed maps (--foliage-opacity): partial occlusion by alpha-tested
-// casters, after deep opacity maps (Yuksel & Keyser 2008, "Deep Opacity Maps", Computer Graphics
-// Forum 27(2)). Per texel of each map, the linear depth of the first leaf (R32F) and what the
-// leaves let through in four layers measured back from it (RGBA16F);
+// Opacity layers for the sun's fixed maps and virtual pages (--foliage-opacity): partial occlusion
+// by alpha-tested casters, after deep opacity maps (Yuksel & Keyser 2008, "Deep Opacity Maps",
+// Computer Graphics Forum 27(2)). Per texel of each map, the linear depth of the first leaf
+// (R32F) and what the leaves let through in four layers measured back from it (RGBA16F);
 // glsl/shadowkit_foliage_opacity.glsl's skFoliageTransmittance reads them and multiplies the depth
 // map's term, which then holds the opaque casters only (PassPrograms::Batches). Beside them the
 // layers prefiltered (RG16F with its mip chain: per texel A = −ln T and A × the leaves' depth),
@@ -11,8 +11,10 @@
 // Two passes over the alpha-tested batches of each map's list, with no depth test: the first
 // leaf by GL_MIN blending, then each leaf fragment's transmittance by multiplicative blending
 // into the layer of its distance behind the first (opacity.frag); then one triangle over each
-// map (opacity_prefilter.frag) and the mip chain. Not for virtual pages: the set-up's fixed maps
-// (single maps and cascades) only.
+// map (opacity_prefilter.frag) and the mip chain. For the set-up's fixed maps (single maps and
+// cascades) the textures are layers of the maps' size, one a map; for virtual maps they are laid
+// out as the page atlas, one layer, and each page drawn is drawn into its slot, guard band and
+// all — a page's layers are drawn when its depth is, so a cached page keeps both.
 #pragma once
 
 #include "gl_object.h"
@@ -23,37 +25,55 @@
 #include "shadowkit/core/result.h"
 #include "shadowkit/core/shadow_setup.h"
 
+#include <glm/glm.hpp>
+
 #include <memory>
 #include <span>
+#include <string>
+#include <vector>
 
 namespace shadowkit::gl {
+
+// One map's layers to draw: where they go in the textures, and the map's light space.
+struct OpacityView {
+    int layer = 0;                        // of the textures
+    glm::ivec3 viewport{0};               // x, y, side, in texels of the layer
+    core::Mat4 clipFromWorld{1.0};        // the map's light clip space
+    core::Vec4 linearDepthFromWorld{0.0}; // row: [0, 1] over the map's depth range
+    bool clustersInView = false;          // a large mesh draws only its clusters inside the view (pages)
+};
+// The fixed maps of `setup` (size² texels each), one a layer.
+std::vector<OpacityView> opacityViewsOf(const core::ShadowSetup& setup, int size);
 
 class OpacityLayers {
 public:
     static core::Result<std::unique_ptr<OpacityLayers>> create();
 
-    // The layers for `layers` maps of size² texels, allocated or kept. Out of memory: an error
-    // naming map_size.
-    core::Status prepare(int size, int layers);
-    // Draws every map's layers from the alpha-tested batches of `lists` (one per view of
-    // `setup`), writing each view's DepthPass block into `depthPass` (bound at kDepthPassBinding).
-    DrawStats draw(const GpuScene& scene, const core::ShadowSetup& setup, const core::BiasSettings& bias,
-                   std::span<const PassList> lists, const Buffer& depthPass) const;
+    // Whether the textures are `layers` layers of width × height with `mipLevels` prefiltered levels.
+    bool holds(int width, int height, int layers, int mipLevels) const;
+    // The textures for `layers` layers of width × height texels, allocated or kept; the prefiltered
+    // layers with `mipLevels` levels (at most a full chain). Out of memory: an error naming `field`.
+    core::Status prepare(int width, int height, int layers, int mipLevels, const std::string& field);
+    // Draws the layers of every view from the alpha-tested batches of lists[i] (one per view),
+    // writing each view's DepthPass block into `depthPass` (bound at kDepthPassBinding); casters
+    // before a map's near plane clamped to it with `depthClamp`, as the depth pass does.
+    DrawStats draw(const GpuScene& scene, const core::BiasSettings& bias, std::span<const OpacityView> views,
+                   std::span<const PassList> lists, const Buffer& depthPass, bool depthClamp) const;
     // The layers on kOpacityUnit, the first leaves' depths on kOpacityFirstUnit and the layers
     // prefiltered on kOpacityPrefilteredUnit.
     void bind() const;
 
 private:
     OpacityLayers() = default;
-    // Level 0 of m_prefiltered from the layers of every map of `setup`, then its mip chain.
-    void prefilter(const core::ShadowSetup& setup) const;
+    // Each view's texels of m_prefiltered's level 0 from its layers, then the mip chain.
+    void prefilter(std::span<const OpacityView> views) const;
     Program m_first, m_transmittance; // opacity.frag with and without SK_OPACITY_FIRST, materials only
     Program m_prefilter;              // opacity_prefilter.frag
     Texture m_firstDepth, m_layers;
     Texture m_prefiltered; // mipmapped: the leaves' absorbance and its depth moment (opacity_prefilter.frag)
     Framebuffer m_framebuffer;
     VertexArray m_emptyVertexArray;
-    int m_size = 0, m_count = 0;
+    int m_width = 0, m_height = 0, m_count = 0, m_mipLevels = 0;
 };
 
 } // namespace shadowkit::gl

@@ -5,7 +5,11 @@
 #include "program.h"
 #include "uniforms.h"
 
+#include <algorithm>
+#include <bit>
+#include <limits>
 #include <string>
+#include <vector>
 
 namespace shadowkit::gl {
 
@@ -41,23 +45,27 @@ core::Status SunPass::prepare(const core::ShadowSetup& setup, const RenderSettin
                               const core::BiasSettings& bias) {
     const bool linearFilter = settings.filter.kind == core::ShadowFilter::Pcf2;
     if (setup.clipmap) {
-        if (settings.foliageOpacity)
-            return core::fieldError("foliage_opacity", "opacity layers are drawn for fixed maps and cascades, "
-                                                       "not for technique virtual's pages");
         const int guard = guardTexelsFor(lookupFilterFor(setup, settings.filter), bias);
         if (auto s = m_pages->configure(settings.virtualPoolPages, setup.clipmap->pageTexels, guard); !s) return s;
         m_pages->setLinearFilter(linearFilter);
         m_shadow.reset(); // no fixed maps: their memory is the pool's
+        if (settings.foliageOpacity) {
+            // Laid out as the atlas. The lookup's search reads the prefiltered layers over a
+            // square no wider than PCSS's kernel, which the guard band holds: mip levels up to
+            // the guard's width, whose blocks stay near their own page.
+            const glm::ivec2 atlas = m_pages->atlasTexels();
+            const int mipLevels = std::bit_width(static_cast<unsigned>(std::max(guard, 1)));
+            const bool kept = m_opacity && m_opacity->holds(atlas.x, atlas.y, 1, mipLevels);
+            if (auto s = prepareOpacity(atlas.x, atlas.y, 1, mipLevels, "virtual.pool_pages"); !s) return s;
+            if (!kept) m_pages->forget(); // the cached pages' layers are gone with the old textures
+        }
         return core::Ok{};
     }
     const int maps = static_cast<int>(setup.views.size());
     if (settings.foliageOpacity) {
-        if (!m_opacity) {
-            auto opacity = OpacityLayers::create();
-            if (!opacity) return opacity.errorInfo();
-            m_opacity = std::move(opacity).value();
-        }
-        if (auto s = m_opacity->prepare(setup.mapSize, maps); !s) return s;
+        if (auto s = prepareOpacity(setup.mapSize, setup.mapSize, maps, std::numeric_limits<int>::max(), "map_size");
+            !s)
+            return s;
     }
     if (!m_shadow || m_shadow->size != setup.mapSize || m_shadow->layers != maps) {
         m_shadow.reset(); // the old maps go before the new ones are allocated
@@ -70,6 +78,15 @@ core::Status SunPass::prepare(const core::ShadowSetup& setup, const RenderSettin
     glTextureParameteri(m_shadow->depth.id(), GL_TEXTURE_MIN_FILTER, filter);
     glTextureParameteri(m_shadow->depth.id(), GL_TEXTURE_MAG_FILTER, filter);
     return core::Ok{};
+}
+
+core::Status SunPass::prepareOpacity(int width, int height, int layers, int mipLevels, const std::string& field) {
+    if (!m_opacity) {
+        auto opacity = OpacityLayers::create();
+        if (!opacity) return opacity.errorInfo();
+        m_opacity = std::move(opacity).value();
+    }
+    return m_opacity->prepare(width, height, layers, mipLevels, field);
 }
 
 core::Result<PassStats> SunPass::draw(const GpuScene& scene, const core::ShadowSetup& setup,
@@ -95,9 +112,13 @@ core::Result<PassStats> SunPass::draw(const GpuScene& scene, const core::ShadowS
         const auto pages = m_pages->pagesToRender();
         m_timer.begin();
         if (!pages.empty()) m_samples.begin();
-        draws = m_pages->drawPages(scene, casterPrograms(core::DepthLayout::Hyperbolic, bias), bias, wsTowardsLight,
-                                   pageLists, m_uniforms);
+        PassPrograms programs = casterPrograms(core::DepthLayout::Hyperbolic, bias);
+        if (settings.foliageOpacity) programs.batches = PassPrograms::Batches::Opaque;
+        draws = m_pages->drawPages(scene, programs, bias, wsTowardsLight, pageLists, m_uniforms);
         if (!pages.empty()) m_samples.end();
+        // Opacity layers: each page's into its slot of the layers' atlases, as the fixed maps'.
+        if (settings.foliageOpacity && !pages.empty())
+            draws += m_opacity->draw(scene, bias, pageOpacityViews(), pageLists, m_uniforms, true);
         m_timer.end();
         if (!pages.empty()) {
             const auto side = uint64_t(m_pages->slotViewport(pages.front().slot).z);
@@ -118,7 +139,9 @@ core::Result<PassStats> SunPass::draw(const GpuScene& scene, const core::ShadowS
     draws = drawFixedMaps(scene, setup, bias, wsTowardsLight, mapLists, settings.foliageOpacity ? Opaque : All);
     m_samples.end();
     // Opacity layers: the alpha-tested casters, inside the pass's time as the moments are.
-    if (settings.foliageOpacity) draws += m_opacity->draw(scene, setup, bias, mapLists, m_uniforms);
+    if (settings.foliageOpacity)
+        draws +=
+            m_opacity->draw(scene, bias, opacityViewsOf(setup, m_shadow->size), mapLists, m_uniforms, setup.depthClamp);
     m_countedTexels = uint64_t(m_shadow->size) * uint64_t(m_shadow->size) * setup.views.size();
     // MSM: the maps' moments, blurred, inside the pass's time (a real frame pays them with it).
     core::Status moments = core::Ok{};
@@ -130,6 +153,19 @@ core::Result<PassStats> SunPass::draw(const GpuScene& scene, const core::ShadowS
     if (!moments) return moments.errorInfo();
     // Time read after the frame, not to stall here.
     return PassStats{.instances = draws.instances, .triangles = draws.triangles, .drawCalls = draws.drawCalls};
+}
+
+std::vector<OpacityView> SunPass::pageOpacityViews() const {
+    std::vector<OpacityView> views;
+    for (const VirtualPages::PageToRender& page : m_pages->pagesToRender()) {
+        // A page's map is orthographic: its clip depth z (w = 1) is the linear depth.
+        const core::Mat4& m = page.clipFromWorld;
+        views.push_back({.viewport = m_pages->slotViewport(page.slot),
+                         .clipFromWorld = m,
+                         .linearDepthFromWorld = core::Vec4(m[0][2], m[1][2], m[2][2], m[3][2]),
+                         .clustersInView = true});
+    }
+    return views;
 }
 
 DrawStats SunPass::drawFixedMaps(const GpuScene& scene, const core::ShadowSetup& setup, const core::BiasSettings& bias,
@@ -191,7 +227,7 @@ void SunPass::bind(const core::ShadowSetup& setup, const RenderSettings& setting
         }
     }
     if (settings.filter.kind == core::ShadowFilter::Msm) m_moments->bind();
-    if (settings.foliageOpacity && !setup.clipmap && m_opacity) m_opacity->bind();
+    if (settings.foliageOpacity && m_opacity) m_opacity->bind();
 }
 
 scene::Image SunPass::readMaps() const {

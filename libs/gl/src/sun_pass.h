@@ -1,8 +1,8 @@
 // The sun's shadow pass: depth into the set-up's maps — one layer of a 2D array per fixed map
 // (single maps and cascades), or the virtual pages a frame must draw into the page atlas
 // (virtual_pages.h) — with the bias as polygon offset and caster culling (Scherzer 2005 §4.2),
-// with --filter msm the maps' moments (moment_maps.h), and with --foliage-opacity the maps'
-// opacity layers (opacity_layers.h). It owns the maps and what draws
+// with --filter msm the maps' moments (moment_maps.h), and with --foliage-opacity the maps' or
+// the pages' opacity layers (opacity_layers.h). It owns the maps and what draws
 // them; the culling planner (pass_lists.h) hands it the lists.
 #pragma once
 
@@ -24,6 +24,8 @@
 #include <memory>
 #include <optional>
 #include <span>
+#include <string>
+#include <vector>
 
 namespace shadowkit::gl {
 
@@ -33,8 +35,8 @@ public:
 
     // The maps `setup` draws into, allocated (or kept) before the frame's lists are planned:
     // fixed layers of setup.mapSize², or the page pool sized for the set-up's pages and the
-    // filter's guard band. Fails when the driver cannot (out of memory, too large), and for
-    // --foliage-opacity with virtual maps (field foliage_opacity: fixed maps only).
+    // filter's guard band; with --foliage-opacity their opacity layers. Fails when the driver
+    // cannot (out of memory, too large).
     core::Status prepare(const core::ShadowSetup& setup, const RenderSettings& settings,
                          const core::BiasSettings& bias);
     // Draws the maps: `mapLists` one per fixed map, or `pageLists` one per page to render. No
@@ -83,6 +85,10 @@ private:
         programs.cullClosedOnly = bias.cull == core::CasterCull::BackOfClosed;
         return programs;
     }
+    // The opacity layers' textures (OpacityLayers::prepare), built on the first frame that asks.
+    core::Status prepareOpacity(int width, int height, int layers, int mipLevels, const std::string& field);
+    // The opacity layers of the pages to render: each into its slot of the layers' atlases.
+    std::vector<OpacityView> pageOpacityViews() const;
     // `batches`: all, or the opaque ones when the alpha-tested cast through opacity layers.
     DrawStats drawFixedMaps(const GpuScene& scene, const core::ShadowSetup& setup, const core::BiasSettings& bias,
                             const core::Vec3& wsTowardsLight, std::span<const PassList> lists,

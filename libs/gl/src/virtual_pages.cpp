@@ -31,7 +31,8 @@ PageContent pageContentOf(const core::VirtualClipmap& clipmap, int guardTexels, 
             .lod = settings.lod,
             .lodTexelError = settings.lodTexelError,
             .lodFoliageScale = settings.lodFoliageScale,
-            .lodFade = settings.lodFade};
+            .lodFade = settings.lodFade,
+            .foliageOpacity = settings.foliageOpacity};
 }
 
 core::Result<std::unique_ptr<VirtualPages>> VirtualPages::create() {

@@ -91,8 +91,11 @@ struct Frame {
 };
 
 // Looking straight down on the cards' shadows from above x = 5: no ray to the ground there
-// passes through a card.
-Frame render(gl::Renderer& renderer, const scene::Scene& scene, const gl::RenderSettings& settings) {
+// passes through a card. `technique` Focused: one 256² map, 8 cm texels on the ground; Virtual:
+// pages of a clipmap whose level there has texels of 6.25 cm (2^-4 m), coarser than the leaves'
+// 3 cm cells too.
+Frame render(gl::Renderer& renderer, const scene::Scene& scene, const gl::RenderSettings& settings,
+             core::Technique technique = core::Technique::Focused) {
     core::PerspectiveCamera camera;
     camera.wsEye = {5, 14, 0};
     camera.wsDirection = {0, -1, 0};
@@ -103,8 +106,13 @@ Frame render(gl::Renderer& renderer, const scene::Scene& scene, const gl::Render
     auto setup = core::computeShadowSetup({.camera = camera,
                                            .light = kSun,
                                            .wsSceneBounds = scene.wsBounds(),
-                                           .technique = core::Technique::Focused,
-                                           .mapSize = 256});
+                                           .technique = technique,
+                                           .mapSize = 256,
+                                           .virtualMaps = {.virtualTexels = 1024,
+                                                           .pageTexels = 64,
+                                                           .firstLevel = -4,
+                                                           .lodBias = 1.0,
+                                                           .imageHeight = settings.height}});
     EXPECT_TRUE(setup) << setup.error();
     auto raster = renderer.renderEvalBuffers(camera, kSun, *setup, settings);
     EXPECT_TRUE(raster) << raster.error();
@@ -321,21 +329,78 @@ TEST_F(FoliageOpacityTest, ASunlitLeafIsNotShadedByItsOwnLayer) {
     }
 }
 
-TEST_F(FoliageOpacityTest, VirtualMapsRefuseOpacityLayersNamingTheSetting) {
+TEST_F(FoliageOpacityTest, VirtualPagesCastTheLeavesFractionThroughTheirOwnLayers) {
+    // The first two tests' figures, with the layers drawn page by page into the atlases beside the
+    // depth atlas and read through the page table: half the light under one card, a quarter under
+    // two, half on the plate's top between them, the plate's own shadow hard. Without the layers the
+    // same pages cast all or nothing per pixel.
     const scene::Scene s = cardsOverGround();
     auto renderer = gl::Renderer::create(s);
     ASSERT_TRUE(renderer) << renderer.error();
-    core::PerspectiveCamera camera;
-    camera.wsEye = {5, 14, 0};
-    camera.wsDirection = {0, -1, 0};
-    camera.wsUp = {1, 0, 0};
-    auto setup = core::computeShadowSetup({.camera = camera,
-                                           .light = kSun,
-                                           .wsSceneBounds = s.wsBounds(),
-                                           .technique = core::Technique::Virtual,
-                                           .mapSize = 256});
-    ASSERT_TRUE(setup) << setup.error();
-    auto raster = (*renderer)->renderEvalBuffers(camera, kSun, *setup, settings(true));
-    ASSERT_FALSE(raster);
-    EXPECT_NE(raster.error().find("foliage_opacity"), std::string::npos) << raster.error();
+    const Frame f = render(**renderer, s, settings(true), core::Technique::Virtual);
+    ASSERT_TRUE((*renderer)->lastVirtualPages());
+    EXPECT_GT((*renderer)->lastVirtualPages()->pagesRendered, 0);
+    const Region upperOnly = termsOver(f, kGround, 0.0, 5.5, 7.8, 0.4, 1.6);
+    const Region both = termsOver(f, kGround, 0.0, 5.5, 7.8, -1.6, -0.4);
+    const Region plateTop = termsOver(f, kPlate, 6.05, 2.3, 2.9, -1.6, -0.4);
+    const Region underPlate = termsOver(f, kGround, 0.0, 8.35, 8.85, -1.6, -0.4);
+    const Region open = termsOver(f, kGround, 0.0, 10.0, 11.0, -1.0, 1.0);
+    for (const Region* r : {&upperOnly, &both, &open}) ASSERT_GT(r->pixels, 50);
+    for (const Region* r : {&plateTop, &underPlate}) ASSERT_GT(r->pixels, 20);
+    EXPECT_NEAR(upperOnly.mean, 0.5, 0.1);
+    EXPECT_GT(upperOnly.fractional, 0.5);
+    EXPECT_NEAR(both.mean, 0.25, 0.08);
+    EXPECT_NEAR(plateTop.mean, 0.5, 0.12);
+    EXPECT_LT(underPlate.mean, 0.02);
+    EXPECT_GT(open.mean, 0.99);
+
+    const Frame binary = render(**renderer, s, settings(false), core::Technique::Virtual);
+    const Region binaryUpper = termsOver(binary, kGround, 0.0, 5.5, 7.8, 0.4, 1.6);
+    ASSERT_GT(binaryUpper.pixels, 50);
+    EXPECT_LT(binaryUpper.fractional, 0.05);
+}
+
+TEST_F(FoliageOpacityTest, AVirtualFrameFromCachedPagesEqualsAFreshOne) {
+    // A page's layers are drawn with its depth and cached with it. The same sun and the same pages
+    // hold other content with the layers on (the leaves in the layers) and off (in the depth): each
+    // switch must draw the pages again, and a frame that draws no page reads what its pages keep.
+    // Every frame equals a fresh renderer's first frame with the same settings.
+    const scene::Scene s = cardsOverGround();
+    const gl::RenderSettings on = underAWideSun();
+    gl::RenderSettings off = on;
+    off.foliageOpacity = false;
+    const auto freshFrame = [&](const gl::RenderSettings& settings) {
+        auto fresh = gl::Renderer::create(s);
+        EXPECT_TRUE(fresh) << fresh.error();
+        return fresh ? render(**fresh, s, settings, core::Technique::Virtual) : Frame{};
+    };
+    const Frame expectedOn = freshFrame(on), expectedOff = freshFrame(off);
+    const auto largestDifference = [](const Frame& a, const Frame& b) {
+        EXPECT_EQ(a.raster.shadowTerm.size(), b.raster.shadowTerm.size());
+        double largest = 0.0;
+        for (size_t i = 0; i < std::min(a.raster.shadowTerm.size(), b.raster.shadowTerm.size()); ++i)
+            largest = std::max(largest, std::abs(double(a.raster.shadowTerm[i]) - b.raster.shadowTerm[i]));
+        return largest;
+    };
+    // The leaves do cast through the layers, and differently from the depth test.
+    EXPECT_NEAR(termsOver(expectedOn, kGround, 0.0, 5.5, 7.8, 0.4, 1.6).mean, 0.5, 0.1);
+    EXPECT_GT(largestDifference(expectedOn, expectedOff), 0.5);
+
+    auto reused = gl::Renderer::create(s);
+    ASSERT_TRUE(reused) << reused.error();
+    render(**reused, s, on, core::Technique::Virtual);
+    struct Step {
+        const char* what;
+        const gl::RenderSettings* settings;
+        const Frame* expected;
+        bool drawsPages;
+    };
+    for (const Step& step :
+         {Step{"layers turned off", &off, &expectedOff, true}, Step{"layers turned on again", &on, &expectedOn, true},
+          Step{"from cached pages", &on, &expectedOn, false}}) {
+        const Frame f = render(**reused, s, *step.settings, core::Technique::Virtual);
+        ASSERT_TRUE((*reused)->lastVirtualPages());
+        EXPECT_EQ((*reused)->lastVirtualPages()->pagesRendered > 0, step.drawsPages) << step.what;
+        EXPECT_LT(largestDifference(f, *step.expected), 1e-5) << step.what;
+    }
 }

@@ -1,9 +1,9 @@
 // The installed GLSL (glsl/, share/shadowkit/glsl) as an engine appends it to a fragment shader of
 // its own: shadowkit_shadows.glsl, and with opacity layers shadowkit_foliage_opacity.glsl after it,
-// whose lookup the first file's skShadowMap calls through a declaration. The renderer compiles
-// the same two files inside its own programs; these compile them bare, with only the declarations
-// docs/engine-integration.md tells an engine to write, so a dependency the pair gains on the
-// renderer's own shader code, or an order that stops working, fails here.
+// whose lookup the first file's skShadowMap and skVirtualShadow call through declarations. The
+// renderer compiles the same two files inside its own programs; these compile them bare, with
+// only the declarations docs/engine-integration.md tells an engine to write, so a dependency the
+// pair gains on the renderer's own shader code, or an order that stops working, fails here.
 #include "headless_gl_test.h"
 
 #include "gl_shaders.h"
@@ -56,6 +56,27 @@ void main() {
 }
 )glsl";
 
+// An engine's virtual clipmap (docs/engine-integration.md): the page atlas, its page table and
+// the levels' matrices; the shading reads skVirtualShadow, which multiplies by the leaves'
+// transmittance from the opacity atlases when the samplers are named.
+constexpr std::string_view kVirtualDeclarations = R"glsl(
+layout(binding = 2) uniform sampler2DArrayShadow myPageAtlas;
+layout(binding = 3) uniform usampler2D myPageTable;
+uniform mat4 myLevelTextureFromWorld[8];
+#define SK_VIRTUAL_LEVEL_FROM_WORLD(i) myLevelTextureFromWorld[i]
+)glsl";
+
+constexpr std::string_view kVirtualShading = R"glsl(
+out vec4 colour;
+void main() {
+    const vec3 wsPosition = vec3(gl_FragCoord.xy, 0.0), wsNormal = vec3(0.0, 1.0, 0.0);
+    const vec3 dx = dFdx(wsPosition), dy = dFdy(wsPosition);
+    const SkShadowOptions o = SkShadowOptions(16384.0, false, 1.0, true, SK_FILTER_PCSS, 16, 8.0, 0.004625);
+    const SkVirtualMaps v = SkVirtualMaps(8, -6, 0.0015, 0.0, 128, 128, 10, 27, vec2(4104.0), 16384.0, 0.2);
+    colour = vec4(vec3(skVirtualShadow(myPageAtlas, myPageTable, v, o, gl_FragCoord.z, wsPosition, wsNormal, dx, dy)), 1.0);
+}
+)glsl";
+
 } // namespace
 
 TEST_F(InstalledGlslTest, TheLookupAloneCompilesWithAnEnginesOwnDeclarations) {
@@ -71,6 +92,22 @@ TEST_F(InstalledGlslTest, WithOpacityLayersTheFoliageFileAppendedAfterTheLookupC
                                           {kEngineDeclarations, kOpacityDeclarations, kShadowkitShadowsGlsl,
                                            kShadowkitFoliageOpacityGlsl, kEngineShading});
     EXPECT_TRUE(program) << program.error();
+}
+
+TEST_F(InstalledGlslTest, VirtualMapsWithOpacityLayersCompileAndWithoutTheFoliageFileAreRefused) {
+    using namespace gl::shaders;
+    const auto program = gl::buildProgram("engine shader, virtual maps, opacity layers", {kVertex},
+                                          {kVirtualDeclarations, kOpacityDeclarations, kShadowkitShadowsGlsl,
+                                           kShadowkitFoliageOpacityGlsl, kVirtualShading});
+    EXPECT_TRUE(program) << program.error();
+    const auto plain = gl::buildProgram("engine shader, virtual maps", {kVertex},
+                                        {kVirtualDeclarations, kShadowkitShadowsGlsl, kVirtualShading});
+    EXPECT_TRUE(plain) << plain.error();
+    // skVirtualShadow calls the declared skFoliageTransmittanceIn: never a silently unshadowed leaf.
+    const auto missing =
+        gl::buildProgram("engine shader, virtual maps, foliage file missing", {kVertex},
+                         {kVirtualDeclarations, kOpacityDeclarations, kShadowkitShadowsGlsl, kVirtualShading});
+    EXPECT_FALSE(missing);
 }
 
 TEST_F(InstalledGlslTest, TheFoliageFileBeforeTheLookupIsRefusedNamingTheOrder) {

@@ -52,6 +52,7 @@ struct PageContent {
     double lodTexelError = 0.0;                          ///< their bound, texels
     double lodFoliageScale = 1.0;                        ///< the bound's multiple for levels that keep coverage
     double lodFade = 0.0;                                ///< the band over which instances cross into those levels
+    bool foliageOpacity = false;                         ///< alpha-tested casters in opacity layers, not in depth
     bool operator==(const PageContent&) const = default; ///< the same content
 };
 /// The content `clipmap`'s pages have with everything else default (tests, engines without bias).
