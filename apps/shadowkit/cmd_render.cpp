@@ -69,6 +69,9 @@ void printFrameReport(const RenderArgs& args, const gl::Context& context, const 
                    v->pagesRequested, v->pagesRendered, v->pagesResident, v->pagesFellBack, v->poolPages,
                    static_cast<double>(v->poolBytes) / (1024.0 * 1024.0), setup.views.size(),
                    setup.clipmap ? std::ldexp(1.0, setup.clipmap->firstExponent) : 0.0);
+    if (const auto& v = stats.virtualPages; v && v->opacityBytes > 0)
+        fmt::print("  opacity layers {:.1f} MiB beside the pool\n",
+                   static_cast<double>(v->opacityBytes) / (1024.0 * 1024.0));
     if (const auto& v = stats.virtualPages; v && (v->pagesDeferred > 0 || v->lagFrames > 0))
         fmt::print("  page budget    {} pages deferred  {} levels behind  the sun of {} frames ago shown\n",
                    v->pagesDeferred, v->levelsBehind, v->lagFrames);

@@ -11,17 +11,19 @@
 namespace shadowkit::eval {
 
 nlohmann::json virtualPagesJson(const VirtualPagesReport& v) {
-    return {{"pages_requested", v.pagesRequested},
-            {"pages_rendered", v.pagesRendered},
-            {"pages_resident", v.pagesResident},
-            {"pages_fell_back", v.pagesFellBack},
-            {"pages_deferred", v.pagesDeferred},
-            {"levels_behind", v.levelsBehind},
-            {"lag_frames", v.lagFrames},
-            {"requests_age", v.requestsAge},
-            {"pool_pages", v.poolPages},
-            {"pool_bytes", v.poolBytes},
-            {"shadow_triangles", v.shadowTriangles}};
+    nlohmann::json json = {{"pages_requested", v.pagesRequested},
+                           {"pages_rendered", v.pagesRendered},
+                           {"pages_resident", v.pagesResident},
+                           {"pages_fell_back", v.pagesFellBack},
+                           {"pages_deferred", v.pagesDeferred},
+                           {"levels_behind", v.levelsBehind},
+                           {"lag_frames", v.lagFrames},
+                           {"requests_age", v.requestsAge},
+                           {"pool_pages", v.poolPages},
+                           {"pool_bytes", v.poolBytes},
+                           {"shadow_triangles", v.shadowTriangles}};
+    json["opacity_bytes"] = v.opacityBytes; // the opacity layers' atlases (--foliage-opacity)
+    return json;
 }
 
 namespace {

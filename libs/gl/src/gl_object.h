@@ -103,10 +103,14 @@ inline Texture createTexture2DArray(GLenum internalFormat, int width, int height
 // the edges: the side textures of the sun's maps (moments, opacity layers) and of the virtual
 // page atlas. With `levels` > 1, a mip chain of that many levels (at most a full one) read
 // trilinearly (GL_LINEAR): means over squares of 2^k texels.
+// The levels of a full mip chain of width × height, 1 × 1 the last.
+inline int fullMipLevels(int width, int height) {
+    int levels = 1;
+    while ((std::max(width, height) >> levels) > 0) ++levels;
+    return levels;
+}
 inline Texture createMapLayers(GLenum internalFormat, int width, int height, int layers, GLint filter, int levels) {
-    int full = 1;
-    while ((std::max(width, height) >> full) > 0) ++full;
-    levels = std::clamp(levels, 1, full);
+    levels = std::clamp(levels, 1, fullMipLevels(width, height));
     Texture t = createTexture2DArray(internalFormat, width, height, layers, levels);
     glTextureParameteri(t.id(), GL_TEXTURE_MIN_FILTER, levels > 1 ? GL_LINEAR_MIPMAP_LINEAR : filter);
     glTextureParameteri(t.id(), GL_TEXTURE_MAG_FILTER, filter);

@@ -4,6 +4,7 @@
 #include "program.h"
 #include "uniforms.h"
 
+#include <algorithm>
 #include <string>
 
 namespace shadowkit::gl {
@@ -40,7 +41,8 @@ std::vector<OpacityView> opacityViewsOf(const core::ShadowSetup& setup, int size
 }
 
 bool OpacityLayers::holds(int width, int height, int layers, int mipLevels) const {
-    return m_width == width && m_height == height && m_count == layers && m_mipLevels == mipLevels;
+    return m_width == width && m_height == height && m_count == layers &&
+           m_mipLevels == std::clamp(mipLevels, 1, fullMipLevels(width, height));
 }
 
 core::Status OpacityLayers::prepare(int width, int height, int layers, int mipLevels, const std::string& field) {
@@ -60,7 +62,8 @@ core::Status OpacityLayers::prepare(int width, int height, int layers, int mipLe
                                           std::to_string(height) + " texels (17 bytes a texel)",
                                       field);
     }
-    m_width = width, m_height = height, m_count = layers, m_mipLevels = mipLevels;
+    m_width = width, m_height = height, m_count = layers;
+    m_mipLevels = std::clamp(mipLevels, 1, fullMipLevels(width, height));
     return core::Ok{};
 }
 
@@ -135,6 +138,14 @@ void OpacityLayers::prefilter(std::span<const OpacityView> views) const {
     }
     glBindVertexArray(0);
     if (m_mipLevels > 1) glGenerateTextureMipmap(m_prefiltered.id());
+}
+
+int64_t OpacityLayers::bytes() const {
+    // R32F and RGBA16F: 4 + 8 bytes a texel; RG16F, 4, and each mip level a quarter of the one before.
+    int64_t prefiltered = 0;
+    for (int level = 0; level < m_mipLevels; ++level)
+        prefiltered += int64_t(std::max(m_width >> level, 1)) * std::max(m_height >> level, 1) * 4;
+    return (int64_t(m_width) * m_height * 12 + prefiltered) * m_count;
 }
 
 void OpacityLayers::bind() const {

@@ -59,6 +59,8 @@ public:
     // before a map's near plane clamped to it with `depthClamp`, as the depth pass does.
     DrawStats draw(const GpuScene& scene, const core::BiasSettings& bias, std::span<const OpacityView> views,
                    std::span<const PassList> lists, const Buffer& depthPass, bool depthClamp) const;
+    // The textures' size in bytes, mips included.
+    int64_t bytes() const;
     // The layers on kOpacityUnit, the first leaves' depths on kOpacityFirstUnit and the layers
     // prefiltered on kOpacityPrefilteredUnit.
     void bind() const;

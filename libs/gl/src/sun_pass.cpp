@@ -128,6 +128,7 @@ core::Result<PassStats> SunPass::draw(const GpuScene& scene, const core::ShadowS
         m_pages->rendered();
         m_lastVirtual = m_pages->stats();
         m_lastVirtual->triangles = draws.triangles;
+        if (settings.foliageOpacity) m_lastVirtual->opacityBytes = m_opacity->bytes();
         return PassStats{.instances = draws.instances, .triangles = draws.triangles, .drawCalls = draws.drawCalls};
     }
     glBindFramebuffer(GL_FRAMEBUFFER, m_shadow->framebuffer.id());

@@ -338,8 +338,13 @@ TEST_F(FoliageOpacityTest, VirtualPagesCastTheLeavesFractionThroughTheirOwnLayer
     auto renderer = gl::Renderer::create(s);
     ASSERT_TRUE(renderer) << renderer.error();
     const Frame f = render(**renderer, s, settings(true), core::Technique::Virtual);
-    ASSERT_TRUE((*renderer)->lastVirtualPages());
-    EXPECT_GT((*renderer)->lastVirtualPages()->pagesRendered, 0);
+    const auto pages = (*renderer)->lastVirtualPages();
+    ASSERT_TRUE(pages);
+    EXPECT_GT(pages->pagesRendered, 0);
+    // The layers' atlases beside the depth atlas's 4 bytes a texel: 12 bytes a texel, and the
+    // prefiltered layers' 4 with their mips, at most a third more.
+    EXPECT_GE(pages->opacityBytes, 4 * pages->poolBytes);
+    EXPECT_LE(pages->opacityBytes, pages->poolBytes * 16 / 3);
     const Region upperOnly = termsOver(f, kGround, 0.0, 5.5, 7.8, 0.4, 1.6);
     const Region both = termsOver(f, kGround, 0.0, 5.5, 7.8, -1.6, -0.4);
     const Region plateTop = termsOver(f, kPlate, 6.05, 2.3, 2.9, -1.6, -0.4);
@@ -355,6 +360,7 @@ TEST_F(FoliageOpacityTest, VirtualPagesCastTheLeavesFractionThroughTheirOwnLayer
     EXPECT_GT(open.mean, 0.99);
 
     const Frame binary = render(**renderer, s, settings(false), core::Technique::Virtual);
+    EXPECT_EQ((*renderer)->lastVirtualPages()->opacityBytes, 0);
     const Region binaryUpper = termsOver(binary, kGround, 0.0, 5.5, 7.8, 0.4, 1.6);
     ASSERT_GT(binaryUpper.pixels, 50);
     EXPECT_LT(binaryUpper.fractional, 0.05);

@@ -207,6 +207,7 @@ eval::VirtualPagesReport virtualPagesReport(const gl::VirtualPageStats& v) {
             .requestsAge = v.marksAge,
             .poolPages = v.poolPages,
             .poolBytes = v.poolBytes,
+            .opacityBytes = v.opacityBytes,
             .shadowTriangles = v.triangles};
 }
 

@@ -40,6 +40,7 @@ struct VirtualPagesReport {
     int requestsAge = 0;   // frames since the requests read were marked (0: the frame's own; −1: none)
     int poolPages = 0;
     int64_t poolBytes = 0;
+    int64_t opacityBytes = 0;   // the opacity layers' atlases (--foliage-opacity), 0 without
     size_t shadowTriangles = 0; // drawn into the pages rendered
 };
 

@@ -57,8 +57,9 @@ struct PassStats {
 // figures (core::PageCacheStats: requested, resident, rendered, fallen back, deferred, levels
 // behind and their lag, slots), and what the GPU side adds.
 struct VirtualPageStats : core::PageCacheStats {
-    int64_t poolBytes = 0; // the atlas's depth, 4 bytes a texel (guard bands included)
-    size_t triangles = 0;  // drawn into the pages rendered this frame
+    int64_t poolBytes = 0;    // the atlas's depth, 4 bytes a texel (guard bands included)
+    int64_t opacityBytes = 0; // with --foliage-opacity: the opacity layers' atlases beside it, mips included
+    size_t triangles = 0;     // drawn into the pages rendered this frame
 };
 
 // A frame's figures that only the GPU knows, as they come back frames later when the renderer
