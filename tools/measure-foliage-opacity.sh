@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
 # Partial occlusion by leaves (issue 52, item 2): the leafy forest's six sunlit views under the
 # real sun (0.53°) with PCSS, its leaves cast through the depth test and through opacity layers
-# (--foliage-opacity), for the default TSM at 2048² and 4096² and four LiSPSM cascades — sweep
-# data/sweeps/leafy-opacity.json at 640 × 360 — written into docs/materials.md: the means against
-# both truths and the figures per view. About 6 minutes on this project's 2-core llvmpipe
-# machine (the leafy shadow passes dominate; the opacity layers draw the leaves twice more).
+# (--foliage-opacity), for the default TSM at 2048² and 4096², four LiSPSM cascades and virtual
+# shadow maps — sweep data/sweeps/leafy-opacity.json at 640 × 360 — written into
+# docs/materials.md: the means against both truths and the figures per view. About 11 minutes on
+# this project's 2-core llvmpipe machine (the leafy shadow passes dominate; the opacity layers
+# draw the leaves twice more).
 #   SHADOWKIT=PATH   the binary to run (a copy keeps a rebuild from changing it mid-run)
 set -euo pipefail
 cd "$(dirname "$0")/.."
