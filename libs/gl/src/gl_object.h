@@ -99,6 +99,17 @@ inline Texture createTexture2DArray(GLenum internalFormat, int width, int height
     return Texture(id);
 }
 
+// A view of one mip level of `source` (immutable storage), all `layers` of it: a texture of its
+// own, so a pass may read that level while it draws into the next.
+inline Texture createLevelView(const Texture& source, GLenum target, GLenum format, int level, int layers) {
+    GLuint id = 0;
+    glGenTextures(1, &id); // a view takes a name never bound
+    glTextureView(id, target, source.id(), format, static_cast<GLuint>(level), 1, 0, static_cast<GLuint>(layers));
+    glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    return Texture(id);
+}
+
 // Layers of width × height read through their own filter (GL_NEAREST or GL_LINEAR), clamped at
 // the edges: the side textures of the sun's maps (moments, opacity layers) and of the virtual
 // page atlas. With `levels` > 1, a mip chain of that many levels (at most a full one) read

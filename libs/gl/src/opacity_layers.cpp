@@ -23,6 +23,9 @@ core::Result<std::unique_ptr<OpacityLayers>> OpacityLayers::create() {
                                   {kShadowkitShadowsGlsl, kShadowkitFoliageOpacityGlsl, kOpacityPrefilterFrag});
     if (!prefilter) return prefilter.errorInfo();
     layers->m_prefilter = std::move(prefilter).value();
+    auto downsample = buildProgram("opacity layers, downsampled", {kFullscreenVert}, {kOpacityDownsampleFrag});
+    if (!downsample) return downsample.errorInfo();
+    layers->m_downsample = std::move(downsample).value();
     layers->m_framebuffer = createFramebuffer();
     GLuint vao = 0;
     glCreateVertexArrays(1, &vao); // attribute-less: the prefilter's triangle comes from gl_VertexID
@@ -47,7 +50,7 @@ bool OpacityLayers::holds(int width, int height, int layers, int mipLevels) cons
 
 core::Status OpacityLayers::prepare(int width, int height, int layers, int mipLevels, const std::string& field) {
     if (holds(width, height, layers, mipLevels)) return core::Ok{};
-    m_firstDepth.reset(), m_layers.reset(), m_prefiltered.reset(); // the old ones go first
+    m_levelViews.clear(), m_firstDepth.reset(), m_layers.reset(), m_prefiltered.reset(); // the old ones go first
     while (glGetError() != GL_NO_ERROR) {
     }
     m_firstDepth = createMapLayers(GL_R32F, width, height, layers, GL_NEAREST, 1);
@@ -64,6 +67,8 @@ core::Status OpacityLayers::prepare(int width, int height, int layers, int mipLe
     }
     m_width = width, m_height = height, m_count = layers;
     m_mipLevels = std::clamp(mipLevels, 1, fullMipLevels(width, height));
+    for (int level = 0; level + 1 < m_mipLevels; ++level)
+        m_levelViews.push_back(createLevelView(m_prefiltered, GL_TEXTURE_2D_ARRAY, GL_RG16F, level, layers));
     return core::Ok{};
 }
 
@@ -126,8 +131,12 @@ void OpacityLayers::prefilter(std::span<const OpacityView> views) const {
     glBindVertexArray(m_emptyVertexArray.id());
     glBindTextureUnit(kOpacityUnit, m_layers.id());
     glBindTextureUnit(kOpacityFirstUnit, m_firstDepth.id());
+    int attached = -1; // attached once a layer, not once a view (a virtual atlas's pages share one)
     for (const OpacityView& view : views) {
-        glNamedFramebufferTextureLayer(m_framebuffer.id(), GL_COLOR_ATTACHMENT0, m_prefiltered.id(), 0, view.layer);
+        if (view.layer != attached) {
+            attached = view.layer;
+            glNamedFramebufferTextureLayer(m_framebuffer.id(), GL_COLOR_ATTACHMENT0, m_prefiltered.id(), 0, attached);
+        }
         glViewport(view.viewport.x, view.viewport.y, view.viewport.z, view.viewport.z);
         glScissor(view.viewport.x, view.viewport.y, view.viewport.z, view.viewport.z);
         glProgramUniform1i(m_prefilter.id(), kOpacityLayerLocation, view.layer);
@@ -136,8 +145,41 @@ void OpacityLayers::prefilter(std::span<const OpacityView> views) const {
                            static_cast<float>(glm::length(core::Vec3(view.linearDepthFromWorld))));
         glDrawArrays(GL_TRIANGLES, 0, 3);
     }
+    if (m_mipLevels > 1) {
+        const bool wholeLayers = m_width == m_height && std::ranges::all_of(views, [&](const OpacityView& v) {
+                                     return v.viewport == glm::ivec3(0, 0, m_width);
+                                 });
+        if (wholeLayers)
+            glGenerateTextureMipmap(m_prefiltered.id());
+        else
+            downsample(views);
+    }
     glBindVertexArray(0);
-    if (m_mipLevels > 1) glGenerateTextureMipmap(m_prefiltered.id());
+}
+
+void OpacityLayers::downsample(std::span<const OpacityView> views) const {
+    glUseProgram(m_downsample.id());
+    for (int level = 1; level < m_mipLevels; ++level) {
+        glBindTextureUnit(kOpacityPrefilteredUnit, m_levelViews[size_t(level - 1)].id());
+        const glm::ivec2 size(std::max(m_width >> level, 1), std::max(m_height >> level, 1));
+        int attached = -1; // attached once a layer, not once a view (a virtual atlas's pages share one)
+        for (const OpacityView& view : views) {
+            if (view.layer != attached) {
+                attached = view.layer;
+                glNamedFramebufferTextureLayer(m_framebuffer.id(), GL_COLOR_ATTACHMENT0, m_prefiltered.id(), level,
+                                               attached);
+            }
+            // The level's texels that hold any of the view's: its corner rounded down, its far
+            // edge up (those straddle a neighbour, as the driver's chain's do).
+            const glm::ivec2 from = glm::ivec2(view.viewport) >> level;
+            const glm::ivec2 to =
+                glm::min((glm::ivec2(view.viewport) + view.viewport.z + (1 << level) - 1) >> level, size);
+            glViewport(from.x, from.y, to.x - from.x, to.y - from.y);
+            glScissor(from.x, from.y, to.x - from.x, to.y - from.y);
+            glProgramUniform1i(m_downsample.id(), kOpacityLayerLocation, view.layer);
+            glDrawArrays(GL_TRIANGLES, 0, 3);
+        }
+    }
 }
 
 int64_t OpacityLayers::bytes() const {

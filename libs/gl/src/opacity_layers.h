@@ -12,9 +12,11 @@
 // leaf by GL_MIN blending, then each leaf fragment's transmittance by multiplicative blending
 // into the layer of its distance behind the first (opacity.frag); then one triangle over each
 // map (opacity_prefilter.frag) and the mip chain. For the set-up's fixed maps (single maps and
-// cascades) the textures are layers of the maps' size, one a map; for virtual maps they are laid
-// out as the page atlas, one layer, and each page drawn is drawn into its slot, guard band and
-// all — a page's layers are drawn when its depth is, so a cached page keeps both.
+// cascades) the textures are layers of the maps' size, one a map, and the driver builds the
+// chain; for virtual maps they are laid out as the page atlas, one layer, each page drawn is
+// drawn into its slot, guard band and all — a page's layers are drawn when its depth is, so a
+// cached page keeps both — and the chain is filtered over the drawn slots alone
+// (opacity_downsample.frag), up to the guard band's width.
 #pragma once
 
 #include "gl_object.h"
@@ -67,10 +69,15 @@ public:
 
 private:
     OpacityLayers() = default;
-    // Each view's texels of m_prefiltered's level 0 from its layers, then the mip chain.
+    // Each view's texels of m_prefiltered's level 0 from its layers, then the mip chain: the
+    // driver's over whole layers, else downsample()'s over the views' rectangles.
     void prefilter(std::span<const OpacityView> views) const;
-    Program m_first, m_transmittance; // opacity.frag with and without SK_OPACITY_FIRST, materials only
-    Program m_prefilter;              // opacity_prefilter.frag
+    // m_prefiltered's levels 1 … over each view's rectangle alone, level by level.
+    void downsample(std::span<const OpacityView> views) const;
+    Program m_first, m_transmittance;  // opacity.frag with and without SK_OPACITY_FIRST, materials only
+    Program m_prefilter;               // opacity_prefilter.frag
+    Program m_downsample;              // opacity_downsample.frag
+    std::vector<Texture> m_levelViews; // m_prefiltered's levels but the last, each alone: downsample()'s sources
     Texture m_firstDepth, m_layers;
     Texture m_prefiltered; // mipmapped: the leaves' absorbance and its depth moment (opacity_prefilter.frag)
     Framebuffer m_framebuffer;
