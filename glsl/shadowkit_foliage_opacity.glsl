@@ -77,9 +77,9 @@ float skLeavesMeanMetres(vec4 mass, vec4 share) {
 
 #ifdef SK_SHADOW_OPACITY
 // The caller names three sampler2DArrays laid out as the depth maps — for virtual maps as the
-// page atlas, one layer, each page drawn into its slot with its guard band: the layers' transmittance
-// (RGBA; 1 where no leaf is) and the first leaf's linear depth (R; 1 where no leaf covers the
-// texel), both read texel by texel, and the layers prefiltered (RG, mipmapped,
+// page atlas, one layer, each page drawn into its slot with its guard band: the layers'
+// transmittance (RGBA; 1 where no leaf is) and the first leaf's linear depth (R; 1 where no
+// leaf covers the texel), both read texel by texel, and the layers prefiltered (RG, mipmapped,
 // GL_LINEAR_MIPMAP_LINEAR: per texel A = −ln T and A × the leaves' depth; gl's
 // opacity_prefilter.frag is the model), and when the lookup applies:
 //   #define SK_SHADOW_OPACITY              myOpacityLayers
@@ -135,8 +135,9 @@ float skOpacityTransmittanceAt(int layer, vec2 uv, vec4 atlasFromMap, float dept
 }
 
 // The share of the sun the leaves let through to a receiver at `ws` in map `layer`, stored at
-// atlasFromMap (skOpacityTexel). The opacity layers are in linear depth whatever the depth map's layout (linearDepthFromWorld's row, whose
-// gradient's length is 1 / the range in metres). With PCSS and a sun of some size, skPcss's two
+// atlasFromMap (skOpacityTexel). The opacity layers are in linear depth whatever the depth map's
+// layout (linearDepthFromWorld's row, whose gradient's length is 1 / the range in metres; a
+// virtual page's clip depth, skVirtualLevelShadow). With PCSS and a sun of some size, skPcss's two
 // steps on the layers: the leaves' distance in front of the receiver, then the mean transmittance
 // over the sun's disk at that distance, o.filterTaps taps of a Vogel disk (one, the receiver's own
 // point, where the disk lies inside its texel); otherwise at the receiver's own point. The

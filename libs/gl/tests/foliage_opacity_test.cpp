@@ -92,8 +92,8 @@ struct Frame {
 
 // Looking straight down on the cards' shadows from above x = 5: no ray to the ground there
 // passes through a card. `technique` Focused: one 256² map, 8 cm texels on the ground; Virtual:
-// pages of a clipmap whose level there has texels of 6.25 cm (2^-4 m), coarser than the leaves'
-// 3 cm cells too.
+// pages of a clipmap, the level rule ⌊log2 footprint + lodBias⌋ giving the ground 14 m below
+// the eye (pixels of 6.3 cm) texels of 12.5 cm (2^-3 m), coarser than the leaves' 3 cm cells too.
 Frame render(gl::Renderer& renderer, const scene::Scene& scene, const gl::RenderSettings& settings,
              core::Technique technique = core::Technique::Focused) {
     core::PerspectiveCamera camera;
