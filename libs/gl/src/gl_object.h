@@ -110,16 +110,17 @@ inline Texture createLevelView(const Texture& source, GLenum target, GLenum form
     return Texture(id);
 }
 
-// Layers of width × height read through their own filter (GL_NEAREST or GL_LINEAR), clamped at
-// the edges: the side textures of the sun's maps (moments, opacity layers) and of the virtual
-// page atlas. With `levels` > 1, a mip chain of that many levels (at most a full one) read
-// trilinearly (GL_LINEAR): means over squares of 2^k texels.
 // The levels of a full mip chain of width × height, 1 × 1 the last.
 inline int fullMipLevels(int width, int height) {
     int levels = 1;
     while ((std::max(width, height) >> levels) > 0) ++levels;
     return levels;
 }
+
+// Layers of width × height read through their own filter (GL_NEAREST or GL_LINEAR), clamped at
+// the edges: the side textures of the sun's maps (moments, opacity layers) and of the virtual
+// page atlas. With `levels` > 1, a mip chain of that many levels (at most a full one) read
+// trilinearly (GL_LINEAR): means over squares of 2^k texels.
 inline Texture createMapLayers(GLenum internalFormat, int width, int height, int layers, GLint filter, int levels) {
     levels = std::clamp(levels, 1, fullMipLevels(width, height));
     Texture t = createTexture2DArray(internalFormat, width, height, layers, levels);

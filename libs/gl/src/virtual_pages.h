@@ -69,9 +69,8 @@ public:
     std::span<const PageToRender> pagesToRender() const { return m_cache.pagesToRender(); }
     // The slot's viewport in the atlas: x, y, side.
     glm::ivec3 slotViewport(int slot) const;
-    // The atlas's width and height in texels, and the guard band around each page (configure()).
+    // The atlas's width and height in texels (configure()).
     glm::ivec2 atlasTexels() const { return m_atlasTexels; }
-    int guardTexels() const { return m_guardTexels; }
     // Draws pagesToRender()[i] with lists[i] into its slot, scissored so its clear touches no
     // other page, with the bound depth program: the page's matrix into `depthUniforms`, the
     // clusters of large meshes culled to the page's volume, the faces towards `wsTowardsLight`
