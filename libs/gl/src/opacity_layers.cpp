@@ -27,6 +27,7 @@ core::Result<std::unique_ptr<OpacityLayers>> OpacityLayers::create() {
     if (!downsample) return downsample.errorInfo();
     layers->m_downsample = std::move(downsample).value();
     layers->m_framebuffer = createFramebuffer();
+    layers->m_firstFramebuffer = createFramebuffer();
     GLuint vao = 0;
     glCreateVertexArrays(1, &vao); // attribute-less: the prefilter's triangle comes from gl_VertexID
     layers->m_emptyVertexArray = VertexArray(vao);
@@ -50,21 +51,23 @@ bool OpacityLayers::holds(int width, int height, int layers, int mipLevels) cons
 
 core::Status OpacityLayers::prepare(int width, int height, int layers, int mipLevels, const std::string& field) {
     if (holds(width, height, layers, mipLevels)) return core::Ok{};
-    m_levelViews.clear(), m_firstDepth.reset(), m_layers.reset(), m_prefiltered.reset(); // the old ones go first
+    m_levelViews.clear(), m_firstDepth.reset(), m_layers.reset(), m_prefiltered.reset(), m_nearestLeaf.reset();
     while (glGetError() != GL_NO_ERROR) {
     }
     m_firstDepth = createMapLayers(GL_R32F, width, height, layers, GL_NEAREST, 1);
     m_layers =
         createMapLayers(GL_RGBA16F, width, height, layers, GL_NEAREST, 1); // read texel by texel, as the first depth
     m_prefiltered = createMapLayers(GL_RG16F, width, height, layers, GL_LINEAR, mipLevels);
+    m_nearestLeaf = createTexture2D(GL_DEPTH_COMPONENT32F, width, height);
     if (glGetError() == GL_OUT_OF_MEMORY) {
-        m_firstDepth.reset(), m_layers.reset(), m_prefiltered.reset();
+        m_firstDepth.reset(), m_layers.reset(), m_prefiltered.reset(), m_nearestLeaf.reset();
         m_width = m_height = m_count = m_mipLevels = 0;
         return core::environmentError(field + ": the GL driver is out of memory for opacity layers of " +
                                           std::to_string(layers) + " × " + std::to_string(width) + " × " +
-                                          std::to_string(height) + " texels (17 bytes a texel)",
+                                          std::to_string(height) + " texels (17 bytes a texel, 4 more in one layer)",
                                       field);
     }
+    glNamedFramebufferTexture(m_firstFramebuffer.id(), GL_DEPTH_ATTACHMENT, m_nearestLeaf.id(), 0);
     m_width = width, m_height = height, m_count = layers;
     m_mipLevels = std::clamp(mipLevels, 1, fullMipLevels(width, height));
     for (int level = 0; level + 1 < m_mipLevels; ++level)
@@ -74,15 +77,17 @@ core::Status OpacityLayers::prepare(int width, int height, int layers, int mipLe
 
 DrawStats OpacityLayers::draw(const GpuScene& scene, const core::BiasSettings& bias, std::span<const OpacityView> views,
                               std::span<const PassList> lists, const Buffer& depthPass, bool depthClamp) const {
-    // No depth test and both sides of every leaf: each fragment of each leaf counts once. Each
-    // view's clears and draws stay inside its viewport (a page's slot).
+    // Both sides of every leaf, and no depth test but the first draw's: in the layers each fragment
+    // of each leaf counts once. Each view's clears and draws stay inside its viewport (a page's slot).
     glDisable(GL_DEPTH_TEST);
     glDepthMask(GL_FALSE);
     glDisable(GL_CULL_FACE);
+    // The depth pass's slope-scaled offset would push a steep leaf behind a flat one at nearly its
+    // depth, and the first draw's depth test must order the leaves as their linear depths do.
+    glDisable(GL_POLYGON_OFFSET_FILL);
     if (depthClamp) glEnable(GL_DEPTH_CLAMP); // casters before the near plane, as the depth pass
     glEnable(GL_BLEND);
     glEnable(GL_SCISSOR_TEST);
-    glBindFramebuffer(GL_FRAMEBUFFER, m_framebuffer.id());
     glBindBufferBase(GL_UNIFORM_BUFFER, kDepthPassBinding, depthPass.id());
     const PassPrograms first{.material = m_first.id(), .batches = PassPrograms::Batches::AlphaTested};
     const PassPrograms transmittance{.material = m_transmittance.id(), .batches = PassPrograms::Batches::AlphaTested};
@@ -100,11 +105,24 @@ DrawStats OpacityLayers::draw(const GpuScene& scene, const core::BiasSettings& b
                        : scene.draw(lists[i], programs);
         };
 
-        glNamedFramebufferTextureLayer(m_framebuffer.id(), GL_COLOR_ATTACHMENT0, m_firstDepth.id(), 0, view.layer);
+        // The first leaf: depth-tested, so that a leaf behind one already drawn — the cards come
+        // nearest the sun first — is rejected before it is shaded; GL_MIN settles ties (casters
+        // clamped to the near plane all at depth 0 pass GL_LEQUAL).
+        glBindFramebuffer(GL_FRAMEBUFFER, m_firstFramebuffer.id());
+        glNamedFramebufferTextureLayer(m_firstFramebuffer.id(), GL_COLOR_ATTACHMENT0, m_firstDepth.id(), 0, view.layer);
         const float far[4] = {1.0f, 1.0f, 1.0f, 1.0f}; // no leaf: the far end of the map's depth
-        glClearNamedFramebufferfv(m_framebuffer.id(), GL_COLOR, 0, far);
+        glClearNamedFramebufferfv(m_firstFramebuffer.id(), GL_COLOR, 0, far);
+        glDepthMask(GL_TRUE); // before the clear, which it masks
+        const float farthest = 1.0f;
+        glClearNamedFramebufferfv(m_firstFramebuffer.id(), GL_DEPTH, 0, &farthest);
+        glEnable(GL_DEPTH_TEST);
+        glDepthFunc(GL_LEQUAL);
         glBlendEquation(GL_MIN);
         draws += drawLeaves(first);
+        glDisable(GL_DEPTH_TEST);
+        glDepthFunc(GL_LESS);
+        glDepthMask(GL_FALSE);
+        glBindFramebuffer(GL_FRAMEBUFFER, m_framebuffer.id());
 
         glNamedFramebufferTextureLayer(m_framebuffer.id(), GL_COLOR_ATTACHMENT0, m_layers.id(), 0, view.layer);
         const float clear[4] = {1.0f, 1.0f, 1.0f, 1.0f}; // no leaf lets all the light through
@@ -183,11 +201,12 @@ void OpacityLayers::downsample(std::span<const OpacityView> views) const {
 }
 
 int64_t OpacityLayers::bytes() const {
-    // R32F and RGBA16F: 4 + 8 bytes a texel; RG16F, 4, and each mip level a quarter of the one before.
+    // R32F and RGBA16F: 4 + 8 bytes a texel; RG16F, 4, and each mip level a quarter of the one
+    // before; and the first draw's depth test, 4 bytes a texel of one layer.
     int64_t prefiltered = 0;
     for (int level = 0; level < m_mipLevels; ++level)
         prefiltered += int64_t(std::max(m_width >> level, 1)) * std::max(m_height >> level, 1) * 4;
-    return (int64_t(m_width) * m_height * 12 + prefiltered) * m_count;
+    return (int64_t(m_width) * m_height * 12 + prefiltered) * m_count + int64_t(m_width) * m_height * 4;
 }
 
 void OpacityLayers::bind() const {

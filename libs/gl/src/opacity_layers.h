@@ -6,17 +6,18 @@
 // map's term, which then holds the opaque casters only (PassPrograms::Batches). Beside them the
 // layers prefiltered (RG16F with its mip chain: per texel A = −ln T and A × the leaves' depth),
 // from which the lookup reads the mean depth of the leaves around a receiver in one fetch. About
-// 17 bytes a texel beside the depth map's 4.
+// 17 bytes a texel beside the depth map's 4, and 4 in one layer for the first draw's depth test.
 //
-// Two passes over the alpha-tested batches of each map's list, with no depth test: the first
-// leaf by GL_MIN blending, then each leaf fragment's transmittance by multiplicative blending
-// into the layer of its distance behind the first (opacity.frag); then one triangle over each
-// map (opacity_prefilter.frag) and the mip chain. For the set-up's fixed maps (single maps and
-// cascades) the textures are layers of the maps' size, one a map, and the driver builds the
-// chain; for virtual maps they are laid out as the page atlas, one layer, each page drawn is
-// drawn into its slot, guard band and all — a page's layers are drawn when its depth is, so a
-// cached page keeps both — and the chain is filtered over the drawn slots alone
-// (opacity_downsample.frag), up to the guard band's width.
+// Two passes over the alpha-tested batches of each map's list: the first leaf, depth-tested so
+// that a leaf behind one already drawn is rejected before it is shaded (the lists come nearest
+// the sun first) and GL_MIN-blended; then, with no depth test, each leaf fragment's transmittance
+// by multiplicative blending into the layer of its distance behind the first (opacity.frag) —
+// every leaf counts there; then one triangle over each map (opacity_prefilter.frag) and the mip
+// chain. For the set-up's fixed maps (single maps and cascades) the textures are layers of the
+// maps' size, one a map, and the driver builds the chain; for virtual maps they are laid out as
+// the page atlas, one layer, each page drawn is drawn into its slot, guard band and all — a
+// page's layers are drawn when its depth is, so a cached page keeps both — and the chain is
+// filtered over the drawn slots alone (opacity_downsample.frag), up to the guard band's width.
 #pragma once
 
 #include "gl_object.h"
@@ -80,7 +81,9 @@ private:
     std::vector<Texture> m_levelViews; // m_prefiltered's levels but the last, each alone: downsample()'s sources
     Texture m_firstDepth, m_layers;
     Texture m_prefiltered; // mipmapped: the leaves' absorbance and its depth moment (opacity_prefilter.frag)
+    Texture m_nearestLeaf; // D32F, one layer: the first leaf's draw's depth test, every view in turn
     Framebuffer m_framebuffer;
+    Framebuffer m_firstFramebuffer; // the first leaf's depth with m_nearestLeaf for its depth test
     VertexArray m_emptyVertexArray;
     int m_width = 0, m_height = 0, m_count = 0, m_mipLevels = 0;
 };

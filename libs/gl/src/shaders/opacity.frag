@@ -1,9 +1,9 @@
-// The sun's opacity layers (opacity_layers.h): the alpha-tested casters, drawn twice with no
-// depth test. SK_OPACITY_FIRST: the first pass keeps, per texel, the nearest linear depth of any
-// leaf (blending GL_MIN into an R32F layer). Otherwise the second pass multiplies the layer of
-// each leaf fragment's distance behind that first leaf by what the fragment lets through,
-// 1 − coverage (blending GL_ZERO, GL_SRC_COLOR into an RGBA16F layer cleared to 1: four layers,
-// SK_OPACITY_LAYER_EDGES), in any order.
+// The sun's opacity layers (opacity_layers.h): the alpha-tested casters, drawn twice.
+// SK_OPACITY_FIRST: the first pass keeps, per texel, the nearest linear depth of any leaf
+// (depth-tested, blending GL_MIN into an R32F layer). Otherwise the second pass, with no depth
+// test, multiplies the layer of each leaf fragment's distance behind that first leaf by what the
+// fragment lets through, 1 − coverage (blending GL_ZERO, GL_SRC_COLOR into an RGBA16F layer
+// cleared to 1: four layers, SK_OPACITY_LAYER_EDGES), in any order.
 in vec3 wsPosition;
 #ifdef SK_OPACITY_FIRST
 layout(location = 0) out float firstDepth;
