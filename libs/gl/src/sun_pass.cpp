@@ -118,7 +118,7 @@ core::Result<PassStats> SunPass::draw(const GpuScene& scene, const core::ShadowS
         if (!pages.empty()) m_samples.end();
         // Opacity layers: each page's into its slot of the layers' atlases, as the fixed maps'.
         if (settings.foliageOpacity && !pages.empty())
-            draws += m_opacity->draw(scene, bias, pageOpacityViews(), pageLists, m_uniforms, true);
+            draws += m_opacity->draw(scene, bias, pageOpacityViews(), pageLists, m_uniforms, /*depthClamp=*/true);
         m_timer.end();
         if (!pages.empty()) {
             const auto side = uint64_t(m_pages->slotViewport(pages.front().slot).z);
