@@ -17,6 +17,7 @@ import tempfile
 
 import numpy as np
 from matplotlib import pyplot as plt
+from penumbra_window import densest_penumbra_window, enlarged  # the same tools/ folder
 
 root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 shadowkit = sys.argv[1] if len(sys.argv) > 1 else os.path.join(root, "build/apps/shadowkit/shadowkit")
@@ -35,19 +36,11 @@ with tempfile.TemporaryDirectory() as scratch:
 # The window (a third of the frame's height, 4:3) holding the most penumbra pixels.
 h, w = truth.shape
 wh, ww = h // 3, (h // 3) * 4 // 3
-penumbra = np.nan_to_num((truth > 0.02) & (truth < 0.98)).astype(np.int64)
-sums = np.pad(penumbra.cumsum(0).cumsum(1), ((1, 0), (1, 0)))
-best, corner = -1, (0, 0)
-for y in range(0, h - wh + 1, 8):
-    for x in range(0, w - ww + 1, 8):
-        s = sums[y + wh, x + ww] - sums[y, x + ww] - sums[y + wh, x] + sums[y, x]
-        if s > best:
-            best, corner = s, (y, x)
-y0, x0 = corner
+y0, x0 = densest_penumbra_window(truth, wh, ww)
 
 
 def crop(image):
-    return np.kron(image[y0:y0 + wh, x0:x0 + ww], np.ones((3, 3)))
+    return enlarged(image, (y0, x0), wh, ww)
 
 
 valid = np.isfinite(truth)

@@ -15,6 +15,7 @@ import tempfile
 
 import numpy as np
 from matplotlib import pyplot as plt
+from penumbra_window import densest_penumbra_window, enlarged  # the same tools/ folder
 
 root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 shadowkit = sys.argv[1] if len(sys.argv) > 1 else os.path.join(root, "build/apps/shadowkit/shadowkit")
@@ -34,20 +35,11 @@ with tempfile.TemporaryDirectory() as scratch:
 # The window (a quarter of the frame's height, 4:3) holding the most penumbra pixels.
 h, w = truth.shape
 wh, ww = h // 4, h // 3
-penumbra = np.nan_to_num((truth > 0.02) & (truth < 0.98)).astype(np.int64)
-sums = penumbra.cumsum(0).cumsum(1)
-best, corner = -1, (0, 0)
-for y in range(0, h - wh, 8):
-    for x in range(0, w - ww, 8):
-        s = sums[y + wh - 1, x + ww - 1] - (sums[y - 1, x + ww - 1] if y else 0) - \
-            (sums[y + wh - 1, x - 1] if x else 0) + (sums[y - 1, x - 1] if x and y else 0)
-        if s > best:
-            best, corner = s, (y, x)
-y0, x0 = corner
+y0, x0 = densest_penumbra_window(truth, wh, ww)
 
 
 def crop(image):
-    return np.kron(image[y0:y0 + wh, x0:x0 + ww], np.ones((3, 3)))
+    return enlarged(image, (y0, x0), wh, ww)
 
 
 valid = np.isfinite(truth)
