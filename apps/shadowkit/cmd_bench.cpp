@@ -121,6 +121,12 @@ void printPassLines(const BenchArgs& args, gl::Culling culling, const measure::F
             "{} texels of the maps, or of the virtual pages the last frame drew; 1 is no overdraw){}\n",
             "", "", "", double(shadow.samplesPassed) / double(shadow.mapTexels), shadow.samplesPassed, shadow.mapTexels,
             shadedSaid(shadow));
+    if (const gl::PassStats& shadow = costs.last().shadow; shadow.mapTexels > 0 && shadow.leafFragments > 0)
+        fmt::print("{:>7} {:>7} {:<14} leaves  the opacity layers' first leaf wrote {:.2f} samples per texel drawn "
+                   "({} passed its depth test: one a covered texel when the leaves come nearest the sun first); "
+                   "their transmittance blended {:.2f} leaf fragments per texel ({}: every leaf counts)\n",
+                   "", "", "", double(shadow.firstLeafSamples) / double(shadow.mapTexels), shadow.firstLeafSamples,
+                   double(shadow.leafFragments) / double(shadow.mapTexels), shadow.leafFragments);
     const gl::PassStats& main = costs.last().main;
     if (main.samplesPassed > 0)
         fmt::print("{:>7} {:>7} {:<14} camera  the main pass wrote {:.2f} samples per pixel of the frame ({} "

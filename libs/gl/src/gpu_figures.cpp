@@ -10,7 +10,7 @@
 namespace shadowkit::gl {
 namespace {
 
-// A slot's layout: ten 64-bit query results, then the commands (if any).
+// A slot's layout: twelve 64-bit query results, then the commands (if any).
 enum Stamp : size_t {
     ShadowStart,
     ShadowEnd,
@@ -22,6 +22,8 @@ enum Stamp : size_t {
     MainSamples,
     Shaded,
     MainShaded,
+    FirstLeafSamples,
+    LeafSamples,
     kStamps
 };
 constexpr size_t kCommandsOffset = 128;
@@ -38,6 +40,8 @@ void GpuFigures::fill(FrameStats& stats) const {
     stats.main.samplesPassed = mainSamplesPassed;
     stats.shadow.fragmentsShaded = fragmentsShaded;
     stats.main.fragmentsShaded = mainFragmentsShaded;
+    stats.shadow.firstLeafSamples = firstLeafSamples;
+    stats.shadow.leafFragments = leafFragments;
     if (shadowInstances) stats.shadow.instances = *shadowInstances, stats.shadow.triangles = *shadowTriangles;
     if (mainInstances) stats.main.instances = *mainInstances, stats.main.triangles = *mainTriangles;
     if (localInstances) stats.local.instances = *localInstances, stats.local.triangles = *localTriangles;
@@ -77,6 +81,14 @@ std::vector<GpuFigures> GpuFigureRing::record(int64_t frame, const FrameFigureSo
     };
     count(sources.samples, Samples, Shaded, slot.counted, slot.shaded);
     count(sources.mainSamples, MainSamples, MainShaded, slot.mainCounted, slot.mainShaded);
+    // The opacity layers' draws: samples alone (their invocations would say nothing more: the
+    // first draw's test is early, the transmittance's none).
+    const auto countSamples = [&](const PassSamples* pass, Stamp samples, bool& counted) {
+        counted = pass != nullptr && pass->counted();
+        if (counted) stamp(pass->query(), samples);
+    };
+    countSamples(sources.firstLeafSamples, FirstLeafSamples, slot.firstLeafCounted);
+    countSamples(sources.leafSamples, LeafSamples, slot.leavesCounted);
     if (sources.commands) {
         // The culling's compute passes wrote the commands: visible to a copy after this barrier.
         glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
@@ -140,7 +152,9 @@ GpuFigures GpuFigureRing::collect(Slot& slot) {
                        .mapTexels = slot.mapTexels,
                        .mainSamplesPassed = slot.mainCounted ? stamps[MainSamples] : 0,
                        .fragmentsShaded = slot.shaded ? stamps[Shaded] : 0,
-                       .mainFragmentsShaded = slot.mainShaded ? stamps[MainShaded] : 0};
+                       .mainFragmentsShaded = slot.mainShaded ? stamps[MainShaded] : 0,
+                       .firstLeafSamples = slot.firstLeafCounted ? stamps[FirstLeafSamples] : 0,
+                       .leafFragments = slot.leavesCounted ? stamps[LeafSamples] : 0};
     if (slot.lists.empty()) return figures;
     const auto* words = reinterpret_cast<const uint32_t*>(static_cast<const char*>(slot.read.data()) + kCommandsOffset);
     const std::span<const uint32_t> commands(words, (slot.read.bytes() - kCommandsOffset) / sizeof(uint32_t));

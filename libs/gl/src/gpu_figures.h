@@ -43,6 +43,9 @@ struct FrameFigureSources {
     const PassSamples& samples;     // the sun's maps or pages
     const PassSamples& mainSamples; // the camera's main pass
     uint64_t mapTexels = 0;
+    // The sun's opacity layers' two draws (OpacityLayers::firstLeafSamples, leafSamples); null: none.
+    const PassSamples* firstLeafSamples = nullptr;
+    const PassSamples* leafSamples = nullptr;
     GLuint commands = 0; // 0: no GPU-culled list
     size_t commandWords = 0;
     std::vector<CulledListShape> lists;
@@ -73,8 +76,9 @@ private:
         int64_t frame = 0;
         uint64_t mapTexels = 0;
         bool timed[3] = {false, false, false};
-        bool counted = false, mainCounted = false; // samples written, sun's and main pass's
-        bool shaded = false, mainShaded = false;   // fragments shaded
+        bool counted = false, mainCounted = false;            // samples written, sun's and main pass's
+        bool shaded = false, mainShaded = false;              // fragments shaded
+        bool firstLeafCounted = false, leavesCounted = false; // the opacity layers' draws
         std::vector<CulledListShape> lists;
     };
     // The figures of a slot whose fence has passed; frees it.

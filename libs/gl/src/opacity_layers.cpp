@@ -76,9 +76,9 @@ core::Status OpacityLayers::prepare(int width, int height, int layers, int mipLe
 }
 
 DrawStats OpacityLayers::draw(const GpuScene& scene, const core::BiasSettings& bias, std::span<const OpacityView> views,
-                              std::span<const PassList> lists, const Buffer& depthPass, bool depthClamp) const {
+                              std::span<const PassList> lists, const Buffer& depthPass, bool depthClamp) {
     // Both sides of every leaf, and no depth test but the first draw's: in the layers each fragment
-    // of each leaf counts once. Each view's clears and draws stay inside its viewport (a page's slot).
+    // of each leaf counts once.
     glDisable(GL_DEPTH_TEST);
     glDepthMask(GL_FALSE);
     glDisable(GL_CULL_FACE);
@@ -91,49 +91,67 @@ DrawStats OpacityLayers::draw(const GpuScene& scene, const core::BiasSettings& b
     glBindBufferBase(GL_UNIFORM_BUFFER, kDepthPassBinding, depthPass.id());
     const PassPrograms first{.material = m_first.id(), .batches = PassPrograms::Batches::AlphaTested};
     const PassPrograms transmittance{.material = m_transmittance.id(), .batches = PassPrograms::Batches::AlphaTested};
-    DrawStats draws;
-    for (size_t i = 0; i < views.size() && i < lists.size(); ++i) {
+    const size_t count = std::min(views.size(), lists.size());
+    // View i's uniforms, viewport and scissor (its clears and draws stay inside it: a page's slot).
+    const auto placeAt = [&](size_t i) {
         const OpacityView& view = views[i];
         DepthPassUniforms uniforms = depthPassUniformsFor(view.clipFromWorld, bias);
         uniforms.linearDepthFromWorld = glm::vec4(view.linearDepthFromWorld);
         glNamedBufferSubData(depthPass.id(), 0, sizeof uniforms, &uniforms);
         glViewport(view.viewport.x, view.viewport.y, view.viewport.z, view.viewport.z);
         glScissor(view.viewport.x, view.viewport.y, view.viewport.z, view.viewport.z);
-        const auto drawLeaves = [&](const PassPrograms& programs) {
-            return view.clustersInView
-                       ? scene.draw(lists[i], programs, visibility::clipVolume(view.clipFromWorld, false))
-                       : scene.draw(lists[i], programs);
-        };
+    };
+    // View i's alpha-tested casters with `programs`.
+    const auto drawLeaves = [&](size_t i, const PassPrograms& programs) {
+        const OpacityView& view = views[i];
+        return view.clustersInView ? scene.draw(lists[i], programs, visibility::clipVolume(view.clipFromWorld, false))
+                                   : scene.draw(lists[i], programs);
+    };
+    DrawStats draws;
 
-        // The first leaf: depth-tested, so that a leaf behind one already drawn — the cards come
-        // nearest the sun first — is rejected before it is shaded; GL_MIN settles ties (casters
-        // clamped to the near plane all at depth 0 pass GL_LEQUAL).
-        glBindFramebuffer(GL_FRAMEBUFFER, m_firstFramebuffer.id());
-        glNamedFramebufferTextureLayer(m_firstFramebuffer.id(), GL_COLOR_ATTACHMENT0, m_firstDepth.id(), 0, view.layer);
+    // Every view's first leaf, then every view's transmittance: each draw counted over all views
+    // by one query (one may be active per target). The first leaf: depth-tested, so that a leaf
+    // behind one already drawn — the cards come nearest the sun first — is rejected before it is
+    // shaded; GL_MIN settles ties (casters clamped to the near plane all at depth 0 pass
+    // GL_LEQUAL). The depth buffer, one layer, is cleared for each view: the second loop needs it
+    // no more.
+    glBindFramebuffer(GL_FRAMEBUFFER, m_firstFramebuffer.id());
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LEQUAL);
+    glBlendEquation(GL_MIN);
+    m_firstSamples.begin();
+    for (size_t i = 0; i < count; ++i) {
+        placeAt(i);
+        glNamedFramebufferTextureLayer(m_firstFramebuffer.id(), GL_COLOR_ATTACHMENT0, m_firstDepth.id(), 0,
+                                       views[i].layer);
         const float far[4] = {1.0f, 1.0f, 1.0f, 1.0f}; // no leaf: the far end of the map's depth
         glClearNamedFramebufferfv(m_firstFramebuffer.id(), GL_COLOR, 0, far);
         glDepthMask(GL_TRUE); // before the clear, which it masks
         const float farthest = 1.0f;
         glClearNamedFramebufferfv(m_firstFramebuffer.id(), GL_DEPTH, 0, &farthest);
-        glEnable(GL_DEPTH_TEST);
-        glDepthFunc(GL_LEQUAL);
-        glBlendEquation(GL_MIN);
-        draws += drawLeaves(first);
-        glDisable(GL_DEPTH_TEST);
-        glDepthFunc(GL_LESS);
-        glDepthMask(GL_FALSE);
-        glBindFramebuffer(GL_FRAMEBUFFER, m_framebuffer.id());
+        draws += drawLeaves(i, first);
+    }
+    m_firstSamples.end();
+    glDisable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_FALSE);
 
-        glNamedFramebufferTextureLayer(m_framebuffer.id(), GL_COLOR_ATTACHMENT0, m_layers.id(), 0, view.layer);
+    // The transmittance: no depth test, every fragment of every leaf multiplied into its layer.
+    glBindFramebuffer(GL_FRAMEBUFFER, m_framebuffer.id());
+    glBlendEquation(GL_FUNC_ADD);
+    glBlendFunc(GL_ZERO, GL_SRC_COLOR); // destination × source: the layer's leaves multiply
+    glBindTextureUnit(kOpacityFirstUnit, m_firstDepth.id());
+    m_leafSamples.begin();
+    for (size_t i = 0; i < count; ++i) {
+        placeAt(i);
+        glNamedFramebufferTextureLayer(m_framebuffer.id(), GL_COLOR_ATTACHMENT0, m_layers.id(), 0, views[i].layer);
         const float clear[4] = {1.0f, 1.0f, 1.0f, 1.0f}; // no leaf lets all the light through
         glClearNamedFramebufferfv(m_framebuffer.id(), GL_COLOR, 0, clear);
-        glBlendEquation(GL_FUNC_ADD);
-        glBlendFunc(GL_ZERO, GL_SRC_COLOR); // destination × source: the layer's leaves multiply
-        glBindTextureUnit(kOpacityFirstUnit, m_firstDepth.id());
-        glProgramUniform1i(m_transmittance.id(), kOpacityLayerLocation, view.layer);
-        draws += drawLeaves(transmittance);
-        glBindTextureUnit(kOpacityFirstUnit, 0); // the next view's first pass writes it
+        glProgramUniform1i(m_transmittance.id(), kOpacityLayerLocation, views[i].layer);
+        draws += drawLeaves(i, transmittance);
     }
+    m_leafSamples.end();
+    glBindTextureUnit(kOpacityFirstUnit, 0); // the next frame's first draw writes it
     glDisable(GL_BLEND);
     glBlendFunc(GL_ONE, GL_ZERO);
     glDisable(GL_DEPTH_CLAMP);

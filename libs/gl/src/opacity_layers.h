@@ -13,16 +13,18 @@
 // the sun first) and GL_MIN-blended; then, with no depth test, each leaf fragment's transmittance
 // by multiplicative blending into the layer of its distance behind the first (opacity.frag) —
 // every leaf counts there; then one triangle over each map (opacity_prefilter.frag) and the mip
-// chain. For the set-up's fixed maps (single maps and cascades) the textures are layers of the
-// maps' size, one a map, and the driver builds the chain; for virtual maps they are laid out as
-// the page atlas, one layer, each page drawn is drawn into its slot, guard band and all — a
-// page's layers are drawn when its depth is, so a cached page keeps both — and the chain is
-// filtered over the drawn slots alone (opacity_downsample.frag), up to the guard band's width.
+// chain. Each of the two draws goes over every view before the other starts, so that one
+// occlusion query counts it whole (the work per texel in bench's lines). For the set-up's fixed maps (single maps and
+// cascades) the textures are layers of the maps' size, one a map, and the driver builds the chain; for virtual maps
+// they are laid out as the page atlas, one layer, each page drawn is drawn into its slot, guard band and all — a page's
+// layers are drawn when its depth is, so a cached page keeps both — and the chain is filtered over the drawn slots
+// alone (opacity_downsample.frag), up to the guard band's width.
 #pragma once
 
 #include "gl_object.h"
 #include "gpu_scene.h"
 #include "pass_lists.h"
+#include "pass_samples.h"
 
 #include "shadowkit/core/bias.h"
 #include "shadowkit/core/result.h"
@@ -61,7 +63,14 @@ public:
     // writing each view's DepthPass block into `depthPass` (bound at kDepthPassBinding); casters
     // before a map's near plane clamped to it with `depthClamp`, as the depth pass does.
     DrawStats draw(const GpuScene& scene, const core::BiasSettings& bias, std::span<const OpacityView> views,
-                   std::span<const PassList> lists, const Buffer& depthPass, bool depthClamp) const;
+                   std::span<const PassList> lists, const Buffer& depthPass, bool depthClamp);
+    // The last draw()'s work, each counted over all its views: the first leaf's samples, which its
+    // depth test passed (about one a texel the leaves cover when they come nearest the sun first),
+    // and the transmittance's, every leaf fragment (no depth test). A frame that draws no layers
+    // calls resetCounts(), so that it counts none.
+    const PassSamples& firstLeafSamples() const { return m_firstSamples; }
+    const PassSamples& leafSamples() const { return m_leafSamples; }
+    void resetCounts() { m_firstSamples.reset(), m_leafSamples.reset(); }
     // The textures' size in bytes, mips included.
     int64_t bytes() const;
     // The layers on kOpacityUnit, the first leaves' depths on kOpacityFirstUnit and the layers
@@ -84,6 +93,7 @@ private:
     Texture m_nearestLeaf; // D32F, one layer: the first leaf's draw's depth test, every view in turn
     Framebuffer m_framebuffer;
     Framebuffer m_firstFramebuffer; // the first leaf's depth with m_nearestLeaf for its depth test
+    PassSamples m_firstSamples, m_leafSamples;
     VertexArray m_emptyVertexArray;
     int m_width = 0, m_height = 0, m_count = 0, m_mipLevels = 0;
 };

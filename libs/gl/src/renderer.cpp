@@ -217,6 +217,10 @@ void Renderer::Impl::gpuFigures(FrameStats& stats, const RenderSettings& setting
     stats.main = {0.0, mainDraws.instances, mainDraws.triangles, mainDraws.drawCalls};
     FrameFigureSources sources{sun->timer(),   localTimer,        camera->timer(),
                                sun->samples(), camera->samples(), sun->mapTexels()};
+    if (const OpacityLayers* opacity = sun->opacity()) {
+        sources.firstLeafSamples = &opacity->firstLeafSamples();
+        sources.leafSamples = &opacity->leafSamples();
+    }
     if (settings.culling == Culling::Gpu) lists->describeGpuLists(sources);
     figures.take(stats, sources, lateFigures);
     if (!lateFigures && sources.commands) keepGpuShadowDraws({stats.shadow.instances, stats.shadow.triangles, 0});

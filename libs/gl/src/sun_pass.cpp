@@ -95,6 +95,7 @@ core::Result<PassStats> SunPass::draw(const GpuScene& scene, const core::ShadowS
                                       std::span<const PassList> pageLists) {
     m_lastVirtual.reset();
     m_samples.reset();
+    if (m_opacity) m_opacity->resetCounts();
     m_countedTexels = 0;
     // Night: no sun, no sun maps (the camera passes do not read them).
     if (!settings.sun) {

@@ -45,12 +45,16 @@ public:
     core::Result<PassStats> draw(const GpuScene& scene, const core::ShadowSetup& setup, const RenderSettings& settings,
                                  const core::BiasSettings& bias, const core::Vec3& wsTowardsLight,
                                  std::span<const PassList> mapLists, std::span<const PassList> pageLists);
-    // The last draw()'s GPU time and the samples it wrote into its fixed maps, as queries the
-    // frame's figures read (gpu_figures.h), and the texels those maps hold (0 for virtual pages
-    // and without a sun, whose samples are not counted).
+    // The last draw()'s GPU time and the samples its depth test passed, as queries the frame's
+    // figures read (gpu_figures.h), and the texels drawn: the fixed maps', or the virtual pages'
+    // drawn, guard bands and all (0 without a sun or a page drawn, when no sample is counted).
     const PassTimer& timer() const { return m_timer; }
     const PassSamples& samples() const { return m_samples; }
     uint64_t mapTexels() const { return m_countedTexels; }
+    // With --foliage-opacity, the last draw()'s opacity layers' two draws over the same texels
+    // (OpacityLayers::firstLeafSamples and leafSamples; not counted in a frame that drew none);
+    // null while the layers were never asked for.
+    const OpacityLayers* opacity() const { return m_opacity.get(); }
 
     // The set-up the frame's lookups read: with virtual maps under a page budget, levels may
     // still be shown from an earlier sun's pages (VirtualPages::shown).

@@ -90,31 +90,42 @@ struct Frame {
     core::RasterBuffers raster;
 };
 
-// Looking straight down on the cards' shadows from above x = 5: no ray to the ground there
-// passes through a card. `technique` Focused: one 256² map, 8 cm texels on the ground; Virtual:
-// pages of a clipmap, the level rule ⌊log2 footprint + lodBias⌋ giving the ground 14 m below
-// the eye (pixels of 6.3 cm) texels of 12.5 cm (2^-3 m), coarser than the leaves' 3 cm cells too.
-Frame render(gl::Renderer& renderer, const scene::Scene& scene, const gl::RenderSettings& settings,
-             core::Technique technique = core::Technique::Focused) {
+// A square camera looking straight down from wsEye, +x up the image.
+core::PerspectiveCamera lookingDownFrom(const core::Vec3& wsEye) {
     core::PerspectiveCamera camera;
-    camera.wsEye = {5, 14, 0};
+    camera.wsEye = wsEye;
     camera.wsDirection = {0, -1, 0};
     camera.wsUp = {1, 0, 0};
     camera.aspect = 1.0;
     camera.zNear = 1.0;
     camera.zFar = 40.0;
-    auto setup = core::computeShadowSetup({.camera = camera,
-                                           .light = kSun,
-                                           .wsSceneBounds = scene.wsBounds(),
-                                           .technique = technique,
-                                           .mapSize = 256,
-                                           .virtualMaps = {.virtualTexels = 1024,
-                                                           .pageTexels = 64,
-                                                           .firstLevel = -4,
-                                                           .lodBias = 1.0,
-                                                           .imageHeight = settings.height}});
+    return camera;
+}
+
+// `technique` Focused: one 256² map; Virtual: a clipmap of 64-texel pages, the level rule
+// ⌊log2 footprint + lodBias⌋ over an image `imageHeight` pixels high.
+core::ShadowSetup setupOf(const core::PerspectiveCamera& camera, const core::DirectionalLight& light,
+                          const scene::Scene& scene, core::Technique technique, int imageHeight) {
+    auto setup = core::computeShadowSetup(
+        {.camera = camera,
+         .light = light,
+         .wsSceneBounds = scene.wsBounds(),
+         .technique = technique,
+         .mapSize = 256,
+         .virtualMaps = {
+             .virtualTexels = 1024, .pageTexels = 64, .firstLevel = -4, .lodBias = 1.0, .imageHeight = imageHeight}});
     EXPECT_TRUE(setup) << setup.error();
-    auto raster = renderer.renderEvalBuffers(camera, kSun, *setup, settings);
+    return setup ? std::move(setup).value() : core::ShadowSetup{};
+}
+
+// Looking straight down on the cards' shadows from above x = 5: no ray to the ground there
+// passes through a card. Focused: 8 cm texels on the ground; Virtual: the ground 14 m below the
+// eye (pixels of 6.3 cm) in texels of 12.5 cm (2^-3 m), coarser than the leaves' 3 cm cells too.
+Frame render(gl::Renderer& renderer, const scene::Scene& scene, const gl::RenderSettings& settings,
+             core::Technique technique = core::Technique::Focused) {
+    const core::PerspectiveCamera camera = lookingDownFrom({5, 14, 0});
+    auto raster =
+        renderer.renderEvalBuffers(camera, kSun, setupOf(camera, kSun, scene, technique, settings.height), settings);
     EXPECT_TRUE(raster) << raster.error();
     return {camera, raster ? std::move(raster).value() : core::RasterBuffers{}};
 }
@@ -169,7 +180,96 @@ gl::RenderSettings underAWideSun() {
     return s;
 }
 
+// A ground slab (its top at y = 0, centred on x = groundX, groundHalf wide each way) and one
+// horizontal card covered whole (alpha 1 everywhere, yet alpha-tested) at height y over
+// [x0, x1] × [z0, z1]; each mesh a batch of one instance.
+scene::Scene groundAndCoveredCard(float groundX, float groundHalf, float y, float x0, float x1, float z0, float z1) {
+    scene::Scene s;
+    scene::Mesh ground, card;
+    scene::addBox(ground, glm::translate(glm::mat4(1.0f), {groundX, -0.5f, 0}), {groundHalf, 0.5f, groundHalf},
+                  glm::vec3(0.8f));
+    addHorizontalCard(card, y, x0, x1, z0, z1);
+    card.material = 0;
+    for (scene::Mesh* m : {&ground, &card}) m->computeBounds();
+    s.meshes = {ground, card};
+    scene::Texture covered = halfCoveredNoise();
+    for (size_t i = 3; i < covered.image.rgba.size(); i += 4) covered.image.rgba[i] = 255;
+    s.textures = {std::move(covered)};
+    s.materials = {alphaTested("leaf")};
+    s.batches = {{0, {glm::mat4(1.0f)}, false}, {1, {glm::mat4(1.0f)}, false}};
+    return s;
+}
+
+// Four covered 2 m cards stacked 1 m apart, each its own batch, listed lowest first, so that
+// only the lists' order (batches nearest the sun first) puts the top one first; under a sun
+// straight overhead each covers the same texels of a map.
+constexpr int kStackedCards = 4;
+scene::Scene stackedCards() {
+    scene::Scene s = groundAndCoveredCard(0, 4, 0, -1, 1, -1, 1);
+    s.batches.pop_back();
+    for (int i = 0; i < kStackedCards; ++i)
+        s.batches.push_back({1, {glm::translate(glm::mat4(1.0f), {0, 2.0f + float(i), 0})}, false});
+    return s;
+}
+
+// The texels of a size² map whose clip space is `clipFromWorld` that the horizontal square
+// [−1, 1]² at height y covers: its projected corners' area (the shoelace formula).
+double texelsCovered(const core::Mat4& clipFromWorld, double y, int size) {
+    const core::Vec2 corner[4] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+    core::Vec2 ndc[4];
+    for (int i = 0; i < 4; ++i) {
+        const core::Vec4 c = clipFromWorld * core::Vec4(corner[i].x, y, corner[i].y, 1.0);
+        ndc[i] = core::Vec2(c) / c.w;
+    }
+    double twiceArea = 0.0;
+    for (int i = 0; i < 4; ++i) twiceArea += ndc[i].x * ndc[(i + 1) % 4].y - ndc[(i + 1) % 4].x * ndc[i].y;
+    return std::abs(twiceArea) / 2.0 * (size / 2.0) * (size / 2.0);
+}
+
 } // namespace
+
+TEST_F(FoliageOpacityTest, TheFirstLeafsDrawWritesEachCoveredTexelOnceAndTheLayersCountEveryLeaf) {
+    // Four cards over the same texels: the first leaf's draw, depth-tested with the top card drawn
+    // first, passes one sample a texel the cards cover (four without its depth test, or with the
+    // cards drawn lowest first); the transmittance's draw, with none, blends all four. Counted
+    // against the cards' texels from the map's own projection, on a fixed map, and as a ratio on
+    // virtual pages (whose guard bands cut the cards unevenly).
+    const scene::Scene s = stackedCards();
+    const core::DirectionalLight overhead = core::DirectionalLight::fromDirection({0, -1, 0}).value();
+    const core::PerspectiveCamera camera = lookingDownFrom({0, 9, 0});
+    for (const core::Technique technique : {core::Technique::Focused, core::Technique::Virtual}) {
+        SCOPED_TRACE(core::techniqueName(technique));
+        auto renderer = gl::Renderer::create(s);
+        ASSERT_TRUE(renderer) << renderer.error();
+        const auto setup = setupOf(camera, overhead, s, technique, settings(true).height);
+        const auto stats = (*renderer)->render(camera, overhead, setup, settings(true));
+        ASSERT_TRUE(stats) << stats.error();
+        const gl::PassStats& shadow = stats->shadow;
+        ASSERT_GT(shadow.firstLeafSamples, 1000u);
+        EXPECT_NEAR(double(shadow.leafFragments) / double(shadow.firstLeafSamples), kStackedCards, 0.05);
+        if (technique == core::Technique::Focused) {
+            ASSERT_EQ(setup.views.size(), 1u);
+            const double card = texelsCovered(setup.views[0].clipFromWorld, 2.0, 256);
+            ASSERT_GT(card, 1000.0);
+            EXPECT_NEAR(double(shadow.firstLeafSamples), card, 0.03 * card);
+            EXPECT_NEAR(double(shadow.leafFragments), kStackedCards * card, 0.03 * kStackedCards * card);
+        }
+        // Read late, as an engine's frames read their figures: the same counts.
+        auto late = gl::Renderer::create(s);
+        ASSERT_TRUE(late) << late.error();
+        (*late)->readGpuFiguresLate(true);
+        ASSERT_TRUE((*late)->render(camera, overhead, setup, settings(true)));
+        const std::vector<gl::GpuFigures> figures = (*late)->finishGpuFigures();
+        ASSERT_EQ(figures.size(), 1u);
+        EXPECT_EQ(figures[0].firstLeafSamples, shadow.firstLeafSamples);
+        EXPECT_EQ(figures[0].leafFragments, shadow.leafFragments);
+        // Without the layers, nothing is counted.
+        const auto binary = (*renderer)->render(camera, overhead, setup, settings(false));
+        ASSERT_TRUE(binary) << binary.error();
+        EXPECT_EQ(binary->shadow.firstLeafSamples, 0u);
+        EXPECT_EQ(binary->shadow.leafFragments, 0u);
+    }
+}
 
 TEST_F(FoliageOpacityTest, LeavesFinerThanATexelCastAFractionAndStackedLayersMultiply) {
     const scene::Scene s = cardsOverGround();
@@ -306,18 +406,7 @@ TEST_F(FoliageOpacityTest, ASunlitLeafIsNotShadedByItsOwnLayer) {
     // (half an 8 cm texel times the slope, 1), and with the layers' first edge 0.3 m behind the
     // first leaf they read a share of the card's own 99 % absorbance without the lookup's bias (the
     // card's mean term was 0.93, under both suns).
-    scene::Scene s;
-    scene::Mesh ground, card;
-    scene::addBox(ground, glm::translate(glm::mat4(1.0f), {2, -0.5f, 0}), {12, 0.5f, 12}, glm::vec3(0.8f));
-    addHorizontalCard(card, 3, 3, 7, -2, 2);
-    card.material = 0;
-    for (scene::Mesh* m : {&ground, &card}) m->computeBounds();
-    s.meshes = {ground, card};
-    scene::Texture solid = halfCoveredNoise();
-    for (size_t i = 3; i < solid.image.rgba.size(); i += 4) solid.image.rgba[i] = 255;
-    s.textures = {std::move(solid)};
-    s.materials = {alphaTested("leaf")};
-    s.batches = {{0, {glm::mat4(1.0f)}, false}, {1, {glm::mat4(1.0f)}, false}};
+    const scene::Scene s = groundAndCoveredCard(2, 12, 3, 3, 7, -2, 2);
     auto renderer = gl::Renderer::create(s);
     ASSERT_TRUE(renderer) << renderer.error();
     constexpr uint32_t kCard = 2;

@@ -102,6 +102,10 @@ nlohmann::json FrameCosts::json() const {
     j["shadow"]["map_texels"] = m_last.shadow.mapTexels;
     if (m_last.shadow.mapTexels > 0)
         j["shadow"]["samples_per_texel"] = double(m_last.shadow.samplesPassed) / double(m_last.shadow.mapTexels);
+    // With opacity layers, their first leaf's samples (depth-tested) and every leaf fragment the
+    // transmittance blended, over the same texels.
+    j["shadow"]["first_leaf_samples"] = m_last.shadow.firstLeafSamples;
+    j["shadow"]["leaf_fragments"] = m_last.shadow.leafFragments;
     // The samples the last frame's main pass wrote into the image (once per covered pixel
     // over the camera's depth pre-pass).
     j["main"]["samples_passed"] = m_last.main.samplesPassed;

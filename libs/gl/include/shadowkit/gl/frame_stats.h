@@ -51,6 +51,11 @@ struct PassStats {
     // llvmpipe's counter gives samplesPassed itself).
     uint64_t fragmentsShaded = 0;
     uint64_t mapTexels = 0;
+    // Shadow pass with opacity layers (RenderSettings::foliageOpacity), over the same texels: the
+    // samples the first leaf's draw passed — depth-tested, about one a texel the leaves cover when
+    // they come nearest the sun first — and the fragments the transmittance's draw blended, every
+    // leaf's (no depth test). Neither is in samplesPassed, which counts the opaque casters' depth.
+    uint64_t firstLeafSamples = 0, leafFragments = 0;
 };
 
 // Virtual shadow maps' pages in one frame (docs/virtual-shadow-maps.md): the page cache's
@@ -73,6 +78,7 @@ struct GpuFigures {
     uint64_t mapTexels = 0;
     uint64_t mainSamplesPassed = 0; // the main pass's (PassStats::samplesPassed of FrameStats::main)
     uint64_t fragmentsShaded = 0, mainFragmentsShaded = 0; // PassStats::fragmentsShaded of shadow and main
+    uint64_t firstLeafSamples = 0, leafFragments = 0;      // the shadow pass's opacity layers' (PassStats)
     // Culling::Gpu: instances and triangles submitted by the culled lists (the other cullings'
     // counts are known on the CPU: FrameStats::shadow, local and main carry them). The local
     // lights' (when there are any) count each instance once per map face it is drawn into, as
