@@ -143,6 +143,11 @@ void printPassLines(const BenchArgs& args, gl::Culling culling, const measure::F
                "the first): GPU-to-CPU data reads and query waits, each a stall on a GPU (CHC++'s are counted "
                "above; the GPU's figures are read late)\n",
                "", "", "", readBacks.median, readBacks.max);
+    const measure::Spread up = costs.bytesUploaded(), down = costs.bytesReadBack();
+    fmt::print("{:>7} {:>7} {:<14} bus     {:.1f} KiB uploaded per frame (median; max {:.1f}: lists, uniforms, page "
+               "table) and {:.1f} KiB read back (max {:.1f}: waited for, or copied to host memory for a late "
+               "read)\n",
+               "", "", "", up.median / 1024.0, up.max / 1024.0, down.median / 1024.0, down.max / 1024.0);
     if (costs.last().virtualPages) { // the frames drew virtual pages (auto may choose them too)
         const measure::Spread pages = costs.pagesRendered(), age = costs.requestsAge();
         fmt::print("{:>7} {:>7} {:<14} pages   drawn a frame med {:.0f} max {:.0f}; page requests read {:.0f} frames "
@@ -272,10 +277,10 @@ core::Result<nlohmann::json> benchView(const BenchArgs& args, const BenchRow& ro
             if (!moved) return moved.errorInfo();
             view = std::move(moved).value();
         }
-        const int64_t readBacksBefore = gl::readBacksMade();
+        const gl::Traffic before = gl::trafficSoFar();
         auto drawn = driver.draw(renderer, view);
         if (!drawn) return withFlagName(drawn.errorInfo());
-        costs.add(*drawn, gl::readBacksMade() - readBacksBefore);
+        costs.add(*drawn, gl::trafficSoFar() - before);
     }
     costs.addLate(renderer.finishGpuFigures()); // the last frames' figures, after the view's frames
     printRows(row, costs, table);

@@ -303,6 +303,7 @@ void VirtualPageCache::rendered() {
     // generation it is shown from.
     const int levels = static_cast<int>(m_shown.views.size());
     const int pages = m_shown.clipmap->pagesPerSide();
+    std::swap(m_table, m_previousTable);
     m_table.assign(size_t(pages) * pages * levels, 0u);
     int resident = 0;
     for (int s = 0; s < slotCount(); ++s) {
@@ -320,6 +321,16 @@ void VirtualPageCache::rendered() {
         m_table[size_t(l) * pages * pages + size_t(y) * pages + size_t(x)] = uint32_t(s + 1);
     }
     m_stats.pagesResident = resident;
+    // What changed since the last table, level by level: with the same shape (the same size and
+    // pages a side, so the same level count) a level's block of entries compared whole.
+    const bool sameShape = m_previousTable.size() == m_table.size() && pages == m_tablePagesPerSide;
+    const size_t block = size_t(pages) * pages;
+    m_levelChanged.assign(size_t(levels), 1);
+    for (size_t l = 0; sameShape && l < size_t(levels); ++l)
+        m_levelChanged[l] =
+            !std::equal(m_table.begin() + ptrdiff_t(l * block), m_table.begin() + ptrdiff_t((l + 1) * block),
+                        m_previousTable.begin() + ptrdiff_t(l * block));
+    m_tablePagesPerSide = pages;
 }
 
 } // namespace shadowkit::core

@@ -350,3 +350,39 @@ TEST(VirtualPageCacheTest, MarksFromBeforeTheSunMovedDoNotApplyAndRequestNothing
     EXPECT_FALSE(cache.marksApply(1)) << "a frame no longer kept";
     EXPECT_TRUE(cache.marksApply(2));
 }
+
+TEST(VirtualPageCacheTest, ALevelIsMarkedChangedExactlyWhenItsTableEntriesDiffer) {
+    // What a GPU copy of the table must take again: compared here with the test's own copy of the
+    // last table, over a first frame, still frames, a moving eye and a new sun.
+    VirtualPageCache cache;
+    cache.configure(4096, kGuard);
+    std::vector<uint32_t> last;
+    int stillFramesChecked = 0, changedLevels = 0, unchangedLevels = 0;
+    const auto check = [&](const ShadowSetup& setup, const char* what) {
+        frame(cache, setup, 0);
+        const auto table = cache.pageTable();
+        const size_t levels = setup.views.size(), block = table.size() / levels;
+        for (size_t l = 0; l < levels; ++l) {
+            const bool differs = last.size() != table.size() || !std::equal(table.begin() + ptrdiff_t(l * block),
+                                                                            table.begin() + ptrdiff_t((l + 1) * block),
+                                                                            last.begin() + ptrdiff_t(l * block));
+            EXPECT_EQ(cache.levelChanged(int(l)), differs) << what << ", level " << l;
+            (differs ? changedLevels : unchangedLevels) += 1;
+        }
+        last.assign(table.begin(), table.end());
+    };
+    const ShadowSetup setup = virtualSetup();
+    check(setup, "first frame");
+    for (size_t l = 0; l < setup.views.size(); ++l) EXPECT_TRUE(cache.levelChanged(int(l))) << "first frame";
+    for (int i = 0; i < 2; ++i, ++stillFramesChecked) {
+        check(setup, "still");
+        for (size_t l = 0; l < setup.views.size(); ++l) EXPECT_FALSE(cache.levelChanged(int(l))) << "still";
+    }
+    for (const double x : {0.4, 3.0, 9.0, 40.0}) check(virtualSetup(Vec3(0.5, 1.0, 0.3), Vec3(x, 1.8, 0.0)), "moved");
+    check(virtualSetup(Vec3(-0.4, 1.0, 0.2)), "new sun");
+    EXPECT_EQ(stillFramesChecked, 2);
+    EXPECT_GT(changedLevels, int(setup.views.size()));
+    EXPECT_GT(unchangedLevels, 2 * int(setup.views.size())) << "the moves changed every level: a weak check";
+    EXPECT_FALSE(cache.levelChanged(-1));
+    EXPECT_FALSE(cache.levelChanged(int(setup.views.size()) + 3));
+}

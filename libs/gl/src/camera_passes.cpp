@@ -94,7 +94,7 @@ core::Result<std::unique_ptr<CameraPasses>> CameraPasses::create() {
 
 void CameraPasses::bindFrame(const CameraView& view, bool readBlurredMask) const {
     const FrameUniforms frame = frameUniformsOf(view, readBlurredMask);
-    glNamedBufferSubData(m_frameUniforms.id(), 0, sizeof frame, &frame);
+    uploadToBuffer(m_frameUniforms.id(), 0, sizeof frame, &frame);
     glBindBufferBase(GL_UNIFORM_BUFFER, kFrameBinding, m_frameUniforms.id());
     for (const unsigned unit : {kShadowDepthUnit, kSpotDepthUnit, kPointDepthUnit})
         glBindSampler(unit, m_rawDepth.id()); // the maps once more, their stored depths
@@ -129,7 +129,7 @@ int CameraPasses::blurPass(const BlurSettings& blur) {
     if (!m_mask || m_mask->width != width || m_mask->height != height) m_mask.emplace(width, height);
     const BlurUniforms uniforms{
         .radiusPixels = blur.radiusPixels, .depthFalloff = blur.depthFalloff, .depthThreshold = blur.depthThreshold};
-    glNamedBufferSubData(m_blurUniforms.id(), 0, sizeof uniforms, &uniforms);
+    uploadToBuffer(m_blurUniforms.id(), 0, sizeof uniforms, &uniforms);
     glBindBufferBase(GL_UNIFORM_BUFFER, kBlurBinding, m_blurUniforms.id());
     glUseProgram(m_blurProgram.id());
     glBindVertexArray(m_emptyVertexArray.id());

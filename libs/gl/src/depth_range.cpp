@@ -21,7 +21,7 @@ core::Result<std::unique_ptr<DepthRangeReduction>> DepthRangeReduction::create()
 
 void DepthRangeReduction::reduce(const CameraDepthTarget& target) {
     const uint32_t empty[2] = {0xFFFFFFFFu, 0u}; // near = +max, far = 0: "nothing drawn"
-    glNamedBufferSubData(m_range.id(), 0, sizeof empty, empty);
+    uploadToBuffer(m_range.id(), 0, sizeof empty, empty);
     glUseProgram(m_program.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kRangeBinding, m_range.id());
     glBindTextureUnit(kRangeDepthUnit, target.viewDepth.id());
@@ -35,7 +35,7 @@ std::optional<core::Vec2> DepthRangeReduction::read() {
     m_pending = false;
     uint32_t bits[2] = {0, 0};
     detail::countReadBack();
-    glGetNamedBufferSubData(m_range.id(), 0, sizeof bits, bits);
+    readBuffer(m_range.id(), 0, sizeof bits, bits);
     m_last.reset();
     if (bits[1] == 0u) return m_last;
     const float zNear = std::bit_cast<float>(bits[0]);

@@ -2,6 +2,8 @@
 // shadowkit::gl: raw GLuint names never appear in a public header.
 #pragma once
 
+#include "shadowkit/gl/read_backs.h"
+
 #include <epoxy/gl.h>
 
 #include <algorithm>
@@ -59,11 +61,37 @@ using Shader = GlObject<detail::deleteShader>;
 using Sampler = GlObject<detail::deleteSampler>;
 
 // Immutable storage; buffers created without data, or `updatable`, take glNamedBufferSubData.
+// Initial data counts as uploaded (read_backs.h).
 inline Buffer createBuffer(const void* data, size_t bytes, bool updatable = false) {
     GLuint id = 0;
     glCreateBuffers(1, &id);
     glNamedBufferStorage(id, static_cast<GLsizeiptr>(bytes), data, data && !updatable ? 0 : GL_DYNAMIC_STORAGE_BIT);
+    if (data) detail::countUpload(static_cast<int64_t>(bytes));
     return Buffer(id);
+}
+
+// GL's moves of data between CPU and GPU, each counting its bytes (read_backs.h): every buffer
+// upload and read and every texture read of libs/gl goes through one of these. (The caller
+// counts the synchronisation a read is, once per wait: detail::countReadBack.)
+// glNamedBufferSubData.
+inline void uploadToBuffer(GLuint buffer, GLintptr offset, GLsizeiptr bytes, const void* data) {
+    glNamedBufferSubData(buffer, offset, bytes, data);
+    detail::countUpload(static_cast<int64_t>(bytes));
+}
+// glGetNamedBufferSubData.
+inline void readBuffer(GLuint buffer, GLintptr offset, GLsizeiptr bytes, void* out) {
+    glGetNamedBufferSubData(buffer, offset, bytes, out);
+    detail::countBytesReadBack(static_cast<int64_t>(bytes));
+}
+// glGetTextureImage.
+inline void readTexture(GLuint texture, GLint level, GLenum format, GLenum type, GLsizei bytes, void* out) {
+    glGetTextureImage(texture, level, format, type, bytes, out);
+    detail::countBytesReadBack(static_cast<int64_t>(bytes));
+}
+// glCopyNamedBufferSubData into a buffer in host memory the CPU reads later (fenced_read.h).
+inline void copyToHost(GLuint source, GLuint host, GLintptr readOffset, GLintptr writeOffset, GLsizeiptr bytes) {
+    glCopyNamedBufferSubData(source, host, readOffset, writeOffset, bytes);
+    detail::countBytesReadBack(static_cast<int64_t>(bytes));
 }
 
 // A sampler that reads a depth texture's stored values, nearest texel, whatever the texture's

@@ -39,7 +39,7 @@ static_assert(sizeof(GpuInstance) == 64 && sizeof(GpuBatchInfo) == 32 && sizeof(
 void readThroughCopy(GLuint source, size_t offset, size_t bytes, void* out) {
     const Buffer staging = createBuffer(nullptr, bytes);
     glCopyNamedBufferSubData(source, staging.id(), GLintptr(offset), 0, GLsizeiptr(bytes));
-    glGetNamedBufferSubData(staging.id(), 0, GLsizeiptr(bytes), out);
+    readBuffer(staging.id(), 0, GLsizeiptr(bytes), out);
 }
 
 constexpr size_t kCommandWords = kIndirectCommandWords;
@@ -142,7 +142,7 @@ core::Status GpuCulling::buildPrograms() {
 
 void GpuCulling::move(uint32_t globalInstance, const core::Aabb& box) {
     const GpuInstance instance = gpuInstance(box, m_scales[globalInstance]);
-    glNamedBufferSubData(m_instances.id(), GLintptr(globalInstance * sizeof(GpuInstance)), sizeof instance, &instance);
+    uploadToBuffer(m_instances.id(), GLintptr(globalInstance * sizeof(GpuInstance)), sizeof instance, &instance);
 }
 
 void GpuCulling::forget() {

@@ -64,6 +64,7 @@ std::vector<GpuFigures> GpuFigureRing::record(int64_t frame, const FrameFigureSo
     const GLuint buffer = slot.read.id();
     const auto stamp = [buffer](GLuint query, Stamp at) {
         glGetQueryBufferObjectui64v(query, buffer, GL_QUERY_RESULT, GLintptr(at * sizeof(uint64_t)));
+        detail::countBytesReadBack(sizeof(uint64_t)); // into host memory, as copyToHost
     };
     const PassTimer* timers[3] = {&sources.shadow, &sources.local, &sources.main};
     for (size_t t = 0; t < 3; ++t) {
@@ -92,8 +93,8 @@ std::vector<GpuFigures> GpuFigureRing::record(int64_t frame, const FrameFigureSo
     if (sources.commands) {
         // The culling's compute passes wrote the commands: visible to a copy after this barrier.
         glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-        glCopyNamedBufferSubData(sources.commands, buffer, 0, GLintptr(kCommandsOffset),
-                                 GLsizeiptr(sources.commandWords * sizeof(uint32_t)));
+        copyToHost(sources.commands, buffer, 0, GLintptr(kCommandsOffset),
+                   GLsizeiptr(sources.commandWords * sizeof(uint32_t)));
     }
     slot.read.fence();
     slot.frame = frame;

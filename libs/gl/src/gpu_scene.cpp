@@ -48,9 +48,11 @@ Texture uploadTexture(const scene::Texture& texture, std::optional<float> alphaC
     glTextureStorage2D(id, static_cast<GLsizei>(chain.size()), GL_SRGB8_ALPHA8, texture.image.width,
                        texture.image.height);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    for (size_t level = 0; level < chain.size(); ++level)
+    for (size_t level = 0; level < chain.size(); ++level) {
         glTextureSubImage2D(id, static_cast<GLint>(level), 0, 0, chain[level].width, chain[level].height, GL_RGBA,
                             GL_UNSIGNED_BYTE, chain[level].rgba.data());
+        detail::countUpload(static_cast<int64_t>(chain[level].rgba.size()));
+    }
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
     glTextureParameteri(id, GL_TEXTURE_WRAP_S, static_cast<GLint>(glWrap(texture.wrapS)));
     glTextureParameteri(id, GL_TEXTURE_WRAP_T, static_cast<GLint>(glWrap(texture.wrapT)));
@@ -184,8 +186,8 @@ void GpuScene::updateBatch(const scene::Scene& scene, size_t sceneBatch) {
         const std::vector<glm::mat4>& transforms = scene.batches[sceneBatch].worldFromObject;
         batch.mirrored = anyMirrored(transforms);
         if (!batch.worldFromObject.empty()) batch.worldFromObject = transforms;
-        glNamedBufferSubData(batch.instances.id(), 0, static_cast<GLsizeiptr>(transforms.size() * sizeof(glm::mat4)),
-                             transforms.data());
+        uploadToBuffer(batch.instances.id(), 0, static_cast<GLsizeiptr>(transforms.size() * sizeof(glm::mat4)),
+                       transforms.data());
     }
 }
 

@@ -38,7 +38,7 @@ void LinePass::draw(const core::Mat4& clipFromWorld, std::span<const LineSegment
         m_vertices = createBuffer(nullptr, m_capacity * 12 * sizeof(float));
         glVertexArrayVertexBuffer(m_vertexArray.id(), 0, m_vertices.id(), 0, 6 * sizeof(float));
     }
-    glNamedBufferSubData(m_vertices.id(), 0, static_cast<GLsizeiptr>(vertices.size() * sizeof(float)), vertices.data());
+    uploadToBuffer(m_vertices.id(), 0, static_cast<GLsizeiptr>(vertices.size() * sizeof(float)), vertices.data());
     glUseProgram(m_program.id());
     const glm::mat4 m(clipFromWorld);
     glUniformMatrix4fv(0, 1, GL_FALSE, &m[0][0]);

@@ -140,7 +140,7 @@ core::Result<PassStats> LocalShadowMaps::draw(const GpuScene& scene, const core:
         for (size_t r = 0; r < faces.size(); ++r) u.faceOfReplica[r / 4][static_cast<int>(r % 4)] = faces[r];
         u.layerBase = layerBase;
         u.replicas = static_cast<int32_t>(faces.size());
-        glNamedBufferSubData(m_depthUniforms.id(), 0, sizeof u, &u);
+        uploadToBuffer(m_depthUniforms.id(), 0, sizeof u, &u);
         const int copies = static_cast<int>(faces.size());
         const DrawStats d = scene.draw(list, programs, false, vertexLayer ? copies : 1);
         // Counted as faces written: the geometry shader amplifies what the vertex path instances.
@@ -206,7 +206,7 @@ void LocalShadowMaps::bind(const core::LocalLighting& lights, const LocalBiasSet
     u.localNormalOffsetTexels = static_cast<float>(bias.normalOffsetTexels);
     u.localConstantBiasMetres = static_cast<float>(bias.constantMetres);
     u.localMapTexels = static_cast<float>(lights.mapSize);
-    glNamedBufferSubData(m_lightUniforms.id(), 0, sizeof u, &u);
+    uploadToBuffer(m_lightUniforms.id(), 0, sizeof u, &u);
     glBindBufferBase(GL_UNIFORM_BUFFER, kLocalLightsBinding, m_lightUniforms.id());
     glBindTextureUnit(kSpotMapUnit, m_spotMaps.id());
     glBindTextureUnit(kPointMapUnit, m_pointMaps.id());
@@ -223,8 +223,7 @@ scene::Image LocalShadowMaps::readAsGreys(const core::LocalLighting& lights) con
     const size_t layerTexels = static_cast<size_t>(n) * static_cast<size_t>(n);
     auto readAll = [&](const Texture& t, int layers) {
         std::vector<float> d(layerTexels * static_cast<size_t>(layers));
-        glGetTextureImage(t.id(), 0, GL_DEPTH_COMPONENT, GL_FLOAT, static_cast<GLsizei>(d.size() * sizeof(float)),
-                          d.data());
+        readTexture(t.id(), 0, GL_DEPTH_COMPONENT, GL_FLOAT, static_cast<GLsizei>(d.size() * sizeof(float)), d.data());
         return d;
     };
     const std::vector<float> spotTexels = spots ? readAll(m_spotMaps, m_spots) : std::vector<float>{};

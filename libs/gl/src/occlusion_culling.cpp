@@ -121,8 +121,8 @@ void OcclusionCuller::draw(std::span<const uint32_t> items) {
         m_lists = createBuffer(nullptr, m_listCapacity * sizeof(uint32_t)); // the old one lives while in use
         m_listCursor = 0;
     }
-    glNamedBufferSubData(m_lists.id(), static_cast<GLintptr>(m_listCursor * sizeof(uint32_t)),
-                         static_cast<GLsizeiptr>(n * sizeof(uint32_t)), m_drawList.indices.data());
+    uploadToBuffer(m_lists.id(), static_cast<GLintptr>(m_listCursor * sizeof(uint32_t)),
+                   static_cast<GLsizeiptr>(n * sizeof(uint32_t)), m_drawList.indices.data());
     m_drawList.offset = static_cast<uint32_t>(m_listCursor);
     m_listCursor += n;
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kVisibleBinding, m_lists.id());
@@ -152,8 +152,8 @@ uint32_t OcclusionCuller::issue(std::span<const uint32_t> nodes) {
         m_boxes = createBuffer(nullptr, m_boxCapacity * 2 * sizeof(glm::vec4));
         m_boxCursor = 0;
     }
-    glNamedBufferSubData(m_boxes.id(), static_cast<GLintptr>(m_boxCursor * 2 * sizeof(glm::vec4)),
-                         static_cast<GLsizeiptr>(m_boxStaging.size() * sizeof(glm::vec4)), m_boxStaging.data());
+    uploadToBuffer(m_boxes.id(), static_cast<GLintptr>(m_boxCursor * 2 * sizeof(glm::vec4)),
+                   static_cast<GLsizeiptr>(m_boxStaging.size() * sizeof(glm::vec4)), m_boxStaging.data());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBoxesBinding, m_boxes.id());
     glUseProgram(m_boxProgram.id());
     glUniform1ui(kBoxOffsetLocation, static_cast<GLuint>(m_boxCursor));

@@ -97,7 +97,7 @@ DrawStats OpacityLayers::draw(const GpuScene& scene, const core::BiasSettings& b
         const OpacityView& view = views[i];
         DepthPassUniforms uniforms = depthPassUniformsFor(view.clipFromWorld, bias);
         uniforms.linearDepthFromWorld = glm::vec4(view.linearDepthFromWorld);
-        glNamedBufferSubData(depthPass.id(), 0, sizeof uniforms, &uniforms);
+        uploadToBuffer(depthPass.id(), 0, sizeof uniforms, &uniforms);
         glViewport(view.viewport.x, view.viewport.y, view.viewport.z, view.viewport.z);
         glScissor(view.viewport.x, view.viewport.y, view.viewport.z, view.viewport.z);
     };

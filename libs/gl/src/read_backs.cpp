@@ -5,10 +5,17 @@
 namespace shadowkit::gl {
 namespace {
 std::atomic<int64_t> g_readBacks{0}; // renderers may live on several threads, each with its context
+std::atomic<int64_t> g_bytesUploaded{0}, g_bytesReadBack{0};
 } // namespace
 
 int64_t readBacksMade() { return g_readBacks.load(std::memory_order_relaxed); }
 
 void detail::countReadBack() { g_readBacks.fetch_add(1, std::memory_order_relaxed); }
+
+int64_t bytesUploaded() { return g_bytesUploaded.load(std::memory_order_relaxed); }
+int64_t bytesReadBack() { return g_bytesReadBack.load(std::memory_order_relaxed); }
+
+void detail::countUpload(int64_t bytes) { g_bytesUploaded.fetch_add(bytes, std::memory_order_relaxed); }
+void detail::countBytesReadBack(int64_t bytes) { g_bytesReadBack.fetch_add(bytes, std::memory_order_relaxed); }
 
 } // namespace shadowkit::gl

@@ -55,7 +55,7 @@ void ReceiverMasks::mark(const CameraDepthTarget& target, const core::Perspectiv
     u.mapCount = maps;
     u.linearLayout = linear ? 1 : 0;
     u.maskSize = kReceiverMaskSize;
-    glNamedBufferSubData(m_uniforms.id(), 0, sizeof u, &u);
+    uploadToBuffer(m_uniforms.id(), 0, sizeof u, &u);
 
     const size_t texels = size_t(maps) * kReceiverMaskSize * kReceiverMaskSize;
     if (texels > m_texelCapacity) {
@@ -87,7 +87,7 @@ const std::vector<visibility::ReceiverMask>& ReceiverMasks::build(const CameraDe
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     m_readBack.resize(texels);
     detail::countReadBack();
-    glGetNamedBufferSubData(m_texels.id(), 0, GLsizeiptr(texels * sizeof(uint32_t)), m_readBack.data());
+    readBuffer(m_texels.id(), 0, GLsizeiptr(texels * sizeof(uint32_t)), m_readBack.data());
     m_gl = inGl.elapsed();
 
     const int dilation = dilationFor(setup, dilationTexels);

@@ -13,7 +13,7 @@ namespace {
 template <class T>
 std::vector<T> readFlipped(const Texture& texture, GLenum format, GLenum type, int width, int height) {
     std::vector<T> rows(static_cast<size_t>(width) * static_cast<size_t>(height));
-    glGetTextureImage(texture.id(), 0, format, type, static_cast<GLsizei>(rows.size() * sizeof(T)), rows.data());
+    readTexture(texture.id(), 0, format, type, static_cast<GLsizei>(rows.size() * sizeof(T)), rows.data());
     for (int y = 0; y < height / 2; ++y)
         std::swap_ranges(rows.begin() + static_cast<ptrdiff_t>(y) * width,
                          rows.begin() + static_cast<ptrdiff_t>(y + 1) * width,
@@ -72,8 +72,7 @@ scene::Image readDepthAsGreys(const Texture& depth, int width, int height, int l
     // All layers come back stacked (layer-major), each bottom row first.
     const size_t layerTexels = static_cast<size_t>(width) * static_cast<size_t>(height);
     std::vector<float> d(layerTexels * static_cast<size_t>(layers));
-    glGetTextureImage(depth.id(), 0, GL_DEPTH_COMPONENT, GL_FLOAT, static_cast<GLsizei>(d.size() * sizeof(float)),
-                      d.data());
+    readTexture(depth.id(), 0, GL_DEPTH_COMPONENT, GL_FLOAT, static_cast<GLsizei>(d.size() * sizeof(float)), d.data());
     scene::Image image(width * layers, height);
     for (int layer = 0; layer < layers; ++layer) {
         const float* texels = d.data() + static_cast<size_t>(layer) * layerTexels;

@@ -179,7 +179,7 @@ DrawStats SunPass::drawFixedMaps(const GpuScene& scene, const core::ShadowSetup&
     for (size_t layer = 0; layer < setup.views.size(); ++layer) { // one array layer per shadow view
         const core::ShadowView& view = setup.views[layer];
         const DepthPassUniforms uniforms = depthPassUniformsFor(view, bias);
-        glNamedBufferSubData(m_uniforms.id(), 0, sizeof uniforms, &uniforms);
+        uploadToBuffer(m_uniforms.id(), 0, sizeof uniforms, &uniforms);
         m_shadow->attachLayer(static_cast<int>(layer));
         const float clearDepth = 1.0f;
         glClearNamedFramebufferfv(m_shadow->framebuffer.id(), GL_DEPTH, 0, &clearDepth);

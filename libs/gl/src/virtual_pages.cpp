@@ -118,7 +118,7 @@ size_t VirtualPages::mark(const CameraDepthTarget& depth, const core::Perspectiv
     u.pagesPerSide = pages;
     u.pageTexels = clipmap.pageTexels;
     u.reachTexels = static_cast<float>(reachTexels);
-    glNamedBufferSubData(m_markUniforms.id(), 0, sizeof u, &u);
+    uploadToBuffer(m_markUniforms.id(), 0, sizeof u, &u);
     const size_t words = (size_t(levels) * pages * pages + 31) / 32;
     if (words > capacity) {
         capacity = words;
@@ -152,12 +152,11 @@ void VirtualPages::request(const CameraDepthTarget& depth, const core::Perspecti
     } else {
         m_readBack.resize(words);
         detail::countReadBack();
-        glGetNamedBufferSubData(m_requestBits.id(), 0, GLsizeiptr(words * sizeof(uint32_t)), m_readBack.data());
+        readBuffer(m_requestBits.id(), 0, GLsizeiptr(words * sizeof(uint32_t)), m_readBack.data());
         m_backReadBack.resize(backWords);
         if (backWords > 0) {
             detail::countReadBack();
-            glGetNamedBufferSubData(m_backRequestBits.id(), 0, GLsizeiptr(backWords * sizeof(uint32_t)),
-                                    m_backReadBack.data());
+            readBuffer(m_backRequestBits.id(), 0, GLsizeiptr(backWords * sizeof(uint32_t)), m_backReadBack.data());
         }
         m_lastMarksRead = markedIn;
     }
@@ -170,10 +169,10 @@ int64_t VirtualPages::readMarksLate(size_t words, size_t backWords) {
     // standing ones. A slot still pending there is a frame the GPU has not finished: dropped.
     MarkSlot& slot = m_marks[size_t(m_nextMark++ % kMarkSlots)];
     slot.read.reserve((words + backWords) * sizeof(uint32_t));
-    glCopyNamedBufferSubData(m_requestBits.id(), slot.read.id(), 0, 0, GLsizeiptr(words * sizeof(uint32_t)));
+    copyToHost(m_requestBits.id(), slot.read.id(), 0, 0, GLsizeiptr(words * sizeof(uint32_t)));
     if (backWords > 0)
-        glCopyNamedBufferSubData(m_backRequestBits.id(), slot.read.id(), 0, GLintptr(words * sizeof(uint32_t)),
-                                 GLsizeiptr(backWords * sizeof(uint32_t)));
+        copyToHost(m_backRequestBits.id(), slot.read.id(), 0, GLintptr(words * sizeof(uint32_t)),
+                   GLsizeiptr(backWords * sizeof(uint32_t)));
     slot.read.fence();
     slot.frame = m_cache.frame();
     slot.words = words, slot.backWords = backWords;
@@ -231,7 +230,7 @@ DrawStats VirtualPages::drawPages(const GpuScene& scene, const PassPrograms& pro
         DepthPassUniforms uniforms = depthPassUniformsFor(toRender[i].clipFromWorld, bias);
         uniforms.ditherOrigin = {ditherOf(toRender[i].key.x * m_pageTexels - m_guardTexels, v.x),
                                  ditherOf(toRender[i].key.y * m_pageTexels - m_guardTexels, v.y)};
-        glNamedBufferSubData(depthUniforms.id(), 0, sizeof uniforms, &uniforms);
+        uploadToBuffer(depthUniforms.id(), 0, sizeof uniforms, &uniforms);
         setLightFacingFront(toRender[i].clipFromWorld, wsTowardsLight);
         draws += scene.draw(lists[i], programs, visibility::clipVolume(toRender[i].clipFromWorld, false));
     }
@@ -244,15 +243,23 @@ void VirtualPages::rendered() {
     const core::ShadowSetup& shown = m_cache.shown();
     const int levels = static_cast<int>(shown.views.size());
     const int pages = shown.clipmap->pagesPerSide();
-    if (pages != m_tablePagesPerSide) {
+    const bool created = pages != m_tablePagesPerSide;
+    if (created) {
         m_pageTable = createTexture2D(GL_R32UI, pages, pages * int(core::kMaxShadowViews));
         // An integer texture with a linear filter is incomplete, and reads as 0: "absent".
         glTextureParameteri(m_pageTable.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
         glTextureParameteri(m_pageTable.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
         m_tablePagesPerSide = pages;
     }
-    glTextureSubImage2D(m_pageTable.id(), 0, 0, 0, pages, pages * levels, GL_RED_INTEGER, GL_UNSIGNED_INT,
-                        m_cache.pageTable().data());
+    // Only the levels whose entries changed (none on a still frame): level l's pages² entries
+    // are rows l × pages … of the texture.
+    const size_t block = size_t(pages) * size_t(pages);
+    for (int l = 0; l < levels; ++l) {
+        if (!created && !m_cache.levelChanged(l)) continue;
+        glTextureSubImage2D(m_pageTable.id(), 0, 0, l * pages, pages, pages, GL_RED_INTEGER, GL_UNSIGNED_INT,
+                            m_cache.pageTable().data() + size_t(l) * block);
+        detail::countUpload(int64_t(block * sizeof(uint32_t)));
+    }
 }
 
 void VirtualPages::bind(const core::ShadowSetup& setup, float blendBand) const {
@@ -270,7 +277,7 @@ void VirtualPages::bind(const core::ShadowSetup& setup, float blendBand) const {
     u.virtualTexels = static_cast<float>(c.virtualTexels);
     u.atlasTexels = glm::vec2(m_atlasTexels);
     u.blendBand = blendBand;
-    glNamedBufferSubData(m_mapsUniforms.id(), 0, sizeof u, &u);
+    uploadToBuffer(m_mapsUniforms.id(), 0, sizeof u, &u);
     glBindBufferBase(GL_UNIFORM_BUFFER, kVirtualBinding, m_mapsUniforms.id());
     glBindTextureUnit(kShadowMapUnit, m_atlas.id());
     glBindTextureUnit(kShadowDepthUnit, m_atlas.id()); // PCSS's blocker search: its stored depths

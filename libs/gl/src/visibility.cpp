@@ -183,8 +183,7 @@ void Visibility::upload(std::span<PassList* const> lists) {
         m_capacity = std::max(m_staging.size(), 2 * m_capacity);
         m_buffer = createBuffer(nullptr, m_capacity * sizeof(uint32_t));
     }
-    glNamedBufferSubData(m_buffer.id(), 0, static_cast<GLsizeiptr>(m_staging.size() * sizeof(uint32_t)),
-                         m_staging.data());
+    uploadToBuffer(m_buffer.id(), 0, static_cast<GLsizeiptr>(m_staging.size() * sizeof(uint32_t)), m_staging.data());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kVisibleBinding, m_buffer.id());
     for (PassList* list : lists) list->buffer = m_buffer.id();
     m_listTimes += time.elapsed();

@@ -122,6 +122,40 @@ TEST_F(VirtualPagesTest, FramesFromCachedPagesLookUpExactlyWhatFreshPagesGive) {
     }
 }
 
+TEST_F(VirtualPagesTest, AStillFrameUploadsNoPageTableAndAMovedOneOnlyTheLevelsThatChanged) {
+    // The page table (pages² entries of 4 bytes a level) went up whole in every frame; the levels
+    // whose entries did not change (all, while camera and sun hold) now stay on the GPU. Counted
+    // as GL was asked to upload (gl::trafficSoFar), and the moved frames still equal fresh ones
+    // (FramesFromCachedPagesLookUpExactlyWhatFreshPagesGive).
+    const scene::Scene s = boxesOverPlane();
+    auto renderer = gl::Renderer::create(s);
+    ASSERT_TRUE(renderer) << renderer.error();
+    const gl::RenderSettings settings = smallFrame();
+    const auto uploaded = [&](double x) {
+        const core::PerspectiveCamera cam = camera(x);
+        const core::ShadowSetup setup = virtualSetup(s, cam, settings.height);
+        const gl::Traffic before = gl::trafficSoFar();
+        EXPECT_TRUE((*renderer)->render(cam, kSun, setup, settings));
+        return (gl::trafficSoFar() - before).bytesUploaded;
+    };
+    const core::ShadowSetup setup = virtualSetup(s, camera(0.0), settings.height);
+    const int64_t pages = setup.clipmap->pagesPerSide(), levels = int64_t(setup.views.size());
+    const int64_t level = pages * pages * int64_t(sizeof(uint32_t)), table = level * levels;
+    ASSERT_GT(levels, 2);
+    EXPECT_GE(uploaded(0.0), table) << "the first frame's table";
+    // Beside the table a frame uploads its lists and uniforms, a few KiB here.
+    int64_t still = 0;
+    for (int frame = 0; frame < 2; ++frame) {
+        still = uploaded(0.0);
+        EXPECT_LT(still, table) << "a still frame";
+    }
+    // A step of the camera shifts the finest levels' windows, not the coarsest: one level or
+    // more goes up again, not the whole table.
+    const int64_t moved = uploaded(3.0) - still;
+    EXPECT_GE(moved, level);
+    EXPECT_LT(moved, table);
+}
+
 TEST_F(VirtualPagesTest, AMoverRedrawsOnlyThePagesUnderItAndItsShadowMoves) {
     scene::Scene s = boxesOverPlane();
     auto renderer = gl::Renderer::create(s);

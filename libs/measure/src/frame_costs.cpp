@@ -25,9 +25,11 @@ Spread spreadOf(std::vector<double> v) {
 
 nlohmann::json toJson(const Spread& s) { return {{"min", s.min}, {"median", s.median}, {"max", s.max}}; }
 
-void FrameCosts::add(const frame::DrawnFrame& drawn, int64_t readBacks) {
+void FrameCosts::add(const frame::DrawnFrame& drawn, const gl::Traffic& traffic) {
     const gl::FrameStats& stats = drawn.stats;
-    m_readBacks.push_back(double(readBacks));
+    m_readBacks.push_back(double(traffic.readBacks));
+    m_bytesUploaded.push_back(double(traffic.bytesUploaded));
+    m_bytesReadBack.push_back(double(traffic.bytesReadBack));
     m_setup.push_back(drawn.frame.setupMilliseconds);
     m_frameCpu.push_back(drawn.frame.prePasses.milliseconds + drawn.frame.setupMilliseconds + drawn.milliseconds);
     m_cull.push_back(stats.cullMilliseconds);
@@ -75,6 +77,8 @@ int FrameCosts::framesTimed() const {
 Spread FrameCosts::setupRest() const { return spreadOf(steady(m_setup)); }
 
 Spread FrameCosts::readBacks() const { return spreadOf(steady(m_readBacks)); }
+Spread FrameCosts::bytesUploaded() const { return spreadOf(steady(m_bytesUploaded)); }
+Spread FrameCosts::bytesReadBack() const { return spreadOf(steady(m_bytesReadBack)); }
 Spread FrameCosts::pagesRendered() const { return spreadOf(steady(m_pagesRendered)); }
 Spread FrameCosts::requestsAge() const { return spreadOf(steady(m_requestsAge)); }
 
@@ -86,10 +90,17 @@ FrameCosts::Occlusion FrameCosts::occlusion() const {
 }
 
 nlohmann::json FrameCosts::json() const {
-    nlohmann::json j = {
-        {"frame_cpu_ms", toJson(frameCpu())}, {"frames_timed", framesTimed()}, {"setup_first_ms", setupFirst()},
-        {"setup_ms", toJson(setupRest())},    {"cull_ms", toJson(cull())},     {"cull_own_ms", toJson(cullOwn())},
-        {"cull_gl_ms", toJson(cullGl())},     {"list_ms", toJson(lists())},    {"read_backs", toJson(readBacks())}};
+    nlohmann::json j = {{"frame_cpu_ms", toJson(frameCpu())},
+                        {"frames_timed", framesTimed()},
+                        {"setup_first_ms", setupFirst()},
+                        {"setup_ms", toJson(setupRest())},
+                        {"cull_ms", toJson(cull())},
+                        {"cull_own_ms", toJson(cullOwn())},
+                        {"cull_gl_ms", toJson(cullGl())},
+                        {"list_ms", toJson(lists())},
+                        {"read_backs", toJson(readBacks())},
+                        {"bytes_uploaded", toJson(bytesUploaded())},
+                        {"bytes_read_back", toJson(bytesReadBack())}};
     for (const auto& [pass, stats, gpu] :
          {std::tuple{"shadow", &m_last.shadow, shadowGpu()}, std::tuple{"local", &m_last.local, localGpu()},
           std::tuple{"main", &m_last.main, mainGpu()}})

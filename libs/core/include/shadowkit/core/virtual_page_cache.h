@@ -133,6 +133,12 @@ public:
     /// else 0; level after level, pagesPerSide² entries each, row-major.
     void rendered();
     std::span<const uint32_t> pageTable() const { return m_table; } ///< after rendered()
+    /// Whether level `level`'s entries differ from those the previous rendered() built — all do
+    /// when the table's shape (levels, pages a side) changed: what a copy of the table kept on a
+    /// GPU must take again. A still camera and sun change none, so a frame uploads nothing.
+    bool levelChanged(int level) const {
+        return level >= 0 && size_t(level) < m_levelChanged.size() && m_levelChanged[size_t(level)] != 0;
+    }
 
     /// Every page dropped: what they hold is no longer known.
     void dropAll();
@@ -226,7 +232,9 @@ private:
     std::vector<PageToRender> m_toRender;
     ShadowSetup m_shown;
     std::vector<int64_t> m_shownGeneration; // per level of m_shown
-    std::vector<uint32_t> m_table;
+    std::vector<uint32_t> m_table, m_previousTable;
+    std::vector<uint8_t> m_levelChanged; // per level of m_table, against m_previousTable
+    int m_tablePagesPerSide = 0;         // m_table's
     PageCacheStats m_stats;
 };
 

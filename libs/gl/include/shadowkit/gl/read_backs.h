@@ -4,6 +4,12 @@
 // a frame's claim that one read-back serves two uses is checked here against what GL was asked,
 // not against the frame's own bookkeeping. CHC++'s occlusion query waits are counted apart
 // (visibility::CoherentCullingStats).
+//
+// Beside them, the bytes libs/gl moves between CPU and GPU, counted where GL is asked to move
+// them: uploaded into buffers and textures (a buffer's initial data included), and read back —
+// by a synchronous read, or copied by the GPU into host memory for a read frames later
+// (fenced_read.h); query results aside (eight bytes each). Per frame, what its lists, uniforms,
+// page table and read-backs cost the bus.
 #pragma once
 
 #include <cstdint>
@@ -12,11 +18,28 @@ namespace shadowkit::gl {
 
 // Read-backs made so far, by every renderer of the process; compare two readings.
 int64_t readBacksMade();
+// Bytes uploaded and read back so far, by every renderer of the process; compare two readings.
+int64_t bytesUploaded();
+int64_t bytesReadBack();
+
+// The three counts together: a frame's traffic is the difference of two readings around it.
+struct Traffic {
+    int64_t readBacks = 0, bytesUploaded = 0, bytesReadBack = 0;
+};
+inline Traffic trafficSoFar() { return {readBacksMade(), bytesUploaded(), bytesReadBack()}; }
+inline Traffic operator-(const Traffic& after, const Traffic& before) {
+    return {after.readBacks - before.readBacks, after.bytesUploaded - before.bytesUploaded,
+            after.bytesReadBack - before.bytesReadBack};
+}
 
 namespace detail {
 // Called next to every glGetTextureImage / glGetNamedBufferSubData, blocking query read and
 // fence wait in libs/gl.
 void countReadBack();
+// Called next to every upload (gl_object.h's uploadToBuffer and createBuffer, texture uploads)
+// and every read (the synchronous reads above, the GPU's copies into fenced read buffers).
+void countUpload(int64_t bytes);
+void countBytesReadBack(int64_t bytes);
 } // namespace detail
 
 } // namespace shadowkit::gl

@@ -5,6 +5,7 @@
 
 #include "shadowkit/frame/frame_driver.h"
 #include "shadowkit/gl/depth_limits.h"
+#include "shadowkit/gl/read_backs.h"
 
 #include <nlohmann/json_fwd.hpp>
 
@@ -23,11 +24,12 @@ nlohmann::json toJson(const Spread& spread); // {"min", "median", "max"}
 class FrameCosts {
 public:
     // The next frame of the view; the first is a camera cut (CHC++'s counts skip it).
-    // `readBacks`: the synchronous GPU-to-CPU data reads the frame made (gl::readBacksMade()
-    // before and after it), each a stall on a GPU.
+    // `traffic`: what GL was asked to move and wait for during the frame (gl::trafficSoFar()
+    // before and after it): its synchronous GPU-to-CPU reads, each a stall on a GPU, and the
+    // bytes it uploaded and read back.
     // A frame drawn with late figures (gl::Renderer::readGpuFiguresLate) has its GPU times and
     // GPU-culled counts filled when they come back, with a later frame or from addLate().
-    void add(const frame::DrawnFrame& drawn, int64_t readBacks = 0);
+    void add(const frame::DrawnFrame& drawn, const gl::Traffic& traffic = {});
     // Figures read late: each into its frame, when that frame is one of this view's; a frame
     // whose figures never came (the GPU too far behind) is left out of the GPU spreads.
     void addLate(std::span<const gl::GpuFigures> figures);
@@ -53,6 +55,8 @@ public:
     Spread prepass() const { return spreadOf(m_prepass); }     // the camera's culling pass, CPU ms
     Spread masks() const { return spreadOf(m_masks); }         // the receiver masks, CPU ms
     Spread readBacks() const;                                  // per steady frame (after the first)
+    Spread bytesUploaded() const;                              // per steady frame
+    Spread bytesReadBack() const;                              // per steady frame
     // Technique virtual, per steady frame: the pages drawn, and how many frames old the page
     // requests read were (0: the frame's own; −1: none arrived). Zeros without virtual maps.
     Spread pagesRendered() const;
@@ -91,7 +95,7 @@ private:
 
     std::vector<double> m_frameCpu, m_setup, m_cull, m_cullOwn, m_cullGl, m_lists, m_shadowGpu, m_mainGpu, m_localGpu,
         m_prepass, m_masks;
-    std::vector<double> m_readBacks;
+    std::vector<double> m_readBacks, m_bytesUploaded, m_bytesReadBack;
     std::vector<int64_t> m_frameNumbers; // gl::FrameStats::frame of each
     std::vector<double> m_nodesVisited, m_queries, m_nodesQueried, m_multiQueryFailures, m_waits;
     std::vector<double> m_pagesRendered, m_requestsAge; // technique virtual
