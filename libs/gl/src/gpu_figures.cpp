@@ -82,8 +82,7 @@ std::vector<GpuFigures> GpuFigureRing::record(int64_t frame, const FrameFigureSo
     };
     count(sources.samples, Samples, Shaded, slot.counted, slot.shaded);
     count(sources.mainSamples, MainSamples, MainShaded, slot.mainCounted, slot.mainShaded);
-    // The opacity layers' draws: samples alone (their invocations would say nothing more: the
-    // first draw's test is early, the transmittance's none).
+    // The opacity layers' two draws: their samples written, all bench reports of them.
     const auto countSamples = [&](const PassSamples* pass, Stamp samples, bool& counted) {
         counted = pass != nullptr && pass->counted();
         if (counted) stamp(pass->query(), samples);

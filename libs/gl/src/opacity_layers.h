@@ -14,11 +14,12 @@
 // by multiplicative blending into the layer of its distance behind the first (opacity.frag) —
 // every leaf counts there; then one triangle over each map (opacity_prefilter.frag) and the mip
 // chain. Each of the two draws goes over every view before the other starts, so that one
-// occlusion query counts it whole (the work per texel in bench's lines). For the set-up's fixed maps (single maps and
-// cascades) the textures are layers of the maps' size, one a map, and the driver builds the chain; for virtual maps
-// they are laid out as the page atlas, one layer, each page drawn is drawn into its slot, guard band and all — a page's
-// layers are drawn when its depth is, so a cached page keeps both — and the chain is filtered over the drawn slots
-// alone (opacity_downsample.frag), up to the guard band's width.
+// occlusion query counts it whole (bench's `leaves` line). For the set-up's fixed maps (single
+// maps and cascades) the textures are layers of the maps' size, one a map, and the driver builds
+// the chain; for virtual maps they are laid out as the page atlas, one layer, each page drawn is
+// drawn into its slot, guard band and all — a page's layers are drawn when its depth is, so a
+// cached page keeps both — and the chain is filtered over the drawn slots alone
+// (opacity_downsample.frag), up to the guard band's width.
 #pragma once
 
 #include "gl_object.h"

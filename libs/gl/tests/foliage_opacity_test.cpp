@@ -3,7 +3,7 @@
 // a fraction of the light, stacked leaves multiply, a receiver between two layers of leaves is
 // shadowed by the layer above it only, the ground beside a canopy's edge is partly shadowed under
 // the sun's disk, a sunlit leaf is not shaded by its own layer, and the opaque casters still cast
-// through the depth map.
+// through the depth map; and the layers' first draw writes each texel the leaves cover once.
 //
 // The scene: a ground slab, and two horizontal alpha-tested cards whose texture is random noise
 // covering half of each 3 cm cell (far finer than the map's 8 cm texels): the upper card at

@@ -33,8 +33,9 @@ inline Traffic operator-(const Traffic& after, const Traffic& before) {
 }
 
 namespace detail {
-// Called next to every glGetTextureImage / glGetNamedBufferSubData, blocking query read and
-// fence wait in libs/gl.
+// Called once per wait in libs/gl: before the reads of data that wait (gl_object.h's
+// readBuffer and readTexture, one call or several after one wait), a blocking query read, a
+// fence wait.
 void countReadBack();
 // Called next to every upload (gl_object.h's uploadToBuffer and createBuffer, texture uploads)
 // and every read (the synchronous reads above, the GPU's copies into fenced read buffers).
