@@ -68,13 +68,19 @@ def path_table(d):
     # No GPU times here: the GPU-driven frames run far ahead of the GPU, and the late figures of
     # most of them never come back (their ring slot is reused first), so a median would be over
     # the last few frames alone.
-    out = ["| trees | culling | frame CPU ms: median | max | synchronisations a frame | shadow pass: M triangles "
-           "(last frame) | main pass: M triangles (last frame) |",
-           "|---:|---|---:|---:|---:|---:|---:|"]
+    # KiB moved a frame: uploaded / read back (bench's bytes_uploaded, bytes_read_back, medians;
+    # – for runs before 478d2bf, which did not count them).
+    def kib(r):
+        if "bytes_uploaded" not in r:
+            return "–"
+        return f"{r['bytes_uploaded']['median'] / 1024:.1f} / {r['bytes_read_back']['median'] / 1024:.1f}"
+    out = ["| trees | culling | frame CPU ms: median | max | synchronisations a frame | KiB up / read back a frame | "
+           "shadow pass: M triangles (last frame) | main pass: M triangles (last frame) |",
+           "|---:|---|---:|---:|---:|---:|---:|---:|"]
     for name, label in (("gpu", "GPU-driven (default)"), ("chc", "CHC++")):
         for r in runs(d / f"path-{name}.json"):
             out.append(f"| {r['trees']:,} | {label} | {r['frame_cpu_ms']['median']:.2f} | {r['frame_cpu_ms']['max']:.1f} | "
-                       f"{r['read_backs']['median']:.0f} | {r['shadow']['triangles'] / 1e6:.2f} | "
+                       f"{r['read_backs']['median']:.0f} | {kib(r)} | {r['shadow']['triangles'] / 1e6:.2f} | "
                        f"{r['main']['triangles'] / 1e6:.2f} |")
     return "\n".join(out)
 
