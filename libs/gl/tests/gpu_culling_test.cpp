@@ -8,6 +8,7 @@
 #include "gpu_scene.h"
 #include "visibility.h"
 
+#include "shadowkit/gl/read_backs.h"
 #include "shadowkit/gl/renderer.h"
 #include "shadowkit/scene/forest.h"
 #include "shadowkit/scene/mesh_builder.h"
@@ -300,4 +301,34 @@ TEST_F(GpuCullingTest, EmptyBatchesAndMeshesWithoutTrianglesDrawLikeTheCpuPath) 
         EXPECT_EQ(gpu->main.instances, frustum->main.instances) << "frame " << frame;
         EXPECT_EQ(gpu->shadow.triangles, frustum->shadow.triangles) << "frame " << frame;
     }
+}
+
+TEST_F(GpuCullingTest, AGpuDrivenFrameUploadsNoListsWhateverTheForest) {
+    // The GPU writes its lists itself: a steady frame uploads its uniforms and blocks alone, the
+    // same bytes for 100 trees and for ten times as many, where the CPU path uploads each pass's
+    // list, an index per instance drawn (counted as GL was asked, gl::trafficSoFar).
+    std::vector<int64_t> gpuBytes, cpuBytes;
+    std::vector<size_t> cpuDrawn;
+    for (const int trees : {100, 1000}) {
+        const scene::Scene forest = gl::testing::smallForest(trees, 200, 32);
+        auto renderer = gl::Renderer::create(forest);
+        ASSERT_TRUE(renderer) << renderer.error();
+        scene::ResolvedView view = gl::testing::standardView(forest, "aerial");
+        view.camera.aspect = 160.0 / 90.0;
+        const core::ShadowSetup setup = lispsmSetup(view, forest);
+        for (const gl::Culling culling : {gl::Culling::Gpu, gl::Culling::Frustum}) {
+            const gl::RenderSettings settings = smallFrame(160, 90, culling);
+            ASSERT_TRUE((*renderer)->render(view.camera, view.light, setup, settings)); // the first frame builds
+            const gl::Traffic before = gl::trafficSoFar();
+            const auto steady = (*renderer)->render(view.camera, view.light, setup, settings);
+            ASSERT_TRUE(steady) << steady.error();
+            const int64_t uploaded = (gl::trafficSoFar() - before).bytesUploaded;
+            (culling == gl::Culling::Gpu ? gpuBytes : cpuBytes).push_back(uploaded);
+            if (culling == gl::Culling::Frustum) cpuDrawn.push_back(steady->main.instances + steady->shadow.instances);
+        }
+    }
+    EXPECT_EQ(gpuBytes[0], gpuBytes[1]) << "the GPU path's uploads grew with the forest";
+    ASSERT_GT(cpuDrawn[1], cpuDrawn[0] + 500);
+    EXPECT_GE(cpuBytes[1] - cpuBytes[0], int64_t(sizeof(uint32_t) * (cpuDrawn[1] - cpuDrawn[0])))
+        << "the CPU path's lists: an index per instance drawn";
 }
