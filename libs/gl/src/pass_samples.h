@@ -8,8 +8,9 @@
 //     samples written it says whether depth tests ran before the shader: a fragment an early
 //     test rejects is never shaded, one a late test rejects (a shader that may discard, as an
 //     alpha test does, can keep a GPU's test late) is shaded and thrown away. llvmpipe's
-//     counter gives exactly the samples written (the leafy forest's shadow pass: 5,980,912 of
-//     each): there it says nothing more.
+//     counter is no count of shaded fragments: the leafy forest's shadow pass gave exactly its
+//     samples written (5,980,912 of each), and a probe with a shader discarding every other pixel
+//     0 (docs/benchmarking.md): there it says nothing.
 #pragma once
 
 #include "gl_object.h"

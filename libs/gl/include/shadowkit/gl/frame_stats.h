@@ -48,7 +48,8 @@ struct PassStats {
     // Fragment-shader invocations in the same span as samplesPassed, where the driver counts
     // them (ARB_pipeline_statistics_query; 0 where not): more than samplesPassed by the
     // fragments shaded and then rejected — by a late depth test, or a discard (pass_samples.h;
-    // llvmpipe's counter gives samplesPassed itself).
+    // llvmpipe's counter is not to be trusted: samplesPassed itself in its shadow passes, 0
+    // under a discarding shader in a probe).
     uint64_t fragmentsShaded = 0;
     uint64_t mapTexels = 0;
     // Shadow pass with opacity layers (RenderSettings::foliageOpacity), over the same texels: the
