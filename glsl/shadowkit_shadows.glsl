@@ -49,8 +49,11 @@
 // Without it SK_FILTER_MSM takes the hard lookup.
 //
 // For virtual shadow maps (core/virtual_clipmap.h, docs/virtual-shadow-maps.md) the levels'
-// textureFromWorld come through one accessor, and skVirtualShadow is compiled when it is defined:
+// textureFromWorld and the page table's cell of each level's first page (core::pageTableCellOf
+// of its ClipmapLevel's firstPageX, firstPageY: the table is addressed toroidally) come through
+// two accessors, and skVirtualShadow is compiled when the first is defined:
 //   #define SK_VIRTUAL_LEVEL_FROM_WORLD(i)         myLevelTextureFromWorld[i]
+//   #define SK_VIRTUAL_LEVEL_TABLE_ORIGIN(i)       myLevelTableOrigin[i].xy
 
 // Files appended after this one (shadowkit_foliage_opacity.glsl) check that it came first.
 #define SK_SHADOWS_GLSL 1
@@ -392,7 +395,9 @@ float skCascadedShadow(sampler2DArrayShadow maps, int mapCount, SkShadowOptions 
 // Virtual shadow maps: a clipmap of virtualTexels² maps whose resident pages live in one atlas
 // (layer 0 of a sampler2DArrayShadow), each page with a guard band of guardTexels around it, and
 // a page table (usampler2D, pagesPerSide wide, pagesPerSide rows per level) holding slot + 1 of
-// each resident page of the level's window, 0 for none. core::VirtualClipmap has the rest.
+// each resident page of the level's window, 0 for none, at the page's cell: its place in the
+// window plus the first page's cell (SK_VIRTUAL_LEVEL_TABLE_ORIGIN), modulo pagesPerSide.
+// core::VirtualClipmap has the rest.
 struct SkVirtualMaps {
     int levels;              // clipmap levels, finest first
     int firstExponent;       // level 0's texel is 2^firstExponent metres
@@ -414,6 +419,9 @@ int skVirtualLevelRule(SkVirtualMaps v, float viewDepth) {
 }
 
 #ifdef SK_VIRTUAL_LEVEL_FROM_WORLD
+#ifndef SK_VIRTUAL_LEVEL_TABLE_ORIGIN
+#error "shadowkit_shadows.glsl: SK_VIRTUAL_LEVEL_FROM_WORLD needs SK_VIRTUAL_LEVEL_TABLE_ORIGIN (the page table is toroidal)"
+#endif
 // The level serving a receiver and where its page lies in the atlas: the rule's level, or the
 // first coarser one with the receiver's page resident (a page not resident — the pool full, or
 // the rule's level not reaching as far as a narrow view — falls back to the coarser level, which
@@ -430,7 +438,8 @@ bool skVirtualPageFrom(usampler2D pageTable, SkVirtualMaps v, int first, vec3 ws
         const vec2 uv = t.xy / t.w;
         if (any(lessThan(uv, vec2(0.0))) || any(greaterThanEqual(uv, vec2(1.0)))) continue;
         const ivec2 page = min(ivec2(uv * float(v.pagesPerSide)), ivec2(v.pagesPerSide - 1));
-        const uint entry = texelFetch(pageTable, ivec2(page.x, page.y + l * v.pagesPerSide), 0).r;
+        const ivec2 cell = (page + SK_VIRTUAL_LEVEL_TABLE_ORIGIN(l)) % v.pagesPerSide; // both in [0, pagesPerSide)
+        const uint entry = texelFetch(pageTable, ivec2(cell.x, cell.y + l * v.pagesPerSide), 0).r;
         if (entry == 0u) continue;
         const int slot = int(entry) - 1;
         // Atlas texel of map texel m: slot corner + guard + (m − page · pageTexels).

@@ -92,6 +92,12 @@ std::optional<int> clipmapLevelHolding(const ShadowSetup& setup, double viewDept
     return std::nullopt;
 }
 
+PageTableCell pageTableCellOf(int64_t pageX, int64_t pageY, int pagesPerSide) {
+    // The non-negative remainder: grid indices run negative west and south of the grid origin.
+    const auto cell = [n = int64_t(pagesPerSide)](int64_t i) { return static_cast<int>((i % n + n) % n); };
+    return {cell(pageX), cell(pageY)};
+}
+
 std::optional<PageKey> clipmapPageOf(const ShadowSetup& setup, int level, const Vec3& wsPoint) {
     if (!setup.clipmap || level < 0 || level >= static_cast<int>(setup.views.size())) return std::nullopt;
     const VirtualClipmap& c = *setup.clipmap;

@@ -318,18 +318,16 @@ void VirtualPageCache::rendered() {
         const ClipmapLevel& info = levelOf(m_shown.views[size_t(l)]);
         const int64_t x = slot.key.page.x - info.firstPageX, y = slot.key.page.y - info.firstPageY;
         if (x < 0 || y < 0 || x >= pages || y >= pages) continue;
-        m_table[size_t(l) * pages * pages + size_t(y) * pages + size_t(x)] = uint32_t(s + 1);
+        const PageTableCell cell = pageTableCellOf(slot.key.page.x, slot.key.page.y, pages);
+        m_table[size_t(l) * pages * pages + size_t(cell.y) * pages + size_t(cell.x)] = uint32_t(s + 1);
     }
     m_stats.pagesResident = resident;
-    // What changed since the last table, level by level: with the same shape (the same size and
-    // pages a side, so the same level count) a level's block of entries compared whole.
-    const bool sameShape = m_previousTable.size() == m_table.size() && pages == m_tablePagesPerSide;
-    const size_t block = size_t(pages) * pages;
-    m_levelChanged.assign(size_t(levels), 1);
-    for (size_t l = 0; sameShape && l < size_t(levels); ++l)
-        m_levelChanged[l] =
-            !std::equal(m_table.begin() + ptrdiff_t(l * block), m_table.begin() + ptrdiff_t((l + 1) * block),
-                        m_previousTable.begin() + ptrdiff_t(l * block));
+    // What changed since the last table: with the same shape (the same size and pages a side, so
+    // the same level count) the entries that differ; else all of it.
+    m_tableRebuilt = m_previousTable.size() != m_table.size() || pages != m_tablePagesPerSide;
+    m_tableChanges.clear();
+    for (size_t i = 0; !m_tableRebuilt && i < m_table.size(); ++i)
+        if (m_table[i] != m_previousTable[i]) m_tableChanges.push_back({uint32_t(i), m_table[i]});
     m_tablePagesPerSide = pages;
 }
 

@@ -7,6 +7,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <set>
+#include <utility>
+#include <vector>
 
 using namespace shadowkit::core;
 using namespace shadowkit::core::testing;
@@ -139,6 +142,31 @@ TEST(VirtualClipmapTest, PageKeysAreAnchoredToTheWorldWhileTheSunIsStill) {
             }
     }
     EXPECT_GT(compared, 20);
+}
+
+TEST(VirtualClipmapTest, APagesTableCellIsItsGridIndexModuloThePagesASideNegativeIndicesIncluded) {
+    // Grid indices run negative west and south of the grid origin; a window straddling it has
+    // pages on both sides, every one in its own cell.
+    constexpr int n = 128;
+    for (const auto& [index, cell] : std::vector<std::pair<int64_t, int>>{{0, 0},
+                                                                          {5, 5},
+                                                                          {127, 127},
+                                                                          {128, 0},
+                                                                          {-1, 127},
+                                                                          {-128, 0},
+                                                                          {-129, 127},
+                                                                          {int64_t(1) << 40, 0},
+                                                                          {-(int64_t(1) << 40) - 3, 125}}) {
+        EXPECT_EQ(pageTableCellOf(index, 0, n).x, cell) << index;
+        EXPECT_EQ(pageTableCellOf(7, index, n).y, cell) << index;
+    }
+    std::set<std::pair<int, int>> cells;
+    for (int64_t y = -70; y < -70 + n; ++y)
+        for (int64_t x = -3; x < -3 + n; ++x) {
+            const PageTableCell c = pageTableCellOf(x, y, n);
+            cells.insert({c.x, c.y});
+        }
+    EXPECT_EQ(cells.size(), size_t(n) * n) << "a window of n² pages fills every cell once";
 }
 
 TEST(VirtualClipmapTest, APagesOwnMatrixAgreesWithItsLevelToAMillionthOfATexel) {

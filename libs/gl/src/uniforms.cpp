@@ -65,6 +65,7 @@ std::span<const UniformField> virtualMapsFields() {
         UniformField{"virtualTexels", offsetof(VirtualMapsUniforms, virtualTexels)},
         UniformField{"virtualAtlasTexels", offsetof(VirtualMapsUniforms, atlasTexels)},
         UniformField{"virtualBlendBand", offsetof(VirtualMapsUniforms, blendBand)},
+        UniformField{"virtualTableOrigin[0]", offsetof(VirtualMapsUniforms, tableOrigin)},
     };
     return kFields;
 }
@@ -173,6 +174,8 @@ const std::string& shaderPrelude() {
         define("SK_VIRTUAL_BINDING", kVirtualBinding);
         define("SK_VIRTUAL_MARK_BINDING", kVirtualMarkBinding);
         define("SK_PAGE_TABLE_UNIT", kPageTableUnit);
+        define("SK_PAGE_TABLE_CHANGES_BINDING", kPageTableChangesBinding);
+        define("SK_PAGE_TABLE_IMAGE_UNIT", kPageTableImageUnit);
         define("SK_RANGE_DEPTH_UNIT", kRangeDepthUnit);
         define("SK_BOX_OFFSET_LOCATION", kBoxOffsetLocation);
         define("SK_INSTANCE_OFFSET_LOCATION", kInstanceOffsetLocation);

@@ -39,6 +39,8 @@ inline constexpr unsigned kBoxesBinding = 2;        // shader storage: vec4 boxC
 inline constexpr unsigned kPageRequestBinding = 5;  // shader storage: uint requestBits[] (virtual_mark.comp)
 inline constexpr unsigned kVirtualBinding = 7;      // uniform block VirtualMaps (frame.glsl)
 inline constexpr unsigned kVirtualMarkBinding = 8;  // uniform block VirtualMark (virtual_mark.comp)
+inline constexpr unsigned kPageTableChangesBinding = 6; // shader storage: uvec2 changes[] (page_table_update.comp)
+inline constexpr unsigned kPageTableImageUnit = 0;      // page_table_update.comp: the page table it writes
 // Texture units (GLSL: SK_*_UNIT). The camera passes and the blur pass never run together.
 inline constexpr unsigned kShadowMapUnit = 0;  // camera passes: sampler2DArrayShadow, one layer per map
 inline constexpr unsigned kShadowMaskUnit = 1; // main pass: the blurred shadow mask
@@ -181,6 +183,7 @@ struct VirtualMapsUniforms { // GLSL: VirtualMaps (frame.glsl); SkVirtualMaps in
     glm::vec2 atlasTexels; // width, height
     float blendBand;       // RenderSettings::virtualBlendBand
     float pad0, pad1, pad2;
+    glm::ivec4 tableOrigin[kMaxCascades]; // xy: each level's first page's cell (core::pageTableCellOf)
 };
 
 struct VirtualMarkUniforms { // GLSL: VirtualMark (virtual_mark.comp)
@@ -210,6 +213,8 @@ static_assert(offsetof(FrameUniforms, mapTexels) == 160 && offsetof(FrameUniform
               "std140: the scalars must fill whole 16-byte rows before the arrays");
 static_assert(sizeof(FrameUniforms) == 224 + kMaxCascades * (64 + 16 + 16));
 static_assert(sizeof(BlurUniforms) == 16);
+static_assert(offsetof(VirtualMapsUniforms, tableOrigin) == 64 &&
+              sizeof(VirtualMapsUniforms) == 64 + kMaxCascades * 16);
 static_assert(sizeof(LocalDepthUniforms) == 6 * 64 + 16 + 32 + 16);
 static_assert(sizeof(LocalLightsUniforms) == kMaxLocalLights * (6 * 16 + 64) + 32);
 

@@ -7,8 +7,10 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstddef>
 #include <limits>
 #include <string>
+#include <variant>
 
 namespace shadowkit::gl {
 namespace {
@@ -44,6 +46,9 @@ core::Result<std::unique_ptr<VirtualPages>> VirtualPages::create() {
         !s)
         return s.errorInfo();
     pages->m_mark = std::move(program).value();
+    auto table = PageTable::create();
+    if (!table) return table.errorInfo();
+    pages->m_pageTable = std::move(table).value();
     pages->m_markUniforms = createBuffer(nullptr, sizeof(VirtualMarkUniforms));
     pages->m_mapsUniforms = createBuffer(nullptr, sizeof(VirtualMapsUniforms));
     const VirtualMapsUniforms disabled{};
@@ -206,6 +211,7 @@ VirtualPageStats VirtualPages::stats() const {
     VirtualPageStats stats;
     static_cast<core::PageCacheStats&>(stats) = m_cache.stats();
     stats.poolBytes = int64_t(m_atlasTexels.x) * m_atlasTexels.y * 4;
+    stats.tableBytes = m_pageTable->bytesUploaded();
     return stats;
 }
 
@@ -240,26 +246,8 @@ DrawStats VirtualPages::drawPages(const GpuScene& scene, const PassPrograms& pro
 
 void VirtualPages::rendered() {
     m_cache.rendered();
-    const core::ShadowSetup& shown = m_cache.shown();
-    const int levels = static_cast<int>(shown.views.size());
-    const int pages = shown.clipmap->pagesPerSide();
-    const bool created = pages != m_tablePagesPerSide;
-    if (created) {
-        m_pageTable = createTexture2D(GL_R32UI, pages, pages * int(core::kMaxShadowViews));
-        // An integer texture with a linear filter is incomplete, and reads as 0: "absent".
-        glTextureParameteri(m_pageTable.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-        glTextureParameteri(m_pageTable.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-        m_tablePagesPerSide = pages;
-    }
-    // Only the levels whose entries changed (none on a still frame): level l's pages² entries
-    // are rows l × pages … of the texture.
-    const size_t block = size_t(pages) * size_t(pages);
-    for (int l = 0; l < levels; ++l) {
-        if (!created && !m_cache.levelChanged(l)) continue;
-        glTextureSubImage2D(m_pageTable.id(), 0, 0, l * pages, pages, pages, GL_RED_INTEGER, GL_UNSIGNED_INT,
-                            m_cache.pageTable().data() + size_t(l) * block);
-        detail::countUpload(int64_t(block * sizeof(uint32_t)));
-    }
+    m_pageTable->update(m_cache.pageTable(), m_cache.shown().clipmap->pagesPerSide(), m_cache.tableRebuilt(),
+                        m_cache.tableChanges());
 }
 
 void VirtualPages::bind(const core::ShadowSetup& setup, float blendBand) const {
@@ -277,11 +265,18 @@ void VirtualPages::bind(const core::ShadowSetup& setup, float blendBand) const {
     u.virtualTexels = static_cast<float>(c.virtualTexels);
     u.atlasTexels = glm::vec2(m_atlasTexels);
     u.blendBand = blendBand;
-    uploadToBuffer(m_mapsUniforms.id(), 0, sizeof u, &u);
+    for (int l = 0; l < u.levels; ++l) {
+        const auto& level = std::get<core::ClipmapLevel>(setup.views[size_t(l)].warp);
+        const core::PageTableCell cell = core::pageTableCellOf(level.firstPageX, level.firstPageY, u.pagesPerSide);
+        u.tableOrigin[l] = {cell.x, cell.y, 0, 0};
+    }
+    // The levels' origins that are in use, not the whole array.
+    uploadToBuffer(m_mapsUniforms.id(), 0,
+                   GLsizeiptr(offsetof(VirtualMapsUniforms, tableOrigin) + size_t(u.levels) * 16), &u);
     glBindBufferBase(GL_UNIFORM_BUFFER, kVirtualBinding, m_mapsUniforms.id());
     glBindTextureUnit(kShadowMapUnit, m_atlas.id());
     glBindTextureUnit(kShadowDepthUnit, m_atlas.id()); // PCSS's blocker search: its stored depths
-    glBindTextureUnit(kPageTableUnit, m_pageTable.id());
+    glBindTextureUnit(kPageTableUnit, m_pageTable->texture().id());
 }
 
 scene::Image VirtualPages::readAtlas() const {
@@ -291,24 +286,31 @@ scene::Image VirtualPages::readAtlas() const {
 scene::Image VirtualPages::pageTableImage() const {
     const int levels = static_cast<int>(m_cache.shown().views.size());
     const std::span<const uint32_t> table = m_cache.pageTable();
-    if (!m_cache.shown().clipmap || levels == 0 ||
-        table.size() != size_t(m_tablePagesPerSide) * m_tablePagesPerSide * levels)
-        return {};
+    const int pages = m_cache.shown().clipmap ? m_cache.shown().clipmap->pagesPerSide() : 0;
+    if (levels == 0 || pages == 0 || table.size() != size_t(pages) * pages * levels) return {};
     // main.frag's kCascadeTint, which --cascade-colors multiplies the levels' albedo by.
     static constexpr uint8_t kTint[8][3] = {{255, 89, 89},   {89, 255, 89},  {102, 128, 255}, {255, 255, 77},
                                             {255, 102, 255}, {77, 255, 255}, {255, 179, 77},  {204, 204, 204}};
-    const int pages = m_tablePagesPerSide, columns = std::min(levels, 4), gap = 2;
+    const int columns = std::min(levels, 4), gap = 2;
     const int rows = (levels + columns - 1) / columns;
+    std::vector<core::PageTableCell> origin;
+    for (const core::ShadowView& view : m_cache.shown().views) {
+        const auto& level = std::get<core::ClipmapLevel>(view.warp);
+        origin.push_back(core::pageTableCellOf(level.firstPageX, level.firstPageY, pages));
+    }
     scene::Image image(columns * (pages + gap) - gap, rows * (pages + gap) - gap);
     for (int l = 0; l < levels; ++l) {
         const int x0 = (l % columns) * (pages + gap), y0 = (l / columns) * (pages + gap);
         for (int y = 0; y < pages; ++y)
             for (int x = 0; x < pages; ++x) {
+                // The requests are window-relative, the table toroidal (core::pageTableCellOf).
                 const size_t i = size_t(l) * pages * pages + size_t(y) * pages + size_t(x);
+                const size_t entry = size_t(l) * pages * pages + size_t((y + origin[size_t(l)].y) % pages) * pages +
+                                     size_t((x + origin[size_t(l)].x) % pages);
                 const bool requested = i / 32 < m_readBack.size() && (m_readBack[i / 32] >> (i % 32) & 1u) != 0;
                 uint8_t* p = image.pixel(x0 + x, y0 + pages - 1 - y); // light-space +y up
                 const uint8_t dark[3] = {24, 24, 28}, white[3] = {255, 255, 255};
-                const uint8_t* c = table[i] != 0 ? kTint[l % 8] : requested ? white : dark;
+                const uint8_t* c = table[entry] != 0 ? kTint[l % 8] : requested ? white : dark;
                 p[0] = c[0], p[1] = c[1], p[2] = c[2], p[3] = 255;
             }
     }

@@ -9,6 +9,7 @@
 #include "fenced_read.h"
 #include "gl_object.h"
 #include "gpu_scene.h"
+#include "page_table.h"
 #include "render_targets.h"
 #include "stopwatch.h"
 #include "uniforms.h"
@@ -81,7 +82,7 @@ public:
                         const Buffer& depthUniforms) const;
     const Framebuffer& framebuffer() const { return m_framebuffer; }
     // After the pages were drawn: they are valid, and the page table for shown()'s windows is
-    // uploaded.
+    // brought up to date on the GPU (page_table.h: its changed entries, or the whole when new).
     void rendered();
     // The atlas at kShadowMapUnit, the page table at kPageTableUnit, the VirtualMaps block.
     void bind(const core::ShadowSetup& setup, float blendBand) const;
@@ -130,11 +131,11 @@ private:
     std::array<MarkSlot, kMarkSlots> m_marks;
     int64_t m_nextMark = 0;
     int64_t m_lastMarksRead = 0; // the frame the marks in m_readBack were made in
-    Texture m_atlas, m_pageTable;
+    Texture m_atlas;
+    std::unique_ptr<PageTable> m_pageTable;
     Framebuffer m_framebuffer;
     int m_slotsPerRow = 0, m_slotTexels = 0, m_pageTexels = 0, m_guardTexels = 0;
     glm::ivec2 m_atlasTexels{0};
-    int m_tablePagesPerSide = 0;
     CpuTimes m_gl;
 };
 

@@ -56,14 +56,18 @@ void main() {
 }
 )glsl";
 
-// An engine's virtual clipmap (docs/engine-integration.md): the page atlas, its page table and
-// the levels' matrices; the shading reads skVirtualShadow, which multiplies by the leaves'
-// transmittance from the opacity atlases when the samplers are named.
-constexpr std::string_view kVirtualDeclarations = R"glsl(
+// An engine's virtual clipmap (docs/engine-integration.md): the page atlas, its page table, the
+// levels' matrices and their first pages' cells in the table; the shading reads skVirtualShadow,
+// which multiplies by the leaves' transmittance from the opacity atlases when the samplers are named.
+constexpr std::string_view kVirtualLevels = R"glsl(
 layout(binding = 2) uniform sampler2DArrayShadow myPageAtlas;
 layout(binding = 3) uniform usampler2D myPageTable;
 uniform mat4 myLevelTextureFromWorld[8];
 #define SK_VIRTUAL_LEVEL_FROM_WORLD(i) myLevelTextureFromWorld[i]
+)glsl";
+constexpr std::string_view kVirtualTableOrigins = R"glsl(
+uniform ivec2 myLevelTableOrigin[8];
+#define SK_VIRTUAL_LEVEL_TABLE_ORIGIN(i) myLevelTableOrigin[i]
 )glsl";
 
 constexpr std::string_view kVirtualShading = R"glsl(
@@ -97,17 +101,27 @@ TEST_F(InstalledGlslTest, WithOpacityLayersTheFoliageFileAppendedAfterTheLookupC
 TEST_F(InstalledGlslTest, VirtualMapsWithOpacityLayersCompileAndWithoutTheFoliageFileAreRefused) {
     using namespace gl::shaders;
     const auto program = gl::buildProgram("engine shader, virtual maps, opacity layers", {kVertex},
-                                          {kVirtualDeclarations, kOpacityDeclarations, kShadowkitShadowsGlsl,
-                                           kShadowkitFoliageOpacityGlsl, kVirtualShading});
+                                          {kVirtualLevels, kVirtualTableOrigins, kOpacityDeclarations,
+                                           kShadowkitShadowsGlsl, kShadowkitFoliageOpacityGlsl, kVirtualShading});
     EXPECT_TRUE(program) << program.error();
     const auto plain = gl::buildProgram("engine shader, virtual maps", {kVertex},
-                                        {kVirtualDeclarations, kShadowkitShadowsGlsl, kVirtualShading});
+                                        {kVirtualLevels, kVirtualTableOrigins, kShadowkitShadowsGlsl, kVirtualShading});
     EXPECT_TRUE(plain) << plain.error();
     // skVirtualShadow calls the declared skFoliageTransmittanceIn: never a silently unshadowed leaf.
-    const auto missing =
-        gl::buildProgram("engine shader, virtual maps, foliage file missing", {kVertex},
-                         {kVirtualDeclarations, kOpacityDeclarations, kShadowkitShadowsGlsl, kVirtualShading});
+    const auto missing = gl::buildProgram(
+        "engine shader, virtual maps, foliage file missing", {kVertex},
+        {kVirtualLevels, kVirtualTableOrigins, kOpacityDeclarations, kShadowkitShadowsGlsl, kVirtualShading});
     EXPECT_FALSE(missing);
+}
+
+TEST_F(InstalledGlslTest, VirtualMapsWithoutTheTablesOriginsAreRefusedNamingTheAccessor) {
+    // The page table is toroidal: a lookup without each level's first cell would read other
+    // pages' entries wherever a window has moved — refused, never compiled to the wrong page.
+    using namespace gl::shaders;
+    const auto program = gl::buildProgram("engine shader, virtual maps, no table origins", {kVertex},
+                                          {kVirtualLevels, kShadowkitShadowsGlsl, kVirtualShading});
+    ASSERT_FALSE(program);
+    EXPECT_NE(program.error().find("SK_VIRTUAL_LEVEL_TABLE_ORIGIN"), std::string::npos) << program.error();
 }
 
 TEST_F(InstalledGlslTest, TheFoliageFileBeforeTheLookupIsRefusedNamingTheOrder) {

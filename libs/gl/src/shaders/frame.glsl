@@ -63,5 +63,7 @@ layout(std140, binding = SK_VIRTUAL_BINDING) uniform VirtualMaps {
     float virtualTexels;
     vec2 virtualAtlasTexels;
     float virtualBlendBand;
+    ivec4 virtualTableOrigin[SK_MAX_CASCADES]; // xy: the page table's cell of each level's first page
 };
 #define SK_VIRTUAL_LEVEL_FROM_WORLD(i) shadowTextureFromWorld[i]
+#define SK_VIRTUAL_LEVEL_TABLE_ORIGIN(i) virtualTableOrigin[i].xy

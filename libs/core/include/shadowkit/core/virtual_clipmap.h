@@ -58,6 +58,18 @@ struct ClipmapLevel {
     int64_t firstPageY = 0; ///< the same along light-space y
 };
 
+/// Where a page has its entry in a level's block of a page table, pagesPerSide² entries a level:
+/// the cell (x mod n, y mod n) of its grid index. Addressed so — toroidally, as a clipmap keeps its
+/// texels (Tanner et al. 1998, "The Clipmap", §4) — a window that moves by a page keeps the entry
+/// of every page it still covers where it was, and only the row or column it uncovers changes:
+/// a frame uploads those, not the level. The window's first page's cell is where its row 0,
+/// column 0 lies; the lookup adds it to a page's place in the window, modulo n.
+struct PageTableCell {
+    int x = 0; ///< column, in [0, pagesPerSide)
+    int y = 0; ///< row, in [0, pagesPerSide)
+};
+PageTableCell pageTableCellOf(int64_t pageX, int64_t pageY, int pagesPerSide);
+
 /// What every level shares, in world space: the light's orientation, the grid the pages are
 /// anchored to, the depth range. All of it depends on the sun and the scene box alone, never
 /// on the camera, so a page rendered in one frame holds the same depths in the next.

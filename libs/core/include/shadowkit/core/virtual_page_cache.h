@@ -130,15 +130,21 @@ public:
     const ShadowSetup& shown() const { return m_shown; }
     /// After the pages were drawn: they are valid, and the page table of shown()'s windows is
     /// built: per page, slot + 1 of its valid page of the generation its level is shown from,
-    /// else 0; level after level, pagesPerSide² entries each, row-major.
+    /// else 0; level after level, pagesPerSide² entries each, row-major, each page at its cell
+    /// (pageTableCellOf: toroidal, so a moving window changes only the entries it uncovers).
     void rendered();
     std::span<const uint32_t> pageTable() const { return m_table; } ///< after rendered()
-    /// Whether level `level`'s entries differ from those the previous rendered() built — all do
-    /// when the table's shape (levels, pages a side) changed: what a copy of the table kept on a
-    /// GPU must take again. A still camera and sun change none, so a frame uploads nothing.
-    bool levelChanged(int level) const {
-        return level >= 0 && size_t(level) < m_levelChanged.size() && m_levelChanged[size_t(level)] != 0;
-    }
+    /// An entry of pageTable() that differs from the table the previous rendered() built.
+    struct TableChange {
+        uint32_t index = 0; ///< into pageTable(): level · pagesPerSide² + row · pagesPerSide + column
+        uint32_t entry = 0; ///< its value now
+    };
+    /// After rendered(): what a copy of the table kept on a GPU must take again — none on a still
+    /// camera and sun; a moving eye's uncovered rows and columns and the pages newly resident or
+    /// evicted. Empty when tableRebuilt().
+    std::span<const TableChange> tableChanges() const { return m_tableChanges; }
+    /// Whether the whole table is new: the first, or a new shape (levels, pages a side).
+    bool tableRebuilt() const { return m_tableRebuilt; }
 
     /// Every page dropped: what they hold is no longer known.
     void dropAll();
@@ -233,8 +239,9 @@ private:
     ShadowSetup m_shown;
     std::vector<int64_t> m_shownGeneration; // per level of m_shown
     std::vector<uint32_t> m_table, m_previousTable;
-    std::vector<uint8_t> m_levelChanged; // per level of m_table, against m_previousTable
-    int m_tablePagesPerSide = 0;         // m_table's
+    std::vector<TableChange> m_tableChanges; // m_table against m_previousTable
+    bool m_tableRebuilt = true;
+    int m_tablePagesPerSide = 0; // m_table's
     PageCacheStats m_stats;
 };
 

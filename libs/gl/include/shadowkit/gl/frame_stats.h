@@ -66,6 +66,7 @@ struct VirtualPageStats : core::PageCacheStats {
     int64_t poolBytes = 0;    // the atlas's depth, 4 bytes a texel (guard bands included)
     int64_t opacityBytes = 0; // with --foliage-opacity: the opacity layers' atlases beside it, mips included
     size_t triangles = 0;     // drawn into the pages rendered this frame
+    int64_t tableBytes = 0;   // uploaded into the page table this frame: its changed entries, or all of it when new
 };
 
 // A frame's figures that only the GPU knows, as they come back frames later when the renderer
