@@ -149,10 +149,11 @@ void printPassLines(const BenchArgs& args, gl::Culling culling, const measure::F
                "read)\n",
                "", "", "", up.median / 1024.0, up.max / 1024.0, down.median / 1024.0, down.max / 1024.0);
     if (costs.last().virtualPages) { // the frames drew virtual pages (auto may choose them too)
-        const measure::Spread pages = costs.pagesRendered(), age = costs.requestsAge();
+        const measure::Spread pages = costs.pagesRendered(), age = costs.requestsAge(), table = costs.tableBytes();
         fmt::print("{:>7} {:>7} {:<14} pages   drawn a frame med {:.0f} max {:.0f}; page requests read {:.0f} frames "
-                   "late (median; max {:.0f}; 0: the frame's own, −1: none had arrived)\n",
-                   "", "", "", pages.median, pages.max, age.median, age.max);
+                   "late (median; max {:.0f}; 0: the frame's own, −1: none had arrived); page table {:.2f} KiB up "
+                   "(median; max {:.2f}: the entries that changed)\n",
+                   "", "", "", pages.median, pages.max, age.median, age.max, table.median / 1024.0, table.max / 1024.0);
     }
     if (args.render.receiverMask && !args.render.noCull) {
         const measure::Spread masks = costs.masks();

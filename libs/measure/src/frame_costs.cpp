@@ -52,6 +52,7 @@ void FrameCosts::add(const frame::DrawnFrame& drawn, const gl::Traffic& traffic)
     if (const auto& v = stats.virtualPages) {
         m_pagesRendered.push_back(double(v->pagesRendered));
         m_requestsAge.push_back(double(v->marksAge));
+        m_tableBytes.push_back(double(v->tableBytes));
     }
     m_last = stats;
     addLate(stats.gpuFigures);
@@ -81,6 +82,7 @@ Spread FrameCosts::bytesUploaded() const { return spreadOf(steady(m_bytesUploade
 Spread FrameCosts::bytesReadBack() const { return spreadOf(steady(m_bytesReadBack)); }
 Spread FrameCosts::pagesRendered() const { return spreadOf(steady(m_pagesRendered)); }
 Spread FrameCosts::requestsAge() const { return spreadOf(steady(m_requestsAge)); }
+Spread FrameCosts::tableBytes() const { return spreadOf(steady(m_tableBytes)); }
 
 std::vector<double> FrameCosts::steadyFrameCpu() const { return steady(m_frameCpu); }
 
@@ -132,7 +134,9 @@ nlohmann::json FrameCosts::json() const {
                       {"waits", toJson(o.waits)},
                       {"prepass_ms", toJson(prepass())}};
     if (!m_pagesRendered.empty())
-        j["virtual"] = {{"pages_rendered", toJson(pagesRendered())}, {"requests_age", toJson(requestsAge())}};
+        j["virtual"] = {{"pages_rendered", toJson(pagesRendered())},
+                        {"requests_age", toJson(requestsAge())},
+                        {"table_bytes", toJson(tableBytes())}};
     return j;
 }
 

@@ -57,10 +57,12 @@ public:
     Spread readBacks() const;                                  // per steady frame (after the first)
     Spread bytesUploaded() const;                              // per steady frame
     Spread bytesReadBack() const;                              // per steady frame
-    // Technique virtual, per steady frame: the pages drawn, and how many frames old the page
-    // requests read were (0: the frame's own; −1: none arrived). Zeros without virtual maps.
+    // Technique virtual, per steady frame: the pages drawn, how many frames old the page requests
+    // read were (0: the frame's own; −1: none arrived), and the bytes the page table took (its
+    // changed entries, 8 bytes each). Zeros without virtual maps.
     Spread pagesRendered() const;
     Spread requestsAge() const;
+    Spread tableBytes() const;
     // The whole CPU side of a steady frame (after the first), in ms: its pre-passes (a measured
     // visible depth, auto's receivers) and set-up, then
     // Renderer::render's wall-clock — culling, levels and lists, uniforms and every GL call made.
@@ -76,7 +78,7 @@ public:
     // The cost fields of a bench row: frame_cpu_ms, frames_timed, setup_first_ms, setup_ms, cull_ms, cull_own_ms,
     // cull_gl_ms, list_ms, read_backs, shadow, local and main ({instances, triangles, draw_calls, gpu_ms}),
     // receiver_mask_ms, occlusion ({nodes_visited, queries, nodes_queried, multi_query_failures, waits, prepass_ms}),
-    // and with virtual maps `virtual` ({pages_rendered, requests_age}).
+    // and with virtual maps `virtual` ({pages_rendered, requests_age, table_bytes}).
     nlohmann::json json() const;
 
     // The sun's pass against this GL's ceilings (gl/depth_limits.h): the samples it wrote and the
@@ -98,7 +100,7 @@ private:
     std::vector<double> m_readBacks, m_bytesUploaded, m_bytesReadBack;
     std::vector<int64_t> m_frameNumbers; // gl::FrameStats::frame of each
     std::vector<double> m_nodesVisited, m_queries, m_nodesQueried, m_multiQueryFailures, m_waits;
-    std::vector<double> m_pagesRendered, m_requestsAge; // technique virtual
+    std::vector<double> m_pagesRendered, m_requestsAge, m_tableBytes; // technique virtual
     gl::FrameStats m_last;
 };
 
