@@ -148,6 +148,10 @@ void printPassLines(const BenchArgs& args, gl::Culling culling, const measure::F
                "table) and {:.1f} KiB read back (max {:.1f}: waited for, or copied to host memory for a late "
                "read)\n",
                "", "", "", up.median / 1024.0, up.max / 1024.0, down.median / 1024.0, down.max / 1024.0);
+    const measure::Spread dispatches = costs.dispatches(), groups = costs.workGroups();
+    fmt::print("{:>7} {:>7} {:<14} compute {:.0f} dispatches per frame (median; max {:.0f}: culling, marking, "
+               "reductions) of {:.0f} work groups (max {:.0f})\n",
+               "", "", "", dispatches.median, dispatches.max, groups.median, groups.max);
     if (costs.last().virtualPages) { // the frames drew virtual pages (auto may choose them too)
         const measure::Spread pages = costs.pagesRendered(), age = costs.requestsAge(), table = costs.tableBytes();
         fmt::print("{:>7} {:>7} {:<14} pages   drawn a frame med {:.0f} max {:.0f}; page requests read {:.0f} frames "

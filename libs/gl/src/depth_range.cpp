@@ -25,7 +25,7 @@ void DepthRangeReduction::reduce(const CameraDepthTarget& target) {
     glUseProgram(m_program.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kRangeBinding, m_range.id());
     glBindTextureUnit(kRangeDepthUnit, target.viewDepth.id());
-    glDispatchCompute(GLuint(target.width + 15) / 16, GLuint(target.height + 15) / 16, 1);
+    dispatchCompute(GLuint(target.width + 15) / 16, GLuint(target.height + 15) / 16, 1);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     m_pending = true;
 }

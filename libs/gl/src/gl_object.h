@@ -94,6 +94,13 @@ inline void copyToHost(GLuint source, GLuint host, GLintptr readOffset, GLintptr
     detail::countBytesReadBack(static_cast<int64_t>(bytes));
 }
 
+// glDispatchCompute, counted (read_backs.h): every compute pass of libs/gl goes through it, so a
+// frame's dispatches and work groups are what GL was asked to run.
+inline void dispatchCompute(GLuint groupsX, GLuint groupsY, GLuint groupsZ) {
+    glDispatchCompute(groupsX, groupsY, groupsZ);
+    detail::countDispatch(int64_t(groupsX) * groupsY * groupsZ);
+}
+
 // A sampler that reads a depth texture's stored values, nearest texel, whatever the texture's
 // own comparison mode: PCSS's blocker search reads the shadow maps so beside their comparisons.
 inline Sampler createRawDepthSampler() {

@@ -216,7 +216,7 @@ void GpuCulling::cull(size_t pass, std::span<const visibility::HalfSpace> volume
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCullFlagsBinding, m_flags.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCullRanksBinding, m_ranks.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCullChunkSumsBinding, m_chunkSums.id());
-    glDispatchCompute(GLuint(m_chunkCount), 1, 1);
+    dispatchCompute(GLuint(m_chunkCount), 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     compact(pass, shadowChain, out, replicas);
     m_gl += inGl.elapsed();
@@ -232,13 +232,13 @@ void GpuCulling::compact(size_t pass, bool shadowChain, PassList& out, uint32_t 
     glProgramUniform1ui(offsets, uniform(offsets, "replicas"), replicas);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCullStageBinding, m_commands.id());
     glUseProgram(offsets);
-    glDispatchCompute(GLuint((kMaxLodLevels * m_batchCount + 63) / 64), 1, 1);
+    dispatchCompute(GLuint((kMaxLodLevels * m_batchCount + 63) / 64), 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     const GLuint passOffset = GLuint(pass * kMaxLodLevels * m_instanceCount);
     glProgramUniform1ui(scatter, uniform(scatter, "passOffset"), passOffset);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCullStageBinding, m_lists.id());
     glUseProgram(scatter);
-    glDispatchCompute(GLuint(m_chunkCount), 1, 1);
+    dispatchCompute(GLuint(m_chunkCount), 1, 1);
     // The draws read the lists in vertex shaders and the commands as indirect arguments.
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
 
@@ -288,7 +288,7 @@ void GpuCulling::buildPyramid(const CameraDepthTarget& target) {
         glProgramUniform2i(p, uniform(p, "targetSize"), at.x, at.y);
         glProgramUniform1i(p, uniform(p, "sourceOffset"), source.z);
         glProgramUniform1i(p, uniform(p, "targetOffset"), at.z);
-        glDispatchCompute(GLuint(at.x + 7) / 8, GLuint(at.y + 7) / 8, 1);
+        dispatchCompute(GLuint(at.x + 7) / 8, GLuint(at.y + 7) / 8, 1);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
         source = at;
     }

@@ -51,7 +51,7 @@ core::Status MomentMaps::update(const Texture& depth, GLuint rawSampler, int siz
         glProgramUniform1i(m_program.id(), kModeLocation, mode);
         glProgramUniform2i(m_program.id(), kStepLocation, stepX, stepY);
         glProgramUniform1i(m_program.id(), kRadiusLocation, blurTexels);
-        glDispatchCompute(groups, groups, static_cast<GLuint>(layers));
+        dispatchCompute(groups, groups, static_cast<GLuint>(layers));
         glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     };
     if (blurTexels == 0) {

@@ -59,7 +59,7 @@ void PageTable::update(std::span<const uint32_t> table, int pagesPerSide, bool r
     glProgramUniform1ui(m_update.id(), kPagesPerSideLocation, GLuint(pagesPerSide));
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPageTableChangesBinding, m_changes.id());
     glBindImageTexture(kPageTableImageUnit, m_texture.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32UI);
-    glDispatchCompute(GLuint(changes.size() + 63) / 64, 1, 1);
+    dispatchCompute(GLuint(changes.size() + 63) / 64, 1, 1);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT); // the lookup reads the table next
 }
 

@@ -72,7 +72,7 @@ void ReceiverMasks::mark(const CameraDepthTarget& target, const core::Perspectiv
     glBindBufferBase(GL_UNIFORM_BUFFER, kReceiverMaskBinding, m_uniforms.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kMaskBinding, m_texels.id());
     glBindTextureUnit(kReceiverDepthUnit, target.viewDepth.id());
-    glDispatchCompute(GLuint(target.width + 7) / 8, GLuint(target.height + 7) / 8, 1);
+    dispatchCompute(GLuint(target.width + 7) / 8, GLuint(target.height + 7) / 8, 1);
 }
 
 const std::vector<visibility::ReceiverMask>& ReceiverMasks::build(const CameraDepthTarget& target,
@@ -120,7 +120,7 @@ void ReceiverMasks::markOnGpu(const CameraDepthTarget& target, const core::Persp
         glProgramUniform1i(p, glGetUniformLocation(p, "firstPass"), pass == 0 ? 1 : 0);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kMaskBinding, pass == 0 ? m_texels.id() : m_scratch.id());
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kDilatedMaskBinding, pass == 0 ? m_scratch.id() : m_dilated.id());
-        glDispatchCompute(GLuint(kReceiverMaskSize + 7) / 8, GLuint(kReceiverMaskSize + 7) / 8, GLuint(maps));
+        dispatchCompute(GLuint(kReceiverMaskSize + 7) / 8, GLuint(kReceiverMaskSize + 7) / 8, GLuint(maps));
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }
     m_gl = inGl.elapsed();

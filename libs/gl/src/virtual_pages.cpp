@@ -136,7 +136,7 @@ size_t VirtualPages::mark(const CameraDepthTarget& depth, const core::Perspectiv
     glBindBufferBase(GL_UNIFORM_BUFFER, kVirtualMarkBinding, m_markUniforms.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPageRequestBinding, bits.id());
     glBindTextureUnit(kReceiverDepthUnit, depth.viewDepth.id());
-    glDispatchCompute(GLuint(depth.width + 7) / 8, GLuint(depth.height + 7) / 8, 1);
+    dispatchCompute(GLuint(depth.width + 7) / 8, GLuint(depth.height + 7) / 8, 1);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT); // for a read or a copy of the bits
     return words;
 }

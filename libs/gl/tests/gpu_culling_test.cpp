@@ -303,11 +303,13 @@ TEST_F(GpuCullingTest, EmptyBatchesAndMeshesWithoutTrianglesDrawLikeTheCpuPath) 
     }
 }
 
-TEST_F(GpuCullingTest, AGpuDrivenFrameUploadsNoListsWhateverTheForest) {
+TEST_F(GpuCullingTest, AGpuDrivenFrameUploadsNoListsAndDispatchesAsManyPassesWhateverTheForest) {
     // The GPU writes its lists itself: a steady frame uploads its uniforms and blocks alone, the
     // same bytes for 100 trees and for ten times as many, where the CPU path uploads each pass's
-    // list, an index per instance drawn (counted as GL was asked, gl::trafficSoFar).
-    std::vector<int64_t> gpuBytes, cpuBytes;
+    // list, an index per instance drawn (counted as GL was asked, gl::trafficSoFar). Its compute
+    // passes are as many for either forest — one dispatch a pass, never one a batch or a tree —,
+    // their work groups growing with the instances (a group a chunk of them).
+    std::vector<int64_t> gpuBytes, cpuBytes, gpuDispatches, gpuGroups;
     std::vector<size_t> cpuDrawn;
     for (const int trees : {100, 1000}) {
         const scene::Scene forest = gl::testing::smallForest(trees, 200, 32);
@@ -322,12 +324,17 @@ TEST_F(GpuCullingTest, AGpuDrivenFrameUploadsNoListsWhateverTheForest) {
             const gl::Traffic before = gl::trafficSoFar();
             const auto steady = (*renderer)->render(view.camera, view.light, setup, settings);
             ASSERT_TRUE(steady) << steady.error();
-            const int64_t uploaded = (gl::trafficSoFar() - before).bytesUploaded;
-            (culling == gl::Culling::Gpu ? gpuBytes : cpuBytes).push_back(uploaded);
+            const gl::Traffic frame = gl::trafficSoFar() - before;
+            (culling == gl::Culling::Gpu ? gpuBytes : cpuBytes).push_back(frame.bytesUploaded);
+            if (culling == gl::Culling::Gpu)
+                gpuDispatches.push_back(frame.dispatches), gpuGroups.push_back(frame.workGroups);
             if (culling == gl::Culling::Frustum) cpuDrawn.push_back(steady->main.instances + steady->shadow.instances);
         }
     }
     EXPECT_EQ(gpuBytes[0], gpuBytes[1]) << "the GPU path's uploads grew with the forest";
+    EXPECT_GE(gpuDispatches[0], 3) << "culling, counting and writing the lists: a dispatch each at least";
+    EXPECT_EQ(gpuDispatches[0], gpuDispatches[1]) << "the GPU path's dispatches grew with the forest";
+    EXPECT_GT(gpuGroups[1], gpuGroups[0]) << "ten times the trees in as many work groups";
     ASSERT_GT(cpuDrawn[1], cpuDrawn[0] + 500);
     EXPECT_GE(cpuBytes[1] - cpuBytes[0], int64_t(sizeof(uint32_t) * (cpuDrawn[1] - cpuDrawn[0])))
         << "the CPU path's lists: an index per instance drawn";

@@ -74,6 +74,8 @@ TEST_F(PageTableTest, ChangesWrittenInPlaceLeaveTheTextureEqualToTheTableAndMove
         (*pageTable)->update(table, kPages, false, changes);
         EXPECT_EQ((gl::trafficSoFar() - before).bytesUploaded, int64_t(changes.size() * 8)) << "frame " << frame;
         EXPECT_EQ((*pageTable)->bytesUploaded(), int64_t(changes.size() * 8)) << "what the frame's figures say";
+        EXPECT_EQ((gl::trafficSoFar() - before).dispatches, 1) << "one compute pass";
+        EXPECT_EQ((gl::trafficSoFar() - before).workGroups, int64_t(changes.size() + 63) / 64) << "64 changes a group";
         EXPECT_EQ(differences((*pageTable)->read(kLevels), table), "") << "frame " << frame;
     }
 
@@ -81,6 +83,7 @@ TEST_F(PageTableTest, ChangesWrittenInPlaceLeaveTheTextureEqualToTheTableAndMove
     before = gl::trafficSoFar();
     (*pageTable)->update(table, kPages, false, {});
     EXPECT_EQ((gl::trafficSoFar() - before).bytesUploaded, 0);
+    EXPECT_EQ((gl::trafficSoFar() - before).dispatches, 0);
     EXPECT_EQ((*pageTable)->bytesUploaded(), 0);
 
     // Another shape: a new texture, the whole table.

@@ -30,6 +30,8 @@ void FrameCosts::add(const frame::DrawnFrame& drawn, const gl::Traffic& traffic)
     m_readBacks.push_back(double(traffic.readBacks));
     m_bytesUploaded.push_back(double(traffic.bytesUploaded));
     m_bytesReadBack.push_back(double(traffic.bytesReadBack));
+    m_dispatches.push_back(double(traffic.dispatches));
+    m_workGroups.push_back(double(traffic.workGroups));
     m_setup.push_back(drawn.frame.setupMilliseconds);
     m_frameCpu.push_back(drawn.frame.prePasses.milliseconds + drawn.frame.setupMilliseconds + drawn.milliseconds);
     m_cull.push_back(stats.cullMilliseconds);
@@ -80,6 +82,8 @@ Spread FrameCosts::setupRest() const { return spreadOf(steady(m_setup)); }
 Spread FrameCosts::readBacks() const { return spreadOf(steady(m_readBacks)); }
 Spread FrameCosts::bytesUploaded() const { return spreadOf(steady(m_bytesUploaded)); }
 Spread FrameCosts::bytesReadBack() const { return spreadOf(steady(m_bytesReadBack)); }
+Spread FrameCosts::dispatches() const { return spreadOf(steady(m_dispatches)); }
+Spread FrameCosts::workGroups() const { return spreadOf(steady(m_workGroups)); }
 Spread FrameCosts::pagesRendered() const { return spreadOf(steady(m_pagesRendered)); }
 Spread FrameCosts::requestsAge() const { return spreadOf(steady(m_requestsAge)); }
 Spread FrameCosts::tableBytes() const { return spreadOf(steady(m_tableBytes)); }
@@ -102,7 +106,9 @@ nlohmann::json FrameCosts::json() const {
                         {"list_ms", toJson(lists())},
                         {"read_backs", toJson(readBacks())},
                         {"bytes_uploaded", toJson(bytesUploaded())},
-                        {"bytes_read_back", toJson(bytesReadBack())}};
+                        {"bytes_read_back", toJson(bytesReadBack())},
+                        {"dispatches", toJson(dispatches())},
+                        {"work_groups", toJson(workGroups())}};
     for (const auto& [pass, stats, gpu] :
          {std::tuple{"shadow", &m_last.shadow, shadowGpu()}, std::tuple{"local", &m_last.local, localGpu()},
           std::tuple{"main", &m_last.main, mainGpu()}})

@@ -9,7 +9,8 @@
 // them: uploaded into buffers and textures (a buffer's initial data included), and read back —
 // by a synchronous read, or copied by the GPU into host memory for a read frames later
 // (fenced_read.h); query results aside (eight bytes each). Per frame, what its lists, uniforms,
-// page table and read-backs cost the bus.
+// page table and read-backs cost the bus. And the compute passes it dispatched: each dispatch
+// and its work groups (the culling, marking and reduction passes' work beside the draws').
 #pragma once
 
 #include <cstdint>
@@ -21,15 +22,22 @@ int64_t readBacksMade();
 // Bytes uploaded and read back so far, by every renderer of the process; compare two readings.
 int64_t bytesUploaded();
 int64_t bytesReadBack();
+// Compute dispatches and their work groups so far, likewise.
+int64_t dispatchesMade();
+int64_t workGroupsDispatched();
 
-// The three counts together: a frame's traffic is the difference of two readings around it.
+// The counts together: a frame's traffic is the difference of two readings around it.
 struct Traffic {
     int64_t readBacks = 0, bytesUploaded = 0, bytesReadBack = 0;
+    int64_t dispatches = 0, workGroups = 0;
 };
-inline Traffic trafficSoFar() { return {readBacksMade(), bytesUploaded(), bytesReadBack()}; }
+inline Traffic trafficSoFar() {
+    return {readBacksMade(), bytesUploaded(), bytesReadBack(), dispatchesMade(), workGroupsDispatched()};
+}
 inline Traffic operator-(const Traffic& after, const Traffic& before) {
     return {after.readBacks - before.readBacks, after.bytesUploaded - before.bytesUploaded,
-            after.bytesReadBack - before.bytesReadBack};
+            after.bytesReadBack - before.bytesReadBack, after.dispatches - before.dispatches,
+            after.workGroups - before.workGroups};
 }
 
 namespace detail {
@@ -41,6 +49,8 @@ void countReadBack();
 // and every read (the synchronous reads above, the GPU's copies into fenced read buffers).
 void countUpload(int64_t bytes);
 void countBytesReadBack(int64_t bytes);
+// Called by gl_object.h's dispatchCompute: one dispatch of `workGroups` groups.
+void countDispatch(int64_t workGroups);
 } // namespace detail
 
 } // namespace shadowkit::gl

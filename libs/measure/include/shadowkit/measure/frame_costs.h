@@ -57,6 +57,8 @@ public:
     Spread readBacks() const;                                  // per steady frame (after the first)
     Spread bytesUploaded() const;                              // per steady frame
     Spread bytesReadBack() const;                              // per steady frame
+    Spread dispatches() const;                                 // compute dispatches, per steady frame
+    Spread workGroups() const;                                 // their work groups, per steady frame
     // Technique virtual, per steady frame: the pages drawn, how many frames old the page requests
     // read were (0: the frame's own; −1: none arrived), and the bytes the page table took (its
     // changed entries, 8 bytes each). Zeros without virtual maps.
@@ -97,7 +99,7 @@ private:
 
     std::vector<double> m_frameCpu, m_setup, m_cull, m_cullOwn, m_cullGl, m_lists, m_shadowGpu, m_mainGpu, m_localGpu,
         m_prepass, m_masks;
-    std::vector<double> m_readBacks, m_bytesUploaded, m_bytesReadBack;
+    std::vector<double> m_readBacks, m_bytesUploaded, m_bytesReadBack, m_dispatches, m_workGroups;
     std::vector<int64_t> m_frameNumbers; // gl::FrameStats::frame of each
     std::vector<double> m_nodesVisited, m_queries, m_nodesQueried, m_multiQueryFailures, m_waits;
     std::vector<double> m_pagesRendered, m_requestsAge, m_tableBytes; // technique virtual
