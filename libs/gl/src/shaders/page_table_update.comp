@@ -1,8 +1,8 @@
 // Virtual shadow maps' page table, updated in place (virtual_pages.h): the entries the page cache
 // found changed since the last frame (core::VirtualPageCache::tableChanges), each written into
 // its texel. The table is addressed toroidally (core::pageTableCellOf), so a moving window
-// changes the rows and columns it uncovers, not the level: a frame uploads eight bytes an entry
-// changed instead of the whole table.
+// changes only the entries where a page came or went, not its level: a frame uploads eight bytes
+// an entry changed instead of the whole table.
 layout(local_size_x = 64) in;
 
 layout(r32ui, binding = SK_PAGE_TABLE_IMAGE_UNIT) uniform writeonly uimage2D pageTable;

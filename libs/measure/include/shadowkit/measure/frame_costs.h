@@ -78,9 +78,10 @@ public:
     Occlusion occlusion() const;
 
     // The cost fields of a bench row: frame_cpu_ms, frames_timed, setup_first_ms, setup_ms, cull_ms, cull_own_ms,
-    // cull_gl_ms, list_ms, read_backs, shadow, local and main ({instances, triangles, draw_calls, gpu_ms}),
-    // receiver_mask_ms, occlusion ({nodes_visited, queries, nodes_queried, multi_query_failures, waits, prepass_ms}),
-    // and with virtual maps `virtual` ({pages_rendered, requests_age, table_bytes}).
+    // cull_gl_ms, list_ms, read_backs, bytes_uploaded, bytes_read_back, dispatches, work_groups, shadow, local and main
+    // ({instances, triangles, draw_calls, gpu_ms}), receiver_mask_ms, occlusion ({nodes_visited, queries,
+    // nodes_queried, multi_query_failures, waits, prepass_ms}), and with virtual maps `virtual` ({pages_rendered,
+    // requests_age, table_bytes}).
     nlohmann::json json() const;
 
     // The sun's pass against this GL's ceilings (gl/depth_limits.h): the samples it wrote and the
