@@ -74,13 +74,19 @@ def path_table(d):
         if "bytes_uploaded" not in r:
             return "–"
         return f"{r['bytes_uploaded']['median'] / 1024:.1f} / {r['bytes_read_back']['median'] / 1024:.1f}"
+
+    # Compute dispatches a frame and their work groups (medians; – for runs before b5ab21e).
+    def dispatches(r):
+        if "dispatches" not in r:
+            return "–"
+        return f"{r['dispatches']['median']:.0f} / {r['work_groups']['median']:,.0f}"
     out = ["| trees | culling | frame CPU ms: median | max | synchronisations a frame | KiB up / read back a frame | "
-           "shadow pass: M triangles (last frame) | main pass: M triangles (last frame) |",
-           "|---:|---|---:|---:|---:|---:|---:|---:|"]
+           "dispatches / work groups a frame | shadow pass: M triangles (last frame) | main pass: M triangles (last frame) |",
+           "|---:|---|---:|---:|---:|---:|---:|---:|---:|"]
     for name, label in (("gpu", "GPU-driven (default)"), ("chc", "CHC++")):
         for r in runs(d / f"path-{name}.json"):
             out.append(f"| {r['trees']:,} | {label} | {r['frame_cpu_ms']['median']:.2f} | {r['frame_cpu_ms']['max']:.1f} | "
-                       f"{r['read_backs']['median']:.0f} | {kib(r)} | {r['shadow']['triangles'] / 1e6:.2f} | "
+                       f"{r['read_backs']['median']:.0f} | {kib(r)} | {dispatches(r)} | {r['shadow']['triangles'] / 1e6:.2f} | "
                        f"{r['main']['triangles'] / 1e6:.2f} |")
     return "\n".join(out)
 
