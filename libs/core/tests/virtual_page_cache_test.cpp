@@ -1,8 +1,10 @@
 // The virtual page cache's policy without a GL context: a budget caps each frame's pages and
 // serves the coarsest levels first, a new sun's pages replace the old ones only a whole level at
 // a time, a mover invalidates exactly the pages under its old and new boxes, a tiny pool falls
-// back and says so, a cached page is never drawn again while nothing changed, and requests read
-// frames late ask for the pages their own frame marked, or for nothing once the sun has moved.
+// back and says so, a cached page is never drawn again while nothing changed, requests read
+// frames late ask for the pages their own frame marked, or for nothing once the sun has moved,
+// and the toroidal page table keeps a page's entry while its window moves, listing as changed
+// exactly the entries that differ.
 #include "shadowkit/core/shadow_setup.h"
 #include "shadowkit/core/virtual_clipmap.h"
 #include "shadowkit/core/virtual_page_cache.h"

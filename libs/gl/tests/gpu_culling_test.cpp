@@ -1,6 +1,7 @@
 // GPU-driven culling (gl/src/gpu_culling.h): its lists are the CPU path's, entry for entry,
 // and its two-phase occlusion never costs a pixel — not on the first frame, not after a cut,
-// not after an instance moves. CTest label `gl`.
+// not after an instance moves; a steady frame uploads no lists and dispatches as many passes
+// whatever the forest. CTest label `gl`.
 #include "headless_gl_test.h"
 #include "test_scenes.h"
 

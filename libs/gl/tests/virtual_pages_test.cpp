@@ -4,7 +4,7 @@
 // and still shadows where the caster is; a page budget caps the pages drawn a frame, shows the
 // old sun's pages while a new sun's are drawn, and converges on what fresh pages give; requests
 // read late wait only when nothing that applies is on its way, and converge on what waiting
-// frames show.
+// frames show; a still frame uploads no page table and a moved one only the entries that changed.
 #include "headless_gl_test.h"
 
 #include "shadowkit/core/shadow_setup.h"
