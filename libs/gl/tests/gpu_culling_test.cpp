@@ -308,7 +308,7 @@ TEST_F(GpuCullingTest, AGpuDrivenFrameUploadsNoListsAndDispatchesAsManyPassesWha
     // The GPU writes its lists itself: a steady frame uploads its uniforms and blocks alone, the
     // same bytes for 100 trees and for ten times as many, where the CPU path uploads each pass's
     // list, an index per instance drawn (counted as GL was asked, gl::trafficSoFar). Its compute
-    // passes are as many for either forest — one dispatch a pass, never one a batch or a tree —,
+    // passes are as many for either forest — one dispatch a pass, never one a tree or a chunk —,
     // their work groups growing with the instances (a group a chunk of them).
     std::vector<int64_t> gpuBytes, cpuBytes, gpuDispatches, gpuGroups;
     std::vector<size_t> cpuDrawn;
