@@ -99,6 +99,7 @@ std::vector<GpuFigures> GpuFigureRing::record(int64_t frame, const FrameFigureSo
     slot.frame = frame;
     slot.mapTexels = sources.mapTexels;
     slot.lists = sources.lists;
+    slot.sunDrawnOnCpu = sources.sunDrawnOnCpu;
     return arrived;
 }
 
@@ -159,6 +160,7 @@ GpuFigures GpuFigureRing::collect(Slot& slot) {
     const auto* words = reinterpret_cast<const uint32_t*>(static_cast<const char*>(slot.read.data()) + kCommandsOffset);
     const std::span<const uint32_t> commands(words, (slot.read.bytes() - kCommandsOffset) / sizeof(uint32_t));
     DrawStats drawn[3];
+    drawn[size_t(CulledListShape::Pass::Sun)] = slot.sunDrawnOnCpu;
     for (const CulledListShape& list : slot.lists) {
         DrawStats d = GpuCulling::drawnBy(commands, list.indirect, list.count);
         d.instances *= list.faces, d.triangles *= list.faces;

@@ -49,6 +49,9 @@ struct FrameFigureSources {
     GLuint commands = 0; // 0: no GPU-culled list
     size_t commandWords = 0;
     std::vector<CulledListShape> lists;
+    // What the sun's pass drew from lists culled on the CPU beside the GPU's (a virtual page's
+    // large clustered meshes, the pages past the GPU's room): added to the GPU-culled lists' count.
+    DrawStats sunDrawnOnCpu;
 };
 
 class GpuFigureRing {
@@ -80,6 +83,7 @@ private:
         bool shaded = false, mainShaded = false;              // fragments shaded
         bool firstLeafCounted = false, leavesCounted = false; // the opacity layers' draws
         std::vector<CulledListShape> lists;
+        DrawStats sunDrawnOnCpu;
     };
     // The figures of a slot whose fence has passed; frees it.
     GpuFigures collect(Slot& slot);

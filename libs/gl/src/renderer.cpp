@@ -35,6 +35,7 @@ struct Renderer::Impl {
     core::LocalLighting wsLocalLights;        // the same as given: Renderer::localLights()
     core::Vec3 wsOrigin{0.0};                 // Scene::wsOrigin: where the GPU's coordinates start
     PassStats lastShadow;                     // the last sun shadow pass (its GPU time not read)
+    DrawStats sunDrawnOnCpu;                  // of which drawn from lists culled on the CPU (FrameFigureSources)
     int64_t frames = 0;                       // render() calls
     GpuFigureRing figures;                    // every frame's GPU times, samples, GPU-culled counts
     bool lateFigures = false;                 // Renderer::readGpuFiguresLate
@@ -59,9 +60,12 @@ struct Renderer::Impl {
     // Culling::Gpu: what the sun's lists drew, read back into lastShadow (waits for the GPU).
     void readGpuShadowDraws(const RenderSettings& settings) {
         // No sun: nothing was drawn, nothing to read back.
-        if (settings.culling == Culling::Gpu && lastShadow.drawCalls > 0) keepGpuShadowDraws(lists->gpuSunDrawn());
+        if (settings.culling != Culling::Gpu || lastShadow.drawCalls == 0) return;
+        DrawStats drawn = sunDrawnOnCpu;
+        drawn += lists->gpuSunDrawn();
+        keepGpuShadowDraws(drawn);
     }
-    // What the sun's GPU-culled lists drew, into lastShadow (no sun: nothing was drawn).
+    // What the sun's lists drew, GPU-culled and not, into lastShadow (no sun: nothing was drawn).
     void keepGpuShadowDraws(const DrawStats& drawn) {
         if (lastShadow.drawCalls > 0) lastShadow.instances = drawn.instances, lastShadow.triangles = drawn.triangles;
     }
@@ -150,6 +154,8 @@ core::Result<PassStats> Renderer::Impl::shadowPasses(const core::DirectionalLigh
         sun->draw(*scene, setup, settings, bias, light.wsTowardsLight(), lists->sunLists(), lists->pageLists());
     if (!sunStats) return sunStats.errorInfo();
     lastShadow = *sunStats;
+    // A GPU-culled list's draws count no instance or triangle here (the GPU alone knows them).
+    sunDrawnOnCpu = {sunStats->instances, sunStats->triangles, 0};
     localTimer.begin();
     auto localStats = local->draw(*scene, localLights, lists->localLists(), settings.localPass,
                                   settings.filter.kind == core::ShadowFilter::Pcf2);
@@ -222,6 +228,7 @@ void Renderer::Impl::gpuFigures(FrameStats& stats, const RenderSettings& setting
         sources.leafSamples = &opacity->leafSamples();
     }
     if (settings.culling == Culling::Gpu) lists->describeGpuLists(sources);
+    sources.sunDrawnOnCpu = sunDrawnOnCpu;
     figures.take(stats, sources, lateFigures);
     if (!lateFigures && sources.commands) keepGpuShadowDraws({stats.shadow.instances, stats.shadow.triangles, 0});
 }
@@ -258,6 +265,7 @@ core::Result<core::RasterBuffers> Renderer::Impl::evalBuffers(const SceneFrame& 
     if (!bias) return bias.errorInfo();
     const bool shadows = purpose == PassPurpose::Frame;
     lastShadow = {};
+    sunDrawnOnCpu = {};
     if (shadows)
         if (auto s = shadowPasses(light, setup, settings, *bias); !s) return s.errorInfo();
     readGpuShadowDraws(settings);

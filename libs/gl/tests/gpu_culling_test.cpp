@@ -340,3 +340,38 @@ TEST_F(GpuCullingTest, AGpuDrivenFrameUploadsNoListsAndDispatchesAsManyPassesWha
     EXPECT_GE(cpuBytes[1] - cpuBytes[0], int64_t(sizeof(uint32_t) * (cpuDrawn[1] - cpuDrawn[0])))
         << "the CPU path's lists: an index per instance drawn";
 }
+
+TEST_F(GpuCullingTest, VirtualPagesOnTheGpuPathDrawTheCpuPathsPixelsAndCountWhatTheyDraw) {
+    // A virtual clipmap along a moving camera, drawn by a GPU-driven renderer and by a frustum-
+    // culled one: every frame the same pixels, the same pages, and the same casters counted in
+    // the shadow pass — instances and triangles, the terrain's by the clusters a page draws of it
+    // (96² quads: a large mesh, drawn in clusters), not the whole of it per page.
+    const scene::Scene forest = gl::testing::smallForest(300, 200, 96);
+    auto gpu = gl::Renderer::create(forest);
+    auto cpu = gl::Renderer::create(forest);
+    ASSERT_TRUE(gpu && cpu);
+    scene::ResolvedView view = gl::testing::standardView(forest, "perpendicular");
+    view.camera.aspect = 160.0 / 90.0;
+    size_t pagesDrawn = 0;
+    for (int frame = 0; frame < 4; ++frame) {
+        core::PerspectiveCamera camera = view.camera;
+        camera.wsEye += core::Vec3(3.0 * frame, 0.0, -2.0 * frame); // new pages in every frame
+        core::ShadowSetupInputs in{.camera = camera, .light = view.light, .wsSceneBounds = forest.wsBounds()};
+        in.technique = core::Technique::Virtual;
+        in.virtualMaps.imageHeight = 90;
+        in.virtualMaps.virtualTexels = 4096;
+        const auto setup = core::computeShadowSetup(in);
+        ASSERT_TRUE(setup) << setup.error();
+        const auto a = (*gpu)->render(camera, view.light, *setup, smallFrame(160, 90, gl::Culling::Gpu));
+        const auto b = (*cpu)->render(camera, view.light, *setup, smallFrame(160, 90, gl::Culling::Frustum));
+        ASSERT_TRUE(a && b) << (a ? b.error() : a.error());
+        ASSERT_TRUE(a->virtualPages && b->virtualPages);
+        EXPECT_EQ((*gpu)->readColor().rgba, (*cpu)->readColor().rgba) << "frame " << frame;
+        EXPECT_EQ(a->virtualPages->pagesRendered, b->virtualPages->pagesRendered) << "frame " << frame;
+        EXPECT_EQ(a->shadow.instances, b->shadow.instances) << "frame " << frame;
+        EXPECT_EQ(a->shadow.triangles, b->shadow.triangles) << "frame " << frame;
+        EXPECT_EQ(a->shadow.instances > 0, b->virtualPages->pagesRendered > 0) << "frame " << frame;
+        pagesDrawn += size_t(b->virtualPages->pagesRendered);
+    }
+    EXPECT_GT(pagesDrawn, 8u) << "the frames drew too few pages to compare";
+}
