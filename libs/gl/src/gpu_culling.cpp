@@ -19,7 +19,7 @@ struct GpuInstance {
     glm::dvec4 max;
 };
 struct GpuBatchInfo {
-    uint32_t first, count, cameraLevels, shadowLevels, firstChunk, chunkCount, pad0, pad1;
+    uint32_t first, count, cameraLevels, shadowLevels, firstChunk, chunkCount, clustered, pad1;
 };
 struct GpuLevel {
     float cameraError, shadowError;
@@ -72,7 +72,7 @@ std::unique_ptr<GpuCulling> GpuCulling::create(const scene::Scene& scene, std::s
                           static_cast<uint32_t>(std::min(lod.shadow.size(), kMaxLodLevels)),
                           static_cast<uint32_t>(chunks.size()),
                           0,
-                          0,
+                          gpuScene.drawsByClusters(batches.size()) ? 1u : 0u, // this batch's, in the scene
                           0};
         for (uint32_t k = 0; k < count; k += kCullGroup)
             chunks.emplace_back(batches.size(), first + k, std::min<uint32_t>(kCullGroup, count - k), k);
@@ -150,10 +150,15 @@ void GpuCulling::forget() {
     glClearNamedBufferData(m_flags.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
 }
 
+size_t GpuCulling::passesWithinBudget() const {
+    return std::max<size_t>(1, kListBudgetBytes / (regionWords() * sizeof(uint32_t)));
+}
+
 void GpuCulling::beginFrame(size_t passes) {
     if (passes <= m_passCapacity) return;
-    m_passCapacity = std::max(passes, 2 * m_passCapacity);
-    const size_t region = kMaxLodLevels * std::max<size_t>(m_instanceCount, 1);
+    // Twice the last capacity, so that a growing frame reallocates rarely, within the budget.
+    m_passCapacity = std::max(passes, std::min(2 * m_passCapacity, passesWithinBudget()));
+    const size_t region = regionWords();
     m_lists = createBuffer(nullptr, m_passCapacity * region * sizeof(uint32_t));
     const size_t commands = std::max<size_t>(m_batchCount, 1) * kMaxLodLevels * m_passCapacity;
     m_commandWords = commands * kCommandWords;
@@ -161,10 +166,11 @@ void GpuCulling::beginFrame(size_t passes) {
 }
 
 void GpuCulling::cull(size_t pass, std::span<const visibility::HalfSpace> volume, const LodChoice* lod, Phase phase,
-                      PassList& out, const GpuReceiverMask* mask, uint32_t replicas) {
+                      PassList& out, const GpuReceiverMask* mask, uint32_t replicas, bool leaveClustered) {
     const Stopwatch inGl;
     const GLuint p = m_stages[0].id();
     glProgramUniform1i(p, uniform(p, "phase"), static_cast<GLint>(phase));
+    glProgramUniform1i(p, uniform(p, "leaveClustered"), leaveClustered ? 1 : 0);
     glm::dvec4 planes[kMaxPlanes]{};
     const size_t planeCount = std::min(volume.size(), kMaxPlanes); // clip volumes and boxes have at most six
     std::copy_n(volume.begin(), planeCount, planes);

@@ -16,8 +16,9 @@
 // The tests are the CPU path's (visibility.cpp): the same half-spaces, the same level of
 // detail rule, in double precision, and lists in increasing instance order (gpu_cull.comp),
 // so the lists equal Visibility::collect's and the pixels a CPU-culled frame's. Receiver masks
-// (Bittner et al. 2011) are tested on the GPU too, at the mask's full resolution. Not on the
-// GPU: local lights' and virtual pages' lists.
+// (Bittner et al. 2011) are tested on the GPU too, at the mask's full resolution, and so are
+// the local lights' lists and the virtual pages' (but for the large clustered meshes, whose
+// clusters the CPU picks per page).
 #pragma once
 
 #include "gl_object.h"
@@ -70,6 +71,11 @@ public:
     // Makes room for a frame of `passes` lists (each the capacity of every instance at every
     // level) and their commands. Lists of an earlier frame are not kept.
     void beginFrame(size_t passes);
+    // The lists' memory a frame may take: the passes past it (virtual pages beyond the room for
+    // them) are the CPU's to cull.
+    static constexpr size_t kListBudgetBytes = size_t(256) << 20;
+    // How many passes' lists fit kListBudgetBytes (at least one).
+    size_t passesWithinBudget() const;
 
     // Which instances of those meeting the volume a pass keeps.
     enum class Phase {
@@ -82,8 +88,10 @@ public:
     // drawn by GpuScene::draw through its indirect commands. With a mask (phase All only),
     // only the instances that may shadow a receiver it holds. `replicas`: each kept instance is
     // drawn that many times (a point light's cube faces, each copy to its own layer).
+    // `leaveClustered`: the batches whose meshes draw by clusters (GpuScene::drawsByClusters) are
+    // left out, for the CPU to draw of them what meets the volume (a virtual page's terrain).
     void cull(size_t pass, std::span<const visibility::HalfSpace> volume, const LodChoice* lod, Phase phase,
-              PassList& out, const GpuReceiverMask* mask = nullptr, uint32_t replicas = 1);
+              PassList& out, const GpuReceiverMask* mask = nullptr, uint32_t replicas = 1, bool leaveClustered = false);
 
     // The camera's two-phase pass (passes 0 to kCameraPasses − 1): the early and late
     // instances drawn into `target`'s depth (cleared here; the camera's Frame uniforms must
@@ -111,6 +119,8 @@ public:
 private:
     GpuCulling(const GpuScene& gpuScene) : m_scene(gpuScene) {}
     void buildPyramid(const CameraDepthTarget& target);
+    // A pass's region of the lists: every instance at every level.
+    size_t regionWords() const { return kMaxLodLevels * std::max<size_t>(m_instanceCount, 1); }
     // Stages 2 and 3 of gpu_cull.comp after stage 1: the commands and lists of region `pass`.
     void compact(size_t pass, bool shadowChain, PassList& out, uint32_t replicas = 1);
 

@@ -28,6 +28,11 @@ std::vector<GpuScene::Range> rangesOf(const std::vector<scene::LodLevel>& chain)
     return ranges;
 }
 
+// Whether some level of a chain draws by clusters (a large mesh's).
+bool anyClusters(const std::vector<std::vector<scene::TriangleCluster>>& levels) {
+    return std::any_of(levels.begin(), levels.end(), [](const auto& clusters) { return !clusters.empty(); });
+}
+
 GLenum glWrap(scene::TextureWrap wrap) {
     return wrap == scene::TextureWrap::ClampToEdge      ? GL_CLAMP_TO_EDGE
            : wrap == scene::TextureWrap::MirroredRepeat ? GL_MIRRORED_REPEAT
@@ -170,10 +175,7 @@ GpuScene::GpuScene(const scene::Scene& scene, std::span<const scene::MeshLods> l
                                  anyMirrored(batch.worldFromObject),
                                  {}});
             const GpuMesh& mesh = m_meshes[batch.mesh];
-            const auto clustered = [](const auto& levels) {
-                return std::any_of(levels.begin(), levels.end(), [](const auto& c) { return !c.empty(); });
-            };
-            if (clustered(mesh.cameraClusters) || clustered(mesh.shadowClusters))
+            if (anyClusters(mesh.cameraClusters) || anyClusters(mesh.shadowClusters))
                 m_batches.back().worldFromObject = batch.worldFromObject;
         }
         firstInstance += count;
@@ -198,6 +200,25 @@ DrawStats GpuScene::draw(const PassList& list, const PassPrograms& programs, boo
 DrawStats GpuScene::draw(const PassList& list, const PassPrograms& programs,
                          std::span<const visibility::HalfSpace> volume) const {
     return drawBatches(list, programs, false, 1, &volume);
+}
+
+bool GpuScene::drawsByClusters(size_t sceneBatch) const {
+    if (sceneBatch >= m_batchAt.size() || m_batchAt[sceneBatch] < 0) return false;
+    const GpuMesh& mesh = m_meshes[m_batches[size_t(m_batchAt[sceneBatch])].mesh];
+    return anyClusters(mesh.cameraClusters) || anyClusters(mesh.shadowClusters);
+}
+
+bool GpuScene::alphaTested(size_t sceneBatch) const {
+    return sceneBatch < m_batchAt.size() && m_batchAt[sceneBatch] >= 0 &&
+           m_batches[size_t(m_batchAt[sceneBatch])].material.alphaTested;
+}
+
+DrawStats CasterLists::draw(const GpuScene& scene, size_t view, const PassPrograms& programs,
+                            const std::vector<visibility::HalfSpace>* volume) const {
+    DrawStats stats;
+    if (view < culled.size() && culled[view].indirect >= 0) stats += scene.draw(culled[view], programs);
+    stats += volume ? scene.draw(lists[view], programs, *volume) : scene.draw(lists[view], programs);
+    return stats;
 }
 
 DrawStats GpuScene::drawBatches(const PassList& list, const PassPrograms& programs, bool setInstanceBase, int replicas,

@@ -50,6 +50,22 @@ struct DrawStats {
     }
 };
 
+class GpuScene;
+
+// Each view's casters in a pass of several views (maps or virtual pages): `lists` one a view,
+// and `culled`, empty or one a view, what the GPU culled of the view's other casters
+// (GpuCulling::cull with leaveClustered: every batch but those drawing by clusters; a list
+// without commands: none). A virtual page on the GPU-driven path is both: its clustered meshes
+// culled on the CPU, to the clusters meeting the page.
+struct CasterLists {
+    std::span<const PassList> lists, culled;
+    // View i's casters with `programs`: the culled first (the trees, nearer the sun than the
+    // terrain under them), then its list's, large meshes by the clusters meeting `volume` when
+    // one is given (GpuScene::draw).
+    DrawStats draw(const GpuScene& scene, size_t view, const PassPrograms& programs,
+                   const std::vector<visibility::HalfSpace>* volume) const;
+};
+
 // glFrontFace for a depth pass into the map of `clipFromWorld`: the winding the faces turned
 // towards the sun show there (core/caster_facing.h), so that culling GL_BACK leaves out the
 // faces turned away from it under any warp. The pass restores GL_CCW when it ends.
@@ -80,6 +96,12 @@ public:
     DrawStats draw(const PassList& list, const PassPrograms& programs,
                    std::span<const visibility::HalfSpace> volume) const;
     static constexpr size_t kClusterMinTriangles = 16384, kClusterTriangles = 2048;
+    // Whether Scene::batches[sceneBatch]'s mesh draws by clusters at some level of either chain,
+    // so that the overload above may draw only a part of it.
+    bool drawsByClusters(size_t sceneBatch) const;
+    // Whether Scene::batches[sceneBatch]'s material is alpha-tested (leaves).
+    bool alphaTested(size_t sceneBatch) const;
+
     // A drawn list's instances and whole levels' triangles, added to `work` (kMaxLodLevels
     // entries) at each level, the alpha-tested batches' also apart (Renderer::workByLevel).
     void addLevelWork(const PassList& drawn, std::span<LevelWork> work) const;

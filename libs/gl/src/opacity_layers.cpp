@@ -76,7 +76,7 @@ core::Status OpacityLayers::prepare(int width, int height, int layers, int mipLe
 }
 
 DrawStats OpacityLayers::draw(const GpuScene& scene, const core::BiasSettings& bias, std::span<const OpacityView> views,
-                              std::span<const PassList> lists, const Buffer& depthPass, bool depthClamp) {
+                              const CasterLists& casters, const Buffer& depthPass, bool depthClamp) {
     // Both sides of every leaf, and no depth test but the first draw's: in the layers each fragment
     // of each leaf counts once.
     glDisable(GL_DEPTH_TEST);
@@ -91,7 +91,7 @@ DrawStats OpacityLayers::draw(const GpuScene& scene, const core::BiasSettings& b
     glBindBufferBase(GL_UNIFORM_BUFFER, kDepthPassBinding, depthPass.id());
     const PassPrograms first{.material = m_first.id(), .batches = PassPrograms::Batches::AlphaTested};
     const PassPrograms transmittance{.material = m_transmittance.id(), .batches = PassPrograms::Batches::AlphaTested};
-    const size_t count = std::min(views.size(), lists.size());
+    const size_t count = std::min(views.size(), casters.lists.size());
     // View i's uniforms, viewport and scissor (its clears and draws stay inside it: a page's slot).
     const auto placeAt = [&](size_t i) {
         const OpacityView& view = views[i];
@@ -104,8 +104,9 @@ DrawStats OpacityLayers::draw(const GpuScene& scene, const core::BiasSettings& b
     // View i's alpha-tested casters with `programs`.
     const auto drawLeaves = [&](size_t i, const PassPrograms& programs) {
         const OpacityView& view = views[i];
-        return view.clustersInView ? scene.draw(lists[i], programs, visibility::clipVolume(view.clipFromWorld, false))
-                                   : scene.draw(lists[i], programs);
+        if (!view.clustersInView) return casters.draw(scene, i, programs, nullptr);
+        const std::vector<visibility::HalfSpace> volume = visibility::clipVolume(view.clipFromWorld, false);
+        return casters.draw(scene, i, programs, &volume);
     };
     DrawStats draws;
 

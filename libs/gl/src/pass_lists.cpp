@@ -73,6 +73,12 @@ PassLists::create(const scene::Scene& scene, std::span<const scene::MeshLods> lo
         for (size_t k = 0; k < batch.worldFromObject.size(); ++k) box.extend(instances[next++]);
         lists->m_batchBounds.push_back(box);
     }
+    for (size_t b = 0; b < scene.batches.size(); ++b) lists->m_alphaTested.push_back(gpuScene.alphaTested(b));
+    // The large meshes a virtual page draws by clusters: the CPU's to cull per page on either path.
+    const std::span<const uint32_t> batchFirst = lists->m_visibility->batchFirst();
+    for (size_t b = 0; b < scene.batches.size(); ++b)
+        if (gpuScene.drawsByClusters(b))
+            for (uint32_t i = batchFirst[b]; i < batchFirst[b + 1]; ++i) lists->m_clusteredInstances.push_back(i);
     auto occlusion = OcclusionCuller::create(*lists->m_visibility, gpuScene);
     if (!occlusion) return occlusion.errorInfo();
     lists->m_occlusion = std::move(occlusion).value();
@@ -170,8 +176,9 @@ void PassLists::planCamera(const PassPlanInputs& in, bool prepass) {
         m_cameraDepth.emplace(settings.width, settings.height);
     if (settings.culling == Culling::Gpu) {
         const bool shadows = in.purpose == PassPurpose::Frame;
-        m_gpuCulling->beginFrame(firstLocalPass(in.setup) +
-                                 (shadows ? LocalShadowMaps::listCount(in.localLights, in.localPass) : 0));
+        // Virtual pages after the local lights: as many as the room kept for them (planPages).
+        const bool pages = shadows && virtualMaps(in.setup) && settings.sun;
+        m_gpuCulling->beginFrame(shadows ? firstPagePass(in) + (pages ? m_pageRoom : 0) : firstLocalPass(in.setup));
         const Stopwatch cameraTime;
         m_gpuCulling->camera(in.camera, lod, *m_cameraDepth, m_camera);
         m_costs.occlusionMilliseconds = cameraTime.elapsed().wallMilliseconds;
@@ -224,8 +231,19 @@ void PassLists::planPages(const PassPlanInputs& in, VirtualPages& pages, std::ve
     m_costs.inGl += pages.glTimes();
     const auto toRender = pages.pagesToRender();
     m_pages.resize(toRender.size());
+    m_pageCulled.assign(toRender.size(), {});
+    // GPU-driven: the first pages as many as the frame made room for (planCamera), culled on the
+    // GPU but for their clustered meshes; the rest, and every page on the other paths, on the CPU.
+    // The room grows to the most pages a frame has drawn, within the lists' memory budget.
+    const bool gpu = settings.culling == Culling::Gpu;
+    const size_t onGpu = gpu ? std::min(toRender.size(), m_pageRoom) : 0;
+    if (gpu) {
+        const size_t budget = m_gpuCulling->passesWithinBudget(), first = firstPagePass(in);
+        m_pageRoom = std::max(m_pageRoom, std::min(toRender.size(), budget > first ? budget - first : 0));
+    }
     const double slotTexels = setup.clipmap->pageTexels + 2.0 * guard;
     const std::vector<uint32_t> order = nearestFirst(in.wsTowardsLight);
+    std::vector<uint32_t> clustered;
     for (size_t i = 0; i < toRender.size(); ++i) {
         m_pages[i].batchOrder = order;
         // Levels by the page's own texels only, not by the camera: a page must hold the same
@@ -233,10 +251,22 @@ void PassLists::planPages(const PassPlanInputs& in, VirtualPages& pages, std::ve
         // cached neighbours (and its texels already match the pixels it serves).
         const LodChoice lod = lodChoiceOf({toRender[i].clipFromWorld, 0.5 * slotTexels, settings.lodTexelError},
                                           std::nullopt, true, settings);
-        m_visibility->collect(visibility::clipVolume(toRender[i].clipFromWorld, false),
-                              settings.culling != Culling::Off, settings.lod ? &lod : nullptr, m_pages[i]);
+        const std::vector<visibility::HalfSpace> volume = visibility::clipVolume(toRender[i].clipFromWorld, false);
+        if (i < onGpu) {
+            m_pageCulled[i].batchOrder = order;
+            m_gpuCulling->cull(firstPagePass(in) + i, volume, settings.lod ? &lod : nullptr, GpuCulling::Phase::All,
+                               m_pageCulled[i], nullptr, 1, /*leaveClustered=*/true);
+            clustered.clear();
+            for (const uint32_t instance : m_clusteredInstances)
+                if (!visibility::isOutside(volume, m_visibility->hierarchy().itemBounds(instance)))
+                    clustered.push_back(instance);
+            m_visibility->fromItems(clustered, settings.lod ? &lod : nullptr, m_pages[i]);
+        } else {
+            m_visibility->collect(volume, settings.culling != Culling::Off, settings.lod ? &lod : nullptr, m_pages[i]);
+        }
         lists.push_back(&m_pages[i]);
     }
+    if (gpu) m_costs.inGl += m_gpuCulling->takeGlTimes();
 }
 
 LevelsDrawn PassLists::levelsDrawn() const {
@@ -258,6 +288,8 @@ LevelsDrawn PassLists::levelsDrawn() const {
     mark(m_camera, out.camera);
     for (const PassList& list : m_sun) mark(list, out.sun);
     for (const PassList& list : m_pages) mark(list, out.sun);
+    for (const PassList& list : m_pageCulled)
+        if (list.indirect >= 0) mark(list, out.sun);
     return out;
 }
 
@@ -268,18 +300,58 @@ WorkByLevel PassLists::workByLevel(const GpuScene& gpuScene) const {
     gpuScene.addLevelWork(drawn(m_camera), out.camera);
     for (const PassList& list : m_sun) gpuScene.addLevelWork(drawn(list), out.sun);
     for (const PassList& list : m_pages) gpuScene.addLevelWork(drawn(list), out.sun);
+    for (const PassList& list : m_pageCulled)
+        if (list.indirect >= 0) gpuScene.addLevelWork(drawn(list), out.sun);
     return out;
 }
 
-void PassLists::describeGpuLists(FrameFigureSources& sources) const {
+std::vector<const PassList*> PassLists::sunCulledLists() const {
+    std::vector<const PassList*> culled;
+    for (const PassList& list : m_sun) culled.push_back(&list);
+    for (const PassList& list : m_pageCulled)
+        if (list.indirect >= 0) culled.push_back(&list);
+    return culled;
+}
+
+PassList PassLists::leavesOf(const PassList& list) const {
+    PassList leaves;
+    leaves.indirect = list.indirect;
+    leaves.count = list.count;
+    for (size_t slot = 0; slot < leaves.count.size(); ++slot)
+        if (!m_alphaTested[slot / kMaxLodLevels]) leaves.count[slot] = 0;
+    return leaves;
+}
+
+DrawStats PassLists::gpuSunDrawn(bool foliageOpacity) const {
+    // With opacity layers the depth pass leaves a list's alpha-tested casters out and the layers
+    // draw them twice (SunPass::draw, OpacityLayers::draw): once more than the list counts them.
+    std::vector<const PassList*> asked = sunCulledLists();
+    std::vector<PassList> leaves;
+    if (foliageOpacity)
+        for (const PassList* list : asked) leaves.push_back(leavesOf(*list));
+    for (const PassList& list : leaves) asked.push_back(&list);
+    DrawStats sum;
+    for (const DrawStats& drawn : m_gpuCulling->submitted(asked)) sum += drawn;
+    return sum;
+}
+
+void PassLists::describeGpuLists(FrameFigureSources& sources, bool foliageOpacity) const {
     sources.commands = m_gpuCulling->commandBuffer();
     sources.commandWords = m_gpuCulling->commandWords();
     sources.lists.push_back({m_camera.indirect, m_camera.count, CulledListShape::Pass::Camera});
-    for (const PassList& sun : m_sun) sources.lists.push_back({sun.indirect, sun.count, CulledListShape::Pass::Sun});
+    for (const PassList* list : sunCulledLists()) {
+        sources.lists.push_back({list->indirect, list->count, CulledListShape::Pass::Sun});
+        if (foliageOpacity) // as gpuSunDrawn: the leaves once more
+            sources.lists.push_back({list->indirect, leavesOf(*list).count, CulledListShape::Pass::Sun});
+    }
     for (size_t i = 0; i < m_local.size(); ++i)
         if (m_local[i].indirect >= 0)
             sources.lists.push_back(
                 {m_local[i].indirect, m_local[i].count, CulledListShape::Pass::Local, m_localFaces[i]});
+    // The commands copied for the figures: up to the last list's, not the room made for pages.
+    size_t used = 0;
+    for (const CulledListShape& list : sources.lists) used = std::max(used, size_t(list.indirect) + list.count.size());
+    sources.commandWords = std::min(sources.commandWords, used * kIndirectCommandWords);
 }
 
 std::vector<uint32_t> PassLists::nearestFirst(const core::Vec3& wsTowardsLight) const {
@@ -329,6 +401,10 @@ void PassLists::planSunMaps(const PassPlanInputs& in, std::vector<PassList*>& li
 
 size_t PassLists::firstLocalPass(const core::ShadowSetup& setup) {
     return GpuCulling::kCameraPasses + (virtualMaps(setup) ? 0 : setup.views.size());
+}
+
+size_t PassLists::firstPagePass(const PassPlanInputs& in) {
+    return firstLocalPass(in.setup) + LocalShadowMaps::listCount(in.localLights, in.localPass);
 }
 
 void PassLists::planLocal(const PassPlanInputs& in) {

@@ -84,8 +84,11 @@ public:
     void plan(const PassPlanInputs& in, VirtualPages& pages);
 
     const PassList& cameraList() const { return m_camera; }
-    std::span<const PassList> sunLists() const { return m_sun; }     // one per fixed map; none with virtual maps
-    std::span<const PassList> pageLists() const { return m_pages; }  // one per VirtualPages::pagesToRender()
+    std::span<const PassList> sunLists() const { return m_sun; }    // one per fixed map; none with virtual maps
+    std::span<const PassList> pageLists() const { return m_pages; } // one per VirtualPages::pagesToRender()
+    // Culling::Gpu: what the GPU culled of each page (indirect < 0: the page is wholly the CPU's,
+    // in pageLists()); the page's clustered meshes are in pageLists() (GpuScene::draw(culled, list)).
+    std::span<const PassList> pageCulledLists() const { return m_pageCulled; }
     std::span<const PassList> localLists() const { return m_local; } // LocalShadowMaps::listCount of them
     const CullingCosts& costs() const { return m_costs; }
     // Camera depth pre-passes drawn since the planner was made (a CHC++ settle loop counts once).
@@ -101,11 +104,13 @@ public:
     LevelsDrawn levelsDrawn() const;
     // What the same lists drew at each level (Renderer::workByLevel), read back the same way.
     WorkByLevel workByLevel(const GpuScene& gpuScene) const;
-    // Culling::Gpu: what the sun maps' lists drew, read back (waits for the GPU).
-    DrawStats gpuSunDrawn() const { return m_gpuCulling->submitted(m_sun); }
+    // Culling::Gpu: what the sun maps' lists, or the pages' GPU-culled ones, drew, read back (waits for the GPU).
+    // With `foliageOpacity`, counted as the layers draw the alpha-tested casters: twice, not in the depth pass.
+    DrawStats gpuSunDrawn(bool foliageOpacity) const;
     // Culling::Gpu: the same lists for a late read (gpu_figures.h): the command buffer the GPU
     // wrote and where each list's draws lie in it.
-    void describeGpuLists(FrameFigureSources& sources) const;
+    // With `foliageOpacity`, each sun list's alpha-tested casters once more (gpuSunDrawn).
+    void describeGpuLists(FrameFigureSources& sources, bool foliageOpacity) const;
 
     // The view-depth range of the last pre-pass (Renderer::lastVisibleDepth). The reduction is
     // queued after every pre-pass once a range has been asked for; until then, the first ask
@@ -126,6 +131,10 @@ private:
     PassLists() = default;
     // A list as drawn: a GPU-culled one read back (a wait), any other as it is.
     PassList drawn(const PassList& list) const { return list.indirect >= 0 ? m_gpuCulling->read(list) : list; }
+    // The GPU-culled lists of the sun's pass: its maps', or its pages' culled casters.
+    std::vector<const PassList*> sunCulledLists() const;
+    // `list`'s ranges of the alpha-tested batches alone (counts only: for GpuCulling::drawnBy).
+    PassList leavesOf(const PassList& list) const;
     // The camera's list, and its depth pre-pass when the frame needs one.
     void planCamera(const PassPlanInputs& in, bool prepass);
     // The receiver masks of the frame's fixed maps, from the pre-pass.
@@ -143,6 +152,8 @@ private:
     void planLocal(const PassPlanInputs& in);
     // GPU culling's pass of the first local list: after the camera's and the sun maps'.
     static size_t firstLocalPass(const core::ShadowSetup& setup);
+    // GPU culling's pass of the first virtual page's list: after the local lights'.
+    static size_t firstPagePass(const PassPlanInputs& in);
 
     std::optional<Visibility> m_visibility;
     std::unique_ptr<OcclusionCuller> m_occlusion;
@@ -177,7 +188,11 @@ private:
 
     PassList m_camera;
     std::vector<PassList> m_sun, m_pages, m_local;
-    std::vector<uint32_t> m_localFaces; // per local list: the faces a geometry shader draws each instance into
+    std::vector<PassList> m_pageCulled;         // Culling::Gpu: each page's GPU-culled casters
+    size_t m_pageRoom = 0;                      // pages a GPU-driven frame culls on the GPU
+    std::vector<uint32_t> m_clusteredInstances; // of the meshes that draw by clusters (the CPU's per page)
+    std::vector<bool> m_alphaTested;            // per scene batch: GpuScene::alphaTested
+    std::vector<uint32_t> m_localFaces;         // per local list: the faces a geometry shader draws each instance into
     CullingCosts m_costs;
 };
 

@@ -62,7 +62,7 @@ struct Renderer::Impl {
         // No sun: nothing was drawn, nothing to read back.
         if (settings.culling != Culling::Gpu || lastShadow.drawCalls == 0) return;
         DrawStats drawn = sunDrawnOnCpu;
-        drawn += lists->gpuSunDrawn();
+        drawn += lists->gpuSunDrawn(settings.foliageOpacity);
         keepGpuShadowDraws(drawn);
     }
     // What the sun's lists drew, GPU-culled and not, into lastShadow (no sun: nothing was drawn).
@@ -150,8 +150,8 @@ core::Result<core::BiasSettings> Renderer::Impl::prepare(const core::Perspective
 core::Result<PassStats> Renderer::Impl::shadowPasses(const core::DirectionalLight& light,
                                                      const core::ShadowSetup& setup, const RenderSettings& settings,
                                                      const core::BiasSettings& bias) {
-    auto sunStats =
-        sun->draw(*scene, setup, settings, bias, light.wsTowardsLight(), lists->sunLists(), lists->pageLists());
+    auto sunStats = sun->draw(*scene, setup, settings, bias, light.wsTowardsLight(), lists->sunLists(),
+                              {lists->pageLists(), lists->pageCulledLists()});
     if (!sunStats) return sunStats.errorInfo();
     lastShadow = *sunStats;
     // A GPU-culled list's draws count no instance or triangle here (the GPU alone knows them).
@@ -227,7 +227,7 @@ void Renderer::Impl::gpuFigures(FrameStats& stats, const RenderSettings& setting
         sources.firstLeafSamples = &opacity->firstLeafSamples();
         sources.leafSamples = &opacity->leafSamples();
     }
-    if (settings.culling == Culling::Gpu) lists->describeGpuLists(sources);
+    if (settings.culling == Culling::Gpu) lists->describeGpuLists(sources, settings.foliageOpacity);
     sources.sunDrawnOnCpu = sunDrawnOnCpu;
     figures.take(stats, sources, lateFigures);
     if (!lateFigures && sources.commands) keepGpuShadowDraws({stats.shadow.instances, stats.shadow.triangles, 0});

@@ -92,7 +92,7 @@ core::Status SunPass::prepareOpacity(int width, int height, int layers, int mipL
 core::Result<PassStats> SunPass::draw(const GpuScene& scene, const core::ShadowSetup& setup,
                                       const RenderSettings& settings, const core::BiasSettings& bias,
                                       const core::Vec3& wsTowardsLight, std::span<const PassList> mapLists,
-                                      std::span<const PassList> pageLists) {
+                                      const CasterLists& pageCasters) {
     m_lastVirtual.reset();
     m_samples.reset();
     if (m_opacity) m_opacity->resetCounts();
@@ -115,11 +115,11 @@ core::Result<PassStats> SunPass::draw(const GpuScene& scene, const core::ShadowS
         if (!pages.empty()) m_samples.begin();
         PassPrograms programs = casterPrograms(core::DepthLayout::Hyperbolic, bias);
         if (settings.foliageOpacity) programs.batches = PassPrograms::Batches::Opaque;
-        draws = m_pages->drawPages(scene, programs, bias, wsTowardsLight, pageLists, m_uniforms);
+        draws = m_pages->drawPages(scene, programs, bias, wsTowardsLight, pageCasters, m_uniforms);
         if (!pages.empty()) m_samples.end();
         // Opacity layers: each page's into its slot of the layers' atlases, as the fixed maps'.
         if (settings.foliageOpacity && !pages.empty())
-            draws += m_opacity->draw(scene, bias, pageOpacityViews(), pageLists, m_uniforms, /*depthClamp=*/true);
+            draws += m_opacity->draw(scene, bias, pageOpacityViews(), pageCasters, m_uniforms, /*depthClamp=*/true);
         m_timer.end();
         if (!pages.empty()) {
             const auto side = uint64_t(m_pages->slotViewport(pages.front().slot).z);
@@ -129,6 +129,8 @@ core::Result<PassStats> SunPass::draw(const GpuScene& scene, const core::ShadowS
         m_pages->rendered();
         m_lastVirtual = m_pages->stats();
         m_lastVirtual->triangles = draws.triangles;
+        m_lastVirtual->pagesCulledOnGpu = static_cast<int>(
+            std::ranges::count_if(pageCasters.culled, [](const PassList& list) { return list.indirect >= 0; }));
         if (settings.foliageOpacity) m_lastVirtual->opacityBytes = m_opacity->bytes();
         return PassStats{.instances = draws.instances, .triangles = draws.triangles, .drawCalls = draws.drawCalls};
     }
@@ -142,8 +144,8 @@ core::Result<PassStats> SunPass::draw(const GpuScene& scene, const core::ShadowS
     m_samples.end();
     // Opacity layers: the alpha-tested casters, inside the pass's time as the moments are.
     if (settings.foliageOpacity)
-        draws +=
-            m_opacity->draw(scene, bias, opacityViewsOf(setup, m_shadow->size), mapLists, m_uniforms, setup.depthClamp);
+        draws += m_opacity->draw(scene, bias, opacityViewsOf(setup, m_shadow->size), {mapLists, {}}, m_uniforms,
+                                 setup.depthClamp);
     m_countedTexels = uint64_t(m_shadow->size) * uint64_t(m_shadow->size) * setup.views.size();
     // MSM: the maps' moments, blurred, inside the pass's time (a real frame pays them with it).
     core::Status moments = core::Ok{};

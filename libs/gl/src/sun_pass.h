@@ -39,12 +39,12 @@ public:
     // cannot (out of memory, too large).
     core::Status prepare(const core::ShadowSetup& setup, const RenderSettings& settings,
                          const core::BiasSettings& bias);
-    // Draws the maps: `mapLists` one per fixed map, or `pageLists` one per page to render. No
+    // Draws the maps: `mapLists` one per fixed map, or `pages` each page to render's. No
     // sun (settings.sun false): nothing is drawn. Timed (timer()). `wsTowardsLight`
     // says which faces bias.cull's front and back are (core/caster_facing.h).
     core::Result<PassStats> draw(const GpuScene& scene, const core::ShadowSetup& setup, const RenderSettings& settings,
                                  const core::BiasSettings& bias, const core::Vec3& wsTowardsLight,
-                                 std::span<const PassList> mapLists, std::span<const PassList> pageLists);
+                                 std::span<const PassList> mapLists, const CasterLists& pages);
     // The last draw()'s GPU time and the samples its depth test passed, as queries the frame's
     // figures read (gpu_figures.h), and the texels drawn: the fixed maps', or the virtual pages'
     // drawn, guard bands and all (0 without a sun or a page drawn, when no sample is counted).

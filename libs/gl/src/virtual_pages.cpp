@@ -216,7 +216,7 @@ VirtualPageStats VirtualPages::stats() const {
 }
 
 DrawStats VirtualPages::drawPages(const GpuScene& scene, const PassPrograms& programs, const core::BiasSettings& bias,
-                                  const core::Vec3& wsTowardsLight, std::span<const PassList> lists,
+                                  const core::Vec3& wsTowardsLight, const CasterLists& casters,
                                   const Buffer& depthUniforms) const {
     DrawStats draws;
     glEnable(GL_SCISSOR_TEST);
@@ -238,7 +238,8 @@ DrawStats VirtualPages::drawPages(const GpuScene& scene, const PassPrograms& pro
                                  ditherOf(toRender[i].key.y * m_pageTexels - m_guardTexels, v.y)};
         uploadToBuffer(depthUniforms.id(), 0, sizeof uniforms, &uniforms);
         setLightFacingFront(toRender[i].clipFromWorld, wsTowardsLight);
-        draws += scene.draw(lists[i], programs, visibility::clipVolume(toRender[i].clipFromWorld, false));
+        const std::vector<visibility::HalfSpace> volume = visibility::clipVolume(toRender[i].clipFromWorld, false);
+        draws += casters.draw(scene, i, programs, &volume);
     }
     glDisable(GL_SCISSOR_TEST);
     return draws;

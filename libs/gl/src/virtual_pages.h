@@ -72,13 +72,13 @@ public:
     glm::ivec3 slotViewport(int slot) const;
     // The atlas's width and height in texels (configure()).
     glm::ivec2 atlasTexels() const { return m_atlasTexels; }
-    // Draws pagesToRender()[i] with lists[i] into its slot, scissored so its clear touches no
+    // Draws pagesToRender()[i] with the casters of view i into its slot, scissored so its clear touches no
     // other page, with the bound depth program: the page's matrix into `depthUniforms`, the
     // clusters of large meshes culled to the page's volume, the faces towards `wsTowardsLight`
     // as the front ones (setLightFacingFront), `bias`'s constant term in the block (depth.vert).
     // Other GL state (polygon offset's slope term, clamp, culling) is the caller's.
     DrawStats drawPages(const GpuScene& scene, const PassPrograms& programs, const core::BiasSettings& bias,
-                        const core::Vec3& wsTowardsLight, std::span<const PassList> lists,
+                        const core::Vec3& wsTowardsLight, const CasterLists& casters,
                         const Buffer& depthUniforms) const;
     const Framebuffer& framebuffer() const { return m_framebuffer; }
     // After the pages were drawn: they are valid, and the page table for shown()'s windows is

@@ -6,6 +6,7 @@
 #include <bit>
 #include <cassert>
 #include <cmath>
+#include <functional>
 
 namespace shadowkit::gl {
 namespace {
@@ -75,7 +76,11 @@ void Visibility::sortIntoScratch(std::span<const uint32_t> items) {
 }
 
 void Visibility::fromItems(std::span<const uint32_t> items, const LodChoice* lod, PassList& out) {
-    sortIntoScratch(items);
+    // Already increasing (a virtual page's few clustered meshes): no pass over every instance.
+    if (std::ranges::adjacent_find(items, std::greater_equal<>()) == items.end())
+        m_scratch.assign(items.begin(), items.end());
+    else
+        sortIntoScratch(items);
     build(lod, out);
 }
 

@@ -341,37 +341,84 @@ TEST_F(GpuCullingTest, AGpuDrivenFrameUploadsNoListsAndDispatchesAsManyPassesWha
         << "the CPU path's lists: an index per instance drawn";
 }
 
-TEST_F(GpuCullingTest, VirtualPagesOnTheGpuPathDrawTheCpuPathsPixelsAndCountWhatTheyDraw) {
+TEST_F(GpuCullingTest, VirtualPagesCulledOnTheGpuDrawTheCpuPathsPixelsAndUploadNoCasterLists) {
     // A virtual clipmap along a moving camera, drawn by a GPU-driven renderer and by a frustum-
     // culled one: every frame the same pixels, the same pages, and the same casters counted in
     // the shadow pass — instances and triangles, the terrain's by the clusters a page draws of it
-    // (96² quads: a large mesh, drawn in clusters), not the whole of it per page.
-    const scene::Scene forest = gl::testing::smallForest(300, 200, 96);
-    auto gpu = gl::Renderer::create(forest);
-    auto cpu = gl::Renderer::create(forest);
-    ASSERT_TRUE(gpu && cpu);
-    scene::ResolvedView view = gl::testing::standardView(forest, "perpendicular");
-    view.camera.aspect = 160.0 / 90.0;
-    size_t pagesDrawn = 0;
-    for (int frame = 0; frame < 4; ++frame) {
-        core::PerspectiveCamera camera = view.camera;
-        camera.wsEye += core::Vec3(3.0 * frame, 0.0, -2.0 * frame); // new pages in every frame
-        core::ShadowSetupInputs in{.camera = camera, .light = view.light, .wsSceneBounds = forest.wsBounds()};
-        in.technique = core::Technique::Virtual;
-        in.virtualMaps.imageHeight = 90;
-        in.virtualMaps.virtualTexels = 4096;
-        const auto setup = core::computeShadowSetup(in);
-        ASSERT_TRUE(setup) << setup.error();
-        const auto a = (*gpu)->render(camera, view.light, *setup, smallFrame(160, 90, gl::Culling::Gpu));
-        const auto b = (*cpu)->render(camera, view.light, *setup, smallFrame(160, 90, gl::Culling::Frustum));
-        ASSERT_TRUE(a && b) << (a ? b.error() : a.error());
-        ASSERT_TRUE(a->virtualPages && b->virtualPages);
-        EXPECT_EQ((*gpu)->readColor().rgba, (*cpu)->readColor().rgba) << "frame " << frame;
-        EXPECT_EQ(a->virtualPages->pagesRendered, b->virtualPages->pagesRendered) << "frame " << frame;
-        EXPECT_EQ(a->shadow.instances, b->shadow.instances) << "frame " << frame;
-        EXPECT_EQ(a->shadow.triangles, b->shadow.triangles) << "frame " << frame;
-        EXPECT_EQ(a->shadow.instances > 0, b->virtualPages->pagesRendered > 0) << "frame " << frame;
-        pagesDrawn += size_t(b->virtualPages->pagesRendered);
+    // (96² quads: a large mesh, whose clusters the CPU picks per page on both paths), not the
+    // whole of it per page. The GPU-driven frame culls on the CPU the pages it has no room for —
+    // the first frame's, all of them — and from then on culls each page's other casters on the
+    // GPU, uploading no list of them: at least an index per instance fewer bytes than the CPU
+    // path. The leafy forest's pages draw their leaves' opacity layers from the same lists.
+    struct Case {
+        const char* name;
+        scene::Scene forest;
+        bool opacity;
+    };
+    const Case cases[] = {{"forest", gl::testing::smallForest(300, 200, 96), false},
+                          {"leafy forest, opacity layers", gl::testing::smallLeafyForest(), true}};
+    for (const Case& c : cases) {
+        auto gpu = gl::Renderer::create(c.forest);
+        auto cpu = gl::Renderer::create(c.forest);
+        ASSERT_TRUE(gpu && cpu);
+        scene::ResolvedView view = gl::testing::standardView(c.forest, "perpendicular");
+        view.camera.aspect = 160.0 / 90.0;
+        int culledOnGpu = 0;
+        size_t evalDrawn = 0;
+        for (int frame = 0; frame < 4; ++frame) {
+            core::PerspectiveCamera camera = view.camera;
+            camera.wsEye += core::Vec3(3.0 * frame, 0.0, -2.0 * frame); // new pages in every frame
+            core::ShadowSetupInputs in{.camera = camera, .light = view.light, .wsSceneBounds = c.forest.wsBounds()};
+            in.technique = core::Technique::Virtual;
+            in.virtualMaps.imageHeight = 90;
+            in.virtualMaps.virtualTexels = 4096;
+            const auto setup = core::computeShadowSetup(in);
+            ASSERT_TRUE(setup) << setup.error();
+            gl::RenderSettings settings = smallFrame(160, 90, gl::Culling::Gpu);
+            settings.foliageOpacity = c.opacity;
+            const gl::Traffic beforeGpu = gl::trafficSoFar();
+            const auto a = (*gpu)->render(camera, view.light, *setup, settings);
+            const int64_t gpuBytes = (gl::trafficSoFar() - beforeGpu).bytesUploaded;
+            settings.culling = gl::Culling::Frustum;
+            const gl::Traffic beforeCpu = gl::trafficSoFar();
+            const auto b = (*cpu)->render(camera, view.light, *setup, settings);
+            const int64_t cpuBytes = (gl::trafficSoFar() - beforeCpu).bytesUploaded;
+            ASSERT_TRUE(a && b) << (a ? b.error() : a.error());
+            ASSERT_TRUE(a->virtualPages && b->virtualPages);
+            const std::string at = std::string(c.name) + ", frame " + std::to_string(frame);
+            EXPECT_EQ((*gpu)->readColor().rgba, (*cpu)->readColor().rgba) << at;
+            const int pages = b->virtualPages->pagesRendered;
+            EXPECT_EQ(a->virtualPages->pagesRendered, pages) << at;
+            EXPECT_EQ(a->shadow.instances, b->shadow.instances) << at;
+            EXPECT_EQ(a->shadow.triangles, b->shadow.triangles) << at;
+            EXPECT_EQ(b->virtualPages->pagesCulledOnGpu, 0) << at;
+            if (frame == 0) {
+                EXPECT_EQ(a->virtualPages->pagesCulledOnGpu, 0) << at << ": no room made yet";
+                ASSERT_GT(pages, 8) << at << ": too few pages to compare";
+                continue;
+            }
+            EXPECT_EQ(a->virtualPages->pagesCulledOnGpu, pages) << at << ": fewer pages than the first frame's room";
+            culledOnGpu += a->virtualPages->pagesCulledOnGpu;
+            // Each page's list on the CPU path holds an index per instance it draws (the terrain's
+            // one among them, which the GPU-driven path uploads too).
+            const int64_t pageIndices = int64_t(b->shadow.instances) - pages;
+            EXPECT_LE(gpuBytes + int64_t(sizeof(uint32_t)) * pageIndices, cpuBytes) << at;
+            // An evaluation's frame, half a step on (new pages again), reads what its lists drew
+            // back itself: one wait, not the figures' ring.
+            camera.wsEye += core::Vec3(1.5, 0.0, -1.0);
+            in.camera = camera;
+            const auto evalSetup = core::computeShadowSetup(in);
+            ASSERT_TRUE(evalSetup) << evalSetup.error();
+            settings.culling = gl::Culling::Gpu;
+            ASSERT_TRUE((*gpu)->renderEvalBuffers(camera, view.light, *evalSetup, settings));
+            settings.culling = gl::Culling::Frustum;
+            ASSERT_TRUE((*cpu)->renderEvalBuffers(camera, view.light, *evalSetup, settings));
+            const gl::PassStats gpuEval = (*gpu)->lastShadowPass(), cpuEval = (*cpu)->lastShadowPass();
+            evalDrawn += cpuEval.instances;
+            EXPECT_EQ(gpuEval.instances, cpuEval.instances) << at << ", eval";
+            EXPECT_EQ(gpuEval.triangles, cpuEval.triangles) << at << ", eval";
+        }
+        EXPECT_GT(culledOnGpu, 0) << c.name << ": no page culled on the GPU after the first frame";
+        EXPECT_GT(evalDrawn, 0u) << c.name << ": the evaluations drew no page";
     }
-    EXPECT_GT(pagesDrawn, 8u) << "the frames drew too few pages to compare";
 }

@@ -29,7 +29,8 @@ struct Batch {
     uint first, count;               // global index of the first instance; instances
     uint cameraLevels, shadowLevels; // levels of each chain, [1, SK_CULL_LEVELS]
     uint firstChunk, chunkCount;
-    uint pad0, pad1;
+    uint clustered; // 1: its mesh draws by triangle clusters (a terrain: GpuScene::drawsByClusters)
+    uint pad1;
 };
 struct Level {
     float cameraError, shadowError;          // object metres (scene::LodLevel::objectError)
@@ -75,6 +76,9 @@ uniform dmat4 cameraClipFromWorld;
 uniform double cameraUnitsPerNdc, cameraMaxError;
 uniform double coverageScale; // LodChoice::coverageScale: levels that keep coverage may err this many times more
 uniform double fadeBand;      // LodChoice::fadeBand
+// A virtual page's pass: the batches whose meshes draw by clusters are left to the CPU, which
+// draws of them only the clusters meeting the page (GpuCulling::cull's leaveClustered).
+uniform bool leaveClustered;
 // Occlusion (phases kNewlyVisible and kVisible): the depth pyramid of the camera's pre-pass.
 layout(std430, binding = SK_CULL_STAGE_BINDING) readonly buffer Pyramid {
     float pyramid[];
@@ -254,6 +258,7 @@ void main() {
         else
             keep = inVolume && (was || visible);
         if (phase == kVisible) wasVisible[global] = visible ? 1u : 0u;
+        if (leaveClustered && batches[chunk.x].clustered != 0u) keep = false;
         if (keep) {
             const uvec2 chosen = levelOf(chunk.x, 0.5 * (lo + hi), instance.minScale.w);
             level = chosen.x;

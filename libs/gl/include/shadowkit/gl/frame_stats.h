@@ -67,6 +67,9 @@ struct VirtualPageStats : core::PageCacheStats {
     int64_t opacityBytes = 0; // with --foliage-opacity: the opacity layers' atlases beside it, mips included
     size_t triangles = 0;     // drawn into the pages rendered this frame
     int64_t tableBytes = 0;   // uploaded into the page table this frame: its changed entries, or all of it when new
+    // Of the pages rendered, those whose casters GPU-driven culling chose (Culling::Gpu, within
+    // the room its lists' memory allows; the rest, and on the other paths every page, the CPU's).
+    int pagesCulledOnGpu = 0;
 };
 
 // A frame's figures that only the GPU knows, as they come back frames later when the renderer
