@@ -154,10 +154,13 @@ void printPassLines(const BenchArgs& args, gl::Culling culling, const measure::F
                "", "", "", dispatches.median, dispatches.max, groups.median, groups.max);
     if (costs.last().virtualPages) { // the frames drew virtual pages (auto may choose them too)
         const measure::Spread pages = costs.pagesRendered(), age = costs.requestsAge(), table = costs.tableBytes();
-        fmt::print("{:>7} {:>7} {:<14} pages   drawn a frame med {:.0f} max {:.0f}; page requests read {:.0f} frames "
-                   "late (median; max {:.0f}; 0: the frame's own, −1: none had arrived); page table {:.2f} KiB up "
-                   "(median; max {:.2f}: the entries that changed)\n",
-                   "", "", "", pages.median, pages.max, age.median, age.max, table.median / 1024.0, table.max / 1024.0);
+        const measure::Spread onGpu = costs.pagesCulledOnGpu();
+        fmt::print(
+            "{:>7} {:>7} {:<14} pages   drawn a frame med {:.0f} max {:.0f} (culled on the GPU med {:.0f}); page "
+            "requests read {:.0f} frames late (median; max {:.0f}; 0: the frame's own, −1: none had arrived); "
+            "page table {:.2f} KiB up (median; max {:.2f}: the entries that changed)\n",
+            "", "", "", pages.median, pages.max, onGpu.median, age.median, age.max, table.median / 1024.0,
+            table.max / 1024.0);
     }
     if (args.render.receiverMask && !args.render.noCull) {
         const measure::Spread masks = costs.masks();

@@ -8,6 +8,8 @@
 
 #include <algorithm>
 #include <bit>
+#include <cassert>
+#include <cstddef>
 #include <string>
 
 namespace shadowkit::gl {
@@ -43,7 +45,7 @@ void readThroughCopy(GLuint source, size_t offset, size_t bytes, void* out) {
 }
 
 constexpr size_t kCommandWords = kIndirectCommandWords;
-constexpr size_t kMaxPlanes = 8; // gpu_cull.comp's planes[]
+constexpr size_t kMaxPlanes = 6; // gpu_cull.comp's planes[]: a clip volume's or a box's
 
 GpuInstance gpuInstance(const core::Aabb& box, float scale) {
     return {glm::dvec4(box.min, double(scale)), glm::dvec4(box.max, 0.0)};
@@ -52,6 +54,32 @@ GpuInstance gpuInstance(const core::Aabb& box, float scale) {
 GLint uniform(GLuint program, const char* name) { return glGetUniformLocation(program, name); }
 
 } // namespace
+
+// gpu_cull.comp's Pass: std430 rounds it up to its 32-byte alignment (dvec4).
+struct GpuCulling::GpuPass {
+    glm::dvec4 planes[kMaxPlanes];
+    glm::dmat4 passClipFromWorld;
+    double passUnitsPerNdc, passMaxError;
+    int32_t planeCount;
+    uint32_t pad[3];
+};
+
+GpuCulling::GpuPass GpuCulling::gpuPass(std::span<const visibility::HalfSpace> volume,
+                                        const LodProjection* projection) {
+    static_assert(sizeof(GpuPass) == 352 && offsetof(GpuPass, passClipFromWorld) == 192 &&
+                  offsetof(GpuPass, planeCount) == 336);
+    GpuPass pass{};
+    assert(volume.size() <= kMaxPlanes); // clip volumes and boxes have at most six
+    const size_t planeCount = std::min(volume.size(), kMaxPlanes);
+    std::copy_n(volume.begin(), planeCount, pass.planes);
+    pass.planeCount = int32_t(planeCount);
+    if (projection) {
+        pass.passClipFromWorld = projection->clipFromWorld;
+        pass.passUnitsPerNdc = projection->unitsPerNdc;
+        pass.passMaxError = projection->maxError;
+    }
+    return pass;
+}
 
 std::unique_ptr<GpuCulling> GpuCulling::create(const scene::Scene& scene, std::span<const scene::MeshLods> lods,
                                                const GpuScene& gpuScene) {
@@ -115,9 +143,7 @@ std::unique_ptr<GpuCulling> GpuCulling::create(const scene::Scene& scene, std::s
     culling->m_levels = upload(levels);
     const size_t perInstance = std::max<size_t>(culling->m_instanceCount, 1) * sizeof(uint32_t);
     culling->m_flags = createBuffer(nullptr, perInstance);
-    culling->m_ranks = createBuffer(nullptr, perInstance);
-    culling->m_chunkSums =
-        createBuffer(nullptr, std::max<size_t>(culling->m_chunkCount, 1) * kMaxLodLevels * sizeof(uint32_t));
+    // The ranks and chunk sums grow with the passes a dispatch culls at once (run).
     culling->forget();
     return culling;
 }
@@ -163,6 +189,7 @@ void GpuCulling::beginFrame(size_t passes) {
     const size_t commands = std::max<size_t>(m_batchCount, 1) * kMaxLodLevels * m_passCapacity;
     m_commandWords = commands * kCommandWords;
     m_commands = createBuffer(nullptr, m_commandWords * sizeof(uint32_t));
+    m_passes = createBuffer(nullptr, m_passCapacity * sizeof(GpuPass));
 }
 
 void GpuCulling::cull(size_t pass, std::span<const visibility::HalfSpace> volume, const LodChoice* lod, Phase phase,
@@ -170,29 +197,6 @@ void GpuCulling::cull(size_t pass, std::span<const visibility::HalfSpace> volume
     const Stopwatch inGl;
     const GLuint p = m_stages[0].id();
     glProgramUniform1i(p, uniform(p, "phase"), static_cast<GLint>(phase));
-    glProgramUniform1i(p, uniform(p, "leaveClustered"), leaveClustered ? 1 : 0);
-    glm::dvec4 planes[kMaxPlanes]{};
-    const size_t planeCount = std::min(volume.size(), kMaxPlanes); // clip volumes and boxes have at most six
-    std::copy_n(volume.begin(), planeCount, planes);
-    glProgramUniform4dv(p, uniform(p, "planes"), GLsizei(kMaxPlanes), &planes[0].x);
-    glProgramUniform1i(p, uniform(p, "planeCount"), GLint(planeCount));
-    const bool shadowChain = lod && lod->shadow;
-    glProgramUniform1i(p, uniform(p, "lodOn"), lod ? 1 : 0);
-    glProgramUniform1i(p, uniform(p, "shadowChain"), shadowChain ? 1 : 0);
-    if (lod) {
-        glProgramUniformMatrix4dv(p, uniform(p, "passClipFromWorld"), 1, GL_FALSE, &lod->pass.clipFromWorld[0][0]);
-        glProgramUniform1d(p, uniform(p, "passUnitsPerNdc"), lod->pass.unitsPerNdc);
-        glProgramUniform1d(p, uniform(p, "passMaxError"), lod->pass.maxError);
-        glProgramUniform1d(p, uniform(p, "coverageScale"), lod->coverageScale);
-        glProgramUniform1d(p, uniform(p, "fadeBand"), lod->fadeBand);
-        glProgramUniform1i(p, uniform(p, "cameraBound"), lod->camera ? 1 : 0);
-        if (lod->camera) {
-            glProgramUniformMatrix4dv(p, uniform(p, "cameraClipFromWorld"), 1, GL_FALSE,
-                                      &lod->camera->clipFromWorld[0][0]);
-            glProgramUniform1d(p, uniform(p, "cameraUnitsPerNdc"), lod->camera->unitsPerNdc);
-            glProgramUniform1d(p, uniform(p, "cameraMaxError"), lod->camera->maxError);
-        }
-    }
     glProgramUniform1i(p, uniform(p, "maskOn"), mask ? 1 : 0);
     if (mask) {
         const int texels = kReceiverMaskSize * kReceiverMaskSize;
@@ -214,6 +218,57 @@ void GpuCulling::cull(size_t pass, std::span<const visibility::HalfSpace> volume
         glProgramUniform3fv(p, uniform(p, "wsEye"), 1, &m_wsEye.x);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCullStageBinding, m_pyramid.id());
     }
+    const GpuPass one = gpuPass(volume, lod ? &lod->pass : nullptr);
+    run(pass, std::span(&one, 1), lod, leaveClustered, replicas, std::span(&out, 1));
+    m_gl += inGl.elapsed();
+}
+
+void GpuCulling::cullPasses(size_t firstPass, std::span<const PassVolume> passes, const LodChoice* lod,
+                            bool leaveClustered, std::span<PassList> out) {
+    if (passes.empty()) return;
+    const Stopwatch inGl;
+    const GLuint p = m_stages[0].id();
+    glProgramUniform1i(p, uniform(p, "phase"), static_cast<GLint>(Phase::All));
+    glProgramUniform1i(p, uniform(p, "maskOn"), 0);
+    std::vector<GpuPass> each;
+    for (const PassVolume& pass : passes) each.push_back(gpuPass(pass.volume, lod ? &pass.projection : nullptr));
+    run(firstPass, each, lod, leaveClustered, 1, out);
+    m_gl += inGl.elapsed();
+}
+
+void GpuCulling::run(size_t firstPass, std::span<const GpuPass> passes, const LodChoice* lod, bool leaveClustered,
+                     uint32_t replicas, std::span<PassList> out) {
+    // Each pass's volume and projection at its index; the scratch for as many passes at once.
+    uploadToBuffer(m_passes.id(), GLintptr(firstPass * sizeof(GpuPass)), GLsizeiptr(passes.size() * sizeof(GpuPass)),
+                   passes.data());
+    if (passes.size() > m_scratchPasses) {
+        m_scratchPasses = passes.size();
+        m_ranks = createBuffer(nullptr, m_scratchPasses * std::max<size_t>(m_instanceCount, 1) * sizeof(uint32_t));
+        m_chunkSums = createBuffer(nullptr, m_scratchPasses * std::max<size_t>(m_chunkCount, 1) * kMaxLodLevels *
+                                                sizeof(uint32_t));
+    }
+    const GLuint p = m_stages[0].id();
+    glProgramUniform1i(p, uniform(p, "leaveClustered"), leaveClustered ? 1 : 0);
+    const bool shadowChain = lod && lod->shadow;
+    glProgramUniform1i(p, uniform(p, "lodOn"), lod ? 1 : 0);
+    glProgramUniform1i(p, uniform(p, "shadowChain"), shadowChain ? 1 : 0);
+    if (lod) {
+        glProgramUniform1d(p, uniform(p, "coverageScale"), lod->coverageScale);
+        glProgramUniform1d(p, uniform(p, "fadeBand"), lod->fadeBand);
+        glProgramUniform1i(p, uniform(p, "cameraBound"), lod->camera ? 1 : 0);
+        if (lod->camera) {
+            glProgramUniformMatrix4dv(p, uniform(p, "cameraClipFromWorld"), 1, GL_FALSE,
+                                      &lod->camera->clipFromWorld[0][0]);
+            glProgramUniform1d(p, uniform(p, "cameraUnitsPerNdc"), lod->camera->unitsPerNdc);
+            glProgramUniform1d(p, uniform(p, "cameraMaxError"), lod->camera->maxError);
+        }
+    }
+    for (const Program* stage : {&m_stages[0], &m_stages[1], &m_stages[2]}) {
+        const GLuint id = stage->id();
+        glProgramUniform1ui(id, uniform(id, "firstPass"), GLuint(firstPass));
+        glProgramUniform1ui(id, uniform(id, "instanceCount"), GLuint(m_instanceCount));
+        glProgramUniform1ui(id, uniform(id, "chunkCount"), GLuint(m_chunkCount));
+    }
     glUseProgram(p);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCullInstancesBinding, m_instances.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCullChunksBinding, m_chunks.id());
@@ -222,32 +277,29 @@ void GpuCulling::cull(size_t pass, std::span<const visibility::HalfSpace> volume
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCullFlagsBinding, m_flags.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCullRanksBinding, m_ranks.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCullChunkSumsBinding, m_chunkSums.id());
-    dispatchCompute(GLuint(m_chunkCount), 1, 1);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCullPassesBinding, m_passes.id());
+    const auto passCount = GLuint(passes.size());
+    dispatchCompute(GLuint(m_chunkCount), passCount, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    compact(pass, shadowChain, out, replicas);
-    m_gl += inGl.elapsed();
-}
 
-void GpuCulling::compact(size_t pass, bool shadowChain, PassList& out, uint32_t replicas) {
     // Stage 2: offsets and commands; stage 3: the lists.
-    const GLuint firstCommand = GLuint(pass * m_batchCount * kMaxLodLevels);
     const GLuint offsets = m_stages[1].id(), scatter = m_stages[2].id();
     glProgramUniform1ui(offsets, uniform(offsets, "batchCount"), GLuint(m_batchCount));
     glProgramUniform1i(offsets, uniform(offsets, "shadowChain"), shadowChain ? 1 : 0);
-    glProgramUniform1ui(offsets, uniform(offsets, "firstCommand"), firstCommand);
     glProgramUniform1ui(offsets, uniform(offsets, "replicas"), replicas);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCullStageBinding, m_commands.id());
     glUseProgram(offsets);
-    dispatchCompute(GLuint((kMaxLodLevels * m_batchCount + 63) / 64), 1, 1);
+    dispatchCompute(GLuint((kMaxLodLevels * m_batchCount + 63) / 64), passCount, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    const GLuint passOffset = GLuint(pass * kMaxLodLevels * m_instanceCount);
-    glProgramUniform1ui(scatter, uniform(scatter, "passOffset"), passOffset);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCullStageBinding, m_lists.id());
     glUseProgram(scatter);
-    dispatchCompute(GLuint(m_chunkCount), 1, 1);
+    dispatchCompute(GLuint(m_chunkCount), passCount, 1);
     // The draws read the lists in vertex shaders and the commands as indirect arguments.
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+    for (size_t i = 0; i < out.size(); ++i) describe(firstPass + i, shadowChain, out[i]);
+}
 
+void GpuCulling::describe(size_t pass, bool shadowChain, PassList& out) const {
     // Each batch's kMaxLodLevels levels get a region of its instance count each: the CPU knows where
     // every list lies without knowing how long it is.
     out.indices.clear();
@@ -261,10 +313,10 @@ void GpuCulling::compact(size_t pass, bool shadowChain, PassList& out, uint32_t 
             out.count[b * kMaxLodLevels + l] = m_batchSize[b];
         }
     }
-    out.offset = passOffset;
+    out.offset = uint32_t(pass * kMaxLodLevels * m_instanceCount);
     out.buffer = m_lists.id();
     out.commands = m_commands.id();
-    out.indirect = firstCommand;
+    out.indirect = int64_t(pass * m_batchCount * kMaxLodLevels);
 }
 
 void GpuCulling::buildPyramid(const CameraDepthTarget& target) {

@@ -17,8 +17,9 @@
 // detail rule, in double precision, and lists in increasing instance order (gpu_cull.comp),
 // so the lists equal Visibility::collect's and the pixels a CPU-culled frame's. Receiver masks
 // (Bittner et al. 2011) are tested on the GPU too, at the mask's full resolution, and so are
-// the local lights' lists and the virtual pages' (but for the large clustered meshes, whose
-// clusters the CPU picks per page).
+// the local lights' lists and the virtual pages': all of a frame's pages in one set of three
+// dispatches (cullPasses; gl_WorkGroupID.y the page), but for the large clustered meshes, whose
+// clusters the CPU picks per page.
 #pragma once
 
 #include "gl_object.h"
@@ -92,6 +93,16 @@ public:
     // left out, for the CPU to draw of them what meets the volume (a virtual page's terrain).
     void cull(size_t pass, std::span<const visibility::HalfSpace> volume, const LodChoice* lod, Phase phase,
               PassList& out, const GpuReceiverMask* mask = nullptr, uint32_t replicas = 1, bool leaveClustered = false);
+    // One pass of several culled at once: what it keeps and its own level-of-detail projection.
+    struct PassVolume {
+        std::vector<visibility::HalfSpace> volume;
+        LodProjection projection; // LodChoice::pass; the rest of the choice is the dispatch's
+    };
+    // Passes firstPass, firstPass + 1, … into out[0], out[1], …, as many cull()s of phase All with
+    // no mask and one replica would, each with `lod` but its own projection — in one set of three
+    // dispatches whatever their number (a frame's virtual pages).
+    void cullPasses(size_t firstPass, std::span<const PassVolume> passes, const LodChoice* lod, bool leaveClustered,
+                    std::span<PassList> out);
 
     // The camera's two-phase pass (passes 0 to kCameraPasses − 1): the early and late
     // instances drawn into `target`'s depth (cleared here; the camera's Frame uniforms must
@@ -121,14 +132,21 @@ private:
     void buildPyramid(const CameraDepthTarget& target);
     // A pass's region of the lists: every instance at every level.
     size_t regionWords() const { return kMaxLodLevels * std::max<size_t>(m_instanceCount, 1); }
-    // Stages 2 and 3 of gpu_cull.comp after stage 1: the commands and lists of region `pass`.
-    void compact(size_t pass, bool shadowChain, PassList& out, uint32_t replicas = 1);
+    struct GpuPass; // gpu_cull.comp's Pass
+    static GpuPass gpuPass(std::span<const visibility::HalfSpace> volume, const LodProjection* projection);
+    // gpu_cull.comp's three stages over `passes` (uploaded at firstPass onwards), with the phase,
+    // mask and occlusion uniforms the caller set: the commands and lists of each, described in `out`.
+    void run(size_t firstPass, std::span<const GpuPass> passes, const LodChoice* lod, bool leaveClustered,
+             uint32_t replicas, std::span<PassList> out);
+    // Where pass `pass`'s list and commands lie, into `out`.
+    void describe(size_t pass, bool shadowChain, PassList& out) const;
 
     const GpuScene& m_scene;
     Program m_stages[3], m_pyramidProgram;
     ProgramPair m_depthPrograms; // the camera depth pre-pass
     Buffer m_instances, m_chunks, m_batches, m_levels, m_flags, m_ranks, m_chunkSums;
-    Buffer m_lists, m_commands;
+    size_t m_scratchPasses = 0; // passes m_ranks and m_chunkSums hold at once
+    Buffer m_lists, m_commands, m_passes;
     size_t m_commandWords = 0; // m_commands' size in words
     size_t m_instanceCount = 0, m_chunkCount = 0, m_batchCount = 0;
     std::vector<uint32_t> m_batchFirst, m_batchSize;      // per scene batch

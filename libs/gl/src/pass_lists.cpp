@@ -243,6 +243,7 @@ void PassLists::planPages(const PassPlanInputs& in, VirtualPages& pages, std::ve
     }
     const double slotTexels = setup.clipmap->pageTexels + 2.0 * guard;
     const std::vector<uint32_t> order = nearestFirst(in.wsTowardsLight);
+    std::vector<GpuCulling::PassVolume> onGpuPasses;
     std::vector<uint32_t> clustered;
     for (size_t i = 0; i < toRender.size(); ++i) {
         m_pages[i].batchOrder = order;
@@ -251,22 +252,35 @@ void PassLists::planPages(const PassPlanInputs& in, VirtualPages& pages, std::ve
         // cached neighbours (and its texels already match the pixels it serves).
         const LodChoice lod = lodChoiceOf({toRender[i].clipFromWorld, 0.5 * slotTexels, settings.lodTexelError},
                                           std::nullopt, true, settings);
-        const std::vector<visibility::HalfSpace> volume = visibility::clipVolume(toRender[i].clipFromWorld, false);
+        std::vector<visibility::HalfSpace> volume = visibility::clipVolume(toRender[i].clipFromWorld, false);
         if (i < onGpu) {
-            m_pageCulled[i].batchOrder = order;
-            m_gpuCulling->cull(firstPagePass(in) + i, volume, settings.lod ? &lod : nullptr, GpuCulling::Phase::All,
-                               m_pageCulled[i], nullptr, 1, /*leaveClustered=*/true);
             clustered.clear();
             for (const uint32_t instance : m_clusteredInstances)
                 if (!visibility::isOutside(volume, m_visibility->hierarchy().itemBounds(instance)))
                     clustered.push_back(instance);
             m_visibility->fromItems(clustered, settings.lod ? &lod : nullptr, m_pages[i]);
+            m_pageCulled[i].batchOrder = order;
+            onGpuPasses.push_back({std::move(volume), lod.pass});
         } else {
             m_visibility->collect(volume, settings.culling != Culling::Off, settings.lod ? &lod : nullptr, m_pages[i]);
         }
         lists.push_back(&m_pages[i]);
     }
-    if (gpu) m_costs.inGl += m_gpuCulling->takeGlTimes();
+    if (onGpu > 0) {
+        // Every page's casters in one set of dispatches: the choice of levels but for each page's
+        // own projection is the same for all (lodChoiceOf's shadow pass without a camera bound).
+        const LodChoice shared = lodChoiceOf({}, std::nullopt, true, settings);
+        m_gpuCulling->cullPasses(firstPagePass(in), onGpuPasses, settings.lod ? &shared : nullptr,
+                                 /*leaveClustered=*/true, std::span(m_pageCulled).first(onGpu));
+        // Of each page's ranges, those of the levels its instances can take: the others would be
+        // draws of no instance (a page's levels follow the instances' scales alone).
+        for (size_t i = 0; i < onGpu; ++i) {
+            LodChoice lod = shared;
+            lod.pass = onGpuPasses[i].projection;
+            m_visibility->emptyLevelsNoneTakes(m_pageCulled[i], settings.lod ? &lod : nullptr);
+        }
+        m_costs.inGl += m_gpuCulling->takeGlTimes();
+    }
 }
 
 LevelsDrawn PassLists::levelsDrawn() const {

@@ -213,6 +213,7 @@ const std::string& shaderPrelude() {
         define("SK_CULL_RANKS_BINDING", kCullRanksBinding);
         define("SK_CULL_CHUNK_SUMS_BINDING", kCullChunkSumsBinding);
         define("SK_CULL_STAGE_BINDING", kCullStageBinding);
+        define("SK_CULL_PASSES_BINDING", kCullPassesBinding);
         define("SK_CULL_GROUP", kCullGroup);
         define("SK_CULL_LEVELS", static_cast<long long>(kMaxLodLevels));
         define("SK_CULL_MAX_PYRAMID_LEVELS", kCullMaxPyramidLevels);

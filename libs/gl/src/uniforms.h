@@ -73,8 +73,9 @@ inline constexpr unsigned kCullRanksBinding = 5;     // per instance: its level 
 inline constexpr unsigned kCullChunkSumsBinding = 6; // per chunk and level: count, then offset
 inline constexpr unsigned kCullStageBinding =
     7; // each stage its own: the pyramid read (1), commands (2), lists (3), or the pyramid written
-inline constexpr unsigned kCullPyramidUnit = 0; // GPU culling: the depth the pyramid is built from
-inline constexpr uint32_t kCullGroup = 128;     // GPU culling: instances per work group (gpu_cull.comp's chunks)
+inline constexpr unsigned kCullPassesBinding = 9; // per pass: its volume and level-of-detail projection
+inline constexpr unsigned kCullPyramidUnit = 0;   // GPU culling: the depth the pyramid is built from
+inline constexpr uint32_t kCullGroup = 128;       // GPU culling: instances per work group (gpu_cull.comp's chunks)
 inline constexpr int kCullMaxPyramidLevels =
     16;                                         // GPU culling: depth pyramid levels (level 0 up to 32768 texels a side)
 inline constexpr int kInstanceBaseLocation = 0; // uniform uint instanceBase (main.vert): surface identity

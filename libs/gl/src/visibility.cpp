@@ -26,6 +26,13 @@ double ndcPerMetre(const core::Mat4& clipFromWorld, const core::Vec3& ws) {
     return largest;
 }
 
+// Whether the map is affine (its w row 0, 0, 0, 1: an orthographic map, a virtual page's): a metre
+// then spans the same NDC everywhere, ndcPerMetre's w being 1 exactly at every point.
+bool affine(const core::Mat4& clipFromWorld) {
+    return clipFromWorld[0][3] == 0.0 && clipFromWorld[1][3] == 0.0 && clipFromWorld[2][3] == 0.0 &&
+           clipFromWorld[3][3] == 1.0;
+}
+
 } // namespace
 
 scene::LodOptions lodOptionsOf(const scene::Scene& scene, const scene::Mesh& mesh) {
@@ -55,6 +62,13 @@ Visibility::Visibility(const scene::Scene& scene, std::span<const scene::MeshLod
         }
     }
     m_batchFirst.push_back(first); // end of the last batch
+    for (size_t b = 0; b + 1 < m_batchFirst.size(); ++b) {
+        const auto scales = std::span(m_instanceScale).subspan(m_batchFirst[b], m_batchFirst[b + 1] - m_batchFirst[b]);
+        if (!scales.empty())
+            m_batchScale.push_back({*std::ranges::min_element(scales), *std::ranges::max_element(scales)});
+        else
+            m_batchScale.push_back({1.0f, 1.0f});
+    }
     for (const scene::MeshLods& mesh : lods) {
         for (const auto& [chain, bounds] :
              {std::pair{&mesh.camera, &m_cameraLevels}, {&mesh.shadow, &m_shadowLevels}}) {
@@ -125,12 +139,7 @@ void Visibility::build(const LodChoice* lod, PassList& out) {
             auto boundOf = [&](const LevelBound& l) {
                 return l.keepsCoverage ? allowed * lod->coverageScale : allowed;
             };
-            uint8_t level = 0;
-            while (level + 1u < levels.size()) {
-                const LevelBound& next = levels[level + 1u];
-                if (!(double(next.objectError) <= boundOf(next))) break;
-                ++level;
-            }
+            const uint8_t level = levelWithin(levels, allowed, lod->coverageScale);
             m_levels[k] = level;
             // Crossing into the next level only where it keeps coverage: the leaves' levels are
             // alpha-tested, so their fragment stages can drop the other level's pixels.
@@ -174,6 +183,42 @@ void Visibility::build(const LodChoice* lod, PassList& out) {
         if (fade != 0) out.indices[cursor[slotOf[k] + 1]++] = local | fade | kFadeIncoming;
     }
     m_listTimes += time.elapsed();
+}
+
+uint8_t Visibility::levelWithin(const std::vector<LevelBound>& levels, double allowed, double coverageScale) {
+    uint8_t level = 0;
+    while (level + 1u < levels.size()) {
+        const LevelBound& next = levels[level + 1u];
+        if (!(double(next.objectError) <= (next.keepsCoverage ? allowed * coverageScale : allowed))) break;
+        ++level;
+    }
+    return level;
+}
+
+void Visibility::emptyLevelsNoneTakes(PassList& list, const LodChoice* lod) const {
+    // Through an affine map without a camera bound an instance's allowed error is the map's bound
+    // over its scale alone, the same arithmetic as build()'s; the level only grows with it. So a
+    // batch's instances take the levels between those of its largest and its smallest scale (and
+    // the next, crossing into it).
+    if (lod && (lod->camera || !affine(lod->pass.clipFromWorld))) return;
+    const auto& chains = list.shadow ? m_shadowLevels : m_cameraLevels;
+    const double npm = lod ? ndcPerMetre(lod->pass.clipFromWorld, core::Vec3(0.0)) : 0.0;
+    for (size_t b = 0; b + 1 < m_batchFirst.size(); ++b) {
+        size_t first = 0, last = 0;
+        if (lod && m_batchFirst[b + 1] > m_batchFirst[b]) {
+            const std::vector<LevelBound>& levels = chains[m_instanceMesh[m_batchFirst[b]]];
+            const auto allowedAt = [&](float scale) {
+                return lod->pass.maxError / (lod->pass.unitsPerNdc * npm * double(scale));
+            };
+            if (levels.size() >= 2) {
+                first = levelWithin(levels, allowedAt(m_batchScale[b].largest), lod->coverageScale);
+                last = levelWithin(levels, allowedAt(m_batchScale[b].smallest), lod->coverageScale);
+                if (lod->fadeBand > 0.0 && last + 1 < levels.size()) ++last;
+            }
+        }
+        for (size_t level = 0; level < kMaxLodLevels && b * kMaxLodLevels + level < list.count.size(); ++level)
+            if (level < first || level > last) list.count[b * kMaxLodLevels + level] = 0;
+    }
 }
 
 void Visibility::upload(std::span<PassList* const> lists) {

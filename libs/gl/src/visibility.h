@@ -117,6 +117,11 @@ public:
     // The same for a given set of global instance indices (any order, no repeats), e.g. what
     // occlusion culling drew: the list comes out in instance order like collect()'s.
     void fromItems(std::span<const uint32_t> items, const LodChoice* lod, PassList& out);
+    // A list the GPU culled with `lod` (its ranges are capacities, GpuCulling): the ranges of the
+    // levels none of its instances can take emptied, so that they are not drawn — when the level
+    // depends on an instance's scale alone (an affine map, no camera bound: a virtual page's),
+    // else nothing changes.
+    void emptyLevelsNoneTakes(PassList& list, const LodChoice* lod) const;
     // An instance moved: its new world box, refitted into the hierarchy up to the root.
     void move(uint32_t globalInstance, const core::Aabb& wsBox) { m_hierarchy.update(globalInstance, wsBox); }
     // After a frame's moves: rebuilds the hierarchy when the refits have made it
@@ -151,6 +156,13 @@ private:
         bool keepsCoverage = false;
     };
     std::vector<std::vector<LevelBound>> m_cameraLevels, m_shadowLevels; // per mesh, per level
+    // The coarsest level of `levels` whose error is within `allowed` (object metres; levels that
+    // keep coverage within coverageScale times it): the level rule of build() and gpu_cull.comp.
+    static uint8_t levelWithin(const std::vector<LevelBound>& levels, double allowed, double coverageScale);
+    struct ScaleRange {
+        float smallest = 1.0f, largest = 1.0f;
+    };
+    std::vector<ScaleRange> m_batchScale;    // per batch: its instances' scales
     std::vector<uint8_t> m_levels;           // level per visible instance, reused every pass
     std::vector<uint8_t> m_fades;            // its crossing into the next level (fadeStepsOf), reused
     std::vector<uint32_t> m_slots, m_cursor; // counting-sort scratch, reused every pass

@@ -164,6 +164,62 @@ TEST_F(GpuCullingTest, ListsEqualTheCpuPathsWhileInstancesCrossLevels) {
     EXPECT_GT(drawn.crossing, 100u);
 }
 
+// Many shadow passes culled in one set of dispatches (a frame's virtual pages): each pass's list
+// equals the CPU's for its own volume and projection, with crossings between levels, and a
+// batch of passes placed after others leaves those others' lists as they were.
+TEST_F(GpuCullingTest, PassesCulledTogetherEqualTheCpuPathsEachWithItsOwnVolumeAndLevels) {
+    const scene::Scene forest = gl::testing::smallLeafyForest();
+    std::vector<scene::MeshLods> lods;
+    for (const scene::Mesh& mesh : forest.meshes) lods.push_back(scene::buildLods(mesh));
+    const gl::GpuScene gpuScene(forest, lods);
+    gl::Visibility visibility(forest, lods);
+    const auto culling = gl::GpuCulling::create(forest, lods, gpuScene);
+    ASSERT_TRUE(culling->buildPrograms());
+    std::mt19937 random(11);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0), between(0.0, 1.0);
+    // Orthographic maps of random sizes, places and sun directions, as virtual pages are.
+    constexpr size_t kFirst = 3, kPasses = 24;
+    std::vector<gl::GpuCulling::PassVolume> passes;
+    for (size_t i = 0; i < kPasses; ++i) {
+        const core::Vec3 wsTowardsSun = glm::normalize(core::Vec3(unit(random), 0.4 + between(random), unit(random)));
+        const core::Vec3 wsCentre(120.0 * unit(random), 0.0, 120.0 * unit(random));
+        const double half = 5.0 + 60.0 * between(random);
+        const core::Mat4 lightFromWorld =
+            glm::lookAt(wsCentre + 200.0 * wsTowardsSun, wsCentre,
+                        std::abs(wsTowardsSun.y) > 0.99 ? core::Vec3(1, 0, 0) : core::Vec3(0, 1, 0));
+        const core::Mat4 clipFromWorld = glm::orthoRH_ZO(-half, half, -half, half, 1.0, 400.0) * lightFromWorld;
+        passes.push_back({visibility::clipVolume(clipFromWorld, false), {clipFromWorld, 64.0 + 64.0 * (i % 3), 0.5}});
+    }
+    const gl::LodChoice shared{{}, std::nullopt, true, 4.0, 0.4};
+    // Two other passes first, then the batch after them: neither disturbs the other.
+    culling->beginFrame(kFirst + kPasses);
+    gl::PassList before;
+    const std::vector<visibility::HalfSpace> everything =
+        visibility::clipVolume(glm::orthoRH_ZO(-200.0, 200.0, -200.0, 200.0, 1.0, 600.0) *
+                                   glm::lookAt(core::Vec3(0, 300, 0), core::Vec3(0), core::Vec3(0, 0, -1)),
+                               false);
+    culling->cull(0, everything, nullptr, gl::GpuCulling::Phase::All, before);
+    std::vector<gl::PassList> gpu(kPasses);
+    culling->cullPasses(kFirst, passes, &shared, false, gpu);
+    size_t kept = 0, crossing = 0;
+    for (size_t i = 0; i < kPasses; ++i) {
+        gl::LodChoice lod = shared;
+        lod.pass = passes[i].projection;
+        gl::PassList cpu;
+        visibility.collect(passes[i].volume, true, &lod, cpu);
+        const gl::PassList back = culling->read(gpu[i]);
+        EXPECT_EQ(back.count, cpu.count) << "pass " << i;
+        EXPECT_EQ(back.indices, cpu.indices) << "pass " << i;
+        kept += cpu.instances();
+        for (const uint32_t entry : cpu.indices) crossing += (entry & gl::kFadeIncoming) != 0;
+    }
+    gl::PassList all;
+    visibility.collect(everything, true, nullptr, all);
+    EXPECT_EQ(culling->read(before).indices, all.indices) << "the pass culled before the batch";
+    EXPECT_GT(kept, 200u) << "the passes keep too little to compare";
+    EXPECT_GT(crossing, 0u) << "no instance crossing levels";
+}
+
 TEST_F(GpuCullingTest, TwoPhaseFramesEqualFrustumCulledFramesFromTheFirstAndAfterCuts) {
     // The first frame (nothing visible last frame: everything comes from the late phase), a
     // still frame (everything from the early phase), and a turn to a new view (a cut: what is
@@ -341,15 +397,16 @@ TEST_F(GpuCullingTest, AGpuDrivenFrameUploadsNoListsAndDispatchesAsManyPassesWha
         << "the CPU path's lists: an index per instance drawn";
 }
 
-TEST_F(GpuCullingTest, VirtualPagesCulledOnTheGpuDrawTheCpuPathsPixelsAndUploadNoCasterLists) {
+TEST_F(GpuCullingTest, VirtualPagesCulledOnTheGpuDrawTheCpuPathsPixelsInThreeDispatchesWhateverTheirNumber) {
     // A virtual clipmap along a moving camera, drawn by a GPU-driven renderer and by a frustum-
     // culled one: every frame the same pixels, the same pages, and the same casters counted in
     // the shadow pass — instances and triangles, the terrain's by the clusters a page draws of it
     // (96² quads: a large mesh, whose clusters the CPU picks per page on both paths), not the
     // whole of it per page. The GPU-driven frame culls on the CPU the pages it has no room for —
-    // the first frame's, all of them — and from then on culls each page's other casters on the
-    // GPU, uploading no list of them: at least an index per instance fewer bytes than the CPU
-    // path. The leafy forest's pages draw their leaves' opacity layers from the same lists.
+    // the first frame's, all of them — and from then on every page's other casters on the GPU,
+    // all pages in the same three dispatches: a frame drawing dozens of pages dispatches three
+    // more compute passes than the same frame drawing none. The leafy forest's pages draw their
+    // leaves' opacity layers from the same lists.
     struct Case {
         const char* name;
         scene::Scene forest;
@@ -363,11 +420,11 @@ TEST_F(GpuCullingTest, VirtualPagesCulledOnTheGpuDrawTheCpuPathsPixelsAndUploadN
         ASSERT_TRUE(gpu && cpu);
         scene::ResolvedView view = gl::testing::standardView(c.forest, "perpendicular");
         view.camera.aspect = 160.0 / 90.0;
-        int culledOnGpu = 0;
+        int culledOnGpu = 0, mostPages = 0;
         size_t evalDrawn = 0;
         for (int frame = 0; frame < 4; ++frame) {
             core::PerspectiveCamera camera = view.camera;
-            camera.wsEye += core::Vec3(3.0 * frame, 0.0, -2.0 * frame); // new pages in every frame
+            camera.wsEye += core::Vec3(6.0 * frame, 0.0, -4.0 * frame); // new pages in every frame
             core::ShadowSetupInputs in{.camera = camera, .light = view.light, .wsSceneBounds = c.forest.wsBounds()};
             in.technique = core::Technique::Virtual;
             in.virtualMaps.imageHeight = 90;
@@ -376,13 +433,11 @@ TEST_F(GpuCullingTest, VirtualPagesCulledOnTheGpuDrawTheCpuPathsPixelsAndUploadN
             ASSERT_TRUE(setup) << setup.error();
             gl::RenderSettings settings = smallFrame(160, 90, gl::Culling::Gpu);
             settings.foliageOpacity = c.opacity;
-            const gl::Traffic beforeGpu = gl::trafficSoFar();
+            const gl::Traffic before = gl::trafficSoFar();
             const auto a = (*gpu)->render(camera, view.light, *setup, settings);
-            const int64_t gpuBytes = (gl::trafficSoFar() - beforeGpu).bytesUploaded;
+            const int64_t dispatches = (gl::trafficSoFar() - before).dispatches;
             settings.culling = gl::Culling::Frustum;
-            const gl::Traffic beforeCpu = gl::trafficSoFar();
             const auto b = (*cpu)->render(camera, view.light, *setup, settings);
-            const int64_t cpuBytes = (gl::trafficSoFar() - beforeCpu).bytesUploaded;
             ASSERT_TRUE(a && b) << (a ? b.error() : a.error());
             ASSERT_TRUE(a->virtualPages && b->virtualPages);
             const std::string at = std::string(c.name) + ", frame " + std::to_string(frame);
@@ -399,10 +454,20 @@ TEST_F(GpuCullingTest, VirtualPagesCulledOnTheGpuDrawTheCpuPathsPixelsAndUploadN
             }
             EXPECT_EQ(a->virtualPages->pagesCulledOnGpu, pages) << at << ": fewer pages than the first frame's room";
             culledOnGpu += a->virtualPages->pagesCulledOnGpu;
-            // Each page's list on the CPU path holds an index per instance it draws (the terrain's
-            // one among them, which the GPU-driven path uploads too).
-            const int64_t pageIndices = int64_t(b->shadow.instances) - pages;
-            EXPECT_LE(gpuBytes + int64_t(sizeof(uint32_t)) * pageIndices, cpuBytes) << at;
+            // The same frame again draws no page: its dispatches are the frame's but the pages'.
+            settings.culling = gl::Culling::Gpu;
+            const gl::Traffic beforeStill = gl::trafficSoFar();
+            const auto still = (*gpu)->render(camera, view.light, *setup, settings);
+            ASSERT_TRUE(still && still->virtualPages);
+            EXPECT_EQ(still->virtualPages->pagesRendered, 0) << at;
+            // Three culling dispatches, and the page table's entries written in place (page_table.h).
+            const int tableUpdates = a->virtualPages->tableBytes > 0 ? 1 : 0;
+            if (pages > 0)
+                EXPECT_EQ(dispatches, (gl::trafficSoFar() - beforeStill).dispatches + 3 + tableUpdates)
+                    << at << ": " << pages << " pages";
+            mostPages = std::max(mostPages, pages);
+            settings.culling = gl::Culling::Frustum;
+            ASSERT_TRUE((*cpu)->render(camera, view.light, *setup, settings));
             // An evaluation's frame, half a step on (new pages again), reads what its lists drew
             // back itself: one wait, not the figures' ring.
             camera.wsEye += core::Vec3(1.5, 0.0, -1.0);
@@ -419,6 +484,7 @@ TEST_F(GpuCullingTest, VirtualPagesCulledOnTheGpuDrawTheCpuPathsPixelsAndUploadN
             EXPECT_EQ(gpuEval.triangles, cpuEval.triangles) << at << ", eval";
         }
         EXPECT_GT(culledOnGpu, 0) << c.name << ": no page culled on the GPU after the first frame";
+        EXPECT_GE(mostPages, 8) << c.name << ": no frame drew pages enough to tell three dispatches from one a page";
         EXPECT_GT(evalDrawn, 0u) << c.name << ": the evaluations drew no page";
     }
 }

@@ -55,6 +55,7 @@ void FrameCosts::add(const frame::DrawnFrame& drawn, const gl::Traffic& traffic)
         m_pagesRendered.push_back(double(v->pagesRendered));
         m_requestsAge.push_back(double(v->marksAge));
         m_tableBytes.push_back(double(v->tableBytes));
+        m_pagesOnGpu.push_back(double(v->pagesCulledOnGpu));
     }
     m_last = stats;
     addLate(stats.gpuFigures);
@@ -87,6 +88,7 @@ Spread FrameCosts::workGroups() const { return spreadOf(steady(m_workGroups)); }
 Spread FrameCosts::pagesRendered() const { return spreadOf(steady(m_pagesRendered)); }
 Spread FrameCosts::requestsAge() const { return spreadOf(steady(m_requestsAge)); }
 Spread FrameCosts::tableBytes() const { return spreadOf(steady(m_tableBytes)); }
+Spread FrameCosts::pagesCulledOnGpu() const { return spreadOf(steady(m_pagesOnGpu)); }
 
 std::vector<double> FrameCosts::steadyFrameCpu() const { return steady(m_frameCpu); }
 
@@ -142,7 +144,8 @@ nlohmann::json FrameCosts::json() const {
     if (!m_pagesRendered.empty())
         j["virtual"] = {{"pages_rendered", toJson(pagesRendered())},
                         {"requests_age", toJson(requestsAge())},
-                        {"table_bytes", toJson(tableBytes())}};
+                        {"table_bytes", toJson(tableBytes())},
+                        {"pages_culled_on_gpu", toJson(pagesCulledOnGpu())}};
     return j;
 }
 

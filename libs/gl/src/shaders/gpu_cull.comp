@@ -1,4 +1,5 @@
-// GPU-driven culling (gl/src/gpu_culling.h): one pass's instances into draw lists and
+// GPU-driven culling (gl/src/gpu_culling.h): the instances of one pass, or of several passes of
+// one kind at once (a frame's virtual pages; gl_WorkGroupID.y the pass), into draw lists and
 // indirect commands, with the same rules as the CPU path (gl/src/visibility.cpp), in three
 // dispatches so that every list comes out in increasing instance order — the order a full
 // draw uses, so culling changes no pixel even where two instances' depths tie:
@@ -32,6 +33,15 @@ struct Batch {
     uint clustered; // 1: its mesh draws by triangle clusters (a terrain: GpuScene::drawsByClusters)
     uint pad1;
 };
+// A pass: what it keeps and its own level-of-detail projection (the rest of the choice, below,
+// is the dispatch's). passes[] is indexed by GpuCulling's pass, as the lists' regions and the
+// commands are; a dispatch culls passes firstPass to firstPass + gl_NumWorkGroups.y − 1.
+struct Pass {
+    dvec4 planes[6]; // half-spaces: inside where dot(xyz, p) + w >= 0 (a clip volume's or a box's)
+    dmat4 passClipFromWorld;
+    double passUnitsPerNdc, passMaxError;
+    int planeCount;
+};
 struct Level {
     float cameraError, shadowError;          // object metres (scene::LodLevel::objectError)
     uint cameraIndexCount, cameraFirstIndex; // in the mesh's index buffer
@@ -46,10 +56,14 @@ layout(std430, binding = SK_CULL_CHUNKS_BINDING) readonly buffer Chunks {
 layout(std430, binding = SK_CULL_BATCHES_BINDING) readonly buffer Batches { Batch batches[]; };
 layout(std430, binding = SK_CULL_RANKS_BINDING) buffer Ranks {
     uint ranks[];
-}; // per global instance: fade << 24 | next level's rank << 16 | level << 8 | rank, or ~0u
+}; // [pass * instanceCount + global instance]: fade << 24 | next level's rank << 16 | level << 8 | rank, or ~0u
 layout(std430, binding = SK_CULL_CHUNK_SUMS_BINDING) buffer ChunkSums {
     uint chunkSums[];
-}; // [chunk * SK_CULL_LEVELS + level]: the chunk's count at the level, then its offset
+}; // [(pass * chunkCount + chunk) * SK_CULL_LEVELS + level]: the chunk's count at the level, then its offset
+layout(std430, binding = SK_CULL_PASSES_BINDING) readonly buffer Passes { Pass passes[]; };
+uniform uint firstPass;
+// ranks[] and chunkSums[] hold the dispatch's passes one after another (gl_WorkGroupID.y).
+uniform uint instanceCount, chunkCount;
 
 const uint kNotKept = 0xFFFFFFFFu;
 
@@ -64,13 +78,10 @@ layout(std430, binding = SK_CULL_FLAGS_BINDING) buffer Flags {
 // What the pass keeps (GpuCulling::Phase).
 const int kAll = 0, kLastVisible = 1, kNewlyVisible = 2, kVisible = 3;
 uniform int phase;
-uniform dvec4 planes[8]; // half-spaces: inside where dot(xyz, p) + w >= 0
-uniform int planeCount;
-// Levels of detail (gl/src/visibility.h, LodChoice): off when lodOn is false.
+// Levels of detail (gl/src/visibility.h, LodChoice; each pass's own projection in passes[]): off
+// when lodOn is false.
 uniform bool lodOn;
 uniform bool shadowChain;
-uniform dmat4 passClipFromWorld;
-uniform double passUnitsPerNdc, passMaxError;
 uniform bool cameraBound;
 uniform dmat4 cameraClipFromWorld;
 uniform double cameraUnitsPerNdc, cameraMaxError;
@@ -97,10 +108,10 @@ uniform bool maskLinear; // the map stores dot(maskLinearDepthFromWorld, (ws, 1)
 uniform dvec4 maskLinearDepthFromWorld;
 const int kMaxMaskTexels = 1024; // a caster's footprint wider than this is kept untested
 
-bool outsideVolume(dvec3 lo, dvec3 hi) {
+bool outsideVolume(uint region, dvec3 lo, dvec3 hi) {
     if (!(lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z)) return true; // empty (or NaN) boxes
-    for (int i = 0; i < planeCount; ++i) {
-        const dvec4 h = planes[i];
+    for (int i = 0; i < passes[region].planeCount; ++i) {
+        const dvec4 h = passes[region].planes[i];
         // The corner furthest along the normal ("positive vertex").
         const dvec3 p = dvec3(h.x >= 0.0 ? hi.x : lo.x, h.y >= 0.0 ? hi.y : lo.y, h.z >= 0.0 ? hi.z : lo.z);
         if (!(h.x * p.x + h.y * p.y + h.z * p.z + h.w >= 0.0)) return true;
@@ -135,10 +146,11 @@ uint fadeOf(double allowed, double coarserError) {
 }
 
 // The instance's level, and in .y its crossing into the next (fadeOf).
-uvec2 levelOf(uint batch, dvec3 centre, double scale) {
+uvec2 levelOf(uint region, uint batch, dvec3 centre, double scale) {
     const uint count = shadowChain ? batches[batch].shadowLevels : batches[batch].cameraLevels;
     if (!lodOn || count < 2u) return uvec2(0u);
-    double allowed = allowedBy(passClipFromWorld, passUnitsPerNdc, passMaxError, centre, scale);
+    double allowed = allowedBy(passes[region].passClipFromWorld, passes[region].passUnitsPerNdc,
+                               passes[region].passMaxError, centre, scale);
     if (cameraBound)
         allowed = min(allowed, allowedBy(cameraClipFromWorld, cameraUnitsPerNdc, cameraMaxError, centre, scale));
     uint level = 0u;
@@ -236,6 +248,7 @@ uint counterOf(Counters c, uint level) { return c.word[level >> 2] >> (8u * (lev
 
 void main() {
     const uvec4 chunk = chunks[gl_WorkGroupID.x];
+    const uint pass = gl_WorkGroupID.y;
     const uint local = gl_LocalInvocationID.x;
     const uint global = chunk.y + local;
     Counters mine;
@@ -245,7 +258,7 @@ void main() {
     if (local < chunk.z) {
         const Instance instance = instances[global];
         const dvec3 lo = instance.minScale.xyz, hi = instance.max.xyz;
-        const bool inVolume = !outsideVolume(lo, hi);
+        const bool inVolume = !outsideVolume(firstPass + pass, lo, hi);
         const bool was = wasVisible[global] != 0u;
         const bool tested = inVolume && (phase == kNewlyVisible || phase == kVisible);
         const bool visible = tested && mayBeVisible(vec3(lo), vec3(hi));
@@ -260,7 +273,7 @@ void main() {
         if (phase == kVisible) wasVisible[global] = visible ? 1u : 0u;
         if (leaveClustered && batches[chunk.x].clustered != 0u) keep = false;
         if (keep) {
-            const uvec2 chosen = levelOf(chunk.x, 0.5 * (lo + hi), instance.minScale.w);
+            const uvec2 chosen = levelOf(firstPass + pass, chunk.x, 0.5 * (lo + hi), instance.minScale.w);
             level = chosen.x;
             fade = chosen.y;
             mine.word[level >> 2] |= 1u << (8u * (level & 3u));
@@ -282,12 +295,12 @@ void main() {
     Counters before;
     for (uint w = 0u; w < kWords; ++w) before.word[w] = scan[local].word[w] - mine.word[w];
     if (local < chunk.z)
-        ranks[global] = keep ? fade << 24 | (fade != 0u ? counterOf(before, level + 1u) << 16 : 0u) | level << 8 |
+        ranks[pass * instanceCount + global] = keep ? fade << 24 | (fade != 0u ? counterOf(before, level + 1u) << 16 : 0u) | level << 8 |
                                    counterOf(before, level)
                              : kNotKept;
     if (local == SK_CULL_GROUP - 1u)
         for (uint l = 0u; l < SK_CULL_LEVELS; ++l)
-            chunkSums[gl_WorkGroupID.x * SK_CULL_LEVELS + l] = counterOf(scan[local], l);
+            chunkSums[(pass * chunkCount + gl_WorkGroupID.x) * SK_CULL_LEVELS + l] = counterOf(scan[local], l);
 }
 
 #elif SK_CULL_STAGE == 2
@@ -297,23 +310,24 @@ layout(std430, binding = SK_CULL_LEVELS_BINDING) readonly buffer Levels { Level 
 layout(std430, binding = SK_CULL_STAGE_BINDING) writeonly buffer Commands { uint commands[]; }; // 5 uints each
 uniform uint batchCount;
 uniform bool shadowChain;
-uniform uint firstCommand; // the pass's first, in commands
-uniform uint replicas;     // draws per kept instance: a point light's cube faces, layered per instance
+uniform uint replicas; // draws per kept instance: a point light's cube faces, layered per instance
 
 void main() {
     const uint pair = gl_GlobalInvocationID.x; // batch * SK_CULL_LEVELS + level
+    const uint pass = gl_WorkGroupID.y;
     if (pair >= SK_CULL_LEVELS * batchCount) return;
     const uint b = pair / SK_CULL_LEVELS, l = pair % SK_CULL_LEVELS;
     const Batch batch = batches[b];
+    const uint sums = pass * chunkCount * SK_CULL_LEVELS;
     uint running = 0u;
     for (uint c = batch.firstChunk; c < batch.firstChunk + batch.chunkCount; ++c) {
-        const uint n = chunkSums[c * SK_CULL_LEVELS + l];
-        chunkSums[c * SK_CULL_LEVELS + l] = running;
+        const uint n = chunkSums[sums + c * SK_CULL_LEVELS + l];
+        chunkSums[sums + c * SK_CULL_LEVELS + l] = running;
         running += n;
     }
     const bool exists = l < (shadowChain ? batch.shadowLevels : batch.cameraLevels);
     const Level level = levels[pair];
-    const uint at = 5u * (firstCommand + pair);
+    const uint at = 5u * ((firstPass + pass) * batchCount * SK_CULL_LEVELS + pair); // the pass's commands, then this
     commands[at + 0u] = exists ? (shadowChain ? level.shadowIndexCount : level.cameraIndexCount) : 0u;
     commands[at + 1u] = exists ? running * replicas : 0u; // instances
     commands[at + 2u] = shadowChain ? level.shadowFirstIndex : level.cameraFirstIndex;
@@ -324,18 +338,21 @@ void main() {
 #else // SK_CULL_STAGE 3
 
 layout(std430, binding = SK_CULL_STAGE_BINDING) writeonly buffer Lists { uint lists[]; };
-uniform uint passOffset; // the pass's region in lists: SK_CULL_LEVELS slots of batch.count per batch
 
 void main() {
     const uvec4 chunk = chunks[gl_WorkGroupID.x];
+    const uint pass = gl_WorkGroupID.y;
     const uint local = gl_LocalInvocationID.x;
     if (local >= chunk.z) return;
-    const uint r = ranks[chunk.y + local];
+    const uint r = ranks[pass * instanceCount + chunk.y + local];
     if (r == kNotKept) return;
     const uint level = r >> 8 & 0xFFu, rank = r & 0xFFu, fade = r >> 24;
     const Batch batch = batches[chunk.x];
     const uint entry = chunk.w + local | fade << 24;
-    const uint region = passOffset + SK_CULL_LEVELS * batch.first, sums = gl_WorkGroupID.x * SK_CULL_LEVELS;
+    // The pass's region in lists: SK_CULL_LEVELS slots of batch.count per batch.
+    const uint passOffset = (firstPass + pass) * SK_CULL_LEVELS * instanceCount;
+    const uint region = passOffset + SK_CULL_LEVELS * batch.first;
+    const uint sums = (pass * chunkCount + gl_WorkGroupID.x) * SK_CULL_LEVELS;
     lists[region + level * batch.count + chunkSums[sums + level] + rank] = entry;
     if (fade != 0u) // the coarser level's entry (visibility.h, kFadeIncoming)
         lists[region + (level + 1u) * batch.count + chunkSums[sums + level + 1u] + (r >> 16 & 0xFFu)] =

@@ -65,6 +65,7 @@ public:
     Spread pagesRendered() const;
     Spread requestsAge() const;
     Spread tableBytes() const;
+    Spread pagesCulledOnGpu() const; // of pagesRendered, culled by the GPU-driven path's compute passes
     // The whole CPU side of a steady frame (after the first), in ms: its pre-passes (a measured
     // visible depth, auto's receivers) and set-up, then
     // Renderer::render's wall-clock — culling, levels and lists, uniforms and every GL call made.
@@ -103,7 +104,7 @@ private:
     std::vector<double> m_readBacks, m_bytesUploaded, m_bytesReadBack, m_dispatches, m_workGroups;
     std::vector<int64_t> m_frameNumbers; // gl::FrameStats::frame of each
     std::vector<double> m_nodesVisited, m_queries, m_nodesQueried, m_multiQueryFailures, m_waits;
-    std::vector<double> m_pagesRendered, m_requestsAge, m_tableBytes; // technique virtual
+    std::vector<double> m_pagesRendered, m_requestsAge, m_tableBytes, m_pagesOnGpu; // technique virtual
     gl::FrameStats m_last;
 };
 
