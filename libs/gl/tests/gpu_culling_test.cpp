@@ -166,7 +166,9 @@ TEST_F(GpuCullingTest, ListsEqualTheCpuPathsWhileInstancesCrossLevels) {
 
 // Many shadow passes culled in one set of dispatches (a frame's virtual pages): each pass's list
 // equals the CPU's for its own volume and projection, with crossings between levels, and a
-// batch of passes placed after others leaves those others' lists as they were.
+// batch of passes placed after others leaves those others' lists as they were. Through these
+// orthographic maps an instance's level follows its scale alone: the ranges of the levels none
+// can take are emptied (not drawn), never one the pass fills.
 TEST_F(GpuCullingTest, PassesCulledTogetherEqualTheCpuPathsEachWithItsOwnVolumeAndLevels) {
     const scene::Scene forest = gl::testing::smallLeafyForest();
     std::vector<scene::MeshLods> lods;
@@ -201,7 +203,7 @@ TEST_F(GpuCullingTest, PassesCulledTogetherEqualTheCpuPathsEachWithItsOwnVolumeA
     culling->cull(0, everything, nullptr, gl::GpuCulling::Phase::All, before);
     std::vector<gl::PassList> gpu(kPasses);
     culling->cullPasses(kFirst, passes, &shared, false, gpu);
-    size_t kept = 0, crossing = 0;
+    size_t kept = 0, crossing = 0, rangesLeft = 0, rangesBefore = 0;
     for (size_t i = 0; i < kPasses; ++i) {
         gl::LodChoice lod = shared;
         lod.pass = passes[i].projection;
@@ -211,6 +213,14 @@ TEST_F(GpuCullingTest, PassesCulledTogetherEqualTheCpuPathsEachWithItsOwnVolumeA
         EXPECT_EQ(back.count, cpu.count) << "pass " << i;
         EXPECT_EQ(back.indices, cpu.indices) << "pass " << i;
         kept += cpu.instances();
+        // The ranges left to draw once those of levels no instance can take are emptied: every
+        // range the pass fills among them, and fewer than all.
+        gl::PassList drawn = gpu[i];
+        visibility.emptyLevelsNoneTakes(drawn, &lod);
+        for (size_t slot = 0; slot < cpu.count.size(); ++slot) {
+            if (cpu.count[slot] > 0) EXPECT_GT(drawn.count[slot], 0u) << "pass " << i << ", range " << slot;
+            rangesLeft += drawn.count[slot] > 0, rangesBefore += gpu[i].count[slot] > 0;
+        }
         for (const uint32_t entry : cpu.indices) crossing += (entry & gl::kFadeIncoming) != 0;
     }
     gl::PassList all;
@@ -218,6 +228,7 @@ TEST_F(GpuCullingTest, PassesCulledTogetherEqualTheCpuPathsEachWithItsOwnVolumeA
     EXPECT_EQ(culling->read(before).indices, all.indices) << "the pass culled before the batch";
     EXPECT_GT(kept, 200u) << "the passes keep too little to compare";
     EXPECT_GT(crossing, 0u) << "no instance crossing levels";
+    EXPECT_LT(4 * rangesLeft, 3 * rangesBefore) << "a quarter of the ranges or more are of levels none takes";
 }
 
 TEST_F(GpuCullingTest, TwoPhaseFramesEqualFrustumCulledFramesFromTheFirstAndAfterCuts) {
