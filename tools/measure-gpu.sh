@@ -93,6 +93,11 @@ for section in "${sections[@]}"; do
       step "path-virtual-$r" 120 "$B" bench --trees 10000 --path flythrough --sun-path off --technique virtual \
         --virtual-requests "$r" --json "$res/path-virtual-$r.json"
     done
+    # Its pages' casters culled on the GPU against the CPU's lists, the sun moving: pages every frame.
+    for v in gpu chc; do
+      step "path-virtual-pages-$v" 120 "$B" bench --trees 10000,100000 --path flythrough --frames 60 \
+        --technique virtual --visibility "$v" --json "$res/path-virtual-pages-$v.json"
+    done
     step frame-frustum 60 "${bench[@]}" --trees 10000 --views perpendicular --visibility frustum --caster-culling volume \
       --json "$res/frame-frustum.json"
     ;;

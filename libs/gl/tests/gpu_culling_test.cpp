@@ -1,7 +1,9 @@
 // GPU-driven culling (gl/src/gpu_culling.h): its lists are the CPU path's, entry for entry,
-// and its two-phase occlusion never costs a pixel — not on the first frame, not after a cut,
-// not after an instance moves; a steady frame uploads no lists and dispatches as many passes
-// whatever the forest. CTest label `gl`.
+// one pass at a time or many at once; its two-phase occlusion never costs a pixel — not on the
+// first frame, not after a cut, not after an instance moves; a steady frame uploads no lists and
+// dispatches as many passes whatever the forest; a virtual clipmap's pages, culled on the GPU in
+// three dispatches whatever their number, draw the CPU path's pixels and count its casters.
+// CTest label `gl`.
 #include "headless_gl_test.h"
 #include "test_scenes.h"
 

@@ -38,8 +38,9 @@ enum class Culling {
     Occlusion, // of those, the ones CHC++ occlusion queries find visible (a depth pre-pass)
     // Frustum and occlusion culling on the GPU (compute passes writing indirect draws, a
     // two-phase depth pyramid for the camera; docs/scale-and-visibility.md): the camera
-    // pass as Occlusion, the sun's maps as Frustum (and receiverMask), the lists never on the
-    // CPU. Local lights and virtual pages are culled on the CPU as with Frustum.
+    // pass as Occlusion, the sun's maps, local lights and virtual pages as Frustum (and
+    // receiverMask), the lists never on the CPU — but a virtual page's large clustered meshes,
+    // and the pages of a view's first frame.
     Gpu,
     // Gpu where the rasteriser is a GPU, Occlusion where it is software (Mesa's llvmpipe: the
     // compute passes would run on the CPU's cores beside the rasteriser's threads, and cost
