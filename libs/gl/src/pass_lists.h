@@ -87,7 +87,7 @@ public:
     std::span<const PassList> sunLists() const { return m_sun; }    // one per fixed map; none with virtual maps
     std::span<const PassList> pageLists() const { return m_pages; } // one per VirtualPages::pagesToRender()
     // Culling::Gpu: what the GPU culled of each page (indirect < 0: the page is wholly the CPU's,
-    // in pageLists()); the page's clustered meshes are in pageLists() (GpuScene::draw(culled, list)).
+    // in pageLists()); the page's clustered meshes are in pageLists() (drawn together: CasterLists).
     std::span<const PassList> pageCulledLists() const { return m_pageCulled; }
     std::span<const PassList> localLists() const { return m_local; } // LocalShadowMaps::listCount of them
     const CullingCosts& costs() const { return m_costs; }

@@ -3,14 +3,14 @@
 // indirect commands, with the same rules as the CPU path (gl/src/visibility.cpp), in three
 // dispatches so that every list comes out in increasing instance order — the order a full
 // draw uses, so culling changes no pixel even where two instances' depths tie:
-//   SK_CULL_STAGE 1, one work group per chunk (up to 128 consecutive instances of one batch):
+//   SK_CULL_STAGE 1, one work group per chunk (up to 128 consecutive instances of one batch) and pass:
 //     which instances the pass keeps and at which level (and whether each crosses into the next,
 //     LodChoice::fadeBand: then it is kept at both), and each one's rank among the kept
 //     instances of its chunk and level (a prefix sum in shared memory, 8-bit counters packed
 //     four to a uint);
-//   SK_CULL_STAGE 2, one invocation per batch and level: the chunks' counts into offsets,
+//   SK_CULL_STAGE 2, one invocation per batch, level and pass: the chunks' counts into offsets,
 //     and the level's glDrawElementsIndirect command (its instance count: the total);
-//   SK_CULL_STAGE 3, one work group per chunk: each kept instance's list entry (batch-local
+//   SK_CULL_STAGE 3, one work group per chunk and pass: each kept instance's list entry (batch-local
 //     index, and its crossing: visibility.h) to its place, offset + rank, in its batch and
 //     level's region of the pass, and a crossing instance's second entry to the next level's.
 // Frustum and level of detail are decided in double precision like the CPU's, so the
