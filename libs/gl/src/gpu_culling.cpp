@@ -157,6 +157,12 @@ core::Status GpuCulling::buildPrograms() {
         if (!program) return program.errorInfo();
         m_stages[stage] = std::move(program).value();
     }
+    // The scene's sizes, the same for every dispatch.
+    for (const Program& stage : m_stages) {
+        glProgramUniform1ui(stage.id(), uniform(stage.id(), "instanceCount"), GLuint(m_instanceCount));
+        glProgramUniform1ui(stage.id(), uniform(stage.id(), "chunkCount"), GLuint(m_chunkCount));
+    }
+    glProgramUniform1ui(m_stages[1].id(), uniform(m_stages[1].id(), "batchCount"), GLuint(m_batchCount));
     auto pyramid = buildComputeProgram("GPU culling's depth pyramid", {kDepthPyramidComp});
     if (!pyramid) return pyramid.errorInfo();
     m_pyramidProgram = std::move(pyramid).value();
@@ -263,12 +269,8 @@ void GpuCulling::run(size_t firstPass, std::span<const GpuPass> passes, const Lo
             glProgramUniform1d(p, uniform(p, "cameraMaxError"), lod->camera->maxError);
         }
     }
-    for (const Program* stage : {&m_stages[0], &m_stages[1], &m_stages[2]}) {
-        const GLuint id = stage->id();
-        glProgramUniform1ui(id, uniform(id, "firstPass"), GLuint(firstPass));
-        glProgramUniform1ui(id, uniform(id, "instanceCount"), GLuint(m_instanceCount));
-        glProgramUniform1ui(id, uniform(id, "chunkCount"), GLuint(m_chunkCount));
-    }
+    for (const Program& stage : m_stages)
+        glProgramUniform1ui(stage.id(), uniform(stage.id(), "firstPass"), GLuint(firstPass));
     glUseProgram(p);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCullInstancesBinding, m_instances.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCullChunksBinding, m_chunks.id());
@@ -284,7 +286,6 @@ void GpuCulling::run(size_t firstPass, std::span<const GpuPass> passes, const Lo
 
     // Stage 2: offsets and commands; stage 3: the lists.
     const GLuint offsets = m_stages[1].id(), scatter = m_stages[2].id();
-    glProgramUniform1ui(offsets, uniform(offsets, "batchCount"), GLuint(m_batchCount));
     glProgramUniform1i(offsets, uniform(offsets, "shadowChain"), shadowChain ? 1 : 0);
     glProgramUniform1ui(offsets, uniform(offsets, "replicas"), replicas);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCullStageBinding, m_commands.id());

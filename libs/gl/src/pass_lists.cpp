@@ -244,6 +244,7 @@ void PassLists::planPages(const PassPlanInputs& in, VirtualPages& pages, std::ve
     const double slotTexels = setup.clipmap->pageTexels + 2.0 * guard;
     const std::vector<uint32_t> order = nearestFirst(in.wsTowardsLight);
     std::vector<GpuCulling::PassVolume> onGpuPasses;
+    std::vector<LodChoice> onGpuLods;
     std::vector<uint32_t> clustered;
     for (size_t i = 0; i < toRender.size(); ++i) {
         m_pages[i].batchOrder = order;
@@ -261,6 +262,7 @@ void PassLists::planPages(const PassPlanInputs& in, VirtualPages& pages, std::ve
             m_visibility->fromItems(clustered, settings.lod ? &lod : nullptr, m_pages[i]);
             m_pageCulled[i].batchOrder = order;
             onGpuPasses.push_back({std::move(volume), lod.pass});
+            onGpuLods.push_back(lod);
         } else {
             m_visibility->collect(volume, settings.culling != Culling::Off, settings.lod ? &lod : nullptr, m_pages[i]);
         }
@@ -274,11 +276,8 @@ void PassLists::planPages(const PassPlanInputs& in, VirtualPages& pages, std::ve
                                  /*leaveClustered=*/true, std::span(m_pageCulled).first(onGpu));
         // Of each page's ranges, those of the levels its instances can take: the others would be
         // draws of no instance (a page's levels follow the instances' scales alone).
-        for (size_t i = 0; i < onGpu; ++i) {
-            LodChoice lod = shared;
-            lod.pass = onGpuPasses[i].projection;
-            m_visibility->emptyLevelsNoneTakes(m_pageCulled[i], settings.lod ? &lod : nullptr);
-        }
+        for (size_t i = 0; i < onGpu; ++i)
+            m_visibility->emptyLevelsNoneTakes(m_pageCulled[i], settings.lod ? &onGpuLods[i] : nullptr);
         m_costs.inGl += m_gpuCulling->takeGlTimes();
     }
 }
@@ -319,31 +318,28 @@ WorkByLevel PassLists::workByLevel(const GpuScene& gpuScene) const {
     return out;
 }
 
-std::vector<const PassList*> PassLists::sunCulledLists() const {
-    std::vector<const PassList*> culled;
-    for (const PassList& list : m_sun) culled.push_back(&list);
+std::vector<PassList> PassLists::sunCulledRanges(bool foliageOpacity) const {
+    // With opacity layers the depth pass leaves a list's alpha-tested casters out and the layers
+    // draw them twice (SunPass::draw, OpacityLayers::draw): once more than the list counts them.
+    std::vector<PassList> ranges;
+    const auto add = [&](const PassList& list) {
+        ranges.push_back({.count = list.count, .indirect = list.indirect});
+        if (!foliageOpacity) return;
+        PassList leaves{.count = list.count, .indirect = list.indirect};
+        for (size_t slot = 0; slot < leaves.count.size(); ++slot)
+            if (!m_alphaTested[slot / kMaxLodLevels]) leaves.count[slot] = 0;
+        ranges.push_back(std::move(leaves));
+    };
+    for (const PassList& list : m_sun) add(list);
     for (const PassList& list : m_pageCulled)
-        if (list.indirect >= 0) culled.push_back(&list);
-    return culled;
-}
-
-PassList PassLists::leavesOf(const PassList& list) const {
-    PassList leaves;
-    leaves.indirect = list.indirect;
-    leaves.count = list.count;
-    for (size_t slot = 0; slot < leaves.count.size(); ++slot)
-        if (!m_alphaTested[slot / kMaxLodLevels]) leaves.count[slot] = 0;
-    return leaves;
+        if (list.indirect >= 0) add(list);
+    return ranges;
 }
 
 DrawStats PassLists::gpuSunDrawn(bool foliageOpacity) const {
-    // With opacity layers the depth pass leaves a list's alpha-tested casters out and the layers
-    // draw them twice (SunPass::draw, OpacityLayers::draw): once more than the list counts them.
-    std::vector<const PassList*> asked = sunCulledLists();
-    std::vector<PassList> leaves;
-    if (foliageOpacity)
-        for (const PassList* list : asked) leaves.push_back(leavesOf(*list));
-    for (const PassList& list : leaves) asked.push_back(&list);
+    const std::vector<PassList> ranges = sunCulledRanges(foliageOpacity);
+    std::vector<const PassList*> asked;
+    for (const PassList& list : ranges) asked.push_back(&list);
     DrawStats sum;
     for (const DrawStats& drawn : m_gpuCulling->submitted(asked)) sum += drawn;
     return sum;
@@ -353,11 +349,8 @@ void PassLists::describeGpuLists(FrameFigureSources& sources, bool foliageOpacit
     sources.commands = m_gpuCulling->commandBuffer();
     sources.commandWords = m_gpuCulling->commandWords();
     sources.lists.push_back({m_camera.indirect, m_camera.count, CulledListShape::Pass::Camera});
-    for (const PassList* list : sunCulledLists()) {
-        sources.lists.push_back({list->indirect, list->count, CulledListShape::Pass::Sun});
-        if (foliageOpacity) // as gpuSunDrawn: the leaves once more
-            sources.lists.push_back({list->indirect, leavesOf(*list).count, CulledListShape::Pass::Sun});
-    }
+    for (PassList& list : sunCulledRanges(foliageOpacity))
+        sources.lists.push_back({list.indirect, std::move(list.count), CulledListShape::Pass::Sun});
     for (size_t i = 0; i < m_local.size(); ++i)
         if (m_local[i].indirect >= 0)
             sources.lists.push_back(

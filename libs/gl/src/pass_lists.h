@@ -131,10 +131,10 @@ private:
     PassLists() = default;
     // A list as drawn: a GPU-culled one read back (a wait), any other as it is.
     PassList drawn(const PassList& list) const { return list.indirect >= 0 ? m_gpuCulling->read(list) : list; }
-    // The GPU-culled lists of the sun's pass: its maps', or its pages' culled casters.
-    std::vector<const PassList*> sunCulledLists() const;
-    // `list`'s ranges of the alpha-tested batches alone (counts only: for GpuCulling::drawnBy).
-    PassList leavesOf(const PassList& list) const;
+    // The ranges the sun's GPU-culled lists (its maps', or its pages' culled casters) drew, as
+    // GpuCulling::drawnBy reads them (indirect and count only): each list, and with
+    // `foliageOpacity` its alpha-tested batches' ranges once more.
+    std::vector<PassList> sunCulledRanges(bool foliageOpacity) const;
     // The camera's list, and its depth pre-pass when the frame needs one.
     void planCamera(const PassPlanInputs& in, bool prepass);
     // The receiver masks of the frame's fixed maps, from the pre-pass.
