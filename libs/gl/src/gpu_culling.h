@@ -1,6 +1,7 @@
 // GPU-driven culling (Culling::Gpu): every instance tested in compute passes that write the
 // draw lists and glDrawElementsIndirect commands themselves, so the CPU issues a fixed set
-// of draws per pass (one per batch and level) and never learns, or waits for, what is drawn.
+// of draws per pass (one per batch and level, or per batch where vertex stages read each
+// command's base instance: GpuScene::draw) and never learns, or waits for, what is drawn.
 //
 // Based on: Haar & Aaltonen 2015 ("GPU-Driven Rendering Pipelines", SIGGRAPH Advances
 // course): culling in compute passes writing indirect draws, and two-phase occlusion against

@@ -1,5 +1,6 @@
 #include "gpu_scene.h"
 
+#include "program.h"
 #include "uniforms.h"
 
 #include "shadowkit/core/caster_facing.h"
@@ -77,7 +78,8 @@ void setLightFacingFront(const core::Mat4& clipFromWorld, const core::Vec3& wsTo
     glFrontFace(core::lightFacingWinding(clipFromWorld, wsTowardsLight) == core::Winding::Clockwise ? GL_CW : GL_CCW);
 }
 
-GpuScene::GpuScene(const scene::Scene& scene, std::span<const scene::MeshLods> lods) {
+GpuScene::GpuScene(const scene::Scene& scene, std::span<const scene::MeshLods> lods)
+    : m_levelsInOneDraw(vertexStagesReadBaseInstance()) {
     for (size_t t = 0; t < scene.textures.size(); ++t) {
         std::optional<float> cutoff;
         for (const scene::Material& m : scene.materials)
@@ -273,28 +275,52 @@ DrawStats GpuScene::drawBatch(const GpuBatch& batch, const PassList& list, const
     DrawStats stats;
     const GpuMesh& mesh = m_meshes[batch.mesh];
     const std::vector<Range>& levels = list.shadow ? mesh.shadow : mesh.camera;
+    auto instancesAt = [&](size_t level) { return list.count[batch.index * kMaxLodLevels + level]; };
+    // What a level's draw sets apart from its batch: both sides where culling could lose a face the
+    // light or camera meets first; a texture of its own (a billboard cloud's) in place of the
+    // material's; a camera pass's lookup offset (drawLevel). Levels that agree can share a draw.
+    struct LevelState {
+        bool twoSided = false;
+        GLuint texture = 0; // 0: the material's
+        float lookupOffset = 0.0f;
+        bool operator==(const LevelState&) const = default;
+    };
+    auto stateOf = [&](size_t level) {
+        const Range& range = levels[level];
+        LevelState state;
+        state.twoSided =
+            culling && (batch.material.doubleSided || batch.mirrored || (programs.cullClosedOnly && !range.closed));
+        if (materialBound && range.texture >= 0 && size_t(range.texture) < m_textures.size())
+            state.texture = m_textures[size_t(range.texture)].id();
+        if (setInstanceBase) state.lookupOffset = range.lookupOffset;
+        return state;
+    };
+    // A GPU-culled list's levels are drawn together where the vertex stages read each command's
+    // base instance (program.h): a run of consecutive levels with instances and the same state is
+    // one glMultiDrawElementsIndirect over their commands, which lie one after the other.
+    const bool together = list.indirect >= 0 && m_levelsInOneDraw;
     bool bound = false;
-    for (size_t level = 0; level < levels.size(); ++level) {
-        const size_t slot = batch.index * kMaxLodLevels + level;
-        const uint32_t count = list.count[slot];
-        if (count == 0) continue;
+    for (size_t level = 0; level < levels.size();) {
+        if (instancesAt(level) == 0) {
+            ++level;
+            continue;
+        }
         if (!bound) {
             if (setInstanceBase) glUniform1ui(kInstanceBaseLocation, batch.firstInstance);
             glBindVertexArray(mesh.vertexArray.id());
             glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kInstancesBinding, batch.instances.id());
             bound = true;
         }
-        const Range& range = levels[level];
-        // Both sides where culling could lose a face the light or camera meets first.
-        const bool twoSided =
-            culling && (batch.material.doubleSided || batch.mirrored || (programs.cullClosedOnly && !range.closed));
-        if (twoSided) glDisable(GL_CULL_FACE);
-        // A level with a texture of its own (a billboard cloud) reads it in place of the material's.
-        const bool ownTexture = materialBound && range.texture >= 0 && size_t(range.texture) < m_textures.size();
-        if (ownTexture) glBindTextureUnit(kBaseColorUnit, m_textures[size_t(range.texture)].id());
-        stats += drawLevel(batch, list, level, range, setInstanceBase, replicas, volume);
-        if (ownTexture) glBindTextureUnit(kBaseColorUnit, batch.material.texture);
-        if (twoSided) glEnable(GL_CULL_FACE);
+        const LevelState state = stateOf(level);
+        size_t end = level + 1;
+        while (together && end < levels.size() && instancesAt(end) > 0 && stateOf(end) == state) ++end;
+        if (state.twoSided) glDisable(GL_CULL_FACE);
+        if (state.texture) glBindTextureUnit(kBaseColorUnit, state.texture);
+        stats += list.indirect >= 0 ? drawLevels(batch, list, level, end, setInstanceBase, state.lookupOffset)
+                                    : drawLevel(batch, list, level, levels[level], setInstanceBase, replicas, volume);
+        if (state.texture) glBindTextureUnit(kBaseColorUnit, batch.material.texture);
+        if (state.twoSided) glEnable(GL_CULL_FACE);
+        level = end;
     }
     return stats;
 }
@@ -323,7 +349,7 @@ DrawStats GpuScene::drawLevel(const GpuBatch& batch, const PassList& list, size_
     const size_t slot = batch.index * kMaxLodLevels + level;
     const uint32_t count = list.count[slot];
     const auto& clusterLevels = list.shadow ? mesh.shadowClusters : mesh.cameraClusters;
-    if (volume && list.indirect < 0 && level < clusterLevels.size() && !clusterLevels[level].empty()) {
+    if (volume && level < clusterLevels.size() && !clusterLevels[level].empty()) {
         // Each instance alone, each run of clusters meeting the volume in one draw.
         const std::vector<scene::TriangleCluster>& clusters = clusterLevels[level];
         for (uint32_t k = 0; k < count; ++k) {
@@ -353,24 +379,33 @@ DrawStats GpuScene::drawLevel(const GpuBatch& batch, const PassList& list, size_
         }
         return stats;
     }
-    glUniform1ui(kInstanceOffsetLocation, list.offset + list.first[slot]);
     // Camera passes move simplified receivers' shadow lookups by their error (main.vert).
     if (setInstanceBase) glUniform1f(kLodErrorLocation, range.lookupOffset);
-    if (list.indirect >= 0) {
-        // The command holds the level's range and the instances the GPU kept (up to
-        // `count`): what is drawn is known to the GPU only (GpuCulling::submitted).
-        const size_t command = static_cast<size_t>(list.indirect) + slot;
-        glDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT,
-                               reinterpret_cast<const void*>(command * kIndirectCommandWords * sizeof(uint32_t)));
-        ++stats.drawCalls;
-        return stats;
-    }
+    glUniform1ui(kInstanceOffsetLocation, list.offset + list.first[slot]);
     glDrawElementsInstanced(GL_TRIANGLES, range.indexCount, GL_UNSIGNED_INT,
                             reinterpret_cast<const void*>(range.byteOffset), static_cast<GLsizei>(count) * replicas);
     stats.instances += static_cast<size_t>(count) * static_cast<size_t>(replicas);
     stats.triangles += static_cast<size_t>(range.indexCount / 3) * count * static_cast<size_t>(replicas);
     ++stats.drawCalls;
     return stats;
+}
+
+DrawStats GpuScene::drawLevels(const GpuBatch& batch, const PassList& list, size_t first, size_t end,
+                               bool setInstanceBase, float lookupOffset) const {
+    // The commands hold each level's range and the instances the GPU kept (up to `count`): what is
+    // drawn is known to the GPU only (GpuCulling::submitted). Where vertex stages read the base
+    // instance, the commands carry each level's place in the pass's region and the uniform the
+    // region's; else a draw holds one level, whose place the uniform adds.
+    const size_t firstSlot = batch.index * kMaxLodLevels + first;
+    glUniform1ui(kInstanceOffsetLocation, list.offset + (m_levelsInOneDraw ? 0u : list.first[firstSlot]));
+    if (setInstanceBase) glUniform1f(kLodErrorLocation, lookupOffset);
+    const size_t command = static_cast<size_t>(list.indirect) + firstSlot;
+    const auto* at = reinterpret_cast<const void*>(command * kIndirectCommandWords * sizeof(uint32_t));
+    if (end == first + 1)
+        glDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT, at);
+    else
+        glMultiDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT, at, static_cast<GLsizei>(end - first), 0);
+    return DrawStats{.drawCalls = 1};
 }
 
 } // namespace shadowkit::gl

@@ -77,8 +77,9 @@ public:
     GpuScene(const scene::Scene& scene, std::span<const scene::MeshLods> lods);
 
     // One glDrawElementsInstanced per batch and level with instances in `list` (uploaded by
-    // Visibility::upload); the vertex shaders read the transform of
-    // visibleInstances[instanceOffset + gl_InstanceID] from the batch's buffer at
+    // Visibility::upload), or for a GPU-culled list one indirect draw per batch and run of levels
+    // drawn alike (drawBatch); the vertex shaders read the transform of
+    // visibleInstances[instanceOffset + base instance + gl_InstanceID] from the batch's buffer at
     // kInstancesBinding. With setInstanceBase the bound program's `instanceBase` uniform
     // receives the batch's first global instance index (Scene order), the surface identity
     // of the evaluation. `replicas` > 1 draws every instance that many times in a row
@@ -151,14 +152,19 @@ private:
     DrawStats drawBatch(const GpuBatch& batch, const PassList& list, const PassPrograms& programs, bool culling,
                         bool materialBound, bool setInstanceBase, int replicas,
                         const std::span<const visibility::HalfSpace>* volume) const;
-    // One level of a batch: its instances in `list`, one draw (or one per run of clusters).
+    // One level of a batch: its instances in a list of the CPU's, one draw (or one per run of clusters).
     DrawStats drawLevel(const GpuBatch& batch, const PassList& list, size_t level, const Range& range,
                         bool setInstanceBase, int replicas, const std::span<const visibility::HalfSpace>* volume) const;
+    // Levels [first, end) of a batch in a GPU-culled list, one draw through their indirect commands
+    // (several only where m_levelsInOneDraw), with the state they share already set.
+    DrawStats drawLevels(const GpuBatch& batch, const PassList& list, size_t first, size_t end, bool setInstanceBase,
+                         float lookupOffset) const;
     std::vector<Texture> m_textures; // Scene::textures, mipmapped (scene::buildMipChain)
     Texture m_white;                 // for alpha-tested materials without a texture
     std::vector<GpuMesh> m_meshes;
     std::vector<GpuBatch> m_batches;
     std::vector<int32_t> m_batchAt; // Scene::batches index -> m_batches, -1 for a batch kept out
+    bool m_levelsInOneDraw = false; // vertexStagesReadBaseInstance() when the scene was made
 };
 
 } // namespace shadowkit::gl

@@ -7,6 +7,8 @@
 namespace shadowkit::gl {
 namespace {
 
+int g_withoutBaseInstance = 0; // live WithoutBaseInstance guards
+
 std::string oneLine(std::string log) {
     while (!log.empty() && (log.back() == '\n' || log.back() == ' ' || log.back() == '\0')) log.pop_back();
     std::replace(log.begin(), log.end(), '\n', ' ');
@@ -17,6 +19,16 @@ core::Result<Shader> compile(GLenum stage, std::initializer_list<std::string_vie
     Shader shader(glCreateShader(stage));
     std::vector<const char*> texts = {shaderPrelude().data()};
     std::vector<GLint> lengths = {static_cast<GLint>(shaderPrelude().size())};
+    // Directives only, so it may follow the prelude's #defines; the source lines count from 1 again.
+    // visible.glsl reads SK_BASE_INSTANCE (not the extension's own macro: a GL defines that for
+    // what it supports, enabled or not).
+    static constexpr std::string_view kBaseInstance = "#extension GL_ARB_shader_draw_parameters : require\n"
+                                                      "#define SK_BASE_INSTANCE uint(gl_BaseInstanceARB)\n"
+                                                      "#line 1\n";
+    if (stage == GL_VERTEX_SHADER && vertexStagesReadBaseInstance()) {
+        texts.push_back(kBaseInstance.data());
+        lengths.push_back(static_cast<GLint>(kBaseInstance.size()));
+    }
     for (std::string_view s : sources) {
         texts.push_back(s.data());
         lengths.push_back(static_cast<GLint>(s.size()));
@@ -57,6 +69,13 @@ core::Result<Program> link(std::string_view name, std::initializer_list<const Sh
 }
 
 } // namespace
+
+bool vertexStagesReadBaseInstance() {
+    return g_withoutBaseInstance == 0 && epoxy_has_gl_extension("GL_ARB_shader_draw_parameters");
+}
+
+WithoutBaseInstance::WithoutBaseInstance() { ++g_withoutBaseInstance; }
+WithoutBaseInstance::~WithoutBaseInstance() { --g_withoutBaseInstance; }
 
 core::Result<Program> buildComputeProgram(std::string_view name, std::initializer_list<std::string_view> sources) {
     auto cs = compile(GL_COMPUTE_SHADER, sources, std::string(name) + ": compute shader");

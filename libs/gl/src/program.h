@@ -26,6 +26,23 @@ core::Result<Program> buildProgram(std::string_view name, std::initializer_list<
 // A compute program, likewise.
 core::Result<Program> buildComputeProgram(std::string_view name, std::initializer_list<std::string_view> sources);
 
+// Whether vertex stages read the draw's base instance (gl_BaseInstanceARB, from
+// GL_ARB_shader_draw_parameters, core in GL 4.6; every desktop driver and llvmpipe have it). Where
+// they do, each vertex stage is built with the extension and visible.glsl adds the base instance to
+// a list entry's place, so a GPU-culled list's indirect commands say where each level's entries
+// start and one glMultiDrawElementsIndirect draws all the levels of a batch (GpuScene::draw);
+// where not, each level is a draw of its own, its place in the instanceOffset uniform.
+bool vertexStagesReadBaseInstance();
+// While one lives, programs are built, and scenes made, as for a driver without the extension (the
+// fallback's tests). Programs built while it lives must be drawn by scenes made while it lives.
+class WithoutBaseInstance {
+public:
+    WithoutBaseInstance();
+    ~WithoutBaseInstance();
+    WithoutBaseInstance(const WithoutBaseInstance&) = delete;
+    WithoutBaseInstance& operator=(const WithoutBaseInstance&) = delete;
+};
+
 // Fails unless the block exists, its std140 size equals the C++ struct's size and every
 // listed member sits at the C++ offset (GL_UNIFORM_OFFSET), so a field added, moved or
 // retyped on one side only is caught when the program is built, not read as garbage.

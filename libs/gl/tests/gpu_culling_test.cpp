@@ -9,6 +9,7 @@
 
 #include "gpu_culling.h"
 #include "gpu_scene.h"
+#include "program.h"
 #include "visibility.h"
 
 #include "shadowkit/gl/read_backs.h"
@@ -21,6 +22,7 @@
 
 #include <gtest/gtest.h>
 
+#include <optional>
 #include <random>
 #include <set>
 
@@ -192,7 +194,8 @@ TEST_F(GpuCullingTest, PassesCulledTogetherEqualTheCpuPathsEachWithItsOwnVolumeA
             glm::lookAt(wsCentre + 200.0 * wsTowardsSun, wsCentre,
                         std::abs(wsTowardsSun.y) > 0.99 ? core::Vec3(1, 0, 0) : core::Vec3(0, 1, 0));
         const core::Mat4 clipFromWorld = glm::orthoRH_ZO(-half, half, -half, half, 1.0, 400.0) * lightFromWorld;
-        passes.push_back({visibility::clipVolume(clipFromWorld, false), {clipFromWorld, 64.0 + 64.0 * (i % 3), 0.5}});
+        passes.push_back(
+            {visibility::clipVolume(clipFromWorld, false), {clipFromWorld, 64.0 + 64.0 * double(i % 3), 0.5}});
     }
     const gl::LodChoice shared{{}, std::nullopt, true, 4.0, 0.4};
     // Two other passes first, then the batch after them: neither disturbs the other.
@@ -220,7 +223,9 @@ TEST_F(GpuCullingTest, PassesCulledTogetherEqualTheCpuPathsEachWithItsOwnVolumeA
         gl::PassList drawn = gpu[i];
         visibility.emptyLevelsNoneTakes(drawn, &lod);
         for (size_t slot = 0; slot < cpu.count.size(); ++slot) {
-            if (cpu.count[slot] > 0) EXPECT_GT(drawn.count[slot], 0u) << "pass " << i << ", range " << slot;
+            if (cpu.count[slot] > 0) {
+                EXPECT_GT(drawn.count[slot], 0u) << "pass " << i << ", range " << slot;
+            }
             rangesLeft += drawn.count[slot] > 0, rangesBefore += gpu[i].count[slot] > 0;
         }
         for (const uint32_t entry : cpu.indices) crossing += (entry & gl::kFadeIncoming) != 0;
@@ -373,6 +378,70 @@ TEST_F(GpuCullingTest, EmptyBatchesAndMeshesWithoutTrianglesDrawLikeTheCpuPath) 
     }
 }
 
+TEST_F(GpuCullingTest, ABatchsLevelsAreOneDrawWhereVertexStagesReadTheBaseInstanceAndTheFallbackDrawsTheSame) {
+    // A GPU-culled list's commands lie a batch's levels one after the other, each carrying where
+    // its entries start: where vertex stages read that base instance (program.h) one multi-draw
+    // takes a batch's levels that draw alike, else each level is a draw (a driver without
+    // GL_ARB_shader_draw_parameters). Both draw the CPU path's pixels and casters. The simple
+    // forest's levels all draw alike: one draw a batch. The leafy forest's billboard clouds bind
+    // textures of their own, so its leaves' levels split there.
+    if (!gl::vertexStagesReadBaseInstance()) GTEST_SKIP() << "this GL has no GL_ARB_shader_draw_parameters";
+    struct Case {
+        const char* name;
+        scene::Scene forest;
+        bool levelsAlike;
+    } cases[] = {{"simple forest", gl::testing::smallForest(600, 200, 32), true},
+                 {"leafy forest", gl::testing::smallLeafyForest(), false}};
+    for (const Case& c : cases) {
+        // One draw a batch and level of the shadow chain: the fallback's count, from the levels the
+        // renderer builds.
+        size_t batches = 0, levels = 0;
+        for (const scene::MeshBatch& batch : c.forest.batches) {
+            const scene::Mesh& mesh = c.forest.meshes[batch.mesh];
+            if (batch.worldFromObject.empty() || mesh.indices.empty()) continue;
+            ++batches;
+            levels += scene::buildLods(mesh, gl::lodOptionsOf(c.forest, mesh)).shadow.size();
+        }
+        ASSERT_GT(levels, batches) << c.name << ": no batch with levels to draw together";
+        scene::ResolvedView view = gl::testing::standardView(c.forest, "aerial");
+        view.camera.aspect = 160.0 / 90.0;
+        const core::ShadowSetup setup = lispsmSetup(view, c.forest);
+        std::vector<uint8_t> expected;
+        gl::PassStats cpu;
+        for (const bool withBaseInstance : {true, false}) {
+            std::optional<gl::WithoutBaseInstance> without;
+            if (!withBaseInstance) without.emplace(); // programs built and the scene made without it
+            auto renderer = gl::Renderer::create(c.forest);
+            ASSERT_TRUE(renderer) << renderer.error();
+            if (expected.empty()) {
+                const auto frustum =
+                    (*renderer)->render(view.camera, view.light, setup, smallFrame(160, 90, gl::Culling::Frustum));
+                ASSERT_TRUE(frustum) << frustum.error();
+                expected = (*renderer)->readColor().rgba;
+                cpu = frustum->shadow;
+            }
+            for (int frame = 0; frame < 2; ++frame) {
+                const auto gpu =
+                    (*renderer)->render(view.camera, view.light, setup, smallFrame(160, 90, gl::Culling::Gpu));
+                ASSERT_TRUE(gpu) << gpu.error();
+                const std::string what = std::string(c.name) + (withBaseInstance ? "" : ", one draw a level") +
+                                         ", frame " + std::to_string(frame);
+                EXPECT_EQ((*renderer)->readColor().rgba, expected) << what;
+                EXPECT_EQ(gpu->shadow.instances, cpu.instances) << what;
+                EXPECT_EQ(gpu->shadow.triangles, cpu.triangles) << what;
+                if (!withBaseInstance)
+                    EXPECT_EQ(gpu->shadow.drawCalls, levels) << what;
+                else if (c.levelsAlike)
+                    EXPECT_EQ(gpu->shadow.drawCalls, batches) << what;
+                else {
+                    EXPECT_GE(gpu->shadow.drawCalls, batches) << what;
+                    EXPECT_LT(gpu->shadow.drawCalls, levels) << what;
+                }
+            }
+        }
+    }
+}
+
 TEST_F(GpuCullingTest, AGpuDrivenFrameUploadsNoListsAndDispatchesAsManyPassesWhateverTheForest) {
     // The GPU writes its lists itself: a steady frame uploads its uniforms and blocks alone, the
     // same bytes for 100 trees and for ten times as many, where the CPU path uploads each pass's
@@ -475,9 +544,10 @@ TEST_F(GpuCullingTest, VirtualPagesCulledOnTheGpuDrawTheCpuPathsPixelsInThreeDis
             EXPECT_EQ(still->virtualPages->pagesRendered, 0) << at;
             // Three culling dispatches, and the page table's entries written in place (page_table.h).
             const int tableUpdates = a->virtualPages->tableBytes > 0 ? 1 : 0;
-            if (pages > 0)
+            if (pages > 0) {
                 EXPECT_EQ(dispatches, (gl::trafficSoFar() - beforeStill).dispatches + 3 + tableUpdates)
                     << at << ": " << pages << " pages";
+            }
             mostPages = std::max(mostPages, pages);
             settings.culling = gl::Culling::Frustum;
             ASSERT_TRUE((*cpu)->render(camera, view.light, *setup, settings));

@@ -332,7 +332,9 @@ void main() {
     commands[at + 1u] = exists ? running * replicas : 0u; // instances
     commands[at + 2u] = shadowChain ? level.shadowFirstIndex : level.cameraFirstIndex;
     commands[at + 3u] = 0u; // base vertex
-    commands[at + 4u] = 0u; // base instance: the list's place comes as instanceOffset
+    // Base instance: where the level's entries start in the pass's region (GpuCulling::describe's
+    // `first`), which vertex stages add where they read it (visible.glsl) and ignore where not.
+    commands[at + 4u] = SK_CULL_LEVELS * batch.first + l * batch.count;
 }
 
 #else // SK_CULL_STAGE 3
