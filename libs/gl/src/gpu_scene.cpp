@@ -7,6 +7,7 @@
 #include "shadowkit/scene/texture_mips.h"
 
 #include <algorithm>
+#include <array>
 #include <cstddef>
 #include <optional>
 
@@ -278,11 +279,10 @@ DrawStats GpuScene::drawBatch(const GpuBatch& batch, const PassList& list, const
     auto instancesAt = [&](size_t level) { return list.count[batch.index * kMaxLodLevels + level]; };
     // What a level's draw sets apart from its batch: both sides where culling could lose a face the
     // light or camera meets first; a texture of its own (a billboard cloud's) in place of the
-    // material's; a camera pass's lookup offset (drawLevel). Levels that agree can share a draw.
+    // material's. Levels that agree can share a draw (their lookup offsets go as an array).
     struct LevelState {
         bool twoSided = false;
         GLuint texture = 0; // 0: the material's
-        float lookupOffset = 0.0f;
         bool operator==(const LevelState&) const = default;
     };
     auto stateOf = [&](size_t level) {
@@ -292,7 +292,6 @@ DrawStats GpuScene::drawBatch(const GpuBatch& batch, const PassList& list, const
             culling && (batch.material.doubleSided || batch.mirrored || (programs.cullClosedOnly && !range.closed));
         if (materialBound && range.texture >= 0 && size_t(range.texture) < m_textures.size())
             state.texture = m_textures[size_t(range.texture)].id();
-        if (setInstanceBase) state.lookupOffset = range.lookupOffset;
         return state;
     };
     // A GPU-culled list's levels are drawn together where the vertex stages read each command's
@@ -316,7 +315,7 @@ DrawStats GpuScene::drawBatch(const GpuBatch& batch, const PassList& list, const
         while (together && end < levels.size() && instancesAt(end) > 0 && stateOf(end) == state) ++end;
         if (state.twoSided) glDisable(GL_CULL_FACE);
         if (state.texture) glBindTextureUnit(kBaseColorUnit, state.texture);
-        stats += list.indirect >= 0 ? drawLevels(batch, list, level, end, setInstanceBase, state.lookupOffset)
+        stats += list.indirect >= 0 ? drawLevels(batch, list, levels, level, end, setInstanceBase)
                                     : drawLevel(batch, list, level, levels[level], setInstanceBase, replicas, volume);
         if (state.texture) glBindTextureUnit(kBaseColorUnit, batch.material.texture);
         if (state.twoSided) glEnable(GL_CULL_FACE);
@@ -390,15 +389,21 @@ DrawStats GpuScene::drawLevel(const GpuBatch& batch, const PassList& list, size_
     return stats;
 }
 
-DrawStats GpuScene::drawLevels(const GpuBatch& batch, const PassList& list, size_t first, size_t end,
-                               bool setInstanceBase, float lookupOffset) const {
+DrawStats GpuScene::drawLevels(const GpuBatch& batch, const PassList& list, std::span<const Range> levels, size_t first,
+                               size_t end, bool setInstanceBase) const {
     // The commands hold each level's range and the instances the GPU kept (up to `count`): what is
     // drawn is known to the GPU only (GpuCulling::submitted). Where vertex stages read the base
     // instance, the commands carry each level's place in the pass's region and the uniform the
     // region's; else a draw holds one level, whose place the uniform adds.
     const size_t firstSlot = batch.index * kMaxLodLevels + first;
     glUniform1ui(kInstanceOffsetLocation, list.offset + (m_levelsInOneDraw ? 0u : list.first[firstSlot]));
-    if (setInstanceBase) glUniform1f(kLodErrorLocation, lookupOffset);
+    if (setInstanceBase) {
+        // Camera passes move simplified receivers' shadow lookups by their error, each draw of a
+        // multi-draw its own level's (main.vert).
+        std::array<float, kMaxLodLevels> errors{};
+        for (size_t level = first; level < end; ++level) errors[level - first] = levels[level].lookupOffset;
+        glUniform1fv(kLodErrorLocation, static_cast<GLsizei>(end - first), errors.data());
+    }
     const size_t command = static_cast<size_t>(list.indirect) + firstSlot;
     const auto* at = reinterpret_cast<const void*>(command * kIndirectCommandWords * sizeof(uint32_t));
     if (end == first + 1)

@@ -155,10 +155,10 @@ private:
     // One level of a batch: its instances in a list of the CPU's, one draw (or one per run of clusters).
     DrawStats drawLevel(const GpuBatch& batch, const PassList& list, size_t level, const Range& range,
                         bool setInstanceBase, int replicas, const std::span<const visibility::HalfSpace>* volume) const;
-    // Levels [first, end) of a batch in a GPU-culled list, one draw through their indirect commands
-    // (several only where m_levelsInOneDraw), with the state they share already set.
-    DrawStats drawLevels(const GpuBatch& batch, const PassList& list, size_t first, size_t end, bool setInstanceBase,
-                         float lookupOffset) const;
+    // Levels [first, end) of `levels` (a batch's chain) in a GPU-culled list, one draw through their
+    // indirect commands (several only where m_levelsInOneDraw), with the state they share set.
+    DrawStats drawLevels(const GpuBatch& batch, const PassList& list, std::span<const Range> levels, size_t first,
+                         size_t end, bool setInstanceBase) const;
     std::vector<Texture> m_textures; // Scene::textures, mipmapped (scene::buildMipChain)
     Texture m_white;                 // for alpha-tested materials without a texture
     std::vector<GpuMesh> m_meshes;

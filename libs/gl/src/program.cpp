@@ -20,10 +20,11 @@ core::Result<Shader> compile(GLenum stage, std::initializer_list<std::string_vie
     std::vector<const char*> texts = {shaderPrelude().data()};
     std::vector<GLint> lengths = {static_cast<GLint>(shaderPrelude().size())};
     // Directives only, so it may follow the prelude's #defines; the source lines count from 1 again.
-    // visible.glsl reads SK_BASE_INSTANCE (not the extension's own macro: a GL defines that for
-    // what it supports, enabled or not).
+    // visible.glsl reads SK_BASE_INSTANCE and main.vert SK_DRAW_ID (not the extension's own macro:
+    // a GL defines that for what it supports, enabled or not).
     static constexpr std::string_view kBaseInstance = "#extension GL_ARB_shader_draw_parameters : require\n"
                                                       "#define SK_BASE_INSTANCE uint(gl_BaseInstanceARB)\n"
+                                                      "#define SK_DRAW_ID uint(gl_DrawIDARB)\n"
                                                       "#line 1\n";
     if (stage == GL_VERTEX_SHADER && vertexStagesReadBaseInstance()) {
         texts.push_back(kBaseInstance.data());

@@ -80,12 +80,14 @@ inline constexpr int kCullMaxPyramidLevels =
     16;                                         // GPU culling: depth pyramid levels (level 0 up to 32768 texels a side)
 inline constexpr int kInstanceBaseLocation = 0; // uniform uint instanceBase (main.vert): surface identity
 inline constexpr int kInstanceOffsetLocation = 1; // uniform uint instanceOffset: the draw's list in visibleInstances
-inline constexpr int kLodErrorLocation = 2;       // uniform float lodObjectError (main.vert): the level's error
 inline constexpr int kBoxOffsetLocation = 3;      // uniform uint boxOffset (occlusion_box.vert): first box of the draw
 inline constexpr int kBaseAlphaLocation = 4;      // uniform float skBaseAlpha (material.glsl): baseColorFactor.a
 inline constexpr int kAlphaCutoffLocation = 5;    // uniform float skAlphaCutoff (material.glsl); < 0: never discard
 inline constexpr int kOpacityLayerLocation = 6;   // uniform int (opacity.frag, opacity_prefilter.frag): the map drawn
 inline constexpr int kOpacityDepthPerMetreLocation = 7; // uniform float depthPerMetre (opacity_prefilter.frag)
+// uniform float lodObjectErrors[kMaxLodLevels] (main.vert): the error of each level a draw holds,
+// locations 8 to 8 + kMaxLodLevels - 1 (an array takes a location an element)
+inline constexpr int kLodErrorLocation = 8;
 
 // std140: scalars pack in fours, vec4 and mat4 start on 16 bytes. Booleans are int32.
 

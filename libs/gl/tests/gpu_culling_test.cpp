@@ -9,7 +9,6 @@
 
 #include "gpu_culling.h"
 #include "gpu_scene.h"
-#include "program.h"
 #include "visibility.h"
 
 #include "shadowkit/gl/read_backs.h"
@@ -22,7 +21,6 @@
 
 #include <gtest/gtest.h>
 
-#include <optional>
 #include <random>
 #include <set>
 
@@ -375,70 +373,6 @@ TEST_F(GpuCullingTest, EmptyBatchesAndMeshesWithoutTrianglesDrawLikeTheCpuPath) 
         EXPECT_EQ((*renderer)->readColor().rgba, expected) << "frame " << frame;
         EXPECT_EQ(gpu->main.instances, frustum->main.instances) << "frame " << frame;
         EXPECT_EQ(gpu->shadow.triangles, frustum->shadow.triangles) << "frame " << frame;
-    }
-}
-
-TEST_F(GpuCullingTest, ABatchsLevelsAreOneDrawWhereVertexStagesReadTheBaseInstanceAndTheFallbackDrawsTheSame) {
-    // A GPU-culled list's commands lie a batch's levels one after the other, each carrying where
-    // its entries start: where vertex stages read that base instance (program.h) one multi-draw
-    // takes a batch's levels that draw alike, else each level is a draw (a driver without
-    // GL_ARB_shader_draw_parameters). Both draw the CPU path's pixels and casters. The simple
-    // forest's levels all draw alike: one draw a batch. The leafy forest's billboard clouds bind
-    // textures of their own, so its leaves' levels split there.
-    if (!gl::vertexStagesReadBaseInstance()) GTEST_SKIP() << "this GL has no GL_ARB_shader_draw_parameters";
-    struct Case {
-        const char* name;
-        scene::Scene forest;
-        bool levelsAlike;
-    } cases[] = {{"simple forest", gl::testing::smallForest(600, 200, 32), true},
-                 {"leafy forest", gl::testing::smallLeafyForest(), false}};
-    for (const Case& c : cases) {
-        // One draw a batch and level of the shadow chain: the fallback's count, from the levels the
-        // renderer builds.
-        size_t batches = 0, levels = 0;
-        for (const scene::MeshBatch& batch : c.forest.batches) {
-            const scene::Mesh& mesh = c.forest.meshes[batch.mesh];
-            if (batch.worldFromObject.empty() || mesh.indices.empty()) continue;
-            ++batches;
-            levels += scene::buildLods(mesh, gl::lodOptionsOf(c.forest, mesh)).shadow.size();
-        }
-        ASSERT_GT(levels, batches) << c.name << ": no batch with levels to draw together";
-        scene::ResolvedView view = gl::testing::standardView(c.forest, "aerial");
-        view.camera.aspect = 160.0 / 90.0;
-        const core::ShadowSetup setup = lispsmSetup(view, c.forest);
-        std::vector<uint8_t> expected;
-        gl::PassStats cpu;
-        for (const bool withBaseInstance : {true, false}) {
-            std::optional<gl::WithoutBaseInstance> without;
-            if (!withBaseInstance) without.emplace(); // programs built and the scene made without it
-            auto renderer = gl::Renderer::create(c.forest);
-            ASSERT_TRUE(renderer) << renderer.error();
-            if (expected.empty()) {
-                const auto frustum =
-                    (*renderer)->render(view.camera, view.light, setup, smallFrame(160, 90, gl::Culling::Frustum));
-                ASSERT_TRUE(frustum) << frustum.error();
-                expected = (*renderer)->readColor().rgba;
-                cpu = frustum->shadow;
-            }
-            for (int frame = 0; frame < 2; ++frame) {
-                const auto gpu =
-                    (*renderer)->render(view.camera, view.light, setup, smallFrame(160, 90, gl::Culling::Gpu));
-                ASSERT_TRUE(gpu) << gpu.error();
-                const std::string what = std::string(c.name) + (withBaseInstance ? "" : ", one draw a level") +
-                                         ", frame " + std::to_string(frame);
-                EXPECT_EQ((*renderer)->readColor().rgba, expected) << what;
-                EXPECT_EQ(gpu->shadow.instances, cpu.instances) << what;
-                EXPECT_EQ(gpu->shadow.triangles, cpu.triangles) << what;
-                if (!withBaseInstance)
-                    EXPECT_EQ(gpu->shadow.drawCalls, levels) << what;
-                else if (c.levelsAlike)
-                    EXPECT_EQ(gpu->shadow.drawCalls, batches) << what;
-                else {
-                    EXPECT_GE(gpu->shadow.drawCalls, batches) << what;
-                    EXPECT_LT(gpu->shadow.drawCalls, levels) << what;
-                }
-            }
-        }
     }
 }
 

@@ -10,8 +10,13 @@ out vec2 vUv;
 // Global index of this batch's first instance: surface identity shared with the ray tracer.
 layout(location = SK_INSTANCE_BASE_LOCATION) uniform uint instanceBase;
 
-// The geometric error of the level of detail drawn, in object metres (0: the full mesh).
-layout(location = SK_LOD_ERROR_LOCATION) uniform float lodObjectError;
+// The geometric error of each level of detail the draw holds, in object metres (0: the full mesh):
+// one level, or several in a multi-draw (GpuScene::drawLevels), the draw's index within it
+// (gl_DrawIDARB, where vertex stages read it: program.h) naming its level.
+layout(location = SK_LOD_ERROR_LOCATION) uniform float lodObjectErrors[SK_CULL_LEVELS];
+#ifndef SK_DRAW_ID
+#define SK_DRAW_ID 0u
+#endif
 
 out vec3 wsPosition;
 out vec3 wsNormal;
@@ -37,6 +42,6 @@ void main() {
     vUv = uv;
 #endif
     vSurfaceId = instanceBase + instance + 1u;
-    vLodError = lodObjectError * length(m[0].xyz); // rigid + uniform scale
+    vLodError = lodObjectErrors[SK_DRAW_ID] * length(m[0].xyz); // rigid + uniform scale
     gl_Position = clipFromWorld * ws;
 }

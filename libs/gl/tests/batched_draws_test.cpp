@@ -1,0 +1,117 @@
+// A GPU-culled list's draws (gl/src/gpu_scene.h, GpuScene::draw): where vertex stages read each
+// indirect command's base instance and the draw's index (program.h), a batch's levels that draw
+// alike are one multi-draw, in every pass; without them, one draw a level. Either way the pixels,
+// shadow terms and casters are the CPU path's. CTest label `gl`.
+#include "headless_gl_test.h"
+#include "test_scenes.h"
+
+#include "program.h"
+#include "visibility.h"
+
+#include "shadowkit/gl/renderer.h"
+#include "shadowkit/scene/mesh_lod.h"
+
+#include <gtest/gtest.h>
+
+#include <optional>
+#include <string>
+#include <tuple>
+#include <vector>
+
+using namespace shadowkit;
+
+namespace {
+
+class BatchedDrawsTest : public gl::testing::HeadlessGlTest {};
+
+using gl::testing::smallFrame;
+
+core::ShadowSetup lispsmSetup(const scene::ResolvedView& view, const scene::Scene& scene) {
+    auto setup = core::computeShadowSetup({.camera = view.camera,
+                                           .light = view.light,
+                                           .wsSceneBounds = scene.wsBounds(),
+                                           .technique = core::Technique::Lispsm,
+                                           .mapSize = 512});
+    EXPECT_TRUE(setup) << setup.error();
+    return setup ? *setup : core::ShadowSetup{};
+}
+
+TEST_F(BatchedDrawsTest, ABatchsLevelsAreOneDrawWhereVertexStagesReadTheBaseInstanceAndTheFallbackDrawsTheSame) {
+    // A GPU-culled list's commands lie a batch's levels one after the other, each carrying where
+    // its entries start: where vertex stages read that base instance and the draw's index
+    // (program.h) one multi-draw takes a batch's levels that draw alike, the camera passes' each
+    // with its own level's lookup offset; else each level is a draw (a driver without
+    // GL_ARB_shader_draw_parameters). Both draw the CPU path's pixels, shadow terms and casters.
+    // The simple forest's levels all draw alike: one draw a batch. The leafy forest's billboard
+    // clouds bind textures of their own, so its leaves' levels split there.
+    if (!gl::vertexStagesReadBaseInstance()) GTEST_SKIP() << "this GL has no GL_ARB_shader_draw_parameters";
+    struct Case {
+        const char* name;
+        scene::Scene forest;
+        bool levelsAlike;
+    } cases[] = {{"simple forest", gl::testing::smallForest(600, 200, 32), true},
+                 {"leafy forest", gl::testing::smallLeafyForest(), false}};
+    for (const Case& c : cases) {
+        // One draw a batch and level: the fallback's count, from the levels the renderer builds.
+        size_t batches = 0, shadowLevels = 0, cameraLevels = 0;
+        for (const scene::MeshBatch& batch : c.forest.batches) {
+            const scene::Mesh& mesh = c.forest.meshes[batch.mesh];
+            if (batch.worldFromObject.empty() || mesh.indices.empty()) continue;
+            ++batches;
+            const scene::MeshLods lods = scene::buildLods(mesh, gl::lodOptionsOf(c.forest, mesh));
+            shadowLevels += lods.shadow.size(), cameraLevels += lods.camera.size();
+        }
+        ASSERT_GT(shadowLevels, batches) << c.name << ": no batch with levels to draw together";
+        ASSERT_GT(cameraLevels, batches) << c.name;
+        scene::ResolvedView view = gl::testing::standardView(c.forest, "aerial");
+        view.camera.aspect = 160.0 / 90.0;
+        const core::ShadowSetup setup = lispsmSetup(view, c.forest);
+        std::vector<uint8_t> expected;
+        std::optional<core::RasterBuffers> expectedBuffers;
+        gl::FrameStats cpu;
+        for (const bool withBaseInstance : {true, false}) {
+            std::optional<gl::WithoutBaseInstance> without;
+            if (!withBaseInstance) without.emplace(); // programs built and the scene made without it
+            auto renderer = gl::Renderer::create(c.forest);
+            ASSERT_TRUE(renderer) << renderer.error();
+            gl::RenderSettings settings = smallFrame(160, 90, gl::Culling::Frustum);
+            if (expected.empty()) {
+                const auto frustum = (*renderer)->render(view.camera, view.light, setup, settings);
+                ASSERT_TRUE(frustum) << frustum.error();
+                expected = (*renderer)->readColor().rgba;
+                cpu = *frustum;
+                auto buffers = (*renderer)->renderEvalBuffers(view.camera, view.light, setup, settings);
+                ASSERT_TRUE(buffers) << buffers.error();
+                expectedBuffers = std::move(buffers).value();
+            }
+            settings.culling = gl::Culling::Gpu;
+            for (int frame = 0; frame < 2; ++frame) {
+                const auto gpu = (*renderer)->render(view.camera, view.light, setup, settings);
+                ASSERT_TRUE(gpu) << gpu.error();
+                const std::string what = std::string(c.name) + (withBaseInstance ? "" : ", one draw a level") +
+                                         ", frame " + std::to_string(frame);
+                EXPECT_TRUE((*renderer)->readColor().rgba == expected) << what << ": pixels differ";
+                EXPECT_EQ(gpu->shadow.instances, cpu.shadow.instances) << what;
+                EXPECT_EQ(gpu->shadow.triangles, cpu.shadow.triangles) << what;
+                for (const auto& [pass, drawn, levels] : {std::tuple{"shadow", gpu->shadow.drawCalls, shadowLevels},
+                                                          std::tuple{"camera", gpu->main.drawCalls, cameraLevels}}) {
+                    if (!withBaseInstance)
+                        EXPECT_EQ(drawn, levels) << what << ", " << pass;
+                    else if (c.levelsAlike)
+                        EXPECT_EQ(drawn, batches) << what << ", " << pass;
+                    else {
+                        EXPECT_GE(drawn, batches) << what << ", " << pass;
+                        EXPECT_LT(drawn, levels) << what << ", " << pass;
+                    }
+                }
+            }
+            // Each simplified receiver's lookup moved by its own level's error, read per draw.
+            const auto buffers = (*renderer)->renderEvalBuffers(view.camera, view.light, setup, settings);
+            ASSERT_TRUE(buffers) << buffers.error();
+            EXPECT_TRUE(buffers->surfaceId == expectedBuffers->surfaceId) << c.name;
+            EXPECT_TRUE(buffers->shadowTerm == expectedBuffers->shadowTerm) << c.name << ": shadow terms differ";
+        }
+    }
+}
+
+} // namespace
