@@ -349,31 +349,36 @@ DrawStats GpuScene::drawLevel(const GpuBatch& batch, const PassList& list, size_
     const uint32_t count = list.count[slot];
     const auto& clusterLevels = list.shadow ? mesh.shadowClusters : mesh.cameraClusters;
     if (volume && level < clusterLevels.size() && !clusterLevels[level].empty()) {
-        // Each instance alone, each run of clusters meeting the volume in one draw.
+        // Each instance alone, its runs of clusters meeting the volume in one glMultiDrawElements
+        // (one draw of several index ranges; gl_InstanceID 0 and base instance 0, so the uniform
+        // names the entry).
         const std::vector<scene::TriangleCluster>& clusters = clusterLevels[level];
+        std::vector<GLsizei> runCounts;
+        std::vector<const void*> runStarts;
         for (uint32_t k = 0; k < count; ++k) {
             const core::Mat4 worldFromObject(
                 batch.worldFromObject[instanceOfEntry(list.indices[list.first[slot] + k])]);
-            glUniform1ui(kInstanceOffsetLocation, list.offset + list.first[slot] + k);
-            size_t run = 0, runIndices = 0;
-            auto flush = [&](size_t end) {
-                if (runIndices == 0) return;
-                glDrawElementsInstanced(GL_TRIANGLES, static_cast<GLsizei>(runIndices), GL_UNSIGNED_INT,
-                                        reinterpret_cast<const void*>(clusters[run].firstIndex * sizeof(uint32_t)), 1);
-                stats.triangles += runIndices / 3;
-                ++stats.drawCalls;
-                runIndices = 0;
-                run = end;
-            };
-            for (size_t c = 0; c < clusters.size(); ++c) {
-                if (visibility::isOutside(*volume, core::transformBounds(worldFromObject, clusters[c].osBounds))) {
-                    flush(c + 1);
+            runCounts.clear(), runStarts.clear();
+            bool inRun = false;
+            for (const scene::TriangleCluster& cluster : clusters) {
+                if (visibility::isOutside(*volume, core::transformBounds(worldFromObject, cluster.osBounds))) {
+                    inRun = false;
                     continue;
                 }
-                if (runIndices == 0) run = c;
-                runIndices += clusters[c].indexCount;
+                if (!inRun) {
+                    runCounts.push_back(0);
+                    runStarts.push_back(reinterpret_cast<const void*>(cluster.firstIndex * sizeof(uint32_t)));
+                    inRun = true;
+                }
+                runCounts.back() += static_cast<GLsizei>(cluster.indexCount);
+                stats.triangles += cluster.indexCount / 3;
             }
-            flush(clusters.size());
+            if (!runCounts.empty()) {
+                glUniform1ui(kInstanceOffsetLocation, list.offset + list.first[slot] + k);
+                glMultiDrawElements(GL_TRIANGLES, runCounts.data(), GL_UNSIGNED_INT, runStarts.data(),
+                                    static_cast<GLsizei>(runCounts.size()));
+                ++stats.drawCalls;
+            }
             ++stats.instances;
         }
         return stats;

@@ -152,7 +152,8 @@ private:
     DrawStats drawBatch(const GpuBatch& batch, const PassList& list, const PassPrograms& programs, bool culling,
                         bool materialBound, bool setInstanceBase, int replicas,
                         const std::span<const visibility::HalfSpace>* volume) const;
-    // One level of a batch: its instances in a list of the CPU's, one draw (or one per run of clusters).
+    // One level of a batch: its instances in a list of the CPU's, one draw (or, by clusters, one an
+    // instance: its runs of clusters meeting the volume in one glMultiDrawElements).
     DrawStats drawLevel(const GpuBatch& batch, const PassList& list, size_t level, const Range& range,
                         bool setInstanceBase, int replicas, const std::span<const visibility::HalfSpace>* volume) const;
     // Levels [first, end) of `levels` (a batch's chain) in a GPU-culled list, one draw through their

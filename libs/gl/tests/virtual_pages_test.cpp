@@ -4,14 +4,18 @@
 // and still shadows where the caster is; a page budget caps the pages drawn a frame, shows the
 // old sun's pages while a new sun's are drawn, and converges on what fresh pages give; requests
 // read late wait only when nothing that applies is on its way, and converge on what waiting
-// frames show; a still frame uploads no page table and a moved one only the entries that changed.
+// frames show; a still frame uploads no page table and a moved one only the entries that changed;
+// a large mesh drawn by the clusters meeting each page casts what it casts drawn whole.
 #include "headless_gl_test.h"
+
+#include "gpu_scene.h"
 
 #include "shadowkit/core/shadow_setup.h"
 #include "shadowkit/gl/read_backs.h"
 #include "shadowkit/gl/renderer.h"
 #include "shadowkit/scene/mesh_builder.h"
 
+#include <algorithm>
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
@@ -441,4 +445,82 @@ TEST_F(VirtualPagesTest, RequestsReadLateWaitOnlyWhenNothingAppliesAndConvergeOn
         EXPECT_EQ(a->shadowTerm, b->shadowTerm);
     }
     EXPECT_GE(lateMarks, kWalk) << "the earlier frames' marks never arrived in time: the test checks little";
+}
+
+TEST_F(VirtualPagesTest, ALargeMeshDrawnByTheClustersMeetingEachPageCastsWhatItCastsDrawnWhole) {
+    // A ground of 2 × 128² triangles (GpuScene::kClusterMinTriangles or more: a page draws the
+    // clusters of it that meet the page, each instance's runs of them in one multi-draw) against
+    // the same triangles as four meshes too small to cluster (each drawn whole where it meets a
+    // page). Hills shade the ground, boxes stand on it; without levels of detail the two scenes
+    // hold the same triangles at the same places, so every pixel and shadow term must agree,
+    // while the clustered ground sends fewer triangles to the pages.
+    constexpr int kQuads = 128;
+    constexpr float kSide = 40.0f;
+    auto heightAt = [](float x, float z) { return 3.0f * std::sin(0.35f * x) * std::cos(0.3f * z); };
+    scene::Mesh whole;
+    whole.name = "ground";
+    for (int j = 0; j <= kQuads; ++j)
+        for (int i = 0; i <= kQuads; ++i) {
+            const float x = kSide * (float(i) / kQuads - 0.5f), z = kSide * (float(j) / kQuads - 0.5f);
+            whole.vertices.push_back({{x, heightAt(x, z), z}, {0, 1, 0}, glm::vec3(0.7f)});
+        }
+    for (int j = 0; j < kQuads; ++j)
+        for (int i = 0; i < kQuads; ++i) {
+            const uint32_t a = uint32_t(j * (kQuads + 1) + i), b = a + 1, c = a + kQuads + 1, d = c + 1;
+            whole.indices.insert(whole.indices.end(), {a, c, b, b, c, d});
+        }
+    scene::Mesh box;
+    scene::addBox(box, glm::mat4(1.0f), {0.8f, 1.5f, 0.8f}, glm::vec3(0.8f));
+    box.computeBounds();
+    const std::vector<glm::mat4> boxes = {glm::translate(glm::mat4(1.0f), {-5, 2.5f, -3}),
+                                          glm::translate(glm::mat4(1.0f), {4, 2.5f, 2})};
+    scene::Scene clustered;
+    whole.computeBounds();
+    clustered.meshes = {whole, box};
+    clustered.batches = {{0, {glm::mat4(1.0f)}, false}, {1, boxes, false}};
+    scene::Scene quarters;
+    for (int q = 0; q < 4; ++q) {
+        scene::Mesh part;
+        part.name = "ground quarter";
+        part.vertices = whole.vertices;
+        for (size_t t = 0; t < whole.indices.size(); t += 3) {
+            const glm::vec3& p = whole.vertices[whole.indices[t]].position;
+            if ((p.x < 0.0f ? 0 : 1) + (p.z < 0.0f ? 0 : 2) == q)
+                part.indices.insert(part.indices.end(), whole.indices.begin() + long(t),
+                                    whole.indices.begin() + long(t) + 3);
+        }
+        ASSERT_LT(part.triangleCount(), gl::GpuScene::kClusterMinTriangles) << "a quarter would be clustered too";
+        part.computeBounds();
+        quarters.meshes.push_back(std::move(part));
+        quarters.batches.push_back({uint32_t(q), {glm::mat4(1.0f)}, false});
+    }
+    ASSERT_GE(whole.triangleCount(), gl::GpuScene::kClusterMinTriangles);
+    quarters.meshes.push_back(box);
+    quarters.batches.push_back({4, boxes, false});
+
+    const core::DirectionalLight lowSun{glm::normalize(core::Vec3(0.9, -0.25, 0.3))};
+    gl::RenderSettings settings = smallFrame();
+    settings.lod = false;
+    std::vector<uint8_t> pixels[2];
+    std::vector<float> shadow[2];
+    size_t triangles[2] = {0, 0};
+    const scene::Scene* scenes[2] = {&clustered, &quarters};
+    for (int k = 0; k < 2; ++k) {
+        auto renderer = gl::Renderer::create(*scenes[k]);
+        ASSERT_TRUE(renderer) << renderer.error();
+        const core::PerspectiveCamera cam = camera(2.0);
+        const core::ShadowSetup setup = virtualSetup(*scenes[k], cam, settings.height, lowSun);
+        const auto frame = (*renderer)->render(cam, lowSun, setup, settings);
+        ASSERT_TRUE(frame) << frame.error();
+        ASSERT_TRUE(frame->virtualPages && frame->virtualPages->pagesRendered > 8);
+        pixels[k] = (*renderer)->readColor().rgba;
+        triangles[k] = frame->shadow.triangles;
+        const auto buffers = (*renderer)->renderEvalBuffers(cam, lowSun, setup, settings);
+        ASSERT_TRUE(buffers) << buffers.error();
+        shadow[k] = buffers->shadowTerm;
+    }
+    EXPECT_TRUE(pixels[0] == pixels[1]) << "the clustered ground's frame differs";
+    EXPECT_TRUE(shadow[0] == shadow[1]) << "the clustered ground's shadow terms differ";
+    EXPECT_GT(std::count(shadow[1].begin(), shadow[1].end(), 0.0f), 100) << "no shadow to compare";
+    EXPECT_LT(triangles[0], triangles[1]) << "the pages drew the clustered ground whole";
 }
