@@ -80,14 +80,24 @@ def path_table(d):
         if "dispatches" not in r:
             return "–"
         return f"{r['dispatches']['median']:.0f} / {r['work_groups']['median']:,.0f}"
-    out = ["| trees | culling | frame CPU ms: median | max | synchronisations a frame | KiB up / read back a frame | "
-           "dispatches / work groups a frame | shadow pass: M triangles (last frame) | main pass: M triangles (last frame) |",
-           "|---:|---|---:|---:|---:|---:|---:|---:|---:|"]
-    for name, label in (("gpu", "GPU-driven (default)"), ("chc", "CHC++")):
-        for r in runs(d / f"path-{name}.json"):
+    # Draw calls of the last frame, shadow / main pass (API calls: a multi-draw counts once).
+    def draws(r):
+        return f"{r['shadow']['draw_calls']:,} / {r['main']['draw_calls']:,}"
+    out = ["| trees | set-up and culling | frame CPU ms: median | max | synchronisations a frame | "
+           "KiB up / read back a frame | dispatches / work groups a frame | draws: shadow / main (last frame) | "
+           "shadow pass: M triangles (last frame) | main pass: M triangles (last frame) |",
+           "|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|"]
+    # The virtual flythrough (sun moving) only where the run benched it (measure-gpu.sh's frame step
+    # since 6824575).
+    for name, label in (("gpu", "TSM, GPU-driven (default)"), ("chc", "TSM, CHC++"),
+                        ("virtual-pages-gpu", "`virtual`, GPU-driven"), ("virtual-pages-chc", "`virtual`, CHC++")):
+        path = d / f"path-{name}.json"
+        if name.startswith("virtual") and not path.exists():
+            continue
+        for r in runs(path):
             out.append(f"| {r['trees']:,} | {label} | {r['frame_cpu_ms']['median']:.2f} | {r['frame_cpu_ms']['max']:.1f} | "
-                       f"{r['read_backs']['median']:.0f} | {kib(r)} | {dispatches(r)} | {r['shadow']['triangles'] / 1e6:.2f} | "
-                       f"{r['main']['triangles'] / 1e6:.2f} |")
+                       f"{r['read_backs']['median']:.0f} | {kib(r)} | {dispatches(r)} | {draws(r)} | "
+                       f"{r['shadow']['triangles'] / 1e6:.2f} | {r['main']['triangles'] / 1e6:.2f} |")
     return "\n".join(out)
 
 
