@@ -117,7 +117,8 @@ public:
     DrawStats submitted(const PassList& list) const;
     DrawStats submitted(std::span<const PassList> lists) const; // their sum
     // What a list drew, from a copy of the whole command buffer (`commands`, commandWords() of
-    // them): the parse submitted() makes after its read, and gpu_figures.h after a late one.
+    // them): the parse submitted() makes after its read, and gpu_figures.h after a late one. Its
+    // drawCalls count commands, not calls (GpuScene::draw issues a batch's levels as one).
     static DrawStats drawnBy(std::span<const uint32_t> commands, int64_t indirect, std::span<const uint32_t> count);
     GLuint commandBuffer() const { return m_commands.id(); }
     size_t commandWords() const { return m_commandWords; }

@@ -80,7 +80,7 @@ void setLightFacingFront(const core::Mat4& clipFromWorld, const core::Vec3& wsTo
 }
 
 GpuScene::GpuScene(const scene::Scene& scene, std::span<const scene::MeshLods> lods)
-    : m_levelsInOneDraw(vertexStagesReadBaseInstance()) {
+    : m_levelsInOneDraw(vertexStagesReadDrawParameters()) {
     for (size_t t = 0; t < scene.textures.size(); ++t) {
         std::optional<float> cutoff;
         for (const scene::Material& m : scene.materials)

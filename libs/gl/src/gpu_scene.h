@@ -165,7 +165,7 @@ private:
     std::vector<GpuMesh> m_meshes;
     std::vector<GpuBatch> m_batches;
     std::vector<int32_t> m_batchAt; // Scene::batches index -> m_batches, -1 for a batch kept out
-    bool m_levelsInOneDraw = false; // vertexStagesReadBaseInstance() when the scene was made
+    bool m_levelsInOneDraw = false; // vertexStagesReadDrawParameters() when the scene was made
 };
 
 } // namespace shadowkit::gl

@@ -7,7 +7,7 @@
 namespace shadowkit::gl {
 namespace {
 
-int g_withoutBaseInstance = 0; // live WithoutBaseInstance guards
+int g_withoutDrawParameters = 0; // live WithoutDrawParameters guards
 
 std::string oneLine(std::string log) {
     while (!log.empty() && (log.back() == '\n' || log.back() == ' ' || log.back() == '\0')) log.pop_back();
@@ -22,13 +22,13 @@ core::Result<Shader> compile(GLenum stage, std::initializer_list<std::string_vie
     // Directives only, so it may follow the prelude's #defines; the source lines count from 1 again.
     // visible.glsl reads SK_BASE_INSTANCE and main.vert SK_DRAW_ID (not the extension's own macro:
     // a GL defines that for what it supports, enabled or not).
-    static constexpr std::string_view kBaseInstance = "#extension GL_ARB_shader_draw_parameters : require\n"
-                                                      "#define SK_BASE_INSTANCE uint(gl_BaseInstanceARB)\n"
-                                                      "#define SK_DRAW_ID uint(gl_DrawIDARB)\n"
-                                                      "#line 1\n";
-    if (stage == GL_VERTEX_SHADER && vertexStagesReadBaseInstance()) {
-        texts.push_back(kBaseInstance.data());
-        lengths.push_back(static_cast<GLint>(kBaseInstance.size()));
+    static constexpr std::string_view kDrawParameters = "#extension GL_ARB_shader_draw_parameters : require\n"
+                                                        "#define SK_BASE_INSTANCE uint(gl_BaseInstanceARB)\n"
+                                                        "#define SK_DRAW_ID uint(gl_DrawIDARB)\n"
+                                                        "#line 1\n";
+    if (stage == GL_VERTEX_SHADER && vertexStagesReadDrawParameters()) {
+        texts.push_back(kDrawParameters.data());
+        lengths.push_back(static_cast<GLint>(kDrawParameters.size()));
     }
     for (std::string_view s : sources) {
         texts.push_back(s.data());
@@ -71,12 +71,12 @@ core::Result<Program> link(std::string_view name, std::initializer_list<const Sh
 
 } // namespace
 
-bool vertexStagesReadBaseInstance() {
-    return g_withoutBaseInstance == 0 && epoxy_has_gl_extension("GL_ARB_shader_draw_parameters");
+bool vertexStagesReadDrawParameters() {
+    return g_withoutDrawParameters == 0 && epoxy_has_gl_extension("GL_ARB_shader_draw_parameters");
 }
 
-WithoutBaseInstance::WithoutBaseInstance() { ++g_withoutBaseInstance; }
-WithoutBaseInstance::~WithoutBaseInstance() { --g_withoutBaseInstance; }
+WithoutDrawParameters::WithoutDrawParameters() { ++g_withoutDrawParameters; }
+WithoutDrawParameters::~WithoutDrawParameters() { --g_withoutDrawParameters; }
 
 core::Result<Program> buildComputeProgram(std::string_view name, std::initializer_list<std::string_view> sources) {
     auto cs = compile(GL_COMPUTE_SHADER, sources, std::string(name) + ": compute shader");

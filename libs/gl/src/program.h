@@ -26,21 +26,23 @@ core::Result<Program> buildProgram(std::string_view name, std::initializer_list<
 // A compute program, likewise.
 core::Result<Program> buildComputeProgram(std::string_view name, std::initializer_list<std::string_view> sources);
 
-// Whether vertex stages read the draw's base instance (gl_BaseInstanceARB, from
-// GL_ARB_shader_draw_parameters, core in GL 4.6; every desktop driver and llvmpipe have it). Where
-// they do, each vertex stage is built with the extension and visible.glsl adds the base instance to
-// a list entry's place, so a GPU-culled list's indirect commands say where each level's entries
-// start and one glMultiDrawElementsIndirect draws all the levels of a batch (GpuScene::draw);
-// where not, each level is a draw of its own, its place in the instanceOffset uniform.
-bool vertexStagesReadBaseInstance();
+// Whether vertex stages read the draw parameters: the draw's base instance and its index in a
+// multi-draw (gl_BaseInstanceARB, gl_DrawIDARB: GL_ARB_shader_draw_parameters, core in GL 4.6;
+// Mesa's llvmpipe and NVIDIA's driver have it). Where they do, each vertex stage is built with the
+// extension; visible.glsl adds the base instance to a list entry's place, so a GPU-culled list's
+// indirect commands say where each level's entries start, and main.vert takes its level's lookup
+// offset by the draw's index: one glMultiDrawElementsIndirect draws the levels of a batch
+// (GpuScene::draw). Where not, each level is a draw of its own, its place in the instanceOffset
+// uniform.
+bool vertexStagesReadDrawParameters();
 // While one lives, programs are built, and scenes made, as for a driver without the extension (the
 // fallback's tests). Programs built while it lives must be drawn by scenes made while it lives.
-class WithoutBaseInstance {
+class WithoutDrawParameters {
 public:
-    WithoutBaseInstance();
-    ~WithoutBaseInstance();
-    WithoutBaseInstance(const WithoutBaseInstance&) = delete;
-    WithoutBaseInstance& operator=(const WithoutBaseInstance&) = delete;
+    WithoutDrawParameters();
+    ~WithoutDrawParameters();
+    WithoutDrawParameters(const WithoutDrawParameters&) = delete;
+    WithoutDrawParameters& operator=(const WithoutDrawParameters&) = delete;
 };
 
 // Fails unless the block exists, its std140 size equals the C++ struct's size and every

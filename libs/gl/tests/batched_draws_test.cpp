@@ -44,7 +44,7 @@ TEST_F(BatchedDrawsTest, ABatchsLevelsAreOneDrawWhereVertexStagesReadTheBaseInst
     // GL_ARB_shader_draw_parameters). Both draw the CPU path's pixels, shadow terms and casters.
     // The simple forest's levels all draw alike: one draw a batch. The leafy forest's billboard
     // clouds bind textures of their own, so its leaves' levels split there.
-    if (!gl::vertexStagesReadBaseInstance()) GTEST_SKIP() << "this GL has no GL_ARB_shader_draw_parameters";
+    if (!gl::vertexStagesReadDrawParameters()) GTEST_SKIP() << "this GL has no GL_ARB_shader_draw_parameters";
     struct Case {
         const char* name;
         scene::Scene forest;
@@ -70,7 +70,7 @@ TEST_F(BatchedDrawsTest, ABatchsLevelsAreOneDrawWhereVertexStagesReadTheBaseInst
         std::optional<core::RasterBuffers> expectedBuffers;
         gl::FrameStats cpu;
         for (const bool withBaseInstance : {true, false}) {
-            std::optional<gl::WithoutBaseInstance> without;
+            std::optional<gl::WithoutDrawParameters> without;
             if (!withBaseInstance) without.emplace(); // programs built and the scene made without it
             auto renderer = gl::Renderer::create(c.forest);
             ASSERT_TRUE(renderer) << renderer.error();

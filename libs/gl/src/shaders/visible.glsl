@@ -8,7 +8,7 @@ layout(location = SK_INSTANCE_OFFSET_LOCATION) uniform uint instanceOffset;
 
 // A GPU-culled list's indirect command carries where its level's entries start as its base
 // instance, which vertex stages read where the driver lets them (program.h,
-// vertexStagesReadBaseInstance, defines SK_BASE_INSTANCE): one multi-draw then draws several
+// vertexStagesReadDrawParameters, defines SK_BASE_INSTANCE): one multi-draw then draws several
 // levels. Direct draws have 0; so has a vertex stage that cannot read it, drawn one level a draw.
 #ifndef SK_BASE_INSTANCE
 #define SK_BASE_INSTANCE 0u
