@@ -26,7 +26,7 @@ class BatchedDrawsTest : public gl::testing::HeadlessGlTest {};
 
 using gl::testing::smallFrame;
 
-core::ShadowSetup lispsmSetup(const scene::ResolvedView& view, const scene::Scene& scene) {
+core::ShadowSetup lispsmMapFor(const scene::ResolvedView& view, const scene::Scene& scene) {
     auto setup = core::computeShadowSetup({.camera = view.camera,
                                            .light = view.light,
                                            .wsSceneBounds = scene.wsBounds(),
@@ -65,7 +65,7 @@ TEST_F(BatchedDrawsTest, ABatchsLevelsAreOneDrawWhereVertexStagesReadTheBaseInst
         ASSERT_GT(cameraLevels, batches) << c.name;
         scene::ResolvedView view = gl::testing::standardView(c.forest, "aerial");
         view.camera.aspect = 160.0 / 90.0;
-        const core::ShadowSetup setup = lispsmSetup(view, c.forest);
+        const core::ShadowSetup setup = lispsmMapFor(view, c.forest);
         std::vector<uint8_t> expected;
         std::optional<core::RasterBuffers> expectedBuffers;
         gl::FrameStats cpu;
