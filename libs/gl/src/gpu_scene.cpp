@@ -398,10 +398,10 @@ DrawStats GpuScene::drawLevels(const GpuBatch& batch, const PassList& list, std:
                                size_t end, bool setInstanceBase) const {
     // The commands hold each level's range and the instances the GPU kept (up to `count`): what is
     // drawn is known to the GPU only (GpuCulling::submitted). Where vertex stages read the base
-    // instance, the commands carry each level's place in the pass's region and the uniform the
-    // region's; else a draw holds one level, whose place the uniform adds.
+    // instance, the commands carry each level's place in the lists; else a draw holds one level,
+    // whose place the uniform gives.
     const size_t firstSlot = batch.index * kMaxLodLevels + first;
-    glUniform1ui(kInstanceOffsetLocation, list.offset + (m_levelsInOneDraw ? 0u : list.first[firstSlot]));
+    glUniform1ui(kInstanceOffsetLocation, m_levelsInOneDraw ? 0u : list.offset + list.first[firstSlot]);
     if (setInstanceBase) {
         // Camera passes move simplified receivers' shadow lookups by their error, each draw of a
         // multi-draw its own level's (main.vert).

@@ -332,9 +332,11 @@ void main() {
     commands[at + 1u] = exists ? running * replicas : 0u; // instances
     commands[at + 2u] = shadowChain ? level.shadowFirstIndex : level.cameraFirstIndex;
     commands[at + 3u] = 0u; // base vertex
-    // Base instance: where the level's entries start in the pass's region (GpuCulling::describe's
-    // `first`), which vertex stages add where they read it (visible.glsl) and ignore where not.
-    commands[at + 4u] = SK_CULL_LEVELS * batch.first + l * batch.count;
+    // Base instance: where the level's entries start in the lists (the pass's region, then
+    // GpuCulling::describe's `first` in it), which vertex stages add where they read it
+    // (visible.glsl) and ignore where not: commands of several passes then draw together.
+    commands[at + 4u] = (firstPass + pass) * SK_CULL_LEVELS * instanceCount + SK_CULL_LEVELS * batch.first +
+                        l * batch.count;
 }
 
 #else // SK_CULL_STAGE 3
