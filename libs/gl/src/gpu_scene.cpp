@@ -224,8 +224,14 @@ DrawStats CasterLists::draw(const GpuScene& scene, size_t view, const PassProgra
     return stats;
 }
 
+DrawStats GpuScene::drawTogether(std::span<const PassList> lists, const PassPrograms& programs) const {
+    if (lists.empty()) return {};
+    return drawBatches(lists.front(), programs, false, 1, nullptr, lists);
+}
+
 DrawStats GpuScene::drawBatches(const PassList& list, const PassPrograms& programs, bool setInstanceBase, int replicas,
-                                const std::span<const visibility::HalfSpace>* volume) const {
+                                const std::span<const visibility::HalfSpace>* volume,
+                                std::span<const PassList> together) const {
     DrawStats stats;
     if (list.buffer != 0) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kVisibleBinding, list.buffer);
     if (list.indirect >= 0) glBindBuffer(GL_DRAW_INDIRECT_BUFFER, list.commands);
@@ -254,7 +260,7 @@ DrawStats GpuScene::drawBatches(const PassList& list, const PassPrograms& progra
             glUniform1f(kBaseAlphaLocation, batch.material.baseAlpha);
             glUniform1f(kAlphaCutoffLocation, batch.material.alphaCutoff);
         }
-        stats += drawBatch(batch, list, programs, culling, material, setInstanceBase, replicas, volume);
+        stats += drawBatch(batch, list, programs, culling, material, setInstanceBase, replicas, volume, together);
     };
     // A list that names its order (the sun's maps and pages: nearest the sun first) is drawn in
     // it, switching programs where a batch needs the other: drawn after the terrain under it, an
@@ -272,11 +278,17 @@ DrawStats GpuScene::drawBatches(const PassList& list, const PassPrograms& progra
 
 DrawStats GpuScene::drawBatch(const GpuBatch& batch, const PassList& list, const PassPrograms& programs, bool culling,
                               bool materialBound, bool setInstanceBase, int replicas,
-                              const std::span<const visibility::HalfSpace>* volume) const {
+                              const std::span<const visibility::HalfSpace>* volume,
+                              std::span<const PassList> together) const {
     DrawStats stats;
     const GpuMesh& mesh = m_meshes[batch.mesh];
     const std::vector<Range>& levels = list.shadow ? mesh.shadow : mesh.camera;
-    auto instancesAt = [&](size_t level) { return list.count[batch.index * kMaxLodLevels + level]; };
+    // Passes drawn together: a level is drawn where any of them may hold instances of it.
+    auto instancesAt = [&](size_t level) {
+        const size_t slot = batch.index * kMaxLodLevels + level;
+        if (together.size() < 2) return list.count[slot];
+        return std::ranges::any_of(together, [&](const PassList& l) { return l.count[slot] > 0; }) ? 1u : 0u;
+    };
     // What a level's draw sets apart from its batch: both sides where culling could lose a face the
     // light or camera meets first; a texture of its own (a billboard cloud's) in place of the
     // material's. Levels that agree can share a draw (their lookup offsets go as an array).
@@ -297,7 +309,8 @@ DrawStats GpuScene::drawBatch(const GpuBatch& batch, const PassList& list, const
     // A GPU-culled list's levels are drawn together where the vertex stages read each command's
     // base instance (program.h): a run of consecutive levels with instances and the same state is
     // one glMultiDrawElementsIndirect over their commands, which lie one after the other.
-    const bool together = list.indirect >= 0 && m_levelsInOneDraw;
+    // Passes drawn together take one level a call (their commands are a stride apart).
+    const bool levelsTogether = list.indirect >= 0 && m_levelsInOneDraw && together.size() < 2;
     bool bound = false;
     for (size_t level = 0; level < levels.size();) {
         if (instancesAt(level) == 0) {
@@ -312,11 +325,16 @@ DrawStats GpuScene::drawBatch(const GpuBatch& batch, const PassList& list, const
         }
         const LevelState state = stateOf(level);
         size_t end = level + 1;
-        while (together && end < levels.size() && instancesAt(end) > 0 && stateOf(end) == state) ++end;
+        while (levelsTogether && end < levels.size() && instancesAt(end) > 0 && stateOf(end) == state) ++end;
         if (state.twoSided) glDisable(GL_CULL_FACE);
         if (state.texture) glBindTextureUnit(kBaseColorUnit, state.texture);
-        stats += list.indirect >= 0 ? drawLevels(batch, list, levels, level, end, setInstanceBase)
-                                    : drawLevel(batch, list, level, levels[level], setInstanceBase, replicas, volume);
+        if (together.size() > 1)
+            stats += drawLevels(batch, list, levels, level, end, setInstanceBase, together.size(),
+                                together[1].indirect - together[0].indirect);
+        else if (list.indirect >= 0)
+            stats += drawLevels(batch, list, levels, level, end, setInstanceBase);
+        else
+            stats += drawLevel(batch, list, level, levels[level], setInstanceBase, replicas, volume);
         if (state.texture) glBindTextureUnit(kBaseColorUnit, batch.material.texture);
         if (state.twoSided) glEnable(GL_CULL_FACE);
         level = end;
@@ -395,7 +413,7 @@ DrawStats GpuScene::drawLevel(const GpuBatch& batch, const PassList& list, size_
 }
 
 DrawStats GpuScene::drawLevels(const GpuBatch& batch, const PassList& list, std::span<const Range> levels, size_t first,
-                               size_t end, bool setInstanceBase) const {
+                               size_t end, bool setInstanceBase, size_t passes, int64_t passStride) const {
     // The commands hold each level's range and the instances the GPU kept (up to `count`): what is
     // drawn is known to the GPU only (GpuCulling::submitted). Where vertex stages read the base
     // instance, the commands carry each level's place in the lists; else a draw holds one level,
@@ -411,7 +429,11 @@ DrawStats GpuScene::drawLevels(const GpuBatch& batch, const PassList& list, std:
     }
     const size_t command = static_cast<size_t>(list.indirect) + firstSlot;
     const auto* at = reinterpret_cast<const void*>(command * kIndirectCommandWords * sizeof(uint32_t));
-    if (end == first + 1)
+    if (passes > 1)
+        glMultiDrawElementsIndirect(
+            GL_TRIANGLES, GL_UNSIGNED_INT, at, static_cast<GLsizei>(passes),
+            static_cast<GLsizei>(passStride * int64_t(kIndirectCommandWords * sizeof(uint32_t))));
+    else if (end == first + 1)
         glDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT, at);
     else
         glMultiDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT, at, static_cast<GLsizei>(end - first), 0);

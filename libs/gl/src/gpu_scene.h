@@ -97,6 +97,11 @@ public:
     DrawStats draw(const PassList& list, const PassPrograms& programs,
                    std::span<const visibility::HalfSpace> volume) const;
     static constexpr size_t kClusterMinTriangles = 16384, kClusterTriangles = 2048;
+    // Several passes' GPU-culled lists at once, their commands one stride apart (consecutive
+    // passes of GpuCulling::cullPasses): each batch's level in one multi-draw over the passes, the
+    // draw's index naming the pass to `programs` (virtual pages: depth.vert's SK_PAGES). Only where
+    // vertex stages read the draw parameters (program.h).
+    DrawStats drawTogether(std::span<const PassList> lists, const PassPrograms& programs) const;
     // Whether Scene::batches[sceneBatch]'s mesh draws by clusters at some level of either chain,
     // so that the overload above may draw only a part of it.
     bool drawsByClusters(size_t sceneBatch) const;
@@ -146,20 +151,23 @@ private:
         bool mirrored = false;                  // an instance's transform has a negative determinant
         std::vector<glm::mat4> worldFromObject; // kept on the CPU for clustered meshes only
     };
+    // `together`: empty, or the lists of drawTogether, `list` the first.
     DrawStats drawBatches(const PassList& list, const PassPrograms& programs, bool setInstanceBase, int replicas,
-                          const std::span<const visibility::HalfSpace>* volume) const;
+                          const std::span<const visibility::HalfSpace>* volume,
+                          std::span<const PassList> together = {}) const;
     // materialBound: the material program is bound (a level's own texture is bound with it).
     DrawStats drawBatch(const GpuBatch& batch, const PassList& list, const PassPrograms& programs, bool culling,
                         bool materialBound, bool setInstanceBase, int replicas,
-                        const std::span<const visibility::HalfSpace>* volume) const;
+                        const std::span<const visibility::HalfSpace>* volume, std::span<const PassList> together) const;
     // One level of a batch: its instances in a list of the CPU's, one draw (or, by clusters, one an
     // instance: its runs of clusters meeting the volume in one glMultiDrawElements).
     DrawStats drawLevel(const GpuBatch& batch, const PassList& list, size_t level, const Range& range,
                         bool setInstanceBase, int replicas, const std::span<const visibility::HalfSpace>* volume) const;
     // Levels [first, end) of `levels` (a batch's chain) in a GPU-culled list, one draw through their
     // indirect commands (several only where m_levelsInOneDraw), with the state they share set.
+    // With `passes` > 1, one level for that many passes, their commands `passStride` commands apart.
     DrawStats drawLevels(const GpuBatch& batch, const PassList& list, std::span<const Range> levels, size_t first,
-                         size_t end, bool setInstanceBase) const;
+                         size_t end, bool setInstanceBase, size_t passes = 1, int64_t passStride = 0) const;
     std::vector<Texture> m_textures; // Scene::textures, mipmapped (scene::buildMipChain)
     Texture m_white;                 // for alpha-tested materials without a texture
     std::vector<GpuMesh> m_meshes;

@@ -214,6 +214,10 @@ const std::string& shaderPrelude() {
         define("SK_CULL_CHUNK_SUMS_BINDING", kCullChunkSumsBinding);
         define("SK_CULL_STAGE_BINDING", kCullStageBinding);
         define("SK_CULL_PASSES_BINDING", kCullPassesBinding);
+        define("SK_PAGES_BINDING", kPagesBinding);
+        define("SK_PAGE_BASE_LOCATION", kPageBaseLocation);
+        define("SK_VIEWPORT_BASE_LOCATION", kViewportBaseLocation);
+        define("SK_PAGE_PER_DRAW_LOCATION", kPagePerDrawLocation);
         define("SK_CULL_GROUP", kCullGroup);
         define("SK_CULL_LEVELS", static_cast<long long>(kMaxLodLevels));
         define("SK_CULL_MAX_PYRAMID_LEVELS", kCullMaxPyramidLevels);

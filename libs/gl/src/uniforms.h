@@ -74,8 +74,10 @@ inline constexpr unsigned kCullChunkSumsBinding = 6; // per chunk and level: cou
 inline constexpr unsigned kCullStageBinding =
     7; // each stage its own: the pyramid read (1), commands (2), lists (3), or the pyramid written
 inline constexpr unsigned kCullPassesBinding = 9; // per pass: its volume and level-of-detail projection
-inline constexpr unsigned kCullPyramidUnit = 0;   // GPU culling: the depth the pyramid is built from
-inline constexpr uint32_t kCullGroup = 128;       // GPU culling: instances per work group (gpu_cull.comp's chunks)
+// Virtual pages drawn together (depth.vert's SK_PAGES): each page's matrix and dither origin.
+inline constexpr unsigned kPagesBinding = 10;
+inline constexpr unsigned kCullPyramidUnit = 0; // GPU culling: the depth the pyramid is built from
+inline constexpr uint32_t kCullGroup = 128;     // GPU culling: instances per work group (gpu_cull.comp's chunks)
 inline constexpr int kCullMaxPyramidLevels =
     16;                                         // GPU culling: depth pyramid levels (level 0 up to 32768 texels a side)
 inline constexpr int kInstanceBaseLocation = 0; // uniform uint instanceBase (main.vert): surface identity
@@ -85,11 +87,21 @@ inline constexpr int kBaseAlphaLocation = 4;      // uniform float skBaseAlpha (
 inline constexpr int kAlphaCutoffLocation = 5;    // uniform float skAlphaCutoff (material.glsl); < 0: never discard
 inline constexpr int kOpacityLayerLocation = 6;   // uniform int (opacity.frag, opacity_prefilter.frag): the map drawn
 inline constexpr int kOpacityDepthPerMetreLocation = 7; // uniform float depthPerMetre (opacity_prefilter.frag)
+inline constexpr int kPageBaseLocation = 16;     // uniform uint pageBase (depth.vert, SK_PAGES): the draw's first page
+inline constexpr int kViewportBaseLocation = 17; // uniform int viewportBase (depth.vert, SK_PAGES): its viewport
+inline constexpr int kPagePerDrawLocation = 18;  // uniform uint pagePerDraw (depth.vert, SK_PAGES): 1 or 0
 // uniform float lodObjectErrors[kMaxLodLevels] (main.vert): the error of each level a draw holds,
 // locations 8 to 8 + kMaxLodLevels - 1 (an array takes a location an element)
 inline constexpr int kLodErrorLocation = 8;
 
 // std140: scalars pack in fours, vec4 and mat4 start on 16 bytes. Booleans are int32.
+
+// A virtual page's block when pages are drawn together (depth.vert's SkPage, std430).
+struct PageBlock {
+    glm::mat4 clipFromWorld;
+    glm::vec4 ditherOrigin{0.0f}; // xy: DepthPassUniforms::ditherOrigin for the page
+};
+static_assert(sizeof(PageBlock) == 80);
 
 struct DepthPassUniforms {          // GLSL: DepthPass (depth_pass.glsl)
     glm::mat4 clipFromWorld;        // the shadow view's light clip space

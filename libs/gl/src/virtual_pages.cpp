@@ -2,12 +2,14 @@
 
 #include "gl_shaders.h"
 #include "program.h"
+#include "shadowkit/core/caster_facing.h"
 #include "shadowkit/gl/read_backs.h"
 
 #include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstddef>
+#include <functional>
 #include <limits>
 #include <string>
 #include <variant>
@@ -49,6 +51,26 @@ core::Result<std::unique_ptr<VirtualPages>> VirtualPages::create() {
     auto table = PageTable::create();
     if (!table) return table.errorInfo();
     pages->m_pageTable = std::move(table).value();
+    // The programs that draw pages together (drawPages): where vertex stages read the draw's
+    // index and may pick the viewport; else every page is drawn alone with the caller's.
+    if (vertexStagesReadDrawParameters() && epoxy_has_gl_extension("GL_ARB_shader_viewport_layer_array")) {
+        using namespace shaders;
+        constexpr std::string_view kViewport = "#extension GL_ARB_shader_viewport_layer_array : require\n";
+        constexpr std::string_view kPages = "#define SK_PAGES 1\n";
+        constexpr std::string_view kPageDither =
+            "flat in vec2 vDitherOrigin;\n#define SK_DITHER_ORIGIN vDitherOrigin\n";
+        for (const bool material : {false, true}) {
+            const std::string_view with = kMaterialVariant[material];
+            const char* name = material ? "virtual pages' depth pass, materials" : "virtual pages' depth pass";
+            auto depth = buildProgram(name, {kViewport, with, kPages, kDepthPassGlsl, kVisibleGlsl, kDepthVert},
+                                      {with, kPageDither, kDepthPassGlsl, kMaterialGlsl, kDepthFrag});
+            if (!depth) return depth.errorInfo();
+            if (auto s = checkUniformBlock(*depth, name, "DepthPass", sizeof(DepthPassUniforms), depthPassFields()); !s)
+                return s.errorInfo();
+            (material ? pages->m_pagePrograms.material : pages->m_pagePrograms.plain) = std::move(depth).value();
+        }
+        glGetIntegerv(GL_MAX_VIEWPORTS, &pages->m_viewports); // 16 at least since GL 4.1
+    }
     pages->m_markUniforms = createBuffer(nullptr, sizeof(VirtualMarkUniforms));
     pages->m_mapsUniforms = createBuffer(nullptr, sizeof(VirtualMapsUniforms));
     const VirtualMapsUniforms disabled{};
@@ -217,9 +239,7 @@ VirtualPageStats VirtualPages::stats() const {
 
 DrawStats VirtualPages::drawPages(const GpuScene& scene, const PassPrograms& programs, const core::BiasSettings& bias,
                                   const core::Vec3& wsTowardsLight, const CasterLists& casters,
-                                  const Buffer& depthUniforms) const {
-    DrawStats draws;
-    glEnable(GL_SCISSOR_TEST);
+                                  const Buffer& depthUniforms) {
     // A page's first texel in its level's grid less its slot's in the atlas, so that the levels'
     // cross-fade dither (material.glsl) is the same in any slot; modulo 8, the dither's period,
     // to stay exact in a float.
@@ -227,6 +247,15 @@ DrawStats VirtualPages::drawPages(const GpuScene& scene, const PassPrograms& pro
         return static_cast<float>(((levelTexel - slotTexel) % 8 + 8) % 8);
     };
     const auto toRender = m_cache.pagesToRender();
+    auto ditherOrigin = [&](size_t i) {
+        const glm::ivec3 v = slotViewport(toRender[i].slot);
+        return glm::vec2(ditherOf(toRender[i].key.x * m_pageTexels - m_guardTexels, v.x),
+                         ditherOf(toRender[i].key.y * m_pageTexels - m_guardTexels, v.y));
+    };
+    if (drawnTogether(casters, wsTowardsLight))
+        return drawPagesTogether(scene, programs, bias, wsTowardsLight, casters, depthUniforms, ditherOrigin);
+    DrawStats draws;
+    glEnable(GL_SCISSOR_TEST);
     for (size_t i = 0; i < toRender.size(); ++i) {
         const glm::ivec3 v = slotViewport(toRender[i].slot);
         glViewport(v.x, v.y, v.z, v.z);
@@ -234,12 +263,92 @@ DrawStats VirtualPages::drawPages(const GpuScene& scene, const PassPrograms& pro
         const float clearDepth = 1.0f;
         glClearNamedFramebufferfv(m_framebuffer.id(), GL_DEPTH, 0, &clearDepth);
         DepthPassUniforms uniforms = depthPassUniformsFor(toRender[i].clipFromWorld, bias);
-        uniforms.ditherOrigin = {ditherOf(toRender[i].key.x * m_pageTexels - m_guardTexels, v.x),
-                                 ditherOf(toRender[i].key.y * m_pageTexels - m_guardTexels, v.y)};
+        uniforms.ditherOrigin = ditherOrigin(i);
         uploadToBuffer(depthUniforms.id(), 0, sizeof uniforms, &uniforms);
         setLightFacingFront(toRender[i].clipFromWorld, wsTowardsLight);
         const std::vector<visibility::HalfSpace> volume = visibility::clipVolume(toRender[i].clipFromWorld, false);
         draws += casters.draw(scene, i, programs, &volume);
+    }
+    glDisable(GL_SCISSOR_TEST);
+    return draws;
+}
+
+bool VirtualPages::drawnTogether(const CasterLists& casters, const core::Vec3& wsTowardsLight) const {
+    const auto toRender = m_cache.pagesToRender();
+    if (!m_pagePrograms.plain || toRender.size() < 2 || casters.culled.size() != toRender.size()) return false;
+    // Every page's casters culled on the GPU into consecutive passes: their commands one stride apart.
+    const int64_t stride = casters.culled[1].indirect - casters.culled[0].indirect;
+    if (casters.culled[0].indirect < 0 || stride <= 0) return false;
+    for (size_t i = 0; i < toRender.size(); ++i) {
+        if (casters.culled[i].indirect != casters.culled[0].indirect + int64_t(i) * stride) return false;
+        // One winding for all (an orthographic map of one sun: always, but it is a draw state).
+        if (core::lightFacingWinding(toRender[i].clipFromWorld, wsTowardsLight) !=
+            core::lightFacingWinding(toRender[0].clipFromWorld, wsTowardsLight))
+            return false;
+    }
+    return true;
+}
+
+DrawStats VirtualPages::drawPagesTogether(const GpuScene& scene, const PassPrograms& programs,
+                                          const core::BiasSettings& bias, const core::Vec3& wsTowardsLight,
+                                          const CasterLists& casters, const Buffer& depthUniforms,
+                                          const std::function<glm::vec2(size_t)>& ditherOrigin) {
+    const auto toRender = m_cache.pagesToRender();
+    // Every page's block, once; the DepthPass block holds what the pages share (the bias).
+    std::vector<PageBlock> blocks(toRender.size());
+    for (size_t i = 0; i < toRender.size(); ++i)
+        blocks[i] = {glm::mat4(toRender[i].clipFromWorld), glm::vec4(ditherOrigin(i), 0.0f, 0.0f)};
+    const size_t bytes = blocks.size() * sizeof(PageBlock);
+    if (m_pageBlockCapacity < blocks.size()) {
+        m_pageBlocks = createBuffer(nullptr, bytes);
+        m_pageBlockCapacity = blocks.size();
+    }
+    uploadToBuffer(m_pageBlocks.id(), 0, GLsizeiptr(bytes), blocks.data());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPagesBinding, m_pageBlocks.id());
+    const DepthPassUniforms shared = depthPassUniformsFor(toRender[0].clipFromWorld, bias);
+    uploadToBuffer(depthUniforms.id(), 0, sizeof shared, &shared);
+    setLightFacingFront(toRender[0].clipFromWorld, wsTowardsLight);
+    PassPrograms together = programs;
+    together.plain = m_pagePrograms.plain.id();
+    together.material = programs.material ? m_pagePrograms.material.id() : 0;
+    // The draws that follow: `pages` pages from `page`, the first in viewport `viewport` (several:
+    // the draw's index names the page; one: every draw of a call is that page's).
+    auto setBases = [&](size_t page, int viewport, size_t pages) {
+        for (const GLuint program : {together.plain, together.material}) {
+            if (!program) continue;
+            glProgramUniform1ui(program, kPageBaseLocation, static_cast<GLuint>(page));
+            glProgramUniform1i(program, kViewportBaseLocation, viewport);
+            glProgramUniform1ui(program, kPagePerDrawLocation, pages > 1 ? 1u : 0u);
+        }
+    };
+    // As many pages at once as the GL has viewports, each page's slot one of them: its clear
+    // scissored to it, then every batch's level for all of them in one multi-draw
+    // (GpuScene::drawTogether), then each page's own list (the clustered meshes the CPU picked for
+    // it). A page sees the same draws in the same order as when drawn alone.
+    const size_t group = static_cast<size_t>(std::max(m_viewports, 1));
+    DrawStats draws;
+    glEnable(GL_SCISSOR_TEST);
+    for (size_t first = 0; first < toRender.size(); first += group) {
+        const size_t count = std::min(group, toRender.size() - first);
+        for (size_t k = 0; k < count; ++k) {
+            const glm::ivec3 v = slotViewport(toRender[first + k].slot);
+            glScissorIndexed(0, v.x, v.y, v.z, v.z); // the clear's
+            const float clearDepth = 1.0f;
+            glClearNamedFramebufferfv(m_framebuffer.id(), GL_DEPTH, 0, &clearDepth);
+            glViewportIndexedf(GLuint(k), float(v.x), float(v.y), float(v.z), float(v.z));
+        }
+        for (size_t k = 0; k < count; ++k) {
+            const glm::ivec3 v = slotViewport(toRender[first + k].slot);
+            glScissorIndexed(GLuint(k), v.x, v.y, v.z, v.z);
+        }
+        setBases(first, 0, count);
+        draws += scene.drawTogether(casters.culled.subspan(first, count), together);
+        for (size_t k = 0; k < count; ++k) {
+            setBases(first + k, int(k), 1);
+            const std::vector<visibility::HalfSpace> volume =
+                visibility::clipVolume(toRender[first + k].clipFromWorld, false);
+            draws += scene.draw(casters.lists[first + k], together, volume);
+        }
     }
     glDisable(GL_SCISSOR_TEST);
     return draws;

@@ -25,6 +25,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <span>
@@ -72,14 +73,18 @@ public:
     glm::ivec3 slotViewport(int slot) const;
     // The atlas's width and height in texels (configure()).
     glm::ivec2 atlasTexels() const { return m_atlasTexels; }
-    // Draws pagesToRender()[i] with the casters of view i into its slot, scissored so its clear touches no
-    // other page, with the bound depth program: the page's matrix into `depthUniforms`, the
+    // Draws pagesToRender()[i] with the casters of view i into its slot, scissored so its clear
+    // touches no other page, with `programs`: the page's matrix into `depthUniforms`, the
     // clusters of large meshes culled to the page's volume, the faces towards `wsTowardsLight`
     // as the front ones (setLightFacingFront), `bias`'s constant term in the block (depth.vert).
     // Other GL state (polygon offset's slope term, clamp, culling) is the caller's.
+    // Where every page's casters were culled on the GPU (consecutive passes) and the GL lets vertex
+    // stages read the draw's index and pick the viewport, the pages are drawn together with
+    // programs of their own (the same flags): up to a viewport each at once, every batch's level
+    // for all of them in one multi-draw (drawPagesTogether) — the same depths, a few draws a frame
+    // instead of a few a page.
     DrawStats drawPages(const GpuScene& scene, const PassPrograms& programs, const core::BiasSettings& bias,
-                        const core::Vec3& wsTowardsLight, const CasterLists& casters,
-                        const Buffer& depthUniforms) const;
+                        const core::Vec3& wsTowardsLight, const CasterLists& casters, const Buffer& depthUniforms);
     const Framebuffer& framebuffer() const { return m_framebuffer; }
     // After the pages were drawn: they are valid, and the page table for shown()'s windows is
     // brought up to date on the GPU (page_table.h: its changed entries, or the whole when new).
@@ -106,6 +111,12 @@ public:
 
 private:
     VirtualPages() = default;
+    // Whether drawPages draws this frame's pages together (above).
+    bool drawnTogether(const CasterLists& casters, const core::Vec3& wsTowardsLight) const;
+    // The pages drawn together, with m_pagePrograms in place of `programs`' (the same flags).
+    DrawStats drawPagesTogether(const GpuScene& scene, const PassPrograms& programs, const core::BiasSettings& bias,
+                                const core::Vec3& wsTowardsLight, const CasterLists& casters,
+                                const Buffer& depthUniforms, const std::function<glm::vec2(size_t)>& ditherOrigin);
     // Marks the pages the pre-pass's receivers request in the windows of `views` (one per level
     // of `setup`) into `bits` (grown as needed); returns the words marked.
     size_t mark(const CameraDepthTarget& depth, const core::PerspectiveCamera& camera, const core::ShadowSetup& setup,
@@ -134,6 +145,11 @@ private:
     Texture m_atlas;
     std::unique_ptr<PageTable> m_pageTable;
     Framebuffer m_framebuffer;
+    // Pages drawn together (depth.vert's SK_PAGES): the depth programs, each page's block.
+    ProgramPair m_pagePrograms; // empty where the GL cannot
+    GLint m_viewports = 1;      // GL_MAX_VIEWPORTS: pages drawn at once
+    Buffer m_pageBlocks;
+    size_t m_pageBlockCapacity = 0;
     int m_slotsPerRow = 0, m_slotTexels = 0, m_pageTexels = 0, m_guardTexels = 0;
     glm::ivec2 m_atlasTexels{0};
     CpuTimes m_gl;

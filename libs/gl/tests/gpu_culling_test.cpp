@@ -9,6 +9,7 @@
 
 #include "gpu_culling.h"
 #include "gpu_scene.h"
+#include "program.h"
 #include "visibility.h"
 
 #include "shadowkit/gl/read_backs.h"
@@ -421,8 +422,9 @@ TEST_F(GpuCullingTest, VirtualPagesCulledOnTheGpuDrawTheCpuPathsPixelsInThreeDis
     // whole of it per page. The GPU-driven frame culls on the CPU the pages it has no room for —
     // the first frame's, all of them — and from then on every page's other casters on the GPU,
     // all pages in the same three dispatches: a frame drawing dozens of pages dispatches three
-    // more compute passes than the same frame drawing none. The leafy forest's pages draw their
-    // leaves' opacity layers from the same lists.
+    // more compute passes than the same frame drawing none, and draws them together: a draw a batch
+    // and level for as many pages as the GL has viewports, fewer than the CPU lists' draws page by
+    // page. The leafy forest's pages draw their leaves' opacity layers from the same lists.
     struct Case {
         const char* name;
         scene::Scene forest;
@@ -470,6 +472,16 @@ TEST_F(GpuCullingTest, VirtualPagesCulledOnTheGpuDrawTheCpuPathsPixelsInThreeDis
             }
             EXPECT_EQ(a->virtualPages->pagesCulledOnGpu, pages) << at << ": fewer pages than the first frame's room";
             culledOnGpu += a->virtualPages->pagesCulledOnGpu;
+            if (!c.opacity && gl::vertexStagesReadDrawParameters()) {
+                // Drawn together (VirtualPages::drawPages): for each group of as many pages as the GL
+                // has viewports, a draw a batch and level; then a page's clustered terrain, one draw.
+                GLint viewports = 0;
+                glGetIntegerv(GL_MAX_VIEWPORTS, &viewports);
+                const size_t groups = (size_t(pages) + size_t(viewports) - 1) / size_t(viewports);
+                EXPECT_LE(a->shadow.drawCalls, groups * c.forest.batches.size() * gl::kMaxLodLevels + size_t(pages))
+                    << at << ": " << pages << " pages";
+                EXPECT_LT(a->shadow.drawCalls, b->shadow.drawCalls) << at << ": the CPU lists' draws, page by page";
+            }
             // The same frame again draws no page: its dispatches are the frame's but the pages'.
             settings.culling = gl::Culling::Gpu;
             const gl::Traffic beforeStill = gl::trafficSoFar();

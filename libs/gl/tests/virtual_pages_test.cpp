@@ -499,28 +499,53 @@ TEST_F(VirtualPagesTest, ALargeMeshDrawnByTheClustersMeetingEachPageCastsWhatItC
     quarters.batches.push_back({4, boxes, false});
 
     const core::DirectionalLight lowSun{glm::normalize(core::Vec3(0.9, -0.25, 0.3))};
-    gl::RenderSettings settings = smallFrame();
-    settings.lod = false;
-    std::vector<uint8_t> pixels[2];
-    std::vector<float> shadow[2];
-    size_t triangles[2] = {0, 0};
+    // Each scene on the CPU path and GPU-driven, a second frame a step on drawing new pages: on the
+    // GPU path all of them culled on the GPU and drawn together (VirtualPages::drawPages), the
+    // clustered ground's runs page by page.
+    struct Frame {
+        std::vector<uint8_t> pixels;
+        std::vector<float> shadow;
+        size_t triangles = 0;
+    } frames[2][2];
     const scene::Scene* scenes[2] = {&clustered, &quarters};
-    for (int k = 0; k < 2; ++k) {
-        auto renderer = gl::Renderer::create(*scenes[k]);
-        ASSERT_TRUE(renderer) << renderer.error();
-        const core::PerspectiveCamera cam = camera(2.0);
-        const core::ShadowSetup setup = virtualSetup(*scenes[k], cam, settings.height, lowSun);
-        const auto frame = (*renderer)->render(cam, lowSun, setup, settings);
-        ASSERT_TRUE(frame) << frame.error();
-        ASSERT_TRUE(frame->virtualPages && frame->virtualPages->pagesRendered > 8);
-        pixels[k] = (*renderer)->readColor().rgba;
-        triangles[k] = frame->shadow.triangles;
-        const auto buffers = (*renderer)->renderEvalBuffers(cam, lowSun, setup, settings);
-        ASSERT_TRUE(buffers) << buffers.error();
-        shadow[k] = buffers->shadowTerm;
-    }
-    EXPECT_TRUE(pixels[0] == pixels[1]) << "the clustered ground's frame differs";
-    EXPECT_TRUE(shadow[0] == shadow[1]) << "the clustered ground's shadow terms differ";
-    EXPECT_GT(std::count(shadow[1].begin(), shadow[1].end(), 0.0f), 100) << "no shadow to compare";
+    for (int k = 0; k < 2; ++k)
+        for (const gl::Culling culling : {gl::Culling::Frustum, gl::Culling::Gpu}) {
+            const bool gpu = culling == gl::Culling::Gpu;
+            const std::string what = std::string(k == 0 ? "clustered" : "quarters") + (gpu ? ", gpu" : ", cpu");
+            gl::RenderSettings settings = smallFrame();
+            settings.lod = false;
+            settings.culling = culling;
+            auto renderer = gl::Renderer::create(*scenes[k]);
+            ASSERT_TRUE(renderer) << renderer.error();
+            // The sun, another sun, the sun again: each frame draws all its pages anew, the last as
+            // many as the first (the GPU path's room for pages is what the most a frame drew).
+            const core::PerspectiveCamera cam = camera(2.0);
+            const core::DirectionalLight otherSun{glm::normalize(core::Vec3(0.7, -0.35, 0.5))};
+            const core::DirectionalLight* suns[] = {&lowSun, &otherSun, &lowSun};
+            for (int i = 0; i < 3; ++i) {
+                const core::ShadowSetup setup = virtualSetup(*scenes[k], cam, settings.height, *suns[i]);
+                const auto frame = (*renderer)->render(cam, *suns[i], setup, settings);
+                ASSERT_TRUE(frame) << what << ": " << frame.error();
+                ASSERT_TRUE(frame->virtualPages && frame->virtualPages->pagesRendered > 1) << what;
+                if (i < 2) continue;
+                if (gpu) EXPECT_EQ(frame->virtualPages->pagesCulledOnGpu, frame->virtualPages->pagesRendered) << what;
+                Frame& f = frames[k][gpu];
+                f.pixels = (*renderer)->readColor().rgba;
+                f.triangles = frame->shadow.triangles;
+                const auto buffers = (*renderer)->renderEvalBuffers(cam, lowSun, setup, settings);
+                ASSERT_TRUE(buffers) << buffers.error();
+                f.shadow = buffers->shadowTerm;
+            }
+        }
+    for (int k = 0; k < 2; ++k)
+        for (int gpu = 0; gpu < 2; ++gpu) {
+            const std::string what = std::string(k == 0 ? "clustered" : "quarters") + (gpu ? ", gpu" : ", cpu");
+            EXPECT_TRUE(frames[k][gpu].pixels == frames[1][0].pixels) << what << ": the frame differs";
+            EXPECT_TRUE(frames[k][gpu].shadow == frames[1][0].shadow) << what << ": the shadow terms differ";
+            EXPECT_EQ(frames[k][gpu].triangles, frames[k][0].triangles) << what;
+        }
+    const std::vector<float>& shadow = frames[1][0].shadow;
+    EXPECT_GT(std::count(shadow.begin(), shadow.end(), 0.0f), 100) << "no shadow to compare";
+    const size_t triangles[2] = {frames[0][0].triangles, frames[1][0].triangles};
     EXPECT_LT(triangles[0], triangles[1]) << "the pages drew the clustered ground whole";
 }

@@ -11,6 +11,27 @@ layout(std430, binding = SK_INSTANCES_BINDING) readonly buffer Instances { mat4 
 // fragment shader can compute the exact linear depth (see depth.frag).
 out vec3 wsPosition;
 
+#ifdef SK_PAGES
+// Virtual pages drawn together (VirtualPages::drawPages): one multi-draw takes a batch's level for
+// several pages, the draw's index in it (SK_DRAW_ID: gl_DrawIDARB, program.h) naming the page,
+// whose matrix and dither origin come from its block, and its slot's viewport
+// (GL_ARB_shader_viewport_layer_array). A call that draws one page (its clustered meshes' runs, a
+// batch's levels — multi-draws too, whose index names the run or the level) has pagePerDraw 0:
+// pageBase and viewportBase name its block and viewport.
+struct SkPage {
+    mat4 clipFromWorld;
+    vec4 ditherOrigin; // xy: DepthPass's ditherOrigin for the page
+};
+layout(std430, binding = SK_PAGES_BINDING) readonly buffer Pages { SkPage pages[]; };
+layout(location = SK_PAGE_BASE_LOCATION) uniform uint pageBase;
+layout(location = SK_VIEWPORT_BASE_LOCATION) uniform int viewportBase;
+layout(location = SK_PAGE_PER_DRAW_LOCATION) uniform uint pagePerDraw; // 1: the draw's index names the page
+flat out vec2 vDitherOrigin;
+#ifndef SK_DRAW_ID
+#define SK_DRAW_ID 0u
+#endif
+#endif
+
 void main() {
     const uint entry = skVisibleEntry(uint(gl_InstanceID));
     const vec4 ws = worldFromObject[skInstanceOf(entry)] * vec4(osPosition, 1.0);
@@ -19,7 +40,15 @@ void main() {
 #ifdef SK_MATERIAL
     vUv = uv;
 #endif
+#ifdef SK_PAGES
+    const uint k = SK_DRAW_ID * pagePerDraw;
+    const SkPage page = pages[pageBase + k];
+    vDitherOrigin = page.ditherOrigin.xy;
+    gl_ViewportIndex = viewportBase + int(k);
+    gl_Position = page.clipFromWorld * ws;
+#else
     gl_Position = clipFromWorld * ws;
+#endif
 #ifndef SK_LINEAR_DEPTH
     // The hyperbolic layout's constant bias, in the stored depth's units (2^-24 of [0, 1], as
     // depth.frag adds it for the linear layout), rather than glPolygonOffset's: for a float

@@ -7,4 +7,6 @@ layout(std140, binding = SK_DEPTH_PASS_BINDING) uniform DepthPass {
     float constantBias;        // linear layout: depth units
     vec2 ditherOrigin;         // texels added to gl_FragCoord.xy for the levels' cross-fade (material.glsl)
 };
+#ifndef SK_DITHER_ORIGIN // virtual pages drawn together give each page's (depth.vert, SK_PAGES)
 #define SK_DITHER_ORIGIN ditherOrigin
+#endif
