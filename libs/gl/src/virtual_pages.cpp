@@ -252,11 +252,15 @@ DrawStats VirtualPages::drawPages(const GpuScene& scene, const PassPrograms& pro
         return glm::vec2(ditherOf(toRender[i].key.x * m_pageTexels - m_guardTexels, v.x),
                          ditherOf(toRender[i].key.y * m_pageTexels - m_guardTexels, v.y));
     };
-    if (drawnTogether(casters, wsTowardsLight))
-        return drawPagesTogether(scene, programs, bias, wsTowardsLight, casters, depthUniforms, ditherOrigin);
+    // The leading pages culled on the GPU together, the rest (past the room the frame made for
+    // pages on the GPU) one at a time.
+    const size_t together = pagesDrawnTogether(casters, wsTowardsLight);
     DrawStats draws;
+    if (together > 1)
+        draws +=
+            drawPagesTogether(scene, programs, bias, wsTowardsLight, casters, together, depthUniforms, ditherOrigin);
     glEnable(GL_SCISSOR_TEST);
-    for (size_t i = 0; i < toRender.size(); ++i) {
+    for (size_t i = together > 1 ? together : 0; i < toRender.size(); ++i) {
         const glm::ivec3 v = slotViewport(toRender[i].slot);
         glViewport(v.x, v.y, v.z, v.z);
         glScissor(v.x, v.y, v.z, v.z);
@@ -273,27 +277,28 @@ DrawStats VirtualPages::drawPages(const GpuScene& scene, const PassPrograms& pro
     return draws;
 }
 
-bool VirtualPages::drawnTogether(const CasterLists& casters, const core::Vec3& wsTowardsLight) const {
+size_t VirtualPages::pagesDrawnTogether(const CasterLists& casters, const core::Vec3& wsTowardsLight) const {
     const auto toRender = m_cache.pagesToRender();
-    if (!m_pagePrograms.plain || toRender.size() < 2 || casters.culled.size() != toRender.size()) return false;
-    // Every page's casters culled on the GPU into consecutive passes: their commands one stride apart.
+    if (!m_pagePrograms.plain || toRender.size() < 2 || casters.culled.size() != toRender.size()) return 0;
+    // The leading pages whose casters were culled on the GPU into consecutive passes: their
+    // commands one stride apart.
     const int64_t stride = casters.culled[1].indirect - casters.culled[0].indirect;
-    if (casters.culled[0].indirect < 0 || stride <= 0) return false;
-    for (size_t i = 0; i < toRender.size(); ++i) {
-        if (casters.culled[i].indirect != casters.culled[0].indirect + int64_t(i) * stride) return false;
-        // One winding for all (an orthographic map of one sun: always, but it is a draw state).
-        if (core::lightFacingWinding(toRender[i].clipFromWorld, wsTowardsLight) !=
-            core::lightFacingWinding(toRender[0].clipFromWorld, wsTowardsLight))
-            return false;
-    }
-    return true;
+    if (casters.culled[0].indirect < 0 || stride <= 0) return 0;
+    size_t pages = 0;
+    while (pages < toRender.size() &&
+           casters.culled[pages].indirect == casters.culled[0].indirect + int64_t(pages) * stride &&
+           // One winding for all (an orthographic map of one sun: always, but it is a draw state).
+           core::lightFacingWinding(toRender[pages].clipFromWorld, wsTowardsLight) ==
+               core::lightFacingWinding(toRender[0].clipFromWorld, wsTowardsLight))
+        ++pages;
+    return pages;
 }
 
 DrawStats VirtualPages::drawPagesTogether(const GpuScene& scene, const PassPrograms& programs,
                                           const core::BiasSettings& bias, const core::Vec3& wsTowardsLight,
-                                          const CasterLists& casters, const Buffer& depthUniforms,
+                                          const CasterLists& casters, size_t pages, const Buffer& depthUniforms,
                                           const std::function<glm::vec2(size_t)>& ditherOrigin) {
-    const auto toRender = m_cache.pagesToRender();
+    const auto toRender = m_cache.pagesToRender().first(pages);
     // Every page's block, once; the DepthPass block holds what the pages share (the bias).
     std::vector<PageBlock> blocks(toRender.size());
     for (size_t i = 0; i < toRender.size(); ++i)

@@ -78,8 +78,8 @@ public:
     // clusters of large meshes culled to the page's volume, the faces towards `wsTowardsLight`
     // as the front ones (setLightFacingFront), `bias`'s constant term in the block (depth.vert).
     // Other GL state (polygon offset's slope term, clamp, culling) is the caller's.
-    // Where every page's casters were culled on the GPU (consecutive passes) and the GL lets vertex
-    // stages read the draw's index and pick the viewport, the pages are drawn together with
+    // Where the pages' casters were culled on the GPU (consecutive passes) and the GL lets vertex
+    // stages read the draw's index and pick the viewport, those pages are drawn together with
     // programs of their own (the same flags): up to a viewport each at once, every batch's level
     // for all of them in one multi-draw (drawPagesTogether) — the same depths, a few draws a frame
     // instead of a few a page.
@@ -111,11 +111,13 @@ public:
 
 private:
     VirtualPages() = default;
-    // Whether drawPages draws this frame's pages together (above).
-    bool drawnTogether(const CasterLists& casters, const core::Vec3& wsTowardsLight) const;
-    // The pages drawn together, with m_pagePrograms in place of `programs`' (the same flags).
+    // How many of this frame's pages drawPages draws together (above): the leading ones culled on
+    // the GPU, 0 where the GL cannot.
+    size_t pagesDrawnTogether(const CasterLists& casters, const core::Vec3& wsTowardsLight) const;
+    // The first `pages` pages drawn together, with m_pagePrograms in place of `programs`' (the
+    // same flags).
     DrawStats drawPagesTogether(const GpuScene& scene, const PassPrograms& programs, const core::BiasSettings& bias,
-                                const core::Vec3& wsTowardsLight, const CasterLists& casters,
+                                const core::Vec3& wsTowardsLight, const CasterLists& casters, size_t pages,
                                 const Buffer& depthUniforms, const std::function<glm::vec2(size_t)>& ditherOrigin);
     // Marks the pages the pre-pass's receivers request in the windows of `views` (one per level
     // of `setup`) into `bits` (grown as needed); returns the words marked.

@@ -506,46 +506,58 @@ TEST_F(VirtualPagesTest, ALargeMeshDrawnByTheClustersMeetingEachPageCastsWhatItC
         std::vector<uint8_t> pixels;
         std::vector<float> shadow;
         size_t triangles = 0;
-    } frames[2][2];
+    } frames[2][2][2]; // [scene][gpu][the second or third frame]
     const scene::Scene* scenes[2] = {&clustered, &quarters};
+    const char* names[2] = {"clustered", "quarters"};
     for (int k = 0; k < 2; ++k)
         for (const gl::Culling culling : {gl::Culling::Frustum, gl::Culling::Gpu}) {
             const bool gpu = culling == gl::Culling::Gpu;
-            const std::string what = std::string(k == 0 ? "clustered" : "quarters") + (gpu ? ", gpu" : ", cpu");
             gl::RenderSettings settings = smallFrame();
             settings.lod = false;
             settings.culling = culling;
             auto renderer = gl::Renderer::create(*scenes[k]);
             ASSERT_TRUE(renderer) << renderer.error();
-            // The sun, another sun, the sun again: each frame draws all its pages anew, the last as
-            // many as the first (the GPU path's room for pages is what the most a frame drew).
+            // The sun (at most 10 pages: the GPU path makes room for 10 pages on the GPU), another
+            // sun (all its pages anew: 10 culled on the GPU and drawn together, the rest on the CPU
+            // one at a time), the sun again (the room grown to the last frame's pages).
             const core::PerspectiveCamera cam = camera(2.0);
             const core::DirectionalLight otherSun{glm::normalize(core::Vec3(0.7, -0.35, 0.5))};
             const core::DirectionalLight* suns[] = {&lowSun, &otherSun, &lowSun};
             for (int i = 0; i < 3; ++i) {
+                const std::string what =
+                    std::string(names[k]) + (gpu ? ", gpu" : ", cpu") + ", frame " + std::to_string(i);
+                settings.virtualPageBudget = i == 0 ? 10 : 0;
                 const core::ShadowSetup setup = virtualSetup(*scenes[k], cam, settings.height, *suns[i]);
                 const auto frame = (*renderer)->render(cam, *suns[i], setup, settings);
                 ASSERT_TRUE(frame) << what << ": " << frame.error();
                 ASSERT_TRUE(frame->virtualPages && frame->virtualPages->pagesRendered > 1) << what;
-                if (i < 2) continue;
-                if (gpu) EXPECT_EQ(frame->virtualPages->pagesCulledOnGpu, frame->virtualPages->pagesRendered) << what;
-                Frame& f = frames[k][gpu];
+                if (i == 0) continue;
+                const int pages = frame->virtualPages->pagesRendered, onGpu = frame->virtualPages->pagesCulledOnGpu;
+                if (gpu && i == 1) {
+                    EXPECT_EQ(onGpu, 10) << what;
+                    EXPECT_GT(pages, onGpu) << what << ": no page culled on the CPU beside them";
+                }
+                if (gpu && i == 2) EXPECT_GT(onGpu, 1) << what;
+                Frame& f = frames[k][gpu][i - 1];
                 f.pixels = (*renderer)->readColor().rgba;
                 f.triangles = frame->shadow.triangles;
-                const auto buffers = (*renderer)->renderEvalBuffers(cam, lowSun, setup, settings);
+                const auto buffers = (*renderer)->renderEvalBuffers(cam, *suns[i], setup, settings);
                 ASSERT_TRUE(buffers) << buffers.error();
                 f.shadow = buffers->shadowTerm;
             }
         }
     for (int k = 0; k < 2; ++k)
-        for (int gpu = 0; gpu < 2; ++gpu) {
-            const std::string what = std::string(k == 0 ? "clustered" : "quarters") + (gpu ? ", gpu" : ", cpu");
-            EXPECT_TRUE(frames[k][gpu].pixels == frames[1][0].pixels) << what << ": the frame differs";
-            EXPECT_TRUE(frames[k][gpu].shadow == frames[1][0].shadow) << what << ": the shadow terms differ";
-            EXPECT_EQ(frames[k][gpu].triangles, frames[k][0].triangles) << what;
-        }
-    const std::vector<float>& shadow = frames[1][0].shadow;
+        for (int gpu = 0; gpu < 2; ++gpu)
+            for (int i = 0; i < 2; ++i) {
+                const std::string what =
+                    std::string(names[k]) + (gpu ? ", gpu" : ", cpu") + ", frame " + std::to_string(i + 1);
+                const Frame &f = frames[k][gpu][i], &expected = frames[1][0][i];
+                EXPECT_TRUE(f.pixels == expected.pixels) << what << ": the frame differs";
+                EXPECT_TRUE(f.shadow == expected.shadow) << what << ": the shadow terms differ";
+                EXPECT_EQ(f.triangles, frames[k][0][i].triangles) << what;
+            }
+    const std::vector<float>& shadow = frames[1][0][1].shadow;
     EXPECT_GT(std::count(shadow.begin(), shadow.end(), 0.0f), 100) << "no shadow to compare";
-    const size_t triangles[2] = {frames[0][0].triangles, frames[1][0].triangles};
+    const size_t triangles[2] = {frames[0][0][1].triangles, frames[1][0][1].triangles};
     EXPECT_LT(triangles[0], triangles[1]) << "the pages drew the clustered ground whole";
 }
