@@ -13,6 +13,9 @@
 
 namespace shadowkit::gl {
 
+// main.vert's lodObjectErrors[] takes a uniform location a level: they must not reach the next ones.
+static_assert(kLodErrorLocation + static_cast<int>(kMaxLodLevels) <= kPageBaseLocation);
+
 namespace {
 
 // A simplified surface lies up to its error off the true one on one side or the other, and would

@@ -87,12 +87,13 @@ inline constexpr int kBaseAlphaLocation = 4;      // uniform float skBaseAlpha (
 inline constexpr int kAlphaCutoffLocation = 5;    // uniform float skAlphaCutoff (material.glsl); < 0: never discard
 inline constexpr int kOpacityLayerLocation = 6;   // uniform int (opacity.frag, opacity_prefilter.frag): the map drawn
 inline constexpr int kOpacityDepthPerMetreLocation = 7; // uniform float depthPerMetre (opacity_prefilter.frag)
+// uniform float lodObjectErrors[kMaxLodLevels] (main.vert): the error of each level a draw holds,
+// locations 8 to 8 + kMaxLodLevels - 1 (an array takes a location an element: gpu_scene.cpp checks they end before
+// kPageBaseLocation)
+inline constexpr int kLodErrorLocation = 8;
 inline constexpr int kPageBaseLocation = 16;     // uniform uint pageBase (depth.vert, SK_PAGES): the draw's first page
 inline constexpr int kViewportBaseLocation = 17; // uniform int viewportBase (depth.vert, SK_PAGES): its viewport
 inline constexpr int kPagePerDrawLocation = 18;  // uniform uint pagePerDraw (depth.vert, SK_PAGES): 1 or 0
-// uniform float lodObjectErrors[kMaxLodLevels] (main.vert): the error of each level a draw holds,
-// locations 8 to 8 + kMaxLodLevels - 1 (an array takes a location an element)
-inline constexpr int kLodErrorLocation = 8;
 
 // std140: scalars pack in fours, vec4 and mat4 start on 16 bytes. Booleans are int32.
 
