@@ -9,7 +9,6 @@
 #include <bit>
 #include <cmath>
 #include <cstddef>
-#include <functional>
 #include <limits>
 #include <string>
 #include <variant>
@@ -252,13 +251,33 @@ DrawStats VirtualPages::drawPages(const GpuScene& scene, const PassPrograms& pro
         return glm::vec2(ditherOf(toRender[i].key.x * m_pageTexels - m_guardTexels, v.x),
                          ditherOf(toRender[i].key.y * m_pageTexels - m_guardTexels, v.y));
     };
-    // The leading pages culled on the GPU together, the rest (past the room the frame made for
-    // pages on the GPU) one at a time.
-    const size_t together = pagesDrawnTogether(casters, wsTowardsLight);
+    // Where the GL can, every page is drawn by the page programs (each page's matrix from its
+    // block), whether with others or alone: the same arithmetic for a page culled on the GPU and
+    // one culled on the CPU, so the two paths store the same depths on any driver.
+    const bool pageProgramsUsed = static_cast<bool>(m_pagePrograms.plain);
+    PassPrograms drawWith = programs;
+    if (pageProgramsUsed) {
+        drawWith.plain = m_pagePrograms.plain.id();
+        drawWith.material = programs.material ? m_pagePrograms.material.id() : 0;
+        std::vector<PageBlock> blocks(toRender.size());
+        for (size_t i = 0; i < toRender.size(); ++i)
+            blocks[i] = {glm::mat4(toRender[i].clipFromWorld), glm::vec4(ditherOrigin(i), 0.0f, 0.0f)};
+        if (m_pageBlockCapacity < blocks.size()) {
+            m_pageBlocks = createBuffer(nullptr, blocks.size() * sizeof(PageBlock));
+            m_pageBlockCapacity = blocks.size();
+        }
+        if (!blocks.empty())
+            uploadToBuffer(m_pageBlocks.id(), 0, GLsizeiptr(blocks.size() * sizeof(PageBlock)), blocks.data());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPagesBinding, m_pageBlocks.id());
+        // What the pages share: the bias (the block's matrix and dither origin are the pages').
+        const DepthPassUniforms shared = depthPassUniformsFor(core::Mat4(1.0), bias);
+        uploadToBuffer(depthUniforms.id(), 0, sizeof shared, &shared);
+    }
+    // The leading pages culled on the GPU together, the rest (the CPU's: past the room the frame
+    // made for pages on the GPU, or every page on the other paths) one at a time.
+    const size_t together = pageProgramsUsed ? pagesDrawnTogether(casters, wsTowardsLight) : 0;
     DrawStats draws;
-    if (together > 1)
-        draws +=
-            drawPagesTogether(scene, programs, bias, wsTowardsLight, casters, together, depthUniforms, ditherOrigin);
+    if (together > 1) draws += drawPagesTogether(scene, drawWith, wsTowardsLight, casters, together);
     glEnable(GL_SCISSOR_TEST);
     for (size_t i = together > 1 ? together : 0; i < toRender.size(); ++i) {
         const glm::ivec3 v = slotViewport(toRender[i].slot);
@@ -266,20 +285,33 @@ DrawStats VirtualPages::drawPages(const GpuScene& scene, const PassPrograms& pro
         glScissor(v.x, v.y, v.z, v.z);
         const float clearDepth = 1.0f;
         glClearNamedFramebufferfv(m_framebuffer.id(), GL_DEPTH, 0, &clearDepth);
-        DepthPassUniforms uniforms = depthPassUniformsFor(toRender[i].clipFromWorld, bias);
-        uniforms.ditherOrigin = ditherOrigin(i);
-        uploadToBuffer(depthUniforms.id(), 0, sizeof uniforms, &uniforms);
+        if (pageProgramsUsed) {
+            setPageBases(drawWith, i, 0, 1);
+        } else {
+            DepthPassUniforms uniforms = depthPassUniformsFor(toRender[i].clipFromWorld, bias);
+            uniforms.ditherOrigin = ditherOrigin(i);
+            uploadToBuffer(depthUniforms.id(), 0, sizeof uniforms, &uniforms);
+        }
         setLightFacingFront(toRender[i].clipFromWorld, wsTowardsLight);
         const std::vector<visibility::HalfSpace> volume = visibility::clipVolume(toRender[i].clipFromWorld, false);
-        draws += casters.draw(scene, i, programs, &volume);
+        draws += casters.draw(scene, i, drawWith, &volume);
     }
     glDisable(GL_SCISSOR_TEST);
     return draws;
 }
 
+void VirtualPages::setPageBases(const PassPrograms& programs, size_t page, int viewport, size_t pages) {
+    for (const GLuint program : {programs.plain, programs.material}) {
+        if (!program) continue;
+        glProgramUniform1ui(program, kPageBaseLocation, static_cast<GLuint>(page));
+        glProgramUniform1i(program, kViewportBaseLocation, viewport);
+        glProgramUniform1ui(program, kPagePerDrawLocation, pages > 1 ? 1u : 0u);
+    }
+}
+
 size_t VirtualPages::pagesDrawnTogether(const CasterLists& casters, const core::Vec3& wsTowardsLight) const {
     const auto toRender = m_cache.pagesToRender();
-    if (!m_pagePrograms.plain || toRender.size() < 2 || casters.culled.size() != toRender.size()) return 0;
+    if (toRender.size() < 2 || casters.culled.size() != toRender.size()) return 0;
     // The leading pages whose casters were culled on the GPU into consecutive passes: their
     // commands one stride apart.
     const int64_t stride = casters.culled[1].indirect - casters.culled[0].indirect;
@@ -295,37 +327,9 @@ size_t VirtualPages::pagesDrawnTogether(const CasterLists& casters, const core::
 }
 
 DrawStats VirtualPages::drawPagesTogether(const GpuScene& scene, const PassPrograms& programs,
-                                          const core::BiasSettings& bias, const core::Vec3& wsTowardsLight,
-                                          const CasterLists& casters, size_t pages, const Buffer& depthUniforms,
-                                          const std::function<glm::vec2(size_t)>& ditherOrigin) {
+                                          const core::Vec3& wsTowardsLight, const CasterLists& casters, size_t pages) {
     const auto toRender = m_cache.pagesToRender().first(pages);
-    // Every page's block, once; the DepthPass block holds what the pages share (the bias).
-    std::vector<PageBlock> blocks(toRender.size());
-    for (size_t i = 0; i < toRender.size(); ++i)
-        blocks[i] = {glm::mat4(toRender[i].clipFromWorld), glm::vec4(ditherOrigin(i), 0.0f, 0.0f)};
-    const size_t bytes = blocks.size() * sizeof(PageBlock);
-    if (m_pageBlockCapacity < blocks.size()) {
-        m_pageBlocks = createBuffer(nullptr, bytes);
-        m_pageBlockCapacity = blocks.size();
-    }
-    uploadToBuffer(m_pageBlocks.id(), 0, GLsizeiptr(bytes), blocks.data());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPagesBinding, m_pageBlocks.id());
-    const DepthPassUniforms shared = depthPassUniformsFor(toRender[0].clipFromWorld, bias);
-    uploadToBuffer(depthUniforms.id(), 0, sizeof shared, &shared);
     setLightFacingFront(toRender[0].clipFromWorld, wsTowardsLight);
-    PassPrograms together = programs;
-    together.plain = m_pagePrograms.plain.id();
-    together.material = programs.material ? m_pagePrograms.material.id() : 0;
-    // The draws that follow: `pages` pages from `page`, the first in viewport `viewport` (several:
-    // the draw's index names the page; one: every draw of a call is that page's).
-    auto setBases = [&](size_t page, int viewport, size_t pages) {
-        for (const GLuint program : {together.plain, together.material}) {
-            if (!program) continue;
-            glProgramUniform1ui(program, kPageBaseLocation, static_cast<GLuint>(page));
-            glProgramUniform1i(program, kViewportBaseLocation, viewport);
-            glProgramUniform1ui(program, kPagePerDrawLocation, pages > 1 ? 1u : 0u);
-        }
-    };
     // As many pages at once as the GL has viewports, each page's slot one of them: its clear
     // scissored to it, then every batch's level for all of them in one multi-draw
     // (GpuScene::drawTogether), then each page's own list (the clustered meshes the CPU picked for
@@ -346,13 +350,13 @@ DrawStats VirtualPages::drawPagesTogether(const GpuScene& scene, const PassProgr
             const glm::ivec3 v = slotViewport(toRender[first + k].slot);
             glScissorIndexed(GLuint(k), v.x, v.y, v.z, v.z);
         }
-        setBases(first, 0, count);
-        draws += scene.drawTogether(casters.culled.subspan(first, count), together);
+        setPageBases(programs, first, 0, count);
+        draws += scene.drawTogether(casters.culled.subspan(first, count), programs);
         for (size_t k = 0; k < count; ++k) {
-            setBases(first + k, int(k), 1);
+            setPageBases(programs, first + k, int(k), 1);
             const std::vector<visibility::HalfSpace> volume =
                 visibility::clipVolume(toRender[first + k].clipFromWorld, false);
-            draws += scene.draw(casters.lists[first + k], together, volume);
+            draws += scene.draw(casters.lists[first + k], programs, volume);
         }
     }
     glDisable(GL_SCISSOR_TEST);

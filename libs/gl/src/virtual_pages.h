@@ -25,7 +25,6 @@
 
 #include <array>
 #include <cstdint>
-#include <functional>
 #include <memory>
 #include <optional>
 #include <span>
@@ -78,11 +77,11 @@ public:
     // clusters of large meshes culled to the page's volume, the faces towards `wsTowardsLight`
     // as the front ones (setLightFacingFront), `bias`'s constant term in the block (depth.vert).
     // Other GL state (polygon offset's slope term, clamp, culling) is the caller's.
-    // Where the pages' casters were culled on the GPU (consecutive passes) and the GL lets vertex
-    // stages read the draw's index and pick the viewport, those pages are drawn together with
-    // programs of their own (the same flags): up to a viewport each at once, every batch's level
-    // for all of them in one multi-draw (drawPagesTogether) — the same depths, a few draws a frame
-    // instead of a few a page.
+    // Where the GL lets vertex stages read the draw's index and pick the viewport, every page is
+    // drawn with page programs of their own (the same flags; each page's matrix from a buffer),
+    // and the leading pages whose casters were culled on the GPU (consecutive passes) together: up
+    // to a viewport each at once, every batch's level for all of them in one multi-draw
+    // (drawPagesTogether) — the same depths, a few draws a frame instead of a few a page.
     DrawStats drawPages(const GpuScene& scene, const PassPrograms& programs, const core::BiasSettings& bias,
                         const core::Vec3& wsTowardsLight, const CasterLists& casters, const Buffer& depthUniforms);
     const Framebuffer& framebuffer() const { return m_framebuffer; }
@@ -112,13 +111,14 @@ public:
 private:
     VirtualPages() = default;
     // How many of this frame's pages drawPages draws together (above): the leading ones culled on
-    // the GPU, 0 where the GL cannot.
+    // the GPU.
     size_t pagesDrawnTogether(const CasterLists& casters, const core::Vec3& wsTowardsLight) const;
-    // The first `pages` pages drawn together, with m_pagePrograms in place of `programs`' (the
-    // same flags).
-    DrawStats drawPagesTogether(const GpuScene& scene, const PassPrograms& programs, const core::BiasSettings& bias,
-                                const core::Vec3& wsTowardsLight, const CasterLists& casters, size_t pages,
-                                const Buffer& depthUniforms, const std::function<glm::vec2(size_t)>& ditherOrigin);
+    // The first `pages` pages drawn together with the page programs (`programs`), their blocks bound.
+    DrawStats drawPagesTogether(const GpuScene& scene, const PassPrograms& programs, const core::Vec3& wsTowardsLight,
+                                const CasterLists& casters, size_t pages);
+    // The page programs' next draws: `pages` pages from block `page`, the first in viewport
+    // `viewport` (several: the draw's index names the page; one: every draw of a call is its).
+    static void setPageBases(const PassPrograms& programs, size_t page, int viewport, size_t pages);
     // Marks the pages the pre-pass's receivers request in the windows of `views` (one per level
     // of `setup`) into `bits` (grown as needed); returns the words marked.
     size_t mark(const CameraDepthTarget& depth, const core::PerspectiveCamera& camera, const core::ShadowSetup& setup,
