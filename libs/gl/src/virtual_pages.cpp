@@ -246,6 +246,7 @@ DrawStats VirtualPages::drawPages(const GpuScene& scene, const PassPrograms& pro
         return static_cast<float>(((levelTexel - slotTexel) % 8 + 8) % 8);
     };
     const auto toRender = m_cache.pagesToRender();
+    if (toRender.empty()) return {}; // a still frame: nothing to draw, nothing to upload
     auto ditherOrigin = [&](size_t i) {
         const glm::ivec3 v = slotViewport(toRender[i].slot);
         return glm::vec2(ditherOf(toRender[i].key.x * m_pageTexels - m_guardTexels, v.x),
@@ -266,8 +267,7 @@ DrawStats VirtualPages::drawPages(const GpuScene& scene, const PassPrograms& pro
             m_pageBlocks = createBuffer(nullptr, blocks.size() * sizeof(PageBlock));
             m_pageBlockCapacity = blocks.size();
         }
-        if (!blocks.empty())
-            uploadToBuffer(m_pageBlocks.id(), 0, GLsizeiptr(blocks.size() * sizeof(PageBlock)), blocks.data());
+        uploadToBuffer(m_pageBlocks.id(), 0, GLsizeiptr(blocks.size() * sizeof(PageBlock)), blocks.data());
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPagesBinding, m_pageBlocks.id());
         // What the pages share: the bias (the block's matrix and dither origin are the pages').
         const DepthPassUniforms shared = depthPassUniformsFor(core::Mat4(1.0), bias);
