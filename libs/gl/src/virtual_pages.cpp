@@ -50,8 +50,8 @@ core::Result<std::unique_ptr<VirtualPages>> VirtualPages::create() {
     auto table = PageTable::create();
     if (!table) return table.errorInfo();
     pages->m_pageTable = std::move(table).value();
-    // The programs that draw pages together (drawPages): where vertex stages read the draw's
-    // index and may pick the viewport; else every page is drawn alone with the caller's.
+    // The page programs (drawPages): where vertex stages read the draw's index and may pick the
+    // viewport; else every page is drawn alone with the caller's.
     if (vertexStagesReadDrawParameters() && epoxy_has_gl_extension("GL_ARB_shader_viewport_layer_array")) {
         using namespace shaders;
         constexpr std::string_view kViewport = "#extension GL_ARB_shader_viewport_layer_array : require\n";

@@ -73,15 +73,15 @@ public:
     // The atlas's width and height in texels (configure()).
     glm::ivec2 atlasTexels() const { return m_atlasTexels; }
     // Draws pagesToRender()[i] with the casters of view i into its slot, scissored so its clear
-    // touches no other page, with `programs`: the page's matrix into `depthUniforms`, the
-    // clusters of large meshes culled to the page's volume, the faces towards `wsTowardsLight`
-    // as the front ones (setLightFacingFront), `bias`'s constant term in the block (depth.vert).
-    // Other GL state (polygon offset's slope term, clamp, culling) is the caller's.
-    // Where the GL lets vertex stages read the draw's index and pick the viewport, every page is
-    // drawn with page programs of their own (the same flags; each page's matrix from a buffer),
-    // and the leading pages whose casters were culled on the GPU (consecutive passes) together: up
-    // to a viewport each at once, every batch's level for all of them in one multi-draw
-    // (drawPagesTogether) — the same depths, a few draws a frame instead of a few a page.
+    // touches no other page: the clusters of large meshes culled to the page's volume, the faces
+    // towards `wsTowardsLight` as the front ones (setLightFacingFront), `bias`'s constant term in
+    // `depthUniforms` (depth.vert). Other GL state (polygon offset's slope term, clamp, culling)
+    // is the caller's. Where the GL lets vertex stages read the draw's index and pick the
+    // viewport, every page is drawn with page programs of this room's (`programs`' flags; each
+    // page's matrix from a buffer), and the leading pages whose casters were culled on the GPU
+    // (consecutive passes) together: up to a viewport each at once, every batch's level for all of
+    // them in one multi-draw (drawPagesTogether) — the same depths, a few draws a frame instead of
+    // a few a page. Elsewhere, with `programs`, the page's matrix into `depthUniforms`.
     DrawStats drawPages(const GpuScene& scene, const PassPrograms& programs, const core::BiasSettings& bias,
                         const core::Vec3& wsTowardsLight, const CasterLists& casters, const Buffer& depthUniforms);
     const Framebuffer& framebuffer() const { return m_framebuffer; }
@@ -147,7 +147,8 @@ private:
     Texture m_atlas;
     std::unique_ptr<PageTable> m_pageTable;
     Framebuffer m_framebuffer;
-    // Pages drawn together (depth.vert's SK_PAGES): the depth programs, each page's block.
+    // The page programs (depth.vert's SK_PAGES), which draw every page where the GL can, and
+    // each page's block (its matrix and dither origin).
     ProgramPair m_pagePrograms; // empty where the GL cannot
     GLint m_viewports = 1;      // GL_MAX_VIEWPORTS: pages drawn at once
     Buffer m_pageBlocks;
