@@ -393,7 +393,6 @@ DrawStats GpuCulling::drawnBy(std::span<const uint32_t> commands, int64_t indire
         const uint32_t indexCount = command[slot * kCommandWords], instances = command[slot * kCommandWords + 1];
         drawn.instances += instances;
         drawn.triangles += size_t(indexCount / 3) * instances;
-        ++drawn.drawCalls;
     }
     return drawn;
 }

@@ -111,14 +111,14 @@ public:
     void camera(const core::PerspectiveCamera& camera, const LodChoice* lod, CameraDepthTarget& target, PassList& out);
     static constexpr size_t kCameraPasses = 3;
 
-    // What each list drew, read back from its commands: one read of the whole command buffer
-    // (one wait for the GPU, one synchronisation counted) however many lists are asked for.
+    // The instances and triangles each list drew, read back from its commands: one read of the
+    // whole command buffer (one wait for the GPU, one synchronisation counted) however many lists
+    // are asked for. Draw calls are the drawing code's to count (GpuScene::draw).
     std::vector<DrawStats> submitted(std::span<const PassList* const> lists) const;
     DrawStats submitted(const PassList& list) const;
     DrawStats submitted(std::span<const PassList> lists) const; // their sum
     // What a list drew, from a copy of the whole command buffer (`commands`, commandWords() of
-    // them): the parse submitted() makes after its read, and gpu_figures.h after a late one. Its
-    // drawCalls count commands, not calls (GpuScene::draw issues a batch's levels as one).
+    // them): the parse submitted() makes after its read, and gpu_figures.h after a late one.
     static DrawStats drawnBy(std::span<const uint32_t> commands, int64_t indirect, std::span<const uint32_t> count);
     GLuint commandBuffer() const { return m_commands.id(); }
     size_t commandWords() const { return m_commandWords; }

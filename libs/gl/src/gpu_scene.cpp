@@ -374,8 +374,8 @@ DrawStats GpuScene::drawLevel(const GpuBatch& batch, const PassList& list, size_
         // (one draw of several index ranges; gl_InstanceID 0 and base instance 0, so the uniform
         // names the entry).
         const std::vector<scene::TriangleCluster>& clusters = clusterLevels[level];
-        std::vector<GLsizei> runCounts;
-        std::vector<const void*> runStarts;
+        std::vector<GLsizei>& runCounts = m_runCounts;
+        std::vector<const void*>& runStarts = m_runStarts;
         for (uint32_t k = 0; k < count; ++k) {
             const core::Mat4 worldFromObject(
                 batch.worldFromObject[instanceOfEntry(list.indices[list.first[slot] + k])]);

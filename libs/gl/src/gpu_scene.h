@@ -174,6 +174,9 @@ private:
     std::vector<GpuBatch> m_batches;
     std::vector<int32_t> m_batchAt; // Scene::batches index -> m_batches, -1 for a batch kept out
     bool m_levelsInOneDraw = false; // vertexStagesReadDrawParameters() when the scene was made
+    // drawLevel's runs of clusters for one glMultiDrawElements, kept so a page's draw allocates nothing.
+    mutable std::vector<GLsizei> m_runCounts;
+    mutable std::vector<const void*> m_runStarts;
 };
 
 } // namespace shadowkit::gl
