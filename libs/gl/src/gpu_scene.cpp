@@ -33,6 +33,25 @@ std::vector<GpuScene::Range> rangesOf(const std::vector<scene::LodLevel>& chain)
     return ranges;
 }
 
+// The runs of consecutive clusters whose boxes, placed by worldFromObject, meet `volume`, in
+// order: run(firstIndex, indexCount) for each (a large mesh's part a pass sees, drawn as few index
+// ranges as its clusters allow).
+template <class Run>
+void forEachRunMeeting(std::span<const scene::TriangleCluster> clusters, const core::Mat4& worldFromObject,
+                       std::span<const visibility::HalfSpace> volume, Run&& run) {
+    uint32_t first = 0, count = 0;
+    for (const scene::TriangleCluster& cluster : clusters) {
+        if (visibility::isOutside(volume, core::transformBounds(worldFromObject, cluster.osBounds))) {
+            if (count > 0) run(first, count);
+            count = 0;
+            continue;
+        }
+        if (count == 0) first = cluster.firstIndex;
+        count += cluster.indexCount;
+    }
+    if (count > 0) run(first, count);
+}
+
 // Whether some level of a chain draws by clusters (a large mesh's).
 bool anyClusters(const std::vector<std::vector<scene::TriangleCluster>>& levels) {
     return std::any_of(levels.begin(), levels.end(), [](const auto& clusters) { return !clusters.empty(); });
@@ -229,12 +248,21 @@ DrawStats CasterLists::draw(const GpuScene& scene, size_t view, const PassProgra
 
 DrawStats GpuScene::drawTogether(std::span<const PassList> lists, const PassPrograms& programs) const {
     if (lists.empty()) return {};
-    return drawBatches(lists.front(), programs, false, 1, nullptr, lists);
+    return drawBatches(lists.front(), programs, false, 1, nullptr, {lists, {}});
+}
+
+DrawStats GpuScene::drawTogether(std::span<const PassList> lists, const PassPrograms& programs,
+                                 std::span<const std::vector<visibility::HalfSpace>> volumes) const {
+    const bool cpuListsInOneOrder = std::ranges::all_of(
+        lists, [&](const PassList& l) { return l.indirect < 0 && l.batchOrder == lists.front().batchOrder; });
+    SK_ASSERT(cpuListsInOneOrder && volumes.size() == lists.size(),
+              "GpuScene::drawTogether(): CPU lists in one batch order, a volume each");
+    if (lists.empty()) return {};
+    return drawBatches(lists.front(), programs, false, 1, nullptr, {lists, volumes});
 }
 
 DrawStats GpuScene::drawBatches(const PassList& list, const PassPrograms& programs, bool setInstanceBase, int replicas,
-                                const std::span<const visibility::HalfSpace>* volume,
-                                std::span<const PassList> together) const {
+                                const std::span<const visibility::HalfSpace>* volume, Together together) const {
     DrawStats stats;
     if (list.buffer != 0) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kVisibleBinding, list.buffer);
     if (list.indirect >= 0) glBindBuffer(GL_DRAW_INDIRECT_BUFFER, list.commands);
@@ -281,16 +309,15 @@ DrawStats GpuScene::drawBatches(const PassList& list, const PassPrograms& progra
 
 DrawStats GpuScene::drawBatch(const GpuBatch& batch, const PassList& list, const PassPrograms& programs, bool culling,
                               bool materialBound, bool setInstanceBase, int replicas,
-                              const std::span<const visibility::HalfSpace>* volume,
-                              std::span<const PassList> together) const {
+                              const std::span<const visibility::HalfSpace>* volume, Together together) const {
     DrawStats stats;
     const GpuMesh& mesh = m_meshes[batch.mesh];
     const std::vector<Range>& levels = list.shadow ? mesh.shadow : mesh.camera;
     // Passes drawn together: a level is drawn where any of them may hold instances of it.
     auto instancesAt = [&](size_t level) {
         const size_t slot = batch.index * kMaxLodLevels + level;
-        if (together.size() < 2) return list.count[slot];
-        return std::ranges::any_of(together, [&](const PassList& l) { return l.count[slot] > 0; }) ? 1u : 0u;
+        if (together.lists.size() < 2) return list.count[slot];
+        return std::ranges::any_of(together.lists, [&](const PassList& l) { return l.count[slot] > 0; }) ? 1u : 0u;
     };
     // What a level's draw sets apart from its batch: both sides where culling could lose a face the
     // light or camera meets first; a texture of its own (a billboard cloud's) in place of the
@@ -313,7 +340,7 @@ DrawStats GpuScene::drawBatch(const GpuBatch& batch, const PassList& list, const
     // base instance (program.h): a run of consecutive levels with instances and the same state is
     // one glMultiDrawElementsIndirect over their commands, which lie one after the other.
     // Passes drawn together take one level a call (their commands are a stride apart).
-    const bool levelsTogether = list.indirect >= 0 && m_levelsInOneDraw && together.size() < 2;
+    const bool levelsTogether = list.indirect >= 0 && m_levelsInOneDraw && together.lists.size() < 2;
     bool bound = false;
     for (size_t level = 0; level < levels.size();) {
         if (instancesAt(level) == 0) {
@@ -331,9 +358,11 @@ DrawStats GpuScene::drawBatch(const GpuBatch& batch, const PassList& list, const
         while (levelsTogether && end < levels.size() && instancesAt(end) > 0 && stateOf(end) == state) ++end;
         if (state.twoSided) glDisable(GL_CULL_FACE);
         if (state.texture) glBindTextureUnit(kBaseColorUnit, state.texture);
-        if (together.size() > 1)
-            stats += drawLevels(batch, list, levels, level, end, setInstanceBase, together.size(),
-                                together[1].indirect - together[0].indirect);
+        if (together.lists.size() > 1 && list.indirect < 0)
+            stats += drawLevelTogether(batch, together, level, levels[level]);
+        else if (together.lists.size() > 1)
+            stats += drawLevels(batch, list, levels, level, end, setInstanceBase, together.lists.size(),
+                                together.lists[1].indirect - together.lists[0].indirect);
         else if (list.indirect >= 0)
             stats += drawLevels(batch, list, levels, level, end, setInstanceBase);
         else
@@ -373,27 +402,17 @@ DrawStats GpuScene::drawLevel(const GpuBatch& batch, const PassList& list, size_
         // Each instance alone, its runs of clusters meeting the volume in one glMultiDrawElements
         // (one draw of several index ranges; gl_InstanceID 0 and base instance 0, so the uniform
         // names the entry).
-        const std::vector<scene::TriangleCluster>& clusters = clusterLevels[level];
         std::vector<GLsizei>& runCounts = m_runCounts;
         std::vector<const void*>& runStarts = m_runStarts;
         for (uint32_t k = 0; k < count; ++k) {
             const core::Mat4 worldFromObject(
                 batch.worldFromObject[instanceOfEntry(list.indices[list.first[slot] + k])]);
             runCounts.clear(), runStarts.clear();
-            bool inRun = false;
-            for (const scene::TriangleCluster& cluster : clusters) {
-                if (visibility::isOutside(*volume, core::transformBounds(worldFromObject, cluster.osBounds))) {
-                    inRun = false;
-                    continue;
-                }
-                if (!inRun) {
-                    runCounts.push_back(0);
-                    runStarts.push_back(reinterpret_cast<const void*>(cluster.firstIndex * sizeof(uint32_t)));
-                    inRun = true;
-                }
-                runCounts.back() += static_cast<GLsizei>(cluster.indexCount);
-                stats.triangles += cluster.indexCount / 3;
-            }
+            forEachRunMeeting(clusterLevels[level], worldFromObject, *volume, [&](uint32_t first, uint32_t indices) {
+                runStarts.push_back(reinterpret_cast<const void*>(first * sizeof(uint32_t)));
+                runCounts.push_back(static_cast<GLsizei>(indices));
+                stats.triangles += indices / 3;
+            });
             if (!runCounts.empty()) {
                 glUniform1ui(kInstanceOffsetLocation, list.offset + list.first[slot] + k);
                 glMultiDrawElements(GL_TRIANGLES, runCounts.data(), GL_UNSIGNED_INT, runStarts.data(),
@@ -441,6 +460,62 @@ DrawStats GpuScene::drawLevels(const GpuBatch& batch, const PassList& list, std:
     else
         glMultiDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT, at, static_cast<GLsizei>(end - first), 0);
     return DrawStats{.drawCalls = 1};
+}
+
+DrawStats GpuScene::drawLevelTogether(const GpuBatch& batch, const Together& together, size_t level,
+                                      const Range& range) const {
+    // A command per pass (its level's instances at once) or, by clusters, per pass, instance and
+    // run of clusters meeting that pass's volume, as drawLevel draws them pass by pass; its base
+    // instance the entry's place in the frame's lists (instanceOffset 0), the pass in a table.
+    DrawStats stats;
+    const GpuMesh& mesh = m_meshes[batch.mesh];
+    const size_t slot = batch.index * kMaxLodLevels + level;
+    const auto& clusterLevels = together.lists.front().shadow ? mesh.shadowClusters : mesh.cameraClusters;
+    const bool byClusters = level < clusterLevels.size() && !clusterLevels[level].empty();
+    m_togetherCommands.clear(), m_togetherPasses.clear();
+    auto command = [&](uint32_t indexCount, uint32_t instances, uint32_t firstIndex, uint32_t entry, size_t pass) {
+        m_togetherCommands.insert(m_togetherCommands.end(), {indexCount, instances, firstIndex, 0u, entry});
+        m_togetherPasses.push_back(static_cast<uint32_t>(pass));
+    };
+    for (size_t pass = 0; pass < together.lists.size(); ++pass) {
+        const PassList& list = together.lists[pass];
+        const uint32_t count = list.count[slot];
+        const uint32_t entries = list.offset + list.first[slot];
+        if (count == 0) continue;
+        if (!byClusters) {
+            command(static_cast<uint32_t>(range.indexCount), count,
+                    static_cast<uint32_t>(range.byteOffset / sizeof(uint32_t)), entries, pass);
+            stats.instances += count;
+            stats.triangles += static_cast<size_t>(range.indexCount / 3) * count;
+            continue;
+        }
+        for (uint32_t k = 0; k < count; ++k) {
+            const core::Mat4 worldFromObject(
+                batch.worldFromObject[instanceOfEntry(list.indices[list.first[slot] + k])]);
+            forEachRunMeeting(clusterLevels[level], worldFromObject, together.volumes[pass],
+                              [&](uint32_t first, uint32_t indices) {
+                                  command(indices, 1, first, entries + k, pass);
+                                  stats.triangles += indices / 3;
+                              });
+            ++stats.instances;
+        }
+    }
+    if (m_togetherPasses.empty()) return stats;
+    const size_t draws = m_togetherPasses.size();
+    if (m_togetherCapacity < draws) {
+        m_togetherCapacity = std::max(draws, 2 * m_togetherCapacity);
+        m_togetherCommandBuffer = createBuffer(nullptr, m_togetherCapacity * kIndirectCommandWords * sizeof(uint32_t));
+        m_togetherPassBuffer = createBuffer(nullptr, m_togetherCapacity * sizeof(uint32_t));
+    }
+    uploadToBuffer(m_togetherCommandBuffer.id(), 0, GLsizeiptr(m_togetherCommands.size() * sizeof(uint32_t)),
+                   m_togetherCommands.data());
+    uploadToBuffer(m_togetherPassBuffer.id(), 0, GLsizeiptr(draws * sizeof(uint32_t)), m_togetherPasses.data());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kDrawPagesBinding, m_togetherPassBuffer.id());
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, m_togetherCommandBuffer.id());
+    glUniform1ui(kInstanceOffsetLocation, 0u);
+    glMultiDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT, nullptr, static_cast<GLsizei>(draws), 0);
+    ++stats.drawCalls;
+    return stats;
 }
 
 } // namespace shadowkit::gl

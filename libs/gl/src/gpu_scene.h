@@ -102,6 +102,14 @@ public:
     // draw's index naming the pass to `programs` (virtual pages: depth.vert's SK_PAGES). Only where
     // vertex stages read the draw parameters (program.h).
     DrawStats drawTogether(std::span<const PassList> lists, const PassPrograms& programs) const;
+    // Several passes' CPU lists at once, all in one batch order, a large mesh's instance in each by
+    // its clusters meeting that pass's volume (`volumes`, one a list): each batch's level in one
+    // multi-draw over commands built here, one per pass and instance (per run of clusters for a
+    // clustered one), the pass of each draw in a table at kDrawPagesBinding (depth.vert's SK_PAGES,
+    // pagePerDraw 2). Each pass gets the draws and order draw() with its volume gives it. Only
+    // where vertex stages read the draw parameters.
+    DrawStats drawTogether(std::span<const PassList> lists, const PassPrograms& programs,
+                           std::span<const std::vector<visibility::HalfSpace>> volumes) const;
     // Whether Scene::batches[sceneBatch]'s mesh draws by clusters at some level of either chain,
     // so that the overload above may draw only a part of it.
     bool drawsByClusters(size_t sceneBatch) const;
@@ -151,14 +159,18 @@ private:
         bool mirrored = false;                  // an instance's transform has a negative determinant
         std::vector<glm::mat4> worldFromObject; // kept on the CPU for clustered meshes only
     };
-    // `together`: empty, or the lists of drawTogether, `list` the first.
+    // The passes of drawTogether: empty, or their lists (`list` the first) and, for CPU lists,
+    // each one's volume.
+    struct Together {
+        std::span<const PassList> lists;
+        std::span<const std::vector<visibility::HalfSpace>> volumes;
+    };
     DrawStats drawBatches(const PassList& list, const PassPrograms& programs, bool setInstanceBase, int replicas,
-                          const std::span<const visibility::HalfSpace>* volume,
-                          std::span<const PassList> together = {}) const;
+                          const std::span<const visibility::HalfSpace>* volume, Together together = {}) const;
     // materialBound: the material program is bound (a level's own texture is bound with it).
     DrawStats drawBatch(const GpuBatch& batch, const PassList& list, const PassPrograms& programs, bool culling,
                         bool materialBound, bool setInstanceBase, int replicas,
-                        const std::span<const visibility::HalfSpace>* volume, std::span<const PassList> together) const;
+                        const std::span<const visibility::HalfSpace>* volume, Together together) const;
     // One level of a batch: its instances in a list of the CPU's, one draw (or, by clusters, one an
     // instance: its runs of clusters meeting the volume in one glMultiDrawElements).
     DrawStats drawLevel(const GpuBatch& batch, const PassList& list, size_t level, const Range& range,
@@ -168,6 +180,9 @@ private:
     // With `passes` > 1, one level for that many passes, their commands `passStride` commands apart.
     DrawStats drawLevels(const GpuBatch& batch, const PassList& list, std::span<const Range> levels, size_t first,
                          size_t end, bool setInstanceBase, size_t passes = 1, int64_t passStride = 0) const;
+    // One level of a batch in several passes' CPU lists (drawTogether's second form), one multi-draw.
+    DrawStats drawLevelTogether(const GpuBatch& batch, const Together& together, size_t level,
+                                const Range& range) const;
     std::vector<Texture> m_textures; // Scene::textures, mipmapped (scene::buildMipChain)
     Texture m_white;                 // for alpha-tested materials without a texture
     std::vector<GpuMesh> m_meshes;
@@ -177,6 +192,11 @@ private:
     // drawLevel's runs of clusters for one glMultiDrawElements, kept so a page's draw allocates nothing.
     mutable std::vector<GLsizei> m_runCounts;
     mutable std::vector<const void*> m_runStarts;
+    // drawLevelTogether's commands (five words each, glDrawElementsIndirect's) and the pass of each,
+    // on the CPU and where the GPU reads them; the buffers grow to the most a call has drawn.
+    mutable std::vector<uint32_t> m_togetherCommands, m_togetherPasses;
+    mutable Buffer m_togetherCommandBuffer, m_togetherPassBuffer;
+    mutable size_t m_togetherCapacity = 0; // draws the two buffers hold
 };
 
 } // namespace shadowkit::gl

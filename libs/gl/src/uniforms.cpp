@@ -215,6 +215,7 @@ const std::string& shaderPrelude() {
         define("SK_CULL_STAGE_BINDING", kCullStageBinding);
         define("SK_CULL_PASSES_BINDING", kCullPassesBinding);
         define("SK_PAGES_BINDING", kPagesBinding);
+        define("SK_DRAW_PAGES_BINDING", kDrawPagesBinding);
         define("SK_PAGE_BASE_LOCATION", kPageBaseLocation);
         define("SK_VIEWPORT_BASE_LOCATION", kViewportBaseLocation);
         define("SK_PAGE_PER_DRAW_LOCATION", kPagePerDrawLocation);

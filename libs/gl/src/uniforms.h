@@ -76,6 +76,9 @@ inline constexpr unsigned kCullStageBinding =
 inline constexpr unsigned kCullPassesBinding = 9; // per pass: its volume and level-of-detail projection
 // Virtual pages drawn together (depth.vert's SK_PAGES): each page's matrix and dither origin.
 inline constexpr unsigned kPagesBinding = 10;
+// ... and, for the pages' own lists drawn together (GpuScene::drawTogether's second form), the
+// page of each draw: uint drawPages[] (depth.vert, pagePerDraw 2).
+inline constexpr unsigned kDrawPagesBinding = 11;
 inline constexpr unsigned kCullPyramidUnit = 0; // GPU culling: the depth the pyramid is built from
 inline constexpr uint32_t kCullGroup = 128;     // GPU culling: instances per work group (gpu_cull.comp's chunks)
 inline constexpr int kCullMaxPyramidLevels =
@@ -93,7 +96,9 @@ inline constexpr int kOpacityDepthPerMetreLocation = 7; // uniform float depthPe
 inline constexpr int kLodErrorLocation = 8;
 inline constexpr int kPageBaseLocation = 16;     // uniform uint pageBase (depth.vert, SK_PAGES): the draw's first page
 inline constexpr int kViewportBaseLocation = 17; // uniform int viewportBase (depth.vert, SK_PAGES): its viewport
-inline constexpr int kPagePerDrawLocation = 18;  // uniform uint pagePerDraw (depth.vert, SK_PAGES): 1 or 0
+// uniform uint pagePerDraw (depth.vert, SK_PAGES): where a draw's page is, after pageBase — 0: the
+// call's; 1: the draw's index in the multi-draw; 2: drawPages[the draw's index]
+inline constexpr int kPagePerDrawLocation = 18;
 
 // std140: scalars pack in fours, vec4 and mat4 start on 16 bytes. Booleans are int32.
 

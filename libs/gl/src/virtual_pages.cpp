@@ -286,7 +286,7 @@ DrawStats VirtualPages::drawPages(const GpuScene& scene, const PassPrograms& pro
         const float clearDepth = 1.0f;
         glClearNamedFramebufferfv(m_framebuffer.id(), GL_DEPTH, 0, &clearDepth);
         if (pageProgramsUsed) {
-            setPageBases(drawWith, i, 0, 1);
+            setPageBases(drawWith, i, 0, PageOfDraw::Call);
         } else {
             DepthPassUniforms uniforms = depthPassUniformsFor(toRender[i].clipFromWorld, bias);
             uniforms.ditherOrigin = ditherOrigin(i);
@@ -300,12 +300,12 @@ DrawStats VirtualPages::drawPages(const GpuScene& scene, const PassPrograms& pro
     return draws;
 }
 
-void VirtualPages::setPageBases(const PassPrograms& programs, size_t page, int viewport, size_t pages) {
+void VirtualPages::setPageBases(const PassPrograms& programs, size_t page, int viewport, PageOfDraw pageOfDraw) {
     for (const GLuint program : {programs.plain, programs.material}) {
         if (!program) continue;
         glProgramUniform1ui(program, kPageBaseLocation, static_cast<GLuint>(page));
         glProgramUniform1i(program, kViewportBaseLocation, viewport);
-        glProgramUniform1ui(program, kPagePerDrawLocation, pages > 1 ? 1u : 0u);
+        glProgramUniform1ui(program, kPagePerDrawLocation, static_cast<GLuint>(pageOfDraw));
     }
 }
 
@@ -332,8 +332,9 @@ DrawStats VirtualPages::drawPagesTogether(const GpuScene& scene, const PassProgr
     setLightFacingFront(toRender[0].clipFromWorld, wsTowardsLight);
     // As many pages at once as the GL has viewports, each page's slot one of them: its clear
     // scissored to it, then every batch's level for all of them in one multi-draw
-    // (GpuScene::drawTogether), then each page's own list (the clustered meshes the CPU picked for
-    // it). A page sees the same draws in the same order as when drawn alone.
+    // (GpuScene::drawTogether), then their own lists (the clustered meshes the CPU picked for
+    // each: its runs of clusters meeting the page) a batch's level for all of them in one
+    // multi-draw too. A page sees the same draws in the same order as when drawn alone.
     const size_t group = static_cast<size_t>(std::max(m_viewports, 1));
     DrawStats draws;
     glEnable(GL_SCISSOR_TEST);
@@ -350,13 +351,20 @@ DrawStats VirtualPages::drawPagesTogether(const GpuScene& scene, const PassProgr
             const glm::ivec3 v = slotViewport(toRender[first + k].slot);
             glScissorIndexed(GLuint(k), v.x, v.y, v.z, v.z);
         }
-        setPageBases(programs, first, 0, count);
+        setPageBases(programs, first, 0, PageOfDraw::DrawIndex);
         draws += scene.drawTogether(casters.culled.subspan(first, count), programs);
-        for (size_t k = 0; k < count; ++k) {
-            setPageBases(programs, first + k, int(k), 1);
-            const std::vector<visibility::HalfSpace> volume =
-                visibility::clipVolume(toRender[first + k].clipFromWorld, false);
-            draws += scene.draw(casters.lists[first + k], programs, volume);
+        m_volumes.resize(count);
+        for (size_t k = 0; k < count; ++k)
+            m_volumes[k] = visibility::clipVolume(toRender[first + k].clipFromWorld, false);
+        const std::span<const PassList> lists = casters.lists.subspan(first, count);
+        if (std::ranges::all_of(lists, [&](const PassList& l) { return l.batchOrder == lists.front().batchOrder; })) {
+            setPageBases(programs, first, 0, PageOfDraw::Table);
+            draws += scene.drawTogether(lists, programs, m_volumes);
+        } else {
+            for (size_t k = 0; k < count; ++k) {
+                setPageBases(programs, first + k, int(k), PageOfDraw::Call);
+                draws += scene.draw(lists[k], programs, m_volumes[k]);
+            }
         }
     }
     glDisable(GL_SCISSOR_TEST);

@@ -116,9 +116,11 @@ private:
     // The first `pages` pages drawn together with the page programs (`programs`), their blocks bound.
     DrawStats drawPagesTogether(const GpuScene& scene, const PassPrograms& programs, const core::Vec3& wsTowardsLight,
                                 const CasterLists& casters, size_t pages);
-    // The page programs' next draws: `pages` pages from block `page`, the first in viewport
-    // `viewport` (several: the draw's index names the page; one: every draw of a call is its).
-    static void setPageBases(const PassPrograms& programs, size_t page, int viewport, size_t pages);
+    // Where the page programs' next draws find their page (depth.vert's pagePerDraw): every draw
+    // of a call the same, each draw's index in the call, or each draw's entry in a table.
+    enum class PageOfDraw : uint32_t { Call = 0, DrawIndex = 1, Table = 2 };
+    // ... the pages counted from block `page`, the first in viewport `viewport`.
+    static void setPageBases(const PassPrograms& programs, size_t page, int viewport, PageOfDraw pageOfDraw);
     // Marks the pages the pre-pass's receivers request in the windows of `views` (one per level
     // of `setup`) into `bits` (grown as needed); returns the words marked.
     size_t mark(const CameraDepthTarget& depth, const core::PerspectiveCamera& camera, const core::ShadowSetup& setup,
@@ -153,6 +155,7 @@ private:
     GLint m_viewports = 1;      // GL_MAX_VIEWPORTS: pages drawn at once
     Buffer m_pageBlocks;
     size_t m_pageBlockCapacity = 0;
+    std::vector<std::vector<visibility::HalfSpace>> m_volumes; // drawPagesTogether's group's pages' clip volumes
     int m_slotsPerRow = 0, m_slotTexels = 0, m_pageTexels = 0, m_guardTexels = 0;
     glm::ivec2 m_atlasTexels{0};
     CpuTimes m_gl;

@@ -474,12 +474,19 @@ TEST_F(GpuCullingTest, VirtualPagesCulledOnTheGpuDrawTheCpuPathsPixelsInThreeDis
             culledOnGpu += a->virtualPages->pagesCulledOnGpu;
             if (!c.opacity && gl::vertexStagesReadDrawParameters()) {
                 // Drawn together (VirtualPages::drawPages): for each group of as many pages as the GL
-                // has viewports, a draw a batch and level; then a page's clustered terrain, one draw.
+                // has viewports, a draw a batch and level, the terrain's runs meeting each page too.
+                // The terrain lies under every page: drawn a page at a time it would take a draw a
+                // page. Here a group takes nine draws (its batches' levels, the terrain's runs) for
+                // its eight batches, so a frame of more pages than groups × (batches + 1) draws
+                // fewer draws than pages (frame 3: 27 for 36 pages in three groups; 60 with the
+                // terrain drawn page by page).
                 GLint viewports = 0;
                 glGetIntegerv(GL_MAX_VIEWPORTS, &viewports);
                 const size_t groups = (size_t(pages) + size_t(viewports) - 1) / size_t(viewports);
-                EXPECT_LE(a->shadow.drawCalls, groups * c.forest.batches.size() * gl::kMaxLodLevels + size_t(pages))
+                EXPECT_LE(a->shadow.drawCalls, groups * c.forest.batches.size() * gl::kMaxLodLevels)
                     << at << ": " << pages << " pages";
+                if (size_t(pages) > groups * (c.forest.batches.size() + 1))
+                    EXPECT_LT(a->shadow.drawCalls, size_t(pages)) << at << ": the terrain's runs a group at a time";
                 EXPECT_LT(a->shadow.drawCalls, b->shadow.drawCalls) << at << ": the CPU lists' draws, page by page";
             }
             // The same frame again draws no page: its dispatches are the frame's but the pages'.

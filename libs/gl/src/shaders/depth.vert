@@ -13,19 +13,22 @@ out vec3 wsPosition;
 
 #ifdef SK_PAGES
 // Virtual pages drawn together (VirtualPages::drawPages): one multi-draw takes a batch's level for
-// several pages, the draw's index in it (SK_DRAW_ID: gl_DrawIDARB, program.h) naming the page,
-// whose matrix and dither origin come from its block, and its slot's viewport
-// (GL_ARB_shader_viewport_layer_array). A call that draws one page (its clustered meshes' runs, a
-// batch's levels — multi-draws too, whose index names the run or the level) has pagePerDraw 0:
-// pageBase and viewportBase name its block and viewport.
+// several pages, the draw's index in it (SK_DRAW_ID: gl_DrawIDARB, program.h) naming the page
+// (pagePerDraw 1), whose matrix and dither origin come from its block, and its slot's viewport
+// (GL_ARB_shader_viewport_layer_array). The pages' own lists drawn together (a large mesh's runs
+// of clusters meeting each page) have several draws a page: a table names each draw's page
+// (pagePerDraw 2). A call that draws one page (a batch's levels, its runs — multi-draws too, whose
+// index names the level or the run) has pagePerDraw 0: pageBase and viewportBase name its block
+// and viewport.
 struct SkPage {
     mat4 clipFromWorld;
     vec4 ditherOrigin; // xy: DepthPass's ditherOrigin for the page
 };
 layout(std430, binding = SK_PAGES_BINDING) readonly buffer Pages { SkPage pages[]; };
+layout(std430, binding = SK_DRAW_PAGES_BINDING) readonly buffer DrawPages { uint drawPages[]; };
 layout(location = SK_PAGE_BASE_LOCATION) uniform uint pageBase;
 layout(location = SK_VIEWPORT_BASE_LOCATION) uniform int viewportBase;
-layout(location = SK_PAGE_PER_DRAW_LOCATION) uniform uint pagePerDraw; // 1: the draw's index names the page
+layout(location = SK_PAGE_PER_DRAW_LOCATION) uniform uint pagePerDraw; // 0, 1 or 2: above
 flat out vec2 vDitherOrigin;
 #ifndef SK_DRAW_ID
 #define SK_DRAW_ID 0u
@@ -41,7 +44,7 @@ void main() {
     vUv = uv;
 #endif
 #ifdef SK_PAGES
-    const uint k = SK_DRAW_ID * pagePerDraw;
+    const uint k = pagePerDraw == 2u ? drawPages[SK_DRAW_ID] : SK_DRAW_ID * pagePerDraw;
     const SkPage page = pages[pageBase + k];
     vDitherOrigin = page.ditherOrigin.xy;
     gl_ViewportIndex = viewportBase + int(k);
