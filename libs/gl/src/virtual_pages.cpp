@@ -273,13 +273,11 @@ DrawStats VirtualPages::drawPages(const GpuScene& scene, const PassPrograms& pro
         const DepthPassUniforms shared = depthPassUniformsFor(core::Mat4(1.0), bias);
         uploadToBuffer(depthUniforms.id(), 0, sizeof shared, &shared);
     }
-    // The leading pages culled on the GPU together, the rest (the CPU's: past the room the frame
-    // made for pages on the GPU, or every page on the other paths) one at a time.
-    const size_t together = pageProgramsUsed ? pagesDrawnTogether(casters, wsTowardsLight) : 0;
+    // A page alone: its slot as the viewport, its uniforms (or, for the page programs, its block),
+    // then its casters.
     DrawStats draws;
-    if (together > 1) draws += drawPagesTogether(scene, drawWith, wsTowardsLight, casters, together);
     glEnable(GL_SCISSOR_TEST);
-    for (size_t i = together > 1 ? together : 0; i < toRender.size(); ++i) {
+    auto drawAlone = [&](size_t i) {
         const glm::ivec3 v = slotViewport(toRender[i].slot);
         glViewport(v.x, v.y, v.z, v.z);
         glScissor(v.x, v.y, v.z, v.z);
@@ -295,7 +293,31 @@ DrawStats VirtualPages::drawPages(const GpuScene& scene, const PassPrograms& pro
         setLightFacingFront(toRender[i].clipFromWorld, wsTowardsLight);
         const std::vector<visibility::HalfSpace> volume = visibility::clipVolume(toRender[i].clipFromWorld, false);
         draws += casters.draw(scene, i, drawWith, &volume);
+    };
+    if (!pageProgramsUsed) {
+        for (size_t i = 0; i < toRender.size(); ++i) drawAlone(i);
+        glDisable(GL_SCISSOR_TEST);
+        return draws;
     }
+    // With the page programs, as many pages at once as the GL has viewports: first the leading
+    // pages culled on the GPU (their commands a stride apart), then the rest — culled on the CPU:
+    // past the room the frame made for pages on the GPU, a view's first frame, or every page on
+    // the other paths. A group of one, or of pages that disagree on the light-facing winding or
+    // their batches' order, is drawn a page at a time.
+    const size_t culledOnGpu = pagesCulledOnGpu(casters);
+    const size_t group = static_cast<size_t>(std::max(m_viewports, 1));
+    struct Range {
+        size_t begin, end;
+        bool culledOnGpu;
+    };
+    for (const Range range : {Range{0, culledOnGpu, true}, Range{culledOnGpu, toRender.size(), false}})
+        for (size_t first = range.begin; first < range.end; first += group) {
+            const size_t count = std::min(group, range.end - first);
+            if (count > 1 && drawnAlike(casters, wsTowardsLight, first, count, range.culledOnGpu))
+                draws += drawPagesTogether(scene, drawWith, wsTowardsLight, casters, first, count, range.culledOnGpu);
+            else
+                for (size_t i = first; i < first + count; ++i) drawAlone(i);
+        }
     glDisable(GL_SCISSOR_TEST);
     return draws;
 }
@@ -309,7 +331,7 @@ void VirtualPages::setPageBases(const PassPrograms& programs, size_t page, int v
     }
 }
 
-size_t VirtualPages::pagesDrawnTogether(const CasterLists& casters, const core::Vec3& wsTowardsLight) const {
+size_t VirtualPages::pagesCulledOnGpu(const CasterLists& casters) const {
     const auto toRender = m_cache.pagesToRender();
     if (toRender.size() < 2 || casters.culled.size() != toRender.size()) return 0;
     // The leading pages whose casters were culled on the GPU into consecutive passes: their
@@ -318,56 +340,58 @@ size_t VirtualPages::pagesDrawnTogether(const CasterLists& casters, const core::
     if (casters.culled[0].indirect < 0 || stride <= 0) return 0;
     size_t pages = 0;
     while (pages < toRender.size() &&
-           casters.culled[pages].indirect == casters.culled[0].indirect + int64_t(pages) * stride &&
-           // One winding for all (an orthographic map of one sun: always, but it is a draw state).
-           core::lightFacingWinding(toRender[pages].clipFromWorld, wsTowardsLight) ==
-               core::lightFacingWinding(toRender[0].clipFromWorld, wsTowardsLight))
+           casters.culled[pages].indirect == casters.culled[0].indirect + int64_t(pages) * stride)
         ++pages;
     return pages;
 }
 
+bool VirtualPages::drawnAlike(const CasterLists& casters, const core::Vec3& wsTowardsLight, size_t first, size_t count,
+                              bool culledOnGpu) const {
+    const auto pages = m_cache.pagesToRender().subspan(first, count);
+    const std::span<const PassList> lists = casters.lists.subspan(first, count);
+    const auto winding = core::lightFacingWinding(pages.front().clipFromWorld, wsTowardsLight);
+    // One winding for all (orthographic maps of one sun: always, but it is a draw state), one
+    // order, and past the pages culled on the GPU none that the GPU culled.
+    return std::ranges::all_of(
+               pages,
+               [&](const auto& p) { return core::lightFacingWinding(p.clipFromWorld, wsTowardsLight) == winding; }) &&
+           std::ranges::all_of(lists, [&](const PassList& l) { return l.batchOrder == lists.front().batchOrder; }) &&
+           (culledOnGpu || casters.culled.size() < first + count ||
+            std::ranges::all_of(casters.culled.subspan(first, count),
+                                [](const PassList& l) { return l.indirect < 0; }));
+}
+
 DrawStats VirtualPages::drawPagesTogether(const GpuScene& scene, const PassPrograms& programs,
-                                          const core::Vec3& wsTowardsLight, const CasterLists& casters, size_t pages) {
-    const auto toRender = m_cache.pagesToRender().first(pages);
-    setLightFacingFront(toRender[0].clipFromWorld, wsTowardsLight);
-    // As many pages at once as the GL has viewports, each page's slot one of them: its clear
-    // scissored to it, then every batch's level for all of them in one multi-draw
-    // (GpuScene::drawTogether), then their own lists (the clustered meshes the CPU picked for
-    // each: its runs of clusters meeting the page) a batch's level for all of them in one
-    // multi-draw too. A page sees the same draws in the same order as when drawn alone.
-    const size_t group = static_cast<size_t>(std::max(m_viewports, 1));
+                                          const core::Vec3& wsTowardsLight, const CasterLists& casters, size_t first,
+                                          size_t count, bool culledOnGpu) {
+    const auto pages = m_cache.pagesToRender().subspan(first, count);
+    setLightFacingFront(pages.front().clipFromWorld, wsTowardsLight);
+    // Each page's slot a viewport: its clear scissored to it. Then, for pages culled on the GPU,
+    // every batch's level for all of them in one multi-draw (GpuScene::drawTogether), the draw's
+    // index naming the page; then their CPU lists (on the GPU path the clustered meshes the CPU
+    // picked for each, its runs of clusters meeting the page; on the others every caster) a
+    // batch's level for all of them in one multi-draw too, each draw's page from a table. A page
+    // sees the same draws in the same order as when drawn alone.
+    for (size_t k = 0; k < count; ++k) {
+        const glm::ivec3 v = slotViewport(pages[k].slot);
+        glScissorIndexed(0, v.x, v.y, v.z, v.z); // the clear's
+        const float clearDepth = 1.0f;
+        glClearNamedFramebufferfv(m_framebuffer.id(), GL_DEPTH, 0, &clearDepth);
+        glViewportIndexedf(GLuint(k), float(v.x), float(v.y), float(v.z), float(v.z));
+    }
+    for (size_t k = 0; k < count; ++k) {
+        const glm::ivec3 v = slotViewport(pages[k].slot);
+        glScissorIndexed(GLuint(k), v.x, v.y, v.z, v.z);
+    }
     DrawStats draws;
-    glEnable(GL_SCISSOR_TEST);
-    for (size_t first = 0; first < toRender.size(); first += group) {
-        const size_t count = std::min(group, toRender.size() - first);
-        for (size_t k = 0; k < count; ++k) {
-            const glm::ivec3 v = slotViewport(toRender[first + k].slot);
-            glScissorIndexed(0, v.x, v.y, v.z, v.z); // the clear's
-            const float clearDepth = 1.0f;
-            glClearNamedFramebufferfv(m_framebuffer.id(), GL_DEPTH, 0, &clearDepth);
-            glViewportIndexedf(GLuint(k), float(v.x), float(v.y), float(v.z), float(v.z));
-        }
-        for (size_t k = 0; k < count; ++k) {
-            const glm::ivec3 v = slotViewport(toRender[first + k].slot);
-            glScissorIndexed(GLuint(k), v.x, v.y, v.z, v.z);
-        }
+    if (culledOnGpu) {
         setPageBases(programs, first, 0, PageOfDraw::DrawIndex);
         draws += scene.drawTogether(casters.culled.subspan(first, count), programs);
-        m_volumes.resize(count);
-        for (size_t k = 0; k < count; ++k)
-            m_volumes[k] = visibility::clipVolume(toRender[first + k].clipFromWorld, false);
-        const std::span<const PassList> lists = casters.lists.subspan(first, count);
-        if (std::ranges::all_of(lists, [&](const PassList& l) { return l.batchOrder == lists.front().batchOrder; })) {
-            setPageBases(programs, first, 0, PageOfDraw::Table);
-            draws += scene.drawTogether(lists, programs, m_volumes);
-        } else {
-            for (size_t k = 0; k < count; ++k) {
-                setPageBases(programs, first + k, int(k), PageOfDraw::Call);
-                draws += scene.draw(lists[k], programs, m_volumes[k]);
-            }
-        }
     }
-    glDisable(GL_SCISSOR_TEST);
+    m_volumes.resize(count);
+    for (size_t k = 0; k < count; ++k) m_volumes[k] = visibility::clipVolume(pages[k].clipFromWorld, false);
+    setPageBases(programs, first, 0, PageOfDraw::Table);
+    draws += scene.drawTogether(casters.lists.subspan(first, count), programs, m_volumes);
     return draws;
 }
 

@@ -110,12 +110,17 @@ public:
 
 private:
     VirtualPages() = default;
-    // How many of this frame's pages drawPages draws together (above): the leading ones culled on
-    // the GPU.
-    size_t pagesDrawnTogether(const CasterLists& casters, const core::Vec3& wsTowardsLight) const;
-    // The first `pages` pages drawn together with the page programs (`programs`), their blocks bound.
+    // How many of this frame's pages lead with casters the GPU culled into consecutive passes
+    // (their commands one stride apart): 0, or 2 and more.
+    size_t pagesCulledOnGpu(const CasterLists& casters) const;
+    // Whether pages [first, first + count) can be drawn together: one light-facing winding, one
+    // batch order, and unless they are of the pages culled on the GPU, none with GPU-culled casters.
+    bool drawnAlike(const CasterLists& casters, const core::Vec3& wsTowardsLight, size_t first, size_t count,
+                    bool culledOnGpu) const;
+    // Pages [first, first + count), at most one a viewport, drawn together with the page programs
+    // (`programs`), their blocks bound: what the GPU culled for them (`culledOnGpu`), then their lists.
     DrawStats drawPagesTogether(const GpuScene& scene, const PassPrograms& programs, const core::Vec3& wsTowardsLight,
-                                const CasterLists& casters, size_t pages);
+                                const CasterLists& casters, size_t first, size_t count, bool culledOnGpu);
     // Where the page programs' next draws find their page (depth.vert's pagePerDraw): every draw
     // of a call the same, each draw's index in the call, or each draw's entry in a table.
     enum class PageOfDraw : uint32_t { Call = 0, DrawIndex = 1, Table = 2 };

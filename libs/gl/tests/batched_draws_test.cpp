@@ -13,6 +13,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <optional>
 #include <string>
 #include <tuple>
@@ -110,6 +111,62 @@ TEST_F(BatchedDrawsTest, ABatchsLevelsAreOneDrawWhereVertexStagesReadTheBaseInst
             ASSERT_TRUE(buffers) << buffers.error();
             EXPECT_TRUE(buffers->surfaceId == expectedBuffers->surfaceId) << c.name;
             EXPECT_TRUE(buffers->shadowTerm == expectedBuffers->shadowTerm) << c.name << ": shadow terms differ";
+        }
+    }
+}
+
+TEST_F(BatchedDrawsTest, VirtualPagesDrawnTogetherCastWhatPagesDrawnOneAtATimeCast) {
+    // Where vertex stages read the draw parameters and pick their viewport, a frame's virtual
+    // pages are drawn up to GL_MAX_VIEWPORTS at a time, each draw's page from its index or a table
+    // (VirtualPages::drawPages), on the CPU path as on the GPU-driven one; without, a page at a
+    // time by the plain depth programs, each page's matrix in its uniform block. Along a moving
+    // camera, on both paths, the two draw the same shadows and casters. The ground is a large
+    // mesh (96² quads), drawn by its clusters meeting each page. The two programs compute a page's
+    // matrix product apart and may round a sample apart (a pixel here and there, measured when
+    // written: none); a page's casters drawn into another page's slot would move shadows over
+    // thousands of pixels.
+    if (!gl::vertexStagesReadDrawParameters()) GTEST_SKIP() << "this GL has no GL_ARB_shader_draw_parameters";
+    const scene::Scene forest = gl::testing::smallForest(300, 200, 96);
+    scene::ResolvedView view = gl::testing::standardView(forest, "perpendicular");
+    view.camera.aspect = 160.0 / 90.0;
+    for (const gl::Culling culling : {gl::Culling::Frustum, gl::Culling::Gpu}) {
+        auto together = gl::Renderer::create(forest);
+        std::optional<gl::WithoutDrawParameters> without(std::in_place); // programs built without them
+        auto alone = gl::Renderer::create(forest);
+        without.reset();
+        ASSERT_TRUE(together && alone);
+        for (int frame = 0; frame < 3; ++frame) {
+            core::PerspectiveCamera camera = view.camera;
+            camera.wsEye += core::Vec3(6.0 * frame, 0.0, -4.0 * frame); // new pages in every frame
+            core::ShadowSetupInputs in{.camera = camera, .light = view.light, .wsSceneBounds = forest.wsBounds()};
+            in.technique = core::Technique::Virtual;
+            in.virtualMaps.imageHeight = 90;
+            in.virtualMaps.virtualTexels = 4096;
+            const auto setup = core::computeShadowSetup(in);
+            ASSERT_TRUE(setup) << setup.error();
+            const gl::RenderSettings settings = smallFrame(160, 90, culling);
+            const auto a = (*together)->render(camera, view.light, *setup, settings);
+            const std::vector<uint8_t> pixels = (*together)->readColor().rgba;
+            std::optional<gl::WithoutDrawParameters> guard(std::in_place); // draws as it was built
+            const auto b = (*alone)->render(camera, view.light, *setup, settings);
+            const std::vector<uint8_t> expected = (*alone)->readColor().rgba;
+            guard.reset();
+            ASSERT_TRUE(a && b) << (a ? b.error() : a.error());
+            const std::string at =
+                std::string(culling == gl::Culling::Gpu ? "gpu" : "frustum") + ", frame " + std::to_string(frame);
+            ASSERT_GT(a->virtualPages->pagesRendered, 2) << at << ": too few pages to draw together";
+            EXPECT_EQ(a->virtualPages->pagesRendered, b->virtualPages->pagesRendered) << at;
+            EXPECT_EQ(a->shadow.instances, b->shadow.instances) << at;
+            EXPECT_EQ(a->shadow.triangles, b->shadow.triangles) << at;
+            EXPECT_LT(a->shadow.drawCalls, b->shadow.drawCalls) << at << ": a page at a time";
+            ASSERT_EQ(pixels.size(), expected.size());
+            size_t differing = 0;
+            for (size_t i = 0; i < pixels.size(); i += 4)
+                differing += std::equal(pixels.begin() + std::ptrdiff_t(i), pixels.begin() + std::ptrdiff_t(i + 4),
+                                        expected.begin() + std::ptrdiff_t(i))
+                                 ? 0
+                                 : 1;
+            EXPECT_LE(differing, 4u) << at << ": pixels that differ of " << pixels.size() / 4;
         }
     }
 }
