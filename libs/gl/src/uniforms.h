@@ -76,7 +76,7 @@ inline constexpr unsigned kCullStageBinding =
 inline constexpr unsigned kCullPassesBinding = 9; // per pass: its volume and level-of-detail projection
 // Virtual pages drawn together (depth.vert's SK_PAGES): each page's matrix and dither origin.
 inline constexpr unsigned kPagesBinding = 10;
-// ... and, for the pages' own lists drawn together (GpuScene::drawTogether's second form), the
+// ... and, for the pages' CPU lists drawn together (GpuScene::drawTogether's second form), the
 // page of each draw: uint drawPages[] (depth.vert, pagePerDraw 2).
 inline constexpr unsigned kDrawPagesBinding = 11;
 inline constexpr unsigned kCullPyramidUnit = 0; // GPU culling: the depth the pyramid is built from

@@ -15,9 +15,9 @@ out vec3 wsPosition;
 // Virtual pages drawn together (VirtualPages::drawPages): one multi-draw takes a batch's level for
 // several pages, the draw's index in it (SK_DRAW_ID: gl_DrawIDARB, program.h) naming the page
 // (pagePerDraw 1), whose matrix and dither origin come from its block, and its slot's viewport
-// (GL_ARB_shader_viewport_layer_array). The pages' own lists drawn together (a large mesh's runs
-// of clusters meeting each page) have several draws a page: a table names each draw's page
-// (pagePerDraw 2). A call that draws one page (a batch's levels, its runs — multi-draws too, whose
+// (GL_ARB_shader_viewport_layer_array). The pages' CPU lists drawn together (every caster of
+// pages culled on the CPU; a large mesh's runs of clusters meeting each page) have a draw or
+// several a page: a table names each draw's page (pagePerDraw 2). A call that draws one page (a batch's levels, its runs — multi-draws too, whose
 // index names the level or the run) has pagePerDraw 0: pageBase and viewportBase name its block
 // and viewport.
 struct SkPage {
