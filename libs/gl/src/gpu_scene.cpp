@@ -247,7 +247,8 @@ DrawStats CasterLists::draw(const GpuScene& scene, size_t view, const PassProgra
 }
 
 DrawStats GpuScene::drawTogether(std::span<const PassList> lists, const PassPrograms& programs) const {
-    if (lists.empty()) return {};
+    // One list would draw as draw() does, a draw's index naming its level or run, not its pass.
+    SK_ASSERT(lists.size() > 1, "GpuScene::drawTogether(): two passes or more");
     return drawBatches(lists.front(), programs, false, 1, nullptr, {lists, {}});
 }
 
@@ -255,9 +256,8 @@ DrawStats GpuScene::drawTogether(std::span<const PassList> lists, const PassProg
                                  std::span<const std::vector<visibility::HalfSpace>> volumes) const {
     const bool cpuListsInOneOrder = std::ranges::all_of(
         lists, [&](const PassList& l) { return l.indirect < 0 && l.batchOrder == lists.front().batchOrder; });
-    SK_ASSERT(cpuListsInOneOrder && volumes.size() == lists.size(),
-              "GpuScene::drawTogether(): CPU lists in one batch order, a volume each");
-    if (lists.empty()) return {};
+    SK_ASSERT(lists.size() > 1 && cpuListsInOneOrder && volumes.size() == lists.size(),
+              "GpuScene::drawTogether(): two CPU lists or more in one batch order, a volume each");
     return drawBatches(lists.front(), programs, false, 1, nullptr, {lists, volumes});
 }
 

@@ -97,12 +97,12 @@ public:
     DrawStats draw(const PassList& list, const PassPrograms& programs,
                    std::span<const visibility::HalfSpace> volume) const;
     static constexpr size_t kClusterMinTriangles = 16384, kClusterTriangles = 2048;
-    // Several passes' GPU-culled lists at once, their commands one stride apart (consecutive
+    // Several passes' (two or more) GPU-culled lists at once, their commands one stride apart (consecutive
     // passes of GpuCulling::cullPasses): each batch's level in one multi-draw over the passes, the
     // draw's index naming the pass to `programs` (virtual pages: depth.vert's SK_PAGES). Only where
     // vertex stages read the draw parameters (program.h).
     DrawStats drawTogether(std::span<const PassList> lists, const PassPrograms& programs) const;
-    // Several passes' CPU lists at once, all in one batch order, a large mesh's instance in each by
+    // Several passes' (two or more) CPU lists at once, all in one batch order, a large mesh's instance in each by
     // its clusters meeting that pass's volume (`volumes`, one a list): each batch's level in one
     // multi-draw over commands built here, one per pass and instance (per run of clusters for a
     // clustered one), the pass of each draw in a table at kDrawPagesBinding (depth.vert's SK_PAGES,
