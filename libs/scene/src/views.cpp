@@ -84,6 +84,11 @@ core::Result<ViewSpec> parseView(const json& j) {
     }
     if (v.width <= 0 || v.height <= 0 || v.width > 16384 || v.height > 16384)
         return core::makeError("view \"" + v.name + "\": width and height must be in [1, 16384]");
+    // The eye stands eye_height above the ground at eye_xz: each within half the camera's reach
+    // (core::kMaxWorldMetres) keeps the resolved eye inside it above any ground.
+    constexpr double kEyeReach = 0.5 * core::kMaxWorldMetres;
+    if (!(std::abs(v.eyeX) <= kEyeReach && std::abs(v.eyeZ) <= kEyeReach && std::abs(v.eyeHeight) <= kEyeReach))
+        return core::makeError("view \"" + v.name + "\": eye_xz and eye_height must be finite, at most 5e12 m");
     if (!(std::abs(v.pitchDegrees) < 90.0))
         return core::makeError("view \"" + v.name + "\": pitch must be in (-90, 90)");
     if (!(std::abs(v.sunElevationDegrees) <= 90.0))

@@ -71,6 +71,11 @@ TEST(ViewsTest, MalformedFilesNameTheFileAndTheProblem) {
     EXPECT_NE(loadViews(bad).error().find("not valid JSON"), std::string::npos);
     std::ofstream(bad) << R"({"views": [{"name": "x", "height": 360000000000000000000}]})";
     EXPECT_NE(loadViews(bad).error().find("whole numbers in [1, 16384]"), std::string::npos) << loadViews(bad).error();
+    // Found by fuzz_views in CI (2026-12-02): an eye 5.6e49 m up parsed, then no camera could hold it.
+    std::ofstream(bad) << R"({"views": [{"name": "x", "eye_height": 5.6e49}]})";
+    EXPECT_NE(loadViews(bad).error().find("eye_xz and eye_height"), std::string::npos) << loadViews(bad).error();
+    std::ofstream(bad) << R"({"views": [{"name": "x", "eye_xz": [-1e14, 0]}]})";
+    EXPECT_NE(loadViews(bad).error().find("eye_xz and eye_height"), std::string::npos) << loadViews(bad).error();
     std::filesystem::remove(bad);
 }
 
