@@ -84,10 +84,9 @@ core::Result<ViewSpec> parseView(const json& j) {
     }
     if (v.width <= 0 || v.height <= 0 || v.width > 16384 || v.height > 16384)
         return core::makeError("view \"" + v.name + "\": width and height must be in [1, 16384]");
-    // The eye stands eye_height above the ground at eye_xz: each within half the camera's reach
-    // (core::kMaxWorldMetres) keeps the resolved eye inside it above any ground.
-    constexpr double kEyeReach = 0.5 * core::kMaxWorldMetres;
-    if (!(std::abs(v.eyeX) <= kEyeReach && std::abs(v.eyeZ) <= kEyeReach && std::abs(v.eyeHeight) <= kEyeReach))
+    // The eye stands eye_height above the ground at eye_xz (kMaxGroundPointMetres: why that far).
+    constexpr double kReach = kMaxGroundPointMetres;
+    if (!(std::abs(v.eyeX) <= kReach && std::abs(v.eyeZ) <= kReach && std::abs(v.eyeHeight) <= kReach))
         return core::makeError("view \"" + v.name + "\": eye_xz and eye_height must be finite, at most 5e12 m");
     if (!(std::abs(v.pitchDegrees) < 90.0))
         return core::makeError("view \"" + v.name + "\": pitch must be in (-90, 90)");
@@ -181,6 +180,11 @@ ResolvedView resolveView(const ViewSpec& view, const Scene& scene) {
         out.fogDensity = 0.3 / cam.zFar;
     }
     cam.wsDirection = core::Vec3(std::sin(az) * std::cos(pitch), std::sin(pitch), -std::cos(az) * std::cos(pitch));
+    // Within 1e-5 of looking straight up or down (a pitch within 5.7e-4° of ±90°, which the file
+    // allows) the sky's up is no direction in the image: the camera's own up, the pitch turned a
+    // right angle on, which the sky's up is everywhere else once made square to the direction.
+    if (glm::length(glm::cross(cam.wsDirection, cam.wsUp)) < 1e-5)
+        cam.wsUp = core::Vec3(-std::sin(az) * std::sin(pitch), std::cos(pitch), std::cos(az) * std::sin(pitch));
     // Validated in parseView: the angles are in range, so this cannot fail.
     out.light = core::DirectionalLight::fromSunAngles(view.sunElevationDegrees,
                                                       view.azimuthDegrees + view.sunAzimuthFromViewDegrees)

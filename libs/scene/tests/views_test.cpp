@@ -79,6 +79,29 @@ TEST(ViewsTest, MalformedFilesNameTheFileAndTheProblem) {
     std::filesystem::remove(bad);
 }
 
+// A pitch a hair short of ±90°, which the file allows, looks straight up or down: the sky's up is
+// then no direction in the image, and the camera's up is its own (as fuzz_paths found for paths).
+TEST(ViewsTest, AViewLookingStraightUpOrDownIsAUsableCamera) {
+    ForestOptions o;
+    o.trees = 0;
+    o.terrainSize = 100;
+    const Scene forest = makeForest(o);
+    for (const double pitch : {89.99999999, -89.99999999, 89.9, -60.0}) {
+        ViewSpec spec;
+        spec.azimuthDegrees = 30.0;
+        spec.pitchDegrees = pitch;
+        const ResolvedView view = resolveView(spec, forest);
+        EXPECT_TRUE(view.camera.validate()) << pitch;
+        // The top of the image leans away from where the camera looks when it looks up, towards it
+        // when it looks down, as with the sky's up at any other pitch.
+        const core::Vec3 heading =
+            horizontal(core::Vec3(std::sin(glm::radians(30.0)), 0, -std::cos(glm::radians(30.0))));
+        const core::Vec3 top =
+            view.camera.wsUp - view.camera.wsDirection * glm::dot(view.camera.wsUp, view.camera.wsDirection);
+        EXPECT_LT(glm::dot(top, heading) * pitch, 0.0) << pitch;
+    }
+}
+
 TEST(ViewsTest, AViewsSunAngleReachesTheResolvedViewAndBadOnesAreErrors) {
     const auto file = std::filesystem::temp_directory_path() / "shadowkit_views_sun_angle.json";
     std::ofstream(file) << R"({"views": [{"name": "sized", "sun_angle": 0.53}, {"name": "point"}]})";

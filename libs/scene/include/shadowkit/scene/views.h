@@ -14,6 +14,11 @@
 
 namespace shadowkit::scene {
 
+// How far a view's or a camera path's ground point (x, height above the ground, z) may lie from
+// the scene's origin in each coordinate, metres: half the camera's reach (core::kMaxWorldMetres),
+// so that the eye resolved over any ground stays inside it.
+inline constexpr double kMaxGroundPointMetres = 0.5 * core::kMaxWorldMetres;
+
 // A spot or point light of a view, placed in the view's own frame so it follows the eye over
 // any ground: `at` is (right, height above the ground under the light, forward) in metres from
 // the ground point under the eye, `aim` a spot light's axis as (right, up, forward).
