@@ -58,7 +58,14 @@ glm::vec<Components, double> interpolate(const std::vector<Key>& keys, double t,
     return out;
 }
 
-bool finite(const core::Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+// What a key may hold, so that every coordinate the interpolation computes is finite: values
+// within kMaxGroundPointMetres (1e13 m apart at most) over gaps of at least kMinKeyGapSeconds
+// give slopes below 1e19 m/s and tangents of that order, and times within kMaxPathSeconds keep a
+// frame's time, start + span × i / (frames − 1), finite. A file without them met an eye 1e49 m
+// up, or key times 1e308 s apart ("eye and target meet at t = -nan s"), frames into a run.
+constexpr double kMaxPathSeconds = 1e9;    // about 32 years either side of 0
+constexpr double kMinKeyGapSeconds = 1e-6; // a thousand times finer than any frame rate
+constexpr double kMaxSunAzimuthDegrees = 1e6;
 
 core::Result<core::Vec3> groundPoint(const json& key, const char* xzField, const char* heightField,
                                      const std::string& where) {
@@ -66,9 +73,21 @@ core::Result<core::Vec3> groundPoint(const json& key, const char* xzField, const
     const auto xz = key[xzField].get<std::vector<double>>();
     if (xz.size() != 2) return core::makeError(where + ": " + xzField + " must hold 2 numbers");
     const core::Vec3 p(xz[0], key.value(heightField, 1.8), xz[1]);
-    if (!finite(p)) return core::makeError(where + ": " + xzField + " and " + heightField + " must be finite");
+    const double reach = kMaxGroundPointMetres;
+    if (!(std::abs(p.x) <= reach && std::abs(p.y) <= reach && std::abs(p.z) <= reach))
+        return core::makeError(where + ": " + xzField + " and " + heightField + " must be finite, at most 5e12 m");
     if (p.y < 0.0) return core::makeError(where + ": " + heightField + " must be >= 0 metres above the ground");
     return p;
+}
+
+// A key's time: within kMaxPathSeconds of 0, and after the previous key's (if any) by at least
+// kMinKeyGapSeconds.
+core::Status keyTime(double time, const double* previous, const std::string& where) {
+    if (!(std::abs(time) <= kMaxPathSeconds))
+        return core::makeError(where + ": time must be finite, within 1e9 s of 0");
+    if (previous && !(time - *previous >= kMinKeyGapSeconds))
+        return core::makeError(where + ": times must increase from key to key, by 1e-6 s at least");
+    return core::Ok{};
 }
 
 core::Result<CameraPath> parsePath(const json& root) {
@@ -106,9 +125,12 @@ core::Result<CameraPath> parsePath(const json& root) {
         if (!target) return target.errorInfo();
         key.eye = *eye;
         key.target = *target;
-        if (!std::isfinite(key.time)) return core::makeError(where + ": time must be finite");
-        if (!path.camera.empty() && !(key.time > path.camera.back().time))
-            return core::makeError(where + ": times must increase from key to key");
+        // Between keys eye and target may still meet (viewAt says when); at a key, the file is wrong.
+        if (!(glm::length(key.target - key.eye) > 1e-6))
+            return core::makeError(where + ": eye and target meet (eye_xz and eye_height equal target_xz and "
+                                           "target_height)");
+        const double* previous = path.camera.empty() ? nullptr : &path.camera.back().time;
+        if (core::Status s = keyTime(key.time, previous, where); !s) return s.errorInfo();
         path.camera.push_back(key);
     }
     if (root.contains("sun")) {
@@ -119,9 +141,8 @@ core::Result<CameraPath> parsePath(const json& root) {
             if (!j.is_object() || !j.contains("time") || !j.contains("elevation") || !j.contains("azimuth"))
                 return core::makeError(where + ": needs \"time\", \"elevation\" and \"azimuth\"");
             SunKey key{j["time"].get<double>(), j["elevation"].get<double>(), j["azimuth"].get<double>()};
-            if (!std::isfinite(key.time) || !std::isfinite(key.azimuthDegrees) ||
-                !(std::abs(key.elevationDegrees) <= 90.0))
-                return core::makeError(where + ": time and azimuth must be finite, elevation in [-90, 90] degrees");
+            if (!(std::abs(key.azimuthDegrees) <= kMaxSunAzimuthDegrees) || !(std::abs(key.elevationDegrees) <= 90.0))
+                return core::makeError(where + ": azimuth must be within 1e6 degrees of 0, elevation in [-90, 90]");
             if (j.contains("angle")) {
                 if (!j["angle"].is_number() || !(j["angle"].get<double>() >= 0.0 && j["angle"].get<double>() <= 20.0))
                     return core::makeError(where + ": angle must be a number in [0, 20] degrees (the sun: 0.53)");
@@ -131,8 +152,8 @@ core::Result<CameraPath> parsePath(const json& root) {
             if (!path.sun.empty() && path.sun.front().angleDegrees.has_value() != key.angleDegrees.has_value())
                 return core::makeError(where +
                                        ": \"angle\" on some sun keys but not on others: give it on every key or none");
-            if (!path.sun.empty() && !(key.time > path.sun.back().time))
-                return core::makeError(where + ": times must increase from key to key");
+            const double* previous = path.sun.empty() ? nullptr : &path.sun.back().time;
+            if (core::Status s = keyTime(key.time, previous, where); !s) return s.errorInfo();
             path.sun.push_back(key);
         }
     }
@@ -214,7 +235,13 @@ core::Result<ResolvedView> viewAt(const CameraPath& path, const Scene& scene, do
     view.height = path.height;
     view.camera.wsEye = scene.wsOrigin + eye; // the keys are in the scene's coordinates
     view.camera.wsDirection = glm::normalize(target - eye);
-    view.camera.wsUp = core::Vec3(0, 1, 0);
+    // Up is the sky's, except where the camera looks straight up or down — a path may pass under or
+    // over its target — where the sky's up is no direction in the image: north is the top of it
+    // there, as on a map (conventions.h). Within 1e-5 of vertical, ten times the cone
+    // PerspectiveCamera::validate refuses.
+    const core::Vec3 sky(0, 1, 0);
+    const bool vertical = glm::length(glm::cross(view.camera.wsDirection, sky)) < 1e-5;
+    view.camera.wsUp = vertical ? core::Vec3(0, 0, -1) : sky;
     view.camera.fovYDegrees = path.fovYDegrees;
     view.camera.aspect = double(path.width) / double(path.height);
     view.camera.zNear = path.zNear;

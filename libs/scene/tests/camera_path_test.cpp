@@ -122,6 +122,81 @@ TEST(CameraPath, BadFilesGiveErrorsNamingTheFileAndTheKey) {
     EXPECT_NE(p.error().find("flythrough"), std::string::npos) << p.error(); // lists the known ones
 }
 
+// Keys no frame could use are refused when the file is read, naming the file and the key, rather
+// than frames into a run (an eye 1e49 m up; times 1e308 s apart gave "meet at t = -nan s").
+TEST(CameraPath, KeysNoFrameCouldUseAreRefusedWhenTheFileIsRead) {
+    const std::string key1 = R"({"time": 1, "eye_xz": [5, 0], "target_xz": [10, 10]})";
+    const std::vector<std::pair<std::string, std::string>> files = {
+        {"eye-far", R"({"camera": [{"time": 0, "eye_xz": [0, 0], "eye_height": 1e49, "target_xz": [10, 10]}]})"},
+        {"target-far", R"({"camera": [{"time": 0, "eye_xz": [0, 0], "target_xz": [-6e12, 10]}]})"},
+        {"times-far", R"({"camera": [{"time": -1e308, "eye_xz": [0, 0], "target_xz": [10, 10]},)" + key1 + "]}"},
+        {"times-close",
+         R"({"camera": [{"time": 0.9999999999, "eye_xz": [0, 0], "target_xz": [10, 10]},)" + key1 + "]}"},
+        {"meet",
+         R"({"camera": [{"time": 0, "eye_xz": [3, 4], "eye_height": 2, "target_xz": [3, 4], "target_height": 2}]})"},
+        {"sun-spins", R"({"camera": [)" + key1 + R"(], "sun": [{"time": 0, "elevation": 30, "azimuth": 1e300}]})"},
+        {"sun-times-close", R"({"camera": [)" + key1 + R"(], "sun": [{"time": 0, "elevation": 30, "azimuth": 0},
+            {"time": 1e-320, "elevation": 40, "azimuth": 0}]})"},
+    };
+    for (const auto& [name, text] : files) {
+        const auto file = writeFile("sk_path_" + name + ".json", text);
+        const auto p = scene::loadCameraPath(file);
+        ASSERT_FALSE(p) << name;
+        EXPECT_NE(p.error().find(file.string()), std::string::npos) << p.error();
+        EXPECT_NE(p.error().find(name.starts_with("sun") ? "sun key " : "camera key "), std::string::npos) << p.error();
+        EXPECT_EQ(p.error().find('\n'), std::string::npos) << p.error();
+    }
+}
+
+// A path at those bounds — eyes and targets 5e12 m out, keys microseconds apart, the sun turned
+// 1e6 degrees — is read, and every frame of it is a usable camera under a finite sun: the bounds
+// are enough for the interpolation to stay finite.
+TEST(CameraPath, APathAtTheBoundsGivesAUsableCameraAtEveryFrame) {
+    const auto file = writeFile("sk_path_at_bounds.json", R"({"frames": 50, "camera": [
+        {"time": -1e9, "eye_xz": [-5e12, 5e12], "eye_height": 5e12, "target_xz": [5e12, -5e12]},
+        {"time": -999999999.999998, "eye_xz": [5e12, -5e12], "eye_height": 0, "target_xz": [-5e12, 5e12]},
+        {"time": 1e9, "eye_xz": [0, 0], "target_xz": [0, -10]}],
+        "sun": [{"time": -1e9, "elevation": -90, "azimuth": -1e6}, {"time": 1e9, "elevation": 90, "azimuth": 1e6}]})");
+    const auto path = scene::loadCameraPath(file);
+    ASSERT_TRUE(path) << path.error();
+    scene::ForestOptions o;
+    o.trees = 0;
+    const scene::Scene forest = scene::makeForest(o);
+    for (int frame = 0; frame < path->frames; ++frame) {
+        const double t = path->timeOfFrame(frame);
+        ASSERT_TRUE(std::isfinite(t));
+        const auto view = scene::viewAt(*path, forest, t);
+        ASSERT_TRUE(view) << "frame " << frame << ": " << view.error();
+        EXPECT_TRUE(view->camera.validate()) << "frame " << frame;
+        EXPECT_TRUE(core::isFinite(view->light.wsDirection)) << "frame " << frame;
+    }
+    // Between its first two keys, two microseconds apart, the eye crosses 1.4e13 m and stays finite.
+    for (const double t : {-1e9 + 5e-7, -1e9 + 1e-6, -1e9 + 1.5e-6}) {
+        const scene::CameraKey key = scene::cameraAt(path->camera, t);
+        EXPECT_TRUE(core::isFinite(key.eye) && core::isFinite(key.target)) << t;
+    }
+}
+
+// A path may pass under its target (found by fuzz_paths): where the camera looks straight up,
+// the sky's up is no direction in the image; north is (a usable camera, not "up parallel").
+TEST(CameraPath, ACameraPassingUnderItsTargetLooksStraightUpWithNorthAtTheTop) {
+    scene::CameraPath path;
+    path.name = "under";
+    path.camera = {{0.0, {0, 2, 0}, {10, 5, 0}}, {2.0, {20, 2, 0}, {10, 5, 0}}};
+    scene::ForestOptions o;
+    o.trees = 0;
+    o.terrainSize = 100;
+    const scene::Scene forest = scene::makeForest(o);
+    const auto straightUp = scene::viewAt(path, forest, 1.0); // the eye at (10, 2, 0), under the target
+    ASSERT_TRUE(straightUp) << straightUp.error();
+    EXPECT_NEAR(straightUp->camera.wsDirection.y, 1.0, 1e-9);
+    EXPECT_EQ(straightUp->camera.wsUp, core::Vec3(0, 0, -1));
+    EXPECT_TRUE(straightUp->camera.validate());
+    const auto before = scene::viewAt(path, forest, 0.5); // looking up and east: the sky's up
+    ASSERT_TRUE(before) << before.error();
+    EXPECT_EQ(before->camera.wsUp, core::Vec3(0, 1, 0));
+}
+
 TEST(CameraPath, EyeMeetingTargetIsAnErrorNotANanCamera) {
     scene::CameraPath path;
     path.name = "meet";
