@@ -94,12 +94,26 @@ core::Status encodeVideo(const std::string& pattern, int firstFrame, double fram
     return core::Ok{};
 }
 
+// Where a frame's image goes: --out, or for a numbered frame of a path (every frame of a sequence,
+// or one picked by --frames) --out's pattern with the frame's number, e.g. frames/0120.png.
+std::string outFileOf(const RenderArgs& args, const Timeline& timeline, const TimedFrame& frame) {
+    if (!timeline.framesNumbered()) return args.out;
+    auto named = frameFileName(args.out, frame.number);
+    return named ? *named : args.out;
+}
+
 // The outputs' flags agree with the timeline (--video and --strip need a path) and their
 // folders exist, before the scene is loaded.
 core::Status checkOutputs(const RenderArgs& args, const Timeline& timeline) {
     const bool sequence = timeline.isSequence();
     if (sequence || !args.video.empty())
         if (auto name = frameFileName(args.out, 0); !name) return name.errorInfo();
+    // A frame pattern for one image: a frame of the path takes its number (outFileOf); an
+    // image with none (--time, no --path) would be written under the pattern itself.
+    if (frameFileName(args.out, 0) && !timeline.framesNumbered())
+        return core::makeError("--out: '" + args.out + "' is a pattern for a path's frames, and " +
+                               (timeline.path ? "--time draws one moment" : "without --path there is one image") +
+                               ": name the file");
     if (!args.video.empty() && !timeline.path) return core::makeError("--video: needs --path (a sequence of frames)");
     if (!args.strip.empty() && !sequence) return core::makeError("--strip: needs --path (a sequence of frames)");
     for (auto [flag, file] : {std::pair{"--strip", &args.strip},
@@ -108,7 +122,7 @@ core::Status checkOutputs(const RenderArgs& args, const Timeline& timeline) {
                               {"--local-map-out", &args.localMapOut}})
         if (auto s = checkWritable(flag, *file); !s) return s;
     if (!sequence)
-        if (auto s = checkWritable("--out", args.out); !s) return s;
+        if (auto s = checkWritable("--out", outFileOf(args, timeline, timeline.frames.front())); !s) return s;
     if (!args.video.empty() && !ffmpegInstalled())
         return core::makeError(
             "--video: ffmpeg is not installed (apt install ffmpeg), write the frames with --out alone");
@@ -184,10 +198,9 @@ int runRender(const RenderArgs& args) {
         const frame::PreparedFrame& f = drawn->frame;
         if (timeline->frames.size() == 1) printAutoChoice("auto", f);
 
-        std::string out = args.out;
+        const std::string out = outFileOf(args, *timeline, frame);
         if (sequence || !args.video.empty()) {
             // A sequence's folder is made for it (frames/%04d.png); a single image's must exist.
-            out = frameFileName(args.out, frame.number).value();
             if (const auto dir = std::filesystem::path(out).parent_path(); !dir.empty()) {
                 std::error_code ec;
                 std::filesystem::create_directories(dir, ec);
@@ -240,7 +253,7 @@ Command addRenderCommand(CLI::App& app) {
     args->timeline.addTo(*cmd);
     args->lights.addTo(*cmd);
     cmd->add_option("--out", args->out,
-                    "output PNG; for a sequence (--path) a pattern with the frame number, e.g. frames/%04d.png")
+                    "output PNG; for a path's frames (--path) a pattern with the frame number, e.g. frames/%04d.png")
         ->capture_default_str();
     cmd->add_option("--shadow-map-out", args->shadowMapOut,
                     "also write the shadow map itself as a PNG (single frames)");

@@ -77,6 +77,7 @@ core::Result<Timeline> TimelineOptions::resolve() const {
     if (!frames.empty() && !timeline.path) return core::makeError("--frames: needs --path");
     if (time) {
         timeline.frames.push_back({0, *time});
+        timeline.moment = true;
     } else if (timeline.path) {
         const scene::CameraPath& p = *timeline.path;
         int first = 0, end = p.frames;

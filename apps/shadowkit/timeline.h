@@ -28,7 +28,11 @@ struct Timeline {
     std::vector<TimedFrame> frames;        // what to draw, in order
     double framesPerSecond = 30.0;         // of the path (for videos)
 
+    bool moment = false; // --time: one moment, not a numbered frame of the path
+
     bool isSequence() const { return path.has_value() && frames.size() > 1; }
+    // Whether each frame drawn is a frame of the path, with its number (not --time's moment).
+    bool framesNumbered() const { return path.has_value() && !moment; }
     // The view at time t: the path's camera (else `still`, the --view), the sun from
     // --sun-path, else the path's own sun keys, else `still`'s (its size likewise: the keys'
     // "angle" where they give one, else `still`'s); `off` holds the sun where it is at the path's start. `stillSize`:

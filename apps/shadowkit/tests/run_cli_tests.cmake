@@ -252,6 +252,14 @@ if(CASE STREQUAL "gl-render")
     message(SEND_ERROR "render: failed or wrote no image: ${err}")
   endif()
 endif()
+# One frame of a path picked by --frames takes its number in --out's pattern, as in a sequence.
+if(CASE STREQUAL "gl-one-frame-takes-its-number")
+  execute_process(COMMAND ${SHADOWKIT} render ${small} --size 32x18 --map-size 128 --path flythrough --frames 7
+                          --out "${WORK}/f%04d.png" RESULT_VARIABLE rc ERROR_VARIABLE err OUTPUT_QUIET)
+  if(NOT rc EQUAL 0 OR NOT EXISTS "${WORK}/f0007.png" OR EXISTS "${WORK}/f%04d.png")
+    message(SEND_ERROR "render --frames 7: failed or did not write f0007.png: ${err}")
+  endif()
+endif()
 # A view of the sky compares no pixel: its 0.00 % must not pass for perfect shadows in silence.
 if(CASE STREQUAL "gl-eval-nothing-compared-warns")
   execute_process(COMMAND ${SHADOWKIT} eval ${small} --view paper --size 32x18 --map-size 64 --dir 0,1,0 --up 0,0,-1
@@ -295,6 +303,9 @@ check_fails(frames-malformed "--frames" render ${small} --path flythrough --fram
 check_fails(frames-with-time "--frames" render ${small} --path flythrough --time 1 --frames 0:2)
 check_fails(time-not-finite "--time" render ${small} --time nan)
 check_fails(sequence-needs-pattern "--out" render ${small} --path flythrough --frames 0:2 --out "${WORK}/x.png")
+# One image has no frame number to put in a pattern: it was written under the pattern itself.
+check_fails(moment-with-pattern "--out: '" render ${small} --path flythrough --time 1 --out "${WORK}/f%04d.png")
+check_fails(still-with-pattern "--out: '" render ${small} --out "${WORK}/f%04d.png")
 check_fails(movers-out-of-range "movers" render ${small} --movers 5000)
 check_fails(strip-without-path "--strip" render ${small} --strip "${WORK}/strip.png")
 check_fails(light-malformed "--light" setup ${small} --light spot:1,2)
