@@ -10,16 +10,12 @@
 
 namespace shadowkit::app {
 
-namespace {
-// One line whatever the message echoes of the input (a newline typed into --configs, a control
-// character in a glTF's image name).
 std::string oneLine(const std::string& message) {
     std::string line = message;
     std::replace_if(
         line.begin(), line.end(), [](unsigned char c) { return c < 0x20; }, ' ');
     return line;
 }
-} // namespace
 
 int fail(const std::string& message) {
     fmt::print(stderr, "shadowkit: error: {}\n", oneLine(message));
@@ -37,7 +33,8 @@ int fail(const core::Error& error) {
 }
 
 int parseErrorExit(const CLI::ParseError& e) {
-    fmt::print(stderr, "shadowkit: error: {} (see shadowkit --help)\n", e.what());
+    // CLI11 echoes the value as given: a newline in it (typed, or from a --state file) stays one line.
+    fmt::print(stderr, "shadowkit: error: {} (see shadowkit --help)\n", oneLine(e.what()));
     const bool badValue =
         dynamic_cast<const CLI::ValidationError*>(&e) || dynamic_cast<const CLI::ConversionError*>(&e);
     return badValue ? kExitBadInput : kExitUsage;

@@ -17,6 +17,10 @@ namespace shadowkit::app {
 // an allocation the driver refused, a shader the driver rejected).
 inline constexpr int kExitBadInput = 1, kExitUsage = 2, kExitEnvironment = 3;
 
+// `message` with every control character (a newline typed into a value or a saved --state, a
+// control character in a glTF's image name) made a space: an error is one line whatever it echoes.
+std::string oneLine(const std::string& message);
+
 // Prints "shadowkit: error: <message>" (one line) to stderr and returns kExitBadInput.
 int fail(const std::string& message);
 // The same for a library error, returning kExitEnvironment for ErrorKind::Environment.

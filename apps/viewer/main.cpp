@@ -37,7 +37,7 @@ namespace shadowkit::viewer {
 namespace {
 
 int fail(const std::string& message) {
-    fmt::print(stderr, "shadowkit-viewer: error: {}\n", message);
+    fmt::print(stderr, "shadowkit-viewer: error: {}\n", app::oneLine(message));
     return app::kExitBadInput;
 }
 // The command line's exit codes: 3 where this machine cannot do it (no display, no GL 4.5).
@@ -543,7 +543,7 @@ int main(int argc, char** argv) {
     } catch (const CLI::CallForHelp& e) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
-        fmt::print(stderr, "shadowkit-viewer: error: {} (see shadowkit-viewer --help)\n", e.what());
+        fmt::print(stderr, "shadowkit-viewer: error: {} (see shadowkit-viewer --help)\n", app::oneLine(e.what()));
         return 1;
     }
     if (auto s = args.options.technique.check(/*measuresFrames=*/true, /*takesAuto=*/true); !s)

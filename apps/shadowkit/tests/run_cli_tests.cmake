@@ -316,6 +316,12 @@ file(WRITE "${WORK}/state-bad-value.json" [=[{"shadowkit_state": 1, "options": {
 check_fails(state-missing "--state" render ${small} --state "${WORK}/no_such_state.json")
 check_fails(state-not-a-state "--state" render ${small} --state "${WORK}/state-old.json")
 check_fails(state-bad-value "--technique" render ${small} --state "${WORK}/state-bad-value.json")
+# A newline in a value or a name, from a state file or typed, is echoed on the error's one line.
+file(WRITE "${WORK}/state-newline-value.json" [=[{"shadowkit_state": 1, "options": {"technique": "lisp\nsm"}}]=])
+file(WRITE "${WORK}/state-newline-name.json" [=[{"shadowkit_state": 1, "options": {"tech\nnique": "lispsm"}}]=])
+check_fails(state-newline-value "got 'lisp sm'" setup ${small} --state "${WORK}/state-newline-value.json")
+check_fails(state-newline-name "--tech nique" setup ${small} --state "${WORK}/state-newline-name.json")
+check_fails(typed-newline-value "--map-size = 1 2" setup ${small} --map-size "1\n2")
 # A state's options apply, and a flag given as well wins over the file's.
 if(CASE STREQUAL "gl-state-applies")
   file(WRITE "${WORK}/state.json" [=[{"shadowkit_state": 1, "options": {"technique": "lispsm", "map-size": 512, "trees": 20,
