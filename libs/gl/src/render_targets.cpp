@@ -65,6 +65,10 @@ void ShadowTarget::attachLayer(int layer) const {
     glNamedFramebufferTextureLayer(framebuffer.id(), GL_DEPTH_ATTACHMENT, depth.id(), 0, layer);
 }
 
+void ShadowTarget::attachAllLayers() const {
+    glNamedFramebufferTexture(framebuffer.id(), GL_DEPTH_ATTACHMENT, depth.id(), 0);
+}
+
 scene::Image ShadowTarget::readAsGreys() const { return readDepthAsGreys(depth, size, size, layers); }
 
 scene::Image readDepthAsGreys(const Texture& depth, int width, int height, int layers) {

@@ -24,6 +24,9 @@ struct ShadowTarget {
     // naming map_size), or a framebuffer it cannot complete.
     static core::Result<ShadowTarget> create(int texels, int layerCount);
     void attachLayer(int layer) const;
+    // Every layer at once (a layered framebuffer): a draw picks its layer (gl_Layer), a clear
+    // clears them all.
+    void attachAllLayers() const;
     // The layers side by side: near the light bright, cleared texels black, each layer's
     // used depth range stretched.
     scene::Image readAsGreys() const;

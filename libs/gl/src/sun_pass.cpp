@@ -1,8 +1,10 @@
 #include "sun_pass.h"
 
+#include "depth_views.h"
 #include "gl_shaders.h"
 #include "lookup_reach.h"
 #include "program.h"
+#include "shadowkit/core/caster_facing.h"
 #include "uniforms.h"
 
 #include <algorithm>
@@ -30,6 +32,9 @@ core::Result<std::unique_ptr<SunPass>> SunPass::create() {
             ProgramPair& pair = pass->m_programs[linear];
             (material ? pair.material : pair.plain) = std::move(depth).value();
         }
+    auto mapPrograms = buildDepthViewPrograms(ViewTarget::Layer);
+    if (!mapPrograms) return mapPrograms.errorInfo();
+    pass->m_mapPrograms = std::move(mapPrograms).value();
     pass->m_uniforms = createBuffer(nullptr, sizeof(DepthPassUniforms));
     pass->m_rawDepth = createRawDepthSampler();
     auto moments = MomentMaps::create();
@@ -174,9 +179,11 @@ std::vector<OpacityView> SunPass::pageOpacityViews() const {
 
 DrawStats SunPass::drawFixedMaps(const GpuScene& scene, const core::ShadowSetup& setup, const core::BiasSettings& bias,
                                  const core::Vec3& wsTowardsLight, std::span<const PassList> lists,
-                                 PassPrograms::Batches batches) const {
+                                 PassPrograms::Batches batches) {
     PassPrograms programs = casterPrograms(setup.depthLayout, bias);
     programs.batches = batches;
+    if (mapsDrawnTogether(setup, wsTowardsLight, lists))
+        return drawMapsTogether(scene, setup, bias, wsTowardsLight, lists, programs);
     DrawStats draws;
     for (size_t layer = 0; layer < setup.views.size(); ++layer) { // one array layer per shadow view
         const core::ShadowView& view = setup.views[layer];
@@ -189,6 +196,57 @@ DrawStats SunPass::drawFixedMaps(const GpuScene& scene, const core::ShadowSetup&
         draws += scene.draw(lists[layer], programs);
     }
     return draws;
+}
+
+bool SunPass::mapsDrawnTogether(const core::ShadowSetup& setup, const core::Vec3& wsTowardsLight,
+                                std::span<const PassList> lists) const {
+    if (!m_mapPrograms.plain || lists.size() < 2 || lists.size() != setup.views.size() ||
+        setup.depthLayout != core::DepthLayout::Hyperbolic)
+        return false;
+    const auto winding = core::lightFacingWinding(setup.views.front().clipFromWorld, wsTowardsLight);
+    const PassList& first = lists.front();
+    const int64_t stride = lists[1].indirect - first.indirect;
+    for (size_t i = 0; i < lists.size(); ++i) {
+        const PassList& list = lists[i];
+        const bool alike = core::lightFacingWinding(setup.views[i].clipFromWorld, wsTowardsLight) == winding &&
+                           list.batchOrder == first.batchOrder && list.buffer == first.buffer;
+        const bool culledAlike = first.indirect >= 0 ? stride > 0 && list.commands == first.commands &&
+                                                           list.indirect == first.indirect + int64_t(i) * stride
+                                                     : list.indirect < 0;
+        if (!alike || !culledAlike) return false;
+    }
+    return true;
+}
+
+DrawStats SunPass::drawMapsTogether(const GpuScene& scene, const core::ShadowSetup& setup,
+                                    const core::BiasSettings& bias, const core::Vec3& wsTowardsLight,
+                                    std::span<const PassList> lists, PassPrograms programs) {
+    programs.plain = m_mapPrograms.plain.id();
+    programs.material = programs.material ? m_mapPrograms.material.id() : 0;
+    // Each map's matrix in its block (a fixed map's dither origin is its texel grid's, 0); the
+    // bias, which all share, in the pass's block.
+    std::vector<PageBlock> blocks(setup.views.size());
+    for (size_t i = 0; i < blocks.size(); ++i) blocks[i].clipFromWorld = glm::mat4(setup.views[i].clipFromWorld);
+    uploadViewBlocks(blocks, m_mapBlocks, m_mapBlockCapacity);
+    const DepthPassUniforms shared = depthPassUniformsFor(core::Mat4(1.0), bias);
+    uploadToBuffer(m_uniforms.id(), 0, sizeof shared, &shared);
+    // Every layer attached, so the vertex stage's gl_Layer picks the map, and one clear clears them all.
+    m_shadow->attachAllLayers();
+    const float clearDepth = 1.0f;
+    glClearNamedFramebufferfv(m_shadow->framebuffer.id(), GL_DEPTH, 0, &clearDepth);
+    setLightFacingFront(setup.views.front().clipFromWorld, wsTowardsLight);
+    if (lists.front().indirect >= 0) { // culled on the GPU: the draw's index names its map
+        setViewBases(programs, 0, 0, ViewOfDraw::DrawIndex);
+        return scene.drawTogether(lists, programs);
+    }
+    // The CPU's lists: a table names each draw's map; a large mesh draws, in each map, the
+    // clusters meeting its volume — without its near plane, as the lists were culled: where the
+    // pass clamps depth, casters between the light and that plane are drawn at depth 0.
+    m_mapVolumes.resize(lists.size());
+    for (size_t i = 0; i < lists.size(); ++i)
+        m_mapVolumes[i] = visibility::clipVolume(setup.views[i].clipFromWorld, false);
+    setViewBases(programs, 0, 0, ViewOfDraw::Table);
+    return scene.drawTogether(lists, programs, m_mapVolumes);
 }
 
 void SunPass::beginDepthPass(const core::BiasSettings& bias, bool depthClamp, core::DepthLayout layout) const {

@@ -77,6 +77,9 @@ public:
         return m_programs[layout == core::DepthLayout::Linear].passPrograms();
     }
 
+    // The programs that draw the fixed maps together (hyperbolic layout), zero where the GL cannot.
+    PassPrograms mapsTogetherPrograms() const { return m_mapPrograms.passPrograms(); }
+
 private:
     SunPass() = default;
     // The GL state both kinds of map draw with: depth only, the bias as polygon offset (and
@@ -96,11 +99,26 @@ private:
     // `batches`: all, or the opaque ones when the alpha-tested cast through opacity layers.
     DrawStats drawFixedMaps(const GpuScene& scene, const core::ShadowSetup& setup, const core::BiasSettings& bias,
                             const core::Vec3& wsTowardsLight, std::span<const PassList> lists,
-                            PassPrograms::Batches batches) const;
+                            PassPrograms::Batches batches);
+    // Whether the maps can be drawn together, each in its layer (drawMapsTogether): two or more, the
+    // map programs built, the hyperbolic layout (the programs leave depth to the rasteriser), one
+    // light-facing winding, one batch order, and lists all culled on the GPU into consecutive
+    // passes (their commands one stride apart) or all the CPU's in one buffer.
+    bool mapsDrawnTogether(const core::ShadowSetup& setup, const core::Vec3& wsTowardsLight,
+                           std::span<const PassList> lists) const;
+    // Every map at once with the map programs (`programs` says which batches and culling): each
+    // map's block, one clear of every layer, then each batch's level for all maps in one multi-draw.
+    DrawStats drawMapsTogether(const GpuScene& scene, const core::ShadowSetup& setup, const core::BiasSettings& bias,
+                               const core::Vec3& wsTowardsLight, std::span<const PassList> lists,
+                               PassPrograms programs);
 
     ProgramPair m_programs[2]; // depth only, [hyperbolic, linear]; alpha-tested materials discard
-    Buffer m_uniforms;         // the DepthPass block
-    Sampler m_rawDepth;        // the maps' stored depths, for the moments
+    ProgramPair m_mapPrograms; // the fixed maps drawn together (depth_views.h); empty where the GL cannot
+    Buffer m_mapBlocks;        // their blocks
+    size_t m_mapBlockCapacity = 0;
+    std::vector<std::vector<visibility::HalfSpace>> m_mapVolumes; // each map's clip volume, CPU lists
+    Buffer m_uniforms;                                            // the DepthPass block
+    Sampler m_rawDepth;                                           // the maps' stored depths, for the moments
     std::optional<ShadowTarget> m_shadow;
     std::unique_ptr<VirtualPages> m_pages;
     std::unique_ptr<MomentMaps> m_moments;

@@ -1,5 +1,6 @@
 #include "virtual_pages.h"
 
+#include "depth_views.h"
 #include "gl_shaders.h"
 #include "program.h"
 #include "shadowkit/core/caster_facing.h"
@@ -52,24 +53,10 @@ core::Result<std::unique_ptr<VirtualPages>> VirtualPages::create() {
     pages->m_pageTable = std::move(table).value();
     // The page programs (drawPages): where vertex stages read the draw's index and may pick the
     // viewport; else every page is drawn alone with the caller's.
-    if (vertexStagesReadDrawParameters() && epoxy_has_gl_extension("GL_ARB_shader_viewport_layer_array")) {
-        using namespace shaders;
-        constexpr std::string_view kViewport = "#extension GL_ARB_shader_viewport_layer_array : require\n";
-        constexpr std::string_view kPages = "#define SK_PAGES 1\n";
-        constexpr std::string_view kPageDither =
-            "flat in vec2 vDitherOrigin;\n#define SK_DITHER_ORIGIN vDitherOrigin\n";
-        for (const bool material : {false, true}) {
-            const std::string_view with = kMaterialVariant[material];
-            const char* name = material ? "virtual pages' depth pass, materials" : "virtual pages' depth pass";
-            auto depth = buildProgram(name, {kViewport, with, kPages, kDepthPassGlsl, kVisibleGlsl, kDepthVert},
-                                      {with, kPageDither, kDepthPassGlsl, kMaterialGlsl, kDepthFrag});
-            if (!depth) return depth.errorInfo();
-            if (auto s = checkUniformBlock(*depth, name, "DepthPass", sizeof(DepthPassUniforms), depthPassFields()); !s)
-                return s.errorInfo();
-            (material ? pages->m_pagePrograms.material : pages->m_pagePrograms.plain) = std::move(depth).value();
-        }
-        glGetIntegerv(GL_MAX_VIEWPORTS, &pages->m_viewports); // 16 at least since GL 4.1
-    }
+    auto pagePrograms = buildDepthViewPrograms(ViewTarget::Viewport);
+    if (!pagePrograms) return pagePrograms.errorInfo();
+    pages->m_pagePrograms = std::move(pagePrograms).value();
+    if (pages->m_pagePrograms.plain) glGetIntegerv(GL_MAX_VIEWPORTS, &pages->m_viewports); // 16 at least since GL 4.1
     pages->m_markUniforms = createBuffer(nullptr, sizeof(VirtualMarkUniforms));
     pages->m_mapsUniforms = createBuffer(nullptr, sizeof(VirtualMapsUniforms));
     const VirtualMapsUniforms disabled{};
@@ -263,12 +250,7 @@ DrawStats VirtualPages::drawPages(const GpuScene& scene, const PassPrograms& pro
         std::vector<PageBlock> blocks(toRender.size());
         for (size_t i = 0; i < toRender.size(); ++i)
             blocks[i] = {glm::mat4(toRender[i].clipFromWorld), glm::vec4(ditherOrigin(i), 0.0f, 0.0f)};
-        if (m_pageBlockCapacity < blocks.size()) {
-            m_pageBlocks = createBuffer(nullptr, blocks.size() * sizeof(PageBlock));
-            m_pageBlockCapacity = blocks.size();
-        }
-        uploadToBuffer(m_pageBlocks.id(), 0, GLsizeiptr(blocks.size() * sizeof(PageBlock)), blocks.data());
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPagesBinding, m_pageBlocks.id());
+        uploadViewBlocks(blocks, m_pageBlocks, m_pageBlockCapacity);
         // What the pages share: the bias (the block's matrix and dither origin are the pages').
         const DepthPassUniforms shared = depthPassUniformsFor(core::Mat4(1.0), bias);
         uploadToBuffer(depthUniforms.id(), 0, sizeof shared, &shared);
@@ -284,7 +266,7 @@ DrawStats VirtualPages::drawPages(const GpuScene& scene, const PassPrograms& pro
         const float clearDepth = 1.0f;
         glClearNamedFramebufferfv(m_framebuffer.id(), GL_DEPTH, 0, &clearDepth);
         if (pageProgramsUsed) {
-            setPageBases(drawWith, i, 0, PageOfDraw::Call);
+            setViewBases(drawWith, i, 0, ViewOfDraw::Call);
         } else {
             DepthPassUniforms uniforms = depthPassUniformsFor(toRender[i].clipFromWorld, bias);
             uniforms.ditherOrigin = ditherOrigin(i);
@@ -320,15 +302,6 @@ DrawStats VirtualPages::drawPages(const GpuScene& scene, const PassPrograms& pro
         }
     glDisable(GL_SCISSOR_TEST);
     return draws;
-}
-
-void VirtualPages::setPageBases(const PassPrograms& programs, size_t page, int viewport, PageOfDraw pageOfDraw) {
-    for (const GLuint program : {programs.plain, programs.material}) {
-        if (!program) continue;
-        glProgramUniform1ui(program, kPageBaseLocation, static_cast<GLuint>(page));
-        glProgramUniform1i(program, kViewportBaseLocation, viewport);
-        glProgramUniform1ui(program, kPagePerDrawLocation, static_cast<GLuint>(pageOfDraw));
-    }
 }
 
 size_t VirtualPages::pagesCulledOnGpu(const CasterLists& casters) const {
@@ -385,12 +358,12 @@ DrawStats VirtualPages::drawPagesTogether(const GpuScene& scene, const PassProgr
     }
     DrawStats draws;
     if (culledOnGpu) {
-        setPageBases(programs, first, 0, PageOfDraw::DrawIndex);
+        setViewBases(programs, first, 0, ViewOfDraw::DrawIndex);
         draws += scene.drawTogether(casters.culled.subspan(first, count), programs);
     }
     m_volumes.resize(count);
     for (size_t k = 0; k < count; ++k) m_volumes[k] = visibility::clipVolume(pages[k].clipFromWorld, false);
-    setPageBases(programs, first, 0, PageOfDraw::Table);
+    setViewBases(programs, first, 0, ViewOfDraw::Table);
     draws += scene.drawTogether(casters.lists.subspan(first, count), programs, m_volumes);
     return draws;
 }

@@ -121,11 +121,6 @@ private:
     // (`programs`), their blocks bound: what the GPU culled for them (`culledOnGpu`), then their lists.
     DrawStats drawPagesTogether(const GpuScene& scene, const PassPrograms& programs, const core::Vec3& wsTowardsLight,
                                 const CasterLists& casters, size_t first, size_t count, bool culledOnGpu);
-    // Where the page programs' next draws find their page (depth.vert's pagePerDraw): every draw
-    // of a call the same, each draw's index in the call, or each draw's entry in a table.
-    enum class PageOfDraw : uint32_t { Call = 0, DrawIndex = 1, Table = 2 };
-    // ... the pages counted from block `page`, the first in viewport `viewport`.
-    static void setPageBases(const PassPrograms& programs, size_t page, int viewport, PageOfDraw pageOfDraw);
     // Marks the pages the pre-pass's receivers request in the windows of `views` (one per level
     // of `setup`) into `bits` (grown as needed); returns the words marked.
     size_t mark(const CameraDepthTarget& depth, const core::PerspectiveCamera& camera, const core::ShadowSetup& setup,

@@ -178,3 +178,84 @@ TEST_F(BatchedDrawsTest, VirtualPagesDrawnTogetherCastWhatPagesDrawnOneAtATimeCa
 }
 
 } // namespace
+
+namespace {
+
+// The shadow maps (greys, layers side by side) and the frame of one render.
+struct CascadeFrame {
+    gl::FrameStats stats;
+    std::vector<uint8_t> pixels, maps;
+};
+
+// The texels (of 4 bytes) in which two images differ.
+size_t texelsApart(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b) {
+    size_t apart = 0;
+    for (size_t i = 0; i + 4 <= std::min(a.size(), b.size()); i += 4)
+        apart +=
+            std::equal(a.begin() + std::ptrdiff_t(i), a.begin() + std::ptrdiff_t(i + 4), b.begin() + std::ptrdiff_t(i))
+                ? 0
+                : 1;
+    return apart;
+}
+
+} // namespace
+
+TEST_F(BatchedDrawsTest, CascadesDrawnTogetherCastWhatCascadesDrawnOneAtATimeCast) {
+    // Where vertex stages read the draw parameters and pick their layer, a set-up's fixed maps
+    // (four cascades here) are drawn together, each batch's level for all of them in one
+    // multi-draw, each draw's map from its index (GPU-culled lists) or a table (the CPU's), into
+    // a layered framebuffer (SunPass::drawMapsTogether); without, a map at a time, each
+    // attached and cleared alone. On both culling paths, for uniform and warped splits, for
+    // opaque casters and alpha-tested leaves (the material programs), the two write the same
+    // maps and draw the same frame with the same instances. A cascade's casters drawn into
+    // another's layer would move its depths over thousands of texels. The CPU lists draw the
+    // ground (a large mesh, 96² quads) by its clusters meeting each cascade, where a map at a
+    // time drew it whole in each: fewer triangles, the same texels.
+    if (!gl::vertexStagesReadDrawParameters()) GTEST_SKIP() << "this GL has no GL_ARB_shader_draw_parameters";
+    const scene::Scene blobs = gl::testing::smallForest(300, 200, 96);
+    const scene::Scene leafy = gl::testing::smallLeafyForest();
+    for (const scene::Scene* forest : {&blobs, &leafy})
+        for (const core::CascadeWarp warp : {core::CascadeWarp::None, core::CascadeWarp::Lispsm})
+            for (const gl::Culling culling : {gl::Culling::Frustum, gl::Culling::Gpu}) {
+                const std::string at = std::string(forest == &leafy ? "leafy" : "blobs") +
+                                       (warp == core::CascadeWarp::None ? ", uniform" : ", lispsm") +
+                                       (culling == gl::Culling::Gpu ? ", gpu" : ", frustum");
+                scene::ResolvedView view = gl::testing::standardView(*forest, "perpendicular");
+                view.camera.aspect = 160.0 / 90.0;
+                core::ShadowSetupInputs in{.camera = view.camera,
+                                           .light = view.light,
+                                           .wsSceneBounds = forest->wsBounds(),
+                                           .technique = core::Technique::Csm,
+                                           .mapSize = 512};
+                in.cascades.warp = warp;
+                const auto setup = core::computeShadowSetup(in);
+                ASSERT_TRUE(setup) << at << ": " << setup.error();
+                ASSERT_EQ(setup->views.size(), 4u) << at;
+                ASSERT_EQ(setup->depthLayout, core::DepthLayout::Hyperbolic) << at;
+                const gl::RenderSettings settings = smallFrame(160, 90, culling);
+                auto together = gl::Renderer::create(*forest);
+                std::optional<gl::WithoutDrawParameters> without(std::in_place); // programs built without them
+                auto alone = gl::Renderer::create(*forest);
+                without.reset();
+                ASSERT_TRUE(together && alone) << at;
+                auto frameOf = [&](gl::Renderer& renderer) {
+                    const auto stats = renderer.render(view.camera, view.light, *setup, settings);
+                    EXPECT_TRUE(stats) << at << ": " << (stats ? "" : stats.error());
+                    return CascadeFrame{stats ? *stats : gl::FrameStats{}, renderer.readColor().rgba,
+                                        renderer.readShadowMap().rgba};
+                };
+                const CascadeFrame a = frameOf(**together);
+                std::optional<gl::WithoutDrawParameters> guard(std::in_place); // draws as it was built
+                const CascadeFrame b = frameOf(**alone);
+                guard.reset();
+                EXPECT_EQ(a.stats.shadow.instances, b.stats.shadow.instances) << at;
+                EXPECT_LE(a.stats.shadow.triangles, b.stats.shadow.triangles) << at;
+                EXPECT_LT(a.stats.shadow.drawCalls, b.stats.shadow.drawCalls) << at << ": a map at a time";
+                ASSERT_EQ(a.maps.size(), b.maps.size()) << at;
+                ASSERT_EQ(a.pixels.size(), b.pixels.size()) << at;
+                // The two programs compute a map's matrix product apart and may round a sample
+                // apart (measured when written: none).
+                EXPECT_LE(texelsApart(a.maps, b.maps), 16u) << at << ": map texels apart of " << a.maps.size() / 4;
+                EXPECT_LE(texelsApart(a.pixels, b.pixels), 4u) << at << ": pixels apart of " << a.pixels.size() / 4;
+            }
+}

@@ -41,6 +41,10 @@ TEST_F(DepthProgramsTest, OnlyTheLinearLayoutsDepthProgramsWriteFragmentDepth) {
         EXPECT_EQ(writesFragmentDepth(programs.plain), linear) << "opaque casters, layout " << int(layout);
         EXPECT_EQ(writesFragmentDepth(programs.material), linear) << "alpha-tested casters, layout " << int(layout);
     }
+    // The fixed maps drawn together (hyperbolic alone), where the GL can.
+    const gl::PassPrograms together = (*pass)->mapsTogetherPrograms();
+    for (const GLuint program : {together.plain, together.material})
+        if (program) EXPECT_FALSE(writesFragmentDepth(program)) << "the maps drawn together";
 }
 
 namespace {

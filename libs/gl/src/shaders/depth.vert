@@ -12,7 +12,9 @@ layout(std430, binding = SK_INSTANCES_BINDING) readonly buffer Instances { mat4 
 out vec3 wsPosition;
 
 #ifdef SK_PAGES
-// Virtual pages drawn together (VirtualPages::drawPages): one multi-draw takes a batch's level for
+// Views drawn together (depth_views.h): virtual pages (VirtualPages::drawPages), or with
+// SK_VIEW_LAYERS the fixed maps of a set-up (SunPass::drawMapsTogether), where "page" below reads
+// "map" and "viewport" its layer. One multi-draw takes a batch's level for
 // several pages, the draw's index in it (SK_DRAW_ID: gl_DrawIDARB, program.h) naming the page
 // (pagePerDraw 1), whose matrix and dither origin come from its block, and its slot's viewport
 // (GL_ARB_shader_viewport_layer_array). The pages' CPU lists drawn together (every caster of
@@ -47,7 +49,11 @@ void main() {
     const uint k = pagePerDraw == 2u ? drawPages[SK_DRAW_ID] : SK_DRAW_ID * pagePerDraw;
     const SkPage page = pages[pageBase + k];
     vDitherOrigin = page.ditherOrigin.xy;
+#ifdef SK_VIEW_LAYERS
+    gl_Layer = viewportBase + int(k);
+#else
     gl_ViewportIndex = viewportBase + int(k);
+#endif
     gl_Position = page.clipFromWorld * ws;
 #else
     gl_Position = clipFromWorld * ws;
