@@ -170,7 +170,7 @@ TEST(CameraPath, APathAtTheBoundsGivesAUsableCameraAtEveryFrame) {
         EXPECT_TRUE(view->camera.validate()) << "frame " << frame;
         EXPECT_TRUE(core::isFinite(view->light.wsDirection)) << "frame " << frame;
     }
-    // Between its first two keys, two microseconds apart, the eye crosses 1.4e13 m and stays finite.
+    // Between its first two keys, two microseconds apart, the eye moves 1.5e13 m and stays finite.
     for (const double t : {-1e9 + 5e-7, -1e9 + 1e-6, -1e9 + 1.5e-6}) {
         const scene::CameraKey key = scene::cameraAt(path->camera, t);
         EXPECT_TRUE(core::isFinite(key.eye) && core::isFinite(key.target)) << t;
