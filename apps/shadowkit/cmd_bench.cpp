@@ -275,6 +275,7 @@ core::Result<nlohmann::json> benchView(const BenchArgs& args, const BenchRow& ro
     if (!timeline.path) viewOptions.view = row.view; // a path's frames take the default view's sun where it has none
     auto still = viewOptions.resolve(forest);
     if (!still) return still.errorInfo();
+    if (auto s = timeline.checkViews(*still, forest, !args.view.size.empty()); !s) return s.errorInfo();
     const int frames = timeline.path ? static_cast<int>(timeline.frames.size()) : args.frames;
     scene::ResolvedView view = *still;
     measure::FrameCosts costs;

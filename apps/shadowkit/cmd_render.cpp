@@ -153,6 +153,7 @@ int runRender(const RenderArgs& args) {
     scene::Scene& world = *sceneData;
     auto still = args.view.resolve(world);
     if (!still) return fail(still.errorInfo());
+    if (auto s = timeline->checkViews(*still, world, !args.view.size.empty()); !s) return fail(s.errorInfo());
 
     auto context = gl::Context::createHeadless();
     if (!context) return fail(context.errorInfo());

@@ -125,6 +125,12 @@ core::Result<scene::ResolvedView> Timeline::viewAt(const scene::ResolvedView& st
     return view;
 }
 
+core::Status Timeline::checkViews(const scene::ResolvedView& still, const scene::Scene& scene, bool stillSize) const {
+    for (const TimedFrame& frame : frames)
+        if (auto view = viewAt(still, scene, frame.time, stillSize); !view) return view.errorInfo();
+    return core::Ok{};
+}
+
 core::Result<std::string> frameFileName(const std::string& pattern, int frame) {
     const size_t percent = pattern.find('%');
     auto bad = [&] {

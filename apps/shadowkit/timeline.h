@@ -39,6 +39,9 @@ struct Timeline {
     // the image size is `still`'s (--size given), not the path's.
     core::Result<scene::ResolvedView> viewAt(const scene::ResolvedView& still, const scene::Scene& scene, double t,
                                              bool stillSize = false) const;
+    // Every frame's view, before any is drawn: a path whose eye meets its target between two keys
+    // fails now, naming the moment, rather than frames (or a ray tracer's build) into the run.
+    core::Status checkViews(const scene::ResolvedView& still, const scene::Scene& scene, bool stillSize = false) const;
 };
 
 struct TimelineOptions {

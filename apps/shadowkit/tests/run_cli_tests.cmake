@@ -252,6 +252,20 @@ if(CASE STREQUAL "gl-render")
     message(SEND_ERROR "render: failed or wrote no image: ${err}")
   endif()
 endif()
+# A path whose eye meets its target between two keys fails before its first frame is drawn.
+file(WRITE "${WORK}/swap.json" [=[{"frames": 5, "camera": [
+  {"time": 0, "eye_xz": [0, 0], "eye_height": 2, "target_xz": [10, 0], "target_height": 2},
+  {"time": 2, "eye_xz": [10, 0], "eye_height": 2, "target_xz": [0, 0], "target_height": 2}]}]=])
+check_fails(gl-path-eye-meets-target "at t = 1.000000 s: eye and target meet" render ${small} --size 32x18
+            --path "${WORK}/swap.json" --out "${WORK}/swap/%02d.png")
+# ... and the frames before that moment were not drawn (swap/00.png: the first).
+if(CASE STREQUAL "gl-path-eye-meets-target-draws-nothing")
+  execute_process(COMMAND ${SHADOWKIT} render ${small} --size 32x18 --path "${WORK}/swap.json"
+                          --out "${WORK}/swap/%02d.png" RESULT_VARIABLE rc OUTPUT_QUIET ERROR_QUIET)
+  if(rc EQUAL 0 OR EXISTS "${WORK}/swap/00.png")
+    message(SEND_ERROR "gl-path-eye-meets-target-draws-nothing: exit ${rc}, or frames drawn before the error")
+  endif()
+endif()
 # One frame of a path picked by --frames takes its number in --out's pattern, as in a sequence.
 if(CASE STREQUAL "gl-one-frame-takes-its-number")
   execute_process(COMMAND ${SHADOWKIT} render ${small} --size 32x18 --map-size 128 --path flythrough --frames 7
