@@ -260,6 +260,7 @@ check_fails(gl-path-eye-meets-target "at t = 1.000000 s: eye and target meet" re
             --path "${WORK}/swap.json" --out "${WORK}/swap/%02d.png")
 # ... and the frames before that moment were not drawn (swap/00.png: the first).
 if(CASE STREQUAL "gl-path-eye-meets-target-draws-nothing")
+  file(REMOVE_RECURSE "${WORK}/swap")
   execute_process(COMMAND ${SHADOWKIT} render ${small} --size 32x18 --path "${WORK}/swap.json"
                           --out "${WORK}/swap/%02d.png" RESULT_VARIABLE rc OUTPUT_QUIET ERROR_QUIET)
   if(rc EQUAL 0 OR EXISTS "${WORK}/swap/00.png")
