@@ -223,8 +223,8 @@ DrawStats GpuScene::draw(const PassList& list, const PassPrograms& programs, boo
 }
 
 DrawStats GpuScene::draw(const PassList& list, const PassPrograms& programs,
-                         std::span<const visibility::HalfSpace> volume) const {
-    return drawBatches(list, programs, false, 1, &volume);
+                         std::span<const visibility::HalfSpace> volume, bool setInstanceBase) const {
+    return drawBatches(list, programs, setInstanceBase, 1, &volume);
 }
 
 bool GpuScene::drawsByClusters(size_t sceneBatch) const {
@@ -404,6 +404,7 @@ DrawStats GpuScene::drawLevel(const GpuBatch& batch, const PassList& list, size_
         // names the entry).
         std::vector<GLsizei>& runCounts = m_runCounts;
         std::vector<const void*>& runStarts = m_runStarts;
+        if (setInstanceBase) glUniform1f(kLodErrorLocation, range.lookupOffset);
         for (uint32_t k = 0; k < count; ++k) {
             const core::Mat4 worldFromObject(
                 batch.worldFromObject[instanceOfEntry(list.indices[list.first[slot] + k])]);

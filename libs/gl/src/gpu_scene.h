@@ -93,9 +93,9 @@ public:
     // The same, where a large mesh's instance (kClusterMinTriangles or more at its level) draws
     // only its triangle clusters whose boxes meet `volume`: a pass that sees a small part of a
     // kilometre of terrain (a virtual map's page) draws that part. The same pixels as draw():
-    // the clusters left out lie wholly outside the pass's volume.
-    DrawStats draw(const PassList& list, const PassPrograms& programs,
-                   std::span<const visibility::HalfSpace> volume) const;
+    // the clusters left out lie wholly outside the pass's volume. `setInstanceBase` as above.
+    DrawStats draw(const PassList& list, const PassPrograms& programs, std::span<const visibility::HalfSpace> volume,
+                   bool setInstanceBase = false) const;
     static constexpr size_t kClusterMinTriangles = 16384, kClusterTriangles = 2048;
     // Several passes' (two or more) GPU-culled lists at once, their commands one stride apart (consecutive
     // passes of GpuCulling::cullPasses): each batch's level in one multi-draw over the passes, the

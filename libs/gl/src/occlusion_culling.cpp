@@ -71,7 +71,8 @@ visibility::CoherentCullingStats OcclusionCuller::frame(const core::PerspectiveC
     glViewport(0, 0, target.width, target.height);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
-    const std::vector<visibility::HalfSpace> frustum = visibility::clipVolume(camera.clipFromWorld());
+    m_frustum = visibility::clipVolume(camera.clipFromWorld());
+    const std::vector<visibility::HalfSpace>& frustum = m_frustum;
     // The eye's distance to the near plane's corners: a box closer than that may be clipped.
     const double tanY = std::tan(glm::radians(camera.fovYDegrees) * 0.5), tanX = tanY * camera.aspect;
     const double nearMargin = 1.01 * camera.zNear * std::sqrt(1.0 + tanX * tanX + tanY * tanY);
@@ -99,7 +100,9 @@ visibility::CoherentCullingStats OcclusionCuller::frame(const core::PerspectiveC
     return stats;
 }
 
-void OcclusionCuller::prepass(const LodChoice* lod, CameraDepthTarget& target, std::span<const uint32_t> items) {
+void OcclusionCuller::prepass(const core::PerspectiveCamera& camera, const LodChoice* lod, CameraDepthTarget& target,
+                              std::span<const uint32_t> items) {
+    m_frustum = visibility::clipVolume(camera.clipFromWorld());
     m_lod = lod;
     m_gl = {};
     m_listCursor = 0;
@@ -130,7 +133,8 @@ void OcclusionCuller::draw(std::span<const uint32_t> items) {
     glDepthMask(GL_TRUE);
     glEnable(GL_CULL_FACE);
     glCullFace(GL_BACK);
-    m_scene.draw(m_drawList, m_depthPrograms.passPrograms());
+    // A large mesh (a kilometre of terrain) by its clusters in the camera's view, as the camera pass draws it.
+    m_scene.draw(m_drawList, m_depthPrograms.passPrograms(), m_frustum);
     m_unflushed = true;
     m_gl += inGl.elapsed();
 }

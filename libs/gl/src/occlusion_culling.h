@@ -47,7 +47,8 @@ public:
 
     // A plain depth pre-pass of these instances into `target` (cleared here): the camera's
     // depth for receiver masks when occlusion culling is off.
-    void prepass(const LodChoice* lod, CameraDepthTarget& target, std::span<const uint32_t> items);
+    void prepass(const core::PerspectiveCamera& camera, const LodChoice* lod, CameraDepthTarget& target,
+                 std::span<const uint32_t> items);
 
     // visibility::OcclusionQueries
     void draw(std::span<const uint32_t> items) override;
@@ -73,6 +74,7 @@ private:
     size_t m_listCapacity = 0, m_listCursor = 0; // in indices
     std::vector<glm::vec4> m_boxStaging;
     PassList m_drawList;
+    std::vector<visibility::HalfSpace> m_frustum; // the camera's: a large mesh draws its clusters in it
     const LodChoice* m_lod = nullptr;
     struct CameraKey {
         core::PerspectiveCamera camera;

@@ -197,7 +197,7 @@ void PassLists::planCamera(const PassPlanInputs& in, bool prepass) {
             m_visibility->fromItems(m_prepassDrawn, lod, m_camera);
         else
             m_visibility->collect(cameraVolume, false, lod, m_camera);
-        m_occlusion->prepass(lod, *m_cameraDepth, m_prepassDrawn);
+        m_occlusion->prepass(in.camera, lod, *m_cameraDepth, m_prepassDrawn);
         m_costs.inGl += m_occlusion->glTimes();
     } else {
         m_visibility->collect(cameraVolume, cull, lod, m_camera);

@@ -182,6 +182,12 @@ DrawStats SunPass::drawFixedMaps(const GpuScene& scene, const core::ShadowSetup&
                                  PassPrograms::Batches batches) {
     PassPrograms programs = casterPrograms(setup.depthLayout, bias);
     programs.batches = batches;
+    // Each map's volume, for the CPU's lists: a large mesh (a kilometre of terrain) draws in a map
+    // only its clusters meeting it — without its near plane, as the lists were culled: where the
+    // pass clamps depth, casters between the light and that plane are drawn at depth 0.
+    m_mapVolumes.resize(setup.views.size());
+    for (size_t i = 0; i < setup.views.size(); ++i)
+        m_mapVolumes[i] = visibility::clipVolume(setup.views[i].clipFromWorld, false);
     if (mapsDrawnTogether(setup, wsTowardsLight, lists))
         return drawMapsTogether(scene, setup, bias, wsTowardsLight, lists, programs);
     DrawStats draws;
@@ -193,7 +199,8 @@ DrawStats SunPass::drawFixedMaps(const GpuScene& scene, const core::ShadowSetup&
         const float clearDepth = 1.0f;
         glClearNamedFramebufferfv(m_shadow->framebuffer.id(), GL_DEPTH, 0, &clearDepth);
         setLightFacingFront(view.clipFromWorld, wsTowardsLight);
-        draws += scene.draw(lists[layer], programs);
+        const PassList& list = lists[layer];
+        draws += list.indirect >= 0 ? scene.draw(list, programs) : scene.draw(list, programs, m_mapVolumes[layer]);
     }
     return draws;
 }
@@ -240,11 +247,7 @@ DrawStats SunPass::drawMapsTogether(const GpuScene& scene, const core::ShadowSet
         return scene.drawTogether(lists, programs);
     }
     // The CPU's lists: a table names each draw's map; a large mesh draws, in each map, the
-    // clusters meeting its volume — without its near plane, as the lists were culled: where the
-    // pass clamps depth, casters between the light and that plane are drawn at depth 0.
-    m_mapVolumes.resize(lists.size());
-    for (size_t i = 0; i < lists.size(); ++i)
-        m_mapVolumes[i] = visibility::clipVolume(setup.views[i].clipFromWorld, false);
+    // clusters meeting its volume (drawFixedMaps).
     setViewBases(programs, 0, 0, ViewOfDraw::Table);
     return scene.drawTogether(lists, programs, m_mapVolumes);
 }

@@ -260,41 +260,47 @@ TEST_F(BatchedDrawsTest, CascadesDrawnTogetherCastWhatCascadesDrawnOneAtATimeCas
             }
 }
 
-TEST_F(BatchedDrawsTest, CascadesDrawnTogetherFromCpuListsDrawTheTerrainByTheClustersMeetingEachCascade) {
-    // Cascades drawn together from the CPU's lists draw a large mesh — the ground, 96² quads, in
-    // triangle clusters — by the clusters meeting each cascade's volume; the GPU-driven path's
-    // lists draw it whole in each. Over views that see part of the ground: fewer triangles on
-    // the CPU path, the same instances, the same maps texel for texel and the same pixels (a
-    // cluster left out lies wholly outside its cascade).
+TEST_F(BatchedDrawsTest, CpuListsDrawTheTerrainByTheClustersMeetingEachMapAndTheCamera) {
+    // The CPU's lists draw a large mesh — the ground, 96² quads, in triangle clusters — by the
+    // clusters meeting each pass's volume: each map's (one map, or cascades drawn together), the
+    // camera's in the camera pass; the GPU-driven path's lists draw it whole in each. Over views
+    // that see part of the ground: fewer triangles on the CPU path in both passes, the same
+    // instances, the same maps texel for texel and the same pixels (a cluster left out lies
+    // wholly outside its pass's volume).
     if (!gl::vertexStagesReadDrawParameters()) GTEST_SKIP() << "this GL has no GL_ARB_shader_draw_parameters";
     const scene::Scene forest = gl::testing::smallForest(300, 200, 96);
-    for (const char* name : {"paper", "perpendicular"}) {
-        const std::string at = std::string("csm, ") + name;
-        scene::ResolvedView view = gl::testing::standardView(forest, name);
-        view.camera.aspect = 160.0 / 90.0;
-        const auto setup = core::computeShadowSetup({.camera = view.camera,
-                                                     .light = view.light,
-                                                     .wsSceneBounds = forest.wsBounds(),
-                                                     .technique = core::Technique::Csm,
-                                                     .mapSize = 512});
-        ASSERT_TRUE(setup) << at << ": " << setup.error();
-        auto renderer = gl::Renderer::create(forest);
-        ASSERT_TRUE(renderer) << renderer.error();
-        const auto cpu =
-            (*renderer)->render(view.camera, view.light, *setup, smallFrame(160, 90, gl::Culling::Frustum));
-        ASSERT_TRUE(cpu) << at << ": " << cpu.error();
-        const std::vector<uint8_t> expected = (*renderer)->readColor().rgba;
-        const std::vector<uint8_t> expectedMaps = (*renderer)->readShadowMap().rgba;
-        const auto gpu = (*renderer)->render(view.camera, view.light, *setup, smallFrame(160, 90, gl::Culling::Gpu));
-        ASSERT_TRUE(gpu) << at << ": " << gpu.error();
-        EXPECT_EQ(cpu->shadow.instances, gpu->shadow.instances) << at;
-        EXPECT_LT(cpu->shadow.triangles, gpu->shadow.triangles) << at << ": the ground drawn whole";
-        // The maps hold the same ground, texel for texel: the frame alone would not see a
-        // part of it missing where nothing else shades the ground (a mutation that left every
-        // cluster out passed the pixels and failed here).
-        EXPECT_EQ(texelsApart((*renderer)->readShadowMap().rgba, expectedMaps), 0u) << at << ": map texels";
-        // The two paths' draws may round a sample apart: one pixel on `paper` for TSM whether
-        // the CPU path drew the ground by clusters or whole (measured when written).
-        EXPECT_LE(texelsApart((*renderer)->readColor().rgba, expected), 2u) << at;
+    for (const core::Technique technique : {core::Technique::Tsm, core::Technique::Csm}) {
+        for (const char* name : {"paper", "perpendicular"}) {
+            const std::string at = std::string(core::techniqueName(technique)) + ", " + name;
+            scene::ResolvedView view = gl::testing::standardView(forest, name);
+            view.camera.aspect = 160.0 / 90.0;
+            const auto setup = core::computeShadowSetup({.camera = view.camera,
+                                                         .light = view.light,
+                                                         .wsSceneBounds = forest.wsBounds(),
+                                                         .technique = technique,
+                                                         .mapSize = 512});
+            ASSERT_TRUE(setup) << at << ": " << setup.error();
+            auto renderer = gl::Renderer::create(forest);
+            ASSERT_TRUE(renderer) << renderer.error();
+            const auto cpu =
+                (*renderer)->render(view.camera, view.light, *setup, smallFrame(160, 90, gl::Culling::Frustum));
+            ASSERT_TRUE(cpu) << at << ": " << cpu.error();
+            const std::vector<uint8_t> expected = (*renderer)->readColor().rgba;
+            const std::vector<uint8_t> expectedMaps = (*renderer)->readShadowMap().rgba;
+            const auto gpu =
+                (*renderer)->render(view.camera, view.light, *setup, smallFrame(160, 90, gl::Culling::Gpu));
+            ASSERT_TRUE(gpu) << at << ": " << gpu.error();
+            EXPECT_EQ(cpu->shadow.instances, gpu->shadow.instances) << at;
+            EXPECT_LT(cpu->shadow.triangles, gpu->shadow.triangles) << at << ": the ground drawn whole in the maps";
+            EXPECT_EQ(cpu->main.instances, gpu->main.instances) << at;
+            EXPECT_LT(cpu->main.triangles, gpu->main.triangles) << at << ": the ground drawn whole by the camera";
+            // The maps hold the same ground, texel for texel: the frame alone would not see a
+            // part of it missing where nothing else shades the ground (a mutation that left every
+            // cluster out passed the pixels and failed here).
+            EXPECT_EQ(texelsApart((*renderer)->readShadowMap().rgba, expectedMaps), 0u) << at << ": map texels";
+            // The two paths' draws may round a sample apart: one pixel on `paper` for TSM whether
+            // the CPU path drew the ground by clusters or whole (measured when written).
+            EXPECT_LE(texelsApart((*renderer)->readColor().rgba, expected), 2u) << at;
+        }
     }
 }

@@ -24,7 +24,8 @@ struct LevelsDrawn {
 // the triangles of their levels, level 0 the full meshes, and of them the alpha-tested batches'
 // (leaves, cards and their billboard clouds) apart. An instance crossing between two levels
 // (RenderSettings::lodFade) is drawn, and counted, at both. Whole levels: a large mesh whose
-// instance a virtual page draws cluster by cluster counts all of its level's triangles.
+// instance a pass draws cluster by cluster (the CPU's lists: the clusters meeting a map, a page
+// or the camera's view) counts all of its level's triangles; PassStats counts those drawn.
 struct LevelWork {
     size_t instances = 0, triangles = 0;
     size_t alphaTestedInstances = 0, alphaTestedTriangles = 0;
