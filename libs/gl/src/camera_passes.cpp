@@ -13,10 +13,13 @@ namespace shadowkit::gl {
 namespace {
 
 // The camera list drawn with the main or eval programs: a large mesh (a kilometre of terrain)
-// draws only its clusters meeting the camera's view, as a shadow map's CPU list does in its map.
+// draws only its clusters meeting the camera's view, as a shadow map's CPU list does in its map
+// (culling on; off, every cluster).
 DrawStats drawInView(const GpuScene& scene, const PassList& list, const PassPrograms& programs,
-                     const core::PerspectiveCamera& camera) {
-    const std::vector<visibility::HalfSpace> volume = visibility::clipVolume(camera.clipFromWorld());
+                     const CameraView& view) {
+    const std::vector<visibility::HalfSpace> volume = view.settings.culling == Culling::Off
+                                                          ? std::vector<visibility::HalfSpace>{}
+                                                          : visibility::clipVolume(view.camera.clipFromWorld());
     return scene.draw(list, programs, volume, /*setInstanceBase=*/true);
 }
 
@@ -126,7 +129,7 @@ core::Status CameraPasses::evalPass(const GpuScene& scene, const PassList& list,
     glViewport(0, 0, m_eval->width, m_eval->height);
     m_eval->clearColors();
     startDepth(m_eval->depth, m_eval->width, m_eval->height, prepass, m_eval->framebuffer.id());
-    drawInView(scene, list, m_programs.eval(view.setup.clipmap.has_value()), view.camera);
+    drawInView(scene, list, m_programs.eval(view.setup.clipmap.has_value()), view);
     endDepth();
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     return core::Ok{};
@@ -174,7 +177,7 @@ core::Result<DrawStats> CameraPasses::mainPass(const GpuScene& scene, const Pass
     startDepth(m_color->depth, m_color->width, m_color->height, prepass, m_color->framebuffer.id());
     m_mainTimer.begin();
     m_mainSamples.begin();
-    const DrawStats draws = drawInView(scene, list, m_programs.main(view.setup.clipmap.has_value()), view.camera);
+    const DrawStats draws = drawInView(scene, list, m_programs.main(view.setup.clipmap.has_value()), view);
     m_mainSamples.end();
     m_mainTimer.end();
     endDepth();

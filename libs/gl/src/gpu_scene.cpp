@@ -223,8 +223,8 @@ DrawStats GpuScene::draw(const PassList& list, const PassPrograms& programs, boo
 }
 
 DrawStats GpuScene::draw(const PassList& list, const PassPrograms& programs,
-                         std::span<const visibility::HalfSpace> volume, bool setInstanceBase) const {
-    return drawBatches(list, programs, setInstanceBase, 1, &volume);
+                         std::span<const visibility::HalfSpace> volume, bool setInstanceBase, int replicas) const {
+    return drawBatches(list, programs, setInstanceBase, replicas, &volume);
 }
 
 bool GpuScene::drawsByClusters(size_t sceneBatch) const {
@@ -412,15 +412,22 @@ DrawStats GpuScene::drawLevel(const GpuBatch& batch, const PassList& list, size_
             forEachRunMeeting(clusterLevels[level], worldFromObject, *volume, [&](uint32_t first, uint32_t indices) {
                 runStarts.push_back(reinterpret_cast<const void*>(first * sizeof(uint32_t)));
                 runCounts.push_back(static_cast<GLsizei>(indices));
-                stats.triangles += indices / 3;
+                stats.triangles += size_t(indices / 3) * size_t(replicas);
             });
             if (!runCounts.empty()) {
                 glUniform1ui(kInstanceOffsetLocation, list.offset + list.first[slot] + k);
-                glMultiDrawElements(GL_TRIANGLES, runCounts.data(), GL_UNSIGNED_INT, runStarts.data(),
-                                    static_cast<GLsizei>(runCounts.size()));
-                ++stats.drawCalls;
+                if (replicas == 1) {
+                    glMultiDrawElements(GL_TRIANGLES, runCounts.data(), GL_UNSIGNED_INT, runStarts.data(),
+                                        static_cast<GLsizei>(runCounts.size()));
+                    ++stats.drawCalls;
+                } else { // copies gl_InstanceID 0 .. replicas - 1 of the entry (gl_InstanceID / replicas = 0)
+                    for (size_t run = 0; run < runCounts.size(); ++run)
+                        glDrawElementsInstanced(GL_TRIANGLES, runCounts[run], GL_UNSIGNED_INT, runStarts[run],
+                                                replicas);
+                    stats.drawCalls += runCounts.size();
+                }
             }
-            ++stats.instances;
+            stats.instances += size_t(replicas);
         }
         return stats;
     }

@@ -93,9 +93,10 @@ public:
     // The same, where a large mesh's instance (kClusterMinTriangles or more at its level) draws
     // only its triangle clusters whose boxes meet `volume`: a pass that sees a small part of a
     // kilometre of terrain (a virtual map's page) draws that part. The same pixels as draw():
-    // the clusters left out lie wholly outside the pass's volume. `setInstanceBase` as above.
+    // the clusters left out lie wholly outside the pass's volume. `setInstanceBase` and `replicas`
+    // as above (a replicated instance's runs: a draw of that many copies each).
     DrawStats draw(const PassList& list, const PassPrograms& programs, std::span<const visibility::HalfSpace> volume,
-                   bool setInstanceBase = false) const;
+                   bool setInstanceBase = false, int replicas = 1) const;
     static constexpr size_t kClusterMinTriangles = 16384, kClusterTriangles = 2048;
     // Several passes' (two or more) GPU-culled lists at once, their commands one stride apart (consecutive
     // passes of GpuCulling::cullPasses): each batch's level in one multi-draw over the passes, the
@@ -172,7 +173,8 @@ private:
                         bool materialBound, bool setInstanceBase, int replicas,
                         const std::span<const visibility::HalfSpace>* volume, Together together) const;
     // One level of a batch: its instances in a list of the CPU's, one draw (or, by clusters, one an
-    // instance: its runs of clusters meeting the volume in one glMultiDrawElements).
+    // instance: its runs of clusters meeting the volume in one glMultiDrawElements; replicated, a
+    // draw of `replicas` copies a run).
     DrawStats drawLevel(const GpuBatch& batch, const PassList& list, size_t level, const Range& range,
                         bool setInstanceBase, int replicas, const std::span<const visibility::HalfSpace>* volume) const;
     // Levels [first, end) of `levels` (a batch's chain) in a GPU-culled list, one draw through their

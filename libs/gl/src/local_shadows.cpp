@@ -98,9 +98,12 @@ size_t LocalShadowMaps::listCount(const core::LocalLighting& lights, LocalPass p
 }
 
 core::Result<PassStats> LocalShadowMaps::draw(const GpuScene& scene, const core::LocalLighting& lights,
-                                              std::span<const PassList> lists, LocalPass requested, bool hardwarePcf) {
+                                              std::span<const PassList> lists,
+                                              std::span<const std::vector<visibility::HalfSpace>> volumes,
+                                              LocalPass requested, bool hardwarePcf) {
     const LocalPass pass = resolve(requested);
-    if (lists.size() != listCount(lights, pass)) return core::makeError("local lights: wrong number of culled lists");
+    if (lists.size() != listCount(lights, pass) || volumes.size() != lists.size())
+        return core::makeError("local lights: wrong number of culled lists");
     const int spots = static_cast<int>(lights.spots.size()), points = static_cast<int>(lights.points.size());
     if (lights.mapSize != m_size || spots > m_spots || points > m_points) {
         m_size = lights.mapSize;
@@ -130,9 +133,10 @@ core::Result<PassStats> LocalShadowMaps::draw(const GpuScene& scene, const core:
 
     PassStats stats;
     size_t next = 0;
-    // One pass writing `faces` (indices into `views`) of a light at layerBase.
+    // One pass writing `faces` (indices into `views`) of a light at layerBase, from list `at`.
     auto drawFaces = [&](const core::ShadowSetup& setup, double range, std::span<const int> faces, int layerBase,
-                         const PassList& list) {
+                         size_t at) {
+        const PassList& list = lists[at];
         LocalDepthUniforms u{};
         for (const core::ShadowView& view : setup.views)
             u.faceClipFromWorld[view.face.value_or(0)] = glm::mat4(view.clipFromWorld);
@@ -142,7 +146,9 @@ core::Result<PassStats> LocalShadowMaps::draw(const GpuScene& scene, const core:
         u.replicas = static_cast<int32_t>(faces.size());
         uploadToBuffer(m_depthUniforms.id(), 0, sizeof u, &u);
         const int copies = static_cast<int>(faces.size());
-        const DrawStats d = scene.draw(list, programs, false, vertexLayer ? copies : 1);
+        // A large mesh (a kilometre of terrain) by its clusters meeting the list's volume: a lamp
+        // sees a few of them.
+        const DrawStats d = scene.draw(list, programs, volumes[at], false, vertexLayer ? copies : 1);
         // Counted as faces written: the geometry shader amplifies what the vertex path instances.
         const size_t amplify = vertexLayer ? 1 : faces.size();
         stats.instances += d.instances * amplify;
@@ -157,19 +163,19 @@ core::Result<PassStats> LocalShadowMaps::draw(const GpuScene& scene, const core:
         for (size_t v = 0; v < setup.views.size(); ++v) faces[v] = setup.views[v].face.value_or(0);
         const std::span<const int> kept(faces.data(), setup.views.size());
         if (pass == LocalPass::PerFace) {
-            for (const int& face : kept) drawFaces(setup, range, std::span<const int>(&face, 1), 6 * p, lists[next++]);
+            for (const int& face : kept) drawFaces(setup, range, std::span<const int>(&face, 1), 6 * p, next++);
         } else {
-            const PassList& list = lists[next++];
-            if (!kept.empty()) drawFaces(setup, range, kept, 6 * p, list);
+            const size_t at = next++;
+            if (!kept.empty()) drawFaces(setup, range, kept, 6 * p, at);
         }
     }
     glNamedFramebufferTexture(m_framebuffer.id(), GL_DEPTH_ATTACHMENT, m_spotMaps.id(), 0);
     for (int s = 0; s < spots; ++s) {
-        const PassList& list = lists[next++];
+        const size_t at = next++;
         const int only = 0;
         if (!lights.spotSetups[static_cast<size_t>(s)].views.empty())
             drawFaces(lights.spotSetups[static_cast<size_t>(s)], lights.spots[static_cast<size_t>(s)].range,
-                      std::span<const int>(&only, 1), s, list);
+                      std::span<const int>(&only, 1), s, at);
     }
     glDisable(GL_DEPTH_CLAMP);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);

@@ -41,9 +41,12 @@ public:
     static size_t listCount(const core::LocalLighting& lights, LocalPass pass);
 
     // Allocates the maps for these lights (kept while counts and size stay), then writes
-    // every light's map; lists from the renderer's culling, listCount() of them.
+    // every light's map; lists from the renderer's culling, listCount() of them, and each list's
+    // volume (PassLists::localVolumes: a large mesh draws its clusters meeting it).
     core::Result<PassStats> draw(const GpuScene& scene, const core::LocalLighting& lights,
-                                 std::span<const PassList> lists, LocalPass pass, bool hardwarePcf);
+                                 std::span<const PassList> lists,
+                                 std::span<const std::vector<visibility::HalfSpace>> volumes, LocalPass pass,
+                                 bool hardwarePcf);
 
     // The camera passes' uniforms (LocalLights) and textures; evalLight: −1 for the sun, else
     // the local light the eval pass writes the shadow term of.

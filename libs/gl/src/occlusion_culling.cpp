@@ -100,9 +100,9 @@ visibility::CoherentCullingStats OcclusionCuller::frame(const core::PerspectiveC
     return stats;
 }
 
-void OcclusionCuller::prepass(const core::PerspectiveCamera& camera, const LodChoice* lod, CameraDepthTarget& target,
-                              std::span<const uint32_t> items) {
-    m_frustum = visibility::clipVolume(camera.clipFromWorld());
+void OcclusionCuller::prepass(std::span<const visibility::HalfSpace> frustum, const LodChoice* lod,
+                              CameraDepthTarget& target, std::span<const uint32_t> items) {
+    m_frustum.assign(frustum.begin(), frustum.end());
     m_lod = lod;
     m_gl = {};
     m_listCursor = 0;

@@ -46,8 +46,9 @@ public:
     void hierarchyRebuilt() { m_last.reset(); }
 
     // A plain depth pre-pass of these instances into `target` (cleared here): the camera's
-    // depth for receiver masks when occlusion culling is off.
-    void prepass(const core::PerspectiveCamera& camera, const LodChoice* lod, CameraDepthTarget& target,
+    // depth for receiver masks when occlusion culling is off. A large mesh draws its clusters
+    // meeting `frustum` (empty: all of them).
+    void prepass(std::span<const visibility::HalfSpace> frustum, const LodChoice* lod, CameraDepthTarget& target,
                  std::span<const uint32_t> items);
 
     // visibility::OcclusionQueries

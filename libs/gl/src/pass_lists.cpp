@@ -197,7 +197,8 @@ void PassLists::planCamera(const PassPlanInputs& in, bool prepass) {
             m_visibility->fromItems(m_prepassDrawn, lod, m_camera);
         else
             m_visibility->collect(cameraVolume, false, lod, m_camera);
-        m_occlusion->prepass(in.camera, lod, *m_cameraDepth, m_prepassDrawn);
+        m_occlusion->prepass(cull ? cameraVolume : std::span<const visibility::HalfSpace>{}, lod, *m_cameraDepth,
+                             m_prepassDrawn);
         m_costs.inGl += m_occlusion->glTimes();
     } else {
         m_visibility->collect(cameraVolume, cull, lod, m_camera);
@@ -422,8 +423,10 @@ void PassLists::planLocal(const PassPlanInputs& in) {
     const core::LocalLighting& lights = in.localLights;
     m_local.resize(LocalShadowMaps::listCount(lights, in.localPass));
     m_localFaces.assign(m_local.size(), 1);
+    m_localVolumes.assign(m_local.size(), {});
     size_t next = 0;
     const auto collect = [&](std::span<const visibility::HalfSpace> volume, uint32_t replicas = 1) {
+        if (cull) m_localVolumes[next].assign(volume.begin(), volume.end()); // else every cluster
         PassList& list = m_local[next];
         if (gpu)
             m_gpuCulling->cull(firstLocalPass(in.setup) + next, volume, nullptr, GpuCulling::Phase::All, list, nullptr,

@@ -90,6 +90,9 @@ public:
     // in pageLists()); the page's clustered meshes are in pageLists() (drawn together: CasterLists).
     std::span<const PassList> pageCulledLists() const { return m_pageCulled; }
     std::span<const PassList> localLists() const { return m_local; } // LocalShadowMaps::listCount of them
+    // Each local list's volume (a spot's or cube face's clip volume without its near plane, a
+    // layered cube's range box): a large mesh draws its clusters meeting it.
+    std::span<const std::vector<visibility::HalfSpace>> localVolumes() const { return m_localVolumes; }
     const CullingCosts& costs() const { return m_costs; }
     // Camera depth pre-passes drawn since the planner was made (a CHC++ settle loop counts once).
     int prepassesDrawn() const { return m_prepassesDrawn; }
@@ -193,6 +196,7 @@ private:
     std::vector<uint32_t> m_clusteredInstances; // of the meshes that draw by clusters (the CPU's per page)
     std::vector<bool> m_alphaTested;            // per scene batch: GpuScene::alphaTested
     std::vector<uint32_t> m_localFaces;         // per local list: the faces a geometry shader draws each instance into
+    std::vector<std::vector<visibility::HalfSpace>> m_localVolumes; // per local list
     CullingCosts m_costs;
 };
 

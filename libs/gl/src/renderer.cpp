@@ -157,7 +157,7 @@ core::Result<PassStats> Renderer::Impl::shadowPasses(const core::DirectionalLigh
     // A GPU-culled list's draws count no instance or triangle here (the GPU alone knows them).
     sunDrawnOnCpu = {sunStats->instances, sunStats->triangles, 0};
     localTimer.begin();
-    auto localStats = local->draw(*scene, localLights, lists->localLists(), settings.localPass,
+    auto localStats = local->draw(*scene, localLights, lists->localLists(), lists->localVolumes(), settings.localPass,
                                   settings.filter.kind == core::ShadowFilter::Pcf2);
     localTimer.end();
     return localStats;

@@ -145,7 +145,8 @@ core::Result<PassStats> SunPass::draw(const GpuScene& scene, const core::ShadowS
     m_timer.begin();
     m_samples.begin();
     using enum PassPrograms::Batches;
-    draws = drawFixedMaps(scene, setup, bias, wsTowardsLight, mapLists, settings.foliageOpacity ? Opaque : All);
+    draws = drawFixedMaps(scene, setup, bias, wsTowardsLight, mapLists, settings.foliageOpacity ? Opaque : All,
+                          settings.culling != Culling::Off);
     m_samples.end();
     // Opacity layers: the alpha-tested casters, inside the pass's time as the moments are.
     if (settings.foliageOpacity)
@@ -179,15 +180,17 @@ std::vector<OpacityView> SunPass::pageOpacityViews() const {
 
 DrawStats SunPass::drawFixedMaps(const GpuScene& scene, const core::ShadowSetup& setup, const core::BiasSettings& bias,
                                  const core::Vec3& wsTowardsLight, std::span<const PassList> lists,
-                                 PassPrograms::Batches batches) {
+                                 PassPrograms::Batches batches, bool byClusters) {
     PassPrograms programs = casterPrograms(setup.depthLayout, bias);
     programs.batches = batches;
     // Each map's volume, for the CPU's lists: a large mesh (a kilometre of terrain) draws in a map
     // only its clusters meeting it — without its near plane, as the lists were culled: where the
-    // pass clamps depth, casters between the light and that plane are drawn at depth 0.
+    // pass clamps depth, casters between the light and that plane are drawn at depth 0. Culling
+    // off: no volume, every cluster.
     m_mapVolumes.resize(setup.views.size());
     for (size_t i = 0; i < setup.views.size(); ++i)
-        m_mapVolumes[i] = visibility::clipVolume(setup.views[i].clipFromWorld, false);
+        m_mapVolumes[i] = byClusters ? visibility::clipVolume(setup.views[i].clipFromWorld, false)
+                                     : std::vector<visibility::HalfSpace>{};
     if (mapsDrawnTogether(setup, wsTowardsLight, lists))
         return drawMapsTogether(scene, setup, bias, wsTowardsLight, lists, programs);
     DrawStats draws;

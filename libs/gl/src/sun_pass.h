@@ -97,9 +97,10 @@ private:
     // The opacity layers of the pages to render: each into its slot of the layers' atlases.
     std::vector<OpacityView> pageOpacityViews() const;
     // `batches`: all, or the opaque ones when the alpha-tested cast through opacity layers.
+    // `byClusters`: a large mesh in a CPU list draws its clusters meeting each map (culling on).
     DrawStats drawFixedMaps(const GpuScene& scene, const core::ShadowSetup& setup, const core::BiasSettings& bias,
                             const core::Vec3& wsTowardsLight, std::span<const PassList> lists,
-                            PassPrograms::Batches batches);
+                            PassPrograms::Batches batches, bool byClusters);
     // Whether the maps can be drawn together, each in its layer (drawMapsTogether): two or more, the
     // map programs built, the hyperbolic layout (the programs leave depth to the rasteriser), one
     // light-facing winding, one batch order, and lists all culled on the GPU into consecutive

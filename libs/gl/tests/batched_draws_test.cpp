@@ -301,6 +301,18 @@ TEST_F(BatchedDrawsTest, CpuListsDrawTheTerrainByTheClustersMeetingEachMapAndThe
             // The two paths' draws may round a sample apart: one pixel on `paper` for TSM whether
             // the CPU path drew the ground by clusters or whole (measured when written).
             EXPECT_LE(texelsApart((*renderer)->readColor().rgba, expected), 2u) << at;
+            // Culling off draws every cluster: each pass's triangles are its levels' whole.
+            const auto off =
+                (*renderer)->render(view.camera, view.light, *setup, smallFrame(160, 90, gl::Culling::Off));
+            ASSERT_TRUE(off) << at << ": " << off.error();
+            const gl::WorkByLevel work = (*renderer)->workByLevel();
+            auto trianglesOf = [](const std::vector<gl::LevelWork>& levels) {
+                size_t sum = 0;
+                for (const gl::LevelWork& level : levels) sum += level.triangles;
+                return sum;
+            };
+            EXPECT_EQ(off->shadow.triangles, trianglesOf(work.sun)) << at << ": culling off";
+            EXPECT_EQ(off->main.triangles, trianglesOf(work.camera)) << at << ": culling off";
         }
     }
 }

@@ -2,6 +2,7 @@
 // every cube face, a spot light lights nothing outside its cone, the three ways of writing a
 // cube give the same maps, and faces that see nothing of the view are not drawn. CTest label `gl`.
 #include "headless_gl_test.h"
+#include "test_scenes.h"
 
 #include "shadowkit/gl/renderer.h"
 #include "shadowkit/scene/mesh_builder.h"
@@ -279,5 +280,41 @@ TEST_F(LocalLightsTest, GpuCulledListsWriteTheMapsTheCpuListsWrite) {
         ASSERT_TRUE(figures.back().localInstances) << name << ": culled on the CPU";
         EXPECT_EQ(*figures.back().localInstances, cpu->local.instances) << name;
         (*renderer)->readGpuFiguresLate(false);
+    }
+}
+
+TEST_F(LocalLightsTest, ALampDrawsOnlyTheTerrainClustersWithinItsReach) {
+    // A large mesh — the ground, 96² quads in triangle clusters — drawn into a lamp's maps by the
+    // clusters meeting each list's volume on the CPU's lists (a spot's or a cube face's clip
+    // volume, a layered cube's range box); the GPU-culled lists draw it whole. Every local pass:
+    // the same maps texel for texel, the same instances, fewer triangles (a cluster left out
+    // lies wholly outside the light's reach; one wrongly left out leaves its texels far).
+    const scene::Scene forest = gl::testing::smallForest(300, 200, 96);
+    auto renderer = gl::Renderer::create(forest);
+    ASSERT_TRUE(renderer) << renderer.error();
+    const core::Vec3 wsGround = forest.wsOrigin + core::Vec3(0.0, forest.groundHeightAt(0.0, 0.0), 0.0);
+    const core::PerspectiveCamera cam = looking(wsGround + core::Vec3(0, 20, 12), wsGround, {0, 1, 0});
+    ASSERT_TRUE((*renderer)->setLocalLights(lighting(cam, (*renderer)->wsSceneBounds(),
+                                                     {{.wsPosition = wsGround + core::Vec3(-4, 3, 0), .range = 10.0}},
+                                                     {{.wsPosition = wsGround + core::Vec3(5, 4, 0),
+                                                       .wsDirection = {0, -1, -0.3},
+                                                       .coneDegrees = 70.0,
+                                                       .range = 10.0}},
+                                                     128)));
+    const core::ShadowSetup sun = sunSetup(cam, (*renderer)->wsSceneBounds());
+    for (const gl::LocalPass pass : {gl::LocalPass::VertexLayer, gl::LocalPass::Geometry, gl::LocalPass::PerFace}) {
+        const std::string name(gl::localPassName(pass));
+        gl::RenderSettings settings = nightSettings(pass);
+        settings.culling = gl::Culling::Frustum;
+        auto cpu = (*renderer)->render(cam, {}, sun, settings);
+        ASSERT_TRUE(cpu) << name << ": " << cpu.error();
+        const scene::Image cpuMaps = (*renderer)->readLocalShadowMaps();
+        settings.culling = gl::Culling::Gpu;
+        auto gpu = (*renderer)->render(cam, {}, sun, settings);
+        ASSERT_TRUE(gpu) << name << ": " << gpu.error();
+        EXPECT_TRUE(cpuMaps.rgba == (*renderer)->readLocalShadowMaps().rgba) << name;
+        EXPECT_GT(cpu->local.instances, 0u) << name;
+        EXPECT_EQ(cpu->local.instances, gpu->local.instances) << name;
+        EXPECT_LT(cpu->local.triangles, gpu->local.triangles) << name << ": the ground drawn whole";
     }
 }
