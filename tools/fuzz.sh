@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # tools/fuzz.sh TARGET SECONDS [RUNS]: builds the libFuzzer target fuzz_TARGET (gltf, obj, views,
-# paths, camera, configs, image, npy; fuzz/CMakeLists.txt) in build-sanitize/, the clang tree with AddressSanitizer and
+# paths, camera, configs, image, state, npy; fuzz/CMakeLists.txt) in build-sanitize/, the clang tree with AddressSanitizer and
 # UndefinedBehaviorSanitizer that `tools/test.sh --sanitize` also builds (tools/sanitize-tree.sh),
 # and runs it for SECONDS (and at most RUNS executions when given) over a copy of its seed corpus
 # fuzz/corpus/TARGET, keeping what it learns in build-sanitize/fuzz/corpus/TARGET. `all` runs every
@@ -12,7 +12,7 @@ cd "$(dirname "$0")/.."
 target=${1:?usage: tools/fuzz.sh TARGET|all SECONDS [RUNS]}
 seconds=${2:?usage: tools/fuzz.sh TARGET|all SECONDS [RUNS]}
 runs=${3:--1}
-targets=(gltf obj views paths camera configs image npy)
+targets=(gltf obj views paths camera configs image state npy)
 [ "$target" = all ] || targets=("$target")
 
 tools/install-deps.sh

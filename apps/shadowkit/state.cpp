@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <set>
 
 namespace shadowkit::app {
@@ -16,6 +17,17 @@ constexpr int kStateVersion = 1;
 std::string optionName(const std::string& word) {
     if (word.size() < 3 || word.compare(0, 2, "--") != 0) return {};
     return word.substr(2, word.find('=') - 2);
+}
+
+// A name a state may give: spelled as the commands' long options are (a lower-case letter, then
+// lower-case letters, digits and '-'), and none that does anything but set an option of a frame
+// (--help and --version print and exit 0 having drawn nothing; --state would read another file).
+bool isStateOptionName(const std::string& name) {
+    const auto lower = [](char c) { return c >= 'a' && c <= 'z'; };
+    if (name.empty() || name.size() > 64 || !lower(name.front())) return false;
+    if (!std::ranges::all_of(name, [&](char c) { return lower(c) || (c >= '0' && c <= '9') || c == '-'; }))
+        return false;
+    return name != "help" && name != "version" && name != "state";
 }
 
 } // namespace
@@ -38,8 +50,10 @@ core::Result<StateOptions> loadState(const std::string& file) {
     for (const auto& item : root["options"].items()) {
         const std::string name = item.key(); // a plain variable: clang 14 lambdas cannot capture structured bindings
         const nlohmann::json& value = item.value();
-        if (name.empty() || name == "state" || name.find('=') != std::string::npos)
-            return core::makeError("--state: " + file + ": bad option name '" + name + "'");
+        if (!isStateOptionName(name))
+            return core::makeError("--state: " + file + ": bad option name '" + name +
+                                   "' (an option of render without its dashes, e.g. map-size, other than help, "
+                                   "version or state)");
         auto text = [&](const nlohmann::json& v) -> core::Result<std::string> {
             if (v.is_string()) return v.get<std::string>();
             if (v.is_number() || v.is_boolean()) return v.dump();

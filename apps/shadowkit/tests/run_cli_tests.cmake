@@ -335,7 +335,14 @@ check_fails(state-bad-value "--technique" render ${small} --state "${WORK}/state
 file(WRITE "${WORK}/state-newline-value.json" [=[{"shadowkit_state": 1, "options": {"technique": "lisp\nsm"}}]=])
 file(WRITE "${WORK}/state-newline-name.json" [=[{"shadowkit_state": 1, "options": {"tech\nnique": "lispsm"}}]=])
 check_fails(state-newline-value "got 'lisp sm'" setup ${small} --state "${WORK}/state-newline-value.json")
-check_fails(state-newline-name "--tech nique" setup ${small} --state "${WORK}/state-newline-name.json")
+check_fails(state-newline-name "bad option name 'tech nique'" setup ${small} --state "${WORK}/state-newline-name.json")
+# A state that would print and exit 0 having drawn nothing, or read another state, is refused.
+file(WRITE "${WORK}/state-help.json" [=[{"shadowkit_state": 1, "options": {"help": true}}]=])
+file(WRITE "${WORK}/state-version.json" [=[{"shadowkit_state": 1, "options": {"version": true}}]=])
+file(WRITE "${WORK}/state-dashes.json" [=[{"shadowkit_state": 1, "options": {"--map-size": 64}}]=])
+check_fails(state-help "bad option name 'help'" render ${small} --state "${WORK}/state-help.json")
+check_fails(state-version "bad option name 'version'" render ${small} --state "${WORK}/state-version.json")
+check_fails(state-dashes "bad option name '--map-size'" render ${small} --state "${WORK}/state-dashes.json")
 check_fails(typed-newline-value "--map-size = 1 2" setup ${small} --map-size "1\n2")
 # A state's options apply, and a flag given as well wins over the file's.
 if(CASE STREQUAL "gl-state-applies")
