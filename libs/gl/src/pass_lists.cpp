@@ -145,6 +145,7 @@ void PassLists::plan(const PassPlanInputs& in, VirtualPages& pages) {
     std::vector<PassList*> lists;
     m_pages.clear();
     m_sun.clear();
+    m_sunClustered.clear();
     m_local.clear();
     const bool shadows = in.purpose == PassPurpose::Frame;
     if (shadows && virtualMaps(in.setup) && in.settings.sun) planPages(in, pages, lists);
@@ -246,7 +247,6 @@ void PassLists::planPages(const PassPlanInputs& in, VirtualPages& pages, std::ve
     const std::vector<uint32_t> order = nearestFirst(in.wsTowardsLight);
     std::vector<GpuCulling::PassVolume> onGpuPasses;
     std::vector<LodChoice> onGpuLods;
-    std::vector<uint32_t> clustered;
     for (size_t i = 0; i < toRender.size(); ++i) {
         m_pages[i].batchOrder = order;
         // Levels by the page's own texels only, not by the camera: a page must hold the same
@@ -256,11 +256,7 @@ void PassLists::planPages(const PassPlanInputs& in, VirtualPages& pages, std::ve
                                           std::nullopt, true, settings);
         std::vector<visibility::HalfSpace> volume = visibility::clipVolume(toRender[i].clipFromWorld, false);
         if (i < onGpu) {
-            clustered.clear();
-            for (const uint32_t instance : m_clusteredInstances)
-                if (!visibility::isOutside(volume, m_visibility->hierarchy().itemBounds(instance)))
-                    clustered.push_back(instance);
-            m_visibility->fromItems(clustered, settings.lod ? &lod : nullptr, m_pages[i]);
+            collectClustered(volume, settings.lod ? &lod : nullptr, m_pages[i]);
             m_pageCulled[i].batchOrder = order;
             onGpuPasses.push_back({std::move(volume), lod.pass});
             onGpuLods.push_back(lod);
@@ -301,6 +297,7 @@ LevelsDrawn PassLists::levelsDrawn() const {
     };
     mark(m_camera, out.camera);
     for (const PassList& list : m_sun) mark(list, out.sun);
+    for (const PassList& list : m_sunClustered) mark(list, out.sun);
     for (const PassList& list : m_pages) mark(list, out.sun);
     for (const PassList& list : m_pageCulled)
         if (list.indirect >= 0) mark(list, out.sun);
@@ -313,6 +310,7 @@ WorkByLevel PassLists::workByLevel(const GpuScene& gpuScene) const {
     out.sun.assign(kMaxLodLevels, {});
     gpuScene.addLevelWork(drawn(m_camera), out.camera);
     for (const PassList& list : m_sun) gpuScene.addLevelWork(drawn(list), out.sun);
+    for (const PassList& list : m_sunClustered) gpuScene.addLevelWork(drawn(list), out.sun);
     for (const PassList& list : m_pages) gpuScene.addLevelWork(drawn(list), out.sun);
     for (const PassList& list : m_pageCulled)
         if (list.indirect >= 0) gpuScene.addLevelWork(drawn(list), out.sun);
@@ -380,11 +378,20 @@ std::vector<uint32_t> PassLists::nearestFirst(const core::Vec3& wsTowardsLight) 
     return order;
 }
 
+void PassLists::collectClustered(std::span<const visibility::HalfSpace> volume, const LodChoice* lod, PassList& out) {
+    m_clusteredMeeting.clear();
+    for (const uint32_t instance : m_clusteredInstances)
+        if (!visibility::isOutside(volume, m_visibility->hierarchy().itemBounds(instance)))
+            m_clusteredMeeting.push_back(instance);
+    m_visibility->fromItems(m_clusteredMeeting, lod, out);
+}
+
 void PassLists::planSunMaps(const PassPlanInputs& in, std::vector<PassList*>& lists) {
     const RenderSettings& settings = in.settings;
     const bool gpu = settings.culling == Culling::Gpu;
     const LodProjection cameraProjection = cameraProjectionOf(in.camera, settings);
     m_sun.resize(virtualMaps(in.setup) ? 0 : in.setup.views.size());
+    m_sunClustered.resize(gpu ? m_sun.size() : 0);
     const std::vector<uint32_t> order = nearestFirst(in.wsTowardsLight);
     for (size_t i = 0; i < m_sun.size(); ++i) {
         // No near plane: the pass clamps depth, so casters between the light and the near
@@ -395,9 +402,16 @@ void PassLists::planSunMaps(const PassPlanInputs& in, std::vector<PassList*>& li
         const std::vector<visibility::HalfSpace> volume = visibility::clipVolume(clipFromWorld, false);
         m_sun[i].batchOrder = order;
         if (gpu) {
+            // The GPU culls every caster but the large clustered meshes (the terrain); of those the
+            // CPU lists the instances meeting the map, which draw their clusters meeting it, as a
+            // virtual page's do (unmasked: the terrain is the receiver the masks are made of).
             const GpuReceiverMask mask = GpuReceiverMask::of(*m_receiverMasks, in.setup, i);
             m_gpuCulling->cull(GpuCulling::kCameraPasses + i, volume, settings.lod ? &lod : nullptr,
-                               GpuCulling::Phase::All, m_sun[i], masked(in.setup, settings) ? &mask : nullptr);
+                               GpuCulling::Phase::All, m_sun[i], masked(in.setup, settings) ? &mask : nullptr, 1,
+                               /*leaveClustered=*/true);
+            collectClustered(volume, settings.lod ? &lod : nullptr, m_sunClustered[i]);
+            m_sunClustered[i].batchOrder = order;
+            lists.push_back(&m_sunClustered[i]);
             continue;
         }
         m_visibility->collect(volume, settings.culling != Culling::Off, settings.lod ? &lod : nullptr, m_sun[i],

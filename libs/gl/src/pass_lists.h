@@ -84,7 +84,11 @@ public:
     void plan(const PassPlanInputs& in, VirtualPages& pages);
 
     const PassList& cameraList() const { return m_camera; }
-    std::span<const PassList> sunLists() const { return m_sun; }    // one per fixed map; none with virtual maps
+    // Each fixed map's casters (none with virtual maps): its list, the CPU's — or, GPU-driven, what
+    // the GPU culled and beside it the CPU's list of the large clustered meshes meeting the map.
+    CasterLists sunCasters() const {
+        return m_sunClustered.empty() ? CasterLists{m_sun, {}} : CasterLists{m_sunClustered, m_sun};
+    }
     std::span<const PassList> pageLists() const { return m_pages; } // one per VirtualPages::pagesToRender()
     // Culling::Gpu: what the GPU culled of each page (indirect < 0: the page is wholly the CPU's,
     // in pageLists()); the page's clustered meshes are in pageLists() (drawn together: CasterLists).
@@ -149,6 +153,9 @@ private:
     std::vector<uint32_t> nearestFirst(const core::Vec3& wsTowardsLight) const;
     // The sun's fixed maps' lists (receiver-masked when asked).
     void planSunMaps(const PassPlanInputs& in, std::vector<PassList*>& lists);
+    // GPU-driven: `out`, the CPU's list of the large clustered meshes meeting `volume` (a map's
+    // or a page's), whose clusters meeting it the pass draws; the GPU culls the rest.
+    void collectClustered(std::span<const visibility::HalfSpace> volume, const LodChoice* lod, PassList& out);
     // Virtual maps: the pages the receivers request, each with the casters in its own volume.
     void planPages(const PassPlanInputs& in, VirtualPages& pages, std::vector<PassList*>& lists);
     // Every local light's map: full meshes, culled to each pass's volume.
@@ -191,9 +198,11 @@ private:
 
     PassList m_camera;
     std::vector<PassList> m_sun, m_pages, m_local;
+    std::vector<PassList> m_sunClustered;       // Culling::Gpu: each fixed map's clustered meshes (the CPU's)
     std::vector<PassList> m_pageCulled;         // Culling::Gpu: each page's GPU-culled casters
     size_t m_pageRoom = 0;                      // pages a GPU-driven frame culls on the GPU
-    std::vector<uint32_t> m_clusteredInstances; // of the meshes that draw by clusters (the CPU's per page)
+    std::vector<uint32_t> m_clusteredInstances; // of the meshes that draw by clusters (the CPU's per map and page)
+    std::vector<uint32_t> m_clusteredMeeting;   // collectClustered's, kept to allocate nothing
     std::vector<bool> m_alphaTested;            // per scene batch: GpuScene::alphaTested
     std::vector<uint32_t> m_localFaces;         // per local list: the faces a geometry shader draws each instance into
     std::vector<std::vector<visibility::HalfSpace>> m_localVolumes; // per local list

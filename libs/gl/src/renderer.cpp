@@ -150,7 +150,7 @@ core::Result<core::BiasSettings> Renderer::Impl::prepare(const core::Perspective
 core::Result<PassStats> Renderer::Impl::shadowPasses(const core::DirectionalLight& light,
                                                      const core::ShadowSetup& setup, const RenderSettings& settings,
                                                      const core::BiasSettings& bias) {
-    auto sunStats = sun->draw(*scene, setup, settings, bias, light.wsTowardsLight(), lists->sunLists(),
+    auto sunStats = sun->draw(*scene, setup, settings, bias, light.wsTowardsLight(), lists->sunCasters(),
                               {lists->pageLists(), lists->pageCulledLists()});
     if (!sunStats) return sunStats.errorInfo();
     lastShadow = *sunStats;

@@ -96,7 +96,7 @@ core::Status SunPass::prepareOpacity(int width, int height, int layers, int mipL
 
 core::Result<PassStats> SunPass::draw(const GpuScene& scene, const core::ShadowSetup& setup,
                                       const RenderSettings& settings, const core::BiasSettings& bias,
-                                      const core::Vec3& wsTowardsLight, std::span<const PassList> mapLists,
+                                      const core::Vec3& wsTowardsLight, const CasterLists& mapCasters,
                                       const CasterLists& pageCasters) {
     m_lastVirtual.reset();
     m_samples.reset();
@@ -145,12 +145,12 @@ core::Result<PassStats> SunPass::draw(const GpuScene& scene, const core::ShadowS
     m_timer.begin();
     m_samples.begin();
     using enum PassPrograms::Batches;
-    draws = drawFixedMaps(scene, setup, bias, wsTowardsLight, mapLists, settings.foliageOpacity ? Opaque : All,
+    draws = drawFixedMaps(scene, setup, bias, wsTowardsLight, mapCasters, settings.foliageOpacity ? Opaque : All,
                           settings.culling != Culling::Off);
     m_samples.end();
     // Opacity layers: the alpha-tested casters, inside the pass's time as the moments are.
     if (settings.foliageOpacity)
-        draws += m_opacity->draw(scene, bias, opacityViewsOf(setup, m_shadow->size), {mapLists, {}}, m_uniforms,
+        draws += m_opacity->draw(scene, bias, opacityViewsOf(setup, m_shadow->size), mapCasters, m_uniforms,
                                  setup.depthClamp);
     m_countedTexels = uint64_t(m_shadow->size) * uint64_t(m_shadow->size) * setup.views.size();
     // MSM: the maps' moments, blurred, inside the pass's time (a real frame pays them with it).
@@ -179,7 +179,7 @@ std::vector<OpacityView> SunPass::pageOpacityViews() const {
 }
 
 DrawStats SunPass::drawFixedMaps(const GpuScene& scene, const core::ShadowSetup& setup, const core::BiasSettings& bias,
-                                 const core::Vec3& wsTowardsLight, std::span<const PassList> lists,
+                                 const core::Vec3& wsTowardsLight, const CasterLists& casters,
                                  PassPrograms::Batches batches, bool byClusters) {
     PassPrograms programs = casterPrograms(setup.depthLayout, bias);
     programs.batches = batches;
@@ -191,8 +191,8 @@ DrawStats SunPass::drawFixedMaps(const GpuScene& scene, const core::ShadowSetup&
     for (size_t i = 0; i < setup.views.size(); ++i)
         m_mapVolumes[i] = byClusters ? visibility::clipVolume(setup.views[i].clipFromWorld, false)
                                      : std::vector<visibility::HalfSpace>{};
-    if (mapsDrawnTogether(setup, wsTowardsLight, lists))
-        return drawMapsTogether(scene, setup, bias, wsTowardsLight, lists, programs);
+    if (mapsDrawnTogether(setup, wsTowardsLight, casters))
+        return drawMapsTogether(scene, setup, bias, wsTowardsLight, casters, programs);
     DrawStats draws;
     for (size_t layer = 0; layer < setup.views.size(); ++layer) { // one array layer per shadow view
         const core::ShadowView& view = setup.views[layer];
@@ -202,35 +202,40 @@ DrawStats SunPass::drawFixedMaps(const GpuScene& scene, const core::ShadowSetup&
         const float clearDepth = 1.0f;
         glClearNamedFramebufferfv(m_shadow->framebuffer.id(), GL_DEPTH, 0, &clearDepth);
         setLightFacingFront(view.clipFromWorld, wsTowardsLight);
-        const PassList& list = lists[layer];
-        draws += list.indirect >= 0 ? scene.draw(list, programs) : scene.draw(list, programs, m_mapVolumes[layer]);
+        draws += casters.draw(scene, layer, programs, &m_mapVolumes[layer]);
     }
     return draws;
 }
 
 bool SunPass::mapsDrawnTogether(const core::ShadowSetup& setup, const core::Vec3& wsTowardsLight,
-                                std::span<const PassList> lists) const {
-    if (!m_mapPrograms.plain || lists.size() < 2 || lists.size() != setup.views.size() ||
-        setup.depthLayout != core::DepthLayout::Hyperbolic)
-        return false;
+                                const CasterLists& casters) const {
+    const size_t maps = setup.views.size();
+    if (!m_mapPrograms.plain || maps < 2 || setup.depthLayout != core::DepthLayout::Hyperbolic) return false;
     const auto winding = core::lightFacingWinding(setup.views.front().clipFromWorld, wsTowardsLight);
-    const PassList& first = lists.front();
-    const int64_t stride = lists[1].indirect - first.indirect;
-    for (size_t i = 0; i < lists.size(); ++i) {
-        const PassList& list = lists[i];
-        const bool alike = core::lightFacingWinding(setup.views[i].clipFromWorld, wsTowardsLight) == winding &&
-                           list.batchOrder == first.batchOrder && list.buffer == first.buffer;
-        const bool culledAlike = first.indirect >= 0 ? stride > 0 && list.commands == first.commands &&
-                                                           list.indirect == first.indirect + int64_t(i) * stride
-                                                     : list.indirect < 0;
-        if (!alike || !culledAlike) return false;
-    }
-    return true;
+    for (size_t i = 0; i < maps; ++i)
+        if (core::lightFacingWinding(setup.views[i].clipFromWorld, wsTowardsLight) != winding) return false;
+    // Lists one a map, in one batch order and buffer: all the CPU's, or all culled on the GPU into
+    // consecutive passes (their commands one stride apart).
+    const auto alike = [&](std::span<const PassList> lists, bool culled) {
+        if (lists.size() != maps) return false;
+        const PassList& first = lists.front();
+        const int64_t stride = lists[1].indirect - first.indirect;
+        for (size_t i = 0; i < maps; ++i) {
+            const PassList& list = lists[i];
+            if (list.batchOrder != first.batchOrder || list.buffer != first.buffer) return false;
+            const bool placed = culled ? first.indirect >= 0 && stride > 0 && list.commands == first.commands &&
+                                             list.indirect == first.indirect + int64_t(i) * stride
+                                       : list.indirect < 0;
+            if (!placed) return false;
+        }
+        return true;
+    };
+    return alike(casters.lists, false) && (casters.culled.empty() || alike(casters.culled, true));
 }
 
 DrawStats SunPass::drawMapsTogether(const GpuScene& scene, const core::ShadowSetup& setup,
                                     const core::BiasSettings& bias, const core::Vec3& wsTowardsLight,
-                                    std::span<const PassList> lists, PassPrograms programs) {
+                                    const CasterLists& casters, PassPrograms programs) {
     programs.plain = m_mapPrograms.plain.id();
     programs.material = programs.material ? m_mapPrograms.material.id() : 0;
     // Each map's matrix in its block (a fixed map's dither origin is its texel grid's, 0); the
@@ -245,14 +250,16 @@ DrawStats SunPass::drawMapsTogether(const GpuScene& scene, const core::ShadowSet
     const float clearDepth = 1.0f;
     glClearNamedFramebufferfv(m_shadow->framebuffer.id(), GL_DEPTH, 0, &clearDepth);
     setLightFacingFront(setup.views.front().clipFromWorld, wsTowardsLight);
-    if (lists.front().indirect >= 0) { // culled on the GPU: the draw's index names its map
+    DrawStats draws;
+    if (!casters.culled.empty()) { // culled on the GPU: the draw's index names its map
         setViewBases(programs, 0, 0, ViewOfDraw::DrawIndex);
-        return scene.drawTogether(lists, programs);
+        draws += scene.drawTogether(casters.culled, programs);
     }
     // The CPU's lists: a table names each draw's map; a large mesh draws, in each map, the
     // clusters meeting its volume (drawFixedMaps).
     setViewBases(programs, 0, 0, ViewOfDraw::Table);
-    return scene.drawTogether(lists, programs, m_mapVolumes);
+    draws += scene.drawTogether(casters.lists, programs, m_mapVolumes);
+    return draws;
 }
 
 void SunPass::beginDepthPass(const core::BiasSettings& bias, bool depthClamp, core::DepthLayout layout) const {

@@ -39,12 +39,12 @@ public:
     // cannot (out of memory, too large).
     core::Status prepare(const core::ShadowSetup& setup, const RenderSettings& settings,
                          const core::BiasSettings& bias);
-    // Draws the maps: `mapLists` one per fixed map, or `pages` each page to render's. No
+    // Draws the maps: `maps` each fixed map's casters, or `pages` each page to render's. No
     // sun (settings.sun false): nothing is drawn. Timed (timer()). `wsTowardsLight`
     // says which faces bias.cull's front and back are (core/caster_facing.h).
     core::Result<PassStats> draw(const GpuScene& scene, const core::ShadowSetup& setup, const RenderSettings& settings,
                                  const core::BiasSettings& bias, const core::Vec3& wsTowardsLight,
-                                 std::span<const PassList> mapLists, const CasterLists& pages);
+                                 const CasterLists& maps, const CasterLists& pages);
     // The last draw()'s GPU time and the samples its depth test passed, as queries the frame's
     // figures read (gpu_figures.h), and the texels drawn: the fixed maps', or the virtual pages'
     // drawn, guard bands and all (0 without a sun or a page drawn, when no sample is counted).
@@ -99,19 +99,19 @@ private:
     // `batches`: all, or the opaque ones when the alpha-tested cast through opacity layers.
     // `byClusters`: a large mesh in a CPU list draws its clusters meeting each map (culling on).
     DrawStats drawFixedMaps(const GpuScene& scene, const core::ShadowSetup& setup, const core::BiasSettings& bias,
-                            const core::Vec3& wsTowardsLight, std::span<const PassList> lists,
-                            PassPrograms::Batches batches, bool byClusters);
+                            const core::Vec3& wsTowardsLight, const CasterLists& casters, PassPrograms::Batches batches,
+                            bool byClusters);
     // Whether the maps can be drawn together, each in its layer (drawMapsTogether): two or more, the
     // map programs built, the hyperbolic layout (the programs leave depth to the rasteriser), one
-    // light-facing winding, one batch order, and lists all culled on the GPU into consecutive
-    // passes (their commands one stride apart) or all the CPU's in one buffer.
+    // light-facing winding, one batch order, the GPU-culled lists (if any) in consecutive passes
+    // (their commands one stride apart) and the CPU's all in one buffer.
     bool mapsDrawnTogether(const core::ShadowSetup& setup, const core::Vec3& wsTowardsLight,
-                           std::span<const PassList> lists) const;
+                           const CasterLists& casters) const;
     // Every map at once with the map programs (`programs` says which batches and culling): each
-    // map's block, one clear of every layer, then each batch's level for all maps in one multi-draw.
+    // map's block, one clear of every layer, then each batch's level for all maps in one multi-draw
+    // (the GPU-culled lists', then the CPU's).
     DrawStats drawMapsTogether(const GpuScene& scene, const core::ShadowSetup& setup, const core::BiasSettings& bias,
-                               const core::Vec3& wsTowardsLight, std::span<const PassList> lists,
-                               PassPrograms programs);
+                               const core::Vec3& wsTowardsLight, const CasterLists& casters, PassPrograms programs);
 
     ProgramPair m_programs[2]; // depth only, [hyperbolic, linear]; alpha-tested materials discard
     ProgramPair m_mapPrograms; // the fixed maps drawn together (depth_views.h); empty where the GL cannot
