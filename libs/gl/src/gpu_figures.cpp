@@ -100,6 +100,7 @@ std::vector<GpuFigures> GpuFigureRing::record(int64_t frame, const FrameFigureSo
     slot.mapTexels = sources.mapTexels;
     slot.lists = sources.lists;
     slot.sunDrawnOnCpu = sources.sunDrawnOnCpu;
+    slot.localDrawnOnCpu = sources.localDrawnOnCpu;
     return arrived;
 }
 
@@ -161,6 +162,7 @@ GpuFigures GpuFigureRing::collect(Slot& slot) {
     const std::span<const uint32_t> commands(words, (slot.read.bytes() - kCommandsOffset) / sizeof(uint32_t));
     DrawStats drawn[3];
     drawn[size_t(CulledListShape::Pass::Sun)] = slot.sunDrawnOnCpu;
+    drawn[size_t(CulledListShape::Pass::Local)] = slot.localDrawnOnCpu;
     for (const CulledListShape& list : slot.lists) {
         DrawStats d = GpuCulling::drawnBy(commands, list.indirect, list.count);
         d.instances *= list.faces, d.triangles *= list.faces;

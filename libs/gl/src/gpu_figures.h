@@ -52,6 +52,7 @@ struct FrameFigureSources {
     // What the sun's pass drew from lists culled on the CPU beside the GPU's (a virtual page's
     // large clustered meshes, the pages past the GPU's room): added to the GPU-culled lists' count.
     DrawStats sunDrawnOnCpu;
+    DrawStats localDrawnOnCpu; // the local maps' likewise (their clustered meshes)
 };
 
 class GpuFigureRing {
@@ -83,7 +84,7 @@ private:
         bool shaded = false, mainShaded = false;              // fragments shaded
         bool firstLeafCounted = false, leavesCounted = false; // the opacity layers' draws
         std::vector<CulledListShape> lists;
-        DrawStats sunDrawnOnCpu;
+        DrawStats sunDrawnOnCpu, localDrawnOnCpu;
     };
     // The figures of a slot whose fence has passed; frees it.
     GpuFigures collect(Slot& slot);

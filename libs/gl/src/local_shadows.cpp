@@ -98,11 +98,13 @@ size_t LocalShadowMaps::listCount(const core::LocalLighting& lights, LocalPass p
 }
 
 core::Result<PassStats> LocalShadowMaps::draw(const GpuScene& scene, const core::LocalLighting& lights,
-                                              std::span<const PassList> lists,
+                                              const CasterLists& casters,
                                               std::span<const std::vector<visibility::HalfSpace>> volumes,
                                               LocalPass requested, bool hardwarePcf) {
     const LocalPass pass = resolve(requested);
-    if (lists.size() != listCount(lights, pass) || volumes.size() != lists.size())
+    const size_t count = listCount(lights, pass);
+    if (casters.lists.size() != count || volumes.size() != count ||
+        (!casters.culled.empty() && casters.culled.size() != count))
         return core::makeError("local lights: wrong number of culled lists");
     const int spots = static_cast<int>(lights.spots.size()), points = static_cast<int>(lights.points.size());
     if (lights.mapSize != m_size || spots > m_spots || points > m_points) {
@@ -133,10 +135,9 @@ core::Result<PassStats> LocalShadowMaps::draw(const GpuScene& scene, const core:
 
     PassStats stats;
     size_t next = 0;
-    // One pass writing `faces` (indices into `views`) of a light at layerBase, from list `at`.
+    // One pass writing `faces` (indices into `views`) of a light at layerBase, from lists `at`.
     auto drawFaces = [&](const core::ShadowSetup& setup, double range, std::span<const int> faces, int layerBase,
                          size_t at) {
-        const PassList& list = lists[at];
         LocalDepthUniforms u{};
         for (const core::ShadowView& view : setup.views)
             u.faceClipFromWorld[view.face.value_or(0)] = glm::mat4(view.clipFromWorld);
@@ -146,9 +147,11 @@ core::Result<PassStats> LocalShadowMaps::draw(const GpuScene& scene, const core:
         u.replicas = static_cast<int32_t>(faces.size());
         uploadToBuffer(m_depthUniforms.id(), 0, sizeof u, &u);
         const int copies = static_cast<int>(faces.size());
-        // A large mesh (a kilometre of terrain) by its clusters meeting the list's volume: a lamp
-        // sees a few of them.
-        const DrawStats d = scene.draw(list, programs, volumes[at], false, vertexLayer ? copies : 1);
+        // What the GPU culled (its commands hold the copies), then the CPU's list: a large mesh
+        // (a kilometre of terrain) by its clusters meeting the list's volume — a lamp sees a few.
+        DrawStats d;
+        if (!casters.culled.empty()) d += scene.draw(casters.culled[at], programs, false, vertexLayer ? copies : 1);
+        d += scene.draw(casters.lists[at], programs, volumes[at], false, vertexLayer ? copies : 1);
         // Counted as faces written: the geometry shader amplifies what the vertex path instances.
         const size_t amplify = vertexLayer ? 1 : faces.size();
         stats.instances += d.instances * amplify;

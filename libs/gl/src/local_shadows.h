@@ -41,10 +41,10 @@ public:
     static size_t listCount(const core::LocalLighting& lights, LocalPass pass);
 
     // Allocates the maps for these lights (kept while counts and size stay), then writes
-    // every light's map; lists from the renderer's culling, listCount() of them, and each list's
-    // volume (PassLists::localVolumes: a large mesh draws its clusters meeting it).
-    core::Result<PassStats> draw(const GpuScene& scene, const core::LocalLighting& lights,
-                                 std::span<const PassList> lists,
+    // every light's map; casters from the renderer's culling, listCount() lists of them (and as
+    // many GPU-culled beside them, GPU-driven), and each list's volume (PassLists::localVolumes: a
+    // large mesh draws its clusters meeting it). What lists culled on the GPU drew is not counted.
+    core::Result<PassStats> draw(const GpuScene& scene, const core::LocalLighting& lights, const CasterLists& casters,
                                  std::span<const std::vector<visibility::HalfSpace>> volumes, LocalPass pass,
                                  bool hardwarePcf);
 

@@ -147,6 +147,7 @@ void PassLists::plan(const PassPlanInputs& in, VirtualPages& pages) {
     m_sun.clear();
     m_sunClustered.clear();
     m_local.clear();
+    m_localClustered.clear();
     const bool shadows = in.purpose == PassPurpose::Frame;
     if (shadows && virtualMaps(in.setup) && in.settings.sun) planPages(in, pages, lists);
     if (!virtualMaps(in.setup) && !m_movedBoxes.empty()) {
@@ -161,6 +162,7 @@ void PassLists::plan(const PassPlanInputs& in, VirtualPages& pages) {
         for (PassList& list : m_local) lists.push_back(&list);
         lists.push_back(&m_camera);
     }
+    for (PassList& list : m_localClustered) lists.push_back(&list);
     m_visibility->upload(lists);
     m_costs.total = total.elapsed();
     m_costs.lists = m_visibility->takeListTimes();
@@ -438,15 +440,19 @@ void PassLists::planLocal(const PassPlanInputs& in) {
     m_local.resize(LocalShadowMaps::listCount(lights, in.localPass));
     m_localFaces.assign(m_local.size(), 1);
     m_localVolumes.assign(m_local.size(), {});
+    m_localClustered.resize(gpu ? m_local.size() : 0);
     size_t next = 0;
     const auto collect = [&](std::span<const visibility::HalfSpace> volume, uint32_t replicas = 1) {
         if (cull) m_localVolumes[next].assign(volume.begin(), volume.end()); // else every cluster
         PassList& list = m_local[next];
-        if (gpu)
+        if (gpu) {
+            // The large clustered meshes (the terrain) left to the CPU, as the sun's maps leave them.
             m_gpuCulling->cull(firstLocalPass(in.setup) + next, volume, nullptr, GpuCulling::Phase::All, list, nullptr,
-                               replicas);
-        else
+                               replicas, /*leaveClustered=*/true);
+            collectClustered(volume, nullptr, m_localClustered[next]);
+        } else {
             m_visibility->collect(volume, cull, nullptr, list);
+        }
         ++next;
     };
     for (size_t p = 0; p < lights.points.size(); ++p) {

@@ -93,7 +93,11 @@ public:
     // Culling::Gpu: what the GPU culled of each page (indirect < 0: the page is wholly the CPU's,
     // in pageLists()); the page's clustered meshes are in pageLists() (drawn together: CasterLists).
     std::span<const PassList> pageCulledLists() const { return m_pageCulled; }
-    std::span<const PassList> localLists() const { return m_local; } // LocalShadowMaps::listCount of them
+    // Each local map's casters, LocalShadowMaps::listCount of them: its list, the CPU's — or,
+    // GPU-driven, what the GPU culled and beside it the CPU's list of the clustered meshes.
+    CasterLists localCasters() const {
+        return m_localClustered.empty() ? CasterLists{m_local, {}} : CasterLists{m_localClustered, m_local};
+    }
     // Each local list's volume (a spot's or cube face's clip volume without its near plane, a
     // layered cube's range box): a large mesh draws its clusters meeting it.
     std::span<const std::vector<visibility::HalfSpace>> localVolumes() const { return m_localVolumes; }
@@ -199,6 +203,7 @@ private:
     PassList m_camera;
     std::vector<PassList> m_sun, m_pages, m_local;
     std::vector<PassList> m_sunClustered;       // Culling::Gpu: each fixed map's clustered meshes (the CPU's)
+    std::vector<PassList> m_localClustered;     // Culling::Gpu: each local list's clustered meshes (the CPU's)
     std::vector<PassList> m_pageCulled;         // Culling::Gpu: each page's GPU-culled casters
     size_t m_pageRoom = 0;                      // pages a GPU-driven frame culls on the GPU
     std::vector<uint32_t> m_clusteredInstances; // of the meshes that draw by clusters (the CPU's per map and page)

@@ -36,6 +36,7 @@ struct Renderer::Impl {
     core::Vec3 wsOrigin{0.0};                 // Scene::wsOrigin: where the GPU's coordinates start
     PassStats lastShadow;                     // the last sun shadow pass (its GPU time not read)
     DrawStats sunDrawnOnCpu;                  // of which drawn from lists culled on the CPU (FrameFigureSources)
+    DrawStats localDrawnOnCpu;                // the local maps' likewise
     int64_t frames = 0;                       // render() calls
     GpuFigureRing figures;                    // every frame's GPU times, samples, GPU-culled counts
     bool lateFigures = false;                 // Renderer::readGpuFiguresLate
@@ -157,9 +158,10 @@ core::Result<PassStats> Renderer::Impl::shadowPasses(const core::DirectionalLigh
     // A GPU-culled list's draws count no instance or triangle here (the GPU alone knows them).
     sunDrawnOnCpu = {sunStats->instances, sunStats->triangles, 0};
     localTimer.begin();
-    auto localStats = local->draw(*scene, localLights, lists->localLists(), lists->localVolumes(), settings.localPass,
+    auto localStats = local->draw(*scene, localLights, lists->localCasters(), lists->localVolumes(), settings.localPass,
                                   settings.filter.kind == core::ShadowFilter::Pcf2);
     localTimer.end();
+    if (localStats) localDrawnOnCpu = {localStats->instances, localStats->triangles, 0};
     return localStats;
 }
 
@@ -229,6 +231,7 @@ void Renderer::Impl::gpuFigures(FrameStats& stats, const RenderSettings& setting
     }
     if (settings.culling == Culling::Gpu) lists->describeGpuLists(sources, settings.foliageOpacity);
     sources.sunDrawnOnCpu = sunDrawnOnCpu;
+    sources.localDrawnOnCpu = localDrawnOnCpu;
     figures.take(stats, sources, lateFigures);
     if (!lateFigures && sources.commands) keepGpuShadowDraws({stats.shadow.instances, stats.shadow.triangles, 0});
 }
@@ -265,7 +268,7 @@ core::Result<core::RasterBuffers> Renderer::Impl::evalBuffers(const SceneFrame& 
     if (!bias) return bias.errorInfo();
     const bool shadows = purpose == PassPurpose::Frame;
     lastShadow = {};
-    sunDrawnOnCpu = {};
+    sunDrawnOnCpu = localDrawnOnCpu = {};
     if (shadows)
         if (auto s = shadowPasses(light, setup, settings, *bias); !s) return s.errorInfo();
     readGpuShadowDraws(settings);
