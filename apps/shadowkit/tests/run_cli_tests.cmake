@@ -267,6 +267,14 @@ if(CASE STREQUAL "gl-path-eye-meets-target-draws-nothing")
     message(SEND_ERROR "gl-path-eye-meets-target-draws-nothing: exit ${rc}, or frames drawn before the error")
   endif()
 endif()
+# bench fails on it before its table's header too: nothing on stdout.
+if(CASE STREQUAL "gl-bench-path-eye-meets-target-prints-nothing")
+  execute_process(COMMAND ${SHADOWKIT} bench ${small} --size 32x18 --path "${WORK}/swap.json"
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(rc EQUAL 0 OR NOT out STREQUAL "" OR NOT err MATCHES "eye and target meet")
+    message(SEND_ERROR "bench --path: exit ${rc}, stdout '${out}', stderr '${err}'")
+  endif()
+endif()
 # One frame of a path picked by --frames takes its number in --out's pattern, as in a sequence.
 if(CASE STREQUAL "gl-one-frame-takes-its-number")
   execute_process(COMMAND ${SHADOWKIT} render ${small} --size 32x18 --map-size 128 --path flythrough --frames 7
