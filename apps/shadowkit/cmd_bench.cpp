@@ -172,7 +172,8 @@ void printPassLines(const BenchArgs& args, gl::Culling culling, const measure::F
 
 // Where the last frame's triangles went: each pass's instances and triangles per level of detail,
 // the alpha-tested batches' (leaves and their clouds) in brackets. Levels no instance drew at are
-// left out.
+// left out. A large mesh drawn by clusters counts whole here (LevelWork), so a line can exceed
+// its pass's row.
 void printLevelLines(const gl::WorkByLevel& work) {
     for (const auto& [pass, levels] : {std::pair{"shadow", &work.sun}, std::pair{"main", &work.camera}}) {
         std::string line;
@@ -184,7 +185,7 @@ void printLevelLines(const gl::WorkByLevel& work) {
                             level == 0 ? std::string("full") : fmt::format("level {}", level), w.instances,
                             double(w.triangles) * 1e-6, w.alphaTestedInstances, double(w.alphaTestedTriangles) * 1e-6);
         }
-        fmt::print("{:>7} {:>7} {:<14} levels  {} pass by level of detail: {}\n", "", "", "", pass,
+        fmt::print("{:>7} {:>7} {:<14} levels  {} pass by level of detail (whole levels): {}\n", "", "", "", pass,
                    line.empty() ? "nothing drawn" : line);
     }
 }
