@@ -416,11 +416,15 @@ DrawStats GpuScene::drawLevel(const GpuBatch& batch, const PassList& list, size_
             });
             if (!runCounts.empty()) {
                 glUniform1ui(kInstanceOffsetLocation, list.offset + list.first[slot] + k);
-                if (replicas == 1) {
+                if (replicas == 1 && !setInstanceBase) {
                     glMultiDrawElements(GL_TRIANGLES, runCounts.data(), GL_UNSIGNED_INT, runStarts.data(),
                                         static_cast<GLsizei>(runCounts.size()));
                     ++stats.drawCalls;
-                } else { // copies gl_InstanceID 0 .. replicas - 1 of the entry (gl_InstanceID / replicas = 0)
+                } else {
+                    // A draw a run: the camera programs read the level's error by the draw's index
+                    // (main.vert's lodObjectErrors[gl_DrawID], set for index 0 above), which a
+                    // multi-draw's later runs would take past it; replicated, copies gl_InstanceID
+                    // 0 .. replicas - 1 of the entry (gl_InstanceID / replicas = 0).
                     for (size_t run = 0; run < runCounts.size(); ++run)
                         glDrawElementsInstanced(GL_TRIANGLES, runCounts[run], GL_UNSIGNED_INT, runStarts[run],
                                                 replicas);
