@@ -12,15 +12,19 @@
 namespace shadowkit::gl {
 namespace {
 
-// The camera list drawn with the main or eval programs: a large mesh (a kilometre of terrain)
-// draws only its clusters meeting the camera's view, as a shadow map's CPU list does in its map
-// (culling on; off, every cluster).
-DrawStats drawInView(const GpuScene& scene, const PassList& list, const PassPrograms& programs,
+// The camera's casters drawn with the main or eval programs: the CPU's list, where a large mesh
+// (a kilometre of terrain) draws only its clusters meeting the camera's view, as a shadow map's
+// CPU list does in its map (culling on; off, every cluster), then what the GPU culled. The
+// terrain first, as a list in batch order draws it: over the pre-pass, where two surfaces tie
+// in depth the last drawn shows (a box standing on the ground), as on the CPU path.
+DrawStats drawInView(const GpuScene& scene, const CasterLists& casters, const PassPrograms& programs,
                      const CameraView& view) {
     const std::vector<visibility::HalfSpace> volume = view.settings.culling == Culling::Off
                                                           ? std::vector<visibility::HalfSpace>{}
                                                           : visibility::clipVolume(view.camera.clipFromWorld());
-    return scene.draw(list, programs, volume, /*setInstanceBase=*/true);
+    DrawStats draws = scene.draw(casters.lists.front(), programs, volume, /*setInstanceBase=*/true);
+    if (!casters.culled.empty()) draws += scene.draw(casters.culled.front(), programs, /*setInstanceBase=*/true);
+    return draws;
 }
 
 FrameUniforms frameUniformsOf(const CameraView& view, bool readBlurredMask) {
@@ -118,7 +122,7 @@ void CameraPasses::bindFrame(const CameraView& view, bool readBlurredMask) const
     glCullFace(GL_BACK);
 }
 
-core::Status CameraPasses::evalPass(const GpuScene& scene, const PassList& list, const CameraView& view,
+core::Status CameraPasses::evalPass(const GpuScene& scene, const CasterLists& casters, const CameraView& view,
                                     const CameraDepthTarget* prepass) {
     const RenderSettings& settings = view.settings;
     if (!m_eval || m_eval->width != settings.width || m_eval->height != settings.height) {
@@ -129,7 +133,7 @@ core::Status CameraPasses::evalPass(const GpuScene& scene, const PassList& list,
     glViewport(0, 0, m_eval->width, m_eval->height);
     m_eval->clearColors();
     startDepth(m_eval->depth, m_eval->width, m_eval->height, prepass, m_eval->framebuffer.id());
-    drawInView(scene, list, m_programs.eval(view.setup.clipmap.has_value()), view);
+    drawInView(scene, casters, m_programs.eval(view.setup.clipmap.has_value()), view);
     endDepth();
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     return core::Ok{};
@@ -161,8 +165,9 @@ int CameraPasses::blurPass(const BlurSettings& blur) {
     return 1 - target; // the last one written
 }
 
-core::Result<DrawStats> CameraPasses::mainPass(const GpuScene& scene, const PassList& list, const CameraView& view,
-                                               int blurredMask, const CameraDepthTarget* prepass) {
+core::Result<DrawStats> CameraPasses::mainPass(const GpuScene& scene, const CasterLists& casters,
+                                               const CameraView& view, int blurredMask,
+                                               const CameraDepthTarget* prepass) {
     const RenderSettings& settings = view.settings;
     if (!m_color || m_color->width != settings.width || m_color->height != settings.height) {
         m_color.emplace(settings.width, settings.height);
@@ -177,7 +182,7 @@ core::Result<DrawStats> CameraPasses::mainPass(const GpuScene& scene, const Pass
     startDepth(m_color->depth, m_color->width, m_color->height, prepass, m_color->framebuffer.id());
     m_mainTimer.begin();
     m_mainSamples.begin();
-    const DrawStats draws = drawInView(scene, list, m_programs.main(view.setup.clipmap.has_value()), view);
+    const DrawStats draws = drawInView(scene, casters, m_programs.main(view.setup.clipmap.has_value()), view);
     m_mainSamples.end();
     m_mainTimer.end();
     endDepth();

@@ -51,9 +51,12 @@ public:
     // fragment that was nearest when it was drawn. The pre-pass holds the depth of the same list
     // drawn with the same vertex shader and alpha test, so the image is the same.
     //
+    // `casters` (PassLists::cameraCasters): the camera's one list, or what the GPU culled and the
+    // CPU's list of the large clustered meshes beside it.
+    //
     // The eval pass into its target (shadow term, surface id, depth, normal, texel coordinates and
     // their derivatives). The frame and the maps bound.
-    core::Status evalPass(const GpuScene& scene, const PassList& list, const CameraView& view,
+    core::Status evalPass(const GpuScene& scene, const CasterLists& casters, const CameraView& view,
                           const CameraDepthTarget* prepass);
     core::RasterBuffers readEval() const { return m_eval->read(); }
     // Blurs the eval pass's shadow term in eye space; returns the ping-pong index holding it.
@@ -62,7 +65,7 @@ public:
     // The shaded frame into the colour target, over the sky; `blurredMask` ≥ 0: the blur's
     // result to read the shadow term from. The frame and the maps bound. Timed (timer()) and its
     // samples counted (samples()).
-    core::Result<DrawStats> mainPass(const GpuScene& scene, const PassList& list, const CameraView& view,
+    core::Result<DrawStats> mainPass(const GpuScene& scene, const CasterLists& casters, const CameraView& view,
                                      int blurredMask, const CameraDepthTarget* prepass);
     // The last main pass's GPU time and its work — the samples its depth test passed (written
     // into the image, once per covered pixel over a pre-pass) and the fragments it shaded — as

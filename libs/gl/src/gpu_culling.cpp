@@ -354,13 +354,13 @@ void GpuCulling::buildPyramid(const CameraDepthTarget& target) {
 }
 
 void GpuCulling::camera(const core::PerspectiveCamera& camera, const LodChoice* lod, CameraDepthTarget& target,
-                        PassList& out) {
+                        PassList& out, const PassList* clustered) {
     const core::Mat4 clipFromWorld = camera.clipFromWorld();
     const std::vector<visibility::HalfSpace> frustum = visibility::clipVolume(clipFromWorld);
     m_cameraClipFromWorld = glm::mat4(clipFromWorld);
     m_wsEye = glm::vec3(camera.wsEye);
     m_viewport = {target.width, target.height};
-    auto drawDepth = [&](const PassList& list) {
+    auto drawDepth = [&](const PassList& list, std::span<const visibility::HalfSpace> volume) {
         const Stopwatch inGl;
         glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer.id());
         glViewport(0, 0, target.width, target.height);
@@ -370,19 +370,27 @@ void GpuCulling::camera(const core::PerspectiveCamera& camera, const LodChoice* 
         glDepthMask(GL_TRUE);
         glEnable(GL_CULL_FACE);
         glCullFace(GL_BACK);
-        m_scene.draw(list, m_depthPrograms.passPrograms());
+        if (volume.empty())
+            m_scene.draw(list, m_depthPrograms.passPrograms());
+        else
+            m_scene.draw(list, m_depthPrograms.passPrograms(), volume);
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
         m_gl += inGl.elapsed();
     };
-    cull(0, frustum, lod, Phase::LastVisible, m_early);
+    const bool leaveClustered = clustered != nullptr;
+    cull(0, frustum, lod, Phase::LastVisible, m_early, nullptr, 1, leaveClustered);
     target.clear();
-    drawDepth(m_early);
+    // The terrain, the first occluder of any view, in the depth the pyramid is built from; first,
+    // as the lists' batch order draws it, so that where a box standing on it ties in depth the
+    // pre-pass keeps the same surface as a list drawn in batch order.
+    if (clustered) drawDepth(*clustered, frustum);
+    drawDepth(m_early, {});
     const Stopwatch pyramidTime;
     buildPyramid(target);
     m_gl += pyramidTime.elapsed();
-    cull(1, frustum, lod, Phase::NewlyVisible, m_late);
-    drawDepth(m_late);
-    cull(2, frustum, lod, Phase::Visible, out);
+    cull(1, frustum, lod, Phase::NewlyVisible, m_late, nullptr, 1, leaveClustered);
+    drawDepth(m_late, {});
+    cull(2, frustum, lod, Phase::Visible, out, nullptr, 1, leaveClustered);
 }
 
 DrawStats GpuCulling::drawnBy(std::span<const uint32_t> commands, int64_t indirect, std::span<const uint32_t> count) {

@@ -107,8 +107,11 @@ public:
 
     // The camera's two-phase pass (passes 0 to kCameraPasses − 1): the early and late
     // instances drawn into `target`'s depth (cleared here; the camera's Frame uniforms must
-    // be bound), `out` the union the camera pass draws.
-    void camera(const core::PerspectiveCamera& camera, const LodChoice* lod, CameraDepthTarget& target, PassList& out);
+    // be bound), `out` the union the camera pass draws. With `clustered` (a CPU list, uploaded:
+    // the large clustered meshes in view), those meshes are left out of every phase and drawn
+    // instead by their clusters in view with the early instances, before the pyramid is built.
+    void camera(const core::PerspectiveCamera& camera, const LodChoice* lod, CameraDepthTarget& target, PassList& out,
+                const PassList* clustered = nullptr);
     static constexpr size_t kCameraPasses = 3;
 
     // The instances and triangles each list drew, read back from its commands: one read of the

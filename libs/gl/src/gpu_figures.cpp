@@ -101,6 +101,7 @@ std::vector<GpuFigures> GpuFigureRing::record(int64_t frame, const FrameFigureSo
     slot.lists = sources.lists;
     slot.sunDrawnOnCpu = sources.sunDrawnOnCpu;
     slot.localDrawnOnCpu = sources.localDrawnOnCpu;
+    slot.mainDrawnOnCpu = sources.mainDrawnOnCpu;
     return arrived;
 }
 
@@ -163,6 +164,7 @@ GpuFigures GpuFigureRing::collect(Slot& slot) {
     DrawStats drawn[3];
     drawn[size_t(CulledListShape::Pass::Sun)] = slot.sunDrawnOnCpu;
     drawn[size_t(CulledListShape::Pass::Local)] = slot.localDrawnOnCpu;
+    drawn[size_t(CulledListShape::Pass::Camera)] = slot.mainDrawnOnCpu;
     for (const CulledListShape& list : slot.lists) {
         DrawStats d = GpuCulling::drawnBy(commands, list.indirect, list.count);
         d.instances *= list.faces, d.triangles *= list.faces;

@@ -53,6 +53,7 @@ struct FrameFigureSources {
     // large clustered meshes, the pages past the GPU's room): added to the GPU-culled lists' count.
     DrawStats sunDrawnOnCpu;
     DrawStats localDrawnOnCpu; // the local maps' likewise (their clustered meshes)
+    DrawStats mainDrawnOnCpu;  // the main pass's likewise (the clustered meshes in view)
 };
 
 class GpuFigureRing {
@@ -84,7 +85,7 @@ private:
         bool shaded = false, mainShaded = false;              // fragments shaded
         bool firstLeafCounted = false, leavesCounted = false; // the opacity layers' draws
         std::vector<CulledListShape> lists;
-        DrawStats sunDrawnOnCpu, localDrawnOnCpu;
+        DrawStats sunDrawnOnCpu, localDrawnOnCpu, mainDrawnOnCpu;
     };
     // The figures of a slot whose fence has passed; frees it.
     GpuFigures collect(Slot& slot);

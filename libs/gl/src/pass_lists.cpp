@@ -174,6 +174,7 @@ void PassLists::planCamera(const PassPlanInputs& in, bool prepass) {
     const LodChoice cameraLod = lodChoiceOf(cameraProjectionOf(in.camera, settings), std::nullopt, false, settings);
     const LodChoice* lod = settings.lod ? &cameraLod : nullptr;
     const std::vector<visibility::HalfSpace> cameraVolume = visibility::clipVolume(in.camera.clipFromWorld());
+    m_cameraLeavesClustered = false;
     if (prepass &&
         (!m_cameraDepth || m_cameraDepth->width != settings.width || m_cameraDepth->height != settings.height))
         m_cameraDepth.emplace(settings.width, settings.height);
@@ -183,7 +184,13 @@ void PassLists::planCamera(const PassPlanInputs& in, bool prepass) {
         const bool pages = shadows && virtualMaps(in.setup) && settings.sun;
         m_gpuCulling->beginFrame(shadows ? firstPagePass(in) + (pages ? m_pageRoom : 0) : firstLocalPass(in.setup));
         const Stopwatch cameraTime;
-        m_gpuCulling->camera(in.camera, lod, *m_cameraDepth, m_camera);
+        // The large clustered meshes (the terrain) left to the CPU, as the shadow passes leave
+        // them: listed where they meet the frustum, in a buffer of their own (the pre-pass draws
+        // them before the frame's lists are uploaded), drawn by their clusters in view.
+        collectClustered(cameraVolume, lod, m_cameraClustered);
+        uploadCameraClustered();
+        m_cameraLeavesClustered = true;
+        m_gpuCulling->camera(in.camera, lod, *m_cameraDepth, m_camera, &m_cameraClustered);
         m_costs.occlusionMilliseconds = cameraTime.elapsed().wallMilliseconds;
         m_costs.inGl += m_gpuCulling->takeGlTimes();
     } else if (settings.culling == Culling::Occlusion) {
@@ -298,6 +305,7 @@ LevelsDrawn PassLists::levelsDrawn() const {
         }
     };
     mark(m_camera, out.camera);
+    if (m_cameraLeavesClustered) mark(m_cameraClustered, out.camera);
     for (const PassList& list : m_sun) mark(list, out.sun);
     for (const PassList& list : m_sunClustered) mark(list, out.sun);
     for (const PassList& list : m_pages) mark(list, out.sun);
@@ -311,6 +319,7 @@ WorkByLevel PassLists::workByLevel(const GpuScene& gpuScene) const {
     out.camera.assign(kMaxLodLevels, {});
     out.sun.assign(kMaxLodLevels, {});
     gpuScene.addLevelWork(drawn(m_camera), out.camera);
+    if (m_cameraLeavesClustered) gpuScene.addLevelWork(drawn(m_cameraClustered), out.camera);
     for (const PassList& list : m_sun) gpuScene.addLevelWork(drawn(list), out.sun);
     for (const PassList& list : m_sunClustered) gpuScene.addLevelWork(drawn(list), out.sun);
     for (const PassList& list : m_pages) gpuScene.addLevelWork(drawn(list), out.sun);
@@ -378,6 +387,19 @@ std::vector<uint32_t> PassLists::nearestFirst(const core::Vec3& wsTowardsLight) 
     std::iota(order.begin(), order.end(), 0u);
     std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return nearness[a] > nearness[b]; });
     return order;
+}
+
+void PassLists::uploadCameraClustered() {
+    const std::vector<uint32_t>& indices = m_cameraClustered.indices;
+    const size_t words = std::max<size_t>(indices.size(), 1); // a buffer of size 0 cannot be bound
+    if (words > m_cameraClusteredCapacity) {
+        m_cameraClusteredCapacity = std::max(words, 2 * m_cameraClusteredCapacity);
+        m_cameraClusteredBuffer = createBuffer(nullptr, m_cameraClusteredCapacity * sizeof(uint32_t));
+    }
+    if (!indices.empty())
+        uploadToBuffer(m_cameraClusteredBuffer.id(), 0, GLsizeiptr(indices.size() * sizeof(uint32_t)), indices.data());
+    m_cameraClustered.buffer = m_cameraClusteredBuffer.id();
+    m_cameraClustered.offset = 0;
 }
 
 void PassLists::collectClustered(std::span<const visibility::HalfSpace> volume, const LodChoice* lod, PassList& out) {

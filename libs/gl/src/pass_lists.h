@@ -83,7 +83,12 @@ public:
     // (and with virtual maps and a sun, the pages the visible receivers request, through `pages`).
     void plan(const PassPlanInputs& in, VirtualPages& pages);
 
-    const PassList& cameraList() const { return m_camera; }
+    // The camera passes' casters: its list, the CPU's — or, GPU-driven, what the GPU culled and
+    // beside it the CPU's list of the large clustered meshes in view (drawn by clusters).
+    CasterLists cameraCasters() const {
+        return m_cameraLeavesClustered ? CasterLists{{&m_cameraClustered, 1}, {&m_camera, 1}}
+                                       : CasterLists{{&m_camera, 1}, {}};
+    }
     // Each fixed map's casters (none with virtual maps): its list, the CPU's — or, GPU-driven, what
     // the GPU culled and beside it the CPU's list of the large clustered meshes meeting the map.
     CasterLists sunCasters() const {
@@ -160,6 +165,9 @@ private:
     // GPU-driven: `out`, the CPU's list of the large clustered meshes meeting `volume` (a map's
     // or a page's), whose clusters meeting it the pass draws; the GPU culls the rest.
     void collectClustered(std::span<const visibility::HalfSpace> volume, const LodChoice* lod, PassList& out);
+    // m_cameraClustered into its own buffer: the GPU's camera pre-pass draws it before plan()
+    // uploads the frame's lists.
+    void uploadCameraClustered();
     // Virtual maps: the pages the receivers request, each with the casters in its own volume.
     void planPages(const PassPlanInputs& in, VirtualPages& pages, std::vector<PassList*>& lists);
     // Every local light's map: full meshes, culled to each pass's volume.
@@ -201,6 +209,10 @@ private:
     CullingCosts m_keptCameraCosts;
 
     PassList m_camera;
+    PassList m_cameraClustered;           // Culling::Gpu: the clustered meshes in view (the CPU's)
+    bool m_cameraLeavesClustered = false; // this frame's camera list leaves them to m_cameraClustered
+    Buffer m_cameraClusteredBuffer;       // m_cameraClustered's entries (uploaded before the frame's lists)
+    size_t m_cameraClusteredCapacity = 0;
     std::vector<PassList> m_sun, m_pages, m_local;
     std::vector<PassList> m_sunClustered;       // Culling::Gpu: each fixed map's clustered meshes (the CPU's)
     std::vector<PassList> m_localClustered;     // Culling::Gpu: each local list's clustered meshes (the CPU's)

@@ -200,7 +200,7 @@ core::Result<FrameStats> Renderer::Impl::frame(const SceneFrame& sceneFrame, con
     int maskIndex = -1;
     if (blurred || evalBuffers) {
         bindFrame(view, false, -1);
-        if (auto s = camera->evalPass(*scene, lists->cameraList(), view, lists->cameraPrepass()); !s)
+        if (auto s = camera->evalPass(*scene, lists->cameraCasters(), view, lists->cameraPrepass()); !s)
             return s.errorInfo();
         if (evalBuffers) {
             *evalBuffers = camera->readEval();
@@ -210,7 +210,7 @@ core::Result<FrameStats> Renderer::Impl::frame(const SceneFrame& sceneFrame, con
         if (blurred && evalBuffers) evalBuffers->shadowTerm = camera->readBlurred(maskIndex);
     }
     bindFrame(view, blurred, -1);
-    auto mainDraws = camera->mainPass(*scene, lists->cameraList(), view, maskIndex, lists->cameraPrepass());
+    auto mainDraws = camera->mainPass(*scene, lists->cameraCasters(), view, maskIndex, lists->cameraPrepass());
     if (!mainDraws) return mainDraws.errorInfo();
     stats.frame = ++frames;
     gpuFigures(stats, settings, *mainDraws);
@@ -232,6 +232,7 @@ void Renderer::Impl::gpuFigures(FrameStats& stats, const RenderSettings& setting
     if (settings.culling == Culling::Gpu) lists->describeGpuLists(sources, settings.foliageOpacity);
     sources.sunDrawnOnCpu = sunDrawnOnCpu;
     sources.localDrawnOnCpu = localDrawnOnCpu;
+    sources.mainDrawnOnCpu = mainDraws;
     figures.take(stats, sources, lateFigures);
     if (!lateFigures && sources.commands) keepGpuShadowDraws({stats.shadow.instances, stats.shadow.triangles, 0});
 }
@@ -274,7 +275,8 @@ core::Result<core::RasterBuffers> Renderer::Impl::evalBuffers(const SceneFrame& 
     readGpuShadowDraws(settings);
     const CameraView view{frame.camera, light, sun->lookupSetup(setup, settings), settings, *bias};
     bindFrame(view, false, localLight);
-    if (auto s = camera->evalPass(*scene, lists->cameraList(), view, lists->cameraPrepass()); !s) return s.errorInfo();
+    if (auto s = camera->evalPass(*scene, lists->cameraCasters(), view, lists->cameraPrepass()); !s)
+        return s.errorInfo();
     core::RasterBuffers buffers = camera->readEval();
     if (!shadows) std::ranges::fill(buffers.shadowTerm, 1.0f); // no map was drawn: lit
     if (localLight >= 0) {                                     // the eye-space blur is the sun's

@@ -263,12 +263,11 @@ TEST_F(BatchedDrawsTest, CascadesDrawnTogetherCastWhatCascadesDrawnOneAtATimeCas
 TEST_F(BatchedDrawsTest, CpuListsDrawTheTerrainByTheClustersMeetingEachMapAndTheCamera) {
     // A large mesh — the ground, 96² quads, in triangle clusters — is drawn by the clusters
     // meeting each pass's volume wherever the CPU lists it: in each map (one map, or cascades
-    // drawn together) on both paths — the GPU-driven path leaves the clustered meshes to the CPU
-    // as pages do — and in the camera pass on the CPU path (the GPU's camera list draws it whole).
-    // Over views that see part of the ground: fewer triangles than the levels drawn hold (which
-    // count the ground whole), the same instances and shadow triangles on both paths, the same
-    // maps texel for texel and the same pixels (a cluster left out lies wholly outside its
-    // pass's volume).
+    // drawn together) and in the camera passes, on both paths — the GPU-driven path leaves the
+    // clustered meshes to the CPU as pages do. Over views that see part of the ground: fewer
+    // triangles than the levels drawn hold (which count the ground whole), the same shadow
+    // instances and triangles on both paths, the same maps texel for texel and the same pixels
+    // (a cluster left out lies wholly outside its pass's volume).
     if (!gl::vertexStagesReadDrawParameters()) GTEST_SKIP() << "this GL has no GL_ARB_shader_draw_parameters";
     const scene::Scene forest = gl::testing::smallForest(300, 200, 96);
     auto trianglesOf = [](const std::vector<gl::LevelWork>& levels) {
@@ -305,8 +304,9 @@ TEST_F(BatchedDrawsTest, CpuListsDrawTheTerrainByTheClustersMeetingEachMapAndThe
             EXPECT_EQ(cpu->shadow.instances, gpu->shadow.instances) << at;
             EXPECT_EQ(cpu->shadow.triangles, gpu->shadow.triangles) << at;
             EXPECT_LT(gpu->shadow.triangles, trianglesOf(gpuWork.sun)) << at << ": the GPU path's maps";
-            EXPECT_EQ(cpu->main.instances, gpu->main.instances) << at;
-            EXPECT_LT(cpu->main.triangles, gpu->main.triangles) << at << ": the GPU's camera list draws it whole";
+            // The GPU path's occlusion test (its pyramid holds the ground) may leave out more.
+            EXPECT_LE(gpu->main.instances, cpu->main.instances) << at;
+            EXPECT_LT(gpu->main.triangles, trianglesOf(gpuWork.camera)) << at << ": the GPU path's camera pass";
             // The maps hold the same ground, texel for texel: the frame alone would not see a
             // part of it missing where nothing else shades the ground (a mutation that left every
             // cluster out passed the pixels and failed here).
