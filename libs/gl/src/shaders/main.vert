@@ -42,6 +42,8 @@ void main() {
     vUv = uv;
 #endif
     vSurfaceId = instanceBase + instance + 1u;
-    vLodError = lodObjectErrors[SK_DRAW_ID] * length(m[0].xyz); // rigid + uniform scale
+    // Rigid + uniform scale. The index clamped: a multi-draw of a large mesh's runs of clusters
+    // (a depth pre-pass's, which reads no error) counts draws past the levels.
+    vLodError = lodObjectErrors[min(SK_DRAW_ID, uint(SK_CULL_LEVELS - 1))] * length(m[0].xyz);
     gl_Position = clipFromWorld * ws;
 }
