@@ -370,10 +370,7 @@ void GpuCulling::camera(const core::PerspectiveCamera& camera, const LodChoice* 
         glDepthMask(GL_TRUE);
         glEnable(GL_CULL_FACE);
         glCullFace(GL_BACK);
-        if (volume.empty())
-            m_scene.draw(list, m_depthPrograms.passPrograms());
-        else
-            m_scene.draw(list, m_depthPrograms.passPrograms(), volume);
+        m_scene.draw(list, m_depthPrograms.passPrograms(), volume); // a GPU list ignores the volume
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
         m_gl += inGl.elapsed();
     };

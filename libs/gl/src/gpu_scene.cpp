@@ -239,10 +239,11 @@ bool GpuScene::alphaTested(size_t sceneBatch) const {
 }
 
 DrawStats CasterLists::draw(const GpuScene& scene, size_t view, const PassPrograms& programs,
-                            const std::vector<visibility::HalfSpace>* volume) const {
+                            const std::vector<visibility::HalfSpace>* volume, int replicas) const {
     DrawStats stats;
     if (view < culled.size() && culled[view].indirect >= 0) stats += scene.draw(culled[view], programs);
-    stats += volume ? scene.draw(lists[view], programs, *volume) : scene.draw(lists[view], programs);
+    stats += volume ? scene.draw(lists[view], programs, *volume, false, replicas)
+                    : scene.draw(lists[view], programs, false, replicas);
     return stats;
 }
 

@@ -61,9 +61,10 @@ struct CasterLists {
     std::span<const PassList> lists, culled;
     // View i's casters with `programs`: the culled first (the trees, nearer the sun than the
     // terrain under them), then its list's, large meshes by the clusters meeting `volume` when
-    // one is given (GpuScene::draw).
+    // one is given (GpuScene::draw); `replicas` copies of each of the list's instances (the
+    // culled commands hold their own).
     DrawStats draw(const GpuScene& scene, size_t view, const PassPrograms& programs,
-                   const std::vector<visibility::HalfSpace>* volume) const;
+                   const std::vector<visibility::HalfSpace>* volume, int replicas = 1) const;
 };
 
 // glFrontFace for a depth pass into the map of `clipFromWorld`: the winding the faces turned

@@ -147,11 +147,9 @@ core::Result<PassStats> LocalShadowMaps::draw(const GpuScene& scene, const core:
         u.replicas = static_cast<int32_t>(faces.size());
         uploadToBuffer(m_depthUniforms.id(), 0, sizeof u, &u);
         const int copies = static_cast<int>(faces.size());
-        // What the GPU culled (its commands hold the copies), then the CPU's list: a large mesh
-        // (a kilometre of terrain) by its clusters meeting the list's volume — a lamp sees a few.
-        DrawStats d;
-        if (!casters.culled.empty()) d += scene.draw(casters.culled[at], programs, false, vertexLayer ? copies : 1);
-        d += scene.draw(casters.lists[at], programs, volumes[at], false, vertexLayer ? copies : 1);
+        // What the GPU culled, then the CPU's list: a large mesh (a kilometre of terrain) by its
+        // clusters meeting the list's volume — a lamp sees a few.
+        const DrawStats d = casters.draw(scene, at, programs, &volumes[at], vertexLayer ? copies : 1);
         // Counted as faces written: the geometry shader amplifies what the vertex path instances.
         const size_t amplify = vertexLayer ? 1 : faces.size();
         stats.instances += d.instances * amplify;
