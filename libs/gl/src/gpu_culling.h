@@ -84,7 +84,7 @@ public:
         All,          // every one
         LastVisible,  // those the last camera pass found visible
         NewlyVisible, // those not visible last frame that the depth pyramid does not hide
-        Visible,      // the union of the two; records what the pyramid does not hide for next frame
+        Visible,      // those the pyramid does not hide, either kind; recorded for next frame
     };
     // One pass into region `pass` (< the frame's passes): `out` becomes a list the GPU writes,
     // drawn by GpuScene::draw through its indirect commands. With a mask (phase All only),

@@ -268,8 +268,10 @@ void main() {
             keep = inVolume && was;
         else if (phase == kNewlyVisible)
             keep = visible && !was;
-        else
-            keep = inVolume && (was || visible);
+        else // what the pyramid does not hide: one drawn in the early phase but hidden now by
+             // others drawn there has no pixel the main pass could shade (the pyramid holds its
+             // own depth wherever it won), so it is left out this frame, not the next
+            keep = visible;
         if (phase == kVisible) wasVisible[global] = visible ? 1u : 0u;
         if (leaveClustered && batches[chunk.x].clustered != 0u) keep = false;
         if (keep) {
