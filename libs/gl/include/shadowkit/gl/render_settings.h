@@ -112,8 +112,9 @@ struct RenderSettings {
     // clouds: scene::LodLevel::keepsCoverage) are taken this many times further out: they may
     // move their coverage lodFoliageScale × the pixel and texel bounds. 1: as every other mesh.
     // 6: the scale at which no standard view of the leafy forest errs more than 0.2 points more
-    // than the full trees with TSM or virtual pages (docs/materials.md); 8 draws a quarter fewer
-    // triangles for up to 0.9 more.
+    // than the full trees with TSM (docs/materials.md); 8 draws a quarter fewer triangles for up
+    // to 0.9 more. Virtual pages, whose texels are as fine as the pixels near the camera, see the
+    // clouds more: 0.5 points more on `aerial` at 6, 0.12 at 4.
     float lodFoliageScale = 6.0f; // [1, 64]
     // Into a level that keeps coverage a tree crosses over this fraction of the level's bound,
     // centred on it, instead of switching at it: from (1 − lodFade / 2) × the bound to
