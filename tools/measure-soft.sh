@@ -24,9 +24,9 @@ python3 tools/readme_tables.py --into docs/soft-shadows.md:soft-widths soft-widt
 # A cost table: the frame's ms per filter on two views (bench's frame_cpu_ms, the median of the 5
 # frames after the first: on llvmpipe the whole frame, the drawing too), and the mean's change over
 # the first filter. cost VIEW1 VIEW2 "FILTERS" [bench options...]
-# The frame, not the camera pass: llvmpipe draws a map when a later pass first reads it, so a
-# pass's GPU time holds whatever drawing its reads set off (the sun's maps in the camera pass, or
-# with MSM in the shadow pass, whose moments read them).
+# The frame, not the camera pass: llvmpipe rasterises binned draws when a later read or flush
+# needs them, so a pass's GPU time can hold another's drawing (most likely the sun's maps in the
+# camera pass, or with MSM in the shadow pass, whose moments read them).
 cost() {
   local v1=$1 v2=$2 filters=$3 base="" f v ms mean json
   shift 3
