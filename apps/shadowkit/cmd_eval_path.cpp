@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <optional>
 
 namespace shadowkit::app {
@@ -94,8 +95,16 @@ void printRow(const measure::PathRow& row) {
 int runEvalPath(const EvalPathArgs& args) {
     auto timeline = args.timeline.resolve();
     if (!timeline) return fail(timeline.errorInfo());
-    if (timeline->frames.size() < 2)
-        return fail("--path: eval compares consecutive frames: give a path with at least two frames (or drop --time)");
+    if (timeline->frames.size() < 2) {
+        // Which flag left one frame: --frames takes frame numbers (bench's takes a count), --time one moment.
+        const TimelineOptions& t = args.timeline;
+        if (t.time) return fail("--time: one moment, and eval --path compares consecutive frames: drop --time");
+        if (!t.frames.empty())
+            return fail(fmt::format("--frames: '{}' selects one frame of the path (its frame numbers, not a "
+                                    "count), and eval compares consecutive frames: give a range such as 0:{}",
+                                    t.frames, std::max(2, std::atoi(t.frames.c_str()))));
+        return fail("--path: " + t.path + " has one frame, and eval compares consecutive frames");
+    }
     auto config = frameConfigOf(args.technique, args.render, args.lights);
     if (!config) return fail(config.errorInfo());
     // Across the path: held lattices (--stabilize), auto's tracked choice.

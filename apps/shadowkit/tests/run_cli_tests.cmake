@@ -414,7 +414,9 @@ check_fails(stabilize-margin-negative "--stabilize-margin" setup ${small} --tech
 check_fails(stabilize-growth-not-above-one "--stabilize-growth" setup ${small} --technique tsm --stabilize --stabilize-growth 1)
 check_fails(stabilize-lookahead-negative "--stabilize-lookahead" setup ${small} --technique tsm --stabilize --stabilize-lookahead -2)
 check_fails(strip-unwritable "--strip" render ${small} --path flythrough --frames 0:2 --out "${WORK}/f%d.png" --strip "${WORK}/garbage.glb/dir/s.png")
-check_fails(eval-path-one-frame "--path" eval ${small} --path flythrough --frames 5)
+# --frames takes frame numbers (bench's a count): one number is one frame, named as such.
+check_fails(eval-path-one-frame "--frames: '5' selects one frame of the path (its frame numbers, not a count)" eval ${small} --path flythrough --frames 5)
+check_fails(eval-path-one-moment "--time: one moment" eval ${small} --path flythrough --time 2)
 check_fails(eval-csv-without-path "--csv" eval ${small} --csv "${WORK}/f.csv")
 check_fails(eval-path-with-views "--path" eval ${small} --path flythrough --views all)
 # A full disk is an error naming the flag, never "written" and exit 0 (the writes are checked).
