@@ -45,6 +45,9 @@ struct BenchArgs {
     // draws, so no cache of a still view flatters the CPU's figures.
     std::string path;
     std::string sunPath; // --sun-path: eval's; "off" holds the sun where the path starts
+    // --scene: a glTF or OBJ file instead of the forest, one set of rows (each view framed over
+    // it as eval frames it); forestFlag names a forest option given with it, which is an error.
+    std::string scene, forestFlag;
 };
 
 core::Result<std::vector<int>> parseCounts(const std::string& text) {
@@ -76,11 +79,15 @@ core::Result<scene::ForestOptions> forestOptionsFor(const BenchArgs& args, int t
     return forest;
 }
 
-// What a row is measured on: the forest and the view.
+// What a row is measured on: the forest (or --scene's file) and the view.
 struct BenchRow {
     int trees = 0;
-    double terrainSize = 0.0, forestSeconds = 0.0;
+    double terrainSize = 0.0, forestSeconds = 0.0; // forestSeconds: the forest's build or the file's load
     std::string view;
+    std::string scene; // --scene's file; empty: the forest
+    // The first two columns: the forest's trees and terrain side, or "-" for a file.
+    std::string treesSaid() const { return scene.empty() ? std::to_string(trees) : "-"; }
+    std::string terrainSaid() const { return scene.empty() ? fmt::format("{:.0f}", terrainSize) : "-"; }
 };
 
 // A pass's fragment-shader invocations beside the samples it wrote, where the driver counts them.
@@ -234,13 +241,13 @@ void printRows(const BenchRow& row, const measure::FrameCosts& costs, eval::Html
           std::tuple{"main", &last.main, costs.mainGpu()}}) {
         if (stats == &last.local && last.localMaps == 0) continue; // no local light
         const double megaTriangles = static_cast<double>(stats->triangles) * 1e-6;
-        fmt::print("{:>7} {:>7.0f} {:<14} {:<7} {:>9} {:>9.3f} {:>6} {:>8.1f} {:>8.1f} {:>8.1f} {:>10.3f} {:>9.3f} "
+        fmt::print("{:>7} {:>7} {:<14} {:<7} {:>9} {:>9.3f} {:>6} {:>8.1f} {:>8.1f} {:>8.1f} {:>10.3f} {:>9.3f} "
                    "{:>10.3f} {:>9.3f}\n",
-                   row.trees, row.terrainSize, row.view, pass, stats->instances, megaTriangles, stats->drawCalls,
-                   gpu.min, gpu.median, gpu.max, costs.setupFirst(), setup.median, cull.median, cull.max);
-        table.rows.push_back({std::to_string(row.trees), fmt::format("{:.0f}", row.terrainSize), row.view, pass,
-                              std::to_string(stats->instances), fmt::format("{:.3f}", megaTriangles),
-                              std::to_string(stats->drawCalls),
+                   row.treesSaid(), row.terrainSaid(), row.view, pass, stats->instances, megaTriangles,
+                   stats->drawCalls, gpu.min, gpu.median, gpu.max, costs.setupFirst(), setup.median, cull.median,
+                   cull.max);
+        table.rows.push_back({row.treesSaid(), row.terrainSaid(), row.view, pass, std::to_string(stats->instances),
+                              fmt::format("{:.3f}", megaTriangles), std::to_string(stats->drawCalls),
                               fmt::format("{:.1f} / {:.1f} / {:.1f}", gpu.min, gpu.median, gpu.max),
                               fmt::format("{:.3f} / {:.3f}", costs.setupFirst(), setup.median),
                               fmt::format("{:.2f} / {:.2f}", cull.median, cull.max)});
@@ -308,8 +315,10 @@ core::Result<nlohmann::json> benchView(const BenchArgs& args, const BenchRow& ro
                                {"of_fill", rates.ofFill},
                                {"of_triangles", rates.ofTriangles}};
     }
-    run.update({{"trees", row.trees},
-                {"terrain_size", row.terrainSize},
+    const bool isForest = row.scene.empty();
+    run.update({{"trees", isForest ? nlohmann::json(row.trees) : nlohmann::json(nullptr)},
+                {"terrain_size", isForest ? nlohmann::json(row.terrainSize) : nlohmann::json(nullptr)},
+                {"scene", isForest ? nlohmann::json(nullptr) : nlohmann::json(row.scene)},
                 {"forest_seconds", row.forestSeconds},
                 {"view", row.view},
                 {"technique", core::techniqueName(args.technique.technique)},
@@ -321,10 +330,12 @@ core::Result<nlohmann::json> benchView(const BenchArgs& args, const BenchRow& ro
                 {"receiver_mask", args.render.receiverMask && !args.render.noCull}});
     if (!args.report.empty()) {
         const std::filesystem::path page(args.report);
-        const std::string file = fmt::format("{}-{}-{}.png", page.stem().string(), row.trees, row.view);
+        const std::string file =
+            fmt::format("{}-{}-{}.png", page.stem().string(), isForest ? std::to_string(row.trees) : "scene", row.view);
         if (auto s = scene::writePng(renderer.readColor(), page.parent_path() / file); !s)
             return core::makeError("--report: " + s.error());
-        table.pictures.push_back({file, fmt::format("{} trees, {}", row.trees, row.view)});
+        table.pictures.push_back({file, isForest ? fmt::format("{} trees, {}", row.trees, row.view)
+                                                 : fmt::format("{}, {}", row.scene, row.view)});
     }
     std::fflush(stdout);
     return run;
@@ -343,16 +354,31 @@ core::Result<std::pair<scene::Scene, BenchRow>> buildForest(const BenchArgs& arg
     return std::pair{std::move(forest), row};
 }
 
+// The row's scene: --scene's file (loaded as render and eval load it: its warnings said, bad
+// input one error), else the forest of `trees`.
+core::Result<std::pair<scene::Scene, BenchRow>> buildScene(const BenchArgs& args, int trees) {
+    if (args.scene.empty()) return buildForest(args, trees);
+    SceneOptions options;
+    options.scene = args.scene;
+    const auto loadStart = std::chrono::steady_clock::now();
+    auto loaded = options.load();
+    if (!loaded) return core::makeError("--scene: " + loaded.error());
+    BenchRow row{0, 0.0, std::chrono::duration<double>(std::chrono::steady_clock::now() - loadStart).count(), ""};
+    row.scene = args.scene;
+    return std::pair{std::move(loaded).value(), row};
+}
+
 int runBench(const BenchArgs& args) {
-    auto counts = parseCounts(args.trees);
+    if (!args.scene.empty() && !args.forestFlag.empty())
+        return fail(args.forestFlag + ": the built-in forest's, and --scene benches a file instead");
+    auto counts = args.scene.empty() ? parseCounts(args.trees) : core::Result<std::vector<int>>(std::vector<int>{0});
     if (!counts) return fail(counts.errorInfo());
     if (args.frames < 1 || args.frames > 1000) return fail("--frames: must be in [1, 1000]");
     if (auto s = args.technique.check(/*measuresFrames=*/false); !s) return fail(s.errorInfo());
     if (auto s = args.render.check(); !s) return fail(s.errorInfo());
-    std::vector<std::string> viewNames;
-    std::stringstream ss(args.views);
-    for (std::string name; std::getline(ss, name, ',');) viewNames.push_back(name);
-    if (viewNames.empty()) return fail("--views: no view named");
+    auto views = viewNamesOf(args.views);
+    if (!views) return fail(views.errorInfo());
+    std::vector<std::string> viewNames = std::move(views).value();
     TimelineOptions timelineOptions;
     timelineOptions.path = args.path;
     timelineOptions.sunPath = args.sunPath;
@@ -372,16 +398,19 @@ int runBench(const BenchArgs& args) {
     if (!driver) return fail(withFlagName(driver.errorInfo()));
     // A path's frames over the first forest checked before any output, as render and eval check
     // theirs: keys no frame there can use fail here, not under the table's header. That forest
-    // is the loop's first (the later forests' rows check their own ground).
+    // is the loop's first (the later forests' rows check their own ground). --scene's file is
+    // loaded here too, so that a file that does not load fails before the header.
     std::optional<std::pair<scene::Scene, BenchRow>> firstForest;
-    if (timeline->path) {
-        auto built = buildForest(args, counts->front());
+    if (timeline->path || !args.scene.empty()) {
+        auto built = buildScene(args, counts->front());
         if (!built) return fail(built.errorInfo());
-        ViewOptions viewOptions = args.view;
-        auto still = viewOptions.resolve(built->first);
-        if (!still) return fail(still.errorInfo());
-        if (auto s = timeline->checkViews(*still, built->first, !args.view.size.empty()); !s)
-            return fail(s.errorInfo());
+        if (timeline->path) {
+            ViewOptions viewOptions = args.view;
+            auto still = viewOptions.resolve(built->first);
+            if (!still) return fail(still.errorInfo());
+            if (auto s = timeline->checkViews(*still, built->first, !args.view.size.empty()); !s)
+                return fail(s.errorInfo());
+        }
         firstForest = std::move(built).value();
     }
     auto context = gl::Context::createHeadless();
@@ -410,7 +439,7 @@ int runBench(const BenchArgs& args) {
     eval::HtmlTable table = reportTable(args, (*context)->description(), frames); // --report: the rows as printed
     for (size_t k = 0; k < counts->size(); ++k) {
         auto built = k == 0 && firstForest ? core::Result<std::pair<scene::Scene, BenchRow>>(std::move(*firstForest))
-                                           : buildForest(args, (*counts)[k]);
+                                           : buildScene(args, (*counts)[k]);
         if (!built) return fail(built.errorInfo());
         const scene::Scene& forest = built->first;
         const BenchRow& row = built->second;
@@ -448,9 +477,14 @@ Command addBenchCommand(CLI::App& app) {
     auto args = std::make_shared<BenchArgs>();
     CLI::App* cmd = app.add_subcommand(
         "bench", "Frame cost per pass as the forest grows: instances, triangles, draws, GPU and CPU ms");
-    cmd->add_option("--trees", args->trees, "forest sizes to measure, comma-separated")->capture_default_str();
-    CLI::Option* views =
-        cmd->add_option("--views", args->views, "standard views, comma-separated")->capture_default_str();
+    CLI::Option* trees =
+        cmd->add_option("--trees", args->trees, "forest sizes to measure, comma-separated")->capture_default_str();
+    cmd->add_option("--scene", args->scene,
+                    "bench a glTF (.gltf, .glb) or OBJ file instead of the forest: one set of rows, each view framed "
+                    "over the file as eval frames it");
+    CLI::Option* views = cmd->add_option("--views", args->views,
+                                         "standard views, comma-separated, or all (the six sunlit ones) or local")
+                             ->capture_default_str();
     CLI::Option* frames = cmd->add_option("--frames", args->frames,
                                           "frames per view: min / median / max over them (with --path: its first N; "
                                           "default all)")
@@ -482,9 +516,14 @@ Command addBenchCommand(CLI::App& app) {
                   "2 M small triangles, 64 large), then give each shadow pass's rates as fractions of them");
     cmd->add_option("--json", args->json, "write every row as JSON {\"runs\": [...], \"limits\": {...} or null}");
     cmd->add_option("--report", args->report, "also write an HTML page: the rows, what they mean, each view's frame");
-    return {cmd, [args, views, frames] {
+    std::vector<CLI::Option*> forestOptions{trees};
+    for (const char* flag : {"--forest", "--seed", "--terrain-size", "--terrain-resolution", "--same-density"})
+        forestOptions.push_back(cmd->get_option(flag));
+    return {cmd, [args, views, frames, forestOptions] {
                 args->viewsGiven = views->count() > 0;
                 args->framesGiven = frames->count() > 0;
+                for (const CLI::Option* option : forestOptions)
+                    if (option->count() > 0 && args->forestFlag.empty()) args->forestFlag = option->get_name();
                 return runBench(*args);
             }};
 }

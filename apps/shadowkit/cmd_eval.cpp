@@ -52,23 +52,7 @@ fs::path perView(const std::string& file, const std::string& view, bool several)
 
 core::Result<std::vector<std::string>> viewNames(const EvalArgs& args) {
     if (args.views.empty()) return std::vector<std::string>{args.view.view};
-    auto all = scene::loadViews(dataDirectory() / "views.json");
-    if (!all) return all.errorInfo();
-    std::vector<std::string> names;
-    // "all": the six sunlit standard views (docs/techniques.md); "local": those with
-    // spot and point lights (docs/local-lights.md).
-    if (args.views == "all" || args.views == "local") {
-        for (const scene::ViewSpec& v : *all)
-            if (v.lights.empty() == (args.views == "all")) names.push_back(v.name);
-        return names;
-    }
-    std::stringstream ss(args.views);
-    for (std::string name; std::getline(ss, name, ',');) {
-        if (auto found = scene::findView(*all, name); !found) return core::makeError("--views: " + found.error());
-        names.push_back(name);
-    }
-    if (names.empty()) return core::makeError("--views: no view named");
-    return names;
+    return viewNamesOf(args.views);
 }
 
 core::Status checkViewName(const std::string& name) {

@@ -136,6 +136,24 @@ void ViewOptions::addTo(CLI::App& cmd) {
     cmd.add_option("--sun-azimuth", sunAzimuth, "sun compass azimuth in degrees (0 = -Z, 90 = +X)");
 }
 
+core::Result<std::vector<std::string>> viewNamesOf(const std::string& list) {
+    auto all = scene::loadViews(dataDirectory() / "views.json");
+    if (!all) return all.errorInfo();
+    std::vector<std::string> names;
+    if (list == "all" || list == "local") {
+        for (const scene::ViewSpec& v : *all)
+            if (v.lights.empty() == (list == "all")) names.push_back(v.name);
+        return names;
+    }
+    std::stringstream ss(list);
+    for (std::string name; std::getline(ss, name, ',');) {
+        if (auto found = scene::findView(*all, name); !found) return core::makeError("--views: " + found.error());
+        names.push_back(name);
+    }
+    if (names.empty()) return core::makeError("--views: no view named");
+    return names;
+}
+
 core::Result<scene::ResolvedView> ViewOptions::resolve(const scene::Scene& sceneData) const {
     auto views = scene::loadViews(dataDirectory() / "views.json");
     if (!views) return views.errorInfo();

@@ -179,6 +179,11 @@ core::Error withFlagName(const core::Error& error);
 // non-finite item.
 bool parseNumbers(const std::string& text, char separator, std::vector<double>& out);
 
+// --views: "a,b" (standard views of data/views.json, each checked), "all" (the six sunlit ones,
+// docs/techniques.md) or "local" (those with spot and point lights, docs/local-lights.md);
+// errors name --views.
+core::Result<std::vector<std::string>> viewNamesOf(const std::string& list);
+
 // "x,y,z" -> vector; the error names the flag and shows the text.
 core::Result<core::Vec3> parseVec3(const std::string& flag, const std::string& text);
 

@@ -9,6 +9,7 @@ cmake_minimum_required(VERSION 3.22)
 set(WORK "${WORK}/${CASE}")
 file(MAKE_DIRECTORY "${WORK}")
 set(small --trees 20 --terrain-size 200 --terrain-resolution 16)
+get_filename_component(source_dir "${CMAKE_CURRENT_LIST_DIR}/../../.." ABSOLUTE) # the repository
 
 function(check_fails name expected)
   if(NOT CASE STREQUAL name)
@@ -638,6 +639,39 @@ if(CASE STREQUAL "gl-bench")
     endif()
   endif()
 endif()
+# bench --scene: a file instead of the forest, one set of rows; every triangle of the file is
+# drawn in both passes without levels (counted here from the OBJ's faces, a polygon of n
+# corners n - 2 triangles), the rows name the file, and the forest's options are refused.
+if(CASE STREQUAL "gl-bench-scene")
+  set(file "${source_dir}/tests/data/shapes/ship.obj")
+  file(STRINGS "${file}" faces REGEX "^f ")
+  set(expected 0)
+  foreach(face IN LISTS faces)
+    string(REGEX MATCHALL "[^ \t]+" corners "${face}")
+    list(LENGTH corners n)
+    math(EXPR expected "${expected} + ${n} - 3") # the "f" is one of the n + 1 tokens
+  endforeach()
+  execute_process(COMMAND ${SHADOWKIT} bench --scene "${file}" --views noon,aerial --size 32x18 --map-size 128
+                          --frames 1 --no-lod --json "${WORK}/bench-scene.json"
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE table ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0 OR NOT EXISTS "${WORK}/bench-scene.json")
+    message(SEND_ERROR "bench --scene: failed or wrote no JSON: ${err}")
+  else()
+    file(READ "${WORK}/bench-scene.json" report)
+    string(JSON nruns LENGTH "${report}" runs)
+    string(JSON scene GET "${report}" runs 0 scene)
+    string(JSON trees TYPE "${report}" runs 0 trees)
+    string(JSON shadow GET "${report}" runs 0 shadow triangles)
+    string(JSON main GET "${report}" runs 0 main triangles)
+    if(NOT nruns EQUAL 2 OR NOT scene STREQUAL file OR NOT trees STREQUAL "NULL" OR NOT shadow EQUAL expected
+       OR NOT main EQUAL expected OR expected LESS 100)
+      message(SEND_ERROR "bench --scene: expected 2 rows of ${expected} triangles naming ${file}: ${report}")
+    endif()
+  endif()
+endif()
+check_fails(bench-scene-with-trees "--trees: the built-in forest's, and --scene benches a file instead" bench --scene "${source_dir}/tests/data/shapes/ship.obj" --trees 10)
+check_fails(bench-scene-missing "--scene: ${WORK}/no-such.glb" bench --scene "${WORK}/no-such.glb")
+check_fails(bench-views-unknown "--views: unknown view" bench ${small} --views nope)
 # bench --limits: the GL's ceilings measured before the forests, their counted work in the JSON
 # (16 full-map layers of a 2048² map, every texel written by each), and the shadow pass's
 # rates against them per view.
