@@ -147,6 +147,12 @@ int runEvalPath(const EvalPathArgs& args) {
         }
     }
     fmt::print("{}", report.summaryText());
+    const auto none =
+        std::ranges::count_if(report.rows(), [](const measure::PathRow& r) { return r.figures.validPx == 0; });
+    if (const std::string warning =
+            eval::nothingComparedAlongWarning(timeline->path->name, size_t(none), report.rows().size());
+        !warning.empty())
+        warn(warning);
     if (!args.csv.empty())
         if (auto s = writeTextFile("--csv", args.csv, report.csv()); !s) return fail(s.errorInfo());
     if (!args.plot.empty())

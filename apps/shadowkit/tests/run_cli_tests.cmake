@@ -292,6 +292,15 @@ if(CASE STREQUAL "gl-eval-nothing-compared-warns")
     message(SEND_ERROR "eval of the sky: exit ${rc}, no warning that nothing was compared:\n${out}${err}")
   endif()
 endif()
+# Along a path made for the forest, a loaded scene 2 km away is never in view: every frame's
+# 0.00 % would read as perfect shadows, so eval warns, counting the frames.
+if(CASE STREQUAL "gl-eval-path-nothing-compared-warns")
+  execute_process(COMMAND ${SHADOWKIT} eval --scene "${source_dir}/tests/data/pillar_on_plate.gltf" --path flythrough
+                          --frames 0:2 --size 32x18 --map-size 64 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0 OR NOT err MATCHES "warning: --path flythrough: 2 of 2 frames compared no pixel")
+    message(SEND_ERROR "eval --path over a scene out of its view: exit ${rc}, no warning:\n${out}${err}")
+  endif()
+endif()
 # A loaded scene viewed from a given eye: the framing's planes are refitted to it (they fitted the
 # framing's own eye, 100 m nearer, and cut the scene away: far 21 m).
 if(CASE STREQUAL "framed-scene-eye")
@@ -436,6 +445,9 @@ if(CASE STREQUAL "gl-eval-path")
                   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   if(NOT rc EQUAL 0 OR NOT EXISTS "${WORK}/f.png" OR NOT EXISTS "${WORK}/f.json")
     message(SEND_ERROR "eval --path: failed or wrote no plot/JSON: ${out} ${err}")
+  endif()
+  if(err MATCHES "compared no pixel")
+    message(SEND_ERROR "eval --path: the forest's path warned that it compared nothing: ${err}")
   endif()
   file(STRINGS "${WORK}/f.csv" lines)
   list(LENGTH lines n)

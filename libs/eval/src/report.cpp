@@ -119,6 +119,13 @@ std::string nothingComparedWarning(const std::string& view, const Figures& figur
            "nothing";
 }
 
+std::string nothingComparedAlongWarning(const std::string& path, size_t none, size_t frames) {
+    if (none == 0) return {};
+    return "--path " + path + ": " + std::to_string(none) + " of " + std::to_string(frames) +
+           " frames compared no pixel (their camera sees no sunlit surface that raster and ray agree on: a path made "
+           "for the forest does not frame a loaded scene), and their 0.00 % counts in the means";
+}
+
 std::string softFiguresLine(const SoftFigures& s) {
     // A width of 0 is a hard test or filter, which draws no penumbra at all: said in words, as
     // "×0.00" alone reads like a fault.

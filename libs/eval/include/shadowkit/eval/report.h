@@ -100,6 +100,10 @@ std::string softFiguresLine(const SoftFigures& soft);
 /// The warning for a view in which no pixel was compared (valid_px 0: the sky, a mask of a pixel
 /// or two), whose 0.00 % would read as perfect shadows; empty when some pixel was.
 std::string nothingComparedWarning(const std::string& view, const Figures& figures);
+/// The same along a camera path: `none` of its `frames` compared no pixel (a path made for the
+/// forest sees nothing of a small loaded scene), and their 0.00 % count in the path's means;
+/// empty when every frame compared some.
+std::string nothingComparedAlongWarning(const std::string& path, size_t none, size_t frames);
 
 // Writes shadow_term, truth_lit, class, world_position, normal, truth_normal,
 // pixels_per_texel and surface_id as .npy files into `dir` (created if missing); with a soft
