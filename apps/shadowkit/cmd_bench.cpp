@@ -1,6 +1,7 @@
 // shadowkit bench: what a frame costs as the world grows — per pass, the instances,
 // triangles and draw calls submitted and the GPU time, plus the CPU time of the set-up and
-// of culling, with min / median / max over several frames, for several forest sizes.
+// of culling, with min / median / max over several frames, for several forest sizes or on a
+// user's glTF or OBJ file (--scene).
 #include "commands.h"
 #include "frame_config_options.h"
 #include "html_reports.h"
@@ -476,7 +477,8 @@ int runBench(const BenchArgs& args) {
 Command addBenchCommand(CLI::App& app) {
     auto args = std::make_shared<BenchArgs>();
     CLI::App* cmd = app.add_subcommand(
-        "bench", "Frame cost per pass as the forest grows: instances, triangles, draws, GPU and CPU ms");
+        "bench",
+        "Frame cost per pass as the forest grows (or on a --scene file): instances, triangles, draws, GPU and CPU ms");
     CLI::Option* trees =
         cmd->add_option("--trees", args->trees, "forest sizes to measure, comma-separated")->capture_default_str();
     cmd->add_option("--scene", args->scene,
