@@ -114,20 +114,28 @@ core::Result<scene::ResolvedView> Timeline::viewAt(const scene::ResolvedView& st
         view.sunAngleDegrees = sunAngle;
         return view;
     }
-    auto view = scene::viewAt(*path, scene, t, sun);
+    // --size takes the path's place before the camera is placed: a framed scene is fitted to
+    // the picture's shape.
+    scene::CameraPath sized = *path;
+    if (stillSize) sized.width = still.width, sized.height = still.height;
+    auto view = scene::viewAt(sized, scene, t, sun);
     if (!view) return core::makeError("--path: " + view.error());
     view->sunAngleDegrees = sunAngle;
-    if (stillSize) {
-        view->width = still.width;
-        view->height = still.height;
-        view->camera.aspect = double(still.width) / double(still.height);
-    }
     return view;
 }
 
 core::Status Timeline::checkViews(const scene::ResolvedView& still, const scene::Scene& scene, bool stillSize) const {
-    for (const TimedFrame& frame : frames)
-        if (auto view = viewAt(still, scene, frame.time, stillSize); !view) return view.errorInfo();
+    bool framed = false;
+    for (const TimedFrame& frame : frames) {
+        auto view = viewAt(still, scene, frame.time, stillSize);
+        if (!view) return view.errorInfo();
+        framed = framed || (path && view->framed);
+    }
+    if (framed)
+        fmt::print(stderr,
+                   "--path {}: framing the loaded scene in every frame, from the compass direction and pitch of the "
+                   "path's camera (its keys are written for the forest)\n",
+                   path->name);
     return core::Ok{};
 }
 

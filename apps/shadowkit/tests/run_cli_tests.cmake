@@ -292,13 +292,26 @@ if(CASE STREQUAL "gl-eval-nothing-compared-warns")
     message(SEND_ERROR "eval of the sky: exit ${rc}, no warning that nothing was compared:\n${out}${err}")
   endif()
 endif()
-# Along a path made for the forest, a loaded scene 2 km away is never in view: every frame's
-# 0.00 % would read as perfect shadows, so eval warns, counting the frames.
+# Along a path whose keys are positions (the default) that never face the loaded scene, every
+# frame's 0.00 % would read as perfect shadows, so eval warns, counting the frames.
 if(CASE STREQUAL "gl-eval-path-nothing-compared-warns")
-  execute_process(COMMAND ${SHADOWKIT} eval --scene "${source_dir}/tests/data/pillar_on_plate.gltf" --path flythrough
-                          --frames 0:2 --size 32x18 --map-size 64 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT rc EQUAL 0 OR NOT err MATCHES "warning: --path flythrough: 2 of 2 frames compared no pixel")
+  file(WRITE "${WORK}/away.json" [=[{"name": "away", "frames": 2, "camera": [
+    {"time": 0, "eye_xz": [5000, 0], "eye_height": 2, "target_xz": [5000, -40], "target_height": 2},
+    {"time": 1, "eye_xz": [5000, -5], "eye_height": 2, "target_xz": [5000, -45], "target_height": 2}]}]=])
+  execute_process(COMMAND ${SHADOWKIT} eval --scene "${source_dir}/tests/data/pillar_on_plate.gltf" --path "${WORK}/away.json"
+                          --size 32x18 --map-size 64 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0 OR NOT err MATCHES "warning: --path away: 2 of 2 frames compared no pixel")
     message(SEND_ERROR "eval --path over a scene out of its view: exit ${rc}, no warning:\n${out}${err}")
+  endif()
+endif()
+# The standard paths are written for the forest ("on_loaded_scene": "frame"): on a loaded model
+# every frame frames it, so every frame compares pixels, and the front end says it framed.
+if(CASE STREQUAL "gl-eval-path-frames-loaded-scene")
+  execute_process(COMMAND ${SHADOWKIT} eval --scene "${source_dir}/tests/data/pillar_on_plate.gltf" --path flythrough
+                          --frames 0:3 --size 32x18 --map-size 64 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0 OR NOT err MATCHES "--path flythrough: framing the loaded scene in every frame"
+     OR err MATCHES "compared no pixel")
+    message(SEND_ERROR "eval --path flythrough over a loaded model: exit ${rc}, not framed:\n${out}${err}")
   endif()
 endif()
 # A loaded scene viewed from a given eye: the framing's planes are refitted to it (they fitted the

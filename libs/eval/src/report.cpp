@@ -122,8 +122,9 @@ std::string nothingComparedWarning(const std::string& view, const Figures& figur
 std::string nothingComparedAlongWarning(const std::string& path, size_t none, size_t frames) {
     if (none == 0) return {};
     return "--path " + path + ": " + std::to_string(none) + " of " + std::to_string(frames) +
-           " frames compared no pixel (their camera sees no sunlit surface that raster and ray agree on: a path made "
-           "for the forest does not frame a loaded scene), and their 0.00 % counts in the means";
+           " frames compared no pixel (their camera sees no sunlit surface that raster and ray agree on: a path whose "
+           "keys are written for another scene: \"on_loaded_scene\": \"frame\" frames a loaded one), and their 0.00 % "
+           "counts in the means";
 }
 
 std::string softFiguresLine(const SoftFigures& s) {

@@ -10,6 +10,7 @@
 // end segments' slopes.
 #include "shadowkit/scene/camera_path.h"
 
+#include "framing.h"
 #include "shadowkit/scene/file_read.h"
 
 #include <nlohmann/json.hpp>
@@ -95,6 +96,13 @@ core::Result<CameraPath> parsePath(const json& root) {
     if (!root.is_object() || !root.contains("camera") || !root["camera"].is_array() || root["camera"].empty())
         return core::makeError("expected an object with a non-empty \"camera\" array of keys");
     path.name = root.value("name", "");
+    if (root.contains("on_loaded_scene")) {
+        const json& mode = root["on_loaded_scene"];
+        if (!mode.is_string() || (mode != "frame" && mode != "keys"))
+            return core::makeError("on_loaded_scene must be \"frame\" (frame a scene without ground from the keys' "
+                                   "directions) or \"keys\" (the keys as written)");
+        path.frameLoadedScene = mode == "frame";
+    }
     // Whole numbers read as numbers first: converting 3.6e20 to int is undefined.
     const double width = root.value("width", double(path.width)), height = root.value("height", double(path.height));
     const double frames = root.value("frames", double(path.frames));
@@ -225,14 +233,39 @@ SunKey sunAt(const std::vector<SunKey>& keys, double t) {
 core::Result<ResolvedView> viewAt(const CameraPath& path, const Scene& scene, double t,
                                   const core::DirectionalLight& fallbackSun) {
     const CameraKey key = cameraAt(path.camera, t);
-    const core::Vec3 eye(key.eye.x, scene.groundHeightAt(key.eye.x, key.eye.z) + key.eye.y, key.eye.z);
-    const core::Vec3 target(key.target.x, scene.groundHeightAt(key.target.x, key.target.z) + key.target.y,
-                            key.target.z);
-    if (!(glm::length(target - eye) > 1e-6))
-        return core::makeError("path \"" + path.name + "\" at t = " + std::to_string(t) + " s: eye and target meet");
     ResolvedView view;
     view.width = path.width;
     view.height = path.height;
+    view.camera.fovYDegrees = path.fovYDegrees;
+    view.camera.aspect = double(path.width) / double(path.height);
+    view.camera.zNear = path.zNear;
+    view.camera.zFar = path.zFar;
+    auto meet = [&] {
+        return core::makeError("path \"" + path.name + "\" at t = " + std::to_string(t) + " s: eye and target meet");
+    };
+    core::Vec3 eye, target;
+    if (path.frameLoadedScene && isFramed(scene)) {
+        // The keys' direction (heights above a ground this scene lacks cancel out of it) as a
+        // compass direction and a pitch. Within 1e-5 of vertical the compass is north's, so that
+        // the framing's up is the image's (north, below).
+        const core::Vec3 along = key.target - key.eye;
+        const double level = std::hypot(along.x, along.z);
+        if (!(glm::length(along) > 1e-6)) return meet();
+        const double azimuth = level > 1e-5 * glm::length(along) ? std::atan2(along.x, -along.z) : 0.0;
+        const Framing framing =
+            frameBounds(scene.localBounds(), azimuth, std::atan2(along.y, level), path.fovYDegrees, view.camera.aspect);
+        eye = framing.eye;
+        target = framing.eye + framing.direction;
+        view.camera.zNear = framing.zNear;
+        view.camera.zFar = framing.zFar;
+        view.fogDensity = framing.fogDensity;
+        view.framed = true;
+    } else {
+        eye = core::Vec3(key.eye.x, scene.groundHeightAt(key.eye.x, key.eye.z) + key.eye.y, key.eye.z);
+        target =
+            core::Vec3(key.target.x, scene.groundHeightAt(key.target.x, key.target.z) + key.target.y, key.target.z);
+    }
+    if (!(glm::length(target - eye) > 1e-6)) return meet();
     view.camera.wsEye = scene.wsOrigin + eye; // the keys are in the scene's coordinates
     view.camera.wsDirection = glm::normalize(target - eye);
     // Up is the sky's, except where the camera looks straight up or down — a path may pass under or
@@ -242,10 +275,6 @@ core::Result<ResolvedView> viewAt(const CameraPath& path, const Scene& scene, do
     const core::Vec3 sky(0, 1, 0);
     const bool vertical = glm::length(glm::cross(view.camera.wsDirection, sky)) < 1e-5;
     view.camera.wsUp = vertical ? core::Vec3(0, 0, -1) : sky;
-    view.camera.fovYDegrees = path.fovYDegrees;
-    view.camera.aspect = double(path.width) / double(path.height);
-    view.camera.zNear = path.zNear;
-    view.camera.zFar = path.zFar;
     view.light = fallbackSun;
     if (!path.sun.empty()) {
         const SunKey sun = sunAt(path.sun, t);

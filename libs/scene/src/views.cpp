@@ -1,5 +1,6 @@
 #include "shadowkit/scene/views.h"
 
+#include "framing.h"
 #include "shadowkit/scene/file_read.h"
 
 #include <nlohmann/json.hpp>
@@ -146,38 +147,20 @@ ResolvedView resolveView(const ViewSpec& view, const Scene& scene) {
     // Where the view's local lights are placed from: the ground under the eye, or the framed centre.
     core::Vec3 lightsFrom(view.eyeX, 0.0, view.eyeZ);
     const core::Aabb bounds = scene.localBounds(); // placed in the scene's coordinates, moved to the world's at the end
-    out.framed = !scene.terrain && !bounds.isEmpty();
+    out.framed = isFramed(scene);
     if (!out.framed) {
         cam.wsEye = core::Vec3(view.eyeX, scene.groundHeightAt(view.eyeX, view.eyeZ) + view.eyeHeight, view.eyeZ);
         cam.zNear = view.zNear;
         cam.zFar = view.zFar;
     } else {
-        pitch = std::min(pitch, glm::radians(-30.0));
+        const Framing framing = frameBounds(bounds, az, pitch, view.fovYDegrees, cam.aspect);
+        pitch = framing.pitchRadians;
+        cam.wsEye = framing.eye;
+        cam.zNear = framing.zNear;
+        cam.zFar = framing.zFar;
         const core::Vec3 centre = bounds.center();
-        const core::Vec3 forward(std::sin(az) * std::cos(pitch), std::sin(pitch), -std::cos(az) * std::cos(pitch));
-        const core::Vec3 right = glm::normalize(glm::cross(forward, core::Vec3(0, 1, 0))),
-                         up = glm::cross(right, forward);
-        // The eye at `distance` back from the centre sees a corner c (x right, y up, z forward of the
-        // centre) when |x| <= tanX (distance + z) and |y| <= tanY (distance + z): the least distance
-        // for every corner frames the box tightly.
-        const double tanY = std::tan(0.5 * glm::radians(view.fovYDegrees)), tanX = tanY * cam.aspect;
-        double distance = 0.0, nearest = INFINITY, farthest = 0.0;
-        for (const core::Vec3& corner : bounds.corners()) {
-            const core::Vec3 c = corner - centre;
-            const double x = glm::dot(c, right), y = glm::dot(c, up), z = glm::dot(c, forward);
-            distance = std::max({distance, std::abs(x) / tanX - z, std::abs(y) / tanY - z});
-        }
-        distance = std::max(distance * 1.05, 1e-3); // a margin round the picture
-        for (const core::Vec3& corner : bounds.corners()) {
-            const double depth = distance + glm::dot(corner - centre, forward);
-            nearest = std::min(nearest, depth), farthest = std::max(farthest, depth);
-        }
-        cam.wsEye = centre - distance * forward;
-        cam.zNear = std::max(0.9 * nearest, 1e-3 * farthest);
-        cam.zFar = 1.1 * farthest;
         lightsFrom = core::Vec3(centre.x, 0.0, centre.z);
-        // e^-0.3 of the light left at the far plane: depth for the eye, hardly a veil.
-        out.fogDensity = 0.3 / cam.zFar;
+        out.fogDensity = framing.fogDensity;
     }
     cam.wsDirection = core::Vec3(std::sin(az) * std::cos(pitch), std::sin(pitch), -std::cos(az) * std::cos(pitch));
     // Within 1e-5 of looking straight up or down (a pitch within 5.7e-4° of ±90°, which the file

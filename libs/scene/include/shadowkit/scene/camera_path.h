@@ -37,6 +37,11 @@ struct CameraPath {
     int frames = 240;              // spread evenly from the first camera key's time to the last's
     std::vector<CameraKey> camera; // at least one, times increasing
     std::vector<SunKey> sun;       // may be empty (the sun then comes from elsewhere); times increasing
+    // "on_loaded_scene": "frame" — the keys are written for the forest, so on a scene without
+    // ground (a loaded file) each frame frames the scene as a still view does, from the compass
+    // direction and pitch the keys give at that moment. "keys" (the default): the keys are
+    // positions in whatever scene is drawn, as a path written for that model wants.
+    bool frameLoadedScene = false;
 
     double startTime() const { return camera.front().time; }
     double endTime() const { return camera.back().time; }
@@ -58,8 +63,9 @@ CameraKey cameraAt(const std::vector<CameraKey>& keys, double t);
 // Likewise for the sun's angles, and its size when the keys have one; precondition: keys not empty.
 SunKey sunAt(const std::vector<SunKey>& keys, double t);
 
-// The camera at time t placed over the scene's ground, with the path's sun when it has one
-// (else `fallbackSun`) and its size when its keys give one. Fails when eye and target meet.
+// The camera at time t placed over the scene's ground, or framing a scene without ground when
+// the path says so (frameLoadedScene), with the path's sun when it has one (else `fallbackSun`)
+// and its size when its keys give one. Fails when eye and target meet.
 core::Result<ResolvedView> viewAt(const CameraPath& path, const Scene& scene, double t,
                                   const core::DirectionalLight& fallbackSun = {});
 
