@@ -21,6 +21,11 @@ drift from what the program measures.
       per `shadowkit eval --path --json` file: flicker_pct and truth_change_pct (mean / p95 /
       max over the frames), mean wrong_pct and pixels_per_texel_p50 (tools/measure-dynamics.sh)
 
+  tools/readme_tables.py model-paths LABEL=DEFAULT.json,FOCUSED.json ...
+      per model, two `shadowkit eval --scene --path --json` files (the default set-up and
+      `--technique focused`): wrong_pct mean and max, flicker_pct mean / p95, and the frames that
+      compared no pixel (tools/measure-corpus-paths.sh)
+
   tools/readme_tables.py stable LABEL=PATH.json ...
       per `shadowkit eval --path --json` file: flicker_pct (mean / p95 / max), mean wrong_pct
       and pixels_per_texel_p50, and how many frames --stabilize refitted a map in
@@ -259,6 +264,27 @@ def dynamics(args):
         sun = "held" if "sun-held" in path else "moving"
         print(f"| {label} | {sun} | {fl['mean']:.3f} / {fl['p95']:.3f} / {fl['max']:.3f} | "
               f"{tc['mean']:.3f} / {tc['p95']:.3f} / {tc['max']:.3f} | {s['wrong_pct']['mean']:.2f} | {ppt:.2f} |")
+
+
+def model_paths(args):
+    """Per model along a path: the default set-up's error and flicker beside `focused`'s."""
+    print("| model | default: wrong_pct mean (max) | flicker_pct mean / p95 | `focused`: wrong_pct mean (max) | "
+          "flicker_pct mean / p95 | frames comparing no pixel |")
+    print("|---|---:|---:|---:|---:|---:|")
+    for arg in args:
+        label, _, files = arg.partition("=")
+        pair = files.split(",")
+        if len(pair) != 2:
+            sys.exit(f"readme_tables: model-paths: expected LABEL=DEFAULT.json,FOCUSED.json, got '{arg}'")
+        cells, blind = [], []
+        for path in pair:
+            _, _, run, _ = load_path_run(f"{label}={path}")
+            s = run["summary"]
+            worst = max(r["wrong_pct"] for r in run["frames"])
+            cells.append(f"{s['wrong_pct']['mean']:.2f} ({worst:.2f}) | "
+                         f"{s['flicker_pct']['mean']:.3f} / {s['flicker_pct']['p95']:.3f}")
+            blind.append(sum(1 for r in run["frames"] if r["valid_px"] == 0))
+        print(f"| {label} | {cells[0]} | {cells[1]} | {blind[0]} / {blind[1]} of {len(run['frames'])} |")
 
 
 def stable(args):
@@ -559,7 +585,7 @@ def write_into(target, text):
 def run(argv):
     """Prints the table the arguments (argv[1:], as on the command line) ask for."""
     commands = {"forests": forests, "oracle": oracle, "soft": soft, "soft-summary": soft_summary,
-                "soft-forests": soft_forests, "soft-table": soft_table, "soft-widths": soft_widths, "soft-lamps": soft_lamps, "stable": stable, "visibility": visibility, "dynamics": dynamics,
+                "soft-forests": soft_forests, "soft-table": soft_table, "soft-widths": soft_widths, "soft-lamps": soft_lamps, "stable": stable, "model-paths": model_paths, "visibility": visibility, "dynamics": dynamics,
                 "setup": setup, "culling": culling, "truth": truth, "scale": scale, "wrong": wrong, "scores": scores}
     if len(argv) >= 5 and argv[1] == "oracle" and argv[2] == "--name":
         oracle(argv[4:], argv[3].split(","))

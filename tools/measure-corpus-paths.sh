@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# Loaded models in motion (docs/reliability.md "Models in motion"): the standard `flythrough`
+# path, which frames a model without ground in every frame ("on_loaded_scene": "frame",
+# docs/dynamics.md), evaluated on the project's own corpus scenes and the assimp-testmodels
+# files on which the default missed issue 49's bound on a still view, with the default set-up
+# and with `--technique focused`: flicker and error along the path, frame by frame at 320 × 180
+# (240 frames). tools/readme_tables.py model-paths writes the table into docs/reliability.md.
+# About 4 minutes on this project's 2-core machine.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+B=build/apps/shadowkit/shadowkit
+[ -x "$B" ] || tools/build.sh
+corpus=/usr/share/assimp/models
+[ -d "$corpus" ] || { echo "measure-corpus-paths: $corpus is missing: install assimp-testmodels (tools/install-deps.sh)" >&2; exit 1; }
+out=out/corpus-paths
+rm -rf "$out" && mkdir -p "$out"
+rows=()
+for file in tests/data/pillar_on_plate.gltf tests/data/shapes/ship.obj tests/data/shapes/town.obj \
+            tests/data/shapes/tree.gltf "$corpus/OBJ/WusonOBJ.obj" "$corpus/OBJ/regr01.obj" \
+            "$corpus/glTF2/ClearCoat-glTF/ClearCoatTest.gltf"; do
+  name=$(basename "$file")
+  for technique in default focused; do
+    args=()
+    [ "$technique" = focused ] && args=(--technique focused)
+    "$B" eval --scene "$file" --path flythrough --size 320x180 "${args[@]}" \
+      --json "$out/$name.$technique.json" > "$out/$name.$technique.txt" 2> "$out/$name.$technique.err"
+  done
+  echo "measure-corpus-paths: $name: $(tail -n 1 "$out/$name.default.txt")" >&2
+  rows+=("\`$name\`=$out/$name.default.json,$out/$name.focused.json")
+done
+python3 tools/readme_tables.py --into docs/reliability.md:corpus-paths model-paths "${rows[@]}"
