@@ -16,8 +16,7 @@ Framing frameBounds(const core::Aabb& bounds, double azimuthRadians, double pitc
     const core::Vec3 forward(std::sin(az) * std::cos(pitch), std::sin(pitch), -std::cos(az) * std::cos(pitch));
     // Straight down (a pitch of −90°, which cos() leaves a hair off vertical) the right vector
     // is still the compass direction's: the cross product is tiny but not zero in doubles.
-    const core::Vec3 right = glm::normalize(glm::cross(forward, core::Vec3(0, 1, 0))),
-                     up = glm::cross(right, forward);
+    const core::Vec3 right = glm::normalize(glm::cross(forward, core::Vec3(0, 1, 0))), up = glm::cross(right, forward);
     // The eye at `distance` back from the centre sees a corner c (x right, y up, z forward of the
     // centre) when |x| <= tanX (distance + z) and |y| <= tanY (distance + z): the least distance
     // for every corner frames the box tightly.
