@@ -40,7 +40,11 @@ struct BenchArgs {
     int terrainResolution = 256;
     bool sameDensity = false;
     bool limits = false; // --limits: this GL's depth fill and triangle rates, and each shadow pass against them
+    // --frames: N frames per view, or with --path its first N, or a range a:b of its frames as
+    // render's and eval's --frames take it (framesText as given; frames and pathFrames from it).
+    std::string framesText = "5";
     int frames = 5;
+    std::string pathFrames; // for TimelineOptions::frames; empty: every frame of the path
     bool framesGiven = false, viewsGiven = false;
     // --path: a moving camera (and sun) instead of still views — the frames an application
     // draws, so no cache of a still view flatters the CPU's figures.
@@ -369,12 +373,33 @@ core::Result<std::pair<scene::Scene, BenchRow>> buildScene(const BenchArgs& args
     return std::pair{std::move(loaded).value(), row};
 }
 
+// --frames, checked once: a count N (per view, or a path's first N), or with --path a range
+// a:b (also a:, :b) of the path's frame numbers, which TimelineOptions checks against the path.
+core::Status parseBenchFrames(BenchArgs& args) {
+    const std::string& text = args.framesText;
+    if (text.find(':') != std::string::npos) {
+        if (args.path.empty())
+            return core::makeError("--frames: a range '" + text +
+                                   "' needs --path (without one --frames N is the frames per view)");
+        args.pathFrames = text;
+        return core::Ok{};
+    }
+    char* end = nullptr;
+    const long n = std::strtol(text.c_str(), &end, 10);
+    if (text.empty() || *end != '\0' || n < 1 || n > 1000)
+        return core::makeError("--frames: expected a count in [1, 1000]" +
+                               std::string(args.path.empty() ? "" : " or a range a:b of the path's frames") +
+                               ", got '" + text + "'");
+    args.frames = int(n);
+    if (args.framesGiven && !args.path.empty()) args.pathFrames = fmt::format(":{}", n); // the path's first N
+    return core::Ok{};
+}
+
 int runBench(const BenchArgs& args) {
     if (!args.scene.empty() && !args.forestFlag.empty())
         return fail(args.forestFlag + ": the built-in forest's, and --scene benches a file instead");
     auto counts = args.scene.empty() ? parseCounts(args.trees) : core::Result<std::vector<int>>(std::vector<int>{0});
     if (!counts) return fail(counts.errorInfo());
-    if (args.frames < 1 || args.frames > 1000) return fail("--frames: must be in [1, 1000]");
     if (auto s = args.technique.check(/*measuresFrames=*/false); !s) return fail(s.errorInfo());
     if (auto s = args.render.check(); !s) return fail(s.errorInfo());
     auto views = viewNamesOf(args.views);
@@ -386,7 +411,7 @@ int runBench(const BenchArgs& args) {
     if (!args.sunPath.empty() && args.path.empty()) return fail("--sun-path: needs --path");
     if (!args.path.empty()) {
         if (args.viewsGiven) return fail("--views: cannot be combined with --path (the path is the camera)");
-        if (args.framesGiven) timelineOptions.frames = fmt::format(":{}", args.frames); // the path's first frames
+        timelineOptions.frames = args.pathFrames;
     }
     auto timeline = timelineOptions.resolve();
     if (!timeline) return fail(timeline.errorInfo());
@@ -487,9 +512,9 @@ Command addBenchCommand(CLI::App& app) {
     CLI::Option* views = cmd->add_option("--views", args->views,
                                          "standard views, comma-separated, or all (the six sunlit ones) or local")
                              ->capture_default_str();
-    CLI::Option* frames = cmd->add_option("--frames", args->frames,
-                                          "frames per view: min / median / max over them (with --path: its first N; "
-                                          "default all)")
+    CLI::Option* frames = cmd->add_option("--frames", args->framesText,
+                                          "frames per view: min / median / max over them (with --path: its first N, "
+                                          "or a range a:b of its frames as render's --frames; default all)")
                               ->capture_default_str();
     cmd->add_option("--path", args->path,
                     "bench a moving camera instead of the views: a camera path's frames in order (a name from "
@@ -524,6 +549,7 @@ Command addBenchCommand(CLI::App& app) {
     return {cmd, [args, views, frames, forestOptions] {
                 args->viewsGiven = views->count() > 0;
                 args->framesGiven = frames->count() > 0;
+                if (auto s = parseBenchFrames(*args); !s) return fail(s.errorInfo());
                 for (const CLI::Option* option : forestOptions)
                     if (option->count() > 0 && args->forestFlag.empty()) args->forestFlag = option->get_name();
                 return runBench(*args);

@@ -768,6 +768,17 @@ endif()
 check_fails(bench-sun-path-without-path "--sun-path" bench --trees 10 --sun-path off)
 check_fails(bench-path-and-views "--views" bench --trees 10 --path flythrough --views paper)
 check_fails(bench-path-past-its-end "--frames" bench --trees 10 --path flythrough --frames 241)
+check_fails(bench-frames-range-without-path "--frames: a range '0:3' needs --path" bench --trees 10 --frames 0:3)
+check_fails(bench-frames-not-a-count "--frames: expected a count in [1, 1000], got '2.5'" bench --trees 10 --frames 2.5)
+# With --path, --frames a:b takes those frames of the path, as render's and eval's --frames do.
+if(CASE STREQUAL "gl-bench-path-range")
+  execute_process(COMMAND ${SHADOWKIT} bench --trees 20 --terrain-size 200 --terrain-resolution 16 --path flythrough
+                          --frames 120:122 --size 48x32 --map-size 256
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE table ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0 OR NOT table MATCHES "2 frames of --path flythrough")
+    message(SEND_ERROR "bench --path --frames 120:122: exit ${rc}, not its two frames: ${table} ${err}")
+  endif()
+endif()
 # score: eval's own term (--dump), scored as another renderer's mask, from the view and from the
 # camera as `setup` prints it; a mask of another size or camera, or a missing one, refused.
 if(CASE STREQUAL "gl-score")
