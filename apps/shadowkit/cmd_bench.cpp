@@ -286,9 +286,11 @@ core::Result<nlohmann::json> benchView(const BenchArgs& args, const BenchRow& ro
                                        eval::HtmlTable& table, const std::optional<gl::DepthLimits>& limits) {
     ViewOptions viewOptions = args.view;
     if (!timeline.path) viewOptions.view = row.view; // a path's frames take the default view's sun where it has none
-    auto still = viewOptions.resolve(forest);
+    auto still = viewOptions.resolve(forest, /*sayFraming=*/!timeline.path);
     if (!still) return still.errorInfo();
-    if (auto s = timeline.checkViews(*still, forest, !args.view.size.empty()); !s) return s.errorInfo();
+    // Checked (and said) before the table for a path: here each row's forest is checked alone.
+    if (auto s = timeline.checkViews(*still, forest, !args.view.size.empty(), /*sayFraming=*/false); !s)
+        return s.errorInfo();
     const int frames = timeline.path ? static_cast<int>(timeline.frames.size()) : args.frames;
     scene::ResolvedView view = *still;
     measure::FrameCosts costs;
@@ -432,7 +434,7 @@ int runBench(const BenchArgs& args) {
         if (!built) return fail(built.errorInfo());
         if (timeline->path) {
             ViewOptions viewOptions = args.view;
-            auto still = viewOptions.resolve(built->first);
+            auto still = viewOptions.resolve(built->first, /*sayFraming=*/false);
             if (!still) return fail(still.errorInfo());
             if (auto s = timeline->checkViews(*still, built->first, !args.view.size.empty()); !s)
                 return fail(s.errorInfo());

@@ -115,7 +115,7 @@ int runEvalPath(const EvalPathArgs& args) {
     auto sceneData = args.scene.load();
     if (!sceneData) return fail(sceneData.errorInfo());
     scene::Scene& world = *sceneData;
-    auto still = args.view.resolve(world);
+    auto still = args.view.resolve(world, /*sayFraming=*/false); // the path's frames say theirs
     if (!still) return fail(still.errorInfo());
     if (auto s = timeline->checkViews(*still, world, !args.view.size.empty()); !s) return fail(s.errorInfo());
     auto measurer = measure::Measurer::createHeadless(world);

@@ -151,7 +151,7 @@ int runRender(const RenderArgs& args) {
     auto sceneData = args.scene.load();
     if (!sceneData) return fail(sceneData.errorInfo());
     scene::Scene& world = *sceneData;
-    auto still = args.view.resolve(world);
+    auto still = args.view.resolve(world, /*sayFraming=*/!timeline->path);
     if (!still) return fail(still.errorInfo());
     if (auto s = timeline->checkViews(*still, world, !args.view.size.empty()); !s) return fail(s.errorInfo());
 

@@ -154,13 +154,13 @@ core::Result<std::vector<std::string>> viewNamesOf(const std::string& list) {
     return names;
 }
 
-core::Result<scene::ResolvedView> ViewOptions::resolve(const scene::Scene& sceneData) const {
+core::Result<scene::ResolvedView> ViewOptions::resolve(const scene::Scene& sceneData, bool sayFraming) const {
     auto views = scene::loadViews(dataDirectory() / "views.json");
     if (!views) return views.errorInfo();
     auto spec = scene::findView(*views, view);
     if (!spec) return core::makeError("--view: " + spec.error());
     scene::ResolvedView out = scene::resolveView(*spec, sceneData);
-    if (out.framed && eye.empty())
+    if (out.framed && eye.empty() && sayFraming)
         fmt::print(stderr,
                    "view {}: framing the loaded scene (no terrain to stand on): eye {:.1f},{:.1f},{:.1f}, near {:.3g} "
                    "m, far {:.3g} m\n",

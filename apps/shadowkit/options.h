@@ -46,7 +46,9 @@ struct ViewOptions {
 
     void addTo(CLI::App& cmd);
     // The named view placed over `scene`, with any explicit flag overriding its field.
-    core::Result<scene::ResolvedView> resolve(const scene::Scene& scene) const;
+    // `sayFraming`: say on stderr where the camera stands when it frames a loaded scene (not
+    // when a camera path takes the view's place: the path says so, Timeline::checkViews).
+    core::Result<scene::ResolvedView> resolve(const scene::Scene& scene, bool sayFraming = true) const;
 };
 
 struct TechniqueOptions {

@@ -124,14 +124,15 @@ core::Result<scene::ResolvedView> Timeline::viewAt(const scene::ResolvedView& st
     return view;
 }
 
-core::Status Timeline::checkViews(const scene::ResolvedView& still, const scene::Scene& scene, bool stillSize) const {
+core::Status Timeline::checkViews(const scene::ResolvedView& still, const scene::Scene& scene, bool stillSize,
+                                  bool sayFraming) const {
     bool framed = false;
     for (const TimedFrame& frame : frames) {
         auto view = viewAt(still, scene, frame.time, stillSize);
         if (!view) return view.errorInfo();
         framed = framed || (path && view->framed);
     }
-    if (framed)
+    if (framed && sayFraming)
         fmt::print(stderr,
                    "--path {}: framing the loaded scene in every frame, from the compass direction and pitch of the "
                    "path's camera (its keys are written for the forest)\n",

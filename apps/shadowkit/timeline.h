@@ -41,8 +41,9 @@ struct Timeline {
                                              bool stillSize = false) const;
     // Every frame's view, before any is drawn: a path whose eye meets its target between two keys
     // fails now, naming the moment, rather than frames (or a ray tracer's build) into the run.
-    // Says on stderr when the path frames a loaded scene rather than following its keys.
-    core::Status checkViews(const scene::ResolvedView& still, const scene::Scene& scene, bool stillSize = false) const;
+    // Says on stderr (`sayFraming`) when the path frames a loaded scene rather than following its keys.
+    core::Status checkViews(const scene::ResolvedView& still, const scene::Scene& scene, bool stillSize = false,
+                            bool sayFraming = true) const;
 };
 
 struct TimelineOptions {

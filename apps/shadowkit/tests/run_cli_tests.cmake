@@ -309,8 +309,9 @@ endif()
 if(CASE STREQUAL "gl-eval-path-frames-loaded-scene")
   execute_process(COMMAND ${SHADOWKIT} eval --scene "${source_dir}/tests/data/pillar_on_plate.gltf" --path flythrough
                           --frames 0:3 --size 32x18 --map-size 64 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  # Said once, by the path: the still view's own framing is not what is drawn.
   if(NOT rc EQUAL 0 OR NOT err MATCHES "--path flythrough: framing the loaded scene in every frame"
-     OR err MATCHES "compared no pixel")
+     OR err MATCHES "compared no pixel" OR err MATCHES "view perpendicular: framing")
     message(SEND_ERROR "eval --path flythrough over a loaded model: exit ${rc}, not framed:\n${out}${err}")
   endif()
 endif()
