@@ -51,6 +51,12 @@ void SceneOptions::addTo(CLI::App& cmd) {
     cmd.add_option("--terrain-resolution", terrainResolution, "forest: terrain quads per side")->capture_default_str();
     cmd.add_option("--movers", movers, "forest: moving objects on circles round the clearing, [0, 1000]")
         ->capture_default_str();
+    // Options bind to this object's fields (CLI11 holds references), so the note of which was
+    // given is this object's too.
+    for (const char* flag : {"--forest", "--seed", "--trees", "--terrain-size", "--terrain-resolution", "--movers"})
+        cmd.get_option(flag)->each([this, flag](const std::string&) {
+            if (forestFlag.empty()) forestFlag = flag;
+        });
     cmd.add_option(
         "--world-offset", worldOffset,
         "x,y,z metres: stand the scene and its views this far from the world's origin (large-world precision)");
@@ -79,11 +85,19 @@ scene::ForestOptions forestOptionsOf(const SceneOptions& options) {
     return o;
 }
 
+// A forest flag given with a scene file would be dropped in silence (no trees, no movers).
+core::Status forestFlagsUnused(const SceneOptions& options) {
+    if (options.scene == "forest" || options.forestFlag.empty()) return core::Ok{};
+    return core::makeError(
+        fmt::format("{}: the built-in forest's, and --scene draws {} instead", options.forestFlag, options.scene));
+}
+
 } // namespace
 
 core::Status SceneOptions::check() const {
     if (auto origin = offset(); !origin) return origin.errorInfo();
     if (scene == "forest") return scene::validate(forestOptionsOf(*this));
+    if (auto s = forestFlagsUnused(*this); !s) return s;
     std::error_code ec;
     const auto status = std::filesystem::status(scene, ec);
     if (!std::filesystem::exists(status))
@@ -103,6 +117,7 @@ core::Result<scene::Scene> SceneOptions::load(bool verbose) const {
         if (core::Status s = scene::validate(o); !s) return s.errorInfo();
         result = scene::makeForest(o);
     } else {
+        if (auto s = forestFlagsUnused(*this); !s) return s.errorInfo();
         result = scene::loadScene(scene);
         if (!result) return result;
         for (const std::string& warning : result->warnings) warn(warning);

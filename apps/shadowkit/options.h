@@ -29,6 +29,10 @@ struct SceneOptions {
     int terrainResolution = 256;
     int movers = scene::ForestOptions{}.movers;
     std::string worldOffset; // "x,y,z": where the scene stands in the world (Scene::wsOrigin)
+    // The first of the built-in forest's flags given on the command line (--forest, --seed,
+    // --trees, --terrain-size, --terrain-resolution, --movers): with a scene file it would be
+    // ignored, so check() and load() refuse it.
+    std::string forestFlag;
 
     void addTo(CLI::App& cmd);
     // --world-offset parsed (0 when not given).
