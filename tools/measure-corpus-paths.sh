@@ -3,9 +3,10 @@
 # path, which frames a model without ground in every frame ("on_loaded_scene": "frame",
 # docs/dynamics.md), evaluated on the project's own corpus scenes and the assimp-testmodels
 # files on which the default missed issue 49's bound on a still view, with the default set-up
-# and with `--technique focused`: flicker and error along the path, frame by frame at 320 × 180
-# (240 frames). tools/readme_tables.py model-paths writes the table into docs/reliability.md.
-# About 4 minutes on this project's 2-core machine.
+# with `--technique focused` and with the default's texel lattice held (`--stabilize`): flicker
+# and error along the path, frame by frame at 320 × 180 (240 frames). tools/readme_tables.py
+# model-paths writes the table into docs/reliability.md. About 5 minutes on this project's
+# 2-core machine.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 B=build/apps/shadowkit/shadowkit
@@ -19,13 +20,14 @@ for file in tests/data/pillar_on_plate.gltf tests/data/shapes/ship.obj tests/dat
             tests/data/shapes/tree.gltf "$corpus/OBJ/WusonOBJ.obj" "$corpus/OBJ/regr01.obj" \
             "$corpus/glTF2/ClearCoat-glTF/ClearCoatTest.gltf"; do
   name=$(basename "$file")
-  for technique in default focused; do
+  for technique in default focused stabilize; do
     args=()
     [ "$technique" = focused ] && args=(--technique focused)
+    [ "$technique" = stabilize ] && args=(--stabilize)
     "$B" eval --scene "$file" --path flythrough --size 320x180 "${args[@]}" \
       --json "$out/$name.$technique.json" > "$out/$name.$technique.txt" 2> "$out/$name.$technique.err"
   done
   echo "measure-corpus-paths: $name: $(tail -n 1 "$out/$name.default.txt")" >&2
-  rows+=("\`$name\`=$out/$name.default.json,$out/$name.focused.json")
+  rows+=("\`$name\`=$out/$name.default.json,$out/$name.focused.json,$out/$name.stabilize.json")
 done
 python3 tools/readme_tables.py --into docs/reliability.md:corpus-paths model-paths "${rows[@]}"

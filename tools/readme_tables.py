@@ -21,10 +21,10 @@ drift from what the program measures.
       per `shadowkit eval --path --json` file: flicker_pct and truth_change_pct (mean / p95 /
       max over the frames), mean wrong_pct and pixels_per_texel_p50 (tools/measure-dynamics.sh)
 
-  tools/readme_tables.py model-paths LABEL=DEFAULT.json,FOCUSED.json ...
-      per model, two `shadowkit eval --scene --path --json` files (the default set-up and
-      `--technique focused`): wrong_pct mean and max, flicker_pct mean / p95, and the frames that
-      compared no pixel (tools/measure-corpus-paths.sh)
+  tools/readme_tables.py model-paths LABEL=DEFAULT.json,FOCUSED.json[,STABILIZED.json] ...
+      per model, `shadowkit eval --scene --path --json` files (the default set-up, `--technique
+      focused` and optionally the default with `--stabilize`): wrong_pct mean and max, flicker_pct
+      mean / p95, and the frames that compared no pixel (tools/measure-corpus-paths.sh)
 
   tools/readme_tables.py stable LABEL=PATH.json ...
       per `shadowkit eval --path --json` file: flicker_pct (mean / p95 / max), mean wrong_pct
@@ -268,23 +268,26 @@ def dynamics(args):
 
 def model_paths(args):
     """Per model along a path: the default set-up's error and flicker beside `focused`'s."""
-    print("| model | default: wrong_pct mean (max) | flicker_pct mean / p95 | `focused`: wrong_pct mean (max) | "
-          "flicker_pct mean / p95 | frames comparing no pixel |")
-    print("|---|---:|---:|---:|---:|---:|")
+    names = ["default", "`focused`", "default `--stabilize`"]
+    width = len(args[0].partition("=")[2].split(",")) if args else 2
+    header = "".join(f" {n}: wrong_pct mean (max) | flicker_pct mean / p95 |" for n in names[:width])
+    print(f"| model |{header} frames comparing no pixel |")
+    print("|---|" + "---:|---:|" * width + "---:|")
     for arg in args:
         label, _, files = arg.partition("=")
-        pair = files.split(",")
-        if len(pair) != 2:
-            sys.exit(f"readme_tables: model-paths: expected LABEL=DEFAULT.json,FOCUSED.json, got '{arg}'")
+        runs = files.split(",")
+        if len(runs) != width or width not in (2, 3):
+            sys.exit(f"readme_tables: model-paths: expected LABEL=DEFAULT.json,FOCUSED.json[,STABILIZED.json] "
+                     f"alike in every row, got '{arg}'")
         cells, blind = [], []
-        for path in pair:
+        for path in runs:
             _, _, run, _ = load_path_run(f"{label}={path}")
             s = run["summary"]
             worst = max(r["wrong_pct"] for r in run["frames"])
             cells.append(f"{s['wrong_pct']['mean']:.2f} ({worst:.2f}) | "
                          f"{s['flicker_pct']['mean']:.3f} / {s['flicker_pct']['p95']:.3f}")
             blind.append(sum(1 for r in run["frames"] if r["valid_px"] == 0))
-        print(f"| {label} | {cells[0]} | {cells[1]} | {blind[0]} / {blind[1]} of {len(run['frames'])} |")
+        print(f"| {label} | {' | '.join(cells)} | {' / '.join(map(str, blind))} of {len(run['frames'])} |")
 
 
 def stable(args):
