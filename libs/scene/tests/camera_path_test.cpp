@@ -323,6 +323,15 @@ TEST(CameraPath, APathWrittenForTheForestFramesALoadedModelInEveryFrameLookingTh
         EXPECT_NEAR(compassOf(view->camera.wsDirection), compassOf(along), 1e-9) << f;
         EXPECT_NEAR(pitchOf(view->camera.wsDirection), std::min(pitchOf(along), glm::radians(-30.0)), 1e-9) << f;
     }
+    // Frame to frame the framed camera moves smoothly (the flicker measured along it is the
+    // shadows', not a jump of the camera): no step longer than 2 % of its distance to the model.
+    for (int f = 1; f < path->frames; ++f) {
+        const auto before = scene::viewAt(*path, model, path->timeOfFrame(f - 1)),
+                   after = scene::viewAt(*path, model, path->timeOfFrame(f));
+        ASSERT_TRUE(before && after) << f;
+        const double reach = glm::distance(after->camera.wsEye, bounds.center());
+        EXPECT_LE(glm::distance(before->camera.wsEye, after->camera.wsEye), 0.02 * reach) << f;
+    }
     // A path whose keys are the model's own positions ("keys", the default) is followed as written.
     path->frameLoadedScene = false;
     const auto asWritten = scene::viewAt(*path, model, 0.0);
