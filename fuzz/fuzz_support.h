@@ -1,6 +1,6 @@
 // What the fuzz targets share: the input as a file with the extension the loader dispatches on
 // (in memory-backed /dev/shm where there is one, one file per process), and a small forest to
-// resolve views over.
+// resolve views over, with and without its ground.
 #pragma once
 
 #include "shadowkit/scene/forest.h"
@@ -31,6 +31,17 @@ inline const scene::Scene& smallForest() {
         return scene::makeForest(o);
     }();
     return forest;
+}
+
+// The same meshes without their heightfield: a scene with no ground, as a loaded file is, which
+// views and paths frame (scene/views.h) rather than stand on.
+inline const scene::Scene& smallModel() {
+    static const scene::Scene model = [] {
+        scene::Scene m = smallForest();
+        m.terrain.reset();
+        return m;
+    }();
+    return model;
 }
 
 } // namespace shadowkit::fuzz

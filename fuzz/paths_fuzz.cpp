@@ -1,6 +1,7 @@
 // Camera path files (data/paths/*.json's format): a parsed path gives, at every frame's time, a
-// usable camera under a finite sun over a small forest — or, where its eye and target meet between
-// keys, the one error viewAt may give; bad files give a one-line error naming the file.
+// usable camera under a finite sun over a small forest and over a scene without ground (framed
+// there when the path says "on_loaded_scene": "frame") — or, where its eye and target meet
+// between keys, the one error viewAt may give; bad files give a one-line error naming the file.
 #include "fuzz_support.h"
 
 #include "shadowkit/scene/camera_path.h"
@@ -26,14 +27,17 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     for (const scene::CameraKey& key : path->camera) times.push_back(key.time);
     for (const double t : times) {
         if (!std::isfinite(t)) std::abort();
-        const auto view = scene::viewAt(*path, fuzz::smallForest(), t);
-        if (!view) {
-            if (view.error().find('\n') != std::string::npos ||
-                view.error().find("eye and target meet") == std::string::npos)
-                std::abort(); // a parsed path fails only where its eye and target meet
-            continue;
+        for (const scene::Scene* world : {&fuzz::smallForest(), &fuzz::smallModel()}) {
+            const auto view = scene::viewAt(*path, *world, t);
+            if (!view) {
+                if (view.error().find('\n') != std::string::npos ||
+                    view.error().find("eye and target meet") == std::string::npos)
+                    std::abort(); // a parsed path fails only where its eye and target meet
+                continue;
+            }
+            if (!view->camera.validate() || !core::isFinite(view->light.wsDirection)) std::abort();
+            if (view->framed != (path->frameLoadedScene && world == &fuzz::smallModel())) std::abort();
         }
-        if (!view->camera.validate() || !core::isFinite(view->light.wsDirection)) std::abort();
     }
     return 0;
 }
