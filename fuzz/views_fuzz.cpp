@@ -1,5 +1,6 @@
-// View files (data/views.json's format): parsed views resolve over a small forest to finite
-// cameras and lights, bad files give a one-line error naming the file.
+// View files (data/views.json's format): parsed views resolve over a small forest, and framed
+// over a scene without ground, to finite cameras and lights; bad files give a one-line error
+// naming the file.
 #include "fuzz_support.h"
 
 #include "shadowkit/scene/views.h"
@@ -15,10 +16,12 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
             std::abort();
         return 0;
     }
-    for (const scene::ViewSpec& spec : *views) {
-        const scene::ResolvedView view = scene::resolveView(spec, fuzz::smallForest());
-        if (!view.camera.validate() || !core::isFinite(view.light.wsDirection))
-            std::abort(); // a parsed view is a usable one
-    }
+    for (const scene::ViewSpec& spec : *views)
+        for (const scene::Scene* world : {&fuzz::smallForest(), &fuzz::smallModel()}) {
+            const scene::ResolvedView view = scene::resolveView(spec, *world);
+            if (!view.camera.validate() || !core::isFinite(view.light.wsDirection))
+                std::abort(); // a parsed view is a usable one
+            if (view.framed != (world == &fuzz::smallModel())) std::abort();
+        }
     return 0;
 }
