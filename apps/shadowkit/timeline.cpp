@@ -47,7 +47,7 @@ core::Result<std::pair<int, int>> parseFrameRange(const std::string& text, int c
 } // namespace
 
 void TimelineOptions::addTo(CLI::App& cmd, bool withFrames) {
-    cmd.add_option("--path", path, "camera path: a name from data/paths (flythrough, day) or a .json file");
+    cmd.add_option("--path", path, "camera path: a name from data/paths (flythrough, orbit, day) or a .json file");
     if (withFrames)
         cmd.add_option("--frames", frames, "frames of the path to draw: a:b (a to b-1), a:, :b or a (default: all)");
     cmd.add_option("--time", time, "draw one moment, in seconds (movers, sun path and camera path at that time)");

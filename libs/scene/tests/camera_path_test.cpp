@@ -379,3 +379,28 @@ TEST(CameraPath, AnUnknownOnLoadedSceneIsAnErrorNamingTheField) {
     EXPECT_NE(path.error().find("on_loaded_scene must be \"frame\""), std::string::npos) << path.error();
     EXPECT_NE(path.error().find("sk_path_on_loaded.json"), std::string::npos) << path.error();
 }
+
+// `orbit`: a turntable. Over a loaded model every frame is framed and the camera's compass turns
+// once round, so the sun stands ahead, beside and behind it in turn; the loop closes.
+TEST(CameraPath, TheOrbitFramesAModelFromEveryCompassDirectionAndClosesItsLoop) {
+    auto path = scene::findCameraPath("orbit", std::filesystem::path(SHADOWKIT_SOURCE_DATA_DIR) / "paths");
+    ASSERT_TRUE(path) << path.error();
+    ASSERT_TRUE(path->frameLoadedScene);
+    const scene::Scene model = blockModel();
+    std::array<bool, 8> sectors{}; // 45° sectors of the view's compass
+    for (int f = 0; f < path->frames; ++f) {
+        const auto view = scene::viewAt(*path, model, path->timeOfFrame(f));
+        ASSERT_TRUE(view) << f << ": " << view.error();
+        ASSERT_TRUE(view->framed) << f;
+        const double compass = std::fmod(glm::degrees(compassOf(view->camera.wsDirection)) + 360.0, 360.0);
+        sectors[size_t(compass / 45.0) % 8] = true;
+        // Round the clearing at its radius (the keys' circle, 60 m), looking at its centre.
+        const scene::CameraKey key = scene::cameraAt(path->camera, path->timeOfFrame(f));
+        EXPECT_NEAR(std::hypot(key.eye.x, key.eye.z), 60.0, 3.0) << f;
+    }
+    for (size_t s = 0; s < sectors.size(); ++s) EXPECT_TRUE(sectors[s]) << "no frame looks towards " << 45 * s << "°";
+    const auto first = scene::viewAt(*path, model, path->startTime()),
+               last = scene::viewAt(*path, model, path->endTime());
+    ASSERT_TRUE(first && last);
+    EXPECT_LT(glm::distance(first->camera.wsEye, last->camera.wsEye), 1e-6);
+}
