@@ -135,7 +135,7 @@ core::Status Timeline::checkViews(const scene::ResolvedView& still, const scene:
     if (framed && sayFraming)
         fmt::print(stderr,
                    "--path {}: framing the loaded scene in every frame, from the compass direction and pitch of the "
-                   "path's camera (its keys are written for the forest)\n",
+                   "path's camera (it says \"on_loaded_scene\": \"frame\")\n",
                    path->name);
     return core::Ok{};
 }
