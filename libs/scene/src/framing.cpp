@@ -1,3 +1,5 @@
+// Framing a scene without ground (framing.h): along a compass direction and pitch, the least
+// eye distance at which every corner of the bounds lies inside the field of view.
 #include "framing.h"
 
 #include <glm/glm.hpp>
