@@ -244,7 +244,9 @@ core::Result<ResolvedView> viewAt(const CameraPath& path, const Scene& scene, do
         return core::makeError("path \"" + path.name + "\" at t = " + std::to_string(t) + " s: eye and target meet");
     };
     core::Vec3 eye, target;
-    if (path.frameLoadedScene && isFramed(scene)) {
+    // The bounds (a walk over every instance) only where they may be framed.
+    const core::Aabb bounds = path.frameLoadedScene && !scene.terrain ? scene.localBounds() : core::Aabb{};
+    if (path.frameLoadedScene && isFramed(scene, bounds)) {
         // The keys' direction (heights above a ground this scene lacks cancel out of it) as a
         // compass direction and a pitch. Within 1e-5 of vertical the compass is north's, so that
         // the framing's up is the image's (north, below).
@@ -253,7 +255,7 @@ core::Result<ResolvedView> viewAt(const CameraPath& path, const Scene& scene, do
         if (!(glm::length(along) > 1e-6)) return meet();
         const double azimuth = level > 1e-5 * glm::length(along) ? std::atan2(along.x, -along.z) : 0.0;
         const Framing framing =
-            frameBounds(scene.localBounds(), azimuth, std::atan2(along.y, level), path.fovYDegrees, view.camera.aspect);
+            frameBounds(bounds, azimuth, std::atan2(along.y, level), path.fovYDegrees, view.camera.aspect);
         eye = framing.eye;
         target = framing.eye + framing.direction;
         view.camera.zNear = framing.zNear;

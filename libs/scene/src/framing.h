@@ -24,8 +24,11 @@ struct Framing {
 };
 
 // Whether views and paths frame this scene rather than stand on its ground: it has no
-// heightfield (a loaded file) and something to frame.
-inline bool isFramed(const Scene& scene) { return !scene.terrain && !scene.localBounds().isEmpty(); }
+// heightfield (a loaded file) and something to frame (`localBounds`, Scene::localBounds(), which
+// the caller has at hand: it walks every instance).
+inline bool isFramed(const Scene& scene, const core::Aabb& localBounds) {
+    return !scene.terrain && !localBounds.isEmpty();
+}
 
 // Precondition: bounds not empty; aspect > 0, fovYDegrees in (0, 180).
 Framing frameBounds(const core::Aabb& bounds, double azimuthRadians, double pitchRadians, double fovYDegrees,

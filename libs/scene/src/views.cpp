@@ -147,7 +147,7 @@ ResolvedView resolveView(const ViewSpec& view, const Scene& scene) {
     // Where the view's local lights are placed from: the ground under the eye, or the framed centre.
     core::Vec3 lightsFrom(view.eyeX, 0.0, view.eyeZ);
     const core::Aabb bounds = scene.localBounds(); // placed in the scene's coordinates, moved to the world's at the end
-    out.framed = isFramed(scene);
+    out.framed = isFramed(scene, bounds);
     if (!out.framed) {
         cam.wsEye = core::Vec3(view.eyeX, scene.groundHeightAt(view.eyeX, view.eyeZ) + view.eyeHeight, view.eyeZ);
         cam.zNear = view.zNear;
