@@ -122,21 +122,65 @@ void CameraPasses::bindFrame(const CameraView& view, bool readBlurredMask) const
     glCullFace(GL_BACK);
 }
 
+core::Status CameraPasses::evalTarget(int width, int height) {
+    if (m_eval && m_eval->width == width && m_eval->height == height) return core::Ok{};
+    m_eval.emplace(width, height);
+    m_evalAndColor.reset();
+    return checkComplete(m_eval->framebuffer, "eval pass");
+}
+
+core::Status CameraPasses::colorTarget(int width, int height) {
+    if (m_color && m_color->width == width && m_color->height == height) return core::Ok{};
+    m_color.emplace(width, height);
+    m_evalAndColor.reset();
+    return checkComplete(m_color->framebuffer, "main pass");
+}
+
+void CameraPasses::clearToSky(const CameraView& view) const {
+    const glm::vec3 sky = skyColor(daylight(view.light, view.settings));
+    const float clearColor[4] = {sky.r, sky.g, sky.b, 1.0f};
+    glClearNamedFramebufferfv(m_color->framebuffer.id(), GL_COLOR, 0, clearColor);
+}
+
 core::Status CameraPasses::evalPass(const GpuScene& scene, const CasterLists& casters, const CameraView& view,
                                     const CameraDepthTarget* prepass) {
-    const RenderSettings& settings = view.settings;
-    if (!m_eval || m_eval->width != settings.width || m_eval->height != settings.height) {
-        m_eval.emplace(settings.width, settings.height);
-        if (auto s = checkComplete(m_eval->framebuffer, "eval pass"); !s) return s;
-    }
+    if (auto s = evalTarget(view.settings.width, view.settings.height); !s) return s;
     glBindFramebuffer(GL_FRAMEBUFFER, m_eval->framebuffer.id());
     glViewport(0, 0, m_eval->width, m_eval->height);
     m_eval->clearColors();
     startDepth(m_eval->depth, m_eval->width, m_eval->height, prepass, m_eval->framebuffer.id());
+    ++m_viewsDrawn;
     drawInView(scene, casters, m_programs.eval(view.setup.clipmap.has_value()), view);
     endDepth();
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     return core::Ok{};
+}
+
+core::Result<DrawStats> CameraPasses::evalAndMainPass(const GpuScene& scene, const CasterLists& casters,
+                                                      const CameraView& view, const CameraDepthTarget* prepass) {
+    const RenderSettings& settings = view.settings;
+    if (auto s = evalTarget(settings.width, settings.height); !s) return s.errorInfo();
+    if (auto s = colorTarget(settings.width, settings.height); !s) return s.errorInfo();
+    const bool virtualMaps = view.setup.clipmap.has_value();
+    if (auto s = m_programs.prepareShadedEval(virtualMaps); !s) return s.errorInfo();
+    if (!m_evalAndColor) {
+        m_evalAndColor = evalAndColorFramebuffer(*m_eval, *m_color);
+        if (auto s = checkComplete(*m_evalAndColor, "shaded eval pass"); !s) return s.errorInfo();
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, m_evalAndColor->id());
+    glViewport(0, 0, settings.width, settings.height);
+    m_eval->clearColors();
+    clearToSky(view);
+    startDepth(m_color->depth, settings.width, settings.height, prepass, m_evalAndColor->id());
+    m_mainTimer.begin();
+    m_mainSamples.begin();
+    ++m_viewsDrawn;
+    const DrawStats draws = drawInView(scene, casters, m_programs.shadedEval(virtualMaps), view);
+    m_mainSamples.end();
+    m_mainTimer.end();
+    endDepth();
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    return draws;
 }
 
 int CameraPasses::blurPass(const BlurSettings& blur) {
@@ -168,20 +212,15 @@ int CameraPasses::blurPass(const BlurSettings& blur) {
 core::Result<DrawStats> CameraPasses::mainPass(const GpuScene& scene, const CasterLists& casters,
                                                const CameraView& view, int blurredMask,
                                                const CameraDepthTarget* prepass) {
-    const RenderSettings& settings = view.settings;
-    if (!m_color || m_color->width != settings.width || m_color->height != settings.height) {
-        m_color.emplace(settings.width, settings.height);
-        if (auto s = checkComplete(m_color->framebuffer, "main pass"); !s) return s.errorInfo();
-    }
+    if (auto s = colorTarget(view.settings.width, view.settings.height); !s) return s.errorInfo();
     if (blurredMask >= 0) glBindTextureUnit(kShadowMaskUnit, m_mask->images[blurredMask].id());
     glBindFramebuffer(GL_FRAMEBUFFER, m_color->framebuffer.id());
     glViewport(0, 0, m_color->width, m_color->height);
-    const glm::vec3 sky = skyColor(daylight(view.light, settings));
-    const float clearColor[4] = {sky.r, sky.g, sky.b, 1.0f};
-    glClearNamedFramebufferfv(m_color->framebuffer.id(), GL_COLOR, 0, clearColor);
+    clearToSky(view);
     startDepth(m_color->depth, m_color->width, m_color->height, prepass, m_color->framebuffer.id());
     m_mainTimer.begin();
     m_mainSamples.begin();
+    ++m_viewsDrawn;
     const DrawStats draws = drawInView(scene, casters, m_programs.main(view.setup.clipmap.has_value()), view);
     m_mainSamples.end();
     m_mainTimer.end();

@@ -58,6 +58,12 @@ public:
     // their derivatives). The frame and the maps bound.
     core::Status evalPass(const GpuScene& scene, const CasterLists& casters, const CameraView& view,
                           const CameraDepthTarget* prepass);
+    // The eval pass and the main pass in one, for a frame without the eye-space blur: the eval
+    // target's buffers and the colour target's picture to the bit as evalPass() then mainPass()
+    // would leave them, for one draw of the camera's view instead of two. Timed and counted as
+    // the main pass.
+    core::Result<DrawStats> evalAndMainPass(const GpuScene& scene, const CasterLists& casters, const CameraView& view,
+                                            const CameraDepthTarget* prepass);
     core::RasterBuffers readEval() const { return m_eval->read(); }
     // Blurs the eval pass's shadow term in eye space; returns the ping-pong index holding it.
     int blurPass(const BlurSettings& blur);
@@ -73,11 +79,19 @@ public:
     const PassTimer& timer() const { return m_mainTimer; }
     const PassSamples& samples() const { return m_mainSamples; }
 
+    // Passes above that drew the camera's view (Renderer::cameraViewsDrawn).
+    int viewsDrawn() const { return m_viewsDrawn; }
+
     // The colour target: nullptr before the first frame.
     const ColorTarget* color() const { return m_color ? &*m_color : nullptr; }
 
 private:
     CameraPasses() = default;
+    // The targets at this size, made (and checked) when the size changes.
+    core::Status evalTarget(int width, int height);
+    core::Status colorTarget(int width, int height);
+    void clearToSky(const CameraView& view) const; // the colour target's picture
+
     CameraPrograms m_programs;
     Program m_blurProgram;
     Buffer m_frameUniforms, m_blurUniforms;
@@ -85,9 +99,11 @@ private:
     Sampler m_rawDepth;             // the maps' stored depths (PCSS's blocker search)
     std::optional<ColorTarget> m_color;
     std::optional<EvalTarget> m_eval;
+    std::optional<Framebuffer> m_evalAndColor; // both targets' textures (evalAndMainPass)
     std::optional<MaskPingPong> m_mask;
     PassTimer m_mainTimer;
     PassSamples m_mainSamples;
+    int m_viewsDrawn = 0;
 };
 
 } // namespace shadowkit::gl

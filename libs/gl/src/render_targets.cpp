@@ -176,6 +176,20 @@ void EvalTarget::clearColors() const {
     for (GLint i = 2; i < 6; ++i) glClearNamedFramebufferfv(framebuffer.id(), GL_COLOR, i, zero);
 }
 
+Framebuffer evalAndColorFramebuffer(const EvalTarget& eval, const ColorTarget& color) {
+    Framebuffer framebuffer = createFramebuffer();
+    const Texture* attached[] = {&eval.shadowTerm, &eval.surfaceId,      &eval.viewDepth, &eval.normal,
+                                 &eval.texel,      &eval.texelFromPixel, &color.color};
+    GLenum drawBuffers[7];
+    for (GLenum i = 0; i < 7; ++i) {
+        glNamedFramebufferTexture(framebuffer.id(), GL_COLOR_ATTACHMENT0 + i, attached[i]->id(), 0);
+        drawBuffers[i] = GL_COLOR_ATTACHMENT0 + i;
+    }
+    glNamedFramebufferDrawBuffers(framebuffer.id(), 7, drawBuffers);
+    glNamedFramebufferTexture(framebuffer.id(), GL_DEPTH_ATTACHMENT, color.depth.id(), 0);
+    return framebuffer;
+}
+
 std::vector<float> EvalTarget::readViewDepth() const {
     detail::countReadBack();
     // Row order does not matter to a min/max; the same read keeps one code path.

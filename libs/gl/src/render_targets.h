@@ -77,4 +77,9 @@ struct EvalTarget {
     std::vector<float> readViewDepth() const; // metres, 0 where nothing was drawn
 };
 
+// The shaded eval pass's framebuffer: the eval target's six buffers at attachments 0–5, the
+// colour target's picture at 6 and its depth, so one pass leaves both targets as the eval and
+// main passes drawn apart would (CameraPasses::evalAndMainPass). Both of one size.
+Framebuffer evalAndColorFramebuffer(const EvalTarget& eval, const ColorTarget& color);
+
 } // namespace shadowkit::gl

@@ -3,7 +3,8 @@
 // maps (local_shadows.h) and the camera passes (camera_passes.h) — in GPU order:
 //
 //   plan lists (camera pre-pass when culling, masks or pages need it) → sun maps → local maps
-//   → [eval pass → blur] → main pass (or the eval pass, for renderEvalBuffers)
+//   → [eval pass → blur] → main pass (or the eval pass, for renderEvalBuffers; or both in one
+//   pass, for renderWithEvalBuffers without the blur)
 //
 // Each room owns its GL objects and takes the frame's inputs as arguments.
 #include "shadowkit/gl/renderer.h"
@@ -193,25 +194,35 @@ core::Result<FrameStats> Renderer::Impl::frame(const SceneFrame& sceneFrame, con
         stats.localMaps += static_cast<int>(s.views.size()), stats.skippedFaces += s.skippedFaces;
     for (const core::ShadowSetup& s : localLights.spotSetups) stats.localMaps += static_cast<int>(s.views.size());
 
-    // With the eye-space blur, the shadow term comes from the blurred screen-space mask, which
-    // the eval pass draws; an evaluation reads that pass's buffers before the blur.
     const CameraView view{cam, light, sun->lookupSetup(setup, settings), settings, *bias};
     const bool blurred = settings.blur.iterations > 0;
-    int maskIndex = -1;
-    if (blurred || evalBuffers) {
+    core::Result<DrawStats> mainDraws = DrawStats{};
+    if (evalBuffers && !blurred) {
+        // The evaluation's buffers and the picture from one draw of the camera's view.
         bindFrame(view, false, -1);
-        if (auto s = camera->evalPass(*scene, lists->cameraCasters(), view, lists->cameraPrepass()); !s)
-            return s.errorInfo();
-        if (evalBuffers) {
-            *evalBuffers = camera->readEval();
-            evalBuffers->mapSize = setup.mapSize;
+        mainDraws = camera->evalAndMainPass(*scene, lists->cameraCasters(), view, lists->cameraPrepass());
+        if (!mainDraws) return mainDraws.errorInfo();
+        *evalBuffers = camera->readEval();
+        evalBuffers->mapSize = setup.mapSize;
+    } else {
+        // With the eye-space blur, the shadow term comes from the blurred screen-space mask,
+        // which the eval pass draws; an evaluation reads that pass's buffers before the blur.
+        int maskIndex = -1;
+        if (blurred) {
+            bindFrame(view, false, -1);
+            if (auto s = camera->evalPass(*scene, lists->cameraCasters(), view, lists->cameraPrepass()); !s)
+                return s.errorInfo();
+            if (evalBuffers) {
+                *evalBuffers = camera->readEval();
+                evalBuffers->mapSize = setup.mapSize;
+            }
+            maskIndex = camera->blurPass(settings.blur);
+            if (evalBuffers) evalBuffers->shadowTerm = camera->readBlurred(maskIndex);
         }
-        if (blurred) maskIndex = camera->blurPass(settings.blur);
-        if (blurred && evalBuffers) evalBuffers->shadowTerm = camera->readBlurred(maskIndex);
+        bindFrame(view, blurred, -1);
+        mainDraws = camera->mainPass(*scene, lists->cameraCasters(), view, maskIndex, lists->cameraPrepass());
+        if (!mainDraws) return mainDraws.errorInfo();
     }
-    bindFrame(view, blurred, -1);
-    auto mainDraws = camera->mainPass(*scene, lists->cameraCasters(), view, maskIndex, lists->cameraPrepass());
-    if (!mainDraws) return mainDraws.errorInfo();
     stats.frame = ++frames;
     gpuFigures(stats, settings, *mainDraws);
     lists->costs().fill(stats);
@@ -308,6 +319,8 @@ Culling Renderer::culling(Culling requested) const {
 }
 
 int Renderer::cameraPrePassesDrawn() const { return m_impl->lists->prepassesDrawn(); }
+
+int Renderer::cameraViewsDrawn() const { return m_impl->camera->viewsDrawn(); }
 
 std::optional<VirtualPageStats> Renderer::lastVirtualPages() const { return m_impl->sun->lastVirtual(); }
 

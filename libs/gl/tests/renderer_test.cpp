@@ -7,6 +7,7 @@
 #include "shadowkit/core/visible_depth.h"
 #include "shadowkit/gl/context.h"
 #include "shadowkit/gl/renderer.h"
+#include "shadowkit/scene/leafy_trees.h"
 #include "shadowkit/scene/mesh_builder.h"
 
 #include <algorithm>
@@ -14,6 +15,7 @@
 #include <epoxy/gl.h>
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
+#include <optional>
 #include <vector>
 
 using namespace shadowkit;
@@ -96,31 +98,72 @@ TEST_F(RendererTest, BoxOverPlaneShadowsThePlaneBelowItForEveryTechnique) {
     }
 }
 
-// An evaluation that wants the shaded frame too draws the eval pass inside it
-// (renderWithEvalBuffers): the same buffers as renderEvalBuffers() and the same picture as
+// An evaluation that wants the shaded frame too (renderWithEvalBuffers) draws the camera's view
+// once, the eval pass's buffers and the colour from one pass, or, with the eye-space blur, the
+// eval pass inside the frame: the same buffers as renderEvalBuffers() and the same picture as
 // render(), each on a renderer of its own that has drawn the same frames, to the bit — though
 // the shadow passes and the culling are drawn once, not twice. CHC++'s pre-pass, GPU culling,
-// the eye-space blur and virtual pages each take a case.
+// the eye-space blur, virtual pages and the aliasing overlay each take a case; so do the leafy
+// forest's alpha-tested textures with the cascades' colours and a lamp.
 TEST_F(RendererTest, AFrameWithItsEvalBuffersEqualsTheFrameAndTheEvalPassDrawnApart) {
     const scene::Scene forest = gl::testing::smallForest(400, 300, 32);
+    // The forest with a row of leafy trees (every card, alpha-tested in the leaf atlas) 15–45 m
+    // in front of the camera: textures in both passes.
+    const scene::Scene leafy = [&] {
+        scene::Scene s = forest;
+        const scene::ResolvedView view = gl::testing::standardView(forest, "perpendicular");
+        scene::LeafyTree tree = scene::makeLeafyTree(scene::TreeSpecies::Broadleaf, 1);
+        tree.leaves.authoredLods.clear();
+        tree.leaves.material = static_cast<int32_t>(s.materials.size());
+        s.materials.push_back(scene::leafMaterial(static_cast<int32_t>(s.textures.size())));
+        s.textures.push_back(scene::makeLeafAtlas());
+        tree.leaves.computeBounds();
+        std::vector<glm::mat4> placed;
+        const core::Vec3 wsForward =
+            glm::normalize(core::Vec3(view.camera.wsDirection.x, 0, view.camera.wsDirection.z));
+        const core::Vec3 wsSide = glm::cross(wsForward, core::Vec3(0, 1, 0));
+        for (int i = 0; i < 6; ++i) {
+            const core::Vec3 at = view.camera.wsEye + (15.0 + 6.0 * i) * wsForward + (i % 2 ? 4.0 : -4.0) * wsSide;
+            placed.push_back(
+                glm::scale(glm::translate(glm::mat4(1.0f), glm::vec3(at.x, forest.groundHeightAt(at.x, at.z), at.z)),
+                           glm::vec3(8.0f)));
+        }
+        s.batches.push_back({static_cast<uint32_t>(s.meshes.size()), std::move(placed), false});
+        s.meshes.push_back(std::move(tree.leaves));
+        return s;
+    }();
     constexpr int kWidth = 160, kHeight = 90;
-    auto together = gl::Renderer::create(forest), shaded = gl::Renderer::create(forest),
-         evaluated = gl::Renderer::create(forest);
-    ASSERT_TRUE(together && shaded && evaluated);
     struct Case {
         const char* name;
+        const scene::Scene* scene;
         core::Technique technique;
         gl::Culling culling;
-        int blurIterations;
+        int blurIterations = 0;
+        bool cascadeColors = false, aliasingOverlay = false, lamp = false;
     };
-    for (const Case& c : {Case{"tsm, chc", core::Technique::Tsm, gl::Culling::Occlusion, 0},
-                          Case{"lispsm, gpu culling, blurred", core::Technique::Lispsm, gl::Culling::Gpu, 2},
-                          Case{"virtual, frustum", core::Technique::Virtual, gl::Culling::Frustum, 0}}) {
-        scene::ResolvedView view = gl::testing::standardView(forest, "perpendicular");
+    // Three renderers per scene, each drawing every case of it in turn (the lamp, once set, stays).
+    struct Renderers {
+        const scene::Scene* scene = nullptr;
+        core::Result<std::unique_ptr<gl::Renderer>> together, shaded, evaluated;
+    };
+    std::optional<Renderers> renderers;
+    for (const Case& c :
+         {Case{"tsm, chc", &forest, core::Technique::Tsm, gl::Culling::Occlusion},
+          Case{"lispsm, gpu culling, blurred", &forest, core::Technique::Lispsm, gl::Culling::Gpu, 2},
+          Case{"virtual, frustum", &forest, core::Technique::Virtual, gl::Culling::Frustum},
+          Case{"tsm, aliasing overlay", &forest, core::Technique::Tsm, gl::Culling::Frustum, 0, false, true},
+          Case{"leafy, coloured cascades, a lamp", &leafy, core::Technique::Csm, gl::Culling::Occlusion, 0, true, false,
+               true}}) {
+        if (!renderers || renderers->scene != c.scene)
+            renderers.emplace(c.scene, gl::Renderer::create(*c.scene), gl::Renderer::create(*c.scene),
+                              gl::Renderer::create(*c.scene));
+        auto& [scene, together, shaded, evaluated] = *renderers;
+        ASSERT_TRUE(together && shaded && evaluated);
+        scene::ResolvedView view = gl::testing::standardView(*c.scene, "perpendicular");
         view.camera.aspect = double(kWidth) / kHeight;
         core::ShadowSetupInputs in{.camera = view.camera,
                                    .light = view.light,
-                                   .wsSceneBounds = forest.wsBounds(),
+                                   .wsSceneBounds = c.scene->wsBounds(),
                                    .technique = c.technique,
                                    .mapSize = 512};
         in.virtualMaps.imageHeight = kHeight;
@@ -128,11 +171,27 @@ TEST_F(RendererTest, AFrameWithItsEvalBuffersEqualsTheFrameAndTheEvalPassDrawnAp
         ASSERT_TRUE(setup) << c.name << ": " << setup.error();
         gl::RenderSettings settings = gl::testing::smallFrame(kWidth, kHeight, c.culling);
         settings.blur.iterations = c.blurIterations;
+        settings.cascadeColors = c.cascadeColors;
+        settings.aliasingOverlay = c.aliasingOverlay;
+        if (c.lamp) { // 4 m above the ground 20 m ahead of the camera
+            const core::Vec3 wsAhead = view.camera.wsEye + 20.0 * glm::normalize(view.camera.wsDirection);
+            const core::PointLight lamp{
+                .wsPosition = {wsAhead.x, c.scene->groundHeightAt(wsAhead.x, wsAhead.z) + 4.0, wsAhead.z},
+                .range = 30.0};
+            auto lighting = core::computeLocalLighting(
+                {.camera = view.camera, .wsSceneBounds = c.scene->wsBounds(), .mapSize = 128}, std::span(&lamp, 1), {});
+            ASSERT_TRUE(lighting) << lighting.error();
+            for (auto* r : {&*together, &*shaded, &*evaluated}) ASSERT_TRUE((*r)->setLocalLights(*lighting));
+        }
 
+        const int viewsBefore = (*together)->cameraViewsDrawn();
         const auto both = (*together)->renderWithEvalBuffers(view.camera, view.light, *setup, settings);
         ASSERT_TRUE(both) << c.name << ": " << both.error();
+        EXPECT_EQ((*together)->cameraViewsDrawn() - viewsBefore, c.blurIterations > 0 ? 2 : 1)
+            << c.name << ": the camera's view drawn once, or the eval pass and the main pass around the blur";
         const scene::Image image = (*together)->readColor();
-        ASSERT_TRUE((*shaded)->render(view.camera, view.light, *setup, settings)) << c.name;
+        const auto rendered = (*shaded)->render(view.camera, view.light, *setup, settings);
+        ASSERT_TRUE(rendered) << c.name << ": " << rendered.error();
         const auto buffers = (*evaluated)->renderEvalBuffers(view.camera, view.light, *setup, settings);
         ASSERT_TRUE(buffers) << c.name << ": " << buffers.error();
 
@@ -140,6 +199,12 @@ TEST_F(RendererTest, AFrameWithItsEvalBuffersEqualsTheFrameAndTheEvalPassDrawnAp
         EXPECT_GT(std::ranges::count_if(inFrame.surfaceId, [](uint32_t id) { return id != 0; }), kWidth * kHeight / 2)
             << c.name << ": the forest fills most of the frame";
         EXPECT_GT(std::ranges::count(inFrame.shadowTerm, 0.0f), 0) << c.name << ": some of it in shadow";
+        if (c.scene == &leafy) {
+            const auto leaves = std::ranges::count_if(
+                inFrame.surfaceId, [&](uint32_t id) { return id > forest.instanceCount(); }); // the trees' instances
+            EXPECT_GT(leaves, kWidth * kHeight / 20) << c.name << ": the leafy trees in the picture";
+            EXPECT_LT(leaves, kWidth * kHeight / 2) << c.name << ": with gaps between their leaves";
+        }
         EXPECT_EQ(inFrame.surfaceId, buffers->surfaceId) << c.name;
         EXPECT_EQ(inFrame.shadowTerm, buffers->shadowTerm) << c.name;
         EXPECT_EQ(inFrame.viewDepth, buffers->viewDepth) << c.name;
@@ -149,6 +214,8 @@ TEST_F(RendererTest, AFrameWithItsEvalBuffersEqualsTheFrameAndTheEvalPassDrawnAp
         EXPECT_EQ(inFrame.mapSize, buffers->mapSize) << c.name;
         EXPECT_EQ(image.rgba, (*shaded)->readColor().rgba) << c.name;
         EXPECT_EQ(both->first.shadow.triangles, (*together)->lastShadowPass().triangles) << c.name;
+        EXPECT_EQ(both->first.main.triangles, rendered->main.triangles) << c.name << ": the camera pass's work";
+        EXPECT_GT(both->first.main.triangles, 0) << c.name;
     }
 }
 

@@ -1,4 +1,6 @@
 // Evaluation pass: the per-pixel buffers the ray-traced comparison needs (core::RasterBuffers).
+// Its shaded variant (SK_EVAL_SHADED 1, the sun's test only) also writes the main pass's colour
+// (shade.glsl), so an evaluation that wants the picture draws the camera's view once.
 in vec3 wsPosition;
 in vec3 wsNormal;
 in vec3 vAlbedo;
@@ -11,6 +13,9 @@ layout(location = 2) out float outViewDepth;
 layout(location = 3) out vec4 outNormal;
 layout(location = 4) out vec2 outTexel;
 layout(location = 5) out vec4 outTexelFromPixel;
+#if SK_EVAL_SHADED
+layout(location = 6) out vec4 outColor;
+#endif
 
 void main() {
     const vec4 baseColor = skSurfaceBaseColor();
@@ -39,6 +44,14 @@ void main() {
         // Texel position in the map that serves this pixel.
         const vec4 t = shadowTexture(sunMapOf(wsPosition), wsPosition);
         texel = t.xy / t.w * mapTexels;
+#if SK_EVAL_SHADED
+        // main.frag's colour from the same test (without the blurred mask: a frame with the
+        // eye-space blur draws the two passes apart).
+        const float nDotL = max(dot(n, wsTowardsLight.xyz), 0.0);
+        const float lit = sunLights != 0 && nDotL > 0.0 ? outShadowTerm : 0.0;
+        outColor = aliasingOverlay != 0 ? aliasingOverlayColor(wsPosition)
+                                        : shadedColor(vAlbedo * baseColor.rgb, wsPosition, n, nDotL, lit);
+#endif
     }
     outTexel = texel;
     // Screen derivatives of the texel position (fine: per pixel, not per 2x2 quad).

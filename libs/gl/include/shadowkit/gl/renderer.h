@@ -50,9 +50,10 @@ public:
                                                         int localLight = -1);
 
     // render(), handing back too the eval pass's buffers of the same frame — drawn over its maps,
-    // lists and pre-pass, just before the main pass — what renderEvalBuffers() gives for these
-    // inputs without drawing the shadow passes and the culling a second time (an evaluation that
-    // wants the shaded frame too).
+    // lists and pre-pass, in the same pass as the picture (with the eye-space blur, the pass
+    // before it) — what renderEvalBuffers() gives for these inputs without drawing the shadow
+    // passes, the culling and the camera's view a second time (an evaluation that wants the
+    // shaded frame too).
     core::Result<std::pair<FrameStats, core::RasterBuffers>>
     renderWithEvalBuffers(const core::PerspectiveCamera& camera, const core::DirectionalLight& light,
                           const core::ShadowSetup& setup, const RenderSettings& settings);
@@ -101,6 +102,9 @@ public:
     // Camera depth pre-passes drawn since the renderer was created (work, for tests and benches):
     // a render() right after visibleDepth() for the same camera and culling reuses that one.
     int cameraPrePassesDrawn() const;
+    // Passes that drew the camera's view — main, eval, or both in one (renderWithEvalBuffers
+    // without the eye-space blur) — since the renderer was created (work, for tests and benches).
+    int cameraViewsDrawn() const;
 
     // Instances that moved since the last frame (scene::animate's list of global indices),
     // all of dynamic batches of the scene the renderer was created with: their transforms
