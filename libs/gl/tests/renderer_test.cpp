@@ -155,8 +155,8 @@ TEST_F(RendererTest, AFrameWithItsEvalBuffersEqualsTheFrameAndTheEvalPassDrawnAp
           Case{"leafy, coloured cascades, a lamp", &leafy, core::Technique::Csm, gl::Culling::Occlusion, 0, true, false,
                true}}) {
         if (!renderers || renderers->scene != c.scene)
-            renderers.emplace(c.scene, gl::Renderer::create(*c.scene), gl::Renderer::create(*c.scene),
-                              gl::Renderer::create(*c.scene));
+            renderers.emplace(Renderers{c.scene, gl::Renderer::create(*c.scene), gl::Renderer::create(*c.scene),
+                                        gl::Renderer::create(*c.scene)});
         auto& [scene, together, shaded, evaluated] = *renderers;
         ASSERT_TRUE(together && shaded && evaluated);
         scene::ResolvedView view = gl::testing::standardView(*c.scene, "perpendicular");
