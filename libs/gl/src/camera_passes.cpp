@@ -172,15 +172,7 @@ core::Result<DrawStats> CameraPasses::evalAndMainPass(const GpuScene& scene, con
     m_eval->clearColors();
     clearToSky(view);
     startDepth(m_color->depth, settings.width, settings.height, prepass, m_evalAndColor->id());
-    m_mainTimer.begin();
-    m_mainSamples.begin();
-    ++m_viewsDrawn;
-    const DrawStats draws = drawInView(scene, casters, m_programs.shadedEval(virtualMaps), view);
-    m_mainSamples.end();
-    m_mainTimer.end();
-    endDepth();
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    return draws;
+    return drawPicture(scene, casters, m_programs.shadedEval(virtualMaps), view);
 }
 
 int CameraPasses::blurPass(const BlurSettings& blur) {
@@ -218,10 +210,15 @@ core::Result<DrawStats> CameraPasses::mainPass(const GpuScene& scene, const Cast
     glViewport(0, 0, m_color->width, m_color->height);
     clearToSky(view);
     startDepth(m_color->depth, m_color->width, m_color->height, prepass, m_color->framebuffer.id());
+    return drawPicture(scene, casters, m_programs.main(view.setup.clipmap.has_value()), view);
+}
+
+DrawStats CameraPasses::drawPicture(const GpuScene& scene, const CasterLists& casters, const PassPrograms& programs,
+                                    const CameraView& view) {
     m_mainTimer.begin();
     m_mainSamples.begin();
     ++m_viewsDrawn;
-    const DrawStats draws = drawInView(scene, casters, m_programs.main(view.setup.clipmap.has_value()), view);
+    const DrawStats draws = drawInView(scene, casters, programs, view);
     m_mainSamples.end();
     m_mainTimer.end();
     endDepth();

@@ -91,6 +91,10 @@ private:
     core::Status evalTarget(int width, int height);
     core::Status colorTarget(int width, int height);
     void clearToSky(const CameraView& view) const; // the colour target's picture
+    // The camera's view drawn into the bound framebuffer over its started depth, timed and
+    // counted as the main pass (mainPass, evalAndMainPass); the depth state and framebuffer reset.
+    DrawStats drawPicture(const GpuScene& scene, const CasterLists& casters, const PassPrograms& programs,
+                          const CameraView& view);
 
     CameraPrograms m_programs;
     Program m_blurProgram;

@@ -197,31 +197,28 @@ core::Result<FrameStats> Renderer::Impl::frame(const SceneFrame& sceneFrame, con
     const CameraView view{cam, light, sun->lookupSetup(setup, settings), settings, *bias};
     const bool blurred = settings.blur.iterations > 0;
     core::Result<DrawStats> mainDraws = DrawStats{};
+    int maskIndex = -1;
     if (evalBuffers && !blurred) {
         // The evaluation's buffers and the picture from one draw of the camera's view.
         bindFrame(view, false, -1);
         mainDraws = camera->evalAndMainPass(*scene, lists->cameraCasters(), view, lists->cameraPrepass());
-        if (!mainDraws) return mainDraws.errorInfo();
-        *evalBuffers = camera->readEval();
-        evalBuffers->mapSize = setup.mapSize;
     } else {
         // With the eye-space blur, the shadow term comes from the blurred screen-space mask,
-        // which the eval pass draws; an evaluation reads that pass's buffers before the blur.
-        int maskIndex = -1;
+        // which the eval pass draws first.
         if (blurred) {
             bindFrame(view, false, -1);
             if (auto s = camera->evalPass(*scene, lists->cameraCasters(), view, lists->cameraPrepass()); !s)
                 return s.errorInfo();
-            if (evalBuffers) {
-                *evalBuffers = camera->readEval();
-                evalBuffers->mapSize = setup.mapSize;
-            }
             maskIndex = camera->blurPass(settings.blur);
-            if (evalBuffers) evalBuffers->shadowTerm = camera->readBlurred(maskIndex);
         }
         bindFrame(view, blurred, -1);
         mainDraws = camera->mainPass(*scene, lists->cameraCasters(), view, maskIndex, lists->cameraPrepass());
-        if (!mainDraws) return mainDraws.errorInfo();
+    }
+    if (!mainDraws) return mainDraws.errorInfo();
+    if (evalBuffers) { // the eval pass's buffers (neither the blur nor the main pass writes them)
+        *evalBuffers = camera->readEval();
+        evalBuffers->mapSize = setup.mapSize;
+        if (blurred) evalBuffers->shadowTerm = camera->readBlurred(maskIndex);
     }
     stats.frame = ++frames;
     gpuFigures(stats, settings, *mainDraws);
