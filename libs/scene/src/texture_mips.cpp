@@ -1,7 +1,10 @@
 #include "shadowkit/scene/texture_mips.h"
 
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <functional>
 
 #include <glm/glm.hpp>
@@ -16,11 +19,23 @@ struct FloatLevel {
     std::vector<glm::vec4> texels;
 };
 
+// A byte's value in [0, 1], b / 255 as a float division gives it, looked up.
+float unitOf(uint8_t byte) {
+    static const std::array<float, 256> table = [] {
+        std::array<float, 256> t{};
+        for (size_t b = 0; b < t.size(); ++b) t[b] = float(b) / 255.0f;
+        return t;
+    }();
+    return table[byte];
+}
+
 FloatLevel toFloat(const Image& image) {
-    FloatLevel level{image.width, image.height, std::vector<glm::vec4>(size_t(image.width) * size_t(image.height))};
-    for (size_t i = 0; i < level.texels.size(); ++i) {
+    FloatLevel level{image.width, image.height, {}};
+    const size_t texels = size_t(image.width) * size_t(image.height);
+    level.texels.reserve(texels);
+    for (size_t i = 0; i < texels; ++i) {
         const uint8_t* p = image.rgba.data() + 4 * i;
-        level.texels[i] = glm::vec4(p[0], p[1], p[2], p[3]) / 255.0f;
+        level.texels.emplace_back(unitOf(p[0]), unitOf(p[1]), unitOf(p[2]), unitOf(p[3]));
     }
     return level;
 }
@@ -53,37 +68,69 @@ Image toImage(const FloatLevel& level, float alphaScale) {
     return image;
 }
 
-// The alpha a bilinear lookup reads at 2 × 2 points inside every texel of a w × h level (texel
-// units x + ¼ and x + ¾, centres at x + ½), each from its four nearest texels with clamped
-// edges; `alpha(texel)` gives a texel's alpha by its row-major index.
-template <class Alpha>
-std::vector<float> bilinearSamples(int w, int h, Alpha alpha) {
-    auto at = [&](int x, int y) {
-        return alpha(size_t(std::clamp(y, 0, h - 1)) * size_t(w) + size_t(std::clamp(x, 0, w - 1)));
+// Every alpha a bilinear lookup reads at 2 × 2 points inside a texel of a w × h level (texel
+// units x + ¼ and x + ¾, centres at x + ½), each from its four nearest texels with clamped edges,
+// passed to `visit(float)`; `alpha(texel)` gives a texel's alpha by its row-major index. The
+// order is not the texels' (a count and a selection read them). Bilinear interpolation is a lerp
+// along each of two rows, then one between them, and a texel row's lerps serve the sample rows on
+// either side of it: each is computed once, kept for three rows, with the same operations in the
+// same order as the four-tap form, so the same floats.
+template <class Alpha, class Visit>
+void forEachBilinearSample(int w, int h, Alpha alpha, Visit visit) {
+    // Row r's lerps at x + ¼ (¼ of texel x − 1, ¾ of x) and x + ¾ (¾ of x, ¼ of x + 1), r clamped.
+    // The row is read once into `padded`, its first and last texels repeated beyond its ends.
+    std::vector<float> padded(size_t(w) + 2);
+    auto lerpRow = [&](int r, std::vector<float>& out) {
+        const size_t row = size_t(std::clamp(r, 0, h - 1)) * size_t(w);
+        for (size_t x = 0; x < size_t(w); ++x) padded[x + 1] = alpha(row + x);
+        padded.front() = padded[1], padded.back() = padded[size_t(w)];
+        for (size_t x = 0; x < size_t(w); ++x) {
+            out[2 * x] = 0.25f * padded[x] + 0.75f * padded[x + 1];
+            out[2 * x + 1] = 0.75f * padded[x + 1] + 0.25f * padded[x + 2];
+        }
     };
-    std::vector<float> samples;
-    samples.reserve(size_t(w) * size_t(h) * 4);
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x)
-            for (int sy = 0; sy < 2; ++sy)
-                for (int sx = 0; sx < 2; ++sx) {
-                    // The texel below-left of the sample (sample − ½) and the fraction past it: ¾ or ¼.
-                    const int x0 = x - 1 + sx, y0 = y - 1 + sy;
-                    const float fx = sx == 0 ? 0.75f : 0.25f, fy = sy == 0 ? 0.75f : 0.25f;
-                    samples.push_back((1 - fy) * ((1 - fx) * at(x0, y0) + fx * at(x0 + 1, y0)) +
-                                      fy * ((1 - fx) * at(x0, y0 + 1) + fx * at(x0 + 1, y0 + 1)));
-                }
-    return samples;
+    std::vector<float> above(2 * size_t(w)), here(2 * size_t(w)), below(2 * size_t(w));
+    lerpRow(-1, above), lerpRow(0, here);
+    for (int y = 0; y < h; ++y) {
+        lerpRow(y + 1, below);
+        // The sample row at y + ¼ (¼ of the row above, ¾ of this one), then y + ¾.
+        for (size_t i = 0; i < here.size(); ++i) visit(0.25f * above[i] + 0.75f * here[i]);
+        for (size_t i = 0; i < here.size(); ++i) visit(0.75f * here[i] + 0.25f * below[i]);
+        std::swap(above, here), std::swap(here, below);
+    }
+}
+
+// The k-th largest (1 ≤ k ≤ 4 w h) of the samples forEachBilinearSample gives, exactly, without
+// keeping them all (a level's are 16 bytes a texel): alphas are never negative, and non-negative
+// floats order as their bit patterns do, so a count of the samples by their top 16 bits finds the
+// bin that holds the k-th, and a second pass keeps that bin's samples alone to select from.
+template <class Alpha>
+float kthLargestSample(int w, int h, Alpha alpha, size_t k) {
+    auto bin = [](float a) { return std::bit_cast<uint32_t>(std::max(a, 0.0f)) >> 16; };
+    std::vector<size_t> count(size_t{1} << 16, 0);
+    forEachBilinearSample(w, h, alpha, [&](float a) { ++count[bin(a)]; });
+    size_t above = 0; // samples in the bins above the one searched
+    uint32_t holding = 0xffff;
+    while (above + count[holding] < k) above += count[holding--];
+    std::vector<float> inBin;
+    inBin.reserve(count[holding]);
+    forEachBilinearSample(w, h, alpha, [&](float a) {
+        if (bin(a) == holding) inBin.push_back(a);
+    });
+    const auto kth = inBin.begin() + std::ptrdiff_t(k - above - 1);
+    std::nth_element(inBin.begin(), kth, inBin.end(), std::greater<float>());
+    return *kth;
 }
 
 } // namespace
 
 double sampledAlphaCoverage(const Image& image, float cutoff) {
     if (image.width <= 0 || image.height <= 0) return 0.0;
-    const std::vector<float> samples = bilinearSamples(
-        image.width, image.height, [&](size_t texel) { return float(image.rgba[4 * texel + 3]) / 255.0f; });
-    const auto covered = std::count_if(samples.begin(), samples.end(), [&](float a) { return a >= cutoff; });
-    return double(covered) / double(samples.size());
+    size_t covered = 0;
+    forEachBilinearSample(
+        image.width, image.height, [&](size_t texel) { return unitOf(image.rgba[4 * texel + 3]); },
+        [&](float a) { covered += a >= cutoff; });
+    return double(covered) / (4.0 * double(image.width) * double(image.height));
 }
 
 double alphaCoverage(const Image& image, float cutoff) {
@@ -109,15 +156,14 @@ std::vector<Image> buildMipChain(const Image& level0, std::optional<float> alpha
             // not a search). Half a byte above it, so rounding to bytes does not undo it. Texels that
             // clamp at alpha 1 can pull a sample next to them back under the cutoff: what that costs
             // is bounded by TextureMipsTest (the bytes' sampled coverage, within 3 points).
-            std::vector<float> samples =
-                bilinearSamples(level.width, level.height, [&](size_t texel) { return level.texels[texel].a; });
-            const auto covered = static_cast<size_t>(std::ceil(target * double(samples.size()) - 1e-9));
+            const double samples = 4.0 * double(level.width) * double(level.height);
+            const auto covered = static_cast<size_t>(std::ceil(target * samples - 1e-9));
             if (covered == 0) {
                 scale = 0.0f;
             } else {
-                const auto kth = samples.begin() + std::ptrdiff_t(covered - 1);
-                std::nth_element(samples.begin(), kth, samples.end(), std::greater<float>());
-                scale = *kth > 0.0f ? std::min((*alphaCutoff + 0.5f / 255.0f) / *kth, 256.0f) : 256.0f;
+                const float kth = kthLargestSample(
+                    level.width, level.height, [&](size_t texel) { return level.texels[texel].a; }, covered);
+                scale = kth > 0.0f ? std::min((*alphaCutoff + 0.5f / 255.0f) / kth, 256.0f) : 256.0f;
             }
         }
         chain.push_back(toImage(level, scale));
