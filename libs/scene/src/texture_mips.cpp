@@ -106,7 +106,8 @@ void forEachBilinearSample(int w, int h, Alpha alpha, Visit visit) {
 // bin that holds the k-th, and a second pass keeps that bin's samples alone to select from.
 template <class Alpha>
 float kthLargestSample(int w, int h, Alpha alpha, size_t k) {
-    auto bin = [](float a) { return std::bit_cast<uint32_t>(std::max(a, 0.0f)) >> 16; };
+    // Zero (and, were there any, negative values) in the lowest bin, where the selection orders them.
+    auto bin = [](float a) { return a > 0.0f ? std::bit_cast<uint32_t>(a) >> 16 : 0u; };
     std::vector<size_t> count(size_t{1} << 16, 0);
     forEachBilinearSample(w, h, alpha, [&](float a) { ++count[bin(a)]; });
     size_t above = 0; // samples in the bins above the one searched
