@@ -34,7 +34,9 @@ scene::Image randomImage(int w, int h, uint32_t seed, bool sparse) {
 struct Alphas {
     int w, h;
     std::vector<float> a;
-    float at(int x, int y) const { return a[size_t(std::clamp(y, 0, h - 1)) * size_t(w) + size_t(std::clamp(x, 0, w - 1))]; }
+    float at(int x, int y) const {
+        return a[size_t(std::clamp(y, 0, h - 1)) * size_t(w) + size_t(std::clamp(x, 0, w - 1))];
+    }
 };
 
 // GL's bilinear lookup at texel coordinates (u, v), texel centres at k + ½: the texel below-left of
@@ -78,7 +80,8 @@ TEST(TextureMipsTest, SampledCoverageCountsTheFourBilinearLookupsOfEveryTexel) {
             ASSERT_EQ(samples.size(), size_t(4 * w * h));
             for (const int step : {1, 700, 2040, 3001, 4079}) {
                 const float cutoff = (float(step) + 0.5f) / (255.0f * 16.0f);
-                const auto covered = std::count_if(samples.begin(), samples.end(), [&](float s) { return s >= cutoff; });
+                const auto covered =
+                    std::count_if(samples.begin(), samples.end(), [&](float s) { return s >= cutoff; });
                 EXPECT_EQ(scene::sampledAlphaCoverage(image, cutoff), double(covered) / double(samples.size()))
                     << w << " × " << h << (sparse ? " sparse" : "") << ", cutoff " << cutoff;
             }
@@ -97,9 +100,8 @@ TEST(TextureMipsTest, EveryLevelIsTheBoxAverageScaledByItsKthLargestSample) {
                 const scene::Image image = randomImage(w, h, seed++, sparse);
                 const std::vector<scene::Image> chain =
                     scene::buildMipChain(image, cutoff > 0.0f ? std::optional(cutoff) : std::nullopt);
-                const std::string what =
-                    std::to_string(w) + " × " + std::to_string(h) + (sparse ? " sparse" : "") + ", cutoff " +
-                    std::to_string(cutoff);
+                const std::string what = std::to_string(w) + " × " + std::to_string(h) + (sparse ? " sparse" : "") +
+                                         ", cutoff " + std::to_string(cutoff);
                 ASSERT_EQ(chain.front().rgba, image.rgba) << what;
                 const double target = cutoff > 0.0f ? scene::sampledAlphaCoverage(image, cutoff) : 0.0;
                 // The levels in float, as the chain keeps them between levels.
@@ -128,9 +130,9 @@ TEST(TextureMipsTest, EveryLevelIsTheBoxAverageScaledByItsKthLargestSample) {
                         std::vector<float> samples = everySample(alphas);
                         std::sort(samples.begin(), samples.end(), std::greater<float>());
                         const auto k = size_t(std::ceil(target * double(samples.size()) - 1e-9));
-                        scale = k == 0                    ? 0.0f
+                        scale = k == 0                  ? 0.0f
                                 : samples[k - 1] > 0.0f ? std::min((cutoff + 0.5f / 255.0f) / samples[k - 1], 256.0f)
-                                                         : 256.0f;
+                                                        : 256.0f;
                     }
                     ASSERT_EQ(chain[l].width, lw) << what;
                     ASSERT_EQ(chain[l].height, lh) << what;
