@@ -1,3 +1,4 @@
+// Coverage-keeping mip chains (texture_mips.h; Castaño 2010, coverage counted as bilinear lookups).
 #include "shadowkit/scene/texture_mips.h"
 
 #include <algorithm>
