@@ -12,6 +12,9 @@
 #include <optional>
 #include <utility>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 namespace shadowkit::scene {
 namespace {
 
@@ -309,18 +312,15 @@ BillboardCloud bakeBillboardCloud(std::span<const CloudSource> sources, Image& t
             p[0] = 50, p[1] = 100, p[2] = 30, p[3] = 0;
         }
 
-    // Bake: 16 samples a texel, each covered once, by the first item that covers it.
-    size_t opaque = 0, interior = 0;
+    // Bake: 16 samples a texel, each covered once, by the first item that covers it. A plane's
+    // texels are its own (packed apart, border included), and everything a plane reads is shared
+    // and read-only, so the planes bake in parallel, each to the same bytes as alone.
     const float alphaCutoff255 = options.alphaCutoff * 255.0f;
-    std::map<const CloudSource*, std::vector<uint8_t>> keptOf; // per alpha-tested source, made as first met
-    auto keptFor = [&](const CloudSource& source) -> const std::vector<uint8_t>& {
-        static const std::vector<uint8_t> none;
-        if (!source.texture) return none;
-        auto [at, made] = keptOf.try_emplace(&source);
-        if (made) at->second = texelsKept(source, alphaCutoff255);
-        return at->second;
-    };
-    for (const Plane& plane : planes) {
+    std::map<const CloudSource*, std::vector<uint8_t>> keptOf; // per alpha-tested source
+    for (const CloudSource& source : sources)
+        if (source.texture) keptOf.emplace(&source, texelsKept(source, alphaCutoff255));
+    // The texels of `plane` it keeps (its alpha 255).
+    auto bakePlane = [&](const Plane& plane) {
         const int w = plane.width, h = plane.height;
         std::vector<uint16_t> mask(size_t(w) * size_t(h), 0);
         std::vector<glm::vec3> colour(size_t(w) * size_t(h), glm::vec3(0.0f));
@@ -336,7 +336,7 @@ BillboardCloud bakeBillboardCloud(std::span<const CloudSource> sources, Image& t
                 const CloudSource& source = *t.source;
                 const glm::vec2 uv0 = t.vertex(0).uv, uv1 = t.vertex(1).uv, uv2 = t.vertex(2).uv;
                 const glm::vec3 albedo = t.vertex(0).albedo;
-                const std::vector<uint8_t>& kept = keptFor(source);
+                const uint8_t* kept = source.texture ? keptOf.at(&source).data() : nullptr;
                 const glm::vec2 boxLo = glm::min(q[0], glm::min(q[1], q[2])),
                                 boxHi = glm::max(q[0], glm::max(q[1], q[2]));
                 for (int ty = std::max(0, int(boxLo.y)); ty <= std::min(h - 1, int(boxHi.y)); ++ty) {
@@ -372,11 +372,11 @@ BillboardCloud bakeBillboardCloud(std::span<const CloudSource> sources, Image& t
                     }
                 }
             }
+        size_t opaque = 0;
         for (int ty = kBorderTexels; ty < h - kBorderTexels; ++ty)
             for (int tx = kBorderTexels; tx < w - kBorderTexels; ++tx) {
                 const size_t k = size_t(ty) * size_t(w) + size_t(tx);
                 const int covered = std::popcount(mask[k]);
-                ++interior;
                 if (covered == 0) continue;
                 uint8_t* out = target.pixel(plane.x + tx, plane.y + ty);
                 const glm::vec3 mean = glm::clamp(colour[k] / float(covered), 0.0f, 255.0f);
@@ -385,6 +385,19 @@ BillboardCloud bakeBillboardCloud(std::span<const CloudSource> sources, Image& t
                 out[3] = keep ? 255 : 0;
                 opaque += keep ? 1 : 0;
             }
+        return opaque;
+    };
+    std::vector<size_t> opaqueOf(planes.size());
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, planes.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
+        for (size_t p = range.begin(); p != range.end(); ++p) opaqueOf[p] = bakePlane(planes[p]);
+    });
+
+    size_t opaque = 0, interior = 0;
+    for (size_t p = 0; p < planes.size(); ++p) {
+        const Plane& plane = planes[p];
+        const int w = plane.width, h = plane.height;
+        opaque += opaqueOf[p];
+        interior += size_t(std::max(0, w - 2 * kBorderTexels)) * size_t(std::max(0, h - 2 * kBorderTexels));
         // The plane's quad spans its interior texels exactly.
         const glm::vec3 n = axes[size_t(plane.orientation)], u = tangents[size_t(plane.orientation)],
                         v = bitangents[size_t(plane.orientation)];

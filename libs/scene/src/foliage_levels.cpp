@@ -3,21 +3,28 @@
 #include "shadowkit/core/conventions.h"
 #include "shadowkit/scene/mesh_builder.h"
 
+#include <tbb/parallel_for.h>
+
 namespace shadowkit::scene {
 
 std::vector<BakedCloud> bakeCloudChain(std::span<const CloudSource> sources, float alphaCutoff, int finestSlabs) {
     SK_ASSERT(finestSlabs >= 4 && finestSlabs <= 64, "bakeCloudChain(): finestSlabs out of [4, 64]");
     // Finer to coarser down to kCoarsestSlabs: each halves the planes (the slabs' spacing
     // doubles, so the error grows 1.3–1.9×: the turn's share does not) and gets a quarter of the
-    // texels.
-    std::vector<BakedCloud> chain;
-    for (int slabs = finestSlabs; slabs >= kCoarsestSlabs; slabs /= 2) {
-        const int width = 64 * slabs, height = 32 * slabs;
-        BakedCloud level;
+    // texels. The levels are baked apart (in parallel, as their planes are), then kept in order.
+    std::vector<int> slabs;
+    for (int n = finestSlabs; n >= kCoarsestSlabs; n /= 2) slabs.push_back(n);
+    std::vector<BakedCloud> levels(slabs.size());
+    tbb::parallel_for(size_t{0}, levels.size(), [&](size_t i) {
+        BakedCloud& level = levels[i];
+        const int width = 64 * slabs[i], height = 32 * slabs[i];
         level.texture.image = Image(width, height);
         level.texture.wrapS = level.texture.wrapT = TextureWrap::ClampToEdge;
         level.cloud = bakeBillboardCloud(sources, level.texture.image, {0, 0, width, height},
-                                         {.slabsPerOrientation = slabs, .alphaCutoff = alphaCutoff});
+                                         {.slabsPerOrientation = slabs[i], .alphaCutoff = alphaCutoff});
+    });
+    std::vector<BakedCloud> chain;
+    for (BakedCloud& level : levels) {
         if (level.cloud.planes == 0) break; // nothing to cover
         if (!chain.empty() && !(level.cloud.objectError > chain.back().cloud.objectError)) continue;
         chain.push_back(std::move(level));

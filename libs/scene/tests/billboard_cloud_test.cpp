@@ -6,6 +6,7 @@
 #include "shadowkit/scene/texture_mips.h"
 
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include <algorithm>
 #include <cmath>
@@ -227,4 +228,63 @@ TEST(BillboardCloudTest, ACardInAPlaneOfTheCloudKeepsItsCoverageAndDoesNotMove) 
     cell /= 128.0 * 128.0;
     EXPECT_NEAR(cloud.coverage, cell, 0.03);
     EXPECT_NEAR(cloud.vertices[0].position.z, 0.0f, 1e-5f);
+}
+
+// The planes bake in parallel, each into its own rectangle of the texture: a cloud baked on one
+// thread is the cloud baked on every core, byte for byte. A plane writing past its rectangle,
+// scratch shared between planes or a count summed without care would make the two differ (or
+// differ from run to run). The finest cloud of each species, its wood included (the untextured
+// path), at the size the forest bakes it.
+TEST(BillboardCloudTest, BakedOnOneThreadOrOnEveryCoreACloudIsTheSameBytes) {
+    const Texture atlas = makeLeafAtlas();
+    for (int k = 0; k < kTreeSpeciesCount; ++k) {
+        const LeafyTree tree = makeLeafyTree(static_cast<TreeSpecies>(k), 1);
+        const CloudSource sources[] = {{&tree.leaves, tree.leaves.indices, &atlas.image},
+                                       {&tree.wood, tree.wood.indices, nullptr}};
+        struct Baked {
+            Image image{2048, 1024};
+            BillboardCloud cloud;
+        };
+        auto bake = [&] {
+            Baked baked;
+            baked.cloud = bakeBillboardCloud(sources, baked.image, {0, 0, 2048, 1024},
+                                             {.slabsPerOrientation = 32, .alphaCutoff = 0.5f});
+            return baked;
+        };
+        const Baked serial = [&] {
+            const tbb::global_control oneThread(tbb::global_control::max_allowed_parallelism, 1);
+            return bake();
+        }();
+        const Baked parallel = bake();
+        ASSERT_GT(serial.cloud.planes, 50) << k << ": enough planes to share between threads";
+        EXPECT_EQ(parallel.cloud.planes, serial.cloud.planes) << k;
+        EXPECT_EQ(parallel.cloud.coverage, serial.cloud.coverage) << k;
+        EXPECT_EQ(parallel.cloud.objectError, serial.cloud.objectError) << k;
+        EXPECT_EQ(parallel.cloud.indices, serial.cloud.indices) << k;
+        ASSERT_EQ(parallel.cloud.vertices.size(), serial.cloud.vertices.size()) << k;
+        for (size_t v = 0; v < serial.cloud.vertices.size(); ++v) {
+            EXPECT_EQ(parallel.cloud.vertices[v].position, serial.cloud.vertices[v].position) << k << ", vertex " << v;
+            EXPECT_EQ(parallel.cloud.vertices[v].uv, serial.cloud.vertices[v].uv) << k << ", vertex " << v;
+        }
+        EXPECT_TRUE(parallel.image.rgba == serial.image.rgba) << k << ": the baked texels differ";
+        // What makes the planes safe to bake at once: each writes inside its own quad's texels
+        // (from its corners' uvs), every texel outside all of them keeps the region's clear value.
+        std::vector<uint8_t> inside(size_t(2048) * 1024, 0);
+        for (size_t v = 0; v < parallel.cloud.vertices.size(); v += 4) {
+            const glm::vec2 lo = parallel.cloud.vertices[v].uv * glm::vec2(2048, 1024);
+            const glm::vec2 hi = parallel.cloud.vertices[v + 3].uv * glm::vec2(2048, 1024);
+            for (int y = int(std::lround(lo.y)); y < int(std::lround(hi.y)); ++y)
+                for (int x = int(std::lround(lo.x)); x < int(std::lround(hi.x)); ++x)
+                    inside[size_t(y) * 2048 + size_t(x)] = 1;
+        }
+        size_t written = 0;
+        for (int y = 0; y < 1024; ++y)
+            for (int x = 0; x < 2048; ++x) {
+                const uint8_t* texel = parallel.image.pixel(x, y);
+                if (!inside[size_t(y) * 2048 + size_t(x)] &&
+                    (texel[0] != 50 || texel[1] != 100 || texel[2] != 30 || texel[3] != 0))
+                    ++written;
+            }
+        EXPECT_EQ(written, 0u) << k << ": texels written outside every plane's quad";
+    }
 }
