@@ -68,19 +68,19 @@ GLenum glWrap(scene::TextureWrap wrap) {
 // the nearest level, bilinear within it, whatever the file's sampler asks: blending two levels
 // (trilinear) mixes two patterns each scaled to the right coverage into one that is not — a
 // sparse canopy thins again — and costs llvmpipe a second bilinear lookup in every pass.
-Texture uploadTexture(const scene::Texture& texture, std::optional<float> alphaCutoff) {
-    const std::vector<scene::Image> chain =
-        texture.mipmaps ? scene::buildMipChain(texture.image, alphaCutoff) : std::vector<scene::Image>{texture.image};
+// `texture`, its image as level 0 and `below` as the levels under it (none without mipmaps).
+Texture uploadTexture(const scene::Texture& texture, const std::vector<scene::Image>& below) {
     GLuint id = 0;
     glCreateTextures(GL_TEXTURE_2D, 1, &id);
     Texture gl(id);
-    glTextureStorage2D(id, static_cast<GLsizei>(chain.size()), GL_SRGB8_ALPHA8, texture.image.width,
+    glTextureStorage2D(id, static_cast<GLsizei>(1 + below.size()), GL_SRGB8_ALPHA8, texture.image.width,
                        texture.image.height);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    for (size_t level = 0; level < chain.size(); ++level) {
-        glTextureSubImage2D(id, static_cast<GLint>(level), 0, 0, chain[level].width, chain[level].height, GL_RGBA,
-                            GL_UNSIGNED_BYTE, chain[level].rgba.data());
-        detail::countUpload(static_cast<int64_t>(chain[level].rgba.size()));
+    for (size_t level = 0; level <= below.size(); ++level) {
+        const scene::Image& image = level == 0 ? texture.image : below[level - 1];
+        glTextureSubImage2D(id, static_cast<GLint>(level), 0, 0, image.width, image.height, GL_RGBA, GL_UNSIGNED_BYTE,
+                            image.rgba.data());
+        detail::countUpload(static_cast<int64_t>(image.rgba.size()));
     }
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
     glTextureParameteri(id, GL_TEXTURE_WRAP_S, static_cast<GLint>(glWrap(texture.wrapS)));
@@ -103,6 +103,7 @@ void setLightFacingFront(const core::Mat4& clipFromWorld, const core::Vec3& wsTo
 
 GpuScene::GpuScene(const scene::Scene& scene, std::span<const scene::MeshLods> lods)
     : m_levelsInOneDraw(vertexStagesReadDrawParameters()) {
+    std::vector<scene::MipChainRequest> chains;
     for (size_t t = 0; t < scene.textures.size(); ++t) {
         std::optional<float> cutoff;
         for (const scene::Material& m : scene.materials)
@@ -118,13 +119,16 @@ GpuScene::GpuScene(const scene::Scene& scene, std::span<const scene::MeshLods> l
                 for (const scene::LodLevel& level : *chain)
                     if (level.texture == static_cast<int32_t>(t)) cutoff = material->alphaCutoff;
         }
-        m_textures.push_back(uploadTexture(scene.textures[t], cutoff));
+        chains.push_back({&scene.textures[t].image, cutoff, scene.textures[t].mipmaps});
     }
+    scene::forEachMipChain(chains, [&](size_t t, const std::vector<scene::Image>& below) {
+        m_textures.push_back(uploadTexture(scene.textures[t], below));
+    });
     scene::Texture white;
     white.image = scene::Image(1, 1);
     white.image.rgba = {255, 255, 255, 255};
     white.mipmaps = false;
-    m_white = uploadTexture(white, std::nullopt);
+    m_white = uploadTexture(white, {});
     for (size_t m = 0; m < scene.meshes.size(); ++m) {
         const scene::Mesh& mesh = scene.meshes[m];
         const scene::MeshLods& lod = lods[m];

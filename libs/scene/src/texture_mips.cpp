@@ -7,8 +7,10 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <iterator>
 
 #include <glm/glm.hpp>
+#include <tbb/parallel_for.h>
 
 namespace shadowkit::scene {
 
@@ -30,30 +32,31 @@ float unitOf(uint8_t byte) {
     return table[byte];
 }
 
-FloatLevel toFloat(const Image& image) {
-    FloatLevel level{image.width, image.height, {}};
-    const size_t texels = size_t(image.width) * size_t(image.height);
-    level.texels.reserve(texels);
-    for (size_t i = 0; i < texels; ++i) {
-        const uint8_t* p = image.rgba.data() + 4 * i;
-        level.texels.emplace_back(unitOf(p[0]), unitOf(p[1]), unitOf(p[2]), unitOf(p[3]));
-    }
-    return level;
-}
-
-// 2×2 box average; on an odd side the last row or column is read twice (clamped).
-FloatLevel halve(const FloatLevel& from) {
-    FloatLevel to{std::max(1, from.width / 2), std::max(1, from.height / 2), {}};
+// 2×2 box average of a w × h level whose texel (x, y) is `at(x, y)`; on an odd side the last row
+// or column is read twice (clamped).
+template <class At>
+FloatLevel halve(int w, int h, At at) {
+    FloatLevel to{std::max(1, w / 2), std::max(1, h / 2), {}};
     to.texels.resize(size_t(to.width) * size_t(to.height));
-    auto at = [&](int x, int y) {
-        return from
-            .texels[size_t(std::min(y, from.height - 1)) * size_t(from.width) + size_t(std::min(x, from.width - 1))];
-    };
+    auto clamped = [&](int x, int y) { return at(std::min(x, w - 1), std::min(y, h - 1)); };
     for (int y = 0; y < to.height; ++y)
         for (int x = 0; x < to.width; ++x)
             to.texels[size_t(y) * size_t(to.width) + size_t(x)] =
-                0.25f * (at(2 * x, 2 * y) + at(2 * x + 1, 2 * y) + at(2 * x, 2 * y + 1) + at(2 * x + 1, 2 * y + 1));
+                0.25f * (clamped(2 * x, 2 * y) + clamped(2 * x + 1, 2 * y) + clamped(2 * x, 2 * y + 1) +
+                         clamped(2 * x + 1, 2 * y + 1));
     return to;
+}
+FloatLevel halve(const FloatLevel& from) {
+    return halve(from.width, from.height,
+                 [&](int x, int y) { return from.texels[size_t(y) * size_t(from.width) + size_t(x)]; });
+}
+// Level 1 straight from level 0's bytes, each read as the float it would have been kept as (a
+// float copy of a 2048 × 1024 level 0 is 32 MiB, fresh pages for every chain).
+FloatLevel halve(const Image& from) {
+    return halve(from.width, from.height, [&](int x, int y) {
+        const uint8_t* p = from.pixel(x, y);
+        return glm::vec4(unitOf(p[0]), unitOf(p[1]), unitOf(p[2]), unitOf(p[3]));
+    });
 }
 
 uint8_t toByte(float v) { return static_cast<uint8_t>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)); }
@@ -146,11 +149,16 @@ double alphaCoverage(const Image& image, float cutoff) {
 
 std::vector<Image> buildMipChain(const Image& level0, std::optional<float> alphaCutoff) {
     std::vector<Image> chain{level0};
-    if (level0.width <= 0 || level0.height <= 0) return chain;
+    std::vector<Image> below = buildMipLevelsBelow(level0, alphaCutoff);
+    chain.insert(chain.end(), std::make_move_iterator(below.begin()), std::make_move_iterator(below.end()));
+    return chain;
+}
+
+std::vector<Image> buildMipLevelsBelow(const Image& level0, std::optional<float> alphaCutoff) {
+    std::vector<Image> chain;
+    if (level0.width <= 0 || level0.height <= 0 || (level0.width == 1 && level0.height == 1)) return chain;
     const double target = alphaCutoff ? sampledAlphaCoverage(level0, *alphaCutoff) : 0.0;
-    FloatLevel level = toFloat(level0);
-    while (level.width > 1 || level.height > 1) {
-        level = halve(level);
+    for (FloatLevel level = halve(level0);; level = halve(level)) {
         float scale = 1.0f;
         if (alphaCutoff && *alphaCutoff > 0.0f) {
             // Interpolation is linear, so scaling alpha scales every sample: the scale that covers
@@ -169,8 +177,27 @@ std::vector<Image> buildMipChain(const Image& level0, std::optional<float> alpha
             }
         }
         chain.push_back(toImage(level, scale));
+        if (level.width == 1 && level.height == 1) return chain;
     }
-    return chain;
+}
+
+void forEachMipChain(std::span<const MipChainRequest> requests,
+                     const std::function<void(size_t, const std::vector<Image>&)>& use, size_t batchBytes) {
+    std::vector<std::vector<Image>> chains;
+    for (size_t first = 0; first < requests.size();) {
+        size_t end = first, bytes = 0;
+        do bytes += requests[end++].level0->rgba.size();
+        while (end < requests.size() && bytes + requests[end].level0->rgba.size() <= batchBytes);
+        // Each chain depends on its own level 0 alone: built in any order, the same bytes. Level 0
+        // itself is not copied: the caller has it.
+        chains.assign(end - first, {});
+        tbb::parallel_for(first, end, [&](size_t i) {
+            const MipChainRequest& request = requests[i];
+            if (request.mipmaps) chains[i - first] = buildMipLevelsBelow(*request.level0, request.alphaCutoff);
+        });
+        for (size_t i = first; i < end; ++i) use(i, chains[i - first]);
+        first = end;
+    }
 }
 
 } // namespace shadowkit::scene

@@ -10,8 +10,10 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <numeric>
 #include <random>
 #include <string>
+#include <thread>
 
 using namespace shadowkit;
 
@@ -144,4 +146,39 @@ TEST(TextureMipsTest, EveryLevelIsTheBoxAverageScaledByItsKthLargestSample) {
                 }
                 EXPECT_EQ(lw * lh, 1) << what << ": the chain goes down to 1 × 1";
             }
+}
+
+// A renderer's textures, their chains built on every core: each handed over once, in the
+// requests' order, on the calling thread, as the levels below level 0 of the chain built alone —
+// whatever the batch size (every request in one batch, one request per batch, batches that end
+// mid-list) — and a texture without mipmaps with no level below.
+TEST(TextureMipsTest, ChainsBuiltTogetherComeInOrderEachAsBuiltAlone) {
+    std::vector<scene::Image> images;
+    std::vector<scene::MipChainRequest> requests;
+    for (const auto& [w, h] : kSizes)
+        images.push_back(randomImage(w, h, uint32_t(20 + images.size()), images.size() % 2 == 0));
+    for (size_t i = 0; i < images.size(); ++i)
+        requests.push_back({&images[i], i % 3 == 1 ? std::nullopt : std::optional(0.5f), i % 4 != 2});
+    std::vector<std::vector<scene::Image>> alone;
+    for (const scene::MipChainRequest& r : requests)
+        alone.push_back(r.mipmaps ? scene::buildMipChain(*r.level0, r.alphaCutoff) : std::vector{*r.level0});
+    const std::thread::id caller = std::this_thread::get_id();
+    const size_t largest = 4 * 101 * 3;
+    for (const size_t batchBytes : {scene::kMipBatchBytes, size_t{1}, largest, 2 * largest + 4}) {
+        std::vector<size_t> order;
+        scene::forEachMipChain(
+            requests,
+            [&](size_t i, const std::vector<scene::Image>& below) {
+                const std::string where = "batch " + std::to_string(batchBytes) + ", chain " + std::to_string(i);
+                EXPECT_EQ(std::this_thread::get_id(), caller) << where;
+                order.push_back(i);
+                ASSERT_EQ(below.size() + 1, alone[i].size()) << where;
+                for (size_t l = 0; l < below.size(); ++l)
+                    EXPECT_TRUE(below[l].rgba == alone[i][l + 1].rgba) << where << ", level " << l + 1;
+            },
+            batchBytes);
+        std::vector<size_t> expected(requests.size());
+        std::iota(expected.begin(), expected.end(), size_t{0});
+        EXPECT_EQ(order, expected) << "batch " << batchBytes;
+    }
 }

@@ -18,7 +18,9 @@
 
 #include "shadowkit/scene/image.h"
 
+#include <functional>
 #include <optional>
+#include <span>
 #include <vector>
 
 namespace shadowkit::scene {
@@ -34,5 +36,25 @@ double sampledAlphaCoverage(const Image& image, float cutoff);
 // least 1). With a cutoff, every level's alpha is scaled to keep level 0's coverage at it;
 // without, plain 2×2 box filtering.
 std::vector<Image> buildMipChain(const Image& level0, std::optional<float> alphaCutoff);
+
+// The same chain without level 0: levels 1 to the last (empty for a 1 × 1 or empty image).
+std::vector<Image> buildMipLevelsBelow(const Image& level0, std::optional<float> alphaCutoff);
+
+// One texture of forEachMipChain: the levels below *level0 (buildMipLevelsBelow at
+// `alphaCutoff`), or none without mipmaps.
+struct MipChainRequest {
+    const Image* level0 = nullptr;
+    std::optional<float> alphaCutoff;
+    bool mipmaps = true;
+};
+// Builds the levels below level 0 of every request on every core and hands them to
+// `use(index, levels)` in the requests' order, on the calling thread (a GL upload may follow;
+// level 0 is the caller's own image, not copied). The levels are built a batch at a time, a batch
+// being as many requests in a row as hold up to `batchBytes` of level 0 (at least one), so a scene
+// of many large textures never holds all of its chains at once.
+inline constexpr size_t kMipBatchBytes = size_t{64} << 20;
+void forEachMipChain(std::span<const MipChainRequest> requests,
+                     const std::function<void(size_t, const std::vector<Image>&)>& use,
+                     size_t batchBytes = kMipBatchBytes);
 
 } // namespace shadowkit::scene
