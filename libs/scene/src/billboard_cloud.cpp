@@ -75,10 +75,34 @@ struct Plane {
     int x = 0, y = 0, width = 0, height = 0; // texels of the target, border included
 };
 
-// An in-plane basis for each orientation.
-glm::vec3 tangentOf(glm::vec3 n) {
-    const glm::vec3 helper = std::abs(n.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
-    return glm::normalize(glm::cross(helper, n));
+// An in-plane basis for each orientation: tangent and bitangent, with the normal right-handed.
+struct PlaneBasis {
+    glm::vec3 tangent, bitangent;
+};
+const std::array<PlaneBasis, 7>& planeBases() {
+    static const std::array<PlaneBasis, 7> all = [] {
+        std::array<PlaneBasis, 7> bases;
+        for (size_t o = 0; o < bases.size(); ++o) {
+            const glm::vec3 n = orientations()[o];
+            const glm::vec3 helper = std::abs(n.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+            const glm::vec3 tangent = glm::normalize(glm::cross(helper, n));
+            bases[o] = {tangent, glm::cross(n, tangent)};
+        }
+        return bases;
+    }();
+    return all;
+}
+
+// Where an item's corner lands: turned about the item's centre, then along the plane's normal onto it.
+glm::vec3 movedOnto(const Plane& plane, const Item& item, glm::vec3 position) {
+    const glm::vec3 axis = orientations()[size_t(plane.orientation)];
+    const glm::vec3 turned = item.centre + item.turn * (position - item.centre);
+    return turned + (plane.offset - glm::dot(turned, axis)) * axis;
+}
+// A point of the plane in its basis, object metres.
+glm::vec2 inPlane(const Plane& plane, glm::vec3 p) {
+    const PlaneBasis& basis = planeBases()[size_t(plane.orientation)];
+    return {glm::dot(p, basis.tangent), glm::dot(p, basis.bitangent)};
 }
 
 size_t findRoot(std::vector<uint32_t>& parent, size_t i) {
@@ -202,7 +226,16 @@ std::vector<uint8_t> texelsKept(const CloudSource& source, float alphaCutoff255)
     return kept;
 }
 
-constexpr uint16_t kEverySample = uint16_t((1u << (kSamplesPerSide * kSamplesPerSide)) - 1u);
+constexpr int kSamples = kSamplesPerSide * kSamplesPerSide;
+constexpr uint16_t kEverySample = uint16_t((1u << kSamples) - 1u);
+// Sample s's place inside its texel (texel units): the middles of the texel's quarters, row by row.
+constexpr std::array<glm::vec2, kSamples> kSampleAt = [] {
+    std::array<glm::vec2, kSamples> at{};
+    for (int s = 0; s < kSamples; ++s)
+        at[size_t(s)] = {(float(s % kSamplesPerSide) + 0.5f) / kSamplesPerSide,
+                         (float(s / kSamplesPerSide) + 0.5f) / kSamplesPerSide};
+    return at;
+}();
 
 // The texel columns of row `ty` that can hold a sample of the triangle `q` (texel units): its
 // x-extent over the rows either side as well, and a column either side of that. A sample the
@@ -226,6 +259,86 @@ std::pair<int, int> rowReach(const std::array<glm::vec2, 3>& q, int ty) {
 // 4 × 4 ordered-dither thresholds (Bayer), in sixteenths: a region of coverage c/16 keeps
 // exactly c texels of every 16.
 constexpr std::array<int, 16> kBayer{0, 8, 2, 10, 12, 4, 14, 6, 3, 11, 1, 9, 15, 7, 13, 5};
+
+// The alpha-tested sources' texels that pass the cutoff (texelsKept), by source.
+using KeptTexels = std::map<const CloudSource*, std::vector<uint8_t>>;
+
+// Bakes `plane` into its rectangle of `target` at `texelsPerMetre`: 16 samples a texel, each
+// covered once, by the first of the plane's items that covers it; a texel's colour the mean of its
+// covered samples', its alpha 255 where its coverage passes the ordered dither. Writes inside the
+// rectangle's interior alone and reads nothing another plane writes, so planes bake in parallel.
+// Returns how many texels it keeps (alpha 255).
+size_t bakePlane(const Plane& plane, std::span<const Item> items, float texelsPerMetre, const KeptTexels& keptOf,
+                 Image& target) {
+    const int w = plane.width, h = plane.height;
+    std::vector<uint16_t> mask(size_t(w) * size_t(h), 0);
+    std::vector<glm::vec3> colour(size_t(w) * size_t(h), glm::vec3(0.0f));
+    auto toTexel = [&](glm::vec2 uv) { return (uv - plane.lo) * texelsPerMetre + float(kBorderTexels); };
+    for (const size_t i : plane.items)
+        for (const Triangle& t : items[i].triangles) {
+            std::array<glm::vec2, 3> q;
+            for (int c = 0; c < 3; ++c)
+                q[size_t(c)] = toTexel(inPlane(plane, movedOnto(plane, items[i], t.position(c))));
+            const float twiceArea = (q[1].x - q[0].x) * (q[2].y - q[0].y) - (q[2].x - q[0].x) * (q[1].y - q[0].y);
+            if (std::abs(twiceArea) < 1e-12f) continue;
+            // What every sample of the triangle reads, read once (the stores below could alias it).
+            const CloudSource& source = *t.source;
+            const glm::vec2 uv0 = t.vertex(0).uv, uv1 = t.vertex(1).uv, uv2 = t.vertex(2).uv;
+            const glm::vec3 albedo = t.vertex(0).albedo;
+            const uint8_t* kept = source.texture ? keptOf.at(&source).data() : nullptr;
+            const glm::vec2 boxLo = glm::min(q[0], glm::min(q[1], q[2])), boxHi = glm::max(q[0], glm::max(q[1], q[2]));
+            for (int ty = std::max(0, int(boxLo.y)); ty <= std::min(h - 1, int(boxHi.y)); ++ty) {
+                const auto [spanLo, spanHi] = rowReach(q, ty);
+                for (int tx = std::max({0, int(boxLo.x), spanLo}); tx <= std::min({w - 1, int(boxHi.x), spanHi});
+                     ++tx) {
+                    uint16_t& m = mask[size_t(ty) * size_t(w) + size_t(tx)];
+                    if (m == kEverySample) continue;
+                    // Barycentric weights of corners 1 and 2 at all 16 samples at once (no branch:
+                    // the compiler's vector lanes), inside when all three lie in [0, 1]; then the
+                    // samples inside and not yet covered, in order.
+                    std::array<float, kSamples> b1, b2;
+                    for (size_t s = 0; s < size_t(kSamples); ++s) {
+                        const float px = float(tx) + kSampleAt[s].x, py = float(ty) + kSampleAt[s].y;
+                        b1[s] = ((px - q[0].x) * (q[2].y - q[0].y) - (q[2].x - q[0].x) * (py - q[0].y)) / twiceArea;
+                        b2[s] = ((q[1].x - q[0].x) * (py - q[0].y) - (px - q[0].x) * (q[1].y - q[0].y)) / twiceArea;
+                    }
+                    uint32_t inside = 0;
+                    for (size_t s = 0; s < size_t(kSamples); ++s) // | not ||: no branch
+                        inside |= uint32_t(!((b1[s] < 0.0f) | (b2[s] < 0.0f) | (b1[s] + b2[s] > 1.0f))) << s;
+                    for (uint32_t open = inside & ~uint32_t(m); open != 0; open &= open - 1) {
+                        const int s = std::countr_zero(open);
+                        const float b1s = b1[size_t(s)], b2s = b2[size_t(s)];
+                        glm::vec3 rgb;
+                        if (source.texture) {
+                            const glm::vec2 uv = (1.0f - b1s - b2s) * uv0 + b1s * uv1 + b2s * uv2;
+                            const size_t k = texelIndexAt(source, uv);
+                            if (!kept[k]) continue;
+                            const uint8_t* texel = source.texture->rgba.data() + 4 * k;
+                            rgb = glm::vec3(texel[0], texel[1], texel[2]) * albedo;
+                        } else {
+                            rgb = 255.0f * albedo;
+                        }
+                        m = uint16_t(m | (1u << s));
+                        colour[size_t(ty) * size_t(w) + size_t(tx)] += rgb;
+                    }
+                }
+            }
+        }
+    size_t opaque = 0;
+    for (int ty = kBorderTexels; ty < h - kBorderTexels; ++ty)
+        for (int tx = kBorderTexels; tx < w - kBorderTexels; ++tx) {
+            const size_t k = size_t(ty) * size_t(w) + size_t(tx);
+            const int covered = std::popcount(mask[k]);
+            if (covered == 0) continue;
+            uint8_t* out = target.pixel(plane.x + tx, plane.y + ty);
+            const glm::vec3 mean = glm::clamp(colour[k] / float(covered), 0.0f, 255.0f);
+            out[0] = uint8_t(mean.r), out[1] = uint8_t(mean.g), out[2] = uint8_t(mean.b);
+            const bool keep = covered > kBayer[size_t((ty % 4) * 4 + tx % 4)];
+            out[3] = keep ? 255 : 0;
+            opaque += keep ? 1 : 0;
+        }
+    return opaque;
+}
 
 } // namespace
 
@@ -254,8 +367,6 @@ BillboardCloud bakeBillboardCloud(std::span<const CloudSource> sources, Image& t
     const int slabs = options.slabsPerOrientation;
     std::vector<int> planeOf(axes.size() * size_t(slabs), -1);
     std::vector<Plane> planes;
-    std::vector<glm::vec3> tangents, bitangents;
-    for (const glm::vec3& n : axes) tangents.push_back(tangentOf(n)), bitangents.push_back(glm::cross(n, tangentOf(n)));
     std::vector<int> itemPlane(items.size());
     for (size_t i = 0; i < items.size(); ++i) {
         const Item& item = items[i];
@@ -271,23 +382,13 @@ BillboardCloud bakeBillboardCloud(std::span<const CloudSource> sources, Image& t
         itemPlane[i] = p;
     }
 
-    // Where each item's corners land: turned about its centre, then along the normal onto its plane.
-    auto moved = [&](const Item& item, glm::vec3 position, const Plane& plane) {
-        const glm::vec3 axis = axes[size_t(plane.orientation)];
-        const glm::vec3 turned = item.centre + item.turn * (position - item.centre);
-        return turned + (plane.offset - glm::dot(turned, axis)) * axis;
-    };
-    auto inPlane = [&](const Plane& plane, glm::vec3 p) {
-        return glm::vec2(glm::dot(p, tangents[size_t(plane.orientation)]),
-                         glm::dot(p, bitangents[size_t(plane.orientation)]));
-    };
     double movedArea = 0.0, totalArea = 0.0, planeArea = 0.0;
     for (size_t i = 0; i < items.size(); ++i) {
         Plane& plane = planes[size_t(itemPlane[i])];
         double shift = 0.0;
         for (const Triangle& t : items[i].triangles)
             for (int c = 0; c < 3; ++c) {
-                const glm::vec3 p = moved(items[i], t.position(c), plane);
+                const glm::vec3 p = movedOnto(plane, items[i], t.position(c));
                 const glm::vec2 uv = inPlane(plane, p);
                 plane.lo = glm::min(plane.lo, uv), plane.hi = glm::max(plane.hi, uv);
                 shift += glm::length(p - t.position(c));
@@ -312,84 +413,15 @@ BillboardCloud bakeBillboardCloud(std::span<const CloudSource> sources, Image& t
             p[0] = 50, p[1] = 100, p[2] = 30, p[3] = 0;
         }
 
-    // Bake: 16 samples a texel, each covered once, by the first item that covers it. A plane's
-    // texels are its own (packed apart, border included), and everything a plane reads is shared
-    // and read-only, so the planes bake in parallel, each to the same bytes as alone.
-    const float alphaCutoff255 = options.alphaCutoff * 255.0f;
-    std::map<const CloudSource*, std::vector<uint8_t>> keptOf; // per alpha-tested source
+    // Bake. A plane's texels are its own (packed apart, border included), and everything a plane
+    // reads is shared and read-only, so the planes bake in parallel, each to the same bytes as alone.
+    KeptTexels keptOf;
     for (const CloudSource& source : sources)
-        if (source.texture) keptOf.emplace(&source, texelsKept(source, alphaCutoff255));
-    // The texels of `plane` it keeps (its alpha 255).
-    auto bakePlane = [&](const Plane& plane) {
-        const int w = plane.width, h = plane.height;
-        std::vector<uint16_t> mask(size_t(w) * size_t(h), 0);
-        std::vector<glm::vec3> colour(size_t(w) * size_t(h), glm::vec3(0.0f));
-        auto toTexel = [&](glm::vec2 uv) { return (uv - plane.lo) * texelsPerMetre + float(kBorderTexels); };
-        for (const size_t i : plane.items)
-            for (const Triangle& t : items[i].triangles) {
-                std::array<glm::vec2, 3> q;
-                for (int c = 0; c < 3; ++c)
-                    q[size_t(c)] = toTexel(inPlane(plane, moved(items[i], t.position(c), plane)));
-                const float twiceArea = (q[1].x - q[0].x) * (q[2].y - q[0].y) - (q[2].x - q[0].x) * (q[1].y - q[0].y);
-                if (std::abs(twiceArea) < 1e-12f) continue;
-                // What every sample of the triangle reads, read once (the stores below could alias it).
-                const CloudSource& source = *t.source;
-                const glm::vec2 uv0 = t.vertex(0).uv, uv1 = t.vertex(1).uv, uv2 = t.vertex(2).uv;
-                const glm::vec3 albedo = t.vertex(0).albedo;
-                const uint8_t* kept = source.texture ? keptOf.at(&source).data() : nullptr;
-                const glm::vec2 boxLo = glm::min(q[0], glm::min(q[1], q[2])),
-                                boxHi = glm::max(q[0], glm::max(q[1], q[2]));
-                for (int ty = std::max(0, int(boxLo.y)); ty <= std::min(h - 1, int(boxHi.y)); ++ty) {
-                    const auto [spanLo, spanHi] = rowReach(q, ty);
-                    for (int tx = std::max({0, int(boxLo.x), spanLo}); tx <= std::min({w - 1, int(boxHi.x), spanHi});
-                         ++tx) {
-                        uint16_t& m = mask[size_t(ty) * size_t(w) + size_t(tx)];
-                        if (m == kEverySample) continue;
-                        for (int s = 0; s < kSamplesPerSide * kSamplesPerSide; ++s) {
-                            const uint16_t bit = uint16_t(1u << s);
-                            if (m & bit) continue;
-                            const glm::vec2 p(float(tx) + (float(s % kSamplesPerSide) + 0.5f) / kSamplesPerSide,
-                                              float(ty) + (float(s / kSamplesPerSide) + 0.5f) / kSamplesPerSide);
-                            // Barycentric weights of corners 1 and 2; inside when all three lie in [0, 1].
-                            const float b1 =
-                                ((p.x - q[0].x) * (q[2].y - q[0].y) - (q[2].x - q[0].x) * (p.y - q[0].y)) / twiceArea;
-                            const float b2 =
-                                ((q[1].x - q[0].x) * (p.y - q[0].y) - (p.x - q[0].x) * (q[1].y - q[0].y)) / twiceArea;
-                            if (b1 < 0.0f || b2 < 0.0f || b1 + b2 > 1.0f) continue;
-                            glm::vec3 rgb;
-                            if (source.texture) {
-                                const glm::vec2 uv = (1.0f - b1 - b2) * uv0 + b1 * uv1 + b2 * uv2;
-                                const size_t k = texelIndexAt(source, uv);
-                                if (!kept[k]) continue;
-                                const uint8_t* texel = source.texture->rgba.data() + 4 * k;
-                                rgb = glm::vec3(texel[0], texel[1], texel[2]) * albedo;
-                            } else {
-                                rgb = 255.0f * albedo;
-                            }
-                            m |= bit;
-                            colour[size_t(ty) * size_t(w) + size_t(tx)] += rgb;
-                        }
-                    }
-                }
-            }
-        size_t opaque = 0;
-        for (int ty = kBorderTexels; ty < h - kBorderTexels; ++ty)
-            for (int tx = kBorderTexels; tx < w - kBorderTexels; ++tx) {
-                const size_t k = size_t(ty) * size_t(w) + size_t(tx);
-                const int covered = std::popcount(mask[k]);
-                if (covered == 0) continue;
-                uint8_t* out = target.pixel(plane.x + tx, plane.y + ty);
-                const glm::vec3 mean = glm::clamp(colour[k] / float(covered), 0.0f, 255.0f);
-                out[0] = uint8_t(mean.r), out[1] = uint8_t(mean.g), out[2] = uint8_t(mean.b);
-                const bool keep = covered > kBayer[size_t((ty % 4) * 4 + tx % 4)];
-                out[3] = keep ? 255 : 0;
-                opaque += keep ? 1 : 0;
-            }
-        return opaque;
-    };
+        if (source.texture) keptOf.emplace(&source, texelsKept(source, options.alphaCutoff * 255.0f));
     std::vector<size_t> opaqueOf(planes.size());
     tbb::parallel_for(tbb::blocked_range<size_t>(0, planes.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
-        for (size_t p = range.begin(); p != range.end(); ++p) opaqueOf[p] = bakePlane(planes[p]);
+        for (size_t p = range.begin(); p != range.end(); ++p)
+            opaqueOf[p] = bakePlane(planes[p], items, texelsPerMetre, keptOf, target);
     });
 
     size_t opaque = 0, interior = 0;
@@ -399,8 +431,8 @@ BillboardCloud bakeBillboardCloud(std::span<const CloudSource> sources, Image& t
         opaque += opaqueOf[p];
         interior += size_t(std::max(0, w - 2 * kBorderTexels)) * size_t(std::max(0, h - 2 * kBorderTexels));
         // The plane's quad spans its interior texels exactly.
-        const glm::vec3 n = axes[size_t(plane.orientation)], u = tangents[size_t(plane.orientation)],
-                        v = bitangents[size_t(plane.orientation)];
+        const glm::vec3 n = axes[size_t(plane.orientation)];
+        const PlaneBasis& basis = planeBases()[size_t(plane.orientation)];
         const glm::vec2 span = glm::vec2(float(w - 2 * kBorderTexels), float(h - 2 * kBorderTexels)) / texelsPerMetre;
         const auto first = static_cast<uint32_t>(cloud.vertices.size());
         for (int corner = 0; corner < 4; ++corner) {
@@ -408,8 +440,8 @@ BillboardCloud bakeBillboardCloud(std::span<const CloudSource> sources, Image& t
             const glm::vec2 planar = plane.lo + f * span;
             const glm::vec2 texel = glm::vec2(plane.x + kBorderTexels, plane.y + kBorderTexels) +
                                     f * glm::vec2(float(w - 2 * kBorderTexels), float(h - 2 * kBorderTexels));
-            cloud.vertices.push_back({plane.offset * n + planar.x * u + planar.y * v, n, glm::vec3(1.0f),
-                                      texel / glm::vec2(float(target.width), float(target.height))});
+            cloud.vertices.push_back({plane.offset * n + planar.x * basis.tangent + planar.y * basis.bitangent, n,
+                                      glm::vec3(1.0f), texel / glm::vec2(float(target.width), float(target.height))});
         }
         cloud.indices.insert(cloud.indices.end(), {first, first + 1, first + 3, first, first + 3, first + 2});
     }
