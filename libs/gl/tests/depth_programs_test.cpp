@@ -44,7 +44,9 @@ TEST_F(DepthProgramsTest, OnlyTheLinearLayoutsDepthProgramsWriteFragmentDepth) {
     // The fixed maps drawn together (hyperbolic alone), where the GL can.
     const gl::PassPrograms together = (*pass)->mapsTogetherPrograms();
     for (const GLuint program : {together.plain, together.material})
-        if (program) EXPECT_FALSE(writesFragmentDepth(program)) << "the maps drawn together";
+        if (program) {
+            EXPECT_FALSE(writesFragmentDepth(program)) << "the maps drawn together";
+        }
 }
 
 namespace {

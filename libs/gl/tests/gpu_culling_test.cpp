@@ -494,8 +494,9 @@ TEST_F(GpuCullingTest, VirtualPagesCulledOnTheGpuDrawTheCpuPathsPixelsInThreeDis
                 for (const size_t draws : {a->shadow.drawCalls, b->shadow.drawCalls}) {
                     EXPECT_LE(draws, groups * c.forest.batches.size() * gl::kMaxLodLevels)
                         << at << ": " << pages << " pages";
-                    if (size_t(pages) > groups * (c.forest.batches.size() + 1))
+                    if (size_t(pages) > groups * (c.forest.batches.size() + 1)) {
                         EXPECT_LT(draws, size_t(pages)) << at << ": the pages' lists a group at a time";
+                    }
                 }
                 EXPECT_LE(b->shadow.drawCalls, a->shadow.drawCalls) << at << ": the CPU lists' draws, levels held only";
             }

@@ -537,7 +537,9 @@ TEST_F(VirtualPagesTest, ALargeMeshDrawnByTheClustersMeetingEachPageCastsWhatItC
                     EXPECT_EQ(onGpu, 10) << what;
                     EXPECT_GT(pages, onGpu) << what << ": no page culled on the CPU beside them";
                 }
-                if (gpu && i == 2) EXPECT_GT(onGpu, 1) << what;
+                if (gpu && i == 2) {
+                    EXPECT_GT(onGpu, 1) << what;
+                }
                 Frame& f = frames[k][gpu][i - 1];
                 f.pixels = (*renderer)->readColor().rgba;
                 f.triangles = frame->shadow.triangles;
