@@ -18,6 +18,7 @@ core::Status printAutoCandidates(const SceneOptions& sceneOptions, const ViewOpt
                                  const TechniqueOptions& technique) {
     auto options = technique.autoOptions();
     if (!options) return options.errorInfo();
+    if (auto s = viewOptions.check(); !s) return s;
     auto sceneData = sceneOptions.load();
     if (!sceneData) return sceneData.errorInfo();
     auto view = viewOptions.resolve(*sceneData);

@@ -404,6 +404,7 @@ int runBench(const BenchArgs& args) {
     if (!counts) return fail(counts.errorInfo());
     if (auto s = args.technique.check(/*measuresFrames=*/false); !s) return fail(s.errorInfo());
     if (auto s = args.render.check(); !s) return fail(s.errorInfo());
+    if (auto s = args.view.check(); !s) return fail(s.errorInfo());
     auto views = viewNamesOf(args.views);
     if (!views) return fail(views.errorInfo());
     std::vector<std::string> viewNames = std::move(views).value();

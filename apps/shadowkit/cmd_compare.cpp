@@ -35,6 +35,7 @@ int runCompare(const CompareArgs& args) {
     for (const Cell& cell : *cells) {
         auto o = parseCell(cell, args.view, args.size);
         if (!o) return fail(o.errorInfo());
+        if (auto s = o->view.check(); !s) return fail(s.errorInfo());
         options.push_back(std::move(o).value());
     }
     if (args.columns < 0 || args.columns > 16) return fail("--columns: must be in [1, 16] (0: automatic)");

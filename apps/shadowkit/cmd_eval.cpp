@@ -126,6 +126,8 @@ core::Status checkEvalArgs(const EvalArgs& args) {
     if (auto s = args.technique.check(/*measuresFrames=*/true, /*takesAuto=*/true); !s) return s;
     if (auto s = args.render.check(); !s) return s;
     if (auto s = args.scene.check(); !s) return s;
+    if (auto s = args.view.check(); !s) return s;
+    if (auto s = args.lights.check(); !s) return s;
     if (args.softSamples < 16 || args.softSamples > 4096)
         return core::makeError(fmt::format("--soft-samples: must be in [16, 4096] rays, got {}", args.softSamples));
     if (!(args.depthTolerance >= 1e-5 && args.depthTolerance <= 0.1))

@@ -144,6 +144,8 @@ core::Status writeMaps(const RenderArgs& args, const gl::Renderer& renderer) {
 int runRender(const RenderArgs& args) {
     if (auto s = args.technique.check(/*measuresFrames=*/true, /*takesAuto=*/true); !s) return fail(s.errorInfo());
     if (auto s = args.render.check(); !s) return fail(s.errorInfo());
+    if (auto s = args.view.check(); !s) return fail(s.errorInfo());
+    if (auto s = args.lights.check(); !s) return fail(s.errorInfo());
     auto timeline = args.timeline.resolve();
     if (!timeline) return fail(timeline.errorInfo());
     const bool sequence = timeline->isSequence();

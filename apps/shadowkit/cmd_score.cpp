@@ -66,6 +66,7 @@ int runScore(const ScoreArgs& args) {
     for (const char* flag : {"--json", "--error-map"})
         if (auto s = checkWritable(flag, flag[2] == 'j' ? args.json : args.errorMap); !s) return fail(s.errorInfo());
     if (auto s = args.scene.check(); !s) return fail(s.errorInfo());
+    if (auto s = args.view.check(); !s) return fail(s.errorInfo());
     auto mask = eval::loadShadowMask(args.mask);
     if (!mask) return fail(mask.errorInfo());
     std::optional<CameraFile> camera;

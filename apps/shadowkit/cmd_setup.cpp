@@ -103,7 +103,8 @@ json localLightJson(const LocalLight& light, const core::ShadowSetup& setup) {
 
 int runSetup(const SetupArgs& args) {
     if (auto s = args.technique.check(/*measuresFrames=*/false); !s) return fail(s.errorInfo());
-    if (auto lights = args.lights.lights(); !lights) return fail(lights.errorInfo()); // before loading a scene
+    if (auto s = args.lights.check(); !s) return fail(s.errorInfo()); // before loading a scene
+    if (auto s = args.view.check(); !s) return fail(s.errorInfo());
     auto bounded = args.bounds.resolve(args.scene, args.view);
     if (!bounded) return fail(bounded.errorInfo());
     const core::Aabb& bounds = bounded->wsBounds;

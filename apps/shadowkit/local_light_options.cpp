@@ -89,6 +89,11 @@ core::Result<core::LocalLighting> LocalLightOptions::lightingFor(const scene::Re
     return lighting;
 }
 
+core::Status LocalLightOptions::check() const {
+    if (auto parsed = lights(); !parsed) return parsed.errorInfo();
+    return core::Ok{};
+}
+
 core::Result<std::vector<LocalLight>> LocalLightOptions::lights() const {
     std::vector<LocalLight> out;
     for (const std::string& spec : specs) {

@@ -28,6 +28,8 @@ struct LocalLightOptions {
     void addTo(CLI::App& cmd, bool withMaps = true);
     // The lights, each validated; an error names --light and shows the text.
     core::Result<std::vector<LocalLight>> lights() const;
+    // The lights' text, checked before a scene is loaded.
+    core::Status check() const;
     // The frame's local lights: the view's (views.json), then --light's, set up for its camera
     // over these scene bounds.
     core::Result<core::LocalLighting> lightingFor(const scene::ResolvedView& view,

@@ -45,10 +45,14 @@ struct SceneOptions {
 
 struct ViewOptions {
     std::string view = "perpendicular";
-    std::string eye, dir, up, size, sun; // raw "x,y,z" / "WxH" text, validated in resolve()
+    std::string eye, dir, up, size, sun; // raw "x,y,z" / "WxH" text, validated in check()
     std::optional<double> fov, zNear, zFar, sunElevation, sunAzimuth;
 
     void addTo(CLI::App& cmd);
+    // What needs no scene: the view's name, the flags' syntax (--size, --eye, --dir, --up,
+    // --sun) and --sun against the sun's angles; each command checks it before loading one,
+    // and resolve() again.
+    core::Status check() const;
     // The named view placed over `scene`, with any explicit flag overriding its field.
     // `sayFraming`: say on stderr where the camera stands when it frames a loaded scene (not
     // when a camera path takes the view's place: the path says so, Timeline::checkViews).

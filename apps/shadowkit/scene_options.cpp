@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <sstream>
 #include <string_view>
+#include <tuple>
 #include <vector>
 
 namespace shadowkit::app {
@@ -71,6 +72,15 @@ core::Status forestFlagsUnused(const SceneOptions& options) {
     if (options.scene == "forest" || options.forestFlag.empty()) return core::Ok{};
     return core::makeError(
         fmt::format("{}: the built-in forest's, and --scene draws {} instead", options.forestFlag, options.scene));
+}
+
+// --size: whole numbers in [1, 16384] each way.
+core::Result<std::pair<int, int>> parseSize(const std::string& size) {
+    std::vector<double> wh;
+    if (!parseNumbers(size, 'x', wh) || wh.size() != 2 || wh[0] < 1 || wh[1] < 1 || wh[0] > 16384 || wh[1] > 16384 ||
+        wh[0] != std::floor(wh[0]) || wh[1] != std::floor(wh[1]))
+        return core::makeError(fmt::format("--size: expected WxH with whole numbers in [1, 16384], got '{}'", size));
+    return std::pair{static_cast<int>(wh[0]), static_cast<int>(wh[1])};
 }
 
 } // namespace
@@ -150,37 +160,42 @@ core::Result<std::vector<std::string>> viewNamesOf(const std::string& list) {
     return names;
 }
 
-core::Result<scene::ResolvedView> ViewOptions::resolve(const scene::Scene& sceneData, bool sayFraming) const {
+core::Status ViewOptions::check() const {
     auto views = scene::loadViews(dataDirectory() / "views.json");
     if (!views) return views.errorInfo();
-    auto spec = scene::findView(*views, view);
-    if (!spec) return core::makeError("--view: " + spec.error());
-    scene::ResolvedView out = scene::resolveView(*spec, sceneData);
+    if (auto spec = scene::findView(*views, view); !spec) return core::makeError("--view: " + spec.error());
+    if (!size.empty())
+        if (auto wh = parseSize(size); !wh) return wh.errorInfo();
+    for (const auto& [flag, text] : {std::pair{"--eye", &eye}, {"--dir", &dir}, {"--up", &up}})
+        if (!text->empty())
+            if (auto v = parseVec3(flag, *text); !v) return v.errorInfo();
+    if (sun != "off" && sun != "on" && !sun.empty()) {
+        if (sunElevation || sunAzimuth)
+            return core::makeError("--sun: give either --sun or --sun-elevation/--sun-azimuth, not both");
+        if (auto v = parseVec3("--sun", sun); !v) return v.errorInfo();
+    }
+    return core::Ok{};
+}
+
+core::Result<scene::ResolvedView> ViewOptions::resolve(const scene::Scene& sceneData, bool sayFraming) const {
+    if (auto s = check(); !s) return s.errorInfo();
+    auto views = scene::loadViews(dataDirectory() / "views.json");
+    if (!views) return views.errorInfo();
+    scene::ResolvedView out = scene::resolveView(*scene::findView(*views, view), sceneData);
     if (out.framed && eye.empty() && sayFraming)
         fmt::print(stderr,
                    "view {}: framing the loaded scene (no terrain to stand on): eye {:.1f},{:.1f},{:.1f}, near {:.3g} "
                    "m, far {:.3g} m\n",
                    view, out.camera.wsEye.x, out.camera.wsEye.y, out.camera.wsEye.z, out.camera.zNear, out.camera.zFar);
 
-    if (!size.empty()) {
-        std::vector<double> wh;
-        if (!parseNumbers(size, 'x', wh) || wh.size() != 2 || wh[0] < 1 || wh[1] < 1 || wh[0] > 16384 ||
-            wh[1] > 16384 || wh[0] != std::floor(wh[0]) || wh[1] != std::floor(wh[1]))
-            return core::makeError(
-                fmt::format("--size: expected WxH with whole numbers in [1, 16384], got '{}'", size));
-        out.width = static_cast<int>(wh[0]);
-        out.height = static_cast<int>(wh[1]);
-    }
+    if (!size.empty()) std::tie(out.width, out.height) = *parseSize(size); // checked above
     core::PerspectiveCamera& cam = out.camera;
     cam.aspect = double(out.width) / double(out.height);
     const std::pair<const char*, const std::string*> vectors[] = {{"--eye", &eye}, {"--dir", &dir}, {"--up", &up}};
     core::Vec3* targets[] = {&cam.wsEye, &cam.wsDirection, &cam.wsUp};
-    for (size_t i = 0; i < 3; ++i) {
-        if (vectors[i].second->empty()) continue;
-        auto v = parseVec3(vectors[i].first, *vectors[i].second);
-        if (!v) return v.errorInfo();
-        *targets[i] = *v;
-    }
+    for (size_t i = 0; i < 3; ++i)
+        if (!vectors[i].second->empty())
+            *targets[i] = *parseVec3(vectors[i].first, *vectors[i].second); // checked above
     if (fov) cam.fovYDegrees = *fov;
     if (out.framed && (!eye.empty() || !dir.empty()) && !zNear && !zFar && glm::length(cam.wsDirection) > 0.0) {
         // The framing's planes fitted its own eye: from another eye (or along another direction)
@@ -207,11 +222,7 @@ core::Result<scene::ResolvedView> ViewOptions::resolve(const scene::Scene& scene
     if (sun == "off" || sun == "on") {
         out.sun = sun == "on";
     } else if (!sun.empty()) {
-        if (sunElevation || sunAzimuth)
-            return core::makeError("--sun: give either --sun or --sun-elevation/--sun-azimuth, not both");
-        auto v = parseVec3("--sun", sun);
-        if (!v) return v.errorInfo();
-        auto light = core::DirectionalLight::fromDirection(*v);
+        auto light = core::DirectionalLight::fromDirection(*parseVec3("--sun", sun)); // checked above
         if (!light) return core::makeError("--sun: " + light.error());
         out.light = *light;
     } else if (sunElevation || sunAzimuth) {

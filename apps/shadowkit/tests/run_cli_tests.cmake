@@ -889,3 +889,26 @@ if(CASE STREQUAL "gl-environment")
     message(SEND_ERROR "maps beyond memory: expected exit 3 and the allocation named, got ${rc}: ${err}")
   endif()
 endif()
+
+# A flag whose text is wrong is refused before the scene is built: on the leafy forest (half a
+# second of building) or a large file, a user would otherwise wait for a one-line refusal the
+# text alone decides. Until 2026-12-02 --size, --eye, --dir, --up, --sun, --view and --light were
+# parsed after the scene was loaded (the "scene forest …" line came first).
+if(CASE STREQUAL "flags-refused-before-loading")
+  foreach(command "render|--size|--size 0x0" "eval|--eye|--eye 1,2" "bench|--size|--size 3x --frames 1"
+                  "render|--light|--light point:1,2" "eval|--sun|--sun 1,2 --sun-elevation 30" "setup|--view|--view nosuch"
+                  "render|--dir|--dir 1,x,0" "eval|--view|--view nosuch")
+    string(REPLACE "|" ";" parts "${command}")
+    list(GET parts 0 verb)
+    list(GET parts 1 flag)
+    list(GET parts 2 flags)
+    separate_arguments(flags)
+    execute_process(COMMAND ${SHADOWKIT} ${verb} --forest leafy ${flags} RESULT_VARIABLE rc OUTPUT_VARIABLE out
+                    ERROR_VARIABLE err)
+    string(REGEX MATCHALL "[^\n]*error[^\n]*" error_lines "${err}")
+    list(LENGTH error_lines n)
+    if(rc EQUAL 0 OR NOT n EQUAL 1 OR NOT error_lines MATCHES "${flag}" OR "${out}${err}" MATCHES "scene forest")
+      message(SEND_ERROR "${verb} ${flags}: expected one error naming ${flag} before any scene is built, got ${rc}:\n${out}${err}")
+    endif()
+  endforeach()
+endif()
