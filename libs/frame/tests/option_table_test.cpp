@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <exception>
 #include <map>
 #include <set>
 #include <string>
@@ -18,8 +19,12 @@ namespace {
 // Converts to any member's type: T{AnyMember{}, ...} compiles for as many initialisers as T has
 // members, so the count is the aggregate's field count.
 struct AnyMember {
+    // Only ever named in requires-expressions, never called; defined all the same, since clang
+    // takes std::optional's converting constructor for a use (-Wundefined-internal).
     template <class T>
-    operator T() const; // NOLINT: implicit on purpose
+    [[noreturn]] operator T() const {
+        std::terminate();
+    } // NOLINT: implicit on purpose
 };
 template <class T, class... Initialisers>
 constexpr size_t memberCount() {

@@ -303,8 +303,10 @@ size_t bakePlane(const Plane& plane, std::span<const Item> items, float texelsPe
                         b2[s] = ((q[1].x - q[0].x) * (py - q[0].y) - (px - q[0].x) * (q[1].y - q[0].y)) / twiceArea;
                     }
                     uint32_t inside = 0;
-                    for (size_t s = 0; s < size_t(kSamples); ++s) // | not ||: no branch
-                        inside |= uint32_t(!((b1[s] < 0.0f) | (b2[s] < 0.0f) | (b1[s] + b2[s] > 1.0f))) << s;
+                    for (size_t s = 0; s < size_t(kSamples); ++s) { // | of ints, not ||: no branch
+                        const int out = int(b1[s] < 0.0f) | int(b2[s] < 0.0f) | int(b1[s] + b2[s] > 1.0f);
+                        inside |= uint32_t(out == 0) << s;
+                    }
                     for (uint32_t open = inside & ~uint32_t(m); open != 0; open &= open - 1) {
                         const int s = std::countr_zero(open);
                         const float b1s = b1[size_t(s)], b2s = b2[size_t(s)];
