@@ -163,8 +163,10 @@ TEST(TextureMipsTest, ChainsBuiltTogetherComeInOrderEachAsBuiltAlone) {
     for (const scene::MipChainRequest& r : requests)
         alone.push_back(r.mipmaps ? scene::buildMipChain(*r.level0, r.alphaCutoff) : std::vector{*r.level0});
     const std::thread::id caller = std::this_thread::get_id();
-    const size_t largest = 4 * 101 * 3;
-    for (const size_t batchBytes : {scene::kMipBatchBytes, size_t{1}, largest, 2 * largest + 4}) {
+    // Batches: all in one; one each; the first five, then one each; the first six, then the last.
+    size_t firstFive = 0;
+    for (size_t i = 0; i < 5; ++i) firstFive += images[i].rgba.size();
+    for (const size_t batchBytes : {scene::kMipBatchBytes, size_t{1}, firstFive, firstFive + images[5].rgba.size()}) {
         std::vector<size_t> order;
         scene::forEachMipChain(
             requests,
