@@ -111,8 +111,10 @@ bool sunSection(StateOptions& s, const PanelDefaults& d) {
     }
     if (!night) {
         // Angles replace a direction given as a vector.
-        if (sliderFloat(s, "elevation", "sun-elevation", 1.0f, 89.0f, f(d.sunElevationDegrees)) |
-            sliderFloat(s, "azimuth", "sun-azimuth", 0.0f, 360.0f, f(d.sunAzimuthDegrees))) {
+        // Both sliders are drawn every frame, so neither call may be short-circuited away.
+        const bool elevationMoved = sliderFloat(s, "elevation", "sun-elevation", 1.0f, 89.0f, f(d.sunElevationDegrees));
+        const bool azimuthMoved = sliderFloat(s, "azimuth", "sun-azimuth", 0.0f, 360.0f, f(d.sunAzimuthDegrees));
+        if (elevationMoved || azimuthMoved) {
             s.erase("sun");
             changed = true;
         }
