@@ -55,7 +55,7 @@ void mipChainsTogether(benchmark::State& state) {
     for (auto _ : state) {
         size_t levels = 0;
         scene::forEachMipChain(requests,
-                               [&](size_t, const std::vector<scene::Image>& chain) { levels += chain.size(); });
+                               [&](size_t, const std::vector<scene::Image>& below) { levels += below.size(); });
         benchmark::DoNotOptimize(levels);
     }
 }

@@ -49,10 +49,13 @@ struct ViewOptions {
     std::optional<double> fov, zNear, zFar, sunElevation, sunAzimuth;
 
     void addTo(CLI::App& cmd);
-    // What needs no scene: the view's name, the flags' syntax (--size, --eye, --dir, --up,
-    // --sun) and --sun against the sun's angles; each command checks it before loading one,
-    // and resolve() again.
+    // What needs no scene: the view's name (spec()) and the flags (checkFlags()); each command
+    // checks it before loading one, and resolve() again.
     core::Status check() const;
+    // The named view of views.json; an error names --view.
+    core::Result<scene::ViewSpec> spec() const;
+    // The flags' syntax (--size, --eye, --dir, --up, --sun) and --sun against the sun's angles.
+    core::Status checkFlags() const;
     // The named view placed over `scene`, with any explicit flag overriding its field.
     // `sayFraming`: say on stderr where the camera stands when it frames a loaded scene (not
     // when a camera path takes the view's place: the path says so, Timeline::checkViews).

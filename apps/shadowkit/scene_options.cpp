@@ -160,10 +160,20 @@ core::Result<std::vector<std::string>> viewNamesOf(const std::string& list) {
     return names;
 }
 
-core::Status ViewOptions::check() const {
+core::Result<scene::ViewSpec> ViewOptions::spec() const {
     auto views = scene::loadViews(dataDirectory() / "views.json");
     if (!views) return views.errorInfo();
-    if (auto spec = scene::findView(*views, view); !spec) return core::makeError("--view: " + spec.error());
+    auto found = scene::findView(*views, view);
+    if (!found) return core::makeError("--view: " + found.error());
+    return found;
+}
+
+core::Status ViewOptions::check() const {
+    if (auto found = spec(); !found) return found.errorInfo();
+    return checkFlags();
+}
+
+core::Status ViewOptions::checkFlags() const {
     if (!size.empty())
         if (auto wh = parseSize(size); !wh) return wh.errorInfo();
     for (const auto& [flag, text] : {std::pair{"--eye", &eye}, {"--dir", &dir}, {"--up", &up}})
@@ -178,10 +188,10 @@ core::Status ViewOptions::check() const {
 }
 
 core::Result<scene::ResolvedView> ViewOptions::resolve(const scene::Scene& sceneData, bool sayFraming) const {
-    if (auto s = check(); !s) return s.errorInfo();
-    auto views = scene::loadViews(dataDirectory() / "views.json");
-    if (!views) return views.errorInfo();
-    scene::ResolvedView out = scene::resolveView(*scene::findView(*views, view), sceneData);
+    auto found = spec();
+    if (!found) return found.errorInfo();
+    if (auto s = checkFlags(); !s) return s.errorInfo();
+    scene::ResolvedView out = scene::resolveView(*found, sceneData);
     if (out.framed && eye.empty() && sayFraming)
         fmt::print(stderr,
                    "view {}: framing the loaded scene (no terrain to stand on): eye {:.1f},{:.1f},{:.1f}, near {:.3g} "

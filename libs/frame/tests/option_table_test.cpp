@@ -22,9 +22,10 @@ struct AnyMember {
     // Only ever named in requires-expressions, never called; defined all the same, since clang
     // takes std::optional's converting constructor for a use (-Wundefined-internal).
     template <class T>
+    // NOLINTNEXTLINE(google-explicit-constructor): implicit on purpose
     [[noreturn]] operator T() const {
         std::terminate();
-    } // NOLINT: implicit on purpose
+    }
 };
 template <class T, class... Initialisers>
 constexpr size_t memberCount() {
