@@ -1,29 +1,36 @@
 // Binary glTF 2.0 export (one mesh per batch, instances baked, COLOR_0), with the scene's
 // materials and their textures: base colour factor, alpha mode and cutoff, double-sidedness,
-// the texture as an embedded PNG with its sampler and TEXCOORD_0 — what gltf_read.cpp reads, so
-// an exported leafy forest loads back with its leaves' holes.
+// the texture as a PNG in the binary chunk with its sampler and TEXCOORD_0 — what gltf_read.cpp
+// reads, so an exported leafy forest loads back with its leaves' holes. Only what the file draws
+// is written: the textures its materials use (not the billboard clouds', which a loader bakes
+// again) and the vertices its triangles use (bake()).
 #include "scene_formats.h"
 
 #include "shadowkit/scene/file_write.h"
+#include "shadowkit/scene/image.h"
 
 #include <tiny_gltf.h>
 
+#include <span>
 #include <sstream>
+#include <string>
 
 namespace shadowkit::scene::formats {
 
 namespace fs = std::filesystem;
 
+// `target` 0 for a view no accessor reads (an image). Each view starts on 4 bytes, so that every
+// accessor's components are aligned after an image of any length (glTF 2.0 §3.6.2.4).
 template <class T>
-int appendBufferView(tinygltf::Model& model, const std::vector<T>& data, int target) {
+int appendBufferView(tinygltf::Model& model, std::span<const T> data, int target) {
     auto& bytes = model.buffers[0].data;
-    const size_t offset = bytes.size();
-    bytes.resize(offset + data.size() * sizeof(T));
-    std::memcpy(bytes.data() + offset, data.data(), data.size() * sizeof(T));
+    const size_t offset = (bytes.size() + 3) / 4 * 4;
+    bytes.resize(offset + data.size_bytes());
+    std::memcpy(bytes.data() + offset, data.data(), data.size_bytes());
     tinygltf::BufferView view;
     view.buffer = 0;
     view.byteOffset = offset;
-    view.byteLength = data.size() * sizeof(T);
+    view.byteLength = data.size_bytes();
     view.target = target;
     model.bufferViews.push_back(view);
     return int(model.bufferViews.size() - 1);
@@ -48,15 +55,21 @@ int gltfWrap(TextureWrap wrap) {
                                                  : TINYGLTF_TEXTURE_WRAP_REPEAT;
 }
 
-// Scene::textures as images (pixels handed to tinygltf, which embeds them as PNG) with one
-// sampler each, and Scene::materials in order.
-void addMaterials(const Scene& scene, tinygltf::Model& model) {
-    for (const Texture& t : scene.textures) {
+// The scene's textures that its materials use, as PNG images in the buffer with one sampler
+// each, and Scene::materials in order, their texture indices into the textures written.
+core::Status addMaterials(const Scene& scene, tinygltf::Model& model) {
+    std::vector<int> written(scene.textures.size(), -1);
+    for (const Material& m : scene.materials) {
+        if (m.baseColorTexture < 0 || size_t(m.baseColorTexture) >= scene.textures.size()) continue;
+        int& index = written[size_t(m.baseColorTexture)];
+        if (index >= 0) continue;
+        const Texture& t = scene.textures[size_t(m.baseColorTexture)];
+        const core::Result<std::string> png =
+            encodePng(t.image, "texture " + std::to_string(m.baseColorTexture) + " of material '" + m.name + "'");
+        if (!png) return png.errorInfo();
         tinygltf::Image image;
-        image.width = t.image.width, image.height = t.image.height;
-        image.component = 4, image.bits = 8, image.pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
         image.mimeType = "image/png";
-        image.image = t.image.rgba;
+        image.bufferView = appendBufferView(model, std::span<const char>(*png), 0);
         model.images.push_back(std::move(image));
         tinygltf::Sampler sampler;
         sampler.wrapS = gltfWrap(t.wrapS), sampler.wrapT = gltfWrap(t.wrapT);
@@ -66,19 +79,23 @@ void addMaterials(const Scene& scene, tinygltf::Model& model) {
         tinygltf::Texture texture;
         texture.source = texture.sampler = int(model.images.size() - 1);
         model.textures.push_back(texture);
+        index = int(model.textures.size() - 1);
     }
     for (const Material& m : scene.materials) {
         tinygltf::Material out;
         out.name = m.name;
         out.pbrMetallicRoughness.baseColorFactor = {m.baseColorFactor.r, m.baseColorFactor.g, m.baseColorFactor.b,
                                                     m.baseColorFactor.a};
-        out.pbrMetallicRoughness.baseColorTexture.index = m.baseColorTexture;
+        out.pbrMetallicRoughness.baseColorTexture.index =
+            m.baseColorTexture >= 0 && size_t(m.baseColorTexture) < written.size() ? written[size_t(m.baseColorTexture)]
+                                                                                   : -1;
         out.pbrMetallicRoughness.baseColorTexture.texCoord = 0;
         out.alphaMode = m.alphaMode == AlphaMode::Mask ? "MASK" : m.alphaMode == AlphaMode::Blend ? "BLEND" : "OPAQUE";
         out.alphaCutoff = m.alphaCutoff;
         out.doubleSided = m.doubleSided;
         model.materials.push_back(std::move(out));
     }
+    return core::Ok{};
 }
 
 core::Status exportGlb(const Scene& scene, const fs::path& file) {
@@ -88,7 +105,7 @@ core::Status exportGlb(const Scene& scene, const fs::path& file) {
     model.buffers.emplace_back();
     model.scenes.emplace_back();
     model.defaultScene = 0;
-    addMaterials(scene, model);
+    if (core::Status s = addMaterials(scene, model); !s) return core::makeError(file.string() + ": " + s.error());
     for (size_t b = 0; b < scene.batches.size(); ++b) {
         const BakedBatch baked = bake(scene, scene.batches[b]);
         std::vector<glm::vec3> positions, normals, colors;
@@ -106,29 +123,30 @@ core::Status exportGlb(const Scene& scene, const fs::path& file) {
         }
         tinygltf::Primitive prim;
         prim.mode = TINYGLTF_MODE_TRIANGLES;
-        prim.attributes["POSITION"] =
-            appendAccessor(model, appendBufferView(model, positions, TINYGLTF_TARGET_ARRAY_BUFFER),
-                           TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, positions.size(),
-                           {bounds.min.x, bounds.min.y, bounds.min.z}, {bounds.max.x, bounds.max.y, bounds.max.z});
-        prim.attributes["NORMAL"] =
-            appendAccessor(model, appendBufferView(model, normals, TINYGLTF_TARGET_ARRAY_BUFFER),
-                           TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, normals.size());
-        prim.attributes["COLOR_0"] =
-            appendAccessor(model, appendBufferView(model, colors, TINYGLTF_TARGET_ARRAY_BUFFER),
-                           TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, colors.size());
+        prim.attributes["POSITION"] = appendAccessor(
+            model, appendBufferView(model, std::span<const glm::vec3>(positions), TINYGLTF_TARGET_ARRAY_BUFFER),
+            TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, positions.size(),
+            {bounds.min.x, bounds.min.y, bounds.min.z}, {bounds.max.x, bounds.max.y, bounds.max.z});
+        prim.attributes["NORMAL"] = appendAccessor(
+            model, appendBufferView(model, std::span<const glm::vec3>(normals), TINYGLTF_TARGET_ARRAY_BUFFER),
+            TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, normals.size());
+        prim.attributes["COLOR_0"] = appendAccessor(
+            model, appendBufferView(model, std::span<const glm::vec3>(colors), TINYGLTF_TARGET_ARRAY_BUFFER),
+            TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, colors.size());
         if (material) {
             prim.material = scene.meshes[scene.batches[b].mesh].material;
             if (material->baseColorTexture >= 0) {
                 std::vector<glm::vec2> uvs;
                 for (const Vertex& v : baked.vertices) uvs.push_back(v.uv);
-                prim.attributes["TEXCOORD_0"] =
-                    appendAccessor(model, appendBufferView(model, uvs, TINYGLTF_TARGET_ARRAY_BUFFER),
-                                   TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC2, uvs.size());
+                prim.attributes["TEXCOORD_0"] = appendAccessor(
+                    model, appendBufferView(model, std::span<const glm::vec2>(uvs), TINYGLTF_TARGET_ARRAY_BUFFER),
+                    TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC2, uvs.size());
             }
         }
-        prim.indices =
-            appendAccessor(model, appendBufferView(model, baked.indices, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
-                           TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, baked.indices.size());
+        prim.indices = appendAccessor(
+            model,
+            appendBufferView(model, std::span<const uint32_t>(baked.indices), TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
+            TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, baked.indices.size());
         tinygltf::Mesh mesh;
         mesh.name = scene.meshes[scene.batches[b].mesh].name;
         mesh.primitives.push_back(prim);

@@ -8,17 +8,24 @@
 
 namespace shadowkit::scene {
 
-core::Status writePng(const Image& image, const std::filesystem::path& file) {
-    if (image.width <= 0 || image.height <= 0) return core::makeError(file.string() + ": cannot write an empty image");
-    // Encoded in memory, then written whole (file_write.h): stb's own file writer reports
-    // neither a full disk nor a failed close.
+core::Result<std::string> encodePng(const Image& image, std::string_view what) {
+    if (image.width <= 0 || image.height <= 0)
+        return core::makeError(std::string(what) + ": cannot write an empty image");
     std::string png;
     const auto append = [](void* context, void* data, int size) {
         static_cast<std::string*>(context)->append(static_cast<const char*>(data), size_t(size));
     };
     if (!stbi_write_png_to_func(append, &png, image.width, image.height, 4, image.rgba.data(), image.width * 4))
-        return core::makeError(file.string() + ": cannot encode PNG");
-    return writeFile(file, png);
+        return core::makeError(std::string(what) + ": cannot encode PNG");
+    return png;
+}
+
+core::Status writePng(const Image& image, const std::filesystem::path& file) {
+    // Encoded in memory, then written whole (file_write.h): stb's own file writer reports
+    // neither a full disk nor a failed close.
+    const core::Result<std::string> png = encodePng(image, file.string());
+    if (!png) return png.errorInfo();
+    return writeFile(file, *png);
 }
 
 } // namespace shadowkit::scene

@@ -20,7 +20,8 @@ core::Status exportGlb(const Scene& scene, const std::filesystem::path& file);
 std::string lowerExtension(const std::filesystem::path& file);
 // Smooth normals from triangle areas, for files that carry none.
 void computeNormals(Mesh& mesh);
-// One batch with every instance transformed into world space.
+// One batch with every instance transformed into world space: the full mesh's triangles and the
+// vertices they use (not those only its coarser levels use).
 struct BakedBatch {
     std::vector<Vertex> vertices;
     std::vector<uint32_t> indices;

@@ -38,16 +38,30 @@ void computeNormals(Mesh& mesh) {
 
 BakedBatch bake(const Scene& scene, const MeshBatch& batch) {
     const Mesh& mesh = scene.meshes[batch.mesh];
+    // Only the vertices the full mesh's triangles use, in their order: a mesh's vertex list also
+    // holds its coarser levels' (AuthoredLod), which a file carrying the full mesh alone would
+    // leave unreferenced — the leafy trees' card levels, 46–48 % of their vertices.
+    constexpr uint32_t kUnused = ~uint32_t(0);
+    std::vector<uint32_t> compactOf(mesh.vertices.size(), kUnused);
+    for (uint32_t i : mesh.indices) compactOf[i] = 0;
+    std::vector<uint32_t> used;
+    for (uint32_t v = 0; v < compactOf.size(); ++v)
+        if (compactOf[v] != kUnused) {
+            compactOf[v] = static_cast<uint32_t>(used.size());
+            used.push_back(v);
+        }
     BakedBatch out;
-    out.vertices.reserve(mesh.vertices.size() * batch.worldFromObject.size());
+    out.vertices.reserve(used.size() * batch.worldFromObject.size());
     out.indices.reserve(mesh.indices.size() * batch.worldFromObject.size());
     for (const glm::mat4& m : batch.worldFromObject) {
         const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(m)));
         const auto base = static_cast<uint32_t>(out.vertices.size());
-        for (const Vertex& v : mesh.vertices)
-            out.vertices.push_back(
-                {glm::vec3(m * glm::vec4(v.position, 1.0f)), glm::normalize(normalMatrix * v.normal), v.albedo, v.uv});
-        for (uint32_t i : mesh.indices) out.indices.push_back(base + i);
+        for (uint32_t v : used) {
+            const Vertex& in = mesh.vertices[v];
+            out.vertices.push_back({glm::vec3(m * glm::vec4(in.position, 1.0f)),
+                                    glm::normalize(normalMatrix * in.normal), in.albedo, in.uv});
+        }
+        for (uint32_t i : mesh.indices) out.indices.push_back(base + compactOf[i]);
     }
     return out;
 }

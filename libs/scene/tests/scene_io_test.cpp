@@ -2,9 +2,14 @@
 #include "shadowkit/scene/scene_io.h"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <set>
+#include <string>
 #include <utility>
 
 using namespace shadowkit;
@@ -50,6 +55,121 @@ TEST(SceneIoTest, ExportedGlbAndObjLoadBackWithTheSameTrianglesAndBounds) {
         EXPECT_TRUE(loose.contains(exactBounds(*loaded).min, 1e-3) && loose.contains(exactBounds(*loaded).max, 1e-3));
         std::filesystem::remove(file);
     }
+}
+
+namespace {
+// What an export must carry: each instance's vertices that its mesh's full triangles use.
+size_t verticesDrawn(const Scene& s) {
+    size_t count = 0;
+    for (const MeshBatch& batch : s.batches) {
+        const std::set<uint32_t> used(s.meshes[batch.mesh].indices.begin(), s.meshes[batch.mesh].indices.end());
+        count += used.size() * batch.worldFromObject.size();
+    }
+    return count;
+}
+
+// A .glb read by hand, not by the loader under test: its JSON chunk and its binary chunk.
+struct GlbChunks {
+    nlohmann::json json;
+    std::string bin;
+};
+GlbChunks readGlb(const std::filesystem::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    GlbChunks out;
+    size_t at = 12; // magic, version, length
+    while (at + 8 <= bytes.size()) {
+        uint32_t length = 0, type = 0;
+        std::memcpy(&length, bytes.data() + at, 4);
+        std::memcpy(&type, bytes.data() + at + 4, 4);
+        const std::string chunk = bytes.substr(at + 8, length);
+        if (type == 0x4E4F534Au) out.json = nlohmann::json::parse(chunk);
+        if (type == 0x004E4942u) out.bin = chunk;
+        at += 8 + length;
+    }
+    return out;
+}
+} // namespace
+
+TEST(SceneIoTest, AnExportedFileHoldsOnlyWhatItDraws) {
+    // A leafy forest: its leaf meshes' vertex lists also hold their card levels' vertices, and its
+    // textures the billboard clouds' beside the leaf atlas its material uses.
+    ForestOptions o;
+    o.kind = ForestKind::Leafy;
+    o.trees = 3;
+    o.terrainSize = 40;
+    o.terrainResolution = 4;
+    o.rocks = o.buildings = o.movers = 0;
+    const Scene forest = makeForest(o);
+    std::set<int32_t> texturesUsed;
+    for (const Material& m : forest.materials)
+        if (m.baseColorTexture >= 0) texturesUsed.insert(m.baseColorTexture);
+    ASSERT_FALSE(texturesUsed.empty());
+    ASSERT_GT(forest.textures.size(), texturesUsed.size()); // the clouds' textures, which no material uses
+    const size_t drawn = verticesDrawn(forest);
+    size_t held = 0;
+    for (const MeshBatch& batch : forest.batches)
+        held += forest.meshes[batch.mesh].vertices.size() * batch.worldFromObject.size();
+    ASSERT_GT(held, drawn); // the case that matters: vertices only the coarser levels use
+
+    const auto glb = std::filesystem::temp_directory_path() / "shadowkit_io_drawn.glb";
+    ASSERT_TRUE(exportScene(forest, glb));
+    const GlbChunks chunks = readGlb(glb);
+    const nlohmann::json& j = chunks.json;
+    ASSERT_TRUE(j.is_object());
+    // The images: the used textures, each once, in the binary chunk (not base64 in the JSON).
+    ASSERT_EQ(j["images"].size(), texturesUsed.size());
+    for (const auto& image : j["images"]) {
+        EXPECT_FALSE(image.contains("uri"));
+        EXPECT_EQ(image.value("mimeType", ""), "image/png");
+        const auto& view = j["bufferViews"][image["bufferView"].get<size_t>()];
+        EXPECT_EQ(chunks.bin.compare(view.value("byteOffset", size_t(0)), 8, "\x89PNG\r\n\x1a\n"), 0);
+    }
+    std::set<size_t> imagesReferenced;
+    for (const auto& material : j["materials"])
+        if (material["pbrMetallicRoughness"].contains("baseColorTexture"))
+            imagesReferenced.insert(
+                j["textures"][material["pbrMetallicRoughness"]["baseColorTexture"]["index"].get<size_t>()]["source"]
+                    .get<size_t>());
+    EXPECT_EQ(imagesReferenced.size(), j["images"].size());
+    // Every accessor aligned to its component (glTF 2.0 §3.6.2.4), and every vertex of every
+    // primitive used by one of its triangles.
+    size_t vertices = 0;
+    for (const auto& accessor : j["accessors"]) {
+        const auto& view = j["bufferViews"][accessor["bufferView"].get<size_t>()];
+        EXPECT_EQ((view.value("byteOffset", size_t(0)) + accessor.value("byteOffset", size_t(0))) % 4, 0u);
+    }
+    for (const auto& mesh : j["meshes"])
+        for (const auto& primitive : mesh["primitives"]) {
+            const size_t count = j["accessors"][primitive["attributes"]["POSITION"].get<size_t>()]["count"];
+            const auto& indices = j["accessors"][primitive["indices"].get<size_t>()];
+            ASSERT_EQ(indices["componentType"], 5125); // UNSIGNED_INT
+            const size_t offset = j["bufferViews"][indices["bufferView"].get<size_t>()].value("byteOffset", size_t(0));
+            std::vector<bool> used(count, false);
+            for (size_t i = 0; i < indices["count"].get<size_t>(); ++i) {
+                uint32_t index = 0;
+                std::memcpy(&index, chunks.bin.data() + offset + 4 * i, 4);
+                ASSERT_LT(index, count);
+                used[index] = true;
+            }
+            EXPECT_EQ(std::count(used.begin(), used.end(), false), 0) << mesh.value("name", "");
+            vertices += count;
+        }
+    EXPECT_EQ(vertices, drawn);
+    // Loaded back: the same triangles, the leaves' texture and holes.
+    const auto loaded = loadScene(glb);
+    ASSERT_TRUE(loaded) << loaded.error();
+    EXPECT_EQ(loaded->triangleCount(), forest.triangleCount());
+    std::filesystem::remove(glb);
+
+    // The OBJ: the same vertices, one `v` line each.
+    const auto obj = std::filesystem::temp_directory_path() / "shadowkit_io_drawn.obj";
+    ASSERT_TRUE(exportScene(forest, obj));
+    std::ifstream in(obj);
+    size_t vLines = 0;
+    for (std::string line; std::getline(in, line);) vLines += line.rfind("v ", 0) == 0;
+    EXPECT_EQ(vLines, drawn);
+    std::filesystem::remove(obj);
 }
 
 TEST(SceneIoTest, GltfNodesSharingAMeshBecomeOneInstancedBatch) {

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <span>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -35,6 +36,10 @@ struct Image {
         p[0] = rgb[0], p[1] = rgb[1], p[2] = rgb[2], p[3] = 255;
     }
 };
+
+// The image as the bytes of a PNG file (RGBA8); an error names `what` (an empty image, or the
+// encoder failing).
+core::Result<std::string> encodePng(const Image& image, std::string_view what);
 
 // Errors name the file (unwritable directory, disk full).
 core::Status writePng(const Image& image, const std::filesystem::path& file);
