@@ -11,6 +11,9 @@
 
 #include <tiny_gltf.h>
 
+#include <algorithm>
+#include <cstdint>
+#include <cstdio>
 #include <span>
 #include <sstream>
 #include <string>
@@ -98,7 +101,37 @@ core::Status addMaterials(const Scene& scene, tinygltf::Model& model) {
     return core::Ok{};
 }
 
+// A binary glTF's header and chunk headers hold their lengths in 32 bits (glTF 2.0 §4.4.3), so
+// a file holds at most 2^32 − 1 bytes; tinygltf would truncate the lengths and write a file no
+// reader can open. The geometry's bytes, counted before anything is built (the 10,000-tree leafy
+// forest would need 5.5 GB), then the encoded file's.
+constexpr uint64_t kGlbMaxBytes = (uint64_t(1) << 32) - 1;
+
+uint64_t geometryBytes(const Scene& scene) {
+    uint64_t bytes = 0;
+    for (const MeshBatch& batch : scene.batches) {
+        const Mesh& mesh = scene.meshes[batch.mesh];
+        std::vector<bool> used(mesh.vertices.size(), false);
+        for (uint32_t i : mesh.indices) used[i] = true;
+        const auto vertices = uint64_t(std::count(used.begin(), used.end(), true));
+        const Material* material = scene.materialOf(mesh);
+        const uint64_t perVertex =
+            3 * sizeof(glm::vec3) + (material && material->baseColorTexture >= 0 ? sizeof(glm::vec2) : 0);
+        bytes += batch.worldFromObject.size() * (vertices * perVertex + mesh.indices.size() * sizeof(uint32_t));
+    }
+    return bytes;
+}
+
+core::Error tooLarge(const fs::path& file, uint64_t bytes) {
+    char size[32];
+    std::snprintf(size, sizeof size, "%.2f GB", double(bytes) * 1e-9);
+    return core::makeError(
+        file.string() + ": the scene needs " + size +
+        ", more than the 4.29 GB (2^32 bytes) a binary glTF can hold: export it as .obj, or fewer trees");
+}
+
 core::Status exportGlb(const Scene& scene, const fs::path& file) {
+    if (const uint64_t bytes = geometryBytes(scene); bytes > kGlbMaxBytes) return tooLarge(file, bytes);
     tinygltf::Model model;
     model.asset.version = "2.0";
     model.asset.generator = "shadowkit export";
@@ -161,6 +194,7 @@ core::Status exportGlb(const Scene& scene, const fs::path& file) {
     std::ostringstream glb;
     if (!writer.WriteGltfSceneToStream(&model, glb, false, true))
         return core::makeError(file.string() + ": cannot encode glTF");
+    if (glb.view().size() > kGlbMaxBytes) return tooLarge(file, glb.view().size());
     return writeFile(file, glb.view());
 }
 
