@@ -18,10 +18,9 @@ core::Error cannotWrite(const fs::path& file, const std::string& why) {
     return core::makeError(file.string() + ": cannot write (" + why + ")");
 }
 
-// Writes all of `bytes` to an open descriptor (write() may write less than asked), then flushes
-// them to the disk: a full disk on a delayed-allocation file system reports only at fsync.
-// Returns 0 or the errno of the first failure.
-int writeAll(int fd, std::string_view bytes, bool sync) {
+// Writes all of `bytes` to an open descriptor (write() may write less than asked). Returns 0 or
+// the errno of the first failure.
+int writeAll(int fd, std::string_view bytes) {
     size_t done = 0;
     while (done < bytes.size()) {
         const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
@@ -29,7 +28,6 @@ int writeAll(int fd, std::string_view bytes, bool sync) {
         if (n <= 0) return n < 0 ? errno : EIO;
         done += size_t(n);
     }
-    if (sync && ::fsync(fd) != 0) return errno;
     return 0;
 }
 
@@ -46,14 +44,26 @@ core::Status prepareOutputDirectory(const fs::path& file) {
 }
 
 core::Status writeFile(const fs::path& file, std::string_view bytes) {
+    return writeFileInPieces(file, [bytes](const ByteSink& write) { write(bytes); });
+}
+
+core::Status writeFileInPieces(const fs::path& file, const std::function<void(const ByteSink&)>& produce) {
     if (file.empty()) return core::makeError("cannot write a file with an empty name");
+    // Each piece written as it comes; the first failure's errno kept, and later pieces refused.
+    int error = 0;
+    const auto writeTo = [&error, &produce](int fd) {
+        produce([fd, &error](std::string_view piece) {
+            if (error == 0) error = writeAll(fd, piece);
+            return error == 0;
+        });
+    };
     std::error_code ec;
     const fs::file_status existing = fs::status(file, ec);
     if (fs::exists(existing) && !fs::is_regular_file(existing)) {
         if (fs::is_directory(existing)) return cannotWrite(file, "it is a directory");
         const int fd = ::open(file.c_str(), O_WRONLY | O_CLOEXEC);
         if (fd < 0) return cannotWrite(file, std::strerror(errno));
-        const int error = writeAll(fd, bytes, false);
+        writeTo(fd);
         if (::close(fd) != 0 && error == 0) return cannotWrite(file, std::strerror(errno));
         if (error != 0) return cannotWrite(file, std::strerror(error));
         return core::Ok{};
@@ -69,7 +79,9 @@ core::Status writeFile(const fs::path& file, std::string_view bytes) {
     temporary.replace_filename(name);
     const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
     if (fd < 0) return cannotWrite(file, std::strerror(errno));
-    int error = writeAll(fd, bytes, true);
+    writeTo(fd);
+    // A full disk on a delayed-allocation file system reports only at fsync.
+    if (error == 0 && ::fsync(fd) != 0) error = errno;
     if (::close(fd) != 0 && error == 0) error = errno;
     if (error == 0 && ::rename(temporary.c_str(), file.c_str()) != 0) error = errno;
     if (error != 0) {

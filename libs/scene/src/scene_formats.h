@@ -5,6 +5,7 @@
 #include "shadowkit/core/result.h"
 #include "shadowkit/scene/scene.h"
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -26,6 +27,7 @@ struct BakedBatch {
     std::vector<Vertex> vertices;
     std::vector<uint32_t> indices;
 };
-BakedBatch bake(const Scene& scene, const MeshBatch& batch);
+// Instances [first, first + count) of the batch (clamped to it); by default all of them.
+BakedBatch bake(const Scene& scene, const MeshBatch& batch, size_t first = 0, size_t count = SIZE_MAX);
 
 } // namespace shadowkit::scene::formats

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <span>
 
 namespace shadowkit::scene {
 namespace formats {
@@ -36,7 +37,7 @@ void computeNormals(Mesh& mesh) {
     }
 }
 
-BakedBatch bake(const Scene& scene, const MeshBatch& batch) {
+BakedBatch bake(const Scene& scene, const MeshBatch& batch, size_t first, size_t count) {
     const Mesh& mesh = scene.meshes[batch.mesh];
     // Only the vertices the full mesh's triangles use, in their order: a mesh's vertex list also
     // holds its coarser levels' (AuthoredLod), which a file carrying the full mesh alone would
@@ -50,10 +51,13 @@ BakedBatch bake(const Scene& scene, const MeshBatch& batch) {
             compactOf[v] = static_cast<uint32_t>(used.size());
             used.push_back(v);
         }
+    first = std::min(first, batch.worldFromObject.size());
+    const std::span<const glm::mat4> instances =
+        std::span(batch.worldFromObject).subspan(first, std::min(count, batch.worldFromObject.size() - first));
     BakedBatch out;
-    out.vertices.reserve(used.size() * batch.worldFromObject.size());
-    out.indices.reserve(mesh.indices.size() * batch.worldFromObject.size());
-    for (const glm::mat4& m : batch.worldFromObject) {
+    out.vertices.reserve(used.size() * instances.size());
+    out.indices.reserve(mesh.indices.size() * instances.size());
+    for (const glm::mat4& m : instances) {
         const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(m)));
         const auto base = static_cast<uint32_t>(out.vertices.size());
         for (uint32_t v : used) {

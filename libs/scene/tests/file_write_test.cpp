@@ -101,6 +101,38 @@ TEST(FileWrite, AFailureMidFileKeepsTheOldFileWholeAndLeavesNoTemporary) {
     EXPECT_EQ(strayEntries(dir, file), 0) << "the temporary file is removed";
 }
 
+TEST(FileWrite, InPiecesTheFileIsTheirConcatenationAndAFailedPieceStopsTheProducer) {
+    const fs::path dir = scratch("pieces");
+    const fs::path file = dir / "scene.obj";
+    std::string expected;
+    ASSERT_TRUE(scene::writeFileInPieces(file, [&expected](const scene::ByteSink& write) {
+        for (int i = 0; i < 1000; ++i) {
+            const std::string piece = "piece " + std::to_string(i) + std::string(size_t(i % 37), '.') + "\n";
+            expected += piece;
+            ASSERT_TRUE(write(piece));
+        }
+    }));
+    EXPECT_EQ(readAll(file), expected);
+    EXPECT_EQ(strayEntries(dir, file), 0);
+
+    // Cut 4 KiB in, as a disk that fills: the sink says so, the producer stops, the old file stays.
+    int handed = 0, refused = 0;
+    core::Status status = core::Ok{};
+    {
+        FileSizeLimit limit(4096);
+        status = scene::writeFileInPieces(file, [&](const scene::ByteSink& write) {
+            for (int i = 0; i < 1000 && refused == 0; ++i, ++handed)
+                if (!write(std::string(1024, 'x'))) ++refused;
+        });
+    }
+    ASSERT_FALSE(status);
+    EXPECT_NE(status.error().find(file.string()), std::string::npos) << status.error();
+    EXPECT_EQ(refused, 1);
+    EXPECT_LE(handed, 5) << "the sink refused the piece that crossed the limit";
+    EXPECT_EQ(readAll(file), expected) << "the final name holds the old file";
+    EXPECT_EQ(strayEntries(dir, file), 0) << "the temporary file is removed";
+}
+
 TEST(FileWrite, AFullDeviceIsAnErrorAndStaysADevice) {
     if (!isCharacterDevice("/dev/full")) GTEST_SKIP() << "no /dev/full here";
     const core::Status status = scene::writeFile("/dev/full", "anything");

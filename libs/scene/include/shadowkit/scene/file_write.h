@@ -8,6 +8,7 @@
 #include "shadowkit/core/result.h"
 
 #include <filesystem>
+#include <functional>
 #include <string_view>
 
 namespace shadowkit::scene {
@@ -17,6 +18,14 @@ namespace shadowkit::scene {
 // that exists and is not a regular file (a device such as /dev/stdout, a pipe) is written in
 // place, since renaming over it would replace it.
 core::Status writeFile(const std::filesystem::path& file, std::string_view bytes);
+
+// What writeFileInPieces hands its producer: writes one piece, and returns false once a piece
+// has failed (the rest may be skipped: the file will not be written).
+using ByteSink = std::function<bool(std::string_view)>;
+
+// writeFile for a file too large to hold in memory whole (a large scene's OBJ): `produce` hands
+// its pieces, in order, to the sink it is given; the same guarantees and errors.
+core::Status writeFileInPieces(const std::filesystem::path& file, const std::function<void(const ByteSink&)>& produce);
 
 // Creates the parent directories `file` will need, so a long computation can fail before it
 // starts rather than at its end; the same one-line error as writeFile when it cannot.
