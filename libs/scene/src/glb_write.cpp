@@ -1,9 +1,10 @@
-// Binary glTF 2.0 export (one mesh per batch, instances baked, COLOR_0), with the scene's
-// materials and their textures: base colour factor, alpha mode and cutoff, double-sidedness,
-// the texture as a PNG in the binary chunk with its sampler and TEXCOORD_0 — what gltf_read.cpp
-// reads, so an exported leafy forest loads back with its leaves' holes. Only what the file draws
-// is written: the textures its materials use (not the billboard clouds', which a loader bakes
-// again) and the vertices its triangles use (bake()).
+// Binary glTF 2.0 export: each batch's full mesh once (COLOR_0) and a node placing it per
+// instance, as engines draw instances, with the scene's materials and their textures: base
+// colour factor, alpha mode and cutoff, double-sidedness, the texture as a PNG in the binary
+// chunk with its sampler and TEXCOORD_0 — what gltf_read.cpp reads, so an exported leafy forest
+// loads back with its leaves' holes and its trees as instances. Only what the file draws is
+// written: the textures its materials use (not the billboard clouds', which a loader bakes
+// again) and the vertices the full meshes' triangles use (fullMesh()).
 #include "scene_formats.h"
 
 #include "shadowkit/scene/file_write.h"
@@ -12,8 +13,10 @@
 #include <tiny_gltf.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <map>
 #include <span>
 #include <sstream>
 #include <string>
@@ -21,6 +24,8 @@
 namespace shadowkit::scene::formats {
 
 namespace fs = std::filesystem;
+
+namespace {
 
 // `target` 0 for a view no accessor reads (an image). Each view starts on 4 bytes, so that every
 // accessor's components are aligned after an image of any length (glTF 2.0 §3.6.2.4).
@@ -101,10 +106,43 @@ core::Status addMaterials(const Scene& scene, tinygltf::Model& model) {
     return core::Ok{};
 }
 
+// Whether a node can carry this placement: glTF's node matrices must decompose into
+// translation, rotation and scale (glTF 2.0 §3.5.3), which a loaded file's node hierarchy can
+// break (a non-uniform scale under a rotation shears); such instances are baked instead.
+bool isTrs(const glm::mat4& m) {
+    if (m[0][3] != 0.0f || m[1][3] != 0.0f || m[2][3] != 0.0f || m[3][3] != 1.0f) return false;
+    const glm::vec3 x(m[0]), y(m[1]), z(m[2]);
+    const float lx = glm::length(x), ly = glm::length(y), lz = glm::length(z);
+    if (!(lx > 0.0f && ly > 0.0f && lz > 0.0f)) return false;
+    constexpr float kOrthogonal = 1e-4f; // cosine of the angle between two axes
+    return std::abs(glm::dot(x, y)) <= kOrthogonal * lx * ly && std::abs(glm::dot(y, z)) <= kOrthogonal * ly * lz &&
+           std::abs(glm::dot(z, x)) <= kOrthogonal * lz * lx;
+}
+
+// A batch's instances as the file holds them: the full mesh once for the nodes that place it,
+// with its triangles' winding as the file states it for mirrored ones (a glTF reader turns a
+// mirrored node's winding itself, and Scene keeps a mirrored batch's triangles already turned:
+// gltf_read.cpp), and baked into world space for placements no node can carry.
+struct BatchPlan {
+    std::vector<size_t> placed, mirrored, baked; // instance indices
+};
+BatchPlan planOf(const MeshBatch& batch) {
+    BatchPlan plan;
+    for (size_t i = 0; i < batch.worldFromObject.size(); ++i) {
+        const glm::mat4& m = batch.worldFromObject[i];
+        if (!isTrs(m))
+            plan.baked.push_back(i);
+        else if (glm::determinant(glm::mat3(m)) < 0.0f)
+            plan.mirrored.push_back(i);
+        else
+            plan.placed.push_back(i);
+    }
+    return plan;
+}
+
 // A binary glTF's header and chunk headers hold their lengths in 32 bits (glTF 2.0 §4.4.3), so
 // a file holds at most 2^32 − 1 bytes; tinygltf would truncate the lengths and write a file no
-// reader can open. The geometry's bytes, counted before anything is built (the 10,000-tree leafy
-// forest would need 5.5 GB), then the encoded file's.
+// reader can open. The geometry's bytes, counted before anything is built, then the encoded file's.
 constexpr uint64_t kGlbMaxBytes = (uint64_t(1) << 32) - 1;
 
 uint64_t geometryBytes(const Scene& scene) {
@@ -117,7 +155,11 @@ uint64_t geometryBytes(const Scene& scene) {
         const Material* material = scene.materialOf(mesh);
         const uint64_t perVertex =
             3 * sizeof(glm::vec3) + (material && material->baseColorTexture >= 0 ? sizeof(glm::vec2) : 0);
-        bytes += batch.worldFromObject.size() * (vertices * perVertex + mesh.indices.size() * sizeof(uint32_t));
+        const uint64_t meshBytes = vertices * perVertex + mesh.indices.size() * sizeof(uint32_t);
+        const BatchPlan plan = planOf(batch);
+        bytes += (plan.placed.empty() && plan.mirrored.empty() ? 0 : meshBytes) +
+                 (plan.mirrored.empty() || plan.placed.empty() ? 0 : mesh.indices.size() * sizeof(uint32_t)) +
+                 plan.baked.size() * meshBytes;
     }
     return bytes;
 }
@@ -125,10 +167,118 @@ uint64_t geometryBytes(const Scene& scene) {
 core::Error tooLarge(const fs::path& file, uint64_t bytes) {
     char size[32];
     std::snprintf(size, sizeof size, "%.2f GB", double(bytes) * 1e-9);
-    return core::makeError(
-        file.string() + ": the scene needs " + size +
-        ", more than the 4.29 GB (2^32 bytes) a binary glTF can hold: export it as .obj, or fewer trees");
+    return core::makeError(file.string() + ": the scene needs " + size +
+                           ", more than the 4.29 GB (2^32 bytes) a binary glTF can hold: export it as .obj");
 }
+
+// POSITION, NORMAL, COLOR_0 and, for a textured material, TEXCOORD_0 of `geometry`'s vertices.
+std::map<std::string, int> appendAttributes(tinygltf::Model& model, const BakedBatch& geometry,
+                                            const Material* material) {
+    std::vector<glm::vec3> positions, normals, colors;
+    core::Aabb bounds;
+    // The reader multiplies COLOR_0 by the material's factor: the factor comes out here.
+    const glm::vec3 factor = material ? glm::vec3(material->baseColorFactor) : glm::vec3(1.0f);
+    for (const Vertex& v : geometry.vertices) {
+        positions.push_back(v.position);
+        normals.push_back(v.normal);
+        colors.push_back(glm::vec3(factor.r > 0.0f ? v.albedo.r / factor.r : v.albedo.r,
+                                   factor.g > 0.0f ? v.albedo.g / factor.g : v.albedo.g,
+                                   factor.b > 0.0f ? v.albedo.b / factor.b : v.albedo.b));
+        bounds.extend(core::Vec3(v.position));
+    }
+    const auto vec3s = [&model](const std::vector<glm::vec3>& data, std::vector<double> lo = {},
+                                std::vector<double> hi = {}) {
+        return appendAccessor(
+            model, appendBufferView(model, std::span<const glm::vec3>(data), TINYGLTF_TARGET_ARRAY_BUFFER),
+            TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, data.size(), std::move(lo), std::move(hi));
+    };
+    std::map<std::string, int> attributes;
+    attributes["POSITION"] =
+        vec3s(positions, {bounds.min.x, bounds.min.y, bounds.min.z}, {bounds.max.x, bounds.max.y, bounds.max.z});
+    attributes["NORMAL"] = vec3s(normals);
+    attributes["COLOR_0"] = vec3s(colors);
+    if (material && material->baseColorTexture >= 0) {
+        std::vector<glm::vec2> uvs;
+        for (const Vertex& v : geometry.vertices) uvs.push_back(v.uv);
+        attributes["TEXCOORD_0"] = appendAccessor(
+            model, appendBufferView(model, std::span<const glm::vec2>(uvs), TINYGLTF_TARGET_ARRAY_BUFFER),
+            TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC2, uvs.size());
+    }
+    return attributes;
+}
+
+// A mesh of one primitive over `attributes`, drawing `indices`; returns its index.
+int appendMesh(tinygltf::Model& model, const std::string& name, const std::map<std::string, int>& attributes,
+               const std::vector<uint32_t>& indices, int material) {
+    tinygltf::Primitive prim;
+    prim.mode = TINYGLTF_MODE_TRIANGLES;
+    prim.attributes = attributes;
+    prim.material = material;
+    prim.indices = appendAccessor(
+        model, appendBufferView(model, std::span<const uint32_t>(indices), TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
+        TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, indices.size());
+    tinygltf::Mesh mesh;
+    mesh.name = name;
+    mesh.primitives.push_back(std::move(prim));
+    model.meshes.push_back(std::move(mesh));
+    return int(model.meshes.size() - 1);
+}
+
+// A node drawing `mesh` (or grouping `children`), placed by `worldFromObject` unless it is the
+// identity; returns its index.
+int appendNode(tinygltf::Model& model, int mesh, const std::string& name, const glm::mat4& worldFromObject,
+               std::vector<int> children = {}) {
+    tinygltf::Node node;
+    node.mesh = mesh;
+    node.name = name;
+    node.children = std::move(children);
+    if (worldFromObject != glm::mat4(1.0f))
+        for (int c = 0; c < 4; ++c)
+            for (int r = 0; r < 4; ++r) node.matrix.push_back(worldFromObject[c][r]); // column-major, as glTF
+    model.nodes.push_back(std::move(node));
+    return int(model.nodes.size() - 1);
+}
+
+// One batch: a group node named after its mesh, holding a node per instance over the full mesh
+// (its mirrored instances over the same vertices with the winding the file states), and one
+// mesh of the instances baked into world space where a node cannot place them.
+void appendBatch(tinygltf::Model& model, const Scene& scene, const MeshBatch& batch) {
+    const Mesh& mesh = scene.meshes[batch.mesh];
+    const Material* material = scene.materialOf(mesh);
+    const int materialIndex = material ? mesh.material : -1;
+    const BatchPlan plan = planOf(batch);
+    std::vector<int> children;
+    if (!plan.placed.empty() || !plan.mirrored.empty()) {
+        BakedBatch object = fullMesh(mesh);
+        const std::map<std::string, int> attributes = appendAttributes(model, object, material);
+        const auto placeAll = [&](const std::vector<size_t>& instances, int meshIndex) {
+            for (size_t i : instances) children.push_back(appendNode(model, meshIndex, "", batch.worldFromObject[i]));
+        };
+        if (!plan.placed.empty())
+            placeAll(plan.placed, appendMesh(model, mesh.name, attributes, object.indices, materialIndex));
+        if (!plan.mirrored.empty()) {
+            for (size_t t = 0; t + 2 < object.indices.size(); t += 3)
+                std::swap(object.indices[t + 1], object.indices[t + 2]);
+            placeAll(plan.mirrored,
+                     appendMesh(model, mesh.name + " (mirrored)", attributes, object.indices, materialIndex));
+        }
+    }
+    if (!plan.baked.empty()) {
+        BakedBatch baked;
+        for (size_t i : plan.baked) {
+            const BakedBatch one = bake(scene, batch, i, 1);
+            const auto base = static_cast<uint32_t>(baked.vertices.size());
+            baked.vertices.insert(baked.vertices.end(), one.vertices.begin(), one.vertices.end());
+            for (uint32_t index : one.indices) baked.indices.push_back(base + index);
+        }
+        const int meshIndex = appendMesh(model, mesh.name + " (baked)", appendAttributes(model, baked, material),
+                                         baked.indices, materialIndex);
+        children.push_back(appendNode(model, meshIndex, "", glm::mat4(1.0f)));
+    }
+    model.scenes[0].nodes.push_back(appendNode(model, -1, mesh.name, glm::mat4(1.0f), std::move(children)));
+}
+
+} // namespace
 
 core::Status exportGlb(const Scene& scene, const fs::path& file) {
     if (const uint64_t bytes = geometryBytes(scene); bytes > kGlbMaxBytes) return tooLarge(file, bytes);
@@ -139,57 +289,7 @@ core::Status exportGlb(const Scene& scene, const fs::path& file) {
     model.scenes.emplace_back();
     model.defaultScene = 0;
     if (core::Status s = addMaterials(scene, model); !s) return core::makeError(file.string() + ": " + s.error());
-    for (size_t b = 0; b < scene.batches.size(); ++b) {
-        const BakedBatch baked = bake(scene, scene.batches[b]);
-        std::vector<glm::vec3> positions, normals, colors;
-        core::Aabb bounds;
-        // The reader multiplies COLOR_0 by the material's factor: the factor comes out here.
-        const Material* material = scene.materialOf(scene.meshes[scene.batches[b].mesh]);
-        const glm::vec3 factor = material ? glm::vec3(material->baseColorFactor) : glm::vec3(1.0f);
-        for (const Vertex& v : baked.vertices) {
-            positions.push_back(v.position);
-            normals.push_back(v.normal);
-            colors.push_back(glm::vec3(factor.r > 0.0f ? v.albedo.r / factor.r : v.albedo.r,
-                                       factor.g > 0.0f ? v.albedo.g / factor.g : v.albedo.g,
-                                       factor.b > 0.0f ? v.albedo.b / factor.b : v.albedo.b));
-            bounds.extend(core::Vec3(v.position));
-        }
-        tinygltf::Primitive prim;
-        prim.mode = TINYGLTF_MODE_TRIANGLES;
-        prim.attributes["POSITION"] = appendAccessor(
-            model, appendBufferView(model, std::span<const glm::vec3>(positions), TINYGLTF_TARGET_ARRAY_BUFFER),
-            TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, positions.size(),
-            {bounds.min.x, bounds.min.y, bounds.min.z}, {bounds.max.x, bounds.max.y, bounds.max.z});
-        prim.attributes["NORMAL"] = appendAccessor(
-            model, appendBufferView(model, std::span<const glm::vec3>(normals), TINYGLTF_TARGET_ARRAY_BUFFER),
-            TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, normals.size());
-        prim.attributes["COLOR_0"] = appendAccessor(
-            model, appendBufferView(model, std::span<const glm::vec3>(colors), TINYGLTF_TARGET_ARRAY_BUFFER),
-            TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, colors.size());
-        if (material) {
-            prim.material = scene.meshes[scene.batches[b].mesh].material;
-            if (material->baseColorTexture >= 0) {
-                std::vector<glm::vec2> uvs;
-                for (const Vertex& v : baked.vertices) uvs.push_back(v.uv);
-                prim.attributes["TEXCOORD_0"] = appendAccessor(
-                    model, appendBufferView(model, std::span<const glm::vec2>(uvs), TINYGLTF_TARGET_ARRAY_BUFFER),
-                    TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC2, uvs.size());
-            }
-        }
-        prim.indices = appendAccessor(
-            model,
-            appendBufferView(model, std::span<const uint32_t>(baked.indices), TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
-            TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, baked.indices.size());
-        tinygltf::Mesh mesh;
-        mesh.name = scene.meshes[scene.batches[b].mesh].name;
-        mesh.primitives.push_back(prim);
-        model.meshes.push_back(mesh);
-        tinygltf::Node node;
-        node.mesh = int(model.meshes.size() - 1);
-        node.name = mesh.name;
-        model.nodes.push_back(node);
-        model.scenes[0].nodes.push_back(int(model.nodes.size() - 1));
-    }
+    for (const MeshBatch& batch : scene.batches) appendBatch(model, scene, batch);
     tinygltf::TinyGLTF writer;
     std::ostringstream glb;
     if (!writer.WriteGltfSceneToStream(&model, glb, false, true))

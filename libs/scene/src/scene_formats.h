@@ -21,12 +21,14 @@ core::Status exportGlb(const Scene& scene, const std::filesystem::path& file);
 std::string lowerExtension(const std::filesystem::path& file);
 // Smooth normals from triangle areas, for files that carry none.
 void computeNormals(Mesh& mesh);
-// One batch with every instance transformed into world space: the full mesh's triangles and the
-// vertices they use (not those only its coarser levels use).
+// Triangles and the vertices they use (not those only a mesh's coarser levels use).
 struct BakedBatch {
     std::vector<Vertex> vertices;
     std::vector<uint32_t> indices;
 };
+// A mesh's full triangles in object space.
+BakedBatch fullMesh(const Mesh& mesh);
+// One batch with every instance transformed into world space.
 // Instances [first, first + count) of the batch (clamped to it); by default all of them.
 BakedBatch bake(const Scene& scene, const MeshBatch& batch, size_t first = 0, size_t count = SIZE_MAX);
 

@@ -37,35 +37,39 @@ void computeNormals(Mesh& mesh) {
     }
 }
 
-BakedBatch bake(const Scene& scene, const MeshBatch& batch, size_t first, size_t count) {
-    const Mesh& mesh = scene.meshes[batch.mesh];
+BakedBatch fullMesh(const Mesh& mesh) {
     // Only the vertices the full mesh's triangles use, in their order: a mesh's vertex list also
     // holds its coarser levels' (AuthoredLod), which a file carrying the full mesh alone would
     // leave unreferenced — the leafy trees' card levels, 46–48 % of their vertices.
     constexpr uint32_t kUnused = ~uint32_t(0);
     std::vector<uint32_t> compactOf(mesh.vertices.size(), kUnused);
     for (uint32_t i : mesh.indices) compactOf[i] = 0;
-    std::vector<uint32_t> used;
+    BakedBatch out;
     for (uint32_t v = 0; v < compactOf.size(); ++v)
         if (compactOf[v] != kUnused) {
-            compactOf[v] = static_cast<uint32_t>(used.size());
-            used.push_back(v);
+            compactOf[v] = static_cast<uint32_t>(out.vertices.size());
+            out.vertices.push_back(mesh.vertices[v]);
         }
+    out.indices.reserve(mesh.indices.size());
+    for (uint32_t i : mesh.indices) out.indices.push_back(compactOf[i]);
+    return out;
+}
+
+BakedBatch bake(const Scene& scene, const MeshBatch& batch, size_t first, size_t count) {
+    const BakedBatch object = fullMesh(scene.meshes[batch.mesh]);
     first = std::min(first, batch.worldFromObject.size());
     const std::span<const glm::mat4> instances =
         std::span(batch.worldFromObject).subspan(first, std::min(count, batch.worldFromObject.size() - first));
     BakedBatch out;
-    out.vertices.reserve(used.size() * instances.size());
-    out.indices.reserve(mesh.indices.size() * instances.size());
+    out.vertices.reserve(object.vertices.size() * instances.size());
+    out.indices.reserve(object.indices.size() * instances.size());
     for (const glm::mat4& m : instances) {
         const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(m)));
         const auto base = static_cast<uint32_t>(out.vertices.size());
-        for (uint32_t v : used) {
-            const Vertex& in = mesh.vertices[v];
+        for (const Vertex& in : object.vertices)
             out.vertices.push_back({glm::vec3(m * glm::vec4(in.position, 1.0f)),
                                     glm::normalize(normalMatrix * in.normal), in.albedo, in.uv});
-        }
-        for (uint32_t i : mesh.indices) out.indices.push_back(base + compactOf[i]);
+        for (uint32_t i : object.indices) out.indices.push_back(base + i);
     }
     return out;
 }

@@ -332,9 +332,13 @@ TEST_F(MaterialsTest, ExportedGlbLoadsBackWithItsMaterialsTexturesAndUvs) {
     for (size_t v = 0; v < card.vertices.size(); ++v) {
         EXPECT_EQ(cardBack.vertices[v].uv, card.vertices[v].uv);
         EXPECT_NEAR(glm::distance(cardBack.vertices[v].albedo, card.vertices[v].albedo), 0.0f, 1e-6f); // factor once
-        EXPECT_NEAR(glm::distance(cardBack.vertices[v].position, card.vertices[v].position + glm::vec3(3, 0, 0)), 0.0f,
-                    1e-6f);
+        EXPECT_NEAR(glm::distance(cardBack.vertices[v].position, card.vertices[v].position), 0.0f, 1e-6f);
     }
+    // The card's instance is a node placed 3 m along x, not vertices moved there.
+    ASSERT_EQ(loaded->batches.size(), 2u);
+    ASSERT_EQ(loaded->batches[1].mesh, 1u);
+    ASSERT_EQ(loaded->batches[1].worldFromObject.size(), 1u);
+    EXPECT_EQ(loaded->batches[1].worldFromObject[0], s.batches[1].worldFromObject[0]);
 }
 
 TEST(TextureSamplingTest, Level0LookupIsGlsBilinearWithItsWrapModes) {

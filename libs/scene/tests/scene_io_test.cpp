@@ -1,15 +1,19 @@
 #include "shadowkit/scene/forest.h"
+#include "shadowkit/scene/mesh_builder.h"
 #include "shadowkit/scene/scene_io.h"
 
+#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <set>
 #include <string>
+#include <tuple>
 #include <utility>
 
 using namespace shadowkit;
@@ -26,12 +30,14 @@ Scene tinyForest() {
     o.movers = 1;
     return makeForest(o);
 }
-// Bounds of every transformed vertex (Scene::wsBounds is the looser box of boxes).
+// Bounds of every transformed vertex of the full meshes' triangles (Scene::wsBounds is the looser
+// box of boxes; a leafy mesh's coarser levels have vertices of their own).
 core::Aabb exactBounds(const Scene& s) {
     core::Aabb b;
     for (const MeshBatch& batch : s.batches)
         for (const glm::mat4& m : batch.worldFromObject)
-            for (const Vertex& v : s.meshes[batch.mesh].vertices) b.extend(core::Vec3(m * glm::vec4(v.position, 1.0f)));
+            for (uint32_t i : s.meshes[batch.mesh].indices)
+                b.extend(core::Vec3(m * glm::vec4(s.meshes[batch.mesh].vertices[i].position, 1.0f)));
     return b;
 }
 void expectSameBounds(const core::Aabb& a, const core::Aabb& b) {
@@ -58,12 +64,13 @@ TEST(SceneIoTest, ExportedGlbAndObjLoadBackWithTheSameTrianglesAndBounds) {
 }
 
 namespace {
-// What an export must carry: each instance's vertices that its mesh's full triangles use.
-size_t verticesDrawn(const Scene& s) {
+// What an export must carry: the vertices each batch's mesh's full triangles use, once per
+// instance (baked into world space: OBJ) or once (placed by nodes: glb).
+size_t verticesDrawn(const Scene& s, bool perInstance) {
     size_t count = 0;
     for (const MeshBatch& batch : s.batches) {
         const std::set<uint32_t> used(s.meshes[batch.mesh].indices.begin(), s.meshes[batch.mesh].indices.end());
-        count += used.size() * batch.worldFromObject.size();
+        count += used.size() * (perInstance ? batch.worldFromObject.size() : 1);
     }
     return count;
 }
@@ -89,9 +96,85 @@ GlbChunks readGlb(const std::filesystem::path& file) {
     }
     return out;
 }
+// Every triangle of every instance in world space, by its centroid, with which way its winding
+// faces (counter-clockwise seen from the front).
+std::vector<std::pair<glm::vec3, glm::vec3>> worldTriangles(const Scene& s) {
+    std::vector<std::pair<glm::vec3, glm::vec3>> out;
+    for (const MeshBatch& batch : s.batches)
+        for (const glm::mat4& m : batch.worldFromObject) {
+            const Mesh& mesh = s.meshes[batch.mesh];
+            for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+                glm::vec3 p[3];
+                for (int k = 0; k < 3; ++k)
+                    p[k] = glm::vec3(m * glm::vec4(mesh.vertices[mesh.indices[t + k]].position, 1.0f));
+                out.push_back({(p[0] + p[1] + p[2]) / 3.0f, glm::normalize(glm::cross(p[1] - p[0], p[2] - p[0]))});
+            }
+        }
+    std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) {
+        return std::tie(a.first.x, a.first.y, a.first.z) < std::tie(b.first.x, b.first.y, b.first.z);
+    });
+    return out;
+}
 } // namespace
 
-TEST(SceneIoTest, AnExportedFileHoldsOnlyWhatItDraws) {
+TEST(SceneIoTest, MirroredAndShearedInstancesComeBackWhereTheyWereFacingOutwards) {
+    // A box placed as it is, mirrored (Scene keeps a mirrored batch's triangles already turned,
+    // as the glTF reader does), and sheared (no node matrix can hold a shear: baked).
+    Mesh box;
+    addBox(box, glm::mat4(1.0f), {1.0f, 0.5f, 0.25f}, glm::vec3(0.5f));
+    box.computeBounds();
+    Mesh turned = box;
+    for (size_t t = 0; t + 2 < turned.indices.size(); t += 3) std::swap(turned.indices[t + 1], turned.indices[t + 2]);
+    glm::mat4 sheared = glm::translate(glm::mat4(1.0f), {0.0f, 0.0f, 6.0f});
+    sheared[1][0] = 0.5f; // x grows with y
+    Scene s;
+    s.meshes = {box, turned};
+    s.batches = {{0, {glm::mat4(1.0f), sheared}, false},
+                 {1, {glm::scale(glm::translate(glm::mat4(1.0f), {5.0f, 0.0f, 0.0f}), {-1.0f, 1.0f, 1.0f})}, false}};
+    const auto source = worldTriangles(s);
+    const auto file = std::filesystem::temp_directory_path() / "shadowkit_io_mirrored.glb";
+    ASSERT_TRUE(exportScene(s, file));
+    const auto loaded = loadScene(file);
+    ASSERT_TRUE(loaded) << loaded.error();
+    const auto back = worldTriangles(*loaded);
+    ASSERT_EQ(back.size(), source.size());
+    for (size_t t = 0; t < source.size(); ++t) {
+        EXPECT_LT(glm::distance(back[t].first, source[t].first), 1e-4f) << t;
+        EXPECT_GT(glm::dot(back[t].second, source[t].second), 0.999f) << t << ": turned inside out";
+    }
+    const nlohmann::json j = readGlb(file).json;
+    std::set<std::string> meshes;
+    for (const auto& mesh : j["meshes"]) meshes.insert(mesh.value("name", ""));
+    EXPECT_EQ(meshes.size(), 3u) << "placed, mirrored and baked";
+    std::filesystem::remove(file);
+}
+
+TEST(SceneIoTest, AGlbPastItsFourGigabytesIsRefusedBeforeItIsBuilt) {
+    // 2^20 vertices drawn by 100 sheared placements, which no node can hold, so baked: 5 GB, past
+    // the 2^32 bytes a binary glTF's 32-bit lengths can say (tinygltf wrote such lengths truncated).
+    Mesh strip;
+    strip.vertices.resize(size_t(1) << 20);
+    for (size_t v = 0; v < strip.vertices.size(); ++v)
+        strip.vertices[v].position = glm::vec3(float(v % 1024), float(v / 1024), 0.0f);
+    for (uint32_t v = 0; v + 2 < strip.vertices.size(); ++v)
+        strip.indices.insert(strip.indices.end(), {v, v + 1, v + 2});
+    strip.computeBounds();
+    glm::mat4 sheared(1.0f);
+    sheared[1][0] = 0.5f;
+    Scene s;
+    s.meshes = {strip};
+    s.batches = {{0, std::vector<glm::mat4>(100, sheared), false}};
+    const auto file = std::filesystem::temp_directory_path() / "shadowkit_io_too_large.glb";
+    std::filesystem::remove(file);
+    const core::Status status = exportScene(s, file);
+    ASSERT_FALSE(status);
+    // (2^20 × 36 + (2^20 − 2) × 3 × 4) × 100 bytes: 3 vec3 a vertex, uint32 indices.
+    EXPECT_NE(status.error().find(file.string() + ": the scene needs 5.03 GB"), std::string::npos) << status.error();
+    EXPECT_NE(status.error().find("a binary glTF can hold"), std::string::npos) << status.error();
+    EXPECT_FALSE(std::filesystem::exists(file));
+}
+
+TEST(SceneIoTest, AnExportedFileHoldsOnlyWhatItDrawsEachMeshOnceWithANodePerInstance) {
     // A leafy forest: its leaf meshes' vertex lists also hold their card levels' vertices, and its
     // textures the billboard clouds' beside the leaf atlas its material uses.
     ForestOptions o;
@@ -106,11 +189,9 @@ TEST(SceneIoTest, AnExportedFileHoldsOnlyWhatItDraws) {
         if (m.baseColorTexture >= 0) texturesUsed.insert(m.baseColorTexture);
     ASSERT_FALSE(texturesUsed.empty());
     ASSERT_GT(forest.textures.size(), texturesUsed.size()); // the clouds' textures, which no material uses
-    const size_t drawn = verticesDrawn(forest);
     size_t held = 0;
-    for (const MeshBatch& batch : forest.batches)
-        held += forest.meshes[batch.mesh].vertices.size() * batch.worldFromObject.size();
-    ASSERT_GT(held, drawn); // the case that matters: vertices only the coarser levels use
+    for (const MeshBatch& batch : forest.batches) held += forest.meshes[batch.mesh].vertices.size();
+    ASSERT_GT(held, verticesDrawn(forest, false)); // the case that matters: vertices only the coarser levels use
 
     const auto glb = std::filesystem::temp_directory_path() / "shadowkit_io_drawn.glb";
     ASSERT_TRUE(exportScene(forest, glb));
@@ -155,11 +236,27 @@ TEST(SceneIoTest, AnExportedFileHoldsOnlyWhatItDraws) {
             EXPECT_EQ(std::count(used.begin(), used.end(), false), 0) << mesh.value("name", "");
             vertices += count;
         }
-    EXPECT_EQ(vertices, drawn);
-    // Loaded back: the same triangles, the leaves' texture and holes.
+    EXPECT_EQ(vertices, verticesDrawn(forest, false));
+    // Each batch's mesh once, and a node placing it per instance (under a node per batch).
+    size_t instances = 0;
+    for (const MeshBatch& batch : forest.batches) instances += batch.worldFromObject.size();
+    EXPECT_EQ(j["meshes"].size(), forest.batches.size());
+    EXPECT_EQ(j["nodes"].size(), forest.batches.size() + instances);
+    // Loaded back: the same batches, placements and triangles.
     const auto loaded = loadScene(glb);
     ASSERT_TRUE(loaded) << loaded.error();
     EXPECT_EQ(loaded->triangleCount(), forest.triangleCount());
+    ASSERT_EQ(loaded->batches.size(), forest.batches.size());
+    for (size_t b = 0; b < forest.batches.size(); ++b) {
+        ASSERT_EQ(loaded->batches[b].worldFromObject.size(), forest.batches[b].worldFromObject.size()) << b;
+        for (size_t i = 0; i < forest.batches[b].worldFromObject.size(); ++i)
+            for (int c = 0; c < 4; ++c)
+                EXPECT_LT(
+                    glm::distance(loaded->batches[b].worldFromObject[i][c], forest.batches[b].worldFromObject[i][c]),
+                    1e-5f)
+                    << b << " " << i;
+    }
+    expectSameBounds(exactBounds(*loaded), exactBounds(forest));
     std::filesystem::remove(glb);
 
     // The OBJ: the same vertices, one `v` line each.
@@ -168,7 +265,7 @@ TEST(SceneIoTest, AnExportedFileHoldsOnlyWhatItDraws) {
     std::ifstream in(obj);
     size_t vLines = 0;
     for (std::string line; std::getline(in, line);) vLines += line.rfind("v ", 0) == 0;
-    EXPECT_EQ(vLines, drawn);
+    EXPECT_EQ(vLines, verticesDrawn(forest, true));
     std::filesystem::remove(obj);
 }
 
