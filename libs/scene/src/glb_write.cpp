@@ -247,9 +247,9 @@ void appendBatch(tinygltf::Model& model, const Scene& scene, const MeshBatch& ba
     const Material* material = scene.materialOf(mesh);
     const int materialIndex = material ? mesh.material : -1;
     const BatchPlan plan = planOf(batch);
+    const BakedBatch object = fullMesh(mesh);
     std::vector<int> children;
     if (!plan.placed.empty() || !plan.mirrored.empty()) {
-        BakedBatch object = fullMesh(mesh);
         const std::map<std::string, int> attributes = appendAttributes(model, object, material);
         const auto placeAll = [&](const std::vector<size_t>& instances, int meshIndex) {
             for (size_t i : instances) children.push_back(appendNode(model, meshIndex, "", batch.worldFromObject[i]));
@@ -257,20 +257,15 @@ void appendBatch(tinygltf::Model& model, const Scene& scene, const MeshBatch& ba
         if (!plan.placed.empty())
             placeAll(plan.placed, appendMesh(model, mesh.name, attributes, object.indices, materialIndex));
         if (!plan.mirrored.empty()) {
-            for (size_t t = 0; t + 2 < object.indices.size(); t += 3)
-                std::swap(object.indices[t + 1], object.indices[t + 2]);
-            placeAll(plan.mirrored,
-                     appendMesh(model, mesh.name + " (mirrored)", attributes, object.indices, materialIndex));
+            std::vector<uint32_t> turned = object.indices;
+            for (size_t t = 0; t + 2 < turned.size(); t += 3) std::swap(turned[t + 1], turned[t + 2]);
+            placeAll(plan.mirrored, appendMesh(model, mesh.name + " (mirrored)", attributes, turned, materialIndex));
         }
     }
     if (!plan.baked.empty()) {
-        BakedBatch baked;
-        for (size_t i : plan.baked) {
-            const BakedBatch one = bake(scene, batch, i, 1);
-            const auto base = static_cast<uint32_t>(baked.vertices.size());
-            baked.vertices.insert(baked.vertices.end(), one.vertices.begin(), one.vertices.end());
-            for (uint32_t index : one.indices) baked.indices.push_back(base + index);
-        }
+        std::vector<glm::mat4> worldFromObject;
+        for (size_t i : plan.baked) worldFromObject.push_back(batch.worldFromObject[i]);
+        const BakedBatch baked = placed(object, worldFromObject);
         const int meshIndex = appendMesh(model, mesh.name + " (baked)", appendAttributes(model, baked, material),
                                          baked.indices, materialIndex);
         children.push_back(appendNode(model, meshIndex, "", glm::mat4(1.0f)));

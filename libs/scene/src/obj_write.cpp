@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <span>
 #include <string>
 
 namespace shadowkit::scene::formats {
@@ -36,8 +37,11 @@ core::Status exportObj(const Scene& scene, const fs::path& file) {
         for (size_t b = 0; b < scene.batches.size(); ++b) {
             const MeshBatch& batch = scene.batches[b];
             text += "o " + scene.meshes[batch.mesh].name + "_" + std::to_string(b) + "\n";
-            for (size_t first = 0; first < batch.worldFromObject.size(); first += kInstancesPerPiece) {
-                const BakedBatch baked = bake(scene, batch, first, kInstancesPerPiece);
+            const BakedBatch object = fullMesh(scene.meshes[batch.mesh]);
+            const std::span<const glm::mat4> instances(batch.worldFromObject);
+            for (size_t first = 0; first < instances.size(); first += kInstancesPerPiece) {
+                const BakedBatch baked =
+                    placed(object, instances.subspan(first, std::min(kInstancesPerPiece, instances.size() - first)));
                 // "v x y z r g b": the widely read vertex-colour extension of OBJ.
                 for (const Vertex& v : baked.vertices)
                     appendf(text, "v %.4f %.4f %.4f %.3f %.3f %.3f\n", v.position.x, v.position.y, v.position.z,

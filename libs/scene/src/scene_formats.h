@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -28,8 +29,7 @@ struct BakedBatch {
 };
 // A mesh's full triangles in object space.
 BakedBatch fullMesh(const Mesh& mesh);
-// One batch with every instance transformed into world space.
-// Instances [first, first + count) of the batch (clamped to it); by default all of them.
-BakedBatch bake(const Scene& scene, const MeshBatch& batch, size_t first = 0, size_t count = SIZE_MAX);
+// `object` (a fullMesh) once per placement, transformed into world space.
+BakedBatch placed(const BakedBatch& object, std::span<const glm::mat4> worldFromObject);
 
 } // namespace shadowkit::scene::formats

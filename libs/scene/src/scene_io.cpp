@@ -55,15 +55,11 @@ BakedBatch fullMesh(const Mesh& mesh) {
     return out;
 }
 
-BakedBatch bake(const Scene& scene, const MeshBatch& batch, size_t first, size_t count) {
-    const BakedBatch object = fullMesh(scene.meshes[batch.mesh]);
-    first = std::min(first, batch.worldFromObject.size());
-    const std::span<const glm::mat4> instances =
-        std::span(batch.worldFromObject).subspan(first, std::min(count, batch.worldFromObject.size() - first));
+BakedBatch placed(const BakedBatch& object, std::span<const glm::mat4> worldFromObject) {
     BakedBatch out;
-    out.vertices.reserve(object.vertices.size() * instances.size());
-    out.indices.reserve(object.indices.size() * instances.size());
-    for (const glm::mat4& m : instances) {
+    out.vertices.reserve(object.vertices.size() * worldFromObject.size());
+    out.indices.reserve(object.indices.size() * worldFromObject.size());
+    for (const glm::mat4& m : worldFromObject) {
         const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(m)));
         const auto base = static_cast<uint32_t>(out.vertices.size());
         for (const Vertex& in : object.vertices)
