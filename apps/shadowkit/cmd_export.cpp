@@ -1,4 +1,4 @@
-// shadowkit export: a scene as .glb or .obj, instances baked into world space.
+// shadowkit export: a scene as .glb or .obj in world coordinates (scene_io.h).
 #include "commands.h"
 #include "options.h"
 

@@ -116,12 +116,16 @@ core::Result<scene::Scene> SceneOptions::load(bool verbose) const {
     if (verbose) {
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         const std::string name = scene == "forest" && forest == "leafy" ? "forest (leafy)" : scene;
-        fmt::print(stderr, "scene {}: {} instances, {:.2f} M triangles, {} batches ({:.2f} s)\n", name,
+        // A file far from its origin stands there, its floats relative to it (near_origin.cpp).
+        const core::Vec3& at = result->wsOrigin;
+        const std::string standing =
+            at == core::Vec3(0.0) ? "" : fmt::format(", standing at {:.0f},{:.0f},{:.0f} m", at.x, at.y, at.z);
+        fmt::print(stderr, "scene {}: {} instances, {:.2f} M triangles, {} batches{} ({:.2f} s)\n", name,
                    result->instanceCount(), static_cast<double>(result->triangleCount()) * 1e-6, result->batches.size(),
-                   seconds);
+                   standing, seconds);
     }
     if (result->batches.empty()) return core::makeError(fmt::format("scene {}: is empty (no triangles)", scene));
-    result->wsOrigin = *origin;
+    result->wsOrigin += *origin; // a file far out already stands at its own origin (near_origin.cpp)
     return result;
 }
 

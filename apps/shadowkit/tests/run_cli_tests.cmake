@@ -460,6 +460,22 @@ if(CASE STREQUAL "export-leafy-forest-glb")
     message(SEND_ERROR "export-leafy-forest-glb: export ${rc} (${bytes} bytes), loading it ${rc2}: ${err} ${err2}")
   endif()
 endif()
+# A scene standing far out (--world-offset, or a file in survey metres) is written where it
+# stands, and loads back standing there: before, export wrote the scene's own coordinates.
+if(CASE STREQUAL "export-world-offset")
+  execute_process(COMMAND ${SHADOWKIT} export ${small} --world-offset 512345.678,0,5412345.321 --out "${WORK}/far.obj"
+                  RESULT_VARIABLE rc ERROR_VARIABLE err)
+  file(STRINGS "${WORK}/far.obj" first_vertex REGEX "^v " LIMIT_COUNT 1)
+  string(REGEX MATCH "^v ([-0-9.]+) [-0-9.]+ ([-0-9.]+)" parsed "${first_vertex}")
+  set(x "${CMAKE_MATCH_1}")
+  set(z "${CMAKE_MATCH_2}")
+  execute_process(COMMAND ${SHADOWKIT} export --scene "${WORK}/far.obj" --out "${WORK}/back.glb" RESULT_VARIABLE rc2
+                  OUTPUT_QUIET ERROR_VARIABLE err2)
+  if(NOT rc EQUAL 0 OR NOT rc2 EQUAL 0 OR NOT parsed OR x LESS 512200 OR x GREATER 512500 OR z LESS 5412200
+     OR z GREATER 5412500 OR NOT err2 MATCHES "standing at 5123[0-9][0-9],[-0-9]+,54123[0-9][0-9] m")
+    message(SEND_ERROR "export-world-offset: export ${rc}, first vertex '${first_vertex}', loading it ${rc2}: ${err} ${err2}")
+  endif()
+endif()
 check_fails(render-out-full-disk "--out: /dev/full: cannot write" render ${small} --size 32x18 --map-size 64 --out /dev/full)
 check_fails(eval-json-full-disk "--json: /dev/full: cannot write" eval ${small} --view paper --size 32x18 --map-size 64 --json /dev/full)
 check_fails(trees-negative "trees: must be in" setup --trees -1)

@@ -285,6 +285,14 @@ core::Status exportGlb(const Scene& scene, const fs::path& file) {
     model.defaultScene = 0;
     if (core::Status s = addMaterials(scene, model); !s) return core::makeError(file.string() + ": " + s.error());
     for (const MeshBatch& batch : scene.batches) appendBatch(model, scene, batch);
+    if (scene.wsOrigin != core::Vec3(0.0)) { // the batches under a node that stands them where the scene stands
+        tinygltf::Node origin;
+        origin.name = "scene origin";
+        origin.translation = {scene.wsOrigin.x, scene.wsOrigin.y, scene.wsOrigin.z}; // double, as JSON keeps it
+        origin.children = std::move(model.scenes[0].nodes);
+        model.nodes.push_back(std::move(origin));
+        model.scenes[0].nodes = {int(model.nodes.size() - 1)};
+    }
     tinygltf::TinyGLTF writer;
     std::ostringstream glb;
     if (!writer.WriteGltfSceneToStream(&model, glb, false, true))

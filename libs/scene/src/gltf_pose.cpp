@@ -26,11 +26,11 @@
 
 namespace shadowkit::scene::formats {
 
-glm::mat4 nodeLocalMatrix(const tinygltf::Node& node) {
+glm::dmat4 nodeLocalMatrix(const tinygltf::Node& node) {
     if (node.matrix.size() == 16) {
         glm::dmat4 m;
         std::copy(node.matrix.begin(), node.matrix.end(), glm::value_ptr(m));
-        return glm::mat4(m);
+        return m;
     }
     glm::dmat4 m(1.0);
     if (node.translation.size() == 3)
@@ -38,7 +38,7 @@ glm::mat4 nodeLocalMatrix(const tinygltf::Node& node) {
     if (node.rotation.size() == 4)
         m *= glm::mat4_cast(glm::dquat(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]));
     if (node.scale.size() == 3) m = glm::scale(m, glm::dvec3(node.scale[0], node.scale[1], node.scale[2]));
-    return glm::mat4(m);
+    return m;
 }
 
 std::vector<glm::dmat4> nodeGlobalTransforms(const tinygltf::Model& model) {
@@ -57,7 +57,7 @@ std::vector<glm::dmat4> nodeGlobalTransforms(const tinygltf::Model& model) {
         const size_t node = stack.back();
         stack.pop_back();
         const glm::dmat4 parent = parentOf[node] < 0 ? glm::dmat4(1.0) : global[size_t(parentOf[node])];
-        global[node] = parent * glm::dmat4(nodeLocalMatrix(model.nodes[node]));
+        global[node] = parent * nodeLocalMatrix(model.nodes[node]);
         for (int child : model.nodes[node].children)
             if (child >= 0 && size_t(child) < n) stack.push_back(size_t(child));
     }
@@ -141,7 +141,8 @@ core::Status applyMorphTargets(const tinygltf::Model& model, const tinygltf::Pri
 }
 
 core::Status applySkin(const tinygltf::Model& model, const tinygltf::Primitive& prim,
-                       const std::vector<glm::dmat4>& joints, Mesh& mesh, const std::string& where) {
+                       const std::vector<glm::dmat4>& joints, Mesh& mesh, glm::dvec3& anchor,
+                       const std::string& where) {
     std::vector<glm::dmat4> blend(mesh.vertices.size(), glm::dmat4(0.0));
     std::vector<double> weightSum(mesh.vertices.size(), 0.0);
     for (int set = 0;; ++set) {
@@ -169,16 +170,19 @@ core::Status applySkin(const tinygltf::Model& model, const tinygltf::Primitive& 
                 weightSum[i] += weight;
             }
     }
-    // Each vertex's handedness under its pose: -1 where its blended joints mirror it.
+    // Each vertex's position under its pose (double until the anchor is known) and handedness:
+    // -1 where its blended joints mirror it.
+    std::vector<glm::dvec3> posed(mesh.vertices.size());
     std::vector<int> handedness(mesh.vertices.size(), 1);
     for (size_t i = 0; i < mesh.vertices.size(); ++i) {
+        Vertex& v = mesh.vertices[i];
+        posed[i] = glm::dvec3(v.position);
         if (!(weightSum[i] > 0.0) || !std::isfinite(weightSum[i])) continue; // unweighted: as bound
         const glm::dmat4 m = blend[i] / weightSum[i];
-        Vertex& v = mesh.vertices[i];
-        const glm::dvec3 p = glm::dvec3(m * glm::dvec4(glm::dvec3(v.position), 1.0));
+        const glm::dvec3 p = glm::dvec3(m * glm::dvec4(posed[i], 1.0));
         if (!core::isFinite(m) || !std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
             return core::makeError(where + ": vertex " + std::to_string(i) + " is skinned to a non-finite position");
-        v.position = glm::vec3(p);
+        posed[i] = p;
         const glm::dmat3 linear(m);
         const double det = glm::determinant(linear);
         if (det < 0.0) handedness[i] = -1;
@@ -187,6 +191,10 @@ core::Status applySkin(const tinygltf::Model& model, const tinygltf::Primitive& 
             if (glm::length(n) > 0.0) v.normal = glm::vec3(glm::normalize(n));
         }
     }
+    core::Aabb bounds;
+    for (const glm::dvec3& p : posed) bounds.extend(p);
+    anchor = anchorOf(bounds);
+    for (size_t i = 0; i < mesh.vertices.size(); ++i) mesh.vertices[i].position = glm::vec3(posed[i] - anchor);
     // A pose that mirrors turns a triangle's winding as a mirrored node does (gltf_read.cpp), while
     // its normals, moved by the inverse transpose, keep pointing out: so a triangle whose corners
     // are mostly mirrored is reversed, and its front stays the side its normals face.

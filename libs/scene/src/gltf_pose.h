@@ -13,8 +13,9 @@
 
 namespace shadowkit::scene::formats {
 
-/// A node's transform relative to its parent: its matrix, or T · R · S.
-glm::mat4 nodeLocalMatrix(const tinygltf::Node& node);
+/// A node's transform relative to its parent: its matrix, or T · R · S (in double, as the file
+/// writes its numbers: a node may stand a thousand kilometres out).
+glm::dmat4 nodeLocalMatrix(const tinygltf::Node& node);
 
 /// Every node's global transform at the rest pose (the nodes' TRS or matrices as written), for
 /// a file whose nodes form trees (checkNodeTrees).
@@ -33,8 +34,10 @@ core::Status applyMorphTargets(const tinygltf::Model& model, const tinygltf::Pri
 /// The primitive's vertices (`mesh`, as convertPrimitive read them) moved by their joints:
 /// p' = Σ w_k · joint[j_k] · p over every JOINTS_n / WEIGHTS_n set, normals by the inverse
 /// transpose of the blend; a triangle whose corners are mostly mirrored by their blends
-/// (negative determinant) reversed, as a mirrored node's are; bounds recomputed.
+/// (negative determinant) reversed, as a mirrored node's are; bounds recomputed. The posed
+/// positions are kept relative to `anchor`, which it sets: anchorOf() their box, subtracted in
+/// double (a skin posed far out keeps its precision); the mesh is to be placed there.
 core::Status applySkin(const tinygltf::Model& model, const tinygltf::Primitive& prim,
-                       const std::vector<glm::dmat4>& joints, Mesh& mesh, const std::string& where);
+                       const std::vector<glm::dmat4>& joints, Mesh& mesh, glm::dvec3& anchor, const std::string& where);
 
 } // namespace shadowkit::scene::formats

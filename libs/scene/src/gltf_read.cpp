@@ -19,6 +19,8 @@
 //   - a texture that cannot be read (missing, corrupt, KTX2 only) matters only where the
 //     material's alpha does: on an OPAQUE material it is dropped with one warning in
 //     Scene::warnings (shadows never read an opaque colour), on MASK and BLEND it is an error;
+//   - nodes' transforms composed in double, and the scene stood where float keeps its
+//     precision (near_origin.cpp): a model in survey metres keeps its millimetres;
 //   - nodes instancing their mesh (EXT_mesh_gpu_instancing, gltfpack -mi): one instance each;
 //   - morph targets at their default weights, then skinned meshes posed by their joints, at the
 //     file's rest pose (gltf_pose.cpp);
@@ -74,11 +76,11 @@ core::Error dracoCompressed(const std::string& subject) {
 constexpr const char* kInstancing = "EXT_mesh_gpu_instancing";
 constexpr size_t kMaxInstances = size_t(1) << 24;
 
-core::Result<std::vector<glm::mat4>> instanceTransforms(const tinygltf::Model& model, const tinygltf::Node& node,
-                                                        const glm::mat4& world, const std::string& where,
-                                                        size_t& placed) {
+core::Result<std::vector<glm::dmat4>> instanceTransforms(const tinygltf::Model& model, const tinygltf::Node& node,
+                                                         const glm::dmat4& world, const std::string& where,
+                                                         size_t& placed) {
     const auto ext = node.extensions.find(kInstancing);
-    if (ext == node.extensions.end()) return std::vector<glm::mat4>{world};
+    if (ext == node.extensions.end()) return std::vector<glm::dmat4>{world};
     const std::string what = where + " (" + kInstancing + ")";
     if (!ext->second.IsObject()) return core::makeError(what + ": the extension is not an object");
     const tinygltf::Value& attributes = ext->second.Get("attributes"); // Get() asserts an object
@@ -102,11 +104,11 @@ core::Result<std::vector<glm::mat4>> instanceTransforms(const tinygltf::Model& m
         count = reader->count();
         readers[a] = std::move(*reader);
     }
-    if (!count) return std::vector<glm::mat4>{world}; // no attributes: the node as it is
+    if (!count) return std::vector<glm::dmat4>{world}; // no attributes: the node as it is
     placed += *count;
     if (placed > kMaxInstances)
         return core::makeError(what + ": more instances than shadowkit places in one scene (2^24)");
-    std::vector<glm::mat4> out(*count);
+    std::vector<glm::dmat4> out(*count);
     for (size_t i = 0; i < *count; ++i) {
         glm::dmat4 m(1.0);
         if (readers[0]) m = glm::translate(m, glm::dvec3(readers[0]->read(i)));
@@ -118,8 +120,8 @@ core::Result<std::vector<glm::mat4>> instanceTransforms(const tinygltf::Model& m
             m *= glm::mat4_cast(glm::dquat(q.w / length, q.x / length, q.y / length, q.z / length));
         }
         if (readers[2]) m = glm::scale(m, glm::dvec3(readers[2]->read(i)));
-        out[i] = glm::mat4(glm::dmat4(world) * m);
-        if (!core::isFinite(glm::dmat4(out[i])))
+        out[i] = world * m;
+        if (!core::isFinite(glm::dmat4(glm::mat4(out[i])))) // as float too: the renderer's
             return core::makeError(what + ": instance " + std::to_string(i) + " has a non-finite transform");
     }
     return out;
@@ -436,7 +438,11 @@ core::Result<Scene> loadGltf(const fs::path& file) {
     std::map<int, std::vector<glm::dmat4>> jointsOf; // each skin's joint matrices
     std::optional<core::Error> failure;
     size_t instancesPlaced = 0; // by EXT_mesh_gpu_instancing
-    auto visit = [&](auto&& self, int nodeIndex, const glm::mat4& parent, int depth) -> void {
+    // Each batch's placements in the file's coordinates, in double until placeNearOrigin; a
+    // skinned batch is placed at its posed vertices' anchor (applySkin), every other at its nodes.
+    std::vector<std::vector<glm::dmat4>> placements;
+    std::map<size_t, glm::dvec3> skinnedAt;
+    auto visit = [&](auto&& self, int nodeIndex, const glm::dmat4& parent, int depth) -> void {
         if (failure || nodeIndex < 0 || size_t(nodeIndex) >= model.nodes.size()) return; // a bad root is skipped
         if (depth > kMaxNodeDepth) {
             failure = core::makeError(file.string() + ": the node hierarchy is deeper than " +
@@ -444,8 +450,8 @@ core::Result<Scene> loadGltf(const fs::path& file) {
             return;
         }
         const tinygltf::Node& node = model.nodes[size_t(nodeIndex)];
-        const glm::mat4 world = parent * nodeLocalMatrix(node);
-        if (!core::isFinite(glm::dmat4(world))) {
+        const glm::dmat4 world = parent * nodeLocalMatrix(node);
+        if (!core::isFinite(glm::dmat4(glm::mat4(world)))) { // as float too: the renderer's
             failure = core::makeError(file.string() + ": node " + std::to_string(nodeIndex) + " '" +
                                       printable(node.name) + "' has a non-finite transform");
             return;
@@ -465,14 +471,14 @@ core::Result<Scene> loadGltf(const fs::path& file) {
                 }
                 jointsOf.emplace(skin, std::move(*joints));
             }
-            const auto transforms = skin >= 0 ? std::vector<glm::mat4>{glm::mat4(1.0f)}
+            const auto transforms = skin >= 0 ? std::vector<glm::dmat4>{glm::dmat4(1.0)}
                                               : instanceTransforms(model, node, world, nodeName, instancesPlaced);
             if (!transforms) {
                 failure = transforms.errorInfo();
                 return;
             }
-            for (const glm::mat4& transform : *transforms) {
-                const bool mirrored = glm::determinant(glm::mat3(transform)) < 0.0f;
+            for (const glm::dmat4& transform : *transforms) {
+                const bool mirrored = glm::determinant(glm::dmat3(transform)) < 0.0;
                 for (size_t p = 0; p < gltfMesh.primitives.size(); ++p) {
                     auto [it, inserted] = batchOf.try_emplace(
                         {node.mesh, p, mirrored, skin, node.weights.empty() ? -1 : nodeIndex}, scene.batches.size());
@@ -497,20 +503,27 @@ core::Result<Scene> loadGltf(const fs::path& file) {
                             failure = morphed.errorInfo();
                             return;
                         }
-                        if (skin >= 0)
-                            if (auto posed = applySkin(model, gltfMesh.primitives[p], jointsOf.at(skin), *mesh, where);
+                        if (skin >= 0) {
+                            glm::dvec3 anchor(0.0);
+                            if (auto posed =
+                                    applySkin(model, gltfMesh.primitives[p], jointsOf.at(skin), *mesh, anchor, where);
                                 !posed) {
                                 failure = posed.errorInfo();
                                 return;
                             }
+                            skinnedAt[it->second] = anchor;
+                        }
                         if (mirrored) // counter-clockwise again once the mirror has turned it
                             for (size_t t = 0; t + 2 < mesh->indices.size(); t += 3)
                                 std::swap(mesh->indices[t + 1], mesh->indices[t + 2]);
                         mesh->name = gltfMesh.name;
                         scene.meshes.push_back(std::move(*mesh));
                         scene.batches.push_back({uint32_t(scene.meshes.size() - 1), {}, false});
+                        placements.emplace_back();
                     }
-                    scene.batches[it->second].worldFromObject.push_back(transform);
+                    const auto skinned = skinnedAt.find(it->second);
+                    placements[it->second].push_back(
+                        skinned == skinnedAt.end() ? transform : glm::translate(glm::dmat4(1.0), skinned->second));
                 }
             }
         }
@@ -518,8 +531,9 @@ core::Result<Scene> loadGltf(const fs::path& file) {
     };
     const int sceneIndex = model.defaultScene >= 0 ? model.defaultScene : 0;
     if (!model.scenes.empty() && size_t(sceneIndex) < model.scenes.size())
-        for (int root : model.scenes[size_t(sceneIndex)].nodes) visit(visit, root, glm::mat4(1.0f), 0);
+        for (int root : model.scenes[size_t(sceneIndex)].nodes) visit(visit, root, glm::dmat4(1.0), 0);
     if (failure) return *failure;
+    placeNearOrigin(scene, placements);
     if (scene.triangleCount() == 0) return core::makeError(file.string() + ": glTF file holds no triangle meshes");
     return scene;
 }

@@ -11,6 +11,8 @@
 
 #include <tiny_obj_loader.h>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -68,6 +70,14 @@ core::Result<Scene> loadObj(const fs::path& file) {
         return core::makeError(file.string() + ": not a readable OBJ file (" + oneLine(err) + ")");
     const bool colours = !attrib.colors.empty();
     const size_t vertexCount = attrib.vertices.size() / 3, normalCount = attrib.normals.size() / 3;
+    // Positions are parsed in double (tinyobjloader_double) and become float only relative to
+    // the file's anchor (near_origin.cpp): a file in survey metres keeps its millimetres.
+    core::Aabb fileBounds;
+    for (size_t v = 0; v < vertexCount; ++v) {
+        const glm::dvec3 p(attrib.vertices[3 * v], attrib.vertices[3 * v + 1], attrib.vertices[3 * v + 2]);
+        if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)) fileBounds.extend(p);
+    }
+    const glm::dvec3 anchor = anchorOf(fileBounds);
 
     Scene scene;
     for (const tinyobj::shape_t& shape : shapes) {
@@ -94,8 +104,9 @@ core::Result<Scene> loadObj(const fs::path& file) {
             if (inserted) {
                 const size_t v = size_t(index.vertex_index);
                 Vertex vertex;
-                vertex.position =
-                    glm::vec3(attrib.vertices[3 * v], attrib.vertices[3 * v + 1], attrib.vertices[3 * v + 2]);
+                const glm::dvec3 position(attrib.vertices[3 * v], attrib.vertices[3 * v + 1],
+                                          attrib.vertices[3 * v + 2]);
+                vertex.position = glm::vec3(position - anchor);
                 if (!std::isfinite(vertex.position.x) || !std::isfinite(vertex.position.y) ||
                     !std::isfinite(vertex.position.z))
                     return core::makeError(file.string() + ": object '" + mesh.name + "': vertex " +
@@ -123,9 +134,12 @@ core::Result<Scene> loadObj(const fs::path& file) {
         if (!everyNormal) computeNormals(mesh);
         mesh.computeBounds();
         scene.meshes.push_back(std::move(mesh));
-        scene.batches.push_back({uint32_t(scene.meshes.size() - 1), {glm::mat4(1.0f)}, false});
+        scene.batches.push_back({uint32_t(scene.meshes.size() - 1), {}, false});
     }
     if (scene.meshes.empty()) return core::makeError(file.string() + ": OBJ file holds no faces");
+    const std::vector<std::vector<glm::dmat4>> placements(scene.batches.size(),
+                                                          {glm::translate(glm::dmat4(1.0), anchor)});
+    placeNearOrigin(scene, placements);
     return scene;
 }
 

@@ -42,10 +42,13 @@ core::Status exportObj(const Scene& scene, const fs::path& file) {
             for (size_t first = 0; first < instances.size(); first += kInstancesPerPiece) {
                 const BakedBatch baked =
                     placed(object, instances.subspan(first, std::min(kInstancesPerPiece, instances.size() - first)));
-                // "v x y z r g b": the widely read vertex-colour extension of OBJ.
+                // "v x y z r g b": the widely read vertex-colour extension of OBJ. World
+                // coordinates, the scene's origin added in double (a scene far out keeps its
+                // millimetres: near_origin.cpp).
+                const core::Vec3& origin = scene.wsOrigin;
                 for (const Vertex& v : baked.vertices)
-                    appendf(text, "v %.4f %.4f %.4f %.3f %.3f %.3f\n", v.position.x, v.position.y, v.position.z,
-                            v.albedo.r, v.albedo.g, v.albedo.b);
+                    appendf(text, "v %.4f %.4f %.4f %.3f %.3f %.3f\n", origin.x + v.position.x, origin.y + v.position.y,
+                            origin.z + v.position.z, v.albedo.r, v.albedo.g, v.albedo.b);
                 for (const Vertex& v : baked.vertices)
                     appendf(text, "vn %.4f %.4f %.4f\n", v.normal.x, v.normal.y, v.normal.z);
                 for (size_t i = 0; i + 2 < baked.indices.size(); i += 3) {

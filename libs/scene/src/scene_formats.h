@@ -1,5 +1,6 @@
 // The scene file formats behind scene_io.h, one file each: gltf_read.cpp, obj_read.cpp,
-// obj_write.cpp, glb_write.cpp; the helpers they share live in scene_io.cpp.
+// obj_write.cpp, glb_write.cpp; the helpers they share live in scene_io.cpp, and where a loaded
+// scene stands in near_origin.cpp.
 #pragma once
 
 #include "shadowkit/core/result.h"
@@ -31,5 +32,17 @@ struct BakedBatch {
 BakedBatch fullMesh(const Mesh& mesh);
 // `object` (a fullMesh) once per placement, transformed into world space.
 BakedBatch placed(const BakedBatch& object, std::span<const glm::mat4> worldFromObject);
+
+// Geometry farther from the origin than this many times its own size (its bounds' diagonal)
+// is moved to it (near_origin.cpp).
+inline constexpr double kFarFromOriginSizes = 16.0;
+// The whole metres nearest the centre of `bounds` when they lie far from the origin (above),
+// else 0: what a loader subtracts, in double, before a coordinate becomes float.
+glm::dvec3 anchorOf(const core::Aabb& bounds);
+// Fills each batch's worldFromObject from its placements in the file's coordinates
+// (`fileFromObject`, a list per batch, in double) and sets Scene::wsOrigin: a mesh far from its
+// own origin is moved to it, and a scene far from the world's origin stands at its anchor with
+// everything relative to it — world points stay the file's, floats stay small.
+void placeNearOrigin(Scene& scene, const std::vector<std::vector<glm::dmat4>>& fileFromObject);
 
 } // namespace shadowkit::scene::formats

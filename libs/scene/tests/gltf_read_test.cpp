@@ -232,7 +232,8 @@ TEST(GltfReadTest, ADeepTreeOfNodesComposesEveryTransform) {
     ASSERT_TRUE(s) << s.error();
     ASSERT_EQ(s->batches.size(), 1u);
     ASSERT_EQ(s->batches[0].worldFromObject.size(), 1u);
-    EXPECT_NEAR(s->batches[0].worldFromObject[0][3].x, 300.0f, 1e-3f);
+    // In the world: a mesh 300 m out from a metre-sized one stands at its own origin (near_origin.cpp).
+    EXPECT_NEAR(s->wsOrigin.x + double(s->batches[0].worldFromObject[0][3].x), 300.0, 1e-3);
 }
 
 namespace {
@@ -392,9 +393,9 @@ namespace {
 // A skinned triangle: its node scaled 100 times (ignored: joints alone place a skinned mesh),
 // joint A at (0, 0, 5), joint B at (10, 0, 0) turned 90° about y with an inverse bind matrix
 // moving 2 along -z; corner 0 bound to A, corner 1 to B (`joint`), corner 2 half to each. `ibmCount`
-// and `joint` break it on purpose; `weights` false drops WEIGHTS_0.
+// and `joint` break it on purpose; `weights` false drops WEIGHTS_0; `at` moves both joints.
 core::Result<scene::Scene> loadSkinned(const std::string& name, int ibmCount = 2, uint8_t joint = 1,
-                                       bool weights = true) {
+                                       bool weights = true, const glm::dvec3& at = glm::dvec3(0.0)) {
     std::vector<unsigned char> b;
     append<float>(b, {1, 0, 0, 0, 0, 0, 0, 0, -1});                      // POSITION: 36 at 0
     append<uint8_t>(b, {0, 1, 0, 0, 0, joint, 0, 0, 0, 1, 0, 0});        // JOINTS_0: 12 at 36
@@ -403,9 +404,12 @@ core::Result<scene::Scene> loadSkinned(const std::string& name, int ibmCount = 2
                       1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, -2, 1}); // IBM B: 128 at 96
     const float s45 = std::sqrt(0.5f);
     return loadWritten(name, R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0,1,2]}],
-        "nodes":[{"mesh":0,"skin":0,"scale":[100,100,100]},{"translation":[0,0,5]},
-                 {"translation":[10,0,0],"rotation":[0,)" +
-                                 std::to_string(s45) + ",0," + std::to_string(s45) + R"(]}],
+        "nodes":[{"mesh":0,"skin":0,"scale":[100,100,100]},{"translation":[)" +
+                                 std::to_string(at.x) + "," + std::to_string(at.y) + "," + std::to_string(at.z + 5) +
+                                 R"(]},
+                 {"translation":[)" +
+                                 std::to_string(at.x + 10) + "," + std::to_string(at.y) + "," + std::to_string(at.z) +
+                                 R"(],"rotation":[0,)" + std::to_string(s45) + ",0," + std::to_string(s45) + R"(]}],
         "skins":[{"joints":[1,2],"inverseBindMatrices":3}],
         "meshes":[{"primitives":[{"attributes":{"POSITION":0,"JOINTS_0":1)" +
                                  (weights ? R"(,"WEIGHTS_0":2)" : "") + R"(}}]}],
@@ -437,6 +441,26 @@ TEST(GltfReadTest, ASkinnedMeshIsPlacedByItsJointsAtTheRestPose) {
     for (size_t i = 0; i < 3; ++i) {
         const glm::vec3 world = glm::vec3(placed * glm::vec4(mesh.vertices[i].position, 1.0f));
         EXPECT_LT(glm::distance(world, expected[i]), 1e-5f) << i << ": " << world.x << "," << world.y << "," << world.z;
+    }
+}
+
+// Posed far out (joints in survey metres), the skin keeps its millimetres: posed in double and
+// kept relative to its anchor, where before it was posed into float world coordinates (a 0.5 m
+// step at 5.4e6 m).
+TEST(GltfReadTest, ASkinPosedFarOutKeepsItsMillimetres) {
+    const glm::dvec3 at(512345.678, 20.25, 5412345.321);
+    const auto s = loadSkinned("sk_skinned_far.gltf", 2, 1, true, at);
+    ASSERT_TRUE(s) << s.error();
+    ASSERT_EQ(s->batches.size(), 1u);
+    ASSERT_EQ(s->batches[0].worldFromObject.size(), 1u);
+    const scene::Mesh& mesh = s->meshes[s->batches[0].mesh];
+    const glm::dmat4 placed(s->batches[0].worldFromObject[0]);
+    const glm::dvec3 expected[3] = {{1, 0, 5}, {8, 0, 0}, {3.5, 0, 2}}; // as above, then moved by `at`
+    ASSERT_EQ(mesh.vertices.size(), 3u);
+    for (size_t i = 0; i < 3; ++i) {
+        const glm::dvec3 world =
+            s->wsOrigin + glm::dvec3(placed * glm::dvec4(glm::dvec3(mesh.vertices[i].position), 1.0));
+        EXPECT_LT(glm::distance(world, at + expected[i]), 1e-5) << i;
     }
 }
 
