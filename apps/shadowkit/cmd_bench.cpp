@@ -53,6 +53,7 @@ struct BenchArgs {
     // --scene: a glTF or OBJ file instead of the forest, one set of rows (each view framed over
     // it as eval frames it); forestFlag names a forest option given with it, which is an error.
     std::string scene, forestFlag;
+    std::string sceneUp = "y"; // --scene's up axis (SceneOptions::sceneUp)
 };
 
 core::Result<std::vector<int>> parseCounts(const std::string& text) {
@@ -367,6 +368,7 @@ core::Result<std::pair<scene::Scene, BenchRow>> buildScene(const BenchArgs& args
     if (args.scene.empty()) return buildForest(args, trees);
     SceneOptions options;
     options.scene = args.scene;
+    options.sceneUp = args.sceneUp;
     const auto loadStart = std::chrono::steady_clock::now();
     auto loaded = options.load();
     if (!loaded) return core::makeError("--scene: " + loaded.error());
@@ -400,6 +402,7 @@ core::Status parseBenchFrames(BenchArgs& args) {
 int runBench(const BenchArgs& args) {
     if (!args.scene.empty() && !args.forestFlag.empty())
         return fail(args.forestFlag + ": the built-in forest's, and --scene benches a file instead");
+    if (args.scene.empty() && args.sceneUp != "y") return fail("--scene-up: needs --scene (the forest is y-up)");
     auto counts = args.scene.empty() ? parseCounts(args.trees) : core::Result<std::vector<int>>(std::vector<int>{0});
     if (!counts) return fail(counts.errorInfo());
     if (auto s = args.technique.check(/*measuresFrames=*/false); !s) return fail(s.errorInfo());
@@ -512,6 +515,9 @@ Command addBenchCommand(CLI::App& app) {
     cmd->add_option("--scene", args->scene,
                     "bench a glTF (.gltf, .glb) or OBJ file instead of the forest: one set of rows, each view framed "
                     "over the file as eval frames it");
+    cmd->add_option("--scene-up", args->sceneUp, "--scene's up axis: y (glTF's) or z")
+        ->check(CLI::IsMember({"y", "z"}))
+        ->capture_default_str();
     CLI::Option* views = cmd->add_option("--views", args->views,
                                          "standard views, comma-separated, or all (the six sunlit ones) or local")
                              ->capture_default_str();

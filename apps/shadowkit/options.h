@@ -28,7 +28,8 @@ struct SceneOptions {
     double terrainSize = 1024.0;
     int terrainResolution = 256;
     int movers = scene::ForestOptions{}.movers;
-    std::string worldOffset; // "x,y,z": where the scene stands in the world (Scene::wsOrigin)
+    std::string worldOffset;   // "x,y,z": where the scene stands in the world (Scene::wsOrigin)
+    std::string sceneUp = "y"; // a scene file's up axis, y or z (scene::LoadOptions::up)
     // The first of the built-in forest's flags given on the command line (--forest, --seed,
     // --trees, --terrain-size, --terrain-resolution, --movers): with a scene file it would be
     // ignored, so check() and load() refuse it.

@@ -39,6 +39,11 @@ void SceneOptions::addTo(CLI::App& cmd) {
         cmd.get_option(flag)->each([this, flag](const std::string&) {
             if (forestFlag.empty()) forestFlag = flag;
         });
+    cmd.add_option("--scene-up", sceneUp,
+                   "a scene file's up axis: y (glTF's, and shadowkit's) or z (CAD, GIS and photogrammetry exports "
+                   "often write z up)")
+        ->check(CLI::IsMember({"y", "z"}))
+        ->capture_default_str();
     cmd.add_option(
         "--world-offset", worldOffset,
         "x,y,z metres: stand the scene and its views this far from the world's origin (large-world precision)");
@@ -67,8 +72,11 @@ scene::ForestOptions forestOptionsOf(const SceneOptions& options) {
     return o;
 }
 
-// A forest flag given with a scene file would be dropped in silence (no trees, no movers).
+// A forest flag given with a scene file would be dropped in silence (no trees, no movers), and
+// so would a file's up axis given with the forest.
 core::Status forestFlagsUnused(const SceneOptions& options) {
+    if (options.scene == "forest" && options.sceneUp != "y")
+        return core::makeError("--scene-up: a scene file's, and the built-in forest is y-up");
     if (options.scene == "forest" || options.forestFlag.empty()) return core::Ok{};
     return core::makeError(
         fmt::format("{}: the built-in forest's, and --scene draws {} instead", options.forestFlag, options.scene));
@@ -87,8 +95,8 @@ core::Result<std::pair<int, int>> parseSize(const std::string& size) {
 
 core::Status SceneOptions::check() const {
     if (auto origin = offset(); !origin) return origin.errorInfo();
-    if (scene == "forest") return scene::validate(forestOptionsOf(*this));
     if (auto s = forestFlagsUnused(*this); !s) return s;
+    if (scene == "forest") return scene::validate(forestOptionsOf(*this));
     std::error_code ec;
     const auto status = std::filesystem::status(scene, ec);
     if (!std::filesystem::exists(status))
@@ -103,13 +111,13 @@ core::Result<scene::Scene> SceneOptions::load(bool verbose) const {
     if (!origin) return origin.errorInfo();
     const auto start = std::chrono::steady_clock::now();
     core::Result<scene::Scene> result = core::makeError("");
+    if (auto s = forestFlagsUnused(*this); !s) return s.errorInfo();
     if (scene == "forest") {
         const scene::ForestOptions o = forestOptionsOf(*this);
         if (core::Status s = scene::validate(o); !s) return s.errorInfo();
         result = scene::makeForest(o);
     } else {
-        if (auto s = forestFlagsUnused(*this); !s) return s.errorInfo();
-        result = scene::loadScene(scene);
+        result = scene::loadScene(scene, {.up = sceneUp == "z" ? scene::UpAxis::Z : scene::UpAxis::Y});
         if (!result) return result;
         for (const std::string& warning : result->warnings) warn(warning);
     }

@@ -1,6 +1,6 @@
 // The scene file formats behind scene_io.h, one file each: gltf_read.cpp, obj_read.cpp,
-// obj_write.cpp, glb_write.cpp; the helpers they share live in scene_io.cpp, and where a loaded
-// scene stands in near_origin.cpp.
+// obj_write.cpp, glb_write.cpp; the helpers they share live in scene_io.cpp, where a loaded
+// scene stands in near_origin.cpp and which way is up in up_axis.cpp.
 #pragma once
 
 #include "shadowkit/core/result.h"
@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -44,5 +45,10 @@ glm::dvec3 anchorOf(const core::Aabb& bounds);
 // own origin is moved to it, and a scene far from the world's origin stands at its anchor with
 // everything relative to it — world points stay the file's, floats stay small.
 void placeNearOrigin(Scene& scene, const std::vector<std::vector<glm::dmat4>>& fileFromObject);
+
+// A z-up file's scene turned y-up, (x, y, z) → (x, z, −y), exactly (up_axis.cpp).
+void turnZUpToYUp(Scene& scene);
+// Why a scene loaded y-up looks z-up (its net ground area faces +z), or nullopt.
+std::optional<std::string> zUpWarning(const Scene& scene);
 
 } // namespace shadowkit::scene::formats

@@ -75,7 +75,7 @@ BakedBatch placed(const BakedBatch& object, std::span<const glm::mat4> worldFrom
 namespace fs = std::filesystem;
 using namespace formats;
 
-core::Result<Scene> loadScene(const fs::path& file) {
+core::Result<Scene> loadScene(const fs::path& file, const LoadOptions& options) {
     std::error_code ec;
     if (!fs::exists(file, ec)) return core::makeError(file.string() + ": scene file does not exist");
     if (fs::is_directory(file, ec)) return core::makeError(file.string() + ": is a directory, not a scene file");
@@ -83,6 +83,11 @@ core::Result<Scene> loadScene(const fs::path& file) {
     if (ext != ".gltf" && ext != ".glb" && ext != ".obj")
         return core::makeError(file.string() + ": unknown scene format (use .gltf, .glb or .obj)");
     core::Result<Scene> scene = ext == ".obj" ? loadObj(file) : loadGltf(file);
+    if (scene && options.up == UpAxis::Z) turnZUpToYUp(*scene);
+    // glTF is y-up by its specification, and its sample cards face +z: only an OBJ, which says
+    // nothing, is suspected of z-up.
+    if (scene && options.up == UpAxis::Y && ext == ".obj")
+        if (auto why = zUpWarning(*scene)) scene->warnings.push_back(file.string() + ": " + *why);
     // Finite positions placed (or scaled by a node) past the world's end: a view framing them
     // would put its eye there, and Embree aborts on such a ray origin.
     if (scene) {

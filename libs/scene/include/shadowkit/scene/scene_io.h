@@ -8,12 +8,24 @@
 
 namespace shadowkit::scene {
 
+// Which of a file's axes points up. glTF's is y (glTF 2.0 §3.4); OBJ has no convention, and
+// CAD, GIS and photogrammetry exports often write z up (easting, northing, height).
+enum class UpAxis { Y, Z };
+
+struct LoadOptions {
+    // Z: the file's (x, y, z) is shadowkit's (x, z, −y) — turned −90° about x, exactly (a
+    // permutation with a sign), so the world is still y-up and right-handed.
+    UpAxis up = UpAxis::Y;
+};
+
 // Loads triangles from glTF (a mesh referenced by several nodes becomes one batch with
 // several instances) or OBJ (one mesh, one instance). The format follows the extension.
-// World coordinates are the file's; a file whose geometry lies far from its origin (survey
-// metres) stands at Scene::wsOrigin with everything relative to it, read in double first.
-// Errors name the file and what is wrong: missing, unreadable, no triangles.
-core::Result<Scene> loadScene(const std::filesystem::path& file);
+// World coordinates are the file's (turned y-up, LoadOptions::up); a file whose geometry lies
+// far from its origin (survey metres) stands at Scene::wsOrigin with everything relative to it,
+// read in double first. An OBJ loaded y-up that looks z-up — its net area facing +z, as a
+// ground's does — says so in Scene::warnings (glTF is y-up by its specification). Errors name the file and what is
+// wrong: missing, unreadable, no triangles.
+core::Result<Scene> loadScene(const std::filesystem::path& file, const LoadOptions& options = {});
 
 // Writes the scene in world coordinates (Scene::wsOrigin added in double) with per-vertex
 // colours: .glb (binary glTF, COLOR_0: each batch's mesh once and a node per instance, under a
