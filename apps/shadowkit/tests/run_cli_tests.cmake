@@ -479,6 +479,20 @@ endif()
 check_fails(scene-up-with-forest "--scene-up: a scene file's, and the built-in forest is y-up" setup --scene-up z)
 check_fails(scene-up-bad "--scene-up" setup --scene-up x)
 check_fails(bench-scene-up-without-scene "--scene-up: needs --scene" bench --scene-up z)
+# A town of 1,100 buildings, each its own mesh placed once (tools/make_town.py): drawn as its
+# tiles, a few draws a pass, not 1,101 (mesh_merge.cpp).
+if(CASE STREQUAL "gl-bench-town")
+  find_program(PYTHON NAMES python3 REQUIRED)
+  execute_process(COMMAND ${PYTHON} "${source_dir}/tools/make_town.py" "${WORK}/town.glb" --buildings 1100
+                  RESULT_VARIABLE rc OUTPUT_QUIET ERROR_VARIABLE err)
+  execute_process(COMMAND ${SHADOWKIT} bench --scene "${WORK}/town.glb" --views paper --frames 1 --size 64x36
+                  RESULT_VARIABLE rc2 OUTPUT_VARIABLE out ERROR_VARIABLE err2)
+  string(REGEX MATCH "paper +shadow +[0-9]+ +[0-9.]+ +([0-9]+)" row "${out}")
+  set(draws "${CMAKE_MATCH_1}")
+  if(NOT rc EQUAL 0 OR NOT rc2 EQUAL 0 OR NOT row OR draws GREATER 16)
+    message(SEND_ERROR "gl-bench-town: make_town ${rc}, bench ${rc2}, shadow pass draws '${draws}': ${err} ${err2} ${out}")
+  endif()
+endif()
 check_fails(render-out-full-disk "--out: /dev/full: cannot write" render ${small} --size 32x18 --map-size 64 --out /dev/full)
 check_fails(eval-json-full-disk "--json: /dev/full: cannot write" eval ${small} --view paper --size 32x18 --map-size 64 --json /dev/full)
 check_fails(trees-negative "trees: must be in" setup --trees -1)

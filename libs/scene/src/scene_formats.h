@@ -1,6 +1,7 @@
 // The scene file formats behind scene_io.h, one file each: gltf_read.cpp, obj_read.cpp,
 // obj_write.cpp, glb_write.cpp; the helpers they share live in scene_io.cpp, where a loaded
-// scene stands in near_origin.cpp and which way is up in up_axis.cpp.
+// scene stands in near_origin.cpp, which way is up in up_axis.cpp, and its many small meshes
+// merged in mesh_merge.cpp.
 #pragma once
 
 #include "shadowkit/core/result.h"
@@ -45,6 +46,12 @@ glm::dvec3 anchorOf(const core::Aabb& bounds);
 // own origin is moved to it, and a scene far from the world's origin stands at its anchor with
 // everything relative to it — world points stay the file's, floats stay small.
 void placeNearOrigin(Scene& scene, const std::vector<std::vector<glm::dmat4>>& fileFromObject);
+
+// Static batching (mesh_merge.cpp): in a scene of kMergeFromBatches batches or more, the opaque
+// meshes placed once, under kTileTriangles each, baked into tiles of neighbours by material —
+// up to kTileTriangles or kTileMeshes meshes a tile, one batch each, placed at the identity.
+inline constexpr size_t kMergeFromBatches = 1024, kTileTriangles = 16384, kTileMeshes = 256;
+void mergeSmallMeshes(Scene& scene);
 
 // A z-up file's scene turned y-up, (x, y, z) → (x, z, −y), exactly (up_axis.cpp).
 void turnZUpToYUp(Scene& scene);

@@ -100,6 +100,7 @@ core::Result<Scene> loadScene(const fs::path& file, const LoadOptions& options) 
                                    " m from the origin; at most 1e13 m");
         }
     }
+    if (scene && options.mergeSmallMeshes) mergeSmallMeshes(*scene);
     // Foliage that brings no levels of its own gets billboard clouds, as the leafy forest's trees.
     if (scene) addFoliageClouds(*scene);
     return scene;

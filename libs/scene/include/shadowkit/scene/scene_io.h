@@ -16,6 +16,11 @@ struct LoadOptions {
     // Z: the file's (x, y, z) is shadowkit's (x, z, −y) — turned −90° about x, exactly (a
     // permutation with a sign), so the world is still y-up and right-handed.
     UpAxis up = UpAxis::Y;
+    // A scene of 1,024 batches or more (a town, every building a mesh placed once): its opaque
+    // meshes placed once, under 16,384 triangles each, merged into tiles of neighbours by
+    // material — a few dozen draws a pass where there were thousands. A tile, not a building, is
+    // then an instance (culled, given levels and told apart by the evaluation as one).
+    bool mergeSmallMeshes = true;
 };
 
 // Loads triangles from glTF (a mesh referenced by several nodes becomes one batch with
