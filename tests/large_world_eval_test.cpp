@@ -97,7 +97,7 @@ namespace {
 
 // A user's model as a survey export writes it: a 20 m ground, a 3 m box and a 6 m pole, in
 // world metres `at` (an OBJ), loaded as `eval --scene FILE` loads it.
-scene::Scene loadModelAt(const glm::dvec3& at) {
+scene::Scene loadSurveyModelAt(const glm::dvec3& at) {
     const auto file = std::filesystem::temp_directory_path() / "shadowkit_survey_model.obj";
     {
         std::ofstream out(file);
@@ -123,7 +123,7 @@ scene::Scene loadModelAt(const glm::dvec3& at) {
     return loaded ? std::move(*loaded) : scene::Scene{};
 }
 
-eval::Figures measureView(const scene::Scene& model, const std::string& name, int64_t& shadowedPx) {
+eval::Figures measureLoadedView(const scene::Scene& model, const std::string& name, int64_t& shadowedPx) {
     const scene::ResolvedView view = gl::testing::standardView(model, name);
     auto measurer = measure::Measurer::create(model);
     EXPECT_TRUE(measurer) << measurer.error();
@@ -154,12 +154,12 @@ eval::Figures measureView(const scene::Scene& model, const std::string& name, in
 // model like this 1e6 m out was 48 % wrong on `paper`, with raster and ray disagreeing on 2,700
 // of 4,600 pixels, and 1e7 m out 15–40 % on every view.
 TEST_F(LargeWorldEvalTest, AModelInSurveyMetresLoadedFromItsFileScoresAsAtTheOrigin) {
-    const scene::Scene atOrigin = loadModelAt(glm::dvec3(0.0));
-    const scene::Scene surveyed = loadModelAt(glm::dvec3(512345.678, 231.5, 5412345.321));
+    const scene::Scene atOrigin = loadSurveyModelAt(glm::dvec3(0.0));
+    const scene::Scene surveyed = loadSurveyModelAt(glm::dvec3(512345.678, 231.5, 5412345.321));
     for (const std::string view : {"paper", "perpendicular", "aerial"}) {
         int64_t originShadowed = 0, surveyShadowed = 0;
-        const eval::Figures origin = measureView(atOrigin, view, originShadowed);
-        const eval::Figures survey = measureView(surveyed, view, surveyShadowed);
+        const eval::Figures origin = measureLoadedView(atOrigin, view, originShadowed);
+        const eval::Figures survey = measureLoadedView(surveyed, view, surveyShadowed);
         ASSERT_GT(origin.validPx, 2000) << view;
         ASSERT_GT(originShadowed, 100) << view; // there are shadows to get wrong
         EXPECT_NEAR(survey.wrongPct, origin.wrongPct, 0.05) << view;

@@ -24,7 +24,7 @@ namespace {
 // `meshes` distinct meshes (each names the same upward-facing triangle), one node each on a
 // grid 30 m apart; node 0 mirrored in x; meshes 1–10 alpha-tested (MASK); the last mesh placed
 // by a second node too.
-std::string town(int meshes) {
+std::string townGltf(int meshes) {
     const float triangle[] = {0, 0, 0, 0, 0, 4, 4, 0, 0};
     std::vector<unsigned char> buffer(sizeof triangle);
     std::memcpy(buffer.data(), triangle, sizeof triangle);
@@ -48,9 +48,9 @@ std::string town(int meshes) {
     return text.str();
 }
 
-Scene load(int meshes, bool merge) {
+Scene loadTown(int meshes, bool merge) {
     const auto file = std::filesystem::temp_directory_path() / "shadowkit_town.gltf";
-    std::ofstream(file) << town(meshes);
+    std::ofstream(file) << townGltf(meshes);
     auto scene = loadScene(file, {.mergeSmallMeshes = merge});
     std::filesystem::remove(file);
     EXPECT_TRUE(scene) << scene.error();
@@ -59,14 +59,14 @@ Scene load(int meshes, bool merge) {
 
 // Every placed triangle in world coordinates (to the millimetre), each rotated to start at its
 // least corner so that the order of its corners — its winding — is kept; sorted.
-using Triangle = std::array<std::array<long, 3>, 3>;
-std::vector<Triangle> worldTriangles(const Scene& s) {
-    std::vector<Triangle> out;
+using WoundTriangle = std::array<std::array<long, 3>, 3>;
+std::vector<WoundTriangle> woundTriangles(const Scene& s) {
+    std::vector<WoundTriangle> out;
     for (const MeshBatch& batch : s.batches)
         for (const glm::mat4& m : batch.worldFromObject) {
             const Mesh& mesh = s.meshes[batch.mesh];
             for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
-                Triangle t;
+                WoundTriangle t;
                 for (int k = 0; k < 3; ++k) {
                     const glm::dvec3 p =
                         s.wsOrigin +
@@ -85,13 +85,13 @@ std::vector<Triangle> worldTriangles(const Scene& s) {
 
 TEST(MeshMergeTest, ATownOfMeshesPlacedOnceLoadsAsAFewTilesOfNeighboursDrawingTheSameTriangles) {
     constexpr int kMeshes = 1500;
-    const Scene merged = load(kMeshes, true), apart = load(kMeshes, false);
+    const Scene merged = loadTown(kMeshes, true), apart = loadTown(kMeshes, false);
     ASSERT_EQ(apart.batches.size(), size_t(kMeshes));
     // 1,489 opaque meshes placed once in tiles of at most 256 (halved until they fit: 8), the 10
     // alpha-tested ones and the one placed twice as they were.
     constexpr size_t kMerged = kMeshes - 11;
     EXPECT_EQ(merged.triangleCount(), apart.triangleCount());
-    EXPECT_EQ(worldTriangles(merged), worldTriangles(apart)); // the same triangles, wound alike
+    EXPECT_EQ(woundTriangles(merged), woundTriangles(apart)); // the same triangles, wound alike
 
     size_t tiles = 0, alphaTested = 0, placedTwice = 0;
     const double townDiagonal = merged.localBounds().diagonal();
@@ -115,7 +115,7 @@ TEST(MeshMergeTest, ATownOfMeshesPlacedOnceLoadsAsAFewTilesOfNeighboursDrawingTh
 }
 
 TEST(MeshMergeTest, ASceneOfFewerMeshesIsLeftAsItWas) {
-    const Scene few = load(1000, true);
+    const Scene few = loadTown(1000, true);
     EXPECT_EQ(few.batches.size(), 1000u); // the corpus's largest has 55 batches
-    EXPECT_EQ(worldTriangles(few), worldTriangles(load(1000, false)));
+    EXPECT_EQ(woundTriangles(few), woundTriangles(loadTown(1000, false)));
 }

@@ -24,9 +24,9 @@ namespace {
 const glm::dvec3 kSurvey(512345.678, 20.25, 5412345.321);
 
 // A little model with millimetre detail, in the model's own metres: a sloped quad and a spike.
-const std::vector<glm::dvec3> kModel = {{0, 0, 0},         {0.001, 0, 0.002}, {4, 0.5, 0},
-                                        {4.003, 0.5, 3.5}, {0, 0, 3.5},       {2, 7.25, 1.75}};
-constexpr const char* kModelFaces = "f 1 5 4 3\nf 1 2 6\nf 2 3 6\nf 3 4 6\nf 4 5 6\n";
+const std::vector<glm::dvec3> kSurveyModel = {{0, 0, 0},         {0.001, 0, 0.002}, {4, 0.5, 0},
+                                              {4.003, 0.5, 3.5}, {0, 0, 3.5},       {2, 7.25, 1.75}};
+constexpr const char* kSurveyModelFaces = "f 1 5 4 3\nf 1 2 6\nf 2 3 6\nf 3 4 6\nf 4 5 6\n";
 
 // Every vertex the full meshes' triangles use, in world coordinates, in double.
 std::vector<glm::dvec3> worldVertices(const Scene& s) {
@@ -63,18 +63,19 @@ void expectFloatsNearZero(const Scene& s, const std::string& where) {
             << where << " " << mesh.name;
 }
 
-std::filesystem::path writeObj(const std::string& name, const glm::dvec3& at) {
+std::filesystem::path writeSurveyObj(const std::string& name, const glm::dvec3& at) {
     const auto file = std::filesystem::temp_directory_path() / name;
     std::ofstream out(file);
     out.precision(17);
-    for (const glm::dvec3& p : kModel) out << "v " << at.x + p.x << ' ' << at.y + p.y << ' ' << at.z + p.z << '\n';
-    out << kModelFaces;
+    for (const glm::dvec3& p : kSurveyModel)
+        out << "v " << at.x + p.x << ' ' << at.y + p.y << ' ' << at.z + p.z << '\n';
+    out << kSurveyModelFaces;
     return file;
 }
 
 std::vector<glm::dvec3> modelAt(const glm::dvec3& at) {
     std::vector<glm::dvec3> out;
-    for (const glm::dvec3& p : kModel) out.push_back(at + p);
+    for (const glm::dvec3& p : kSurveyModel) out.push_back(at + p);
     return out;
 }
 
@@ -83,7 +84,7 @@ std::vector<glm::dvec3> modelAt(const glm::dvec3& at) {
 // Before: the OBJ's positions became floats as they were read, and the 5.4e6 m northing moved
 // every vertex by up to a quarter of a metre.
 TEST(NearOriginTest, AnObjInSurveyMetresKeepsItsMillimetres) {
-    const auto file = writeObj("shadowkit_survey.obj", kSurvey);
+    const auto file = writeSurveyObj("shadowkit_survey.obj", kSurvey);
     const auto loaded = loadScene(file);
     std::filesystem::remove(file);
     ASSERT_TRUE(loaded) << loaded.error();
@@ -92,7 +93,7 @@ TEST(NearOriginTest, AnObjInSurveyMetresKeepsItsMillimetres) {
     EXPECT_GT(glm::length(loaded->wsOrigin), 5e6); // it stands out there, in the world's coordinates
 
     // Near the origin nothing moves: the scene's coordinates are the file's.
-    const auto near = writeObj("shadowkit_near.obj", glm::dvec3(3, 0, -2));
+    const auto near = writeSurveyObj("shadowkit_near.obj", glm::dvec3(3, 0, -2));
     const auto nearScene = loadScene(near);
     std::filesystem::remove(near);
     ASSERT_TRUE(nearScene) << nearScene.error();
@@ -141,7 +142,7 @@ TEST(NearOriginTest, GltfNodesAndVerticesFarOutStandWhereTheFileSays) {
 // origin (double in its JSON), an OBJ adds the origin to every vertex in double. Before, both
 // wrote the scene's own coordinates, and the model came back at the world's origin.
 TEST(NearOriginTest, AnExportedSceneFarOutLoadsBackWhereItWas) {
-    const auto source = writeObj("shadowkit_survey_source.obj", kSurvey);
+    const auto source = writeSurveyObj("shadowkit_survey_source.obj", kSurvey);
     const auto loaded = loadScene(source);
     std::filesystem::remove(source);
     ASSERT_TRUE(loaded) << loaded.error();

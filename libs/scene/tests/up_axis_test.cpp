@@ -29,8 +29,8 @@ std::vector<glm::dvec3> groundAndBox() {
 
 // The model as an OBJ, each point written through `written` (its file's axes), at `at` (file
 // coordinates), with normals (the same turn).
-std::filesystem::path writeObj(const std::string& name, glm::dvec3 (*written)(const glm::dvec3&),
-                               const glm::dvec3& at = glm::dvec3(0.0)) {
+std::filesystem::path writeUpAxisObj(const std::string& name, glm::dvec3 (*written)(const glm::dvec3&),
+                                     const glm::dvec3& at = glm::dvec3(0.0)) {
     const auto file = std::filesystem::temp_directory_path() / name;
     std::ofstream out(file);
     out.precision(17);
@@ -49,7 +49,7 @@ std::filesystem::path writeObj(const std::string& name, glm::dvec3 (*written)(co
 glm::dvec3 asYUp(const glm::dvec3& p) { return p; }
 glm::dvec3 asZUp(const glm::dvec3& p) { return {p.x, -p.z, p.y}; } // shadowkit's (x, y, z) written (x, −z, y)
 
-Scene load(const std::filesystem::path& file, UpAxis up) {
+Scene loadUp(const std::filesystem::path& file, UpAxis up) {
     auto scene = loadScene(file, {.up = up});
     std::filesystem::remove(file);
     EXPECT_TRUE(scene) << scene.error();
@@ -75,8 +75,8 @@ TEST(UpAxisTest, AZUpFileLoadedZUpStandsAsTheSameModelWrittenYUpToTheBit) {
     for (const glm::dvec3& at : {glm::dvec3(0.0), glm::dvec3(512345.678, 5412345.321, 231.5)}) {
         const std::string where = "at " + std::to_string(at.x);
         // The same place in both files: the z-up file's (E, N, H) is the y-up one's (E, H, −N).
-        const Scene zUp = load(writeObj("shadowkit_zup.obj", asZUp, at), UpAxis::Z);
-        const Scene yUp = load(writeObj("shadowkit_yup.obj", asYUp, glm::dvec3(at.x, at.z, -at.y)), UpAxis::Y);
+        const Scene zUp = loadUp(writeUpAxisObj("shadowkit_zup.obj", asZUp, at), UpAxis::Z);
+        const Scene yUp = loadUp(writeUpAxisObj("shadowkit_yup.obj", asYUp, glm::dvec3(at.x, at.z, -at.y)), UpAxis::Y);
         EXPECT_TRUE(zUp.warnings.empty()) << where;
         EXPECT_TRUE(yUp.warnings.empty()) << where;
         EXPECT_EQ(zUp.wsOrigin, yUp.wsOrigin) << where;
@@ -93,16 +93,16 @@ TEST(UpAxisTest, AZUpFileLoadedZUpStandsAsTheSameModelWrittenYUpToTheBit) {
 }
 
 TEST(UpAxisTest, AnObjThatLooksZUpLoadedYUpSaysSoAndOneThatDoesNotIsQuiet) {
-    const Scene lying = load(writeObj("shadowkit_lying.obj", asZUp), UpAxis::Y);
+    const Scene lying = loadUp(writeUpAxisObj("shadowkit_lying.obj", asZUp), UpAxis::Y);
     ASSERT_EQ(lying.warnings.size(), 1u);
     EXPECT_NE(lying.warnings[0].find("shadowkit_lying.obj: its ground faces +z"), std::string::npos)
         << lying.warnings[0];
     EXPECT_NE(lying.warnings[0].find("--scene-up z"), std::string::npos) << lying.warnings[0];
-    EXPECT_TRUE(load(writeObj("shadowkit_upright.obj", asYUp), UpAxis::Y).warnings.empty());
+    EXPECT_TRUE(loadUp(writeUpAxisObj("shadowkit_upright.obj", asYUp), UpAxis::Y).warnings.empty());
 
     // A closed box alone (no ground, as any solid model) cannot say which way is up: quiet.
     const auto box = std::filesystem::temp_directory_path() / "shadowkit_box.obj";
     std::ofstream(box) << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
                        << "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n";
-    EXPECT_TRUE(load(box, UpAxis::Y).warnings.empty());
+    EXPECT_TRUE(loadUp(box, UpAxis::Y).warnings.empty());
 }
