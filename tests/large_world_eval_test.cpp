@@ -116,6 +116,9 @@ scene::Scene loadSurveyModelAt(const glm::dvec3& at) {
         box({-10, -0.5, -10}, {10, 0, 10});
         box({-2, 0, -2}, {2, 3, 2});
         box({4, 0, 3}, {4.2, 6, 3.2});
+        out.close();
+        // A file the test could not write is the test's failure, not the loader's.
+        if (!out) ADD_FAILURE() << file << ": the test could not write it";
     }
     auto loaded = scene::loadScene(file);
     std::filesystem::remove(file);

@@ -10,9 +10,11 @@ the standard library."""
 import argparse
 import json
 import math
+import os
 import random
 import struct
 import sys
+import tempfile
 
 
 def box_faces():
@@ -65,10 +67,29 @@ class GlbBuilder:
         text = json.dumps(doc, separators=(",", ":")).encode()
         text += b" " * (-len(text) % 4)
         total = 12 + 8 + len(text) + 8 + len(self.buffer)
-        with open(path, "wb") as out:
-            out.write(struct.pack("<III", 0x46546C67, 2, total))
-            out.write(struct.pack("<II", len(text), 0x4E4F534A) + text)
-            out.write(struct.pack("<II", len(self.buffer), 0x004E4942) + bytes(self.buffer))
+        # Whole or not at all, as shadowkit writes its files: a temporary beside the target,
+        # flushed to the disk, then renamed over it; missing folders made.
+        if os.path.exists(path) and not os.path.isfile(path):
+            raise IsADirectoryError(0, "a directory, device or pipe, not a file")
+        folder = os.path.dirname(os.path.abspath(path))
+        if os.path.exists(folder) and not os.path.isdir(folder):
+            raise NotADirectoryError(0, f"{folder} is not a directory")
+        os.makedirs(folder, exist_ok=True)
+        handle, temporary = tempfile.mkstemp(prefix=".make_town.", dir=folder)
+        try:
+            umask = os.umask(0)
+            os.umask(umask)
+            os.chmod(temporary, 0o666 & ~umask)  # as a plain open would make it, not mkstemp's 0600
+            with os.fdopen(handle, "wb") as out:
+                out.write(struct.pack("<III", 0x46546C67, 2, total))
+                out.write(struct.pack("<II", len(text), 0x4E4F534A) + text)
+                out.write(struct.pack("<II", len(self.buffer), 0x004E4942) + bytes(self.buffer))
+                out.flush()
+                os.fsync(out.fileno())
+            os.replace(temporary, path)
+        except BaseException:
+            os.unlink(temporary)
+            raise
 
 
 def main():
@@ -96,7 +117,10 @@ def main():
     half = 16.0 * side
     ground = [(-half, 0, -half), (-half, 0, half), (half, 0, half), (half, 0, -half)]
     nodes.append({"mesh": glb.mesh(ground, [0, 1, 2, 0, 2, 3])})
-    glb.write(args.out, nodes)
+    try:
+        glb.write(args.out, nodes)
+    except OSError as error:
+        sys.exit(f"{args.out}: cannot write: {error.strerror}")
     print(f"wrote {args.out}: {args.buildings} buildings, {len(glb.meshes)} meshes")
 
 

@@ -26,15 +26,16 @@ inline std::string base64(const std::vector<unsigned char>& data) {
     return out;
 }
 
-// `text` as the temporary file `name`, loaded and removed; a file that could not be written is
-// the test's failure, not the reader's.
-inline core::Result<Scene> loadWritten(const std::string& name, const std::string& text) {
+// `text` as the temporary file `name`, loaded (with `options`) and removed; a file that could
+// not be written is the test's failure, not the reader's.
+inline core::Result<Scene> loadWritten(const std::string& name, const std::string& text,
+                                       const LoadOptions& options = {}) {
     const auto file = std::filesystem::temp_directory_path() / name;
     std::ofstream out(file);
     out << text;
     out.close();
     if (!out) return core::makeError(file.string() + ": the test could not write it");
-    auto scene = loadScene(file);
+    auto scene = loadScene(file, options);
     std::filesystem::remove(file);
     return scene;
 }

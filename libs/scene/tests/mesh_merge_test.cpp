@@ -11,8 +11,6 @@
 #include <array>
 #include <cmath>
 #include <cstring>
-#include <filesystem>
-#include <fstream>
 #include <sstream>
 #include <vector>
 
@@ -49,10 +47,7 @@ std::string townGltf(int meshes) {
 }
 
 Scene loadTown(int meshes, bool merge) {
-    const auto file = std::filesystem::temp_directory_path() / "shadowkit_town.gltf";
-    std::ofstream(file) << townGltf(meshes);
-    auto scene = loadScene(file, {.mergeSmallMeshes = merge});
-    std::filesystem::remove(file);
+    auto scene = scene::testing::loadWritten("shadowkit_town.gltf", townGltf(meshes), {.mergeSmallMeshes = merge});
     EXPECT_TRUE(scene) << scene.error();
     return scene ? std::move(*scene) : Scene{};
 }

@@ -10,7 +10,6 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 #include <vector>
 
@@ -63,14 +62,14 @@ void expectFloatsNearZero(const Scene& s, const std::string& where) {
             << where << " " << mesh.name;
 }
 
-std::filesystem::path writeSurveyObj(const std::string& name, const glm::dvec3& at) {
-    const auto file = std::filesystem::temp_directory_path() / name;
-    std::ofstream out(file);
+// The model as an OBJ's text, at `at`.
+std::string surveyObj(const glm::dvec3& at) {
+    std::ostringstream out;
     out.precision(17);
     for (const glm::dvec3& p : kSurveyModel)
         out << "v " << at.x + p.x << ' ' << at.y + p.y << ' ' << at.z + p.z << '\n';
     out << kSurveyModelFaces;
-    return file;
+    return out.str();
 }
 
 std::vector<glm::dvec3> modelAt(const glm::dvec3& at) {
@@ -84,18 +83,14 @@ std::vector<glm::dvec3> modelAt(const glm::dvec3& at) {
 // Before: the OBJ's positions became floats as they were read, and the 5.4e6 m northing moved
 // every vertex by up to a quarter of a metre.
 TEST(NearOriginTest, AnObjInSurveyMetresKeepsItsMillimetres) {
-    const auto file = writeSurveyObj("shadowkit_survey.obj", kSurvey);
-    const auto loaded = loadScene(file);
-    std::filesystem::remove(file);
+    const auto loaded = scene::testing::loadWritten("shadowkit_survey.obj", surveyObj(kSurvey));
     ASSERT_TRUE(loaded) << loaded.error();
     expectSamePoints(worldVertices(*loaded), modelAt(kSurvey), 1e-4, "survey OBJ");
     expectFloatsNearZero(*loaded, "survey OBJ");
     EXPECT_GT(glm::length(loaded->wsOrigin), 5e6); // it stands out there, in the world's coordinates
 
     // Near the origin nothing moves: the scene's coordinates are the file's.
-    const auto near = writeSurveyObj("shadowkit_near.obj", glm::dvec3(3, 0, -2));
-    const auto nearScene = loadScene(near);
-    std::filesystem::remove(near);
+    const auto nearScene = scene::testing::loadWritten("shadowkit_near.obj", surveyObj(glm::dvec3(3, 0, -2)));
     ASSERT_TRUE(nearScene) << nearScene.error();
     EXPECT_EQ(nearScene->wsOrigin, core::Vec3(0.0));
     expectSamePoints(worldVertices(*nearScene), modelAt(glm::dvec3(3, 0, -2)), 1e-6, "near OBJ");
@@ -142,9 +137,7 @@ TEST(NearOriginTest, GltfNodesAndVerticesFarOutStandWhereTheFileSays) {
 // origin (double in its JSON), an OBJ adds the origin to every vertex in double. Before, both
 // wrote the scene's own coordinates, and the model came back at the world's origin.
 TEST(NearOriginTest, AnExportedSceneFarOutLoadsBackWhereItWas) {
-    const auto source = writeSurveyObj("shadowkit_survey_source.obj", kSurvey);
-    const auto loaded = loadScene(source);
-    std::filesystem::remove(source);
+    const auto loaded = scene::testing::loadWritten("shadowkit_survey_source.obj", surveyObj(kSurvey));
     ASSERT_TRUE(loaded) << loaded.error();
     for (const char* name : {"shadowkit_survey_export.glb", "shadowkit_survey_export.obj"}) {
         const auto file = std::filesystem::temp_directory_path() / name;

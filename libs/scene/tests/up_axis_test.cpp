@@ -3,10 +3,11 @@
 // says so (up_axis.cpp).
 #include "shadowkit/scene/scene_io.h"
 
+#include "gltf_test_files.h"
+
 #include <gtest/gtest.h>
 
-#include <filesystem>
-#include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -27,12 +28,10 @@ std::vector<glm::dvec3> groundAndBox() {
             {9, 0, 5},     {9.2, 0, 5},  {9.2, 11, 5}, {9, 11, 5}};  // a mast's face, facing +z
 }
 
-// The model as an OBJ, each point written through `written` (its file's axes), at `at` (file
-// coordinates), with normals (the same turn).
-std::filesystem::path writeUpAxisObj(const std::string& name, glm::dvec3 (*written)(const glm::dvec3&),
-                                     const glm::dvec3& at = glm::dvec3(0.0)) {
-    const auto file = std::filesystem::temp_directory_path() / name;
-    std::ofstream out(file);
+// The model as an OBJ's text, each point written through `written` (its file's axes), at `at`
+// (file coordinates).
+std::string upAxisObj(glm::dvec3 (*written)(const glm::dvec3&), const glm::dvec3& at = glm::dvec3(0.0)) {
+    std::ostringstream out;
     out.precision(17);
     const std::vector<glm::dvec3> points = groundAndBox();
     for (const glm::dvec3& p : points) {
@@ -43,15 +42,14 @@ std::filesystem::path writeUpAxisObj(const std::string& name, glm::dvec3 (*writt
         const size_t v = 4 * quad + 1;
         out << "f " << v << ' ' << v + 1 << ' ' << v + 2 << ' ' << v + 3 << '\n';
     }
-    return file;
+    return out.str();
 }
 
 glm::dvec3 asYUp(const glm::dvec3& p) { return p; }
 glm::dvec3 asZUp(const glm::dvec3& p) { return {p.x, -p.z, p.y}; } // shadowkit's (x, y, z) written (x, −z, y)
 
-Scene loadUp(const std::filesystem::path& file, UpAxis up) {
-    auto scene = loadScene(file, {.up = up});
-    std::filesystem::remove(file);
+Scene loadUp(const std::string& name, const std::string& text, UpAxis up) {
+    auto scene = scene::testing::loadWritten(name, text, {.up = up});
     EXPECT_TRUE(scene) << scene.error();
     return scene ? std::move(*scene) : Scene{};
 }
@@ -75,8 +73,8 @@ TEST(UpAxisTest, AZUpFileLoadedZUpStandsAsTheSameModelWrittenYUpToTheBit) {
     for (const glm::dvec3& at : {glm::dvec3(0.0), glm::dvec3(512345.678, 5412345.321, 231.5)}) {
         const std::string where = "at " + std::to_string(at.x);
         // The same place in both files: the z-up file's (E, N, H) is the y-up one's (E, H, −N).
-        const Scene zUp = loadUp(writeUpAxisObj("shadowkit_zup.obj", asZUp, at), UpAxis::Z);
-        const Scene yUp = loadUp(writeUpAxisObj("shadowkit_yup.obj", asYUp, glm::dvec3(at.x, at.z, -at.y)), UpAxis::Y);
+        const Scene zUp = loadUp("shadowkit_zup.obj", upAxisObj(asZUp, at), UpAxis::Z);
+        const Scene yUp = loadUp("shadowkit_yup.obj", upAxisObj(asYUp, glm::dvec3(at.x, at.z, -at.y)), UpAxis::Y);
         EXPECT_TRUE(zUp.warnings.empty()) << where;
         EXPECT_TRUE(yUp.warnings.empty()) << where;
         EXPECT_EQ(zUp.wsOrigin, yUp.wsOrigin) << where;
@@ -93,16 +91,17 @@ TEST(UpAxisTest, AZUpFileLoadedZUpStandsAsTheSameModelWrittenYUpToTheBit) {
 }
 
 TEST(UpAxisTest, AnObjThatLooksZUpLoadedYUpSaysSoAndOneThatDoesNotIsQuiet) {
-    const Scene lying = loadUp(writeUpAxisObj("shadowkit_lying.obj", asZUp), UpAxis::Y);
+    const Scene lying = loadUp("shadowkit_lying.obj", upAxisObj(asZUp), UpAxis::Y);
     ASSERT_EQ(lying.warnings.size(), 1u);
     EXPECT_NE(lying.warnings[0].find("shadowkit_lying.obj: its ground faces +z"), std::string::npos)
         << lying.warnings[0];
     EXPECT_NE(lying.warnings[0].find("--scene-up z"), std::string::npos) << lying.warnings[0];
-    EXPECT_TRUE(loadUp(writeUpAxisObj("shadowkit_upright.obj", asYUp), UpAxis::Y).warnings.empty());
+    EXPECT_TRUE(loadUp("shadowkit_upright.obj", upAxisObj(asYUp), UpAxis::Y).warnings.empty());
 
     // A closed box alone (no ground, as any solid model) cannot say which way is up: quiet.
-    const auto box = std::filesystem::temp_directory_path() / "shadowkit_box.obj";
-    std::ofstream(box) << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
-                       << "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n";
-    EXPECT_TRUE(loadUp(box, UpAxis::Y).warnings.empty());
+    EXPECT_TRUE(loadUp("shadowkit_box.obj",
+                       "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+                       "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n",
+                       UpAxis::Y)
+                    .warnings.empty());
 }
