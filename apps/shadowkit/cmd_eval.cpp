@@ -55,13 +55,6 @@ core::Result<std::vector<std::string>> viewNames(const EvalArgs& args) {
     return viewNamesOf(args.views);
 }
 
-core::Status checkViewName(const std::string& name) {
-    auto all = scene::loadViews(dataDirectory() / "views.json");
-    if (!all) return all.errorInfo();
-    if (auto found = scene::findView(*all, name); !found) return core::makeError("--view: " + found.error());
-    return core::Ok{};
-}
-
 // The per-view files asked for: error and aliasing maps (and with a sun of some size the signed
 // error against its soft truth, NAME-soft.png), the raw buffers.
 core::Status writeViewFiles(const EvalArgs& args, const measure::Measurement& measured, const std::string& name,
@@ -165,7 +158,7 @@ int runEval(const EvalArgs& args) {
     auto names = viewNames(args);
     if (!names) return fail(names.errorInfo());
     if (args.views.empty())
-        if (auto s = checkViewName(args.view.view); !s) return fail(s.errorInfo());
+        if (auto s = args.view.check(); !s) return fail(s.errorInfo());
     const bool several = names->size() > 1;
 
     auto config = frameConfigOf(args.technique, args.render, args.lights);

@@ -197,6 +197,9 @@ bool parseNumbers(const std::string& text, char separator, std::vector<double>& 
 // docs/techniques.md) or "local" (those with spot and point lights, docs/local-lights.md);
 // errors name --views.
 core::Result<std::vector<std::string>> viewNamesOf(const std::string& list);
+// The camera a view name asks of the loaded file — "file" (its first: empty) or "file:NAME"
+// (an index or a name, scene::fileView) — or nothing for a views.json view.
+std::optional<std::string> fileCameraOf(const std::string& view);
 
 // "x,y,z" -> vector; the error names the flag and shows the text.
 core::Result<core::Vec3> parseVec3(const std::string& flag, const std::string& text);

@@ -5,6 +5,7 @@
 
 #include "common.h"
 
+#include "shadowkit/gl/render_settings.h"
 #include "shadowkit/scene/forest.h"
 #include "shadowkit/scene/scene_io.h"
 
@@ -139,7 +140,8 @@ core::Result<scene::Scene> SceneOptions::load(bool verbose) const {
 
 void ViewOptions::addTo(CLI::App& cmd) {
     cmd.add_option("--view", view,
-                   "standard view from data/views.json (paper, perpendicular, into-sun, sun-behind, noon, aerial)")
+                   "standard view from data/views.json (paper, perpendicular, into-sun, sun-behind, noon, aerial), "
+                   "or file[:CAMERA]: a loaded glTF's own camera, lit by its own lights")
         ->capture_default_str();
     cmd.add_option("--eye", eye, "camera position x,y,z in world metres (overrides the view's)");
     cmd.add_option("--dir", dir, "viewing direction x,y,z");
@@ -154,6 +156,12 @@ void ViewOptions::addTo(CLI::App& cmd) {
     cmd.add_option("--sun-azimuth", sunAzimuth, "sun compass azimuth in degrees (0 = -Z, 90 = +X)");
 }
 
+std::optional<std::string> fileCameraOf(const std::string& view) {
+    if (view == "file") return std::string();
+    if (view.starts_with("file:")) return view.substr(5);
+    return std::nullopt;
+}
+
 core::Result<std::vector<std::string>> viewNamesOf(const std::string& list) {
     auto all = scene::loadViews(dataDirectory() / "views.json");
     if (!all) return all.errorInfo();
@@ -165,7 +173,8 @@ core::Result<std::vector<std::string>> viewNamesOf(const std::string& list) {
     }
     std::stringstream ss(list);
     for (std::string name; std::getline(ss, name, ',');) {
-        if (auto found = scene::findView(*all, name); !found) return core::makeError("--views: " + found.error());
+        if (auto found = scene::findView(*all, name); !found && !fileCameraOf(name))
+            return core::makeError("--views: " + found.error() + ", or file (the loaded file's own camera)");
         names.push_back(name);
     }
     if (names.empty()) return core::makeError("--views: no view named");
@@ -181,7 +190,8 @@ core::Result<scene::ViewSpec> ViewOptions::spec() const {
 }
 
 core::Status ViewOptions::check() const {
-    if (auto found = spec(); !found) return found.errorInfo();
+    if (fileCameraOf(view)) return checkFlags(); // its camera is known once the scene is loaded
+    if (auto found = spec(); !found) return core::makeError(found.error() + ", or file (the loaded file's own camera)");
     return checkFlags();
 }
 
@@ -200,10 +210,19 @@ core::Status ViewOptions::checkFlags() const {
 }
 
 core::Result<scene::ResolvedView> ViewOptions::resolve(const scene::Scene& sceneData, bool sayFraming) const {
-    auto found = spec();
-    if (!found) return found.errorInfo();
     if (auto s = checkFlags(); !s) return s.errorInfo();
-    scene::ResolvedView out = scene::resolveView(*found, sceneData);
+    scene::ResolvedView out;
+    if (const std::optional<std::string> camera = fileCameraOf(view)) {
+        std::string said;
+        auto own = scene::fileView(sceneData, *camera, gl::kMaxLocalLightsPerKind, &said);
+        if (!own) return core::makeError("--view " + view + ": " + own.error());
+        if (sayFraming) fmt::print(stderr, "view {}: {}\n", view, said);
+        out = std::move(*own);
+    } else {
+        auto found = spec();
+        if (!found) return found.errorInfo();
+        out = scene::resolveView(*found, sceneData);
+    }
     if (out.framed && eye.empty() && sayFraming)
         fmt::print(stderr,
                    "view {}: framing the loaded scene (no terrain to stand on): eye {:.1f},{:.1f},{:.1f}, near {:.3g} "

@@ -315,6 +315,20 @@ if(CASE STREQUAL "gl-eval-path-frames-loaded-scene")
     message(SEND_ERROR "eval --path flythrough over a loaded model: exit ${rc}, not framed:\n${out}${err}")
   endif()
 endif()
+# A file's own camera and lights (`--view file`): its camera, its sun and its lamp, scored beside
+# a standard view in one run; a camera the file does not have, and a scene with none, one line each.
+if(CASE STREQUAL "gl-eval-file-view")
+  execute_process(COMMAND ${SHADOWKIT} eval --scene "${source_dir}/tests/data/lit_pillar.gltf" --views paper,file
+                          --size 48x32 --map-size 256 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0 OR NOT err MATCHES "view file: camera 0 'Camera' of 1, its sun 'Sun', 1 point and 0 spot lights"
+     OR NOT out MATCHES "\nfile +tsm" OR NOT out MATCHES "point\\[0\\]")
+    message(SEND_ERROR "eval --views paper,file on a file with a camera and lights: exit ${rc}:\n${out}${err}")
+  endif()
+endif()
+check_fails(eval-file-view-unknown-camera "--view file:Tripod: no camera 'Tripod' in the scene, which has camera 0 'Camera'"
+            eval --scene "${source_dir}/tests/data/lit_pillar.gltf" --view file:Tripod --size 32x18 --map-size 64)
+check_fails(eval-file-view-forest "--view file: the scene has no camera of its own"
+            eval ${small} --view file --size 32x18 --map-size 64)
 # A loaded scene viewed from a given eye: the framing's planes are refitted to it (they fitted the
 # framing's own eye, 100 m nearer, and cut the scene away: far 21 m).
 if(CASE STREQUAL "framed-scene-eye")

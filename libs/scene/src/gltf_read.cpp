@@ -33,6 +33,7 @@
 #include "gltf_materials.h"
 #include "gltf_meshopt.h"
 #include "gltf_pose.h"
+#include "gltf_viewpoints.h"
 #include "scene_formats.h"
 
 #include "shadowkit/scene/file_read.h"
@@ -456,6 +457,7 @@ core::Result<Scene> loadGltf(const fs::path& file) {
                                       printable(node.name) + "' has a non-finite transform");
             return;
         }
+        readNodeViewpoints(model, nodeIndex, world, file.string(), scene);
         if (node.mesh >= 0 && size_t(node.mesh) < model.meshes.size()) {
             const tinygltf::Mesh& gltfMesh = model.meshes[size_t(node.mesh)];
             const std::string nodeName = file.string() + ": node " + std::to_string(nodeIndex) +
@@ -534,6 +536,7 @@ core::Result<Scene> loadGltf(const fs::path& file) {
         for (int root : model.scenes[size_t(sceneIndex)].nodes) visit(visit, root, glm::dmat4(1.0), 0);
     if (failure) return *failure;
     placeNearOrigin(scene, placements);
+    placeViewpoints(scene);
     if (scene.triangleCount() == 0) return core::makeError(file.string() + ": glTF file holds no triangle meshes");
     return scene;
 }

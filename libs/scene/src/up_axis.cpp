@@ -33,6 +33,11 @@ void turnZUpToYUp(Scene& scene) {
     for (MeshBatch& batch : scene.batches)
         for (glm::mat4& worldFromObject : batch.worldFromObject) worldFromObject = kYUpFromZUp * worldFromObject * back;
     scene.wsOrigin = core::Vec3(scene.wsOrigin.x, scene.wsOrigin.z, -scene.wsOrigin.y);
+    const glm::dmat3 dturn(turn); // the file's cameras and lights, in double
+    for (FileCamera& c : scene.cameras)
+        c.localEye = dturn * c.localEye, c.localForward = dturn * c.localForward, c.localUp = dturn * c.localUp;
+    for (FileLight& l : scene.lights)
+        l.localPosition = dturn * l.localPosition, l.localDirection = dturn * l.localDirection;
 }
 
 std::optional<std::string> zUpWarning(const Scene& scene) {

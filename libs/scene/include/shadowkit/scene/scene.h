@@ -69,6 +69,32 @@ struct InstanceRef {
     uint32_t batch = 0, instance = 0;
 };
 
+// A perspective camera a loaded file brings (glTF 2.0 §5.12 `cameras`, placed by its node), in
+// the scene's own coordinates: what `--view file` looks through (views.h, fileView).
+struct FileCamera {
+    std::string name;                  // the node's, else the camera's; may be empty
+    core::Vec3 localEye{0.0};          // scene coordinates
+    core::Vec3 localForward{0, 0, -1}; // unit: the node's −z
+    core::Vec3 localUp{0, 1, 0};       // unit: the node's +y
+    double fovYDegrees = 60.0;         // (0, 180)
+    std::optional<double> aspect;      // width / height; unset: the picture's
+    double zNear = 0.1;                // metres, > 0
+    std::optional<double> zFar;        // metres, > zNear; unset: infinite (glTF's)
+};
+
+// A punctual light a loaded file brings (KHR_lights_punctual, placed by its node), in the scene's
+// own coordinates. Colour and intensity are shading, not shadow: only where it is and which way
+// it shines are kept (a light of intensity 0 is left out).
+struct FileLight {
+    enum class Kind { Sun, Point, Spot }; // glTF's directional, point, spot
+    Kind kind = Kind::Sun;
+    std::string name;
+    core::Vec3 localPosition{0.0};       // point and spot
+    core::Vec3 localDirection{0, 0, -1}; // sun and spot: unit, the way the light travels (the node's −z)
+    double coneDegrees = 90.0;           // spot: the full opening, twice glTF's outerConeAngle
+    std::optional<double> range;         // metres; unset: unlimited (glTF's)
+};
+
 // Coordinates: a scene stands at `wsOrigin` in the world, and everything it holds —
 // transforms, terrain, tracks, the heights groundHeightAt gives — is in its own coordinates,
 // relative to that origin (world point = wsOrigin + scene point). Float keeps its precision
@@ -87,6 +113,10 @@ struct Scene {
     // What a loader could not use and did without, one line each (an undecodable texture on an
     // opaque material): the caller shows them; nothing here changes a shadow.
     std::vector<std::string> warnings;
+    // The file's own perspective cameras and punctual lights, in the order its node tree lists
+    // them (a glTF's; an OBJ has none).
+    std::vector<FileCamera> cameras;
+    std::vector<FileLight> lights;
 
     // The material of a mesh, or nullptr for the plain opaque one.
     const Material* materialOf(const Mesh& mesh) const {

@@ -82,4 +82,16 @@ core::Result<ViewSpec> findView(const std::vector<ViewSpec>& views, const std::s
 // the centre as they stood around the eye, and the fog scales with the scene.
 ResolvedView resolveView(const ViewSpec& view, const Scene& scene);
 
+// The view a loaded file brings (`--view file`, file_view.cpp): its camera `which` — empty for
+// the first, a number for its index in scene.cameras, else its name — lit by its own lights: its
+// first directional light the sun (none: night where it has spot or point lights, else the
+// standard views' default sun, 45° up and 90° right of the camera), its point and spot lights the
+// view's local lights, at most `maxLocalLights` of each kind, those of unlimited range reaching
+// the whole scene. The picture 1280 wide at the camera's aspect (1280 × 720 where it gives none);
+// the near and far planes the file's, tightened to the scene's box where they leave room. An
+// error says why there is no such view (no camera, none of that name, one facing away from the
+// scene); `said`, when given, gets one line on what was used.
+core::Result<ResolvedView> fileView(const Scene& scene, const std::string& which, int maxLocalLights,
+                                    std::string* said = nullptr);
+
 } // namespace shadowkit::scene

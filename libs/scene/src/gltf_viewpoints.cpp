@@ -1,0 +1,142 @@
+// A glTF file's own cameras (glTF 2.0 §3.10, §5.12) and punctual lights (KHR_lights_punctual):
+// the picture and the lighting its author set up. Shadows need neither — the standard views
+// frame any model under their own suns — but a user who lit a scene expects to see and measure
+// it as lit (`--view file`, views.h). Both are placed by their node, like a mesh: a camera looks
+// along its node's −z with +y up, a directional or spot light shines along its node's −z, a point
+// or spot light stands at the node's origin. A node's scale does not scale a light or a camera's
+// frustum (both extensions say so): only the directions it gives, renormalised, are kept.
+#include "gltf_viewpoints.h"
+
+#include "gltf_materials.h" // printable
+
+#include <cmath>
+#include <numbers>
+
+namespace shadowkit::scene::formats {
+namespace {
+
+// The unit image of a direction under a node's linear part, or nothing where the node squashes
+// it to (almost) nothing or to a non-finite vector.
+std::optional<core::Vec3> placedDirection(const glm::dmat4& fileFromNode, const core::Vec3& osDirection) {
+    const core::Vec3 placed = glm::dmat3(fileFromNode) * osDirection;
+    const double length = glm::length(placed);
+    if (!std::isfinite(length) || !(length > 1e-12)) return std::nullopt;
+    return placed / length;
+}
+
+std::string nameOf(const tinygltf::Node& node, const std::string& own) {
+    return printable(node.name.empty() ? own : node.name);
+}
+
+void readCamera(const tinygltf::Model& model, const tinygltf::Node& node, const glm::dmat4& fileFromNode,
+                const std::string& where, Scene& scene) {
+    const tinygltf::Camera& camera = model.cameras[size_t(node.camera)];
+    if (camera.type != "perspective") {
+        scene.warnings.push_back(where + ": its camera is " + printable(camera.type) +
+                                 ", not perspective: left out (shadowkit's views are perspective)");
+        return;
+    }
+    const tinygltf::PerspectiveCamera& p = camera.perspective;
+    // tinygltf writes 0 for an absent aspectRatio or zfar.
+    const bool fovOk = std::isfinite(p.yfov) && p.yfov > 0.0 && p.yfov < std::numbers::pi;
+    const bool nearOk = std::isfinite(p.znear) && p.znear > 0.0;
+    const bool farOk = p.zfar == 0.0 || (std::isfinite(p.zfar) && p.zfar > p.znear);
+    const bool aspectOk = p.aspectRatio == 0.0 || (std::isfinite(p.aspectRatio) && p.aspectRatio > 0.0);
+    const std::optional<core::Vec3> forward = placedDirection(fileFromNode, {0.0, 0.0, -1.0});
+    const std::optional<core::Vec3> up = placedDirection(fileFromNode, {0.0, 1.0, 0.0});
+    const char* fault = !fovOk      ? "yfov is not an angle in (0, π)"
+                        : !nearOk   ? "znear is not a distance above 0"
+                        : !farOk    ? "zfar is not beyond znear"
+                        : !aspectOk ? "aspectRatio is not above 0"
+                        : !forward || !up || glm::length(glm::cross(*forward, *up)) < 1e-6
+                            ? "its node gives it no direction to look along"
+                            : nullptr;
+    if (fault) {
+        scene.warnings.push_back(where + ": its camera is left out: " + fault);
+        return;
+    }
+    FileCamera out;
+    out.name = nameOf(node, camera.name);
+    out.localEye = core::Vec3(fileFromNode[3]);
+    out.localForward = *forward;
+    out.localUp = *up;
+    out.fovYDegrees = glm::degrees(p.yfov);
+    if (p.aspectRatio > 0.0) out.aspect = p.aspectRatio;
+    out.zNear = p.znear;
+    if (p.zfar > 0.0) out.zFar = p.zfar;
+    scene.cameras.push_back(std::move(out));
+}
+
+void readLight(const tinygltf::Model& model, const tinygltf::Node& node, const glm::dmat4& fileFromNode,
+               const std::string& where, Scene& scene) {
+    const auto extension = node.extensions.find("KHR_lights_punctual");
+    if (extension == node.extensions.end()) return;
+    const tinygltf::Value& index = extension->second.Get("light");
+    if (!index.IsInt() && !index.IsNumber()) {
+        scene.warnings.push_back(where + ": its KHR_lights_punctual names no light: left out");
+        return;
+    }
+    const double number = index.GetNumberAsDouble();
+    if (!(number >= 0.0 && number < double(model.lights.size())) || number != std::floor(number)) {
+        scene.warnings.push_back(where + ": it names light " + std::to_string(number) + " of " +
+                                 std::to_string(model.lights.size()) + ": left out");
+        return;
+    }
+    const tinygltf::Light& light = model.lights[size_t(number)];
+    FileLight out;
+    out.name = nameOf(node, light.name);
+    if (light.type == "directional")
+        out.kind = FileLight::Kind::Sun;
+    else if (light.type == "point")
+        out.kind = FileLight::Kind::Point;
+    else if (light.type == "spot")
+        out.kind = FileLight::Kind::Spot;
+    else {
+        scene.warnings.push_back(where + ": its light is of type '" + printable(light.type) + "': left out");
+        return;
+    }
+    if (!(light.intensity > 0.0)) return; // off: it lights nothing, so it shadows nothing
+    const std::optional<core::Vec3> direction = placedDirection(fileFromNode, {0.0, 0.0, -1.0});
+    if (out.kind != FileLight::Kind::Point && !direction) {
+        scene.warnings.push_back(where + ": its light is left out: its node gives it no direction");
+        return;
+    }
+    if (direction) out.localDirection = *direction;
+    out.localPosition = core::Vec3(fileFromNode[3]);
+    if (out.kind == FileLight::Kind::Spot) {
+        // glTF's outer cone angle is the half-angle, in (0, π/2]; shadowkit's spot maps take a
+        // full opening up to 170° (a perspective frustum's limit, local_lights.h).
+        const double outer = light.spot.outerConeAngle;
+        if (!(outer > 0.0 && outer <= 0.5 * std::numbers::pi)) {
+            scene.warnings.push_back(where + ": its spot light is left out: outerConeAngle is not in (0, π/2]");
+            return;
+        }
+        out.coneDegrees = std::min(2.0 * glm::degrees(outer), 170.0);
+        if (2.0 * glm::degrees(outer) > 170.0)
+            scene.warnings.push_back(where + ": its spot light opens wider than 170°: its shadows are drawn to 170°");
+    }
+    if (std::isfinite(light.range) && light.range > 0.0) out.range = light.range; // tinygltf: 0 unlimited
+    scene.lights.push_back(std::move(out));
+}
+
+} // namespace
+
+void readNodeViewpoints(const tinygltf::Model& model, int nodeIndex, const glm::dmat4& fileFromNode,
+                        const std::string& file, Scene& scene) {
+    const tinygltf::Node& node = model.nodes[size_t(nodeIndex)];
+    const std::string where =
+        file + ": node " + std::to_string(nodeIndex) + (node.name.empty() ? "" : " '" + printable(node.name) + "'");
+    if (node.camera >= 0 && size_t(node.camera) < model.cameras.size())
+        readCamera(model, node, fileFromNode, where, scene);
+    else if (node.camera >= 0)
+        scene.warnings.push_back(where + ": it names camera " + std::to_string(node.camera) + " of " +
+                                 std::to_string(model.cameras.size()) + ": left out");
+    readLight(model, node, fileFromNode, where, scene);
+}
+
+void placeViewpoints(Scene& scene) {
+    for (FileCamera& camera : scene.cameras) camera.localEye -= scene.wsOrigin;
+    for (FileLight& light : scene.lights) light.localPosition -= scene.wsOrigin;
+}
+
+} // namespace shadowkit::scene::formats
