@@ -6,6 +6,10 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+
 namespace shadowkit::app {
 namespace {
 
@@ -18,6 +22,13 @@ int runExport(const ExportArgs& args) {
     auto sceneData = args.scene.load();
     if (!sceneData) return fail(sceneData.errorInfo());
     if (auto s = scene::exportScene(*sceneData, args.out); !s) return fail("--out: " + s.error());
+    std::string format = std::filesystem::path(args.out).extension().string();
+    std::transform(format.begin(), format.end(), format.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    if (format == ".obj" && (!sceneData->cameras.empty() || !sceneData->lights.empty()))
+        warn(fmt::format("--out {}: an OBJ holds no camera or light: the scene's {} camera{} and {} light{} are left "
+                         "out (a .glb keeps them)",
+                         args.out, sceneData->cameras.size(), sceneData->cameras.size() == 1 ? "" : "s",
+                         sceneData->lights.size(), sceneData->lights.size() == 1 ? "" : "s"));
     fmt::print("wrote {} ({:.2f} M triangles)\n", args.out, static_cast<double>(sceneData->triangleCount()) * 1e-6);
     return 0;
 }

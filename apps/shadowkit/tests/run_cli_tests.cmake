@@ -325,6 +325,20 @@ if(CASE STREQUAL "gl-eval-file-view")
     message(SEND_ERROR "eval --views paper,file on a file with a camera and lights: exit ${rc}:\n${out}${err}")
   endif()
 endif()
+# Exported, the file's camera and lights stay: as a .glb they are written and `--view file` finds
+# them again; an OBJ cannot hold them, and export says so rather than dropping them silently.
+if(CASE STREQUAL "gl-export-keeps-file-view")
+  execute_process(COMMAND ${SHADOWKIT} export --scene "${source_dir}/tests/data/lit_pillar.gltf" --out "${WORK}/lit.glb"
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  execute_process(COMMAND ${SHADOWKIT} eval --scene "${WORK}/lit.glb" --view file --size 48x32 --map-size 256
+                  RESULT_VARIABLE rc2 OUTPUT_VARIABLE out2 ERROR_VARIABLE err2)
+  execute_process(COMMAND ${SHADOWKIT} export --scene "${source_dir}/tests/data/lit_pillar.gltf" --out "${WORK}/lit.obj"
+                  RESULT_VARIABLE rc3 OUTPUT_VARIABLE out3 ERROR_VARIABLE err3)
+  if(NOT rc EQUAL 0 OR NOT rc2 EQUAL 0 OR NOT err2 MATCHES "view file: camera 0 'Camera' of 1, its sun 'Sun', 1 point"
+     OR NOT rc3 EQUAL 0 OR NOT err3 MATCHES "an OBJ holds no camera or light: the scene's 1 camera and 2 lights")
+    message(SEND_ERROR "export keeping a file's camera and lights: exit ${rc} ${rc2} ${rc3}:\n${err}${out2}${err2}${err3}")
+  endif()
+endif()
 check_fails(eval-file-view-unknown-camera "--view file:Tripod: no camera 'Tripod' in the scene, which has camera 0 'Camera'"
             eval --scene "${source_dir}/tests/data/lit_pillar.gltf" --view file:Tripod --size 32x18 --map-size 64)
 check_fails(eval-file-view-forest "--view file: the scene has no camera of its own"

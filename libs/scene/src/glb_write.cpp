@@ -5,6 +5,7 @@
 // loads back with its leaves' holes and its trees as instances. Only what the file draws is
 // written: the textures its materials use (not the billboard clouds', which a loader bakes
 // again) and the vertices the full meshes' triangles use (fullMesh()).
+#include "gltf_viewpoints.h"
 #include "scene_formats.h"
 
 #include "shadowkit/scene/file_write.h"
@@ -285,6 +286,7 @@ core::Status exportGlb(const Scene& scene, const fs::path& file) {
     model.defaultScene = 0;
     if (core::Status s = addMaterials(scene, model); !s) return core::makeError(file.string() + ": " + s.error());
     for (const MeshBatch& batch : scene.batches) appendBatch(model, scene, batch);
+    for (int node : writeViewpoints(scene, model)) model.scenes[0].nodes.push_back(node);
     if (scene.wsOrigin != core::Vec3(0.0)) { // the batches under a node that stands them where the scene stands
         tinygltf::Node origin;
         origin.name = "scene origin";

@@ -67,6 +67,19 @@ void readCamera(const tinygltf::Model& model, const tinygltf::Node& node, const 
     scene.cameras.push_back(std::move(out));
 }
 
+// A node at `localAt` whose −z is `forward` and whose +y is `up` made square to it.
+tinygltf::Node nodeLookingAlong(const std::string& name, const core::Vec3& localAt, const core::Vec3& forward,
+                                const core::Vec3& up) {
+    const core::Vec3 z = -glm::normalize(forward);
+    const core::Vec3 x = glm::normalize(glm::cross(up, z)), y = glm::cross(z, x);
+    tinygltf::Node node;
+    node.name = name;
+    for (const core::Vec3& column : {x, y, z})
+        node.matrix.insert(node.matrix.end(), {column.x, column.y, column.z, 0.0});
+    node.matrix.insert(node.matrix.end(), {localAt.x, localAt.y, localAt.z, 1.0});
+    return node;
+}
+
 void readLight(const tinygltf::Model& model, const tinygltf::Node& node, const glm::dmat4& fileFromNode,
                const std::string& where, Scene& scene) {
     const auto extension = node.extensions.find("KHR_lights_punctual");
@@ -132,6 +145,46 @@ void readNodeViewpoints(const tinygltf::Model& model, int nodeIndex, const glm::
         scene.warnings.push_back(where + ": it names camera " + std::to_string(node.camera) + " of " +
                                  std::to_string(model.cameras.size()) + ": left out");
     readLight(model, node, fileFromNode, where, scene);
+}
+
+std::vector<int> writeViewpoints(const Scene& scene, tinygltf::Model& model) {
+    std::vector<int> nodes;
+    const auto add = [&](tinygltf::Node node) {
+        model.nodes.push_back(std::move(node));
+        nodes.push_back(int(model.nodes.size() - 1));
+    };
+    for (const FileCamera& c : scene.cameras) {
+        tinygltf::Camera camera;
+        camera.type = "perspective";
+        camera.perspective.yfov = glm::radians(c.fovYDegrees);
+        camera.perspective.znear = c.zNear;
+        // tinygltf writes zfar always, and 0 is no glTF far plane: a far plane past any world
+        // (1e9 m, the reader's tightening takes it to the scene) stands for the infinite one.
+        camera.perspective.zfar = c.zFar.value_or(1e9);
+        camera.perspective.aspectRatio = c.aspect.value_or(0.0); // 0: not written
+        model.cameras.push_back(std::move(camera));
+        tinygltf::Node node = nodeLookingAlong(c.name, c.localEye, c.localForward, c.localUp);
+        node.camera = int(model.cameras.size() - 1);
+        add(std::move(node));
+    }
+    for (const FileLight& l : scene.lights) {
+        tinygltf::Light light;
+        light.name = l.name;
+        light.type = l.kind == FileLight::Kind::Sun     ? "directional"
+                     : l.kind == FileLight::Kind::Point ? "point"
+                                                        : "spot";
+        light.range = l.range.value_or(0.0); // 0: not written, unlimited
+        light.spot.innerConeAngle = 0.0;
+        light.spot.outerConeAngle = glm::radians(0.5 * l.coneDegrees);
+        model.lights.push_back(std::move(light));
+        // Any up square to the light's direction: only the direction is the light's.
+        const core::Vec3 up = std::abs(l.localDirection.y) < 0.9 ? core::Vec3(0, 1, 0) : core::Vec3(1, 0, 0);
+        tinygltf::Node node = nodeLookingAlong(l.name, l.localPosition, l.localDirection, up);
+        tinygltf::Value::Object extension{{"light", tinygltf::Value(int(model.lights.size() - 1))}};
+        node.extensions["KHR_lights_punctual"] = tinygltf::Value(std::move(extension));
+        add(std::move(node));
+    }
+    return nodes;
 }
 
 void placeViewpoints(Scene& scene) {

@@ -24,4 +24,9 @@ void readNodeViewpoints(const tinygltf::Model& model, int nodeIndex, const glm::
 /// placeNearOrigin has set scene.wsOrigin.
 void placeViewpoints(Scene& scene);
 
+/// Writes the scene's cameras and lights into `model` (its `cameras`, its KHR_lights_punctual
+/// `lights`), each under a node of its own placed in the scene's coordinates; returns those nodes
+/// for the caller to hang where the batches hang (exportGlb: under the scene's origin).
+std::vector<int> writeViewpoints(const Scene& scene, tinygltf::Model& model);
+
 } // namespace shadowkit::scene::formats

@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -196,4 +197,37 @@ TEST(FileViewTest, NoCameraOrOneLookingAwayIsOneLine) {
     const auto away = fileView(*scene, "", 16);
     ASSERT_FALSE(away);
     EXPECT_NE(away.error().find("looks away from the scene"), std::string::npos) << away.error();
+}
+
+TEST(FileViewTest, ExportedAndLoadedBackTheCamerasAndLightsStay) {
+    // `shadowkit export` keeps what the file brought: written to a .glb and read back, each
+    // camera and light stands where it stood in the world, 5,400 km out as at the origin.
+    const auto scene = scene::testing::loadWritten("sk_viewpoints_export.gltf", viewpointFile("[512345,20,5412345]"));
+    ASSERT_TRUE(scene) << scene.error();
+    const auto file = std::filesystem::temp_directory_path() / "sk_viewpoints_export.glb";
+    ASSERT_TRUE(exportScene(*scene, file));
+    const auto back = loadScene(file);
+    std::filesystem::remove(file);
+    ASSERT_TRUE(back) << back.error();
+    ASSERT_EQ(back->cameras.size(), scene->cameras.size());
+    ASSERT_EQ(back->lights.size(), scene->lights.size());
+    const FileCamera &was = scene->cameras[0], &is = back->cameras[0];
+    EXPECT_EQ(is.name, was.name);
+    expectVec3Near(is.localEye + back->wsOrigin, was.localEye + scene->wsOrigin, 1e-6, "eye");
+    expectVec3Near(is.localForward, was.localForward, 1e-6, "forward");
+    expectVec3Near(is.localUp, was.localUp, 1e-6, "up");
+    EXPECT_NEAR(is.fovYDegrees, was.fovYDegrees, 1e-9);
+    EXPECT_EQ(is.aspect, was.aspect);
+    EXPECT_EQ(is.zNear, was.zNear);
+    EXPECT_EQ(is.zFar, was.zFar);
+    for (size_t i = 0; i < scene->lights.size(); ++i) {
+        const FileLight &l0 = scene->lights[i], &l1 = back->lights[i];
+        EXPECT_EQ(l1.kind, l0.kind) << i;
+        EXPECT_EQ(l1.name, l0.name) << i;
+        EXPECT_EQ(l1.range, l0.range) << i;
+        expectVec3Near(l1.localPosition + back->wsOrigin, l0.localPosition + scene->wsOrigin, 1e-6, "light position");
+        if (l0.kind != FileLight::Kind::Point)
+            expectVec3Near(l1.localDirection, l0.localDirection, 1e-6, "light direction");
+        if (l0.kind == FileLight::Kind::Spot) EXPECT_NEAR(l1.coneDegrees, l0.coneDegrees, 1e-9) << i;
+    }
 }
