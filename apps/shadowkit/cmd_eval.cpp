@@ -47,7 +47,7 @@ struct EvalArgs {
 fs::path perView(const std::string& file, const std::string& view, bool several) {
     if (!several) return file;
     const fs::path p(file);
-    return p.parent_path() / (p.stem().string() + "-" + view + p.extension().string());
+    return p.parent_path() / (p.stem().string() + "-" + fileSafe(view) + p.extension().string());
 }
 
 core::Result<std::vector<std::string>> viewNames(const EvalArgs& args) {
@@ -81,8 +81,8 @@ core::Status writeViewFiles(const EvalArgs& args, const measure::Measurement& me
             !s)
             return core::makeError("--aliasing-map: " + s.error());
     if (!args.dump.empty())
-        if (auto s = eval::dumpBuffers(several ? fs::path(args.dump) / name : fs::path(args.dump), measured.raster,
-                                       *measured.truth, measured.comparison,
+        if (auto s = eval::dumpBuffers(several ? fs::path(args.dump) / fileSafe(name) : fs::path(args.dump),
+                                       measured.raster, *measured.truth, measured.comparison,
                                        measured.softTruth ? &*measured.softTruth : nullptr);
             !s)
             return core::makeError("--dump: " + s.error());
@@ -220,11 +220,11 @@ int runEval(const EvalArgs& args) {
                     ? fmt::format("{}, {} pages", report.technique, report.virtualPages->pagesResident)
                     : fmt::format("{} {}{}²", report.technique,
                                   report.maps > 1 ? fmt::format("{} × ", report.maps) : "", report.mapSize);
-            auto entry =
-                reportEntry(*measured, report, prepared->inputs.light, prepared->settings.sun, args.report, name, label,
-                            invocationWithout(
-                                {"--views", "--view", "--report", "--json", "--error-map", "--aliasing-map", "--dump"},
-                                {"--view", name}));
+            auto entry = reportEntry(*measured, report, prepared->inputs.light, prepared->settings.sun, args.report,
+                                     fileSafe(name), label,
+                                     invocationWithout({"--views", "--view", "--report", "--json", "--error-map",
+                                                        "--aliasing-map", "--dump"},
+                                                       {"--view", name}));
             if (!entry) return fail(entry.errorInfo());
             page.entries.push_back(std::move(entry).value());
         }

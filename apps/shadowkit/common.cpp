@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cstdio>
 
 namespace shadowkit::app {
@@ -25,6 +26,13 @@ int fail(const std::string& message) {
 void warn(const std::string& message) {
     std::fflush(stdout);
     fmt::print(stderr, "shadowkit: warning: {}\n", oneLine(message));
+}
+
+std::string fileSafe(const std::string& name) {
+    std::string out = name;
+    for (char& c : out)
+        if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_' && c != '.') c = '_';
+    return out;
 }
 
 int fail(const core::Error& error) {

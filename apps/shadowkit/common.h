@@ -28,6 +28,9 @@ int fail(const core::Error& error);
 // Prints "shadowkit: warning: <message>" (one line, as fail's) to stderr after whatever stdout
 // holds, so that where both go to one pipe the warning follows the row it is about.
 void warn(const std::string& message);
+// `name` as a part of a file name and of a relative URL: every character but letters, digits,
+// '-', '_' and '.' made '_' ("file:Camera" -> "file_Camera"; a colon would read as a URL scheme).
+std::string fileSafe(const std::string& name);
 
 // The directory holding views.json, camera paths and golden figures: $SHADOWKIT_DATA_DIR, else
 // share/shadowkit beside the running program's bin/ (an installed tree, wherever it was moved),
