@@ -151,7 +151,8 @@ void ViewOptions::addTo(CLI::App& cmd) {
     cmd.add_option("--far", zFar, "far plane distance in metres");
     cmd.add_option("--size", size, "image size WxH in pixels (default: the view's)");
     cmd.add_option("--sun", sun,
-                   "direction the sunlight travels x,y,z (sun -> scene), or off (night: local lights only) or on");
+                   "direction the sunlight travels x,y,z (sun -> scene), off (night: local lights only), on, or "
+                   "file (a loaded glTF's own directional light)");
     cmd.add_option("--sun-elevation", sunElevation, "sun elevation in degrees above the horizon");
     cmd.add_option("--sun-azimuth", sunAzimuth, "sun compass azimuth in degrees (0 = -Z, 90 = +X)");
 }
@@ -204,7 +205,8 @@ core::Status ViewOptions::checkFlags() const {
     if (sun != "off" && sun != "on" && !sun.empty()) {
         if (sunElevation || sunAzimuth)
             return core::makeError("--sun: give either --sun or --sun-elevation/--sun-azimuth, not both");
-        if (auto v = parseVec3("--sun", sun); !v) return v.errorInfo();
+        if (sun != "file")
+            if (auto v = parseVec3("--sun", sun); !v) return v.errorInfo();
     }
     return core::Ok{};
 }
@@ -262,6 +264,12 @@ core::Result<scene::ResolvedView> ViewOptions::resolve(const scene::Scene& scene
 
     if (sun == "off" || sun == "on") {
         out.sun = sun == "on";
+    } else if (sun == "file") {
+        const std::optional<core::DirectionalLight> own = scene::fileSunOf(sceneData);
+        if (!own)
+            return core::makeError("--sun file: the scene has no directional light of its own (KHR_lights_punctual)");
+        out.light = *own;
+        out.sun = true;
     } else if (!sun.empty()) {
         auto light = core::DirectionalLight::fromDirection(*parseVec3("--sun", sun)); // checked above
         if (!light) return core::makeError("--sun: " + light.error());

@@ -339,6 +339,22 @@ if(CASE STREQUAL "gl-export-keeps-file-view")
     message(SEND_ERROR "export keeping a file's camera and lights: exit ${rc} ${rc2} ${rc3}:\n${err}${out2}${err2}${err3}")
   endif()
 endif()
+# A file's sun on the standard views (`--sun file`): a file exported with lights but no camera is
+# framed as any model is, under its own sun, whose direction the view's line says.
+if(CASE STREQUAL "gl-eval-sun-file")
+  execute_process(COMMAND ${SHADOWKIT} eval --scene "${source_dir}/tests/data/lit_pillar.gltf" --views paper,noon --sun file
+                          --size 48x32 --map-size 256 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  # The file's sun travels along (1, −1, 0)/√2, whatever the view.
+  execute_process(COMMAND ${SHADOWKIT} setup --scene "${source_dir}/tests/data/lit_pillar.gltf" --view noon --sun file
+                  RESULT_VARIABLE rc2 OUTPUT_VARIABLE setup ERROR_VARIABLE err2)
+  string(REGEX REPLACE "[ \n]" "" setup "${setup}")
+  if(NOT rc EQUAL 0 OR NOT out MATCHES "noon +tsm" OR NOT rc2 EQUAL 0
+     OR NOT setup MATCHES "\"light\":{\"direction\":\\[0\\.70710678[0-9]*,-0\\.70710678[0-9]*,0\\.0\\]")
+    message(SEND_ERROR "eval and setup --sun file: exit ${rc} ${rc2}:\n${out}${err}${setup}${err2}")
+  endif()
+endif()
+check_fails(eval-sun-file-without-one "--sun file: the scene has no directional light of its own"
+            eval --scene "${source_dir}/tests/data/pillar_on_plate.gltf" --view paper --sun file --size 32x18 --map-size 64)
 check_fails(eval-file-view-unknown-camera "--view file:Tripod: no camera 'Tripod' in the scene, which has camera 0 'Camera'"
             eval --scene "${source_dir}/tests/data/lit_pillar.gltf" --view file:Tripod --size 32x18 --map-size 64)
 check_fails(eval-file-view-forest "--view file: the scene has no camera of its own"

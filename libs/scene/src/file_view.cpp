@@ -39,6 +39,13 @@ double reachOver(const core::Aabb& box, const core::Vec3& from) {
 
 } // namespace
 
+std::optional<core::DirectionalLight> fileSunOf(const Scene& scene) {
+    for (const FileLight& light : scene.lights)
+        if (light.kind == FileLight::Kind::Sun)
+            return core::DirectionalLight::fromDirection(light.localDirection).value(); // unit (gltf_viewpoints.cpp)
+    return std::nullopt;
+}
+
 core::Result<ResolvedView> fileView(const Scene& scene, const std::string& which, int maxLocalLights,
                                     std::string* said) {
     auto index = cameraNamed(scene, which);
@@ -96,7 +103,7 @@ core::Result<ResolvedView> fileView(const Scene& scene, const std::string& which
     }
     std::string lit;
     if (sun) {
-        out.light = core::DirectionalLight::fromDirection(sun->localDirection).value(); // unit (gltf_viewpoints.cpp)
+        out.light = *fileSunOf(scene);
         lit = "its sun" + (sun->name.empty() ? "" : " '" + sun->name + "'");
         if (suns > 1) lit += " (the first of its " + std::to_string(suns) + " suns: a frame draws one)";
     } else if (!out.points.empty() || !out.spots.empty()) {

@@ -91,6 +91,9 @@ ResolvedView resolveView(const ViewSpec& view, const Scene& scene);
 // the near and far planes the file's, tightened to the scene's box where they leave room. An
 // error says why there is no such view (no camera, none of that name, one facing away from the
 // scene); `said`, when given, gets one line on what was used.
+// The file's sun: its first directional light (`--sun file`), or nothing where it has none.
+std::optional<core::DirectionalLight> fileSunOf(const Scene& scene);
+
 core::Result<ResolvedView> fileView(const Scene& scene, const std::string& which, int maxLocalLights,
                                     std::string* said = nullptr);
 
