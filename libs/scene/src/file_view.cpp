@@ -64,8 +64,8 @@ core::Result<ResolvedView> fileView(const Scene& scene, const std::string& which
     cam.aspect = double(out.width) / double(out.height);
 
     // Planes: the file's, tightened to the scene's box where they leave room — an exporter's far
-    // plane is often a million metres (2CylinderEngine.glb: 0.05 to 10⁶ m round an engine 700 units across),
-    // which would spend the depth buffer's precision on nothing.
+    // plane is often a million metres (2CylinderEngine.glb: 0.05 to 10⁶ m round an engine 700
+    // units across), which would spend the depth buffer's precision on nothing.
     double nearest = std::numeric_limits<double>::infinity(), farthest = -nearest;
     for (const core::Vec3& corner : box.corners()) {
         const double depth = glm::dot(corner - fc.localEye, fc.localForward);
