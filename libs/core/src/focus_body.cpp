@@ -24,7 +24,11 @@ namespace shadowkit::core {
 
 Aabb sceneBoxForFocus(const Aabb& wsSceneBounds) {
     SK_ASSERT(!wsSceneBounds.isEmpty(), "sceneBoxForFocus(): scene bounds must not be empty");
-    const double minThickness = std::max(1e-6 * wsSceneBounds.diagonal(), 1e-3);
+    // A flat scene (a ground alone) is given a millionth of its size of thickness, so the body
+    // clipped by it keeps a volume; relative alone — a floor of a millimetre once made a model a
+    // millimetre across a box twice its height, and its map half as fine. A point gets 1 mm.
+    const double diagonal = wsSceneBounds.diagonal();
+    const double minThickness = diagonal > 0.0 ? 1e-6 * diagonal : 1e-3;
     Aabb box = wsSceneBounds;
     for (int axis = 0; axis < 3; ++axis) {
         const double grow = 0.5 * std::max(0.0, minThickness - (box.max[axis] - box.min[axis]));

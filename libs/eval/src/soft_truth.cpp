@@ -135,7 +135,7 @@ SoftTruth softTruth(const RayScene& rays, const TruthBuffers& hits, const SoftTr
     const size_t n = hits.surfaceId.size();
     out.visibility.assign(n, std::numeric_limits<float>::quiet_NaN());
     out.standardError.assign(n, 0.0f);
-    const double offset = options.normalOffsetFraction * std::max(rays.sceneDiagonal(), 1.0);
+    const double offset = rays.shadowRayOffset(options.normalOffsetFraction);
     const int probeSide = side(options.probes);
     const int sampleSide = std::max(side(options.samples), probeSide);
     std::atomic<uint64_t> traced{0}, penumbra{0};

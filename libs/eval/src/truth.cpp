@@ -69,7 +69,7 @@ void localLightTruth(const RayScene& rays, const TruthBuffers& hits, const core:
                      std::vector<uint8_t>& lit) {
     reached.assign(hits.surfaceId.size(), 0);
     lit.assign(hits.surfaceId.size(), 0);
-    const double offset = options.normalOffsetFraction * std::max(rays.sceneDiagonal(), 1.0);
+    const double offset = rays.shadowRayOffset(options.normalOffsetFraction);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, lit.size()), [&](const tbb::blocked_range<size_t>& r) {
         traceLit(
             rays, r.begin(), r.end(),
@@ -124,7 +124,7 @@ TruthBuffers computeTruth(const RayScene& rays, const core::PerspectiveCamera& c
     t.facesLight.assign(n, 0);
     t.lit.assign(n, 0);
     const core::Vec3 towardsLight = light.wsTowardsLight();
-    const double offset = options.normalOffsetFraction * std::max(rays.sceneDiagonal(), 1.0);
+    const double offset = rays.shadowRayOffset(options.normalOffsetFraction);
 
     const auto start = std::chrono::steady_clock::now();
     std::atomic<uint64_t> shadowRays{0};
@@ -186,7 +186,7 @@ std::vector<uint8_t> litAt(const RayScene& rays, const TruthBuffers& hits, const
                            const TruthOptions& options) {
     std::vector<uint8_t> lit(hits.surfaceId.size(), 0);
     const core::Vec3 towardsLight = light.wsTowardsLight();
-    const double offset = options.normalOffsetFraction * std::max(rays.sceneDiagonal(), 1.0);
+    const double offset = rays.shadowRayOffset(options.normalOffsetFraction);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, lit.size()), [&](const tbb::blocked_range<size_t>& r) {
         traceLit(
             rays, r.begin(), r.end(), [&](size_t i) { return sunShadowRay(hits, i, towardsLight, offset); }, lit);
@@ -198,7 +198,7 @@ std::vector<uint32_t> castersAt(const RayScene& rays, const TruthBuffers& hits, 
                                 const TruthOptions& options) {
     std::vector<uint32_t> caster(hits.surfaceId.size(), 0);
     const core::Vec3 towardsLight = light.wsTowardsLight();
-    const double offset = options.normalOffsetFraction * std::max(rays.sceneDiagonal(), 1.0);
+    const double offset = rays.shadowRayOffset(options.normalOffsetFraction);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, caster.size()), [&](const tbb::blocked_range<size_t>& r) {
         std::array<uint8_t, kBatch> hit;
         std::array<RayHit, kBatch> nearest;

@@ -29,7 +29,9 @@ Framing frameBounds(const core::Aabb& bounds, double azimuthRadians, double pitc
         const double x = glm::dot(c, right), y = glm::dot(c, up), z = glm::dot(c, forward);
         distance = std::max({distance, std::abs(x) / tanX - z, std::abs(y) / tanY - z});
     }
-    distance = std::max(distance * 1.05, 1e-3); // a margin round the picture
+    // A margin round the picture; a box of no size (a point) is seen from a thousandth of a
+    // metre — a floor relative to the box, so a model of a millimetre fills the picture too.
+    distance = std::max(distance * 1.05, bounds.diagonal() > 0.0 ? 1e-3 * bounds.diagonal() : 1e-3);
     for (const core::Vec3& corner : bounds.corners()) {
         const double depth = distance + glm::dot(corner - centre, forward);
         nearest = std::min(nearest, depth), farthest = std::max(farthest, depth);

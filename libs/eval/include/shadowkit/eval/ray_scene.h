@@ -54,6 +54,12 @@ public:
     core::Status moveInstances(const scene::Scene& scene, std::span<const uint32_t> moved);
 
     double sceneDiagonal() const { return m_diagonal; }
+    // How far a shadow ray starts off its surface along the normal: `fraction` of the scene's
+    // diagonal (TruthOptions::normalOffsetFraction), scaling with the scene — a floor in metres
+    // (once 1 m × fraction, 10 µm) carried the rays of a model a millimetre across past the
+    // casters that shade it. The scene stands near its own origin (Scene::wsOrigin), so its
+    // float coordinates err by about 1e-7 of its size, far below 1e-5 of it.
+    double shadowRayOffset(double fraction) const { return fraction * (m_diagonal > 0.0 ? m_diagonal : 1.0); }
     const core::Vec3& wsOrigin() const { return m_wsOrigin; } // the scene's (Scene::wsOrigin)
 
 private:
