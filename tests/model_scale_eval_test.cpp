@@ -15,6 +15,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <cmath>
 #include <filesystem>
 
 using namespace shadowkit;
@@ -24,13 +25,15 @@ namespace {
 class ModelScaleEvalTest : public gl::testing::HeadlessGlTest {};
 
 // tests/data/pillar_on_plate.gltf (a 12 m plate, a 4 m pillar) scaled by `scale` about the
-// scene's own origin.
+// scene's own origin, standing at the world's (a micrometre 2 km out is another test: large
+// worlds).
 scene::Scene pillarScaledBy(double scale) {
     const auto file =
         std::filesystem::path(SHADOWKIT_SOURCE_DATA_DIR) / ".." / "tests" / "data" / "pillar_on_plate.gltf";
     auto loaded = scene::loadScene(file);
     EXPECT_TRUE(loaded) << loaded.error();
     if (!loaded) return {};
+    loaded->wsOrigin = core::Vec3(0.0);
     const glm::mat4 scaled = glm::scale(glm::mat4(1.0f), glm::vec3(float(scale)));
     for (scene::MeshBatch& batch : loaded->batches)
         for (glm::mat4& worldFromObject : batch.worldFromObject) worldFromObject = scaled * worldFromObject;
@@ -75,5 +78,16 @@ TEST_F(ModelScaleEvalTest, AModelAMicrometreAcrossScoresAsAtTwelveMetres) {
                 // The same map density: the set-up's box is the model's, not a millimetre's.
                 EXPECT_NEAR(scaled.pixelsPerTexelP50, at.pixelsPerTexelP50, 0.02 * at.pixelsPerTexelP50) << where;
             }
+    }
+    // The virtual clipmap's texels are powers of two of a metre: scaled by one, its levels and
+    // pages fall as at 12 m, and so do its figures (before, its depth range was at least a metre
+    // and its coarsest level held at least a millimetre).
+    const scene::Scene pow2 = pillarScaledBy(std::ldexp(1.0, -20));
+    for (const std::string view : {"paper", "aerial"}) {
+        const eval::Figures at = scaledViewFigures(metres, view, core::Technique::Virtual);
+        const eval::Figures scaled = scaledViewFigures(pow2, view, core::Technique::Virtual);
+        ASSERT_GT(at.validPx, 2000) << view;
+        EXPECT_NEAR(scaled.wrongPct, at.wrongPct, 0.02) << view;
+        EXPECT_NEAR(scaled.pixelsPerTexelP50, at.pixelsPerTexelP50, 0.02 * at.pixelsPerTexelP50) << view;
     }
 }

@@ -190,7 +190,8 @@ ShadowSetup computeVirtualClipmap(const ShadowSetupInputs& in) {
     // No level coarser than the first whose window holds the whole scene box around the eye
     // (the window's centre is the eye snapped to a page corner: half a page less).
     const double halfTexels = 0.5 * (o.virtualTexels - o.pageTexels);
-    const int covering = static_cast<int>(std::ceil(std::log2(std::max(reach, 1e-3) / halfTexels)));
+    const double sceneSize = std::max(in.wsSceneBounds.diagonal(), 1e-300); // floors relative to it: any units
+    const int covering = static_cast<int>(std::ceil(std::log2(std::max(reach, 1e-6 * sceneSize) / halfTexels)));
     last = std::clamp(covering, first, last);
     if (last - first + 1 > kMaxClipmapLevels) {
         setup.fallbacks.emplace_back("more than " + std::to_string(kMaxClipmapLevels) +
@@ -212,14 +213,15 @@ ShadowSetup computeVirtualClipmap(const ShadowSetupInputs& in) {
     }
 
     // Depth: the scene box along the light, relative to the grid origin, snapped outwards to an
-    // eighth of the extent's power of two (at least 1 m): a box that grows a little keeps its
-    // depth range, so cached pages stay valid.
+    // eighth of the extent's power of two (at least a millionth of the scene's size): a box that
+    // grows a little keeps its depth range, so cached pages stay valid.
     double zLo = INFINITY, zHi = -INFINITY;
     for (const Vec3& corner : in.wsSceneBounds.corners()) {
         const double z = Vec3(c.lightFromWorldRotation * Vec4(corner, 1.0)).z - grid.z;
         zLo = std::min(zLo, z), zHi = std::max(zHi, z);
     }
-    const double step = std::ldexp(1.0, static_cast<int>(std::ceil(std::log2(std::max(zHi - zLo, 1.0))))) / 8.0;
+    const double step =
+        std::ldexp(1.0, static_cast<int>(std::ceil(std::log2(std::max(zHi - zLo, 1e-6 * sceneSize))))) / 8.0;
     c.zNear = (std::floor(zHi / step) + 1.0) * step; // one step of margin towards the light
     c.zFar = (std::ceil(zLo / step) - 1.0) * step;
 
