@@ -39,6 +39,9 @@ Command addExportCommand(CLI::App& app) {
     auto args = std::make_shared<ExportArgs>();
     CLI::App* cmd = app.add_subcommand("export", "Write a scene as glTF binary (.glb) or Wavefront OBJ (.obj)");
     args->scene.addTo(*cmd);
+    // The file's own meshes, a building a mesh, not the tiles a frame draws them as (mesh_merge.cpp):
+    // an export hands the scene on, and tiles would lose what the user's tools know of each mesh.
+    args->scene.mergeSmallMeshes = false;
     cmd->add_option("--out", args->out, "output file (.glb or .obj)")->required();
     return {cmd, [args] { return runExport(*args); }};
 }

@@ -30,6 +30,9 @@ struct SceneOptions {
     int movers = scene::ForestOptions{}.movers;
     std::string worldOffset;   // "x,y,z": where the scene stands in the world (Scene::wsOrigin)
     std::string sceneUp = "y"; // a scene file's up axis, y or z (scene::LoadOptions::up)
+    // A town of meshes placed once loaded as tiles (scene::LoadOptions::mergeSmallMeshes): what a
+    // frame draws. Not a flag: `export` turns it off, to write the file's meshes as they were.
+    bool mergeSmallMeshes = true;
     // The first of the built-in forest's flags given on the command line (--forest, --seed,
     // --trees, --terrain-size, --terrain-resolution, --movers): with a scene file it would be
     // ignored, so check() and load() refuse it.

@@ -118,7 +118,8 @@ core::Result<scene::Scene> SceneOptions::load(bool verbose) const {
         if (core::Status s = scene::validate(o); !s) return s.errorInfo();
         result = scene::makeForest(o);
     } else {
-        result = scene::loadScene(scene, {.up = sceneUp == "z" ? scene::UpAxis::Z : scene::UpAxis::Y});
+        result = scene::loadScene(
+            scene, {.up = sceneUp == "z" ? scene::UpAxis::Z : scene::UpAxis::Y, .mergeSmallMeshes = mergeSmallMeshes});
         if (!result) return result;
         for (const std::string& warning : result->warnings) warn(warning);
     }

@@ -537,6 +537,21 @@ if(CASE STREQUAL "gl-bench-town")
     message(SEND_ERROR "gl-bench-town: make_town ${rc}, bench ${rc2}, shadow pass draws '${draws}': ${err} ${err2} ${out}")
   endif()
 endif()
+# A town of 1,100 buildings, a mesh each, loads as tiles for a frame, but export writes its
+# buildings as they were: the file's meshes, which the user's own tools know, not our tiles.
+if(CASE STREQUAL "export-town-keeps-buildings")
+  find_program(PYTHON NAMES python3 REQUIRED)
+  execute_process(COMMAND ${PYTHON} "${source_dir}/tools/make_town.py" "${WORK}/town_in.glb" --buildings 1100
+                  RESULT_VARIABLE rc OUTPUT_QUIET ERROR_VARIABLE err)
+  execute_process(COMMAND ${SHADOWKIT} export --scene "${WORK}/town_in.glb" --out "${WORK}/town_out.glb"
+                  RESULT_VARIABLE rc2 OUTPUT_VARIABLE out ERROR_VARIABLE err2)
+  execute_process(COMMAND ${PYTHON} -c "import json,struct,sys; b=open(sys.argv[1],'rb').read(); n=struct.unpack('<I',b[12:16])[0]; print(len(json.loads(b[20:20+n])['meshes']))"
+                          "${WORK}/town_out.glb" RESULT_VARIABLE rc3 OUTPUT_VARIABLE meshes ERROR_VARIABLE err3)
+  string(STRIP "${meshes}" meshes)
+  if(NOT rc EQUAL 0 OR NOT rc2 EQUAL 0 OR NOT rc3 EQUAL 0 OR meshes LESS 1101)
+    message(SEND_ERROR "export of a town of meshes: exit ${rc} ${rc2} ${rc3}, ${meshes} meshes written: ${err}${err2}${err3}")
+  endif()
+endif()
 check_fails(render-out-full-disk "--out: /dev/full: cannot write" render ${small} --size 32x18 --map-size 64 --out /dev/full)
 check_fails(eval-json-full-disk "--json: /dev/full: cannot write" eval ${small} --view paper --size 32x18 --map-size 64 --json /dev/full)
 check_fails(trees-negative "trees: must be in" setup --trees -1)
