@@ -130,9 +130,15 @@ core::Result<scene::Scene> SceneOptions::load(bool verbose) const {
         const core::Vec3& at = result->wsOrigin;
         const std::string standing =
             at == core::Vec3(0.0) ? "" : fmt::format(", standing at {:.0f},{:.0f},{:.0f} m", at.x, at.y, at.z);
-        fmt::print(stderr, "scene {}: {} instances, {:.2f} M triangles, {} batches{} ({:.2f} s)\n", name,
+        // Its own camera and lights, said where they are, so that a user finds `--view file`.
+        const size_t cameras = result->cameras.size(), lights = result->lights.size();
+        const std::string own = cameras + lights == 0
+                                    ? ""
+                                    : fmt::format(", {} camera{} and {} light{} of its own (--view file, --sun file)",
+                                                  cameras, cameras == 1 ? "" : "s", lights, lights == 1 ? "" : "s");
+        fmt::print(stderr, "scene {}: {} instances, {:.2f} M triangles, {} batches{}{} ({:.2f} s)\n", name,
                    result->instanceCount(), static_cast<double>(result->triangleCount()) * 1e-6, result->batches.size(),
-                   standing, seconds);
+                   standing, own, seconds);
     }
     if (result->batches.empty()) return core::makeError(fmt::format("scene {}: is empty (no triangles)", scene));
     result->wsOrigin += *origin; // a file far out already stands at its own origin (near_origin.cpp)

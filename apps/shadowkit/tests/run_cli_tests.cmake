@@ -321,7 +321,7 @@ if(CASE STREQUAL "gl-eval-file-view")
   execute_process(COMMAND ${SHADOWKIT} eval --scene "${source_dir}/tests/data/lit_pillar.gltf" --views paper,file
                           --size 48x32 --map-size 256 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   if(NOT rc EQUAL 0 OR NOT err MATCHES "view file: camera 0 'Camera' of 1, its sun 'Sun', 1 point and 0 spot lights"
-     OR NOT out MATCHES "\nfile +tsm" OR NOT out MATCHES "point\\[0\\]")
+     OR NOT err MATCHES "1 camera and 2 lights of its own \\(--view file, --sun file\\)" OR NOT out MATCHES "\nfile +tsm" OR NOT out MATCHES "point\\[0\\]")
     message(SEND_ERROR "eval --views paper,file on a file with a camera and lights: exit ${rc}:\n${out}${err}")
   endif()
 endif()
