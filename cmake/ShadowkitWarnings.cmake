@@ -62,6 +62,7 @@ function(sk_add_test name)
   target_link_libraries(${name} PRIVATE ${ARG_LIBS} GTest::gtest_main)
   # The libraries take data paths; tests read the source tree's data/.
   target_compile_definitions(${name} PRIVATE SHADOWKIT_SOURCE_DATA_DIR="${PROJECT_SOURCE_DIR}/data")
+  target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR}/tests/support) # scratch_dir.h
   sk_project_warnings(${name})
   sk_precompile(${name} <gtest/gtest.h> <glm/glm.hpp>)
   gtest_discover_tests(${name} PROPERTIES LABELS "${ARG_LABELS}" DISCOVERY_TIMEOUT 60)

@@ -9,6 +9,8 @@
 #include "shadowkit/scene/scene_io.h"
 #include "shadowkit/scene/views.h"
 
+#include "scratch_dir.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -98,7 +100,7 @@ namespace {
 // A user's model as a survey export writes it: a 20 m ground, a 3 m box and a 6 m pole, in
 // world metres `at` (an OBJ), loaded as `eval --scene FILE` loads it.
 scene::Scene loadSurveyModelAt(const glm::dvec3& at) {
-    const auto file = std::filesystem::temp_directory_path() / "shadowkit_survey_model.obj";
+    const auto file = shadowkit::test_support::scratchDir() / "shadowkit_survey_model.obj";
     {
         std::ofstream out(file);
         out.precision(17);

@@ -1,6 +1,8 @@
 #include "shadowkit/eval/metrics.h"
 #include "shadowkit/eval/npy.h"
 
+#include "scratch_dir.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -71,7 +73,7 @@ TEST(MetricsTest, MismatchedSizesAreAnError) {
 }
 
 TEST(NpyTest, HeaderIsAlignedAndDescribesTheArray) {
-    const auto file = std::filesystem::temp_directory_path() / "shadowkit_test.npy";
+    const auto file = shadowkit::test_support::scratchDir() / "shadowkit_test.npy";
     const std::vector<float> data = {1, 2, 3, 4, 5, 6};
     ASSERT_TRUE(eval::writeNpy(file, std::span<const float>(data), {2, 3}));
     std::ifstream in(file, std::ios::binary);

@@ -5,6 +5,8 @@
 #include "shadowkit/scene/file_write.h"
 #include "shadowkit/scene/image.h"
 
+#include "scratch_dir.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -29,7 +31,7 @@ eval::TruthBuffers eightPixels() {
     return t;
 }
 
-std::filesystem::path tempFile(const std::string& name) { return std::filesystem::temp_directory_path() / name; }
+std::filesystem::path tempFile(const std::string& name) { return shadowkit::test_support::scratchDir() / name; }
 
 void writeBytes(const std::filesystem::path& file, const std::string& bytes) {
     const core::Status written = scene::writeFile(file, bytes);

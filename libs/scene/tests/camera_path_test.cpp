@@ -4,7 +4,10 @@
 #include "shadowkit/scene/camera_path.h"
 #include "shadowkit/scene/forest.h"
 
+#include "scratch_dir.h"
+
 #include <glm/gtc/matrix_transform.hpp>
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -23,7 +26,7 @@ std::vector<scene::CameraKey> zigzag() {
 }
 
 std::filesystem::path writeFile(const std::string& name, const std::string& text) {
-    const auto path = std::filesystem::temp_directory_path() / name;
+    const auto path = shadowkit::test_support::scratchDir() / name;
     std::ofstream(path) << text;
     return path;
 }

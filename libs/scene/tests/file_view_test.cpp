@@ -6,6 +6,8 @@
 
 #include "gltf_test_files.h"
 
+#include "scratch_dir.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -204,7 +206,7 @@ TEST(FileViewTest, ExportedAndLoadedBackTheCamerasAndLightsStay) {
     // camera and light stands where it stood in the world, 5,400 km out as at the origin.
     const auto scene = scene::testing::loadWritten("sk_viewpoints_export.gltf", viewpointFile("[512345,20,5412345]"));
     ASSERT_TRUE(scene) << scene.error();
-    const auto file = std::filesystem::temp_directory_path() / "sk_viewpoints_export.glb";
+    const auto file = shadowkit::test_support::scratchDir() / "sk_viewpoints_export.glb";
     ASSERT_TRUE(exportScene(*scene, file));
     const auto back = loadScene(file);
     std::filesystem::remove(file);

@@ -6,6 +6,8 @@
 #include "shadowkit/scene/image.h"
 #include "shadowkit/scene/scene_io.h"
 
+#include "scratch_dir.h"
+
 #include <gtest/gtest.h>
 
 #include <csignal>
@@ -23,7 +25,7 @@ namespace fs = std::filesystem;
 namespace {
 
 fs::path scratch(const std::string& name) {
-    const fs::path dir = fs::temp_directory_path() / ("shadowkit_file_write_" + name);
+    const fs::path dir = shadowkit::test_support::scratchDir() / ("shadowkit_file_write_" + name);
     fs::remove_all(dir);
     fs::create_directories(dir);
     return dir;

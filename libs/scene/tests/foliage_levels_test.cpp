@@ -5,7 +5,10 @@
 #include "shadowkit/scene/mesh_builder.h"
 #include "shadowkit/scene/scene_io.h"
 
+#include "scratch_dir.h"
+
 #include <glm/gtc/matrix_transform.hpp>
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -93,7 +96,7 @@ TEST(FoliageLevelsTest, CoverageFollowsTheTexturesWrapAndTheMaterialsAlphaFactor
 // clouds on its leaves.
 TEST(FoliageLevelsTest, ALoadedGltfsLeavesComeBackWithClouds) {
     const Scene s = loadedTree();
-    const std::filesystem::path file = std::filesystem::temp_directory_path() / "shadowkit_foliage_levels.glb";
+    const std::filesystem::path file = shadowkit::test_support::scratchDir() / "shadowkit_foliage_levels.glb";
     ASSERT_TRUE(exportScene(s, file));
     auto loaded = loadScene(file);
     std::filesystem::remove(file);

@@ -3,6 +3,8 @@
 
 #include "shadowkit/scene/scene_io.h"
 
+#include "scratch_dir.h"
+
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
@@ -30,7 +32,7 @@ inline std::string base64(const std::vector<unsigned char>& data) {
 // not be written is the test's failure, not the reader's.
 inline core::Result<Scene> loadWritten(const std::string& name, const std::string& text,
                                        const LoadOptions& options = {}) {
-    const auto file = std::filesystem::temp_directory_path() / name;
+    const auto file = shadowkit::test_support::scratchDir() / name;
     std::ofstream out(file);
     out << text;
     out.close();

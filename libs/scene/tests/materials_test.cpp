@@ -9,6 +9,8 @@
 
 #include "gltf_test_files.h"
 
+#include "scratch_dir.h"
+
 #include <gtest/gtest.h>
 #include <webp/encode.h>
 
@@ -42,7 +44,7 @@ std::vector<uint8_t> fileBytes(const fs::path& file) {
 }
 
 std::vector<uint8_t> pngBytes(const scene::Image& image) {
-    const fs::path file = fs::temp_directory_path() / "sk_material_image.png";
+    const fs::path file = shadowkit::test_support::scratchDir() / "sk_material_image.png";
     EXPECT_TRUE(scene::writePng(image, file));
     auto bytes = fileBytes(file);
     fs::remove(file);
@@ -94,7 +96,7 @@ void expectMaterial(const scene::Material& actual, const scene::Material& expect
 class MaterialsTest : public ::testing::Test {
 protected:
     void SetUp() override {
-        m_dir = fs::temp_directory_path() / ("sk_materials_" + std::to_string(::getpid()));
+        m_dir = shadowkit::test_support::scratchDir() / "sk_materials";
         fs::create_directories(m_dir);
     }
     void TearDown() override { fs::remove_all(m_dir); }

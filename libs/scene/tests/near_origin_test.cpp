@@ -5,6 +5,8 @@
 
 #include "gltf_test_files.h"
 
+#include "scratch_dir.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -140,7 +142,7 @@ TEST(NearOriginTest, AnExportedSceneFarOutLoadsBackWhereItWas) {
     const auto loaded = scene::testing::loadWritten("shadowkit_survey_source.obj", surveyObj(kSurvey));
     ASSERT_TRUE(loaded) << loaded.error();
     for (const char* name : {"shadowkit_survey_export.glb", "shadowkit_survey_export.obj"}) {
-        const auto file = std::filesystem::temp_directory_path() / name;
+        const auto file = shadowkit::test_support::scratchDir() / name;
         ASSERT_TRUE(exportScene(*loaded, file)) << name;
         const auto back = loadScene(file);
         std::filesystem::remove(file);

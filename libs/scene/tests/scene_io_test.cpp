@@ -2,7 +2,10 @@
 #include "shadowkit/scene/mesh_builder.h"
 #include "shadowkit/scene/scene_io.h"
 
+#include "scratch_dir.h"
+
 #include <glm/gtc/matrix_transform.hpp>
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -51,7 +54,7 @@ void expectSameBounds(const core::Aabb& a, const core::Aabb& b) {
 TEST(SceneIoTest, ExportedGlbAndObjLoadBackWithTheSameTrianglesAndBounds) {
     const Scene forest = tinyForest();
     for (const char* name : {"shadowkit_io_test.glb", "shadowkit_io_test.obj"}) {
-        const auto file = std::filesystem::temp_directory_path() / name;
+        const auto file = shadowkit::test_support::scratchDir() / name;
         ASSERT_TRUE(exportScene(forest, file)) << name;
         const auto loaded = loadScene(file);
         ASSERT_TRUE(loaded) << loaded.error();
@@ -132,7 +135,7 @@ TEST(SceneIoTest, MirroredAndShearedInstancesComeBackWhereTheyWereFacingOutwards
     s.batches = {{0, {glm::mat4(1.0f), sheared}, false},
                  {1, {glm::scale(glm::translate(glm::mat4(1.0f), {5.0f, 0.0f, 0.0f}), {-1.0f, 1.0f, 1.0f})}, false}};
     const auto source = worldTriangles(s);
-    const auto file = std::filesystem::temp_directory_path() / "shadowkit_io_mirrored.glb";
+    const auto file = shadowkit::test_support::scratchDir() / "shadowkit_io_mirrored.glb";
     ASSERT_TRUE(exportScene(s, file));
     const auto loaded = loadScene(file);
     ASSERT_TRUE(loaded) << loaded.error();
@@ -164,7 +167,7 @@ TEST(SceneIoTest, AGlbPastItsFourGigabytesIsRefusedBeforeItIsBuilt) {
     Scene s;
     s.meshes = {strip};
     s.batches = {{0, std::vector<glm::mat4>(100, sheared), false}};
-    const auto file = std::filesystem::temp_directory_path() / "shadowkit_io_too_large.glb";
+    const auto file = shadowkit::test_support::scratchDir() / "shadowkit_io_too_large.glb";
     std::filesystem::remove(file);
     const core::Status status = exportScene(s, file);
     ASSERT_FALSE(status);
@@ -193,7 +196,7 @@ TEST(SceneIoTest, AnExportedFileHoldsOnlyWhatItDrawsEachMeshOnceWithANodePerInst
     for (const MeshBatch& batch : forest.batches) held += forest.meshes[batch.mesh].vertices.size();
     ASSERT_GT(held, verticesDrawn(forest, false)); // the case that matters: vertices only the coarser levels use
 
-    const auto glb = std::filesystem::temp_directory_path() / "shadowkit_io_drawn.glb";
+    const auto glb = shadowkit::test_support::scratchDir() / "shadowkit_io_drawn.glb";
     ASSERT_TRUE(exportScene(forest, glb));
     const GlbChunks chunks = readGlb(glb);
     const nlohmann::json& j = chunks.json;
@@ -260,7 +263,7 @@ TEST(SceneIoTest, AnExportedFileHoldsOnlyWhatItDrawsEachMeshOnceWithANodePerInst
     std::filesystem::remove(glb);
 
     // The OBJ: the same vertices, one `v` line each.
-    const auto obj = std::filesystem::temp_directory_path() / "shadowkit_io_drawn.obj";
+    const auto obj = shadowkit::test_support::scratchDir() / "shadowkit_io_drawn.obj";
     ASSERT_TRUE(exportScene(forest, obj));
     std::ifstream in(obj);
     size_t vLines = 0;
@@ -271,7 +274,7 @@ TEST(SceneIoTest, AnExportedFileHoldsOnlyWhatItDrawsEachMeshOnceWithANodePerInst
 
 TEST(SceneIoTest, GltfNodesSharingAMeshBecomeOneInstancedBatch) {
     // Two nodes referencing mesh 0 (a single triangle in an embedded base64 buffer).
-    const auto file = std::filesystem::temp_directory_path() / "shadowkit_instanced.gltf";
+    const auto file = shadowkit::test_support::scratchDir() / "shadowkit_instanced.gltf";
     std::ofstream(file) << R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0,1]}],
       "nodes":[{"mesh":0},{"mesh":0,"translation":[10,0,0]}],
       "meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],
@@ -287,7 +290,7 @@ TEST(SceneIoTest, GltfNodesSharingAMeshBecomeOneInstancedBatch) {
 }
 
 TEST(SceneIoTest, BadFilesGiveOneLineNamingTheFile) {
-    const auto dir = std::filesystem::temp_directory_path();
+    const auto dir = shadowkit::test_support::scratchDir();
     const auto missing = loadScene(dir / "no_such_scene.glb");
     ASSERT_FALSE(missing);
     EXPECT_NE(missing.error().find("no_such_scene.glb"), std::string::npos);
@@ -307,7 +310,7 @@ TEST(SceneIoTest, BadFilesGiveOneLineNamingTheFile) {
 // Finite geometry past the world's end: a view framing it put its eye at 1e20 m, and Embree
 // aborted the program on the first ray from there (`eval --scene far.obj`).
 TEST(SceneIoTest, GeometryPastTheWorldsEndIsRefusedInOneLine) {
-    const auto dir = std::filesystem::temp_directory_path();
+    const auto dir = shadowkit::test_support::scratchDir();
     const auto far = dir / "shadowkit_far.obj";
     std::ofstream(far) << "v 0 0 0\nv 1 0 0\nv 0 1e20 0\nf 1 2 3\n";
     const auto loaded = loadScene(far);
@@ -338,7 +341,7 @@ TEST(SceneIoTest, LoadedTerrainPlacesTheEyeOverItNotUnderIt) {
     // The exported forest has no heightfield once loaded: the ground under a point must
     // come from its terrain triangles (the clearing at the origin has no trees).
     const Scene forest = tinyForest();
-    const auto file = std::filesystem::temp_directory_path() / "shadowkit_ground.glb";
+    const auto file = shadowkit::test_support::scratchDir() / "shadowkit_ground.glb";
     ASSERT_TRUE(exportScene(forest, file));
     const auto loaded = loadScene(file);
     ASSERT_TRUE(loaded);
@@ -352,7 +355,7 @@ TEST(SceneIoTest, ObjKeepsVertexColoursNormalsAndObjects) {
     // shadowkit's own OBJ carries `v x y z r g b` and normals: both come back, and each exported
     // object is a mesh of its own. A file with neither is light grey with normals from its faces.
     const Scene forest = tinyForest();
-    const auto file = std::filesystem::temp_directory_path() / "shadowkit_colours.obj";
+    const auto file = shadowkit::test_support::scratchDir() / "shadowkit_colours.obj";
     ASSERT_TRUE(exportScene(forest, file));
     const auto loaded = loadScene(file);
     ASSERT_TRUE(loaded) << loaded.error();
@@ -364,7 +367,7 @@ TEST(SceneIoTest, ObjKeepsVertexColoursNormalsAndObjects) {
     EXPECT_GT(green, 100);
     std::filesystem::remove(file);
 
-    const auto plain = std::filesystem::temp_directory_path() / "shadowkit_plain.obj";
+    const auto plain = shadowkit::test_support::scratchDir() / "shadowkit_plain.obj";
     std::ofstream(plain) << "o quad\nv 0 0 0\nv 1 0 0\nv 1 0 -1\nv 0 0 -1\nf 1 2 3 4\n";
     const auto quad = loadScene(plain);
     ASSERT_TRUE(quad) << quad.error();

@@ -1,6 +1,8 @@
 #include "shadowkit/scene/forest.h"
 #include "shadowkit/scene/views.h"
 
+#include "scratch_dir.h"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -55,7 +57,7 @@ TEST(ViewsTest, UnknownViewListsTheKnownOnes) {
 }
 
 TEST(ViewsTest, MalformedFilesNameTheFileAndTheProblem) {
-    const auto dir = std::filesystem::temp_directory_path();
+    const auto dir = shadowkit::test_support::scratchDir();
     const auto bad = dir / "shadowkit_views_bad.json";
     std::ofstream(bad) << R"({"views": [{"name": "x", "near": 10, "far": 1}]})";
     auto r = loadViews(bad);
@@ -103,7 +105,7 @@ TEST(ViewsTest, AViewLookingStraightUpOrDownIsAUsableCamera) {
 }
 
 TEST(ViewsTest, AViewsSunAngleReachesTheResolvedViewAndBadOnesAreErrors) {
-    const auto file = std::filesystem::temp_directory_path() / "shadowkit_views_sun_angle.json";
+    const auto file = shadowkit::test_support::scratchDir() / "shadowkit_views_sun_angle.json";
     std::ofstream(file) << R"({"views": [{"name": "sized", "sun_angle": 0.53}, {"name": "point"}]})";
     auto views = loadViews(file);
     ASSERT_TRUE(views) << views.error();
