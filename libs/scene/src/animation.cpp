@@ -7,6 +7,7 @@
 namespace shadowkit::scene {
 
 glm::mat4 trackTransform(const Track& track, const Scene& scene, double t) {
+    if (track.keyframed) return glm::mat4(track.keyframed->sceneFromObjectAt(t));
     SK_ASSERT(track.radius > 0.0, "trackTransform(): a track's radius must be positive");
     // Compass angle: 0 = -Z, increasing towards +X (conventions.h), so a positive speed
     // runs clockwise seen from above.

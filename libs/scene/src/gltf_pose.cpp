@@ -6,8 +6,9 @@
 //     p' = Σ_k w_k · J(j_k) · p,   J(j) = G(joint j) · IBM(j)
 // with G a node's global transform and IBM the skin's inverse bind matrix (identity when the
 // skin has none), over every JOINTS_n / WEIGHTS_n set; the transform of the node that holds the
-// skinned mesh is ignored (only the joints place it). shadowkit plays no animation, so the pose
-// is the nodes' transforms as the file writes them, applied once at load; the shadows are of
+// skinned mesh is ignored (only the joints place it). shadowkit plays no skinned or morph
+// animation (gltf_animation.cpp), so the pose is the nodes' transforms as the file writes
+// them, applied once at load; the shadows are of
 // that pose. Weights are divided by their sum (the specification asks for a sum of 1; exporters
 // round), a vertex with no weight keeps its bind position, and normals follow the inverse
 // transpose of the blended matrix.

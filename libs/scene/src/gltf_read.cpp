@@ -24,18 +24,23 @@
 //   - nodes instancing their mesh (EXT_mesh_gpu_instancing, gltfpack -mi): one instance each;
 //   - morph targets at their default weights, then skinned meshes posed by their joints, at the
 //     file's rest pose (gltf_pose.cpp);
+//   - animations (§3.11, gltf_animation.cpp): an instance below a node that an animation's
+//     translation, rotation or scale moves is a Scene::tracks entry of a dynamic batch, its
+//     keys played by scene::animate; the scene as loaded stands at t = 0;
 //   - meshopt-compressed buffer views (EXT_meshopt_compression, gltfpack -c) decoded before any
 //     accessor reads them (gltf_meshopt.cpp);
 //   - what cannot be read is named: glTF 1.0, Draco-compressed meshes, non-finite positions;
 //   - the file and every file it names are read through scene::readFile (regular files only,
 //     within its limit): a URI naming a directory or a pipe is refused in one line.
 #include "gltf_accessor.h"
+#include "gltf_animation.h"
 #include "gltf_materials.h"
 #include "gltf_meshopt.h"
 #include "gltf_pose.h"
 #include "gltf_viewpoints.h"
 #include "scene_formats.h"
 
+#include "shadowkit/scene/animation.h"
 #include "shadowkit/scene/file_read.h"
 
 #include <tiny_gltf.h>
@@ -434,7 +439,10 @@ core::Result<Scene> loadGltf(const fs::path& file) {
     // each triangle reversed, and every instance transform of a batch keeps the winding's sense.
     // Skinned meshes are posed per skin: a batch per mesh primitive, handedness and skin (-1: none).
     // A node with morph weights of its own gets batches of its own too (the last: its index, else -1).
-    std::map<std::tuple<int, size_t, bool, int, int>, size_t> batchOf;
+    // An instance that an animation moves (its node or one above it) gets batches of its own, dynamic.
+    std::map<std::tuple<int, size_t, bool, int, int, bool>, size_t> batchOf;
+    const AnimatedNodes animated = readAnimations(model, file.string(), scene.warnings);
+    std::vector<int> path;                           // the nodes from the root down to the one visited
     std::vector<glm::dmat4> globals;                 // every node's, made when a skin first needs them
     std::map<int, std::vector<glm::dmat4>> jointsOf; // each skin's joint matrices
     std::optional<core::Error> failure;
@@ -452,6 +460,7 @@ core::Result<Scene> loadGltf(const fs::path& file) {
         }
         const tinygltf::Node& node = model.nodes[size_t(nodeIndex)];
         const glm::dmat4 world = parent * nodeLocalMatrix(node);
+        path.push_back(nodeIndex);
         if (!core::isFinite(glm::dmat4(glm::mat4(world)))) { // as float too: the renderer's
             failure = core::makeError(file.string() + ": node " + std::to_string(nodeIndex) + " '" +
                                       printable(node.name) + "' has a non-finite transform");
@@ -473,17 +482,23 @@ core::Result<Scene> loadGltf(const fs::path& file) {
                 }
                 jointsOf.emplace(skin, std::move(*joints));
             }
+            // A moving instance's placement is its motion at rest times what lies below its node
+            // (a GPU-instancing transform): the motion replaces the first factor at every t.
+            const std::optional<NodeMotion> motion = skin >= 0 ? std::nullopt : motionAlong(model, path, animated);
             const auto transforms = skin >= 0 ? std::vector<glm::dmat4>{glm::dmat4(1.0)}
-                                              : instanceTransforms(model, node, world, nodeName, instancesPlaced);
+                                              : instanceTransforms(model, node, motion ? glm::dmat4(1.0) : world,
+                                                                   nodeName, instancesPlaced);
             if (!transforms) {
                 failure = transforms.errorInfo();
                 return;
             }
-            for (const glm::dmat4& transform : *transforms) {
+            for (const glm::dmat4& below : *transforms) {
+                const glm::dmat4 transform = motion ? world * below : below;
                 const bool mirrored = glm::determinant(glm::dmat3(transform)) < 0.0;
                 for (size_t p = 0; p < gltfMesh.primitives.size(); ++p) {
                     auto [it, inserted] = batchOf.try_emplace(
-                        {node.mesh, p, mirrored, skin, node.weights.empty() ? -1 : nodeIndex}, scene.batches.size());
+                        {node.mesh, p, mirrored, skin, node.weights.empty() ? -1 : nodeIndex, motion.has_value()},
+                        scene.batches.size());
                     if (inserted) {
                         const std::string named = gltfMesh.name.empty() ? "" : " '" + printable(gltfMesh.name) + "'";
                         const std::string where = file.string() + ": mesh " + std::to_string(node.mesh) + named +
@@ -520,16 +535,25 @@ core::Result<Scene> loadGltf(const fs::path& file) {
                                 std::swap(mesh->indices[t + 1], mesh->indices[t + 2]);
                         mesh->name = gltfMesh.name;
                         scene.meshes.push_back(std::move(*mesh));
-                        scene.batches.push_back({uint32_t(scene.meshes.size() - 1), {}, false});
+                        scene.batches.push_back({uint32_t(scene.meshes.size() - 1), {}, motion.has_value()});
                         placements.emplace_back();
                     }
                     const auto skinned = skinnedAt.find(it->second);
                     placements[it->second].push_back(
                         skinned == skinnedAt.end() ? transform : glm::translate(glm::dmat4(1.0), skinned->second));
+                    if (motion) {
+                        Track track;
+                        track.batch = uint32_t(it->second);
+                        track.instance = uint32_t(placements[it->second].size() - 1);
+                        track.keyframed = motion;
+                        track.keyframed->nodeFromObject = below;
+                        scene.tracks.push_back(std::move(track));
+                    }
                 }
             }
         }
         for (int child : node.children) self(self, child, world, depth + 1);
+        path.pop_back();
     };
     const int sceneIndex = model.defaultScene >= 0 ? model.defaultScene : 0;
     if (!model.scenes.empty() && size_t(sceneIndex) < model.scenes.size())
@@ -537,6 +561,7 @@ core::Result<Scene> loadGltf(const fs::path& file) {
     if (failure) return *failure;
     placeNearOrigin(scene, placements);
     placeViewpoints(scene);
+    animate(scene, 0.0); // a moving instance stands where its keys put it at t = 0, as every frame of t = 0 sees it
     if (scene.triangleCount() == 0) return core::makeError(file.string() + ": glTF file holds no triangle meshes");
     return scene;
 }

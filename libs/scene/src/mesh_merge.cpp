@@ -53,8 +53,7 @@ void splitIntoTiles(std::span<Candidate> items, std::vector<std::span<Candidate>
 } // namespace
 
 void mergeSmallMeshes(Scene& scene) {
-    // Tracks name their batches by index (a loaded file has none; the forest is not merged).
-    if (scene.batches.size() < kMergeFromBatches || !scene.tracks.empty()) return;
+    if (scene.batches.size() < kMergeFromBatches) return;
     // The batches to merge, by material: static, placed once, opaque, without levels of their own.
     std::map<int32_t, std::vector<size_t>> byMaterial;
     for (size_t b = 0; b < scene.batches.size(); ++b) {
@@ -107,8 +106,10 @@ void mergeSmallMeshes(Scene& scene) {
         std::vector<MeshBatch> batches;
     } kept;
     std::vector<int64_t> meshAt(scene.meshes.size(), -1);
+    std::vector<uint32_t> keptAt(scene.batches.size(), UINT32_MAX); // a dynamic batch is never merged
     for (size_t b = 0; b < scene.batches.size(); ++b) {
         if (merged[b]) continue;
+        keptAt[b] = uint32_t(kept.batches.size());
         MeshBatch batch = std::move(scene.batches[b]);
         if (meshAt[batch.mesh] < 0) {
             meshAt[batch.mesh] = int64_t(kept.meshes.size());
@@ -123,6 +124,7 @@ void mergeSmallMeshes(Scene& scene) {
     }
     scene.meshes = std::move(kept.meshes);
     scene.batches = std::move(kept.batches);
+    for (Track& track : scene.tracks) track.batch = keptAt[track.batch]; // a file's animated instances
 }
 
 } // namespace shadowkit::scene::formats

@@ -55,6 +55,14 @@ void placeNearOrigin(Scene& scene, const std::vector<std::vector<glm::dmat4>>& f
         out.reserve(placements[b].size());
         for (const glm::dmat4& fromObject : placements[b]) out.emplace_back(sceneFromFile * fromObject);
     }
+    // A keyframed instance is placed by its motion: the same origin before it, the same move of
+    // its mesh after it.
+    for (Track& track : scene.tracks)
+        if (track.keyframed) {
+            const uint32_t m = scene.batches[track.batch].mesh;
+            track.keyframed->sceneFromRoot = sceneFromFile * track.keyframed->sceneFromRoot;
+            track.keyframed->nodeFromObject *= glm::translate(glm::dmat4(1.0), meshAnchor[m]);
+        }
 }
 
 } // namespace shadowkit::scene::formats

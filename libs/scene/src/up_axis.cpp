@@ -38,6 +38,12 @@ void turnZUpToYUp(Scene& scene) {
         c.localEye = dturn * c.localEye, c.localForward = dturn * c.localForward, c.localUp = dturn * c.localUp;
     for (FileLight& l : scene.lights)
         l.localPosition = dturn * l.localPosition, l.localDirection = dturn * l.localDirection;
+    // A keyframed instance's motion turns as its placement does: R · (S · F(t) · N) · Rᵀ.
+    for (Track& track : scene.tracks)
+        if (track.keyframed) {
+            track.keyframed->sceneFromRoot = glm::dmat4(kYUpFromZUp) * track.keyframed->sceneFromRoot;
+            track.keyframed->nodeFromObject *= glm::dmat4(back);
+        }
 }
 
 std::optional<std::string> zUpWarning(const Scene& scene) {

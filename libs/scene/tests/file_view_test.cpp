@@ -230,6 +230,8 @@ TEST(FileViewTest, ExportedAndLoadedBackTheCamerasAndLightsStay) {
         expectVec3Near(l1.localPosition + back->wsOrigin, l0.localPosition + scene->wsOrigin, 1e-6, "light position");
         if (l0.kind != FileLight::Kind::Point)
             expectVec3Near(l1.localDirection, l0.localDirection, 1e-6, "light direction");
-        if (l0.kind == FileLight::Kind::Spot) EXPECT_NEAR(l1.coneDegrees, l0.coneDegrees, 1e-9) << i;
+        if (l0.kind == FileLight::Kind::Spot) {
+            EXPECT_NEAR(l1.coneDegrees, l0.coneDegrees, 1e-9) << i;
+        }
     }
 }

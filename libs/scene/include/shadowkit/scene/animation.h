@@ -11,7 +11,8 @@
 
 namespace shadowkit::scene {
 
-// The instance's transform at time t (seconds): on the circle at compass angle
+// The instance's transform at time t (seconds): a keyframed track's where its keys put it
+// (keyframes.h); any other's on the circle at compass angle
 // phase + speed / radius · t, `lift` metres above the ground there (Scene::groundHeightAt),
 // turned about +Y by the angle travelled since t = 0 (so t = 0 is the unturned placement).
 glm::mat4 trackTransform(const Track& track, const Scene& scene, double t);

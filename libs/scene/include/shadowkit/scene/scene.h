@@ -6,6 +6,7 @@
 
 #include "shadowkit/core/aabb.h"
 #include "shadowkit/scene/heightfield.h"
+#include "shadowkit/scene/keyframes.h"
 #include "shadowkit/scene/material.h"
 
 #include <glm/glm.hpp>
@@ -62,6 +63,8 @@ struct Track {
     double phase = 0.0;                  // compass angle (conventions.h) of the position at t = 0, radians
     double lift = 3.0;                   // metres above the ground
     float scale = 1.0f;                  // uniform
+    // Set: the instance follows a file's keyframes (a glTF's animations), not the circle above.
+    std::optional<NodeMotion> keyframed;
 };
 
 // One instance: batches[batch].worldFromObject[instance].

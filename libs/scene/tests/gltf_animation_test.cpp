@@ -1,0 +1,144 @@
+// A glTF's animations (gltf_animation.cpp) move the instances below the nodes they target, as
+// scene::animate plays them; what cannot be played is a warning and stays at rest. Expected
+// positions are worked by hand from the file's turn about +y, not read back from the loader.
+#include "shadowkit/scene/animation.h"
+#include "shadowkit/scene/scene_io.h"
+
+#include "gltf_test_files.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+using namespace shadowkit;
+using namespace shadowkit::scene;
+
+namespace {
+
+// Bytes of the test file's one buffer, each block at a known offset.
+struct SpinnerBuffer {
+    std::vector<unsigned char> bytes;
+    size_t add(const std::vector<float>& floats) {
+        const size_t at = bytes.size();
+        const auto* first = reinterpret_cast<const unsigned char*>(floats.data());
+        bytes.insert(bytes.end(), first, first + floats.size() * sizeof(float));
+        return at;
+    }
+};
+
+// Node 0 "spinner" at `rootAt` turns +90° about +y over a second (animation 0 'Spin'); its child
+// node 1 holds the triangle 2 m along its +x. Node 2 holds the same triangle at rest 20 m to
+// the spinner's −x. Also: 'Spin' animates node 1's morph weights (not played), animation 1
+// 'Again' turns the spinner too (the first animation plays it), and animation 2 'Broken' moves
+// node 2 with times that run backwards (left at rest).
+std::string spinnerFile(const std::string& rootAt, const std::string& staticAt) {
+    SpinnerBuffer b;
+    const size_t triangle = b.add({0, 0, 0, 0, 0, 1, 1, 0, 0});
+    const size_t times = b.add({0, 1});
+    const double half = glm::radians(45.0);
+    const size_t turns = b.add({0, 0, 0, 1, 0, float(std::sin(half)), 0, float(std::cos(half))});
+    const size_t backwards = b.add({1, 0});
+    const size_t moves = b.add({0, 0, 0, 0, 5, 0});
+    const size_t weights = b.add({0, 1});
+    const auto view = [](size_t offset, size_t length) {
+        return R"({"buffer":0,"byteOffset":)" + std::to_string(offset) + R"(,"byteLength":)" + std::to_string(length) +
+               "}";
+    };
+    return R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0,2]}],
+        "nodes":[{"name":"spinner","translation":)" +
+           rootAt + R"(,"children":[1]},{"mesh":0,"translation":[2,0,0]},{"mesh":0,"translation":)" + staticAt + R"(}],
+        "meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],
+        "animations":[
+          {"name":"Spin","samplers":[{"input":1,"output":2},{"input":1,"output":5}],
+           "channels":[{"sampler":0,"target":{"node":0,"path":"rotation"}},{"sampler":1,"target":{"node":1,"path":"weights"}}]},
+          {"name":"Again","samplers":[{"input":1,"output":2,"interpolation":"STEP"}],
+           "channels":[{"sampler":0,"target":{"node":0,"path":"rotation"}}]},
+          {"name":"Broken","samplers":[{"input":3,"output":4}],
+           "channels":[{"sampler":0,"target":{"node":2,"path":"translation"}}]}],
+        "accessors":[
+          {"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,0,1]},
+          {"bufferView":1,"componentType":5126,"count":2,"type":"SCALAR","min":[0],"max":[1]},
+          {"bufferView":2,"componentType":5126,"count":2,"type":"VEC4"},
+          {"bufferView":3,"componentType":5126,"count":2,"type":"SCALAR"},
+          {"bufferView":4,"componentType":5126,"count":2,"type":"VEC3"},
+          {"bufferView":5,"componentType":5126,"count":2,"type":"SCALAR"}],
+        "bufferViews":[)" +
+           view(triangle, 36) + "," + view(times, 8) + "," + view(turns, 32) + "," + view(backwards, 8) + "," +
+           view(moves, 24) + "," + view(weights, 8) + R"(],
+        "buffers":[{"byteLength":)" +
+           std::to_string(b.bytes.size()) + R"(,"uri":"data:application/octet-stream;base64,)" +
+           scene::testing::base64(b.bytes) + "\"}]}";
+}
+
+// Where the object origin of every instance of the scene's dynamic or static batch stands in
+// the world.
+std::vector<glm::dvec3> originsOf(const Scene& s, bool dynamic) {
+    std::vector<glm::dvec3> out;
+    for (const MeshBatch& batch : s.batches)
+        if (batch.dynamic == dynamic)
+            for (const glm::mat4& m : batch.worldFromObject) out.push_back(s.wsOrigin + glm::dvec3(m[3]));
+    return out;
+}
+
+// The child's origin at time t: the spinner's place plus (2, 0, 0) turned 90°·t about +y
+// (+x turns towards −z), the turn looping each second.
+glm::dvec3 spunAt(const glm::dvec3& root, double t) {
+    const double angle = glm::radians(90.0 * std::fmod(t, 1.0));
+    return root + glm::dvec3(2.0 * std::cos(angle), 0.0, -2.0 * std::sin(angle));
+}
+
+void expectNear(const glm::dvec3& got, const glm::dvec3& want, double tolerance, const std::string& what) {
+    EXPECT_LT(glm::distance(got, want), tolerance) << what << ": got (" << got.x << ", " << got.y << ", " << got.z
+                                                   << "), want (" << want.x << ", " << want.y << ", " << want.z << ")";
+}
+
+} // namespace
+
+TEST(GltfAnimationTest, AnInstanceBelowAnAnimatedNodeMovesAsItsKeysSayAndLoops) {
+    auto scene = scene::testing::loadWritten("sk_spinner.gltf", spinnerFile("[10,0,0]", "[-10,0,0]"));
+    ASSERT_TRUE(scene) << scene.error();
+    ASSERT_EQ(scene->tracks.size(), 1u) << "the spinner's child, and only it, moves";
+    EXPECT_TRUE(scene->batches[scene->tracks[0].batch].dynamic);
+    const glm::dvec3 root(10, 0, 0);
+    expectNear(originsOf(*scene, true).at(0), spunAt(root, 0.0), 1e-5, "as loaded: t = 0");
+    for (double t : {0.25, 0.5, 1.0 - 1e-9, 1.5, 2.75}) {
+        animate(*scene, t);
+        expectNear(originsOf(*scene, true).at(0), spunAt(root, t), 1e-5, "t = " + std::to_string(t));
+        expectNear(originsOf(*scene, false).at(0), {-10, 0, 0}, 1e-6, "the static instance");
+    }
+}
+
+TEST(GltfAnimationTest, WhatCannotBePlayedIsOneWarningAnAnimationAndStaysAtRest) {
+    const auto scene = scene::testing::loadWritten("sk_spinner.gltf", spinnerFile("[10,0,0]", "[-10,0,0]"));
+    ASSERT_TRUE(scene) << scene.error();
+    std::string all;
+    for (const std::string& w : scene->warnings) all += w + "\n";
+    EXPECT_EQ(scene->warnings.size(), 3u) << all;
+    const auto says = [&](const std::string& text) { return all.find(text) != std::string::npos; };
+    EXPECT_TRUE(says("animation 0 'Spin': channel 1 moves morph weights, which shadowkit does not play")) << all;
+    EXPECT_TRUE(says("animation 1 'Again': channel 0 moves what animation 0 moves")) << all;
+    EXPECT_TRUE(says("animation 2 'Broken': channel 0 (sampler 0): key 1's time comes before the key before it"))
+        << all;
+    for (const std::string& w : scene->warnings) EXPECT_EQ(w.find('\n'), std::string::npos) << w;
+}
+
+// Far from the origin and turned z-up, the motion stands where the loader stood the rest of
+// the scene: the world point is the file's, turned (x, y, z) → (x, z, −y).
+TEST(GltfAnimationTest, FarOutAndZUpTheMotionStaysWithItsScene) {
+    const glm::dvec3 farRoot(2.0e6, 0.0, -3.0e6);
+    auto far =
+        scene::testing::loadWritten("sk_spinner_far.gltf", spinnerFile("[2000000,0,-3000000]", "[1999980,0,-3000000]"));
+    ASSERT_TRUE(far) << far.error();
+    EXPECT_GT(glm::length(far->wsOrigin), 1e6) << "the scene stands far out, its floats near zero";
+    animate(*far, 0.5);
+    expectNear(originsOf(*far, true).at(0), spunAt(farRoot, 0.5), 1e-3, "far out");
+
+    auto turned =
+        scene::testing::loadWritten("sk_spinner_z.gltf", spinnerFile("[10,0,0]", "[-10,0,0]"), {.up = UpAxis::Z});
+    ASSERT_TRUE(turned) << turned.error();
+    animate(*turned, 0.5);
+    const glm::dvec3 file = spunAt({10, 0, 0}, 0.5);
+    expectNear(originsOf(*turned, true).at(0), {file.x, file.z, -file.y}, 1e-5, "z-up");
+}

@@ -1,0 +1,71 @@
+// A user's animated glTF measured as it plays: tests/data/turning_crane.gltf, a mast on a 24 m
+// plate with a jib 5 m up that turns about the mast once every 8 s (glTF animation 'Turn',
+// LINEAR rotation keys every 90°), its own camera 16 m up and back looking 45° down towards −z,
+// and its own sun travelling along (1, −1, 0). At t = 0 the arm points +x, at t = 2 s −z: its
+// shadow, thrown 5 m towards +x, lies on the plate in another place. The renderer and the ray
+// tracer must both see the arm where the animation puts it: a renderer left at the rest pose
+// would draw the old shadow against the new truth. CTest label `gl`.
+#include "headless_gl_test.h"
+
+#include "shadowkit/measure/measurer.h"
+#include "shadowkit/scene/animation.h"
+#include "shadowkit/scene/scene_io.h"
+#include "shadowkit/scene/views.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+using namespace shadowkit;
+
+namespace {
+
+class AnimatedFileEvalTest : public gl::testing::HeadlessGlTest {};
+
+// The pixels the truth has in shadow (rendered right or wrong).
+std::vector<bool> trulyShadowed(const std::vector<eval::PixelClass>& classes) {
+    std::vector<bool> out(classes.size());
+    for (size_t i = 0; i < classes.size(); ++i)
+        out[i] = classes[i] == eval::PixelClass::ShadowCorrect || classes[i] == eval::PixelClass::FalseLit;
+    return out;
+}
+
+} // namespace
+
+TEST_F(AnimatedFileEvalTest, TheTurningArmsShadowMovesAndTheMapFollowsIt) {
+    const auto file = std::filesystem::path(SHADOWKIT_SOURCE_DATA_DIR) / ".." / "tests" / "data" / "turning_crane.gltf";
+    auto crane = scene::loadScene(file);
+    ASSERT_TRUE(crane) << crane.error();
+    ASSERT_EQ(crane->tracks.size(), 1u) << "the arm, below the turning jib";
+    const auto view = scene::fileView(*crane, "", gl::kMaxLocalLightsPerKind);
+    ASSERT_TRUE(view) << view.error();
+    auto measurer = measure::Measurer::create(*crane);
+    ASSERT_TRUE(measurer) << measurer.error();
+    gl::RenderSettings settings;
+    settings.width = 240;
+    settings.height = 160; // the camera's aspect, 1.5
+    const core::ShadowSetupInputs input{.camera = view->camera,
+                                        .light = view->light,
+                                        .wsSceneBounds = (*measurer)->renderer().wsSceneBounds(),
+                                        .technique = core::Technique::Focused};
+
+    std::vector<std::vector<bool>> shadowAt;
+    for (double t : {0.0, 2.0}) {
+        std::vector<uint32_t> moved;
+        scene::animate(*crane, t, &moved);
+        ASSERT_EQ(moved.size(), 1u);
+        ASSERT_TRUE((*measurer)->moveInstances(*crane, moved));
+        auto measured = (*measurer)->measure(input, settings);
+        ASSERT_TRUE(measured) << measured.error();
+        EXPECT_LT(measured->figures().wrongPct, 1.0) << "t = " << t;
+        shadowAt.push_back(trulyShadowed(measured->comparison.classes));
+    }
+    // The arm's shadow moved: pixels in shadow at one time and lit at the other, both ways.
+    int64_t left = 0, arrived = 0;
+    for (size_t i = 0; i < shadowAt[0].size(); ++i) {
+        left += shadowAt[0][i] && !shadowAt[1][i];
+        arrived += !shadowAt[0][i] && shadowAt[1][i];
+    }
+    EXPECT_GT(left, 50);
+    EXPECT_GT(arrived, 50);
+}
