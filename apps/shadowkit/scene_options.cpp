@@ -136,9 +136,13 @@ core::Result<scene::Scene> SceneOptions::load(bool verbose) const {
                                     ? ""
                                     : fmt::format(", {} camera{} and {} light{} of its own (--view file, --sun file)",
                                                   cameras, cameras == 1 ? "" : "s", lights, lights == 1 ? "" : "s");
-        fmt::print(stderr, "scene {}: {} instances, {:.2f} M triangles, {} batches{}{} ({:.2f} s)\n", name,
+        // Its animations likewise: they play at --time and along --path (t = 0 otherwise).
+        const size_t moving = scene == "forest" ? 0 : result->tracks.size();
+        const std::string animated =
+            moving == 0 ? "" : fmt::format(", {} moved by its animations (--time, --path)", moving);
+        fmt::print(stderr, "scene {}: {} instances, {:.2f} M triangles, {} batches{}{}{} ({:.2f} s)\n", name,
                    result->instanceCount(), static_cast<double>(result->triangleCount()) * 1e-6, result->batches.size(),
-                   standing, own, seconds);
+                   standing, own, animated, seconds);
     }
     if (result->batches.empty()) return core::makeError(fmt::format("scene {}: is empty (no triangles)", scene));
     result->wsOrigin += *origin; // a file far out already stands at its own origin (near_origin.cpp)

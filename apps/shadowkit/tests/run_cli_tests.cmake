@@ -552,6 +552,31 @@ if(CASE STREQUAL "export-town-keeps-buildings")
     message(SEND_ERROR "export of a town of meshes: exit ${rc} ${rc2} ${rc3}, ${meshes} meshes written: ${err}${err2}${err3}")
   endif()
 endif()
+# A file's animations play at --time (the scene line says they are there), and an export that
+# cannot write them says so rather than dropping them unseen.
+if(CASE STREQUAL "gl-render-animated-file")
+  foreach(t 0 2)
+    execute_process(COMMAND ${SHADOWKIT} render --scene "${source_dir}/tests/data/turning_crane.gltf" --view file
+                            --size 96x64 --map-size 256 --time ${t} --out "${WORK}/t${t}.png"
+                    RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+    if(NOT rc EQUAL 0 OR NOT EXISTS "${WORK}/t${t}.png" OR NOT err MATCHES "1 moved by its animations \\(--time, --path\\)")
+      message(SEND_ERROR "render of an animated file at t = ${t}: exit ${rc}: ${out}${err}")
+    endif()
+  endforeach()
+  file(SHA256 "${WORK}/t0.png" at0)
+  file(SHA256 "${WORK}/t2.png" at2)
+  if(at0 STREQUAL at2)
+    message(SEND_ERROR "render --time 0 and --time 2 of a file whose jib turns drew the same picture")
+  endif()
+endif()
+if(CASE STREQUAL "export-animated-file-warns")
+  execute_process(COMMAND ${SHADOWKIT} export --scene "${source_dir}/tests/data/turning_crane.gltf"
+                          --out "${WORK}/crane.glb" RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0 OR NOT EXISTS "${WORK}/crane.glb" OR
+     NOT err MATCHES "the file's animations are not written: the 1 instance they move stands as at t = 0")
+    message(SEND_ERROR "export of an animated file: exit ${rc}: ${out}${err}")
+  endif()
+endif()
 check_fails(render-out-full-disk "--out: /dev/full: cannot write" render ${small} --size 32x18 --map-size 64 --out /dev/full)
 check_fails(eval-json-full-disk "--json: /dev/full: cannot write" eval ${small} --view paper --size 32x18 --map-size 64 --json /dev/full)
 check_fails(trees-negative "trees: must be in" setup --trees -1)
