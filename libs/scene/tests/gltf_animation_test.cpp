@@ -33,7 +33,8 @@ struct SpinnerBuffer {
 // the spinner's −x. Also: 'Spin' animates node 1's morph weights (not played), animation 1
 // 'Again' turns the spinner too (the first animation plays it), and animation 2 'Broken' moves
 // node 2 with times that run backwards (left at rest).
-std::string spinnerFile(const std::string& rootAt, const std::string& staticAt) {
+// `instanced`: node 1 places its triangle twice (EXT_mesh_gpu_instancing), 0 and 3 m along its +z.
+std::string spinnerFile(const std::string& rootAt, const std::string& staticAt, bool instanced = false) {
     SpinnerBuffer b;
     const size_t triangle = b.add({0, 0, 0, 0, 0, 1, 1, 0, 0});
     const size_t times = b.add({0, 1});
@@ -42,13 +43,16 @@ std::string spinnerFile(const std::string& rootAt, const std::string& staticAt) 
     const size_t backwards = b.add({1, 0});
     const size_t moves = b.add({0, 0, 0, 0, 5, 0});
     const size_t weights = b.add({0, 1});
+    const size_t instances = b.add({0, 0, 0, 0, 0, 3});
     const auto view = [](size_t offset, size_t length) {
         return R"({"buffer":0,"byteOffset":)" + std::to_string(offset) + R"(,"byteLength":)" + std::to_string(length) +
                "}";
     };
     return R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0,2]}],
         "nodes":[{"name":"spinner","translation":)" +
-           rootAt + R"(,"children":[1]},{"mesh":0,"translation":[2,0,0]},{"mesh":0,"translation":)" + staticAt + R"(}],
+           rootAt + R"(,"children":[1]},{"mesh":0,"translation":[2,0,0])" +
+           (instanced ? R"(,"extensions":{"EXT_mesh_gpu_instancing":{"attributes":{"TRANSLATION":6}}})" : "") +
+           R"(},{"mesh":0,"translation":)" + staticAt + R"(}],
         "meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],
         "animations":[
           {"name":"Spin","samplers":[{"input":1,"output":2},{"input":1,"output":5}],
@@ -63,10 +67,11 @@ std::string spinnerFile(const std::string& rootAt, const std::string& staticAt) 
           {"bufferView":2,"componentType":5126,"count":2,"type":"VEC4"},
           {"bufferView":3,"componentType":5126,"count":2,"type":"SCALAR"},
           {"bufferView":4,"componentType":5126,"count":2,"type":"VEC3"},
-          {"bufferView":5,"componentType":5126,"count":2,"type":"SCALAR"}],
+          {"bufferView":5,"componentType":5126,"count":2,"type":"SCALAR"},
+          {"bufferView":6,"componentType":5126,"count":2,"type":"VEC3"}],
         "bufferViews":[)" +
            view(triangle, 36) + "," + view(times, 8) + "," + view(turns, 32) + "," + view(backwards, 8) + "," +
-           view(moves, 24) + "," + view(weights, 8) + R"(],
+           view(moves, 24) + "," + view(weights, 8) + "," + view(instances, 24) + R"(],
         "buffers":[{"byteLength":)" +
            std::to_string(b.bytes.size()) + R"(,"uri":"data:application/octet-stream;base64,)" +
            scene::testing::base64(b.bytes) + "\"}]}";
@@ -141,4 +146,23 @@ TEST(GltfAnimationTest, FarOutAndZUpTheMotionStaysWithItsScene) {
     animate(*turned, 0.5);
     const glm::dvec3 file = spunAt({10, 0, 0}, 0.5);
     expectNear(originsOf(*turned, true).at(0), {file.x, file.z, -file.y}, 1e-5, "z-up");
+}
+
+// Instances below a moving node (EXT_mesh_gpu_instancing) move with it, each keeping its own
+// place in the node's frame: (2, 0, 3k) turned 90°·t about +y, (x, z) → (x cos + z sin, z cos − x sin).
+TEST(GltfAnimationTest, InstancesBelowAMovingNodeKeepTheirPlacesInItsFrame) {
+    auto scene = scene::testing::loadWritten("sk_spinner_instanced.gltf", spinnerFile("[10,0,0]", "[-10,0,0]", true));
+    ASSERT_TRUE(scene) << scene.error();
+    ASSERT_EQ(scene->tracks.size(), 2u);
+    animate(*scene, 0.5);
+    const double angle = glm::radians(45.0);
+    std::vector<glm::dvec3> want;
+    for (double k : {0.0, 1.0}) {
+        const double x = 2.0, z = 3.0 * k;
+        want.push_back(
+            {10.0 + x * std::cos(angle) + z * std::sin(angle), 0.0, z * std::cos(angle) - x * std::sin(angle)});
+    }
+    const std::vector<glm::dvec3> got = originsOf(*scene, true);
+    ASSERT_EQ(got.size(), 2u);
+    for (size_t k = 0; k < 2; ++k) expectNear(got[k], want[k], 1e-5, "instance " + std::to_string(k));
 }

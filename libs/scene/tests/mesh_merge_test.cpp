@@ -1,6 +1,7 @@
 // A town of meshes placed once each loads as a few tiles of neighbours (static batching,
 // mesh_merge.cpp) that hold the same triangles, wound the same way; what is not merged — an
 // alpha-tested mesh, one placed twice, a scene of few meshes — is left as it was.
+#include "shadowkit/scene/animation.h"
 #include "shadowkit/scene/scene_io.h"
 
 #include "gltf_test_files.h"
@@ -21,16 +22,20 @@ namespace {
 
 // `meshes` distinct meshes (each names the same upward-facing triangle), one node each on a
 // grid 30 m apart; node 0 mirrored in x; meshes 1–10 alpha-tested (MASK); the last mesh placed
-// by a second node too.
-std::string townGltf(int meshes) {
-    const float triangle[] = {0, 0, 0, 0, 0, 4, 4, 0, 0};
-    std::vector<unsigned char> buffer(sizeof triangle);
-    std::memcpy(buffer.data(), triangle, sizeof triangle);
+// by a second node too. `lifted`: an animation moves node kLiftedNode from where it stands to
+// 10 m above it over a second.
+constexpr int kLiftedNode = 20;
+
+std::string townGltf(int meshes, bool lifted = false) {
+    const int side = int(std::ceil(std::sqrt(double(meshes))));
+    const float x = float(30 * (kLiftedNode % side)), z = float(30 * (kLiftedNode / side));
+    const float data[] = {0, 0, 0, 0, 0, 4, 4, 0, 0, /* times */ 0, 1, /* translations */ x, 0, z, x, 10, z};
+    std::vector<unsigned char> buffer(sizeof data);
+    std::memcpy(buffer.data(), data, sizeof data);
     std::ostringstream text;
     text << R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[)";
     for (int n = 0; n <= meshes; ++n) text << (n ? "," : "") << n;
     text << R"(]}],"nodes":[)";
-    const int side = int(std::ceil(std::sqrt(double(meshes))));
     for (int n = 0; n < meshes; ++n)
         text << R"({"mesh":)" << n << R"(,"translation":[)" << 30 * (n % side) << ",0," << 30 * (n / side) << "]"
              << (n == 0 ? R"(,"scale":[-1,1,1])" : "") << "},";
@@ -38,16 +43,21 @@ std::string townGltf(int meshes) {
     for (int m = 0; m < meshes; ++m)
         text << (m ? "," : "") << R"({"primitives":[{"attributes":{"POSITION":0})"
              << (m >= 1 && m <= 10 ? R"(,"material":0)" : "") << "}]}";
-    text
-        << R"(],"materials":[{"alphaMode":"MASK"}],)"
-        << R"("accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[4,0,4]}],)"
-        << R"("bufferViews":[{"buffer":0,"byteLength":36}],"buffers":[{"byteLength":36,)"
-        << R"("uri":"data:application/octet-stream;base64,)" << scene::testing::base64(buffer) << "\"}]}";
+    text << R"(],"materials":[{"alphaMode":"MASK"}],)";
+    if (lifted)
+        text << R"("animations":[{"samplers":[{"input":1,"output":2}],"channels":[{"sampler":0,"target":{"node":)"
+             << kLiftedNode << R"(,"path":"translation"}}]}],)";
+    text << R"("accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[4,0,4]},)"
+         << R"({"bufferView":0,"byteOffset":36,"componentType":5126,"count":2,"type":"SCALAR","min":[0],"max":[1]},)"
+         << R"({"bufferView":0,"byteOffset":44,"componentType":5126,"count":2,"type":"VEC3"}],)"
+         << R"("bufferViews":[{"buffer":0,"byteLength":68}],"buffers":[{"byteLength":68,)"
+         << R"("uri":"data:application/octet-stream;base64,)" << scene::testing::base64(buffer) << "\"}]}";
     return text.str();
 }
 
-Scene loadTown(int meshes, bool merge) {
-    auto scene = scene::testing::loadWritten("shadowkit_town.gltf", townGltf(meshes), {.mergeSmallMeshes = merge});
+Scene loadTown(int meshes, bool merge, bool lifted = false) {
+    auto scene =
+        scene::testing::loadWritten("shadowkit_town.gltf", townGltf(meshes, lifted), {.mergeSmallMeshes = merge});
     EXPECT_TRUE(scene) << scene.error();
     return scene ? std::move(*scene) : Scene{};
 }
@@ -113,4 +123,25 @@ TEST(MeshMergeTest, ASceneOfFewerMeshesIsLeftAsItWas) {
     const Scene few = loadTown(1000, true);
     EXPECT_EQ(few.batches.size(), 1000u); // the corpus's largest has 55 batches
     EXPECT_EQ(woundTriangles(few), woundTriangles(loadTown(1000, false)));
+}
+
+// A town with one building that moves (a glTF animation: a track of a dynamic batch) is merged
+// all the same; the moving building is left as it was, and its track still names its batch.
+TEST(MeshMergeTest, ATownWithAMovingBuildingIsMergedAndItsTrackStillNamesIt) {
+    constexpr int kMeshes = 1500;
+    Scene merged = loadTown(kMeshes, true, true);
+    const Scene apart = loadTown(kMeshes, false, true);
+    ASSERT_EQ(merged.tracks.size(), 1u);
+    EXPECT_LT(merged.batches.size(), size_t(kMeshes) / 10) << "merged, though it has a track";
+    EXPECT_EQ(woundTriangles(merged), woundTriangles(apart));
+    const Track& track = merged.tracks[0];
+    ASSERT_LT(track.batch, merged.batches.size());
+    const MeshBatch& moving = merged.batches[track.batch];
+    EXPECT_TRUE(moving.dynamic);
+    EXPECT_EQ(merged.meshes[moving.mesh].triangleCount(), 1u) << "its own triangle, not a tile";
+    animate(merged, 0.5); // half way up (at t = 1 the one-second animation loops back to its start)
+    const int side = int(std::ceil(std::sqrt(double(kMeshes))));
+    const glm::dvec3 lifted(30 * (kLiftedNode % side), 5, 30 * (kLiftedNode / side));
+    const glm::dvec3 at = merged.wsOrigin + glm::dvec3(moving.worldFromObject[track.instance][3]);
+    EXPECT_LT(glm::distance(at, lifted), 1e-3);
 }
