@@ -29,9 +29,9 @@ int runExport(const ExportArgs& args) {
                          "out (a .glb keeps them)",
                          args.out, sceneData->cameras.size(), sceneData->cameras.size() == 1 ? "" : "s",
                          sceneData->lights.size(), sceneData->lights.size() == 1 ? "" : "s"));
-    if (args.scene.scene != "forest" && !sceneData->tracks.empty())
-        warn(fmt::format("--out {}: the file's animations are not written: the {} instance{} they move stand{} as at "
-                         "t = 0",
+    if (format == ".obj" && args.scene.scene != "forest" && !sceneData->tracks.empty())
+        warn(fmt::format("--out {}: an OBJ holds no animation: the {} instance{} the file's animations move stand{} as "
+                         "at t = 0 (a .glb keeps them)",
                          args.out, sceneData->tracks.size(), sceneData->tracks.size() == 1 ? "" : "s",
                          sceneData->tracks.size() == 1 ? "s" : ""));
     fmt::print("wrote {} ({:.2f} M triangles)\n", args.out, static_cast<double>(sceneData->triangleCount()) * 1e-6);

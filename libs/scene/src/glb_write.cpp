@@ -4,7 +4,9 @@
 // chunk with its sampler and TEXCOORD_0 — what gltf_read.cpp reads, so an exported leafy forest
 // loads back with its leaves' holes and its trees as instances. Only what the file draws is
 // written: the textures its materials use (not the billboard clouds', which a loader bakes
-// again) and the vertices the full meshes' triangles use (fullMesh()).
+// again) and the vertices the full meshes' triangles use (fullMesh()). A file's animations are
+// written back with the instances they move (gltf_animation.cpp's AnimationWriter).
+#include "gltf_animation.h"
 #include "gltf_viewpoints.h"
 #include "scene_formats.h"
 
@@ -243,7 +245,10 @@ int appendNode(tinygltf::Model& model, int mesh, const std::string& name, const 
 // One batch: a group node named after its mesh, holding a node per instance over the full mesh
 // (its mirrored instances over the same vertices with the winding the file states), and one
 // mesh of the instances baked into world space where a node cannot place them.
-void appendBatch(tinygltf::Model& model, const Scene& scene, const MeshBatch& batch) {
+// An instance a file's animation moves (`moving`, by instance index) is placed by its motion's
+// nodes instead, its channels written by `animations`.
+void appendBatch(tinygltf::Model& model, const Scene& scene, const MeshBatch& batch,
+                 const std::map<size_t, const NodeMotion*>& moving, AnimationWriter& animations) {
     const Mesh& mesh = scene.meshes[batch.mesh];
     const Material* material = scene.materialOf(mesh);
     const int materialIndex = material ? mesh.material : -1;
@@ -253,7 +258,11 @@ void appendBatch(tinygltf::Model& model, const Scene& scene, const MeshBatch& ba
     if (!plan.placed.empty() || !plan.mirrored.empty()) {
         const std::map<std::string, int> attributes = appendAttributes(model, object, material);
         const auto placeAll = [&](const std::vector<size_t>& instances, int meshIndex) {
-            for (size_t i : instances) children.push_back(appendNode(model, meshIndex, "", batch.worldFromObject[i]));
+            for (size_t i : instances) {
+                const auto motion = moving.find(i);
+                children.push_back(motion != moving.end() ? animations.appendMotion(*motion->second, meshIndex)
+                                                          : appendNode(model, meshIndex, "", batch.worldFromObject[i]));
+            }
         };
         if (!plan.placed.empty())
             placeAll(plan.placed, appendMesh(model, mesh.name, attributes, object.indices, materialIndex));
@@ -285,7 +294,19 @@ core::Status exportGlb(const Scene& scene, const fs::path& file) {
     model.scenes.emplace_back();
     model.defaultScene = 0;
     if (core::Status s = addMaterials(scene, model); !s) return core::makeError(file.string() + ": " + s.error());
-    for (const MeshBatch& batch : scene.batches) appendBatch(model, scene, batch);
+    // A file's animations go back with the instances they move (a forest's circling movers do
+    // not: they are written where they stand).
+    std::vector<std::map<size_t, const NodeMotion*>> moving(scene.batches.size());
+    for (const Track& track : scene.tracks)
+        if (track.keyframed) moving[track.batch][track.instance] = &*track.keyframed;
+    AnimationWriter animations(model, [&model](const std::vector<float>& data, int type, size_t count,
+                                               std::vector<double> min, std::vector<double> max) {
+        return appendAccessor(model, appendBufferView(model, std::span<const float>(data), 0),
+                              TINYGLTF_COMPONENT_TYPE_FLOAT, type, count, std::move(min), std::move(max));
+    });
+    for (size_t b = 0; b < scene.batches.size(); ++b)
+        appendBatch(model, scene, scene.batches[b], moving[b], animations);
+    animations.finish();
     for (int node : writeViewpoints(scene, model)) model.scenes[0].nodes.push_back(node);
     if (scene.wsOrigin != core::Vec3(0.0)) { // the batches under a node that stands them where the scene stands
         tinygltf::Node origin;

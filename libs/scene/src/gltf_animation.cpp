@@ -1,4 +1,4 @@
-// A glTF file's animations as keyframed motion of its nodes.
+// A glTF file's animations as keyframed motion of its nodes, and that motion written back.
 //
 // Based on: the glTF 2.0 specification, "Animations" (§3.11): a channel names a sampler and a
 // target (a node and one of its properties); a sampler's input accessor holds the keys' times
@@ -21,6 +21,7 @@
 #include <algorithm>
 #include <cmath>
 #include <set>
+#include <string_view>
 #include <tuple>
 
 namespace shadowkit::scene::formats {
@@ -207,6 +208,96 @@ std::optional<NodeMotion> motionAlong(const tinygltf::Model& model, const std::v
         motion.chain.push_back(std::move(moving));
     }
     return motion;
+}
+
+namespace {
+
+std::vector<double> columnMajor(const glm::dmat4& m) {
+    std::vector<double> out;
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r) out.push_back(m[c][r]);
+    return out;
+}
+
+const char* interpolationName(KeyframeChannel::Interpolation interpolation) {
+    switch (interpolation) {
+    case KeyframeChannel::Interpolation::Step:
+        return "STEP";
+    case KeyframeChannel::Interpolation::CubicSpline:
+        return "CUBICSPLINE";
+    case KeyframeChannel::Interpolation::Linear:
+        break;
+    }
+    return "LINEAR";
+}
+
+} // namespace
+
+int AnimationWriter::samplerOf(const KeyframeChannel& keys, bool rotation, tinygltf::Animation& animation) {
+    if (const auto it = m_samplers.find(&keys); it != m_samplers.end()) return it->second;
+    auto input = m_timeInputs.find(&keys.times);
+    if (input == m_timeInputs.end()) {
+        const std::vector<float> times(keys.times.begin(), keys.times.end());
+        input = m_timeInputs
+                    .emplace(&keys.times, m_appendFloats(times, TINYGLTF_TYPE_SCALAR, times.size(),
+                                                         {keys.times.front()}, {keys.times.back()}))
+                    .first;
+    }
+    // A rotation's values are quaternions (x, y, z, w); a translation's and a scale's, xyz.
+    std::vector<float> values;
+    for (const glm::dvec4& v : keys.values)
+        for (int c = 0; c < (rotation ? 4 : 3); ++c) values.push_back(float(v[c]));
+    tinygltf::AnimationSampler sampler;
+    sampler.input = input->second;
+    sampler.output =
+        m_appendFloats(values, rotation ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3, keys.values.size(), {}, {});
+    sampler.interpolation = interpolationName(keys.interpolation);
+    animation.samplers.push_back(std::move(sampler));
+    return m_samplers[&keys] = int(animation.samplers.size() - 1);
+}
+
+int AnimationWriter::appendMotion(const NodeMotion& motion, int mesh) {
+    // Bottom up, each node the child of the next.
+    tinygltf::Node drawing;
+    drawing.mesh = mesh;
+    if (motion.nodeFromObject != glm::dmat4(1.0)) drawing.matrix = columnMajor(motion.nodeFromObject);
+    m_model.nodes.push_back(std::move(drawing));
+    int child = int(m_model.nodes.size() - 1);
+    for (auto it = motion.chain.rbegin(); it != motion.chain.rend(); ++it) {
+        tinygltf::Node node;
+        node.children = {child};
+        if (it->fixed) {
+            if (*it->fixed != glm::dmat4(1.0)) node.matrix = columnMajor(*it->fixed);
+        } else {
+            node.translation = {it->translation.x, it->translation.y, it->translation.z};
+            node.rotation = {it->rotation.x, it->rotation.y, it->rotation.z, it->rotation.w};
+            node.scale = {it->scale.x, it->scale.y, it->scale.z};
+        }
+        m_model.nodes.push_back(std::move(node));
+        child = int(m_model.nodes.size() - 1);
+        const std::pair<const std::shared_ptr<const KeyframeChannel>*, const char*> moved[] = {
+            {&it->translationKeys, "translation"}, {&it->rotationKeys, "rotation"}, {&it->scaleKeys, "scale"}};
+        for (const auto& [keys, path] : moved) {
+            if (!*keys) continue;
+            tinygltf::Animation& animation = m_animations[(*keys)->loopSeconds];
+            tinygltf::AnimationChannel channel;
+            channel.sampler = samplerOf(**keys, std::string_view(path) == "rotation", animation);
+            channel.target_node = child;
+            channel.target_path = path;
+            animation.channels.push_back(std::move(channel));
+        }
+    }
+    tinygltf::Node top;
+    top.children = {child};
+    if (motion.sceneFromRoot != glm::dmat4(1.0)) top.matrix = columnMajor(motion.sceneFromRoot);
+    m_model.nodes.push_back(std::move(top));
+    return int(m_model.nodes.size() - 1);
+}
+
+void AnimationWriter::finish() {
+    for (auto& [length, animation] : m_animations) m_model.animations.push_back(std::move(animation));
+    m_animations.clear();
+    m_samplers.clear();
 }
 
 } // namespace shadowkit::scene::formats

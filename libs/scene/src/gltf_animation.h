@@ -1,11 +1,12 @@
-// A glTF file's animations (glTF 2.0 §3.11) read as keyframed motion of its nodes
-// (gltf_animation.cpp). Internal to libs/scene.
+// A glTF file's animations (glTF 2.0 §3.11) read as keyframed motion of its nodes, and
+// written back (gltf_animation.cpp). Internal to libs/scene.
 #pragma once
 
 #include "shadowkit/scene/keyframes.h"
 
 #include <tiny_gltf.h>
 
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -31,5 +32,34 @@ AnimatedNodes readAnimations(const tinygltf::Model& model, const std::string& fi
 /// identity: the loader sets them.
 std::optional<NodeMotion> motionAlong(const tinygltf::Model& model, const std::vector<int>& path,
                                       const AnimatedNodes& animated);
+
+/// Floats appended to the file's buffer as an accessor of `count` elements of glTF `type`
+/// (`min`/`max` given for times, as glTF asks of a sampler's input); returns its index.
+using FloatAccessorAppender = std::function<int(const std::vector<float>& data, int type, size_t count,
+                                                std::vector<double> min, std::vector<double> max)>;
+
+/// Writes keyframed instances back as glTF: the nodes of each one's chain, its moving nodes'
+/// channels in animations — one per loop length, so each plays over the length it had when read —
+/// and a sampler per channel shared by every instance the channel moves.
+class AnimationWriter {
+public:
+    AnimationWriter(tinygltf::Model& model, FloatAccessorAppender appendFloats)
+        : m_model(model), m_appendFloats(std::move(appendFloats)) {}
+
+    /// The nodes placing `mesh` by `motion`, top first: sceneFromRoot, the chain, nodeFromObject
+    /// with the mesh; returns the top node's index.
+    int appendMotion(const NodeMotion& motion, int mesh);
+    /// Moves the animations written so far into the model.
+    void finish();
+
+private:
+    int samplerOf(const KeyframeChannel& keys, bool rotation, tinygltf::Animation& animation);
+
+    tinygltf::Model& m_model;
+    FloatAccessorAppender m_appendFloats;
+    std::map<double, tinygltf::Animation> m_animations;     // by loop length
+    std::map<const KeyframeChannel*, int> m_samplers;       // within its animation
+    std::map<const std::vector<double>*, int> m_timeInputs; // a key times' accessor
+};
 
 } // namespace shadowkit::scene::formats
