@@ -23,6 +23,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include <algorithm>
+#include <cstdio>
 #include <optional>
 
 namespace shadowkit::scene::formats {
@@ -163,10 +164,13 @@ core::Status applySkin(const tinygltf::Model& model, const tinygltf::Primitive& 
                 const double weight = weightsOf->get(i, k);
                 if (!(weight > 0.0)) continue; // no influence (a NaN weight neither)
                 const double joint = jointsOf->get(i, k);
-                if (!(joint >= 0.0 && joint < double(joints.size())))
-                    return core::makeError(where + ": vertex " + std::to_string(i) + " names joint " +
-                                           std::to_string(int64_t(joint)) + " of a skin of " +
-                                           std::to_string(joints.size()));
+                if (!(joint >= 0.0 && joint < double(joints.size()))) {
+                    // As written: a float accessor may hold 1e26 or NaN, which no integer holds.
+                    char named[32];
+                    std::snprintf(named, sizeof named, "%.6g", joint);
+                    return core::makeError(where + ": vertex " + std::to_string(i) + " names joint " + named +
+                                           " of a skin of " + std::to_string(joints.size()));
+                }
                 blend[i] += weight * joints[size_t(joint)];
                 weightSum[i] += weight;
             }
