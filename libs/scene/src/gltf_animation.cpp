@@ -235,20 +235,16 @@ const char* interpolationName(KeyframeChannel::Interpolation interpolation) {
 
 int AnimationWriter::samplerOf(const KeyframeChannel& keys, bool rotation, tinygltf::Animation& animation) {
     if (const auto it = m_samplers.find(&keys); it != m_samplers.end()) return it->second;
-    auto input = m_timeInputs.find(&keys.times);
-    if (input == m_timeInputs.end()) {
-        const std::vector<float> times(keys.times.begin(), keys.times.end());
-        input = m_timeInputs
-                    .emplace(&keys.times, m_appendFloats(times, TINYGLTF_TYPE_SCALAR, times.size(),
-                                                         {keys.times.front()}, {keys.times.back()}))
-                    .first;
-    }
+    // Each channel holds its own times (readSampler), so its sampler, cached above, is their one reader.
+    const std::vector<float> times(keys.times.begin(), keys.times.end());
+    const int input =
+        m_appendFloats(times, TINYGLTF_TYPE_SCALAR, times.size(), {keys.times.front()}, {keys.times.back()});
     // A rotation's values are quaternions (x, y, z, w); a translation's and a scale's, xyz.
     std::vector<float> values;
     for (const glm::dvec4& v : keys.values)
         for (int c = 0; c < (rotation ? 4 : 3); ++c) values.push_back(float(v[c]));
     tinygltf::AnimationSampler sampler;
-    sampler.input = input->second;
+    sampler.input = input;
     sampler.output =
         m_appendFloats(values, rotation ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3, keys.values.size(), {}, {});
     sampler.interpolation = interpolationName(keys.interpolation);

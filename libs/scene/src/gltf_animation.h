@@ -57,9 +57,8 @@ private:
 
     tinygltf::Model& m_model;
     FloatAccessorAppender m_appendFloats;
-    std::map<double, tinygltf::Animation> m_animations;     // by loop length
-    std::map<const KeyframeChannel*, int> m_samplers;       // within its animation
-    std::map<const std::vector<double>*, int> m_timeInputs; // a key times' accessor
+    std::map<double, tinygltf::Animation> m_animations; // by loop length
+    std::map<const KeyframeChannel*, int> m_samplers;   // within its animation
 };
 
 } // namespace shadowkit::scene::formats
