@@ -14,7 +14,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <filesystem>
+#include <vector>
 
 using namespace shadowkit;
 
@@ -30,6 +32,20 @@ std::vector<bool> trulyShadowed(const std::vector<eval::PixelClass>& classes) {
     return out;
 }
 
+// The file's own camera under its own sun, a focused map, at 240 × 160 (the camera's aspect, 1.5).
+core::Result<measure::Measurement> measureThroughItsCamera(const scene::Scene& file, measure::Measurer& measurer) {
+    const auto view = scene::fileView(file, "", gl::kMaxLocalLightsPerKind);
+    if (!view) return view.errorInfo();
+    gl::RenderSettings settings;
+    settings.width = 240;
+    settings.height = 160;
+    return measurer.measure({.camera = view->camera,
+                             .light = view->light,
+                             .wsSceneBounds = measurer.renderer().wsSceneBounds(),
+                             .technique = core::Technique::Focused},
+                            settings);
+}
+
 } // namespace
 
 TEST_F(AnimatedFileEvalTest, TheTurningArmsShadowMovesAndTheMapFollowsIt) {
@@ -37,17 +53,8 @@ TEST_F(AnimatedFileEvalTest, TheTurningArmsShadowMovesAndTheMapFollowsIt) {
     auto crane = scene::loadScene(file);
     ASSERT_TRUE(crane) << crane.error();
     ASSERT_EQ(crane->tracks.size(), 1u) << "the arm, below the turning jib";
-    const auto view = scene::fileView(*crane, "", gl::kMaxLocalLightsPerKind);
-    ASSERT_TRUE(view) << view.error();
     auto measurer = measure::Measurer::create(*crane);
     ASSERT_TRUE(measurer) << measurer.error();
-    gl::RenderSettings settings;
-    settings.width = 240;
-    settings.height = 160; // the camera's aspect, 1.5
-    const core::ShadowSetupInputs input{.camera = view->camera,
-                                        .light = view->light,
-                                        .wsSceneBounds = (*measurer)->renderer().wsSceneBounds(),
-                                        .technique = core::Technique::Focused};
 
     std::vector<std::vector<bool>> shadowAt;
     for (double t : {0.0, 2.0}) {
@@ -55,7 +62,7 @@ TEST_F(AnimatedFileEvalTest, TheTurningArmsShadowMovesAndTheMapFollowsIt) {
         scene::animate(*crane, t, &moved);
         ASSERT_EQ(moved.size(), 1u);
         ASSERT_TRUE((*measurer)->moveInstances(*crane, moved));
-        auto measured = (*measurer)->measure(input, settings);
+        auto measured = measureThroughItsCamera(*crane, **measurer);
         ASSERT_TRUE(measured) << measured.error();
         EXPECT_LT(measured->figures().wrongPct, 1.0) << "t = " << t;
         shadowAt.push_back(trulyShadowed(measured->comparison.classes));
@@ -68,4 +75,34 @@ TEST_F(AnimatedFileEvalTest, TheTurningArmsShadowMovesAndTheMapFollowsIt) {
     }
     EXPECT_GT(left, 50);
     EXPECT_GT(arrived, 50);
+}
+
+// A skinned file posed at the time asked (scene::LoadOptions::poseSeconds):
+// tests/data/bending_arm.gltf, a 6 m arm 5 m over the plate whose forearm (skinned to the elbow
+// joint, 3 m out) turns from +x at t = 0 to −z at t = 1 s, under the crane's camera and sun. Both
+// the renderer and the ray tracer are built from the posed mesh, so each pose's shadows are right,
+// and the forearm's shadow lies elsewhere in the two poses.
+TEST_F(AnimatedFileEvalTest, ASkinnedArmPosedAtTwoTimesCastsEachPosesShadow) {
+    const auto file = std::filesystem::path(SHADOWKIT_SOURCE_DATA_DIR) / ".." / "tests" / "data" / "bending_arm.gltf";
+    std::vector<std::vector<bool>> shadowAt;
+    for (double t : {0.0, 1.0}) {
+        auto arm = scene::loadScene(file, {.poseSeconds = t});
+        ASSERT_TRUE(arm) << arm.error();
+        auto measurer = measure::Measurer::create(*arm);
+        ASSERT_TRUE(measurer) << measurer.error();
+        auto measured = measureThroughItsCamera(*arm, **measurer);
+        ASSERT_TRUE(measured) << measured.error();
+        EXPECT_LT(measured->figures().wrongPct, 1.0) << "t = " << t;
+        shadowAt.push_back(trulyShadowed(measured->comparison.classes));
+    }
+    ASSERT_EQ(shadowAt[0].size(), shadowAt[1].size());
+    int64_t left = 0, arrived = 0;
+    for (size_t i = 0; i < shadowAt[0].size(); ++i) {
+        left += shadowAt[0][i] && !shadowAt[1][i];
+        arrived += !shadowAt[0][i] && shadowAt[1][i];
+    }
+    EXPECT_GT(left, 20) << "the forearm's shadow at t = 0 is lit at t = 1";
+    EXPECT_GT(arrived, 20) << "and its shadow at t = 1 was lit at t = 0";
+    std::printf("bending arm: %lld pixels left the shadow, %lld reached it\n", static_cast<long long>(left),
+                static_cast<long long>(arrived));
 }

@@ -112,7 +112,7 @@ int runEvalPath(const EvalPathArgs& args) {
     if (!driver) return fail(withFlagName(driver.errorInfo()));
     if (args.check) return 0;
     const bool held = driver->config().heldLattices.has_value(), automatic = driver->config().automatic.has_value();
-    auto sceneData = args.scene.load();
+    auto sceneData = args.scene.load(/*verbose=*/true, timeline->frames.front().time);
     if (!sceneData) return fail(sceneData.errorInfo());
     scene::Scene& world = *sceneData;
     auto still = args.view.resolve(world, /*sayFraming=*/false); // the path's frames say theirs

@@ -150,7 +150,7 @@ int runRender(const RenderArgs& args) {
     if (!timeline) return fail(timeline.errorInfo());
     const bool sequence = timeline->isSequence();
     if (auto s = checkOutputs(args, *timeline); !s) return fail(s.errorInfo());
-    auto sceneData = args.scene.load();
+    auto sceneData = args.scene.load(/*verbose=*/true, timeline->frames.front().time);
     if (!sceneData) return fail(sceneData.errorInfo());
     scene::Scene& world = *sceneData;
     auto still = args.view.resolve(world, /*sayFraming=*/!timeline->path);

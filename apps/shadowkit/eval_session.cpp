@@ -34,7 +34,7 @@ core::Status EvalSession::prepare(const SceneOptions& options, double time) {
     const std::string key = keyOf(options, time);
     if (m_measurer && key == m_key) return core::Ok{};
     reset();
-    auto loaded = options.load();
+    auto loaded = options.load(/*verbose=*/true, time);
     if (!loaded) return loaded.errorInfo();
     m_scene = std::make_unique<scene::Scene>(std::move(loaded).value());
     scene::animate(*m_scene, time); // movers where they are at --time (t = 0: where they stand)

@@ -107,7 +107,7 @@ core::Status SceneOptions::check() const {
     return core::Ok{};
 }
 
-core::Result<scene::Scene> SceneOptions::load(bool verbose) const {
+core::Result<scene::Scene> SceneOptions::load(bool verbose, double poseSeconds) const {
     auto origin = offset();
     if (!origin) return origin.errorInfo();
     const auto start = std::chrono::steady_clock::now();
@@ -118,8 +118,9 @@ core::Result<scene::Scene> SceneOptions::load(bool verbose) const {
         if (core::Status s = scene::validate(o); !s) return s.errorInfo();
         result = scene::makeForest(o);
     } else {
-        result = scene::loadScene(
-            scene, {.up = sceneUp == "z" ? scene::UpAxis::Z : scene::UpAxis::Y, .mergeSmallMeshes = mergeSmallMeshes});
+        result = scene::loadScene(scene, {.up = sceneUp == "z" ? scene::UpAxis::Z : scene::UpAxis::Y,
+                                          .mergeSmallMeshes = mergeSmallMeshes,
+                                          .poseSeconds = poseSeconds});
         if (!result) return result;
         for (const std::string& warning : result->warnings) warn(warning);
     }
@@ -138,8 +139,13 @@ core::Result<scene::Scene> SceneOptions::load(bool verbose) const {
                                                   cameras, cameras == 1 ? "" : "s", lights, lights == 1 ? "" : "s");
         // Its animations likewise: they play at --time and along --path (t = 0 otherwise).
         const size_t moving = scene == "forest" ? 0 : result->tracks.size();
+        // Skins and morph weights are posed once, at the first frame's time (--time).
         const std::string animated =
-            moving == 0 ? "" : fmt::format(", {} moved by its animations (--time, --path)", moving);
+            (moving == 0 ? "" : fmt::format(", {} moved by its animations (--time, --path)", moving)) +
+            (result->posedMeshes == 0
+                 ? ""
+                 : fmt::format(", {} mesh{} posed by its animations as at t = {:g} s (--time)", result->posedMeshes,
+                               result->posedMeshes == 1 ? "" : "es", poseSeconds));
         fmt::print(stderr, "scene {}: {} instances, {:.2f} M triangles, {} batches{}{}{} ({:.2f} s)\n", name,
                    result->instanceCount(), static_cast<double>(result->triangleCount()) * 1e-6, result->batches.size(),
                    standing, own, animated, seconds);

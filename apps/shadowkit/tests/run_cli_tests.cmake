@@ -569,6 +569,32 @@ if(CASE STREQUAL "gl-render-animated-file")
     message(SEND_ERROR "render --time 0 and --time 2 of a file whose jib turns drew the same picture")
   endif()
 endif()
+# A skinned file is posed at --time (its joints deform the mesh, which is built once): two times
+# draw two poses, and the warning names the time each stands at.
+if(CASE STREQUAL "gl-render-posed-skin")
+  foreach(t 0 1)
+    execute_process(COMMAND ${SHADOWKIT} render --scene "${source_dir}/tests/data/bending_arm.gltf" --view file
+                            --size 96x64 --map-size 256 --time ${t} --out "${WORK}/t${t}.png"
+                    RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+    if(NOT rc EQUAL 0 OR NOT EXISTS "${WORK}/t${t}.png" OR
+       NOT err MATCHES "animation 0 'Bend': 1 channel\\(s\\) moving a skin's joints or morph weights pose the file as at t = ${t} s, not played" OR
+       NOT err MATCHES "1 mesh posed by its animations as at t = ${t} s \\(--time\\)")
+      message(SEND_ERROR "render of a skinned file at t = ${t}: exit ${rc}: ${out}${err}")
+    endif()
+  endforeach()
+  file(SHA256 "${WORK}/t0.png" at0)
+  file(SHA256 "${WORK}/t1.png" at1)
+  if(at0 STREQUAL at1)
+    message(SEND_ERROR "render --time 0 and --time 1 of a file whose skinned arm bends drew the same picture")
+  endif()
+  # Written, the pose stays and its keys do not: export says so.
+  execute_process(COMMAND ${SHADOWKIT} export --scene "${source_dir}/tests/data/bending_arm.gltf" --out "${WORK}/arm.glb"
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0 OR NOT EXISTS "${WORK}/arm.glb" OR
+     NOT err MATCHES "the 1 mesh the file's animations deform is written as posed at t = 0, without its animation")
+    message(SEND_ERROR "export of a skinned file: exit ${rc}: ${out}${err}")
+  endif()
+endif()
 if(CASE STREQUAL "export-animated-file")
   execute_process(COMMAND ${SHADOWKIT} export --scene "${source_dir}/tests/data/turning_crane.gltf"
                           --out "${WORK}/crane.glb" RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)

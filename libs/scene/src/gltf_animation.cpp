@@ -7,11 +7,12 @@
 // A node an animation targets must be written as TRS, not as a matrix. How the keys are played:
 // keyframes.h.
 //
-// What shadowkit does not play stays at rest with a warning, never a refused scene: morph
-// weights (the mesh keeps its rest weights, gltf_pose.cpp), the joints of a skin (a skinned
-// mesh is posed once at load), and a property a second animation also moves — a character's
-// clips (walk, run) all move the same nodes, and playing them at once would be neither; the
-// first animation that moves a property plays it.
+// Morph weights (SCALAR, one a target a key, three for CUBICSPLINE: the key's in-tangents, values
+// and out-tangents, each a target long) and a skin's joints deform a mesh: they pose the file
+// once, at the moment asked, rather than play (gltf_animation.h). What shadowkit cannot use
+// stays at rest with a warning, never a refused scene — among it a property a second animation
+// also moves: a character's clips (walk, run) all move the same nodes, and playing them at once
+// would be neither; the first animation that moves a property plays it.
 #include "gltf_animation.h"
 
 #include "gltf_accessor.h"
@@ -20,6 +21,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
 #include <set>
 #include <string_view>
 #include <tuple>
@@ -32,18 +35,28 @@ namespace {
 // accessor, and each channel holds its own copy.
 constexpr size_t kMaxKeysPerFile = size_t(1) << 24;
 
-enum class Property { Translation, Rotation, Scale };
+enum class Property { Translation, Rotation, Scale, Weights };
 
 std::optional<Property> propertyNamed(const std::string& path) {
     if (path == "translation") return Property::Translation;
     if (path == "rotation") return Property::Rotation;
     if (path == "scale") return Property::Scale;
+    if (path == "weights") return Property::Weights;
     return std::nullopt;
 }
 
-// One sampler's keys for `property`, checked; the reason it cannot be played otherwise.
+// How many morph targets the node's mesh has (glTF asks every primitive of a mesh for as many).
+size_t morphTargetsOf(const tinygltf::Model& model, int node) {
+    const int mesh = model.nodes[size_t(node)].mesh;
+    if (mesh < 0 || size_t(mesh) >= model.meshes.size() || model.meshes[size_t(mesh)].primitives.empty()) return 0;
+    return model.meshes[size_t(mesh)].primitives.front().targets.size();
+}
+
+// One sampler's keys for `property`, checked; the reason it cannot be used otherwise. Weights
+// come `targets` a key, all in x, target after target within each key.
 core::Result<KeyframeChannel> readSampler(const tinygltf::Model& model, const tinygltf::AnimationSampler& sampler,
-                                          Property property, const std::string& where, size_t& keysRead) {
+                                          Property property, size_t targets, const std::string& where,
+                                          size_t& keysRead) {
     KeyframeChannel channel;
     if (sampler.interpolation == "STEP")
         channel.interpolation = KeyframeChannel::Interpolation::Step;
@@ -62,17 +75,23 @@ core::Result<KeyframeChannel> readSampler(const tinygltf::Model& model, const ti
     const size_t keys = input->count();
     if (keys == 0) return core::makeError(where + ": no keys");
     const bool cubic = channel.interpolation == KeyframeChannel::Interpolation::CubicSpline;
-    const size_t valuesPerKey = cubic ? 3 : 1;
+    const bool weights = property == Property::Weights;
+    const size_t valuesPerKey = (cubic ? 3 : 1) * (weights ? targets : 1);
 
     auto output = AccessorReader::open(model, sampler.output, where + " output");
     if (!output) return output.errorInfo();
-    const int wantedType = property == Property::Rotation ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3;
+    const int wantedType = property == Property::Rotation ? TINYGLTF_TYPE_VEC4
+                           : weights                      ? TINYGLTF_TYPE_SCALAR
+                                                          : TINYGLTF_TYPE_VEC3;
     if (model.accessors[size_t(sampler.output)].type != wantedType)
         return core::makeError(where + ": its values are not " +
-                               (property == Property::Rotation ? "VEC4 quaternions" : "VEC3 vectors"));
+                               (property == Property::Rotation ? "VEC4 quaternions"
+                                : weights                      ? "SCALAR weights"
+                                                               : "VEC3 vectors"));
     if (output->count() != keys * valuesPerKey)
         return core::makeError(where + ": " + std::to_string(output->count()) + " values for " + std::to_string(keys) +
-                               " keys" + (cubic ? " (CUBICSPLINE: three a key)" : ""));
+                               " keys" + (weights ? " of " + std::to_string(targets) + " morph target(s)" : "") +
+                               (cubic ? " (CUBICSPLINE: three a key)" : ""));
     keysRead += keys * (1 + valuesPerKey);
     if (keysRead > kMaxKeysPerFile)
         return core::makeError(where + ": more keys than shadowkit reads from one file (2^24)");
@@ -87,7 +106,7 @@ core::Result<KeyframeChannel> readSampler(const tinygltf::Model& model, const ti
     }
     channel.values.resize(output->count());
     for (size_t v = 0; v < output->count(); ++v) {
-        const glm::dvec4 value(output->get(v, 0), output->get(v, 1), output->get(v, 2),
+        const glm::dvec4 value(output->get(v, 0), weights ? 0.0 : output->get(v, 1), weights ? 0.0 : output->get(v, 2),
                                property == Property::Rotation ? output->get(v, 3) : 0.0);
         if (!std::isfinite(value.x + value.y + value.z + value.w))
             return core::makeError(where + ": value " + std::to_string(v) + " is not finite");
@@ -96,21 +115,57 @@ core::Result<KeyframeChannel> readSampler(const tinygltf::Model& model, const ti
     return channel;
 }
 
+// A weights channel (every target in turn within a key) as one channel per target.
+std::vector<KeyframeChannel> perTarget(const KeyframeChannel& all, size_t targets) {
+    const bool cubic = all.interpolation == KeyframeChannel::Interpolation::CubicSpline;
+    std::vector<KeyframeChannel> out(targets);
+    for (size_t target = 0; target < targets; ++target) {
+        KeyframeChannel& one = out[target];
+        one.interpolation = all.interpolation;
+        one.times = all.times;
+        one.loopSeconds = all.loopSeconds;
+        for (size_t k = 0; k < all.times.size(); ++k)
+            for (size_t part = 0; part < (cubic ? 3u : 1u); ++part) // in-tangent, value, out-tangent
+                one.values.push_back(all.values[(k * (cubic ? 3 : 1) + part) * targets + target]);
+    }
+    return out;
+}
+
+std::string secondsText(double t) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.6g", t);
+    return text;
+}
+
 } // namespace
 
-AnimatedNodes readAnimations(const tinygltf::Model& model, const std::string& file,
-                             std::vector<std::string>& warnings) {
+FileAnimations readAnimations(const tinygltf::Model& model, const std::string& file, double poseSeconds,
+                              std::vector<std::string>& warnings) {
+    // A skin's joints and every node above one: a skinned mesh's vertices follow them all.
+    std::vector<int> parentOf(model.nodes.size(), -1);
+    for (size_t node = 0; node < model.nodes.size(); ++node)
+        for (int child : model.nodes[node].children)
+            if (child >= 0 && size_t(child) < model.nodes.size()) parentOf[size_t(child)] = int(node);
     std::set<int> joints;
-    for (const tinygltf::Skin& skin : model.skins) joints.insert(skin.joints.begin(), skin.joints.end());
-    AnimatedNodes animated;
-    std::map<std::pair<int, Property>, size_t> movedBy; // node and property -> the animation playing it
+    for (const tinygltf::Skin& skin : model.skins)
+        for (int node : skin.joints) // up to a root, or to a node already met (checkNodeTrees: no cycles)
+            while (node >= 0 && size_t(node) < model.nodes.size() && joints.insert(node).second)
+                node = parentOf[size_t(node)];
+    FileAnimations out;
+    std::map<std::pair<int, Property>, size_t> movedBy; // node and property -> the animation using it
     size_t keysRead = 0;
     for (size_t a = 0; a < model.animations.size(); ++a) {
         const tinygltf::Animation& animation = model.animations[a];
         const std::string named = file + ": animation " + std::to_string(a) +
                                   (animation.name.empty() ? "" : " '" + printable(animation.name) + "'");
         // Read first, then given their animation's length: each loops over its own.
-        std::vector<std::tuple<int, Property, KeyframeChannel>> played;
+        struct Read {
+            int node;
+            Property property;
+            KeyframeChannel keys;
+            bool posed; // a joint's (or a node's above one) or weights: posed at poseSeconds, not played
+        };
+        std::vector<Read> read;
         std::string firstProblem;
         size_t atRest = 0;
         const auto leave = [&](const std::string& why) {
@@ -126,17 +181,17 @@ AnimatedNodes readAnimations(const tinygltf::Model& model, const std::string& fi
             }
             const std::optional<Property> property = propertyNamed(ch.target_path);
             if (!property) {
-                leave(where + " moves " +
-                      (ch.target_path == "weights" ? std::string("morph weights")
-                                                   : "'" + printable(ch.target_path) + "'") +
-                      ", which shadowkit does not play");
+                leave(where + " moves '" + printable(ch.target_path) + "', which shadowkit does not play");
                 continue;
             }
-            if (joints.count(node)) {
-                leave(where + " moves a skin's joint: skinned meshes stand in their rest pose");
+            const bool weights = *property == Property::Weights;
+            const size_t targets = weights ? morphTargetsOf(model, node) : 0;
+            if (weights && targets == 0) {
+                leave(where + " moves the morph weights of node " + std::to_string(node) +
+                      ", whose mesh has no morph targets");
                 continue;
             }
-            if (model.nodes[size_t(node)].matrix.size() == 16) {
+            if (!weights && model.nodes[size_t(node)].matrix.size() == 16) {
                 leave(where + " targets node " + std::to_string(node) + ", written as a matrix (glTF asks for TRS)");
                 continue;
             }
@@ -149,31 +204,81 @@ AnimatedNodes readAnimations(const tinygltf::Model& model, const std::string& fi
                 leave(where + " names no sampler");
                 continue;
             }
-            auto keys = readSampler(model, animation.samplers[size_t(ch.sampler)], *property,
+            auto keys = readSampler(model, animation.samplers[size_t(ch.sampler)], *property, targets,
                                     where + " (sampler " + std::to_string(ch.sampler) + ")", keysRead);
             if (!keys) {
                 leave(keys.error());
                 continue;
             }
             movedBy[{node, *property}] = a;
-            played.emplace_back(node, *property, std::move(*keys));
+            read.push_back({node, *property, std::move(*keys), weights || joints.count(node) > 0});
         }
         double length = 0.0;
-        for (const auto& [node, property, keys] : played) length = std::max(length, keys.times.back());
-        for (auto& [node, property, keys] : played) {
-            keys.loopSeconds = length;
-            auto shared = std::make_shared<const KeyframeChannel>(std::move(keys));
-            NodeChannels& channels = animated[node];
-            (property == Property::Translation ? channels.translation
-             : property == Property::Rotation  ? channels.rotation
-                                               : channels.scale) = std::move(shared);
+        for (const Read& r : read) length = std::max(length, r.keys.times.back());
+        size_t posed = 0;
+        for (Read& r : read) {
+            r.keys.loopSeconds = length;
+            if (r.property == Property::Weights) {
+                auto& channels = out.posed.weights[r.node];
+                for (KeyframeChannel& one : perTarget(r.keys, morphTargetsOf(model, r.node)))
+                    channels.push_back(std::make_shared<const KeyframeChannel>(std::move(one)));
+            } else {
+                NodeChannels& channels = (r.posed ? out.posed.joints : out.played)[r.node];
+                (r.property == Property::Translation ? channels.translation
+                 : r.property == Property::Rotation  ? channels.rotation
+                                                     : channels.scale) =
+                    std::make_shared<const KeyframeChannel>(std::move(r.keys));
+            }
+            posed += r.posed ? 1 : 0;
         }
+        std::string said;
+        if (posed > 0)
+            said = std::to_string(posed) +
+                   " channel(s) moving a skin's joints or morph weights pose the file as at t = " +
+                   secondsText(poseSeconds) + " s, not played (a mesh they deform stands still along a path)";
         if (atRest > 0)
-            warnings.push_back(named + ": " + firstProblem +
-                               (atRest > 1 ? " (and " + std::to_string(atRest - 1) + " more channel(s))" : "") +
-                               "; left at rest");
+            said += (said.empty() ? "" : "; ") + firstProblem +
+                    (atRest > 1 ? " (and " + std::to_string(atRest - 1) + " more channel(s))" : "") + "; left at rest";
+        if (!said.empty()) warnings.push_back(named + ": " + said);
     }
-    return animated;
+    // Whether a channel poses a node or one above it, each node settled once (a file may hold a
+    // long chain of joints): walk up to a settled node or a root, then settle the walk.
+    std::vector<int8_t> posedFromAbove(model.nodes.size(), -1);
+    std::vector<int> walk;
+    const auto isPosed = [&](int node) {
+        for (walk.clear(); node >= 0 && posedFromAbove[size_t(node)] < 0; node = parentOf[size_t(node)])
+            walk.push_back(node);
+        bool posed = node >= 0 && posedFromAbove[size_t(node)] > 0;
+        for (auto it = walk.rbegin(); it != walk.rend(); ++it)
+            posedFromAbove[size_t(*it)] = (posed = posed || out.posed.joints.count(*it) > 0) ? 1 : 0;
+        return posed;
+    };
+    for (size_t skin = 0; skin < model.skins.size(); ++skin)
+        for (int joint : model.skins[skin].joints)
+            if (joint >= 0 && size_t(joint) < model.nodes.size() && isPosed(joint)) out.posed.skins.insert(int(skin));
+    return out;
+}
+
+void poseNodes(tinygltf::Model& model, const PoseKeys& keys, double t) {
+    for (const auto& [index, channels] : keys.joints) {
+        tinygltf::Node& node = model.nodes[size_t(index)];
+        const auto set = [&](std::vector<double>& property, const std::shared_ptr<const KeyframeChannel>& channel,
+                             bool rotation) {
+            if (!channel) return;
+            const glm::dvec4 v = channel->at(t, rotation);
+            property.assign({v.x, v.y, v.z});
+            if (rotation) property.push_back(v.w);
+        };
+        set(node.translation, channels.translation, false);
+        set(node.rotation, channels.rotation, true);
+        set(node.scale, channels.scale, false);
+    }
+    for (const auto& [index, channels] : keys.weights) {
+        tinygltf::Node& node = model.nodes[size_t(index)];
+        node.weights.resize(channels.size());
+        for (size_t target = 0; target < channels.size(); ++target)
+            node.weights[target] = channels[target]->at(t, false).x;
+    }
 }
 
 std::optional<NodeMotion> motionAlong(const tinygltf::Model& model, const std::vector<int>& path,

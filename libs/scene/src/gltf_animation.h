@@ -10,6 +10,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -21,11 +22,33 @@ struct NodeChannels {
 };
 using AnimatedNodes = std::map<int, NodeChannels>; // node index -> its channels
 
-/// Every animation's translation, rotation and scale channels, checked. Shadows play what they
-/// can and never refuse a scene for its animations: a channel that cannot be played — a morph
-/// weight, a skin's joint, a bad sampler or accessor, a property another animation already
-/// moves — is left at rest, with one line per animation in `warnings`.
-AnimatedNodes readAnimations(const tinygltf::Model& model, const std::string& file, std::vector<std::string>& warnings);
+// Channels that pose a file once rather than play: a skin's joints (and the nodes above them)
+// and morph weights deform meshes, and the renderer's and the truth's meshes are fixed once built, so the loader poses
+// them at one moment (LoadOptions::poseSeconds) and every frame sees that pose.
+struct PoseKeys {
+    AnimatedNodes joints; // a joint node, or a node above one -> its channels
+    // A node -> a channel per morph target of its mesh, each weight in x.
+    std::map<int, std::vector<std::shared_ptr<const KeyframeChannel>>> weights;
+    std::set<int> skins; // the skins whose joints (or nodes above them) some channel poses
+};
+
+struct FileAnimations {
+    AnimatedNodes played; // moving rigid instances, frame by frame (scene::animate)
+    PoseKeys posed;
+};
+
+/// Every animation's translation, rotation, scale and weight channels, checked. Shadows play
+/// what they can and never refuse a scene for its animations: a channel that cannot be used —
+/// a node written as a matrix, a bad sampler or accessor, a property another animation already
+/// moves — is left at rest, with one line per animation in `warnings`, which also says when an
+/// animation's joints or weights are posed at `poseSeconds` rather than played.
+FileAnimations readAnimations(const tinygltf::Model& model, const std::string& file, double poseSeconds,
+                              std::vector<std::string>& warnings);
+
+/// Writes the posed channels' values at time t into the model's nodes (TRS and weights), so that
+/// everything read from the nodes after — joint matrices, morph targets, the instances below a
+/// joint — stands in that pose.
+void poseNodes(tinygltf::Model& model, const PoseKeys& keys, double t);
 
 /// The motion of an instance whose node is the last of `path` (node indices, root first), or
 /// nullopt when no node of the path is animated. Its sceneFromRoot and nodeFromObject are the

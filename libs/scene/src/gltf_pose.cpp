@@ -1,4 +1,4 @@
-// glTF nodes, morph targets and skinned meshes at the file's rest pose.
+// glTF nodes, morph targets and skinned meshes in the pose the file's nodes hold.
 //
 // Based on: the glTF 2.0 specification, "Morph Targets" (§3.7.2.2): a morphed vertex is
 // p + Σ_t w_t · POSITION_t, with the node's weights or else the mesh's defaults (normals
@@ -6,10 +6,10 @@
 //     p' = Σ_k w_k · J(j_k) · p,   J(j) = G(joint j) · IBM(j)
 // with G a node's global transform and IBM the skin's inverse bind matrix (identity when the
 // skin has none), over every JOINTS_n / WEIGHTS_n set; the transform of the node that holds the
-// skinned mesh is ignored (only the joints place it). shadowkit plays no skinned or morph
-// animation (gltf_animation.cpp), so the pose is the nodes' transforms as the file writes
-// them, applied once at load; the shadows are of
-// that pose. Weights are divided by their sum (the specification asks for a sum of 1; exporters
+// skinned mesh is ignored (only the joints place it). Skins and morph weights are posed once at
+// load, not played: the nodes' transforms and weights are the file's, or its animations' at the
+// moment asked (gltf_animation.cpp's poseNodes writes them into the nodes first); the shadows
+// are of that pose. Weights are divided by their sum (the specification asks for a sum of 1; exporters
 // round), a vertex with no weight keeps its bind position, and normals follow the inverse
 // transpose of the blended matrix.
 #include "gltf_pose.h"

@@ -22,11 +22,13 @@
 //   - nodes' transforms composed in double, and the scene stood where float keeps its
 //     precision (near_origin.cpp): a model in survey metres keeps its millimetres;
 //   - nodes instancing their mesh (EXT_mesh_gpu_instancing, gltfpack -mi): one instance each;
-//   - morph targets at their default weights, then skinned meshes posed by their joints, at the
-//     file's rest pose (gltf_pose.cpp);
+//   - morph targets at their weights, then skinned meshes posed by their joints (gltf_pose.cpp),
+//     both as the file's animations pose them at LoadOptions::poseSeconds (the rest pose where
+//     none moves them);
 //   - animations (§3.11, gltf_animation.cpp): an instance below a node that an animation's
 //     translation, rotation or scale moves is a Scene::tracks entry of a dynamic batch, its
-//     keys played by scene::animate; the scene as loaded stands at t = 0;
+//     keys played by scene::animate; the scene as loaded stands at t = 0; a skin's joints and
+//     morph weights pose the file once, before anything reads its nodes;
 //   - meshopt-compressed buffer views (EXT_meshopt_compression, gltfpack -c) decoded before any
 //     accessor reads them (gltf_meshopt.cpp);
 //   - what cannot be read is named: glTF 1.0, Draco-compressed meshes, non-finite positions;
@@ -389,7 +391,7 @@ core::Status checkNodeTrees(const tinygltf::Model& model, const fs::path& file) 
     return core::Ok{};
 }
 
-core::Result<Scene> loadGltf(const fs::path& file) {
+core::Result<Scene> loadGltf(const fs::path& file, double poseSeconds) {
     const bool binary = lowerExtension(file) == ".glb";
     const auto bytes = readFile(file);
     if (!bytes) return bytes.errorInfo();
@@ -441,7 +443,9 @@ core::Result<Scene> loadGltf(const fs::path& file) {
     // A node with morph weights of its own gets batches of its own too (the last: its index, else -1).
     // An instance that an animation moves (its node or one above it) gets batches of its own, dynamic.
     std::map<std::tuple<int, size_t, bool, int, int, bool>, size_t> batchOf;
-    const AnimatedNodes animated = readAnimations(model, file.string(), scene.warnings);
+    const FileAnimations animations = readAnimations(model, file.string(), poseSeconds, scene.warnings);
+    poseNodes(model, animations.posed, poseSeconds); // joints and weights, before anything reads the nodes
+    const AnimatedNodes& animated = animations.played;
     std::vector<int> path;                           // the nodes from the root down to the one visited
     std::vector<glm::dmat4> globals;                 // every node's, made when a skin first needs them
     std::map<int, std::vector<glm::dmat4>> jointsOf; // each skin's joint matrices
@@ -534,6 +538,8 @@ core::Result<Scene> loadGltf(const fs::path& file) {
                             for (size_t t = 0; t + 2 < mesh->indices.size(); t += 3)
                                 std::swap(mesh->indices[t + 1], mesh->indices[t + 2]);
                         mesh->name = gltfMesh.name;
+                        if (animations.posed.skins.count(skin) || animations.posed.weights.count(nodeIndex))
+                            ++scene.posedMeshes;
                         scene.meshes.push_back(std::move(*mesh));
                         scene.batches.push_back({uint32_t(scene.meshes.size() - 1), {}, motion.has_value()});
                         placements.emplace_back();

@@ -16,7 +16,8 @@
 
 namespace shadowkit::scene::formats {
 
-core::Result<Scene> loadGltf(const std::filesystem::path& file); // .gltf and .glb
+// .gltf and .glb; skins and morph weights posed as at `poseSeconds` (LoadOptions::poseSeconds).
+core::Result<Scene> loadGltf(const std::filesystem::path& file, double poseSeconds = 0.0);
 core::Result<Scene> loadObj(const std::filesystem::path& file);
 core::Status exportObj(const Scene& scene, const std::filesystem::path& file);
 core::Status exportGlb(const Scene& scene, const std::filesystem::path& file);

@@ -6,6 +6,7 @@
 #include "shadowkit/scene/foliage_levels.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <span>
 
@@ -79,10 +80,12 @@ core::Result<Scene> loadScene(const fs::path& file, const LoadOptions& options) 
     std::error_code ec;
     if (!fs::exists(file, ec)) return core::makeError(file.string() + ": scene file does not exist");
     if (fs::is_directory(file, ec)) return core::makeError(file.string() + ": is a directory, not a scene file");
+    if (!std::isfinite(options.poseSeconds))
+        return core::makeError(file.string() + ": the time to pose its animations at is not finite");
     const std::string ext = lowerExtension(file);
     if (ext != ".gltf" && ext != ".glb" && ext != ".obj")
         return core::makeError(file.string() + ": unknown scene format (use .gltf, .glb or .obj)");
-    core::Result<Scene> scene = ext == ".obj" ? loadObj(file) : loadGltf(file);
+    core::Result<Scene> scene = ext == ".obj" ? loadObj(file) : loadGltf(file, options.poseSeconds);
     if (scene && options.up == UpAxis::Z) turnZUpToYUp(*scene);
     // glTF is y-up by its specification, and its sample cards face +z: only an OBJ, which says
     // nothing, is suspected of z-up.

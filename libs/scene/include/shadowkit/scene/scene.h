@@ -111,8 +111,11 @@ struct Scene {
     std::vector<MeshBatch> batches;
     std::optional<Heightfield> terrain; // set for procedural terrain: ground height lookups
     std::vector<Track> tracks;          // animated instances (a batch's `dynamic` instances)
-    std::vector<Material> materials;    // what Mesh::material names (material.h)
-    std::vector<Texture> textures;      // what Material::baseColorTexture names
+    // Meshes a file's animations deform (skins, morph weights), posed once at load
+    // (LoadOptions::poseSeconds) and fixed after: drawn, measured and written in that pose.
+    size_t posedMeshes = 0;
+    std::vector<Material> materials; // what Mesh::material names (material.h)
+    std::vector<Texture> textures;   // what Material::baseColorTexture names
     // What a loader could not use and did without, one line each (an undecodable texture on an
     // opaque material): the caller shows them; nothing here changes a shadow.
     std::vector<std::string> warnings;

@@ -21,6 +21,11 @@ struct LoadOptions {
     // material — a few dozen draws a pass where there were thousands. A tile, not a building, is
     // then an instance (culled, given levels and told apart by the evaluation as one).
     bool mergeSmallMeshes = true;
+    // A glTF's skins and morph weights stand as its animations pose them at this time (seconds;
+    // each animation looping over its own length). They deform meshes, which stay fixed once
+    // built, so they are posed at load — a still frame's --time — not played; rigid motion plays
+    // at any time (scene::animate).
+    double poseSeconds = 0.0;
 };
 
 // Loads triangles from glTF (a mesh referenced by several nodes becomes one batch with

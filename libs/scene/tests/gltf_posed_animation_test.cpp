@@ -1,0 +1,221 @@
+// A glTF's skins and morph weights stand as its animations pose them at LoadOptions::poseSeconds
+// (gltf_animation.cpp's poseNodes, then gltf_pose.cpp). Every expected position is worked by
+// hand from the file's keys, not read back from the loader.
+#include "shadowkit/scene/scene_io.h"
+
+#include "gltf_test_files.h"
+
+#include <gtest/gtest.h>
+
+#include <glm/glm.hpp>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+using namespace shadowkit;
+using namespace shadowkit::scene;
+
+namespace {
+
+template <typename T>
+void appendValues(std::vector<unsigned char>& bytes, const std::vector<T>& values) {
+    const auto* first = reinterpret_cast<const unsigned char*>(values.data());
+    bytes.insert(bytes.end(), first, first + values.size() * sizeof(T));
+}
+
+// A skinned triangle: joint A (node 1) at (0, 0, 5); joint B (node 2) at (10, 0, 0), turned 90°
+// about +y at rest, with an inverse bind matrix moving 2 along −z; corner 0 (1, 0, 0) bound to A,
+// corner 1 (0, 0, 0) to B, corner 2 (0, 0, −1) half to each. Node 3, a child of B, holds an
+// unskinned triangle with a corner at (1, 0, 0). Animation 0 'Wave' turns B from 90° to 180°
+// about +y over a second, LINEAR. `armature`: both joints below node 4, which the animation
+// moves from 0 to 10 m along +z over the second too.
+std::string wavingFile(bool armature = false) {
+    std::vector<unsigned char> b;
+    appendValues<float>(b, {1, 0, 0, 0, 0, 0, 0, 0, -1});               // POSITION: 36 at 0
+    appendValues<uint8_t>(b, {0, 1, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0});     // JOINTS_0: 12 at 36
+    appendValues<float>(b, {1, 0, 0, 0, 1, 0, 0, 0, 0.5f, 0.5f, 0, 0}); // WEIGHTS_0: 48 at 48
+    appendValues<float>(b, {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0,  1,
+                            1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, -2, 1}); // IBMs: 128 at 96
+    appendValues<float>(b, {0, 1});                                            // times: 8 at 224
+    const float s45 = std::sqrt(0.5f);
+    appendValues<float>(b, {0, s45, 0, s45, 0, 1, 0, 0}); // 90° then 180° about +y: 32 at 232
+    appendValues<float>(b, {0, 0, 0, 0, 0, 10});          // the armature's moves: 24 at 264
+    const std::string moveArmature = armature ? R"(,{"sampler":1,"target":{"node":4,"path":"translation"}})" : "";
+    return R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":)" + std::string(armature ? "[0,4]" : "[0,1,2]") +
+           R"(}],
+        "nodes":[{"mesh":0,"skin":0},{"translation":[0,0,5]},
+                 {"translation":[10,0,0],"rotation":[0,)" +
+           std::to_string(s45) + ",0," + std::to_string(s45) + R"(],"children":[3]},{"mesh":1},
+                 {"name":"armature")" +
+           std::string(armature ? R"(,"children":[1,2])" : "") + R"(}],
+        "skins":[{"joints":[1,2],"inverseBindMatrices":3}],
+        "meshes":[{"primitives":[{"attributes":{"POSITION":0,"JOINTS_0":1,"WEIGHTS_0":2}}]},
+                  {"primitives":[{"attributes":{"POSITION":0}}]}],
+        "animations":[{"name":"Wave","samplers":[{"input":4,"output":5},{"input":4,"output":6}],
+                       "channels":[{"sampler":0,"target":{"node":2,"path":"rotation"}})" +
+           moveArmature + R"(]}],
+        "accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,-1],"max":[1,0,0]},
+                     {"bufferView":1,"componentType":5121,"count":3,"type":"VEC4"},
+                     {"bufferView":2,"componentType":5126,"count":3,"type":"VEC4"},
+                     {"bufferView":3,"componentType":5126,"count":2,"type":"MAT4"},
+                     {"bufferView":4,"componentType":5126,"count":2,"type":"SCALAR","min":[0],"max":[1]},
+                     {"bufferView":5,"componentType":5126,"count":2,"type":"VEC4"},
+                     {"bufferView":6,"componentType":5126,"count":2,"type":"VEC3"}],
+        "bufferViews":[{"buffer":0,"byteLength":36},{"buffer":0,"byteOffset":36,"byteLength":12},
+                       {"buffer":0,"byteOffset":48,"byteLength":48},{"buffer":0,"byteOffset":96,"byteLength":128},
+                       {"buffer":0,"byteOffset":224,"byteLength":8},{"buffer":0,"byteOffset":232,"byteLength":32},
+                       {"buffer":0,"byteOffset":264,"byteLength":24}],
+        "buffers":[{"byteLength":288,"uri":"data:application/octet-stream;base64,)" +
+           scene::testing::base64(b) + "\"}]}";
+}
+
+// A triangle in y = 0 with one morph target lifting every corner 2 m; animation 0 'Rise' keys its
+// weight 0 at t = 0 and 1 at t = 2, with `interpolation` (CUBICSPLINE: zero tangents).
+std::string risingFile(const std::string& interpolation) {
+    const bool cubic = interpolation == "CUBICSPLINE";
+    std::vector<unsigned char> b;
+    appendValues<float>(b, {0, 0, 0, 1, 0, 0, 0, 0, -1}); // POSITION: 36 at 0
+    appendValues<float>(b, {0, 2, 0, 0, 2, 0, 0, 2, 0});  // the target's POSITION: 36 at 36
+    appendValues<float>(b, {0, 2});                       // times: 8 at 72
+    if (cubic)
+        appendValues<float>(b, {0, 0, 0, 0, 1, 0}); // per key: in-tangent, value, out-tangent: 24 at 80
+    else
+        appendValues<float>(b, {0, 1}); // 8 at 80
+    const size_t weightBytes = cubic ? 24 : 8;
+    return R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],
+        "meshes":[{"primitives":[{"attributes":{"POSITION":0},"targets":[{"POSITION":1}]}],"weights":[0]}],
+        "animations":[{"name":"Rise","samplers":[{"input":2,"output":3,"interpolation":")" +
+           interpolation + R"("}],"channels":[{"sampler":0,"target":{"node":0,"path":"weights"}}]}],
+        "accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,-1],"max":[1,0,0]},
+                     {"bufferView":1,"componentType":5126,"count":3,"type":"VEC3","min":[0,2,0],"max":[0,2,0]},
+                     {"bufferView":2,"componentType":5126,"count":2,"type":"SCALAR","min":[0],"max":[2]},
+                     {"bufferView":3,"componentType":5126,"count":)" +
+           std::to_string(cubic ? 6 : 2) + R"(,"type":"SCALAR"}],
+        "bufferViews":[{"buffer":0,"byteLength":36},{"buffer":0,"byteOffset":36,"byteLength":36},
+                       {"buffer":0,"byteOffset":72,"byteLength":8},{"buffer":0,"byteOffset":80,"byteLength":)" +
+           std::to_string(weightBytes) + R"(}],
+        "buffers":[{"byteLength":)" +
+           std::to_string(80 + weightBytes) + R"(,"uri":"data:application/octet-stream;base64,)" +
+           scene::testing::base64(b) + "\"}]}";
+}
+
+// Every vertex of the scene's batch `batch`, in the world.
+std::vector<glm::dvec3> cornersOf(const Scene& s, size_t batch) {
+    std::vector<glm::dvec3> out;
+    const MeshBatch& b = s.batches.at(batch);
+    for (const glm::mat4& placed : b.worldFromObject)
+        for (const Vertex& v : s.meshes[b.mesh].vertices)
+            out.push_back(s.wsOrigin + glm::dvec3(placed * glm::vec4(v.position, 1.0f)));
+    return out;
+}
+
+void expectCorners(const std::vector<glm::dvec3>& got, const std::vector<glm::dvec3>& want, const std::string& what) {
+    ASSERT_EQ(got.size(), want.size()) << what;
+    for (size_t i = 0; i < got.size(); ++i)
+        EXPECT_LT(glm::distance(got[i], want[i]), 1e-5)
+            << what << ", corner " << i << ": got (" << got[i].x << ", " << got[i].y << ", " << got[i].z << "), want ("
+            << want[i].x << ", " << want[i].y << ", " << want[i].z << ")";
+}
+
+// Joint B turned θ about +y: a point p of its frame stands at (10, 0, 0) + (x cos θ + z sin θ, y,
+// z cos θ − x sin θ).
+glm::dvec3 byJointB(const glm::dvec3& p, double degrees) {
+    const double a = glm::radians(degrees);
+    return glm::dvec3(10, 0, 0) +
+           glm::dvec3(p.x * std::cos(a) + p.z * std::sin(a), p.y, p.z * std::cos(a) - p.x * std::sin(a));
+}
+
+} // namespace
+
+// The skin and the triangle hanging from its joint stand in the pose the animation gives at the
+// time asked — halfway, B turned 135° — and the animation loops over its second.
+TEST(GltfPosedAnimationTest, ASkinAndWhatHangsFromItsJointsStandInThePoseOfTheTimeAsked) {
+    for (double t : {0.0, 0.5, 1.5, -0.5}) {
+        const double turn = 90.0 + 90.0 * (t - std::floor(t));
+        auto s = scene::testing::loadWritten("sk_waving.gltf", wavingFile(), {.poseSeconds = t});
+        ASSERT_TRUE(s) << s.error();
+        ASSERT_EQ(s->batches.size(), 2u) << "the skin, and the triangle below joint B";
+        EXPECT_TRUE(s->tracks.empty()) << "a joint's keys pose the file, they are not played";
+        EXPECT_EQ(s->posedMeshes, 1u) << "the skin; the triangle below the joint is not deformed";
+        // Corner 2 is half A's (0, 0, −1) + (0, 0, 5), half B's (0, 0, −1 − 2) turned.
+        const glm::dvec3 half = 0.5 * glm::dvec3(0, 0, 4) + 0.5 * byJointB({0, 0, -3}, turn);
+        const std::string at = "t = " + std::to_string(t);
+        expectCorners(cornersOf(*s, 0), {{1, 0, 5}, byJointB({0, 0, -2}, turn), half}, "the skin at " + at);
+        expectCorners(cornersOf(*s, 1),
+                      {byJointB({1, 0, 0}, turn), byJointB({0, 0, 0}, turn), byJointB({0, 0, -1}, turn)},
+                      "the triangle below joint B at " + at);
+        ASSERT_EQ(s->warnings.size(), 1u);
+        char seconds[32];
+        std::snprintf(seconds, sizeof seconds, "%g", t);
+        EXPECT_NE(s->warnings[0].find("animation 0 'Wave': 1 channel(s) moving a skin's joints or morph weights pose "
+                                      "the file as at t = " +
+                                      std::string(seconds) + " s, not played"),
+                  std::string::npos)
+            << s->warnings[0];
+    }
+}
+
+// Morph weights are posed as their keys say: LINEAR halfway between 0 and 1 lifts the triangle
+// 1 m of the target's 2 at t = 1; CUBICSPLINE with zero tangents follows 3s² − 2s³ (s = t / 2).
+TEST(GltfPosedAnimationTest, MorphWeightsArePosedAsTheirKeysInterpolate) {
+    for (const std::string interpolation : {"LINEAR", "STEP", "CUBICSPLINE"})
+        for (double t : {0.0, 0.5, 1.0, 3.0}) {
+            auto s = scene::testing::loadWritten("sk_rising.gltf", risingFile(interpolation), {.poseSeconds = t});
+            ASSERT_TRUE(s) << s.error();
+            EXPECT_EQ(s->posedMeshes, 1u);
+            const double u = std::fmod(t, 2.0) / 2.0; // the loop is the last key's 2 s
+            const double weight = interpolation == "LINEAR" ? u
+                                  : interpolation == "STEP" ? 0.0
+                                                            : 3 * u * u - 2 * u * u * u;
+            const double y = 2.0 * weight;
+            expectCorners(cornersOf(*s, 0), {{0, y, 0}, {1, y, 0}, {0, y, -1}},
+                          interpolation + " at t = " + std::to_string(t));
+        }
+}
+
+// A weights channel keyed for more targets than the mesh has cannot pose it: the scene loads at
+// rest with one line saying so.
+TEST(GltfPosedAnimationTest, AWeightsChannelOfTheWrongLengthLeavesTheMeshAtRest) {
+    std::string text = risingFile("LINEAR");
+    const std::string one = R"("targets":[{"POSITION":1}]}],"weights":[0])";
+    const size_t at = text.find(one);
+    ASSERT_NE(at, std::string::npos);
+    text.replace(at, one.size(), R"("targets":[{"POSITION":1},{"POSITION":1}]}],"weights":[0,0])");
+    auto s = scene::testing::loadWritten("sk_rising_two.gltf", text, {.poseSeconds = 1.0});
+    ASSERT_TRUE(s) << s.error();
+    expectCorners(cornersOf(*s, 0), {{0, 0, 0}, {1, 0, 0}, {0, 0, -1}}, "at rest");
+    EXPECT_EQ(s->posedMeshes, 0u);
+    ASSERT_EQ(s->warnings.size(), 1u);
+    EXPECT_NE(
+        s->warnings[0].find("animation 0 'Rise': channel 0 (sampler 0): 2 values for 2 keys of 2 morph target(s); "
+                            "left at rest"),
+        std::string::npos)
+        << s->warnings[0];
+}
+
+// A node above the joints (an armature object) moved by the animation moves the skin too: its
+// keys pose the file with the joints' rather than play (a played armature would leave the skin
+// behind), and the triangle below joint B goes with it.
+TEST(GltfPosedAnimationTest, AMovingNodeAboveTheJointsPosesTheSkinWithThem) {
+    for (double t : {0.0, 0.5}) {
+        auto s = scene::testing::loadWritten("sk_waving_armature.gltf", wavingFile(true), {.poseSeconds = t});
+        ASSERT_TRUE(s) << s.error();
+        EXPECT_TRUE(s->tracks.empty()) << "the armature's keys pose the file, they are not played";
+        EXPECT_EQ(s->posedMeshes, 1u);
+        const double turn = 90.0 + 90.0 * t;
+        const glm::dvec3 moved(0, 0, 10.0 * t);
+        const glm::dvec3 half = 0.5 * glm::dvec3(0, 0, 4) + 0.5 * byJointB({0, 0, -3}, turn);
+        const std::string at = "t = " + std::to_string(t);
+        expectCorners(cornersOf(*s, 0), {moved + glm::dvec3(1, 0, 5), moved + byJointB({0, 0, -2}, turn), moved + half},
+                      "the skin at " + at);
+        expectCorners(
+            cornersOf(*s, 1),
+            {moved + byJointB({1, 0, 0}, turn), moved + byJointB({0, 0, 0}, turn), moved + byJointB({0, 0, -1}, turn)},
+            "the triangle below joint B at " + at);
+        ASSERT_EQ(s->warnings.size(), 1u);
+        EXPECT_NE(s->warnings[0].find("'Wave': 2 channel(s) moving a skin's joints or morph weights pose the file"),
+                  std::string::npos)
+            << s->warnings[0];
+    }
+}
