@@ -34,6 +34,8 @@ namespace {
 // Keys read from one file in all: a hostile file can point a million channels at one long
 // accessor, and each channel holds its own copy.
 constexpr size_t kMaxKeysPerFile = size_t(1) << 24;
+// Warning lines about a file's animations, the last of them a count of the rest.
+constexpr size_t kMaxAnimationLines = 4;
 
 enum class Property { Translation, Rotation, Scale, Weights };
 
@@ -152,6 +154,7 @@ FileAnimations readAnimations(const tinygltf::Model& model, const std::string& f
             while (node >= 0 && size_t(node) < model.nodes.size() && joints.insert(node).second)
                 node = parentOf[size_t(node)];
     FileAnimations out;
+    std::vector<std::string> lines;                     // a line an animation that has something to say
     std::map<std::pair<int, Property>, size_t> movedBy; // node and property -> the animation using it
     size_t keysRead = 0;
     for (size_t a = 0; a < model.animations.size(); ++a) {
@@ -239,8 +242,15 @@ FileAnimations readAnimations(const tinygltf::Model& model, const std::string& f
         if (atRest > 0)
             said += (said.empty() ? "" : "; ") + firstProblem +
                     (atRest > 1 ? " (and " + std::to_string(atRest - 1) + " more channel(s))" : "") + "; left at rest";
-        if (!said.empty()) warnings.push_back(named + ": " + said);
+        if (!said.empty()) lines.push_back(named + ": " + said);
     }
+    // A character's clips (idle, walk, run, …) often number dozens, each moving what the first
+    // moves: the first few lines say what happens, a count says the rest.
+    const size_t shown = lines.size() > kMaxAnimationLines ? kMaxAnimationLines - 1 : lines.size();
+    warnings.insert(warnings.end(), lines.begin(), lines.begin() + std::ptrdiff_t(shown));
+    if (shown < lines.size())
+        warnings.push_back(file + ": and " + std::to_string(lines.size() - shown) +
+                           " more animations with channels posed or left at rest, as above");
     // Whether a channel poses a node or one above it, each node settled once (a file may hold a
     // long chain of joints): walk up to a settled node or a root, then settle the walk.
     std::vector<int8_t> posedFromAbove(model.nodes.size(), -1);

@@ -135,6 +135,28 @@ TEST(GltfAnimationTest, WhatCannotBePlayedIsOneWarningAnAnimationAndStaysAtRest)
     for (const std::string& w : scene->warnings) EXPECT_EQ(w.find('\n'), std::string::npos) << w;
 }
 
+// A character's many clips each moving what the first moves: three lines say what happens and
+// one counts the rest, not a line a clip.
+TEST(GltfAnimationTest, ManyClipsMovingTheSameNodesAreCountedNotListed) {
+    std::string text = spinnerFile("[10,0,0]", "[-10,0,0]");
+    const std::string again =
+        R"({"name":"Again","samplers":[{"input":1,"output":2,"interpolation":"STEP"}],
+           "channels":[{"sampler":0,"target":{"node":0,"path":"rotation"}}]},)";
+    const size_t at = text.find(again);
+    ASSERT_NE(at, std::string::npos);
+    for (int copy = 0; copy < 3; ++copy) text.insert(at, again); // 'Again' four times over: six lines to say
+    const auto scene = scene::testing::loadWritten("sk_clips.gltf", text);
+    ASSERT_TRUE(scene) << scene.error();
+    ASSERT_EQ(scene->warnings.size(), 4u);
+    EXPECT_NE(scene->warnings[0].find("animation 0 'Spin'"), std::string::npos) << scene->warnings[0];
+    EXPECT_NE(scene->warnings[1].find("animation 1 'Again': channel 0 moves what animation 0 moves"), std::string::npos)
+        << scene->warnings[1];
+    EXPECT_NE(scene->warnings[3].find("sk_clips.gltf: and 3 more animations with channels posed or left at rest"),
+              std::string::npos)
+        << scene->warnings[3];
+    ASSERT_EQ(scene->tracks.size(), 1u) << "the first animation still plays";
+}
+
 // Far from the origin and turned z-up, the motion stands where the loader stood the rest of
 // the scene: the world point is the file's, turned (x, y, z) → (x, z, −y).
 TEST(GltfAnimationTest, FarOutAndZUpTheMotionStaysWithItsScene) {
