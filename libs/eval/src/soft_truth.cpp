@@ -197,7 +197,7 @@ SoftTruth computeSoftTruth(const RayScene& rays, const TruthBuffers& hits, const
                            const SoftTruthOptions& options) {
     const LightCone cone{glm::normalize(sun.wsTowardsSun), 0.5 * sun.angularDiameterDegrees * kPi / 180.0};
     return softTruth(rays, hits, options, [&](size_t, const core::Vec3& normal, const core::Vec3&) {
-        return glm::dot(normal, cone.axis) > 0.0 ? std::optional(cone) : std::nullopt;
+        return facesLight(normal, cone.axis) ? std::optional(cone) : std::nullopt;
     });
 }
 

@@ -57,7 +57,7 @@ void traceLit(const RayScene& rays, size_t begin, size_t end, RayOf rayOf, std::
 // The sun's shadow ray of `hits`' pixel i, where it has a surface facing the light.
 std::optional<Ray> sunShadowRay(const TruthBuffers& hits, size_t i, const core::Vec3& towardsLight, double offset) {
     const core::Vec3 n(hits.wsNormal[i]);
-    if (hits.surfaceId[i] == 0 || !(glm::dot(n, towardsLight) > 0.0)) return std::nullopt;
+    if (hits.surfaceId[i] == 0 || !facesLight(n, towardsLight)) return std::nullopt;
     return shadowRay(hits.wsPosition[i], n, towardsLight, offset);
 }
 
@@ -78,7 +78,8 @@ void localLightTruth(const RayScene& rays, const TruthBuffers& hits, const core:
                 const core::Vec3 p = hits.wsPosition[i], n(hits.wsNormal[i]);
                 const core::Vec3 toLight = wsLight - p;
                 const double distance = glm::length(toLight);
-                if (!(distance > 0.0) || !admits(p, distance) || !(glm::dot(n, toLight) > 0.0)) return std::nullopt;
+                if (!(distance > 0.0) || !admits(p, distance) || !facesLight(n, toLight / distance))
+                    return std::nullopt;
                 reached[i] = 1;
                 const core::Vec3 origin = p + offset * n;
                 const core::Vec3 towards = wsLight - origin;
@@ -164,7 +165,7 @@ TruthBuffers computeTruth(const RayScene& rays, const core::PerspectiveCamera& c
                         t.viewDepth[i] = static_cast<float>(hits[k].t);
                         t.wsPosition[i] = p;
                         t.wsNormal[i] = glm::vec3(wsNormal);
-                        if (!(glm::dot(wsNormal, towardsLight) > 0.0)) continue;
+                        if (!facesLight(wsNormal, towardsLight)) continue;
                         t.facesLight[i] = 1;
                         shadowPixel[shadows] = i;
                         shadow[shadows++] = shadowRay(p, wsNormal, towardsLight, offset);

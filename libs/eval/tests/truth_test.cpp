@@ -1,6 +1,7 @@
 // The ray-traced truth against shadows known analytically.
 #include "truth_scenes.h"
 
+#include "shadowkit/eval/soft_truth.h"
 #include "shadowkit/eval/truth.h"
 #include "shadowkit/scene/mesh_builder.h"
 
@@ -150,6 +151,45 @@ TEST(TruthTest, PointAndSpotLightsMatchTheAnalyticShadowRangeAndCone) {
     EXPECT_GT(outOfRange, 100);  // so is ground beyond the lamp's range
     EXPECT_GT(outsideCone, 100); // and ground outside the torch's cone
     EXPECT_EQ(mismatches, 0);
+}
+
+TEST(TruthTest, AFaceAlongTheSunsRaysIsNotScoredWhicheverWayRoundingTurnsIt) {
+    // A box's +z face seen by the camera, under a sun travelling across it (-x, down) tilted
+    // `tilt` towards +z: at ±1e-7 — the N·L a rotated model matrix leaves on a face parallel to
+    // the rays — the face gets 1e-7 of the sun's light lit or shadowed, and is neither
+    // scored nor sampled (hard or soft truth); tilted 0.01 it faces the sun, unblocked.
+    scene::Mesh box;
+    scene::addBox(box, glm::mat4(1.0f), {1, 0.5f, 1.5f}, glm::vec3(0.8f));
+    const scene::Scene s = groundAnd(box, glm::translate(glm::mat4(1.0f), {0, 2.5f, 0}));
+    auto rays = eval::RayScene::build(s);
+    ASSERT_TRUE(rays) << rays.error();
+    constexpr uint32_t kBoxId = kGroundId + 1;
+    for (const double tilt : {1e-7, -1e-7, 1e-2}) {
+        const core::DirectionalLight sun = core::DirectionalLight::fromDirection({-1.0, -0.6, -tilt}).value();
+        const eval::TruthBuffers truth = eval::computeTruth(**rays, cameraLookingAtOrigin(), sun, 160, 120);
+        const eval::SoftTruth soft = eval::computeSoftTruth(
+            **rays, truth, {.wsTowardsSun = sun.wsTowardsLight(), .angularDiameterDegrees = 0.53}, {.samples = 16});
+        int side = 0, sideFacing = 0, sideLit = 0, sideSampled = 0, top = 0, topFacing = 0;
+        for (size_t i = 0; i < truth.surfaceId.size(); ++i) {
+            if (truth.surfaceId[i] != kBoxId) continue;
+            const glm::vec3 n = truth.wsNormal[i];
+            const bool isSide = n.z > 0.999f, isTop = n.y > 0.999f;
+            side += isSide;
+            sideFacing += isSide && truth.facesLight[i];
+            sideLit += isSide && truth.lit[i];
+            sideSampled += isSide && !std::isnan(soft.visibility[i]);
+            top += isTop;
+            topFacing += isTop && truth.facesLight[i];
+        }
+        SCOPED_TRACE("tilt " + std::to_string(tilt));
+        EXPECT_GT(side, 100);
+        EXPECT_GT(top, 100);
+        EXPECT_EQ(topFacing, top); // the top faces the sun whatever the tilt
+        const int expected = tilt > 1e-3 ? side : 0;
+        EXPECT_EQ(sideFacing, expected);
+        EXPECT_EQ(sideLit, expected);
+        EXPECT_EQ(sideSampled, expected);
+    }
 }
 
 TEST(TruthTest, PacketsOfRaysAnswerExactlyWhatOneRayAtATimeDoes) {
