@@ -12,6 +12,13 @@ gpu=out/gpu/results
 cpu=out/gpu/llvmpipe
 rm -rf "$gpu" && mkdir -p "$gpu" "$cpu"
 tar -xzf "$results" -C "$gpu"
+# A GPU family's golden figures, where the run re-recorded them (measure-gpu.sh's golden section).
+if [[ -d $gpu/golden ]]; then
+  for family in "$gpu"/golden/*/; do
+    name=$(basename "$family")
+    mkdir -p "data/golden/$name" && cp "$family"*.json "data/golden/$name/" && echo "golden figures of $name updated" >&2
+  done
+fi
 # The set-ups tools/measure-gpu.sh's eval section measures, with the same options.
 for setup in "tsm|--technique tsm" "csm4x2048-lispsm|--technique csm --cascades 4 --map-size 2048 --cascade-warp lispsm" \
   "virtual|--technique virtual" "tsm-hyperbolic|--technique tsm --depth-layout hyperbolic" \

@@ -17,7 +17,9 @@
 # to compare with llvmpipe's: the same program on another rasteriser; TSM's two depth layouts; PSM
 # with the receiver-plane bias), alpha (tools/measure-alpha.sh), scaling (what the shadow pass's
 # time follows at 100,000 trees: culling, levels, the depth layout), opacity (what the leaves'
-# opacity layers cost), foliage (the leafy forest's soft sweep, about four minutes).
+# opacity layers cost), foliage (the leafy forest's soft sweep, about four minutes). Not in the
+# default, named when wanted: golden (re-records this GPU family's golden figures after a change
+# meant to move them; tools/gpu-tables.sh puts them in data/golden/<family>/ back here).
 # Every step has its own time limit and the whole run a deadline (DEADLINE seconds, default 540,
 # nine minutes): steps past it are skipped and say so. Results, logs and
 # bench JSON go to $OUT/gpu-results.tgz (re-packed after every step, so a killed run still returns
@@ -179,6 +181,19 @@ for section in "${sections[@]}"; do
     step foliage-soft 330 env PYTHONPATH="$py" SHADOWKIT="$root/bin/shadowkit" SHADOWKIT_DATA_DIR="$PWD/data" \
       python3 -m shadowkit.sweep data/sweeps/leafy-soft.json --out "$root/leafy-soft" --discard-stale
     cp "$root/leafy-soft/results.csv" "$res/leafy-soft.csv" 2>/dev/null
+    pack
+    ;;
+  golden)
+    # The test writes the figures into data/golden/<family>/ of this checkout (the compiled-in
+    # source path leads here); they travel back in the results, then the tests are run once more
+    # against them.
+    step golden-record 150 env SHADOWKIT_UPDATE_GOLDEN=1 "$root/bin/shadowkit_golden_tests" --gtest_brief=1
+    note "  $(grep -h '^re-recorded' "$res/golden-record.log" | tr '\n' ' ')"
+    for family in data/golden/*/; do
+      mkdir -p "$res/golden/$(basename "$family")" && cp "$family"*.json "$res/golden/$(basename "$family")/"
+    done
+    step golden-check 150 "$root/bin/shadowkit_golden_tests" --gtest_brief=1
+    note "  $(grep -E '^\[  (PASSED|FAILED) ' "$res/golden-check.log" | tr '\n' ' ')"
     pack
     ;;
   *) note "unknown section $section" ;;
