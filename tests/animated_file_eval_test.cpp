@@ -106,3 +106,40 @@ TEST_F(AnimatedFileEvalTest, ASkinnedArmPosedAtTwoTimesCastsEachPosesShadow) {
     std::printf("bending arm: %lld pixels left the shadow, %lld reached it\n", static_cast<long long>(left),
                 static_cast<long long>(arrived));
 }
+
+// The same arm played: loaded in its first pose, then posed at t = 1 s by scene::animate, the
+// renderer and the ray tracer reshaping the forearm as the scene tells them. Each frame must be
+// the frame a fresh load at that time gives — pixel for pixel, rendered and true (a renderer or
+// ray tracer left with the first pose would keep the forearm's old shadow: 149 and 108 pixels
+// apart, above).
+TEST_F(AnimatedFileEvalTest, ASkinnedArmPlayedToATimeCastsWhatAFreshLoadAtThatTimeCasts) {
+    const auto file = std::filesystem::path(SHADOWKIT_SOURCE_DATA_DIR) / ".." / "tests" / "data" / "bending_arm.gltf";
+    auto played = scene::loadScene(file, {.poseSeconds = 0.0});
+    ASSERT_TRUE(played) << played.error();
+    ASSERT_EQ(played->deformations.size(), 1u) << "the skinned forearm";
+    auto measurer = measure::Measurer::create(*played);
+    ASSERT_TRUE(measurer) << measurer.error();
+    for (double t : {0.0, 1.0, 0.5}) {
+        std::vector<uint32_t> moved;
+        scene::animate(*played, t, &moved);
+        ASSERT_FALSE(moved.empty()) << "the reshaped forearm's instance";
+        ASSERT_TRUE((*measurer)->moveInstances(*played, moved));
+        auto frame = measureThroughItsCamera(*played, **measurer);
+        ASSERT_TRUE(frame) << frame.error();
+
+        auto fresh = scene::loadScene(file, {.poseSeconds = t});
+        ASSERT_TRUE(fresh) << fresh.error();
+        auto freshMeasurer = measure::Measurer::create(*fresh);
+        ASSERT_TRUE(freshMeasurer) << freshMeasurer.error();
+        auto expected = measureThroughItsCamera(*fresh, **freshMeasurer);
+        ASSERT_TRUE(expected) << expected.error();
+
+        const auto& got = frame->comparison.classes;
+        const auto& want = expected->comparison.classes;
+        ASSERT_EQ(got.size(), want.size());
+        int64_t differ = 0;
+        for (size_t i = 0; i < got.size(); ++i) differ += got[i] != want[i];
+        EXPECT_EQ(differ, 0) << "t = " << t << ": pixels classed otherwise than a fresh load's";
+        EXPECT_LT(frame->figures().wrongPct, 1.0) << "t = " << t;
+    }
+}

@@ -34,11 +34,11 @@ int runExport(const ExportArgs& args) {
                          "at t = 0 (a .glb keeps them)",
                          args.out, sceneData->tracks.size(), sceneData->tracks.size() == 1 ? "" : "s",
                          sceneData->tracks.size() == 1 ? "s" : ""));
-    if (sceneData->posedMeshes > 0) // skins and morph weights: written as posed, without their keys
+    if (const size_t deformed = sceneData->deformations.size(); deformed > 0) // written as posed, without keys
         warn(fmt::format("--out {}: the {} mesh{} the file's animations deform {} written as posed at t = 0, without "
                          "{} animation",
-                         args.out, sceneData->posedMeshes, sceneData->posedMeshes == 1 ? "" : "es",
-                         sceneData->posedMeshes == 1 ? "is" : "are", sceneData->posedMeshes == 1 ? "its" : "their"));
+                         args.out, deformed, deformed == 1 ? "" : "es", deformed == 1 ? "is" : "are",
+                         deformed == 1 ? "its" : "their"));
     fmt::print("wrote {} ({:.2f} M triangles)\n", args.out, static_cast<double>(sceneData->triangleCount()) * 1e-6);
     return 0;
 }

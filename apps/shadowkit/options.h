@@ -44,8 +44,7 @@ struct SceneOptions {
     // Without building anything: the forest's options in range, a scene file present, the offset parsed.
     core::Status check() const;
     // Builds the forest or loads the file, printing what it made and how long it took; a file's
-    // skins and morph weights posed as its animations stand at `poseSeconds` (the first frame's
-    // time: scene::LoadOptions::poseSeconds).
+    // animations standing as at `poseSeconds` (the first frame's time: scene::LoadOptions::poseSeconds).
     core::Result<scene::Scene> load(bool verbose = true, double poseSeconds = 0.0) const;
 };
 

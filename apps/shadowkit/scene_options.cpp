@@ -137,15 +137,15 @@ core::Result<scene::Scene> SceneOptions::load(bool verbose, double poseSeconds) 
                                     ? ""
                                     : fmt::format(", {} camera{} and {} light{} of its own (--view file, --sun file)",
                                                   cameras, cameras == 1 ? "" : "s", lights, lights == 1 ? "" : "s");
-        // Its animations likewise: they play at --time and along --path (t = 0 otherwise).
+        // Its animations likewise: they play at --time and along --path (t = 0 otherwise), the
+        // instances they move and the meshes they deform (skins, morph weights).
         const size_t moving = scene == "forest" ? 0 : result->tracks.size();
-        // Skins and morph weights are posed once, at the first frame's time (--time).
+        const size_t deformed = result->deformations.size();
         const std::string animated =
             (moving == 0 ? "" : fmt::format(", {} moved by its animations (--time, --path)", moving)) +
-            (result->posedMeshes == 0
-                 ? ""
-                 : fmt::format(", {} mesh{} posed by its animations as at t = {:g} s (--time)", result->posedMeshes,
-                               result->posedMeshes == 1 ? "" : "es", poseSeconds));
+            (deformed == 0 ? ""
+                           : fmt::format(", {} mesh{} deformed by its animations (--time, --path)", deformed,
+                                         deformed == 1 ? "" : "es"));
         fmt::print(stderr, "scene {}: {} instances, {:.2f} M triangles, {} batches{}{}{} ({:.2f} s)\n", name,
                    result->instanceCount(), static_cast<double>(result->triangleCount()) * 1e-6, result->batches.size(),
                    standing, own, animated, seconds);

@@ -54,6 +54,7 @@ struct RayScene::Impl {
     RTCDevice device = nullptr;
     RTCScene top = nullptr;
     std::vector<RTCScene> meshes;
+    std::vector<float*> meshVertices; // per mesh, Embree's buffer of its positions (null: no triangles)
     std::vector<std::unique_ptr<AlphaSurface>> alphaSurfaces; // user data of the filters: fixed addresses
     std::vector<glm::mat3> normalFromObject; // per global instance: inverse transpose of the linear part
     std::string lastError;
@@ -104,6 +105,7 @@ core::Result<std::unique_ptr<RayScene>> RayScene::build(const scene::Scene& scen
     for (const scene::Mesh& mesh : scene.meshes) {
         RTCScene meshScene = rtcNewScene(impl.device);
         impl.meshes.push_back(meshScene);
+        impl.meshVertices.push_back(nullptr);
         // Spatial splits (Embree's high-quality build): a tree's leaf cards are long thin
         // quads that overlap, whose boxes an object split cannot separate. Built once per mesh,
         // shared by every instance; on the leafy forest they cut the soft truth's time by a
@@ -123,6 +125,7 @@ core::Result<std::unique_ptr<RayScene>> RayScene::build(const scene::Scene& scen
             return core::makeError("ray tracer: " + (impl.lastError.empty() ? "out of memory" : impl.lastError));
         }
         for (size_t i = 0; i < mesh.vertices.size(); ++i) std::memcpy(vertices + 3 * i, &mesh.vertices[i].position, 12);
+        impl.meshVertices.back() = vertices;
         std::memcpy(indices, mesh.indices.data(), mesh.indices.size() / 3 * 3 * sizeof(uint32_t));
         if (const scene::Material* material = scene.materialOf(mesh); material && material->alphaTested()) {
             const int32_t t = material->baseColorTexture;
@@ -172,6 +175,21 @@ core::Status RayScene::moveInstances(const scene::Scene& scene, std::span<const 
     for (const uint32_t global : moved)
         if (!scene.locate(global))
             return core::makeError("ray tracer: moved instance " + std::to_string(global) + " is out of range");
+    // A deformed mesh's new shape first: its scene committed before the instances above it.
+    std::vector<bool> batchMoved(scene.batches.size(), false);
+    for (const uint32_t global : moved) batchMoved[scene.locate(global)->batch] = true;
+    for (const scene::MeshDeformation& deformation : scene.deformations) {
+        if (deformation.batch >= batchMoved.size() || !batchMoved[deformation.batch]) continue;
+        const uint32_t m = scene.batches[deformation.batch].mesh;
+        const scene::Mesh& mesh = scene.meshes[m];
+        float* vertices = m_impl->meshVertices[m];
+        if (!vertices) continue;
+        for (size_t i = 0; i < mesh.vertices.size(); ++i) std::memcpy(vertices + 3 * i, &mesh.vertices[i].position, 12);
+        RTCGeometry geom = rtcGetGeometry(m_impl->meshes[m], 0);
+        rtcUpdateGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0);
+        rtcCommitGeometry(geom);
+        rtcCommitScene(m_impl->meshes[m]);
+    }
     for (const uint32_t global : moved) {
         const scene::InstanceRef ref = *scene.locate(global);
         const glm::mat4& worldFromObject = scene.batches[ref.batch].worldFromObject[ref.instance];

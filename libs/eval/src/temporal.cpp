@@ -10,6 +10,7 @@
 #include "shadowkit/core/conventions.h"
 
 #include <cmath>
+#include <unordered_set>
 
 namespace shadowkit::eval {
 namespace {
@@ -52,7 +53,8 @@ ShadowStates shadowStates(const core::PerspectiveCamera& camera, const TruthBuff
 }
 
 TemporalFigures compareFrames(const ShadowStates& previous, const ShadowStates& current,
-                              const PreviousShadowsHere& before, const TemporalOptions& options) {
+                              const PreviousShadowsHere& before, const TemporalOptions& options,
+                              std::span<const uint32_t> reshaped) {
     SK_ASSERT(before.raster.shadowTerm.size() == current.state.size() && before.truthLit.size() == current.state.size(),
               "compareFrames(): the previous shadows must be of this frame's pixels");
     TemporalFigures out;
@@ -78,10 +80,12 @@ TemporalFigures compareFrames(const ShadowStates& previous, const ShadowStates& 
         }
         return false;
     };
+    const std::unordered_set<uint32_t> reshapedSurfaces(reshaped.begin(), reshaped.end());
     int64_t flicker = 0, truthChanged = 0;
     for (size_t i = 0; i < current.state.size(); ++i) {
         const uint8_t now = current.state[i];
         if (!(now & kEvaluated)) continue;
+        if (!reshapedSurfaces.empty() && reshapedSurfaces.count(current.surfaceId[i] - 1)) continue;
         if (before.raster.surfaceId[i] != current.surfaceId[i] ||
             !sameDepth(before.raster.viewDepth[i], current.viewDepth[i]))
             continue;

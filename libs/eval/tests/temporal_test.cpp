@@ -1,7 +1,7 @@
 // Flicker against truth between two frames of a ground plane with a shadow edge, at the same
 // world points: zero for identical frames and for a camera that moves over a still edge; the
 // whole band an edge jumps over when the map slides; a moving truth reported apart; points
-// not seen before, or hidden by a mover, not compared.
+// not seen before, hidden by a mover, or on a surface that changed its shape, not compared.
 #include "shadowkit/eval/temporal.h"
 
 #include <gtest/gtest.h>
@@ -128,4 +128,22 @@ TEST(Temporal, PointsNotSeenBeforeOrHiddenByAMoverAreNotCompared) {
     // Drawn with the previous casters, a mover stood in front of this frame's points.
     std::fill(b.before.raster.surfaceId.begin(), b.before.raster.surfaceId.end(), 3u);
     EXPECT_EQ(eval::compareFrames(a.states, b.states, b.before).comparedPx, 0);
+}
+
+// A surface that changed its shape between the frames (a skin, morph weights) has no "same world
+// point" the frame before: its pixels are left out, whatever their states say, and a still
+// surface's are compared as before. The ground here is instance 0 (surface id 1).
+TEST(Temporal, AReshapedSurfacesOwnPixelsAreNotCompared) {
+    const core::PerspectiveCamera cam = overGround(0.0);
+    const GroundFrame a = ground(cam, 0.0, 0.0, 0.0, 0.0), b = ground(cam, 1.0, 1.0, 0.0, 0.0);
+    const eval::TemporalFigures still = eval::compareFrames(a.states, b.states, b.before);
+    ASSERT_GT(still.comparedPx, kSize * kSize / 3);
+    ASSERT_GT(still.truthChangePct, 0.0);
+    const std::vector<uint32_t> ground{0}, another{1};
+    const eval::TemporalFigures reshaped = eval::compareFrames(a.states, b.states, b.before, {}, ground);
+    EXPECT_EQ(reshaped.comparedPx, 0);
+    EXPECT_EQ(reshaped.truthChangePct, 0.0);
+    const eval::TemporalFigures other = eval::compareFrames(a.states, b.states, b.before, {}, another);
+    EXPECT_EQ(other.comparedPx, still.comparedPx);
+    EXPECT_EQ(other.truthChangePct, still.truthChangePct);
 }

@@ -133,7 +133,10 @@ GpuScene::GpuScene(const scene::Scene& scene, std::span<const scene::MeshLods> l
         const scene::Mesh& mesh = scene.meshes[m];
         const scene::MeshLods& lod = lods[m];
         GpuMesh gpu;
-        gpu.vertices = createBuffer(mesh.vertices.data(), mesh.vertices.size() * sizeof(scene::Vertex));
+        // A mesh the file's animations deform is uploaded again in every frame that poses it
+        // (reshapeMesh), and keeps no clusters: their boxes would hold only its first pose.
+        const bool deformed = scene.deforms(uint32_t(m));
+        gpu.vertices = createBuffer(mesh.vertices.data(), mesh.vertices.size() * sizeof(scene::Vertex), deformed);
         // Large levels reordered into spatial clusters (a range shared by both chains once).
         std::vector<uint32_t> indices = lod.indices;
         std::vector<std::pair<uint32_t, std::vector<scene::TriangleCluster>>> done;
@@ -141,7 +144,7 @@ GpuScene::GpuScene(const scene::Scene& scene, std::span<const scene::MeshLods> l
             std::vector<std::vector<scene::TriangleCluster>> out;
             for (size_t l = 0; l < std::min(chain.size(), kMaxLodLevels); ++l) {
                 const scene::LodLevel& level = chain[l];
-                if (level.indexCount / 3 < kClusterMinTriangles) {
+                if (level.indexCount / 3 < kClusterMinTriangles || deformed) {
                     out.emplace_back();
                     continue;
                 }
@@ -220,6 +223,12 @@ void GpuScene::updateBatch(const scene::Scene& scene, size_t sceneBatch) {
         uploadToBuffer(batch.instances.id(), 0, static_cast<GLsizeiptr>(transforms.size() * sizeof(glm::mat4)),
                        transforms.data());
     }
+}
+
+void GpuScene::reshapeMesh(const scene::Scene& scene, size_t mesh) {
+    const std::vector<scene::Vertex>& vertices = scene.meshes[mesh].vertices;
+    uploadToBuffer(m_meshes[mesh].vertices.id(), 0, static_cast<GLsizeiptr>(vertices.size() * sizeof(scene::Vertex)),
+                   vertices.data());
 }
 
 DrawStats GpuScene::draw(const PassList& list, const PassPrograms& programs, bool setInstanceBase, int replicas) const {

@@ -124,6 +124,9 @@ public:
     // Uploads the transforms of Scene::batches[sceneBatch] again (a dynamic batch, whose
     // instances moved; other batches' buffers are immutable).
     void updateBatch(const scene::Scene& scene, size_t sceneBatch);
+    // Uploads the vertices of Scene::meshes[mesh] again (one the file's animations deform:
+    // Scene::deforms, whose buffer was made updatable; its vertex count unchanged).
+    void reshapeMesh(const scene::Scene& scene, size_t mesh);
 
     // One level of detail in a mesh's index buffer.
     struct Range {

@@ -351,6 +351,10 @@ core::Status Renderer::moveInstances(const scene::Scene& scene, std::span<const 
     r.lists->afterMoves();
     for (size_t batch = 0; batch < scene.batches.size(); ++batch)
         if (batchMoved[batch]) r.scene->updateBatch(scene, batch);
+    // A deformed mesh changed its shape as well as its box (scene::animate posed it).
+    for (const scene::MeshDeformation& deformation : scene.deformations)
+        if (deformation.batch < batchMoved.size() && batchMoved[deformation.batch])
+            r.scene->reshapeMesh(scene, scene.batches[deformation.batch].mesh);
     return core::Ok{};
 }
 

@@ -21,14 +21,20 @@ core::Result<PathFrame> PathMeasurer::next(double time, const scene::ResolvedVie
     eval::ShadowStates states = eval::shadowStates(view.camera, *out.measurement.truth, out.measurement.comparison);
     if (m_previous) {
         // The previous frame's shadows at this frame's points: its casters, light and set-up.
-        const bool castersMoved = !m_world.tracks.empty() && m_previous->time != time;
+        const bool castersMoved = m_world.animated() && m_previous->time != time;
         if (castersMoved)
             if (auto s = animateTo(m_previous->time); !s) return s.errorInfo();
         const bool sameLight = m_previous->light.wsDirection == view.light.wsDirection;
         auto before = m_measurer.shadowsAt(out.measurement, view.camera, m_previous->setup, m_previous->light,
                                            m_previous->settings, !castersMoved && sameLight);
         if (!before) return before.errorInfo();
-        out.temporal = eval::compareFrames(m_previous->states, states, *before);
+        // A deformed mesh's own pixels have no "same point" in the frame before (temporal.h).
+        std::vector<uint32_t> reshaped;
+        if (m_previous->time != time)
+            for (const scene::MeshDeformation& deformation : m_world.deformations)
+                for (uint32_t i = 0; i < m_world.batches[deformation.batch].worldFromObject.size(); ++i)
+                    reshaped.push_back(m_world.globalIndex({deformation.batch, i}));
+        out.temporal = eval::compareFrames(m_previous->states, states, *before, {}, reshaped);
     }
     m_previous = Previous{time, std::move(states), out.measurement.setup, view.light, out.frame.settings};
     return out;

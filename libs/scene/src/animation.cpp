@@ -28,6 +28,14 @@ void animate(Scene& scene, double t, std::vector<uint32_t>* moved) {
         scene.batches[track.batch].worldFromObject[track.instance] = trackTransform(track, scene, t);
         if (moved) moved->push_back(global);
     }
+    // A deformed mesh changes its shape, not its placement: its instances move by their bounds.
+    for (const MeshDeformation& deformation : scene.deformations) {
+        const MeshBatch& batch = scene.batches[deformation.batch];
+        deformation.poseInto(scene.meshes[batch.mesh], t);
+        if (moved)
+            for (uint32_t i = 0; i < batch.worldFromObject.size(); ++i)
+                moved->push_back(scene.globalIndex({deformation.batch, i}));
+    }
 }
 
 } // namespace shadowkit::scene

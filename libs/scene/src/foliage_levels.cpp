@@ -47,9 +47,11 @@ void appendCloudLevels(Mesh& mesh, std::span<const BakedCloud> clouds, int32_t f
 
 int addFoliageClouds(Scene& scene, const FoliageCloudOptions& options) {
     int given = 0;
-    for (Mesh& mesh : scene.meshes) {
+    for (uint32_t m = 0; m < scene.meshes.size(); ++m) {
+        Mesh& mesh = scene.meshes[m];
         const Material* material = scene.materialOf(mesh);
-        if (!material || !material->alphaTested() || !mesh.authoredLods.empty()) continue;
+        // A deformed mesh's clouds would stand in its first pose while its cards move.
+        if (!material || !material->alphaTested() || !mesh.authoredLods.empty() || scene.deforms(m)) continue;
         if (mesh.triangleCount() < options.minTriangles || mesh.triangleCount() > options.maxTriangles) continue;
         const Texture* texture =
             material->baseColorTexture >= 0 && size_t(material->baseColorTexture) < scene.textures.size()

@@ -133,15 +133,9 @@ std::vector<KeyframeChannel> perTarget(const KeyframeChannel& all, size_t target
     return out;
 }
 
-std::string secondsText(double t) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.6g", t);
-    return text;
-}
-
 } // namespace
 
-FileAnimations readAnimations(const tinygltf::Model& model, const std::string& file, double poseSeconds,
+FileAnimations readAnimations(const tinygltf::Model& model, const std::string& file,
                               std::vector<std::string>& warnings) {
     // A skin's joints and every node above one: a skinned mesh's vertices follow them all.
     std::vector<int> parentOf(model.nodes.size(), -1);
@@ -166,7 +160,7 @@ FileAnimations readAnimations(const tinygltf::Model& model, const std::string& f
             int node;
             Property property;
             KeyframeChannel keys;
-            bool posed; // a joint's (or a node's above one) or weights: posed at poseSeconds, not played
+            bool posed; // a joint's (or a node's above one) or weights: deforms a mesh
         };
         std::vector<Read> read;
         std::string firstProblem;
@@ -218,7 +212,6 @@ FileAnimations readAnimations(const tinygltf::Model& model, const std::string& f
         }
         double length = 0.0;
         for (const Read& r : read) length = std::max(length, r.keys.times.back());
-        size_t posed = 0;
         for (Read& r : read) {
             r.keys.loopSeconds = length;
             if (r.property == Property::Weights) {
@@ -232,17 +225,11 @@ FileAnimations readAnimations(const tinygltf::Model& model, const std::string& f
                                                      : channels.scale) =
                     std::make_shared<const KeyframeChannel>(std::move(r.keys));
             }
-            posed += r.posed ? 1 : 0;
         }
-        std::string said;
-        if (posed > 0)
-            said = std::to_string(posed) +
-                   " channel(s) moving a skin's joints or morph weights pose the file as at t = " +
-                   secondsText(poseSeconds) + " s, not played (a mesh they deform stands still along a path)";
         if (atRest > 0)
-            said += (said.empty() ? "" : "; ") + firstProblem +
-                    (atRest > 1 ? " (and " + std::to_string(atRest - 1) + " more channel(s))" : "") + "; left at rest";
-        if (!said.empty()) lines.push_back(named + ": " + said);
+            lines.push_back(named + ": " + firstProblem +
+                            (atRest > 1 ? " (and " + std::to_string(atRest - 1) + " more channel(s))" : "") +
+                            "; left at rest");
     }
     // A character's clips (idle, walk, run, …) often number dozens, each moving what the first
     // moves: the first few lines say what happens, a count says the rest.
@@ -250,7 +237,7 @@ FileAnimations readAnimations(const tinygltf::Model& model, const std::string& f
     warnings.insert(warnings.end(), lines.begin(), lines.begin() + std::ptrdiff_t(shown));
     if (shown < lines.size())
         warnings.push_back(file + ": and " + std::to_string(lines.size() - shown) +
-                           " more animations with channels posed or left at rest, as above");
+                           " more animations with channels left at rest, as above");
     // Whether a channel poses a node or one above it, each node settled once (a file may hold a
     // long chain of joints): walk up to a settled node or a root, then settle the walk.
     std::vector<int8_t> posedFromAbove(model.nodes.size(), -1);

@@ -22,14 +22,15 @@ struct NodeChannels {
 };
 using AnimatedNodes = std::map<int, NodeChannels>; // node index -> its channels
 
-// Channels that pose a file once rather than play: a skin's joints (and the nodes above them)
-// and morph weights deform meshes, and the renderer's and the truth's meshes are fixed once built, so the loader poses
-// them at one moment (LoadOptions::poseSeconds) and every frame sees that pose.
+// Channels that deform meshes: a skin's joints (and the nodes above them), which place a skin's
+// vertices, and morph weights (deformation.h). Played as the others are; apart because the meshes
+// they move are reshaped, not only placed (Scene::deformations), and because the loader poses the
+// file's nodes with them at LoadOptions::poseSeconds before it reads a mesh.
 struct PoseKeys {
     AnimatedNodes joints; // a joint node, or a node above one -> its channels
     // A node -> a channel per morph target of its mesh, each weight in x.
     std::map<int, std::vector<std::shared_ptr<const KeyframeChannel>>> weights;
-    std::set<int> skins; // the skins whose joints (or nodes above them) some channel poses
+    std::set<int> skins; // the skins whose joints (or nodes above them) some channel moves
 };
 
 struct FileAnimations {
@@ -40,9 +41,8 @@ struct FileAnimations {
 /// Every animation's translation, rotation, scale and weight channels, checked. Shadows play
 /// what they can and never refuse a scene for its animations: a channel that cannot be used —
 /// a node written as a matrix, a bad sampler or accessor, a property another animation already
-/// moves — is left at rest, with one line per animation in `warnings`, which also says when an
-/// animation's joints or weights are posed at `poseSeconds` rather than played.
-FileAnimations readAnimations(const tinygltf::Model& model, const std::string& file, double poseSeconds,
+/// moves — is left at rest, with one line per animation in `warnings`.
+FileAnimations readAnimations(const tinygltf::Model& model, const std::string& file,
                               std::vector<std::string>& warnings);
 
 /// Writes the posed channels' values at time t into the model's nodes (TRS and weights), so that

@@ -1,17 +1,10 @@
-// glTF nodes, morph targets and skinned meshes in the pose the file's nodes hold.
+// glTF nodes, and what deforms a mesh read from the file: its morph targets and its skin.
 //
-// Based on: the glTF 2.0 specification, "Morph Targets" (§3.7.2.2): a morphed vertex is
-// p + Σ_t w_t · POSITION_t, with the node's weights or else the mesh's defaults (normals
-// likewise); then "Skins" (§3.7.3) and "Skinned Mesh Attributes" (§3.7.3.3): a skinned vertex is
-//     p' = Σ_k w_k · J(j_k) · p,   J(j) = G(joint j) · IBM(j)
-// with G a node's global transform and IBM the skin's inverse bind matrix (identity when the
-// skin has none), over every JOINTS_n / WEIGHTS_n set; the transform of the node that holds the
-// skinned mesh is ignored (only the joints place it). Skins and morph weights are posed once at
-// load, not played: the nodes' transforms and weights are the file's, or its animations' at the
-// moment asked (gltf_animation.cpp's poseNodes writes them into the nodes first); the shadows
-// are of that pose. Weights are divided by their sum (the specification asks for a sum of 1; exporters
-// round), a vertex with no weight keeps its bind position, and normals follow the inverse
-// transpose of the blended matrix.
+// Based on: the glTF 2.0 specification, "Morph Targets" (§3.7.2.2), "Skins" (§3.7.3) and "Skinned
+// Mesh Attributes" (§3.7.3.3); the formulas, and how a deformation is posed at any time, are in
+// scene/deformation.h. Read here: the targets' moves, every JOINTS_n / WEIGHTS_n set (weights
+// divided by their sum: the specification asks for a sum of 1, exporters round), and each
+// joint's chain of nodes with the keys that move it, so a skin plays as its joints move.
 #include "gltf_pose.h"
 
 #include "gltf_accessor.h"
@@ -66,8 +59,11 @@ std::vector<glm::dmat4> nodeGlobalTransforms(const tinygltf::Model& model) {
     return global;
 }
 
-core::Result<std::vector<glm::dmat4>> jointMatrices(const tinygltf::Model& model, int skinIndex,
-                                                    const std::vector<glm::dmat4>& globals, const std::string& where) {
+namespace {
+
+// The skin's joints: each one's motion (file coordinates) and inverse bind matrix.
+core::Status readJoints(const tinygltf::Model& model, int skinIndex, const AnimatedNodes& moving, double t,
+                        MeshDeformation& out, const std::string& where) {
     const tinygltf::Skin& skin = model.skins[size_t(skinIndex)];
     const std::string what = where + ": skin " + std::to_string(skinIndex);
     if (skin.joints.empty()) return core::makeError(what + " has no joints");
@@ -81,72 +77,41 @@ core::Result<std::vector<glm::dmat4>> jointMatrices(const tinygltf::Model& model
                                    std::to_string(skin.joints.size()) + ")");
         inverseBind = std::move(*reader);
     }
-    std::vector<glm::dmat4> out(skin.joints.size());
+    std::vector<int> parentOf(model.nodes.size(), -1);
+    for (size_t node = 0; node < model.nodes.size(); ++node)
+        for (int child : model.nodes[node].children)
+            if (child >= 0 && size_t(child) < model.nodes.size()) parentOf[size_t(child)] = int(node);
+    const std::vector<glm::dmat4> globals = nodeGlobalTransforms(model);
+    std::vector<int> path;
     for (size_t j = 0; j < skin.joints.size(); ++j) {
         const int joint = skin.joints[j];
-        if (joint < 0 || size_t(joint) >= globals.size())
+        if (joint < 0 || size_t(joint) >= model.nodes.size())
             return core::makeError(what + ": joint " + std::to_string(j) + " names node " + std::to_string(joint) +
                                    ", which is not a node");
         glm::dmat4 ibm(1.0);
         if (inverseBind)
             for (int c = 0; c < 16; ++c) ibm[c / 4][c % 4] = inverseBind->get(j, c); // column-major, as glTF
-        out[j] = globals[size_t(joint)] * ibm;
-        if (!core::isFinite(out[j]))
-            return core::makeError(what + ": joint " + std::to_string(j) + "'s matrix is not finite");
-    }
-    return out;
-}
-
-core::Status applyMorphTargets(const tinygltf::Model& model, const tinygltf::Primitive& prim,
-                               const std::vector<double>& weights, Mesh& mesh, const std::string& where) {
-    // Most primitives have no targets, or weights of 0: nothing to copy or allocate for them.
-    if (std::none_of(weights.begin(), weights.begin() + std::ptrdiff_t(std::min(weights.size(), prim.targets.size())),
-                     [](double w) { return w != 0.0; }))
-        return core::Ok{};
-    bool moved = false;
-    std::vector<glm::dvec3> normals(mesh.vertices.size());
-    for (size_t v = 0; v < mesh.vertices.size(); ++v) normals[v] = glm::dvec3(mesh.vertices[v].normal);
-    for (size_t t = 0; t < prim.targets.size() && t < weights.size(); ++t) {
-        const double weight = weights[t];
-        if (weight == 0.0) continue;
-        const std::string what = where + " target " + std::to_string(t);
-        if (!std::isfinite(weight)) return core::makeError(what + ": its weight is not finite");
-        for (const char* attribute : {"POSITION", "NORMAL"}) {
-            const auto a = prim.targets[t].find(attribute);
-            if (a == prim.targets[t].end()) continue;
-            auto reader = AccessorReader::open(model, a->second, what + " " + attribute);
-            if (!reader) return reader.errorInfo();
-            for (size_t v = 0; v < std::min(reader->count(), mesh.vertices.size()); ++v) {
-                const glm::dvec3 d = weight * glm::dvec3(reader->read(v));
-                if (attribute[0] == 'N') {
-                    normals[v] += d;
-                    continue;
-                }
-                const glm::dvec3 p = glm::dvec3(mesh.vertices[v].position) + d;
-                if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
-                    return core::makeError(what + ": vertex " + std::to_string(v) + " moves to a non-finite position");
-                mesh.vertices[v].position = glm::vec3(p);
-            }
-            moved = true;
+        // Root first down to the joint (checkNodeTrees: no cycles).
+        path.clear();
+        for (int node = joint; node >= 0; node = parentOf[size_t(node)]) path.push_back(node);
+        std::reverse(path.begin(), path.end());
+        std::optional<NodeMotion> motion = motionAlong(model, path, moving);
+        if (!motion) {
+            motion.emplace();
+            motion->chain.push_back({.fixed = globals[size_t(joint)]});
         }
+        if (!core::isFinite(motion->sceneFromObjectAt(t) * ibm))
+            return core::makeError(what + ": joint " + std::to_string(j) + "'s matrix is not finite");
+        out.joints.push_back(std::move(*motion));
+        out.inverseBind.push_back(ibm);
     }
-    if (!moved) return core::Ok{};
-    if (prim.attributes.count("NORMAL") == 0) {
-        computeNormals(mesh); // the faces' normals, from the moved positions
-    } else {
-        for (size_t v = 0; v < mesh.vertices.size(); ++v)
-            if (const double length = glm::length(normals[v]); length > 0.0 && std::isfinite(length))
-                mesh.vertices[v].normal = glm::vec3(normals[v] / length);
-    }
-    mesh.computeBounds();
     return core::Ok{};
 }
 
-core::Status applySkin(const tinygltf::Model& model, const tinygltf::Primitive& prim,
-                       const std::vector<glm::dmat4>& joints, Mesh& mesh, glm::dvec3& anchor,
-                       const std::string& where) {
-    std::vector<glm::dmat4> blend(mesh.vertices.size(), glm::dmat4(0.0));
-    std::vector<double> weightSum(mesh.vertices.size(), 0.0);
+// Every JOINTS_n / WEIGHTS_n set's influences, each vertex's weights divided by their sum.
+core::Status readInfluences(const tinygltf::Model& model, const tinygltf::Primitive& prim, size_t vertices,
+                            MeshDeformation& out, const std::string& where) {
+    std::vector<std::vector<JointWeight>> of(vertices);
     for (int set = 0;; ++set) {
         const auto j = prim.attributes.find("JOINTS_" + std::to_string(set));
         const auto w = prim.attributes.find("WEIGHTS_" + std::to_string(set));
@@ -158,56 +123,102 @@ core::Status applySkin(const tinygltf::Model& model, const tinygltf::Primitive& 
         if (!jointsOf) return jointsOf.errorInfo();
         auto weightsOf = AccessorReader::open(model, w->second, where + " WEIGHTS_" + std::to_string(set));
         if (!weightsOf) return weightsOf.errorInfo();
-        const size_t count = std::min({jointsOf->count(), weightsOf->count(), mesh.vertices.size()});
+        const size_t count = std::min({jointsOf->count(), weightsOf->count(), vertices});
         for (size_t i = 0; i < count; ++i)
             for (int k = 0; k < 4; ++k) {
                 const double weight = weightsOf->get(i, k);
                 if (!(weight > 0.0)) continue; // no influence (a NaN weight neither)
                 const double joint = jointsOf->get(i, k);
-                if (!(joint >= 0.0 && joint < double(joints.size()))) {
+                if (!(joint >= 0.0 && joint < double(out.joints.size()))) {
                     // As written: a float accessor may hold 1e26 or NaN, which no integer holds.
                     char named[32];
                     std::snprintf(named, sizeof named, "%.6g", joint);
                     return core::makeError(where + ": vertex " + std::to_string(i) + " names joint " + named +
-                                           " of a skin of " + std::to_string(joints.size()));
+                                           " of a skin of " + std::to_string(out.joints.size()));
                 }
-                blend[i] += weight * joints[size_t(joint)];
-                weightSum[i] += weight;
+                of[i].push_back({uint32_t(joint), weight});
             }
     }
-    // Each vertex's position under its pose (double until the anchor is known) and handedness:
-    // -1 where its blended joints mirror it.
-    std::vector<glm::dvec3> posed(mesh.vertices.size());
-    std::vector<int> handedness(mesh.vertices.size(), 1);
-    for (size_t i = 0; i < mesh.vertices.size(); ++i) {
-        Vertex& v = mesh.vertices[i];
-        posed[i] = glm::dvec3(v.position);
-        if (!(weightSum[i] > 0.0) || !std::isfinite(weightSum[i])) continue; // unweighted: as bound
-        const glm::dmat4 m = blend[i] / weightSum[i];
-        const glm::dvec3 p = glm::dvec3(m * glm::dvec4(posed[i], 1.0));
-        if (!core::isFinite(m) || !std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
-            return core::makeError(where + ": vertex " + std::to_string(i) + " is skinned to a non-finite position");
-        posed[i] = p;
-        const glm::dmat3 linear(m);
-        const double det = glm::determinant(linear);
-        if (det < 0.0) handedness[i] = -1;
-        if (std::abs(det) > 1e-12) {
-            const glm::dvec3 n = glm::inverseTranspose(linear) * glm::dvec3(v.normal);
-            if (glm::length(n) > 0.0) v.normal = glm::vec3(glm::normalize(n));
-        }
+    out.firstInfluence.assign(1, 0);
+    for (std::vector<JointWeight>& influences : of) {
+        double sum = 0.0;
+        for (const JointWeight& one : influences) sum += one.weight;
+        if (sum > 0.0 && std::isfinite(sum)) // else unweighted: as bound
+            for (JointWeight& one : influences) out.influences.push_back({one.joint, one.weight / sum});
+        out.firstInfluence.push_back(uint32_t(out.influences.size()));
     }
-    core::Aabb bounds;
-    for (const glm::dvec3& p : posed) bounds.extend(p);
-    anchor = anchorOf(bounds);
-    for (size_t i = 0; i < mesh.vertices.size(); ++i) mesh.vertices[i].position = glm::vec3(posed[i] - anchor);
+    return core::Ok{};
+}
+
+// The primitive's morph targets, each POSITION and NORMAL read whole.
+core::Status readTargets(const tinygltf::Model& model, const tinygltf::Primitive& prim, size_t vertices,
+                         MeshDeformation& out, const std::string& where) {
+    for (size_t t = 0; t < prim.targets.size(); ++t) {
+        MorphTarget target;
+        for (const char* attribute : {"POSITION", "NORMAL"}) {
+            const auto a = prim.targets[t].find(attribute);
+            if (a == prim.targets[t].end()) continue;
+            const std::string what = where + " target " + std::to_string(t);
+            auto reader = AccessorReader::open(model, a->second, what + " " + attribute);
+            if (!reader) return reader.errorInfo();
+            std::vector<glm::vec3>& moves = attribute[0] == 'N' ? target.normals : target.positions;
+            moves.resize(std::min(reader->count(), vertices));
+            for (size_t v = 0; v < moves.size(); ++v) moves[v] = glm::vec3(reader->read(v));
+        }
+        out.targets.push_back(std::move(target));
+    }
+    return core::Ok{};
+}
+
+} // namespace
+
+core::Result<MeshDeformation> readDeformation(const tinygltf::Model& model, const tinygltf::Primitive& prim,
+                                              const Mesh& mesh, const std::vector<double>& weights,
+                                              const std::vector<std::shared_ptr<const KeyframeChannel>>& weightKeys,
+                                              int skin, const AnimatedNodes& moving, double t,
+                                              const std::string& where) {
+    MeshDeformation d;
+    for (const Vertex& v : mesh.vertices) d.bindPositions.push_back(v.position), d.bindNormals.push_back(v.normal);
+    for (size_t k = 0; k < std::min(weights.size(), prim.targets.size()); ++k)
+        if (!std::isfinite(weights[k]))
+            return core::makeError(where + " target " + std::to_string(k) + ": its weight is not finite");
+    d.weights = weights;
+    d.weightKeys = weightKeys;
+    if (auto s = readTargets(model, prim, mesh.vertices.size(), d, where); !s) return s.errorInfo();
+    // Faces give the normals of a primitive without any, once its targets move it.
+    d.normalsFromFaces = prim.attributes.count("NORMAL") == 0 && !d.targets.empty();
+    if (skin >= 0) {
+        if (auto s = readJoints(model, skin, moving, t, d, where); !s) return s.errorInfo();
+        if (auto s = readInfluences(model, prim, mesh.vertices.size(), d, where); !s) return s.errorInfo();
+    }
+    std::vector<glm::dvec3> normals;
+    const std::vector<glm::dvec3> posed = d.posedPositions(t, normals);
+    for (size_t v = 0; v < posed.size(); ++v)
+        if (!core::isFinite(posed[v]))
+            return core::makeError(where + ": vertex " + std::to_string(v) + " is posed to a non-finite position");
+    return d;
+}
+
+void poseAtLoad(MeshDeformation& deformation, double t, Mesh& mesh, glm::dvec3& anchor) {
+    anchor = glm::dvec3(0.0);
+    std::vector<bool> mirrored;
+    std::vector<glm::dvec3> normals;
+    const std::vector<glm::dvec3> posed = deformation.posedPositions(t, normals, &mirrored);
+    if (deformation.skinned()) {
+        core::Aabb bounds;
+        for (const glm::dvec3& p : posed) bounds.extend(p);
+        anchor = anchorOf(bounds);
+    }
+    deformation.meshFromPosed = glm::translate(glm::dmat4(1.0), -anchor);
+    deformation.poseInto(mesh, t);
     // A pose that mirrors turns a triangle's winding as a mirrored node does (gltf_read.cpp), while
     // its normals, moved by the inverse transpose, keep pointing out: so a triangle whose corners
     // are mostly mirrored is reversed, and its front stays the side its normals face.
-    for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3)
-        if (handedness[mesh.indices[t]] + handedness[mesh.indices[t + 1]] + handedness[mesh.indices[t + 2]] < 0)
-            std::swap(mesh.indices[t + 1], mesh.indices[t + 2]);
-    mesh.computeBounds();
-    return core::Ok{};
+    for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
+        const auto flips = [&](uint32_t v) { return v < mirrored.size() && mirrored[v] ? 1 : 0; };
+        if (flips(mesh.indices[i]) + flips(mesh.indices[i + 1]) + flips(mesh.indices[i + 2]) >= 2)
+            std::swap(mesh.indices[i + 1], mesh.indices[i + 2]);
+    }
 }
 
 } // namespace shadowkit::scene::formats

@@ -1,13 +1,17 @@
-// glTF nodes and skinned meshes at the file's rest pose (gltf_pose.cpp). Internal to libs/scene.
+// glTF nodes, and the skins and morph targets that deform meshes (gltf_pose.cpp). Internal to libs/scene.
 #pragma once
 
 #include "shadowkit/core/result.h"
+#include "shadowkit/scene/deformation.h"
 #include "shadowkit/scene/scene.h"
+
+#include "gltf_animation.h"
 
 #include <tiny_gltf.h>
 
 #include <glm/glm.hpp>
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -21,23 +25,24 @@ glm::dmat4 nodeLocalMatrix(const tinygltf::Node& node);
 /// a file whose nodes form trees (checkNodeTrees).
 std::vector<glm::dmat4> nodeGlobalTransforms(const tinygltf::Model& model);
 
-/// Skin `skin`'s joint matrices: each joint's global transform times its inverse bind matrix.
-core::Result<std::vector<glm::dmat4>> jointMatrices(const tinygltf::Model& model, int skin,
-                                                    const std::vector<glm::dmat4>& globals, const std::string& where);
+/// What deforms a primitive's vertices (`mesh`, as convertPrimitive read them; its batch left
+/// for the caller), read and checked: its morph targets at `weights` (the node's, else the mesh's
+/// defaults), each moved by `weightKeys[k]` where given; and, for `skin` ≥ 0, the skin's joints,
+/// each placed over time by the chain of nodes above it (`moving`: the nodes animations move, as
+/// motionAlong takes them), with their inverse bind matrices and every JOINTS_n / WEIGHTS_n set.
+/// A joint's matrix that is not finite at `t` is refused, as a vertex posed there to a non-finite
+/// position.
+core::Result<MeshDeformation> readDeformation(const tinygltf::Model& model, const tinygltf::Primitive& prim,
+                                              const Mesh& mesh, const std::vector<double>& weights,
+                                              const std::vector<std::shared_ptr<const KeyframeChannel>>& weightKeys,
+                                              int skin, const AnimatedNodes& moving, double t,
+                                              const std::string& where);
 
-/// The primitive's morph targets (§3.7.2.2) at `weights` (the node's, else the mesh's defaults):
-/// p' = p + Σ w_t · POSITION_t, normals likewise and renormalised (recomputed from the faces for a
-/// primitive without normals); nothing where every weight is 0.
-core::Status applyMorphTargets(const tinygltf::Model& model, const tinygltf::Primitive& prim,
-                               const std::vector<double>& weights, Mesh& mesh, const std::string& where);
-
-/// The primitive's vertices (`mesh`, as convertPrimitive read them) moved by their joints:
-/// p' = Σ w_k · joint[j_k] · p over every JOINTS_n / WEIGHTS_n set, normals by the inverse
-/// transpose of the blend; a triangle whose corners are mostly mirrored by their blends
-/// (negative determinant) reversed, as a mirrored node's are; bounds recomputed. The posed
-/// positions are kept relative to `anchor`, which it sets: anchorOf() their box, subtracted in
-/// double (a skin posed far out keeps its precision); the mesh is to be placed there.
-core::Status applySkin(const tinygltf::Model& model, const tinygltf::Primitive& prim,
-                       const std::vector<glm::dmat4>& joints, Mesh& mesh, glm::dvec3& anchor, const std::string& where);
+/// Poses `mesh` as `deformation` stands at t, the first time (at load): a skinned mesh's positions
+/// kept relative to `anchor`, which it sets — anchorOf() their box, subtracted in double (a skin
+/// posed far out keeps its precision; the mesh is to be placed there, and deformation.meshFromPosed
+/// moves by it) —, and a triangle whose corners are mostly mirrored by their blends reversed, as a
+/// mirrored node's are.
+void poseAtLoad(MeshDeformation& deformation, double t, Mesh& mesh, glm::dvec3& anchor);
 
 } // namespace shadowkit::scene::formats

@@ -22,13 +22,14 @@
 //   - nodes' transforms composed in double, and the scene stood where float keeps its
 //     precision (near_origin.cpp): a model in survey metres keeps its millimetres;
 //   - nodes instancing their mesh (EXT_mesh_gpu_instancing, gltfpack -mi): one instance each;
-//   - morph targets at their weights, then skinned meshes posed by their joints (gltf_pose.cpp),
-//     both as the file's animations pose them at LoadOptions::poseSeconds (the rest pose where
-//     none moves them);
+//   - morph targets at their weights, then skinned meshes posed by their joints (gltf_pose.cpp,
+//     deformation.h), as the file's animations pose them at LoadOptions::poseSeconds (the rest
+//     pose where none moves them);
 //   - animations (§3.11, gltf_animation.cpp): an instance below a node that an animation's
-//     translation, rotation or scale moves is a Scene::tracks entry of a dynamic batch, its
-//     keys played by scene::animate; the scene as loaded stands at t = 0; a skin's joints and
-//     morph weights pose the file once, before anything reads its nodes;
+//     translation, rotation or scale moves (a skin's joint among them) is a Scene::tracks entry
+//     of a dynamic batch, and a mesh whose skin's joints or morph weights they move a
+//     Scene::deformations entry; scene::animate plays both; the scene as loaded stands at
+//     LoadOptions::poseSeconds;
 //   - meshopt-compressed buffer views (EXT_meshopt_compression, gltfpack -c) decoded before any
 //     accessor reads them (gltf_meshopt.cpp);
 //   - what cannot be read is named: glTF 1.0, Draco-compressed meshes, non-finite positions;
@@ -443,12 +444,12 @@ core::Result<Scene> loadGltf(const fs::path& file, double poseSeconds) {
     // A node with morph weights of its own gets batches of its own too (the last: its index, else -1).
     // An instance that an animation moves (its node or one above it) gets batches of its own, dynamic.
     std::map<std::tuple<int, size_t, bool, int, int, bool>, size_t> batchOf;
-    const FileAnimations animations = readAnimations(model, file.string(), poseSeconds, scene.warnings);
+    const FileAnimations animations = readAnimations(model, file.string(), scene.warnings);
     poseNodes(model, animations.posed, poseSeconds); // joints and weights, before anything reads the nodes
-    const AnimatedNodes& animated = animations.played;
-    std::vector<int> path;                           // the nodes from the root down to the one visited
-    std::vector<glm::dmat4> globals;                 // every node's, made when a skin first needs them
-    std::map<int, std::vector<glm::dmat4>> jointsOf; // each skin's joint matrices
+    // Every node an animation moves: a rigid instance below a skin's joint follows it too.
+    AnimatedNodes animated = animations.played;
+    animated.insert(animations.posed.joints.begin(), animations.posed.joints.end());
+    std::vector<int> path; // the nodes from the root down to the one visited
     std::optional<core::Error> failure;
     size_t instancesPlaced = 0; // by EXT_mesh_gpu_instancing
     // Each batch's placements in the file's coordinates, in double until placeNearOrigin; a
@@ -475,17 +476,11 @@ core::Result<Scene> loadGltf(const fs::path& file, double poseSeconds) {
             const tinygltf::Mesh& gltfMesh = model.meshes[size_t(node.mesh)];
             const std::string nodeName = file.string() + ": node " + std::to_string(nodeIndex) +
                                          (node.name.empty() ? "" : " '" + printable(node.name) + "'");
-            // A skinned mesh is placed by its joints alone: its node's transform is ignored (gltf_pose.cpp).
+            // A skinned mesh is placed by its joints alone: its node's transform is ignored (deformation.h).
             const int skin = node.skin >= 0 && size_t(node.skin) < model.skins.size() ? node.skin : -1;
-            if (skin >= 0 && !jointsOf.count(skin)) {
-                if (globals.empty()) globals = nodeGlobalTransforms(model);
-                auto joints = jointMatrices(model, skin, globals, file.string());
-                if (!joints) {
-                    failure = joints.errorInfo();
-                    return;
-                }
-                jointsOf.emplace(skin, std::move(*joints));
-            }
+            const auto weightKeys = animations.posed.weights.find(nodeIndex);
+            const bool deformedOverTime =
+                animations.posed.skins.count(skin) > 0 || weightKeys != animations.posed.weights.end();
             // A moving instance's placement is its motion at rest times what lies below its node
             // (a GPU-instancing transform): the motion replaces the first factor at every t.
             const std::optional<NodeMotion> motion = skin >= 0 ? std::nullopt : motionAlong(model, path, animated);
@@ -517,31 +512,36 @@ core::Result<Scene> loadGltf(const fs::path& file, double poseSeconds) {
                             batchOf.erase(it);
                             continue;
                         }
-                        if (auto morphed =
-                                applyMorphTargets(model, gltfMesh.primitives[p],
-                                                  node.weights.empty() ? gltfMesh.weights : node.weights, *mesh, where);
-                            !morphed) {
-                            failure = morphed.errorInfo();
-                            return;
-                        }
-                        if (skin >= 0) {
-                            glm::dvec3 anchor(0.0);
-                            if (auto posed =
-                                    applySkin(model, gltfMesh.primitives[p], jointsOf.at(skin), *mesh, anchor, where);
-                                !posed) {
-                                failure = posed.errorInfo();
+                        const std::vector<double>& weights = node.weights.empty() ? gltfMesh.weights : node.weights;
+                        const bool morphed =
+                            std::any_of(weights.begin(), weights.end(), [](double w) { return w != 0.0; });
+                        std::optional<MeshDeformation> deformation;
+                        if (skin >= 0 || morphed || deformedOverTime) {
+                            auto read = readDeformation(model, gltfMesh.primitives[p], *mesh, weights,
+                                                        weightKeys == animations.posed.weights.end()
+                                                            ? decltype(weightKeys->second){}
+                                                            : weightKeys->second,
+                                                        skin, animated, poseSeconds, where);
+                            if (!read) {
+                                failure = read.errorInfo();
                                 return;
                             }
-                            skinnedAt[it->second] = anchor;
+                            glm::dvec3 anchor(0.0);
+                            poseAtLoad(*read, poseSeconds, *mesh, anchor);
+                            if (skin >= 0) skinnedAt[it->second] = anchor;
+                            if (deformedOverTime) deformation = std::move(*read);
                         }
                         if (mirrored) // counter-clockwise again once the mirror has turned it
                             for (size_t t = 0; t + 2 < mesh->indices.size(); t += 3)
                                 std::swap(mesh->indices[t + 1], mesh->indices[t + 2]);
                         mesh->name = gltfMesh.name;
-                        if (animations.posed.skins.count(skin) || animations.posed.weights.count(nodeIndex))
-                            ++scene.posedMeshes;
                         scene.meshes.push_back(std::move(*mesh));
-                        scene.batches.push_back({uint32_t(scene.meshes.size() - 1), {}, motion.has_value()});
+                        scene.batches.push_back(
+                            {uint32_t(scene.meshes.size() - 1), {}, motion.has_value() || deformation.has_value()});
+                        if (deformation) {
+                            deformation->batch = uint32_t(scene.batches.size() - 1);
+                            scene.deformations.push_back(std::move(*deformation));
+                        }
                         placements.emplace_back();
                     }
                     const auto skinned = skinnedAt.find(it->second);
@@ -567,7 +567,7 @@ core::Result<Scene> loadGltf(const fs::path& file, double poseSeconds) {
     if (failure) return *failure;
     placeNearOrigin(scene, placements);
     placeViewpoints(scene);
-    animate(scene, 0.0); // a moving instance stands where its keys put it at t = 0, as every frame of t = 0 sees it
+    animate(scene, poseSeconds); // a moving instance stands where its keys put it then, a deformed mesh as posed
     if (scene.triangleCount() == 0) return core::makeError(file.string() + ": glTF file holds no triangle meshes");
     return scene;
 }

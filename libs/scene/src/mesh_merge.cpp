@@ -125,6 +125,7 @@ void mergeSmallMeshes(Scene& scene) {
     scene.meshes = std::move(kept.meshes);
     scene.batches = std::move(kept.batches);
     for (Track& track : scene.tracks) track.batch = keptAt[track.batch]; // a file's animated instances
+    for (MeshDeformation& deformation : scene.deformations) deformation.batch = keptAt[deformation.batch];
 }
 
 } // namespace shadowkit::scene::formats

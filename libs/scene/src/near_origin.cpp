@@ -55,6 +55,11 @@ void placeNearOrigin(Scene& scene, const std::vector<std::vector<glm::dmat4>>& f
         out.reserve(placements[b].size());
         for (const glm::dmat4& fromObject : placements[b]) out.emplace_back(sceneFromFile * fromObject);
     }
+    // A deformed mesh is posed where its vertices were: moved as they were.
+    for (MeshDeformation& deformation : scene.deformations)
+        deformation.meshFromPosed =
+            glm::translate(glm::dmat4(1.0), -meshAnchor[scene.batches[deformation.batch].mesh]) *
+            deformation.meshFromPosed;
     // A keyframed instance is placed by its motion: the same origin before it, the same move of
     // its mesh after it.
     for (Track& track : scene.tracks)

@@ -65,6 +65,12 @@ size_t Scene::instanceCount() const {
     return n;
 }
 
+bool Scene::deforms(uint32_t mesh) const {
+    return std::any_of(deformations.begin(), deformations.end(), [&](const MeshDeformation& d) {
+        return d.batch < batches.size() && batches[d.batch].mesh == mesh;
+    });
+}
+
 double Scene::groundHeightAt(double x, double z) const {
     if (terrain) return terrain->heightAt(x, z);
     // Loaded scenes: the highest upward-facing surface straight below the sky at (x, z),

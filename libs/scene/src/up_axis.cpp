@@ -38,6 +38,9 @@ void turnZUpToYUp(Scene& scene) {
         c.localEye = dturn * c.localEye, c.localForward = dturn * c.localForward, c.localUp = dturn * c.localUp;
     for (FileLight& l : scene.lights)
         l.localPosition = dturn * l.localPosition, l.localDirection = dturn * l.localDirection;
+    // A deformed mesh's poses turn as its vertices did: R · p.
+    for (MeshDeformation& deformation : scene.deformations)
+        deformation.meshFromPosed = glm::dmat4(kYUpFromZUp) * deformation.meshFromPosed;
     // A keyframed instance's motion turns as its placement does: R · (S · F(t) · N) · Rᵀ.
     for (Track& track : scene.tracks)
         if (track.keyframed) {

@@ -1,6 +1,9 @@
-// A glTF's skins and morph weights stand as its animations pose them at LoadOptions::poseSeconds
-// (gltf_animation.cpp's poseNodes, then gltf_pose.cpp). Every expected position is worked by
-// hand from the file's keys, not read back from the loader.
+// A glTF's skins and morph weights stand as its animations pose them: loaded at
+// LoadOptions::poseSeconds (gltf_animation.cpp's poseNodes, then gltf_pose.cpp), and played to any
+// time after by scene::animate (deformation.h). Every expected position is worked by hand from
+// the file's keys, not read back from the loader; each is checked both ways, so a frame played
+// from another pose must equal a fresh load.
+#include "shadowkit/scene/animation.h"
 #include "shadowkit/scene/scene_io.h"
 
 #include "gltf_test_files.h"
@@ -126,33 +129,52 @@ glm::dvec3 byJointB(const glm::dvec3& p, double degrees) {
            glm::dvec3(p.x * std::cos(a) + p.z * std::sin(a), p.y, p.z * std::cos(a) - p.x * std::sin(a));
 }
 
+// The scene as it stands at t, two ways: loaded posed at t, and loaded at 0 then played to t.
+// `moved` receives what animate() says it moved or reshaped.
+std::vector<Scene> bothWays(const std::string& name, const std::string& text, double t,
+                            std::vector<uint32_t>* moved = nullptr) {
+    std::vector<Scene> out;
+    auto loaded = scene::testing::loadWritten(name, text, {.poseSeconds = t});
+    EXPECT_TRUE(loaded) << loaded.error();
+    auto played = scene::testing::loadWritten(name, text, {.poseSeconds = 0.0});
+    EXPECT_TRUE(played) << played.error();
+    if (!loaded || !played) return out;
+    scene::animate(*played, t, moved);
+    out.push_back(std::move(*loaded));
+    out.push_back(std::move(*played));
+    return out;
+}
+
+const char* const kWay[2] = {"loaded posed", "played from t = 0"};
+
 } // namespace
 
 // The skin and the triangle hanging from its joint stand in the pose the animation gives at the
-// time asked — halfway, B turned 135° — and the animation loops over its second.
+// time asked — halfway, B turned 135° — and the animation loops over its second; played, the skin
+// is reshaped and the triangle moved, and animate() says so.
 TEST(GltfPosedAnimationTest, ASkinAndWhatHangsFromItsJointsStandInThePoseOfTheTimeAsked) {
     for (double t : {0.0, 0.5, 1.5, -0.5}) {
         const double turn = 90.0 + 90.0 * (t - std::floor(t));
-        auto s = scene::testing::loadWritten("sk_waving.gltf", wavingFile(), {.poseSeconds = t});
-        ASSERT_TRUE(s) << s.error();
-        ASSERT_EQ(s->batches.size(), 2u) << "the skin, and the triangle below joint B";
-        EXPECT_TRUE(s->tracks.empty()) << "a joint's keys pose the file, they are not played";
-        EXPECT_EQ(s->posedMeshes, 1u) << "the skin; the triangle below the joint is not deformed";
-        // Corner 2 is half A's (0, 0, −1) + (0, 0, 5), half B's (0, 0, −1 − 2) turned.
-        const glm::dvec3 half = 0.5 * glm::dvec3(0, 0, 4) + 0.5 * byJointB({0, 0, -3}, turn);
-        const std::string at = "t = " + std::to_string(t);
-        expectCorners(cornersOf(*s, 0), {{1, 0, 5}, byJointB({0, 0, -2}, turn), half}, "the skin at " + at);
-        expectCorners(cornersOf(*s, 1),
-                      {byJointB({1, 0, 0}, turn), byJointB({0, 0, 0}, turn), byJointB({0, 0, -1}, turn)},
-                      "the triangle below joint B at " + at);
-        ASSERT_EQ(s->warnings.size(), 1u);
-        char seconds[32];
-        std::snprintf(seconds, sizeof seconds, "%g", t);
-        EXPECT_NE(s->warnings[0].find("animation 0 'Wave': 1 channel(s) moving a skin's joints or morph weights pose "
-                                      "the file as at t = " +
-                                      std::string(seconds) + " s, not played"),
-                  std::string::npos)
-            << s->warnings[0];
+        std::vector<uint32_t> moved;
+        const std::vector<Scene> scenes = bothWays("sk_waving.gltf", wavingFile(), t, &moved);
+        ASSERT_EQ(scenes.size(), 2u);
+        for (int way = 0; way < 2; ++way) {
+            const Scene& s = scenes[size_t(way)];
+            ASSERT_EQ(s.batches.size(), 2u) << "the skin, and the triangle below joint B";
+            ASSERT_EQ(s.deformations.size(), 1u) << "the skin; the triangle below the joint is moved, not deformed";
+            EXPECT_EQ(s.deformations[0].batch, 0u);
+            ASSERT_EQ(s.tracks.size(), 1u) << "the triangle below joint B follows it";
+            EXPECT_TRUE(s.batches[0].dynamic && s.batches[1].dynamic);
+            // Corner 2 is half A's (0, 0, −1) + (0, 0, 5), half B's (0, 0, −1 − 2) turned.
+            const glm::dvec3 half = 0.5 * glm::dvec3(0, 0, 4) + 0.5 * byJointB({0, 0, -3}, turn);
+            const std::string at = std::string(kWay[way]) + " at t = " + std::to_string(t);
+            expectCorners(cornersOf(s, 0), {{1, 0, 5}, byJointB({0, 0, -2}, turn), half}, "the skin " + at);
+            expectCorners(cornersOf(s, 1),
+                          {byJointB({1, 0, 0}, turn), byJointB({0, 0, 0}, turn), byJointB({0, 0, -1}, turn)},
+                          "the triangle below joint B " + at);
+            EXPECT_TRUE(s.warnings.empty()) << s.warnings[0];
+        }
+        EXPECT_EQ(moved, (std::vector<uint32_t>{1, 0})) << "the triangle placed, then the skin reshaped";
     }
 }
 
@@ -161,61 +183,67 @@ TEST(GltfPosedAnimationTest, ASkinAndWhatHangsFromItsJointsStandInThePoseOfTheTi
 TEST(GltfPosedAnimationTest, MorphWeightsArePosedAsTheirKeysInterpolate) {
     for (const std::string interpolation : {"LINEAR", "STEP", "CUBICSPLINE"})
         for (double t : {0.0, 0.5, 1.0, 3.0}) {
-            auto s = scene::testing::loadWritten("sk_rising.gltf", risingFile(interpolation), {.poseSeconds = t});
-            ASSERT_TRUE(s) << s.error();
-            EXPECT_EQ(s->posedMeshes, 1u);
+            const std::vector<Scene> scenes = bothWays("sk_rising.gltf", risingFile(interpolation), t);
+            ASSERT_EQ(scenes.size(), 2u);
             const double u = std::fmod(t, 2.0) / 2.0; // the loop is the last key's 2 s
             const double weight = interpolation == "LINEAR" ? u
                                   : interpolation == "STEP" ? 0.0
                                                             : 3 * u * u - 2 * u * u * u;
             const double y = 2.0 * weight;
-            expectCorners(cornersOf(*s, 0), {{0, y, 0}, {1, y, 0}, {0, y, -1}},
-                          interpolation + " at t = " + std::to_string(t));
+            for (int way = 0; way < 2; ++way) {
+                EXPECT_EQ(scenes[size_t(way)].deformations.size(), 1u);
+                expectCorners(cornersOf(scenes[size_t(way)], 0), {{0, y, 0}, {1, y, 0}, {0, y, -1}},
+                              interpolation + " " + kWay[way] + " at t = " + std::to_string(t));
+            }
         }
 }
 
 // A weights channel keyed for more targets than the mesh has cannot pose it: the scene loads at
-// rest with one line saying so.
+// rest with one line saying so, and stays there when played.
 TEST(GltfPosedAnimationTest, AWeightsChannelOfTheWrongLengthLeavesTheMeshAtRest) {
     std::string text = risingFile("LINEAR");
     const std::string one = R"("targets":[{"POSITION":1}]}],"weights":[0])";
     const size_t at = text.find(one);
     ASSERT_NE(at, std::string::npos);
     text.replace(at, one.size(), R"("targets":[{"POSITION":1},{"POSITION":1}]}],"weights":[0,0])");
-    auto s = scene::testing::loadWritten("sk_rising_two.gltf", text, {.poseSeconds = 1.0});
-    ASSERT_TRUE(s) << s.error();
-    expectCorners(cornersOf(*s, 0), {{0, 0, 0}, {1, 0, 0}, {0, 0, -1}}, "at rest");
-    EXPECT_EQ(s->posedMeshes, 0u);
-    ASSERT_EQ(s->warnings.size(), 1u);
-    EXPECT_NE(
-        s->warnings[0].find("animation 0 'Rise': channel 0 (sampler 0): 2 values for 2 keys of 2 morph target(s); "
-                            "left at rest"),
-        std::string::npos)
-        << s->warnings[0];
+    const std::vector<Scene> scenes = bothWays("sk_rising_two.gltf", text, 1.0);
+    ASSERT_EQ(scenes.size(), 2u);
+    for (int way = 0; way < 2; ++way) {
+        const Scene& s = scenes[size_t(way)];
+        expectCorners(cornersOf(s, 0), {{0, 0, 0}, {1, 0, 0}, {0, 0, -1}}, std::string("at rest, ") + kWay[way]);
+        EXPECT_TRUE(s.deformations.empty());
+        ASSERT_EQ(s.warnings.size(), 1u);
+        EXPECT_NE(
+            s.warnings[0].find("animation 0 'Rise': channel 0 (sampler 0): 2 values for 2 keys of 2 morph target(s); "
+                               "left at rest"),
+            std::string::npos)
+            << s.warnings[0];
+    }
 }
 
-// A node above the joints (an armature object) moved by the animation moves the skin too: its
-// keys pose the file with the joints' rather than play (a played armature would leave the skin
-// behind), and the triangle below joint B goes with it.
+// A node above the joints (an armature object) moved by the animation moves the skin too: the
+// skin follows its joints, which follow the armature (a played armature that left the skin
+// behind would move it twice, or not at all), and the triangle below joint B goes with it.
 TEST(GltfPosedAnimationTest, AMovingNodeAboveTheJointsPosesTheSkinWithThem) {
     for (double t : {0.0, 0.5}) {
-        auto s = scene::testing::loadWritten("sk_waving_armature.gltf", wavingFile(true), {.poseSeconds = t});
-        ASSERT_TRUE(s) << s.error();
-        EXPECT_TRUE(s->tracks.empty()) << "the armature's keys pose the file, they are not played";
-        EXPECT_EQ(s->posedMeshes, 1u);
-        const double turn = 90.0 + 90.0 * t;
-        const glm::dvec3 moved(0, 0, 10.0 * t);
-        const glm::dvec3 half = 0.5 * glm::dvec3(0, 0, 4) + 0.5 * byJointB({0, 0, -3}, turn);
-        const std::string at = "t = " + std::to_string(t);
-        expectCorners(cornersOf(*s, 0), {moved + glm::dvec3(1, 0, 5), moved + byJointB({0, 0, -2}, turn), moved + half},
-                      "the skin at " + at);
-        expectCorners(
-            cornersOf(*s, 1),
-            {moved + byJointB({1, 0, 0}, turn), moved + byJointB({0, 0, 0}, turn), moved + byJointB({0, 0, -1}, turn)},
-            "the triangle below joint B at " + at);
-        ASSERT_EQ(s->warnings.size(), 1u);
-        EXPECT_NE(s->warnings[0].find("'Wave': 2 channel(s) moving a skin's joints or morph weights pose the file"),
-                  std::string::npos)
-            << s->warnings[0];
+        const std::vector<Scene> scenes = bothWays("sk_waving_armature.gltf", wavingFile(true), t);
+        ASSERT_EQ(scenes.size(), 2u);
+        for (int way = 0; way < 2; ++way) {
+            const Scene& s = scenes[size_t(way)];
+            EXPECT_EQ(s.deformations.size(), 1u);
+            EXPECT_EQ(s.tracks.size(), 1u) << "the triangle below joint B";
+            const double turn = 90.0 + 90.0 * t;
+            const glm::dvec3 moved(0, 0, 10.0 * t);
+            const glm::dvec3 half = 0.5 * glm::dvec3(0, 0, 4) + 0.5 * byJointB({0, 0, -3}, turn);
+            const std::string at = std::string(kWay[way]) + " at t = " + std::to_string(t);
+            expectCorners(cornersOf(s, 0),
+                          {moved + glm::dvec3(1, 0, 5), moved + byJointB({0, 0, -2}, turn), moved + half},
+                          "the skin " + at);
+            expectCorners(cornersOf(s, 1),
+                          {moved + byJointB({1, 0, 0}, turn), moved + byJointB({0, 0, 0}, turn),
+                           moved + byJointB({0, 0, -1}, turn)},
+                          "the triangle below joint B " + at);
+            EXPECT_TRUE(s.warnings.empty()) << s.warnings[0];
+        }
     }
 }

@@ -49,7 +49,8 @@ public:
     void occluded(std::span<const Ray> rays, std::span<uint8_t> occluded) const;
 
     // Instances that moved (scene::animate's list of global indices) take their new
-    // transforms from `scene`, the scene this was built from; the top-level BVH is rebuilt.
+    // transforms from `scene`, the scene this was built from, and a mesh the scene deforms
+    // (Scene::deformations) its posed vertices, its own BVH rebuilt; then the top-level BVH.
     // Fails, changing nothing, for an index out of range.
     core::Status moveInstances(const scene::Scene& scene, std::span<const uint32_t> moved);
 

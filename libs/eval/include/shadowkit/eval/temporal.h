@@ -8,6 +8,7 @@
 #include "shadowkit/eval/truth.h"
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace shadowkit::eval {
@@ -52,11 +53,16 @@ struct TemporalOptions {
 
 // A pixel of `current` is compared when it is evaluated, its truth hit point was in view in
 // `previous` (reprojected, one of the four pixels around it shows the same surface at a
-// consistent depth) and the rendering with the previous casters shows the same surface (no
-// mover passed in front). Its rendered state "changed" when the previous maps' term there
-// is on the other side of the threshold; the truth likewise. Flicker: rendered changed,
-// truth did not. Identical frames give zero; so does a camera moving over still shadows.
+// consistent depth), the rendering with the previous casters shows the same surface (no
+// mover passed in front), and its surface is not among `reshaped` (global instance indices
+// whose mesh changed shape between the frames, Scene::deformations: a point of this frame's
+// surface lies off the previous one, inside or outside it, so "the same world point" names
+// no point of that surface then — under its previous shape the truth there shades it by its
+// own skin). Its rendered state "changed" when the previous maps' term there is on the other
+// side of the threshold; the truth likewise. Flicker: rendered changed, truth did not.
+// Identical frames give zero; so does a camera moving over still shadows.
 TemporalFigures compareFrames(const ShadowStates& previous, const ShadowStates& current,
-                              const PreviousShadowsHere& before, const TemporalOptions& options = {});
+                              const PreviousShadowsHere& before, const TemporalOptions& options = {},
+                              std::span<const uint32_t> reshaped = {});
 
 } // namespace shadowkit::eval

@@ -108,8 +108,9 @@ public:
 
     // Instances that moved since the last frame (scene::animate's list of global indices),
     // all of dynamic batches of the scene the renderer was created with: their transforms
-    // go to the GPU, their boxes into the instance hierarchy (refitted to the root). Fails,
-    // changing nothing, for an index out of range or of a static batch.
+    // go to the GPU, their boxes into the instance hierarchy (refitted to the root), and the
+    // vertices of a mesh the scene deforms (Scene::deformations) with them. Fails, changing
+    // nothing, for an index out of range or of a static batch.
     core::Status moveInstances(const scene::Scene& scene, std::span<const uint32_t> moved);
 
     // Technique virtual: the pages of the last frame drawn (render or renderEvalBuffers); nullopt

@@ -17,8 +17,9 @@ namespace shadowkit::scene {
 // turned about +Y by the angle travelled since t = 0 (so t = 0 is the unturned placement).
 glm::mat4 trackTransform(const Track& track, const Scene& scene, double t);
 
-// Places every tracked instance at time t. `moved`, when given, receives the global instance
-// index (Scene::globalIndex) of each instance it placed.
+// Places every tracked instance at time t and poses every deformed mesh there
+// (Scene::deformations). `moved`, when given, receives the global instance index
+// (Scene::globalIndex) of each instance it placed or reshaped.
 void animate(Scene& scene, double t, std::vector<uint32_t>* moved = nullptr);
 
 } // namespace shadowkit::scene

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "shadowkit/core/aabb.h"
+#include "shadowkit/scene/deformation.h"
 #include "shadowkit/scene/heightfield.h"
 #include "shadowkit/scene/keyframes.h"
 #include "shadowkit/scene/material.h"
@@ -111,9 +112,9 @@ struct Scene {
     std::vector<MeshBatch> batches;
     std::optional<Heightfield> terrain; // set for procedural terrain: ground height lookups
     std::vector<Track> tracks;          // animated instances (a batch's `dynamic` instances)
-    // Meshes a file's animations deform (skins, morph weights), posed once at load
-    // (LoadOptions::poseSeconds) and fixed after: drawn, measured and written in that pose.
-    size_t posedMeshes = 0;
+    // Meshes a file's animations deform (skins, morph weights), each the mesh of a dynamic batch:
+    // posed at LoadOptions::poseSeconds when loaded, and by animate() at every t after.
+    std::vector<MeshDeformation> deformations;
     std::vector<Material> materials; // what Mesh::material names (material.h)
     std::vector<Texture> textures;   // what Material::baseColorTexture names
     // What a loader could not use and did without, one line each (an undecodable texture on an
@@ -129,6 +130,11 @@ struct Scene {
         return mesh.material >= 0 && size_t(mesh.material) < materials.size() ? &materials[size_t(mesh.material)]
                                                                               : nullptr;
     }
+
+    // Whether anything moves or changes shape over time (tracks or deformations).
+    bool animated() const { return !tracks.empty() || !deformations.empty(); }
+    // Whether animate() reshapes meshes[mesh] (a deformation's batch draws it).
+    bool deforms(uint32_t mesh) const;
 
     // Bounds of every instance (empty box for an empty scene): in the world, and in the scene's own coordinates.
     core::Aabb wsBounds() const;
