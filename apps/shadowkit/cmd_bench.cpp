@@ -13,6 +13,7 @@
 #include "shadowkit/gl/read_backs.h"
 #include "shadowkit/gl/renderer.h"
 #include "shadowkit/measure/frame_costs.h"
+#include "shadowkit/scene/animation.h"
 #include "shadowkit/scene/forest.h"
 
 #include <fmt/format.h>
@@ -146,11 +147,13 @@ void printPassLines(const BenchArgs& args, gl::Culling culling, const measure::F
                    "passed its depth test; over the camera's depth pre-pass each covered pixel once, else every "
                    "fragment nearer than those drawn before it){}\n",
                    "", "", "", double(main.samplesPassed) / pixels, main.samplesPassed, shadedSaid(main));
-    const measure::Spread frameCpu = costs.frameCpu();
+    const measure::Spread frameCpu = costs.frameCpu(), animate = costs.animate();
     fmt::print("{:>7} {:>7} {:<14} cpu     the frame's CPU side ms med {:.3f} max {:.3f} (the frames after the "
-               "first: pre-passes, set-up, culling, levels and lists, every GL call; on a software rasteriser the "
-               "drawing too); GPU ms over the {} of {} frames whose times came back\n",
-               "", "", "", frameCpu.median, frameCpu.max, costs.framesTimed(), costs.frames());
+               "first: movers placed and meshes posed, pre-passes, set-up, culling, levels and lists, every GL call; "
+               "on a software rasteriser the drawing too), of which animation med {:.3f} max {:.3f}; GPU ms over the "
+               "{} of {} frames whose times came back\n",
+               "", "", "", frameCpu.median, frameCpu.max, animate.median, animate.max, costs.framesTimed(),
+               costs.frames());
     const measure::Spread readBacks = costs.readBacks();
     fmt::print("{:>7} {:>7} {:<14} sync    {:.0f} synchronisations per frame (median; max {:.0f}; the frames after "
                "the first): GPU-to-CPU data reads and query waits, each a stall on a GPU (CHC++'s are counted "
@@ -282,7 +285,7 @@ eval::HtmlTable reportTable(const BenchArgs& args, const std::string& machine, c
 
 // One view of one forest, or --path's frames over it: its frames drawn and their costs printed;
 // its JSON row.
-core::Result<nlohmann::json> benchView(const BenchArgs& args, const BenchRow& row, const scene::Scene& forest,
+core::Result<nlohmann::json> benchView(const BenchArgs& args, const BenchRow& row, scene::Scene& forest,
                                        const Timeline& timeline, gl::Renderer& renderer, frame::FrameDriver& driver,
                                        eval::HtmlTable& table, const std::optional<gl::DepthLimits>& limits) {
     ViewOptions viewOptions = args.view;
@@ -296,16 +299,26 @@ core::Result<nlohmann::json> benchView(const BenchArgs& args, const BenchRow& ro
     scene::ResolvedView view = *still;
     measure::FrameCosts costs;
     driver.reset(); // --stabilize with held lattices: kept over the view's frames
+    std::vector<uint32_t> moved;
     for (int frame = 0; frame < frames; ++frame) {
-        if (timeline.path) {
-            auto moved = timeline.viewAt(*still, forest, timeline.frames[size_t(frame)].time, !args.view.size.empty());
-            if (!moved) return moved.errorInfo();
-            view = std::move(moved).value();
-        }
         const gl::Traffic before = gl::trafficSoFar();
+        // Along a path everything moves as the path's time says, the movers and deformed meshes
+        // too: a scene held still would flatter every cache (a virtual page under a mover).
+        double animateMs = 0.0;
+        if (timeline.path) {
+            const double t = timeline.frames[size_t(frame)].time;
+            const auto start = std::chrono::steady_clock::now();
+            moved.clear();
+            scene::animate(forest, t, &moved);
+            if (auto s = renderer.moveInstances(forest, moved); !s) return s.errorInfo();
+            animateMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+            auto placed = timeline.viewAt(*still, forest, t, !args.view.size.empty());
+            if (!placed) return placed.errorInfo();
+            view = std::move(placed).value();
+        }
         auto drawn = driver.draw(renderer, view);
         if (!drawn) return withFlagName(drawn.errorInfo());
-        costs.add(*drawn, gl::trafficSoFar() - before);
+        costs.add(*drawn, gl::trafficSoFar() - before, animateMs);
     }
     costs.addLate(renderer.finishGpuFigures()); // the last frames' figures, after the view's frames
     printRows(row, costs, table);
@@ -473,7 +486,7 @@ int runBench(const BenchArgs& args) {
         auto built = k == 0 && firstForest ? core::Result<std::pair<scene::Scene, BenchRow>>(std::move(*firstForest))
                                            : buildScene(args, (*counts)[k]);
         if (!built) return fail(built.errorInfo());
-        const scene::Scene& forest = built->first;
+        scene::Scene& forest = built->first;
         const BenchRow& row = built->second;
         auto renderer = gl::Renderer::create(forest);
         if (!renderer) return fail(renderer.errorInfo());

@@ -25,7 +25,7 @@ Spread spreadOf(std::vector<double> v) {
 
 nlohmann::json toJson(const Spread& s) { return {{"min", s.min}, {"median", s.median}, {"max", s.max}}; }
 
-void FrameCosts::add(const frame::DrawnFrame& drawn, const gl::Traffic& traffic) {
+void FrameCosts::add(const frame::DrawnFrame& drawn, const gl::Traffic& traffic, double animateMilliseconds) {
     const gl::FrameStats& stats = drawn.stats;
     m_readBacks.push_back(double(traffic.readBacks));
     m_bytesUploaded.push_back(double(traffic.bytesUploaded));
@@ -33,7 +33,9 @@ void FrameCosts::add(const frame::DrawnFrame& drawn, const gl::Traffic& traffic)
     m_dispatches.push_back(double(traffic.dispatches));
     m_workGroups.push_back(double(traffic.workGroups));
     m_setup.push_back(drawn.frame.setupMilliseconds);
-    m_frameCpu.push_back(drawn.frame.prePasses.milliseconds + drawn.frame.setupMilliseconds + drawn.milliseconds);
+    m_animate.push_back(animateMilliseconds);
+    m_frameCpu.push_back(animateMilliseconds + drawn.frame.prePasses.milliseconds + drawn.frame.setupMilliseconds +
+                         drawn.milliseconds);
     m_cull.push_back(stats.cullMilliseconds);
     m_cullGl.push_back(stats.cullGlMilliseconds);
     m_cullOwn.push_back(stats.cullOwnCpuMilliseconds);
@@ -99,6 +101,7 @@ FrameCosts::Occlusion FrameCosts::occlusion() const {
 
 nlohmann::json FrameCosts::json() const {
     nlohmann::json j = {{"frame_cpu_ms", toJson(frameCpu())},
+                        {"animate_ms", toJson(animate())},
                         {"frames_timed", framesTimed()},
                         {"setup_first_ms", setupFirst()},
                         {"setup_ms", toJson(setupRest())},

@@ -29,7 +29,10 @@ public:
     // bytes it uploaded and read back.
     // A frame drawn with late figures (gl::Renderer::readGpuFiguresLate) has its GPU times and
     // GPU-culled counts filled when they come back, with a later frame or from addLate().
-    void add(const frame::DrawnFrame& drawn, const gl::Traffic& traffic = {});
+    // `animateMilliseconds`: what placing the frame's movers and posing its deformed meshes cost
+    // before it was drawn (scene::animate and Renderer::moveInstances: uploads and refits), part
+    // of the frame's CPU side.
+    void add(const frame::DrawnFrame& drawn, const gl::Traffic& traffic = {}, double animateMilliseconds = 0.0);
     // Figures read late: each into its frame, when that frame is one of this view's; a frame
     // whose figures never came (the GPU too far behind) is left out of the GPU spreads.
     void addLate(std::span<const gl::GpuFigures> figures);
@@ -54,6 +57,7 @@ public:
     Spread localGpu() const { return spreadOf(m_localGpu); }   // the local lights' maps, GPU ms
     Spread prepass() const { return spreadOf(m_prepass); }     // the camera's culling pass, CPU ms
     Spread masks() const { return spreadOf(m_masks); }         // the receiver masks, CPU ms
+    Spread animate() const { return spreadOf(m_animate); }     // movers placed, meshes posed, uploaded: CPU ms
     Spread readBacks() const;                                  // per steady frame (after the first)
     Spread bytesUploaded() const;                              // per steady frame
     Spread bytesReadBack() const;                              // per steady frame
@@ -66,8 +70,9 @@ public:
     Spread requestsAge() const;
     Spread tableBytes() const;
     Spread pagesCulledOnGpu() const; // of pagesRendered, culled by the GPU-driven path's compute passes
-    // The whole CPU side of a steady frame (after the first), in ms: its pre-passes (a measured
-    // visible depth, auto's receivers) and set-up, then
+    // The whole CPU side of a steady frame (after the first), in ms: its animation (movers placed,
+    // deformed meshes posed, both uploaded and refitted), its pre-passes (a measured visible
+    // depth, auto's receivers) and set-up, then
     // Renderer::render's wall-clock — culling, levels and lists, uniforms and every GL call made.
     // On a GPU that is what the application's thread pays a frame (nothing in it waits for the
     // GPU once figures are read late); on a software rasteriser it includes the drawing itself.
@@ -78,8 +83,9 @@ public:
     };
     Occlusion occlusion() const;
 
-    // The cost fields of a bench row: frame_cpu_ms, frames_timed, setup_first_ms, setup_ms, cull_ms, cull_own_ms,
-    // cull_gl_ms, list_ms, read_backs, bytes_uploaded, bytes_read_back, dispatches, work_groups, shadow, local and main
+    // The cost fields of a bench row: frame_cpu_ms, animate_ms, frames_timed, setup_first_ms, setup_ms, cull_ms,
+    // cull_own_ms, cull_gl_ms, list_ms, read_backs, bytes_uploaded, bytes_read_back, dispatches, work_groups, shadow,
+    // local and main
     // ({instances, triangles, draw_calls, gpu_ms}), receiver_mask_ms, occlusion ({nodes_visited, queries,
     // nodes_queried, multi_query_failures, waits, prepass_ms}), and with virtual maps `virtual` ({pages_rendered,
     // requests_age, table_bytes}).
@@ -100,7 +106,7 @@ private:
     std::vector<double> steadyFrameCpu() const;
 
     std::vector<double> m_frameCpu, m_setup, m_cull, m_cullOwn, m_cullGl, m_lists, m_shadowGpu, m_mainGpu, m_localGpu,
-        m_prepass, m_masks;
+        m_prepass, m_masks, m_animate;
     std::vector<double> m_readBacks, m_bytesUploaded, m_bytesReadBack, m_dispatches, m_workGroups;
     std::vector<int64_t> m_frameNumbers; // gl::FrameStats::frame of each
     std::vector<double> m_nodesVisited, m_queries, m_nodesQueried, m_multiQueryFailures, m_waits;
