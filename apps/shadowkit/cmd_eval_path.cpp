@@ -153,6 +153,15 @@ int runEvalPath(const EvalPathArgs& args) {
             eval::nothingComparedAlongWarning(timeline->path->name, size_t(none), report.rows().size());
         !warning.empty())
         warn(warning);
+    const auto followers =
+        std::ranges::count_if(report.rows(), [](const measure::PathRow& r) { return r.temporal.has_value(); });
+    const auto uncompared = std::ranges::count_if(report.rows(), [](const measure::PathRow& r) {
+        return r.temporal && r.temporal->comparedPx == 0 && r.figures.validPx > 0;
+    });
+    if (const std::string warning =
+            eval::nothingComparedInTimeWarning(timeline->path->name, size_t(uncompared), size_t(followers));
+        !warning.empty())
+        warn(warning);
     if (!args.csv.empty())
         if (auto s = writeTextFile("--csv", args.csv, report.csv()); !s) return fail(s.errorInfo());
     if (!args.plot.empty())

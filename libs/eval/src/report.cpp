@@ -127,6 +127,14 @@ std::string nothingComparedAlongWarning(const std::string& path, size_t none, si
            "counts in the means";
 }
 
+std::string nothingComparedInTimeWarning(const std::string& path, size_t none, size_t frames) {
+    if (none == 0) return {};
+    return "--path " + path + ": " + std::to_string(none) + " of " + std::to_string(frames) +
+           " frames after the first compared no pixel with the frame before (none of their sunlit points was in "
+           "view there on a surface that kept its shape: a cut, or only skinned or morphed surfaces, whose own "
+           "pixels are not compared), and their flicker of 0 counts in the means";
+}
+
 std::string softFiguresLine(const SoftFigures& s) {
     // A width of 0 is a hard test or filter, which draws no penumbra at all: said in words, as
     // "×0.00" alone reads like a fault.

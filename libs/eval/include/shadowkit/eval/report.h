@@ -104,6 +104,11 @@ std::string nothingComparedWarning(const std::string& view, const Figures& figur
 /// forest sees nothing of a small loaded scene), and their 0.00 % count in the path's means;
 /// empty when every frame compared some.
 std::string nothingComparedAlongWarning(const std::string& path, size_t none, size_t frames);
+/// The same for flicker: `none` of the `frames` that follow another compared no pixel with the
+/// frame before although they scored some (a cut, or all they show is surfaces that changed
+/// their shape, which are not compared between frames: temporal.h), and their flicker of 0
+/// counts in the means; empty when every such frame compared some.
+std::string nothingComparedInTimeWarning(const std::string& path, size_t none, size_t frames);
 
 // Writes shadow_term, truth_lit, class, world_position, normal, truth_normal,
 // pixels_per_texel and surface_id as .npy files into `dir` (created if missing); with a soft
