@@ -102,15 +102,19 @@ core::Result<std::unique_ptr<RayScene>> RayScene::build(const scene::Scene& scen
     if (!impl.device) return core::makeError("ray tracer: Embree could not create a device (unsupported CPU?)");
     rtcSetDeviceErrorFunction(impl.device, onEmbreeError, &impl.lastError);
 
-    for (const scene::Mesh& mesh : scene.meshes) {
+    for (uint32_t m = 0; m < scene.meshes.size(); ++m) {
+        const scene::Mesh& mesh = scene.meshes[m];
         RTCScene meshScene = rtcNewScene(impl.device);
         impl.meshes.push_back(meshScene);
         impl.meshVertices.push_back(nullptr);
         // Spatial splits (Embree's high-quality build): a tree's leaf cards are long thin
         // quads that overlap, whose boxes an object split cannot separate. Built once per mesh,
         // shared by every instance; on the leafy forest they cut the soft truth's time by a
-        // tenth for no measurable build time.
-        rtcSetSceneBuildQuality(meshScene, RTC_BUILD_QUALITY_HIGH);
+        // tenth for no measurable build time. A mesh the scene deforms is built again in every
+        // frame that poses it (moveInstances): Embree's dynamic scene, its BVH refitted.
+        const bool deformed = scene.deforms(m);
+        rtcSetSceneBuildQuality(meshScene, deformed ? RTC_BUILD_QUALITY_LOW : RTC_BUILD_QUALITY_HIGH);
+        if (deformed) rtcSetSceneFlags(meshScene, RTC_SCENE_FLAG_DYNAMIC);
         if (mesh.indices.empty()) {
             rtcCommitScene(meshScene);
             continue;
@@ -127,6 +131,7 @@ core::Result<std::unique_ptr<RayScene>> RayScene::build(const scene::Scene& scen
         for (size_t i = 0; i < mesh.vertices.size(); ++i) std::memcpy(vertices + 3 * i, &mesh.vertices[i].position, 12);
         impl.meshVertices.back() = vertices;
         std::memcpy(indices, mesh.indices.data(), mesh.indices.size() / 3 * 3 * sizeof(uint32_t));
+        if (deformed) rtcSetGeometryBuildQuality(geom, RTC_BUILD_QUALITY_REFIT);
         if (const scene::Material* material = scene.materialOf(mesh); material && material->alphaTested()) {
             const int32_t t = material->baseColorTexture;
             auto surface = std::make_unique<AlphaSurface>(AlphaSurface{
