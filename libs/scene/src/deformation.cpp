@@ -6,8 +6,6 @@
 
 #include "scene_formats.h"
 
-#include <glm/gtc/matrix_inverse.hpp>
-
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -52,10 +50,15 @@ std::vector<glm::dvec3> MeshDeformation::posedPositions(double t, std::vector<gl
                 for (uint32_t i = firstInfluence[v]; i < firstInfluence[v + 1]; ++i)
                     blend += influences[i].weight * joint[influences[i].joint];
                 positions[v] = glm::dvec3(blend * glm::dvec4(positions[v], 1.0));
-                const glm::dmat3 linear(blend);
-                const double det = glm::determinant(linear);
+                // Normals by the inverse transpose, as its cofactor matrix: det(L) · L⁻ᵀ, whose
+                // columns are the cross products of L's (no division; the sign kept, the length
+                // normalised below).
+                const glm::dvec3 a(blend[0]), b(blend[1]), c(blend[2]);
+                const glm::dvec3 bc = glm::cross(b, c);
+                const double det = glm::dot(a, bc);
                 if (!flips.empty() && det < 0.0) flips[v] = 1;
-                if (std::abs(det) > 1e-12) normals[v] = glm::inverseTranspose(linear) * normals[v];
+                if (std::abs(det) > 1e-12)
+                    normals[v] = (det < 0.0 ? -1.0 : 1.0) * glm::dmat3(bc, glm::cross(c, a), glm::cross(a, b)) * normals[v];
             }
         });
         for (size_t v = 0; v < flips.size(); ++v)
