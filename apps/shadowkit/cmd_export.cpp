@@ -34,11 +34,11 @@ int runExport(const ExportArgs& args) {
                          "at t = 0 (a .glb keeps them)",
                          args.out, sceneData->tracks.size(), sceneData->tracks.size() == 1 ? "" : "s",
                          sceneData->tracks.size() == 1 ? "s" : ""));
-    if (const size_t deformed = sceneData->deformations.size(); deformed > 0) // written as posed, without keys
-        warn(fmt::format("--out {}: the {} mesh{} the file's animations deform {} written as posed at t = 0, without "
-                         "{} animation",
+    if (const size_t deformed = sceneData->deformations.size(); format == ".obj" && deformed > 0)
+        warn(fmt::format("--out {}: an OBJ holds no animation: the {} mesh{} the file's animations deform {} written "
+                         "as posed at t = 0 (a .glb keeps {} skin{} and morph targets playing)",
                          args.out, deformed, deformed == 1 ? "" : "es", deformed == 1 ? "is" : "are",
-                         deformed == 1 ? "its" : "their"));
+                         deformed == 1 ? "its" : "their", deformed == 1 ? "" : "s"));
     fmt::print("wrote {} ({:.2f} M triangles)\n", args.out, static_cast<double>(sceneData->triangleCount()) * 1e-6);
     return 0;
 }

@@ -58,7 +58,8 @@ std::vector<glm::dvec3> MeshDeformation::posedPositions(double t, std::vector<gl
                 const double det = glm::dot(a, bc);
                 if (!flips.empty() && det < 0.0) flips[v] = 1;
                 if (std::abs(det) > 1e-12)
-                    normals[v] = (det < 0.0 ? -1.0 : 1.0) * glm::dmat3(bc, glm::cross(c, a), glm::cross(a, b)) * normals[v];
+                    normals[v] =
+                        (det < 0.0 ? -1.0 : 1.0) * glm::dmat3(bc, glm::cross(c, a), glm::cross(a, b)) * normals[v];
             }
         });
         for (size_t v = 0; v < flips.size(); ++v)

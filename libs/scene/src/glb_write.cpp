@@ -5,7 +5,8 @@
 // loads back with its leaves' holes and its trees as instances. Only what the file draws is
 // written: the textures its materials use (not the billboard clouds', which a loader bakes
 // again) and the vertices the full meshes' triangles use (fullMesh()). A file's animations are
-// written back with the instances they move (gltf_animation.cpp's AnimationWriter).
+// written back with the instances they move (gltf_animation.cpp's AnimationWriter), and a mesh
+// they deform with its skin, morph targets and keys (appendDeformedBatch).
 #include "gltf_animation.h"
 #include "gltf_viewpoints.h"
 #include "scene_formats.h"
@@ -14,6 +15,8 @@
 #include "shadowkit/scene/image.h"
 
 #include <tiny_gltf.h>
+
+#include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -283,6 +286,115 @@ void appendBatch(tinygltf::Model& model, const Scene& scene, const MeshBatch& ba
     model.scenes[0].nodes.push_back(appendNode(model, -1, mesh.name, glm::mat4(1.0f), std::move(children)));
 }
 
+// A batch whose mesh the file's animations deform, written so that it plays again: its bind
+// vertices with its morph targets and their weights' keys, and a skin whose joints are placed
+// by their chains of nodes and keys (AnimationWriter::appendMotion), one per instance. What a
+// reader poses from it is what `deformation` poses in the scene (deformation.h): the vertices
+// are written relative to their bind box's centre B, the inverse bind matrices taking B back
+// (IBM · T(B)), so a skin bound far out keeps its precision in float accessors; each joint's
+// global is the instance's placement times the mesh's move from posed coordinates (E) times
+// the joint's own, G' = E · G, so Σ w · G'(t) · IBM · T(B) · (p − B) = E · p'(t).
+void appendDeformedBatch(tinygltf::Model& model, const Scene& scene, const MeshBatch& batch,
+                         const MeshDeformation& deformation, AnimationWriter& animations) {
+    const Mesh& mesh = scene.meshes[batch.mesh];
+    const Material* material = scene.materialOf(mesh);
+    core::Aabb bindBox;
+    for (const glm::vec3& p : deformation.bindPositions) bindBox.extend(core::Vec3(p));
+    const glm::dvec3 centre = deformation.skinned() ? glm::dvec3(bindBox.center()) : glm::dvec3(0.0);
+    BakedBatch bind{mesh.vertices, mesh.indices};
+    // The loader turned the triangles a mirroring pose (at t = 0, export's) or a mirroring node
+    // mirrors; a reader turns them again: written as bound.
+    std::vector<glm::dvec3> normals;
+    std::vector<bool> mirrored;
+    deformation.posedPositions(0.0, normals, &mirrored);
+    const bool nodeMirrors =
+        !deformation.skinned() && !batch.worldFromObject.empty() &&
+        glm::determinant(glm::dmat3(glm::dmat4(batch.worldFromObject[0]) * deformation.meshFromPosed)) < 0.0;
+    for (size_t i = 0; i + 2 < bind.indices.size(); i += 3) {
+        const auto flips = [&](uint32_t v) { return v < mirrored.size() && mirrored[v] ? 1 : 0; };
+        const bool poseMirrors = flips(bind.indices[i]) + flips(bind.indices[i + 1]) + flips(bind.indices[i + 2]) >= 2;
+        if (poseMirrors != nodeMirrors) std::swap(bind.indices[i + 1], bind.indices[i + 2]);
+    }
+    for (size_t v = 0; v < bind.vertices.size() && v < deformation.bindPositions.size(); ++v) {
+        bind.vertices[v].position = glm::vec3(glm::dvec3(deformation.bindPositions[v]) - centre);
+        bind.vertices[v].normal = deformation.bindNormals[v];
+    }
+    std::map<std::string, int> attributes = appendAttributes(model, bind, material);
+    const size_t n = bind.vertices.size();
+    const auto floats = [&model](const std::vector<float>& data, int type, size_t count) {
+        return appendAccessor(model,
+                              appendBufferView(model, std::span<const float>(data), TINYGLTF_TARGET_ARRAY_BUFFER),
+                              TINYGLTF_COMPONENT_TYPE_FLOAT, type, count);
+    };
+    std::vector<std::map<std::string, int>> targets;
+    for (const MorphTarget& t : deformation.targets) {
+        std::map<std::string, int> target;
+        for (const auto& [name, moves] : {std::pair{"POSITION", &t.positions}, std::pair{"NORMAL", &t.normals}}) {
+            if (moves->empty()) continue;
+            std::vector<float> data(3 * n, 0.0f);
+            for (size_t v = 0; v < std::min(n, moves->size()); ++v)
+                for (int c = 0; c < 3; ++c) data[3 * v + size_t(c)] = (*moves)[v][c];
+            target[name] = floats(data, TINYGLTF_TYPE_VEC3, n);
+        }
+        targets.push_back(std::move(target));
+    }
+    if (deformation.skinned()) {
+        // Four influences a set, as many sets as the most-influenced vertex needs.
+        size_t most = 0;
+        for (size_t v = 0; v + 1 < deformation.firstInfluence.size(); ++v)
+            most = std::max<size_t>(most, deformation.firstInfluence[v + 1] - deformation.firstInfluence[v]);
+        for (size_t set = 0; set * 4 < most; ++set) {
+            std::vector<uint16_t> joints(4 * n, 0);
+            std::vector<float> weights(4 * n, 0.0f);
+            for (size_t v = 0; v < n && v + 1 < deformation.firstInfluence.size(); ++v)
+                for (uint32_t i = deformation.firstInfluence[v] + uint32_t(4 * set), k = 0;
+                     i < deformation.firstInfluence[v + 1] && k < 4; ++i, ++k) {
+                    joints[4 * v + k] = uint16_t(deformation.influences[i].joint);
+                    weights[4 * v + k] = float(deformation.influences[i].weight);
+                }
+            attributes["JOINTS_" + std::to_string(set)] = appendAccessor(
+                model, appendBufferView(model, std::span<const uint16_t>(joints), TINYGLTF_TARGET_ARRAY_BUFFER),
+                TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_VEC4, n);
+            attributes["WEIGHTS_" + std::to_string(set)] = floats(weights, TINYGLTF_TYPE_VEC4, n);
+        }
+    }
+    const int meshIndex = appendMesh(model, mesh.name, attributes, bind.indices, material ? mesh.material : -1);
+    tinygltf::Mesh& written = model.meshes[size_t(meshIndex)];
+    written.primitives[0].targets = std::move(targets);
+    for (size_t k = 0; k < deformation.targets.size(); ++k)
+        written.weights.push_back(k < deformation.weights.size() ? deformation.weights[k] : 0.0);
+    std::vector<int> children;
+    for (const glm::mat4& placed : batch.worldFromObject) {
+        const glm::dmat4 e = glm::dmat4(placed) * deformation.meshFromPosed;
+        tinygltf::Node node;
+        node.mesh = meshIndex;
+        if (deformation.skinned()) {
+            tinygltf::Skin skin;
+            std::vector<float> inverseBind;
+            for (size_t j = 0; j < deformation.joints.size(); ++j) {
+                NodeMotion joint = deformation.joints[j];
+                joint.sceneFromRoot = e * joint.sceneFromRoot;
+                const int jointNode = int(model.nodes.size()); // appendMotion's first node: the joint's own
+                children.push_back(animations.appendMotion(joint, -1));
+                model.nodes[size_t(jointNode)].name = "joint " + std::to_string(j); // named: never an empty node
+                skin.joints.push_back(jointNode);
+                const glm::dmat4 ibm = deformation.inverseBind[j] * glm::translate(glm::dmat4(1.0), centre);
+                for (int c = 0; c < 16; ++c) inverseBind.push_back(float(ibm[c / 4][c % 4])); // column-major
+            }
+            skin.inverseBindMatrices = floats(inverseBind, TINYGLTF_TYPE_MAT4, deformation.joints.size());
+            model.skins.push_back(std::move(skin));
+            node.skin = int(model.skins.size() - 1);
+        } else if (e != glm::dmat4(1.0)) {
+            for (int c = 0; c < 4; ++c)
+                for (int r = 0; r < 4; ++r) node.matrix.push_back(e[c][r]); // column-major, as glTF
+        }
+        model.nodes.push_back(std::move(node));
+        children.push_back(int(model.nodes.size() - 1));
+        animations.appendWeights(children.back(), deformation.weightKeys);
+    }
+    model.scenes[0].nodes.push_back(appendNode(model, -1, mesh.name, glm::mat4(1.0f), std::move(children)));
+}
+
 } // namespace
 
 core::Status exportGlb(const Scene& scene, const fs::path& file) {
@@ -304,8 +416,14 @@ core::Status exportGlb(const Scene& scene, const fs::path& file) {
         return appendAccessor(model, appendBufferView(model, std::span<const float>(data), 0),
                               TINYGLTF_COMPONENT_TYPE_FLOAT, type, count, std::move(min), std::move(max));
     });
-    for (size_t b = 0; b < scene.batches.size(); ++b)
-        appendBatch(model, scene, scene.batches[b], moving[b], animations);
+    std::map<size_t, const MeshDeformation*> deformed; // by batch
+    for (const MeshDeformation& deformation : scene.deformations) deformed[deformation.batch] = &deformation;
+    for (size_t b = 0; b < scene.batches.size(); ++b) {
+        if (const auto d = deformed.find(b); d != deformed.end())
+            appendDeformedBatch(model, scene, scene.batches[b], *d->second, animations);
+        else
+            appendBatch(model, scene, scene.batches[b], moving[b], animations);
+    }
     animations.finish();
     for (int node : writeViewpoints(scene, model)) model.scenes[0].nodes.push_back(node);
     if (scene.wsOrigin != core::Vec3(0.0)) { // the batches under a node that stands them where the scene stands

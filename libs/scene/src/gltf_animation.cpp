@@ -392,6 +392,31 @@ int AnimationWriter::appendMotion(const NodeMotion& motion, int mesh) {
     return int(m_model.nodes.size() - 1);
 }
 
+void AnimationWriter::appendWeights(int node, const std::vector<std::shared_ptr<const KeyframeChannel>>& keys) {
+    if (keys.empty() || !keys.front()) return;
+    const KeyframeChannel& first = *keys.front();
+    const size_t targets = keys.size();
+    const size_t perKey = first.interpolation == KeyframeChannel::Interpolation::CubicSpline ? 3 : 1;
+    // glTF's layout: per key (and per in-tangent, value, out-tangent) every target's weight.
+    std::vector<float> values(first.times.size() * perKey * targets, 0.0f);
+    for (size_t t = 0; t < targets; ++t)
+        for (size_t i = 0; keys[t] && i < keys[t]->values.size() && i * targets + t < values.size(); ++i)
+            values[i * targets + t] = float(keys[t]->values[i].x);
+    tinygltf::Animation& animation = m_animations[first.loopSeconds];
+    const std::vector<float> times(first.times.begin(), first.times.end());
+    tinygltf::AnimationSampler sampler;
+    sampler.input =
+        m_appendFloats(times, TINYGLTF_TYPE_SCALAR, times.size(), {first.times.front()}, {first.times.back()});
+    sampler.output = m_appendFloats(values, TINYGLTF_TYPE_SCALAR, values.size(), {}, {});
+    sampler.interpolation = interpolationName(first.interpolation);
+    animation.samplers.push_back(std::move(sampler));
+    tinygltf::AnimationChannel channel;
+    channel.sampler = int(animation.samplers.size() - 1);
+    channel.target_node = node;
+    channel.target_path = "weights";
+    animation.channels.push_back(std::move(channel));
+}
+
 void AnimationWriter::finish() {
     for (auto& [length, animation] : m_animations) m_model.animations.push_back(std::move(animation));
     m_animations.clear();

@@ -72,6 +72,9 @@ public:
     /// The nodes placing `mesh` by `motion`, top first: sceneFromRoot, the chain, nodeFromObject
     /// with the mesh; returns the top node's index.
     int appendMotion(const NodeMotion& motion, int mesh);
+    /// Node `node`'s morph weights moved by `keys`, one channel per morph target as the reader
+    /// splits them (the same times, interpolation and loop): written back as one weights channel.
+    void appendWeights(int node, const std::vector<std::shared_ptr<const KeyframeChannel>>& keys);
     /// Moves the animations written so far into the model.
     void finish();
 
