@@ -59,11 +59,9 @@ std::vector<glm::dmat4> nodeGlobalTransforms(const tinygltf::Model& model) {
     return global;
 }
 
-namespace {
-
-// The skin's joints: each one's motion (file coordinates) and inverse bind matrix.
-core::Status readJoints(const tinygltf::Model& model, int skinIndex, const AnimatedNodes& moving, double t,
-                        MeshDeformation& out, const std::string& where) {
+core::Result<SkinJoints> readSkinJoints(const tinygltf::Model& model, int skinIndex, const AnimatedNodes& moving,
+                                        double t, const std::string& where) {
+    SkinJoints out;
     const tinygltf::Skin& skin = model.skins[size_t(skinIndex)];
     const std::string what = where + ": skin " + std::to_string(skinIndex);
     if (skin.joints.empty()) return core::makeError(what + " has no joints");
@@ -105,8 +103,10 @@ core::Status readJoints(const tinygltf::Model& model, int skinIndex, const Anima
         out.joints.push_back(std::move(*motion));
         out.inverseBind.push_back(ibm);
     }
-    return core::Ok{};
+    return out;
 }
+
+namespace {
 
 // Every JOINTS_n / WEIGHTS_n set's influences, each vertex's weights divided by their sum.
 core::Status readInfluences(const tinygltf::Model& model, const tinygltf::Primitive& prim, size_t vertices,
@@ -175,8 +175,7 @@ core::Status readTargets(const tinygltf::Model& model, const tinygltf::Primitive
 core::Result<MeshDeformation> readDeformation(const tinygltf::Model& model, const tinygltf::Primitive& prim,
                                               const Mesh& mesh, const std::vector<double>& weights,
                                               const std::vector<std::shared_ptr<const KeyframeChannel>>& weightKeys,
-                                              int skin, const AnimatedNodes& moving, double t,
-                                              const std::string& where) {
+                                              const SkinJoints* skin, double t, const std::string& where) {
     MeshDeformation d;
     for (const Vertex& v : mesh.vertices) d.bindPositions.push_back(v.position), d.bindNormals.push_back(v.normal);
     for (size_t k = 0; k < std::min(weights.size(), prim.targets.size()); ++k)
@@ -187,8 +186,9 @@ core::Result<MeshDeformation> readDeformation(const tinygltf::Model& model, cons
     if (auto s = readTargets(model, prim, mesh.vertices.size(), d, where); !s) return s.errorInfo();
     // Faces give the normals of a primitive without any, once its targets move it.
     d.normalsFromFaces = prim.attributes.count("NORMAL") == 0 && !d.targets.empty();
-    if (skin >= 0) {
-        if (auto s = readJoints(model, skin, moving, t, d, where); !s) return s.errorInfo();
+    if (skin) {
+        d.joints = skin->joints;
+        d.inverseBind = skin->inverseBind;
         if (auto s = readInfluences(model, prim, mesh.vertices.size(), d, where); !s) return s.errorInfo();
     }
     std::vector<glm::dvec3> normals;

@@ -25,18 +25,25 @@ glm::dmat4 nodeLocalMatrix(const tinygltf::Node& node);
 /// a file whose nodes form trees (checkNodeTrees).
 std::vector<glm::dmat4> nodeGlobalTransforms(const tinygltf::Model& model);
 
+/// A skin's joints, each placed over time by the chain of nodes above it (`moving`: the nodes
+/// animations move, as motionAlong takes them; file coordinates), and their inverse bind
+/// matrices. A joint's matrix that is not finite at `t` is refused.
+struct SkinJoints {
+    std::vector<NodeMotion> joints;
+    std::vector<glm::dmat4> inverseBind;
+};
+core::Result<SkinJoints> readSkinJoints(const tinygltf::Model& model, int skin, const AnimatedNodes& moving, double t,
+                                        const std::string& where);
+
 /// What deforms a primitive's vertices (`mesh`, as convertPrimitive read them; its batch left
 /// for the caller), read and checked: its morph targets at `weights` (the node's, else the mesh's
-/// defaults), each moved by `weightKeys[k]` where given; and, for `skin` ≥ 0, the skin's joints,
-/// each placed over time by the chain of nodes above it (`moving`: the nodes animations move, as
-/// motionAlong takes them), with their inverse bind matrices and every JOINTS_n / WEIGHTS_n set.
-/// A joint's matrix that is not finite at `t` is refused, as a vertex posed there to a non-finite
-/// position.
+/// defaults), each moved by `weightKeys[k]` where given; and, with `skin` (readSkinJoints, read
+/// once a skin), its joints and every JOINTS_n / WEIGHTS_n set. A vertex posed at `t` to a
+/// non-finite position is refused.
 core::Result<MeshDeformation> readDeformation(const tinygltf::Model& model, const tinygltf::Primitive& prim,
                                               const Mesh& mesh, const std::vector<double>& weights,
                                               const std::vector<std::shared_ptr<const KeyframeChannel>>& weightKeys,
-                                              int skin, const AnimatedNodes& moving, double t,
-                                              const std::string& where);
+                                              const SkinJoints* skin, double t, const std::string& where);
 
 /// Poses `mesh` as `deformation` stands at t, the first time (at load): a skinned mesh's positions
 /// kept relative to `anchor`, which it sets — anchorOf() their box, subtracted in double (a skin

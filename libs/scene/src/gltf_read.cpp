@@ -449,7 +449,8 @@ core::Result<Scene> loadGltf(const fs::path& file, double poseSeconds) {
     // Every node an animation moves: a rigid instance below a skin's joint follows it too.
     AnimatedNodes animated = animations.played;
     animated.insert(animations.posed.joints.begin(), animations.posed.joints.end());
-    std::vector<int> path; // the nodes from the root down to the one visited
+    std::vector<int> path;              // the nodes from the root down to the one visited
+    std::map<int, SkinJoints> jointsOf; // each skin's, read when a mesh first needs them
     std::optional<core::Error> failure;
     size_t instancesPlaced = 0; // by EXT_mesh_gpu_instancing
     // Each batch's placements in the file's coordinates, in double until placeNearOrigin; a
@@ -481,6 +482,14 @@ core::Result<Scene> loadGltf(const fs::path& file, double poseSeconds) {
             const auto weightKeys = animations.posed.weights.find(nodeIndex);
             const bool deformedOverTime =
                 animations.posed.skins.count(skin) > 0 || weightKeys != animations.posed.weights.end();
+            if (skin >= 0 && !jointsOf.count(skin)) {
+                auto joints = readSkinJoints(model, skin, animated, poseSeconds, file.string());
+                if (!joints) {
+                    failure = joints.errorInfo();
+                    return;
+                }
+                jointsOf.emplace(skin, std::move(*joints));
+            }
             // A moving instance's placement is its motion at rest times what lies below its node
             // (a GPU-instancing transform): the motion replaces the first factor at every t.
             const std::optional<NodeMotion> motion = skin >= 0 ? std::nullopt : motionAlong(model, path, animated);
@@ -521,7 +530,7 @@ core::Result<Scene> loadGltf(const fs::path& file, double poseSeconds) {
                                                         weightKeys == animations.posed.weights.end()
                                                             ? decltype(weightKeys->second){}
                                                             : weightKeys->second,
-                                                        skin, animated, poseSeconds, where);
+                                                        skin >= 0 ? &jointsOf.at(skin) : nullptr, poseSeconds, where);
                             if (!read) {
                                 failure = read.errorInfo();
                                 return;

@@ -493,8 +493,7 @@ TEST(GltfReadTest, MirroringSkinsKeepTheirFacesOutward) {
 TEST(GltfReadTest, ASkinThatCannotBePosedIsRefusedInOneLine) {
     for (const auto& [what, s, expected] :
          {std::tuple{"one inverse bind matrix for two joints", loadSkinned("sk_skin.gltf", 1),
-                     "sk_skin.gltf: mesh 0 primitive 0: skin 0: its inverseBindMatrices must be a MAT4 accessor of one "
-                     "per joint (2)"},
+                     "sk_skin.gltf: skin 0: its inverseBindMatrices must be a MAT4 accessor of one per joint (2)"},
           std::tuple{"a joint the skin does not have", loadSkinned("sk_skin.gltf", 2, 5),
                      "sk_skin.gltf: mesh 0 primitive 0: vertex 1 names joint 5 of a skin of 2"},
           std::tuple{"joints without weights", loadSkinned("sk_skin.gltf", 2, 1, false),
