@@ -33,12 +33,14 @@ std::vector<bool> trulyShadowed(const std::vector<eval::PixelClass>& classes) {
 }
 
 // The file's own camera under its own sun, a focused map, at 240 × 160 (the camera's aspect, 1.5).
-core::Result<measure::Measurement> measureThroughItsCamera(const scene::Scene& file, measure::Measurer& measurer) {
+core::Result<measure::Measurement> measureThroughItsCamera(const scene::Scene& file, measure::Measurer& measurer,
+                                                           gl::Culling culling = gl::RenderSettings{}.culling) {
     const auto view = scene::fileView(file, "", gl::kMaxLocalLightsPerKind);
     if (!view) return view.errorInfo();
     gl::RenderSettings settings;
     settings.width = 240;
     settings.height = 160;
+    settings.culling = culling;
     return measurer.measure({.camera = view->camera,
                              .light = view->light,
                              .wsSceneBounds = measurer.renderer().wsSceneBounds(),
@@ -111,7 +113,7 @@ TEST_F(AnimatedFileEvalTest, ASkinnedArmPosedAtTwoTimesCastsEachPosesShadow) {
 // renderer and the ray tracer reshaping the forearm as the scene tells them. Each frame must be
 // the frame a fresh load at that time gives — pixel for pixel, rendered and true (a renderer or
 // ray tracer left with the first pose would keep the forearm's old shadow: 149 and 108 pixels
-// apart, above).
+// apart, above) — with every culling path, whose boxes and lists the new shape moves.
 TEST_F(AnimatedFileEvalTest, ASkinnedArmPlayedToATimeCastsWhatAFreshLoadAtThatTimeCasts) {
     const auto file = std::filesystem::path(SHADOWKIT_SOURCE_DATA_DIR) / ".." / "tests" / "data" / "bending_arm.gltf";
     auto played = scene::loadScene(file, {.poseSeconds = 0.0});
@@ -119,19 +121,21 @@ TEST_F(AnimatedFileEvalTest, ASkinnedArmPlayedToATimeCastsWhatAFreshLoadAtThatTi
     ASSERT_EQ(played->deformations.size(), 1u) << "the skinned forearm";
     auto measurer = measure::Measurer::create(*played);
     ASSERT_TRUE(measurer) << measurer.error();
-    for (double t : {0.0, 1.0, 0.5}) {
+    for (const auto& [t, culling] : {std::pair{0.0, gl::Culling::Occlusion}, std::pair{1.0, gl::Culling::Occlusion},
+                                     std::pair{0.5, gl::Culling::Gpu}, std::pair{0.8, gl::Culling::Frustum}}) {
+        SCOPED_TRACE("culling " + std::to_string(int(culling)));
         std::vector<uint32_t> moved;
         scene::animate(*played, t, &moved);
         ASSERT_FALSE(moved.empty()) << "the reshaped forearm's instance";
         ASSERT_TRUE((*measurer)->moveInstances(*played, moved));
-        auto frame = measureThroughItsCamera(*played, **measurer);
+        auto frame = measureThroughItsCamera(*played, **measurer, culling);
         ASSERT_TRUE(frame) << frame.error();
 
         auto fresh = scene::loadScene(file, {.poseSeconds = t});
         ASSERT_TRUE(fresh) << fresh.error();
         auto freshMeasurer = measure::Measurer::create(*fresh);
         ASSERT_TRUE(freshMeasurer) << freshMeasurer.error();
-        auto expected = measureThroughItsCamera(*fresh, **freshMeasurer);
+        auto expected = measureThroughItsCamera(*fresh, **freshMeasurer, gl::Culling::Off);
         ASSERT_TRUE(expected) << expected.error();
 
         const auto& got = frame->comparison.classes;
