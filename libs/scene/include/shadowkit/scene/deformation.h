@@ -39,8 +39,8 @@ struct MorphTarget {
 struct MeshDeformation {
     uint32_t batch = 0; // Scene::batches: a dynamic batch whose mesh this reshapes (every instance of it)
 
-    // The first bind.size() vertices of the mesh as the file binds them: positions and normals
-    // before any target or joint moves them (the rest are the mesh's own: left alone).
+    // The mesh's first bindPositions.size() vertices as the file binds them: positions and
+    // normals before any target or joint moves them (any after them are left alone).
     std::vector<glm::vec3> bindPositions, bindNormals;
     bool normalsFromFaces = false; // the file gives no normals: the posed faces give them
 
