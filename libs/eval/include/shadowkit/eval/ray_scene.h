@@ -50,7 +50,7 @@ public:
 
     // Instances that moved (scene::animate's list of global indices) take their new
     // transforms from `scene`, the scene this was built from, and a mesh the scene deforms
-    // (Scene::deformations) its posed vertices, its own BVH rebuilt; then the top-level BVH.
+    // (Scene::deformations) its posed vertices, its own BVH refitted; then the top-level BVH.
     // Fails, changing nothing, for an index out of range.
     core::Status moveInstances(const scene::Scene& scene, std::span<const uint32_t> moved);
 
