@@ -15,8 +15,10 @@ frame's `animate` milliseconds.
 import base64
 import json
 import math
+import os
 import struct
 import sys
+import tempfile
 
 JOINTS = 8
 WIDTH, HEIGHT, LIFT = 8.0, 5.0, 1.0
@@ -141,8 +143,27 @@ def main():
         "buffers": [{"byteLength": len(blob),
                      "uri": "data:application/octet-stream;base64," + base64.b64encode(bytes(blob)).decode()}],
     }
-    with open(out, "w") as f:
-        json.dump(gltf, f)
+    # Whole or not at all, as the program writes its files: a temporary beside the target,
+    # flushed to the disk and renamed over it; a failure is one line and a non-zero exit.
+    folder = os.path.dirname(os.path.abspath(out))
+    temporary = None
+    try:
+        if os.path.exists(out) and not os.path.isfile(out):  # a device or a pipe: written in place
+            with open(out, "w") as f:
+                json.dump(gltf, f)
+            print("wrote %s" % out)
+            return
+        os.makedirs(folder, exist_ok=True)
+        with tempfile.NamedTemporaryFile("w", dir=folder, prefix=".flag-", delete=False) as f:
+            temporary = f.name
+            json.dump(gltf, f)
+            f.flush()
+            os.fsync(f.fileno())
+        os.replace(temporary, out)
+    except OSError as e:
+        if temporary and os.path.exists(temporary):
+            os.unlink(temporary)
+        sys.exit("make_skinned_flag.py: %s: cannot write (%s)" % (out, e.strerror or e))
     print("wrote %s: %d vertices, %d triangles skinned to %d joints" % (out, vertices, len(indices) // 3, JOINTS))
 
 

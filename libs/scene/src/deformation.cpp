@@ -73,12 +73,17 @@ std::vector<glm::dvec3> MeshDeformation::posedPositions(double t, std::vector<gl
 void MeshDeformation::poseInto(Mesh& mesh, double t) const {
     std::vector<glm::dvec3> normals;
     const std::vector<glm::dvec3> positions = posedPositions(t, normals);
+    writePose(mesh, positions, normals);
+}
+
+void MeshDeformation::writePose(Mesh& mesh, std::span<const glm::dvec3> positions,
+                                std::span<const glm::dvec3> normals) const {
     const glm::dmat3 turn(meshFromPosed); // rigid: normals turn as positions do
     for (size_t v = 0; v < std::min(positions.size(), mesh.vertices.size()); ++v) {
         const glm::dvec3 p = glm::dvec3(meshFromPosed * glm::dvec4(positions[v], 1.0));
         if (!core::isFinite(p)) continue;
         mesh.vertices[v].position = glm::vec3(p);
-        if (glm::length(normals[v]) > 0.0) mesh.vertices[v].normal = glm::vec3(turn * normals[v]);
+        if (v < normals.size() && glm::length(normals[v]) > 0.0) mesh.vertices[v].normal = glm::vec3(turn * normals[v]);
     }
     if (normalsFromFaces) formats::computeNormals(mesh); // the posed faces' own
     mesh.computeBounds();

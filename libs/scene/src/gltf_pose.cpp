@@ -175,7 +175,7 @@ core::Status readTargets(const tinygltf::Model& model, const tinygltf::Primitive
 core::Result<MeshDeformation> readDeformation(const tinygltf::Model& model, const tinygltf::Primitive& prim,
                                               const Mesh& mesh, const std::vector<double>& weights,
                                               const std::vector<std::shared_ptr<const KeyframeChannel>>& weightKeys,
-                                              const SkinJoints* skin, double t, const std::string& where) {
+                                              const SkinJoints* skin, const std::string& where) {
     MeshDeformation d;
     for (const Vertex& v : mesh.vertices) d.bindPositions.push_back(v.position), d.bindNormals.push_back(v.normal);
     for (size_t k = 0; k < std::min(weights.size(), prim.targets.size()); ++k)
@@ -191,26 +191,25 @@ core::Result<MeshDeformation> readDeformation(const tinygltf::Model& model, cons
         d.inverseBind = skin->inverseBind;
         if (auto s = readInfluences(model, prim, mesh.vertices.size(), d, where); !s) return s.errorInfo();
     }
-    std::vector<glm::dvec3> normals;
-    const std::vector<glm::dvec3> posed = d.posedPositions(t, normals);
-    for (size_t v = 0; v < posed.size(); ++v)
-        if (!core::isFinite(posed[v]))
-            return core::makeError(where + ": vertex " + std::to_string(v) + " is posed to a non-finite position");
     return d;
 }
 
-void poseAtLoad(MeshDeformation& deformation, double t, Mesh& mesh, glm::dvec3& anchor) {
+core::Status poseAtLoad(MeshDeformation& deformation, double t, Mesh& mesh, glm::dvec3& anchor,
+                        const std::string& where) {
     anchor = glm::dvec3(0.0);
     std::vector<bool> mirrored;
     std::vector<glm::dvec3> normals;
     const std::vector<glm::dvec3> posed = deformation.posedPositions(t, normals, &mirrored);
+    for (size_t v = 0; v < posed.size(); ++v)
+        if (!core::isFinite(posed[v]))
+            return core::makeError(where + ": vertex " + std::to_string(v) + " is posed to a non-finite position");
     if (deformation.skinned()) {
         core::Aabb bounds;
         for (const glm::dvec3& p : posed) bounds.extend(p);
         anchor = anchorOf(bounds);
     }
     deformation.meshFromPosed = glm::translate(glm::dmat4(1.0), -anchor);
-    deformation.poseInto(mesh, t);
+    deformation.writePose(mesh, posed, normals);
     // A pose that mirrors turns a triangle's winding as a mirrored node does (gltf_read.cpp), while
     // its normals, moved by the inverse transpose, keep pointing out: so a triangle whose corners
     // are mostly mirrored is reversed, and its front stays the side its normals face.
@@ -219,6 +218,7 @@ void poseAtLoad(MeshDeformation& deformation, double t, Mesh& mesh, glm::dvec3& 
         if (flips(mesh.indices[i]) + flips(mesh.indices[i + 1]) + flips(mesh.indices[i + 2]) >= 2)
             std::swap(mesh.indices[i + 1], mesh.indices[i + 2]);
     }
+    return core::Ok{};
 }
 
 } // namespace shadowkit::scene::formats

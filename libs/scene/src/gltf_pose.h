@@ -38,18 +38,19 @@ core::Result<SkinJoints> readSkinJoints(const tinygltf::Model& model, int skin, 
 /// What deforms a primitive's vertices (`mesh`, as convertPrimitive read them; its batch left
 /// for the caller), read and checked: its morph targets at `weights` (the node's, else the mesh's
 /// defaults), each moved by `weightKeys[k]` where given; and, with `skin` (readSkinJoints, read
-/// once a skin), its joints and every JOINTS_n / WEIGHTS_n set. A vertex posed at `t` to a
-/// non-finite position is refused.
+/// once a skin), its joints and every JOINTS_n / WEIGHTS_n set.
 core::Result<MeshDeformation> readDeformation(const tinygltf::Model& model, const tinygltf::Primitive& prim,
                                               const Mesh& mesh, const std::vector<double>& weights,
                                               const std::vector<std::shared_ptr<const KeyframeChannel>>& weightKeys,
-                                              const SkinJoints* skin, double t, const std::string& where);
+                                              const SkinJoints* skin, const std::string& where);
 
 /// Poses `mesh` as `deformation` stands at t, the first time (at load): a skinned mesh's positions
 /// kept relative to `anchor`, which it sets — anchorOf() their box, subtracted in double (a skin
 /// posed far out keeps its precision; the mesh is to be placed there, and deformation.meshFromPosed
 /// moves by it) —, and a triangle whose corners are mostly mirrored by their blends reversed, as a
 /// mirrored node's are.
-void poseAtLoad(MeshDeformation& deformation, double t, Mesh& mesh, glm::dvec3& anchor);
+/// A vertex posed at `t` to a non-finite position is refused, naming `where`.
+core::Status poseAtLoad(MeshDeformation& deformation, double t, Mesh& mesh, glm::dvec3& anchor,
+                        const std::string& where);
 
 } // namespace shadowkit::scene::formats

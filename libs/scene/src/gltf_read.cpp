@@ -530,13 +530,16 @@ core::Result<Scene> loadGltf(const fs::path& file, double poseSeconds) {
                                                         weightKeys == animations.posed.weights.end()
                                                             ? decltype(weightKeys->second){}
                                                             : weightKeys->second,
-                                                        skin >= 0 ? &jointsOf.at(skin) : nullptr, poseSeconds, where);
+                                                        skin >= 0 ? &jointsOf.at(skin) : nullptr, where);
                             if (!read) {
                                 failure = read.errorInfo();
                                 return;
                             }
                             glm::dvec3 anchor(0.0);
-                            poseAtLoad(*read, poseSeconds, *mesh, anchor);
+                            if (auto posed = poseAtLoad(*read, poseSeconds, *mesh, anchor, where); !posed) {
+                                failure = posed.errorInfo();
+                                return;
+                            }
                             if (skin >= 0) skinnedAt[it->second] = anchor;
                             if (deformedOverTime) deformation = std::move(*read);
                         }

@@ -19,6 +19,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <vector>
 
 namespace shadowkit::scene {
@@ -68,6 +69,8 @@ struct MeshDeformation {
     // finite keeps where it was; the triangles keep their winding (a pose that mirrors a part
     // does not turn its faces back: the loader does at the first pose, gltf_read.cpp).
     void poseInto(Mesh& mesh, double t) const;
+    // Writes a pose posedPositions gave (`positions`, `normals`) into `mesh`, as poseInto does.
+    void writePose(Mesh& mesh, std::span<const glm::dvec3> positions, std::span<const glm::dvec3> normals) const;
 };
 
 } // namespace shadowkit::scene
