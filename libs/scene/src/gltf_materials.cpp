@@ -89,10 +89,12 @@ std::vector<int> textureSources(const tinygltf::Texture& texture) {
 
 // A texture with its sampler, from the first of its sources that decodes; else the first
 // source's failure.
-core::Result<Texture> readTexture(const tinygltf::Model& model, const fs::path& file, const tinygltf::Texture& texture,
+core::Result<Texture> readTexture(const tinygltf::Model& model, const fs::path& file, int textureIndex,
                                   const ImageContext& images) {
+    const tinygltf::Texture& texture = model.textures[size_t(textureIndex)];
     const std::vector<int> sources = textureSources(texture);
-    if (sources.empty()) return core::makeError(file.string() + ": a texture has no image");
+    if (sources.empty())
+        return core::makeError(file.string() + ": texture " + std::to_string(textureIndex) + " names no image");
     std::optional<core::Error> firstFailure;
     Texture decoded;
     for (int source : sources) {
@@ -160,7 +162,7 @@ core::Status readMaterials(const tinygltf::Model& model, const fs::path& file, c
             if (size_t(t) >= model.textures.size()) return core::makeError(where + ": no texture " + std::to_string(t));
             auto known = textureOf.find(t);
             if (known == textureOf.end()) {
-                core::Result<Texture> decoded = readTexture(model, file, model.textures[size_t(t)], images);
+                core::Result<Texture> decoded = readTexture(model, file, t, images);
                 if (decoded && (textureBytes += decoded->image.rgba.size()) > kMaxTextureBytes)
                     return core::makeError(file.string() + ": the file's textures decode to more than 1 GiB");
                 if (decoded) {

@@ -19,6 +19,8 @@
 //   - a texture that cannot be read (missing, corrupt, KTX2 only) matters only where the
 //     material's alpha does: on an OPAQUE material it is dropped with one warning in
 //     Scene::warnings (shadows never read an opaque colour), on MASK and BLEND it is an error;
+//   - the default scene's nodes (scene 0's where the file names none); a file with no scene at
+//     all places every root node, with a warning (sceneRoots);
 //   - nodes' transforms composed in double, and the scene stood where float keeps its
 //     precision (near_origin.cpp): a model in survey metres keeps its millimetres;
 //   - nodes instancing their mesh (EXT_mesh_gpu_instancing, gltfpack -mi): one instance each;
@@ -190,6 +192,25 @@ std::optional<glm::mat3> textureTransform(const tinygltf::TextureInfo& info) {
     return m;
 }
 
+// A primitive this much of whose triangles wind against their normals is said to be inside out.
+constexpr double kWoundInsideOut = 0.9;
+
+// The share of a mesh's triangles with area whose winding turns against the normals the file
+// gives their corners: glTF's front faces wind counter-clockwise about their outward side.
+double shareWoundAgainstNormals(const Mesh& mesh) {
+    size_t counted = 0, against = 0;
+    for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+        const Vertex &a = mesh.vertices[mesh.indices[t]], &b = mesh.vertices[mesh.indices[t + 1]],
+                     &c = mesh.vertices[mesh.indices[t + 2]];
+        const glm::vec3 wound = glm::cross(b.position - a.position, c.position - a.position);
+        const float agreement = glm::dot(wound, a.normal + b.normal + c.normal);
+        if (agreement == 0.0f) continue; // no area, or normals across it
+        ++counted;
+        against += agreement < 0.0f;
+    }
+    return counted == 0 ? 0.0 : double(against) / double(counted);
+}
+
 // Converts one primitive: an empty mesh for primitives that are not triangles (points,
 // lines) or have no positions, an error for what is wrong or cannot be read. Texture
 // coordinates an OPAQUE material reads but the primitive lacks are a warning (its texture
@@ -272,6 +293,14 @@ core::Result<Mesh> convertPrimitive(const tinygltf::Model& model, const tinygltf
             const float length = glm::length(normal);
             mesh.vertices[i].normal = length > 0.0f && std::isfinite(length) ? normal / length : glm::vec3(0, 1, 0);
         }
+        // Single-sided and wound inside out (a Blender test file, every triangle): it is drawn
+        // from inside, as any glTF viewer draws it, while the truth's rays meet its outside, so
+        // eval compares almost none of its pixels — worth a word at load.
+        if (!(material && material->doubleSided))
+            if (const double against = shareWoundAgainstNormals(mesh); against >= kWoundInsideOut)
+                warnings.push_back(where + ": " + std::to_string(int(std::lround(100.0 * against))) +
+                                   " % of its triangles wind clockwise about the normals it gives them (glTF's "
+                                   "front faces wind counter-clockwise): single-sided, it is drawn inside out");
     } else {
         computeNormals(mesh);
     }
@@ -392,6 +421,31 @@ core::Status checkNodeTrees(const tinygltf::Model& model, const fs::path& file) 
     return core::Ok{};
 }
 
+// The nodes the loaded scene starts from: its default scene's roots (scene 0's where the file
+// names none). A file with no scene at all is, in glTF's words, a library of entities (§3.5:
+// "a glTF asset that does not contain any scenes should be treated as a library"); Blender's
+// exporter writes one when told to export no scene. A viewer is free to show it as it likes
+// (§3.5.1): shadowkit places every node that is no other's child, as Blender's importer does,
+// and says so — a file of meshes must not be refused as holding none.
+std::vector<int> sceneRoots(const tinygltf::Model& model, const fs::path& file, std::vector<std::string>& warnings) {
+    if (!model.scenes.empty()) {
+        const int scene = model.defaultScene >= 0 ? model.defaultScene : 0;
+        return size_t(scene) < model.scenes.size() ? model.scenes[size_t(scene)].nodes : std::vector<int>{};
+    }
+    std::vector<bool> isChild(model.nodes.size(), false);
+    for (const tinygltf::Node& node : model.nodes)
+        for (int child : node.children) isChild[size_t(child)] = true; // checked by checkNodeTrees
+    std::vector<int> roots;
+    for (size_t node = 0; node < model.nodes.size(); ++node)
+        if (!isChild[node]) roots.push_back(int(node));
+    if (!roots.empty())
+        warnings.push_back(file.string() + ": it has no scene (a library of entities); " +
+                           (roots.size() == 1 ? std::string("its root node stands")
+                                              : "its " + std::to_string(roots.size()) + " root nodes stand together") +
+                           " as the scene");
+    return roots;
+}
+
 core::Result<Scene> loadGltf(const fs::path& file, double poseSeconds) {
     const bool binary = lowerExtension(file) == ".glb";
     const auto bytes = readFile(file);
@@ -425,6 +479,9 @@ core::Result<Scene> loadGltf(const fs::path& file, double poseSeconds) {
     if (!ok) {
         std::replace(err.begin(), err.end(), '\n', ' ');
         while (!err.empty() && err.back() == ' ') err.pop_back();
+        // tinygltf refuses some objects missing a required property (a skin without `joints`)
+        // without a word: say at least where to look.
+        if (err.empty()) err = "an object lacks a property glTF requires; the glTF Validator names it";
         return core::makeError(file.string() + ": not a readable glTF file (" + err + ")");
     }
     if (auto s = checkNodeTrees(model, file); !s) return s.errorInfo();
@@ -457,6 +514,7 @@ core::Result<Scene> loadGltf(const fs::path& file, double poseSeconds) {
     // skinned batch is placed at its posed vertices' anchor (applySkin), every other at its nodes.
     std::vector<std::vector<glm::dmat4>> placements;
     std::map<size_t, glm::dvec3> skinnedAt;
+    size_t meshNodesVisited = 0; // nodes of the scene that place a mesh, drawable or not
     auto visit = [&](auto&& self, int nodeIndex, const glm::dmat4& parent, int depth) -> void {
         if (failure || nodeIndex < 0 || size_t(nodeIndex) >= model.nodes.size()) return; // a bad root is skipped
         if (depth > kMaxNodeDepth) {
@@ -474,6 +532,7 @@ core::Result<Scene> loadGltf(const fs::path& file, double poseSeconds) {
         }
         readNodeViewpoints(model, nodeIndex, world, file.string(), scene);
         if (node.mesh >= 0 && size_t(node.mesh) < model.meshes.size()) {
+            ++meshNodesVisited;
             const tinygltf::Mesh& gltfMesh = model.meshes[size_t(node.mesh)];
             const std::string nodeName = file.string() + ": node " + std::to_string(nodeIndex) +
                                          (node.name.empty() ? "" : " '" + printable(node.name) + "'");
@@ -573,14 +632,22 @@ core::Result<Scene> loadGltf(const fs::path& file, double poseSeconds) {
         for (int child : node.children) self(self, child, world, depth + 1);
         path.pop_back();
     };
-    const int sceneIndex = model.defaultScene >= 0 ? model.defaultScene : 0;
-    if (!model.scenes.empty() && size_t(sceneIndex) < model.scenes.size())
-        for (int root : model.scenes[size_t(sceneIndex)].nodes) visit(visit, root, glm::dmat4(1.0), 0);
+    for (int root : sceneRoots(model, file, scene.warnings)) visit(visit, root, glm::dmat4(1.0), 0);
     if (failure) return *failure;
     placeNearOrigin(scene, placements);
     placeViewpoints(scene);
     animate(scene, poseSeconds); // a moving instance stands where its keys put it then, a deformed mesh as posed
-    if (scene.triangleCount() == 0) return core::makeError(file.string() + ": glTF file holds no triangle meshes");
+    if (scene.triangleCount() == 0) {
+        // Say which it is: meshes the scene never places, or none that are triangles.
+        if (meshNodesVisited == 0 && !model.meshes.empty()) {
+            const std::string ofScene = model.scenes.empty() ? "" : " of its scene";
+            return core::makeError(file.string() + ": " +
+                                   (model.meshes.size() == 1 ? "its mesh is placed by no node" + ofScene
+                                                             : "none of its " + std::to_string(model.meshes.size()) +
+                                                                   " meshes is placed by a node" + ofScene));
+        }
+        return core::makeError(file.string() + ": glTF file holds no triangle meshes");
+    }
     return scene;
 }
 

@@ -176,19 +176,28 @@ TEST(GltfReadTest, WhatCannotBeReadIsNamedInOneLine) {
                                  return b;
                              }()),
                 "index 2 names no vertex");
+    // tinygltf refuses a skin without its required `joints` and gives no reason (the glTF
+    // Validator's test file skin/empty_object.gltf): the line still says what kind of fault.
+    expectError(loadWritten("sk_jointless.gltf", R"({"asset":{"version":"2.0"},"skins":[{}]})"),
+                "sk_jointless.gltf: not a readable glTF file (an object lacks a property glTF requires");
 }
 
-// A .gltf of one triangle mesh placed by the given scene roots and nodes (JSON arrays' insides).
-core::Result<scene::Scene> loadNodes(const std::string& name, const std::string& roots, const std::string& nodes) {
+// A .gltf of one triangle mesh placed by the given nodes (a JSON array's insides), with the
+// given scene members before them ("" for a file with no scene at all).
+core::Result<scene::Scene> loadMeshNodes(const std::string& name, const std::string& scenes, const std::string& nodes) {
     std::vector<unsigned char> triangle;
     append<float>(triangle, {0, 0, 0, 1, 0, 0, 0, 0, -1});
-    return loadWritten(name, R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[)" + roots +
-                                 R"(]}],"nodes":[)" + nodes +
+    return loadWritten(name, R"({"asset":{"version":"2.0"},)" + scenes + R"("nodes":[)" + nodes +
                                  R"(],"meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],)"
                                  R"("accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3"}],)"
                                  R"("bufferViews":[{"buffer":0,"byteLength":36}],"buffers":[{"byteLength":36,)"
                                  R"("uri":"data:application/octet-stream;base64,)" +
                                  base64(triangle) + "\"}]}");
+}
+
+// The same, placed by scene 0 with the given roots.
+core::Result<scene::Scene> loadNodes(const std::string& name, const std::string& roots, const std::string& nodes) {
+    return loadMeshNodes(name, R"("scene":0,"scenes":[{"nodes":[)" + roots + "]}],", nodes);
 }
 
 // A chain of `links` nodes, each the parent of the next and one metre along x from it; the last
@@ -224,6 +233,69 @@ TEST(GltfReadTest, NodeHierarchiesThatAreNotTreesAreRefusedInOneLine) {
     expectError(loadNodes("sk_roots.gltf", "0,0", R"({"mesh":0})"), "scene 0's root node 0 is listed twice");
     expectError(loadNodes("sk_child.gltf", "0", R"({"children":[7]})"), "node 0 lists child 7, which is not a node");
     expectError(loadNodes("sk_deep.gltf", "0", chainOfNodes(600)), "deeper than 512 levels");
+    // A scene whose nodes name no mesh: the file's mesh is there, the scene leaves it out.
+    expectError(loadNodes("sk_unplaced.gltf", "0", R"({"name":"empty"},{"mesh":0})"),
+                "sk_unplaced.gltf: its mesh is placed by no node of its scene");
+}
+
+TEST(GltfReadTest, ASingleSidedMeshWoundAgainstItsNormalsIsNamedInAWarning) {
+    // One triangle, counter-clockwise seen from +y, with its corners' normals given: up agrees
+    // with its winding, down does not (a Blender test file's cube, every triangle).
+    const auto load = [](const std::string& name, float normalY, const std::string& material) {
+        std::vector<unsigned char> b;
+        append<float>(b, {0, 0, 0, 0, 0, 1, 1, 0, 0}); // (0,0,0), (0,0,1), (1,0,0): up by its winding
+        append<float>(b, {0, normalY, 0, 0, normalY, 0, 0, normalY, 0});
+        return loadGltfText(name,
+                            R"("meshes":[{"primitives":[{"attributes":{"POSITION":0,"NORMAL":1},"material":0}]}],)"
+                            R"("materials":[)" +
+                                material +
+                                R"(],"accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3"},)"
+                                R"({"bufferView":0,"byteOffset":36,"componentType":5126,"count":3,"type":"VEC3"}],)"
+                                R"("bufferViews":[{"buffer":0,"byteLength":72}])",
+                            b);
+    };
+    const auto outward = load("sk_outward.gltf", 1.0f, "{}");
+    ASSERT_TRUE(outward) << outward.error();
+    ASSERT_GT(windingFromAbove(outward->meshes.at(0), 0), 0.0f);
+    EXPECT_TRUE(outward->warnings.empty());
+    const auto inside = load("sk_inside_out.gltf", -1.0f, "{}");
+    ASSERT_TRUE(inside) << inside.error();
+    ASSERT_EQ(inside->warnings.size(), 1u);
+    EXPECT_NE(inside->warnings[0].find("sk_inside_out.gltf: mesh 0 primitive 0: 100 % of its triangles wind clockwise "
+                                       "about the normals it gives them"),
+              std::string::npos)
+        << inside->warnings[0];
+    // Double-sided, its winding decides nothing: no word.
+    const auto both = load("sk_both_sides.gltf", -1.0f, R"({"doubleSided":true})");
+    ASSERT_TRUE(both) << both.error();
+    EXPECT_TRUE(both->warnings.empty());
+}
+
+TEST(GltfReadTest, AFileWithoutASceneShowsEachOfItsRootNodes) {
+    // glTF §3.5: a file with no scene is a library; Blender's exporter writes one. Its roots are
+    // node 0 (placing node 1's mesh 10 m along x and 5 along z) and node 2; node 1 is a child.
+    const auto library = loadMeshNodes("sk_library.gltf", "",
+                                       R"({"translation":[10,0,0],"children":[1]},{"translation":[0,0,5],"mesh":0},)"
+                                       R"({"mesh":0})");
+    ASSERT_TRUE(library) << library.error();
+    ASSERT_EQ(library->instanceCount(), 2u);
+    const auto& placed = library->batches.at(0).worldFromObject;
+    ASSERT_EQ(placed.size(), 2u);
+    // Wherever the loader stands the scene (near_origin.cpp), the two lie (10, 0, 5) apart.
+    const glm::vec3 apart = glm::vec3(placed[0][3]) - glm::vec3(placed[1][3]);
+    EXPECT_NEAR(glm::length(apart - glm::vec3(10, 0, 5)), 0.0f, 1e-5f) << apart.x << " " << apart.y << " " << apart.z;
+    ASSERT_EQ(library->warnings.size(), 1u);
+    EXPECT_NE(library->warnings[0].find("sk_library.gltf: it has no scene (a library of entities); its 2 root nodes "
+                                        "stand together as the scene"),
+              std::string::npos)
+        << library->warnings[0];
+    // With a scene, only what it lists: node 2 alone.
+    const auto listed = loadMeshNodes("sk_listed.gltf", R"("scenes":[{"nodes":[2]}],)",
+                                      R"({"translation":[10,0,0],"children":[1]},{"translation":[0,0,5],"mesh":0},)"
+                                      R"({"mesh":0})");
+    ASSERT_TRUE(listed) << listed.error();
+    EXPECT_EQ(listed->instanceCount(), 1u);
+    EXPECT_TRUE(listed->warnings.empty());
 }
 
 TEST(GltfReadTest, ADeepTreeOfNodesComposesEveryTransform) {

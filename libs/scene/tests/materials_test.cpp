@@ -287,6 +287,15 @@ TEST_F(MaterialsTest, AnUndecodableTextureOnOpaqueMaterialsIsOneWarningNotARefus
     auto masked = scene::loadScene(writeQuadGltf(m_dir, kMaskedTexture, R"({"uri":"gone.png"})"));
     ASSERT_FALSE(masked);
     EXPECT_NE(masked.error().find("gone.png"), std::string::npos) << masked.error();
+    // A texture that names no image at all (the glTF Validator's material/valid.gltf): the
+    // same rule, the texture named.
+    auto sourceless =
+        scene::loadScene(writeQuadGltf(m_dir, kMaskedTexture, R"({"uri":"gone.png"})", 0, R"("textures":[{}])"));
+    ASSERT_FALSE(sourceless);
+    EXPECT_NE(sourceless.error().find("texture 0 names no image"), std::string::npos) << sourceless.error();
+    EXPECT_NE(sourceless.error().find("material 0 needs its alpha"), std::string::npos) << sourceless.error();
+    EXPECT_TRUE(
+        scene::loadScene(writeQuadGltf(m_dir, kOpaqueTexture, R"({"uri":"gone.png"})", 0, R"("textures":[{}])")));
 }
 
 TEST_F(MaterialsTest, PercentEncodedUrisNameTheirFiles) {
