@@ -71,6 +71,25 @@ BakedBatch placed(const BakedBatch& object, std::span<const glm::mat4> worldFrom
     return out;
 }
 
+// Whether any placed triangle has an area: one whose every triangle is a point or a line (the
+// glTF Validator's files whose accessors have no buffer view, all zeros; nodes scaled to 0)
+// casts and receives nothing, and a view framing it would frame a point.
+bool anyPlacedArea(const Scene& scene) {
+    for (const MeshBatch& batch : scene.batches) {
+        const bool placedWithSize = std::any_of(batch.worldFromObject.begin(), batch.worldFromObject.end(),
+                                                [](const glm::mat4& m) { return glm::length(glm::vec3(m[0])) > 0.0f; });
+        if (!placedWithSize) continue;
+        const Mesh& mesh = scene.meshes[batch.mesh];
+        for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
+            const glm::dvec3 a(mesh.vertices[mesh.indices[i]].position);
+            const glm::dvec3 b(mesh.vertices[mesh.indices[i + 1]].position);
+            const glm::dvec3 c(mesh.vertices[mesh.indices[i + 2]].position);
+            if (glm::length(glm::cross(b - a, c - a)) > 0.0) return true;
+        }
+    }
+    return false;
+}
+
 } // namespace formats
 
 namespace fs = std::filesystem;
@@ -102,6 +121,9 @@ core::Result<Scene> loadScene(const fs::path& file, const LoadOptions& options) 
             return core::makeError(file.string() + ": its geometry reaches " + metres +
                                    " m from the origin; at most 1e13 m");
         }
+        if (!anyPlacedArea(*scene))
+            return core::makeError(file.string() + ": every triangle it places has no area (a point or a line, or " +
+                                   "scaled to nothing): nothing to cast or receive a shadow");
     }
     if (scene && options.mergeSmallMeshes) mergeSmallMeshes(*scene);
     // Foliage that brings no levels of its own gets billboard clouds, as the leafy forest's trees.

@@ -337,6 +337,40 @@ TEST(SceneIoTest, GeometryPastTheWorldsEndIsRefusedInOneLine) {
     std::filesystem::remove(far);
 }
 
+// A scene of triangles without area frames a point (eye at the origin, near 0.0009 m, far
+// 0.0011 m, as the glTF Validator's node and skin files loaded: accessors with no buffer view are
+// zeros) and casts nothing: refused in one line. A flat plane has area and loads.
+TEST(SceneIoTest, AScenePlacingNoAreaIsRefusedInOneLine) {
+    const auto dir = shadowkit::test_support::scratchDir();
+    const auto expectRefused = [](const std::filesystem::path& file) {
+        const auto loaded = loadScene(file);
+        ASSERT_FALSE(loaded) << file;
+        EXPECT_NE(loaded.error().find(file.filename().string() + ": every triangle it places has no area"),
+                  std::string::npos)
+            << loaded.error();
+        EXPECT_EQ(loaded.error().find('\n'), std::string::npos) << loaded.error();
+    };
+    const auto line = dir / "shadowkit_line.obj";
+    std::ofstream(line) << "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n";
+    expectRefused(line);
+    const auto plane = dir / "shadowkit_plane.obj";
+    std::ofstream(plane) << "v 0 0 0\nv 1 0 0\nv 0 0 1\nf 1 2 3\n";
+    EXPECT_TRUE(loadScene(plane));
+    const auto gltf = [&](const std::string& name, const std::string& node, const std::string& accessor) {
+        const auto file = dir / name;
+        std::ofstream(file) << R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[)" << node
+                            << R"(],"meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],"accessors":[)"
+                            << accessor << R"(],"bufferViews":[{"buffer":0,"byteLength":36}],)"
+                            << R"("buffers":[{"byteLength":36,"uri":"data:application/octet-stream;base64,)"
+                            << R"(AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}]})";
+        return file;
+    };
+    const std::string unitTriangle = R"({"bufferView":0,"componentType":5126,"count":3,"type":"VEC3"})";
+    expectRefused(gltf("shadowkit_zeros.gltf", R"({"mesh":0})", R"({"componentType":5126,"count":3,"type":"VEC3"})"));
+    expectRefused(gltf("shadowkit_scaled_away.gltf", R"({"mesh":0,"scale":[0,0,0]})", unitTriangle));
+    EXPECT_TRUE(loadScene(gltf("shadowkit_unit.gltf", R"({"mesh":0})", unitTriangle)));
+}
+
 TEST(SceneIoTest, LoadedTerrainPlacesTheEyeOverItNotUnderIt) {
     // The exported forest has no heightfield once loaded: the ground under a point must
     // come from its terrain triangles (the clearing at the origin has no trees).
