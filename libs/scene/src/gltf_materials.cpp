@@ -136,11 +136,15 @@ bool loadImage(tinygltf::Image* image, const int index, std::string*, std::strin
 }
 
 core::Status readMaterials(const tinygltf::Model& model, const fs::path& file, const ImageContext& images,
-                           Scene& scene) {
+                           const std::vector<bool>& used, Scene& scene) {
     std::map<int, std::variant<int32_t, core::Error>> textureOf; // glTF texture -> Scene::textures, or why not
     std::set<int> dropped;                                       // textures warned about
     size_t textureBytes = 0;
     for (size_t m = 0; m < model.materials.size(); ++m) {
+        if (m >= used.size() || !used[m]) {
+            scene.materials.emplace_back();
+            continue;
+        }
         const tinygltf::Material& in = model.materials[m];
         const std::string where = file.string() + ": material " + std::to_string(m) +
                                   (in.name.empty() ? "" : " '" + printable(in.name) + "'");

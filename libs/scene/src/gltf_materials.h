@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <map>
 #include <string>
+#include <vector>
 
 namespace shadowkit::scene::formats {
 
@@ -29,9 +30,11 @@ bool loadImage(tinygltf::Image* image, int index, std::string* err, std::string*
                const unsigned char* bytes, int size, void* user);
 
 // Scene::materials in the file's order (Mesh::material is the glTF index) and the textures
-// their base colours use, decoded; the textures dropped go to Scene::warnings.
+// their base colours use, decoded; the textures dropped go to Scene::warnings. A material that
+// no placed primitive uses (`used[m]` false) is kept as the default, its index unchanged, and
+// neither read nor checked: a spare material in a library of them must not refuse the scene.
 core::Status readMaterials(const tinygltf::Model& model, const std::filesystem::path& file, const ImageContext& images,
-                           Scene& scene);
+                           const std::vector<bool>& used, Scene& scene);
 
 // `count` elements of `elementSize` bytes every `stride` bytes from `offset` in view
 // `viewIndex`: the first byte, or an error when any of it lies outside the view or its buffer.

@@ -7,9 +7,9 @@
 //     and unsigned as c / (2^n − 1) (KHR_mesh_quantization's positions, normals and colours);
 //   - sparse accessors: the base values (zeros without a buffer view), then the listed ones;
 //   - triangle lists, strips and fans (strips and fans unrolled into lists);
-//   - materials (§3.9, gltf_materials.cpp): base colour factor and texture with its TEXCOORD
-//     set and sampler, KHR_texture_transform applied to the uvs, alpha mode and cutoff,
-//     double-sidedness;
+//   - the materials a placed primitive uses (§3.9, gltf_materials.cpp): base colour factor and
+//     texture with its TEXCOORD set and sampler, KHR_texture_transform applied to the uvs,
+//     alpha mode and cutoff, double-sidedness;
 //   - images (§3.8.4, gltf_materials.cpp): PNG, JPEG and WebP (EXT_texture_webp), embedded
 //     (buffer view or data URI) or external (tinygltf decodes percent-encoded URIs), decoded by
 //     scene::decodeImage within its limits; a buffer view's bytes are checked against its
@@ -446,6 +446,25 @@ std::vector<int> sceneRoots(const tinygltf::Model& model, const fs::path& file, 
     return roots;
 }
 
+// Which materials the primitives of the meshes placed below `roots` use. Each node is met
+// once: checkNodeTrees has made the nodes below the roots trees.
+std::vector<bool> materialsPlaced(const tinygltf::Model& model, const std::vector<int>& roots) {
+    std::vector<bool> used(model.materials.size(), false);
+    std::vector<int> toVisit(roots.begin(), roots.end());
+    while (!toVisit.empty()) {
+        const int index = toVisit.back();
+        toVisit.pop_back();
+        if (index < 0 || size_t(index) >= model.nodes.size()) continue;
+        const tinygltf::Node& node = model.nodes[size_t(index)];
+        if (node.mesh >= 0 && size_t(node.mesh) < model.meshes.size())
+            for (const tinygltf::Primitive& primitive : model.meshes[size_t(node.mesh)].primitives)
+                if (primitive.material >= 0 && size_t(primitive.material) < used.size())
+                    used[size_t(primitive.material)] = true;
+        toVisit.insert(toVisit.end(), node.children.begin(), node.children.end());
+    }
+    return used;
+}
+
 core::Result<Scene> loadGltf(const fs::path& file, double poseSeconds) {
     const bool binary = lowerExtension(file) == ".glb";
     const auto bytes = readFile(file);
@@ -492,7 +511,8 @@ core::Result<Scene> loadGltf(const fs::path& file, double poseSeconds) {
         if (!knownOrShadingOnly(extension))
             scene.warnings.push_back(file.string() + ": it requires " + printable(extension) +
                                      ", which shadowkit does not read: what it describes is left out");
-    if (auto s = readMaterials(model, file, images, scene); !s) return s.errorInfo();
+    const std::vector<int> roots = sceneRoots(model, file, scene.warnings);
+    if (auto s = readMaterials(model, file, images, materialsPlaced(model, roots), scene); !s) return s.errorInfo();
     // (mesh, primitive) -> batch index: a mesh placed by many nodes becomes one instanced batch.
     // A batch per mesh primitive and handedness: glTF reverses the winding of a node whose
     // transform has a negative determinant (a mirror), so its instances get the primitive with
@@ -632,7 +652,7 @@ core::Result<Scene> loadGltf(const fs::path& file, double poseSeconds) {
         for (int child : node.children) self(self, child, world, depth + 1);
         path.pop_back();
     };
-    for (int root : sceneRoots(model, file, scene.warnings)) visit(visit, root, glm::dmat4(1.0), 0);
+    for (int root : roots) visit(visit, root, glm::dmat4(1.0), 0);
     if (failure) return *failure;
     placeNearOrigin(scene, placements);
     placeViewpoints(scene);

@@ -271,11 +271,26 @@ TEST_F(MaterialsTest, WebpTexturesDecodeAndKtx2FallsBackToTheCoreImage) {
     EXPECT_NE(truncated.error().find("WebP"), std::string::npos) << truncated.error();
 }
 
+// The quad drawn twice, by two primitives: the first with material 0, the second with material 1.
+fs::path withSecondPrimitive(const fs::path& file) {
+    std::ifstream in(file);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string first = R"("indices":2,"material":0})";
+    const size_t at = text.find(first);
+    if (at == std::string::npos) {
+        ADD_FAILURE() << file << ": writeQuadGltf's primitive is not where this expects it";
+        return file;
+    }
+    text.insert(at + first.size(), R"(,{"attributes":{"POSITION":0,"TEXCOORD_0":1},"indices":2,"material":1})");
+    std::ofstream(file, std::ios::trunc) << text;
+    return file;
+}
+
 TEST_F(MaterialsTest, AnUndecodableTextureOnOpaqueMaterialsIsOneWarningNotARefusedScene) {
     // Two opaque materials share a texture whose file is missing: the scene loads, untextured,
     // with one warning naming the image; shadows never read an opaque material's colour.
-    auto loaded =
-        scene::loadScene(writeQuadGltf(m_dir, kOpaqueTexture + "," + kOpaqueTexture, R"({"uri":"gone.png"})"));
+    auto loaded = scene::loadScene(
+        withSecondPrimitive(writeQuadGltf(m_dir, kOpaqueTexture + "," + kOpaqueTexture, R"({"uri":"gone.png"})")));
     ASSERT_TRUE(loaded) << loaded.error();
     ASSERT_EQ(loaded->warnings.size(), 1u);
     EXPECT_NE(loaded->warnings[0].find("image 0 'gone.png'"), std::string::npos) << loaded->warnings[0];
@@ -287,6 +302,12 @@ TEST_F(MaterialsTest, AnUndecodableTextureOnOpaqueMaterialsIsOneWarningNotARefus
     auto masked = scene::loadScene(writeQuadGltf(m_dir, kMaskedTexture, R"({"uri":"gone.png"})"));
     ASSERT_FALSE(masked);
     EXPECT_NE(masked.error().find("gone.png"), std::string::npos) << masked.error();
+    // The same MASK material, spare (no primitive uses it): not read, not refused.
+    auto spare = scene::loadScene(writeQuadGltf(m_dir, "{}," + kMaskedTexture, R"({"uri":"gone.png"})"));
+    ASSERT_TRUE(spare) << spare.error();
+    EXPECT_TRUE(spare->warnings.empty());
+    ASSERT_EQ(spare->materials.size(), 2u);
+    EXPECT_EQ(spare->materials[1].alphaMode, scene::AlphaMode::Opaque);
     // A texture that names no image at all (the glTF Validator's material/valid.gltf): the
     // same rule, the texture named.
     auto sourceless =
