@@ -1,0 +1,118 @@
+#!/usr/bin/env python3
+"""Every glTF and GLB file under the given folders through `shadowkit render`, as a new user
+would load them: each must load, or be refused in one line naming the file, with exit 1 —
+never crash, hang, or fail another way. Prints a markdown table per folder and what did not
+behave; where a file has the glTF Validator's report beside it (FILE.report.json, as in the
+validator's own test files), also the files the validator finds valid that shadowkit refuses,
+and those it finds in error that shadowkit loads.
+
+    tools/gltf_suites.py [--binary B] [--jobs N] [--timeout S] FOLDER...
+
+The folders are checkouts of public repositories (docs/reliability.md names them and their
+commits). Outputs go to build/gltf-suites/.
+"""
+import argparse
+import collections
+import concurrent.futures
+import json
+import os
+import pathlib
+import re
+import subprocess
+import sys
+import tempfile
+
+
+def find_files(folder):
+    out = []
+    for root, _, names in os.walk(folder):
+        for name in names:
+            if name.lower().endswith((".gltf", ".glb")):
+                out.append(pathlib.Path(root) / name)
+    return sorted(out)
+
+
+def run_one(binary, path, timeout, workdir):
+    with tempfile.TemporaryDirectory(dir=workdir) as scratch:
+        picture = pathlib.Path(scratch) / "x.png"
+        try:
+            done = subprocess.run([binary, "render", "--scene", str(path), "--size", "64x36", "--out", str(picture)],
+                                  capture_output=True, text=True, errors="replace", timeout=timeout)
+        except subprocess.TimeoutExpired:
+            return {"path": path, "kind": "hang", "line": f"no answer in {timeout} s"}
+        wrote = picture.is_file() and picture.stat().st_size > 0
+    errors = [l for l in done.stderr.splitlines() if l.startswith("shadowkit: error:")]
+    if done.returncode == 0:
+        return {"path": path, "kind": "loaded" if wrote else "wrote nothing", "line": ""}
+    if done.returncode < 0:
+        return {"path": path, "kind": "crash", "line": f"signal {-done.returncode}"}
+    other = [l for l in done.stderr.splitlines() if l and not l.startswith("shadowkit: warning:")]
+    if done.returncode == 1 and len(errors) == 1 and len(other) == 1 and str(path) in errors[0]:
+        return {"path": path, "kind": "refused", "line": errors[0].split(str(path) + ": ", 1)[-1]}
+    return {"path": path, "kind": "other failure", "line": f"exit {done.returncode}: " + " | ".join(other)[:300]}
+
+
+def validator_errors(path):
+    report = pathlib.Path(str(path) + ".report.json")
+    if not report.is_file():
+        return None
+    return json.loads(report.read_text())["issues"]["numErrors"]
+
+
+def kind_of_reason(reason):
+    """The refusal's kind: its message with numbers and names taken out."""
+    reason = re.sub(r"'[^']*'", "'…'", reason)
+    reason = re.sub(r"\d+", "N", reason)
+    return reason[:110]
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("folders", nargs="+")
+    parser.add_argument("--binary", default="build/apps/shadowkit/shadowkit")
+    parser.add_argument("--jobs", type=int, default=2)
+    parser.add_argument("--timeout", type=int, default=300)
+    args = parser.parse_args()
+    binary = os.path.abspath(args.binary)
+    if not os.access(binary, os.X_OK):
+        sys.exit(f"gltf_suites.py: {args.binary}: no shadowkit binary there (build it first)")
+    workdir = pathlib.Path("build/gltf-suites")
+    workdir.mkdir(parents=True, exist_ok=True)
+    bad = []
+    for folder in args.folders:
+        files = find_files(folder)
+        if not files:
+            sys.exit(f"gltf_suites.py: {folder}: no .gltf or .glb file under it")
+        with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as pool:
+            results = list(pool.map(lambda p: run_one(binary, p, args.timeout, workdir), files))
+        counts = collections.Counter(r["kind"] for r in results)
+        print(f"\n{folder}: {len(files)} files: " + ", ".join(f"{n} {k}" for k, n in counts.most_common()))
+        reasons = collections.Counter(kind_of_reason(r["line"]) for r in results if r["kind"] == "refused")
+        print("\n| refused because | files |\n|---|---:|")
+        for reason, n in reasons.most_common():
+            print(f"| {reason} | {n} |")
+        for r in results:
+            if r["kind"] not in ("loaded", "refused"):
+                bad.append(r)
+        judged = [(r, validator_errors(r["path"])) for r in results]
+        judged = [(r, e) for r, e in judged if e is not None]
+        if judged:
+            valid_refused = [r for r, e in judged if e == 0 and r["kind"] == "refused"]
+            invalid_loaded = [r for r, e in judged if e > 0 and r["kind"] == "loaded"]
+            print(f"\nAgainst the validator's reports ({len(judged)} files, "
+                  f"{sum(1 for _, e in judged if e == 0)} without errors): "
+                  f"{len(valid_refused)} valid files refused, {len(invalid_loaded)} files with errors loaded")
+            if valid_refused:
+                print("\n| valid, refused because | files |\n|---|---:|")
+                for reason, n in collections.Counter(kind_of_reason(r["line"]) for r in valid_refused).most_common():
+                    print(f"| {reason} | {n} |")
+            for r in invalid_loaded:
+                print(f"- errors, loaded: {os.path.relpath(r['path'], folder)}")
+    print(f"\nNot loaded and not refused in one line: {len(bad)}")
+    for r in bad:
+        print(f"- {r['kind']}: {r['path']}: {r['line']}")
+    return 1 if bad else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
