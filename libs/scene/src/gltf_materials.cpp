@@ -8,6 +8,7 @@
 #include "shadowkit/scene/image.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <map>
 #include <optional>
 #include <set>
@@ -118,6 +119,13 @@ core::Result<Texture> readTexture(const tinygltf::Model& model, const fs::path& 
     return decoded;
 }
 
+// The largest alpha of an image's texels, in [0, 1].
+float maxAlpha(const Image& image) {
+    uint8_t most = 0;
+    for (size_t i = 3; i < image.rgba.size(); i += 4) most = std::max(most, image.rgba[i]);
+    return float(most) / 255.0f;
+}
+
 } // namespace
 
 bool loadImage(tinygltf::Image* image, const int index, std::string*, std::string*, int, int,
@@ -139,6 +147,7 @@ core::Status readMaterials(const tinygltf::Model& model, const fs::path& file, c
                            const std::vector<bool>& used, Scene& scene) {
     std::map<int, std::variant<int32_t, core::Error>> textureOf; // glTF texture -> Scene::textures, or why not
     std::set<int> dropped;                                       // textures warned about
+    std::map<int32_t, float> maxAlphaOf;                         // Scene::textures -> their largest alpha
     size_t textureBytes = 0;
     for (size_t m = 0; m < model.materials.size(); ++m) {
         if (m >= used.size() || !used[m]) {
@@ -184,6 +193,25 @@ core::Status readMaterials(const tinygltf::Model& model, const fs::path& file, c
             } else if (dropped.insert(t).second) {
                 scene.warnings.push_back(std::get<core::Error>(known->second).message +
                                          "; its opaque materials are drawn untextured");
+            }
+        }
+        // A mask whose alpha never reaches its cutoff covers nothing: the meshes wearing it
+        // vanish from every pass (a BLEND factor of 0.12, as a glass pane may be authored,
+        // cast as MASK at 0.5). Say so rather than leave an empty picture unexplained.
+        if (out.alphaMode != AlphaMode::Opaque) {
+            float textureAlpha = 1.0f;
+            if (out.baseColorTexture >= 0) {
+                auto [at, first] = maxAlphaOf.try_emplace(out.baseColorTexture, 0.0f);
+                if (first) at->second = maxAlpha(scene.textures[size_t(out.baseColorTexture)].image);
+                textureAlpha = at->second;
+            }
+            const float alpha = out.baseColorFactor.a * textureAlpha;
+            if (alpha < out.alphaCutoff) {
+                char figures[96];
+                std::snprintf(figures, sizeof figures, "its alpha is at most %.3g, below its cutoff %.3g", alpha,
+                              out.alphaCutoff);
+                scene.warnings.push_back(where + (out.alphaMode == AlphaMode::Blend ? " (BLEND, cast as MASK)" : "") +
+                                         ": " + figures + ": cut away whole, it is neither drawn nor cast");
             }
         }
         scene.materials.push_back(std::move(out));
