@@ -6,7 +6,11 @@ behave; where a file has the glTF Validator's report beside it (FILE.report.json
 validator's own test files), also the files the validator finds valid that shadowkit refuses,
 and those it finds in error that shadowkit loads.
 
-    tools/gltf_suites.py [--binary B] [--jobs N] [--timeout S] FOLDER...
+    tools/gltf_suites.py [--binary B] [--jobs N] [--timeout S] [--bound] FOLDER...
+
+With --bound, every file that loads is also evaluated on the six sunlit views at 640 × 360
+with the default set-up and with `--technique focused`, and the views where the default errs
+more than issue 49's bound (1.5 × focused's `wrong_pct` + 0.1 points) are listed.
 
 The folders are checkouts of public repositories (docs/reliability.md names them and their
 commits). Outputs go to build/gltf-suites/.
@@ -52,6 +56,39 @@ def run_one(binary, path, timeout, workdir):
     return {"path": path, "kind": "other failure", "line": f"exit {done.returncode}: " + " | ".join(other)[:300]}
 
 
+VIEWS = ["paper", "perpendicular", "into-sun", "sun-behind", "noon", "aerial"]
+
+
+def wrong_by_view(binary, path, technique, timeout, workdir):
+    """`wrong_pct` per standard view (None where nothing was compared), or an error line."""
+    with tempfile.TemporaryDirectory(dir=workdir) as scratch:
+        report = pathlib.Path(scratch) / "eval.json"
+        extra = ["--technique", technique] if technique != "default" else []
+        try:
+            done = subprocess.run([binary, "eval", "--scene", str(path), "--views", "all", "--size", "640x360",
+                                   "--json", str(report)] + extra,
+                                  capture_output=True, text=True, errors="replace", timeout=timeout)
+        except subprocess.TimeoutExpired:
+            return f"eval {technique}: no answer in {timeout} s"
+        if done.returncode != 0 or not report.is_file():
+            return f"eval {technique}: exit {done.returncode}: " + done.stderr.strip().splitlines()[-1][:200]
+        views = json.loads(report.read_text())["views"]
+    return {v["view"]: (v["wrong_pct"] if v["valid_px"] > 0 else None) for v in views}
+
+
+def bound_misses(binary, path, timeout, workdir):
+    """The views where the default is outside 1.5 × focused + 0.1 points, or an error line."""
+    default = wrong_by_view(binary, path, "default", timeout, workdir)
+    if isinstance(default, str):
+        return default
+    focused = wrong_by_view(binary, path, "focused", timeout, workdir)
+    if isinstance(focused, str):
+        return focused
+    return [(view, default[view], focused[view]) for view in VIEWS
+            if default.get(view) is not None and focused.get(view) is not None
+            and default[view] > 1.5 * focused[view] + 0.1]
+
+
 def validator_errors(path):
     report = pathlib.Path(str(path) + ".report.json")
     if not report.is_file():
@@ -72,6 +109,7 @@ def main():
     parser.add_argument("--binary", default="build/apps/shadowkit/shadowkit")
     parser.add_argument("--jobs", type=int, default=2)
     parser.add_argument("--timeout", type=int, default=300)
+    parser.add_argument("--bound", action="store_true", help="also hold each loaded file to issue 49's bound")
     args = parser.parse_args()
     binary = os.path.abspath(args.binary)
     if not os.access(binary, os.X_OK):
@@ -94,6 +132,19 @@ def main():
         for r in results:
             if r["kind"] not in ("loaded", "refused"):
                 bad.append(r)
+        if args.bound:
+            loaded = [r["path"] for r in results if r["kind"] == "loaded"]
+            with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as pool:
+                held = list(pool.map(lambda p: bound_misses(binary, p, args.timeout, workdir), loaded))
+            failed = [(p, h) for p, h in zip(loaded, held) if isinstance(h, str)]
+            missed = [(p, h) for p, h in zip(loaded, held) if isinstance(h, list) and h]
+            print(f"\nIssue 49's bound (default wrong_pct <= 1.5 x focused's + 0.1, 640 x 360): "
+                  f"{len(loaded) - len(failed) - len(missed)} of {len(loaded)} files hold it on every view")
+            for path, views in missed:
+                shown = ", ".join(f"{v} {d:.2f} ({f:.2f})" for v, d, f in views)
+                print(f"- {os.path.relpath(path, folder)}: {shown}")
+            for path, why in failed:
+                bad.append({"path": path, "kind": "eval failure", "line": why})
         judged = [(r, validator_errors(r["path"])) for r in results]
         judged = [(r, e) for r, e in judged if e is not None]
         if judged:

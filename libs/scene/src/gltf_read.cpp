@@ -418,6 +418,25 @@ core::Status checkNodeTrees(const tinygltf::Model& model, const fs::path& file) 
             listed[size_t(root)] = true;
         }
     }
+    // Every node's parents lead up to a node that has none. A loop of nodes each the child of
+    // the next has no root above it: no scene lists it, yet a skin may name its nodes as joints,
+    // and walking up from one (the animations' reader does) would never end — a hang found by
+    // fuzz_gltf in a file whose `scenes` were mangled away. Each node is walked over once.
+    enum : int8_t { kUnknown, kOnThisWalk, kReachesARoot };
+    std::vector<int8_t> state(model.nodes.size(), kUnknown);
+    std::vector<size_t> walk;
+    for (size_t start = 0; start < model.nodes.size(); ++start) {
+        walk.clear();
+        int node = int(start);
+        for (; node >= 0 && state[size_t(node)] == kUnknown; node = parentOf[size_t(node)]) {
+            state[size_t(node)] = kOnThisWalk;
+            walk.push_back(size_t(node));
+        }
+        if (node >= 0 && state[size_t(node)] == kOnThisWalk)
+            return core::makeError(file.string() + ": " + named(size_t(node)) +
+                                   " is its own ancestor (a cycle in the node hierarchy)");
+        for (size_t visited : walk) state[visited] = kReachesARoot;
+    }
     return core::Ok{};
 }
 

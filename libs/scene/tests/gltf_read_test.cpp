@@ -182,12 +182,13 @@ TEST(GltfReadTest, WhatCannotBeReadIsNamedInOneLine) {
                 "sk_jointless.gltf: not a readable glTF file (an object lacks a property glTF requires");
 }
 
-// A .gltf of one triangle mesh placed by the given nodes (a JSON array's insides), with the
-// given scene members before them ("" for a file with no scene at all).
-core::Result<scene::Scene> loadMeshNodes(const std::string& name, const std::string& scenes, const std::string& nodes) {
+// A .gltf of one triangle mesh placed by the given nodes (a JSON array's insides), after the
+// given members (a scene, skins; "" for a file with no scene at all).
+core::Result<scene::Scene> loadMeshNodes(const std::string& name, const std::string& members,
+                                         const std::string& nodes) {
     std::vector<unsigned char> triangle;
     append<float>(triangle, {0, 0, 0, 1, 0, 0, 0, 0, -1});
-    return loadWritten(name, R"({"asset":{"version":"2.0"},)" + scenes + R"("nodes":[)" + nodes +
+    return loadWritten(name, R"({"asset":{"version":"2.0"},)" + members + R"("nodes":[)" + nodes +
                                  R"(],"meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],)"
                                  R"("accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3"}],)"
                                  R"("bufferViews":[{"buffer":0,"byteLength":36}],"buffers":[{"byteLength":36,)"
@@ -233,6 +234,13 @@ TEST(GltfReadTest, NodeHierarchiesThatAreNotTreesAreRefusedInOneLine) {
     expectError(loadNodes("sk_roots.gltf", "0,0", R"({"mesh":0})"), "scene 0's root node 0 is listed twice");
     expectError(loadNodes("sk_child.gltf", "0", R"({"children":[7]})"), "node 0 lists child 7, which is not a node");
     expectError(loadNodes("sk_deep.gltf", "0", chainOfNodes(600)), "deeper than 512 levels");
+    // A loop of nodes that no scene lists, one of them a skin's joint: walking up from it never
+    // ended (found by fuzz_gltf: a file whose `scenes` were mangled away, node 0 its own child).
+    expectError(loadMeshNodes("sk_loop.gltf", R"("skins":[{"joints":[0]}],)",
+                              R"({"children":[2]},{"mesh":0},{"children":[0]})"),
+                "node 0 is its own ancestor (a cycle");
+    expectError(loadMeshNodes("sk_self.gltf", "", R"({"children":[0]},{"mesh":0})"),
+                "node 0 is its own ancestor (a cycle");
     // A scene whose nodes name no mesh: the file's mesh is there, the scene leaves it out.
     expectError(loadNodes("sk_unplaced.gltf", "0", R"({"name":"empty"},{"mesh":0})"),
                 "sk_unplaced.gltf: its mesh is placed by no node of its scene");
