@@ -132,8 +132,8 @@ def main():
         for r in results:
             if r["kind"] not in ("loaded", "refused"):
                 bad.append(r)
-        if args.bound:
-            loaded = [r["path"] for r in results if r["kind"] == "loaded"]
+        loaded = [r["path"] for r in results if r["kind"] == "loaded"]
+        if args.bound and loaded:
             with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as pool:
                 held = list(pool.map(lambda p: bound_misses(binary, p, args.timeout, workdir), loaded))
             failed = [(p, h) for p, h in zip(loaded, held) if isinstance(h, str)]
