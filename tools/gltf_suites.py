@@ -118,6 +118,8 @@ def main():
     workdir.mkdir(parents=True, exist_ok=True)
     bad = []
     for folder in args.folders:
+        if not os.path.isdir(folder):
+            sys.exit(f"gltf_suites.py: {folder}: not a folder")
         files = find_files(folder)
         if not files:
             sys.exit(f"gltf_suites.py: {folder}: no .gltf or .glb file under it")
