@@ -135,16 +135,13 @@ std::vector<KeyframeChannel> perTarget(const KeyframeChannel& all, size_t target
 
 } // namespace
 
-FileAnimations readAnimations(const tinygltf::Model& model, const std::string& file,
+FileAnimations readAnimations(const tinygltf::Model& model, const NodeTrees& trees, const std::string& file,
                               std::vector<std::string>& warnings) {
     // A skin's joints and every node above one: a skinned mesh's vertices follow them all.
-    std::vector<int> parentOf(model.nodes.size(), -1);
-    for (size_t node = 0; node < model.nodes.size(); ++node)
-        for (int child : model.nodes[node].children)
-            if (child >= 0 && size_t(child) < model.nodes.size()) parentOf[size_t(child)] = int(node);
+    const std::vector<int>& parentOf = trees.parentOf;
     std::set<int> joints;
     for (const tinygltf::Skin& skin : model.skins)
-        for (int node : skin.joints) // up to a root, or to a node already met (checkNodeTrees: no cycles)
+        for (int node : skin.joints) // up to a root, or to a node already met (NodeTrees: the walk ends)
             while (node >= 0 && size_t(node) < model.nodes.size() && joints.insert(node).second)
                 node = parentOf[size_t(node)];
     FileAnimations out;

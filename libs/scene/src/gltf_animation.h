@@ -4,6 +4,8 @@
 
 #include "shadowkit/scene/keyframes.h"
 
+#include "gltf_nodes.h"
+
 #include <tiny_gltf.h>
 
 #include <functional>
@@ -42,7 +44,7 @@ struct FileAnimations {
 /// what they can and never refuse a scene for its animations: a channel that cannot be used —
 /// a node written as a matrix, a bad sampler or accessor, a property another animation already
 /// moves — is left at rest, with one line per animation in `warnings`.
-FileAnimations readAnimations(const tinygltf::Model& model, const std::string& file,
+FileAnimations readAnimations(const tinygltf::Model& model, const NodeTrees& trees, const std::string& file,
                               std::vector<std::string>& warnings);
 
 /// Writes the posed channels' values at time t into the model's nodes (TRS and weights), so that

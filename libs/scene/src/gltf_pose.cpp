@@ -36,12 +36,9 @@ glm::dmat4 nodeLocalMatrix(const tinygltf::Node& node) {
     return m;
 }
 
-std::vector<glm::dmat4> nodeGlobalTransforms(const tinygltf::Model& model) {
+std::vector<glm::dmat4> nodeGlobalTransforms(const tinygltf::Model& model, const NodeTrees& trees) {
     const size_t n = model.nodes.size();
-    std::vector<int> parentOf(n, -1);
-    for (size_t node = 0; node < n; ++node)
-        for (int child : model.nodes[node].children)
-            if (child >= 0 && size_t(child) < n) parentOf[size_t(child)] = int(node);
+    const std::vector<int>& parentOf = trees.parentOf;
     // Roots first, then each child after its parent: an explicit stack, as a file's trees may be
     // as deep as it is long.
     std::vector<glm::dmat4> global(n, glm::dmat4(1.0));
@@ -59,8 +56,8 @@ std::vector<glm::dmat4> nodeGlobalTransforms(const tinygltf::Model& model) {
     return global;
 }
 
-core::Result<SkinJoints> readSkinJoints(const tinygltf::Model& model, int skinIndex, const AnimatedNodes& moving,
-                                        double t, const std::string& where) {
+core::Result<SkinJoints> readSkinJoints(const tinygltf::Model& model, const NodeTrees& trees, int skinIndex,
+                                        const AnimatedNodes& moving, double t, const std::string& where) {
     SkinJoints out;
     const tinygltf::Skin& skin = model.skins[size_t(skinIndex)];
     const std::string what = where + ": skin " + std::to_string(skinIndex);
@@ -75,11 +72,7 @@ core::Result<SkinJoints> readSkinJoints(const tinygltf::Model& model, int skinIn
                                    std::to_string(skin.joints.size()) + ")");
         inverseBind = std::move(*reader);
     }
-    std::vector<int> parentOf(model.nodes.size(), -1);
-    for (size_t node = 0; node < model.nodes.size(); ++node)
-        for (int child : model.nodes[node].children)
-            if (child >= 0 && size_t(child) < model.nodes.size()) parentOf[size_t(child)] = int(node);
-    const std::vector<glm::dmat4> globals = nodeGlobalTransforms(model);
+    const std::vector<glm::dmat4> globals = nodeGlobalTransforms(model, trees);
     std::vector<int> path;
     for (size_t j = 0; j < skin.joints.size(); ++j) {
         const int joint = skin.joints[j];
@@ -89,9 +82,9 @@ core::Result<SkinJoints> readSkinJoints(const tinygltf::Model& model, int skinIn
         glm::dmat4 ibm(1.0);
         if (inverseBind)
             for (int c = 0; c < 16; ++c) ibm[c / 4][c % 4] = inverseBind->get(j, c); // column-major, as glTF
-        // Root first down to the joint (checkNodeTrees: no cycles).
+        // Root first down to the joint (NodeTrees: the walk up ends).
         path.clear();
-        for (int node = joint; node >= 0; node = parentOf[size_t(node)]) path.push_back(node);
+        for (int node = joint; node >= 0; node = trees.parentOf[size_t(node)]) path.push_back(node);
         std::reverse(path.begin(), path.end());
         std::optional<NodeMotion> motion = motionAlong(model, path, moving);
         if (!motion) {

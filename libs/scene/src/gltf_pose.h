@@ -6,6 +6,7 @@
 #include "shadowkit/scene/scene.h"
 
 #include "gltf_animation.h"
+#include "gltf_nodes.h"
 
 #include <tiny_gltf.h>
 
@@ -21,9 +22,8 @@ namespace shadowkit::scene::formats {
 /// writes its numbers: a node may stand a thousand kilometres out).
 glm::dmat4 nodeLocalMatrix(const tinygltf::Node& node);
 
-/// Every node's global transform at the rest pose (the nodes' TRS or matrices as written), for
-/// a file whose nodes form trees (checkNodeTrees).
-std::vector<glm::dmat4> nodeGlobalTransforms(const tinygltf::Model& model);
+/// Every node's global transform at the rest pose (the nodes' TRS or matrices as written).
+std::vector<glm::dmat4> nodeGlobalTransforms(const tinygltf::Model& model, const NodeTrees& trees);
 
 /// A skin's joints, each placed over time by the chain of nodes above it (`moving`: the nodes
 /// animations move, as motionAlong takes them; file coordinates), and their inverse bind
@@ -32,8 +32,8 @@ struct SkinJoints {
     std::vector<NodeMotion> joints;
     std::vector<glm::dmat4> inverseBind;
 };
-core::Result<SkinJoints> readSkinJoints(const tinygltf::Model& model, int skin, const AnimatedNodes& moving, double t,
-                                        const std::string& where);
+core::Result<SkinJoints> readSkinJoints(const tinygltf::Model& model, const NodeTrees& trees, int skin,
+                                        const AnimatedNodes& moving, double t, const std::string& where);
 
 /// What deforms a primitive's vertices (`mesh`, as convertPrimitive read them; its batch left
 /// for the caller), read and checked: its morph targets at `weights` (the node's, else the mesh's

@@ -1,0 +1,113 @@
+// glTF nodes (glTF 2.0, Concepts, "Nodes and Hierarchy"): the hierarchy checked once, the
+// roots a scene starts from, the materials its meshes use.
+#include "gltf_nodes.h"
+
+#include "gltf_materials.h"
+
+#include <cstdint>
+#include <utility>
+
+namespace shadowkit::scene::formats {
+
+namespace fs = std::filesystem;
+
+// glTF 2.0 (Concepts, "Nodes and Hierarchy"): "the node hierarchy MUST be a set of disjoint
+// strict trees": no cycles, each node with at most one parent, and a scene's roots unique.
+// tinygltf does not check it, and a file that breaks it can place a node exponentially often:
+// a chain of nodes each naming the next twice places 2^depth instances, and a node that is its
+// own child recursed to the old depth limit of 64, doubling at every level (fuzz_gltf hung on
+// both). Checked before anything is placed, each node walked over once.
+core::Result<NodeTrees> checkNodeTrees(const tinygltf::Model& model, const fs::path& file) {
+    const auto named = [&](size_t node) {
+        const std::string& name = model.nodes[node].name;
+        return "node " + std::to_string(node) + (name.empty() ? "" : " '" + printable(name) + "'");
+    };
+    std::vector<int> parentOf(model.nodes.size(), -1);
+    for (size_t node = 0; node < model.nodes.size(); ++node)
+        for (int child : model.nodes[node].children) {
+            if (child < 0 || size_t(child) >= model.nodes.size())
+                return core::makeError(file.string() + ": " + named(node) + " lists child " + std::to_string(child) +
+                                       ", which is not a node");
+            if (parentOf[size_t(child)] >= 0)
+                return core::makeError(file.string() + ": " + named(size_t(child)) + " is a child of " +
+                                       named(size_t(parentOf[size_t(child)])) + " and again of " + named(node) +
+                                       " (glTF's nodes form trees: one parent each)");
+            parentOf[size_t(child)] = int(node);
+        }
+    for (size_t s = 0; s < model.scenes.size(); ++s) {
+        std::vector<bool> listed(model.nodes.size(), false);
+        for (int root : model.scenes[s].nodes) {
+            if (root < 0 || size_t(root) >= model.nodes.size()) continue; // placed nowhere
+            const std::string where = file.string() + ": scene " + std::to_string(s) + "'s root " + named(size_t(root));
+            if (parentOf[size_t(root)] >= 0)
+                return core::makeError(where + " is also a child of " + named(size_t(parentOf[size_t(root)])) +
+                                       " (a cycle in the node hierarchy)");
+            if (listed[size_t(root)]) return core::makeError(where + " is listed twice");
+            listed[size_t(root)] = true;
+        }
+    }
+    // Every node's parents lead up to a node that has none. A loop of nodes each the child of
+    // the next has no root above it: no scene lists it, yet a skin may name its nodes as joints,
+    // and walking up from one (the animations' reader does) would never end — a hang found by
+    // fuzz_gltf in a file whose `scenes` were mangled away. Each node is walked over once.
+    enum : int8_t { kUnknown, kOnThisWalk, kReachesARoot };
+    std::vector<int8_t> state(model.nodes.size(), kUnknown);
+    std::vector<size_t> walk;
+    for (size_t start = 0; start < model.nodes.size(); ++start) {
+        walk.clear();
+        int node = int(start);
+        for (; node >= 0 && state[size_t(node)] == kUnknown; node = parentOf[size_t(node)]) {
+            state[size_t(node)] = kOnThisWalk;
+            walk.push_back(size_t(node));
+        }
+        if (node >= 0 && state[size_t(node)] == kOnThisWalk)
+            return core::makeError(file.string() + ": " + named(size_t(node)) +
+                                   " is its own ancestor (a cycle in the node hierarchy)");
+        for (size_t visited : walk) state[visited] = kReachesARoot;
+    }
+    return NodeTrees{std::move(parentOf)};
+}
+
+// The nodes the loaded scene starts from: its default scene's roots (scene 0's where the file
+// names none). A file with no scene at all is, in glTF's words, a library of entities (§3.5:
+// "a glTF asset that does not contain any scenes should be treated as a library"); Blender's
+// exporter writes one when told to export no scene. A viewer is free to show it as it likes
+// (§3.5.1): shadowkit places every node that is no other's child, as Blender's importer does,
+// and says so — a file of meshes must not be refused as holding none.
+std::vector<int> sceneRoots(const tinygltf::Model& model, const NodeTrees& trees, const fs::path& file,
+                            std::vector<std::string>& warnings) {
+    if (!model.scenes.empty()) {
+        const int scene = model.defaultScene >= 0 ? model.defaultScene : 0;
+        return size_t(scene) < model.scenes.size() ? model.scenes[size_t(scene)].nodes : std::vector<int>{};
+    }
+    std::vector<int> roots;
+    for (size_t node = 0; node < model.nodes.size(); ++node)
+        if (trees.parentOf[node] < 0) roots.push_back(int(node));
+    if (!roots.empty())
+        warnings.push_back(file.string() + ": it has no scene (a library of entities); " +
+                           (roots.size() == 1 ? std::string("its root node stands")
+                                              : "its " + std::to_string(roots.size()) + " root nodes stand together") +
+                           " as the scene");
+    return roots;
+}
+
+// Which materials the primitives of the meshes placed below `roots` use. Each node is met
+// once: checkNodeTrees has made the nodes below the roots trees.
+std::vector<bool> materialsPlaced(const tinygltf::Model& model, const std::vector<int>& roots) {
+    std::vector<bool> used(model.materials.size(), false);
+    std::vector<int> toVisit(roots.begin(), roots.end());
+    while (!toVisit.empty()) {
+        const int index = toVisit.back();
+        toVisit.pop_back();
+        if (index < 0 || size_t(index) >= model.nodes.size()) continue;
+        const tinygltf::Node& node = model.nodes[size_t(index)];
+        if (node.mesh >= 0 && size_t(node.mesh) < model.meshes.size())
+            for (const tinygltf::Primitive& primitive : model.meshes[size_t(node.mesh)].primitives)
+                if (primitive.material >= 0 && size_t(primitive.material) < used.size())
+                    used[size_t(primitive.material)] = true;
+        toVisit.insert(toVisit.end(), node.children.begin(), node.children.end());
+    }
+    return used;
+}
+
+} // namespace shadowkit::scene::formats

@@ -1,0 +1,35 @@
+// A glTF file's node hierarchy, checked once (gltf_nodes.cpp), and what the loader reads from
+// it before any mesh: which nodes the scene starts from and which materials they use.
+// Internal to libs/scene.
+#pragma once
+
+#include "shadowkit/core/result.h"
+
+#include <tiny_gltf.h>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace shadowkit::scene::formats {
+
+/// The nodes of a file whose hierarchy is what glTF requires (disjoint strict trees): every
+/// child index names a node, each node has at most one parent, and every node's parents lead
+/// up to a root. Walking up from any node through `parentOf` ends.
+struct NodeTrees {
+    std::vector<int> parentOf; // node index -> its parent's, −1 for a root
+};
+
+/// The file's hierarchy checked (and refused in one line naming the node where it is not a set
+/// of trees: a loop, a second parent, a scene's root that is a child, a root listed twice).
+core::Result<NodeTrees> checkNodeTrees(const tinygltf::Model& model, const std::filesystem::path& file);
+
+/// The nodes the loaded scene starts from: its default scene's roots (scene 0's where the file
+/// names none), or, in a file with no scene, every root node, with one line in `warnings`.
+std::vector<int> sceneRoots(const tinygltf::Model& model, const NodeTrees& trees, const std::filesystem::path& file,
+                            std::vector<std::string>& warnings);
+
+/// Which of the file's materials the primitives of the meshes placed below `roots` use.
+std::vector<bool> materialsPlaced(const tinygltf::Model& model, const std::vector<int>& roots);
+
+} // namespace shadowkit::scene::formats
