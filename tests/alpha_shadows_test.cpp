@@ -4,12 +4,18 @@
 
 #include "shadowkit/core/local_lights.h"
 #include "shadowkit/measure/measurer.h"
+#include "shadowkit/scene/image.h"
 #include "shadowkit/scene/mesh_builder.h"
+#include "shadowkit/scene/scene_io.h"
+
+#include "scratch_dir.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 
 using namespace shadowkit;
 
@@ -36,16 +42,40 @@ scene::Scene cardScene(scene::Texture texture, scene::AlphaMode mode, float cuto
     return s;
 }
 
-scene::Scene checkerCardScene(scene::AlphaMode mode, float cutoff = 0.5f) {
-    scene::Texture texture;
-    texture.image = scene::Image(64, 64);
+scene::Image checkerImage() {
+    scene::Image image(64, 64);
     for (int y = 0; y < 64; ++y)
         for (int x = 0; x < 64; ++x) {
-            uint8_t* p = texture.image.pixel(x, y);
+            uint8_t* p = image.pixel(x, y);
             p[0] = p[1] = p[2] = 255;
             p[3] = (x / 16 + y / 16) % 2 == 0 ? 255 : 0;
         }
+    return image;
+}
+
+scene::Scene checkerCardScene(scene::AlphaMode mode, float cutoff = 0.5f) {
+    scene::Texture texture;
+    texture.image = checkerImage();
     return cardScene(std::move(texture), mode, cutoff);
+}
+
+// The same card and ground as a user's OBJ would bring them: the checker as the card's
+// material's map_d (an image with alpha), the OBJ's texture coordinates v up, so the image's
+// first row (glTF's v = 0, the card's top edge) is v = 1. Written to `dir`, loaded back.
+scene::Scene objCheckerCardScene(const std::filesystem::path& dir) {
+    std::filesystem::create_directories(dir);
+    EXPECT_TRUE(scene::writePng(checkerImage(), dir / "checker.png"));
+    std::ofstream(dir / "card.mtl")
+        << "newmtl ground\nKd 0.7 0.7 0.7\nnewmtl leaf\nKd 0.3 0.6 0.2\nmap_d checker.png\n";
+    std::ofstream(dir / "card.obj") << "mtllib card.mtl\n"
+                                       "o ground\nusemtl ground\n"
+                                       "v -12 0.01 12\nv 12 0.01 12\nv 12 0.01 -12\nv -12 0.01 -12\nf 1 2 3 4\n"
+                                       "o card\nusemtl leaf\n" // facing +x: z from +2 (u = 0) to −2
+                                       "v 0 0.5 2\nv 0 0.5 -2\nv 0 4.5 -2\nv 0 4.5 2\n"
+                                       "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 5/1 6/2 7/3 8/4\n";
+    auto loaded = scene::loadScene(dir / "card.obj");
+    EXPECT_TRUE(loaded) << loaded.error();
+    return loaded ? std::move(*loaded) : scene::Scene{};
 }
 
 // The card as a canopy seen from afar: 200 round leaves of 5 cm (radius 3 texels of 256²)
@@ -212,6 +242,20 @@ TEST_F(AlphaShadowsTest, TheSameCardOpaqueCastsOneSolidShadowAndBlendCastsAsMask
     ASSERT_GT(none.covered + none.open, 300);
     EXPECT_EQ(none.truthShadowed, 0);
     EXPECT_EQ(none.glShadowed, 0);
+}
+
+TEST_F(AlphaShadowsTest, AnObjCardCutByItsMapDCastsTheCheckerShadowToo) {
+    // Until OBJ materials read map_d, this card cast its whole square in the maps and the truth.
+    const auto dir = shadowkit::test_support::scratchDir() / "alpha_shadows_obj";
+    const scene::Scene s = objCheckerCardScene(dir);
+    ASSERT_EQ(s.meshes.size(), 2u);
+    const Agreement a = measureCard(s, core::Technique::Focused);
+    const int pixels = a.covered + a.open;
+    ASSERT_GT(a.covered, 150);
+    ASSERT_GT(a.open, 150);
+    EXPECT_EQ(a.truthAgrees, pixels);
+    EXPECT_GT(a.glAgrees, 0.97 * pixels);
+    std::filesystem::remove_all(dir);
 }
 
 TEST_F(AlphaShadowsTest, ACanopyInACoarseMapKeepsTheCoverageTheTruthSees) {

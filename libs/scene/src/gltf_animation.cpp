@@ -18,6 +18,7 @@
 #include "gltf_accessor.h"
 #include "gltf_materials.h"
 #include "gltf_pose.h"
+#include "scene_formats.h"
 
 #include <algorithm>
 #include <cmath>

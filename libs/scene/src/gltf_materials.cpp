@@ -4,6 +4,7 @@
 // one warning where its material is opaque (shadows never read an opaque colour) and refused
 // where the material's alpha matters.
 #include "gltf_materials.h"
+#include "scene_formats.h"
 
 #include "shadowkit/scene/image.h"
 
@@ -17,12 +18,6 @@
 namespace shadowkit::scene::formats {
 
 namespace fs = std::filesystem;
-
-std::string printable(std::string text) {
-    for (char& c : text)
-        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7F) c = '?';
-    return text;
-}
 
 namespace {
 

@@ -41,7 +41,4 @@ core::Status readMaterials(const tinygltf::Model& model, const std::filesystem::
 core::Result<const unsigned char*> bytesOf(const tinygltf::Model& model, int viewIndex, size_t offset, size_t count,
                                            size_t elementSize, size_t stride, const std::string& what);
 
-// A name from the file as it may appear in a one-line message: control characters replaced.
-std::string printable(std::string text);
-
 } // namespace shadowkit::scene::formats

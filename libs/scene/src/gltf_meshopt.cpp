@@ -29,6 +29,7 @@
 #include "gltf_meshopt.h"
 
 #include "gltf_materials.h"
+#include "scene_formats.h"
 
 #include "shadowkit/scene/file_read.h"
 

@@ -2,7 +2,7 @@
 // roots a scene starts from, the materials its meshes use.
 #include "gltf_nodes.h"
 
-#include "gltf_materials.h"
+#include "scene_formats.h"
 
 #include <cstdint>
 #include <utility>

@@ -7,7 +7,7 @@
 // frustum (both extensions say so): only the directions it gives, renormalised, are kept.
 #include "gltf_viewpoints.h"
 
-#include "gltf_materials.h" // printable
+#include "scene_formats.h"
 
 #include <cmath>
 #include <numbers>

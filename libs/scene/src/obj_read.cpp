@@ -2,9 +2,12 @@
 // Polygons are triangulated; normals come from the file when every corner has one, else from
 // the faces; albedo is the material's diffuse colour (Kd, from the .mtl beside the file) times
 // the vertex colour of the widely read `v x y z r g b` extension, which shadowkit's own export
-// writes. Files without either are light grey. The file and the material libraries it names
+// writes. Files without either are light grey. A material with a dissolve texture (`map_d`) cuts
+// its faces as glTF's MASK does, read in obj_materials.cpp: those faces are a mesh of their own
+// with its texture coordinates. The file and the material libraries it names
 // are read through scene::readTextFile: an mtllib line naming a pipe would otherwise wait
 // forever, and a byte-order mark or UTF-16 would hide the first line from the parser.
+#include "obj_materials.h"
 #include "scene_formats.h"
 
 #include "shadowkit/scene/file_read.h"
@@ -53,6 +56,21 @@ private:
     fs::path m_directory;
 };
 
+// A face's corner: its indices into the file's positions, normals (+ 1) and texture coordinates (+ 1).
+struct Corner {
+    int position = 0, normal = 0, texcoord = 0;
+    bool operator==(const Corner&) const = default;
+};
+struct CornerHash {
+    size_t operator()(const Corner& c) const {
+        // Fibonacci hashing of each index, combined: corners of one position differ in the others.
+        uint64_t h = uint64_t(uint32_t(c.position)) * 0x9E3779B97F4A7C15ull;
+        h ^= (uint64_t(uint32_t(c.normal)) + 0x632BE59BD9B4E019ull + (h << 6) + (h >> 2)) * 0x9E3779B97F4A7C15ull;
+        h ^= (uint64_t(uint32_t(c.texcoord)) + 0x85EBCA77C2B2AE63ull + (h << 6) + (h >> 2)) * 0x9E3779B97F4A7C15ull;
+        return size_t(h ^ (h >> 32));
+    }
+};
+
 } // namespace
 
 core::Result<Scene> loadObj(const fs::path& file) {
@@ -80,26 +98,35 @@ core::Result<Scene> loadObj(const fs::path& file) {
     const glm::dvec3 anchor = anchorOf(fileBounds);
 
     Scene scene;
+    // The file's materials that cut their faces (map_d): their index in scene.materials, else −1.
+    const std::vector<int32_t> cutBy = readObjMaterials(materials, file, scene);
+    const size_t texcoordCount = attrib.texcoords.size() / 2;
     for (const tinyobj::shape_t& shape : shapes) {
         const tinyobj::mesh_t& faces = shape.mesh;
-        Mesh mesh;
-        mesh.name = shape.name.empty() ? file.stem().string() : shape.name;
-        // One vertex per distinct (position, normal) corner of each material: material + 1 picks
-        // the map, the key packs the two indices (normal + 1, so "none" is 0).
-        std::vector<std::unordered_map<uint64_t, uint32_t>> vertexOf(materials.size() + 1);
-        bool everyNormal = true;
+        const std::string name = shape.name.empty() ? file.stem().string() : shape.name;
+        // The shape's faces in one mesh, but those of a cutting material in one of their own
+        // (Mesh::material is per mesh): part 0 is the opaque faces', part k + 1 material k's.
+        std::vector<Mesh> parts(materials.size() + 1);
+        std::vector<bool> everyNormal(parts.size(), true);
+        // One vertex per distinct (position, normal, texture coordinate) corner of each material:
+        // material + 1 picks the map; the key holds normal + 1 and, for a cutting material,
+        // texture coordinate + 1, so that "none" is 0.
+        std::vector<std::unordered_map<Corner, uint32_t, CornerHash>> vertexOf(materials.size() + 1);
         for (size_t corner = 0; corner < faces.indices.size(); ++corner) {
             const tinyobj::index_t& index = faces.indices[corner];
             const size_t face = corner / 3;
             const int material = face < faces.material_ids.size() ? faces.material_ids[face] : -1;
             if (index.vertex_index < 0 || size_t(index.vertex_index) >= vertexCount)
-                return core::makeError(file.string() + ": object '" + mesh.name + "': a face names vertex " +
+                return core::makeError(file.string() + ": object '" + name + "': a face names vertex " +
                                        std::to_string(index.vertex_index + 1) + " of " + std::to_string(vertexCount));
             const bool hasNormal = index.normal_index >= 0 && size_t(index.normal_index) < normalCount;
-            everyNormal = everyNormal && hasNormal;
-            const uint64_t key =
-                uint64_t(uint32_t(index.vertex_index)) << 32 | uint32_t(hasNormal ? index.normal_index + 1 : 0);
             const size_t slot = material >= 0 && size_t(material) < materials.size() ? size_t(material) + 1 : 0;
+            const bool cut = slot > 0 && cutBy[slot - 1] >= 0;
+            const bool hasUv = cut && index.texcoord_index >= 0 && size_t(index.texcoord_index) < texcoordCount;
+            Mesh& mesh = parts[cut ? slot : 0];
+            everyNormal[cut ? slot : 0] = everyNormal[cut ? slot : 0] && hasNormal;
+            const Corner key{index.vertex_index, hasNormal ? index.normal_index + 1 : 0,
+                             hasUv ? index.texcoord_index + 1 : 0};
             auto [it, inserted] = vertexOf[slot].try_emplace(key, uint32_t(mesh.vertices.size()));
             if (inserted) {
                 const size_t v = size_t(index.vertex_index);
@@ -109,8 +136,8 @@ core::Result<Scene> loadObj(const fs::path& file) {
                 vertex.position = glm::vec3(position - anchor);
                 if (!std::isfinite(vertex.position.x) || !std::isfinite(vertex.position.y) ||
                     !std::isfinite(vertex.position.z))
-                    return core::makeError(file.string() + ": object '" + mesh.name + "': vertex " +
-                                           std::to_string(v + 1) + " is not finite");
+                    return core::makeError(file.string() + ": object '" + name + "': vertex " + std::to_string(v + 1) +
+                                           " is not finite");
                 vertex.normal = glm::vec3(0, 1, 0);
                 if (hasNormal) {
                     const size_t n = size_t(index.normal_index);
@@ -126,15 +153,26 @@ core::Result<Scene> loadObj(const fs::path& file) {
                 if (colours)
                     albedo *= glm::vec3(attrib.colors[3 * v], attrib.colors[3 * v + 1], attrib.colors[3 * v + 2]);
                 vertex.albedo = glm::clamp(albedo, 0.0f, 1.0f);
+                if (hasUv) {
+                    const size_t t = size_t(index.texcoord_index);
+                    const glm::vec2 uv = objTextureUv(materials[slot - 1].alpha_texopt,
+                                                      {attrib.texcoords[2 * t], attrib.texcoords[2 * t + 1]});
+                    vertex.uv = std::isfinite(uv.x) && std::isfinite(uv.y) ? uv : glm::vec2(0.0f);
+                }
                 mesh.vertices.push_back(vertex);
             }
             mesh.indices.push_back(it->second);
         }
-        if (mesh.indices.empty()) continue; // points and lines only
-        if (!everyNormal) computeNormals(mesh);
-        mesh.computeBounds();
-        scene.meshes.push_back(std::move(mesh));
-        scene.batches.push_back({uint32_t(scene.meshes.size() - 1), {}, false});
+        for (size_t part = 0; part < parts.size(); ++part) {
+            Mesh& mesh = parts[part];
+            if (mesh.indices.empty()) continue; // points and lines only, or no face of this material
+            mesh.name = part == 0 ? name : name + " (" + materials[part - 1].name + ")";
+            mesh.material = part == 0 ? -1 : cutBy[part - 1];
+            if (!everyNormal[part]) computeNormals(mesh);
+            mesh.computeBounds();
+            scene.meshes.push_back(std::move(mesh));
+            scene.batches.push_back({uint32_t(scene.meshes.size() - 1), {}, false});
+        }
     }
     if (scene.meshes.empty()) return core::makeError(file.string() + ": OBJ file holds no faces");
     const std::vector<std::vector<glm::dmat4>> placements(scene.batches.size(),

@@ -24,6 +24,8 @@ core::Status exportGlb(const Scene& scene, const std::filesystem::path& file);
 
 // ".GLB" -> ".glb"
 std::string lowerExtension(const std::filesystem::path& file);
+// A name from the file as it may appear in a one-line message: control characters replaced.
+std::string printable(std::string text);
 // Smooth normals from triangle areas, for files that carry none.
 void computeNormals(Mesh& mesh);
 // Triangles and the vertices they use (not those only a mesh's coarser levels use).

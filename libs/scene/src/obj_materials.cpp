@@ -1,0 +1,137 @@
+// Alpha-cut OBJ materials: the MTL's dissolve texture (`map_d`) read as a mask, so that a tree
+// exported as OBJ casts its leaves' shadows and not its cards' rectangles.
+//
+// The MTL format (Wavefront, "Material library file (.mtl)"; map_d: "a scalar texture file",
+// read through the channel `-imfchan` names, `m` — matte — by default) has no alpha mode, cutoff
+// or sidedness. shadowkit reads a material with a map_d as glTF's MASK at its default cutoff
+// 0.5, drawn and cast from both sides — what a leaf card needs, and what Blender's and three.js's
+// importers make of it (an alpha-tested, two-sided surface). The mask's value per texel:
+//   - `-imfchan r|g|b`: that channel; `l`: the luminance (Rec. 709 weights);
+//   - `m` (the default): the image's alpha where it has one (any texel below 255), else its
+//     luminance — a grey mask saved without alpha, as most map_d files are, reads as one.
+// Colour is not read from textures (as for every OBJ material, the diffuse colour Kd is the
+// vertices'): the texture holds white with the mask as alpha, which is what every pass and the
+// ray-traced truth test.
+//
+// A map_d that cannot be read (missing — OBJ files travel without their textures, or name them
+// by a path on their author's disk —, not an image, past the decoder's limits) leaves its
+// material opaque with one warning: the file still loads, its cards cast whole. A name with
+// backslashes (Windows exporters) is read with slashes, and a name not found as written is
+// looked for by its file name beside the OBJ.
+#include "obj_materials.h"
+
+#include "scene_formats.h"
+
+#include "shadowkit/scene/file_read.h"
+#include "shadowkit/scene/image.h"
+
+#include <algorithm>
+#include <map>
+#include <span>
+#include <string>
+#include <tuple>
+
+namespace shadowkit::scene::formats {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Where a map_d names its image: as written (backslashes as slashes), relative to the OBJ's
+// directory unless absolute; failing that, its file name beside the OBJ.
+fs::path findImage(const std::string& name, const fs::path& directory) {
+    std::string portable = name;
+    std::replace(portable.begin(), portable.end(), '\\', '/');
+    const fs::path written(portable);
+    const fs::path asWritten = written.is_absolute() ? written : directory / written;
+    std::error_code error;
+    if (fs::is_regular_file(asWritten, error)) return asWritten;
+    const fs::path beside = directory / written.filename();
+    return fs::is_regular_file(beside, error) ? beside : asWritten;
+}
+
+uint8_t luminance(const uint8_t* texel) {
+    return uint8_t(std::clamp(0.2126f * texel[0] + 0.7152f * texel[1] + 0.0722f * texel[2] + 0.5f, 0.0f, 255.0f));
+}
+
+// The mask as the alpha of a white texture (above: the channel -imfchan names).
+Texture maskTexture(const Image& image, char channel, bool clamp) {
+    const size_t texels = size_t(image.width) * size_t(image.height);
+    bool hasAlpha = false;
+    for (size_t i = 0; i < texels && !hasAlpha; ++i) hasAlpha = image.rgba[4 * i + 3] < 255;
+    Texture out;
+    out.image = Image(image.width, image.height);
+    for (size_t i = 0; i < texels; ++i) {
+        const uint8_t* in = &image.rgba[4 * i];
+        uint8_t mask = 0;
+        switch (channel) {
+        case 'r':
+            mask = in[0];
+            break;
+        case 'g':
+            mask = in[1];
+            break;
+        case 'b':
+            mask = in[2];
+            break;
+        case 'l':
+            mask = luminance(in);
+            break;
+        default:
+            mask = hasAlpha ? in[3] : luminance(in);
+            break; // 'm', and what tinyobjloader lets through
+        }
+        uint8_t* texel = &out.image.rgba[4 * i];
+        texel[0] = texel[1] = texel[2] = 255;
+        texel[3] = mask;
+    }
+    out.wrapS = out.wrapT = clamp ? TextureWrap::ClampToEdge : TextureWrap::Repeat;
+    return out;
+}
+
+} // namespace
+
+std::vector<int32_t> readObjMaterials(const std::vector<tinyobj::material_t>& materials, const fs::path& file,
+                                      Scene& scene) {
+    std::vector<int32_t> out(materials.size(), -1);
+    std::map<std::tuple<fs::path, char, bool>, int32_t> textureOf; // a mask read once, however many share it
+    for (size_t m = 0; m < materials.size(); ++m) {
+        const tinyobj::material_t& in = materials[m];
+        if (in.alpha_texname.empty()) continue;
+        const std::string where = file.string() + ": material '" + printable(in.name) + "'";
+        const fs::path image = findImage(in.alpha_texname, file.parent_path());
+        const char channel = in.alpha_texopt.imfchan;
+        const auto key = std::tuple(image, channel, bool(in.alpha_texopt.clamp));
+        auto known = textureOf.find(key);
+        if (known == textureOf.end()) {
+            const auto bytes = readFile(image);
+            auto decoded = bytes
+                               ? decodeImage(std::span(reinterpret_cast<const uint8_t*>(bytes->data()), bytes->size()),
+                                             image.string())
+                               : core::Result<Image>(bytes.errorInfo());
+            if (!decoded) {
+                scene.warnings.push_back(where + ": its map_d '" + printable(in.alpha_texname) + "' cannot be read (" +
+                                         decoded.error() + "): its faces are drawn and cast whole");
+                continue;
+            }
+            known = textureOf.emplace(key, int32_t(scene.textures.size())).first;
+            scene.textures.push_back(maskTexture(*decoded, channel, in.alpha_texopt.clamp));
+        }
+        Material material;
+        material.name = in.name;
+        material.baseColorTexture = known->second;
+        material.alphaMode = AlphaMode::Mask;
+        material.doubleSided = true;
+        out[m] = int32_t(scene.materials.size());
+        scene.materials.push_back(std::move(material));
+    }
+    return out;
+}
+
+glm::vec2 objTextureUv(const tinyobj::texture_option_t& options, glm::vec2 vt) {
+    const glm::vec2 scaled = vt * glm::vec2(float(options.scale[0]), float(options.scale[1])) +
+                             glm::vec2(float(options.origin_offset[0]), float(options.origin_offset[1]));
+    return {scaled.x, 1.0f - scaled.y};
+}
+
+} // namespace shadowkit::scene::formats

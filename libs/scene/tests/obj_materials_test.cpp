@@ -1,0 +1,150 @@
+// OBJ materials that cut their faces (obj_materials.cpp): a map_d read as a mask, right side up,
+// through the channel the MTL names, found where exporters leave it, and a missing one named.
+#include "shadowkit/scene/image.h"
+#include "shadowkit/scene/scene_io.h"
+
+#include "scratch_dir.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+namespace shadowkit::scene {
+namespace {
+
+namespace fs = std::filesystem;
+
+// An image whose rows above `splitRow` hold `top` and the rest `bottom` (RGBA each).
+Image splitImage(int side, int splitRow, glm::u8vec4 top, glm::u8vec4 bottom) {
+    Image image(side, side);
+    for (int y = 0; y < side; ++y)
+        for (int x = 0; x < side; ++x) {
+            const glm::u8vec4 c = y < splitRow ? top : bottom;
+            std::copy(&c[0], &c[0] + 4, image.pixel(x, y));
+        }
+    return image;
+}
+
+// A unit quad lying on the ground facing up, x from 0 to 1 and z from 0 to −1, its texture
+// coordinates the OBJ's (v up: the image's last row along its near edge, z = 0, and its first
+// along its far edge, z = −1), wearing material `cut`; beside it a triangle wearing `bark`, a
+// plain material.
+void writeCard(const fs::path& obj, const std::string& mtl) {
+    std::ofstream(obj.parent_path() / "card.mtl") << mtl;
+    std::ofstream(obj) << "mtllib card.mtl\no card\n"
+                          "v 0 0 0\nv 1 0 0\nv 1 0 -1\nv 0 0 -1\nv 2 0 0\nv 3 0 0\nv 2 0 -1\n"
+                          "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+                          "usemtl cut\nf 1/1 2/2 3/3 4/4\nusemtl bark\nf 5 6 7\n";
+}
+
+const Mesh* meshWearing(const Scene& scene, bool alphaTested) {
+    for (const Mesh& mesh : scene.meshes) {
+        const Material* material = scene.materialOf(mesh);
+        if ((material && material->alphaTested()) == alphaTested) return &mesh;
+    }
+    return nullptr;
+}
+
+// The mask's value on the card at `h` of the way from its near edge (v = 0) to its far edge
+// (v = 1), halfway across: the uvs of its corners interpolated, as every pass and the ray tracer do.
+float alphaAt(const Scene& scene, const Mesh& card, float h) {
+    glm::vec2 bottom{0.0f}, top{0.0f};
+    int bottoms = 0, tops = 0;
+    for (const Vertex& v : card.vertices) {
+        if (v.position.z > -0.5f)
+            bottom += v.uv, ++bottoms;
+        else
+            top += v.uv, ++tops;
+    }
+    const glm::vec2 uv = glm::mix(bottom / float(bottoms), top / float(tops), h);
+    return sampleLevel0(scene.textures[size_t(scene.materialOf(card)->baseColorTexture)], uv).a;
+}
+
+TEST(ObjMaterialsTest, AMapDCutsItsFacesRightSideUpAndLeavesPlainFacesOpaque) {
+    const fs::path dir = test_support::scratchDir() / "obj_map_d";
+    fs::create_directories(dir);
+    // The image's top half transparent: the card's far half (v near 1) is cut away, not its near half.
+    ASSERT_TRUE(writePng(splitImage(8, 4, {255, 255, 255, 0}, {255, 255, 255, 255}), dir / "leaf.png"));
+    writeCard(dir / "card.obj", "newmtl cut\nKd 0.2 0.5 0.1\nmap_d leaf.png\nnewmtl bark\nKd 0.4 0.3 0.2\n");
+    const auto scene = loadScene(dir / "card.obj");
+    ASSERT_TRUE(scene) << scene.error();
+    ASSERT_EQ(scene->meshes.size(), 2u); // the cut faces a mesh of their own
+    const Mesh* card = meshWearing(*scene, true);
+    const Mesh* bark = meshWearing(*scene, false);
+    ASSERT_TRUE(card && bark);
+    EXPECT_EQ(card->triangleCount(), 2u);
+    EXPECT_EQ(bark->triangleCount(), 1u);
+    EXPECT_EQ(bark->material, -1); // as before: its colour in the vertices
+    const Material& material = *scene->materialOf(*card);
+    EXPECT_EQ(material.alphaMode, AlphaMode::Mask);
+    EXPECT_FLOAT_EQ(material.alphaCutoff, 0.5f);
+    EXPECT_TRUE(material.doubleSided); // a card: cast from both sides
+    EXPECT_LT(alphaAt(*scene, *card, 0.8f), 0.5f);
+    EXPECT_GT(alphaAt(*scene, *card, 0.2f), 0.5f);
+    EXPECT_NEAR(card->vertices[0].albedo.g, 0.5f, 1e-6f); // Kd still colours the vertices
+    EXPECT_TRUE(scene->warnings.empty()) << scene->warnings.front();
+    fs::remove_all(dir);
+}
+
+TEST(ObjMaterialsTest, AGreyMaskIsReadByItsLuminanceAndImfchanPicksAChannel) {
+    const fs::path dir = test_support::scratchDir() / "obj_map_d_grey";
+    fs::create_directories(dir);
+    // Opaque grey levels, as most map_d files are saved: black above, white below.
+    ASSERT_TRUE(writePng(splitImage(8, 4, {0, 0, 0, 255}, {255, 255, 255, 255}), dir / "grey.png"));
+    writeCard(dir / "card.obj", "newmtl cut\nmap_d grey.png\nnewmtl bark\n");
+    const auto grey = loadScene(dir / "card.obj");
+    ASSERT_TRUE(grey) << grey.error();
+    const Mesh* card = meshWearing(*grey, true);
+    ASSERT_TRUE(card);
+    EXPECT_LT(alphaAt(*grey, *card, 0.8f), 0.5f);
+    EXPECT_GT(alphaAt(*grey, *card, 0.2f), 0.5f);
+
+    // Red above, green below: `-imfchan g` keeps the near half, `-imfchan r` the far one.
+    ASSERT_TRUE(writePng(splitImage(8, 4, {255, 0, 0, 255}, {0, 255, 0, 255}), dir / "rg.png"));
+    for (const auto& [channel, upperKept] : {std::pair{'g', false}, std::pair{'r', true}}) {
+        writeCard(dir / "card.obj", std::string("newmtl cut\nmap_d -imfchan ") + channel + " rg.png\nnewmtl bark\n");
+        const auto scene = loadScene(dir / "card.obj");
+        ASSERT_TRUE(scene) << scene.error();
+        const Mesh* cut = meshWearing(*scene, true);
+        ASSERT_TRUE(cut);
+        EXPECT_EQ(alphaAt(*scene, *cut, 0.8f) > 0.5f, upperKept) << channel;
+        EXPECT_EQ(alphaAt(*scene, *cut, 0.2f) > 0.5f, !upperKept) << channel;
+    }
+    fs::remove_all(dir);
+}
+
+TEST(ObjMaterialsTest, AMapDIsFoundWhereExportersLeaveItAndAMissingOneIsNamed) {
+    const fs::path dir = test_support::scratchDir() / "obj_map_d_paths";
+    fs::create_directories(dir / "textures");
+    const Image leaf = splitImage(8, 4, {255, 255, 255, 0}, {255, 255, 255, 255});
+    ASSERT_TRUE(writePng(leaf, dir / "textures" / "leaf.png"));
+    ASSERT_TRUE(writePng(leaf, dir / "beside.png"));
+    // A Windows exporter's relative path, and an absolute one from its author's disk.
+    for (const char* name : {"textures\\leaf.png", "C:\\Users\\artist\\tree\\beside.png"}) {
+        writeCard(dir / "card.obj", std::string("newmtl cut\nmap_d ") + name + "\nnewmtl bark\n");
+        const auto scene = loadScene(dir / "card.obj");
+        ASSERT_TRUE(scene) << scene.error();
+        EXPECT_TRUE(meshWearing(*scene, true)) << name;
+        EXPECT_TRUE(scene->warnings.empty()) << name << ": " << scene->warnings.front();
+    }
+    // A mask that is not there: the file loads, its card whole, and one line says why.
+    writeCard(dir / "card.obj", "newmtl cut\nmap_d gone.png\nnewmtl bark\n");
+    const auto scene = loadScene(dir / "card.obj");
+    ASSERT_TRUE(scene) << scene.error();
+    EXPECT_FALSE(meshWearing(*scene, true));
+    size_t triangles = 0;
+    for (const Mesh& mesh : scene->meshes) triangles += mesh.triangleCount();
+    EXPECT_EQ(triangles, 3u);
+    ASSERT_EQ(scene->warnings.size(), 1u);
+    const std::string& warning = scene->warnings.front();
+    EXPECT_NE(warning.find("card.obj: material 'cut': its map_d 'gone.png' cannot be read"), std::string::npos)
+        << warning;
+    EXPECT_EQ(warning.find('\n'), std::string::npos) << warning;
+    fs::remove_all(dir);
+}
+
+} // namespace
+} // namespace shadowkit::scene
