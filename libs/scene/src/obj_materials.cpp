@@ -3,15 +3,19 @@
 //
 // The MTL format (Wavefront, "Material library file (.mtl)"; map_d: "a scalar texture file",
 // read through the channel `-imfchan` names, `m` — matte — by default) has no alpha mode, cutoff
-// or sidedness. shadowkit reads a material with a map_d as glTF's MASK at its default cutoff
-// 0.5, drawn and cast from both sides — what a leaf card needs, and what Blender's and three.js's
-// importers make of it (an alpha-tested, two-sided surface). The mask's value per texel:
+// or sidedness. shadowkit reads a material with a map_d (or `map_D`, DAZ Studio's spelling,
+// obj_read.cpp) as glTF's MASK at its default cutoff 0.5, drawn and cast from both sides: what a
+// leaf card needs, and the rule the ray-traced truth follows too. The mask's value per texel:
 //   - `-imfchan r|g|b`: that channel; `l`: the luminance (Rec. 709 weights);
 //   - `m` (the default): the image's alpha where it has one (any texel below 255), else its
 //     luminance — a grey mask saved without alpha, as most map_d files are, reads as one.
 // Colour is not read from textures (as for every OBJ material, the diffuse colour Kd is the
 // vertices'): the texture holds white with the mask as alpha, which is what every pass and the
 // ray-traced truth test.
+//
+// A material with no map_d whose diffuse texture (map_Kd) is a PNG with texels under half alpha is
+// drawn and cast opaque, as the MTL format and most OBJ importers read it, with one warning per
+// file: a tree whose leaves are cut only by map_Kd's alpha otherwise casts whole cards unexplained.
 //
 // A map_d that cannot be read (missing — OBJ files travel without their textures, or name them
 // by a path on their author's disk —, not an image, past the decoder's limits) leaves its
@@ -26,9 +30,12 @@
 #include "shadowkit/scene/image.h"
 
 #include <algorithm>
+#include <array>
+#include <fstream>
 #include <map>
 #include <span>
 #include <string>
+#include <string_view>
 #include <tuple>
 
 namespace shadowkit::scene::formats {
@@ -89,15 +96,54 @@ Texture maskTexture(const Image& image, char channel, bool clamp) {
     return out;
 }
 
+// Whether `file` is a PNG whose pixels carry alpha (colour type 4, grey and alpha, or 6, RGBA:
+// PNG §11.2.2, the IHDR chunk's byte 9), read from its first 26 bytes alone.
+bool pngWithAlpha(const fs::path& file) {
+    std::error_code error;
+    if (!fs::is_regular_file(file, error)) return false;
+    std::ifstream in(file, std::ios::binary);
+    std::array<unsigned char, 26> head{};
+    if (!in.read(reinterpret_cast<char*>(head.data()), head.size())) return false;
+    constexpr std::array<unsigned char, 8> kSignature{0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
+    const bool png = std::equal(kSignature.begin(), kSignature.end(), head.begin()) &&
+                     std::string_view(reinterpret_cast<const char*>(&head[12]), 4) == "IHDR";
+    return png && (head[25] == 4 || head[25] == 6);
+}
+
+// Whether a glTF-style cut at 0.5 would take anything from the image at `file`: a PNG with an
+// alpha channel (pngWithAlpha, from its header; most are not) decoded, any texel's alpha under
+// half. An image that cannot be read says nothing here: its material is opaque either way.
+bool cutByItsAlpha(const fs::path& file) {
+    if (!pngWithAlpha(file)) return false;
+    const auto bytes = readFile(file);
+    if (!bytes) return false;
+    const auto image =
+        decodeImage(std::span(reinterpret_cast<const uint8_t*>(bytes->data()), bytes->size()), file.string());
+    if (!image) return false;
+    for (size_t i = 3; i < image->rgba.size(); i += 4)
+        if (image->rgba[i] < 128) return true;
+    return false;
+}
+
 } // namespace
 
 std::vector<int32_t> readObjMaterials(const std::vector<tinyobj::material_t>& materials, const fs::path& file,
                                       Scene& scene) {
     std::vector<int32_t> out(materials.size(), -1);
     std::map<std::tuple<fs::path, char, bool>, int32_t> textureOf; // a mask read once, however many share it
+    std::vector<std::string> alphaUnread; // materials whose map_Kd has alpha and no map_d cuts them
+    std::map<fs::path, bool> diffuseCut;  // each map_Kd looked at once
     for (size_t m = 0; m < materials.size(); ++m) {
         const tinyobj::material_t& in = materials[m];
-        if (in.alpha_texname.empty()) continue;
+        if (in.alpha_texname.empty()) {
+            if (in.diffuse_texname.empty()) continue;
+            const fs::path diffuse = findImage(in.diffuse_texname, file.parent_path());
+            auto [seen, first] = diffuseCut.try_emplace(diffuse, false);
+            if (first) seen->second = cutByItsAlpha(diffuse);
+            if (seen->second)
+                alphaUnread.push_back("'" + printable(in.name) + "' ('" + printable(in.diffuse_texname) + "')");
+            continue;
+        }
         const std::string where = file.string() + ": material '" + printable(in.name) + "'";
         const fs::path image = findImage(in.alpha_texname, file.parent_path());
         const char channel = in.alpha_texopt.imfchan;
@@ -125,6 +171,12 @@ std::vector<int32_t> readObjMaterials(const std::vector<tinyobj::material_t>& ma
         out[m] = int32_t(scene.materials.size());
         scene.materials.push_back(std::move(material));
     }
+    if (!alphaUnread.empty())
+        scene.warnings.push_back(
+            file.string() + ": material " + alphaUnread.front() +
+            (alphaUnread.size() > 1 ? " and " + std::to_string(alphaUnread.size() - 1) + " more" : "") +
+            ": a map_Kd with alpha and no map_d, drawn and cast opaque as OBJ reads it; a map_d line naming the "
+            "same image cuts it");
     return out;
 }
 

@@ -35,6 +35,19 @@ std::string oneLine(std::string text) {
     return text;
 }
 
+// DAZ Studio and others write the dissolve texture `map_D`; tinyobjloader reads `map_d` alone.
+std::string dissolveSpelledAsParsed(std::string text) {
+    for (size_t line = 0; line < text.size();) {
+        size_t at = text.find_first_not_of(" \t", line);
+        if (at != std::string::npos && text.compare(at, 5, "map_D") == 0 && at + 5 < text.size() &&
+            (text[at + 5] == ' ' || text[at + 5] == '\t'))
+            text[at + 4] = 'd';
+        const size_t end = text.find('\n', line);
+        line = end == std::string::npos ? text.size() : end + 1;
+    }
+    return text;
+}
+
 // The material libraries an OBJ names (`mtllib`), beside it, as tinyobjloader's own reader finds
 // them; one that cannot be read is a warning of tinyobjloader's, as a missing one is there.
 class MaterialLibraries : public tinyobj::MaterialReader {
@@ -47,7 +60,7 @@ public:
             if (warn) *warn += "Material file: " + text.error() + "\n";
             return false;
         }
-        std::istringstream in(*text);
+        std::istringstream in(dissolveSpelledAsParsed(*text));
         tinyobj::LoadMtl(materialOf, materials, &in, warn, err);
         return true;
     }

@@ -40,6 +40,15 @@ void writeCard(const fs::path& obj, const std::string& mtl) {
                           "usemtl cut\nf 1/1 2/2 3/3 4/4\nusemtl bark\nf 5 6 7\n";
 }
 
+// The card written with `mtl` and loaded back.
+core::Result<Scene> loadCard(const fs::path& obj, const std::string& mtl) {
+    writeCard(obj, mtl);
+    return loadScene(obj);
+}
+
+// A leaf mask whose top half is transparent, as an RGBA PNG.
+Image halfLeaf() { return splitImage(8, 4, {255, 255, 255, 0}, {255, 255, 255, 255}); }
+
 const Mesh* meshWearing(const Scene& scene, bool alphaTested) {
     for (const Mesh& mesh : scene.meshes) {
         const Material* material = scene.materialOf(mesh);
@@ -67,9 +76,9 @@ TEST(ObjMaterialsTest, AMapDCutsItsFacesRightSideUpAndLeavesPlainFacesOpaque) {
     const fs::path dir = test_support::scratchDir() / "obj_map_d";
     fs::create_directories(dir);
     // The image's top half transparent: the card's far half (v near 1) is cut away, not its near half.
-    ASSERT_TRUE(writePng(splitImage(8, 4, {255, 255, 255, 0}, {255, 255, 255, 255}), dir / "leaf.png"));
-    writeCard(dir / "card.obj", "newmtl cut\nKd 0.2 0.5 0.1\nmap_d leaf.png\nnewmtl bark\nKd 0.4 0.3 0.2\n");
-    const auto scene = loadScene(dir / "card.obj");
+    ASSERT_TRUE(writePng(halfLeaf(), dir / "leaf.png"));
+    const auto scene =
+        loadCard(dir / "card.obj", "newmtl cut\nKd 0.2 0.5 0.1\nmap_d leaf.png\nnewmtl bark\nKd 0.4 0.3 0.2\n");
     ASSERT_TRUE(scene) << scene.error();
     ASSERT_EQ(scene->meshes.size(), 2u); // the cut faces a mesh of their own
     const Mesh* card = meshWearing(*scene, true);
@@ -94,8 +103,7 @@ TEST(ObjMaterialsTest, AGreyMaskIsReadByItsLuminanceAndImfchanPicksAChannel) {
     fs::create_directories(dir);
     // Opaque grey levels, as most map_d files are saved: black above, white below.
     ASSERT_TRUE(writePng(splitImage(8, 4, {0, 0, 0, 255}, {255, 255, 255, 255}), dir / "grey.png"));
-    writeCard(dir / "card.obj", "newmtl cut\nmap_d grey.png\nnewmtl bark\n");
-    const auto grey = loadScene(dir / "card.obj");
+    const auto grey = loadCard(dir / "card.obj", "newmtl cut\nmap_d grey.png\nnewmtl bark\n");
     ASSERT_TRUE(grey) << grey.error();
     const Mesh* card = meshWearing(*grey, true);
     ASSERT_TRUE(card);
@@ -105,8 +113,8 @@ TEST(ObjMaterialsTest, AGreyMaskIsReadByItsLuminanceAndImfchanPicksAChannel) {
     // Red above, green below: `-imfchan g` keeps the near half, `-imfchan r` the far one.
     ASSERT_TRUE(writePng(splitImage(8, 4, {255, 0, 0, 255}, {0, 255, 0, 255}), dir / "rg.png"));
     for (const auto& [channel, upperKept] : {std::pair{'g', false}, std::pair{'r', true}}) {
-        writeCard(dir / "card.obj", std::string("newmtl cut\nmap_d -imfchan ") + channel + " rg.png\nnewmtl bark\n");
-        const auto scene = loadScene(dir / "card.obj");
+        const auto scene =
+            loadCard(dir / "card.obj", std::string("newmtl cut\nmap_d -imfchan ") + channel + " rg.png\nnewmtl bark\n");
         ASSERT_TRUE(scene) << scene.error();
         const Mesh* cut = meshWearing(*scene, true);
         ASSERT_TRUE(cut);
@@ -119,20 +127,18 @@ TEST(ObjMaterialsTest, AGreyMaskIsReadByItsLuminanceAndImfchanPicksAChannel) {
 TEST(ObjMaterialsTest, AMapDIsFoundWhereExportersLeaveItAndAMissingOneIsNamed) {
     const fs::path dir = test_support::scratchDir() / "obj_map_d_paths";
     fs::create_directories(dir / "textures");
-    const Image leaf = splitImage(8, 4, {255, 255, 255, 0}, {255, 255, 255, 255});
+    const Image leaf = halfLeaf();
     ASSERT_TRUE(writePng(leaf, dir / "textures" / "leaf.png"));
     ASSERT_TRUE(writePng(leaf, dir / "beside.png"));
     // A Windows exporter's relative path, and an absolute one from its author's disk.
     for (const char* name : {"textures\\leaf.png", "C:\\Users\\artist\\tree\\beside.png"}) {
-        writeCard(dir / "card.obj", std::string("newmtl cut\nmap_d ") + name + "\nnewmtl bark\n");
-        const auto scene = loadScene(dir / "card.obj");
+        const auto scene = loadCard(dir / "card.obj", std::string("newmtl cut\nmap_d ") + name + "\nnewmtl bark\n");
         ASSERT_TRUE(scene) << scene.error();
         EXPECT_TRUE(meshWearing(*scene, true)) << name;
         EXPECT_TRUE(scene->warnings.empty()) << name << ": " << scene->warnings.front();
     }
     // A mask that is not there: the file loads, its card whole, and one line says why.
-    writeCard(dir / "card.obj", "newmtl cut\nmap_d gone.png\nnewmtl bark\n");
-    const auto scene = loadScene(dir / "card.obj");
+    const auto scene = loadCard(dir / "card.obj", "newmtl cut\nmap_d gone.png\nnewmtl bark\n");
     ASSERT_TRUE(scene) << scene.error();
     EXPECT_FALSE(meshWearing(*scene, true));
     size_t triangles = 0;
@@ -143,6 +149,30 @@ TEST(ObjMaterialsTest, AMapDIsFoundWhereExportersLeaveItAndAMissingOneIsNamed) {
     EXPECT_NE(warning.find("card.obj: material 'cut': its map_d 'gone.png' cannot be read"), std::string::npos)
         << warning;
     EXPECT_EQ(warning.find('\n'), std::string::npos) << warning;
+    fs::remove_all(dir);
+}
+
+TEST(ObjMaterialsTest, MapDSpelledMapUpperDCutsAndAnUncutMapKdWithAlphaIsNamed) {
+    const fs::path dir = test_support::scratchDir() / "obj_map_kd";
+    fs::create_directories(dir);
+    ASSERT_TRUE(writePng(halfLeaf(), dir / "leaf.png"));
+    // DAZ Studio's spelling.
+    const auto upper = loadCard(dir / "card.obj", "newmtl cut\n  map_D leaf.png\nnewmtl bark\n");
+    ASSERT_TRUE(upper) << upper.error();
+    EXPECT_TRUE(meshWearing(*upper, true));
+    // The leaf's alpha in its diffuse texture alone: drawn opaque, as the MTL reads it, and said.
+    const auto scene = loadCard(dir / "card.obj", "newmtl cut\nmap_Kd leaf.png\nnewmtl bark\nmap_Kd leaf.png\n");
+    ASSERT_TRUE(scene) << scene.error();
+    EXPECT_FALSE(meshWearing(*scene, true));
+    ASSERT_EQ(scene->warnings.size(), 1u);
+    EXPECT_NE(scene->warnings.front().find("card.obj: material 'cut' ('leaf.png') and 1 more: a map_Kd with alpha"),
+              std::string::npos)
+        << scene->warnings.front();
+    // A diffuse texture without alpha is nothing to say.
+    ASSERT_TRUE(writePng(splitImage(8, 4, {0, 0, 0, 255}, {255, 255, 255, 255}), dir / "leaf.png"));
+    const auto opaque = loadScene(dir / "card.obj");
+    ASSERT_TRUE(opaque) << opaque.error();
+    EXPECT_TRUE(opaque->warnings.empty()) << opaque->warnings.front();
     fs::remove_all(dir);
 }
 
