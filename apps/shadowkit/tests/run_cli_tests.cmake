@@ -622,6 +622,17 @@ if(CASE STREQUAL "gl-render-posed-skin")
     message(SEND_ERROR "export of a skinned file to OBJ: exit ${rc}: ${out}${err}")
   endif()
 endif()
+if(CASE STREQUAL "export-cut-cards")
+  # An OBJ's map_d cuts its card; shadowkit's OBJ writes no materials and says so, its .glb keeps the mask.
+  execute_process(COMMAND ${SHADOWKIT} export --scene "${source_dir}/tests/data/leaf_card.obj" --out "${WORK}/card.obj"
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  execute_process(COMMAND ${SHADOWKIT} export --scene "${source_dir}/tests/data/leaf_card.obj" --out "${WORK}/card.glb"
+                  RESULT_VARIABLE rc2 OUTPUT_VARIABLE out2 ERROR_VARIABLE err2)
+  if(NOT rc EQUAL 0 OR NOT rc2 EQUAL 0 OR err2 MATCHES "warning" OR
+     NOT err MATCHES "OBJ holds no materials: the 1 alpha-cut mesh \\(leaf cards\\) is written whole")
+    message(SEND_ERROR "export of a cut card: exit ${rc} ${rc2}: ${out}${err}${out2}${err2}")
+  endif()
+endif()
 if(CASE STREQUAL "export-animated-file")
   execute_process(COMMAND ${SHADOWKIT} export --scene "${source_dir}/tests/data/turning_crane.gltf"
                           --out "${WORK}/crane.glb" RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
