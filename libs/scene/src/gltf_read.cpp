@@ -58,6 +58,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <map>
 #include <optional>
@@ -246,8 +247,22 @@ core::Result<Mesh> convertPrimitive(const tinygltf::Model& model, const tinygltf
     if (const auto c = prim.attributes.find("COLOR_0"); c != prim.attributes.end()) {
         auto colors = AccessorReader::open(model, c->second, where + " COLOR_0");
         if (!colors) return colors.errorInfo();
-        for (size_t i = 0; i < std::min(colors->count(), mesh.vertices.size()); ++i)
-            mesh.vertices[i].albedo = albedo * glm::vec3(colors->read(i, glm::vec4(1.0f)));
+        float leastAlpha = 1.0f;
+        for (size_t i = 0; i < std::min(colors->count(), mesh.vertices.size()); ++i) {
+            const glm::vec4 colour = colors->read(i, glm::vec4(1.0f));
+            mesh.vertices[i].albedo = albedo * glm::vec3(colour);
+            leastAlpha = std::min(leastAlpha, colour.a);
+        }
+        // glTF's alpha is factor × texture × COLOR_0's (§3.9.2); the vertices keep no alpha, so
+        // a mask that the vertex colours cut would cast whole where they cut it: say so.
+        if (material && (material->alphaMode == "MASK" || material->alphaMode == "BLEND") &&
+            leastAlpha < float(material->alphaCutoff)) {
+            char figures[80];
+            std::snprintf(figures, sizeof figures, "falls to %.3g, under its material's cutoff %.3g", leastAlpha,
+                          material->alphaCutoff);
+            warnings.push_back(where + ": its COLOR_0 alpha " + figures +
+                               ", which shadowkit does not read: it is cut by its texture and factor alone");
+        }
     }
     if (material && material->pbrMetallicRoughness.baseColorTexture.index >= 0) {
         // The texture's coordinates, with KHR_texture_transform applied once here.

@@ -1,17 +1,56 @@
-// Helpers for tests that write glTF files by hand.
+// Helpers for tests that write glTF files by hand, and check what they place.
 #pragma once
 
 #include "shadowkit/scene/scene_io.h"
 
 #include "scratch_dir.h"
 
+#include <glm/glm.hpp>
+#include <gtest/gtest.h>
+
 #include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <initializer_list>
 #include <string>
 #include <vector>
 
 namespace shadowkit::scene::testing {
+
+// Little-endian bytes of values of type T, appended to a buffer.
+template <class T>
+inline void append(std::vector<unsigned char>& buffer, std::initializer_list<T> values) {
+    for (T v : values) {
+        const size_t at = buffer.size();
+        buffer.resize(at + sizeof(T));
+        std::memcpy(buffer.data() + at, &v, sizeof(T));
+    }
+}
+
+// Every triangle placed in the world must wind counter-clockwise about its own normal (the
+// normal matrix of its instance applied), or a pass culling back faces would drop the side that
+// faces out. Returns how many triangles were placed.
+inline size_t expectEveryTriangleFacesOutward(const Scene& scene) {
+    size_t triangles = 0;
+    for (const MeshBatch& batch : scene.batches) {
+        const Mesh& mesh = scene.meshes[batch.mesh];
+        for (const glm::mat4& worldFromObject : batch.worldFromObject) {
+            const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(worldFromObject)));
+            for (size_t t = 0; t < mesh.triangleCount(); ++t, ++triangles) {
+                glm::vec3 ws[3], wsNormal(0.0f);
+                for (int k = 0; k < 3; ++k) {
+                    const Vertex& v = mesh.vertices[mesh.indices[3 * t + size_t(k)]];
+                    ws[k] = glm::vec3(worldFromObject * glm::vec4(v.position, 1.0f));
+                    wsNormal += normalMatrix * v.normal;
+                }
+                EXPECT_GT(glm::dot(glm::cross(ws[1] - ws[0], ws[2] - ws[0]), wsNormal), 0.0f)
+                    << "the triangle near x = " << ws[0].x;
+            }
+        }
+    }
+    return triangles;
+}
 
 // RFC 4648 base64, for data: URIs.
 inline std::string base64(const std::vector<unsigned char>& data) {
