@@ -39,16 +39,6 @@ int runExport(const ExportArgs& args) {
                          "as posed at t = 0 (a .glb keeps {} skin{} and morph targets playing)",
                          args.out, deformed, deformed == 1 ? "" : "es", deformed == 1 ? "is" : "are",
                          deformed == 1 ? "its" : "their", deformed == 1 ? "" : "s"));
-    const auto cut =
-        std::count_if(sceneData->batches.begin(), sceneData->batches.end(), [&](const scene::MeshBatch& b) {
-            const scene::Material* material = sceneData->materialOf(sceneData->meshes[b.mesh]);
-            return material && material->alphaTested() && !b.worldFromObject.empty();
-        });
-    if (format == ".obj" && cut > 0)
-        warn(
-            fmt::format("--out {}: shadowkit's OBJ holds no materials: the {} alpha-cut mesh{} (leaf cards) {} written "
-                        "whole and cast whole when read back (a .glb keeps their masks)",
-                        args.out, cut, cut == 1 ? "" : "es", cut == 1 ? "is" : "are"));
     fmt::print("wrote {} ({:.2f} M triangles)\n", args.out, static_cast<double>(sceneData->triangleCount()) * 1e-6);
     return 0;
 }

@@ -176,5 +176,53 @@ TEST(ObjMaterialsTest, MapDSpelledMapUpperDCutsAndAnUncutMapKdWithAlphaIsNamed) 
     fs::remove_all(dir);
 }
 
+TEST(ObjMaterialsTest, AnExportedCutCardReadsBackCutAtTheSameTexels) {
+    // A mask of every alpha level, a factor of 0.8 and a cutoff of 0.3: an MTL holds neither, so
+    // the export bakes both into the mask; read back, each texel is kept or cut as it was.
+    Scene s;
+    Mesh card;
+    card.vertices = {{{0, 0, 0}, {0, 1, 0}, glm::vec3(0.3f, 0.6f, 0.2f), {0, 1}},
+                     {{1, 0, 0}, {0, 1, 0}, glm::vec3(0.3f, 0.6f, 0.2f), {1, 1}},
+                     {{1, 0, -1}, {0, 1, 0}, glm::vec3(0.3f, 0.6f, 0.2f), {1, 0}},
+                     {{0, 0, -1}, {0, 1, 0}, glm::vec3(0.3f, 0.6f, 0.2f), {0, 0}}};
+    card.indices = {0, 1, 2, 0, 2, 3};
+    card.material = 0;
+    card.computeBounds();
+    s.meshes = {card};
+    s.batches = {{0, {glm::mat4(1.0f)}, false}};
+    Texture levels;
+    levels.image = Image(16, 16);
+    for (int i = 0; i < 256; ++i) levels.image.rgba[4 * size_t(i) + 3] = uint8_t(i);
+    s.textures = {levels};
+    s.materials = {{.name = "leaf",
+                    .baseColorFactor = {1.0f, 1.0f, 1.0f, 0.8f},
+                    .baseColorTexture = 0,
+                    .alphaMode = AlphaMode::Mask,
+                    .alphaCutoff = 0.3f,
+                    .doubleSided = true}};
+    const fs::path dir = test_support::scratchDir() / "obj_export_cut";
+    fs::remove_all(dir);
+    ASSERT_TRUE(exportScene(s, dir / "card.obj"));
+    const auto back = loadScene(dir / "card.obj");
+    ASSERT_TRUE(back) << back.error();
+    EXPECT_TRUE(back->warnings.empty()) << back->warnings.front();
+    const Mesh* cut = meshWearing(*back, true);
+    ASSERT_TRUE(cut);
+    const Material& material = *back->materialOf(*cut);
+    const Image& mask = back->textures[size_t(material.baseColorTexture)].image;
+    ASSERT_EQ(mask.rgba.size(), levels.image.rgba.size());
+    int kept = 0;
+    for (int i = 0; i < 256; ++i) {
+        const bool wasKept = 0.8f * float(i) / 255.0f >= 0.3f;
+        const bool isKept = float(mask.rgba[4 * size_t(i) + 3]) / 255.0f >= material.alphaCutoff;
+        EXPECT_EQ(isKept, wasKept) << "alpha level " << i;
+        kept += isKept;
+    }
+    EXPECT_EQ(kept, 256 - 96); // 0.8 i / 255 ≥ 0.3 from i = 96
+    // The card's corners keep their texture coordinates: the far edge (z = −1) at the image's top.
+    for (const Vertex& v : cut->vertices) EXPECT_NEAR(v.uv.y, v.position.z < -0.5f ? 0.0f : 1.0f, 1e-5f);
+    fs::remove_all(dir);
+}
+
 } // namespace
 } // namespace shadowkit::scene
