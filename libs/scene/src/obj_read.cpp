@@ -118,9 +118,13 @@ core::Result<Scene> loadObj(const fs::path& file) {
         const tinyobj::mesh_t& faces = shape.mesh;
         const std::string name = shape.name.empty() ? file.stem().string() : shape.name;
         // The shape's faces in one mesh, but those of a cutting material in one of their own
-        // (Mesh::material is per mesh): part 0 is the opaque faces', part k + 1 material k's.
-        std::vector<Mesh> parts(materials.size() + 1);
-        std::vector<bool> everyNormal(parts.size(), true);
+        // (Mesh::material is per mesh): part 0 is the opaque faces', part k + 1 material k's —
+        // kept in a map, as a file may hold thousands of groups and of materials.
+        struct Part {
+            Mesh mesh;
+            bool everyNormal = true;
+        };
+        std::map<size_t, Part> parts;
         // One vertex per distinct (position, normal, texture coordinate) corner of each material:
         // material + 1 picks the map; the key holds normal + 1 and, for a cutting material,
         // texture coordinate + 1, so that "none" is 0.
@@ -136,8 +140,9 @@ core::Result<Scene> loadObj(const fs::path& file) {
             const size_t slot = material >= 0 && size_t(material) < materials.size() ? size_t(material) + 1 : 0;
             const bool cut = slot > 0 && cutBy[slot - 1] >= 0;
             const bool hasUv = cut && index.texcoord_index >= 0 && size_t(index.texcoord_index) < texcoordCount;
-            Mesh& mesh = parts[cut ? slot : 0];
-            everyNormal[cut ? slot : 0] = everyNormal[cut ? slot : 0] && hasNormal;
+            Part& part = parts[cut ? slot : 0];
+            Mesh& mesh = part.mesh;
+            part.everyNormal = part.everyNormal && hasNormal;
             const Corner key{index.vertex_index, hasNormal ? index.normal_index + 1 : 0,
                              hasUv ? index.texcoord_index + 1 : 0};
             auto [it, inserted] = vertexOf[slot].try_emplace(key, uint32_t(mesh.vertices.size()));
@@ -176,12 +181,12 @@ core::Result<Scene> loadObj(const fs::path& file) {
             }
             mesh.indices.push_back(it->second);
         }
-        for (size_t part = 0; part < parts.size(); ++part) {
-            Mesh& mesh = parts[part];
+        for (auto& [part, content] : parts) {
+            Mesh& mesh = content.mesh;
             if (mesh.indices.empty()) continue; // points and lines only, or no face of this material
             mesh.name = part == 0 ? name : name + " (" + materials[part - 1].name + ")";
             mesh.material = part == 0 ? -1 : cutBy[part - 1];
-            if (!everyNormal[part]) computeNormals(mesh);
+            if (!content.everyNormal) computeNormals(mesh);
             mesh.computeBounds();
             scene.meshes.push_back(std::move(mesh));
             scene.batches.push_back({uint32_t(scene.meshes.size() - 1), {}, false});
