@@ -5,10 +5,12 @@
 // Meshes whose material cuts them (MASK, BLEND cast as MASK) keep their cut: their texture
 // coordinates are written (`vt`, v up as OBJ has it), and a material library beside the file
 // names, per such material, a PNG of its mask as map_d (obj_materials.cpp reads it back from its
-// alpha). An MTL has no cutoff, so the mask's alpha is remapped to put the
-// material's cutoff c at one half — a < c to a/(2c), a ≥ c to ½ + ½ (a − c)/(1 − c), the
-// factor's alpha multiplied in first — and quantised on the right side of it: level 0 cuts
-// exactly where it did. Files without such meshes are written as before, with no library.
+// alpha). An MTL has no cutoff, so the mask's alpha is remapped to put the material's cutoff c
+// at one half — a < c to a/(2c), a ≥ c to ½ + ½ (a − c)/(1 − c), the factor's alpha multiplied
+// in first — and quantised on the right side of it: every texel is kept or cut as it was
+// (between two texel centres across the cut the bilinear edge may move by a fraction of a
+// texel, the remapping bending at the cutoff). Files without such meshes are written as before,
+// with no library.
 #include "scene_formats.h"
 
 #include "shadowkit/scene/file_write.h"
