@@ -628,8 +628,8 @@ if(CASE STREQUAL "export-cut-cards")
   file(REMOVE_RECURSE "${WORK}/cut")
   execute_process(COMMAND ${SHADOWKIT} export --scene "${source_dir}/tests/data/leaf_card.obj" --out "${WORK}/cut/card.obj"
                   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  execute_process(COMMAND ${SHADOWKIT} render --scene "${WORK}/cut/card.obj" --size 32x18 --map-size 64
-                          --out "${WORK}/cut/card.png" RESULT_VARIABLE rc2 OUTPUT_VARIABLE out2 ERROR_VARIABLE err2)
+  execute_process(COMMAND ${SHADOWKIT} export --scene "${WORK}/cut/card.obj" --out "${WORK}/cut/back.glb"
+                  RESULT_VARIABLE rc2 OUTPUT_VARIABLE out2 ERROR_VARIABLE err2)
   set(mtl "")
   if(EXISTS "${WORK}/cut/card.mtl")
     file(READ "${WORK}/cut/card.mtl" mtl)
