@@ -130,7 +130,7 @@ bool cutByItsAlpha(const fs::path& file) {
 std::vector<int32_t> readObjMaterials(const std::vector<tinyobj::material_t>& materials, const fs::path& file,
                                       Scene& scene) {
     std::vector<int32_t> out(materials.size(), -1);
-    std::map<std::tuple<fs::path, char, bool>, int32_t> textureOf; // a mask read once, however many share it
+    std::map<std::tuple<fs::path, char, bool>, int32_t> textureOf; // a mask read once (−1: unreadable)
     std::vector<std::string> alphaUnread; // materials whose map_Kd has alpha and no map_d cuts them
     std::map<fs::path, bool> diffuseCut;  // each map_Kd looked at once
     for (size_t m = 0; m < materials.size(); ++m) {
@@ -155,14 +155,16 @@ std::vector<int32_t> readObjMaterials(const std::vector<tinyobj::material_t>& ma
                                ? decodeImage(std::span(reinterpret_cast<const uint8_t*>(bytes->data()), bytes->size()),
                                              image.string())
                                : core::Result<Image>(bytes.errorInfo());
-            if (!decoded) {
+            if (decoded) {
+                known = textureOf.emplace(key, int32_t(scene.textures.size())).first;
+                scene.textures.push_back(maskTexture(*decoded, channel, in.alpha_texopt.clamp));
+            } else { // said once, however many materials name it
+                known = textureOf.emplace(key, -1).first;
                 scene.warnings.push_back(where + ": its map_d '" + printable(in.alpha_texname) + "' cannot be read (" +
                                          decoded.error() + "): its faces are drawn and cast whole");
-                continue;
             }
-            known = textureOf.emplace(key, int32_t(scene.textures.size())).first;
-            scene.textures.push_back(maskTexture(*decoded, channel, in.alpha_texopt.clamp));
         }
+        if (known->second < 0) continue;
         Material material;
         material.name = in.name;
         material.baseColorTexture = known->second;

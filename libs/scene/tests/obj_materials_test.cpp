@@ -137,8 +137,9 @@ TEST(ObjMaterialsTest, AMapDIsFoundWhereExportersLeaveItAndAMissingOneIsNamed) {
         EXPECT_TRUE(meshWearing(*scene, true)) << name;
         EXPECT_TRUE(scene->warnings.empty()) << name << ": " << scene->warnings.front();
     }
-    // A mask that is not there: the file loads, its card whole, and one line says why.
-    const auto scene = loadCard(dir / "card.obj", "newmtl cut\nmap_d gone.png\nnewmtl bark\n");
+    // A mask that is not there: the file loads, its card whole, and one line says why — one,
+    // though two materials name it.
+    const auto scene = loadCard(dir / "card.obj", "newmtl cut\nmap_d gone.png\nnewmtl bark\nmap_d gone.png\n");
     ASSERT_TRUE(scene) << scene.error();
     EXPECT_FALSE(meshWearing(*scene, true));
     size_t triangles = 0;
