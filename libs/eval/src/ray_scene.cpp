@@ -1,5 +1,7 @@
 // Embree 3 scene construction with two-level instancing, and alpha-tested materials as
 // Embree filter functions: a hit on a masked surface counts only where its alpha covers it.
+// Camera rays pass the back faces the camera pass culls (Faces::AsTheCameraSees) through a
+// second, per-query filter (Embree's context filter), which light's queries never set.
 #include "shadowkit/eval/ray_scene.h"
 
 #include "shadowkit/scene/alpha_mask.h"
@@ -8,6 +10,7 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -48,6 +51,33 @@ void alphaFilter(const RTCFilterFunctionNArguments* args) {
     }
 }
 
+// A query's context with what its context filter reads: which instances a camera sees from the
+// front only (one byte per global instance). Embree hands the filter the context it was given,
+// the RTCIntersectContext first.
+struct CameraContext {
+    RTCIntersectContext context;
+    const uint8_t* seenFromFrontOnly = nullptr;
+};
+
+// The context filter of camera rays: rejects a hit on the back of a triangle of an instance seen
+// from the front only, so the ray goes on to what the camera pass shows behind it. For an
+// instanced geometry Embree gives ray and hit in object space, where a counter-clockwise
+// triangle's Ng points out of its front face (Embree's convention, glTF's and GL's winding):
+// a ray meets the back when it runs along Ng. A batch seen from the front only has no mirrored
+// instance, so object-space winding is the winding on screen.
+void backFaceFilter(const RTCFilterFunctionNArguments* args) {
+    const auto& context = *reinterpret_cast<const CameraContext*>(args->context);
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (args->valid[i] == 0) continue;
+        const unsigned instance = RTCHitN_instID(args->hit, args->N, i, 0);
+        if (instance == RTC_INVALID_GEOMETRY_ID || context.seenFromFrontOnly[instance] == 0) continue;
+        const float along = RTCHitN_Ng_x(args->hit, args->N, i) * RTCRayN_dir_x(args->ray, args->N, i) +
+                            RTCHitN_Ng_y(args->hit, args->N, i) * RTCRayN_dir_y(args->ray, args->N, i) +
+                            RTCHitN_Ng_z(args->hit, args->N, i) * RTCRayN_dir_z(args->ray, args->N, i);
+        if (along > 0.0f) args->valid[i] = 0;
+    }
+}
+
 } // namespace
 
 struct RayScene::Impl {
@@ -57,7 +87,20 @@ struct RayScene::Impl {
     std::vector<float*> meshVertices; // per mesh, Embree's buffer of its positions (null: no triangles)
     std::vector<std::unique_ptr<AlphaSurface>> alphaSurfaces; // user data of the filters: fixed addresses
     std::vector<glm::mat3> normalFromObject; // per global instance: inverse transpose of the linear part
+    std::vector<uint8_t> seenFromFrontOnly;  // per global instance: Scene::seenFromFrontOnly of its batch
     std::string lastError;
+
+    // A context for queries meeting `faces`: coherent rays or not; the camera's back-face filter.
+    CameraContext contextFor(Faces faces, bool coherent) const {
+        CameraContext c;
+        rtcInitIntersectContext(&c.context);
+        if (coherent) c.context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+        if (faces == Faces::AsTheCameraSees) {
+            c.context.filter = backFaceFilter;
+            c.seenFromFrontOnly = seenFromFrontOnly.data();
+        }
+        return c;
+    }
 
     ~Impl() {
         if (top) rtcReleaseScene(top);
@@ -112,9 +155,12 @@ core::Result<std::unique_ptr<RayScene>> RayScene::build(const scene::Scene& scen
         // shared by every instance; on the leafy forest they cut the soft truth's time by a
         // tenth for no measurable build time. A mesh the scene deforms is built again in every
         // frame that poses it (moveInstances): Embree's dynamic scene, its BVH refitted.
+        // Every scene a camera ray enters lets the query's own filter see its hits (Embree asks
+        // for the flag on each instanced scene too).
         const bool deformed = scene.deforms(m);
         rtcSetSceneBuildQuality(meshScene, deformed ? RTC_BUILD_QUALITY_LOW : RTC_BUILD_QUALITY_HIGH);
-        if (deformed) rtcSetSceneFlags(meshScene, RTC_SCENE_FLAG_DYNAMIC);
+        rtcSetSceneFlags(meshScene, RTCSceneFlags(RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION |
+                                                  (deformed ? RTC_SCENE_FLAG_DYNAMIC : RTC_SCENE_FLAG_NONE)));
         if (mesh.indices.empty()) {
             rtcCommitScene(meshScene);
             continue;
@@ -153,8 +199,11 @@ core::Result<std::unique_ptr<RayScene>> RayScene::build(const scene::Scene& scen
     }
 
     impl.top = rtcNewScene(impl.device);
+    rtcSetSceneFlags(impl.top, RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
     unsigned instance = 0;
-    for (const scene::MeshBatch& batch : scene.batches) {
+    for (size_t b = 0; b < scene.batches.size(); ++b) {
+        const scene::MeshBatch& batch = scene.batches[b];
+        const bool frontOnly = scene.seenFromFrontOnly(b);
         for (const glm::mat4& worldFromObject : batch.worldFromObject) {
             RTCGeometry geom = rtcNewGeometry(impl.device, RTC_GEOMETRY_TYPE_INSTANCE);
             rtcSetGeometryInstancedScene(geom, impl.meshes[batch.mesh]);
@@ -165,6 +214,7 @@ core::Result<std::unique_ptr<RayScene>> RayScene::build(const scene::Scene& scen
             rtcAttachGeometryByID(impl.top, geom, instance++);
             rtcReleaseGeometry(geom);
             impl.normalFromObject.push_back(glm::transpose(glm::inverse(glm::mat3(worldFromObject))));
+            impl.seenFromFrontOnly.push_back(frontOnly ? 1 : 0);
         }
     }
     rtcCommitScene(impl.top);
@@ -203,6 +253,13 @@ core::Status RayScene::moveInstances(const scene::Scene& scene, std::span<const 
         rtcCommitGeometry(geom);
         m_impl->normalFromObject[global] = glm::transpose(glm::inverse(glm::mat3(worldFromObject)));
     }
+    // A batch turns mirrored, or back, as a whole (Scene::seenFromFrontOnly).
+    for (size_t b = 0; b < scene.batches.size(); ++b) {
+        if (!batchMoved[b]) continue;
+        const uint8_t frontOnly = scene.seenFromFrontOnly(b) ? 1 : 0;
+        const uint32_t first = scene.globalIndex({uint32_t(b), 0});
+        std::fill_n(m_impl->seenFromFrontOnly.begin() + first, scene.batches[b].worldFromObject.size(), frontOnly);
+    }
     if (!moved.empty()) rtcCommitScene(m_impl->top);
     if (!m_impl->lastError.empty()) return core::makeError("ray tracer: " + m_impl->lastError);
     m_diagonal = scene.wsBounds().diagonal();
@@ -225,10 +282,9 @@ RayHit worldHit(const std::vector<glm::mat3>& normalFromObject, float t, unsigne
 
 } // namespace
 
-bool RayScene::intersect(const core::Vec3& origin, const core::Vec3& direction, double tNear, double tFar,
-                         RayHit& hit) const {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
+bool RayScene::intersect(const core::Vec3& origin, const core::Vec3& direction, double tNear, double tFar, RayHit& hit,
+                         Faces faces) const {
+    CameraContext context = m_impl->contextFor(faces, false);
     RTCRayHit rh{};
     const FloatRay f = toFloat(m_wsOrigin, origin, direction, tNear, tFar);
     rh.ray.org_x = f.org[0], rh.ray.org_y = f.org[1], rh.ray.org_z = f.org[2];
@@ -238,7 +294,7 @@ bool RayScene::intersect(const core::Vec3& origin, const core::Vec3& direction, 
     rh.ray.mask = ~0u;
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(m_impl->top, &context, &rh);
+    rtcIntersect1(m_impl->top, &context.context, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
     hit = worldHit(m_impl->normalFromObject, rh.ray.tfar, rh.hit.instID[0],
                    glm::vec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z), direction);
@@ -279,20 +335,17 @@ void fillPacket(RTCRay8& packet, int (&valid)[kPacket], const core::Vec3& wsOrig
     }
 }
 
-// Calls trace(context, first, count) for each packet of `rays`, with a context for coherent rays.
+// Calls trace(first, count) for each packet of `rays`.
 template <class Trace>
 void forEachPacket(size_t rays, Trace trace) {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-    for (size_t first = 0; first < rays; first += kPacket)
-        trace(context, first, std::min(rays - first, size_t(kPacket)));
+    for (size_t first = 0; first < rays; first += kPacket) trace(first, std::min(rays - first, size_t(kPacket)));
 }
 
 } // namespace
 
-void RayScene::intersect(std::span<const Ray> rays, std::span<uint8_t> hit, std::span<RayHit> hits) const {
-    forEachPacket(rays.size(), [&](RTCIntersectContext& context, size_t first, size_t count) {
+void RayScene::intersect(std::span<const Ray> rays, std::span<uint8_t> hit, std::span<RayHit> hits, Faces faces) const {
+    CameraContext context = m_impl->contextFor(faces, true);
+    forEachPacket(rays.size(), [&](size_t first, size_t count) {
         RTCRayHit8 packet{};
         alignas(32) int valid[kPacket]; // Embree loads the mask with aligned vector loads
         fillPacket(packet.ray, valid, m_wsOrigin, rays, first, count);
@@ -300,7 +353,7 @@ void RayScene::intersect(std::span<const Ray> rays, std::span<uint8_t> hit, std:
             packet.hit.geomID[lane] = RTC_INVALID_GEOMETRY_ID;
             packet.hit.instID[0][lane] = RTC_INVALID_GEOMETRY_ID;
         }
-        rtcIntersect8(valid, m_impl->top, &context, &packet);
+        rtcIntersect8(valid, m_impl->top, &context.context, &packet);
         for (size_t lane = 0; lane < count; ++lane) {
             hit[first + lane] = packet.hit.geomID[lane] != RTC_INVALID_GEOMETRY_ID;
             if (!hit[first + lane]) continue;
@@ -313,11 +366,12 @@ void RayScene::intersect(std::span<const Ray> rays, std::span<uint8_t> hit, std:
 }
 
 void RayScene::occluded(std::span<const Ray> rays, std::span<uint8_t> occluded) const {
-    forEachPacket(rays.size(), [&](RTCIntersectContext& context, size_t first, size_t count) {
+    CameraContext context = m_impl->contextFor(Faces::Both, true);
+    forEachPacket(rays.size(), [&](size_t first, size_t count) {
         RTCRay8 packet{};
         alignas(32) int valid[kPacket]; // Embree loads the mask with aligned vector loads
         fillPacket(packet, valid, m_wsOrigin, rays, first, count);
-        rtcOccluded8(valid, m_impl->top, &context, &packet);
+        rtcOccluded8(valid, m_impl->top, &context.context, &packet);
         for (size_t lane = 0; lane < count; ++lane) occluded[first + lane] = packet.tfar[lane] < 0.0f;
     });
 }

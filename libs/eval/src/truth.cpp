@@ -154,7 +154,7 @@ TruthBuffers computeTruth(const RayScene& rays, const core::PerspectiveCamera& c
                                                 camera.zNear, camera.zFar};
                         }
                     rays.intersect(std::span(primary.data(), count), std::span(hit.data(), count),
-                                   std::span(hits.data(), count));
+                                   std::span(hits.data(), count), Faces::AsTheCameraSees);
                     size_t shadows = 0;
                     for (size_t k = 0; k < count; ++k) {
                         if (!hit[k]) continue;

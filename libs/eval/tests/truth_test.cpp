@@ -242,3 +242,68 @@ TEST(TruthTest, PacketsOfRaysAnswerExactlyWhatOneRayAtATimeDoes) {
         EXPECT_GT(shadowed, 20); // the sphere shadows some of them
     }
 }
+
+TEST(TruthTest, CameraRaysPassTheBackOfASingleSidedSurfaceWhileLightMeetsBothSides) {
+    // A 6 m card 2 m over the ground facing down, seen from above: its back. The camera pass
+    // culls it there unless its material is double-sided or its batch mirrored (gl::GpuScene);
+    // the truth's camera rays must show what the raster shows, and its light must still be
+    // stopped by the card, whichever side faces the sun.
+    scene::Mesh card;
+    const glm::mat4 partFacingDown =
+        glm::rotate(glm::mat4(1.0f), glm::radians(90.0f), {1, 0, 0}) * glm::scale(glm::mat4(1.0f), {6, 6, 1});
+    scene::addCard(card, partFacingDown, {0, 0}, {1, 1}, glm::vec3(0.8f));
+    const glm::mat4 worldFromCard = glm::translate(glm::mat4(1.0f), {-1.5f, 2.0f, -4.0f});
+    const core::DirectionalLight sun = core::DirectionalLight::fromSunAngles(70, 120).value();
+    const core::PerspectiveCamera cam = cameraLookingAtOrigin();
+    constexpr uint32_t kCardId = 2;
+    struct Seen {
+        int card = 0, shadedGround = 0;
+    };
+    auto seen = [&](const scene::Scene& s) {
+        auto rays = eval::RayScene::build(s);
+        EXPECT_TRUE(rays) << rays.error();
+        const eval::TruthBuffers truth = eval::computeTruth(**rays, cam, sun, 160, 120);
+        Seen counts;
+        for (size_t i = 0; i < truth.surfaceId.size(); ++i) {
+            counts.card += truth.surfaceId[i] == kCardId;
+            counts.shadedGround += truth.surfaceId[i] == kGroundId && truth.facesLight[i] && !truth.lit[i];
+        }
+        return counts;
+    };
+
+    scene::Scene singleSided = groundAnd(card, worldFromCard);
+    const Seen fromBehind = seen(singleSided);
+    EXPECT_EQ(fromBehind.card, 0);
+    EXPECT_GT(fromBehind.shadedGround, 500); // its shadow, seen through it (879 of 19,200 pixels)
+
+    scene::Scene doubleSided = singleSided;
+    doubleSided.materials.push_back({});
+    doubleSided.materials.back().doubleSided = true;
+    doubleSided.meshes[1].material = 0;
+    const Seen both = seen(doubleSided);
+    EXPECT_GT(both.card, 500);
+    EXPECT_LT(both.shadedGround, fromBehind.shadedGround); // the card hides part of its shadow
+
+    // Mirrored through x = -1.5 (its own centre line): the same card, wound the other way; its
+    // batch is drawn from both sides.
+    scene::Scene mirrored = singleSided;
+    mirrored.batches[1].worldFromObject[0] = worldFromCard * glm::scale(glm::mat4(1.0f), {-1, 1, 1});
+    EXPECT_TRUE(mirrored.batches[1].mirrored());
+    EXPECT_EQ(seen(mirrored).card, both.card);
+
+    // Turned to face up, single-sided: its front, seen.
+    scene::Scene facingUp = singleSided;
+    facingUp.batches[1].worldFromObject[0] =
+        worldFromCard * glm::rotate(glm::mat4(1.0f), glm::radians(180.0f), {0, 0, 1});
+    EXPECT_EQ(seen(facingUp).card, both.card);
+
+    // One ray at a time answers as the packets do: through the card's middle, its back or the ground.
+    auto rays = eval::RayScene::build(singleSided);
+    ASSERT_TRUE(rays) << rays.error();
+    const core::Vec3 through = glm::normalize(core::Vec3(-1.5, 2.0, -1.0) - cam.wsEye);
+    eval::RayHit hit;
+    ASSERT_TRUE((*rays)->intersect(cam.wsEye, through, 0.0, 100.0, hit));
+    EXPECT_EQ(hit.instance + 1, kCardId);
+    ASSERT_TRUE((*rays)->intersect(cam.wsEye, through, 0.0, 100.0, hit, eval::Faces::AsTheCameraSees));
+    EXPECT_EQ(hit.instance + 1, kGroundId);
+}

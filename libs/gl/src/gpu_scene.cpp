@@ -90,11 +90,6 @@ Texture uploadTexture(const scene::Texture& texture, const std::vector<scene::Im
     return gl;
 }
 
-bool anyMirrored(const std::vector<glm::mat4>& worldFromObject) {
-    return std::any_of(worldFromObject.begin(), worldFromObject.end(),
-                       [](const glm::mat4& m) { return glm::determinant(glm::mat3(m)) < 0.0f; });
-}
-
 } // namespace
 
 void setLightFacingFront(const core::Mat4& clipFromWorld, const core::Vec3& wsTowardsLight) {
@@ -204,7 +199,7 @@ GpuScene::GpuScene(const scene::Scene& scene, std::span<const scene::MeshLods> l
                                               batch.worldFromObject.size() * sizeof(glm::mat4), batch.dynamic),
                                  firstInstance,
                                  b,
-                                 anyMirrored(batch.worldFromObject),
+                                 batch.mirrored(),
                                  {}});
             const GpuMesh& mesh = m_meshes[batch.mesh];
             if (anyClusters(mesh.cameraClusters) || anyClusters(mesh.shadowClusters))
@@ -218,7 +213,7 @@ void GpuScene::updateBatch(const scene::Scene& scene, size_t sceneBatch) {
     for (GpuBatch& batch : m_batches) {
         if (batch.index != sceneBatch) continue;
         const std::vector<glm::mat4>& transforms = scene.batches[sceneBatch].worldFromObject;
-        batch.mirrored = anyMirrored(transforms);
+        batch.mirrored = scene.batches[sceneBatch].mirrored();
         if (!batch.worldFromObject.empty()) batch.worldFromObject = transforms;
         uploadToBuffer(batch.instances.id(), 0, static_cast<GLsizeiptr>(transforms.size() * sizeof(glm::mat4)),
                        transforms.data());

@@ -65,6 +65,17 @@ size_t Scene::instanceCount() const {
     return n;
 }
 
+bool MeshBatch::mirrored() const {
+    return std::any_of(worldFromObject.begin(), worldFromObject.end(),
+                       [](const glm::mat4& m) { return glm::determinant(glm::mat3(m)) < 0.0f; });
+}
+
+bool Scene::seenFromFrontOnly(size_t batch) const {
+    if (batch >= batches.size()) return false;
+    const Material* material = materialOf(meshes[batches[batch].mesh]);
+    return !(material && material->doubleSided) && !batches[batch].mirrored();
+}
+
 bool Scene::deforms(uint32_t mesh) const {
     return std::any_of(deformations.begin(), deformations.end(), [&](const MeshDeformation& d) {
         return d.batch < batches.size() && batches[d.batch].mesh == mesh;

@@ -25,6 +25,13 @@ struct Ray {
     double tFar = std::numeric_limits<double>::infinity();
 };
 
+// Which sides of a surface a query meets. Light meets both sides of every surface (a
+// single-sided wall still stops the sun, and a shadow ray may leave from inside a model).
+// A camera sees what the camera pass draws: the back of a single-sided surface is culled
+// there (scene::Scene::seenFromFrontOnly), so a camera ray passes through it to what lies
+// behind, where the raster shows that too.
+enum class Faces { Both, AsTheCameraSees };
+
 // Rays come in world coordinates (double); the BVHs hold the scene in its own coordinates
 // (scene::Scene::wsOrigin at 0), where Embree's floats keep their precision, and each ray's
 // origin is moved there in double before it becomes float.
@@ -38,19 +45,22 @@ public:
     RayScene& operator=(const RayScene&) = delete;
 
     // Nearest hit of origin + t·direction for t in [tNear, tFar]; false on a miss.
-    bool intersect(const core::Vec3& origin, const core::Vec3& direction, double tNear, double tFar, RayHit& hit) const;
+    bool intersect(const core::Vec3& origin, const core::Vec3& direction, double tNear, double tFar, RayHit& hit,
+                   Faces faces = Faces::Both) const;
     // Anything hit for t in [tNear, tFar]?
     bool occluded(const core::Vec3& origin, const core::Vec3& direction, double tNear, double tFar) const;
     // The same for many rays, eight at a time through Embree's packet kernels: coherent rays (a
     // screen tile's, or their shadow rays towards the sun) traverse the hierarchy together. Each
     // result is what the one-ray query gives for that ray. `hit[i]` / `occluded[i]` 0 or 1;
     // `hits[i]` set where hit[i] is 1. Spans of equal length.
-    void intersect(std::span<const Ray> rays, std::span<uint8_t> hit, std::span<RayHit> hits) const;
+    void intersect(std::span<const Ray> rays, std::span<uint8_t> hit, std::span<RayHit> hits,
+                   Faces faces = Faces::Both) const;
     void occluded(std::span<const Ray> rays, std::span<uint8_t> occluded) const;
 
     // Instances that moved (scene::animate's list of global indices) take their new
     // transforms from `scene`, the scene this was built from, and a mesh the scene deforms
-    // (Scene::deformations) its posed vertices, its own BVH refitted; then the top-level BVH.
+    // (Scene::deformations) its posed vertices, its own BVH refitted; then the top-level BVH,
+    // and which sides of their batches a camera sees (a mirror may have come or gone).
     // Fails, changing nothing, for an index out of range.
     core::Status moveInstances(const scene::Scene& scene, std::span<const uint32_t> moved);
 

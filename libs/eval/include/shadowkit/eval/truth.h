@@ -1,5 +1,6 @@
 // Ray-traced truth per pixel (docs/references.md, evaluation §3): a primary ray through the pixel centre
-// finds the surface; a shadow ray towards the light decides lit or shadowed.
+// finds the surface the camera pass shows (past the backs of single-sided surfaces, which it
+// culls); a shadow ray towards the light decides lit or shadowed.
 #pragma once
 
 #include "shadowkit/core/camera.h"

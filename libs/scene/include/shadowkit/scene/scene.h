@@ -52,6 +52,10 @@ struct MeshBatch {
     uint32_t mesh = 0;                      // index into Scene::meshes
     std::vector<glm::mat4> worldFromObject; // rigid transforms with uniform scale
     bool dynamic = false;                   // moves over time (animated objects)
+
+    // Whether an instance's transform has a negative determinant: it turns the triangles'
+    // winding over, so their front faces wind clockwise on screen.
+    bool mirrored() const;
 };
 
 // A dynamic instance's motion (scene/animation.h): round a circle over the ground at a
@@ -130,6 +134,13 @@ struct Scene {
         return mesh.material >= 0 && size_t(mesh.material) < materials.size() ? &materials[size_t(mesh.material)]
                                                                               : nullptr;
     }
+
+    // Whether a camera sees only the front of batches[batch]'s triangles, as the camera pass draws
+    // them: its material is single-sided (glTF 2.0 §3.9.5: `doubleSided` false, back faces culled;
+    // the plain material of a mesh without one is single-sided too) and no instance is mirrored (a
+    // batch with one is drawn from both sides, as a mirror turns its winding over). Light meets
+    // both sides whatever this says: a single-sided wall still stops the sun.
+    bool seenFromFrontOnly(size_t batch) const;
 
     // Whether anything moves or changes shape over time (tracks or deformations).
     bool animated() const { return !tracks.empty() || !deformations.empty(); }
