@@ -34,6 +34,11 @@ int runExport(const ExportArgs& args) {
                          "at t = 0 (a .glb keeps them)",
                          args.out, sceneData->tracks.size(), sceneData->tracks.size() == 1 ? "" : "s",
                          sceneData->tracks.size() == 1 ? "s" : ""));
+    if (format == ".obj" && args.scene.scene == "forest" && !sceneData->tracks.empty())
+        warn(fmt::format("--out {}: an OBJ holds no animation: the forest's {} mover{} stand{} where t = 0 puts them "
+                         "(a .glb keeps them circling)",
+                         args.out, sceneData->tracks.size(), sceneData->tracks.size() == 1 ? "" : "s",
+                         sceneData->tracks.size() == 1 ? "s" : ""));
     if (const size_t deformed = sceneData->deformations.size(); format == ".obj" && deformed > 0)
         warn(fmt::format("--out {}: an OBJ holds no animation: the {} mesh{} the file's animations deform {} written "
                          "as posed at t = 0 (a .glb keeps {} skin{} and morph targets playing)",

@@ -531,8 +531,10 @@ if(CASE STREQUAL "export-world-offset")
   set(z "${CMAKE_MATCH_2}")
   execute_process(COMMAND ${SHADOWKIT} export --scene "${WORK}/far.obj" --out "${WORK}/back.glb" RESULT_VARIABLE rc2
                   OUTPUT_QUIET ERROR_VARIABLE err2)
+  # The forest's six movers circle in a .glb; an OBJ cannot say so, and export does.
   if(NOT rc EQUAL 0 OR NOT rc2 EQUAL 0 OR NOT parsed OR x LESS 512200 OR x GREATER 512500 OR z LESS 5412200
-     OR z GREATER 5412500 OR NOT err2 MATCHES "standing at 5123[0-9][0-9],[-0-9]+,54123[0-9][0-9] m")
+     OR z GREATER 5412500 OR NOT err2 MATCHES "standing at 5123[0-9][0-9],[-0-9]+,54123[0-9][0-9] m"
+     OR NOT err MATCHES "an OBJ holds no animation: the forest's 6 movers stand where t = 0 puts them")
     message(SEND_ERROR "export-world-offset: export ${rc}, first vertex '${first_vertex}', loading it ${rc2}: ${err} ${err2}")
   endif()
 endif()

@@ -2,7 +2,12 @@
 
 #include "shadowkit/core/conventions.h"
 
+#include <glm/gtc/quaternion.hpp>
+
+#include <algorithm>
 #include <cmath>
+#include <memory>
+#include <numbers>
 
 namespace shadowkit::scene {
 
@@ -20,6 +25,48 @@ glm::mat4 trackTransform(const Track& track, const Scene& scene, double t) {
     // Turning clockwise seen from above is a negative rotation about +Y.
     m = glm::rotate(m, static_cast<float>(-travelled), glm::vec3(0, 1, 0));
     return glm::scale(m, glm::vec3(track.scale));
+}
+
+std::optional<NodeMotion> circleAsKeys(const Track& track, const Scene& scene, double chordErrorMetres) {
+    if (track.keyframed || track.speed == 0.0 || !(track.radius > 0.0)) return std::nullopt;
+    constexpr int kMostKeys = 4096;
+    // A chord of angle θ strays r(1 − cos(θ/2)) from its arc at its middle: θ = 2π/N.
+    const double halfAngle = std::acos(std::clamp(1.0 - chordErrorMetres / track.radius, -1.0, 1.0));
+    int keys = halfAngle > 0.0 ? std::clamp(int(std::ceil(std::numbers::pi / halfAngle)), 16, kMostKeys) : kMostKeys;
+    const double loop = 2.0 * std::numbers::pi * track.radius / std::abs(track.speed);
+    const auto placedAt = [&](double t) { return glm::dmat4(trackTransform(track, scene, t)); };
+    // The ground the track follows bends where the arc does not (a heightfield's creases): keys
+    // twice as dense until every key's height, drawn straight to the next, passes within the same
+    // bound of the ground at their middle — within twice it anywhere between them, a crease
+    // straying most where it falls in the middle.
+    const auto groundFollowed = [&](int n) {
+        for (int k = 0; k < n; ++k) {
+            const double t0 = loop * k / n, t1 = loop * (k + 1) / n;
+            const double straight = 0.5 * (placedAt(t0)[3].y + placedAt(t1)[3].y);
+            if (std::abs(placedAt(0.5 * (t0 + t1))[3].y - straight) > chordErrorMetres) return false;
+        }
+        return true;
+    };
+    while (keys < kMostKeys && !groundFollowed(keys)) keys = std::min(2 * keys, kMostKeys);
+    auto translation = std::make_shared<KeyframeChannel>();
+    auto rotation = std::make_shared<KeyframeChannel>();
+    for (KeyframeChannel* channel : {translation.get(), rotation.get()}) channel->loopSeconds = loop;
+    for (int k = 0; k <= keys; ++k) { // the last key closes the loop where the first began
+        const double t = loop * k / keys;
+        translation->times.push_back(t);
+        translation->values.emplace_back(glm::dvec3(placedAt(t)[3]), 0.0);
+        const double travelled = track.speed / track.radius * t;
+        const glm::dquat turned = glm::angleAxis(-travelled, glm::dvec3(0.0, 1.0, 0.0));
+        rotation->times.push_back(t);
+        rotation->values.emplace_back(turned.x, turned.y, turned.z, turned.w);
+    }
+    MotionNode node;
+    node.scale = glm::dvec3(track.scale);
+    node.translationKeys = std::move(translation);
+    node.rotationKeys = std::move(rotation);
+    NodeMotion motion;
+    motion.chain.push_back(std::move(node));
+    return motion;
 }
 
 void animate(Scene& scene, double t, std::vector<uint32_t>* moved) {

@@ -5,12 +5,14 @@
 // loads back with its leaves' holes and its trees as instances. Only what the file draws is
 // written: the textures its materials use (not the billboard clouds', which a loader bakes
 // again) and the vertices the full meshes' triangles use (fullMesh()). A file's animations are
-// written back with the instances they move (gltf_animation.cpp's AnimationWriter), and a mesh
+// written back with the instances they move (gltf_animation.cpp's AnimationWriter), a forest's
+// circling movers as keys round their circles (circleAsKeys), and a mesh
 // they deform with its skin, morph targets and keys (appendDeformedBatch).
 #include "gltf_animation.h"
 #include "gltf_viewpoints.h"
 #include "scene_formats.h"
 
+#include "shadowkit/scene/animation.h"
 #include "shadowkit/scene/file_write.h"
 #include "shadowkit/scene/image.h"
 
@@ -22,7 +24,9 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <deque>
 #include <map>
+#include <optional>
 #include <span>
 #include <sstream>
 #include <string>
@@ -406,11 +410,18 @@ core::Status exportGlb(const Scene& scene, const fs::path& file) {
     model.scenes.emplace_back();
     model.defaultScene = 0;
     if (core::Status s = addMaterials(scene, model); !s) return core::makeError(file.string() + ": " + s.error());
-    // A file's animations go back with the instances they move (a forest's circling movers do
-    // not: they are written where they stand).
+    // A file's animations go back with the instances they move, and a forest's circling movers
+    // as keys sampled round their circles (circleAsKeys), one animation each.
     std::vector<std::map<size_t, const NodeMotion*>> moving(scene.batches.size());
-    for (const Track& track : scene.tracks)
-        if (track.keyframed) moving[track.batch][track.instance] = &*track.keyframed;
+    std::deque<NodeMotion> circles; // fixed addresses for `moving`
+    for (const Track& track : scene.tracks) {
+        if (track.keyframed) {
+            moving[track.batch][track.instance] = &*track.keyframed;
+        } else if (std::optional<NodeMotion> keys = circleAsKeys(track, scene)) {
+            circles.push_back(std::move(*keys));
+            moving[track.batch][track.instance] = &circles.back();
+        }
+    }
     AnimationWriter animations(model, [&model](const std::vector<float>& data, int type, size_t count,
                                                std::vector<double> min, std::vector<double> max) {
         return appendAccessor(model, appendBufferView(model, std::span<const float>(data), 0),

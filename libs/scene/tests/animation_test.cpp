@@ -5,8 +5,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <set>
 
 using namespace shadowkit;
@@ -84,4 +86,41 @@ TEST(Animation, SeveralSpeedsBothWaysAndAThousandMoversStayOnTheTerrain) {
     }
     EXPECT_GE(speeds.size(), 4u);
     EXPECT_TRUE(clockwise && anticlockwise);
+}
+
+TEST(Animation, ACircleAsKeysStraysFromItsArcByNoMoreThanAskedAndTurnsAsTheTrackTurns) {
+    const scene::Scene s = forest(6);
+    ASSERT_FALSE(s.tracks.empty());
+    for (const double chord : {0.01, 0.05}) {
+        for (const scene::Track& track : s.tracks) {
+            const std::optional<scene::NodeMotion> keys = scene::circleAsKeys(track, s, chord);
+            ASSERT_TRUE(keys);
+            const scene::KeyframeChannel& translation = *keys->chain.at(0).translationKeys;
+            const size_t n = translation.times.size() - 1; // intervals: the last key closes the loop
+            EXPECT_GE(n, 16u);
+            EXPECT_LE(n, 4096u);
+            const double loop = 2.0 * std::numbers::pi * track.radius / std::abs(track.speed);
+            EXPECT_NEAR(translation.times.back(), loop, 1e-9 * loop);
+            // Midway between keys, where a chord strays most from its arc: r(1 − cos(π/N)) across,
+            // within the bound asked, and as close to the ground; the turn is the track's to float
+            // precision.
+            double across = 0.0, up = 0.0;
+            for (size_t k = 0; k < n; ++k) {
+                const double t = (translation.times[k] + translation.times[k + 1]) / 2.0;
+                const glm::dmat4 want(scene::trackTransform(track, s, t));
+                const glm::dmat4 got = keys->sceneFromObjectAt(t);
+                across = std::max(across, glm::length(glm::dvec2(got[3].x - want[3].x, got[3].z - want[3].z)));
+                up = std::max(up, std::abs(got[3].y - want[3].y));
+                for (int c = 0; c < 3; ++c)
+                    EXPECT_LT(glm::length(glm::dvec3(got[c]) - glm::dvec3(want[c])), 1e-5) << "t = " << t;
+                // A loop later, the same place.
+                EXPECT_LT(glm::distance(glm::dvec3(keys->sceneFromObjectAt(t + loop)[3]), glm::dvec3(got[3])), 1e-6);
+            }
+            EXPECT_LE(across, chord + 1e-5) << "radius " << track.radius;
+            EXPECT_LE(up, chord + 1e-5) << "radius " << track.radius;
+        }
+    }
+    scene::Track still = s.tracks.front();
+    still.speed = 0.0;
+    EXPECT_FALSE(scene::circleAsKeys(still, s)) << "a mover that stands still needs no keys";
 }

@@ -1,7 +1,9 @@
 // A glTF's animations (gltf_animation.cpp) move the instances below the nodes they target, as
-// scene::animate plays them; what cannot be played is a warning and stays at rest. Expected
+// scene::animate plays them; what cannot be played is a warning and stays at rest; exported,
+// they play again, and a forest's circling movers with them. Expected
 // positions are worked by hand from the file's turn about +y, not read back from the loader.
 #include "shadowkit/scene/animation.h"
+#include "shadowkit/scene/forest.h"
 #include "shadowkit/scene/scene_io.h"
 
 #include "gltf_test_files.h"
@@ -14,6 +16,7 @@
 #include <cmath>
 #include <string>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 using namespace shadowkit;
@@ -220,5 +223,48 @@ TEST(GltfAnimationTest, ExportedAndLoadedBackTheAnimationsPlayTheSame) {
         ASSERT_EQ(got.size(), want.size());
         for (size_t k = 0; k < got.size(); ++k) expectNear(got[k], want[k], 1e-3, "t = " + std::to_string(t));
         expectNear(originsOf(*back, false).at(0), originsOf(*original, false).at(0), 1e-3, "the static instance");
+    }
+}
+
+// A forest's movers circle by a rule, not by keys: exported, they go as keys round their circles
+// (scene::circleAsKeys), and loaded back they circle as they did — on a hill, at times across and
+// past each loop, turned as they turn (a point 2 m along each mover's +x).
+TEST(GltfAnimationTest, AForestsCirclingMoversGoToAGlbAsKeysAndCircleOnLoadedBack) {
+    ForestOptions options;
+    options.trees = 0;
+    options.terrainSize = 200.0;
+    options.terrainResolution = 32;
+    options.rocks = 0;
+    options.buildings = 0;
+    options.movers = 5;
+    Scene forest = makeForest(options);
+    ASSERT_EQ(forest.tracks.size(), 5u);
+    const auto file = shadowkit::test_support::scratchDir() / "sk_forest_movers.glb";
+    ASSERT_TRUE(exportScene(forest, file));
+    auto back = loadScene(file);
+    ASSERT_TRUE(back) << back.error();
+    ASSERT_EQ(back->tracks.size(), forest.tracks.size());
+    EXPECT_TRUE(back->warnings.empty()) << back->warnings.front();
+    // Each mover's origin and the point 2 m along its +x, ordered by origin.
+    const auto placements = [](const Scene& s) {
+        std::vector<std::pair<glm::dvec3, glm::dvec3>> out;
+        for (const Track& track : s.tracks) {
+            const glm::dmat4 m(s.batches[track.batch].worldFromObject[track.instance]);
+            out.emplace_back(s.wsOrigin + glm::dvec3(m[3]), s.wsOrigin + glm::dvec3(m * glm::dvec4(2, 0, 0, 1)));
+        }
+        std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) {
+            return std::tie(a.first.x, a.first.z) < std::tie(b.first.x, b.first.z);
+        });
+        return out;
+    };
+    for (double t : {0.0, 0.8, 7.3, 41.0, 400.0}) {
+        animate(forest, t);
+        animate(*back, t);
+        const auto want = placements(forest), got = placements(*back);
+        for (size_t k = 0; k < got.size(); ++k) {
+            // 1 cm from the arc (circleAsKeys's default), 2 cm from the ground where it bends between keys.
+            expectNear(got[k].first, want[k].first, 0.03, "t = " + std::to_string(t));
+            expectNear(got[k].second, want[k].second, 0.03, "turned, t = " + std::to_string(t));
+        }
     }
 }
