@@ -155,10 +155,10 @@ core::Result<std::unique_ptr<RayScene>> RayScene::build(const scene::Scene& scen
         // shared by every instance; on the leafy forest they cut the soft truth's time by a
         // tenth for no measurable build time. A mesh the scene deforms is built again in every
         // frame that poses it (moveInstances): Embree's dynamic scene, its BVH refitted.
-        // Every scene a camera ray enters lets the query's own filter see its hits (Embree asks
-        // for the flag on each instanced scene too).
         const bool deformed = scene.deforms(m);
         rtcSetSceneBuildQuality(meshScene, deformed ? RTC_BUILD_QUALITY_LOW : RTC_BUILD_QUALITY_HIGH);
+        // Every scene a camera ray enters lets the query's own filter see its hits (Embree asks
+        // for the flag on each instanced scene too).
         rtcSetSceneFlags(meshScene, RTCSceneFlags(RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION |
                                                   (deformed ? RTC_SCENE_FLAG_DYNAMIC : RTC_SCENE_FLAG_NONE)));
         if (mesh.indices.empty()) {
