@@ -99,6 +99,7 @@ void printViewRow(const eval::ViewReport& report) {
         name, report.technique, report.mapSize, f.validPx, f.excludedPx, f.wrongPct, f.falseShadowPct, f.falseLitPct,
         f.undersampledPct, f.pixelsPerTexelP50, f.pixelsPerTexelP95, f.pixelsPerTexelP99, report.seconds);
     if (const std::string warning = eval::nothingComparedWarning(name, f); !warning.empty()) warn(warning);
+    if (const std::string warning = eval::mostlyLeftOutWarning(name, f); !warning.empty()) warn(warning);
     // With spot and point lights the row above is every light together; each follows.
     for (const eval::LightReport& l : report.lights) {
         fmt::print("  {:<12} {:<10} {:>5} {:>9} {:>8} {:>7.2f} {:>8.2f} {:>8.2f} {:>7.2f} {:>7.3f} {:>7.3f} "

@@ -119,6 +119,15 @@ std::string nothingComparedWarning(const std::string& view, const Figures& figur
            "nothing";
 }
 
+std::string mostlyLeftOutWarning(const std::string& view, const Figures& figures) {
+    if (figures.validPx == 0 || figures.excludedPx <= figures.validPx) return {};
+    const double leftOut = 100.0 * double(figures.excludedPx) / double(figures.excludedPx + figures.validPx);
+    char shares[64];
+    std::snprintf(shares, sizeof shares, "%.0f %% of its sunlit pixels", leftOut);
+    return "view " + view + ": " + shares +
+           " were left out (raster and ray tracer show different surfaces there): its figures measure the rest";
+}
+
 std::string nothingComparedAlongWarning(const std::string& path, size_t none, size_t frames) {
     if (none == 0) return {};
     return "--path " + path + ": " + std::to_string(none) + " of " + std::to_string(frames) +

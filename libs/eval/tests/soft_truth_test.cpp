@@ -212,6 +212,19 @@ TEST(SoftTruthTest, AViewThatComparedNoPixelIsWarnedOfAndOneThatDidIsNot) {
     EXPECT_TRUE(eval::nothingComparedWarning("paper", figures).empty());
 }
 
+TEST(SoftTruthTest, AViewMostOfWhoseSunlitPixelsWereLeftOutIsWarnedOf) {
+    eval::Figures figures;
+    figures.validPx = 400;
+    figures.excludedPx = 600; // 60 % of the 1,000 sunlit pixels left out
+    const std::string warning = eval::mostlyLeftOutWarning("aerial", figures);
+    EXPECT_NE(warning.find("view aerial: 60 % of its sunlit pixels were left out"), std::string::npos) << warning;
+    figures.validPx = 600;
+    figures.excludedPx = 400; // most compared
+    EXPECT_TRUE(eval::mostlyLeftOutWarning("aerial", figures).empty());
+    figures.validPx = 0; // none: the nothing-compared warning's, not this one's
+    EXPECT_TRUE(eval::mostlyLeftOutWarning("aerial", figures).empty());
+}
+
 TEST(SoftTruthTest, TheSoftErrorMapIsRedWhereTooDarkBlueWhereTooLightAndGreyWhereRight) {
     using PC = eval::PixelClass;
     using C = eval::ErrorMapColors;

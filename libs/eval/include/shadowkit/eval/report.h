@@ -100,6 +100,12 @@ std::string softFiguresLine(const SoftFigures& soft);
 /// The warning for a view in which no pixel was compared (valid_px 0: the sky, a mask of a pixel
 /// or two), whose 0.00 % would read as perfect shadows; empty when some pixel was.
 std::string nothingComparedWarning(const std::string& view, const Figures& figures);
+/// The warning for a view most of whose sunlit pixels were left out (excluded_px above
+/// valid_px: raster and ray tracer showed different surfaces there — levels of detail far from
+/// the full geometry, a surface drawn from the side the file did not mean), whose figures then
+/// measure the smaller part of what is seen; empty when half or more was compared, or none
+/// (nothingComparedWarning's case).
+std::string mostlyLeftOutWarning(const std::string& view, const Figures& figures);
 /// The same along a camera path: `none` of its `frames` compared no pixel (a path made for the
 /// forest sees nothing of a small loaded scene), and their 0.00 % count in the path's means;
 /// empty when every frame compared some.
