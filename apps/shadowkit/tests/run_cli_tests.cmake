@@ -223,6 +223,9 @@ else()
 endif()
 endif()
 
+# A picture named for another format is refused, not written as PNG bytes under that name.
+check_fails(analyze-plot-jpg "pictures are written as PNG: name it .png, not .jpg" analyze --csv ${WORK}/figure6.csv
+            --plot ${WORK}/figure6.jpg)
 # analyze reproduces Wimmer et al. 2004, Figure 6 and writes its CSV and plot.
 if(CASE STREQUAL "analyze-figure6")
 execute_process(COMMAND ${SHADOWKIT} analyze --json --scene-bounds -512,0,-512,512,30,512 --csv "${WORK}/a.csv"

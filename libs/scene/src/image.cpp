@@ -4,6 +4,8 @@
 
 #include <stb/stb_image_write.h>
 
+#include <algorithm>
+#include <cctype>
 #include <string>
 
 namespace shadowkit::scene {
@@ -21,6 +23,14 @@ core::Result<std::string> encodePng(const Image& image, std::string_view what) {
 }
 
 core::Status writePng(const Image& image, const std::filesystem::path& file) {
+    // A name that says another format would hold PNG bytes under it ("wrote shot.jpg"), which
+    // tools that go by the name then misread: refused, before anything is written.
+    std::string extension = file.extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    if (!extension.empty() && extension != ".png")
+        return core::makeError(file.string() + ": pictures are written as PNG: name it .png, not " +
+                               file.extension().string());
     // Encoded in memory, then written whole (file_write.h): stb's own file writer reports
     // neither a full disk nor a failed close.
     const core::Result<std::string> png = encodePng(image, file.string());

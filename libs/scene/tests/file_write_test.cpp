@@ -146,6 +146,25 @@ TEST(FileWrite, AFullDeviceIsAnErrorAndStaysADevice) {
     EXPECT_FALSE(scene::writePng(image, "/dev/full"));
 }
 
+TEST(FileWrite, APictureNamedForAnotherFormatIsRefusedBeforeAnythingIsWritten) {
+    const fs::path dir = scratch("picture_names");
+    const scene::Image image(4, 4);
+    for (const char* name : {"shot.jpg", "shot.JPEG", "shot.webp"}) {
+        const core::Status status = scene::writePng(image, dir / name);
+        ASSERT_FALSE(status) << name;
+        EXPECT_NE(status.error().find(std::string(name) + ": pictures are written as PNG: name it .png"),
+                  std::string::npos)
+            << status.error();
+        EXPECT_FALSE(fs::exists(dir / name)) << name;
+    }
+    // PNG under its own name in any case, and under a name with no extension (a device, a pipe).
+    for (const char* name : {"shot.png", "shot.PNG", "shot"}) {
+        ASSERT_TRUE(scene::writePng(image, dir / name)) << name;
+        EXPECT_TRUE(fs::exists(dir / name)) << name;
+    }
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 3) << "nothing else, no temporary";
+}
+
 TEST(FileWrite, AnImpossibleDirectoryOrADirectoryTargetIsAnErrorNamingTheFile) {
     const fs::path dir = scratch("impossible");
     const fs::path plain = dir / "plain_file";

@@ -41,7 +41,8 @@ struct Image {
 // encoder failing).
 core::Result<std::string> encodePng(const Image& image, std::string_view what);
 
-// Errors name the file (unwritable directory, disk full).
+// Errors name the file (unwritable directory, disk full, a name ending in another format's
+// extension than .png; none is taken as PNG).
 core::Status writePng(const Image& image, const std::filesystem::path& file);
 
 // Limits on a decoded image, checked from its header before any pixel is decoded: a side of
