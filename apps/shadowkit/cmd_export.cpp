@@ -29,16 +29,18 @@ int runExport(const ExportArgs& args) {
                          "out (a .glb keeps them)",
                          args.out, sceneData->cameras.size(), sceneData->cameras.size() == 1 ? "" : "s",
                          sceneData->lights.size(), sceneData->lights.size() == 1 ? "" : "s"));
-    if (format == ".obj" && args.scene.scene != "forest" && !sceneData->tracks.empty())
-        warn(fmt::format("--out {}: an OBJ holds no animation: the {} instance{} the file's animations move stand{} as "
-                         "at t = 0 (a .glb keeps them)",
-                         args.out, sceneData->tracks.size(), sceneData->tracks.size() == 1 ? "" : "s",
-                         sceneData->tracks.size() == 1 ? "s" : ""));
-    if (format == ".obj" && args.scene.scene == "forest" && !sceneData->tracks.empty())
-        warn(fmt::format("--out {}: an OBJ holds no animation: the forest's {} mover{} stand{} where t = 0 puts them "
-                         "(a .glb keeps them circling)",
-                         args.out, sceneData->tracks.size(), sceneData->tracks.size() == 1 ? "" : "s",
-                         sceneData->tracks.size() == 1 ? "s" : ""));
+    if (const size_t moving = sceneData->tracks.size(); format == ".obj" && moving > 0) {
+        const char* plural = moving == 1 ? "" : "s";
+        const char* verb = moving == 1 ? "s" : "";
+        warn(fmt::format("--out {}: an OBJ holds no animation: {}", args.out,
+                         args.scene.scene == "forest"
+                             ? fmt::format("the forest's {} mover{} stand{} where t = 0 puts them (a .glb keeps them "
+                                           "circling)",
+                                           moving, plural, verb)
+                             : fmt::format("the {} instance{} the file's animations move stand{} as at t = 0 (a .glb "
+                                           "keeps them)",
+                                           moving, plural, verb)));
+    }
     if (const size_t deformed = sceneData->deformations.size(); format == ".obj" && deformed > 0)
         warn(fmt::format("--out {}: an OBJ holds no animation: the {} mesh{} the file's animations deform {} written "
                          "as posed at t = 0 (a .glb keeps {} skin{} and morph targets playing)",

@@ -302,8 +302,7 @@ bool RayScene::intersect(const core::Vec3& origin, const core::Vec3& direction, 
 }
 
 bool RayScene::occluded(const core::Vec3& origin, const core::Vec3& direction, double tNear, double tFar) const {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
+    CameraContext context = m_impl->contextFor(Faces::Both, false);
     RTCRay ray{};
     const FloatRay f = toFloat(m_wsOrigin, origin, direction, tNear, tFar);
     ray.org_x = f.org[0], ray.org_y = f.org[1], ray.org_z = f.org[2];
@@ -311,7 +310,7 @@ bool RayScene::occluded(const core::Vec3& origin, const core::Vec3& direction, d
     ray.tnear = f.tnear;
     ray.tfar = f.tfar;
     ray.mask = ~0u;
-    rtcOccluded1(m_impl->top, &context, &ray);
+    rtcOccluded1(m_impl->top, &context.context, &ray);
     return ray.tfar < 0.0f; // Embree sets tfar to -inf on a hit
 }
 

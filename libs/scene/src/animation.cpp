@@ -8,6 +8,7 @@
 #include <cmath>
 #include <memory>
 #include <numbers>
+#include <vector>
 
 namespace shadowkit::scene {
 
@@ -34,28 +35,35 @@ std::optional<NodeMotion> circleAsKeys(const Track& track, const Scene& scene, d
     const double halfAngle = std::acos(std::clamp(1.0 - chordErrorMetres / track.radius, -1.0, 1.0));
     int keys = halfAngle > 0.0 ? std::clamp(int(std::ceil(std::numbers::pi / halfAngle)), 16, kMostKeys) : kMostKeys;
     const double loop = 2.0 * std::numbers::pi * track.radius / std::abs(track.speed);
-    const auto placedAt = [&](double t) { return glm::dmat4(trackTransform(track, scene, t)); };
+    // The track at every key and at every middle between two: 2N + 1 places, once per N.
+    const auto sampled = [&](int n) {
+        std::vector<glm::dvec3> at(size_t(2 * n + 1));
+        for (int j = 0; j <= 2 * n; ++j)
+            at[size_t(j)] = glm::dvec3(trackTransform(track, scene, loop * j / (2.0 * n))[3]);
+        return at;
+    };
     // The ground the track follows bends where the arc does not (a heightfield's creases): keys
     // twice as dense until every key's height, drawn straight to the next, passes within the same
     // bound of the ground at their middle — within twice it anywhere between them, a crease
     // straying most where it falls in the middle.
-    const auto groundFollowed = [&](int n) {
-        for (int k = 0; k < n; ++k) {
-            const double t0 = loop * k / n, t1 = loop * (k + 1) / n;
-            const double straight = 0.5 * (placedAt(t0)[3].y + placedAt(t1)[3].y);
-            if (std::abs(placedAt(0.5 * (t0 + t1))[3].y - straight) > chordErrorMetres) return false;
-        }
+    const auto followsGround = [&](const std::vector<glm::dvec3>& at) {
+        for (size_t k = 0; k + 2 < at.size(); k += 2)
+            if (std::abs(at[k + 1].y - 0.5 * (at[k].y + at[k + 2].y)) > chordErrorMetres) return false;
         return true;
     };
-    while (keys < kMostKeys && !groundFollowed(keys)) keys = std::min(2 * keys, kMostKeys);
+    std::vector<glm::dvec3> at = sampled(keys);
+    while (keys < kMostKeys && !followsGround(at)) {
+        keys = std::min(2 * keys, kMostKeys);
+        at = sampled(keys);
+    }
     auto translation = std::make_shared<KeyframeChannel>();
     auto rotation = std::make_shared<KeyframeChannel>();
     for (KeyframeChannel* channel : {translation.get(), rotation.get()}) channel->loopSeconds = loop;
     for (int k = 0; k <= keys; ++k) { // the last key closes the loop where the first began
-        const double t = loop * k / keys;
+        const double t = loop * (2 * k) / (2.0 * keys);
         translation->times.push_back(t);
-        translation->values.emplace_back(glm::dvec3(placedAt(t)[3]), 0.0);
-        const double travelled = track.speed / track.radius * t;
+        translation->values.emplace_back(at[size_t(2 * k)], 0.0);
+        const double travelled = track.speed / track.radius * t; // as trackTransform turns it
         const glm::dquat turned = glm::angleAxis(-travelled, glm::dvec3(0.0, 1.0, 0.0));
         rotation->times.push_back(t);
         rotation->values.emplace_back(turned.x, turned.y, turned.z, turned.w);

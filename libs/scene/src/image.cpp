@@ -1,11 +1,11 @@
 #include "shadowkit/scene/image.h"
 
+#include "scene_formats.h"
+
 #include "shadowkit/scene/file_write.h"
 
 #include <stb/stb_image_write.h>
 
-#include <algorithm>
-#include <cctype>
 #include <string>
 
 namespace shadowkit::scene {
@@ -25,10 +25,7 @@ core::Result<std::string> encodePng(const Image& image, std::string_view what) {
 core::Status writePng(const Image& image, const std::filesystem::path& file) {
     // A name that says another format would hold PNG bytes under it ("wrote shot.jpg"), which
     // tools that go by the name then misread: refused, before anything is written.
-    std::string extension = file.extension().string();
-    std::transform(extension.begin(), extension.end(), extension.begin(),
-                   [](unsigned char c) { return char(std::tolower(c)); });
-    if (!extension.empty() && extension != ".png")
+    if (const std::string extension = formats::lowerExtension(file); !extension.empty() && extension != ".png")
         return core::makeError(file.string() + ": pictures are written as PNG: name it .png, not " +
                                file.extension().string());
     // Encoded in memory, then written whole (file_write.h): stb's own file writer reports
