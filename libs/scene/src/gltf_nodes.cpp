@@ -11,17 +11,25 @@ namespace shadowkit::scene::formats {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+// "node 3 'wheel'", as every message below names a node.
+std::string nodeNamed(const tinygltf::Model& model, size_t node) {
+    const std::string& name = model.nodes[node].name;
+    return "node " + std::to_string(node) + (name.empty() ? "" : " '" + printable(name) + "'");
+}
+
+} // namespace
+
 // glTF 2.0 (Concepts, "Nodes and Hierarchy"): "the node hierarchy MUST be a set of disjoint
-// strict trees": no cycles, each node with at most one parent, and a scene's roots unique.
+// strict trees": no cycles and each node with at most one parent (a scene's roots, which must
+// have none, are sceneRoots' to place).
 // tinygltf does not check it, and a file that breaks it can place a node exponentially often:
 // a chain of nodes each naming the next twice places 2^depth instances, and a node that is its
 // own child recursed to the old depth limit of 64, doubling at every level (fuzz_gltf hung on
 // both). Checked before anything is placed, each node walked over once.
 core::Result<NodeTrees> checkNodeTrees(const tinygltf::Model& model, const fs::path& file) {
-    const auto named = [&](size_t node) {
-        const std::string& name = model.nodes[node].name;
-        return "node " + std::to_string(node) + (name.empty() ? "" : " '" + printable(name) + "'");
-    };
+    const auto named = [&](size_t node) { return nodeNamed(model, node); };
     std::vector<int> parentOf(model.nodes.size(), -1);
     for (size_t node = 0; node < model.nodes.size(); ++node)
         for (int child : model.nodes[node].children) {
@@ -34,18 +42,6 @@ core::Result<NodeTrees> checkNodeTrees(const tinygltf::Model& model, const fs::p
                                        " (glTF's nodes form trees: one parent each)");
             parentOf[size_t(child)] = int(node);
         }
-    for (size_t s = 0; s < model.scenes.size(); ++s) {
-        std::vector<bool> listed(model.nodes.size(), false);
-        for (int root : model.scenes[s].nodes) {
-            if (root < 0 || size_t(root) >= model.nodes.size()) continue; // placed nowhere
-            const std::string where = file.string() + ": scene " + std::to_string(s) + "'s root " + named(size_t(root));
-            if (parentOf[size_t(root)] >= 0)
-                return core::makeError(where + " is also a child of " + named(size_t(parentOf[size_t(root)])) +
-                                       " (a cycle in the node hierarchy)");
-            if (listed[size_t(root)]) return core::makeError(where + " is listed twice");
-            listed[size_t(root)] = true;
-        }
-    }
     // Every node's parents lead up to a node that has none. A loop of nodes each the child of
     // the next has no root above it: no scene lists it, yet a skin may name its nodes as joints,
     // and walking up from one (the animations' reader does) would never end — a hang found by
@@ -74,20 +70,101 @@ core::Result<NodeTrees> checkNodeTrees(const tinygltf::Model& model, const fs::p
 // exporter writes one when told to export no scene. A viewer is free to show it as it likes
 // (§3.5.1): shadowkit places every node that is no other's child, as Blender's importer does,
 // and says so — a file of meshes must not be refused as holding none.
-std::vector<int> sceneRoots(const tinygltf::Model& model, const NodeTrees& trees, const fs::path& file,
+//
+// A scene's nodes "MUST be root nodes" (§3.5.2), and exporters break it: Kenney's kits list a
+// mesh node as the root though a `tmpParent` node (never placed) names it as its child, and
+// viewers draw such files. So each node listed is placed once, where the file places it: below a
+// listed ancestor if it has one (its listing dropped: placed twice, a chain of n listed nodes
+// would cost n²/2 placements), else as a root with its own transform, as viewers draw it — and
+// then cut from its parent in `trees`, so that poses and animations compose its transform as it
+// is placed. A node listed twice is placed once. Each case is said in one warning.
+std::vector<int> sceneRoots(const tinygltf::Model& model, NodeTrees& trees, const fs::path& file,
                             std::vector<std::string>& warnings) {
-    if (!model.scenes.empty()) {
-        const int scene = model.defaultScene >= 0 ? model.defaultScene : 0;
-        return size_t(scene) < model.scenes.size() ? model.scenes[size_t(scene)].nodes : std::vector<int>{};
+    std::vector<int>& parentOf = trees.parentOf;
+    if (model.scenes.empty()) {
+        std::vector<int> roots;
+        for (size_t node = 0; node < model.nodes.size(); ++node)
+            if (parentOf[node] < 0) roots.push_back(int(node));
+        if (!roots.empty())
+            warnings.push_back(file.string() + ": it has no scene (a library of entities); " +
+                               (roots.size() == 1
+                                    ? std::string("its root node stands")
+                                    : "its " + std::to_string(roots.size()) + " root nodes stand together") +
+                               " as the scene");
+        return roots;
     }
+    const int sceneIndex = model.defaultScene >= 0 ? model.defaultScene : 0;
+    if (size_t(sceneIndex) >= model.scenes.size()) return {};
+    const size_t n = model.nodes.size();
+    std::vector<bool> listed(n, false);
+    std::vector<int> candidates;
+    size_t repeated = 0;
+    for (int node : model.scenes[size_t(sceneIndex)].nodes) {
+        if (node < 0 || size_t(node) >= n) continue; // placed nowhere
+        if (listed[size_t(node)]) {
+            ++repeated;
+            continue;
+        }
+        listed[size_t(node)] = true;
+        candidates.push_back(node);
+    }
+    // Whether a listed node lies below another listed one, each node's answer found once
+    // (checkNodeTrees: every walk up ends).
+    enum class Below : int8_t { Unknown, AListedNode, Nothing };
+    std::vector<Below> below(n, Below::Unknown);
+    std::vector<size_t> walk;
+    const auto belowAListedNode = [&](size_t start) {
+        walk.clear();
+        Below answer = Below::Nothing;
+        for (int node = parentOf[start]; node >= 0; node = parentOf[size_t(node)]) {
+            if (below[size_t(node)] != Below::Unknown) {
+                answer = listed[size_t(node)] ? Below::AListedNode : below[size_t(node)];
+                break;
+            }
+            if (listed[size_t(node)]) {
+                answer = Below::AListedNode;
+                break;
+            }
+            walk.push_back(size_t(node));
+        }
+        for (size_t visited : walk) below[visited] = answer;
+        return answer == Below::AListedNode;
+    };
     std::vector<int> roots;
-    for (size_t node = 0; node < model.nodes.size(); ++node)
-        if (trees.parentOf[node] < 0) roots.push_back(int(node));
-    if (!roots.empty())
-        warnings.push_back(file.string() + ": it has no scene (a library of entities); " +
-                           (roots.size() == 1 ? std::string("its root node stands")
-                                              : "its " + std::to_string(roots.size()) + " root nodes stand together") +
-                           " as the scene");
+    std::vector<size_t> underListed, cut;
+    for (int node : candidates) {
+        if (parentOf[size_t(node)] < 0)
+            roots.push_back(node);
+        else if (belowAListedNode(size_t(node)))
+            underListed.push_back(size_t(node));
+        else {
+            cut.push_back(size_t(node));
+            roots.push_back(node);
+        }
+    }
+    const auto named = [&](size_t node) { return nodeNamed(model, node); };
+    const auto firstAnd = [&](const std::vector<size_t>& nodes) {
+        return named(nodes.front()) +
+               (nodes.size() > 1 ? " and " + std::to_string(nodes.size() - 1) + " more" : std::string());
+    };
+    const std::string where = file.string() + ": scene " + std::to_string(sceneIndex) + " lists ";
+    if (!cut.empty()) {
+        const std::string parent = named(size_t(parentOf[cut.front()]));
+        warnings.push_back(where + firstAnd(cut) +
+                           (cut.size() == 1
+                                ? " as a root though it is a child of " + parent
+                                : " as roots though each is a child (" + named(cut.front()) + " of " + parent + ")") +
+                           "; a scene's roots have no parent in glTF: drawn as " +
+                           (cut.size() == 1 ? "a root with its own transform, as viewers draw it"
+                                            : "roots with their own transforms, as viewers draw them"));
+    }
+    if (!underListed.empty())
+        warnings.push_back(where + firstAnd(underListed) + " as " + (underListed.size() > 1 ? "roots" : "a root") +
+                           " below another node it lists: placed once, below it");
+    if (repeated > 0)
+        warnings.push_back(where + std::to_string(repeated) + (repeated > 1 ? " nodes" : " node") +
+                           " more than once: placed once");
+    for (size_t node : cut) parentOf[node] = -1;
     return roots;
 }
 

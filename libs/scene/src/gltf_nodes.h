@@ -21,12 +21,15 @@ struct NodeTrees {
 };
 
 /// The file's hierarchy checked (and refused in one line naming the node where it is not a set
-/// of trees: a loop, a second parent, a scene's root that is a child, a root listed twice).
+/// of trees: a loop, a second parent, a child that is not a node).
 core::Result<NodeTrees> checkNodeTrees(const tinygltf::Model& model, const std::filesystem::path& file);
 
 /// The nodes the loaded scene starts from: its default scene's roots (scene 0's where the file
 /// names none), or, in a file with no scene, every root node, with one line in `warnings`.
-std::vector<int> sceneRoots(const tinygltf::Model& model, const NodeTrees& trees, const std::filesystem::path& file,
+/// Each node is placed once: a listed node below another listed one is left to it, one whose
+/// parent is not placed stands as a root with its own transform and is cut from that parent
+/// in `trees` (each said in one warning).
+std::vector<int> sceneRoots(const tinygltf::Model& model, NodeTrees& trees, const std::filesystem::path& file,
                             std::vector<std::string>& warnings);
 
 /// Which of the file's materials the primitives of the meshes placed below `roots` use.

@@ -19,9 +19,10 @@
 //   - a texture that cannot be read (missing, corrupt, KTX2 only) matters only where the
 //     material's alpha does: on an OPAQUE material it is dropped with one warning in
 //     Scene::warnings (shadows never read an opaque colour), on MASK and BLEND it is an error;
-//   - the default scene's nodes (scene 0's where the file names none); a file with no scene at
-//     all places every root node, with a warning (sceneRoots, gltf_nodes.cpp, which checks
-//     first that the nodes form trees);
+//   - the default scene's nodes (scene 0's where the file names none), each placed once (a
+//     listed node that is a child stands as a root, with a warning); a file with no scene at
+//     all places every root node, with a warning (sceneRoots, gltf_nodes.cpp, after
+//     checkNodeTrees has checked that the nodes form trees);
 //   - nodes' transforms composed in double, and the scene stood where float keeps its
 //     precision (near_origin.cpp): a model in survey metres keeps its millimetres;
 //   - nodes instancing their mesh (EXT_mesh_gpu_instancing, gltfpack -mi): one instance each;
@@ -380,7 +381,7 @@ core::Result<Scene> loadGltf(const fs::path& file, double poseSeconds) {
         if (err.empty()) err = "an object lacks a property glTF requires; the glTF Validator names it";
         return core::makeError(file.string() + ": not a readable glTF file (" + err + ")");
     }
-    const auto trees = checkNodeTrees(model, file);
+    auto trees = checkNodeTrees(model, file);
     if (!trees) return trees.errorInfo();
     if (meshopt)
         if (auto s = decodeMeshoptViews(model, meshopt->placeholders, file.string()); !s) return s.errorInfo();
