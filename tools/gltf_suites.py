@@ -1,12 +1,12 @@
 #!/usr/bin/env python3
-"""Every glTF and GLB file under the given folders through `shadowkit render`, as a new user
-would load them: each must load, or be refused in one line naming the file, with exit 1 —
+"""Every glTF and GLB file (and with --obj, every OBJ file) under the given folders through
+`shadowkit render`, as a new user would load them: each must load, or be refused in one line naming the file, with exit 1 —
 never crash, hang, or fail another way. Prints a markdown table per folder and what did not
 behave; where a file has the glTF Validator's report beside it (FILE.report.json, as in the
 validator's own test files), also the files the validator finds valid that shadowkit refuses,
 and those it finds in error that shadowkit loads.
 
-    tools/gltf_suites.py [--binary B] [--jobs N] [--timeout S] [--bound] FOLDER...
+    tools/gltf_suites.py [--binary B] [--jobs N] [--timeout S] [--bound] [--obj] FOLDER...
 
 With --bound, every file that loads is also evaluated on the six sunlit views at 640 × 360
 with the default set-up and with `--technique focused`, and the views where the default errs
@@ -27,11 +27,11 @@ import sys
 import tempfile
 
 
-def find_files(folder):
+def find_files(folder, extensions):
     out = []
     for root, _, names in os.walk(folder):
         for name in names:
-            if name.lower().endswith((".gltf", ".glb")):
+            if name.lower().endswith(extensions):
                 out.append(pathlib.Path(root) / name)
     return sorted(out)
 
@@ -110,6 +110,7 @@ def main():
     parser.add_argument("--jobs", type=int, default=2)
     parser.add_argument("--timeout", type=int, default=300)
     parser.add_argument("--bound", action="store_true", help="also hold each loaded file to issue 49's bound")
+    parser.add_argument("--obj", action="store_true", help="OBJ files too")
     args = parser.parse_args()
     binary = os.path.abspath(args.binary)
     if not os.access(binary, os.X_OK):
@@ -120,9 +121,10 @@ def main():
     for folder in args.folders:
         if not os.path.isdir(folder):
             sys.exit(f"gltf_suites.py: {folder}: not a folder")
-        files = find_files(folder)
+        extensions = (".gltf", ".glb", ".obj") if args.obj else (".gltf", ".glb")
+        files = find_files(folder, extensions)
         if not files:
-            sys.exit(f"gltf_suites.py: {folder}: no .gltf or .glb file under it")
+            sys.exit(f"gltf_suites.py: {folder}: no {', '.join(extensions)} file under it")
         with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as pool:
             results = list(pool.map(lambda p: run_one(binary, p, args.timeout, workdir), files))
         counts = collections.Counter(r["kind"] for r in results)

@@ -545,6 +545,17 @@ core::Result<Scene> loadGltf(const fs::path& file, double poseSeconds) {
                                                              : "none of its " + std::to_string(model.meshes.size()) +
                                                                    " meshes is placed by a node" + ofScene));
         }
+        // An animation library (a character's clips exported one to a file, as PlayCanvas's
+        // and Mixamo's are): its nodes are another file's skeleton.
+        if (model.meshes.empty())
+            return core::makeError(
+                file.string() + ": it holds no mesh" +
+                (model.animations.empty()
+                     ? std::string()
+                     : ", only " +
+                           (model.animations.size() == 1 ? std::string("an animation")
+                                                         : std::to_string(model.animations.size()) + " animations") +
+                           " (clips for another file's model; shadowkit plays a file's animations on its own meshes)"));
         return core::makeError(file.string() + ": glTF file holds no triangle meshes");
     }
     return scene;

@@ -232,6 +232,24 @@ TEST(GltfReadTest, NodeHierarchiesThatAreNotTreesAreRefusedInOneLine) {
                 "node 0 is its own ancestor (a cycle");
     expectError(loadMeshNodes("sk_self.gltf", "", R"({"children":[0]},{"mesh":0})"),
                 "node 0 is its own ancestor (a cycle");
+    // An animation library: a clip for another file's skeleton, no mesh (PlayCanvas's
+    // jump-flip.glb). Said as such, not as a file of points or lines.
+    {
+        std::vector<unsigned char> keys;
+        append<float>(keys, {0.0f, 1.0f, 0, 0, 0, 0, 2, 0});
+        expectError(
+            loadWritten(
+                "sk_clip.gltf",
+                R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"name":"hips"}],)"
+                R"("animations":[{"channels":[{"sampler":0,"target":{"node":0,"path":"translation"}}],)"
+                R"("samplers":[{"input":0,"output":1}]}],)"
+                R"("accessors":[{"bufferView":0,"componentType":5126,"count":2,"type":"SCALAR","min":[0],"max":[1]},)"
+                R"({"bufferView":0,"byteOffset":8,"componentType":5126,"count":2,"type":"VEC3"}],)"
+                R"("bufferViews":[{"buffer":0,"byteLength":32}],"buffers":[{"byteLength":32,)"
+                R"("uri":"data:application/octet-stream;base64,)" +
+                    base64(keys) + "\"}]}"),
+            "sk_clip.gltf: it holds no mesh, only an animation (clips for another file's model");
+    }
     // A scene whose nodes name no mesh: the file's mesh is there, the scene leaves it out.
     expectError(loadNodes("sk_unplaced.gltf", "0", R"({"name":"empty"},{"mesh":0})"),
                 "sk_unplaced.gltf: its mesh is placed by no node of its scene");
