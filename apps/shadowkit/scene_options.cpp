@@ -243,10 +243,17 @@ core::Result<scene::ResolvedView> ViewOptions::resolve(const scene::Scene& scene
         out = scene::resolveView(*found, sceneData);
     }
     if (out.framed && eye.empty() && sayFraming)
-        fmt::print(stderr,
-                   "view {}: framing the loaded scene (no terrain to stand on): eye {:.1f},{:.1f},{:.1f}, near {:.3g} "
-                   "m, far {:.3g} m\n",
-                   view, out.camera.wsEye.x, out.camera.wsEye.y, out.camera.wsEye.z, out.camera.zNear, out.camera.zFar);
+        fmt::print(
+            stderr,
+            "view {}: framing the loaded scene (no terrain to stand on{}): eye {:.1f},{:.1f},{:.1f}, near {:.3g} "
+            "m, far {:.3g} m\n",
+            view,
+            out.framedPart.isEmpty()
+                ? std::string()
+                : fmt::format("; its middle, {:.3g} m across, as a few of its vertices reach {:.3g} m: a ground "
+                              "or a backdrop",
+                              out.framedPart.diagonal(), sceneData.localBounds().diagonal()),
+            out.camera.wsEye.x, out.camera.wsEye.y, out.camera.wsEye.z, out.camera.zNear, out.camera.zFar);
 
     if (!size.empty()) std::tie(out.width, out.height) = *parseSize(size); // checked above
     core::PerspectiveCamera& cam = out.camera;

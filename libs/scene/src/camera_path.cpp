@@ -254,8 +254,8 @@ core::Result<ResolvedView> viewAt(const CameraPath& path, const Scene& scene, do
         const double level = std::hypot(along.x, along.z);
         if (!(glm::length(along) > 1e-6)) return meet();
         const double azimuth = level > 1e-5 * glm::length(along) ? std::atan2(along.x, -along.z) : 0.0;
-        const Framing framing =
-            frameBounds(bounds, azimuth, std::atan2(along.y, level), path.fovYDegrees, view.camera.aspect);
+        const Framing framing = frameBounds(framedBounds(scene, bounds), azimuth, std::atan2(along.y, level),
+                                            path.fovYDegrees, view.camera.aspect);
         eye = framing.eye;
         target = framing.eye + framing.direction;
         view.camera.zNear = framing.zNear;

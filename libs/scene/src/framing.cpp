@@ -6,8 +6,55 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <vector>
 
 namespace shadowkit::scene {
+
+core::Aabb framedBounds(const Scene& scene, const core::Aabb& localBounds) {
+    // Every placed vertex, or every k-th where there are more than kSamples (an exported forest
+    // places tens of millions): the middle 98 % along each axis is what the tails are judged by.
+    constexpr size_t kSamples = size_t(1) << 18;
+    size_t placed = 0;
+    for (const MeshBatch& batch : scene.batches)
+        placed += scene.meshes[batch.mesh].vertices.size() * batch.worldFromObject.size();
+    if (placed < 100) return localBounds; // too few to tell a backdrop from the model
+    const size_t stride = std::max<size_t>(1, placed / kSamples);
+    std::vector<core::Vec3> points;
+    points.reserve(placed / stride + 1);
+    size_t next = 0, base = 0; // the next vertex sampled, the first of the instance at hand
+    for (const MeshBatch& batch : scene.batches) {
+        const std::vector<Vertex>& vertices = scene.meshes[batch.mesh].vertices;
+        for (const glm::mat4& worldFromObject : batch.worldFromObject) {
+            for (; next < base + vertices.size(); next += stride)
+                points.push_back(core::Vec3(worldFromObject * glm::vec4(vertices[next - base].position, 1.0f)));
+            base += vertices.size();
+        }
+    }
+    core::Vec3 low, high;
+    std::vector<double> along(points.size());
+    for (int axis = 0; axis < 3; ++axis) {
+        for (size_t i = 0; i < points.size(); ++i) along[i] = points[i][axis];
+        const auto at = [&](double share) {
+            const auto nth = along.begin() + std::ptrdiff_t(share * double(along.size() - 1));
+            std::nth_element(along.begin(), nth, along.end());
+            return *nth;
+        };
+        low[axis] = at(0.01), high[axis] = at(0.99);
+    }
+    const core::Aabb middle = core::Aabb::fromMinMax(low, high);
+    if (!(middle.diagonal() < kFramedPartShare * localBounds.diagonal())) return localBounds;
+    // The tails' vertices near the middle are the model's own (a building at the town's edge):
+    // kept; those beyond twice its size are the backdrop.
+    // (At least a twentieth of its diagonal each way: a flat town's roofs are not cut off where
+    // its middle is a plane.)
+    const core::Vec3 centre = middle.center(),
+                     reach = glm::max(middle.max - centre, core::Vec3(0.05 * middle.diagonal()));
+    core::Aabb part;
+    for (const core::Vec3& p : points)
+        if (glm::all(glm::lessThanEqual(glm::abs(p - centre), 2.0 * reach))) part.extend(p);
+    return part;
+}
 
 Framing frameBounds(const core::Aabb& bounds, double azimuthRadians, double pitchRadians, double fovYDegrees,
                     double aspect) {

@@ -30,6 +30,14 @@ inline bool isFramed(const Scene& scene, const core::Aabb& localBounds) {
     return !scene.terrain && !localBounds.isEmpty();
 }
 
+// What a framing looks at: the scene's bounds, unless a few of its placed vertices reach far
+// beyond the rest — a ground quad or a sea kilometres wide round a town of 150 m (Godot's truck
+// town: 12 of its 100,000 vertices span 2 km) — when the box of the rest: the vertices inside
+// twice the box of the middle 98 % along each axis, where that box's diagonal is under a
+// quarter of the bounds' (kFramedPartShare). Deterministic; a bounded sample of the vertices.
+inline constexpr double kFramedPartShare = 0.25;
+core::Aabb framedBounds(const Scene& scene, const core::Aabb& localBounds);
+
 // Precondition: bounds not empty; aspect > 0, fovYDegrees in (0, 180).
 Framing frameBounds(const core::Aabb& bounds, double azimuthRadians, double pitchRadians, double fovYDegrees,
                     double aspect);

@@ -153,12 +153,14 @@ ResolvedView resolveView(const ViewSpec& view, const Scene& scene) {
         cam.zNear = view.zNear;
         cam.zFar = view.zFar;
     } else {
-        const Framing framing = frameBounds(bounds, az, pitch, view.fovYDegrees, cam.aspect);
+        const core::Aabb framedBox = framedBounds(scene, bounds);
+        if (framedBox.diagonal() < bounds.diagonal()) out.framedPart = framedBox;
+        const Framing framing = frameBounds(framedBox, az, pitch, view.fovYDegrees, cam.aspect);
         pitch = framing.pitchRadians;
         cam.wsEye = framing.eye;
         cam.zNear = framing.zNear;
         cam.zFar = framing.zFar;
-        const core::Vec3 centre = bounds.center();
+        const core::Vec3 centre = framedBox.center();
         lightsFrom = core::Vec3(centre.x, 0.0, centre.z);
         out.fogDensity = framing.fogDensity;
     }

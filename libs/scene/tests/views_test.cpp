@@ -131,3 +131,66 @@ TEST(ViewsTest, AViewsSunAngleReachesTheResolvedViewAndBadOnesAreErrors) {
     EXPECT_NE(loadViews(file).error().find("wrong type"), std::string::npos) << loadViews(file).error();
     std::filesystem::remove(file);
 }
+
+namespace {
+
+// A 40 × 10 × 30 m model of 800 vertices (a lattice of points two by two triangles would join:
+// framing reads vertices), alone or on a ground quad of 4 vertices 4 km wide (Godot's truck
+// town: 12 vertices of ground 2 km each way round 100,000 of town).
+Scene modelOnGround(bool withGround) {
+    Scene scene;
+    Mesh model;
+    for (int i = 0; i < 20; ++i)
+        for (int j = 0; j < 20; ++j)
+            for (int k = 0; k < 2; ++k)
+                model.vertices.push_back({.position = {-20.0f + 40.0f * float(i) / 19.0f, 10.0f * float(k),
+                                                       -15.0f + 30.0f * float(j) / 19.0f},
+                                          .normal = {0, 1, 0},
+                                          .albedo = {0.5f, 0.5f, 0.5f}});
+    model.indices = {0, 2, 40, 2, 42, 40};
+    model.computeBounds();
+    scene.meshes.push_back(model);
+    scene.batches.push_back({.mesh = 0, .worldFromObject = {glm::translate(glm::mat4(1.0f), {100, 0, 50})}});
+    if (withGround) {
+        Mesh ground;
+        for (float x : {-2000.0f, 2000.0f})
+            for (float z : {-2000.0f, 2000.0f})
+                ground.vertices.push_back({.position = {x, 0.0f, z}, .normal = {0, 1, 0}});
+        ground.indices = {0, 1, 3, 0, 3, 2};
+        ground.computeBounds();
+        scene.meshes.push_back(ground);
+        scene.batches.push_back({.mesh = 1, .worldFromObject = {glm::mat4(1.0f)}});
+    }
+    return scene;
+}
+
+} // namespace
+
+// A model on a ground kilometres wide was framed as the ground: the model a few pixels in the
+// middle of it, its shadows unmeasurable. The views frame the model, tightly, as they frame it
+// alone; the ground still stands under it.
+TEST(ViewsTest, AModelOnAGroundKilometresWideIsFramedNotTheGround) {
+    const Scene alone = modelOnGround(false), onGround = modelOnGround(true);
+    const core::Aabb model = alone.wsBounds();
+    for (const char* name : {"paper", "noon", "aerial"}) {
+        const ViewSpec spec = *findView(standardViews(), name);
+        const ResolvedView lone = resolveView(spec, alone), grounded = resolveView(spec, onGround);
+        ASSERT_TRUE(lone.framed && grounded.framed) << name;
+        EXPECT_TRUE(lone.framedPart.isEmpty()) << name; // the bounds themselves
+        ASSERT_FALSE(grounded.framedPart.isEmpty()) << name;
+        EXPECT_NEAR(grounded.framedPart.diagonal(), model.diagonal(), 0.01 * model.diagonal()) << name;
+        // Every corner of the model in the picture and between the planes, one near its edge.
+        const core::Mat4 clipFromWorld = grounded.camera.clipFromWorld();
+        double outermost = 0.0;
+        for (const core::Vec3& corner : model.corners()) {
+            const glm::dvec4 clip = clipFromWorld * glm::dvec4(corner, 1.0);
+            EXPECT_LE(std::abs(clip.x / clip.w), 1.0) << name;
+            EXPECT_LE(std::abs(clip.y / clip.w), 1.0) << name;
+            EXPECT_GE(clip.w, grounded.camera.zNear) << name;
+            EXPECT_LE(clip.w, grounded.camera.zFar) << name;
+            outermost = std::max({outermost, std::abs(clip.x / clip.w), std::abs(clip.y / clip.w)});
+        }
+        EXPECT_GT(outermost, 0.9) << name;
+        EXPECT_LT(glm::distance(grounded.camera.wsEye, lone.camera.wsEye), 0.01 * model.diagonal()) << name;
+    }
+}

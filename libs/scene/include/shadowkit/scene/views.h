@@ -62,6 +62,9 @@ struct ResolvedView {
     // wide is not fogged away, a county-sized one keeps its depth cue.
     double fogDensity = 0.002;
     bool framed = false; // the camera frames the scene's bounds (a scene without a heightfield); front ends say so
+    // Framed, the part of the scene the camera frames where a few vertices (a ground, a backdrop)
+    // reach far beyond the rest (framing.h, framedBounds); front ends say so. Empty: the bounds.
+    core::Aabb framedPart;
     // The sun's angular diameter in degrees at this moment, when the view ("sun_angle") or a
     // camera path's sun keys ("angle") give one; it then takes the place of the front end's
     // (--sun-angle, gl::RenderSettings::sunAngleDegrees): frame::FrameDriver draws the frame with it.
