@@ -345,7 +345,7 @@ constexpr int kMaxNodeDepth = 512;
 
 core::Result<Scene> loadGltf(const fs::path& file, double poseSeconds) {
     const bool binary = lowerExtension(file) == ".glb";
-    const auto bytes = readFile(file);
+    auto bytes = readFile(file);
     if (!bytes) return bytes.errorInfo();
     if (bytes->empty()) return core::makeError(file.string() + ": an empty file, not glTF");
     if (isGltf1(*bytes, binary)) return core::makeError(file.string() + ": glTF 1.0 is not supported; glTF 2.0 is");
@@ -358,7 +358,7 @@ core::Result<Scene> loadGltf(const fs::path& file, double poseSeconds) {
     // tinygltf's own base directory rule (GetBaseDir): the file's name up to its last slash.
     const std::string baseDir = file.parent_path().string();
     // A file with meshopt-compressed views is parsed with its placeholder buffers given a byte of data.
-    const std::optional<MeshoptFile> meshopt = prepareMeshopt(*bytes, binary);
+    std::optional<MeshoptFile> meshopt = prepareMeshopt(*bytes, binary);
     const std::string_view parsed = meshopt ? std::string_view(meshopt->bytes) : std::string_view(*bytes);
     const auto length = static_cast<unsigned int>(parsed.size()); // within readFile's 32-bit limit
     const bool ok =
@@ -381,6 +381,10 @@ core::Result<Scene> loadGltf(const fs::path& file, double poseSeconds) {
         if (err.empty()) err = "an object lacks a property glTF requires; the glTF Validator names it";
         return core::makeError(file.string() + ": not a readable glTF file (" + err + ")");
     }
+    // tinygltf holds its own copy of every buffer: the file's bytes go before the meshes are
+    // built (an 81 MB .glb of 4.5 M triangles peaked at 370 MB held, 291 MB without them).
+    std::string().swap(*bytes);
+    if (meshopt) std::string().swap(meshopt->bytes);
     auto trees = checkNodeTrees(model, file);
     if (!trees) return trees.errorInfo();
     if (meshopt)
