@@ -76,7 +76,21 @@ core::Result<ResolvedView> fileView(const Scene& scene, const std::string& which
         return core::makeError(named + " looks away from the scene: nothing lies in front of it");
     cam.zFar = std::min(fc.zFar.value_or(std::numeric_limits<double>::infinity()), 1.1 * farthest);
     cam.zNear = std::max(fc.zNear, std::min(0.9 * nearest, 0.5 * cam.zFar));
-    out.fogDensity = 0.3 / cam.zFar; // a framed scene's: e^-0.3 at the far plane
+    if (fc.orthographicHalfHeight) {
+        // A telephoto: the eye drawn back by a hundred times the depth the picture spans (the
+        // scene's within the camera's planes), so that a size at its far end is drawn 1 % smaller
+        // than at its near end, and the field opened to the orthographic half height at its middle.
+        const double front = std::max(nearest, fc.zNear), back = std::min(farthest, *fc.zFar);
+        const double span = std::max(back - front, 1e-6 * std::max(std::abs(back), 1.0));
+        const double behind = 100.0 * span;
+        cam.wsEye -= behind * fc.localForward;
+        cam.fovYDegrees = glm::degrees(2.0 * std::atan(*fc.orthographicHalfHeight / (behind + 0.5 * (front + back))));
+        cam.zNear = behind + front - 0.05 * span;
+        cam.zFar = behind + back + 0.05 * span;
+    }
+    // A framed scene's: e^-0.3 at the far plane; none seen orthographically, where the telephoto's
+    // eye is so far back that fog would be one veil over the whole picture.
+    out.fogDensity = fc.orthographicHalfHeight ? 0.0 : 0.3 / cam.zFar;
 
     // The lights: the first sun, then points and spots up to what a frame can shadow.
     const FileLight* sun = nullptr;

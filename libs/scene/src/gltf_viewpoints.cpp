@@ -11,6 +11,9 @@
 
 #include <cmath>
 #include <numbers>
+#include <optional>
+#include <tuple>
+#include <utility>
 
 namespace shadowkit::scene::formats {
 namespace {
@@ -28,12 +31,56 @@ std::string nameOf(const tinygltf::Node& node, const std::string& own) {
     return printable(node.name.empty() ? own : node.name);
 }
 
+// Where a camera's node places it and which way it looks (its −z, with its +y up), or nothing
+// where the node gives it no direction.
+std::optional<std::pair<core::Vec3, core::Vec3>> cameraAxes(const glm::dmat4& fileFromNode) {
+    const std::optional<core::Vec3> forward = placedDirection(fileFromNode, {0.0, 0.0, -1.0});
+    const std::optional<core::Vec3> up = placedDirection(fileFromNode, {0.0, 1.0, 0.0});
+    if (!forward || !up || glm::length(glm::cross(*forward, *up)) < 1e-6) return std::nullopt;
+    return std::pair{*forward, *up};
+}
+
+// glTF §5.13: xmag and ymag half the view's width and height (not zero; a negative one, which
+// the specification advises against, mirrors the picture and is read as its magnitude), znear
+// >= 0, zfar > znear, both required.
+void readOrthographicCamera(const tinygltf::Node& node, const tinygltf::Camera& camera, const glm::dmat4& fileFromNode,
+                            const std::string& where, Scene& scene) {
+    const tinygltf::OrthographicCamera& o = camera.orthographic;
+    const double xmag = std::abs(o.xmag), ymag = std::abs(o.ymag);
+    const auto axes = cameraAxes(fileFromNode);
+    const char* fault = !(std::isfinite(xmag) && xmag > 0.0 && std::isfinite(ymag) && ymag > 0.0)
+                            ? "xmag and ymag are not sizes above 0"
+                        : !(std::isfinite(o.znear) && o.znear >= 0.0)  ? "znear is not a distance of 0 or more"
+                        : !(std::isfinite(o.zfar) && o.zfar > o.znear) ? "zfar is not beyond znear"
+                        : !axes                                        ? "its node gives it no direction to look along"
+                                                                       : nullptr;
+    if (fault) {
+        scene.warnings.push_back(where + ": its camera is left out: " + fault);
+        return;
+    }
+    FileCamera out;
+    out.name = nameOf(node, camera.name);
+    out.localEye = core::Vec3(fileFromNode[3]);
+    std::tie(out.localForward, out.localUp) = *axes;
+    out.orthographicHalfHeight = ymag;
+    out.aspect = xmag / ymag;
+    out.zNear = o.znear;
+    out.zFar = o.zfar;
+    scene.warnings.push_back(where + ": its camera is orthographic: drawn as a telephoto (from far behind it, a "
+                                     "picture within 1 % of the orthographic one across the scene's depth)");
+    scene.cameras.push_back(std::move(out));
+}
+
 void readCamera(const tinygltf::Model& model, const tinygltf::Node& node, const glm::dmat4& fileFromNode,
                 const std::string& where, Scene& scene) {
     const tinygltf::Camera& camera = model.cameras[size_t(node.camera)];
+    if (camera.type == "orthographic") {
+        readOrthographicCamera(node, camera, fileFromNode, where, scene);
+        return;
+    }
     if (camera.type != "perspective") {
-        scene.warnings.push_back(where + ": its camera is " + printable(camera.type) +
-                                 ", not perspective: left out (shadowkit's views are perspective)");
+        scene.warnings.push_back(where + ": its camera is of type '" + printable(camera.type) +
+                                 "', neither perspective nor orthographic: left out");
         return;
     }
     const tinygltf::PerspectiveCamera& p = camera.perspective;
@@ -42,15 +89,13 @@ void readCamera(const tinygltf::Model& model, const tinygltf::Node& node, const 
     const bool nearOk = std::isfinite(p.znear) && p.znear > 0.0;
     const bool farOk = p.zfar == 0.0 || (std::isfinite(p.zfar) && p.zfar > p.znear);
     const bool aspectOk = p.aspectRatio == 0.0 || (std::isfinite(p.aspectRatio) && p.aspectRatio > 0.0);
-    const std::optional<core::Vec3> forward = placedDirection(fileFromNode, {0.0, 0.0, -1.0});
-    const std::optional<core::Vec3> up = placedDirection(fileFromNode, {0.0, 1.0, 0.0});
+    const auto axes = cameraAxes(fileFromNode);
     const char* fault = !fovOk      ? "yfov is not an angle in (0, π)"
                         : !nearOk   ? "znear is not a distance above 0"
                         : !farOk    ? "zfar is not beyond znear"
                         : !aspectOk ? "aspectRatio is not above 0"
-                        : !forward || !up || glm::length(glm::cross(*forward, *up)) < 1e-6
-                            ? "its node gives it no direction to look along"
-                            : nullptr;
+                        : !axes     ? "its node gives it no direction to look along"
+                                    : nullptr;
     if (fault) {
         scene.warnings.push_back(where + ": its camera is left out: " + fault);
         return;
@@ -58,8 +103,7 @@ void readCamera(const tinygltf::Model& model, const tinygltf::Node& node, const 
     FileCamera out;
     out.name = nameOf(node, camera.name);
     out.localEye = core::Vec3(fileFromNode[3]);
-    out.localForward = *forward;
-    out.localUp = *up;
+    std::tie(out.localForward, out.localUp) = *axes;
     out.fovYDegrees = glm::degrees(p.yfov);
     if (p.aspectRatio > 0.0) out.aspect = p.aspectRatio;
     out.zNear = p.znear;
@@ -155,13 +199,21 @@ std::vector<int> writeViewpoints(const Scene& scene, tinygltf::Model& model) {
     };
     for (const FileCamera& c : scene.cameras) {
         tinygltf::Camera camera;
-        camera.type = "perspective";
-        camera.perspective.yfov = glm::radians(c.fovYDegrees);
-        camera.perspective.znear = c.zNear;
-        // tinygltf writes zfar always, and 0 is no glTF far plane: a far plane past any world
-        // (1e9 m, the reader's tightening takes it to the scene) stands for the infinite one.
-        camera.perspective.zfar = c.zFar.value_or(1e9);
-        camera.perspective.aspectRatio = c.aspect.value_or(0.0); // 0: not written
+        if (c.orthographicHalfHeight) { // as it was read: zFar and aspect are set
+            camera.type = "orthographic";
+            camera.orthographic.ymag = *c.orthographicHalfHeight;
+            camera.orthographic.xmag = *c.orthographicHalfHeight * c.aspect.value_or(1.0);
+            camera.orthographic.znear = c.zNear;
+            camera.orthographic.zfar = c.zFar.value_or(1e9);
+        } else {
+            camera.type = "perspective";
+            camera.perspective.yfov = glm::radians(c.fovYDegrees);
+            camera.perspective.znear = c.zNear;
+            // tinygltf writes zfar always, and 0 is no glTF far plane: a far plane past any world
+            // (1e9 m, the reader's tightening takes it to the scene) stands for the infinite one.
+            camera.perspective.zfar = c.zFar.value_or(1e9);
+            camera.perspective.aspectRatio = c.aspect.value_or(0.0); // 0: not written
+        }
         model.cameras.push_back(std::move(camera));
         tinygltf::Node node = nodeLookingAlong(c.name, c.localEye, c.localForward, c.localUp);
         node.camera = int(model.cameras.size() - 1);

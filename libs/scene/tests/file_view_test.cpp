@@ -79,12 +79,21 @@ void expectVec3Near(const core::Vec3& got, const core::Vec3& want, double tolera
 TEST(FileViewTest, CamerasAndLightsStandWhereTheirNodesPutThem) {
     const auto scene = scene::testing::loadWritten("sk_viewpoints.gltf", viewpointFile("[0,0,0]"));
     ASSERT_TRUE(scene) << scene.error();
-    // The orthographic camera is left out, and says so; the lamp of intensity 0 is left out.
-    ASSERT_EQ(scene->cameras.size(), 1u);
+    // The orthographic camera is read as one, and said to be drawn as a telephoto; the lamp of
+    // intensity 0 is left out.
+    ASSERT_EQ(scene->cameras.size(), 2u);
     ASSERT_EQ(scene->lights.size(), 3u);
     EXPECT_EQ(std::count_if(scene->warnings.begin(), scene->warnings.end(),
-                            [](const std::string& w) { return w.find("orthographic") != std::string::npos; }),
+                            [](const std::string& w) {
+                                return w.find("orthographic: drawn as a telephoto") != std::string::npos;
+                            }),
               1);
+    const FileCamera& flat = scene->cameras[1];
+    EXPECT_EQ(flat.orthographicHalfHeight, 1.0);
+    EXPECT_EQ(flat.aspect, 1.0);
+    EXPECT_EQ(flat.zNear, 0.1);
+    EXPECT_EQ(flat.zFar, 10.0);
+    EXPECT_FALSE(scene->cameras[0].orthographicHalfHeight);
 
     // The camera: rig (0, 0, 10) then (0, 5, 0); turned −30° about x, it looks along
     // Rx(−30°)·(0, 0, −1) = (0, −sin 30°, −cos 30°) with up Rx(−30°)·(0, 1, 0) = (0, cos 30°, −sin 30°).
@@ -131,7 +140,7 @@ TEST(FileViewTest, CamerasAndLightsStandWhereTheirNodesPutThem) {
     EXPECT_GE(view->camera.zFar, 2.5 + 20.0 * std::sqrt(0.75));
     EXPECT_LE(view->camera.zFar, 100.0);
     EXPECT_TRUE(view->camera.validate());
-    EXPECT_NE(said.find("camera 0 'Cam' of 1"), std::string::npos) << said;
+    EXPECT_NE(said.find("camera 0 'Cam' of 2"), std::string::npos) << said;
 
     EXPECT_TRUE(fileView(*scene, "Cam", 16));
     EXPECT_TRUE(fileView(*scene, "0", 16));
@@ -143,6 +152,46 @@ TEST(FileViewTest, CamerasAndLightsStandWhereTheirNodesPutThem) {
     ASSERT_TRUE(capped);
     EXPECT_TRUE(capped->points.empty() && capped->spots.empty());
     EXPECT_NE(said.find("2 more left out"), std::string::npos) << said;
+}
+
+// glTF's orthographic camera (§5.13) drawn as a telephoto: every size in the picture within 1 % of
+// the orthographic one's, whatever its depth in the scene. A block 8 × 5 × 4 m seen from 20 m
+// above it, xmag 4 and ymag 2: its corners, top and bottom alike, lie on the picture's edges.
+TEST(FileViewTest, AnOrthographicCameraIsDrawnAsATelephotoWhoseSizesDoNotChangeWithDepth) {
+    Scene scene;
+    Mesh block;
+    for (int corner = 0; corner < 8; ++corner)
+        block.vertices.push_back(
+            {.position = {corner & 1 ? 4.0f : -4.0f, corner & 2 ? 5.0f : 0.0f, corner & 4 ? 2.0f : -2.0f},
+             .normal = {0, 1, 0}});
+    block.indices = {0, 1, 3, 0, 3, 2, 4, 5, 7, 4, 7, 6};
+    block.computeBounds();
+    scene.meshes.push_back(block);
+    scene.batches.push_back({.mesh = 0, .worldFromObject = {glm::mat4(1.0f)}});
+    scene.cameras.push_back({.name = "plan",
+                             .localEye = {0, 20, 0},
+                             .localForward = {0, -1, 0},
+                             .localUp = {0, 0, -1},
+                             .aspect = 2.0,
+                             .zNear = 0.0,
+                             .zFar = 100.0,
+                             .orthographicHalfHeight = 2.0});
+    const auto view = fileView(scene, "plan", 16);
+    ASSERT_TRUE(view) << view.error();
+    EXPECT_TRUE(view->camera.validate());
+    EXPECT_EQ(view->fogDensity, 0.0);
+    const core::Mat4 clipFromWorld = view->camera.clipFromWorld();
+    for (const core::Vec3& corner : scene.localBounds().corners()) {
+        const glm::dvec4 clip = clipFromWorld * glm::dvec4(corner, 1.0);
+        // x across the picture: the block's ±4 m on its edges; y: its ∓2 m along z (up is −z).
+        EXPECT_NEAR(std::abs(clip.x / clip.w), 1.0, 0.01) << corner.x << " " << corner.y << " " << corner.z;
+        EXPECT_NEAR(std::abs(clip.y / clip.w), 1.0, 0.01) << corner.x << " " << corner.y << " " << corner.z;
+        EXPECT_GT(clip.w, view->camera.zNear);
+        EXPECT_LT(clip.w, view->camera.zFar);
+    }
+    // Still straight down, from above.
+    EXPECT_NEAR(glm::dot(view->camera.wsDirection, core::Vec3(0, -1, 0)), 1.0, 1e-12);
+    EXPECT_GT(view->camera.wsEye.y, 20.0);
 }
 
 TEST(FileViewTest, FarOutAndZUpTheViewStaysOnItsModel) {
@@ -222,6 +271,13 @@ TEST(FileViewTest, ExportedAndLoadedBackTheCamerasAndLightsStay) {
     EXPECT_EQ(is.aspect, was.aspect);
     EXPECT_EQ(is.zNear, was.zNear);
     EXPECT_EQ(is.zFar, was.zFar);
+    // The orthographic camera goes back orthographic, of the same size and planes.
+    const FileCamera &flatWas = scene->cameras[1], &flatIs = back->cameras[1];
+    ASSERT_TRUE(flatIs.orthographicHalfHeight);
+    EXPECT_EQ(flatIs.orthographicHalfHeight, flatWas.orthographicHalfHeight);
+    EXPECT_EQ(flatIs.aspect, flatWas.aspect);
+    EXPECT_EQ(flatIs.zNear, flatWas.zNear);
+    EXPECT_EQ(flatIs.zFar, flatWas.zFar);
     for (size_t i = 0; i < scene->lights.size(); ++i) {
         const FileLight &l0 = scene->lights[i], &l1 = back->lights[i];
         EXPECT_EQ(l1.kind, l0.kind) << i;

@@ -86,8 +86,12 @@ struct FileCamera {
     core::Vec3 localUp{0, 1, 0};       // unit: the node's +y
     double fovYDegrees = 60.0;         // (0, 180)
     std::optional<double> aspect;      // width / height; unset: the picture's
-    double zNear = 0.1;                // metres, > 0
+    double zNear = 0.1;                // metres, > 0 (>= 0 orthographic)
     std::optional<double> zFar;        // metres, > zNear; unset: infinite (glTF's)
+    // An orthographic camera's half height in metres (glTF's ymag; `aspect` is xmag / ymag and
+    // zFar is set): drawn as a telephoto, a perspective camera from far behind it whose picture
+    // matches the orthographic one within 1 % across the scene's depth (file_view.cpp).
+    std::optional<double> orthographicHalfHeight;
 };
 
 // A punctual light a loaded file brings (KHR_lights_punctual, placed by its node), in the scene's
