@@ -45,9 +45,8 @@ core::Aabb framedBounds(const Scene& scene, const core::Aabb& localBounds) {
     const core::Aabb middle = core::Aabb::fromMinMax(low, high);
     if (!(middle.diagonal() < kFramedPartShare * localBounds.diagonal())) return localBounds;
     // The tails' vertices near the middle are the model's own (a building at the town's edge):
-    // kept; those beyond twice its size are the backdrop.
-    // (At least a twentieth of its diagonal each way: a flat town's roofs are not cut off where
-    // its middle is a plane.)
+    // kept; those beyond twice its size, or a twentieth of its diagonal where it is flat along an
+    // axis (a town's roofs over a middle that is a plane), are the backdrop.
     const core::Vec3 centre = middle.center(),
                      reach = glm::max(middle.max - centre, core::Vec3(0.05 * middle.diagonal()));
     core::Aabb part;
