@@ -42,72 +42,59 @@ std::optional<std::pair<core::Vec3, core::Vec3>> cameraAxes(const glm::dmat4& fi
 
 // glTF §5.13: xmag and ymag half the view's width and height (not zero; a negative one, which
 // the specification advises against, mirrors the picture and is read as its magnitude), znear
-// >= 0, zfar > znear, both required.
-void readOrthographicCamera(const tinygltf::Node& node, const tinygltf::Camera& camera, const glm::dmat4& fileFromNode,
-                            const std::string& where, Scene& scene) {
-    const tinygltf::OrthographicCamera& o = camera.orthographic;
+// >= 0, zfar > znear, both required. The projection into `out`, or what is wrong with it.
+const char* readOrthographic(const tinygltf::OrthographicCamera& o, FileCamera& out) {
     const double xmag = std::abs(o.xmag), ymag = std::abs(o.ymag);
-    const auto axes = cameraAxes(fileFromNode);
-    const char* fault = !(std::isfinite(xmag) && xmag > 0.0 && std::isfinite(ymag) && ymag > 0.0)
-                            ? "xmag and ymag are not sizes above 0"
-                        : !(std::isfinite(o.znear) && o.znear >= 0.0)  ? "znear is not a distance of 0 or more"
-                        : !(std::isfinite(o.zfar) && o.zfar > o.znear) ? "zfar is not beyond znear"
-                        : !axes                                        ? "its node gives it no direction to look along"
-                                                                       : nullptr;
-    if (fault) {
-        scene.warnings.push_back(where + ": its camera is left out: " + fault);
-        return;
-    }
-    FileCamera out;
-    out.name = nameOf(node, camera.name);
-    out.localEye = core::Vec3(fileFromNode[3]);
-    std::tie(out.localForward, out.localUp) = *axes;
+    if (!(std::isfinite(xmag) && xmag > 0.0 && std::isfinite(ymag) && ymag > 0.0))
+        return "xmag and ymag are not sizes above 0";
+    if (!(std::isfinite(o.znear) && o.znear >= 0.0)) return "znear is not a distance of 0 or more";
+    if (!(std::isfinite(o.zfar) && o.zfar > o.znear)) return "zfar is not beyond znear";
     out.orthographicHalfHeight = ymag;
     out.aspect = xmag / ymag;
     out.zNear = o.znear;
     out.zFar = o.zfar;
-    scene.warnings.push_back(where + ": its camera is orthographic: drawn as a telephoto (from far behind it, a "
-                                     "picture within 1 % of the orthographic one across the scene's depth)");
-    scene.cameras.push_back(std::move(out));
+    return nullptr;
+}
+
+// glTF §5.12 (tinygltf writes 0 for an absent aspectRatio or zfar). The projection into `out`,
+// or what is wrong with it.
+const char* readPerspective(const tinygltf::PerspectiveCamera& p, FileCamera& out) {
+    if (!(std::isfinite(p.yfov) && p.yfov > 0.0 && p.yfov < std::numbers::pi)) return "yfov is not an angle in (0, π)";
+    if (!(std::isfinite(p.znear) && p.znear > 0.0)) return "znear is not a distance above 0";
+    if (!(p.zfar == 0.0 || (std::isfinite(p.zfar) && p.zfar > p.znear))) return "zfar is not beyond znear";
+    if (!(p.aspectRatio == 0.0 || (std::isfinite(p.aspectRatio) && p.aspectRatio > 0.0)))
+        return "aspectRatio is not above 0";
+    out.fovYDegrees = glm::degrees(p.yfov);
+    if (p.aspectRatio > 0.0) out.aspect = p.aspectRatio;
+    out.zNear = p.znear;
+    if (p.zfar > 0.0) out.zFar = p.zfar;
+    return nullptr;
 }
 
 void readCamera(const tinygltf::Model& model, const tinygltf::Node& node, const glm::dmat4& fileFromNode,
                 const std::string& where, Scene& scene) {
     const tinygltf::Camera& camera = model.cameras[size_t(node.camera)];
-    if (camera.type == "orthographic") {
-        readOrthographicCamera(node, camera, fileFromNode, where, scene);
-        return;
-    }
-    if (camera.type != "perspective") {
+    const bool orthographic = camera.type == "orthographic";
+    if (!orthographic && camera.type != "perspective") {
         scene.warnings.push_back(where + ": its camera is of type '" + printable(camera.type) +
                                  "', neither perspective nor orthographic: left out");
         return;
     }
-    const tinygltf::PerspectiveCamera& p = camera.perspective;
-    // tinygltf writes 0 for an absent aspectRatio or zfar.
-    const bool fovOk = std::isfinite(p.yfov) && p.yfov > 0.0 && p.yfov < std::numbers::pi;
-    const bool nearOk = std::isfinite(p.znear) && p.znear > 0.0;
-    const bool farOk = p.zfar == 0.0 || (std::isfinite(p.zfar) && p.zfar > p.znear);
-    const bool aspectOk = p.aspectRatio == 0.0 || (std::isfinite(p.aspectRatio) && p.aspectRatio > 0.0);
+    FileCamera out;
+    const char* fault =
+        orthographic ? readOrthographic(camera.orthographic, out) : readPerspective(camera.perspective, out);
     const auto axes = cameraAxes(fileFromNode);
-    const char* fault = !fovOk      ? "yfov is not an angle in (0, π)"
-                        : !nearOk   ? "znear is not a distance above 0"
-                        : !farOk    ? "zfar is not beyond znear"
-                        : !aspectOk ? "aspectRatio is not above 0"
-                        : !axes     ? "its node gives it no direction to look along"
-                                    : nullptr;
+    if (!fault && !axes) fault = "its node gives it no direction to look along";
     if (fault) {
         scene.warnings.push_back(where + ": its camera is left out: " + fault);
         return;
     }
-    FileCamera out;
     out.name = nameOf(node, camera.name);
     out.localEye = core::Vec3(fileFromNode[3]);
     std::tie(out.localForward, out.localUp) = *axes;
-    out.fovYDegrees = glm::degrees(p.yfov);
-    if (p.aspectRatio > 0.0) out.aspect = p.aspectRatio;
-    out.zNear = p.znear;
-    if (p.zfar > 0.0) out.zFar = p.zfar;
+    if (orthographic)
+        scene.warnings.push_back(where + ": its camera is orthographic: drawn as a telephoto (from far behind it, a "
+                                         "picture within 1 % of the orthographic one across the scene's depth)");
     scene.cameras.push_back(std::move(out));
 }
 
