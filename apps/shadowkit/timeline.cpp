@@ -118,14 +118,15 @@ core::Result<scene::ResolvedView> Timeline::viewAt(const scene::ResolvedView& st
     // the picture's shape.
     scene::CameraPath sized = *path;
     if (stillSize) sized.width = still.width, sized.height = still.height;
-    auto view = scene::viewAt(sized, scene, t, sun);
+    auto view = scene::viewAt(sized, scene, t, sun, still.pathFramedBox);
     if (!view) return core::makeError("--path: " + view.error());
     view->sunAngleDegrees = sunAngle;
     return view;
 }
 
-core::Status Timeline::checkViews(const scene::ResolvedView& still, const scene::Scene& scene, bool stillSize,
+core::Status Timeline::checkViews(scene::ResolvedView& still, scene::Scene& scene, bool stillSize,
                                   bool sayFraming) const {
+    if (path) still.pathFramedBox = scene::framedOverPath(*path, scene, frames.front().time);
     bool framed = false;
     for (const TimedFrame& frame : frames) {
         auto view = viewAt(still, scene, frame.time, stillSize);

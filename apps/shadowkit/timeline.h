@@ -39,10 +39,13 @@ struct Timeline {
     // the image size is `still`'s (--size given), not the path's.
     core::Result<scene::ResolvedView> viewAt(const scene::ResolvedView& still, const scene::Scene& scene, double t,
                                              bool stillSize = false) const;
-    // Every frame's view, before any is drawn: a path whose eye meets its target between two keys
-    // fails now, naming the moment, rather than frames (or a ray tracer's build) into the run.
-    // Says on stderr (`sayFraming`) when the path frames a loaded scene rather than following its keys.
-    core::Status checkViews(const scene::ResolvedView& still, const scene::Scene& scene, bool stillSize = false,
+    // Before any frame is drawn: where the path frames a loaded scene, the box it frames in every
+    // frame, into still.pathFramedBox (scene::framedOverPath: `scene` animated to the path's
+    // frames and left at the first drawn); then every frame's view, so that a path whose eye meets
+    // its target between two keys fails now, naming the moment, rather than frames (or a ray
+    // tracer's build) into the run. Says on stderr (`sayFraming`) when the path frames a loaded
+    // scene rather than following its keys.
+    core::Status checkViews(scene::ResolvedView& still, scene::Scene& scene, bool stillSize = false,
                             bool sayFraming = true) const;
 };
 

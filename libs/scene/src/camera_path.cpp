@@ -11,6 +11,7 @@
 #include "shadowkit/scene/camera_path.h"
 
 #include "framing.h"
+#include "shadowkit/scene/animation.h"
 #include "shadowkit/scene/file_read.h"
 
 #include <nlohmann/json.hpp>
@@ -230,8 +231,26 @@ SunKey sunAt(const std::vector<SunKey>& keys, double t) {
     return out;
 }
 
+core::Aabb framedOverPath(const CameraPath& path, Scene& scene, double now) {
+    if (!path.frameLoadedScene || scene.terrain) return {};
+    // A still scene stands as it is at every frame: its box once.
+    const int frames = std::max(path.frames, 1);
+    const int samples = scene.animated() ? std::min(frames, kPathFramingSamples) : 1;
+    core::Aabb box;
+    for (int k = 0; k < samples; ++k) {
+        if (scene.animated()) {
+            const int frame = samples == 1 ? 0 : int(std::lround(double(k) * (frames - 1) / (samples - 1)));
+            animate(scene, path.timeOfFrame(frame));
+        }
+        const core::Aabb bounds = scene.localBounds();
+        if (isFramed(scene, bounds)) box.extend(framedBounds(scene, bounds));
+    }
+    if (scene.animated()) animate(scene, now);
+    return box;
+}
+
 core::Result<ResolvedView> viewAt(const CameraPath& path, const Scene& scene, double t,
-                                  const core::DirectionalLight& fallbackSun) {
+                                  const core::DirectionalLight& fallbackSun, const core::Aabb& framedBox) {
     const CameraKey key = cameraAt(path.camera, t);
     ResolvedView view;
     view.width = path.width;
@@ -244,9 +263,14 @@ core::Result<ResolvedView> viewAt(const CameraPath& path, const Scene& scene, do
         return core::makeError("path \"" + path.name + "\" at t = " + std::to_string(t) + " s: eye and target meet");
     };
     core::Vec3 eye, target;
-    // The bounds (a walk over every instance) only where they may be framed.
-    const core::Aabb bounds = path.frameLoadedScene && !scene.terrain ? scene.localBounds() : core::Aabb{};
-    if (path.frameLoadedScene && isFramed(scene, bounds)) {
+    // The box framed: the path's where given, else the scene's now (a walk over every
+    // instance, only where it may be framed).
+    core::Aabb box = framedBox;
+    if (box.isEmpty() && path.frameLoadedScene && !scene.terrain) {
+        const core::Aabb bounds = scene.localBounds();
+        if (isFramed(scene, bounds)) box = framedBounds(scene, bounds);
+    }
+    if (path.frameLoadedScene && !scene.terrain && !box.isEmpty()) {
         // The keys' direction (heights above a ground this scene lacks cancel out of it) as a
         // compass direction and a pitch. Within 1e-5 of vertical the compass is north's, so that
         // the framing's up is the image's (north, below).
@@ -254,8 +278,8 @@ core::Result<ResolvedView> viewAt(const CameraPath& path, const Scene& scene, do
         const double level = std::hypot(along.x, along.z);
         if (!(glm::length(along) > 1e-6)) return meet();
         const double azimuth = level > 1e-5 * glm::length(along) ? std::atan2(along.x, -along.z) : 0.0;
-        const Framing framing = frameBounds(framedBounds(scene, bounds), azimuth, std::atan2(along.y, level),
-                                            path.fovYDegrees, view.camera.aspect);
+        const Framing framing =
+            frameBounds(box, azimuth, std::atan2(along.y, level), path.fovYDegrees, view.camera.aspect);
         eye = framing.eye;
         target = framing.eye + framing.direction;
         view.camera.zNear = framing.zNear;

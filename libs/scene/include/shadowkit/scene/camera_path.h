@@ -63,10 +63,22 @@ CameraKey cameraAt(const std::vector<CameraKey>& keys, double t);
 // Likewise for the sun's angles, and its size when the keys have one; precondition: keys not empty.
 SunKey sunAt(const std::vector<SunKey>& keys, double t);
 
+// What a path that frames a loaded scene (frameLoadedScene, no terrain) frames in every frame:
+// the union of the box a still view frames (framing.h) over the scene as it stands at the path's
+// frames — at most kPathFramingSamples of them, spread evenly, the first and the last included.
+// One box for the whole path, so that the camera holds its distance while the scene's movers
+// move (a walking figure's swinging arms would otherwise pull it to and fro) and keeps a mover
+// that travels in the picture, and so that a frame drawn alone is the frame drawn in a sequence.
+// Animates `scene` to each of those times and leaves it at `now` (animation.h). Empty where the
+// path follows its keys.
+inline constexpr int kPathFramingSamples = 64;
+core::Aabb framedOverPath(const CameraPath& path, Scene& scene, double now);
+
 // The camera at time t placed over the scene's ground, or framing a scene without ground when
-// the path says so (frameLoadedScene), with the path's sun when it has one (else `fallbackSun`)
-// and its size when its keys give one. Fails when eye and target meet.
+// the path says so (frameLoadedScene) — `framedBox` (framedOverPath's) where given, else the
+// scene as it stands now — with the path's sun when it has one (else `fallbackSun`) and its size
+// when its keys give one. Fails when eye and target meet.
 core::Result<ResolvedView> viewAt(const CameraPath& path, const Scene& scene, double t,
-                                  const core::DirectionalLight& fallbackSun = {});
+                                  const core::DirectionalLight& fallbackSun = {}, const core::Aabb& framedBox = {});
 
 } // namespace shadowkit::scene

@@ -65,6 +65,10 @@ struct ResolvedView {
     // Framed, the part of the scene the camera frames where a few vertices (a ground, a backdrop)
     // reach far beyond the rest (framing.h, framedBounds); front ends say so. Empty: the bounds.
     core::Aabb framedPart;
+    // Along a camera path that frames the scene: the box every frame of it frames (camera_path.h,
+    // framedOverPath), found once before the first frame. Empty: each frame frames the scene as
+    // it stands then.
+    core::Aabb pathFramedBox;
     // The sun's angular diameter in degrees at this moment, when the view ("sun_angle") or a
     // camera path's sun keys ("angle") give one; it then takes the place of the front end's
     // (--sun-angle, gl::RenderSettings::sunAngleDegrees): frame::FrameDriver draws the frame with it.
