@@ -264,7 +264,7 @@ struct Viewer {
                 state.erase("time");
         }
         if (dirty) { // an option changed: a cut (held lattices refitted, auto searches afresh)
-            const core::Status s = frames.setOptions(state, world);
+            const core::Status s = frames.setOptions(state, world, animatedTime);
             optionsError = s ? std::string() : s.error();
             dirty = false;
         }

@@ -8,13 +8,14 @@ namespace shadowkit::viewer {
 
 std::string vec3Text(const core::Vec3& v) { return fmt::format("{:.6g},{:.6g},{:.6g}", v.x, v.y, v.z); }
 
-core::Status ViewerFrames::setOptions(const app::StateOptions& state, const scene::Scene& world) {
+core::Status ViewerFrames::setOptions(const app::StateOptions& state, scene::Scene& world, double now) {
     auto parsed = parseFrameOptions(state);
     if (!parsed) return app::withFlagName(parsed.errorInfo());
     auto timeline = (*parsed)->timeline.resolve();
     if (!timeline) return timeline.errorInfo();
     auto still = (*parsed)->view.resolve(world);
     if (!still) return still.errorInfo();
+    if (timeline->path) still->pathFramedBox = scene::framedOverPath(*timeline->path, world, now);
     auto config = app::frameConfigOf((*parsed)->technique, (*parsed)->render, (*parsed)->lights);
     if (!config) return config.errorInfo();
     auto driver = frame::FrameDriver::create(std::move(config).value());

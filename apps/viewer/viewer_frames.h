@@ -18,8 +18,10 @@ namespace shadowkit::viewer {
 class ViewerFrames {
 public:
     // New options (panel, sun drag, a loaded state): parsed and checked; the next frame is a
-    // cut. On error the last good options stay in use; the error names the option.
-    core::Status setOptions(const app::StateOptions& state, const scene::Scene& world);
+    // cut. On error the last good options stay in use; the error names the option. A camera path
+    // that frames the scene frames one box throughout, as `render`'s does (scene::framedOverPath:
+    // `world` is animated over the path and left at `now`, the time it stands at).
+    core::Status setOptions(const app::StateOptions& state, scene::Scene& world, double now = 0.0);
     // The next frame starts afresh (lattices refitted, auto's full search).
     void cut();
 

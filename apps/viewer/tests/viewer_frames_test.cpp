@@ -2,11 +2,16 @@
 // and auto's tracking; an option change starts afresh. CTest label `gl` (headless Mesa).
 #include "headless_gl_test.h"
 #include "test_scenes.h"
+#include "timeline.h"
 #include "viewer_frames.h"
+
+#include "shadowkit/scene/animation.h"
+#include "shadowkit/scene/mesh_builder.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <numbers>
 
 using namespace shadowkit;
 
@@ -78,6 +83,51 @@ namespace {
 
 // The panel's lists and defaults come from the options' registration (app::choicesOf,
 // app::defaultOf): the same table `render` parses.
+// Along a camera path that frames a loaded model, the viewer frames the box `render` frames
+// (Timeline::checkViews): one for the whole path, so that `render --state` draws the viewer's
+// frame, and the camera does not follow a mover out and back.
+TEST_F(ViewerFramesTest, APathFramingAModelWithAMoverFramesWhatRenderFrames) {
+    scene::Scene model; // a 10 × 2 × 10 m block and a 1 m box circling 30 m round it: no terrain
+    scene::Mesh block;
+    scene::addBox(block, glm::mat4(1.0f), {5.0f, 1.0f, 5.0f}, {0.6f, 0.6f, 0.6f});
+    block.computeBounds();
+    scene::Mesh mover;
+    scene::addBox(mover, glm::mat4(1.0f), {0.5f, 0.5f, 0.5f}, {0.8f, 0.3f, 0.2f});
+    mover.computeBounds();
+    model.meshes = {block, mover};
+    model.batches.push_back({.mesh = 0, .worldFromObject = {glm::mat4(1.0f)}});
+    model.batches.push_back({.mesh = 1, .worldFromObject = {glm::mat4(1.0f)}, .dynamic = true});
+    model.tracks.push_back({.batch = 1, .instance = 0, .radius = 30.0, .speed = 2.0 * std::numbers::pi * 30.0 / 8.0});
+    scene::animate(model, 0.0);
+    auto modelRenderer = gl::Renderer::create(model);
+    ASSERT_TRUE(modelRenderer) << modelRenderer.error();
+
+    const app::StateOptions state{{"path", {"orbit"}}, {"map-size", {"512"}}};
+    viewer::ViewerFrames frames;
+    ASSERT_TRUE(frames.setOptions(state, model, 0.0));
+    app::TimelineOptions timelineOptions;
+    timelineOptions.path = "orbit";
+    auto timeline = timelineOptions.resolve();
+    ASSERT_TRUE(timeline) << timeline.error();
+    scene::ViewSpec spec;
+    scene::ResolvedView still = scene::resolveView(spec, model);
+    ASSERT_TRUE(timeline->checkViews(still, model, /*stillSize=*/true, /*sayFraming=*/false));
+    ASSERT_FALSE(still.pathFramedBox.isEmpty());
+    for (double t : {0.0, 2.0, 5.5}) {
+        std::vector<uint32_t> moved;
+        scene::animate(model, t, &moved);
+        ASSERT_TRUE((*modelRenderer)->moveInstances(model, moved));
+        auto drawn = frames.draw(**modelRenderer, model, start.wsEye, start.wsDirection, 192, 108, t);
+        ASSERT_TRUE(drawn) << drawn.error();
+        still.width = 192, still.height = 108;
+        auto rendered = timeline->viewAt(still, model, t, /*stillSize=*/true);
+        ASSERT_TRUE(rendered) << rendered.error();
+        EXPECT_TRUE(drawn->frame.view.framed) << t;
+        const core::Vec3 viewerEye = drawn->frame.view.camera.wsEye, renderEye = rendered->camera.wsEye;
+        EXPECT_LT(glm::distance(viewerEye, renderEye), 1e-9 * glm::length(renderEye)) << t;
+    }
+}
+
 TEST(OptionTableTest, EnumeratedOptionsListEveryChoiceAndTheLibrariesDefaults) {
     viewer::FrameOptions options;
     CLI::App app{"table"};
