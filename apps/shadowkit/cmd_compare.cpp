@@ -40,6 +40,7 @@ int runCompare(const CompareArgs& args) {
     }
     if (args.columns < 0 || args.columns > 16) return fail("--columns: must be in [1, 16] (0: automatic)");
     if (auto s = checkWritable("--report", args.report); !s) return fail(s.errorInfo());
+    if (auto s = checkPictureWritable("--out", args.out); !s) return fail(s.errorInfo());
     auto sceneData = args.scene.load();
     if (!sceneData) return fail(sceneData.errorInfo());
     auto measurer = measure::Measurer::createHeadless(*sceneData);

@@ -127,13 +127,11 @@ core::Status checkEvalArgs(const EvalArgs& args) {
     if (!(args.depthTolerance >= 1e-5 && args.depthTolerance <= 0.1))
         return core::makeError(
             fmt::format("--depth-tolerance: must be in [0.00001, 0.1] of the view depth, got {}", args.depthTolerance));
-    for (auto [flag, file] : {std::pair{"--json", &args.json},
-                              {"--csv", &args.csv},
-                              {"--plot", &args.plot},
-                              {"--report", &args.report},
-                              {"--error-map", &args.errorMap},
-                              {"--aliasing-map", &args.aliasingMap}})
+    for (auto [flag, file] : {std::pair{"--json", &args.json}, {"--csv", &args.csv}, {"--report", &args.report}})
         if (auto s = checkWritable(flag, *file); !s) return s;
+    for (auto [flag, file] :
+         {std::pair{"--plot", &args.plot}, {"--error-map", &args.errorMap}, {"--aliasing-map", &args.aliasingMap}})
+        if (auto s = checkPictureWritable(flag, *file); !s) return s;
     return core::Ok{};
 }
 

@@ -116,13 +116,13 @@ core::Status checkOutputs(const RenderArgs& args, const Timeline& timeline) {
                                ": name the file");
     if (!args.video.empty() && !timeline.path) return core::makeError("--video: needs --path (a sequence of frames)");
     if (!args.strip.empty() && !sequence) return core::makeError("--strip: needs --path (a sequence of frames)");
+    if (auto s = checkWritable("--video", args.video); !s) return s;
     for (auto [flag, file] : {std::pair{"--strip", &args.strip},
-                              {"--video", &args.video},
                               {"--shadow-map-out", &args.shadowMapOut},
                               {"--local-map-out", &args.localMapOut}})
-        if (auto s = checkWritable(flag, *file); !s) return s;
-    if (!sequence)
-        if (auto s = checkWritable("--out", outFileOf(args, timeline, timeline.frames.front())); !s) return s;
+        if (auto s = checkPictureWritable(flag, *file); !s) return s;
+    // Every frame's picture is named as the first is (the pattern with another number).
+    if (auto s = checkPictureWritable("--out", outFileOf(args, timeline, timeline.frames.front())); !s) return s;
     if (!args.video.empty() && !ffmpegInstalled())
         return core::makeError(
             "--video: ffmpeg is not installed (apt install ffmpeg), write the frames with --out alone");

@@ -1,6 +1,7 @@
 #include "common.h"
 
 #include "shadowkit/scene/file_write.h"
+#include "shadowkit/scene/image.h"
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -58,6 +59,12 @@ core::Status checkWritable(const char* flag, const std::string& file) {
     if (auto s = scene::prepareOutputDirectory(file); !s)
         return core::makeError(fmt::format("{}: {}", flag, s.error()));
     return core::Ok{};
+}
+
+core::Status checkPictureWritable(const char* flag, const std::string& file) {
+    if (file.empty()) return core::Ok{};
+    if (auto s = scene::checkPictureName(file); !s) return core::makeError(fmt::format("{}: {}", flag, s.error()));
+    return checkWritable(flag, file);
 }
 
 } // namespace shadowkit::app

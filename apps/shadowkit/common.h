@@ -45,6 +45,9 @@ int parseErrorExit(const CLI::ParseError& error);
 // A file a command will write later: creates its missing directories now, or fails now,
 // before minutes of work, naming the flag.
 core::Status checkWritable(const char* flag, const std::string& file);
+// The same for a picture, whose name must also say PNG (scene::checkPictureName): a render of
+// minutes is not thrown away at the end for a name.
+core::Status checkPictureWritable(const char* flag, const std::string& file);
 
 // Writes `text` to `file` whole or not at all (scene::writeFile), an error naming the flag
 // and the file.

@@ -226,6 +226,26 @@ endif()
 # A picture named for another format is refused, not written as PNG bytes under that name.
 check_fails(analyze-plot-jpg "pictures are written as PNG: name it .png, not .jpg" analyze --csv ${WORK}/figure6.csv
             --plot ${WORK}/figure6.jpg)
+# ... and before the work that draws it: the scene (here one that cannot load) is not even read,
+# and nothing else is written first (analyze's CSV).
+check_fails(render-out-jpg-before-the-scene "--out: ${WORK}/shot.jpg: pictures are written as PNG" render --scene
+            "${WORK}/garbage.glb" --out "${WORK}/shot.jpg")
+check_fails(render-strip-jpg-before-the-scene "--strip: ${WORK}/strip.JPEG: pictures are written as PNG" render --scene
+            "${WORK}/garbage.glb" --path orbit --frames 0:2 --out "${WORK}/f%03d.png" --strip "${WORK}/strip.JPEG")
+check_fails(eval-error-map-jpg-before-the-scene "--error-map: ${WORK}/error.jpg: pictures are written as PNG" eval
+            --scene "${WORK}/garbage.glb" --error-map "${WORK}/error.jpg")
+check_fails(compare-out-jpg-before-the-scene "--out: ${WORK}/grid.jpg: pictures are written as PNG" compare --scene
+            "${WORK}/garbage.glb" --configs "technique=tsm" --out "${WORK}/grid.jpg")
+check_fails(score-error-map-jpg-before-the-mask "--error-map: ${WORK}/e.webp: pictures are written as PNG" score
+            no-such-mask.png ${small} --error-map "${WORK}/e.webp")
+if(CASE STREQUAL "analyze-plot-jpg-writes-no-csv")
+  file(REMOVE "${WORK}/curves.csv")
+  execute_process(COMMAND ${SHADOWKIT} analyze --csv "${WORK}/curves.csv" --plot "${WORK}/curves.jpg" RESULT_VARIABLE rc
+                  OUTPUT_QUIET ERROR_QUIET)
+  if(rc EQUAL 0 OR EXISTS "${WORK}/curves.csv")
+    message(SEND_ERROR "analyze with a --plot it cannot write: exit ${rc}, and it wrote the CSV anyway")
+  endif()
+endif()
 # analyze reproduces Wimmer et al. 2004, Figure 6 and writes its CSV and plot.
 if(CASE STREQUAL "analyze-figure6")
 execute_process(COMMAND ${SHADOWKIT} analyze --json --scene-bounds -512,0,-512,512,30,512 --csv "${WORK}/a.csv"

@@ -22,12 +22,17 @@ core::Result<std::string> encodePng(const Image& image, std::string_view what) {
     return png;
 }
 
-core::Status writePng(const Image& image, const std::filesystem::path& file) {
-    // A name that says another format would hold PNG bytes under it ("wrote shot.jpg"), which
-    // tools that go by the name then misread: refused, before anything is written.
+core::Status checkPictureName(const std::filesystem::path& file) {
     if (const std::string extension = formats::lowerExtension(file); !extension.empty() && extension != ".png")
         return core::makeError(file.string() + ": pictures are written as PNG: name it .png, not " +
                                file.extension().string());
+    return core::Ok{};
+}
+
+core::Status writePng(const Image& image, const std::filesystem::path& file) {
+    // A name that says another format would hold PNG bytes under it ("wrote shot.jpg"), which
+    // tools that go by the name then misread: refused, before anything is written.
+    if (auto s = checkPictureName(file); !s) return s;
     // Encoded in memory, then written whole (file_write.h): stb's own file writer reports
     // neither a full disk nor a failed close.
     const core::Result<std::string> png = encodePng(image, file.string());

@@ -44,6 +44,10 @@ core::Result<std::string> encodePng(const Image& image, std::string_view what);
 // Errors name the file (unwritable directory, disk full, a name ending in another format's
 // extension than .png; none is taken as PNG).
 core::Status writePng(const Image& image, const std::filesystem::path& file);
+// The name writePng refuses: one that says another format (shot.jpg), whose PNG bytes tools that
+// go by the name would misread; no extension, or .png in any case, passes. For front ends to
+// check a picture's name before the work that draws it.
+core::Status checkPictureName(const std::filesystem::path& file);
 
 // Limits on a decoded image, checked from its header before any pixel is decoded: a side of
 // at most 16384 texels (GL_MAX_TEXTURE_SIZE of the drivers we run on) and 2^26 texels (256 MiB
