@@ -435,8 +435,8 @@ int runBench(const BenchArgs& args) {
     auto timeline = timelineOptions.resolve();
     if (!timeline) return fail(timeline.errorInfo());
     if (timeline->path) viewNames = {args.path};
-    for (const char* flag : {"--report", "--json"})
-        if (auto s = checkWritable(flag, flag[2] == 'r' ? args.report : args.json); !s) return fail(s.errorInfo());
+    if (auto s = checkReportWritable("--report", args.report); !s) return fail(s.errorInfo());
+    if (auto s = checkWritable("--json", args.json); !s) return fail(s.errorInfo());
     auto config = frameConfigOf(args.technique, args.render, args.lights);
     if (!config) return fail(config.errorInfo());
     auto driver = frame::FrameDriver::create(std::move(config).value());

@@ -39,7 +39,7 @@ int runCompare(const CompareArgs& args) {
         options.push_back(std::move(o).value());
     }
     if (args.columns < 0 || args.columns > 16) return fail("--columns: must be in [1, 16] (0: automatic)");
-    if (auto s = checkWritable("--report", args.report); !s) return fail(s.errorInfo());
+    if (auto s = checkReportWritable("--report", args.report); !s) return fail(s.errorInfo());
     if (auto s = checkPictureWritable("--out", args.out); !s) return fail(s.errorInfo());
     auto sceneData = args.scene.load();
     if (!sceneData) return fail(sceneData.errorInfo());

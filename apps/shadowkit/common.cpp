@@ -61,6 +61,16 @@ core::Status checkWritable(const char* flag, const std::string& file) {
     return core::Ok{};
 }
 
+core::Status checkReportWritable(const char* flag, const std::string& file) {
+    if (file.empty()) return core::Ok{};
+    std::string extension = std::filesystem::path(file).extension().string();
+    std::ranges::transform(extension, extension.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    if (!extension.empty() && extension != ".html" && extension != ".htm")
+        return core::makeError(fmt::format("{}: {}: reports are written as HTML: name it .html, not {}", flag, file,
+                                           std::filesystem::path(file).extension().string()));
+    return checkWritable(flag, file);
+}
+
 core::Status checkPictureWritable(const char* flag, const std::string& file) {
     if (file.empty()) return core::Ok{};
     if (auto s = scene::checkPictureName(file); !s) return core::makeError(fmt::format("{}: {}", flag, s.error()));

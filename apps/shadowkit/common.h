@@ -48,6 +48,9 @@ core::Status checkWritable(const char* flag, const std::string& file);
 // The same for a picture, whose name must also say PNG (scene::checkPictureName): a render of
 // minutes is not thrown away at the end for a name.
 core::Status checkPictureWritable(const char* flag, const std::string& file);
+// Likewise for a report's page, which is HTML: .html, .htm or no extension (its pictures go beside
+// it under its stem); `--report results.png` would put a page where a picture is looked for.
+core::Status checkReportWritable(const char* flag, const std::string& file);
 
 // Writes `text` to `file` whole or not at all (scene::writeFile), an error naming the flag
 // and the file.

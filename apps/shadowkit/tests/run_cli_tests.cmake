@@ -238,6 +238,11 @@ check_fails(compare-out-jpg-before-the-scene "--out: ${WORK}/grid.jpg: pictures 
             "${WORK}/garbage.glb" --configs "technique=tsm" --out "${WORK}/grid.jpg")
 check_fails(score-error-map-jpg-before-the-mask "--error-map: ${WORK}/e.webp: pictures are written as PNG" score
             no-such-mask.png ${small} --error-map "${WORK}/e.webp")
+# A report is a page: named for a picture it is refused as one is, before the scene is read.
+check_fails(eval-report-png-before-the-scene "--report: ${WORK}/report.png: reports are written as HTML" eval --scene
+            "${WORK}/garbage.glb" --report "${WORK}/report.png")
+check_fails(bench-report-png-before-the-scene "--report: ${WORK}/bench.PNG: reports are written as HTML" bench
+            --scene "${WORK}/garbage.glb" --report "${WORK}/bench.PNG")
 if(CASE STREQUAL "analyze-plot-jpg-writes-no-csv")
   file(REMOVE "${WORK}/curves.csv")
   execute_process(COMMAND ${SHADOWKIT} analyze --csv "${WORK}/curves.csv" --plot "${WORK}/curves.jpg" RESULT_VARIABLE rc
