@@ -77,12 +77,6 @@ TEST_F(ViewerFramesTest, OffersAutoAndKeepsTheLastGoodOptionsOnABadOne) {
     EXPECT_TRUE(still->frame.autoChoice);
 }
 
-} // namespace
-
-namespace {
-
-// The panel's lists and defaults come from the options' registration (app::choicesOf,
-// app::defaultOf): the same table `render` parses.
 // Along a camera path that frames a loaded model, the viewer frames the box `render` frames
 // (Timeline::checkViews): one for the whole path, so that `render --state` draws the viewer's
 // frame, and the camera does not follow a mover out and back.
@@ -128,6 +122,12 @@ TEST_F(ViewerFramesTest, APathFramingAModelWithAMoverFramesWhatRenderFrames) {
     }
 }
 
+} // namespace
+
+namespace {
+
+// The panel's lists and defaults come from the options' registration (app::choicesOf,
+// app::defaultOf): the same table `render` parses.
 TEST(OptionTableTest, EnumeratedOptionsListEveryChoiceAndTheLibrariesDefaults) {
     viewer::FrameOptions options;
     CLI::App app{"table"};
