@@ -293,7 +293,7 @@ core::Result<nlohmann::json> benchView(const BenchArgs& args, const BenchRow& ro
     auto still = viewOptions.resolve(forest, /*sayFraming=*/!timeline.path);
     if (!still) return still.errorInfo();
     // Checked (and said) before the table for a path: here each row's forest is checked alone.
-    if (auto s = timeline.checkViews(*still, forest, !args.view.size.empty(), /*sayFraming=*/false); !s)
+    if (auto s = timeline.prepareViews(*still, forest, !args.view.size.empty(), /*sayFraming=*/false); !s)
         return s.errorInfo();
     const int frames = timeline.path ? static_cast<int>(timeline.frames.size()) : args.frames;
     scene::ResolvedView view = *still;
@@ -453,7 +453,7 @@ int runBench(const BenchArgs& args) {
             ViewOptions viewOptions = args.view;
             auto still = viewOptions.resolve(built->first, /*sayFraming=*/false);
             if (!still) return fail(still.errorInfo());
-            if (auto s = timeline->checkViews(*still, built->first, !args.view.size.empty()); !s)
+            if (auto s = timeline->prepareViews(*still, built->first, !args.view.size.empty()); !s)
                 return fail(s.errorInfo());
         }
         firstForest = std::move(built).value();

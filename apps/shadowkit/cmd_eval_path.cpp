@@ -117,7 +117,7 @@ int runEvalPath(const EvalPathArgs& args) {
     scene::Scene& world = *sceneData;
     auto still = args.view.resolve(world, /*sayFraming=*/false); // the path's frames say theirs
     if (!still) return fail(still.errorInfo());
-    if (auto s = timeline->checkViews(*still, world, !args.view.size.empty()); !s) return fail(s.errorInfo());
+    if (auto s = timeline->prepareViews(*still, world, !args.view.size.empty()); !s) return fail(s.errorInfo());
     auto measurer = measure::Measurer::createHeadless(world);
     if (!measurer) return fail(measurer.errorInfo());
     fmt::print(stderr, "ray tracer: built in {:.2f} s\n", (*measurer)->rayTracerBuildSeconds());

@@ -6,10 +6,6 @@
 
 #include <fmt/format.h>
 
-#include <algorithm>
-#include <cctype>
-#include <filesystem>
-
 namespace shadowkit::app {
 namespace {
 
@@ -22,8 +18,7 @@ int runExport(const ExportArgs& args) {
     auto sceneData = args.scene.load();
     if (!sceneData) return fail(sceneData.errorInfo());
     if (auto s = scene::exportScene(*sceneData, args.out); !s) return fail("--out: " + s.error());
-    std::string format = std::filesystem::path(args.out).extension().string();
-    std::transform(format.begin(), format.end(), format.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    const std::string format = lowerExtension(args.out);
     if (format == ".obj" && (!sceneData->cameras.empty() || !sceneData->lights.empty()))
         warn(fmt::format("--out {}: an OBJ holds no camera or light: the scene's {} camera{} and {} light{} are left "
                          "out (a .glb keeps them)",

@@ -155,7 +155,7 @@ int runRender(const RenderArgs& args) {
     scene::Scene& world = *sceneData;
     auto still = args.view.resolve(world, /*sayFraming=*/!timeline->path);
     if (!still) return fail(still.errorInfo());
-    if (auto s = timeline->checkViews(*still, world, !args.view.size.empty()); !s) return fail(s.errorInfo());
+    if (auto s = timeline->prepareViews(*still, world, !args.view.size.empty()); !s) return fail(s.errorInfo());
 
     auto context = gl::Context::createHeadless();
     if (!context) return fail(context.errorInfo());

@@ -19,6 +19,12 @@ std::string oneLine(const std::string& message) {
     return line;
 }
 
+std::string lowerExtension(const std::string& file) {
+    std::string extension = std::filesystem::path(file).extension().string();
+    std::ranges::transform(extension, extension.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return extension;
+}
+
 int fail(const std::string& message) {
     fmt::print(stderr, "shadowkit: error: {}\n", oneLine(message));
     return kExitBadInput;
@@ -63,9 +69,8 @@ core::Status checkWritable(const char* flag, const std::string& file) {
 
 core::Status checkReportWritable(const char* flag, const std::string& file) {
     if (file.empty()) return core::Ok{};
-    std::string extension = std::filesystem::path(file).extension().string();
-    std::ranges::transform(extension, extension.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-    if (!extension.empty() && extension != ".html" && extension != ".htm")
+    if (const std::string extension = lowerExtension(file);
+        !extension.empty() && extension != ".html" && extension != ".htm")
         return core::makeError(fmt::format("{}: {}: reports are written as HTML: name it .html, not {}", flag, file,
                                            std::filesystem::path(file).extension().string()));
     return checkWritable(flag, file);

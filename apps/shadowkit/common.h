@@ -20,6 +20,8 @@ inline constexpr int kExitBadInput = 1, kExitUsage = 2, kExitEnvironment = 3;
 // `message` with every control character (a newline typed into a value or a saved --state, a
 // control character in a glTF's image name) made a space: an error is one line whatever it echoes.
 std::string oneLine(const std::string& message);
+// A file name's extension as the formats are told apart: "shot.PNG" -> ".png"; "" where none.
+std::string lowerExtension(const std::string& file);
 
 // Prints "shadowkit: error: <message>" (one line) to stderr and returns kExitBadInput.
 int fail(const std::string& message);

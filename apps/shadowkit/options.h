@@ -63,7 +63,7 @@ struct ViewOptions {
     core::Status checkFlags() const;
     // The named view placed over `scene`, with any explicit flag overriding its field.
     // `sayFraming`: say on stderr where the camera stands when it frames a loaded scene (not
-    // when a camera path takes the view's place: the path says so, Timeline::checkViews).
+    // when a camera path takes the view's place: the path says so, Timeline::prepareViews).
     core::Result<scene::ResolvedView> resolve(const scene::Scene& scene, bool sayFraming = true) const;
 };
 

@@ -124,8 +124,8 @@ core::Result<scene::ResolvedView> Timeline::viewAt(const scene::ResolvedView& st
     return view;
 }
 
-core::Status Timeline::checkViews(scene::ResolvedView& still, scene::Scene& scene, bool stillSize,
-                                  bool sayFraming) const {
+core::Status Timeline::prepareViews(scene::ResolvedView& still, scene::Scene& scene, bool stillSize,
+                                    bool sayFraming) const {
     if (path) still.pathFramedBox = scene::framedOverPath(*path, scene, frames.front().time);
     bool framed = false;
     for (const TimedFrame& frame : frames) {

@@ -45,8 +45,8 @@ struct Timeline {
     // its target between two keys fails now, naming the moment, rather than frames (or a ray
     // tracer's build) into the run. Says on stderr (`sayFraming`) when the path frames a loaded
     // scene rather than following its keys.
-    core::Status checkViews(scene::ResolvedView& still, scene::Scene& scene, bool stillSize = false,
-                            bool sayFraming = true) const;
+    core::Status prepareViews(scene::ResolvedView& still, scene::Scene& scene, bool stillSize = false,
+                              bool sayFraming = true) const;
 };
 
 struct TimelineOptions {

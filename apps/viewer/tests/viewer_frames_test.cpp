@@ -78,7 +78,7 @@ TEST_F(ViewerFramesTest, OffersAutoAndKeepsTheLastGoodOptionsOnABadOne) {
 }
 
 // Along a camera path that frames a loaded model, the viewer frames the box `render` frames
-// (Timeline::checkViews): one for the whole path, so that `render --state` draws the viewer's
+// (Timeline::prepareViews): one for the whole path, so that `render --state` draws the viewer's
 // frame, and the camera does not follow a mover out and back.
 TEST_F(ViewerFramesTest, APathFramingAModelWithAMoverFramesWhatRenderFrames) {
     scene::Scene model; // a 10 × 2 × 10 m block and a 1 m box circling 30 m round it: no terrain
@@ -105,7 +105,7 @@ TEST_F(ViewerFramesTest, APathFramingAModelWithAMoverFramesWhatRenderFrames) {
     ASSERT_TRUE(timeline) << timeline.error();
     scene::ViewSpec spec;
     scene::ResolvedView still = scene::resolveView(spec, model);
-    ASSERT_TRUE(timeline->checkViews(still, model, /*stillSize=*/true, /*sayFraming=*/false));
+    ASSERT_TRUE(timeline->prepareViews(still, model, /*stillSize=*/true, /*sayFraming=*/false));
     ASSERT_FALSE(still.pathFramedBox.isEmpty());
     for (double t : {0.0, 2.0, 5.5}) {
         std::vector<uint32_t> moved;
