@@ -1,5 +1,7 @@
 #include "shadowkit/core/camera.h"
 
+#include <glm/gtc/quaternion.hpp>
+
 #include <cmath>
 #include <string>
 
@@ -72,6 +74,47 @@ std::array<Plane, 6> PerspectiveCamera::wsFrustumPlanes() const {
         planeThrough(wsEye, c[4], c[5]),        // bottom
         planeThrough(wsEye, c[7], c[6]),        // top
     };
+}
+
+namespace {
+
+// The camera's frame as a rotation: columns right, up and forward (orthonormal, right-handed
+// as viewFromWorld's look-at builds them).
+Mat3 cameraFrame(const PerspectiveCamera& c) {
+    const Vec3 forward = glm::normalize(c.wsDirection);
+    const Vec3 right = glm::normalize(glm::cross(forward, glm::normalize(c.wsUp)));
+    return Mat3(right, glm::cross(right, forward), forward);
+}
+
+} // namespace
+
+PerspectiveCamera extrapolatedCamera(const PerspectiveCamera& before, const PerspectiveCamera& now, double frames) {
+    // One frame's motion x -> R·x + t, R = F_now · F_beforeᵀ (the frames' rotation), t = e_now −
+    // R·e_before. Chasles: it is a turn by θ about an axis line through c (direction a) and a
+    // slide s·a along it; repeated k times it turns by k·θ about the same line and slides k·s·a:
+    //   e_k = R_kθ · (e_now − c) + c + k·s·a,
+    // where, with t⊥ = t − s·a, the axis point nearest the origin solves (I − R)·c = t⊥:
+    //   c = ½ · (t⊥ + cot(θ/2) · a × t⊥).
+    // Below a microradian's turn per frame the motion is a slide, e_k = e_now + k·t.
+    const Mat3 turn = cameraFrame(now) * glm::transpose(cameraFrame(before));
+    const Vec3 t = now.wsEye - turn * before.wsEye;
+    glm::dquat q = glm::normalize(glm::quat_cast(turn));
+    if (q.w < 0.0) q = -q; // the short way round: θ in [0, π]
+    const double theta = glm::angle(q);
+    PerspectiveCamera out = now;
+    if (!(theta > 1e-6)) {
+        out.wsEye = now.wsEye + frames * t;
+        return out;
+    }
+    const Vec3 axis = glm::normalize(glm::axis(q));
+    const double slide = glm::dot(t, axis);
+    const Vec3 across = t - slide * axis;
+    const Vec3 wsAxisPoint = 0.5 * (across + glm::cross(axis, across) / std::tan(0.5 * theta));
+    const Mat3 turnOn = glm::mat3_cast(glm::angleAxis(frames * theta, axis));
+    out.wsEye = turnOn * (now.wsEye - wsAxisPoint) + wsAxisPoint + frames * slide * axis;
+    out.wsDirection = turnOn * now.wsDirection;
+    out.wsUp = turnOn * now.wsUp;
+    return out;
 }
 
 Mat4 perspectiveZeroToOne(double fovYRadians, double aspect, double zNear, double zFar) {

@@ -3,6 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <string>
+
 using namespace shadowkit::core;
 
 namespace {
@@ -68,6 +71,57 @@ TEST(CameraTest, ValidateNamesTheBadField) {
     EXPECT_NE(cam.validate().error().find("camera eye: at most 1e13 m"), std::string::npos);
     cam.wsEye = Vec3(0, 0.9e13, 0);
     EXPECT_TRUE(cam.validate());
+}
+
+namespace {
+
+// A turntable's camera at frame k: round a centre at 20 m, 6 m up, looking at the centre, 1.5°
+// a frame, and rising `climb` metres a frame (a helix: a turn and a slide along its axis).
+PerspectiveCamera turntable(double k, double climb = 0.0) {
+    const Vec3 wsCentre(5.0, 2.0, -3.0);
+    const double a = glm::radians(1.5 * k);
+    PerspectiveCamera c = obliqueCamera();
+    c.wsEye = wsCentre + Vec3(20.0 * std::sin(a), 6.0 + climb * k, 20.0 * std::cos(a));
+    c.wsDirection = wsCentre + Vec3(0.0, climb * k, 0.0) - c.wsEye;
+    return c;
+}
+
+void expectSameCamera(const PerspectiveCamera& got, const PerspectiveCamera& want, const std::string& what) {
+    EXPECT_LT(glm::length(got.wsEye - want.wsEye), 1e-6) << what;
+    EXPECT_LT(glm::length(glm::normalize(got.wsDirection) - glm::normalize(want.wsDirection)), 1e-9) << what;
+    // The up hint may turn with the camera; the image's up may not.
+    const Mat4 gotView = got.viewFromWorld(), wantView = want.viewFromWorld();
+    for (int c = 0; c < 3; ++c) EXPECT_LT(glm::length(Vec3(gotView[c]) - Vec3(wantView[c])), 1e-9) << what;
+}
+
+} // namespace
+
+TEST(ExtrapolatedCamera, AFrameStepRepeatedFollowsATurntableAndAHelixExactly) {
+    // The motion from frame 9 to frame 10 repeated k frames is frame 10 + k, whole or fractional,
+    // a quarter turn and more: a straight-line extrapolation would leave the circle on its tangent.
+    for (const double climb : {0.0, 0.25})
+        for (const double k : {0.0, 1.0, 7.5, 60.0, 200.0})
+            expectSameCamera(extrapolatedCamera(turntable(9.0, climb), turntable(10.0, climb), k),
+                             turntable(10.0 + k, climb),
+                             "climb " + std::to_string(climb) + ", " + std::to_string(k) + " frames on");
+}
+
+TEST(ExtrapolatedCamera, ASlideGoesOnInAStraightLineAndATurnInPlaceTurnsPastAQuarter) {
+    PerspectiveCamera before = obliqueCamera(), now = before;
+    now.wsEye += Vec3(0.3, 0.1, -0.2);
+    PerspectiveCamera want = now;
+    want.wsEye = before.wsEye + 41.0 * (now.wsEye - before.wsEye);
+    expectSameCamera(extrapolatedCamera(before, now, 40.0), want, "a slide");
+    // A pan of 2° a frame about the vertical through the eye: 60 frames on it has turned 120°.
+    auto panned = [&](double degrees) {
+        PerspectiveCamera c = obliqueCamera();
+        const double a = glm::radians(degrees);
+        const Vec3 d = c.wsDirection;
+        c.wsDirection = Vec3(d.x * std::cos(a) + d.z * std::sin(a), d.y, -d.x * std::sin(a) + d.z * std::cos(a));
+        return c;
+    };
+    expectSameCamera(extrapolatedCamera(panned(0.0), panned(2.0), 60.0), panned(122.0), "a pan");
+    expectSameCamera(extrapolatedCamera(now, now, 100.0), now, "a still camera");
 }
 
 TEST(LightTest, SunAnglesFollowTheCompassConvention) {

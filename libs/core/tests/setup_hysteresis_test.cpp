@@ -298,3 +298,44 @@ TEST(SetupHysteresis, RefusesBadOptionsNamingTheField) {
     SetupHysteresis bad(HysteresisOptions{.margin = 2.0});
     EXPECT_FALSE(bad.next(inputs(groundCamera(), Technique::Lispsm)));
 }
+
+TEST(SetupHysteresis, ALookaheadHoldsATurntableRoundAModelOnAWideGround) {
+    // The camera of `--path orbit` round a compact model that stands on a 300 m ground: close to
+    // the model, so the ground behind it fills the view and the focus body swings round with the
+    // camera. A refit's room for the motion must hold at least the next frame: sampled only at
+    // quarters of the lookahead, the first quarter (22.5° on) lay behind the warp's projection
+    // centre for a third of the turn, every refit there had no room, and the camera outgrew
+    // each one's margin the next frame — refits in 32 frames running.
+    auto turntable = [](int k) {
+        const double a = glm::radians(1.5 * k);
+        PerspectiveCamera c = groundCamera();
+        c.wsEye = Vec3(20.0 * std::sin(a), 8.0, 20.0 * std::cos(a));
+        c.wsDirection = Vec3(0.0, 2.0, 0.0) - c.wsEye;
+        c.zNear = 0.5, c.zFar = 400.0;
+        return c;
+    };
+    auto refitsOnce = [&](double lookahead, Technique technique) {
+        SetupHysteresis hysteresis(HysteresisOptions{.lookaheadFrames = lookahead});
+        int refits = -1; // the first frame always fits
+        bool coverRefitLastFrame = false;
+        for (int k = 0; k < 240; ++k) {
+            ShadowSetupInputs in = inputs(turntable(k), technique);
+            in.wsSceneBounds = Aabb::fromMinMax(Vec3(-150, -1, -150), Vec3(150, 6, 150));
+            EXPECT_TRUE(hysteresis.next(in));
+            refits += hysteresis.refitted();
+            const bool coverRefit = k > 0 && hysteresis.lastRefits().toCover > 0;
+            if (lookahead > 0.0) {
+                EXPECT_FALSE(coverRefit && coverRefitLastFrame)
+                    << techniqueName(technique) << " frame " << k << ": the last refit did not hold one frame";
+            }
+            coverRefitLastFrame = coverRefit;
+        }
+        return refits;
+    };
+    for (const Technique t : {Technique::Tsm, Technique::Lispsm}) {
+        const int without = refitsOnce(0.0, t), with = refitsOnce(60.0, t);
+        std::printf("%s once round a model: %d refits without lookahead, %d with 60 frames\n",
+                    std::string(techniqueName(t)).c_str(), without, with);
+        EXPECT_LT(with, without) << techniqueName(t);
+    }
+}

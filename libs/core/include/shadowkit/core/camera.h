@@ -43,6 +43,14 @@ struct PerspectiveCamera {
     std::array<Plane, 6> wsFrustumPlanes() const;
 };
 
+/// The camera `frames` frames after `now` if it goes on moving as it moved from `before` to
+/// `now`: the same rigid motion repeated — a screw, a turn about one axis and a slide along it
+/// (Chasles) — so that a turntable's camera goes on round its circle and a turning one turns
+/// on, where extrapolating the eye and the direction each along a straight line sends an
+/// orbit's eye off on its tangent and never turns a direction past 90°. Whole or fractional
+/// frames, >= 0; field of view, aspect and depth range are `now`'s.
+PerspectiveCamera extrapolatedCamera(const PerspectiveCamera& before, const PerspectiveCamera& now, double frames);
+
 /// Perspective matrix for clip depth [0,1], looking down -Z (right-handed view space).
 Mat4 perspectiveZeroToOne(double fovYRadians, double aspect, double zNear, double zFar);
 /// Orthographic matrix for clip depth [0,1]: x in [l,r], y in [b,t], view depth -z in [n,f].

@@ -15,10 +15,11 @@
 // refit would give there now (a warp concentrates texels at the viewer's position of its
 // refit; the camera leaving that position is what makes a held warp worse than a new one).
 // A refit covers the body with `margin` to spare and, for a moving camera, also the
-// bodies it will have on its way `lookaheadFrames` on, as far as that room costs at most 3×
-// a fresh fit's texel size, unless the light has just moved (a moving light refits every
-// frame, and room for the motion would only coarsen each refit). Depth is refitted on its
-// own when the body leaves the held depth range: it does not move texels.
+// bodies it will have on its way `lookaheadFrames` on (its last frame's motion repeated), as
+// far as that room costs at most 3× a fresh fit's texel size, unless the light has just moved
+// (a moving light refits every frame, and room for the motion would only coarsen each refit).
+// Depth is refitted on its own when the body leaves the held depth range: it does not move
+// texels.
 #pragma once
 
 #include "shadowkit/core/result.h"
