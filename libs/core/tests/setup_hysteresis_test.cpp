@@ -9,7 +9,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <random>
+#include <string>
 
 using namespace shadowkit::core;
 
@@ -239,9 +241,9 @@ TEST(SetupHysteresis, TheLookaheadsRoomCostsAtMostThreeFreshTexelsAndHeldTexelsG
             }
             ASSERT_LE(ratio, 3.0 * o.maxTexelGrowth + 1e-9) << "lookahead " << lookahead << " frame " << k;
         }
-        // The room is taken in quarters of the lookahead, as far as each costs at most the cap:
-        // 60 frames take some (here 15 frames' worth at least); 240 frames' first quarter alone
-        // may already cost more than the cap, and then the refit is the margin's alone.
+        // The room is taken at 1, 2, 4, … frames on and then at quarters of the lookahead, as
+        // far as each costs at most the cap: 60 frames take some of it; with any lookahead the
+        // room stops at the last sample within the cap (the asserts above).
         if (lookahead == 60.0) {
             EXPECT_GT(worstRefit, 1.5) << "the lookahead's room was taken";
         }
