@@ -34,13 +34,23 @@ Mat4 PerspectiveCamera::clipFromView() const {
     return perspectiveZeroToOne(glm::radians(fovYDegrees), aspect, zNear, zFar);
 }
 
+namespace {
+
+// The view space's axes in the world, as viewFromWorld's lookAt builds them: columns right, up
+// and forward (orthonormal, right-handed), the rotation of the rigid worldFromView.
+Mat3 cameraFrame(const PerspectiveCamera& c) {
+    const Vec3 forward = glm::normalize(c.wsDirection);
+    const Vec3 right = glm::normalize(glm::cross(forward, glm::normalize(c.wsUp)));
+    return Mat3(right, glm::cross(right, forward), forward);
+}
+
+} // namespace
+
 std::array<Vec3, 8> PerspectiveCamera::wsFrustumCorners() const {
-    // The view space's axes in the world, as viewFromWorld's lookAt builds them: its inverse is
-    // rigid, so a view point (x, y, −z) is wsEye + x·right + y·up + z·forward — no general 4 × 4
-    // inverse, which every set-up paid for here.
-    const Vec3 forward = glm::normalize(wsDirection);
-    const Vec3 right = glm::normalize(glm::cross(forward, glm::normalize(wsUp)));
-    const Vec3 up = glm::cross(right, forward);
+    // A view point (x, y, −z) is wsEye + x·right + y·up + z·forward (cameraFrame) — no general
+    // 4 × 4 inverse, which every set-up paid for here.
+    const Mat3 frame = cameraFrame(*this);
+    const Vec3 right = frame[0], up = frame[1], forward = frame[2];
     const double ty = std::tan(0.5 * glm::radians(fovYDegrees));
     const double tx = ty * aspect;
     std::array<Vec3, 8> corners;
@@ -75,18 +85,6 @@ std::array<Plane, 6> PerspectiveCamera::wsFrustumPlanes() const {
         planeThrough(wsEye, c[7], c[6]),        // top
     };
 }
-
-namespace {
-
-// The camera's frame as a rotation: columns right, up and forward (orthonormal, right-handed
-// as viewFromWorld's look-at builds them).
-Mat3 cameraFrame(const PerspectiveCamera& c) {
-    const Vec3 forward = glm::normalize(c.wsDirection);
-    const Vec3 right = glm::normalize(glm::cross(forward, glm::normalize(c.wsUp)));
-    return Mat3(right, glm::cross(right, forward), forward);
-}
-
-} // namespace
 
 PerspectiveCamera extrapolatedCamera(const PerspectiveCamera& before, const PerspectiveCamera& now, double frames) {
     // One frame's motion x -> R·x + t, R = F_now · F_beforeᵀ (the frames' rotation), t = e_now −
