@@ -37,7 +37,7 @@ int runAnalyze(const AnalyzeArgs& args) {
     if (!(args.zNear > 0.0 && args.zFar > args.zNear && std::isfinite(args.zFar)))
         return fail(fmt::format("--zn/--zf: need 0 < zn < zf, got {} and {}", args.zNear, args.zFar));
     if (auto s = args.technique.check(/*measuresFrames=*/false); !s) return fail(s.errorInfo());
-    if (auto s = checkWritable("--csv", args.csv); !s) return fail(s.errorInfo());
+    if (auto s = checkCsvWritable("--csv", args.csv); !s) return fail(s.errorInfo());
     if (auto s = checkPictureWritable("--plot", args.plot); !s) return fail(s.errorInfo());
 
     // 1. Figure 6: view perpendicular to the light, B = the view frustum.

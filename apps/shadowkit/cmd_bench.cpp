@@ -436,7 +436,7 @@ int runBench(const BenchArgs& args) {
     if (!timeline) return fail(timeline.errorInfo());
     if (timeline->path) viewNames = {args.path};
     if (auto s = checkReportWritable("--report", args.report); !s) return fail(s.errorInfo());
-    if (auto s = checkWritable("--json", args.json); !s) return fail(s.errorInfo());
+    if (auto s = checkJsonWritable("--json", args.json); !s) return fail(s.errorInfo());
     auto config = frameConfigOf(args.technique, args.render, args.lights);
     if (!config) return fail(config.errorInfo());
     auto driver = frame::FrameDriver::create(std::move(config).value());

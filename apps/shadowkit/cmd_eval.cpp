@@ -127,8 +127,8 @@ core::Status checkEvalArgs(const EvalArgs& args) {
     if (!(args.depthTolerance >= 1e-5 && args.depthTolerance <= 0.1))
         return core::makeError(
             fmt::format("--depth-tolerance: must be in [0.00001, 0.1] of the view depth, got {}", args.depthTolerance));
-    for (auto [flag, file] : {std::pair{"--json", &args.json}, {"--csv", &args.csv}})
-        if (auto s = checkWritable(flag, *file); !s) return s;
+    if (auto s = checkJsonWritable("--json", args.json); !s) return s;
+    if (auto s = checkCsvWritable("--csv", args.csv); !s) return s;
     if (auto s = checkReportWritable("--report", args.report); !s) return s;
     for (auto [flag, file] :
          {std::pair{"--plot", &args.plot}, {"--error-map", &args.errorMap}, {"--aliasing-map", &args.aliasingMap}})

@@ -15,6 +15,9 @@ struct ExportArgs {
 };
 
 int runExport(const ExportArgs& args) {
+    // The name first: a scene of minutes is not built to be refused for its name.
+    if (auto s = scene::checkExportName(args.out); !s) return fail("--out: " + s.error());
+    if (auto s = checkWritable("--out", args.out); !s) return fail(s.errorInfo());
     auto sceneData = args.scene.load();
     if (!sceneData) return fail(sceneData.errorInfo());
     if (auto s = scene::exportScene(*sceneData, args.out); !s) return fail("--out: " + s.error());

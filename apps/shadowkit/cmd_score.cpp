@@ -63,7 +63,7 @@ int runScore(const ScoreArgs& args) {
     if (auto s = core::validateSunAngle(args.sunAngle); !s) return fail("--sun-angle: " + s.error());
     if (!(args.threshold > 0.0 && args.threshold <= 1.0)) return fail("--threshold: must be in (0, 1]");
     if (args.softSamples < 1 || args.softSamples > 4096) return fail("--soft-samples: must be in [1, 4096]");
-    if (auto s = checkWritable("--json", args.json); !s) return fail(s.errorInfo());
+    if (auto s = checkJsonWritable("--json", args.json); !s) return fail(s.errorInfo());
     if (auto s = checkPictureWritable("--error-map", args.errorMap); !s) return fail(s.errorInfo());
     if (auto s = args.scene.check(); !s) return fail(s.errorInfo());
     if (auto s = args.view.check(); !s) return fail(s.errorInfo());

@@ -9,6 +9,9 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
+#include <filesystem>
+#include <initializer_list>
+#include <string_view>
 
 namespace shadowkit::app {
 
@@ -67,13 +70,32 @@ core::Status checkWritable(const char* flag, const std::string& file) {
     return core::Ok{};
 }
 
-core::Status checkReportWritable(const char* flag, const std::string& file) {
+namespace {
+
+// A file whose name must say the format it is written in: one of `extensions` (lower case, the
+// first the one to suggest) or none at all, which names no format.
+core::Status checkNamedWritable(const char* flag, const std::string& file, const char* what,
+                                std::initializer_list<std::string_view> extensions) {
     if (file.empty()) return core::Ok{};
     if (const std::string extension = lowerExtension(file);
-        !extension.empty() && extension != ".html" && extension != ".htm")
-        return core::makeError(fmt::format("{}: {}: reports are written as HTML: name it .html, not {}", flag, file,
+        !extension.empty() && std::find(extensions.begin(), extensions.end(), extension) == extensions.end())
+        return core::makeError(fmt::format("{}: {}: {}: name it {}, not {}", flag, file, what, *extensions.begin(),
                                            std::filesystem::path(file).extension().string()));
     return checkWritable(flag, file);
+}
+
+} // namespace
+
+core::Status checkReportWritable(const char* flag, const std::string& file) {
+    return checkNamedWritable(flag, file, "reports are written as HTML", {".html", ".htm"});
+}
+
+core::Status checkJsonWritable(const char* flag, const std::string& file) {
+    return checkNamedWritable(flag, file, "figures are written as JSON", {".json"});
+}
+
+core::Status checkCsvWritable(const char* flag, const std::string& file) {
+    return checkNamedWritable(flag, file, "rows are written as CSV", {".csv"});
 }
 
 core::Status checkPictureWritable(const char* flag, const std::string& file) {

@@ -53,6 +53,10 @@ core::Status checkPictureWritable(const char* flag, const std::string& file);
 // Likewise for a report's page, which is HTML: .html, .htm or no extension (its pictures go beside
 // it under its stem); `--report results.png` would put a page where a picture is looked for.
 core::Status checkReportWritable(const char* flag, const std::string& file);
+// Likewise for figures written as JSON (.json or no extension) and rows written as CSV (.csv or
+// none): `--json results.csv` would hand JSON to whatever opens a CSV by its name.
+core::Status checkJsonWritable(const char* flag, const std::string& file);
+core::Status checkCsvWritable(const char* flag, const std::string& file);
 
 // Writes `text` to `file` whole or not at all (scene::writeFile), an error naming the flag
 // and the file.

@@ -243,6 +243,17 @@ check_fails(eval-report-png-before-the-scene "--report: ${WORK}/report.png: repo
             "${WORK}/garbage.glb" --report "${WORK}/report.png")
 check_fails(bench-report-png-before-the-scene "--report: ${WORK}/bench.PNG: reports are written as HTML" bench
             --scene "${WORK}/garbage.glb" --report "${WORK}/bench.PNG")
+# Figures and rows likewise: JSON under a CSV's name (or the reverse) is refused before the scene
+# is read, and an export's format before the scene is built.
+check_fails(eval-json-csv-before-the-scene "--json: ${WORK}/figures.csv: figures are written as JSON" eval --scene
+            "${WORK}/garbage.glb" --json "${WORK}/figures.csv")
+check_fails(eval-csv-json-before-the-scene "--csv: ${WORK}/rows.json: rows are written as CSV" eval --scene
+            "${WORK}/garbage.glb" --path flythrough --csv "${WORK}/rows.json")
+check_fails(bench-json-txt-before-the-scene "--json: ${WORK}/runs.txt: figures are written as JSON" bench --scene
+            "${WORK}/garbage.glb" --json "${WORK}/runs.txt")
+check_fails(analyze-csv-json "--csv: ${WORK}/curves.JSON: rows are written as CSV" analyze --csv "${WORK}/curves.JSON")
+check_fails(export-format-before-the-scene "--out: ${WORK}/x.fbx: unknown export format" export --scene
+            "${WORK}/garbage.glb" --out "${WORK}/x.fbx")
 if(CASE STREQUAL "analyze-plot-jpg-writes-no-csv")
   file(REMOVE "${WORK}/curves.csv")
   execute_process(COMMAND ${SHADOWKIT} analyze --csv "${WORK}/curves.csv" --plot "${WORK}/curves.jpg" RESULT_VARIABLE rc

@@ -137,11 +137,15 @@ core::Result<Scene> loadScene(const fs::path& file, const LoadOptions& options) 
     return scene;
 }
 
+core::Status checkExportName(const fs::path& file) {
+    if (const std::string ext = lowerExtension(file); ext != ".glb" && ext != ".obj")
+        return core::makeError(file.string() + ": unknown export format (use .glb or .obj)");
+    return core::Ok{};
+}
+
 core::Status exportScene(const Scene& scene, const fs::path& file) {
-    const std::string ext = lowerExtension(file);
-    if (ext == ".glb") return exportGlb(scene, file);
-    if (ext == ".obj") return exportObj(scene, file);
-    return core::makeError(file.string() + ": unknown export format (use .glb or .obj)");
+    if (auto s = checkExportName(file); !s) return s;
+    return lowerExtension(file) == ".glb" ? exportGlb(scene, file) : exportObj(scene, file);
 }
 
 } // namespace shadowkit::scene

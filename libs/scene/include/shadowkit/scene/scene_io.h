@@ -42,5 +42,8 @@ core::Result<Scene> loadScene(const std::filesystem::path& file, const LoadOptio
 // node at wsOrigin when it is not 0) or .obj (every instance baked). The format follows the
 // extension.
 core::Status exportScene(const Scene& scene, const std::filesystem::path& file);
+// Whether exportScene knows the format `file` names: for a command to check before it builds the
+// scene, not after.
+core::Status checkExportName(const std::filesystem::path& file);
 
 } // namespace shadowkit::scene
