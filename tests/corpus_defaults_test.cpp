@@ -56,6 +56,8 @@ const struct {
     {fs::path(SHADOWKIT_SOURCE_DATA_DIR) / ".." / "tests" / "data" / "shapes" / "ship.obj", {}},
     {fs::path(SHADOWKIT_SOURCE_DATA_DIR) / ".." / "tests" / "data" / "shapes" / "town.obj", {}},
     {fs::path(SHADOWKIT_SOURCE_DATA_DIR) / ".." / "tests" / "data" / "shapes" / "tree.gltf", {}},
+    // A pavilion under the sky sphere it ships with, left out as it loads (scene/sky_enclosure.h).
+    {fs::path(SHADOWKIT_SOURCE_DATA_DIR) / ".." / "tests" / "data" / "shapes" / "sky.gltf", {}},
 };
 constexpr double kRatio = 1.5, kSlackPoints = 0.1;
 // 640 × 360: a small model covers a few thousand pixels (Wuson about 8,600 against 2,100 at

@@ -3,11 +3,13 @@
 
   tools/authored_shapes.py [DIR]     (default tests/data/shapes; deterministic: the same bytes every run)
 
-Writes three scenes, each framed by the standard views as a loaded model is (no terrain to stand on):
+Writes four scenes, each framed by the standard views as a loaded model is (no terrain to stand on):
   ship.obj   thin ropes (3 cm) and masts (40 cm, 22 m tall) over a hull on a 300 m sea;
   town.obj   a wide flat town: 17 x 17 houses, 5-9 m high, 50 m apart, on a 1.2 km ground;
   tree.gltf  a single tree: a trunk and 60 alpha-cut leaf cards (MASK, a 32 x 32 texture of round
-             leaves in a data URI) over a 40 m ground.
+             leaves in a data URI) over a 40 m ground;
+  sky.gltf   a pavilion on a 30 m ground under the sky sphere it ships with (1.2 km across, facing in,
+             unlit), which hides every sun from it unless it is left out (scene/sky_enclosure.h).
 docs/reliability.md ("Models we did not make") measures the default against `focused` on them;
 tests/corpus_defaults_test.cpp holds the ship to it.
 """
@@ -174,6 +176,65 @@ def tree(path):
     write_whole(path, json.dumps(scene))
 
 
+def box_triangles(positions, indices, lo, hi):
+    """A box's 12 triangles, counter-clockwise seen from outside."""
+    first = len(positions)
+    positions += [(x, y, z) for x in (lo[0], hi[0]) for y in (lo[1], hi[1]) for z in (lo[2], hi[2])]
+    for a, b, c, d in ((0, 1, 3, 2), (4, 6, 7, 5), (0, 4, 5, 1), (2, 3, 7, 6), (0, 2, 6, 4), (1, 5, 7, 3)):
+        indices += [first + a, first + b, first + c, first + a, first + c, first + d]
+
+
+def sky(path):
+    """A pavilion under the sky sphere it ships with, as game and web assets do: the sky a mesh 1.2 km
+    across, single-sided, facing in, unlit (KHR_materials_unlit) — and, to a shadow map, a caster round
+    everything."""
+    model_positions, model_indices = [], []
+    box_triangles(model_positions, model_indices, (-15, -0.2, -15), (15, 0, 15))  # the ground
+    for x in (-3, 3):
+        for z in (-3, 3):
+            box_triangles(model_positions, model_indices, (x - 0.2, 0, z - 0.2), (x + 0.2, 3, z + 0.2))  # columns
+    box_triangles(model_positions, model_indices, (-3.6, 3, -3.6), (3.6, 3.3, 3.6))  # the roof
+    box_triangles(model_positions, model_indices, (-1.5, 0, -0.3), (1.5, 0.45, 0.3))  # a bench under it
+    sky_positions, sky_indices = [], []
+    rings, segments, radius = 16, 32, 600.0
+    for j in range(rings + 1):
+        polar = math.pi * j / rings
+        for i in range(segments + 1):
+            azimuth = 2 * math.pi * i / segments
+            sky_positions.append((round(radius * math.sin(polar) * math.cos(azimuth), 4), round(radius * math.cos(polar), 4),
+                                  round(radius * math.sin(polar) * math.sin(azimuth), 4)))
+    for j in range(rings):
+        for i in range(segments):
+            a, b = j * (segments + 1) + i, (j + 1) * (segments + 1) + i
+            sky_indices += [a, a + 1, b, a + 1, b + 1, b]  # counter-clockwise seen from inside
+    views = [b"".join(struct.pack("<3f", *p) for p in sky_positions), b"".join(struct.pack("<I", i) for i in sky_indices),
+             b"".join(struct.pack("<3f", *p) for p in model_positions), b"".join(struct.pack("<I", i) for i in model_indices)]
+    offsets = [sum(len(v) for v in views[:k]) for k in range(4)]
+
+    def positions_accessor(view, positions):
+        return {"bufferView": view, "componentType": 5126, "count": len(positions), "type": "VEC3",
+                "min": [min(p[i] for p in positions) for i in range(3)], "max": [max(p[i] for p in positions) for i in range(3)]}
+
+    scene = {
+        "asset": {"version": "2.0", "generator": "shadowkit tools/authored_shapes.py"},
+        "extensionsUsed": ["KHR_materials_unlit"],
+        "scene": 0, "scenes": [{"nodes": [0, 1]}], "nodes": [{"mesh": 0, "name": "sky"}, {"mesh": 1, "name": "pavilion"}],
+        "meshes": [{"name": "sky", "primitives": [{"attributes": {"POSITION": 0}, "indices": 1, "material": 0}]},
+                   {"name": "pavilion", "primitives": [{"attributes": {"POSITION": 2}, "indices": 3, "material": 1}]}],
+        "materials": [{"name": "sky", "extensions": {"KHR_materials_unlit": {}},
+                       "pbrMetallicRoughness": {"baseColorFactor": [0.45, 0.65, 0.95, 1], "metallicFactor": 0}},
+                      {"name": "stone", "pbrMetallicRoughness": {"baseColorFactor": [0.7, 0.68, 0.62, 1]}}],
+        "accessors": [positions_accessor(0, sky_positions),
+                      {"bufferView": 1, "componentType": 5125, "count": len(sky_indices), "type": "SCALAR"},
+                      positions_accessor(2, model_positions),
+                      {"bufferView": 3, "componentType": 5125, "count": len(model_indices), "type": "SCALAR"}],
+        "bufferViews": [{"buffer": 0, "byteOffset": offsets[k], "byteLength": len(views[k])} for k in range(4)],
+        "buffers": [{"byteLength": sum(len(v) for v in views),
+                     "uri": "data:application/octet-stream;base64," + base64.b64encode(b"".join(views)).decode()}],
+    }
+    write_whole(path, json.dumps(scene))
+
+
 def main(args):
     directory = args[0] if args else os.path.join(os.path.dirname(__file__), "..", "tests", "data", "shapes")
     try:
@@ -183,6 +244,7 @@ def main(args):
     ship(os.path.join(directory, "ship.obj"))
     town(os.path.join(directory, "town.obj"))
     tree(os.path.join(directory, "tree.gltf"))
+    sky(os.path.join(directory, "sky.gltf"))
 
 
 if __name__ == "__main__":

@@ -33,6 +33,9 @@ struct SceneOptions {
     // A town of meshes placed once loaded as tiles (scene::LoadOptions::mergeSmallMeshes): what a
     // frame draws. Not a flag: `export` turns it off, to write the file's meshes as they were.
     bool mergeSmallMeshes = true;
+    // A sky sphere or box round a file's model kept, casting its shadow over everything
+    // (scene::LoadOptions::keepSky): left out otherwise.
+    bool keepSky = false;
     // The first of the built-in forest's flags given on the command line (--forest, --seed,
     // --trees, --terrain-size, --terrain-resolution, --movers): with a scene file it would be
     // ignored, so check() and load() refuse it.

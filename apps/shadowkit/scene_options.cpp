@@ -45,6 +45,9 @@ void SceneOptions::addTo(CLI::App& cmd) {
                    "often write z up)")
         ->check(CLI::IsMember({"y", "z"}))
         ->capture_default_str();
+    cmd.add_flag("--keep-sky", keepSky,
+                 "keep a mesh that encloses a scene file's model and hides the whole sky from it (a sky sphere or "
+                 "box), which is left out otherwise: every sun is then behind it");
     cmd.add_option(
         "--world-offset", worldOffset,
         "x,y,z metres: stand the scene and its views this far from the world's origin (large-world precision)");
@@ -74,10 +77,12 @@ scene::ForestOptions forestOptionsOf(const SceneOptions& options) {
 }
 
 // A forest flag given with a scene file would be dropped in silence (no trees, no movers), and
-// so would a file's up axis given with the forest.
+// so would a file's up axis or its sky given with the forest.
 core::Status forestFlagsUnused(const SceneOptions& options) {
     if (options.scene == "forest" && options.sceneUp != "y")
         return core::makeError("--scene-up: a scene file's, and the built-in forest is y-up");
+    if (options.scene == "forest" && options.keepSky)
+        return core::makeError("--keep-sky: a scene file's, and the built-in forest has no sky mesh");
     if (options.scene == "forest" || options.forestFlag.empty()) return core::Ok{};
     return core::makeError(
         fmt::format("{}: the built-in forest's, and --scene draws {} instead", options.forestFlag, options.scene));
@@ -120,7 +125,8 @@ core::Result<scene::Scene> SceneOptions::load(bool verbose, double poseSeconds) 
     } else {
         result = scene::loadScene(scene, {.up = sceneUp == "z" ? scene::UpAxis::Z : scene::UpAxis::Y,
                                           .mergeSmallMeshes = mergeSmallMeshes,
-                                          .poseSeconds = poseSeconds});
+                                          .poseSeconds = poseSeconds,
+                                          .keepSky = keepSky});
         if (!result) return result;
         for (const std::string& warning : result->warnings) warn(warning);
     }

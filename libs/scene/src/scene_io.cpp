@@ -4,6 +4,7 @@
 
 #include "shadowkit/core/camera.h"
 #include "shadowkit/scene/foliage_levels.h"
+#include "shadowkit/scene/sky_enclosure.h"
 
 #include <algorithm>
 #include <cmath>
@@ -131,6 +132,15 @@ core::Result<Scene> loadScene(const fs::path& file, const LoadOptions& options) 
             return core::makeError(file.string() + ": every triangle it places has no area (a point or a line, or " +
                                    "scaled to nothing): nothing to cast or receive a shadow");
     }
+    if (scene && !options.keepSky)
+        for (const SkyEnclosure& sky : leaveOutSkyEnclosures(*scene)) {
+            char metres[96];
+            std::snprintf(metres, sizeof metres, "%.3g m across against the rest's %.3g m", sky.skyMetres,
+                          sky.restMetres);
+            scene->warnings.push_back(file.string() + ": mesh '" + sky.meshName + "' encloses the rest of the scene (" +
+                                      metres + ") and hides the whole sky from it, as a sky sphere or box does: " +
+                                      "left out, or no sun would reach the model (--keep-sky keeps it)");
+        }
     if (scene && options.mergeSmallMeshes) mergeSmallMeshes(*scene);
     // Foliage that brings no levels of its own gets billboard clouds, as the leafy forest's trees.
     if (scene) addFoliageClouds(*scene);

@@ -26,6 +26,9 @@ struct LoadOptions {
     // built, so they are posed at load — a still frame's --time — not played; rigid motion plays
     // at any time (scene::animate).
     double poseSeconds = 0.0;
+    // A sky sphere, dome or box the file brings round the model (sky_enclosure.h) hides every sun
+    // from it: left out, each named in Scene::warnings, unless this keeps it.
+    bool keepSky = false;
 };
 
 // Loads triangles from glTF (a mesh referenced by several nodes becomes one batch with
