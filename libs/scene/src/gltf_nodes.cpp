@@ -170,6 +170,13 @@ std::vector<int> sceneRoots(const tinygltf::Model& model, NodeTrees& trees, cons
 
 // Which materials the primitives of the meshes placed below `roots` use. Each node is met
 // once: checkNodeTrees has made the nodes below the roots trees.
+bool hiddenByItself(const tinygltf::Node& node) {
+    const auto ext = node.extensions.find(kNodeVisibility);
+    if (ext == node.extensions.end() || !ext->second.IsObject() || !ext->second.Has("visible")) return false;
+    const tinygltf::Value& visible = ext->second.Get("visible");
+    return visible.IsBool() && !visible.Get<bool>();
+}
+
 std::vector<bool> materialsPlaced(const tinygltf::Model& model, const std::vector<int>& roots) {
     std::vector<bool> used(model.materials.size(), false);
     std::vector<int> toVisit(roots.begin(), roots.end());
@@ -178,6 +185,7 @@ std::vector<bool> materialsPlaced(const tinygltf::Model& model, const std::vecto
         toVisit.pop_back();
         if (index < 0 || size_t(index) >= model.nodes.size()) continue;
         const tinygltf::Node& node = model.nodes[size_t(index)];
+        if (hiddenByItself(node)) continue; // nothing below it is drawn: its textures are not needed
         if (node.mesh >= 0 && size_t(node.mesh) < model.meshes.size())
             for (const tinygltf::Primitive& primitive : model.meshes[size_t(node.mesh)].primitives)
                 if (primitive.material >= 0 && size_t(primitive.material) < used.size())

@@ -32,7 +32,14 @@ core::Result<NodeTrees> checkNodeTrees(const tinygltf::Model& model, const std::
 std::vector<int> sceneRoots(const tinygltf::Model& model, NodeTrees& trees, const std::filesystem::path& file,
                             std::vector<std::string>& warnings);
 
-/// Which of the file's materials the primitives of the meshes placed below `roots` use.
+/// KHR_node_visibility (ratified): a node whose `visible` is false hides itself and everything
+/// below it — a child cannot show itself again under a hidden parent. A hidden mesh is neither
+/// drawn nor cast, as an engine that reads the extension shows the file; a hidden light is off;
+/// cameras stay.
+inline constexpr const char* kNodeVisibility = "KHR_node_visibility";
+bool hiddenByItself(const tinygltf::Node& node);
+
+/// Which of the file's materials the primitives of the meshes placed and not hidden below `roots` use.
 std::vector<bool> materialsPlaced(const tinygltf::Model& model, const std::vector<int>& roots);
 
 } // namespace shadowkit::scene::formats

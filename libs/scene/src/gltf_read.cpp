@@ -85,14 +85,14 @@ core::Error dracoCompressed(const std::string& subject) {
 
 // Whether shadows can ignore a required extension shadowkit does not read: those that only shade
 // (materials, lights, shader techniques) and those read elsewhere (textures: gltf_materials.cpp;
-// meshopt: gltf_meshopt.cpp; Draco: refused by name). glTF 2.0 (§3.12) lets a loader refuse a
-// file whose required extension it lacks; shadowkit loads what it can and names the rest in a
-// warning, since the shapes such an extension describes may be missing.
+// meshopt: gltf_meshopt.cpp; node visibility: gltf_nodes.cpp; Draco: refused by name). glTF 2.0 (§3.12) lets a loader
+// refuse a file whose required extension it lacks; shadowkit loads what it can and names the rest in a warning, since
+// the shapes such an extension describes may be missing.
 bool knownOrShadingOnly(const std::string& extension) {
     for (const char* prefix : {"KHR_materials_", "KHR_texture_", "EXT_texture_", "KHR_lights_", "KHR_technique"})
         if (extension.starts_with(prefix)) return true;
-    for (const char* known :
-         {"KHR_mesh_quantization", "EXT_meshopt_compression", "KHR_meshopt_compression", kInstancing, kDraco})
+    for (const char* known : {"KHR_mesh_quantization", "EXT_meshopt_compression", "KHR_meshopt_compression",
+                              kInstancing, kDraco, kNodeVisibility})
         if (extension == known) return true;
     return false;
 }
@@ -417,8 +417,9 @@ core::Result<Scene> loadGltf(const fs::path& file, double poseSeconds) {
     // skinned batch is placed at its posed vertices' anchor (applySkin), every other at its nodes.
     std::vector<std::vector<glm::dmat4>> placements;
     std::map<size_t, glm::dvec3> skinnedAt;
-    size_t meshNodesVisited = 0; // nodes of the scene that place a mesh, drawable or not
-    auto visit = [&](auto&& self, int nodeIndex, const glm::dmat4& parent, int depth) -> void {
+    size_t meshNodesVisited = 0;                 // nodes of the scene that place a mesh, drawable or not
+    size_t hiddenNodes = 0, hiddenMeshNodes = 0; // KHR_node_visibility: hidden here, and the mesh nodes at or below
+    auto visit = [&](auto&& self, int nodeIndex, const glm::dmat4& parent, int depth, bool visible) -> void {
         if (failure || nodeIndex < 0 || size_t(nodeIndex) >= model.nodes.size()) return; // a bad root is skipped
         if (depth > kMaxNodeDepth) {
             failure = core::makeError(file.string() + ": the node hierarchy is deeper than " +
@@ -433,8 +434,10 @@ core::Result<Scene> loadGltf(const fs::path& file, double poseSeconds) {
                                       printable(node.name) + "' has a non-finite transform");
             return;
         }
-        readNodeViewpoints(model, nodeIndex, world, file.string(), scene);
-        if (node.mesh >= 0 && size_t(node.mesh) < model.meshes.size()) {
+        if (visible && hiddenByItself(node)) visible = false, ++hiddenNodes;
+        readNodeViewpoints(model, nodeIndex, world, file.string(), visible, scene);
+        if (!visible && node.mesh >= 0) ++hiddenMeshNodes; // nothing to draw or cast, as the file means
+        if (visible && node.mesh >= 0 && size_t(node.mesh) < model.meshes.size()) {
             ++meshNodesVisited;
             const tinygltf::Mesh& gltfMesh = model.meshes[size_t(node.mesh)];
             const std::string nodeName = file.string() + ": node " + std::to_string(nodeIndex) +
@@ -532,16 +535,23 @@ core::Result<Scene> loadGltf(const fs::path& file, double poseSeconds) {
                 }
             }
         }
-        for (int child : node.children) self(self, child, world, depth + 1);
+        for (int child : node.children) self(self, child, world, depth + 1, visible);
         path.pop_back();
     };
-    for (int root : roots) visit(visit, root, glm::dmat4(1.0), 0);
+    for (int root : roots) visit(visit, root, glm::dmat4(1.0), 0, true);
     if (failure) return *failure;
+    if (hiddenNodes > 0)
+        scene.warnings.push_back(
+            file.string() + ": " + std::to_string(hiddenNodes) + (hiddenNodes == 1 ? " node is" : " nodes are") +
+            " hidden (KHR_node_visibility), with everything below: " + std::to_string(hiddenMeshNodes) +
+            (hiddenMeshNodes == 1 ? " mesh" : " meshes") + " left out, neither drawn nor casting");
     placeNearOrigin(scene, placements);
     placeViewpoints(scene);
     animate(scene, poseSeconds); // a moving instance stands where its keys put it then, a deformed mesh as posed
     if (scene.triangleCount() == 0) {
-        // Say which it is: meshes the scene never places, or none that are triangles.
+        // Say which it is: meshes the scene hides or never places, or none that are triangles.
+        if (meshNodesVisited == 0 && hiddenMeshNodes > 0)
+            return core::makeError(file.string() + ": every mesh it places is hidden (KHR_node_visibility)");
         if (meshNodesVisited == 0 && !model.meshes.empty()) {
             const std::string ofScene = model.scenes.empty() ? "" : " of its scene";
             return core::makeError(file.string() + ": " +

@@ -166,7 +166,7 @@ void readLight(const tinygltf::Model& model, const tinygltf::Node& node, const g
 } // namespace
 
 void readNodeViewpoints(const tinygltf::Model& model, int nodeIndex, const glm::dmat4& fileFromNode,
-                        const std::string& file, Scene& scene) {
+                        const std::string& file, bool visible, Scene& scene) {
     const tinygltf::Node& node = model.nodes[size_t(nodeIndex)];
     const std::string where =
         file + ": node " + std::to_string(nodeIndex) + (node.name.empty() ? "" : " '" + printable(node.name) + "'");
@@ -175,7 +175,7 @@ void readNodeViewpoints(const tinygltf::Model& model, int nodeIndex, const glm::
     else if (node.camera >= 0)
         scene.warnings.push_back(where + ": it names camera " + std::to_string(node.camera) + " of " +
                                  std::to_string(model.cameras.size()) + ": left out");
-    readLight(model, node, fileFromNode, where, scene);
+    if (visible) readLight(model, node, fileFromNode, where, scene);
 }
 
 std::vector<int> writeViewpoints(const Scene& scene, tinygltf::Model& model) {

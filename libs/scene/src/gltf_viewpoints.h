@@ -16,9 +16,10 @@ namespace shadowkit::scene::formats {
 /// `fileFromNode` (its global transform, the file's coordinates in double), to `scene.cameras`
 /// and `scene.lights`. Shadows need none of them, so a camera or light that cannot be used —
 /// orthographic, a bad field, a degenerate placement — is one line in `scene.warnings`, never an
-/// error. Positions stay in the file's coordinates until placeViewpoints.
+/// error. Positions stay in the file's coordinates until placeViewpoints. A hidden node
+/// (`visible` false: KHR_node_visibility, which hides lights but not cameras) adds its camera only.
 void readNodeViewpoints(const tinygltf::Model& model, int nodeIndex, const glm::dmat4& fileFromNode,
-                        const std::string& file, Scene& scene);
+                        const std::string& file, bool visible, Scene& scene);
 
 /// Moves the cameras' and lights' positions from the file's coordinates to the scene's, once
 /// placeNearOrigin has set scene.wsOrigin.

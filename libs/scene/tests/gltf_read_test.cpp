@@ -333,6 +333,70 @@ TEST(GltfReadTest, ASceneRootThatIsAChildIsPlacedOnceWhereViewersPlaceIt) {
     expectWarning(*chain, "scene 0 lists node 1 and 398 more as roots below another node it lists");
 }
 
+TEST(GltfReadTest, NodesHiddenByKhrNodeVisibilityPlaceNoMeshAndNoLightButKeepTheirCameras) {
+    // KHR_node_visibility: node 1 hides itself and all below it — node 2 asking to be seen, a
+    // light and a camera. Nodes 0 and 4 place the mesh at x = 0 and 30; node 5 is a light in view.
+    const std::string members =
+        R"("scene":0,"scenes":[{"nodes":[0,1,4,5]}],"extensionsUsed":["KHR_node_visibility","KHR_lights_punctual"],)"
+        R"("extensions":{"KHR_lights_punctual":{"lights":[{"type":"directional"}]}},)"
+        R"("cameras":[{"type":"perspective","perspective":{"yfov":0.8,"znear":0.1}}],)";
+    const std::string nodes =
+        R"({"mesh":0},)"
+        R"({"translation":[10,0,0],"mesh":0,"children":[2,3],"extensions":{"KHR_node_visibility":{"visible":false}}},)"
+        R"({"translation":[10,0,0],"mesh":0,"extensions":{"KHR_node_visibility":{"visible":true}}},)"
+        R"({"camera":0,"extensions":{"KHR_lights_punctual":{"light":0}}},)"
+        R"({"translation":[30,0,0],"mesh":0,"extensions":{"KHR_node_visibility":{"visible":true}}},)"
+        R"({"extensions":{"KHR_lights_punctual":{"light":0}}})";
+    const auto loaded = loadMeshNodes("sk_hidden_nodes.gltf", members, nodes);
+    ASSERT_TRUE(loaded) << loaded.error();
+    std::vector<float> xs;
+    for (const scene::MeshBatch& batch : loaded->batches)
+        for (const glm::mat4& m : batch.worldFromObject) xs.push_back(m[3].x);
+    std::sort(xs.begin(), xs.end());
+    EXPECT_EQ(xs, (std::vector<float>{0.0f, 30.0f})) << "the hidden node and its child place nothing";
+    EXPECT_EQ(loaded->lights.size(), 1u) << "the hidden node's light is off, the one in view on";
+    EXPECT_EQ(loaded->cameras.size(), 1u) << "visibility does not hide cameras";
+    const auto said = std::count_if(loaded->warnings.begin(), loaded->warnings.end(), [](const std::string& w) {
+        return w.find("sk_hidden_nodes.gltf: 1 node is hidden (KHR_node_visibility), with everything below: 2 meshes "
+                      "left out, neither drawn nor casting") != std::string::npos;
+    });
+    EXPECT_EQ(said, 1);
+    // Every mesh hidden: nothing to cast or receive a shadow, said so.
+    const auto none = loadMeshNodes("sk_all_hidden.gltf", R"("scene":0,"scenes":[{"nodes":[1]}],)", nodes);
+    ASSERT_FALSE(none);
+    EXPECT_NE(none.error().find("sk_all_hidden.gltf: every mesh it places is hidden (KHR_node_visibility)"),
+              std::string::npos)
+        << none.error();
+}
+
+TEST(GltfReadTest, AHiddenMeshsTextureIsNotDecodedSoItCannotRefuseTheFile) {
+    // Mesh 1 is masked by a texture that is no image (refused on a MASK material where drawn);
+    // the only node placing it is hidden, so the file loads with mesh 0 alone.
+    std::vector<unsigned char> triangle;
+    append<float>(triangle, {0, 0, 0, 1, 0, 0, 0, 0, -1, /* uvs */ 0, 0, 1, 0, 0, 1});
+    const auto file = [&](const std::string& visibility) {
+        return R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0,1]}],)"
+               R"("nodes":[{"mesh":0},{"mesh":1,"translation":[5,0,0])" +
+               visibility +
+               R"(}],"meshes":[{"primitives":[{"attributes":{"POSITION":0}}]},)"
+               R"({"primitives":[{"attributes":{"POSITION":0,"TEXCOORD_0":1},"material":0}]}],)"
+               R"("materials":[{"alphaMode":"MASK","pbrMetallicRoughness":{"baseColorTexture":{"index":0}}}],)"
+               R"("textures":[{"source":0}],"images":[{"uri":"data:image/png;base64,bm90IGFuIGltYWdl"}],)"
+               R"("accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3"},)"
+               R"({"bufferView":0,"byteOffset":36,"componentType":5126,"count":3,"type":"VEC2"}],)"
+               R"("bufferViews":[{"buffer":0,"byteLength":60}],"buffers":[{"byteLength":60,)"
+               R"("uri":"data:application/octet-stream;base64,)" +
+               base64(triangle) + "\"}]}";
+    };
+    const auto shown = loadWritten("sk_hidden_texture_shown.gltf", file(""));
+    ASSERT_FALSE(shown) << "drawn, the masked mesh's texture must decode";
+    EXPECT_NE(shown.error().find("image 0"), std::string::npos) << shown.error();
+    const auto hidden =
+        loadWritten("sk_hidden_texture.gltf", file(R"(,"extensions":{"KHR_node_visibility":{"visible":false}})"));
+    ASSERT_TRUE(hidden) << hidden.error();
+    EXPECT_EQ(hidden->instanceCount(), 1u);
+}
+
 TEST(GltfReadTest, AFileWithoutASceneShowsEachOfItsRootNodes) {
     // glTF §3.5: a file with no scene is a library; Blender's exporter writes one. Its roots are
     // node 0 (placing node 1's mesh 10 m along x and 5 along z) and node 2; node 1 is a child.
