@@ -947,7 +947,7 @@ if(CASE STREQUAL "gl-scene-in-its-sky")
     execute_process(COMMAND ${SHADOWKIT} render --scene "${file}" ${keep} --view paper --size 32x18 --map-size 256
                             --out "${WORK}/sky${keep}.png"
                     RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-    string(REGEX MATCHALL "[^\n]*mesh 'sky' encloses the rest of the scene[^\n]*--keep-sky keeps it[^\n]*" warned "${err}")
+    string(REGEX MATCHALL "[^\n]*mesh 'sky' encloses the rest of the scene[^\n]*--keep-sky, keeps it[^\n]*" warned "${err}")
     list(LENGTH warned n)
     if(keep STREQUAL "")
       set(expected_warnings 1)

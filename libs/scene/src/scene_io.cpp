@@ -137,9 +137,10 @@ core::Result<Scene> loadScene(const fs::path& file, const LoadOptions& options) 
             char metres[96];
             std::snprintf(metres, sizeof metres, "%.3g m across against the rest's %.3g m", sky.skyMetres,
                           sky.restMetres);
-            scene->warnings.push_back(file.string() + ": mesh '" + sky.meshName + "' encloses the rest of the scene (" +
-                                      metres + ") and hides the whole sky from it, as a sky sphere or box does: " +
-                                      "left out, or no sun would reach the model (--keep-sky keeps it)");
+            const std::string mesh = sky.meshName.empty() ? "a mesh" : "mesh '" + printable(sky.meshName) + "'";
+            scene->warnings.push_back(file.string() + ": " + mesh + " encloses the rest of the scene (" + metres +
+                                      ") and hides the whole sky from it, as a sky sphere or box does: left out, or " +
+                                      "no sun would reach the model (LoadOptions::keepSky, --keep-sky, keeps it)");
         }
     if (scene && options.mergeSmallMeshes) mergeSmallMeshes(*scene);
     // Foliage that brings no levels of its own gets billboard clouds, as the leafy forest's trees.

@@ -2,6 +2,8 @@
 // rest of the scene, found by rays from the top of the rest towards every sun the sky could hold.
 #include "shadowkit/scene/sky_enclosure.h"
 
+#include "shadowkit/core/conventions.h"
+
 #include <glm/gtc/constants.hpp>
 
 #include <algorithm>
@@ -95,8 +97,9 @@ std::vector<SkyEnclosure> findSkyEnclosures(const Scene& scene) {
     for (uint32_t b = 0; b < scene.batches.size(); ++b)
         for (uint32_t i = 0; i < scene.batches[b].worldFromObject.size(); ++i) refs.push_back({b, i});
 
-    // Only the largest instance left can be kSkyExtentRatio times the rest across, which holds the next
-    // largest: the outermost sky first, then the next within it, until the largest is no sky.
+    // Only the largest instance left can be kSkyExtentRatio times the rest across (the rest holds
+    // the next largest): the outermost sky first, then the next within it, until the largest is
+    // no sky. Each round is one pass over the boxes; the rays run only where a mesh encloses.
     std::vector<bool> left(boxes.size(), true);
     std::vector<SkyEnclosure> skies;
     for (;;) {
@@ -156,8 +159,14 @@ std::vector<SkyEnclosure> leaveOutSkyEnclosures(Scene& scene) {
     scene.batches = std::move(batches);
     scene.meshes = std::move(meshes);
     // Tracks and deformations move dynamic batches, which are never a sky: each keeps its batch.
-    for (Track& track : scene.tracks) track.batch = batchAt[track.batch];
-    for (MeshDeformation& deformation : scene.deformations) deformation.batch = batchAt[deformation.batch];
+    for (Track& track : scene.tracks) {
+        SK_ASSERT(batchAt[track.batch] != UINT32_MAX, "leaveOutSkyEnclosures(): a track's batch was left out");
+        track.batch = batchAt[track.batch];
+    }
+    for (MeshDeformation& deformation : scene.deformations) {
+        SK_ASSERT(batchAt[deformation.batch] != UINT32_MAX, "leaveOutSkyEnclosures(): a deformed batch was left out");
+        deformation.batch = batchAt[deformation.batch];
+    }
     return skies;
 }
 
