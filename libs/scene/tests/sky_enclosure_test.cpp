@@ -106,7 +106,7 @@ TEST(SkyEnclosureTest, ASkySphereDomeOrBoxRoundAModelIsLeftOutAndTheModelStays) 
             addBox(ground, glm::translate(glm::mat4(1.0f), {0, -50.1f, 0}), {30, 50, 30}, glm::vec3(0.5f));
             place(model, std::move(ground));
         }
-        std::vector<std::string> names = meshNames(model);
+        const std::vector<std::string> names = meshNames(model);
         const std::string name = c.sky.name;
         // The sky first, as exporters often write it: the batches after it move down.
         Scene scene;
