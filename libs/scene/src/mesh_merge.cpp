@@ -100,32 +100,19 @@ void mergeSmallMeshes(Scene& scene) {
         }
     }
 
-    // The batches left as they were, in their order, with the meshes they use, then a batch a tile.
-    struct {
-        std::vector<Mesh> meshes;
-        std::vector<MeshBatch> batches;
-    } kept;
-    std::vector<int64_t> meshAt(scene.meshes.size(), -1);
-    std::vector<uint32_t> keptAt(scene.batches.size(), UINT32_MAX); // a dynamic batch is never merged
+    // The batches left as they were, in their order, then a batch a tile; the meshes only merged go.
+    std::vector<MeshBatch> kept;
+    std::vector<uint32_t> batchAt(scene.batches.size(), UINT32_MAX); // a dynamic batch is never merged
     for (size_t b = 0; b < scene.batches.size(); ++b) {
         if (merged[b]) continue;
-        keptAt[b] = uint32_t(kept.batches.size());
-        MeshBatch batch = std::move(scene.batches[b]);
-        if (meshAt[batch.mesh] < 0) {
-            meshAt[batch.mesh] = int64_t(kept.meshes.size());
-            kept.meshes.push_back(std::move(scene.meshes[batch.mesh]));
-        }
-        batch.mesh = uint32_t(meshAt[batch.mesh]);
-        kept.batches.push_back(std::move(batch));
+        batchAt[b] = uint32_t(kept.size());
+        kept.push_back(std::move(scene.batches[b]));
     }
     for (Mesh& tile : tiles) {
-        kept.meshes.push_back(std::move(tile));
-        kept.batches.push_back({uint32_t(kept.meshes.size() - 1), {glm::mat4(1.0f)}, false});
+        scene.meshes.push_back(std::move(tile));
+        kept.push_back({uint32_t(scene.meshes.size() - 1), {glm::mat4(1.0f)}, false});
     }
-    scene.meshes = std::move(kept.meshes);
-    scene.batches = std::move(kept.batches);
-    for (Track& track : scene.tracks) track.batch = keptAt[track.batch]; // a file's animated instances
-    for (MeshDeformation& deformation : scene.deformations) deformation.batch = keptAt[deformation.batch];
+    scene.replaceBatches(std::move(kept), batchAt);
 }
 
 } // namespace shadowkit::scene::formats

@@ -82,6 +82,28 @@ bool Scene::deforms(uint32_t mesh) const {
     });
 }
 
+void Scene::replaceBatches(std::vector<MeshBatch> kept, std::span<const uint32_t> batchAt) {
+    SK_ASSERT(batchAt.size() == batches.size(), "Scene::replaceBatches(): one place for every batch");
+    std::vector<Mesh> drawn;
+    std::vector<uint32_t> meshAt(meshes.size(), UINT32_MAX);
+    for (MeshBatch& batch : kept) {
+        if (meshAt[batch.mesh] == UINT32_MAX) {
+            meshAt[batch.mesh] = uint32_t(drawn.size());
+            drawn.push_back(std::move(meshes[batch.mesh]));
+        }
+        batch.mesh = meshAt[batch.mesh];
+    }
+    const auto follow = [&](uint32_t& batch, const char* what) {
+        SK_ASSERT(batch < batchAt.size() && batchAt[batch] != UINT32_MAX, what);
+        batch = batchAt[batch];
+    };
+    for (Track& track : tracks) follow(track.batch, "Scene::replaceBatches(): a track's batch is gone");
+    for (MeshDeformation& deformation : deformations)
+        follow(deformation.batch, "Scene::replaceBatches(): a deformed batch is gone");
+    meshes = std::move(drawn);
+    batches = std::move(kept);
+}
+
 double Scene::groundHeightAt(double x, double z) const {
     if (terrain) return terrain->heightAt(x, z);
     // Loaded scenes: the highest upward-facing surface straight below the sky at (x, z),

@@ -153,36 +153,21 @@ std::vector<SkyEnclosure> leaveOutSkyEnclosures(Scene& scene) {
     for (size_t b = 0; b < scene.batches.size(); ++b) dropped[b].assign(scene.batches[b].worldFromObject.size(), false);
     for (const SkyEnclosure& sky : skies) dropped[sky.instance.batch][sky.instance.instance] = true;
 
-    // The batches that keep an instance, in their order, with the meshes they draw.
-    std::vector<MeshBatch> batches;
-    std::vector<Mesh> meshes;
-    std::vector<uint32_t> batchAt(scene.batches.size(), UINT32_MAX), meshAt(scene.meshes.size(), UINT32_MAX);
+    // The batches that keep an instance, in their order. Tracks and deformations move dynamic
+    // batches, which are never a sky: replaceBatches asserts that each keeps its batch.
+    std::vector<MeshBatch> kept;
+    std::vector<uint32_t> batchAt(scene.batches.size(), UINT32_MAX);
     for (size_t b = 0; b < scene.batches.size(); ++b) {
         MeshBatch& batch = scene.batches[b];
-        std::vector<glm::mat4> kept;
+        std::vector<glm::mat4> instances;
         for (size_t i = 0; i < batch.worldFromObject.size(); ++i)
-            if (!dropped[b][i]) kept.push_back(batch.worldFromObject[i]);
-        if (kept.empty()) continue;
-        batch.worldFromObject = std::move(kept);
-        if (meshAt[batch.mesh] == UINT32_MAX) {
-            meshAt[batch.mesh] = uint32_t(meshes.size());
-            meshes.push_back(std::move(scene.meshes[batch.mesh]));
-        }
-        batch.mesh = meshAt[batch.mesh];
-        batchAt[b] = uint32_t(batches.size());
-        batches.push_back(std::move(batch));
+            if (!dropped[b][i]) instances.push_back(batch.worldFromObject[i]);
+        if (instances.empty()) continue;
+        batch.worldFromObject = std::move(instances);
+        batchAt[b] = uint32_t(kept.size());
+        kept.push_back(std::move(batch));
     }
-    scene.batches = std::move(batches);
-    scene.meshes = std::move(meshes);
-    // Tracks and deformations move dynamic batches, which are never a sky: each keeps its batch.
-    for (Track& track : scene.tracks) {
-        SK_ASSERT(batchAt[track.batch] != UINT32_MAX, "leaveOutSkyEnclosures(): a track's batch was left out");
-        track.batch = batchAt[track.batch];
-    }
-    for (MeshDeformation& deformation : scene.deformations) {
-        SK_ASSERT(batchAt[deformation.batch] != UINT32_MAX, "leaveOutSkyEnclosures(): a deformed batch was left out");
-        deformation.batch = batchAt[deformation.batch];
-    }
+    scene.replaceBatches(std::move(kept), batchAt);
     return skies;
 }
 

@@ -14,6 +14,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -150,6 +151,12 @@ struct Scene {
     bool animated() const { return !tracks.empty() || !deformations.empty(); }
     // Whether animate() reshapes meshes[mesh] (a deformation's batch draws it).
     bool deforms(uint32_t mesh) const;
+
+    // Puts `kept` in place of the batches, each naming its mesh by its index in `meshes` as they
+    // stand (meshes appended for them first included), and drops the meshes none of them draws;
+    // the rest keep the order in which `kept` first draws them. `batchAt[b]` is where batch b went,
+    // UINT32_MAX where it is gone: tracks and deformations follow their batches, which must stay.
+    void replaceBatches(std::vector<MeshBatch> kept, std::span<const uint32_t> batchAt);
 
     // Bounds of every instance (empty box for an empty scene): in the world, and in the scene's own coordinates.
     core::Aabb wsBounds() const;
