@@ -223,8 +223,19 @@ core::Status ViewOptions::checkFlags() const {
     if (!size.empty())
         if (auto wh = parseSize(size); !wh) return wh.errorInfo();
     for (const auto& [flag, text] : {std::pair{"--eye", &eye}, {"--dir", &dir}, {"--up", &up}})
-        if (!text->empty())
-            if (auto v = parseVec3(flag, *text); !v) return v.errorInfo();
+        if (!text->empty()) {
+            auto v = parseVec3(flag, *text);
+            if (!v) return v.errorInfo();
+            if (flag != std::string_view("--eye") && glm::length(*v) < 1e-12)
+                return core::makeError(fmt::format("{}: must not be the zero vector, got '{}'", flag, *text));
+        }
+    if (fov && !(*fov > 0.0 && *fov < 180.0)) // NaN-safe
+        return core::makeError(fmt::format("--fov: must be in (0, 180) degrees, got {}", *fov));
+    for (const auto& [flag, metres] : {std::pair{"--near", zNear}, {"--far", zFar}})
+        if (metres && !(*metres > 0.0 && std::isfinite(*metres)))
+            return core::makeError(fmt::format("{}: must be a distance > 0 in metres, got {}", flag, *metres));
+    if (zNear && zFar && !(*zNear < *zFar))
+        return core::makeError(fmt::format("--near {} must be less than --far {}", *zNear, *zFar));
     if (sun != "off" && sun != "on" && !sun.empty()) {
         if (sunElevation || sunAzimuth)
             return core::makeError("--sun: give either --sun or --sun-elevation/--sun-azimuth, not both");
@@ -290,7 +301,8 @@ core::Result<scene::ResolvedView> ViewOptions::resolve(const scene::Scene& scene
     }
     if (zNear) cam.zNear = *zNear;
     if (zFar) cam.zFar = *zFar;
-    if (core::Status s = cam.validate(); !s) return s.errorInfo();
+    if (core::Status s = cam.validate(); !s) // a flag against the view's own camera: --far within its near plane
+        return core::makeError(fmt::format("view {} with --eye/--dir/--up/--near/--far: {}", view, s.error()));
 
     if (sun == "off" || sun == "on") {
         out.sun = sun == "on";

@@ -77,8 +77,13 @@ check_fails(bad-visible-depth "--visible-depth" setup ${small} --visible-depth 5
 check_fails(bad-lispsm-weight "--lispsm-weight" setup ${small} --lispsm-weight 0)
 check_fails(bad-cascades "--cascades" setup ${small} --technique csm --cascades 9)
 check_fails(bad-splits "--splits" setup ${small} --technique csm --cascades 2 --near 1 --far 100 --splits 1,50,90)
-check_fails(near-ge-far "near" setup ${small} --near 10 --far 5)
-check_fails(bad-fov "fov" setup ${small} --fov 0)
+check_fails(near-ge-far "--near 10 must be less than --far 5" setup ${small} --near 10 --far 5)
+check_fails(bad-fov "--fov: must be in (0, 180) degrees, got 0" setup ${small} --fov 0)
+check_fails(zero-direction "--dir: must not be the zero vector" setup ${small} --dir 0,0,0)
+check_fails(negative-far "--far: must be a distance > 0 in metres, got -1" setup ${small} --far -1)
+# A plane the flags set against one the view set: the framed model's near plane lies past --far 1.
+check_fails(far-within-framed-near "view perpendicular with --eye/--dir/--up/--near/--far: camera near/far: near must be < far"
+  render --scene "${source_dir}/tests/data/shapes/sky.gltf" --size 64x36 --far 1 --out "${WORK}/never.png")
 check_fails(bad-size "--size" setup ${small} --size 0x100)
 check_fails(bad-bounds "--scene-bounds" setup --scene-bounds 1,2,3)
 check_fails(inverted-bounds "min must not exceed" setup --scene-bounds 1,1,1,0,0,0)

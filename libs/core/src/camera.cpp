@@ -3,9 +3,21 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 namespace shadowkit::core {
+
+namespace {
+
+// A number as a reader writes it: 14.4, 0, 1e+06 (std::to_string gives 14.434341, 0.000000).
+std::string shortNumber(double x) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.4g", x);
+    return text;
+}
+
+} // namespace
 
 Status PerspectiveCamera::validate() const {
     if (!isFinite(wsEye)) return makeError("camera eye: must be finite");
@@ -16,13 +28,12 @@ Status PerspectiveCamera::validate() const {
     if (glm::length(glm::cross(glm::normalize(wsDirection), glm::normalize(wsUp))) < 1e-6)
         return makeError("camera up: must not be parallel to the view direction");
     if (!(fovYDegrees > 0.0 && fovYDegrees < 180.0)) // NaN-safe
-        return makeError("camera fov: must be in (0, 180) degrees, got " + std::to_string(fovYDegrees));
+        return makeError("camera fov: must be in (0, 180) degrees, got " + shortNumber(fovYDegrees));
     if (!(aspect > 0.0 && std::isfinite(aspect))) return makeError("camera aspect: must be > 0");
-    if (!(zNear > 0.0 && std::isfinite(zNear)))
-        return makeError("camera near: must be > 0, got " + std::to_string(zNear));
+    if (!(zNear > 0.0 && std::isfinite(zNear))) return makeError("camera near: must be > 0, got " + shortNumber(zNear));
     if (!(zFar > zNear && std::isfinite(zFar)))
-        return makeError("camera near/far: near must be < far (near " + std::to_string(zNear) + ", far " +
-                         std::to_string(zFar) + ")");
+        return makeError("camera near/far: near must be < far (near " + shortNumber(zNear) + ", far " +
+                         shortNumber(zFar) + ")");
     return Ok{};
 }
 
