@@ -78,6 +78,48 @@ scene::Scene objCheckerCardScene(const std::filesystem::path& dir) {
     return loaded ? std::move(*loaded) : scene::Scene{};
 }
 
+// The same card and ground as a glTF whose card is glass (KHR_materials_transmission, an
+// opaque material): clear where its transmission texture's red is 255 (the checker's open
+// squares), stopping all light where it is 0. Written to `dir`, loaded back.
+scene::Scene gltfGlassCardScene(const std::filesystem::path& dir) {
+    std::filesystem::create_directories(dir);
+    scene::Image transmission = checkerImage();
+    for (size_t i = 0; i < transmission.rgba.size(); i += 4) {
+        transmission.rgba[i] = uint8_t(255 - transmission.rgba[i + 3]); // covered squares let nothing through
+        transmission.rgba[i + 3] = 255;
+    }
+    EXPECT_TRUE(scene::writePng(transmission, dir / "transmission.png"));
+    // Ground (y = 0.01, 24 m) then the card (x = 0, z from +2 to −2, y from 0.5 to 4.5), with
+    // the card's uvs as cardScene lays them: u from z = +2, v from the top edge down.
+    const float positions[] = {-12, 0.01f, 12, 12, 0.01f, 12, 12, 0.01f, -12, -12, 0.01f, -12,
+                               0,   0.5f,  2,  0,  0.5f,  -2, 0,  4.5f,  -2,  0,   4.5f,  2};
+    const float uvs[] = {0, 1, 1, 1, 1, 0, 0, 0};
+    const uint16_t indices[] = {0, 1, 2, 0, 2, 3};
+    std::ofstream bin(dir / "card.bin", std::ios::binary);
+    bin.write(reinterpret_cast<const char*>(positions), sizeof positions);
+    bin.write(reinterpret_cast<const char*>(uvs), sizeof uvs);
+    bin.write(reinterpret_cast<const char*>(indices), sizeof indices);
+    bin.close();
+    std::ofstream(dir / "card.gltf")
+        << R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0,1]}],"nodes":[{"mesh":0},{"mesh":1}],)"
+           R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":3,"material":0}]},)"
+           R"({"primitives":[{"attributes":{"POSITION":1,"TEXCOORD_0":2},"indices":3,"material":1}]}],)"
+           R"("materials":[{"name":"ground","doubleSided":true,"pbrMetallicRoughness":{"baseColorFactor":[0.7,0.7,0.7,1]}},)"
+           R"({"name":"glass","doubleSided":true,"pbrMetallicRoughness":{"baseColorFactor":[1,1,1,1]},)"
+           R"("extensions":{"KHR_materials_transmission":{"transmissionFactor":1,"transmissionTexture":{"index":0}}}}],)"
+           R"("textures":[{"source":0}],"images":[{"uri":"transmission.png"}],)"
+           R"("accessors":[{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3","min":[-12,0.01,-12],"max":[12,0.01,12]},)"
+           R"({"bufferView":0,"byteOffset":48,"componentType":5126,"count":4,"type":"VEC3","min":[0,0.5,-2],"max":[0,4.5,2]},)"
+           R"({"bufferView":1,"componentType":5126,"count":4,"type":"VEC2"},)"
+           R"({"bufferView":2,"componentType":5123,"count":6,"type":"SCALAR"}],)"
+           R"("bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":96},{"buffer":0,"byteOffset":96,"byteLength":32},)"
+           R"({"buffer":0,"byteOffset":128,"byteLength":12}],)"
+           R"("buffers":[{"byteLength":140,"uri":"card.bin"}],"extensionsUsed":["KHR_materials_transmission"]})";
+    auto loaded = scene::loadScene(dir / "card.gltf");
+    EXPECT_TRUE(loaded) << loaded.error();
+    return loaded ? std::move(*loaded) : scene::Scene{};
+}
+
 // The card as a canopy seen from afar: 200 round leaves of 5 cm (radius 3 texels of 256²)
 // covering about a quarter of it, a pattern far finer than a coarse map's texels.
 scene::Scene leafyCardScene() {
@@ -173,6 +215,18 @@ protected:
         return a;
     }
 
+    // A card loaded from a file (ground and card, two meshes) casts the checker, in the truth on
+    // every pixel and in the maps up to a few texels of aliasing along the squares' edges.
+    static void expectTheCheckerShadow(const scene::Scene& s) {
+        ASSERT_EQ(s.meshes.size(), 2u);
+        const Agreement a = measureCard(s, core::Technique::Focused);
+        const int pixels = a.covered + a.open;
+        ASSERT_GT(a.covered, 150);
+        ASSERT_GT(a.open, 150);
+        EXPECT_EQ(a.truthAgrees, pixels);
+        EXPECT_GT(a.glAgrees, 0.97 * pixels);
+    }
+
     // The same under a lamp above and in front of the card (the sun off): a point light's cube
     // or a spot light's map, read from the measurer's per-light classes.
     static Agreement measureCardUnderLamp(const scene::Scene& s, bool spot) {
@@ -247,14 +301,15 @@ TEST_F(AlphaShadowsTest, TheSameCardOpaqueCastsOneSolidShadowAndBlendCastsAsMask
 TEST_F(AlphaShadowsTest, AnObjCardCutByItsMapDCastsTheCheckerShadowToo) {
     // Until OBJ materials read map_d, this card cast its whole square in the maps and the truth.
     const auto dir = shadowkit::test_support::scratchDir() / "alpha_shadows_obj";
-    const scene::Scene s = objCheckerCardScene(dir);
-    ASSERT_EQ(s.meshes.size(), 2u);
-    const Agreement a = measureCard(s, core::Technique::Focused);
-    const int pixels = a.covered + a.open;
-    ASSERT_GT(a.covered, 150);
-    ASSERT_GT(a.open, 150);
-    EXPECT_EQ(a.truthAgrees, pixels);
-    EXPECT_GT(a.glAgrees, 0.97 * pixels);
+    expectTheCheckerShadow(objCheckerCardScene(dir));
+    std::filesystem::remove_all(dir);
+}
+
+TEST_F(AlphaShadowsTest, AGlassCardLetsTheSunThroughWhereItsTransmissionTextureSays) {
+    // Until KHR_materials_transmission was read, this glass cast its whole square in the maps
+    // and in the truth alike (every window kept the sun out of its room).
+    const auto dir = shadowkit::test_support::scratchDir() / "alpha_shadows_glass";
+    expectTheCheckerShadow(gltfGlassCardScene(dir));
     std::filesystem::remove_all(dir);
 }
 

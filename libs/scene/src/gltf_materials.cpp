@@ -4,11 +4,13 @@
 // one warning where its material is opaque (shadows never read an opaque colour) and refused
 // where the material's alpha matters.
 #include "gltf_materials.h"
+#include "gltf_transmission.h"
 #include "scene_formats.h"
 
 #include "shadowkit/scene/image.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <map>
 #include <optional>
@@ -26,9 +28,6 @@ std::string imageName(const std::string& file, int index, const tinygltf::Image&
     return file + ": image " + std::to_string(index) +
            (label.empty() || label.starts_with("data:") ? "" : " '" + label + "'");
 }
-
-// Decoded texels of all a file's textures, at most: 1 GiB.
-constexpr size_t kMaxTextureBytes = size_t(1) << 30;
 
 TextureWrap wrapOf(int gltfWrap) {
     return gltfWrap == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE     ? TextureWrap::ClampToEdge
@@ -83,8 +82,29 @@ std::vector<int> textureSources(const tinygltf::Texture& texture) {
     return sources;
 }
 
-// A texture with its sampler, from the first of its sources that decodes; else the first
-// source's failure.
+} // namespace
+
+// KHR_texture_transform on a texture reference: uv' = T · R · S · uv (the extension's order),
+// or nullopt when there is none.
+std::optional<glm::mat3> textureTransform(const tinygltf::TextureInfo& info) {
+    const auto ext = info.extensions.find("KHR_texture_transform");
+    if (ext == info.extensions.end() || !ext->second.IsObject()) return std::nullopt;
+    const tinygltf::Value& v = ext->second;
+    auto number = [&](const char* key, int i, double fallback) {
+        const tinygltf::Value& a = v.Get(key);
+        if (!a.IsArray() || int(a.ArrayLen()) <= i || !a.Get(i).IsNumber()) return fallback;
+        return a.Get(i).GetNumberAsDouble();
+    };
+    const double rotation = v.Get("rotation").IsNumber() ? v.Get("rotation").GetNumberAsDouble() : 0.0;
+    const glm::dmat3 translate(1, 0, 0, 0, 1, 0, number("offset", 0, 0.0), number("offset", 1, 0.0), 1);
+    const double c = std::cos(rotation), s = std::sin(rotation);
+    const glm::dmat3 rotate(c, -s, 0, s, c, 0, 0, 0, 1); // columns: the extension's matrix transposed
+    const glm::dmat3 scale(number("scale", 0, 1.0), 0, 0, 0, number("scale", 1, 1.0), 0, 0, 0, 1);
+    const glm::mat3 m(translate * rotate * scale);
+    if (!core::isFinite(glm::dmat4(glm::dmat3(m)))) return std::nullopt;
+    return m;
+}
+
 core::Result<Texture> readTexture(const tinygltf::Model& model, const fs::path& file, int textureIndex,
                                   const ImageContext& images) {
     const tinygltf::Texture& texture = model.textures[size_t(textureIndex)];
@@ -113,6 +133,8 @@ core::Result<Texture> readTexture(const tinygltf::Model& model, const fs::path& 
     }
     return decoded;
 }
+
+namespace {
 
 // The largest alpha of an image's texels, in [0, 1].
 float maxAlpha(const Image& image) {
@@ -190,9 +212,19 @@ core::Status readMaterials(const tinygltf::Model& model, const fs::path& file, c
                                          "; its opaque materials are drawn untextured");
             }
         }
+        // Glass: the light it lets through taken out of its alpha (gltf_transmission.cpp).
+        std::optional<std::string> transmits;
+        auto transmission = readTransmission(model, in, where);
+        if (!transmission) return transmission.errorInfo();
+        if (*transmission && (*transmission)->factor > 0.0) {
+            auto said = applyTransmission(model, file, images, in, **transmission, out, scene, textureBytes);
+            if (!said) return said.errorInfo();
+            transmits = std::move(*said);
+        }
         // A mask whose alpha never reaches its cutoff covers nothing: the meshes wearing it
         // vanish from every pass (a BLEND factor of 0.12, as a glass pane may be authored,
         // cast as MASK at 0.5). Say so rather than leave an empty picture unexplained.
+        bool cutWhole = false;
         if (out.alphaMode != AlphaMode::Opaque) {
             float textureAlpha = 1.0f;
             if (out.baseColorTexture >= 0) {
@@ -201,7 +233,8 @@ core::Status readMaterials(const tinygltf::Model& model, const fs::path& file, c
                 textureAlpha = at->second;
             }
             const float alpha = out.baseColorFactor.a * textureAlpha;
-            if (alpha < out.alphaCutoff) {
+            cutWhole = alpha < out.alphaCutoff;
+            if (cutWhole && !transmits) {
                 char figures[96];
                 std::snprintf(figures, sizeof figures, "its alpha is at most %.3g, below its cutoff %.3g", alpha,
                               out.alphaCutoff);
@@ -209,6 +242,10 @@ core::Status readMaterials(const tinygltf::Model& model, const fs::path& file, c
                                          ": " + figures + ": cut away whole, it is neither drawn nor cast");
             }
         }
+        if (transmits)
+            scene.warnings.push_back(
+                where + ": " + *transmits +
+                (cutWhole ? "; here everywhere: cut away whole, it is neither drawn nor cast" : ""));
         scene.materials.push_back(std::move(out));
     }
     return core::Ok{};

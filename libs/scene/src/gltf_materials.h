@@ -9,6 +9,7 @@
 
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,18 @@ bool loadImage(tinygltf::Image* image, int index, std::string* err, std::string*
 // neither read nor checked: a spare material in a library of them must not refuse the scene.
 core::Status readMaterials(const tinygltf::Model& model, const std::filesystem::path& file, const ImageContext& images,
                            const std::vector<bool>& used, Scene& scene);
+
+// KHR_texture_transform on a texture reference: uv' = T · R · S · uv (the extension's order),
+// or nullopt when there is none.
+std::optional<glm::mat3> textureTransform(const tinygltf::TextureInfo& info);
+
+// A texture with its sampler, from the first of its sources that decodes; else the first
+// source's failure.
+core::Result<Texture> readTexture(const tinygltf::Model& model, const std::filesystem::path& file, int textureIndex,
+                                  const ImageContext& images);
+
+// Decoded texels of all a file's textures, at most: 1 GiB.
+constexpr size_t kMaxTextureBytes = size_t(1) << 30;
 
 // `count` elements of `elementSize` bytes every `stride` bytes from `offset` in view
 // `viewIndex`: the first byte, or an error when any of it lies outside the view or its buffer.

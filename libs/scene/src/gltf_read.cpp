@@ -46,6 +46,7 @@
 #include "gltf_meshopt.h"
 #include "gltf_nodes.h"
 #include "gltf_pose.h"
+#include "gltf_transmission.h"
 #include "gltf_viewpoints.h"
 #include "scene_formats.h"
 
@@ -114,27 +115,6 @@ std::vector<uint32_t> triangleList(int mode, const std::vector<uint32_t>& sequen
             list.insert(list.end(), {sequence[i], sequence[i + 2], sequence[i + 1]}); // keeps the winding
     }
     return list;
-}
-
-// KHR_texture_transform on a texture reference: uv' = T · R · S · uv (the extension's order),
-// or nullopt when there is none.
-std::optional<glm::mat3> textureTransform(const tinygltf::TextureInfo& info) {
-    const auto ext = info.extensions.find("KHR_texture_transform");
-    if (ext == info.extensions.end() || !ext->second.IsObject()) return std::nullopt;
-    const tinygltf::Value& v = ext->second;
-    auto number = [&](const char* key, int i, double fallback) {
-        const tinygltf::Value& a = v.Get(key);
-        if (!a.IsArray() || int(a.ArrayLen()) <= i || !a.Get(i).IsNumber()) return fallback;
-        return a.Get(i).GetNumberAsDouble();
-    };
-    const double rotation = v.Get("rotation").IsNumber() ? v.Get("rotation").GetNumberAsDouble() : 0.0;
-    const glm::dmat3 translate(1, 0, 0, 0, 1, 0, number("offset", 0, 0.0), number("offset", 1, 0.0), 1);
-    const double c = std::cos(rotation), s = std::sin(rotation);
-    const glm::dmat3 rotate(c, -s, 0, s, c, 0, 0, 0, 1); // columns: the extension's matrix transposed
-    const glm::dmat3 scale(number("scale", 0, 1.0), 0, 0, 0, number("scale", 1, 1.0), 0, 0, 0, 1);
-    const glm::mat3 m(translate * rotate * scale);
-    if (!core::isFinite(glm::dmat4(glm::dmat3(m)))) return std::nullopt;
-    return m;
 }
 
 // A primitive this much of whose triangles wind against their normals is said to be inside out.
@@ -206,17 +186,17 @@ core::Result<Mesh> convertPrimitive(const tinygltf::Model& model, const tinygltf
                                ", which shadowkit does not read: it is cut by its texture and factor alone");
         }
     }
-    if (material && material->pbrMetallicRoughness.baseColorTexture.index >= 0) {
+    if (const std::optional<TextureUse> cut = material ? cuttingTexture(model, *material) : std::nullopt) {
         // The texture's coordinates, with KHR_texture_transform applied once here.
-        const tinygltf::TextureInfo& info = material->pbrMetallicRoughness.baseColorTexture;
+        const tinygltf::TextureInfo& info = cut->info;
         const std::string set = "TEXCOORD_" + std::to_string(info.texCoord);
         const auto t = prim.attributes.find(set);
         const std::string missing =
-            where + ": its material's base colour texture reads " + set + ", which the primitive does not have";
+            where + ": its material's " + cut->label + " reads " + set + ", which the primitive does not have";
         const bool opaque = material->alphaMode != "MASK" && material->alphaMode != "BLEND";
         if (t == prim.attributes.end() && !opaque) return core::makeError(missing);
         if (t == prim.attributes.end()) {
-            warnings.push_back(missing + "; its texture's first texel colours it");
+            warnings.push_back(missing + "; its texture's first texel is read all over it");
         } else {
             auto uvs = AccessorReader::open(model, t->second, where + " " + set);
             if (!uvs) return uvs.errorInfo();

@@ -349,6 +349,135 @@ TEST_F(MaterialsTest, AMaskWhoseAlphaNeverReachesItsCutoffIsNamedInAWarning) {
     EXPECT_TRUE(warningsOf(R"({"pbrMetallicRoughness":{"baseColorFactor":[1,1,1,0.1]}})").empty());
 }
 
+TEST_F(MaterialsTest, GlassLetsTheLightItTransmitsThroughAsAMask) {
+    // KHR_materials_transmission (Blender writes it for every glass): a clear pane lets the sun
+    // through; until it was read, every window kept the sun out of its room, in the maps and
+    // in the truth alike.
+    const std::string image = R"({"uri":"data:image/png;base64,)" + base64(pngBytes(checkerAlpha(4, 2))) + "\"}";
+    const auto load = [&](const std::string& material) {
+        return scene::loadScene(writeQuadGltf(m_dir, material, image));
+    };
+    const auto glass = [](const std::string& colour, const std::string& transmission, const std::string& mode = "") {
+        return R"({"name":"glass",)" + mode + R"("pbrMetallicRoughness":{"baseColorFactor":)" + colour +
+               R"(},"extensions":{"KHR_materials_transmission":)" + transmission + "}}";
+    };
+
+    // Clear glass: all of the light through, so alpha 0 against a cutoff of 0.5: cut away whole,
+    // said once.
+    auto clear = load(glass("[1,1,1,1]", R"({"transmissionFactor":1})"));
+    ASSERT_TRUE(clear) << clear.error();
+    expectMaterial(
+        clear->materials[0],
+        {.name = "glass", .baseColorFactor = {1, 1, 1, 0}, .alphaMode = scene::AlphaMode::Mask, .alphaCutoff = 0.5f});
+    ASSERT_EQ(clear->warnings.size(), 1u);
+    EXPECT_NE(clear->warnings[0].find("material 0 'glass': KHR_materials_transmission lets 100 % of the light "
+                                      "through, taken out of its alpha against the cutoff 0.5"),
+              std::string::npos)
+        << clear->warnings[0];
+    EXPECT_NE(clear->warnings[0].find("cut away whole"), std::string::npos) << clear->warnings[0];
+
+    // Red glass lets through its base colour's luminance, 0.2126 · 0.9 + 0.7152 · 0.2 + 0.0722 ·
+    // 0.1 = 0.342: it still stops most of the sun, and casts.
+    auto red = load(glass("[0.9,0.2,0.1,1]", R"({"transmissionFactor":1})"));
+    ASSERT_TRUE(red) << red.error();
+    EXPECT_EQ(red->materials[0].alphaMode, scene::AlphaMode::Mask);
+    EXPECT_NEAR(red->materials[0].baseColorFactor.a, 1.0 - (0.2126 * 0.9 + 0.7152 * 0.2 + 0.0722 * 0.1), 1e-6);
+    ASSERT_EQ(red->warnings.size(), 1u);
+    EXPECT_NE(red->warnings[0].find("lets 34.2 % of the light through"), std::string::npos) << red->warnings[0];
+    EXPECT_EQ(red->warnings[0].find("cut away whole"), std::string::npos) << red->warnings[0];
+
+    // A mask keeps its cutoff; its alpha loses what gets through.
+    auto masked =
+        load(glass("[1,1,1,0.8]", R"({"transmissionFactor":0.5})", R"("alphaMode":"MASK","alphaCutoff":0.3,)"));
+    ASSERT_TRUE(masked) << masked.error();
+    EXPECT_FLOAT_EQ(masked->materials[0].alphaCutoff, 0.3f);
+    EXPECT_FLOAT_EQ(masked->materials[0].baseColorFactor.a, 0.4f);
+
+    // Nothing through: the material as the file wrote it, and no word.
+    auto none = load(glass("[1,1,1,1]", R"({"transmissionFactor":0})"));
+    ASSERT_TRUE(none) << none.error();
+    EXPECT_EQ(none->materials[0].alphaMode, scene::AlphaMode::Opaque);
+    EXPECT_TRUE(none->warnings.empty());
+
+    // What cannot be read is one line naming the material.
+    auto beyond = load(glass("[1,1,1,1]", R"({"transmissionFactor":1.5})"));
+    ASSERT_FALSE(beyond);
+    EXPECT_NE(beyond.error().find("material 0 'glass': KHR_materials_transmission's transmissionFactor is not a "
+                                  "number in [0, 1]"),
+              std::string::npos)
+        << beyond.error();
+    auto nowhere = load(glass("[1,1,1,1]", R"({"transmissionFactor":1,"transmissionTexture":{"index":5}})"));
+    ASSERT_FALSE(nowhere);
+    EXPECT_NE(nowhere.error().find("transmissionTexture names no texture of the file's"), std::string::npos)
+        << nowhere.error();
+}
+
+TEST_F(MaterialsTest, ATransmissionTexturesRedCutsTheSurfaceWhereItLetsTheLightThrough) {
+    // The pattern in the red channel: 4 × 4 texels, red 255 (all through) on the squares where
+    // (x + y) is odd, 0 elsewhere; its alpha all 255, so only the red can cut.
+    scene::Image pattern(4, 4);
+    for (int y = 0; y < 4; ++y)
+        for (int x = 0; x < 4; ++x) {
+            uint8_t* p = pattern.pixel(x, y);
+            p[0] = (x + y) % 2 ? 255 : 0, p[1] = 90, p[2] = 40, p[3] = 255;
+        }
+    const std::string images = R"({"uri":"data:image/png;base64,)" + base64(pngBytes(pattern)) +
+                               R"("},{"uri":"data:image/png;base64,)" + base64(pngBytes(checkerAlpha(4, 1))) + "\"}";
+    const auto load = [&](const std::string& material, int set) {
+        return scene::loadScene(
+            writeQuadGltf(m_dir, material, images, set, R"("textures":[{"source":0},{"source":1}])"));
+    };
+
+    // The pattern alone, read through TEXCOORD_1 and its own transform: white texels whose alpha
+    // is what they stop, the quad's uvs those of the pattern's reference.
+    auto alone =
+        load(R"({"pbrMetallicRoughness":{"baseColorFactor":[1,1,1,1]},"extensions":{"KHR_materials_transmission":)"
+             R"({"transmissionFactor":1,"transmissionTexture":{"index":0,"texCoord":1,)"
+             R"("extensions":{"KHR_texture_transform":{"scale":[2,2]}}}}}})",
+             1);
+    ASSERT_TRUE(alone) << alone.error();
+    const scene::Material& m = alone->materials[0];
+    EXPECT_EQ(m.alphaMode, scene::AlphaMode::Mask);
+    ASSERT_EQ(m.baseColorTexture, 0);
+    const scene::Image& cut = alone->textures[0].image;
+    for (int y = 0; y < 4; ++y)
+        for (int x = 0; x < 4; ++x) {
+            EXPECT_EQ(cut.pixel(x, y)[3], (x + y) % 2 ? 0 : 255) << x << ", " << y;
+            EXPECT_EQ(cut.pixel(x, y)[0], 255);
+        }
+    EXPECT_EQ(alone->meshes[0].vertices[2].uv, glm::vec2(2.0f, 0.0f)); // the file's (1, 0), scaled
+    ASSERT_EQ(alone->warnings.size(), 1u);
+    EXPECT_NE(
+        alone->warnings[0].find("lets 100 % of the light through where its transmission texture lets all through"),
+        std::string::npos)
+        << alone->warnings[0];
+
+    // With a base colour texture read through the same coordinates: its alpha (a checker of one
+    // square: 255 everywhere) times what the pattern stops, in a copy of it — the base texture
+    // itself stays as it was for any other material.
+    auto both = load(
+        R"({"alphaMode":"MASK","pbrMetallicRoughness":{"baseColorTexture":{"index":1}},)"
+        R"("extensions":{"KHR_materials_transmission":{"transmissionFactor":0.6,"transmissionTexture":{"index":0}}}})",
+        0);
+    ASSERT_TRUE(both) << both.error();
+    ASSERT_EQ(both->textures.size(), 2u);
+    ASSERT_EQ(both->materials[0].baseColorTexture, 1);
+    EXPECT_EQ(both->textures[0].image.rgba, checkerAlpha(4, 1).rgba);
+    for (int y = 0; y < 4; ++y)
+        for (int x = 0; x < 4; ++x)
+            EXPECT_EQ(both->textures[1].image.pixel(x, y)[3], (x + y) % 2 ? 102 : 255) << x << ", " << y;
+
+    // Through other coordinates than the base colour's: taken at its mean, half the squares.
+    auto apart = load(
+        R"({"alphaMode":"MASK","pbrMetallicRoughness":{"baseColorTexture":{"index":1}},)"
+        R"("extensions":{"KHR_materials_transmission":{"transmissionFactor":1,"transmissionTexture":{"index":0,"texCoord":1}}}})",
+        0);
+    ASSERT_TRUE(apart) << apart.error();
+    EXPECT_FLOAT_EQ(apart->materials[0].baseColorFactor.a, 0.5f);
+    ASSERT_EQ(apart->warnings.size(), 1u);
+    EXPECT_NE(apart->warnings[0].find("taken at its mean, 50 %"), std::string::npos) << apart->warnings[0];
+}
+
 TEST_F(MaterialsTest, PercentEncodedUrisNameTheirFiles) {
     const scene::Image checker = checkerAlpha(4, 2);
     ASSERT_TRUE(scene::writePng(checker, m_dir / "leaf atlas 100%.png"));
