@@ -3,13 +3,15 @@
 
   tools/authored_shapes.py [DIR]     (default tests/data/shapes; deterministic: the same bytes every run)
 
-Writes four scenes, each framed by the standard views as a loaded model is (no terrain to stand on):
+Writes five scenes, each framed by the standard views as a loaded model is (no terrain to stand on):
   ship.obj   thin ropes (3 cm) and masts (40 cm, 22 m tall) over a hull on a 300 m sea;
   town.obj   a wide flat town: 17 x 17 houses, 5-9 m high, 50 m apart, on a 1.2 km ground;
   tree.gltf  a single tree: a trunk and 60 alpha-cut leaf cards (MASK, a 32 x 32 texture of round
              leaves in a data URI) over a 40 m ground;
   sky.gltf   a pavilion on a 30 m ground under the sky sphere it ships with (1.2 km across, facing in,
-             unlit), which hides every sun from it unless it is left out (scene/sky_enclosure.h).
+             unlit), which hides every sun from it unless it is left out (scene/sky_enclosure.h);
+  glasshouse.gltf  an iron frame and a table under walls and a roof of glass (KHR_materials_transmission),
+             which shadows let the sun through (gltf_transmission.cpp).
 docs/reliability.md ("Models we did not make") measures the default against `focused` on them;
 tests/corpus_defaults_test.cpp holds the ship to it.
 """
@@ -235,6 +237,67 @@ def sky(path):
     write_whole(path, json.dumps(scene))
 
 
+def glasshouse(path):
+    """A glasshouse as Blender writes glass: panes with KHR_materials_transmission (all of the light
+    through, tinted a little green), an opaque material's alpha untouched — which, read without the
+    extension, kept the sun out of the whole house. Its roof is a grid of 16 x 16 panes (1,024
+    triangles), so a pane mesh is as large as one the loader gives foliage levels to."""
+    positions, indices = {}, {}
+
+    def box(part, lo, hi):
+        box_triangles(positions.setdefault(part, []), indices.setdefault(part, []), lo, hi)
+
+    box("ground", (-15, -0.2, -15), (15, 0, 15))
+    for x in (-4, 4):
+        for z in (-3, 3):
+            box("frame", (x - 0.08, 0, z - 0.08), (x + 0.08, 3, z + 0.08))  # corner posts
+    for z in (-3, 3):
+        box("frame", (-4.08, 2.92, z - 0.08), (4.08, 3.08, z + 0.08))  # eaves beams
+    box("frame", (-4, 0, -3), (4, 0.6, -2.9))  # low walls the panes stand on
+    box("frame", (-4, 0, 2.9), (4, 0.6, 3))
+    box("table", (-2.5, 0.8, -1), (2.5, 0.9, 1))
+    for x in (-2.3, 2.2):
+        for z in (-0.8, 0.7):
+            box("table", (x, 0, z), (x + 0.1, 0.8, z + 0.1))
+    box("glass", (-4, 0.6, -2.99), (4, 3, -2.97))  # long walls
+    box("glass", (-4, 0.6, 2.97), (4, 3, 2.99))
+    box("glass", (-4.01, 0, -3), (-3.99, 3, 3))  # gable walls
+    box("glass", (3.99, 0, -3), (4.01, 3, 3))
+    for i in range(16):  # the roof's panes
+        for k in range(16):
+            x0, z0 = -4 + 8 * i / 16, -3 + 6 * k / 16
+            box("glass", (x0 + 0.01, 3.0, z0 + 0.01), (x0 + 0.49, 3.02, z0 + 0.365))
+    parts = ["ground", "frame", "table", "glass"]
+    materials = [{"name": "lawn", "pbrMetallicRoughness": {"baseColorFactor": [0.35, 0.5, 0.25, 1]}},
+                 {"name": "iron", "pbrMetallicRoughness": {"baseColorFactor": [0.2, 0.22, 0.24, 1], "metallicFactor": 1}},
+                 {"name": "wood", "pbrMetallicRoughness": {"baseColorFactor": [0.55, 0.4, 0.25, 1]}},
+                 {"name": "glass", "doubleSided": True,
+                  "pbrMetallicRoughness": {"baseColorFactor": [0.92, 0.97, 0.94, 1], "metallicFactor": 0, "roughnessFactor": 0},
+                  "extensions": {"KHR_materials_transmission": {"transmissionFactor": 1}}}]
+    views, accessors = [], []
+    for part in parts:
+        points = positions[part]
+        views += [b"".join(struct.pack("<3f", *p) for p in points), b"".join(struct.pack("<I", i) for i in indices[part])]
+        accessors += [{"bufferView": len(views) - 2, "componentType": 5126, "count": len(points), "type": "VEC3",
+                       "min": [min(p[c] for p in points) for c in range(3)], "max": [max(p[c] for p in points) for c in range(3)]},
+                      {"bufferView": len(views) - 1, "componentType": 5125, "count": len(indices[part]), "type": "SCALAR"}]
+    offsets = [sum(len(v) for v in views[:k]) for k in range(len(views))]
+    scene = {
+        "asset": {"version": "2.0", "generator": "shadowkit tools/authored_shapes.py"},
+        "extensionsUsed": ["KHR_materials_transmission"],
+        "scene": 0, "scenes": [{"nodes": list(range(len(parts)))}],
+        "nodes": [{"mesh": k, "name": part} for k, part in enumerate(parts)],
+        "meshes": [{"name": part, "primitives": [{"attributes": {"POSITION": 2 * k}, "indices": 2 * k + 1, "material": k}]}
+                   for k, part in enumerate(parts)],
+        "materials": materials,
+        "accessors": accessors,
+        "bufferViews": [{"buffer": 0, "byteOffset": offsets[k], "byteLength": len(views[k])} for k in range(len(views))],
+        "buffers": [{"byteLength": sum(len(v) for v in views),
+                     "uri": "data:application/octet-stream;base64," + base64.b64encode(b"".join(views)).decode()}],
+    }
+    write_whole(path, json.dumps(scene))
+
+
 def main(args):
     directory = args[0] if args else os.path.join(os.path.dirname(__file__), "..", "tests", "data", "shapes")
     try:
@@ -245,6 +308,7 @@ def main(args):
     town(os.path.join(directory, "town.obj"))
     tree(os.path.join(directory, "tree.gltf"))
     sky(os.path.join(directory, "sky.gltf"))
+    glasshouse(os.path.join(directory, "glasshouse.gltf"))
 
 
 if __name__ == "__main__":

@@ -158,8 +158,8 @@ core::Result<std::string> applyTransmission(const tinygltf::Model& model, const 
     }
     char cutoff[64];
     std::snprintf(cutoff, sizeof cutoff, "%.3g", out.alphaCutoff);
-    return said + ", taken out of its alpha against the cutoff " + cutoff +
-           " (shadowkit has no transparency): the sun passes where that much gets through, as through glass";
+    return said + ": taken out of its alpha, which its cutoff " + cutoff +
+           " then cuts (shadowkit has no transparency), so the sun passes it as it passes glass";
 }
 
 } // namespace shadowkit::scene::formats

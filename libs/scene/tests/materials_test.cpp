@@ -371,7 +371,7 @@ TEST_F(MaterialsTest, GlassLetsTheLightItTransmitsThroughAsAMask) {
         {.name = "glass", .baseColorFactor = {1, 1, 1, 0}, .alphaMode = scene::AlphaMode::Mask, .alphaCutoff = 0.5f});
     ASSERT_EQ(clear->warnings.size(), 1u);
     EXPECT_NE(clear->warnings[0].find("material 0 'glass': KHR_materials_transmission lets 100 % of the light "
-                                      "through, taken out of its alpha against the cutoff 0.5"),
+                                      "through: taken out of its alpha, which its cutoff 0.5 then cuts"),
               std::string::npos)
         << clear->warnings[0];
     EXPECT_NE(clear->warnings[0].find("cut away whole"), std::string::npos) << clear->warnings[0];
