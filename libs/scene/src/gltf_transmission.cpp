@@ -96,7 +96,10 @@ core::Result<std::optional<Transmission>> readTransmission(const tinygltf::Model
     return std::optional<Transmission>(std::move(out));
 }
 
-core::Result<std::string> applyTransmission(const tinygltf::Model& model, const fs::path& file,
+namespace {
+
+// applyTransmission's work: the material cut, and what its warning says of the light let through.
+core::Result<std::string> cutByTransmission(const tinygltf::Model& model, const fs::path& file,
                                             const ImageContext& images, const tinygltf::Material& in,
                                             const Transmission& transmission, Material& out, Scene& scene,
                                             size_t& textureBytes) {
@@ -120,10 +123,14 @@ core::Result<std::string> applyTransmission(const tinygltf::Model& model, const 
         scene.textures.push_back(std::move(texture));
         return core::Ok{};
     };
+    // An opaque material's alpha means nothing (glTF §3.9.4): it becomes a mask here, and must
+    // not start cutting where its factor or its colour texture's alpha happen to be low.
+    const bool wasOpaque = out.alphaMode == AlphaMode::Opaque;
+    if (wasOpaque) out.alphaMode = AlphaMode::Mask, out.alphaCutoff = 0.5f, out.baseColorFactor.a = 1.0f;
     const tinygltf::TextureInfo& base = in.pbrMetallicRoughness.baseColorTexture;
-    if (!pattern) {
-        out.baseColorFactor.a *= 1.0f - passes;
-    } else if (out.baseColorTexture < 0 && base.index < 0) {
+    const bool sameCoordinates = pattern && base.texCoord == transmission.texture->texCoord &&
+                                 textureTransform(base) == textureTransform(*transmission.texture);
+    if (pattern && out.baseColorTexture < 0 && base.index < 0) {
         // The pattern alone cuts: white texels (the factor keeps its colour), alpha what it stops.
         Texture cut = std::move(*pattern);
         for (size_t i = 0; i < cut.image.rgba.size(); i += 4) {
@@ -133,32 +140,47 @@ core::Result<std::string> applyTransmission(const tinygltf::Model& model, const 
         }
         said += " where its transmission texture lets all through";
         if (core::Status s = addTexture(std::move(cut)); !s) return s.errorInfo();
-    } else if (out.baseColorTexture >= 0 && base.texCoord == transmission.texture->texCoord &&
-               textureTransform(base) == textureTransform(*transmission.texture)) {
-        // Both read the same coordinates: the base colour texture's alpha times what the pattern
-        // stops at each of its texels (a copy: other materials may share the base texture).
+        return said;
+    }
+    float uniform = passes; // what the factor's alpha loses where no texel says otherwise
+    if (pattern && !(out.baseColorTexture >= 0 && sameCoordinates)) {
+        uniform = passes * meanRed(pattern->image);
+        said += " where its transmission texture lets all through, which reads other coordinates than its base "
+                "colour texture: taken at its mean, " +
+                percent(uniform);
+    } else if (pattern) {
+        said += " where its transmission texture lets all through";
+    }
+    if (out.baseColorTexture >= 0 && (wasOpaque || (pattern && sameCoordinates))) {
+        // A copy of the base colour texture (other materials may share it): its alpha opaque where
+        // the material was, times what the pattern stops at each texel where both read the same
+        // coordinates.
         Texture cut = scene.textures[size_t(out.baseColorTexture)];
         for (int y = 0; y < cut.image.height; ++y)
             for (int x = 0; x < cut.image.width; ++x) {
                 uint8_t& alpha = cut.image.pixel(x, y)[3];
-                alpha = uint8_t(std::lround(alpha * (1.0f - passes * redAt(pattern->image, cut.image, x, y))));
+                const float stops =
+                    pattern && sameCoordinates ? 1.0f - passes * redAt(pattern->image, cut.image, x, y) : 1.0f;
+                alpha = uint8_t(std::lround((wasOpaque ? 255.0f : float(alpha)) * stops));
             }
-        said += " where its transmission texture lets all through";
         if (core::Status s = addTexture(std::move(cut)); !s) return s.errorInfo();
-    } else {
-        const float mean = meanRed(pattern->image);
-        said += " where its transmission texture lets all through, which reads other coordinates than its base "
-                "colour texture: taken at its mean, " +
-                percent(passes * mean);
-        out.baseColorFactor.a *= 1.0f - passes * mean;
+        if (pattern && sameCoordinates) return said;
     }
-    if (out.alphaMode == AlphaMode::Opaque) {
-        out.alphaMode = AlphaMode::Mask;
-        out.alphaCutoff = 0.5f;
-    }
+    out.baseColorFactor.a *= 1.0f - uniform;
+    return said;
+}
+
+} // namespace
+
+core::Result<std::string> applyTransmission(const tinygltf::Model& model, const fs::path& file,
+                                            const ImageContext& images, const tinygltf::Material& in,
+                                            const Transmission& transmission, Material& out, Scene& scene,
+                                            size_t& textureBytes) {
+    auto said = cutByTransmission(model, file, images, in, transmission, out, scene, textureBytes);
+    if (!said) return said;
     char cutoff[64];
     std::snprintf(cutoff, sizeof cutoff, "%.3g", out.alphaCutoff);
-    return said + ": taken out of its alpha, which its cutoff " + cutoff +
+    return *said + ": taken out of its alpha, which its cutoff " + cutoff +
            " then cuts (shadowkit has no transparency), so the sun passes it as it passes glass";
 }
 

@@ -393,6 +393,19 @@ TEST_F(MaterialsTest, GlassLetsTheLightItTransmitsThroughAsAMask) {
     EXPECT_FLOAT_EQ(masked->materials[0].alphaCutoff, 0.3f);
     EXPECT_FLOAT_EQ(masked->materials[0].baseColorFactor.a, 0.4f);
 
+    // An opaque material's alpha means nothing (glTF §3.9.4): made a mask, it must not start
+    // cutting where its factor (0.2) or its colour texture (a checker of alpha 0 and 1) is low.
+    auto coloured = load(R"({"pbrMetallicRoughness":{"baseColorFactor":[1,1,1,0.2],"baseColorTexture":{"index":0}},)"
+                         R"("extensions":{"KHR_materials_transmission":{"transmissionFactor":0.3}}})");
+    ASSERT_TRUE(coloured) << coloured.error();
+    const scene::Material& c = coloured->materials[0];
+    EXPECT_EQ(c.alphaMode, scene::AlphaMode::Mask);
+    EXPECT_FLOAT_EQ(c.baseColorFactor.a, 0.7f);
+    ASSERT_EQ(c.baseColorTexture, 1); // a copy, its alpha opaque
+    for (size_t i = 3; i < coloured->textures[1].image.rgba.size(); i += 4)
+        EXPECT_EQ(coloured->textures[1].image.rgba[i], 255);
+    EXPECT_EQ(coloured->textures[0].image.rgba, checkerAlpha(4, 2).rgba); // the file's, untouched
+
     // Nothing through: the material as the file wrote it, and no word.
     auto none = load(glass("[1,1,1,1]", R"({"transmissionFactor":0})"));
     ASSERT_TRUE(none) << none.error();
