@@ -72,9 +72,8 @@ std::vector<int> textureSources(const tinygltf::Texture& texture) {
     std::vector<int> sources;
     const auto extensionSource = [&](const char* name) {
         const auto ext = texture.extensions.find(name);
-        if (ext != texture.extensions.end() && ext->second.IsObject() && ext->second.Has("source") &&
-            ext->second.Get("source").IsNumber())
-            sources.push_back(ext->second.Get("source").GetNumberAsInt());
+        if (ext == texture.extensions.end() || !ext->second.IsObject()) return;
+        if (const std::optional<int> source = indexIn(ext->second.Get("source"))) sources.push_back(*source);
     };
     extensionSource("EXT_texture_webp");
     if (texture.source >= 0) sources.push_back(texture.source);
@@ -86,6 +85,13 @@ std::vector<int> textureSources(const tinygltf::Texture& texture) {
 
 // KHR_texture_transform on a texture reference: uv' = T · R · S · uv (the extension's order),
 // or nullopt when there is none.
+std::optional<int> indexIn(const tinygltf::Value& value) {
+    if (!value.IsNumber()) return std::nullopt;
+    const double number = value.GetNumberAsDouble();
+    if (!(number >= 0.0 && number < 2147483648.0) || number != std::floor(number)) return std::nullopt;
+    return int(number);
+}
+
 std::optional<glm::mat3> textureTransform(const tinygltf::TextureInfo& info) {
     const auto ext = info.extensions.find("KHR_texture_transform");
     if (ext == info.extensions.end() || !ext->second.IsObject()) return std::nullopt;

@@ -37,6 +37,10 @@ bool loadImage(tinygltf::Image* image, int index, std::string* err, std::string*
 core::Status readMaterials(const tinygltf::Model& model, const std::filesystem::path& file, const ImageContext& images,
                            const std::vector<bool>& used, Scene& scene);
 
+// A JSON number that is a whole index in [0, 2^31), read without the float-to-int overflow that
+// tinygltf's GetNumberAsInt() makes of 1e300; nullopt for anything else.
+std::optional<int> indexIn(const tinygltf::Value& value);
+
 // KHR_texture_transform on a texture reference: uv' = T · R · S · uv (the extension's order),
 // or nullopt when there is none.
 std::optional<glm::mat3> textureTransform(const tinygltf::TextureInfo& info);

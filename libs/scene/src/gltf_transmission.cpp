@@ -30,13 +30,16 @@ namespace {
 
 constexpr const char* kExtension = "KHR_materials_transmission";
 
-// The texture reference a `textureInfo` JSON object writes (index, texCoord, its extensions).
+// The texture reference a `textureInfo` JSON object writes (index, texCoord, its extensions), or
+// nullopt where its index or texCoord is not a whole number in range.
 std::optional<tinygltf::TextureInfo> textureInfoOf(const tinygltf::Value& value) {
-    if (!value.IsObject() || !value.Has("index") || !value.Get("index").IsNumber()) return std::nullopt;
+    if (!value.IsObject()) return std::nullopt;
+    const std::optional<int> index = indexIn(value.Get("index"));
+    const std::optional<int> texCoord = value.Has("texCoord") ? indexIn(value.Get("texCoord")) : 0;
+    if (!index || !texCoord) return std::nullopt;
     tinygltf::TextureInfo info;
-    info.index = value.Get("index").GetNumberAsInt();
-    if (value.Has("texCoord") && value.Get("texCoord").IsNumber())
-        info.texCoord = value.Get("texCoord").GetNumberAsInt();
+    info.index = *index;
+    info.texCoord = *texCoord;
     if (const tinygltf::Value& extensions = value.Get("extensions"); extensions.IsObject())
         for (const std::string& key : extensions.Keys()) info.extensions[key] = extensions.Get(key);
     return info;
@@ -91,7 +94,7 @@ core::Result<std::optional<Transmission>> readTransmission(const tinygltf::Model
     if (ext->second.Has("transmissionTexture")) {
         out.texture = textureInfoOf(ext->second.Get("transmissionTexture"));
         if (!out.texture || out.texture->index < 0 || size_t(out.texture->index) >= model.textures.size())
-            return core::makeError(what + "'s transmissionTexture names no texture of the file's");
+            return core::makeError(what + "'s transmissionTexture is not a reference to one of the file's textures");
     }
     return std::optional<Transmission>(std::move(out));
 }

@@ -263,6 +263,13 @@ TEST_F(MaterialsTest, WebpTexturesDecodeAndKtx2FallsBackToTheCoreImage) {
     EXPECT_NE(loaded.error().find("KTX2"), std::string::npos) << loaded.error();
     EXPECT_NE(loaded.error().find("needs its alpha"), std::string::npos) << loaded.error();
     EXPECT_EQ(loaded.error().find('\n'), std::string::npos);
+    // An extension's source that is no index (1e300 overflowed an int as tinygltf converts it)
+    // is passed over for the core source.
+    loaded = scene::loadScene(
+        writeQuadGltf(m_dir, kMaskedTexture, images, 0,
+                      R"("textures":[{"source":1,"extensions":{"EXT_texture_webp":{"source":1e300}}}])"));
+    ASSERT_TRUE(loaded) << loaded.error();
+    EXPECT_EQ(loaded->textures[0].image.rgba, checker.rgba);
     // An animated or truncated WebP is an error of its own, not a crash.
     std::vector<uint8_t> cut = webpBytes(checker);
     cut.resize(cut.size() / 2);
@@ -421,8 +428,12 @@ TEST_F(MaterialsTest, GlassLetsTheLightItTransmitsThroughAsAMask) {
         << beyond.error();
     auto nowhere = load(glass("[1,1,1,1]", R"({"transmissionFactor":1,"transmissionTexture":{"index":5}})"));
     ASSERT_FALSE(nowhere);
-    EXPECT_NE(nowhere.error().find("transmissionTexture names no texture of the file's"), std::string::npos)
+    EXPECT_NE(nowhere.error().find("transmissionTexture is not a reference to one of the file's textures"),
+              std::string::npos)
         << nowhere.error();
+    auto huge = load(glass("[1,1,1,1]", R"({"transmissionFactor":1,"transmissionTexture":{"index":1e300}})"));
+    ASSERT_FALSE(huge); // not an int overflowing as it is converted
+    EXPECT_NE(huge.error().find("is not a reference to one of the file's textures"), std::string::npos) << huge.error();
 }
 
 TEST_F(MaterialsTest, ATransmissionTexturesRedCutsTheSurfaceWhereItLetsTheLightThrough) {
