@@ -83,8 +83,6 @@ std::vector<int> textureSources(const tinygltf::Texture& texture) {
 
 } // namespace
 
-// KHR_texture_transform on a texture reference: uv' = T · R · S · uv (the extension's order),
-// or nullopt when there is none.
 std::optional<int> indexIn(const tinygltf::Value& value) {
     if (!value.IsNumber()) return std::nullopt;
     const double number = value.GetNumberAsDouble();
@@ -92,6 +90,7 @@ std::optional<int> indexIn(const tinygltf::Value& value) {
     return int(number);
 }
 
+// uv' = T · R · S · uv, the extension's order.
 std::optional<glm::mat3> textureTransform(const tinygltf::TextureInfo& info) {
     const auto ext = info.extensions.find("KHR_texture_transform");
     if (ext == info.extensions.end() || !ext->second.IsObject()) return std::nullopt;
