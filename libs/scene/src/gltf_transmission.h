@@ -18,7 +18,7 @@ struct TextureUse {
 
 // The texture whose coordinates a material's primitives keep: its base colour texture, or where
 // it has none the texture its KHR_materials_transmission reads (its alpha then comes from
-// there, gltf_transmission.h); nullopt for neither.
+// there: applyTransmission, below); nullopt for neither.
 std::optional<TextureUse> cuttingTexture(const tinygltf::Model& model, const tinygltf::Material& material);
 
 // A material's KHR_materials_transmission: the share of light its surface lets through,
