@@ -4,6 +4,7 @@
 
 #include "shadowkit/core/local_lights.h"
 #include "shadowkit/measure/measurer.h"
+#include "shadowkit/scene/file_write.h"
 #include "shadowkit/scene/image.h"
 #include "shadowkit/scene/mesh_builder.h"
 #include "shadowkit/scene/scene_io.h"
@@ -15,7 +16,8 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
+#include <string>
+#include <string_view>
 
 using namespace shadowkit;
 
@@ -59,20 +61,26 @@ scene::Scene checkerCardScene(scene::AlphaMode mode, float cutoff = 0.5f) {
     return cardScene(std::move(texture), mode, cutoff);
 }
 
+// `bytes` written whole as dir/name (scene::writeFile), the test failing where it cannot be.
+void writeScratch(const std::filesystem::path& dir, const char* name, std::string_view bytes) {
+    const core::Status written = scene::writeFile(dir / name, bytes);
+    EXPECT_TRUE(written) << written.error();
+}
+
 // The same card and ground as a user's OBJ would bring them: the checker as the card's
 // material's map_d (an image with alpha), the OBJ's texture coordinates v up, so the image's
 // first row (glTF's v = 0, the card's top edge) is v = 1. Written to `dir`, loaded back.
 scene::Scene objCheckerCardScene(const std::filesystem::path& dir) {
     std::filesystem::create_directories(dir);
     EXPECT_TRUE(scene::writePng(checkerImage(), dir / "checker.png"));
-    std::ofstream(dir / "card.mtl")
-        << "newmtl ground\nKd 0.7 0.7 0.7\nnewmtl leaf\nKd 0.3 0.6 0.2\nmap_d checker.png\n";
-    std::ofstream(dir / "card.obj") << "mtllib card.mtl\n"
-                                       "o ground\nusemtl ground\n"
-                                       "v -12 0.01 12\nv 12 0.01 12\nv 12 0.01 -12\nv -12 0.01 -12\nf 1 2 3 4\n"
-                                       "o card\nusemtl leaf\n" // facing +x: z from +2 (u = 0) to −2
-                                       "v 0 0.5 2\nv 0 0.5 -2\nv 0 4.5 -2\nv 0 4.5 2\n"
-                                       "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 5/1 6/2 7/3 8/4\n";
+    writeScratch(dir, "card.mtl", "newmtl ground\nKd 0.7 0.7 0.7\nnewmtl leaf\nKd 0.3 0.6 0.2\nmap_d checker.png\n");
+    writeScratch(dir, "card.obj",
+                 "mtllib card.mtl\n"
+                 "o ground\nusemtl ground\n"
+                 "v -12 0.01 12\nv 12 0.01 12\nv 12 0.01 -12\nv -12 0.01 -12\nf 1 2 3 4\n"
+                 "o card\nusemtl leaf\n" // facing +x: z from +2 (u = 0) to −2
+                 "v 0 0.5 2\nv 0 0.5 -2\nv 0 4.5 -2\nv 0 4.5 2\n"
+                 "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 5/1 6/2 7/3 8/4\n");
     auto loaded = scene::loadScene(dir / "card.obj");
     EXPECT_TRUE(loaded) << loaded.error();
     return loaded ? std::move(*loaded) : scene::Scene{};
@@ -95,26 +103,27 @@ scene::Scene gltfGlassCardScene(const std::filesystem::path& dir) {
                                0,   0.5f,  2,  0,  0.5f,  -2, 0,  4.5f,  -2,  0,   4.5f,  2};
     const float uvs[] = {0, 1, 1, 1, 1, 0, 0, 0};
     const uint16_t indices[] = {0, 1, 2, 0, 2, 3};
-    std::ofstream bin(dir / "card.bin", std::ios::binary);
-    bin.write(reinterpret_cast<const char*>(positions), sizeof positions);
-    bin.write(reinterpret_cast<const char*>(uvs), sizeof uvs);
-    bin.write(reinterpret_cast<const char*>(indices), sizeof indices);
-    bin.close();
-    std::ofstream(dir / "card.gltf")
-        << R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0,1]}],"nodes":[{"mesh":0},{"mesh":1}],)"
-           R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":3,"material":0}]},)"
-           R"({"primitives":[{"attributes":{"POSITION":1,"TEXCOORD_0":2},"indices":3,"material":1}]}],)"
-           R"("materials":[{"name":"ground","doubleSided":true,"pbrMetallicRoughness":{"baseColorFactor":[0.7,0.7,0.7,1]}},)"
-           R"({"name":"glass","doubleSided":true,"pbrMetallicRoughness":{"baseColorFactor":[1,1,1,1]},)"
-           R"("extensions":{"KHR_materials_transmission":{"transmissionFactor":1,"transmissionTexture":{"index":0}}}}],)"
-           R"("textures":[{"source":0}],"images":[{"uri":"transmission.png"}],)"
-           R"("accessors":[{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3","min":[-12,0.01,-12],"max":[12,0.01,12]},)"
-           R"({"bufferView":0,"byteOffset":48,"componentType":5126,"count":4,"type":"VEC3","min":[0,0.5,-2],"max":[0,4.5,2]},)"
-           R"({"bufferView":1,"componentType":5126,"count":4,"type":"VEC2"},)"
-           R"({"bufferView":2,"componentType":5123,"count":6,"type":"SCALAR"}],)"
-           R"("bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":96},{"buffer":0,"byteOffset":96,"byteLength":32},)"
-           R"({"buffer":0,"byteOffset":128,"byteLength":12}],)"
-           R"("buffers":[{"byteLength":140,"uri":"card.bin"}],"extensionsUsed":["KHR_materials_transmission"]})";
+    std::string bin;
+    bin.append(reinterpret_cast<const char*>(positions), sizeof positions);
+    bin.append(reinterpret_cast<const char*>(uvs), sizeof uvs);
+    bin.append(reinterpret_cast<const char*>(indices), sizeof indices);
+    writeScratch(dir, "card.bin", bin);
+    writeScratch(
+        dir, "card.gltf",
+        R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0,1]}],"nodes":[{"mesh":0},{"mesh":1}],)"
+        R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":3,"material":0}]},)"
+        R"({"primitives":[{"attributes":{"POSITION":1,"TEXCOORD_0":2},"indices":3,"material":1}]}],)"
+        R"("materials":[{"name":"ground","doubleSided":true,"pbrMetallicRoughness":{"baseColorFactor":[0.7,0.7,0.7,1]}},)"
+        R"({"name":"glass","doubleSided":true,"pbrMetallicRoughness":{"baseColorFactor":[1,1,1,1]},)"
+        R"("extensions":{"KHR_materials_transmission":{"transmissionFactor":1,"transmissionTexture":{"index":0}}}}],)"
+        R"("textures":[{"source":0}],"images":[{"uri":"transmission.png"}],)"
+        R"("accessors":[{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3","min":[-12,0.01,-12],"max":[12,0.01,12]},)"
+        R"({"bufferView":0,"byteOffset":48,"componentType":5126,"count":4,"type":"VEC3","min":[0,0.5,-2],"max":[0,4.5,2]},)"
+        R"({"bufferView":1,"componentType":5126,"count":4,"type":"VEC2"},)"
+        R"({"bufferView":2,"componentType":5123,"count":6,"type":"SCALAR"}],)"
+        R"("bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":96},{"buffer":0,"byteOffset":96,"byteLength":32},)"
+        R"({"buffer":0,"byteOffset":128,"byteLength":12}],)"
+        R"("buffers":[{"byteLength":140,"uri":"card.bin"}],"extensionsUsed":["KHR_materials_transmission"]})");
     auto loaded = scene::loadScene(dir / "card.gltf");
     EXPECT_TRUE(loaded) << loaded.error();
     return loaded ? std::move(*loaded) : scene::Scene{};

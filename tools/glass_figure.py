@@ -11,6 +11,7 @@ import os
 import sys
 import tempfile
 
+from authored_shapes import write_whole
 from render_panels import render_panels
 
 root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -26,8 +27,7 @@ with tempfile.TemporaryDirectory() as scratch:
         material.pop("extensions", None)
     opaque["extensionsUsed"] = [e for e in opaque.get("extensionsUsed", []) if e != "KHR_materials_transmission"]
     opaque_file = os.path.join(scratch, "glasshouse-opaque.gltf")
-    with open(opaque_file, "w") as f:
-        json.dump(opaque, f)
+    write_whole(opaque_file, json.dumps(opaque))  # a failure is one line and exit 1
     render_panels(shadowkit, [(["--scene", opaque_file, *camera], "its glass read as an opaque surface: one solid\n"
                                                                   "shadow on the lawn, the sun kept out of the house"),
                               (["--scene", source, *camera], "as shadowkit loads it (KHR_materials_transmission):\n"

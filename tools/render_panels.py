@@ -14,7 +14,8 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 def render_panels(shadowkit, runs, target, name):
     """`runs`: (arguments of `shadowkit render`, caption) pairs, drawn left to right into `target` (a
-    PNG: a temporary beside it, renamed over it); a failed render is one line naming `name` and exit 1."""
+    PNG: a temporary beside it, renamed over it); a failed render or write is one line naming `name` and
+    exit 1, leaving nothing under the target's name."""
     panels = []
     with tempfile.TemporaryDirectory() as scratch:
         for k, (args, caption) in enumerate(runs):
@@ -30,5 +31,11 @@ def render_panels(shadowkit, runs, target, name):
         axis.set_title(caption, fontsize=9)
         axis.axis("off")
     figure.tight_layout()
-    figure.savefig(target + ".tmp.png", bbox_inches="tight", pad_inches=0.08)
-    os.replace(target + ".tmp.png", target)
+    temporary = target + ".tmp.png"
+    try:
+        figure.savefig(temporary, bbox_inches="tight", pad_inches=0.08)
+        os.replace(temporary, target)
+    except OSError as e:
+        if os.path.exists(temporary):
+            os.remove(temporary)
+        sys.exit(f"{name}: {target}: cannot write ({e.strerror})")
