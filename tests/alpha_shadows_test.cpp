@@ -69,11 +69,13 @@ void writeScratch(const std::filesystem::path& dir, const char* name, std::strin
 
 // The same card and ground as a user's OBJ would bring them: the checker as the card's
 // material's map_d (an image with alpha), the OBJ's texture coordinates v up, so the image's
-// first row (glTF's v = 0, the card's top edge) is v = 1. Written to `dir`, loaded back.
-scene::Scene objCheckerCardScene(const std::filesystem::path& dir) {
+// first row (glTF's v = 0, the card's top edge) is v = 1; `leaf` more lines of the card's
+// material (a dissolve). Written to `dir`, loaded back.
+scene::Scene objCheckerCardScene(const std::filesystem::path& dir, const std::string& leaf = "") {
     std::filesystem::create_directories(dir);
     EXPECT_TRUE(scene::writePng(checkerImage(), dir / "checker.png"));
-    writeScratch(dir, "card.mtl", "newmtl ground\nKd 0.7 0.7 0.7\nnewmtl leaf\nKd 0.3 0.6 0.2\nmap_d checker.png\n");
+    writeScratch(dir, "card.mtl",
+                 "newmtl ground\nKd 0.7 0.7 0.7\nnewmtl leaf\nKd 0.3 0.6 0.2\nmap_d checker.png\n" + leaf);
     writeScratch(dir, "card.obj",
                  "mtllib card.mtl\n"
                  "o ground\nusemtl ground\n"
@@ -311,6 +313,21 @@ TEST_F(AlphaShadowsTest, AnObjCardCutByItsMapDCastsTheCheckerShadowToo) {
     // Until OBJ materials read map_d, this card cast its whole square in the maps and the truth.
     const auto dir = shadowkit::test_support::scratchDir() / "alpha_shadows_obj";
     expectTheCheckerShadow(objCheckerCardScene(dir));
+    std::filesystem::remove_all(dir);
+}
+
+TEST_F(AlphaShadowsTest, AnObjCardsDissolveMultipliesItsMaskAndGlassCastsNothing) {
+    // Until the MTL's dissolve was read, a pane written `d 0.1` — glass, as exporters write it —
+    // cast its whole square in the maps and in the truth alike.
+    const auto dir = shadowkit::test_support::scratchDir() / "alpha_shadows_obj_dissolve";
+    for (const char* glass : {"d 0.1\n", "Tr 0.9\n"}) {
+        const Agreement none = measureCard(objCheckerCardScene(dir, glass), core::Technique::Focused);
+        ASSERT_GT(none.covered + none.open, 300) << glass;
+        EXPECT_EQ(none.truthShadowed, 0) << glass;
+        EXPECT_EQ(none.glShadowed, 0) << glass;
+    }
+    // Tinted, stopping more than half: the mask (0 or 1) times 0.8 still cuts the checker.
+    expectTheCheckerShadow(objCheckerCardScene(dir, "d 0.8\n"));
     std::filesystem::remove_all(dir);
 }
 

@@ -17,6 +17,19 @@
 // drawn and cast opaque, as the MTL format and most OBJ importers read it, with one warning per
 // file: a tree whose leaves are cut only by map_Kd's alpha otherwise casts whole cards unexplained.
 //
+// Glass. The MTL's dissolve `d` is "the amount this material dissolves into the background",
+// 1 fully opaque, 0 completely transparent, and a map_d's value "is multiplied by the d value";
+// files without `d` may write `Tr`, its complement (tinyobjloader reads dissolve = 1 − Tr, and
+// `d` wins where both are written). shadowkit has no transparency, so the dissolve is read as
+// glTF reads alpha: a factor on the mask, cut at 0.5. A material that dissolves below half —
+// a window pane written `d 0.1`, as Blender, 3ds Max and most exporters write glass — is cut
+// away whole, neither drawn nor cast, so the sun passes it as it passes glass; one that dissolves
+// less casts whole; with a map_d the product is cut. One warning per file names them. Exporters
+// disagree on `Tr` (3ds Max once wrote it as opacity, tinyobjloader's issue 43), and a `d` with
+// no number reads 0; where every face of the file would dissolve away — nothing left to draw —
+// its materials are read opaque with one warning instead. A dissolve outside [0, 1] is read
+// opaque, with one warning.
+//
 // A map_d that cannot be read (missing — OBJ files travel without their textures, or name them
 // by a path on their author's disk —, not an image, past the decoder's limits) leaves its
 // material opaque with one warning: the file still loads, its cards cast whole. A name with
@@ -31,6 +44,8 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <map>
 #include <span>
@@ -125,26 +140,98 @@ bool cutByItsAlpha(const fs::path& file) {
     return false;
 }
 
+// A material's name in quotes, as the warnings name it.
+std::string quoted(const std::string& name) {
+    std::string out = "'";
+    out += printable(name);
+    out += '\'';
+    return out;
+}
+
+// The first of `names`, and how many more: one line however many materials a file holds.
+std::string firstAndCount(const std::vector<std::string>& names) {
+    std::string out = names.front();
+    if (names.size() > 1) out += " and " + std::to_string(names.size() - 1) + " more";
+    return out;
+}
+
+constexpr float kCutoff = 0.5f; // glTF's default alphaCutoff, which OBJ masks are read at
+
+// The material a cut material's faces wear: its mask (−1: none) times its dissolve, cut at half
+// and drawn and cast from both sides — what a leaf card needs, and a pane of glass is the same
+// seen from either side.
+Material cutMaterial(const std::string& name, int32_t mask, float dissolve) {
+    Material material;
+    material.name = name;
+    material.baseColorFactor.a = dissolve;
+    material.baseColorTexture = mask;
+    material.alphaMode = AlphaMode::Mask;
+    material.alphaCutoff = kCutoff;
+    material.doubleSided = true;
+    return material;
+}
+
+// Each material's dissolve as it is read (above): tinyobjloader's, 1 where it lies outside [0, 1],
+// and 1 for every material where every face of the file would otherwise dissolve away.
+std::vector<float> dissolvesOf(const std::vector<tinyobj::material_t>& materials, std::span<const size_t> facesWearing,
+                               const fs::path& file, Scene& scene) {
+    std::vector<float> dissolve(materials.size(), 1.0f);
+    std::vector<std::string> outOfRange;
+    size_t faces = 0, dissolvedFaces = 0;
+    for (size_t m = 0; m < materials.size(); ++m) {
+        const double d = materials[m].dissolve;
+        if (std::isfinite(d) && d >= 0.0 && d <= 1.0)
+            dissolve[m] = float(d);
+        else
+            outOfRange.push_back(quoted(materials[m].name));
+        const size_t wearing = m < facesWearing.size() ? facesWearing[m] : 0;
+        faces += wearing;
+        if (dissolve[m] < kCutoff) dissolvedFaces += wearing;
+    }
+    if (!outOfRange.empty())
+        scene.warnings.push_back(file.string() + ": material " + firstAndCount(outOfRange) +
+                                 ": a dissolve (d, or 1 − Tr) outside [0, 1], read as opaque");
+    if (faces > 0 && dissolvedFaces == faces) {
+        scene.warnings.push_back(file.string() +
+                                 ": every face wears a material that dissolves below half (d under 0.5, or Tr over "
+                                 "0.5), which would leave nothing to draw: read as opaque, as exporters that write Tr "
+                                 "for opacity, or d 0, mean it");
+        std::fill(dissolve.begin(), dissolve.end(), 1.0f);
+    }
+    return dissolve;
+}
+
 } // namespace
 
-std::vector<int32_t> readObjMaterials(const std::vector<tinyobj::material_t>& materials, const fs::path& file,
-                                      Scene& scene) {
+std::vector<int32_t> readObjMaterials(const std::vector<tinyobj::material_t>& materials,
+                                      std::span<const size_t> facesWearing, const fs::path& file, Scene& scene) {
     std::vector<int32_t> out(materials.size(), -1);
+    const std::vector<float> dissolve = dissolvesOf(materials, facesWearing, file, scene);
     std::map<std::tuple<fs::path, char, bool>, int32_t> textureOf; // a mask read once (−1: unreadable)
     std::vector<std::string> alphaUnread; // materials whose map_Kd has alpha and no map_d cuts them
+    std::vector<std::string> glass;       // materials dissolved away whole
     std::map<fs::path, bool> diffuseCut;  // each map_Kd looked at once
     for (size_t m = 0; m < materials.size(); ++m) {
         const tinyobj::material_t& in = materials[m];
+        if (dissolve[m] < kCutoff) {
+            char figure[32];
+            std::snprintf(figure, sizeof figure, " (d %.3g)", double(dissolve[m]));
+            glass.push_back(quoted(in.name) + figure);
+        }
         if (in.alpha_texname.empty()) {
+            if (dissolve[m] < kCutoff) {
+                out[m] = int32_t(scene.materials.size());
+                scene.materials.push_back(cutMaterial(in.name, -1, dissolve[m]));
+                continue;
+            }
             if (in.diffuse_texname.empty()) continue;
             const fs::path diffuse = findImage(in.diffuse_texname, file.parent_path());
             auto [seen, first] = diffuseCut.try_emplace(diffuse, false);
             if (first) seen->second = cutByItsAlpha(diffuse);
-            if (seen->second)
-                alphaUnread.push_back("'" + printable(in.name) + "' ('" + printable(in.diffuse_texname) + "')");
+            if (seen->second) alphaUnread.push_back(quoted(in.name) + " (" + quoted(in.diffuse_texname) + ")");
             continue;
         }
-        const std::string where = file.string() + ": material '" + printable(in.name) + "'";
+        const std::string where = file.string() + ": material " + quoted(in.name);
         const fs::path image = findImage(in.alpha_texname, file.parent_path());
         const char channel = in.alpha_texopt.imfchan;
         const auto key = std::tuple(image, channel, bool(in.alpha_texopt.clamp));
@@ -164,19 +251,17 @@ std::vector<int32_t> readObjMaterials(const std::vector<tinyobj::material_t>& ma
                                          decoded.error() + "): its faces are drawn and cast whole");
             }
         }
-        if (known->second < 0) continue;
-        Material material;
-        material.name = in.name;
-        material.baseColorTexture = known->second;
-        material.alphaMode = AlphaMode::Mask;
-        material.doubleSided = true;
+        if (known->second < 0 && dissolve[m] >= kCutoff) continue;
         out[m] = int32_t(scene.materials.size());
-        scene.materials.push_back(std::move(material));
+        scene.materials.push_back(cutMaterial(in.name, known->second, dissolve[m]));
     }
+    if (!glass.empty())
+        scene.warnings.push_back(file.string() + ": material " + firstAndCount(glass) +
+                                 " dissolve below half: cut away whole, neither drawn nor cast, so the sun passes "
+                                 "them as it passes glass (shadowkit has no transparency)");
     if (!alphaUnread.empty())
         scene.warnings.push_back(
-            file.string() + ": material " + alphaUnread.front() +
-            (alphaUnread.size() > 1 ? " and " + std::to_string(alphaUnread.size() - 1) + " more" : "") +
+            file.string() + ": material " + firstAndCount(alphaUnread) +
             ": a map_Kd with alpha and no map_d, drawn and cast opaque as OBJ reads it; a map_d line naming the "
             "same image cuts it");
     return out;

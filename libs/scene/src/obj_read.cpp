@@ -2,11 +2,12 @@
 // Polygons are triangulated; normals come from the file when every corner has one, else from
 // the faces; albedo is the material's diffuse colour (Kd, from the .mtl beside the file) times
 // the vertex colour of the widely read `v x y z r g b` extension, which shadowkit's own export
-// writes. Files without either are light grey. A material with a dissolve texture (`map_d`) cuts
-// its faces as glTF's MASK does, read in obj_materials.cpp: those faces are a mesh of their own
-// with its texture coordinates. The file and the material libraries it names
-// are read through scene::readTextFile: an mtllib line naming a pipe would otherwise wait
-// forever, and a byte-order mark or UTF-16 would hide the first line from the parser.
+// writes. Files without either are light grey. A material with a dissolve texture (`map_d`), or
+// one that dissolves below half (`d`, glass), cuts its faces as glTF's MASK does, read in
+// obj_materials.cpp: those faces are a mesh of their own with its texture coordinates. The file
+// and the material libraries it names are read through scene::readTextFile: an mtllib line
+// naming a pipe would otherwise wait forever, and a byte-order mark or UTF-16 would hide the
+// first line from the parser.
 #include "obj_materials.h"
 #include "scene_formats.h"
 
@@ -111,8 +112,13 @@ core::Result<Scene> loadObj(const fs::path& file) {
     const glm::dvec3 anchor = anchorOf(fileBounds);
 
     Scene scene;
-    // The file's materials that cut their faces (map_d): their index in scene.materials, else −1.
-    const std::vector<int32_t> cutBy = readObjMaterials(materials, file, scene);
+    // The file's materials that cut their faces (map_d, or a dissolve below half): their index in
+    // scene.materials, else −1.
+    std::vector<size_t> facesWearing(materials.size(), 0);
+    for (const tinyobj::shape_t& shape : shapes)
+        for (const int material : shape.mesh.material_ids)
+            if (material >= 0 && size_t(material) < materials.size()) ++facesWearing[size_t(material)];
+    const std::vector<int32_t> cutBy = readObjMaterials(materials, facesWearing, file, scene);
     const size_t texcoordCount = attrib.texcoords.size() / 2;
     for (const tinyobj::shape_t& shape : shapes) {
         const tinyobj::mesh_t& faces = shape.mesh;

@@ -1,5 +1,6 @@
 // OBJ materials that cut their faces (obj_materials.cpp): a map_d read as a mask, right side up,
-// through the channel the MTL names, found where exporters leave it, and a missing one named.
+// through the channel the MTL names, found where exporters leave it, and a missing one named;
+// a dissolve (d, Tr) below half read as glass, cut away whole, and a map_d multiplied by it.
 #include "shadowkit/scene/image.h"
 #include "shadowkit/scene/scene_io.h"
 
@@ -174,6 +175,126 @@ TEST(ObjMaterialsTest, MapDSpelledMapUpperDCutsAndAnUncutMapKdWithAlphaIsNamed) 
     const auto opaque = loadScene(dir / "card.obj");
     ASSERT_TRUE(opaque) << opaque.error();
     EXPECT_TRUE(opaque->warnings.empty()) << opaque->warnings.front();
+    fs::remove_all(dir);
+}
+
+// Whether `mesh`, as the ray-traced truth and every pass test it, covers nothing: its alpha —
+// its material's factor times its mask's largest texel — below its cutoff.
+bool cutAwayWhole(const Scene& scene, const Mesh& mesh) {
+    const Material* material = scene.materialOf(mesh);
+    if (!material || !material->alphaTested()) return false;
+    float alpha = 1.0f;
+    if (material->baseColorTexture >= 0) {
+        const Image& mask = scene.textures[size_t(material->baseColorTexture)].image;
+        alpha = 0.0f;
+        for (size_t i = 3; i < mask.rgba.size(); i += 4) alpha = std::max(alpha, float(mask.rgba[i]) / 255.0f);
+    }
+    return material->baseColorFactor.a * alpha < material->alphaCutoff;
+}
+
+TEST(ObjMaterialsTest, GlassThatDissolvesBelowHalfLetsTheSunThroughAndTheRestCastsWhole) {
+    const fs::path dir = test_support::scratchDir() / "obj_dissolve";
+    fs::create_directories(dir);
+    // A pane written as exporters write glass, `d 0.1`, or as 1 − Tr where the file has no d;
+    // d wins over Tr where both are written (tinyobjloader's rule, MTL's own keyword).
+    for (const char* glass : {"d 0.1", "Tr 0.9", "d 0.1\nTr 0.0", "Tr 0.0\nd 0.1"}) {
+        const auto scene =
+            loadCard(dir / "card.obj", std::string("newmtl cut\nKd 0.2 0.5 0.1\n") + glass + "\nnewmtl bark\nd 1\n");
+        ASSERT_TRUE(scene) << scene.error();
+        ASSERT_EQ(scene->meshes.size(), 2u) << glass;
+        const Mesh* pane = meshWearing(*scene, true);
+        const Mesh* bark = meshWearing(*scene, false);
+        ASSERT_TRUE(pane && bark) << glass;
+        EXPECT_TRUE(cutAwayWhole(*scene, *pane)) << glass;
+        EXPECT_NEAR(scene->materialOf(*pane)->baseColorFactor.a, 0.1f, 1e-6f) << glass;
+        EXPECT_NEAR(pane->vertices[0].albedo.g, 0.5f, 1e-6f) << glass; // Kd still colours the vertices
+        EXPECT_EQ(bark->material, -1) << glass;
+        // One line, naming the material and its dissolve (tinyobjloader's own warning aside,
+        // where both d and Tr are written).
+        const auto said = std::find_if(scene->warnings.begin(), scene->warnings.end(), [](const std::string& w) {
+            return w.find("material 'cut' (d 0.1) dissolve below half: cut away whole") != std::string::npos;
+        });
+        ASSERT_NE(said, scene->warnings.end()) << glass;
+        EXPECT_EQ(said->find('\n'), std::string::npos);
+    }
+    // Tinted glass that stops more than half of the light casts whole, as glTF's MASK does with
+    // an alpha over its cutoff — and says nothing.
+    for (const char* tinted : {"d 0.5", "d 0.7", "Tr 0.3"}) {
+        const auto scene = loadCard(dir / "card.obj", std::string("newmtl cut\n") + tinted + "\nnewmtl bark\n");
+        ASSERT_TRUE(scene) << scene.error();
+        EXPECT_FALSE(meshWearing(*scene, true)) << tinted;
+        EXPECT_TRUE(scene->warnings.empty()) << tinted << ": " << scene->warnings.front();
+    }
+    fs::remove_all(dir);
+}
+
+TEST(ObjMaterialsTest, AMapDIsMultipliedByItsDissolve) {
+    const fs::path dir = test_support::scratchDir() / "obj_dissolve_map_d";
+    fs::create_directories(dir);
+    // A grey ramp from 0.25 (top row) to 1 (bottom row): at d 0.8 the texels under 0.625 are
+    // cut, which alone (d 1) are kept.
+    Image ramp(8, 8);
+    for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < 8; ++x) {
+            uint8_t* p = ramp.pixel(x, y);
+            p[0] = p[1] = p[2] = 255;
+            p[3] = uint8_t(64 + y * 191 / 7);
+        }
+    ASSERT_TRUE(writePng(ramp, dir / "ramp.png"));
+    for (const auto& [dissolve, cutAtMiddle] : {std::pair{"1", false}, std::pair{"0.8", true}}) {
+        const auto scene =
+            loadCard(dir / "card.obj", std::string("newmtl cut\nmap_d ramp.png\nd ") + dissolve + "\nnewmtl bark\n");
+        ASSERT_TRUE(scene) << scene.error();
+        const Mesh* card = meshWearing(*scene, true);
+        ASSERT_TRUE(card) << dissolve;
+        const Material& material = *scene->materialOf(*card);
+        // 0.55 of the way up the card the ramp reads about 0.55: kept alone, cut times 0.8.
+        const float alpha = material.baseColorFactor.a * alphaAt(*scene, *card, 0.55f);
+        EXPECT_EQ(alpha < material.alphaCutoff, cutAtMiddle) << dissolve << ": " << alpha;
+        EXPECT_GE(material.baseColorFactor.a * alphaAt(*scene, *card, 0.02f), material.alphaCutoff) << dissolve;
+        EXPECT_TRUE(scene->warnings.empty()) << dissolve << ": " << scene->warnings.front();
+    }
+    // Below half, the mask cannot save it: glass, and a mask that cannot be read is no matter.
+    for (const char* mask : {"ramp.png", "gone.png"}) {
+        const auto scene =
+            loadCard(dir / "card.obj", std::string("newmtl cut\nmap_d ") + mask + "\nd 0.3\nnewmtl bark\n");
+        ASSERT_TRUE(scene) << scene.error();
+        const Mesh* card = meshWearing(*scene, true);
+        ASSERT_TRUE(card) << mask;
+        EXPECT_TRUE(cutAwayWhole(*scene, *card)) << mask;
+    }
+    fs::remove_all(dir);
+}
+
+TEST(ObjMaterialsTest, AFileWhoseEveryFaceWouldDissolveIsReadOpaqueAndSaysSo) {
+    const fs::path dir = test_support::scratchDir() / "obj_dissolve_all";
+    fs::create_directories(dir);
+    // `Tr 1` written for opacity (3ds Max once did), or `d 0` on every material: read as
+    // written, nothing would be left to draw. A material no face wears does not count either way.
+    for (const char* library : {"newmtl cut\nTr 1\nnewmtl bark\nTr 1\n", "newmtl cut\nd 0\nnewmtl bark\nd 0\n",
+                                "newmtl cut\nd 0\nnewmtl bark\nd 0\nnewmtl unused\nd 1\n"}) {
+        const auto scene = loadCard(dir / "card.obj", library);
+        ASSERT_TRUE(scene) << scene.error();
+        EXPECT_FALSE(meshWearing(*scene, true)) << library;
+        ASSERT_EQ(scene->warnings.size(), 1u) << library;
+        EXPECT_NE(scene->warnings.front().find("card.obj: every face wears a material that dissolves below half"),
+                  std::string::npos)
+            << scene->warnings.front();
+    }
+    // One opaque face is enough for the glass beside it to be glass.
+    const auto glass = loadCard(dir / "card.obj", "newmtl cut\nd 0\nnewmtl bark\n");
+    ASSERT_TRUE(glass) << glass.error();
+    const Mesh* pane = meshWearing(*glass, true);
+    ASSERT_TRUE(pane);
+    EXPECT_TRUE(cutAwayWhole(*glass, *pane));
+    // A dissolve outside [0, 1] is read opaque, and named.
+    const auto odd = loadCard(dir / "card.obj", "newmtl cut\nd 7\nnewmtl bark\nd -1\n");
+    ASSERT_TRUE(odd) << odd.error();
+    EXPECT_FALSE(meshWearing(*odd, true));
+    ASSERT_EQ(odd->warnings.size(), 1u);
+    EXPECT_NE(odd->warnings.front().find("material 'cut' and 1 more: a dissolve (d, or 1 − Tr) outside [0, 1]"),
+              std::string::npos)
+        << odd->warnings.front();
     fs::remove_all(dir);
 }
 
