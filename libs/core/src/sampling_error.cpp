@@ -58,7 +58,7 @@ std::vector<ReceiverSample> receiverSamples(const RasterBuffers& raster, const P
     for (size_t i = 0; i < n; ++i) {
         const float depth = raster.viewDepth[i];
         if (!(depth > 0.0f) || !std::isfinite(depth)) continue;
-        if (glm::dot(Vec3(raster.wsNormal[i]), towardsLight) > 0.0) facing.push_back(i);
+        if (facesLight(Vec3(raster.wsNormal[i]), towardsLight)) facing.push_back(i);
     }
     // The view ray through a pixel centre, scaled to view depth 1 (view space looks down −z).
     const Mat4 worldFromView = glm::inverse(camera.viewFromWorld());

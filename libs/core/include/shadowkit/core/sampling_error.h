@@ -45,7 +45,7 @@ struct ReceiverSample {
 
 /// Up to `maxSamples` receivers from a read-back of what the camera sees (RasterBuffers'
 /// viewDepth and wsNormal, at any resolution, the camera's aspect): the pixels with a surface
-/// facing the light (the only ones whose sampling eval counts), spread evenly over them in
+/// facing the light (core::facesLight: the only ones eval scores), spread evenly over them in
 /// image order. Deterministic.
 std::vector<ReceiverSample> receiverSamples(const RasterBuffers& raster, const PerspectiveCamera& camera,
                                             const DirectionalLight& light, size_t maxSamples);

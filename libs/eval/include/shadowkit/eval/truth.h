@@ -27,18 +27,9 @@ struct TruthBuffers {
     uint64_t rays = 0;
 };
 
-// A surface faces a light when N·L > 0 — to within the rounding of the file's numbers. A face
-// parallel to the light's rays (a box's side under a sun straight across it) comes out of a
-// rotated model matrix in float at N·L of ±1e-7 or so (glTF's sample AnimatedMorphCube: 8.1e-8
-// over its whole front face), which then decided the test for 61–64 % of a view's scored pixels
-// although their light, N·L of the sun's irradiance, is the same lit or shadowed. So N·L ≤ 1e-6
-// (0.00006° from grazing, ten times that rounding) is not facing: neither scored nor lit. The
-// forests' curved surfaces have no pixel below it on any standard view (1e-4 took 18 of the blob
-// forest's 588,189 `aerial` pixels and moved that view's pixels_per_texel_p99 by 0.3 %).
-inline constexpr double kFacingCosine = 1e-6;
-inline bool facesLight(const core::Vec3& wsNormal, const core::Vec3& wsTowardsLight) {
-    return glm::dot(wsNormal, wsTowardsLight) > kFacingCosine; // false for a NaN normal too
-}
+// Whether a surface faces a light: one rule for the truth and the sampling model (core/light.h).
+using core::facesLight;
+using core::kFacingCosine;
 
 struct TruthOptions {
     // Shadow-ray start offset along the geometric normal, as a fraction of the scene
