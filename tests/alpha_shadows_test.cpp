@@ -3,9 +3,11 @@
 #include "headless_gl_test.h"
 
 #include "shadowkit/core/local_lights.h"
+#include "shadowkit/gl/renderer.h"
 #include "shadowkit/measure/measurer.h"
 #include "shadowkit/scene/file_write.h"
 #include "shadowkit/scene/image.h"
+#include "shadowkit/scene/material.h"
 #include "shadowkit/scene/mesh_builder.h"
 #include "shadowkit/scene/scene_io.h"
 
@@ -329,6 +331,43 @@ TEST_F(AlphaShadowsTest, AnObjCardsDissolveMultipliesItsMaskAndGlassCastsNothing
     // Tinted, stopping more than half: the mask (0 or 1) times 0.8 still cuts the checker.
     expectTheCheckerShadow(objCheckerCardScene(dir, "d 0.8\n"));
     std::filesystem::remove_all(dir);
+}
+
+TEST_F(AlphaShadowsTest, AMaterialTheAlphaTestCutsAwayWholeIsDrawnByNoPass) {
+    // Clear glass: the checker card at a factor of 0.1, its largest alpha 0.1 under the cutoff 0.5.
+    // No fragment of it could pass the alpha test, and no ray may stop on it; it is kept out of
+    // every pass on every culling path (GpuScene, GpuCulling) and out of the ray tracer: each pass
+    // draws the ground alone, and nothing casts a shadow. Until then every pass drew its two
+    // triangles and discarded each of their fragments.
+    scene::Scene glass = checkerCardScene(scene::AlphaMode::Mask);
+    glass.materials[0].baseColorFactor.a = 0.1f;
+    ASSERT_TRUE(scene::coversNothing(glass.materials[0], glass.textures));
+    const size_t groundTriangles = glass.meshes[0].triangleCount();
+    const core::DirectionalLight sun = core::DirectionalLight::fromDirection({-1.0, -1.0, 0.0}).value();
+    const auto setup = core::computeShadowSetup({.camera = cardCamera(),
+                                                 .light = sun,
+                                                 .wsSceneBounds = glass.wsBounds(),
+                                                 .technique = core::Technique::Focused});
+    ASSERT_TRUE(setup) << setup.error();
+    auto renderer = gl::Renderer::create(glass);
+    ASSERT_TRUE(renderer) << renderer.error();
+    for (const gl::Culling culling : {gl::Culling::Frustum, gl::Culling::Occlusion, gl::Culling::Gpu}) {
+        gl::RenderSettings settings = cardFrame();
+        settings.culling = culling;
+        for (int frame = 0; frame < 2; ++frame) { // the GPU path's counts come back a frame late
+            const auto stats = (*renderer)->render(cardCamera(), sun, *setup, settings);
+            ASSERT_TRUE(stats) << stats.error();
+            if (frame == 0) continue;
+            EXPECT_EQ(stats->shadow.instances, 1u) << int(culling);
+            EXPECT_EQ(stats->shadow.triangles, groundTriangles) << int(culling);
+            EXPECT_EQ(stats->main.instances, 1u) << int(culling);
+            EXPECT_EQ(stats->main.triangles, groundTriangles) << int(culling);
+        }
+    }
+    const Agreement none = measureCard(glass, core::Technique::Focused);
+    ASSERT_GT(none.covered + none.open, 300);
+    EXPECT_EQ(none.truthShadowed, 0);
+    EXPECT_EQ(none.glShadowed, 0);
 }
 
 TEST_F(AlphaShadowsTest, AGlassCardLetsTheSunThroughWhereItsTransmissionTextureSays) {

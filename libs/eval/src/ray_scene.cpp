@@ -161,7 +161,11 @@ core::Result<std::unique_ptr<RayScene>> RayScene::build(const scene::Scene& scen
         // for the flag on each instanced scene too).
         rtcSetSceneFlags(meshScene, RTCSceneFlags(RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION |
                                                   (deformed ? RTC_SCENE_FLAG_DYNAMIC : RTC_SCENE_FLAG_NONE)));
-        if (mesh.indices.empty()) {
+        // A mesh whose material the alpha test cuts away whole (clear glass) stops no ray:
+        // left out, rather than every hit on it rejected by the alpha filter (scene::coversNothing,
+        // the rule the renderer keeps it out of every pass by).
+        const scene::Material* material = scene.materialOf(mesh);
+        if (mesh.indices.empty() || (material && scene::coversNothing(*material, scene.textures))) {
             rtcCommitScene(meshScene);
             continue;
         }

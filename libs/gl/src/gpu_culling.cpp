@@ -102,8 +102,11 @@ std::unique_ptr<GpuCulling> GpuCulling::create(const scene::Scene& scene, std::s
                           0,
                           gpuScene.drawsByClusters(batches.size()) ? 1u : 0u, // this batch's, in the scene
                           0};
-        for (uint32_t k = 0; k < count; k += kCullGroup)
-            chunks.emplace_back(batches.size(), first + k, std::min<uint32_t>(kCullGroup, count - k), k);
+        // A batch kept out of every pass (clear glass) gets no chunks: its instances are never
+        // listed, so the lists count what is drawn.
+        const uint32_t culled = gpuScene.keptOut(batches.size()) ? 0 : count;
+        for (uint32_t k = 0; k < culled; k += kCullGroup)
+            chunks.emplace_back(batches.size(), first + k, std::min<uint32_t>(kCullGroup, culled - k), k);
         info.chunkCount = static_cast<uint32_t>(chunks.size()) - info.firstChunk;
         for (size_t l = 0; l < kMaxLodLevels; ++l) {
             GpuLevel level{};

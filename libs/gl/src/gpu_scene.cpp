@@ -178,10 +178,18 @@ GpuScene::GpuScene(const scene::Scene& scene, std::span<const scene::MeshLods> l
     }
     GLuint firstInstance = 0;
     m_batchAt.assign(scene.batches.size(), -1);
+    // A material the alpha test cuts away whole (clear glass) is kept out with the batches
+    // that have nothing to draw: no pass would write a fragment of it (scene::coversNothing).
+    std::vector<uint8_t> coversNothing(scene.materials.size());
+    for (size_t m = 0; m < scene.materials.size(); ++m)
+        coversNothing[m] = scene::coversNothing(scene.materials[m], scene.textures);
     for (size_t b = 0; b < scene.batches.size(); ++b) {
         const scene::MeshBatch& batch = scene.batches[b];
         const auto count = static_cast<GLuint>(batch.worldFromObject.size());
-        if (count > 0 && !scene.meshes[batch.mesh].indices.empty()) {
+        const int32_t materialIndex = scene.meshes[batch.mesh].material;
+        const bool cutAway = materialIndex >= 0 && size_t(materialIndex) < coversNothing.size() &&
+                             coversNothing[size_t(materialIndex)] != 0;
+        if (count > 0 && !scene.meshes[batch.mesh].indices.empty() && !cutAway) {
             GpuMaterial material;
             if (const scene::Material* m = scene.materialOf(scene.meshes[batch.mesh])) {
                 const int32_t t = m->baseColorTexture;

@@ -117,6 +117,9 @@ public:
     bool drawsByClusters(size_t sceneBatch) const;
     // Whether Scene::batches[sceneBatch]'s material is alpha-tested (leaves).
     bool alphaTested(size_t sceneBatch) const;
+    // Whether Scene::batches[sceneBatch] is kept out of every pass: no instances, no triangles, or
+    // a material the alpha test cuts away whole (scene::coversNothing).
+    bool keptOut(size_t sceneBatch) const { return sceneBatch >= m_batchAt.size() || m_batchAt[sceneBatch] < 0; }
 
     // A drawn list's instances and whole levels' triangles, added to `work` (kMaxLodLevels
     // entries) at each level, the alpha-tested batches' also apart (Renderer::workByLevel).
@@ -193,7 +196,7 @@ private:
     Texture m_white;                 // for alpha-tested materials without a texture
     std::vector<GpuMesh> m_meshes;
     std::vector<GpuBatch> m_batches;
-    std::vector<int32_t> m_batchAt; // Scene::batches index -> m_batches, -1 for a batch kept out
+    std::vector<int32_t> m_batchAt; // Scene::batches index -> m_batches, -1 for a batch kept out (nothing to draw)
     bool m_levelsInOneDraw = false; // vertexStagesReadDrawParameters() when the scene was made
     // drawLevel's runs of clusters for one glMultiDrawElements, kept so a page's draw allocates nothing.
     mutable std::vector<GLsizei> m_runCounts;

@@ -139,17 +139,6 @@ core::Result<Texture> readTexture(const tinygltf::Model& model, const fs::path& 
     return decoded;
 }
 
-namespace {
-
-// The largest alpha of an image's texels, in [0, 1].
-float maxAlpha(const Image& image) {
-    uint8_t most = 0;
-    for (size_t i = 3; i < image.rgba.size(); i += 4) most = std::max(most, image.rgba[i]);
-    return float(most) / 255.0f;
-}
-
-} // namespace
-
 bool loadImage(tinygltf::Image* image, const int index, std::string*, std::string*, int, int,
                const unsigned char* bytes, int size, void* user) {
     if (image->bufferView >= 0) return true;
@@ -234,7 +223,7 @@ core::Status readMaterials(const tinygltf::Model& model, const fs::path& file, c
             float textureAlpha = 1.0f;
             if (out.baseColorTexture >= 0) {
                 auto [at, first] = maxAlphaOf.try_emplace(out.baseColorTexture, 0.0f);
-                if (first) at->second = maxAlpha(scene.textures[size_t(out.baseColorTexture)].image);
+                if (first) at->second = largestAlpha(scene.textures[size_t(out.baseColorTexture)].image);
                 textureAlpha = at->second;
             }
             const float alpha = out.baseColorFactor.a * textureAlpha;

@@ -1,8 +1,22 @@
 #include "shadowkit/scene/material.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace shadowkit::scene {
+
+float largestAlpha(const Image& image) {
+    uint8_t most = 0;
+    for (size_t i = 3; i < image.rgba.size(); i += 4) most = std::max(most, image.rgba[i]);
+    return float(most) / 255.0f;
+}
+
+bool coversNothing(const Material& material, std::span<const Texture> textures) {
+    if (!material.alphaTested()) return false;
+    const int32_t t = material.baseColorTexture;
+    const float textureAlpha = t >= 0 && size_t(t) < textures.size() ? largestAlpha(textures[size_t(t)].image) : 1.0f;
+    return material.baseColorFactor.a * textureAlpha < material.alphaCutoff;
+}
 
 int wrapTexelIndex(int i, int n, TextureWrap wrap) {
     switch (wrap) {

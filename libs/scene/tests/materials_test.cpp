@@ -1,6 +1,7 @@
 // Materials and their images: glTF base colour textures with their samplers and transforms,
 // alpha modes, images decoded within limits (and every broken one named in one line), the
 // texture lookup the truth shares with GL, and mipmaps that keep an alpha test's coverage.
+#include "shadowkit/scene/alpha_mask.h"
 #include "shadowkit/scene/image.h"
 #include "shadowkit/scene/material.h"
 #include "shadowkit/scene/mesh_builder.h"
@@ -579,6 +580,48 @@ TEST(TextureSamplingTest, Level0LookupIsGlsBilinearWithItsWrapModes) {
     EXPECT_FLOAT_EQ(scene::sampleLevel0(t, {0.51f, 0.5f}).a, 1.0f);
     EXPECT_TRUE(std::isfinite(scene::sampleLevel0(t, {1e30f, -1e30f}).a));
     EXPECT_TRUE(std::isfinite(scene::sampleLevel0(t, {NAN, 0.5f}).a));
+}
+
+TEST(TextureSamplingTest, AMaterialCoversNothingExactlyWhereTheTruthsAlphaTestCoversNoPoint) {
+    // A texture whose largest alpha is 153 (0.6), at one texel of 4 × 4, the rest 40.
+    std::vector<scene::Texture> textures(1);
+    textures[0].image = scene::Image(4, 4);
+    for (size_t i = 3; i < textures[0].image.rgba.size(); i += 4) textures[0].image.rgba[i] = 40;
+    textures[0].image.pixel(2, 1)[3] = 153;
+    EXPECT_FLOAT_EQ(scene::largestAlpha(textures[0].image), 0.6f);
+    struct Case {
+        scene::AlphaMode mode;
+        int32_t texture;
+        float factor, cutoff;
+        bool nothing;
+    } cases[] = {
+        {scene::AlphaMode::Opaque, -1, 0.0f, 0.5f, false}, // alpha ignored
+        {scene::AlphaMode::Mask, -1, 0.49f, 0.5f, true},
+        {scene::AlphaMode::Mask, -1, 0.5f, 0.5f, false},  // covered where alpha ≥ cutoff
+        {scene::AlphaMode::Blend, -1, 0.12f, 0.5f, true}, // cast as MASK
+        {scene::AlphaMode::Mask, 0, 1.0f, 0.5f, false},   // the one texel at 0.6
+        {scene::AlphaMode::Mask, 0, 0.8f, 0.5f, true},    // 0.48 at most
+        {scene::AlphaMode::Mask, 0, 0.8f, 0.3f, false},
+    };
+    for (const Case& c : cases) {
+        const scene::Material material{.baseColorFactor = {1.0f, 1.0f, 1.0f, c.factor},
+                                       .baseColorTexture = c.texture,
+                                       .alphaMode = c.mode,
+                                       .alphaCutoff = c.cutoff};
+        const std::string what = "factor " + std::to_string(c.factor) + ", cutoff " + std::to_string(c.cutoff) +
+                                 (c.texture >= 0 ? ", textured" : "");
+        EXPECT_EQ(scene::coversNothing(material, textures), c.nothing) << what;
+        if (!material.alphaTested()) continue;
+        // The ray-traced truth's own test (AlphaMask, level 0 as GL samples it) agrees: no point
+        // of a surface that covers nothing is covered, and the texel centre of the largest alpha
+        // is where one that covers something is.
+        const scene::AlphaMask mask(c.texture >= 0 ? textures[0] : scene::Texture{}, c.factor, c.cutoff);
+        bool anyCovered = false;
+        for (int y = 0; y < 32; ++y)
+            for (int x = 0; x < 32; ++x) anyCovered |= mask.covers({(x + 0.5f) / 32.0f, (y + 0.5f) / 32.0f});
+        anyCovered |= mask.covers({2.5f / 4.0f, 1.5f / 4.0f});
+        EXPECT_EQ(anyCovered, !c.nothing) << what;
+    }
 }
 
 TEST(TextureMipsTest, AlphaTestedMipsKeepTheCoverageThatBoxFilteringLoses) {

@@ -2,6 +2,7 @@
 // through the channel the MTL names, found where exporters leave it, and a missing one named;
 // a dissolve (d, Tr) below half read as glass, cut away whole, and a map_d multiplied by it.
 #include "shadowkit/scene/image.h"
+#include "shadowkit/scene/material.h"
 #include "shadowkit/scene/scene_io.h"
 
 #include "scratch_dir.h"
@@ -178,18 +179,10 @@ TEST(ObjMaterialsTest, MapDSpelledMapUpperDCutsAndAnUncutMapKdWithAlphaIsNamed) 
     fs::remove_all(dir);
 }
 
-// Whether `mesh`, as the ray-traced truth and every pass test it, covers nothing: its alpha —
-// its material's factor times its mask's largest texel — below its cutoff.
+// Whether `mesh`, as the ray-traced truth and every pass test it, covers nothing.
 bool cutAwayWhole(const Scene& scene, const Mesh& mesh) {
     const Material* material = scene.materialOf(mesh);
-    if (!material || !material->alphaTested()) return false;
-    float alpha = 1.0f;
-    if (material->baseColorTexture >= 0) {
-        const Image& mask = scene.textures[size_t(material->baseColorTexture)].image;
-        alpha = 0.0f;
-        for (size_t i = 3; i < mask.rgba.size(); i += 4) alpha = std::max(alpha, float(mask.rgba[i]) / 255.0f);
-    }
-    return material->baseColorFactor.a * alpha < material->alphaCutoff;
+    return material && coversNothing(*material, scene.textures);
 }
 
 TEST(ObjMaterialsTest, GlassThatDissolvesBelowHalfLetsTheSunThroughAndTheRestCastsWhole) {

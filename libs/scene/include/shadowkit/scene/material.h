@@ -17,6 +17,7 @@
 #include <glm/glm.hpp>
 
 #include <cstdint>
+#include <span>
 #include <string>
 
 namespace shadowkit::scene {
@@ -47,6 +48,16 @@ struct Material {
     // Whether coverage depends on alpha (Mask, or Blend cast as Mask).
     bool alphaTested() const { return alphaMode != AlphaMode::Opaque; }
 };
+
+// The largest alpha of an image's texels, in [0, 1]; 0 for an empty image.
+float largestAlpha(const Image& image);
+
+// Whether the alpha test cuts `material` away everywhere — masked (or blended, cast as masked),
+// its factor's alpha times the largest alpha its texture holds (`textures`: the scene's) below its
+// cutoff: a pane of clear glass, a BLEND card at 12 % alpha. Nothing of it is drawn, cast or hit,
+// in any pass or in the truth, so the renderer and the ray tracer leave it out rather than test
+// every fragment and every hit of it.
+bool coversNothing(const Material& material, std::span<const Texture> textures);
 
 // Texel index i of a row or column of n texels under a wrap mode (GL 4.5 §8.14.2).
 int wrapTexelIndex(int i, int n, TextureWrap wrap);
