@@ -53,12 +53,12 @@ int addFoliageClouds(Scene& scene, const FoliageCloudOptions& options) {
         // A deformed mesh's clouds would stand in its first pose while its cards move.
         if (!material || !material->alphaTested() || !mesh.authoredLods.empty() || scene.deforms(m)) continue;
         if (mesh.triangleCount() < options.minTriangles || mesh.triangleCount() > options.maxTriangles) continue;
+        // Clear glass covers nothing, and has nothing to bake: no pass draws it (material.h).
+        if (coversNothing(*material, scene.textures)) continue;
         const Texture* texture =
             material->baseColorTexture >= 0 && size_t(material->baseColorTexture) < scene.textures.size()
                 ? &scene.textures[size_t(material->baseColorTexture)]
                 : nullptr;
-        // Without a texture the alpha is the factor's alone: everything or nothing is covered.
-        if (!texture && material->baseColorFactor.a < material->alphaCutoff) continue;
         const CloudSource source{&mesh,
                                  mesh.indices,
                                  texture ? &texture->image : nullptr,

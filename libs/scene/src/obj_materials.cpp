@@ -22,9 +22,9 @@
 // files without `d` may write `Tr`, its complement (tinyobjloader reads dissolve = 1 − Tr, and
 // `d` wins where both are written). shadowkit has no transparency, so the dissolve is read as
 // glTF reads alpha: a factor on the mask, cut at 0.5. A material that dissolves below half —
-// a window pane written `d 0.1`, as Blender, 3ds Max and most exporters write glass — is cut
-// away whole, neither drawn nor cast, so the sun passes it as it passes glass; one that dissolves
-// less casts whole; with a map_d the product is cut. One warning per file names them. Exporters
+// a window pane written `d 0.1` — is cut away whole, neither drawn nor cast, so the sun passes it
+// as it passes glass; one that dissolves less casts whole; with a map_d the product is cut. One
+// warning per file names those that faces wear. Exporters
 // disagree on `Tr` (3ds Max once wrote it as opacity, tinyobjloader's issue 43), and a `d` with
 // no number reads 0; where every face of the file would dissolve away — nothing left to draw —
 // its materials are read opaque with one warning instead. A dissolve outside [0, 1] is read
@@ -213,7 +213,7 @@ std::vector<int32_t> readObjMaterials(const std::vector<tinyobj::material_t>& ma
     std::map<fs::path, bool> diffuseCut;  // each map_Kd looked at once
     for (size_t m = 0; m < materials.size(); ++m) {
         const tinyobj::material_t& in = materials[m];
-        if (dissolve[m] < kCutoff) {
+        if (dissolve[m] < kCutoff && m < facesWearing.size() && facesWearing[m] > 0) {
             char figure[32];
             std::snprintf(figure, sizeof figure, " (d %.3g)", double(dissolve[m]));
             glass.push_back(quoted(in.name) + figure);

@@ -274,12 +274,16 @@ TEST(ObjMaterialsTest, AFileWhoseEveryFaceWouldDissolveIsReadOpaqueAndSaysSo) {
                   std::string::npos)
             << scene->warnings.front();
     }
-    // One opaque face is enough for the glass beside it to be glass.
-    const auto glass = loadCard(dir / "card.obj", "newmtl cut\nd 0\nnewmtl bark\n");
+    // One opaque face is enough for the glass beside it to be glass; glass no face wears is
+    // not named.
+    const auto glass = loadCard(dir / "card.obj", "newmtl cut\nd 0\nnewmtl bark\nnewmtl spare\nd 0.2\n");
     ASSERT_TRUE(glass) << glass.error();
     const Mesh* pane = meshWearing(*glass, true);
     ASSERT_TRUE(pane);
     EXPECT_TRUE(cutAwayWhole(*glass, *pane));
+    ASSERT_EQ(glass->warnings.size(), 1u);
+    EXPECT_NE(glass->warnings.front().find("material 'cut' (d 0) dissolve below half"), std::string::npos)
+        << glass->warnings.front();
     // A dissolve outside [0, 1] is read opaque, and named.
     const auto odd = loadCard(dir / "card.obj", "newmtl cut\nd 7\nnewmtl bark\nd -1\n");
     ASSERT_TRUE(odd) << odd.error();
