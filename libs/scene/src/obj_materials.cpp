@@ -248,7 +248,9 @@ std::vector<int32_t> readObjMaterials(const std::vector<tinyobj::material_t>& ma
             } else { // said once, however many materials name it
                 known = textureOf.emplace(key, -1).first;
                 scene.warnings.push_back(where + ": its map_d '" + printable(in.alpha_texname) + "' cannot be read (" +
-                                         decoded.error() + "): its faces are drawn and cast whole");
+                                         decoded.error() +
+                                         "): read as covering every texel, its faces cast whole unless "
+                                         "their dissolve is under half");
             }
         }
         if (known->second < 0 && dissolve[m] >= kCutoff) continue;
