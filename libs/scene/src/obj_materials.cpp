@@ -258,9 +258,10 @@ std::vector<int32_t> readObjMaterials(const std::vector<tinyobj::material_t>& ma
         scene.materials.push_back(cutMaterial(in.name, known->second, dissolve[m]));
     }
     if (!glass.empty())
-        scene.warnings.push_back(file.string() + ": material " + firstAndCount(glass) +
-                                 " dissolve below half: cut away whole, neither drawn nor cast, so the sun passes "
-                                 "them as it passes glass (shadowkit has no transparency)");
+        scene.warnings.push_back(
+            file.string() + ": material " + firstAndCount(glass) + (glass.size() > 1 ? " dissolve" : " dissolves") +
+            " below half: cut away whole, neither drawn nor cast, so the sun passes " +
+            (glass.size() > 1 ? "them" : "it") + " as it passes glass (shadowkit has no transparency)");
     if (!alphaUnread.empty())
         scene.warnings.push_back(
             file.string() + ": material " + firstAndCount(alphaUnread) +

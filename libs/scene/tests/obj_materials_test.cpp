@@ -205,7 +205,7 @@ TEST(ObjMaterialsTest, GlassThatDissolvesBelowHalfLetsTheSunThroughAndTheRestCas
         // One line, naming the material and its dissolve (tinyobjloader's own warning aside,
         // where both d and Tr are written).
         const auto said = std::find_if(scene->warnings.begin(), scene->warnings.end(), [](const std::string& w) {
-            return w.find("material 'cut' (d 0.1) dissolve below half: cut away whole") != std::string::npos;
+            return w.find("material 'cut' (d 0.1) dissolves below half: cut away whole") != std::string::npos;
         });
         ASSERT_NE(said, scene->warnings.end()) << glass;
         EXPECT_EQ(said->find('\n'), std::string::npos);
@@ -282,7 +282,7 @@ TEST(ObjMaterialsTest, AFileWhoseEveryFaceWouldDissolveIsReadOpaqueAndSaysSo) {
     ASSERT_TRUE(pane);
     EXPECT_TRUE(cutAwayWhole(*glass, *pane));
     ASSERT_EQ(glass->warnings.size(), 1u);
-    EXPECT_NE(glass->warnings.front().find("material 'cut' (d 0) dissolve below half"), std::string::npos)
+    EXPECT_NE(glass->warnings.front().find("material 'cut' (d 0) dissolves below half"), std::string::npos)
         << glass->warnings.front();
     // A dissolve outside [0, 1] is read opaque, and named.
     const auto odd = loadCard(dir / "card.obj", "newmtl cut\nd 7\nnewmtl bark\nd -1\n");
