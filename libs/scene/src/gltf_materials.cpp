@@ -217,7 +217,8 @@ core::Status readMaterials(const tinygltf::Model& model, const fs::path& file, c
         }
         // A mask whose alpha never reaches its cutoff covers nothing: the meshes wearing it
         // vanish from every pass (a BLEND factor of 0.12, as a glass pane may be authored,
-        // cast as MASK at 0.5). Say so rather than leave an empty picture unexplained.
+        // cast as MASK at 0.5). Say so rather than leave an empty picture unexplained — by the
+        // rule the passes and the truth leave it out by (coversNothing), each texture scanned once.
         bool cutWhole = false;
         if (out.alphaMode != AlphaMode::Opaque) {
             float textureAlpha = 1.0f;
@@ -226,9 +227,9 @@ core::Status readMaterials(const tinygltf::Model& model, const fs::path& file, c
                 if (first) at->second = largestAlpha(scene.textures[size_t(out.baseColorTexture)].image);
                 textureAlpha = at->second;
             }
-            const float alpha = out.baseColorFactor.a * textureAlpha;
-            cutWhole = alpha < out.alphaCutoff;
+            cutWhole = coversNothing(out, textureAlpha);
             if (cutWhole && !transmits) {
+                const float alpha = alphaAtMost(out, textureAlpha);
                 char figures[96];
                 std::snprintf(figures, sizeof figures, "its alpha is at most %.3g, below its cutoff %.3g", alpha,
                               out.alphaCutoff);

@@ -11,11 +11,17 @@ float largestAlpha(const Image& image) {
     return float(most) / 255.0f;
 }
 
+float alphaAtMost(const Material& material, float textureAlpha) { return material.baseColorFactor.a * textureAlpha; }
+
+bool coversNothing(const Material& material, float textureAlpha) {
+    return material.alphaTested() && alphaAtMost(material, textureAlpha) < material.alphaCutoff;
+}
+
 bool coversNothing(const Material& material, std::span<const Texture> textures) {
-    if (!material.alphaTested()) return false;
+    if (!material.alphaTested()) return false; // no texture to scan
     const int32_t t = material.baseColorTexture;
-    const float textureAlpha = t >= 0 && size_t(t) < textures.size() ? largestAlpha(textures[size_t(t)].image) : 1.0f;
-    return material.baseColorFactor.a * textureAlpha < material.alphaCutoff;
+    return coversNothing(material,
+                         t >= 0 && size_t(t) < textures.size() ? largestAlpha(textures[size_t(t)].image) : 1.0f);
 }
 
 int wrapTexelIndex(int i, int n, TextureWrap wrap) {

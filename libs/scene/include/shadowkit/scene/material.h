@@ -52,11 +52,17 @@ struct Material {
 // The largest alpha of an image's texels, in [0, 1]; 0 for an empty image.
 float largestAlpha(const Image& image);
 
+// The most alpha the alpha test can meet anywhere on `material`: its factor's alpha times
+// `textureAlpha`, the largest alpha its base-colour texture holds (largestAlpha; 1 without one).
+float alphaAtMost(const Material& material, float textureAlpha);
+
 // Whether the alpha test cuts `material` away everywhere — masked (or blended, cast as masked),
-// its factor's alpha times the largest alpha its texture holds (`textures`: the scene's) below its
-// cutoff: a pane of clear glass, a BLEND card at 12 % alpha. Nothing of it is drawn, cast or hit,
-// in any pass or in the truth, so the renderer and the ray tracer leave it out rather than test
-// every fragment and every hit of it.
+// its alphaAtMost below its cutoff: a pane of clear glass, a BLEND card at 12 % alpha. Nothing of
+// it is drawn, cast or hit, in any pass or in the truth, so the renderer and the ray tracer leave
+// it out rather than test every fragment and every hit of it. `textureAlpha` as for alphaAtMost
+// (a loader that has it at hand, once per texture); the second form reads it from `textures`,
+// the scene's.
+bool coversNothing(const Material& material, float textureAlpha);
 bool coversNothing(const Material& material, std::span<const Texture> textures);
 
 // Texel index i of a row or column of n texels under a wrap mode (GL 4.5 §8.14.2).
