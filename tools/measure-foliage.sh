@@ -6,8 +6,8 @@
 # point sun's (wrong_pct) and the sun disk's (soft_mae, penumbra_mae, soft_wrong_pct).
 #
 # The leafy sweep evaluates 138 views of 56 M triangles at 1280 × 720 under a 0.53° sun: about
-# 4 minutes on an NVIDIA H200 (16 CPU cores for the truth), hours on this project's 2-core
-# llvmpipe machine. LEAFY_RESULTS=FILE writes the tables from a results.csv measured elsewhere:
+# 4 minutes on an NVIDIA H200 (16 CPU cores for the truth), 26 minutes on this project's 2-core
+# llvmpipe machine (2026-12-06). LEAFY_RESULTS=FILE writes the tables from a results.csv measured elsewhere:
 # the H200's is kept, data/gpu/h200-2026-11-29-leafy-soft.csv (tools/measure-gpu.sh foliage). SKIP_SWEEP=1 keeps the blob
 # forest's last results (out/sweeps/soft-filters).
 set -euo pipefail
