@@ -18,7 +18,7 @@ bool coversNothing(const Material& material, float textureAlpha) {
 }
 
 bool coversNothing(const Material& material, std::span<const Texture> textures) {
-    if (!material.alphaTested()) return false; // no texture to scan
+    if (!material.alphaTested()) return false; // opaque: covers wherever it lies, no texture to scan
     const int32_t t = material.baseColorTexture;
     return coversNothing(material,
                          t >= 0 && size_t(t) < textures.size() ? largestAlpha(textures[size_t(t)].image) : 1.0f);
