@@ -83,6 +83,8 @@ struct SkShadowOptions {
     int filterTaps;           // N of the grid, Poisson and PCSS filters
     float poissonRadiusTexels; // Poisson: the disk's radius; PCSS: its widest kernel; in texels
     float lightTanHalfAngle;   // PCSS: tan of the sun's angular radius (0.53° across: 0.004625); 0: a point
+    float normalOffsetFootprint; // BiasSettings::normalOffsetFootprint: receiver moved along its normal
+                                 // by this × its texel's footprint across the light, on the normal
 };
 
 // (u, v, depth) of a world point: textureFromWorld's xy / w and the reference depth.
@@ -99,6 +101,39 @@ vec3 skShadowStep(mat4 textureFromWorld, vec4 linearDepthFromWorld, bool linearD
     vec3 d = (dT.xyz - t.xyz / t.w * dT.w) / t.w;
     if (linearDepth) d.z = dot(linearDepthFromWorld.xyz, wsStep);
     return d;
+}
+
+// How far a receiver at t (skShadowCoordinates' t) with unit normal `n` moves along it before
+// the lookup: BiasSettings' two normal offsets, in world units.
+//  - normalOffsetTexels K: K texels' world size. A texel's world size is 1 / mapTexels over the
+//    gradient of the texture coordinate; the shorter gradient (the longer texel axis) makes the
+//    offset enough along both — whatever the receiver's slope, so a face turned to the light
+//    moves as far as one along it.
+//  - normalOffsetFootprint k: k (|a_u·n| + |a_v·n|), a_u and a_v the world steps of one texel
+//    in u and in v at constant depth (across the light). The texel a receiver reads holds its own
+//    plane's depth at the texel's centre, up to half a step in u and in v away; along the light
+//    that plane lies |s·n| / (n·l) nearer than the receiver after a step s, and a move δ along n
+//    puts the receiver δ / (n·l) nearer along the light. So δ = ½ (|a_u·n| + |a_v·n|) clears its
+//    own plane anywhere in the texel (k = ½; the slope-scaled offset covers the rasteriser's
+//    rounding), and δ = 0 for a face turned to the light, whose shadows do not move.
+//    With J the rows ∇u, ∇v, ∇depth, the steps are J⁻¹'s first two columns over mapTexels:
+//    a_u = (∇v × ∇depth) / (det J · mapTexels), a_v = (∇depth × ∇u) / (det J · mapTexels).
+vec3 skNormalOffset(mat4 textureFromWorld, vec4 linearDepthFromWorld, SkShadowOptions o, vec4 t, vec3 n) {
+    const vec3 gx = skShadowStep(textureFromWorld, linearDepthFromWorld, o.linearDepth, t, vec3(1, 0, 0));
+    const vec3 gy = skShadowStep(textureFromWorld, linearDepthFromWorld, o.linearDepth, t, vec3(0, 1, 0));
+    const vec3 gz = skShadowStep(textureFromWorld, linearDepthFromWorld, o.linearDepth, t, vec3(0, 0, 1));
+    const vec3 gradU = vec3(gx.x, gy.x, gz.x), gradV = vec3(gx.y, gy.y, gz.y), gradDepth = vec3(gx.z, gy.z, gz.z);
+    float offset = 0.0;
+    if (o.normalOffsetTexels > 0.0)
+        offset += o.normalOffsetTexels / (o.mapTexels * max(min(length(gradU), length(gradV)), 1e-12));
+    if (o.normalOffsetFootprint > 0.0) {
+        const vec3 stepU = cross(gradV, gradDepth), stepV = cross(gradDepth, gradU); // × det J
+        const float det = abs(dot(gradU, stepU));
+        // A map whose depth does not vary across the receiver's point (det 0) has no texel there.
+        if (det > 0.0)
+            offset += o.normalOffsetFootprint * (abs(dot(stepU, n)) + abs(dot(stepV, n))) / (det * o.mapTexels);
+    }
+    return n * offset;
 }
 
 // A rotation angle per pixel for the Poisson disk: it only has to break up the fixed pattern.
@@ -285,15 +320,8 @@ float skShadowMapIn(sampler2DArrayShadow maps, int layer, mat4 textureFromWorld,
                     SkShadowOptions o, vec4 atlasFromMap, vec3 ws, vec3 n, vec3 dwsdx, vec3 dwsdy) {
     vec4 t;
     vec3 uvz = skShadowCoordinates(textureFromWorld, linearDepthFromWorld, o.linearDepth, ws, t);
-    if (o.normalOffsetTexels > 0.0) {
-        // Normal offset: move the receiver off its surface by K texels' world size. A texel's
-        // world size is 1 / mapTexels over the gradient of the texture coordinate; the shorter
-        // gradient (the longer texel axis) makes the offset enough along both.
-        const vec3 gx = skShadowStep(textureFromWorld, linearDepthFromWorld, o.linearDepth, t, vec3(1, 0, 0));
-        const vec3 gy = skShadowStep(textureFromWorld, linearDepthFromWorld, o.linearDepth, t, vec3(0, 1, 0));
-        const vec3 gz = skShadowStep(textureFromWorld, linearDepthFromWorld, o.linearDepth, t, vec3(0, 0, 1));
-        const float gradU = length(vec3(gx.x, gy.x, gz.x)), gradV = length(vec3(gx.y, gy.y, gz.y));
-        ws += n * (o.normalOffsetTexels / (o.mapTexels * max(min(gradU, gradV), 1e-12)));
+    if (o.normalOffsetTexels > 0.0 || o.normalOffsetFootprint > 0.0) {
+        ws += skNormalOffset(textureFromWorld, linearDepthFromWorld, o, t, n);
         uvz = skShadowCoordinates(textureFromWorld, linearDepthFromWorld, o.linearDepth, ws, t);
     }
     // Outside the map nothing is known to occlude: lit. (Focused maps cover every visible

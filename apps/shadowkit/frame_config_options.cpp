@@ -45,6 +45,7 @@ core::Result<frame::FrameConfig> frameConfigOf(const TechniqueOptions& technique
     config.bias.slope = render.biasSlope;
     config.bias.constant = render.biasConstant;
     config.bias.normalOffset = render.normalOffset;
+    config.bias.normalOffsetFootprint = render.normalOffsetFootprint;
     using Cull = RenderOptions::CullChoice;
     if (render.cull != Cull::Auto)
         config.bias.cull = render.cull == Cull::Closed  ? core::CasterCull::BackOfClosed

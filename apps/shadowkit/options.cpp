@@ -90,6 +90,9 @@ void RenderOptions::addTo(CLI::App& cmd) {
                                                {"none", CullChoice::None}}))
         ->default_str("auto");
     cmd.add_option("--normal-offset", normalOffset, "receiver offset along its normal, in texels' world size");
+    cmd.add_option("--normal-offset-footprint", normalOffsetFootprint,
+                   "receiver offset along its normal besides, × its texel's footprint on the normal (0 for a face "
+                   "turned to the sun; 0.5 clears its own plane)");
     cmd.add_option(
         "--fog", fog,
         "fog density in 1/m, 0 for none (default: the scene's, 0.002 for the forest, scaled to a loaded scene's size)");
@@ -171,7 +174,10 @@ core::Status RenderOptions::check() const {
     if (auto s = frame::validateFog(fog); !s) return withFlagName(s.errorInfo());
     if (auto s = gl::validateLevelsOfDetail(lodPixelError, lodTexelError, lodFoliageScale, lodFade); !s)
         return withFlagName(s.errorInfo());
-    const frame::BiasOverrides overrides{.slope = biasSlope, .constant = biasConstant, .normalOffset = normalOffset};
+    const frame::BiasOverrides overrides{.slope = biasSlope,
+                                         .constant = biasConstant,
+                                         .normalOffset = normalOffset,
+                                         .normalOffsetFootprint = normalOffsetFootprint};
     if (auto s = overrides.validate(); !s) return withFlagName(s.errorInfo());
     return core::Ok{};
 }

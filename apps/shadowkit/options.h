@@ -131,7 +131,7 @@ struct BoundsOptions {
 struct RenderOptions {
     enum class Choice { Auto, On, Off };
     enum class CullChoice { Auto, Closed, Back, Front, None }; // Auto: the recommended culling
-    std::optional<double> biasSlope, biasConstant, normalOffset;
+    std::optional<double> biasSlope, biasConstant, normalOffset, normalOffsetFootprint;
     CullChoice cull = CullChoice::Auto;
     Choice receiverPlaneBias = Choice::Auto;
     std::string filter = "hard";

@@ -120,6 +120,7 @@ check_fails(bad-depth-layout "--depth-layout" setup ${small} --depth-layout side
 check_fails(bad-blur-radius "--blur-radius" render ${small} --blur-radius 0)
 check_fails(bad-tsm-focus "--tsm-focus" setup ${small} --tsm-focus 1.5)
 check_fails(bad-normal-offset "--normal-offset" render ${small} --normal-offset 50)
+check_fails(bad-normal-offset-footprint "--normal-offset-footprint" render ${small} --normal-offset-footprint 11)
 check_fails(eval-unknown-view "unknown view" eval ${small} --views paper,sideways)
 check_fails(eval-unwritable-json "--json" eval ${small} --json "${WORK}/garbage.glb/dir/r.json")
 check_fails(eval-unwritable-map "--error-map" eval ${small} --error-map "${WORK}/garbage.glb/dir/e.png")

@@ -15,6 +15,8 @@ Status validate(const BiasSettings& b) {
     if (!(b.constant >= 0.0 && b.constant <= 1e6)) return fieldError("bias.constant", "must be in [0, 1e6]");
     if (!(b.normalOffset >= 0.0 && b.normalOffset <= 10.0))
         return fieldError("bias.normal_offset", "must be in [0, 10] texels");
+    if (!(b.normalOffsetFootprint >= 0.0 && b.normalOffsetFootprint <= 10.0))
+        return fieldError("bias.normal_offset_footprint", "must be in [0, 10] texel footprints");
     return Ok{};
 }
 

@@ -1,5 +1,6 @@
 #include "shadowkit/core/bias.h"
 
+#include <cmath>
 #include <gtest/gtest.h>
 
 using namespace shadowkit::core;
@@ -33,4 +34,11 @@ TEST(BiasTest, OutOfRangeValuesAreNamed) {
     b = BiasSettings{};
     b.normalOffset = 20;
     EXPECT_EQ(validate(b).errorInfo().field, "bias.normal_offset");
+    b = BiasSettings{};
+    b.normalOffsetFootprint = std::nan("");
+    EXPECT_EQ(validate(b).errorInfo().field, "bias.normal_offset_footprint");
+    b.normalOffsetFootprint = -0.5;
+    EXPECT_EQ(validate(b).errorInfo().field, "bias.normal_offset_footprint");
+    b.normalOffsetFootprint = 0.5;
+    EXPECT_TRUE(validate(b));
 }

@@ -57,6 +57,7 @@ std::string reportJson(const std::vector<ViewReport>& views) {
             {"bias_slope", v.bias.slope},
             {"bias_constant", v.bias.constant},
             {"normal_offset", v.bias.normalOffset},
+            {"normal_offset_footprint", v.bias.normalOffsetFootprint},
             {"receiver_plane_bias", v.bias.receiverPlane},
             {"cull", v.bias.cull == core::CasterCull::None           ? "none"
                      : v.bias.cull == core::CasterCull::Back         ? "back"

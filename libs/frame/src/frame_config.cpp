@@ -14,6 +14,7 @@ std::optional<core::BiasSettings> BiasOverrides::resolve(const core::ShadowSetup
     b.slope = slope.value_or(b.slope);
     b.constant = constant.value_or(b.constant);
     b.normalOffset = normalOffset.value_or(b.normalOffset);
+    b.normalOffsetFootprint = normalOffsetFootprint.value_or(b.normalOffsetFootprint);
     b.cull = cull.value_or(b.cull);
     b.receiverPlane = receiverPlane.value_or(b.receiverPlane);
     return b;
@@ -24,6 +25,7 @@ core::Status BiasOverrides::validate() const {
     b.slope = slope.value_or(b.slope);
     b.constant = constant.value_or(b.constant);
     b.normalOffset = normalOffset.value_or(b.normalOffset);
+    b.normalOffsetFootprint = normalOffsetFootprint.value_or(b.normalOffsetFootprint);
     return core::validate(b);
 }
 

@@ -83,6 +83,8 @@ constexpr auto kRows = std::to_array<OptionRow>({
     {"FrameConfig.bias.slope", "--bias-slope", "bias.slope", "[0, 100]", Core},
     {"FrameConfig.bias.constant", "--bias-constant", "bias.constant", "[0, 1e6]", Core},
     {"FrameConfig.bias.normalOffset", "--normal-offset", "bias.normal_offset", "[0, 10] texels", Core},
+    {"FrameConfig.bias.normalOffsetFootprint", "--normal-offset-footprint", "bias.normal_offset_footprint",
+     "[0, 10] texel footprints", Core},
     {"FrameConfig.bias.cull", "--cull", "", "auto | closed | back | front | none", None},
     {"FrameConfig.bias.receiverPlane", "--receiver-plane-bias", "", "auto | on | off", None},
     {"FrameConfig.fogDensity", "--fog", "fog", "a density >= 0 per metre", Gl},

@@ -51,6 +51,7 @@ FrameUniforms frameUniformsOf(const CameraView& view, bool readBlurredMask) {
     frame.lightTanHalfAngle = static_cast<float>(core::tanAngularRadius(settings.sunAngleDegrees));
     frame.receiverPlane = view.bias.receiverPlane ? 1 : 0;
     frame.normalOffsetTexels = static_cast<float>(view.bias.normalOffset);
+    frame.normalOffsetFootprint = static_cast<float>(view.bias.normalOffsetFootprint);
     frame.readBlurredMask = readBlurredMask ? 1 : 0;
     frame.aliasingOverlay = settings.aliasingOverlay ? 1 : 0;
     frame.foliageOpacity = settings.foliageOpacity ? 1 : 0;

@@ -25,7 +25,8 @@ double lookupReachTexels(const core::FilterSettings& filter, const core::BiasSet
         reach = filter.taps + 1.0;
         break;
     }
-    return reach + std::abs(bias.normalOffset) + 2.0;
+    // The footprint offset moves a receiver at most k (|a_u| + |a_v|) along its normal: 2k texels.
+    return reach + std::abs(bias.normalOffset) + 2.0 * std::abs(bias.normalOffsetFootprint) + 2.0;
 }
 
 int guardTexelsFor(const core::FilterSettings& filter, const core::BiasSettings& bias) {

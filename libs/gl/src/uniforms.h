@@ -132,22 +132,23 @@ struct FrameUniforms {        // GLSL: Frame (frame.glsl)
     glm::vec4 wsTowardsLight; // xyz, unit
     glm::vec4 sunRadiance;    // rgb
     glm::vec4 ambientRadiance;
-    glm::vec4 fogColorDensity;                          // rgb, a: density in 1/m
-    float mapTexels;                                    // texels per side of every map
-    int32_t mapCount;                                   // layers in use, [1, kMaxCascades]
-    int32_t linearLayout;                               // 1: maps store linear depth
-    int32_t cascadeColors;                              // 1: tint each split's range
-    int32_t filterKind;                                 // core::ShadowFilter (SK_FILTER_*)
-    int32_t filterTaps;                                 // N of N x N, or Poisson samples
-    float poissonRadiusTexels;                          // Poisson's disk, or PCSS's widest kernel
-    int32_t receiverPlane;                              // 1: receiver-plane depth bias
-    float normalOffsetTexels;                           // receiver offset along its normal, in texels' world size
-    int32_t readBlurredMask;                            // 1: main pass reads the blurred mask instead of the maps
-    int32_t aliasingOverlay;                            // 1: main pass shows pixels per texel instead of shading
-    float lightTanHalfAngle;                            // tan of the sun's angular radius (PCSS); 0: a point
-    int32_t foliageOpacity;                             // 1: the maps' opacity layers apply (opacity_layers.h)
-    float pad0, pad1, pad2;                             // std140: the mat4 array starts on 16 bytes
-    glm::mat4 shadowTextureFromWorld[kMaxCascades];     // (u, v, depth, 1) · w of each map (core::toEngineView)
+    glm::vec4 fogColorDensity;                      // rgb, a: density in 1/m
+    float mapTexels;                                // texels per side of every map
+    int32_t mapCount;                               // layers in use, [1, kMaxCascades]
+    int32_t linearLayout;                           // 1: maps store linear depth
+    int32_t cascadeColors;                          // 1: tint each split's range
+    int32_t filterKind;                             // core::ShadowFilter (SK_FILTER_*)
+    int32_t filterTaps;                             // N of N x N, or Poisson samples
+    float poissonRadiusTexels;                      // Poisson's disk, or PCSS's widest kernel
+    int32_t receiverPlane;                          // 1: receiver-plane depth bias
+    float normalOffsetTexels;                       // receiver offset along its normal, in texels' world size
+    int32_t readBlurredMask;                        // 1: main pass reads the blurred mask instead of the maps
+    int32_t aliasingOverlay;                        // 1: main pass shows pixels per texel instead of shading
+    float lightTanHalfAngle;                        // tan of the sun's angular radius (PCSS); 0: a point
+    int32_t foliageOpacity;                         // 1: the maps' opacity layers apply (opacity_layers.h)
+    float normalOffsetFootprint;                    // receiver offset along its normal, × its texel's footprint on it
+    float pad0, pad1;                               // std140: the mat4 array starts on 16 bytes
+    glm::mat4 shadowTextureFromWorld[kMaxCascades]; // (u, v, depth, 1) · w of each map (core::toEngineView)
     glm::vec4 shadowLinearDepthFromWorld[kMaxCascades]; // rows, as in DepthPass
     glm::vec4 cascadeRange[kMaxCascades];               // x, y: view depth [start, end] each map serves
 };

@@ -4,6 +4,7 @@
 // renderer compiles the same two files inside its own programs; these compile them bare, with
 // only the declarations docs/engine-integration.md tells an engine to write, so a dependency the
 // pair gains on the renderer's own shader code, or an order that stops working, fails here.
+#include "engine_declarations.h"
 #include "headless_gl_test.h"
 
 #include "gl_shaders.h"
@@ -20,19 +21,6 @@ namespace {
 class InstalledGlslTest : public gl::testing::HeadlessGlTest {};
 
 constexpr std::string_view kVertex = "void main() { gl_Position = vec4(0.0); }\n";
-
-// An engine's declarations: its cascades' arrays and PCSS's raw depths (docs/engine-integration.md).
-constexpr std::string_view kEngineDeclarations = R"glsl(
-layout(binding = 0) uniform sampler2DArrayShadow myShadowMaps;
-layout(binding = 1) uniform sampler2DArray myShadowDepths;
-uniform mat4 myTextureFromWorld[4];
-uniform vec4 myLinearDepthFromWorld[4];
-uniform vec4 mySplits[4];
-#define SK_SHADOW_TEXTURE_FROM_WORLD(i) myTextureFromWorld[i]
-#define SK_SHADOW_LINEAR_DEPTH_FROM_WORLD(i) myLinearDepthFromWorld[i]
-#define SK_SHADOW_SPLIT(i) mySplits[i].xy
-#define SK_SHADOW_DEPTHS myShadowDepths
-)glsl";
 
 // The three opacity samplers, named as the foliage file asks.
 constexpr std::string_view kOpacityDeclarations = R"glsl(
@@ -51,7 +39,7 @@ void main() {
     const vec3 wsPosition = vec3(gl_FragCoord.xy, 0.0), wsNormal = vec3(0.0, 1.0, 0.0);
     const float viewDepth = gl_FragCoord.z;
     const vec3 dx = dFdx(wsPosition), dy = dFdy(wsPosition);
-    const SkShadowOptions o = SkShadowOptions(2048.0, true, 1.0, true, SK_FILTER_PCSS, 16, 16.0, 0.004625);
+    const SkShadowOptions o = SkShadowOptions(2048.0, true, 1.0, true, SK_FILTER_PCSS, 16, 16.0, 0.004625, 0.0);
     colour = vec4(vec3(skCascadedShadow(myShadowMaps, 4, o, viewDepth, wsPosition, normalize(wsNormal), dx, dy)), 1.0);
 }
 )glsl";
@@ -75,7 +63,7 @@ out vec4 colour;
 void main() {
     const vec3 wsPosition = vec3(gl_FragCoord.xy, 0.0), wsNormal = vec3(0.0, 1.0, 0.0);
     const vec3 dx = dFdx(wsPosition), dy = dFdy(wsPosition);
-    const SkShadowOptions o = SkShadowOptions(16384.0, false, 1.0, true, SK_FILTER_PCSS, 16, 8.0, 0.004625);
+    const SkShadowOptions o = SkShadowOptions(16384.0, false, 1.0, true, SK_FILTER_PCSS, 16, 8.0, 0.004625, 0.0);
     const SkVirtualMaps v = SkVirtualMaps(8, -6, 0.0015, 0.0, 128, 128, 10, 27, vec2(4104.0), 16384.0, 0.2);
     colour = vec4(vec3(skVirtualShadow(myPageAtlas, myPageTable, v, o, gl_FragCoord.z, wsPosition, wsNormal, dx, dy)), 1.0);
 }
@@ -85,16 +73,16 @@ void main() {
 
 TEST_F(InstalledGlslTest, TheLookupAloneCompilesWithAnEnginesOwnDeclarations) {
     using namespace gl::shaders;
-    const auto program =
-        gl::buildProgram("engine shader", {kVertex}, {kEngineDeclarations, kShadowkitShadowsGlsl, kEngineShading});
+    const auto program = gl::buildProgram("engine shader", {kVertex},
+                                          {gl::testing::kEngineDeclarations, kShadowkitShadowsGlsl, kEngineShading});
     EXPECT_TRUE(program) << program.error();
 }
 
 TEST_F(InstalledGlslTest, WithOpacityLayersTheFoliageFileAppendedAfterTheLookupCompletesIt) {
     using namespace gl::shaders;
     const auto program = gl::buildProgram("engine shader, opacity layers", {kVertex},
-                                          {kEngineDeclarations, kOpacityDeclarations, kShadowkitShadowsGlsl,
-                                           kShadowkitFoliageOpacityGlsl, kEngineShading});
+                                          {gl::testing::kEngineDeclarations, kOpacityDeclarations,
+                                           kShadowkitShadowsGlsl, kShadowkitFoliageOpacityGlsl, kEngineShading});
     EXPECT_TRUE(program) << program.error();
 }
 
@@ -127,8 +115,8 @@ TEST_F(InstalledGlslTest, VirtualMapsWithoutTheTablesOriginsAreRefusedNamingTheA
 TEST_F(InstalledGlslTest, TheFoliageFileBeforeTheLookupIsRefusedNamingTheOrder) {
     using namespace gl::shaders;
     const auto program = gl::buildProgram("engine shader, files swapped", {kVertex},
-                                          {kEngineDeclarations, kOpacityDeclarations, kShadowkitFoliageOpacityGlsl,
-                                           kShadowkitShadowsGlsl, kEngineShading});
+                                          {gl::testing::kEngineDeclarations, kOpacityDeclarations,
+                                           kShadowkitFoliageOpacityGlsl, kShadowkitShadowsGlsl, kEngineShading});
     ASSERT_FALSE(program);
     EXPECT_NE(program.error().find("append it after shadowkit_shadows.glsl"), std::string::npos) << program.error();
 }
@@ -138,8 +126,8 @@ TEST_F(InstalledGlslTest, OpacityLayersNamedWithoutTheFoliageFileAreRefused) {
     // cannot be made, never a silently unshadowed leaf. (Mesa names the function in its link log;
     // the wording is the driver's, so only the refusal is asserted.)
     using namespace gl::shaders;
-    const auto program =
-        gl::buildProgram("engine shader, foliage file missing", {kVertex},
-                         {kEngineDeclarations, kOpacityDeclarations, kShadowkitShadowsGlsl, kEngineShading});
+    const auto program = gl::buildProgram(
+        "engine shader, foliage file missing", {kVertex},
+        {gl::testing::kEngineDeclarations, kOpacityDeclarations, kShadowkitShadowsGlsl, kEngineShading});
     EXPECT_FALSE(program);
 }

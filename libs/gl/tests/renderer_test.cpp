@@ -38,17 +38,6 @@ scene::Scene boxOverPlane() {
     return s;
 }
 
-core::PerspectiveCamera obliqueCamera() {
-    core::PerspectiveCamera cam;
-    cam.wsEye = {0, 10, 20};
-    cam.wsDirection = -cam.wsEye; // at the origin
-    cam.fovYDegrees = 40;
-    cam.aspect = 1.0;
-    cam.zNear = 0.5;
-    cam.zFar = 60;
-    return cam;
-}
-
 // Luminance of the pixel that shows world point `ws`.
 double luminanceAt(const scene::Image& image, const core::PerspectiveCamera& cam, const core::Vec3& ws) {
     const core::Vec4 cs = cam.clipFromWorld() * core::Vec4(ws, 1.0);
@@ -68,7 +57,7 @@ TEST_F(RendererTest, BoxOverPlaneShadowsThePlaneBelowItForEveryTechnique) {
     const scene::Scene s = boxOverPlane();
     auto renderer = gl::Renderer::create(s);
     ASSERT_TRUE(renderer) << renderer.error();
-    const core::PerspectiveCamera cam = obliqueCamera();
+    const core::PerspectiveCamera cam = gl::testing::obliqueCamera();
     const core::DirectionalLight sun{{0, -1, 0}};
     gl::RenderSettings settings;
     settings.width = settings.height = 128;
@@ -223,7 +212,7 @@ TEST_F(RendererTest, ShadowMapImageShowsTheCaster) {
     const scene::Scene s = boxOverPlane();
     auto renderer = gl::Renderer::create(s);
     ASSERT_TRUE(renderer);
-    const core::PerspectiveCamera cam = obliqueCamera();
+    const core::PerspectiveCamera cam = gl::testing::obliqueCamera();
     const core::DirectionalLight sun{{0, -1, 0}};
     const auto setup = core::computeShadowSetup({.camera = cam,
                                                  .light = sun,
@@ -243,7 +232,7 @@ TEST_F(RendererTest, OutOfRangeSettingsAreErrorsNotGlErrors) {
     const scene::Scene s = boxOverPlane();
     auto renderer = gl::Renderer::create(s);
     ASSERT_TRUE(renderer);
-    const core::PerspectiveCamera cam = obliqueCamera();
+    const core::PerspectiveCamera cam = gl::testing::obliqueCamera();
     const core::DirectionalLight sun{{0, -1, 0}};
     auto setup = core::computeShadowSetup(
         {.camera = cam, .light = sun, .wsSceneBounds = s.wsBounds(), .technique = core::Technique::Focused});
@@ -312,7 +301,7 @@ TEST_F(RendererTest, EveryBiasModeAndFilterWorksWithEveryTechnique) {
     const scene::Scene s = boxOverPlane();
     auto renderer = gl::Renderer::create(s);
     ASSERT_TRUE(renderer);
-    const core::PerspectiveCamera cam = obliqueCamera();
+    const core::PerspectiveCamera cam = gl::testing::obliqueCamera();
     const core::DirectionalLight sun{{0, -1, 0}};
     std::vector<std::pair<std::string, gl::RenderSettings>> modes;
     gl::RenderSettings base;
@@ -370,7 +359,7 @@ TEST_F(RendererTest, TheReceiverPlaneAloneKeepsALitPlaneLitWithNoDepthOffsetAtAl
     const scene::Scene s = boxOverPlane();
     auto renderer = gl::Renderer::create(s);
     ASSERT_TRUE(renderer);
-    const core::PerspectiveCamera cam = obliqueCamera();
+    const core::PerspectiveCamera cam = gl::testing::obliqueCamera();
     const core::DirectionalLight sun{{0, -1, 0}};
     gl::RenderSettings settings;
     settings.width = settings.height = 96;
@@ -552,7 +541,7 @@ TEST_F(RendererTest, VisibleDepthIsTheDepthRangeOfWhatTheCameraSees) {
     const scene::Scene s = boxOverPlane();
     auto renderer = gl::Renderer::create(s);
     ASSERT_TRUE(renderer);
-    const core::PerspectiveCamera cam = obliqueCamera();
+    const core::PerspectiveCamera cam = gl::testing::obliqueCamera();
     const core::DirectionalLight sun{{0, -1, 0}};
     core::ShadowSetupInputs in{
         .camera = cam, .light = sun, .wsSceneBounds = s.wsBounds(), .technique = core::Technique::Lispsm};

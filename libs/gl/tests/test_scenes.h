@@ -2,6 +2,7 @@
 // view placed over it.
 #pragma once
 
+#include "shadowkit/core/camera.h"
 #include "shadowkit/gl/render_settings.h"
 #include "shadowkit/scene/forest.h"
 #include "shadowkit/scene/views.h"
@@ -28,6 +29,18 @@ inline scene::Scene smallLeafyForest() {
     o.trees = 300, o.terrainSize = 300, o.terrainResolution = 16;
     o.rocks = 4, o.buildings = 2, o.movers = 0;
     return scene::makeForest(o);
+}
+
+// 20 m from the origin and 10 m up, looking at it: the box-over-plane tests' camera.
+inline core::PerspectiveCamera obliqueCamera() {
+    core::PerspectiveCamera cam;
+    cam.wsEye = {0, 10, 20};
+    cam.wsDirection = -cam.wsEye; // at the origin
+    cam.fovYDegrees = 40;
+    cam.aspect = 1.0;
+    cam.zNear = 0.5;
+    cam.zFar = 60;
+    return cam;
 }
 
 // The settings of a small frame (width x height pixels) with this culling.

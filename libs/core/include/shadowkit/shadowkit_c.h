@@ -119,8 +119,9 @@ typedef struct shadowkit_view {
 typedef struct shadowkit_bias {
     double slope;    /**< glPolygonOffset factor (per fragment for linear depth) */
     double constant; /**< 2^-24 of the depth range each: add constant·2^-24·w to clip z (not glPolygonOffset units) */
-    double normal_offset; /**< texels of world size (shadowkit_texel_size) along the normal */
-    int receiver_plane;   /**< 1: receiver-plane depth bias in the lookup */
+    double normal_offset;           /**< texels of world size (shadowkit_texel_size) along the normal */
+    int receiver_plane;             /**< 1: receiver-plane depth bias in the lookup */
+    double normal_offset_footprint; /**< × the texel's footprint across the light on the normal (SkShadowOptions) */
 } shadowkit_bias;
 
 /** The result: one view per map, the depth layout, the bias. */

@@ -30,8 +30,14 @@ struct BiasSettings {
     double slope = 2.0;    ///< × max depth slope; [0, 100]
     double constant = 4.0; ///< minimum resolvable depth steps; [0, 1e6]
     /// Receiver moved along its normal by this many texels' world size before the lookup
-    /// (normal offset); [0, 10].
+    /// (normal offset), whatever its slope; [0, 10].
     double normalOffset = 0.0;
+    /// Receiver moved along its normal, besides, by this × its texel's footprint on the normal:
+    /// k (|a_u·n| + |a_v·n|), a_u and a_v one texel's world steps in u and v across the light —
+    /// 0 for a face turned to the light, the texel's extent along a face the light grazes; ½
+    /// clears a plane's own depth anywhere in its texel (skNormalOffset in
+    /// glsl/shadowkit_shadows.glsl derives it); [0, 10].
+    double normalOffsetFootprint = 0.0;
     /// Receiver-plane depth bias: the reference depth follows the receiver's plane to each
     /// texel (tap) centre, using the screen derivatives of the shadow coordinates.
     bool receiverPlane = false;
@@ -40,7 +46,8 @@ struct BiasSettings {
     CasterCull cull = CasterCull::None;
 };
 
-/// Checks the ranges above; error fields "bias.slope", "bias.constant", "bias.normal_offset".
+/// Checks the ranges above; error fields "bias.slope", "bias.constant", "bias.normal_offset",
+/// "bias.normal_offset_footprint".
 Status validate(const BiasSettings& bias);
 
 /// The bias every caller gets unless it sets its own (the renderer, `shadowkit render`,

@@ -24,10 +24,11 @@ namespace shadowkit::frame {
 // so the bias is resolved per frame (resolve), never baked into the configuration.
 struct BiasOverrides {
     std::optional<double> slope, constant, normalOffset; // texels, as core::BiasSettings
+    std::optional<double> normalOffsetFootprint;         // texel footprints, as core::BiasSettings
     std::optional<core::CasterCull> cull;
     std::optional<bool> receiverPlane;
 
-    bool any() const { return slope || constant || normalOffset || cull || receiverPlane; }
+    bool any() const { return slope || constant || normalOffset || normalOffsetFootprint || cull || receiverPlane; }
     // The bias of a frame of `inputs` drawn with `filter`: nullopt with nothing overridden
     // (the renderer then takes the recommendation itself: gl::biasFor).
     std::optional<core::BiasSettings> resolve(const core::ShadowSetupInputs& inputs,
