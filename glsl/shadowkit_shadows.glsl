@@ -103,37 +103,46 @@ vec3 skShadowStep(mat4 textureFromWorld, vec4 linearDepthFromWorld, bool linearD
     return d;
 }
 
-// How far a receiver at t (skShadowCoordinates' t) with unit normal `n` moves along it before
-// the lookup: BiasSettings' two normal offsets, in world units.
-//  - normalOffsetTexels K: K texels' world size. A texel's world size is 1 / mapTexels over the
-//    gradient of the texture coordinate; the shorter gradient (the longer texel axis) makes the
-//    offset enough along both — whatever the receiver's slope, so a face turned to the light
-//    moves as far as one along it.
-//  - normalOffsetFootprint k: k (|a_u·n| + |a_v·n|), a_u and a_v the world steps of one texel
-//    in u and in v at constant depth (across the light). The texel a receiver reads holds its own
-//    plane's depth at the texel's centre, up to half a step in u and in v away; along the light
-//    that plane lies |s·n| / (n·l) nearer than the receiver after a step s, and a move δ along n
-//    puts the receiver δ / (n·l) nearer along the light. So δ = ½ (|a_u·n| + |a_v·n|) clears its
-//    own plane anywhere in the texel (k = ½; the slope-scaled offset covers the rasteriser's
-//    rounding), and δ = 0 for a face turned to the light, whose shadows do not move.
+// How far a receiver at t (skShadowCoordinates' t) moves before the lookup: BiasSettings' two
+// normal offsets, in world units. `n` is its unit (shading) normal, `dwsdx` and `dwsdy` two steps
+// across its drawn triangle (the screen derivatives of its position).
+//  - normalOffsetTexels K: K texels' world size along n. A texel's world size is 1 / mapTexels
+//    over the gradient of the texture coordinate; the shorter gradient (the longer texel axis)
+//    makes the offset enough along both — whatever the receiver's slope, so a face turned to the
+//    light moves as far as one along it.
+//  - normalOffsetFootprint k: k (|a_u·f| + |a_v·f|) along f, the drawn triangle's own normal on
+//    n's side, a_u and a_v the world steps of one texel in u and in v at constant depth (across
+//    the light). The texel a receiver reads holds its triangle's depth at the texel's centre, up
+//    to half a step in u and in v away; along the light that plane lies |s·f| / (f·l) nearer than
+//    the receiver after a step s, and a move δ along f puts the receiver δ / (f·l) nearer along
+//    the light. So δ = ½ (|a_u·f| + |a_v·f|) clears its own plane anywhere in the texel (k = ½;
+//    the slope-scaled offset covers the rasteriser's rounding), and δ = 0 for a face turned to
+//    the light where the depth runs along it (orthographic maps, the linear layout): its shadows
+//    do not move. The triangle's plane, not the shading normal's, is what the texel holds: on a
+//    curved, coarsely tessellated surface the two differ by the facets' angle.
 //    With J the rows ∇u, ∇v, ∇depth, the steps are J⁻¹'s first two columns over mapTexels:
 //    a_u = (∇v × ∇depth) / (det J · mapTexels), a_v = (∇depth × ∇u) / (det J · mapTexels).
-vec3 skNormalOffset(mat4 textureFromWorld, vec4 linearDepthFromWorld, SkShadowOptions o, vec4 t, vec3 n) {
+vec3 skNormalOffset(mat4 textureFromWorld, vec4 linearDepthFromWorld, SkShadowOptions o, vec4 t, vec3 n, vec3 dwsdx,
+                    vec3 dwsdy) {
     const vec3 gx = skShadowStep(textureFromWorld, linearDepthFromWorld, o.linearDepth, t, vec3(1, 0, 0));
     const vec3 gy = skShadowStep(textureFromWorld, linearDepthFromWorld, o.linearDepth, t, vec3(0, 1, 0));
     const vec3 gz = skShadowStep(textureFromWorld, linearDepthFromWorld, o.linearDepth, t, vec3(0, 0, 1));
     const vec3 gradU = vec3(gx.x, gy.x, gz.x), gradV = vec3(gx.y, gy.y, gz.y), gradDepth = vec3(gx.z, gy.z, gz.z);
-    float offset = 0.0;
+    vec3 offset = vec3(0.0);
     if (o.normalOffsetTexels > 0.0)
-        offset += o.normalOffsetTexels / (o.mapTexels * max(min(length(gradU), length(gradV)), 1e-12));
+        offset += n * (o.normalOffsetTexels / (o.mapTexels * max(min(length(gradU), length(gradV)), 1e-12)));
     if (o.normalOffsetFootprint > 0.0) {
+        vec3 face = cross(dwsdx, dwsdy);
+        face = dot(face, face) > 0.0 ? normalize(face) : n; // a pixel seeing its triangle edge-on: n
+        if (dot(face, n) < 0.0) face = -face;
         const vec3 stepU = cross(gradV, gradDepth), stepV = cross(gradDepth, gradU); // × det J
         const float det = abs(dot(gradU, stepU));
         // A map whose depth does not vary across the receiver's point (det 0) has no texel there.
         if (det > 0.0)
-            offset += o.normalOffsetFootprint * (abs(dot(stepU, n)) + abs(dot(stepV, n))) / (det * o.mapTexels);
+            offset += face * (o.normalOffsetFootprint * (abs(dot(stepU, face)) + abs(dot(stepV, face))) /
+                              (det * o.mapTexels));
     }
-    return n * offset;
+    return offset;
 }
 
 // A rotation angle per pixel for the Poisson disk: it only has to break up the fixed pattern.
@@ -321,7 +330,7 @@ float skShadowMapIn(sampler2DArrayShadow maps, int layer, mat4 textureFromWorld,
     vec4 t;
     vec3 uvz = skShadowCoordinates(textureFromWorld, linearDepthFromWorld, o.linearDepth, ws, t);
     if (o.normalOffsetTexels > 0.0 || o.normalOffsetFootprint > 0.0) {
-        ws += skNormalOffset(textureFromWorld, linearDepthFromWorld, o, t, n);
+        ws += skNormalOffset(textureFromWorld, linearDepthFromWorld, o, t, n, dwsdx, dwsdy);
         uvz = skShadowCoordinates(textureFromWorld, linearDepthFromWorld, o.linearDepth, ws, t);
     }
     // Outside the map nothing is known to occlude: lit. (Focused maps cover every visible

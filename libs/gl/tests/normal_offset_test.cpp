@@ -35,20 +35,21 @@ constexpr std::string_view kVertex = R"glsl(
 void main() { gl_Position = vec4(vec2(gl_VertexID & 1, gl_VertexID >> 1) * 4.0 - 1.0, 0.0, 1.0); }
 )glsl";
 
-// One case a draw: the world offset of `wsPoint` with unit normal `wsNormal`.
+// One case a draw: the world offset of `wsPoint` with unit shading normal `wsNormal` on a triangle
+// that `wsAcross1` and `wsAcross2` span (the screen derivatives of the position, in a shader).
 constexpr std::string_view kOffsetOfOnePoint = R"glsl(
 uniform mat4 textureFromWorld;
 uniform vec4 linearDepthFromWorld;
 uniform int linearDepth;
 uniform float mapTexels, normalOffsetTexels, normalOffsetFootprint;
-uniform vec3 wsPoint, wsNormal;
+uniform vec3 wsPoint, wsNormal, wsAcross1, wsAcross2;
 out vec4 result;
 void main() {
     const SkShadowOptions o = SkShadowOptions(mapTexels, linearDepth != 0, normalOffsetTexels, false, SK_FILTER_HARD, 0,
                                               0.0, 0.0, normalOffsetFootprint);
     vec4 t;
     skShadowCoordinates(textureFromWorld, linearDepthFromWorld, linearDepth != 0, wsPoint, t);
-    result = vec4(skNormalOffset(textureFromWorld, linearDepthFromWorld, o, t, wsNormal), 1.0);
+    result = vec4(skNormalOffset(textureFromWorld, linearDepthFromWorld, o, t, wsNormal, wsAcross1, wsAcross2), 1.0);
 }
 )glsl";
 
@@ -75,7 +76,8 @@ public:
     }
 
     glm::dvec3 offset(const core::EngineShadowView& view, int mapTexels, double texels, double footprint,
-                      const glm::dvec3& wsPoint, const glm::dvec3& wsNormal) const {
+                      const glm::dvec3& wsPoint, const glm::dvec3& wsNormal, const glm::dvec3& wsAcross1,
+                      const glm::dvec3& wsAcross2) const {
         const GLuint p = m_program.id();
         const glm::mat4 m(view.textureFromWorld);
         glProgramUniformMatrix4fv(p, glGetUniformLocation(p, "textureFromWorld"), 1, GL_FALSE, &m[0][0]);
@@ -87,8 +89,12 @@ public:
         glProgramUniform1f(p, glGetUniformLocation(p, "normalOffsetTexels"), static_cast<float>(texels));
         glProgramUniform1f(p, glGetUniformLocation(p, "normalOffsetFootprint"), static_cast<float>(footprint));
         glProgramUniform3f(p, glGetUniformLocation(p, "wsPoint"), float(wsPoint.x), float(wsPoint.y), float(wsPoint.z));
-        glProgramUniform3f(p, glGetUniformLocation(p, "wsNormal"), float(wsNormal.x), float(wsNormal.y),
-                           float(wsNormal.z));
+        const auto vector = [&](const char* name, const glm::dvec3& v) {
+            glProgramUniform3f(p, glGetUniformLocation(p, name), float(v.x), float(v.y), float(v.z));
+        };
+        vector("wsNormal", wsNormal);
+        vector("wsAcross1", wsAcross1);
+        vector("wsAcross2", wsAcross2);
         glBindFramebuffer(GL_FRAMEBUFFER, m_framebuffer.id());
         glViewport(0, 0, 1, 1);
         glDisable(GL_DEPTH_TEST);
@@ -170,41 +176,48 @@ std::vector<MapCase> mapsUnderATiltedSun(const core::DirectionalLight& sun) {
 
 } // namespace
 
-TEST_F(NormalOffsetTest, TheFootprintOffsetIsTheTexelsStepsAcrossTheLightOnTheNormalAndTheTexelOffsetAddsToIt) {
+TEST_F(NormalOffsetTest, TheFootprintOffsetIsTheTexelsStepsAcrossTheLightOnTheTrianglesNormal) {
     auto probe = OffsetProbe::create();
     ASSERT_TRUE(probe) << probe.error();
     const core::DirectionalLight sun{glm::normalize(glm::dvec3(0.5, -0.8, 0.3))};
     const glm::dvec3 wsTowardsLight = -sun.wsDirection;
-    // Receivers turned every way the light reaches, and one straight at it.
-    std::vector<glm::dvec3> normals = {{0, 1, 0},        {1, 0, 0},        {0, 0, -1},
-                                       {0.3, 0.9, -0.3}, {-0.6, 0.7, 0.4}, wsTowardsLight};
-    for (glm::dvec3& n : normals) n = glm::normalize(n);
+    // Triangles turned every way the light reaches, and one straight at it.
+    std::vector<glm::dvec3> faces = {{0, 1, 0},        {1, 0, 0},        {0, 0, -1},
+                                     {0.3, 0.9, -0.3}, {-0.6, 0.7, 0.4}, wsTowardsLight};
+    for (glm::dvec3& f : faces) f = glm::normalize(f);
     int checked = 0;
     for (const MapCase& map : mapsUnderATiltedSun(sun))
         for (const glm::dvec3 ws : {glm::dvec3(0, 0, 0), glm::dvec3(-4, 0, 6), glm::dvec3(5, 1, -3)})
-            for (const glm::dvec3& n : normals) {
-                if (glm::dot(n, wsTowardsLight) <= 0.05) continue; // a receiver the light reaches
+            for (const glm::dvec3& face : faces) {
+                if (glm::dot(face, wsTowardsLight) <= 0.05) continue; // a receiver the light reaches
+                // Two steps across the triangle, their cross product away from the face for half the
+                // cases (the screen's winding), and a shading normal 14° off it, as on a coarsely
+                // tessellated curved surface.
+                const glm::dvec3 across1 = glm::normalize(glm::cross(face, glm::dvec3(0.36, 0.48, 0.8)));
+                const glm::dvec3 across2 = (checked % 2 ? -1.0 : 1.0) * glm::cross(face, across1);
+                const glm::dvec3 shading = glm::normalize(face + 0.25 * across1);
                 const TexelGeometry texel = texelGeometryAt(map.view, map.mapTexels, ws);
                 const double footprint =
-                    0.5 * (std::abs(glm::dot(texel.stepU, n)) + std::abs(glm::dot(texel.stepV, n)));
+                    0.5 * (std::abs(glm::dot(texel.stepU, face)) + std::abs(glm::dot(texel.stepV, face)));
                 const double longerAxis = 1.0 / (map.mapTexels * std::min(texel.gradientU, texel.gradientV));
                 SCOPED_TRACE(map.name + " at (" + std::to_string(ws.x) + ", " + std::to_string(ws.y) + ", " +
-                             std::to_string(ws.z) + "), n (" + std::to_string(n.x) + ", " + std::to_string(n.y) + ", " +
-                             std::to_string(n.z) + ")");
-                // Along the normal, by the footprint, to a thousandth of the texel (float arithmetic).
-                const glm::dvec3 moved = probe->offset(map.view, map.mapTexels, 0.0, 0.5, ws, n);
-                EXPECT_NEAR(glm::dot(moved, n), footprint, 1e-3 * longerAxis);
-                EXPECT_NEAR(glm::length(moved - n * glm::dot(moved, n)), 0.0, 1e-4 * longerAxis);
+                             std::to_string(ws.z) + "), face (" + std::to_string(face.x) + ", " +
+                             std::to_string(face.y) + ", " + std::to_string(face.z) + ")");
+                const auto offset = [&](double texels, double footprints) {
+                    return probe->offset(map.view, map.mapTexels, texels, footprints, ws, shading, across1, across2);
+                };
+                // Along the triangle's normal, by the footprint, to a thousandth of the texel (float
+                // arithmetic); K texels' world size along the shading normal; the two added.
+                const double tolerance = 1e-3 * longerAxis;
+                const glm::dvec3 byFootprint = offset(0.0, 0.5), byTexels = offset(0.5, 0.0), byBoth = offset(0.5, 0.5);
+                EXPECT_NEAR(glm::length(byFootprint - face * footprint), 0.0, tolerance);
+                EXPECT_NEAR(glm::length(byTexels - shading * 0.5 * longerAxis), 0.0, tolerance);
+                EXPECT_NEAR(glm::length(byBoth - byFootprint - byTexels), 0.0, tolerance);
                 // A face turned to the light does not move where the map's depth runs along the light
                 // (every map but the hyperbolic warped one): its shadows stay where they fall.
-                if (glm::dot(n, wsTowardsLight) > 0.9999 && map.name != "lispsm, hyperbolic") {
-                    EXPECT_LT(glm::length(moved), 1e-3 * longerAxis);
+                if (glm::dot(face, wsTowardsLight) > 0.9999 && map.name != "lispsm, hyperbolic") {
+                    EXPECT_LT(glm::length(byFootprint), tolerance);
                 }
-                // Half a texel's longer axis whatever the slope, and both offsets add.
-                EXPECT_NEAR(glm::dot(probe->offset(map.view, map.mapTexels, 0.5, 0.0, ws, n), n), 0.5 * longerAxis,
-                            1e-3 * longerAxis);
-                EXPECT_NEAR(glm::dot(probe->offset(map.view, map.mapTexels, 0.5, 0.5, ws, n), n),
-                            0.5 * longerAxis + footprint, 2e-3 * longerAxis);
                 ++checked;
             }
     EXPECT_GE(checked, 4 * 3 * 5);
