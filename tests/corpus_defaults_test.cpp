@@ -15,6 +15,7 @@
 // CTest label `gl`: runs headless on Mesa llvmpipe.
 #include "headless_gl_test.h"
 
+#include "shadowkit/core/bias.h"
 #include "shadowkit/frame/frame_config.h"
 #include "shadowkit/measure/measurer.h"
 #include "shadowkit/scene/scene_io.h"
@@ -23,6 +24,8 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <memory>
+#include <optional>
 #include <set>
 #include <string>
 
@@ -72,41 +75,103 @@ constexpr int kWidth = 640, kHeight = 360;
 
 class CorpusDefaultsTest : public gl::testing::HeadlessGlTest {};
 
+// A model of kModels and a measurer of it; nullptr, the test failed naming why, when it cannot
+// be had (a missing file names the Debian package).
+struct LoadedModel {
+    scene::Scene scene;
+    std::unique_ptr<measure::Measurer> measurer; // of `scene`, which it may hold on to
+};
+std::unique_ptr<LoadedModel> loadModel(const fs::path& file) {
+    if (!fs::exists(file)) {
+        ADD_FAILURE() << file << " is missing: install assimp-testmodels (tools/install-deps.sh)";
+        return nullptr;
+    }
+    auto model = scene::loadScene(file);
+    if (!model) {
+        ADD_FAILURE() << model.error();
+        return nullptr;
+    }
+    auto loaded = std::make_unique<LoadedModel>(LoadedModel{std::move(*model), nullptr});
+    auto measurer = measure::Measurer::create(loaded->scene);
+    if (!measurer) {
+        ADD_FAILURE() << file << ": " << measurer.error();
+        return nullptr;
+    }
+    loaded->measurer = std::move(*measurer);
+    return loaded;
+}
+
+// `wrong_pct` of a model's view under the sun with the default set-up's technique, or with
+// `focused`, at kWidth × kHeight; `bias` replaces the recommended one where given.
+double wrongPct(measure::Measurer& measurer, const scene::Scene& model, const scene::ViewSpec& spec, bool focused,
+                std::optional<core::BiasSettings> bias = std::nullopt) {
+    const scene::ResolvedView view = scene::resolveView(spec, model);
+    gl::RenderSettings settings; // the recommended bias unless given, hard test
+    settings.width = kWidth, settings.height = kHeight;
+    settings.bias = bias;
+    core::ShadowSetupInputs inputs = frame::FrameConfig{}.technique;
+    inputs.camera = view.camera, inputs.light = view.light, inputs.wsSceneBounds = model.wsBounds();
+    if (focused) inputs.technique = core::Technique::Focused;
+    auto m = measurer.measure(inputs, settings);
+    EXPECT_TRUE(m) << spec.name << ": " << m.error();
+    return m ? m->figures().wrongPct : 0.0;
+}
+
 } // namespace
 
 TEST_F(CorpusDefaultsTest, TheDefaultIsNeverMuchWorseThanTheFocusedMapOnAnyViewOfAnyModel) {
     auto views = scene::loadViews(fs::path(SHADOWKIT_SOURCE_DATA_DIR) / "views.json");
     ASSERT_TRUE(views) << views.error();
-    const core::ShadowSetupInputs defaults = frame::FrameConfig{}.technique;
     int measured = 0;
     for (const auto& [file, notYet] : kModels) {
-        if (!fs::exists(file)) {
-            ADD_FAILURE() << file << " is missing: install assimp-testmodels (tools/install-deps.sh)";
-            continue;
-        }
-        auto model = scene::loadScene(file);
-        ASSERT_TRUE(model) << model.error();
-        auto measurer = measure::Measurer::create(*model);
-        ASSERT_TRUE(measurer) << measurer.error();
+        const std::unique_ptr<LoadedModel> loaded = loadModel(file);
+        if (!loaded) continue;
+        const scene::Scene& model = loaded->scene;
+        measure::Measurer& measurer = *loaded->measurer;
         for (const scene::ViewSpec& spec : *views) {
             if (!spec.lights.empty() || notYet.contains(spec.name)) continue; // the sun's set-ups on the sunlit views
-            const scene::ResolvedView view = scene::resolveView(spec, *model);
-            gl::RenderSettings settings; // the recommended bias, hard test
-            settings.width = kWidth, settings.height = kHeight;
-            double wrong[2] = {0.0, 0.0};
-            for (int focused = 0; focused < 2; ++focused) {
-                core::ShadowSetupInputs inputs = defaults;
-                inputs.camera = view.camera, inputs.light = view.light, inputs.wsSceneBounds = model->wsBounds();
-                if (focused) inputs.technique = core::Technique::Focused;
-                auto m = (*measurer)->measure(inputs, settings);
-                ASSERT_TRUE(m) << file.filename() << " " << spec.name << ": " << m.error();
-                wrong[focused] = m->figures().wrongPct;
-            }
+            const double byDefault = wrongPct(measurer, model, spec, false);
+            const double byFocused = wrongPct(measurer, model, spec, true);
             ++measured;
-            EXPECT_LE(wrong[0], kRatio * wrong[1] + kSlackPoints)
-                << file.filename() << " on " << spec.name << ": the default is " << wrong[0] << " % wrong, focused "
-                << wrong[1] << " %";
+            EXPECT_LE(byDefault, kRatio * byFocused + kSlackPoints)
+                << file.filename() << " on " << spec.name << ": the default is " << byDefault << " % wrong, focused "
+                << byFocused << " %";
         }
     }
     EXPECT_GT(measured, 0);
+}
+
+TEST_F(CorpusDefaultsTest, TheFootprintOffsetHoldsTheViewsTheTexelOffsetMissesOnTheFigureAndTheRoof) {
+    // The normal offset by a texel's footprint on the triangle's normal in place of half a texel
+    // (--normal-offset 0 --normal-offset-footprint 0.25; docs/bias-and-filtering.md): not the
+    // default yet, as it moves every table. On five of the seven views above that the default
+    // misses it holds the bound (Wuson `into-sun` 0.41 % against 0.955 on llvmpipe); twice that
+    // length, the plane's exact clearance on top of the slope-scaled offset, lifts receivers as
+    // the old rule did and four of the five fall outside (Wuson 1.24, the roof's `paper`,
+    // `perpendicular` and `noon` 0.17, 0.33, 0.22).
+    auto views = scene::loadViews(fs::path(SHADOWKIT_SOURCE_DATA_DIR) / "views.json");
+    ASSERT_TRUE(views) << views.error();
+    const core::ShadowSetupInputs defaults = frame::FrameConfig{}.technique;
+    core::BiasSettings footprint = core::recommendedBias(defaults.technique, core::depthLayoutFor(defaults));
+    footprint.normalOffset = 0.0;
+    footprint.normalOffsetFootprint = 0.25;
+    int measured = 0;
+    for (const auto& [file, notYet] : kModels) {
+        const std::string name = file.filename().string();
+        if (name != "WusonOBJ.obj" && name != "regr01.obj") continue;
+        const std::unique_ptr<LoadedModel> loaded = loadModel(file);
+        if (!loaded) continue;
+        const scene::Scene& model = loaded->scene;
+        measure::Measurer& measurer = *loaded->measurer;
+        for (const scene::ViewSpec& spec : *views) {
+            if (!notYet.contains(spec.name)) continue;
+            const double byFootprint = wrongPct(measurer, model, spec, false, footprint);
+            const double byFocused = wrongPct(measurer, model, spec, true);
+            ++measured;
+            EXPECT_LE(byFootprint, kRatio * byFocused + kSlackPoints)
+                << name << " on " << spec.name << ": the footprint offset is " << byFootprint << " % wrong, focused "
+                << byFocused << " %";
+        }
+    }
+    EXPECT_EQ(measured, 5);
 }
