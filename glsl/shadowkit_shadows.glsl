@@ -83,8 +83,8 @@ struct SkShadowOptions {
     int filterTaps;           // N of the grid, Poisson and PCSS filters
     float poissonRadiusTexels; // Poisson: the disk's radius; PCSS: its widest kernel; in texels
     float lightTanHalfAngle;   // PCSS: tan of the sun's angular radius (0.53° across: 0.004625); 0: a point
-    float normalOffsetFootprint; // BiasSettings::normalOffsetFootprint: receiver moved along its normal
-                                 // by this × its texel's footprint across the light, on the normal
+    float normalOffsetFootprint; // BiasSettings::normalOffsetFootprint: receiver moved along its triangle's
+                                 // normal by this × its texel's footprint across the light on that normal
 };
 
 // (u, v, depth) of a world point: textureFromWorld's xy / w and the reference depth.
@@ -111,7 +111,7 @@ vec3 skShadowStep(mat4 textureFromWorld, vec4 linearDepthFromWorld, bool linearD
 //    makes the offset enough along both — whatever the receiver's slope, so a face turned to the
 //    light moves as far as one along it.
 //  - normalOffsetFootprint k: k (|a_u·f| + |a_v·f|) along f, the drawn triangle's own normal on
-//    n's side, a_u and a_v the world steps of one texel in u and in v at constant depth (across
+//    the light's side, a_u and a_v the world steps of one texel in u and in v at constant depth (across
 //    the light). The texel a receiver reads holds its triangle's depth at the texel's centre, up
 //    to half a step in u and in v away; along the light that plane lies |s·f| / (f·l) nearer than
 //    the receiver after a step s, and a move δ along f puts the receiver δ / (f·l) nearer along
@@ -132,11 +132,16 @@ vec3 skNormalOffset(mat4 textureFromWorld, vec4 linearDepthFromWorld, SkShadowOp
     if (o.normalOffsetTexels > 0.0)
         offset += n * (o.normalOffsetTexels / (o.mapTexels * max(min(length(gradU), length(gradV)), 1e-12)));
     if (o.normalOffsetFootprint > 0.0) {
+        const vec3 stepU = cross(gradV, gradDepth), stepV = cross(gradDepth, gradU); // × det J
+        const float signedDet = dot(gradU, stepU), det = abs(signedDet);
+        // The triangle's normal on the side the light comes from: (u, v) hold along the light's
+        // rays, ∇u × ∇v, along which the depth grows (its dot with ∇depth is det J) away from the
+        // light, whatever the warp. Not the shading normal's side: a file whose normals point
+        // into a face (a cube exported with its sides' normals along y) would move its lit
+        // receivers into their own surface.
         vec3 face = cross(dwsdx, dwsdy);
         face = dot(face, face) > 0.0 ? normalize(face) : n; // a pixel seeing its triangle edge-on: n
-        if (dot(face, n) < 0.0) face = -face;
-        const vec3 stepU = cross(gradV, gradDepth), stepV = cross(gradDepth, gradU); // × det J
-        const float det = abs(dot(gradU, stepU));
+        if (dot(face, cross(gradU, gradV)) * signedDet > 0.0) face = -face;
         // A map whose depth does not vary across the receiver's point (det 0) has no texel there.
         if (det > 0.0)
             offset += face * (o.normalOffsetFootprint * (abs(dot(stepU, face)) + abs(dot(stepV, face))) /

@@ -392,7 +392,7 @@ struct Viewer {
             defaults.sunAzimuthDegrees = core::azimuthDegreesOf(towards);
             const core::BiasSettings bias = gl::biasFor(drawn->frame.setup, drawn->frame.settings);
             defaults.biasSlope = bias.slope, defaults.biasConstant = bias.constant,
-            defaults.normalOffset = bias.normalOffset;
+            defaults.normalOffset = bias.normalOffset, defaults.normalOffsetFootprint = bias.normalOffsetFootprint;
         }
         dirty |= drawOptionsPanel(state, defaults);
         if (ImGui::CollapsingHeader("Time", ImGuiTreeNodeFlags_DefaultOpen)) {

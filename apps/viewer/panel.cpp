@@ -191,12 +191,13 @@ bool biasAndFilterSection(StateOptions& s, const PanelDefaults& d) {
     changed |= sliderFloat(s, "slope", "bias-slope", 0.0f, 8.0f, f(d.biasSlope));
     changed |= sliderFloat(s, "constant", "bias-constant", 0.0f, 100000.0f, f(d.biasConstant), true);
     changed |= sliderFloat(s, "normal offset", "normal-offset", 0.0f, 4.0f, f(d.normalOffset));
+    changed |= sliderFloat(s, "footprint offset", "normal-offset-footprint", 0.0f, 2.0f, f(d.normalOffsetFootprint));
     changed |= choiceCombo(s, "receiver plane", "receiver-plane-bias");
     changed |= choiceCombo(s, "cull", "cull");
     changed |= choiceCombo(s, "depth layout", "depth-layout");
     if (ImGui::Button("reset to recommended")) {
-        for (const char* name :
-             {"bias-slope", "bias-constant", "normal-offset", "receiver-plane-bias", "cull", "depth-layout"})
+        for (const char* name : {"bias-slope", "bias-constant", "normal-offset", "normal-offset-footprint",
+                                 "receiver-plane-bias", "cull", "depth-layout"})
             s.erase(name);
         changed = true;
     }

@@ -11,7 +11,7 @@ namespace shadowkit::viewer {
 // drawn with (the view's sun, the technique's recommended bias).
 struct PanelDefaults {
     double sunElevationDegrees = 30.0, sunAzimuthDegrees = 90.0;
-    double biasSlope = 1.0, biasConstant = 2.0, normalOffset = 0.0;
+    double biasSlope = 1.0, biasConstant = 2.0, normalOffset = 0.0, normalOffsetFootprint = 0.0;
 };
 
 // Draws the panel's sections; true when any option changed.

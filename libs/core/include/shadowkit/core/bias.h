@@ -32,10 +32,10 @@ struct BiasSettings {
     /// Receiver moved along its normal by this many texels' world size before the lookup
     /// (normal offset), whatever its slope; [0, 10].
     double normalOffset = 0.0;
-    /// Receiver moved along its normal, besides, by this × its texel's footprint on the normal:
-    /// k (|a_u·n| + |a_v·n|), a_u and a_v one texel's world steps in u and v across the light —
-    /// 0 for a face turned to the light, the texel's extent along a face the light grazes; ½
-    /// clears a plane's own depth anywhere in its texel (skNormalOffset in
+    /// Receiver moved, besides, along its drawn triangle's normal f by this × its texel's
+    /// footprint on f: k (|a_u·f| + |a_v·f|), a_u and a_v one texel's world steps in u and v
+    /// across the light — 0 for a face turned to the light, the texel's extent along a face the
+    /// light grazes; ½ clears the triangle's own depth anywhere in its texel (skNormalOffset in
     /// glsl/shadowkit_shadows.glsl derives it); [0, 10].
     double normalOffsetFootprint = 0.0;
     /// Receiver-plane depth bias: the reference depth follows the receiver's plane to each
