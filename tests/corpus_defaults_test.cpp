@@ -141,24 +141,24 @@ TEST_F(CorpusDefaultsTest, TheDefaultIsNeverMuchWorseThanTheFocusedMapOnAnyViewO
     EXPECT_GT(measured, 0);
 }
 
-TEST_F(CorpusDefaultsTest, TheFootprintOffsetHoldsTheViewsTheTexelOffsetMissesOnTheFigureAndTheRoof) {
-    // The normal offset by a texel's footprint on the triangle's normal in place of half a texel
-    // (--normal-offset 0 --normal-offset-footprint 0.25; docs/bias-and-filtering.md): not the
-    // default yet, as it moves every table. On five of the seven views above that the default
-    // misses it holds the bound (Wuson `into-sun` 0.41 % against 0.955 on llvmpipe); twice that
-    // length, the plane's exact clearance on top of the slope-scaled offset, lifts receivers as
-    // the old rule did and four of the five fall outside (Wuson 1.24, the roof's `paper`,
-    // `perpendicular` and `noon` 0.17, 0.33, 0.22).
+TEST_F(CorpusDefaultsTest, TheFootprintOffsetHoldsTheViewsTheTexelOffsetMissesButTheClearCoatCards) {
+    // The normal offset by a texel's footprint on the triangle's normal under a twentieth of
+    // today's half texel (--normal-offset 0.05 --normal-offset-footprint 0.25;
+    // docs/bias-and-filtering.md): not the default yet, as it moves every table. Of the seven views
+    // above that the default misses it holds the bound on all but the clear-coat card's `paper`
+    // (on llvmpipe Wuson's `into-sun` 0.52 % against 0.955, the glasshouse's `sun-behind` 0.13
+    // against 0.145). With the triangle's normal turned to the shading normal's side the roof's
+    // `noon` fell outside (0.19 against 0.145); without the twentieth, the glasshouse (0.24).
     auto views = scene::loadViews(fs::path(SHADOWKIT_SOURCE_DATA_DIR) / "views.json");
     ASSERT_TRUE(views) << views.error();
     const core::ShadowSetupInputs defaults = frame::FrameConfig{}.technique;
     core::BiasSettings footprint = core::recommendedBias(defaults.technique, core::depthLayoutFor(defaults));
-    footprint.normalOffset = 0.0;
+    footprint.normalOffset = 0.05;
     footprint.normalOffsetFootprint = 0.25;
     int measured = 0;
     for (const auto& [file, notYet] : kModels) {
         const std::string name = file.filename().string();
-        if (name != "WusonOBJ.obj" && name != "regr01.obj") continue;
+        if (notYet.empty() || name == "ClearCoatTest.gltf") continue; // the card: 3.15 % against 2.19
         const std::unique_ptr<LoadedModel> loaded = loadModel(file);
         if (!loaded) continue;
         const scene::Scene& model = loaded->scene;
@@ -173,5 +173,5 @@ TEST_F(CorpusDefaultsTest, TheFootprintOffsetHoldsTheViewsTheTexelOffsetMissesOn
                 << byFocused << " %";
         }
     }
-    EXPECT_EQ(measured, 5);
+    EXPECT_EQ(measured, 6);
 }
