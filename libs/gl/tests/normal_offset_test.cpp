@@ -1,9 +1,9 @@
 // The receiver's two normal offsets of the installed lookup (skNormalOffset in
 // glsl/shadowkit_shadows.glsl): K texels' world size, and k times the texel's footprint across the
-// light on the receiver's normal, k (|a_u·n| + |a_v·n|). The GLSL takes a_u and a_v from the map's
-// analytic gradients and cross products; these tests take them from finite differences of the
-// whole mapping (u, v, depth) of the world in double precision and a 3 × 3 inverse, and check
-// that the footprint of one half clears a sloped plane's own depth with no caster-side offset.
+// light on the drawn triangle's normal f, k (|a_u·f| + |a_v·f|), on the light's side. The GLSL takes a_u and a_v from
+// the map's analytic gradients and cross products; these tests take them from finite differences of the whole mapping
+// (u, v, depth) of the world in double precision and a 3 × 3 inverse, and check that the footprint of one half clears a
+// sloped plane's own depth with no caster-side offset.
 #include "engine_declarations.h"
 #include "headless_gl_test.h"
 #include "test_scenes.h"
