@@ -60,7 +60,7 @@ public:
         using namespace gl::shaders;
         auto program = gl::buildProgram("normal offset probe", {kVertex},
                                         {gl::testing::kEngineDeclarations, kShadowkitShadowsGlsl, kOffsetOfOnePoint});
-        if (!program) return core::Error(program.error());
+        if (!program) return program.errorInfo();
         OffsetProbe probe;
         probe.m_program = std::move(*program);
         GLuint id = 0;
