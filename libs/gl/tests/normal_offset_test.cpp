@@ -258,13 +258,7 @@ TEST_F(NormalOffsetTest, HalfATexelsFootprintClearsASlopedPlanesOwnDepthWithNoOt
         EXPECT_TRUE((*renderer)->render(cam, sun, *setup, settings));
         const scene::Image image = (*renderer)->readColor();
         std::vector<double> lit;
-        for (const glm::dvec3& p : points) {
-            const core::Vec4 cs = cam.clipFromWorld() * core::Vec4(p, 1.0);
-            const int x = static_cast<int>((cs.x / cs.w * 0.5 + 0.5) * image.width);
-            const int y = static_cast<int>((0.5 - cs.y / cs.w * 0.5) * image.height);
-            const uint8_t* px = image.pixel(x, y);
-            lit.push_back(0.2126 * px[0] + 0.7152 * px[1] + 0.0722 * px[2]);
-        }
+        for (const glm::dvec3& p : points) lit.push_back(gl::testing::luminanceAt(image, cam, p));
         const double brightest = *std::max_element(lit.begin(), lit.end());
         return std::count_if(lit.begin(), lit.end(), [&](double l) { return l < 0.8 * brightest; });
     };

@@ -38,15 +38,6 @@ scene::Scene boxOverPlane() {
     return s;
 }
 
-// Luminance of the pixel that shows world point `ws`.
-double luminanceAt(const scene::Image& image, const core::PerspectiveCamera& cam, const core::Vec3& ws) {
-    const core::Vec4 cs = cam.clipFromWorld() * core::Vec4(ws, 1.0);
-    const int x = static_cast<int>((cs.x / cs.w * 0.5 + 0.5) * image.width);
-    const int y = static_cast<int>((0.5 - cs.y / cs.w * 0.5) * image.height); // top row first
-    const uint8_t* p = image.pixel(x, y);
-    return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
-}
-
 } // namespace
 
 TEST_F(RendererTest, ContextIsOpenGL45Core) {
@@ -79,8 +70,8 @@ TEST_F(RendererTest, BoxOverPlaneShadowsThePlaneBelowItForEveryTechnique) {
             EXPECT_EQ(stats->shadow.drawCalls, 2u * (together ? 1 : setup->views.size())) << technique.name;
         }
         const scene::Image image = (*renderer)->readColor();
-        const double under = luminanceAt(image, cam, {0.3, 0, 0.3});
-        const double away = luminanceAt(image, cam, {6, 0, 2});
+        const double under = gl::testing::luminanceAt(image, cam, {0.3, 0, 0.3});
+        const double away = gl::testing::luminanceAt(image, cam, {6, 0, 2});
         // Shadowed: ambient only; lit: ambient + sun. The ratio is ~0.45 with our radiances.
         EXPECT_LT(under, 0.7 * away) << technique.name << ": under " << under << ", away " << away;
         EXPECT_GT(away, 100.0) << technique.name << ": the lit plane must not be dark (acne or a wrong matrix)";
@@ -290,7 +281,8 @@ TEST_F(RendererTest, CasterAboveTheFrustumStillShadowsItsCascade) {
         ASSERT_TRUE(setup) << setup.error();
         ASSERT_TRUE((*renderer)->render(cam, sun, *setup, settings));
         const scene::Image image = (*renderer)->readColor();
-        const double under = luminanceAt(image, cam, {0, 0, -30}), away = luminanceAt(image, cam, {9, 0, -30});
+        const double under = gl::testing::luminanceAt(image, cam, {0, 0, -30}),
+                     away = gl::testing::luminanceAt(image, cam, {9, 0, -30});
         EXPECT_LT(under, 0.7 * away) << "variant " << variant << ": under " << under << ", away " << away;
     }
 }
@@ -345,7 +337,8 @@ TEST_F(RendererTest, EveryBiasModeAndFilterWorksWithEveryTechnique) {
                 ASSERT_TRUE(setup);
                 ASSERT_TRUE((*renderer)->render(cam, sun, *setup, settings)) << name;
                 const scene::Image image = (*renderer)->readColor();
-                const double under = luminanceAt(image, cam, {0.3, 0, 0.3}), away = luminanceAt(image, cam, {6, 0, 2});
+                const double under = gl::testing::luminanceAt(image, cam, {0.3, 0, 0.3}),
+                             away = gl::testing::luminanceAt(image, cam, {6, 0, 2});
                 EXPECT_LT(under, 0.7 * away) << technique.name << ", " << name << ", layout " << int(layout);
                 EXPECT_GT(away, 100.0) << technique.name << ", " << name << ", layout " << int(layout);
             }
@@ -381,12 +374,14 @@ TEST_F(RendererTest, TheReceiverPlaneAloneKeepsALitPlaneLitWithNoDepthOffsetAtAl
         std::vector<double> lit;
         for (int i = 0; i < 64; ++i) {
             const double angle = 3.14159265358979 * i / 63.0, radius = 2.5 + (i % 4);
-            lit.push_back(luminanceAt(image, cam, {radius * std::cos(angle), 0.0, radius * std::sin(angle)}));
+            lit.push_back(
+                gl::testing::luminanceAt(image, cam, {radius * std::cos(angle), 0.0, radius * std::sin(angle)}));
         }
         const double brightest = *std::max_element(lit.begin(), lit.end());
         const auto dark = std::count_if(lit.begin(), lit.end(), [&](double l) { return l < 0.8 * brightest; });
         EXPECT_LE(dark, 1) << core::techniqueName(technique) << ": " << dark << " of 64 sunlit ground points dark";
-        EXPECT_LT(luminanceAt(image, cam, {0.3, 0, 0.3}), 0.7 * brightest) << core::techniqueName(technique);
+        EXPECT_LT(gl::testing::luminanceAt(image, cam, {0.3, 0, 0.3}), 0.7 * brightest)
+            << core::techniqueName(technique);
     }
 }
 

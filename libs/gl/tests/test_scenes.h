@@ -5,10 +5,12 @@
 #include "shadowkit/core/camera.h"
 #include "shadowkit/gl/render_settings.h"
 #include "shadowkit/scene/forest.h"
+#include "shadowkit/scene/image.h"
 #include "shadowkit/scene/views.h"
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <string>
 
 namespace shadowkit::gl::testing {
@@ -41,6 +43,15 @@ inline core::PerspectiveCamera obliqueCamera() {
     cam.zNear = 0.5;
     cam.zFar = 60;
     return cam;
+}
+
+// Luminance of the pixel of `image`, drawn by `cam`, that shows world point `ws`.
+inline double luminanceAt(const scene::Image& image, const core::PerspectiveCamera& cam, const core::Vec3& ws) {
+    const core::Vec4 cs = cam.clipFromWorld() * core::Vec4(ws, 1.0);
+    const int x = static_cast<int>((cs.x / cs.w * 0.5 + 0.5) * image.width);
+    const int y = static_cast<int>((0.5 - cs.y / cs.w * 0.5) * image.height); // top row first
+    const uint8_t* p = image.pixel(x, y);
+    return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
 }
 
 // The settings of a small frame (width x height pixels) with this culling.
