@@ -24,6 +24,10 @@ PAGE = "docs/reliability.md"
 RATIO, SLACK = 1.5, 0.1
 
 
+def plural(count, noun):
+    return f"{count} {noun}" + ("" if count == 1 else "s")
+
+
 def views(path):
     with open(path) as f:
         return {v["view"]: v for v in json.load(f)["views"]}
@@ -60,10 +64,11 @@ def main(argv):
             rows.append((names[name], misses, f"| `{names[name]}` | " + " | ".join(cells) + " |"))
     measured = held + len(rows)
     total = measured + unseen + len(refused)
+    missed = sum(misses for _, misses, _ in rows)
     lines = [
         f"{total} files: {len(refused)} refused in one line, {unseen} that no sunlit view shows, "
         f"{measured} measured; the default holds the bound on every view of {held} and misses it "
-        f"on {sum(misses for _, misses, _ in rows)} views of {len(rows)}:",
+        f"on {plural(missed, 'view')} of {len(rows)}:",
         "",
         "| model | " + " | ".join(VIEWS) + " |",
         "|---|" + "---:|" * len(VIEWS),
