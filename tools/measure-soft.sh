@@ -30,7 +30,7 @@ python3 tools/readme_tables.py --into docs/soft-shadows.md:soft-widths soft-widt
 cost() {
   local v1=$1 v2=$2 filters=$3 base="" f v ms mean json
   shift 3
-  json=$(mktemp)
+  json=$(mktemp --suffix=.json) # bench refuses a --json name without .json
   echo "| filter | $v1 | $v2 | over ${filters%% *} |"
   echo "|---|---:|---:|---:|"
   for f in $filters; do
