@@ -48,9 +48,11 @@ drift from what the program measures.
       soft_wrong_pct (a filter with --foliage-opacity is named "FILTER + opacity layers")
   tools/readme_tables.py soft-widths results.csv
       the same sweep's penumbra_width_ratio per set-up (rows) and filter (columns): mean (range)
+  tools/readme_tables.py soft-disk results.csv
+      the same means per set-up (rows) and filter (columns) as soft-summary, of soft_mae /
+      soft_wrong_pct: the README's leafy table under the real sun
   tools/readme_tables.py soft-lamps results.csv
       per view and lamp of data/sweeps/soft-lamps.json, per filter: penumbra_mae / soft_mae
-      the same sweep's means per set-up (rows) and filter (columns): the README's soft table
 
   tools/readme_tables.py setup BENCH.json
       per technique, the set-up's CPU µs along the moving camera, sun moving and sun held:
@@ -350,10 +352,13 @@ def soft(paths):
                   f" | {pen:.3f} | {mae:.4f} |")
 
 
-def soft_summary(paths):
-    """The README's soft-shadow table: per set-up (rows) and filter (columns) of a sweep's
-    results.csv, the mean penumbra_mae / mean soft_mae over the views; the best of each row bold."""
+def soft_summary(paths, figures=(("penumbra_mae", "{:.3f}"), ("soft_mae", "{:.4f}")), best_by="soft_mae"):
+    """The README's soft-shadow tables: per set-up (rows) and filter (columns) of a sweep's
+    results.csv, the means over the views of `figures` (by default penumbra_mae / soft_mae); the
+    lowest `best_by` of each row bold."""
     rows, setups, filters = soft_rows(paths)
+    keys = [k for k, _ in figures]
+    cell = " / ".join(f for _, f in figures)
     print("| set-up | " + " | ".join(f"`{f}`" for f in filters) + " |")
     print("|---|" + "---:|" * len(filters))
     for setup in setups:
@@ -361,12 +366,17 @@ def soft_summary(paths):
         for name in filters:
             by_view = {r["view"]: r for r in rows if r["filter"] == name and r.get("set-up", "") == setup}
             if by_view:  # a filter a set-up cannot take (msm on virtual pages) has none
-                means[name] = (sum(by_view[v]["penumbra_mae"] for v in VIEWS) / len(VIEWS),
-                               sum(by_view[v]["soft_mae"] for v in VIEWS) / len(VIEWS))
-        best = min(means, key=lambda n: means[n][1])
-        cells = [(("**{:.3f} / {:.4f}**" if n == best else "{:.3f} / {:.4f}").format(*means[n]) if n in means else "—")
-                 for n in filters]
+                means[name] = [sum(by_view[v][k] for v in VIEWS) / len(VIEWS) for k in keys]
+        best = min(means, key=lambda n: means[n][keys.index(best_by)])
+        cells = [((f"**{cell}**" if n == best else cell).format(*means[n]) if n in means else "—") for n in filters]
         print(f"| {setup} | " + " | ".join(cells) + " |")
+
+
+def soft_disk(paths):
+    """The README's leafy lead: per set-up (rows) and filter (columns) of a soft sweep's
+    results.csv, the means over the views of soft_mae / soft_wrong_pct against the sun disk's
+    truth; the lowest soft_mae of each row bold."""
+    soft_summary(paths, (("soft_mae", "{:.4f}"), ("soft_wrong_pct", "{:.2f} %")))
 
 
 SOFT_MEANS = ("wrong_pct", "soft_mae", "penumbra_mae", "soft_wrong_pct")
@@ -587,7 +597,7 @@ def write_into(target, text):
 
 def run(argv):
     """Prints the table the arguments (argv[1:], as on the command line) ask for."""
-    commands = {"forests": forests, "oracle": oracle, "soft": soft, "soft-summary": soft_summary,
+    commands = {"forests": forests, "oracle": oracle, "soft": soft, "soft-summary": soft_summary, "soft-disk": soft_disk,
                 "soft-forests": soft_forests, "soft-table": soft_table, "soft-widths": soft_widths, "soft-lamps": soft_lamps, "stable": stable, "model-paths": model_paths, "visibility": visibility, "dynamics": dynamics,
                 "setup": setup, "culling": culling, "truth": truth, "scale": scale, "wrong": wrong, "scores": scores}
     if len(argv) >= 5 and argv[1] == "oracle" and argv[2] == "--name":
