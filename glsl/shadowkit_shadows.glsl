@@ -11,7 +11,9 @@
 //   - the reference depth in the map's layout: z / w of textureFromWorld (hyperbolic) or the
 //     linear row linearDepthFromWorld (TSM's linear depth, Martin & Tan 2004, and LiSPSM's
 //     per-fragment linear depth, Scherzer 2005 §4.2);
-//   - the receiver-side biases: normal offset by a number of texels' world size, and
+//   - the receiver-side biases: normal offset by a number of texels' world size and by a share
+//     of the texel's footprint on the receiver's triangle, the offset guard (a receiver behind
+//     another caster keeps its shadow where the offset would carry its lookup out), and
 //     receiver-plane depth bias (Isidoro 2006) from the screen derivatives of the position;
 //   - the filters: hard, 2 × 2 hardware PCF, N × N PCF, rotated Poisson disk, and PCSS (soft
 //     shadows of a sun of a given angular size, its kernel on each map's local footprint);
@@ -73,6 +75,21 @@
 #ifndef SK_RECEIVER_PLANE_MARGIN
 #define SK_RECEIVER_PLANE_MARGIN 0.015625
 #endif
+// The offset guard (skOffsetGuard), chosen on the corpus of public models and the forests
+// (docs/bias-and-filtering.md, "The offset guard"): a caster counts as another's, not the
+// receiver's own surface, when it lies nearer the light than the receiver by more than
+// SK_OFFSET_GUARD_SLOPE_TEXELS texels of the receiver's own depth slope; the guard looks only
+// where the light grazes the receiver's triangle, |f·ℓ| below SK_OFFSET_GUARD_GRAZING, and where
+// the offsets moved the lookup SK_OFFSET_GUARD_MOVED_TEXELS texels or more along u or v.
+#ifndef SK_OFFSET_GUARD_SLOPE_TEXELS
+#define SK_OFFSET_GUARD_SLOPE_TEXELS 8.0
+#endif
+#ifndef SK_OFFSET_GUARD_GRAZING
+#define SK_OFFSET_GUARD_GRAZING 0.25
+#endif
+#ifndef SK_OFFSET_GUARD_MOVED_TEXELS
+#define SK_OFFSET_GUARD_MOVED_TEXELS 0.25
+#endif
 
 struct SkShadowOptions {
     float mapTexels;          // texels per side of the map(s)
@@ -85,6 +102,8 @@ struct SkShadowOptions {
     float lightTanHalfAngle;   // PCSS: tan of the sun's angular radius (0.53° across: 0.004625); 0: a point
     float normalOffsetFootprint; // BiasSettings::normalOffsetFootprint: receiver moved along its triangle's
                                  // normal by this × its texel's footprint across the light on that normal
+    bool offsetGuard;            // BiasSettings::offsetGuard: a receiver behind a caster in its own texel
+                                 // stays shadowed where the normal offsets carry its lookup across the map
 };
 
 // (u, v, depth) of a world point: textureFromWorld's xy / w and the reference depth.
@@ -327,6 +346,53 @@ float skFoliageTransmittanceIn(int layer, mat4 textureFromWorld, vec4 linearDept
                                vec4 atlasFromMap, vec3 ws);
 #endif
 
+// The receiver's depth slope in the map, d depth / d(u, v) on its plane, from the screen
+// derivatives of (u, v, depth): J⁻ᵀ (dz/dx, dz/dy); 0 where its plane is edge-on to the map.
+vec2 skReceiverDepthSlope(mat4 textureFromWorld, vec4 linearDepthFromWorld, SkShadowOptions o, vec4 t, vec3 dwsdx, vec3 dwsdy) {
+    const vec3 dx = skShadowStep(textureFromWorld, linearDepthFromWorld, o.linearDepth, t, dwsdx);
+    const vec3 dy = skShadowStep(textureFromWorld, linearDepthFromWorld, o.linearDepth, t, dwsdy);
+    const float det = dx.x * dy.y - dx.y * dy.x;
+    return abs(det) > 1e-20 ? vec2(dy.y * dx.z - dx.y * dy.z, dx.x * dy.z - dy.x * dx.z) / det : vec2(0.0);
+}
+
+// The offset guard (BiasSettings::offsetGuard): 0 where the receiver, at `before` (its (u, v,
+// depth) before the normal offsets, t its homogeneous coordinates there), lies behind a caster
+// in its own texel by more than SK_OFFSET_GUARD_SLOPE_TEXELS texels of its own depth slope — more
+// than its own surface reaches across a few texels, so another caster's — where the light grazes
+// its triangle and the offsets moved its lookup to `uvAfter`, SK_OFFSET_GUARD_MOVED_TEXELS
+// texels or more along u or v; 1 elsewhere.
+// The offsets exist against the receiver's own surface, and move it across the light as well:
+// where the light grazes (a sphere's rim, N·L 0.02–0.1) by up to a quarter of a stretched
+// texel's extent, which carried the rims of spheres standing in walled cells out of the walls'
+// shadows (docs/reliability.md, "Models we did not make"). There a distant caster's shadow edge
+// is where the receiver itself looks it up. Elsewhere the offset lookup's edges are the better
+// ones: on the forest's ground, which the offsets move a quarter texel too, the guard drew 353
+// pixels of false shadow along the trees' shadows on `perpendicular` for 26 it mended (the four
+// cascades); and where the lookup barely moved the two differ only in the texel an edge falls in.
+float skOffsetGuard(sampler2DArrayShadow maps, int layer, mat4 textureFromWorld, vec4 linearDepthFromWorld,
+                    SkShadowOptions o, vec4 atlasFromMap, vec4 t, vec3 before, vec2 uvAfter, vec3 dwsdx, vec3 dwsdy) {
+    const vec2 moved = abs(uvAfter - before.xy) * o.mapTexels;
+    if (max(moved.x, moved.y) < SK_OFFSET_GUARD_MOVED_TEXELS) return 1.0;
+    if (t.w <= 0.0 || any(lessThan(before.xy, vec2(0.0))) || any(greaterThan(before.xy, vec2(1.0)))) return 1.0;
+    // Grazing: the drawn triangle's normal f against ℓ, the direction along which (u, v) hold,
+    // ∇u × ∇v (whatever the warp).
+    const vec3 gx = skShadowStep(textureFromWorld, linearDepthFromWorld, o.linearDepth, t, vec3(1, 0, 0));
+    const vec3 gy = skShadowStep(textureFromWorld, linearDepthFromWorld, o.linearDepth, t, vec3(0, 1, 0));
+    const vec3 gz = skShadowStep(textureFromWorld, linearDepthFromWorld, o.linearDepth, t, vec3(0, 0, 1));
+    const vec3 light = cross(vec3(gx.x, gy.x, gz.x), vec3(gx.y, gy.y, gz.y)), face = cross(dwsdx, dwsdy);
+    if (!(abs(dot(face, light)) < SK_OFFSET_GUARD_GRAZING * length(face) * length(light))) return 1.0;
+    const vec2 slope = skReceiverDepthSlope(textureFromWorld, linearDepthFromWorld, o, t, dwsdx, dwsdy);
+    const float margin = SK_OFFSET_GUARD_SLOPE_TEXELS * (abs(slope.x) + abs(slope.y)) / o.mapTexels;
+    // The one texel the receiver lies in, whatever the sampler's filter: a bilinear compare would
+    // spread a distant caster's shadow half a texel past its edge. textureGather's four are the
+    // bilinear footprint's, (i0, j1) (i1, j1) (i1, j0) (i0, j0); the point lies in i1 where the
+    // footprint's fraction along u is ½ or more, in j1 where along v.
+    const vec2 at = before.xy * atlasFromMap.xy + atlasFromMap.zw;
+    const vec4 four = textureGather(maps, vec3(at, float(layer)), clamp(before.z - margin, 0.0, 1.0));
+    const vec2 f = fract(at * vec2(textureSize(maps, 0).xy) - 0.5);
+    return f.y >= 0.5 ? (f.x >= 0.5 ? four.y : four.x) : (f.x >= 0.5 ? four.z : four.w);
+}
+
 // The lit fraction (0 shadowed .. 1 lit) of a receiver at `ws` with unit normal `n` in one map
 // stored in layer `layer` of `maps` at (u, v) · atlasFromMap.xy + atlasFromMap.zw: the whole layer
 // (1, 1, 0, 0), or a virtual map's page in the page atlas, whose guard band holds every tap.
@@ -334,9 +400,15 @@ float skShadowMapIn(sampler2DArrayShadow maps, int layer, mat4 textureFromWorld,
                     SkShadowOptions o, vec4 atlasFromMap, vec3 ws, vec3 n, vec3 dwsdx, vec3 dwsdy) {
     vec4 t;
     vec3 uvz = skShadowCoordinates(textureFromWorld, linearDepthFromWorld, o.linearDepth, ws, t);
+    float guard = 1.0; // skOffsetGuard's, for the hard test and the 2 × 2 PCF
     if (o.normalOffsetTexels > 0.0 || o.normalOffsetFootprint > 0.0) {
+        const vec4 tBefore = t;
+        const vec3 before = uvz;
         ws += skNormalOffset(textureFromWorld, linearDepthFromWorld, o, t, n, dwsdx, dwsdy);
         uvz = skShadowCoordinates(textureFromWorld, linearDepthFromWorld, o.linearDepth, ws, t);
+        if (o.offsetGuard)
+            guard = skOffsetGuard(maps, layer, textureFromWorld, linearDepthFromWorld, o, atlasFromMap, tBefore, before,
+                                  uvz.xy, dwsdx, dwsdy);
     }
     // Outside the map nothing is known to occlude: lit. (Focused maps cover every visible
     // receiver, so this only happens off the focus body.)
@@ -344,14 +416,10 @@ float skShadowMapIn(sampler2DArrayShadow maps, int layer, mat4 textureFromWorld,
     const vec2 uv = uvz.xy;
     float depth = uvz.z;
 
-    // Receiver plane: depth as a function of (u, v) on the receiver's plane, from the screen
-    // derivatives of (u, v, depth): dz/duv = J⁻ᵀ (dz/dx, dz/dy).
+    // Receiver plane: depth as a function of (u, v) on the receiver's plane.
     vec2 dDepthDuv = vec2(0.0);
     if (o.receiverPlane) {
-        const vec3 dx = skShadowStep(textureFromWorld, linearDepthFromWorld, o.linearDepth, t, dwsdx);
-        const vec3 dy = skShadowStep(textureFromWorld, linearDepthFromWorld, o.linearDepth, t, dwsdy);
-        const float det = dx.x * dy.y - dx.y * dy.x;
-        if (abs(det) > 1e-20) dDepthDuv = vec2(dy.y * dx.z - dx.y * dy.z, dx.x * dy.z - dy.x * dx.z) / det;
+        dDepthDuv = skReceiverDepthSlope(textureFromWorld, linearDepthFromWorld, o, t, dwsdx, dwsdy);
         // The map holds the rasteriser's depth plane of each caster, not the exact one: vertices
         // snapped to its sub-pixel grid shift and tilt that plane by a fraction of a texel times
         // its depth slope. Slope-scaled offset covers that; with the reference on the receiver's
@@ -395,7 +463,7 @@ float skShadowMapIn(sampler2DArrayShadow maps, int layer, mat4 textureFromWorld,
     }
     // SK_FILTER_PCF2: the sampler's GL_LINEAR filter does the 2 × 2 PCF in hardware. Depth clamp
     // in the shadow pass stores casters in front of the near plane at 0: clamp the reference too.
-    return texture(maps, vec4(uv * atlasFromMap.xy + atlasFromMap.zw, float(layer), clamp(depth, 0.0, 1.0)));
+    return min(guard, texture(maps, vec4(uv * atlasFromMap.xy + atlasFromMap.zw, float(layer), clamp(depth, 0.0, 1.0))));
 }
 
 // One map filling layer `layer` of `maps`.

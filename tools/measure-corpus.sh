@@ -8,13 +8,21 @@
 # corpus follow (the pillar on its plate, tools/authored_shapes.py's shapes). Files the loader
 # refuses (exit 1 and a one-line reason, kept in out/corpus/refused.txt) are counted, not
 # evaluated; any other failure stops the script. About 5 minutes on this project's 2-core machine.
+#
+# CANDIDATE="FLAGS" holds a would-be default to the bound instead: the default set-up with FLAGS
+# added (e.g. CANDIDATE="--offset-guard on"), into out/corpus-candidate and the table
+# corpus-bound-candidate, counted against the default's last run (out/corpus) where there is one.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 B=build/apps/shadowkit/shadowkit
 [ -x "$B" ] || tools/build.sh
 corpus=/usr/share/assimp/models
 [ -d "$corpus" ] || { echo "measure-corpus: $corpus is missing: install assimp-testmodels (tools/install-deps.sh)" >&2; exit 1; }
-out=out/corpus
+out=out/corpus table=corpus-bound candidate=()
+if [ -n "${CANDIDATE:-}" ]; then
+  read -ra candidate <<< "$CANDIDATE"
+  out=out/corpus-candidate table=corpus-bound-candidate
+fi
 rm -rf "$out" && mkdir -p "$out"
 {
   find "$corpus/glTF2" "$corpus/OBJ" -type f \( -iname '*.gltf' -o -iname '*.glb' -o -iname '*.obj' \) | sort
@@ -25,7 +33,7 @@ rm -rf "$out" && mkdir -p "$out"
     name=$(printf '%s' "$relative" | md5sum | cut -c1-12) # file names may hold spaces
     printf '%s\t%s\n' "$name" "$relative" >> "$out/names.tsv"
     for technique in default focused; do
-      args=()
+      args=("${candidate[@]}")
       [ "$technique" = focused ] && args=(--technique focused)
       status=0
       "$B" eval --scene "$file" --views all --size 640x360 "${args[@]}" --json "$out/$name.$technique.json" \
@@ -40,4 +48,4 @@ rm -rf "$out" && mkdir -p "$out"
     done
     echo "measure-corpus: $relative" >&2
   done
-python3 tools/corpus_tables.py "$out"
+python3 tools/corpus_tables.py "$out" "$table" "${CANDIDATE:-}" out/corpus

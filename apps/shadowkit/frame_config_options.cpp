@@ -54,6 +54,8 @@ core::Result<frame::FrameConfig> frameConfigOf(const TechniqueOptions& technique
                                                         : core::CasterCull::None;
     if (render.receiverPlaneBias != RenderOptions::Choice::Auto)
         config.bias.receiverPlane = render.receiverPlaneBias == RenderOptions::Choice::On;
+    if (render.offsetGuard != RenderOptions::Choice::Auto)
+        config.bias.offsetGuard = render.offsetGuard == RenderOptions::Choice::On;
 
     auto local = lights.lights();
     if (!local) return local.errorInfo();

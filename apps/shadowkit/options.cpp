@@ -100,6 +100,11 @@ void RenderOptions::addTo(CLI::App& cmd) {
                    "reference depth on the receiver's plane (auto: for wide kernels)")
         ->transform(choice(Choices<Choice>{{"auto", Choice::Auto}, {"on", Choice::On}, {"off", Choice::Off}}))
         ->capture_default_str();
+    cmd.add_option("--offset-guard", offsetGuard,
+                   "with a normal offset, a receiver the light grazes, behind another caster in its own texel, stays "
+                   "shadowed where the offset moved its lookup (hard and pcf2; auto: the recommended bias's, off)")
+        ->transform(choice(Choices<Choice>{{"auto", Choice::Auto}, {"on", Choice::On}, {"off", Choice::Off}}))
+        ->capture_default_str();
     cmd.add_option("--filter", filter,
                    "hard, pcf2 (hardware 2x2), pcf:N (N x N, 1-9), poisson:N (N rotated taps, 1-32), pcss[:N] (soft "
                    "shadows of a --sun-angle sun: blocker search and filter of N taps each, default 16)")

@@ -134,6 +134,7 @@ struct RenderOptions {
     std::optional<double> biasSlope, biasConstant, normalOffset, normalOffsetFootprint;
     CullChoice cull = CullChoice::Auto;
     Choice receiverPlaneBias = Choice::Auto;
+    Choice offsetGuard = Choice::Auto; // --offset-guard: core::BiasSettings::offsetGuard
     std::string filter = "hard";
     double sunAngle = 0.0; // --sun-angle: the sun's angular diameter in degrees; 0 a point
     gl::BlurSettings blur;

@@ -193,11 +193,12 @@ bool biasAndFilterSection(StateOptions& s, const PanelDefaults& d) {
     changed |= sliderFloat(s, "normal offset", "normal-offset", 0.0f, 4.0f, f(d.normalOffset));
     changed |= sliderFloat(s, "footprint offset", "normal-offset-footprint", 0.0f, 2.0f, f(d.normalOffsetFootprint));
     changed |= choiceCombo(s, "receiver plane", "receiver-plane-bias");
+    changed |= choiceCombo(s, "offset guard", "offset-guard");
     changed |= choiceCombo(s, "cull", "cull");
     changed |= choiceCombo(s, "depth layout", "depth-layout");
     if (ImGui::Button("reset to recommended")) {
         for (const char* name : {"bias-slope", "bias-constant", "normal-offset", "normal-offset-footprint",
-                                 "receiver-plane-bias", "cull", "depth-layout"})
+                                 "receiver-plane-bias", "offset-guard", "cull", "depth-layout"})
             s.erase(name);
         changed = true;
     }

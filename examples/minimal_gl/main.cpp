@@ -124,7 +124,7 @@ uniform vec4 splits[4];
 )";
 const char* kMainFragBody = R"(
 layout(binding = 0) uniform sampler2DArrayShadow shadowMaps;
-uniform int mapCount, linearDepth, shadows;
+uniform int mapCount, linearDepth, shadows, offsetGuard;
 uniform float mapTexels, normalOffsetTexels, normalOffsetFootprint;
 uniform vec3 wsEye, wsViewForward, wsTowardsSun;
 in vec3 wsPosition, wsNormal;
@@ -133,7 +133,7 @@ void main() {
     const vec3 n = normalize(wsNormal);
     const vec3 dx = dFdx(wsPosition), dy = dFdy(wsPosition); // uniform control flow
     const SkShadowOptions o = SkShadowOptions(mapTexels, linearDepth != 0, normalOffsetTexels, false, SK_FILTER_PCF2, 0, 0.0, 0.0,
-                                              normalOffsetFootprint);
+                                              normalOffsetFootprint, offsetGuard != 0);
     const float viewDepth = dot(wsPosition - wsEye, wsViewForward);
     const float nDotL = max(dot(n, wsTowardsSun), 0.0);
     const float lit = shadows != 0 && nDotL > 0.0 ? skCascadedShadow(shadowMaps, mapCount, o, viewDepth, wsPosition, n, dx, dy) : 1.0;
@@ -273,6 +273,7 @@ int main(int argc, char** argv) {
     glUniform1f(uniform("mapTexels"), float(kMapSize));
     glUniform1f(uniform("normalOffsetTexels"), float(bias.normalOffset));
     glUniform1f(uniform("normalOffsetFootprint"), float(bias.normalOffsetFootprint));
+    glUniform1i(uniform("offsetGuard"), bias.offsetGuard);
     glUniform3fv(uniform("wsEye"), 1, glm::value_ptr(glm::vec3(eye)));
     glUniform3fv(uniform("wsViewForward"), 1, glm::value_ptr(glm::vec3(glm::normalize(target - eye))));
     glUniform3fv(uniform("wsTowardsSun"), 1, glm::value_ptr(glm::vec3(-sunTravel)));

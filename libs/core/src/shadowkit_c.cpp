@@ -147,7 +147,8 @@ int shadowkit_compute_setup(const shadowkit_inputs* in, shadowkit_setup* out, ch
         if (view.split) o.split_near = view.split->x, o.split_far = view.split->y;
     }
     const BiasSettings bias = recommendedBias(setup->technique, setup->depthLayout);
-    out->bias = {bias.slope, bias.constant, bias.normalOffset, bias.receiverPlane, bias.normalOffsetFootprint};
+    out->bias = {bias.slope,      bias.constant, bias.normalOffset, bias.receiverPlane, bias.normalOffsetFootprint,
+                 bias.offsetGuard};
     store(setup->wsEye, out->eye_relative_origin);
     out->fallback_count = static_cast<int>(setup->fallbacks.size());
     out->light_tan_half_angle = tanAngularRadius(in->sun_angle_degrees);

@@ -90,6 +90,7 @@ TEST(CApiTest, GivesTheCppResultsForTheSameInputs) {
         EXPECT_EQ(out.bias.slope, bias.slope);
         EXPECT_EQ(out.bias.normal_offset, bias.normalOffset);
         EXPECT_EQ(out.bias.normal_offset_footprint, bias.normalOffsetFootprint);
+        EXPECT_EQ(out.bias.offset_guard != 0, bias.offsetGuard);
         EXPECT_EQ(out.light_tan_half_angle, tanAngularRadius(c.sun_angle_degrees));
         for (size_t v = 0; v < setup.views.size(); ++v) {
             const EngineShadowView view = toEngineView(setup.views[v], setup, conventions);

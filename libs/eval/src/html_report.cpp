@@ -149,8 +149,8 @@ std::string settingsText(const ViewReport& r) {
         r.technique + ", " + maps + ", bias slope " + fixed(r.bias.slope, 2) + " / constant " +
         fixed(r.bias.constant, 2) + " / normal offset " + fixed(r.bias.normalOffset, 2) +
         (r.bias.normalOffsetFootprint > 0.0 ? " + footprint " + fixed(r.bias.normalOffsetFootprint, 2) : "") +
-        ", filter " + r.filter + ", " + std::to_string(r.width) + " × " + std::to_string(r.height) + ", scene " +
-        r.scene + " (seed " + std::to_string(r.seed) + ")";
+        (r.bias.offsetGuard ? ", guarded" : "") + ", filter " + r.filter + ", " + std::to_string(r.width) + " × " +
+        std::to_string(r.height) + ", scene " + r.scene + " (seed " + std::to_string(r.seed) + ")";
     if (!r.autoChoice.empty()) text += "; auto chose " + r.autoChoice;
     for (const std::string& f : r.fallbacks) text += "; fallback: " + f;
     return text;

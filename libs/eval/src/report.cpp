@@ -59,6 +59,7 @@ std::string reportJson(const std::vector<ViewReport>& views) {
             {"normal_offset", v.bias.normalOffset},
             {"normal_offset_footprint", v.bias.normalOffsetFootprint},
             {"receiver_plane_bias", v.bias.receiverPlane},
+            {"offset_guard", v.bias.offsetGuard},
             {"cull", v.bias.cull == core::CasterCull::None           ? "none"
                      : v.bias.cull == core::CasterCull::Back         ? "back"
                      : v.bias.cull == core::CasterCull::BackOfClosed ? "closed"

@@ -17,6 +17,7 @@ std::optional<core::BiasSettings> BiasOverrides::resolve(const core::ShadowSetup
     b.normalOffsetFootprint = normalOffsetFootprint.value_or(b.normalOffsetFootprint);
     b.cull = cull.value_or(b.cull);
     b.receiverPlane = receiverPlane.value_or(b.receiverPlane);
+    b.offsetGuard = offsetGuard.value_or(b.offsetGuard);
     return b;
 }
 

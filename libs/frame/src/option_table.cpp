@@ -87,6 +87,7 @@ constexpr auto kRows = std::to_array<OptionRow>({
      "[0, 10] texel footprints", Core},
     {"FrameConfig.bias.cull", "--cull", "", "auto | closed | back | front | none", None},
     {"FrameConfig.bias.receiverPlane", "--receiver-plane-bias", "", "auto | on | off", None},
+    {"FrameConfig.bias.offsetGuard", "--offset-guard", "", "auto | on | off", None},
     {"FrameConfig.fogDensity", "--fog", "fog", "a density >= 0 per metre", Gl},
     {"FrameConfig.visibleDepthFromFrame", "--visible-depth", "", "auto", None},
     {"FrameConfig.automatic.texelBudget", "--texel-budget", "auto.texel_budget", "N[K|M] texels", Core},

@@ -50,6 +50,7 @@ FrameUniforms frameUniformsOf(const CameraView& view, bool readBlurredMask) {
     frame.poissonRadiusTexels = f.radiusTexels;
     frame.lightTanHalfAngle = static_cast<float>(core::tanAngularRadius(settings.sunAngleDegrees));
     frame.receiverPlane = view.bias.receiverPlane ? 1 : 0;
+    frame.offsetGuard = view.bias.offsetGuard ? 1 : 0;
     frame.normalOffsetTexels = static_cast<float>(view.bias.normalOffset);
     frame.normalOffsetFootprint = static_cast<float>(view.bias.normalOffsetFootprint);
     frame.readBlurredMask = readBlurredMask ? 1 : 0;

@@ -42,6 +42,7 @@ std::span<const UniformField> frameFields() {
         SK_FIELD(FrameUniforms, receiverPlane),
         SK_FIELD(FrameUniforms, normalOffsetTexels),
         SK_FIELD(FrameUniforms, normalOffsetFootprint),
+        SK_FIELD(FrameUniforms, offsetGuard),
         SK_FIELD(FrameUniforms, readBlurredMask),
         SK_FIELD(FrameUniforms, aliasingOverlay),
         SK_FIELD(FrameUniforms, lightTanHalfAngle),

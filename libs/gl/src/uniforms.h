@@ -147,7 +147,8 @@ struct FrameUniforms {        // GLSL: Frame (frame.glsl)
     float lightTanHalfAngle;                        // tan of the sun's angular radius (PCSS); 0: a point
     int32_t foliageOpacity;                         // 1: the maps' opacity layers apply (opacity_layers.h)
     float normalOffsetFootprint;                    // receiver offset along its normal, × its texel's footprint on it
-    float pad0, pad1;                               // std140: the mat4 array starts on 16 bytes
+    int32_t offsetGuard;                            // 1: core::BiasSettings::offsetGuard
+    float pad0;                                     // std140: the mat4 array starts on 16 bytes
     glm::mat4 shadowTextureFromWorld[kMaxCascades]; // (u, v, depth, 1) · w of each map (core::toEngineView)
     glm::vec4 shadowLinearDepthFromWorld[kMaxCascades]; // rows, as in DepthPass
     glm::vec4 cascadeRange[kMaxCascades];               // x, y: view depth [start, end] each map serves

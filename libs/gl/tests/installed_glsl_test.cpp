@@ -39,7 +39,7 @@ void main() {
     const vec3 wsPosition = vec3(gl_FragCoord.xy, 0.0), wsNormal = vec3(0.0, 1.0, 0.0);
     const float viewDepth = gl_FragCoord.z;
     const vec3 dx = dFdx(wsPosition), dy = dFdy(wsPosition);
-    const SkShadowOptions o = SkShadowOptions(2048.0, true, 1.0, true, SK_FILTER_PCSS, 16, 16.0, 0.004625, 0.0);
+    const SkShadowOptions o = SkShadowOptions(2048.0, true, 1.0, true, SK_FILTER_PCSS, 16, 16.0, 0.004625, 0.0, false);
     colour = vec4(vec3(skCascadedShadow(myShadowMaps, 4, o, viewDepth, wsPosition, normalize(wsNormal), dx, dy)), 1.0);
 }
 )glsl";
@@ -63,7 +63,7 @@ out vec4 colour;
 void main() {
     const vec3 wsPosition = vec3(gl_FragCoord.xy, 0.0), wsNormal = vec3(0.0, 1.0, 0.0);
     const vec3 dx = dFdx(wsPosition), dy = dFdy(wsPosition);
-    const SkShadowOptions o = SkShadowOptions(16384.0, false, 1.0, true, SK_FILTER_PCSS, 16, 8.0, 0.004625, 0.0);
+    const SkShadowOptions o = SkShadowOptions(16384.0, false, 1.0, true, SK_FILTER_PCSS, 16, 8.0, 0.004625, 0.0, false);
     const SkVirtualMaps v = SkVirtualMaps(8, -6, 0.0015, 0.0, 128, 128, 10, 27, vec2(4104.0), 16384.0, 0.2);
     colour = vec4(vec3(skVirtualShadow(myPageAtlas, myPageTable, v, o, gl_FragCoord.z, wsPosition, wsNormal, dx, dy)), 1.0);
 }

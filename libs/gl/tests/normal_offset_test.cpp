@@ -46,7 +46,7 @@ uniform vec3 wsPoint, wsNormal, wsAcross1, wsAcross2;
 out vec4 result;
 void main() {
     const SkShadowOptions o = SkShadowOptions(mapTexels, linearDepth != 0, normalOffsetTexels, false, SK_FILTER_HARD, 0,
-                                              0.0, 0.0, normalOffsetFootprint);
+                                              0.0, 0.0, normalOffsetFootprint, false);
     vec4 t;
     skShadowCoordinates(textureFromWorld, linearDepthFromWorld, linearDepth != 0, wsPoint, t);
     result = vec4(skNormalOffset(textureFromWorld, linearDepthFromWorld, o, t, wsNormal, wsAcross1, wsAcross2), 1.0);

@@ -139,9 +139,10 @@ py::dict setup(const SetupArguments& a) {
     for (const ShadowView& v : s.views) views.append(viewDict(v, toEngineView(v, s, conventions)));
     out["views"] = views;
     const BiasSettings b = recommendedBias(s.technique, s.depthLayout);
-    out["bias"] = py::dict(
-        py::arg("slope") = b.slope, py::arg("constant") = b.constant, py::arg("normal_offset") = b.normalOffset,
-        py::arg("normal_offset_footprint") = b.normalOffsetFootprint, py::arg("receiver_plane") = b.receiverPlane);
+    out["bias"] = py::dict(py::arg("slope") = b.slope, py::arg("constant") = b.constant,
+                           py::arg("normal_offset") = b.normalOffset,
+                           py::arg("normal_offset_footprint") = b.normalOffsetFootprint,
+                           py::arg("receiver_plane") = b.receiverPlane, py::arg("offset_guard") = b.offsetGuard);
     out["light_tan_half_angle"] = tanAngularRadius(a.sunAngle);
     out["fallbacks"] = s.fallbacks;
     py::list body;

@@ -122,6 +122,7 @@ typedef struct shadowkit_bias {
     double normal_offset;           /**< texels of world size (shadowkit_texel_size) along the normal */
     int receiver_plane;             /**< 1: receiver-plane depth bias in the lookup */
     double normal_offset_footprint; /**< × the texel's footprint across the light on the normal (SkShadowOptions) */
+    int offset_guard; /**< 1: a receiver behind another caster keeps its shadow under the offsets (SkShadowOptions) */
 } shadowkit_bias;
 
 /** The result: one view per map, the depth layout, the bias. */

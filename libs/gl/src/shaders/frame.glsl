@@ -25,6 +25,7 @@ layout(std140, binding = SK_FRAME_BINDING) uniform Frame {
     float lightTanHalfAngle;  // tan of the sun's angular radius (PCSS); 0: a point
     int foliageOpacity;       // 1: the maps' opacity layers apply (leaves cast a fraction of shadow)
     float normalOffsetFootprint; // receiver offset along its normal, × its texel's footprint on the normal
+    int offsetGuard;          // 1: a receiver behind another caster keeps its shadow under the offsets
     mat4 shadowTextureFromWorld[SK_MAX_CASCADES];     // (u, v, depth, 1) · w of each map
     vec4 shadowLinearDepthFromWorld[SK_MAX_CASCADES]; // rows, see DepthPass
     vec4 cascadeRange[SK_MAX_CASCADES];               // x, y: view depth [start, end] each map serves

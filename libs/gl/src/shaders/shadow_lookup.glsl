@@ -48,7 +48,7 @@ vec4 shadowTexture(int map, vec3 ws) { return shadowTextureFromWorld[map] * vec4
 
 SkShadowOptions shadowOptions() {
     return SkShadowOptions(mapTexels, linearLayout != 0, normalOffsetTexels, receiverPlane != 0, filterKind, filterTaps,
-                           poissonRadiusTexels, lightTanHalfAngle, normalOffsetFootprint);
+                           poissonRadiusTexels, lightTanHalfAngle, normalOffsetFootprint, offsetGuard != 0);
 }
 
 // `dwsdx`, `dwsdy`: screen derivatives of ws, taken by the caller in uniform control flow.

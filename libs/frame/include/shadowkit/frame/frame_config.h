@@ -27,8 +27,11 @@ struct BiasOverrides {
     std::optional<double> normalOffsetFootprint;         // texel footprints, as core::BiasSettings
     std::optional<core::CasterCull> cull;
     std::optional<bool> receiverPlane;
+    std::optional<bool> offsetGuard;
 
-    bool any() const { return slope || constant || normalOffset || normalOffsetFootprint || cull || receiverPlane; }
+    bool any() const {
+        return slope || constant || normalOffset || normalOffsetFootprint || cull || receiverPlane || offsetGuard;
+    }
     // The bias of a frame of `inputs` drawn with `filter`: nullopt with nothing overridden
     // (the renderer then takes the recommendation itself: gl::biasFor).
     std::optional<core::BiasSettings> resolve(const core::ShadowSetupInputs& inputs,
