@@ -75,9 +75,9 @@
 #ifndef SK_RECEIVER_PLANE_MARGIN
 #define SK_RECEIVER_PLANE_MARGIN 0.015625
 #endif
-// The offset guard (skOffsetGuard), chosen on the corpus of public models and the forests
-// (docs/bias-and-filtering.md, "The offset guard"): a caster counts as another's, not the
-// receiver's own surface, when it lies nearer the light than the receiver by more than
+// The offset guard (skOffsetGuard), chosen on the corpus of public models, the public suites and
+// the forests (docs/bias-and-filtering.md, "The offset guard"): a caster counts as another's, not
+// the receiver's own surface, when it lies nearer the light than the receiver by more than
 // SK_OFFSET_GUARD_SLOPE_TEXELS texels of the receiver's own depth slope; the guard looks only
 // where the light grazes the receiver's triangle, |f·ℓ| below SK_OFFSET_GUARD_GRAZING, and where
 // the offsets moved the lookup SK_OFFSET_GUARD_MOVED_TEXELS texels or more along u or v.
@@ -85,7 +85,7 @@
 #define SK_OFFSET_GUARD_SLOPE_TEXELS 8.0
 #endif
 #ifndef SK_OFFSET_GUARD_GRAZING
-#define SK_OFFSET_GUARD_GRAZING 0.25
+#define SK_OFFSET_GUARD_GRAZING 0.15
 #endif
 #ifndef SK_OFFSET_GUARD_MOVED_TEXELS
 #define SK_OFFSET_GUARD_MOVED_TEXELS 0.25

@@ -344,6 +344,39 @@ TEST_F(RendererTest, EveryBiasModeAndFilterWorksWithEveryTechnique) {
             }
 }
 
+// The offset guard (BiasSettings::offsetGuard) looks only where the light grazes a receiver's
+// triangle (|f·ℓ| < 0.15): under a sun at 35° to every face of a box over a plane, no face
+// grazes, and every technique's frame with the guard is the frame without it, pixel for pixel,
+// though the offsets move the lookups there. (Where the light grazes, the guard's own test is
+// the corpus's spheres in walled cells, tests/corpus_defaults_test.cpp.)
+TEST_F(RendererTest, TheOffsetGuardChangesNothingWhereTheLightGrazesNoFace) {
+    const scene::Scene s = boxOverPlane();
+    auto renderer = gl::Renderer::create(s);
+    ASSERT_TRUE(renderer) << renderer.error();
+    const core::PerspectiveCamera cam = gl::testing::obliqueCamera();
+    const core::DirectionalLight sun{glm::normalize(core::Vec3{1, -1, 1})};
+    for (const core::TechniqueInfo& technique : core::allTechniques()) {
+        const auto setup = core::computeShadowSetup({.camera = cam,
+                                                     .light = sun,
+                                                     .wsSceneBounds = s.wsBounds(),
+                                                     .technique = technique.technique,
+                                                     .mapSize = 256,
+                                                     .virtualMaps = {.imageHeight = 96}});
+        ASSERT_TRUE(setup) << setup.error();
+        gl::RenderSettings settings;
+        settings.width = settings.height = 96;
+        settings.fogDensity = 0.0f;
+        settings.bias = gl::biasFor(*setup, settings);
+        settings.bias->normalOffset = 0.5, settings.bias->normalOffsetFootprint = 0.5; // both offsets, everywhere
+        ASSERT_TRUE((*renderer)->render(cam, sun, *setup, settings));
+        const scene::Image unguarded = (*renderer)->readColor();
+        settings.bias->offsetGuard = true;
+        ASSERT_TRUE((*renderer)->render(cam, sun, *setup, settings));
+        const scene::Image guarded = (*renderer)->readColor();
+        EXPECT_EQ(guarded.rgba, unguarded.rgba) << technique.name;
+    }
+}
+
 TEST_F(RendererTest, TheReceiverPlaneAloneKeepsALitPlaneLitWithNoDepthOffsetAtAll) {
     // With the reference depth on the receiver's exact plane, a texel's stored depth differs from
     // it only by the rasteriser's own rounding of that plane — which the shader's margin

@@ -40,7 +40,7 @@ struct BiasSettings {
     double normalOffsetFootprint = 0.0;
     /// With either normal offset: a receiver whose own texel, before the offset, holds a caster
     /// nearer the light than its own surface reaches (8 texels of its depth slope) stays
-    /// shadowed where the light grazes its triangle (|f·ℓ| < 0.25) and the offset carried its
+    /// shadowed where the light grazes its triangle (|f·ℓ| < 0.15) and the offset carried its
     /// lookup a quarter texel or more across the map — an offset against the receiver's own
     /// surface must not move a distant caster's shadow edge (skOffsetGuard in
     /// glsl/shadowkit_shadows.glsl; docs/bias-and-filtering.md). The hard test and the 2 × 2 PCF.
