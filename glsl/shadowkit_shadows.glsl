@@ -122,6 +122,15 @@ vec3 skShadowStep(mat4 textureFromWorld, vec4 linearDepthFromWorld, bool linearD
     return d;
 }
 
+// The map's gradients at a receiver, ∇u, ∇v and ∇depth in world space: the columns of the
+// result (the rows of the Jacobian J of (u, v, depth)), from skShadowStep along the world axes.
+mat3 skMapGradients(mat4 textureFromWorld, vec4 linearDepthFromWorld, SkShadowOptions o, vec4 t) {
+    const vec3 sx = skShadowStep(textureFromWorld, linearDepthFromWorld, o.linearDepth, t, vec3(1, 0, 0));
+    const vec3 sy = skShadowStep(textureFromWorld, linearDepthFromWorld, o.linearDepth, t, vec3(0, 1, 0));
+    const vec3 sz = skShadowStep(textureFromWorld, linearDepthFromWorld, o.linearDepth, t, vec3(0, 0, 1));
+    return mat3(vec3(sx.x, sy.x, sz.x), vec3(sx.y, sy.y, sz.y), vec3(sx.z, sy.z, sz.z));
+}
+
 // How far a receiver at t (skShadowCoordinates' t) moves before the lookup: BiasSettings' two
 // normal offsets, in world units. `n` is its unit (shading) normal, `dwsdx` and `dwsdy` two steps
 // across its drawn triangle (the screen derivatives of its position).
@@ -143,10 +152,8 @@ vec3 skShadowStep(mat4 textureFromWorld, vec4 linearDepthFromWorld, bool linearD
 //    a_u = (∇v × ∇depth) / (det J · mapTexels), a_v = (∇depth × ∇u) / (det J · mapTexels).
 vec3 skNormalOffset(mat4 textureFromWorld, vec4 linearDepthFromWorld, SkShadowOptions o, vec4 t, vec3 n, vec3 dwsdx,
                     vec3 dwsdy) {
-    const vec3 gx = skShadowStep(textureFromWorld, linearDepthFromWorld, o.linearDepth, t, vec3(1, 0, 0));
-    const vec3 gy = skShadowStep(textureFromWorld, linearDepthFromWorld, o.linearDepth, t, vec3(0, 1, 0));
-    const vec3 gz = skShadowStep(textureFromWorld, linearDepthFromWorld, o.linearDepth, t, vec3(0, 0, 1));
-    const vec3 gradU = vec3(gx.x, gy.x, gz.x), gradV = vec3(gx.y, gy.y, gz.y), gradDepth = vec3(gx.z, gy.z, gz.z);
+    const mat3 g = skMapGradients(textureFromWorld, linearDepthFromWorld, o, t);
+    const vec3 gradU = g[0], gradV = g[1], gradDepth = g[2];
     vec3 offset = vec3(0.0);
     if (o.normalOffsetTexels > 0.0)
         offset += n * (o.normalOffsetTexels / (o.mapTexels * max(min(length(gradU), length(gradV)), 1e-12)));
@@ -192,10 +199,8 @@ const mat2 kSkGoldenTurn = mat2(-0.7373688, 0.6754903, -0.6754903, -0.7373688);
 // degenerate map (no footprint, or depth not changing towards the light).
 bool skSunDiskInMap(mat4 textureFromWorld, vec4 linearDepthFromWorld, SkShadowOptions o, vec4 t, out mat2 uvFromDisk,
                     out float depthPerMetre, out float metresPerTexel) {
-    const vec3 sx = skShadowStep(textureFromWorld, linearDepthFromWorld, o.linearDepth, t, vec3(1, 0, 0));
-    const vec3 sy = skShadowStep(textureFromWorld, linearDepthFromWorld, o.linearDepth, t, vec3(0, 1, 0));
-    const vec3 sz = skShadowStep(textureFromWorld, linearDepthFromWorld, o.linearDepth, t, vec3(0, 0, 1));
-    const vec3 gradU = vec3(sx.x, sy.x, sz.x), gradV = vec3(sx.y, sy.y, sz.y), gradDepth = vec3(sx.z, sy.z, sz.z);
+    const mat3 g = skMapGradients(textureFromWorld, linearDepthFromWorld, o, t);
+    const vec3 gradU = g[0], gradV = g[1], gradDepth = g[2];
     vec3 towardsLight = cross(gradU, gradV);
     depthPerMetre = dot(gradDepth, towardsLight);
     uvFromDisk = mat2(0.0);
@@ -376,10 +381,8 @@ float skOffsetGuard(sampler2DArrayShadow maps, int layer, mat4 textureFromWorld,
     if (t.w <= 0.0 || any(lessThan(before.xy, vec2(0.0))) || any(greaterThan(before.xy, vec2(1.0)))) return 1.0;
     // Grazing: the drawn triangle's normal f against ℓ, the direction along which (u, v) hold,
     // ∇u × ∇v (whatever the warp).
-    const vec3 gx = skShadowStep(textureFromWorld, linearDepthFromWorld, o.linearDepth, t, vec3(1, 0, 0));
-    const vec3 gy = skShadowStep(textureFromWorld, linearDepthFromWorld, o.linearDepth, t, vec3(0, 1, 0));
-    const vec3 gz = skShadowStep(textureFromWorld, linearDepthFromWorld, o.linearDepth, t, vec3(0, 0, 1));
-    const vec3 light = cross(vec3(gx.x, gy.x, gz.x), vec3(gx.y, gy.y, gz.y)), face = cross(dwsdx, dwsdy);
+    const mat3 g = skMapGradients(textureFromWorld, linearDepthFromWorld, o, t);
+    const vec3 light = cross(g[0], g[1]), face = cross(dwsdx, dwsdy);
     if (!(abs(dot(face, light)) < SK_OFFSET_GUARD_GRAZING * length(face) * length(light))) return 1.0;
     const vec2 slope = skReceiverDepthSlope(textureFromWorld, linearDepthFromWorld, o, t, dwsdx, dwsdy);
     const float margin = SK_OFFSET_GUARD_SLOPE_TEXELS * (abs(slope.x) + abs(slope.y)) / o.mapTexels;
