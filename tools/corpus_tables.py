@@ -83,7 +83,7 @@ def main(argv):
             "| model | " + " | ".join(VIEWS) + " |",
             "|---|" + "---:|" * len(VIEWS),
         ] + [row for _, _, row in sorted(rows)]
-    if len(argv) > 4 and Path(argv[4]).is_dir():
+    if len(argv) > 4 and Path(argv[4]).is_dir() and Path(argv[4]).resolve() != results.resolve():
         lines += ["", against_default(results, Path(argv[4]))]
     write_into(f"{PAGE}:{table}", "\n".join(lines) + "\n")
 
