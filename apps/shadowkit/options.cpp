@@ -102,7 +102,8 @@ void RenderOptions::addTo(CLI::App& cmd) {
         ->capture_default_str();
     cmd.add_option("--offset-guard", offsetGuard,
                    "with a normal offset, a receiver the light grazes, behind another caster in its own texel, stays "
-                   "shadowed where the offset moved its lookup (hard and pcf2; auto: the recommended bias's, on where it offsets)")
+                   "shadowed where the offset moved its lookup (hard and pcf2; auto: the recommended bias's, on where "
+                   "it offsets)")
         ->transform(choice(Choices<Choice>{{"auto", Choice::Auto}, {"on", Choice::On}, {"off", Choice::Off}}))
         ->capture_default_str();
     cmd.add_option("--filter", filter,
