@@ -150,9 +150,9 @@ mat3 skMapGradients(mat4 textureFromWorld, vec4 linearDepthFromWorld, SkShadowOp
 //    curved, coarsely tessellated surface the two differ by the facets' angle.
 //    With J the rows ∇u, ∇v, ∇depth, the steps are J⁻¹'s first two columns over mapTexels:
 //    a_u = (∇v × ∇depth) / (det J · mapTexels), a_v = (∇depth × ∇u) / (det J · mapTexels).
-vec3 skNormalOffset(mat4 textureFromWorld, vec4 linearDepthFromWorld, SkShadowOptions o, vec4 t, vec3 n, vec3 dwsdx,
-                    vec3 dwsdy) {
-    const mat3 g = skMapGradients(textureFromWorld, linearDepthFromWorld, o, t);
+//    `g` is skMapGradients at the receiver (the overload below takes it from t), passed in so a
+//    caller that needs the gradients again (the offset guard) computes them once.
+vec3 skNormalOffset(mat3 g, SkShadowOptions o, vec3 n, vec3 dwsdx, vec3 dwsdy) {
     const vec3 gradU = g[0], gradV = g[1], gradDepth = g[2];
     vec3 offset = vec3(0.0);
     if (o.normalOffsetTexels > 0.0)
@@ -174,6 +174,11 @@ vec3 skNormalOffset(mat4 textureFromWorld, vec4 linearDepthFromWorld, SkShadowOp
                               (det * o.mapTexels));
     }
     return offset;
+}
+
+vec3 skNormalOffset(mat4 textureFromWorld, vec4 linearDepthFromWorld, SkShadowOptions o, vec4 t, vec3 n, vec3 dwsdx,
+                    vec3 dwsdy) {
+    return skNormalOffset(skMapGradients(textureFromWorld, linearDepthFromWorld, o, t), o, n, dwsdx, dwsdy);
 }
 
 // A rotation angle per pixel for the Poisson disk: it only has to break up the fixed pattern.
@@ -375,13 +380,13 @@ vec2 skReceiverDepthSlope(mat4 textureFromWorld, vec4 linearDepthFromWorld, SkSh
 // pixels of false shadow along the trees' shadows on `perpendicular` for 26 it mended (the four
 // cascades); and where the lookup barely moved the two differ only in the texel an edge falls in.
 float skOffsetGuard(sampler2DArrayShadow maps, int layer, mat4 textureFromWorld, vec4 linearDepthFromWorld,
-                    SkShadowOptions o, vec4 atlasFromMap, vec4 t, vec3 before, vec2 uvAfter, vec3 dwsdx, vec3 dwsdy) {
+                    SkShadowOptions o, vec4 atlasFromMap, vec4 t, mat3 g, vec3 before, vec2 uvAfter, vec3 dwsdx,
+                    vec3 dwsdy) {
     const vec2 moved = abs(uvAfter - before.xy) * o.mapTexels;
     if (max(moved.x, moved.y) < SK_OFFSET_GUARD_MOVED_TEXELS) return 1.0;
     if (t.w <= 0.0 || any(lessThan(before.xy, vec2(0.0))) || any(greaterThan(before.xy, vec2(1.0)))) return 1.0;
     // Grazing: the drawn triangle's normal f against ℓ, the direction along which (u, v) hold,
-    // ∇u × ∇v (whatever the warp).
-    const mat3 g = skMapGradients(textureFromWorld, linearDepthFromWorld, o, t);
+    // ∇u × ∇v (whatever the warp); g is skMapGradients at t.
     const vec3 light = cross(g[0], g[1]), face = cross(dwsdx, dwsdy);
     if (!(abs(dot(face, light)) < SK_OFFSET_GUARD_GRAZING * length(face) * length(light))) return 1.0;
     const vec2 slope = skReceiverDepthSlope(textureFromWorld, linearDepthFromWorld, o, t, dwsdx, dwsdy);
@@ -407,11 +412,12 @@ float skShadowMapIn(sampler2DArrayShadow maps, int layer, mat4 textureFromWorld,
     if (o.normalOffsetTexels > 0.0 || o.normalOffsetFootprint > 0.0) {
         const vec4 tBefore = t;
         const vec3 before = uvz;
-        ws += skNormalOffset(textureFromWorld, linearDepthFromWorld, o, t, n, dwsdx, dwsdy);
+        const mat3 g = skMapGradients(textureFromWorld, linearDepthFromWorld, o, t);
+        ws += skNormalOffset(g, o, n, dwsdx, dwsdy);
         uvz = skShadowCoordinates(textureFromWorld, linearDepthFromWorld, o.linearDepth, ws, t);
         if (o.offsetGuard)
-            guard = skOffsetGuard(maps, layer, textureFromWorld, linearDepthFromWorld, o, atlasFromMap, tBefore, before,
-                                  uvz.xy, dwsdx, dwsdy);
+            guard = skOffsetGuard(maps, layer, textureFromWorld, linearDepthFromWorld, o, atlasFromMap, tBefore, g,
+                                  before, uvz.xy, dwsdx, dwsdy);
     }
     // Outside the map nothing is known to occlude: lit. (Focused maps cover every visible
     // receiver, so this only happens off the focus body.)
