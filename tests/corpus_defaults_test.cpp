@@ -100,9 +100,11 @@ std::unique_ptr<LoadedModel> loadModel(const fs::path& file) {
 // `wrong_pct` of a model's view under the sun with the default set-up's technique, or with
 // `focused`, at kWidth × kHeight, with the recommended bias.
 double wrongPct(measure::Measurer& measurer, const scene::Scene& model, const scene::ViewSpec& spec, bool focused) {
-    const scene::ResolvedView view = scene::resolveView(spec, model);
+    // As `shadowkit eval --size 640x360` draws it: `paper`, a square view, widened around its framing.
+    scene::ResolvedView view = scene::resolveView(spec, model);
+    view.setSize(kWidth, kHeight);
     gl::RenderSettings settings; // the recommended bias, hard test
-    settings.width = kWidth, settings.height = kHeight;
+    settings.width = view.width, settings.height = view.height;
     core::ShadowSetupInputs inputs = frame::FrameConfig{}.technique;
     inputs.camera = view.camera, inputs.light = view.light, inputs.wsSceneBounds = model.wsBounds();
     if (focused) inputs.technique = core::Technique::Focused;

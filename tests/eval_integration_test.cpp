@@ -250,3 +250,31 @@ TEST_F(EvalIntegrationTest, SoftFiguresOfAVanishingSunAreTheHardOnesAndPcfAndPcs
     EXPECT_GT(wideSoft.penumbraWidthRatio, pcssSoft.penumbraWidthRatio);
     EXPECT_GT(hardSoft.truthRays, static_cast<uint64_t>(hardSoft.comparedPx)); // probes: more than a ray a pixel
 }
+
+// A camera whose aspect is not its picture's would be drawn and ray-traced stretched alike: a
+// comparison of a picture nobody asked for (the corpus test once measured the square `paper`
+// view so at 640 × 360). The measurer refuses it in one line naming both; a view resized with
+// ResolvedView::setSize, the front ends' way, is measured.
+TEST_F(EvalIntegrationTest, ACameraWhoseAspectIsNotItsPicturesIsRefused) {
+    const scene::Scene forest = gl::testing::smallForest(50, 100, 16);
+    scene::ResolvedView view = gl::testing::standardView(forest, "paper"); // 512 × 512: aspect 1
+    ASSERT_EQ(view.camera.aspect, 1.0);
+    auto measurer = measure::Measurer::create(forest);
+    ASSERT_TRUE(measurer) << measurer.error();
+    gl::RenderSettings settings;
+    settings.width = 64, settings.height = 36;
+    const core::ShadowSetupInputs inputs{
+        .camera = view.camera, .light = view.light, .wsSceneBounds = forest.wsBounds()};
+    auto stretched = (*measurer)->measure(inputs, settings);
+    ASSERT_FALSE(stretched);
+    EXPECT_NE(stretched.error().find("aspect 1.0000"), std::string::npos) << stretched.error();
+    EXPECT_NE(stretched.error().find("64×36 (1.7778)"), std::string::npos) << stretched.error();
+    EXPECT_EQ(stretched.error().find('\n'), std::string::npos) << stretched.error();
+
+    view.setSize(64, 36);
+    EXPECT_DOUBLE_EQ(view.camera.aspect, 64.0 / 36.0);
+    auto resized = (*measurer)->measure(
+        {.camera = view.camera, .light = view.light, .wsSceneBounds = forest.wsBounds()}, settings);
+    ASSERT_TRUE(resized) << resized.error();
+    EXPECT_GT(resized->figures().validPx, 0);
+}

@@ -273,8 +273,8 @@ core::Result<scene::ResolvedView> ViewOptions::resolve(const scene::Scene& scene
             out.camera.wsEye.x, out.camera.wsEye.y, out.camera.wsEye.z, out.camera.zNear, out.camera.zFar);
 
     if (!size.empty()) std::tie(out.width, out.height) = *parseSize(size); // checked above
+    out.setSize(out.width, out.height);                                    // the camera's aspect the picture's
     core::PerspectiveCamera& cam = out.camera;
-    cam.aspect = double(out.width) / double(out.height);
     const std::pair<const char*, const std::string*> vectors[] = {{"--eye", &eye}, {"--dir", &dir}, {"--up", &up}};
     core::Vec3* targets[] = {&cam.wsEye, &cam.wsDirection, &cam.wsUp};
     for (size_t i = 0; i < 3; ++i)

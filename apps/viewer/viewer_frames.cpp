@@ -42,9 +42,7 @@ core::Result<frame::DrawnFrame> ViewerFrames::draw(gl::Renderer& renderer, const
     if (!eye || !direction) return core::makeError("viewer: the camera is not finite");
     view.camera.wsEye = *eye;
     view.camera.wsDirection = *direction;
-    view.width = width;
-    view.height = height;
-    view.camera.aspect = double(width) / double(height);
+    view.setSize(width, height);
     if (auto s = view.camera.validate(); !s) return s.errorInfo();
     auto timed = m_timeline->viewAt(view, world, t, true);
     if (!timed) return timed.errorInfo();

@@ -3,7 +3,10 @@
 #include "shadowkit/eval/ray_scene.h"
 #include "shadowkit/gl/context.h"
 
+#include <fmt/format.h>
+
 #include <chrono>
+#include <cmath>
 #include <deque>
 #include <tuple>
 
@@ -129,6 +132,13 @@ core::Result<Measurement> Measurer::measure(const core::ShadowSetupInputs& input
 core::Result<Measurement> Measurer::measure(const frame::PreparedFrame& frame, const MeasureOptions& options) {
     const core::ShadowSetupInputs& inputs = frame.inputs;
     const gl::RenderSettings& settings = frame.settings;
+    // A camera whose aspect is not the picture's draws the view stretched, and the truth traces
+    // it stretched alike: a comparison of another picture than the one asked for
+    // (scene::ResolvedView::setSize keeps the two together).
+    const double pictureAspect = double(settings.width) / double(settings.height);
+    if (!(std::abs(inputs.camera.aspect - pictureAspect) <= 1e-3 * pictureAspect))
+        return core::makeError(fmt::format("measure: the camera's aspect {:.4f} is not its picture's, {}×{} ({:.4f})",
+                                           inputs.camera.aspect, settings.width, settings.height, pictureAspect));
     Measurement m;
     m.visibleDepth = inputs.visibleDepth;
     m.setup = frame.setup;

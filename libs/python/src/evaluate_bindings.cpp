@@ -73,9 +73,8 @@ public:
         if (size) {
             if (size->first < 1 || size->second < 1 || size->first > 16384 || size->second > 16384)
                 throw py::value_error("size: width and height must be in [1, 16384] pixels");
-            view.width = size->first, view.height = size->second;
+            view.setSize(size->first, size->second);
         }
-        view.camera.aspect = double(view.width) / double(view.height);
         // The frame as `shadowkit eval` draws it: through the frame driver (the view's lamps too).
         frame::FrameConfig config;
         core::ShadowSetupInputs& in = config.technique;

@@ -99,8 +99,8 @@ public:
     // measured too, each against its own truth; with settings.sun false the sun is not.
     core::Result<Measurement> measure(const frame::PreparedFrame& frame, const MeasureOptions& options = {});
     // The same for a set-up computed afresh from `inputs` (camera, light, bounds, technique,
-    // map size), drawn with `settings` (width and height are the image's; the camera's aspect
-    // should match) and whatever local lights the renderer holds: a test's single frame.
+    // map size), drawn with `settings` (width and height are the image's; a camera of another
+    // aspect is an error) and whatever local lights the renderer holds: a test's single frame.
     core::Result<Measurement> measure(const core::ShadowSetupInputs& inputs, const gl::RenderSettings& settings,
                                       const MeasureOptions& options = {});
 

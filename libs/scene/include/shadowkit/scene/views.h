@@ -53,7 +53,7 @@ struct ViewSpec {
 struct ResolvedView {
     core::PerspectiveCamera camera;
     core::DirectionalLight light;
-    int width = 0, height = 0;
+    int width = 0, height = 0; // the picture; the camera's aspect is width / height (setSize)
     bool sun = true;
     std::vector<core::PointLight> points; // the view's local lights in the world
     std::vector<core::SpotLight> spots;
@@ -73,6 +73,15 @@ struct ResolvedView {
     // camera path's sun keys ("angle") give one; it then takes the place of the front end's
     // (--sun-angle, gl::RenderSettings::sunAngleDegrees): frame::FrameDriver draws the frame with it.
     std::optional<double> sunAngleDegrees;
+
+    // Another picture size (a front end's --size): the camera's aspect follows it, so the view
+    // widens or narrows around the same eye, direction and vertical field of view — a framed
+    // scene keeps the framing its own size gave. A size without its aspect draws the view
+    // stretched (measure::Measurer refuses it).
+    void setSize(int newWidth, int newHeight) {
+        width = newWidth, height = newHeight;
+        camera.aspect = double(width) / double(height);
+    }
 };
 
 // Reads a views file; errors name the file and the offending entry or field.
