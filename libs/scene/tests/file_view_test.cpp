@@ -40,7 +40,11 @@ std::string viewpointFile(const std::string& rootTranslation, const std::string&
     const double s15 = std::sin(glm::radians(-15.0)), c15 = std::cos(glm::radians(-15.0));
     const double s30 = std::sin(glm::radians(-30.0)), c30 = std::cos(glm::radians(-30.0));
     const double s45 = std::sin(glm::radians(-45.0)), c45 = std::cos(glm::radians(-45.0));
-    const auto quat = [](double s, double c) { return "[" + std::to_string(s) + ",0,0," + std::to_string(c) + "]"; };
+    // Appended, not `"[" + std::to_string(s)`: GCC 12 warns falsely on that (-Wstringop-overflow).
+    const auto quat = [](double s, double c) {
+        std::string q = "[";
+        return q.append(std::to_string(s)).append(",0,0,").append(std::to_string(c)).append("]");
+    };
     const std::string lightList =
         lights.empty() ? R"([{"type":"directional","name":"Sun"},{"type":"point","range":7,"intensity":5},
                             {"type":"spot","spot":{"outerConeAngle":0.4}},{"type":"point","intensity":0}])"
