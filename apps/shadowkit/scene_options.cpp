@@ -229,6 +229,13 @@ core::Status ViewOptions::checkFlags() const {
             if (flag != std::string_view("--eye") && glm::length(*v) < 1e-12)
                 return core::makeError(fmt::format("{}: must not be the zero vector, got '{}'", flag, *text));
         }
+    // What no view's camera changes, checked before a scene is built (so `--check` says it): an eye
+    // beyond the world's reach, an up along the direction when both are given (a --dir alone along
+    // the view's up gets an up of its own, resolve).
+    core::PerspectiveCamera probe;
+    if (!eye.empty()) probe.wsEye = *parseVec3("--eye", eye);
+    if (!dir.empty() && !up.empty()) probe.wsDirection = *parseVec3("--dir", dir), probe.wsUp = *parseVec3("--up", up);
+    if (core::Status s = probe.validate(); !s) return core::makeError("--eye/--dir/--up: " + s.error());
     if (fov && !(*fov > 0.0 && *fov < 180.0)) // NaN-safe
         return core::makeError(fmt::format("--fov: must be in (0, 180) degrees, got {}", *fov));
     for (const auto& [flag, metres] : {std::pair{"--near", zNear}, {"--far", zFar}})
@@ -275,11 +282,9 @@ core::Result<scene::ResolvedView> ViewOptions::resolve(const scene::Scene& scene
     if (!size.empty()) std::tie(out.width, out.height) = *parseSize(size); // checked above
     out.setSize(out.width, out.height);                                    // the camera's aspect the picture's
     core::PerspectiveCamera& cam = out.camera;
-    const std::pair<const char*, const std::string*> vectors[] = {{"--eye", &eye}, {"--dir", &dir}, {"--up", &up}};
-    core::Vec3* targets[] = {&cam.wsEye, &cam.wsDirection, &cam.wsUp};
-    for (size_t i = 0; i < 3; ++i)
-        if (!vectors[i].second->empty())
-            *targets[i] = *parseVec3(vectors[i].first, *vectors[i].second); // checked above
+    if (!eye.empty()) cam.wsEye = *parseVec3("--eye", eye); // checked above
+    if (!dir.empty()) out.lookAlong(*parseVec3("--dir", dir));
+    if (!up.empty()) cam.wsUp = *parseVec3("--up", up);
     if (fov) cam.fovYDegrees = *fov;
     if (out.framed && (!eye.empty() || !dir.empty()) && !zNear && !zFar && glm::length(cam.wsDirection) > 0.0) {
         // The framing's planes fitted its own eye: from another eye (or along another direction)

@@ -52,6 +52,10 @@ check_fails(light-radius-beyond-range "point.radius: must be in" eval --check --
 check_fails(light-radius-malformed "--light: expected point" eval --check --light point:0,3,0,radius=big)
 check_fails(eval-check-unknown-view "--view: unknown view" eval --check --view sideways)
 check_fails(eval-check-missing-scene "scene file does not exist" eval --check --scene ${WORK}/no-such-scene.glb)
+# Camera flags no view can mend are refused by --check, before a scene is built (a sweep checks
+# every cell so), not after it.
+check_fails(eval-check-eye-beyond-the-world "--eye/--dir/--up: camera eye: at most 1e13 m" eval --check --eye 0,1e30,0)
+check_fails(eval-check-up-along-dir "camera up: must not be parallel" eval --check --dir 0,-1,0 --up 0,2,0)
 # shadowkit sweep runs the Python package; a build without it (no pybind11, the sanitizer build)
 # must say so in one line instead.
 if(EXISTS "${PYTHON_DIR}/shadowkit/sweep/__main__.py")
@@ -296,6 +300,15 @@ if(CASE STREQUAL "gl-render")
                           --shadow-map-out "${WORK}/sm.png" RESULT_VARIABLE rc ERROR_VARIABLE err OUTPUT_QUIET)
   if(NOT rc EQUAL 0 OR NOT EXISTS "${WORK}/r.png" OR NOT EXISTS "${WORK}/sm.png")
     message(SEND_ERROR "render: failed or wrote no image: ${err}")
+  endif()
+endif()
+# Straight down with no --up: the view's sky up would be along the direction; the picture's top
+# faces where the view looked instead (scene::ResolvedView::lookAlong).
+if(CASE STREQUAL "gl-render-straight-down")
+  execute_process(COMMAND ${SHADOWKIT} render ${small} --size 32x18 --map-size 256 --eye 0,60,0 --dir 0,-1,0
+                          --out "${WORK}/down.png" RESULT_VARIABLE rc ERROR_VARIABLE err OUTPUT_QUIET)
+  if(NOT rc EQUAL 0 OR NOT EXISTS "${WORK}/down.png")
+    message(SEND_ERROR "render --dir 0,-1,0: failed or wrote no image: ${err}")
   endif()
 endif()
 # A path whose eye meets its target between two keys fails before its first frame is drawn.

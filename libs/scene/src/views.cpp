@@ -134,6 +134,19 @@ core::Result<ViewSpec> findView(const std::vector<ViewSpec>& views, const std::s
     return core::makeError("unknown view \"" + name + "\" (known: " + names + ")");
 }
 
+void ResolvedView::lookAlong(const core::Vec3& wsDirection) {
+    const core::Vec3 forward = glm::normalize(wsDirection);
+    // Parallel where the camera would refuse it (core::PerspectiveCamera::validate).
+    const auto across = [&](const core::Vec3& v) { return v - glm::dot(v, forward) * forward; };
+    if (glm::length(glm::cross(forward, glm::normalize(camera.wsUp))) < 1e-6) {
+        // A valid camera's direction is never along its up, so this is never zero; an invalid one
+        // keeps its up, for the camera's own check to name.
+        const core::Vec3 up = across(glm::normalize(camera.wsDirection));
+        if (glm::length(up) > 1e-6) camera.wsUp = glm::normalize(up);
+    }
+    camera.wsDirection = wsDirection;
+}
+
 ResolvedView resolveView(const ViewSpec& view, const Scene& scene) {
     ResolvedView out;
     out.width = view.width;

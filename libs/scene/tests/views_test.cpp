@@ -104,6 +104,37 @@ TEST(ViewsTest, AViewLookingStraightUpOrDownIsAUsableCamera) {
     }
 }
 
+// A front end's --dir along the view's up (straight down or up) once left the sky's up in place,
+// which the camera refuses: the up is then taken from where the view looked, so the picture's top
+// faces that way; any other direction keeps the view's up as it is.
+TEST(ViewsTest, ADirectionAlongTheViewsUpTakesItsUpFromWhereTheViewLooked) {
+    ForestOptions o;
+    o.trees = 0;
+    o.terrainSize = 100;
+    const Scene forest = makeForest(o);
+    ViewSpec spec;
+    spec.azimuthDegrees = 30.0;
+    const ResolvedView view = resolveView(spec, forest);
+    const core::Vec3 heading = horizontal(view.camera.wsDirection);
+    for (const core::Vec3& along : {core::Vec3(0, -1, 0), core::Vec3(0, 3, 0), core::Vec3(1e-9, -1, 0)}) {
+        ResolvedView looking = view;
+        looking.lookAlong(along);
+        EXPECT_EQ(looking.camera.wsDirection, along);
+        EXPECT_TRUE(looking.camera.validate()) << along.y;
+        EXPECT_NEAR(glm::length(looking.camera.wsUp), 1.0, 1e-12);
+        EXPECT_NEAR(glm::dot(looking.camera.wsUp, heading), 1.0, 1e-6) << along.y;
+    }
+    ResolvedView aside = view;
+    aside.lookAlong(core::Vec3(1, -1, 0));
+    EXPECT_EQ(aside.camera.wsUp, view.camera.wsUp);
+    // A view straight down, its top north, turned north: its top faces down, where it looked.
+    ResolvedView down = view;
+    down.camera.wsDirection = core::Vec3(0, -1, 0), down.camera.wsUp = core::Vec3(0, 0, 1);
+    down.lookAlong(core::Vec3(0, 0, 2));
+    EXPECT_TRUE(down.camera.validate());
+    EXPECT_NEAR(glm::dot(down.camera.wsUp, core::Vec3(0, -1, 0)), 1.0, 1e-6);
+}
+
 TEST(ViewsTest, AViewsSunAngleReachesTheResolvedViewAndBadOnesAreErrors) {
     const auto file = shadowkit::test_support::scratchDir() / "shadowkit_views_sun_angle.json";
     std::ofstream(file) << R"({"views": [{"name": "sized", "sun_angle": 0.53}, {"name": "point"}]})";

@@ -82,6 +82,11 @@ struct ResolvedView {
         width = newWidth, height = newHeight;
         camera.aspect = double(width) / double(height);
     }
+    // Another direction (a front end's --dir), the up kept — but for a direction along it (--dir
+    // 0,-1,0: straight down), where the up is taken square to the new direction from the one the
+    // view looked along, so the picture's top faces where the view looked (resolveView's rule for
+    // a view straight down).
+    void lookAlong(const core::Vec3& wsDirection);
 };
 
 // Reads a views file; errors name the file and the offending entry or field.
