@@ -175,18 +175,25 @@ int runEval(const EvalArgs& args) {
 
     std::vector<eval::ViewReport> reports;
     eval::HtmlReport page{.title = "shadowkit eval", .command = invocation(), .machine = machineDescription(*measurer)};
-    fmt::print("{:<14} {:<10} {:>5} {:>9} {:>8} {:>7} {:>8} {:>8} {:>7} {:>7} {:>7} {:>7} {:>6}\n", "view", "technique",
-               "map", "valid_px", "excl_px", "wrong%", "fshadow%", "flit%", "under%", "ppt50", "ppt95", "ppt99", "sec");
+    // Every view resolved before the table's header, so a view that cannot be had stops the run
+    // with its error alone, not under a header with no rows.
+    std::vector<scene::ResolvedView> views;
     for (const std::string& name : *names) {
-        const auto start = std::chrono::steady_clock::now();
         ViewOptions viewOptions = args.view;
         viewOptions.view = name;
         auto view = viewOptions.resolve(world);
         if (!view) return fail(view.errorInfo());
         view = timeline->viewAt(*view, world, time); // the sun of --sun-path at --time
         if (!view) return fail(view.errorInfo());
+        views.push_back(std::move(view).value());
+    }
+    fmt::print("{:<14} {:<10} {:>5} {:>9} {:>8} {:>7} {:>8} {:>8} {:>7} {:>7} {:>7} {:>7} {:>6}\n", "view", "technique",
+               "map", "valid_px", "excl_px", "wrong%", "fshadow%", "flit%", "under%", "ppt50", "ppt95", "ppt99", "sec");
+    for (size_t i = 0; i < names->size(); ++i) {
+        const std::string& name = (*names)[i];
+        const auto start = std::chrono::steady_clock::now();
         driver->reset(); // a still view is a first frame: the fresh fit, auto's full search
-        auto prepared = driver->prepare(measurer->renderer(), *view);
+        auto prepared = driver->prepare(measurer->renderer(), views[i]);
         if (!prepared) return fail(withFlagName(prepared.errorInfo()));
         printAutoChoice(name, *prepared);
 

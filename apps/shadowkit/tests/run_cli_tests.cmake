@@ -311,6 +311,15 @@ if(CASE STREQUAL "gl-render-straight-down")
     message(SEND_ERROR "render --dir 0,-1,0: failed or wrote no image: ${err}")
   endif()
 endif()
+# A view that cannot be had (its near plane past the far one given) stops eval before its table:
+# no header without rows on standard output.
+if(CASE STREQUAL "gl-eval-view-error-prints-no-table")
+  execute_process(COMMAND ${SHADOWKIT} eval --scene "${source_dir}/tests/data/shapes/tree.gltf" --views paper,aerial
+                          --size 32x18 --far 0.0001 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(rc EQUAL 0 OR NOT out STREQUAL "" OR NOT err MATCHES "near must be < far")
+    message(SEND_ERROR "eval with an impossible --far: exit ${rc}, standard output '${out}': ${err}")
+  endif()
+endif()
 # A path whose eye meets its target between two keys fails before its first frame is drawn.
 file(WRITE "${WORK}/swap.json" [=[{"frames": 5, "camera": [
   {"time": 0, "eye_xz": [0, 0], "eye_height": 2, "target_xz": [10, 0], "target_height": 2},
