@@ -129,8 +129,8 @@ TEST(ViewsTest, ADirectionAlongTheViewsUpTakesItsUpFromWhereTheViewLooked) {
     EXPECT_EQ(aside.camera.wsUp, view.camera.wsUp);
     // A view straight down, its top north, turned north: its top faces down, where it looked.
     ResolvedView down = view;
-    down.camera.wsDirection = core::Vec3(0, -1, 0), down.camera.wsUp = core::Vec3(0, 0, 1);
-    down.lookAlong(core::Vec3(0, 0, 2));
+    down.camera.wsDirection = core::Vec3(0, -1, 0), down.camera.wsUp = core::Vec3(0, 0, -1);
+    down.lookAlong(core::Vec3(0, 0, -2));
     EXPECT_TRUE(down.camera.validate());
     EXPECT_NEAR(glm::dot(down.camera.wsUp, core::Vec3(0, -1, 0)), 1.0, 1e-6);
 }
