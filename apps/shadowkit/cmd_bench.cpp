@@ -441,20 +441,23 @@ int runBench(const BenchArgs& args) {
     if (!config) return fail(config.errorInfo());
     auto driver = frame::FrameDriver::create(std::move(config).value());
     if (!driver) return fail(withFlagName(driver.errorInfo()));
-    // A path's frames over the first forest checked before any output, as render and eval check
-    // theirs: keys no frame there can use fail here, not under the table's header. That forest
-    // is the loop's first (the later forests' rows check their own ground). --scene's file is
-    // loaded here too, so that a file that does not load fails before the header.
+    // The views, or a path's frames, over the first forest checked before any output, as render
+    // and eval check theirs: a view that cannot be had (--far inside its near plane) or keys no
+    // frame there can use fail here, not under the table's header. That forest is the loop's
+    // first (the later forests' rows check their own ground). --scene's file is loaded here too,
+    // so that a file that does not load fails before the header.
     std::optional<std::pair<scene::Scene, BenchRow>> firstForest;
-    if (timeline->path || !args.scene.empty()) {
+    {
         auto built = buildScene(args, counts->front());
         if (!built) return fail(built.errorInfo());
-        if (timeline->path) {
+        for (const std::string& name : timeline->path ? std::vector<std::string>{args.view.view} : viewNames) {
             ViewOptions viewOptions = args.view;
+            viewOptions.view = name;
             auto still = viewOptions.resolve(built->first, /*sayFraming=*/false);
             if (!still) return fail(still.errorInfo());
-            if (auto s = timeline->prepareViews(*still, built->first, !args.view.size.empty()); !s)
-                return fail(s.errorInfo());
+            if (timeline->path)
+                if (auto s = timeline->prepareViews(*still, built->first, !args.view.size.empty()); !s)
+                    return fail(s.errorInfo());
         }
         firstForest = std::move(built).value();
     }
@@ -483,8 +486,8 @@ int runBench(const BenchArgs& args) {
     nlohmann::json runs = nlohmann::json::array();
     eval::HtmlTable table = reportTable(args, (*context)->description(), frames); // --report: the rows as printed
     for (size_t k = 0; k < counts->size(); ++k) {
-        auto built = k == 0 && firstForest ? core::Result<std::pair<scene::Scene, BenchRow>>(std::move(*firstForest))
-                                           : buildScene(args, (*counts)[k]);
+        auto built = k == 0 ? core::Result<std::pair<scene::Scene, BenchRow>>(std::move(*firstForest))
+                            : buildScene(args, (*counts)[k]);
         if (!built) return fail(built.errorInfo());
         scene::Scene& forest = built->first;
         const BenchRow& row = built->second;

@@ -343,6 +343,14 @@ if(CASE STREQUAL "gl-bench-path-eye-meets-target-prints-nothing")
     message(SEND_ERROR "bench --path: exit ${rc}, stdout '${out}', stderr '${err}'")
   endif()
 endif()
+# ... and so does a still view that cannot be had (its near plane past the far one given).
+if(CASE STREQUAL "gl-bench-view-error-prints-nothing")
+  execute_process(COMMAND ${SHADOWKIT} bench ${small} --size 32x18 --views perpendicular --far 0.0001
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(rc EQUAL 0 OR NOT out STREQUAL "" OR NOT err MATCHES "near must be < far")
+    message(SEND_ERROR "bench with an impossible --far: exit ${rc}, stdout '${out}', stderr '${err}'")
+  endif()
+endif()
 # One frame of a path picked by --frames takes its number in --out's pattern, as in a sequence.
 if(CASE STREQUAL "gl-one-frame-takes-its-number")
   execute_process(COMMAND ${SHADOWKIT} render ${small} --size 32x18 --map-size 128 --path flythrough --frames 7
