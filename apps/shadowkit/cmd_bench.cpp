@@ -446,20 +446,16 @@ int runBench(const BenchArgs& args) {
     // frame there can use fail here, not under the table's header. That forest is the loop's
     // first (the later forests' rows check their own ground). --scene's file is loaded here too,
     // so that a file that does not load fails before the header.
-    std::optional<std::pair<scene::Scene, BenchRow>> firstForest;
-    {
-        auto built = buildScene(args, counts->front());
-        if (!built) return fail(built.errorInfo());
-        for (const std::string& name : timeline->path ? std::vector<std::string>{args.view.view} : viewNames) {
-            ViewOptions viewOptions = args.view;
-            viewOptions.view = name;
-            auto still = viewOptions.resolve(built->first, /*sayFraming=*/false);
-            if (!still) return fail(still.errorInfo());
-            if (timeline->path)
-                if (auto s = timeline->prepareViews(*still, built->first, !args.view.size.empty()); !s)
-                    return fail(s.errorInfo());
-        }
-        firstForest = std::move(built).value();
+    auto firstForest = buildScene(args, counts->front());
+    if (!firstForest) return fail(firstForest.errorInfo());
+    for (const std::string& name : timeline->path ? std::vector<std::string>{args.view.view} : viewNames) {
+        ViewOptions viewOptions = args.view;
+        viewOptions.view = name;
+        auto still = viewOptions.resolve(firstForest->first, /*sayFraming=*/false);
+        if (!still) return fail(still.errorInfo());
+        if (timeline->path)
+            if (auto s = timeline->prepareViews(*still, firstForest->first, !args.view.size.empty()); !s)
+                return fail(s.errorInfo());
     }
     auto context = gl::Context::createHeadless();
     if (!context) return fail(context.errorInfo());
@@ -486,8 +482,7 @@ int runBench(const BenchArgs& args) {
     nlohmann::json runs = nlohmann::json::array();
     eval::HtmlTable table = reportTable(args, (*context)->description(), frames); // --report: the rows as printed
     for (size_t k = 0; k < counts->size(); ++k) {
-        auto built = k == 0 ? core::Result<std::pair<scene::Scene, BenchRow>>(std::move(*firstForest))
-                            : buildScene(args, (*counts)[k]);
+        auto built = k == 0 ? std::move(firstForest) : buildScene(args, (*counts)[k]);
         if (!built) return fail(built.errorInfo());
         scene::Scene& forest = built->first;
         const BenchRow& row = built->second;
