@@ -151,6 +151,8 @@ float skOpacityTransmittanceAt(int layer, vec2 uv, vec4 atlasFromMap, float dept
 // within 0.0004 of this one's on every view of the leafy forest.
 float skFoliageTransmittanceIn(int layer, mat4 textureFromWorld, vec4 linearDepthFromWorld, SkShadowOptions o,
                                vec4 atlasFromMap, vec3 ws) {
+    textureFromWorld = skDepthFromLight(textureFromWorld); // the layers hold d, near side 0, either way
+    linearDepthFromWorld = skDepthFromLight(linearDepthFromWorld);
     vec4 t;
     vec3 uvz = skShadowCoordinates(textureFromWorld, linearDepthFromWorld, true, ws, t);
     if (t.w <= 0.0 || any(lessThan(uvz.xy, vec2(0.0))) || any(greaterThan(uvz.xy, vec2(1.0)))) return 1.0;

@@ -7,7 +7,8 @@
 // What it does, per fragment (see docs/engine-integration.md):
 //   - the lookup of one map in a sampler2DArrayShadow layer (a lone 2-D map is layer 0 of a
 //     one-layer array), with the comparison in the sampler (GL_TEXTURE_COMPARE_MODE
-//     GL_COMPARE_REF_TO_TEXTURE; GL_LEQUAL, or GL_GEQUAL for reversed-Z maps);
+//     GL_COMPARE_REF_TO_TEXTURE; GL_LEQUAL, or GL_GEQUAL for reversed-Z maps with
+//     SK_SHADOW_REVERSED_Z defined: see skStoredDepth);
 //   - the reference depth in the map's layout: z / w of textureFromWorld (hyperbolic) or the
 //     linear row linearDepthFromWorld (TSM's linear depth, Martin & Tan 2004, and LiSPSM's
 //     per-fragment linear depth, Scherzer 2005 §4.2);
@@ -105,6 +106,30 @@ struct SkShadowOptions {
     bool offsetGuard;            // BiasSettings::offsetGuard: a receiver behind a caster in its own texel
                                  // stays shadowed where the normal offsets carry its lookup across the map
 };
+
+// Reversed-Z maps (OutputConventions::reversedZ: the light's near side stored as 1, compared with
+// GL_GEQUAL): define SK_SHADOW_REVERSED_Z before this file. The lookup's arithmetic takes depth as
+// growing away from the light — PCSS's blocker distances, the receiver plane's margin, the offset
+// guard's margin, the moments' order — so it works in d, the depth from the light's near side:
+// where a map's matrices enter (skShadowMapIn, skFoliageTransmittanceIn) their depth rows become
+// d's (skDepthFromLight), and where a map is compared or its depths read, d becomes what is stored
+// (skStoredDepth; 1 − d, its own inverse). A GL_GEQUAL comparison of 1 − d against the stored
+// 1 − d_map passes where d ≤ d_map: the lit test of the ordinary map. Without the define both are
+// the identity. Moments (SK_SHADOW_MOMENTS) and opacity layers are the engine's own passes: they
+// hold d's moments and d in either case.
+#ifdef SK_SHADOW_REVERSED_Z
+float skStoredDepth(float d) { return 1.0 - d; }
+// textureFromWorld's depth row z becomes w − z, so z / w becomes 1 − z / w.
+mat4 skDepthFromLight(mat4 textureFromWorld) {
+    for (int c = 0; c < 4; ++c) textureFromWorld[c].z = textureFromWorld[c].w - textureFromWorld[c].z;
+    return textureFromWorld;
+}
+vec4 skDepthFromLight(vec4 linearDepthFromWorld) { return vec4(0.0, 0.0, 0.0, 1.0) - linearDepthFromWorld; }
+#else
+float skStoredDepth(float d) { return d; }
+mat4 skDepthFromLight(mat4 textureFromWorld) { return textureFromWorld; }
+vec4 skDepthFromLight(vec4 linearDepthFromWorld) { return linearDepthFromWorld; }
+#endif
 
 // (u, v, depth) of a world point: textureFromWorld's xy / w and the reference depth.
 vec3 skShadowCoordinates(mat4 textureFromWorld, vec4 linearDepthFromWorld, bool linearDepth, vec3 ws, out vec4 t) {
@@ -262,7 +287,7 @@ float skPcss(sampler2DArrayShadow maps, int layer, mat4 textureFromWorld, vec4 l
     float depthPerMetre, metresPerTexel;
     // Degenerate maps (no footprint, or depth not changing towards the light): the hard lookup.
     if (!skSunDiskInMap(textureFromWorld, linearDepthFromWorld, o, t, uvFromDisk, depthPerMetre, metresPerTexel))
-        return texture(maps, vec4(uv * atlasFromMap.xy + atlasFromMap.zw, float(layer), clamp(depth, 0.0, 1.0)));
+        return texture(maps, vec4(uv * atlasFromMap.xy + atlasFromMap.zw, float(layer), skStoredDepth(clamp(depth, 0.0, 1.0))));
     const float widestMetres = o.poissonRadiusTexels * metresPerTexel;
 
     // Vogel disk: tap i at radius sqrt((i + ½) / N), each turned by the golden angle from the last.
@@ -278,7 +303,7 @@ float skPcss(sampler2DArrayShadow maps, int layer, mat4 textureFromWorld, vec4 l
     for (int i = 0; i < taps; ++i, direction = kSkGoldenTurn * direction) {
         const float rho = float(i) / float(taps) * searchMetres;
         const vec2 offset = uvFromDisk * (direction * rho);
-        const float stored = texture(SK_SHADOW_DEPTHS, vec3((uv + offset) * atlasFromMap.xy + atlasFromMap.zw, float(layer))).r;
+        const float stored = skStoredDepth(texture(SK_SHADOW_DEPTHS, vec3((uv + offset) * atlasFromMap.xy + atlasFromMap.zw, float(layer))).r);
         // The comparison's own test (a blocker where reference > stored), in metres towards the light.
         const float metres = (depth + dot(dDepthDuv, offset) - stored) / depthPerMetre;
         if (metres > 0.0 && metres * o.lightTanHalfAngle >= rho) {
@@ -295,7 +320,7 @@ float skPcss(sampler2DArrayShadow maps, int layer, mat4 textureFromWorld, vec4 l
     for (int i = 0; i < taps; ++i, direction = kSkGoldenTurn * direction) {
         const vec2 offset = uvFromDisk * (direction * (sqrt((float(i) + 0.5) / float(taps)) * filterMetres));
         const float reference = clamp(depth + dot(dDepthDuv, offset), 0.0, 1.0);
-        lit += texture(maps, vec4((uv + offset) * atlasFromMap.xy + atlasFromMap.zw, float(layer), reference));
+        lit += texture(maps, vec4((uv + offset) * atlasFromMap.xy + atlasFromMap.zw, float(layer), skStoredDepth(reference)));
     }
     return lit / float(taps);
 }
@@ -396,7 +421,7 @@ float skOffsetGuard(sampler2DArrayShadow maps, int layer, mat4 textureFromWorld,
     // bilinear footprint's, (i0, j1) (i1, j1) (i1, j0) (i0, j0); the point lies in i1 where the
     // footprint's fraction along u is ½ or more, in j1 where along v.
     const vec2 at = before.xy * atlasFromMap.xy + atlasFromMap.zw;
-    const vec4 four = textureGather(maps, vec3(at, float(layer)), clamp(before.z - margin, 0.0, 1.0));
+    const vec4 four = textureGather(maps, vec3(at, float(layer)), skStoredDepth(clamp(before.z - margin, 0.0, 1.0)));
     const vec2 f = fract(at * vec2(textureSize(maps, 0).xy) - 0.5);
     return f.y >= 0.5 ? (f.x >= 0.5 ? four.y : four.x) : (f.x >= 0.5 ? four.z : four.w);
 }
@@ -406,6 +431,8 @@ float skOffsetGuard(sampler2DArrayShadow maps, int layer, mat4 textureFromWorld,
 // (1, 1, 0, 0), or a virtual map's page in the page atlas, whose guard band holds every tap.
 float skShadowMapIn(sampler2DArrayShadow maps, int layer, mat4 textureFromWorld, vec4 linearDepthFromWorld,
                     SkShadowOptions o, vec4 atlasFromMap, vec3 ws, vec3 n, vec3 dwsdx, vec3 dwsdy) {
+    textureFromWorld = skDepthFromLight(textureFromWorld);
+    linearDepthFromWorld = skDepthFromLight(linearDepthFromWorld);
     vec4 t;
     vec3 uvz = skShadowCoordinates(textureFromWorld, linearDepthFromWorld, o.linearDepth, ws, t);
     float guard = 1.0; // skOffsetGuard's, for the hard test and the 2 × 2 PCF
@@ -461,7 +488,7 @@ float skShadowMapIn(sampler2DArrayShadow maps, int layer, mat4 textureFromWorld,
                                                                      : rotation * kSkPoisson[i] * o.poissonRadiusTexels;
             const vec2 tapUv = uv + offsetTexels / size;
             const float tapDepth = depth + dot(dDepthDuv, offsetTexels / size);
-            sum += texture(maps, vec4(tapUv * atlasFromMap.xy + atlasFromMap.zw, float(layer), clamp(tapDepth, 0.0, 1.0)));
+            sum += texture(maps, vec4(tapUv * atlasFromMap.xy + atlasFromMap.zw, float(layer), skStoredDepth(clamp(tapDepth, 0.0, 1.0))));
         }
         return sum / float(count);
     }
@@ -472,7 +499,7 @@ float skShadowMapIn(sampler2DArrayShadow maps, int layer, mat4 textureFromWorld,
     }
     // SK_FILTER_PCF2: the sampler's GL_LINEAR filter does the 2 × 2 PCF in hardware. Depth clamp
     // in the shadow pass stores casters in front of the near plane at 0: clamp the reference too.
-    return min(guard, texture(maps, vec4(uv * atlasFromMap.xy + atlasFromMap.zw, float(layer), clamp(depth, 0.0, 1.0))));
+    return min(guard, texture(maps, vec4(uv * atlasFromMap.xy + atlasFromMap.zw, float(layer), skStoredDepth(clamp(depth, 0.0, 1.0)))));
 }
 
 // One map filling layer `layer` of `maps`.

@@ -3,6 +3,10 @@
 plausible share of the image (not none, not everything) and never brighten a pixel.
 
     shadow_png_check.py WITH.png WITHOUT.png
+    shadow_png_check.py --same A.png B.png   the same frame drawn two ways (e.g. in two depth
+                                             conventions): at most 0.5 % of the pixels differ by
+                                             more than 2 % of the brightness range
+    shadow_png_check.py --differ A.png B.png two frames that must not be one (more than 0.5 %)
 
 Reads 8-bit RGB/RGBA non-interlaced PNGs with the standard library only (zlib)."""
 import struct
@@ -57,7 +61,31 @@ def read_png(path):
     return width, height, [sum(row[x * channels:x * channels + 3]) for row in rows for x in range(width)]
 
 
+def differing_share(first, second):
+    w1, h1, a = read_png(first)
+    w2, h2, b = read_png(second)
+    if (w1, h1) != (w2, h2):
+        sys.exit("the two frames differ in size")
+    return sum(1 for x, y in zip(a, b) if abs(x - y) > 0.02 * 3 * 255) / len(a)
+
+
+def same(first, second):
+    share = differing_share(first, second)
+    print(f"{100 * share:.2f} % of the pixels differ")
+    if share > 0.005:
+        sys.exit(f"{second} is not the frame {first} is")
+
+
+def differ(first, second):
+    share = differing_share(first, second)
+    print(f"{100 * share:.2f} % of the pixels differ")
+    if share <= 0.005:
+        sys.exit(f"{second} is the frame {first} is: it should not be")
+
+
 def main():
+    if sys.argv[1] in ("--same", "--differ"):
+        return (same if sys.argv[1] == "--same" else differ)(sys.argv[2], sys.argv[3])
     w1, h1, shadowed = read_png(sys.argv[1])
     w2, h2, lit = read_png(sys.argv[2])
     if (w1, h1) != (w2, h2):

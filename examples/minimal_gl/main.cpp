@@ -8,10 +8,16 @@
 //     output_conventions.h), with the recommended bias (bias.h);
 //   - shadowkit_shadows.glsl, installed with the package: the lookup in the fragment shader.
 //
-//   minimal_gl OUT.png [--no-shadows]   draws one 640 × 360 frame off screen and writes it.
+//   minimal_gl OUT.png [--no-shadows] [--pcss] [--reversed-z]
+// draws one 640 × 360 frame off screen and writes it. --pcss: soft shadows of a 3° sun (PCSS
+// reads the maps' depths through a second sampler) instead of 2 × 2 PCF. --reversed-z: the
+// program as a reversed-Z engine draws, camera and shadow maps alike — clip depth [0, 1]
+// (glClipControl), the near side stored as 1, GL_GREATER and GL_GEQUAL, the biases' signs turned —
+// with SK_SHADOW_REVERSED_Z defined before the lookup; the picture is the same frame.
 #include <shadowkit/core/bias.h>
 #include <shadowkit/core/engine_camera.h>
 #include <shadowkit/core/output_conventions.h>
+#include <shadowkit/core/shadow_filter.h>
 
 // epoxy before GLFW, which would otherwise include the system GL header first.
 #include <epoxy/gl.h>
@@ -22,6 +28,7 @@
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #include <stb/stb_image_write.h>
 
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -115,6 +122,8 @@ void main() { wsPosition = position; wsNormal = normal; gl_Position = clipFromWo
 
 // Declarations, then shadowkit_shadows.glsl, then this program's shading.
 const char* kMainFragHead = R"(#version 450 core
+layout(binding = 1) uniform sampler2DArray shadowDepths; // the same maps, no comparison: PCSS's search
+#define SK_SHADOW_DEPTHS shadowDepths
 uniform mat4 textureFromWorld[4];
 uniform vec4 linearDepthFromWorld[4];
 uniform vec4 splits[4];
@@ -124,16 +133,16 @@ uniform vec4 splits[4];
 )";
 const char* kMainFragBody = R"(
 layout(binding = 0) uniform sampler2DArrayShadow shadowMaps;
-uniform int mapCount, linearDepth, shadows, offsetGuard;
-uniform float mapTexels, normalOffsetTexels, normalOffsetFootprint;
+uniform int mapCount, linearDepth, shadows, offsetGuard, filterKind;
+uniform float mapTexels, normalOffsetTexels, normalOffsetFootprint, sunTanHalfAngle;
 uniform vec3 wsEye, wsViewForward, wsTowardsSun;
 in vec3 wsPosition, wsNormal;
 out vec4 color;
 void main() {
     const vec3 n = normalize(wsNormal);
     const vec3 dx = dFdx(wsPosition), dy = dFdy(wsPosition); // uniform control flow
-    const SkShadowOptions o = SkShadowOptions(mapTexels, linearDepth != 0, normalOffsetTexels, false, SK_FILTER_PCF2, 0, 0.0, 0.0,
-                                              normalOffsetFootprint, offsetGuard != 0);
+    const SkShadowOptions o = SkShadowOptions(mapTexels, linearDepth != 0, normalOffsetTexels, false, filterKind, 16, 16.0,
+                                              sunTanHalfAngle, normalOffsetFootprint, offsetGuard != 0);
     const float viewDepth = dot(wsPosition - wsEye, wsViewForward);
     const float nDotL = max(dot(n, wsTowardsSun), 0.0);
     const float lit = shadows != 0 && nDotL > 0.0 ? skCascadedShadow(shadowMaps, mapCount, o, viewDepth, wsPosition, n, dx, dy) : 1.0;
@@ -155,11 +164,22 @@ std::string readFile(const char* path) {
 } // namespace
 
 int main(int argc, char** argv) {
-    if (argc < 2) {
-        std::fprintf(stderr, "usage: minimal_gl OUT.png [--no-shadows]\n");
+    bool shadows = true, pcss = false, reversedZ = false;
+    for (int i = 2; i < argc; ++i) {
+        const std::string flag = argv[i];
+        if (flag == "--no-shadows")
+            shadows = false;
+        else if (flag == "--pcss")
+            pcss = true;
+        else if (flag == "--reversed-z")
+            reversedZ = true;
+        else
+            return std::fprintf(stderr, "minimal_gl: unknown option %s\n", argv[i]), 1;
+    }
+    if (argc < 2 || argv[1][0] == '-') {
+        std::fprintf(stderr, "usage: minimal_gl OUT.png [--no-shadows] [--pcss] [--reversed-z]\n");
         return 1;
     }
-    const bool shadows = !(argc > 2 && std::string(argv[2]) == "--no-shadows");
     if (!glfwInit()) return std::fprintf(stderr, "minimal_gl: no display for GLFW\n"), 1;
     glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
     glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
@@ -169,15 +189,21 @@ int main(int argc, char** argv) {
     if (!window) return std::fprintf(stderr, "minimal_gl: no OpenGL 4.5 context\n"), 1;
     glfwMakeContextCurrent(window);
 
-    // ---- the program's camera and sun: OpenGL conventions, clip depth [-1, 1] ----
+    // ---- the program's camera and sun: OpenGL conventions, clip depth [-1, 1]; or reversed-Z ----
     const glm::dvec3 eye(3.0, 6.0, 14.0), target(0.0, 0.0, -30.0);
     const glm::dmat4 viewFromWorld = glm::lookAt(eye, target, glm::dvec3(0, 1, 0));
-    const glm::dmat4 clipFromView = glm::perspective(glm::radians(60.0), double(kWidth) / kHeight, 0.3, 1000.0);
+    const double fovY = glm::radians(60.0), aspect = double(kWidth) / kHeight;
+    glm::dmat4 clipFromView = glm::perspective(fovY, aspect, 0.3, 1000.0);
+    if (reversedZ) { // clip depth [0, 1] with z' = w − z: the near plane at 1 (column-major: row 2 is [c][2])
+        clipFromView = glm::perspectiveRH_ZO(fovY, aspect, 0.3, 1000.0);
+        for (int c = 0; c < 4; ++c) clipFromView[c][2] = clipFromView[c][3] - clipFromView[c][2];
+    }
+    const sk::ClipDepthRange clipDepth = reversedZ ? sk::ClipDepthRange::ZeroToOne : sk::ClipDepthRange::MinusOneToOne;
     const glm::dvec3 sunTravel = glm::normalize(glm::dvec3(0.8, -0.55, -0.35)); // sun -> scene
 
     // ---- shadowkit: camera from the matrices, cascades with per-split LiSPSM ----
     sk::ShadowSetupInputs in;
-    sk::EngineCamera camera{viewFromWorld, clipFromView, sk::ClipDepthRange::MinusOneToOne};
+    sk::EngineCamera camera{viewFromWorld, clipFromView, clipDepth};
     camera.shadowDistance = 150.0; // shadows end here; the camera sees 1 km
     const sk::Result<sk::PerspectiveCamera> fitted = sk::cameraFromMatrices(camera);
     if (!fitted) return std::fprintf(stderr, "minimal_gl: %s\n", fitted.error().c_str()), 1;
@@ -192,9 +218,10 @@ int main(int argc, char** argv) {
     const sk::Result<sk::ShadowSetup> setup = sk::computeShadowSetup(in);
     if (!setup) return std::fprintf(stderr, "minimal_gl: %s\n", setup.error().c_str()), 1;
     const sk::BiasSettings bias = sk::recommendedBias(setup->technique, setup->depthLayout);
+    const sk::OutputConventions conventions =
+        reversedZ ? sk::OutputConventions{sk::ClipDepthRange::ZeroToOne, true} : sk::OutputConventions::openGL();
     std::vector<sk::EngineShadowView> views;
-    for (const sk::ShadowView& v : setup->views)
-        views.push_back(sk::toEngineView(v, *setup, sk::OutputConventions::openGL()));
+    for (const sk::ShadowView& v : setup->views) views.push_back(sk::toEngineView(v, *setup, conventions));
 
     // ---- GPU objects ----
     const std::vector<Vertex> scene = makeScene();
@@ -213,11 +240,18 @@ int main(int argc, char** argv) {
     glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &maps);
     glTextureStorage3D(maps, 1, GL_DEPTH_COMPONENT32F, kMapSize, kMapSize, kCascades);
     glTextureParameteri(maps, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
-    glTextureParameteri(maps, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+    glTextureParameteri(maps, GL_TEXTURE_COMPARE_FUNC, reversedZ ? GL_GEQUAL : GL_LEQUAL);
     glTextureParameteri(maps, GL_TEXTURE_MIN_FILTER, GL_LINEAR); // 2 × 2 PCF in hardware
     glTextureParameteri(maps, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTextureParameteri(maps, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     glTextureParameteri(maps, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    GLuint depthsSampler; // PCSS reads the stored depths: the same maps without the comparison
+    glCreateSamplers(1, &depthsSampler);
+    glSamplerParameteri(depthsSampler, GL_TEXTURE_COMPARE_MODE, GL_NONE);
+    for (GLenum filter : {GL_TEXTURE_MIN_FILTER, GL_TEXTURE_MAG_FILTER})
+        glSamplerParameteri(depthsSampler, filter, GL_NEAREST);
+    for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T})
+        glSamplerParameteri(depthsSampler, wrap, GL_CLAMP_TO_EDGE);
     glCreateFramebuffers(1, &mapTarget);
     GLuint colorTarget, colorTexture, depthTexture;
     glCreateTextures(GL_TEXTURE_2D, 1, &colorTexture);
@@ -229,17 +263,27 @@ int main(int argc, char** argv) {
     glNamedFramebufferTexture(colorTarget, GL_DEPTH_ATTACHMENT, depthTexture, 0);
 
     const GLuint depthProgram = linkProgram(kDepthVert, "#version 450 core\nvoid main() {}\n");
-    const GLuint mainProgram = linkProgram(kMainVert, kMainFragHead + readFile(SHADOWKIT_GLSL_FILE) + kMainFragBody);
+    const std::string reversedDefine = reversedZ ? "#define SK_SHADOW_REVERSED_Z\n" : "";
+    const GLuint mainProgram =
+        linkProgram(kMainVert, kMainFragHead + reversedDefine + readFile(SHADOWKIT_GLSL_FILE) + kMainFragBody);
     glBindVertexArray(vao);
     glEnable(GL_DEPTH_TEST);
+    if (reversedZ) { // both passes: the near side at 1, nearer wins
+        glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
+        glClearDepth(0.0);
+        glDepthFunc(GL_GREATER);
+    }
 
     // ---- shadow pass: one layer per cascade, depth clamped, slope-scaled bias ----
     glUseProgram(depthProgram);
     glViewport(0, 0, kMapSize, kMapSize);
     if (setup->depthClamp) glEnable(GL_DEPTH_CLAMP); // casters before a map's near plane still cast
     glEnable(GL_POLYGON_OFFSET_FILL);
-    glPolygonOffset(float(bias.slope), 0.0f); // a float map scales units by a primitive's largest depth
-    glUniform1f(glGetUniformLocation(depthProgram, "constantBias"), float(bias.constant) * 0x1p-24f);
+    // Away from the light: towards 0 in a reversed-Z map. A float map scales polygon offset's units
+    // by a primitive's largest depth, so the constant term goes into the vertex shader instead.
+    const float away = reversedZ ? -1.0f : 1.0f;
+    glPolygonOffset(away * float(bias.slope), 0.0f);
+    glUniform1f(glGetUniformLocation(depthProgram, "constantBias"), away * float(bias.constant) * 0x1p-24f);
     for (size_t i = 0; i < views.size(); ++i) {
         glNamedFramebufferTextureLayer(mapTarget, GL_DEPTH_ATTACHMENT, maps, 0, GLint(i));
         glBindFramebuffer(GL_FRAMEBUFFER, mapTarget);
@@ -274,10 +318,14 @@ int main(int argc, char** argv) {
     glUniform1f(uniform("normalOffsetTexels"), float(bias.normalOffset));
     glUniform1f(uniform("normalOffsetFootprint"), float(bias.normalOffsetFootprint));
     glUniform1i(uniform("offsetGuard"), bias.offsetGuard);
+    glUniform1i(uniform("filterKind"), pcss ? int(sk::ShadowFilter::Pcss) : int(sk::ShadowFilter::Pcf2));
+    glUniform1f(uniform("sunTanHalfAngle"), pcss ? float(std::tan(glm::radians(1.5))) : 0.0f); // a 3° sun
     glUniform3fv(uniform("wsEye"), 1, glm::value_ptr(glm::vec3(eye)));
     glUniform3fv(uniform("wsViewForward"), 1, glm::value_ptr(glm::vec3(glm::normalize(target - eye))));
     glUniform3fv(uniform("wsTowardsSun"), 1, glm::value_ptr(glm::vec3(-sunTravel)));
     glBindTextureUnit(0, maps);
+    glBindTextureUnit(1, maps);
+    glBindSampler(1, depthsSampler);
     glDrawArrays(GL_TRIANGLES, 0, GLsizei(scene.size()));
 
     // ---- read back and write the picture (rows bottom-up in GL) ----
@@ -286,8 +334,9 @@ int main(int argc, char** argv) {
     stbi_flip_vertically_on_write(1);
     if (!stbi_write_png(argv[1], kWidth, kHeight, 4, pixels.data(), kWidth * 4))
         return std::fprintf(stderr, "minimal_gl: cannot write %s\n", argv[1]), 1;
-    std::printf("minimal_gl: %zu cascades (%s, per-split LiSPSM), %zu triangles, wrote %s\n", views.size(),
-                std::string(sk::techniqueName(setup->technique)).c_str(), scene.size() / 3, argv[1]);
+    std::printf("minimal_gl: %zu cascades (%s, per-split LiSPSM), %s, %s depth, %zu triangles, wrote %s\n",
+                views.size(), std::string(sk::techniqueName(setup->technique)).c_str(), pcss ? "PCSS" : "2 x 2 PCF",
+                reversedZ ? "reversed-Z" : "OpenGL", scene.size() / 3, argv[1]);
     glfwTerminate();
     return 0;
 }

@@ -131,3 +131,19 @@ TEST_F(InstalledGlslTest, OpacityLayersNamedWithoutTheFoliageFileAreRefused) {
         {gl::testing::kEngineDeclarations, kOpacityDeclarations, kShadowkitShadowsGlsl, kEngineShading});
     EXPECT_FALSE(program);
 }
+
+// A reversed-Z engine's maps (SK_SHADOW_REVERSED_Z): every lookup — cascades, virtual pages, opacity
+// layers — compiles with the depth turned at its entries. examples/minimal_gl --reversed-z draws
+// with it (tests/minimal_gl_test.cmake: the same frames as the OpenGL convention's).
+TEST_F(InstalledGlslTest, WithReversedZEveryLookupCompiles) {
+    using namespace gl::shaders;
+    constexpr std::string_view kReversed = "#define SK_SHADOW_REVERSED_Z\n";
+    const auto cascades = gl::buildProgram("engine shader, reversed-Z, opacity layers", {kVertex},
+                                           {kReversed, gl::testing::kEngineDeclarations, kOpacityDeclarations,
+                                            kShadowkitShadowsGlsl, kShadowkitFoliageOpacityGlsl, kEngineShading});
+    EXPECT_TRUE(cascades) << cascades.error();
+    const auto virtualMaps = gl::buildProgram("engine shader, reversed-Z, virtual maps, opacity layers", {kVertex},
+                                              {kReversed, kVirtualLevels, kVirtualTableOrigins, kOpacityDeclarations,
+                                               kShadowkitShadowsGlsl, kShadowkitFoliageOpacityGlsl, kVirtualShading});
+    EXPECT_TRUE(virtualMaps) << virtualMaps.error();
+}
