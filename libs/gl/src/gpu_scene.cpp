@@ -52,6 +52,21 @@ void forEachRunMeeting(std::span<const scene::TriangleCluster> clusters, const c
     if (count > 0) run(first, count);
 }
 
+// Per vertex, the longest edge of the triangles `indices` (every level's) make of it, in object
+// metres, a little long against rounding: the linear depth pass's bound (depth_pass.glsl's
+// skConservativeClipZ). One float a vertex (at least one: a buffer may not be empty).
+std::vector<float> longestEdges(std::span<const scene::Vertex> vertices, std::span<const uint32_t> indices) {
+    std::vector<float> edges(std::max<size_t>(vertices.size(), 1), 0.0f);
+    for (size_t t = 0; t + 2 < indices.size(); t += 3) {
+        const uint32_t a = indices[t], b = indices[t + 1], c = indices[t + 2];
+        if (std::max({a, b, c}) >= vertices.size()) continue;
+        const glm::vec3 pa = vertices[a].position, pb = vertices[b].position, pc = vertices[c].position;
+        const float longest = 1.001f * std::max({glm::length(pb - pa), glm::length(pc - pb), glm::length(pa - pc)});
+        for (const uint32_t v : {a, b, c}) edges[v] = std::max(edges[v], longest);
+    }
+    return edges;
+}
+
 // Whether some level of a chain draws by clusters (a large mesh's).
 bool anyClusters(const std::vector<std::vector<scene::TriangleCluster>>& levels) {
     return std::any_of(levels.begin(), levels.end(), [](const auto& clusters) { return !clusters.empty(); });
@@ -159,6 +174,9 @@ GpuScene::GpuScene(const scene::Scene& scene, std::span<const scene::MeshLods> l
         gpu.cameraClusters = clustersOf(lod.camera);
         gpu.shadowClusters = clustersOf(lod.shadow);
         gpu.indices = createBuffer(indices.data(), std::max<size_t>(indices.size(), 1) * sizeof(uint32_t));
+        const std::vector<float> edges = longestEdges(mesh.vertices, indices);
+        gpu.longestEdges = createBuffer(edges.data(), edges.size() * sizeof(float), deformed);
+        if (deformed) gpu.deformedIndices = indices;
         gpu.camera = rangesOf(lod.camera);
         gpu.shadow = rangesOf(lod.shadow);
         GLuint vao = 0;
@@ -174,6 +192,11 @@ GpuScene::GpuScene(const scene::Scene& scene, std::span<const scene::MeshLods> l
             glVertexArrayAttribFormat(vao, attrib, attrib == 3 ? 2 : 3, GL_FLOAT, GL_FALSE, offsets[attrib]);
             glVertexArrayAttribBinding(vao, attrib, 0);
         }
+        // The longest edges, from a buffer of their own (the linear depth pass's alone).
+        glVertexArrayVertexBuffer(vao, kEdgeBufferBinding, gpu.longestEdges.id(), 0, sizeof(float));
+        glEnableVertexArrayAttrib(vao, kEdgeAttribute);
+        glVertexArrayAttribFormat(vao, kEdgeAttribute, 1, GL_FLOAT, GL_FALSE, 0);
+        glVertexArrayAttribBinding(vao, kEdgeAttribute, kEdgeBufferBinding);
         m_meshes.push_back(std::move(gpu));
     }
     GLuint firstInstance = 0;
@@ -232,6 +255,9 @@ void GpuScene::reshapeMesh(const scene::Scene& scene, size_t mesh) {
     const std::vector<scene::Vertex>& vertices = scene.meshes[mesh].vertices;
     uploadToBuffer(m_meshes[mesh].vertices.id(), 0, static_cast<GLsizeiptr>(vertices.size() * sizeof(scene::Vertex)),
                    vertices.data());
+    const std::vector<float> edges = longestEdges(vertices, m_meshes[mesh].deformedIndices);
+    uploadToBuffer(m_meshes[mesh].longestEdges.id(), 0, static_cast<GLsizeiptr>(edges.size() * sizeof(float)),
+                   edges.data());
 }
 
 DrawStats GpuScene::draw(const PassList& list, const PassPrograms& programs, bool setInstanceBase, int replicas) const {

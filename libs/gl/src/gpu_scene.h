@@ -150,6 +150,10 @@ private:
         std::vector<Range> camera, shadow; // per level, at most kMaxLodLevels
         // Per level of each chain: its triangles' spatial clusters (empty below kClusterMinTriangles).
         std::vector<std::vector<scene::TriangleCluster>> cameraClusters, shadowClusters;
+        // Per vertex, the longest edge of the triangles it belongs to, in every level; again after
+        // each reshape: the linear depth pass's bound (depth.vert's osLongestEdge, kEdgeAttribute).
+        Buffer longestEdges;
+        std::vector<uint32_t> deformedIndices; // a deformed mesh's `indices`, for its edges in each pose
     };
     // A mesh's material as its draws need it (scene::Material).
     struct GpuMaterial {

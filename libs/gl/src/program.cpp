@@ -7,7 +7,8 @@
 namespace shadowkit::gl {
 namespace {
 
-int g_withoutDrawParameters = 0; // live WithoutDrawParameters guards
+int g_withoutDrawParameters = 0;     // live WithoutDrawParameters guards
+int g_checkingConservativeDepth = 0; // live CheckingConservativeDepth guards
 
 std::string oneLine(std::string log) {
     while (!log.empty() && (log.back() == '\n' || log.back() == ' ' || log.back() == '\0')) log.pop_back();
@@ -29,6 +30,11 @@ core::Result<Shader> compile(GLenum stage, std::initializer_list<std::string_vie
     if (stage == GL_VERTEX_SHADER && vertexStagesReadDrawParameters()) {
         texts.push_back(kDrawParameters.data());
         lengths.push_back(static_cast<GLint>(kDrawParameters.size()));
+    }
+    static constexpr std::string_view kCheck = "#define SK_CHECK_CONSERVATIVE_DEPTH 1\n#line 1\n";
+    if (g_checkingConservativeDepth > 0) {
+        texts.push_back(kCheck.data());
+        lengths.push_back(static_cast<GLint>(kCheck.size()));
     }
     for (std::string_view s : sources) {
         texts.push_back(s.data());
@@ -77,6 +83,9 @@ bool vertexStagesReadDrawParameters() {
 
 WithoutDrawParameters::WithoutDrawParameters() { ++g_withoutDrawParameters; }
 WithoutDrawParameters::~WithoutDrawParameters() { --g_withoutDrawParameters; }
+
+CheckingConservativeDepth::CheckingConservativeDepth() { ++g_checkingConservativeDepth; }
+CheckingConservativeDepth::~CheckingConservativeDepth() { --g_checkingConservativeDepth; }
 
 core::Result<Program> buildComputeProgram(std::string_view name, std::initializer_list<std::string_view> sources) {
     auto cs = compile(GL_COMPUTE_SHADER, sources, std::string(name) + ": compute shader");

@@ -44,6 +44,17 @@ public:
     WithoutDrawParameters(const WithoutDrawParameters&) = delete;
     WithoutDrawParameters& operator=(const WithoutDrawParameters&) = delete;
 };
+// While one lives, programs are built with SK_CHECK_CONSERVATIVE_DEPTH defined: the linear depth
+// pass (depth.frag) counts, in the atomic counters at kConservativeDepthCheckBinding, its fragments
+// and those whose written depth lies in front of the rasterised one — a broken layout(depth_greater)
+// promise, which a GPU's early depth test would turn into holes in the map. For tests.
+class CheckingConservativeDepth {
+public:
+    CheckingConservativeDepth();
+    ~CheckingConservativeDepth();
+    CheckingConservativeDepth(const CheckingConservativeDepth&) = delete;
+    CheckingConservativeDepth& operator=(const CheckingConservativeDepth&) = delete;
+};
 
 // Fails unless the block exists, its std140 size equals the C++ struct's size and every
 // listed member sits at the C++ offset (GL_UNIFORM_OFFSET), so a field added, moved or

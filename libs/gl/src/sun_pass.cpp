@@ -278,9 +278,16 @@ void SunPass::beginDepthPass(const core::BiasSettings& bias, bool depthClamp, co
         glCullFace(bias.cull == core::CasterCull::Front ? GL_FRONT : GL_BACK);
     }
     if (depthClamp) glEnable(GL_DEPTH_CLAMP);
-    glEnable(GL_POLYGON_OFFSET_FILL);
-    // The slope term only: the constant one is added in depth.vert (why there).
-    glPolygonOffset(static_cast<float>(bias.slope), 0.0f);
+    // The slope term only: the constant one is added in depth.vert (why there). Not for the
+    // linear layout, whose fragment stage writes its depth and both terms (depth.frag): polygon
+    // offset acts on the rasterised depth alone, which would then break the written depth's
+    // promise to be no less (depth_pass.glsl's skConservativeClipZ).
+    if (layout == core::DepthLayout::Linear) {
+        glDisable(GL_POLYGON_OFFSET_FILL);
+    } else {
+        glEnable(GL_POLYGON_OFFSET_FILL);
+        glPolygonOffset(static_cast<float>(bias.slope), 0.0f);
+    }
     glUseProgram(programsFor(layout).plain);
     glBindBufferBase(GL_UNIFORM_BUFFER, kDepthPassBinding, m_uniforms.id());
 }

@@ -221,6 +221,8 @@ const std::string& shaderPrelude() {
         define("SK_PAGE_BASE_LOCATION", kPageBaseLocation);
         define("SK_VIEWPORT_BASE_LOCATION", kViewportBaseLocation);
         define("SK_PAGE_PER_DRAW_LOCATION", kPagePerDrawLocation);
+        define("SK_EDGE_ATTRIBUTE", kEdgeAttribute);
+        define("SK_CONSERVATIVE_DEPTH_CHECK_BINDING", kConservativeDepthCheckBinding);
         define("SK_CULL_GROUP", kCullGroup);
         define("SK_CULL_LEVELS", static_cast<long long>(kMaxLodLevels));
         define("SK_CULL_MAX_PYRAMID_LEVELS", kCullMaxPyramidLevels);

@@ -99,6 +99,13 @@ inline constexpr int kViewportBaseLocation = 17; // uniform int viewportBase (de
 // uniform uint pagePerDraw (depth.vert, SK_PAGES): where a draw's page is, after pageBase — 0: the
 // call's; 1: the draw's index in the multi-draw; 2: drawPages[the draw's index]
 inline constexpr int kPagePerDrawLocation = 18;
+// Vertex attribute float osLongestEdge (depth.vert, SK_LINEAR_DEPTH), from its own buffer binding:
+// the longest edge of the vertex's triangles, for the rasterised depth's bound (GpuScene).
+inline constexpr unsigned kEdgeAttribute = 4;
+inline constexpr unsigned kEdgeBufferBinding = 1;
+// Atomic counters (GLSL: SK_CONSERVATIVE_DEPTH_CHECK_BINDING), with CheckingConservativeDepth alone:
+// the linear depth pass's fragments and those that broke depth_greater's promise (depth.frag).
+inline constexpr unsigned kConservativeDepthCheckBinding = 0;
 
 // std140: scalars pack in fours, vec4 and mat4 start on 16 bytes. Booleans are int32.
 

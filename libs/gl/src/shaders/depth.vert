@@ -11,6 +11,15 @@ layout(std430, binding = SK_INSTANCES_BINDING) readonly buffer Instances { mat4 
 // fragment shader can compute the exact linear depth (see depth.frag).
 out vec3 wsPosition;
 
+#if defined(SK_LINEAR_DEPTH) && defined(SK_PAGES)
+#error "depth.vert: views drawn together are hyperbolic (the linear bound reads the pass's one clipFromWorld)"
+#endif
+#ifdef SK_LINEAR_DEPTH
+// The longest edge, in object space, of the mesh's triangles this vertex belongs to (every
+// level's; GpuScene), for the rasterised depth's bound (skConservativeClipZ).
+layout(location = SK_EDGE_ATTRIBUTE) in float osLongestEdge;
+#endif
+
 #ifdef SK_PAGES
 // Views drawn together (depth_views.h): virtual pages (VirtualPages::drawPages), or with
 // SK_VIEW_LAYERS the fixed maps of a set-up (SunPass::drawMapsTogether), where "page" below reads
@@ -58,7 +67,16 @@ void main() {
 #else
     gl_Position = clipFromWorld * ws;
 #endif
-#ifndef SK_LINEAR_DEPTH
+#ifdef SK_LINEAR_DEPTH
+    // The edge in the world: grown by the transform's largest stretch, √λ_max(AᵀA) of its linear
+    // part A, bounded by Gershgorin's largest row sum of AᵀA — exact for a rotation with any
+    // scales along its axes, a bound when sheared too (the longest axis alone is not one then).
+    const mat4 m = worldFromObject[skInstanceOf(entry)];
+    const float g01 = abs(dot(m[0].xyz, m[1].xyz)), g02 = abs(dot(m[0].xyz, m[2].xyz)), g12 = abs(dot(m[1].xyz, m[2].xyz));
+    const float stretch = sqrt(max(max(dot(m[0].xyz, m[0].xyz) + g01 + g02, dot(m[1].xyz, m[1].xyz) + g01 + g12),
+                                   dot(m[2].xyz, m[2].xyz) + g02 + g12));
+    gl_Position.z = skConservativeClipZ(clipFromWorld, osLongestEdge * stretch, dot(linearDepthFromWorld, ws), gl_Position.w);
+#else
     // The hyperbolic layout's constant bias, in the stored depth's units (2^-24 of [0, 1], as
     // depth.frag adds it for the linear layout), rather than glPolygonOffset's: for a float
     // depth buffer GL scales those by the exponent of the largest depth in the primitive
