@@ -299,3 +299,58 @@ TEST_F(DepthProgramsTest, TheLinearLayoutsRasterisedDepthIsABoundOfTheDepthItWri
     EXPECT_GT(withinFiveMetres, 0.8 * fragments) << "bounds within 5 m, every view";
     glDeleteBuffers(1, &counters);
 }
+
+// The local lights' maps store the distance to the light per fragment (local_depth.frag) and make
+// the same promise, the vertex stages rasterising each vertex at its distance less the longest edge
+// of its triangles, or the geometry stage each triangle at the larger of its farthest vertex's
+// distance less its longest edge and its plane's distance (local_depth.glsl's
+// skLocalConservativeClipZ). On the leafy forest at night, a point light's six faces and a spot
+// light among the trees, written each way the renderer can (one layered pass from the vertex stage,
+// from a geometry stage, a pass a face): no fragment's written distance lies in front of its
+// rasterised one (without the margin 88 % would), and most bounds lie within 5 m of it. Measured
+// when written: 0 broken; within 5 m 88 % of the fragments from the vertex stage and 99 % from the
+// geometry stage, which bounds each triangle whole; within a metre 33–35 % and 61 %.
+TEST_F(DepthProgramsTest, TheLocalLightsRasterisedDepthIsABoundOfTheDistanceTheyWrite) {
+    const gl::CheckingConservativeDepth checking;
+    GLuint counters = 0;
+    glCreateBuffers(1, &counters);
+    const GLuint zeros[4] = {0, 0, 0, 0};
+    glNamedBufferStorage(counters, sizeof zeros, zeros, GL_DYNAMIC_STORAGE_BIT);
+    scene::ForestOptions options;
+    options.kind = scene::ForestKind::Leafy;
+    options.trees = 200, options.terrainSize = 200, options.terrainResolution = 50;
+    options.rocks = 4, options.buildings = 2, options.movers = 0;
+    const scene::Scene forest = scene::makeForest(options);
+    auto renderer = gl::Renderer::create(forest);
+    ASSERT_TRUE(renderer) << renderer.error();
+    scene::ResolvedView view = gl::testing::standardView(forest, "perpendicular");
+    view.setSize(96, 54);
+    const core::Vec3 wsAhead = view.camera.wsEye + 25.0 * glm::normalize(view.camera.wsDirection);
+    const core::PointLight point{.wsPosition = wsAhead + core::Vec3(0, 6, 0), .range = 40};
+    const core::SpotLight spot{
+        .wsPosition = wsAhead + core::Vec3(8, 14, 0), .wsDirection = {-0.3, -1, 0.2}, .range = 50};
+    auto lighting =
+        core::computeLocalLighting({.camera = view.camera, .wsSceneBounds = forest.wsBounds(), .mapSize = 256},
+                                   std::vector{point}, std::vector{spot});
+    ASSERT_TRUE(lighting) << lighting.error();
+    ASSERT_TRUE((*renderer)->setLocalLights(*lighting));
+    const auto sun = core::computeShadowSetup(
+        {.camera = view.camera, .light = view.light, .wsSceneBounds = forest.wsBounds(), .mapSize = 64});
+    ASSERT_TRUE(sun) << sun.error();
+    for (const gl::LocalPass pass : {gl::LocalPass::VertexLayer, gl::LocalPass::Geometry, gl::LocalPass::PerFace}) {
+        glNamedBufferSubData(counters, 0, sizeof zeros, zeros);
+        glBindBufferBase(GL_ATOMIC_COUNTER_BUFFER, gl::kConservativeDepthCheckBinding, counters);
+        gl::RenderSettings settings;
+        settings.width = 96, settings.height = 54;
+        settings.sun = false; // night: the sun's linear maps would count too
+        settings.localPass = pass;
+        ASSERT_TRUE((*renderer)->render(view.camera, view.light, *sun, settings));
+        GLuint counted[4] = {}; // fragments, promises broken, bounds within 1 m, within 5 m
+        glGetNamedBufferSubData(counters, 0, sizeof counted, counted);
+        const std::string where = gl::localPassName(pass);
+        EXPECT_GT(counted[0], 10000u) << where << ": the lights' depth passes drew";
+        EXPECT_EQ(counted[1], 0u) << where << ": fragments whose written distance lies in front of the rasterised";
+        EXPECT_GT(double(counted[3]), 0.5 * double(counted[0])) << where << ": bounds within 5 m";
+    }
+    glDeleteBuffers(1, &counters);
+}

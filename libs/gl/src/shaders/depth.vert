@@ -68,14 +68,8 @@ void main() {
     gl_Position = clipFromWorld * ws;
 #endif
 #ifdef SK_LINEAR_DEPTH
-    // The edge in the world: grown by the transform's largest stretch, √λ_max(AᵀA) of its linear
-    // part A, bounded by Gershgorin's largest row sum of AᵀA — exact for a rotation with any
-    // scales along its axes, a bound when sheared too (the longest axis alone is not one then).
-    const mat4 m = worldFromObject[skInstanceOf(entry)];
-    const float g01 = abs(dot(m[0].xyz, m[1].xyz)), g02 = abs(dot(m[0].xyz, m[2].xyz)), g12 = abs(dot(m[1].xyz, m[2].xyz));
-    const float stretch = sqrt(max(max(dot(m[0].xyz, m[0].xyz) + g01 + g02, dot(m[1].xyz, m[1].xyz) + g01 + g12),
-                                   dot(m[2].xyz, m[2].xyz) + g02 + g12));
-    gl_Position.z = skConservativeClipZ(clipFromWorld, osLongestEdge * stretch, dot(linearDepthFromWorld, ws), gl_Position.w);
+    const float wsLongestEdge = osLongestEdge * skLargestStretch(worldFromObject[skInstanceOf(entry)]);
+    gl_Position.z = skConservativeClipZ(clipFromWorld, wsLongestEdge, dot(linearDepthFromWorld, ws), gl_Position.w);
 #else
     // The hyperbolic layout's constant bias, in the stored depth's units (2^-24 of [0, 1], as
     // depth.frag adds it for the linear layout), rather than glPolygonOffset's: for a float

@@ -10,6 +10,8 @@ out vec2 vUv;
 layout(std430, binding = SK_INSTANCES_BINDING) readonly buffer Instances { mat4 worldFromObject[]; };
 
 out vec3 wsPosition;
+// The longest edge, in object space, of the mesh's triangles this vertex belongs to (GpuScene).
+layout(location = SK_EDGE_ATTRIBUTE) in float osLongestEdge;
 
 void main() {
     const uint copies = uint(replicas);
@@ -23,5 +25,7 @@ void main() {
     vUv = uv;
 #endif
     gl_Position = faceClipFromWorld[face] * ws;
+    const float wsLongestEdge = osLongestEdge * skLargestStretch(worldFromObject[instance]);
+    gl_Position.z = skLocalConservativeClipZ(distance(ws.xyz, wsLightInvRange.xyz) - wsLongestEdge, gl_Position.w);
     gl_Layer = layerBase + face;
 }

@@ -17,6 +17,16 @@ layout(location = SK_INSTANCE_OFFSET_LOCATION) uniform uint instanceOffset;
 uint skVisibleEntry(uint k) { return visibleInstances[instanceOffset + SK_BASE_INSTANCE + k]; }
 uint skInstanceOf(uint entry) { return entry & 0xFFFFFFu; }
 
+// The most an instance's transform `m` stretches a length: √λ_max(AᵀA) of its linear part A,
+// bounded by Gershgorin's largest row sum of AᵀA — exact for a rotation with any scales along its
+// axes, a bound when sheared too (the longest axis alone is not one then). For the depth passes'
+// bounds (depth_pass.glsl, local_depth.glsl), which take an object-space edge into the world.
+float skLargestStretch(mat4 m) {
+    const float g01 = abs(dot(m[0].xyz, m[1].xyz)), g02 = abs(dot(m[0].xyz, m[2].xyz)), g12 = abs(dot(m[1].xyz, m[2].xyz));
+    return sqrt(max(max(dot(m[0].xyz, m[0].xyz) + g01 + g02, dot(m[1].xyz, m[1].xyz) + g01 + g12),
+                    dot(m[2].xyz, m[2].xyz) + g02 + g12));
+}
+
 #ifdef SK_MATERIAL
 #ifndef SK_CROSSING_OUT // a geometry stage between passes it on under another name (local_depth.geom)
 #define SK_CROSSING_OUT vCrossing
