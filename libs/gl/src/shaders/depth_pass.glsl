@@ -25,10 +25,11 @@ layout(std140, binding = SK_DEPTH_PASS_BINDING) uniform DepthPass {
 //   Σ_i Σ_j λ_i λ_j d_i (a_j − a_i) / Σ λ a = ½ Σ_i Σ_j λ_i λ_j (d_i − d_j)(a_j − a_i) / Σ λ a,
 // at most ½ (1 − Σ λ_i²) · spread(d) · (a_max − a_min) / a_min ≤ ⅓ (w_max / w_min − 1) spread(d), as
 // Σ_{i≠j} λ_i λ_j ≤ ⅔ on a triangle — and at most the spread itself, both weightings being convex.
-// With L the triangle's longest edge, the spread is at most |∇d| L and w_max − w_min at most |∇w| L;
-// so e = |∇d| L · min(1, |∇w| L / (3 w_min)) bounds it, and w_min ≥ w_i − |∇w| L at each vertex. Each vertex
-// takes L as the longest edge of any triangle it belongs to, in any level (`edgeMetres`, GpuScene),
-// so its e_i covers each of its triangles, and so does their mean Σ λ_i e_i. The bound is tight
+// With L the triangle's longest edge, the spread is at most |∇d| L and w_max − w_min at most
+// |∇w| L; so e = |∇d| L · min(1, |∇w| L / (3 w_min)) bounds it, and w_min ≥ w_i − |∇w| L at each
+// vertex. Each vertex takes L as the longest edge of any triangle it belongs to, in any level
+// (`edgeMetres`, GpuScene), so its e_i covers each of its triangles, and so does their mean
+// Σ λ_i e_i. The bound is tight
 // where the warp barely changes w across a triangle (exact where it does not: an orthographic map)
 // and holds across the w = 0 plane too, where it falls back to the whole spread. Under depth
 // clamping both depths are clamped to [0, 1] alike, which keeps their order; polygon offset, which
