@@ -53,8 +53,9 @@ void forEachRunMeeting(std::span<const scene::TriangleCluster> clusters, const c
 }
 
 // Per vertex, the longest edge of the triangles `indices` (every level's) make of it, in object
-// metres, a little long against rounding: the linear depth pass's bound (depth_pass.glsl's
-// skConservativeClipZ). One float a vertex (at least one: a buffer may not be empty).
+// metres, a little long against rounding: the bound of the depth passes that write their depth
+// (depth_pass.glsl's skConservativeClipZ, local_depth.glsl's skLocalConservativeClipZ). One float
+// a vertex (at least one: a buffer may not be empty).
 std::vector<float> longestEdges(std::span<const scene::Vertex> vertices, std::span<const uint32_t> indices) {
     std::vector<float> edges(std::max<size_t>(vertices.size(), 1), 0.0f);
     for (size_t t = 0; t + 2 < indices.size(); t += 3) {

@@ -151,7 +151,8 @@ private:
         // Per level of each chain: its triangles' spatial clusters (empty below kClusterMinTriangles).
         std::vector<std::vector<scene::TriangleCluster>> cameraClusters, shadowClusters;
         // Per vertex, the longest edge of the triangles it belongs to, in every level; again after
-        // each reshape: the linear depth pass's bound (depth.vert's osLongestEdge, kEdgeAttribute).
+        // each reshape: the bound of the depth passes that write their depth (osLongestEdge of
+        // depth.vert and local_depth_layer.vert, kEdgeAttribute).
         Buffer longestEdges;
         std::vector<uint32_t> deformedIndices; // a deformed mesh's `indices`, for its edges in each pose
     };

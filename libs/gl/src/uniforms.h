@@ -99,12 +99,14 @@ inline constexpr int kViewportBaseLocation = 17; // uniform int viewportBase (de
 // uniform uint pagePerDraw (depth.vert, SK_PAGES): where a draw's page is, after pageBase — 0: the
 // call's; 1: the draw's index in the multi-draw; 2: drawPages[the draw's index]
 inline constexpr int kPagePerDrawLocation = 18;
-// Vertex attribute float osLongestEdge (depth.vert, SK_LINEAR_DEPTH), from its own buffer binding:
-// the longest edge of the vertex's triangles, for the rasterised depth's bound (GpuScene).
+// Vertex attribute float osLongestEdge (depth.vert's SK_LINEAR_DEPTH, local_depth_layer.vert), from
+// its own buffer binding: the longest edge of the vertex's triangles, for the rasterised depth's
+// bound of the passes that write their depth (GpuScene).
 inline constexpr unsigned kEdgeAttribute = 4;
 inline constexpr unsigned kEdgeBufferBinding = 1;
 // Atomic counters (GLSL: SK_CONSERVATIVE_DEPTH_CHECK_BINDING), with CheckingConservativeDepth alone:
-// the linear depth pass's fragments and those that broke depth_greater's promise (depth.frag).
+// the fragments of the passes that write their depth, those that broke depth_greater's promise and
+// those whose bound lies within 1 and 5 m (depth.frag, local_depth.frag).
 inline constexpr unsigned kConservativeDepthCheckBinding = 0;
 
 // std140: scalars pack in fours, vec4 and mat4 start on 16 bytes. Booleans are int32.
