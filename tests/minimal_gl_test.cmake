@@ -2,7 +2,8 @@
 # and build the example against the installed package, draw its frame with and without shadows,
 # with PCF and PCSS, in OpenGL's depth convention and as a reversed-Z engine, under Xvfb (or the
 # display there is), and check that the shadows darken the ground and that both conventions draw
-# the same frame.
+# the same frame; then the same at night under a spot and a point lamp (--lamps: the installed
+# shadowkit_local_shadows.glsl).
 #   cmake -DBUILD_DIR=... -DSOURCE_DIR=... -DWORK=... -P minimal_gl_test.cmake
 file(REMOVE_RECURSE "${WORK}")
 execute_process(COMMAND ${CMAKE_COMMAND} --install "${BUILD_DIR}" --prefix "${WORK}/prefix" RESULT_VARIABLE rc OUTPUT_QUIET)
@@ -29,12 +30,18 @@ else()
   return()
 endif()
 # Each frame and its flags: PCF and PCSS, each as an OpenGL program and as a reversed-Z one.
-set(frames shadows no-shadows pcss reversed-z pcss-reversed-z)
+set(frames shadows no-shadows pcss reversed-z pcss-reversed-z lamps lamps-no-shadows lamps-pcss lamps-reversed-z
+           lamps-pcss-reversed-z)
 set(flags_shadows "")
 set(flags_no-shadows --no-shadows)
 set(flags_pcss --pcss)
 set(flags_reversed-z --reversed-z)
 set(flags_pcss-reversed-z --pcss --reversed-z)
+set(flags_lamps --lamps)
+set(flags_lamps-no-shadows --lamps --no-shadows)
+set(flags_lamps-pcss --lamps --pcss)
+set(flags_lamps-reversed-z --lamps --reversed-z)
+set(flags_lamps-pcss-reversed-z --lamps --pcss --reversed-z)
 foreach(frame ${frames})
   execute_process(COMMAND ${launcher} "${WORK}/build/minimal_gl" "${WORK}/${frame}.png" ${flags_${frame}}
                   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
@@ -45,9 +52,13 @@ foreach(frame ${frames})
 endforeach()
 find_program(PYTHON NAMES python3 REQUIRED)
 # Shadows darken the ground, with either filter; a reversed-Z engine draws the same frames; PCSS's
-# frame is not PCF's (its search read the depths: without them it falls back to the hard test).
+# frame is not PCF's (its search read the depths: without them it falls back to the hard test). The
+# lamps alike: their shadows darken the ground, 1 − distance / range draws what distance / range
+# does, and the 70 cm lamps' penumbrae are not the hard test's edges.
 foreach(check "shadows.png;no-shadows.png" "pcss.png;no-shadows.png" "--same;shadows.png;reversed-z.png"
-        "--same;pcss.png;pcss-reversed-z.png" "--differ;shadows.png;pcss.png")
+        "--same;pcss.png;pcss-reversed-z.png" "--differ;shadows.png;pcss.png"
+        "lamps.png;lamps-no-shadows.png" "lamps-pcss.png;lamps-no-shadows.png" "--same;lamps.png;lamps-reversed-z.png"
+        "--same;lamps-pcss.png;lamps-pcss-reversed-z.png" "--differ;lamps.png;lamps-pcss.png")
   set(arguments)
   foreach(a ${check})
     if(a MATCHES "^--")

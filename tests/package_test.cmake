@@ -9,8 +9,8 @@ execute_process(COMMAND ${CMAKE_COMMAND} --install "${BUILD_DIR}" --prefix "${WO
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "install failed")
 endif()
-# The shader half an engine appends: the lookup, and the leaves' lookup that follows it.
-foreach(f shadowkit_shadows.glsl shadowkit_foliage_opacity.glsl)
+# The shader half an engine appends: the lookup, and the leaves' and local lights' lookups after it.
+foreach(f shadowkit_shadows.glsl shadowkit_foliage_opacity.glsl shadowkit_local_shadows.glsl)
   if(NOT EXISTS "${WORK}/prefix/share/shadowkit/glsl/${f}")
     message(FATAL_ERROR "install left out share/shadowkit/glsl/${f}")
   endif()

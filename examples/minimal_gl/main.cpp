@@ -7,15 +7,21 @@
 //     as matrices in OpenGL's conventions (shadowkit/core/engine_camera.h,
 //     output_conventions.h), with the recommended bias (bias.h);
 //   - shadowkit_shadows.glsl, installed with the package: the lookup in the fragment shader.
+// With --lamps the frame is at night, lit by a spot lamp and a point lamp among the pillars:
+// their maps' set-ups from shadowkit::core (local_lights.h), the maps drawn by the program
+// (each texel the distance to the lamp, written per fragment), and their lookups from
+// shadowkit_local_shadows.glsl, appended after the sun's file.
 //
-//   minimal_gl OUT.png [--no-shadows] [--pcss] [--reversed-z]
+//   minimal_gl OUT.png [--no-shadows] [--pcss] [--reversed-z] [--lamps]
 // draws one 640 × 360 frame off screen and writes it. --pcss: soft shadows of a 3° sun (PCSS
 // reads the maps' depths through a second sampler) instead of 2 × 2 PCF. --reversed-z: the
 // program as a reversed-Z engine draws, camera and shadow maps alike — clip depth [0, 1]
 // (glClipControl), the near side stored as 1, GL_GREATER and GL_GEQUAL, the biases' signs turned —
-// with SK_SHADOW_REVERSED_Z defined before the lookup; the picture is the same frame.
+// with SK_SHADOW_REVERSED_Z defined before the lookup; the picture is the same frame. With
+// --lamps, --pcss gives the lamps a 35 cm radius and --reversed-z stores 1 − distance / range.
 #include <shadowkit/core/bias.h>
 #include <shadowkit/core/engine_camera.h>
+#include <shadowkit/core/local_lights.h>
 #include <shadowkit/core/output_conventions.h>
 #include <shadowkit/core/shadow_filter.h>
 
@@ -39,7 +45,7 @@ namespace sk = shadowkit::core;
 
 namespace {
 
-constexpr int kWidth = 640, kHeight = 360, kMapSize = 1024, kCascades = 4;
+constexpr int kWidth = 640, kHeight = 360, kMapSize = 1024, kCascades = 4, kLampMapSize = 1024;
 
 // ---- the program's own meshes: position and normal per vertex, triangles ----
 struct Vertex {
@@ -113,6 +119,18 @@ uniform mat4 clipFromWorld;
 uniform float constantBias; // bias.constant * 2^-24: the constant term in clip space, not glPolygonOffset's
 void main() { gl_Position = clipFromWorld * vec4(position, 1.0); gl_Position.z += constantBias * gl_Position.w; })";
 
+// The lamps' depth pass: the distance to the lamp, mapped as the lookup is told (storedFromDistance).
+const char* kLampDepthVert = R"(#version 450 core
+layout(location = 0) in vec3 position;
+uniform mat4 clipFromWorld;
+out vec3 wsPosition;
+void main() { wsPosition = position; gl_Position = clipFromWorld * vec4(position, 1.0); })";
+const char* kLampDepthFrag = R"(#version 450 core
+in vec3 wsPosition;
+uniform vec3 wsLamp;
+uniform vec2 storedFromDistance;
+void main() { gl_FragDepth = distance(wsPosition, wsLamp) * storedFromDistance.x + storedFromDistance.y; })";
+
 const char* kMainVert = R"(#version 450 core
 layout(location = 0) in vec3 position;
 layout(location = 1) in vec3 normal;
@@ -130,23 +148,62 @@ uniform vec4 splits[4];
 #define SK_SHADOW_TEXTURE_FROM_WORLD(i) textureFromWorld[i]
 #define SK_SHADOW_LINEAR_DEPTH_FROM_WORLD(i) linearDepthFromWorld[i]
 #define SK_SHADOW_SPLIT(i) splits[i].xy
+layout(binding = 2) uniform sampler2DArrayShadow spotMaps; // the lamps' maps, and their distances for PCSS
+layout(binding = 3) uniform sampler2DArray spotDepths;
+layout(binding = 4) uniform samplerCubeArrayShadow pointMaps;
+layout(binding = 5) uniform samplerCubeArray pointDepths;
+#define SK_SPOT_MAPS spotMaps
+#define SK_SPOT_DEPTHS spotDepths
+#define SK_POINT_MAPS pointMaps
+#define SK_POINT_DEPTHS pointDepths
 )";
 const char* kMainFragBody = R"(
 layout(binding = 0) uniform sampler2DArrayShadow shadowMaps;
 uniform int mapCount, linearDepth, shadows, offsetGuard, filterKind;
 uniform float mapTexels, normalOffsetTexels, normalOffsetFootprint, sunTanHalfAngle;
 uniform vec3 wsEye, wsViewForward, wsTowardsSun;
+uniform int lamps;
+uniform vec3 wsSpot, wsSpotAxis, wsPoint;
+uniform float spotCosHalf, lampRange, lampRadius, spotTexelPerMetre, pointTexelPerMetre;
+uniform vec2 storedFromDistance;
+uniform mat4 spotTextureFromWorld;
 in vec3 wsPosition, wsNormal;
 out vec4 color;
+
+// A lamp's light on a receiver: facing it, inverse square, windowed to nothing at the range.
+float lampLight(float intensity, vec3 toLamp, vec3 n) {
+    const float d = length(toLamp), x = d / lampRange;
+    return intensity * max(dot(n, toLamp) / d, 0.0) * clamp(1.0 - x * x, 0.0, 1.0) / max(d * d, 0.25);
+}
+
+// The night frame: the program's own lamps, shadowed by shadowkit's lookups.
+vec3 lampLighting(vec3 n) {
+    const SkLocalShadowOptions o = SkLocalShadowOptions(1.5, 1.0, 0.005, filterKind, 16, 16.0);
+    const vec3 toSpot = wsSpot - wsPosition, toPoint = wsPoint - wsPosition;
+    float spot = dot(-normalize(toSpot), wsSpotAxis) >= spotCosHalf ? lampLight(1500.0, toSpot, n) : 0.0;
+    float point = lampLight(60.0, toPoint, n);
+    if (shadows != 0 && spot > 0.0)
+        spot *= skSpotShadow(SkLocalLight(wsSpot, lampRadius, storedFromDistance, spotTexelPerMetre, 0),
+                             spotTextureFromWorld, o, wsPosition, n);
+    if (shadows != 0 && point > 0.0)
+        point *= skPointShadow(SkLocalLight(wsPoint, lampRadius, storedFromDistance, pointTexelPerMetre, 0), o,
+                               wsPosition, n);
+    return spot * vec3(1.0, 0.85, 0.6) + point * vec3(0.6, 0.8, 1.0);
+}
+
 void main() {
     const vec3 n = normalize(wsNormal);
     const vec3 dx = dFdx(wsPosition), dy = dFdy(wsPosition); // uniform control flow
+    const vec3 albedo = n.y > 0.9 && wsPosition.y < 0.01 ? vec3(0.55, 0.6, 0.45) : vec3(0.7, 0.55, 0.45);
+    if (lamps != 0) {
+        color = vec4(pow(albedo * (0.03 + lampLighting(n)), vec3(1.0 / 2.2)), 1.0);
+        return;
+    }
     const SkShadowOptions o = SkShadowOptions(mapTexels, linearDepth != 0, normalOffsetTexels, false, filterKind, 16, 16.0,
                                               sunTanHalfAngle, normalOffsetFootprint, offsetGuard != 0);
     const float viewDepth = dot(wsPosition - wsEye, wsViewForward);
     const float nDotL = max(dot(n, wsTowardsSun), 0.0);
     const float lit = shadows != 0 && nDotL > 0.0 ? skCascadedShadow(shadowMaps, mapCount, o, viewDepth, wsPosition, n, dx, dy) : 1.0;
-    const vec3 albedo = n.y > 0.9 && wsPosition.y < 0.01 ? vec3(0.55, 0.6, 0.45) : vec3(0.7, 0.55, 0.45);
     color = vec4(pow(albedo * (0.25 + 0.9 * nDotL * lit), vec3(1.0 / 2.2)), 1.0);
 })";
 
@@ -164,7 +221,7 @@ std::string readFile(const char* path) {
 } // namespace
 
 int main(int argc, char** argv) {
-    bool shadows = true, pcss = false, reversedZ = false;
+    bool shadows = true, pcss = false, reversedZ = false, lamps = false;
     for (int i = 2; i < argc; ++i) {
         const std::string flag = argv[i];
         if (flag == "--no-shadows")
@@ -173,11 +230,13 @@ int main(int argc, char** argv) {
             pcss = true;
         else if (flag == "--reversed-z")
             reversedZ = true;
+        else if (flag == "--lamps")
+            lamps = true;
         else
             return std::fprintf(stderr, "minimal_gl: unknown option %s\n", argv[i]), 1;
     }
     if (argc < 2 || argv[1][0] == '-') {
-        std::fprintf(stderr, "usage: minimal_gl OUT.png [--no-shadows] [--pcss] [--reversed-z]\n");
+        std::fprintf(stderr, "usage: minimal_gl OUT.png [--no-shadows] [--pcss] [--reversed-z] [--lamps]\n");
         return 1;
     }
     if (!glfwInit()) return std::fprintf(stderr, "minimal_gl: no display for GLFW\n"), 1;
@@ -223,6 +282,24 @@ int main(int argc, char** argv) {
     std::vector<sk::EngineShadowView> views;
     for (const sk::ShadowView& v : setup->views) views.push_back(sk::toEngineView(v, *setup, conventions));
 
+    // ---- the lamps (--lamps): each map fitted to what the camera sees of the lamp's reach ----
+    sk::SpotLight spot;
+    spot.wsPosition = {-22.0, 10.0, -12.0}; // to the left, its shadows across the view
+    spot.wsDirection = {1.0, -0.5, -0.3};
+    spot.coneDegrees = 60.0;
+    sk::PointLight point;
+    point.wsPosition = {-4.5, 2.5, -4.5}; // low among the nearest pillars
+    spot.range = point.range = 40.0;
+    spot.radius = point.radius = pcss ? 0.35 : 0.0; // PCSS's penumbrae: lamps 70 cm across
+    const sk::LocalShadowInputs lampInputs{in.camera, in.wsSceneBounds, kLampMapSize};
+    const sk::Result<sk::ShadowSetup> spotSetup = sk::computeSpotShadowSetup(lampInputs, spot);
+    if (!spotSetup) return std::fprintf(stderr, "minimal_gl: %s\n", spotSetup.error().c_str()), 1;
+    const sk::Result<sk::ShadowSetup> pointSetup = sk::computePointShadowSetup(lampInputs, point);
+    if (!pointSetup) return std::fprintf(stderr, "minimal_gl: %s\n", pointSetup.error().c_str()), 1;
+    // What a lamp's map stores: distance / range, or 1 − that where the near side is stored as 1.
+    const float lampRange = float(spot.range);
+    const glm::vec2 storedFromDistance(reversedZ ? -1.0f / lampRange : 1.0f / lampRange, reversedZ ? 1.0f : 0.0f);
+
     // ---- GPU objects ----
     const std::vector<Vertex> scene = makeScene();
     GLuint vbo, vao;
@@ -236,15 +313,23 @@ int main(int argc, char** argv) {
                                   a == 0 ? offsetof(Vertex, position) : offsetof(Vertex, normal));
         glVertexArrayAttribBinding(vao, a, 0);
     }
-    GLuint maps, mapTarget;
-    glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &maps);
-    glTextureStorage3D(maps, 1, GL_DEPTH_COMPONENT32F, kMapSize, kMapSize, kCascades);
-    glTextureParameteri(maps, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
-    glTextureParameteri(maps, GL_TEXTURE_COMPARE_FUNC, reversedZ ? GL_GEQUAL : GL_LEQUAL);
-    glTextureParameteri(maps, GL_TEXTURE_MIN_FILTER, GL_LINEAR); // 2 × 2 PCF in hardware
-    glTextureParameteri(maps, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTextureParameteri(maps, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTextureParameteri(maps, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    // Depth maps compared in the sampler, with 2 × 2 PCF in hardware: the sun's cascades, the spot
+    // lamp's map and the point lamp's cube (one cube of a cube-map array).
+    auto makeMaps = [&](GLenum target, int size, int layers) {
+        GLuint t;
+        glCreateTextures(target, 1, &t);
+        glTextureStorage3D(t, 1, GL_DEPTH_COMPONENT32F, size, size, layers);
+        glTextureParameteri(t, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+        glTextureParameteri(t, GL_TEXTURE_COMPARE_FUNC, reversedZ ? GL_GEQUAL : GL_LEQUAL);
+        for (GLenum filter : {GL_TEXTURE_MIN_FILTER, GL_TEXTURE_MAG_FILTER}) glTextureParameteri(t, filter, GL_LINEAR);
+        for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T}) glTextureParameteri(t, wrap, GL_CLAMP_TO_EDGE);
+        return t;
+    };
+    const GLuint maps = makeMaps(GL_TEXTURE_2D_ARRAY, kMapSize, kCascades);
+    const GLuint spotMaps = makeMaps(GL_TEXTURE_2D_ARRAY, kLampMapSize, 1);
+    const GLuint pointMaps = makeMaps(GL_TEXTURE_CUBE_MAP_ARRAY, kLampMapSize, 6);
+    glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS); // filters and PCSS's taps cross the cube's faces
+    GLuint mapTarget;
     GLuint depthsSampler; // PCSS reads the stored depths: the same maps without the comparison
     glCreateSamplers(1, &depthsSampler);
     glSamplerParameteri(depthsSampler, GL_TEXTURE_COMPARE_MODE, GL_NONE);
@@ -263,9 +348,10 @@ int main(int argc, char** argv) {
     glNamedFramebufferTexture(colorTarget, GL_DEPTH_ATTACHMENT, depthTexture, 0);
 
     const GLuint depthProgram = linkProgram(kDepthVert, "#version 450 core\nvoid main() {}\n");
+    const GLuint lampDepthProgram = linkProgram(kLampDepthVert, kLampDepthFrag);
     const std::string reversedDefine = reversedZ ? "#define SK_SHADOW_REVERSED_Z\n" : "";
-    const GLuint mainProgram =
-        linkProgram(kMainVert, kMainFragHead + reversedDefine + readFile(SHADOWKIT_GLSL_FILE) + kMainFragBody);
+    const GLuint mainProgram = linkProgram(kMainVert, kMainFragHead + reversedDefine + readFile(SHADOWKIT_GLSL_FILE) +
+                                                          readFile(SHADOWKIT_LOCAL_GLSL_FILE) + kMainFragBody);
     glBindVertexArray(vao);
     glEnable(GL_DEPTH_TEST);
     if (reversedZ) { // both passes: the near side at 1, nearer wins
@@ -295,10 +381,37 @@ int main(int argc, char** argv) {
     glDisable(GL_POLYGON_OFFSET_FILL);
     glDisable(GL_DEPTH_CLAMP);
 
+    // ---- the lamps' pass: each view of a set-up into its layer (a point lamp's cube face) ----
+    auto drawLampMaps = [&](GLuint texture, int layers, const sk::ShadowSetup& lampSetup) {
+        glUniform3fv(glGetUniformLocation(lampDepthProgram, "wsLamp"), 1,
+                     glm::value_ptr(glm::vec3(lampSetup.wsLightPosition)));
+        glUniform2fv(glGetUniformLocation(lampDepthProgram, "storedFromDistance"), 1,
+                     glm::value_ptr(storedFromDistance));
+        glBindFramebuffer(GL_FRAMEBUFFER, mapTarget);
+        for (int layer = 0; layer < layers; ++layer) { // faces that see nothing of the view stay far: lit
+            glNamedFramebufferTextureLayer(mapTarget, GL_DEPTH_ATTACHMENT, texture, 0, layer);
+            glClear(GL_DEPTH_BUFFER_BIT);
+        }
+        if (lampSetup.depthClamp) glEnable(GL_DEPTH_CLAMP);
+        for (const sk::ShadowView& v : lampSetup.views) {
+            glNamedFramebufferTextureLayer(mapTarget, GL_DEPTH_ATTACHMENT, texture, 0, v.face.value_or(0));
+            glUniformMatrix4fv(glGetUniformLocation(lampDepthProgram, "clipFromWorld"), 1, GL_FALSE,
+                               glm::value_ptr(glm::mat4(sk::toEngineView(v, lampSetup, conventions).clipFromWorld)));
+            glDrawArrays(GL_TRIANGLES, 0, GLsizei(scene.size()));
+        }
+        glDisable(GL_DEPTH_CLAMP);
+    };
+    if (lamps) {
+        glUseProgram(lampDepthProgram);
+        glViewport(0, 0, kLampMapSize, kLampMapSize);
+        drawLampMaps(spotMaps, 1, *spotSetup);
+        drawLampMaps(pointMaps, 6, *pointSetup);
+    }
+
     // ---- camera pass ----
     glBindFramebuffer(GL_FRAMEBUFFER, colorTarget);
     glViewport(0, 0, kWidth, kHeight);
-    glClearColor(0.6f, 0.75f, 0.9f, 1.0f);
+    glClearColor(lamps ? 0.02f : 0.6f, lamps ? 0.03f : 0.75f, lamps ? 0.06f : 0.9f, 1.0f); // night sky with the lamps
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     glUseProgram(mainProgram);
     auto uniform = [&](const char* name) { return glGetUniformLocation(mainProgram, name); };
@@ -323,9 +436,30 @@ int main(int argc, char** argv) {
     glUniform3fv(uniform("wsEye"), 1, glm::value_ptr(glm::vec3(eye)));
     glUniform3fv(uniform("wsViewForward"), 1, glm::value_ptr(glm::vec3(glm::normalize(target - eye))));
     glUniform3fv(uniform("wsTowardsSun"), 1, glm::value_ptr(glm::vec3(-sunTravel)));
-    glBindTextureUnit(0, maps);
-    glBindTextureUnit(1, maps);
-    glBindSampler(1, depthsSampler);
+    const auto texelPerMetre = [](const sk::ShadowSetup& lampSetup) {
+        return lampSetup.views.empty() ? 0.0f : float(sk::texelSizePerMetre(lampSetup.views[0], kLampMapSize));
+    };
+    const glm::mat4 spotTextureFromWorld =
+        spotSetup->views.empty()
+            ? glm::mat4(1.0f)
+            : glm::mat4(sk::toEngineView(spotSetup->views[0], *spotSetup, conventions).textureFromWorld);
+    glUniform1i(uniform("lamps"), lamps);
+    glUniform3fv(uniform("wsSpot"), 1, glm::value_ptr(glm::vec3(spot.wsPosition)));
+    glUniform3fv(uniform("wsSpotAxis"), 1, glm::value_ptr(glm::vec3(glm::normalize(spot.wsDirection))));
+    glUniform3fv(uniform("wsPoint"), 1, glm::value_ptr(glm::vec3(point.wsPosition)));
+    glUniform1f(uniform("spotCosHalf"), float(std::cos(glm::radians(0.5 * spot.coneDegrees))));
+    glUniform1f(uniform("lampRange"), lampRange);
+    glUniform1f(uniform("lampRadius"), float(spot.radius));
+    glUniform1f(uniform("spotTexelPerMetre"), texelPerMetre(*spotSetup));
+    glUniform1f(uniform("pointTexelPerMetre"), texelPerMetre(*pointSetup));
+    glUniform2fv(uniform("storedFromDistance"), 1, glm::value_ptr(storedFromDistance));
+    glUniformMatrix4fv(uniform("spotTextureFromWorld"), 1, GL_FALSE, glm::value_ptr(spotTextureFromWorld));
+    // Each kind of map twice: compared (units 0, 2, 4) and read as depths by PCSS (1, 3, 5).
+    const GLuint unitMaps[6] = {maps, maps, spotMaps, spotMaps, pointMaps, pointMaps};
+    for (GLuint unit = 0; unit < 6; ++unit) {
+        glBindTextureUnit(unit, unitMaps[unit]);
+        if (unit % 2) glBindSampler(unit, depthsSampler);
+    }
     glDrawArrays(GL_TRIANGLES, 0, GLsizei(scene.size()));
 
     // ---- read back and write the picture (rows bottom-up in GL) ----
@@ -334,9 +468,15 @@ int main(int argc, char** argv) {
     stbi_flip_vertically_on_write(1);
     if (!stbi_write_png(argv[1], kWidth, kHeight, 4, pixels.data(), kWidth * 4))
         return std::fprintf(stderr, "minimal_gl: cannot write %s\n", argv[1]), 1;
-    std::printf("minimal_gl: %zu cascades (%s, per-split LiSPSM), %s, %s depth, %zu triangles, wrote %s\n",
-                views.size(), std::string(sk::techniqueName(setup->technique)).c_str(), pcss ? "PCSS" : "2 x 2 PCF",
-                reversedZ ? "reversed-Z" : "OpenGL", scene.size() / 3, argv[1]);
+    if (lamps)
+        std::printf("minimal_gl: at night, a spot lamp (%zu map) and a point lamp (%zu of 6 cube faces), %s, %s depth, "
+                    "%zu triangles, wrote %s\n",
+                    spotSetup->views.size(), pointSetup->views.size(), pcss ? "PCSS" : "2 x 2 PCF",
+                    reversedZ ? "reversed-Z" : "OpenGL", scene.size() / 3, argv[1]);
+    else
+        std::printf("minimal_gl: %zu cascades (%s, per-split LiSPSM), %s, %s depth, %zu triangles, wrote %s\n",
+                    views.size(), std::string(sk::techniqueName(setup->technique)).c_str(), pcss ? "PCSS" : "2 x 2 PCF",
+                    reversedZ ? "reversed-Z" : "OpenGL", scene.size() / 3, argv[1]);
     glfwTerminate();
     return 0;
 }

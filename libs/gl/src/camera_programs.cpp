@@ -47,10 +47,11 @@ core::Status CameraPrograms::build(bool virtualMaps, int pass) {
         const std::string name =
             std::string(kNames[pass]) + (virtualMaps ? ", virtual" : "") + (material ? ", materials" : "");
         const std::string_view withMaterial = kMaterialVariant[material];
-        auto program = buildProgram(name, {withMaterial, kFrameGlsl, kVisibleGlsl, kMainVert},
-                                    {withMaterial, variant, shaded, kFrameGlsl, kMaterialGlsl, kShadowkitShadowsGlsl,
-                                     kShadowkitFoliageOpacityGlsl, kShadowLookupGlsl, kLocalLightsGlsl, kShadeGlsl,
-                                     pass == 0 ? kMainFrag : kEvalFrag});
+        auto program =
+            buildProgram(name, {withMaterial, kFrameGlsl, kVisibleGlsl, kMainVert},
+                         {withMaterial, variant, shaded, kFrameGlsl, kMaterialGlsl, kShadowkitShadowsGlsl,
+                          kShadowkitFoliageOpacityGlsl, kShadowLookupGlsl, kLocalLightMapsGlsl,
+                          kShadowkitLocalShadowsGlsl, kLocalLightsGlsl, kShadeGlsl, pass == 0 ? kMainFrag : kEvalFrag});
         if (!program) return program.errorInfo();
         if (auto s = checkUniformBlock(*program, name, "Frame", sizeof(FrameUniforms), frameFields()); !s) return s;
         if (auto s = checkUniformBlock(*program, name, "LocalLights", sizeof(LocalLightsUniforms), localLightsFields());

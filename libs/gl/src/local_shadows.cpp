@@ -1,6 +1,7 @@
 #include "local_shadows.h"
 
 #include "gl_shaders.h"
+#include "shadowkit/core/output_conventions.h"
 #include "shadowkit/gl/read_backs.h"
 #include "uniforms.h"
 
@@ -205,7 +206,8 @@ void LocalShadowMaps::bind(const core::LocalLighting& lights, const LocalBiasSet
         u.spotRadianceTexel[i] = glm::vec4(radianceOf(l.range), texelOf(lights.spotSetups[i]));
         u.lightRadius[i].y = static_cast<float>(l.radius);
         const core::ShadowSetup& setup = lights.spotSetups[i];
-        if (!setup.views.empty()) u.spotClipFromWorld[i] = glm::mat4(setup.views[0].clipFromWorld);
+        if (!setup.views.empty())
+            u.spotTextureFromWorld[i] = glm::mat4(core::toEngineView(setup.views[0], setup, {}).textureFromWorld);
     }
     u.evalLight = evalLight;
     u.sunLights = sunLights ? 1 : 0;

@@ -130,7 +130,7 @@ std::span<const UniformField> localLightsFields() {
         SK_ARRAY_FIELD(LocalLightsUniforms, spotPositionRange),
         SK_ARRAY_FIELD(LocalLightsUniforms, spotAxisCosHalf),
         SK_ARRAY_FIELD(LocalLightsUniforms, spotRadianceTexel),
-        SK_ARRAY_FIELD(LocalLightsUniforms, spotClipFromWorld),
+        SK_ARRAY_FIELD(LocalLightsUniforms, spotTextureFromWorld),
         SK_FIELD(LocalLightsUniforms, pointCount),
         SK_FIELD(LocalLightsUniforms, spotCount),
         SK_FIELD(LocalLightsUniforms, evalLight),

@@ -178,7 +178,7 @@ struct LocalLightsUniforms {                       // GLSL: LocalLights (local_l
     glm::vec4 spotPositionRange[kMaxLocalLights];
     glm::vec4 spotAxisCosHalf[kMaxLocalLights]; // xyz: unit axis, w: cos(cone / 2)
     glm::vec4 spotRadianceTexel[kMaxLocalLights];
-    glm::mat4 spotClipFromWorld[kMaxLocalLights];
+    glm::mat4 spotTextureFromWorld[kMaxLocalLights];
     int32_t pointCount, spotCount;
     int32_t evalLight;             // eval pass: −1 the sun, else a local light (points first, then spots)
     int32_t sunLights;             // 0: night, the sun neither lights nor is evaluated

@@ -1,9 +1,10 @@
 // The installed GLSL (glsl/, share/shadowkit/glsl) as an engine appends it to a fragment shader of
-// its own: shadowkit_shadows.glsl, and with opacity layers shadowkit_foliage_opacity.glsl after it,
-// whose lookup the first file's skShadowMap and skVirtualShadow call through declarations. The
-// renderer compiles the same two files inside its own programs; these compile them bare, with
-// only the declarations docs/engine-integration.md tells an engine to write, so a dependency the
-// pair gains on the renderer's own shader code, or an order that stops working, fails here.
+// its own: shadowkit_shadows.glsl, and after it shadowkit_foliage_opacity.glsl with opacity layers
+// (whose lookup the first file's skShadowMap and skVirtualShadow call through declarations) and
+// shadowkit_local_shadows.glsl for spot and point lights. The renderer compiles the same files
+// inside its own programs; these compile them bare, with only the declarations
+// docs/engine-integration.md tells an engine to write, so a dependency the files gain on the
+// renderer's own shader code, or an order that stops working, fails here.
 #include "engine_declarations.h"
 #include "headless_gl_test.h"
 
@@ -146,4 +147,79 @@ TEST_F(InstalledGlslTest, WithReversedZEveryLookupCompiles) {
                                               {kReversed, kVirtualLevels, kVirtualTableOrigins, kOpacityDeclarations,
                                                kShadowkitShadowsGlsl, kShadowkitFoliageOpacityGlsl, kVirtualShading});
     EXPECT_TRUE(virtualMaps) << virtualMaps.error();
+}
+
+namespace {
+
+// An engine's spot and point lights (docs/engine-integration.md, "Spot and point lights"): its
+// maps named through the local file's accessors, either kind alone or both.
+constexpr std::string_view kSpotMaps = R"glsl(
+layout(binding = 4) uniform sampler2DArrayShadow mySpotMaps;
+layout(binding = 5) uniform sampler2DArray mySpotDepths;
+#define SK_SPOT_MAPS mySpotMaps
+#define SK_SPOT_DEPTHS mySpotDepths
+)glsl";
+constexpr std::string_view kPointMaps = R"glsl(
+layout(binding = 6) uniform samplerCubeArrayShadow myPointMaps;
+#define SK_POINT_MAPS myPointMaps
+)glsl";
+
+constexpr std::string_view kLocalOptions = R"glsl(
+out vec4 colour;
+uniform mat4 mySpotTextureFromWorld;
+const SkLocalShadowOptions kOptions = SkLocalShadowOptions(1.5, 1.0, 0.005, SK_FILTER_PCSS, 16, 16.0);
+SkLocalLight myLight(int layer) { return SkLocalLight(vec3(0.0, 5.0, 0.0), 0.05, vec2(1.0 / 30.0, 0.0), 0.002, layer); }
+)glsl";
+constexpr std::string_view kSpotShading = R"glsl(
+void main() {
+    colour = vec4(vec3(skSpotShadow(myLight(0), mySpotTextureFromWorld, kOptions, gl_FragCoord.xyz, vec3(0, 1, 0))), 1.0);
+}
+)glsl";
+constexpr std::string_view kPointShading = R"glsl(
+void main() { colour = vec4(vec3(skPointShadow(myLight(0), kOptions, gl_FragCoord.xyz, vec3(0, 1, 0))), 1.0); }
+)glsl";
+constexpr std::string_view kBothShading = R"glsl(
+void main() {
+    const vec3 ws = gl_FragCoord.xyz, n = vec3(0.0, 1.0, 0.0);
+    colour = vec4(vec3(skSpotShadow(myLight(0), mySpotTextureFromWorld, kOptions, ws, n) *
+                       skPointShadow(myLight(1), kOptions, ws, n)), 1.0);
+}
+)glsl";
+
+} // namespace
+
+// The renderer compiles the local file between its own declarations and lighting; bare, it needs
+// only the sun's file before it and the maps an engine names: spot lights alone, point lights alone
+// (without their depths: PCSS falls back to the hard test), or both.
+TEST_F(InstalledGlslTest, TheLocalLightsLookupCompilesForSpotsAloneForPointsAloneAndForBoth) {
+    using namespace gl::shaders;
+    const auto spots =
+        gl::buildProgram("engine shader, spot lights", {kVertex},
+                         {kSpotMaps, kShadowkitShadowsGlsl, kShadowkitLocalShadowsGlsl, kLocalOptions, kSpotShading});
+    EXPECT_TRUE(spots) << spots.error();
+    const auto points =
+        gl::buildProgram("engine shader, point lights", {kVertex},
+                         {kPointMaps, kShadowkitShadowsGlsl, kShadowkitLocalShadowsGlsl, kLocalOptions, kPointShading});
+    EXPECT_TRUE(points) << points.error();
+    const auto both =
+        gl::buildProgram("engine shader, spot and point lights, reversed-Z sun", {kVertex},
+                         {"#define SK_SHADOW_REVERSED_Z\n", kSpotMaps, kPointMaps, gl::testing::kEngineDeclarations,
+                          kShadowkitShadowsGlsl, kShadowkitLocalShadowsGlsl, kLocalOptions, kBothShading});
+    EXPECT_TRUE(both) << both.error();
+    // A kind whose maps were not named has no lookup: never a silently unshadowed light.
+    const auto unnamed =
+        gl::buildProgram("engine shader, point lookup without point maps", {kVertex},
+                         {kSpotMaps, kShadowkitShadowsGlsl, kShadowkitLocalShadowsGlsl, kLocalOptions, kPointShading});
+    EXPECT_FALSE(unnamed);
+}
+
+TEST_F(InstalledGlslTest, TheLocalLightsFileBeforeTheLookupIsRefusedNamingTheOrder) {
+    using namespace gl::shaders;
+    const auto program =
+        gl::buildProgram("engine shader, local file first", {kVertex},
+                         {kSpotMaps, kShadowkitLocalShadowsGlsl, kShadowkitShadowsGlsl, kLocalOptions, kSpotShading});
+    ASSERT_FALSE(program);
+    EXPECT_NE(program.error().find("shadowkit_local_shadows.glsl: append it after shadowkit_shadows.glsl"),
+              std::string::npos)
+        << program.error();
 }
