@@ -1,5 +1,7 @@
 #include "program.h"
 
+#include "gl_shaders.h"
+
 #include <algorithm>
 #include <string>
 #include <vector>
@@ -31,10 +33,11 @@ core::Result<Shader> compile(GLenum stage, std::initializer_list<std::string_vie
         texts.push_back(kDrawParameters.data());
         lengths.push_back(static_cast<GLint>(kDrawParameters.size()));
     }
-    static constexpr std::string_view kCheck = "#define SK_CHECK_CONSERVATIVE_DEPTH 1\n#line 1\n";
-    if (g_checkingConservativeDepth > 0) {
-        texts.push_back(kCheck.data());
-        lengths.push_back(static_cast<GLint>(kCheck.size()));
+    // The depth passes' counters and their count, before the fragment stage's sources (whose lines
+    // it numbers from 1 again).
+    if (stage == GL_FRAGMENT_SHADER && g_checkingConservativeDepth > 0) {
+        texts.push_back(shaders::kConservativeDepthCheckGlsl.data());
+        lengths.push_back(static_cast<GLint>(shaders::kConservativeDepthCheckGlsl.size()));
     }
     for (std::string_view s : sources) {
         texts.push_back(s.data());

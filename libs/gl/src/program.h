@@ -44,9 +44,9 @@ public:
     WithoutDrawParameters(const WithoutDrawParameters&) = delete;
     WithoutDrawParameters& operator=(const WithoutDrawParameters&) = delete;
 };
-// While one lives, programs are built with SK_CHECK_CONSERVATIVE_DEPTH defined: the depth passes
-// that write their depth (the sun's linear layout, depth.frag; the local lights', local_depth.frag)
-// count, in the atomic counters at kConservativeDepthCheckBinding, their fragments and those whose
+// While one lives, fragment stages are built with conservative_depth_check.glsl before them: the
+// depth passes that write their depth (the sun's linear layout, depth.frag; the local lights',
+// local_depth.frag) count, in the atomic counters at kConservativeDepthCheckBinding, their fragments and those whose
 // written depth lies in front of the rasterised one — a broken layout(depth_greater) promise, which
 // a GPU's early depth test would turn into holes in the map — and how close the bound is. For tests.
 class CheckingConservativeDepth {

@@ -15,12 +15,6 @@ in vec3 wsPosition;
 // lower bound: skConservativeClipZ), so the GL may test the rasterised depth early and reject a
 // covered fragment before it is shaded; without the promise any depth write turns those tests off.
 layout(depth_greater) out float gl_FragDepth;
-#ifdef SK_CHECK_CONSERVATIVE_DEPTH // tests (program.h's CheckingConservativeDepth)
-layout(binding = SK_CONSERVATIVE_DEPTH_CHECK_BINDING, offset = 0) uniform atomic_uint skCheckedFragments;
-layout(binding = SK_CONSERVATIVE_DEPTH_CHECK_BINDING, offset = 4) uniform atomic_uint skBrokenPromises;
-layout(binding = SK_CONSERVATIVE_DEPTH_CHECK_BINDING, offset = 8) uniform atomic_uint skWithinAMetre;
-layout(binding = SK_CONSERVATIVE_DEPTH_CHECK_BINDING, offset = 12) uniform atomic_uint skWithinFiveMetres;
-#endif
 #endif
 
 void main() {
@@ -29,16 +23,8 @@ void main() {
     const float d = dot(linearDepthFromWorld, vec4(wsPosition, 1.0));
     const float slope = max(abs(dFdx(d)), abs(dFdy(d))); // glPolygonOffset's "m"
     gl_FragDepth = d + slopeBias * slope + constantBias;
-#ifdef SK_CHECK_CONSERVATIVE_DEPTH
-    // Both as the depth test sees them: clamped to [0, 1] under depth clamping. A promise broken by
-    // more than a few ulps is a bug; a bound within m metres of the written depth lets the early
-    // test reject a fragment more than m metres behind a stored caster (the bound's use).
-    const float written = clamp(gl_FragDepth, 0.0, 1.0), rasterised = clamp(gl_FragCoord.z, 0.0, 1.0);
-    const float metres = (written - rasterised) / length(linearDepthFromWorld.xyz);
-    atomicCounterIncrement(skCheckedFragments);
-    if (rasterised > written + 1e-6) atomicCounterIncrement(skBrokenPromises);
-    if (metres <= 1.0) atomicCounterIncrement(skWithinAMetre);
-    if (metres <= 5.0) atomicCounterIncrement(skWithinFiveMetres);
+#ifdef SK_CHECK_CONSERVATIVE_DEPTH // tests: conservative_depth_check.glsl
+    skCountConservativeDepth(gl_FragDepth, gl_FragCoord.z, 1.0 / length(linearDepthFromWorld.xyz));
 #endif
 #endif
     SK_DISCARD_UNCOVERED(baseColor);
