@@ -166,6 +166,7 @@ uniform int lamps;
 uniform vec3 wsSpot, wsSpotAxis, wsPoint;
 uniform float spotCosHalf, lampRange, lampRadius, spotTexelPerMetre, pointTexelPerMetre;
 uniform vec2 storedFromDistance;
+uniform vec3 lampBias; // core::LocalBias: slope and normal offset in texels, constant in metres
 uniform mat4 spotTextureFromWorld;
 in vec3 wsPosition, wsNormal;
 out vec4 color;
@@ -178,7 +179,7 @@ float lampLight(float intensity, vec3 toLamp, vec3 n) {
 
 // The night frame: the program's own lamps, shadowed by shadowkit's lookups.
 vec3 lampLighting(vec3 n) {
-    const SkLocalShadowOptions o = SkLocalShadowOptions(1.5, 1.0, 0.005, filterKind, 16, 16.0);
+    const SkLocalShadowOptions o = SkLocalShadowOptions(lampBias.x, lampBias.y, lampBias.z, filterKind, 16, 16.0);
     const vec3 toSpot = wsSpot - wsPosition, toPoint = wsPoint - wsPosition;
     float spot = dot(-normalize(toSpot), wsSpotAxis) >= spotCosHalf ? lampLight(1500.0, toSpot, n) : 0.0;
     float point = lampLight(60.0, toPoint, n);
@@ -298,7 +299,8 @@ int main(int argc, char** argv) {
     if (!pointSetup) return std::fprintf(stderr, "minimal_gl: %s\n", pointSetup.error().c_str()), 1;
     // What a lamp's map stores: distance / range, or 1 − that where the near side is stored as 1.
     const float lampRange = float(spot.range);
-    const glm::vec2 storedFromDistance(reversedZ ? -1.0f / lampRange : 1.0f / lampRange, reversedZ ? 1.0f : 0.0f);
+    const glm::vec2 storedFromDistance(sk::storedFromDistance(spot.range, reversedZ));
+    const sk::LocalBias lampBias; // the lookup's biases, in texels at the receiver's distance and metres
 
     // ---- GPU objects ----
     const std::vector<Vertex> scene = makeScene();
@@ -453,6 +455,8 @@ int main(int argc, char** argv) {
     glUniform1f(uniform("spotTexelPerMetre"), texelPerMetre(*spotSetup));
     glUniform1f(uniform("pointTexelPerMetre"), texelPerMetre(*pointSetup));
     glUniform2fv(uniform("storedFromDistance"), 1, glm::value_ptr(storedFromDistance));
+    glUniform3f(uniform("lampBias"), float(lampBias.slopeTexels), float(lampBias.normalOffsetTexels),
+                float(lampBias.constantMetres));
     glUniformMatrix4fv(uniform("spotTextureFromWorld"), 1, GL_FALSE, glm::value_ptr(spotTextureFromWorld));
     // Each kind of map twice: compared (units 0, 2, 4) and read as depths by PCSS (1, 3, 5).
     const GLuint unitMaps[6] = {maps, maps, spotMaps, spotMaps, pointMaps, pointMaps};

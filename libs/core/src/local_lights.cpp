@@ -271,4 +271,18 @@ Result<ShadowSetup> computePointShadowSetup(const LocalShadowInputs& in, const P
     return setup;
 }
 
+Status validate(const LocalBias& b) {
+    if (!(b.slopeTexels >= 0.0 && b.slopeTexels <= 16.0))
+        return fieldError("local_bias.slope", "must be in [0, 16] texels");
+    if (!(b.normalOffsetTexels >= 0.0 && b.normalOffsetTexels <= 16.0))
+        return fieldError("local_bias.normal_offset", "must be in [0, 16] texels");
+    if (!(b.constantMetres >= 0.0 && b.constantMetres <= 1.0))
+        return fieldError("local_bias.constant", "must be in [0, 1] metres");
+    return Ok{};
+}
+
+Vec2 storedFromDistance(double range, bool reversedZ) {
+    return reversedZ ? Vec2(-1.0 / range, 1.0) : Vec2(1.0 / range, 0.0);
+}
+
 } // namespace shadowkit::core

@@ -4,6 +4,7 @@
 #include "shadowkit/core/bias.h"
 #include "shadowkit/core/engine_camera.h"
 #include "shadowkit/core/light_size.h"
+#include "shadowkit/core/local_lights.h"
 #include "shadowkit/core/output_conventions.h"
 #include "shadowkit/core/version.h"
 
@@ -54,6 +55,45 @@ Result<PerspectiveCamera> toCamera(const shadowkit_camera& c) {
     engine.handedness = c.left_handed ? ViewHandedness::LeftHanded : ViewHandedness::RightHanded;
     if (c.shadow_distance > 0.0) engine.shadowDistance = c.shadow_distance;
     return cameraFromMatrices(engine);
+}
+
+OutputConventions toConventions(int clipDepth, int reversedZ, int textureOrigin) {
+    return {clipDepth == SHADOWKIT_CLIP_DEPTH_MINUS_ONE_TO_ONE ? ClipDepthRange::MinusOneToOne
+                                                               : ClipDepthRange::ZeroToOne,
+            reversedZ != 0,
+            textureOrigin == SHADOWKIT_TEXTURE_ORIGIN_TOP_LEFT ? TextureOrigin::TopLeft : TextureOrigin::BottomLeft};
+}
+
+SpotLight toSpot(const shadowkit_local_inputs& in) {
+    SpotLight spot;
+    spot.wsPosition = toVec3(in.position);
+    spot.wsDirection = toVec3(in.direction);
+    spot.coneDegrees = in.cone_degrees;
+    spot.range = in.range;
+    spot.radius = in.radius;
+    return spot;
+}
+PointLight toPoint(const shadowkit_local_inputs& in) {
+    PointLight point;
+    point.wsPosition = toVec3(in.position);
+    point.range = in.range;
+    point.radius = in.radius;
+    return point;
+}
+
+void store(const EngineShadowView& view, shadowkit_view& o) {
+    store(view.clipFromWorld, o.clip_from_world);
+    store(view.textureFromWorld, o.texture_from_world);
+    for (int k = 0; k < 4; ++k) o.linear_depth_from_world[k] = view.linearDepthFromWorld[k];
+    store(view.clipFromEyeRelative, o.clip_from_eye_relative);
+    store(view.textureFromEyeRelative, o.texture_from_eye_relative);
+    for (int k = 0; k < 4; ++k) o.linear_depth_from_eye_relative[k] = view.linearDepthFromEyeRelative[k];
+    o.culling_plane_count = static_cast<int>(view.wsCullingPlanes.size());
+    for (size_t p = 0; p < view.wsCullingPlanes.size(); ++p) {
+        store(view.wsCullingPlanes[p].normal, o.culling_planes[p]);
+        o.culling_planes[p][3] = view.wsCullingPlanes[p].d;
+    }
+    if (view.split) o.split_near = view.split->x, o.split_far = view.split->y;
 }
 
 } // namespace
@@ -119,39 +159,81 @@ int shadowkit_compute_setup(const shadowkit_inputs* in, shadowkit_setup* out, ch
         return 1;
     }
 
-    const OutputConventions conventions{
-        in->clip_depth == SHADOWKIT_CLIP_DEPTH_MINUS_ONE_TO_ONE ? ClipDepthRange::MinusOneToOne
-                                                                : ClipDepthRange::ZeroToOne,
-        in->reversed_z != 0,
-        in->texture_origin == SHADOWKIT_TEXTURE_ORIGIN_TOP_LEFT ? TextureOrigin::TopLeft : TextureOrigin::BottomLeft};
+    const OutputConventions conventions = toConventions(in->clip_depth, in->reversed_z, in->texture_origin);
     *out = shadowkit_setup{};
     out->technique = static_cast<int>(setup->technique);
     out->map_size = setup->mapSize;
     out->depth_layout = setup->depthLayout == DepthLayout::Linear ? SHADOWKIT_DEPTH_LINEAR : SHADOWKIT_DEPTH_HYPERBOLIC;
     out->depth_clamp = setup->depthClamp;
     out->view_count = static_cast<int>(setup->views.size());
-    for (size_t i = 0; i < setup->views.size(); ++i) {
-        const EngineShadowView view = toEngineView(setup->views[i], *setup, conventions);
-        shadowkit_view& o = out->views[i];
-        store(view.clipFromWorld, o.clip_from_world);
-        store(view.textureFromWorld, o.texture_from_world);
-        for (int k = 0; k < 4; ++k) o.linear_depth_from_world[k] = view.linearDepthFromWorld[k];
-        store(view.clipFromEyeRelative, o.clip_from_eye_relative);
-        store(view.textureFromEyeRelative, o.texture_from_eye_relative);
-        for (int k = 0; k < 4; ++k) o.linear_depth_from_eye_relative[k] = view.linearDepthFromEyeRelative[k];
-        o.culling_plane_count = static_cast<int>(view.wsCullingPlanes.size());
-        for (size_t p = 0; p < view.wsCullingPlanes.size(); ++p) {
-            store(view.wsCullingPlanes[p].normal, o.culling_planes[p]);
-            o.culling_planes[p][3] = view.wsCullingPlanes[p].d;
-        }
-        if (view.split) o.split_near = view.split->x, o.split_far = view.split->y;
-    }
+    for (size_t i = 0; i < setup->views.size(); ++i)
+        store(toEngineView(setup->views[i], *setup, conventions), out->views[i]);
     const BiasSettings bias = recommendedBias(setup->technique, setup->depthLayout);
     out->bias = {bias.slope,      bias.constant, bias.normalOffset, bias.receiverPlane, bias.normalOffsetFootprint,
                  bias.offsetGuard};
     store(setup->wsEye, out->eye_relative_origin);
     out->fallback_count = static_cast<int>(setup->fallbacks.size());
     out->light_tan_half_angle = tanAngularRadius(in->sun_angle_degrees);
+    return 0;
+}
+
+void shadowkit_default_local_inputs(shadowkit_local_inputs* in) {
+    *in = shadowkit_local_inputs{};
+    shadowkit_inputs sun;
+    shadowkit_default_inputs(&sun);
+    in->camera = sun.camera;
+    const SpotLight spot;
+    const LocalShadowInputs defaults;
+    in->map_size = defaults.mapSize;
+    in->kind = SHADOWKIT_LIGHT_SPOT;
+    store(spot.wsPosition, in->position);
+    store(spot.wsDirection, in->direction);
+    in->cone_degrees = spot.coneDegrees;
+    in->range = spot.range;
+    in->radius = spot.radius;
+}
+
+int shadowkit_compute_local_setup(const shadowkit_local_inputs* in, shadowkit_local_setup* out, char* error,
+                                  size_t errorSize) {
+    if (!in || !out) {
+        writeError("shadowkit_compute_local_setup: inputs and out must not be null", error, errorSize);
+        return 1;
+    }
+    if (in->kind != SHADOWKIT_LIGHT_SPOT && in->kind != SHADOWKIT_LIGHT_POINT) {
+        writeError("kind: must be SHADOWKIT_LIGHT_SPOT (0) or SHADOWKIT_LIGHT_POINT (1)", error, errorSize);
+        return 1;
+    }
+    Result<PerspectiveCamera> camera = toCamera(in->camera);
+    if (!camera) {
+        writeError(camera.error(), error, errorSize);
+        return 1;
+    }
+    const LocalShadowInputs inputs{*camera, Aabb::fromMinMax(toVec3(in->scene_min), toVec3(in->scene_max)),
+                                   in->map_size};
+    const Result<ShadowSetup> setup = in->kind == SHADOWKIT_LIGHT_SPOT ? computeSpotShadowSetup(inputs, toSpot(*in))
+                                                                       : computePointShadowSetup(inputs, toPoint(*in));
+    if (!setup) {
+        writeError(setup.error(), error, errorSize);
+        return 1;
+    }
+
+    const OutputConventions conventions = toConventions(in->clip_depth, in->reversed_z, in->texture_origin);
+    *out = shadowkit_local_setup{};
+    out->kind = in->kind;
+    out->map_size = setup->mapSize;
+    out->depth_clamp = setup->depthClamp;
+    out->view_count = static_cast<int>(setup->views.size());
+    for (size_t i = 0; i < setup->views.size(); ++i) {
+        store(toEngineView(setup->views[i], *setup, conventions), out->views[i]);
+        out->faces[i] = setup->views[i].face.value_or(0);
+    }
+    store(setup->wsLightPosition, out->light_position);
+    const Vec2 mapping = storedFromDistance(in->range, conventions.reversedZ);
+    out->stored_from_distance[0] = mapping.x, out->stored_from_distance[1] = mapping.y;
+    out->texel_per_metre = setup->views.empty() ? 0.0 : texelSizePerMetre(setup->views[0], setup->mapSize);
+    out->radius = in->radius;
+    const LocalBias bias;
+    out->bias = {bias.slopeTexels, bias.normalOffsetTexels, bias.constantMetres};
     return 0;
 }
 

@@ -1,4 +1,4 @@
-/* The C API from C: default inputs, one set-up, a bad input named, the version. */
+/* The C API from C: default inputs, one set-up, a bad input named, a point light's cube, the version. */
 #include "shadowkit/shadowkit_c.h"
 
 #include <math.h>
@@ -8,6 +8,8 @@
 int main(void) {
     shadowkit_inputs in;
     shadowkit_setup out;
+    shadowkit_local_inputs lamp;
+    shadowkit_local_setup cube;
     char error[256];
     int i;
     shadowkit_default_inputs(&in);
@@ -27,7 +29,24 @@ int main(void) {
 
     in.map_size = 3; /* below the smallest map: refused, with the input named */
     if (shadowkit_compute_setup(&in, &out, error, sizeof error) == 0 || strstr(error, "map_size") == NULL) return 4;
-    printf("shadowkit %s from C: %d cascades, refused map_size 3 with \"%s\"\n", shadowkit_version_string(),
-           in.cascade_count, error);
+
+    /* A point lamp in front of the camera: the faces that see the view, each with its cube face. */
+    shadowkit_default_local_inputs(&lamp);
+    lamp.camera = in.camera;
+    memcpy(lamp.scene_min, in.scene_min, sizeof lamp.scene_min);
+    memcpy(lamp.scene_max, in.scene_max, sizeof lamp.scene_max);
+    lamp.kind = SHADOWKIT_LIGHT_POINT;
+    lamp.position[0] = in.camera.eye[0] + 10.0 * in.camera.direction[0];
+    lamp.position[1] = 3.0;
+    lamp.position[2] = in.camera.eye[2] + 10.0 * in.camera.direction[2];
+    if (shadowkit_compute_local_setup(&lamp, &cube, error, sizeof error) != 0) {
+        fprintf(stderr, "c_api_smoke: %s\n", error);
+        return 5;
+    }
+    if (cube.view_count < 1 || cube.view_count > 6 || !(cube.stored_from_distance[0] > 0.0)) return 6;
+    for (i = 0; i < cube.view_count; ++i)
+        if (cube.faces[i] < 0 || cube.faces[i] > 5) return 7;
+    printf("shadowkit %s from C: %d cascades, refused map_size 3 with \"%s\", a point lamp in %d cube faces\n",
+           shadowkit_version_string(), in.cascade_count, error, cube.view_count);
     return 0;
 }

@@ -1,9 +1,11 @@
-// The C API gives what the C++ API gives for the same inputs, value for value.
+// The C API gives what the C++ API gives for the same inputs, value for value: the sun's set-ups and
+// the local lights'.
 #include "shadowkit/shadowkit_c.h"
 
 #include "shadowkit/core/bias.h"
 #include "shadowkit/core/engine_camera.h"
 #include "shadowkit/core/light_size.h"
+#include "shadowkit/core/local_lights.h"
 #include "shadowkit/core/output_conventions.h"
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -142,5 +144,120 @@ TEST(CApiTest, BadInputGivesTheCppMessageAndLeavesTheOutputAlone) {
         ASSERT_NE(shadowkit_compute_setup(&in, &out, error, sizeof error), 0) << angle;
         EXPECT_EQ(std::string(error), "sun_angle_degrees: must be in [0, 20] degrees (the sun: 0.53)");
     }
+    EXPECT_EQ(out.view_count, -7);
+}
+
+namespace {
+
+// A camera 5 m up looking north and down at a 100 m box: the lights below stand in its view.
+shadowkit_local_inputs localInputs(int kind) {
+    shadowkit_local_inputs in;
+    shadowkit_default_local_inputs(&in);
+    in.camera.use_matrices = 0;
+    copy(Vec3(0, 5, 0), in.camera.eye);
+    copy(Vec3(0, -0.5, 1), in.camera.direction);
+    copy(Vec3(-50, 0, -50), in.scene_min);
+    copy(Vec3(50, 10, 50), in.scene_max);
+    in.kind = kind;
+    copy(kind == SHADOWKIT_LIGHT_SPOT ? Vec3(0, 8, 15) : Vec3(0, 3, 12), in.position);
+    copy(Vec3(0, -1, 0), in.direction);
+    in.cone_degrees = 60.0;
+    in.range = 25.0;
+    in.radius = 0.05;
+    return in;
+}
+
+} // namespace
+
+// The local lights' set-ups through C: the C++ set-up's views in the asked conventions, each
+// point-light view with its own cube face, and what the installed lookup needs beside them —
+// the distance mapping the depth pass writes, a texel's size per metre, the recommended biases.
+TEST(CApiTest, LocalLightsGiveTheCppViewsAndWhatTheLookupNeeds) {
+    char error[256];
+    for (const int kind : {SHADOWKIT_LIGHT_SPOT, SHADOWKIT_LIGHT_POINT})
+        for (const int reversed : {0, 1}) {
+            SCOPED_TRACE(std::string(kind == SHADOWKIT_LIGHT_SPOT ? "spot" : "point") +
+                         (reversed ? ", reversed-Z" : ""));
+            shadowkit_local_inputs in = localInputs(kind);
+            in.reversed_z = reversed;
+            in.clip_depth = SHADOWKIT_CLIP_DEPTH_MINUS_ONE_TO_ONE;
+            shadowkit_local_setup out;
+            ASSERT_EQ(shadowkit_compute_local_setup(&in, &out, error, sizeof error), 0) << error;
+
+            PerspectiveCamera camera;
+            camera.wsEye = Vec3(0, 5, 0);
+            camera.wsDirection = Vec3(0, -0.5, 1);
+            const LocalShadowInputs inputs{camera, Aabb::fromMinMax(Vec3(-50, 0, -50), Vec3(50, 10, 50)), 1024};
+            const Vec3 wsLight(in.position[0], in.position[1], in.position[2]);
+            SpotLight spot;
+            spot.wsPosition = wsLight, spot.coneDegrees = 60.0, spot.range = 25.0, spot.radius = 0.05;
+            PointLight point;
+            point.wsPosition = wsLight, point.range = 25.0, point.radius = 0.05;
+            const Result<ShadowSetup> cpp = kind == SHADOWKIT_LIGHT_SPOT ? computeSpotShadowSetup(inputs, spot)
+                                                                         : computePointShadowSetup(inputs, point);
+            ASSERT_TRUE(cpp) << cpp.error();
+            const OutputConventions conventions{ClipDepthRange::MinusOneToOne, reversed != 0};
+            ASSERT_EQ(out.view_count, static_cast<int>(cpp->views.size()));
+            // A point light inside the view frustum skips no face: the frustum surrounds it.
+            EXPECT_EQ(out.view_count, kind == SHADOWKIT_LIGHT_SPOT ? 1 : 6);
+            int facesSeen = 0;
+            for (int i = 0; i < out.view_count; ++i) {
+                const EngineShadowView view = toEngineView(cpp->views[static_cast<size_t>(i)], *cpp, conventions);
+                expectEqual(view.clipFromWorld, out.views[i].clip_from_world, "clip_from_world");
+                expectEqual(view.textureFromWorld, out.views[i].texture_from_world, "texture_from_world");
+                EXPECT_EQ(out.faces[i], cpp->views[static_cast<size_t>(i)].face.value_or(0));
+                facesSeen |= 1 << out.faces[i];
+            }
+            if (kind == SHADOWKIT_LIGHT_POINT) EXPECT_EQ(facesSeen, 0x3f) << "each cube face once";
+            EXPECT_EQ(out.depth_clamp, cpp->depthClamp);
+            EXPECT_EQ(out.light_position[1], wsLight.y);
+            EXPECT_EQ(out.radius, 0.05);
+
+            // The spot's map sees the ground under it: (u, v) of the point below the lamp inside.
+            if (kind == SHADOWKIT_LIGHT_SPOT) {
+                Mat4 textureFromWorld;
+                std::memcpy(&textureFromWorld[0][0], out.views[0].texture_from_world, sizeof textureFromWorld);
+                const Vec4 t = textureFromWorld * Vec4(0, 0, 15, 1);
+                for (const double uv : {t.x / t.w, t.y / t.w}) {
+                    EXPECT_GT(uv, 0.0);
+                    EXPECT_LT(uv, 1.0);
+                }
+            } else {
+                EXPECT_NEAR(out.texel_per_metre, 2.0 / 1024.0, 1e-12) << "a 90° face's texel per metre";
+            }
+            // Stored = distance · x + y: the light's own point stores its near side, its range the far.
+            const double atLight = out.stored_from_distance[1];
+            const double atRange = 25.0 * out.stored_from_distance[0] + out.stored_from_distance[1];
+            EXPECT_NEAR(atLight, reversed ? 1.0 : 0.0, 1e-15);
+            EXPECT_NEAR(atRange, reversed ? 0.0 : 1.0, 1e-15);
+            EXPECT_EQ(out.texel_per_metre, texelSizePerMetre(cpp->views[0], 1024));
+            const LocalBias bias;
+            EXPECT_EQ(out.bias.slope_texels, bias.slopeTexels);
+            EXPECT_EQ(out.bias.normal_offset_texels, bias.normalOffsetTexels);
+            EXPECT_EQ(out.bias.constant_metres, bias.constantMetres);
+        }
+}
+
+TEST(CApiTest, BadLocalInputNamesTheInputAndLeavesTheOutputAlone) {
+    shadowkit_local_setup out;
+    out.view_count = -7;
+    char error[256];
+    auto refused = [&](const shadowkit_local_inputs& in) {
+        EXPECT_NE(shadowkit_compute_local_setup(&in, &out, error, sizeof error), 0);
+        return std::string(error);
+    };
+    shadowkit_local_inputs in = localInputs(SHADOWKIT_LIGHT_SPOT);
+    in.kind = 7;
+    EXPECT_NE(refused(in).find("kind"), std::string::npos);
+    in = localInputs(SHADOWKIT_LIGHT_SPOT);
+    in.cone_degrees = 180.0;
+    EXPECT_EQ(refused(in), "spot.cone: must be in (0, 170] degrees");
+    in = localInputs(SHADOWKIT_LIGHT_POINT);
+    in.range = 0.0;
+    EXPECT_EQ(refused(in), "point.range: must be a finite number of metres > 0");
+    in = localInputs(SHADOWKIT_LIGHT_POINT);
+    in.map_size = 3;
+    EXPECT_NE(refused(in).find("map_size"), std::string::npos);
+    EXPECT_NE(shadowkit_compute_local_setup(nullptr, &out, error, sizeof error), 0);
     EXPECT_EQ(out.view_count, -7);
 }

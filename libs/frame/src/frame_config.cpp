@@ -46,7 +46,7 @@ core::Status FrameConfig::check() const {
     if (technique.technique == core::Technique::Virtual && !automatic)
         if (auto s = gl::validateVirtualFilter(render.filter); !s) return s;
     if (auto s = gl::validate(render.blur); !s) return s;
-    if (auto s = gl::validate(render.localBias); !s) return s;
+    if (auto s = core::validate(render.localBias); !s) return s;
     if (auto s = gl::validateVirtualSettings(render); !s) return s;
     if (auto s = gl::validateLevelsOfDetail(render.lodPixelError, render.lodTexelError, render.lodFoliageScale,
                                             render.lodFade);

@@ -30,7 +30,7 @@ core::Status checkFrame(const core::ShadowSetup& setup, const RenderSettings& se
     if (auto s = core::validate(settings.filter); !s) return s;
     if (auto s = core::validateSunAngle(settings.sunAngleDegrees); !s) return s;
     if (auto s = validate(settings.blur); !s) return s;
-    if (auto s = validate(settings.localBias); !s) return s;
+    if (auto s = core::validate(settings.localBias); !s) return s;
     if (auto s = validateLevelsOfDetail(settings.lodPixelError, settings.lodTexelError, settings.lodFoliageScale,
                                         settings.lodFade);
         !s)

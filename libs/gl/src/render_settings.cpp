@@ -22,16 +22,6 @@ const char* localPassName(LocalPass pass) {
     return "?";
 }
 
-core::Status validate(const LocalBiasSettings& b) {
-    if (!(b.slopeTexels >= 0.0 && b.slopeTexels <= 16.0))
-        return core::fieldError("local_bias.slope", "must be in [0, 16] texels");
-    if (!(b.normalOffsetTexels >= 0.0 && b.normalOffsetTexels <= 16.0))
-        return core::fieldError("local_bias.normal_offset", "must be in [0, 16] texels");
-    if (!(b.constantMetres >= 0.0 && b.constantMetres <= 1.0))
-        return core::fieldError("local_bias.constant", "must be in [0, 1] metres");
-    return core::Ok{};
-}
-
 const char* cullingName(Culling culling) {
     switch (culling) {
     case Culling::Off:

@@ -1,7 +1,7 @@
 /* shadowkit's C API: the core's shadow set-up (shadow_setup.h, engine_camera.h,
- * output_conventions.h) over plain structs of doubles and ints, for engines in C, Rust, C#,
- * Zig or anything with a C FFI. No allocation crosses the boundary: the caller owns every
- * struct, and a set-up holds at most SHADOWKIT_MAX_VIEWS maps.
+ * output_conventions.h; local_lights.h for spot and point lights) over plain structs of doubles and ints, for engines
+ * in C, Rust, C#, Zig or anything with a C FFI. No allocation crosses the boundary: the caller owns every struct, and a
+ * set-up holds at most SHADOWKIT_MAX_VIEWS maps.
  *
  * Matrices are 16 doubles, column-major (element [column * 4 + row]), acting on column
  * vectors: the layout of glm, GLSL, and of HLSL with column_major packing.
@@ -162,6 +162,65 @@ SHADOWKIT_CORE_EXPORT double shadowkit_texel_size(const shadowkit_view* view, in
 SHADOWKIT_CORE_EXPORT double shadowkit_penumbra_texels_per_metre(const shadowkit_view* view, int map_size,
                                                                  const double light_direction[3],
                                                                  double sun_angle_degrees, const double point[3]);
+
+/** Spot and point lights (shadowkit_local_inputs::kind; core/local_lights.h, seed 003). */
+typedef enum shadowkit_light_kind {
+    SHADOWKIT_LIGHT_SPOT = 0, /**< one perspective map over its cone */
+    SHADOWKIT_LIGHT_POINT = 1 /**< a cube of six 90° faces */
+} shadowkit_light_kind;
+
+/** A spot or point light and what its maps are fitted to (start from shadowkit_default_local_inputs). */
+typedef struct shadowkit_local_inputs {
+    shadowkit_camera camera; /**< the view the shadows are for: each map covers what it sees of the light */
+    double scene_min[3];     /**< the scene box's lower corner: every caster and receiver lies inside */
+    double scene_max[3];     /**< its upper corner */
+    int map_size;            /**< texels per side of the spot map or of each cube face */
+    int kind;                /**< shadowkit_light_kind */
+    double position[3];      /**< the light, world space */
+    double direction[3];     /**< spot: the cone's axis, any length > 0 */
+    double cone_degrees;     /**< spot: the cone's full opening angle, (0, 170] */
+    double range;            /**< metres: nothing farther is lit, > 0 */
+    double radius;           /**< metres: the lamp's sphere (PCSS's penumbrae), [0, range); 0 a point */
+    /** Output conventions of the matrices in shadowkit_view, and of stored_from_distance. */
+    int clip_depth;     /**< shadowkit_clip_depth */
+    int reversed_z;     /**< 1: the light's near side stored as 1 */
+    int texture_origin; /**< shadowkit_texture_origin */
+} shadowkit_local_inputs;
+
+/** The local lights' lookup biases (core::LocalBias; SkLocalShadowOptions in
+   shadowkit_local_shadows.glsl), in the map's texels at the receiver's distance and metres. */
+typedef struct shadowkit_local_bias {
+    double slope_texels;         /**< distance reduced by this × texel size × tan(angle to the light) */
+    double normal_offset_texels; /**< receiver moved along its normal by this × texel size */
+    double constant_metres;      /**< and its distance reduced by this */
+} shadowkit_local_bias;
+
+/** A local light's maps: a spot light's one view, or the cube faces of a point light that see
+   something of the view (the others: clear them to the far value). Draw each view with its
+   clip_from_world into its face's layer, writing per fragment
+   distance(p, light_position) · stored_from_distance[0] + stored_from_distance[1]. */
+typedef struct shadowkit_local_setup {
+    int kind;                 /**< shadowkit_light_kind */
+    int map_size;             /**< texels per side of the spot map or of each cube face */
+    int depth_clamp;          /**< 1: draw with depth clamping (GL_DEPTH_CLAMP, depthClampEnable) */
+    int view_count;           /**< views in use: 0 when the light reaches nothing the camera sees */
+    shadowkit_view views[6];  /**< clip_from_world, texture_from_world (a spot's (u, v) = xy / w), culling planes */
+    int faces[6];             /**< point lights: each view's cube face, 0–5 in OpenGL's order; spot lights 0 */
+    double light_position[3]; /**< SkLocalLight.wsPosition */
+    double stored_from_distance[2]; /**< SkLocalLight.storedFromDistance: (1 / range, 0), reversed (−1 / range, 1) */
+    double texel_per_metre;         /**< SkLocalLight.texelPerMetre: a texel's world size per metre of distance */
+    double radius;                  /**< SkLocalLight.radius: the lamp's, for PCSS */
+    shadowkit_local_bias bias;      /**< the recommended biases */
+} shadowkit_local_setup;
+
+/** A spot light 3 m up looking down, 40°, 30 m; the default camera and a 1024² map; OpenGL-with-
+   glClipControl conventions. */
+SHADOWKIT_CORE_EXPORT void shadowkit_default_local_inputs(shadowkit_local_inputs* inputs);
+
+/** 0 on success. Otherwise non-zero, `out` untouched, and a one-line message naming the input in
+   `error`, as shadowkit_compute_setup. */
+SHADOWKIT_CORE_EXPORT int shadowkit_compute_local_setup(const shadowkit_local_inputs* inputs,
+                                                        shadowkit_local_setup* out, char* error, size_t error_size);
 
 /** "major.minor.patch" of the library linked. */
 SHADOWKIT_CORE_EXPORT const char* shadowkit_version_string(void);

@@ -94,6 +94,26 @@ Result<LocalLighting> computeLocalLighting(const LocalShadowInputs& inputs, std:
 /// texels; 2 / mapSize for a 90° cube face). Biases in texels become metres with it.
 double texelSizePerMetre(const ShadowView& view, int mapSize);
 
+/// The local lights' lookup biases (glsl/shadowkit_local_shadows.glsl's SkLocalShadowOptions), in
+/// distance units, since their maps store the distance to the light: sizes in texels become metres
+/// through the texel's world size at the receiver's distance (texelSizePerMetre), so one setting
+/// holds near and far from the light. The defaults are the renderer's (docs/local-lights.md:
+/// the `lamp` view 24.9 % wrong without them, 0.07 % with).
+struct LocalBias {
+    double slopeTexels = 1.5;        ///< distance reduced by this × texel size × tan(angle to the light), [0, 16]
+    double normalOffsetTexels = 1.0; ///< receiver moved along its normal by this × texel size, [0, 16]
+    double constantMetres = 0.005;   ///< and its distance reduced by this, [0, 1]
+};
+/// Fields "local_bias.slope", "local_bias.normal_offset", "local_bias.constant".
+Status validate(const LocalBias& bias);
+
+/// What a local light's depth pass writes per fragment and its lookup expects, stored =
+/// distance · x + y over the light's whole range, one mapping for every face of a cube (the
+/// lookup's filters cross faces): (1 / range, 0), or (−1 / range, 1) for a reversed-Z engine,
+/// whose comparison is then GL_GEQUAL. Unlike a view's lightDistance, which spans only that
+/// view's receivers.
+Vec2 storedFromDistance(double range, bool reversedZ);
+
 /// The depth a local light's view stores for a world point (LightDistance layout), before
 /// clamping to [0, 1].
 double lightDistanceDepth(const ShadowSetup& setup, const ShadowView& view, const Vec3& wsPoint);

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "shadowkit/core/bias.h"
+#include "shadowkit/core/local_lights.h"
 #include "shadowkit/core/result.h"
 #include "shadowkit/core/shadow_filter.h"
 #include "shadowkit/core/shadow_setup.h"
@@ -67,16 +68,8 @@ enum class LocalPass {
 };
 const char* localPassName(LocalPass pass); // "layered", "vertex-layer", "geometry", "per-face"
 
-// Bias of the local lights' lookups, in distance units (their maps store the distance to the
-// light): sizes in texels become metres through the texel's world size at the receiver's
-// distance (core::texelSizePerMetre), so one setting holds near and far from the light.
-struct LocalBiasSettings {
-    double slopeTexels = 1.5;        // distance reduced by this × texel size × tan(angle to the light), [0, 16]
-    double normalOffsetTexels = 1.0; // receiver moved along its normal by this × texel size, [0, 16]
-    double constantMetres = 0.005;   // and its distance reduced by this, [0, 1]
-};
-// Fields "local_bias.slope", "local_bias.normal_offset", "local_bias.constant".
-core::Status validate(const LocalBiasSettings& bias);
+// Bias of the local lights' lookups, in distance units: the core's, which engines get too.
+using LocalBiasSettings = core::LocalBias;
 
 // How a frame is drawn. The shadow maps' size comes with the set-up (ShadowSetup::mapSize).
 struct RenderSettings {
