@@ -8,9 +8,10 @@
 // cube — and each texel stores the distance to the light, written per fragment (no slope bias: the
 // lookup applies every bias in metres, as a local light's texel grows with its distance):
 //   stored = distance(ws, light) · storedFromDistance.x + storedFromDistance.y
-// with one mapping for all six faces of a cube (its lookups cross faces). shadowkit's renderer
-// stores distance / range, (1 / range, 0); a reversed-Z engine 1 − distance / range, (−1 / range, 1),
-// with a GL_GEQUAL comparison: a negative scale turns the comparison with the mapping, nothing else.
+// with one mapping for all six faces of a cube (its lookups cross faces): core::storedFromDistance,
+// distance / range, (1 / range, 0), as shadowkit's renderer stores it; or for a reversed-Z engine
+// 1 − distance / range, (−1 / range, 1), compared with GL_GEQUAL: a negative scale turns the
+// comparison with the mapping, nothing else.
 //
 // The engine names its maps, defined before this file (a lone map is layer 0 of a one-layer array):
 //   #define SK_SPOT_MAPS     mySpotMaps     // sampler2DArrayShadow, GL_COMPARE_REF_TO_TEXTURE
@@ -33,7 +34,7 @@ struct SkLocalLight {
     int layer;               // the spot map's array layer, or the point light's cube in the cube array
 };
 
-// The biases (gl::LocalBiasSettings, render_settings.h: 1.5, 1 and 0.005 by default) and the filter.
+// The biases (core::LocalBias, core/local_lights.h: 1.5, 1 and 0.005 by default) and the filter.
 struct SkLocalShadowOptions {
     float slopeBiasTexels;    // distance reduced by this × texel size × tan(angle to the light)
     float normalOffsetTexels; // receiver moved along its normal by this × texel size
