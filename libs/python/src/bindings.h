@@ -52,6 +52,17 @@ struct SetupArguments {
 
 py::dict setup(const SetupArguments& arguments);
 
+// shadowkit.local_setup's: the camera, box, map size and conventions as setup's (its sun,
+// technique and cascades unused), and the spot or point light.
+struct LocalSetupArguments {
+    SetupArguments view;
+    std::string kind = "spot";
+    std::vector<double> position{0.0, 3.0, 0.0}, direction{0.0, -1.0, 0.0};
+    double coneDegrees = 40.0, range = 30.0, radius = 0.0;
+};
+
+py::dict localSetup(const LocalSetupArguments& arguments);
+
 // Registers shadowkit.Evaluator and shadowkit.evaluate.
 void bindEvaluation(py::module_& m);
 

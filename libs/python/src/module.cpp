@@ -1,7 +1,8 @@
-// `import shadowkit`: the core's set-ups (setup) and the measure pipeline (Evaluator,
+// `import shadowkit`: the core's set-ups (setup, local_setup) and the measure pipeline (Evaluator,
 // evaluate) for scripted studies. Matrices are NumPy arrays indexed [row, column].
 #include "bindings.h"
 
+#include "shadowkit/core/local_lights.h"
 #include "shadowkit/core/version.h"
 #include "shadowkit/frame/option_table.h"
 
@@ -72,6 +73,51 @@ core's message for bad input.)",
         py::arg("map_size") = d.mapSize, py::arg("cascades") = d.cascades, py::arg("lambda_") = d.lambda,
         py::arg("cascade_warp") = d.cascadeWarp, py::arg("conventions") = d.conventions,
         py::arg("reversed_z") = d.reversedZ, py::arg("sun_angle") = d.sunAngle);
+
+    // A spot or point light's maps: the camera and box arguments as setup's.
+    const shadowkit::python::LocalSetupArguments l;
+    m.def(
+        "local_setup",
+        [](std::string kind, std::vector<double> position, std::vector<double> direction, double cone, double range,
+           double radius, std::vector<double> eye, std::vector<double> viewDirection, std::vector<double> up,
+           double fov, double aspect, double zNear, double zFar,
+           std::optional<py::array_t<double, py::array::c_style | py::array::forcecast>> viewFromWorld,
+           std::optional<py::array_t<double, py::array::c_style | py::array::forcecast>> clipFromView,
+           std::string clipDepth, bool leftHanded, std::optional<double> shadowDistance, std::vector<double> sceneMin,
+           std::vector<double> sceneMax, int mapSize, std::string conventions, bool reversedZ) {
+            shadowkit::python::LocalSetupArguments a;
+            a.kind = kind, a.position = position, a.direction = direction;
+            a.coneDegrees = cone, a.range = range, a.radius = radius;
+            shadowkit::python::SetupArguments& v = a.view;
+            v.eye = eye, v.direction = viewDirection, v.up = up, v.fovYDegrees = fov, v.aspect = aspect;
+            v.zNear = zNear, v.zFar = zFar, v.viewFromWorld = viewFromWorld, v.clipFromView = clipFromView;
+            v.clipDepth = clipDepth, v.leftHanded = leftHanded, v.shadowDistance = shadowDistance;
+            v.sceneMin = sceneMin, v.sceneMax = sceneMax, v.mapSize = mapSize;
+            v.conventions = conventions, v.reversedZ = reversedZ;
+            return shadowkit::python::localSetup(a);
+        },
+        R"(A spot or point light's shadow maps (core/local_lights.h, seed 003), for the installed
+glsl/shadowkit_local_shadows.glsl.
+
+Light: kind ('spot' or 'point'), position, direction and cone (the spot's axis and full opening
+angle in degrees), range (metres: nothing farther is lit), radius (the lamp's sphere for PCSS; 0 a
+point). Camera, scene box and conventions as setup's: view_direction is the camera's direction.
+
+Returns a dict: kind, map_size, depth_clamp, views (a spot's one, or the cube faces that see
+something of the camera's view), each as setup's views with its cube face (0-5, OpenGL's order;
+None for a spot); skipped_faces; and what the lookup takes beside them: light_position,
+stored_from_distance (the depth pass writes distance * [0] + [1]: 1 / range and 0, reversed
+-1 / range and 1), texel_per_metre, radius and bias (slope_texels, normal_offset_texels,
+constant_metres). Raises ValueError with the core's message for bad input.)",
+        py::kw_only(), py::arg("kind") = l.kind, py::arg("position") = l.position, py::arg("direction") = l.direction,
+        py::arg("cone") = l.coneDegrees, py::arg("range") = l.range, py::arg("radius") = l.radius,
+        py::arg("eye") = d.eye, py::arg("view_direction") = d.direction, py::arg("up") = d.up,
+        py::arg("fov") = d.fovYDegrees, py::arg("aspect") = d.aspect, py::arg("near") = d.zNear,
+        py::arg("far") = d.zFar, py::arg("view_from_world") = py::none(), py::arg("clip_from_view") = py::none(),
+        py::arg("clip_depth") = d.clipDepth, py::arg("left_handed") = d.leftHanded,
+        py::arg("shadow_distance") = py::none(), py::arg("scene_min") = d.sceneMin, py::arg("scene_max") = d.sceneMax,
+        py::arg("map_size") = shadowkit::core::LocalShadowInputs{}.mapSize, py::arg("conventions") = d.conventions,
+        py::arg("reversed_z") = d.reversedZ);
 
     shadowkit::python::bindEvaluation(m);
 }

@@ -7,6 +7,7 @@
 #include "shadowkit/core/bias.h"
 #include "shadowkit/core/engine_camera.h"
 #include "shadowkit/core/light_size.h"
+#include "shadowkit/core/local_lights.h"
 #include "shadowkit/core/output_conventions.h"
 
 #include <pybind11/stl.h>
@@ -89,10 +90,8 @@ py::dict viewDict(const ShadowView& core, const EngineShadowView& view) {
     return d;
 }
 
-} // namespace
-
-py::dict setup(const SetupArguments& a) {
-    ShadowSetupInputs in;
+// The camera of setup's keyword arguments: the engine's matrices, or eye, direction and frustum.
+PerspectiveCamera cameraOf(const SetupArguments& a) {
     if (a.viewFromWorld || a.clipFromView) {
         if (!a.viewFromWorld || !a.clipFromView)
             throw py::value_error("view_from_world and clip_from_view: give both or neither");
@@ -103,16 +102,24 @@ py::dict setup(const SetupArguments& a) {
             throw py::value_error("clip_depth: must be zero_to_one or minus_one_to_one");
         engine.handedness = a.leftHanded ? ViewHandedness::LeftHanded : ViewHandedness::RightHanded;
         if (a.shadowDistance) engine.shadowDistance = *a.shadowDistance;
-        in.camera = check(cameraFromMatrices(engine));
-    } else {
-        in.camera.wsEye = toVec3(a.eye, "eye");
-        in.camera.wsDirection = toVec3(a.direction, "direction");
-        in.camera.wsUp = toVec3(a.up, "up");
-        in.camera.fovYDegrees = a.fovYDegrees;
-        in.camera.aspect = a.aspect;
-        in.camera.zNear = a.zNear;
-        in.camera.zFar = a.shadowDistance ? std::min(a.zFar, *a.shadowDistance) : a.zFar;
+        return check(cameraFromMatrices(engine));
     }
+    PerspectiveCamera camera;
+    camera.wsEye = toVec3(a.eye, "eye");
+    camera.wsDirection = toVec3(a.direction, "direction");
+    camera.wsUp = toVec3(a.up, "up");
+    camera.fovYDegrees = a.fovYDegrees;
+    camera.aspect = a.aspect;
+    camera.zNear = a.zNear;
+    camera.zFar = a.shadowDistance ? std::min(a.zFar, *a.shadowDistance) : a.zFar;
+    return camera;
+}
+
+} // namespace
+
+py::dict setup(const SetupArguments& a) {
+    ShadowSetupInputs in;
+    in.camera = cameraOf(a);
     if (a.light)
         in.light = DirectionalLight{toVec3(*a.light, "light")};
     else
@@ -149,6 +156,54 @@ py::dict setup(const SetupArguments& a) {
     for (const Vec3& p : s.body.vertices()) body.append(py::make_tuple(p.x, p.y, p.z));
     out["body"] = body;
     out["eye_relative_origin"] = py::make_tuple(s.wsEye.x, s.wsEye.y, s.wsEye.z);
+    return out;
+}
+
+py::dict localSetup(const LocalSetupArguments& a) {
+    const LocalShadowInputs in{
+        cameraOf(a.view), Aabb::fromMinMax(toVec3(a.view.sceneMin, "scene_min"), toVec3(a.view.sceneMax, "scene_max")),
+        a.view.mapSize};
+    ShadowSetup s;
+    if (a.kind == "spot") {
+        SpotLight spot;
+        spot.wsPosition = toVec3(a.position, "position");
+        spot.wsDirection = toVec3(a.direction, "direction");
+        spot.coneDegrees = a.coneDegrees;
+        spot.range = a.range;
+        spot.radius = a.radius;
+        s = check(computeSpotShadowSetup(in, spot));
+    } else if (a.kind == "point") {
+        PointLight point;
+        point.wsPosition = toVec3(a.position, "position");
+        point.range = a.range;
+        point.radius = a.radius;
+        s = check(computePointShadowSetup(in, point));
+    } else {
+        throw py::value_error("kind: '" + a.kind + "' is not one of spot, point");
+    }
+    const OutputConventions conventions = conventionsFor(a.view.conventions, a.view.reversedZ);
+
+    py::dict out;
+    out["kind"] = a.kind;
+    out["map_size"] = s.mapSize;
+    out["depth_clamp"] = s.depthClamp;
+    py::list views;
+    for (const ShadowView& v : s.views) {
+        py::dict view = viewDict(v, toEngineView(v, s, conventions));
+        view["face"] = v.face ? py::object(py::int_(*v.face)) : py::object(py::none());
+        views.append(view);
+    }
+    out["views"] = views;
+    out["skipped_faces"] = s.skippedFaces;
+    out["light_position"] = py::make_tuple(s.wsLightPosition.x, s.wsLightPosition.y, s.wsLightPosition.z);
+    const Vec2 mapping = storedFromDistance(a.range, conventions.reversedZ);
+    out["stored_from_distance"] = py::make_tuple(mapping.x, mapping.y);
+    out["texel_per_metre"] = s.views.empty() ? 0.0 : texelSizePerMetre(s.views[0], s.mapSize);
+    out["radius"] = a.radius;
+    const LocalBias b;
+    out["bias"] =
+        py::dict(py::arg("slope_texels") = b.slopeTexels, py::arg("normal_offset_texels") = b.normalOffsetTexels,
+                 py::arg("constant_metres") = b.constantMetres);
     return out;
 }
 

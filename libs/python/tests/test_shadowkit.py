@@ -109,6 +109,45 @@ class SetupTest(unittest.TestCase):
         self.assertAlmostEqual(shadowkit.setup(sun_angle=0.53)["light_tan_half_angle"], 0.004625, places=6)
 
 
+class LocalSetupTest(unittest.TestCase):
+    def test_equals_the_command_line_for_a_spot_and_a_point_light(self):
+        lights = ["point:0,3,-20,25,radius=0.05", "spot:0,8,-30,0,-1,-0.3,60,25"]
+        expected = cli_json("setup", "--view", "perpendicular", *SMALL, "--light", lights[0], "--light", lights[1])
+        camera, box = expected["inputs"]["camera"], expected["inputs"]["scene_bounds"]
+        common = dict(eye=camera["eye"], view_direction=camera["direction"], up=camera["up"],
+                      fov=camera["fov_y_degrees"], aspect=camera["aspect"], near=camera["near"], far=camera["far"],
+                      scene_min=box["min"], scene_max=box["max"], range=25.0)
+        for cli in expected["local_lights"]:
+            if cli["type"] == "point":
+                got = shadowkit.local_setup(kind="point", position=cli["position"], radius=0.05, **common)
+            else:
+                got = shadowkit.local_setup(kind="spot", position=cli["position"], direction=cli["direction"],
+                                            cone=cli["cone_degrees"], **common)
+            self.assertEqual(len(got["views"]), len(cli["views"]), cli["type"])
+            for view, cli_view in zip(got["views"], cli["views"]):
+                # The default conventions are the core's own: the very same doubles.
+                np.testing.assert_array_equal(view["clip_from_world"], column_major(cli_view["clip_from_world"]))
+                self.assertEqual(view["face"], cli_view.get("face"))
+            if cli["type"] == "point":
+                self.assertEqual(got["skipped_faces"], cli["skipped_faces"])
+                self.assertEqual(len(got["views"]) + got["skipped_faces"], 6)
+                self.assertAlmostEqual(got["texel_per_metre"], 2.0 / 1024.0, places=15)  # a 90° face, 1024²
+            self.assertEqual(got["radius"], 0.05 if cli["type"] == "point" else 0.0)
+
+    def test_the_stored_distance_and_the_biases_are_what_the_lookup_takes(self):
+        common = dict(kind="point", position=[0.0, 3.0, -20.0], range=40.0, eye=[0.0, 5.0, 0.0])
+        for reversed_z, near, far in [(False, 0.0, 1.0), (True, 1.0, 0.0)]:
+            scale, offset = shadowkit.local_setup(reversed_z=reversed_z, **common)["stored_from_distance"]
+            self.assertEqual(offset, near)  # at the light
+            self.assertAlmostEqual(40.0 * scale + offset, far, places=15)  # at the range
+        bias = shadowkit.local_setup(**common)["bias"]
+        self.assertEqual(bias, dict(slope_texels=1.5, normal_offset_texels=1.0, constant_metres=0.005))
+        with self.assertRaisesRegex(ValueError, "kind: 'torch' is not one of spot, point"):
+            shadowkit.local_setup(kind="torch")
+        with self.assertRaisesRegex(ValueError, "spot.cone"):
+            shadowkit.local_setup(cone=180.0)
+
+
 class EvaluateTest(unittest.TestCase):
     def test_equals_shadowkit_eval_and_its_buffers_agree_with_its_figures(self):
         evaluator = shadowkit.Evaluator(trees=300, terrain_size=200, terrain_resolution=32)
