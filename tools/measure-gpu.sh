@@ -17,7 +17,8 @@
 # to compare with llvmpipe's: the same program on another rasteriser; TSM's two depth layouts; PSM
 # with the receiver-plane bias), alpha (tools/measure-alpha.sh), scaling (what the shadow pass's
 # time follows at 100,000 trees: culling, levels, the depth layout), opacity (what the leaves'
-# opacity layers cost), foliage (the leafy forest's soft sweep, about four minutes). Not in the
+# opacity layers cost), local (the lamps' depth pass drawn each of its three ways: render's local
+# pass line, docs/local-lights.md), foliage (the leafy forest's soft sweep, about four minutes). Not in the
 # default, named when wanted: golden (re-records this GPU family's golden figures after a change
 # meant to move them; tools/gpu-tables.sh puts them in data/golden/<family>/ back here).
 # Every step has its own time limit and the whole run a deadline (DEADLINE seconds, default 540,
@@ -70,7 +71,7 @@ note "context: $(grep -o '^4\.[0-9].*via EGL[^|]*' "$res/context.log" | head -1)
 grep -q 'via EGL' "$res/context.log" || { note "no OpenGL context: $(tail -3 "$res/context.log")"; pack; exit 1; }
 
 sections=("$@")
-((${#sections[@]})) || sections=(tests frame techniques filters leafy eval alpha scaling opacity foliage)
+((${#sections[@]})) || sections=(tests frame techniques filters leafy eval alpha scaling opacity local foliage)
 bench=("$B" bench --frames 11)
 for section in "${sections[@]}"; do
   case $section in
@@ -167,6 +168,15 @@ for section in "${sections[@]}"; do
         # shellcheck disable=SC2086
         step "opacity-${setup%%|*}-${f%%|*}" 60 "${bench[@]}" --forest leafy --trees 10000 --views perpendicular,aerial \
           --sun-angle 0.53 ${setup#*|} ${f#*|} --json "$res/opacity-${setup%%|*}-${f%%|*}.json"
+      done
+    done
+    ;;
+  local)
+    # A point light's cube drawn in one layered pass by the vertex stage or a geometry stage, or in
+    # six passes culled per face; `render` times the local pass (bench does not), 1280 × 720.
+    for view in lamp village; do
+      for pass in vertex-layer geometry per-face; do
+        step "local-$view-$pass" 60 "$B" render --view "$view" --local-pass "$pass" --out "$root/local-$view-$pass.png"
       done
     done
     ;;
