@@ -34,6 +34,7 @@ struct EvalArgs {
     LocalLightOptions lights;
     std::string views; // "a,b" or "all"; empty: --view
     std::string json, errorMap, aliasingMap, dump, csv, plot, report;
+    bool levelPops = false;                             // --level-pops, with --path
     int softSamples = eval::SoftTruthOptions{}.samples; // --soft-samples: rays a penumbra point takes
     // --depth-tolerance: how far, as a fraction of the view depth, the raster's surface may lie from the
     // ray's for a pixel to be compared (EVALUATION.md: 0.5 %)
@@ -150,9 +151,10 @@ int runEval(const EvalArgs& args) {
         // and the kept one would be drawn into unbound.
         if (args.session) args.session->reset();
         return runEvalPath({args.scene, args.view, args.technique, args.render, args.timeline, args.lights, args.csv,
-                            args.plot, args.json, args.report, args.check});
+                            args.plot, args.json, args.report, args.check, args.levelPops});
     }
     if (!args.csv.empty() || !args.plot.empty()) return fail("--csv and --plot need --path (figures per frame)");
+    if (args.levelPops) return fail("--level-pops: needs --path (pops between consecutive frames)");
     auto timeline = args.timeline.resolve(); // still views: --time and --sun-path
     if (!timeline) return fail(timeline.errorInfo());
     auto names = viewNames(args);
@@ -281,6 +283,10 @@ Command addEvalCommand(CLI::App& app, EvalSession* session) {
     cmd->add_option("--csv", args->csv,
                     "with --path: the figures of every frame as CSV, flicker_pct and truth_change_pct included");
     cmd->add_option("--plot", args->plot, "with --path: a PNG plot of flicker_pct and truth_change_pct per frame");
+    cmd->add_flag("--level-pops", args->levelPops,
+                  "with --path: also draw each frame with the levels of detail the frame before chose, and report "
+                  "level_pop_pct, the pixels whose surface or shadow changed only because levels changed (a camera "
+                  "pass and a shadow pass more a frame)");
     cmd->add_flag("--check", args->check,
                   "check every option (scene's, view names, technique, filters, lights, path) and exit without "
                   "rendering: 0 when the evaluation would start, else the one-line error (shadowkit sweep checks its "

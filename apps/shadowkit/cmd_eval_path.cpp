@@ -123,6 +123,8 @@ int runEvalPath(const EvalPathArgs& args) {
     fmt::print(stderr, "ray tracer: built in {:.2f} s\n", (*measurer)->rayTracerBuildSeconds());
 
     measure::PathMeasurer path(**measurer, world, *driver);
+    measure::MeasureOptions measureOptions;
+    measureOptions.levelPops = args.levelPops;
     measure::PathReport report(timeline->path->name, held, automatic);
     // --report: the error maps of four frames spread over the path, for the strip.
     std::vector<scene::Image> stripFrames;
@@ -135,7 +137,7 @@ int runEvalPath(const EvalPathArgs& args) {
         const auto start = std::chrono::steady_clock::now();
         auto view = timeline->viewAt(*still, world, frame.time, !args.view.size.empty());
         if (!view) return fail(view.errorInfo());
-        auto measured = path.next(frame.time, *view);
+        auto measured = path.next(frame.time, *view, measureOptions);
         if (!measured) return fail(withFlagName(measured.errorInfo()));
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         const size_t index = report.rows().size();

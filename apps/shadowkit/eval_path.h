@@ -18,7 +18,8 @@ struct EvalPathArgs {
     const TimelineOptions& timeline;
     const LocalLightOptions& lights;
     std::string csv, plot, json, report;
-    bool check = false; // --check: validate the options, render nothing
+    bool check = false;     // --check: validate the options, render nothing
+    bool levelPops = false; // --level-pops: eval::levelPops per frame
 };
 
 int runEvalPath(const EvalPathArgs& args);

@@ -577,6 +577,27 @@ check_fails(strip-unwritable "--strip" render ${small} --path flythrough --frame
 check_fails(eval-path-one-frame "--frames: '5' selects one frame of the path (its frame numbers, not a count)" eval ${small} --path flythrough --frames 5)
 check_fails(eval-path-one-moment "--time: one moment" eval ${small} --path flythrough --time 2)
 check_fails(eval-csv-without-path "--csv" eval ${small} --csv "${WORK}/f.csv")
+check_fails(eval-level-pops-without-path "--level-pops: needs --path" eval ${small} --level-pops)
+# --level-pops: every frame after the first carries its pops, and the summary theirs; the frame
+# before's levels on a still scene's path differ from this frame's only where a level switched.
+if(CASE STREQUAL "gl-eval-path-level-pops")
+  execute_process(COMMAND ${SHADOWKIT} eval ${small} --path flythrough --frames 0:3 --size 64x36 --map-size 128
+                          --level-pops --json "${WORK}/pops.json" RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(err MATCHES "no headless OpenGL")
+    message("no headless OpenGL: skipped")
+    return()
+  endif()
+  file(READ "${WORK}/pops.json" json)
+  string(JSON frames LENGTH "${json}" frames)
+  string(JSON second GET "${json}" frames 1 level_pops pop_pct)
+  string(JSON summary GET "${json}" summary level_pop_pct max)
+  string(JSON first ERROR_VARIABLE none GET "${json}" frames 0 level_pops)
+  if(NOT rc EQUAL 0 OR NOT frames EQUAL 3 OR second LESS 0 OR second GREATER 100 OR summary LESS second
+     OR NOT first STREQUAL "frames-0-level_pops-NOTFOUND" OR NOT out MATCHES "level_pop_pct mean")
+    message(SEND_ERROR "gl-eval-path-level-pops: exit ${rc}, ${frames} frames, pops ${second}, max ${summary}, "
+                       "first frame's '${first}': ${out} ${err}")
+  endif()
+endif()
 check_fails(eval-path-with-views "--path" eval ${small} --path flythrough --views all)
 # A full disk is an error naming the flag, never "written" and exit 0 (the writes are checked).
 check_fails(eval-path-csv-full-disk "--csv" eval ${small} --path flythrough --frames 0:2 --size 32x18 --map-size 64 --csv /dev/full)

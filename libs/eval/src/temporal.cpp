@@ -9,6 +9,7 @@
 
 #include "shadowkit/core/conventions.h"
 
+#include <algorithm>
 #include <cmath>
 #include <unordered_set>
 
@@ -102,6 +103,33 @@ TemporalFigures compareFrames(const ShadowStates& previous, const ShadowStates& 
         out.flickerPct = 100.0 * double(flicker) / double(out.comparedPx);
         out.truthChangePct = 100.0 * double(truthChanged) / double(out.comparedPx);
     }
+    return out;
+}
+
+LevelPops levelPops(const core::RasterBuffers& ownLevels, const core::RasterBuffers& previousLevels,
+                    const TemporalOptions& options) {
+    SK_ASSERT(ownLevels.surfaceId.size() == previousLevels.surfaceId.size(),
+              "levelPops(): both drawings must be of the same camera and size");
+    int64_t drawn = 0, surface = 0, shadow = 0;
+    for (size_t i = 0; i < ownLevels.surfaceId.size(); ++i) {
+        const uint32_t a = ownLevels.surfaceId[i], b = previousLevels.surfaceId[i];
+        if (a == 0 && b == 0) continue;
+        ++drawn;
+        const double depthA = ownLevels.viewDepth[i], depthB = previousLevels.viewDepth[i];
+        if (a != b || std::abs(depthA - depthB) > options.depthTolerance * std::max(depthA, depthB)) {
+            ++surface;
+            continue;
+        }
+        const bool shadowedA = ownLevels.shadowTerm[i] < options.shadowThreshold;
+        const bool shadowedB = previousLevels.shadowTerm[i] < options.shadowThreshold;
+        shadow += shadowedA != shadowedB;
+    }
+    LevelPops out;
+    out.drawnPx = drawn;
+    if (drawn == 0) return out;
+    out.surfacePct = 100.0 * double(surface) / double(drawn);
+    out.shadowPct = 100.0 * double(shadow) / double(drawn);
+    out.popPct = out.surfacePct + out.shadowPct;
     return out;
 }
 

@@ -147,3 +147,52 @@ TEST(Temporal, AReshapedSurfacesOwnPixelsAreNotCompared) {
     EXPECT_EQ(other.comparedPx, still.comparedPx);
     EXPECT_EQ(other.truthChangePct, still.truthChangePct);
 }
+
+namespace {
+
+// A 4 × 1 drawing: instance 7 at 10 m on every pixel, lit but for the last.
+core::RasterBuffers drawing() {
+    core::RasterBuffers r;
+    r.width = 4, r.height = 1;
+    r.surfaceId.assign(4, 7);
+    r.viewDepth.assign(4, 10.0f);
+    r.shadowTerm = {1.0f, 1.0f, 1.0f, 0.0f};
+    return r;
+}
+
+} // namespace
+
+TEST(LevelPops, OneDrawingAgainstItselfPopsNowhere) {
+    const eval::LevelPops pops = eval::levelPops(drawing(), drawing());
+    EXPECT_EQ(pops.drawnPx, 4);
+    EXPECT_EQ(pops.popPct, 0.0);
+}
+
+// Each kind once: a pixel the other drawing leaves empty, another instance, the same instance a
+// leaf further (beyond the depth tolerance), and — the same surface — a shadow across the threshold.
+TEST(LevelPops, CoverageSurfaceDepthAndShadowEachPopOnceAndAGrazingDepthDoesNot) {
+    core::RasterBuffers before = drawing(), now = drawing();
+    now.surfaceId[0] = 0, now.viewDepth[0] = 0.0f; // uncovered now
+    now.surfaceId[1] = 8;                          // another instance
+    now.viewDepth[2] = 10.5f;                      // 5 %: another leaf
+    now.shadowTerm[3] = 0.9f;                      // lit now
+    eval::LevelPops pops = eval::levelPops(now, before);
+    EXPECT_EQ(pops.drawnPx, 4);
+    EXPECT_DOUBLE_EQ(pops.surfacePct, 75.0);
+    EXPECT_DOUBLE_EQ(pops.shadowPct, 25.0);
+    EXPECT_DOUBLE_EQ(pops.popPct, 100.0);
+
+    now = drawing();
+    now.viewDepth[2] = 10.1f; // 1 %, within the 2 % tolerance: the same surface
+    now.shadowTerm[0] = 0.6f; // still lit
+    before.surfaceId[1] = 0;  // covered by one drawing alone
+    before.viewDepth[1] = 0.0f;
+    pops = eval::levelPops(now, before);
+    EXPECT_DOUBLE_EQ(pops.surfacePct, 25.0);
+    EXPECT_DOUBLE_EQ(pops.shadowPct, 0.0);
+    // Nothing drawn in either: nothing to pop, not a division by zero.
+    core::RasterBuffers empty = drawing();
+    empty.surfaceId.assign(4, 0);
+    EXPECT_EQ(eval::levelPops(empty, empty).drawnPx, 0);
+    EXPECT_EQ(eval::levelPops(empty, empty).popPct, 0.0);
+}

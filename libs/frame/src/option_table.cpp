@@ -62,6 +62,7 @@ constexpr auto kRows = std::to_array<OptionRow>({
     {"RenderSettings.lodTexelError", "--lod-texel-error", "lod.texel_error", "(0, 16] texels", Gl},
     {"RenderSettings.lodFoliageScale", "--lod-foliage-scale", "lod.foliage_scale", "[1, 64]", Gl},
     {"RenderSettings.lodFade", "--lod-fade", "lod.fade", "[0, 0.9]", Gl},
+    {"RenderSettings.lodCamera", "", "", "a camera", None, "eval --path --level-pops: the previous frame's camera"},
     {"RenderSettings.cascadeColors", "--cascade-colors", "", "on | off", None},
     {"RenderSettings.foliageOpacity", "--foliage-opacity", "", "on | off", None},
     {"RenderSettings.aliasingOverlay", "--aliasing-overlay", "", "on | off", None},

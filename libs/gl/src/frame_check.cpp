@@ -36,6 +36,8 @@ core::Status checkFrame(const core::ShadowSetup& setup, const RenderSettings& se
         !s)
         return s;
     if (auto s = validateFogDensity(settings.fogDensity); !s) return s;
+    if (settings.lodCamera)
+        if (auto s = settings.lodCamera->validate(); !s) return s;
     const int maps = static_cast<int>(setup.views.size());
     if (maps < 1 || maps > kMaxCascades)
         return core::makeError("renderer: set-ups need 1 to " + std::to_string(kMaxCascades) + " shadow maps, got " +

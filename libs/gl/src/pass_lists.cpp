@@ -34,8 +34,10 @@ bool masked(const core::ShadowSetup& setup, const RenderSettings& settings) {
 // and would self-shadow against the map (measured without compensation: +0.05 to +0.12 points of
 // false shadow on an aerial view), so its lookup moves that far towards the light (receiverLookup
 // in shadow_lookup.glsl).
+// RenderSettings::lodCamera, where a measurement sets it, chooses in the frame camera's place.
 LodProjection cameraProjectionOf(const core::PerspectiveCamera& camera, const RenderSettings& settings) {
-    return {camera.clipFromWorld(), 0.5 * std::max(settings.width, settings.height), settings.lodPixelError};
+    const core::PerspectiveCamera& chooser = settings.lodCamera ? *settings.lodCamera : camera;
+    return {chooser.clipFromWorld(), 0.5 * std::max(settings.width, settings.height), settings.lodPixelError};
 }
 
 // A pass's choice of levels with RenderSettings' foliage scale and cross-fade. The crossing is

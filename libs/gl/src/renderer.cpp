@@ -43,11 +43,13 @@ struct Renderer::Impl {
     bool lateFigures = false;                 // Renderer::readGpuFiguresLate
     Culling autoCulling = Culling::Occlusion; // what Culling::Auto is on this driver (read at create)
 
-    // The settings a frame is drawn with: Culling::Auto resolved for this driver. Every public
-    // entry takes its settings through here, so no pass sees Auto.
+    // The settings a frame is drawn with: Culling::Auto resolved for this driver, and the camera
+    // choosing levels in the scene's coordinates, as inScene puts the frame's. Every public entry
+    // takes its settings through here, so no pass sees Auto or a world-space level camera.
     RenderSettings resolved(const RenderSettings& asked) const {
         RenderSettings settings = asked;
         if (asked.culling == Culling::Auto) settings.culling = autoCulling;
+        if (settings.lodCamera) settings.lodCamera->wsEye -= wsOrigin;
         return settings;
     }
 

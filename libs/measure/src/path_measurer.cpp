@@ -35,8 +35,19 @@ core::Result<PathFrame> PathMeasurer::next(double time, const scene::ResolvedVie
                 for (uint32_t i = 0; i < m_world.batches[deformation.batch].worldFromObject.size(); ++i)
                     reshaped.push_back(m_world.globalIndex({deformation.batch, i}));
         out.temporal = eval::compareFrames(m_previous->states, states, *before, {}, reshaped);
+        if (options.levelPops) {
+            // This frame again, at this frame's places, with the levels the previous camera chose.
+            if (castersMoved)
+                if (auto s = animateTo(time); !s) return s.errorInfo();
+            gl::RenderSettings settings = out.frame.settings;
+            settings.lodCamera = m_previous->camera;
+            auto previousLevels =
+                m_measurer.renderer().renderEvalBuffers(view.camera, view.light, out.measurement.setup, settings);
+            if (!previousLevels) return previousLevels.errorInfo();
+            out.temporal->levelPops = eval::levelPops(out.measurement.raster, *previousLevels);
+        }
     }
-    m_previous = Previous{time, std::move(states), out.measurement.setup, view.light, out.frame.settings};
+    m_previous = Previous{time, std::move(states), out.measurement.setup, view.light, out.frame.settings, view.camera};
     return out;
 }
 

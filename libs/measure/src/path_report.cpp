@@ -24,6 +24,11 @@ nlohmann::json frameJson(const PathRow& r) {
         j.update({{"compared_px", r.temporal->comparedPx},
                   {"flicker_pct", r.temporal->flickerPct},
                   {"truth_change_pct", r.temporal->truthChangePct}});
+    if (r.temporal && r.temporal->levelPops) {
+        const eval::LevelPops& p = *r.temporal->levelPops;
+        j["level_pops"] = {
+            {"drawn_px", p.drawnPx}, {"pop_pct", p.popPct}, {"surface_pct", p.surfacePct}, {"shadow_pct", p.shadowPct}};
+    }
     if (r.refittedViews) j["refitted_views"] = *r.refittedViews;
     if (r.soft)
         j.update({{"soft_mae", r.soft->softMae},
@@ -86,6 +91,14 @@ PathReport::Summary PathReport::truthChange() const {
     return summarise(v);
 }
 
+std::optional<PathReport::Summary> PathReport::levelPops() const {
+    std::vector<double> v;
+    for (const PathRow& r : m_rows)
+        if (r.temporal && r.temporal->levelPops) v.push_back(r.temporal->levelPops->popPct);
+    if (v.empty()) return std::nullopt;
+    return summarise(v);
+}
+
 PathReport::Summary PathReport::wrong() const {
     std::vector<double> v;
     for (const PathRow& r : m_rows) v.push_back(r.figures.wrongPct);
@@ -134,6 +147,11 @@ std::string PathReport::summaryText() const {
     text += fmt::format("{} along {} ({} frames): flicker_pct mean {:.3f} p95 {:.3f} max {:.3f} | truth_change_pct "
                         "mean {:.3f} p95 {:.3f} max {:.3f} | wrong_pct mean {:.3f}\n",
                         technique(), m_path, frames, fl.mean, fl.p95, fl.max, tc.mean, tc.p95, tc.max, wr.mean);
+    if (const std::optional<Summary> pops = levelPops())
+        text +=
+            fmt::format("  levels of detail: level_pop_pct mean {:.3f} p95 {:.3f} max {:.3f} (pixels whose surface or "
+                        "shadow changed only because the levels changed since the frame before)\n",
+                        pops->mean, pops->p95, pops->max);
     const std::vector<double> sunAngles = softValues(&eval::SoftFigures::sunAngleDegrees);
     if (sunAngles.empty()) return text;
     // A path's sun keys may change the sun's size (and to 0, where a frame has no soft truth).
@@ -178,6 +196,7 @@ nlohmann::json PathReport::json() const {
                              {"truth_change_pct", toJson(truthChange())},
                              {"wrong_pct", toJson(wrong())}}},
                            {"frames", frames}};
+    if (const std::optional<Summary> pops = levelPops()) root["summary"]["level_pop_pct"] = toJson(*pops);
     const std::vector<double> sunAngles = softValues(&eval::SoftFigures::sunAngleDegrees);
     if (!sunAngles.empty()) {
         root["summary"]["soft_mae"] = toJson(summarise(softValues(&eval::SoftFigures::softMae)));

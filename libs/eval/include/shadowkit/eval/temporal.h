@@ -8,6 +8,7 @@
 #include "shadowkit/eval/truth.h"
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -29,10 +30,20 @@ struct ShadowStates {
 ShadowStates shadowStates(const core::PerspectiveCamera& camera, const TruthBuffers& truth,
                           const Comparison& comparison);
 
+// What the switches between levels of detail changed on screen from the previous frame to this
+// one (levelPops, below).
+struct LevelPops {
+    int64_t drawnPx = 0;     // pixels either drawing covers
+    double popPct = 0.0;     // of drawnPx: coverage, surface or shadow changed
+    double surfacePct = 0.0; // of drawnPx: coverage or surface changed (the look of what is drawn)
+    double shadowPct = 0.0;  // of drawnPx: the same surface, its shadow term across the threshold
+};
+
 struct TemporalFigures {
     int64_t comparedPx = 0;
-    double flickerPct = 0.0;     // of comparedPx: rendered state changed, truth did not
-    double truthChangePct = 0.0; // of comparedPx: the truth changed (moving sun, movers)
+    double flickerPct = 0.0;            // of comparedPx: rendered state changed, truth did not
+    double truthChangePct = 0.0;        // of comparedPx: the truth changed (moving sun, movers)
+    std::optional<LevelPops> levelPops; // when measured (measure::MeasureOptions::levelPops)
 };
 
 // This frame's surface points under the previous frame's shadows: the previous frame's
@@ -64,5 +75,16 @@ struct TemporalOptions {
 TemporalFigures compareFrames(const ShadowStates& previous, const ShadowStates& current,
                               const PreviousShadowsHere& before, const TemporalOptions& options = {},
                               std::span<const uint32_t> reshaped = {});
+
+// Pops between levels of detail: one camera drawn twice, with the levels it chooses itself
+// (`ownLevels`) and with those the previous frame's camera chose (`previousLevels`,
+// gl::RenderSettings::lodCamera), so that motion, the sun and the casters cancel and only the
+// levels' switches between the frames remain. A pixel pops when one drawing covers it and the
+// other does not, or they show another instance, or the same one at view depths apart by more than
+// options.depthTolerance of the depth (another leaf, a cloud's plane), or — the same surface — its
+// shadow term lies on the other side of options.shadowThreshold. A flickering canopy is the first
+// kind; a shadow that jumps as its caster changes level, the second.
+LevelPops levelPops(const core::RasterBuffers& ownLevels, const core::RasterBuffers& previousLevels,
+                    const TemporalOptions& options = {});
 
 } // namespace shadowkit::eval

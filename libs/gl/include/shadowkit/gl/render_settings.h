@@ -114,7 +114,12 @@ struct RenderSettings {
     // (1 + lodFade / 2) × it, it is drawn at both levels, each keeping its share of the pixels and
     // texels in an ordered dither (material.glsl), so a moving camera sees the canopy dissolve into
     // its cloud rather than pop, and on the mean a tree is as fine as when switching. 0: a switch.
-    float lodFade = 0.0f;       // [0, 0.9]
+    float lodFade = 0.0f; // [0, 0.9]
+    // Levels of detail chosen as this camera would choose them (its eye and projection), in every
+    // pass, while the frame is drawn from its own: a measurement's hook. `eval --path --level-pops`
+    // draws each frame again with the previous frame's camera here, so what differs between the two
+    // pictures is what the switches between levels changed on screen. Unset: the frame's camera.
+    std::optional<core::PerspectiveCamera> lodCamera;
     bool cascadeColors = false; // tint each cascade's range (Dimitrov 2007, Figure 3-2)
     // Partial occlusion by alpha-tested casters (leaves): they cast through opacity layers beside
     // the sun's maps (deep opacity maps, Yuksel & Keyser 2008; gl/src/opacity_layers.h) as a

@@ -44,6 +44,10 @@ struct MeasureOptions {
     // Also find which level of detail drew each pixel's surface and its caster (Measurement::levels):
     // a shadow ray more per shadowed pixel, and GPU-culled lists read back.
     bool levelMap = false;
+    // Along a path (PathMeasurer): also draw each frame again with the levels of detail the
+    // previous frame's camera chose, for eval::levelPops — one more camera pass and shadow pass a
+    // frame.
+    bool levelPops = false;
     // Ray-tracing progress, 0..1, from the calling thread; called only when the truth for
     // this camera is not cached yet.
     std::function<void(double)> truthProgress;

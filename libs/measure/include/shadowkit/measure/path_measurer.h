@@ -1,7 +1,8 @@
 // The temporal protocol of a sequence, once: each frame drawn through the frame driver and
 // measured against its truth, then compared with the previous frame's shadows at this frame's
 // surface points — the casters moved back where they stood, the previous frame's set-up and
-// sun drawn from this camera (Measurer::shadowsAt) — for flicker (eval::compareFrames).
+// sun drawn from this camera (Measurer::shadowsAt) — for flicker (eval::compareFrames); and, with
+// MeasureOptions::levelPops, with the levels of detail the previous camera chose (eval::levelPops).
 // `shadowkit eval --path`, Python and the temporal tests measure sequences through it.
 #pragma once
 
@@ -46,6 +47,7 @@ private:
         core::ShadowSetup setup;
         core::DirectionalLight light;
         gl::RenderSettings settings;
+        core::PerspectiveCamera camera;
     };
     Measurer& m_measurer;
     scene::Scene& m_world;

@@ -49,9 +49,11 @@ public:
     };
     static Summary summarise(std::vector<double> values);
 
-    std::string technique() const;    // "auto" with auto, else the frames' technique
-    Summary flicker() const;          // flicker_pct, frames after the first
-    Summary truthChange() const;      // truth_change_pct
+    std::string technique() const; // "auto" with auto, else the frames' technique
+    Summary flicker() const;       // flicker_pct, frames after the first
+    Summary truthChange() const;   // truth_change_pct
+    // level_pop_pct (eval::LevelPops::popPct), frames after the first, when measured; none else.
+    std::optional<Summary> levelPops() const;
     Summary wrong() const;            // wrong_pct, every frame
     Summary autoMilliseconds() const; // the choice's CPU time, frames after the first (which searches in full)
     // --technique auto: frames whose family (technique, maps, per-split warp) differs from the last's.
@@ -66,7 +68,8 @@ public:
     std::string summaryText() const;
     // One line per frame, header first (eval --path --csv).
     std::string csv() const;
-    // {"path", "technique", "refits", "summary", "frames", ["sun_angle_deg"], ["auto"]} (eval --path --json).
+    // {"path", "technique", "refits", "summary", "frames", ["sun_angle_deg"], ["auto"]} (eval --path --json);
+    // with pops measured, "level_pop_pct" in the summary and each frame's "level_pops".
     nlohmann::json json() const;
 
 private:
