@@ -93,6 +93,15 @@ void expectSameFrame(const scene::Image& fullImage, const core::RasterBuffers& f
     EXPECT_LE(ties, full.surfaceId.size() / 1000) << what << ": more than one pixel in a thousand tied";
 }
 
+// One 512² TSM map of the view over the scene: the levels tests' set-up.
+core::Result<core::ShadowSetup> tsmOf(const scene::ResolvedView& view, const scene::Scene& scene) {
+    return core::computeShadowSetup({.camera = view.camera,
+                                     .light = view.light,
+                                     .wsSceneBounds = scene.wsBounds(),
+                                     .technique = core::Technique::Tsm,
+                                     .mapSize = 512});
+}
+
 } // namespace
 
 TEST_F(CullingTest, CulledFramesMatchFullFramesPixelForPixelForEveryTechnique) {
@@ -309,11 +318,7 @@ TEST_F(CullingTest, LevelsDrawnAccountForEveryTriangleEachPassSubmitted) {
             EXPECT_EQ(got[l].alphaTestedTriangles, want[l].alphaTestedTriangles) << name << " level " << l;
         }
     };
-    const auto setup = core::computeShadowSetup({.camera = view.camera,
-                                                 .light = view.light,
-                                                 .wsSceneBounds = forest.wsBounds(),
-                                                 .technique = core::Technique::Tsm,
-                                                 .mapSize = 512});
+    const auto setup = tsmOf(view, forest);
     ASSERT_TRUE(setup);
     for (const gl::Culling culling : {gl::Culling::Frustum, gl::Culling::Gpu}) {
         gl::RenderSettings settings = smallFrame(320, 180, culling);
@@ -349,11 +354,7 @@ TEST_F(CullingTest, LevelsChosenByAnotherCameraAreThatCamerasOnEveryCullingPath)
     const scene::ResolvedView view = smallView(forest, "aerial", 320, 180);
     auto renderer = gl::Renderer::create(forest);
     ASSERT_TRUE(renderer);
-    const auto setup = core::computeShadowSetup({.camera = view.camera,
-                                                 .light = view.light,
-                                                 .wsSceneBounds = forest.wsBounds(),
-                                                 .technique = core::Technique::Tsm,
-                                                 .mapSize = 512});
+    const auto setup = tsmOf(view, forest);
     ASSERT_TRUE(setup);
     core::PerspectiveCamera farther = view.camera;
     farther.wsEye -=
