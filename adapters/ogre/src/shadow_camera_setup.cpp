@@ -1,5 +1,5 @@
-// The OGRE adapter's one idea: a texture-shadow camera from shadowkit::core
-// (shadow_camera_setup.h).
+// The OGRE adapter's one idea: a texture-shadow camera from shadowkit::core, the sun's or a
+// spot light's (shadow_camera_setup.h).
 #include "shadowkit/ogre/shadow_camera_setup.h"
 
 #include "shadowkit/core/engine_camera.h"
@@ -33,6 +33,24 @@ core::Mat4 toCore(const OgreMatrix& m) {
 
 core::Vec3 toCore(const Ogre::Vector3& v) { return {double(v.x), double(v.y), double(v.z)}; }
 
+// The camera and scene box every set-up reads, converted and checked: a local light's inputs.
+core::Result<core::LocalShadowInputs> viewInputsFor(const Ogre::Affine3& viewFromWorld,
+                                                    const Ogre::Matrix4& clipFromView, double shadowDistance,
+                                                    const Ogre::AxisAlignedBox& wsSceneBounds) {
+    if (!wsSceneBounds.isFinite() || wsSceneBounds.isNull())
+        return core::Error{"scene bounds: empty or infinite (nothing in the scene, or an infinite object in it)",
+                           "scene_bounds"};
+    // OGRE's standard projection: OpenGL's clip depth, a right-handed view looking down −Z.
+    core::EngineCamera engine{toCore(viewFromWorld), toCore(clipFromView), core::ClipDepthRange::MinusOneToOne};
+    engine.shadowDistance = shadowDistance;
+    auto camera = core::cameraFromMatrices(engine);
+    if (!camera) return camera.errorInfo();
+    core::LocalShadowInputs out;
+    out.camera = *camera;
+    out.wsSceneBounds = core::Aabb::fromMinMax(toCore(wsSceneBounds.getMinimum()), toCore(wsSceneBounds.getMaximum()));
+    return out;
+}
+
 } // namespace
 
 core::Status checkTechnique(core::Technique technique) {
@@ -47,20 +65,13 @@ core::Result<core::ShadowSetupInputs> inputsFor(const Ogre::Affine3& viewFromWor
                                                 double shadowDistance, const Ogre::Vector3& wsLightDirection,
                                                 const Ogre::AxisAlignedBox& wsSceneBounds,
                                                 core::ShadowSetupInputs options) {
-    if (!wsSceneBounds.isFinite() || wsSceneBounds.isNull())
-        return core::Error{"scene bounds: empty or infinite (nothing in the scene, or an infinite object in it)",
-                           "scene_bounds"};
-    // OGRE's standard projection: OpenGL's clip depth, a right-handed view looking down −Z.
-    core::EngineCamera engine{toCore(viewFromWorld), toCore(clipFromView), core::ClipDepthRange::MinusOneToOne};
-    engine.shadowDistance = shadowDistance;
-    auto camera = core::cameraFromMatrices(engine);
-    if (!camera) return camera.errorInfo();
+    auto view = viewInputsFor(viewFromWorld, clipFromView, shadowDistance, wsSceneBounds);
+    if (!view) return view.errorInfo();
     auto light = core::DirectionalLight::fromDirection(toCore(wsLightDirection));
     if (!light) return light.errorInfo();
-    options.camera = *camera;
+    options.camera = view->camera;
     options.light = *light;
-    options.wsSceneBounds =
-        core::Aabb::fromMinMax(toCore(wsSceneBounds.getMinimum()), toCore(wsSceneBounds.getMaximum()));
+    options.wsSceneBounds = view->wsSceneBounds;
     // OGRE's casters write the rasteriser's depth; TSM's linear depth would need our shader.
     options.depthLayout = core::DepthLayout::Hyperbolic;
     return options;
@@ -76,6 +87,21 @@ core::Result<core::ShadowSetup> setupFor(const Ogre::Affine3& viewFromWorld, con
     if (!setup) return setup.errorInfo();
     if (setup->views.empty()) return core::Error{"the set-up has no shadow map for this view", "technique"};
     return setup;
+}
+
+core::Result<core::ShadowSetup> spotSetupFor(const Ogre::Affine3& viewFromWorld, const Ogre::Matrix4& clipFromView,
+                                             double shadowDistance, const Ogre::Vector3& wsPosition,
+                                             const Ogre::Vector3& wsDirection, Ogre::Radian outerAngle, double range,
+                                             const Ogre::AxisAlignedBox& wsSceneBounds, int mapSize) {
+    auto inputs = viewInputsFor(viewFromWorld, clipFromView, shadowDistance, wsSceneBounds);
+    if (!inputs) return inputs.errorInfo();
+    inputs->mapSize = mapSize;
+    core::SpotLight spot;
+    spot.wsPosition = toCore(wsPosition);
+    spot.wsDirection = toCore(wsDirection);
+    spot.coneDegrees = double(outerAngle.valueDegrees()); // OGRE's spot angles are full angles
+    spot.range = range;
+    return core::computeSpotShadowSetup(*inputs, spot);
 }
 
 Ogre::AxisAlignedBox sceneBounds(const Ogre::SceneNode& node) {
@@ -139,33 +165,76 @@ core::Result<core::ShadowSetup> ShadowCameraSetup::setupOf(const core::ShadowSet
     return setup;
 }
 
+Ogre::AxisAlignedBox ShadowCameraSetup::boundsOf(const Ogre::SceneManager* sm) const {
+    // Not the root node's world box: it holds the cameras' boxes, which reach their far planes.
+    // OGRE hands the set-up a const scene manager, whose getRootSceneNode is not const though
+    // it only returns the node.
+    return m_fixedBounds ? *m_fixedBounds : sceneBounds(*const_cast<Ogre::SceneManager*>(sm)->getRootSceneNode());
+}
+
+void ShadowCameraSetup::report(const std::string& error, std::string& last) {
+    if (!error.empty() && error != last) Ogre::LogManager::getSingleton().logWarning("shadowkit: " + error);
+    last = error;
+}
+
+bool ShadowCameraSetup::spotCamera(const Ogre::SceneManager* sm, const Ogre::Camera* cam, const Ogre::Light* light,
+                                   Ogre::Camera* texCam) const {
+    const double far = sm->getShadowFarDistance();
+    auto setup = spotSetupFor(cam->getViewMatrix(), cam->getProjectionMatrix(),
+                              far > 0.0 ? far : std::numeric_limits<double>::infinity(), light->getDerivedPosition(),
+                              light->getDerivedDirection(), light->getSpotlightOuterAngle(),
+                              double(light->getAttenuationRange()), boundsOf(sm), m_inputs.mapSize);
+    if (!setup) {
+        report(setup.error(), m_lastSpotError);
+        m_lastSpotSetup.reset();
+        return false;
+    }
+    report("", m_lastSpotError);
+    m_lastSpotSetup = std::move(*setup);
+    // A cone that misses the view lights nothing seen: OGRE's camera draws a map nothing reads.
+    if (m_lastSpotSetup->views.empty()) return false;
+    TextureCamera camera = textureCameraOf(*m_lastSpotSetup, 0);
+    // The core's near plane lies just in front of the receivers, casters nearer the light to be
+    // clamped to it; OGRE culls them against the texture camera's near plane first and has no
+    // depth clamp. So the near plane moves towards the light, where OGRE's own spot camera has
+    // it (the light's shadow near clip distance; the camera's near by default). Only the depth
+    // row changes — x, y and w of a perspective from the light do not depend on the planes —
+    // so every receiver keeps its texel. In the core's [0, 1] row z = f / (n − f) · zv + n f /
+    // (n − f) the planes are n = m23 / m22 and f = m23 / (m22 + 1); OpenGL's row is
+    // −(f + n') / (f − n') · zv − 2 f n' / (f − n').
+    const core::Mat4& clipFromLight = m_lastSpotSetup->views[0].clipFromLight;
+    const double zNear = clipFromLight[3][2] / clipFromLight[2][2];
+    const double zFar = clipFromLight[3][2] / (clipFromLight[2][2] + 1.0);
+    const double nearToLight = std::min(zNear, double(light->_deriveShadowNearClipDistance(cam)));
+    camera.projectionMatrix[2][2] = Ogre::Real(-(zFar + nearToLight) / (zFar - nearToLight));
+    camera.projectionMatrix[2][3] = Ogre::Real(-2.0 * zFar * nearToLight / (zFar - nearToLight));
+    texCam->setCustomViewMatrix(true, camera.viewMatrix);
+    texCam->setCustomProjectionMatrix(true, camera.projectionMatrix);
+    return true;
+}
+
 void ShadowCameraSetup::getShadowCamera(const Ogre::SceneManager* sm, const Ogre::Camera* cam, const Ogre::Viewport* vp,
                                         const Ogre::Light* light, Ogre::Camera* texCam, size_t iteration) const {
+    if (light->getType() == Ogre::Light::LT_SPOTLIGHT) {
+        if (!spotCamera(sm, cam, light, texCam)) m_fallback.getShadowCamera(sm, cam, vp, light, texCam, iteration);
+        return;
+    }
     if (light->getType() != Ogre::Light::LT_DIRECTIONAL) {
         m_fallback.getShadowCamera(sm, cam, vp, light, texCam, iteration);
         return;
     }
     if (iteration == 0 || !m_lastSetup) {
-        // Not the root node's world box: it holds the cameras' boxes, which reach their far
-        // planes. OGRE hands the set-up a const scene manager, whose getRootSceneNode is not
-        // const though it only returns the node.
-        const Ogre::AxisAlignedBox bounds =
-            m_fixedBounds ? *m_fixedBounds : sceneBounds(*const_cast<Ogre::SceneManager*>(sm)->getRootSceneNode());
         const double far = sm->getShadowFarDistance();
         const auto frame = inputsFor(cam->getViewMatrix(), cam->getProjectionMatrix(),
                                      far > 0.0 ? far : std::numeric_limits<double>::infinity(),
-                                     light->getDerivedDirection(), bounds, m_inputs);
+                                     light->getDerivedDirection(), boundsOf(sm), m_inputs);
         auto setup = frame ? setupOf(*frame) : core::Result<core::ShadowSetup>(frame.errorInfo());
-        if (!setup) {
-            // Said once per different error; the frame gets OGRE's default camera, not garbage.
-            if (setup.error() != m_lastError)
-                Ogre::LogManager::getSingleton().logWarning("shadowkit: " + setup.error());
-            m_lastError = setup.error();
-            m_lastSetup.reset();
-        } else {
-            m_lastError.clear();
+        // An error is said once per different error; the frame gets OGRE's default camera, not garbage.
+        report(setup ? std::string() : setup.error(), m_lastError);
+        if (setup)
             m_lastSetup = std::move(*setup);
-        }
+        else
+            m_lastSetup.reset();
     }
     if (!m_lastSetup || iteration >= m_lastSetup->views.size()) {
         // No set-up, or more textures than the technique has maps: those see OGRE's default.

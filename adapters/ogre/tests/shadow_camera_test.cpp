@@ -76,6 +76,22 @@ protected:
         return light;
     }
 
+    Ogre::Light* spot(const core::Vec3& wsPosition, const core::Vec3& wsDirection, double coneDegrees, double range) {
+        Ogre::Light* light = m_sm->createLight();
+        light->setType(Ogre::Light::LT_SPOTLIGHT);
+        light->setSpotlightOuterAngle(Ogre::Degree(Ogre::Real(coneDegrees)));
+        light->setSpotlightInnerAngle(Ogre::Degree(Ogre::Real(0.8 * coneDegrees)));
+        light->setAttenuation(Ogre::Real(range), 1.0f, 0.0f, 0.0f);
+        Ogre::SceneNode* node = m_sm->getRootSceneNode()->createChildSceneNode();
+        node->attachObject(light);
+        node->setPosition(Ogre::Vector3(Ogre::Real(wsPosition.x), Ogre::Real(wsPosition.y), Ogre::Real(wsPosition.z)));
+        node->setDirection(
+            Ogre::Vector3(Ogre::Real(wsDirection.x), Ogre::Real(wsDirection.y), Ogre::Real(wsDirection.z)),
+            Ogre::Node::TS_WORLD);
+        m_sm->getRootSceneNode()->_update(true, false);
+        return light;
+    }
+
     static std::unique_ptr<Ogre::LogManager> s_log;
     static std::unique_ptr<Ogre::Root> s_root;
     static std::unique_ptr<Ogre::DefaultHardwareBufferManager> s_buffers;
@@ -180,6 +196,123 @@ TEST_F(OgreScene, TextureCamerasMapTheFocusBodyToTheCoresTexelsForRandomCamerasA
         ++compared;
     }
     EXPECT_EQ(compared, 60);
+}
+
+// Whether a world point lies inside the camera's view, up to `shadowDistance` along it.
+bool inView(const Ogre::Camera& cam, const core::Vec3& p, double shadowDistance) {
+    const Ogre::Vector3 eye = cam.getViewMatrix() * Ogre::Vector3(Ogre::Real(p.x), Ogre::Real(p.y), Ogre::Real(p.z));
+    return cam.isVisible(Ogre::Vector3(Ogre::Real(p.x), Ogre::Real(p.y), Ogre::Real(p.z))) && -eye.z <= shadowDistance;
+}
+
+TEST_F(OgreScene, SpotLightMapsHoldWhatTheCameraSeesOfTheConeInTheCoresTexels) {
+    // Lamps over the forest floor, cameras among them. Every point the camera sees inside a
+    // lamp's cone and range — found by sampling, not from the set-up — must land in the spot
+    // map (texel in [0, N], depth in [0, 1]) on the core's texel, and the map must spend at
+    // least the texels per metre OGRE's own spot camera spends (1.2 × the cone): it is the cone,
+    // or the part of it the camera sees. A caster halfway between the lamp and those receivers
+    // must survive OGRE's culling against the texture camera (no depth clamp in OGRE 1.12).
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    const Ogre::AxisAlignedBox box(-60, 0, -60, 60, 20, 60);
+    int maps = 0, narrowed = 0, seenInMaps = 0;
+    for (int trial = 0; trial < 40; ++trial) {
+        const core::Vec3 wsLamp(-30.0 + 60.0 * u(rng), 3.0 + 12.0 * u(rng), -30.0 + 60.0 * u(rng));
+        core::Vec3 aim = unitVector(rng);
+        aim.y = -0.3 - std::abs(aim.y);
+        const double cone = 20.0 + 100.0 * u(rng), range = 15.0 + 45.0 * u(rng);
+        const core::Vec3 wsEye(-40.0 + 80.0 * u(rng), 1.7 + 10.0 * u(rng), -40.0 + 80.0 * u(rng));
+        core::Vec3 forward = unitVector(rng);
+        forward.y = -0.1 - 0.4 * std::abs(forward.y);
+        Ogre::Camera* cam = camera(wsEye, glm::normalize(forward), 60.0, 16.0 / 9.0, 0.3, 300.0);
+        Ogre::Light* lamp = spot(wsLamp, glm::normalize(aim), cone, range);
+        ShadowCameraSetup setup;
+        setup.setSceneBounds(box);
+        Ogre::Camera* texCam = m_sm->createCamera("spotmap" + std::to_string(m_cameras++));
+        m_sm->getRootSceneNode()->createChildSceneNode()->attachObject(texCam);
+        setup.getShadowCamera(m_sm, cam, nullptr, lamp, texCam, 0);
+        ASSERT_TRUE(setup.lastSpotSetup()) << setup.lastSpotError();
+        const core::ShadowSetup& core = *setup.lastSpotSetup();
+        if (core.views.empty()) {
+            EXPECT_FALSE(texCam->isCustomProjectionMatrixEnabled()); // OGRE's own camera
+            continue;
+        }
+        ASSERT_TRUE(texCam->isCustomProjectionMatrixEnabled());
+        ++maps;
+        const core::EngineShadowView gl = core::toEngineView(core.views[0], core, core::OutputConventions::openGL());
+        const double halfCone = 0.5 * glm::radians(double(lamp->getSpotlightOuterAngle().valueDegrees()));
+        const core::Vec3 axis(lamp->getDerivedDirection().x, lamp->getDerivedDirection().y,
+                              lamp->getDerivedDirection().z);
+        // The map's tangent span against OGRE's own spot camera's, 2 tan(1.2 × half the cone).
+        const core::Mat4& clipFromLight = core.views[0].clipFromLight;
+        const double span = std::max(2.0 / clipFromLight[0][0], 2.0 / clipFromLight[1][1]);
+        EXPECT_LE(span, 2.0 * std::tan(1.2 * halfCone) + 1e-9);
+        if (span < 0.999 * 2.0 * std::tan(halfCone)) ++narrowed;
+        int seen = 0;
+        // Points inside the cone and range, kept where the box and the camera's view hold them.
+        const core::Vec3 side =
+            glm::normalize(glm::cross(axis, std::abs(axis.y) < 0.9 ? core::Vec3(0, 1, 0) : core::Vec3(1, 0, 0)));
+        const core::Vec3 up = glm::cross(side, axis);
+        for (int sample = 0; sample < 4000; ++sample) {
+            const double a = 2.0 * u(rng) - 1.0, b = 2.0 * u(rng) - 1.0;
+            if (a * a + b * b > 1.0) continue;
+            const core::Vec3 ray = glm::normalize(axis + std::tan(halfCone) * (a * side + b * up));
+            const core::Vec3 p = wsLamp + range * u(rng) * ray;
+            const core::Vec3 toPoint = p - wsLamp;
+            if (p.x < -60 || p.x > 60 || p.y < 0 || p.y > 20 || p.z < -60 || p.z > 60 || !inView(*cam, p, 300.0))
+                continue;
+            ++seen;
+            const core::Vec3 texel = texelOf(*texCam, p, 2048);
+            const core::Vec4 t = gl.textureFromWorld * core::Vec4(p, 1.0);
+            // OGRE's float matrices hold the lamp's frame to a few micrometres (coordinates of tens
+            // of metres), which near the apex is a large share of a texel; a wrong convention
+            // moves points by hundreds of texels.
+            const double tolerance = 5e-3 + 2e-5 / (span * glm::dot(toPoint, axis) / 2048);
+            EXPECT_NEAR(texel.x, t.x / t.w * 2048, tolerance);
+            EXPECT_NEAR(texel.y, t.y / t.w * 2048, tolerance);
+            EXPECT_GE(texel.x, -1e-3);
+            EXPECT_LE(texel.x, 2048 + 1e-3);
+            EXPECT_GE(texel.y, -1e-3);
+            EXPECT_LE(texel.y, 2048 + 1e-3);
+            // Depth: in the map, or in front of it where R reaches the lamp (a caster there is
+            // flattened onto the near plane).
+            EXPECT_LE(texel.z, 1.0);
+            if (glm::dot(toPoint, axis) > 0.3) {
+                EXPECT_GE(texel.z, 0.0);
+            }
+            // A caster on the way to the lamp, just beyond OGRE's default near distance from it
+            // (the camera's near, 0.3 m, along the lamp's axis).
+            const core::Vec3 caster = wsLamp + toPoint * (0.31 / glm::dot(toPoint, axis));
+            const Ogre::Vector3 at(Ogre::Real(caster.x), Ogre::Real(caster.y), Ogre::Real(caster.z));
+            EXPECT_TRUE(texCam->isVisible(Ogre::AxisAlignedBox(at - 0.005f, at + 0.005f)));
+        }
+        seenInMaps += seen;
+    }
+    EXPECT_GE(maps, 10);
+    EXPECT_GE(seenInMaps, 1000);
+    EXPECT_GE(narrowed, 3); // the camera sees part of the cone: the map narrows to it
+}
+
+TEST_F(OgreScene, PointLightsAndBadSpotsKeepOgresCamera) {
+    // A spot of more than the core's 170°: said in the log once, and OGRE's own camera draws it.
+    Ogre::Camera* cam = camera(core::Vec3(0, 2, 10), core::Vec3(0, -0.2, -1), 60.0, 1.5, 0.3, 300.0);
+    Ogre::Light* wide = spot(core::Vec3(0, 6, 0), core::Vec3(0, -1, 0), 175.0, 30.0);
+    ShadowCameraSetup setup;
+    setup.setSceneBounds(Ogre::AxisAlignedBox(-60, 0, -60, 60, 20, 60));
+    Ogre::Camera* texCam = m_sm->createCamera("wide" + std::to_string(m_cameras++));
+    m_sm->getRootSceneNode()->createChildSceneNode()->attachObject(texCam);
+    setup.getShadowCamera(m_sm, cam, nullptr, wide, texCam, 0);
+    EXPECT_FALSE(setup.lastSpotSetup());
+    EXPECT_NE(setup.lastSpotError().find("spot.cone"), std::string::npos) << setup.lastSpotError();
+    EXPECT_EQ(setup.lastSpotError().find('\n'), std::string::npos);
+    EXPECT_FALSE(texCam->isCustomProjectionMatrixEnabled());
+    EXPECT_TRUE(setup.lastError().empty()); // the sun's error is its own
+
+    Ogre::Light* bulb = m_sm->createLight();
+    bulb->setType(Ogre::Light::LT_POINT);
+    m_sm->getRootSceneNode()->createChildSceneNode()->attachObject(bulb);
+    setup.getShadowCamera(m_sm, cam, nullptr, bulb, texCam, 0);
+    EXPECT_FALSE(texCam->isCustomProjectionMatrixEnabled());
+    EXPECT_FALSE(setup.lastSetup());
 }
 
 TEST_F(OgreScene, StaysFiniteWithTheSunAlongTheViewDirection) {

@@ -29,6 +29,25 @@ bool isFinite(const ::osg::BoundingBoxd& b) {
     return true;
 }
 
+// The camera and scene box every set-up reads, converted and checked: a local light's inputs.
+core::Result<core::LocalShadowInputs> viewInputsFor(const ::osg::Matrixd& viewFromWorld,
+                                                    const ::osg::Matrixd& clipFromView, double shadowDistance,
+                                                    const ::osg::BoundingBoxd& wsSceneBounds) {
+    if (!wsSceneBounds.valid() || !isFinite(wsSceneBounds))
+        return core::Error{"scene bounds: empty or not finite (nothing under the ShadowedScene?)", "scene_bounds"};
+    // OSG's main camera: OpenGL's clip depth, a right-handed view looking down −Z.
+    core::EngineCamera engine{toCore(viewFromWorld), toCore(clipFromView), core::ClipDepthRange::MinusOneToOne};
+    engine.shadowDistance = shadowDistance;
+    auto camera = core::cameraFromMatrices(engine);
+    if (!camera) return camera.errorInfo();
+    core::LocalShadowInputs out;
+    out.camera = *camera;
+    out.wsSceneBounds =
+        core::Aabb::fromMinMax(core::Vec3(wsSceneBounds.xMin(), wsSceneBounds.yMin(), wsSceneBounds.zMin()),
+                               core::Vec3(wsSceneBounds.xMax(), wsSceneBounds.yMax(), wsSceneBounds.zMax()));
+    return out;
+}
+
 } // namespace
 
 core::Status checkTechnique(core::Technique technique) {
@@ -44,26 +63,26 @@ core::Result<core::ShadowSetupInputs> inputsFor(const ::osg::Matrixd& viewFromWo
                                                 double shadowDistance, const ::osg::Vec3d& wsLightDirection,
                                                 const ::osg::BoundingBoxd& wsSceneBounds,
                                                 core::ShadowSetupInputs options) {
-    if (!wsSceneBounds.valid() || !isFinite(wsSceneBounds))
-        return core::Error{"scene bounds: empty or not finite (nothing under the ShadowedScene?)", "scene_bounds"};
-
-    // OSG's main camera: OpenGL's clip depth, a right-handed view looking down −Z.
-    core::EngineCamera engine{toCore(viewFromWorld), toCore(clipFromView), core::ClipDepthRange::MinusOneToOne};
-    engine.shadowDistance = shadowDistance;
-    auto camera = core::cameraFromMatrices(engine);
-    if (!camera) return camera.errorInfo();
+    auto view = viewInputsFor(viewFromWorld, clipFromView, shadowDistance, wsSceneBounds);
+    if (!view) return view.errorInfo();
     auto light = core::DirectionalLight::fromDirection(
         core::Vec3(wsLightDirection.x(), wsLightDirection.y(), wsLightDirection.z()));
     if (!light) return light.errorInfo();
-
-    options.camera = *camera;
+    options.camera = view->camera;
     options.light = *light;
-    options.wsSceneBounds =
-        core::Aabb::fromMinMax(core::Vec3(wsSceneBounds.xMin(), wsSceneBounds.yMin(), wsSceneBounds.zMin()),
-                               core::Vec3(wsSceneBounds.xMax(), wsSceneBounds.yMax(), wsSceneBounds.zMax()));
+    options.wsSceneBounds = view->wsSceneBounds;
     // OSG's caster pass writes the rasteriser's depth; it cannot write TSM's linear depth.
     options.depthLayout = core::DepthLayout::Hyperbolic;
     return options;
+}
+
+ShadowCamera shadowCameraOfView(core::ShadowSetup setup) {
+    // The light's rigid frame is OSG's view matrix, the rest of the map's clip matrix (in
+    // OpenGL's depth range) its projection, so OSG's caster culling sees a light-space frustum.
+    const core::ShadowView& view = setup.views[0];
+    const core::EngineShadowView gl = core::toEngineView(view, setup, core::OutputConventions::openGL());
+    const core::Mat4 clipFromLight = gl.clipFromWorld * glm::inverse(view.lightFromWorld);
+    return ShadowCamera{toOsg(view.lightFromWorld), toOsg(clipFromLight), std::move(setup)};
 }
 
 core::Result<ShadowCamera> shadowCameraOf(const core::ShadowSetupInputs& inputs) {
@@ -71,13 +90,7 @@ core::Result<ShadowCamera> shadowCameraOf(const core::ShadowSetupInputs& inputs)
     auto setup = core::computeShadowSetup(inputs);
     if (!setup) return setup.errorInfo();
     if (setup->views.empty()) return core::Error{"the set-up has no shadow map for this view", "technique"};
-
-    // The light's rigid frame is OSG's view matrix, the rest of the map's clip matrix (in
-    // OpenGL's depth range) its projection, so OSG's caster culling sees a light-space frustum.
-    const core::ShadowView& view = setup->views[0];
-    const core::EngineShadowView gl = core::toEngineView(view, *setup, core::OutputConventions::openGL());
-    const core::Mat4 clipFromLight = gl.clipFromWorld * glm::inverse(view.lightFromWorld);
-    return ShadowCamera{toOsg(view.lightFromWorld), toOsg(clipFromLight), std::move(*setup)};
+    return shadowCameraOfView(std::move(*setup));
 }
 
 core::Result<ShadowCamera> shadowCameraFor(const ::osg::Matrixd& viewFromWorld, const ::osg::Matrixd& clipFromView,
@@ -87,6 +100,21 @@ core::Result<ShadowCamera> shadowCameraFor(const ::osg::Matrixd& viewFromWorld, 
     auto inputs = inputsFor(viewFromWorld, clipFromView, shadowDistance, wsLightDirection, wsSceneBounds, options);
     if (!inputs) return inputs.errorInfo();
     return shadowCameraOf(*inputs);
+}
+
+core::Result<core::ShadowSetup> spotSetupFor(const ::osg::Matrixd& viewFromWorld, const ::osg::Matrixd& clipFromView,
+                                             double shadowDistance, const ::osg::Vec3d& wsPosition,
+                                             const ::osg::Vec3d& wsDirection, double spotCutoffDegrees, double range,
+                                             const ::osg::BoundingBoxd& wsSceneBounds, int mapSize) {
+    auto inputs = viewInputsFor(viewFromWorld, clipFromView, shadowDistance, wsSceneBounds);
+    if (!inputs) return inputs.errorInfo();
+    inputs->mapSize = mapSize;
+    core::SpotLight spot;
+    spot.wsPosition = core::Vec3(wsPosition.x(), wsPosition.y(), wsPosition.z());
+    spot.wsDirection = core::Vec3(wsDirection.x(), wsDirection.y(), wsDirection.z());
+    spot.coneDegrees = 2.0 * spotCutoffDegrees; // OSG's cutoff is the half-angle
+    spot.range = range;
+    return core::computeSpotShadowSetup(*inputs, spot);
 }
 
 ShadowMap::ShadowMap() = default;
@@ -134,18 +162,57 @@ void ShadowMap::init() {
     return m_cachedBounds;
 }
 
+ShadowMap::SpotOutcome ShadowMap::spotCamera(const Frustum& frustum, const LightData& light, double shadowDistance,
+                                             int mapSize, ::osg::Matrixd& projectionMatrix,
+                                             ::osg::Matrixd& viewMatrix) {
+    // An OSG light has attenuation, not a range: the spot reaches everything in the scene box.
+    const ::osg::BoundingBoxd box = sceneBounds();
+    double range = 0.0;
+    for (unsigned corner = 0; corner < 8; ++corner)
+        range = std::max(range, (box.corner(corner) - light.lightPos3).length());
+    auto setup = spotSetupFor(frustum.modelViewMatrix, frustum.projectionMatrix, shadowDistance, light.lightPos3,
+                              light.lightDir, light.light->getSpotCutoff(), range, box, mapSize);
+    if (!setup) {
+        if (setup.error() != m_lastSpotError) OSG_WARN << "shadowkit: " << setup.error() << std::endl;
+        m_lastSpotError = setup.error();
+        m_lastSpotSetup.reset();
+        return SpotOutcome::LeftToOsg;
+    }
+    m_lastSpotError.clear();
+    m_lastSpotSetup = *setup;
+    if (setup->views.empty()) return SpotOutcome::NothingInView;
+    const ShadowCamera camera = shadowCameraOfView(std::move(*setup));
+    viewMatrix = camera.viewMatrix;
+    projectionMatrix = camera.projectionMatrix;
+    return SpotOutcome::Mapped;
+}
+
 bool ShadowMap::computeShadowCameraSettings(Frustum& frustum, LightData& light, ::osg::Matrixd& projectionMatrix,
                                             ::osg::Matrixd& viewMatrix) {
-    m_ownCamera = light.directionalLight;
-    if (!light.directionalLight)
-        return osgShadow::ViewDependentShadowMap::computeShadowCameraSettings(frustum, light, projectionMatrix,
-                                                                              viewMatrix);
     core::ShadowSetupInputs inputs = m_inputs;
     const osgShadow::ShadowSettings* settings = getShadowedScene() ? getShadowedScene()->getShadowSettings() : nullptr;
     if (settings) inputs.mapSize = static_cast<int>(settings->getTextureSize().x());
     const double maxDistance = settings ? settings->getMaximumShadowMapDistance() : std::numeric_limits<double>::max();
     const double shadowDistance =
         maxDistance >= std::numeric_limits<double>::max() ? std::numeric_limits<double>::infinity() : maxDistance;
+
+    m_ownCamera = true;
+    // OSG's spot cutoff is half the cone; 180 makes a point light.
+    if (!light.directionalLight && light.light->getSpotCutoff() < 90.0) {
+        switch (spotCamera(frustum, light, shadowDistance, inputs.mapSize, projectionMatrix, viewMatrix)) {
+        case SpotOutcome::Mapped:
+            return true;
+        case SpotOutcome::NothingInView:
+            return false; // the light lights nothing in view
+        case SpotOutcome::LeftToOsg:
+            break;
+        }
+    }
+    if (!light.directionalLight) {
+        m_ownCamera = false;
+        return osgShadow::ViewDependentShadowMap::computeShadowCameraSettings(frustum, light, projectionMatrix,
+                                                                              viewMatrix);
+    }
 
     auto camera = [&]() -> core::Result<ShadowCamera> {
         auto frame = inputsFor(frustum.modelViewMatrix, frustum.projectionMatrix, shadowDistance, light.lightDir,

@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 #include <osg/Light>
 #include <osg/Viewport>
+#include <osgShadow/ShadowedScene>
 #include <osgUtil/CullVisitor>
 
 #include <cmath>
@@ -47,6 +48,34 @@ VdsmCall callAsVdsm(ShadowMap& shadowMap, const ::osg::Matrixd& cameraView, cons
     call.wsLightDirection = lightData->lightDir;
     call.ok = shadowMap.computeShadowCameraSettings(frustum, *lightData, call.projection, call.view);
     return call;
+}
+
+// OSG's row-vector matrix as the column-vector matrix it lies in memory as.
+core::Mat4 toCore(const ::osg::Matrixd& m) { return glm::make_mat4(m.ptr()); }
+
+// The same call for a positional light: a spot (cutoff < 90°, the half-angle) or a point light.
+VdsmCall callAsVdsm(osgShadow::ViewDependentShadowMap& shadowMap, const ::osg::Matrixd& cameraView,
+                    const ::osg::Matrixd& cameraProjection, const ::osg::Light& light) {
+    ::osg::ref_ptr<osgUtil::CullVisitor> cv = new osgUtil::CullVisitor;
+    cv->setComputeNearFarMode(::osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR);
+    cv->pushViewport(new ::osg::Viewport(0, 0, 1280, 720));
+    cv->pushProjectionMatrix(new ::osg::RefMatrix(cameraProjection));
+    cv->pushModelViewMatrix(new ::osg::RefMatrix(cameraView), ::osg::Transform::ABSOLUTE_RF);
+    osgShadow::ViewDependentShadowMap::Frustum frustum(cv.get(), 0.0, 1e30);
+    ::osg::ref_ptr<osgShadow::ViewDependentShadowMap::LightData> lightData =
+        new osgShadow::ViewDependentShadowMap::LightData(nullptr);
+    lightData->setLightData(nullptr, &light, ::osg::Matrixd::identity());
+    VdsmCall call;
+    call.ok = shadowMap.computeShadowCameraSettings(frustum, *lightData, call.projection, call.view);
+    return call;
+}
+
+::osg::ref_ptr<::osg::Light> spotLight(const core::Vec3& wsPosition, const core::Vec3& wsDirection, double cutoff) {
+    ::osg::ref_ptr<::osg::Light> light = new ::osg::Light;
+    light->setPosition(::osg::Vec4(float(wsPosition.x), float(wsPosition.y), float(wsPosition.z), 1.0f));
+    light->setDirection(::osg::Vec3(float(wsDirection.x), float(wsDirection.y), float(wsDirection.z)));
+    light->setSpotCutoff(float(cutoff));
+    return light;
 }
 
 core::Vec3 unitVector(std::mt19937& rng) {
@@ -219,6 +248,105 @@ TEST(OsgShadowCamera, AutoChoosesForTheReceiversItIsHandedAsTheCoreWould) {
     ASSERT_FALSE(refused);
     EXPECT_NE(refused.error().find("auto.cascades"), std::string::npos) << refused.error();
     EXPECT_EQ(refused.error().find('\n'), std::string::npos);
+}
+
+TEST(OsgShadowCamera, SpotLightMapsHoldWhatTheCameraSeesOfTheConeInTheCoresTexels) {
+    // Lamps over a yard, cameras among them. Every point the camera sees inside a lamp's cone
+    // within the scene box — found by sampling, not from the set-up — must land in the spot map
+    // (texel in [0, N], depth in [0, 1]) on the core's texel, and the map must spend at least
+    // the texels per metre OSG's own spot camera spends (the whole cone, 2 × the cutoff): it is
+    // the cone, or the part of it the camera sees.
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    const ::osg::BoundingBoxd box({-60.0, 0.0, -60.0}, {60.0, 20.0, 60.0});
+    int maps = 0, narrowed = 0, seenInMaps = 0;
+    for (int trial = 0; trial < 40; ++trial) {
+        const core::Vec3 wsLamp(-30.0 + 60.0 * u(rng), 3.0 + 12.0 * u(rng), -30.0 + 60.0 * u(rng));
+        core::Vec3 aim = unitVector(rng);
+        aim.y = -0.3 - std::abs(aim.y);
+        aim = glm::normalize(aim);
+        const double cutoff = 10.0 + 50.0 * u(rng);
+        const core::Vec3 wsEye(-40.0 + 80.0 * u(rng), 1.7 + 10.0 * u(rng), -40.0 + 80.0 * u(rng));
+        core::Vec3 forward = unitVector(rng);
+        forward.y = -0.1 - 0.4 * std::abs(forward.y);
+        forward = glm::normalize(forward);
+        const ::osg::Matrixd view = ::osg::Matrixd::lookAt(
+            ::osg::Vec3d(wsEye.x, wsEye.y, wsEye.z),
+            ::osg::Vec3d(wsEye.x + forward.x, wsEye.y + forward.y, wsEye.z + forward.z), ::osg::Vec3d(0, 1, 0));
+        const ::osg::Matrixd projection = ::osg::Matrixd::perspective(60.0, 16.0 / 9.0, 0.3, 300.0);
+        ::osg::ref_ptr<ShadowMap> shadowMap = new ShadowMap;
+        shadowMap->setSceneBounds(box);
+        const auto light = spotLight(wsLamp, aim, cutoff);
+        const VdsmCall call = callAsVdsm(*shadowMap, view, projection, *light);
+        ASSERT_TRUE(shadowMap->lastSpotSetup()) << shadowMap->lastSpotError();
+        const core::ShadowSetup& setup = *shadowMap->lastSpotSetup();
+        EXPECT_EQ(call.ok, !setup.views.empty());
+        if (setup.views.empty()) continue;
+        ++maps;
+        const core::EngineShadowView gl = core::toEngineView(setup.views[0], setup, core::OutputConventions::openGL());
+        const core::Mat4& clipFromLight = setup.views[0].clipFromLight;
+        const double span = std::max(2.0 / clipFromLight[0][0], 2.0 / clipFromLight[1][1]);
+        const double halfCone = glm::radians(double(light->getSpotCutoff()));
+        EXPECT_LE(span, 2.0 * std::tan(halfCone) * (1.0 + 1e-9));
+        if (span < 0.999 * 2.0 * std::tan(halfCone)) ++narrowed;
+
+        const core::Vec3 axis(light->getDirection().x(), light->getDirection().y(), light->getDirection().z());
+        const core::Vec3 side =
+            glm::normalize(glm::cross(axis, std::abs(axis.y) < 0.9 ? core::Vec3(0, 1, 0) : core::Vec3(1, 0, 0)));
+        const core::Vec3 up = glm::cross(side, glm::normalize(axis));
+        const core::Mat4 clipFromWorld = toCore(call.projection) * toCore(call.view);
+        const core::Mat4 clipFromView = toCore(projection) * toCore(view);
+        for (int sample = 0; sample < 4000; ++sample) {
+            const double a = 2.0 * u(rng) - 1.0, b = 2.0 * u(rng) - 1.0;
+            if (a * a + b * b > 1.0) continue;
+            const core::Vec3 ray = glm::normalize(glm::normalize(axis) + std::tan(halfCone) * (a * side + b * up));
+            const core::Vec3 p = wsLamp + 100.0 * u(rng) * ray;
+            if (p.x < -60 || p.x > 60 || p.y < 0 || p.y > 20 || p.z < -60 || p.z > 60) continue;
+            const core::Vec4 c = clipFromView * core::Vec4(p, 1.0);
+            if (c.w <= 0.0 || std::abs(c.x) > c.w || std::abs(c.y) > c.w || std::abs(c.z) > c.w) continue;
+            ++seenInMaps;
+            const core::Vec4 m = clipFromWorld * core::Vec4(p, 1.0);
+            const core::Vec3 texel(0.5 * m.x / m.w + 0.5, 0.5 * m.y / m.w + 0.5, 0.5 * m.z / m.w + 0.5);
+            const core::Vec4 t = gl.textureFromWorld * core::Vec4(p, 1.0);
+            EXPECT_NEAR(texel.x, t.x / t.w, 1e-7);
+            EXPECT_NEAR(texel.y, t.y / t.w, 1e-7);
+            EXPECT_GE(texel.x, -1e-9);
+            EXPECT_LE(texel.x, 1.0 + 1e-9);
+            EXPECT_GE(texel.y, -1e-9);
+            EXPECT_LE(texel.y, 1.0 + 1e-9);
+            EXPECT_LE(texel.z, 1.0);
+        }
+    }
+    EXPECT_GE(maps, 10);
+    EXPECT_GE(seenInMaps, 1000);
+    EXPECT_GE(narrowed, 3); // the camera sees part of the cone: the map narrows to it
+}
+
+TEST(OsgShadowCamera, PointLightsAndBadSpotsKeepOsgsCamera) {
+    // A point light, and a spot of more than the core's 170° (said once): OSG's own camera,
+    // exactly what a plain ViewDependentShadowMap computes for the same call.
+    const ::osg::Matrixd view =
+        ::osg::Matrixd::lookAt(::osg::Vec3d(0, 2, 10), ::osg::Vec3d(0, 1.8, 9), ::osg::Vec3d(0, 1, 0));
+    const ::osg::Matrixd projection = ::osg::Matrixd::perspective(60.0, 1.5, 0.3, 300.0);
+    ::osg::ref_ptr<ShadowMap> shadowMap = new ShadowMap;
+    ::osg::ref_ptr<osgShadow::ViewDependentShadowMap> plain = new osgShadow::ViewDependentShadowMap;
+    ::osg::ref_ptr<osgShadow::ShadowedScene> ours = new osgShadow::ShadowedScene(shadowMap.get());
+    ::osg::ref_ptr<osgShadow::ShadowedScene> theirs = new osgShadow::ShadowedScene(plain.get());
+    shadowMap->setSceneBounds(::osg::BoundingBoxd({-60.0, 0.0, -60.0}, {60.0, 20.0, 60.0}));
+    const auto wide = spotLight(core::Vec3(0, 6, 0), core::Vec3(0, -1, 0), 87.5);
+    ::osg::ref_ptr<::osg::Light> bulb = new ::osg::Light;
+    bulb->setPosition(::osg::Vec4(0.0f, 6.0f, 0.0f, 1.0f));
+    for (const ::osg::Light* light : {wide.get(), bulb.get()}) {
+        const VdsmCall got = callAsVdsm(*shadowMap, view, projection, *light);
+        const VdsmCall want = callAsVdsm(*plain, view, projection, *light);
+        EXPECT_EQ(got.ok, want.ok);
+        EXPECT_EQ(got.view, want.view);
+        EXPECT_EQ(got.projection, want.projection);
+    }
+    EXPECT_NE(shadowMap->lastSpotError().find("spot.cone"), std::string::npos) << shadowMap->lastSpotError();
+    EXPECT_EQ(shadowMap->lastSpotError().find('\n'), std::string::npos);
+    EXPECT_FALSE(shadowMap->lastSpotSetup());
+    EXPECT_TRUE(shadowMap->lastError().empty()); // the sun's error is its own
 }
 
 TEST(OsgShadowCamera, RefusesManyMapTechniquesAndAnEmptySceneInOneLine) {

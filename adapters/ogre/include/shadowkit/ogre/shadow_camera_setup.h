@@ -1,6 +1,7 @@
 // shadowkit inside OGRE 1.12: a ShadowCameraSetup whose texture-shadow cameras are shadowkit's
 // (TSM, LiSPSM, PSM, focused, standard, cascades one per shadow-texture iteration, or `auto`:
-// the core's error-driven choice each frame for the receivers the application hands it).
+// the core's error-driven choice each frame for the receivers the application hands it), and
+// for spot lights the core's spot map, narrowed to what the camera sees of the cone.
 //
 // OGRE asks a light's ShadowCameraSetup once per shadow texture and frame (getShadowCamera,
 // `iteration` counting the light's textures) to set the texture camera; OGRE then draws the
@@ -18,6 +19,7 @@
 #pragma once
 
 #include "shadowkit/core/auto_chooser.h"
+#include "shadowkit/core/local_lights.h"
 #include "shadowkit/core/shadow_setup.h"
 
 // OgreShadowCameraSetup.h returns a SharedPtr it does not include.
@@ -57,6 +59,16 @@ core::Result<core::ShadowSetupInputs> inputsFor(const Ogre::Affine3& viewFromWor
                                                 const Ogre::AxisAlignedBox& wsSceneBounds,
                                                 core::ShadowSetupInputs options);
 
+/// The core's spot map (core::computeSpotShadowSetup) for an OGRE camera and a spot light at
+/// wsPosition shining along wsDirection: its outer angle the cone (full angle, at most 170°),
+/// its attenuation range the range. Its one view, when the cone meets what the camera sees, is
+/// a perspective frustum from the light over that part alone; none when it does not (the light
+/// then lights nothing in view). Fails in one line, naming the spot's field.
+core::Result<core::ShadowSetup> spotSetupFor(const Ogre::Affine3& viewFromWorld, const Ogre::Matrix4& clipFromView,
+                                             double shadowDistance, const Ogre::Vector3& wsPosition,
+                                             const Ogre::Vector3& wsDirection, Ogre::Radian outerAngle, double range,
+                                             const Ogre::AxisAlignedBox& wsSceneBounds, int mapSize);
+
 /// One view of a set-up as OGRE's texture camera takes it: the light's rigid frame and the
 /// rest of the map's OpenGL-convention clip matrix.
 struct TextureCamera {
@@ -65,9 +77,10 @@ struct TextureCamera {
 };
 TextureCamera textureCameraOf(const core::ShadowSetup& setup, size_t view);
 
-/// Ogre::ShadowCameraSetup with shadowkit's set-ups for directional lights (spot and point
-/// lights get OGRE's default). Give the scene manager as many shadow textures per directional
-/// light as the technique has maps (one; four cascades for `csm` by default).
+/// Ogre::ShadowCameraSetup with shadowkit's set-ups for directional lights and spot lights
+/// (point lights get OGRE's default: its texture shadows have no cube maps). Give the scene
+/// manager as many shadow textures per directional light as the technique has maps (one; four
+/// cascades for `csm` by default), and one per spot light.
 class ShadowCameraSetup : public Ogre::ShadowCameraSetup {
 public:
     /// The technique and its options (ShadowSetupInputs' camera, light, bounds and depth
@@ -95,11 +108,24 @@ public:
     /// with OGRE's default camera instead.
     const std::optional<core::ShadowSetup>& lastSetup() const { return m_lastSetup; }
     const std::string& lastError() const { return m_lastError; }
+    /// The set-up of the last spot light asked for (no view: its cone missed what the camera
+    /// sees, and OGRE's default camera drew a map nothing reads), or none after the error
+    /// lastSpotError says (that light then had OGRE's default camera).
+    const std::optional<core::ShadowSetup>& lastSpotSetup() const { return m_lastSpotSetup; }
+    const std::string& lastSpotError() const { return m_lastSpotError; }
 
     void getShadowCamera(const Ogre::SceneManager* sm, const Ogre::Camera* cam, const Ogre::Viewport* vp,
                          const Ogre::Light* light, Ogre::Camera* texCam, size_t iteration) const override;
 
 private:
+    // The scene box of the frame: the fixed one, or the root node's geometry.
+    Ogre::AxisAlignedBox boundsOf(const Ogre::SceneManager* sm) const;
+    // Sets texCam to the spot light's map; false where OGRE's default camera must do.
+    bool spotCamera(const Ogre::SceneManager* sm, const Ogre::Camera* cam, const Ogre::Light* light,
+                    Ogre::Camera* texCam) const;
+    // Keeps a frame's error in `last`, said in OGRE's log once per different error (not once
+    // a frame); an empty error clears it.
+    static void report(const std::string& error, std::string& last);
     // The frame's set-up from its inputs: the fixed technique's, or auto's choice.
     core::Result<core::ShadowSetup> setupOf(const core::ShadowSetupInputs& frame) const;
 
@@ -112,8 +138,9 @@ private:
     // getShadowCamera is const in OGRE's interface; a frame's set-up is computed at its first
     // texture (iteration 0) and its views handed out for the others.
     mutable std::optional<core::ShadowSetup> m_lastSetup;
-    mutable std::string m_lastError;
-    Ogre::DefaultShadowCameraSetup m_fallback; ///< spot and point lights, and frames whose set-up failed
+    mutable std::optional<core::ShadowSetup> m_lastSpotSetup;
+    mutable std::string m_lastError, m_lastSpotError;
+    Ogre::DefaultShadowCameraSetup m_fallback; ///< point lights, and frames whose set-up failed
 };
 
 } // namespace shadowkit::ogreadapter

@@ -1,6 +1,7 @@
 // shadowkit inside OpenSceneGraph 3.6: a ViewDependentShadowMap whose shadow camera is
 // shadowkit's (TSM, LiSPSM, PSM, focused or standard, or `auto`: the core's choice of them each
-// frame for the receivers the application hands it), drawn and looked up by OSG as before.
+// frame for the receivers the application hands it; for spot lights the core's spot map,
+// narrowed to what the camera sees of the cone), drawn and looked up by OSG as before.
 //
 // OSG's ViewDependentShadowMap (VDSM) calls computeShadowCameraSettings once a frame per light
 // with the view's frustum and the light; what it returns is the shadow camera's view and
@@ -19,6 +20,7 @@
 #pragma once
 
 #include "shadowkit/core/auto_chooser.h"
+#include "shadowkit/core/local_lights.h"
 #include "shadowkit/core/shadow_setup.h"
 
 #include <osg/BoundingBox>
@@ -62,8 +64,21 @@ core::Result<core::ShadowSetupInputs> inputsFor(const ::osg::Matrixd& viewFromWo
 /// The shadow camera of the set-up for `inputs` (from inputsFor): one map, or a one-line error.
 core::Result<ShadowCamera> shadowCameraOf(const core::ShadowSetupInputs& inputs);
 
-/// osgShadow::ViewDependentShadowMap with shadowkit's shadow camera for directional lights
-/// (positional lights keep OSG's own). The map size is ShadowSettings' texture size; shadows
+/// The core's spot map (core::computeSpotShadowSetup) for OSG's camera and a spot light at
+/// wsPosition shining along wsDirection with OSG's spot cutoff (half the cone, degrees; the
+/// cone at most 170°) reaching `range`: one perspective view from the light over the part of
+/// the cone the camera sees, or none where it sees none of it. Fails in one line, naming the
+/// spot's field.
+core::Result<core::ShadowSetup> spotSetupFor(const ::osg::Matrixd& viewFromWorld, const ::osg::Matrixd& clipFromView,
+                                             double shadowDistance, const ::osg::Vec3d& wsPosition,
+                                             const ::osg::Vec3d& wsDirection, double spotCutoffDegrees, double range,
+                                             const ::osg::BoundingBoxd& wsSceneBounds, int mapSize);
+/// The shadow camera of a set-up's first view (it must have one).
+ShadowCamera shadowCameraOfView(core::ShadowSetup setup);
+
+/// osgShadow::ViewDependentShadowMap with shadowkit's shadow camera for directional lights and
+/// spot lights (point lights keep OSG's own; a spot reaches the farthest corner of the scene
+/// box, OSG's lights having no range). The map size is ShadowSettings' texture size; shadows
 /// end at ShadowSettings' maximum shadow map distance, as OSG's own do; use one shadow map
 /// per light.
 class ShadowMap : public osgShadow::ViewDependentShadowMap {
@@ -96,6 +111,11 @@ public:
     /// With setAuto: the last frame's choice.
     const std::optional<core::ParameterChoice>& lastChoice() const { return m_lastChoice; }
     const std::string& lastError() const { return m_lastError; }
+    /// The set-up of the last spot light (no view: its cone missed what the camera sees, and the
+    /// light went without a map), or none after the error lastSpotError says (that light then
+    /// had OSG's own shadow camera).
+    const std::optional<core::ShadowSetup>& lastSpotSetup() const { return m_lastSpotSetup; }
+    const std::string& lastSpotError() const { return m_lastSpotError; }
 
     void init() override;
 
@@ -116,6 +136,11 @@ protected:
 
 private:
     ::osg::BoundingBoxd sceneBounds();
+    // A spot light's camera: set (Mapped), not needed (NothingInView: the cone misses the view),
+    // or left to OSG's own after an error, said once (LeftToOsg).
+    enum class SpotOutcome { Mapped, NothingInView, LeftToOsg };
+    SpotOutcome spotCamera(const Frustum& frustum, const LightData& light, double shadowDistance, int mapSize,
+                           ::osg::Matrixd& projectionMatrix, ::osg::Matrixd& viewMatrix);
 
     core::ShadowSetupInputs m_inputs;
     std::optional<::osg::BoundingBoxd> m_fixedBounds;
@@ -126,8 +151,9 @@ private:
     ::osg::BoundingBoxd m_cachedBounds;
     ::osg::BoundingSphere m_cachedFor; ///< the scene's bound when m_cachedBounds was computed
     std::optional<core::ShadowSetup> m_lastSetup;
-    std::string m_lastError;
-    bool m_ownCamera = false; ///< this light's shadow camera is ours (directional), for the cull that follows
+    std::optional<core::ShadowSetup> m_lastSpotSetup;
+    std::string m_lastError, m_lastSpotError;
+    bool m_ownCamera = false; ///< this light's shadow camera is ours (directional, spot), for the cull that follows
 };
 
 } // namespace shadowkit::osgadapter

@@ -1,0 +1,54 @@
+#!/usr/bin/env bash
+# What the engine adapters' spot maps gain over the engines' own spot cameras
+# (docs/engine-integration.md): street lamps — spot lights 6 m up, shining straight down, a 90°
+# cone reaching 20 m — placed round the `torch` view's eye at three distances and five bearings.
+# OpenSceneGraph's ViewDependentShadowMap gives a spot the whole cone (a field of view of twice
+# its cutoff), OGRE 1.12's default camera 1.2 times the cone; the adapters give the core's map
+# (shadowkit setup's), narrowed to what the camera sees of the cone. Same map size, so the
+# texels per metre gained along each axis is the ratio of the tangent spans, and the texels
+# spent on what the camera sees, their product. No GL needed.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+SK=${SK:-build/apps/shadowkit/shadowkit}
+[ -x "$SK" ] || tools/build.sh
+"$SK" setup --view torch > /dev/null
+python3 - "$SK" <<'PY'
+import json, math, subprocess, sys
+sk = sys.argv[1]
+camera = json.loads(subprocess.run([sk, "setup", "--view", "torch"], check=True, capture_output=True,
+                                   text=True).stdout)["inputs"]["camera"]
+eye, forward = camera["eye"], camera["direction"]
+heading = math.atan2(forward[0], -forward[2])  # azimuth of the view, from -Z towards +X
+cone = 90.0
+whole = 2.0 * math.tan(math.radians(cone / 2))                # OSG: the whole cone
+ogre = 2.0 * math.tan(math.radians(min(1.2 * cone, 175) / 2))  # OGRE 1.12: 1.2 x the cone
+print(f"{'distance':>8} {'bearing':>7}  {'map span (x, y)':>16}  {'vs OSG: axis, area':>19}  {'vs OGRE: axis, area':>20}")
+gains = {"osg": [], "ogre": []}
+for distance in (4, 8, 15):
+    for bearing in (0, 30, 60, 90, 135, 180):
+        b = heading + math.radians(bearing)
+        x, z = eye[0] + distance * math.sin(b), eye[2] - distance * math.cos(b)
+        # The lamp 6 m above the ground under it: the torch view's eye stands 1.6 m above it.
+        y = eye[1] - 1.6 + 6.0
+        light = f"spot:{x:.3f},{y:.3f},{z:.3f},0,-1,0,{cone:g},20"
+        out = json.loads(subprocess.run([sk, "setup", "--view", "torch", "--light", light], check=True,
+                                        capture_output=True, text=True).stdout)
+        spot = out["local_lights"][-1]
+        if not spot["views"]:
+            print(f"{distance:>8} {bearing:>7}  no map: the cone misses the view")
+            continue
+        m = spot["views"][0]["clip_from_light"]  # column-major: m[0] = [0][0], m[5] = [1][1]
+        sx, sy = 2.0 / m[0], 2.0 / m[5]
+        row = f"{distance:>8} {bearing:>7}  {sx:>7.3f}, {sy:>7.3f}"
+        for name, span in (("osg", whole), ("ogre", ogre)):
+            axis = span / max(sx, sy)
+            area = span * span / (sx * sy)
+            gains[name].append(area)
+            row += f"  {axis:>8.2f}x, {area:>7.2f}x"
+        print(row)
+for name, label in (("osg", "OpenSceneGraph's"), ("ogre", "OGRE's")):
+    g = gains[name]
+    geo = math.exp(sum(map(math.log, g)) / len(g))
+    print(f"texels on what the camera sees against {label} own camera: geometric mean {geo:.2f}x, "
+          f"least {min(g):.2f}x, most {max(g):.2f}x over {len(g)} lamps")
+PY
