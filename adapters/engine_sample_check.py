@@ -3,9 +3,10 @@
 
     engine_sample_check.py ADAPTER.png ADAPTER-score.json OWN-score.json EVAL.json
 
-- the adapter's mask shows shadow: at least 10 % of the pixels the engine drew read shadowed (the
-  view looks down on a dense patch of trees, about a third of it in shadow; an
-  adapter that hands OSG a camera missing the view draws none);
+- the adapter's mask shows shadow: at least 5 % of the pixels the engine drew read shadowed (the
+  sun's view looks down on a dense patch of trees, about a third of it in shadow; the spot
+  light's test lights the patch from behind the camera, 7–8 % of it in shadow; an adapter
+  that hands the engine a camera missing the view draws none);
 - scored against the truth, it is within 0.5 points of `eval`'s wrong_pct for the same
   set-up (drawn by shadowkit's own renderer; the bias and filter differ):
   the engine's matrices read in the wrong order, or a light camera that does not hold the view
@@ -45,8 +46,8 @@ def main():
     print(f"adapter (in the engine): wrong {adapter:.2f} %, shadowed {share:.1f} % of {drawn} drawn pixels; "
           f"eval, the same set-up: {evaluated:.2f} %; the engine's own: {own:.2f} %")
     failures = []
-    if share < 10.0:
-        failures.append(f"the adapter's mask is shadowed on {share:.1f} % of its pixels, expected at least 10 %")
+    if share < 5.0:
+        failures.append(f"the adapter's mask is shadowed on {share:.1f} % of its pixels, expected at least 5 %")
     if adapter > evaluated + 0.5:
         failures.append(f"the adapter's wrong_pct {adapter:.2f} is more than 0.5 points above eval's {evaluated:.2f}")
     if failures:

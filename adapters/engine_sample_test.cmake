@@ -2,9 +2,11 @@
 # (OpenSceneGraph's, OGRE's) from a standard view with shadowkit's technique ADAPTER (default
 # tsm) and with the engine's own technique OWN, each mask scored against the ray-traced truth
 # and put beside `eval`'s figure for the same set-up, EVAL_OPTIONS (default --technique ADAPTER;
-# engine_sample_check.py says what must hold).
+# engine_sample_check.py says what must hold). VIEW (default --view aerial --size 640x360) is the
+# view's options for setup, score and eval alike: with `--sun off --light spot:...` the sample
+# draws that spot light's shadows and `score --light` scores them.
 #   cmake -DSHADOWKIT=... -DSAMPLE=... -DOWN=... -DWORK=... [-DADAPTER=csm "-DEVAL_OPTIONS=..."]
-#         -P engine_sample_test.cmake
+#         ["-DVIEW=..."] -P engine_sample_test.cmake
 if(NOT ADAPTER)
   set(ADAPTER tsm)
 endif()
@@ -20,7 +22,11 @@ if(NOT XVFB_RUN)
   return()
 endif()
 set(forest --trees 300 --terrain-size 256) # a dense patch: a third of the view in shadow
-set(view --view aerial --size 640x360)
+if(VIEW)
+  separate_arguments(view UNIX_COMMAND "${VIEW}")
+else()
+  set(view --view aerial --size 640x360)
+endif()
 function(run)
   execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   if(NOT rc EQUAL 0)
@@ -29,7 +35,7 @@ function(run)
   message("${out}")
 endfunction()
 run(${SHADOWKIT} export ${forest} --out "${WORK}/forest.obj")
-execute_process(COMMAND ${SHADOWKIT} setup --view aerial ${forest} OUTPUT_FILE "${WORK}/camera.json" RESULT_VARIABLE rc)
+execute_process(COMMAND ${SHADOWKIT} setup ${view} ${forest} OUTPUT_FILE "${WORK}/camera.json" RESULT_VARIABLE rc)
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "shadowkit setup: exit ${rc}")
 endif()

@@ -1,11 +1,12 @@
-# add_engine_sample_test(NAME SAMPLE OWN ADAPTER EVAL): an engine adapter end to end under Xvfb
-# (engine_sample_test.cmake): the sample target SAMPLE draws the adapter's ADAPTER and the
+# add_engine_sample_test(NAME SAMPLE OWN ADAPTER EVAL [VIEW]): an engine adapter end to end under
+# Xvfb (engine_sample_test.cmake): the sample target SAMPLE draws the adapter's ADAPTER and the
 # engine's own OWN, each mask scored against the truth beside `eval` with EVAL (its options for
-# the same set-up). Included by each adapter's CMakeLists.txt.
+# the same set-up), from VIEW (the view's options; `aerial` by default). Included by each
+# adapter's CMakeLists.txt.
 function(add_engine_sample_test name sample own adapter eval)
   add_test(NAME ${name}
            COMMAND ${CMAKE_COMMAND} -DSHADOWKIT=$<TARGET_FILE:shadowkit> -DSAMPLE=$<TARGET_FILE:${sample}>
-                   -DOWN=${own} -DADAPTER=${adapter} "-DEVAL_OPTIONS=${eval}"
+                   -DOWN=${own} -DADAPTER=${adapter} "-DEVAL_OPTIONS=${eval}" "-DVIEW=${ARGN}"
                    -DWORK=${CMAKE_CURRENT_BINARY_DIR}/${name} -P ${PROJECT_SOURCE_DIR}/adapters/engine_sample_test.cmake)
   set_tests_properties(${name} PROPERTIES LABELS gl SKIP_REGULAR_EXPRESSION "SKIP:")
 endfunction()
@@ -17,3 +18,9 @@ function(add_engine_sample_input_test name sample)
            COMMAND ${CMAKE_COMMAND} -DSAMPLE=$<TARGET_FILE:${sample}> -DWORK=${CMAKE_CURRENT_BINARY_DIR}/${name}
                    -P ${PROJECT_SOURCE_DIR}/adapters/engine_sample_input_test.cmake)
 endfunction()
+
+# A spot light behind and above the camera, shining into the view over the patch: the camera
+# sees part of its cone, so the adapter's map narrows to it (tools/measure-engine-spots.sh's
+# "behind" lamp). For add_engine_sample_test's VIEW, with the spot's map size as EVAL.
+set(SHADOWKIT_ENGINE_SPOT_VIEW
+    "--view aerial --eye 0,40,0 --dir 0,-0.7,-1 --sun off --size 640x360 --light spot:0,50,15,0,-1,-0.6,100,80")

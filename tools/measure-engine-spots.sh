@@ -7,11 +7,16 @@
 # (shadowkit setup's), narrowed to what the camera sees of the cone. Same map size, so the
 # texels per metre gained along each axis is the ratio of the tangent spans, and the texels
 # spent on what the camera sees, their product. No GL needed.
+#
+# Then the same switch end to end, scored against the ray-traced truth: four lamps over a
+# 300-tree patch seen from 40 m up (`--sun off --light spot:...`), drawn by OpenSceneGraph and
+# by OGRE (their samples, under Xvfb) with each engine's own spot camera and with the adapter's,
+# at 512² and 2048², each mask scored by `shadowkit score --light`; shadowkit's own renderer
+# (`eval`, its biases in metres) beside them. About a minute on this project's 2-core machine.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 SK=${SK:-build/apps/shadowkit/shadowkit}
 [ -x "$SK" ] || tools/build.sh
-"$SK" setup --view torch > /dev/null
 python3 - "$SK" <<'PY'
 import json, math, subprocess, sys
 sk = sys.argv[1]
@@ -52,3 +57,42 @@ for name, label in (("osg", "OpenSceneGraph's"), ("ogre", "OGRE's")):
     print(f"texels on what the camera sees against {label} own camera: geometric mean {geo:.2f}x, "
           f"least {min(g):.2f}x, most {max(g):.2f}x over {len(g)} lamps")
 PY
+
+OSG=build/adapters/osg/shadowkit-osg-sample
+OGRE=build/adapters/ogre/shadowkit-ogre-sample
+if [ ! -x "$OSG" ] || [ ! -x "$OGRE" ] || ! command -v xvfb-run > /dev/null; then
+  echo "measure-engine-spots: no engine samples or no xvfb-run: the end-to-end table is left out" >&2
+  exit 0
+fi
+out=out/engine-spots
+mkdir -p "$out"
+forest=(--trees 300 --terrain-size 256)
+view=(--view aerial --eye 0,40,0 --dir 0,-0.7,-1 --sun off --size 640x360)
+lamps=("ahead:spot:0,50,-45,0,-1,0,120,60" "behind:spot:0,50,15,0,-1,-0.6,100,80"
+       "left:spot:-30,45,-20,0,-1,0,120,60" "right:spot:30,45,-10,-0.3,-1,-0.3,120,60")
+[ -s "$out/patch.obj" ] || "$SK" export "${forest[@]}" --out "$out/patch.obj" 2> /dev/null
+wrong() {
+  python3 -c 'import json, sys
+d = json.load(open(sys.argv[1]))
+print("%.2f" % (d.get("scores") or d["views"])[0]["wrong_pct"])' "$1"
+}
+echo
+echo "| lamp | map | OSG's own | adapter in OSG | OGRE's own | adapter in OGRE | shadowkit's renderer (\`eval\`) |"
+echo "|---|---:|---:|---:|---:|---:|---:|"
+for entry in "${lamps[@]}"; do
+  name=${entry%%:*} light=${entry#*:}
+  "$SK" setup "${forest[@]}" "${view[@]}" --light "$light" > "$out/$name.json"
+  for n in 512 2048; do
+    printf "%s\n" "$out/$name.json osg $out/$name-$n-osg.png" "$out/$name.json tsm $out/$name-$n-osg-adapter.png" > "$out/osg-shots.txt"
+    printf "%s\n" "$out/$name.json ogre $out/$name-$n-ogre.png" "$out/$name.json tsm $out/$name-$n-ogre-adapter.png" > "$out/ogre-shots.txt"
+    xvfb-run -a "$OSG" "$out/patch.obj" --shots "$out/osg-shots.txt" --size 640x360 --map-size "$n" > /dev/null 2>&1
+    xvfb-run -a "$OGRE" "$out/patch.obj" --shots "$out/ogre-shots.txt" --size 640x360 --map-size "$n" > /dev/null 2>&1
+    row="| $name | $n² |"
+    for mask in osg osg-adapter ogre ogre-adapter; do
+      "$SK" score "$out/$name-$n-$mask.png" "${forest[@]}" "${view[@]}" --light "$light" --json "$out/$name-$n-$mask.json" > /dev/null 2>&1
+      row+=" $(wrong "$out/$name-$n-$mask.json") |"
+    done
+    "$SK" eval "${forest[@]}" "${view[@]}" --light "$light" --local-map-size "$n" --json "$out/$name-$n-eval.json" > /dev/null 2>&1
+    echo "$row $(wrong "$out/$name-$n-eval.json") |"
+  done
+done

@@ -4,6 +4,7 @@
 // (eval/score.h): the same figures, error map and JSON keys. No GL: the truth is ray traced.
 #include "camera_file.h"
 #include "commands.h"
+#include "local_light_options.h"
 #include "options.h"
 
 #include "shadowkit/core/light_size.h"
@@ -20,6 +21,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <optional>
+#include <variant>
 
 namespace shadowkit::app {
 namespace {
@@ -28,8 +30,9 @@ struct ScoreArgs {
     std::string mask;
     SceneOptions scene;
     ViewOptions view;
-    std::string camera;    // --camera FILE: the engine's camera (and sun) as JSON
-    double sunAngle = 0.0; // --sun-angle: also against the sun disk's soft truth
+    std::string camera;      // --camera FILE: the engine's camera (and sun) as JSON
+    LocalLightOptions light; // --light: the spot or point light the mask shows, not the sun
+    double sunAngle = 0.0;   // --sun-angle: also against the sun disk's soft truth
     int softSamples = eval::SoftTruthOptions{}.samples;
     double threshold = eval::CompareOptions{}.shadowThreshold;
     std::string json, errorMap;
@@ -59,6 +62,19 @@ core::Result<scene::ResolvedView> viewOf(const ScoreArgs& args, const std::optio
     return view;
 }
 
+// The light the mask shows: --light's (one), or the view's own spot or point light where it has
+// no sun and one such light; none for the sun. Fails in one line for anything else.
+core::Result<std::optional<LocalLight>> lightOf(const ScoreArgs& args, const scene::ResolvedView& view) {
+    auto given = args.light.lights(); // checked before the mask and scene were loaded: one at most
+    if (!given) return given.errorInfo();
+    if (given->size() == 1) return std::optional<LocalLight>(given->front());
+    if (view.sun) return std::optional<LocalLight>();
+    if (view.spots.size() + view.points.size() == 1 && args.sunAngle == 0.0)
+        return std::optional<LocalLight>(view.spots.empty() ? LocalLight(view.points[0]) : LocalLight(view.spots[0]));
+    return core::makeError("--view: " + args.view.view +
+                           " has no sun: give --light for the spot or point light the mask shows");
+}
+
 int runScore(const ScoreArgs& args) {
     if (auto s = core::validateSunAngle(args.sunAngle); !s) return fail("--sun-angle: " + s.error());
     if (!(args.threshold > 0.0 && args.threshold <= 1.0)) return fail("--threshold: must be in (0, 1]");
@@ -67,6 +83,10 @@ int runScore(const ScoreArgs& args) {
     if (auto s = checkPictureWritable("--error-map", args.errorMap); !s) return fail(s.errorInfo());
     if (auto s = args.scene.check(); !s) return fail(s.errorInfo());
     if (auto s = args.view.check(); !s) return fail(s.errorInfo());
+    if (auto s = args.light.check(); !s) return fail(s.errorInfo());
+    if (args.light.specs.size() > 1) return fail("--light: a mask shows one light's shadows: give one --light");
+    if (!args.light.specs.empty() && args.sunAngle > 0.0)
+        return fail("--sun-angle: the sun's soft truth, but a --light mask is scored against its light's hard truth");
     auto mask = eval::loadShadowMask(args.mask);
     if (!mask) return fail(mask.errorInfo());
     std::optional<CameraFile> camera;
@@ -79,7 +99,8 @@ int runScore(const ScoreArgs& args) {
     if (!world) return fail(world.errorInfo());
     auto view = viewOf(args, camera, *world, *mask);
     if (!view) return fail(view.errorInfo());
-    if (!view->sun) return fail("--view: " + args.view.view + " has no sun: score measures the sun's shadows");
+    auto local = lightOf(args, *view);
+    if (!local) return fail(local.errorInfo());
     if (mask->width != view->width || mask->height != view->height)
         return fail(fmt::format("{}: {}×{} pixels, but the view is {}×{}: render the mask at the view's size, or give "
                                 "--size {}x{}",
@@ -89,7 +110,10 @@ int runScore(const ScoreArgs& args) {
     const auto start = std::chrono::steady_clock::now();
     auto rays = eval::RayScene::build(*world);
     if (!rays) return fail(rays.errorInfo());
-    const eval::TruthBuffers truth = eval::computeTruth(**rays, view->camera, view->light, view->width, view->height);
+    eval::TruthBuffers truth = eval::computeTruth(**rays, view->camera, view->light, view->width, view->height);
+    // A local light's truth at the same surfaces: lit where it reaches them (range, cone, facing)
+    // and the segment to it is free; the pixels it does not reach are not scored.
+    if (*local) truth = std::visit([&](const auto& light) { return eval::underLight(**rays, truth, light); }, **local);
     eval::ScoreOptions options;
     options.compare.shadowThreshold = args.threshold;
     auto scored = eval::scoreMask(*mask, truth, options);
@@ -147,6 +171,11 @@ Command addScoreCommand(CLI::App& app) {
                     "the camera the mask was drawn from, as JSON: what `shadowkit setup` prints, or {\"eye\", "
                     "\"direction\", \"up\", \"fov_y_degrees\", \"near\", \"far\"[, \"aspect\", \"width\", "
                     "\"height\"]}, with an optional \"light\": {\"direction\"} (else --view's sun and flags)");
+    cmd->add_option("--light", args->light.specs,
+                    "the mask shows this spot or point light's shadows instead of the sun's, scored against its "
+                    "hard truth where it reaches: point:x,y,z[,range] or spot:x,y,z,dx,dy,dz,angle[,range] "
+                    "(degrees, metres; range 30 m unless given); a view with no sun and one such light of its own "
+                    "scores that one");
     cmd->add_option("--sun-angle", args->sunAngle,
                     "the sun's angular diameter in degrees (the real sun: 0.53): also the figures against the sun "
                     "disk's soft truth")

@@ -1,6 +1,7 @@
 // shadowkit-osg-sample: a scene drawn by OpenSceneGraph from a camera file, with OSG's own
 // shadows or shadowkit's shadow camera, and the shadow term written as a mask for
-// `shadowkit score` (docs/engine-integration.md, "OpenSceneGraph").
+// `shadowkit score` (docs/engine-integration.md, "OpenSceneGraph"): the sun's, or where the
+// camera file has a spot light (`shadowkit setup --sun off --light spot:...`), that spot's.
 //
 //   shadowkit export --out forest.obj
 //   shadowkit setup --view perpendicular > camera.json
@@ -220,11 +221,17 @@ void draw(const Options& o, const Shot& shot, osg::Node* model, Viewer& v) {
     osg::ref_ptr<osgShadow::ShadowSettings> settings = shadowed->getShadowSettings();
     settings->setLightNum(0);
     shadowed->setShadowTechnique(makeShadowMap(shot.technique, o.mapSize, *settings).get());
-    osg::ref_ptr<osg::LightSource> sun = new osg::LightSource;
-    sun->getLight()->setLightNum(0);
-    sun->getLight()->setPosition(osg::Vec4(-vec(view.sunTravel), 0.0)); // w = 0: towards a directional light
-    sun->getLight()->setAmbient({0.3f, 0.3f, 0.3f, 1.0f});
-    shadowed->addChild(sun);
+    osg::ref_ptr<osg::LightSource> light = new osg::LightSource;
+    light->getLight()->setLightNum(0);
+    if (view.spot) { // the camera file's spot light alone: w = 1, a cutoff of half the cone
+        light->getLight()->setPosition(osg::Vec4(vec(view.spot->position), 1.0));
+        light->getLight()->setDirection(vec(view.spot->direction));
+        light->getLight()->setSpotCutoff(float(0.5 * view.spot->coneDegrees));
+    } else {
+        light->getLight()->setPosition(osg::Vec4(-vec(view.sunTravel), 0.0)); // w = 0: towards a directional light
+    }
+    light->getLight()->setAmbient({0.3f, 0.3f, 0.3f, 1.0f});
+    shadowed->addChild(light);
     shadowed->addChild(model);
     setMaskProgram(o, model, *settings);
 

@@ -1139,8 +1139,20 @@ if(CASE STREQUAL "gl-score")
   if(rc5 EQUAL 0 OR NOT err5 MATCHES "96×54 pixels, but the view is 1280×720")
     message(SEND_ERROR "score: a mask of another size was not refused in one line: ${err5}")
   endif()
+  # A view with no sun and no light named: which light the mask shows is not said.
+  execute_process(COMMAND ${SHADOWKIT} score "${WORK}/score-dump/shadow_term.npy" ${small} ${view} --sun off
+                  RESULT_VARIABLE rc6 ERROR_VARIABLE err6)
+  if(rc6 EQUAL 0 OR NOT err6 MATCHES "perpendicular has no sun: give --light")
+    message(SEND_ERROR "score: a night view without --light was not refused in one line: ${err6}")
+  endif()
 endif()
 check_fails(score-missing-mask "no-such-mask.png: cannot be read" score no-such-mask.png ${small})
+# score --light: one light a mask, scored against its hard truth alone.
+check_fails(score-two-lights "--light: a mask shows one light's shadows: give one --light" score no-such-mask.png ${small}
+            --light point:0,5,0 --light spot:0,5,0,0,-1,0,60)
+check_fails(score-light-sun-angle "--sun-angle: the sun's soft truth" score no-such-mask.png ${small}
+            --light point:0,5,0 --sun-angle 0.53)
+check_fails(score-bad-light "--light: spot.cone" score no-such-mask.png ${small} --light spot:0,5,0,0,-1,0,179)
 # Every file read from the user goes through scene::readFile: regular files only, in one line.
 check_fails(score-mask-directory "a_directory.png: a directory, not a file" score "${WORK}/a_directory.png" ${small})
 check_fails(score-mask-pipe "a_pipe.png: a device, pipe or socket, not a file" score "${WORK}/a_pipe.png" ${small})
