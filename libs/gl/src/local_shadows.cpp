@@ -7,23 +7,39 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdio>
+#include <string>
 
 namespace shadowkit::gl {
 namespace {
 
 // Depth textures sampled with a comparison (GL_LEQUAL: lit when the receiver's distance is at
-// most the stored one), cleared to 1: nothing nearer than the range.
-Texture createDepthArray(GLenum target, int size, int layers) {
+// most the stored one), cleared to 1: nothing nearer than the range. A driver out of memory for
+// them (eight lamps' cubes of 4096² are 3 GiB) fails in one line: unchecked, the maps read 0
+// and every lamp shadows everything.
+core::Result<Texture> createDepthArray(GLenum target, int size, int layers) {
+    while (glGetError() != GL_NO_ERROR) {
+    } // earlier errors are not this allocation's
     GLuint id = 0;
     glCreateTextures(target, 1, &id);
+    Texture texture(id);
     glTextureStorage3D(id, 1, GL_DEPTH_COMPONENT32F, size, size, layers);
+    if (glGetError() == GL_OUT_OF_MEMORY) {
+        const double gib = double(size) * size * layers * 4.0 / double(1u << 30);
+        char amount[32];
+        std::snprintf(amount, sizeof amount, "%.2f GiB", gib);
+        return core::environmentError("local_map_size: the GL driver is out of memory for " + std::to_string(layers) +
+                                          (target == GL_TEXTURE_CUBE_MAP_ARRAY ? " cube faces of " : " spot maps of ") +
+                                          std::to_string(size) + "² (" + amount + ")",
+                                      "local_map_size");
+    }
     glTextureParameteri(id, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     glTextureParameteri(id, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     glTextureParameteri(id, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
     glTextureParameteri(id, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
     const float far = 1.0f;
     glClearTexImage(id, 0, GL_DEPTH_COMPONENT, GL_FLOAT, &far);
-    return Texture(id);
+    return texture;
 }
 
 // How a local light looks in the camera passes: warm lamps, bright enough within a quarter
@@ -78,8 +94,7 @@ core::Result<std::unique_ptr<LocalShadowMaps>> LocalShadowMaps::create() {
     maps->m_framebuffer = Framebuffer(fbo);
     glNamedFramebufferDrawBuffer(fbo, GL_NONE);
     // Complete 1-texel maps from the start: the camera passes sample both samplers in every frame.
-    maps->m_spotMaps = createDepthArray(GL_TEXTURE_2D_ARRAY, 1, 1);
-    maps->m_pointMaps = createDepthArray(GL_TEXTURE_CUBE_MAP_ARRAY, 1, 6);
+    if (auto s = maps->allocate(1, 1, 1); !s) return s.errorInfo();
     maps->m_size = 1;
     glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS); // 2x2 PCF across a face's edge reads the next face
     return maps;
@@ -98,6 +113,22 @@ size_t LocalShadowMaps::listCount(const core::LocalLighting& lights, LocalPass p
     return faces + lights.spots.size();
 }
 
+core::Status LocalShadowMaps::allocate(int size, int spots, int points) {
+    // The old maps go first: a driver short of memory may fit the new ones alone.
+    m_spotMaps = Texture(), m_pointMaps = Texture();
+    auto spotMaps = createDepthArray(GL_TEXTURE_2D_ARRAY, size, spots);
+    auto pointMaps = spotMaps ? createDepthArray(GL_TEXTURE_CUBE_MAP_ARRAY, size, 6 * points)
+                              : core::Result<Texture>(spotMaps.errorInfo());
+    if (!pointMaps) {
+        spotMaps = Texture();                  // its memory back before the 1-texel maps
+        if (size > 1) (void)allocate(1, 1, 1); // a later frame tries the size again
+        return pointMaps.errorInfo();
+    }
+    m_spotMaps = std::move(spotMaps).value(), m_pointMaps = std::move(pointMaps).value();
+    m_size = size, m_spots = spots, m_points = points;
+    return core::Ok{};
+}
+
 core::Result<PassStats> LocalShadowMaps::draw(const GpuScene& scene, const core::LocalLighting& lights,
                                               const CasterLists& casters,
                                               std::span<const std::vector<visibility::HalfSpace>> volumes,
@@ -109,11 +140,7 @@ core::Result<PassStats> LocalShadowMaps::draw(const GpuScene& scene, const core:
         return core::makeError("local lights: wrong number of culled lists");
     const int spots = static_cast<int>(lights.spots.size()), points = static_cast<int>(lights.points.size());
     if (lights.mapSize != m_size || spots > m_spots || points > m_points) {
-        m_size = lights.mapSize;
-        m_spots = std::max(spots, 1);
-        m_points = std::max(points, 1);
-        m_spotMaps = createDepthArray(GL_TEXTURE_2D_ARRAY, m_size, m_spots);
-        m_pointMaps = createDepthArray(GL_TEXTURE_CUBE_MAP_ARRAY, m_size, 6 * m_points);
+        if (auto s = allocate(lights.mapSize, std::max(spots, 1), std::max(points, 1)); !s) return s.errorInfo();
     }
     const float far = 1.0f;
     glClearTexImage(m_spotMaps.id(), 0, GL_DEPTH_COMPONENT, GL_FLOAT, &far);

@@ -57,6 +57,10 @@ public:
     scene::Image readAsGreys(const core::LocalLighting& lights) const;
 
 private:
+    // Both maps' textures for `spots` spot maps and `points` cubes of size² texels, the old ones
+    // released first; a driver out of memory leaves 1-texel maps (the camera passes sample both
+    // in every frame) and fails in one line.
+    core::Status allocate(int size, int spots, int points);
     LocalShadowMaps() = default;
     ProgramPair m_vertexLayerPrograms, m_geometryPrograms; // plain and with materials
     Buffer m_depthUniforms, m_lightUniforms;
