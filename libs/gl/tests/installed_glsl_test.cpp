@@ -167,7 +167,7 @@ layout(binding = 6) uniform samplerCubeArrayShadow myPointMaps;
 constexpr std::string_view kLocalOptions = R"glsl(
 out vec4 colour;
 uniform mat4 mySpotTextureFromWorld;
-const SkLocalShadowOptions kOptions = SkLocalShadowOptions(1.5, 1.0, 0.005, SK_FILTER_PCSS, 16, 16.0);
+const SkLocalShadowOptions kOptions = SkLocalShadowOptions(1.5, 0.5, 0.005, SK_FILTER_PCSS, 16, 16.0);
 SkLocalLight myLight(int layer) { return SkLocalLight(vec3(0.0, 5.0, 0.0), 0.05, vec2(1.0 / 30.0, 0.0), 0.002, layer); }
 )glsl";
 constexpr std::string_view kSpotShading = R"glsl(

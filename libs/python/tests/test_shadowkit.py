@@ -141,7 +141,7 @@ class LocalSetupTest(unittest.TestCase):
             self.assertEqual(offset, near)  # at the light
             self.assertAlmostEqual(40.0 * scale + offset, far, places=15)  # at the range
         bias = shadowkit.local_setup(**common)["bias"]
-        self.assertEqual(bias, dict(slope_texels=1.5, normal_offset_texels=1.0, constant_metres=0.005))
+        self.assertEqual(bias, dict(slope_texels=1.5, normal_offset_texels=0.5, constant_metres=0.005))
         with self.assertRaisesRegex(ValueError, "kind: 'torch' is not one of spot, point"):
             shadowkit.local_setup(kind="torch")
         with self.assertRaisesRegex(ValueError, "spot.cone"):

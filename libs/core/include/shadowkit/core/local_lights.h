@@ -101,7 +101,7 @@ double texelSizePerMetre(const ShadowView& view, int mapSize);
 /// the `lamp` view 24.9 % wrong without them, 0.07 % with).
 struct LocalBias {
     double slopeTexels = 1.5;        ///< distance reduced by this × texel size × tan(angle to the light), [0, 16]
-    double normalOffsetTexels = 1.0; ///< receiver moved along its normal by this × texel size, [0, 16]
+    double normalOffsetTexels = 0.5; ///< receiver moved along its normal by this × texel size, [0, 16]
     double constantMetres = 0.005;   ///< and its distance reduced by this, [0, 1]
 };
 /// Fields "local_bias.slope", "local_bias.normal_offset", "local_bias.constant".
