@@ -69,8 +69,12 @@ core::Result<std::optional<LocalLight>> lightOf(const ScoreArgs& args, const sce
     if (!given) return given.errorInfo();
     if (given->size() == 1) return std::optional<LocalLight>(given->front());
     if (view.sun) return std::optional<LocalLight>();
-    if (view.spots.size() + view.points.size() == 1 && args.sunAngle == 0.0)
+    if (view.spots.size() + view.points.size() == 1) {
+        if (args.sunAngle > 0.0)
+            return core::makeError("--sun-angle: the sun's soft truth, but --view " + args.view.view +
+                                   " has no sun: its light is scored against its hard truth");
         return std::optional<LocalLight>(view.spots.empty() ? LocalLight(view.points[0]) : LocalLight(view.spots[0]));
+    }
     return core::makeError("--view: " + args.view.view +
                            " has no sun: give --light for the spot or point light the mask shows");
 }

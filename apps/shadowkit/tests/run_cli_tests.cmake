@@ -1162,6 +1162,12 @@ if(CASE STREQUAL "gl-score")
   if(rc6 EQUAL 0 OR NOT err6 MATCHES "perpendicular has no sun: give --light")
     message(SEND_ERROR "score: a night view without --light was not refused in one line: ${err6}")
   endif()
+  # A night view with one light of its own (the torch) scores that light without --light.
+  execute_process(COMMAND ${SHADOWKIT} score "${WORK}/score-dump/shadow_term.npy" ${small} --view torch --size 96x54
+                  RESULT_VARIABLE rc7 OUTPUT_VARIABLE torch_table ERROR_VARIABLE err7)
+  if(NOT rc7 EQUAL 0 OR NOT torch_table MATCHES "torch +shadow_term.npy +[1-9]")
+    message(SEND_ERROR "score: the torch view's own spot light was not scored: ${torch_table} ${err7}")
+  endif()
 endif()
 check_fails(score-missing-mask "no-such-mask.png: cannot be read" score no-such-mask.png ${small})
 # score --light: one light a mask, scored against its hard truth alone.
