@@ -34,26 +34,35 @@ struct SkLocalLight {
     int layer;               // the spot map's array layer, or the point light's cube in the cube array
 };
 
-// The biases (core::LocalBias, core/local_lights.h: 1.5, 1 and 0.005 by default) and the filter.
+// The biases (core::LocalBias, core/local_lights.h: 1.5, 0.5 and 0.005 by default) and the filter.
 struct SkLocalShadowOptions {
     float slopeBiasTexels;    // distance reduced by this × texel size × tan(angle to the light)
-    float normalOffsetTexels; // receiver moved along its normal by this × texel size
+    float normalOffsetTexels; // receiver moved along its normal by this × texel size where the light grazes it
     float constantBiasMetres; // and its distance reduced by this
     int filterKind;           // SK_FILTER_PCSS (with a radius and the depths named): soft; else hard
     int filterTaps;           // PCSS's blocker-search and filter taps
     float poissonRadiusTexels; // PCSS's widest filter, in texels at the receiver's distance
 };
 
-// The biased lookup point (moved along n) and its reference distance in metres. A texel at
-// distance d spans d × texelPerMetre, so biases in texels become metres there.
+// The biased lookup point and its reference distance in metres. A texel at distance d from the
+// lamp spans t = d × texelPerMetre across the ray, and a plane whose normal n makes an angle θ with
+// the ray spans t·tanθ of distance across it: the reference is shortened by slope × t × tanθ plus
+// the constant. Up to tanθ = 3.2 (cos θ = 0.3, 72.5° from the normal); past it the distance taken
+// would grow without bound and light whatever stands on the receiver, so the receiver is moved off
+// its own surface instead, along n by normalOffset × t, faded in from cos θ = 0.3 to 0.15 — a plane
+// through the lamp itself (cos θ ≈ 0) has no depth slope left to bias. A face the lamp meets more
+// squarely is not moved: a move along its normal carries its lookup t·sinθ sideways and shifts every
+// shadow cast on it — the ground round the trees under a lamp, whose shadows it pulled towards the
+// lamp (docs/local-lights.md, "Bias in metres").
 vec4 skLocalBiasedReceiver(SkLocalLight l, SkLocalShadowOptions o, vec3 ws, vec3 n) {
-    const float texel = distance(ws, l.wsPosition) * l.texelPerMetre;
-    const vec3 moved = ws + n * (o.normalOffsetTexels * texel);
-    const vec3 toLight = l.wsPosition - moved;
-    const float d = length(toLight);
-    const float cosAngle = clamp(dot(n, toLight) / max(d, 1e-6), 0.1, 1.0); // tan at most ~10
-    const float tanAngle = sqrt(1.0 - cosAngle * cosAngle) / cosAngle;
-    return vec4(moved, d - o.slopeBiasTexels * texel * tanAngle - o.constantBiasMetres);
+    const vec3 toLight = l.wsPosition - ws;
+    const float texel = length(toLight) * l.texelPerMetre;
+    const float cosAngle = dot(n, toLight) / max(length(toLight), 1e-6);
+    const float grazing = 1.0 - smoothstep(0.15, 0.3, cosAngle);
+    const vec3 moved = ws + n * (o.normalOffsetTexels * grazing * texel);
+    const float clampedCos = clamp(cosAngle, 0.3, 1.0);
+    const float tanAngle = sqrt(1.0 - clampedCos * clampedCos) / clampedCos;
+    return vec4(moved, distance(moved, l.wsPosition) - o.slopeBiasTexels * texel * tanAngle - o.constantBiasMetres);
 }
 
 // The spot map's (u, v) of a world point, clamped: the map spans every receiver the camera sees in

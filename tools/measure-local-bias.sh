@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# The local lights' normal offset (docs/local-lights.md, "Bias in metres"): `wrong_pct` of
-# shadowkit's own renderer at 640 × 360 for --local-normal-offset K on the local views (`lamp`,
+# The local lights' normal offset, applied where the light grazes a receiver (docs/local-lights.md,
+# "Bias in metres"): `wrong_pct` of shadowkit's own renderer at 640 × 360 for
+# --local-normal-offset K on the local views (`lamp`,
 # `torch`, `village` and the village's grazing lamp `point[4]`, at 1024² and 256², and `village`
 # at 2048²) and on the four lamps of tools/measure-engine-spots.sh (a 300-tree patch seen from
 # 40 m up, at 512² and 2048², their mean). The other biases at their defaults. About 8 minutes

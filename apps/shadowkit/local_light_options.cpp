@@ -65,11 +65,13 @@ void LocalLightOptions::addTo(CLI::App& cmd, bool withMaps) {
                                                   {"per-face", gl::LocalPass::PerFace}}))
         ->default_str("layered");
     cmd.add_option("--local-bias-slope", bias.slopeTexels,
-                   "local lights: slope-scaled bias in texels at the receiver's distance")
+                   "local lights: slope-scaled bias in texels at the receiver's distance (times the tangent of "
+                   "the light's angle to the normal, at most 3.2)")
         ->check(CLI::Range(0.0, 16.0))
         ->capture_default_str();
     cmd.add_option("--local-normal-offset", bias.normalOffsetTexels,
-                   "local lights: normal offset in texels at the receiver's distance")
+                   "local lights: normal offset in texels at the receiver's distance, where the light grazes "
+                   "the receiver (within 17.5 degrees of its plane)")
         ->check(CLI::Range(0.0, 16.0))
         ->capture_default_str();
     cmd.add_option("--local-bias-constant", bias.constantMetres, "local lights: constant bias in metres")

@@ -324,3 +324,103 @@ TEST_F(LocalLightsTest, ALampDrawsOnlyTheTerrainClustersWithinItsReach) {
             << name << ": the ground drawn whole";
     }
 }
+
+namespace {
+
+// The world point on the plane y = 0 that pixel (x, y)'s centre sees (top row first).
+core::Vec3 groundSeenBy(const core::PerspectiveCamera& cam, int x, int y) {
+    const core::Mat4 worldFromClip = glm::inverse(cam.clipFromWorld());
+    const core::Vec2 ndc((x + 0.5) / kImage * 2.0 - 1.0, 1.0 - (y + 0.5) / kImage * 2.0);
+    const core::Vec4 wsNear = worldFromClip * core::Vec4(ndc, 0.0, 1.0),
+                     wsFar = worldFromClip * core::Vec4(ndc, 1.0, 1.0);
+    const core::Vec3 a = core::Vec3(wsNear) / wsNear.w, b = core::Vec3(wsFar) / wsFar.w;
+    return a + (b - a) * (a.y / (a.y - b.y));
+}
+
+// Whether the segment from p to q crosses the box of half extents `half` whose frame is boxFromWorld.
+bool segmentMeetsBox(const core::Mat4& boxFromWorld, const core::Vec3& half, const core::Vec3& p, const core::Vec3& q) {
+    const core::Vec3 a(boxFromWorld * core::Vec4(p, 1.0)), b(boxFromWorld * core::Vec4(q, 1.0));
+    double enter = 0.0, leave = 1.0;
+    for (int axis = 0; axis < 3; ++axis) {
+        const double d = b[axis] - a[axis];
+        if (std::abs(d) < 1e-12) {
+            if (std::abs(a[axis]) > half[axis]) return false;
+            continue;
+        }
+        const double t0 = (-half[axis] - a[axis]) / d, t1 = (half[axis] - a[axis]) / d;
+        enter = std::max(enter, std::min(t0, t1));
+        leave = std::min(leave, std::max(t0, t1));
+    }
+    return enter <= leave;
+}
+
+} // namespace
+
+TEST_F(LocalLightsTest, ALampsShadowOnGroundItMeetsObliquelyStaysWhereItsCasterPutsIt) {
+    // A plate 3 m above the ground, turned 30° about the vertical so its edges cross the map's
+    // texels at every phase, under a point light 6 m up and 8 m to the side: the light meets the
+    // ground under the plate's shadow about 53° from its normal. The shadow's centroid, drawn,
+    // must lie where the ray-traced one does (the same pixels, tested analytically): a lookup
+    // moved along the ground's normal reads the map nearer the lamp and pulls the whole shadow
+    // towards it, by half a texel for half a texel's offset (0.2 m with these coarse maps), which
+    // the lamps over a forest showed as false light and shadow along every tree's shadow.
+    const core::Vec3 wsLamp(0, 6, 0), wsPlate(4, 3, 0), plateHalf(1.0, 0.05, 1.0);
+    const core::Mat4 worldFromPlate =
+        glm::rotate(glm::translate(core::Mat4(1.0), wsPlate), glm::radians(30.0), core::Vec3(0, 1, 0));
+    scene::Scene s = boxes({{core::Vec3(0, -0.1, 0), core::Vec3(30, 0.1, 30)}});
+    scene::Mesh plate;
+    scene::addBox(plate, glm::mat4(worldFromPlate), glm::vec3(plateHalf), glm::vec3(0.8f));
+    plate.computeBounds();
+    s.batches.push_back({static_cast<uint32_t>(s.meshes.size()), {glm::mat4(1.0f)}, false});
+    s.meshes.push_back(std::move(plate));
+    auto renderer = gl::Renderer::create(s);
+    ASSERT_TRUE(renderer) << renderer.error();
+    const core::PerspectiveCamera cam = looking({8, 9, 0.5}, {8, 0, 0}, {1, 0, 0});
+    ASSERT_TRUE((*renderer)->setLocalLights(
+        lighting(cam, (*renderer)->wsSceneBounds(), {{.wsPosition = wsLamp, .range = 30.0}}, {}, 64)));
+    auto raster =
+        (*renderer)->renderEvalBuffers(cam, {}, sunSetup(cam, (*renderer)->wsSceneBounds()), nightSettings(), 0);
+    ASSERT_TRUE(raster) << raster.error();
+    const core::Mat4 plateFromWorld = glm::inverse(worldFromPlate);
+    core::Vec3 drawnSum(0.0), truthSum(0.0);
+    int drawn = 0, truth = 0;
+    for (int y = 0; y < kImage; ++y)
+        for (int x = 0; x < kImage; ++x) {
+            const size_t i = raster->index(x, y);
+            if (raster->surfaceId[i] != 1u) continue; // the ground alone
+            const core::Vec3 ws = groundSeenBy(cam, x, y);
+            if (raster->shadowTerm[i] < 0.5f) drawnSum += ws, ++drawn;
+            if (segmentMeetsBox(plateFromWorld, plateHalf, ws, wsLamp)) truthSum += ws, ++truth;
+        }
+    ASSERT_GT(truth, 500) << "the plate's shadow must be in view";
+    EXPECT_NEAR(double(drawn) / truth, 1.0, 0.1) << "the shadow's area";
+    const core::Vec3 shift = drawnSum / double(drawn) - truthSum / double(truth);
+    // 64² faces: a texel spans 2 / 64 of the 10 m from the lamp to the shadow, 0.31 m.
+    EXPECT_NEAR(shift.x, 0.0, 0.06) << "the shadow moved along the light's way across the ground";
+    EXPECT_NEAR(shift.z, 0.0, 0.06) << "the shadow moved across the light's way";
+}
+
+TEST_F(LocalLightsTest, GroundThroughTheLampItselfIsLitWithoutAcne) {
+    // A point light 2 cm above open ground: the light grazes every receiver farther than 13 cm,
+    // so a distance bias along the light (its tangent unbounded there) cannot keep the ground
+    // off its own texels; the normal offset, which takes over where the light grazes, must.
+    scene::Scene s = boxes({{core::Vec3(0, -0.1, 0), core::Vec3(30, 0.1, 30)}});
+    auto renderer = gl::Renderer::create(s);
+    ASSERT_TRUE(renderer) << renderer.error();
+    const core::PerspectiveCamera cam = looking({0, 6, 5}, {0, 0, -1}, {0, 1, 0});
+    ASSERT_TRUE((*renderer)->setLocalLights(
+        lighting(cam, (*renderer)->wsSceneBounds(), {{.wsPosition = {0, 0.02, 0}, .range = 8.0}}, {})));
+    auto raster =
+        (*renderer)->renderEvalBuffers(cam, {}, sunSetup(cam, (*renderer)->wsSceneBounds()), nightSettings(), 0);
+    ASSERT_TRUE(raster) << raster.error();
+    int ground = 0, shadowed = 0;
+    for (int y = 0; y < kImage; ++y)
+        for (int x = 0; x < kImage; ++x) {
+            const size_t i = raster->index(x, y);
+            if (raster->surfaceId[i] != 1u || glm::length(groundSeenBy(cam, x, y)) > 7.5) continue;
+            ++ground;
+            shadowed += raster->shadowTerm[i] < 0.5f ? 1 : 0;
+        }
+    ASSERT_GT(ground, 10000);
+    EXPECT_LT(shadowed, ground / 200) << shadowed << " of " << ground << " pixels of open ground drawn shadowed";
+}
