@@ -19,6 +19,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <random>
 
@@ -107,6 +108,31 @@ core::Vec3 unitVector(std::mt19937& rng) {
     return glm::normalize(core::Vec3(n(rng), n(rng), n(rng)));
 }
 
+// The adapter set for `technique` over the forest's box.
+void setUpForTheForest(ShadowCameraSetup& setup, core::Technique technique) {
+    core::ShadowSetupInputs options;
+    options.technique = technique;
+    ASSERT_TRUE(setup.setInputs(options));
+    setup.setSceneBounds(kForestBox);
+}
+
+// A random eye over the forest, a view direction not along the vertical and a sun above the
+// horizon (its direction of travel, unit).
+struct RandomView {
+    core::Vec3 wsEye, forward, sunTravel;
+};
+RandomView randomView(std::mt19937& rng) {
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    RandomView v;
+    v.wsEye = core::Vec3(-300.0 + 600.0 * u(rng), 2.0 + 40.0 * u(rng), -300.0 + 600.0 * u(rng));
+    v.forward = unitVector(rng);
+    if (std::abs(v.forward.y) > 0.95) v.forward = glm::normalize(core::Vec3(1.0, v.forward.y, 0.0));
+    v.sunTravel = unitVector(rng);
+    v.sunTravel.y = -0.2 - 0.8 * std::abs(v.sunTravel.y);
+    v.sunTravel = glm::normalize(v.sunTravel);
+    return v;
+}
+
 // A world point through a texture camera as OGRE holds it, in double: (u, v) in texels as
 // OpenGL's viewport maps clip x, y, and the depth in [0, 1].
 core::Vec3 texelOf(const Ogre::Camera& texCam, const core::Vec3& p, int texels) {
@@ -134,14 +160,10 @@ TEST_F(OgreScene, TextureCamerasMapTheFocusBodyToTheCoresTexelsForRandomCamerasA
     int compared = 0;
     for (int trial = 0; trial < 60; ++trial) {
         const core::Technique technique = techniques[trial % 6];
-        const core::Vec3 wsEye(-300.0 + 600.0 * u(rng), 2.0 + 40.0 * u(rng), -300.0 + 600.0 * u(rng));
-        core::Vec3 forward = unitVector(rng);
-        if (std::abs(forward.y) > 0.95) forward = glm::normalize(core::Vec3(1.0, forward.y, 0.0));
-        core::Vec3 sunTravel = unitVector(rng);
-        sunTravel.y = -0.2 - 0.8 * std::abs(sunTravel.y);
+        const RandomView v = randomView(rng);
         Ogre::Camera* cam =
-            camera(wsEye, forward, 40.0 + 40.0 * u(rng), 1.0 + u(rng), 0.3 + u(rng), 200.0 + 400.0 * u(rng));
-        Ogre::Light* light = sun(glm::normalize(sunTravel));
+            camera(v.wsEye, v.forward, 40.0 + 40.0 * u(rng), 1.0 + u(rng), 0.3 + u(rng), 200.0 + 400.0 * u(rng));
+        Ogre::Light* light = sun(v.sunTravel);
 
         ShadowCameraSetup setup;
         core::ShadowSetupInputs options;
@@ -196,6 +218,63 @@ TEST_F(OgreScene, TextureCamerasMapTheFocusBodyToTheCoresTexelsForRandomCamerasA
         ++compared;
     }
     EXPECT_EQ(compared, 60);
+}
+
+TEST_F(OgreScene, CastersNearerTheSunThanTheMapsNearPlaneSurviveOgresCulling) {
+    // OGRE culls the casters it draws into a texture against its camera's frustum, near plane
+    // included, before any shader could clamp them (OGRE 1.12 has no depth clamp): a tree
+    // outside the view, between the sun and the ground the camera sees, must still be drawn. So
+    // every point of the scene box on the way from a receiver of a map (a point of the focus
+    // body inside it) to the sun must lie inside that map's texture camera's frustum — the
+    // core's near plane must reach the box's side towards the sun, for every technique and
+    // cascade (it does, to within a thousandth of the depth range: a spot's does not, and the
+    // adapter moves that one).
+    std::mt19937 rng(91);
+    const core::Technique techniques[] = {core::Technique::Tsm, core::Technique::Lispsm, core::Technique::Psm,
+                                          core::Technique::Focused, core::Technique::Csm};
+    const core::Aabb box = core::Aabb::fromMinMax(core::Vec3(-512, -4, -512), core::Vec3(512, 50, 512));
+    int casters = 0;
+    for (int trial = 0; trial < 40; ++trial) {
+        const core::Technique technique = techniques[trial % 5];
+        const RandomView v = randomView(rng);
+        const core::Vec3 sunTravel = v.sunTravel;
+        Ogre::Camera* cam = camera(v.wsEye, v.forward, 60.0, 16.0 / 9.0, 0.3, 400.0);
+        Ogre::Light* light = sun(sunTravel);
+        ShadowCameraSetup setup;
+        setUpForTheForest(setup, technique);
+        for (size_t iteration = 0;; ++iteration) {
+            Ogre::Camera* texCam =
+                m_sm->createCamera("caster" + std::to_string(trial) + "-" + std::to_string(iteration));
+            setup.getShadowCamera(m_sm, cam, nullptr, light, texCam, iteration);
+            ASSERT_TRUE(setup.lastSetup()) << setup.lastError();
+            const core::ShadowSetup& used = *setup.lastSetup();
+            const core::EngineShadowView gl =
+                core::toEngineView(used.views[iteration], used, core::OutputConventions::openGL());
+            for (const core::Vec3& p : used.body.vertices()) {
+                const core::Vec4 t = gl.textureFromWorld * core::Vec4(p, 1.0);
+                if (t.w <= 0.0 || std::abs(t.x / t.w - 0.5) > 0.499 || std::abs(t.y / t.w - 0.5) > 0.499 ||
+                    std::abs(t.z / t.w - 0.5) > 0.499)
+                    continue; // another cascade's
+                // Towards the sun to the scene box's side: the farthest caster there can be.
+                double exit = std::numeric_limits<double>::infinity();
+                for (int axis = 0; axis < 3; ++axis)
+                    if (std::abs(sunTravel[axis]) > 1e-9) {
+                        const double wall = sunTravel[axis] < 0.0 ? box.max[axis] : box.min[axis];
+                        exit = std::min(exit, (p[axis] - wall) / sunTravel[axis]);
+                    }
+                for (const double share : {0.25, 0.5, 0.99}) {
+                    const core::Vec3 caster = p - sunTravel * (share * exit);
+                    const Ogre::Vector3 at(Ogre::Real(caster.x), Ogre::Real(caster.y), Ogre::Real(caster.z));
+                    EXPECT_TRUE(texCam->isVisible(Ogre::AxisAlignedBox(at - 0.05f, at + 0.05f)))
+                        << core::techniqueName(technique) << ": a caster " << share * exit
+                        << " m towards the sun from a receiver is culled";
+                    ++casters;
+                }
+            }
+            if (iteration + 1 >= used.views.size()) break;
+        }
+    }
+    EXPECT_GE(casters, 300);
 }
 
 // Whether a world point lies inside the camera's view, up to `shadowDistance` along it.
@@ -323,10 +402,7 @@ TEST_F(OgreScene, StaysFiniteWithTheSunAlongTheViewDirection) {
             Ogre::Camera* cam = camera(core::Vec3(10.0, 120.0, -20.0), travel * sign, 60.0, 1.5, 0.5, 500.0);
             Ogre::Light* light = sun(travel);
             ShadowCameraSetup setup;
-            core::ShadowSetupInputs options;
-            options.technique = technique;
-            ASSERT_TRUE(setup.setInputs(options));
-            setup.setSceneBounds(kForestBox);
+            setUpForTheForest(setup, technique);
             Ogre::Camera* texCam = m_sm->createCamera("texture" + std::to_string(m_cameras++));
             setup.getShadowCamera(m_sm, cam, nullptr, light, texCam, 0);
             ASSERT_TRUE(setup.lastSetup()) << setup.lastError();
