@@ -10,6 +10,8 @@
 
 #include <algorithm>
 #include <cstring>
+#include <string_view>
+#include <utility>
 
 using namespace shadowkit::core;
 
@@ -33,6 +35,18 @@ void writeError(const std::string& message, char* error, size_t size) {
     const size_t n = std::min(message.size(), size - 1);
     std::memcpy(error, message.data(), n);
     error[n] = '\0';
+}
+
+// The core names a light's fields as its C++ structs do ("spot.cone"); a C caller set
+// shadowkit_local_inputs's, so the message names those ("cone_degrees").
+std::string inLocalInputsSpelling(const Error& e) {
+    static constexpr std::pair<std::string_view, std::string_view> kNames[] = {
+        {"spot.position", "position"}, {"spot.direction", "direction"}, {"spot.cone", "cone_degrees"},
+        {"spot.range", "range"},       {"spot.radius", "radius"},       {"point.position", "position"},
+        {"point.range", "range"},      {"point.radius", "radius"}};
+    for (const auto& [cpp, c] : kNames)
+        if (e.field == cpp && e.message.starts_with(cpp)) return std::string(c) + e.message.substr(cpp.size());
+    return e.message;
 }
 
 Result<PerspectiveCamera> toCamera(const shadowkit_camera& c) {
@@ -213,7 +227,7 @@ int shadowkit_compute_local_setup(const shadowkit_local_inputs* in, shadowkit_lo
     const Result<ShadowSetup> setup = in->kind == SHADOWKIT_LIGHT_SPOT ? computeSpotShadowSetup(inputs, toSpot(*in))
                                                                        : computePointShadowSetup(inputs, toPoint(*in));
     if (!setup) {
-        writeError(setup.error(), error, errorSize);
+        writeError(inLocalInputsSpelling(setup.errorInfo()), error, errorSize);
         return 1;
     }
 

@@ -208,7 +208,9 @@ TEST(CApiTest, LocalLightsGiveTheCppViewsAndWhatTheLookupNeeds) {
                 EXPECT_EQ(out.faces[i], cpp->views[static_cast<size_t>(i)].face.value_or(0));
                 facesSeen |= 1 << out.faces[i];
             }
-            if (kind == SHADOWKIT_LIGHT_POINT) EXPECT_EQ(facesSeen, 0x3f) << "each cube face once";
+            if (kind == SHADOWKIT_LIGHT_POINT) {
+                EXPECT_EQ(facesSeen, 0x3f) << "each cube face once";
+            }
             EXPECT_EQ(out.depth_clamp, cpp->depthClamp);
             EXPECT_EQ(out.light_position[1], wsLight.y);
             EXPECT_EQ(out.radius, 0.05);
@@ -251,10 +253,17 @@ TEST(CApiTest, BadLocalInputNamesTheInputAndLeavesTheOutputAlone) {
     EXPECT_NE(refused(in).find("kind"), std::string::npos);
     in = localInputs(SHADOWKIT_LIGHT_SPOT);
     in.cone_degrees = 180.0;
-    EXPECT_EQ(refused(in), "spot.cone: must be in (0, 170] degrees");
+    // Named as shadowkit_local_inputs spells them, not as the C++ structs do.
+    EXPECT_EQ(refused(in), "cone_degrees: must be in (0, 170] degrees");
+    in = localInputs(SHADOWKIT_LIGHT_SPOT);
+    in.direction[0] = in.direction[1] = in.direction[2] = 0.0;
+    EXPECT_EQ(refused(in).rfind("direction: ", 0), 0u) << error;
     in = localInputs(SHADOWKIT_LIGHT_POINT);
     in.range = 0.0;
-    EXPECT_EQ(refused(in), "point.range: must be a finite number of metres > 0");
+    EXPECT_EQ(refused(in), "range: must be a finite number of metres > 0");
+    in = localInputs(SHADOWKIT_LIGHT_POINT);
+    in.radius = in.range;
+    EXPECT_EQ(refused(in), "radius: must be in [0, range) metres");
     in = localInputs(SHADOWKIT_LIGHT_POINT);
     in.map_size = 3;
     EXPECT_NE(refused(in).find("map_size"), std::string::npos);

@@ -12,6 +12,9 @@
 
 #include <pybind11/stl.h>
 
+#include <string>
+#include <string_view>
+
 namespace shadowkit::python {
 
 using namespace core;
@@ -159,6 +162,19 @@ py::dict setup(const SetupArguments& a) {
     return out;
 }
 
+// The core names a light's fields as its C++ structs do ("spot.cone"); the caller wrote
+// local_setup's keywords ("cone"), so the message names those.
+ShadowSetup checkLight(Result<ShadowSetup> setup) {
+    if (setup) return std::move(setup).value();
+    Error e = setup.errorInfo();
+    for (const std::string_view light : {"spot.", "point."})
+        if (e.field.starts_with(light) && e.message.starts_with(e.field)) {
+            const std::string keyword = e.field.substr(light.size());
+            e.message = keyword + e.message.substr(e.field.size());
+        }
+    throw py::value_error(e.message);
+}
+
 py::dict localSetup(const LocalSetupArguments& a) {
     const LocalShadowInputs in{
         cameraOf(a.view), Aabb::fromMinMax(toVec3(a.view.sceneMin, "scene_min"), toVec3(a.view.sceneMax, "scene_max")),
@@ -171,13 +187,13 @@ py::dict localSetup(const LocalSetupArguments& a) {
         spot.coneDegrees = a.coneDegrees;
         spot.range = a.range;
         spot.radius = a.radius;
-        s = check(computeSpotShadowSetup(in, spot));
+        s = checkLight(computeSpotShadowSetup(in, spot));
     } else if (a.kind == "point") {
         PointLight point;
         point.wsPosition = toVec3(a.position, "position");
         point.range = a.range;
         point.radius = a.radius;
-        s = check(computePointShadowSetup(in, point));
+        s = checkLight(computePointShadowSetup(in, point));
     } else {
         throw py::value_error("kind: '" + a.kind + "' is not one of spot, point");
     }

@@ -144,8 +144,11 @@ class LocalSetupTest(unittest.TestCase):
         self.assertEqual(bias, dict(slope_texels=1.5, normal_offset_texels=0.5, constant_metres=0.005))
         with self.assertRaisesRegex(ValueError, "kind: 'torch' is not one of spot, point"):
             shadowkit.local_setup(kind="torch")
-        with self.assertRaisesRegex(ValueError, "spot.cone"):
+        # Named as local_setup's keywords, not as the C++ structs' fields ("spot.cone").
+        with self.assertRaisesRegex(ValueError, r"^cone: must be in \(0, 170\] degrees$"):
             shadowkit.local_setup(cone=180.0)
+        with self.assertRaisesRegex(ValueError, r"^range: "):
+            shadowkit.local_setup(kind="point", range=0.0)
 
 
 class EvaluateTest(unittest.TestCase):

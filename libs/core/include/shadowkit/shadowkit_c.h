@@ -190,8 +190,8 @@ typedef struct shadowkit_local_inputs {
 /** The local lights' lookup biases (core::LocalBias; SkLocalShadowOptions in
    shadowkit_local_shadows.glsl), in the map's texels at the receiver's distance and metres. */
 typedef struct shadowkit_local_bias {
-    double slope_texels;         /**< distance reduced by this × texel size × tan(angle to the light) */
-    double normal_offset_texels; /**< receiver moved along its normal by this × texel size */
+    double slope_texels;         /**< distance reduced by this × texel size × tan(angle to the light), tan ≤ 3.2 */
+    double normal_offset_texels; /**< receiver moved along its normal by this × texel size where the light grazes it */
     double constant_metres;      /**< and its distance reduced by this */
 } shadowkit_local_bias;
 
