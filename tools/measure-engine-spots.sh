@@ -77,8 +77,8 @@ d = json.load(open(sys.argv[1]))
 print("%.2f" % (d.get("scores") or d["views"])[0]["wrong_pct"])' "$1"
 }
 echo
-echo "| lamp | map | OSG's own | adapter in OSG | OGRE's own | adapter in OGRE | shadowkit's renderer (\`eval\`) |"
-echo "|---|---:|---:|---:|---:|---:|---:|"
+echo "| lamp | map | OSG's own | adapter in OSG | OGRE's own | adapter in OGRE | shadowkit's renderer (\`eval\`) | the same, 2 × 2 PCF as OSG samples |"
+echo "|---|---:|---:|---:|---:|---:|---:|---:|"
 for entry in "${lamps[@]}"; do
   name=${entry%%:*} light=${entry#*:}
   "$SK" setup "${forest[@]}" "${view[@]}" --light "$light" > "$out/$name.json"
@@ -93,6 +93,8 @@ for entry in "${lamps[@]}"; do
       row+=" $(wrong "$out/$name-$n-$mask.json") |"
     done
     "$SK" eval "${forest[@]}" "${view[@]}" --light "$light" --local-map-size "$n" --json "$out/$name-$n-eval.json" > /dev/null 2>&1
-    echo "$row $(wrong "$out/$name-$n-eval.json") |"
+    "$SK" eval "${forest[@]}" "${view[@]}" --light "$light" --local-map-size "$n" --filter pcf2 \
+      --json "$out/$name-$n-eval-pcf2.json" > /dev/null 2>&1
+    echo "$row $(wrong "$out/$name-$n-eval.json") | $(wrong "$out/$name-$n-eval-pcf2.json") |"
   done
 done
