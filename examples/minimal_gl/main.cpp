@@ -372,7 +372,8 @@ int main(int argc, char** argv) {
     const float away = reversedZ ? -1.0f : 1.0f;
     glPolygonOffset(away * float(bias.slope), 0.0f);
     glUniform1f(glGetUniformLocation(depthProgram, "constantBias"), away * float(bias.constant) * 0x1p-24f);
-    for (size_t i = 0; i < views.size(); ++i) {
+    const size_t sunMaps = lamps ? 0 : views.size(); // the night frame reads no sun map
+    for (size_t i = 0; i < sunMaps; ++i) {
         glNamedFramebufferTextureLayer(mapTarget, GL_DEPTH_ATTACHMENT, maps, 0, GLint(i));
         glBindFramebuffer(GL_FRAMEBUFFER, mapTarget);
         glClear(GL_DEPTH_BUFFER_BIT);
