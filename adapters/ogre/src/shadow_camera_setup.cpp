@@ -101,7 +101,16 @@ core::Result<core::ShadowSetup> spotSetupFor(const Ogre::Affine3& viewFromWorld,
     spot.wsDirection = toCore(wsDirection);
     spot.coneDegrees = double(outerAngle.valueDegrees()); // OGRE's spot angles are full angles
     spot.range = range;
-    return core::computeSpotShadowSetup(*inputs, spot);
+    auto setup = core::computeSpotShadowSetup(*inputs, spot);
+    // The core names its own field ("spot.cone"); an OGRE user set the outer angle.
+    if (!setup && setup.errorInfo().field == "spot.cone") {
+        char message[160];
+        std::snprintf(message, sizeof message,
+                      "spot light outer angle %g degrees: shadowkit's spot maps take an outer angle in (0, 170]",
+                      spot.coneDegrees);
+        return core::Error{message, "spot.cone"};
+    }
+    return setup;
 }
 
 Ogre::AxisAlignedBox sceneBounds(const Ogre::SceneNode& node) {

@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 namespace shadowkit::osgadapter {
@@ -114,7 +115,17 @@ core::Result<core::ShadowSetup> spotSetupFor(const ::osg::Matrixd& viewFromWorld
     spot.wsDirection = core::Vec3(wsDirection.x(), wsDirection.y(), wsDirection.z());
     spot.coneDegrees = 2.0 * spotCutoffDegrees; // OSG's cutoff is the half-angle
     spot.range = range;
-    return core::computeSpotShadowSetup(*inputs, spot);
+    auto setup = core::computeSpotShadowSetup(*inputs, spot);
+    // The core names its own field (the cone, "spot.cone"); an OSG user set the cutoff, half of it.
+    if (!setup && setup.errorInfo().field == "spot.cone") {
+        char message[160];
+        std::snprintf(message, sizeof message,
+                      "spot light cutoff %g degrees: shadowkit's spot maps take a cutoff in (0, 85] (a cone of at "
+                      "most 170 degrees)",
+                      spotCutoffDegrees);
+        return core::Error{message, "spot.cone"};
+    }
+    return setup;
 }
 
 ShadowMap::ShadowMap() = default;
