@@ -16,6 +16,9 @@
 // Distances: R is a convex polytope. The largest distance to the light is at a vertex; the
 // smallest may lie inside a face, so the near distance is the smallest *axial* depth over
 // the vertices, a lower bound of every distance in the view (depth along the axis <= distance).
+// A point light in one map, for engines without cube maps: by the first point, any cone from
+// the light that holds R holds its casters, so the narrowest one over R's corners (while it is
+// under 180°, it is convex and holds their hull) is a spot light's map with nothing missing.
 #include "shadowkit/core/local_lights.h"
 
 #include "shadowkit/core/convex_body.h"
@@ -24,6 +27,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <optional>
 #include <string>
 
 namespace shadowkit::core {
@@ -129,6 +134,98 @@ ShadowSetup localSetup(LightType type, const Vec3& wsLight, int mapSize) {
     return setup;
 }
 
+// The narrowest cone from `apex` that holds every point of `vertices` (R's corners; R is their
+// convex hull and a cone under 180° is convex, so it holds R): its unit axis and half-angle.
+// The axis is the direction of the smallest ball holding the corners' unit directions, found by
+// Bădoiu and Clarkson's iteration (a step towards the farthest direction by 1 / (k + 1): within a
+// factor 1 + 1/√k of the smallest radius); the half-angle is then measured, not estimated, so
+// the cone holds every corner whatever the iteration's error. No cone when a corner lies at the
+// apex or the directions surround it (the ball's centre at the origin).
+struct Cone {
+    Vec3 axis{0.0};
+    double halfAngle = 0.0; // radians
+};
+std::optional<Cone> narrowestConeHolding(const ConvexBody::Points& vertices, const Vec3& apex, double scale) {
+    std::vector<Vec3> directions;
+    directions.reserve(vertices.size());
+    for (const Vec3& p : vertices) {
+        const double distance = glm::distance(p, apex);
+        if (distance <= 1e-9 * scale) return std::nullopt;
+        directions.push_back((p - apex) / distance);
+    }
+    if (directions.empty()) return std::nullopt;
+    Vec3 centre = directions.front();
+    for (int k = 1; k <= 400; ++k) {
+        const Vec3* farthest = &directions.front();
+        for (const Vec3& d : directions)
+            if (glm::distance(d, centre) > glm::distance(*farthest, centre)) farthest = &d;
+        centre += (*farthest - centre) / double(k + 1);
+    }
+    if (!(glm::length(centre) > 1e-9)) return std::nullopt;
+    Cone cone{glm::normalize(centre), 0.0};
+    for (const Vec3& d : directions)
+        cone.halfAngle = std::max(cone.halfAngle, std::acos(std::clamp(glm::dot(d, cone.axis), -1.0, 1.0)));
+    return cone;
+}
+
+// The spot light's frame: looking along its axis, rolled by the world's up hints.
+Mat4 spotFrame(const Vec3& wsPosition, const Vec3& wsDirection) {
+    return makeLightFrame(glm::normalize(wsDirection), wsPosition, {Vec3(0, 1, 0), Vec3(0, 0, -1)}).lightFromWorld;
+}
+
+// The spot's map in a given frame (its −z the cone's axis; the roll free): inputs checked.
+Result<ShadowSetup> spotSetupInFrame(const LocalShadowInputs& in, const SpotLight& light, const Mat4& lightFromWorld) {
+    ShadowSetup setup = localSetup(LightType::Spot, light.wsPosition, in.mapSize);
+    // The cone inside its square pyramid (half-angle θ on both axes), cut at the range.
+    const double tanHalf = std::tan(0.5 * glm::radians(light.coneDegrees));
+    ConvexBody receivers = visibleInRange(in, light.wsPosition, light.range);
+    const auto sides = pyramidPlanes(lightFromWorld, light.wsPosition, tanHalf, tanHalf);
+    receivers.clip(sides);
+    const Vec3 axis = glm::normalize(light.wsDirection);
+    receivers.clip(Plane::fromPointNormal(light.wsPosition + light.range * axis, axis));
+    if (receivers.isEmpty()) {
+        setup.fallbacks.emplace_back("spot: its cone misses what the camera sees of the scene: no map");
+        setEyeRelativeFromWorld(setup, light.wsPosition);
+        return setup;
+    }
+    const Extent e = extentOf(receivers, lightFromWorld, light.wsPosition, light.range);
+    // The field of view narrowed to R's angular extent; the whole cone when R reaches the light.
+    auto clampTan = [&](double v) { return std::clamp(v, -tanHalf, tanHalf); };
+    double l = -tanHalf, r = tanHalf, b = -tanHalf, t = tanHalf;
+    if (!e.apexInside) l = clampTan(e.l), r = clampTan(e.r), b = clampTan(e.b), t = clampTan(e.t);
+    // A sliver (R seen edge-on) still needs a finite, invertible frustum.
+    const double minWidth = 1e-6 * tanHalf;
+    if (r - l < minWidth) l -= 0.5 * minWidth, r += 0.5 * minWidth;
+    if (t - b < minWidth) b -= 0.5 * minWidth, t += 0.5 * minWidth;
+    setup.views.push_back(localView(lightFromWorld, e, light.range, l, r, b, t));
+    // Relative to the light: a local light's map is of the size of its range around it.
+    setEyeRelativeFromWorld(setup, light.wsPosition);
+    return setup;
+}
+
+// The frame about the cone's axis whose map spans `vertices` with the least tangent span on its
+// wider side (a square map's coarser texel), ties to the least area: the receivers' footprint
+// need not lie square to the world's up. Searched by whole degrees over a quarter turn (a map's
+// extent repeats every 90°).
+Mat4 rolledToFit(const Mat4& lightFromWorld, const ConvexBody::Points& vertices) {
+    double bestSide = INFINITY, bestArea = INFINITY, bestRoll = 0.0;
+    for (int degrees = 0; degrees < 90; ++degrees) {
+        const double roll = glm::radians(double(degrees)), c = std::cos(roll), s = std::sin(roll);
+        double uMin = INFINITY, uMax = -INFINITY, vMin = INFINITY, vMax = -INFINITY;
+        for (const Vec3& p : vertices) {
+            const Vec3 ls(lightFromWorld * Vec4(p, 1.0));
+            const double x = ls.x / -ls.z, y = ls.y / -ls.z; // every corner lies in front (cone < 180°)
+            const double u = c * x + s * y, v = -s * x + c * y;
+            uMin = std::min(uMin, u), uMax = std::max(uMax, u), vMin = std::min(vMin, v), vMax = std::max(vMax, v);
+        }
+        const double side = std::max(uMax - uMin, vMax - vMin), area = (uMax - uMin) * (vMax - vMin);
+        if (side < bestSide * (1.0 - 1e-9) || (side <= bestSide * (1.0 + 1e-9) && area < bestArea))
+            bestSide = side, bestArea = area, bestRoll = roll;
+    }
+    // (u, v) = R(roll) (x, y): a rotation of the light's frame by −roll about its z.
+    return glm::rotate(Mat4(1.0), -bestRoll, Vec3(0.0, 0.0, 1.0)) * lightFromWorld;
+}
+
 } // namespace
 
 Status SpotLight::validate() const {
@@ -215,35 +312,7 @@ double lightDistanceDepth(const ShadowSetup& setup, const ShadowView& view, cons
 Result<ShadowSetup> computeSpotShadowSetup(const LocalShadowInputs& in, const SpotLight& light) {
     if (Status s = checkInputs(in); !s) return s.errorInfo();
     if (Status s = light.validate(); !s) return s.errorInfo();
-    ShadowSetup setup = localSetup(LightType::Spot, light.wsPosition, in.mapSize);
-    const Mat4 lightFromWorld =
-        makeLightFrame(glm::normalize(light.wsDirection), light.wsPosition, {Vec3(0, 1, 0), Vec3(0, 0, -1)})
-            .lightFromWorld;
-    // The cone inside its square pyramid (half-angle θ on both axes), cut at the range.
-    const double tanHalf = std::tan(0.5 * glm::radians(light.coneDegrees));
-    ConvexBody receivers = visibleInRange(in, light.wsPosition, light.range);
-    const auto sides = pyramidPlanes(lightFromWorld, light.wsPosition, tanHalf, tanHalf);
-    receivers.clip(sides);
-    const Vec3 axis = glm::normalize(light.wsDirection);
-    receivers.clip(Plane::fromPointNormal(light.wsPosition + light.range * axis, axis));
-    if (receivers.isEmpty()) {
-        setup.fallbacks.emplace_back("spot: its cone misses what the camera sees of the scene: no map");
-        setEyeRelativeFromWorld(setup, light.wsPosition);
-        return setup;
-    }
-    const Extent e = extentOf(receivers, lightFromWorld, light.wsPosition, light.range);
-    // The field of view narrowed to R's angular extent; the whole cone when R reaches the light.
-    auto clampTan = [&](double v) { return std::clamp(v, -tanHalf, tanHalf); };
-    double l = -tanHalf, r = tanHalf, b = -tanHalf, t = tanHalf;
-    if (!e.apexInside) l = clampTan(e.l), r = clampTan(e.r), b = clampTan(e.b), t = clampTan(e.t);
-    // A sliver (R seen edge-on) still needs a finite, invertible frustum.
-    const double minWidth = 1e-6 * tanHalf;
-    if (r - l < minWidth) l -= 0.5 * minWidth, r += 0.5 * minWidth;
-    if (t - b < minWidth) b -= 0.5 * minWidth, t += 0.5 * minWidth;
-    setup.views.push_back(localView(lightFromWorld, e, light.range, l, r, b, t));
-    // Relative to the light: a local light's map is of the size of its range around it.
-    setEyeRelativeFromWorld(setup, light.wsPosition);
-    return setup;
+    return spotSetupInFrame(in, light, spotFrame(light.wsPosition, light.wsDirection));
 }
 
 Result<ShadowSetup> computePointShadowSetup(const LocalShadowInputs& in, const PointLight& light) {
@@ -269,6 +338,37 @@ Result<ShadowSetup> computePointShadowSetup(const LocalShadowInputs& in, const P
         setup.fallbacks.emplace_back("point: its range misses what the camera sees of the scene: no map");
     setEyeRelativeFromWorld(setup, light.wsPosition);
     return setup;
+}
+
+Result<ShadowSetup> computePointSingleMapSetup(const LocalShadowInputs& in, const PointLight& light) {
+    if (Status s = checkInputs(in); !s) return s.errorInfo();
+    if (Status s = light.validate(); !s) return s.errorInfo();
+    // R's corners within the range's cube; the spot's far plane (at the range along the axis)
+    // then cuts only points farther than the range, which the light does not reach.
+    const ConvexBody receivers = visibleInRange(in, light.wsPosition, light.range);
+    SpotLight spot{.wsPosition = light.wsPosition, .range = light.range, .radius = light.radius};
+    if (receivers.isEmpty()) {
+        ShadowSetup setup = localSetup(LightType::Spot, light.wsPosition, in.mapSize);
+        setup.fallbacks.emplace_back("point: its range misses what the camera sees of the scene: no map");
+        setEyeRelativeFromWorld(setup, light.wsPosition);
+        return setup;
+    }
+    constexpr double kWidestConeDegrees = 170.0; // the spot map's own bound (SpotLight::validate)
+    const auto cone = narrowestConeHolding(receivers.vertices(), light.wsPosition, light.range);
+    // A hair wider than the corners' cone, so that rounding leaves every corner inside.
+    const double coneDegrees = cone ? 2.0 * glm::degrees(cone->halfAngle) * (1.0 + 1e-9) + 1e-6 : INFINITY;
+    if (!(coneDegrees <= kWidestConeDegrees)) {
+        char what[160];
+        std::snprintf(what, sizeof what,
+                      "what the camera sees within the light's range spans %s from it: one map holds at most %g "
+                      "degrees; a cube holds it",
+                      cone ? (std::to_string(int(std::ceil(coneDegrees))) + " degrees").c_str() : "every direction",
+                      kWidestConeDegrees);
+        return fieldError("point.position", what);
+    }
+    spot.wsDirection = cone->axis;
+    spot.coneDegrees = coneDegrees;
+    return spotSetupInFrame(in, spot, rolledToFit(spotFrame(spot.wsPosition, spot.wsDirection), receivers.vertices()));
 }
 
 Status validate(const LocalBias& b) {

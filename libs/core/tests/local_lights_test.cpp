@@ -1,7 +1,8 @@
 // Spot and point light set-ups: every receiver the camera can see inside the light's volume
 // lands in a map that is not skipped, inside its frustum, with its distance in the stored
 // range, and its casters in front of it; faces follow OpenGL's cube-map table; degenerate
-// placements have defined answers; bad lights are refused naming the field.
+// placements have defined answers; bad lights are refused naming the field. A point light in
+// one map (for engines without cube maps) holds the same receivers in the narrowest cone.
 #include "shadowkit/core/local_lights.h"
 
 #include <gtest/gtest.h>
@@ -75,7 +76,7 @@ const ShadowView* faceView(const ShadowSetup& setup, int face) {
 TEST(LocalLights, EveryVisibleReceiverInRangeIsHeldWithItsCastersOverRandomConfigurations) {
     std::mt19937 rng(3);
     std::uniform_real_distribution<double> u(0.0, 1.0);
-    long checked = 0, skipped = 0;
+    long checked = 0, skipped = 0, singleMaps = 0, refused = 0;
     for (int config = 0; config < 10000; ++config) {
         const LocalShadowInputs in{.camera = randomCamera(rng), .wsSceneBounds = kScene, .mapSize = 512};
         // Mostly near the camera (where lights matter), sometimes anywhere, outside the scene too.
@@ -88,6 +89,16 @@ TEST(LocalLights, EveryVisibleReceiverInRangeIsHeldWithItsCastersOverRandomConfi
         auto cube = computePointShadowSetup(in, point);
         auto cone = computeSpotShadowSetup(in, spot);
         ASSERT_TRUE(cube && cone) << config;
+        // The point light in one map, where what the camera sees spans less than 170° from it.
+        auto single = computePointSingleMapSetup(in, point);
+        if (single) {
+            ++singleMaps;
+            ASSERT_LE(single->views.size(), 1u);
+            EXPECT_EQ(single->lightType, LightType::Spot); // one perspective map, no cube face
+        } else {
+            ++refused;
+            EXPECT_EQ(single.errorInfo().field, "point.position");
+        }
         EXPECT_EQ(int(cube->views.size()) + cube->skippedFaces, 6);
         skipped += cube->skippedFaces;
         for (const ShadowSetup* s : {&*cube, &*cone})
@@ -112,14 +123,22 @@ TEST(LocalLights, EveryVisibleReceiverInRangeIsHeldWithItsCastersOverRandomConfi
             const ShadowView* face = faceView(*cube, cubeFaceOf(p - position));
             ASSERT_NE(face, nullptr) << "config " << config << ": a visible receiver's face was skipped";
             expectHolds(*cube, *face, p, "point");
+            if (single) {
+                ASSERT_EQ(single->views.size(), 1u) << "config " << config << ": a lit receiver but no single map";
+                expectHolds(*single, single->views[0], p, "point, one map");
+            }
             if (glm::dot(glm::normalize(p - position), glm::normalize(spot.wsDirection)) >= cosHalf) {
                 ASSERT_EQ(cone->views.size(), 1u) << "config " << config << ": a lit receiver but no spot map";
                 expectHolds(*cone, cone->views[0], p, "spot");
             }
         }
     }
-    EXPECT_GT(checked, 10000); // the configurations are not all vacuous
-    std::printf("%ld receivers checked; %.2f of 6 faces skipped on average\n", checked, double(skipped) / 10000.0);
+    EXPECT_GT(checked, 10000);   // the configurations are not all vacuous
+    EXPECT_GT(singleMaps, 1000); // and both answers of the single map are exercised
+    EXPECT_GT(refused, 400);
+    std::printf("%ld receivers checked; %.2f of 6 faces skipped on average; one map for %ld point lights, a cube "
+                "needed for %ld\n",
+                checked, double(skipped) / 10000.0, singleMaps, refused);
 }
 
 TEST(LocalLights, CubeFacesFollowTheOpenGlTable) {
@@ -207,6 +226,56 @@ TEST(LocalLights, TheSpotMapNarrowsToWhatTheCameraSeesOfTheCone) {
     const double tanHalf = std::tan(glm::radians(75.0));
     const double width = 2.0 / setup->views[0].clipFromLight[0][0], height = 2.0 / setup->views[0].clipFromLight[1][1];
     EXPECT_LT(width * height, 0.25 * (2 * tanHalf) * (2 * tanHalf)); // a quarter of the cone's area or less
+}
+
+TEST(LocalLights, APointLightInOneMapTakesTheNarrowestConeOverWhatTheCameraSees) {
+    // A 20 m square yard, 1 m deep, seen whole from 100 m above; a lamp 20 m over its centre.
+    // The narrowest cone from the lamp that holds the yard is centred straight down, its half-
+    // angle the one to a bottom corner: atan(10√2 / 20).
+    PerspectiveCamera c;
+    c.wsEye = {0, 100, 0};
+    c.wsDirection = {0, -1, 0};
+    c.wsUp = {0, 0, -1};
+    c.zFar = 200;
+    const Aabb yard = Aabb::fromMinMax(Vec3(-10, 0, -10), Vec3(10, 1, 10));
+    const LocalShadowInputs in{.camera = c, .wsSceneBounds = yard, .mapSize = 1024};
+    auto above = computePointSingleMapSetup(in, PointLight{.wsPosition = {0, 20, 0}, .range = 60});
+    ASSERT_TRUE(above) << above.error();
+    ASSERT_EQ(above->views.size(), 1u);
+    EXPECT_EQ(above->lightType, LightType::Spot); // one perspective map, no cube face
+    const ShadowView& map = above->views[0];
+    // The axis: the map's view direction (its −z) points down.
+    const Vec3 wsAxis = -glm::normalize(Vec3(glm::inverse(map.lightFromWorld) * Vec4(0, 0, 1, 0)));
+    EXPECT_GT(glm::dot(wsAxis, Vec3(0, -1, 0)), std::cos(glm::radians(0.5)));
+    // The map spans the yard's top corners' tangents, 10 / 19, each way: no wider.
+    const double width = 2.0 / map.clipFromLight[0][0], height = 2.0 / map.clipFromLight[1][1];
+    EXPECT_NEAR(width, 2.0 * 10.0 / 19.0, 0.02);
+    EXPECT_NEAR(height, 2.0 * 10.0 / 19.0, 0.02);
+
+    // The same lamp off to the side, 30 m from the yard's edge: one map, far narrower than the
+    // 90° faces a cube would give it, and the yard's farther corners inside it.
+    auto side = computePointSingleMapSetup(in, PointLight{.wsPosition = {40, 5, 0}, .range = 80});
+    ASSERT_TRUE(side);
+    ASSERT_EQ(side->views.size(), 1u);
+    EXPECT_LT(2.0 / side->views[0].clipFromLight[0][0], 1.0);
+
+    // Inside the yard the lamp is surrounded by what the camera sees: no map under 180° holds it.
+    auto among = computePointSingleMapSetup(in, PointLight{.wsPosition = {0, 0.5, 0}, .range = 30});
+    ASSERT_FALSE(among);
+    EXPECT_EQ(among.errorInfo().field, "point.position");
+    EXPECT_NE(among.error().find("cube"), std::string::npos) << among.error();
+    EXPECT_EQ(among.error().find('\n'), std::string::npos);
+    // Beside it, half a metre from its edge: the yard spans more than 170° seen from there.
+    auto beside = computePointSingleMapSetup(in, PointLight{.wsPosition = {10.5, 0.5, 0}, .range = 30});
+    ASSERT_FALSE(beside);
+    EXPECT_NE(beside.error().find("degrees from it"), std::string::npos) << beside.error();
+    // Out of reach of the yard: nothing to draw, and that is no error.
+    auto far = computePointSingleMapSetup(in, PointLight{.wsPosition = {0, 60, 0}, .range = 30});
+    ASSERT_TRUE(far);
+    EXPECT_TRUE(far->views.empty());
+    EXPECT_FALSE(far->fallbacks.empty());
+    // A bad light is refused as the cube's is.
+    EXPECT_EQ(computePointSingleMapSetup(in, PointLight{.range = -1}).errorInfo().field, "point.range");
 }
 
 TEST(LocalLights, BadLightsAreRefusedNamingTheField) {

@@ -73,6 +73,16 @@ Result<ShadowSetup> computeSpotShadowSetup(const LocalShadowInputs& inputs, cons
 /// range and `face` index; faces that see nothing of R are left out (setup.skippedFaces).
 Result<ShadowSetup> computePointShadowSetup(const LocalShadowInputs& inputs, const PointLight& light);
 
+/// A point light in one perspective map, for engines whose shadow pipelines draw no cube maps
+/// (OpenSceneGraph's ViewDependentShadowMap and OGRE 1.12 give a point light one map, aimed by a
+/// fixed rule that need not hold what the camera sees): the set-up of the spot light at the
+/// point light's position whose cone is the narrowest that holds R = range ∩ view frustum ∩
+/// scene box (computeSpotShadowSetup; lightType Spot, one view, no face), so every receiver the
+/// camera sees lit lands in the map, and with it its casters. No view when R is empty. Fails,
+/// naming "point.position", when R spans more than a 170° cone seen from the light (the light
+/// stands among what the camera sees, or beside it): only a cube holds that.
+Result<ShadowSetup> computePointSingleMapSetup(const LocalShadowInputs& inputs, const PointLight& light);
+
 /// A frame's local lights with their set-ups, in the order given: what a renderer draws.
 struct LocalLighting {
     std::vector<PointLight> points;                              ///< the point lights
