@@ -5,7 +5,8 @@
 
 - the adapter's mask shows shadow: at least 5 % of the pixels the engine drew read shadowed (the
   sun's view looks down on a dense patch of trees, about a third of it in shadow; the spot
-  light's test lights the patch from behind the camera, 7–8 % of it in shadow; an adapter
+  light's test lights the patch from behind the camera, 7–8 % of it in shadow, the point light's
+  from above and ahead of it, 30–38 % of it in shadow; an adapter
   that hands the engine a camera missing the view draws none);
 - scored against the truth, it is within 0.5 points of `eval`'s wrong_pct for the same
   set-up (drawn by shadowkit's own renderer; the bias and filter differ):

@@ -24,3 +24,9 @@ endfunction()
 # "behind" lamp). For add_engine_sample_test's VIEW, with the spot's map size as EVAL.
 set(SHADOWKIT_ENGINE_SPOT_VIEW
     "--view aerial --eye 0,40,0 --dir 0,-0.7,-1 --sun off --size 640x360 --light spot:0,50,15,0,-1,-0.6,100,80")
+# A point light above and ahead of the camera, outside the view, lighting the patch the camera
+# sees (tools/measure-engine-points.sh's "ahead" lamp): the adapters' one map over what the camera
+# sees, where OSG's own misses the view (about 25 % wrong) and OGRE's 120° leaves parts out (7 %).
+# EVAL's cube of 2048² faces beside it.
+set(SHADOWKIT_ENGINE_POINT_VIEW
+    "--view aerial --eye 0,40,0 --dir 0,-0.7,-1 --sun off --size 640x360 --light point:0,50,-45,60")

@@ -41,20 +41,21 @@ inline std::string& programName() {
 
 using Vec3 = std::array<double, 3>;
 
-/// A spot light of `shadowkit setup`'s "local_lights" (`--light spot:...`).
-struct Spot {
+/// A spot or point light of `shadowkit setup`'s "local_lights" (`--light spot:...`, `point:...`).
+struct Lamp {
+    bool point = false; ///< a point light: no direction or cone
     Vec3 position{}, direction{};
-    double coneDegrees = 40.0; ///< the cone's full opening angle
+    double coneDegrees = 40.0; ///< a spot's full opening angle
     double range = 30.0;       ///< metres
 };
 
 /// The camera and sun of `shadowkit setup`'s JSON (under "inputs") or of a flat camera file,
-/// and its first spot light, if it has one: the shot is then lit by that spot alone, and the
-/// mask is the spot's visibility (scored with `shadowkit score --light`).
+/// and its first spot or point light, if it has one: the shot is then lit by that lamp alone,
+/// and the mask is the lamp's visibility (scored with `shadowkit score --light`).
 struct CameraAndSun {
     Vec3 eye{}, direction{}, up{}, sunTravel{};
     double fovY = 60.0, zNear = 0.5, zFar = 500.0;
-    std::optional<Spot> spot;
+    std::optional<Lamp> lamp;
 };
 
 inline Vec3 vec3(const nlohmann::json& j, const char* key, const std::string& file) {
@@ -89,16 +90,21 @@ inline CameraAndSun readCamera(const std::string& file) {
     c.sunTravel = vec3(holder["light"], "direction", file);
     if (root.contains("local_lights") && root["local_lights"].is_array())
         for (const nlohmann::json& light : root["local_lights"]) {
-            if (!light.is_object() || light.value("type", "") != "spot") continue;
-            Spot spot{vec3(light, "position", file), vec3(light, "direction", file)};
-            const nlohmann::json cone = light.value("cone_degrees", nlohmann::json()),
-                                 range = light.value("range", nlohmann::json());
-            if (!cone.is_number() || !(cone.get<double>() > 0.0 && cone.get<double>() <= 170.0))
-                fail(file + ": a spot light's \"cone_degrees\" is not in (0, 170]");
+            const std::string type = light.is_object() ? light.value("type", "") : "";
+            if (type != "spot" && type != "point") continue;
+            Lamp lamp{.point = type == "point", .position = vec3(light, "position", file)};
+            const nlohmann::json range = light.value("range", nlohmann::json());
             if (!range.is_number() || !(range.get<double>() > 0.0 && std::isfinite(range.get<double>())))
-                fail(file + ": a spot light's \"range\" is not a positive number of metres");
-            spot.coneDegrees = cone.get<double>(), spot.range = range.get<double>();
-            c.spot = spot;
+                fail(file + ": a " + type + " light's \"range\" is not a positive number of metres");
+            lamp.range = range.get<double>();
+            if (!lamp.point) {
+                lamp.direction = vec3(light, "direction", file);
+                const nlohmann::json cone = light.value("cone_degrees", nlohmann::json());
+                if (!cone.is_number() || !(cone.get<double>() > 0.0 && cone.get<double>() <= 170.0))
+                    fail(file + ": a spot light's \"cone_degrees\" is not in (0, 170]");
+                lamp.coneDegrees = cone.get<double>();
+            }
+            c.lamp = lamp;
             break;
         }
     return c;

@@ -1,7 +1,7 @@
 // shadowkit-ogre-sample: a scene drawn by OGRE 1.12 from a camera file, with OGRE's own
 // shadow camera set-ups or shadowkit's, and the shadow term written as a mask for
 // `shadowkit score` (docs/engine-integration.md, "OGRE"): the sun's, or where the camera file
-// has a spot light (`shadowkit setup --sun off --light spot:...`), that spot's.
+// has a spot or point light (`shadowkit setup --sun off --light spot:...`), that lamp's.
 //
 //   shadowkit export --out forest.obj && shadowkit setup --view aerial > aerial.json
 //   xvfb-run -a shadowkit-ogre-sample forest.obj aerial.json mask.png --technique tsm
@@ -285,7 +285,7 @@ public:
             const auto& points = pssm->getSplitPoints(); // near, then each split's far
             for (size_t i = 0; i < kSplitMaps && i + 1 < points.size(); ++i) far[i] = points[i + 1];
         } else if (auto* ours = dynamic_cast<shadowkit::ogreadapter::ShadowCameraSetup*>(m_setup.get())) {
-            if (ours->lastSpotSetup() || !ours->lastSpotError().empty()) return; // a spot: one map, no splits
+            if (!ours->lastSetup() && ours->lastError().empty()) return; // a lamp, not the sun: one map, no splits
             if (!ours->lastSetup()) fail("the adapter's cascades failed: " + ours->lastError());
             const auto& views = ours->lastSetup()->views;
             for (size_t i = 0; i < kSplitMaps && i < views.size(); ++i)
@@ -351,14 +351,16 @@ void draw(const Options& o, const Shot& shot, Ogre::Root& root, Ogre::SceneManag
     const auto vec = [](const samples::Vec3& v) {
         return Ogre::Vector3(Ogre::Real(v[0]), Ogre::Real(v[1]), Ogre::Real(v[2]));
     };
-    if (const auto& spot = shot.view.spot) { // the camera file's spot light alone, one shadow texture
-        sun->setType(Ogre::Light::LT_SPOTLIGHT);
-        sun->setSpotlightRange(Ogre::Degree(Ogre::Real(0.8 * spot->coneDegrees)),
-                               Ogre::Degree(Ogre::Real(spot->coneDegrees)));
-        sun->setAttenuation(Ogre::Real(spot->range), 1.0f, 0.0f, 0.0f);
-        sun->getParentSceneNode()->setPosition(vec(spot->position));
-        sun->getParentSceneNode()->setDirection(vec(spot->direction), Ogre::Node::TS_WORLD);
-        sm->setShadowTextureCountPerLightType(Ogre::Light::LT_SPOTLIGHT, 1);
+    if (const auto& lamp = shot.view.lamp) { // the camera file's lamp alone, one shadow texture
+        sun->setType(lamp->point ? Ogre::Light::LT_POINT : Ogre::Light::LT_SPOTLIGHT);
+        if (!lamp->point) {
+            sun->setSpotlightRange(Ogre::Degree(Ogre::Real(0.8 * lamp->coneDegrees)),
+                                   Ogre::Degree(Ogre::Real(lamp->coneDegrees)));
+            sun->getParentSceneNode()->setDirection(vec(lamp->direction), Ogre::Node::TS_WORLD);
+        }
+        sun->setAttenuation(Ogre::Real(lamp->range), 1.0f, 0.0f, 0.0f);
+        sun->getParentSceneNode()->setPosition(vec(lamp->position));
+        sm->setShadowTextureCountPerLightType(sun->getType(), 1);
     } else {
         sun->setType(Ogre::Light::LT_DIRECTIONAL);
         sun->getParentSceneNode()->setDirection(vec(shot.view.sunTravel), Ogre::Node::TS_WORLD);
@@ -390,9 +392,11 @@ void draw(const Options& o, const Shot& shot, Ogre::Root& root, Ogre::SceneManag
     window->copyContentsToMemory(pixels, pixels);
     if (auto written = shadowkit::scene::writePng(frame, shot.out); !written) fail(written.error());
     std::string technique = shot.technique;
-    if (const auto* ours = dynamic_cast<const shadowkit::ogreadapter::ShadowCameraSetup*>(setup.get());
-        ours && ours->lastChoice())
-        technique += " chose " + core::describe(*ours->lastChoice());
+    if (const auto* ours = dynamic_cast<const shadowkit::ogreadapter::ShadowCameraSetup*>(setup.get())) {
+        if (ours->lastChoice()) technique += " chose " + core::describe(*ours->lastChoice());
+        // A point light among what the camera sees keeps OGRE's camera: the shot says so.
+        if (!ours->lastPointFallback().empty()) technique += ", OGRE's camera: " + ours->lastPointFallback();
+    }
     std::printf("wrote %s (%dx%d, %s, %d × %d² maps, drawn in %.1f s)\n", shot.out.c_str(), o.width, o.height,
                 technique.c_str(), maps, mapSideOf(shot.technique, o.mapSize), seconds);
 }

@@ -1,5 +1,5 @@
-// The OGRE adapter's one idea: a texture-shadow camera from shadowkit::core, the sun's or a
-// spot light's (shadow_camera_setup.h).
+// The OGRE adapter's one idea: a texture-shadow camera from shadowkit::core, the sun's, a
+// spot light's or a point light's (shadow_camera_setup.h).
 #include "shadowkit/ogre/shadow_camera_setup.h"
 
 #include "shadowkit/core/engine_camera.h"
@@ -113,6 +113,16 @@ core::Result<core::ShadowSetup> spotSetupFor(const Ogre::Affine3& viewFromWorld,
     return setup;
 }
 
+core::Result<core::ShadowSetup> pointSetupFor(const Ogre::Affine3& viewFromWorld, const Ogre::Matrix4& clipFromView,
+                                              double shadowDistance, const Ogre::Vector3& wsPosition, double range,
+                                              const Ogre::AxisAlignedBox& wsSceneBounds, int mapSize) {
+    auto inputs = viewInputsFor(viewFromWorld, clipFromView, shadowDistance, wsSceneBounds);
+    if (!inputs) return inputs.errorInfo();
+    inputs->mapSize = mapSize;
+    return core::computePointSingleMapSetup(*inputs,
+                                            core::PointLight{.wsPosition = toCore(wsPosition), .range = range});
+}
+
 Ogre::AxisAlignedBox sceneBounds(const Ogre::SceneNode& node) {
     Ogre::AxisAlignedBox bounds;
     // By class, not by type flags: an object made without a factory (a ManualObject of its
@@ -193,25 +203,39 @@ bool ShadowCameraSetup::spotCamera(const Ogre::SceneManager* sm, const Ogre::Cam
                               far > 0.0 ? far : std::numeric_limits<double>::infinity(), light->getDerivedPosition(),
                               light->getDerivedDirection(), light->getSpotlightOuterAngle(),
                               double(light->getAttenuationRange()), boundsOf(sm), m_inputs.mapSize);
-    if (!setup) {
-        report(setup.error(), m_lastSpotError);
-        m_lastSpotSetup.reset();
-        return false;
-    }
-    report("", m_lastSpotError);
-    m_lastSpotSetup = std::move(*setup);
-    // A cone that misses the view lights nothing seen: OGRE's camera draws a map nothing reads.
-    if (m_lastSpotSetup->views.empty()) return false;
-    TextureCamera camera = textureCameraOf(*m_lastSpotSetup, 0);
+    report(setup ? std::string() : setup.error(), m_lastSpotError);
+    m_lastSpotSetup = setup ? std::optional(std::move(*setup)) : std::nullopt;
+    return m_lastSpotSetup && localCamera(*m_lastSpotSetup, cam, light, texCam);
+}
+
+bool ShadowCameraSetup::pointCamera(const Ogre::SceneManager* sm, const Ogre::Camera* cam, const Ogre::Light* light,
+                                    Ogre::Camera* texCam) const {
+    const double far = sm->getShadowFarDistance();
+    auto setup = pointSetupFor(cam->getViewMatrix(), cam->getProjectionMatrix(),
+                               far > 0.0 ? far : std::numeric_limits<double>::infinity(), light->getDerivedPosition(),
+                               double(light->getAttenuationRange()), boundsOf(sm), m_inputs.mapSize);
+    // A lamp among what the camera sees is a state of the scene, not a mistake: logged, not warned.
+    if (!setup && setup.error() != m_lastPointFallback)
+        Ogre::LogManager::getSingleton().logMessage("shadowkit: " + setup.error(), Ogre::LML_TRIVIAL);
+    m_lastPointFallback = setup ? std::string() : setup.error();
+    m_lastPointSetup = setup ? std::optional(std::move(*setup)) : std::nullopt;
+    return m_lastPointSetup && localCamera(*m_lastPointSetup, cam, light, texCam);
+}
+
+bool ShadowCameraSetup::localCamera(const core::ShadowSetup& setup, const Ogre::Camera* cam, const Ogre::Light* light,
+                                    Ogre::Camera* texCam) {
+    // A light that misses the view lights nothing seen: OGRE's camera draws a map nothing reads.
+    if (setup.views.empty()) return false;
+    TextureCamera camera = textureCameraOf(setup, 0);
     // The core's near plane lies just in front of the receivers, casters nearer the light to be
     // clamped to it; OGRE culls them against the texture camera's near plane first and has no
-    // depth clamp. So the near plane moves towards the light, where OGRE's own spot camera has
-    // it (the light's shadow near clip distance; the camera's near by default). Only the depth
-    // row changes — x, y and w of a perspective from the light do not depend on the planes —
-    // so every receiver keeps its texel. In the core's [0, 1] row z = f / (n − f) · zv + n f /
-    // (n − f) the planes are n = m23 / m22 and f = m23 / (m22 + 1); OpenGL's row is
+    // depth clamp. So the near plane moves towards the light, where OGRE's own camera for a
+    // local light has it (the light's shadow near clip distance; the camera's near by default).
+    // Only the depth row changes — x, y and w of a perspective from the light do not depend on
+    // the planes — so every receiver keeps its texel. In the core's [0, 1] row z = f / (n − f)
+    // · zv + n f / (n − f) the planes are n = m23 / m22 and f = m23 / (m22 + 1); OpenGL's row is
     // −(f + n') / (f − n') · zv − 2 f n' / (f − n').
-    const core::Mat4& clipFromLight = m_lastSpotSetup->views[0].clipFromLight;
+    const core::Mat4& clipFromLight = setup.views[0].clipFromLight;
     const double zNear = clipFromLight[3][2] / clipFromLight[2][2];
     const double zFar = clipFromLight[3][2] / (clipFromLight[2][2] + 1.0);
     const double nearToLight = std::min(zNear, double(light->_deriveShadowNearClipDistance(cam)));
@@ -224,12 +248,10 @@ bool ShadowCameraSetup::spotCamera(const Ogre::SceneManager* sm, const Ogre::Cam
 
 void ShadowCameraSetup::getShadowCamera(const Ogre::SceneManager* sm, const Ogre::Camera* cam, const Ogre::Viewport* vp,
                                         const Ogre::Light* light, Ogre::Camera* texCam, size_t iteration) const {
-    if (light->getType() == Ogre::Light::LT_SPOTLIGHT) {
-        if (!spotCamera(sm, cam, light, texCam)) m_fallback.getShadowCamera(sm, cam, vp, light, texCam, iteration);
-        return;
-    }
     if (light->getType() != Ogre::Light::LT_DIRECTIONAL) {
-        m_fallback.getShadowCamera(sm, cam, vp, light, texCam, iteration);
+        const bool ours = light->getType() == Ogre::Light::LT_SPOTLIGHT ? spotCamera(sm, cam, light, texCam)
+                                                                        : pointCamera(sm, cam, light, texCam);
+        if (!ours) m_fallback.getShadowCamera(sm, cam, vp, light, texCam, iteration);
         return;
     }
     if (iteration == 0 || !m_lastSetup) {

@@ -1,7 +1,7 @@
 // shadowkit-osg-sample: a scene drawn by OpenSceneGraph from a camera file, with OSG's own
 // shadows or shadowkit's shadow camera, and the shadow term written as a mask for
 // `shadowkit score` (docs/engine-integration.md, "OpenSceneGraph"): the sun's, or where the
-// camera file has a spot light (`shadowkit setup --sun off --light spot:...`), that spot's.
+// camera file has a spot or point light (`shadowkit setup --sun off --light spot:...`), that lamp's.
 //
 //   shadowkit export --out forest.obj
 //   shadowkit setup --view perpendicular > camera.json
@@ -223,10 +223,10 @@ void draw(const Options& o, const Shot& shot, osg::Node* model, Viewer& v) {
     shadowed->setShadowTechnique(makeShadowMap(shot.technique, o.mapSize, *settings).get());
     osg::ref_ptr<osg::LightSource> light = new osg::LightSource;
     light->getLight()->setLightNum(0);
-    if (view.spot) { // the camera file's spot light alone: w = 1, a cutoff of half the cone
-        light->getLight()->setPosition(osg::Vec4(vec(view.spot->position), 1.0));
-        light->getLight()->setDirection(vec(view.spot->direction));
-        light->getLight()->setSpotCutoff(float(0.5 * view.spot->coneDegrees));
+    if (const auto& lamp = view.lamp) { // the camera file's lamp alone: w = 1, a cutoff of half the cone or 180
+        light->getLight()->setPosition(osg::Vec4(vec(lamp->position), 1.0));
+        if (!lamp->point) light->getLight()->setDirection(vec(lamp->direction));
+        light->getLight()->setSpotCutoff(lamp->point ? 180.0f : float(0.5 * lamp->coneDegrees));
     } else {
         light->getLight()->setPosition(osg::Vec4(-vec(view.sunTravel), 0.0)); // w = 0: towards a directional light
     }
@@ -257,9 +257,11 @@ void draw(const Options& o, const Shot& shot, osg::Node* model, Viewer& v) {
         osgDB::writeImageFile(*v.frame, shot.out) ? osgDB::readImageFile(shot.out) : nullptr;
     if (!written || written->s() != o.width || written->t() != o.height) fail(shot.out + ": could not be written");
     std::string technique = shot.technique;
-    if (const auto* ours = dynamic_cast<const shadowkit::osgadapter::ShadowMap*>(shadowed->getShadowTechnique());
-        ours && ours->lastChoice())
-        technique += " chose " + core::describe(*ours->lastChoice());
+    if (const auto* ours = dynamic_cast<const shadowkit::osgadapter::ShadowMap*>(shadowed->getShadowTechnique())) {
+        if (ours->lastChoice()) technique += " chose " + core::describe(*ours->lastChoice());
+        // A point light among what the camera sees keeps OSG's camera: the shot says so.
+        if (!ours->lastPointFallback().empty()) technique += ", OSG's camera: " + ours->lastPointFallback();
+    }
     std::printf("wrote %s (%dx%d, %s, %d² map, drawn in %.1f s)\n", shot.out.c_str(), o.width, o.height,
                 technique.c_str(), o.mapSize, drawSeconds);
 }

@@ -128,6 +128,17 @@ core::Result<core::ShadowSetup> spotSetupFor(const ::osg::Matrixd& viewFromWorld
     return setup;
 }
 
+core::Result<core::ShadowSetup> pointSetupFor(const ::osg::Matrixd& viewFromWorld, const ::osg::Matrixd& clipFromView,
+                                              double shadowDistance, const ::osg::Vec3d& wsPosition, double range,
+                                              const ::osg::BoundingBoxd& wsSceneBounds, int mapSize) {
+    auto inputs = viewInputsFor(viewFromWorld, clipFromView, shadowDistance, wsSceneBounds);
+    if (!inputs) return inputs.errorInfo();
+    inputs->mapSize = mapSize;
+    const core::PointLight point{.wsPosition = core::Vec3(wsPosition.x(), wsPosition.y(), wsPosition.z()),
+                                 .range = range};
+    return core::computePointSingleMapSetup(*inputs, point);
+}
+
 ShadowMap::ShadowMap() = default;
 
 ShadowMap::ShadowMap(const ShadowMap& other, const ::osg::CopyOp& copyop)
@@ -173,29 +184,50 @@ void ShadowMap::init() {
     return m_cachedBounds;
 }
 
-ShadowMap::SpotOutcome ShadowMap::spotCamera(const Frustum& frustum, const LightData& light, double shadowDistance,
-                                             int mapSize, ::osg::Matrixd& projectionMatrix,
-                                             ::osg::Matrixd& viewMatrix) {
-    // An OSG light has attenuation, not a range: the spot reaches everything in the scene box.
-    const ::osg::BoundingBoxd box = sceneBounds();
+namespace {
+// An OSG light has attenuation, not a range: a local light reaches everything in the scene box.
+double reachOf(const ::osg::BoundingBoxd& box, const ::osg::Vec3d& wsLight) {
     double range = 0.0;
-    for (unsigned corner = 0; corner < 8; ++corner)
-        range = std::max(range, (box.corner(corner) - light.lightPos3).length());
-    auto setup = spotSetupFor(frustum.modelViewMatrix, frustum.projectionMatrix, shadowDistance, light.lightPos3,
-                              light.lightDir, light.light->getSpotCutoff(), range, box, mapSize);
-    if (!setup) {
-        if (setup.error() != m_lastSpotError) OSG_WARN << "shadowkit: " << setup.error() << std::endl;
-        m_lastSpotError = setup.error();
-        m_lastSpotSetup.reset();
-        return SpotOutcome::LeftToOsg;
-    }
-    m_lastSpotError.clear();
-    m_lastSpotSetup = *setup;
+    for (unsigned corner = 0; corner < 8; ++corner) range = std::max(range, (box.corner(corner) - wsLight).length());
+    return range;
+}
+} // namespace
+
+ShadowMap::SpotOutcome ShadowMap::localOutcome(const core::Result<core::ShadowSetup>& setup,
+                                               ::osg::Matrixd& projectionMatrix, ::osg::Matrixd& viewMatrix) {
+    if (!setup) return SpotOutcome::LeftToOsg;
     if (setup->views.empty()) return SpotOutcome::NothingInView;
-    const ShadowCamera camera = shadowCameraOfView(std::move(*setup));
+    const ShadowCamera camera = shadowCameraOfView(*setup);
     viewMatrix = camera.viewMatrix;
     projectionMatrix = camera.projectionMatrix;
     return SpotOutcome::Mapped;
+}
+
+ShadowMap::SpotOutcome ShadowMap::spotCamera(const Frustum& frustum, const LightData& light, double shadowDistance,
+                                             int mapSize, ::osg::Matrixd& projectionMatrix,
+                                             ::osg::Matrixd& viewMatrix) {
+    const ::osg::BoundingBoxd box = sceneBounds();
+    auto setup =
+        spotSetupFor(frustum.modelViewMatrix, frustum.projectionMatrix, shadowDistance, light.lightPos3, light.lightDir,
+                     light.light->getSpotCutoff(), reachOf(box, light.lightPos3), box, mapSize);
+    // A spot the core refuses is the user's setting: said once as a warning.
+    if (!setup && setup.error() != m_lastSpotError) OSG_WARN << "shadowkit: " << setup.error() << std::endl;
+    m_lastSpotError = setup ? std::string() : setup.error();
+    m_lastSpotSetup = setup ? std::optional(*setup) : std::nullopt;
+    return localOutcome(setup, projectionMatrix, viewMatrix);
+}
+
+ShadowMap::SpotOutcome ShadowMap::pointCamera(const Frustum& frustum, const LightData& light, double shadowDistance,
+                                              int mapSize, ::osg::Matrixd& projectionMatrix,
+                                              ::osg::Matrixd& viewMatrix) {
+    const ::osg::BoundingBoxd box = sceneBounds();
+    auto setup = pointSetupFor(frustum.modelViewMatrix, frustum.projectionMatrix, shadowDistance, light.lightPos3,
+                               reachOf(box, light.lightPos3), box, mapSize);
+    // A lamp among what the camera sees is a state of the scene, not a mistake: said at info level.
+    if (!setup && setup.error() != m_lastPointFallback) OSG_INFO << "shadowkit: " << setup.error() << std::endl;
+    m_lastPointFallback = setup ? std::string() : setup.error();
+    m_lastPointSetup = setup ? std::optional(*setup) : std::nullopt;
+    return localOutcome(setup, projectionMatrix, viewMatrix);
 }
 
 bool ShadowMap::computeShadowCameraSettings(Frustum& frustum, LightData& light, ::osg::Matrixd& projectionMatrix,
@@ -208,9 +240,12 @@ bool ShadowMap::computeShadowCameraSettings(Frustum& frustum, LightData& light, 
         maxDistance >= std::numeric_limits<double>::max() ? std::numeric_limits<double>::infinity() : maxDistance;
 
     m_ownCamera = true;
-    // OSG's spot cutoff is half the cone; 180 makes a point light.
-    if (!light.directionalLight && light.light->getSpotCutoff() < 90.0) {
-        switch (spotCamera(frustum, light, shadowDistance, inputs.mapSize, projectionMatrix, viewMatrix)) {
+    // OSG's spot cutoff is half the cone; 180 makes a point light (between them: a spot wider
+    // than any map, refused by the core with its cutoff named).
+    if (!light.directionalLight) {
+        const bool point = light.light->getSpotCutoff() >= 180.0;
+        switch (point ? pointCamera(frustum, light, shadowDistance, inputs.mapSize, projectionMatrix, viewMatrix)
+                      : spotCamera(frustum, light, shadowDistance, inputs.mapSize, projectionMatrix, viewMatrix)) {
         case SpotOutcome::Mapped:
             return true;
         case SpotOutcome::NothingInView:

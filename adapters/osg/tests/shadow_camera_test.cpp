@@ -322,9 +322,96 @@ TEST(OsgShadowCamera, SpotLightMapsHoldWhatTheCameraSeesOfTheConeInTheCoresTexel
     EXPECT_GE(narrowed, 3); // the camera sees part of the cone: the map narrows to it
 }
 
+TEST(OsgShadowCamera, PointLightMapsHoldWhatTheCameraSeesWhereOsgsOwnNeedNot) {
+    // Lamps over a yard and cameras among them. OSG aims a point light's map along the light's
+    // direction (here OSG's default, −Z) and widens it to the view frustum's corners, at most
+    // 160°; the adapter aims it at what the camera sees within reach. Every point the camera
+    // sees inside the box — sampled from the view, not from the set-up — must land in the
+    // adapter's map on the core's texel, wherever OSG's own map lands it; where that spans
+    // more than 170° from the lamp the light keeps OSG's camera, and says why.
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    const ::osg::BoundingBoxd box({-60.0, 0.0, -60.0}, {60.0, 20.0, 60.0});
+    int maps = 0, kept = 0, ownMaps = 0;
+    long seen = 0, missedByOsg = 0;
+    double logGain = 0.0;
+    for (int trial = 0; trial < 40; ++trial) {
+        const core::Vec3 wsLamp(-50.0 + 100.0 * u(rng), 3.0 + 30.0 * u(rng), -50.0 + 100.0 * u(rng));
+        const core::Vec3 wsEye(-40.0 + 80.0 * u(rng), 1.7 + 10.0 * u(rng), -40.0 + 80.0 * u(rng));
+        core::Vec3 forward = unitVector(rng);
+        forward.y = -0.1 - 0.4 * std::abs(forward.y);
+        forward = glm::normalize(forward);
+        const ::osg::Matrixd view = ::osg::Matrixd::lookAt(
+            ::osg::Vec3d(wsEye.x, wsEye.y, wsEye.z),
+            ::osg::Vec3d(wsEye.x + forward.x, wsEye.y + forward.y, wsEye.z + forward.z), ::osg::Vec3d(0, 1, 0));
+        const ::osg::Matrixd projection = ::osg::Matrixd::perspective(60.0, 16.0 / 9.0, 0.3, 40.0);
+        ::osg::ref_ptr<ShadowMap> shadowMap = new ShadowMap;
+        shadowMap->setSceneBounds(box);
+        ::osg::ref_ptr<osgShadow::ViewDependentShadowMap> plain = new osgShadow::ViewDependentShadowMap;
+        ::osg::ref_ptr<osgShadow::ShadowedScene> ours = new osgShadow::ShadowedScene(shadowMap.get());
+        ::osg::ref_ptr<osgShadow::ShadowedScene> theirs = new osgShadow::ShadowedScene(plain.get());
+        ::osg::ref_ptr<::osg::Light> bulb = new ::osg::Light;
+        bulb->setPosition(::osg::Vec4(float(wsLamp.x), float(wsLamp.y), float(wsLamp.z), 1.0f));
+        const VdsmCall call = callAsVdsm(*shadowMap, view, projection, *bulb);
+        const VdsmCall own = callAsVdsm(*plain, view, projection, *bulb);
+        if (!shadowMap->lastPointSetup()) {
+            // Kept OSG's camera: exactly OSG's, and the reason names the lamp and the cube.
+            ++kept;
+            EXPECT_NE(shadowMap->lastPointFallback().find("point.position"), std::string::npos)
+                << shadowMap->lastPointFallback();
+            EXPECT_EQ(call.view, own.view);
+            EXPECT_EQ(call.projection, own.projection);
+            continue;
+        }
+        EXPECT_TRUE(shadowMap->lastPointFallback().empty());
+        const core::ShadowSetup& setup = *shadowMap->lastPointSetup();
+        EXPECT_EQ(call.ok, !setup.views.empty());
+        if (setup.views.empty()) continue;
+        ++maps;
+        const core::EngineShadowView gl = core::toEngineView(setup.views[0], setup, core::OutputConventions::openGL());
+        const core::Mat4 clipFromWorld = toCore(call.projection) * toCore(call.view);
+        const core::Mat4 ownClipFromWorld = toCore(own.projection) * toCore(own.view);
+        const core::Mat4 worldFromClip = glm::inverse(toCore(projection) * toCore(view));
+        // Texels per metre gained along each axis: the ratio of the tangent spans (same map size).
+        const core::Mat4& clipFromLight = setup.views[0].clipFromLight;
+        const double span = std::max(2.0 / clipFromLight[0][0], 2.0 / clipFromLight[1][1]);
+        if (own.ok) {
+            logGain += std::log(2.0 / own.projection(0, 0) / span);
+            ++ownMaps;
+        }
+        for (int sample = 0; sample < 2000; ++sample) {
+            const core::Vec4 h = worldFromClip * core::Vec4(2 * u(rng) - 1, 2 * u(rng) - 1, 2 * u(rng) - 1, 1.0);
+            const core::Vec3 p = core::Vec3(h) / h.w;
+            if (p.x < -60 || p.x > 60 || p.y < 0 || p.y > 20 || p.z < -60 || p.z > 60) continue;
+            if (glm::distance(p, wsLamp) < 1e-3) continue;
+            ++seen;
+            const core::Vec4 m = clipFromWorld * core::Vec4(p, 1.0);
+            ASSERT_GT(m.w, 0.0);
+            const core::Vec3 texel(0.5 * m.x / m.w + 0.5, 0.5 * m.y / m.w + 0.5, 0.5 * m.z / m.w + 0.5);
+            const core::Vec4 t = gl.textureFromWorld * core::Vec4(p, 1.0);
+            EXPECT_NEAR(texel.x, t.x / t.w, 1e-7);
+            EXPECT_NEAR(texel.y, t.y / t.w, 1e-7);
+            EXPECT_GE(texel.x, -1e-9);
+            EXPECT_LE(texel.x, 1.0 + 1e-9);
+            EXPECT_GE(texel.y, -1e-9);
+            EXPECT_LE(texel.y, 1.0 + 1e-9);
+            EXPECT_LE(texel.z, 1.0);
+            const core::Vec4 o = ownClipFromWorld * core::Vec4(p, 1.0);
+            if (!own.ok || !(o.w > 0.0 && std::abs(o.x) <= o.w && std::abs(o.y) <= o.w)) ++missedByOsg;
+        }
+    }
+    EXPECT_GE(maps, 10);
+    EXPECT_GE(kept, 1); // some lamps stand among what the camera sees
+    EXPECT_GE(seen, 5000);
+    EXPECT_GT(missedByOsg, 0); // OSG's fixed aim leaves some of what the camera sees out of its map
+    std::printf("%d point lights in one map, %d kept OSG's camera; of %ld points seen, OSG's own map missed %ld; "
+                "texels per metre along an axis against OSG's: geometric mean x%.2f\n",
+                maps, kept, seen, missedByOsg, std::exp(logGain / std::max(ownMaps, 1)));
+}
+
 TEST(OsgShadowCamera, PointLightsAndBadSpotsKeepOsgsCamera) {
-    // A point light, and a spot of more than the core's 170° (said once): OSG's own camera,
-    // exactly what a plain ViewDependentShadowMap computes for the same call.
+    // A point light among what the camera sees, and a spot of more than the core's 170° (said
+    // once): OSG's own camera, exactly what a plain ViewDependentShadowMap computes for the same call.
     const ::osg::Matrixd view =
         ::osg::Matrixd::lookAt(::osg::Vec3d(0, 2, 10), ::osg::Vec3d(0, 1.8, 9), ::osg::Vec3d(0, 1, 0));
     const ::osg::Matrixd projection = ::osg::Matrixd::perspective(60.0, 1.5, 0.3, 300.0);
@@ -348,6 +435,10 @@ TEST(OsgShadowCamera, PointLightsAndBadSpotsKeepOsgsCamera) {
         << shadowMap->lastSpotError();
     EXPECT_EQ(shadowMap->lastSpotError().find('\n'), std::string::npos);
     EXPECT_FALSE(shadowMap->lastSpotSetup());
+    // The bulb stands among what the camera sees: it keeps OSG's camera, and says why.
+    EXPECT_FALSE(shadowMap->lastPointSetup());
+    EXPECT_NE(shadowMap->lastPointFallback().find("a cube holds it"), std::string::npos)
+        << shadowMap->lastPointFallback();
     EXPECT_TRUE(shadowMap->lastError().empty()); // the sun's error is its own
 }
 

@@ -1,7 +1,8 @@
 // shadowkit inside OGRE 1.12: a ShadowCameraSetup whose texture-shadow cameras are shadowkit's
 // (TSM, LiSPSM, PSM, focused, standard, cascades one per shadow-texture iteration, or `auto`:
 // the core's error-driven choice each frame for the receivers the application hands it), and
-// for spot lights the core's spot map, narrowed to what the camera sees of the cone.
+// for spot lights the core's spot map, narrowed to what the camera sees of the cone, and for
+// point lights one map over what the camera sees within the light's range.
 //
 // OGRE asks a light's ShadowCameraSetup once per shadow texture and frame (getShadowCamera,
 // `iteration` counting the light's textures) to set the texture camera; OGRE then draws the
@@ -69,6 +70,14 @@ core::Result<core::ShadowSetup> spotSetupFor(const Ogre::Affine3& viewFromWorld,
                                              const Ogre::Vector3& wsDirection, Ogre::Radian outerAngle, double range,
                                              const Ogre::AxisAlignedBox& wsSceneBounds, int mapSize);
 
+/// The core's one map for a point light at wsPosition with its attenuation range as the range
+/// (core::computePointSingleMapSetup): the narrowest cone from the light over what the camera
+/// sees within reach, or no view where it sees none of it. Fails in one line, naming
+/// "point.position", where that spans more than 170° from the light (only a cube holds it).
+core::Result<core::ShadowSetup> pointSetupFor(const Ogre::Affine3& viewFromWorld, const Ogre::Matrix4& clipFromView,
+                                              double shadowDistance, const Ogre::Vector3& wsPosition, double range,
+                                              const Ogre::AxisAlignedBox& wsSceneBounds, int mapSize);
+
 /// One view of a set-up as OGRE's texture camera takes it: the light's rigid frame and the
 /// rest of the map's OpenGL-convention clip matrix.
 struct TextureCamera {
@@ -77,10 +86,13 @@ struct TextureCamera {
 };
 TextureCamera textureCameraOf(const core::ShadowSetup& setup, size_t view);
 
-/// Ogre::ShadowCameraSetup with shadowkit's set-ups for directional lights and spot lights
-/// (point lights get OGRE's default: its texture shadows have no cube maps). Give the scene
-/// manager as many shadow textures per directional light as the technique has maps (one; four
-/// cascades for `csm` by default), and one per spot light.
+/// Ogre::ShadowCameraSetup with shadowkit's set-ups for directional, spot and point lights.
+/// OGRE 1.12's texture shadows have no cube maps: its default camera gives a point light one
+/// 120° map aimed from the light at a point ahead of the camera; here it gets the narrowest
+/// cone over what the camera sees within the light's range (pointSetupFor), and keeps OGRE's
+/// default where that spans more than 170° from the light. Give the scene manager as many
+/// shadow textures per directional light as the technique has maps (one; four cascades for
+/// `csm` by default), and one per spot or point light.
 class ShadowCameraSetup : public Ogre::ShadowCameraSetup {
 public:
     /// The technique and its options (ShadowSetupInputs' camera, light, bounds and depth
@@ -113,6 +125,12 @@ public:
     /// lastSpotError says (that light then had OGRE's default camera).
     const std::optional<core::ShadowSetup>& lastSpotSetup() const { return m_lastSpotSetup; }
     const std::string& lastSpotError() const { return m_lastSpotError; }
+    /// The set-up of the last point light asked for (no view: it lights nothing the camera
+    /// sees), or none when what it lights spans more than 170° from it and the light kept
+    /// OGRE's default camera, for the reason lastPointFallback gives (a state of the scene,
+    /// not an error: logged at OGRE's trivial level).
+    const std::optional<core::ShadowSetup>& lastPointSetup() const { return m_lastPointSetup; }
+    const std::string& lastPointFallback() const { return m_lastPointFallback; }
 
     void getShadowCamera(const Ogre::SceneManager* sm, const Ogre::Camera* cam, const Ogre::Viewport* vp,
                          const Ogre::Light* light, Ogre::Camera* texCam, size_t iteration) const override;
@@ -123,6 +141,13 @@ private:
     // Sets texCam to the spot light's map; false where OGRE's default camera must do.
     bool spotCamera(const Ogre::SceneManager* sm, const Ogre::Camera* cam, const Ogre::Light* light,
                     Ogre::Camera* texCam) const;
+    // The same for a point light's one map.
+    bool pointCamera(const Ogre::SceneManager* sm, const Ogre::Camera* cam, const Ogre::Light* light,
+                     Ogre::Camera* texCam) const;
+    // Sets texCam to a local light's one view, its near plane moved towards the light; false
+    // where the set-up has no view.
+    static bool localCamera(const core::ShadowSetup& setup, const Ogre::Camera* cam, const Ogre::Light* light,
+                            Ogre::Camera* texCam);
     // Keeps a frame's error in `last`, said in OGRE's log once per different error (not once
     // a frame); an empty error clears it.
     static void report(const std::string& error, std::string& last);
@@ -138,9 +163,9 @@ private:
     // getShadowCamera is const in OGRE's interface; a frame's set-up is computed at its first
     // texture (iteration 0) and its views handed out for the others.
     mutable std::optional<core::ShadowSetup> m_lastSetup;
-    mutable std::optional<core::ShadowSetup> m_lastSpotSetup;
-    mutable std::string m_lastError, m_lastSpotError;
-    Ogre::DefaultShadowCameraSetup m_fallback; ///< point lights, and frames whose set-up failed
+    mutable std::optional<core::ShadowSetup> m_lastSpotSetup, m_lastPointSetup;
+    mutable std::string m_lastError, m_lastSpotError, m_lastPointFallback;
+    Ogre::DefaultShadowCameraSetup m_fallback; ///< lights and frames whose set-up failed
 };
 
 } // namespace shadowkit::ogreadapter

@@ -1,7 +1,8 @@
 // shadowkit inside OpenSceneGraph 3.6: a ViewDependentShadowMap whose shadow camera is
 // shadowkit's (TSM, LiSPSM, PSM, focused or standard, or `auto`: the core's choice of them each
 // frame for the receivers the application hands it; for spot lights the core's spot map,
-// narrowed to what the camera sees of the cone), drawn and looked up by OSG as before.
+// narrowed to what the camera sees of the cone; for point lights one map over what the camera
+// sees within reach), drawn and looked up by OSG as before.
 //
 // OSG's ViewDependentShadowMap (VDSM) calls computeShadowCameraSettings once a frame per light
 // with the view's frustum and the light; what it returns is the shadow camera's view and
@@ -73,12 +74,22 @@ core::Result<core::ShadowSetup> spotSetupFor(const ::osg::Matrixd& viewFromWorld
                                              double shadowDistance, const ::osg::Vec3d& wsPosition,
                                              const ::osg::Vec3d& wsDirection, double spotCutoffDegrees, double range,
                                              const ::osg::BoundingBoxd& wsSceneBounds, int mapSize);
+/// The core's one map for a point light at wsPosition reaching `range`
+/// (core::computePointSingleMapSetup): the narrowest cone from the light over what the camera
+/// sees within the range, or no view where it sees none of it. Fails in one line, naming
+/// "point.position", where that spans more than 170° from the light (only a cube holds it).
+core::Result<core::ShadowSetup> pointSetupFor(const ::osg::Matrixd& viewFromWorld, const ::osg::Matrixd& clipFromView,
+                                              double shadowDistance, const ::osg::Vec3d& wsPosition, double range,
+                                              const ::osg::BoundingBoxd& wsSceneBounds, int mapSize);
 /// The shadow camera of a set-up's first view (it must have one).
 ShadowCamera shadowCameraOfView(core::ShadowSetup setup);
 
-/// osgShadow::ViewDependentShadowMap with shadowkit's shadow camera for directional lights and
-/// spot lights (point lights keep OSG's own; a spot reaches the farthest corner of the scene
-/// box, OSG's lights having no range). The map size is ShadowSettings' texture size; shadows
+/// osgShadow::ViewDependentShadowMap with shadowkit's shadow camera for directional lights,
+/// spot lights and point lights (a spot and a point light reach the farthest corner of the
+/// scene box, OSG's lights having no range). OSG gives a point light one map along the light's
+/// direction, its field of view widened to the view frustum's corners up to 160°; here it gets
+/// the narrowest cone over what the camera sees (pointSetupFor), and keeps OSG's own where that
+/// spans more than 170° from the light. The map size is ShadowSettings' texture size; shadows
 /// end at ShadowSettings' maximum shadow map distance, as OSG's own do; use one shadow map
 /// per light.
 class ShadowMap : public osgShadow::ViewDependentShadowMap {
@@ -116,6 +127,11 @@ public:
     /// had OSG's own shadow camera).
     const std::optional<core::ShadowSetup>& lastSpotSetup() const { return m_lastSpotSetup; }
     const std::string& lastSpotError() const { return m_lastSpotError; }
+    /// The set-up of the last point light (no view: it lights nothing the camera sees), or none
+    /// when what it lights spans more than 170° from it and the light kept OSG's camera, for the
+    /// reason lastPointFallback gives (a state of the scene, not an error: said at OSG's info level).
+    const std::optional<core::ShadowSetup>& lastPointSetup() const { return m_lastPointSetup; }
+    const std::string& lastPointFallback() const { return m_lastPointFallback; }
 
     void init() override;
 
@@ -141,6 +157,12 @@ private:
     enum class SpotOutcome { Mapped, NothingInView, LeftToOsg };
     SpotOutcome spotCamera(const Frustum& frustum, const LightData& light, double shadowDistance, int mapSize,
                            ::osg::Matrixd& projectionMatrix, ::osg::Matrixd& viewMatrix);
+    // The same for a point light's one map; LeftToOsg where it spans more than 170° from the light.
+    SpotOutcome pointCamera(const Frustum& frustum, const LightData& light, double shadowDistance, int mapSize,
+                            ::osg::Matrixd& projectionMatrix, ::osg::Matrixd& viewMatrix);
+    // A local light's outcome: its camera set from `setup` (Mapped), NothingInView, or LeftToOsg.
+    static SpotOutcome localOutcome(const core::Result<core::ShadowSetup>& setup, ::osg::Matrixd& projectionMatrix,
+                                    ::osg::Matrixd& viewMatrix);
 
     core::ShadowSetupInputs m_inputs;
     std::optional<::osg::BoundingBoxd> m_fixedBounds;
@@ -151,9 +173,10 @@ private:
     ::osg::BoundingBoxd m_cachedBounds;
     ::osg::BoundingSphere m_cachedFor; ///< the scene's bound when m_cachedBounds was computed
     std::optional<core::ShadowSetup> m_lastSetup;
-    std::optional<core::ShadowSetup> m_lastSpotSetup;
-    std::string m_lastError, m_lastSpotError;
-    bool m_ownCamera = false; ///< this light's shadow camera is ours (directional, spot), for the cull that follows
+    std::optional<core::ShadowSetup> m_lastSpotSetup, m_lastPointSetup;
+    std::string m_lastError, m_lastSpotError, m_lastPointFallback;
+    bool m_ownCamera =
+        false; ///< this light's shadow camera is ours (directional, spot, point), for the cull that follows
 };
 
 } // namespace shadowkit::osgadapter
