@@ -213,8 +213,11 @@ int shadowkit_compute_local_setup(const shadowkit_local_inputs* in, shadowkit_lo
         writeError("shadowkit_compute_local_setup: inputs and out must not be null", error, errorSize);
         return 1;
     }
-    if (in->kind != SHADOWKIT_LIGHT_SPOT && in->kind != SHADOWKIT_LIGHT_POINT) {
-        writeError("kind: must be SHADOWKIT_LIGHT_SPOT (0) or SHADOWKIT_LIGHT_POINT (1)", error, errorSize);
+    if (in->kind != SHADOWKIT_LIGHT_SPOT && in->kind != SHADOWKIT_LIGHT_POINT &&
+        in->kind != SHADOWKIT_LIGHT_POINT_ONE_MAP) {
+        writeError("kind: must be SHADOWKIT_LIGHT_SPOT (0), SHADOWKIT_LIGHT_POINT (1) or "
+                   "SHADOWKIT_LIGHT_POINT_ONE_MAP (2)",
+                   error, errorSize);
         return 1;
     }
     Result<PerspectiveCamera> camera = toCamera(in->camera);
@@ -225,7 +228,9 @@ int shadowkit_compute_local_setup(const shadowkit_local_inputs* in, shadowkit_lo
     const LocalShadowInputs inputs{*camera, Aabb::fromMinMax(toVec3(in->scene_min), toVec3(in->scene_max)),
                                    in->map_size};
     const Result<ShadowSetup> setup = in->kind == SHADOWKIT_LIGHT_SPOT ? computeSpotShadowSetup(inputs, toSpot(*in))
-                                                                       : computePointShadowSetup(inputs, toPoint(*in));
+                                      : in->kind == SHADOWKIT_LIGHT_POINT
+                                          ? computePointShadowSetup(inputs, toPoint(*in))
+                                          : computePointSingleMapSetup(inputs, toPoint(*in));
     if (!setup) {
         writeError(inLocalInputsSpelling(setup.errorInfo()), error, errorSize);
         return 1;
@@ -233,7 +238,7 @@ int shadowkit_compute_local_setup(const shadowkit_local_inputs* in, shadowkit_lo
 
     const OutputConventions conventions = toConventions(in->clip_depth, in->reversed_z, in->texture_origin);
     *out = shadowkit_local_setup{};
-    out->kind = in->kind;
+    out->kind = in->kind == SHADOWKIT_LIGHT_POINT ? SHADOWKIT_LIGHT_POINT : SHADOWKIT_LIGHT_SPOT; // one map: a spot's
     out->map_size = setup->mapSize;
     out->depth_clamp = setup->depthClamp;
     out->view_count = static_cast<int>(setup->views.size());

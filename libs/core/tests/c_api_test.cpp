@@ -240,6 +240,35 @@ TEST(CApiTest, LocalLightsGiveTheCppViewsAndWhatTheLookupNeeds) {
         }
 }
 
+TEST(CApiTest, APointLightInOneMapIsTheCppOneMapDrawnAsASpot) {
+    // Outside the view (behind the eye, above): one map, the C++ set-up's, its kind a spot's.
+    char error[256];
+    shadowkit_local_inputs in = localInputs(SHADOWKIT_LIGHT_POINT_ONE_MAP);
+    copy(Vec3(0, 9, -6), in.position);
+    in.clip_depth = SHADOWKIT_CLIP_DEPTH_MINUS_ONE_TO_ONE;
+    shadowkit_local_setup out;
+    ASSERT_EQ(shadowkit_compute_local_setup(&in, &out, error, sizeof error), 0) << error;
+    EXPECT_EQ(out.kind, SHADOWKIT_LIGHT_SPOT);
+    ASSERT_EQ(out.view_count, 1);
+    PerspectiveCamera camera;
+    camera.wsEye = Vec3(0, 5, 0);
+    camera.wsDirection = Vec3(0, -0.5, 1);
+    const LocalShadowInputs inputs{camera, Aabb::fromMinMax(Vec3(-50, 0, -50), Vec3(50, 10, 50)), 1024};
+    const Result<ShadowSetup> cpp =
+        computePointSingleMapSetup(inputs, PointLight{.wsPosition = Vec3(0, 9, -6), .range = 25.0, .radius = 0.05});
+    ASSERT_TRUE(cpp) << cpp.error();
+    const OutputConventions conventions{ClipDepthRange::MinusOneToOne, false};
+    expectEqual(toEngineView(cpp->views[0], *cpp, conventions).clipFromWorld, out.views[0].clip_from_world,
+                "clip_from_world");
+    EXPECT_EQ(out.texel_per_metre, texelSizePerMetre(cpp->views[0], 1024));
+    // Among what the camera sees: refused, named as shadowkit_local_inputs spells it.
+    in = localInputs(SHADOWKIT_LIGHT_POINT_ONE_MAP); // 3 m up, 12 m ahead of the eye
+    out.view_count = -7;
+    EXPECT_NE(shadowkit_compute_local_setup(&in, &out, error, sizeof error), 0);
+    EXPECT_EQ(std::string(error).rfind("position: ", 0), 0u) << error;
+    EXPECT_EQ(out.view_count, -7);
+}
+
 TEST(CApiTest, BadLocalInputNamesTheInputAndLeavesTheOutputAlone) {
     shadowkit_local_setup out;
     out.view_count = -7;

@@ -142,13 +142,35 @@ class LocalSetupTest(unittest.TestCase):
             self.assertAlmostEqual(40.0 * scale + offset, far, places=15)  # at the range
         bias = shadowkit.local_setup(**common)["bias"]
         self.assertEqual(bias, dict(slope_texels=1.5, normal_offset_texels=0.5, constant_metres=0.005))
-        with self.assertRaisesRegex(ValueError, "kind: 'torch' is not one of spot, point"):
+        with self.assertRaisesRegex(ValueError, "kind: 'torch' is not one of spot, point, point_one_map"):
             shadowkit.local_setup(kind="torch")
         # Named as local_setup's keywords, not as the C++ structs' fields ("spot.cone").
         with self.assertRaisesRegex(ValueError, r"^cone: must be in \(0, 170\] degrees$"):
             shadowkit.local_setup(cone=180.0)
         with self.assertRaisesRegex(ValueError, r"^range: "):
             shadowkit.local_setup(kind="point", range=0.0)
+
+
+    def test_a_point_light_in_one_map_holds_what_the_camera_sees_in_reach(self):
+        # A lamp above and behind the eye: one map, drawn as a spot's, where the cube takes faces.
+        common = dict(position=[0.0, 12.0, 6.0], range=40.0, eye=[0.0, 5.0, 0.0], view_direction=[0.0, -0.3, -1.0],
+                      scene_min=[-50.0, 0.0, -50.0], scene_max=[50.0, 10.0, 50.0])
+        one = shadowkit.local_setup(kind="point_one_map", **common)
+        cube = shadowkit.local_setup(kind="point", **common)
+        self.assertEqual(one["kind"], "spot")
+        self.assertEqual(len(one["views"]), 1)
+        self.assertGreater(len(cube["views"]), 1)
+        # Ground points the camera sees within reach land inside the one map.
+        clip = np.asarray(one["views"][0]["clip_from_world"])
+        for z in (-5.0, -15.0, -30.0):
+            for x in (-3.0, 0.0, 3.0):
+                c = clip @ np.array([x, 0.0, z, 1.0])
+                self.assertGreater(c[3], 0.0)
+                self.assertLessEqual(abs(c[0] / c[3]), 1.0)
+                self.assertLessEqual(abs(c[1] / c[3]), 1.0)
+        # Among what the camera sees: refused in local_setup's words.
+        with self.assertRaisesRegex(ValueError, r"^position: what the camera sees"):
+            shadowkit.local_setup(kind="point_one_map", **dict(common, position=[0.0, 2.0, -10.0]))
 
 
 class EvaluateTest(unittest.TestCase):

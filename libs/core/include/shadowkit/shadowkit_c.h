@@ -165,8 +165,11 @@ SHADOWKIT_CORE_EXPORT double shadowkit_penumbra_texels_per_metre(const shadowkit
 
 /** Spot and point lights (shadowkit_local_inputs::kind; core/local_lights.h, seed 003). */
 typedef enum shadowkit_light_kind {
-    SHADOWKIT_LIGHT_SPOT = 0, /**< one perspective map over its cone */
-    SHADOWKIT_LIGHT_POINT = 1 /**< a cube of six 90° faces */
+    SHADOWKIT_LIGHT_SPOT = 0,         /**< one perspective map over its cone */
+    SHADOWKIT_LIGHT_POINT = 1,        /**< a cube of six 90° faces */
+    SHADOWKIT_LIGHT_POINT_ONE_MAP = 2 /**< a point light in one map, for engines without cube maps: the narrowest
+                                           cone over what the camera sees in its range (computePointSingleMapSetup);
+                                           refused, naming "position", where that spans more than 170° */
 } shadowkit_light_kind;
 
 /** A spot or point light and what its maps are fitted to (start from shadowkit_default_local_inputs). */
@@ -200,7 +203,8 @@ typedef struct shadowkit_local_bias {
    clip_from_world into its face's layer, writing per fragment
    distance(p, light_position) · stored_from_distance[0] + stored_from_distance[1]. */
 typedef struct shadowkit_local_setup {
-    int kind;                 /**< shadowkit_light_kind */
+    int kind;                 /**< the maps' shadowkit_light_kind: SPOT for a point light in one map (drawn and
+                                   looked up as a spot's: skSpotShadow) */
     int map_size;             /**< texels per side of the spot map or of each cube face */
     int depth_clamp;          /**< 1: draw with depth clamping (GL_DEPTH_CLAMP, depthClampEnable) */
     int view_count;           /**< views in use: 0 when the light reaches nothing the camera sees */
