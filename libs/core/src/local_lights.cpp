@@ -358,12 +358,18 @@ Result<ShadowSetup> computePointSingleMapSetup(const LocalShadowInputs& in, cons
     // A hair wider than the corners' cone, so that rounding leaves every corner inside.
     const double coneDegrees = cone ? 2.0 * glm::degrees(cone->halfAngle) * (1.0 + 1e-9) + 1e-6 : INFINITY;
     if (!(coneDegrees <= kWidestConeDegrees)) {
+        // Past 180° the corners' directions no longer fit a cone: the light is among them.
         char what[160];
-        std::snprintf(what, sizeof what,
-                      "what the camera sees within the light's range spans %s from it: one map holds at most %g "
-                      "degrees; a cube holds it",
-                      cone ? (std::to_string(int(std::ceil(coneDegrees))) + " degrees").c_str() : "every direction",
-                      kWidestConeDegrees);
+        if (coneDegrees < 180.0)
+            std::snprintf(what, sizeof what,
+                          "what the camera sees within the light's range spans a cone of %.0f degrees from it: one "
+                          "map holds at most %g; a cube holds it",
+                          std::ceil(coneDegrees), kWidestConeDegrees);
+        else
+            std::snprintf(what, sizeof what,
+                          "what the camera sees within the light's range surrounds it: one map holds at most a cone "
+                          "of %g degrees; a cube holds it",
+                          kWidestConeDegrees);
         return fieldError("point.position", what);
     }
     spot.wsDirection = cone->axis;
