@@ -386,8 +386,9 @@ TEST_F(OgreScene, PointLightMapsHoldWhatTheCameraSeesWhereOgresOwnNeedNot) {
     // map aimed from the lamp at a point ahead of the camera; the adapter aims it at what the
     // camera sees within the lamp's range. Every point the camera sees in range and in the box
     // — sampled from the view, not from the set-up — must land in the adapter's map on the
-    // core's texel, wherever OGRE's own map lands it; where that spans more than 170° from the
-    // lamp the light keeps OGRE's camera, and says why.
+    // core's texel, wherever OGRE's own map lands it, and a caster between it and the lamp must
+    // survive OGRE's culling; where that spans more than 170° from the lamp the light keeps
+    // OGRE's camera, and says why.
     std::mt19937 rng(13);
     std::uniform_real_distribution<double> u(0.0, 1.0);
     const Ogre::AxisAlignedBox box(-60, 0, -60, 60, 20, 60);
@@ -452,6 +453,11 @@ TEST_F(OgreScene, PointLightMapsHoldWhatTheCameraSeesWhereOgresOwnNeedNot) {
             EXPECT_LE(texel.z, 1.0);
             const core::Vec3 own = texelOf(*ownCam, p, 2048);
             if (!(own.x >= 0 && own.x <= 2048 && own.y >= 0 && own.y <= 2048)) ++missedByOgre;
+            // A caster on the way to the lamp, just beyond OGRE's default near distance from it
+            // (the camera's near, 0.3 m, along the map's axis), survives OGRE's culling.
+            const core::Vec3 caster = wsLamp + toPoint * (0.31 / glm::dot(toPoint, axis));
+            const Ogre::Vector3 at(Ogre::Real(caster.x), Ogre::Real(caster.y), Ogre::Real(caster.z));
+            EXPECT_TRUE(texCam->isVisible(Ogre::AxisAlignedBox(at - 0.005f, at + 0.005f)));
         }
     }
     EXPECT_GE(maps, 10);
