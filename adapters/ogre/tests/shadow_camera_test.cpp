@@ -394,7 +394,7 @@ TEST_F(OgreScene, PointLightMapsHoldWhatTheCameraSeesWhereOgresOwnNeedNot) {
     const Ogre::AxisAlignedBox box(-60, 0, -60, 60, 20, 60);
     int maps = 0, kept = 0;
     long seen = 0, missedByOgre = 0;
-    double logGain = 0.0;
+    double logGain = 0.0, logAreaGain = 0.0;
     for (int trial = 0; trial < 40; ++trial) {
         const core::Vec3 wsLamp(-50.0 + 100.0 * u(rng), 3.0 + 30.0 * u(rng), -50.0 + 100.0 * u(rng));
         const double range = 20.0 + 60.0 * u(rng);
@@ -428,8 +428,10 @@ TEST_F(OgreScene, PointLightMapsHoldWhatTheCameraSeesWhereOgresOwnNeedNot) {
         const core::EngineShadowView gl = core::toEngineView(core.views[0], core, core::OutputConventions::openGL());
         // Texels per metre gained along an axis against OGRE's 120° map: the tangent spans' ratio.
         const core::Mat4& clipFromLight = core.views[0].clipFromLight;
-        const double span = std::max(2.0 / clipFromLight[0][0], 2.0 / clipFromLight[1][1]);
-        logGain += std::log(2.0 * std::tan(glm::radians(60.0)) / span);
+        const double width = 2.0 / clipFromLight[0][0], height = 2.0 / clipFromLight[1][1];
+        const double span = std::max(width, height), ownSpan = 2.0 * std::tan(glm::radians(60.0));
+        logGain += std::log(ownSpan / span);
+        logAreaGain += std::log(ownSpan * ownSpan / (width * height));
         const core::Vec3 axis =
             -glm::normalize(core::Vec3(glm::inverse(core.views[0].lightFromWorld) * core::Vec4(0.0, 0.0, 1.0, 0.0)));
         const core::Mat4 worldFromClip = glm::inverse(clipFromWorldOf(*cam));
@@ -465,8 +467,10 @@ TEST_F(OgreScene, PointLightMapsHoldWhatTheCameraSeesWhereOgresOwnNeedNot) {
     EXPECT_GE(seen, 5000);
     EXPECT_GT(missedByOgre, 0); // OGRE's fixed 120° aim leaves some of what the camera sees out
     std::printf("%d point lights in one map, %d kept OGRE's camera; of %ld points seen in range, OGRE's own map "
-                "missed %ld; texels per metre along an axis against OGRE's: geometric mean x%.2f\n",
-                maps, kept, seen, missedByOgre, std::exp(logGain / std::max(maps, 1)));
+                "missed %ld; against OGRE's map, geometric means: texels per metre on the coarser axis x%.2f, "
+                "texels x%.2f\n",
+                maps, kept, seen, missedByOgre, std::exp(logGain / std::max(maps, 1)),
+                std::exp(logAreaGain / std::max(maps, 1)));
 }
 
 TEST_F(OgreScene, PointLightsAndBadSpotsKeepOgresCamera) {
