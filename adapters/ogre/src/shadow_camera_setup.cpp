@@ -119,8 +119,10 @@ core::Result<core::ShadowSetup> pointSetupFor(const Ogre::Affine3& viewFromWorld
     auto inputs = viewInputsFor(viewFromWorld, clipFromView, shadowDistance, wsSceneBounds);
     if (!inputs) return inputs.errorInfo();
     inputs->mapSize = mapSize;
-    return core::computePointSingleMapSetup(*inputs,
-                                            core::PointLight{.wsPosition = toCore(wsPosition), .range = range});
+    const core::PointLight point{.wsPosition = toCore(wsPosition), .range = range};
+    auto whole = core::computePointSingleMapSetup(*inputs, point);
+    if (whole || whole.errorInfo().field != "point.position") return whole;
+    return core::computePointAimedMapSetup(*inputs, point);
 }
 
 Ogre::AxisAlignedBox sceneBounds(const Ogre::SceneNode& node) {
@@ -203,9 +205,8 @@ bool ShadowCameraSetup::spotCamera(const Ogre::SceneManager* sm, const Ogre::Cam
                               far > 0.0 ? far : std::numeric_limits<double>::infinity(), light->getDerivedPosition(),
                               light->getDerivedDirection(), light->getSpotlightOuterAngle(),
                               double(light->getAttenuationRange()), boundsOf(sm), m_inputs.mapSize);
-    report(setup ? std::string() : setup.error(), m_lastSpotError);
-    m_lastSpotSetup = setup ? std::optional(std::move(*setup)) : std::nullopt;
-    return m_lastSpotSetup && localCamera(*m_lastSpotSetup, cam, light, texCam);
+    return keepLocal(std::move(setup), m_lastSpotSetup, m_lastSpotError) &&
+           localCamera(*m_lastSpotSetup, cam, light, texCam);
 }
 
 bool ShadowCameraSetup::pointCamera(const Ogre::SceneManager* sm, const Ogre::Camera* cam, const Ogre::Light* light,
@@ -214,12 +215,15 @@ bool ShadowCameraSetup::pointCamera(const Ogre::SceneManager* sm, const Ogre::Ca
     auto setup = pointSetupFor(cam->getViewMatrix(), cam->getProjectionMatrix(),
                                far > 0.0 ? far : std::numeric_limits<double>::infinity(), light->getDerivedPosition(),
                                double(light->getAttenuationRange()), boundsOf(sm), m_inputs.mapSize);
-    // A lamp among what the camera sees is a state of the scene, not a mistake: logged, not warned.
-    if (!setup && setup.error() != m_lastPointFallback)
-        Ogre::LogManager::getSingleton().logMessage("shadowkit: " + setup.error(), Ogre::LML_TRIVIAL);
-    m_lastPointFallback = setup ? std::string() : setup.error();
-    m_lastPointSetup = setup ? std::optional(std::move(*setup)) : std::nullopt;
-    return m_lastPointSetup && localCamera(*m_lastPointSetup, cam, light, texCam);
+    return keepLocal(std::move(setup), m_lastPointSetup, m_lastPointError) &&
+           localCamera(*m_lastPointSetup, cam, light, texCam);
+}
+
+bool ShadowCameraSetup::keepLocal(core::Result<core::ShadowSetup> setup, std::optional<core::ShadowSetup>& last,
+                                  std::string& lastError) {
+    report(setup ? std::string() : setup.error(), lastError);
+    last = setup ? std::optional(std::move(*setup)) : std::nullopt;
+    return last.has_value();
 }
 
 bool ShadowCameraSetup::localCamera(const core::ShadowSetup& setup, const Ogre::Camera* cam, const Ogre::Light* light,

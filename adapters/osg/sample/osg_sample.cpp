@@ -259,8 +259,9 @@ void draw(const Options& o, const Shot& shot, osg::Node* model, Viewer& v) {
     std::string technique = shot.technique;
     if (const auto* ours = dynamic_cast<const shadowkit::osgadapter::ShadowMap*>(shadowed->getShadowTechnique())) {
         if (ours->lastChoice()) technique += " chose " + core::describe(*ours->lastChoice());
-        // A point light among what the camera sees keeps OSG's camera: the shot says so.
-        if (!ours->lastPointFallback().empty()) technique += ", OSG's camera: " + ours->lastPointFallback();
+        // A point light among what the camera sees gets a map over part of it: the shot says so.
+        if (const auto& point = ours->lastPointSetup(); point && !point->views.empty())
+            for (const std::string& note : point->fallbacks) technique += "; " + note;
     }
     std::printf("wrote %s (%dx%d, %s, %d² map, drawn in %.1f s)\n", shot.out.c_str(), o.width, o.height,
                 technique.c_str(), o.mapSize, drawSeconds);

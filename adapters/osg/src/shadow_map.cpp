@@ -136,7 +136,9 @@ core::Result<core::ShadowSetup> pointSetupFor(const ::osg::Matrixd& viewFromWorl
     inputs->mapSize = mapSize;
     const core::PointLight point{.wsPosition = core::Vec3(wsPosition.x(), wsPosition.y(), wsPosition.z()),
                                  .range = range};
-    return core::computePointSingleMapSetup(*inputs, point);
+    auto whole = core::computePointSingleMapSetup(*inputs, point);
+    if (whole || whole.errorInfo().field != "point.position") return whole;
+    return core::computePointAimedMapSetup(*inputs, point);
 }
 
 ShadowMap::ShadowMap() = default;
@@ -194,7 +196,12 @@ double reachOf(const ::osg::BoundingBoxd& box, const ::osg::Vec3d& wsLight) {
 } // namespace
 
 ShadowMap::SpotOutcome ShadowMap::localOutcome(const core::Result<core::ShadowSetup>& setup,
+                                               std::optional<core::ShadowSetup>& last, std::string& lastError,
                                                ::osg::Matrixd& projectionMatrix, ::osg::Matrixd& viewMatrix) {
+    // A light the core refuses is the user's setting: said once as a warning.
+    if (!setup && setup.error() != lastError) OSG_WARN << "shadowkit: " << setup.error() << std::endl;
+    lastError = setup ? std::string() : setup.error();
+    last = setup ? std::optional(*setup) : std::nullopt;
     if (!setup) return SpotOutcome::LeftToOsg;
     if (setup->views.empty()) return SpotOutcome::NothingInView;
     const ShadowCamera camera = shadowCameraOfView(*setup);
@@ -210,11 +217,7 @@ ShadowMap::SpotOutcome ShadowMap::spotCamera(const Frustum& frustum, const Light
     auto setup =
         spotSetupFor(frustum.modelViewMatrix, frustum.projectionMatrix, shadowDistance, light.lightPos3, light.lightDir,
                      light.light->getSpotCutoff(), reachOf(box, light.lightPos3), box, mapSize);
-    // A spot the core refuses is the user's setting: said once as a warning.
-    if (!setup && setup.error() != m_lastSpotError) OSG_WARN << "shadowkit: " << setup.error() << std::endl;
-    m_lastSpotError = setup ? std::string() : setup.error();
-    m_lastSpotSetup = setup ? std::optional(*setup) : std::nullopt;
-    return localOutcome(setup, projectionMatrix, viewMatrix);
+    return localOutcome(setup, m_lastSpotSetup, m_lastSpotError, projectionMatrix, viewMatrix);
 }
 
 ShadowMap::SpotOutcome ShadowMap::pointCamera(const Frustum& frustum, const LightData& light, double shadowDistance,
@@ -223,11 +226,7 @@ ShadowMap::SpotOutcome ShadowMap::pointCamera(const Frustum& frustum, const Ligh
     const ::osg::BoundingBoxd box = sceneBounds();
     auto setup = pointSetupFor(frustum.modelViewMatrix, frustum.projectionMatrix, shadowDistance, light.lightPos3,
                                reachOf(box, light.lightPos3), box, mapSize);
-    // A lamp among what the camera sees is a state of the scene, not a mistake: said at info level.
-    if (!setup && setup.error() != m_lastPointFallback) OSG_INFO << "shadowkit: " << setup.error() << std::endl;
-    m_lastPointFallback = setup ? std::string() : setup.error();
-    m_lastPointSetup = setup ? std::optional(*setup) : std::nullopt;
-    return localOutcome(setup, projectionMatrix, viewMatrix);
+    return localOutcome(setup, m_lastPointSetup, m_lastPointError, projectionMatrix, viewMatrix);
 }
 
 bool ShadowMap::computeShadowCameraSettings(Frustum& frustum, LightData& light, ::osg::Matrixd& projectionMatrix,

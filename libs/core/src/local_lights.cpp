@@ -341,31 +341,55 @@ Result<ShadowSetup> computePointShadowSetup(const LocalShadowInputs& in, const P
     return setup;
 }
 
+namespace {
+
+// The full angle, in degrees, of the narrowest cone from the light over R's corners, a hair wider
+// so that rounding leaves every corner inside, with its axis; +inf where no cone under 180°
+// holds them (the light is among them).
+std::pair<double, Vec3> coneOver(const ConvexBody& receivers, const PointLight& light) {
+    const auto cone = narrowestConeHolding(receivers.vertices(), light.wsPosition, light.range);
+    if (!cone) return {INFINITY, Vec3(0.0)};
+    return {2.0 * glm::degrees(cone->halfAngle) * (1.0 + 1e-9) + 1e-6, cone->axis};
+}
+
+// The spot map of that cone, turned to the least area over R (what `in` sees of the light).
+Result<ShadowSetup> oneMapOver(const LocalShadowInputs& in, const PointLight& light, const ConvexBody& receivers,
+                               const std::pair<double, Vec3>& cone) {
+    const SpotLight spot{.wsPosition = light.wsPosition,
+                         .wsDirection = cone.second,
+                         .coneDegrees = cone.first,
+                         .range = light.range,
+                         .radius = light.radius};
+    return spotSetupInFrame(in, spot, rolledToFit(spotFrame(spot.wsPosition, spot.wsDirection), receivers.vertices()));
+}
+
+ShadowSetup noMap(const PointLight& light, int mapSize) {
+    ShadowSetup setup = localSetup(LightType::Spot, light.wsPosition, mapSize);
+    setup.fallbacks.emplace_back("point: its range misses what the camera sees of the scene: no map");
+    setEyeRelativeFromWorld(setup, light.wsPosition);
+    return setup;
+}
+
+constexpr double kWidestConeDegrees = 170.0; // the spot map's own bound (SpotLight::validate)
+
+} // namespace
+
 Result<ShadowSetup> computePointSingleMapSetup(const LocalShadowInputs& in, const PointLight& light) {
     if (Status s = checkInputs(in); !s) return s.errorInfo();
     if (Status s = light.validate(); !s) return s.errorInfo();
     // R's corners within the range's cube; the spot's far plane (at the range along the axis)
     // then cuts only points farther than the range, which the light does not reach.
     const ConvexBody receivers = visibleInRange(in, light.wsPosition, light.range);
-    SpotLight spot{.wsPosition = light.wsPosition, .range = light.range, .radius = light.radius};
-    if (receivers.isEmpty()) {
-        ShadowSetup setup = localSetup(LightType::Spot, light.wsPosition, in.mapSize);
-        setup.fallbacks.emplace_back("point: its range misses what the camera sees of the scene: no map");
-        setEyeRelativeFromWorld(setup, light.wsPosition);
-        return setup;
-    }
-    constexpr double kWidestConeDegrees = 170.0; // the spot map's own bound (SpotLight::validate)
-    const auto cone = narrowestConeHolding(receivers.vertices(), light.wsPosition, light.range);
-    // A hair wider than the corners' cone, so that rounding leaves every corner inside.
-    const double coneDegrees = cone ? 2.0 * glm::degrees(cone->halfAngle) * (1.0 + 1e-9) + 1e-6 : INFINITY;
-    if (!(coneDegrees <= kWidestConeDegrees)) {
+    if (receivers.isEmpty()) return noMap(light, in.mapSize);
+    const auto cone = coneOver(receivers, light);
+    if (!(cone.first <= kWidestConeDegrees)) {
         // Past 180° the corners' directions no longer fit a cone: the light is among them.
         char what[160];
-        if (coneDegrees < 180.0)
+        if (cone.first < 180.0)
             std::snprintf(what, sizeof what,
                           "what the camera sees within the light's range spans a cone of %.0f degrees from it: one "
                           "map holds at most %g; a cube holds it",
-                          std::ceil(coneDegrees), kWidestConeDegrees);
+                          std::ceil(cone.first), kWidestConeDegrees);
         else
             std::snprintf(what, sizeof what,
                           "what the camera sees within the light's range surrounds it: one map holds at most a cone "
@@ -373,9 +397,35 @@ Result<ShadowSetup> computePointSingleMapSetup(const LocalShadowInputs& in, cons
                           kWidestConeDegrees);
         return fieldError("point.position", what);
     }
-    spot.wsDirection = cone->axis;
-    spot.coneDegrees = coneDegrees;
-    return spotSetupInFrame(in, spot, rolledToFit(spotFrame(spot.wsPosition, spot.wsDirection), receivers.vertices()));
+    return oneMapOver(in, light, receivers, cone);
+}
+
+Result<ShadowSetup> computePointAimedMapSetup(const LocalShadowInputs& in, const PointLight& light,
+                                              double coneDegrees) {
+    if (Status s = checkInputs(in); !s) return s.errorInfo();
+    if (Status s = light.validate(); !s) return s.errorInfo();
+    if (!(coneDegrees > 0.0 && coneDegrees <= kWidestConeDegrees))
+        return fieldError("point.cone", "must be in (0, 170] degrees");
+    const ConvexBody receivers = visibleInRange(in, light.wsPosition, light.range);
+    if (receivers.isEmpty()) return noMap(light, in.mapSize);
+    // Aimed at the mean of R's corners: the light among them, no direction holds them all, and
+    // this one leans to where most of R lies.
+    Vec3 sum(0.0);
+    for (const Vec3& p : receivers.vertices()) sum += p;
+    Vec3 aim = sum / double(receivers.vertices().size()) - light.wsPosition;
+    if (!(glm::length(aim) > 1e-9 * light.range)) aim = in.camera.wsDirection; // R centred on the light
+    const SpotLight spot{.wsPosition = light.wsPosition,
+                         .wsDirection = glm::normalize(aim),
+                         .coneDegrees = coneDegrees,
+                         .range = light.range,
+                         .radius = light.radius};
+    Result<ShadowSetup> setup = spotSetupInFrame(in, spot, spotFrame(spot.wsPosition, spot.wsDirection));
+    if (setup && !setup->views.empty())
+        setup->fallbacks.push_back("point: what the camera sees within the light's range surrounds it; one map of " +
+                                   std::to_string(int(std::lround(coneDegrees))) +
+                                   " degrees aimed at the middle of it: receivers outside that cone get no shadow "
+                                   "from this light (a cube holds them all)");
+    return setup;
 }
 
 Status validate(const LocalBias& b) {

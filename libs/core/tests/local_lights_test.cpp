@@ -76,7 +76,7 @@ const ShadowView* faceView(const ShadowSetup& setup, int face) {
 TEST(LocalLights, EveryVisibleReceiverInRangeIsHeldWithItsCastersOverRandomConfigurations) {
     std::mt19937 rng(3);
     std::uniform_real_distribution<double> u(0.0, 1.0);
-    long checked = 0, skipped = 0, singleMaps = 0, refused = 0;
+    long checked = 0, skipped = 0, singleMaps = 0, refused = 0, heldByAimed = 0;
     for (int config = 0; config < 10000; ++config) {
         const LocalShadowInputs in{.camera = randomCamera(rng), .wsSceneBounds = kScene, .mapSize = 512};
         // Mostly near the camera (where lights matter), sometimes anywhere, outside the scene too.
@@ -99,6 +99,14 @@ TEST(LocalLights, EveryVisibleReceiverInRangeIsHeldWithItsCastersOverRandomConfi
             ++refused;
             EXPECT_EQ(single.errorInfo().field, "point.position");
         }
+        // Where it is refused, the map aimed at the middle of it holds what lies in its cone.
+        auto aimed = single ? single : computePointAimedMapSetup(in, point);
+        ASSERT_TRUE(aimed) << aimed.error();
+        const double cosAimed = std::cos(glm::radians(85.0));
+        const Vec3 wsAimedAxis =
+            aimed->views.empty()
+                ? Vec3(0.0)
+                : -glm::normalize(Vec3(glm::inverse(aimed->views[0].lightFromWorld) * Vec4(0, 0, 1, 0)));
         EXPECT_EQ(int(cube->views.size()) + cube->skippedFaces, 6);
         skipped += cube->skippedFaces;
         for (const ShadowSetup* s : {&*cube, &*cone})
@@ -126,6 +134,12 @@ TEST(LocalLights, EveryVisibleReceiverInRangeIsHeldWithItsCastersOverRandomConfi
             if (single) {
                 ASSERT_EQ(single->views.size(), 1u) << "config " << config << ": a lit receiver but no single map";
                 expectHolds(*single, single->views[0], p, "point, one map");
+            } else {
+                ASSERT_EQ(aimed->views.size(), 1u) << "config " << config << ": a lit receiver but no aimed map";
+                if (glm::dot(glm::normalize(p - position), wsAimedAxis) >= cosAimed) {
+                    ++heldByAimed;
+                    expectHolds(*aimed, aimed->views[0], p, "point, aimed map");
+                }
             }
             if (glm::dot(glm::normalize(p - position), glm::normalize(spot.wsDirection)) >= cosHalf) {
                 ASSERT_EQ(cone->views.size(), 1u) << "config " << config << ": a lit receiver but no spot map";
@@ -136,9 +150,10 @@ TEST(LocalLights, EveryVisibleReceiverInRangeIsHeldWithItsCastersOverRandomConfi
     EXPECT_GT(checked, 10000);   // the configurations are not all vacuous
     EXPECT_GT(singleMaps, 1000); // and both answers of the single map are exercised
     EXPECT_GT(refused, 400);
+    EXPECT_GT(heldByAimed, 100);
     std::printf("%ld receivers checked; %.2f of 6 faces skipped on average; one map for %ld point lights, a cube "
-                "needed for %ld\n",
-                checked, double(skipped) / 10000.0, singleMaps, refused);
+                "needed for %ld (%ld of their receivers in the aimed map's cone)\n",
+                checked, double(skipped) / 10000.0, singleMaps, refused, heldByAimed);
 }
 
 TEST(LocalLights, CubeFacesFollowTheOpenGlTable) {
@@ -270,6 +285,20 @@ TEST(LocalLights, APointLightInOneMapTakesTheNarrowestConeOverWhatTheCameraSees)
     auto beside = computePointSingleMapSetup(in, PointLight{.wsPosition = {10.5, 0.5, 0}, .range = 30});
     ASSERT_FALSE(beside);
     EXPECT_NE(beside.error().find("spans a cone of 17"), std::string::npos) << beside.error();
+    // There the best one map is a 170° cone aimed at the middle of what the camera sees: the
+    // yard's middle from beside it, and the camera's direction from its very middle (a lamp at
+    // the mean of R's corners has no direction to it), saying that it holds only part.
+    for (const auto& [wsLamp, wsAxis] :
+         {std::pair{Vec3(10.5, 0.5, 0), Vec3(-1, 0, 0)}, std::pair{Vec3(0, 0.5, 0), Vec3(0, -1, 0)}}) {
+        auto aimed = computePointAimedMapSetup(in, PointLight{.wsPosition = wsLamp, .range = 30});
+        ASSERT_TRUE(aimed) << aimed.error();
+        ASSERT_EQ(aimed->views.size(), 1u);
+        const Vec3 wsMapAxis = -glm::normalize(Vec3(glm::inverse(aimed->views[0].lightFromWorld) * Vec4(0, 0, 1, 0)));
+        EXPECT_GT(glm::dot(wsMapAxis, wsAxis), std::cos(glm::radians(1.0)));
+        ASSERT_FALSE(aimed->fallbacks.empty());
+        EXPECT_NE(aimed->fallbacks.back().find("receivers outside that cone get no shadow"), std::string::npos);
+    }
+    EXPECT_EQ(computePointAimedMapSetup(in, PointLight{}, 175.0).errorInfo().field, "point.cone");
     // Out of reach of the yard: nothing to draw, and that is no error.
     auto far = computePointSingleMapSetup(in, PointLight{.wsPosition = {0, 60, 0}, .range = 30});
     ASSERT_TRUE(far);

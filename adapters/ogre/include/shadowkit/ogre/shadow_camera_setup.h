@@ -70,10 +70,11 @@ core::Result<core::ShadowSetup> spotSetupFor(const Ogre::Affine3& viewFromWorld,
                                              const Ogre::Vector3& wsDirection, Ogre::Radian outerAngle, double range,
                                              const Ogre::AxisAlignedBox& wsSceneBounds, int mapSize);
 
-/// The core's one map for a point light at wsPosition with its attenuation range as the range
-/// (core::computePointSingleMapSetup): the narrowest cone from the light over what the camera
-/// sees within reach, or no view where it sees none of it. Fails in one line, naming
-/// "point.position", where that spans more than 170° from the light (only a cube holds it).
+/// The core's one map for a point light at wsPosition with its attenuation range as the range:
+/// the narrowest cone from the light over what the camera sees within reach
+/// (core::computePointSingleMapSetup), or where that spans more than 170° from the light, a 170°
+/// cone aimed at the middle of it (core::computePointAimedMapSetup, its `fallbacks` saying so);
+/// no view where the camera sees nothing in reach. Fails in one line for bad input.
 core::Result<core::ShadowSetup> pointSetupFor(const Ogre::Affine3& viewFromWorld, const Ogre::Matrix4& clipFromView,
                                               double shadowDistance, const Ogre::Vector3& wsPosition, double range,
                                               const Ogre::AxisAlignedBox& wsSceneBounds, int mapSize);
@@ -89,8 +90,8 @@ TextureCamera textureCameraOf(const core::ShadowSetup& setup, size_t view);
 /// Ogre::ShadowCameraSetup with shadowkit's set-ups for directional, spot and point lights.
 /// OGRE 1.12's texture shadows have no cube maps: its default camera gives a point light one
 /// 120° map aimed from the light at a point ahead of the camera; here it gets the narrowest
-/// cone over what the camera sees within the light's range (pointSetupFor), and keeps OGRE's
-/// default where that spans more than 170° from the light. Give the scene manager as many
+/// cone over what the camera sees within the light's range (pointSetupFor), or where the light
+/// stands among what the camera sees, a 170° cone aimed at the middle of it. Give the scene manager as many
 /// shadow textures per directional light as the technique has maps (one; four cascades for
 /// `csm` by default), and one per spot or point light.
 class ShadowCameraSetup : public Ogre::ShadowCameraSetup {
@@ -126,11 +127,10 @@ public:
     const std::optional<core::ShadowSetup>& lastSpotSetup() const { return m_lastSpotSetup; }
     const std::string& lastSpotError() const { return m_lastSpotError; }
     /// The set-up of the last point light asked for (no view: it lights nothing the camera
-    /// sees), or none when what it lights spans more than 170° from it and the light kept
-    /// OGRE's default camera, for the reason lastPointFallback gives (a state of the scene,
-    /// not an error: logged at OGRE's trivial level).
+    /// sees; its `fallbacks` say when its one map holds only part of what the camera sees), or
+    /// none after the error lastPointError says (that light then had OGRE's default camera).
     const std::optional<core::ShadowSetup>& lastPointSetup() const { return m_lastPointSetup; }
-    const std::string& lastPointFallback() const { return m_lastPointFallback; }
+    const std::string& lastPointError() const { return m_lastPointError; }
 
     void getShadowCamera(const Ogre::SceneManager* sm, const Ogre::Camera* cam, const Ogre::Viewport* vp,
                          const Ogre::Light* light, Ogre::Camera* texCam, size_t iteration) const override;
@@ -144,6 +144,10 @@ private:
     // The same for a point light's one map.
     bool pointCamera(const Ogre::SceneManager* sm, const Ogre::Camera* cam, const Ogre::Light* light,
                      Ogre::Camera* texCam) const;
+    // Keeps a local light's set-up in `last`, or its error in `lastError` (said once); whether
+    // there is a set-up.
+    static bool keepLocal(core::Result<core::ShadowSetup> setup, std::optional<core::ShadowSetup>& last,
+                          std::string& lastError);
     // Sets texCam to a local light's one view, its near plane moved towards the light; false
     // where the set-up has no view.
     static bool localCamera(const core::ShadowSetup& setup, const Ogre::Camera* cam, const Ogre::Light* light,
@@ -164,7 +168,7 @@ private:
     // texture (iteration 0) and its views handed out for the others.
     mutable std::optional<core::ShadowSetup> m_lastSetup;
     mutable std::optional<core::ShadowSetup> m_lastSpotSetup, m_lastPointSetup;
-    mutable std::string m_lastError, m_lastSpotError, m_lastPointFallback;
+    mutable std::string m_lastError, m_lastSpotError, m_lastPointError;
     Ogre::DefaultShadowCameraSetup m_fallback; ///< lights and frames whose set-up failed
 };
 

@@ -74,10 +74,11 @@ core::Result<core::ShadowSetup> spotSetupFor(const ::osg::Matrixd& viewFromWorld
                                              double shadowDistance, const ::osg::Vec3d& wsPosition,
                                              const ::osg::Vec3d& wsDirection, double spotCutoffDegrees, double range,
                                              const ::osg::BoundingBoxd& wsSceneBounds, int mapSize);
-/// The core's one map for a point light at wsPosition reaching `range`
-/// (core::computePointSingleMapSetup): the narrowest cone from the light over what the camera
-/// sees within the range, or no view where it sees none of it. Fails in one line, naming
-/// "point.position", where that spans more than 170° from the light (only a cube holds it).
+/// The core's one map for a point light at wsPosition reaching `range`: the narrowest cone from
+/// the light over what the camera sees within the range (core::computePointSingleMapSetup), or
+/// where that spans more than 170° from the light, a 170° cone aimed at the middle of it
+/// (core::computePointAimedMapSetup, its `fallbacks` saying so); no view where the camera sees
+/// nothing in reach. Fails in one line for bad input.
 core::Result<core::ShadowSetup> pointSetupFor(const ::osg::Matrixd& viewFromWorld, const ::osg::Matrixd& clipFromView,
                                               double shadowDistance, const ::osg::Vec3d& wsPosition, double range,
                                               const ::osg::BoundingBoxd& wsSceneBounds, int mapSize);
@@ -88,8 +89,8 @@ ShadowCamera shadowCameraOfView(core::ShadowSetup setup);
 /// spot lights and point lights (a spot and a point light reach the farthest corner of the
 /// scene box, OSG's lights having no range). OSG gives a point light one map along the light's
 /// direction, its field of view widened to the view frustum's corners up to 160°; here it gets
-/// the narrowest cone over what the camera sees (pointSetupFor), and keeps OSG's own where that
-/// spans more than 170° from the light. The map size is ShadowSettings' texture size; shadows
+/// the narrowest cone over what the camera sees (pointSetupFor), or where the light stands among
+/// what the camera sees, a 170° cone aimed at the middle of it. The map size is ShadowSettings' texture size; shadows
 /// end at ShadowSettings' maximum shadow map distance, as OSG's own do; use one shadow map
 /// per light.
 class ShadowMap : public osgShadow::ViewDependentShadowMap {
@@ -127,11 +128,11 @@ public:
     /// had OSG's own shadow camera).
     const std::optional<core::ShadowSetup>& lastSpotSetup() const { return m_lastSpotSetup; }
     const std::string& lastSpotError() const { return m_lastSpotError; }
-    /// The set-up of the last point light (no view: it lights nothing the camera sees), or none
-    /// when what it lights spans more than 170° from it and the light kept OSG's camera, for the
-    /// reason lastPointFallback gives (a state of the scene, not an error: said at OSG's info level).
+    /// The set-up of the last point light (no view: it lights nothing the camera sees; its
+    /// `fallbacks` say when its one map holds only part of what the camera sees), or none after
+    /// the error lastPointError says (that light then had OSG's own shadow camera).
     const std::optional<core::ShadowSetup>& lastPointSetup() const { return m_lastPointSetup; }
-    const std::string& lastPointFallback() const { return m_lastPointFallback; }
+    const std::string& lastPointError() const { return m_lastPointError; }
 
     void init() override;
 
@@ -157,12 +158,14 @@ private:
     enum class SpotOutcome { Mapped, NothingInView, LeftToOsg };
     SpotOutcome spotCamera(const Frustum& frustum, const LightData& light, double shadowDistance, int mapSize,
                            ::osg::Matrixd& projectionMatrix, ::osg::Matrixd& viewMatrix);
-    // The same for a point light's one map; LeftToOsg where it spans more than 170° from the light.
+    // The same for a point light's one map.
     SpotOutcome pointCamera(const Frustum& frustum, const LightData& light, double shadowDistance, int mapSize,
                             ::osg::Matrixd& projectionMatrix, ::osg::Matrixd& viewMatrix);
-    // A local light's outcome: its camera set from `setup` (Mapped), NothingInView, or LeftToOsg.
-    static SpotOutcome localOutcome(const core::Result<core::ShadowSetup>& setup, ::osg::Matrixd& projectionMatrix,
-                                    ::osg::Matrixd& viewMatrix);
+    // A local light's outcome: `setup` kept in `last` (or its error in `lastError`, said once),
+    // and the camera set from it (Mapped), NothingInView, or LeftToOsg.
+    static SpotOutcome localOutcome(const core::Result<core::ShadowSetup>& setup,
+                                    std::optional<core::ShadowSetup>& last, std::string& lastError,
+                                    ::osg::Matrixd& projectionMatrix, ::osg::Matrixd& viewMatrix);
 
     core::ShadowSetupInputs m_inputs;
     std::optional<::osg::BoundingBoxd> m_fixedBounds;
@@ -174,7 +177,7 @@ private:
     ::osg::BoundingSphere m_cachedFor; ///< the scene's bound when m_cachedBounds was computed
     std::optional<core::ShadowSetup> m_lastSetup;
     std::optional<core::ShadowSetup> m_lastSpotSetup, m_lastPointSetup;
-    std::string m_lastError, m_lastSpotError, m_lastPointFallback;
+    std::string m_lastError, m_lastSpotError, m_lastPointError;
     bool m_ownCamera =
         false; ///< this light's shadow camera is ours (directional, spot, point), for the cull that follows
 };

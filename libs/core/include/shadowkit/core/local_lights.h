@@ -82,6 +82,11 @@ Result<ShadowSetup> computePointShadowSetup(const LocalShadowInputs& inputs, con
 /// naming "point.position", when R spans more than a 170° cone seen from the light (the light
 /// stands among what the camera sees, or beside it): only a cube holds that.
 Result<ShadowSetup> computePointSingleMapSetup(const LocalShadowInputs& inputs, const PointLight& light);
+/// Where that is refused, the best one map here: a cone of coneDegrees aimed from the light at
+/// the mean of R's corners, narrowed to R as a spot map is, with `fallbacks` saying receivers
+/// outside the cone get no shadow from this light. Fails only for bad input.
+Result<ShadowSetup> computePointAimedMapSetup(const LocalShadowInputs& inputs, const PointLight& light,
+                                              double coneDegrees = 170.0);
 
 /// A frame's local lights with their set-ups, in the order given: what a renderer draws.
 struct LocalLighting {
