@@ -77,14 +77,16 @@ Result<ShadowSetup> computePointShadowSetup(const LocalShadowInputs& inputs, con
 /// (OpenSceneGraph's ViewDependentShadowMap and OGRE 1.12 give a point light one map, aimed by a
 /// fixed rule that need not hold what the camera sees): the set-up of the spot light at the
 /// point light's position whose cone is the narrowest that holds R = range ∩ view frustum ∩
-/// scene box (computeSpotShadowSetup; lightType Spot, one view, no face), so every receiver the
-/// camera sees lit lands in the map, and with it its casters. No view when R is empty. Fails,
+/// scene box, narrowed to R as computeSpotShadowSetup narrows a spot's and turned about its axis
+/// to the least area over R (lightType Spot, one view, no face), so every receiver the camera
+/// sees lit lands in the map, and with it its casters. No view when R is empty. Fails,
 /// naming "point.position", when R spans more than a 170° cone seen from the light (the light
 /// stands among what the camera sees, or beside it): only a cube holds that.
 Result<ShadowSetup> computePointSingleMapSetup(const LocalShadowInputs& inputs, const PointLight& light);
 /// Where that is refused, the best one map here: a cone of coneDegrees aimed from the light at
 /// the mean of R's corners, narrowed to R as a spot map is, with `fallbacks` saying receivers
-/// outside the cone get no shadow from this light. Fails only for bad input.
+/// outside the cone get no shadow from this light. Fails only for bad input (a cone outside
+/// (0, 170] names "point.cone").
 Result<ShadowSetup> computePointAimedMapSetup(const LocalShadowInputs& inputs, const PointLight& light,
                                               double coneDegrees = 170.0);
 
