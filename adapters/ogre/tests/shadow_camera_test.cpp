@@ -288,6 +288,23 @@ TEST_F(OgreScene, CastersNearerTheSunThanTheMapsNearPlaneSurviveOgresCulling) {
 }
 
 // Whether a world point lies inside the camera's view, up to `shadowDistance` along it.
+// A world point through the adapter's texture camera lands inside its 2048² map on the core's
+// own texel for it (gl: the core's set-up in OpenGL's conventions) within `tolerance` texels, its
+// depth at most the map's far end; the texel, for the caller's own checks.
+core::Vec3 expectInTheMapOnTheCoresTexel(const Ogre::Camera& texCam, const core::EngineShadowView& gl,
+                                         const core::Vec3& p, double tolerance) {
+    const core::Vec3 texel = texelOf(texCam, p, 2048);
+    const core::Vec4 t = gl.textureFromWorld * core::Vec4(p, 1.0);
+    EXPECT_NEAR(texel.x, t.x / t.w * 2048, tolerance);
+    EXPECT_NEAR(texel.y, t.y / t.w * 2048, tolerance);
+    EXPECT_GE(texel.x, -1e-3);
+    EXPECT_LE(texel.x, 2048 + 1e-3);
+    EXPECT_GE(texel.y, -1e-3);
+    EXPECT_LE(texel.y, 2048 + 1e-3);
+    EXPECT_LE(texel.z, 1.0);
+    return texel;
+}
+
 bool inView(const Ogre::Camera& cam, const core::Vec3& p, double shadowDistance) {
     const Ogre::Vector3 eye = cam.getViewMatrix() * Ogre::Vector3(Ogre::Real(p.x), Ogre::Real(p.y), Ogre::Real(p.z));
     return cam.isVisible(Ogre::Vector3(Ogre::Real(p.x), Ogre::Real(p.y), Ogre::Real(p.z))) && -eye.z <= shadowDistance;
@@ -350,21 +367,13 @@ TEST_F(OgreScene, SpotLightMapsHoldWhatTheCameraSeesOfTheConeInTheCoresTexels) {
             if (p.x < -60 || p.x > 60 || p.y < 0 || p.y > 20 || p.z < -60 || p.z > 60 || !inView(*cam, p, 300.0))
                 continue;
             ++seen;
-            const core::Vec3 texel = texelOf(*texCam, p, 2048);
-            const core::Vec4 t = gl.textureFromWorld * core::Vec4(p, 1.0);
             // OGRE's float matrices hold the lamp's frame to a few micrometres (coordinates of tens
             // of metres), which near the apex is a large share of a texel; a wrong convention
             // moves points by hundreds of texels.
             const double tolerance = 5e-3 + 2e-5 / (span * glm::dot(toPoint, axis) / 2048);
-            EXPECT_NEAR(texel.x, t.x / t.w * 2048, tolerance);
-            EXPECT_NEAR(texel.y, t.y / t.w * 2048, tolerance);
-            EXPECT_GE(texel.x, -1e-3);
-            EXPECT_LE(texel.x, 2048 + 1e-3);
-            EXPECT_GE(texel.y, -1e-3);
-            EXPECT_LE(texel.y, 2048 + 1e-3);
+            const core::Vec3 texel = expectInTheMapOnTheCoresTexel(*texCam, gl, p, tolerance);
             // Depth: in the map, or in front of it where R reaches the lamp (a caster there is
             // flattened onto the near plane).
-            EXPECT_LE(texel.z, 1.0);
             if (glm::dot(toPoint, axis) > 0.3) {
                 EXPECT_GE(texel.z, 0.0);
             }
@@ -443,16 +452,7 @@ TEST_F(OgreScene, PointLightMapsHoldWhatTheCameraSeesWhereOgresOwnNeedNot) {
             heldByOgre += own.x >= 0 && own.x <= 2048 && own.y >= 0 && own.y <= 2048;
             if (part && glm::dot(glm::normalize(toPoint), axis) < std::cos(glm::radians(85.0))) continue;
             ++heldByAdapter;
-            const core::Vec3 texel = texelOf(*texCam, p, 2048);
-            const core::Vec4 t = gl.textureFromWorld * core::Vec4(p, 1.0);
-            const double tolerance = 5e-3 + 2e-5 / (span * glm::dot(toPoint, axis) / 2048);
-            EXPECT_NEAR(texel.x, t.x / t.w * 2048, tolerance);
-            EXPECT_NEAR(texel.y, t.y / t.w * 2048, tolerance);
-            EXPECT_GE(texel.x, -1e-3);
-            EXPECT_LE(texel.x, 2048 + 1e-3);
-            EXPECT_GE(texel.y, -1e-3);
-            EXPECT_LE(texel.y, 2048 + 1e-3);
-            EXPECT_LE(texel.z, 1.0);
+            expectInTheMapOnTheCoresTexel(*texCam, gl, p, 5e-3 + 2e-5 / (span * glm::dot(toPoint, axis) / 2048));
             // A caster on the way to the lamp, just beyond OGRE's default near distance from it
             // (the camera's near, 0.3 m, along the map's axis), survives OGRE's culling.
             const core::Vec3 caster = wsLamp + toPoint * (0.31 / glm::dot(toPoint, axis));

@@ -250,6 +250,24 @@ TEST(OsgShadowCamera, AutoChoosesForTheReceiversItIsHandedAsTheCoreWould) {
     EXPECT_EQ(refused.error().find('\n'), std::string::npos);
 }
 
+// A world point through the adapter's shadow camera (clipFromWorld, as OSG draws the map) lands
+// inside the map, in texture coordinates, on the core's own texel for it (gl: the core's set-up
+// in OpenGL's conventions), its depth at most the map's far end.
+void expectInTheMapOnTheCoresTexel(const core::Mat4& clipFromWorld, const core::EngineShadowView& gl,
+                                   const core::Vec3& p) {
+    const core::Vec4 m = clipFromWorld * core::Vec4(p, 1.0);
+    ASSERT_GT(m.w, 0.0);
+    const core::Vec3 texel(0.5 * m.x / m.w + 0.5, 0.5 * m.y / m.w + 0.5, 0.5 * m.z / m.w + 0.5);
+    const core::Vec4 t = gl.textureFromWorld * core::Vec4(p, 1.0);
+    EXPECT_NEAR(texel.x, t.x / t.w, 1e-7);
+    EXPECT_NEAR(texel.y, t.y / t.w, 1e-7);
+    EXPECT_GE(texel.x, -1e-9);
+    EXPECT_LE(texel.x, 1.0 + 1e-9);
+    EXPECT_GE(texel.y, -1e-9);
+    EXPECT_LE(texel.y, 1.0 + 1e-9);
+    EXPECT_LE(texel.z, 1.0);
+}
+
 TEST(OsgShadowCamera, SpotLightMapsHoldWhatTheCameraSeesOfTheConeInTheCoresTexels) {
     // Lamps over a yard, cameras among them. Every point the camera sees inside a lamp's cone
     // within the scene box — found by sampling, not from the set-up — must land in the spot map
@@ -305,16 +323,7 @@ TEST(OsgShadowCamera, SpotLightMapsHoldWhatTheCameraSeesOfTheConeInTheCoresTexel
             const core::Vec4 c = clipFromView * core::Vec4(p, 1.0);
             if (c.w <= 0.0 || std::abs(c.x) > c.w || std::abs(c.y) > c.w || std::abs(c.z) > c.w) continue;
             ++seenInMaps;
-            const core::Vec4 m = clipFromWorld * core::Vec4(p, 1.0);
-            const core::Vec3 texel(0.5 * m.x / m.w + 0.5, 0.5 * m.y / m.w + 0.5, 0.5 * m.z / m.w + 0.5);
-            const core::Vec4 t = gl.textureFromWorld * core::Vec4(p, 1.0);
-            EXPECT_NEAR(texel.x, t.x / t.w, 1e-7);
-            EXPECT_NEAR(texel.y, t.y / t.w, 1e-7);
-            EXPECT_GE(texel.x, -1e-9);
-            EXPECT_LE(texel.x, 1.0 + 1e-9);
-            EXPECT_GE(texel.y, -1e-9);
-            EXPECT_LE(texel.y, 1.0 + 1e-9);
-            EXPECT_LE(texel.z, 1.0);
+            expectInTheMapOnTheCoresTexel(clipFromWorld, gl, p);
         }
     }
     EXPECT_GE(maps, 10);
@@ -388,17 +397,7 @@ TEST(OsgShadowCamera, PointLightMapsHoldWhatTheCameraSeesWhereOsgsOwnNeedNot) {
             heldByOsg += own.ok && o.w > 0.0 && std::abs(o.x) <= o.w && std::abs(o.y) <= o.w;
             if (part && glm::dot(glm::normalize(p - wsLamp), wsAxis) < std::cos(glm::radians(85.0))) continue;
             ++heldByAdapter;
-            const core::Vec4 m = clipFromWorld * core::Vec4(p, 1.0);
-            ASSERT_GT(m.w, 0.0);
-            const core::Vec3 texel(0.5 * m.x / m.w + 0.5, 0.5 * m.y / m.w + 0.5, 0.5 * m.z / m.w + 0.5);
-            const core::Vec4 t = gl.textureFromWorld * core::Vec4(p, 1.0);
-            EXPECT_NEAR(texel.x, t.x / t.w, 1e-7);
-            EXPECT_NEAR(texel.y, t.y / t.w, 1e-7);
-            EXPECT_GE(texel.x, -1e-9);
-            EXPECT_LE(texel.x, 1.0 + 1e-9);
-            EXPECT_GE(texel.y, -1e-9);
-            EXPECT_LE(texel.y, 1.0 + 1e-9);
-            EXPECT_LE(texel.z, 1.0);
+            expectInTheMapOnTheCoresTexel(clipFromWorld, gl, p);
         }
     }
     EXPECT_GE(maps, 10);
