@@ -13,7 +13,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <limits>
+#include <utility>
 
 namespace shadowkit::osgadapter {
 
@@ -146,7 +148,7 @@ ShadowMap::ShadowMap() = default;
 ShadowMap::ShadowMap(const ShadowMap& other, const ::osg::CopyOp& copyop)
     : osgShadow::ViewDependentShadowMap(other, copyop), m_inputs(other.m_inputs), m_fixedBounds(other.m_fixedBounds),
       m_chooser(other.m_chooser), m_receivers(other.m_receivers), m_receiverWidth(other.m_receiverWidth),
-      m_receiverHeight(other.m_receiverHeight) {}
+      m_receiverHeight(other.m_receiverHeight), m_reachCutoff(other.m_reachCutoff) {}
 
 core::Status ShadowMap::setAuto(const core::AutoOptions& options) {
     if (options.cascades != 1)
@@ -187,13 +189,68 @@ void ShadowMap::init() {
 }
 
 namespace {
-// An OSG light has attenuation, not a range: a local light reaches everything in the scene box.
-double reachOf(const ::osg::BoundingBoxd& box, const ::osg::Vec3d& wsLight) {
-    double range = 0.0;
-    for (unsigned corner = 0; corner < 8; ++corner) range = std::max(range, (box.corner(corner) - wsLight).length());
-    return range;
+// The brightest channel a light shines with on a white surface facing it: diffuse or specular.
+double brightestChannel(const ::osg::Light& light) {
+    double intensity = 0.0;
+    for (int channel = 0; channel < 3; ++channel)
+        intensity = std::max({intensity, double(light.getDiffuse()[channel]), double(light.getSpecular()[channel])});
+    return intensity;
+}
+
+// A local light's set-up within its reach: setupWithin(reach) where it reaches past itself, a
+// set-up of no view where its attenuation dims it below the cutoff at the light, or the
+// attenuation's error.
+template <class SetupWithin>
+core::Result<core::ShadowSetup> withinReach(const core::Result<double>& reach, core::LightType type,
+                                            const ::osg::Vec3d& wsLight, SetupWithin setupWithin) {
+    if (!reach) return reach.errorInfo();
+    if (*reach > 0.0) return setupWithin(*reach);
+    core::ShadowSetup none;
+    none.lightType = type;
+    none.wsLightPosition = core::Vec3(wsLight.x(), wsLight.y(), wsLight.z());
+    none.fallbacks.push_back("its attenuation dims it below the reach cutoff at the light itself: no map");
+    return none;
 }
 } // namespace
+
+core::Result<double> reachOf(const ::osg::Light& light, const ::osg::Vec3d& wsLight, const ::osg::BoundingBoxd& box,
+                             double cutoff) {
+    double boxReach = 0.0;
+    for (unsigned corner = 0; corner < 8; ++corner)
+        boxReach = std::max(boxReach, (box.corner(corner) - wsLight).length());
+    const core::Attenuation attenuation{.constant = light.getConstantAttenuation(),
+                                        .linear = light.getLinearAttenuation(),
+                                        .quadratic = light.getQuadraticAttenuation()};
+    auto reach = core::attenuationReach(attenuation, brightestChannel(light), cutoff);
+    if (reach) return std::min(*reach, boxReach);
+    // Named as OSG's user set it: "light 0's linear attenuation -0.5: must be …".
+    const core::Error& error = reach.errorInfo();
+    const std::string what = error.message.substr(error.message.find(": ") + 2);
+    const std::pair<const char*, double> terms[] = {{"attenuation.constant", attenuation.constant},
+                                                    {"attenuation.linear", attenuation.linear},
+                                                    {"attenuation.quadratic", attenuation.quadratic}};
+    for (const auto& [field, value] : terms)
+        if (error.field == field) {
+            char message[200];
+            std::snprintf(message, sizeof message, "light %d's %s attenuation %g: %s", light.getLightNum(),
+                          field + std::strlen("attenuation."), value, what.c_str());
+            return core::Error{message, error.field};
+        }
+    return core::Error{"light " + std::to_string(light.getLightNum()) + ": " + error.message, error.field};
+}
+
+void setReach(::osg::Light& light, double range, double cutoff) {
+    const core::Attenuation attenuation = core::quadraticAttenuationReaching(range, brightestChannel(light), cutoff);
+    light.setConstantAttenuation(float(attenuation.constant));
+    light.setLinearAttenuation(float(attenuation.linear));
+    light.setQuadraticAttenuation(float(attenuation.quadratic));
+}
+
+core::Status ShadowMap::setReachCutoff(double cutoff) {
+    if (auto valid = core::validateReachCutoff(cutoff); !valid) return valid;
+    m_reachCutoff = cutoff;
+    return core::Ok{};
+}
 
 ShadowMap::SpotOutcome ShadowMap::localOutcome(const core::Result<core::ShadowSetup>& setup,
                                                std::optional<core::ShadowSetup>& last, std::string& lastError,
@@ -214,9 +271,12 @@ ShadowMap::SpotOutcome ShadowMap::spotCamera(const Frustum& frustum, const Light
                                              int mapSize, ::osg::Matrixd& projectionMatrix,
                                              ::osg::Matrixd& viewMatrix) {
     const ::osg::BoundingBoxd box = sceneBounds();
-    auto setup =
-        spotSetupFor(frustum.modelViewMatrix, frustum.projectionMatrix, shadowDistance, light.lightPos3, light.lightDir,
-                     light.light->getSpotCutoff(), reachOf(box, light.lightPos3), box, mapSize);
+    const auto setup = withinReach(reachOf(*light.light, light.lightPos3, box, m_reachCutoff), core::LightType::Spot,
+                                   light.lightPos3, [&](double reach) {
+                                       return spotSetupFor(frustum.modelViewMatrix, frustum.projectionMatrix,
+                                                           shadowDistance, light.lightPos3, light.lightDir,
+                                                           light.light->getSpotCutoff(), reach, box, mapSize);
+                                   });
     return localOutcome(setup, m_lastSpotSetup, m_lastSpotError, projectionMatrix, viewMatrix);
 }
 
@@ -224,8 +284,11 @@ ShadowMap::SpotOutcome ShadowMap::pointCamera(const Frustum& frustum, const Ligh
                                               int mapSize, ::osg::Matrixd& projectionMatrix,
                                               ::osg::Matrixd& viewMatrix) {
     const ::osg::BoundingBoxd box = sceneBounds();
-    auto setup = pointSetupFor(frustum.modelViewMatrix, frustum.projectionMatrix, shadowDistance, light.lightPos3,
-                               reachOf(box, light.lightPos3), box, mapSize);
+    const auto setup = withinReach(reachOf(*light.light, light.lightPos3, box, m_reachCutoff), core::LightType::Point,
+                                   light.lightPos3, [&](double reach) {
+                                       return pointSetupFor(frustum.modelViewMatrix, frustum.projectionMatrix,
+                                                            shadowDistance, light.lightPos3, reach, box, mapSize);
+                                   });
     return localOutcome(setup, m_lastPointSetup, m_lastPointError, projectionMatrix, viewMatrix);
 }
 

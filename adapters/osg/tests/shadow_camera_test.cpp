@@ -411,6 +411,130 @@ TEST(OsgShadowCamera, PointLightMapsHoldWhatTheCameraSeesWhereOsgsOwnNeedNot) {
                 std::exp(logAreaGain / std::max(ownMaps, 1)));
 }
 
+TEST(OsgShadowCamera, AnAttenuatedLampsMapEndsWhereItsLightFadesOut) {
+    // OSG's lights have attenuation, not a range. A lamp given one that fades it out at r metres
+    // (setReach) gets a map over what the camera sees within r — every point it lights by at
+    // least the cutoff, found from the lighting equation with OSG's own coefficients, lands on
+    // the core's texel — not over all the camera sees of the box, as the same lamp without
+    // fall-off does: its map spends its texels on a smaller solid angle and leaves out points
+    // beyond r.
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    const ::osg::BoundingBoxd box({-60.0, 0.0, -60.0}, {60.0, 20.0, 60.0});
+    int maps = 0, compared = 0;
+    long lit = 0, beyond = 0, beyondOutside = 0;
+    double logAreaGain = 0.0;
+    for (int trial = 0; trial < 40; ++trial) {
+        const core::Vec3 wsLamp(-50.0 + 100.0 * u(rng), 3.0 + 30.0 * u(rng), -50.0 + 100.0 * u(rng));
+        const core::Vec3 wsEye(-40.0 + 80.0 * u(rng), 1.7 + 10.0 * u(rng), -40.0 + 80.0 * u(rng));
+        core::Vec3 forward = unitVector(rng);
+        forward.y = -0.1 - 0.4 * std::abs(forward.y);
+        forward = glm::normalize(forward);
+        const ::osg::Matrixd view = ::osg::Matrixd::lookAt(
+            ::osg::Vec3d(wsEye.x, wsEye.y, wsEye.z),
+            ::osg::Vec3d(wsEye.x + forward.x, wsEye.y + forward.y, wsEye.z + forward.z), ::osg::Vec3d(0, 1, 0));
+        const ::osg::Matrixd projection = ::osg::Matrixd::perspective(60.0, 16.0 / 9.0, 0.3, 80.0);
+        const double range = 10.0 + 30.0 * u(rng);
+        ::osg::ref_ptr<::osg::Light> bulb = new ::osg::Light, plainBulb = new ::osg::Light;
+        for (::osg::Light* light : {bulb.get(), plainBulb.get()})
+            light->setPosition(::osg::Vec4(float(wsLamp.x), float(wsLamp.y), float(wsLamp.z), 1.0f));
+        shadowkit::osgadapter::setReach(*bulb, range);
+        ::osg::ref_ptr<ShadowMap> shadowMap = new ShadowMap, unattenuated = new ShadowMap;
+        ::osg::ref_ptr<osgShadow::ShadowedScene> ours = new osgShadow::ShadowedScene(shadowMap.get());
+        ::osg::ref_ptr<osgShadow::ShadowedScene> plain = new osgShadow::ShadowedScene(unattenuated.get());
+        shadowMap->setSceneBounds(box);
+        unattenuated->setSceneBounds(box);
+        const VdsmCall call = callAsVdsm(*shadowMap, view, projection, *bulb);
+        const VdsmCall whole = callAsVdsm(*unattenuated, view, projection, *plainBulb);
+        ASSERT_TRUE(shadowMap->lastPointSetup()) << shadowMap->lastPointError();
+        const core::ShadowSetup& setup = *shadowMap->lastPointSetup();
+        if (setup.views.empty()) continue;
+        ++maps;
+        const bool part = !setup.fallbacks.empty();
+        const core::Mat4& clipFromLight = setup.views[0].clipFromLight;
+        if (whole.ok && !part && unattenuated->lastPointSetup()->fallbacks.empty()) {
+            const core::Mat4& wholeClipFromLight = unattenuated->lastPointSetup()->views[0].clipFromLight;
+            logAreaGain += std::log(clipFromLight[0][0] * clipFromLight[1][1] /
+                                    (wholeClipFromLight[0][0] * wholeClipFromLight[1][1]));
+            ++compared;
+        }
+        const core::Vec3 wsAxis =
+            -glm::normalize(core::Vec3(glm::inverse(setup.views[0].lightFromWorld) * core::Vec4(0, 0, 1, 0)));
+        const core::EngineShadowView gl = core::toEngineView(setup.views[0], setup, core::OutputConventions::openGL());
+        const core::Mat4 clipFromWorld = toCore(call.projection) * toCore(call.view);
+        const core::Mat4 worldFromClip = glm::inverse(toCore(projection) * toCore(view));
+        for (int sample = 0; sample < 2000; ++sample) {
+            const core::Vec4 h = worldFromClip * core::Vec4(2 * u(rng) - 1, 2 * u(rng) - 1, 2 * u(rng) - 1, 1.0);
+            const core::Vec3 p = core::Vec3(h) / h.w;
+            if (p.x < -60 || p.x > 60 || p.y < 0 || p.y > 20 || p.z < -60 || p.z > 60) continue;
+            const double d = glm::distance(p, wsLamp);
+            if (d < 1e-3) continue;
+            // What the fixed-function pipeline lights a white surface facing the lamp with at p.
+            const double shade =
+                bulb->getDiffuse()[0] / (bulb->getConstantAttenuation() + bulb->getLinearAttenuation() * d +
+                                         bulb->getQuadraticAttenuation() * d * d);
+            if (shade < core::kDefaultReachCutoff) {
+                ++beyond;
+                const core::Vec4 m = clipFromWorld * core::Vec4(p, 1.0);
+                beyondOutside += !(m.w > 0.0 && std::abs(m.x) <= m.w && std::abs(m.y) <= m.w && m.z <= m.w);
+                continue;
+            }
+            if (part && glm::dot(glm::normalize(p - wsLamp), wsAxis) < std::cos(glm::radians(85.0))) continue;
+            ++lit;
+            expectInTheMapOnTheCoresTexel(clipFromWorld, gl, p);
+        }
+    }
+    EXPECT_GE(maps, 10);
+    EXPECT_GE(compared, 5);
+    EXPECT_GE(lit, 3000);
+    // The map leaves out most of what the camera sees beyond the lamp's reach ...
+    EXPECT_GT(beyondOutside, beyond / 2);
+    // ... and spends the same texels on a smaller solid angle than the lamp without fall-off.
+    EXPECT_GT(logAreaGain / std::max(compared, 1), std::log(1.5)); // measured: x2.01
+    std::printf("%d attenuated point lights mapped; %ld points seen lit all on the core's texel; of %ld seen beyond "
+                "reach %ld outside the map; against the same lamps without fall-off (%d), texels x%.2f\n",
+                maps, lit, beyond, beyondOutside, compared, std::exp(logAreaGain / std::max(compared, 1)));
+}
+
+TEST(OsgShadowCamera, ALampThatNeverShowsHasNoMapAndBadAttenuationKeepsOsgsCamera) {
+    const ::osg::Matrixd view =
+        ::osg::Matrixd::lookAt(::osg::Vec3d(0, 20, 40), ::osg::Vec3d(0, 19.5, 39), ::osg::Vec3d(0, 1, 0));
+    const ::osg::Matrixd projection = ::osg::Matrixd::perspective(60.0, 1.5, 0.3, 300.0);
+    ::osg::ref_ptr<ShadowMap> shadowMap = new ShadowMap;
+    ::osg::ref_ptr<osgShadow::ViewDependentShadowMap> plain = new osgShadow::ViewDependentShadowMap;
+    ::osg::ref_ptr<osgShadow::ShadowedScene> ours = new osgShadow::ShadowedScene(shadowMap.get());
+    ::osg::ref_ptr<osgShadow::ShadowedScene> theirs = new osgShadow::ShadowedScene(plain.get());
+    shadowMap->setSceneBounds(::osg::BoundingBoxd({-60.0, 0.0, -60.0}, {60.0, 20.0, 60.0}));
+    // Black: it lights nothing, so nothing needs its shadow.
+    ::osg::ref_ptr<::osg::Light> black = new ::osg::Light;
+    black->setPosition(::osg::Vec4(0.0f, 30.0f, -20.0f, 1.0f));
+    black->setDiffuse(::osg::Vec4(0, 0, 0, 1));
+    black->setSpecular(::osg::Vec4(0, 0, 0, 1));
+    black->setQuadraticAttenuation(0.01f);
+    EXPECT_FALSE(callAsVdsm(*shadowMap, view, projection, *black).ok);
+    ASSERT_TRUE(shadowMap->lastPointSetup()) << shadowMap->lastPointError();
+    EXPECT_TRUE(shadowMap->lastPointSetup()->views.empty());
+    // A negative term is the user's error: said in one line, naming it; OSG's own camera.
+    ::osg::ref_ptr<::osg::Light> odd = new ::osg::Light;
+    odd->setPosition(::osg::Vec4(0.0f, 30.0f, -20.0f, 1.0f));
+    odd->setLinearAttenuation(-0.5f);
+    const VdsmCall got = callAsVdsm(*shadowMap, view, projection, *odd);
+    const VdsmCall want = callAsVdsm(*plain, view, projection, *odd);
+    EXPECT_EQ(got.ok, want.ok);
+    EXPECT_EQ(got.view, want.view);
+    EXPECT_EQ(got.projection, want.projection);
+    EXPECT_FALSE(shadowMap->lastPointSetup());
+    EXPECT_EQ(shadowMap->lastPointError().rfind("light 0's linear attenuation -0.5: must be", 0), 0u)
+        << shadowMap->lastPointError();
+    EXPECT_EQ(shadowMap->lastPointError().find('\n'), std::string::npos);
+    // The cutoff is checked where it is set, the last kept.
+    EXPECT_FALSE(shadowMap->setReachCutoff(0.0));
+    EXPECT_FALSE(shadowMap->setReachCutoff(1.5));
+    EXPECT_EQ(shadowMap->reachCutoff(), core::kDefaultReachCutoff);
+    EXPECT_TRUE(shadowMap->setReachCutoff(0.01));
+    EXPECT_EQ(shadowMap->reachCutoff(), 0.01);
+}
+
 TEST(OsgShadowCamera, BadSpotsKeepOsgsCameraAndALampAmongTheViewGetsAnAimedMap) {
     // A spot of more than the core's 170° (said once): OSG's own camera, exactly what a plain
     // ViewDependentShadowMap computes for the same call. A point light among what the camera

@@ -21,10 +21,12 @@
 #pragma once
 
 #include "shadowkit/core/auto_chooser.h"
+#include "shadowkit/core/light_reach.h"
 #include "shadowkit/core/local_lights.h"
 #include "shadowkit/core/shadow_setup.h"
 
 #include <osg/BoundingBox>
+#include <osg/Light>
 #include <osg/Matrixd>
 #include <osgShadow/ViewDependentShadowMap>
 
@@ -85,14 +87,26 @@ core::Result<core::ShadowSetup> pointSetupFor(const ::osg::Matrixd& viewFromWorl
 /// The shadow camera of a set-up's first view (it must have one).
 ShadowCamera shadowCameraOfView(core::ShadowSetup setup);
 
+/// How far an OSG light at wsLight reaches, which its spot or point map spans: OSG's lights have
+/// attenuation, not a range, so where it takes the light's brightest channel (diffuse or
+/// specular) below `cutoff` of full white (core::attenuationReach), and no farther than the
+/// box's farthest corner — all of it for OSG's default, no fall-off. 0 for a light that never
+/// shows. Fails in one line for a negative or non-finite attenuation term ("attenuation.linear").
+core::Result<double> reachOf(const ::osg::Light& light, const ::osg::Vec3d& wsLight,
+                             const ::osg::BoundingBoxd& wsSceneBounds, double cutoff = core::kDefaultReachCutoff);
+/// Gives `light` the quadratic attenuation (constant 1, linear 0) that reaches `range` metres at
+/// `cutoff` for its present colour: how an application that thinks in ranges gives OSG one, and
+/// the adapter a map that ends there. Precondition: range > 0 and finite, a colour brighter than
+/// the cutoff.
+void setReach(::osg::Light& light, double range, double cutoff = core::kDefaultReachCutoff);
+
 /// osgShadow::ViewDependentShadowMap with shadowkit's shadow camera for directional lights,
-/// spot lights and point lights (a spot and a point light reach the farthest corner of the
-/// scene box, OSG's lights having no range). OSG gives a point light one map along the light's
-/// direction, its field of view widened to the view frustum's corners up to 160°; here it gets
-/// the narrowest cone over what the camera sees (pointSetupFor), or where the light stands among
-/// what the camera sees, a 170° cone aimed at the middle of it. The map size is ShadowSettings' texture size; shadows
-/// end at ShadowSettings' maximum shadow map distance, as OSG's own do; use one shadow map
-/// per light.
+/// spot lights and point lights (a spot's and a point light's map spans its reach: where its
+/// attenuation fades it out, reachOf, or the farthest corner of the scene box). OSG gives a point light one map along
+/// the light's direction, its field of view widened to the view frustum's corners up to 160°; here it gets the
+/// narrowest cone over what the camera sees (pointSetupFor), or where the light stands among what the camera sees, a
+/// 170° cone aimed at the middle of it. The map size is ShadowSettings' texture size; shadows end at ShadowSettings'
+/// maximum shadow map distance, as OSG's own do; use one shadow map per light.
 class ShadowMap : public osgShadow::ViewDependentShadowMap {
 public:
     ShadowMap();
@@ -103,6 +117,12 @@ public:
     /// depth layout are ignored: they come from OSG). Default: TSM, the core's default.
     void setInputs(const core::ShadowSetupInputs& inputs) { m_inputs = inputs; }
     const core::ShadowSetupInputs& inputs() const { return m_inputs; }
+
+    /// The fraction of full white below which a spot or point light is taken not to reach: its
+    /// map spans no farther (reachOf). Default 1/256, one step of an 8-bit channel. Fails in one
+    /// line ("reach.cutoff"), keeping the last.
+    core::Status setReachCutoff(double cutoff);
+    double reachCutoff() const { return m_reachCutoff; }
 
     /// The box every caster and receiver lies in. Unset (the default): the shadowed scene's
     /// own, from a ComputeBoundsVisitor, computed again whenever the scene's bound changes.
@@ -123,8 +143,9 @@ public:
     /// With setAuto: the last frame's choice.
     const std::optional<core::ParameterChoice>& lastChoice() const { return m_lastChoice; }
     const std::string& lastError() const { return m_lastError; }
-    /// The set-up of the last spot light (no view: its cone missed what the camera sees, and the
-    /// light went without a map), or none after the error lastSpotError says (that light then
+    /// The set-up of the last spot light (no view: its cone missed what the camera sees within
+    /// its reach, or its attenuation dims it out at the light, as its `fallbacks` then say, and
+    /// the light went without a map), or none after the error lastSpotError says (that light then
     /// had OSG's own shadow camera).
     const std::optional<core::ShadowSetup>& lastSpotSetup() const { return m_lastSpotSetup; }
     const std::string& lastSpotError() const { return m_lastSpotError; }
@@ -178,6 +199,7 @@ private:
     std::optional<core::ShadowSetup> m_lastSetup;
     std::optional<core::ShadowSetup> m_lastSpotSetup, m_lastPointSetup;
     std::string m_lastError, m_lastSpotError, m_lastPointError;
+    double m_reachCutoff = core::kDefaultReachCutoff;
     bool m_ownCamera =
         false; ///< this light's shadow camera is ours (directional, spot, point), for the cull that follows
 };
