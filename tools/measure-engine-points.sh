@@ -12,8 +12,9 @@
 # by OpenSceneGraph and by OGRE (their samples, under Xvfb) with each engine's own camera and with
 # the adapter's, at 512² and 2048², each mask scored against the ray-traced truth by `shadowkit
 # score --light`; shadowkit's own renderer (`eval`: a cube of up to six faces of that size) beside
-# them. OSG's lights have no range: its lamps reach the scene box's farthest corner, so the OSG
-# columns hold the lamp's map over all it lights in view, OGRE's over its range (the truth's).
+# them. OSG's lights fade rather than end: the OSG sample gives each lamp the fall-off that
+# reaches its range (osgadapter::setReach), which the adapter's map spans, as OGRE's spans its
+# range (the truth's). Each mask is drawn by a process of its own (tools/engine-lamp-masks.sh).
 # Then the `ahead` lamp's four masks at 2048² side by side (out/engine-points/ahead-2048.png; the
 # picture in the docs). About a minute on this project's 2-core machine.
 set -euo pipefail
@@ -33,26 +34,14 @@ view=(--view aerial --eye 0,40,0 --dir 0,-0.7,-1 --sun off --size 640x360)
 lamps=("ahead:point:0,50,-45,60" "behind:point:0,50,15,80" "left:point:-30,45,-20,60" "right:point:30,45,-10,60"
        "among-a:point:0,5,-40,30" "among-b:point:10,8,-25,40" "among-c:point:-20,12,-60,50")
 [ -s "$out/patch.obj" ] || "$SK" export "${forest[@]}" --out "$out/patch.obj" > /dev/null 2>&1
-wrong() {
-  python3 -c 'import json, sys
-d = json.load(open(sys.argv[1]))
-print("%.2f" % (d.get("scores") or d["views"])[0]["wrong_pct"])' "$1"
-}
+. tools/engine-lamp-masks.sh
 echo "| lamp | map | OSG's own | adapter in OSG | OGRE's own | adapter in OGRE | shadowkit's renderer (\`eval\`, a cube) |"
 echo "|---|---:|---:|---:|---:|---:|---:|"
 for entry in "${lamps[@]}"; do
   name=${entry%%:*} light=${entry#*:}
   "$SK" setup "${forest[@]}" "${view[@]}" --light "$light" > "$out/$name.json"
   for n in 512 2048; do
-    printf "%s\n" "$out/$name.json osg $out/$name-$n-osg.png" "$out/$name.json tsm $out/$name-$n-osg-adapter.png" > "$out/osg-shots.txt"
-    printf "%s\n" "$out/$name.json ogre $out/$name-$n-ogre.png" "$out/$name.json tsm $out/$name-$n-ogre-adapter.png" > "$out/ogre-shots.txt"
-    xvfb-run -a "$OSG" "$out/patch.obj" --shots "$out/osg-shots.txt" --size 640x360 --map-size "$n" > /dev/null 2>&1
-    xvfb-run -a "$OGRE" "$out/patch.obj" --shots "$out/ogre-shots.txt" --size 640x360 --map-size "$n" > /dev/null 2>&1
-    row="| $name | $n² |"
-    for mask in osg osg-adapter ogre ogre-adapter; do
-      "$SK" score "$out/$name-$n-$mask.png" "${forest[@]}" "${view[@]}" --light "$light" --json "$out/$name-$n-$mask.json" > /dev/null 2>&1
-      row+=" $(wrong "$out/$name-$n-$mask.json") |"
-    done
+    row="| $name | $n² |$(lamp_masks "$name" "$light" "$n")"
     "$SK" eval "${forest[@]}" "${view[@]}" --light "$light" --local-map-size "$n" --json "$out/$name-$n-eval.json" > /dev/null 2>&1
     echo "$row $(wrong "$out/$name-$n-eval.json") |"
   done

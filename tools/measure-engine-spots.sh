@@ -12,7 +12,8 @@
 # 300-tree patch seen from 40 m up (`--sun off --light spot:...`), drawn by OpenSceneGraph and
 # by OGRE (their samples, under Xvfb) with each engine's own spot camera and with the adapter's,
 # at 512² and 2048², each mask scored by `shadowkit score --light`; shadowkit's own renderer
-# (`eval`, its biases in metres) beside them. About a minute on this project's 2-core machine.
+# (`eval`, its biases in metres) beside them, each mask drawn by a process of its own
+# (tools/engine-lamp-masks.sh). About a minute on this project's 2-core machine.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 SK=${SK:-build/apps/shadowkit/shadowkit}
@@ -71,11 +72,7 @@ view=(--view aerial --eye 0,40,0 --dir 0,-0.7,-1 --sun off --size 640x360)
 lamps=("ahead:spot:0,50,-45,0,-1,0,120,60" "behind:spot:0,50,15,0,-1,-0.6,100,80"
        "left:spot:-30,45,-20,0,-1,0,120,60" "right:spot:30,45,-10,-0.3,-1,-0.3,120,60")
 [ -s "$out/patch.obj" ] || "$SK" export "${forest[@]}" --out "$out/patch.obj" 2> /dev/null
-wrong() {
-  python3 -c 'import json, sys
-d = json.load(open(sys.argv[1]))
-print("%.2f" % (d.get("scores") or d["views"])[0]["wrong_pct"])' "$1"
-}
+. tools/engine-lamp-masks.sh
 echo
 echo "| lamp | map | OSG's own | adapter in OSG | OGRE's own | adapter in OGRE | shadowkit's renderer (\`eval\`) | the same, 2 × 2 PCF as OSG samples |"
 echo "|---|---:|---:|---:|---:|---:|---:|---:|"
@@ -83,15 +80,7 @@ for entry in "${lamps[@]}"; do
   name=${entry%%:*} light=${entry#*:}
   "$SK" setup "${forest[@]}" "${view[@]}" --light "$light" > "$out/$name.json"
   for n in 512 2048; do
-    printf "%s\n" "$out/$name.json osg $out/$name-$n-osg.png" "$out/$name.json tsm $out/$name-$n-osg-adapter.png" > "$out/osg-shots.txt"
-    printf "%s\n" "$out/$name.json ogre $out/$name-$n-ogre.png" "$out/$name.json tsm $out/$name-$n-ogre-adapter.png" > "$out/ogre-shots.txt"
-    xvfb-run -a "$OSG" "$out/patch.obj" --shots "$out/osg-shots.txt" --size 640x360 --map-size "$n" > /dev/null 2>&1
-    xvfb-run -a "$OGRE" "$out/patch.obj" --shots "$out/ogre-shots.txt" --size 640x360 --map-size "$n" > /dev/null 2>&1
-    row="| $name | $n² |"
-    for mask in osg osg-adapter ogre ogre-adapter; do
-      "$SK" score "$out/$name-$n-$mask.png" "${forest[@]}" "${view[@]}" --light "$light" --json "$out/$name-$n-$mask.json" > /dev/null 2>&1
-      row+=" $(wrong "$out/$name-$n-$mask.json") |"
-    done
+    row="| $name | $n² |$(lamp_masks "$name" "$light" "$n")"
     "$SK" eval "${forest[@]}" "${view[@]}" --light "$light" --local-map-size "$n" --json "$out/$name-$n-eval.json" > /dev/null 2>&1
     "$SK" eval "${forest[@]}" "${view[@]}" --light "$light" --local-map-size "$n" --filter pcf2 \
       --json "$out/$name-$n-eval-pcf2.json" > /dev/null 2>&1

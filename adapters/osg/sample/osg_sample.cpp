@@ -227,6 +227,9 @@ void draw(const Options& o, const Shot& shot, osg::Node* model, Viewer& v) {
         light->getLight()->setPosition(osg::Vec4(vec(lamp->position), 1.0));
         if (!lamp->point) light->getLight()->setDirection(vec(lamp->direction));
         light->getLight()->setSpotCutoff(lamp->point ? 180.0f : float(0.5 * lamp->coneDegrees));
+        // OSG's lights fade rather than end: the fall-off that reaches the lamp's range, which the
+        // adapter's map then spans (the truth's lamp ends there).
+        shadowkit::osgadapter::setReach(*light->getLight(), lamp->range);
     } else {
         light->getLight()->setPosition(osg::Vec4(-vec(view.sunTravel), 0.0)); // w = 0: towards a directional light
     }
