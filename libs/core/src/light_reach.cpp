@@ -10,13 +10,15 @@ namespace shadowkit::core {
 namespace {
 Status checkCoefficient(double value, const char* name) {
     if (std::isfinite(value) && value >= 0.0) return Ok{};
-    return fieldError("attenuation." + std::string(name), "must be finite and at least 0 (OpenGL refuses negative ones)");
+    return fieldError("attenuation." + std::string(name),
+                      "must be finite and at least 0 (OpenGL refuses negative ones)");
 }
 } // namespace
 
 Status validateReachCutoff(double cutoff) {
     if (std::isfinite(cutoff) && cutoff > 0.0 && cutoff < 1.0) return Ok{};
-    return fieldError("reach.cutoff", "must be in (0, 1): the fraction of full white below which a light no longer reaches");
+    return fieldError("reach.cutoff",
+                      "must be in (0, 1): the fraction of full white below which a light no longer reaches");
 }
 
 Result<double> attenuationReach(const Attenuation& attenuation, double intensity, double cutoff) {
@@ -28,7 +30,8 @@ Result<double> attenuationReach(const Attenuation& attenuation, double intensity
     if (auto ok = validateReachCutoff(cutoff); !ok) return ok.errorInfo();
     const double kc = attenuation.constant, kl = attenuation.linear, kq = attenuation.quadratic;
     if (kc == 0.0 && kl == 0.0 && kq == 0.0)
-        return fieldError("attenuation.constant", "all three terms 0 divide the light by zero; the constant is usually 1");
+        return fieldError("attenuation.constant",
+                          "all three terms 0 divide the light by zero; the constant is usually 1");
     // kq·d² + kl·d − m = 0 with m = I / cutoff − kc: the light shows while the left side is ≤ 0.
     const double m = intensity / cutoff - kc;
     if (!(m > 0.0)) return 0.0; // dimmer than the cutoff already at the light

@@ -29,8 +29,11 @@ TEST(LightReach, TheLightFallsToTheCutoffExactlyAtItsReach) {
     std::uniform_real_distribution<double> unit(0.0, 1.0);
     for (int trial = 0; trial < 500; ++trial) {
         // Coefficients over many orders of magnitude, a term or two sometimes 0.
-        const auto term = [&](double scale) { return unit(rng) < 0.2 ? 0.0 : scale * std::pow(10.0, 6.0 * unit(rng) - 3.0); };
-        Attenuation a{.constant = unit(rng) < 0.1 ? 0.0 : 0.2 + 2.0 * unit(rng), .linear = term(0.1), .quadratic = term(0.01)};
+        const auto term = [&](double scale) {
+            return unit(rng) < 0.2 ? 0.0 : scale * std::pow(10.0, 6.0 * unit(rng) - 3.0);
+        };
+        Attenuation a{
+            .constant = unit(rng) < 0.1 ? 0.0 : 0.2 + 2.0 * unit(rng), .linear = term(0.1), .quadratic = term(0.01)};
         if (a.linear == 0.0 && a.quadratic == 0.0) a.quadratic = 0.01;
         const double intensity = 0.1 + 3.0 * unit(rng), cutoff = std::pow(10.0, -4.0 * unit(rng) - 0.5);
         const double reach = attenuationReach(a, intensity, cutoff).value();

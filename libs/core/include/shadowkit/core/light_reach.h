@@ -41,8 +41,7 @@ Status validateReachCutoff(double cutoff);
 /// "attenuation.linear", "attenuation.quadratic"), a negative or non-finite intensity
 /// ("light.intensity"), a bad cutoff, or a light brighter than infinitely close (all three
 /// coefficients 0).
-Result<double> attenuationReach(const Attenuation& attenuation, double intensity,
-                                double cutoff = kDefaultReachCutoff);
+Result<double> attenuationReach(const Attenuation& attenuation, double intensity, double cutoff = kDefaultReachCutoff);
 
 /// The attenuation (constant 1, linear 0) of a light of brightest channel `intensity` whose
 /// reach at `cutoff` is `range` metres: how an application gives an engine with attenuation
