@@ -120,9 +120,7 @@ core::Result<core::ShadowSetup> pointSetupFor(const Ogre::Affine3& viewFromWorld
     if (!inputs) return inputs.errorInfo();
     inputs->mapSize = mapSize;
     const core::PointLight point{.wsPosition = toCore(wsPosition), .range = range};
-    auto whole = core::computePointSingleMapSetup(*inputs, point);
-    if (whole || whole.errorInfo().field != "point.position") return whole;
-    return core::computePointAimedMapSetup(*inputs, point);
+    return core::computePointSingleOrAimedMapSetup(*inputs, point);
 }
 
 Ogre::AxisAlignedBox sceneBounds(const Ogre::SceneNode& node) {

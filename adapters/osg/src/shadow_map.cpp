@@ -138,9 +138,7 @@ core::Result<core::ShadowSetup> pointSetupFor(const ::osg::Matrixd& viewFromWorl
     inputs->mapSize = mapSize;
     const core::PointLight point{.wsPosition = core::Vec3(wsPosition.x(), wsPosition.y(), wsPosition.z()),
                                  .range = range};
-    auto whole = core::computePointSingleMapSetup(*inputs, point);
-    if (whole || whole.errorInfo().field != "point.position") return whole;
-    return core::computePointAimedMapSetup(*inputs, point);
+    return core::computePointSingleOrAimedMapSetup(*inputs, point);
 }
 
 ShadowMap::ShadowMap() = default;

@@ -420,12 +420,22 @@ Result<ShadowSetup> computePointAimedMapSetup(const LocalShadowInputs& in, const
                          .range = light.range,
                          .radius = light.radius};
     Result<ShadowSetup> setup = spotSetupInFrame(in, spot, spotFrame(spot.wsPosition, spot.wsDirection));
-    if (setup && !setup->views.empty())
+    if (setup && !setup->views.empty()) {
+        setup->holdsPartOfView = true;
         setup->fallbacks.push_back("point: what the camera sees within the light's range surrounds it; one map of " +
                                    std::to_string(int(std::lround(coneDegrees))) +
                                    " degrees aimed at the middle of it: receivers outside that cone get no shadow "
                                    "from this light (a cube holds them all)");
+    }
     return setup;
+}
+
+Result<ShadowSetup> computePointSingleOrAimedMapSetup(const LocalShadowInputs& in, const PointLight& light) {
+    // The single map refuses bad input and a light among what the camera sees alike under
+    // "point.position"; the aimed map refuses the first again and takes the second.
+    Result<ShadowSetup> whole = computePointSingleMapSetup(in, light);
+    if (whole || whole.errorInfo().field != "point.position") return whole;
+    return computePointAimedMapSetup(in, light);
 }
 
 Status validate(const LocalBias& b) {

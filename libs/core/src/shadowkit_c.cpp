@@ -214,9 +214,9 @@ int shadowkit_compute_local_setup(const shadowkit_local_inputs* in, shadowkit_lo
         return 1;
     }
     if (in->kind != SHADOWKIT_LIGHT_SPOT && in->kind != SHADOWKIT_LIGHT_POINT &&
-        in->kind != SHADOWKIT_LIGHT_POINT_ONE_MAP) {
-        writeError("kind: must be SHADOWKIT_LIGHT_SPOT (0), SHADOWKIT_LIGHT_POINT (1) or "
-                   "SHADOWKIT_LIGHT_POINT_ONE_MAP (2)",
+        in->kind != SHADOWKIT_LIGHT_POINT_ONE_MAP && in->kind != SHADOWKIT_LIGHT_POINT_AIMED_MAP) {
+        writeError("kind: must be SHADOWKIT_LIGHT_SPOT (0), SHADOWKIT_LIGHT_POINT (1), "
+                   "SHADOWKIT_LIGHT_POINT_ONE_MAP (2) or SHADOWKIT_LIGHT_POINT_AIMED_MAP (3)",
                    error, errorSize);
         return 1;
     }
@@ -227,10 +227,18 @@ int shadowkit_compute_local_setup(const shadowkit_local_inputs* in, shadowkit_lo
     }
     const LocalShadowInputs inputs{*camera, Aabb::fromMinMax(toVec3(in->scene_min), toVec3(in->scene_max)),
                                    in->map_size};
-    const Result<ShadowSetup> setup = in->kind == SHADOWKIT_LIGHT_SPOT ? computeSpotShadowSetup(inputs, toSpot(*in))
-                                      : in->kind == SHADOWKIT_LIGHT_POINT
-                                          ? computePointShadowSetup(inputs, toPoint(*in))
-                                          : computePointSingleMapSetup(inputs, toPoint(*in));
+    const Result<ShadowSetup> setup = [&] {
+        switch (in->kind) {
+        case SHADOWKIT_LIGHT_SPOT:
+            return computeSpotShadowSetup(inputs, toSpot(*in));
+        case SHADOWKIT_LIGHT_POINT:
+            return computePointShadowSetup(inputs, toPoint(*in));
+        case SHADOWKIT_LIGHT_POINT_ONE_MAP:
+            return computePointSingleMapSetup(inputs, toPoint(*in));
+        default:
+            return computePointSingleOrAimedMapSetup(inputs, toPoint(*in));
+        }
+    }();
     if (!setup) {
         writeError(inLocalInputsSpelling(setup.errorInfo()), error, errorSize);
         return 1;
@@ -253,6 +261,7 @@ int shadowkit_compute_local_setup(const shadowkit_local_inputs* in, shadowkit_lo
     out->radius = in->radius;
     const LocalBias bias;
     out->bias = {bias.slopeTexels, bias.normalOffsetTexels, bias.constantMetres};
+    out->holds_part_of_view = setup->holdsPartOfView;
     return 0;
 }
 

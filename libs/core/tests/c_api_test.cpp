@@ -269,6 +269,39 @@ TEST(CApiTest, APointLightInOneMapIsTheCppOneMapDrawnAsASpot) {
     EXPECT_EQ(out.view_count, -7);
 }
 
+TEST(CApiTest, APointLightInAnAimedMapIsTheCppOneMapWhereThereIsOneAndTheAimedOneAmongTheView) {
+    PerspectiveCamera camera;
+    camera.wsEye = Vec3(0, 5, 0);
+    camera.wsDirection = Vec3(0, -0.5, 1);
+    const LocalShadowInputs inputs{camera, Aabb::fromMinMax(Vec3(-50, 0, -50), Vec3(50, 10, 50)), 1024};
+    const OutputConventions conventions{ClipDepthRange::ZeroToOne, false};
+    char error[256];
+    // Behind and above the eye: the single map, all of the view in reach held. Among what the
+    // camera sees (3 m up, 12 m ahead), where ONE_MAP is refused: the C++ 170° aimed map.
+    for (const Vec3& wsLamp : {Vec3(0, 9, -6), Vec3(0, 3, 12)}) {
+        shadowkit_local_inputs in = localInputs(SHADOWKIT_LIGHT_POINT_AIMED_MAP);
+        copy(wsLamp, in.position);
+        in.clip_depth = SHADOWKIT_CLIP_DEPTH_ZERO_TO_ONE;
+        shadowkit_local_setup out;
+        ASSERT_EQ(shadowkit_compute_local_setup(&in, &out, error, sizeof error), 0) << error;
+        const PointLight point{.wsPosition = wsLamp, .range = 25.0, .radius = 0.05};
+        const Result<ShadowSetup> single = computePointSingleMapSetup(inputs, point);
+        const Result<ShadowSetup> cpp = single ? single : computePointAimedMapSetup(inputs, point);
+        ASSERT_TRUE(cpp) << cpp.error();
+        EXPECT_EQ(out.kind, SHADOWKIT_LIGHT_SPOT);
+        ASSERT_EQ(out.view_count, 1);
+        EXPECT_EQ(out.holds_part_of_view, single ? 0 : 1);
+        expectEqual(toEngineView(cpp->views[0], *cpp, conventions).clipFromWorld, out.views[0].clip_from_world,
+                    "clip_from_world");
+    }
+    // Bad input is refused as ONE_MAP refuses it.
+    shadowkit_local_inputs in = localInputs(SHADOWKIT_LIGHT_POINT_AIMED_MAP);
+    in.range = -1.0;
+    shadowkit_local_setup out;
+    EXPECT_NE(shadowkit_compute_local_setup(&in, &out, error, sizeof error), 0);
+    EXPECT_EQ(std::string(error), "range: must be a finite number of metres > 0");
+}
+
 TEST(CApiTest, BadLocalInputNamesTheInputAndLeavesTheOutputAlone) {
     shadowkit_local_setup out;
     out.view_count = -7;

@@ -99,13 +99,15 @@ core's message for bad input.)",
         R"(A spot or point light's shadow maps (core/local_lights.h, seed 003), for the installed
 glsl/shadowkit_local_shadows.glsl.
 
-Light: kind ('spot', 'point', or 'point_one_map': a point light in one map for engines without
+Light: kind ('spot', 'point', 'point_one_map': a point light in one map for engines without
 cube maps, the narrowest cone over what the camera sees in its range, refused where that spans more
-than 170 degrees), position, direction and cone (the spot's axis and full opening angle in
+than 170 degrees, or 'point_aimed_map': that map, or where it is refused a 170-degree cone aimed at
+the middle of what the camera sees in range, holds_part_of_view then True), position, direction and cone (the spot's axis and full opening angle in
 degrees), range (metres: nothing farther is lit), radius (the lamp's sphere for PCSS; 0 a point).
 Camera, scene box and conventions as setup's: view_direction is the camera's direction.
 
-Returns a dict: kind (the maps': 'spot' for a point light in one map), map_size, depth_clamp, views (a spot's one, or the cube faces that see
+Returns a dict: kind (the maps': 'spot' for a point light in one map), holds_part_of_view
+(an aimed map: receivers outside its cone get no shadow from this light), map_size, depth_clamp, views (a spot's one, or the cube faces that see
 something of the camera's view), each as setup's views with its cube face (0-5, OpenGL's order;
 None for a spot); skipped_faces; and what the lookup takes beside them: light_position,
 stored_from_distance (the depth pass writes distance * [0] + [1]: 1 / range and 0, reversed

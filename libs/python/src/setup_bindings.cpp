@@ -188,19 +188,22 @@ py::dict localSetup(const LocalSetupArguments& a) {
         spot.range = a.range;
         spot.radius = a.radius;
         s = checkLight(computeSpotShadowSetup(in, spot));
-    } else if (a.kind == "point" || a.kind == "point_one_map") {
+    } else if (a.kind == "point" || a.kind == "point_one_map" || a.kind == "point_aimed_map") {
         PointLight point;
         point.wsPosition = toVec3(a.position, "position");
         point.range = a.range;
         point.radius = a.radius;
-        s = checkLight(a.kind == "point" ? computePointShadowSetup(in, point) : computePointSingleMapSetup(in, point));
+        s = checkLight(a.kind == "point"           ? computePointShadowSetup(in, point)
+                       : a.kind == "point_one_map" ? computePointSingleMapSetup(in, point)
+                                                   : computePointSingleOrAimedMapSetup(in, point));
     } else {
-        throw py::value_error("kind: '" + a.kind + "' is not one of spot, point, point_one_map");
+        throw py::value_error("kind: '" + a.kind + "' is not one of spot, point, point_one_map, point_aimed_map");
     }
     const OutputConventions conventions = conventionsFor(a.view.conventions, a.view.reversedZ);
 
     py::dict out;
     out["kind"] = a.kind == "point" ? "point" : "spot"; // a point light in one map is drawn as a spot's
+    out["holds_part_of_view"] = s.holdsPartOfView;
     out["map_size"] = s.mapSize;
     out["depth_clamp"] = s.depthClamp;
     py::list views;

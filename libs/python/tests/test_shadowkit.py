@@ -142,7 +142,7 @@ class LocalSetupTest(unittest.TestCase):
             self.assertAlmostEqual(40.0 * scale + offset, far, places=15)  # at the range
         bias = shadowkit.local_setup(**common)["bias"]
         self.assertEqual(bias, dict(slope_texels=1.5, normal_offset_texels=0.5, constant_metres=0.005))
-        with self.assertRaisesRegex(ValueError, "kind: 'torch' is not one of spot, point, point_one_map"):
+        with self.assertRaisesRegex(ValueError, "kind: 'torch' is not one of spot, point, point_one_map, point_aimed_map"):
             shadowkit.local_setup(kind="torch")
         # Named as local_setup's keywords, not as the C++ structs' fields ("spot.cone").
         with self.assertRaisesRegex(ValueError, r"^cone: must be in \(0, 170\] degrees$"):
@@ -171,6 +171,16 @@ class LocalSetupTest(unittest.TestCase):
         # Among what the camera sees: refused in local_setup's words.
         with self.assertRaisesRegex(ValueError, r"^position: what the camera sees"):
             shadowkit.local_setup(kind="point_one_map", **dict(common, position=[0.0, 2.0, -10.0]))
+        # point_aimed_map: the same map there, and among what the camera sees a 170-degree cone aimed
+        # at the middle of it, which holds the ground under the lamp's sight line but says it holds part.
+        same = shadowkit.local_setup(kind="point_aimed_map", **common)
+        self.assertFalse(same["holds_part_of_view"])
+        np.testing.assert_array_equal(same["views"][0]["clip_from_world"], one["views"][0]["clip_from_world"])
+        among = shadowkit.local_setup(kind="point_aimed_map", **dict(common, position=[0.0, 2.0, -10.0]))
+        self.assertTrue(among["holds_part_of_view"])
+        self.assertEqual(among["kind"], "spot")
+        self.assertEqual(len(among["views"]), 1)
+        self.assertFalse(one["holds_part_of_view"])
 
 
 class EvaluateTest(unittest.TestCase):

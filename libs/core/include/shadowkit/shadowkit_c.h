@@ -165,11 +165,15 @@ SHADOWKIT_CORE_EXPORT double shadowkit_penumbra_texels_per_metre(const shadowkit
 
 /** Spot and point lights (shadowkit_local_inputs::kind; core/local_lights.h, seed 003). */
 typedef enum shadowkit_light_kind {
-    SHADOWKIT_LIGHT_SPOT = 0,         /**< one perspective map over its cone */
-    SHADOWKIT_LIGHT_POINT = 1,        /**< a cube of six 90° faces */
-    SHADOWKIT_LIGHT_POINT_ONE_MAP = 2 /**< a point light in one map, for engines without cube maps: the narrowest
-                                           cone over what the camera sees in its range (computePointSingleMapSetup);
-                                           refused, naming "position", where that spans more than 170° */
+    SHADOWKIT_LIGHT_SPOT = 0,           /**< one perspective map over its cone */
+    SHADOWKIT_LIGHT_POINT = 1,          /**< a cube of six 90° faces */
+    SHADOWKIT_LIGHT_POINT_ONE_MAP = 2,  /**< a point light in one map, for engines without cube maps: the narrowest
+                                             cone over what the camera sees in its range (computePointSingleMapSetup);
+                                             refused, naming "position", where that spans more than 170° */
+    SHADOWKIT_LIGHT_POINT_AIMED_MAP = 3 /**< a point light in one map wherever it stands: ONE_MAP's, or where that
+                                             is refused (a lamp among or beside what the camera sees) a 170° cone
+                                             aimed at the middle of it, holds_part_of_view set: receivers outside
+                                             the cone get no shadow (computePointSingleOrAimedMapSetup) */
 } shadowkit_light_kind;
 
 /** A spot or point light and what its maps are fitted to (start from shadowkit_default_local_inputs). */
@@ -215,6 +219,8 @@ typedef struct shadowkit_local_setup {
     double texel_per_metre;         /**< SkLocalLight.texelPerMetre: a texel's world size per metre of distance */
     double radius;                  /**< SkLocalLight.radius: the lamp's, for PCSS */
     shadowkit_local_bias bias;      /**< the recommended biases */
+    int holds_part_of_view; /**< 1: SHADOWKIT_LIGHT_POINT_AIMED_MAP's aimed cone, which holds only part of what the
+                                 camera sees within range (ShadowSetup::holdsPartOfView) */
 } shadowkit_local_setup;
 
 /** A spot light 3 m up looking down, 40°, 30 m; the default camera and a 1024² map; OpenGL-with-

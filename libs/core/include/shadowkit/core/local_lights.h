@@ -84,11 +84,16 @@ Result<ShadowSetup> computePointShadowSetup(const LocalShadowInputs& inputs, con
 /// stands among what the camera sees, or beside it): only a cube holds that.
 Result<ShadowSetup> computePointSingleMapSetup(const LocalShadowInputs& inputs, const PointLight& light);
 /// Where that is refused, the best one map here: a cone of coneDegrees aimed from the light at
-/// the mean of R's corners, narrowed to R as a spot map is, with `fallbacks` saying receivers
-/// outside the cone get no shadow from this light. Fails only for bad input (a cone outside
-/// (0, 170] names "point.cone").
+/// the mean of R's corners, narrowed to R as a spot map is, with holdsPartOfView set and
+/// `fallbacks` saying receivers outside the cone get no shadow from this light. Fails only for
+/// bad input (a cone outside (0, 170] names "point.cone").
 Result<ShadowSetup> computePointAimedMapSetup(const LocalShadowInputs& inputs, const PointLight& light,
                                               double coneDegrees = 170.0);
+/// A point light in one map wherever it stands: computePointSingleMapSetup, or where that spans
+/// more than 170° from the light, computePointAimedMapSetup's 170° cone (holdsPartOfView). What
+/// an engine without cube maps draws (the OSG and OGRE adapters, the C API's
+/// SHADOWKIT_LIGHT_POINT_AIMED_MAP). Fails only for bad input.
+Result<ShadowSetup> computePointSingleOrAimedMapSetup(const LocalShadowInputs& inputs, const PointLight& light);
 
 /// A frame's local lights with their set-ups, in the order given: what a renderer draws.
 struct LocalLighting {

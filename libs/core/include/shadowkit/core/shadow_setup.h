@@ -256,6 +256,9 @@ struct ShadowSetup {
     LightType lightType = LightType::Directional; ///< the sun, a spot or a point light
     Vec3 wsLightPosition{0.0};                    ///< local lights
     int skippedFaces = 0;                         ///< point lights: cube faces left out, seeing nothing the camera sees
+    /// A point light in one aimed map (computePointAimedMapSetup): the map holds only part of what
+    /// the camera sees within reach; receivers outside its cone get no shadow from this light.
+    bool holdsPartOfView = false;
     /// The world point the views' eye-relative members are relative to: the camera's eye for
     /// a set-up computeShadowSetup made (or, held by SetupHysteresis, the eye of its refit);
     /// a local light's position for its set-up.
