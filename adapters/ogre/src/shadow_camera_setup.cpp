@@ -9,6 +9,7 @@
 #include <OgreFrustum.h>
 #include <OgreLight.h>
 #include <OgreLogManager.h>
+#include <OgreRoot.h>
 #include <OgreSceneManager.h>
 #include <OgreSceneNode.h>
 
@@ -184,11 +185,32 @@ core::Result<core::ShadowSetup> ShadowCameraSetup::setupOf(const core::ShadowSet
     return setup;
 }
 
-Ogre::AxisAlignedBox ShadowCameraSetup::boundsOf(const Ogre::SceneManager* sm) const {
+Ogre::AxisAlignedBox ShadowCameraSetup::boundsOf(const Ogre::SceneManager* sm, const Ogre::Light* light,
+                                                 size_t iteration) const {
+    if (m_fixedBounds) return *m_fixedBounds;
+    // OGRE asks once for each light and shadow texture when it renders the scene, and nothing
+    // moves between those asks: the walk made at a render's first is kept for the rest. A new
+    // render shows as a new frame (Ogre::Root's frame number, as OGRE applies its animations once
+    // a frame) or, for an application that renders targets itself, as a light and texture asked
+    // again.
+    const Ogre::Root* root = Ogre::Root::getSingletonPtr();
+    const unsigned long frame = root ? root->getNextFrameNumber() : 0;
+    const std::pair asked(light, iteration);
+    const bool sameRender =
+        root && m_sceneWalks > 0 && m_walkedFor == sm && m_walkedFrame == frame &&
+        std::find(m_askedSinceWalk.begin(), m_askedSinceWalk.end(), asked) == m_askedSinceWalk.end();
+    if (sameRender) {
+        m_askedSinceWalk.push_back(asked);
+        return m_walkedBounds;
+    }
     // Not the root node's world box: it holds the cameras' boxes, which reach their far planes.
     // OGRE hands the set-up a const scene manager, whose getRootSceneNode is not const though
     // it only returns the node.
-    return m_fixedBounds ? *m_fixedBounds : sceneBounds(*const_cast<Ogre::SceneManager*>(sm)->getRootSceneNode());
+    m_walkedBounds = sceneBounds(*const_cast<Ogre::SceneManager*>(sm)->getRootSceneNode());
+    m_walkedFor = sm, m_walkedFrame = frame;
+    m_askedSinceWalk.assign(1, asked);
+    ++m_sceneWalks;
+    return m_walkedBounds;
 }
 
 void ShadowCameraSetup::report(const std::string& error, std::string& last) {
@@ -202,7 +224,7 @@ bool ShadowCameraSetup::spotCamera(const Ogre::SceneManager* sm, const Ogre::Cam
     auto setup = spotSetupFor(cam->getViewMatrix(), cam->getProjectionMatrix(),
                               far > 0.0 ? far : std::numeric_limits<double>::infinity(), light->getDerivedPosition(),
                               light->getDerivedDirection(), light->getSpotlightOuterAngle(),
-                              double(light->getAttenuationRange()), boundsOf(sm), m_inputs.mapSize);
+                              double(light->getAttenuationRange()), boundsOf(sm, light, 0), m_inputs.mapSize);
     return keepLocal(std::move(setup), m_lastSpotSetup, m_lastSpotError) &&
            localCamera(*m_lastSpotSetup, cam, light, texCam);
 }
@@ -212,7 +234,7 @@ bool ShadowCameraSetup::pointCamera(const Ogre::SceneManager* sm, const Ogre::Ca
     const double far = sm->getShadowFarDistance();
     auto setup = pointSetupFor(cam->getViewMatrix(), cam->getProjectionMatrix(),
                                far > 0.0 ? far : std::numeric_limits<double>::infinity(), light->getDerivedPosition(),
-                               double(light->getAttenuationRange()), boundsOf(sm), m_inputs.mapSize);
+                               double(light->getAttenuationRange()), boundsOf(sm, light, 0), m_inputs.mapSize);
     return keepLocal(std::move(setup), m_lastPointSetup, m_lastPointError) &&
            localCamera(*m_lastPointSetup, cam, light, texCam);
 }
@@ -260,7 +282,7 @@ void ShadowCameraSetup::getShadowCamera(const Ogre::SceneManager* sm, const Ogre
         const double far = sm->getShadowFarDistance();
         const auto frame = inputsFor(cam->getViewMatrix(), cam->getProjectionMatrix(),
                                      far > 0.0 ? far : std::numeric_limits<double>::infinity(),
-                                     light->getDerivedDirection(), boundsOf(sm), m_inputs);
+                                     light->getDerivedDirection(), boundsOf(sm, light, iteration), m_inputs);
         auto setup = frame ? setupOf(*frame) : core::Result<core::ShadowSetup>(frame.errorInfo());
         // An error is said once per different error; the frame gets OGRE's default camera, not garbage.
         report(setup ? std::string() : setup.error(), m_lastError);

@@ -104,6 +104,20 @@ protected:
         return light;
     }
 
+    // A triangle of geometry spanning x and z in [−50, 50], y in [0, 20], on a node of its own.
+    Ogre::SceneNode* geometry() {
+        Ogre::ManualObject* box = m_sm->createManualObject();
+        box->begin("BaseWhite", Ogre::RenderOperation::OT_TRIANGLE_LIST);
+        box->position(-50, 0, -50);
+        box->position(50, 0, -50);
+        box->position(0, 20, 50);
+        box->triangle(0, 1, 2);
+        box->end();
+        Ogre::SceneNode* node = m_sm->getRootSceneNode()->createChildSceneNode();
+        node->attachObject(box);
+        return node;
+    }
+
     static std::unique_ptr<Ogre::LogManager> s_log;
     static std::unique_ptr<Ogre::Root> s_root;
     static std::unique_ptr<Ogre::DefaultHardwareBufferManager> s_buffers;
@@ -529,14 +543,7 @@ TEST_F(OgreScene, TheDefaultSceneBoxHoldsTheGeometryNotTheCameras) {
     // A 100 m box of geometry, and a camera whose own box reaches its far plane 100 km away: the
     // root node's world box takes the camera's, which made every warped map of the first OGRE
     // sample hopelessly coarse. The set-up's box must be the geometry's.
-    Ogre::ManualObject* box = m_sm->createManualObject();
-    box->begin("BaseWhite", Ogre::RenderOperation::OT_TRIANGLE_LIST);
-    box->position(-50, 0, -50);
-    box->position(50, 0, -50);
-    box->position(0, 20, 50);
-    box->triangle(0, 1, 2);
-    box->end();
-    m_sm->getRootSceneNode()->createChildSceneNode()->attachObject(box);
+    geometry();
     Ogre::Camera* cam = camera(core::Vec3(0, 20, 0), core::Vec3(0, -0.3, -1), 60.0, 1.5, 0.5, 100000.0);
     sun(core::Vec3(0.3, -1, 0.2));
     m_sm->getRootSceneNode()->_update(true, false);
@@ -550,6 +557,63 @@ TEST_F(OgreScene, TheDefaultSceneBoxHoldsTheGeometryNotTheCameras) {
     EXPECT_NEAR(bounds.getMinimum().z, -50, 1e-4);
     EXPECT_NEAR(bounds.getMaximum().z, 50, 1e-4);
     (void)cam;
+}
+
+TEST_F(OgreScene, TheSceneIsWalkedOnceARenderHoweverManyLightsCast) {
+    // A sun (four cascades) and six lamps ask for their cameras as OGRE renders the scene: one
+    // walk of the scene graph for its box. A render asks for each light's texture once, so the
+    // same asks again are a new render, walked again; and a box moved 30 m before it is in that
+    // render's set-ups, which equal a fresh adapter's (the kept box is never stale).
+    Ogre::SceneNode* boxNode = geometry();
+    Ogre::Camera* cam = camera(core::Vec3(0, 20, 60), core::Vec3(0, -0.3, -1), 60.0, 1.5, 0.5, 300.0);
+    Ogre::Light* sunLight = sun(core::Vec3(0.3, -1, 0.2));
+    std::vector<Ogre::Light*> lamps;
+    for (int i = 0; i < 6; ++i)
+        lamps.push_back(i % 2 ? point(core::Vec3(-40.0 + 16.0 * i, 8.0, -10.0), 30.0)
+                              : spot(core::Vec3(-40.0 + 16.0 * i, 8.0, -10.0), core::Vec3(0, -1, 0), 90.0, 30.0));
+    m_sm->getRootSceneNode()->_update(true, false);
+    ShadowCameraSetup setup;
+    core::ShadowSetupInputs options;
+    options.technique = core::Technique::Csm;
+    ASSERT_TRUE(setup.setInputs(options));
+    Ogre::Camera* texCam = m_sm->createCamera("walks");
+    const auto frame = [&](ShadowCameraSetup& adapter) {
+        for (size_t iteration = 0; iteration < 4; ++iteration)
+            adapter.getShadowCamera(m_sm, cam, nullptr, sunLight, texCam, iteration);
+        std::vector<core::Mat4> lampViews;
+        for (Ogre::Light* lamp : lamps) {
+            adapter.getShadowCamera(m_sm, cam, nullptr, lamp, texCam, 0);
+            const auto& last =
+                lamp->getType() == Ogre::Light::LT_POINT ? adapter.lastPointSetup() : adapter.lastSpotSetup();
+            if (last && !last->views.empty()) lampViews.push_back(last->views[0].clipFromWorld);
+        }
+        std::vector<core::Mat4> sunViews;
+        for (const core::ShadowView& view : adapter.lastSetup()->views) sunViews.push_back(view.clipFromWorld);
+        return std::pair(sunViews, lampViews);
+    };
+    const auto first = frame(setup);
+    EXPECT_EQ(setup.sceneWalks(), 1);
+    EXPECT_EQ(first.second.size(), 6u);
+    // The next render, in the same frame of OGRE's (an application rendering its targets itself),
+    // after the box moved.
+    boxNode->setPosition(0, 0, -30);
+    m_sm->getRootSceneNode()->_update(true, false);
+    const auto moved = frame(setup);
+    EXPECT_EQ(setup.sceneWalks(), 2);
+    ShadowCameraSetup fresh;
+    ASSERT_TRUE(fresh.setInputs(options));
+    const auto wanted = frame(fresh);
+    EXPECT_EQ(moved.first, wanted.first);
+    EXPECT_EQ(moved.second, wanted.second);
+    EXPECT_NE(moved, first); // the maps follow the box
+    // A new frame of OGRE's whose one caster was not asked for before: walked again too.
+    s_root->_fireFrameRenderingQueued();
+    Ogre::Light* late = point(core::Vec3(30, 8, 10), 30.0);
+    const long walks = setup.sceneWalks();
+    setup.getShadowCamera(m_sm, cam, nullptr, late, texCam, 0);
+    EXPECT_EQ(setup.sceneWalks(), walks + 1);
+    setup.getShadowCamera(m_sm, cam, nullptr, sunLight, texCam, 0); // and kept for the rest of it
+    EXPECT_EQ(setup.sceneWalks(), walks + 1);
 }
 
 TEST_F(OgreScene, AutoChoosesForTheReceiversItIsHandedAsTheCoreWould) {

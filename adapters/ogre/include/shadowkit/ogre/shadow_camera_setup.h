@@ -32,6 +32,7 @@
 
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace shadowkit::ogreadapter {
@@ -102,8 +103,11 @@ public:
     const core::ShadowSetupInputs& inputs() const { return m_inputs; }
 
     /// The box every caster and receiver lies in. Unset (the default): sceneBounds of the root
-    /// scene node, taken each frame.
+    /// scene node, taken once each time OGRE renders the scene, for all the lights that cast.
     void setSceneBounds(std::optional<Ogre::AxisAlignedBox> wsBounds) { m_fixedBounds = wsBounds; }
+    /// How many times the scene graph was walked for its box: a count of work, one a render of
+    /// the scene however many lights cast.
+    long sceneWalks() const { return m_sceneWalks; }
 
     /// `--technique auto` in OGRE: each frame, the technique and parameters the core's error-driven
     /// chooser (core::AutoChooser, docs/error-driven.md) predicts best for the receivers last
@@ -136,8 +140,9 @@ public:
                          const Ogre::Light* light, Ogre::Camera* texCam, size_t iteration) const override;
 
 private:
-    // The scene box of the frame: the fixed one, or the root node's geometry.
-    Ogre::AxisAlignedBox boundsOf(const Ogre::SceneManager* sm) const;
+    // The scene box of the render that asks for light's texture `iteration`: the fixed one, or
+    // the root node's geometry, walked once a render.
+    Ogre::AxisAlignedBox boundsOf(const Ogre::SceneManager* sm, const Ogre::Light* light, size_t iteration) const;
     // Sets texCam to the spot light's map; false where OGRE's default camera must do.
     bool spotCamera(const Ogre::SceneManager* sm, const Ogre::Camera* cam, const Ogre::Light* light,
                     Ogre::Camera* texCam) const;
@@ -170,6 +175,13 @@ private:
     mutable std::optional<core::ShadowSetup> m_lastSpotSetup, m_lastPointSetup;
     mutable std::string m_lastError, m_lastSpotError, m_lastPointError;
     Ogre::DefaultShadowCameraSetup m_fallback; ///< lights and frames whose set-up failed
+    // The last box walked, for the scene manager and frame it was walked in, and the lights'
+    // textures asked for since (a render asks for each once).
+    mutable Ogre::AxisAlignedBox m_walkedBounds;
+    mutable std::vector<std::pair<const Ogre::Light*, size_t>> m_askedSinceWalk;
+    mutable const Ogre::SceneManager* m_walkedFor = nullptr;
+    mutable unsigned long m_walkedFrame = 0;
+    mutable long m_sceneWalks = 0;
 };
 
 } // namespace shadowkit::ogreadapter
