@@ -21,9 +21,9 @@ namespace shadowkit::core {
 /// A light's fall-off: it lights at distance d with its colour times 1 / (constant + linear·d
 /// + quadratic·d²) (OpenGL's and OSG's defaults: 1, 0, 0 — no fall-off).
 struct Attenuation {
-    double constant = 1.0;
-    double linear = 0.0;
-    double quadratic = 0.0;
+    double constant = 1.0;  ///< kc: the light's colour divided by it at the light itself
+    double linear = 0.0;    ///< kl, per metre
+    double quadratic = 0.0; ///< kq, per square metre
 };
 
 /// One step of an 8-bit channel: below it a light no longer shows in an 8-bit frame.
