@@ -17,17 +17,22 @@ d = json.load(open(sys.argv[1]))
 print("%.2f" % (d.get("scores") or d["views"])[0]["wrong_pct"])' "$1"
 }
 
-# lamp_masks NAME LIGHT MAPSIZE: draws and scores the four masks of $out/NAME.json (a `shadowkit
-# setup` camera file with the lamp) at MAPSIZE² and prints " osg | osg-adapter | ogre |
-# ogre-adapter |", each the mask's wrong_pct.
+# lamp_masks NAME LIGHT MAPSIZE [MASK...]: draws and scores the masks of $out/NAME.json (a
+# `shadowkit setup` camera file with the lamp) at MAPSIZE² and prints " osg | osg-adapter | ogre |
+# ogre-adapter |", each the mask's wrong_pct; MASK... names others, in order (ogre-cube: the OGRE
+# adapter's cube faces, six textures, for a point light).
 lamp_masks() {
   local name=$1 light=$2 n=$3 mask sample technique row=""
-  for mask in osg osg-adapter ogre ogre-adapter; do
+  shift 3
+  local masks=("$@")
+  [ ${#masks[@]} -gt 0 ] || masks=(osg osg-adapter ogre ogre-adapter)
+  for mask in "${masks[@]}"; do
     case $mask in
       osg) sample=$OSG technique=osg ;;
       osg-adapter) sample=$OSG technique=tsm ;;
       ogre) sample=$OGRE technique=ogre ;;
       ogre-adapter) sample=$OGRE technique=tsm ;;
+      ogre-cube) sample=$OGRE technique=cube ;;
     esac
     echo "$out/$name.json $technique $out/$name-$n-$mask.png" > "$out/shots.txt"
     xvfb-run -a "$sample" "$out/patch.obj" --shots "$out/shots.txt" --size 640x360 --map-size "$n" > /dev/null 2>&1

@@ -10,8 +10,9 @@
 #
 # Seven point lamps over a 300-tree patch seen from 40 m up (`--sun off --light point:...`), drawn
 # by OpenSceneGraph and by OGRE (their samples, under Xvfb) with each engine's own camera and with
-# the adapter's, at 512² and 2048², each mask scored against the ray-traced truth by `shadowkit
-# score --light`; shadowkit's own renderer (`eval`: a cube of up to six faces of that size) beside
+# the adapter's, and in OGRE the adapter's cube faces too (six shadow textures of that size,
+# setPointLightCubeFaces), at 512² and 2048², each mask scored against the ray-traced truth by
+# `shadowkit score --light`; shadowkit's own renderer (`eval`: a cube of up to six faces of that size) beside
 # them. OSG's lights fade rather than end: the OSG sample gives each lamp the fall-off that
 # reaches its range (osgadapter::setReach), which the adapter's map spans, as OGRE's spans its
 # range (the truth's). Each mask is drawn by a process of its own (tools/engine-lamp-masks.sh).
@@ -35,13 +36,13 @@ lamps=("ahead:point:0,50,-45,60" "behind:point:0,50,15,80" "left:point:-30,45,-2
        "among-a:point:0,5,-40,30" "among-b:point:10,8,-25,40" "among-c:point:-20,12,-60,50")
 [ -s "$out/patch.obj" ] || "$SK" export "${forest[@]}" --out "$out/patch.obj" > /dev/null 2>&1
 . tools/engine-lamp-masks.sh
-echo "| lamp | map | OSG's own | adapter in OSG | OGRE's own | adapter in OGRE | shadowkit's renderer (\`eval\`, a cube) |"
-echo "|---|---:|---:|---:|---:|---:|---:|"
+echo "| lamp | map | OSG's own | adapter in OSG | OGRE's own | adapter in OGRE | adapter in OGRE, cube faces | shadowkit's renderer (\`eval\`, a cube) |"
+echo "|---|---:|---:|---:|---:|---:|---:|---:|"
 for entry in "${lamps[@]}"; do
   name=${entry%%:*} light=${entry#*:}
   "$SK" setup "${forest[@]}" "${view[@]}" --light "$light" > "$out/$name.json"
   for n in 512 2048; do
-    row="| $name | $n² |$(lamp_masks "$name" "$light" "$n")"
+    row="| $name | $n² |$(lamp_masks "$name" "$light" "$n" osg osg-adapter ogre ogre-adapter ogre-cube)"
     "$SK" eval "${forest[@]}" "${view[@]}" --light "$light" --local-map-size "$n" --json "$out/$name-$n-eval.json" > /dev/null 2>&1
     echo "$row $(wrong "$out/$name-$n-eval.json") |"
   done

@@ -12,7 +12,8 @@
 // The rest is a plain depth shadow map, the same for every set-up: the casters write their
 // clip depth into a float texture, the receivers compare against it. One map per light, or four
 // split along the view for OGRE's PSSM and shadowkit's cascades (`ogre-pssm`, `csm`), each of
-// half the side: the same texel memory as one map of --map-size.
+// half the side: the same texel memory as one map of --map-size; or for a point light, `cube`:
+// the adapter's cube faces, six textures of --map-size (setPointLightCubeFaces).
 #include "shadowkit/ogre/shadow_camera_setup.h"
 
 #include "common/sample_options.h"
@@ -40,21 +41,23 @@ using samples::fail;
 using samples::Options;
 using samples::Shot;
 
-// Split set-ups draw four maps of half the side, one per split of the view.
-constexpr int kSplitMaps = 4;
+// Split set-ups draw four maps of half the side, one per split of the view; `cube` a point
+// light's six faces, each of the full side.
+constexpr int kSplitMaps = 4, kCubeMaps = 6;
 bool isSplit(const std::string& name) { return name == "ogre-pssm" || name == "csm"; }
-int mapsOf(const std::string& name) { return isSplit(name) ? kSplitMaps : 1; }
+int mapsOf(const std::string& name) { return isSplit(name) ? kSplitMaps : name == "cube" ? kCubeMaps : 1; }
 int mapSideOf(const std::string& name, int mapSize) { return isSplit(name) ? mapSize / 2 : mapSize; }
 
 // A technique a shot may name: OGRE's own set-ups, or the adapter's.
 void checkTechnique(const std::string& name) {
-    if (name == "ogre" || name == "ogre-focused" || name == "ogre-lispsm" || name == "ogre-pssm" || name == "auto")
+    if (name == "ogre" || name == "ogre-focused" || name == "ogre-lispsm" || name == "ogre-pssm" || name == "auto" ||
+        name == "cube")
         return;
     const auto technique = core::parseTechnique(name);
     if (!technique)
         fail("technique " + name +
              ": not ogre, ogre-focused, ogre-lispsm or ogre-pssm (OGRE's own) nor one of tsm, lispsm, psm, "
-             "focused, standard, csm, auto (shadowkit's)");
+             "focused, standard, csm, auto, cube (shadowkit's; cube: a point light's cube faces)");
     if (auto usable = shadowkit::ogreadapter::checkTechnique(*technique); !usable) fail(usable.error());
 }
 
@@ -65,6 +68,7 @@ Ogre::ShadowCameraSetupPtr makeCameraSetup(const std::string& name, int mapSize)
     if (name == "ogre-pssm") return std::make_shared<Ogre::PSSMShadowCameraSetup>(); // split per shot (draw)
     // The one line an OGRE user changes: shadowkit's set-up for OGRE's.
     auto setup = std::make_shared<shadowkit::ogreadapter::ShadowCameraSetup>();
+    setup->setPointLightCubeFaces(name == "cube");
     if (name == "auto") {
         // Over single maps of this texel budget: the sample gives each shot's light its
         // textures before the frame (draw() hands the receivers).
@@ -75,7 +79,8 @@ Ogre::ShadowCameraSetupPtr makeCameraSetup(const std::string& name, int mapSize)
         return setup;
     }
     core::ShadowSetupInputs inputs;
-    inputs.technique = *core::parseTechnique(name); // checked by checkTechnique
+    // Checked by checkTechnique; `cube` draws a point light's faces and nothing else.
+    inputs.technique = name == "cube" ? core::Technique::Tsm : *core::parseTechnique(name);
     inputs.mapSize = mapSideOf(name, mapSize);
     inputs.cascades.count = kSplitMaps;
     (void)setup->setInputs(inputs);
@@ -150,6 +155,38 @@ void main() {
     gl_FragColor = vec4(lit, lit, lit, 1.0);
 })";
 
+// A point light's cube faces (`cube`), one texture each: a receiver lies in one face's frustum
+// and outside the others' (behind their camera, beyond their sides or their far plane), which
+// read lit, as the textures the adapter points at nothing do; so the faces' terms multiply.
+const char* kFacesReceiverVertex = R"(#version 120
+uniform mat4 worldViewProj;
+uniform mat4 textureWorldViewProj0, textureWorldViewProj1, textureWorldViewProj2;
+uniform mat4 textureWorldViewProj3, textureWorldViewProj4, textureWorldViewProj5;
+varying vec4 shadowCoord0, shadowCoord1, shadowCoord2, shadowCoord3, shadowCoord4, shadowCoord5;
+void main() {
+    gl_Position = worldViewProj * gl_Vertex;
+    shadowCoord0 = textureWorldViewProj0 * gl_Vertex;
+    shadowCoord1 = textureWorldViewProj1 * gl_Vertex;
+    shadowCoord2 = textureWorldViewProj2 * gl_Vertex;
+    shadowCoord3 = textureWorldViewProj3 * gl_Vertex;
+    shadowCoord4 = textureWorldViewProj4 * gl_Vertex;
+    shadowCoord5 = textureWorldViewProj5 * gl_Vertex;
+})";
+const char* kFacesReceiverFragment = R"(#version 120
+uniform sampler2D shadowMap0, shadowMap1, shadowMap2, shadowMap3, shadowMap4, shadowMap5;
+varying vec4 shadowCoord0, shadowCoord1, shadowCoord2, shadowCoord3, shadowCoord4, shadowCoord5;
+float litIn(sampler2D map, vec4 coord) {
+    if (coord.w <= 0.0) return 1.0;
+    vec3 p = coord.xyz / coord.w;
+    if (any(lessThan(p.xy, vec2(0.0))) || any(greaterThan(p.xy, vec2(1.0))) || p.z > 1.0) return 1.0;
+    return 0.5 * p.z + 0.5 <= texture2D(map, p.xy).r ? 1.0 : 0.0;
+}
+void main() {
+    float lit = litIn(shadowMap0, shadowCoord0) * litIn(shadowMap1, shadowCoord1) * litIn(shadowMap2, shadowCoord2) *
+                litIn(shadowMap3, shadowCoord3) * litIn(shadowMap4, shadowCoord4) * litIn(shadowMap5, shadowCoord5);
+    gl_FragColor = vec4(lit, lit, lit, 1.0);
+})";
+
 // What the camera sees, for `auto`: each pixel's view depth and its triangle's normal (turned
 // towards the eye) into a float target, the read-back an application hands the adapter from its
 // own depth and normal buffers (core::receiverSamples).
@@ -203,6 +240,20 @@ void addShadowUnit(Ogre::Pass* pass) {
     shadow->setTextureAddressingMode(Ogre::TextureUnitState::TAM_BORDER);
     shadow->setTextureBorderColour(Ogre::ColourValue::White);
     shadow->setTextureFiltering(Ogre::TFO_NONE);
+}
+
+// The receivers' pass of a point light's cube faces.
+void makeFacesReceiver() {
+    program("sk/receiver-faces.vert", Ogre::GPT_VERTEX_PROGRAM, kFacesReceiverVertex);
+    program("sk/receiver-faces.frag", Ogre::GPT_FRAGMENT_PROGRAM, kFacesReceiverFragment);
+    Ogre::Pass* pass = programmedMaterial("sk/receiver-faces")->getTechnique(0)->getPass(0);
+    for (int i = 0; i < kCubeMaps; ++i) {
+        const std::string n = std::to_string(i);
+        pass->getVertexProgramParameters()->setNamedAutoConstant(
+            "textureWorldViewProj" + n, Ogre::GpuProgramParameters::ACT_TEXTURE_WORLDVIEWPROJ_MATRIX, size_t(i));
+        pass->getFragmentProgramParameters()->setNamedConstant("shadowMap" + n, i);
+        addShadowUnit(pass);
+    }
 }
 
 // The receivers' pass of the split set-ups.
@@ -345,7 +396,11 @@ void draw(const Options& o, const Shot& shot, Ogre::Root& root, Ogre::SceneManag
     sm->setShadowTextureCountPerLightType(Ogre::Light::LT_DIRECTIONAL, size_t(maps));
     sm->setShadowTextureSettings(Ogre::uint16(mapSideOf(shot.technique, o.mapSize)), Ogre::uint16(maps),
                                  Ogre::PF_FLOAT32_R);
-    scene->setMaterialName(0, maps > 1 ? "sk/receiver-split" : "sk/receiver");
+    if (shot.technique == "cube" && !(shot.view.lamp && shot.view.lamp->point))
+        fail(shot.out + ": technique cube draws a camera file's point light, and this one has none");
+    scene->setMaterialName(0, shot.technique == "cube" ? "sk/receiver-faces"
+                              : maps > 1               ? "sk/receiver-split"
+                                                       : "sk/receiver");
     splits.use(setup);
     Ogre::Light* sun = sm->getLight("sun");
     const auto vec = [](const samples::Vec3& v) {
@@ -360,7 +415,7 @@ void draw(const Options& o, const Shot& shot, Ogre::Root& root, Ogre::SceneManag
         }
         sun->setAttenuation(Ogre::Real(lamp->range), 1.0f, 0.0f, 0.0f);
         sun->getParentSceneNode()->setPosition(vec(lamp->position));
-        sm->setShadowTextureCountPerLightType(sun->getType(), 1);
+        sm->setShadowTextureCountPerLightType(sun->getType(), size_t(shot.technique == "cube" ? kCubeMaps : 1));
     } else {
         sun->setType(Ogre::Light::LT_DIRECTIONAL);
         sun->getParentSceneNode()->setDirection(vec(shot.view.sunTravel), Ogre::Node::TS_WORLD);
@@ -430,6 +485,7 @@ int main(int argc, char** argv) {
     Ogre::ResourceGroupManager::getSingleton().initialiseAllResourceGroups();
     Ogre::SceneManager* sm = root.createSceneManager();
     makeMaterials(sm);
+    makeFacesReceiver();
     SplitDepths splits(makeSplitReceiver());
     sm->addListener(&splits);
     sm->setShadowTechnique(Ogre::SHADOWTYPE_TEXTURE_ADDITIVE_INTEGRATED);

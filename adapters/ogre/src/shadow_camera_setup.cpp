@@ -114,14 +114,31 @@ core::Result<core::ShadowSetup> spotSetupFor(const Ogre::Affine3& viewFromWorld,
     return setup;
 }
 
-core::Result<core::ShadowSetup> pointSetupFor(const Ogre::Affine3& viewFromWorld, const Ogre::Matrix4& clipFromView,
-                                              double shadowDistance, const Ogre::Vector3& wsPosition, double range,
-                                              const Ogre::AxisAlignedBox& wsSceneBounds, int mapSize) {
+namespace {
+// A point light's set-up by `compute` (one map, or the cube) for OGRE's camera.
+core::Result<core::ShadowSetup>
+pointLightSetup(const Ogre::Affine3& viewFromWorld, const Ogre::Matrix4& clipFromView, double shadowDistance,
+                const Ogre::Vector3& wsPosition, double range, const Ogre::AxisAlignedBox& wsSceneBounds, int mapSize,
+                core::Result<core::ShadowSetup> (*compute)(const core::LocalShadowInputs&, const core::PointLight&)) {
     auto inputs = viewInputsFor(viewFromWorld, clipFromView, shadowDistance, wsSceneBounds);
     if (!inputs) return inputs.errorInfo();
     inputs->mapSize = mapSize;
-    const core::PointLight point{.wsPosition = toCore(wsPosition), .range = range};
-    return core::computePointSingleOrAimedMapSetup(*inputs, point);
+    return compute(*inputs, core::PointLight{.wsPosition = toCore(wsPosition), .range = range});
+}
+} // namespace
+
+core::Result<core::ShadowSetup> pointSetupFor(const Ogre::Affine3& viewFromWorld, const Ogre::Matrix4& clipFromView,
+                                              double shadowDistance, const Ogre::Vector3& wsPosition, double range,
+                                              const Ogre::AxisAlignedBox& wsSceneBounds, int mapSize) {
+    return pointLightSetup(viewFromWorld, clipFromView, shadowDistance, wsPosition, range, wsSceneBounds, mapSize,
+                           core::computePointSingleOrAimedMapSetup);
+}
+
+core::Result<core::ShadowSetup> cubeSetupFor(const Ogre::Affine3& viewFromWorld, const Ogre::Matrix4& clipFromView,
+                                             double shadowDistance, const Ogre::Vector3& wsPosition, double range,
+                                             const Ogre::AxisAlignedBox& wsSceneBounds, int mapSize) {
+    return pointLightSetup(viewFromWorld, clipFromView, shadowDistance, wsPosition, range, wsSceneBounds, mapSize,
+                           core::computePointShadowSetup);
 }
 
 Ogre::AxisAlignedBox sceneBounds(const Ogre::SceneNode& node) {
@@ -226,17 +243,39 @@ bool ShadowCameraSetup::spotCamera(const Ogre::SceneManager* sm, const Ogre::Cam
                               light->getDerivedDirection(), light->getSpotlightOuterAngle(),
                               double(light->getAttenuationRange()), boundsOf(sm, light, 0), m_inputs.mapSize);
     return keepLocal(std::move(setup), m_lastSpotSetup, m_lastSpotError) &&
-           localCamera(*m_lastSpotSetup, cam, light, texCam);
+           localCamera(*m_lastSpotSetup, 0, cam, light, texCam);
 }
 
 bool ShadowCameraSetup::pointCamera(const Ogre::SceneManager* sm, const Ogre::Camera* cam, const Ogre::Light* light,
-                                    Ogre::Camera* texCam) const {
+                                    Ogre::Camera* texCam, size_t iteration) const {
+    if (m_pointCubeFaces && iteration > 0) {
+        // The light's later textures: the faces of the set-up its first computed.
+        if (!m_lastPointSetup) return false;
+        if (iteration < m_lastPointSetup->views.size())
+            return localCamera(*m_lastPointSetup, iteration, cam, light, texCam);
+        // No face left: a map of nothing, which every receiver reads as lit. A camera above the
+        // scene box looking up, along the world's +Y, holds no caster; every receiver lies
+        // behind it (w < 0), outside the map.
+        const Ogre::AxisAlignedBox box = boundsOf(sm, light, iteration);
+        Ogre::Affine3 view;
+        // The camera's −Z (OGRE's forward) turned to the world's +Y: 90° about X.
+        view.makeInverseTransform(Ogre::Vector3(0, box.getMaximum().y + 1.0f, 0), Ogre::Vector3::UNIT_SCALE,
+                                  Ogre::Quaternion(Ogre::Degree(90), Ogre::Vector3::UNIT_X));
+        texCam->setCustomViewMatrix(true, view);
+        // 90° with its near plane at 0.1 and no far one: z_clip = −z − 0.2, w = −z.
+        texCam->setCustomProjectionMatrix(true, Ogre::Matrix4(1, 0, 0, 0, 0, 1, 0, 0, 0, 0, -1, -0.2f, 0, 0, -1, 0));
+        return true;
+    }
     const double far = sm->getShadowFarDistance();
-    auto setup = pointSetupFor(cam->getViewMatrix(), cam->getProjectionMatrix(),
-                               far > 0.0 ? far : std::numeric_limits<double>::infinity(), light->getDerivedPosition(),
-                               double(light->getAttenuationRange()), boundsOf(sm, light, 0), m_inputs.mapSize);
+    const double shadowDistance = far > 0.0 ? far : std::numeric_limits<double>::infinity();
+    auto setup = m_pointCubeFaces ? cubeSetupFor(cam->getViewMatrix(), cam->getProjectionMatrix(), shadowDistance,
+                                                 light->getDerivedPosition(), double(light->getAttenuationRange()),
+                                                 boundsOf(sm, light, 0), m_inputs.mapSize)
+                                  : pointSetupFor(cam->getViewMatrix(), cam->getProjectionMatrix(), shadowDistance,
+                                                  light->getDerivedPosition(), double(light->getAttenuationRange()),
+                                                  boundsOf(sm, light, 0), m_inputs.mapSize);
     return keepLocal(std::move(setup), m_lastPointSetup, m_lastPointError) &&
-           localCamera(*m_lastPointSetup, cam, light, texCam);
+           localCamera(*m_lastPointSetup, 0, cam, light, texCam);
 }
 
 bool ShadowCameraSetup::keepLocal(core::Result<core::ShadowSetup> setup, std::optional<core::ShadowSetup>& last,
@@ -246,11 +285,11 @@ bool ShadowCameraSetup::keepLocal(core::Result<core::ShadowSetup> setup, std::op
     return last.has_value();
 }
 
-bool ShadowCameraSetup::localCamera(const core::ShadowSetup& setup, const Ogre::Camera* cam, const Ogre::Light* light,
-                                    Ogre::Camera* texCam) {
+bool ShadowCameraSetup::localCamera(const core::ShadowSetup& setup, size_t view, const Ogre::Camera* cam,
+                                    const Ogre::Light* light, Ogre::Camera* texCam) {
     // A light that misses the view lights nothing seen: OGRE's camera draws a map nothing reads.
-    if (setup.views.empty()) return false;
-    TextureCamera camera = textureCameraOf(setup, 0);
+    if (view >= setup.views.size()) return false;
+    TextureCamera camera = textureCameraOf(setup, view);
     // The core's near plane lies just in front of the receivers, casters nearer the light to be
     // clamped to it; OGRE culls them against the texture camera's near plane first and has no
     // depth clamp. So the near plane moves towards the light, where OGRE's own camera for a
@@ -259,7 +298,7 @@ bool ShadowCameraSetup::localCamera(const core::ShadowSetup& setup, const Ogre::
     // the planes — so every receiver keeps its texel. In the core's [0, 1] row z = f / (n − f)
     // · zv + n f / (n − f) the planes are n = m23 / m22 and f = m23 / (m22 + 1); OpenGL's row is
     // −(f + n') / (f − n') · zv − 2 f n' / (f − n').
-    const core::Mat4& clipFromLight = setup.views[0].clipFromLight;
+    const core::Mat4& clipFromLight = setup.views[view].clipFromLight;
     const double zNear = clipFromLight[3][2] / clipFromLight[2][2];
     const double zFar = clipFromLight[3][2] / (clipFromLight[2][2] + 1.0);
     const double nearToLight = std::min(zNear, double(light->_deriveShadowNearClipDistance(cam)));
@@ -273,8 +312,9 @@ bool ShadowCameraSetup::localCamera(const core::ShadowSetup& setup, const Ogre::
 void ShadowCameraSetup::getShadowCamera(const Ogre::SceneManager* sm, const Ogre::Camera* cam, const Ogre::Viewport* vp,
                                         const Ogre::Light* light, Ogre::Camera* texCam, size_t iteration) const {
     if (light->getType() != Ogre::Light::LT_DIRECTIONAL) {
-        const bool ours = light->getType() == Ogre::Light::LT_SPOTLIGHT ? spotCamera(sm, cam, light, texCam)
-                                                                        : pointCamera(sm, cam, light, texCam);
+        const bool ours = light->getType() == Ogre::Light::LT_SPOTLIGHT
+                              ? spotCamera(sm, cam, light, texCam)
+                              : pointCamera(sm, cam, light, texCam, iteration);
         if (!ours) m_fallback.getShadowCamera(sm, cam, vp, light, texCam, iteration);
         return;
     }

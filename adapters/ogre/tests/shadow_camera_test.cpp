@@ -21,6 +21,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <random>
 
 namespace {
@@ -404,6 +405,38 @@ TEST_F(OgreScene, SpotLightMapsHoldWhatTheCameraSeesOfTheConeInTheCoresTexels) {
     EXPECT_GE(narrowed, 3); // the camera sees part of the cone: the map narrows to it
 }
 
+// A point of the camera's view (worldFromClip), drawn uniformly in its clip space, if it lies in the
+// yard's box and within `range` of the lamp, but not within 0.3 m of it.
+std::optional<core::Vec3> seenInReach(const core::Mat4& worldFromClip, const core::Vec3& wsLamp, double range,
+                                      std::mt19937& rng) {
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    const core::Vec4 h = worldFromClip * core::Vec4(2 * u(rng) - 1, 2 * u(rng) - 1, 2 * u(rng) - 1, 1.0);
+    const core::Vec3 p = core::Vec3(h) / h.w;
+    const double distance = glm::distance(p, wsLamp);
+    if (p.x < -60 || p.x > 60 || p.y < 0 || p.y > 20 || p.z < -60 || p.z > 60 || distance > range || distance < 0.3)
+        return std::nullopt;
+    return p;
+}
+
+// A lamp over a 120 m yard, 3 m up to 3 + lampHeights, reaching 20–80 m, and an eye among the
+// lamps looking 0.1–0.5 below level.
+struct LampAndEye {
+    core::Vec3 wsLamp;
+    double range;
+    core::Vec3 wsEye, forward;
+};
+LampAndEye randomLampAndEye(std::mt19937& rng, double lampHeights) {
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    LampAndEye out;
+    out.wsLamp = core::Vec3(-50.0 + 100.0 * u(rng), 3.0 + lampHeights * u(rng), -50.0 + 100.0 * u(rng));
+    out.range = 20.0 + 60.0 * u(rng);
+    out.wsEye = core::Vec3(-40.0 + 80.0 * u(rng), 1.7 + 10.0 * u(rng), -40.0 + 80.0 * u(rng));
+    core::Vec3 forward = unitVector(rng);
+    forward.y = -0.1 - 0.4 * std::abs(forward.y);
+    out.forward = glm::normalize(forward);
+    return out;
+}
+
 TEST_F(OgreScene, PointLightMapsHoldWhatTheCameraSeesWhereOgresOwnNeedNot) {
     // Lamps over the forest floor, cameras among them. OGRE 1.12 gives a point light one 120°
     // map aimed from the lamp at a point ahead of the camera; the adapter aims it at what the
@@ -413,18 +446,13 @@ TEST_F(OgreScene, PointLightMapsHoldWhatTheCameraSeesWhereOgresOwnNeedNot) {
     // survive OGRE's culling; where that spans more than 170° from the lamp, every such point
     // inside the 170° cone the adapter then aims at the middle of it.
     std::mt19937 rng(13);
-    std::uniform_real_distribution<double> u(0.0, 1.0);
     const Ogre::AxisAlignedBox box(-60, 0, -60, 60, 20, 60);
     int maps = 0, partial = 0;
     long seen = 0, heldByAdapter = 0, heldByOgre = 0;
     double logGain = 0.0, logAreaGain = 0.0;
     for (int trial = 0; trial < 40; ++trial) {
-        const core::Vec3 wsLamp(-50.0 + 100.0 * u(rng), 3.0 + 30.0 * u(rng), -50.0 + 100.0 * u(rng));
-        const double range = 20.0 + 60.0 * u(rng);
-        const core::Vec3 wsEye(-40.0 + 80.0 * u(rng), 1.7 + 10.0 * u(rng), -40.0 + 80.0 * u(rng));
-        core::Vec3 forward = unitVector(rng);
-        forward.y = -0.1 - 0.4 * std::abs(forward.y);
-        Ogre::Camera* cam = camera(wsEye, glm::normalize(forward), 60.0, 16.0 / 9.0, 0.3, 60.0);
+        const auto [wsLamp, range, wsEye, forward] = randomLampAndEye(rng, 30.0);
+        Ogre::Camera* cam = camera(wsEye, forward, 60.0, 16.0 / 9.0, 0.3, 60.0);
         Ogre::Light* lamp = point(wsLamp, range);
         ShadowCameraSetup setup;
         setup.setSceneBounds(box);
@@ -455,12 +483,9 @@ TEST_F(OgreScene, PointLightMapsHoldWhatTheCameraSeesWhereOgresOwnNeedNot) {
             -glm::normalize(core::Vec3(glm::inverse(core.views[0].lightFromWorld) * core::Vec4(0.0, 0.0, 1.0, 0.0)));
         const core::Mat4 worldFromClip = glm::inverse(clipFromWorldOf(*cam));
         for (int sample = 0; sample < 2000; ++sample) {
-            const core::Vec4 h = worldFromClip * core::Vec4(2 * u(rng) - 1, 2 * u(rng) - 1, 2 * u(rng) - 1, 1.0);
-            const core::Vec3 p = core::Vec3(h) / h.w;
-            const core::Vec3 toPoint = p - wsLamp;
-            if (p.x < -60 || p.x > 60 || p.y < 0 || p.y > 20 || p.z < -60 || p.z > 60 || glm::length(toPoint) > range ||
-                glm::length(toPoint) < 0.3)
-                continue;
+            const std::optional<core::Vec3> sampled = seenInReach(worldFromClip, wsLamp, range, rng);
+            if (!sampled) continue;
+            const core::Vec3 p = *sampled, toPoint = p - wsLamp;
             ++seen;
             const core::Vec3 own = texelOf(*ownCam, p, 2048);
             heldByOgre += own.x >= 0 && own.x <= 2048 && own.y >= 0 && own.y <= 2048;
@@ -557,6 +582,76 @@ TEST_F(OgreScene, TheDefaultSceneBoxHoldsTheGeometryNotTheCameras) {
     EXPECT_NEAR(bounds.getMinimum().z, -50, 1e-4);
     EXPECT_NEAR(bounds.getMaximum().z, 50, 1e-4);
     (void)cam;
+}
+
+TEST_F(OgreScene, APointLightAsCubeFacesHoldsEveryPointTheCameraSeesInItsFace) {
+    // With setPointLightCubeFaces, a lamp's six shadow textures are the cube faces that see
+    // something of the view, then maps of nothing. Every point the camera sees in range — lamps
+    // among the view too, which one map cannot hold whole — lands in the texture of its own face
+    // (core::cubeFaceOf) on the core's texel; every point of the box lies outside each map of
+    // nothing (behind its camera or beyond its sides), so a receiver shader that multiplies the
+    // textures' terms reads them lit.
+    std::mt19937 rng(17);
+    const Ogre::AxisAlignedBox box(-60, 0, -60, 60, 20, 60);
+    int lamps = 0, among = 0, empties = 0;
+    long held = 0;
+    for (int trial = 0; trial < 30; ++trial) {
+        const auto [wsLamp, range, wsEye, forward] = randomLampAndEye(rng, 15.0);
+        Ogre::Camera* cam = camera(wsEye, forward, 60.0, 16.0 / 9.0, 0.3, 60.0);
+        Ogre::Light* lamp = point(wsLamp, range);
+        ShadowCameraSetup setup;
+        setup.setSceneBounds(box);
+        setup.setPointLightCubeFaces(true);
+        std::vector<Ogre::Camera*> texCams;
+        for (size_t iteration = 0; iteration < 6; ++iteration) {
+            texCams.push_back(m_sm->createCamera("face" + std::to_string(m_cameras++)));
+            m_sm->getRootSceneNode()->createChildSceneNode()->attachObject(texCams.back());
+            setup.getShadowCamera(m_sm, cam, nullptr, lamp, texCams.back(), iteration);
+        }
+        ASSERT_TRUE(setup.lastPointSetup()) << setup.lastPointError();
+        const core::ShadowSetup& cube = *setup.lastPointSetup();
+        if (cube.views.empty()) continue;
+        ++lamps;
+        // Whether one map could hold it (the engine shots' `among` lamps).
+        among += !core::computePointSingleMapSetup(
+            core::LocalShadowInputs{.camera =
+                                        [&] {
+                                            core::PerspectiveCamera c;
+                                            c.wsEye = wsEye;
+                                            c.wsDirection = forward;
+                                            c.fovYDegrees = 60.0, c.aspect = 16.0 / 9.0, c.zNear = 0.3, c.zFar = 60.0;
+                                            return c;
+                                        }(),
+                                    .wsSceneBounds = core::Aabb::fromMinMax({-60, 0, -60}, {60, 20, 60}),
+                                    .mapSize = 2048},
+            core::PointLight{.wsPosition = wsLamp, .range = range});
+        const core::Mat4 worldFromClip = glm::inverse(clipFromWorldOf(*cam));
+        for (int sample = 0; sample < 2000; ++sample) {
+            const std::optional<core::Vec3> sampled = seenInReach(worldFromClip, wsLamp, range, rng);
+            if (!sampled) continue;
+            const core::Vec3 p = *sampled, toPoint = p - wsLamp;
+            const int face = core::cubeFaceOf(toPoint);
+            size_t view = 0;
+            while (view < cube.views.size() && cube.views[view].face != face) ++view;
+            ASSERT_LT(view, cube.views.size()) << "a seen point's face was left out";
+            const core::EngineShadowView gl =
+                core::toEngineView(cube.views[view], cube, core::OutputConventions::openGL());
+            expectInTheMapOnTheCoresTexel(*texCams[view], gl, p, 5e-3 + 2e-5 * 2048 / glm::length(toPoint));
+            ++held;
+            for (size_t nothing = cube.views.size(); nothing < 6; ++nothing) {
+                const core::Vec4 c = clipFromWorldOf(*texCams[nothing]) * core::Vec4(p, 1.0);
+                EXPECT_TRUE(c.w <= 0.0 || std::abs(c.x) > c.w || std::abs(c.y) > c.w) << "a map of nothing holds p";
+            }
+        }
+        empties += int(6 - cube.views.size());
+    }
+    EXPECT_GE(lamps, 10);
+    EXPECT_GE(among, 3);
+    EXPECT_GE(empties, 10);
+    EXPECT_GE(held, 5000);
+    std::printf("%d point lights as cube faces (%d of them among what the camera sees, where one map holds only part): "
+                "%ld points seen in range, each in its face's texture on the core's texel; %d maps of nothing\n",
+                lamps, among, held, empties);
 }
 
 TEST_F(OgreScene, TheSceneIsWalkedOnceARenderHoweverManyLightsCast) {

@@ -2,7 +2,8 @@
 // (TSM, LiSPSM, PSM, focused, standard, cascades one per shadow-texture iteration, or `auto`:
 // the core's error-driven choice each frame for the receivers the application hands it), and
 // for spot lights the core's spot map, narrowed to what the camera sees of the cone, and for
-// point lights one map over what the camera sees within the light's range.
+// point lights one map over what the camera sees within the light's range, or the cube's faces,
+// one shadow texture each (setPointLightCubeFaces).
 //
 // OGRE asks a light's ShadowCameraSetup once per shadow texture and frame (getShadowCamera,
 // `iteration` counting the light's textures) to set the texture camera; OGRE then draws the
@@ -80,6 +81,13 @@ core::Result<core::ShadowSetup> pointSetupFor(const Ogre::Affine3& viewFromWorld
                                               double shadowDistance, const Ogre::Vector3& wsPosition, double range,
                                               const Ogre::AxisAlignedBox& wsSceneBounds, int mapSize);
 
+/// The core's cube for a point light at wsPosition reaching `range` (core::computePointShadowSetup):
+/// the faces that see something of what the camera sees, each a 90° view with its `face`. Fails
+/// in one line for bad input.
+core::Result<core::ShadowSetup> cubeSetupFor(const Ogre::Affine3& viewFromWorld, const Ogre::Matrix4& clipFromView,
+                                             double shadowDistance, const Ogre::Vector3& wsPosition, double range,
+                                             const Ogre::AxisAlignedBox& wsSceneBounds, int mapSize);
+
 /// One view of a set-up as OGRE's texture camera takes it: the light's rigid frame and the
 /// rest of the map's OpenGL-convention clip matrix.
 struct TextureCamera {
@@ -105,6 +113,15 @@ public:
     /// The box every caster and receiver lies in. Unset (the default): sceneBounds of the root
     /// scene node, taken once each time OGRE renders the scene, for all the lights that cast.
     void setSceneBounds(std::optional<Ogre::AxisAlignedBox> wsBounds) { m_fixedBounds = wsBounds; }
+    /// A point light as the faces of a cube (core::computePointShadowSetup), one shadow texture
+    /// each, where OGRE gives point lights several (Ogre::SceneManager::
+    /// setShadowTextureCountPerLightType(Ogre::Light::LT_POINT, 6)): texture i is the i-th face
+    /// that sees something of the camera's view, the rest drawn by a camera that sees nothing (a
+    /// receiver shader multiplies the textures' terms, each lit outside its own frustum). Off (the
+    /// default): one map (core::computePointSingleOrAimedMapSetup), which a lamp among what the
+    /// camera sees cannot hold whole.
+    void setPointLightCubeFaces(bool on) { m_pointCubeFaces = on; }
+    bool pointLightCubeFaces() const { return m_pointCubeFaces; }
     /// How many times the scene graph was walked for its box: a count of work, one a render of
     /// the scene however many lights cast.
     long sceneWalks() const { return m_sceneWalks; }
@@ -146,17 +163,17 @@ private:
     // Sets texCam to the spot light's map; false where OGRE's default camera must do.
     bool spotCamera(const Ogre::SceneManager* sm, const Ogre::Camera* cam, const Ogre::Light* light,
                     Ogre::Camera* texCam) const;
-    // The same for a point light's one map.
+    // The same for a point light's one map, or its texture `iteration` of the cube's faces.
     bool pointCamera(const Ogre::SceneManager* sm, const Ogre::Camera* cam, const Ogre::Light* light,
-                     Ogre::Camera* texCam) const;
+                     Ogre::Camera* texCam, size_t iteration) const;
     // Keeps a local light's set-up in `last`, or its error in `lastError` (said once); whether
     // there is a set-up.
     static bool keepLocal(core::Result<core::ShadowSetup> setup, std::optional<core::ShadowSetup>& last,
                           std::string& lastError);
-    // Sets texCam to a local light's one view, its near plane moved towards the light; false
-    // where the set-up has no view.
-    static bool localCamera(const core::ShadowSetup& setup, const Ogre::Camera* cam, const Ogre::Light* light,
-                            Ogre::Camera* texCam);
+    // Sets texCam to a local light's view `view`, its near plane moved towards the light; false
+    // where the set-up has no such view.
+    static bool localCamera(const core::ShadowSetup& setup, size_t view, const Ogre::Camera* cam,
+                            const Ogre::Light* light, Ogre::Camera* texCam);
     // Keeps a frame's error in `last`, said in OGRE's log once per different error (not once
     // a frame); an empty error clears it.
     static void report(const std::string& error, std::string& last);
@@ -182,6 +199,7 @@ private:
     mutable const Ogre::SceneManager* m_walkedFor = nullptr;
     mutable unsigned long m_walkedFrame = 0;
     mutable long m_sceneWalks = 0;
+    bool m_pointCubeFaces = false;
 };
 
 } // namespace shadowkit::ogreadapter
