@@ -613,17 +613,13 @@ TEST_F(OgreScene, APointLightAsCubeFacesHoldsEveryPointTheCameraSeesInItsFace) {
         if (cube.views.empty()) continue;
         ++lamps;
         // Whether one map could hold it (the engine shots' `among` lamps).
+        core::PerspectiveCamera view;
+        view.wsEye = wsEye;
+        view.wsDirection = forward;
+        view.fovYDegrees = 60.0, view.aspect = 16.0 / 9.0, view.zNear = 0.3, view.zFar = 60.0;
         among += !core::computePointSingleMapSetup(
-            core::LocalShadowInputs{.camera =
-                                        [&] {
-                                            core::PerspectiveCamera c;
-                                            c.wsEye = wsEye;
-                                            c.wsDirection = forward;
-                                            c.fovYDegrees = 60.0, c.aspect = 16.0 / 9.0, c.zNear = 0.3, c.zFar = 60.0;
-                                            return c;
-                                        }(),
-                                    .wsSceneBounds = core::Aabb::fromMinMax({-60, 0, -60}, {60, 20, 60}),
-                                    .mapSize = 2048},
+            core::LocalShadowInputs{
+                .camera = view, .wsSceneBounds = core::Aabb::fromMinMax({-60, 0, -60}, {60, 20, 60}), .mapSize = 2048},
             core::PointLight{.wsPosition = wsLamp, .range = range});
         const core::Mat4 worldFromClip = glm::inverse(clipFromWorldOf(*cam));
         for (int sample = 0; sample < 2000; ++sample) {
