@@ -15,6 +15,7 @@
 #include <osgUtil/CullVisitor>
 
 #include <cmath>
+#include <optional>
 #include <random>
 
 namespace {
@@ -331,6 +332,37 @@ TEST(OsgShadowCamera, SpotLightMapsHoldWhatTheCameraSeesOfTheConeInTheCoresTexel
     EXPECT_GE(narrowed, 3); // the camera sees part of the cone: the map narrows to it
 }
 
+// A lamp over a 120 m yard, 3–33 m up, and a camera among the lamps looking 0.1–0.5 below
+// level, its projection reaching zFar, as OSG holds them.
+struct LampAndView {
+    core::Vec3 wsLamp;
+    ::osg::Matrixd view, projection;
+};
+LampAndView randomLampAndView(std::mt19937& rng, double zFar) {
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    LampAndView out;
+    out.wsLamp = core::Vec3(-50.0 + 100.0 * u(rng), 3.0 + 30.0 * u(rng), -50.0 + 100.0 * u(rng));
+    const core::Vec3 wsEye(-40.0 + 80.0 * u(rng), 1.7 + 10.0 * u(rng), -40.0 + 80.0 * u(rng));
+    core::Vec3 forward = unitVector(rng);
+    forward.y = -0.1 - 0.4 * std::abs(forward.y);
+    forward = glm::normalize(forward);
+    out.view = ::osg::Matrixd::lookAt(::osg::Vec3d(wsEye.x, wsEye.y, wsEye.z),
+                                      ::osg::Vec3d(wsEye.x + forward.x, wsEye.y + forward.y, wsEye.z + forward.z),
+                                      ::osg::Vec3d(0, 1, 0));
+    out.projection = ::osg::Matrixd::perspective(60.0, 16.0 / 9.0, 0.3, zFar);
+    return out;
+}
+
+// A point of the camera's view (worldFromClip), drawn uniformly in its clip space, if it lies in
+// the yard's box.
+std::optional<core::Vec3> seenInYard(const core::Mat4& worldFromClip, std::mt19937& rng) {
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    const core::Vec4 h = worldFromClip * core::Vec4(2 * u(rng) - 1, 2 * u(rng) - 1, 2 * u(rng) - 1, 1.0);
+    const core::Vec3 p = core::Vec3(h) / h.w;
+    if (p.x < -60 || p.x > 60 || p.y < 0 || p.y > 20 || p.z < -60 || p.z > 60) return std::nullopt;
+    return p;
+}
+
 TEST(OsgShadowCamera, PointLightMapsHoldWhatTheCameraSeesWhereOsgsOwnNeedNot) {
     // Lamps over a yard and cameras among them. OSG aims a point light's map along the light's
     // direction (here OSG's default, −Z) and widens it to the view frustum's corners, at most
@@ -340,21 +372,12 @@ TEST(OsgShadowCamera, PointLightMapsHoldWhatTheCameraSeesWhereOsgsOwnNeedNot) {
     // more than 170° from the lamp, every such point inside the 170° cone the adapter then
     // aims at the middle of it, and the set-up says that it holds only part.
     std::mt19937 rng(11);
-    std::uniform_real_distribution<double> u(0.0, 1.0);
     const ::osg::BoundingBoxd box({-60.0, 0.0, -60.0}, {60.0, 20.0, 60.0});
     int maps = 0, partial = 0, ownMaps = 0;
     long seen = 0, heldByAdapter = 0, heldByOsg = 0;
     double logGain = 0.0, logAreaGain = 0.0;
     for (int trial = 0; trial < 40; ++trial) {
-        const core::Vec3 wsLamp(-50.0 + 100.0 * u(rng), 3.0 + 30.0 * u(rng), -50.0 + 100.0 * u(rng));
-        const core::Vec3 wsEye(-40.0 + 80.0 * u(rng), 1.7 + 10.0 * u(rng), -40.0 + 80.0 * u(rng));
-        core::Vec3 forward = unitVector(rng);
-        forward.y = -0.1 - 0.4 * std::abs(forward.y);
-        forward = glm::normalize(forward);
-        const ::osg::Matrixd view = ::osg::Matrixd::lookAt(
-            ::osg::Vec3d(wsEye.x, wsEye.y, wsEye.z),
-            ::osg::Vec3d(wsEye.x + forward.x, wsEye.y + forward.y, wsEye.z + forward.z), ::osg::Vec3d(0, 1, 0));
-        const ::osg::Matrixd projection = ::osg::Matrixd::perspective(60.0, 16.0 / 9.0, 0.3, 40.0);
+        const auto [wsLamp, view, projection] = randomLampAndView(rng, 40.0);
         ::osg::ref_ptr<ShadowMap> shadowMap = new ShadowMap;
         shadowMap->setSceneBounds(box);
         ::osg::ref_ptr<osgShadow::ViewDependentShadowMap> plain = new osgShadow::ViewDependentShadowMap;
@@ -388,9 +411,9 @@ TEST(OsgShadowCamera, PointLightMapsHoldWhatTheCameraSeesWhereOsgsOwnNeedNot) {
             ++ownMaps;
         }
         for (int sample = 0; sample < 2000; ++sample) {
-            const core::Vec4 h = worldFromClip * core::Vec4(2 * u(rng) - 1, 2 * u(rng) - 1, 2 * u(rng) - 1, 1.0);
-            const core::Vec3 p = core::Vec3(h) / h.w;
-            if (p.x < -60 || p.x > 60 || p.y < 0 || p.y > 20 || p.z < -60 || p.z > 60) continue;
+            const std::optional<core::Vec3> sampled = seenInYard(worldFromClip, rng);
+            if (!sampled) continue;
+            const core::Vec3 p = *sampled;
             if (glm::distance(p, wsLamp) < 1e-3) continue;
             ++seen;
             const core::Vec4 o = ownClipFromWorld * core::Vec4(p, 1.0);
@@ -425,15 +448,7 @@ TEST(OsgShadowCamera, AnAttenuatedLampsMapEndsWhereItsLightFadesOut) {
     long lit = 0, beyond = 0, beyondOutside = 0;
     double logAreaGain = 0.0;
     for (int trial = 0; trial < 40; ++trial) {
-        const core::Vec3 wsLamp(-50.0 + 100.0 * u(rng), 3.0 + 30.0 * u(rng), -50.0 + 100.0 * u(rng));
-        const core::Vec3 wsEye(-40.0 + 80.0 * u(rng), 1.7 + 10.0 * u(rng), -40.0 + 80.0 * u(rng));
-        core::Vec3 forward = unitVector(rng);
-        forward.y = -0.1 - 0.4 * std::abs(forward.y);
-        forward = glm::normalize(forward);
-        const ::osg::Matrixd view = ::osg::Matrixd::lookAt(
-            ::osg::Vec3d(wsEye.x, wsEye.y, wsEye.z),
-            ::osg::Vec3d(wsEye.x + forward.x, wsEye.y + forward.y, wsEye.z + forward.z), ::osg::Vec3d(0, 1, 0));
-        const ::osg::Matrixd projection = ::osg::Matrixd::perspective(60.0, 16.0 / 9.0, 0.3, 80.0);
+        const auto [wsLamp, view, projection] = randomLampAndView(rng, 80.0);
         const double range = 10.0 + 30.0 * u(rng);
         ::osg::ref_ptr<::osg::Light> bulb = new ::osg::Light, plainBulb = new ::osg::Light;
         for (::osg::Light* light : {bulb.get(), plainBulb.get()})
@@ -464,9 +479,9 @@ TEST(OsgShadowCamera, AnAttenuatedLampsMapEndsWhereItsLightFadesOut) {
         const core::Mat4 clipFromWorld = toCore(call.projection) * toCore(call.view);
         const core::Mat4 worldFromClip = glm::inverse(toCore(projection) * toCore(view));
         for (int sample = 0; sample < 2000; ++sample) {
-            const core::Vec4 h = worldFromClip * core::Vec4(2 * u(rng) - 1, 2 * u(rng) - 1, 2 * u(rng) - 1, 1.0);
-            const core::Vec3 p = core::Vec3(h) / h.w;
-            if (p.x < -60 || p.x > 60 || p.y < 0 || p.y > 20 || p.z < -60 || p.z > 60) continue;
+            const std::optional<core::Vec3> sampled = seenInYard(worldFromClip, rng);
+            if (!sampled) continue;
+            const core::Vec3 p = *sampled;
             const double d = glm::distance(p, wsLamp);
             if (d < 1e-3) continue;
             // What the fixed-function pipeline lights a white surface facing the lamp with at p.
