@@ -11,7 +11,7 @@
 #include <vector>
 
 int main(int argc, char** argv) {
-    CLI::App app{"shadowkit: robust real-time shadows for large outdoor worlds"};
+    CLI::App app{"shadowkit: robust real-time shadows for large outdoor worlds", "shadowkit"};
     app.require_subcommand(1);
     app.set_version_flag("--version", "shadowkit " SHADOWKIT_VERSION_STRING);
     const std::vector<shadowkit::app::Command> commands = {

@@ -519,7 +519,7 @@ int run(const ViewerArgs& args, app::StateOptions state) {
 int main(int argc, char** argv) {
     using namespace shadowkit;
     viewer::ViewerArgs args;
-    CLI::App app{"shadowkit-viewer: the scene in a window with every option of `render` live"};
+    CLI::App app{"shadowkit-viewer: the scene in a window with every option of `render` live", "shadowkit-viewer"};
     args.options.addTo(app);
     app.add_option("--frames", args.frames, "draw this many frames, then exit (0: until the window closes)")
         ->check(CLI::NonNegativeNumber);

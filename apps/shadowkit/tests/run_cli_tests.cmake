@@ -129,6 +129,19 @@ check_fails(eval-unknown-view "unknown view" eval ${small} --views paper,sideway
 check_fails(eval-unwritable-json "--json" eval ${small} --json "${WORK}/garbage.glb/dir/r.json")
 check_fails(eval-unwritable-map "--error-map" eval ${small} --error-map "${WORK}/garbage.glb/dir/e.png")
 
+# Help names the program and the command, as a user types them: the arguments are parsed from a
+# vector, so CLI11 never sees argv[0] and the usage line was "Usage: eval [OPTIONS]".
+if(CASE STREQUAL "help-usage-names-the-program")
+  foreach(command "" eval render score)
+    execute_process(COMMAND ${SHADOWKIT} ${command} --help RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+    string(STRIP "shadowkit ${command}" expected)
+    string(FIND "${out}" "Usage: ${expected} [OPTIONS]" pos)
+    if(NOT rc EQUAL 0 OR pos EQUAL -1)
+      message(SEND_ERROR "help-usage-names-the-program: '${command} --help' (rc ${rc}) has no 'Usage: ${expected} [OPTIONS]':\n${out}")
+    endif()
+  endforeach()
+endif()
+
 # setup prints the JSON contract.
 if(CASE STREQUAL "eval-serve")
   # eval --serve: a bad request is one error line and an exit code of its own; the server goes on
