@@ -25,6 +25,12 @@
 # nine minutes): steps past it are skipped and say so. Results, logs and
 # bench JSON go to $OUT/gpu-results.tgz (re-packed after every step, so a killed run still returns
 # what it measured) and a summary is printed last. Nothing here asserts a time: it prints figures.
+#
+# DRY=1 tools/measure-gpu.sh [SECTION ...] runs every step on tiny inputs (20 trees, two frames,
+# 64 × 36 pixels, the test programs listing their tests) on any GL, llvmpipe included, in a few
+# minutes: a command an option's rename broke fails here, not in a GPU machine's few minutes. Its
+# figures mean nothing; its summary's return codes do (every step 0; `foliage` and `golden`, which
+# write results the next GPU run would use, are skipped).
 set -uo pipefail
 cd "$(dirname "$0")/.."
 start=$SECONDS
@@ -50,10 +56,34 @@ B=build/apps/shadowkit/shadowkit
 summary=$res/summary.txt
 note() { echo "$*" | tee -a "$summary"; }
 pack() { tar -C "$res" -czf "$out/gpu-results.tgz" . 2>/dev/null; }
+dry=${DRY:-0}
+# With DRY=1, a step's command on tiny inputs (above): --trees 20, --frames 2, 64 × 36 pixels for
+# the CLI's drawing commands, 200 cards once for measure-alpha.sh, and a test program's list.
+tiny() {
+  local prev="" a
+  tinyArgs=()
+  for a in "$@"; do
+    case $prev in
+    --trees) a=20 ;;
+    --frames) a=2 ;;
+    esac
+    tinyArgs+=("$a")
+    prev=$a
+  done
+  case " ${tinyArgs[*]} " in
+  *" $B bench "* | *" $B eval "* | *" $B render "*) tinyArgs+=(--size 64x36) ;;
+  *"measure-alpha.sh "*) tinyArgs=(tools/measure-alpha.sh 200 1 "${tinyArgs[-1]}") ;;
+  *" --gtest_brief=1 "*) tinyArgs+=(--gtest_list_tests) ;;
+  esac
+}
 # step NAME SECONDS COMMAND...: runs one measurement into NAME.log unless the deadline is near.
 step() {
   local name=$1 limit=$2 left=$((deadline - (SECONDS - start)))
   shift 2
+  if ((dry)); then
+    tiny "$@"
+    set -- "${tinyArgs[@]}"
+  fi
   if ((left < 20)); then note "skipped $name: ${left}s left of the deadline"; return; fi
   ((limit > left)) && limit=$left
   local t0=$SECONDS
@@ -181,6 +211,7 @@ for section in "${sections[@]}"; do
     done
     ;;
   foliage)
+    ((dry)) && { note "skipped foliage: DRY=1 (its sweep's results would stand as the next GPU run's)"; continue; }
     # The leafy forest against both truths (tools/measure-foliage.sh's sweep, 1280 × 720): its
     # results.csv is what LEAFY_RESULTS= writes the foliage tables from.
     # The bundle has no compiled Python module, and `shadowkit sweep` needs it: the package runs
@@ -194,6 +225,7 @@ for section in "${sections[@]}"; do
     pack
     ;;
   golden)
+    ((dry)) && { note "skipped golden: DRY=1 (it re-records the golden figures)"; continue; }
     # The test writes the figures into data/golden/<family>/ of this checkout (the compiled-in
     # source path leads here); they travel back in the results, then the tests are run once more
     # against them.
