@@ -36,9 +36,15 @@ Result<double> attenuationReach(const Attenuation& attenuation, double intensity
     const double m = intensity / cutoff - kc;
     if (!(m > 0.0)) return 0.0; // dimmer than the cutoff already at the light
     if (kl == 0.0 && kq == 0.0) return std::numeric_limits<double>::infinity();
-    // The positive root as 2m / (kl + √(kl² + 4·kq·m)): no cancellation when kq·m ≪ kl², and
-    // m / kl when kq = 0.
-    return 2.0 * m / (kl + std::sqrt(kl * kl + 4.0 * kq * m));
+    if (!std::isfinite(m)) return std::numeric_limits<double>::infinity(); // brighter than a double says
+    if (kq == 0.0) return m / kl;                                          // linear alone (∞ past a double's range)
+    // The positive root as 2m / (kl + √(kl² + 4·kq·m)): no cancellation when kq·m ≪ kl². Where
+    // kl² or kq·m overflows (terms near 1e154) that reads 0 (m / ∞): then the same root in
+    // square-root scale, √(m / kq) · 2 / (t + √(t² + 4)) with t = kl / √(kq·m), whose factors stay finite.
+    const double root = 2.0 * m / (kl + std::sqrt(kl * kl + 4.0 * kq * m));
+    if (root > 0.0) return root;
+    const double t = kl / (std::sqrt(kq) * std::sqrt(m));
+    return std::sqrt(m) / std::sqrt(kq) * 2.0 / (t + std::sqrt(t * t + 4.0));
 }
 
 Attenuation quadraticAttenuationReaching(double range, double intensity, double cutoff) {

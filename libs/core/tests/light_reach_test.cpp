@@ -64,6 +64,16 @@ TEST(LightReach, DegenerateFallOffs) {
     EXPECT_DOUBLE_EQ(attenuationReach({.constant = 0.0, .quadratic = 4.0}, 1.0, 0.01).value(), 5.0);
     const Attenuation nearlyLinear{.constant = 1.0, .linear = 1.0, .quadratic = 1e-14};
     EXPECT_NEAR(attenuationReach(nearlyLinear, 1.0, 0.01).value(), bisectedReach(nearlyLinear, 1.0, 0.01), 1e-9);
+    // Terms whose products overflow a double keep the root (d² + d − 2 = 0 scaled by 1e200: d = 1;
+    // without the linear term d = √2), not 0 from m / ∞ or NaN from ∞ / ∞; a light brighter than a
+    // double can say reaches everything.
+    EXPECT_DOUBLE_EQ(attenuationReach({.linear = 1e200, .quadratic = 1e200}, 1e200, 0.5).value(), 1.0);
+    EXPECT_DOUBLE_EQ(attenuationReach({.quadratic = 1e200}, 1e200, 0.5).value(), std::sqrt(2.0));
+    EXPECT_NEAR(attenuationReach({.linear = 1e200, .quadratic = 1e200}, 1e200, 0.5).value(),
+                bisectedReach({.linear = 1e200, .quadratic = 1e200}, 1e200, 0.5), 1e-12);
+    EXPECT_EQ(attenuationReach({.quadratic = 1.0}, 1e300, 1e-10).value(), std::numeric_limits<double>::infinity());
+    EXPECT_EQ(attenuationReach({.linear = 1e-200}, 1e300, 0.5).value(), std::numeric_limits<double>::infinity());
+    EXPECT_DOUBLE_EQ(attenuationReach({.linear = 1e200}, 1e200, 0.5).value(), 2.0);
 }
 
 TEST(LightReach, ARangeBecomesAnAttenuationThatReachesIt) {
