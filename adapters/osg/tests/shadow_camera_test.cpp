@@ -363,6 +363,25 @@ std::optional<core::Vec3> seenInYard(const core::Mat4& worldFromClip, std::mt199
     return p;
 }
 
+// The adapter beside a plain ViewDependentShadowMap, each in a shadowed scene of its own (VDSM
+// reads its settings there), the adapter's scene box `wsBounds`.
+struct OursBesideOsgs {
+    ::osg::ref_ptr<ShadowMap> ours = new ShadowMap;
+    ::osg::ref_ptr<osgShadow::ViewDependentShadowMap> osgs = new osgShadow::ViewDependentShadowMap;
+    ::osg::ref_ptr<osgShadow::ShadowedScene> oursScene = new osgShadow::ShadowedScene(ours.get());
+    ::osg::ref_ptr<osgShadow::ShadowedScene> osgsScene = new osgShadow::ShadowedScene(osgs.get());
+    explicit OursBesideOsgs(const ::osg::BoundingBoxd& wsBounds) { ours->setSceneBounds(wsBounds); }
+    // A light the adapter leaves to OSG gets exactly the camera a plain VDSM computes.
+    void expectOsgsOwnCamera(const ::osg::Matrixd& view, const ::osg::Matrixd& projection,
+                             const ::osg::Light& light) const {
+        const VdsmCall got = callAsVdsm(*ours, view, projection, light);
+        const VdsmCall want = callAsVdsm(*osgs, view, projection, light);
+        EXPECT_EQ(got.ok, want.ok);
+        EXPECT_EQ(got.view, want.view);
+        EXPECT_EQ(got.projection, want.projection);
+    }
+};
+
 TEST(OsgShadowCamera, PointLightMapsHoldWhatTheCameraSeesWhereOsgsOwnNeedNot) {
     // Lamps over a yard and cameras among them. OSG aims a point light's map along the light's
     // direction (here OSG's default, −Z) and widens it to the view frustum's corners, at most
@@ -378,15 +397,12 @@ TEST(OsgShadowCamera, PointLightMapsHoldWhatTheCameraSeesWhereOsgsOwnNeedNot) {
     double logGain = 0.0, logAreaGain = 0.0;
     for (int trial = 0; trial < 40; ++trial) {
         const auto [wsLamp, view, projection] = randomLampAndView(rng, 40.0);
-        ::osg::ref_ptr<ShadowMap> shadowMap = new ShadowMap;
-        shadowMap->setSceneBounds(box);
-        ::osg::ref_ptr<osgShadow::ViewDependentShadowMap> plain = new osgShadow::ViewDependentShadowMap;
-        ::osg::ref_ptr<osgShadow::ShadowedScene> ours = new osgShadow::ShadowedScene(shadowMap.get());
-        ::osg::ref_ptr<osgShadow::ShadowedScene> theirs = new osgShadow::ShadowedScene(plain.get());
+        const OursBesideOsgs beside(box);
+        ShadowMap* shadowMap = beside.ours.get();
         ::osg::ref_ptr<::osg::Light> bulb = new ::osg::Light;
         bulb->setPosition(::osg::Vec4(float(wsLamp.x), float(wsLamp.y), float(wsLamp.z), 1.0f));
         const VdsmCall call = callAsVdsm(*shadowMap, view, projection, *bulb);
-        const VdsmCall own = callAsVdsm(*plain, view, projection, *bulb);
+        const VdsmCall own = callAsVdsm(*beside.osgs, view, projection, *bulb);
         ASSERT_TRUE(shadowMap->lastPointSetup()) << shadowMap->lastPointError();
         const core::ShadowSetup& setup = *shadowMap->lastPointSetup();
         EXPECT_EQ(call.ok, !setup.views.empty());
@@ -515,11 +531,8 @@ TEST(OsgShadowCamera, ALampThatNeverShowsHasNoMapAndBadAttenuationKeepsOsgsCamer
     const ::osg::Matrixd view =
         ::osg::Matrixd::lookAt(::osg::Vec3d(0, 20, 40), ::osg::Vec3d(0, 19.5, 39), ::osg::Vec3d(0, 1, 0));
     const ::osg::Matrixd projection = ::osg::Matrixd::perspective(60.0, 1.5, 0.3, 300.0);
-    ::osg::ref_ptr<ShadowMap> shadowMap = new ShadowMap;
-    ::osg::ref_ptr<osgShadow::ViewDependentShadowMap> plain = new osgShadow::ViewDependentShadowMap;
-    ::osg::ref_ptr<osgShadow::ShadowedScene> ours = new osgShadow::ShadowedScene(shadowMap.get());
-    ::osg::ref_ptr<osgShadow::ShadowedScene> theirs = new osgShadow::ShadowedScene(plain.get());
-    shadowMap->setSceneBounds(::osg::BoundingBoxd({-60.0, 0.0, -60.0}, {60.0, 20.0, 60.0}));
+    const OursBesideOsgs beside(::osg::BoundingBoxd({-60.0, 0.0, -60.0}, {60.0, 20.0, 60.0}));
+    ShadowMap* shadowMap = beside.ours.get();
     // Black: it lights nothing, so nothing needs its shadow.
     ::osg::ref_ptr<::osg::Light> black = new ::osg::Light;
     black->setPosition(::osg::Vec4(0.0f, 30.0f, -20.0f, 1.0f));
@@ -533,11 +546,7 @@ TEST(OsgShadowCamera, ALampThatNeverShowsHasNoMapAndBadAttenuationKeepsOsgsCamer
     ::osg::ref_ptr<::osg::Light> odd = new ::osg::Light;
     odd->setPosition(::osg::Vec4(0.0f, 30.0f, -20.0f, 1.0f));
     odd->setLinearAttenuation(-0.5f);
-    const VdsmCall got = callAsVdsm(*shadowMap, view, projection, *odd);
-    const VdsmCall want = callAsVdsm(*plain, view, projection, *odd);
-    EXPECT_EQ(got.ok, want.ok);
-    EXPECT_EQ(got.view, want.view);
-    EXPECT_EQ(got.projection, want.projection);
+    beside.expectOsgsOwnCamera(view, projection, *odd);
     EXPECT_FALSE(shadowMap->lastPointSetup());
     EXPECT_EQ(shadowMap->lastPointError().rfind("light 0's linear attenuation -0.5: must be", 0), 0u)
         << shadowMap->lastPointError();
@@ -557,17 +566,10 @@ TEST(OsgShadowCamera, BadSpotsKeepOsgsCameraAndALampAmongTheViewGetsAnAimedMap) 
     const ::osg::Matrixd view =
         ::osg::Matrixd::lookAt(::osg::Vec3d(0, 2, 10), ::osg::Vec3d(0, 1.8, 9), ::osg::Vec3d(0, 1, 0));
     const ::osg::Matrixd projection = ::osg::Matrixd::perspective(60.0, 1.5, 0.3, 300.0);
-    ::osg::ref_ptr<ShadowMap> shadowMap = new ShadowMap;
-    ::osg::ref_ptr<osgShadow::ViewDependentShadowMap> plain = new osgShadow::ViewDependentShadowMap;
-    ::osg::ref_ptr<osgShadow::ShadowedScene> ours = new osgShadow::ShadowedScene(shadowMap.get());
-    ::osg::ref_ptr<osgShadow::ShadowedScene> theirs = new osgShadow::ShadowedScene(plain.get());
-    shadowMap->setSceneBounds(::osg::BoundingBoxd({-60.0, 0.0, -60.0}, {60.0, 20.0, 60.0}));
+    const OursBesideOsgs beside(::osg::BoundingBoxd({-60.0, 0.0, -60.0}, {60.0, 20.0, 60.0}));
+    ShadowMap* shadowMap = beside.ours.get();
     const auto wide = spotLight(core::Vec3(0, 6, 0), core::Vec3(0, -1, 0), 87.5);
-    const VdsmCall got = callAsVdsm(*shadowMap, view, projection, *wide);
-    const VdsmCall want = callAsVdsm(*plain, view, projection, *wide);
-    EXPECT_EQ(got.ok, want.ok);
-    EXPECT_EQ(got.view, want.view);
-    EXPECT_EQ(got.projection, want.projection);
+    beside.expectOsgsOwnCamera(view, projection, *wide);
     // Named as OSG's user set it: the cutoff, not the core's cone.
     EXPECT_EQ(shadowMap->lastSpotError().rfind("spot light cutoff 87.5 degrees: ", 0), 0u)
         << shadowMap->lastSpotError();
