@@ -65,8 +65,8 @@ vec4 skLocalBiasedReceiver(SkLocalLight l, SkLocalShadowOptions o, vec3 ws, vec3
     return vec4(moved, distance(moved, l.wsPosition) - o.slopeBiasTexels * texel * tanAngle - o.constantBiasMetres);
 }
 
-// The spot map's (u, v) of a world point, clamped: the map spans every receiver the camera sees in
-// the cone (computeSpotShadowSetup), so only a filter's offsets step past its border.
+// The spot map's (u, v) of a world point, clamped: skSpotShadow looks up only receivers the map
+// holds (skSpotMapHolds), so only a filter's offsets step past its border.
 vec2 skSpotUv(mat4 textureFromWorld, vec3 ws) {
     const vec4 t = textureFromWorld * vec4(ws, 1.0);
     return clamp(t.xy / t.w, 0.0, 1.0);
@@ -180,10 +180,27 @@ float skLocalShadow(bool point, SkLocalLight l, mat4 textureFromWorld, SkLocalSh
 }
 
 #ifdef SK_SPOT_MAPS
+// Whether the spot map holds the receiver ws: in front of the light (w > 0) and inside the map's
+// square, or within a texel past its edge (a receiver on the edge of what the map spans, moved by
+// its bias, still reads the edge, as the lookup clamps it). A spot's map holds every receiver the
+// camera sees in its cone, so one it does not hold the light does not reach; a point light's one
+// map aimed at part of what the camera sees (core::computePointAimedMapSetup, holdsPartOfView)
+// leaves out receivers the lamp does light, and those get no shadow from it — as its set-up says —
+// rather than the clamped edge's, or behind the lamp (w < 0) a texel of the mirrored image.
+bool skSpotMapHolds(mat4 textureFromWorld, vec3 ws) {
+    const vec4 t = textureFromWorld * vec4(ws, 1.0);
+    if (!(t.w > 0.0)) return false;
+    const vec2 margin = 1.0 / vec2(textureSize(SK_SPOT_MAPS, 0).xy), uv = t.xy / t.w;
+    return all(greaterThanEqual(uv, -margin)) && all(lessThanEqual(uv, 1.0 + margin));
+}
+
 // A spot light's shadow at a receiver ws with unit normal n facing the light (the caller decides
-// what the cone and range reach: the map only says what is hidden). textureFromWorld: the spot's
-// EngineShadowView::textureFromWorld, whose (x, y) / w is the map's (u, v).
+// what the cone and range reach: the map only says what is hidden; a receiver outside the map is
+// lit, skSpotMapHolds). textureFromWorld: the spot's EngineShadowView::textureFromWorld, whose
+// (x, y) / w is the map's (u, v). A point light's one map (SHADOWKIT_LIGHT_POINT_ONE_MAP,
+// _AIMED_MAP) is looked up here too.
 float skSpotShadow(SkLocalLight l, mat4 textureFromWorld, SkLocalShadowOptions o, vec3 ws, vec3 n) {
+    if (!skSpotMapHolds(textureFromWorld, ws)) return 1.0;
     return skLocalShadow(false, l, textureFromWorld, o, ws, n);
 }
 #endif

@@ -11,9 +11,14 @@
 #include "gl_shaders.h"
 #include "program.h"
 
+#include <epoxy/gl.h>
+#include <glm/glm.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
+#include <array>
 #include <string>
+#include <vector>
 
 using namespace shadowkit;
 
@@ -222,4 +227,92 @@ TEST_F(InstalledGlslTest, TheLocalLightsFileBeforeTheLookupIsRefusedNamingTheOrd
     EXPECT_NE(program.error().find("shadowkit_local_shadows.glsl: append it after shadowkit_shadows.glsl"),
               std::string::npos)
         << program.error();
+}
+
+namespace {
+
+constexpr std::string_view kFullScreen = R"glsl(
+void main() { gl_Position = vec4(vec2(gl_VertexID & 1, gl_VertexID >> 1) * 4.0 - 1.0, 0.0, 1.0); }
+)glsl";
+
+// skSpotShadow at one world point, the hard test, a lamp of no radius at wsLamp.
+constexpr std::string_view kSpotAtOnePoint = R"glsl(
+uniform mat4 textureFromWorld;
+uniform vec3 wsLamp, wsPoint;
+uniform float texelPerMetre;
+out vec4 result;
+void main() {
+    const SkLocalShadowOptions o = SkLocalShadowOptions(1.5, 0.5, 0.005, SK_FILTER_HARD, 0, 0.0);
+    const SkLocalLight l = SkLocalLight(wsLamp, 0.0, vec2(1.0 / 30.0, 0.0), texelPerMetre, 0);
+    result = vec4(skSpotShadow(l, textureFromWorld, o, wsPoint, normalize(wsLamp - wsPoint)));
+}
+)glsl";
+
+} // namespace
+
+// A point light's one map aimed at part of what the camera sees (SHADOWKIT_LIGHT_POINT_AIMED_MAP,
+// docs/engine-integration.md) leaves out receivers the lamp lights, and its set-up says they get
+// no shadow from it; engines look such a map up with skSpotShadow, which must answer so — lit
+// beside the map's square and behind the lamp, not the clamped edge's texel or, where w < 0, a
+// texel of the mirrored image. A map whose every texel holds a caster at the lamp shadows every
+// receiver it holds, the edge's within a texel past it too.
+TEST_F(InstalledGlslTest, ASpotMapLooksUpWhatItHoldsAndLeavesTheRestLit) {
+    using namespace gl::shaders;
+    auto program = gl::buildProgram("spot lookup at one point", {kFullScreen},
+                                    {kSpotMaps, kShadowkitShadowsGlsl, kShadowkitLocalShadowsGlsl, kSpotAtOnePoint});
+    ASSERT_TRUE(program) << program.error();
+    constexpr int kTexels = 16;
+    GLuint id = 0;
+    glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &id);
+    const gl::Texture map(id);
+    glTextureStorage3D(id, 1, GL_DEPTH_COMPONENT32F, kTexels, kTexels, 1);
+    const std::vector<float> atTheLamp(kTexels * kTexels, 0.0f);
+    glTextureSubImage3D(id, 0, 0, 0, 0, kTexels, kTexels, 1, GL_DEPTH_COMPONENT, GL_FLOAT, atTheLamp.data());
+    glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTextureParameteri(id, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+    glTextureParameteri(id, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+    glBindTextureUnit(4, id);
+    glCreateTextures(GL_TEXTURE_2D, 1, &id);
+    const gl::Texture target(id);
+    glTextureStorage2D(id, 1, GL_RGBA32F, 1, 1);
+    glCreateFramebuffers(1, &id);
+    const gl::Framebuffer framebuffer(id);
+    glNamedFramebufferTexture(id, GL_COLOR_ATTACHMENT0, target.id(), 0);
+    glCreateVertexArrays(1, &id);
+    const gl::VertexArray vertexArray(id);
+
+    // The lamp 5 m up looking straight down through a 90° square: the ground's (±5, 0, ±5) at the
+    // map's edges, a texel 0.125 of a metre's distance across.
+    const glm::vec3 wsLamp(0.0f, 5.0f, 0.0f);
+    const glm::mat4 textureFromClip =
+        glm::translate(glm::mat4(1.0f), glm::vec3(0.5f)) * glm::scale(glm::mat4(1.0f), glm::vec3(0.5f));
+    const glm::mat4 textureFromWorld = textureFromClip * glm::perspective(glm::radians(90.0f), 1.0f, 0.1f, 30.0f) *
+                                       glm::lookAt(wsLamp, glm::vec3(0.0f), glm::vec3(0.0f, 0.0f, -1.0f));
+    const GLuint p = program->id();
+    glProgramUniformMatrix4fv(p, glGetUniformLocation(p, "textureFromWorld"), 1, GL_FALSE, &textureFromWorld[0][0]);
+    glProgramUniform3f(p, glGetUniformLocation(p, "wsLamp"), wsLamp.x, wsLamp.y, wsLamp.z);
+    glProgramUniform1f(p, glGetUniformLocation(p, "texelPerMetre"), 2.0f / kTexels);
+    auto shadowAt = [&](glm::vec3 wsPoint) {
+        glProgramUniform3f(p, glGetUniformLocation(p, "wsPoint"), wsPoint.x, wsPoint.y, wsPoint.z);
+        glBindFramebuffer(GL_FRAMEBUFFER, framebuffer.id());
+        glViewport(0, 0, 1, 1);
+        glDisable(GL_DEPTH_TEST);
+        glUseProgram(p);
+        glBindVertexArray(vertexArray.id());
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        std::array<float, 4> out{};
+        glReadPixels(0, 0, 1, 1, GL_RGBA, GL_FLOAT, out.data());
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        return out[0];
+    };
+    // Held: under the lamp, near the edge, and a fifth of a texel past it (u = 1.0125).
+    for (const glm::vec3 ws :
+         {glm::vec3(0, 0, 0), glm::vec3(4.5f, 0, -3), glm::vec3(-4.9f, 0, 4.9f), glm::vec3(5.125f, 0, 0)})
+        EXPECT_EQ(shadowAt(ws), 0.0f) << ws.x << "," << ws.y << "," << ws.z;
+    // Not held: beside the square (u = 1.3, and past a corner), level with the lamp and behind it.
+    for (const glm::vec3 ws :
+         {glm::vec3(8, 0, 0), glm::vec3(-7, 0, 7), glm::vec3(10, 5, 0), glm::vec3(0, 10, 0), glm::vec3(3, 8, -2)})
+        EXPECT_EQ(shadowAt(ws), 1.0f) << ws.x << "," << ws.y << "," << ws.z;
+    EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
 }
