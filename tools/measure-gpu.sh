@@ -57,7 +57,7 @@ summary=$res/summary.txt
 note() { echo "$*" | tee -a "$summary"; }
 pack() { tar -C "$res" -czf "$out/gpu-results.tgz" . 2>/dev/null; }
 dry=${DRY:-0}
-# With DRY=1, a step's command on tiny inputs (above): --trees 20, --frames 2, 64 × 36 pixels for
+# With DRY=1, a step's command on tiny inputs (above): --trees 20, --frames 2 (a path's first two), 64 × 36 pixels for
 # the CLI's drawing commands, 200 cards once for measure-alpha.sh, and a test program's list.
 tiny() {
   local prev="" a
@@ -70,6 +70,10 @@ tiny() {
     tinyArgs+=("$a")
     prev=$a
   done
+  case " ${tinyArgs[*]} " in
+  *" --path "*" --frames "*) ;;
+  *" --path "*) tinyArgs+=(--frames 2) ;; # a path's frames: all of them unless named
+  esac
   case " ${tinyArgs[*]} " in
   *" $B bench "* | *" $B eval "* | *" $B render "*) tinyArgs+=(--size 64x36) ;;
   *"measure-alpha.sh "*) tinyArgs=(tools/measure-alpha.sh 200 1 "${tinyArgs[-1]}") ;;
