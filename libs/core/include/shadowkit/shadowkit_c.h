@@ -220,7 +220,8 @@ typedef struct shadowkit_local_setup {
     double radius;                  /**< SkLocalLight.radius: the lamp's, for PCSS */
     shadowkit_local_bias bias;      /**< the recommended biases */
     int holds_part_of_view; /**< 1: SHADOWKIT_LIGHT_POINT_AIMED_MAP's aimed cone, which holds only part of what the
-                                 camera sees within range (ShadowSetup::holdsPartOfView) */
+                                 camera sees within range (ShadowSetup::holdsPartOfView); skSpotShadow reads
+                                 the receivers it leaves out lit (skSpotMapHolds) */
 } shadowkit_local_setup;
 
 /** A spot light 3 m up looking down, 40°, 30 m; the default camera and a 1024² map; OpenGL-with-
