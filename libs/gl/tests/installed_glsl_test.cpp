@@ -7,6 +7,7 @@
 // renderer's own shader code, or an order that stops working, fails here.
 #include "engine_declarations.h"
 #include "headless_gl_test.h"
+#include "one_pixel_target.h"
 
 #include "gl_shaders.h"
 #include "program.h"
@@ -16,7 +17,6 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
-#include <array>
 #include <string>
 #include <vector>
 
@@ -231,10 +231,6 @@ TEST_F(InstalledGlslTest, TheLocalLightsFileBeforeTheLookupIsRefusedNamingTheOrd
 
 namespace {
 
-constexpr std::string_view kFullScreen = R"glsl(
-void main() { gl_Position = vec4(vec2(gl_VertexID & 1, gl_VertexID >> 1) * 4.0 - 1.0, 0.0, 1.0); }
-)glsl";
-
 // skSpotShadow at one world point, the hard test, a lamp of no radius at wsLamp.
 constexpr std::string_view kSpotAtOnePoint = R"glsl(
 uniform mat4 textureFromWorld;
@@ -258,7 +254,7 @@ void main() {
 // receiver it holds, the edge's within a texel past it too.
 TEST_F(InstalledGlslTest, ASpotMapLooksUpWhatItHoldsAndLeavesTheRestLit) {
     using namespace gl::shaders;
-    auto program = gl::buildProgram("spot lookup at one point", {kFullScreen},
+    auto program = gl::buildProgram("spot lookup at one point", {gl::testing::kFullScreenTriangle},
                                     {kSpotMaps, kShadowkitShadowsGlsl, kShadowkitLocalShadowsGlsl, kSpotAtOnePoint});
     ASSERT_TRUE(program) << program.error();
     constexpr int kTexels = 16;
@@ -273,14 +269,7 @@ TEST_F(InstalledGlslTest, ASpotMapLooksUpWhatItHoldsAndLeavesTheRestLit) {
     glTextureParameteri(id, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
     glTextureParameteri(id, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
     glBindTextureUnit(4, id);
-    glCreateTextures(GL_TEXTURE_2D, 1, &id);
-    const gl::Texture target(id);
-    glTextureStorage2D(id, 1, GL_RGBA32F, 1, 1);
-    glCreateFramebuffers(1, &id);
-    const gl::Framebuffer framebuffer(id);
-    glNamedFramebufferTexture(id, GL_COLOR_ATTACHMENT0, target.id(), 0);
-    glCreateVertexArrays(1, &id);
-    const gl::VertexArray vertexArray(id);
+    const gl::testing::OnePixelTarget target;
 
     // The lamp 5 m up looking straight down through a 90° square: the ground's (±5, 0, ±5) at the
     // map's edges, a texel 0.125 of a metre's distance across.
@@ -295,16 +284,7 @@ TEST_F(InstalledGlslTest, ASpotMapLooksUpWhatItHoldsAndLeavesTheRestLit) {
     glProgramUniform1f(p, glGetUniformLocation(p, "texelPerMetre"), 2.0f / kTexels);
     auto shadowAt = [&](glm::vec3 wsPoint) {
         glProgramUniform3f(p, glGetUniformLocation(p, "wsPoint"), wsPoint.x, wsPoint.y, wsPoint.z);
-        glBindFramebuffer(GL_FRAMEBUFFER, framebuffer.id());
-        glViewport(0, 0, 1, 1);
-        glDisable(GL_DEPTH_TEST);
-        glUseProgram(p);
-        glBindVertexArray(vertexArray.id());
-        glDrawArrays(GL_TRIANGLES, 0, 3);
-        std::array<float, 4> out{};
-        glReadPixels(0, 0, 1, 1, GL_RGBA, GL_FLOAT, out.data());
-        glBindFramebuffer(GL_FRAMEBUFFER, 0);
-        return out[0];
+        return target.draw(p)[0];
     };
     // Held: under the lamp, near the edge, and a fifth of a texel past it (u = 1.0125).
     for (const glm::vec3 ws :

@@ -6,6 +6,7 @@
 // sloped plane's own depth with no caster-side offset.
 #include "engine_declarations.h"
 #include "headless_gl_test.h"
+#include "one_pixel_target.h"
 #include "test_scenes.h"
 
 #include "gl_shaders.h"
@@ -31,10 +32,6 @@ namespace {
 
 class NormalOffsetTest : public gl::testing::HeadlessGlTest {};
 
-constexpr std::string_view kVertex = R"glsl(
-void main() { gl_Position = vec4(vec2(gl_VertexID & 1, gl_VertexID >> 1) * 4.0 - 1.0, 0.0, 1.0); }
-)glsl";
-
 // One case a draw: the world offset of `wsPoint` with unit shading normal `wsNormal` on a triangle
 // that `wsAcross1` and `wsAcross2` span (the screen derivatives of the position, in a shader).
 constexpr std::string_view kOffsetOfOnePoint = R"glsl(
@@ -58,20 +55,11 @@ class OffsetProbe {
 public:
     static core::Result<OffsetProbe> create() {
         using namespace gl::shaders;
-        auto program = gl::buildProgram("normal offset probe", {kVertex},
+        auto program = gl::buildProgram("normal offset probe", {gl::testing::kFullScreenTriangle},
                                         {gl::testing::kEngineDeclarations, kShadowkitShadowsGlsl, kOffsetOfOnePoint});
         if (!program) return program.errorInfo();
         OffsetProbe probe;
         probe.m_program = std::move(*program);
-        GLuint id = 0;
-        glCreateTextures(GL_TEXTURE_2D, 1, &id);
-        probe.m_target = gl::Texture(id);
-        glTextureStorage2D(id, 1, GL_RGBA32F, 1, 1);
-        glCreateFramebuffers(1, &id);
-        probe.m_framebuffer = gl::Framebuffer(id);
-        glNamedFramebufferTexture(id, GL_COLOR_ATTACHMENT0, probe.m_target.id(), 0);
-        glCreateVertexArrays(1, &id);
-        probe.m_vertexArray = gl::VertexArray(id);
         return probe;
     }
 
@@ -95,23 +83,13 @@ public:
         vector("wsNormal", wsNormal);
         vector("wsAcross1", wsAcross1);
         vector("wsAcross2", wsAcross2);
-        glBindFramebuffer(GL_FRAMEBUFFER, m_framebuffer.id());
-        glViewport(0, 0, 1, 1);
-        glDisable(GL_DEPTH_TEST);
-        glUseProgram(p);
-        glBindVertexArray(m_vertexArray.id());
-        glDrawArrays(GL_TRIANGLES, 0, 3);
-        std::array<float, 4> out{};
-        glReadPixels(0, 0, 1, 1, GL_RGBA, GL_FLOAT, out.data());
-        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        const std::array<float, 4> out = m_target.draw(p);
         return {out[0], out[1], out[2]};
     }
 
 private:
     gl::Program m_program;
-    gl::Texture m_target;
-    gl::Framebuffer m_framebuffer;
-    gl::VertexArray m_vertexArray;
+    gl::testing::OnePixelTarget m_target;
 };
 
 // (u, v, stored depth) of a world point, in double precision.
