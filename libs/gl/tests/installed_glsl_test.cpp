@@ -9,6 +9,7 @@
 #include "headless_gl_test.h"
 #include "one_pixel_target.h"
 
+#include "gl_object.h"
 #include "gl_shaders.h"
 #include "program.h"
 
@@ -258,17 +259,12 @@ TEST_F(InstalledGlslTest, ASpotMapLooksUpWhatItHoldsAndLeavesTheRestLit) {
                                     {kSpotMaps, kShadowkitShadowsGlsl, kShadowkitLocalShadowsGlsl, kSpotAtOnePoint});
     ASSERT_TRUE(program) << program.error();
     constexpr int kTexels = 16;
-    GLuint id = 0;
-    glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &id);
-    const gl::Texture map(id);
-    glTextureStorage3D(id, 1, GL_DEPTH_COMPONENT32F, kTexels, kTexels, 1);
+    const gl::Texture map = gl::createMapLayers(GL_DEPTH_COMPONENT32F, kTexels, 1, GL_NEAREST);
     const std::vector<float> atTheLamp(kTexels * kTexels, 0.0f);
-    glTextureSubImage3D(id, 0, 0, 0, 0, kTexels, kTexels, 1, GL_DEPTH_COMPONENT, GL_FLOAT, atTheLamp.data());
-    glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    glTextureParameteri(id, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
-    glTextureParameteri(id, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
-    glBindTextureUnit(4, id);
+    glTextureSubImage3D(map.id(), 0, 0, 0, 0, kTexels, kTexels, 1, GL_DEPTH_COMPONENT, GL_FLOAT, atTheLamp.data());
+    glTextureParameteri(map.id(), GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+    glTextureParameteri(map.id(), GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+    glBindTextureUnit(4, map.id());
     const gl::testing::OnePixelTarget target;
 
     // The lamp 5 m up looking straight down through a 90° square: the ground's (±5, 0, ±5) at the

@@ -19,13 +19,9 @@ void main() { gl_Position = vec4(vec2(gl_VertexID & 1, gl_VertexID >> 1) * 4.0 -
 
 class OnePixelTarget {
 public:
-    OnePixelTarget() {
+    OnePixelTarget() : m_colour(createTexture2D(GL_RGBA32F, 1, 1)), m_framebuffer(createFramebuffer()) {
+        glNamedFramebufferTexture(m_framebuffer.id(), GL_COLOR_ATTACHMENT0, m_colour.id(), 0);
         GLuint id = 0;
-        glCreateTextures(GL_TEXTURE_2D, 1, &id);
-        m_colour = Texture(id);
-        glTextureStorage2D(id, 1, GL_RGBA32F, 1, 1);
-        m_framebuffer = createFramebuffer();
-        glNamedFramebufferTexture(m_framebuffer.id(), GL_COLOR_ATTACHMENT0, id, 0);
         glCreateVertexArrays(1, &id);
         m_vertexArray = VertexArray(id);
     }
