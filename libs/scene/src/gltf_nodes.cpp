@@ -4,7 +4,9 @@
 
 #include "scene_formats.h"
 
+#include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <utility>
 
 namespace shadowkit::scene::formats {
@@ -62,6 +64,26 @@ core::Result<NodeTrees> checkNodeTrees(const tinygltf::Model& model, const fs::p
         for (size_t visited : walk) state[visited] = kReachesARoot;
     }
     return NodeTrees{std::move(parentOf)};
+}
+
+core::Status checkNodeTransforms(const tinygltf::Model& model, const fs::path& file) {
+    for (size_t node = 0; node < model.nodes.size(); ++node) {
+        const tinygltf::Node& n = model.nodes[node];
+        if (n.matrix.size() != 16) continue; // TRS, or none (nodeLocalMatrix reads a matrix of another size as none)
+        // Column-major: the last row is elements 3, 7, 11 and 15. Exporters write floats, so a
+        // row of rounding noise is read as the affine row it means.
+        constexpr double kNoise = 1e-6;
+        const double row[4] = {n.matrix[3], n.matrix[7], n.matrix[11], n.matrix[15]};
+        if (std::abs(row[0]) > kNoise || std::abs(row[1]) > kNoise || std::abs(row[2]) > kNoise ||
+            std::abs(row[3] - 1.0) > kNoise) {
+            char text[160];
+            std::snprintf(text, sizeof text, "its matrix's last row is (%g, %g, %g, %g), not (0, 0, 0, 1)", row[0],
+                          row[1], row[2], row[3]);
+            return core::makeError(file.string() + ": " + nodeNamed(model, node) + ": " + text +
+                                   ": glTF asks for a matrix made of translation, rotation and scale");
+        }
+    }
+    return core::Ok{};
 }
 
 // The nodes the loaded scene starts from: its default scene's roots (scene 0's where the file

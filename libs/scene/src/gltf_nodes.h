@@ -24,6 +24,12 @@ struct NodeTrees {
 /// of trees: a loop, a second parent, a child that is not a node).
 core::Result<NodeTrees> checkNodeTrees(const tinygltf::Model& model, const std::filesystem::path& file);
 
+/// Every node's matrix what glTF allows (2.0, §5.25 "Node"): its last row (0, 0, 0, 1), as glTF
+/// asks that it decompose into translation, rotation and scale; refused in one line naming the
+/// node otherwise. A matrix whose last row is (0, 0, 0, 0) divides every point it places by zero.
+/// (JSON holds no infinite number: the parser refuses one that overflows a double.)
+core::Status checkNodeTransforms(const tinygltf::Model& model, const std::filesystem::path& file);
+
 /// The nodes the loaded scene starts from: its default scene's roots (scene 0's where the file
 /// names none), or, in a file with no scene, every root node, with one line in `warnings`.
 /// Each node is placed once: a listed node below another listed one is left to it, one whose

@@ -367,6 +367,7 @@ core::Result<Scene> loadGltf(const fs::path& file, double poseSeconds) {
     if (meshopt) std::string().swap(meshopt->bytes);
     auto trees = checkNodeTrees(model, file);
     if (!trees) return trees.errorInfo();
+    if (auto transforms = checkNodeTransforms(model, file); !transforms) return transforms.errorInfo();
     if (meshopt)
         if (auto s = decodeMeshoptViews(model, meshopt->placeholders, file.string()); !s) return s.errorInfo();
     Scene scene;

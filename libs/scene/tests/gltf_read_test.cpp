@@ -202,6 +202,32 @@ std::string chainOfNodes(int links) {
     return nodes + R"({"translation":[1,0,0],"mesh":0})";
 }
 
+// A node's matrix must decompose into translation, rotation and scale (glTF 2.0, §5.25): its last
+// row (0, 0, 0, 1). A row of zeros divided every point the node placed by zero — a lone node of
+// it was refused as "reaching inf m", and beside another node it loaded, its triangle a point,
+// without a word. Exporters' rounding noise in that row is read as what it means.
+TEST(GltfReadTest, ANodeMatrixThatIsNotTranslationRotationAndScaleIsRefusedNamingTheNode) {
+    const std::string other = R"({"mesh":0},)";
+    for (const auto& [matrix, row] :
+         {std::pair<std::string, std::string>{"0,0,0,0, 0,0,0,0, 0,0,0,0, 0,0,0,0", "(0, 0, 0, 0)"},
+          {"1,0,0,0.5, 0,1,0,0, 0,0,1,0, 0,0,0,1", "(0.5, 0, 0, 1)"},
+          {"1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,2", "(0, 0, 0, 2)"}}) {
+        const auto s =
+            loadNodes("sk_projective.gltf", "0,1", other + R"({"name":"lamp","mesh":0,"matrix":[)" + matrix + "]}");
+        ASSERT_FALSE(s) << matrix;
+        EXPECT_NE(s.error().find("node 1 'lamp': its matrix's last row is " + row + ", not (0, 0, 0, 1)"),
+                  std::string::npos)
+            << s.error();
+        EXPECT_EQ(s.error().find('\n'), std::string::npos) << s.error();
+    }
+    // Noise of a float's rounding in the last row, and a matrix moving the mesh 2 m up: loaded,
+    // placed where the matrix says.
+    const auto noisy =
+        loadNodes("sk_noisy.gltf", "0", R"({"mesh":0,"matrix":[1,0,0,1e-9, 0,1,0,0, 0,0,1,-1e-9, 0,2,0,1.0000001]})");
+    ASSERT_TRUE(noisy) << noisy.error();
+    EXPECT_NEAR(noisy->wsBounds().min.y, 2.0, 1e-6);
+}
+
 TEST(GltfReadTest, NodeHierarchiesThatAreNotTreesAreRefusedInOneLine) {
     // glTF's nodes form disjoint trees. Each file below breaks that in a way that, unchecked,
     // places a node exponentially often; each was a hang before.
