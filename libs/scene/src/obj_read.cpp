@@ -50,24 +50,35 @@ std::string dissolveSpelledAsParsed(std::string text) {
 }
 
 // The material libraries an OBJ names (`mtllib`), beside it, as tinyobjloader's own reader finds
-// them; one that cannot be read is a warning of tinyobjloader's, as a missing one is there.
+// them. One that cannot be read leaves the faces that wear its materials in the default grey and
+// uncut: tinyobjloader says so in its warnings, which name no file and which this reader does
+// not pass on (most are noise: an empty group name, a degenerate face), so the libraries not read
+// are kept here, each once, for a warning of their own.
 class MaterialLibraries : public tinyobj::MaterialReader {
 public:
     explicit MaterialLibraries(fs::path directory) : m_directory(std::move(directory)) {}
     bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
                     std::map<std::string, int>* materialOf, std::string* warn, std::string* err) override {
-        const auto text = readTextFile(m_directory / name);
+        const fs::path path = m_directory / name;
+        const auto text = readTextFile(path);
         if (!text) {
-            if (warn) *warn += "Material file: " + text.error() + "\n";
+            // readTextFile's error names the path first: kept is what follows it.
+            std::string why = text.error();
+            if (const std::string named = path.string() + ": "; why.starts_with(named)) why.erase(0, named.size());
+            if (std::none_of(m_unread.begin(), m_unread.end(), [&](const auto& u) { return u.first == name; }))
+                m_unread.emplace_back(name, why);
             return false;
         }
         std::istringstream in(dissolveSpelledAsParsed(*text));
         tinyobj::LoadMtl(materialOf, materials, &in, warn, err);
         return true;
     }
+    // The libraries named that could not be read, in the order named: their names as written and why.
+    const std::vector<std::pair<std::string, std::string>>& unread() const { return m_unread; }
 
 private:
     fs::path m_directory;
+    std::vector<std::pair<std::string, std::string>> m_unread;
 };
 
 // A face's corner: its indices into the file's positions, normals (+ 1) and texture coordinates (+ 1).
@@ -112,6 +123,10 @@ core::Result<Scene> loadObj(const fs::path& file) {
     const glm::dvec3 anchor = anchorOf(fileBounds);
 
     Scene scene;
+    for (const auto& [library, why] : libraries.unread())
+        scene.warnings.push_back(file.string() + ": its material library '" + printable(library) +
+                                 "': " + oneLine(why) +
+                                 "; the faces wearing its materials are drawn grey, and none is cut by a map_d");
     // The file's materials that cut their faces (map_d, or a dissolve below half): their index in
     // scene.materials, else −1.
     std::vector<size_t> facesWearing(materials.size(), 0);

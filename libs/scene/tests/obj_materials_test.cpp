@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 namespace shadowkit::scene {
 namespace {
@@ -152,6 +153,29 @@ TEST(ObjMaterialsTest, AMapDIsFoundWhereExportersLeaveItAndAMissingOneIsNamed) {
     EXPECT_NE(warning.find("card.obj: material 'cut': its map_d 'gone.png' cannot be read"), std::string::npos)
         << warning;
     EXPECT_EQ(warning.find('\n'), std::string::npos) << warning;
+    fs::remove_all(dir);
+}
+
+// An OBJ travels without its MTL as often as without its masks. The file still loads, every face
+// in the default grey and none cut, and one line says so — once, though the OBJ names the library
+// twice. Until 2026-12-07 it loaded without a word: tinyobjloader's warning was dropped, and a tree
+// whose leaves lost their map_d cast solid cards unannounced.
+TEST(ObjMaterialsTest, AMaterialLibraryThatCannotBeReadIsNamedInOneWarning) {
+    const fs::path dir = test_support::scratchDir() / "obj_no_mtl";
+    fs::create_directories(dir);
+    std::ofstream(dir / "card.obj") << "mtllib gone.mtl\nmtllib gone.mtl\no card\n"
+                                       "v 0 0 0\nv 1 0 0\nv 1 0 -1\nv 0 0 -1\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+                                       "usemtl cut\nf 1/1 2/2 3/3 4/4\n";
+    const auto scene = loadScene(dir / "card.obj");
+    ASSERT_TRUE(scene) << scene.error();
+    EXPECT_FALSE(meshWearing(*scene, true)) << "nothing cuts the card";
+    std::vector<std::string> named;
+    for (const std::string& warning : scene->warnings)
+        if (warning.find("gone.mtl") != std::string::npos) named.push_back(warning);
+    ASSERT_EQ(named.size(), 1u);
+    EXPECT_NE(named[0].find("card.obj: its material library 'gone.mtl': cannot be read"), std::string::npos)
+        << named[0];
+    EXPECT_EQ(named[0].find('\n'), std::string::npos) << named[0];
     fs::remove_all(dir);
 }
 
