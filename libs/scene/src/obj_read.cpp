@@ -21,6 +21,7 @@
 #include <cmath>
 #include <map>
 #include <sstream>
+#include <string_view>
 #include <unordered_map>
 #include <vector>
 
@@ -49,6 +50,74 @@ std::string dissolveSpelledAsParsed(std::string text) {
     return text;
 }
 
+// Material names with spaces. An MTL's `newmtl` names the material by the rest of its line
+// ("Hard Shiny Plastic White"), and tinyobjloader reads it so, but its OBJ reader takes a
+// `usemtl` line's first word alone ("Hard"): the faces then wear no material, grey and uncut
+// (assimp reads such files; two of its test models have them). So both sides are rewritten
+// before parsing: the name of each `newmtl` and `usemtl` line, trimmed, its runs of blanks
+// joined by kNameSpace, which the names read back turn into one space each.
+constexpr char kNameSpace = '\x1f';
+
+// Calls visit(begin, end, lineEnd) with the span of the name on each line of `text` that opens
+// with `keyword` and a blank — the rest of the line up to a comment, trimmed — and where the line
+// ends (its '\n', or the text's end).
+template <typename Visit>
+void forEachNamed(std::string_view text, std::string_view keyword, Visit visit) {
+    for (size_t line = 0; line < text.size();) {
+        const size_t end = std::min(text.find('\n', line), text.size());
+        const size_t at = text.find_first_not_of(" \t", line);
+        if (at < end && text.substr(at, keyword.size()) == keyword && at + keyword.size() < end &&
+            (text[at + keyword.size()] == ' ' || text[at + keyword.size()] == '\t')) {
+            const size_t first = text.find_first_not_of(" \t", at + keyword.size());
+            size_t last = end;
+            // A comment after the name ("usemtl bark # from the trunk") is not part of it.
+            for (size_t hash = text.find('#', first); hash < end; hash = text.find('#', hash + 1))
+                if (text[hash - 1] == ' ' || text[hash - 1] == '\t') {
+                    last = hash;
+                    break;
+                }
+            while (last > first && (text[last - 1] == ' ' || text[last - 1] == '\t' || text[last - 1] == '\r')) --last;
+            if (first < last) visit(first, last, end);
+        }
+        line = end + 1;
+    }
+}
+
+// `text` with each `keyword` line's name joined (above) and what follows it on the line (blanks,
+// a comment) dropped; the same text where no line needs that.
+std::string withNamesJoined(std::string text, std::string_view keyword) {
+    struct Span {
+        size_t first, last, lineEnd;
+    };
+    std::vector<Span> spans;
+    forEachNamed(text, keyword, [&](size_t first, size_t last, size_t lineEnd) {
+        if (text.find_first_of(" \t", first) < last || text.find_first_not_of('\r', last) < lineEnd)
+            spans.push_back({first, last, lineEnd});
+    });
+    if (spans.empty()) return text;
+    std::string joined;
+    joined.reserve(text.size());
+    size_t copied = 0;
+    for (const Span& span : spans) {
+        joined.append(text, copied, span.first - copied);
+        for (size_t i = span.first; i < span.last; ++i) {
+            if (text[i] != ' ' && text[i] != '\t')
+                joined += text[i];
+            else if (joined.back() != kNameSpace)
+                joined += kNameSpace;
+        }
+        copied = span.lineEnd;
+    }
+    joined.append(text, copied);
+    return joined;
+}
+
+// A name as the file wrote it, its joined blanks one space each.
+std::string spelled(std::string name) {
+    std::replace(name.begin(), name.end(), kNameSpace, ' ');
+    return name;
+}
+
 // The material libraries an OBJ names (`mtllib`), beside it, as tinyobjloader's own reader finds
 // them. One that cannot be read leaves the faces that wear its materials in the default grey and
 // uncut: tinyobjloader says so in its warnings, which name no file and which this reader does
@@ -69,17 +138,32 @@ public:
                 m_unread.emplace_back(name, why);
             return false;
         }
-        std::istringstream in(dissolveSpelledAsParsed(*text));
+        std::istringstream in(dissolveSpelledAsParsed(withNamesJoined(*text, "newmtl")));
         tinyobj::LoadMtl(materialOf, materials, &in, warn, err);
+        ++m_read;
         return true;
     }
+    // How many libraries were read.
+    int read() const { return m_read; }
     // The libraries named that could not be read, in the order named: their names as written and why.
     const std::vector<std::pair<std::string, std::string>>& unread() const { return m_unread; }
 
 private:
     fs::path m_directory;
     std::vector<std::pair<std::string, std::string>> m_unread;
+    int m_read = 0;
 };
+
+// The material names the OBJ's `usemtl` lines give, joined as its text is before parsing, each
+// once, in order.
+std::vector<std::string> materialsUsed(std::string_view joinedText) {
+    std::vector<std::string> names;
+    forEachNamed(joinedText, "usemtl", [&](size_t first, size_t last, size_t) {
+        std::string name(joinedText.substr(first, last - first));
+        if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(std::move(name));
+    });
+    return names;
+}
 
 // A face's corner: its indices into the file's positions, normals (+ 1) and texture coordinates (+ 1).
 struct Corner {
@@ -101,7 +185,8 @@ struct CornerHash {
 core::Result<Scene> loadObj(const fs::path& file) {
     const auto text = readTextFile(file);
     if (!text) return text.errorInfo();
-    std::istringstream in(*text);
+    const std::string joinedText = withNamesJoined(*text, "usemtl");
+    std::istringstream in(joinedText);
     MaterialLibraries libraries(file.parent_path());
     tinyobj::attrib_t attrib;
     std::vector<tinyobj::shape_t> shapes;
@@ -127,6 +212,27 @@ core::Result<Scene> loadObj(const fs::path& file) {
         scene.warnings.push_back(file.string() + ": its material library '" + printable(library) +
                                  "': " + oneLine(why) +
                                  "; the faces wearing its materials are drawn grey, and none is cut by a map_d");
+    // A name that the libraries the OBJ names, all read, do not define (often by its case, or by
+    // spaces in it, of which tinyobjloader reads the first word): tinyobjloader gives those faces
+    // no material, and said so only in the warnings dropped above. An OBJ that names no library
+    // is not told about its usemtl lines (exporters write `usemtl Default` with none).
+    if (libraries.read() > 0 && libraries.unread().empty()) {
+        std::vector<std::string> undefined;
+        for (const std::string& name : materialsUsed(joinedText))
+            if (std::none_of(materials.begin(), materials.end(), [&](const auto& m) { return m.name == name; }))
+                undefined.push_back(name);
+        if (!undefined.empty()) {
+            std::string names;
+            for (size_t i = 0; i < std::min<size_t>(undefined.size(), 3); ++i)
+                names += (i ? ", '" : "'") + printable(spelled(undefined[i])) + "'";
+            if (undefined.size() > 3) names += " and " + std::to_string(undefined.size() - 3) + " more";
+            scene.warnings.push_back(file.string() + ": usemtl names " + std::to_string(undefined.size()) +
+                                     (undefined.size() == 1 ? " material" : " materials") +
+                                     " that no material library defines (" + names +
+                                     "): their faces are drawn grey, and none is cut by a map_d");
+        }
+    }
+    for (tinyobj::material_t& material : materials) material.name = spelled(std::move(material.name));
     // The file's materials that cut their faces (map_d, or a dissolve below half): their index in
     // scene.materials, else −1.
     std::vector<size_t> facesWearing(materials.size(), 0);
