@@ -1,8 +1,9 @@
 // OBJ through the project's reader (tinyobjloader and libs/scene/src/obj_read.cpp): any bytes
 // give a scene or a one-line error. Beside the input lies a material library whose material
 // `leaf` is cut by a mask (map_d, obj_materials.cpp), so that a mutated `usemtl leaf` and its
-// texture coordinates reach the cut faces' reader too (seed: corpus/obj/leaf_card), and whose
-// `glass` and `pane` dissolve below half (d, Tr: seed corpus/obj/glass_pane).
+// texture coordinates reach the cut faces' reader too (seed: corpus/obj/leaf_card), whose
+// `glass` and `pane` dissolve below half (d, Tr: seed corpus/obj/glass_pane), and whose `bark of
+// the trunk` is named with spaces and a comment after it (seed: corpus/obj/material_names).
 #include "fuzz_support.h"
 
 #include "shadowkit/scene/image.h"
@@ -21,7 +22,8 @@ void writeLeafMaterial(const std::filesystem::path& folder) {
     std::ofstream(folder / "shadowkit_fuzz_leaf.mtl")
         << "newmtl leaf\nKd 0.2 0.6 0.1\nmap_d -clamp on shadowkit_fuzz_leaf.png\n"
            "newmtl grey\nmap_d -imfchan l shadowkit_fuzz_leaf.png\n"
-           "newmtl glass\nd 0.1\nnewmtl pane\nTr 0.8\nmap_d shadowkit_fuzz_leaf.png\n";
+           "newmtl glass\nd 0.1\nnewmtl pane\nTr 0.8\nmap_d shadowkit_fuzz_leaf.png\n"
+           "newmtl bark  of the trunk # named with spaces\nKd 0.4 0.3 0.2\n";
 }
 
 } // namespace
