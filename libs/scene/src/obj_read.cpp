@@ -183,9 +183,11 @@ struct CornerHash {
 } // namespace
 
 core::Result<Scene> loadObj(const fs::path& file) {
-    const auto text = readTextFile(file);
+    auto text = readTextFile(file);
     if (!text) return text.errorInfo();
-    const std::string joinedText = withNamesJoined(*text, "usemtl");
+    // The file's text is held once more by the stream below; the names are joined in place of it,
+    // not beside it (a copy only where a line needs it).
+    const std::string joinedText = withNamesJoined(std::move(*text), "usemtl");
     std::istringstream in(joinedText);
     MaterialLibraries libraries(file.parent_path());
     tinyobj::attrib_t attrib;
@@ -212,10 +214,9 @@ core::Result<Scene> loadObj(const fs::path& file) {
         scene.warnings.push_back(file.string() + ": its material library '" + printable(library) +
                                  "': " + oneLine(why) +
                                  "; the faces wearing its materials are drawn grey, and none is cut by a map_d");
-    // A name that the libraries the OBJ names, all read, do not define (often by its case, or by
-    // spaces in it, of which tinyobjloader reads the first word): tinyobjloader gives those faces
-    // no material, and said so only in the warnings dropped above. An OBJ that names no library
-    // is not told about its usemtl lines (exporters write `usemtl Default` with none).
+    // A name that the libraries the OBJ names, all read, do not define (often by its case):
+    // tinyobjloader gives those faces no material, and said so only in the warnings dropped above. An OBJ that names no
+    // library is not told about its usemtl lines (exporters write `usemtl Default` with none).
     if (libraries.read() > 0 && libraries.unread().empty()) {
         std::vector<std::string> undefined;
         for (const std::string& name : materialsUsed(joinedText))

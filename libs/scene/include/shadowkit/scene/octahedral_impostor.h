@@ -31,7 +31,7 @@ namespace shadowkit::scene {
 
 struct OctahedralImpostorOptions {
     int framesPerSide = 16;   // frames along each side of the hemi-octahedral grid, [1, 64]
-    int texelsPerFrame = 128; // texels along each side of a frame, two of them open border, [8, 2048]
+    int texelsPerFrame = 128; // texels along each side of a frame, the outermost one open, [8, 2048]
     float alphaCutoff = 0.5f; // the cards' material cutoff
 };
 
