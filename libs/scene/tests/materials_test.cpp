@@ -618,7 +618,8 @@ TEST(TextureSamplingTest, AMaterialCoversNothingExactlyWhereTheTruthsAlphaTestCo
         const scene::AlphaMask mask(c.texture >= 0 ? textures[0] : scene::Texture{}, c.factor, c.cutoff);
         bool anyCovered = false;
         for (int y = 0; y < 32; ++y)
-            for (int x = 0; x < 32; ++x) anyCovered |= mask.covers({(x + 0.5f) / 32.0f, (y + 0.5f) / 32.0f});
+            for (int x = 0; x < 32; ++x)
+                anyCovered |= mask.covers({(float(x) + 0.5f) / 32.0f, (float(y) + 0.5f) / 32.0f});
         anyCovered |= mask.covers({2.5f / 4.0f, 1.5f / 4.0f});
         EXPECT_EQ(anyCovered, !c.nothing) << what;
     }
