@@ -86,6 +86,27 @@ core::Status checkNodeTransforms(const tinygltf::Model& model, const fs::path& f
     return core::Ok{};
 }
 
+void warnOfNodeRotations(const tinygltf::Model& model, const fs::path& file, std::vector<std::string>& warnings) {
+    std::vector<size_t> nodes;
+    double farthest = 1.0; // the length farthest from 1
+    for (size_t node = 0; node < model.nodes.size(); ++node) {
+        const std::vector<double>& q = model.nodes[node].rotation;
+        if (q.size() != 4) continue;
+        const double length = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+        if (std::abs(length - 1.0) <= 1e-3) continue;
+        nodes.push_back(node);
+        if (std::abs(length - 1.0) > std::abs(farthest - 1.0)) farthest = length;
+    }
+    if (nodes.empty()) return;
+    char length[32];
+    std::snprintf(length, sizeof length, "%.3g", farthest);
+    warnings.push_back(file.string() + ": " + nodeNamed(model, nodes.front()) +
+                       (nodes.size() > 1 ? " and " + std::to_string(nodes.size() - 1) + " more" : std::string()) +
+                       ": a rotation that is not a unit quaternion (length " + length +
+                       "; glTF requires one), placed by the formula as it stands, which for another length "
+                       "need not be a rotation");
+}
+
 // The nodes the loaded scene starts from: its default scene's roots (scene 0's where the file
 // names none). A file with no scene at all is, in glTF's words, a library of entities (§3.5:
 // "a glTF asset that does not contain any scenes should be treated as a library"); Blender's

@@ -30,6 +30,13 @@ core::Result<NodeTrees> checkNodeTrees(const tinygltf::Model& model, const std::
 /// (JSON holds no infinite number: the parser refuses one that overflows a double.)
 core::Status checkNodeTransforms(const tinygltf::Model& model, const std::filesystem::path& file);
 
+/// One line in `warnings` naming the nodes whose rotation is not a unit quaternion (glTF 2.0,
+/// §5.25: it must be). Such a node is placed by the unit quaternion's matrix formula as it stands
+/// — in general a scale and shear, not a rotation — in the maps and the truth alike. Exporters'
+/// float rounding (a length within 10⁻³ of 1) is not named.
+void warnOfNodeRotations(const tinygltf::Model& model, const std::filesystem::path& file,
+                         std::vector<std::string>& warnings);
+
 /// The nodes the loaded scene starts from: its default scene's roots (scene 0's where the file
 /// names none), or, in a file with no scene, every root node, with one line in `warnings`.
 /// Each node is placed once: a listed node below another listed one is left to it, one whose

@@ -375,6 +375,7 @@ core::Result<Scene> loadGltf(const fs::path& file, double poseSeconds) {
         if (!knownOrShadingOnly(extension))
             scene.warnings.push_back(file.string() + ": it requires " + printable(extension) +
                                      ", which shadowkit does not read: what it describes is left out");
+    warnOfNodeRotations(model, file, scene.warnings);
     const std::vector<int> roots = sceneRoots(model, *trees, file, scene.warnings);
     if (auto s = readMaterials(model, file, images, materialsPlaced(model, roots), scene); !s) return s.errorInfo();
     // (mesh, primitive) -> batch index: a mesh placed by many nodes becomes one instanced batch.

@@ -228,6 +228,30 @@ TEST(GltfReadTest, ANodeMatrixThatIsNotTranslationRotationAndScaleIsRefusedNamin
     EXPECT_NEAR(noisy->wsBounds().min.y, 2.0, 1e-6);
 }
 
+// A rotation must be a unit quaternion (glTF 2.0, §5.25); one that is not is placed by the
+// formula as it stands (in general a scale and shear) and named in one warning, its length the
+// one farthest from 1. Float rounding in an exporter's quaternion is not named.
+TEST(GltfReadTest, ARotationThatIsNotAUnitQuaternionIsNamedInOneWarning) {
+    auto rotationWarnings = [](const core::Result<scene::Scene>& s) {
+        std::vector<std::string> found;
+        for (const std::string& w : s->warnings)
+            if (w.find("unit quaternion") != std::string::npos) found.push_back(w);
+        return found;
+    };
+    const auto off = loadNodes("sk_quaternion.gltf", "0,1,2",
+                               R"({"mesh":0,"rotation":[0,1,0,1]},{"name":"half","mesh":0,"rotation":[0,0,0,0.5]},)"
+                               R"({"mesh":0,"rotation":[0,0.7071068,0,0.7071068]})");
+    ASSERT_TRUE(off) << off.error();
+    const std::vector<std::string> named = rotationWarnings(off);
+    ASSERT_EQ(named.size(), 1u);
+    EXPECT_NE(named[0].find("node 0 and 1 more: a rotation that is not a unit quaternion (length 0.5;"),
+              std::string::npos)
+        << named[0];
+    const auto rounded = loadNodes("sk_quaternion_rounded.gltf", "0", R"({"mesh":0,"rotation":[0,0.7071,0,0.7071]})");
+    ASSERT_TRUE(rounded) << rounded.error();
+    EXPECT_TRUE(rotationWarnings(rounded).empty());
+}
+
 TEST(GltfReadTest, NodeHierarchiesThatAreNotTreesAreRefusedInOneLine) {
     // glTF's nodes form disjoint trees. Each file below breaks that in a way that, unchecked,
     // places a node exponentially often; each was a hang before.
