@@ -30,11 +30,11 @@ struct SampleGrid {
     SampleGrid(int w, int h) : width(w), height(h), mask(size_t(w) * size_t(h), 0), colour(mask.size(), glm::vec3(0)) {}
 };
 
-// Covers the samples of `grid` inside the triangle whose corners lie at `texel` (grid texel
+// Covers the samples of `grid` inside the triangle whose corners lie at `q` (grid texel
 // units) and are `corners` of `source`, where its alpha test passes (an untextured source covers
 // wherever it lies) and no triangle drawn before covered them: the first triangle drawn over a
 // sample gives its colour.
-void rasterise(SampleGrid& grid, const std::array<glm::vec2, 3>& texel, const CloudSource& source,
+void rasterise(SampleGrid& grid, const std::array<glm::vec2, 3>& q, const CloudSource& source,
                const std::array<const Vertex*, 3>& corners, const KeptTexels& kept);
 
 // Writes the grid's texels at least `border` from its edge into `target` at (x + tx, y + ty):

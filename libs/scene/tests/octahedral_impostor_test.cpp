@@ -10,10 +10,13 @@
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <random>
 #include <string>
+#include <vector>
 
 using namespace shadowkit;
 using namespace shadowkit::scene;
@@ -63,6 +66,31 @@ const glm::vec3 kTowardsViewers[] = {
     {1, 0, 0},           {0.6f, 0.8f, 0}, {0, 1, 0}, {-0.3f, 0.9f, -0.2f}, {-0.8f, 0.5f, -0.3f}, {0.5f, 0.36f, -0.8f},
     {0.0f, 0.26f, 0.97f}};
 
+// Each species' tree and impostor at the default options, baked once for the tests that read them.
+const ImpostorTree& bakedTree(int species) {
+    static const std::vector<std::unique_ptr<ImpostorTree>> trees = [] {
+        std::vector<std::unique_ptr<ImpostorTree>> all;
+        for (int k = 0; k < kTreeSpeciesCount; ++k)
+            all.push_back(std::make_unique<ImpostorTree>(static_cast<TreeSpecies>(k)));
+        return all;
+    }();
+    return *trees[size_t(species)];
+}
+
+// The smallest and largest of the IoUs and areas a test measured, printed for the docs' table
+// (docs/materials.md: `shadowkit_scene_tests --gtest_filter='OctahedralImpostorTest.*'`).
+struct Range {
+    double iouLo = INFINITY, iouHi = -INFINITY, areaLo = INFINITY, areaHi = -INFINITY;
+    void take(double iouSeen, double area) {
+        iouLo = std::min(iouLo, iouSeen), iouHi = std::max(iouHi, iouSeen);
+        areaLo = std::min(areaLo, area), areaHi = std::max(areaHi, area);
+    }
+    void print(const char* what, int species, float objectError) const {
+        std::printf("%s, species %d (error %.3f m): IoU %.3f-%.3f, area seen x%.2f-%.2f\n", what, species,
+                    double(objectError), iouLo, iouHi, areaLo, areaHi);
+    }
+};
+
 std::string named(int species, glm::vec3 v, int cells) {
     return "species " + std::to_string(species) + ", towards " + std::to_string(v.x) + "," + std::to_string(v.y) + "," +
            std::to_string(v.z) + " at " + std::to_string(cells) + " cells";
@@ -78,16 +106,19 @@ std::string named(int species, glm::vec3 v, int cells) {
 // is the texels: the conifer's needles are thinner than a texel of a 128² frame.
 TEST(OctahedralImpostorTest, FromTheDirectionsItsFramesWereTakenFromItCoversWhatTheTreeCovers) {
     for (int k = 0; k < kTreeSpeciesCount; ++k) {
-        const ImpostorTree t(static_cast<TreeSpecies>(k));
+        const ImpostorTree& t = bakedTree(k);
+        Range seen;
         for (const glm::vec3& towards : kTowardsViewers) {
             const int n = t.impostor.framesPerSide;
             const glm::vec3 framed = impostorFrameDirection(n, impostorFrame(n, glm::normalize(towards)));
             for (const int cells : {t.cellsAtItsError(), 2 * t.cellsAtItsError()}) {
                 const std::vector<double> tree = t.treeSeen(framed, cells), impostor = t.impostorSeen(framed, cells);
+                seen.take(iou(tree, impostor), sum(impostor) / sum(tree));
                 EXPECT_GE(iou(tree, impostor), 0.9) << named(k, framed, cells);
                 EXPECT_NEAR(sum(impostor) / sum(tree), 1.0, 0.05) << named(k, framed, cells) << ": area seen";
             }
         }
+        seen.print("along its frames' own directions", k, t.impostor.objectError);
     }
 }
 
@@ -99,16 +130,19 @@ TEST(OctahedralImpostorTest, FromTheDirectionsItsFramesWereTakenFromItCoversWhat
 // dither's sampling.
 TEST(OctahedralImpostorTest, FromBetweenItsFramesItCoversWhatTheTreeCoversWithinItsError) {
     for (int k = 0; k < kTreeSpeciesCount; ++k) {
-        const ImpostorTree t(static_cast<TreeSpecies>(k));
+        const ImpostorTree& t = bakedTree(k);
         const bool conifer = static_cast<TreeSpecies>(k) == TreeSpecies::Conifer;
+        Range seen;
         for (const glm::vec3& towards : kTowardsViewers) {
             const glm::vec3 v = glm::normalize(towards);
             const int cells = t.cellsAtItsError();
             const std::vector<double> tree = t.treeSeen(v, cells), impostor = t.impostorSeen(v, cells);
+            seen.take(iou(tree, impostor), sum(impostor) / sum(tree));
             EXPECT_GE(iou(tree, impostor), conifer ? 0.88 : 0.9) << named(k, v, cells);
             EXPECT_GT(sum(impostor) / sum(tree), 0.85) << named(k, v, cells) << ": area seen";
             EXPECT_LT(sum(impostor) / sum(tree), 1.15) << named(k, v, cells) << ": area seen";
         }
+        seen.print("from between its frames", k, t.impostor.objectError);
     }
 }
 
