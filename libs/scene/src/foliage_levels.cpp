@@ -2,8 +2,11 @@
 
 #include "shadowkit/core/conventions.h"
 #include "shadowkit/scene/mesh_builder.h"
+#include "shadowkit/scene/octahedral_impostor.h"
 
 #include <tbb/parallel_for.h>
+
+#include <algorithm>
 
 namespace shadowkit::scene {
 
@@ -43,6 +46,42 @@ void appendCloudLevels(Mesh& mesh, std::span<const BakedCloud> clouds, int32_t f
         mesh.authoredLods.push_back(std::move(level));
     }
     mesh.computeBounds();
+}
+
+std::optional<Texture> appendImpostorLevel(Mesh& mesh, std::span<const CloudSource> sources, float alphaCutoff,
+                                           int32_t textureIndex) {
+    SK_ASSERT(!mesh.authoredLods.empty(), "appendImpostorLevel(): the mesh has no cloud to stand in for");
+    const OctahedralImpostorOptions options{.alphaCutoff = alphaCutoff};
+    const int side = options.framesPerSide * options.texelsPerFrame;
+    Texture texture;
+    texture.image = Image(side, side);
+    texture.wrapS = texture.wrapT = TextureWrap::ClampToEdge;
+    const OctahedralImpostor impostor = bakeOctahedralImpostor(sources, texture.image, {0, 0, side, side}, options);
+    if (!(impostor.coverage > 0.0)) return std::nullopt;
+
+    mesh.authoredLods.back().passes = LodPasses::Camera;
+    float before = 0.0f; // the error of the shadow chain's level before the impostor's
+    for (const AuthoredLod& level : mesh.authoredLods)
+        if (level.passes != LodPasses::Camera) before = level.objectError;
+    AuthoredLod level{{},
+                      std::max(impostor.objectError, before),
+                      true,
+                      textureIndex,
+                      LodPasses::Shadows,
+                      {impostor.osCentre, impostor.osRadius, impostor.framesPerSide, impostor.texelsPerFrame}};
+    // The corners osCentre + osRadius · (sx, sy, sx·sy): the vertex stages read (sx, sy), and the
+    // third keeps the sphere's box in the mesh's bounds, which a turned card reaches.
+    const auto base = static_cast<uint32_t>(mesh.vertices.size());
+    for (int k = 0; k < 4; ++k) {
+        const float sx = float(2 * (k & 1) - 1), sy = float(2 * (k >> 1) - 1);
+        mesh.vertices.push_back({impostor.osCentre + impostor.osRadius * glm::vec3(sx, sy, sx * sy),
+                                 glm::vec3(0.0f, 0.0f, 1.0f), glm::vec3(1.0f),
+                                 glm::vec2(0.5f * (sx + 1.0f), 0.5f * (sy + 1.0f))});
+    }
+    level.indices = {base, base + 1, base + 3, base, base + 3, base + 2};
+    mesh.authoredLods.push_back(std::move(level));
+    mesh.computeBounds();
+    return texture;
 }
 
 int addFoliageClouds(Scene& scene, const FoliageCloudOptions& options) {

@@ -193,6 +193,9 @@ void addLeafyTrees(Scene& scene, SplitMix64& rng, const ForestOptions& o, AddMes
         const double top = std::max(tree.wood.osBounds.max.y, tree.leaves.osBounds.max.y);
         for (BakedCloud& far : addFarLevels(tree, scene.textures[0].image, int32_t(scene.textures.size())))
             scene.textures.push_back(std::move(far.texture));
+        if (o.impostors)
+            if (auto card = addImpostorLevel(tree, scene.textures[0].image, int32_t(scene.textures.size())))
+                scene.textures.push_back(std::move(*card));
         species.push_back(
             {addMesh(std::move(tree.wood)), addMesh(std::move(tree.leaves)), heights[k][0], heights[k][1], top});
     }
@@ -221,6 +224,9 @@ core::Status validate(const ForestOptions& o) {
     if (o.buildings < 0 || o.buildings > 100'000) return bad("buildings", "[0, 100000]");
     if (o.movers < 0 || o.movers > 1000) return bad("movers", "[0, 1000]");
     if (!(o.clearingRadius >= 0.0)) return bad("clearing radius", "[0, inf) metres");
+    if (o.impostors && o.kind != ForestKind::Leafy)
+        return core::makeError(
+            "forest option impostors: the leafy forest's (its trees' far levels), not the simple one's");
     return core::Ok{};
 }
 

@@ -14,6 +14,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -359,10 +360,19 @@ LeafyTree makeLeafyTree(TreeSpecies species, uint64_t seed) {
     return tree;
 }
 
-std::vector<BakedCloud> addFarLevels(LeafyTree& tree, const Image& leafAtlas, int32_t firstTextureIndex) {
+namespace {
+
+// What a far level holds: the leaves, their alpha read from the atlas, and every branch but the trunk.
+std::array<CloudSource, 2> farSources(const LeafyTree& tree, const Image& leafAtlas) {
     const std::span<const uint32_t> branches(tree.wood.indices.begin() + std::ptrdiff_t(tree.trunkIndices),
                                              tree.wood.indices.end());
-    const CloudSource sources[] = {{&tree.leaves, tree.leaves.indices, &leafAtlas}, {&tree.wood, branches, nullptr}};
+    return {CloudSource{&tree.leaves, tree.leaves.indices, &leafAtlas}, CloudSource{&tree.wood, branches, nullptr}};
+}
+
+} // namespace
+
+std::vector<BakedCloud> addFarLevels(LeafyTree& tree, const Image& leafAtlas, int32_t firstTextureIndex) {
+    const std::array<CloudSource, 2> sources = farSources(tree, leafAtlas);
     std::vector<BakedCloud> far = bakeCloudChain(sources, leafMaterial(0).alphaCutoff, kSpeciesFinestSlabs);
     if (far.empty()) return far; // no leaves
     // A card level that errs as much as the finest cloud (its cards' own size) but draws fifty
@@ -377,6 +387,10 @@ std::vector<BakedCloud> addFarLevels(LeafyTree& tree, const Image& leafAtlas, in
                                tree.wood.indices.begin() + std::ptrdiff_t(tree.trunkIndices)),
          far.front().cloud.objectError, true});
     return far;
+}
+
+std::optional<Texture> addImpostorLevel(LeafyTree& tree, const Image& leafAtlas, int32_t textureIndex) {
+    return appendImpostorLevel(tree.leaves, farSources(tree, leafAtlas), leafMaterial(0).alphaCutoff, textureIndex);
 }
 
 Material leafMaterial(int32_t atlasTexture) {

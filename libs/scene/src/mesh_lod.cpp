@@ -68,17 +68,29 @@ MeshLods buildLods(const Mesh& mesh, const LodOptions& o) {
         out.shadow.push_back({});
         return out;
     }
-    if (!mesh.authoredLods.empty()) { // the mesh's own levels, for both passes
+    if (!mesh.authoredLods.empty()) { // the mesh's own levels, each for the passes it names
         out.camera.push_back({0, static_cast<uint32_t>(mesh.indices.size()), 0.0f});
+        out.shadow = out.camera;
         out.indices = mesh.indices;
         for (const AuthoredLod& level : mesh.authoredLods) {
-            if (static_cast<int>(out.camera.size()) >= o.maxAuthoredLevels) break;
-            out.camera.push_back({static_cast<uint32_t>(out.indices.size()),
-                                  static_cast<uint32_t>(level.indices.size()), level.objectError, false,
-                                  level.keepsCoverage, level.texture});
+            SK_ASSERT(level.impostor.framesPerSide == 0 || level.passes == LodPasses::Shadows,
+                      "buildLods(): an impostor's level is drawn by the shadow passes alone");
+            const bool camera =
+                level.passes != LodPasses::Shadows && static_cast<int>(out.camera.size()) < o.maxAuthoredLevels;
+            const bool shadow =
+                level.passes != LodPasses::Camera && static_cast<int>(out.shadow.size()) < o.maxAuthoredLevels;
+            if (!camera && !shadow) continue;
+            const LodLevel built{static_cast<uint32_t>(out.indices.size()),
+                                 static_cast<uint32_t>(level.indices.size()),
+                                 level.objectError,
+                                 false,
+                                 level.keepsCoverage,
+                                 level.texture,
+                                 level.impostor};
+            if (camera) out.camera.push_back(built);
+            if (shadow) out.shadow.push_back(built);
             out.indices.insert(out.indices.end(), level.indices.begin(), level.indices.end());
         }
-        out.shadow = out.camera;
         markClosedLevels(mesh, out);
         return out;
     }

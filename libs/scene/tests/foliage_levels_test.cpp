@@ -3,6 +3,7 @@
 #include "shadowkit/scene/foliage_levels.h"
 #include "shadowkit/scene/leafy_trees.h"
 #include "shadowkit/scene/mesh_builder.h"
+#include "shadowkit/scene/mesh_lod.h"
 #include "shadowkit/scene/scene_io.h"
 
 #include "scratch_dir.h"
@@ -11,6 +12,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 
 using namespace shadowkit;
@@ -110,4 +112,49 @@ TEST(FoliageLevelsTest, ALoadedGltfsLeavesComeBackWithClouds) {
         }
     }
     EXPECT_EQ(withClouds, 1);
+}
+
+TEST(FoliageLevelsTest, AnImpostorStandsInForTheCoarsestCloudInTheShadowChainAlone) {
+    // appendImpostorLevel: the shadow chain's last level becomes the impostor's card, the camera's
+    // keeps the coarsest cloud; every other level is in both, and each chain's errors still grow
+    // (a pass takes the coarsest level within its bound by walking them in order).
+    const Texture atlas = makeLeafAtlas();
+    LeafyTree tree = makeLeafyTree(TreeSpecies::Conifer, 1);
+    const std::vector<BakedCloud> clouds = addFarLevels(tree, atlas.image, 1);
+    const MeshLods before = buildLods(tree.leaves);
+    const auto texture = addImpostorLevel(tree, atlas.image, 1 + int32_t(clouds.size()));
+    ASSERT_TRUE(texture.has_value());
+    EXPECT_EQ(texture->image.width, 2048);
+    EXPECT_EQ(texture->wrapS, TextureWrap::ClampToEdge);
+    const MeshLods after = buildLods(tree.leaves);
+
+    ASSERT_EQ(after.camera.size(), before.camera.size());
+    for (size_t l = 0; l < after.camera.size(); ++l) {
+        EXPECT_EQ(after.camera[l].objectError, before.camera[l].objectError) << l;
+        EXPECT_EQ(after.camera[l].impostor.framesPerSide, 0) << l;
+    }
+    ASSERT_EQ(after.shadow.size(), before.shadow.size());
+    for (size_t l = 0; l + 1 < after.shadow.size(); ++l)
+        EXPECT_EQ(after.shadow[l].objectError, before.shadow[l].objectError) << l;
+    const LodLevel& card = after.shadow.back();
+    EXPECT_EQ(card.impostor.framesPerSide, 16);
+    EXPECT_EQ(card.impostor.texelsPerFrame, 128);
+    EXPECT_EQ(card.indexCount, 6u) << "two triangles";
+    EXPECT_EQ(card.texture, 1 + int32_t(clouds.size()));
+    EXPECT_TRUE(card.keepsCoverage);
+    for (size_t l = 1; l < after.shadow.size(); ++l)
+        EXPECT_GE(after.shadow[l].objectError, after.shadow[l - 1].objectError) << l;
+
+    // Its corners are the sphere's: centre ± radius along x and y, which the vertex stages read,
+    // and the mesh's box holds the sphere's, which a turned card reaches.
+    const ImpostorCard& sphere = card.impostor;
+    for (uint32_t k = 0; k < 6; ++k) {
+        const glm::vec3 offset = tree.leaves.vertices[after.indices[card.firstIndex + k]].position - sphere.osCentre;
+        EXPECT_FLOAT_EQ(std::abs(offset.x), sphere.osRadius) << k;
+        EXPECT_FLOAT_EQ(std::abs(offset.y), sphere.osRadius) << k;
+    }
+    for (int axis = 0; axis < 3; ++axis) {
+        EXPECT_LE(tree.leaves.osBounds.min[axis], sphere.osCentre[axis] - sphere.osRadius) << axis;
+        EXPECT_GE(tree.leaves.osBounds.max[axis], sphere.osCentre[axis] + sphere.osRadius) << axis;
+    }
 }

@@ -74,6 +74,11 @@ TEST(ForestTest, OptionsOutOfRangeAreNamed) {
     o = ForestOptions{};
     o.terrainSize = 0;
     EXPECT_NE(validate(o).error().find("terrain size"), std::string::npos);
+    o = ForestOptions{};
+    o.impostors = true; // the simple forest's blobs have no far levels to stand in for
+    EXPECT_NE(validate(o).error().find("impostors"), std::string::npos);
+    o.kind = ForestKind::Leafy;
+    EXPECT_TRUE(validate(o));
     EXPECT_TRUE(validate(ForestOptions{}));
 }
 

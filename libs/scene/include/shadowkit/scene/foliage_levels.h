@@ -11,6 +11,7 @@
 #include "shadowkit/scene/billboard_cloud.h"
 #include "shadowkit/scene/scene.h"
 
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -40,6 +41,20 @@ inline constexpr int kSpeciesFinestSlabs = 32, kLoadedFinestSlabs = 16, kCoarses
 // Appends `clouds` to `mesh` as its last authored levels (keeping coverage), their planes after
 // its vertices, the i-th reading Scene::textures[firstTextureIndex + i]; recomputes its bounds.
 void appendCloudLevels(Mesh& mesh, std::span<const BakedCloud> clouds, int32_t firstTextureIndex);
+
+// The shadow passes' farthest level of `mesh`: an octahedral impostor of `sources`
+// (octahedral_impostor.h, 16 × 16 frames of 128² texels) in place of its coarsest cloud, which
+// the camera keeps. A shadow pass draws the one card facing its light, two triangles where the
+// coarsest cloud draws dozens of planes, and seen from the side the frames cover what the tree
+// covers (the conifer's IoU 0.90–0.97 against its clouds' 0.61–0.72, docs/materials.md). A
+// camera keeps the cloud: a card flat through the tree's centre would shade the tree's sunlit
+// and shadowed halves as one plane. The level errs by the impostor's bound, or by the level
+// before it in the shadow chain where that errs more (so the chain's errors grow). Returns the
+// impostor's texture (2048² texels, its clamped mips kept by the coverage), which the level reads
+// as Scene::textures[textureIndex]; nothing, and no level, for sources that cover nothing.
+// Precondition: `mesh` has authored levels, its coarsest a cloud.
+std::optional<Texture> appendImpostorLevel(Mesh& mesh, std::span<const CloudSource> sources, float alphaCutoff,
+                                           int32_t textureIndex);
 
 struct FoliageCloudOptions {
     // Meshes of fewer triangles keep their one level (a few cards draw as cheaply as a cloud)...

@@ -23,6 +23,9 @@ struct ForestOptions {
     int buildings = 12;          // [0, 100,000]
     int movers = 6;              // dynamic objects near the origin, [0, 1000]
     double clearingRadius = 8.0; // metres around the origin kept free of trees, rocks and buildings
+    // Leafy: the shadow passes' farthest level of each species an octahedral impostor (one card
+    // facing the light, leafy_trees.h addImpostorLevel) in place of its coarsest cloud.
+    bool impostors = false;
 };
 
 // Checks the ranges above; the message names the option.

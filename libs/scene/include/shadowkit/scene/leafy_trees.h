@@ -13,6 +13,7 @@
 #include "shadowkit/scene/scene.h"
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 namespace shadowkit::scene {
@@ -49,6 +50,12 @@ LeafyTree makeLeafyTree(TreeSpecies species, uint64_t seed);
 // authored level, at the finest cloud's error, so the branches leave the wood as they enter
 // the leaves. Returns the clouds in chain order, with their textures (for the scene).
 std::vector<BakedCloud> addFarLevels(LeafyTree& tree, const Image& leafAtlas, int32_t firstTextureIndex);
+
+// The shadow passes' farthest level of the tree, after addFarLevels: an octahedral impostor of
+// what its clouds hold in place of its coarsest cloud, which the camera keeps
+// (foliage_levels.h, appendImpostorLevel), reading Scene::textures[textureIndex]; returns its
+// texture (for the scene), nothing for a tree without leaves.
+std::optional<Texture> addImpostorLevel(LeafyTree& tree, const Image& leafAtlas, int32_t textureIndex);
 
 // The leaves' material: MASK at glTF's default cutoff 0.5, double-sided, the atlas at
 // `atlasTexture` (an index into Scene::textures).

@@ -30,6 +30,9 @@ struct LodLevel {
     // part of the material's atlas: coarse mips of a shared atlas blend neighbouring parts, and
     // a sparse part thins the cells beside it.
     int32_t texture = -1;
+    // The level is an impostor's card (scene.h, ImpostorCard), turned to each pass's viewer by its
+    // vertex stage; shadow chain only.
+    ImpostorCard impostor;
 };
 
 struct MeshLods {
@@ -55,7 +58,8 @@ struct LodOptions {
 };
 
 // Deterministic for a given mesh and options. A mesh with authored levels (Mesh::authoredLods)
-// gets those, the same for both chains, up to maxAuthoredLevels.
+// gets those, each in the chains of the passes it names, up to maxAuthoredLevels a chain.
+// Precondition: an impostor's level names the shadow passes alone.
 MeshLods buildLods(const Mesh& mesh, const LodOptions& options = {});
 
 } // namespace shadowkit::scene

@@ -27,6 +27,21 @@ struct Vertex {
     glm::vec2 uv{0.0f}; // the base colour texture's coordinates (glTF TEXCOORD_n of its texCoord)
 };
 
+// A level drawn as one card turned to each pass's viewer, showing the frame of an octahedral
+// impostor (octahedral_impostor.h) whose direction is nearest: the level's four vertices are
+// the corners osCentre + osRadius · (±1, ±1, 0), which the vertex stages turn and whose texture
+// coordinates they compute (impostor.glsl). framesPerSide 0: not an impostor.
+struct ImpostorCard {
+    glm::vec3 osCentre{0.0f};
+    float osRadius = 0.0f;
+    int framesPerSide = 0;  // the frames' grid, framesPerSide² frames over the level's own texture
+    int texelsPerFrame = 0; // each frame's texels a side, the outermost ring open
+    bool operator==(const ImpostorCard&) const = default;
+};
+
+// Which passes draw an authored level: a pass that does not is given the next level it does.
+enum class LodPasses : uint8_t { Both, Camera, Shadows };
+
 // A coarser version of a mesh made with it (scene/mesh_lod.h uses it instead of simplifying):
 // leaf cards do not simplify like closed surfaces, so a leafy tree brings fewer, larger cards.
 struct AuthoredLod {
@@ -34,6 +49,10 @@ struct AuthoredLod {
     float objectError = 0.0f;      // object-space metres, as scene::LodLevel::objectError
     bool keepsCoverage = false;    // as scene::LodLevel::keepsCoverage
     int32_t texture = -1;          // as scene::LodLevel::texture
+    LodPasses passes = LodPasses::Both;
+    // An impostor's card (shadow passes only: its card is flat through the tree's centre, and a
+    // camera would see the tree's sunlit half and shadowed half as one plane).
+    ImpostorCard impostor;
 };
 
 struct Mesh {
