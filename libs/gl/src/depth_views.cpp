@@ -20,8 +20,9 @@ core::Result<ProgramPair> buildDepthViewPrograms(ViewTarget target) {
     for (const bool material : {false, true}) {
         const std::string_view with = kMaterialVariant[material];
         const std::string name = std::string(what) + (material ? ", materials" : "");
-        auto depth = buildProgram(name, {kExtension, with, views, kDepthPassGlsl, kVisibleGlsl, kDepthVert},
-                                  {with, kViewDither, kDepthPassGlsl, kMaterialGlsl, kDepthFrag});
+        auto depth =
+            buildProgram(name, {kExtension, with, views, kDepthPassGlsl, kVisibleGlsl, kImpostorGlsl, kDepthVert},
+                         {with, kViewDither, kDepthPassGlsl, kMaterialGlsl, kDepthFrag});
         if (!depth) return depth.errorInfo();
         if (auto s = checkUniformBlock(*depth, name, "DepthPass", sizeof(DepthPassUniforms), depthPassFields()); !s)
             return s.errorInfo();

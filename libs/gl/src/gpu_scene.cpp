@@ -29,7 +29,8 @@ std::vector<GpuScene::Range> rangesOf(const std::vector<scene::LodLevel>& chain)
     std::vector<GpuScene::Range> ranges;
     for (size_t l = 0; l < std::min(chain.size(), kMaxLodLevels); ++l)
         ranges.push_back({static_cast<GLsizei>(chain[l].indexCount), chain[l].firstIndex * sizeof(uint32_t),
-                          chain[l].keepsCoverage ? 0.0f : chain[l].objectError, chain[l].closed, chain[l].texture});
+                          chain[l].keepsCoverage ? 0.0f : chain[l].objectError, chain[l].closed, chain[l].texture,
+                          chain[l].impostor});
     return ranges;
 }
 
@@ -365,10 +366,13 @@ DrawStats GpuScene::drawBatch(const GpuBatch& batch, const PassList& list, const
     };
     // What a level's draw sets apart from its batch: both sides where culling could lose a face the
     // light or camera meets first; a texture of its own (a billboard cloud's) in place of the
-    // material's. Levels that agree can share a draw (their lookup offsets go as an array).
+    // material's; an impostor's card, which the shadow passes' vertex stages turn to their light
+    // (impostor.glsl; no camera chain holds one). Levels that agree can share a draw (their
+    // lookup offsets go as an array).
     struct LevelState {
         bool twoSided = false;
         GLuint texture = 0; // 0: the material's
+        scene::ImpostorCard impostor;
         bool operator==(const LevelState&) const = default;
     };
     auto stateOf = [&](size_t level) {
@@ -378,6 +382,7 @@ DrawStats GpuScene::drawBatch(const GpuBatch& batch, const PassList& list, const
             culling && (batch.material.doubleSided || batch.mirrored || (programs.cullClosedOnly && !range.closed));
         if (materialBound && range.texture >= 0 && size_t(range.texture) < m_textures.size())
             state.texture = m_textures[size_t(range.texture)].id();
+        state.impostor = range.impostor;
         return state;
     };
     // A GPU-culled list's levels are drawn together where the vertex stages read each command's
@@ -402,6 +407,11 @@ DrawStats GpuScene::drawBatch(const GpuBatch& batch, const PassList& list, const
         while (levelsTogether && end < levels.size() && instancesAt(end) > 0 && stateOf(end) == state) ++end;
         if (state.twoSided) glDisable(GL_CULL_FACE);
         if (state.texture) glBindTextureUnit(kBaseColorUnit, state.texture);
+        const scene::ImpostorCard& card = state.impostor;
+        if (card.framesPerSide > 0) {
+            glUniform4f(kImpostorSphereLocation, card.osCentre.x, card.osCentre.y, card.osCentre.z, card.osRadius);
+            glUniform2i(kImpostorGridLocation, card.framesPerSide, card.texelsPerFrame);
+        }
         if (together.lists.size() > 1 && list.indirect < 0)
             stats += drawLevelTogether(batch, together, level, levels[level]);
         else if (together.lists.size() > 1)
@@ -411,6 +421,7 @@ DrawStats GpuScene::drawBatch(const GpuBatch& batch, const PassList& list, const
             stats += drawLevels(batch, list, levels, level, end, setInstanceBase);
         else
             stats += drawLevel(batch, list, level, levels[level], setInstanceBase, replicas, volume);
+        if (card.framesPerSide > 0) glUniform2i(kImpostorGridLocation, 0, 0);
         if (state.texture) glBindTextureUnit(kBaseColorUnit, batch.material.texture);
         if (state.twoSided) glEnable(GL_CULL_FACE);
         level = end;

@@ -55,11 +55,12 @@ core::Result<std::unique_ptr<LocalShadowMaps>> LocalShadowMaps::create() {
     using namespace shaders;
     for (const bool material : {false, true}) {
         const std::string_view with = kMaterialVariant[material];
-        auto geometry = buildProgram(
-            material ? "local lights' depth pass (geometry shader, materials)"
-                     : "local lights' depth pass (geometry shader)",
-            {with, kLocalDepthGlsl, "#define SK_CROSSING_OUT vsCrossing\n", kVisibleGlsl, kLocalDepthWorldVert},
-            {with, kLocalDepthGlsl, kLocalDepthGeom}, {with, kLocalDepthGlsl, kMaterialGlsl, kLocalDepthFrag});
+        auto geometry = buildProgram(material ? "local lights' depth pass (geometry shader, materials)"
+                                              : "local lights' depth pass (geometry shader)",
+                                     {with, kLocalDepthGlsl, "#define SK_CROSSING_OUT vsCrossing\n", kVisibleGlsl,
+                                      kImpostorGlsl, kLocalDepthWorldVert},
+                                     {with, kLocalDepthGlsl, kLocalDepthGeom},
+                                     {with, kLocalDepthGlsl, kMaterialGlsl, kLocalDepthFrag});
         if (!geometry) return geometry.errorInfo();
         (material ? maps->m_geometryPrograms.material : maps->m_geometryPrograms.plain) = std::move(geometry).value();
     }
@@ -71,10 +72,11 @@ core::Result<std::unique_ptr<LocalShadowMaps>> LocalShadowMaps::create() {
         const std::string enable = std::string("#extension ") + extension + " : require\n";
         for (const bool material : {false, true}) {
             const std::string_view with = kMaterialVariant[material];
-            auto layered = buildProgram(material ? "local lights' depth pass (vertex layer, materials)"
-                                                 : "local lights' depth pass (vertex layer)",
-                                        {enable, with, kLocalDepthGlsl, kVisibleGlsl, kLocalDepthLayerVert},
-                                        {with, kLocalDepthGlsl, kMaterialGlsl, kLocalDepthFrag});
+            auto layered =
+                buildProgram(material ? "local lights' depth pass (vertex layer, materials)"
+                                      : "local lights' depth pass (vertex layer)",
+                             {enable, with, kLocalDepthGlsl, kVisibleGlsl, kImpostorGlsl, kLocalDepthLayerVert},
+                             {with, kLocalDepthGlsl, kMaterialGlsl, kLocalDepthFrag});
             if (!layered) return layered.errorInfo();
             (material ? maps->m_vertexLayerPrograms.material : maps->m_vertexLayerPrograms.plain) =
                 std::move(layered).value();

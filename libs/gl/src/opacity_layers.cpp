@@ -13,9 +13,10 @@ core::Result<std::unique_ptr<OpacityLayers>> OpacityLayers::create() {
     using namespace shaders;
     for (const bool first : {true, false}) {
         const std::string name = first ? "opacity layers, first leaf" : "opacity layers, transmittance";
-        auto program = buildProgram(name, {kMaterialVariant[1], kDepthPassGlsl, kVisibleGlsl, kDepthVert},
-                                    {kMaterialVariant[1], first ? "#define SK_OPACITY_FIRST 1\n" : "", kDepthPassGlsl,
-                                     kMaterialGlsl, kShadowkitShadowsGlsl, kShadowkitFoliageOpacityGlsl, kOpacityFrag});
+        auto program =
+            buildProgram(name, {kMaterialVariant[1], kDepthPassGlsl, kVisibleGlsl, kImpostorGlsl, kDepthVert},
+                         {kMaterialVariant[1], first ? "#define SK_OPACITY_FIRST 1\n" : "", kDepthPassGlsl,
+                          kMaterialGlsl, kShadowkitShadowsGlsl, kShadowkitFoliageOpacityGlsl, kOpacityFrag});
         if (!program) return program.errorInfo();
         (first ? layers->m_first : layers->m_transmittance) = std::move(program).value();
     }
@@ -75,8 +76,9 @@ core::Status OpacityLayers::prepare(int width, int height, int layers, int mipLe
     return core::Ok{};
 }
 
-DrawStats OpacityLayers::draw(const GpuScene& scene, const core::BiasSettings& bias, std::span<const OpacityView> views,
-                              const CasterLists& casters, const Buffer& depthPass, bool depthClamp) {
+DrawStats OpacityLayers::draw(const GpuScene& scene, const core::BiasSettings& bias, const core::Vec3& wsTowardsSun,
+                              std::span<const OpacityView> views, const CasterLists& casters, const Buffer& depthPass,
+                              bool depthClamp) {
     // Both sides of every leaf, and no depth test but the first draw's: in the layers each fragment
     // of each leaf counts once.
     glDisable(GL_DEPTH_TEST);
@@ -95,7 +97,7 @@ DrawStats OpacityLayers::draw(const GpuScene& scene, const core::BiasSettings& b
     // View i's uniforms, viewport and scissor (its clears and draws stay inside it: a page's slot).
     const auto placeAt = [&](size_t i) {
         const OpacityView& view = views[i];
-        DepthPassUniforms uniforms = depthPassUniformsFor(view.clipFromWorld, bias);
+        DepthPassUniforms uniforms = depthPassUniformsFor(view.clipFromWorld, bias, wsTowardsSun);
         uniforms.linearDepthFromWorld = glm::vec4(view.linearDepthFromWorld);
         uploadToBuffer(depthPass.id(), 0, sizeof uniforms, &uniforms);
         glViewport(view.viewport.x, view.viewport.y, view.viewport.z, view.viewport.z);

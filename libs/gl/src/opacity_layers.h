@@ -60,11 +60,13 @@ public:
     // The textures for `layers` layers of width × height texels, allocated or kept; the prefiltered
     // layers with `mipLevels` levels (at most a full chain). Out of memory: an error naming `field`.
     core::Status prepare(int width, int height, int layers, int mipLevels, const std::string& field);
-    // Draws the layers of every view from the alpha-tested batches of its casters,
-    // writing each view's DepthPass block into `depthPass` (bound at kDepthPassBinding); casters
-    // before a map's near plane clamped to it with `depthClamp`, as the depth pass does.
-    DrawStats draw(const GpuScene& scene, const core::BiasSettings& bias, std::span<const OpacityView> views,
-                   const CasterLists& casters, const Buffer& depthPass, bool depthClamp);
+    // Draws the layers of every view of the sun towards `wsTowardsSun` from the alpha-tested
+    // batches of its casters, writing each view's DepthPass block into `depthPass` (bound at
+    // kDepthPassBinding); casters before a map's near plane clamped to it with `depthClamp`, as
+    // the depth pass does.
+    DrawStats draw(const GpuScene& scene, const core::BiasSettings& bias, const core::Vec3& wsTowardsSun,
+                   std::span<const OpacityView> views, const CasterLists& casters, const Buffer& depthPass,
+                   bool depthClamp);
     // The last draw()'s work, each counted over all its views: the first leaf's samples, which its
     // depth test passed (about one a texel the leaves cover when they come nearest the sun first),
     // and the transmittance's, every leaf fragment (no depth test). A frame that draws no layers

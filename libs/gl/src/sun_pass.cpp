@@ -24,8 +24,9 @@ core::Result<std::unique_ptr<SunPass>> SunPass::create() {
             const std::string_view layout = linear ? "#define SK_LINEAR_DEPTH 1\n" : "";
             const std::string name =
                 std::string(linear ? "linear " : "") + (material ? "depth pass, materials" : "depth pass");
-            auto depth = buildProgram(name, {withMaterial, layout, kDepthPassGlsl, kVisibleGlsl, kDepthVert},
-                                      {withMaterial, layout, kDepthPassGlsl, kMaterialGlsl, kDepthFrag});
+            auto depth =
+                buildProgram(name, {withMaterial, layout, kDepthPassGlsl, kVisibleGlsl, kImpostorGlsl, kDepthVert},
+                             {withMaterial, layout, kDepthPassGlsl, kMaterialGlsl, kDepthFrag});
             if (!depth) return depth.errorInfo();
             if (auto s = checkUniformBlock(*depth, name, "DepthPass", sizeof(DepthPassUniforms), depthPassFields()); !s)
                 return s.errorInfo();
@@ -124,7 +125,8 @@ core::Result<PassStats> SunPass::draw(const GpuScene& scene, const core::ShadowS
         if (!pages.empty()) m_samples.end();
         // Opacity layers: each page's into its slot of the layers' atlases, as the fixed maps'.
         if (settings.foliageOpacity && !pages.empty())
-            draws += m_opacity->draw(scene, bias, pageOpacityViews(), pageCasters, m_uniforms, /*depthClamp=*/true);
+            draws += m_opacity->draw(scene, bias, wsTowardsLight, pageOpacityViews(), pageCasters, m_uniforms,
+                                     /*depthClamp=*/true);
         m_timer.end();
         if (!pages.empty()) {
             const auto side = uint64_t(m_pages->slotViewport(pages.front().slot).z);
@@ -150,8 +152,8 @@ core::Result<PassStats> SunPass::draw(const GpuScene& scene, const core::ShadowS
     m_samples.end();
     // Opacity layers: the alpha-tested casters, inside the pass's time as the moments are.
     if (settings.foliageOpacity)
-        draws += m_opacity->draw(scene, bias, opacityViewsOf(setup, m_shadow->size), mapCasters, m_uniforms,
-                                 setup.depthClamp);
+        draws += m_opacity->draw(scene, bias, wsTowardsLight, opacityViewsOf(setup, m_shadow->size), mapCasters,
+                                 m_uniforms, setup.depthClamp);
     m_countedTexels = uint64_t(m_shadow->size) * uint64_t(m_shadow->size) * setup.views.size();
     // MSM: the maps' moments, blurred, inside the pass's time (a real frame pays them with it).
     core::Status moments = core::Ok{};
@@ -196,7 +198,7 @@ DrawStats SunPass::drawFixedMaps(const GpuScene& scene, const core::ShadowSetup&
     DrawStats draws;
     for (size_t layer = 0; layer < setup.views.size(); ++layer) { // one array layer per shadow view
         const core::ShadowView& view = setup.views[layer];
-        const DepthPassUniforms uniforms = depthPassUniformsFor(view, bias);
+        const DepthPassUniforms uniforms = depthPassUniformsFor(view, bias, wsTowardsLight);
         uploadToBuffer(m_uniforms.id(), 0, sizeof uniforms, &uniforms);
         m_shadow->attachLayer(static_cast<int>(layer));
         const float clearDepth = 1.0f;
@@ -243,7 +245,7 @@ DrawStats SunPass::drawMapsTogether(const GpuScene& scene, const core::ShadowSet
     std::vector<PageBlock> blocks(setup.views.size());
     for (size_t i = 0; i < blocks.size(); ++i) blocks[i].clipFromWorld = glm::mat4(setup.views[i].clipFromWorld);
     uploadViewBlocks(blocks, m_mapBlocks, m_mapBlockCapacity);
-    const DepthPassUniforms shared = depthPassUniformsFor(core::Mat4(1.0), bias);
+    const DepthPassUniforms shared = depthPassUniformsFor(core::Mat4(1.0), bias, wsTowardsLight);
     uploadToBuffer(m_uniforms.id(), 0, sizeof shared, &shared);
     // Every layer attached, so the vertex stage's gl_Layer picks the map, and one clear clears them all.
     m_shadow->attachAllLayers();

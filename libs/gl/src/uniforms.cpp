@@ -17,7 +17,7 @@ std::span<const UniformField> depthPassFields() {
     static constexpr std::array kFields = {
         SK_FIELD(DepthPassUniforms, clipFromWorld), SK_FIELD(DepthPassUniforms, linearDepthFromWorld),
         SK_FIELD(DepthPassUniforms, slopeBias),     SK_FIELD(DepthPassUniforms, constantBias),
-        SK_FIELD(DepthPassUniforms, ditherOrigin),
+        SK_FIELD(DepthPassUniforms, ditherOrigin),  SK_FIELD(DepthPassUniforms, wsViewer),
     };
     return kFields;
 }
@@ -221,6 +221,8 @@ const std::string& shaderPrelude() {
         define("SK_PAGE_BASE_LOCATION", kPageBaseLocation);
         define("SK_VIEWPORT_BASE_LOCATION", kViewportBaseLocation);
         define("SK_PAGE_PER_DRAW_LOCATION", kPagePerDrawLocation);
+        define("SK_IMPOSTOR_SPHERE_LOCATION", kImpostorSphereLocation);
+        define("SK_IMPOSTOR_GRID_LOCATION", kImpostorGridLocation);
         define("SK_EDGE_ATTRIBUTE", kEdgeAttribute);
         define("SK_CONSERVATIVE_DEPTH_CHECK_BINDING", kConservativeDepthCheckBinding);
         define("SK_CULL_GROUP", kCullGroup);
@@ -232,19 +234,22 @@ const std::string& shaderPrelude() {
     return kPrelude;
 }
 
-DepthPassUniforms depthPassUniformsFor(const core::ShadowView& view, const core::BiasSettings& bias) {
-    DepthPassUniforms uniforms = depthPassUniformsFor(view.clipFromWorld, bias);
+DepthPassUniforms depthPassUniformsFor(const core::ShadowView& view, const core::BiasSettings& bias,
+                                       const core::Vec3& wsTowardsSun) {
+    DepthPassUniforms uniforms = depthPassUniformsFor(view.clipFromWorld, bias, wsTowardsSun);
     uniforms.linearDepthFromWorld = glm::vec4(view.linearDepthFromWorld);
     return uniforms;
 }
 
-DepthPassUniforms depthPassUniformsFor(const core::Mat4& clipFromWorld, const core::BiasSettings& bias) {
+DepthPassUniforms depthPassUniformsFor(const core::Mat4& clipFromWorld, const core::BiasSettings& bias,
+                                       const core::Vec3& wsTowardsSun) {
     // Linear layout: the same slope / constant bias, applied in depth.frag; hyperbolic: the
     // slope term by glPolygonOffset, the constant one in depth.vert. One constant unit is 2^-24
     // of the depth range, the resolvable step of a 24-bit buffer.
     return {.clipFromWorld = glm::mat4(clipFromWorld),
             .slopeBias = static_cast<float>(bias.slope),
-            .constantBias = static_cast<float>(bias.constant) * 0x1p-24f};
+            .constantBias = static_cast<float>(bias.constant) * 0x1p-24f,
+            .wsViewer = glm::vec4(glm::vec3(wsTowardsSun), 0.0f)};
 }
 
 } // namespace shadowkit::gl

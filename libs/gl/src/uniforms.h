@@ -99,6 +99,10 @@ inline constexpr int kViewportBaseLocation = 17; // uniform int viewportBase (de
 // uniform uint pagePerDraw (depth.vert, SK_PAGES): where a draw's page is, after pageBase — 0: the
 // call's; 1: the draw's index in the multi-draw; 2: drawPages[the draw's index]
 inline constexpr int kPagePerDrawLocation = 18;
+// uniform vec4 skImpostorSphere and ivec2 skImpostorGrid (impostor.glsl): the card of the level a
+// shadow pass draws, set by GpuScene for an impostor's level (a frames count of 0 otherwise).
+inline constexpr int kImpostorSphereLocation = 19;
+inline constexpr int kImpostorGridLocation = 20;
 // Vertex attribute float osLongestEdge (depth.vert's SK_LINEAR_DEPTH, local_depth_layer.vert), from
 // its own buffer binding: the longest edge of the vertex's triangles, for the rasterised depth's
 // bound of the passes that write their depth (GpuScene).
@@ -126,13 +130,18 @@ struct DepthPassUniforms {          // GLSL: DepthPass (depth_pass.glsl)
     // Added to gl_FragCoord.xy for the levels' cross-fade dither (material.glsl): a virtual
     // page's texel origin in its level minus its slot's in the atlas, modulo the dither's 8.
     glm::vec2 ditherOrigin{0.0f};
+    // The light, for the impostors' cards (impostor.glsl): xyz towards it (w 0: the sun).
+    glm::vec4 wsViewer{0.0f, 1.0f, 0.0f, 0.0f};
 };
 
-// The block for drawing into `view`: the linear layout's bias as glPolygonOffset's would be,
-// the constant term for both layouts (depth.vert says why not glPolygonOffset's).
-DepthPassUniforms depthPassUniformsFor(const core::ShadowView& view, const core::BiasSettings& bias);
+// The block for drawing into `view` of the sun towards `wsTowardsSun`: the linear layout's bias as
+// glPolygonOffset's would be, the constant term for both layouts (depth.vert says why not
+// glPolygonOffset's).
+DepthPassUniforms depthPassUniformsFor(const core::ShadowView& view, const core::BiasSettings& bias,
+                                       const core::Vec3& wsTowardsSun);
 // The same for a map that stores clip depth only (a virtual page): no linear row.
-DepthPassUniforms depthPassUniformsFor(const core::Mat4& clipFromWorld, const core::BiasSettings& bias);
+DepthPassUniforms depthPassUniformsFor(const core::Mat4& clipFromWorld, const core::BiasSettings& bias,
+                                       const core::Vec3& wsTowardsSun);
 
 struct FrameUniforms {        // GLSL: Frame (frame.glsl)
     glm::mat4 clipFromWorld;  // camera
@@ -240,7 +249,8 @@ struct BlurUniforms {     // GLSL: Blur (blur.frag)
     float pad0;
 };
 
-static_assert(offsetof(DepthPassUniforms, linearDepthFromWorld) == 64 && sizeof(DepthPassUniforms) == 96);
+static_assert(offsetof(DepthPassUniforms, linearDepthFromWorld) == 64 && offsetof(DepthPassUniforms, wsViewer) == 96 &&
+              sizeof(DepthPassUniforms) == 112);
 static_assert(offsetof(FrameUniforms, mapTexels) == 160 && offsetof(FrameUniforms, shadowTextureFromWorld) == 224,
               "std140: the scalars must fill whole 16-byte rows before the arrays");
 static_assert(sizeof(FrameUniforms) == 224 + kMaxCascades * (64 + 16 + 16));

@@ -252,7 +252,7 @@ DrawStats VirtualPages::drawPages(const GpuScene& scene, const PassPrograms& pro
             blocks[i] = {glm::mat4(toRender[i].clipFromWorld), glm::vec4(ditherOrigin(i), 0.0f, 0.0f)};
         uploadViewBlocks(blocks, m_pageBlocks, m_pageBlockCapacity);
         // What the pages share: the bias (the block's matrix and dither origin are the pages').
-        const DepthPassUniforms shared = depthPassUniformsFor(core::Mat4(1.0), bias);
+        const DepthPassUniforms shared = depthPassUniformsFor(core::Mat4(1.0), bias, wsTowardsLight);
         uploadToBuffer(depthUniforms.id(), 0, sizeof shared, &shared);
     }
     // A page alone: its slot as the viewport, its uniforms (or, for the page programs, its block),
@@ -268,7 +268,7 @@ DrawStats VirtualPages::drawPages(const GpuScene& scene, const PassPrograms& pro
         if (pageProgramsUsed) {
             setViewBases(drawWith, i, 0, ViewOfDraw::Call);
         } else {
-            DepthPassUniforms uniforms = depthPassUniformsFor(toRender[i].clipFromWorld, bias);
+            DepthPassUniforms uniforms = depthPassUniformsFor(toRender[i].clipFromWorld, bias, wsTowardsLight);
             uniforms.ditherOrigin = ditherOrigin(i);
             uploadToBuffer(depthUniforms.id(), 0, sizeof uniforms, &uniforms);
         }

@@ -48,12 +48,20 @@ flat out vec2 vDitherOrigin;
 
 void main() {
     const uint entry = skVisibleEntry(uint(gl_InstanceID));
-    const vec4 ws = worldFromObject[skInstanceOf(entry)] * vec4(osPosition, 1.0);
-    wsPosition = ws.xyz;
-    SK_PASS_CROSSING(entry);
+    vec3 os = osPosition;
 #ifdef SK_MATERIAL
     vUv = uv;
 #endif
+    if (skImpostorGrid.x > 0) { // an impostor's card, turned to the light
+        vec2 cardUv;
+        os = skImpostorCorner(osPosition, worldFromObject[skInstanceOf(entry)], wsViewer, cardUv);
+#ifdef SK_MATERIAL
+        vUv = cardUv;
+#endif
+    }
+    const vec4 ws = worldFromObject[skInstanceOf(entry)] * vec4(os, 1.0);
+    wsPosition = ws.xyz;
+    SK_PASS_CROSSING(entry);
 #ifdef SK_PAGES
     const uint k = pagePerDraw == 2u ? drawPages[SK_DRAW_ID] : SK_DRAW_ID * pagePerDraw;
     const SkPage page = pages[pageBase + k];

@@ -6,6 +6,7 @@ layout(std140, binding = SK_DEPTH_PASS_BINDING) uniform DepthPass {
     float slopeBias;           // linear layout: × max depth slope
     float constantBias;        // linear layout: depth units
     vec2 ditherOrigin;         // texels added to gl_FragCoord.xy for the levels' cross-fade (material.glsl)
+    vec4 wsViewer;             // the light the impostors' cards face (impostor.glsl): a direction (w 0)
 };
 #ifndef SK_DITHER_ORIGIN // virtual pages drawn together give each page's (depth.vert, SK_PAGES)
 #define SK_DITHER_ORIGIN ditherOrigin

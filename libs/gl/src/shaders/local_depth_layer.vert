@@ -19,11 +19,19 @@ void main() {
     const uint instance = skInstanceOf(entry);
     SK_PASS_CROSSING(entry);
     const int face = faceOf(int(uint(gl_InstanceID) % copies));
-    const vec4 ws = worldFromObject[instance] * vec4(osPosition, 1.0);
-    wsPosition = ws.xyz;
+    vec3 os = osPosition;
 #ifdef SK_MATERIAL
     vUv = uv;
 #endif
+    if (skImpostorGrid.x > 0) { // an impostor's card, turned to the light
+        vec2 cardUv;
+        os = skImpostorCorner(osPosition, worldFromObject[instance], vec4(wsLightInvRange.xyz, 1.0), cardUv);
+#ifdef SK_MATERIAL
+        vUv = cardUv;
+#endif
+    }
+    const vec4 ws = worldFromObject[instance] * vec4(os, 1.0);
+    wsPosition = ws.xyz;
     gl_Position = faceClipFromWorld[face] * ws;
     const float wsLongestEdge = osLongestEdge * skLargestStretch(worldFromObject[instance]);
     gl_Position.z = skLocalConservativeClipZ(distance(ws.xyz, wsLightInvRange.xyz) - wsLongestEdge, gl_Position.w);

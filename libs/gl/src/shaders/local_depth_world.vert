@@ -12,11 +12,20 @@ out vec3 vsWorld;
 
 void main() {
     const uint entry = skVisibleEntry(uint(gl_InstanceID));
-    const vec4 ws = worldFromObject[skInstanceOf(entry)] * vec4(osPosition, 1.0);
-    SK_PASS_CROSSING(entry); // through local_depth.geom
-    vsWorld = ws.xyz;
+    const mat4 worldFromThis = worldFromObject[skInstanceOf(entry)];
+    vec3 os = osPosition;
 #ifdef SK_MATERIAL
     vsUv = uv;
 #endif
+    if (skImpostorGrid.x > 0) { // an impostor's card, turned to the light
+        vec2 cardUv;
+        os = skImpostorCorner(osPosition, worldFromThis, vec4(wsLightInvRange.xyz, 1.0), cardUv);
+#ifdef SK_MATERIAL
+        vsUv = cardUv;
+#endif
+    }
+    const vec4 ws = worldFromThis * vec4(os, 1.0);
+    SK_PASS_CROSSING(entry); // through local_depth.geom
+    vsWorld = ws.xyz;
     gl_Position = ws;
 }
