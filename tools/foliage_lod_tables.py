@@ -7,13 +7,14 @@ Usage: foliage_lod_tables.py RESULTS_DIR
                leafy{,-no-lod,-VARIANT}.json (10,000 trees) and leafy-100k{,-no-lod,-VARIANT}.json
                (100,000 trees, --same-density), fly-{no-lod,lod,VARIANT}.log (`eval --path
                flythrough`, each optional), summary.txt (the commit and the machine); VARIANT is s4
-               or s8 (--lod-foliage-scale 4 or 8), whichever the run has
+               or s8 (--lod-foliage-scale 4 or 8) and imp (--impostors), whichever the run has
 
 Writes the tables between `<!-- table foliage-lod...: tools/measure-foliage-lod.sh -->` and
 `<!-- /table -->`: the error of the levels against the full geometry's truth, view by view, and
 the work and GPU time they save. "lod" is the default (--lod-foliage-scale 6), "no-lod" every
-tree at full detail, the variant a stricter scale (s4, today's runs) or a looser one (s8, the
-runs kept from the chain of 16, 8 and 4 slabs).
+tree at full detail, the variants a stricter scale (s4, today's runs) or a looser one (s8, the
+runs kept from the chain of 16, 8 and 4 slabs), and the shadow passes' farthest level an
+octahedral impostor (imp).
 """
 import json
 import sys
@@ -24,7 +25,7 @@ from readme_tables import VIEWS, write_into  # noqa: E402
 
 PAGE = "docs/materials.md"
 BASE_SETS = [("no-lod", "`--no-lod`"), ("lod", "levels (default, scale 6)")]
-VARIANTS = [("s4", "`--lod-foliage-scale 4`"), ("s8", "`--lod-foliage-scale 8`")]
+VARIANTS = [("s4", "`--lod-foliage-scale 4`"), ("s8", "`--lod-foliage-scale 8`"), ("imp", "`--impostors` (scale 6)")]
 SETS = list(BASE_SETS)  # with the variant the results hold, set by main()
 
 

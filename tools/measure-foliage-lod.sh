@@ -2,13 +2,14 @@
 # tools/measure-foliage-lod.sh: the leafy forest's levels of detail down to billboard clouds,
 # against the full geometry's truth and in work — docs/materials.md "Foliage levels of detail".
 #
-# Runs, for the default levels (--lod-foliage-scale 6), a stricter scale (4) and none (--no-lod):
+# Runs, for the default levels (--lod-foliage-scale 6), a stricter scale (4), the shadow passes'
+# farthest level an octahedral impostor (--impostors) and none (--no-lod):
 # `eval --forest leafy --views all` hard and under the real sun (--sun-angle 0.53 --filter pcss),
 # `bench --forest leafy` at 10,000 trees and at 100,000 (--same-density) with GPU-driven
 # culling (every machine's default on a GPU; named so that a software rasteriser's triangle
 # counts are the same work), and `eval --path flythrough` over its first 48 frames with the sun
 # held (flicker_pct), into out/foliage-lod/; then writes the tables. On this project's 2-core
-# llvmpipe machine about 45 minutes (the flythroughs and the frames without levels are the slow
+# llvmpipe machine about an hour (the flythroughs and the frames without levels are the slow
 # part); on a GPU machine a few.
 #   FOLIAGE_LOD_RESULTS=DIR_OR_TGZ  writes the tables from a kept run instead (the H200's of the
 #                                   single cloud, data/gpu/h200-2026-11-28-foliage-lod.tgz, were
@@ -28,7 +29,7 @@ B=${SHADOWKIT:-build/apps/shadowkit/shadowkit}
 out=out/foliage-lod
 mkdir -p "$out"
 { echo "commit $(git rev-parse --short HEAD), $(nproc) CPU cores, $(date -u +%Y-%m-%dT%H:%MZ)"; } >"$out/summary.txt"
-for set in "lod|" "no-lod|--no-lod" "s4|--lod-foliage-scale 4"; do
+for set in "lod|" "no-lod|--no-lod" "s4|--lod-foliage-scale 4" "imp|--impostors"; do
   name=${set%%|*} options=${set#*|}
   echo "== $name: eval, hard and under the real sun" >&2
   # shellcheck disable=SC2086

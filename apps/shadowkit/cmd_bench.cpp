@@ -40,7 +40,8 @@ struct BenchArgs {
     double terrainSize = 1024.0;
     int terrainResolution = 256;
     bool sameDensity = false;
-    bool limits = false; // --limits: this GL's depth fill and triangle rates, and each shadow pass against them
+    bool impostors = false; // --impostors (scene::ForestOptions::impostors)
+    bool limits = false;    // --limits: this GL's depth fill and triangle rates, and each shadow pass against them
     // --frames: N frames per view, or with --path its first N, or a range a:b of its frames as
     // render's and eval's --frames take it (framesText as given; frames and pathFrames from it).
     std::string framesText = "5";
@@ -82,6 +83,7 @@ core::Result<scene::ForestOptions> forestOptionsFor(const BenchArgs& args, int t
     forest.terrainSize =
         args.sameDensity ? args.terrainSize * std::sqrt(std::max(trees, 1) / 10000.0) : args.terrainSize;
     forest.terrainResolution = args.terrainResolution;
+    forest.impostors = args.impostors;
     if (auto s = scene::validate(forest); !s) return s.errorInfo();
     return forest;
 }
@@ -552,6 +554,9 @@ Command addBenchCommand(CLI::App& app) {
         ->capture_default_str();
     cmd->add_flag("--same-density", args->sameDensity,
                   "scale the terrain with the tree count (as dense as 10,000 trees on --terrain-size)");
+    cmd->add_flag("--impostors", args->impostors,
+                  "forest, leafy: the shadow passes cast each far tree from an octahedral impostor (one card facing "
+                  "the light) in place of its coarsest billboard cloud");
     args->view.addTo(*cmd);
     cmd->remove_option(cmd->get_option("--view"));
     args->technique.virtualRequestsLate = true; // as an application loop: no frame waits for its requests
@@ -564,7 +569,8 @@ Command addBenchCommand(CLI::App& app) {
     cmd->add_option("--json", args->json, "write every row as JSON {\"runs\": [...], \"limits\": {...} or null}");
     cmd->add_option("--report", args->report, "also write an HTML page: the rows, what they mean, each view's frame");
     std::vector<CLI::Option*> forestOptions{trees};
-    for (const char* flag : {"--forest", "--seed", "--terrain-size", "--terrain-resolution", "--same-density"})
+    for (const char* flag :
+         {"--forest", "--seed", "--terrain-size", "--terrain-resolution", "--same-density", "--impostors"})
         forestOptions.push_back(cmd->get_option(flag));
     return {cmd, [args, views, frames, forestOptions] {
                 args->viewsGiven = views->count() > 0;

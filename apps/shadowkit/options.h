@@ -28,6 +28,7 @@ struct SceneOptions {
     double terrainSize = 1024.0;
     int terrainResolution = 256;
     int movers = scene::ForestOptions{}.movers;
+    bool impostors = false;    // --impostors (scene::ForestOptions::impostors)
     std::string worldOffset;   // "x,y,z": where the scene stands in the world (Scene::wsOrigin)
     std::string sceneUp = "y"; // a scene file's up axis, y or z (scene::LoadOptions::up)
     // A town of meshes placed once loaded as tiles (scene::LoadOptions::mergeSmallMeshes): what a
@@ -37,7 +38,7 @@ struct SceneOptions {
     // (scene::LoadOptions::keepSky): left out otherwise.
     bool keepSky = false;
     // The first of the built-in forest's flags given on the command line (--forest, --seed,
-    // --trees, --terrain-size, --terrain-resolution, --movers): with a scene file it would be
+    // --trees, --terrain-size, --terrain-resolution, --movers, --impostors): with a scene file it would be
     // ignored, so check() and load() refuse it.
     std::string forestFlag;
 

@@ -34,9 +34,13 @@ void SceneOptions::addTo(CLI::App& cmd) {
     cmd.add_option("--terrain-resolution", terrainResolution, "forest: terrain quads per side")->capture_default_str();
     cmd.add_option("--movers", movers, "forest: moving objects on circles round the clearing, [0, 1000]")
         ->capture_default_str();
+    cmd.add_flag("--impostors", impostors,
+                 "forest, leafy: the shadow passes cast each far tree from an octahedral impostor (one card facing the "
+                 "light) in place of its coarsest billboard cloud");
     // Options bind to this object's fields (CLI11 holds references), so the note of which was
     // given is this object's too.
-    for (const char* flag : {"--forest", "--seed", "--trees", "--terrain-size", "--terrain-resolution", "--movers"})
+    for (const char* flag :
+         {"--forest", "--seed", "--trees", "--terrain-size", "--terrain-resolution", "--movers", "--impostors"})
         cmd.get_option(flag)->each([this, flag](const std::string&) {
             if (forestFlag.empty()) forestFlag = flag;
         });
@@ -73,6 +77,7 @@ scene::ForestOptions forestOptionsOf(const SceneOptions& options) {
     o.terrainSize = options.terrainSize;
     o.terrainResolution = options.terrainResolution;
     o.movers = options.movers;
+    o.impostors = options.impostors;
     return o;
 }
 
