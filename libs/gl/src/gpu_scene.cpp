@@ -372,7 +372,7 @@ DrawStats GpuScene::drawBatch(const GpuBatch& batch, const PassList& list, const
     struct LevelState {
         bool twoSided = false;
         GLuint texture = 0; // 0: the material's
-        scene::ImpostorCard impostor;
+        scene::ImpostorCard impostor{};
         bool operator==(const LevelState&) const = default;
     };
     auto stateOf = [&](size_t level) {

@@ -139,9 +139,9 @@ public:
         // towards the light (shadow_lookup.glsl, receiverLookup): a simplified surface's error
         // (scene::LodLevel::objectError), 0 for a level that keeps coverage (rangesOf).
         float lookupOffset = 0.0f;
-        bool closed = false;          // scene::LodLevel::closed
-        int32_t texture = -1;         // scene::LodLevel::texture: its own base colour, else the material's
-        scene::ImpostorCard impostor; // scene::LodLevel::impostor: a card the vertex stage turns
+        bool closed = false;            // scene::LodLevel::closed
+        int32_t texture = -1;           // scene::LodLevel::texture: its own base colour, else the material's
+        scene::ImpostorCard impostor{}; // scene::LodLevel::impostor: a card the vertex stage turns
     };
 
 private:

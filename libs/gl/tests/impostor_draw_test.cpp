@@ -4,6 +4,7 @@
 // hemi-octahedral map, the frame's basis and its texels again in GLSL: a frame picked for
 // another direction, mirrored or turned would cover other texels. CTest label `gl`.
 #include "headless_gl_test.h"
+#include "test_scenes.h"
 
 #include "shadowkit/core/shadow_setup.h"
 #include "shadowkit/gl/renderer.h"

@@ -32,7 +32,7 @@ struct LodLevel {
     int32_t texture = -1;
     // The level is an impostor's card (scene.h, ImpostorCard), turned to each pass's viewer by its
     // vertex stage; shadow chain only.
-    ImpostorCard impostor;
+    ImpostorCard impostor{};
 };
 
 struct MeshLods {

@@ -52,7 +52,7 @@ struct AuthoredLod {
     LodPasses passes = LodPasses::Both;
     // An impostor's card (shadow passes only: its card is flat through the tree's centre, and a
     // camera would see the tree's sunlit half and shadowed half as one plane).
-    ImpostorCard impostor;
+    ImpostorCard impostor{};
 };
 
 struct Mesh {
