@@ -135,8 +135,9 @@ TEST_F(OctahedralImpostorDrawTest, AnImpostorsCardCastsWhatItsSourceCastsInTheSu
         for (const float yaw : {0.0f, 1.2f}) {
             const scene::Scene s = c.make(yaw);
             const scene::Mesh& source = s.meshes.back();
-            const size_t impostorLevel = scene::buildLods(source).shadow.size() - 1;
-            ASSERT_GT(scene::buildLods(source).shadow[impostorLevel].impostor.framesPerSide, 0) << c.name;
+            const scene::MeshLods lods = scene::buildLods(source);
+            const size_t impostorLevel = lods.shadow.size() - 1;
+            ASSERT_GT(lods.shadow[impostorLevel].impostor.framesPerSide, 0) << c.name;
             const double error = double(source.authoredLods.back().objectError);
             auto renderer = gl::Renderer::create(s);
             ASSERT_TRUE(renderer) << renderer.error();
